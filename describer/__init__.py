@@ -1,0 +1,1 @@
+"""Turns a laid-out scene into grammatical English that is true of it."""

@@ -1,0 +1,1 @@
+"""Rules language, grammar expansion, scene graphs and the MCMC layout."""

@@ -1,0 +1,1 @@
+"""Markov chain Monte Carlo placement of objects and paths (the paper's energy)."""

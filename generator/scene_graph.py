@@ -1,0 +1,199 @@
+"""The scene relationship graph: what grammar expansion produces and layout consumes.
+
+A ``SceneGraph`` wraps a networkx ``MultiDiGraph``. Each node is one instance of a
+catalog type (object, group, path or junction) with a stable id such as
+``market_stand_2`` (type name and a 1-based counter per type, in creation order). Each
+edge is one relation label from ``generator.relations`` pointing from A to B. Every node
+records the production that made it (its derivation) and its parent group, so the
+describer can follow the derivation and the later capabilities can reuse it.
+
+Node attributes are plain values copied from the catalog entry after the style was
+chosen, so later stages never need the catalog itself.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Iterator
+
+import networkx as nx
+
+from .catalog import CatalogEntry, Style, Vec3
+from .relations import LABELS
+
+
+@dataclass(frozen=True)
+class SceneParams:
+    """Scene-wide parameters from a rules file's ``scene`` block.
+
+    ``extent`` is (width along x, depth along z) in metres, centred on the origin.
+    ``walls``: the extent is a room bounded by walls (indoor rule sets).
+    """
+
+    name: str = "scene"
+    extent: tuple[float, float] = (40.0, 40.0)
+    ground: str = "grass"
+    walls: bool = False
+
+
+@dataclass(frozen=True)
+class SceneNode:
+    """One node of the scene graph, as plain data."""
+
+    id: str
+    type: str
+    kind: str
+    noun: str
+    plural: str | None
+    size: Vec3
+    shape: str | None
+    mesh: str | None
+    colour: Vec3
+    style: str | None = None
+    parent: str | None = None
+    rule: str | None = None  # the production that created the node ("MarketStand", ...)
+    order: int = 0  # creation order; the derivation is depth-first in statement order
+    width: float | None = None  # paths only
+    max_length: float | None = None  # paths only
+    segments: int | None = None  # paths only
+
+
+@dataclass(frozen=True)
+class SceneEdge:
+    """One relation of the scene graph: ``source`` -label-> ``target``."""
+
+    source: str
+    target: str
+    label: str
+
+
+@dataclass
+class SceneGraph:
+    """A scene relationship graph plus its scene parameters."""
+
+    params: SceneParams = field(default_factory=SceneParams)
+    graph: nx.MultiDiGraph = field(default_factory=nx.MultiDiGraph)
+    _counters: dict[str, int] = field(default_factory=dict, repr=False)
+
+    # -- building -----------------------------------------------------------------
+
+    def add_node(
+        self,
+        entry: CatalogEntry,
+        *,
+        style: Style | None = None,
+        parent: str | None = None,
+        rule: str | None = None,
+    ) -> str:
+        """Add an instance of ``entry`` (in ``style``) and return its new id."""
+        if parent is not None and parent not in self.graph:
+            raise KeyError(f"unknown parent node {parent!r}")
+        count = self._counters.get(entry.name, 0) + 1
+        self._counters[entry.name] = count
+        node_id = f"{entry.name}_{count}"
+        looks = entry.with_style(style)
+        is_path = entry.kind == "path"
+        node = SceneNode(
+            id=node_id,
+            type=entry.name,
+            kind=entry.kind,
+            noun=looks.noun,
+            plural=looks.plural,
+            size=tuple(float(v) for v in looks.size),
+            shape=looks.shape,
+            mesh=looks.mesh,
+            colour=tuple(float(v) for v in looks.colour),
+            style=style.name if style else None,
+            parent=parent,
+            rule=rule,
+            order=self.graph.number_of_nodes(),
+            width=entry.width if is_path else None,
+            max_length=entry.max_length if is_path else None,
+            segments=entry.segments if is_path else None,
+        )
+        self.graph.add_node(node_id, **asdict(node))
+        return node_id
+
+    def add_relation(self, source: str, target: str, label: str) -> None:
+        """Add the edge ``source`` -label-> ``target`` (both must exist)."""
+        if label not in LABELS:
+            raise ValueError(f"unknown relation label {label!r}")
+        for node_id in (source, target):
+            if node_id not in self.graph:
+                raise KeyError(f"unknown node {node_id!r}")
+        if source == target:
+            raise ValueError(f"relation {label} from {source!r} to itself")
+        self.graph.add_edge(source, target, label=label)
+
+    # -- reading ------------------------------------------------------------------
+
+    def node(self, node_id: str) -> SceneNode:
+        return SceneNode(**self.graph.nodes[node_id])
+
+    def nodes(self, kind: str | None = None) -> list[SceneNode]:
+        """Nodes in creation order, optionally only those of one kind."""
+        found = [SceneNode(**data) for _, data in self.graph.nodes(data=True)]
+        found.sort(key=lambda n: n.order)
+        return [n for n in found if kind is None or n.kind == kind]
+
+    def edges(self, label: str | None = None) -> list[SceneEdge]:
+        """Relations in insertion order, optionally only those with one label."""
+        return [
+            SceneEdge(s, t, data["label"])
+            for s, t, data in self.graph.edges(data=True)
+            if label is None or data["label"] == label
+        ]
+
+    def children(self, group_id: str) -> list[SceneNode]:
+        """Direct members of a group, in creation order."""
+        return [n for n in self.nodes() if n.parent == group_id]
+
+    def descendants(self, group_id: str) -> list[SceneNode]:
+        """All members of a group, nested groups' members included."""
+        found: list[SceneNode] = []
+        for child in self.children(group_id):
+            found.append(child)
+            found.extend(self.descendants(child.id))
+        return found
+
+    def __len__(self) -> int:
+        return self.graph.number_of_nodes()
+
+    def __iter__(self) -> Iterator[SceneNode]:
+        return iter(self.nodes())
+
+    # -- plain data ---------------------------------------------------------------
+
+    def to_dict(self) -> dict:
+        """A JSON-ready dict: parameters, nodes (creation order) and edges."""
+        return {
+            "params": asdict(self.params),
+            "nodes": [asdict(n) for n in self.nodes()],
+            "edges": [asdict(e) for e in self.edges()],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "SceneGraph":
+        params = data.get("params", {})
+        scene_graph = cls(
+            params=SceneParams(
+                name=params.get("name", "scene"),
+                extent=tuple(params.get("extent", (40.0, 40.0))),
+                ground=params.get("ground", "grass"),
+                walls=bool(params.get("walls", False)),
+            )
+        )
+        for raw in data["nodes"]:
+            node = SceneNode(
+                **{
+                    **raw,
+                    "size": tuple(raw["size"]),
+                    "colour": tuple(raw["colour"]),
+                }
+            )
+            scene_graph.graph.add_node(node.id, **asdict(node))
+            counter = int(node.id.rsplit("_", 1)[1]) if node.id.rsplit("_", 1)[-1].isdigit() else 0
+            scene_graph._counters[node.type] = max(scene_graph._counters.get(node.type, 0), counter)
+        for raw in data["edges"]:
+            scene_graph.add_relation(raw["source"], raw["target"], raw["label"])
+        return scene_graph

@@ -1,0 +1,1 @@
+"""Meshes, offscreen previews and glTF export of laid-out scenes."""

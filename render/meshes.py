@@ -1,0 +1,126 @@
+"""Triangle meshes for a scene: one per object, a ribbon per path, the ground.
+
+Objects are built in their local frame by the procedural builder their ``shape`` names
+(``scenewright.render.builders``), or loaded from the user's mesh file, and always
+fitted exactly to the catalog size, so what is drawn is the box the layout placed.
+``object_transform`` gives the local-to-world pose. Everything is in metres, +Y up.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+import trimesh
+
+from scenewright.scene import Scene, SceneObject, ScenePath
+
+from .builders import BUILDERS, coloured
+
+#: Roads sit this far above the ground so they do not z-fight with it.
+PATH_LIFT = 0.02
+
+
+class MeshError(ValueError):
+    """A user mesh file could not be loaded or an unknown shape was named."""
+
+
+def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
+    """The object's mesh in its local frame, fitted to ``obj.size`` (base centre at 0)."""
+    if obj.mesh:
+        mesh = _load_user_mesh(obj.mesh).copy()
+        mesh = coloured(mesh, obj.colour) if not _has_colours(mesh) else mesh
+    else:
+        build = BUILDERS.get(obj.shape or "box")
+        if build is None:
+            raise MeshError(f"{obj.id}: no mesh builder named {obj.shape!r}")
+        mesh = build(tuple(obj.size), tuple(obj.colour))
+    return fit_to_size(mesh, obj.size)
+
+
+def object_transform(obj: SceneObject) -> np.ndarray:
+    """4x4 local-to-world matrix: yaw about +Y, then the base centre."""
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    matrix = np.eye(4)
+    # Yaw turns local +Z (forward) towards +X: R = rotation about +Y by yaw.
+    matrix[:3, :3] = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+    matrix[:3, 3] = obj.position
+    return matrix
+
+
+def fit_to_size(mesh: trimesh.Trimesh, size) -> trimesh.Trimesh:
+    """Scale and move ``mesh`` so its bounds are exactly ``size`` with base centre at 0."""
+    lo, hi = mesh.bounds
+    extents = np.maximum(hi - lo, 1e-9)
+    target = np.maximum(np.asarray(size, dtype=float), 1e-3)
+    fitted = mesh.copy()
+    fitted.apply_translation(-np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2]))
+    fitted.apply_transform(np.diag(np.append(target / extents, 1.0)))
+    return fitted
+
+
+def path_mesh(path: ScenePath) -> trimesh.Trimesh:
+    """A flat ribbon of the path's width along its control points, just above the ground."""
+    points = np.asarray(path.points, dtype=float)
+    half = path.width / 2.0
+    pieces = []
+    for a, b in zip(points[:-1], points[1:]):
+        direction = b - a
+        length = float(np.hypot(*direction))
+        if length < 1e-9:
+            continue
+        normal = np.array([-direction[1], direction[0]]) / length * half
+        quad = np.array([a + normal, a - normal, b - normal, b + normal])
+        pieces.append(_flat_polygon(quad))
+    for point in points[1:-1]:  # round the joints so turns have no gaps
+        pieces.append(_flat_disc(point, half))
+    if path.start is None and len(points):
+        pieces.append(_flat_disc(points[0], half))
+    mesh = trimesh.util.concatenate(pieces)
+    return coloured(mesh, path.colour)
+
+
+def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
+    """The ground plane under the scene extent (a little larger, so edges show)."""
+    w, d = scene.extent
+    colour = (0.35, 0.55, 0.25) if scene.ground == "grass" else (0.62, 0.55, 0.45)
+    slab = trimesh.creation.box(extents=(w * margin, 0.02, d * margin))
+    slab.apply_translation((0.0, -0.01, 0.0))  # top face at y = 0
+    return coloured(slab, colour)
+
+
+@lru_cache(maxsize=64)
+def _load_user_mesh(path: str) -> trimesh.Trimesh:
+    try:
+        loaded = trimesh.load(path, force="mesh")
+    except Exception as error:  # trimesh raises many kinds for unreadable files
+        raise MeshError(f"{path}: cannot load mesh ({error})") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise MeshError(f"{path}: file has no triangles")
+    return loaded
+
+
+def _has_colours(mesh: trimesh.Trimesh) -> bool:
+    return mesh.visual.kind in ("face", "vertex", "texture")
+
+
+def _flat_polygon(quad: np.ndarray) -> trimesh.Trimesh:
+    vertices = np.column_stack([quad[:, 0], np.full(len(quad), PATH_LIFT), quad[:, 1]])
+    # Counter-clockwise seen from above (+Y) so normals point up.
+    faces = np.array([[0, 2, 1], [0, 3, 2]])
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    if mesh.face_normals[:, 1].mean() < 0:
+        mesh.invert()
+    return mesh
+
+
+def _flat_disc(centre: np.ndarray, radius: float, sections: int = 16) -> trimesh.Trimesh:
+    angles = np.linspace(0, 2 * np.pi, sections, endpoint=False)
+    ring = np.column_stack([centre[0] + radius * np.cos(angles), centre[1] + radius * np.sin(angles)])
+    vertices = np.vstack([[centre[0], PATH_LIFT, centre[1]], np.column_stack([ring[:, 0], np.full(sections, PATH_LIFT), ring[:, 1]])])
+    faces = np.array([[0, 1 + (i + 1) % sections, 1 + i] for i in range(sections)])
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    if mesh.face_normals[:, 1].mean() < 0:
+        mesh.invert()
+    return mesh

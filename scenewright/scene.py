@@ -1,0 +1,320 @@
+"""The laid-out scene as plain data, and its scene.json form.
+
+A ``Scene`` is what the describer, the renderer and the exporter read: every object,
+group and junction with its pose and size, every path with its control points, every
+relation with its layout verdict, the layout's statistics, and (once made) the
+description and render metadata. ``assemble_scene`` builds one from a scene graph and
+a layout result; ``Scene.to_json`` / ``Scene.from_json`` are the scene.json contract
+documented by ``scenewright/schema/scene.schema.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+import numpy as np
+
+from scenewright.generator.layout.result import LayoutResult
+from scenewright.generator.scene_graph import SceneGraph, SceneNode, SceneParams
+
+SCENE_FORMAT_VERSION = 1
+
+
+@dataclass
+class SceneObject:
+    """An object, group or junction with its pose.
+
+    ``position`` is the base centre [x, y, z]; ``size`` is [w, h, d] along the object's
+    local axes. A group's pose is the axis-aligned box around its members (yaw 0).
+    """
+
+    id: str
+    type: str
+    kind: str
+    noun: str
+    plural: str | None
+    parent: str | None
+    style: str | None
+    position: list[float]
+    yaw: float
+    size: list[float]
+    shape: str | None = None
+    mesh: str | None = None
+    colour: list[float] = field(default_factory=lambda: [0.6, 0.6, 0.6])
+    rule: str | None = None
+    order: int = 0
+
+
+@dataclass
+class ScenePath:
+    """A path (road, trail): control points [[x, z], ...] and a width in metres."""
+
+    id: str
+    type: str
+    noun: str
+    plural: str | None
+    parent: str | None
+    points: list[list[float]]
+    width: float
+    start: str | None = None  # the junction it starts at, if any
+    colour: list[float] = field(default_factory=lambda: [0.55, 0.45, 0.3])
+    rule: str | None = None
+    order: int = 0
+
+
+@dataclass
+class Relation:
+    """A relation edge with the layout's verdict on it (see ``RelationResult``)."""
+
+    source: str
+    target: str
+    label: str
+    value: float = 0.0
+    satisfied: bool = True
+    chosen: str | None = None
+
+
+@dataclass
+class LayoutStats:
+    energy: float = 0.0
+    parts: dict[str, float] = field(default_factory=dict)
+    steps: int = 0
+    acceptance: float = 0.0
+    seconds: float = 0.0
+    ok: bool = True
+    problems: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Scene:
+    """A generated scene: the plain data every later stage reads."""
+
+    rules: str
+    seed: int
+    extent: list[float]
+    objects: list[SceneObject]
+    paths: list[ScenePath]
+    relations: list[Relation]
+    layout: LayoutStats = field(default_factory=LayoutStats)
+    walls: bool = False
+    ground: str = "grass"
+    description: dict[str, Any] | None = None
+    render: dict[str, Any] | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+    version: str = ""
+
+    # -- lookups ------------------------------------------------------------------
+
+    def object(self, object_id: str) -> SceneObject:
+        for obj in self.objects:
+            if obj.id == object_id:
+                return obj
+        raise KeyError(object_id)
+
+    def path(self, path_id: str) -> ScenePath:
+        for path in self.paths:
+            if path.id == path_id:
+                return path
+        raise KeyError(path_id)
+
+    def entity(self, entity_id: str) -> SceneObject | ScenePath:
+        """The object, group, junction or path with this id."""
+        try:
+            return self.object(entity_id)
+        except KeyError:
+            return self.path(entity_id)
+
+    def placed_objects(self) -> list[SceneObject]:
+        """Objects with a body (kind ``object``), the ones that are drawn and collide."""
+        return [o for o in self.objects if o.kind == "object"]
+
+    # -- scene.json ---------------------------------------------------------------
+
+    def to_dict(self) -> dict[str, Any]:
+        data = asdict(self)
+        data["format"] = SCENE_FORMAT_VERSION
+        return data
+
+    def to_json(self, indent: int | None = 1) -> str:
+        """scene.json text: deterministic (sorted nothing, rounded floats, fixed order)."""
+        return json.dumps(_rounded(self.to_dict()), indent=indent, ensure_ascii=False) + "\n"
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> "Scene":
+        def build(kind, raw):
+            names = {f.name for f in fields(kind)}
+            return kind(**{k: v for k, v in raw.items() if k in names})
+
+        return cls(
+            rules=data["rules"],
+            seed=int(data["seed"]),
+            extent=list(data["extent"]),
+            objects=[build(SceneObject, o) for o in data["objects"]],
+            paths=[build(ScenePath, p) for p in data.get("paths", [])],
+            relations=[build(Relation, r) for r in data.get("relations", [])],
+            layout=build(LayoutStats, data.get("layout", {})),
+            walls=bool(data.get("walls", False)),
+            ground=data.get("ground", "grass"),
+            description=data.get("description"),
+            render=data.get("render"),
+            timings=dict(data.get("timings", {})),
+            version=data.get("version", ""),
+        )
+
+    @classmethod
+    def from_json(cls, text: str) -> "Scene":
+        return cls.from_dict(json.loads(text))
+
+    # -- back to a graph ----------------------------------------------------------
+
+    def graph(self) -> SceneGraph:
+        """The scene relationship graph this scene was laid out from."""
+        nodes = [_node_of(o) for o in self.objects] + [_node_of_path(p) for p in self.paths]
+        nodes.sort(key=lambda n: n["order"])
+        return SceneGraph.from_dict(
+            {
+                "params": asdict(SceneParams(extent=tuple(self.extent), ground=self.ground, walls=self.walls)),
+                "nodes": nodes,
+                "edges": [{"source": r.source, "target": r.target, "label": r.label} for r in self.relations],
+            }
+        )
+
+
+def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed: int) -> Scene:
+    """Join a scene graph and its layout into a ``Scene`` (groups get their members' box)."""
+    from scenewright import __version__
+
+    objects: list[SceneObject] = []
+    paths: list[ScenePath] = []
+    starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
+    for node in graph.nodes():
+        if node.kind == "path":
+            paths.append(
+                ScenePath(
+                    id=node.id,
+                    type=node.type,
+                    noun=node.noun,
+                    plural=node.plural,
+                    parent=node.parent,
+                    points=np.asarray(layout.paths[node.id], dtype=float).tolist(),
+                    width=float(node.width),
+                    start=starts.get(node.id),
+                    colour=list(node.colour),
+                    rule=node.rule,
+                    order=node.order,
+                )
+            )
+        elif node.kind == "group":
+            continue  # placed below, once its members are
+        else:
+            pose = layout.poses[node.id]
+            objects.append(_object_of(node, [pose.x, pose.y, pose.z], pose.yaw, list(node.size)))
+
+    placed = {o.id: o for o in objects}
+    for group in graph.nodes("group"):
+        members = [placed[m.id] for m in graph.descendants(group.id) if m.id in placed]
+        position, size = _union_box(members)
+        objects.append(_object_of(group, position, 0.0, size))
+    objects.sort(key=lambda o: o.order)
+
+    relations = [
+        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen)
+        for r in layout.relations
+    ]
+    stats = LayoutStats(
+        energy=float(layout.energy),
+        parts={k: float(v) for k, v in layout.parts.items()},
+        steps=int(layout.steps),
+        acceptance=float(layout.acceptance),
+        seconds=float(layout.seconds),
+        ok=bool(layout.ok),
+        problems=list(layout.problems),
+    )
+    return Scene(
+        rules=rules,
+        seed=seed,
+        extent=list(graph.params.extent),
+        objects=objects,
+        paths=paths,
+        relations=relations,
+        layout=stats,
+        walls=graph.params.walls,
+        ground=graph.params.ground,
+        version=__version__,
+    )
+
+
+def footprint_corners(obj: SceneObject) -> np.ndarray:
+    """The four (x, z) corners of an object's rotated footprint."""
+    w, _, d = obj.size
+    local = np.array([[-w, -d], [w, -d], [w, d], [-w, d]]) / 2.0
+    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
+    # Yaw turns local +Z (forward) towards +X: x' = x c + z s, z' = -x s + z c.
+    rotation = np.array([[c, -s], [s, c]])
+    return local @ rotation + np.array([obj.position[0], obj.position[2]])
+
+
+def _union_box(members: list[SceneObject]) -> tuple[list[float], list[float]]:
+    if not members:
+        return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+    corners = np.vstack([footprint_corners(m) for m in members])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    top = max(m.position[1] + m.size[1] for m in members)
+    bottom = min(m.position[1] for m in members)
+    centre = (lo + hi) / 2.0
+    return [float(centre[0]), float(bottom), float(centre[1])], [
+        float(hi[0] - lo[0]),
+        float(top - bottom),
+        float(hi[1] - lo[1]),
+    ]
+
+
+def _object_of(node: SceneNode, position: list[float], yaw: float, size: list[float]) -> SceneObject:
+    return SceneObject(
+        id=node.id,
+        type=node.type,
+        kind=node.kind,
+        noun=node.noun,
+        plural=node.plural,
+        parent=node.parent,
+        style=node.style,
+        position=[float(v) for v in position],
+        yaw=float(yaw),
+        size=[float(v) for v in size],
+        shape=node.shape,
+        mesh=node.mesh,
+        colour=list(node.colour),
+        rule=node.rule,
+        order=node.order,
+    )
+
+
+def _node_of(obj: SceneObject) -> dict[str, Any]:
+    return {
+        "id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun, "plural": obj.plural,
+        "size": tuple(obj.size), "shape": obj.shape, "mesh": obj.mesh, "colour": tuple(obj.colour),
+        "style": obj.style, "parent": obj.parent, "rule": obj.rule, "order": obj.order,
+    }  # fmt: skip
+
+
+def _node_of_path(path: ScenePath) -> dict[str, Any]:
+    return {
+        "id": path.id, "type": path.type, "kind": "path", "noun": path.noun, "plural": path.plural,
+        "size": (path.width, 0.0, 0.0), "shape": None, "mesh": None, "colour": tuple(path.colour),
+        "parent": path.parent, "rule": path.rule, "order": path.order, "width": path.width,
+    }  # fmt: skip
+
+
+def _rounded(value: Any, digits: int = 6) -> Any:
+    """Round floats so scene.json is stable and readable (micrometre precision)."""
+    if isinstance(value, float):
+        rounded = round(value, digits)
+        return 0.0 if rounded == 0 else rounded
+    if isinstance(value, dict):
+        return {k: _rounded(v, digits) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_rounded(v, digits) for v in value]
+    return value

@@ -1,0 +1,81 @@
+"""Scene graph building and the scene.json round trip."""
+
+import pytest
+
+from scenewright.generator.catalog import CatalogEntry, Style
+from scenewright.generator.layout.result import LayoutResult, Pose, RelationResult
+from scenewright.generator.scene_graph import SceneGraph, SceneParams
+from scenewright.scene import Scene, assemble_scene
+
+TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9), shape="box")
+COMPUTER = CatalogEntry(
+    "computer",
+    "object",
+    "computer",
+    size=(0.5, 0.4, 0.3),
+    styles=(Style("laptop", 0.6, noun="laptop", size=(0.35, 0.02, 0.25)), Style("tablet", 0.4, noun="tablet")),
+)
+STAND = CatalogEntry("market_stand", "group", "market stand")
+ROAD = CatalogEntry("road", "path", "road", width=3.0)
+
+
+def small_graph() -> SceneGraph:
+    graph = SceneGraph(params=SceneParams(extent=(20.0, 10.0)))
+    stand = graph.add_node(STAND, rule="MarketStand")
+    table = graph.add_node(TABLE, parent=stand, rule="MarketStand")
+    laptop = graph.add_node(COMPUTER, style=COMPUTER.styles[0], parent=stand, rule="Goods")
+    road = graph.add_node(ROAD, rule="Roads")
+    graph.add_relation(laptop, table, "OnTopOfMiddle")
+    graph.add_relation(stand, road, "NextTo")
+    return graph
+
+
+def test_ids_are_type_and_counter_in_creation_order():
+    graph = small_graph()
+    assert [n.id for n in graph.nodes()] == ["market_stand_1", "table_1", "computer_1", "road_1"]
+    assert graph.add_node(TABLE) == "table_2"
+
+
+def test_style_overrides_noun_and_size():
+    laptop = small_graph().node("computer_1")
+    assert (laptop.noun, laptop.style, laptop.size) == ("laptop", "laptop", (0.35, 0.02, 0.25))
+
+
+def test_members_of_a_group():
+    graph = small_graph()
+    assert [n.id for n in graph.children("market_stand_1")] == ["table_1", "computer_1"]
+
+
+def test_unknown_label_and_node_are_refused():
+    graph = small_graph()
+    with pytest.raises(ValueError, match="unknown relation label"):
+        graph.add_relation("table_1", "road_1", "Besides")
+    with pytest.raises(KeyError):
+        graph.add_relation("table_1", "nowhere_1", "NextTo")
+
+
+def test_graph_dict_round_trip():
+    graph = small_graph()
+    again = SceneGraph.from_dict(graph.to_dict())
+    assert again.to_dict() == graph.to_dict()
+    assert again.add_node(TABLE) == "table_2"
+
+
+def test_scene_json_round_trip_and_group_box():
+    graph = small_graph()
+    layout = LayoutResult(
+        poses={"table_1": Pose(1.0, 0.0, 2.0, 0.0), "computer_1": Pose(1.0, 0.8, 2.0, 0.0)},
+        paths={"road_1": [[-10.0, 0.0], [10.0, 0.0]]},
+        relations=[
+            RelationResult("computer_1", "table_1", "OnTopOfMiddle", 0.0, True),
+            RelationResult("market_stand_1", "road_1", "NextTo", -0.01, True),
+        ],
+        energy=0.01, parts={"relations": 0.01}, steps=10, acceptance=0.5, seconds=0.1, ok=True,
+    )
+    scene = assemble_scene(graph, layout, rules="test", seed=3)
+    stand = scene.object("market_stand_1")
+    assert stand.position == pytest.approx([1.0, 0.0, 2.0])
+    assert stand.size == pytest.approx([1.6, 0.82, 0.9])
+    text = scene.to_json()
+    assert Scene.from_json(text).to_json() == text
+    assert scene.graph().to_dict()["edges"] == graph.to_dict()["edges"]
