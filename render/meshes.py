@@ -2,7 +2,10 @@
 
 Objects are built in their local frame by the procedural builder their ``shape`` names
 (``scenewright.render.builders``), or loaded from the user's mesh file, and always
-fitted exactly to the catalog size, so what is drawn is the box the layout placed.
+fitted exactly to the catalog size, so what is drawn is the box the layout placed. A
+shape with no builder is drawn as a plain box of the object's size and colour: a rules
+file may name shapes this version does not model yet, and the box is still exactly the
+volume the layout reasoned about.
 ``object_transform`` gives the local-to-world pose. Everything is in metres, +Y up.
 """
 
@@ -20,10 +23,12 @@ from .builders import BUILDERS, coloured
 
 #: Roads sit this far above the ground so they do not z-fight with it.
 PATH_LIFT = 0.02
+#: Junction discs sit above the path ribbons that start at them.
+JUNCTION_LIFT = 0.03
 
 
 class MeshError(ValueError):
-    """A user mesh file could not be loaded or an unknown shape was named."""
+    """A user mesh file could not be loaded."""
 
 
 def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
@@ -32,9 +37,7 @@ def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
         mesh = _load_user_mesh(obj.mesh).copy()
         mesh = coloured(mesh, obj.colour) if not _has_colours(mesh) else mesh
     else:
-        build = BUILDERS.get(obj.shape or "box")
-        if build is None:
-            raise MeshError(f"{obj.id}: no mesh builder named {obj.shape!r}")
+        build = BUILDERS.get(obj.shape or "box", BUILDERS["box"])  # unknown shape: its box
         mesh = build(tuple(obj.size), tuple(obj.colour))
     return fit_to_size(mesh, obj.size)
 
@@ -81,6 +84,15 @@ def path_mesh(path: ScenePath) -> trimesh.Trimesh:
     return coloured(mesh, path.colour)
 
 
+def junction_mesh(obj: SceneObject) -> trimesh.Trimesh:
+    """A junction's flat disc (its footprint's inscribed circle) in its local frame.
+
+    It sits a little above path ribbons so the crossing it marks is drawn on top.
+    """
+    radius = max(min(obj.size[0], obj.size[2]) / 2.0, 0.1)
+    return coloured(_flat_disc(np.zeros(2), radius, lift=JUNCTION_LIFT), obj.colour)
+
+
 def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
     """The ground plane under the scene extent (a little larger, so edges show)."""
     w, d = scene.extent
@@ -115,10 +127,10 @@ def _flat_polygon(quad: np.ndarray) -> trimesh.Trimesh:
     return mesh
 
 
-def _flat_disc(centre: np.ndarray, radius: float, sections: int = 16) -> trimesh.Trimesh:
+def _flat_disc(centre: np.ndarray, radius: float, sections: int = 16, lift: float = PATH_LIFT) -> trimesh.Trimesh:
     angles = np.linspace(0, 2 * np.pi, sections, endpoint=False)
     ring = np.column_stack([centre[0] + radius * np.cos(angles), centre[1] + radius * np.sin(angles)])
-    vertices = np.vstack([[centre[0], PATH_LIFT, centre[1]], np.column_stack([ring[:, 0], np.full(sections, PATH_LIFT), ring[:, 1]])])
+    vertices = np.vstack([[centre[0], lift, centre[1]], np.column_stack([ring[:, 0], np.full(sections, lift), ring[:, 1]])])
     faces = np.array([[0, 1 + (i + 1) % sections, 1 + i] for i in range(sections)])
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     if mesh.face_normals[:, 1].mean() < 0:

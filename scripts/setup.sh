@@ -21,4 +21,8 @@ fi
 python3 -m venv .venv
 .venv/bin/python -m pip install -q --upgrade pip
 .venv/bin/python -m pip install -q -e '.[test]'
+# Khronos' glTF validator (a node package) checks exported GLB files in the tests.
+if command -v npm >/dev/null; then
+  npm install -s --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null
+fi
 echo "setup: ready (.venv)"

@@ -1,0 +1,224 @@
+"""Automatic cameras that frame a scene, and the pixel projection they imply.
+
+Pure numpy, no OpenGL: the renderer hands ``Camera.pose`` and the lens to pyrender,
+and tests (or dataset tools) use ``Camera.project`` to find where a world point lands
+in the image. Two views:
+
+- ``perspective``: a 3/4 view from the south-east, looking down at ``ELEVATION``,
+  placed so every framed point lies inside the view frustum (tight fit, then a margin).
+- ``top``: an orthographic view straight down with north (-Z) at the top of the image
+  and east (+X) to the right.
+
+Camera frame as in OpenGL / pyrender: the camera looks along its local -Z, local +Y is
+up in the image, local +X is right. Pixel coordinates: u to the right, v down, the
+top-left pixel covers [0, 1) x [0, 1).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from scenewright.scene import Scene, footprint_corners
+
+VIEWS = ("perspective", "top")
+
+#: Vertical field of view of the perspective view (radians).
+YFOV = math.radians(45.0)
+#: Perspective view direction: the camera sits this far round from south towards east...
+AZIMUTH = math.radians(35.0)
+#: ...and looks down at this angle above the horizon.
+ELEVATION = math.radians(35.0)
+#: Fraction of the image the framed points may fill (the rest is breathing room).
+FILL = 0.9
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A camera pose (camera-to-world, 4x4) and lens.
+
+    ``yfov`` is set for perspective cameras, ``xmag``/``ymag`` (half the visible width
+    and height in metres) for orthographic ones.
+    """
+
+    view: str
+    pose: np.ndarray
+    width: int
+    height: int
+    znear: float
+    zfar: float
+    yfov: float | None = None
+    xmag: float | None = None
+    ymag: float | None = None
+
+    @property
+    def orthographic(self) -> bool:
+        return self.yfov is None
+
+    def focal(self) -> float:
+        """Perspective focal length in pixels (square pixels)."""
+        return (self.height / 2.0) / math.tan(self.yfov / 2.0)
+
+    def intrinsics(self) -> np.ndarray:
+        """3x3 matrix K taking camera coordinates (x, y, -z) to pixels (u, v, 1).
+
+        For a perspective camera K is the pinhole matrix (divide by depth); for an
+        orthographic one it is affine (metres to pixels, no division).
+        """
+        cx, cy = self.width / 2.0, self.height / 2.0
+        if self.orthographic:
+            sx, sy = cx / self.xmag, cy / self.ymag
+            return np.array([[sx, 0.0, cx], [0.0, -sy, cy], [0.0, 0.0, 1.0]])
+        f = self.focal()
+        return np.array([[f, 0.0, cx], [0.0, -f, cy], [0.0, 0.0, 1.0]])
+
+    def extrinsics(self) -> np.ndarray:
+        """4x4 world-to-camera matrix (the inverse of ``pose``)."""
+        return np.linalg.inv(self.pose)
+
+    def project(self, points) -> tuple[np.ndarray, np.ndarray]:
+        """Pixel coordinates (N, 2) and depth along the view axis (N,) of world points."""
+        world = np.atleast_2d(np.asarray(points, dtype=float))
+        local = (self.extrinsics() @ np.column_stack([world, np.ones(len(world))]).T).T[:, :3]
+        depth = -local[:, 2]
+        if self.orthographic:
+            homogeneous = np.column_stack([local[:, 0], local[:, 1], np.ones(len(local))])
+        else:
+            homogeneous = np.column_stack([local[:, 0], local[:, 1], np.ones(len(local))]) / depth[:, None]
+            homogeneous[:, 2] = 1.0
+        pixels = (self.intrinsics() @ homogeneous.T).T[:, :2]
+        return pixels, depth
+
+    def to_dict(self) -> dict[str, Any]:
+        """The camera parameters for scene.json's ``render.camera``."""
+        data: dict[str, Any] = {"view": self.view, "width": self.width, "height": self.height}
+        if self.orthographic:
+            data.update(xmag=float(self.xmag), ymag=float(self.ymag))
+        else:
+            data["yfov"] = float(self.yfov)
+        data.update(znear=float(self.znear), zfar=float(self.zfar), pose=self.pose.tolist())
+        return data
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> "Camera":
+        """The camera back from ``to_dict`` (e.g. from a scene.json ``render`` entry)."""
+        return cls(
+            view=data["view"],
+            pose=np.asarray(data["pose"], dtype=float),
+            width=int(data["width"]),
+            height=int(data["height"]),
+            znear=float(data["znear"]),
+            zfar=float(data["zfar"]),
+            yfov=data.get("yfov"),
+            xmag=data.get("xmag"),
+            ymag=data.get("ymag"),
+        )
+
+
+def scene_points(scene: Scene) -> np.ndarray:
+    """World points (N, 3) the camera must keep in frame: object boxes and path edges."""
+    chunks = []
+    for obj in scene.objects:
+        if obj.kind == "group":
+            continue  # a group's box is the union of its members, framed through them
+        corners = footprint_corners(obj)
+        bottom, top = obj.position[1], obj.position[1] + obj.size[1]
+        for y in (bottom, top):
+            chunks.append(np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]))
+    for path in scene.paths:
+        points = np.asarray(path.points, dtype=float)
+        half = path.width / 2.0
+        # The ribbon's outline lies within half a width of its control points.
+        for dx, dz in ((-half, -half), (half, -half), (half, half), (-half, half)):
+            chunks.append(np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz]))
+    if not chunks:  # nothing placed: frame the scene's extent
+        w, d = scene.extent
+        chunks.append(np.array([[-w / 2, 0, -d / 2], [w / 2, 0, -d / 2], [w / 2, 0, d / 2], [-w / 2, 0, d / 2]]))
+    return np.vstack(chunks)
+
+
+def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, height: int = 480) -> Camera:
+    """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths."""
+    points = scene_points(scene)
+    if view == "perspective":
+        return perspective_camera(points, width, height)
+    if view == "top":
+        return top_down_camera(points, width, height)
+    raise ValueError(f"unknown view {view!r}; expected one of {', '.join(VIEWS)}")
+
+
+def perspective_camera(
+    points: np.ndarray,
+    width: int,
+    height: int,
+    *,
+    yfov: float = YFOV,
+    azimuth: float = AZIMUTH,
+    elevation: float = ELEVATION,
+    fill: float = FILL,
+) -> Camera:
+    """A perspective camera looking along a fixed direction, as close as it can get
+    while every point stays inside ``fill`` of the image in both directions."""
+    # Direction from the scene towards the camera: south (+Z) turned east by azimuth.
+    back = np.array(
+        [math.cos(elevation) * math.sin(azimuth), math.sin(elevation), math.cos(elevation) * math.cos(azimuth)]
+    )
+    right = np.cross([0.0, 1.0, 0.0], back)
+    right /= np.linalg.norm(right)
+    up = np.cross(back, right)
+    rotation = np.column_stack([right, up, back])  # camera axes in world coordinates
+
+    local = points @ rotation  # points in the camera's axes (camera at origin for now)
+    tan_y = math.tan(yfov / 2.0) * fill
+    tan_x = math.tan(yfov / 2.0) * (width / height) * fill
+    # For each image axis, the camera offset c along it and distance back along +z
+    # must satisfy |p_axis - c| <= tan * (z_cam - p_z) for all points; the tightest
+    # z_cam is found where the two bounding planes of the frustum meet.
+    cx, zx = _fit_axis(local[:, 0], local[:, 2], tan_x)
+    cy, zy = _fit_axis(local[:, 1], local[:, 2], tan_y)
+    origin = rotation @ np.array([cx, cy, max(zx, zy)])
+
+    pose = np.eye(4)
+    pose[:3, :3] = rotation
+    pose[:3, 3] = origin
+    depths = (origin - points) @ back
+    znear, zfar = _clip_range(depths)
+    return Camera("perspective", pose, width, height, znear, zfar, yfov=yfov)
+
+
+def top_down_camera(points: np.ndarray, width: int, height: int, *, fill: float = FILL) -> Camera:
+    """An orthographic camera looking straight down, north (-Z) up, east (+X) right."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre = (lo + hi) / 2.0
+    aspect = width / height
+    half_x = max((hi[0] - lo[0]) / 2.0, 0.5)
+    half_z = max((hi[2] - lo[2]) / 2.0, 0.5)
+    xmag = max(half_x, half_z * aspect) / fill
+    ymag = xmag / aspect
+
+    height_above = hi[1] + max(xmag, 1.0)
+    pose = np.eye(4)
+    # Camera +X = east (+X), camera +Y (image up) = north (-Z), camera +Z = up (+Y).
+    pose[:3, :3] = np.column_stack([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    pose[:3, 3] = [centre[0], height_above, centre[2]]
+    depths = height_above - points[:, 1]
+    znear, zfar = _clip_range(np.append(depths, height_above))  # the ground must be in range
+    return Camera("top", pose, width, height, znear, zfar, xmag=xmag, ymag=ymag)
+
+
+def _fit_axis(along: np.ndarray, depth: np.ndarray, tan: float) -> tuple[float, float]:
+    """Offset and distance of the camera on one image axis (see ``perspective_camera``)."""
+    a = float(np.max(depth + along / tan))
+    b = float(np.max(depth - along / tan))
+    return tan * (a - b) / 2.0, (a + b) / 2.0
+
+
+def _clip_range(depths: np.ndarray) -> tuple[float, float]:
+    """Near and far planes around the framed depths, with room for the ground beyond."""
+    nearest, farthest = float(np.min(depths)), float(np.max(depths))
+    znear = max(0.05, nearest * 0.5)
+    zfar = farthest * 3.0 + 10.0  # the ground plane reaches past the framed points
+    return znear, zfar

@@ -1,0 +1,78 @@
+"""Small hand-built scenes and the OpenGL availability rule shared by the render and
+export tests."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from scenewright.errors import GenerationError
+from scenewright.scene import Scene, SceneObject, ScenePath
+
+
+def thing(
+    object_id: str,
+    position=(0.0, 0.0, 0.0),
+    size=(1.0, 1.0, 1.0),
+    *,
+    yaw: float = 0.0,
+    kind: str = "object",
+    parent: str | None = None,
+    colour=(0.8, 0.3, 0.2),
+    shape: str | None = "box",
+) -> SceneObject:
+    """A scene object whose type is its id without the counter (``house_1`` -> house)."""
+    type_name = object_id.rsplit("_", 1)[0]
+    return SceneObject(
+        id=object_id,
+        type=type_name,
+        kind=kind,
+        noun=type_name.replace("_", " "),
+        plural=None,
+        parent=parent,
+        style=None,
+        position=[float(v) for v in position],
+        yaw=yaw,
+        size=[float(v) for v in size],
+        shape=shape,
+        colour=list(colour),
+    )
+
+
+def road(path_id: str, points, width: float = 3.0, start: str | None = None) -> ScenePath:
+    return ScenePath(
+        id=path_id, type="road", noun="road", plural=None, parent=None,
+        points=[list(map(float, p)) for p in points], width=width, start=start,
+    )  # fmt: skip
+
+
+def scene_of(objects, paths=(), extent=(30.0, 20.0)) -> Scene:
+    return Scene(rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[])
+
+
+def market_scene() -> Scene:
+    """A market stand (group of a table and a sign), a house, a junction and a road."""
+    return scene_of(
+        [
+            thing("market_stand_1", (3, 0, 0), (4, 2, 2), kind="group", shape=None),
+            thing("table_1", (2, 0, 0), (1.6, 0.8, 0.9), parent="market_stand_1"),
+            thing("sign_1", (4, 0, 0), (0.5, 2.0, 0.2), parent="market_stand_1", colour=(0.2, 0.2, 0.9)),
+            thing("house_1", (-5, 0, -4), (4, 3, 5), yaw=0.5, colour=(0.9, 0.9, 0.8)),
+            thing("crossing_1", (0, 0, 4), (3, 0, 3), kind="junction", colour=(0.5, 0.4, 0.3), shape=None),
+        ],
+        [road("road_1", [[0, 4], [8, 4], [12, 8]], start="crossing_1")],
+    )
+
+
+def renderer_or_skip(width: int = 160, height: int = 120):
+    """A started ``Renderer``; skips when no OpenGL backend exists, unless under CI
+    (where a missing backend is a failure: CI must exercise rendering)."""
+    from scenewright.render.offscreen import Renderer
+
+    try:
+        return Renderer(width, height)
+    except GenerationError as error:
+        if os.environ.get("CI"):
+            raise
+        pytest.skip(f"no offscreen OpenGL backend: {error}")

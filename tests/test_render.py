@@ -1,0 +1,148 @@
+"""Offscreen rendering of hand-built scenes: images, depth, segmentation, boxes."""
+
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+from render_fixtures import market_scene, renderer_or_skip, road, scene_of, thing
+
+from scenewright.render.camera import Camera, frame_scene
+from scenewright.render.offscreen import render_metadata, save_render
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    renderer = renderer_or_skip(160, 120)
+    yield renderer
+    renderer.close()
+
+
+@pytest.fixture(scope="module")
+def market(renderer):
+    return renderer.render(market_scene())
+
+
+def pixel_of(result, point) -> tuple[int, int]:
+    (u, v), = Camera.from_dict(result.camera).project([point])[0]
+    return int(math.floor(u)), int(math.floor(v))
+
+
+def test_colour_image_shows_something(market):
+    assert market.colour.shape == (120, 160, 3) and market.colour.dtype == np.uint8
+    assert market.colour.reshape(-1, 3).std(axis=0).max() > 10
+
+
+def test_segmentation_holds_exactly_the_drawn_entities(market):
+    # Groups have no body; objects, junctions and paths are drawn, in scene order.
+    assert market.ids == ["table_1", "sign_1", "house_1", "crossing_1", "road_1"]
+    values = set(np.unique(market.segmentation).tolist())
+    assert values == {0, 1, 2, 3, 4, 5}
+    assert set(market.boxes) == set(market.ids)
+    for index, entity_id in enumerate(market.ids, start=1):
+        assert market.visible[entity_id] > 0.5
+        x0, y0, x1, y1 = market.boxes[entity_id]
+        rows, cols = np.nonzero(market.segmentation == index)
+        assert (x0, y0, x1, y1) == (cols.min(), rows.min(), cols.max() + 1, rows.max() + 1)
+
+
+def test_a_box_appears_at_its_projected_centre(renderer):
+    scene = scene_of([thing("crate_1", (2.0, 0.0, -1.0), (1.0, 1.0, 1.0)), thing("barrel_1", (-6.0, 0.0, 5.0))])
+    for view in ("perspective", "top"):
+        result = renderer.render(scene, view)
+        u, v = pixel_of(result, [2.0, 0.5, -1.0])
+        assert result.segmentation[v, u] == result.ids.index("crate_1") + 1, view
+
+
+def test_depth_matches_the_camera_and_grows_away_from_it(renderer):
+    scene = scene_of([thing("tower_1", (0, 0, 0), (2, 4, 2))])
+    top = renderer.render(scene, "top")
+    camera = Camera.from_dict(top.camera)
+    u, v = pixel_of(top, [0.0, 4.0, 0.0])
+    assert top.depth[v, u] == pytest.approx(camera.pose[1, 3] - 4.0, abs=0.01)  # roof seen from above
+
+    side = renderer.render(scene, "perspective")
+    assert np.all(side.depth >= 0) and side.depth.dtype == np.float32
+    # The ground recedes from the bottom of the image (near) to the top (far).
+    column = side.depth[:, 5]
+    ground = column[column > 0]
+    assert np.all(np.diff(ground[::-1]) > 0)
+    near, far = [0.0, 0.0, 4.0], [0.0, 0.0, -4.0]
+    (depth_near, depth_far) = Camera.from_dict(side.camera).project([near, far])[1]
+    assert depth_near < depth_far
+
+
+def test_top_view_has_north_up_and_east_right(renderer):
+    scene = scene_of(
+        [thing("north_1", (0, 0, -6)), thing("south_1", (0, 0, 6)), thing("east_1", (8, 0, 0))]
+    )
+    result = renderer.render(scene, "top")
+
+    def centre(entity_id):
+        x0, y0, x1, y1 = result.boxes[entity_id]
+        return (x0 + x1) / 2, (y0 + y1) / 2
+
+    assert centre("north_1")[1] < centre("south_1")[1]
+    assert centre("east_1")[0] > centre("north_1")[0]
+
+
+def test_visible_fraction_drops_behind_an_occluder(renderer):
+    camera = frame_scene(scene_of([thing("target_1")]), "perspective")
+    towards_camera = camera.pose[:3, 3] / np.linalg.norm(camera.pose[:3, 3])
+    wall_at = towards_camera * 3.0
+    scene = scene_of(
+        [thing("target_1", (0, 0, 0), (1, 1, 1)), thing("wall_1", (wall_at[0], 0, wall_at[2]), (0.8, 1.5, 0.8))]
+    )
+    result = renderer.render(scene)
+    assert result.visible["wall_1"] == pytest.approx(1.0)
+    assert 0.0 <= result.visible["target_1"] < 0.9
+
+
+def test_rendering_is_deterministic(renderer):
+    first, second = renderer.render(market_scene()), renderer.render(market_scene())
+    assert np.array_equal(first.colour, second.colour)
+    assert np.array_equal(first.segmentation, second.segmentation)
+    assert np.array_equal(first.depth, second.depth)
+
+
+def test_renders_a_scene_with_only_paths(renderer):
+    result = renderer.render(scene_of([], [road("road_1", [[-5, 0], [5, 0]])]))
+    assert result.ids == ["road_1"] and result.visible["road_1"] == pytest.approx(1.0)
+
+
+def test_saved_images_round_trip(market, tmp_path):
+    files = save_render(market, tmp_path, stem="view")
+    assert {p.name for p in files.values()} == {"view.png", "view_depth.png", "view_seg.png", "view_ids.json"}
+    assert np.array_equal(np.asarray(Image.open(files["colour"]).convert("RGB")), market.colour)
+    depth = np.asarray(Image.open(files["depth"]))
+    assert depth.dtype == np.uint16
+    assert np.array_equal(depth, np.round(market.depth * 1000).astype(np.uint16))
+    assert np.array_equal(np.asarray(Image.open(files["segmentation"])), market.segmentation)
+    assert json.loads(files["ids"].read_text()) == {str(k + 1): i for k, i in enumerate(market.ids)}
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in files.values())  # no temp files
+
+
+def test_metadata_for_scene_json(market):
+    metadata = render_metadata(market)
+    assert metadata["camera"]["view"] == "perspective" and len(metadata["camera"]["pose"]) == 4
+    assert list(metadata["objects"]) == market.ids
+    assert metadata["objects"]["house_1"]["bbox"] == market.boxes["house_1"]
+    json.dumps(metadata)  # plain JSON types only
+
+
+def test_missing_backend_is_a_clear_one_line_error():
+    code = (
+        "from scenewright.render.offscreen import Renderer\n"
+        "from scenewright.errors import GenerationError\n"
+        "try:\n    Renderer(8, 8)\nexcept GenerationError as error:\n    print(error)\n"
+    )
+    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    lines = done.stdout.strip().splitlines()
+    assert done.returncode == 0, done.stderr
+    assert len(lines) == 1 and "Traceback" not in done.stderr
+    assert "PYOPENGL_PLATFORM='no-such-platform'" in lines[0] and "apt-get install libegl1" in lines[0]
