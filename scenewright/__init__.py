@@ -12,3 +12,8 @@ try:
     __version__ = version("scenewright")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0"
+
+from scenewright.api import generate, load_rules
+from scenewright.scene import Scene
+
+__all__ = ["Scene", "__version__", "generate", "load_rules"]

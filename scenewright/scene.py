@@ -106,6 +106,11 @@ class Scene:
     timings: dict[str, float] = field(default_factory=dict)
     version: str = ""
 
+    #: The pixels of the last offscreen render (a ``RenderResult``) made by
+    #: ``render_image`` or ``generate(render=True)``. Not a dataclass field: images are
+    #: files beside scene.json, never part of it.
+    images = None
+
     # -- lookups ------------------------------------------------------------------
 
     def object(self, object_id: str) -> SceneObject:
@@ -138,9 +143,17 @@ class Scene:
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
-    def to_json(self, indent: int | None = 1) -> str:
-        """scene.json text: deterministic (sorted nothing, rounded floats, fixed order)."""
-        return json.dumps(_rounded(self.to_dict()), indent=indent, ensure_ascii=False) + "\n"
+    def to_json(self, indent: int | None = 1, *, reproducible: bool = False) -> str:
+        """scene.json text: deterministic (sorted nothing, rounded floats, fixed order).
+
+        ``reproducible`` leaves out the wall-clock times (``timings``, ``layout.seconds``),
+        the only values that differ between two runs with the same rules and seed.
+        """
+        data = self.to_dict()
+        if reproducible:
+            del data["timings"]
+            del data["layout"]["seconds"]
+        return json.dumps(_rounded(data), indent=indent, ensure_ascii=False) + "\n"
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> "Scene":
@@ -167,6 +180,26 @@ class Scene:
     @classmethod
     def from_json(cls, text: str) -> "Scene":
         return cls.from_dict(json.loads(text))
+
+    # -- conveniences: thin wrappers over the pipeline stages (imported lazily) -------
+
+    def describe(self, style: str = "full", variant: int = 0):
+        """An English description of this scene (a ``Description``); the scene is unchanged."""
+        from scenewright.describer import describe
+
+        return describe(self, style=style, variant=variant)
+
+    def render_image(self, width: int = 640, height: int = 480, view: str = "perspective"):
+        """Render offscreen: fills ``render`` metadata and ``images``, returns the ``RenderResult``."""
+        from scenewright.api import render_scene
+
+        return render_scene(self, size=(width, height), view=view)
+
+    def export(self, path):
+        """Write this scene as a binary glTF (.glb) file with one named node per object."""
+        from scenewright.api import export_scene
+
+        return export_scene(self, path)
 
     # -- back to a graph ----------------------------------------------------------
 

@@ -1,0 +1,177 @@
+"""The pipeline in one call: rules -> scene graph -> layout -> Scene -> text -> images.
+
+``generate`` is what the README shows and what the CLI and the dataset job build on;
+the smaller functions here are its steps, each timing itself into ``scene.timings``
+(seconds, keys ``expand``, ``layout``, ``describe``, ``render``, ``export``).
+
+Reproducibility: the same rules, seed and scenewright version give the same scene. Wall
+clock times are the one thing that differs between runs, so ``reproducible_json`` leaves
+them out of scene.json and callers store them beside it (``timings.json``).
+
+Stage modules are imported inside the functions: ``import scenewright`` and
+``scenewright --help`` stay fast and never start OpenGL.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from contextlib import contextmanager
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterator
+
+from scenewright.scene import Scene, assemble_scene
+
+if TYPE_CHECKING:
+    from scenewright.describer import Description
+    from scenewright.generator.rules import Rules
+    from scenewright.render.offscreen import Renderer, RenderResult
+
+STYLES = ("full", "short")
+VIEWS = ("perspective", "top")
+DEFAULT_SIZE = (640, 480)
+
+
+def load_rules(source: "str | os.PathLike[str] | Rules") -> "Rules":
+    """A loaded rule set from a shipped name (``"village"``), a path, or Rules as they are."""
+    from scenewright.generator import load_rules as load
+
+    if isinstance(source, (str, os.PathLike)):
+        return load(source)
+    return source
+
+
+@contextmanager
+def timed(timings: dict[str, float], stage: str) -> Iterator[None]:
+    """Add the wall time of the ``with`` block to ``timings[stage]``."""
+    start = time.perf_counter()
+    try:
+        yield
+    finally:
+        timings[stage] = timings.get(stage, 0.0) + time.perf_counter() - start
+
+
+def rules_label(rules: "Rules") -> str:
+    """How scene.json names the rule set: the shipped name, or the file's path."""
+    from scenewright.generator import shipped_rule_sets
+
+    if rules.name in shipped_rule_sets():
+        return rules.name
+    return str(rules.path)
+
+
+def build_scene(rules: "str | os.PathLike[str] | Rules", seed: int) -> Scene:
+    """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images."""
+    from scenewright.generator import expand
+    from scenewright.generator.layout import layout_scene
+
+    loaded = load_rules(rules)
+    timings: dict[str, float] = {}
+    with timed(timings, "expand"):
+        graph = expand(loaded, seed)
+    with timed(timings, "layout"):
+        layout = layout_scene(graph, seed)
+    scene = assemble_scene(graph, layout, rules=rules_label(loaded), seed=seed)
+    scene.timings.update(timings)
+    return scene
+
+
+def describe_scene(scene: Scene, *, style: str = "full", variant: int = 0) -> "Description":
+    """Describe ``scene``, store the description in it, and return it."""
+    from scenewright.describer import describe
+
+    with timed(scene.timings, "describe"):
+        description = describe(scene, style=style, variant=variant)
+    scene.description = description.to_dict()
+    return description
+
+
+def render_scene(
+    scene: Scene,
+    *,
+    size: tuple[int, int] = DEFAULT_SIZE,
+    view: str = "perspective",
+    renderer: "Renderer | None" = None,
+) -> "RenderResult":
+    """Render ``scene`` offscreen, store the render metadata in it, and return the images.
+
+    Pass a ``renderer`` to reuse one OpenGL context over many scenes; otherwise one is
+    made for this call and closed after it.
+    """
+    from scenewright.render.offscreen import Renderer, render_metadata
+
+    with timed(scene.timings, "render"):
+        if renderer is None:
+            with Renderer(*size) as own:
+                result = own.render(scene, view=view)
+        else:
+            result = renderer.render(scene, view=view)
+    scene.render = render_metadata(result)
+    scene.images = result
+    return result
+
+
+def export_scene(scene: Scene, path: str | os.PathLike[str]) -> Path:
+    """Write the scene as a binary glTF file (one named node per object)."""
+    from scenewright.render.export import export_glb
+
+    with timed(scene.timings, "export"):
+        export_glb(scene, path)
+    return Path(path)
+
+
+def generate(
+    rules: "str | os.PathLike[str] | Rules",
+    seed: int = 0,
+    *,
+    style: str = "full",
+    variant: int = 0,
+    render: bool = False,
+    size: tuple[int, int] = DEFAULT_SIZE,
+    view: str = "perspective",
+) -> Scene:
+    """Generate one scene: expand, lay out, describe and (when ``render``) render it.
+
+    ``rules`` is a shipped rule-set name, a path to a ``.rules`` file, or loaded Rules.
+    The returned Scene has ``description`` filled, ``timings`` per stage, and with
+    ``render=True`` its ``render`` metadata plus the pixels in ``scene.images``. A
+    layout that could not satisfy everything is returned as it is, with
+    ``scene.layout.ok`` false and ``scene.layout.problems`` saying why.
+    """
+    check_choice("style", style, STYLES)
+    check_choice("view", view, VIEWS)
+    scene = build_scene(rules, seed)
+    describe_scene(scene, style=style, variant=variant)
+    if render:
+        render_scene(scene, size=size, view=view)
+    return scene
+
+
+def reproducible_json(scene: Scene) -> str:
+    """scene.json text without wall-clock times: identical bytes for the same rules + seed."""
+    return scene.to_json(reproducible=True)
+
+
+def timings_of(scene: Scene) -> dict[str, float]:
+    """The wall-clock figures ``reproducible_json`` leaves out, for ``timings.json``."""
+    return {**{k: round(v, 6) for k, v in scene.timings.items()}, "layout_sampler": round(scene.layout.seconds, 6)}
+
+
+def summary_line(scene: Scene) -> str:
+    """One line for people: objects, relations satisfied, energy, time."""
+    objects = len(scene.placed_objects())
+    stated = [r for r in scene.relations if r.label != "PathConnectedTo"]
+    satisfied = sum(r.satisfied for r in stated)
+    seconds = sum(scene.timings.values())
+    verdict = "ok" if scene.layout.ok else "LAYOUT FAILED"
+    return (
+        f"{verdict}: {objects} objects, {len(scene.paths)} paths, relations satisfied "
+        f"{satisfied}/{len(stated)}, energy {scene.layout.energy:.3g}, {seconds:.2f} s"
+    )
+
+
+def check_choice(what: str, value: Any, allowed: tuple[str, ...]) -> None:
+    from scenewright.errors import InputError
+
+    if value not in allowed:
+        raise InputError(f"unknown {what} {value!r}; choose one of {', '.join(allowed)}")

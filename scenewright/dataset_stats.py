@@ -1,0 +1,138 @@
+"""A dataset's statistics: stats.json and a stats.png overview, built from the records.
+
+Counts (scenes, written, failed, the most frequent layout problems), object type and
+relation label frequencies (with how often each relation held), caption and text
+lengths in words, and seconds per pipeline stage. Frequencies cover every scene that
+was generated, failed ones included, so a failing rule shows up. Times are wall clock,
+so stats.json, unlike the rest of the dataset, differs between runs.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from scenewright.atomic import write_atomic
+
+STATS_JSON = "stats.json"
+STATS_PNG = "stats.png"
+
+
+def summarise(records: list[dict], *, made: int, seconds: float) -> dict:
+    """Aggregate per-scene records (index order) into the stats.json dictionary."""
+    objects: Counter = Counter()
+    relations: dict[str, list[int]] = {}
+    problems: Counter = Counter()
+    text_words: list[int] = []
+    caption_words: list[int] = []
+    stage_seconds: dict[str, list[float]] = {}
+    for record in records:
+        stats = record["stats"]
+        objects.update(stats.get("objects", {}))
+        for label, (total, satisfied) in stats.get("relations", {}).items():
+            counts = relations.setdefault(label, [0, 0])
+            counts[0] += total
+            counts[1] += satisfied
+        problems.update(problem_kind(p) for p in stats.get("problems", []))
+        words = stats.get("words", {})
+        if words:
+            text_words.append(words["text"])
+            caption_words.extend(words["captions"])
+        for stage, value in stats.get("seconds", {}).items():
+            stage_seconds.setdefault(stage, []).append(value)
+    failed = sum(not r["ok"] for r in records)
+    return {
+        "scenes": len(records),
+        "written": sum(r["row"] is not None for r in records),
+        "failed": failed,
+        "failure_rate": round(failed / len(records), 4) if records else 0.0,
+        "problems": dict(problems.most_common(20)),
+        "objects": dict(sorted(objects.items(), key=lambda item: (-item[1], item[0]))),
+        "relations": {
+            label: {"total": total, "satisfied": satisfied}
+            for label, (total, satisfied) in sorted(relations.items(), key=lambda item: (-item[1][0], item[0]))
+        },
+        "words": {"text": distribution(text_words), "caption": distribution(caption_words)},
+        "seconds_per_stage": {stage: distribution(values, digits=4) for stage, values in stage_seconds.items()},
+        "this_run": {
+            "scenes_made": made,
+            "seconds": round(seconds, 3),
+            "scenes_per_minute": round(60.0 * made / seconds, 1) if seconds > 0 else 0.0,
+        },
+    }
+
+
+def problem_kind(problem: str) -> str:
+    """A layout problem without its numbers and ids, so alike problems count together."""
+    words = [w for w in problem.split() if not any(ch.isdigit() for ch in w)]
+    return " ".join(words)
+
+
+def distribution(values: list[float], digits: int = 2) -> dict:
+    if not values:
+        return {"count": 0}
+    data = np.asarray(values, dtype=float)
+    return {
+        "count": int(data.size),
+        "min": round(float(data.min()), digits),
+        "median": round(float(np.median(data)), digits),
+        "mean": round(float(data.mean()), digits),
+        "p90": round(float(np.percentile(data, 90)), digits),
+        "max": round(float(data.max()), digits),
+        "total": round(float(data.sum()), digits),
+    }
+
+
+def write_stats(root: Path, stats: dict) -> None:
+    """Write stats.json and the stats.png overview into the dataset directory."""
+    write_atomic(root / STATS_JSON, json.dumps(stats, indent=1, ensure_ascii=False) + "\n")
+    write_atomic(root / STATS_PNG, stats_figure(stats))
+
+
+def stats_figure(stats: dict) -> bytes:
+    """A 2x2 PNG: object frequencies, relations held, text lengths, seconds per stage."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(12, 9), dpi=80, layout="constrained")
+    axes = figure.subplots(2, 2)
+    figure.suptitle(f"{stats['scenes']} scenes, {stats['written']} written, {stats['failed']} failed layouts")
+
+    top_objects = list(stats["objects"].items())[:20]
+    bars(axes[0, 0], [name for name, _ in top_objects], [n for _, n in top_objects], "objects (top 20 types)")
+
+    labels = list(stats["relations"])
+    totals = [stats["relations"][label]["total"] for label in labels]
+    held = [stats["relations"][label]["satisfied"] for label in labels]
+    bars(axes[0, 1], labels, totals, "relations: total (light) and satisfied (dark)", alpha=0.35)
+    axes[0, 1].barh(labels, held, color="tab:blue")
+
+    lengths = axes[1, 0]
+    for name, summary in stats["words"].items():
+        if summary["count"]:
+            lengths.bar(
+                [f"{name}\nmin", f"{name}\nmedian", f"{name}\np90", f"{name}\nmax"],
+                [summary["min"], summary["median"], summary["p90"], summary["max"]],
+            )
+    lengths.set_title("length in words")
+
+    stages = stats["seconds_per_stage"]
+    bars(axes[1, 1], list(stages), [stages[s]["mean"] for s in stages], "mean seconds per scene and stage")
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png")
+    return buffer.getvalue()
+
+
+def bars(axis, names: list[str], values: list[float], title: str, alpha: float = 1.0) -> None:
+    axis.barh(names, values, color="tab:blue", alpha=alpha)
+    axis.invert_yaxis()
+    axis.set_title(title)
+    axis.tick_params(axis="y", labelsize=8)

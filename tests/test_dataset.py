@@ -1,0 +1,213 @@
+"""The dataset machinery (seeding, atomic writes, resume, pool, dask, stats) on a cheap
+stand-in for the pipeline, so these tests exercise the job itself in a few seconds.
+
+``fake_scene`` is a module-level function so worker processes can import it by name.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from scenewright.dataset import (
+    METADATA_FILE,
+    RECORDS_DIR,
+    DatasetSpec,
+    SceneProduct,
+    run_dataset,
+    scene_seed,
+    scene_stem,
+)
+from scenewright.errors import InputError
+
+TESTS = Path(__file__).parent
+
+
+def fake_scene(spec: DatasetSpec, index: int) -> SceneProduct:
+    """A deterministic stand-in scene: noise image, caption, every seventh layout 'fails'."""
+    delay = float(os.environ.get("FAKE_SCENE_DELAY", "0"))
+    if delay:
+        time.sleep(delay)
+    seed = scene_seed(spec.base_seed, index)
+    ok = index % 7 != 3
+    stem = scene_stem(index)
+    stats = {"objects": {"table": 1 + seed % 3}, "relations": {"NextTo": [2, 1 + ok]}, "problems": []}
+    if not ok:
+        stats["problems"] = [f"sign_{index} is not next to table_1 (distance {seed % 10} m)"]
+        if not spec.include_failed:
+            return SceneProduct(index, seed, False, {f"failed/{stem}.json": b"{}\n"}, None, stats)
+    pixels = np.random.default_rng(seed).integers(0, 256, size=(spec.size[1], spec.size[0], 3), dtype=np.uint8)
+    buffer = io.BytesIO()
+    Image.fromarray(pixels).save(buffer, format="PNG")
+    captions = [f"scene {index} caption {k}" for k in range(spec.captions)]
+    row = {"file_name": f"images/{stem}.png", "caption": captions[0], "text": f"The scene {index} in full."}
+    row.update({f"caption_{k}": c for k, c in enumerate(captions[1:], start=1)})
+    row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=ok)
+    stats["words"] = {"text": 5, "captions": [len(c.split()) for c in captions]}
+    stats["seconds"] = {"layout": 0.01 * (index + 1)}
+    files = {f"images/{stem}.png": buffer.getvalue(), f"scenes/{stem}.json": json.dumps({"seed": seed}).encode()}
+    return SceneProduct(index, seed, ok, files, row, stats)
+
+
+def crashing_scene(spec: DatasetSpec, index: int) -> SceneProduct:
+    if index == 5:
+        raise RuntimeError("boom")
+    return fake_scene(spec, index)
+
+
+def spec_of(count: int = 8, **settings) -> DatasetSpec:
+    return DatasetSpec(rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), **settings)
+
+
+def dataset_bytes(root: Path) -> dict[str, bytes]:
+    """Every reproducible file of a dataset (stats carry wall-clock times)."""
+    return {
+        str(p.relative_to(root)): p.read_bytes()
+        for p in sorted(root.rglob("*"))
+        if p.is_file() and not p.name.startswith("stats.")
+    }
+
+
+def metadata_rows(root: Path) -> list[dict]:
+    return [json.loads(line) for line in (root / METADATA_FILE).read_text().splitlines()]
+
+
+def test_scene_seed_is_derived_from_base_and_index_only():
+    assert scene_seed(5, 3) == int(np.random.SeedSequence([5, 3]).generate_state(1)[0])
+    assert scene_seed(5, 3) == scene_seed(5, 3)
+    assert len({scene_seed(0, i) for i in range(1000)}) == 1000
+    assert scene_seed(0, 1) != scene_seed(1, 0)
+
+
+def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
+    report = run_dataset(spec_of(8, captions=3), tmp_path, workers=1, producer=fake_scene, progress=False)
+    rows = metadata_rows(tmp_path)
+    assert [r["scene_id"] for r in rows] == ["000000", "000001", "000002", "000004", "000005", "000006", "000007"]
+    assert all((tmp_path / r["file_name"]).is_file() for r in rows)
+    assert rows[0]["caption_2"] == "scene 0 caption 2" and rows[0]["seed"] == scene_seed(0, 0)
+    assert not (tmp_path / "images/000003.png").exists() and (tmp_path / "failed/000003.json").exists()
+    assert (report.count, report.made, report.written, report.failed) == (8, 8, 7, 1)
+    stats = json.loads((tmp_path / "stats.json").read_text())
+    assert (stats["scenes"], stats["failed"]) == (8, 1)
+    assert stats["relations"]["NextTo"] == {"total": 16, "satisfied": 15}
+    assert stats["problems"] == {"is not next to (distance m)": 1}
+    assert (tmp_path / "stats.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_include_failed_writes_failed_scenes_flagged(tmp_path):
+    run_dataset(spec_of(8, include_failed=True), tmp_path, workers=1, producer=fake_scene, progress=False)
+    rows = metadata_rows(tmp_path)
+    assert len(rows) == 8
+    assert [r["scene_id"] for r in rows if not r["ok"]] == ["000003"]
+
+
+def test_same_bytes_for_one_and_two_workers(tmp_path):
+    run_dataset(spec_of(10), tmp_path / "one", workers=1, producer=fake_scene, progress=False)
+    run_dataset(spec_of(10), tmp_path / "two", workers=2, producer=fake_scene, progress=False)
+    assert dataset_bytes(tmp_path / "one") == dataset_bytes(tmp_path / "two")
+
+
+def test_rerun_skips_finished_scenes_and_count_may_grow(tmp_path):
+    run_dataset(spec_of(4), tmp_path / "grown", workers=1, producer=fake_scene, progress=False)
+    report = run_dataset(spec_of(9), tmp_path / "grown", workers=1, producer=fake_scene, progress=False)
+    assert (report.skipped, report.made) == (4, 5)
+    run_dataset(spec_of(9), tmp_path / "direct", workers=1, producer=fake_scene, progress=False)
+    assert dataset_bytes(tmp_path / "grown") == dataset_bytes(tmp_path / "direct")
+
+
+def test_resume_after_kill_minus_nine(tmp_path):
+    """Kill a running job (and its workers) with SIGKILL mid-run; the rerun completes it
+    with no gaps, duplicates, leftovers or corrupt files, byte-identical to a clean run."""
+    killed = tmp_path / "killed"
+    script = (
+        f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
+        "from test_dataset import fake_scene, spec_of\n"
+        "from scenewright.dataset import run_dataset\n"
+        f"run_dataset(spec_of(12), {str(killed)!r}, workers=2, producer=fake_scene, progress=False)\n"
+    )
+    env = {**os.environ, "FAKE_SCENE_DELAY": "0.15"}
+    job = subprocess.Popen([sys.executable, "-c", script], env=env, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 30
+        while len(list((killed / RECORDS_DIR).glob("*.json"))) < 4:
+            assert time.monotonic() < deadline and job.poll() is None, "the job did not get going"
+            time.sleep(0.02)
+    finally:
+        os.killpg(job.pid, signal.SIGKILL)
+        job.wait()
+    done_before = len(list((killed / RECORDS_DIR).glob("*.json")))
+    assert 4 <= done_before < 12
+    assert not (killed / METADATA_FILE).exists()
+
+    report = run_dataset(spec_of(12), killed, workers=2, producer=fake_scene, progress=False)
+    assert report.skipped == done_before and report.made == 12 - done_before
+    run_dataset(spec_of(12), tmp_path / "clean", workers=1, producer=fake_scene, progress=False)
+    assert dataset_bytes(killed) == dataset_bytes(tmp_path / "clean")
+    assert not list(killed.rglob("*.partial"))
+    ids = [r["scene_id"] for r in metadata_rows(killed)]
+    assert ids == sorted(set(ids)) and len(ids) == 10  # 3 and 10 are failed layouts
+
+
+def test_dask_local_cluster_gives_the_same_bytes(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        run_dataset(
+            spec_of(8), tmp_path / "dask", scheduler=cluster.scheduler_address, producer=fake_scene, progress=False
+        )
+    run_dataset(spec_of(8), tmp_path / "pool", workers=2, producer=fake_scene, progress=False)
+    assert dataset_bytes(tmp_path / "dask") == dataset_bytes(tmp_path / "pool")
+
+
+def test_unreachable_scheduler_is_bad_input(tmp_path, monkeypatch):
+    pytest.importorskip("distributed")
+    monkeypatch.setattr("scenewright.dataset_cluster.CONNECT_TIMEOUT", "1s")
+    with pytest.raises(InputError, match="cannot reach the dask scheduler"):
+        run_dataset(spec_of(2), tmp_path, scheduler="tcp://127.0.0.1:9", producer=fake_scene, progress=False)
+
+
+def test_huggingface_imagefolder_reads_it(tmp_path):
+    datasets = pytest.importorskip("datasets")
+    run_dataset(spec_of(8, captions=2), tmp_path / "hf", workers=1, producer=fake_scene, progress=False)
+    loaded = datasets.load_dataset(
+        "imagefolder", data_dir=str(tmp_path / "hf"), split="train", cache_dir=str(tmp_path / "cache")
+    )
+    assert loaded.num_rows == 7
+    assert {"image", "caption", "caption_1", "text", "scene_id", "seed", "ok"} <= set(loaded.column_names)
+    assert loaded[0]["image"].size == (16, 12)
+    assert loaded[0]["caption_1"] == "scene 0 caption 1"
+
+
+def test_refuses_other_settings_a_smaller_count_and_foreign_directories(tmp_path):
+    run_dataset(spec_of(4), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
+    with pytest.raises(InputError, match="other settings .*base_seed 0 -> 1"):
+        run_dataset(spec_of(4, base_seed=1), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
+    with pytest.raises(InputError, match="not lower it"):
+        run_dataset(spec_of(3), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
+    (tmp_path / "other").mkdir()
+    (tmp_path / "other" / "notes.txt").write_text("mine")
+    with pytest.raises(InputError, match="not empty"):
+        run_dataset(spec_of(4), tmp_path / "other", workers=1, producer=fake_scene, progress=False)
+    (tmp_path / "file").write_text("")
+    with pytest.raises(InputError, match="cannot write the dataset"):
+        run_dataset(spec_of(4), tmp_path / "file" / "sub", workers=1, producer=fake_scene, progress=False)
+
+
+def test_a_worker_error_stops_the_run_and_keeps_finished_scenes(tmp_path):
+    with pytest.raises(RuntimeError, match="boom"):
+        run_dataset(spec_of(8), tmp_path, workers=1, producer=crashing_scene, progress=False)
+    assert (tmp_path / RECORDS_DIR / "000004.json").exists()
+    assert not (tmp_path / METADATA_FILE).exists()
+    report = run_dataset(spec_of(8), tmp_path, workers=1, producer=fake_scene, progress=False)
+    assert report.skipped >= 5 and len(metadata_rows(tmp_path)) == 7
