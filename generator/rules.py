@@ -1,0 +1,157 @@
+"""Loading rule sets: a name or path in, a checked ``Rules`` (or every error) out.
+
+``load_rules("village")`` reads the shipped ``grammar_rules/village.rules``;
+``load_rules("my/scene.rules")`` reads a file. Either way the file and its includes
+are parsed, statically checked (``rules_check``) and turned into a ``Catalog`` and
+``SceneParams``; any error raises ``RulesError`` carrying all of them, warnings stay
+on ``Rules.warnings``. ``check_rules`` returns every diagnostic instead of raising, for
+``scenewright validate``.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+from . import rules_ast as ast
+from .catalog import Catalog, CatalogEntry, SourceLocation, Style
+from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, check_tree
+from .rules_errors import Diagnostic, RulesError, SourceTexts
+from .rules_parser import ParsedTree, parse_tree
+from .scene_graph import SceneParams
+
+_SHIPPED_PACKAGE = "scenewright.grammar_rules"
+_SUFFIX = ".rules"
+
+
+@dataclass(frozen=True)
+class Rules:
+    """A checked rule set, ready to expand.
+
+    ``name`` is the rule set's name (the file name without ``.rules``); the scene
+    block's own name is ``params.name``. ``productions`` maps each nonterminal to its
+    production; ``path`` is the root file.
+    """
+
+    name: str
+    path: Path
+    catalog: Catalog
+    params: SceneParams
+    productions: dict[str, ast.Production]
+    start: str
+    max_depth: int
+    max_nodes: int
+    warnings: tuple[Diagnostic, ...] = ()
+    #: The text of every file, for diagnostics raised later (by expansion).
+    sources: SourceTexts = field(default_factory=SourceTexts, compare=False, repr=False)
+
+
+def shipped_rule_sets() -> list[str]:
+    """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``)."""
+    folder = resources.files(_SHIPPED_PACKAGE)
+    return sorted(item.name[: -len(_SUFFIX)] for item in folder.iterdir() if item.name.endswith(_SUFFIX))
+
+
+def load_rules(source: str | os.PathLike) -> Rules:
+    """Parse and check a rule set (shipped name or path); raise ``RulesError`` on errors."""
+    tree, diagnostics = _parse_and_check(source)
+    errors = [d for d in diagnostics if d.is_error]
+    if errors:
+        raise RulesError(errors)
+    return _build(tree, tuple(d for d in diagnostics if not d.is_error))
+
+
+def check_rules(source: str | os.PathLike) -> list[Diagnostic]:
+    """Every diagnostic about a rule set, warnings included; never raises for bad content.
+
+    A missing file still raises ``RulesError`` (there is nothing to check).
+    """
+    return _parse_and_check(source)[1]
+
+
+def _resolve(source: str | os.PathLike) -> tuple[Path, str]:
+    """The file to read and the name to show in diagnostics."""
+    text = os.fspath(source)
+    if isinstance(source, str) and text in shipped_rule_sets():
+        shipped = resources.files(_SHIPPED_PACKAGE).joinpath(text + _SUFFIX)
+        return Path(str(shipped)), text + _SUFFIX
+    path = Path(text)
+    if not path.is_file():
+        known = ", ".join(shipped_rule_sets())
+        where = SourceLocation(text, 1, 1)
+        raise RulesError(
+            [Diagnostic(where, f"no rules file '{text}' (and no shipped rule set of that name: {known})")]
+        )
+    return path, text
+
+
+def _parse_and_check(source: str | os.PathLike) -> tuple[ParsedTree, list[Diagnostic]]:
+    path, display = _resolve(source)
+    tree = parse_tree(path, display)
+    if tree.diagnostics:  # syntax or include errors: the checks would only echo them
+        return tree, list(tree.diagnostics)
+    return tree, check_tree(tree)
+
+
+# -- AST -> catalog and scene parameters --------------------------------------------
+
+
+def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
+    root = tree.files[-1]
+    catalog = Catalog()
+    for file in tree.files:
+        for entry in file.entries:
+            catalog.add(_catalog_entry(entry, tree.paths[file.path].parent))
+    scene = next(scene for file in tree.files for scene in file.scenes)
+    settings = {setting.name: setting.value for setting in scene.settings}
+    params = SceneParams(
+        name=scene.name,
+        extent=tuple(settings.get("extent", SceneParams.extent)),
+        ground=settings.get("ground", SceneParams.ground),
+        walls=bool(settings.get("walls", False)),
+    )
+    productions = {p.name: p for file in tree.files for p in file.productions}
+    return Rules(
+        name=Path(root.path).name.removesuffix(_SUFFIX),
+        path=tree.paths[root.path],
+        catalog=catalog,
+        params=params,
+        productions=productions,
+        start=settings["start"],
+        max_depth=int(settings.get("max_depth", DEFAULT_MAX_DEPTH)),
+        max_nodes=int(settings.get("max_nodes", DEFAULT_MAX_NODES)),
+        warnings=warnings,
+        sources=tree.sources,
+    )
+
+
+def hex_colour(text: str) -> tuple[float, float, float]:
+    """``#8b5a2b`` -> RGB in [0, 1], the values as written (no gamma conversion)."""
+    return tuple(int(text[i : i + 2], 16) / 255.0 for i in (1, 3, 5))
+
+
+def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
+    """The look fields of an entry or style as ``CatalogEntry`` / ``Style`` arguments."""
+    looks: dict = {}
+    for setting in fields:
+        if setting.name == "colour":
+            looks["colour"] = hex_colour(setting.value)
+        elif setting.name == "mesh":
+            looks["mesh"] = str((folder / setting.value).resolve())
+        elif setting.name == "segments":
+            looks["segments"] = int(setting.value)
+        else:
+            looks[setting.name] = setting.value
+    return looks
+
+
+def _catalog_entry(entry: ast.EntryDecl, folder: Path) -> CatalogEntry:
+    styles = tuple(
+        Style(style.name, style.weight if style.weight is not None else 1.0, **_looks(style.fields, folder))
+        for style in entry.styles
+    )
+    looks = _looks(entry.fields, folder)
+    looks.setdefault("shape", "box")
+    return CatalogEntry(entry.name, entry.kind, styles=styles, location=entry.location, **looks)

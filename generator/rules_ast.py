@@ -1,0 +1,163 @@
+"""The parsed form of a rules file: plain frozen dataclasses, each with its location.
+
+The parser builds these from the text without judging them; the static checks
+(``rules_check``) judge them, and ``rules`` turns a checked set into a catalog and
+scene parameters. Values are kept as written (numbers as floats, colours as the
+``#rrggbb`` text) so that every check can point at the exact place of a bad value.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Union
+
+from .catalog import SourceLocation
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One ``name value...`` line of a catalog entry, style or scene block.
+
+    ``value`` is a float, a string, a tuple of floats (``size``, ``extent``), or
+    ``True`` for a bare flag (``walls``).
+    """
+
+    name: str
+    value: object
+    location: SourceLocation
+    value_location: SourceLocation
+
+
+@dataclass(frozen=True)
+class StyleDecl:
+    """``style NAME [WEIGHT] { field* }`` inside a catalog entry."""
+
+    name: str
+    weight: float | None
+    fields: tuple[Setting, ...]
+    location: SourceLocation
+    weight_location: SourceLocation | None = None
+
+
+@dataclass(frozen=True)
+class EntryDecl:
+    """``KIND TYPE { field* style* }``: one catalog entry as written."""
+
+    kind: str
+    name: str
+    fields: tuple[Setting, ...]
+    styles: tuple[StyleDecl, ...]
+    location: SourceLocation
+    name_location: SourceLocation
+
+
+@dataclass(frozen=True)
+class SceneDecl:
+    """``scene NAME { setting* }``."""
+
+    name: str
+    settings: tuple[Setting, ...]
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class IncludeDecl:
+    """``include "file"``, the path as written (relative to the including file)."""
+
+    path: str
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class Reference:
+    """A reference to nodes, as a statement's subject, a relation target or an argument.
+
+    ``kind`` is ``"name"`` (a bound name, a parameter, or - as a subject only - a type
+    to create), ``"some"`` (one node of the type at random), ``"each"`` (every node of
+    the type) or ``"nth"`` (the ``index``-th node of the type, 1-based).
+    """
+
+    kind: str
+    name: str
+    location: SourceLocation
+    index: int = 0
+
+
+@dataclass(frozen=True)
+class Call:
+    """A nonterminal as a statement's subject, with its arguments."""
+
+    nonterminal: str
+    arguments: tuple[Reference, ...]
+    location: SourceLocation
+    has_parentheses: bool = False
+
+
+@dataclass(frozen=True)
+class Relation:
+    """``LABEL TARGET`` after a statement's subject."""
+
+    label: str
+    target: Reference
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class Count:
+    """``N`` or ``MIN..MAX`` repetitions (uniform in the range, both ends included)."""
+
+    low: float
+    high: float
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class Statement:
+    """``[COUNT] [PROB?] SUBJECT [as NAME] (LABEL TARGET)* [{ statement* }]``."""
+
+    subject: Union[Reference, Call]
+    location: SourceLocation
+    count: Count | None = None
+    probability: float | None = None
+    probability_location: SourceLocation | None = None
+    binding: str | None = None
+    binding_location: SourceLocation | None = None
+    relations: tuple[Relation, ...] = ()
+    block: tuple["Statement", ...] | None = None
+    block_location: SourceLocation | None = None
+
+
+@dataclass(frozen=True)
+class Alternative:
+    """``[WEIGHT:] { statement* }``: one right-hand side of a production."""
+
+    weight: float | None
+    statements: tuple[Statement, ...]
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class Param:
+    name: str
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class Production:
+    """``Nonterminal[(params)] -> alternative (| alternative)*``."""
+
+    name: str
+    params: tuple[Param, ...]
+    alternatives: tuple[Alternative, ...]
+    location: SourceLocation
+
+
+@dataclass(frozen=True)
+class RulesFile:
+    """Everything one file declares, in file order within each kind."""
+
+    path: str
+    includes: tuple[IncludeDecl, ...] = ()
+    scenes: tuple[SceneDecl, ...] = ()
+    entries: tuple[EntryDecl, ...] = ()
+    productions: tuple[Production, ...] = ()

@@ -1,0 +1,371 @@
+"""Static checks of a parsed rule set: everything that can be wrong before expansion.
+
+``check_tree`` looks at a file and its includes together and returns diagnostics in
+file order: the catalog (fields, values, styles, mesh files), the scene block, and
+the productions (labels, types, names in scope, calls and their arguments, counts,
+probabilities and weights, blocks on groups only), then the whole grammar: undefined
+nonterminals, nonterminals that can never finish expanding (a fixpoint over the
+alternatives), and - as warnings - nonterminals the start symbol never reaches.
+A rule set with no error diagnostics is safe to turn into a catalog and to expand.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import rules_ast as ast
+from .catalog import SourceLocation
+from .relations import LABELS
+from .rules_errors import WARNING, Diagnostic, SourceTexts, did_you_mean
+from .rules_parser import ParsedTree
+
+DEFAULT_MAX_DEPTH = 32
+DEFAULT_MAX_NODES = 2000
+
+#: Fields a style may override (the look of a type, not its path geometry).
+STYLE_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour")
+PATH_FIELDS = ("width", "max_length", "segments")
+MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
+
+
+def check_tree(tree: ParsedTree) -> list[Diagnostic]:
+    """Every diagnostic about a parsed rule set (errors and warnings)."""
+    checker = _Checker(tree.sources, tree.paths)
+    checker.check(tree.files)
+    file_order = {file.path: index for index, file in enumerate(tree.files)}
+    return sorted(
+        checker.diagnostics,
+        key=lambda d: (file_order.get(d.location.file, -1), d.location.line, d.location.column),
+    )
+
+
+def _is_whole(value: float) -> bool:
+    return float(value).is_integer()
+
+
+def _number(value: float) -> str:
+    return str(int(value)) if _is_whole(value) else str(value)
+
+
+@dataclass
+class _Checker:
+    sources: SourceTexts
+    paths: dict[str, Path]
+
+    def __post_init__(self) -> None:
+        self.diagnostics: list[Diagnostic] = []
+        self.kinds: dict[str, str] = {}  # type name -> kind
+        self.productions: dict[str, ast.Production] = {}
+        self.max_nodes = DEFAULT_MAX_NODES
+
+    def error(self, location: SourceLocation, message: str) -> None:
+        self.diagnostics.append(self.sources.diagnostic(location, message))
+
+    def warning(self, location: SourceLocation, message: str) -> None:
+        self.diagnostics.append(self.sources.diagnostic(location, message, WARNING))
+
+    # -- the rule set as a whole --------------------------------------------------
+
+    def check(self, files: list[ast.RulesFile]) -> None:
+        entries = [entry for file in files for entry in file.entries]
+        first_entry: dict[str, ast.EntryDecl] = {}
+        for entry in entries:
+            if entry.name in first_entry:
+                self.error(entry.name_location, f"duplicate catalog entry '{entry.name}' "
+                           f"(first declared at {first_entry[entry.name].location})")
+                continue
+            first_entry[entry.name] = entry
+            self.kinds[entry.name] = entry.kind
+        for entry in entries:
+            self.check_entry(entry)
+
+        start = self.check_scenes(files)
+        for file in files:
+            for production in file.productions:
+                if production.name in self.productions:
+                    self.error(production.location, f"duplicate production for '{production.name}' "
+                               f"(first at {self.productions[production.name].location})")
+                else:
+                    self.productions[production.name] = production
+        for production in self.productions.values():
+            self.check_production(production)
+        if start is not None:
+            self.check_start(*start)
+        self.check_termination()
+
+    # -- catalog ------------------------------------------------------------------
+
+    def check_entry(self, entry: ast.EntryDecl) -> None:
+        fields = self.check_fields(entry.fields, entry.kind, style=False)
+        if "noun" not in fields:
+            self.error(entry.name_location, f"catalog entry '{entry.name}' has no noun (add: noun \"...\")")
+        seen: dict[str, ast.StyleDecl] = {}
+        for style in entry.styles:
+            if style.name in seen:
+                self.error(style.location, f"duplicate style '{style.name}' of '{entry.name}'")
+            seen[style.name] = style
+            if style.weight is not None and style.weight <= 0:
+                self.error(style.weight_location, f"style weight must be positive, not {_number(style.weight)}")
+            self.check_fields(style.fields, entry.kind, style=True)
+
+    def check_fields(self, fields: tuple[ast.Setting, ...], kind: str, style: bool) -> dict[str, ast.Setting]:
+        seen: dict[str, ast.Setting] = {}
+        for setting in fields:
+            name, value, at = setting.name, setting.value, setting.value_location
+            if name in seen:
+                self.error(setting.location, f"duplicate field '{name}'")
+                continue
+            seen[name] = setting
+            if style and name not in STYLE_FIELDS:
+                self.error(setting.location, f"a style cannot set '{name}' (only {', '.join(STYLE_FIELDS)})")
+            elif name in PATH_FIELDS and kind != "path":
+                self.error(setting.location, f"'{name}' applies to paths only, not to a {kind}")
+            if name == "size" and any(v <= 0 for v in value):
+                self.error(at, "sizes must be positive")
+            elif name in ("width", "max_length") and value <= 0:
+                self.error(at, f"'{name}' must be positive, not {_number(value)}")
+            elif name == "segments" and (value < 1 or not _is_whole(value)):
+                self.error(at, f"'segments' must be a whole number of at least 1, not {_number(value)}")
+            elif name == "colour" and not _is_hex_colour(value):
+                self.error(at, f"colour '{value}' is not of the form #rrggbb")
+            elif name == "mesh":
+                self.check_mesh(value, setting)
+            elif name in ("noun", "plural") and not value.strip():
+                self.error(at, f"'{name}' must not be empty")
+        return seen
+
+    def check_mesh(self, file: str, setting: ast.Setting) -> None:
+        folder = self.paths[setting.location.file].parent
+        if not file.lower().endswith(MESH_SUFFIXES):
+            self.error(setting.value_location, f"mesh '{file}' is not a {', '.join(MESH_SUFFIXES)} file")
+        elif not (folder / file).is_file():
+            self.error(setting.value_location, f"mesh file '{file}' not found (looked in {folder.resolve()})")
+
+    # -- scene block --------------------------------------------------------------
+
+    def check_scenes(self, files: list[ast.RulesFile]) -> tuple[str, SourceLocation] | None:
+        """Check the one scene block; return its start symbol and where it is named."""
+        scenes = [scene for file in files for scene in file.scenes]
+        if not scenes:
+            root = files[-1].path
+            self.error(SourceLocation(root, 1, 1),
+                       "no scene block; add one, e.g. scene NAME { extent 40 x 40  start Start }")
+            return None
+        for extra in scenes[1:]:
+            self.error(extra.location, f"a second scene block (the first is at {scenes[0].location})")
+        scene = scenes[0]
+        settings: dict[str, ast.Setting] = {}
+        for setting in scene.settings:
+            if setting.name in settings:
+                self.error(setting.location, f"duplicate scene setting '{setting.name}'")
+                continue
+            settings[setting.name] = setting
+            value, at = setting.value, setting.value_location
+            if setting.name == "extent" and any(v <= 0 for v in value):
+                self.error(at, "the extent must be positive")
+            elif setting.name in ("max_depth", "max_nodes") and (value < 1 or not _is_whole(value)):
+                self.error(at, f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}")
+        if "max_nodes" in settings and _is_whole(settings["max_nodes"].value):
+            self.max_nodes = int(settings["max_nodes"].value)
+        if "start" not in settings:
+            self.error(scene.location, "the scene block has no start symbol (add: start NONTERMINAL)")
+            return None
+        return settings["start"].value, settings["start"].value_location
+
+    def check_start(self, start: str, location: SourceLocation) -> None:
+        if start not in self.productions:
+            self.error(location, f"start symbol '{start}' has no production" + did_you_mean(start, self.productions))
+            return
+        if self.productions[start].params:
+            self.error(location, f"start symbol '{start}' takes parameters; it must take none")
+        reached = self.reachable(start)
+        for name, production in self.productions.items():
+            if name not in reached:
+                self.warning(production.location, f"nonterminal '{name}' is never used (start '{start}' "
+                             "does not reach it)")
+
+    # -- productions --------------------------------------------------------------
+
+    def check_production(self, production: ast.Production) -> None:
+        scope: set[str] = set()
+        for param in production.params:
+            if param.name in scope:
+                self.error(param.location, f"duplicate parameter '{param.name}'")
+            elif param.name in self.kinds:
+                self.error(param.location, f"parameter '{param.name}' has the name of a type; choose another name")
+            scope.add(param.name)
+        for alternative in production.alternatives:
+            if alternative.weight is not None and alternative.weight <= 0:
+                self.error(alternative.location, f"alternative weight must be positive, not {_number(alternative.weight)}")
+            self.check_block(alternative.statements, set(scope))
+
+    def check_block(self, statements: tuple[ast.Statement, ...], scope: set[str]) -> None:
+        """Check statements in order; ``scope`` gains each statement's binding."""
+        for statement in statements:
+            self.check_statement(statement, scope)
+            if statement.binding:
+                scope.add(statement.binding)
+
+    def check_statement(self, statement: ast.Statement, scope: set[str]) -> None:
+        self.check_count(statement.count)
+        if statement.probability is not None and not 0 <= statement.probability <= 1:
+            self.error(statement.probability_location,
+                       f"probability must be between 0 and 1, not {_number(statement.probability)}")
+        created_kind = self.check_subject(statement.subject, scope)
+        if statement.binding and statement.binding in self.kinds:
+            self.error(statement.binding_location,
+                       f"'{statement.binding}' is a type; bind the nodes to another name")
+        for relation in statement.relations:
+            if relation.label not in LABELS:
+                self.error(relation.location,
+                           f"unknown relation label '{relation.label}'" + did_you_mean(relation.label, LABELS))
+            self.check_target(relation.target, scope)
+        if statement.block is None:
+            return
+        if created_kind != "group":
+            what = f"'{statement.subject.name}' is a {created_kind}" if created_kind else _subject_words(statement.subject)
+            self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
+        inner = set(scope) | ({statement.binding} if statement.binding else set())
+        self.check_block(statement.block, inner)
+
+    def check_count(self, count: ast.Count | None) -> None:
+        if count is None:
+            return
+        for value in (count.low, count.high):
+            if value < 0 or not _is_whole(value):
+                self.error(count.location, f"a count must be a whole number, not {_number(value)}")
+                return
+        if count.low > count.high:
+            self.error(count.location, f"range {_number(count.low)}..{_number(count.high)} has min > max")
+        elif count.high > self.max_nodes:
+            self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes}")
+
+    def check_subject(self, subject: ast.Reference | ast.Call, scope: set[str]) -> str | None:
+        """Check a statement's subject; return the kind of type it creates, if it creates one."""
+        if isinstance(subject, ast.Call):
+            self.check_call(subject, scope)
+            return None
+        if subject.kind == "name":
+            if subject.name in scope:
+                return None
+            if subject.name in self.kinds:
+                return self.kinds[subject.name]
+            self.error(subject.location, f"unknown type or name '{subject.name}'"
+                       + did_you_mean(subject.name, list(self.kinds) + sorted(scope)))
+            return None
+        self.check_type_reference(subject)
+        return None
+
+    def check_target(self, reference: ast.Reference, scope: set[str]) -> None:
+        if reference.kind != "name":
+            self.check_type_reference(reference)
+        elif reference.name in scope:
+            return
+        elif reference.name in self.kinds:
+            name = reference.name
+            self.error(reference.location, f"'{name}' is a type, not a bound name; write "
+                       f"'some {name}', 'each {name}' or '{name} #1'")
+        else:
+            self.error(reference.location, f"unbound name '{reference.name}'" + did_you_mean(reference.name, scope))
+
+    def check_type_reference(self, reference: ast.Reference) -> None:
+        if reference.name not in self.kinds:
+            self.error(reference.location, f"unknown type '{reference.name}'" + did_you_mean(reference.name, self.kinds))
+        if reference.kind == "nth" and reference.index < 1:
+            self.error(reference.location, f"'#{reference.index}': ordinals count from #1")
+
+    def check_call(self, call: ast.Call, scope: set[str]) -> None:
+        for argument in call.arguments:
+            self.check_target(argument, scope)
+        production = self.productions.get(call.nonterminal)
+        if production is None:
+            self.error(call.location, f"undefined nonterminal '{call.nonterminal}'"
+                       + did_you_mean(call.nonterminal, self.productions))
+            return
+        expected, given = len(production.params), len(call.arguments)
+        if expected != given:
+            self.error(call.location, f"'{call.nonterminal}' takes {_parameters(expected)} "
+                       f"({production.location}), but {given} {'is' if given == 1 else 'are'} given")
+
+    # -- the grammar --------------------------------------------------------------
+
+    def reachable(self, start: str) -> set[str]:
+        reached, pending = {start}, [start]
+        while pending:
+            for name in _calls(self.productions[pending.pop()]):
+                if name in self.productions and name not in reached:
+                    reached.add(name)
+                    pending.append(name)
+        return reached
+
+    def check_termination(self) -> None:
+        """Error for each nonterminal none of whose alternatives can ever finish.
+
+        A nonterminal terminates when one of its alternatives makes only calls that
+        terminate, not counting calls it may skip (optional, or a count that may be 0).
+        Fixpoint: keep adding terminating nonterminals until nothing changes.
+        """
+        terminating: set[str] = set()
+        changed = True
+        while changed:
+            changed = False
+            for name, production in self.productions.items():
+                if name in terminating:
+                    continue
+                if any(all(call in terminating or call not in self.productions
+                           for call in _required_calls(alt.statements)) for alt in production.alternatives):
+                    terminating.add(name)
+                    changed = True
+        for name, production in self.productions.items():
+            if name not in terminating:
+                self.error(production.location, f"'{name}' can never finish expanding: every alternative "
+                           "calls, without an option to skip, a nonterminal that never finishes")
+
+
+def _is_hex_colour(text: str) -> bool:
+    digits = text[1:]
+    return len(digits) == 6 and all(c in "0123456789abcdefABCDEF" for c in digits)
+
+
+def _parameters(count: int) -> str:
+    return "no parameters" if count == 0 else f"{count} parameter{'s' if count > 1 else ''}"
+
+
+def _subject_words(subject: ast.Reference | ast.Call) -> str:
+    if isinstance(subject, ast.Call):
+        return f"'{subject.nonterminal}' is a nonterminal call"
+    return "the subject refers to existing nodes"
+
+
+def _walk(statements: tuple[ast.Statement, ...]):
+    for statement in statements:
+        yield statement
+        if statement.block:
+            yield from _walk(statement.block)
+
+
+def _calls(production: ast.Production) -> list[str]:
+    """Every nonterminal a production may call, in order of appearance."""
+    return [
+        statement.subject.nonterminal
+        for alternative in production.alternatives
+        for statement in _walk(alternative.statements)
+        if isinstance(statement.subject, ast.Call)
+    ]
+
+
+def _required_calls(statements: tuple[ast.Statement, ...]) -> list[str]:
+    """The calls an alternative cannot skip: not optional, count at least 1."""
+    required: list[str] = []
+    for statement in statements:
+        optional = (statement.probability is not None and statement.probability < 1) or (
+            statement.count is not None and statement.count.low < 1
+        )
+        if optional:
+            continue
+        if isinstance(statement.subject, ast.Call):
+            required.append(statement.subject.nonterminal)
+        if statement.block:
+            required.extend(_required_calls(statement.block))
+    return required

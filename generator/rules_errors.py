@@ -1,0 +1,106 @@
+"""Diagnostics for rules files: one located message each, and the error that carries them.
+
+A ``Diagnostic`` is what the parser, the static checks and expansion report about a
+rules file: where (file:line:column), what (one sentence), how bad (error or warning)
+and the offending source line, so it prints as
+
+    village.rules:12:9: error: unknown relation label 'NextTwo'; did you mean 'NextTo'?
+        sign NextTwo t
+             ^
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+from typing import Iterable, Sequence
+
+from ..errors import InputError
+from .catalog import SourceLocation
+
+ERROR = "error"
+WARNING = "warning"
+
+#: Indentation of the quoted source line under a diagnostic's first line.
+_EXCERPT_INDENT = "    "
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """One finding about a rules file, located at ``location``."""
+
+    location: SourceLocation
+    message: str
+    severity: str = ERROR
+    source_line: str | None = None
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity == ERROR
+
+    def __str__(self) -> str:
+        head = f"{self.location}: {self.severity}: {self.message}"
+        if self.source_line is None or not self.source_line.strip():
+            return head
+        line = self.source_line.expandtabs(4)
+        text = line.lstrip()
+        # The caret sits under the column, counted in the line as shown (tabs expanded,
+        # leading indentation removed).
+        column_in_line = len(self.source_line[: self.location.column - 1].expandtabs(4))
+        caret = max(0, column_in_line - (len(line) - len(text)))
+        return f"{head}\n{_EXCERPT_INDENT}{text}\n{_EXCERPT_INDENT}{' ' * caret}^"
+
+
+class RulesError(InputError):
+    """A rules file that cannot be used, with every error diagnostic found in it."""
+
+    def __init__(self, diagnostics: Sequence[Diagnostic]):
+        self.diagnostics = list(diagnostics)
+        super().__init__(format_diagnostics(self.diagnostics))
+
+
+class ExpansionError(InputError):
+    """Expansion of valid-looking rules failed (unbounded recursion, missing reference).
+
+    It is the rule author's fault, so it is an ``InputError``; the message names the
+    chain of productions that led there and the location of the statement.
+    """
+
+    def __init__(self, diagnostic: Diagnostic):
+        self.diagnostic = diagnostic
+        self.diagnostics = [diagnostic]
+        super().__init__(str(diagnostic))
+
+
+def format_diagnostics(diagnostics: Iterable[Diagnostic]) -> str:
+    """All diagnostics, one block each, errors and warnings as they come."""
+    return "\n".join(str(diagnostic) for diagnostic in diagnostics)
+
+
+def did_you_mean(word: str, known: Iterable[str]) -> str:
+    """``"; did you mean 'X'?"`` for the closest known word, or ``""`` if none is close."""
+    matches = difflib.get_close_matches(word, sorted(set(known)), n=1, cutoff=0.6)
+    return f"; did you mean '{matches[0]}'?" if matches else ""
+
+
+class SourceTexts:
+    """The text of every file read so far, to quote the line a diagnostic points at."""
+
+    def __init__(self) -> None:
+        self._lines: dict[str, list[str]] = {}
+
+    def add(self, file: str, text: str) -> None:
+        # Lines as the parser counts them: split at "\n" only (not at "\r", form feeds
+        # or Unicode line separators, which str.splitlines would also split at).
+        self._lines[file] = [line.rstrip("\r") for line in text.split("\n")]
+
+    def line(self, location: SourceLocation) -> str | None:
+        lines = self._lines.get(location.file)
+        if lines is None or not 1 <= location.line <= len(lines):
+            return None
+        return lines[location.line - 1]
+
+    def diagnostic(
+        self, location: SourceLocation, message: str, severity: str = ERROR
+    ) -> Diagnostic:
+        return Diagnostic(location, message, severity, self.line(location))
