@@ -1,1 +1,14 @@
-"""Turns a laid-out scene into grammatical English that is true of it."""
+"""Turns a laid-out scene into grammatical English that is true of it.
+
+``describe(scene, style="full" | "short", variant=k, templates=folder)`` returns a
+``Description``: the text and the (subject id, label, object id) facts it states. Only
+relations the layout satisfied are stated, never ``Implicit*`` ones. The pipeline is
+plan (``plan``: what to say, in derivation order, aggregated) -> referring expressions
+(``refer``) -> words (``lexicon``, ``english``) -> sentence templates (``templates``).
+See docs/describer.md.
+"""
+
+from .description import STYLES, Description, describe
+from .templates import TemplateError
+
+__all__ = ["Description", "STYLES", "TemplateError", "describe"]

@@ -1,0 +1,108 @@
+"""``describe``: a scene in, its English description and the facts it states out.
+
+Plan (``plan``), then realise (``realise``) with the referring expressions of
+``refer``, the words of ``lexicon`` and the sentence templates of ``templates``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from scenewright.errors import InputError
+from scenewright.scene import Scene
+
+from .plan import Fact, Inventory, Item, Network, Section, Statement, plan_document
+from .realise import Realiser, Sentence
+from .templates import template_environment
+from .variation import Choices
+from .world import World, world_of
+
+STYLES = ("full", "short")
+
+
+@dataclass
+class Description:
+    """A scene's description: the text and every (subject id, label, object id) it states."""
+
+    text: str
+    facts: list[Fact] = field(default_factory=list)
+    style: str = "full"
+    variant: int = 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON-ready form stored in scene.json's ``description``."""
+        return {
+            "text": self.text,
+            "facts": [list(fact) for fact in self.facts],
+            "style": self.style,
+            "variant": self.variant,
+        }
+
+
+def describe(
+    scene: Scene,
+    *,
+    style: str = "full",
+    variant: int = 0,
+    templates: str | Path | None = None,
+) -> Description:
+    """Describe ``scene`` in English.
+
+    ``style``: "full" (the scene, then each group, every object mentioned) or "short"
+    (a caption of one or two sentences). ``variant`` 0 is the canonical text; variant k
+    is a seeded paraphrase (synonyms, order of list items and statements) drawn from
+    ``numpy.random.default_rng([scene.seed, k])``. ``templates``: a folder whose ``*.j2``
+    files replace the package's sentence templates of the same name.
+    """
+    if style not in STYLES:
+        raise InputError(f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}")
+    if isinstance(variant, bool) or not isinstance(variant, int) or variant < 0:
+        raise InputError(f"description variant must be a whole number >= 0, got {variant!r}")
+    world = world_of(scene)
+    sections = plan_document(scene, world)
+    realiser = Realiser(world, template_environment(templates), Choices.for_variant(scene.seed, variant))
+    if style == "full":
+        sentences = realiser.sections(sections)
+    else:
+        sentences = _caption(scene, world, sections, realiser)
+    return Description(
+        text=" ".join(s.text for s in sentences),
+        facts=[fact for s in sentences for fact in s.facts],
+        style=style,
+        variant=variant,
+    )
+
+
+def _caption(scene: Scene, world: World, sections: list[Section], realiser: Realiser) -> list[Sentence]:
+    """What the scene holds at its top level, and its first top-level statement if any.
+
+    A scene whose top level is one group (a desk and what is on it) is captioned by
+    that group's contents instead.
+    """
+    by_owner = {section.owner: section for section in sections}
+    owner: str | None = None
+    items = _inventory_items(by_owner[None])
+    while len(items) == 1 and not isinstance(items[0], Network) and len(items[0]) == 1 and items[0][0] in by_owner:
+        owner = items[0][0]
+        items = _inventory_items(by_owner[owner])
+    realiser.discourse.start_paragraph(owner)
+    sentences = [realiser.caption(_setting(scene, world, owner), items)]
+    statements = [m for m in by_owner[owner].messages if isinstance(m, Statement)]
+    if statements:
+        sentences.append(realiser.message(statements[0]))
+    return sentences
+
+
+def _inventory_items(section: Section) -> tuple[Item, ...]:
+    return next((m.items for m in section.messages if isinstance(m, Inventory)), ())
+
+
+def _setting(scene: Scene, world: World, owner: str | None) -> str:
+    """What the caption calls the whole: the captioned group's noun, the rule set's name, or "scene"."""
+    if owner is not None:
+        return world[owner].noun
+    name = Path(scene.rules).stem.replace("_", " ")
+    return name if re.fullmatch(r"[A-Za-z]+( [A-Za-z]+)*", name) else "scene"

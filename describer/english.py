@@ -1,0 +1,64 @@
+"""English morphology the describer needs: plurals, articles, number words, lists.
+
+Thin wrappers around ``inflect`` so the rest of the describer never builds an English
+word form by hand. A catalog's irregular plural ("sacks of flour") always wins over
+inflection.
+"""
+
+from __future__ import annotations
+
+import inflect
+
+_ENGINE = inflect.engine()
+
+
+def plural_of(noun: str, irregular: str | None = None) -> str:
+    """The plural of a noun phrase: the catalog's irregular form when it has one."""
+    return irregular if irregular else _ENGINE.plural_noun(noun)
+
+
+def with_article(noun: str) -> str:
+    """The noun phrase with "a" or "an" in front ("an oak tree", "a big pot of stew")."""
+    return _ENGINE.a(noun)
+
+
+def number_word(count: int) -> str:
+    """A count as a word ("three", "twenty-one")."""
+    return _ENGINE.number_to_words(count)
+
+
+def ordinal_word(position: int) -> str:
+    """A 1-based position as an ordinal word ("first", "twenty-second")."""
+    return _ENGINE.number_to_words(_ENGINE.ordinal(position))
+
+
+def counted(count: int, noun: str, plural: str) -> str:
+    """An indefinite noun phrase for ``count`` things: "an oak tree", "three roads"."""
+    return with_article(noun) if count == 1 else f"{number_word(count)} {plural}"
+
+
+def join_list(items: list[str]) -> str:
+    """Items joined as English lists them: "a", "a and b", "a, b and c"."""
+    if not items:
+        return ""
+    if len(items) == 1:
+        return items[0]
+    return ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def verb_agreeing(verb_phrase: str, plural: bool) -> str:
+    """A verb phrase written in the third person singular, made to agree with its subject.
+
+    Only the first word is the finite verb ("is next to" -> "are next to", "faces away
+    from" -> "face away from").
+    """
+    if not plural:
+        return verb_phrase
+    verb, _, rest = verb_phrase.partition(" ")
+    agreed = _ENGINE.plural_verb(verb)
+    return f"{agreed} {rest}" if rest else agreed
+
+
+def sentence_case(text: str) -> str:
+    """The text with its first letter capitalised (the rest untouched)."""
+    return text[:1].upper() + text[1:]

@@ -1,0 +1,315 @@
+"""Content selection, document structure and aggregation: what the text says, in what order.
+
+The plan follows the derivation. The first section is the scene: an inventory of the
+top-level entities ("The scene consists of three roads meeting at an intersection, ...")
+then what stands on what and how they relate. Each group follows in depth-first
+derivation order with the same shape: its inventory, the members that stand on other
+members ("A big pot of stew is in the middle of this table."), then statements.
+
+Only relations the layout reports as satisfied are selected; ``Implicit*`` never;
+``PathConnectedTo`` only as a road network in an inventory. A relation is told in the
+first section where both its ends have been introduced. Statements are aggregated: the
+sources sharing a relation to one target become one subject ("The mill and the street
+lamp are next to the first road."), and the clauses of one subject one sentence.
+
+The plan is plain data over entity ids; referring expressions and words come later.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from scenewright.generator.relations import is_support
+from scenewright.scene import Relation, Scene
+
+from .lexicon import DESCRIBED_LABELS, SYMMETRIC_LABELS, place_phrases
+from .world import Entity, World
+
+#: The most clauses one statement joins ("The chair is in front of the desk and faces it.").
+MAX_CLAUSES = 2
+
+Fact = tuple[str, str, str]
+
+
+@dataclass(frozen=True)
+class Clause:
+    """A relation from the sentence's subjects to each of ``targets``."""
+
+    label: str
+    chosen: str | None
+    targets: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Network:
+    """Paths starting at one junction: "three roads meeting at an intersection"."""
+
+    junction: str
+    paths: tuple[str, ...]
+
+
+#: One item of an inventory: entities of one noun counted together, or a road network.
+Item = tuple[str, ...] | Network
+
+
+@dataclass(frozen=True)
+class Inventory:
+    """What a group (or the scene, owner ``None``) consists of.
+
+    ``link``, when set, relates the first item to the second, which is then a single
+    entity: "consists of a sign to the right of a table". It is only used with exactly
+    two items, where the list cannot be misread.
+    """
+
+    owner: str | None
+    items: tuple[Item, ...]
+    link: Clause | None = None
+
+
+@dataclass(frozen=True)
+class Introduction:
+    """New entities that stand on (or are part of) one already introduced: "Two books are on top of this table."."""
+
+    subjects: tuple[tuple[str, ...], ...]  # entities grouped by noun
+    clause: Clause
+
+
+@dataclass(frozen=True)
+class Statement:
+    """Known entities and one or more relations they share."""
+
+    subjects: tuple[str, ...]
+    clauses: tuple[Clause, ...]
+
+
+Message = Inventory | Introduction | Statement
+
+
+@dataclass(frozen=True)
+class Section:
+    """The scene's or one group's part of the text."""
+
+    owner: str | None
+    messages: tuple[Message, ...]
+
+
+def facts_of(message: Message) -> list[Fact]:
+    """Every (subject id, label, object id) the message states, in the order it states them."""
+    if isinstance(message, Inventory):
+        facts = [
+            (path, "PathConnectedTo", item.junction)
+            for item in message.items
+            if isinstance(item, Network)
+            for path in item.paths
+        ]
+        if message.link is not None:
+            facts += _clause_facts(message.items[0], message.link)
+        return facts
+    if isinstance(message, Introduction):
+        subjects = tuple(s for unit in message.subjects for s in unit)
+        return _clause_facts(subjects, message.clause)
+    return [fact for clause in message.clauses for fact in _clause_facts(message.subjects, clause)]
+
+
+def introduced_by(message: Message) -> list[str]:
+    """The entities a message introduces (first mentions), in order."""
+    if isinstance(message, Inventory):
+        found: list[str] = []
+        for item in message.items:
+            found += [item.junction, *item.paths] if isinstance(item, Network) else list(item)
+        return found
+    if isinstance(message, Introduction):
+        return [s for unit in message.subjects for s in unit]
+    return []
+
+
+def plan_document(scene: Scene, world: World) -> list[Section]:
+    """The sections of the full description, in reading order."""
+    networks = _network_links(scene, world)
+    owners = world.owners()
+    section_of_owner = {owner: index for index, owner in enumerate(owners)}
+    pools: list[list[Relation]] = [[] for _ in owners]
+    for relation in stated_relations(scene, world):
+        introduced_in = [section_of_owner[world[end].parent] for end in (relation.source, relation.target)]
+        pools[max(introduced_in)].append(relation)
+    return [
+        _section(owner, world.members(owner), pool, networks, world)
+        for owner, pool in zip(owners, pools)
+    ]
+
+
+def stated_relations(scene: Scene, world: World) -> list[Relation]:
+    """The relations the text may state: satisfied, describable, each said once."""
+    selected: list[Relation] = []
+    seen: set[tuple[str, str, str]] = set()
+    for relation in scene.relations:
+        if not relation.satisfied or relation.label not in DESCRIBED_LABELS:
+            continue
+        if relation.source not in world or relation.target not in world:
+            continue
+        key = (relation.source, relation.label, relation.target)
+        mirrored = (relation.target, relation.label, relation.source)
+        if key in seen or (relation.label in SYMMETRIC_LABELS and mirrored in seen):
+            continue
+        seen.add(key)
+        selected.append(relation)
+    return selected
+
+
+def _network_links(scene: Scene, world: World) -> dict[str, str]:
+    """Path id -> the junction it starts at, for satisfied ``PathConnectedTo`` in one scope."""
+    links: dict[str, str] = {}
+    for relation in scene.relations:
+        if relation.label != "PathConnectedTo" or not relation.satisfied:
+            continue
+        path, junction = relation.source, relation.target
+        if path not in world or junction not in world or path in links:
+            continue
+        if world[path].kind == "path" and world[junction].kind == "junction" and world[path].parent == world[junction].parent:
+            links[path] = junction
+    return links
+
+
+def _section(
+    owner: str | None,
+    members: list[Entity],
+    pool: list[Relation],
+    networks: dict[str, str],
+    world: World,
+) -> Section:
+    remaining = list(pool)
+    placements = _placements(members, remaining)
+    for relation in placements.values():
+        remaining.remove(relation)
+    ground = [m for m in members if m.id not in placements]
+    items = _inventory_items(ground, networks)
+    link = None
+    if len(items) == 2:
+        items, link = _link(items, remaining)
+    messages: list[Message] = []
+    if items or owner is None:  # an empty scene still says so
+        messages.append(Inventory(owner, items, link))
+    messages += _introductions(placements, world)
+    messages += aggregate(remaining, world)
+    return Section(owner, tuple(messages))
+
+
+def _placements(members: list[Entity], pool: list[Relation]) -> dict[str, Relation]:
+    """Members that stand on a sibling, with the support relation that introduces them.
+
+    Only chains that end on a member standing on the ground count (a cycle of support
+    relations cannot hold, but a wrong input must not loop).
+    """
+    ids = {m.id for m in members}
+    support: dict[str, Relation] = {}
+    for relation in pool:
+        if relation.source in ids and relation.target in ids and is_support(relation.label):
+            support.setdefault(relation.source, relation)
+    grounded: dict[str, Relation] = {}
+    changed = True
+    while changed:
+        changed = False
+        for source, relation in support.items():
+            if source not in grounded and (relation.target not in support or relation.target in grounded):
+                grounded[source] = relation
+                changed = True
+    return {m.id: grounded[m.id] for m in members if m.id in grounded}
+
+
+def _inventory_items(ground: list[Entity], networks: dict[str, str]) -> tuple[Item, ...]:
+    """Ground members as list items: networks at their junction, others counted by noun."""
+    ids = {m.id for m in ground}
+    paths_at: dict[str, list[str]] = {}
+    for member in ground:
+        junction = networks.get(member.id)
+        if junction in ids:
+            paths_at.setdefault(junction, []).append(member.id)
+    items: list[Item] = []
+    by_noun: dict[str, int] = {}
+    for member in ground:
+        if member.id in paths_at:
+            items.append(Network(member.id, tuple(paths_at[member.id])))
+        elif networks.get(member.id) in paths_at:
+            continue  # told with its junction
+        elif member.noun in by_noun:
+            index = by_noun[member.noun]
+            items[index] = items[index] + (member.id,)
+        else:
+            by_noun[member.noun] = len(items)
+            items.append((member.id,))
+    return tuple(items)
+
+
+def _link(items: tuple[Item, ...], pool: list[Relation]) -> tuple[tuple[Item, ...], Clause | None]:
+    """Relate one of two inventory items to the other when all its entities share a relation to it."""
+    for subjects, target in (items, items[::-1]):
+        if isinstance(subjects, Network) or isinstance(target, Network) or len(target) != 1:
+            continue
+        for relation in pool:
+            if relation.source != subjects[0] or relation.target != target[0]:
+                continue
+            if not place_phrases(relation.label, relation.chosen):
+                continue  # only a place phrase can follow a noun: "a sign to the right of a table"
+            shared = [_find(pool, s, relation.label, relation.chosen, target[0]) for s in subjects]
+            if all(shared):
+                for found in shared:
+                    pool.remove(found)
+                return (subjects, target), Clause(relation.label, relation.chosen, target)
+    return items, None
+
+
+def _find(pool: list[Relation], source: str, label: str, chosen: str | None, target: str) -> Relation | None:
+    for relation in pool:
+        if (relation.source, relation.label, relation.chosen, relation.target) == (source, label, chosen, target):
+            return relation
+    return None
+
+
+def _introductions(placements: dict[str, Relation], world: World) -> list[Introduction]:
+    """Introduce stacked members level by level, those sharing a relation to one target together."""
+    introductions: list[Introduction] = []
+    told: set[str] = set()
+    pending = dict(placements)
+    while pending:
+        ready = {s: r for s, r in pending.items() if r.target not in pending}
+        grouped: dict[tuple[str, str | None, str], list[str]] = {}
+        for source, relation in ready.items():
+            grouped.setdefault((relation.label, relation.chosen, relation.target), []).append(source)
+        for (label, chosen, target), sources in grouped.items():
+            introductions.append(Introduction(_by_noun(sources, world), Clause(label, chosen, (target,))))
+        told.update(ready)
+        pending = {s: r for s, r in pending.items() if s not in told}
+    return introductions
+
+
+def _by_noun(ids: list[str], world: World) -> tuple[tuple[str, ...], ...]:
+    groups: dict[str, tuple[str, ...]] = {}
+    for entity_id in ids:
+        noun = world[entity_id].noun
+        groups[noun] = groups.get(noun, ()) + (entity_id,)
+    return tuple(groups.values())
+
+
+def aggregate(relations: list[Relation], world: World) -> list[Statement]:
+    """Statements for relations: shared relations to one target joined, then shared subjects.
+
+    "The mill and the street lamp are next to the first road."; "The chair is in front
+    of the desk and faces it." At most ``MAX_CLAUSES`` clauses go in one sentence.
+    """
+    sources: dict[tuple[str, str | None, str], list[str]] = {}
+    for relation in relations:
+        sources.setdefault((relation.label, relation.chosen, relation.target), []).append(relation.source)
+    clauses: dict[tuple[str, ...], dict[tuple[str, str | None], list[str]]] = {}
+    for (label, chosen, target), subjects in sources.items():
+        key = tuple(sorted(dict.fromkeys(subjects), key=lambda s: world[s].order))
+        clauses.setdefault(key, {}).setdefault((label, chosen), []).append(target)
+    statements: list[Statement] = []
+    for subjects, by_label in clauses.items():
+        joined = [Clause(label, chosen, tuple(targets)) for (label, chosen), targets in by_label.items()]
+        for start in range(0, len(joined), MAX_CLAUSES):
+            statements.append(Statement(subjects, tuple(joined[start:start + MAX_CLAUSES])))
+    return statements
+
+
+def _clause_facts(subjects: tuple[str, ...], clause: Clause) -> list[Fact]:
+    return [(s, clause.label, t) for s in subjects for t in clause.targets]

@@ -1,0 +1,147 @@
+"""Surface realisation: planned messages -> English sentences, through the templates.
+
+Walks the plan in reading order, names every entity with the referring-expression
+rules of ``refer.Discourse``, picks words from the lexicon, makes verbs agree and fills
+the sentence templates. Each sentence comes out with the facts it states.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from jinja2.sandbox import SandboxedEnvironment
+
+from .english import join_list, sentence_case, verb_agreeing
+from .lexicon import Lexicon, place_phrases
+from .plan import Clause, Fact, Inventory, Introduction, Item, Message, Network, Section, Statement, facts_of
+from .refer import SCENE, Discourse
+from .templates import render
+from .variation import Choices
+from .world import World
+
+#: How often a paraphrase variant leads an introduction with its place phrase.
+INVERSION_PROBABILITY = 0.4
+
+
+@dataclass(frozen=True)
+class Sentence:
+    """One sentence of the text and the facts it states."""
+
+    text: str
+    facts: tuple[Fact, ...]
+
+
+class Realiser:
+    """Realises the messages of one description, in order (the discourse state is its memory)."""
+
+    def __init__(self, world: World, environment: SandboxedEnvironment, choices: Choices) -> None:
+        self.world = world
+        self.environment = environment
+        self.choices = choices
+        self.lexicon = Lexicon(choices)
+        self.discourse = Discourse(world)
+
+    # -- documents ------------------------------------------------------------------
+
+    def sections(self, sections: list[Section]) -> list[Sentence]:
+        sentences: list[Sentence] = []
+        for section in sections:
+            self.discourse.start_paragraph(section.owner)
+            sentences += [self.message(m) for m in self._reading_order(section.messages)]
+        return sentences
+
+    def _reading_order(self, messages: tuple[Message, ...]) -> list[Message]:
+        """Statements may come in any order (they introduce nothing); the rest keep theirs."""
+        statements = [m for m in messages if isinstance(m, Statement)]
+        others = [m for m in messages if not isinstance(m, Statement)]
+        return others + self.choices.shuffled(statements)
+
+    def message(self, message: Message) -> Sentence:
+        self.discourse.start_sentence()
+        if isinstance(message, Inventory):
+            text = self._inventory(message)
+        elif isinstance(message, Introduction):
+            text = self._introduction(message)
+        else:
+            text = self._statement(message)
+        return Sentence(sentence_case(text), tuple(facts_of(message)))
+
+    def caption(self, setting: str, items: tuple[Item, ...]) -> Sentence:
+        """The short style's sentence: "A village with three roads meeting at an intersection, ..."."""
+        self.discourse.start_sentence()
+        phrases = [self._item(item) for item in self.choices.shuffled(items)]
+        text = render(
+            self.environment, "caption.j2", setting=setting, link=self.lexicon.caption_link(), items=phrases
+        )
+        facts = facts_of(Inventory(None, items))
+        return Sentence(sentence_case(text), tuple(facts))
+
+    # -- messages -------------------------------------------------------------------
+
+    def _inventory(self, inventory: Inventory) -> str:
+        if inventory.owner is None:
+            owner = self.discourse.scene()
+        else:
+            owner = self.discourse.name(inventory.owner, pronoun=False)
+        self.discourse.mark_subject((inventory.owner,) if inventory.owner else (SCENE,))
+        verb = self.lexicon.composition()
+        if inventory.link is not None:
+            subject, target = inventory.items
+            items = [
+                render(
+                    self.environment,
+                    "linked_item.j2",
+                    subject=self._item(subject),
+                    place=self.lexicon.place(inventory.link.label, inventory.link.chosen),
+                    target=self._item(target),
+                )
+            ]
+        else:
+            items = [self._item(item) for item in self.choices.shuffled(inventory.items)]
+        return render(self.environment, "inventory.j2", owner=owner, verb=verb, items=items)
+
+    def _item(self, item: Item) -> str:
+        if isinstance(item, Network):
+            by_noun: dict[str, tuple[str, ...]] = {}
+            for path in item.paths:
+                noun = self.world[path].noun
+                by_noun[noun] = by_noun.get(noun, ()) + (path,)
+            paths = [self.discourse.introduce(ids) for ids in by_noun.values()]
+            junction = self.discourse.introduce((item.junction,))
+            return render(self.environment, "network.j2", paths=paths, count=len(item.paths), junction=junction)
+        return self.discourse.introduce(item)
+
+    def _introduction(self, introduction: Introduction) -> str:
+        clause = introduction.clause
+        inverted = bool(place_phrases(clause.label, clause.chosen)) and self.choices.coin(INVERSION_PROBABILITY)
+        subjects = introduction.subjects
+        plural = len(subjects) > 1 or len(subjects[0]) > 1
+        if inverted:
+            place = self.lexicon.place(clause.label, clause.chosen)
+            target = self._targets(clause)
+            subject = join_list([self.discourse.introduce(unit) for unit in subjects])
+            verb = verb_agreeing("is", plural)
+        else:
+            place = ""
+            subject = join_list([self.discourse.introduce(unit) for unit in subjects])
+            self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
+            verb = verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
+            target = self._targets(clause)
+        return render(
+            self.environment, "introduction.j2",
+            inverted=inverted, place=place, subject=subject, verb=verb, target=target,
+        )  # fmt: skip
+
+    def _statement(self, statement: Statement) -> str:
+        names = self.discourse.name_set(statement.subjects)
+        self.discourse.mark_subject(statement.subjects)
+        plural = len(statement.subjects) > 1
+        predicates = [
+            f"{verb_agreeing(self.lexicon.relation(c.label, c.chosen), plural)} {self._targets(c)}"
+            for c in statement.clauses
+        ]
+        return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
+
+    def _targets(self, clause: Clause) -> str:
+        # Objects are named one by one: "next to two of the roads" would hide which.
+        return join_list([self.discourse.name(t) for t in clause.targets])

@@ -1,0 +1,172 @@
+"""Referring expressions: which words name an entity at this point of the text.
+
+A reader must always be able to tell which thing a phrase means. First mentions are
+indefinite ("a table", "three pine trees"); later ones definite, choosing the first
+form that is unambiguous here:
+
+1. "it": the entity was the last one named in the previous sentence and the only
+   singular one named there (or, inside one sentence, the only singular thing named
+   besides the subject: "The chair is in front of the desk and faces it.");
+2. "the oak tree" when it is the scene's only oak tree;
+3. "this table" when the previous sentence named it and no other table;
+4. inside a group's paragraph, a member of that group by its place in its cohort
+   ("the sign", "the second sack of flour") while no same-noun thing from elsewhere
+   has been named in the paragraph;
+5. otherwise its place in its cohort ("the first road", "the other tower" when there
+   are two and the last one named was the other), followed by "of" and its group
+   ("the sign of the third market stand") when the noun occurs outside the cohort.
+
+Sets of entities (aggregated subjects) are named per cohort: "the three market
+stands", "both pallets", "four of the street lamps".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .english import counted, number_word, ordinal_word
+from .world import World
+
+#: How "the scene" itself is tracked as a mention ("The scene consists of ...").
+SCENE = "<scene>"
+
+
+@dataclass
+class _Mention:
+    ids: tuple[str, ...]
+    noun: str
+    plural: bool
+
+
+@dataclass
+class Discourse:
+    """The state of the text so far, as referring expressions need it."""
+
+    world: World
+    focus: str | None = None  # the group whose paragraph this is; None: the scene
+    introduced: set[str] = field(default_factory=set)
+    previous: list[_Mention] = field(default_factory=list)
+    current: list[_Mention] = field(default_factory=list)
+    last_of_noun: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    paragraph_nouns: dict[str, set[str]] = field(default_factory=dict)
+    sentence_subject: tuple[str, ...] = ()
+
+    # -- structure --------------------------------------------------------------
+
+    def start_paragraph(self, owner: str | None) -> None:
+        self.focus = owner
+        self.paragraph_nouns = {}
+
+    def start_sentence(self) -> None:
+        self.previous = self.current
+        self.current = []
+        self.sentence_subject = ()
+
+    def mark_subject(self, ids: tuple[str, ...]) -> None:
+        """Record the current sentence's subject (a pronoun never refers back to it)."""
+        self.sentence_subject = ids
+
+    # -- naming -------------------------------------------------------------------
+
+    def scene(self) -> str:
+        self._note((SCENE,), SCENE, plural=False)
+        return "the scene"
+
+    def introduce(self, ids: tuple[str, ...]) -> str:
+        """An indefinite phrase for new entities of one noun: "a table", "three books"."""
+        entity = self.world[ids[0]]
+        self.introduced.update(ids)
+        self._note(ids, entity.noun, plural=len(ids) > 1)
+        return counted(len(ids), entity.noun, entity.plural)
+
+    def name(self, entity_id: str, *, pronoun: bool = True) -> str:
+        """A definite phrase for one known entity; "it" only when ``pronoun`` is allowed here."""
+        entity = self.world[entity_id]
+        if pronoun and self._may_be_it(entity_id):
+            self._note((entity_id,), entity.noun, plural=False)
+            return "it"
+        phrase, placed = self._definite(entity_id)
+        self._note((entity_id,), entity.noun, plural=False)
+        return phrase if placed else f"{phrase} {self._whereabouts(entity_id)}"
+
+    def name_set(self, ids: tuple[str, ...]) -> list[str]:
+        """Phrases naming a set of known entities, one per cohort, in order."""
+        by_cohort: dict[tuple[str, ...], list[str]] = {}
+        for entity_id in ids:
+            by_cohort.setdefault(self.world.cohort(entity_id), []).append(entity_id)
+        alone = len(by_cohort) == 1
+        phrases = []
+        for cohort, chosen in by_cohort.items():
+            if len(chosen) == 1:
+                phrases.append(self.name(chosen[0], pronoun=alone))
+            else:
+                phrases.append(self._name_part(cohort, tuple(chosen), alone))
+        return phrases
+
+    # -- the rules ----------------------------------------------------------------
+
+    def _may_be_it(self, entity_id: str) -> bool:
+        if entity_id in self.sentence_subject:
+            return False  # the subject itself would be "itself"
+        subject = set(self.sentence_subject)
+        named_here = [m.ids for m in self.current if not m.plural and not set(m.ids) <= subject]
+        if named_here:
+            return all(ids == (entity_id,) for ids in named_here)
+        singular_before = {m.ids for m in self.previous if not m.plural}
+        return bool(self.previous) and self.previous[-1].ids == (entity_id,) and singular_before == {(entity_id,)}
+
+    def _definite(self, entity_id: str) -> tuple[str, bool]:
+        """The definite phrase, and whether it is clear without saying where the entity belongs."""
+        entity = self.world[entity_id]
+        namesakes = self.world.namesakes(entity_id)
+        if len(namesakes) == 1:
+            return f"the {entity.noun}", True
+        named_before = [m.ids for m in self.previous if m.noun == entity.noun]
+        if self.last_of_noun.get(entity.noun) == (entity_id,) and named_before == [(entity_id,)]:
+            return f"this {entity.noun}", True
+        cohort = self.world.cohort(entity_id)
+        clear = len(cohort) == len(namesakes) or self._clear_in_paragraph(entity_id)
+        return self._place_in_cohort(entity_id, cohort), clear
+
+    def _place_in_cohort(self, entity_id: str, cohort: tuple[str, ...]) -> str:
+        entity = self.world[entity_id]
+        if len(cohort) == 1:
+            return f"the {entity.noun}"
+        last = self.last_of_noun.get(entity.noun)
+        if len(cohort) == 2 and last is not None and len(last) == 1 and last[0] in cohort and last[0] != entity_id:
+            return f"the other {entity.noun}"
+        return f"the {ordinal_word(cohort.index(entity_id) + 1)} {entity.noun}"
+
+    def _clear_in_paragraph(self, entity_id: str) -> bool:
+        """A member of the paragraph's group (or the scene's), and no namesake from elsewhere named in it."""
+        entity = self.world[entity_id]
+        if entity.parent != self.focus:
+            return False
+        cohort = set(self.world.cohort(entity_id))
+        return self.paragraph_nouns.get(entity.noun, set()) <= cohort
+
+    def _whereabouts(self, entity_id: str) -> str:
+        """Where an entity belongs: "of the third market stand", or "outside ..." for a top-level one."""
+        parent = self.world[entity_id].parent
+        if parent is not None:
+            return "of " + self.name(parent, pronoun=False)
+        # A top-level entity is always clear in the scene's own paragraph, so the focus
+        # is a group here: the entity is the namesake that does not belong to it.
+        return "outside " + self.name(self.focus, pronoun=False)
+
+    def _name_part(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool) -> str:
+        entity = self.world[chosen[0]]
+        if len(chosen) == len(cohort):
+            whole = len(chosen) == 2 and alone
+            phrase = f"both {entity.plural}" if whole else f"the {number_word(len(chosen))} {entity.plural}"
+        else:
+            phrase = f"{number_word(len(chosen))} of the {entity.plural}"
+        clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
+        self._note(chosen, entity.noun, plural=True)
+        return phrase if clear else f"{phrase} {self._whereabouts(chosen[0])}"
+
+    def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
+        self.current.append(_Mention(ids, noun, plural))
+        if noun != SCENE:
+            self.last_of_noun[noun] = ids
+            self.paragraph_nouns.setdefault(noun, set()).update(ids)

@@ -1,0 +1,42 @@
+"""Seeded choices for paraphrase variants: variant 0 never varies, variant k is a fixed draw.
+
+Every free choice the describer makes (a synonym, the order of list items or of
+sentences whose order does not matter) goes through one ``Choices`` object, so variant
+k of a scene is always the same text and variant 0 is the canonical one.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence, TypeVar
+
+import numpy as np
+
+T = TypeVar("T")
+
+
+class Choices:
+    """Draws for one description. ``rng`` None means the canonical text: first options, given order."""
+
+    def __init__(self, rng: np.random.Generator | None) -> None:
+        self._rng = rng
+
+    @classmethod
+    def for_variant(cls, seed: int, variant: int) -> "Choices":
+        """Variant 0 is canonical; variant k draws from ``default_rng([seed, k])``."""
+        return cls(None if variant == 0 else np.random.default_rng([seed, variant]))
+
+    def pick(self, options: Sequence[T]) -> T:
+        """The first option in the canonical text, else one at random."""
+        if self._rng is None or len(options) == 1:
+            return options[0]
+        return options[int(self._rng.integers(len(options)))]
+
+    def shuffled(self, items: Sequence[T]) -> list[T]:
+        """The items in the given order in the canonical text, else permuted."""
+        if self._rng is None or len(items) < 2:
+            return list(items)
+        return [items[i] for i in self._rng.permutation(len(items))]
+
+    def coin(self, probability: float) -> bool:
+        """False in the canonical text, else true with ``probability``."""
+        return self._rng is not None and bool(self._rng.random() < probability)

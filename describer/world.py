@@ -1,0 +1,96 @@
+"""What the describer can talk about: every entity of a scene with its noun and place in the derivation.
+
+An entity is an object, group, junction or path. Entities that share a noun and a
+parent form a *cohort* ("the three market stands" of the scene, "the two signs" of one
+stand): ordinals and counts are taken within a cohort, in derivation order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from scenewright.scene import Scene
+
+from .english import plural_of
+
+
+@dataclass(frozen=True)
+class Entity:
+    """One thing in the scene as the text sees it."""
+
+    id: str
+    kind: str  # object, group, junction or path
+    noun: str
+    plural: str
+    parent: str | None
+    order: int
+
+
+@dataclass(frozen=True)
+class World:
+    """The scene's entities in derivation order, with cohort lookups."""
+
+    entities: dict[str, Entity]
+    cohorts: dict[tuple[str, str | None], tuple[str, ...]]
+    by_noun: dict[str, tuple[str, ...]]
+    children: dict[str | None, tuple[str, ...]]
+
+    def __getitem__(self, entity_id: str) -> Entity:
+        return self.entities[entity_id]
+
+    def __contains__(self, entity_id: str) -> bool:
+        return entity_id in self.entities
+
+    def cohort(self, entity_id: str) -> tuple[str, ...]:
+        """The entities with the same noun and parent as this one (itself included)."""
+        entity = self.entities[entity_id]
+        return self.cohorts[(entity.noun, entity.parent)]
+
+    def namesakes(self, entity_id: str) -> tuple[str, ...]:
+        """Every entity in the scene with this one's noun (itself included)."""
+        return self.by_noun[self.entities[entity_id].noun]
+
+    def members(self, owner: str | None) -> list[Entity]:
+        """The direct members of a group, or the top-level entities for ``None``."""
+        return [self.entities[i] for i in self.children.get(owner, ())]
+
+    def owners(self) -> list[str | None]:
+        """The scene (``None``) and then every entity with members, depth-first in derivation order."""
+        found: list[str | None] = [None]
+
+        def visit(owner: str | None) -> None:
+            for member in self.members(owner):
+                if self.members(member.id):
+                    found.append(member.id)
+                    visit(member.id)
+
+        visit(None)
+        return found
+
+
+def world_of(scene: Scene) -> World:
+    """The describable entities of a scene, in derivation order."""
+    raw = [(o.order, 0, i, o) for i, o in enumerate(scene.objects)]
+    raw += [(p.order, 1, i, p) for i, p in enumerate(scene.paths)]
+    raw.sort(key=lambda item: item[:3])
+    object_ids = {o.id for o in scene.objects}
+    entities: dict[str, Entity] = {}
+    for _, is_path, _, thing in raw:
+        entities[thing.id] = Entity(
+            id=thing.id,
+            kind="path" if is_path else thing.kind,
+            noun=thing.noun,
+            plural=plural_of(thing.noun, thing.plural),
+            # A parent the scene does not hold cannot be named: treat the entity as top-level.
+            parent=thing.parent if thing.parent in object_ids else None,
+            order=thing.order,
+        )
+    cohorts: dict[tuple[str, str | None], tuple[str, ...]] = {}
+    by_noun: dict[str, tuple[str, ...]] = {}
+    children: dict[str | None, tuple[str, ...]] = {}
+    for entity in entities.values():
+        key = (entity.noun, entity.parent)
+        cohorts[key] = cohorts.get(key, ()) + (entity.id,)
+        by_noun[entity.noun] = by_noun.get(entity.noun, ()) + (entity.id,)
+        children[entity.parent] = children.get(entity.parent, ()) + (entity.id,)
+    return World(entities, cohorts, by_noun, children)
