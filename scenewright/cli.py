@@ -1,0 +1,487 @@
+"""The ``scenewright`` command: generate scenes and datasets, check rules, inspect scenes.
+
+Each subcommand is a small function ``run_<name>(args) -> exit code`` over the
+pipeline functions of ``scenewright.api``; parsing and error reporting live here once.
+
+Exit codes: 0 done; 1 generation failed (e.g. a layout that could not satisfy every
+relation: its files are still written, marked ``ok: false``); 2 bad input (options,
+missing or unreadable files, an output directory that cannot be written, bad rules, a
+bad scene.json). Errors print as one line ``scenewright: error: ...`` (a rules error
+as its located excerpt) and no traceback unless ``--debug`` is given.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import os
+import sys
+import textwrap
+import traceback
+from pathlib import Path
+from typing import Callable
+
+from scenewright import __version__
+from scenewright.errors import InputError, ScenewrightError
+
+PROG = "scenewright"
+#: Files ``generate`` writes; stale ones from an earlier run into the same directory
+#: (say a preview, before --no-render) are removed so the directory shows one scene.
+GENERATE_OUTPUTS = (
+    "scene.json",
+    "timings.json",
+    "description.txt",
+    "preview.png",
+    "preview_depth.png",
+    "preview_seg.png",
+    "preview_ids.json",
+    "scene.glb",
+    "plan.png",
+)
+
+
+class CommandLineParser(argparse.ArgumentParser):
+    """argparse with one-line errors that exit 2 through ``main``'s error handling."""
+
+    def error(self, message: str):  # type: ignore[override]
+        raise InputError(f"{message} (see '{self.prog} --help')")
+
+
+# -- option types ---------------------------------------------------------------------
+
+
+def image_size(text: str) -> tuple[int, int]:
+    """``WxH`` in pixels, e.g. ``640x480``."""
+    width, sep, height = text.lower().partition("x")
+    if not (sep and width.isdigit() and height.isdigit()):
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 640x480, not {text!r}")
+    size = (int(width), int(height))
+    if not all(8 <= side <= 8192 for side in size):
+        raise argparse.ArgumentTypeError(f"each side must be 8..8192 pixels, not {text!r}")
+    return size
+
+
+def count_at_least(minimum: int) -> Callable[[str], int]:
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be at least {minimum}, not {value}")
+        return value
+
+    parse.__name__ = "number"
+    return parse
+
+
+def seed_value(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    if not 0 <= value < 2**63:
+        raise argparse.ArgumentTypeError(f"must be between 0 and 2**63-1, not {value}")
+    return value
+
+
+# -- shared helpers -------------------------------------------------------------------
+
+
+def say(args: argparse.Namespace, text: str) -> None:
+    """Print progress and summaries to stdout unless ``--quiet``."""
+    if not args.quiet:
+        print(text, flush=True)
+
+
+def output_directory(path: str) -> Path:
+    """``path`` created if needed and checked writable, else ``InputError``."""
+    directory = Path(path)
+    if directory.exists() and not directory.is_dir():
+        raise InputError(f"cannot write to {directory}: it is a file, not a directory")
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        probe = directory / f".{PROG}-write-test.partial"
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as error:
+        raise InputError(f"cannot write to {directory}: {error.strerror or error}") from error
+    return directory
+
+
+def write_output(path: str | os.PathLike[str], data: bytes | str) -> None:
+    """Write one output file atomically, turning OS errors into ``InputError``."""
+    from scenewright.atomic import write_atomic
+
+    try:
+        write_atomic(path, data)
+    except OSError as error:
+        raise InputError(f"cannot write {path}: {error.strerror or error}") from error
+
+
+class SceneFileError(InputError):
+    """A scene.json that cannot be read, is not JSON, or does not follow the schema."""
+
+    def __init__(self, path: str, reason: str):
+        super().__init__(f"{path}: {reason}")
+        self.path, self.reason = path, reason
+
+
+def read_scene(path: str):
+    """A Scene from a scene.json file, checked against the schema; ``SceneFileError`` if bad."""
+    from scenewright.scene import Scene
+    from scenewright.schema_check import validate_scene_dict
+
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as error:
+        raise SceneFileError(path, f"cannot read: {error.strerror or error}") from error
+    except ValueError as error:
+        raise SceneFileError(path, f"not JSON: {error}") from error
+    try:
+        validate_scene_dict(data)
+    except InputError as error:
+        raise SceneFileError(path, str(error)) from error
+    return Scene.from_dict(data)
+
+
+def rules_digest(rules) -> str:
+    """SHA-256 of a rule set's text, so a resumed dataset cannot mix rule versions."""
+    return hashlib.sha256(Path(rules.path).read_bytes()).hexdigest()
+
+
+# -- subcommands ----------------------------------------------------------------------
+
+
+def run_generate(args: argparse.Namespace) -> int:
+    from scenewright.api import build_scene, describe_scene, export_scene, load_rules, render_scene
+    from scenewright.api import reproducible_json, summary_line, timings_of
+    from scenewright.atomic import staged_outputs
+
+    rules = load_rules(args.rules)
+    directory = output_directory(args.output)
+    scene = build_scene(rules, args.seed)
+    description = describe_scene(scene, style=args.style, variant=args.variant)
+    with staged_outputs(directory) as stage:
+        (stage / "description.txt").write_text(description.text + "\n", encoding="utf-8")
+        if args.render:
+            from scenewright.render.offscreen import save_render
+
+            save_render(render_scene(scene, size=args.size, view=args.view), stage, stem="preview")
+        export_scene(scene, stage / "scene.glb")
+        from scenewright.generator.layout.plan import draw_plan
+
+        draw_plan(scene, stage / "plan.png")
+        (stage / "scene.json").write_text(reproducible_json(scene), encoding="utf-8")
+        (stage / "timings.json").write_text(json.dumps(timings_of(scene), indent=1) + "\n", encoding="utf-8")
+        written = sorted(p.name for p in stage.iterdir())
+    for stale in sorted(set(GENERATE_OUTPUTS) - set(written)):
+        (directory / stale).unlink(missing_ok=True)
+    say(args, f"wrote {directory}/: {', '.join(written)}")
+    say(args, summary_line(scene))
+    if scene.layout.ok:
+        return 0
+    problems = "; ".join(scene.layout.problems) or "energy above the target"
+    print(f"{PROG}: error: the layout did not satisfy every constraint (files kept): {problems}", file=sys.stderr)
+    return 1
+
+
+def run_dataset(args: argparse.Namespace) -> int:
+    from scenewright.api import load_rules, rules_label
+    from scenewright.dataset import DatasetSpec, run_dataset as run
+
+    rules = load_rules(args.rules)
+    spec = DatasetSpec(
+        rules=rules_label(rules),
+        rules_digest=rules_digest(rules),
+        count=args.count,
+        base_seed=args.seed,
+        captions=args.captions,
+        size=args.size,
+        view=args.view,
+        depth=args.depth,
+        segmentation=args.segmentation,
+        include_failed=args.include_failed,
+    )
+    report = run(spec, args.output, workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)
+    failed_note = "included, ok=false" if args.include_failed else "left out"
+    say(
+        args,
+        f"{report.directory}: {report.written} scenes in metadata.jsonl; {report.failed} of {report.count} "
+        f"layouts failed ({failed_note}); made {report.made} now, {report.skipped} were already done",
+    )
+    if report.made:
+        say(args, f"{report.seconds:.1f} s, {report.scenes_per_minute:.1f} scenes/min; statistics in stats.json, stats.png")
+    if report.written == 0 and report.count > 0:
+        print(f"{PROG}: error: every scene's layout failed; nothing usable was written", file=sys.stderr)
+        return 1
+    return 0
+
+
+def run_validate(args: argparse.Namespace) -> int:
+    from scenewright.generator import check_rules
+
+    any_error = False
+    for name in args.files:
+        if not Path(name).is_file():
+            print(f"{name}: error: no such file")
+            any_error = True
+        elif name.endswith(".json"):
+            try:
+                read_scene(name)
+                print(f"{name}: ok")
+            except SceneFileError as error:
+                print(f"{name}: error: {error.reason}")
+                any_error = True
+        else:
+            diagnostics = check_rules(name)
+            for diagnostic in diagnostics:
+                print(diagnostic)
+            errors = sum(d.severity == "error" for d in diagnostics)
+            warnings = len(diagnostics) - errors
+            any_error |= errors > 0
+            if not errors:
+                print(f"{name}: ok" + (f" ({warnings} warning{'s' * (warnings != 1)})" if warnings else ""))
+    return 2 if any_error else 0
+
+
+def run_expand(args: argparse.Namespace) -> int:
+    from scenewright.api import load_rules
+    from scenewright.generator import expand, graph_to_dot
+
+    graph = expand(load_rules(args.rules), args.seed)
+    text = graph_to_dot(graph) if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
+    if args.output:
+        write_output(args.output, text)
+        say(args, f"wrote {args.output}")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def run_describe(args: argparse.Namespace) -> int:
+    scene = read_scene(args.scene)
+    print(scene.describe(style=args.style, variant=args.variant).text)
+    return 0
+
+
+def run_render(args: argparse.Namespace) -> int:
+    from scenewright.api import render_scene
+    from scenewright.render.offscreen import save_render
+
+    scene = read_scene(args.scene)
+    target = Path(args.output)
+    output_directory(str(target.parent))
+    result = render_scene(scene, size=args.size, view=args.view)
+    written = save_render(result, target.parent, stem=target.stem)
+    say(args, "wrote " + ", ".join(str(p) for p in written.values()))
+    return 0
+
+
+def run_export(args: argparse.Namespace) -> int:
+    from scenewright.api import export_scene
+
+    scene = read_scene(args.scene)
+    output_directory(str(Path(args.output).parent))
+    export_scene(scene, args.output)
+    say(args, f"wrote {args.output}")
+    return 0
+
+
+def run_schema(args: argparse.Namespace) -> int:
+    from scenewright.schema_check import load_schema
+
+    print(json.dumps(load_schema(), indent=2, ensure_ascii=False))
+    return 0
+
+
+def run_list(args: argparse.Namespace) -> int:
+    from scenewright.api import load_rules
+    from scenewright.generator import shipped_rule_sets
+
+    for name in shipped_rule_sets():
+        rules = load_rules(name)
+        width, depth = rules.params.extent
+        types = sorted(entry.name for entry in rules.catalog if entry.kind == "object")
+        walls = ", walls" if rules.params.walls else ""
+        print(f"{name}  ({width:g} x {depth:g} m{walls}; {len(types)} object types)")
+        print(textwrap.fill(", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "))
+    return 0
+
+
+# -- the parser -----------------------------------------------------------------------
+
+EXAMPLES = {
+    "generate": """\
+examples:
+  scenewright generate village --seed 7 -o out/
+  scenewright generate my_town.rules --seed 3 --style short --size 1024x768 -o town/
+  scenewright generate desk --no-render -o desk/
+
+writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
+preview.png (+ preview_depth.png, preview_seg.png, preview_ids.json), scene.glb and
+plan.png (a top-down debug plan). All files appear together or not at all. When the
+layout could not satisfy every relation the files are still written (scene.json says
+"ok": false) and the exit code is 1.""",
+    "dataset": """\
+examples:
+  scenewright dataset village -n 1000 -o data/village --captions 3 --size 512x512
+  scenewright dataset desk -n 200 -o data/desk --seed 42 --workers 2 --depth --segmentation
+  scenewright dataset village -n 100000 -o /shared/village --scheduler tcp://head:8786
+
+Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
+same bytes whatever the number of workers. Rerunning the same command resumes an
+interrupted run. The directory loads with
+datasets.load_dataset("imagefolder", data_dir=DIR).""",
+    "validate": """\
+examples:
+  scenewright validate grammar_rules/village.rules
+  scenewright validate my.rules out/scene.json
+
+Prints "FILE: ok" or every diagnostic (file:line:column with the line and a caret).
+Exit 2 when any file has an error; warnings alone exit 0.""",
+    "expand": """\
+examples:
+  scenewright expand village --seed 7
+  scenewright expand village --seed 7 --format dot -o village.dot && dot -Tsvg village.dot""",
+    "describe": """\
+examples:
+  scenewright describe out/scene.json
+  scenewright describe out/scene.json --style short --variant 2""",
+    "render": """\
+examples:
+  scenewright render out/scene.json -o out/preview.png
+  scenewright render out/scene.json -o top.png --view top --size 1024x1024
+
+writes the colour image and, beside it, STEM_depth.png (16-bit millimetres),
+STEM_seg.png (16-bit instance ids) and STEM_ids.json (id -> object).""",
+    "export": """\
+examples:
+  scenewright export out/scene.json -o out/scene.glb""",
+    "schema": """\
+examples:
+  scenewright schema > scene.schema.json""",
+    "list": """\
+examples:
+  scenewright list""",
+}
+
+
+def common_options(suppress: bool) -> argparse.ArgumentParser:
+    """--debug and --quiet, accepted before or after the subcommand."""
+    default = argparse.SUPPRESS if suppress else False
+    options = argparse.ArgumentParser(add_help=False)
+    options.add_argument("--debug", action="store_true", default=default, help="show tracebacks of errors")
+    options.add_argument("-q", "--quiet", action="store_true", default=default, help="print only errors")
+    return options
+
+
+def build_parser() -> CommandLineParser:
+    parser = CommandLineParser(
+        prog=PROG,
+        description="Procedural 3D scenes from a graph grammar, laid out by MCMC and described in English.",
+        epilog="examples:\n  scenewright generate village --seed 7 -o out/\n  scenewright list\n"
+        "  scenewright COMMAND --help",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        parents=[common_options(suppress=False)],
+    )
+    parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    def command(name: str, summary: str, handler) -> CommandLineParser:
+        sub = commands.add_parser(
+            name,
+            help=summary,
+            description=summary,
+            epilog=EXAMPLES[name],
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+            parents=[common_options(suppress=True)],
+        )
+        sub.set_defaults(handler=handler)
+        return sub
+
+    def style_options(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument("--style", choices=("full", "short"), default="full", help="description style")
+        sub.add_argument("--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)")
+
+    def view_options(sub: argparse.ArgumentParser, size: str) -> None:
+        sub.add_argument("--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})")
+        sub.add_argument("--view", choices=("perspective", "top"), default="perspective", help="camera")
+
+    generate = command("generate", "generate one scene with its description, images and files", run_generate)
+    generate.add_argument("rules", help="shipped rule set name (see 'list') or path to a .rules file")
+    generate.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
+    generate.add_argument("-o", "--output", default="out", metavar="DIR", help="output directory (out)")
+    style_options(generate)
+    generate.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    view_options(generate, "640x480")
+
+    dataset = command("dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset)
+    dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
+    dataset.add_argument("-n", "--count", type=count_at_least(1), required=True, metavar="N", help="number of scenes")
+    dataset.add_argument("-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)")
+    dataset.add_argument("--seed", type=seed_value, default=0, help="base seed (0)")
+    dataset.add_argument(
+        "--workers", type=count_at_least(1), default=os.cpu_count() or 1, metavar="K", help="worker processes (all cores)"
+    )
+    dataset.add_argument("--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)")
+    view_options(dataset, "512x512")
+    dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
+    dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
+    dataset.add_argument("--scheduler", metavar="ADDRESS", help="run on a dask.distributed scheduler (tcp://host:8786)")
+    dataset.add_argument(
+        "--include-failed", action="store_true", help="keep scenes whose layout failed, flagged ok=false"
+    )
+
+    validate = command("validate", "check rules files (and scene.json files)", run_validate)
+    validate.add_argument("files", nargs="+", metavar="FILE", help=".rules or scene .json files")
+
+    expand = command("expand", "print the scene graph that the grammar expands to", run_expand)
+    expand.add_argument("rules", help="shipped rule set name or path to a .rules file")
+    expand.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
+    expand.add_argument("--format", choices=("json", "dot"), default="json", help="output format (json)")
+    expand.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+
+    describe = command("describe", "print the English description of a scene.json", run_describe)
+    describe.add_argument("scene", metavar="SCENE_JSON")
+    style_options(describe)
+
+    render = command("render", "render a scene.json offscreen", run_render)
+    render.add_argument("scene", metavar="SCENE_JSON")
+    render.add_argument("-o", "--output", default="preview.png", metavar="PNG", help="colour image (preview.png)")
+    view_options(render, "640x480")
+
+    export = command("export", "export a scene.json as binary glTF", run_export)
+    export.add_argument("scene", metavar="SCENE_JSON")
+    export.add_argument("-o", "--output", default="scene.glb", metavar="GLB", help="output file (scene.glb)")
+
+    command("schema", "print the scene.json JSON Schema", run_schema)
+    command("list", "list the shipped rule sets and their object types", run_list)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; return the exit code (the console script exits with it)."""
+    debug = "--debug" in (sys.argv[1:] if argv is None else argv)
+    try:
+        args = build_parser().parse_args(argv)
+        return args.handler(args)
+    except ScenewrightError as error:
+        if debug:
+            traceback.print_exc()
+        located = getattr(error, "diagnostics", None)
+        print(str(error) if located else f"{PROG}: error: {error}", file=sys.stderr)
+        return error.exit_code
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
+    except Exception as error:  # a bug, not the user's fault: say so in one line
+        if debug:
+            traceback.print_exc()
+        print(f"{PROG}: error: {type(error).__name__}: {error} (rerun with --debug for the traceback)", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
