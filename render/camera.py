@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from scenewright.errors import InputError
 from scenewright.scene import Scene, footprint_corners
 
 VIEWS = ("perspective", "top")
@@ -34,6 +35,8 @@ AZIMUTH = math.radians(35.0)
 ELEVATION = math.radians(35.0)
 #: Fraction of the image the framed points may fill (the rest is breathing room).
 FILL = 0.9
+#: The perspective camera stays at least this far (metres) in front of every point.
+MIN_DISTANCE = 1.0
 
 
 @dataclass(frozen=True)
@@ -141,13 +144,16 @@ def scene_points(scene: Scene) -> np.ndarray:
 
 
 def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, height: int = 480) -> Camera:
-    """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths."""
+    """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths.
+
+    An unknown ``view`` is the user's mistake (a CLI option): ``InputError``.
+    """
     points = scene_points(scene)
     if view == "perspective":
         return perspective_camera(points, width, height)
     if view == "top":
         return top_down_camera(points, width, height)
-    raise ValueError(f"unknown view {view!r}; expected one of {', '.join(VIEWS)}")
+    raise InputError(f"unknown view {view!r}; choose one of: {', '.join(VIEWS)}")
 
 
 def perspective_camera(
@@ -179,7 +185,9 @@ def perspective_camera(
     # z_cam is found where the two bounding planes of the frustum meet.
     cx, zx = _fit_axis(local[:, 0], local[:, 2], tan_x)
     cy, zy = _fit_axis(local[:, 1], local[:, 2], tan_y)
-    origin = rotation @ np.array([cx, cy, max(zx, zy)])
+    # Stepping back only loosens the fit; a minimum keeps a single tiny object viewable.
+    distance = max(zx, zy, float(local[:, 2].max()) + MIN_DISTANCE)
+    origin = rotation @ np.array([cx, cy, distance])
 
     pose = np.eye(4)
     pose[:3, :3] = rotation

@@ -46,7 +46,7 @@ def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
     def attach(node_name: str, entity_parent: str | None, world: np.ndarray, extras: dict, mesh=None) -> None:
         parent = entity_parent if entity_parent in groups else None
         local = world if parent is None else np.linalg.inv(world_of[parent]) @ world
-        if mesh is None:
+        if mesh is None or not len(mesh.faces):  # a group, or a degenerate path: node only
             out.graph.update(node_name, frame_from=parent or out.graph.base_frame, matrix=local, metadata=extras)
         else:
             out.add_geometry(

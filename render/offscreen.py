@@ -164,6 +164,8 @@ class Renderer:
             lifted = np.eye(4)
             lifted[1, 3] = PATH_STEP * order
             entities.append(_Entity(scene_path.id, path_mesh(scene_path), lifted, None))
+        # A degenerate path (all its points in one place) has no triangles to draw.
+        entities = [entity for entity in entities if len(entity.mesh.faces)]
         for entity in entities:
             entity.node = world.add(_pyrender_mesh(gl, entity.mesh), pose=entity.pose, name=entity.id)
 
@@ -202,25 +204,34 @@ def render_scene(scene: Scene, view: str = "perspective", **renderer_options) ->
 def save_render(result: RenderResult, directory: str | os.PathLike, *, stem: str = "preview") -> dict[str, Path]:
     """Write a render's images and id map into ``directory``; return the paths by kind.
 
+    File names and encodings are those of ``encode_render``.
+    """
+    folder = Path(directory)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = {}
+    for kind, (name, data) in encode_render(result, stem=stem).items():
+        paths[kind] = write_atomic(folder / name, data)
+    return paths
+
+
+def encode_render(result: RenderResult, *, stem: str = "preview") -> dict[str, tuple[str, bytes]]:
+    """A render's files as (file name, bytes) by kind, for writers that store them
+    elsewhere than a folder (an archive, a dataset shard).
+
     ``colour``: ``{stem}.png`` (RGB). ``depth``: ``{stem}_depth.png``, 16-bit
     millimetres (0 = sky; clipped at 65.535 m). ``segmentation``: ``{stem}_seg.png``,
     16-bit entity indices (0 = background). ``ids``: ``{stem}_ids.json`` mapping each
     index to its entity id.
     """
-    folder = Path(directory)
-    millimetres = np.clip(np.round(result.depth * 1000.0), 0, 65535).astype(np.uint16)
-    files = {
-        "colour": (folder / f"{stem}.png", _png(result.colour)),
-        "depth": (folder / f"{stem}_depth.png", _png(millimetres)),
-        "segmentation": (folder / f"{stem}_seg.png", _png(result.segmentation.astype(np.uint16))),
-        "ids": (folder / f"{stem}_ids.json", _ids_json(result.ids)),
-    }
     if len(result.ids) > 65535:
         raise GenerationError(f"{len(result.ids)} entities do not fit a 16-bit segmentation image")
-    folder.mkdir(parents=True, exist_ok=True)
-    for path, data in files.values():
-        write_atomic(path, data)
-    return {kind: path for kind, (path, _) in files.items()}
+    millimetres = np.clip(np.round(result.depth * 1000.0), 0, 65535).astype(np.uint16)
+    return {
+        "colour": (f"{stem}.png", _png(result.colour)),
+        "depth": (f"{stem}_depth.png", _png(millimetres)),
+        "segmentation": (f"{stem}_seg.png", _png(result.segmentation.astype(np.uint16))),
+        "ids": (f"{stem}_ids.json", _ids_json(result.ids)),
+    }
 
 
 def render_metadata(result: RenderResult) -> dict[str, Any]:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-from render_fixtures import market_scene
+from render_fixtures import market_scene, road, scene_of, thing
 
 from scenewright.render.export import GROUND_NODE, export_glb, glb_bytes
 from scenewright.render.meshes import object_transform
@@ -84,3 +84,10 @@ def _gltf_json(path: Path) -> dict:
     data = path.read_bytes()
     length = int.from_bytes(data[12:16], "little")  # first chunk: the JSON
     return json.loads(data[20 : 20 + length])
+
+
+def test_a_degenerate_path_still_gets_its_node(tmp_path):
+    scene = scene_of([thing("crate_1")], [road("road_1", [[3, 3], [3, 3]], start="crossing_1")])
+    loaded = trimesh.load(export_glb(scene, tmp_path / "flat.glb"))
+    assert {"crate_1", "road_1"} <= set(loaded.graph.nodes)
+    assert "road_1" not in loaded.graph.nodes_geometry

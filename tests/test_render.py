@@ -11,8 +11,9 @@ import pytest
 from PIL import Image
 from render_fixtures import market_scene, renderer_or_skip, road, scene_of, thing
 
+from scenewright.errors import InputError
 from scenewright.render.camera import Camera, frame_scene
-from scenewright.render.offscreen import render_metadata, save_render
+from scenewright.render.offscreen import encode_render, render_metadata, save_render
 
 
 @pytest.fixture(scope="module")
@@ -124,6 +125,8 @@ def test_saved_images_round_trip(market, tmp_path):
     assert np.array_equal(np.asarray(Image.open(files["segmentation"])), market.segmentation)
     assert json.loads(files["ids"].read_text()) == {str(k + 1): i for k, i in enumerate(market.ids)}
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in files.values())  # no temp files
+    encoded = encode_render(market, stem="view")
+    assert all(files[kind].read_bytes() == data for kind, (_, data) in encoded.items())
 
 
 def test_metadata_for_scene_json(market):
@@ -146,3 +149,14 @@ def test_missing_backend_is_a_clear_one_line_error():
     assert done.returncode == 0, done.stderr
     assert len(lines) == 1 and "Traceback" not in done.stderr
     assert "PYOPENGL_PLATFORM='no-such-platform'" in lines[0] and "apt-get install libegl1" in lines[0]
+
+
+def test_unknown_view_is_an_input_error(renderer):
+    with pytest.raises(InputError, match="unknown view 'side'; choose one of: perspective, top"):
+        renderer.render(market_scene(), "side")
+
+
+def test_a_degenerate_path_is_not_drawn(renderer):
+    scene = scene_of([thing("crate_1")], [road("road_1", [[3, 3], [3, 3]], start="crossing_1")])
+    result = renderer.render(scene)
+    assert result.ids == ["crate_1"]
