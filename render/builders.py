@@ -3,12 +3,19 @@
 A builder takes the catalog size (w, h, d) and colour and returns a ``trimesh.Trimesh``
 in the object's local frame: base centre at the origin, +Y up, front towards +Z
 (DESIGN.md conventions). ``scenewright.render.meshes`` then fits the result exactly to
-the size, so a builder only has to get proportions right. Colours go on as per-face
-colours so one object can have several (a red roof on white walls).
+the size, so a builder only has to get proportions right; each one builds at the real
+size so the fit barely scales. Colours go on as per-face colours so one object can have
+several: the catalog colour is the main one (a house's walls), the builder picks the
+others (its roof, door and windows) from the palette below.
+
+The file is in three parts: colour and solid helpers, then the builders of the shipped
+rule sets grouped by where they appear (furniture and small wares, the village, indoor
+rooms). Every builder stays well under 500 triangles.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import numpy as np
@@ -28,6 +35,37 @@ def builder(name: str) -> Callable[[Builder], Builder]:
     return register
 
 
+# ---------------------------------------------------------------------------------
+# Secondary colours (linear RGB). The catalog colour stays the main one.
+
+WOOD = (0.52, 0.35, 0.2)
+DARK_WOOD = (0.3, 0.2, 0.12)
+STONE = (0.58, 0.56, 0.53)
+IRON = (0.22, 0.22, 0.25)
+ROOF = (0.55, 0.22, 0.15)
+STRAW = (0.8, 0.68, 0.38)
+SOIL = (0.38, 0.27, 0.17)
+LEAVES = (0.22, 0.48, 0.2)
+BARK = (0.36, 0.25, 0.15)
+GLASS = (0.35, 0.5, 0.65)
+GLOW = (1.0, 0.55, 0.15)
+LIGHT = (1.0, 0.9, 0.55)
+LINEN = (0.92, 0.9, 0.84)
+COAL = (0.08, 0.08, 0.09)
+SCREEN = (0.1, 0.14, 0.2)
+PAGES = (0.93, 0.9, 0.8)
+BLOSSOM = (0.9, 0.3, 0.45)
+
+
+def shade(colour, factor: float) -> tuple[float, float, float]:
+    """``colour`` made darker (factor < 1) or lighter (factor > 1), clipped to [0, 1]."""
+    return tuple(float(c) for c in np.clip(np.asarray(colour, dtype=float) * factor, 0.0, 1.0))
+
+
+# ---------------------------------------------------------------------------------
+# Solids. Each returns one coloured mesh; builders concatenate them with ``combine``.
+
+
 def coloured(mesh: trimesh.Trimesh, colour) -> trimesh.Trimesh:
     """Give every face of ``mesh`` one RGB colour in [0, 1]."""
     rgba = np.append(np.clip(np.asarray(colour, dtype=float), 0, 1), 1.0)
@@ -42,7 +80,793 @@ def block(extents, centre, colour) -> trimesh.Trimesh:
     return coloured(mesh, colour)
 
 
+def slab(low, high, colour) -> trimesh.Trimesh:
+    """An axis-aligned box between the corners ``low`` and ``high`` (x, y, z)."""
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    return block(high - low, (low + high) / 2.0, colour)
+
+
+def cylinder(radius: float, bottom, top, colour, sections: int = 10) -> trimesh.Trimesh:
+    """A cylinder from point ``bottom`` to point ``top`` (any direction)."""
+    mesh = trimesh.creation.cylinder(radius=radius, segment=[bottom, top], sections=sections)
+    return coloured(mesh, colour)
+
+
+def frustum(bottom_radius: float, top_radius: float, y0: float, y1: float, colour,
+            sections: int = 10, centre=(0.0, 0.0)) -> trimesh.Trimesh:
+    """An upright truncated cone from height ``y0`` to ``y1`` around (x, z) ``centre``."""
+    x, z = centre
+    mesh = trimesh.creation.cylinder(radius=bottom_radius, segment=[(x, y0, z), (x, y1, z)], sections=sections)
+    vertices = mesh.vertices.copy()
+    top = np.isclose(vertices[:, 1], y1)
+    vertices[top, 0] = x + (vertices[top, 0] - x) * (top_radius / bottom_radius)
+    vertices[top, 2] = z + (vertices[top, 2] - z) * (top_radius / bottom_radius)
+    mesh.vertices = vertices
+    return coloured(mesh, colour)
+
+
+def cone(radius: float, base, apex, colour, sections: int = 10) -> trimesh.Trimesh:
+    """A cone with its base disc centred on ``base`` and its tip at ``apex``."""
+    base, apex = np.asarray(base, dtype=float), np.asarray(apex, dtype=float)
+    axis = apex - base
+    # trimesh builds cones along +Z from the origin: turn that axis onto ours, then move.
+    transform = trimesh.geometry.align_vectors([0.0, 0.0, 1.0], axis / np.linalg.norm(axis))
+    transform[:3, 3] = base
+    mesh = trimesh.creation.cone(radius=radius, height=float(np.linalg.norm(axis)), sections=sections, transform=transform)
+    return coloured(mesh, colour)
+
+
+def ball(radius, centre, colour, subdivisions: int = 1) -> trimesh.Trimesh:
+    """A sphere, or an ellipsoid when ``radius`` is (rx, ry, rz)."""
+    mesh = trimesh.creation.icosphere(subdivisions=subdivisions, radius=1.0)
+    mesh.apply_scale(np.broadcast_to(np.asarray(radius, dtype=float), (3,)))
+    mesh.apply_translation(centre)
+    return coloured(mesh, colour)
+
+
+def gable_roof(width: float, depth: float, eave_y: float, rise: float, colour) -> trimesh.Trimesh:
+    """A triangular prism roof: ridge along x at ``eave_y + rise``, slopes to front and back."""
+    half_w, half_d = width / 2.0, depth / 2.0
+    vertices = np.array([
+        [-half_w, eave_y, -half_d], [-half_w, eave_y, half_d], [-half_w, eave_y + rise, 0.0],
+        [half_w, eave_y, -half_d], [half_w, eave_y, half_d], [half_w, eave_y + rise, 0.0],
+    ])
+    faces = np.array([[0, 1, 2], [3, 5, 4], [1, 4, 5], [1, 5, 2], [0, 2, 5], [0, 5, 3], [0, 3, 4], [0, 4, 1]])
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    mesh.fix_normals()
+    return coloured(mesh, colour)
+
+
+def legs(width: float, depth: float, height: float, thickness: float, colour, y0: float = 0.0) -> list[trimesh.Trimesh]:
+    """Four square legs standing at the corners of a ``width`` x ``depth`` footprint."""
+    x = width / 2.0 - thickness / 2.0
+    z = depth / 2.0 - thickness / 2.0
+    return [
+        block((thickness, height, thickness), (sx * x, y0 + height / 2.0, sz * z), colour)
+        for sx in (-1, 1)
+        for sz in (-1, 1)
+    ]
+
+
+def combine(*parts) -> trimesh.Trimesh:
+    """One mesh of all ``parts`` (meshes or lists of meshes), face colours kept."""
+    flat: list[trimesh.Trimesh] = []
+    for part in parts:
+        flat.extend(part if isinstance(part, (list, tuple)) else [part])
+    return trimesh.util.concatenate(flat)
+
+
+# ---------------------------------------------------------------------------------
+# Furniture and small wares (village stalls, desks, bedrooms).
+
+
 @builder("box")
 def box(size, colour) -> trimesh.Trimesh:
     w, h, d = size
     return block((w, h, d), (0.0, h / 2.0, 0.0), colour)
+
+
+@builder("table")
+def table(size, colour) -> trimesh.Trimesh:
+    """A plank top on four legs."""
+    w, h, d = size
+    top = 0.06 * h + 0.02
+    return combine(
+        slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
+        legs(w * 0.94, d * 0.9, h - top, 0.07, shade(colour, 0.75)),
+    )
+
+
+@builder("fancy_table")
+def fancy_table(size, colour) -> trimesh.Trimesh:
+    """A darker table with an apron, turned legs and a drawer facing the sitter (+Z)."""
+    w, h, d = size
+    top, apron = 0.04, 0.1
+    leg_x, leg_z = w / 2 - 0.07, d / 2 - 0.07
+    turned = [
+        frustum(0.035, 0.05, 0.0, h - top, shade(colour, 0.8), sections=8, centre=(sx * leg_x, sz * leg_z))
+        for sx in (-1, 1)
+        for sz in (-1, 1)
+    ]
+    return combine(
+        slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
+        slab((-w / 2 + 0.05, h - top - apron, -d / 2 + 0.05), (w / 2 - 0.05, h - top, d / 2 - 0.05), shade(colour, 0.85)),
+        slab((-w * 0.2, h - top - apron * 0.85, d / 2 - 0.05), (w * 0.2, h - top - apron * 0.15, d / 2 - 0.04), shade(colour, 1.3)),
+        turned,
+    )
+
+
+@builder("desk")
+def desk(size, colour) -> trimesh.Trimesh:
+    """A writing desk: top, a drawer pedestal on its right (-X) and two legs on its left."""
+    w, h, d = size
+    top = 0.04
+    pedestal_w = min(0.4, w * 0.35)
+    x0 = -w / 2
+    drawers = [
+        slab((x0 + 0.03, y, d / 2 - 0.03), (x0 + pedestal_w - 0.03, y + (h - top) / 3 - 0.04, d / 2), shade(colour, 1.2))
+        for y in np.linspace(0.04, (h - top) * 2 / 3, 3)
+    ]
+    return combine(
+        slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
+        slab((x0, 0.0, -d / 2), (x0 + pedestal_w, h - top, d / 2 - 0.03), shade(colour, 0.85)),
+        drawers,
+        [block((0.05, h - top, 0.05), (w / 2 - 0.04, (h - top) / 2, sz * (d / 2 - 0.04)), shade(colour, 0.7)) for sz in (-1, 1)],
+    )
+
+
+@builder("chair")
+def chair(size, colour) -> trimesh.Trimesh:
+    """Seat, four legs and a back rest at the back (-Z): one sits facing +Z."""
+    w, h, d = size
+    seat_y, seat_t, back_t = 0.5 * h, 0.05, 0.05
+    return combine(
+        slab((-w / 2, seat_y - seat_t, -d / 2), (w / 2, seat_y, d / 2), colour),
+        legs(w, d, seat_y - seat_t, 0.045, shade(colour, 0.75)),
+        slab((-w / 2, seat_y, -d / 2), (w / 2, h, -d / 2 + back_t), shade(colour, 0.9)),
+    )
+
+
+@builder("nightstand")
+def nightstand(size, colour) -> trimesh.Trimesh:
+    """A small cabinet with two drawers on its front and knobs."""
+    w, h, d = size
+    fronts = []
+    for y0, y1 in ((0.08, h * 0.5), (h * 0.52, h - 0.06)):
+        fronts.append(slab((-w / 2 + 0.03, y0, d / 2 - 0.01), (w / 2 - 0.03, y1 - 0.02, d / 2), shade(colour, 1.2)))
+        fronts.append(block((0.04, 0.03, 0.02), (0.0, (y0 + y1) / 2, d / 2 + 0.005), IRON))
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h - 0.03, d / 2 - 0.01), colour),
+        slab((-w / 2, h - 0.03, -d / 2), (w / 2, h, d / 2), shade(colour, 0.85)),
+        fronts,
+    )
+
+
+@builder("wardrobe")
+def wardrobe(size, colour) -> trimesh.Trimesh:
+    """A tall cabinet with two doors and handles on its front (+Z)."""
+    w, h, d = size
+    doors, handles = [], []
+    for side in (-1, 1):
+        inner, outer = side * 0.01, side * (w / 2 - 0.03)
+        doors.append(slab((min(inner, outer), 0.1, d / 2 - 0.02), (max(inner, outer), h - 0.08, d / 2), shade(colour, 1.15)))
+        handles.append(block((0.02, 0.25, 0.03), (side * 0.07, h * 0.55, d / 2 + 0.01), IRON))
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h, d / 2 - 0.02), colour),
+        doors,
+        handles,
+    )
+
+
+@builder("bookshelf")
+def bookshelf(size, colour) -> trimesh.Trimesh:
+    """An open shelf unit, back at -Z, with a row of books on each of its shelves."""
+    w, h, d = size
+    board = 0.025
+    levels = 4
+    spacing = (h - board) / levels
+    parts = [
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h, -d / 2 + board), shade(colour, 0.8)),
+        slab((-w / 2, 0.0, -d / 2), (-w / 2 + board, h, d / 2), colour),
+        slab((w / 2 - board, 0.0, -d / 2), (w / 2, h, d / 2), colour),
+    ]
+    book_colours = (BLOSSOM, GLASS, STRAW, shade(LEAVES, 1.2), ROOF)
+    for level in range(levels + 1):
+        y = level * spacing
+        parts.append(slab((-w / 2, y, -d / 2), (w / 2, y + board, d / 2), colour))
+        if level == levels:
+            break
+        # A row of books covering most of the shelf, each a slightly different height.
+        edges = np.linspace(-w / 2 + board, w / 2 - board - 0.1 * w, 6)
+        for index, (x0, x1) in enumerate(zip(edges[:-1], edges[1:])):
+            top = y + board + spacing * (0.6 + 0.06 * (index % 3))
+            parts.append(slab((x0 + 0.005, y + board, -d / 2 + board), (x1 - 0.005, top, d / 2 - 0.05), book_colours[(index + level) % 5]))
+    return combine(parts)
+
+
+@builder("bed")
+def bed(size, colour) -> trimesh.Trimesh:
+    """Frame, mattress, blanket and pillow, with the headboard at the back (-Z)."""
+    w, h, d = size
+    frame_top, mattress_top = 0.3 * h, 0.55 * h
+    head = 0.06
+    return combine(
+        slab((-w / 2, 0.0, -d / 2 + head), (w / 2, frame_top, d / 2), colour),
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h, -d / 2 + head), shade(colour, 0.85)),
+        slab((-w / 2 + 0.03, frame_top, -d / 2 + head), (w / 2 - 0.03, mattress_top, d / 2 - 0.03), LINEN),
+        slab((-w / 2 + 0.02, mattress_top, -d / 2 + head + 0.5), (w / 2 - 0.02, mattress_top + 0.04, d / 2 - 0.02), shade(GLASS, 1.1)),
+        slab((-w / 2 + 0.12, mattress_top, -d / 2 + head + 0.06), (w / 2 - 0.12, mattress_top + 0.12, -d / 2 + head + 0.4), PAGES),
+    )
+
+
+@builder("rug")
+def rug(size, colour) -> trimesh.Trimesh:
+    """A flat rug with a lighter border."""
+    w, h, d = size
+    border = 0.12 * min(w, d)
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h * 0.6, d / 2), shade(colour, 1.5)),
+        slab((-w / 2 + border, 0.0, -d / 2 + border), (w / 2 - border, h, d / 2 - border), colour),
+    )
+
+
+@builder("potted_plant")
+def potted_plant(size, colour) -> trimesh.Trimesh:
+    """A clay pot with a leafy crown; the catalog colour is the foliage."""
+    w, h, d = size
+    pot_h = 0.35 * h
+    crown = (w / 2, (h - pot_h) / 2, d / 2)
+    return combine(
+        frustum(0.3 * w, 0.42 * w, 0.0, pot_h, (0.72, 0.38, 0.22), sections=10),
+        ball(crown, (0.0, pot_h + crown[1], 0.0), colour),
+    )
+
+
+@builder("table_lamp")
+def table_lamp(size, colour) -> trimesh.Trimesh:
+    """A bedside lamp: round base, stem, and a cloth shade (the catalog colour)."""
+    w, h, d = size
+    return combine(
+        frustum(0.3 * w, 0.22 * w, 0.0, 0.08 * h, IRON, sections=10),
+        cylinder(0.04 * w, (0.0, 0.08 * h, 0.0), (0.0, 0.55 * h, 0.0), IRON, sections=6),
+        frustum(0.5 * w, 0.3 * w, 0.5 * h, h, colour, sections=10),
+    )
+
+
+@builder("desk_lamp")
+def desk_lamp(size, colour) -> trimesh.Trimesh:
+    """An angled desk lamp: base at the back, arm up and forward, shade aiming down at +Z."""
+    w, h, d = size
+    base_z = -d / 2 + w / 2
+    shade_z = d / 2 - 0.3 * w
+    return combine(
+        frustum(0.5 * w, 0.4 * w, 0.0, 0.06 * h, IRON, sections=10, centre=(0.0, base_z)),
+        cylinder(0.05 * w, (0.0, 0.06 * h, base_z), (0.0, 0.8 * h, base_z), colour, sections=6),
+        cylinder(0.05 * w, (0.0, 0.8 * h, base_z), (0.0, 0.95 * h, shade_z), colour, sections=6),
+        cone(0.3 * w, (0.0, 0.6 * h, shade_z), (0.0, h, shade_z - 0.1 * d), colour, sections=10),
+        ball(0.1 * w, (0.0, 0.62 * h, shade_z), LIGHT, subdivisions=0),
+    )
+
+
+@builder("laptop")
+def laptop(size, colour) -> trimesh.Trimesh:
+    """A thin base with keyboard and an open screen standing at its back edge (-Z)."""
+    w, h, d = size
+    base_t, lid_t = 0.1 * h, 0.012
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, base_t, d / 2), colour),
+        slab((-w * 0.42, base_t, -d * 0.3), (w * 0.42, base_t + 0.002, d * 0.1), shade(colour, 0.5)),
+        slab((-w / 2, base_t, -d / 2), (w / 2, h, -d / 2 + lid_t), colour),
+        slab((-w * 0.45, base_t + 0.01, -d / 2 + lid_t), (w * 0.45, h - 0.01, -d / 2 + lid_t + 0.002), SCREEN),
+    )
+
+
+def _screen_slab(size, colour, border: float) -> trimesh.Trimesh:
+    """A flat device lying face up: a case with a dark glass face inset by ``border``."""
+    w, h, d = size
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, h * 0.85, d / 2), colour),
+        slab((-w / 2 + border, h * 0.85, -d / 2 + border), (w / 2 - border, h, d / 2 - border), SCREEN),
+    )
+
+
+@builder("tablet")
+def tablet(size, colour) -> trimesh.Trimesh:
+    return _screen_slab(size, colour, 0.012)
+
+
+@builder("phone")
+def phone(size, colour) -> trimesh.Trimesh:
+    return _screen_slab(size, colour, 0.006)
+
+
+@builder("desk_phone")
+def desk_phone(size, colour) -> trimesh.Trimesh:
+    """A telephone: sloped body with a keypad at the front and a handset lying across."""
+    w, h, d = size
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, 0.6 * h, d / 2), colour),
+        slab((-w * 0.3, 0.6 * h, 0.05 * d), (w * 0.3, 0.65 * h, 0.4 * d), shade(colour, 0.6)),
+        slab((-w / 2, 0.6 * h, -d * 0.45), (w / 2, h, -d * 0.1), shade(colour, 0.85)),
+    )
+
+
+@builder("paper")
+def paper(size, colour) -> trimesh.Trimesh:
+    """A sheet with a few printed lines."""
+    w, h, d = size
+    lines = [
+        slab((-w * 0.38, h * 0.8, z - 0.003), (w * (0.38 if index % 3 else 0.1), h, z + 0.003), (0.3, 0.3, 0.32))
+        for index, z in enumerate(np.linspace(-d * 0.38, d * 0.3, 7))
+    ]
+    return combine(slab((-w / 2, 0.0, -d / 2), (w / 2, h * 0.8, d / 2), colour), lines)
+
+
+@builder("book")
+def book(size, colour) -> trimesh.Trimesh:
+    """A closed book lying flat: covers in the catalog colour, pages showing on three sides."""
+    w, h, d = size
+    cover = 0.12 * h
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, cover, d / 2), colour),
+        slab((-w / 2, h - cover, -d / 2), (w / 2, h, d / 2), colour),
+        slab((-w / 2, 0.0, -d / 2), (-w / 2 + 0.01, h, d / 2), shade(colour, 0.8)),
+        slab((-w / 2 + 0.01, cover, -d / 2 + 0.005), (w / 2 - 0.005, h - cover, d / 2 - 0.005), PAGES),
+    )
+
+
+@builder("bottle")
+def bottle(size, colour) -> trimesh.Trimesh:
+    """Glass body, shoulder, neck and cork."""
+    w, h, d = size
+    r = w / 2
+    return combine(
+        cylinder(r, (0.0, 0.0, 0.0), (0.0, 0.6 * h, 0.0), colour, sections=8),
+        frustum(r, 0.35 * r, 0.6 * h, 0.72 * h, colour, sections=8),
+        cylinder(0.3 * r, (0.0, 0.72 * h, 0.0), (0.0, 0.93 * h, 0.0), colour, sections=6),
+        cylinder(0.32 * r, (0.0, 0.93 * h, 0.0), (0.0, h, 0.0), WOOD, sections=6),
+    )
+
+
+@builder("wine_box")
+def wine_box(size, colour) -> trimesh.Trimesh:
+    """An open wooden crate with six bottle necks showing above its rim."""
+    w, h, d = size
+    rim = 0.7 * h
+    necks = [
+        cylinder(0.025, (x, rim - 0.05, z), (x, h, z), (0.15, 0.35, 0.2), sections=6)
+        for x in (-w / 3, 0.0, w / 3)
+        for z in (-d / 4, d / 4)
+    ]
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, rim, d / 2), colour),
+        slab((-w / 2 - 0.005, rim * 0.45, -d / 2 - 0.005), (w / 2 + 0.005, rim * 0.55, d / 2 + 0.005), shade(colour, 0.7)),
+        necks,
+    )
+
+
+@builder("flowerpot")
+def flowerpot(size, colour) -> trimesh.Trimesh:
+    """A terracotta pot (the catalog colour) with green leaves and a few blossoms."""
+    w, h, d = size
+    pot_h = 0.55 * h
+    leaves_r = (0.45 * w, (h - pot_h) / 2, 0.45 * d)
+    leaves_y = pot_h + leaves_r[1]
+    blossoms = [
+        ball(0.1 * w, (0.25 * w * math.cos(a), leaves_y + 0.5 * leaves_r[1], 0.25 * d * math.sin(a)), BLOSSOM, subdivisions=0)
+        for a in (0.3, 2.4, 4.4)
+    ]
+    return combine(
+        frustum(0.34 * w, 0.5 * w, 0.0, pot_h, colour, sections=10),
+        ball(leaves_r, (0.0, leaves_y, 0.0), LEAVES),
+        blossoms,
+    )
+
+
+@builder("pot")
+def pot(size, colour) -> trimesh.Trimesh:
+    """A big iron cooking pot full of stew, with two handles at its sides."""
+    w, h, d = size
+    r = 0.42 * w
+    return combine(
+        frustum(0.8 * r, r, 0.0, 0.35 * h, colour, sections=12),
+        frustum(r, 0.95 * r, 0.35 * h, 0.9 * h, colour, sections=12),
+        cylinder(0.9 * r, (0.0, 0.9 * h, 0.0), (0.0, h, 0.0), (0.55, 0.3, 0.12), sections=12),
+        [block((w / 2 - r + 0.02, 0.04, 0.08), (side * (w / 2 - (w / 2 - r) / 2), 0.75 * h, 0.0), IRON) for side in (-1, 1)],
+    )
+
+
+@builder("barrel")
+def barrel(size, colour) -> trimesh.Trimesh:
+    """A bulging wooden barrel with iron hoops."""
+    w, h, d = size
+    r = w / 2
+    hoops = [cylinder(0.98 * r, (0.0, y - 0.02, 0.0), (0.0, y + 0.02, 0.0), IRON, sections=10) for y in (0.15 * h, 0.85 * h)]
+    return combine(
+        frustum(0.85 * r, 0.97 * r, 0.0, 0.5 * h, colour, sections=10),
+        frustum(0.97 * r, 0.85 * r, 0.5 * h, h, colour, sections=10),
+        hoops,
+    )
+
+
+def _pail(size, colour, contents) -> trimesh.Trimesh:
+    """A bucket: tapered body, a bail handle over the top, and what fills it."""
+    w, h, d = size
+    body_h = 0.75 * h
+    return combine(
+        frustum(0.38 * w, 0.5 * w, 0.0, body_h, colour, sections=10),
+        cylinder(0.45 * w, (0.0, body_h - 0.02, 0.0), (0.0, body_h, 0.0), contents, sections=10),
+        slab((-0.48 * w, body_h - 0.1 * h, -0.015), (-0.44 * w, h, 0.015), IRON),
+        slab((0.44 * w, body_h - 0.1 * h, -0.015), (0.48 * w, h, 0.015), IRON),
+        slab((-0.48 * w, h - 0.02, -0.015), (0.48 * w, h, 0.015), IRON),
+    )
+
+
+@builder("bucket")
+def bucket(size, colour) -> trimesh.Trimesh:
+    return _pail(size, colour, GLASS)
+
+
+@builder("coal_bucket")
+def coal_bucket(size, colour) -> trimesh.Trimesh:
+    return _pail(size, colour, COAL)
+
+
+@builder("sack")
+def sack(size, colour) -> trimesh.Trimesh:
+    """A filled sack: a rounded body with a tied neck on top."""
+    w, h, d = size
+    body_h = 0.8 * h
+    return combine(
+        ball((w / 2, body_h / 2, d / 2), (0.0, body_h / 2, 0.0), colour),
+        frustum(0.18 * w, 0.12 * w, body_h * 0.9, h * 0.92, shade(colour, 0.85), sections=8),
+        frustum(0.12 * w, 0.2 * w, h * 0.92, h, shade(colour, 0.85), sections=8),
+    )
+
+
+# ---------------------------------------------------------------------------------
+# The village: buildings, plants, carts, street furniture, smithy and mill wares.
+
+
+def _dwelling(size, colour, storeys: int, roof_colour) -> trimesh.Trimesh:
+    """Walls, a gable roof with its ridge along x, a door on the front (+Z), windows."""
+    w, h, d = size
+    wall_h = 0.6 * h
+    storey_h = wall_h / storeys
+    parts = [
+        slab((-w / 2 + 0.1, 0.0, -d / 2 + 0.1), (w / 2 - 0.1, wall_h, d / 2 - 0.1), colour),
+        gable_roof(w, d, wall_h, h - wall_h, roof_colour),
+        slab((-0.45, 0.0, d / 2 - 0.12), (0.45, min(2.0, 0.85 * storey_h), d / 2 - 0.05), DARK_WOOD),
+    ]
+    for storey in range(storeys):
+        y = storey * storey_h + 0.45 * storey_h
+        for x in (-w / 4 - 0.2, w / 4 + 0.2):
+            parts.append(slab((x - 0.4, y, d / 2 - 0.12), (x + 0.4, y + 0.8, d / 2 - 0.06), GLASS))
+    return combine(parts)
+
+
+@builder("house")
+def house(size, colour) -> trimesh.Trimesh:
+    return _dwelling(size, colour, 1, ROOF)
+
+
+@builder("townhouse")
+def townhouse(size, colour) -> trimesh.Trimesh:
+    return _dwelling(size, colour, 2, shade(ROOF, 0.8))
+
+
+@builder("shed")
+def shed(size, colour) -> trimesh.Trimesh:
+    """Plank walls under a straw roof, with a wide double door on the front."""
+    w, h, d = size
+    wall_h = 0.65 * h
+    return combine(
+        slab((-w / 2 + 0.05, 0.0, -d / 2 + 0.05), (w / 2 - 0.05, wall_h, d / 2 - 0.05), colour),
+        gable_roof(w, d, wall_h, h - wall_h, STRAW),
+        slab((-0.35 * w, 0.0, d / 2 - 0.06), (0.35 * w, 0.85 * wall_h, d / 2 - 0.02), shade(colour, 0.7)),
+        slab((-0.01, 0.0, d / 2 - 0.05), (0.01, 0.85 * wall_h, d / 2), DARK_WOOD),
+    )
+
+
+@builder("tower")
+def tower(size, colour) -> trimesh.Trimesh:
+    """An octagonal stone tower with a pointed roof, a door and windows facing +Z."""
+    w, h, d = size
+    body_h = 0.75 * h
+    r = 0.45 * w
+    front = r * math.cos(math.pi / 8)  # an octagon's flat side is at this distance
+    octagons = combine(
+        cylinder(r, (0.0, 0.0, 0.0), (0.0, body_h, 0.0), colour, sections=8),
+        cylinder(w / 2, (0.0, body_h - 0.4, 0.0), (0.0, body_h, 0.0), shade(colour, 0.85), sections=8),
+        cone(w / 2, (0.0, body_h, 0.0), (0.0, h, 0.0), ROOF, sections=8),
+    )
+    # trimesh puts an octagon's corner on +Z; turn it so a flat side faces forward.
+    octagons.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 8, [0, 1, 0]))
+    windows = [slab((-0.25, y, front - 0.1), (0.25, y + 0.8, front + 0.02), DARK_WOOD) for y in (0.45 * body_h, 0.7 * body_h)]
+    return combine(octagons, slab((-0.5, 0.0, front - 0.1), (0.5, 2.0, front + 0.02), DARK_WOOD), windows)
+
+
+@builder("windmill")
+def windmill(size, colour) -> trimesh.Trimesh:
+    """A tapering mill house under a cap, four sails in an X on its front (+Z)."""
+    w, h, d = size
+    body_h = 0.62 * h
+    r = min(0.3 * w, 0.4 * d)
+    # The sails form an X whose tips reach the sides and the top of the bounding box.
+    reach = min(w / 2, 0.45 * h)
+    hub = np.array([0.0, h - reach, r + 0.25])
+    arm = reach * math.sqrt(2.0)
+    sails = []
+    for angle in (math.pi / 4, 3 * math.pi / 4, 5 * math.pi / 4, 7 * math.pi / 4):
+        direction = np.array([math.cos(angle), math.sin(angle), 0.0])
+        sails.append(cylinder(0.06, hub, hub + direction * arm, DARK_WOOD, sections=4))
+        # The sail cloth: a lattice panel along the outer part of the arm.
+        centre = hub + direction * arm * 0.6
+        panel = trimesh.creation.box(extents=(0.8 * arm, 0.22 * arm, 0.04))
+        panel.apply_transform(trimesh.transformations.rotation_matrix(angle, [0, 0, 1]))
+        panel.apply_translation(centre + np.array([0.0, 0.0, 0.03]))
+        sails.append(coloured(panel, LINEN))
+    return combine(
+        frustum(r, 0.75 * r, 0.0, body_h, colour, sections=8),
+        cone(0.85 * r, (0.0, body_h, 0.0), (0.0, body_h + 0.2 * h, 0.0), ROOF, sections=8),
+        slab((-0.5, 0.0, r * 0.85), (0.5, 2.0, r * 0.95 + 0.05), DARK_WOOD),
+        cylinder(0.2, hub - np.array([0.0, 0.0, 0.4]), hub + np.array([0.0, 0.0, 0.1]), IRON, sections=8),
+        sails,
+    )
+
+
+@builder("forge")
+def forge(size, colour) -> trimesh.Trimesh:
+    """A stone hearth with glowing coals in its mouth (+Z) and a chimney at the back."""
+    w, h, d = size
+    hearth_h = 0.35 * h
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, hearth_h, d / 2), colour),
+        slab((-0.3 * w, hearth_h * 0.35, d / 2 - 0.35 * d), (0.3 * w, hearth_h * 0.8, d / 2 + 0.005), COAL),
+        slab((-0.25 * w, hearth_h * 0.35, d / 2 - 0.3 * d), (0.25 * w, hearth_h * 0.5, d / 2 + 0.01), GLOW),
+        slab((-0.35 * w, hearth_h, -0.1 * d), (0.35 * w, 0.55 * h, d / 2), shade(colour, 0.85)),
+        slab((-0.2 * w, hearth_h, -d / 2), (0.2 * w, h, -0.1 * d), shade(colour, 0.9)),
+    )
+
+
+@builder("brazier")
+def brazier(size, colour) -> trimesh.Trimesh:
+    """An iron fire bowl on three legs, full of glowing coals."""
+    w, h, d = size
+    bowl_y = 0.6 * h
+    leg_feet = [(0.4 * w * math.cos(a), 0.0, 0.4 * d * math.sin(a)) for a in (0.5, 2.6, 4.7)]
+    return combine(
+        [cylinder(0.03 * w, foot, (foot[0] * 0.5, bowl_y, foot[2] * 0.5), colour, sections=4) for foot in leg_feet],
+        frustum(0.25 * w, 0.5 * w, bowl_y, 0.9 * h, colour, sections=10),
+        cylinder(0.45 * w, (0.0, 0.88 * h, 0.0), (0.0, h, 0.0), GLOW, sections=10),
+    )
+
+
+@builder("anvil")
+def anvil(size, colour) -> trimesh.Trimesh:
+    """Foot, waist, face block, and a horn pointing to one side (+X)."""
+    w, h, d = size
+    face_w = 0.7 * w
+    x0 = -w / 2
+    return combine(
+        slab((x0 + 0.1 * w, 0.0, -d / 2), (x0 + 0.6 * w, 0.3 * h, d / 2), colour),
+        slab((x0 + 0.22 * w, 0.3 * h, -d / 4), (x0 + 0.48 * w, 0.7 * h, d / 4), colour),
+        slab((x0, 0.7 * h, -d / 3), (x0 + face_w, h, d / 3), shade(colour, 1.3)),
+        cone(0.15 * h, (x0 + face_w, 0.85 * h, 0.0), (w / 2, 0.9 * h, 0.0), shade(colour, 1.3), sections=8),
+    )
+
+
+@builder("hammer")
+def hammer(size, colour) -> trimesh.Trimesh:
+    """A hammer lying flat: wooden handle along x, iron head across its end (+X)."""
+    w, h, d = size
+    head_w = 0.25 * w
+    return combine(
+        slab((-w / 2, 0.25 * h, -0.12 * d), (w / 2 - head_w, 0.75 * h, 0.12 * d), WOOD),
+        slab((w / 2 - head_w, 0.0, -d / 2), (w / 2, h, d / 2), colour),
+    )
+
+
+@builder("sign")
+def sign(size, colour) -> trimesh.Trimesh:
+    """Two posts holding a board whose painted face looks forward (+Z)."""
+    w, h, d = size
+    post = 0.08
+    board_y0, board_y1 = 0.55 * h, h - 0.05
+    return combine(
+        [slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, -d / 2 + post), shade(colour, 0.7)) for x in (-w / 2 + post / 2, w / 2 - post / 2)],
+        slab((-w / 2, board_y0, -d / 2 + post), (w / 2, board_y1, d / 2 - 0.02), colour),
+        slab((-0.35 * w, board_y0 + 0.1, d / 2 - 0.02), (0.35 * w, board_y1 - 0.1, d / 2), LINEN),
+    )
+
+
+@builder("lamp_post")
+def lamp_post(size, colour) -> trimesh.Trimesh:
+    """A wooden pole on a foot, a lantern with a lit pane and a little roof at the top."""
+    w, h, d = size
+    lantern_y = 0.8 * h
+    return combine(
+        slab((-w / 2, 0.0, -d / 2), (w / 2, 0.08 * h, d / 2), shade(colour, 0.8)),
+        cylinder(0.15 * w, (0.0, 0.0, 0.0), (0.0, lantern_y, 0.0), colour, sections=6),
+        slab((-0.35 * w, lantern_y, -0.35 * d), (0.35 * w, 0.93 * h, 0.35 * d), LIGHT),
+        cone(0.5 * w, (0.0, 0.93 * h, 0.0), (0.0, h, 0.0), IRON, sections=4),
+    )
+
+
+@builder("clothes_line")
+def clothes_line(size, colour) -> trimesh.Trimesh:
+    """Two posts at the ends (along x), a line between them, laundry hanging on it."""
+    w, h, d = size
+    post = min(0.1, d)
+    line_y = 0.95 * h
+    laundry_colours = (LINEN, GLASS, BLOSSOM, STRAW)
+    laundry = [
+        slab((x - 0.25, line_y - 0.7, -0.02), (x + 0.25, line_y, 0.02), laundry_colours[index % 4])
+        for index, x in enumerate(np.linspace(-w / 2 + 0.8, w / 2 - 0.8, 4))
+    ]
+    return combine(
+        [slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, d / 2), colour) for x in (-w / 2 + post / 2, w / 2 - post / 2)],
+        slab((-w / 2, line_y - 0.01, -0.01), (w / 2, line_y + 0.01, 0.01), LINEN),
+        laundry,
+    )
+
+
+@builder("well")
+def well(size, colour) -> trimesh.Trimesh:
+    """A round stone well with dark water inside its rim."""
+    w, h, d = size
+    r = w / 2
+    rim = trimesh.creation.annulus(r_min=0.72 * r, r_max=r, segment=[(0.0, 0.75 * h, 0.0), (0.0, h, 0.0)], sections=12)
+    return combine(
+        cylinder(r, (0.0, 0.0, 0.0), (0.0, 0.75 * h, 0.0), colour, sections=12),
+        cylinder(0.72 * r, (0.0, 0.75 * h, 0.0), (0.0, 0.8 * h, 0.0), (0.1, 0.2, 0.3), sections=12),
+        coloured(rim, shade(colour, 0.85)),
+    )
+
+
+@builder("field")
+def field(size, colour) -> trimesh.Trimesh:
+    """A plot of tilled soil with rows of crop (the catalog colour) running along z."""
+    w, h, d = size
+    rows = max(3, int(w / 0.8))
+    row_w = 0.5 * w / rows
+    crops = [
+        slab((x - row_w / 2, 0.3 * h, -d / 2 + 0.2), (x + row_w / 2, h, d / 2 - 0.2), colour)
+        for x in np.linspace(-w / 2 + w / rows / 2, w / 2 - w / rows / 2, rows)
+    ]
+    return combine(slab((-w / 2, 0.0, -d / 2), (w / 2, 0.3 * h, d / 2), SOIL), crops)
+
+
+@builder("pine_tree")
+def pine_tree(size, colour) -> trimesh.Trimesh:
+    """A trunk and three stacked cones, narrowing towards the top."""
+    w, h, d = size
+    trunk_h = 0.2 * h
+    # (radius as a fraction of the half width, base and tip heights as fractions of h)
+    shapes = ((1.0, 0.15, 0.6), (0.78, 0.38, 0.8), (0.55, 0.58, 1.0))
+    tiers = [
+        cone(radius * w / 2, (0.0, base * h, 0.0), (0.0, tip * h, 0.0), shade(colour, 1.0 + 0.1 * index), sections=8)
+        for index, (radius, base, tip) in enumerate(shapes)
+    ]
+    return combine(cylinder(0.08 * w, (0.0, 0.0, 0.0), (0.0, trunk_h + 0.05 * h, 0.0), BARK, sections=6), tiers)
+
+
+@builder("oak_tree")
+def oak_tree(size, colour) -> trimesh.Trimesh:
+    """A thick trunk under a broad crown of four overlapping leaf clusters and a top."""
+    w, h, d = size
+    crown_y = 0.62 * h
+    clusters = [
+        ball((0.3 * w, 0.22 * h, 0.3 * d), (0.2 * w * math.cos(a), crown_y, 0.2 * d * math.sin(a)), shade(colour, 0.9 + 0.05 * index))
+        for index, a in enumerate(np.arange(4) * math.pi / 2)
+    ]
+    top = ball((0.3 * w, 0.2 * h, 0.3 * d), (0.0, 0.8 * h, 0.0), shade(colour, 1.15))
+    return combine(frustum(0.09 * w, 0.06 * w, 0.0, 0.5 * h, BARK, sections=8), clusters, top)
+
+
+@builder("bush")
+def bush(size, colour) -> trimesh.Trimesh:
+    """Three overlapping leafy lumps."""
+    w, h, d = size
+    return combine(
+        ball((0.32 * w, 0.45 * h, 0.32 * d), (-0.17 * w, 0.45 * h, 0.0), colour),
+        ball((0.3 * w, 0.4 * h, 0.3 * d), (0.2 * w, 0.4 * h, 0.1 * d), shade(colour, 1.1)),
+        ball((0.3 * w, 0.5 * h, 0.3 * d), (0.0, 0.5 * h, -0.18 * d), shade(colour, 0.9)),
+    )
+
+
+@builder("sheaf")
+def sheaf(size, colour) -> trimesh.Trimesh:
+    """A bundle of straw tied at the waist, flaring at the foot and the ears."""
+    w, h, d = size
+    r = w / 2
+    return combine(
+        frustum(0.8 * r, 0.45 * r, 0.0, 0.5 * h, colour, sections=10),
+        cylinder(0.48 * r, (0.0, 0.45 * h, 0.0), (0.0, 0.55 * h, 0.0), shade(colour, 0.6), sections=10),
+        frustum(0.45 * r, r, 0.5 * h, 0.85 * h, colour, sections=10),
+        cone(r, (0.0, 0.85 * h, 0.0), (0.0, h, 0.0), shade(colour, 1.1), sections=10),
+    )
+
+
+@builder("grain_pallet")
+def grain_pallet(size, colour) -> trimesh.Trimesh:
+    """A wooden pallet with six upright sheaves of grain on it."""
+    w, h, d = size
+    deck = 0.15 * h
+    bundle_r = min(w / 6, d / 4)
+    sheaves = [
+        frustum(bundle_r, 0.8 * bundle_r, deck, h, shade(colour, 0.95 + 0.05 * (i % 2)), sections=8, centre=(x, z))
+        for i, (x, z) in enumerate((x, z) for x in (-w / 3, 0.0, w / 3) for z in (-d / 4, d / 4))
+    ]
+    return combine(
+        [slab((-w / 2, 0.0, z - 0.05), (w / 2, deck * 0.6, z + 0.05), DARK_WOOD) for z in (-0.4 * d, 0.0, 0.4 * d)],
+        slab((-w / 2, deck * 0.6, -d / 2), (w / 2, deck, d / 2), WOOD),
+        sheaves,
+    )
+
+
+def _wagon(size, colour, load: Callable[[float, float, float, float], list[trimesh.Trimesh]]) -> trimesh.Trimesh:
+    """A two-axle cart: plank bed with side boards, four wheels, a shaft at the front (+Z).
+
+    ``load(width, depth, floor_y, top_y)`` returns what lies on the bed.
+    """
+    w, h, d = size
+    wheel_r = 0.13 * d
+    body_d = 0.72 * d
+    z_back = -d / 2
+    z_front = z_back + body_d
+    floor_y = wheel_r + 0.05
+    side_y = min(h, floor_y + 0.45)
+    wheels = [
+        cylinder(wheel_r, (side * w / 2, wheel_r, z), (side * (w / 2 - 0.1), wheel_r, z), DARK_WOOD, sections=10)
+        for side in (-1, 1)
+        for z in (z_back + 0.2 * body_d, z_front - 0.2 * body_d)
+    ]
+    inner_w = w - 0.25
+    boards = [
+        slab((-inner_w / 2, floor_y - 0.08, z_back), (inner_w / 2, floor_y, z_front), colour),
+        slab((-inner_w / 2, floor_y, z_back), (-inner_w / 2 + 0.05, side_y, z_front), shade(colour, 0.85)),
+        slab((inner_w / 2 - 0.05, floor_y, z_back), (inner_w / 2, side_y, z_front), shade(colour, 0.85)),
+        slab((-inner_w / 2, floor_y, z_back), (inner_w / 2, side_y, z_back + 0.05), shade(colour, 0.85)),
+        slab((-inner_w / 2, floor_y, z_front - 0.05), (inner_w / 2, side_y, z_front), shade(colour, 0.85)),
+    ]
+    shafts = [slab((x - 0.03, floor_y - 0.1, z_front), (x + 0.03, floor_y - 0.04, d / 2), DARK_WOOD) for x in (-0.3, 0.3)]
+    return combine(wheels, boards, shafts, load(inner_w - 0.1, body_d - 0.1, floor_y, h))
+
+
+@builder("wagon")
+def wagon(size, colour) -> trimesh.Trimesh:
+    return _wagon(size, colour, lambda *_: [])
+
+
+@builder("grain_wagon")
+def grain_wagon(size, colour) -> trimesh.Trimesh:
+    """A wagon heaped with grain sacks."""
+
+    def sacks(width, depth, floor_y, top_y):
+        z_centre = -size[2] / 2 + 0.05 + depth / 2
+        lumps = []
+        for row, z in enumerate(np.linspace(z_centre - depth / 3, z_centre + depth / 3, 3)):
+            for x in (-width / 4, width / 4):
+                lumps.append(ball((width / 4, (top_y - floor_y) / 2, depth / 6), (x, (top_y + floor_y) / 2, z), shade(LINEN, 0.9 + 0.05 * row), subdivisions=0))
+        return lumps
+
+    return _wagon(size, colour, sacks)
+
+
+@builder("crate_wagon")
+def crate_wagon(size, colour) -> trimesh.Trimesh:
+    """A wagon loaded with wooden crates, stacked two high at the back."""
+
+    def crates(width, depth, floor_y, top_y):
+        z_back = -size[2] / 2 + 0.05
+        cell = min(width / 2, depth / 3) * 0.9
+        stack = [
+            block((cell, cell, cell), (x, floor_y + cell / 2, z_back + depth / 6 + i * depth / 3), shade(WOOD, 1.1 + 0.1 * (i % 2)))
+            for i in range(3)
+            for x in (-width / 4, width / 4)
+        ]
+        stack.append(block((cell, top_y - floor_y - cell, cell), (0.0, (top_y + floor_y + cell) / 2, z_back + depth / 6), shade(WOOD, 1.25)))
+        return stack
+
+    return _wagon(size, colour, crates)
