@@ -1,0 +1,353 @@
+"""The layout energy v = v_r + v_c + v_p + v_q + extent, kept up to date incrementally.
+
+Parts (all >= 0, 0 when everything holds):
+
+- ``relations`` (v_r): one term per relation edge (``relation_terms.evaluate``).
+- ``collisions`` (v_c): per overlapping pair of boxes, -c log(1 - depth), depth being the
+  minimum separating translation over the pair's summed footprint diagonals. Boxes on
+  the ground collide in plan; when one of them is stacked, the vertical overlap counts
+  too (a pot on a table does not collide with the stool beside it). A box and its
+  support never collide.
+- ``paths`` (v_p): per ground box and path, the same penalty for the box's depth into
+  the path's buffered polyline, over the box's diagonal plus the path's width.
+- ``path_shape`` (v_q): per path less(total length, max length) and less(turn, gamma) at
+  each inner control point; per junction greater(angle, gamma) between neighbouring
+  outgoing paths.
+- ``extent``: c times how far a box's corners (relative to its diagonal) or a path's
+  control points (relative to its width) stick out of the scene extent.
+
+``Energy`` caches every term. ``propose`` applies a move to the state and returns the
+energy change computed from the terms touching the moved boxes and paths only (the
+grid finds the colliding pairs); ``accept`` keeps it, ``reject`` undoes it. With
+``incremental=False`` it recomputes the whole energy instead (for comparison).
+Boxes start inactive (absent from the energy) so the constructive placement can add
+them one item at a time through the same machinery.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .factors import greater, less
+from .geometry import polyline_rect_penetration, rect_penetration, turn_angle
+from .params import LayoutParams
+from .problem import Problem
+from .relation_terms import evaluate
+from .state import Grid, State
+
+PARTS = ("relations", "collisions", "paths", "path_shape", "extent")
+
+#: Depths are clipped below 1 so the log penalty stays finite.
+MAX_DEPTH = 0.99
+
+
+class Energy:
+    """Cached energy terms of a state, with propose / accept / reject."""
+
+    def __init__(self, problem: Problem, state: State, params: LayoutParams):
+        self.problem, self.state, self.params = problem, state, params
+        sizes = sorted(problem.size) or [1.0]
+        self.grid = Grid(min(max(2.0 * sizes[len(sizes) // 2], 0.5), 8.0))
+        self.active = [False] * problem.n_boxes
+        self.collides_with_paths = [
+            problem.support[b] == -1 and not problem.is_junction[b] for b in range(problem.n_boxes)
+        ]
+        self.relation = [0.0] * len(problem.relations)
+        self.pairs: list[dict[int, float]] = [{} for _ in range(problem.n_boxes)]
+        self.path_hits: list[dict[int, float]] = [{} for _ in range(problem.n_paths)]
+        self.shape = [0.0] * problem.n_paths
+        self.junction = {j: 0.0 for j in problem.paths_of_junction}
+        self.box_extent = [0.0] * problem.n_boxes
+        self.path_extent = [0.0] * problem.n_paths
+        self.parts = dict.fromkeys(PARTS, 0.0)
+        self.total = 0.0
+        self._pending: tuple | None = None
+        for path in range(problem.n_paths):
+            self.shape[path] = self.path_shape_energy(path)
+            self.path_extent[path] = self.path_extent_energy(path)
+        for junction in self.junction:
+            self.junction[junction] = self.junction_energy(junction)
+        self.parts["path_shape"] = sum(self.shape) + sum(self.junction.values())
+        self.parts["extent"] = sum(self.path_extent)
+        self.total = sum(self.parts.values())
+
+    # -- single terms ---------------------------------------------------------------
+
+    def relation_active(self, term_index: int) -> bool:
+        term = self.problem.relations[term_index]
+        members = term.a.members + term.b.members
+        if (term.a.kind == "group" and not term.a.members) or (term.b.kind == "group" and not term.b.members):
+            return False
+        return all(self.active[box] for box in members)
+
+    def relation_energy(self, term_index: int) -> float:
+        if not self.relation_active(term_index):
+            return 0.0
+        return evaluate(self.problem.relations[term_index], self.state, self.params).energy
+
+    def penalty(self, depth: float) -> float:
+        return -self.params.collision_intensity * math.log1p(-min(depth, MAX_DEPTH))
+
+    def pair_depth(self, first: int, second: int) -> float:
+        """Normalised penetration depth of two boxes (0 when apart or stacked)."""
+        problem, state = self.problem, self.state
+        if problem.support[first] == second or problem.support[second] == first:
+            return 0.0
+        planar = rect_penetration(state.rect(first), state.rect(second))
+        if planar <= 0.0:
+            return 0.0
+        if problem.support[first] >= 0 or problem.support[second] >= 0:
+            vertical = min(state.y[first] + problem.height[first], state.y[second] + problem.height[second]) - max(
+                state.y[first], state.y[second]
+            )
+            if vertical <= 1e-9:
+                return 0.0
+            planar = min(planar, vertical)
+        return planar / (problem.size[first] + problem.size[second])
+
+    def pair_energy(self, first: int, second: int) -> float:
+        depth = self.pair_depth(first, second)
+        return self.penalty(depth) if depth > 0.0 else 0.0
+
+    def path_depth(self, box: int, path: int) -> float:
+        """Normalised depth of a ground box into a path's buffered polyline."""
+        problem = self.problem
+        width = problem.path_width[path]
+        depth = polyline_rect_penetration(self.state.points[path], width / 2.0, self.state.rect(box))
+        return depth / (problem.size[box] + width)
+
+    def path_energy(self, box: int, path: int) -> float:
+        depth = self.path_depth(box, path)
+        return self.penalty(depth) if depth > 0.0 else 0.0
+
+    def box_excess(self, box: int) -> float:
+        """How far (metres) the box's footprint reaches beyond the scene extent."""
+        problem, state = self.problem, self.state
+        half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+        hw, hd, c, s = problem.half_width[box], problem.half_depth[box], state.c[box], state.s[box]
+        reach_x = hw * abs(c) + hd * abs(s)
+        reach_z = hw * abs(s) + hd * abs(c)
+        return max(abs(state.x[box]) + reach_x - half_x, abs(state.z[box]) + reach_z - half_z, 0.0)
+
+    def box_extent_energy(self, box: int) -> float:
+        if not self.active[box]:
+            return 0.0
+        return self.params.collision_intensity * self.box_excess(box) / self.problem.size[box]
+
+    def path_excess(self, path: int) -> float:
+        """Summed distance (metres) by which a path's control points leave the extent."""
+        half_x, half_z = self.problem.extent[0] / 2.0, self.problem.extent[1] / 2.0
+        return sum(max(abs(x) - half_x, abs(z) - half_z, 0.0) for x, z in self.state.points[path])
+
+    def path_extent_energy(self, path: int) -> float:
+        return self.params.collision_intensity * self.path_excess(path) / self.problem.path_width[path]
+
+    def path_shape_energy(self, path: int) -> float:
+        points, params = self.state.points[path], self.params
+        length = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+        energy = -less(length, self.problem.path_max_length[path], params.h)
+        for i in range(1, len(points) - 1):
+            energy -= less(turn_angle(points[i - 1], points[i], points[i + 1]), params.gamma, params.h)
+        return energy
+
+    def junction_angles(self, junction: int) -> list[float]:
+        """Angles between neighbouring outgoing paths of a junction (radians)."""
+        headings = []
+        for path in self.problem.paths_of_junction[junction]:
+            first, second = self.state.points[path][0], self.state.points[path][1]
+            headings.append(math.atan2(second[1] - first[1], second[0] - first[0]))
+        if len(headings) < 2:
+            return []
+        headings.sort()
+        gaps = [b - a for a, b in zip(headings, headings[1:])]
+        gaps.append(2.0 * math.pi - (headings[-1] - headings[0]))
+        return gaps
+
+    def junction_energy(self, junction: int) -> float:
+        params = self.params
+        return -sum(greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction))
+
+    # -- the whole energy -------------------------------------------------------------
+
+    def full(self) -> dict[str, float]:
+        """Every part recomputed from scratch (the reference the caches must match)."""
+        problem = self.problem
+        parts = dict.fromkeys(PARTS, 0.0)
+        parts["relations"] = sum(self.relation_energy(t) for t in range(len(problem.relations)))
+        for box in range(problem.n_boxes):
+            if not self.active[box]:
+                continue
+            for other in self.grid.near_box(box):
+                if other > box:
+                    parts["collisions"] += self.pair_energy(box, other)
+            if self.collides_with_paths[box]:
+                parts["paths"] += sum(self.path_energy(box, path) for path in range(problem.n_paths))
+            parts["extent"] += self.box_extent_energy(box)
+        parts["path_shape"] = sum(self.path_shape_energy(p) for p in range(problem.n_paths)) + sum(
+            self.junction_energy(j) for j in problem.paths_of_junction
+        )
+        parts["extent"] += sum(self.path_extent_energy(p) for p in range(problem.n_paths))
+        return parts
+
+    # -- moves ---------------------------------------------------------------------------
+
+    def activate(self, boxes: list[int]) -> None:
+        """Bring boxes (at their current poses) into the energy."""
+        for box in boxes:
+            self.active[box] = True
+        self.propose({box: self.state.pose(box) for box in boxes}, {}, entering=True)
+        self.accept()
+
+    def propose(self, boxes: dict, paths: dict, *, entering: bool = False) -> float:
+        """Apply new box poses {box: (x, z, yaw)} and path points {path: points}; return the energy change."""
+        state, grid, problem = self.state, self.grid, self.problem
+        saved_boxes = [(box, state.pose(box)) for box in boxes]
+        saved_paths = [(path, state.points[path]) for path in paths]
+        for box, (x, z, yaw) in boxes.items():
+            state.set_pose(box, x, z, yaw)
+            if self.active[box]:
+                if not entering:
+                    grid.remove(box)
+                grid.insert(box, x, z, problem.size[box] / 2.0)
+        for path, points in paths.items():
+            state.points[path] = points
+        if not self.params.incremental:
+            parts = self.full()
+            new_total = sum(parts.values())
+            self._pending = ("full", saved_boxes, saved_paths, parts, new_total)
+            return new_total - self.total
+        changes = self._changes(list(boxes), list(paths))
+        self._pending = ("incremental", saved_boxes, saved_paths, changes)
+        return sum(changes[0].values())
+
+    def _changes(self, boxes: list[int], paths: list[int]) -> tuple:
+        """New values of every term touching the moved boxes and paths, and the part deltas."""
+        problem, active = self.problem, self.active
+        moved = set(boxes)
+        moved_paths = set(paths)
+        delta = dict.fromkeys(PARTS, 0.0)
+
+        terms: set[int] = set()
+        for box in boxes:
+            terms.update(problem.terms_of_box[box])
+        for path in paths:
+            terms.update(problem.terms_of_path[path])
+        new_relation = {}
+        for term in sorted(terms):
+            value = self.relation_energy(term)
+            new_relation[term] = value
+            delta["relations"] += value - self.relation[term]
+
+        new_pairs: dict[tuple[int, int], float] = {}
+        for box in boxes:
+            if not active[box]:
+                continue
+            for other, value in self.pairs[box].items():
+                if other not in moved or other > box:
+                    delta["collisions"] -= value
+            for other in self.grid.near_box(box):
+                if other == box or (other in moved and other < box):
+                    continue
+                value = self.pair_energy(box, other)
+                if value > 0.0:
+                    new_pairs[(box, other)] = value
+                    delta["collisions"] += value
+
+        new_hits: dict[tuple[int, int], float] = {}
+        for box in boxes:
+            if active[box] and self.collides_with_paths[box]:
+                for path in range(problem.n_paths):
+                    delta["paths"] -= self.path_hits[path].get(box, 0.0)
+                    value = self.path_energy(box, path)
+                    if value > 0.0:
+                        new_hits[(box, path)] = value
+                        delta["paths"] += value
+        for path in paths:
+            for box, value in self.path_hits[path].items():
+                if box not in moved:
+                    delta["paths"] -= value
+            for box in self._boxes_near_path(path):
+                if box not in moved and self.collides_with_paths[box]:
+                    value = self.path_energy(box, path)
+                    if value > 0.0:
+                        new_hits[(box, path)] = value
+                        delta["paths"] += value
+
+        new_shape = {}
+        for path in paths:
+            new_shape[path] = self.path_shape_energy(path)
+            delta["path_shape"] += new_shape[path] - self.shape[path]
+        junctions = sorted({problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & set(self.junction)))
+        new_junction = {}
+        for junction in junctions:
+            new_junction[junction] = self.junction_energy(junction)
+            delta["path_shape"] += new_junction[junction] - self.junction[junction]
+
+        new_box_extent = {}
+        for box in boxes:
+            new_box_extent[box] = self.box_extent_energy(box)
+            delta["extent"] += new_box_extent[box] - self.box_extent[box]
+        new_path_extent = {}
+        for path in paths:
+            new_path_extent[path] = self.path_extent_energy(path)
+            delta["extent"] += new_path_extent[path] - self.path_extent[path]
+        return delta, new_relation, moved, new_pairs, moved_paths, new_hits, new_shape, new_junction, new_box_extent, new_path_extent
+
+    def _boxes_near_path(self, path: int) -> list[int]:
+        points = self.state.points[path]
+        reach = self.problem.path_width[path] / 2.0
+        xs = [p[0] for p in points]
+        zs = [p[1] for p in points]
+        found = self.grid.in_area(min(xs) - reach, min(zs) - reach, max(xs) + reach, max(zs) + reach)
+        return sorted(found)
+
+    def accept(self) -> None:
+        """Keep the proposed move: store its term values."""
+        pending, self._pending = self._pending, None
+        if pending[0] == "full":
+            self.parts, self.total = pending[3], pending[4]
+            return
+        (delta, new_relation, moved, new_pairs, moved_paths, new_hits,
+         new_shape, new_junction, new_box_extent, new_path_extent) = pending[3]  # fmt: skip
+        for term, value in new_relation.items():
+            self.relation[term] = value
+        for box in moved:
+            for other in self.pairs[box]:
+                if other not in moved:
+                    del self.pairs[other][box]
+            self.pairs[box] = {}
+        for (box, other), value in new_pairs.items():
+            self.pairs[box][other] = value
+            self.pairs[other][box] = value
+        for path in range(self.problem.n_paths):
+            hits = self.path_hits[path]
+            if path in moved_paths:
+                hits.clear()
+            else:
+                for box in moved:
+                    hits.pop(box, None)
+        for (box, path), value in new_hits.items():
+            self.path_hits[path][box] = value
+        for path, value in new_shape.items():
+            self.shape[path] = value
+        for junction, value in new_junction.items():
+            self.junction[junction] = value
+        for box, value in new_box_extent.items():
+            self.box_extent[box] = value
+        for path, value in new_path_extent.items():
+            self.path_extent[path] = value
+        for part, value in delta.items():
+            self.parts[part] += value
+        self.total = sum(self.parts.values())
+
+    def reject(self) -> None:
+        """Undo the proposed move."""
+        pending, self._pending = self._pending, None
+        state, grid, problem = self.state, self.grid, self.problem
+        for box, (x, z, yaw) in pending[1]:
+            state.set_pose(box, x, z, yaw)
+            if self.active[box]:
+                grid.remove(box)
+                grid.insert(box, x, z, problem.size[box] / 2.0)
+        for path, points in pending[2]:
+            state.points[path] = points

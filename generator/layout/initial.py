@@ -1,0 +1,191 @@
+"""The constructive initial placement the sampler starts from.
+
+Paths first (roads leave their junction at evenly spread headings, free roads cross
+the scene), then the top-level items (groups and free objects) one at a time, each
+after the items its relations point to: a group's members are placed from their
+relations to each other (the first member where the group's own relation wants the
+group, e.g. beside its road), stacked things on their supports, unrelated members
+beside a placed mate; then the group is placed as a whole once more. Every placement
+draws ``initial_candidates`` poses from the sampler's data-driven moves and keeps the
+one of lowest energy, so the start is already close to a valid layout. Items enter the
+energy only as they are placed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from .energy import Energy
+from .moves import Mover, rigid, wrap
+from .problem import Endpoint, RelationTerm
+
+#: Paths stay this far (metres) inside the extent when first laid out.
+PATH_MARGIN = 1.0
+#: Spread (radians) of the heading change at each control point of a new path.
+PATH_WIGGLE = 0.15
+
+
+def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> None:
+    """Lay out paths, junctions and all boxes; leaves every box active in ``energy``."""
+    _lay_paths(energy, rng)
+    problem = energy.problem
+    pending = list(problem.units)
+    while pending:
+        unit = next((u for u in pending if _anchors_placed(energy, u)), pending[0])
+        pending.remove(unit)
+        kind, index = unit
+        if kind == "group":
+            _place_group(energy, mover, rng, index)
+        else:
+            _place_box(energy, mover, rng, index, ())
+    for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
+        if not energy.active[box]:
+            _place_box(energy, mover, rng, box, ())
+
+
+def _outgoing(energy: Energy, end_kind: str, index: int) -> list[RelationTerm]:
+    return [t for t in energy.problem.relations if t.a.kind == end_kind and t.a.index == index]
+
+
+def _placed(energy: Energy, end: Endpoint) -> bool:
+    return end.kind == "path" or (bool(end.members) and all(energy.active[b] for b in end.members))
+
+
+def _anchors_placed(energy: Energy, unit: tuple[str, int]) -> bool:
+    kind, index = unit
+    own = energy.problem.group_members[index] if kind == "group" else (index,)
+    kind = "object" if kind == "box" else kind
+    return all(_placed(energy, t.b) or set(t.b.members) <= set(own) for t in _outgoing(energy, kind, index))
+
+
+def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+    for junction in junctions:
+        state.set_pose(junction, rng.uniform(-0.15, 0.15) * 2 * half_x, rng.uniform(-0.15, 0.15) * 2 * half_z, 0.0)
+    energy.activate(junctions)
+    for junction in junctions:
+        paths = problem.paths_of_junction.get(junction, [])
+        base = rng.uniform(0.0, 2.0 * math.pi)
+        for k, path in enumerate(paths):
+            heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
+            start = (state.x[junction], state.z[junction])
+            _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
+    for path in range(problem.n_paths):
+        if problem.path_start[path] >= 0:
+            continue
+        heading = rng.uniform(0.0, 2.0 * math.pi)
+        middle = (rng.uniform(-0.2, 0.2) * 2 * half_x, rng.uniform(-0.2, 0.2) * 2 * half_z)
+        back = _room(middle, heading + math.pi, half_x, half_z)
+        ahead = _room(middle, heading, half_x, half_z)
+        length = min(0.9 * problem.path_max_length[path], back + ahead)
+        behind = min(back, length / 2.0)
+        start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+        _set_path(energy, rng, path, start, heading, length)
+
+
+def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
+    """How far one can go from ``start`` along ``heading`` and stay PATH_MARGIN inside."""
+    dx, dz = math.cos(heading), math.sin(heading)
+    limits = []
+    for position, direction, half in ((start[0], dx, half_x), (start[1], dz, half_z)):
+        if abs(direction) > 1e-9:
+            bound = (half - PATH_MARGIN) if direction > 0 else -(half - PATH_MARGIN)
+            limits.append((bound - position) / direction)
+    return max(min(limits), 0.0)
+
+
+def _set_path(energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float) -> None:
+    problem = energy.problem
+    half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
+    segments = problem.path_segments[path]
+    step = min(0.9 * problem.path_max_length[path], room) / segments
+    points = [[float(start[0]), float(start[1])]]
+    for _ in range(segments):
+        heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+        x = points[-1][0] + math.cos(heading) * step
+        z = points[-1][1] + math.sin(heading) * step
+        points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
+    energy.propose({}, {path: points})
+    energy.accept()
+
+
+def _best_of(energy: Energy, draw, count: int) -> None:
+    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy."""
+    best, best_delta = None, 0.0
+    for _ in range(count):
+        proposal = draw()
+        if proposal is None:
+            continue
+        delta = energy.propose(*proposal)
+        energy.reject()
+        if best is None or delta < best_delta:
+            best, best_delta = proposal, delta
+    if best is not None and best_delta < 0.0:
+        energy.propose(*best)
+        energy.accept()
+
+
+def _place_box(energy: Energy, mover: Mover, rng: np.random.Generator, box: int, mates: tuple[int, ...], anchor_term=None) -> None:
+    """Place one box: on its support, by a relation to something placed, or near a mate."""
+    problem, state = energy.problem, energy.state
+    terms = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
+    support = [t for t in terms if t.b.kind == "object" and problem.support[box] == t.b.index]
+    placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
+    if support:
+        choices = support[:1]
+    elif terms:
+        choices = terms
+    elif anchor_term is not None:
+        choices = [anchor_term]
+    else:
+        choices = []
+
+    def draw():
+        if choices:
+            return mover.place_for_relation(choices[int(rng.integers(len(choices)))]), {}
+        if placed_mates:
+            mate = placed_mates[int(rng.integers(len(placed_mates)))]
+            near = RelationTerm("", "", "NextTo", "NextTo", Endpoint("object", box, (box,)), Endpoint("object", mate, (mate,)))
+            return mover.place_for_relation(near), {}
+        return _anywhere(energy, rng, box), {}
+
+    first = draw()[0]
+    for item, pose in first.items():
+        state.set_pose(item, *pose)
+    energy.activate([box])
+    _best_of(energy, draw, energy.params.initial_candidates)
+
+
+def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
+    problem, state = energy.problem, energy.state
+    reach = problem.size[box] / 2.0
+    half_x = max(problem.extent[0] / 2.0 - reach, 0.0)
+    half_z = max(problem.extent[1] / 2.0 - reach, 0.0)
+    yaw = wrap(math.pi / 2.0 * int(rng.integers(4)))
+    x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
+    turn = wrap(yaw - state.yaw[box])
+    return rigid(state, problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
+
+
+def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: int) -> None:
+    problem = energy.problem
+    members = problem.group_members[group]
+    anchors = [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)]
+    depth = {}
+    for box in members:
+        level, below = 0, problem.support[box]
+        while below >= 0:
+            level, below = level + 1, problem.support[below]
+        depth[box] = level
+    order = sorted(members, key=lambda b: (depth[b], b))
+    for position, box in enumerate(order):
+        anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
+        _place_box(energy, mover, rng, box, members, anchor)
+    if anchors:
+        whole = anchors[int(rng.integers(len(anchors)))]
+        _best_of(energy, lambda: (mover.place_for_relation(whole), {}), energy.params.initial_candidates)

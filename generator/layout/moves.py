@@ -1,0 +1,311 @@
+"""Proposals for the sampler: each returns new box poses and path points, or None.
+
+A proposal is ``(boxes, paths)``: ``{box: (x, z, yaw)}`` and ``{path: points}``. Whatever
+rests on a moved box moves with it rigidly, so supports carry their stacks. Move types:
+
+- ``jitter``: shift one box (a stacked box slides over its support's top);
+- ``rotate``: turn one box a little, or snap it to a multiple of 90 degrees;
+- ``group``: move or turn a whole group rigidly;
+- ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
+  source where that relation holds (on the right side of B at a small gap, on B's top,
+  beside a road at a random point along it, turned to face B, ...);
+- ``path``: move one control point of a path, or bend the path's tail around a point;
+- ``junction``: move a junction, with the start of every path leaving it.
+
+The same ``place_for_relation`` makes the constructive initial placement's candidates.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .problem import Endpoint, Problem, RelationTerm
+from .relation_terms import COMPASS, anchor, centre
+from .state import State
+
+#: Relative frequencies of the move types.
+MOVE_WEIGHTS = {"jitter": 0.30, "rotate": 0.12, "group": 0.13, "relation": 0.30, "path": 0.10, "junction": 0.05}
+
+#: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
+GAP_RANGE = (0.05, 0.8)
+
+HALF_PI = math.pi / 2.0
+
+
+def wrap(angle: float) -> float:
+    """The angle in (-pi, pi]."""
+    return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
+
+
+def rigid(state: State, boxes: list[int], pivot: tuple[float, float], turn: float, shift: tuple[float, float]) -> dict:
+    """New poses of ``boxes`` turned by ``turn`` about ``pivot`` then shifted."""
+    c, s = math.cos(turn), math.sin(turn)
+    px, pz = pivot
+    moved = {}
+    for box in boxes:
+        rx, rz = state.x[box] - px, state.z[box] - pz
+        moved[box] = (px + rx * c + rz * s + shift[0], pz - rx * s + rz * c + shift[1], wrap(state.yaw[box] + turn))
+    return moved
+
+
+def carried_by(problem: Problem, boxes) -> list[int]:
+    """The boxes plus everything stacked on them, each once, in a fixed order."""
+    found: list[int] = []
+    for box in boxes:
+        for item in problem.carried(box):
+            if item not in found:
+                found.append(item)
+    return found
+
+
+def reach(problem: Problem, state: State, box: int, wx: float, wz: float) -> float:
+    """How far a box's footprint reaches from its centre along the unit direction (wx, wz)."""
+    c, s = state.c[box], state.s[box]
+    return problem.half_width[box] * abs(c * wx - s * wz) + problem.half_depth[box] * abs(s * wx + c * wz)
+
+
+def end_reach(problem: Problem, state: State, end: Endpoint, wx: float, wz: float) -> float:
+    """How far an object or group reaches from its centre along (wx, wz)."""
+    if end.kind == "object":
+        return reach(problem, state, end.index, wx, wz)
+    cx, cz = centre(end, state)
+    return max(
+        (state.x[b] - cx) * wx + (state.z[b] - cz) * wz + reach(problem, state, b, wx, wz) for b in end.members
+    )
+
+
+def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
+    return math.exp(rng.uniform(math.log(low), math.log(high)))
+
+
+class Mover:
+    """Draws proposals for one problem; holds the precomputed choices."""
+
+    def __init__(self, problem: Problem, state: State, rng: np.random.Generator):
+        self.problem, self.state, self.rng = problem, state, rng
+        self.boxes = [b for b in range(problem.n_boxes) if not problem.is_junction[b]]
+        self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+        self.groups = [g for g, members in enumerate(problem.group_members) if members]
+        self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
+        self.relations = [t for t, term in enumerate(problem.relations) if self._movable(term.a)]
+        available = {
+            "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
+            "relation": bool(self.relations), "path": problem.n_paths > 0, "junction": bool(self.junctions),
+        }  # fmt: skip
+        self.kinds = [kind for kind in MOVE_WEIGHTS if available[kind]]
+        weights = np.array([MOVE_WEIGHTS[kind] for kind in self.kinds])
+        self.cumulative = list(np.cumsum(weights / weights.sum())) if self.kinds else []
+
+    def _movable(self, end: Endpoint) -> bool:
+        return end.kind == "object" and not self.problem.is_junction[end.index] or (end.kind == "group" and bool(end.members))
+
+    def propose(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
+        """One random proposal; ``relation_energy`` steers the data-driven moves."""
+        if not self.kinds:
+            return None
+        draw = self.rng.random()
+        kind = self.kinds[-1]
+        for candidate, edge in zip(self.kinds, self.cumulative):
+            if draw < edge:
+                kind = candidate
+                break
+        if kind == "jitter":
+            return self.jitter(self.boxes[int(self.rng.integers(len(self.boxes)))])
+        if kind == "rotate":
+            return self.rotate(self.boxes[int(self.rng.integers(len(self.boxes)))])
+        if kind == "group":
+            return self.move_group(self.groups[int(self.rng.integers(len(self.groups)))])
+        if kind == "relation":
+            return self.relation_move(relation_energy)
+        if kind == "path":
+            return self.move_path(int(self.rng.integers(self.problem.n_paths)))
+        return self.move_junction(self.junctions[int(self.rng.integers(len(self.junctions)))])
+
+    # -- local moves ---------------------------------------------------------------------
+
+    def jitter(self, box: int) -> tuple[dict, dict]:
+        problem, state, rng = self.problem, self.state, self.rng
+        below = problem.support[box]
+        scale = min(problem.half_width[below], problem.half_depth[below]) if below >= 0 else 2.0
+        sigma = _log_uniform(rng, 0.02, 1.0) * scale
+        shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
+        return rigid(state, problem.carried(box), (state.x[box], state.z[box]), 0.0, shift), {}
+
+    def rotate(self, box: int) -> tuple[dict, dict]:
+        state, rng = self.state, self.rng
+        if rng.random() < 0.3:
+            target = HALF_PI * (round(state.yaw[box] / HALF_PI) + int(rng.integers(-1, 2)))
+            turn = target - state.yaw[box]
+        else:
+            turn = rng.normal(0.0, _log_uniform(rng, 0.02, 0.8))
+        return rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0)), {}
+
+    def move_group(self, group: int) -> tuple[dict, dict]:
+        state, rng = self.state, self.rng
+        members = self.problem.group_members[group]
+        pivot = centre(Endpoint("group", group, members), state)
+        sigma = _log_uniform(rng, 0.05, 3.0)
+        turn = rng.normal(0.0, 0.3) if rng.random() < 0.3 else 0.0
+        shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
+        return rigid(state, self.group_boxes[group], pivot, turn, shift), {}
+
+    def move_path(self, path: int) -> tuple[dict, dict] | None:
+        problem, state, rng = self.problem, self.state, self.rng
+        points = state.points[path]
+        first = 1 if problem.path_start[path] >= 0 else 0
+        if first >= len(points):
+            return None
+        index = int(rng.integers(first, len(points)))
+        new = [list(p) for p in points]
+        if rng.random() < 0.5 or index == 0:
+            sigma = _log_uniform(rng, 0.05, 2.0)
+            new[index] = [points[index][0] + rng.normal(0.0, sigma), points[index][1] + rng.normal(0.0, sigma)]
+        else:  # bend the tail from this point on about the previous one
+            turn = rng.normal(0.0, 0.15)
+            c, s = math.cos(turn), math.sin(turn)
+            px, pz = points[index - 1]
+            for k in range(index, len(points)):
+                rx, rz = points[k][0] - px, points[k][1] - pz
+                new[k] = [px + rx * c + rz * s, pz - rx * s + rz * c]
+        return {}, {path: new}
+
+    def move_junction(self, junction: int) -> tuple[dict, dict]:
+        problem, state, rng = self.problem, self.state, self.rng
+        sigma = _log_uniform(rng, 0.05, 2.0)
+        dx, dz = rng.normal(0.0, sigma), rng.normal(0.0, sigma)
+        boxes = {junction: (state.x[junction] + dx, state.z[junction] + dz, state.yaw[junction])}
+        paths = {}
+        for path in problem.paths_of_junction.get(junction, []):
+            new = [list(p) for p in state.points[path]]
+            new[0] = [new[0][0] + dx, new[0][1] + dz]
+            paths[path] = new
+        return boxes, paths
+
+    # -- data-driven moves -------------------------------------------------------------
+
+    def relation_move(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
+        weights = np.array([relation_energy[t] for t in self.relations]) + 0.05
+        term = self.relations[int(self.rng.choice(len(self.relations), p=weights / weights.sum()))]
+        boxes = self.place_for_relation(self.problem.relations[term])
+        return (boxes, {}) if boxes else None
+
+    def place_for_relation(self, term: RelationTerm) -> dict | None:
+        """New poses for A (and all it carries) at which ``term`` holds, or None."""
+        base = term.base
+        if base.startswith("NextTo"):
+            return self._place_next_to(term)
+        if base.startswith("Facing"):
+            return self._turn_to_face(term)
+        return self._place_on_top(term)
+
+    def moving_boxes(self, end: Endpoint) -> list[int]:
+        if end.kind == "group":
+            return self.group_boxes[end.index]
+        return self.problem.carried(end.index)
+
+    def _place_next_to(self, term: RelationTerm) -> dict:
+        problem, state, rng = self.problem, self.state, self.rng
+        a, b = term.a, term.b
+        ax, az = centre(a, state)
+        gap = rng.uniform(*GAP_RANGE)
+        turn = 0.0
+        if b.kind == "path":
+            points = state.points[b.index]
+            segment = int(rng.integers(len(points) - 1))
+            t = rng.uniform(0.05, 0.95)
+            (p0x, p0z), (p1x, p1z) = points[segment], points[segment + 1]
+            length = math.hypot(p1x - p0x, p1z - p0z) or 1.0
+            tx, tz = (p1x - p0x) / length, (p1z - p0z) / length
+            side = 1.0 if rng.random() < 0.5 else -1.0
+            nx, nz = -tz * side, tx * side  # a normal of the road, on the chosen side
+            bx, bz = p0x + t * (p1x - p0x), p0z + t * (p1z - p0z)
+            if rng.random() < 0.7:  # turn A to face the road
+                heading = self._heading(a)
+                turn = wrap(math.atan2(-nx, -nz) - heading)
+            offset = problem.path_width[b.index] / 2.0
+            wx, wz = nx, nz
+        else:
+            bx, bz, c, s = anchor(b, state, (ax, az))
+            wx, wz = self._wanted_direction(term.base, c, s)
+            offset = end_reach(problem, state, b, wx, wz)
+        boxes = self.moving_boxes(a)
+        pivot = (ax, az)
+        if turn:  # measure A's reach and centre as they will be once turned
+            saved = [(box, state.pose(box)) for box in boxes]
+            for box, pose in rigid(state, boxes, pivot, turn, (0.0, 0.0)).items():
+                state.set_pose(box, *pose)
+            a_reach = end_reach(problem, state, a, -wx, -wz)
+            ax, az = centre(a, state)
+            for box, pose in saved:
+                state.set_pose(box, *pose)
+        else:
+            a_reach = end_reach(problem, state, a, -wx, -wz)
+        distance = offset + a_reach + gap
+        return rigid(state, boxes, pivot, turn, (bx + wx * distance - ax, bz + wz * distance - az))
+
+    def _heading(self, end: Endpoint) -> float:
+        """Yaw of an object, or of a group's first member (the group's front)."""
+        box = end.index if end.kind == "object" else end.members[0]
+        return self.state.yaw[box]
+
+    def _wanted_direction(self, base: str, c: float, s: float) -> tuple[float, float]:
+        """A unit direction from B to A in which ``base`` holds (drawn for open ones)."""
+        rng = self.rng
+        local = {"Left": (c, -s), "Right": (-c, s), "Front": (s, c), "Behind": (-s, -c)}
+        word = base[len("NextTo"):]
+        if word in local:
+            return local[word]
+        if word.lower() in COMPASS:
+            return COMPASS[word.lower()]
+        if word == "ChooseSide":
+            return local["Left"] if rng.random() < 0.5 else local["Right"]
+        if word == "ChooseDirection":
+            return list(COMPASS.values())[int(rng.integers(4))]
+        angle = rng.uniform(-math.pi, math.pi)
+        return math.sin(angle), math.cos(angle)
+
+    def _turn_to_face(self, term: RelationTerm) -> dict | None:
+        problem, state = self.problem, self.state
+        a, b = term.a, term.b
+        if a.kind != "object":
+            return None
+        ax, az = state.x[a.index], state.z[a.index]
+        bx, bz, c, s = anchor(b, state, (ax, az))
+        base = term.base
+        if base == "FacingTowards":
+            yaw = math.atan2(bx - ax, bz - az)
+        elif base == "FacingAwayFrom":
+            yaw = math.atan2(ax - bx, az - bz)
+        else:
+            b_yaw = math.atan2(s, c) if b.kind != "group" else 0.0
+            yaw = b_yaw if base == "FacingSameDirection" else b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
+        turn = wrap(yaw - state.yaw[a.index])
+        return rigid(state, problem.carried(a.index), (ax, az), turn, (0.0, 0.0))
+
+    def _place_on_top(self, term: RelationTerm) -> dict:
+        problem, state, rng = self.problem, self.state, self.rng
+        a, b = term.a.index, term.b.index
+        quarter = int(rng.integers(4)) if rng.random() < 0.3 else 0
+        yaw = wrap(state.yaw[b] + quarter * HALF_PI)
+        # A's half extents along B's axes once turned to ``yaw``.
+        ex, ez = (problem.half_width[a], problem.half_depth[a]) if quarter % 2 == 0 else (problem.half_depth[a], problem.half_width[a])
+        room_x = max(problem.half_width[b] - ex, 0.0)
+        room_z = max(problem.half_depth[b] - ez, 0.0)
+        base = term.base.replace("IsPartOf", "OnTopOf")
+        if base == "OnTopOfMiddle":
+            lx = lz = 0.0
+        elif base == "OnTopOfFrontEdge":
+            lx, lz = rng.uniform(-room_x, room_x), room_z
+        elif base == "OnTopOfEdge":
+            edge = int(rng.integers(4))
+            lx = (room_x if edge == 0 else -room_x) if edge < 2 else rng.uniform(-room_x, room_x)
+            lz = (room_z if edge == 2 else -room_z) if edge >= 2 else rng.uniform(-room_z, room_z)
+        else:
+            lx, lz = rng.uniform(-room_x, room_x), rng.uniform(-room_z, room_z)
+        c, s = state.c[b], state.s[b]
+        # Local (left, forward) of B to world: x = cx + lx c + lz s, z = cz - lx s + lz c.
+        x = state.x[b] + lx * c + lz * s
+        z = state.z[b] - lx * s + lz * c
+        return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))

@@ -1,0 +1,44 @@
+"""The layout's tunable constants, in one plain dataclass."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .factors import DEFAULT_H, DEFAULT_SIGMA2
+
+
+@dataclass(frozen=True)
+class LayoutParams:
+    """Named constants of the energy and the sampler.
+
+    Energy: ``h`` and ``sigma2`` are the factor functions' steepness (paper: 3.0, 0.1);
+    ``gamma`` the path turn / junction angle limit (paper: 60 degrees);
+    ``collision_intensity`` the paper's c in -c log(1 - penetration);
+    ``next_to_distance`` the distance NextTo* asks for (paper: 2 m).
+
+    Sampler: ``steps`` is the step budget of one run; ``min_steps`` the steps always
+    taken (the chain polishes even a constructive placement that is already fine);
+    ``check_every`` how often the stop rule is tested; it stops once the layout is ok
+    (every relation satisfied, nothing overlapping, all inside) and its energy is at most
+    ``target_energy``. ``restarts`` more runs from fresh initial placements are made while
+    the result is not ok, and the best is kept. The temperature falls geometrically from
+    ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
+    poses are tried for each item during the constructive initial placement.
+    ``incremental=False`` recomputes the full energy every step (for comparison).
+    """
+
+    h: float = DEFAULT_H
+    sigma2: float = DEFAULT_SIGMA2
+    gamma: float = math.radians(60.0)
+    collision_intensity: float = 30.0
+    next_to_distance: float = 2.0
+    steps: int = 4000
+    min_steps: int = 200
+    check_every: int = 200
+    target_energy: float = math.inf
+    restarts: int = 3
+    temperature_start: float = 0.5
+    temperature_end: float = 0.01
+    initial_candidates: int = 16
+    incremental: bool = True

@@ -1,0 +1,207 @@
+"""A scene graph compiled into the flat, indexed form the energy and sampler work on.
+
+Objects and junctions become numbered boxes (junctions are flat boxes paths start
+from); groups become the tuple of boxes they contain; paths become numbered polylines;
+every relation edge becomes a ``RelationTerm`` whose endpoints say what geometry they
+stand for. Per box and per path the terms that touch it are listed up front, so a move
+re-evaluates only those.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from scenewright.errors import InputError
+
+from ..relations import base_label, is_support
+from ..scene_graph import SceneGraph
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """One end of a relation: a box (``object``), a group of boxes, or a path."""
+
+    kind: str  # "object", "group" or "path"
+    index: int  # box index for an object, path index for a path, group index for a group
+    members: tuple[int, ...]  # the boxes whose poses it depends on (empty for a path)
+
+
+@dataclass(frozen=True)
+class RelationTerm:
+    """One relation edge, ready to score: ``a`` -label-> ``b``."""
+
+    source: str
+    target: str
+    label: str  # as written (may be Implicit*)
+    base: str  # without the Implicit prefix
+    a: Endpoint
+    b: Endpoint
+
+
+@dataclass
+class Problem:
+    """Static data of one layout problem (nothing here changes while sampling)."""
+
+    ids: list[str]  # box ids: objects and junctions, creation order
+    is_junction: list[bool]
+    half_width: list[float]
+    half_depth: list[float]
+    height: list[float]
+    size: list[float]  # footprint diagonal, the normaliser of penetration depths
+    support: list[int]  # the box each box rests on, -1 for the ground
+    dependents: list[list[int]]  # boxes resting directly on each box
+    group_ids: list[str]
+    group_members: list[tuple[int, ...]]  # boxes inside each group (nested ones too)
+    path_ids: list[str]
+    path_width: list[float]
+    path_max_length: list[float]
+    path_segments: list[int]
+    path_start: list[int]  # junction box a path starts at, -1 if free
+    relations: list[RelationTerm]
+    extent: tuple[float, float]
+    walls: bool
+    terms_of_box: list[list[int]] = field(default_factory=list)
+    terms_of_path: list[list[int]] = field(default_factory=list)
+    paths_of_junction: dict[int, list[int]] = field(default_factory=dict)
+    top_groups: list[int] = field(default_factory=list)  # groups not inside another group
+    free_boxes: list[int] = field(default_factory=list)  # ground boxes in no group, no junctions
+    units: list[tuple[str, int]] = field(default_factory=list)  # top groups and free boxes, creation order
+
+    @property
+    def n_boxes(self) -> int:
+        return len(self.ids)
+
+    @property
+    def n_paths(self) -> int:
+        return len(self.path_ids)
+
+    def carried(self, box: int) -> list[int]:
+        """The box and everything resting on it, transitively (they move together)."""
+        found = [box]
+        for item in found:
+            found.extend(self.dependents[item])
+        return found
+
+
+def compile_problem(graph: SceneGraph) -> Problem:
+    """Index a scene graph's nodes and relations; refuse relations that cannot be laid out."""
+    ids, is_junction, half_width, half_depth, height, size = [], [], [], [], [], []
+    path_ids, path_width, path_max_length, path_segments = [], [], [], []
+    group_ids: list[str] = []
+    box_index: dict[str, int] = {}
+    path_index: dict[str, int] = {}
+    group_index: dict[str, int] = {}
+    parent_of: dict[str, str | None] = {}
+    for node in graph.nodes():
+        parent_of[node.id] = node.parent
+        if node.kind in ("object", "junction"):
+            box_index[node.id] = len(ids)
+            ids.append(node.id)
+            is_junction.append(node.kind == "junction")
+            width, tall, depth = (max(float(v), 1e-3) for v in node.size)
+            half_width.append(width / 2.0)
+            half_depth.append(depth / 2.0)
+            height.append(tall)
+            size.append(math.hypot(width, depth))
+        elif node.kind == "path":
+            path_index[node.id] = len(path_ids)
+            path_ids.append(node.id)
+            path_width.append(float(node.width or 3.0))
+            path_max_length.append(float(node.max_length or 30.0))
+            path_segments.append(max(int(node.segments or 1), 1))
+        else:
+            group_index[node.id] = len(group_ids)
+            group_ids.append(node.id)
+
+    group_members: list[list[int]] = [[] for _ in group_ids]
+    for node_id, box in box_index.items():
+        ancestor = parent_of[node_id]
+        while ancestor is not None:
+            if ancestor in group_index:
+                group_members[group_index[ancestor]].append(box)
+            ancestor = parent_of.get(ancestor)
+
+    def endpoint(node_id: str) -> Endpoint:
+        if node_id in box_index:
+            return Endpoint("object", box_index[node_id], (box_index[node_id],))
+        if node_id in path_index:
+            return Endpoint("path", path_index[node_id], ())
+        group = group_index[node_id]
+        return Endpoint("group", group, tuple(group_members[group]))
+
+    support = [-1] * len(ids)
+    path_start = [-1] * len(path_ids)
+    relations: list[RelationTerm] = []
+    for edge in graph.edges():
+        base = base_label(edge.label)
+        if base == "PathConnectedTo":
+            path, junction = _path_connection(edge, path_index, box_index)
+            path_start[path] = junction
+            continue
+        a, b = endpoint(edge.source), endpoint(edge.target)
+        if is_support(edge.label):
+            if a.kind != "object" or b.kind != "object":
+                raise InputError(f"{edge.source} {edge.label} {edge.target}: only objects can rest on objects")
+            if support[a.index] == -1:
+                support[a.index] = b.index
+        relations.append(RelationTerm(edge.source, edge.target, edge.label, base, a, b))
+
+    dependents: list[list[int]] = [[] for _ in ids]
+    for box, below in enumerate(support):
+        if below >= 0:
+            dependents[below].append(box)
+    _refuse_support_cycles(support, ids)
+
+    problem = Problem(
+        ids=ids, is_junction=is_junction, half_width=half_width, half_depth=half_depth,
+        height=height, size=size, support=support, dependents=dependents,
+        group_ids=group_ids, group_members=[tuple(m) for m in group_members],
+        path_ids=path_ids, path_width=path_width, path_max_length=path_max_length,
+        path_segments=path_segments, path_start=path_start, relations=relations,
+        extent=(float(graph.params.extent[0]), float(graph.params.extent[1])),
+        walls=bool(graph.params.walls),
+    )  # fmt: skip
+    problem.terms_of_box = [[] for _ in ids]
+    problem.terms_of_path = [[] for _ in path_ids]
+    for term_index, term in enumerate(relations):
+        for end in (term.a, term.b):
+            for box in end.members:
+                if term_index not in problem.terms_of_box[box]:
+                    problem.terms_of_box[box].append(term_index)
+            if end.kind == "path" and term_index not in problem.terms_of_path[end.index]:
+                problem.terms_of_path[end.index].append(term_index)
+    for path, junction in enumerate(path_start):
+        if junction >= 0:
+            problem.paths_of_junction.setdefault(junction, []).append(path)
+    problem.top_groups = [g for g, gid in enumerate(group_ids) if parent_of[gid] not in group_index]
+    problem.free_boxes = [
+        box for box, box_id in enumerate(ids)
+        if parent_of[box_id] is None and support[box] == -1 and not is_junction[box]
+    ]  # fmt: skip
+    for node in graph.nodes():
+        if node.id in group_index and group_index[node.id] in problem.top_groups:
+            problem.units.append(("group", group_index[node.id]))
+        elif node.id in box_index and box_index[node.id] in problem.free_boxes:
+            problem.units.append(("box", box_index[node.id]))
+    return problem
+
+
+def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, int]:
+    """(path, junction box) of a PathConnectedTo edge, written either way round."""
+    if edge.source in path_index and edge.target in box_index:
+        return path_index[edge.source], box_index[edge.target]
+    if edge.target in path_index and edge.source in box_index:
+        return path_index[edge.target], box_index[edge.source]
+    raise InputError(f"{edge.source} PathConnectedTo {edge.target}: needs a path and a junction")
+
+
+def _refuse_support_cycles(support: list[int], ids: list[str]) -> None:
+    for start in range(len(support)):
+        seen = {start}
+        below = support[start]
+        while below >= 0:
+            if below in seen:
+                raise InputError(f"{ids[start]} rests on itself through a cycle of OnTopOf relations")
+            seen.add(below)
+            below = support[below]

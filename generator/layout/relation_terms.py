@@ -1,0 +1,207 @@
+"""Table 1 of the paper: the energy of one relation edge, and its geometric measures.
+
+``evaluate(term, state, params)`` returns a ``Measure``: the energy (minus the log
+factor, >= 0) and the quantities the satisfaction thresholds look at (distance, angle
+off the wanted direction, and so on). Readings of the table, where it is garbled or
+leaves the geometry open:
+
+- distanceBetween is the minimum distance between collision boxes: footprint distance
+  combined with the vertical gap; to a group, the nearest of its members (the union of
+  their boxes); to a path, the distance to its centre line minus half its width.
+- directionFromTo(B, A) runs from B's centre to A's centre; for a path B it starts at
+  the path point nearest A's centre. B's own directions (left, forward, ...) are its
+  local axes; a group has the world's axes, a path its tangent at that nearest point.
+- OnTopOf*: the extracted table reads equals(boundary(A, up)y, boundary(B, down)y),
+  which would put A's top at B's bottom (under B). The sensible reading, used here, is
+  A's base on B's top: equals(boundary(A, down)y, boundary(B, up)y). Heights follow the
+  support, so this term is 0 for the first support and honest for any extra one.
+- OnTopOfEdge / FrontEdge: besides touching the edge, A's centre must stay over B's top
+  (the table alone would also be satisfied by A hanging outside the edge).
+- FacingAwayFrom: the table's range(fA . fB, -1, 0) compares forward vectors, which
+  cannot tell back-to-back from face-to-face. Since the describer says "A faces away
+  from B", it is scored as A's forward pointing from B to A (FacingTowards mirrored).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from .factors import angle_between, equals, less, pointing_same_direction, range_
+from .geometry import nearest_on_polyline, polyline_distance, polyline_rect_distance, rect_distance, to_local
+from .params import LayoutParams
+from .problem import Endpoint, RelationTerm
+from .state import State
+
+#: World directions (x, z): north is -Z, east +X.
+COMPASS = {"north": (0.0, -1.0), "east": (1.0, 0.0), "south": (0.0, 1.0), "west": (-1.0, 0.0)}
+
+
+class Measure(NamedTuple):
+    """A relation's energy and the geometry its satisfaction threshold reads."""
+
+    energy: float
+    distance: float = 0.0  # NextTo*: distanceBetween(A, B) in metres
+    angle: float = 0.0  # radians off the wanted direction (NextTo*, Facing*)
+    chosen: str | None = None  # Choose* labels: the direction that fits best
+    height_gap: float = 0.0  # OnTopOf*: |A's base - B's top| in metres
+    inside: bool = True  # OnTopOf*: A's centre over B's top
+    offset: float = 0.0  # OnTopOfMiddle: centre distance; *Edge: gap to the edge
+
+
+def centre(end: Endpoint, state: State) -> tuple[float, float]:
+    """An object's or group's centre in (x, z): a group's is its members' bounding box centre."""
+    if end.kind == "object":
+        return state.x[end.index], state.z[end.index]
+    problem = state.problem
+    x0 = z0 = math.inf
+    x1 = z1 = -math.inf
+    for box in end.members:
+        ex = problem.half_width[box] * abs(state.c[box]) + problem.half_depth[box] * abs(state.s[box])
+        ez = problem.half_width[box] * abs(state.s[box]) + problem.half_depth[box] * abs(state.c[box])
+        x0, x1 = min(x0, state.x[box] - ex), max(x1, state.x[box] + ex)
+        z0, z1 = min(z0, state.z[box] - ez), max(z1, state.z[box] + ez)
+    return (x0 + x1) / 2.0, (z0 + z1) / 2.0
+
+
+def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[float, float, float, float]:
+    """(x, z, cos yaw, sin yaw) of B as seen from a point: its centre and its axes.
+
+    For a path: the nearest point on it and its tangent as forward.
+    """
+    if end.kind == "object":
+        return state.x[end.index], state.z[end.index], state.c[end.index], state.s[end.index]
+    if end.kind == "group":
+        x, z = centre(end, state)
+        return x, z, 1.0, 0.0
+    points = state.points[end.index]
+    _, x, z, segment = nearest_on_polyline(points, towards[0], towards[1])
+    tx, tz = points[segment + 1][0] - points[segment][0], points[segment + 1][1] - points[segment][1]
+    length = math.hypot(tx, tz) or 1.0
+    return x, z, tz / length, tx / length  # forward (sin, cos) = tangent
+
+
+def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
+    """Minimum distance between the collision geometry of two endpoints (0 when touching)."""
+    if a.kind == "path" and b.kind == "path":
+        problem = state.problem
+        gap = polyline_distance(state.points[a.index], state.points[b.index])
+        return max(0.0, gap - (problem.path_width[a.index] + problem.path_width[b.index]) / 2.0)
+    if a.kind == "path":
+        a, b = b, a
+    best = math.inf
+    for box in a.members:
+        if b.kind == "path":
+            points = state.points[b.index]
+            gap = polyline_rect_distance(points, state.rect(box)) - state.problem.path_width[b.index] / 2.0
+            best = min(best, max(0.0, gap))
+        else:
+            for other in b.members:
+                best = min(best, box_distance(box, other, state))
+    return best
+
+
+def box_distance(first: int, second: int, state: State) -> float:
+    """Distance between two boxes: footprint gap combined with the vertical gap."""
+    problem = state.problem
+    planar = rect_distance(state.rect(first), state.rect(second))
+    vertical = max(
+        state.y[first] - (state.y[second] + problem.height[second]),
+        state.y[second] - (state.y[first] + problem.height[first]),
+        0.0,
+    )
+    return math.hypot(planar, vertical) if vertical > 0.0 else planar
+
+
+def _unit(dx: float, dz: float) -> tuple[float, float]:
+    length = math.hypot(dx, dz)
+    return (dx / length, dz / length) if length > 1e-12 else (0.0, 0.0)
+
+
+def _forward(end: Endpoint, state: State) -> tuple[float, float]:
+    if end.kind == "object":
+        return state.s[end.index], state.c[end.index]
+    return 0.0, 1.0  # groups and paths have no yaw of their own: the world's forward
+
+
+def evaluate(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    """The energy (>= 0) of one relation edge and its geometric measures."""
+    base = term.base
+    if base.startswith("NextTo"):
+        return _next_to(term, state, params)
+    if base.startswith("Facing"):
+        return _facing(term, state, params)
+    return _support(term, state, params)
+
+
+def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    distance = distance_between(term.a, term.b, state)
+    energy = -less(distance, params.next_to_distance, params.h)
+    base = term.base
+    if base == "NextTo":
+        return Measure(energy, distance)
+    ax, az = centre(term.a, state) if term.a.kind != "path" else state.points[term.a.index][0]
+    bx, bz, c, s = anchor(term.b, state, (ax, az))
+    dx, dz = _unit(ax - bx, az - bz)
+    if base == "NextToChooseDirection":
+        wanted = dict(COMPASS)
+    elif base == "NextToChooseSide":
+        wanted = {"left": (c, -s), "right": (-c, s)}
+    else:
+        word = base[len("NextTo"):].lower()
+        local = {"left": (c, -s), "right": (-c, s), "front": (s, c), "behind": (-s, -c)}
+        wanted = {word: COMPASS[word] if word in COMPASS else local[word]}
+    chosen, best = None, math.inf
+    for word, (wx, wz) in wanted.items():
+        angle = angle_between(dx, dz, wx, wz)
+        if angle < best - 1e-12:
+            chosen, best = word, angle
+    energy -= equals(best, 0.0, params.sigma2)
+    return Measure(energy, distance, best, chosen if base.startswith("NextToChoose") else None)
+
+
+def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    fx, fz = _forward(term.a, state)
+    base = term.base
+    if base in ("FacingTowards", "FacingAwayFrom"):
+        ax, az = centre(term.a, state)
+        bx, bz, _, _ = anchor(term.b, state, (ax, az))
+        dx, dz = _unit(bx - ax, bz - az) if base == "FacingTowards" else _unit(ax - bx, az - bz)
+        angle = angle_between(dx, dz, fx, fz)
+        return Measure(-pointing_same_direction(dx, dz, fx, fz, params.sigma2), angle=angle)
+    gx, gz = _forward(term.b, state)
+    angle = angle_between(fx, fz, gx, gz)
+    if base == "FacingSameDirection":
+        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
+    off = abs(angle - math.pi / 2.0)  # FacingOrthogonalDirection
+    return Measure(-equals(angle, math.pi / 2.0, params.sigma2), angle=off)
+
+
+def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    problem = state.problem
+    a, b = term.a.index, term.b.index
+    top = state.y[b] + problem.height[b]
+    height_gap = abs(state.y[a] - top)
+    energy = -equals(state.y[a], top, params.sigma2)
+    rect_b = state.rect(b)
+    lx, lz = to_local(rect_b, state.x[a], state.z[a])
+    hw, hd = rect_b.hw, rect_b.hd
+    inside = abs(lx) <= hw and abs(lz) <= hd
+    within = range_(lx, -hw, hw, params.h) + range_(lz, -hd, hd, params.h)
+    base = term.base.replace("IsPartOf", "OnTopOf")
+    if base == "OnTopOf":
+        return Measure(energy - within, height_gap=height_gap, inside=inside)
+    if base == "OnTopOfMiddle":
+        offset = math.hypot(lx, lz)
+        return Measure(energy - equals(offset, 0.0, params.sigma2), height_gap=height_gap, inside=inside, offset=offset)
+    # A's half extents along B's axes, then the gaps between A's sides and B's edges.
+    k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
+    k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
+    ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
+    ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
+    front = abs(hd - lz - ez)
+    if base == "OnTopOfFrontEdge":
+        offset = front
+    else:
+        offset = min(front, abs(hd + lz - ez), abs(hw - lx - ex), abs(hw + lx - ex))
+    return Measure(energy - equals(offset, 0.0, params.sigma2) - within, height_gap=height_gap, inside=inside, offset=offset)

@@ -1,0 +1,149 @@
+"""The honest verdict on a layout: which relations hold, what overlaps, what is outside.
+
+Thresholds for ``satisfied`` (the describer states only relations that hold, so these
+are geometric truths, not energy levels):
+
+- NextTo*: distanceBetween(A, B) <= 2 m (``next_to_distance``); with a direction
+  (North/East/South/West, Left/Right/Front/Behind, and the direction a Choose* label
+  resolved to) also the direction from B to A within 45 degrees of it, so the word used
+  for it is the right one.
+- OnTopOf* / IsPartOf*: A's base within 1 cm of B's top and A's centre over B's top;
+  *Middle: centres within 10 cm in plan; *Edge / *FrontEdge: A's side within 5 cm of
+  (one of / the front) edge of B's top.
+- Facing*: within 30 degrees of the wanted direction (90 degrees for Orthogonal).
+
+The layout is ``ok`` when every relation is satisfied, no two boxes and no box and path
+overlap by more than 1 % (depth over summed size, as in the energy), every box and path
+control point lies inside the scene extent (1 mm tolerance), every path is within its
+maximum length with turns of at most gamma, and paths leave a junction at least gamma
+apart.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .energy import Energy
+from .geometry import turn_angle
+from .params import LayoutParams
+from .problem import RelationTerm
+from .relation_terms import Measure, evaluate
+from .result import RelationResult
+
+DIRECTION_TOLERANCE = math.radians(45.0)
+FACING_TOLERANCE = math.radians(30.0)
+HEIGHT_TOLERANCE = 0.01
+MIDDLE_TOLERANCE = 0.10
+EDGE_TOLERANCE = 0.05
+OVERLAP_TOLERANCE = 0.01
+EXTENT_TOLERANCE = 0.001
+#: Small slack so a relation placed exactly on its threshold is not lost to rounding.
+EPSILON = 1e-9
+
+_WORDS = {
+    "NextTo": "next to", "NextToChooseDirection": "next to", "NextToChooseSide": "beside",
+    "NextToNorth": "north of", "NextToEast": "east of", "NextToSouth": "south of", "NextToWest": "west of",
+    "NextToLeft": "to the left of", "NextToRight": "to the right of", "NextToFront": "in front of",
+    "NextToBehind": "behind", "OnTopOf": "on top of", "OnTopOfMiddle": "in the middle of",
+    "OnTopOfEdge": "at the edge of", "OnTopOfFrontEdge": "at the front edge of",
+    "FacingTowards": "facing towards", "FacingAwayFrom": "facing away from",
+    "FacingSameDirection": "facing the same way as", "FacingOrthogonalDirection": "facing across",
+}  # fmt: skip
+
+
+def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    """Whether the relation holds geometrically (see the module docstring)."""
+    base = term.base.replace("IsPartOf", "OnTopOf")
+    if base.startswith("NextTo"):
+        near = measure.distance <= params.next_to_distance + EPSILON
+        return near if base == "NextTo" else near and measure.angle <= DIRECTION_TOLERANCE + EPSILON
+    if base.startswith("Facing"):
+        return measure.angle <= FACING_TOLERANCE + EPSILON
+    on_top = measure.height_gap <= HEIGHT_TOLERANCE and measure.inside
+    if base == "OnTopOfMiddle":
+        return on_top and measure.offset <= MIDDLE_TOLERANCE + EPSILON
+    if base in ("OnTopOfEdge", "OnTopOfFrontEdge"):
+        return on_top and measure.offset <= EDGE_TOLERANCE + EPSILON
+    return on_top
+
+
+def _complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    base = term.base.replace("IsPartOf", "OnTopOf")
+    word = _WORDS[base]
+    if base.startswith("NextTo"):
+        if measure.distance > params.next_to_distance:
+            return f"{term.source} is not {word} {term.target} (distance {measure.distance:.1f} m)"
+        return f"{term.source} is not {word} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+    if base.startswith("Facing"):
+        return f"{term.source} is not {word} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+    if base == "OnTopOf" or measure.height_gap > HEIGHT_TOLERANCE or not measure.inside:
+        return f"{term.source} is not on top of {term.target}"
+    return f"{term.source} is not {word} {term.target} ({measure.offset:.2f} m off)"
+
+
+def assess(energy: Energy) -> tuple[list[RelationResult], list[str]]:
+    """Per-relation verdicts and the list of problems (empty when the layout is ok)."""
+    problem, state, params = energy.problem, energy.state, energy.params
+    results: list[RelationResult] = []
+    problems: list[str] = []
+    for term_index, term in enumerate(problem.relations):
+        if not energy.relation_active(term_index):
+            results.append(RelationResult(term.source, term.target, term.label, 0.0, False))
+            problems.append(f"{term.source} {term.label} {term.target}: a group with nothing in it cannot be placed")
+            continue
+        measure = evaluate(term, state, params)
+        holds = satisfied(term, measure, params)
+        results.append(RelationResult(term.source, term.target, term.label, -measure.energy, holds, measure.chosen))
+        if not holds:
+            problems.append(_complaint(term, measure, params))
+    problems.extend(_overlaps(energy))
+    problems.extend(_outside(energy))
+    problems.extend(_path_shapes(energy))
+    return results, problems
+
+
+def _overlaps(energy: Energy) -> list[str]:
+    problem, found = energy.problem, []
+    for box in range(problem.n_boxes):
+        for other in sorted(energy.grid.near_box(box)):
+            if other > box:
+                depth = energy.pair_depth(box, other)
+                if depth > OVERLAP_TOLERANCE:
+                    found.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
+        if energy.collides_with_paths[box]:
+            for path in range(problem.n_paths):
+                depth = energy.path_depth(box, path)
+                if depth > OVERLAP_TOLERANCE:
+                    found.append(f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} %")
+    return found
+
+
+def _outside(energy: Energy) -> list[str]:
+    problem, found = energy.problem, []
+    for box in range(problem.n_boxes):
+        excess = energy.box_excess(box)
+        if excess > EXTENT_TOLERANCE:
+            found.append(f"{problem.ids[box]} is outside the scene by {excess:.2f} m")
+    for path in range(problem.n_paths):
+        excess = energy.path_excess(path)
+        if excess > EXTENT_TOLERANCE:
+            found.append(f"{problem.path_ids[path]} leaves the scene by {excess:.2f} m")
+    return found
+
+
+def _path_shapes(energy: Energy) -> list[str]:
+    problem, state, params = energy.problem, energy.state, energy.params
+    found = []
+    for path in range(problem.n_paths):
+        points = state.points[path]
+        length = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+        if length > problem.path_max_length[path] + EPSILON:
+            found.append(f"{problem.path_ids[path]} is {length:.1f} m long (at most {problem.path_max_length[path]:.0f} m)")
+        turns = [turn_angle(points[i - 1], points[i], points[i + 1]) for i in range(1, len(points) - 1)]
+        if turns and max(turns) > params.gamma + EPSILON:
+            found.append(f"{problem.path_ids[path]} turns by {math.degrees(max(turns)):.0f}° (at most {math.degrees(params.gamma):.0f}°)")
+    for junction in problem.paths_of_junction:
+        angles = energy.junction_angles(junction)
+        if angles and min(angles) < params.gamma - EPSILON:
+            found.append(f"paths leave {problem.ids[junction]} only {math.degrees(min(angles)):.0f}° apart (at least {math.degrees(params.gamma):.0f}°)")
+    return found

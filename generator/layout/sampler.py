@@ -1,0 +1,72 @@
+"""Metropolis-Hastings with annealing over box poses and path control points.
+
+One run: a constructive initial placement, then up to ``params.steps`` steps. Each step
+draws a proposal (``moves.Mover``), gets its energy change from ``Energy.propose`` and
+accepts it with probability min(1, exp(-delta / T)), T falling geometrically from
+``temperature_start`` to ``temperature_end``. Every ``check_every`` steps (after
+``min_steps``) the stop rule is tested: the layout is ok (``report.assess``) and its
+energy is at most ``target_energy``. The caller makes restarts.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .energy import Energy
+from .initial import place_initial
+from .moves import Mover
+from .params import LayoutParams
+from .problem import Problem
+from .report import assess
+from .result import RelationResult
+from .state import State
+
+
+@dataclass
+class Run:
+    """The outcome of one chain."""
+
+    energy: Energy
+    relations: list[RelationResult]
+    problems: list[str]
+    steps: int
+    accepted: int
+
+    @property
+    def ok(self) -> bool:
+        return not self.problems
+
+
+def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> Run:
+    """Place, then anneal until the stop rule holds or the step budget is spent."""
+    state = State(problem)
+    energy = Energy(problem, state, params)
+    mover = Mover(problem, state, rng)
+    place_initial(energy, mover, rng)
+    relations, problems = assess(energy)
+    accepted = steps = 0
+    budget = params.steps
+    cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
+    uniform = rng.random
+    for step in range(budget):
+        if step >= params.min_steps and step % params.check_every == 0:
+            relations, problems = assess(energy)
+            if not problems and energy.total <= params.target_energy:
+                break
+        steps = step + 1
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        delta = energy.propose(*proposal)
+        temperature = params.temperature_start * math.exp(cooling * step)
+        if delta <= 0.0 or uniform() < math.exp(-delta / temperature):
+            energy.accept()
+            accepted += 1
+        else:
+            energy.reject()
+    else:
+        relations, problems = assess(energy)
+    return Run(energy, relations, problems, steps, accepted)

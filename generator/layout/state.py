@@ -1,0 +1,102 @@
+"""The mutable layout: box poses, path control points, and a uniform grid broad phase.
+
+Poses live in plain Python lists (x, z, yaw and its cosine and sine per box) because the
+sampler reads and writes single entries every step. Heights never change while sampling:
+a box rests on the ground or on its support, and supports carry what rests on them.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .geometry import Rect
+from .problem import Problem
+
+
+class Grid:
+    """Boxes bucketed by the cells their bounding circle's square covers.
+
+    A box's neighbours are those sharing a cell with it; any two boxes that overlap
+    share a cell, so collision tests need only look there. Cost per query is the
+    number of boxes nearby, not the number in the scene.
+    """
+
+    def __init__(self, cell: float):
+        self.cell = cell
+        self.cells: dict[tuple[int, int], list[int]] = {}
+        self.keys: dict[int, list[tuple[int, int]]] = {}
+
+    def _span(self, x0: float, z0: float, x1: float, z1: float) -> list[tuple[int, int]]:
+        cell = self.cell
+        i0, i1 = math.floor(x0 / cell), math.floor(x1 / cell)
+        k0, k1 = math.floor(z0 / cell), math.floor(z1 / cell)
+        return [(i, k) for i in range(i0, i1 + 1) for k in range(k0, k1 + 1)]
+
+    def insert(self, box: int, x: float, z: float, radius: float) -> None:
+        keys = self._span(x - radius, z - radius, x + radius, z + radius)
+        self.keys[box] = keys
+        for key in keys:
+            self.cells.setdefault(key, []).append(box)
+
+    def remove(self, box: int) -> None:
+        for key in self.keys.pop(box, ()):
+            self.cells[key].remove(box)
+
+    def near_box(self, box: int) -> set[int]:
+        """Boxes sharing a cell with ``box`` (itself included)."""
+        found: set[int] = set()
+        cells = self.cells
+        for key in self.keys.get(box, ()):
+            found.update(cells[key])
+        return found
+
+    def in_area(self, x0: float, z0: float, x1: float, z1: float) -> set[int]:
+        """Boxes registered in any cell meeting the axis-aligned area."""
+        found: set[int] = set()
+        for key in self._span(x0, z0, x1, z1):
+            found.update(self.cells.get(key, ()))
+        return found
+
+
+class State:
+    """Current poses of all boxes and control points of all paths."""
+
+    def __init__(self, problem: Problem):
+        n = problem.n_boxes
+        self.problem = problem
+        self.x = [0.0] * n
+        self.z = [0.0] * n
+        self.yaw = [0.0] * n
+        self.c = [1.0] * n
+        self.s = [0.0] * n
+        self.y = [0.0] * n
+        for box in range(n):
+            below, height = problem.support[box], 0.0
+            while below >= 0:  # rests on the top of its support's stack
+                height += problem.height[below]
+                below = problem.support[below]
+            self.y[box] = height
+        self.points: list[list[list[float]]] = [
+            [[0.0, 0.0] for _ in range(segments + 1)] for segments in problem.path_segments
+        ]
+
+    def set_pose(self, box: int, x: float, z: float, yaw: float) -> None:
+        self.x[box], self.z[box], self.yaw[box] = x, z, yaw
+        self.c[box], self.s[box] = math.cos(yaw), math.sin(yaw)
+
+    def rect(self, box: int) -> Rect:
+        p = self.problem
+        return Rect(self.x[box], self.z[box], p.half_width[box], p.half_depth[box], self.c[box], self.s[box])
+
+    def pose(self, box: int) -> tuple[float, float, float]:
+        return self.x[box], self.z[box], self.yaw[box]
+
+    def snapshot(self) -> tuple:
+        """A copy of everything that changes, for keeping the best of several runs."""
+        return (list(self.x), list(self.z), list(self.yaw), [[list(p) for p in pts] for pts in self.points])
+
+    def restore(self, snapshot: tuple) -> None:
+        xs, zs, yaws, points = snapshot
+        for box in range(len(xs)):
+            self.set_pose(box, xs[box], zs[box], yaws[box])
+        self.points = [[list(p) for p in pts] for pts in points]

@@ -1,0 +1,92 @@
+"""layout_scene end to end: determinism, a satisfiable scene, an unsatisfiable one, the plan."""
+
+import math
+
+import numpy as np
+import pytest
+
+from scenewright.errors import InputError
+from scenewright.generator.catalog import CatalogEntry
+from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.layout.plan import draw_plan
+from scenewright.generator.layout.synthetic import village_graph
+from scenewright.generator.scene_graph import SceneGraph, SceneParams
+from scenewright.scene import assemble_scene
+
+TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9))
+SIGN = CatalogEntry("sign", "object", "sign", size=(0.6, 1.6, 0.2))
+POT = CatalogEntry("pot", "object", "pot", size=(0.4, 0.3, 0.4))
+CHAIR = CatalogEntry("chair", "object", "chair", size=(0.5, 0.9, 0.5))
+STAND = CatalogEntry("market_stand", "group", "market stand")
+ROAD = CatalogEntry("road", "path", "road", width=3.0, max_length=20.0, segments=2)
+
+FAST = LayoutParams(steps=600, restarts=1)
+
+
+def small_stand() -> SceneGraph:
+    graph = SceneGraph(params=SceneParams(extent=(20.0, 20.0)))
+    road = graph.add_node(ROAD)
+    stand = graph.add_node(STAND)
+    table = graph.add_node(TABLE, parent=stand)
+    sign = graph.add_node(SIGN, parent=stand)
+    pot = graph.add_node(POT, parent=stand)
+    chair = graph.add_node(CHAIR)
+    graph.add_relation(sign, table, "NextToRight")
+    graph.add_relation(pot, table, "OnTopOfMiddle")
+    graph.add_relation(stand, road, "NextTo")
+    graph.add_relation(chair, table, "NextToChooseDirection")
+    graph.add_relation(chair, table, "FacingTowards")
+    return graph
+
+
+def test_small_satisfiable_scene_is_ok_with_every_relation_satisfied():
+    result = layout_scene(small_stand(), seed=1, params=FAST)
+    assert result.ok, result.problems
+    assert result.problems == []
+    assert all(r.satisfied for r in result.relations)
+    chosen = [r.chosen for r in result.relations if r.label == "NextToChooseDirection"]
+    assert chosen[0] in ("north", "east", "south", "west")
+    pot, table = result.poses["pot_1"], result.poses["table_1"]
+    assert pot.y == pytest.approx(0.8)
+    assert math.hypot(pot.x - table.x, pot.z - table.z) <= 0.1
+
+
+def test_same_seed_same_result_and_other_seed_differs():
+    first = layout_scene(small_stand(), seed=5, params=FAST)
+    second = layout_scene(small_stand(), seed=5, params=FAST)
+    assert first.poses == second.poses
+    assert all(np.array_equal(first.paths[k], second.paths[k]) for k in first.paths)
+    assert (first.energy, first.steps) == (second.energy, second.steps)
+    assert layout_scene(small_stand(), seed=6, params=FAST).poses != first.poses
+
+
+def test_contradictory_relations_are_reported_not_hidden():
+    graph = SceneGraph(params=SceneParams(extent=(10.0, 10.0)))
+    a, b = graph.add_node(TABLE), graph.add_node(CHAIR)
+    graph.add_relation(b, a, "NextToNorth")
+    graph.add_relation(b, a, "NextToSouth")
+    result = layout_scene(graph, seed=0, params=LayoutParams(steps=300, restarts=0))
+    assert not result.ok
+    assert any(p.startswith("chair_1 is not north of table_1") or p.startswith("chair_1 is not south of table_1")
+               for p in result.problems)
+    assert sum(not r.satisfied for r in result.relations) >= 1
+
+
+def test_village_graph_reaches_ok_and_plan_is_drawn(tmp_path):
+    graph = village_graph(30, seed=3)
+    result = layout_scene(graph, seed=3)
+    assert result.ok, result.problems
+    assert set(result.poses) == {n.id for n in graph.nodes() if n.kind in ("object", "junction")}
+    for road in graph.nodes("path"):
+        assert result.paths[road.id].shape == (road.segments + 1, 2)
+    scene = assemble_scene(graph, result, rules="synthetic", seed=3)
+    image = draw_plan(scene, tmp_path / "plan.png")
+    assert image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_support_between_non_objects_is_an_input_error():
+    graph = SceneGraph()
+    road, table = graph.add_node(ROAD), graph.add_node(TABLE)
+    graph.add_relation(table, road, "OnTopOf")
+    with pytest.raises(InputError, match="only objects can rest on objects"):
+        layout_scene(graph, seed=0)
