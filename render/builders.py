@@ -514,14 +514,16 @@ def coal_bucket(size, colour) -> trimesh.Trimesh:
 
 @builder("sack")
 def sack(size, colour) -> trimesh.Trimesh:
-    """A filled sack: a rounded body with a tied neck on top."""
+    """A filled sack: a plump body gathered at the top into a tied tuft."""
     w, h, d = size
-    body_h = 0.8 * h
-    return combine(
-        ball((w / 2, body_h / 2, d / 2), (0.0, body_h / 2, 0.0), colour),
-        frustum(0.18 * w, 0.12 * w, body_h * 0.9, h * 0.92, shade(colour, 0.85), sections=8),
-        frustum(0.12 * w, 0.2 * w, h * 0.92, h, shade(colour, 0.85), sections=8),
+    r = w / 2
+    mesh = combine(
+        frustum(0.9 * r, r, 0.0, 0.55 * h, colour, sections=8),
+        frustum(r, 0.2 * r, 0.55 * h, 0.85 * h, colour, sections=8),
+        frustum(0.15 * r, 0.35 * r, 0.85 * h, h, shade(colour, 0.8), sections=6),
     )
+    mesh.apply_scale((1.0, 1.0, d / w))  # sacks are flatter front to back
+    return mesh
 
 
 # ---------------------------------------------------------------------------------
@@ -784,7 +786,7 @@ def sheaf(size, colour) -> trimesh.Trimesh:
         frustum(0.8 * r, 0.45 * r, 0.0, 0.5 * h, colour, sections=10),
         cylinder(0.48 * r, (0.0, 0.45 * h, 0.0), (0.0, 0.55 * h, 0.0), shade(colour, 0.6), sections=10),
         frustum(0.45 * r, r, 0.5 * h, 0.85 * h, colour, sections=10),
-        cone(r, (0.0, 0.85 * h, 0.0), (0.0, h, 0.0), shade(colour, 1.1), sections=10),
+        frustum(r, 0.55 * r, 0.85 * h, h, shade(colour, 1.1), sections=10),
     )
 
 
@@ -841,32 +843,29 @@ def wagon(size, colour) -> trimesh.Trimesh:
 
 @builder("grain_wagon")
 def grain_wagon(size, colour) -> trimesh.Trimesh:
-    """A wagon heaped with grain sacks."""
+    """A wagon heaped with grain: a golden mound filling its bed."""
 
-    def sacks(width, depth, floor_y, top_y):
+    def heap(width, depth, floor_y, top_y):
         z_centre = -size[2] / 2 + 0.05 + depth / 2
-        lumps = []
-        for row, z in enumerate(np.linspace(z_centre - depth / 3, z_centre + depth / 3, 3)):
-            for x in (-width / 4, width / 4):
-                lumps.append(ball((width / 4, (top_y - floor_y) / 2, depth / 6), (x, (top_y + floor_y) / 2, z), shade(LINEN, 0.9 + 0.05 * row), subdivisions=0))
-        return lumps
+        return [ball((width / 2, (top_y - floor_y) / 2, depth / 2), (0.0, (floor_y + top_y) / 2, z_centre), STRAW)]
 
-    return _wagon(size, colour, sacks)
+    return _wagon(size, colour, heap)
 
 
 @builder("crate_wagon")
 def crate_wagon(size, colour) -> trimesh.Trimesh:
-    """A wagon loaded with wooden crates, stacked two high at the back."""
+    """A wagon loaded with wooden crates, a second layer on top at the back."""
 
     def crates(width, depth, floor_y, top_y):
         z_back = -size[2] / 2 + 0.05
-        cell = min(width / 2, depth / 3) * 0.9
+        cell = (top_y - floor_y) / 2
         stack = [
-            block((cell, cell, cell), (x, floor_y + cell / 2, z_back + depth / 6 + i * depth / 3), shade(WOOD, 1.1 + 0.1 * (i % 2)))
+            block((0.9 * width / 2, cell, 0.9 * depth / 3), (x, floor_y + cell / 2, z_back + depth / 6 + i * depth / 3), shade(WOOD, 1.1 + 0.1 * ((i + int(x > 0)) % 2)))
             for i in range(3)
             for x in (-width / 4, width / 4)
         ]
-        stack.append(block((cell, top_y - floor_y - cell, cell), (0.0, (top_y + floor_y + cell) / 2, z_back + depth / 6), shade(WOOD, 1.25)))
+        stack.append(block((0.9 * width / 2, cell, 0.9 * depth / 3), (-width / 4, floor_y + 1.5 * cell, z_back + depth / 6), shade(WOOD, 1.25)))
+        stack.append(block((0.9 * width / 2, cell, 0.9 * depth / 3), (width / 4, floor_y + 1.5 * cell, z_back + depth / 2), shade(WOOD, 1.15)))
         return stack
 
     return _wagon(size, colour, crates)
