@@ -53,10 +53,14 @@ def timed(timings: dict[str, float], stage: str) -> Iterator[None]:
 
 def rules_label(rules: "Rules") -> str:
     """How scene.json names the rule set: the shipped name, or the file's path."""
+    from importlib.resources import files
+
     from scenewright.generator import shipped_rule_sets
 
     if rules.name in shipped_rule_sets():
-        return rules.name
+        shipped = Path(str(files("scenewright.grammar_rules").joinpath(f"{rules.name}.rules")))
+        if shipped.resolve() == Path(rules.path).resolve():
+            return rules.name
     return str(rules.path)
 
 

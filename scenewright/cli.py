@@ -158,6 +158,7 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.api import build_scene, describe_scene, export_scene, load_rules, render_scene
     from scenewright.api import reproducible_json, summary_line, timings_of
     from scenewright.atomic import staged_outputs
+    from scenewright.generator.layout.plan import draw_plan
 
     rules = load_rules(args.rules)
     directory = output_directory(args.output)
@@ -170,8 +171,6 @@ def run_generate(args: argparse.Namespace) -> int:
 
             save_render(render_scene(scene, size=args.size, view=args.view), stage, stem="preview")
         export_scene(scene, stage / "scene.glb")
-        from scenewright.generator.layout.plan import draw_plan
-
         draw_plan(scene, stage / "plan.png")
         (stage / "scene.json").write_text(reproducible_json(scene), encoding="utf-8")
         (stage / "timings.json").write_text(json.dumps(timings_of(scene), indent=1) + "\n", encoding="utf-8")

@@ -9,12 +9,8 @@ dataset directory; the parent process does (``dataset.store_product``).
 
 from __future__ import annotations
 
-import atexit
-import shutil
-import tempfile
 from collections import Counter
 from dataclasses import dataclass
-from pathlib import Path
 
 from scenewright.api import build_scene, describe_scene, render_scene, reproducible_json, timed, timings_of
 from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
@@ -29,7 +25,6 @@ class WorkerContext:
     settings: dict
     rules: object  # scenewright.generator.rules.Rules
     renderer: object  # scenewright.render.offscreen.Renderer
-    scratch: Path  # where save_render encodes images before they are read back
 
 
 _context: WorkerContext | None = None
@@ -44,14 +39,14 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
 
         if _context is not None:
             _context.renderer.close()
-        scratch = Path(tempfile.mkdtemp(prefix="scenewright-worker-"))
-        atexit.register(shutil.rmtree, scratch, True)
-        _context = WorkerContext(spec.settings(), load_rules(spec.rules), Renderer(*spec.size), scratch)
+        _context = WorkerContext(spec.settings(), load_rules(spec.rules), Renderer(*spec.size))
     return _context
 
 
 def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     """Make scene ``index`` of ``spec``: its files (images, scene.json) and its record."""
+    from scenewright.render.offscreen import encode_render
+
     context = worker_context(spec)
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
@@ -67,7 +62,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     with timed(scene.timings, "describe"):
         captions = [scene.describe(style="short", variant=k).text for k in range(spec.captions)]
     result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
-    images = encoded_images(result, context.scratch)
+    images = {kind: data for kind, (_, data) in encode_render(result).items()}
 
     files = {f"images/{stem}.png": images["colour"]}
     row: dict = {"file_name": f"images/{stem}.png"}
@@ -83,14 +78,6 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=scene.layout.ok)
     return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full.text, *captions]))
-
-
-def encoded_images(result, scratch: Path) -> dict[str, bytes]:
-    """The render's PNG / JSON bytes, encoded exactly as ``save_render`` writes them."""
-    from scenewright.render.offscreen import save_render
-
-    paths = save_render(result, scratch, stem="frame")
-    return {kind: path.read_bytes() for kind, path in paths.items()}
 
 
 def scene_stats(scene: Scene, texts: list[str]) -> dict:

@@ -190,3 +190,95 @@ def test_render_writes_preview_and_ground_truth(capsys, scene_file, tmp_path):
     from PIL import Image
 
     assert Image.open(tmp_path / "top.png").size == (64, 48)
+
+
+# -- generate -----------------------------------------------------------------------------
+
+CLASH_RULES = """\
+scene clash {
+    extent 10 x 10
+    start Clash
+}
+object box { noun "box" size 1 x 1 x 1 shape box colour #888888 }
+Clash -> {
+    box as a
+    box NextToNorth a NextToSouth a
+}
+"""
+
+
+def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
+    from scenewright.cli import GENERATE_OUTPUTS
+
+    outputs = []
+    for name in ("first", "second"):
+        code, out, err = run(capsys, "generate", "desk", "--seed", "2", "--size", "64x48", "-o", str(tmp_path / name))
+        assert code == 0, err
+        outputs.append(tmp_path / name)
+    assert sorted(p.name for p in outputs[0].iterdir()) == sorted(GENERATE_OUTPUTS)
+    lines = out.splitlines()
+    assert lines[0].startswith(f"wrote {tmp_path / 'second'}/: ") and lines[1].startswith("ok: ")
+    assert "relations satisfied" in lines[1] and "energy" in lines[1]
+    for name in ("scene.json", "description.txt", "preview.png", "preview_seg.png", "scene.glb"):
+        assert (outputs[0] / name).read_bytes() == (outputs[1] / name).read_bytes(), name
+    scene = json.loads((outputs[0] / "scene.json").read_text())
+    assert scene["seed"] == 2 and scene["rules"] == "desk" and scene["render"]["camera"]["width"] == 64
+    assert set(json.loads((outputs[0] / "timings.json").read_text())) >= {"expand", "layout", "describe", "render"}
+
+
+def test_no_render_drops_stale_previews_and_quiet_prints_nothing(capsys, tmp_path):
+    run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path))
+    code, out, _ = run(capsys, "generate", "desk", "--no-render", "--quiet", "-o", str(tmp_path), "--style", "short")
+    assert code == 0 and out == ""
+    assert not list(tmp_path.glob("preview*")) and (tmp_path / "scene.glb").exists()
+    assert json.loads((tmp_path / "scene.json").read_text())["description"]["style"] == "short"
+
+
+@pytest.fixture
+def quick_layout(monkeypatch):
+    """The real sampler with a small step budget, so a hopeless layout gives up fast."""
+    from scenewright.generator import layout
+    from scenewright.generator.layout import LayoutParams
+
+    real = layout.layout_scene
+    monkeypatch.setattr(layout, "layout_scene", lambda graph, seed: real(graph, seed, params=LayoutParams(steps=300, restarts=0)))
+
+
+def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
+    rules = tmp_path / "clash.rules"
+    rules.write_text(CLASH_RULES)
+    code, out, err = run(capsys, "generate", str(rules), "--no-render", "-o", str(tmp_path / "out"))
+    assert code == 1
+    assert "LAYOUT FAILED: 2 objects" in out
+    assert_one_line_error(err, "the layout did not satisfy every constraint", "box_2 is not north of box_1")
+    assert json.loads((tmp_path / "out" / "scene.json").read_text())["layout"]["ok"] is False
+
+
+def test_a_failing_stage_leaves_no_partial_outputs(capsys, tmp_path, monkeypatch):
+    from scenewright import api
+    from scenewright.errors import GenerationError
+
+    def broken_export(scene, path):
+        Path(path).write_bytes(b"half a file")
+        raise GenerationError("the exporter broke")
+
+    monkeypatch.setattr(api, "export_scene", broken_export)
+    code, _, err = run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path / "out"))
+    assert code == 1
+    assert_one_line_error(err, "the exporter broke")
+    assert list((tmp_path / "out").iterdir()) == []
+
+
+def test_generate_into_a_file_path_is_bad_input(capsys, tmp_path):
+    (tmp_path / "taken").write_text("")
+    code, _, err = run(capsys, "generate", "desk", "-o", str(tmp_path / "taken"))
+    assert code == 2
+    assert_one_line_error(err, "cannot write to", "not a directory")
+
+
+def test_describe_command(capsys, tmp_path):
+    run(capsys, "generate", "desk", "--seed", "4", "--no-render", "-o", str(tmp_path))
+    code, out, _ = run(capsys, "describe", str(tmp_path / "scene.json"))
+    assert code == 0 and out.strip() == (tmp_path / "description.txt").read_text().strip()
+    code, short, _ = run(capsys, "describe", str(tmp_path / "scene.json"), "--style", "short", "--variant", "1")
+    assert code == 0 and 0 < len(short) < len(out)
