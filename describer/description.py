@@ -14,7 +14,7 @@ from typing import Any
 from scenewright.errors import InputError
 from scenewright.scene import Scene
 
-from .plan import Fact, Inventory, Item, Network, Section, Statement, plan_document
+from .plan import Fact, Introduction, Inventory, Item, Network, Section, Statement, plan_document
 from .realise import Realiser, Sentence
 from .templates import template_environment
 from .variation import Choices
@@ -84,10 +84,10 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
     """
     by_owner = {section.owner: section for section in sections}
     owner: str | None = None
-    items = _inventory_items(by_owner[None])
+    items = _caption_items(by_owner[None], world)
     while len(items) == 1 and not isinstance(items[0], Network) and len(items[0]) == 1 and items[0][0] in by_owner:
         owner = items[0][0]
-        items = _inventory_items(by_owner[owner])
+        items = _caption_items(by_owner[owner], world)
     realiser.discourse.start_paragraph(owner)
     sentences = [realiser.caption(_setting(scene, world, owner), items)]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement)]
@@ -96,8 +96,31 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
     return sentences
 
 
-def _inventory_items(section: Section) -> tuple[Item, ...]:
-    return next((m.items for m in section.messages if isinstance(m, Inventory)), ())
+def _caption_items(section: Section, world: World) -> tuple[Item, ...]:
+    """Everything a section introduces, as list items: its inventory, then what stands on it.
+
+    Entities of one noun are counted together wherever the full text introduces them.
+    """
+    items: list[Item] = []
+    by_noun: dict[str, int] = {}
+    for message in section.messages:
+        if isinstance(message, Inventory):
+            found = list(message.items)
+        elif isinstance(message, Introduction):
+            found = list(message.subjects)
+        else:
+            continue
+        for item in found:
+            if isinstance(item, Network):
+                items.append(item)
+                continue
+            noun = world[item[0]].noun
+            if noun in by_noun:
+                items[by_noun[noun]] = items[by_noun[noun]] + item
+            else:
+                by_noun[noun] = len(items)
+                items.append(item)
+    return tuple(items)
 
 
 def _setting(scene: Scene, world: World, owner: str | None) -> str:

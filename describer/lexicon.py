@@ -33,7 +33,7 @@ SYMMETRIC_LABELS: frozenset[str] = frozenset(
 )
 
 _NEXT_TO = ("is next to", "is beside")
-_COMPASS = {d: (f"is {d} of", f"is to the {d} of") for d in COMPASS_DIRECTIONS}
+_COMPASS = {d: (f"is {d} of", f"is on the {d} side of") for d in COMPASS_DIRECTIONS}
 _SIDE = {d: (f"is to the {d} of",) for d in SIDE_DIRECTIONS}
 
 _WORDING: dict[str, tuple[str, ...]] = {

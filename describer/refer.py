@@ -12,9 +12,10 @@ form that is unambiguous here:
 4. inside a group's paragraph, a member of that group by its place in its cohort
    ("the sign", "the second sack of flour") while no same-noun thing from elsewhere
    has been named in the paragraph;
-5. otherwise its place in its cohort ("the first road", "the other tower" when there
-   are two and the last one named was the other), followed by "of" and its group
-   ("the sign of the third market stand") when the noun occurs outside the cohort.
+5. otherwise its place in its cohort ("the first road"; "the other tower" for the
+   second of two right after the first was named), followed by "of" and its group
+   ("the sign of the third market stand", "the house on its own" for a top-level one)
+   when a namesake from elsewhere could be meant.
 
 Sets of entities (aggregated subjects) are named per cohort: "the three market
 stands", "both pallets", "four of the street lamps".
@@ -73,11 +74,18 @@ class Discourse:
         return "the scene"
 
     def introduce(self, ids: tuple[str, ...]) -> str:
-        """An indefinite phrase for new entities of one noun: "a table", "three books"."""
+        """An indefinite phrase for new entities of one noun: "a table", "three books".
+
+        When others of the cohort are already known, the new ones are "another flowerpot"
+        or "two more flowerpots", so they cannot be taken for the known ones.
+        """
         entity = self.world[ids[0]]
+        known = any(i in self.introduced for i in self.world.cohort(ids[0]))
         self.introduced.update(ids)
         self._note(ids, entity.noun, plural=len(ids) > 1)
-        return counted(len(ids), entity.noun, entity.plural)
+        if not known:
+            return counted(len(ids), entity.noun, entity.plural)
+        return f"another {entity.noun}" if len(ids) == 1 else f"{number_word(len(ids))} more {entity.plural}"
 
     def name(self, entity_id: str, *, pronoun: bool = True) -> str:
         """A definite phrase for one known entity; "it" only when ``pronoun`` is allowed here."""
@@ -132,27 +140,31 @@ class Discourse:
         entity = self.world[entity_id]
         if len(cohort) == 1:
             return f"the {entity.noun}"
-        last = self.last_of_noun.get(entity.noun)
-        if len(cohort) == 2 and last is not None and len(last) == 1 and last[0] in cohort and last[0] != entity_id:
+        # "the other" always means the later of two, said right after the first was named,
+        # so it never flips between the two.
+        if len(cohort) == 2 and entity_id == cohort[1] and self.last_of_noun.get(entity.noun) == cohort[:1]:
             return f"the other {entity.noun}"
         return f"the {ordinal_word(cohort.index(entity_id) + 1)} {entity.noun}"
 
     def _clear_in_paragraph(self, entity_id: str) -> bool:
-        """A member of the paragraph's group (or the scene's), and no namesake from elsewhere named in it."""
-        entity = self.world[entity_id]
-        if entity.parent != self.focus:
-            return False
-        cohort = set(self.world.cohort(entity_id))
-        return self.paragraph_nouns.get(entity.noun, set()) <= cohort
+        """Whether naming by place in the cohort alone is clear here.
 
-    def _whereabouts(self, entity_id: str) -> str:
-        """Where an entity belongs: "of the third market stand", or "outside ..." for a top-level one."""
+        A member of the paragraph's group is clear while no namesake from elsewhere has
+        been named in the paragraph; a top-level entity while no namesake belonging to a
+        group has been introduced at all.
+        """
+        entity = self.world[entity_id]
+        cohort = set(self.world.cohort(entity_id))
+        if entity.parent is None:
+            return all(i in cohort or i not in self.introduced for i in self.world.namesakes(entity_id))
+        return entity.parent == self.focus and self.paragraph_nouns.get(entity.noun, set()) <= cohort
+
+    def _whereabouts(self, entity_id: str, *, plural: bool = False) -> str:
+        """Where an entity belongs: "of the third market stand", or "on its own" for a top-level one."""
         parent = self.world[entity_id].parent
-        if parent is not None:
-            return "of " + self.name(parent, pronoun=False)
-        # A top-level entity is always clear in the scene's own paragraph, so the focus
-        # is a group here: the entity is the namesake that does not belong to it.
-        return "outside " + self.name(self.focus, pronoun=False)
+        if parent is None:
+            return "on their own" if plural else "on its own"
+        return "of " + self.name(parent, pronoun=False)
 
     def _name_part(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool) -> str:
         entity = self.world[chosen[0]]
@@ -163,7 +175,7 @@ class Discourse:
             phrase = f"{number_word(len(chosen))} of the {entity.plural}"
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
-        return phrase if clear else f"{phrase} {self._whereabouts(chosen[0])}"
+        return phrase if clear else f"{phrase} {self._whereabouts(chosen[0], plural=True)}"
 
     def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
         self.current.append(_Mention(ids, noun, plural))

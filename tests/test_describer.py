@@ -1,0 +1,434 @@
+"""The describer on hand-built scenes: wording, aggregation, reference, facts, variants."""
+
+import re
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from scenewright.describer import Description, TemplateError, describe
+from scenewright.describer.lexicon import DESCRIBED_LABELS, relation_wordings
+from scenewright.describer.plan import introduced_by, plan_document, stated_relations
+from scenewright.describer.world import world_of
+from scenewright.errors import InputError
+from scenewright.generator.relations import COMPASS_DIRECTIONS, LABELS, SIDE_DIRECTIONS, is_implicit
+from scenewright.scene import Relation, Scene, SceneObject, ScenePath
+
+
+class SceneBuilder:
+    """Scenes by hand: ids are type + counter, order is creation order, poses do not matter."""
+
+    def __init__(self, rules: str = "village", seed: int = 1) -> None:
+        self.rules, self.seed = rules, seed
+        self.objects: list[SceneObject] = []
+        self.paths: list[ScenePath] = []
+        self.relations: list[Relation] = []
+        self._counts: dict[str, int] = {}
+
+    def _new_id(self, type_name: str) -> str:
+        self._counts[type_name] = self._counts.get(type_name, 0) + 1
+        return f"{type_name}_{self._counts[type_name]}"
+
+    def _order(self) -> int:
+        return len(self.objects) + len(self.paths)
+
+    def add(self, type_name, noun=None, *, plural=None, parent=None, kind="object"):
+        new_id = self._new_id(type_name)
+        self.objects.append(
+            SceneObject(
+                id=new_id, type=type_name, kind=kind, noun=noun or type_name.replace("_", " "),
+                plural=plural, parent=parent, style=None, position=[0.0, 0.0, 0.0], yaw=0.0,
+                size=[1.0, 1.0, 1.0], order=self._order(),
+            )
+        )  # fmt: skip
+        return new_id
+
+    def group(self, type_name, noun=None, *, parent=None):
+        return self.add(type_name, noun, parent=parent, kind="group")
+
+    def road(self, start=None, noun="road"):
+        new_id = self._new_id(noun.replace(" ", "_"))
+        self.paths.append(
+            ScenePath(
+                id=new_id, type=noun, noun=noun, plural=None, parent=None,
+                points=[[0.0, 0.0], [10.0, 0.0]], width=3.0, start=start, order=self._order(),
+            )
+        )  # fmt: skip
+        if start:
+            self.relate(new_id, "PathConnectedTo", start)
+        return new_id
+
+    def relate(self, source, label, target, *, satisfied=True, chosen=None):
+        self.relations.append(Relation(source, target, label, 0.0 if satisfied else -4.0, satisfied, chosen))
+
+    def scene(self) -> Scene:
+        return Scene(
+            rules=self.rules, seed=self.seed, extent=[40.0, 40.0],
+            objects=self.objects, paths=self.paths, relations=self.relations,
+        )  # fmt: skip
+
+
+def market_scene() -> Scene:
+    """The paper's Figure 1, with the relations that hold."""
+    b = SceneBuilder(seed=7)
+    crossing = b.add("intersection", kind="junction")
+    roads = [b.road(crossing) for _ in range(3)]
+    trees = b.group("group_of_trees", "group of trees")
+    for _ in range(3):
+        b.add("pine_tree", parent=trees)
+    b.add("bush", plural="bushes", parent=trees)
+    b.add("oak_tree")
+    for number in range(3):
+        stand = b.group("market_stand")
+        table = b.add("table", parent=stand)
+        sign = b.add("sign", parent=stand)
+        if number < 2:
+            b.relate(b.add("pot", "big pot of stew", parent=stand), "OnTopOfMiddle", table)
+            b.relate(sign, "NextToChooseSide", table, chosen="right")
+        else:
+            for _ in range(3):
+                b.relate(b.add("flowerpot", parent=stand), "OnTopOf", table)
+            b.relate(sign, "NextToRight", table)
+            b.relate(sign, "ImplicitFacingSameDirection", table)
+        b.relate(stand, "NextTo", roads[0])
+    return b.scene()
+
+
+def sentences(text: str) -> list[str]:
+    return re.split(r"(?<=\.) (?=[A-Z])", text)
+
+
+# -- wording ---------------------------------------------------------------------
+
+
+def test_every_described_label_has_wording():
+    assert DESCRIBED_LABELS == {label for label in LABELS if not is_implicit(label)} - {"PathConnectedTo"}
+    for label in sorted(DESCRIBED_LABELS):
+        for chosen in (None, *COMPASS_DIRECTIONS, *SIDE_DIRECTIONS):
+            assert relation_wordings(label, chosen), label
+
+
+@pytest.mark.parametrize("label", sorted(DESCRIBED_LABELS))
+def test_each_label_is_stated_with_its_words_and_fact(label):
+    b = SceneBuilder()
+    barrel, tower = b.add("barrel"), b.add("tower")
+    b.add("well")  # three things: the inventory is a plain list, the relation a sentence
+    b.relate(barrel, label, tower)
+    description = describe(b.scene())
+    assert description.facts == [("barrel_1", label, "tower_1")]
+    # A barrel standing on the tower is introduced by that sentence ("A barrel is on top of ...").
+    assert f"barrel {relation_wordings(label)[0]} the tower." in description.text
+
+
+@pytest.mark.parametrize(
+    ("label", "chosen", "words"),
+    [
+        ("NextToLeft", None, "is to the left of"),
+        ("NextToFront", None, "is in front of"),
+        ("NextToBehind", None, "is behind"),
+        ("NextToNorth", None, "is north of"),
+        ("NextToChooseDirection", "west", "is west of"),
+        ("NextToChooseSide", "left", "is to the left of"),
+        ("NextToChooseSide", None, "is next to"),
+        ("IsPartOfEdge", None, "is attached to the edge of"),
+        ("FacingOrthogonalDirection", None, "stands at a right angle to"),
+    ],
+)
+def test_direction_words_are_the_targets(label, chosen, words):
+    b = SceneBuilder()
+    sign, table = b.add("sign"), b.add("table")
+    b.add("well")
+    b.relate(sign, label, table, chosen=chosen)
+    assert re.search(f"(The|A) sign {words} the table\\.", describe(b.scene()).text)
+
+
+def test_unsatisfied_and_implicit_relations_are_never_stated():
+    b = SceneBuilder()
+    lamp, tower, well = b.add("street_lamp"), b.add("tower"), b.add("well")
+    b.relate(lamp, "NextToNorth", tower, satisfied=False)
+    b.relate(lamp, "ImplicitNextTo", well)
+    b.relate(well, "FacingAwayFrom", tower)
+    description = describe(b.scene())
+    assert description.facts == [("well_1", "FacingAwayFrom", "tower_1")]
+    assert "north" not in description.text and "next to" not in description.text
+
+
+# -- the paper's scene -----------------------------------------------------------
+
+
+def test_market_scene_reads_like_the_paper_but_true():
+    text = describe(market_scene()).text
+    assert text.startswith(
+        "The scene consists of three roads meeting at an intersection, a group of trees, an oak tree "
+        "and three market stands. The three market stands are next to the first road. "
+        "The group of trees consists of three pine trees and a bush. "
+        "The first market stand consists of a sign to the right of a table. "
+        "A big pot of stew is in the middle of this table. "
+        "The second market stand consists of a sign to the right of a table."
+    )
+    assert text.endswith(
+        "The third market stand consists of a sign to the right of a table. Three flowerpots are on top of this table."
+    )
+
+
+def test_facts_are_exactly_what_the_text_states():
+    scene = market_scene()
+    facts = describe(scene).facts
+    assert facts[:6] == [
+        ("road_1", "PathConnectedTo", "intersection_1"),
+        ("road_2", "PathConnectedTo", "intersection_1"),
+        ("road_3", "PathConnectedTo", "intersection_1"),
+        ("market_stand_1", "NextTo", "road_1"),
+        ("market_stand_2", "NextTo", "road_1"),
+        ("market_stand_3", "NextTo", "road_1"),
+    ]
+    assert ("sign_3", "ImplicitFacingSameDirection", "table_3") not in facts
+    assert ("flowerpot_3", "OnTopOf", "table_3") in facts
+    assert len(facts) == len(set(facts)) == 14
+
+
+# -- aggregation, counting, reference ----------------------------------------------
+
+
+def lamp_scene() -> Scene:
+    """The paper's Figure 3: street lamps spread over four roads."""
+    b = SceneBuilder()
+    crossing = b.add("intersection", kind="junction")
+    roads = [b.road(crossing) for _ in range(4)]
+    b.add("house")
+    lamps = [b.add("street_lamp") for _ in range(6)]
+    b.relate("house_1", "NextTo", roads[1])
+    b.relate(lamps[0], "NextTo", crossing)
+    for lamp in lamps[1:5]:
+        b.relate(lamp, "NextTo", roads[2])
+    b.relate(lamps[5], "NextTo", roads[3])
+    return b.scene()
+
+
+def test_aggregation_counts_part_of_a_cohort():
+    text = describe(lamp_scene()).text
+    assert "four roads meeting at an intersection, a house and six street lamps." in text
+    assert "The first street lamp is next to the intersection." in text
+    assert "Four of the street lamps are next to the third road." in text
+    assert "The sixth street lamp is next to the fourth road." in text
+
+
+def test_different_nouns_share_one_statement():
+    b = SceneBuilder()
+    road = b.road()
+    mill, lamp = b.group("mill"), b.add("street_lamp")
+    b.add("windmill_building", "windmill building", parent=mill)
+    b.relate(mill, "NextTo", road)
+    b.relate(lamp, "NextTo", road)
+    assert "The mill and the street lamp are next to the road." in describe(b.scene()).text
+
+
+def test_both_and_irregular_plurals():
+    b = SceneBuilder()
+    mill = b.group("mill")
+    building = b.add("windmill_building", "windmill building", parent=mill)
+    for _ in range(2):
+        b.relate(b.add("pallet", "pallet of grain sheaf", plural="pallets of grain sheaves", parent=mill), "NextTo", building)
+    sacks = [b.add("sack", "sack of flour", plural="sacks of flour", parent=mill) for _ in range(4)]
+    b.relate(sacks[0], "NextToLeft", building)
+    b.relate(sacks[1], "NextToLeft", building)
+    text = describe(b.scene()).text
+    assert "The mill consists of a windmill building, two pallets of grain sheaves and four sacks of flour." in text
+    assert "Both pallets of grain sheaves are next to the windmill building." in text
+    assert "Two of the sacks of flour are to the left of it." in text
+
+
+def test_articles():
+    b = SceneBuilder()
+    b.add("oak_tree")
+    b.add("pot", "big pot of stew")
+    b.add("hour_glass", "hourglass")
+    b.add("unicorn")
+    assert describe(b.scene()).text == "The scene consists of an oak tree, a big pot of stew, an hourglass and a unicorn."
+
+
+def test_the_other_of_two_and_ordinals():
+    b = SceneBuilder()
+    road = b.road()
+    towers = [b.add("tower") for _ in range(2)]
+    smith = b.group("blacksmith")
+    forge = b.add("forge", "blacksmith forge", parent=smith)
+    b.relate(towers[0], "NextTo", road)
+    b.relate(smith, "NextToBehind", towers[1])
+    b.relate(forge, "FacingAwayFrom", towers[1])
+    text = describe(b.scene()).text
+    assert "The first tower is next to the road. The blacksmith is behind the other tower." in text
+    assert "The blacksmith forge faces away from the second tower." in text
+
+
+def test_members_of_other_groups_say_whose_they_are():
+    b = SceneBuilder()
+    stands = [b.group("market_stand") for _ in range(2)]
+    tables = [b.add("table", parent=stand) for stand in stands]
+    chair = b.add("chair", parent=stands[1])
+    b.relate(chair, "NextToBehind", tables[0])
+    text = describe(b.scene()).text
+    assert "The first market stand consists of a table. The other market stand consists of a table and a chair." in text
+    assert "The chair is behind the table of the first market stand." in text
+
+
+def test_pronoun_only_when_unambiguous():
+    b = SceneBuilder()
+    stand = b.group("market_stand")
+    table = b.add("table", parent=stand)
+    chair = b.add("chair", parent=stand)
+    b.add("sign", parent=stand)
+    books = [b.add("book", parent=stand) for _ in range(2)]
+    for book in books:
+        b.relate(book, "OnTopOf", table)
+        b.relate(book, "FacingSameDirection", table)
+    b.relate(chair, "NextToFront", table)
+    b.relate(chair, "FacingTowards", table)
+    text = describe(b.scene()).text
+    assert text == (
+        "The scene consists of a market stand. The market stand consists of a table, a chair and a sign. "
+        # Only the table is singular in the sentence before: "it" is the table.
+        "Two books are on top of the table. Both books face the same way as it. "
+        # The subject cannot be "it"; the one other thing named in the sentence can.
+        "The chair is in front of it and faces it."
+    )
+
+
+def test_top_level_namesake_of_a_member_is_on_its_own():
+    b = SceneBuilder()
+    farm = b.group("farmstead")
+    farm_house = b.add("house", parent=farm)
+    house = b.add("house")
+    b.relate(b.add("barrel", parent=farm), "NextTo", farm_house)
+    b.relate(b.add("shed", parent=farm), "NextToBehind", house)
+    text = describe(b.scene()).text
+    assert "The barrel is next to this house. The shed is behind the house on its own." in text
+
+
+def test_new_members_of_a_known_cohort_are_another():
+    b = SceneBuilder()
+    table = b.add("table")
+    lamps = [b.add("lamp") for _ in range(3)]
+    b.relate(lamps[1], "OnTopOf", table)
+    b.relate(lamps[2], "OnTopOf", table)
+    b.relate(lamps[0], "OnTopOf", table, satisfied=False)
+    text = describe(b.scene()).text
+    assert text == "The scene consists of a table and a lamp. Two more lamps are on top of the table."
+
+
+def test_empty_scene():
+    assert describe(SceneBuilder().scene()).text == "The scene is empty."
+
+
+# -- styles, variants, templates, errors -------------------------------------------
+
+
+def test_short_caption_counts_top_level_entities():
+    description = describe(market_scene(), style="short")
+    assert description.text == (
+        "A village with three roads meeting at an intersection, a group of trees, an oak tree and three "
+        "market stands. The three market stands are next to the first road."
+    )
+    assert description.style == "short"
+    assert ("market_stand_2", "NextTo", "road_1") in description.facts
+
+
+def test_variants_are_seeded_paraphrases_of_the_same_facts():
+    scene = market_scene()
+    canonical = describe(scene)
+    variants = [describe(scene, variant=k) for k in range(1, 6)]
+    assert describe(scene, variant=0) == canonical
+    assert [describe(scene, variant=k) for k in range(1, 6)] == variants
+    assert len({v.text for v in variants} | {canonical.text}) > 3
+    for variant in variants:
+        assert sorted(variant.facts) == sorted(canonical.facts)
+
+
+def test_description_to_dict():
+    data = describe(market_scene(), style="short", variant=2).to_dict()
+    assert list(data) == ["text", "facts", "style", "variant"]
+    assert data["variant"] == 2 and data["facts"][0] == ["road_1", "PathConnectedTo", "intersection_1"]
+
+
+def test_bad_style_and_variant_are_input_errors():
+    with pytest.raises(InputError, match="unknown description style"):
+        describe(market_scene(), style="long")
+    with pytest.raises(InputError, match="variant"):
+        describe(market_scene(), variant=-1)
+
+
+def test_user_templates_replace_the_packages_by_name(tmp_path):
+    (tmp_path / "caption.j2").write_text("Here: {{ items | join_list }}.")
+    assert describe(market_scene(), style="short", templates=tmp_path).text.startswith(
+        "Here: three roads meeting at an intersection,"
+    )
+    assert describe(market_scene(), templates=tmp_path).text == describe(market_scene()).text
+
+
+def test_user_templates_are_sandboxed(tmp_path):
+    (tmp_path / "statement.j2").write_text("{{ subject.__class__.__mro__[1].__subclasses__() }}")
+    with pytest.raises(TemplateError, match="statement.j2"):
+        describe(market_scene(), templates=tmp_path)
+    with pytest.raises(TemplateError, match="does not exist"):
+        describe(market_scene(), templates=tmp_path / "missing")
+
+
+# -- properties over random scenes ---------------------------------------------------
+
+NOUNS = [
+    ("oak tree", None), ("sack of flour", "sacks of flour"), ("table", None), ("hourglass", None),
+    ("bush", "bushes"), ("sign", None), ("empty wagon", None), ("shelf", "shelves"),
+]  # fmt: skip
+LABEL_LIST = sorted(LABELS - {"PathConnectedTo"})
+
+
+@st.composite
+def random_scenes(draw):
+    b = SceneBuilder(seed=draw(st.integers(0, 1000)))
+    ids: list[str] = []
+    groups = [None]
+    if draw(st.booleans()):
+        crossing = b.add("intersection", kind="junction")
+        ids += [crossing] + [b.road(crossing) for _ in range(draw(st.integers(1, 3)))]
+    for _ in range(draw(st.integers(1, 12))):
+        parent = draw(st.sampled_from(groups))
+        if draw(st.integers(0, 4)) == 0:
+            groups.append(b.group(draw(st.sampled_from(["market_stand", "mill"])), parent=parent))
+            ids.append(groups[-1])
+        else:
+            noun, plural = draw(st.sampled_from(NOUNS))
+            ids.append(b.add(noun.replace(" ", "_"), noun, plural=plural, parent=parent))
+    for _ in range(draw(st.integers(0, 12))):
+        source, target = draw(st.sampled_from(ids)), draw(st.sampled_from(ids))
+        if source != target:
+            label = draw(st.sampled_from(LABEL_LIST))
+            chosen = draw(st.sampled_from([None, *COMPASS_DIRECTIONS, *SIDE_DIRECTIONS]))
+            b.relate(source, label, target, satisfied=draw(st.booleans()), chosen=chosen)
+    return b.scene(), draw(st.integers(0, 3))
+
+
+def well_formed(text: str) -> None:
+    for sentence in sentences(text):
+        assert sentence[0].isupper() and sentence.endswith(".") and not sentence.endswith(".."), sentence
+        words = re.findall(r"[a-z]+", sentence.lower())
+        assert all(a != b for a, b in zip(words, words[1:])), sentence
+    assert "  " not in text
+
+
+@settings(max_examples=60, deadline=None)
+@given(random_scenes())
+def test_random_scenes_state_exactly_the_true_relations(drawn):
+    scene, variant = drawn
+    description = describe(scene, variant=variant)
+    world = world_of(scene)
+    stated = {(r.source, r.label, r.target) for r in stated_relations(scene, world)}
+    told = [f for f in description.facts if f[1] != "PathConnectedTo"]
+    assert sorted(told) == sorted(stated)
+    satisfied = {(r.source, r.label, r.target) for r in scene.relations if r.satisfied}
+    assert set(description.facts) <= satisfied
+    well_formed(description.text)
+    introduced = [i for section in plan_document(scene, world) for m in section.messages for i in introduced_by(m)]
+    assert sorted(introduced) == sorted(world.entities)
+    assert describe(scene, variant=variant) == description
+    assert isinstance(describe(scene, style="short", variant=variant), Description)
+    well_formed(describe(scene, style="short", variant=variant).text)
