@@ -53,6 +53,7 @@ class Energy:
             problem.support[b] == -1 and not problem.is_junction[b] for b in range(problem.n_boxes)
         ]
         self.relation = [0.0] * len(problem.relations)
+        self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.pairs: list[dict[int, float]] = [{} for _ in range(problem.n_boxes)]
         self.path_hits: list[dict[int, float]] = [{} for _ in range(problem.n_paths)]
         self.shape = [0.0] * problem.n_paths
@@ -216,12 +217,16 @@ class Energy:
             new_total = sum(parts.values())
             self._pending = ("full", saved_boxes, saved_paths, parts, new_total)
             return new_total - self.total
-        changes = self._changes(list(boxes), list(paths))
+        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes))
         self._pending = ("incremental", saved_boxes, saved_paths, changes)
         return sum(changes[0].values())
 
-    def _changes(self, boxes: list[int], paths: list[int]) -> tuple:
-        """New values of every term touching the moved boxes and paths, and the part deltas."""
+    def _changes(self, boxes: list[int], paths: list[int], together: bool) -> tuple:
+        """New values of every term touching the moved boxes and paths, and the part deltas.
+
+        When the boxes moved ``together`` (one shared translation, no turn), terms and
+        pairs among themselves cannot have changed and keep their cached values.
+        """
         problem, active = self.problem, self.active
         moved = set(boxes)
         moved_paths = set(paths)
@@ -234,6 +239,8 @@ class Energy:
             terms.update(problem.terms_of_path[path])
         new_relation = {}
         for term in sorted(terms):
+            if together and not problem.relations[term].touches_path and self.term_boxes[term] <= moved:
+                continue
             value = self.relation_energy(term)
             new_relation[term] = value
             delta["relations"] += value - self.relation[term]
@@ -243,10 +250,15 @@ class Energy:
             if not active[box]:
                 continue
             for other, value in self.pairs[box].items():
-                if other not in moved or other > box:
+                if other not in moved:
                     delta["collisions"] -= value
+                elif other > box:
+                    if together:
+                        new_pairs[(box, other)] = value
+                    else:
+                        delta["collisions"] -= value
             for other in self.grid.near_box(box):
-                if other == box or (other in moved and other < box):
+                if other == box or (other in moved and (other < box or together)):
                     continue
                 value = self.pair_energy(box, other)
                 if value > 0.0:
@@ -351,3 +363,17 @@ class Energy:
                 grid.insert(box, x, z, problem.size[box] / 2.0)
         for path, points in pending[2]:
             state.points[path] = points
+
+
+def _translated_together(saved: list, boxes: dict) -> bool:
+    """True when every moved box was shifted by the same vector and none turned."""
+    if len(saved) < 2:
+        return False
+    first, (x0, z0, yaw0) = saved[0]
+    nx, nz, nyaw = boxes[first]
+    dx, dz = nx - x0, nz - z0
+    for box, (x, z, yaw) in saved:
+        new_x, new_z, new_yaw = boxes[box]
+        if new_yaw != yaw or new_x - x != dx or new_z - z != dz:
+            return False
+    return True

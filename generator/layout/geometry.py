@@ -168,20 +168,42 @@ def capsule_rect_penetration(ax: float, az: float, bx: float, bz: float, radius:
 
 
 def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
-    """Deepest penetration of a rectangle into a buffered polyline (its worst segment)."""
+    """Deepest penetration of a rectangle into a buffered polyline (its worst segment).
+
+    Segments farther from the rectangle's centre than ``radius`` plus the rectangle's
+    circumradius cannot touch it and are skipped before the exact test.
+    """
     best = 0.0
+    clear = radius + math.hypot(rect.hw, rect.hd)
+    cx, cz = rect.cx, rect.cz
     for index in range(len(points) - 1):
         (ax, az), (bx, bz) = points[index], points[index + 1]
-        best = max(best, capsule_rect_penetration(ax, az, bx, bz, radius, rect))
+        if nearest_on_segment(cx, cz, ax, az, bx, bz)[0] >= clear:
+            continue
+        depth = capsule_rect_penetration(ax, az, bx, bz, radius, rect)
+        if depth > best:
+            best = depth
     return best
 
 
 def polyline_rect_distance(points: list, rect: Rect) -> float:
-    """Minimum distance between a polyline's centre line and a filled rectangle."""
-    return min(
-        segment_rect_distance(points[i][0], points[i][1], points[i + 1][0], points[i + 1][1], rect)
+    """Minimum distance between a polyline's centre line and a filled rectangle.
+
+    The centre's distance to a segment minus the circumradius bounds the exact distance
+    from below, so only segments that could beat the best so far are tested exactly.
+    """
+    circumradius = math.hypot(rect.hw, rect.hd)
+    bounds = sorted(
+        (nearest_on_segment(rect.cx, rect.cz, *points[i], *points[i + 1])[0] - circumradius, i)
         for i in range(len(points) - 1)
     )
+    best = math.inf
+    for bound, index in bounds:
+        if bound >= best:
+            break
+        (ax, az), (bx, bz) = points[index], points[index + 1]
+        best = min(best, segment_rect_distance(ax, az, bx, bz, rect))
+    return best
 
 
 def _cross(ox: float, oz: float, ax: float, az: float, bx: float, bz: float) -> float:

@@ -40,7 +40,7 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> Non
         if kind == "group":
             _place_group(energy, mover, rng, index)
         else:
-            _place_box(energy, mover, rng, index, ())
+            _place_box(energy, mover, rng, index, (), _borrowed_anchor(energy, Endpoint("object", index, (index,))))
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
@@ -59,6 +59,23 @@ def _anchors_placed(energy: Energy, unit: tuple[str, int]) -> bool:
     own = energy.problem.group_members[index] if kind == "group" else (index,)
     kind = "object" if kind == "box" else kind
     return all(_placed(energy, t.b) or set(t.b.members) <= set(own) for t in _outgoing(energy, kind, index))
+
+
+def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
+    """A place for an item nothing anchors: next to what anchors an item pointing at it.
+
+    A tower with no relation of its own, that a blacksmith must be beside and that must
+    itself be next to a road, is best put next to that road too.
+    """
+    relations = energy.problem.relations
+    for incoming in relations:
+        if (incoming.b.kind, incoming.b.index) != (end.kind, end.index) or incoming.a.kind == "path":
+            continue
+        for term in relations:
+            same_source = (term.a.kind, term.a.index) == (incoming.a.kind, incoming.a.index)
+            if same_source and term is not incoming and term.base.startswith("NextTo") and _placed(energy, term.b):
+                return replace(term, a=end, label="NextTo", base="NextTo")
+    return None
 
 
 def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
@@ -176,6 +193,9 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     problem = energy.problem
     members = problem.group_members[group]
     anchors = [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)]
+    if not anchors:
+        borrowed = _borrowed_anchor(energy, Endpoint("group", group, members))
+        anchors = [borrowed] if borrowed else []
     depth = {}
     for box in members:
         level, below = 0, problem.support[box]
@@ -186,6 +206,7 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     for position, box in enumerate(order):
         anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
         _place_box(energy, mover, rng, box, members, anchor)
-    if anchors:
-        whole = anchors[int(rng.integers(len(anchors)))]
-        _best_of(energy, lambda: (mover.place_for_relation(whole), {}), energy.params.initial_candidates)
+    if anchors:  # the group as a whole, by each of its relations in turn
+        count = energy.params.initial_candidates * len(anchors)
+        turns = iter(range(count))
+        _best_of(energy, lambda: (mover.place_for_relation(anchors[next(turns) % len(anchors)]), {}), count)

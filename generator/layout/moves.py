@@ -31,6 +31,9 @@ MOVE_WEIGHTS = {"jitter": 0.30, "rotate": 0.12, "group": 0.13, "relation": 0.30,
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
 
+#: Share of data-driven NextTo moves that move B towards A instead of A towards B.
+REVERSE_SHARE = 0.3
+
 HALF_PI = math.pi / 2.0
 
 
@@ -41,6 +44,8 @@ def wrap(angle: float) -> float:
 
 def rigid(state: State, boxes: list[int], pivot: tuple[float, float], turn: float, shift: tuple[float, float]) -> dict:
     """New poses of ``boxes`` turned by ``turn`` about ``pivot`` then shifted."""
+    if turn == 0.0:  # exact translation, so the energy can see that nothing turned
+        return {box: (state.x[box] + shift[0], state.z[box] + shift[1], state.yaw[box]) for box in boxes}
     c, s = math.cos(turn), math.sin(turn)
     px, pz = pivot
     moved = {}
@@ -89,7 +94,9 @@ class Mover:
         self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
         self.groups = [g for g, members in enumerate(problem.group_members) if members]
         self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
-        self.relations = [t for t, term in enumerate(problem.relations) if self._movable(term.a)]
+        self.relations = [
+            t for t, term in enumerate(problem.relations) if self._movable(term.a) or self._movable(term.b)
+        ]
         available = {
             "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
             "relation": bool(self.relations), "path": problem.n_paths > 0, "junction": bool(self.junctions),
@@ -186,9 +193,17 @@ class Mover:
     # -- data-driven moves -------------------------------------------------------------
 
     def relation_move(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
-        weights = np.array([relation_energy[t] for t in self.relations]) + 0.05
-        term = self.relations[int(self.rng.choice(len(self.relations), p=weights / weights.sum()))]
-        boxes = self.place_for_relation(self.problem.relations[term])
+        # Squared, so clearly violated relations (energy above ~1) win over the small
+        # residues soft factors always keep.
+        weights = np.array([relation_energy[t] for t in self.relations]) ** 2 + 0.01
+        term = self.problem.relations[self.relations[int(self.rng.choice(len(self.relations), p=weights / weights.sum()))]]
+        a_movable, b_movable = self._movable(term.a), self._movable(term.b)
+        if b_movable and term.base.startswith("NextTo") and (not a_movable or self.rng.random() < REVERSE_SHARE):
+            boxes = self.place_target_for(term)
+        elif a_movable:
+            boxes = self.place_for_relation(term)
+        else:
+            return None
         return (boxes, {}) if boxes else None
 
     def place_for_relation(self, term: RelationTerm) -> dict | None:
@@ -244,6 +259,20 @@ class Mover:
             a_reach = end_reach(problem, state, a, -wx, -wz)
         distance = offset + a_reach + gap
         return rigid(state, boxes, pivot, turn, (bx + wx * distance - ax, bz + wz * distance - az))
+
+    def place_target_for(self, term: RelationTerm) -> dict:
+        """New poses for B (shifted, not turned) at which the NextTo* ``term`` holds."""
+        problem, state = self.problem, self.state
+        a, b = term.a, term.b
+        ax, az = centre(a, state) if a.kind != "path" else tuple(state.points[a.index][0])
+        bx, bz, c, s = anchor(b, state, (ax, az))
+        wx, wz = self._wanted_direction(term.base, c, s)
+        if a.kind == "path":
+            a_reach = problem.path_width[a.index] / 2.0
+        else:
+            a_reach = end_reach(problem, state, a, -wx, -wz)
+        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.rng.uniform(*GAP_RANGE)
+        return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
 
     def _heading(self, end: Endpoint) -> float:
         """Yaw of an object, or of a group's first member (the group's front)."""

@@ -38,6 +38,10 @@ class RelationTerm:
     a: Endpoint
     b: Endpoint
 
+    @property
+    def touches_path(self) -> bool:
+        return self.a.kind == "path" or self.b.kind == "path"
+
 
 @dataclass
 class Problem:

@@ -16,7 +16,8 @@ leaves the geometry open:
   A's base on B's top: equals(boundary(A, down)y, boundary(B, up)y). Heights follow the
   support, so this term is 0 for the first support and honest for any extra one.
 - OnTopOfEdge / FrontEdge: besides touching the edge, A's centre must stay over B's top
-  (the table alone would also be satisfied by A hanging outside the edge).
+  (the table alone would also be satisfied by A hanging outside the edge); this adds
+  equals(how far the centre is off the top, 0), which is 0 anywhere over the top.
 - FacingAwayFrom: the table's range(fA . fB, -1, 0) compares forward vectors, which
   cannot tell back-to-back from face-to-face. Since the describer says "A faces away
   from B", it is scored as A's forward pointing from B to A (FacingTowards mirrored).
@@ -82,22 +83,46 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
 
 
 def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
-    """Minimum distance between the collision geometry of two endpoints (0 when touching)."""
+    """Minimum distance between the collision geometry of two endpoints (0 when touching).
+
+    Between groups, member pairs are visited nearest first by a cheap lower bound (centre
+    distance minus both circumradii), and the exact test stops once no bound can win.
+    """
+    problem = state.problem
     if a.kind == "path" and b.kind == "path":
-        problem = state.problem
         gap = polyline_distance(state.points[a.index], state.points[b.index])
         return max(0.0, gap - (problem.path_width[a.index] + problem.path_width[b.index]) / 2.0)
     if a.kind == "path":
         a, b = b, a
+    if b.kind == "path":
+        points, half = state.points[b.index], problem.path_width[b.index] / 2.0
+        if len(a.members) == 1:
+            return max(0.0, polyline_rect_distance(points, state.rects[a.members[0]]) - half)
+        bounds = sorted(
+            (nearest_on_polyline(points, state.x[box], state.z[box])[0] - problem.size[box] / 2.0 - half, box)
+            for box in a.members
+        )
+    else:
+        if len(a.members) == 1 and len(b.members) == 1:
+            return box_distance(a.members[0], b.members[0], state)
+        bounds = sorted(
+            (
+                math.hypot(state.x[p] - state.x[q], state.z[p] - state.z[q]) - (problem.size[p] + problem.size[q]) / 2.0,
+                p,
+                q,
+            )
+            for p in a.members
+            for q in b.members
+        )
     best = math.inf
-    for box in a.members:
+    for bound, *pair in bounds:
+        if bound >= best:
+            break
         if b.kind == "path":
-            points = state.points[b.index]
-            gap = polyline_rect_distance(points, state.rect(box)) - state.problem.path_width[b.index] / 2.0
-            best = min(best, max(0.0, gap))
+            gap = max(0.0, polyline_rect_distance(points, state.rects[pair[0]]) - half)
         else:
-            for other in b.members:
-                best = min(best, box_distance(box, other, state))
+            gap = box_distance(pair[0], pair[1], state)
+        best = min(best, gap)
     return best
 
 
@@ -204,4 +229,8 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
         offset = front
     else:
         offset = min(front, abs(hd + lz - ez), abs(hw - lx - ex), abs(hw + lx - ex))
-    return Measure(energy - equals(offset, 0.0, params.sigma2) - within, height_gap=height_gap, inside=inside, offset=offset)
+    # Only a centre off the top is penalised here: a soft pull towards the middle would
+    # fight the pull towards the edge.
+    overhang = math.hypot(max(abs(lx) - hw, 0.0), max(abs(lz) - hd, 0.0))
+    energy -= equals(offset, 0.0, params.sigma2) + equals(overhang, 0.0, params.sigma2)
+    return Measure(energy, height_gap=height_gap, inside=inside, offset=offset)

@@ -70,6 +70,7 @@ class State:
         self.c = [1.0] * n
         self.s = [0.0] * n
         self.y = [0.0] * n
+        self.rects = [Rect(0.0, 0.0, problem.half_width[b], problem.half_depth[b], 1.0, 0.0) for b in range(n)]
         for box in range(n):
             below, height = problem.support[box], 0.0
             while below >= 0:  # rests on the top of its support's stack
@@ -81,12 +82,14 @@ class State:
         ]
 
     def set_pose(self, box: int, x: float, z: float, yaw: float) -> None:
-        self.x[box], self.z[box], self.yaw[box] = x, z, yaw
-        self.c[box], self.s[box] = math.cos(yaw), math.sin(yaw)
+        c, s = math.cos(yaw), math.sin(yaw)
+        self.x[box], self.z[box], self.yaw[box], self.c[box], self.s[box] = x, z, yaw, c, s
+        rect = self.rects[box]
+        self.rects[box] = Rect(x, z, rect.hw, rect.hd, c, s)
 
     def rect(self, box: int) -> Rect:
-        p = self.problem
-        return Rect(self.x[box], self.z[box], p.half_width[box], p.half_depth[box], self.c[box], self.s[box])
+        """The box's footprint at its current pose."""
+        return self.rects[box]
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]

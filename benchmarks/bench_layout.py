@@ -1,0 +1,124 @@
+"""Layout benchmark: village quality and time, scaling with scene size, naive vs incremental.
+
+    .venv/bin/python benchmarks/bench_layout.py                 # everything below
+    .venv/bin/python benchmarks/bench_layout.py --village 200   # seeds 0..199 of village.rules
+    .venv/bin/python benchmarks/bench_layout.py --scaling       # 10, 30, 100, 300 objects
+    .venv/bin/python benchmarks/bench_layout.py --compare       # per-step cost, full vs incremental
+
+Prints figures only; nothing is asserted. One process, one core.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from collections import Counter
+
+import numpy as np
+
+from scenewright.generator import expand, load_rules
+from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.initial import place_initial
+from scenewright.generator.layout.moves import Mover
+from scenewright.generator.layout.problem import compile_problem
+from scenewright.generator.layout.state import State
+from scenewright.generator.layout.synthetic import village_graph
+
+
+def village(seeds: int, rules_name: str) -> None:
+    rules = load_rules(rules_name)
+    times, steps, counts, failures = [], [], [], Counter()
+    ok = 0
+    for seed in range(seeds):
+        graph = expand(rules, seed)
+        counts.append(sum(1 for n in graph.nodes() if n.kind == "object"))
+        result = layout_scene(graph, seed)
+        times.append(result.seconds)
+        steps.append(result.steps)
+        ok += result.ok
+        for problem in result.problems:
+            failures[_kind(problem)] += 1
+    times.sort()
+    print(f"{rules_name}: {seeds} seeds, {min(counts)}..{max(counts)} objects per scene")
+    print(
+        f"  ok {100 * ok / seeds:.1f} %   time median {statistics.median(times):.3f} s  "
+        f"p90 {times[int(0.9 * (seeds - 1))]:.3f} s  max {times[-1]:.3f} s   mean steps {statistics.mean(steps):.0f}"
+    )
+    if failures:
+        print("  problems by kind:", dict(failures.most_common()))
+
+
+def _kind(problem: str) -> str:
+    for word in ("overlaps", "is not", "outside", "leaves", "long", "turns", "apart"):
+        if word in problem:
+            return word
+    return "other"
+
+
+def scaling() -> None:
+    print("scaling (synthetic village graphs, seeds 0..4):")
+    print("  objects   layout s   steps   us/step")
+    for size in (10, 30, 100, 300):
+        seconds, steps, per_step = [], [], []
+        for seed in range(5):
+            graph = village_graph(size, seed)
+            result = layout_scene(graph, seed)
+            seconds.append(result.seconds)
+            steps.append(result.steps)
+            per_step.append(step_cost(graph, seed, incremental=True, steps=1000))
+        print(
+            f"  {size:7d}   {statistics.median(seconds):8.3f}   {statistics.median(steps):5.0f}"
+            f"   {statistics.median(per_step):7.1f}"
+        )
+
+
+def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
+    """Microseconds per sampler step (propose + energy change + accept/reject), after the start."""
+    params = LayoutParams(incremental=incremental)
+    problem = compile_problem(graph)
+    rng = np.random.default_rng(seed)
+    state = State(problem)
+    energy = Energy(problem, state, params)
+    mover = Mover(problem, state, rng)
+    place_initial(energy, mover, rng)
+    started = time.perf_counter()
+    for _ in range(steps):
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        if energy.propose(*proposal) < 0.0:
+            energy.accept()
+        else:
+            energy.reject()
+    return 1e6 * (time.perf_counter() - started) / steps
+
+
+def compare() -> None:
+    print("full energy vs incremental, us per step (same moves, synthetic village graphs):")
+    for size in (30, 100, 300):
+        graph = village_graph(size, 0)
+        naive = step_cost(graph, 0, incremental=False, steps=300)
+        incremental = step_cost(graph, 0, incremental=True, steps=300)
+        print(f"  {size:4d} objects: full {naive:9.1f}   incremental {incremental:7.1f}   ratio {naive / incremental:6.1f}x")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--village", type=int, metavar="SEEDS", help="lay out this many village scenes")
+    parser.add_argument("--rules", default="village", help="rule set for --village")
+    parser.add_argument("--scaling", action="store_true")
+    parser.add_argument("--compare", action="store_true")
+    args = parser.parse_args()
+    everything = not (args.village or args.scaling or args.compare)
+    if args.village or everything:
+        village(args.village or 200, args.rules)
+    if args.scaling or everything:
+        scaling()
+    if args.compare or everything:
+        compare()
+
+
+if __name__ == "__main__":
+    main()
