@@ -47,6 +47,8 @@ from scenewright.errors import InputError
 SETTINGS_FILE = "dataset.json"
 RECORDS_DIR = ".records"
 METADATA_FILE = "metadata.jsonl"
+#: What a worker imports; a fork server imports it once for all its workers.
+WORKER_MODULES = ["scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene"]
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -224,6 +226,10 @@ def make_executor(workers: int, scheduler: str | None, producer: Producer, spec:
 
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    if context.get_start_method() == "forkserver":
+        # Import the pipeline once in the fork server rather than in every worker (the
+        # imports take seconds); no OpenGL context exists yet at that point.
+        context.set_forkserver_preload(WORKER_MODULES)
     warm_up = worker_context if producer is produce_scene else None
     return cf.ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=warm_up, initargs=(spec,))
 

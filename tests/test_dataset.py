@@ -70,11 +70,11 @@ def spec_of(count: int = 8, **settings) -> DatasetSpec:
 
 
 def dataset_bytes(root: Path) -> dict[str, bytes]:
-    """Every reproducible file of a dataset (stats carry wall-clock times)."""
+    """Every published file of a dataset except stats (records and stats hold timings)."""
     return {
         str(p.relative_to(root)): p.read_bytes()
         for p in sorted(root.rglob("*"))
-        if p.is_file() and not p.name.startswith("stats.")
+        if p.is_file() and not p.name.startswith("stats.") and RECORDS_DIR not in p.parts
     }
 
 

@@ -1,0 +1,64 @@
+"""The dataset job on the real pipeline (rules, layout, describer, OpenGL renderer in
+worker processes), kept small: a few desk scenes at 64x64."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from scenewright.cli import main
+from scenewright.dataset import METADATA_FILE, scene_seed
+from test_dataset import dataset_bytes
+
+
+@pytest.fixture(scope="module")
+def one_worker(tmp_path_factory):
+    """A 4-scene desk dataset with every optional column, made by one worker."""
+    root = tmp_path_factory.mktemp("desk") / "one"
+    argv = ["dataset", "desk", "-n", "4", "-o", str(root), "--size", "64x64", "--captions", "2"]
+    assert main([*argv, "--workers", "1", "--depth", "--segmentation", "--quiet"]) == 0
+    return root
+
+
+def test_two_workers_write_the_same_bytes(one_worker, tmp_path):
+    argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
+    assert main([*argv, "--workers", "2", "--depth", "--segmentation", "--quiet"]) == 0
+    assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)
+
+
+def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
+    rows = [json.loads(line) for line in (one_worker / METADATA_FILE).read_text().splitlines()]
+    assert [r["seed"] for r in rows] == [scene_seed(0, i) for i in range(4)]
+    for row in rows:
+        assert row["rules"] == "desk" and row["ok"] is True
+        assert row["text"].startswith("The scene consists of") and row["caption"] != row["caption_1"]
+        for column in ("file_name", "depth_file_name", "segmentation_file_name"):
+            assert (one_worker / row[column]).is_file()
+        scene = json.loads((one_worker / "scenes" / f"{row['scene_id']}.json").read_text())
+        assert scene["seed"] == row["seed"] and scene["description"]["text"] == row["text"]
+    stats = json.loads((one_worker / "stats.json").read_text())
+    assert stats["scenes"] == 4 and stats["objects"]["table"] == 4
+    assert set(stats["seconds_per_stage"]) >= {"expand", "layout", "describe", "render"}
+
+
+def test_loads_as_imagefolder_with_ground_truth_columns(one_worker, tmp_path):
+    datasets = pytest.importorskip("datasets")
+    loaded = datasets.load_dataset("imagefolder", data_dir=str(one_worker), split="train", cache_dir=str(tmp_path))
+    assert loaded.num_rows == 4
+    assert {"image", "depth", "segmentation", "caption", "caption_1", "text"} <= set(loaded.column_names)
+    assert loaded[0]["image"].size == (64, 64) and loaded[0]["depth"].size == (64, 64)
+
+
+def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_path):
+    argv = ["dataset", "desk", "-n", "4", "-o", str(one_worker), "--size", "64x64", "--captions", "2", "--depth"]
+    assert main([*argv, "--segmentation"]) == 0
+    out = capsys.readouterr().out
+    assert "4 scenes in metadata.jsonl; 0 of 4 layouts failed" in out and "4 were already done" in out
+    assert main([*argv]) == 2
+    assert "other settings (segmentation True -> False)" in capsys.readouterr().err
+    bad = tmp_path / "bad.rules"
+    bad.write_text("scene {\n")
+    assert main(["dataset", str(bad), "-n", "2", "-o", str(tmp_path / "x")]) == 2
+    assert capsys.readouterr().err.startswith(f"{bad}:1:")
+    assert not (tmp_path / "x").exists()
