@@ -147,27 +147,43 @@ def _best_of(energy: Energy, draw, count: int) -> None:
         energy.accept()
 
 
-def _place_box(energy: Energy, mover: Mover, rng: np.random.Generator, box: int, mates: tuple[int, ...], anchor_term=None) -> None:
-    """Place one box: on its support, by a relation to something placed, or near a mate."""
+def _place_box(
+    energy: Energy,
+    mover: Mover,
+    rng: np.random.Generator,
+    box: int,
+    mates: tuple[int, ...],
+    anchor_term: RelationTerm | None = None,
+) -> None:
+    """Place one box: on its support, by a relation with something placed, or near a mate.
+
+    Facing relations only turn the box, so they are applied once it has a place.
+    """
     problem, state = energy.problem, energy.state
-    terms = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
-    support = [t for t in terms if t.b.kind == "object" and problem.support[box] == t.b.index]
+    own = Endpoint("object", box, (box,))
+    outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
+    support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
+    positional = [t for t in outgoing if not t.base.startswith("Facing")]
+    facing = [t for t in outgoing if t.base.startswith("Facing")]
+    incoming = [
+        t for t in problem.relations
+        if t.b == own and t.base.startswith("NextTo") and t.a.kind != "path" and _placed(energy, t.a)
+    ]  # fmt: skip
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
-    if support:
-        choices = support[:1]
-    elif terms:
-        choices = terms
-    elif anchor_term is not None:
-        choices = [anchor_term]
-    else:
-        choices = []
 
     def draw():
-        if choices:
-            return mover.place_for_relation(choices[int(rng.integers(len(choices)))]), {}
+        if support:
+            return mover.place_for_relation(support[0]), {}
+        if positional or incoming:
+            pick = int(rng.integers(len(positional) + len(incoming)))
+            if pick < len(positional):
+                return mover.place_for_relation(positional[pick]), {}
+            return mover.place_target_for(incoming[pick - len(positional)]), {}
+        if anchor_term is not None:
+            return mover.place_for_relation(anchor_term), {}
         if placed_mates:
             mate = placed_mates[int(rng.integers(len(placed_mates)))]
-            near = RelationTerm("", "", "NextTo", "NextTo", Endpoint("object", box, (box,)), Endpoint("object", mate, (mate,)))
+            near = RelationTerm("", "", "NextTo", "NextTo", own, Endpoint("object", mate, (mate,)))
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
@@ -176,6 +192,8 @@ def _place_box(energy: Energy, mover: Mover, rng: np.random.Generator, box: int,
         state.set_pose(item, *pose)
     energy.activate([box])
     _best_of(energy, draw, energy.params.initial_candidates)
+    for term in facing:
+        _best_of(energy, lambda: (mover.turn_to_face(term), {}), 2)
 
 
 def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
@@ -206,7 +224,20 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     for position, box in enumerate(order):
         anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
         _place_box(energy, mover, rng, box, members, anchor)
+    # Facing relations to things outside the group turn the group as a whole; the
+    # group is then only shifted into place, so they keep holding.
+    outside_facing = [
+        t for box in members for t in _outgoing(energy, "object", box)
+        if t.base.startswith("Facing") and not set(t.b.members) <= set(members) and _placed(energy, t.b)
+    ]  # fmt: skip
+    for term in outside_facing:
+        _best_of(energy, lambda: (mover.turn_group_to_face(term), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
         count = energy.params.initial_candidates * len(anchors)
         turns = iter(range(count))
-        _best_of(energy, lambda: (mover.place_for_relation(anchors[next(turns) % len(anchors)]), {}), count)
+        keep = bool(outside_facing)
+        _best_of(
+            energy,
+            lambda: (mover.place_for_relation(anchors[next(turns) % len(anchors)], keep_heading=keep), {}),
+            count,
+        )

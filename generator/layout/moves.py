@@ -31,6 +31,9 @@ MOVE_WEIGHTS = {"jitter": 0.30, "rotate": 0.12, "group": 0.13, "relation": 0.30,
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
 
+#: How far (as a share of B's half side) a data-driven NextTo proposal may slide A along B.
+LATERAL_SHARE = 0.5
+
 #: Share of data-driven NextTo moves that move B towards A instead of A towards B.
 REVERSE_SHARE = 0.3
 
@@ -94,6 +97,7 @@ class Mover:
         self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
         self.groups = [g for g, members in enumerate(problem.group_members) if members]
         self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
+        self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
         self.relations = [
             t for t, term in enumerate(problem.relations) if self._movable(term.a) or self._movable(term.b)
         ]
@@ -206,13 +210,18 @@ class Mover:
             return None
         return (boxes, {}) if boxes else None
 
-    def place_for_relation(self, term: RelationTerm) -> dict | None:
-        """New poses for A (and all it carries) at which ``term`` holds, or None."""
+    def place_for_relation(self, term: RelationTerm, *, keep_heading: bool = False) -> dict | None:
+        """New poses for A (and all it carries) at which ``term`` holds, or None.
+
+        ``keep_heading``: a NextTo* placement only shifts A (never turns it to face a road).
+        """
         base = term.base
         if base.startswith("NextTo"):
-            return self._place_next_to(term)
+            return self._place_next_to(term, keep_heading)
         if base.startswith("Facing"):
-            return self._turn_to_face(term)
+            if term.a.kind == "object" and term.a.index in self.top_group_of and self.rng.random() < 0.5:
+                return self.turn_group_to_face(term)
+            return self.turn_to_face(term)
         return self._place_on_top(term)
 
     def moving_boxes(self, end: Endpoint) -> list[int]:
@@ -220,7 +229,7 @@ class Mover:
             return self.group_boxes[end.index]
         return self.problem.carried(end.index)
 
-    def _place_next_to(self, term: RelationTerm) -> dict:
+    def _place_next_to(self, term: RelationTerm, keep_heading: bool = False) -> dict:
         problem, state, rng = self.problem, self.state, self.rng
         a, b = term.a, term.b
         ax, az = centre(a, state)
@@ -236,7 +245,7 @@ class Mover:
             side = 1.0 if rng.random() < 0.5 else -1.0
             nx, nz = -tz * side, tx * side  # a normal of the road, on the chosen side
             bx, bz = p0x + t * (p1x - p0x), p0z + t * (p1z - p0z)
-            if rng.random() < 0.7:  # turn A to face the road
+            if not keep_heading and rng.random() < 0.7:  # turn A to face the road
                 heading = self._heading(a)
                 turn = wrap(math.atan2(-nx, -nz) - heading)
             offset = problem.path_width[b.index] / 2.0
@@ -245,6 +254,9 @@ class Mover:
             bx, bz, c, s = anchor(b, state, (ax, az))
             wx, wz = self._wanted_direction(term.base, c, s)
             offset = end_reach(problem, state, b, wx, wz)
+            # Slide sideways along B's side a little, so several things beside B can fit.
+            slide = rng.uniform(-LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
+            bx, bz = bx - wz * slide, bz + wx * slide
         boxes = self.moving_boxes(a)
         pivot = (ax, az)
         if turn:  # measure A's reach and centre as they will be once turned
@@ -295,11 +307,26 @@ class Mover:
         angle = rng.uniform(-math.pi, math.pi)
         return math.sin(angle), math.cos(angle)
 
-    def _turn_to_face(self, term: RelationTerm) -> dict | None:
-        problem, state = self.problem, self.state
-        a, b = term.a, term.b
-        if a.kind != "object":
+    def turn_group_to_face(self, term: RelationTerm) -> dict:
+        """Turn the whole top-level group holding A about its centre so A faces as ``term`` wants."""
+        group = self.top_group_of[term.a.index]
+        members = self.problem.group_members[group]
+        pivot = centre(Endpoint("group", group, members), self.state)
+        turn = self._facing_turn(term)
+        return rigid(self.state, self.group_boxes[group], pivot, turn, (0.0, 0.0))
+
+    def turn_to_face(self, term: RelationTerm) -> dict | None:
+        """Turn A (an object, with what it carries) in place so the Facing* ``term`` holds."""
+        if term.a.kind != "object":
             return None
+        box = term.a.index
+        pivot = (self.state.x[box], self.state.z[box])
+        return rigid(self.state, self.problem.carried(box), pivot, self._facing_turn(term), (0.0, 0.0))
+
+    def _facing_turn(self, term: RelationTerm) -> float:
+        """The turn of A (an object) after which the Facing* ``term`` holds."""
+        state = self.state
+        a, b = term.a, term.b
         ax, az = state.x[a.index], state.z[a.index]
         bx, bz, c, s = anchor(b, state, (ax, az))
         base = term.base
@@ -310,8 +337,7 @@ class Mover:
         else:
             b_yaw = math.atan2(s, c) if b.kind != "group" else 0.0
             yaw = b_yaw if base == "FacingSameDirection" else b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
-        turn = wrap(yaw - state.yaw[a.index])
-        return rigid(state, problem.carried(a.index), (ax, az), turn, (0.0, 0.0))
+        return wrap(yaw - state.yaw[a.index])
 
     def _place_on_top(self, term: RelationTerm) -> dict:
         problem, state, rng = self.problem, self.state, self.rng

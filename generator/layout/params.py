@@ -38,7 +38,7 @@ class LayoutParams:
     check_every: int = 200
     target_energy: float = math.inf
     restarts: int = 3
-    temperature_start: float = 0.5
+    temperature_start: float = 0.1
     temperature_end: float = 0.01
     initial_candidates: int = 16
     incremental: bool = True
