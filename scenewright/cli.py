@@ -13,7 +13,6 @@ as its located excerpt) and no traceback unless ``--debug`` is given.
 from __future__ import annotations
 
 import argparse
-import hashlib
 import json
 import os
 import sys
@@ -146,11 +145,6 @@ def read_scene(path: str):
     return Scene.from_dict(data)
 
 
-def rules_digest(rules) -> str:
-    """SHA-256 of a rule set's text, so a resumed dataset cannot mix rule versions."""
-    return hashlib.sha256(Path(rules.path).read_bytes()).hexdigest()
-
-
 # -- subcommands ----------------------------------------------------------------------
 
 
@@ -187,14 +181,11 @@ def run_generate(args: argparse.Namespace) -> int:
 
 
 def run_dataset(args: argparse.Namespace) -> int:
-    from scenewright.api import load_rules, rules_label
-    from scenewright.dataset import DatasetSpec, run_dataset as run
+    from scenewright.dataset import dataset_spec, run_dataset as run
 
-    rules = load_rules(args.rules)
-    spec = DatasetSpec(
-        rules=rules_label(rules),
-        rules_digest=rules_digest(rules),
-        count=args.count,
+    spec = dataset_spec(
+        args.rules,
+        args.count,
         base_seed=args.seed,
         captions=args.captions,
         size=args.size,

@@ -30,6 +30,7 @@ workers need no shared filesystem.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import hashlib
 import json
 import multiprocessing
 import os
@@ -86,6 +87,19 @@ class DatasetSpec:
         data["size"] = list(self.size)
         del data["count"]
         return data
+
+
+def dataset_spec(rules, count: int, **settings) -> DatasetSpec:
+    """The spec for ``count`` scenes of a rule set (name, path or loaded Rules).
+
+    Loads (and so checks) the rules, names them as scene.json does, and hashes their
+    text. ``settings`` are the other ``DatasetSpec`` fields.
+    """
+    from scenewright.api import load_rules, rules_label
+
+    loaded = load_rules(rules)
+    digest = hashlib.sha256(Path(loaded.path).read_bytes()).hexdigest()
+    return DatasetSpec(rules=rules_label(loaded), rules_digest=digest, count=count, **settings)
 
 
 @dataclass
