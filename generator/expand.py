@@ -21,7 +21,7 @@ from .rules import Rules
 from .rules_errors import ExpansionError
 from .scene_graph import SceneGraph
 
-#: Statement executions allowed per allowed node, on top of a fixed allowance: enough
+#: Steps (repetitions of statements, calls) allowed per allowed node, on top of a fixed allowance: enough
 #: for any sensible rule set, small enough that a rule set which calls productions
 #: that create nothing, many times over, stops within a second.
 _STEPS_PER_NODE = 50
@@ -65,6 +65,7 @@ class _Expansion:
         location: SourceLocation,
     ) -> list[str]:
         """Expand one production; return its head (the first node it creates), if any."""
+        self.step(location)
         if len(self.chain) >= self.rules.max_depth:
             self.fail(location, f"expansion deeper than max_depth {self.rules.max_depth}", production.name)
         weights = [alt.weight if alt.weight is not None else 1.0 for alt in production.alternatives]
@@ -84,12 +85,12 @@ class _Expansion:
 
         ``scope`` (bound names -> node ids) gains the statement's ``as`` binding.
         """
-        self.step(statement.location)
         if statement.probability is not None and self.rng.random() >= statement.probability:
             return []
         created: list[str] = []
         subjects_of_all_repetitions: list[str] = []
         for _ in range(self.count(statement.count)):
+            self.step(statement.location)
             subjects, creates = self.subjects(statement.subject, scope, parent)
             for subject in subjects:
                 for relation in statement.relations:
@@ -183,4 +184,4 @@ class _Expansion:
         if len(chain) > _CHAIN_HEAD + _CHAIN_TAIL + 1:
             chain = chain[:_CHAIN_HEAD] + ["..."] + chain[-_CHAIN_TAIL:]
         shown = " -> ".join(chain)
-        raise ExpansionError(self.rules.sources.diagnostic(location, f"{message}: {shown}"))
+        raise ExpansionError(self.rules.sources.diagnostic(location, f"{message} (expanding {shown})"))

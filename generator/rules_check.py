@@ -318,9 +318,13 @@ class _Checker:
                     terminating.add(name)
                     changed = True
         for name, production in self.productions.items():
-            if name not in terminating:
-                self.error(production.location, f"'{name}' can never finish expanding: every alternative "
-                           "calls, without an option to skip, a nonterminal that never finishes")
+            if name in terminating:
+                continue
+            blocking = next(call for call in _required_calls(production.alternatives[0].statements)
+                            if call not in terminating and call in self.productions)
+            reason = "it calls itself" if blocking == name else f"it must call '{blocking}', which never finishes"
+            self.error(production.location, f"'{name}' can never finish expanding: {reason} "
+                       "(make the call optional with 'P?' or a count from 0, or add an alternative without it)")
 
 
 def _is_hex_colour(text: str) -> bool:

@@ -335,6 +335,9 @@ def _expected_words(expected: set[str]) -> list[str]:
     elif "some" in keywords and "NUMBER" in expected:
         words.append("a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count)")
         keywords -= {"some", "each"}
+    elif "some" in keywords and "CAMEL" in expected:  # a subject after its count or '?'
+        words.append("a type, a nonterminal, a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
+        keywords -= {"some", "each"}
     elif "some" in keywords:
         words.append("a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
         keywords -= {"some", "each"}
