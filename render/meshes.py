@@ -33,13 +33,19 @@ class MeshError(ValueError):
 
 def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
     """The object's mesh in its local frame, fitted to ``obj.size`` (base centre at 0)."""
-    if obj.mesh:
-        mesh = _load_user_mesh(obj.mesh).copy()
-        mesh = coloured(mesh, obj.colour) if not _has_colours(mesh) else mesh
+    return shaped_mesh(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
+
+
+def shaped_mesh(shape: str | None, mesh_file: str | None, size: tuple, colour: tuple) -> trimesh.Trimesh:
+    """A mesh from a builder name or a user mesh file, fitted to ``size``: everything
+    an object's look depends on, so callers can cache by these arguments."""
+    if mesh_file:
+        mesh = _load_user_mesh(mesh_file).copy()
+        mesh = coloured(mesh, colour) if not _has_colours(mesh) else mesh
     else:
-        build = BUILDERS.get(obj.shape or "box", BUILDERS["box"])  # unknown shape: its box
-        mesh = build(tuple(obj.size), tuple(obj.colour))
-    return fit_to_size(mesh, obj.size)
+        build = BUILDERS.get(shape or "box", BUILDERS["box"])  # unknown shape: its box
+        mesh = build(size, colour)
+    return fit_to_size(mesh, size)
 
 
 def object_transform(obj: SceneObject) -> np.ndarray:

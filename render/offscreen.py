@@ -22,6 +22,7 @@ import io
 import json
 import os
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -34,7 +35,7 @@ from scenewright.errors import GenerationError
 from scenewright.scene import Scene
 
 from .camera import Camera, frame_scene
-from .meshes import ground_mesh, junction_mesh, object_mesh, object_transform, path_mesh
+from .meshes import ground_mesh, junction_mesh, object_transform, path_mesh, shaped_mesh
 
 SKY = (0.62, 0.77, 0.92)
 AMBIENT = (0.35, 0.35, 0.38)
@@ -62,8 +63,9 @@ class RenderResult:
     ``depth`` is the distance along the camera's viewing axis in metres (0 where only
     sky is seen). ``boxes`` maps each entity seen in the image to its pixel box
     [x0, y0, x1, y1] (x1, y1 exclusive). ``visible`` maps every drawn entity to the
-    fraction of its in-frame silhouette not hidden by other entities (1.0 unoccluded,
-    0.0 hidden or out of frame); the ground never hides anything (it lies below all).
+    fraction of its in-frame silhouette not hidden by objects (1.0 unoccluded, 0.0
+    hidden or out of frame); paths and junctions lie in one ground layer and do not
+    count as hiding one another where they meet; the ground hides nothing.
     """
 
     colour: np.ndarray
@@ -75,14 +77,26 @@ class RenderResult:
     camera: dict[str, Any]
 
 
+@dataclass(frozen=True)
+class _Drawable:
+    """Triangle soup ready for the GPU: every triangle owns its three vertices, so
+    each keeps its face's colour and normal (flat shading)."""
+
+    positions: np.ndarray
+    normals: np.ndarray
+    colours: np.ndarray
+    bounds: np.ndarray
+
+
 @dataclass
 class _Entity:
-    """A drawn scene entity: its id, world-space mesh pose and pyrender node."""
+    """A drawn scene entity: its id, its look, its local-to-world pose and its node."""
 
     id: str
-    mesh: trimesh.Trimesh
+    drawable: _Drawable
     pose: np.ndarray
-    node: Any
+    flat: bool = False  # a path or junction: part of the ground layer
+    node: Any = None
 
 
 class Renderer:
@@ -98,6 +112,9 @@ class Renderer:
             self._renderer = self._gl.OffscreenRenderer(self.width, self.height)
         except Exception as error:  # each backend fails in its own way; all mean the same
             raise _backend_error(error) from None
+        # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
+        # the light stays in use, instead of allocating a new one per scene.
+        self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
 
     def __enter__(self) -> "Renderer":
         return self
@@ -130,7 +147,7 @@ class Renderer:
 
         ids = [entity.id for entity in entities]
         seen = np.bincount(segmentation.ravel(), minlength=len(ids) + 1)
-        alone = self._alone_pixel_counts(world, entities, camera)
+        alone = self._alone_pixel_counts(world, entities, camera, seen)
         visible = {
             entity_id: float(min(seen[k + 1] / alone[k], 1.0)) if alone[k] else 0.0
             for k, entity_id in enumerate(ids)
@@ -150,24 +167,29 @@ class Renderer:
     def _build(self, scene: Scene, camera: Camera):
         gl = self._gl
         world = gl.Scene(bg_color=(*SKY, 1.0), ambient_light=AMBIENT)
-        world.add(_pyrender_mesh(gl, ground_mesh(scene, margin=GROUND_MARGIN)))
+        world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
 
         entities: list[_Entity] = []
         for obj in scene.objects:
             if obj.kind == "object":
-                entities.append(_Entity(obj.id, object_mesh(obj), object_transform(obj), None))
+                look = _object_drawable(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
+                entities.append(_Entity(obj.id, look, object_transform(obj)))
             elif obj.kind == "junction":
                 lifted = object_transform(obj)
                 lifted[1, 3] += PATH_STEP * len(scene.paths)  # above every path ribbon
-                entities.append(_Entity(obj.id, junction_mesh(obj), lifted, None))
+                entities.append(_Entity(obj.id, _drawable(junction_mesh(obj)), lifted, flat=True))
         for order, scene_path in enumerate(scene.paths):
             lifted = np.eye(4)
             lifted[1, 3] = PATH_STEP * order
-            entities.append(_Entity(scene_path.id, path_mesh(scene_path), lifted, None))
+            entities.append(_Entity(scene_path.id, _drawable(path_mesh(scene_path)), lifted, flat=True))
         # A degenerate path (all its points in one place) has no triangles to draw.
-        entities = [entity for entity in entities if len(entity.mesh.faces)]
+        entities = [entity for entity in entities if len(entity.drawable.positions)]
+        uploaded: dict[int, Any] = {}  # objects that look alike share one GPU mesh
         for entity in entities:
-            entity.node = world.add(_pyrender_mesh(gl, entity.mesh), pose=entity.pose, name=entity.id)
+            key = id(entity.drawable)
+            if key not in uploaded:
+                uploaded[key] = _pyrender_mesh(gl, entity.drawable)
+            entity.node = world.add(uploaded[key], pose=entity.pose, name=entity.id)
 
         if camera.orthographic:
             lens = gl.OrthographicCamera(camera.xmag, camera.ymag, znear=camera.znear, zfar=camera.zfar)
@@ -176,18 +198,32 @@ class Renderer:
                 camera.yfov, aspectRatio=camera.width / camera.height, znear=camera.znear, zfar=camera.zfar
             )
         world.add(lens, pose=camera.pose)
-        world.add(gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY), pose=_sun_pose())
+        world.add(self._sun, pose=_sun_pose())
         return world, entities
 
-    def _alone_pixel_counts(self, world, entities: list[_Entity], camera: Camera) -> np.ndarray:
-        """How many pixels each entity covers when nothing else is drawn.
+    def _alone_pixel_counts(self, world, entities: list[_Entity], camera: Camera, seen: np.ndarray) -> np.ndarray:
+        """How many pixels each entity covers when drawn alone.
 
-        Entities whose projected boxes do not overlap cannot hide one another, so they
-        share one segmentation pass: a few passes give every entity's unoccluded area.
+        "Alone" means without the other objects; for paths and junctions, without the
+        objects but with the other paths and junctions, since they share one layer on
+        the ground and cover one another only where they meet, as they do in the image.
+        An entity that nothing can hide (no nearer entity's screen box overlaps its
+        own) covers alone what it covers in the full image (``seen``). The others are
+        drawn in extra segmentation passes: one for the ground layer, and a few for
+        objects, each holding objects whose screen boxes do not overlap (so they
+        cannot hide one another). Every count is exact.
         """
-        counts = np.zeros(len(entities), dtype=np.int64)
-        boxes = [_projected_box(entity, camera) for entity in entities]
-        for batch in _disjoint_batches(boxes):
+        counts = np.asarray(seen[1:], dtype=np.int64).copy()
+        boxes, near, far = _screen_extents(entities, camera)
+        overlap = _overlaps(boxes)
+        may_hide = overlap & (near[:, None] < far[None, :])  # [j, k]: j may be in front of k
+        np.fill_diagonal(may_hide, False)
+        hidden_maybe = may_hide.any(axis=0) & (boxes[:, 0] < boxes[:, 2])
+        flat = np.array([entity.flat for entity in entities], dtype=bool)
+        batches = _disjoint_batches(np.flatnonzero(hidden_maybe & ~flat), boxes, overlap)
+        if np.any(hidden_maybe & flat):
+            batches.append(np.flatnonzero(flat).tolist())
+        for batch in batches:
             seg_map = {entities[k].node: _index_colour(k + 1) for k in batch}
             seg_colour, _ = self._renderer.render(world, flags=self._gl.RenderFlags.SEG, seg_node_map=seg_map)
             pixels = np.bincount(_decode_index(seg_colour).ravel(), minlength=len(entities) + 1)
@@ -276,23 +312,38 @@ def _backend_error(error: Exception) -> GenerationError:
 # -- helpers -------------------------------------------------------------------------
 
 
-def _pyrender_mesh(gl, mesh: trimesh.Trimesh):
-    """A flat-shaded pyrender mesh with the trimesh's face colours on a matte material.
+@lru_cache(maxsize=1024)
+def _object_drawable(shape: str | None, mesh_file: str | None, size: tuple, colour: tuple) -> _Drawable:
+    """An object's look, built once per process: a dataset draws the same catalog
+    entries thousands of times, and builders are pure functions of these arguments."""
+    return _drawable(shaped_mesh(shape, mesh_file, size, colour))
 
-    Built from one primitive whose triangles own their vertices, so each face keeps
-    its colour and normal (pyrender's ``from_trimesh`` drops colours when given a
-    material, and otherwise picks a blended, metallic one).
-    """
-    corners = mesh.vertices[mesh.faces].reshape(-1, 3)
-    normals = np.repeat(mesh.face_normals, 3, axis=0)
-    colours = np.repeat(mesh.visual.face_colors, 3, axis=0)
+
+def _drawable(mesh: trimesh.Trimesh) -> _Drawable:
+    arrays = (
+        mesh.vertices[mesh.faces].reshape(-1, 3),
+        np.repeat(mesh.face_normals, 3, axis=0),
+        np.repeat(mesh.visual.face_colors, 3, axis=0),
+        np.array(mesh.bounds, dtype=float),
+    )
+    for array in arrays:
+        array.setflags(write=False)  # shared through the cache
+    return _Drawable(*arrays)
+
+
+def _pyrender_mesh(gl, drawable: _Drawable):
+    """A pyrender mesh of one flat-shaded primitive on a matte, non-metal material
+    (pyrender's ``from_trimesh`` drops colours when given a material, and otherwise
+    picks a blended, metallic one)."""
     material = gl.MetallicRoughnessMaterial(baseColorFactor=(1.0, 1.0, 1.0, 1.0), metallicFactor=0.0, roughnessFactor=0.9)
-    primitive = gl.Primitive(positions=corners, normals=normals, color_0=colours, material=material)
-    drawn = gl.Mesh(primitives=[primitive])
+    primitive = gl.Primitive(
+        positions=drawable.positions, normals=drawable.normals, color_0=drawable.colours, material=material
+    )
+    mesh = gl.Mesh(primitives=[primitive])
     # pyrender 0.1.45 computes Mesh.bounds with ``np.infty``, which numpy 2 removed;
     # the shadow pass needs the bounds, so give them from the trimesh we already have.
-    drawn._bounds = np.array(mesh.bounds, dtype=float)
-    return drawn
+    mesh._bounds = drawable.bounds.copy()
+    return mesh
 
 
 def _sun_pose() -> np.ndarray:
@@ -327,49 +378,70 @@ def _orthographic_depth(depth: np.ndarray, camera: Camera) -> np.ndarray:
 
 
 def _boxes(segmentation: np.ndarray, ids: list[str]) -> dict[str, list[int]]:
-    boxes = {}
-    for k, entity_id in enumerate(ids):
-        rows, cols = np.nonzero(segmentation == k + 1)
-        if len(rows):
-            boxes[entity_id] = [int(cols.min()), int(rows.min()), int(cols.max()) + 1, int(rows.max()) + 1]
-    return boxes
+    """Pixel box of each entity seen, from one sweep over the labelled pixels."""
+    rows, cols = np.nonzero(segmentation)
+    labels = segmentation[rows, cols]
+    count = len(ids) + 1
+    lo_x, lo_y = np.full(count, np.iinfo(np.int64).max), np.full(count, np.iinfo(np.int64).max)
+    hi_x, hi_y = np.full(count, -1), np.full(count, -1)
+    np.minimum.at(lo_x, labels, cols)
+    np.minimum.at(lo_y, labels, rows)
+    np.maximum.at(hi_x, labels, cols)
+    np.maximum.at(hi_y, labels, rows)
+    return {
+        entity_id: [int(lo_x[k]), int(lo_y[k]), int(hi_x[k]) + 1, int(hi_y[k]) + 1]
+        for k, entity_id in enumerate(ids, start=1)
+        if hi_x[k] >= 0
+    }
 
 
-def _projected_box(entity: _Entity, camera: Camera) -> tuple[float, float, float, float] | None:
-    """The entity's screen box clipped to the image (None when it is out of frame)."""
-    corners = trimesh.bounds.corners(entity.mesh.bounds)
-    world = trimesh.transform_points(corners, entity.pose)
-    pixels, depth = camera.project(world)
-    if np.any(depth <= 0):  # reaches behind the camera: assume it may cover anything
-        return (0.0, 0.0, float(camera.width), float(camera.height))
-    x0, y0 = np.maximum(pixels.min(axis=0), 0.0)
-    x1, y1 = np.minimum(pixels.max(axis=0), [camera.width, camera.height])
-    if x0 >= x1 or y0 >= y1:
-        return None
-    return (float(x0), float(y0), float(x1), float(y1))
+def _screen_extents(entities: list[_Entity], camera: Camera) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each entity's screen box (N, 4) clipped to the image (empty, x0 >= x1, when out
+    of frame) and its nearest and farthest depth, from its bounding box's corners."""
+    count = len(entities)
+    boxes, near, far = np.zeros((count, 4)), np.zeros(count), np.zeros(count)
+    limit = np.array([camera.width, camera.height], dtype=float)
+    for k, entity in enumerate(entities):
+        world = trimesh.transform_points(trimesh.bounds.corners(entity.drawable.bounds), entity.pose)
+        pixels, depth = camera.project(world)
+        near[k], far[k] = depth.min(), depth.max()
+        if near[k] <= 0:  # reaches behind the camera: it may cover anything
+            boxes[k] = [0.0, 0.0, *limit]
+            near[k] = -np.inf
+        else:
+            boxes[k, :2] = np.maximum(pixels.min(axis=0), 0.0)
+            boxes[k, 2:] = np.minimum(pixels.max(axis=0), limit)
+    return boxes, near, far
 
 
-def _disjoint_batches(boxes: list) -> list[list[int]]:
-    """Group indices greedily so the boxes within a group do not overlap (a one-pixel
-    margin covers rasterisation at shared edges); out-of-frame entities are skipped."""
+def _overlaps(boxes: np.ndarray, margin: float = 1.0) -> np.ndarray:
+    """[j, k]: the boxes of j and k overlap or lie within ``margin`` pixels (which
+    covers rasterisation at shared edges). Empty boxes overlap nothing."""
+    x0, y0, x1, y1 = (boxes[:, i] for i in range(4))
+    apart = (
+        (x0[:, None] >= x1[None, :] + margin)
+        | (x0[None, :] >= x1[:, None] + margin)
+        | (y0[:, None] >= y1[None, :] + margin)
+        | (y0[None, :] >= y1[:, None] + margin)
+    )
+    present = (x0 < x1) & (y0 < y1)
+    return ~apart & present[:, None] & present[None, :]
+
+
+def _disjoint_batches(indices: np.ndarray, boxes: np.ndarray, overlap: np.ndarray) -> list[list[int]]:
+    """Split ``indices`` into groups whose boxes do not overlap, greedily, largest box
+    first (big boxes constrain most; placing them first needs fewer groups)."""
+    area = (boxes[:, 2] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 1])
+    order = sorted(indices.tolist(), key=lambda k: (-area[k], k))
     batches: list[list[int]] = []
-    members: list[list[tuple]] = []
-    for k, box in enumerate(boxes):
-        if box is None:
-            continue
-        for batch, taken in zip(batches, members):
-            if not any(_overlap(box, other) for other in taken):
+    for k in order:
+        for batch in batches:
+            if not overlap[k, batch].any():
                 batch.append(k)
-                taken.append(box)
                 break
         else:
             batches.append([k])
-            members.append([box])
-    return batches
-
-
-def _overlap(a, b, margin: float = 1.0) -> bool:
-    return a[0] < b[2] + margin and b[0] < a[2] + margin and a[1] < b[3] + margin and b[1] < a[3] + margin
+    return [sorted(batch) for batch in batches]
 
 
 def _png(pixels: np.ndarray) -> bytes:

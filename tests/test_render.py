@@ -160,3 +160,27 @@ def test_a_degenerate_path_is_not_drawn(renderer):
     scene = scene_of([thing("crate_1")], [road("road_1", [[3, 3], [3, 3]], start="crossing_1")])
     result = renderer.render(scene)
     assert result.ids == ["crate_1"]
+
+
+def test_visible_fractions_equal_a_brute_force_count(renderer):
+    # Boxes in a row towards the camera hide one another in part; one road runs under them.
+    row = [thing(f"crate_{k}", (1.2 * k, 0, 1.2 * k), (1.0, 1.0 + 0.3 * k, 1.0)) for k in range(1, 6)]
+    scene = scene_of(row + [thing("crossing_1", (-4, 0, 4), (3, 0, 3), kind="junction", shape=None)],
+                     [road("road_1", [[-4, 4], [4, -4]], start="crossing_1"), road("road_2", [[-4, 4], [-8, 8]])])
+    result = renderer.render(scene)
+
+    from scenewright.render.offscreen import _decode_index, _index_colour
+
+    camera = Camera.from_dict(result.camera)
+    world, entities = renderer._build(scene, camera)
+    gl = renderer._gl
+    ground_layer = {"crossing_1", "road_1", "road_2"}
+    for k, entity in enumerate(entities):
+        # Drawn by itself (with the rest of the ground layer, for roads and junctions).
+        company = ground_layer if entity.id in ground_layer else {entity.id}
+        seg_map = {e.node: _index_colour(j + 1) for j, e in enumerate(entities) if e.id in company}
+        seg, _ = renderer._renderer.render(world, flags=gl.RenderFlags.SEG, seg_node_map=seg_map)
+        alone = np.count_nonzero(_decode_index(seg) == k + 1)
+        seen = np.count_nonzero(result.segmentation == k + 1)
+        assert result.visible[entity.id] == pytest.approx(seen / alone), entity.id
+    assert min(result.visible[f"crate_{k}"] for k in range(1, 5)) < 0.9  # the row does hide itself
