@@ -127,8 +127,9 @@ def _segment_rect_overlap(ax: float, az: float, bx: float, bz: float, rect: Rect
     """SAT overlap of a segment and a rectangle (positive: they intersect by that much)."""
     la = to_local(rect, ax, az)
     lb = to_local(rect, bx, bz)
-    best = min(max(la[0], lb[0]), rect.hw) - max(min(la[0], lb[0]), -rect.hw)
-    overlap = min(max(la[1], lb[1]), rect.hd) - max(min(la[1], lb[1]), -rect.hd)
+    # On each axis: how far the segment's interval must slide to clear the rectangle's.
+    best = min(max(la[0], lb[0]) + rect.hw, rect.hw - min(la[0], lb[0]))
+    overlap = min(max(la[1], lb[1]) + rect.hd, rect.hd - min(la[1], lb[1]))
     if overlap < best:
         best = overlap
     ex, ez = lb[0] - la[0], lb[1] - la[1]
