@@ -40,7 +40,6 @@ def builder(name: str) -> Callable[[Builder], Builder]:
 
 WOOD = (0.52, 0.35, 0.2)
 DARK_WOOD = (0.3, 0.2, 0.12)
-STONE = (0.58, 0.56, 0.53)
 IRON = (0.22, 0.22, 0.25)
 ROOF = (0.55, 0.22, 0.15)
 STRAW = (0.8, 0.68, 0.38)
@@ -137,12 +136,12 @@ def gable_roof(width: float, depth: float, eave_y: float, rise: float, colour) -
     return coloured(mesh, colour)
 
 
-def legs(width: float, depth: float, height: float, thickness: float, colour, y0: float = 0.0) -> list[trimesh.Trimesh]:
+def legs(width: float, depth: float, height: float, thickness: float, colour) -> list[trimesh.Trimesh]:
     """Four square legs standing at the corners of a ``width`` x ``depth`` footprint."""
     x = width / 2.0 - thickness / 2.0
     z = depth / 2.0 - thickness / 2.0
     return [
-        block((thickness, height, thickness), (sx * x, y0 + height / 2.0, sz * z), colour)
+        block((thickness, height, thickness), (sx * x, height / 2.0, sz * z), colour)
         for sx in (-1, 1)
         for sz in (-1, 1)
     ]
