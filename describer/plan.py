@@ -157,13 +157,18 @@ def stated_relations(scene: Scene, world: World) -> list[Relation]:
 
 
 def _network_links(scene: Scene, world: World) -> dict[str, str]:
-    """Path id -> the junction it starts at, for satisfied ``PathConnectedTo`` in one scope."""
+    """Path id -> the junction it starts at (in the same scope), for the network phrase.
+
+    A path's ``start`` is structural (the layout attaches the path's end to the
+    junction), so it always holds; a satisfied ``PathConnectedTo`` relation counts too.
+    """
+    starts = [(path.id, path.start) for path in scene.paths if path.start is not None]
+    starts += [
+        (r.source, r.target) for r in scene.relations if r.label == "PathConnectedTo" and r.satisfied
+    ]
     links: dict[str, str] = {}
-    for relation in scene.relations:
-        if relation.label != "PathConnectedTo" or not relation.satisfied:
-            continue
-        path, junction = relation.source, relation.target
-        if path not in world or junction not in world or path in links:
+    for path, junction in starts:
+        if path in links or path not in world or junction not in world:
             continue
         if world[path].kind == "path" and world[junction].kind == "junction" and world[path].parent == world[junction].parent:
             links[path] = junction

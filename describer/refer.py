@@ -103,8 +103,12 @@ class Discourse:
         for entity_id in ids:
             by_cohort.setdefault(self.world.cohort(entity_id), []).append(entity_id)
         alone = len(by_cohort) == 1
+        # Parts of cohorts ("two of the sacks of flour") lead: after a conjunction they
+        # can be misread as counting on ("the two pallets and two ..."), and link-grammar
+        # cannot parse them there.
+        chunks = sorted(by_cohort.items(), key=lambda chunk: len(chunk[1]) in (1, len(chunk[0])))
         phrases = []
-        for cohort, chosen in by_cohort.items():
+        for cohort, chosen in chunks:
             if len(chosen) == 1:
                 phrases.append(self.name(chosen[0], pronoun=alone))
             else:

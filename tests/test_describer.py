@@ -1,6 +1,8 @@
 """The describer on hand-built scenes: wording, aggregation, reference, facts, variants."""
 
+import os
 import re
+from pathlib import Path
 
 import pytest
 from hypothesis import given, settings
@@ -205,6 +207,99 @@ def lamp_scene() -> Scene:
     return b.scene()
 
 
+def mill_scene() -> Scene:
+    """The paper's Figure 4, with "besides of" made right and an unsatisfied relation left out."""
+    b = SceneBuilder(seed=11)
+    crossing = b.add("intersection", kind="junction")
+    roads = [b.road(crossing) for _ in range(3)]
+    mill = b.group("mill")
+    building = b.add("windmill", "windmill building", parent=mill)
+    wagon = b.add("wagon_of_grain", "wagon of grain", plural="wagons of grain", parent=mill)
+    pallets = [b.add("pallet", "pallet of grain sheaves", plural="pallets of grain sheaves", parent=mill) for _ in range(2)]
+    sacks = [b.add("sack_of_flour", "sack of flour", plural="sacks of flour", parent=mill) for _ in range(4)]
+    tower = b.add("tower")
+    smith = b.group("blacksmith")
+    forge = b.add("forge", "blacksmith forge", parent=smith)
+    brazier = b.add("brazier", parent=smith)
+    anvil = b.add("anvil", parent=smith)
+    hammer = b.add("hammer", parent=smith)
+    table = b.add("table", parent=smith)
+    sign = b.add("sign", parent=smith)
+    lamp = b.add("street_lamp")
+    for subject in (mill, lamp):
+        b.relate(subject, "NextTo", roads[0])
+    b.relate(smith, "NextTo", roads[1])
+    b.relate(smith, "NextToChooseSide", tower, chosen="left")
+    for thing in pallets + sacks[:2]:
+        b.relate(thing, "NextToRight", building)
+    for thing in [wagon] + sacks[2:]:
+        b.relate(thing, "NextToLeft", building)
+    b.relate(forge, "FacingAwayFrom", tower)
+    b.relate(sign, "NextToFront", tower)
+    b.relate(brazier, "NextToFront", forge)
+    b.relate(anvil, "NextToFront", brazier)
+    b.relate(hammer, "OnTopOf", anvil)
+    b.relate(table, "NextToFront", sign)
+    b.relate(table, "ImplicitFacingSameDirection", sign)
+    b.relate(lamp, "NextToChooseDirection", tower, satisfied=False, chosen="north")
+    return b.scene()
+
+
+def farm_scene() -> Scene:
+    """The paper's Figure 2: a farmstead, two towers and a blacksmith by one road."""
+    b = SceneBuilder(seed=5)
+    farm = b.group("farmstead")
+    house = b.add("house", parent=farm)
+    field = b.add("field", parent=farm)
+    shed = b.add("shed", parent=farm)
+    sheaf = b.add("wheat_sheaf", "wheat sheaf", plural="wheat sheaves", parent=farm)
+    pot = b.add("flowerpot", parent=farm)
+    wagon = b.add("empty_wagon", "empty wagon", parent=farm)
+    barrel = b.add("barrel", parent=farm)
+    road = b.road()
+    towers = [b.add("tower") for _ in range(2)]
+    smith = b.group("blacksmith")
+    forge = b.add("forge", "blacksmith forge", parent=smith)
+    brazier = b.add("brazier", parent=smith)
+    anvil = b.add("anvil", parent=smith)
+    coal = b.add("bucket_of_coal", "bucket of coal", plural="buckets of coal", parent=smith)
+    sign = b.add("sign", parent=smith)
+    line = b.add("clothes_line", "clothes line")
+    for subject in (farm, towers[0], smith):
+        b.relate(subject, "NextTo", road)
+    b.relate(smith, "NextToChooseSide", towers[1], chosen="right")
+    b.relate(line, "NextToBehind", towers[1])
+    b.relate(sign, "NextToBehind", towers[1])
+    b.relate(field, "NextToChooseDirection", house, chosen="east")
+    b.relate(shed, "NextToChooseSide", house, chosen="left")
+    b.relate(shed, "FacingOrthogonalDirection", house)
+    b.relate(sheaf, "NextToChooseSide", shed, chosen="right")
+    b.relate(pot, "NextToNorth", house)
+    b.relate(wagon, "NextTo", pot)
+    b.relate(barrel, "NextTo", house)
+    b.relate(forge, "FacingAwayFrom", towers[1])
+    b.relate(brazier, "NextToFront", forge)
+    b.relate(anvil, "NextToFront", brazier)
+    b.relate(coal, "NextToChooseSide", brazier, chosen="left")
+    return b.scene()
+
+
+def desk_scene() -> Scene:
+    """A desk: things on its top at the places the labels name, a chair facing it."""
+    b = SceneBuilder(rules="desk", seed=3)
+    table = b.add("table")
+    chair = b.add("chair")
+    b.relate(chair, "NextToFront", table)
+    b.relate(chair, "FacingTowards", table)
+    b.relate(b.add("computer", "laptop"), "OnTopOfMiddle", table)
+    b.relate(b.add("lamp"), "OnTopOfEdge", table)
+    b.relate(b.add("paper", "sheet of paper", plural="sheets of paper"), "OnTopOfFrontEdge", table)
+    for _ in range(2):
+        b.relate(b.add("book"), "OnTopOf", table)
+    b.relate(b.add("bin", "waste bin"), "NextToChooseSide", table, chosen="left")
+    return b.scene()
+
+
 def test_aggregation_counts_part_of_a_cohort():
     text = describe(lamp_scene()).text
     assert "four roads meeting at an intersection, a house and six street lamps." in text
@@ -318,6 +413,27 @@ def test_new_members_of_a_known_cohort_are_another():
 
 def test_empty_scene():
     assert describe(SceneBuilder().scene()).text == "The scene is empty."
+
+
+# -- golden texts -------------------------------------------------------------------
+
+GOLDEN = Path(__file__).parent / "golden" / "descriptions"
+GOLDEN_SCENES = {"market": market_scene, "lamps": lamp_scene, "mill": mill_scene, "farm": farm_scene, "desk": desk_scene}
+GOLDEN_FORMS = {"full": {}, "short": {"style": "short"}, "variant1": {"variant": 1}, "variant2": {"variant": 2}}
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN_SCENES))
+@pytest.mark.parametrize("form", sorted(GOLDEN_FORMS))
+def test_golden_descriptions(name, form):
+    """Fixed scenes -> the reviewed texts in tests/golden/descriptions, one sentence a line.
+
+    After a deliberate change of wording, ``UPDATE_GOLDEN=1`` rewrites them; review the diff.
+    """
+    text = describe(GOLDEN_SCENES[name](), **GOLDEN_FORMS[form]).text
+    path = GOLDEN / f"{name}.{form}.txt"
+    if os.environ.get("UPDATE_GOLDEN"):
+        path.write_text("\n".join(sentences(text)) + "\n")
+    assert " ".join(path.read_text().split("\n")).strip() == text
 
 
 # -- styles, variants, templates, errors -------------------------------------------
