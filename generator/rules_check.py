@@ -120,7 +120,7 @@ class _Checker:
             if style and name not in STYLE_FIELDS:
                 self.error(setting.location, f"a style cannot set '{name}' (only {', '.join(STYLE_FIELDS)})")
             elif name in PATH_FIELDS and kind != "path":
-                self.error(setting.location, f"'{name}' applies to paths only, not to a {kind}")
+                self.error(setting.location, f"'{name}' applies to paths only, not to {_with_article(kind)}")
             if name == "size" and any(v <= 0 for v in value):
                 self.error(at, "sizes must be positive")
             elif name in ("width", "max_length") and value <= 0:
@@ -150,7 +150,7 @@ class _Checker:
         if not scenes:
             root = files[-1].path
             self.error(SourceLocation(root, 1, 1),
-                       "no scene block; add one, e.g. scene NAME { extent 40 x 40  start Start }")
+                       "no scene block; add one, e.g. scene village { extent 40 x 40  start Village }")
             return None
         for extra in scenes[1:]:
             self.error(extra.location, f"a second scene block (the first is at {scenes[0].location})")
@@ -224,7 +224,8 @@ class _Checker:
         if statement.block is None:
             return
         if created_kind != "group":
-            what = f"'{statement.subject.name}' is a {created_kind}" if created_kind else _subject_words(statement.subject)
+            what = (f"'{statement.subject.name}' is {_with_article(created_kind)}" if created_kind
+                    else _subject_words(statement.subject))
             self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
         inner = set(scope) | ({statement.binding} if statement.binding else set())
         self.check_block(statement.block, inner)
@@ -322,14 +323,19 @@ class _Checker:
                 continue
             blocking = next(call for call in _required_calls(production.alternatives[0].statements)
                             if call not in terminating and call in self.productions)
-            reason = "it calls itself" if blocking == name else f"it must call '{blocking}', which never finishes"
+            reason = "it always calls itself" if blocking == name else f"it always calls '{blocking}', which never finishes"
             self.error(production.location, f"'{name}' can never finish expanding: {reason} "
-                       "(make the call optional with 'P?' or a count from 0, or add an alternative without it)")
+                       f"(make the call optional, e.g. '0.5? {blocking}' or '0..2 {blocking}', "
+                       "or add an alternative without it)")
 
 
 def _is_hex_colour(text: str) -> bool:
     digits = text[1:]
     return len(digits) == 6 and all(c in "0123456789abcdefABCDEF" for c in digits)
+
+
+def _with_article(kind: str) -> str:
+    return ("an " if kind[0] in "aeiou" else "a ") + kind
 
 
 def _parameters(count: int) -> str:

@@ -373,9 +373,9 @@ def _join_words(words: list[str]) -> str:
 
 def _describe_token(token: Token) -> str:
     if token.type == "$END":
-        return "the end of the file"
+        return "end of file"
     if token.type == "_NL":
-        return "the end of the line"
+        return "end of line"
     return f"'{token}'"
 
 
@@ -392,7 +392,7 @@ def _syntax_diagnostic(error: UnexpectedInput, text: str, file: str, sources: So
         message = _unexpected_word_message(token, expected)
     elif isinstance(error, (UnexpectedToken, UnexpectedEOF)):
         line, column = _end_position(text)
-        message = "unexpected end of the file"
+        message = "unexpected end of file"
     elif isinstance(error, UnexpectedCharacters):
         line, column = error.line, error.column
         message = f"unexpected character '{text[error.pos_in_stream]}'"

@@ -1,0 +1,285 @@
+"""Error messages for bad rules files, word for word: one golden text per mistake.
+
+Each case is a small file (a shared header plus the lines under test) and the exact
+diagnostics ``check_rules`` prints for it. The files are written into a temporary
+folder and named relatively, so the messages read as a user would see them.
+"""
+
+import string
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from scenewright.errors import InputError
+from scenewright.generator import RulesError, check_rules, format_diagnostics, load_rules
+
+RULES = Path(__file__).parent / "rules"
+
+HEADER = 'scene s { start S }\nobject table { noun "table" }\ngroup stand { noun "stand" }\n'
+
+GOLDEN = {
+    "label": (
+        "S -> {\n    table as t\n    sign NextTwo t\n}\nobject sign { noun \"sign\" }",
+        """\
+label.rules:6:10: error: unknown relation label 'NextTwo'; did you mean 'NextTo'?
+    sign NextTwo t
+         ^""",
+    ),
+    "syntax_in_words": (
+        "S -> {\n    table as t NextTo\n}",
+        """\
+syntax_in_words.rules:5:22: error: unexpected end of line; expected a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'
+    table as t NextTo
+                     ^""",
+    ),
+    "syntax_after_subject": (
+        "S -> { table = 3 }",
+        """\
+syntax_after_subject.rules:4:14: error: unexpected character '='; expected 'as', a relation label, an ordinal like #1, a block '{' or the end of the statement
+    S -> { table = 3 }
+                 ^""",
+    ),
+    "unknown_type": (
+        "S -> { tabel }",
+        """\
+unknown_type.rules:4:8: error: unknown type or name 'tabel'; did you mean 'table'?
+    S -> { tabel }
+           ^""",
+    ),
+    "undefined_and_unused": (
+        "S -> { Stnad }\nStand -> { table }",
+        """\
+undefined_and_unused.rules:4:8: error: undefined nonterminal 'Stnad'; did you mean 'Stand'?
+    S -> { Stnad }
+           ^
+undefined_and_unused.rules:5:1: warning: nonterminal 'Stand' is never used (start 'S' does not reach it)
+    Stand -> { table }
+    ^""",
+    ),
+    "never_terminates": (
+        "S -> { table; 0.5? Loop }\nLoop -> { table; Loop }",
+        """\
+never_terminates.rules:5:1: error: 'Loop' can never finish expanding: it always calls itself (make the call optional, e.g. '0.5? Loop' or '0..2 Loop', or add an alternative without it)
+    Loop -> { table; Loop }
+    ^""",
+    ),
+    "numbers": (
+        "S -> 0: { 4..2 table } | { 1.5? table; 2.5 table }",
+        """\
+numbers.rules:4:6: error: alternative weight must be positive, not 0
+    S -> 0: { 4..2 table } | { 1.5? table; 2.5 table }
+         ^
+numbers.rules:4:11: error: range 4..2 has min > max
+    S -> 0: { 4..2 table } | { 1.5? table; 2.5 table }
+              ^
+numbers.rules:4:28: error: probability must be between 0 and 1, not 1.5
+    S -> 0: { 4..2 table } | { 1.5? table; 2.5 table }
+                               ^
+numbers.rules:4:40: error: a count must be a whole number, not 2.5
+    S -> 0: { 4..2 table } | { 1.5? table; 2.5 table }
+                                           ^""",
+    ),
+    "unknown_field": (
+        'object chair { noun "chair" color #ffffff }\nS -> { chair }',
+        """\
+unknown_field.rules:4:29: error: unknown catalog field 'color'; did you mean 'colour'?
+    object chair { noun "chair" color #ffffff }
+                                ^""",
+    ),
+    "fields": (
+        'object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
+        '  style a 0 { segments 3 } style a { } }\nS -> { chair }',
+        """\
+fields.rules:4:29: error: duplicate field 'noun'
+    object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
+                                ^
+fields.rules:4:46: error: sizes must be positive
+    object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
+                                                 ^
+fields.rules:4:63: error: colour '#12345' is not of the form #rrggbb
+    object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
+                                                                  ^
+fields.rules:4:70: error: 'width' applies to paths only, not to an object
+    object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
+                                                                         ^
+fields.rules:5:11: error: style weight must be positive, not 0
+    style a 0 { segments 3 } style a { } }
+            ^
+fields.rules:5:15: error: a style cannot set 'segments' (only noun, plural, size, shape, mesh, colour)
+    style a 0 { segments 3 } style a { } }
+                ^
+fields.rules:5:28: error: duplicate style 'a' of 'chair'
+    style a 0 { segments 3 } style a { } }
+                             ^""",
+    ),
+    "duplicates": (
+        'object table { noun "desk" }\nS -> { table }\nS -> { table }',
+        """\
+duplicates.rules:4:8: error: duplicate catalog entry 'table' (first declared at duplicates.rules:2:1)
+    object table { noun "desk" }
+           ^
+duplicates.rules:6:1: error: duplicate production for 'S' (first at duplicates.rules:5:1)
+    S -> { table }
+    ^""",
+    ),
+    "references": (
+        "S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }\n"
+        "P(x) -> { table OnTopOf x }",
+        """\
+references.rules:4:20: error: 'P' takes 1 parameter (references.rules:5:1), but 2 are given
+    S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
+                       ^
+references.rules:4:42: error: unbound name 'tabel'
+    S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
+                                             ^
+references.rules:4:62: error: 'table' is a type, not a bound name; write 'some table', 'each table' or 'table #1'
+    S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
+                                                                 ^
+references.rules:4:82: error: '#0': ordinals count from #1
+    S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
+                                                                                     ^""",
+    ),
+    "block_on_object": (
+        "S -> { table { table } }",
+        """\
+block_on_object.rules:4:14: error: a block nests nodes in a new group, but 'table' is an object
+    S -> { table { table } }
+                 ^""",
+    ),
+    "scene_without_start": (
+        "",
+        """\
+scene_without_start.rules:1:1: error: the scene block has no start symbol (add: start NONTERMINAL)
+    scene s { extent 0 x 3 }
+    ^
+scene_without_start.rules:1:18: error: the extent must be positive
+    scene s { extent 0 x 3 }
+                     ^""",
+    ),
+}
+
+
+@pytest.fixture
+def in_tmp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN))
+def test_golden_messages(in_tmp, name):
+    body, expected = GOLDEN[name]
+    header = HEADER.replace("scene s { start S }", "scene s { extent 0 x 3 }") if name == "scene_without_start" else HEADER
+    Path(f"{name}.rules").write_text(header + body + "\n")
+    assert format_diagnostics(check_rules(f"{name}.rules")) == expected
+
+
+def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
+    Path("two.rules").write_text(HEADER + "S -> { tabel; sign NextTwo t }\nUnused -> { table }\n")
+    with pytest.raises(RulesError) as caught:
+        load_rules("two.rules")
+    error = caught.value
+    assert isinstance(error, InputError) and error.exit_code == 2
+    assert [d.message.split(";")[0] for d in error.diagnostics] == [
+        "unknown type or name 'tabel'", "unknown type or name 'sign'", "unknown relation label 'NextTwo'",
+        "unbound name 't'"]
+    assert "warning" not in str(error)
+    Path("warn.rules").write_text(HEADER + "S -> { table }\nUnused -> { table }\n")
+    assert [w.severity for w in load_rules("warn.rules").warnings] == ["warning"]
+
+
+def test_missing_scene_block(in_tmp):
+    Path("noscene.rules").write_text("S -> { }\n")
+    assert format_diagnostics(check_rules("noscene.rules")) == (
+        "noscene.rules:1:1: error: no scene block; add one, e.g. scene village { extent 40 x 40  start Village }\n"
+        "    S -> { }\n    ^")
+
+
+def test_undefined_start_symbol(in_tmp):
+    Path("start.rules").write_text("scene s { start Villag }\nVillage -> { }\n")
+    assert check_rules("start.rules")[0].message == "start symbol 'Villag' has no production; did you mean 'Village'?"
+
+
+def test_mesh_files_are_found_relative_to_the_rules_file(in_tmp):
+    (in_tmp / "sub" / "models").mkdir(parents=True)
+    (in_tmp / "sub" / "models" / "chair.glb").write_bytes(b"glTF")
+    text = HEADER + 'object chair { noun "chair" mesh "models/chair.glb" }\n' \
+                    'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench }\n'
+    Path("sub/mesh.rules").write_text(text)
+    (diagnostic,) = check_rules("sub/mesh.rules")
+    assert diagnostic.message == f"mesh file 'models/bench.glb' not found (looked in {in_tmp / 'sub'})"
+    Path("sub/mesh.rules").write_text(text.replace("bench.glb", "chair.glb"))
+    assert load_rules("sub/mesh.rules").catalog["chair"].mesh == str(in_tmp / "sub" / "models" / "chair.glb")
+
+
+def test_include_cycle_and_missing_include(in_tmp):
+    Path("a.rules").write_text('include "lib/b.rules"\nscene s { start S }\nS -> { }\n')
+    Path("lib").mkdir()
+    Path("lib/b.rules").write_text('include "../a.rules"\n')
+    assert format_diagnostics(check_rules("a.rules")) == (
+        "lib/b.rules:1:9: error: include cycle: a.rules -> lib/b.rules -> a.rules\n"
+        '    include "../a.rules"\n            ^')
+    Path("c.rules").write_text('include "nope.rules"\n')
+    assert check_rules("c.rules")[0].message == "cannot read included file 'nope.rules': No such file or directory"
+
+
+def test_unknown_rule_set_name(in_tmp):
+    with pytest.raises(RulesError, match=r"no rules file 'vilage' \(and no shipped rule set of that name: .*village"):
+        load_rules("vilage")
+
+
+# -- robustness: whatever the text, a RulesError with valid positions or Rules ------
+
+VALID = (RULES / "market.rules").read_text()
+TOKENS = VALID.replace("\n", " \n ").split(" ")
+
+
+def assert_loads_or_fails_cleanly(tmp_path, text: str) -> None:
+    path = tmp_path / "fuzz.rules"
+    path.write_text(text, encoding="utf-8")
+    try:
+        load_rules(path)
+    except RulesError as error:
+        lines = text.split("\n")
+        assert error.diagnostics
+        for diagnostic in error.diagnostics:
+            location = diagnostic.location
+            if location.file != str(path):
+                continue  # an included file (or a missing one) has its own lines
+            assert 1 <= location.line <= len(lines), (diagnostic, text)
+            assert 1 <= location.column <= len(lines[location.line - 1]) + 1, (diagnostic, text)
+            for raw_name in ("_NL", "LBRACE", "RBRACE", "CAMEL", "NAME", "$END", "__ANON"):
+                assert raw_name not in diagnostic.message, diagnostic
+
+
+#: Text made of the language's own pieces (so the parser gets deep) mixed with any
+#: characters at all (\r, form feeds, Unicode line separators, ...).
+PIECES = list(string.ascii_letters + string.digits + " \n\t{}()|;:#.?,-\"_") + [
+    "->", "..", "object", "group", "scene", "start", "include", "some", "each", "as", "NextTo", "noun", "size",
+    " x ", "#1", "#8b5a2b", "\n|", '"a.rules"']
+rules_like_text = st.lists(st.sampled_from(PIECES) | st.text(max_size=2), max_size=60).map("".join)
+fuzz_settings = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+
+
+@fuzz_settings
+@given(text=rules_like_text)
+def test_arbitrary_text_never_raises_anything_else(tmp_path, text):
+    assert_loads_or_fails_cleanly(tmp_path, text)
+
+
+@fuzz_settings
+@given(edits=st.lists(st.tuples(st.sampled_from(["delete", "duplicate", "swap"]),
+                                st.integers(0, len(TOKENS) - 1), st.integers(0, len(TOKENS) - 1)),
+                      min_size=1, max_size=4))
+def test_mutated_valid_file_never_raises_anything_else(tmp_path, edits):
+    tokens = list(TOKENS)
+    for action, i, j in edits:
+        i, j = i % len(tokens), j % len(tokens)
+        if action == "delete":
+            del tokens[i]
+        elif action == "duplicate":
+            tokens.insert(i, tokens[i])
+        else:
+            tokens[i], tokens[j] = tokens[j], tokens[i]
+    assert_loads_or_fails_cleanly(tmp_path, " ".join(tokens))
