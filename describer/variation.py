@@ -23,7 +23,8 @@ class Choices:
     @classmethod
     def for_variant(cls, seed: int, variant: int) -> "Choices":
         """Variant 0 is canonical; variant k draws from ``default_rng([seed, k])``."""
-        return cls(None if variant == 0 else np.random.default_rng([seed, variant]))
+        # numpy seeds must not be negative; a negative scene seed maps to its 64-bit pattern.
+        return cls(None if variant == 0 else np.random.default_rng([seed % 2**64, variant]))
 
     def pick(self, options: Sequence[T]) -> T:
         """The first option in the canonical text, else one at random."""
