@@ -156,6 +156,12 @@ def test_unknown_view_is_an_input_error(renderer):
         renderer.render(market_scene(), "side")
 
 
+def test_an_empty_scene_shows_its_ground(renderer):
+    result = renderer.render(scene_of([], extent=(10.0, 10.0)))
+    assert result.ids == [] and result.boxes == {} and not result.segmentation.any()
+    assert (result.depth > 0).any()  # the camera frames the extent, so ground is seen
+
+
 def test_a_degenerate_path_is_not_drawn(renderer):
     scene = scene_of([thing("crate_1")], [road("road_1", [[3, 3], [3, 3]], start="crossing_1")])
     result = renderer.render(scene)
