@@ -63,3 +63,10 @@ def test_broken_documents_are_refused_with_their_location(break_it, path):
     assert isinstance(caught.value, InputError)
     assert caught.value.path == path
     assert "\n" not in str(caught.value) and str(caught.value).startswith(f"scene.json {path}: ")
+
+
+@pytest.mark.parametrize("rules", ["desk", "bedroom"])
+def test_generated_scenes_validate(rules):
+    import scenewright
+
+    validate_scene_dict(json.loads(scenewright.generate(rules, seed=1).to_json()))
