@@ -130,3 +130,16 @@ def test_market_fixture_loads_into_catalog_and_params():
     assert rules.catalog["road"].segments == 2 and rules.catalog["road"].kind == "path"
     assert set(rules.productions) == {"Market", "MarketStand", "Goods"}
     assert rules.warnings == ()
+
+
+def test_the_language_reference_examples_load_and_expand(tmp_path):
+    from scenewright.generator import expand
+
+    reference = (Path(__file__).parents[1] / "docs" / "rules-language.md").read_text()
+    blocks = reference.split("```")[1::2]
+    (tmp_path / "desk.rules").write_text(blocks[0])
+    rules = load_rules(tmp_path / "desk.rules")
+    assert rules.warnings == () and rules.params.walls
+    assert expand(rules, 0).nodes()[0].type == "table"
+    more_kinds = parse(blocks[1])
+    assert [e.kind for e in more_kinds.entries] == ["object", "group", "path", "junction"]
