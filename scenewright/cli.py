@@ -413,7 +413,7 @@ def build_parser() -> CommandLineParser:
     dataset.add_argument("-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)")
     dataset.add_argument("--seed", type=seed_value, default=0, help="base seed (0)")
     dataset.add_argument(
-        "--workers", type=count_at_least(1), default=os.cpu_count() or 1, metavar="K", help="worker processes (all cores)"
+        "--workers", type=count_at_least(1), metavar="K", help="worker processes (default: one per core)"
     )
     dataset.add_argument("--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)")
     view_options(dataset, "512x512")

@@ -57,6 +57,13 @@ def scene_seed(base_seed: int, index: int) -> int:
     return int(np.random.SeedSequence([base_seed, index]).generate_state(1)[0])
 
 
+def default_workers() -> int:
+    """One worker per core this process may run on (its CPU affinity, not the machine's)."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
 def scene_stem(index: int) -> str:
     return f"{index:06d}"
 
@@ -266,9 +273,7 @@ def run_dataset(
     from scenewright.dataset_stats import summarise, write_stats
 
     producer = producer or produce_scene
-    workers = workers or os.cpu_count() or 1
-    if workers < 1:
-        raise InputError(f"--workers must be at least 1, not {workers}")
+    workers = workers or default_workers()
     root = prepare_directory(spec, directory)
     todo = [i for i in range(spec.count) if i not in finished_indices(root, spec.count)]
     started = time.perf_counter()
@@ -319,8 +324,13 @@ def completed_products(
             if not pending:
                 return
             finished, pending = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
+            # Store every scene that did finish before reporting one that failed.
+            failures = [future.exception() for future in finished if future.exception() is not None]
             for future in finished:
-                yield future.result()
+                if future.exception() is None:
+                    yield future.result()
+            if failures:
+                raise failures[0]
     finally:
         for future in pending:
             future.cancel()

@@ -55,7 +55,7 @@ def summarise(records: list[dict], *, made: int, seconds: float) -> dict:
             label: {"total": total, "satisfied": satisfied}
             for label, (total, satisfied) in sorted(relations.items(), key=lambda item: (-item[1][0], item[0]))
         },
-        "words": {"text": distribution(text_words), "caption": distribution(caption_words)},
+        "words": {"text": distribution(text_words, bins=12), "caption": distribution(caption_words, bins=12)},
         "seconds_per_stage": {stage: distribution(values, digits=4) for stage, values in stage_seconds.items()},
         "this_run": {
             "scenes_made": made,
@@ -71,11 +71,12 @@ def problem_kind(problem: str) -> str:
     return " ".join(words)
 
 
-def distribution(values: list[float], digits: int = 2) -> dict:
+def distribution(values: list[float], digits: int = 2, bins: int = 0) -> dict:
+    """Count, min, median, mean, p90, max and total; with ``bins``, a histogram too."""
     if not values:
         return {"count": 0}
     data = np.asarray(values, dtype=float)
-    return {
+    summary = {
         "count": int(data.size),
         "min": round(float(data.min()), digits),
         "median": round(float(np.median(data)), digits),
@@ -84,6 +85,10 @@ def distribution(values: list[float], digits: int = 2) -> dict:
         "max": round(float(data.max()), digits),
         "total": round(float(data.sum()), digits),
     }
+    if bins:
+        counts, edges = np.histogram(data, bins=bins)
+        summary["histogram"] = {"edges": [round(float(e), digits) for e in edges], "counts": counts.tolist()}
+    return summary
 
 
 def write_stats(root: Path, stats: dict) -> None:
@@ -117,11 +122,13 @@ def stats_figure(stats: dict) -> bytes:
     lengths = axes[1, 0]
     for name, summary in stats["words"].items():
         if summary["count"]:
-            lengths.bar(
-                [f"{name}\nmin", f"{name}\nmedian", f"{name}\np90", f"{name}\nmax"],
-                [summary["min"], summary["median"], summary["p90"], summary["max"]],
-            )
-    lengths.set_title("length in words")
+            histogram = summary["histogram"]
+            edges = histogram["edges"]
+            lengths.stairs(histogram["counts"], edges, fill=True, alpha=0.6, label=f"{name} (median {summary['median']:g})")
+    lengths.set_title("length in words (full text, short captions)")
+    lengths.set_xlabel("words")
+    lengths.set_ylabel("texts")
+    lengths.legend()
 
     stages = stats["seconds_per_stage"]
     bars(axes[1, 1], list(stages), [stages[s]["mean"] for s in stages], "mean seconds per scene and stage")

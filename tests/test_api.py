@@ -42,7 +42,7 @@ def test_same_rules_and_seed_give_identical_scene_json():
     assert reproducible_json(first) != reproducible_json(generate("village", seed=12))
     assert first.timings and '"timings"' not in reproducible_json(first)
     assert '"seconds"' not in reproducible_json(first)
-    assert set(timings_of(first)) == {"expand", "layout", "describe", "layout_sampler"}
+    assert set(timings_of(first)) == {"expand", "layout", "describe"}
 
 
 def test_rules_by_name_path_or_loaded_give_the_same_scene(tmp_path):
