@@ -67,6 +67,6 @@ def test_broken_documents_are_refused_with_their_location(break_it, path):
 
 @pytest.mark.parametrize("rules", ["desk", "bedroom"])
 def test_generated_scenes_validate(rules):
-    import scenewright
+    from scenewright.api import build_scene  # expansion and layout, no description
 
-    validate_scene_dict(json.loads(scenewright.generate(rules, seed=1).to_json()))
+    validate_scene_dict(json.loads(build_scene(rules, seed=1).to_json()))
