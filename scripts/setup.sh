@@ -33,6 +33,7 @@ python3 -m venv .venv
 .venv/bin/python -m pip install -q -e '.[test]'
 # Khronos' glTF validator (a node package) checks exported GLB files in the tests.
 if command -v npm >/dev/null; then
-  npm install -s --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null
+  npm install -s --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null \
+    || echo "setup: warning: could not install gltf-validator; GLB validation tests will skip (fail under CI)" >&2
 fi
 echo "setup: ready (.venv)"
