@@ -3,7 +3,8 @@
 ``check_tree`` looks at a file and its includes together and returns diagnostics in
 file order: the catalog (fields, values, styles, mesh files), the scene block, and
 the productions (labels, types, names in scope, calls and their arguments, counts,
-probabilities and weights, blocks on groups only), then the whole grammar: undefined
+probabilities and weights, blocks on groups only, PathConnectedTo from a path to a
+junction), then the whole grammar: undefined
 nonterminals, nonterminals that can never finish expanding (a fixpoint over the
 alternatives), and - as warnings - nonterminals the start symbol never reaches.
 A rule set with no error diagnostics is safe to turn into a catalog and to expand.
@@ -188,26 +189,27 @@ class _Checker:
     # -- productions --------------------------------------------------------------
 
     def check_production(self, production: ast.Production) -> None:
-        scope: set[str] = set()
+        scope: dict[str, str | None] = {}
         for param in production.params:
             if param.name in scope:
                 self.error(param.location, f"duplicate parameter '{param.name}'")
             elif param.name in self.kinds:
                 self.error(param.location, f"parameter '{param.name}' has the name of a type; choose another name")
-            scope.add(param.name)
+            scope[param.name] = None  # what an argument is, is known only at the call
         for alternative in production.alternatives:
             if alternative.weight is not None and alternative.weight <= 0:
                 self.error(alternative.location, f"alternative weight must be positive, not {_number(alternative.weight)}")
-            self.check_block(alternative.statements, set(scope))
+            self.check_block(alternative.statements, dict(scope))
 
-    def check_block(self, statements: tuple[ast.Statement, ...], scope: set[str]) -> None:
-        """Check statements in order; ``scope`` gains each statement's binding."""
+    def check_block(self, statements: tuple[ast.Statement, ...], scope: dict[str, str | None]) -> None:
+        """Check statements in order; ``scope`` (bound name -> kind of its nodes, if
+        known) gains each statement's binding."""
         for statement in statements:
             self.check_statement(statement, scope)
             if statement.binding:
-                scope.add(statement.binding)
+                scope[statement.binding] = self.subject_kind(statement.subject, scope)
 
-    def check_statement(self, statement: ast.Statement, scope: set[str]) -> None:
+    def check_statement(self, statement: ast.Statement, scope: dict[str, str | None]) -> None:
         self.check_count(statement.count)
         if statement.probability is not None and not 0 <= statement.probability <= 1:
             self.error(statement.probability_location,
@@ -221,13 +223,15 @@ class _Checker:
                 self.error(relation.location,
                            f"unknown relation label '{relation.label}'" + did_you_mean(relation.label, LABELS))
             self.check_target(relation.target, scope)
+            if relation.label == "PathConnectedTo":
+                self.check_path_connection(statement.subject, relation.target, scope)
         if statement.block is None:
             return
         if created_kind != "group":
             what = (f"'{statement.subject.name}' is {_with_article(created_kind)}" if created_kind
                     else _subject_words(statement.subject))
             self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
-        inner = set(scope) | ({statement.binding} if statement.binding else set())
+        inner = dict(scope) | ({statement.binding: "group"} if statement.binding else {})
         self.check_block(statement.block, inner)
 
     def check_count(self, count: ast.Count | None) -> None:
@@ -242,7 +246,28 @@ class _Checker:
         elif count.high > self.max_nodes:
             self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes}")
 
-    def check_subject(self, subject: ast.Reference | ast.Call, scope: set[str]) -> str | None:
+    def check_path_connection(
+        self, subject: ast.Reference | ast.Call, target: ast.Reference, scope: dict[str, str | None]
+    ) -> None:
+        """``PathConnectedTo`` starts a path at a junction: check kinds where known."""
+        for reference, kind, wanted in (
+            (subject, self.subject_kind(subject, scope), "path"),
+            (target, self.reference_kind(target, scope), "junction"),
+        ):
+            if kind is not None and kind != wanted:
+                self.error(reference.location, f"PathConnectedTo connects a path to a junction, "
+                           f"but '{reference.name}' is {_with_article(kind)}")
+
+    def subject_kind(self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]) -> str | None:
+        """The kind of a subject's nodes, when known without expanding."""
+        return None if isinstance(subject, ast.Call) else self.reference_kind(subject, scope)
+
+    def reference_kind(self, reference: ast.Reference, scope: dict[str, str | None]) -> str | None:
+        if reference.kind == "name" and reference.name in scope:
+            return scope[reference.name]
+        return self.kinds.get(reference.name)
+
+    def check_subject(self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]) -> str | None:
         """Check a statement's subject; return the kind of type it creates, if it creates one."""
         if isinstance(subject, ast.Call):
             self.check_call(subject, scope)
@@ -258,7 +283,7 @@ class _Checker:
         self.check_type_reference(subject)
         return None
 
-    def check_target(self, reference: ast.Reference, scope: set[str]) -> None:
+    def check_target(self, reference: ast.Reference, scope: dict[str, str | None]) -> None:
         if reference.kind != "name":
             self.check_type_reference(reference)
         elif reference.name in scope:
@@ -276,7 +301,7 @@ class _Checker:
         if reference.kind == "nth" and reference.index < 1:
             self.error(reference.location, f"'#{reference.index}': ordinals count from #1")
 
-    def check_call(self, call: ast.Call, scope: set[str]) -> None:
+    def check_call(self, call: ast.Call, scope: dict[str, str | None]) -> None:
         for argument in call.arguments:
             self.check_target(argument, scope)
         production = self.productions.get(call.nonterminal)

@@ -141,6 +141,17 @@ references.rules:4:82: error: '#0': ordinals count from #1
     S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
                                                                                      ^""",
     ),
+    "path_connection": (
+        'path road { noun "road" }\njunction crossing { noun "crossing" }\n'
+        "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }",
+        """\
+path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction, but 'table' is an object
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
+                                                       ^
+path_connection.rules:6:95: error: PathConnectedTo connects a path to a junction, but 'road' is a path
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
+                                                                                                  ^""",
+    ),
     "block_on_object": (
         "S -> { table { table } }",
         """\
