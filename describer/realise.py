@@ -113,23 +113,23 @@ class Realiser:
 
     def _introduction(self, introduction: Introduction) -> str:
         clause = introduction.clause
-        inverted = bool(place_phrases(clause.label, clause.chosen)) and self.choices.coin(INVERSION_PROBABILITY)
         subjects = introduction.subjects
         plural = len(subjects) > 1 or len(subjects[0]) > 1
-        if inverted:
+        if place_phrases(clause.label, clause.chosen) and self.choices.coin(INVERSION_PROBABILITY):
+            # "On top of this table are two books.": the target is named first.
             place = self.lexicon.place(clause.label, clause.chosen)
             target = self._targets(clause)
             subject = join_list([self.discourse.introduce(unit) for unit in subjects])
-            verb = verb_agreeing("is", plural)
-        else:
-            place = ""
-            subject = join_list([self.discourse.introduce(unit) for unit in subjects])
-            self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
-            verb = verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
-            target = self._targets(clause)
+            return render(
+                self.environment, "introduction.j2",
+                inverted=True, place=place, subject=subject, verb=verb_agreeing("is", plural), target=target,
+            )  # fmt: skip
+        subject = join_list([self.discourse.introduce(unit) for unit in subjects])
+        self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
+        verb = verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
         return render(
             self.environment, "introduction.j2",
-            inverted=inverted, place=place, subject=subject, verb=verb, target=target,
+            inverted=False, place="", subject=subject, verb=verb, target=self._targets(clause),
         )  # fmt: skip
 
     def _statement(self, statement: Statement) -> str:

@@ -10,6 +10,7 @@ freely.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from pathlib import Path
 
 import jinja2
@@ -33,7 +34,16 @@ def template_environment(user_templates: str | Path | None = None) -> SandboxedE
         folder = Path(user_templates)
         if not folder.is_dir():
             raise TemplateError(f"description templates folder {str(folder)!r} does not exist")
-        folders.insert(0, folder)
+        folders.insert(0, folder.resolve())
+    return _environment(tuple(folders))
+
+
+@lru_cache(maxsize=16)
+def _environment(folders: tuple[Path, ...]) -> SandboxedEnvironment:
+    """One environment per folder list, so compiled templates are reused across scenes.
+
+    jinja2 still notices edited template files (it checks their modification time).
+    """
     environment = SandboxedEnvironment(
         loader=jinja2.FileSystemLoader([str(f) for f in folders]),
         undefined=jinja2.StrictUndefined,

@@ -524,10 +524,12 @@ def random_scenes(draw):
 
 
 def well_formed(text: str) -> None:
+    """Capital first, one period last, no word twice in a row, no "it" without a sentence before."""
     for sentence in sentences(text):
         assert sentence[0].isupper() and sentence.endswith(".") and not sentence.endswith(".."), sentence
         words = re.findall(r"[a-z]+", sentence.lower())
         assert all(a != b for a, b in zip(words, words[1:])), sentence
+    assert "it" not in re.findall(r"[a-z]+", sentences(text)[0].lower())
     assert "  " not in text
 
 

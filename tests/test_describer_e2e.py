@@ -97,7 +97,12 @@ def check_true_and_complete(scene: Scene) -> list[str]:
     assert sorted(introduced) == sorted(world.entities), f"seed {scene.seed}: not every entity is mentioned"
     texts = [description.text] + [describe(scene, variant=k).text for k in (1, 2)]
     texts.append(describe(scene, style="short").text)
-    return [sentence for text in texts for sentence in split_sentences(text)]
+    found = [sentence for text in texts for sentence in split_sentences(text)]
+    for sentence in found:
+        words = sentence.lower().rstrip(".").split()
+        assert sentence[0].isupper() and sentence.endswith(".") and "  " not in sentence, sentence
+        assert all(a != b for a, b in zip(words, words[1:])), f"seed {scene.seed}: word repeated: {sentence}"
+    return found
 
 
 def laid_out(rules_name: str, seed: int) -> Scene:
