@@ -8,6 +8,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from PIL import Image
 from render_fixtures import market_scene, renderer_or_skip, road, scene_of, thing
 
@@ -190,3 +192,34 @@ def test_visible_fractions_equal_a_brute_force_count(renderer):
         seen = np.count_nonzero(result.segmentation == k + 1)
         assert result.visible[entity.id] == pytest.approx(seen / alone), entity.id
     assert min(result.visible[f"crate_{k}"] for k in range(1, 5)) < 0.9  # the row does hide itself
+
+
+placements = st.lists(
+    st.tuples(
+        st.floats(-12, 12), st.floats(-8, 8),  # x, z
+        st.floats(0.3, 4), st.floats(0.3, 6), st.floats(0.3, 4),  # w, h, d
+        st.floats(0, 2 * math.pi),  # yaw
+    ),
+    min_size=1,
+    max_size=6,
+)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(placements, st.sampled_from(["perspective", "top"]))
+def test_ground_truth_is_consistent_for_any_small_scene(renderer, placed, view):
+    objects = [thing(f"crate_{k}", (x, 0, z), (w, h, d), yaw=yaw) for k, (x, z, w, h, d, yaw) in enumerate(placed, 1)]
+    result = renderer.render(scene_of(objects, [road("road_1", [[-10, 9], [10, 9]])]), view)
+    assert result.ids == [o.id for o in objects] + ["road_1"]
+    assert set(np.unique(result.segmentation).tolist()) <= set(range(len(result.ids) + 1))
+    assert np.all(result.depth[result.segmentation > 0] > 0)  # whatever is labelled has a depth
+    for index, entity_id in enumerate(result.ids, start=1):
+        assert 0.0 <= result.visible[entity_id] <= 1.0
+        if (result.segmentation == index).any():
+            x0, y0, x1, y1 = result.boxes[entity_id]
+            assert 0 <= x0 < x1 <= 160 and 0 <= y0 < y1 <= 120
+        else:
+            assert entity_id not in result.boxes and result.visible[entity_id] == 0.0
+    # The automatic camera frames everything: every object's centre lands in the image.
+    pixels, _ = Camera.from_dict(result.camera).project([[o.position[0], o.size[1] / 2, o.position[2]] for o in objects])
+    assert np.all((pixels >= 0) & (pixels < [160, 120]))
