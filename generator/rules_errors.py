@@ -92,7 +92,8 @@ class SourceTexts:
     def add(self, file: str, text: str) -> None:
         # Lines as the parser counts them: split at "\n" only (not at "\r", form feeds
         # or Unicode line separators, which str.splitlines would also split at).
-        self._lines[file] = [line.rstrip("\r") for line in text.split("\n")]
+        # A stray "\r" inside a line would move the terminal's cursor: show it as a space.
+        self._lines[file] = [line.rstrip("\r").replace("\r", " ") for line in text.split("\n")]
 
     def line(self, location: SourceLocation) -> str | None:
         lines = self._lines.get(location.file)

@@ -262,7 +262,9 @@ def _parse_into(
     if any(known.resolve() == real for known in tree.paths.values()):
         return  # already included along another route: its declarations are in once
     try:
-        text = path.read_text(encoding="utf-8")
+        # newline="": positions count lines as the parser does, at "\n" only
+        with open(path, encoding="utf-8", newline="") as stream:
+            text = stream.read()
     except (OSError, UnicodeDecodeError) as error:
         reason = "not UTF-8 text" if isinstance(error, UnicodeDecodeError) else (error.strerror or str(error))
         if include_location is None:

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from scenewright.generator import rules_ast as ast
-from scenewright.generator.rules import load_rules
+from scenewright.generator.rules import check_rules, load_rules
 from scenewright.generator.rules_errors import Diagnostic
 from scenewright.generator.rules_parser import parse_text, parse_tree
 
@@ -143,3 +143,11 @@ def test_the_language_reference_examples_load_and_expand(tmp_path):
     assert expand(rules, 0).nodes()[0].type == "table"
     more_kinds = parse(blocks[1])
     assert [e.kind for e in more_kinds.entries] == ["object", "group", "path", "junction"]
+
+
+def test_windows_line_ends_parse_and_positions_count_lines_at_newlines(tmp_path):
+    path = tmp_path / "crlf.rules"
+    path.write_bytes(b'scene s { start S }\r\nobject a { noun "a" }\r\n\r\nS -> { a as x\r\n  a NextTwo x }\r\n')
+    (diagnostic,) = check_rules(path)
+    assert (diagnostic.location.line, diagnostic.location.column) == (5, 5)
+    assert diagnostic.source_line == "  a NextTwo x }"
