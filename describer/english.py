@@ -59,6 +59,14 @@ def verb_agreeing(verb_phrase: str, plural: bool) -> str:
     return f"{agreed} {rest}" if rest else agreed
 
 
+def without_repeated_copula(predicates: list[str]) -> list[str]:
+    """Coordinated predicates with "is" / "are" said once: "is next to the road and (is) north of the well"."""
+    copula = predicates[0].split(" ", 1)[0] if predicates else ""
+    if copula not in ("is", "are"):
+        return list(predicates)
+    return predicates[:1] + [p.removeprefix(copula + " ") for p in predicates[1:]]
+
+
 def sentence_case(text: str) -> str:
     """The text with its first letter capitalised (the rest untouched)."""
     return text[:1].upper() + text[1:]

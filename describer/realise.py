@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from jinja2.sandbox import SandboxedEnvironment
 
-from .english import join_list, sentence_case, verb_agreeing
+from .english import join_list, sentence_case, verb_agreeing, without_repeated_copula
 from .lexicon import Lexicon, place_phrases
 from .plan import Clause, Fact, Inventory, Introduction, Item, Message, Network, Section, Statement, facts_of
 from .refer import SCENE, Discourse
@@ -140,6 +140,7 @@ class Realiser:
             f"{verb_agreeing(self.lexicon.relation(c.label, c.chosen), plural)} {self._targets(c)}"
             for c in statement.clauses
         ]
+        predicates = without_repeated_copula(predicates)
         return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
 
     def _targets(self, clause: Clause) -> str:
