@@ -7,6 +7,7 @@ Plan (``plan``), then realise (``realise``) with the referring expressions of
 from __future__ import annotations
 
 import re
+from numbers import Integral
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -59,8 +60,9 @@ def describe(
     """
     if style not in STYLES:
         raise InputError(f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}")
-    if isinstance(variant, bool) or not isinstance(variant, int) or variant < 0:
+    if isinstance(variant, bool) or not isinstance(variant, Integral) or variant < 0:
         raise InputError(f"description variant must be a whole number >= 0, got {variant!r}")
+    variant = int(variant)  # a numpy integer from a dataset loop is welcome too
     world = world_of(scene)
     sections = plan_document(scene, world)
     realiser = Realiser(world, template_environment(templates), Choices.for_variant(scene.seed, variant))

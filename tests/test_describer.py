@@ -413,6 +413,7 @@ def test_new_members_of_a_known_cohort_are_another():
 
 def test_empty_scene():
     assert describe(SceneBuilder().scene()).text == "The scene is empty."
+    assert describe(SceneBuilder().scene(), style="short").text == "An empty village."
 
 
 # -- golden texts -------------------------------------------------------------------
