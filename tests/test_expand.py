@@ -1,13 +1,17 @@
 """Grammar expansion: determinism, the distributions of every random choice, references,
 nesting, and the bounds that stop runaway rule sets."""
 
+import functools
 from collections import Counter
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import stats
 
 from scenewright.generator import ExpansionError, expand, graph_to_dot, load_rules
+from scenewright.generator.relations import LABELS
 
 RULES = Path(__file__).parent / "rules"
 
@@ -32,6 +36,12 @@ def rules_from(tmp_path, text: str, name: str = "t.rules"):
 
 def types(graph) -> list[str]:
     return [node.type for node in graph.nodes()]
+
+
+def group_sizes(graph) -> Counter:
+    """How many groups have each number of members (one pass: graph.children is O(n))."""
+    members = Counter(node.parent for node in graph.nodes() if node.parent)
+    return Counter(members[group.id] for group in graph.nodes("group"))
 
 
 def edges(graph) -> list[tuple[str, str, str]]:
@@ -80,7 +90,7 @@ def test_optional_statements_happen_with_their_probability(tmp_path):
 def test_probability_applies_to_the_whole_repeated_statement(tmp_path):
     rules = rules_from(tmp_path, "S -> { 400 P }\nP -> { g { 3 0.5? a } }")
     graph = expand(rules, 2)
-    sizes = Counter(len(graph.children(group.id)) for group in graph.nodes("group"))
+    sizes = group_sizes(graph)
     assert set(sizes) == {0, 3}
     assert stats.binomtest(sizes[3], 400, 0.5).pvalue > ALPHA
 
@@ -88,7 +98,7 @@ def test_probability_applies_to_the_whole_repeated_statement(tmp_path):
 def test_repetition_ranges_are_uniform_and_inclusive(tmp_path):
     rules = rules_from(tmp_path, "S -> { 600 P }\nP -> { g { 2..4 a } }")
     graph = expand(rules, 9)
-    sizes = Counter(len(graph.children(group.id)) for group in graph.nodes("group"))
+    sizes = group_sizes(graph)
     assert set(sizes) == {2, 3, 4}
     assert stats.chisquare([sizes[2], sizes[3], sizes[4]]).pvalue > ALPHA
     assert types(expand(rules_from(tmp_path, "S -> { 3 a; 0 b; 1..1 c }"), 0)) == ["a", "a", "a", "c"]
@@ -197,3 +207,28 @@ def test_dot_export_shows_groups_as_clusters_and_labels_edges(tmp_path):
     assert 'subgraph "cluster_g_1" {' in dot
     assert '"b_1" -> "a_1" [label="ImplicitNextTo", style=dashed];' in dot
     assert 'tooltip="rule: S"' in dot
+
+
+@functools.cache
+def loaded(name: str):
+    return load_rules(name)
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**63 - 1), name=st.sampled_from(["village", "desk", "bedroom", str(RULES / "market.rules")]))
+def test_any_seed_gives_a_well_formed_graph(seed, name):
+    rules = loaded(name)
+    graph = expand(rules, seed)
+    nodes = {node.id: node for node in graph.nodes()}
+    assert 0 < len(nodes) <= rules.max_nodes
+    assert [node.order for node in nodes.values()] == list(range(len(nodes)))
+    for node in nodes.values():
+        assert node.parent is None or nodes[node.parent].kind == "group"
+        assert node.parent is None or nodes[node.parent].order < node.order  # a group precedes its members
+        assert node.rule in rules.productions
+        entry = rules.catalog[node.type]
+        assert node.style in [None] + [style.name for style in entry.styles]
+    for edge in graph.edges():
+        assert edge.source != edge.target and edge.label in LABELS
+        if edge.label == "PathConnectedTo":
+            assert (nodes[edge.source].kind, nodes[edge.target].kind) == ("path", "junction")
