@@ -13,7 +13,7 @@ chosen, so later stages never need the catalog itself.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from typing import Iterator
 
 import networkx as nx
@@ -111,7 +111,9 @@ class SceneGraph:
             max_length=entry.max_length if is_path else None,
             segments=entry.segments if is_path else None,
         )
-        self.graph.add_node(node_id, **asdict(node))
+        # A shallow copy of the fields: they are immutable, and asdict's deep copy made
+        # node creation most of the cost of grammar expansion.
+        self.graph.add_node(node_id, **{f.name: getattr(node, f.name) for f in fields(node)})
         return node_id
 
     def add_relation(self, source: str, target: str, label: str) -> None:
