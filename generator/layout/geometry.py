@@ -123,35 +123,56 @@ def nearest_on_polyline(points: list, px: float, pz: float) -> tuple[float, floa
     return best
 
 
-def _segment_rect_overlap(ax: float, az: float, bx: float, bz: float, rect: Rect) -> float:
-    """SAT overlap of a segment and a rectangle (positive: they intersect by that much)."""
-    la = to_local(rect, ax, az)
-    lb = to_local(rect, bx, bz)
-    # On each axis: how far the segment's interval must slide to clear the rectangle's.
-    best = min(max(la[0], lb[0]) + rect.hw, rect.hw - min(la[0], lb[0]))
-    overlap = min(max(la[1], lb[1]) + rect.hd, rect.hd - min(la[1], lb[1]))
+def _point_segment_distance(px: float, pz: float, ax: float, az: float, ex: float, ez: float, length2: float) -> float:
+    """Distance from p to the segment from a along (ex, ez), whose squared length is given."""
+    t = 0.0 if length2 <= 0.0 else ((px - ax) * ex + (pz - az) * ez) / length2
+    t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+    return math.hypot(px - ax - t * ex, pz - az - t * ez)
+
+
+def _local_overlap(ax: float, az: float, bx: float, bz: float, hw: float, hd: float) -> float:
+    """SAT overlap of segment a-b and the box [-hw, hw] x [-hd, hd] (both in the box's frame).
+
+    Positive: they intersect, and it is the shortest slide that separates them.
+    """
+    # On the box's axes: how far the segment's interval must slide to clear the box's.
+    low, high = (ax, bx) if ax < bx else (bx, ax)
+    best = min(high + hw, hw - low)
+    low, high = (az, bz) if az < bz else (bz, az)
+    overlap = min(high + hd, hd - low)
     if overlap < best:
         best = overlap
-    ex, ez = lb[0] - la[0], lb[1] - la[1]
+    ex, ez = bx - ax, bz - az
     length = math.hypot(ex, ez)
     if length > 0.0:
-        nx, nz = -ez / length, ex / length  # the segment's normal, in the rectangle's frame
-        offset = la[0] * nx + la[1] * nz
-        radius = rect.hw * abs(nx) + rect.hd * abs(nz)
-        overlap = radius - abs(offset)
+        nx, nz = -ez / length, ex / length  # the segment's normal
+        overlap = hw * abs(nx) + hd * abs(nz) - abs(ax * nx + az * nz)
         if overlap < best:
             best = overlap
     return best
 
 
+def _local_distance(ax: float, az: float, bx: float, bz: float, hw: float, hd: float) -> float:
+    """Distance between segment a-b and the box [-hw, hw] x [-hd, hd] when they do not meet."""
+    best = min(
+        math.hypot(max(abs(ax) - hw, 0.0), max(abs(az) - hd, 0.0)),
+        math.hypot(max(abs(bx) - hw, 0.0), max(abs(bz) - hd, 0.0)),
+    )
+    ex, ez = bx - ax, bz - az
+    length2 = ex * ex + ez * ez
+    for px, pz in ((hw, hd), (-hw, hd), (hw, -hd), (-hw, -hd)):
+        distance = _point_segment_distance(px, pz, ax, az, ex, ez, length2)
+        if distance < best:
+            best = distance
+    return best
+
+
 def segment_rect_distance(ax: float, az: float, bx: float, bz: float, rect: Rect) -> float:
     """Minimum distance between a segment and a filled rectangle (0 when they meet)."""
-    if _segment_rect_overlap(ax, az, bx, bz, rect) >= 0.0:
+    (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
+    if _local_overlap(lax, laz, lbx, lbz, rect.hw, rect.hd) >= 0.0:
         return 0.0
-    best = min(point_rect_distance(ax, az, rect), point_rect_distance(bx, bz, rect))
-    for px, pz in corners(rect):
-        best = min(best, nearest_on_segment(px, pz, ax, az, bx, bz)[0])
-    return best
+    return _local_distance(lax, laz, lbx, lbz, rect.hw, rect.hd)
 
 
 def capsule_rect_penetration(ax: float, az: float, bx: float, bz: float, radius: float, rect: Rect) -> float:
@@ -161,25 +182,28 @@ def capsule_rect_penetration(ax: float, az: float, bx: float, bz: float, radius:
     centre line it grows by the rectangle's SAT overlap with the segment, so the value
     is continuous and keeps growing the deeper the rectangle sits.
     """
-    overlap = _segment_rect_overlap(ax, az, bx, bz, rect)
+    (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
+    overlap = _local_overlap(lax, laz, lbx, lbz, rect.hw, rect.hd)
     if overlap >= 0.0:
         return radius + overlap
-    gap = segment_rect_distance(ax, az, bx, bz, rect)
+    gap = _local_distance(lax, laz, lbx, lbz, rect.hw, rect.hd)
     return radius - gap if gap < radius else 0.0
 
 
 def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     """Deepest penetration of a rectangle into a buffered polyline (its worst segment).
 
-    Segments farther from the rectangle's centre than ``radius`` plus the rectangle's
-    circumradius cannot touch it and are skipped before the exact test.
+    Segments whose bounding box, grown by ``radius``, misses the rectangle's bounding
+    box cannot touch it and are skipped before the exact test.
     """
     best = 0.0
-    clear = radius + math.hypot(rect.hw, rect.hd)
-    cx, cz = rect.cx, rect.cz
+    cx, cz, hw, hd, c, s = rect
+    reach_x = hw * abs(c) + hd * abs(s) + radius
+    reach_z = hw * abs(s) + hd * abs(c) + radius
+    x0, x1, z0, z1 = cx - reach_x, cx + reach_x, cz - reach_z, cz + reach_z
     for index in range(len(points) - 1):
         (ax, az), (bx, bz) = points[index], points[index + 1]
-        if nearest_on_segment(cx, cz, ax, az, bx, bz)[0] >= clear:
+        if (ax < x0 and bx < x0) or (ax > x1 and bx > x1) or (az < z0 and bz < z0) or (az > z1 and bz > z1):
             continue
         depth = capsule_rect_penetration(ax, az, bx, bz, radius, rect)
         if depth > best:

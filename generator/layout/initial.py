@@ -24,6 +24,9 @@ from .problem import Endpoint, RelationTerm
 
 #: Paths stay this far (metres) inside the extent when first laid out.
 PATH_MARGIN = 1.0
+#: New paths take this share of their maximum length (room permitting): long roads give
+#: the items placed along them room, and the length term stays near 0 below the maximum.
+PATH_LENGTH_SHARE = 0.95
 #: Spread (radians) of the heading change at each control point of a new path.
 PATH_WIGGLE = 0.15
 
@@ -99,7 +102,7 @@ def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
         middle = (rng.uniform(-0.2, 0.2) * 2 * half_x, rng.uniform(-0.2, 0.2) * 2 * half_z)
         back = _room(middle, heading + math.pi, half_x, half_z)
         ahead = _room(middle, heading, half_x, half_z)
-        length = min(0.9 * problem.path_max_length[path], back + ahead)
+        length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
         behind = min(back, length / 2.0)
         start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
         _set_path(energy, rng, path, start, heading, length)
@@ -120,7 +123,7 @@ def _set_path(energy: Energy, rng: np.random.Generator, path: int, start, headin
     problem = energy.problem
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
     segments = problem.path_segments[path]
-    step = min(0.9 * problem.path_max_length[path], room) / segments
+    step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
     points = [[float(start[0]), float(start[1])]]
     for _ in range(segments):
         heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))

@@ -6,6 +6,8 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
 - ``jitter``: shift one box (a stacked box slides over its support's top);
 - ``rotate``: turn one box a little, or snap it to a multiple of 90 degrees;
 - ``group``: move or turn a whole group rigidly;
+- ``cluster``: shift a set of items tied together by relations (a tower, the smithy
+  beside it and the sign behind it) as one, so they can leave a bad spot together;
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
   source where that relation holds (on the right side of B at a small gap, on B's top,
   beside a road at a random point along it, turned to face B, ...);
@@ -26,7 +28,9 @@ from .relation_terms import COMPASS, anchor, centre
 from .state import State
 
 #: Relative frequencies of the move types.
-MOVE_WEIGHTS = {"jitter": 0.30, "rotate": 0.12, "group": 0.13, "relation": 0.30, "path": 0.10, "junction": 0.05}
+MOVE_WEIGHTS = {
+    "jitter": 0.27, "rotate": 0.12, "group": 0.12, "cluster": 0.06, "relation": 0.28, "path": 0.10, "junction": 0.05,
+}  # fmt: skip
 
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
@@ -101,8 +105,10 @@ class Mover:
         self.relations = [
             t for t, term in enumerate(problem.relations) if self._movable(term.a) or self._movable(term.b)
         ]
+        self.clusters = _clusters(problem)
         available = {
             "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
+            "cluster": bool(self.clusters),
             "relation": bool(self.relations), "path": problem.n_paths > 0, "junction": bool(self.junctions),
         }  # fmt: skip
         self.kinds = [kind for kind in MOVE_WEIGHTS if available[kind]]
@@ -128,6 +134,8 @@ class Mover:
             return self.rotate(self.boxes[int(self.rng.integers(len(self.boxes)))])
         if kind == "group":
             return self.move_group(self.groups[int(self.rng.integers(len(self.groups)))])
+        if kind == "cluster":
+            return self.move_cluster(self.clusters[int(self.rng.integers(len(self.clusters)))])
         if kind == "relation":
             return self.relation_move(relation_energy)
         if kind == "path":
@@ -161,6 +169,11 @@ class Mover:
         turn = rng.normal(0.0, 0.3) if rng.random() < 0.3 else 0.0
         shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
         return rigid(state, self.group_boxes[group], pivot, turn, shift), {}
+
+    def move_cluster(self, boxes: list[int]) -> tuple[dict, dict]:
+        sigma = _log_uniform(self.rng, 0.05, 2.0)
+        shift = (self.rng.normal(0.0, sigma), self.rng.normal(0.0, sigma))
+        return rigid(self.state, boxes, (0.0, 0.0), 0.0, shift), {}
 
     def move_path(self, path: int) -> tuple[dict, dict] | None:
         problem, state, rng = self.problem, self.state, self.rng
@@ -364,3 +377,41 @@ class Mover:
         x = state.x[b] + lx * c + lz * s
         z = state.z[b] - lx * s + lz * c
         return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))
+
+
+def _clusters(problem: Problem) -> list[list[int]]:
+    """Sets of top-level items (with all their boxes) that relations tie together.
+
+    Items are top-level groups and boxes outside groups (a stacked box belongs to what
+    it rests on); two items are tied when a relation joins anything in them. Paths and
+    junctions tie nothing. Only sets of two or more items are returned, in a fixed order.
+    """
+    unit_of: dict[int, int] = {}
+    for group in problem.top_groups:
+        for box in problem.group_members[group]:
+            unit_of[box] = -1 - group
+    for box in range(problem.n_boxes):
+        if box not in unit_of and not problem.is_junction[box]:
+            root = box
+            while problem.support[root] >= 0:
+                root = problem.support[root]
+            unit_of[box] = unit_of.get(root, root)
+    parent: dict[int, int] = {unit: unit for unit in unit_of.values()}
+
+    def find(unit: int) -> int:
+        while parent[unit] != unit:
+            parent[unit] = parent[parent[unit]]
+            unit = parent[unit]
+        return unit
+
+    for term in problem.relations:
+        ends = [unit_of[box] for box in term.a.members[:1] + term.b.members[:1] if box in unit_of]
+        if len(ends) == 2 and find(ends[0]) != find(ends[1]):
+            parent[find(ends[0])] = find(ends[1])
+    members: dict[int, list[int]] = {}
+    units: dict[int, set[int]] = {}
+    for box in sorted(unit_of):
+        root = find(unit_of[box])
+        members.setdefault(root, []).append(box)
+        units.setdefault(root, set()).add(unit_of[box])
+    return [carried_by(problem, boxes) for root, boxes in members.items() if len(units[root]) > 1]

@@ -21,7 +21,8 @@ class LayoutParams:
     taken (the chain polishes even a constructive placement that is already fine);
     ``check_every`` how often the stop rule is tested; it stops once the layout is ok
     (every relation satisfied, nothing overlapping, all inside) and its energy is at most
-    ``target_energy``. ``restarts`` more runs from fresh initial placements are made while
+    ``target_energy``; it gives up early when its count of problems has not fallen for
+``patience`` steps. ``restarts`` more runs from fresh initial placements are made while
     the result is not ok, and the best is kept. The temperature falls geometrically from
     ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
     poses are tried for each item during the constructive initial placement.
@@ -36,9 +37,10 @@ class LayoutParams:
     steps: int = 4000
     min_steps: int = 200
     check_every: int = 200
+    patience: int = 1200
     target_energy: float = math.inf
     restarts: int = 3
-    temperature_start: float = 0.1
-    temperature_end: float = 0.01
+    temperature_start: float = 0.05
+    temperature_end: float = 0.002
     initial_candidates: int = 16
     incremental: bool = True

@@ -5,7 +5,9 @@ draws a proposal (``moves.Mover``), gets its energy change from ``Energy.propose
 accepts it with probability min(1, exp(-delta / T)), T falling geometrically from
 ``temperature_start`` to ``temperature_end``. Every ``check_every`` steps (after
 ``min_steps``) the stop rule is tested: the layout is ok (``report.assess``) and its
-energy is at most ``target_energy``. The caller makes restarts.
+energy is at most ``target_energy``. A chain whose count of problems has not fallen
+for ``patience`` steps stops early, since a fresh start does better than waiting. The
+caller makes restarts.
 """
 
 from __future__ import annotations
@@ -48,6 +50,7 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
     place_initial(energy, mover, rng)
     relations, problems = assess(energy)
     accepted = steps = 0
+    fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
     budget = params.steps
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
@@ -55,6 +58,10 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
         if step >= params.min_steps and step % params.check_every == 0:
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
+                break
+            if len(problems) < fewest:
+                fewest, since = len(problems), step
+            elif step - since >= params.patience:
                 break
         steps = step + 1
         proposal = mover.propose(energy.relation)
