@@ -464,7 +464,7 @@ def main(argv: list[str] | None = None) -> int:
         print(str(error) if located else f"{PROG}: error: {error}", file=sys.stderr)
         return error.exit_code
     except KeyboardInterrupt:
-        print(f"{PROG}: interrupted", file=sys.stderr)
+        print(f"{PROG}: interrupted (rerunning a dataset command resumes it)", file=sys.stderr)
         return 130
     except Exception as error:  # a bug, not the user's fault: say so in one line
         if debug:

@@ -62,3 +62,12 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
     assert main(["dataset", str(bad), "-n", "2", "-o", str(tmp_path / "x")]) == 2
     assert capsys.readouterr().err.startswith(f"{bad}:1:")
     assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.slow
+def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        assert main([*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]) == 0
+    assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)
