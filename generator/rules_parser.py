@@ -319,33 +319,38 @@ def _terminal_text(name: str) -> str:
 
 
 def _expected_words(expected: set[str]) -> list[str]:
-    """The expected terminals of a parser state, as a short list of phrases."""
-    texts = {name: _terminal_text(name) for name in expected if name not in _WORDS and name not in ("NAME", "CAMEL")}
+    """The terminals a parser state accepts, as a short list of phrases.
+
+    A state is recognised by a keyword it accepts (``noun``: inside a catalog entry;
+    ``extent``: a scene block; ``object``: the top level; ``some``: where a subject or
+    target may stand), so its whole family of keywords is said in one phrase.
+    """
+    if expected == {"NUMBER", "LBRACE", "_NL"}:  # after '->' or '|' (a newline may come first)
+        return ["an alternative: a block '{' or a weight like '2:'"]
+    keywords = {_terminal_text(name) for name in expected if name not in _WORDS and name not in ("NAME", "CAMEL")}
     words: list[str] = []
-    keywords = set(texts.values())
     if "noun" in keywords:
         words.append("a field (" + ", ".join(ENTRY_FIELDS + ("style",)) + ")")
         keywords -= set(ENTRY_FIELDS) | {"style"}
     if "extent" in keywords:
         words.append("a scene setting (" + ", ".join(SCENE_SETTINGS) + ")")
         keywords -= set(SCENE_SETTINGS)
-    if "object" in keywords:
+    if "object" in keywords:  # the top level
         words.append("a catalog entry (" + ", ".join(KINDS_WORDS) + ")")
         keywords -= set(KINDS_WORDS)
         if "CAMEL" in expected:
             words.append("a production")
-    elif "some" in keywords and "NUMBER" in expected:
+    elif "some" in keywords and "NUMBER" in expected:  # the start of a statement
         words.append("a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count)")
         keywords -= {"some", "each"}
     elif "some" in keywords and "CAMEL" in expected:  # a subject after its count or '?'
         words.append("a type, a nonterminal, a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
         keywords -= {"some", "each"}
-    elif "some" in keywords:
+    elif "some" in keywords:  # a relation's target or a call's argument
         words.append("a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
         keywords -= {"some", "each"}
-    elif "CAMEL" in expected:
-        words.append("a relation label" if "LBRACE" in expected or "RPAR" in expected or "as" in keywords
-                     else "a nonterminal")
+    elif "CAMEL" in expected:  # after a subject a label; after 'start' a nonterminal
+        words.append("a relation label" if "LBRACE" in expected else "a nonterminal")
     elif "NAME" in expected:
         words.append(_WORDS["NAME"])
     if "as" in keywords:
@@ -355,10 +360,15 @@ def _expected_words(expected: set[str]) -> list[str]:
         words.append("'->'")
         keywords.discard("->")
     words.extend(f"'{keyword}'" for keyword in sorted(keywords))
-    ends_statement = "_NL" in expected or "SEMICOLON" in expected
+    # A statement may end with either; a newline alone is only allowed layout (after '->').
+    # Between declarations, fields and scene settings, separators are only layout.
+    in_declarations = any(word.startswith(("a catalog entry", "a field", "a scene setting")) for word in words)
+    ends_statement = "SEMICOLON" in expected and not in_declarations
     for name in ("NUMBER", "STRING", "COLOUR", "ORDINAL", "LPAR", "RPAR", "COMMA", "COLON", "QMARK",
                  "VBAR", "LBRACE", "RBRACE", "_NL", "SEMICOLON", "$END"):
         if name not in expected or (name == "RBRACE" and ends_statement):
+            continue
+        if name in ("_NL", "SEMICOLON") and not ends_statement:
             continue
         if name == "NUMBER" and any("count" in word for word in words):
             continue

@@ -41,6 +41,27 @@ syntax_after_subject.rules:4:14: error: unexpected character '='; expected 'as',
     S -> { table = 3 }
                  ^""",
     ),
+    "syntax_alternative": (
+        "S -> table",
+        """\
+syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative: a block '{' or a weight like '2:'
+    S -> table
+         ^""",
+    ),
+    "syntax_in_entry": (
+        'object chair { noun "chair" 3 }\nS -> { chair }',
+        """\
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, style) or '}'
+    object chair { noun "chair" 3 }
+                                ^""",
+    ),
+    "syntax_top_level": (
+        "S -> { table }\ntable",
+        """\
+syntax_top_level.rules:5:1: error: unexpected 'table'; expected a catalog entry (object, group, path, junction), a production, 'include', 'scene' or the end of the file
+    table
+    ^""",
+    ),
     "unknown_type": (
         "S -> { tabel }",
         """\
