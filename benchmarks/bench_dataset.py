@@ -18,9 +18,13 @@ from scenewright.dataset import dataset_spec, run_dataset
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("-n", "--count", type=int, default=40, help="scenes per run (40)")
-    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2], help="worker counts to compare (1 2)")
+    parser.add_argument(
+        "--workers", type=int, nargs="+", default=[1, 2], help="worker counts to compare (1 2)"
+    )
     parser.add_argument("--rules", default="village")
     args = parser.parse_args()
 
@@ -32,7 +36,9 @@ def main() -> None:
             report = run_dataset(spec, Path(directory) / "data", workers=workers, progress=False)
         rates[workers] = report.scenes_per_minute
         stages = report.stats["seconds_per_stage"]
-        per_stage = ", ".join(f"{stage} {stages[stage]['median']:.3f}" for stage in ("layout", "describe", "render"))
+        per_stage = ", ".join(
+            f"{stage} {stages[stage]['median']:.3f}" for stage in ("layout", "describe", "render")
+        )
         print(
             f"workers={workers}: {report.seconds:6.1f} s, {report.scenes_per_minute:6.1f} scenes/min, "
             f"{report.failed} failed layouts; median s/scene: {per_stage}"

@@ -176,7 +176,10 @@ def run_generate(args: argparse.Namespace) -> int:
     if scene.layout.ok:
         return 0
     problems = "; ".join(scene.layout.problems) or "energy above the target"
-    print(f"{PROG}: error: the layout did not satisfy every constraint (files kept): {problems}", file=sys.stderr)
+    print(
+        f"{PROG}: error: the layout did not satisfy every constraint (files kept): {problems}",
+        file=sys.stderr,
+    )
     return 1
 
 
@@ -202,7 +205,10 @@ def run_dataset(args: argparse.Namespace) -> int:
         f"layouts failed ({failed_note}); made {report.made} now, {report.skipped} were already done",
     )
     if report.made:
-        say(args, f"{report.seconds:.1f} s, {report.scenes_per_minute:.1f} scenes/min; statistics in stats.json, stats.png")
+        say(
+            args,
+            f"{report.seconds:.1f} s, {report.scenes_per_minute:.1f} scenes/min; statistics in stats.json, stats.png",
+        )
     if report.written == 0 and report.count > 0:
         print(f"{PROG}: error: every scene's layout failed; nothing usable was written", file=sys.stderr)
         return 1
@@ -393,10 +399,14 @@ def build_parser() -> CommandLineParser:
 
     def style_options(sub: argparse.ArgumentParser) -> None:
         sub.add_argument("--style", choices=("full", "short"), default="full", help="description style")
-        sub.add_argument("--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)")
+        sub.add_argument(
+            "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
+        )
 
     def view_options(sub: argparse.ArgumentParser, size: str) -> None:
-        sub.add_argument("--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})")
+        sub.add_argument(
+            "--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})"
+        )
         sub.add_argument("--view", choices=("perspective", "top"), default="perspective", help="camera")
 
     generate = command("generate", "generate one scene with its description, images and files", run_generate)
@@ -409,17 +419,28 @@ def build_parser() -> CommandLineParser:
 
     dataset = command("dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset)
     dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
-    dataset.add_argument("-n", "--count", type=count_at_least(1), required=True, metavar="N", help="number of scenes")
-    dataset.add_argument("-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)")
+    dataset.add_argument(
+        "-n", "--count", type=count_at_least(1), required=True, metavar="N", help="number of scenes"
+    )
+    dataset.add_argument(
+        "-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)"
+    )
     dataset.add_argument("--seed", type=seed_value, default=0, help="base seed (0)")
     dataset.add_argument(
-        "--workers", type=count_at_least(1), metavar="K", help="worker processes (default: one per core)"
+        "--workers",
+        type=count_at_least(1),
+        metavar="K",
+        help="worker processes (default: one per core; ignored with --scheduler)",
     )
-    dataset.add_argument("--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)")
+    dataset.add_argument(
+        "--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)"
+    )
     view_options(dataset, "512x512")
     dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
     dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
-    dataset.add_argument("--scheduler", metavar="ADDRESS", help="run on a dask.distributed scheduler (tcp://host:8786)")
+    dataset.add_argument(
+        "--scheduler", metavar="ADDRESS", help="run on a dask.distributed scheduler (tcp://host:8786)"
+    )
     dataset.add_argument(
         "--include-failed", action="store_true", help="keep scenes whose layout failed, flagged ok=false"
     )
@@ -439,7 +460,9 @@ def build_parser() -> CommandLineParser:
 
     render = command("render", "render a scene.json offscreen", run_render)
     render.add_argument("scene", metavar="SCENE_JSON")
-    render.add_argument("-o", "--output", default="preview.png", metavar="PNG", help="colour image (preview.png)")
+    render.add_argument(
+        "-o", "--output", default="preview.png", metavar="PNG", help="colour image (preview.png)"
+    )
     view_options(render, "640x480")
 
     export = command("export", "export a scene.json as binary glTF", run_export)
@@ -469,7 +492,10 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as error:  # a bug, not the user's fault: say so in one line
         if debug:
             traceback.print_exc()
-        print(f"{PROG}: error: {type(error).__name__}: {error} (rerun with --debug for the traceback)", file=sys.stderr)
+        print(
+            f"{PROG}: error: {type(error).__name__}: {error} (rerun with --debug for the traceback)",
+            file=sys.stderr,
+        )
         return 1
 
 

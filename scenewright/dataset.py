@@ -232,8 +232,11 @@ def write_metadata(root: Path, records: list[dict]) -> int:
     return len(rows)
 
 
-def make_executor(workers: int, scheduler: str | None, producer: Producer, spec: DatasetSpec) -> cf.Executor:
-    """A process pool on this machine, or an executor on a dask.distributed scheduler.
+def make_executor(
+    workers: int, scheduler: str | None, producer: Producer, spec: DatasetSpec
+) -> tuple[cf.Executor, int]:
+    """A process pool on this machine, or an executor on a dask.distributed scheduler,
+    with the number of scenes it works on at once (``workers``, or the cluster's threads).
 
     Pool workers start with ``forkserver`` (``spawn`` where it is missing): each creates
     its own OpenGL context, and a context must not be inherited through ``fork``. Each
@@ -242,7 +245,8 @@ def make_executor(workers: int, scheduler: str | None, producer: Producer, spec:
     if scheduler:
         from scenewright.dataset_cluster import cluster_executor
 
-        return cluster_executor(scheduler)
+        executor = cluster_executor(scheduler)
+        return executor, executor.slots()
     from scenewright.dataset_scene import produce_scene, worker_context
 
     methods = multiprocessing.get_all_start_methods()
@@ -252,7 +256,10 @@ def make_executor(workers: int, scheduler: str | None, producer: Producer, spec:
         # imports take seconds); no OpenGL context exists yet at that point.
         context.set_forkserver_preload(WORKER_MODULES)
     warm_up = worker_context if producer is produce_scene else None
-    return cf.ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=warm_up, initargs=(spec,))
+    pool = cf.ProcessPoolExecutor(
+        max_workers=workers, mp_context=context, initializer=warm_up, initargs=(spec,)
+    )
+    return pool, workers
 
 
 def run_dataset(
@@ -266,8 +273,10 @@ def run_dataset(
 ) -> RunReport:
     """Make (or finish) the dataset ``spec`` in ``directory``; return what was done.
 
-    ``producer`` computes one scene in a worker (default: the real pipeline,
-    ``dataset_scene.produce_scene``); tests inject a cheap one.
+    ``workers`` sizes the local process pool (default: one per core); with a dask
+    ``scheduler`` address the cluster's workers are used instead. ``producer`` computes
+    one scene in a worker (default: the real pipeline, ``dataset_scene.produce_scene``);
+    tests inject a cheap one.
     """
     from scenewright.dataset_scene import produce_scene
     from scenewright.dataset_stats import summarise, write_stats
@@ -279,9 +288,10 @@ def run_dataset(
     started = time.perf_counter()
     made = failed_now = 0
     if todo:
-        with make_executor(workers, scheduler, producer, spec) as executor:
+        executor, slots = make_executor(workers, scheduler, producer, spec)
+        with executor:
             bar = progress_bar(len(todo), progress, spec.count - len(todo))
-            for product in completed_products(executor, producer, spec, todo, window=4 * workers):
+            for product in completed_products(executor, producer, spec, todo, window=4 * slots):
                 store_product(root, product)
                 made += 1
                 failed_now += not product.ok

@@ -29,6 +29,10 @@ class ClusterExecutor(cf.Executor):
     def submit(self, fn, /, *args, **kwargs) -> cf.Future:
         return self._executor.submit(fn, *args, **kwargs)
 
+    def slots(self) -> int:
+        """Scenes the cluster works on at once: its worker threads (at least one)."""
+        return max(1, sum(self._client.nthreads().values()))
+
     def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
         self._executor.shutdown(wait=wait)
         self._client.close()
@@ -41,7 +45,9 @@ def cluster_executor(address: str) -> ClusterExecutor:
     except ImportError as error:
         raise InputError("--scheduler needs dask.distributed: pip install 'scenewright[dask]'") from error
     try:
-        client = Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)  # read per call: tests shorten it
+        client = Client(
+            address, timeout=CONNECT_TIMEOUT, set_as_default=False
+        )  # read per call: tests shorten it
     except (OSError, TimeoutError, ValueError) as error:
         raise InputError(f"cannot reach the dask scheduler at {address}: {error}") from error
     return ClusterExecutor(client)

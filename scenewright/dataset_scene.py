@@ -90,7 +90,9 @@ def scene_stats(scene: Scene, texts: list[str]) -> dict:
     return {
         "objects": dict(Counter(o.type for o in scene.placed_objects())),
         "relations": relations,
-        "words": {"text": len(texts[0].split()), "captions": [len(t.split()) for t in texts[1:]]} if texts else {},
+        "words": {"text": len(texts[0].split()), "captions": [len(t.split()) for t in texts[1:]]}
+        if texts
+        else {},
         "seconds": timings_of(scene),
         "problems": list(scene.layout.problems),
     }

@@ -53,10 +53,14 @@ def summarise(records: list[dict], *, made: int, seconds: float) -> dict:
         "objects": dict(sorted(objects.items(), key=lambda item: (-item[1], item[0]))),
         "relations": {
             label: {"total": total, "satisfied": satisfied}
-            for label, (total, satisfied) in sorted(relations.items(), key=lambda item: (-item[1][0], item[0]))
+            for label, (total, satisfied) in sorted(
+                relations.items(), key=lambda item: (-item[1][0], item[0])
+            )
         },
         "words": {"text": distribution(text_words, bins=12), "caption": distribution(caption_words, bins=12)},
-        "seconds_per_stage": {stage: distribution(values, digits=4) for stage, values in stage_seconds.items()},
+        "seconds_per_stage": {
+            stage: distribution(values, digits=4) for stage, values in stage_seconds.items()
+        },
         "this_run": {
             "scenes_made": made,
             "seconds": round(seconds, 3),
@@ -124,7 +128,13 @@ def stats_figure(stats: dict) -> bytes:
         if summary["count"]:
             histogram = summary["histogram"]
             edges = histogram["edges"]
-            lengths.stairs(histogram["counts"], edges, fill=True, alpha=0.6, label=f"{name} (median {summary['median']:g})")
+            lengths.stairs(
+                histogram["counts"],
+                edges,
+                fill=True,
+                alpha=0.6,
+                label=f"{name} (median {summary['median']:g})",
+            )
     lengths.set_title("length in words (full text, short captions)")
     lengths.set_xlabel("words")
     lengths.set_ylabel("texts")

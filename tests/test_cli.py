@@ -63,7 +63,17 @@ def test_version_and_help_with_examples(capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(["--version"])
     assert exit_info.value.code == 0 and capsys.readouterr().out.strip() == f"scenewright {__version__}"
-    for command in ("generate", "dataset", "validate", "expand", "describe", "render", "export", "schema", "list"):
+    for command in (
+        "generate",
+        "dataset",
+        "validate",
+        "expand",
+        "describe",
+        "render",
+        "export",
+        "schema",
+        "list",
+    ):
         with pytest.raises(SystemExit) as exit_info:
             main([command, "--help"])
         out = capsys.readouterr().out
@@ -97,7 +107,9 @@ def test_console_script_exit_codes_and_no_traceback(tmp_path):
     assert missing.returncode == 2
     assert_one_line_error(missing.stderr, "nowhere.json: cannot read: No such file")
     debug = subprocess.run(
-        [str(SCENEWRIGHT), "describe", str(tmp_path / "nowhere.json"), "--debug"], capture_output=True, text=True
+        [str(SCENEWRIGHT), "describe", str(tmp_path / "nowhere.json"), "--debug"],
+        capture_output=True,
+        text=True,
     )
     assert debug.returncode == 2 and "Traceback" in debug.stderr
 
@@ -110,7 +122,9 @@ BAD_RULES = "scene village {\n  extent 10 x 10\n  start Village\n}\nVillage -> t
 def test_validate_shipped_rules_ok(capsys):
     code, out, _ = run(capsys, "validate", *(str(p) for p in Path("grammar_rules").glob("*.rules")))
     assert code == 0
-    assert sorted(out.splitlines()) == [f"grammar_rules/{n}.rules: ok" for n in ("bedroom", "desk", "village")]
+    assert sorted(out.splitlines()) == [
+        f"grammar_rules/{n}.rules: ok" for n in ("bedroom", "desk", "village")
+    ]
 
 
 def test_validate_reports_located_errors_and_missing_files(capsys, tmp_path):
@@ -147,7 +161,9 @@ def test_expand_json_and_dot(capsys, tmp_path):
     assert code == 0 and graph["params"]["name"] == "village" and graph["nodes"] and graph["edges"]
     _, again, _ = run(capsys, "expand", "village", "--seed", "3")
     assert again == out
-    code, _, _ = run(capsys, "expand", "village", "--seed", "3", "--format", "dot", "-o", str(tmp_path / "g.dot"))
+    code, _, _ = run(
+        capsys, "expand", "village", "--seed", "3", "--format", "dot", "-o", str(tmp_path / "g.dot")
+    )
     assert code == 0 and (tmp_path / "g.dot").read_text().startswith("digraph")
 
 
@@ -184,9 +200,16 @@ def test_export_and_unwritable_output(capsys, scene_file, tmp_path):
 
 
 def test_render_writes_preview_and_ground_truth(capsys, scene_file, tmp_path):
-    code, out, _ = run(capsys, "render", str(scene_file), "-o", str(tmp_path / "top.png"), "--size", "64x48", "--view", "top")
+    code, out, _ = run(
+        capsys, "render", str(scene_file), "-o", str(tmp_path / "top.png"), "--size", "64x48", "--view", "top"
+    )
     assert code == 0
-    assert {p.name for p in tmp_path.glob("top*")} == {"top.png", "top_depth.png", "top_seg.png", "top_ids.json"}
+    assert {p.name for p in tmp_path.glob("top*")} == {
+        "top.png",
+        "top_depth.png",
+        "top_seg.png",
+        "top_ids.json",
+    }
     from PIL import Image
 
     assert Image.open(tmp_path / "top.png").size == (64, 48)
@@ -212,7 +235,9 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
 
     outputs = []
     for name in ("first", "second"):
-        code, out, err = run(capsys, "generate", "desk", "--seed", "2", "--size", "64x48", "-o", str(tmp_path / name))
+        code, out, err = run(
+            capsys, "generate", "desk", "--seed", "2", "--size", "64x48", "-o", str(tmp_path / name)
+        )
         assert code == 0, err
         outputs.append(tmp_path / name)
     assert sorted(p.name for p in outputs[0].iterdir()) == sorted(GENERATE_OUTPUTS)
@@ -223,12 +248,19 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
         assert (outputs[0] / name).read_bytes() == (outputs[1] / name).read_bytes(), name
     scene = json.loads((outputs[0] / "scene.json").read_text())
     assert scene["seed"] == 2 and scene["rules"] == "desk" and scene["render"]["camera"]["width"] == 64
-    assert set(json.loads((outputs[0] / "timings.json").read_text())) >= {"expand", "layout", "describe", "render"}
+    assert set(json.loads((outputs[0] / "timings.json").read_text())) >= {
+        "expand",
+        "layout",
+        "describe",
+        "render",
+    }
 
 
 def test_no_render_drops_stale_previews_and_quiet_prints_nothing(capsys, tmp_path):
     run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path))
-    code, out, _ = run(capsys, "generate", "desk", "--no-render", "--quiet", "-o", str(tmp_path), "--style", "short")
+    code, out, _ = run(
+        capsys, "generate", "desk", "--no-render", "--quiet", "-o", str(tmp_path), "--style", "short"
+    )
     assert code == 0 and out == ""
     assert not list(tmp_path.glob("preview*")) and (tmp_path / "scene.glb").exists()
     assert json.loads((tmp_path / "scene.json").read_text())["description"]["style"] == "short"
@@ -241,7 +273,11 @@ def quick_layout(monkeypatch):
     from scenewright.generator.layout import LayoutParams
 
     real = layout.layout_scene
-    monkeypatch.setattr(layout, "layout_scene", lambda graph, seed: real(graph, seed, params=LayoutParams(steps=300, restarts=0)))
+    monkeypatch.setattr(
+        layout,
+        "layout_scene",
+        lambda graph, seed: real(graph, seed, params=LayoutParams(steps=300, restarts=0)),
+    )
 
 
 def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
@@ -280,5 +316,7 @@ def test_describe_command(capsys, tmp_path):
     run(capsys, "generate", "desk", "--seed", "4", "--no-render", "-o", str(tmp_path))
     code, out, _ = run(capsys, "describe", str(tmp_path / "scene.json"))
     assert code == 0 and out.strip() == (tmp_path / "description.txt").read_text().strip()
-    code, short, _ = run(capsys, "describe", str(tmp_path / "scene.json"), "--style", "short", "--variant", "1")
+    code, short, _ = run(
+        capsys, "describe", str(tmp_path / "scene.json"), "--style", "short", "--variant", "1"
+    )
     assert code == 0 and 0 < len(short) < len(out)

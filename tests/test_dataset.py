@@ -46,7 +46,9 @@ def fake_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         stats["problems"] = [f"sign_{index} is not next to table_1 (distance {seed % 10} m)"]
         if not spec.include_failed:
             return SceneProduct(index, seed, False, {f"failed/{stem}.json": b"{}\n"}, None, stats)
-    pixels = np.random.default_rng(seed).integers(0, 256, size=(spec.size[1], spec.size[0], 3), dtype=np.uint8)
+    pixels = np.random.default_rng(seed).integers(
+        0, 256, size=(spec.size[1], spec.size[0], 3), dtype=np.uint8
+    )
     buffer = io.BytesIO()
     Image.fromarray(pixels).save(buffer, format="PNG")
     captions = [f"scene {index} caption {k}" for k in range(spec.captions)]
@@ -55,7 +57,10 @@ def fake_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=ok)
     stats["words"] = {"text": 5, "captions": [len(c.split()) for c in captions]}
     stats["seconds"] = {"layout": 0.01 * (index + 1)}
-    files = {f"images/{stem}.png": buffer.getvalue(), f"scenes/{stem}.json": json.dumps({"seed": seed}).encode()}
+    files = {
+        f"images/{stem}.png": buffer.getvalue(),
+        f"scenes/{stem}.json": json.dumps({"seed": seed}).encode(),
+    }
     return SceneProduct(index, seed, ok, files, row, stats)
 
 
@@ -92,7 +97,15 @@ def test_scene_seed_is_derived_from_base_and_index_only():
 def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
     report = run_dataset(spec_of(8, captions=3), tmp_path, workers=1, producer=fake_scene, progress=False)
     rows = metadata_rows(tmp_path)
-    assert [r["scene_id"] for r in rows] == ["000000", "000001", "000002", "000004", "000005", "000006", "000007"]
+    assert [r["scene_id"] for r in rows] == [
+        "000000",
+        "000001",
+        "000002",
+        "000004",
+        "000005",
+        "000006",
+        "000007",
+    ]
     assert all((tmp_path / r["file_name"]).is_file() for r in rows)
     assert rows[0]["caption_2"] == "scene 0 caption 2" and rows[0]["seed"] == scene_seed(0, 0)
     assert not (tmp_path / "images/000003.png").exists() and (tmp_path / "failed/000003.json").exists()
@@ -164,7 +177,11 @@ def test_dask_local_cluster_gives_the_same_bytes(tmp_path):
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     ) as cluster:
         run_dataset(
-            spec_of(8), tmp_path / "dask", scheduler=cluster.scheduler_address, producer=fake_scene, progress=False
+            spec_of(8),
+            tmp_path / "dask",
+            scheduler=cluster.scheduler_address,
+            producer=fake_scene,
+            progress=False,
         )
     run_dataset(spec_of(8), tmp_path / "pool", workers=2, producer=fake_scene, progress=False)
     assert dataset_bytes(tmp_path / "dask") == dataset_bytes(tmp_path / "pool")

@@ -44,14 +44,28 @@ def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
 
 def test_loads_as_imagefolder_with_ground_truth_columns(one_worker, tmp_path):
     datasets = pytest.importorskip("datasets")
-    loaded = datasets.load_dataset("imagefolder", data_dir=str(one_worker), split="train", cache_dir=str(tmp_path))
+    loaded = datasets.load_dataset(
+        "imagefolder", data_dir=str(one_worker), split="train", cache_dir=str(tmp_path)
+    )
     assert loaded.num_rows == 4
     assert {"image", "depth", "segmentation", "caption", "caption_1", "text"} <= set(loaded.column_names)
     assert loaded[0]["image"].size == (64, 64) and loaded[0]["depth"].size == (64, 64)
 
 
 def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_path):
-    argv = ["dataset", "desk", "-n", "4", "-o", str(one_worker), "--size", "64x64", "--captions", "2", "--depth"]
+    argv = [
+        "dataset",
+        "desk",
+        "-n",
+        "4",
+        "-o",
+        str(one_worker),
+        "--size",
+        "64x64",
+        "--captions",
+        "2",
+        "--depth",
+    ]
     assert main([*argv, "--segmentation"]) == 0
     out = capsys.readouterr().out
     assert "4 scenes in metadata.jsonl; 0 of 4 layouts failed" in out and "4 were already done" in out
@@ -68,6 +82,8 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
 def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     distributed = pytest.importorskip("distributed")
     argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
         assert main([*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]) == 0
     assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)
