@@ -6,7 +6,8 @@ the productions (labels, types, names in scope, calls and their arguments, count
 probabilities and weights, blocks on groups only, PathConnectedTo from a path to a
 junction), then the whole grammar: undefined
 nonterminals, nonterminals that can never finish expanding (a fixpoint over the
-alternatives), and - as warnings - nonterminals the start symbol never reaches.
+alternatives), and - as warnings - nonterminals the start symbol never reaches and
+types no statement creates.
 A rule set with no error diagnostics is safe to turn into a catalog and to expand.
 """
 
@@ -58,6 +59,7 @@ class _Checker:
         self.diagnostics: list[Diagnostic] = []
         self.kinds: dict[str, str] = {}  # type name -> kind
         self.productions: dict[str, ast.Production] = {}
+        self.created_types: set[str] = set()
         self.max_nodes = DEFAULT_MAX_NODES
 
     def error(self, location: SourceLocation, message: str) -> None:
@@ -91,6 +93,9 @@ class _Checker:
                     self.productions[production.name] = production
         for production in self.productions.values():
             self.check_production(production)
+        for entry in first_entry.values():
+            if entry.name not in self.created_types:
+                self.warning(entry.name_location, f"type '{entry.name}' is never created (no statement makes one)")
         if start is not None:
             self.check_start(*start)
         self.check_termination()
@@ -276,6 +281,7 @@ class _Checker:
             if subject.name in scope:
                 return None
             if subject.name in self.kinds:
+                self.created_types.add(subject.name)
                 return self.kinds[subject.name]
             self.error(subject.location, f"unknown type or name '{subject.name}'"
                        + did_you_mean(subject.name, list(self.kinds) + sorted(scope)))

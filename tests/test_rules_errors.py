@@ -17,7 +17,7 @@ from scenewright.generator import RulesError, check_rules, format_diagnostics, l
 
 RULES = Path(__file__).parent / "rules"
 
-HEADER = 'scene s { start S }\nobject table { noun "table" }\ngroup stand { noun "stand" }\n'
+HEADER = 'scene s { start S }\nobject table { noun "table" }\n# the lines under test:\n'
 
 GOLDEN = {
     "label": (
@@ -63,10 +63,10 @@ syntax_top_level.rules:5:1: error: unexpected 'table'; expected a catalog entry 
     ^""",
     ),
     "unknown_type": (
-        "S -> { tabel }",
+        "S -> { tabel; table }",
         """\
 unknown_type.rules:4:8: error: unknown type or name 'tabel'; did you mean 'table'?
-    S -> { tabel }
+    S -> { tabel; table }
            ^""",
     ),
     "undefined_and_unused": (
@@ -78,6 +78,13 @@ undefined_and_unused.rules:4:8: error: undefined nonterminal 'Stnad'; did you me
 undefined_and_unused.rules:5:1: warning: nonterminal 'Stand' is never used (start 'S' does not reach it)
     Stand -> { table }
     ^""",
+    ),
+    "unused_type": (
+        'object lamp { noun "lamp" }\nS -> { table NextTo some lamp }',
+        """\
+unused_type.rules:4:8: warning: type 'lamp' is never created (no statement makes one)
+    object lamp { noun "lamp" }
+           ^""",
     ),
     "never_terminates": (
         "S -> { table; 0.5? Loop }\nLoop -> { table; Loop }",
@@ -111,7 +118,7 @@ unknown_field.rules:4:29: error: unknown catalog field 'color'; did you mean 'co
     ),
     "fields": (
         'object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
-        '  style a 0 { segments 3 } style a { } }\nS -> { chair }',
+        '  style a 0 { segments 3 } style a { } }\nS -> { chair; table }',
         """\
 fields.rules:4:29: error: duplicate field 'noun'
     object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
@@ -181,7 +188,7 @@ block_on_object.rules:4:14: error: a block nests nodes in a new group, but 'tabl
                  ^""",
     ),
     "scene_without_start": (
-        "",
+        "S -> { table }",
         """\
 scene_without_start.rules:1:1: error: the scene block has no start symbol (add: start NONTERMINAL)
     scene s { extent 0 x 3 }
@@ -237,7 +244,7 @@ def test_mesh_files_are_found_relative_to_the_rules_file(in_tmp):
     (in_tmp / "sub" / "models").mkdir(parents=True)
     (in_tmp / "sub" / "models" / "chair.glb").write_bytes(b"glTF")
     text = HEADER + 'object chair { noun "chair" mesh "models/chair.glb" }\n' \
-                    'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench }\n'
+                    'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench; table }\n'
     Path("sub/mesh.rules").write_text(text)
     (diagnostic,) = check_rules("sub/mesh.rules")
     assert diagnostic.message == f"mesh file 'models/bench.glb' not found (looked in {in_tmp / 'sub'})"
