@@ -27,6 +27,9 @@ PATH_MARGIN = 1.0
 #: New paths take this share of their maximum length (room permitting): long roads give
 #: the items placed along them room, and the length term stays near 0 below the maximum.
 PATH_LENGTH_SHARE = 0.95
+#: Where free paths cross the scene: within this share of the extent from its centre.
+LONE_PATH_SPREAD = 0.2
+FREE_PATH_SPREAD = 0.4
 #: Spread (radians) of the heading change at each control point of a new path.
 PATH_WIGGLE = 0.15
 
@@ -95,11 +98,17 @@ def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
             heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
             start = (state.x[junction], state.z[junction])
             _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
-    for path in range(problem.n_paths):
-        if problem.path_start[path] >= 0:
-            continue
+    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    # A lone road crosses near the middle; several spread out, each through the candidate
+    # point farthest from the roads laid so far.
+    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
+    for path in free:
         heading = rng.uniform(0.0, 2.0 * math.pi)
-        middle = (rng.uniform(-0.2, 0.2) * 2 * half_x, rng.uniform(-0.2, 0.2) * 2 * half_z)
+        laid = [p for other in range(problem.n_paths) if other not in free or other < path for p in state.points[other]]
+        candidates = [
+            (rng.uniform(-spread, spread) * 2 * half_x, rng.uniform(-spread, spread) * 2 * half_z) for _ in range(8)
+        ]
+        middle = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0))
         back = _room(middle, heading + math.pi, half_x, half_z)
         ahead = _room(middle, heading, half_x, half_z)
         length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)

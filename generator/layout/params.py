@@ -17,7 +17,8 @@ class LayoutParams:
     ``collision_intensity`` the paper's c in -c log(1 - penetration);
     ``next_to_distance`` the distance NextTo* asks for (paper: 2 m).
 
-    Sampler: ``steps`` is the step budget of one run; ``min_steps`` the steps always
+    Sampler: ``steps`` is the step budget of one run, raised to ``steps_per_box`` times
+    the number of boxes for big scenes (``patience`` grows alike); ``min_steps`` the steps always
     taken (the chain polishes even a constructive placement that is already fine);
     ``check_every`` how often the stop rule is tested; it stops once the layout is ok
     (every relation satisfied, nothing overlapping, all inside) and its energy is at most
@@ -35,6 +36,7 @@ class LayoutParams:
     collision_intensity: float = 30.0
     next_to_distance: float = 2.0
     steps: int = 4000
+    steps_per_box: int = 100
     min_steps: int = 200
     check_every: int = 200
     patience: int = 1200

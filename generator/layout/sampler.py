@@ -51,7 +51,8 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
-    budget = params.steps
+    budget = max(params.steps, params.steps_per_box * problem.n_boxes)
+    patience = params.patience * budget // params.steps
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
     for step in range(budget):
@@ -61,7 +62,7 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
                 break
             if len(problems) < fewest:
                 fewest, since = len(problems), step
-            elif step - since >= params.patience:
+            elif step - since >= patience:
                 break
         steps = step + 1
         proposal = mover.propose(energy.relation)

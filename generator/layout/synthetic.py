@@ -30,7 +30,7 @@ CROSSING = CatalogEntry("intersection", "junction", "intersection", size=(4.0, 0
 def village_graph(n_objects: int, seed: int = 0) -> SceneGraph:
     """About ``n_objects`` objects on an extent that grows with them (constant density)."""
     rng = np.random.default_rng(seed)
-    roads_count = 3 if n_objects <= 60 else max(3, round(n_objects / 20))
+    roads_count = max(3, round(n_objects / 12))  # about a dozen objects along each road
     side = max(50.0, 9.0 * math.sqrt(n_objects))
     graph = SceneGraph(params=SceneParams(name="village", extent=(side, side)))
     roads = []
