@@ -267,11 +267,12 @@ def _parse_into(
             text = stream.read()
     except (OSError, UnicodeDecodeError) as error:
         reason = "not UTF-8 text" if isinstance(error, UnicodeDecodeError) else (error.strerror or str(error))
-        if include_location is None:
-            raise
-        tree.diagnostics.append(
-            tree.sources.diagnostic(include_location, f"cannot read included file '{display}': {reason}")
-        )
+        if include_location is None:  # the file asked for: the error is at its start
+            tree.diagnostics.append(Diagnostic(SourceLocation(display, 1, 1), f"cannot read '{display}': {reason}"))
+        else:
+            tree.diagnostics.append(
+                tree.sources.diagnostic(include_location, f"cannot read included file '{display}': {reason}")
+            )
         return
     tree.paths[display] = path
     parsed = parse_text(text, display, tree.sources)

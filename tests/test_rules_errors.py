@@ -322,3 +322,9 @@ def test_mutated_valid_file_never_raises_anything_else(tmp_path, edits):
         else:
             tokens[i], tokens[j] = tokens[j], tokens[i]
     assert_loads_or_fails_cleanly(tmp_path, " ".join(tokens))
+
+
+def test_a_file_that_is_not_utf8_text_is_a_rules_error(in_tmp):
+    Path("latin1.rules").write_bytes("scene s { start S }\n# caf\xe9\n".encode("latin-1"))
+    with pytest.raises(RulesError, match=r"^latin1\.rules:1:1: error: cannot read 'latin1\.rules': not UTF-8 text$"):
+        load_rules("latin1.rules")
