@@ -246,7 +246,11 @@ def _inventory_items(ground: list[Entity], networks: dict[str, str]) -> tuple[It
 
 
 def _link(items: tuple[Item, ...], pool: list[Relation]) -> tuple[tuple[Item, ...], Clause | None]:
-    """Relate one of two inventory items to the other when all its entities share a relation to it."""
+    """Relate one of two inventory items to the other when all its entities share a place relation to it.
+
+    Returns the items (subject item first) and the clause; the relations it folds in are
+    taken out of ``pool`` so no statement repeats them.
+    """
     for subjects, target in (items, items[::-1]):
         if isinstance(subjects, Network) or isinstance(target, Network) or len(target) != 1:
             continue
