@@ -607,11 +607,12 @@ def windmill(size, colour) -> trimesh.Trimesh:
         panel.apply_transform(trimesh.transformations.rotation_matrix(angle, [0, 0, 1]))
         panel.apply_translation(centre + np.array([0.0, 0.0, 0.03]))
         sails.append(coloured(panel, LINEN))
+    # A strongly tapering body under a wooden cap, so it never passes for a tower.
     return combine(
-        frustum(r, 0.75 * r, 0.0, body_h, colour, sections=8),
-        cone(0.85 * r, (0.0, body_h, 0.0), (0.0, body_h + 0.2 * h, 0.0), ROOF, sections=8),
+        frustum(r, 0.6 * r, 0.0, body_h, colour, sections=8),
+        cone(0.72 * r, (0.0, body_h, 0.0), (0.0, body_h + 0.18 * h, 0.0), shade(DARK_WOOD, 1.3), sections=8),
         slab((-0.5, 0.0, r * 0.85), (0.5, 2.0, r * 0.95 + 0.05), DARK_WOOD),
-        cylinder(0.2, hub - np.array([0.0, 0.0, 0.4]), hub + np.array([0.0, 0.0, 0.1]), IRON, sections=8),
+        cylinder(0.2, (0.0, hub[1], 0.0), hub + np.array([0.0, 0.0, 0.1]), IRON, sections=8),
         sails,
     )
 
