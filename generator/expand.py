@@ -86,6 +86,8 @@ class _Expansion:
         ``scope`` (bound names -> node ids) gains the statement's ``as`` binding.
         """
         if statement.probability is not None and self.rng.random() >= statement.probability:
+            if statement.binding:
+                scope[statement.binding] = []  # later statements see it, bound to nothing
             return []
         created: list[str] = []
         subjects_of_all_repetitions: list[str] = []

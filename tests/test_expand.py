@@ -136,6 +136,12 @@ def test_some_draws_independently_for_each_subject_and_never_the_subject_itself(
     assert len({target for _, _, target in found}) > 5
 
 
+def test_a_name_bound_by_a_skipped_statement_means_no_nodes(tmp_path):
+    rules = rules_from(tmp_path, "S -> { 0? a as x; 0 b as y; c NextTo x NextTo y; P(x) }\nP(z) -> { c OnTopOf z }")
+    graph = expand(rules, 0)
+    assert types(graph) == ["c", "c"] and edges(graph) == []
+
+
 def test_parameters_receive_the_arguments_by_position(tmp_path):
     rules = rules_from(tmp_path, "S -> { a as x; b as y; P(y, x) }\nP(first, second) -> { c OnTopOf first NextTo second }")
     assert edges(expand(rules, 0)) == [("c_1", "OnTopOf", "b_1"), ("c_1", "NextTo", "a_1")]
