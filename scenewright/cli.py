@@ -153,6 +153,7 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.api import reproducible_json, summary_line, timings_of
     from scenewright.atomic import staged_outputs
     from scenewright.generator.layout.plan import draw_plan
+    from scenewright.render.offscreen import save_render
 
     rules = load_rules(args.rules)
     directory = output_directory(args.output)
@@ -161,8 +162,6 @@ def run_generate(args: argparse.Namespace) -> int:
     with staged_outputs(directory) as stage:
         (stage / "description.txt").write_text(description.text + "\n", encoding="utf-8")
         if args.render:
-            from scenewright.render.offscreen import save_render
-
             save_render(render_scene(scene, size=args.size, view=args.view), stage, stem="preview")
         export_scene(scene, stage / "scene.glb")
         draw_plan(scene, stage / "plan.png")
@@ -175,7 +174,7 @@ def run_generate(args: argparse.Namespace) -> int:
     say(args, summary_line(scene))
     if scene.layout.ok:
         return 0
-    problems = "; ".join(scene.layout.problems) or "energy above the target"
+    problems = "; ".join(scene.layout.problems) or "see layout in scene.json"
     print(
         f"{PROG}: error: the layout did not satisfy every constraint (files kept): {problems}",
         file=sys.stderr,

@@ -92,6 +92,8 @@ def test_version_and_help_with_examples(capsys):
         (["dataset", "village", "-o", "x"], "required: -n/--count"),
         (["dataset", "village", "-n", "0", "-o", "x"], "must be at least 1"),
         (["dataset", "village", "-n", "4", "-o", "x", "--workers", "zero"], "expected a whole number"),
+        (["validate"], "required: FILE"),
+        (["render", "scene.json", "--view", "side"], "invalid choice: 'side'"),
     ],
 )
 def test_bad_options_exit_2_on_one_line(capsys, argv, fragment):
@@ -153,6 +155,15 @@ def test_bad_rules_print_the_located_excerpt_and_exit_2(capsys, tmp_path):
     assert code == 2 and out == ""
     assert err.startswith(f"{bad}:5:") and "^" in err and "Traceback" not in err
     assert not (tmp_path / "out" / "scene.json").exists()
+
+
+def test_missing_rules_file_exit_2_on_one_line(capsys):
+    code, out, err = run(capsys, "expand", "nowhere.rules")
+    assert code == 2 and out == ""
+    assert err.strip() == (
+        "nowhere.rules:1:1: error: no rules file 'nowhere.rules' "
+        "(and no shipped rule set of that name: bedroom, desk, village)"
+    )
 
 
 def test_expand_json_and_dot(capsys, tmp_path):
@@ -310,6 +321,13 @@ def test_generate_into_a_file_path_is_bad_input(capsys, tmp_path):
     code, _, err = run(capsys, "generate", "desk", "-o", str(tmp_path / "taken"))
     assert code == 2
     assert_one_line_error(err, "cannot write to", "not a directory")
+
+
+def test_dataset_into_a_file_path_is_bad_input(capsys, tmp_path):
+    (tmp_path / "taken").write_text("")
+    code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "taken" / "data"))
+    assert code == 2
+    assert_one_line_error(err, "cannot write the dataset to", "taken")
 
 
 def test_describe_command(capsys, tmp_path):
