@@ -400,6 +400,25 @@ def test_top_level_namesake_of_a_member_is_on_its_own():
     assert "The barrel is next to this house. The shed is behind the house on its own." in text
 
 
+def test_nested_groups_follow_their_parent():
+    b = SceneBuilder()
+    farm = b.group("farmstead")
+    house = b.add("house", parent=farm)
+    inner = b.group("group_of_trees", "group of trees", parent=farm)
+    for _ in range(2):
+        b.add("pine_tree", parent=inner)
+    outer = b.group("group_of_trees", "group of trees")
+    b.add("bush", plural="bushes", parent=outer)
+    b.relate(inner, "NextToBehind", house)
+    b.relate(outer, "NextTo", farm)
+    assert describe(b.scene()).text == (
+        "The scene consists of a group of trees next to a farmstead. "
+        "The farmstead consists of a group of trees behind a house. "
+        "This group of trees consists of two pine trees. "
+        "The group of trees on its own consists of a bush."
+    )
+
+
 def test_new_members_of_a_known_cohort_are_another():
     b = SceneBuilder()
     table = b.add("table")
