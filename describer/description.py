@@ -79,7 +79,7 @@ def describe(
 
 
 def _caption(scene: Scene, world: World, sections: list[Section], realiser: Realiser) -> list[Sentence]:
-    """What the scene holds at its top level, and its first top-level statement if any.
+    """What the scene holds at its top level, and one top-level statement if there is one.
 
     A scene whose top level is one group (a desk and what is on it) is captioned by
     that group's contents instead.
@@ -94,7 +94,8 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
     sentences = [realiser.caption(_setting(scene, world, owner), items)]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement)]
     if statements:
-        sentences.append(realiser.message(statements[0]))
+        # The canonical caption tells the first relation; a variant any one of them.
+        sentences.append(realiser.message(realiser.choices.pick(statements)))
     return sentences
 
 
