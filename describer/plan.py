@@ -94,7 +94,7 @@ class Section:
 
 
 def facts_of(message: Message) -> list[Fact]:
-    """Every (subject id, label, object id) the message states, in the order it states them."""
+    """Every (subject id, label, object id) the message states (in plan order: a variant may word them in another)."""
     if isinstance(message, Inventory):
         facts = [
             (path, "PathConnectedTo", item.junction)
