@@ -1,6 +1,7 @@
 """The rule sets shipped with the package: they load cleanly, expand on every seed, and
 make the scenes their comments promise (object budgets, roads, groups, relevancies)."""
 
+import re
 from collections import Counter
 from functools import lru_cache
 
@@ -54,12 +55,12 @@ def test_every_node_is_a_catalog_type_and_every_edge_a_known_label(name):
 # -- object budgets -------------------------------------------------------------------
 
 
-def object_bounds(rules: Rules) -> tuple[int, int]:
-    """The fewest and most objects any expansion of ``rules`` can create.
+def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
+    """For every production, the fewest and most objects an expansion of it can create.
 
     Read off the productions: a count range multiplies, an optional statement may
     create nothing, a production gives the extremes over its alternatives. This checks
-    the ``[min..max]`` notes in the rule files for every seed, not only the sampled ones.
+    the budget for every seed, not only the sampled ones.
     """
     memo: dict[str, tuple[int, int]] = {}
 
@@ -89,14 +90,34 @@ def object_bounds(rules: Rules) -> tuple[int, int]:
             high += int(times_high) * each[1]
         return low, high
 
-    return production(rules.start)
+    for name in rules.productions:
+        production(name)
+    return memo
 
 
 @pytest.mark.parametrize("name, bounds", [("village", (25, 40)), ("desk", (1, 8)), ("bedroom", (3, 15))])
 def test_object_budget_holds_for_every_seed(name, bounds):
-    assert object_bounds(load_rules(name)) == bounds
+    rules = load_rules(name)
+    assert object_bounds(rules)[rules.start] == bounds
     counts = [len(objects(graph)) for graph in expansions(name)]
     assert bounds[0] <= min(counts) and max(counts) <= bounds[1]
+
+
+def test_village_budget_notes_match_the_productions():
+    """Each village production's comment states its object range as ``[min..max]``."""
+    rules = load_rules("village")
+    lines = rules.path.read_text().splitlines()
+    noted = {}
+    for name, production in rules.productions.items():
+        line = production.location.line - 2  # the comment block ends just above
+        while line >= 0 and lines[line].startswith("#"):
+            found = re.search(r"\[(\d+)(?:\.\.(\d+))?\]", lines[line])
+            if found:
+                low = int(found.group(1))
+                noted[name] = (low, int(found.group(2) or low))
+            line -= 1
+    assert sorted(noted) == sorted(rules.productions), "every production carries a note"
+    assert noted == object_bounds(rules)
 
 
 def test_village_sizes_vary_across_seeds():
