@@ -9,7 +9,6 @@ scene parameters. Values are kept as written (numbers as floats, colours as the
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
 
 from .catalog import SourceLocation
 
@@ -90,7 +89,6 @@ class Call:
     nonterminal: str
     arguments: tuple[Reference, ...]
     location: SourceLocation
-    has_parentheses: bool = False
 
 
 @dataclass(frozen=True)
@@ -115,7 +113,7 @@ class Count:
 class Statement:
     """``[COUNT] [PROB?] SUBJECT [as NAME] (LABEL TARGET)* [{ statement* }]``."""
 
-    subject: Union[Reference, Call]
+    subject: Reference | Call
     location: SourceLocation
     count: Count | None = None
     probability: float | None = None
@@ -123,7 +121,7 @@ class Statement:
     binding: str | None = None
     binding_location: SourceLocation | None = None
     relations: tuple[Relation, ...] = ()
-    block: tuple["Statement", ...] | None = None
+    block: tuple[Statement, ...] | None = None
     block_location: SourceLocation | None = None
 
 

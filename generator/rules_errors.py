@@ -12,8 +12,8 @@ and the offending source line, so it prints as
 from __future__ import annotations
 
 import difflib
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 from ..errors import InputError
 from .catalog import SourceLocation

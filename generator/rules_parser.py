@@ -16,7 +16,12 @@ from importlib import resources
 from pathlib import Path
 
 from lark import Lark, Token, Transformer, v_args
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.exceptions import (
+    UnexpectedCharacters,
+    UnexpectedEOF,
+    UnexpectedInput,
+    UnexpectedToken,
+)
 
 from . import rules_ast as ast
 from .catalog import SourceLocation
@@ -138,7 +143,7 @@ class _ToAst(Transformer):
     @v_args(meta=True)
     def call(self, meta, children):
         name, arguments = children
-        return ast.Call(str(name), arguments or (), self._at(meta), arguments is not None)
+        return ast.Call(str(name), arguments or (), self._at(meta))
 
     @v_args(meta=True)
     def relation(self, meta, children):

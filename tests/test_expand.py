@@ -8,10 +8,15 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from scipy import stats
-
-from scenewright.generator import ExpansionError, RulesError, expand, graph_to_dot, load_rules
+from scenewright.generator import (
+    ExpansionError,
+    RulesError,
+    expand,
+    graph_to_dot,
+    load_rules,
+)
 from scenewright.generator.relations import LABELS
+from scipy import stats
 
 RULES = Path(__file__).parent / "rules"
 

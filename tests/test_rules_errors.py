@@ -11,9 +11,14 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from scenewright.generator import (
+    RulesError,
+    check_rules,
+    format_diagnostics,
+    load_rules,
+)
 
 from scenewright.errors import InputError
-from scenewright.generator import RulesError, check_rules, format_diagnostics, load_rules
 
 RULES = Path(__file__).parent / "rules"
 
@@ -117,8 +122,8 @@ unknown_field.rules:4:29: error: unknown catalog field 'color'; did you mean 'co
                                 ^""",
     ),
     "fields": (
-        'object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
-        '  style a 0 { segments 3 } style a { } }\nS -> { chair; table }',
+        ('object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
+        '  style a 0 { segments 3 } style a { } }\nS -> { chair; table }'),
         """\
 fields.rules:4:29: error: duplicate field 'noun'
     object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
@@ -153,8 +158,8 @@ duplicates.rules:6:1: error: duplicate production for 'S' (first at duplicates.r
     ^""",
     ),
     "references": (
-        "S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }\n"
-        "P(x) -> { table OnTopOf x }",
+        ("S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }\n"
+        "P(x) -> { table OnTopOf x }"),
         """\
 references.rules:4:20: error: 'P' takes 1 parameter (references.rules:5:1), but 2 are given
     S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
@@ -170,8 +175,8 @@ references.rules:4:82: error: '#0': ordinals count from #1
                                                                                      ^""",
     ),
     "path_connection": (
-        'path road { noun "road" }\njunction crossing { noun "crossing" }\n'
-        "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }",
+        ('path road { noun "road" }\njunction crossing { noun "crossing" }\n'
+        "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }"),
         """\
 path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction, but 'table' is an object
     S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }

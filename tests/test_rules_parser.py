@@ -3,7 +3,6 @@
 from pathlib import Path
 
 import pytest
-
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.rules import check_rules, load_rules
 from scenewright.generator.rules_errors import Diagnostic
