@@ -10,6 +10,7 @@ so stats.json, unlike the rest of the dataset, differs between runs.
 from __future__ import annotations
 
 import json
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -70,9 +71,11 @@ def summarise(records: list[dict], *, made: int, seconds: float) -> dict:
 
 
 def problem_kind(problem: str) -> str:
-    """A layout problem without its numbers and ids, so alike problems count together."""
-    words = [w for w in problem.split() if not any(ch.isdigit() for ch in w)]
-    return " ".join(words)
+    """A layout problem with ids reduced to types and numbers to ``#``, so alike problems
+    count together: "sign_3 is not next to table_2 (distance 3.4 m)" -> "sign is not
+    next to table (distance # m)"."""
+    typed = re.sub(r"_\d+\b", "", problem)
+    return re.sub(r"\d+(?:\.\d+)?", "#", typed)
 
 
 def distribution(values: list[float], digits: int = 2, bins: int = 0) -> dict:
@@ -124,21 +127,16 @@ def stats_figure(stats: dict) -> bytes:
     axes[0, 1].barh(labels, held, color="tab:blue")
 
     lengths = axes[1, 0]
-    for name, summary in stats["words"].items():
-        if summary["count"]:
-            histogram = summary["histogram"]
-            edges = histogram["edges"]
-            lengths.stairs(
-                histogram["counts"],
-                edges,
-                fill=True,
-                alpha=0.6,
-                label=f"{name} (median {summary['median']:g})",
-            )
+    described = {name: summary for name, summary in stats["words"].items() if summary["count"]}
+    for name, summary in described.items():
+        histogram = summary["histogram"]
+        label = f"{name} (median {summary['median']:g})"
+        lengths.stairs(histogram["counts"], histogram["edges"], fill=True, alpha=0.6, label=label)
     lengths.set_title("length in words (full text, short captions)")
     lengths.set_xlabel("words")
     lengths.set_ylabel("texts")
-    lengths.legend()
+    if described:
+        lengths.legend()
 
     stages = stats["seconds_per_stage"]
     bars(axes[1, 1], list(stages), [stages[s]["mean"] for s in stages], "mean seconds per scene and stage")

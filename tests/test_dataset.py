@@ -70,6 +70,16 @@ def crashing_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     return fake_scene(spec, index)
 
 
+def failing_scene(spec: DatasetSpec, index: int) -> SceneProduct:
+    """Every layout fails."""
+    stats = {
+        "objects": {"box": 2},
+        "relations": {"NextToNorth": [1, 0]},
+        "problems": ["box_2 is not north of box_1 (90° off)"],
+    }
+    return SceneProduct(index, scene_seed(spec.base_seed, index), False, {}, None, stats)
+
+
 def spec_of(count: int = 8, **settings) -> DatasetSpec:
     return DatasetSpec(rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), **settings)
 
@@ -113,7 +123,7 @@ def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
     stats = json.loads((tmp_path / "stats.json").read_text())
     assert (stats["scenes"], stats["failed"]) == (8, 1)
     assert stats["relations"]["NextTo"] == {"total": 16, "satisfied": 15}
-    assert stats["problems"] == {"is not next to (distance m)": 1}
+    assert stats["problems"] == {"sign is not next to table (distance # m)": 1}
     assert (tmp_path / "stats.png").read_bytes()[:4] == b"\x89PNG"
 
 
@@ -228,3 +238,23 @@ def test_a_worker_error_stops_the_run_and_keeps_finished_scenes(tmp_path):
     assert not (tmp_path / METADATA_FILE).exists()
     report = run_dataset(spec_of(8), tmp_path, workers=1, producer=fake_scene, progress=False)
     assert report.skipped >= 5 and len(metadata_rows(tmp_path)) == 7
+
+
+def test_every_layout_failing_is_reported_and_the_command_exits_1(tmp_path, monkeypatch, capsys):
+    import scenewright.dataset
+    from scenewright.cli import main
+
+    real = scenewright.dataset.run_dataset
+    monkeypatch.setattr(
+        scenewright.dataset, "run_dataset", lambda *a, **k: real(*a, **{**k, "producer": failing_scene})
+    )
+    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1", "-q"]) == 1
+    assert "every scene's layout failed" in capsys.readouterr().err
+    assert (tmp_path / METADATA_FILE).read_text() == ""
+    stats = json.loads((tmp_path / "stats.json").read_text())
+    assert (stats["written"], stats["failed"], stats["problems"]) == (
+        0,
+        3,
+        {"box is not north of box (#° off)": 3},
+    )
+    assert (tmp_path / "stats.png").stat().st_size > 0
