@@ -20,6 +20,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
+from scenewright.errors import InputError
 from scenewright.scene import Scene, assemble_scene
 
 if TYPE_CHECKING:
@@ -179,7 +180,5 @@ def summary_line(scene: Scene) -> str:
 
 
 def check_choice(what: str, value: Any, allowed: tuple[str, ...]) -> None:
-    from scenewright.errors import InputError
-
     if value not in allowed:
         raise InputError(f"unknown {what} {value!r}; choose one of {', '.join(allowed)}")
