@@ -51,7 +51,7 @@ class CatalogEntry:
     ``size`` is (width along local x, height along y, depth along local z) in metres.
     ``shape`` names a procedural mesh builder (``scenewright.render.builders``);
     ``mesh`` is instead a user mesh file (absolute path) fitted to ``size``.
-    ``colour`` is linear RGB in [0, 1]. Paths use ``width`` and ``max_length`` (the
+    ``colour`` is sRGB in [0, 1] (the hex value over 255, as written). Paths use ``width`` and ``max_length`` (the
     paper's l_A) and ``segments`` (how many straight pieces the polyline has).
     """
 

@@ -139,7 +139,7 @@ class SceneGraph:
         return [n for n in found if kind is None or n.kind == kind]
 
     def edges(self, label: str | None = None) -> list[SceneEdge]:
-        """Relations in insertion order, optionally only those with one label."""
+        """Relations grouped by source (in node order), each source's in insertion order."""
         return [
             SceneEdge(s, t, data["label"])
             for s, t, data in self.graph.edges(data=True)
