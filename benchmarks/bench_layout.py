@@ -5,7 +5,9 @@
     .venv/bin/python benchmarks/bench_layout.py --scaling       # 10, 30, 100, 300 objects
     .venv/bin/python benchmarks/bench_layout.py --compare       # per-step cost, full vs incremental
 
-Prints figures only; nothing is asserted. One process, one core.
+Prints figures only; nothing is asserted. One process, one core. Times are given as
+wall seconds (what ``LayoutResult.seconds`` records) and as this process's CPU seconds,
+which do not grow when other work shares the machine.
 """
 
 from __future__ import annotations
@@ -29,23 +31,26 @@ from scenewright.generator.layout.synthetic import village_graph
 
 def village(seeds: int, rules_name: str) -> None:
     rules = load_rules(rules_name)
-    times, steps, counts, failures = [], [], [], Counter()
+    times, cpu, steps, counts, failures = [], [], [], [], Counter()
     ok = 0
     for seed in range(seeds):
         graph = expand(rules, seed)
         counts.append(sum(1 for n in graph.nodes() if n.kind == "object"))
+        started = time.process_time()
         result = layout_scene(graph, seed)
+        cpu.append(time.process_time() - started)
         times.append(result.seconds)
         steps.append(result.steps)
         ok += result.ok
         for problem in result.problems:
             failures[_kind(problem)] += 1
-    times.sort()
     print(f"{rules_name}: {seeds} seeds, {min(counts)}..{max(counts)} objects per scene")
-    print(
-        f"  ok {100 * ok / seeds:.1f} %   time median {statistics.median(times):.3f} s  "
-        f"p90 {times[int(0.9 * (seeds - 1))]:.3f} s  max {times[-1]:.3f} s   mean steps {statistics.mean(steps):.0f}"
-    )
+    print(f"  ok {100 * ok / seeds:.1f} %   mean steps {statistics.mean(steps):.0f}")
+    for name, values in (("wall", sorted(times)), ("cpu", sorted(cpu))):
+        print(
+            f"  {name:4s} seconds: median {statistics.median(values):.3f}  "
+            f"p90 {values[int(0.9 * (seeds - 1))]:.3f}  max {values[-1]:.3f}"
+        )
     if failures:
         print("  problems by kind:", dict(failures.most_common()))
 
@@ -59,23 +64,24 @@ def _kind(problem: str) -> str:
 
 def scaling() -> None:
     print("scaling (synthetic village graphs, seeds 0..4):")
-    print("  objects   layout s   steps   us/step")
+    print("  objects   layout cpu s   steps   cpu us/step")
     for size in (10, 30, 100, 300):
         seconds, steps, per_step = [], [], []
         for seed in range(5):
             graph = village_graph(size, seed)
+            started = time.process_time()
             result = layout_scene(graph, seed)
-            seconds.append(result.seconds)
+            seconds.append(time.process_time() - started)
             steps.append(result.steps)
             per_step.append(step_cost(graph, seed, incremental=True, steps=1000))
         print(
-            f"  {size:7d}   {statistics.median(seconds):8.3f}   {statistics.median(steps):5.0f}"
-            f"   {statistics.median(per_step):7.1f}"
+            f"  {size:7d}   {statistics.median(seconds):12.3f}   {statistics.median(steps):5.0f}"
+            f"   {statistics.median(per_step):11.1f}"
         )
 
 
 def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
-    """Microseconds per sampler step (propose + energy change + accept/reject), after the start."""
+    """CPU microseconds per sampler step (propose + energy change + accept/reject), after the start."""
     params = LayoutParams(incremental=incremental)
     problem = compile_problem(graph)
     rng = np.random.default_rng(seed)
@@ -83,7 +89,7 @@ def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
     energy = Energy(problem, state, params)
     mover = Mover(problem, state, rng)
     place_initial(energy, mover, rng)
-    started = time.perf_counter()
+    started = time.process_time()
     for _ in range(steps):
         proposal = mover.propose(energy.relation)
         if proposal is None:
@@ -92,11 +98,11 @@ def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
             energy.accept()
         else:
             energy.reject()
-    return 1e6 * (time.perf_counter() - started) / steps
+    return 1e6 * (time.process_time() - started) / steps
 
 
 def compare() -> None:
-    print("full energy vs incremental, us per step (same moves, synthetic village graphs):")
+    print("full energy vs incremental, cpu us per step (same moves, synthetic village graphs):")
     for size in (30, 100, 300):
         graph = village_graph(size, 0)
         naive = step_cost(graph, 0, incremental=False, steps=300)

@@ -168,6 +168,13 @@ class Energy:
         params = self.params
         return -sum(greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction))
 
+    def troubled_boxes(self) -> list[int]:
+        """Boxes that currently overlap something or stick out of the extent."""
+        found = {box for box in range(self.problem.n_boxes) if self.pairs[box] or self.box_extent[box] > 0.0}
+        for hits in self.path_hits:
+            found.update(hits)
+        return sorted(found)
+
     # -- the whole energy -------------------------------------------------------------
 
     def full(self) -> dict[str, float]:

@@ -10,9 +10,14 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
   beside it and the sign behind it) as one, so they can leave a bad spot together;
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
   source where that relation holds (on the right side of B at a small gap, on B's top,
-  beside a road at a random point along it, turned to face B, ...);
+  beside a road at a random point along it, turned to face B, ...), or move its target
+  instead (B shifted next to A, or turned so that A is on the side the label names);
 - ``path``: move one control point of a path, or bend the path's tail around a point;
 - ``junction``: move a junction, with the start of every path leaving it.
+
+After each check of the stop rule the sampler points the mover at what is still wrong
+(``focus``): unsatisfied relations are drawn more often for data-driven moves, and
+overlapping or outlying boxes for jitter.
 
 The same ``place_for_relation`` makes the constructive initial placement's candidates.
 """
@@ -40,6 +45,13 @@ LATERAL_SHARE = 0.5
 
 #: Share of data-driven NextTo moves that move B towards A instead of A towards B.
 REVERSE_SHARE = 0.3
+
+#: Extra weight a relation found unsatisfied at the last check gets in data-driven moves
+#: (the squared energies of the others are mostly well below 1).
+FOCUS_WEIGHT = 1.0
+
+#: NextTo* labels that name one of B's own sides: turning B can satisfy them.
+B_SIDE_LABELS = ("NextToLeft", "NextToRight", "NextToFront", "NextToBehind", "NextToChooseSide")
 
 HALF_PI = math.pi / 2.0
 
@@ -106,6 +118,8 @@ class Mover:
             t for t, term in enumerate(problem.relations) if self._movable(term.a) or self._movable(term.b)
         ]
         self.clusters = _clusters(problem)
+        self.focus_positions: list[int] = []
+        self.focus_boxes: list[int] = []
         available = {
             "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
             "cluster": bool(self.clusters),
@@ -118,6 +132,12 @@ class Mover:
     def _movable(self, end: Endpoint) -> bool:
         return end.kind == "object" and not self.problem.is_junction[end.index] or (end.kind == "group" and bool(end.members))
 
+    def focus(self, unsatisfied: list[int], troubled: list[int]) -> None:
+        """Steer later proposals to these relations (indices) and boxes (overlapping, outside)."""
+        position = {term: k for k, term in enumerate(self.relations)}
+        self.focus_positions = [position[t] for t in unsatisfied if t in position]
+        self.focus_boxes = [box for box in troubled if not self.problem.is_junction[box]]
+
     def propose(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         """One random proposal; ``relation_energy`` steers the data-driven moves."""
         if not self.kinds:
@@ -129,6 +149,8 @@ class Mover:
                 kind = candidate
                 break
         if kind == "jitter":
+            if self.focus_boxes and self.rng.random() < 0.5:
+                return self.jitter(self.focus_boxes[int(self.rng.integers(len(self.focus_boxes)))])
             return self.jitter(self.boxes[int(self.rng.integers(len(self.boxes)))])
         if kind == "rotate":
             return self.rotate(self.boxes[int(self.rng.integers(len(self.boxes)))])
@@ -211,11 +233,16 @@ class Mover:
 
     def relation_move(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         # Squared, so clearly violated relations (energy above ~1) win over the small
-        # residues soft factors always keep.
+        # residues soft factors always keep; relations last found unsatisfied get a boost.
         weights = np.array([relation_energy[t] for t in self.relations]) ** 2 + 0.01
+        for position in self.focus_positions:
+            weights[position] += FOCUS_WEIGHT
         term = self.problem.relations[self.relations[int(self.rng.choice(len(self.relations), p=weights / weights.sum()))]]
         a_movable, b_movable = self._movable(term.a), self._movable(term.b)
-        if b_movable and term.base.startswith("NextTo") and (not a_movable or self.rng.random() < REVERSE_SHARE):
+        turnable = term.b.kind == "object" and b_movable and term.base in B_SIDE_LABELS
+        if turnable and self.rng.random() < REVERSE_SHARE:
+            boxes = self.turn_target_for(term)
+        elif b_movable and term.base.startswith("NextTo") and (not a_movable or self.rng.random() < REVERSE_SHARE):
             boxes = self.place_target_for(term)
         elif a_movable:
             boxes = self.place_for_relation(term)
@@ -298,6 +325,25 @@ class Mover:
             a_reach = end_reach(problem, state, a, -wx, -wz)
         distance = a_reach + end_reach(problem, state, b, wx, wz) + self.rng.uniform(*GAP_RANGE)
         return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
+
+    def turn_target_for(self, term: RelationTerm) -> dict:
+        """Turn B (an object, with what it carries) in place so that A is on the side named."""
+        state = self.state
+        box = term.b.index
+        ax, az = centre(term.a, state)
+        dx, dz = ax - state.x[box], az - state.z[box]
+        # The yaw at which B's side points along (dx, dz); left is (c, -s), forward (s, c).
+        side = {
+            "NextToLeft": math.atan2(-dz, dx), "NextToRight": math.atan2(dz, -dx),
+            "NextToFront": math.atan2(dx, dz), "NextToBehind": math.atan2(-dx, -dz),
+        }  # fmt: skip
+        if term.base == "NextToChooseSide":
+            left, right = side["NextToLeft"], side["NextToRight"]
+            yaw = left if abs(wrap(left - state.yaw[box])) < abs(wrap(right - state.yaw[box])) else right
+        else:
+            yaw = side[term.base]
+        turn = wrap(yaw - state.yaw[box])
+        return rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0))
 
     def _heading(self, end: Endpoint) -> float:
         """Yaw of an object, or of a group's first member (the group's front)."""

@@ -60,6 +60,7 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
                 break
+            mover.focus([t for t, r in enumerate(relations) if not r.satisfied], energy.troubled_boxes())
             if len(problems) < fewest:
                 fewest, since = len(problems), step
             elif step - since >= patience:
