@@ -1,4 +1,4 @@
-"""The dataset machinery (seeding, atomic writes, resume, pool, dask, stats) on a cheap
+"""The dataset machinery (seeding, atomic writes, resume, pool, dask errors, stats) on a cheap
 stand-in for the pipeline, so these tests exercise the job itself in a few seconds.
 
 ``fake_scene`` is a module-level function so worker processes can import it by name.
@@ -179,22 +179,6 @@ def test_resume_after_kill_minus_nine(tmp_path):
     assert not list(killed.rglob("*.partial"))
     ids = [r["scene_id"] for r in metadata_rows(killed)]
     assert ids == sorted(set(ids)) and len(ids) == 10  # 3 and 10 are failed layouts
-
-
-def test_dask_local_cluster_gives_the_same_bytes(tmp_path):
-    distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as cluster:
-        run_dataset(
-            spec_of(8),
-            tmp_path / "dask",
-            scheduler=cluster.scheduler_address,
-            producer=fake_scene,
-            progress=False,
-        )
-    run_dataset(spec_of(8), tmp_path / "pool", workers=2, producer=fake_scene, progress=False)
-    assert dataset_bytes(tmp_path / "dask") == dataset_bytes(tmp_path / "pool")
 
 
 def test_unreachable_scheduler_is_bad_input(tmp_path, monkeypatch):

@@ -1,5 +1,5 @@
 """The dataset job on the real pipeline (rules, layout, describer, OpenGL renderer in
-worker processes), kept small: a few desk scenes at 64x64."""
+worker processes, or on a local dask cluster), kept small: a few desk scenes at 64x64."""
 
 from __future__ import annotations
 
@@ -78,7 +78,6 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
     assert not (tmp_path / "x").exists()
 
 
-@pytest.mark.slow
 def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     distributed = pytest.importorskip("distributed")
     argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
