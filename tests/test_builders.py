@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from scenewright.generator.rules import load_rules, shipped_rule_sets
 from scenewright.render.builders import BUILDERS
@@ -123,3 +124,18 @@ def test_trees_stand_on_a_narrow_trunk():
         low = vertices[vertices[:, 1] < 0.1 * h]
         assert len(low) and np.all(np.hypot(low[:, 0], low[:, 2]) < 0.15 * w)
         assert np.abs(vertices[:, 0]).max() > 0.45 * w  # the crown spreads wide above it
+
+
+# -- any size a user's rules may give a shipped shape ----------------------------------
+
+sizes = st.tuples(*[st.floats(0.05, 20.0, allow_nan=False)] * 3)  # w, h, d in metres
+
+
+@settings(max_examples=60, deadline=None)
+@given(shape=st.sampled_from(sorted(BUILDERS)), size=sizes)
+def test_builders_accept_any_size(shape, size):
+    mesh = BUILDERS[shape](size, MAIN)
+    assert 0 < len(mesh.faces) < 500 and np.isfinite(mesh.vertices).all()
+    fitted = fit_to_size(mesh, size)
+    w, h, d = size
+    np.testing.assert_allclose(fitted.bounds, [[-w / 2, 0.0, -d / 2], [w / 2, h, d / 2]], rtol=1e-9, atol=1e-9)
