@@ -56,12 +56,13 @@ def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = 
         for box, box_id in enumerate(problem.ids)
     }
     paths = {path_id: np.array(state.points[p], dtype=float) for p, path_id in enumerate(problem.path_ids)}
+    parts = energy.full()  # exact, free of the rounding the running sums gather
     return LayoutResult(
         poses=poses,
         paths=paths,
         relations=best.relations,
-        energy=float(energy.total),
-        parts=dict(energy.parts),
+        energy=float(sum(parts.values())),
+        parts=parts,
         steps=total_steps,
         acceptance=total_accepted / total_steps if total_steps else 0.0,
         seconds=time.perf_counter() - started,
