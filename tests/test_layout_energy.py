@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from scenewright.generator.layout import LayoutParams
+from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.energy import Energy
 from scenewright.generator.layout.initial import place_initial
 from scenewright.generator.layout.moves import Mover
@@ -63,6 +63,13 @@ def test_full_mode_matches_incremental_mode_step_for_step():
         assert delta_a == pytest.approx(delta_b, abs=1e-7)
         incremental.accept()
         naive.accept()
+    assert naive.relation == pytest.approx(incremental.relation, abs=1e-7)
+    assert naive.troubled_boxes() == incremental.troubled_boxes()
+
+
+def test_full_mode_lays_out_a_village_too():
+    result = layout_scene(village_graph(12, 4), seed=4, params=LayoutParams(incremental=False, restarts=1))
+    assert result.ok, result.problems
 
 
 def test_placement_activates_every_box_and_parts_are_non_negative():

@@ -19,7 +19,8 @@ Parts (all >= 0, 0 when everything holds):
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
 grid finds the colliding pairs); ``accept`` keeps it, ``reject`` undoes it. With
-``incremental=False`` it recomputes the whole energy instead (for comparison).
+``incremental=False`` it recomputes every term instead (for comparison); either way the
+caches the sampler reads (relation energies, troubled boxes) stay current.
 Boxes start inactive (absent from the energy) so the constructive placement can add
 them one item at a time through the same machinery.
 """
@@ -52,25 +53,9 @@ class Energy:
         self.collides_with_paths = [
             problem.support[b] == -1 and not problem.is_junction[b] for b in range(problem.n_boxes)
         ]
-        self.relation = [0.0] * len(problem.relations)
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
-        self.pairs: list[dict[int, float]] = [{} for _ in range(problem.n_boxes)]
-        self.path_hits: list[dict[int, float]] = [{} for _ in range(problem.n_paths)]
-        self.shape = [0.0] * problem.n_paths
-        self.junction = {j: 0.0 for j in problem.paths_of_junction}
-        self.box_extent = [0.0] * problem.n_boxes
-        self.path_extent = [0.0] * problem.n_paths
-        self.parts = dict.fromkeys(PARTS, 0.0)
-        self.total = 0.0
         self._pending: tuple | None = None
-        for path in range(problem.n_paths):
-            self.shape[path] = self.path_shape_energy(path)
-            self.path_extent[path] = self.path_extent_energy(path)
-        for junction in self.junction:
-            self.junction[junction] = self.junction_energy(junction)
-        self.parts["path_shape"] = sum(self.shape) + sum(self.junction.values())
-        self.parts["extent"] = sum(self.path_extent)
-        self.total = sum(self.parts.values())
+        self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
 
@@ -179,23 +164,52 @@ class Energy:
 
     def full(self) -> dict[str, float]:
         """Every part recomputed from scratch (the reference the caches must match)."""
+        return self._fresh()["parts"]
+
+    def _fresh(self) -> dict:
+        """Every cached term recomputed from scratch, with the parts they sum to."""
         problem = self.problem
-        parts = dict.fromkeys(PARTS, 0.0)
-        parts["relations"] = sum(self.relation_energy(t) for t in range(len(problem.relations)))
+        fresh = {
+            "relation": [self.relation_energy(t) for t in range(len(problem.relations))],
+            "pairs": [{} for _ in range(problem.n_boxes)],
+            "path_hits": [{} for _ in range(problem.n_paths)],
+            "shape": [self.path_shape_energy(p) for p in range(problem.n_paths)],
+            "junction": {j: self.junction_energy(j) for j in problem.paths_of_junction},
+            "box_extent": [self.box_extent_energy(b) for b in range(problem.n_boxes)],
+            "path_extent": [self.path_extent_energy(p) for p in range(problem.n_paths)],
+        }
+        collisions = paths = 0.0
         for box in range(problem.n_boxes):
             if not self.active[box]:
                 continue
             for other in self.grid.near_box(box):
                 if other > box:
-                    parts["collisions"] += self.pair_energy(box, other)
+                    value = self.pair_energy(box, other)
+                    if value > 0.0:
+                        fresh["pairs"][box][other] = fresh["pairs"][other][box] = value
+                        collisions += value
             if self.collides_with_paths[box]:
-                parts["paths"] += sum(self.path_energy(box, path) for path in range(problem.n_paths))
-            parts["extent"] += self.box_extent_energy(box)
-        parts["path_shape"] = sum(self.path_shape_energy(p) for p in range(problem.n_paths)) + sum(
-            self.junction_energy(j) for j in problem.paths_of_junction
-        )
-        parts["extent"] += sum(self.path_extent_energy(p) for p in range(problem.n_paths))
-        return parts
+                for path in range(problem.n_paths):
+                    value = self.path_energy(box, path)
+                    if value > 0.0:
+                        fresh["path_hits"][path][box] = value
+                        paths += value
+        fresh["parts"] = {
+            "relations": sum(fresh["relation"]),
+            "collisions": collisions,
+            "paths": paths,
+            "path_shape": sum(fresh["shape"]) + sum(fresh["junction"].values()),
+            "extent": sum(fresh["box_extent"]) + sum(fresh["path_extent"]),
+        }
+        return fresh
+
+    def _install(self, fresh: dict) -> None:
+        """Make freshly computed terms the cache."""
+        self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
+        self.shape, self.junction = fresh["shape"], fresh["junction"]
+        self.box_extent, self.path_extent = fresh["box_extent"], fresh["path_extent"]
+        self.parts = dict(fresh["parts"])
+        self.total = sum(self.parts.values())
 
     # -- moves ---------------------------------------------------------------------------
 
@@ -220,10 +234,9 @@ class Energy:
         for path, points in paths.items():
             state.points[path] = points
         if not self.params.incremental:
-            parts = self.full()
-            new_total = sum(parts.values())
-            self._pending = ("full", saved_boxes, saved_paths, parts, new_total)
-            return new_total - self.total
+            fresh = self._fresh()
+            self._pending = ("full", saved_boxes, saved_paths, fresh)
+            return sum(fresh["parts"].values()) - self.total
         changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes))
         self._pending = ("incremental", saved_boxes, saved_paths, changes)
         return sum(changes[0].values())
@@ -324,7 +337,7 @@ class Energy:
         """Keep the proposed move: store its term values."""
         pending, self._pending = self._pending, None
         if pending[0] == "full":
-            self.parts, self.total = pending[3], pending[4]
+            self._install(pending[3])
             return
         (delta, new_relation, moved, new_pairs, moved_paths, new_hits,
          new_shape, new_junction, new_box_extent, new_path_extent) = pending[3]  # fmt: skip

@@ -13,6 +13,7 @@ energy only as they are placed.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import replace
 
@@ -245,11 +246,10 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     for term in outside_facing:
         _best_of(energy, lambda: (mover.turn_group_to_face(term), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
-        count = energy.params.initial_candidates * len(anchors)
-        turns = iter(range(count))
+        in_turn = itertools.cycle(anchors)
         keep = bool(outside_facing)
         _best_of(
             energy,
-            lambda: (mover.place_for_relation(anchors[next(turns) % len(anchors)], keep_heading=keep), {}),
-            count,
+            lambda: (mover.place_for_relation(next(in_turn), keep_heading=keep), {}),
+            energy.params.initial_candidates * len(anchors),
         )
