@@ -103,10 +103,10 @@ class Discourse:
         for entity_id in ids:
             by_cohort.setdefault(self.world.cohort(entity_id), []).append(entity_id)
         alone = len(by_cohort) == 1
-        # Parts of cohorts ("two of the sacks of flour") lead: after a conjunction they
-        # can be misread as counting on ("the two pallets and two ..."), and link-grammar
-        # cannot parse them there.
-        chunks = sorted(by_cohort.items(), key=lambda chunk: len(chunk[1]) in (1, len(chunk[0])))
+        # Parts of cohorts ("two of the sacks") lead, whole cohorts ("the two market
+        # stands") close the list: "the two pallets and two of the sacks" reads as counting
+        # on, and heavy phrases read best last. link-grammar parses only this order.
+        chunks = sorted(by_cohort.items(), key=lambda chunk: _weight(len(chunk[1]), len(chunk[0])))
         phrases = []
         for cohort, chosen in chunks:
             if len(chosen) == 1:
@@ -186,3 +186,10 @@ class Discourse:
         if noun != SCENE:
             self.last_of_noun[noun] = ids
             self.paragraph_nouns.setdefault(noun, set()).update(ids)
+
+
+def _weight(chosen: int, cohort: int) -> int:
+    """Where a cohort's phrase goes in a list: part of a cohort, then single ones, then whole ones."""
+    if chosen == 1:
+        return 1
+    return 2 if chosen == cohort else 0
