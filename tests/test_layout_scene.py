@@ -90,3 +90,28 @@ def test_support_between_non_objects_is_an_input_error():
     graph.add_relation(table, road, "OnTopOf")
     with pytest.raises(InputError, match="only objects can rest on objects"):
         layout_scene(graph, seed=0)
+
+
+def test_empty_graph_and_lone_paths_are_fine():
+    assert layout_scene(SceneGraph(), seed=0, params=FAST).ok
+    graph = SceneGraph(params=SceneParams(extent=(30.0, 30.0)))
+    graph.add_node(ROAD)
+    result = layout_scene(graph, seed=0, params=FAST)
+    assert result.ok
+    assert np.all(np.abs(result.paths["road_1"]) <= 15.0)
+
+
+def test_impossible_scenes_say_why():
+    crowded = SceneGraph(params=SceneParams(extent=(3.0, 3.0)))
+    for _ in range(12):
+        crowded.add_node(TABLE)
+    result = layout_scene(crowded, seed=0, params=LayoutParams(steps=300, restarts=0))
+    assert not result.ok
+    assert any(" overlaps " in p or "outside the scene" in p for p in result.problems)
+
+    hollow = SceneGraph()
+    stand, chair = hollow.add_node(STAND), hollow.add_node(CHAIR)
+    hollow.add_relation(chair, stand, "NextTo")
+    result = layout_scene(hollow, seed=0, params=FAST)
+    assert not result.ok
+    assert result.problems == ["chair_1 NextTo market_stand_1: a group with nothing in it cannot be placed"]

@@ -114,9 +114,11 @@ class Mover:
         self.groups = [g for g, members in enumerate(problem.group_members) if members]
         self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
         self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
-        self.relations = [
-            t for t, term in enumerate(problem.relations) if self._movable(term.a) or self._movable(term.b)
-        ]
+        self.relations = [  # relations a move can act on: nothing in them is an empty group
+            t for t, term in enumerate(problem.relations)
+            if (self._movable(term.a) or self._movable(term.b))
+            and all(end.kind != "group" or end.members for end in (term.a, term.b))
+        ]  # fmt: skip
         self.clusters = _clusters(problem)
         self.focus_positions: list[int] = []
         self.focus_boxes: list[int] = []
