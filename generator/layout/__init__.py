@@ -34,7 +34,7 @@ def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = 
     Deterministic: the same graph, seed and params give the same result. Runs up to
     ``1 + params.restarts`` chains (each from a fresh initial placement, on its own
     stream derived from ``seed``) until one is ok, and returns the best: ok first, then
-    lowest energy. Raises ``InputError`` for relations that cannot be laid out (an
+    fewest problems, then lowest energy. Raises ``InputError`` for relations that cannot be laid out (an
     OnTopOf between non-objects, a cycle of supports, a malformed PathConnectedTo).
     """
     params = params or LayoutParams()
@@ -46,7 +46,7 @@ def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = 
         run = run_chain(problem, params, np.random.default_rng([seed, attempt]))
         total_steps += run.steps
         total_accepted += run.accepted
-        if best is None or (run.ok, -run.energy.total) > (best.ok, -best.energy.total):
+        if best is None or _rank(run) > _rank(best):
             best = run
         if best.ok:
             break
@@ -69,3 +69,8 @@ def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = 
         ok=best.ok,
         problems=list(best.problems),
     )
+
+
+def _rank(run: Run) -> tuple:
+    """Higher is better: ok, then fewer problems, then lower energy."""
+    return (run.ok, -len(run.problems), -run.energy.total)

@@ -57,7 +57,7 @@ HALF_PI = math.pi / 2.0
 
 
 def wrap(angle: float) -> float:
-    """The angle in (-pi, pi]."""
+    """The angle in [-pi, pi)."""
     return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
 
 
@@ -132,7 +132,10 @@ class Mover:
         self.cumulative = list(np.cumsum(weights / weights.sum())) if self.kinds else []
 
     def _movable(self, end: Endpoint) -> bool:
-        return end.kind == "object" and not self.problem.is_junction[end.index] or (end.kind == "group" and bool(end.members))
+        """Whether a move may place this end: a non-junction object, or a group with members."""
+        if end.kind == "object":
+            return not self.problem.is_junction[end.index]
+        return end.kind == "group" and bool(end.members)
 
     def focus(self, unsatisfied: list[int], troubled: list[int]) -> None:
         """Steer later proposals to these relations (indices) and boxes (overlapping, outside)."""
