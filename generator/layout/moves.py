@@ -6,6 +6,8 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
 - ``jitter``: shift one box (a stacked box slides over its support's top);
 - ``rotate``: turn one box a little, or snap it to a multiple of 90 degrees;
 - ``group``: move or turn a whole group rigidly;
+  in a room (``walls``) boxes and groups only turn by quarter turns, so furniture stays
+  square to the walls unless a relation turns it (a chair facing a desk);
 - ``cluster``: shift a set of items tied together by relations (a tower, the smithy
   beside it and the sign behind it) as one, so they can leave a bad spot together;
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
@@ -181,7 +183,7 @@ class Mover:
 
     def rotate(self, box: int) -> tuple[dict, dict]:
         state, rng = self.state, self.rng
-        if rng.random() < 0.3:
+        if self.problem.walls or rng.random() < 0.3:
             target = HALF_PI * (round(state.yaw[box] / HALF_PI) + int(rng.integers(-1, 2)))
             turn = target - state.yaw[box]
         else:
@@ -193,7 +195,9 @@ class Mover:
         members = self.problem.group_members[group]
         pivot = centre(Endpoint("group", group, members), state)
         sigma = _log_uniform(rng, 0.05, 3.0)
-        turn = rng.normal(0.0, 0.3) if rng.random() < 0.3 else 0.0
+        turn = 0.0
+        if rng.random() < 0.3:
+            turn = HALF_PI * (1 if rng.random() < 0.5 else -1) if self.problem.walls else rng.normal(0.0, 0.3)
         shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
         return rigid(state, self.group_boxes[group], pivot, turn, shift), {}
 
