@@ -54,7 +54,7 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> Non
 
 
 def _outgoing(energy: Energy, end_kind: str, index: int) -> list[RelationTerm]:
-    return [t for t in energy.problem.relations if t.a.kind == end_kind and t.a.index == index]
+    return energy.problem.outgoing.get((end_kind, index), [])
 
 
 def _placed(energy: Energy, end: Endpoint) -> bool:
@@ -74,13 +74,12 @@ def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
     A tower with no relation of its own, that a blacksmith must be beside and that must
     itself be next to a road, is best put next to that road too.
     """
-    relations = energy.problem.relations
-    for incoming in relations:
-        if (incoming.b.kind, incoming.b.index) != (end.kind, end.index) or incoming.a.kind == "path":
+    problem = energy.problem
+    for incoming in problem.incoming.get((end.kind, end.index), []):
+        if incoming.a.kind == "path":
             continue
-        for term in relations:
-            same_source = (term.a.kind, term.a.index) == (incoming.a.kind, incoming.a.index)
-            if same_source and term is not incoming and term.base.startswith("NextTo") and _placed(energy, term.b):
+        for term in problem.outgoing[(incoming.a.kind, incoming.a.index)]:
+            if term is not incoming and term.base.startswith("NextTo") and _placed(energy, term.b):
                 return replace(term, a=end, label="NextTo", base="NextTo")
     return None
 
@@ -179,8 +178,8 @@ def _place_box(
     positional = [t for t in outgoing if not t.base.startswith("Facing")]
     facing = [t for t in outgoing if t.base.startswith("Facing")]
     incoming = [
-        t for t in problem.relations
-        if t.b == own and t.base.startswith("NextTo") and t.a.kind != "path" and _placed(energy, t.a)
+        t for t in problem.incoming.get(("object", box), [])
+        if t.base.startswith("NextTo") and t.a.kind != "path" and _placed(energy, t.a)
     ]  # fmt: skip
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
 

@@ -71,6 +71,8 @@ class Problem:
     top_groups: list[int] = field(default_factory=list)  # groups not inside another group
     free_boxes: list[int] = field(default_factory=list)  # ground boxes in no group, no junctions
     units: list[tuple[str, int]] = field(default_factory=list)  # top groups and free boxes, creation order
+    outgoing: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of A
+    incoming: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of B
 
     @property
     def n_boxes(self) -> int:
@@ -175,6 +177,9 @@ def compile_problem(graph: SceneGraph) -> Problem:
                     problem.terms_of_box[box].append(term_index)
             if end.kind == "path" and term_index not in problem.terms_of_path[end.index]:
                 problem.terms_of_path[end.index].append(term_index)
+    for term in relations:
+        problem.outgoing.setdefault((term.a.kind, term.a.index), []).append(term)
+        problem.incoming.setdefault((term.b.kind, term.b.index), []).append(term)
     for path, junction in enumerate(path_start):
         if junction >= 0:
             problem.paths_of_junction.setdefault(junction, []).append(path)
