@@ -92,7 +92,7 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
         items = _caption_items(by_owner[owner], world)
     realiser.discourse.start_paragraph(owner)
     sentences = [realiser.caption(_setting(scene, world, owner), items)]
-    statements = [m for m in by_owner[owner].messages if isinstance(m, Statement)]
+    statements = [m for m in by_owner[owner].messages if isinstance(m, Statement) and not m.also]
     if statements:
         # The canonical caption tells the first relation; a variant any one of them.
         sentences.append(realiser.message(realiser.choices.pick(statements)))

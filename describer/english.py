@@ -67,6 +67,12 @@ def without_repeated_copula(predicates: list[str]) -> list[str]:
     return predicates[:1] + [p.removeprefix(copula + " ") for p in predicates[1:]]
 
 
+def with_also(predicate: str) -> str:
+    """The predicate with "also" where English puts it: "is also next to", "also faces"."""
+    verb, _, rest = predicate.partition(" ")
+    return f"{verb} also {rest}" if verb in ("is", "are") else f"also {predicate}"
+
+
 def sentence_case(text: str) -> str:
     """The text with its first letter capitalised (the rest untouched)."""
     return text[:1].upper() + text[1:]

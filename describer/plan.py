@@ -28,6 +28,10 @@ from .world import Entity, World
 #: The most clauses one statement joins ("The chair is in front of the desk and faces it.").
 MAX_CLAUSES = 2
 
+#: The most phrases one subject joins; more are told in a second sentence with "also".
+#: Long lists are hard to read (and beyond what link-grammar parses).
+MAX_CONJUNCTS = 4
+
 Fact = tuple[str, str, str]
 
 
@@ -76,10 +80,15 @@ class Introduction:
 
 @dataclass(frozen=True)
 class Statement:
-    """Known entities and one or more relations they share."""
+    """Known entities and one or more relations they share.
+
+    ``also``: the statement continues the one before it with more subjects ("The mill
+    and the well are also next to the road."); the two are never separated.
+    """
 
     subjects: tuple[str, ...]
     clauses: tuple[Clause, ...]
+    also: bool = False
 
 
 Message = Inventory | Introduction | Statement
@@ -316,8 +325,31 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
     for subjects, by_label in clauses.items():
         joined = [Clause(label, chosen, tuple(targets)) for (label, chosen), targets in by_label.items()]
         for start in range(0, len(joined), MAX_CLAUSES):
-            statements.append(Statement(subjects, tuple(joined[start:start + MAX_CLAUSES])))
+            shared = tuple(joined[start:start + MAX_CLAUSES])
+            for index, piece in enumerate(_subject_pieces(subjects, world)):
+                statements.append(Statement(piece, shared, also=index > 0))
     return statements
+
+
+def _subject_pieces(subjects: tuple[str, ...], world: World) -> list[tuple[str, ...]]:
+    """Split a subject into pieces of at most ``MAX_CONJUNCTS`` phrases (one per cohort).
+
+    Each piece names at most one part of a cohort: "two of the street lamps and two of
+    the market stands" reads as if the counts went together.
+    """
+    chunks: dict[tuple[str, ...], tuple[str, ...]] = {}
+    for subject in subjects:
+        cohort = world.cohort(subject)
+        chunks[cohort] = chunks.get(cohort, ()) + (subject,)
+    pieces: list[list[tuple[str, ...]]] = [[]]
+    for cohort, chunk in chunks.items():
+        partial = 1 < len(chunk) < len(cohort)
+        piece = pieces[-1]
+        has_partial = any(1 < len(c) < len(world.cohort(c[0])) for c in piece)
+        if len(piece) == MAX_CONJUNCTS or (partial and has_partial):
+            pieces.append([])
+        pieces[-1].append(chunk)
+    return [tuple(s for chunk in piece for s in chunk) for piece in pieces]
 
 
 def _clause_facts(subjects: tuple[str, ...], clause: Clause) -> list[Fact]:

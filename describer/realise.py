@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from jinja2.sandbox import SandboxedEnvironment
 
-from .english import join_list, sentence_case, verb_agreeing, without_repeated_copula
+from .english import join_list, sentence_case, verb_agreeing, with_also, without_repeated_copula
 from .lexicon import Lexicon, place_phrases
 from .plan import Clause, Fact, Inventory, Introduction, Item, Message, Network, Section, Statement, facts_of
 from .refer import SCENE, Discourse
@@ -51,10 +51,18 @@ class Realiser:
         return sentences
 
     def _reading_order(self, messages: tuple[Message, ...]) -> list[Message]:
-        """Statements may come in any order (they introduce nothing); the rest keep theirs."""
-        statements = [m for m in messages if isinstance(m, Statement)]
+        """Statements may come in any order (they introduce nothing); the rest keep theirs.
+
+        A statement continued by "also" keeps its continuation right after it.
+        """
+        blocks: list[list[Message]] = []
+        for message in messages:
+            if isinstance(message, Statement) and message.also:
+                blocks[-1].append(message)
+            elif isinstance(message, Statement):
+                blocks.append([message])
         others = [m for m in messages if not isinstance(m, Statement)]
-        return others + self.choices.shuffled(statements)
+        return others + [m for block in self.choices.shuffled(blocks) for m in block]
 
     def message(self, message: Message) -> Sentence:
         self.discourse.start_sentence()
@@ -141,6 +149,8 @@ class Realiser:
             for c in statement.clauses
         ]
         predicates = without_repeated_copula(predicates)
+        if statement.also:
+            predicates[0] = with_also(predicates[0])
         return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
 
     def _targets(self, clause: Clause) -> str:

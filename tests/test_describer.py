@@ -318,6 +318,23 @@ def test_different_nouns_share_one_statement():
     assert "The mill and the street lamp are next to the road." in describe(b.scene()).text
 
 
+def test_long_subjects_continue_with_also():
+    b = SceneBuilder()
+    road = b.road()
+    for noun in ("mill", "tower", "well", "house", "shed", "barn"):
+        b.relate(b.add(noun), "NextTo", road)
+    lamps = [b.add("street_lamp") for _ in range(3)]
+    stands = [b.group("market_stand") for _ in range(3)]
+    for stand in stands:
+        b.add("table", parent=stand)
+    for thing in lamps[:2] + stands[:2]:
+        b.relate(thing, "NextToWest", road)
+    text = describe(b.scene()).text
+    assert "The mill, the tower, the well and the house are next to the road. The shed and the barn are also next to the road." in text
+    # Two parts of cohorts in one subject would read as if their counts went together.
+    assert "Two of the street lamps are west of the road. Two of the market stands are also west of it." in text
+
+
 def test_both_and_irregular_plurals():
     b = SceneBuilder()
     mill = b.group("mill")
