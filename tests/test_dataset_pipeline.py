@@ -7,6 +7,7 @@ import json
 
 import pytest
 
+from scenewright.api import generate
 from scenewright.cli import main
 from scenewright.dataset import METADATA_FILE, scene_seed
 from test_dataset import dataset_bytes
@@ -14,7 +15,12 @@ from test_dataset import dataset_bytes
 
 @pytest.fixture(scope="module")
 def one_worker(tmp_path_factory):
-    """A 4-scene desk dataset with every optional column, made by one worker."""
+    """A 4-scene desk dataset with every optional column, made by one worker.
+
+    This process renders first: a worker forked from a process holding an OpenGL
+    context hangs (tried), so the pool must not inherit one (it uses forkserver).
+    """
+    generate("desk", seed=1, render=True, size=(32, 32))
     root = tmp_path_factory.mktemp("desk") / "one"
     argv = ["dataset", "desk", "-n", "4", "-o", str(root), "--size", "64x64", "--captions", "2"]
     assert main([*argv, "--workers", "1", "--depth", "--segmentation", "--quiet"]) == 0
