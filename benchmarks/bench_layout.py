@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/bench_layout.py                 # everything below
     .venv/bin/python benchmarks/bench_layout.py --village 200   # seeds 0..199 of village.rules
+    .venv/bin/python benchmarks/bench_layout.py --village 100 --restarts 0   # first chains only
     .venv/bin/python benchmarks/bench_layout.py --scaling       # 10, 30, 100, 300 objects
     .venv/bin/python benchmarks/bench_layout.py --compare       # per-step cost, full vs incremental
 
@@ -29,7 +30,7 @@ from scenewright.generator.layout.state import State
 from scenewright.generator.layout.synthetic import village_graph
 
 
-def village(seeds: int, rules_name: str) -> None:
+def village(seeds: int, rules_name: str, params: LayoutParams) -> None:
     rules = load_rules(rules_name)
     times, cpu, steps, counts, failures = [], [], [], [], Counter()
     ok = 0
@@ -37,7 +38,7 @@ def village(seeds: int, rules_name: str) -> None:
         graph = expand(rules, seed)
         counts.append(sum(1 for n in graph.nodes() if n.kind == "object"))
         started = time.process_time()
-        result = layout_scene(graph, seed)
+        result = layout_scene(graph, seed, params=params)
         cpu.append(time.process_time() - started)
         times.append(result.seconds)
         steps.append(result.steps)
@@ -114,12 +115,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--village", type=int, metavar="SEEDS", help="lay out this many village scenes")
     parser.add_argument("--rules", default="village", help="rule set for --village")
+    parser.add_argument("--restarts", type=int, help="chains after the first for --village (default: LayoutParams)")
     parser.add_argument("--scaling", action="store_true")
     parser.add_argument("--compare", action="store_true")
     args = parser.parse_args()
     everything = not (args.village or args.scaling or args.compare)
     if args.village or everything:
-        village(args.village or 200, args.rules)
+        params = LayoutParams() if args.restarts is None else LayoutParams(restarts=args.restarts)
+        village(args.village or 200, args.rules, params)
     if args.scaling or everything:
         scaling()
     if args.compare or everything:

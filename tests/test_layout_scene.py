@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from scenewright.errors import InputError
 from scenewright.generator.catalog import CatalogEntry
@@ -60,7 +61,7 @@ def test_same_seed_same_result_and_other_seed_differs():
     assert layout_scene(small_stand(), seed=6, params=FAST).poses != first.poses
 
 
-def test_contradictory_relations_are_reported_not_hidden():
+def test_contradictory_relations_are_reported_not_hidden_and_drawn_red(tmp_path):
     graph = SceneGraph(params=SceneParams(extent=(10.0, 10.0)))
     a, b = graph.add_node(TABLE), graph.add_node(CHAIR)
     graph.add_relation(b, a, "NextToNorth")
@@ -70,6 +71,10 @@ def test_contradictory_relations_are_reported_not_hidden():
     assert any(p.startswith("chair_1 is not north of table_1") or p.startswith("chair_1 is not south of table_1")
                for p in result.problems)
     assert sum(not r.satisfied for r in result.relations) >= 1
+    image = draw_plan(assemble_scene(graph, result, rules="test", seed=0), tmp_path / "plan.png")
+    pixels = np.asarray(Image.open(image).convert("RGB")).astype(int)
+    red = (pixels[..., 0] > 200) & (pixels[..., 1] < 60) & (pixels[..., 2] < 60)
+    assert red.sum() > 20  # the unsatisfied relation's dashed line
 
 
 def test_village_graph_reaches_ok_and_plan_is_drawn(tmp_path):
@@ -82,6 +87,9 @@ def test_village_graph_reaches_ok_and_plan_is_drawn(tmp_path):
     scene = assemble_scene(graph, result, rules="synthetic", seed=3)
     image = draw_plan(scene, tmp_path / "plan.png")
     assert image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    pixels = np.asarray(Image.open(image).convert("RGB")).astype(int)
+    red = (pixels[..., 0] > 200) & (pixels[..., 1] < 60) & (pixels[..., 2] < 60)
+    assert red.sum() == 0  # nothing unsatisfied, nothing red
 
 
 def test_support_between_non_objects_is_an_input_error():
