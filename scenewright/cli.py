@@ -203,6 +203,9 @@ def run_dataset(args: argparse.Namespace) -> int:
         f"{report.directory}: {report.written} scenes in metadata.jsonl; {report.failed} of {report.count} "
         f"layouts failed ({failed_note}); made {report.made} now, {report.skipped} were already done",
     )
+    if report.failed:
+        common = "; ".join(f"{problem} ({n}x)" for problem, n in list(report.stats["problems"].items())[:3])
+        say(args, f"most frequent layout problems: {common}")
     if report.made:
         say(
             args,

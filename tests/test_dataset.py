@@ -232,8 +232,10 @@ def test_every_layout_failing_is_reported_and_the_command_exits_1(tmp_path, monk
     monkeypatch.setattr(
         scenewright.dataset, "run_dataset", lambda *a, **k: real(*a, **{**k, "producer": failing_scene})
     )
-    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1", "-q"]) == 1
-    assert "every scene's layout failed" in capsys.readouterr().err
+    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1"]) == 1
+    captured = capsys.readouterr()
+    assert "every scene's layout failed" in captured.err
+    assert "most frequent layout problems: box is not north of box (#° off) (3x)" in captured.out
     assert (tmp_path / METADATA_FILE).read_text() == ""
     stats = json.loads((tmp_path / "stats.json").read_text())
     assert (stats["written"], stats["failed"], stats["problems"]) == (
