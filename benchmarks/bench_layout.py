@@ -88,7 +88,7 @@ def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
     rng = np.random.default_rng(seed)
     state = State(problem)
     energy = Energy(problem, state, params)
-    mover = Mover(problem, state, rng)
+    mover = Mover(problem, state, rng, params)
     place_initial(energy, mover, rng)
     started = time.process_time()
     for _ in range(steps):

@@ -18,7 +18,7 @@ def placed(seed: int, size: int = 24, params: LayoutParams | None = None):
     rng = np.random.default_rng(seed)
     state = State(problem)
     energy = Energy(problem, state, params or LayoutParams())
-    mover = Mover(problem, state, rng)
+    mover = Mover(problem, state, rng, energy.params)
     place_initial(energy, mover, rng)
     return energy, mover, rng
 

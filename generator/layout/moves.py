@@ -13,7 +13,8 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
   source where that relation holds (on the right side of B at a small gap, on B's top,
   beside a road at a random point along it, turned to face B, ...), or move its target
-  instead (B shifted next to A, or turned so that A is on the side the label names);
+  instead (B shifted next to A, or turned so that A is on the side the label names); an
+  A with several placing relations gets the best of a few tries under all of them;
 - ``path``: move one control point of a path, or bend the path's tail around a point;
 - ``junction``: move a junction, with the start of every path leaving it.
 
@@ -30,8 +31,9 @@ import math
 
 import numpy as np
 
+from .params import LayoutParams
 from .problem import Endpoint, Problem, RelationTerm
-from .relation_terms import COMPASS, anchor, centre
+from .relation_terms import COMPASS, anchor, centre, evaluate
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -51,6 +53,9 @@ REVERSE_SHARE = 0.3
 #: Extra weight a relation found unsatisfied at the last check gets in data-driven moves
 #: (the squared energies of the others are mostly well below 1).
 FOCUS_WEIGHT = 1.0
+
+#: Tries of a data-driven move for an item with several placing relations.
+MULTI_TRIES = 8
 
 #: NextTo* labels that name one of B's own sides: turning B can satisfy them.
 B_SIDE_LABELS = ("NextToLeft", "NextToRight", "NextToFront", "NextToBehind", "NextToChooseSide")
@@ -109,8 +114,9 @@ def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
 class Mover:
     """Draws proposals for one problem; holds the precomputed choices."""
 
-    def __init__(self, problem: Problem, state: State, rng: np.random.Generator):
-        self.problem, self.state, self.rng = problem, state, rng
+    def __init__(self, problem: Problem, state: State, rng: np.random.Generator, params: LayoutParams):
+        self.problem, self.state, self.rng, self.params = problem, state, rng, params
+        self._placing: dict[tuple[str, int], list[RelationTerm]] = {}
         self.boxes = [b for b in range(problem.n_boxes) if not problem.is_junction[b]]
         self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
         self.groups = [g for g, members in enumerate(problem.group_members) if members]
@@ -253,11 +259,47 @@ class Mover:
             boxes = self.turn_target_for(term)
         elif b_movable and term.base.startswith("NextTo") and (not a_movable or self.rng.random() < REVERSE_SHARE):
             boxes = self.place_target_for(term)
+        elif a_movable and len(self._placing_terms(term.a)) > 1:
+            boxes = self.place_for_all(term.a)
         elif a_movable:
             boxes = self.place_for_relation(term)
         else:
             return None
         return (boxes, {}) if boxes else None
+
+    def _placing_terms(self, end: Endpoint) -> list[RelationTerm]:
+        """A's relations that say where it goes (NextTo*, OnTopOf*), not only how it turns."""
+        key = (end.kind, end.index)
+        if key not in self._placing:
+            self._placing[key] = [
+                t for t in self.problem.outgoing.get(key, []) if not t.base.startswith("Facing")
+            ]
+        return self._placing[key]
+
+    def place_for_all(self, end: Endpoint) -> dict | None:
+        """For an A with several placing relations: the best of a few data-driven poses.
+
+        Each try places A by one of its relations drawn at random; the tries are ranked by
+        the energy of all of A's placing relations together, so a smithy that must be both
+        beside a tower and next to a road lands where both hold, when any try found it.
+        """
+        state = self.state
+        terms = self._placing_terms(end)
+        boxes = self.moving_boxes(end)
+        saved = [(box, state.pose(box)) for box in boxes]
+        best, best_energy = None, math.inf
+        for _ in range(MULTI_TRIES):
+            proposal = self.place_for_relation(terms[int(self.rng.integers(len(terms)))])
+            if not proposal:
+                continue
+            for box, pose in proposal.items():
+                state.set_pose(box, *pose)
+            energy = sum(evaluate(term, state, self.params).energy for term in terms)
+            for box, pose in saved:
+                state.set_pose(box, *pose)
+            if energy < best_energy:
+                best, best_energy = proposal, energy
+        return best
 
     def place_for_relation(self, term: RelationTerm, *, keep_heading: bool = False) -> dict | None:
         """New poses for A (and all it carries) at which ``term`` holds, or None.

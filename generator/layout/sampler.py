@@ -46,7 +46,7 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) 
     """Place, then anneal until the stop rule holds or the step budget is spent."""
     state = State(problem)
     energy = Energy(problem, state, params)
-    mover = Mover(problem, state, rng)
+    mover = Mover(problem, state, rng, params)
     place_initial(energy, mover, rng)
     relations, problems = assess(energy)
     accepted = steps = 0
