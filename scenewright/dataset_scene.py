@@ -2,13 +2,16 @@
 
 A worker keeps a ``WorkerContext`` for its whole life: the parsed rules and one
 ``Renderer`` (one OpenGL context), made once by ``worker_context`` (the process pool's
-initializer, or lazily on a dask worker). ``produce_scene`` turns a scene index into a
+initializer, or lazily on a dask worker). An OpenGL context is current in one thread
+only, so a worker process running several threads (a dask worker with ``--nthreads``
+above 1) gets one context per thread. ``produce_scene`` turns a scene index into a
 ``SceneProduct``: the encoded files and the scene's record. It writes nothing into the
 dataset directory; the parent process does (``dataset.store_product``).
 """
 
 from __future__ import annotations
 
+import threading
 from collections import Counter
 from dataclasses import dataclass
 
@@ -27,20 +30,21 @@ class WorkerContext:
     renderer: object  # scenewright.render.offscreen.Renderer
 
 
-_context: WorkerContext | None = None
+_per_thread = threading.local()
 
 
 def worker_context(spec: DatasetSpec) -> WorkerContext:
-    """This process's rules and renderer for ``spec``, made on first use."""
-    global _context
-    if _context is None or _context.settings != spec.settings():
+    """This thread's rules and renderer for ``spec``, made on first use."""
+    context: WorkerContext | None = getattr(_per_thread, "context", None)
+    if context is None or context.settings != spec.settings():
         from scenewright.api import load_rules
         from scenewright.render.offscreen import Renderer
 
-        if _context is not None:
-            _context.renderer.close()
-        _context = WorkerContext(spec.settings(), load_rules(spec.rules), Renderer(*spec.size))
-    return _context
+        if context is not None:
+            context.renderer.close()
+        context = WorkerContext(spec.settings(), load_rules(spec.rules), Renderer(*spec.size))
+        _per_thread.context = context
+    return context
 
 
 def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:

@@ -87,8 +87,9 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
 def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     distributed = pytest.importorskip("distributed")
     argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
+    # Two threads per worker process: each thread must get its own OpenGL context.
     with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        n_workers=2, threads_per_worker=2, processes=True, dashboard_address=None
     ) as cluster:
         assert main([*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]) == 0
     assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)
