@@ -2,7 +2,7 @@
 
 Paths first (roads leave their junction at evenly spread headings, free roads cross
 the scene), then the top-level items (groups and free objects) one at a time, each
-after the items its relations point to: a group's members are placed from their
+after the items its relations point to and the most constrained first: a group's members are placed from their
 relations to each other (the first member where the group's own relation wants the
 group, e.g. beside its road), stacked things on their supports, unrelated members
 beside a placed mate; then the group is placed as a whole once more. Every placement
@@ -40,8 +40,10 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> Non
     _lay_paths(energy, rng)
     problem = energy.problem
     pending = list(problem.units)
+    priority = _priorities(energy)
     while pending:
-        unit = next((u for u in pending if _anchors_placed(energy, u)), pending[0])
+        ready = [u for u in pending if _anchors_placed(energy, u)] or pending[:1]
+        unit = max(ready, key=lambda u: priority[u])  # the first of the most constrained
         pending.remove(unit)
         kind, index = unit
         if kind == "group":
@@ -51,6 +53,37 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> Non
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
+
+
+def _priorities(energy: Energy) -> dict[tuple[str, int], int]:
+    """How constrained each top-level item is: its count of relations to outside itself.
+
+    An item that a more constrained one points at gets that one's count, so a tower a
+    smithy must stand beside (and next to a road) is placed early, then the smithy, before
+    the spot they need is taken by items that could go anywhere along the road.
+    """
+    problem = energy.problem
+    unit_of: dict[tuple[str, int], tuple[str, int]] = {}
+    own: dict[tuple[str, int], set[int]] = {}
+    for kind, index in problem.units:
+        members = problem.group_members[index] if kind == "group" else (index,)
+        own[(kind, index)] = set(members)
+        key = ("group", index) if kind == "group" else ("object", index)
+        unit_of[key] = (kind, index)
+        for box in members:
+            unit_of.setdefault(("object", box), (kind, index))
+    count = {unit: 0 for unit in problem.units}
+    for term in problem.relations:
+        source = unit_of.get((term.a.kind, term.a.index))
+        if source is not None and (term.b.kind == "path" or not set(term.b.members) <= own[source]):
+            count[source] += 1
+    priority = dict(count)
+    for term in problem.relations:
+        source = unit_of.get((term.a.kind, term.a.index))
+        target = unit_of.get((term.b.kind, term.b.index))
+        if source is not None and target is not None and target != source:
+            priority[target] = max(priority[target], count[source])
+    return priority
 
 
 def _outgoing(energy: Energy, end_kind: str, index: int) -> list[RelationTerm]:
