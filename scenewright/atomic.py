@@ -14,24 +14,33 @@ import shutil
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
+from typing import IO, Iterator
 
 PARTIAL_SUFFIX = ".partial"
 
 
 def write_atomic(path: str | os.PathLike[str], data: bytes | str) -> Path:
     """Write ``data`` (text is UTF-8 encoded) to ``path`` atomically; return the path."""
+    with atomic_stream(path, binary=True) as stream:
+        stream.write(data.encode("utf-8") if isinstance(data, str) else data)
+    return Path(path)
+
+
+@contextmanager
+def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iterator[IO]:
+    """A file to write ``path`` through, piece by piece; it replaces ``path`` only when the
+    block ends without an error (text mode is UTF-8)."""
     target = Path(path)
-    payload = data.encode("utf-8") if isinstance(data, str) else data
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=PARTIAL_SUFFIX, dir=target.parent)
     try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(payload)
+        with os.fdopen(
+            handle, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8"})
+        ) as stream:
+            yield stream
         os.replace(temporary, target)
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
-    return target
 
 
 def remove_partials(directory: str | os.PathLike[str]) -> int:

@@ -41,7 +41,8 @@ from pathlib import Path
 
 import numpy as np
 
-from scenewright.atomic import remove_partials, write_atomic
+from scenewright.atomic import atomic_stream, remove_partials, write_atomic
+from scenewright.dataset_stats import StatsCollector, write_stats
 from scenewright.errors import InputError
 
 #: The settings that must not change when a run is resumed into the same directory.
@@ -214,22 +215,19 @@ def store_product(root: Path, product: SceneProduct) -> None:
     write_atomic(root / RECORDS_DIR / f"{scene_stem(product.index)}.json", record)
 
 
-def collect_records(root: Path, count: int) -> list[dict]:
-    """Every scene's record, ordered by index (all must exist once a run has finished)."""
-    records = []
-    for index in range(count):
-        record = read_record(root / RECORDS_DIR / f"{scene_stem(index)}.json")
-        if record is None:
-            raise RuntimeError(f"scene {index} has no record after the run; rerun to finish it")
-        records.append(record)
-    return records
-
-
-def write_metadata(root: Path, records: list[dict]) -> int:
-    """Rebuild metadata.jsonl from the records (index order); return the number of rows."""
-    rows = [json.dumps(r["row"], ensure_ascii=False) + "\n" for r in records if r["row"] is not None]
-    write_atomic(root / METADATA_FILE, "".join(rows))
-    return len(rows)
+def publish_metadata(root: Path, count: int) -> StatsCollector:
+    """Rebuild metadata.jsonl from the records, in index order, one record at a time;
+    return the records' statistics. Every record must exist (the run has finished)."""
+    collector = StatsCollector()
+    with atomic_stream(root / METADATA_FILE) as metadata:
+        for index in range(count):
+            record = read_record(root / RECORDS_DIR / f"{scene_stem(index)}.json")
+            if record is None:
+                raise RuntimeError(f"scene {index} has no record after the run; rerun to finish it")
+            collector.add(record)
+            if record["row"] is not None:
+                metadata.write(json.dumps(record["row"], ensure_ascii=False) + "\n")
+    return collector
 
 
 def make_executor(
@@ -279,7 +277,6 @@ def run_dataset(
     tests inject a cheap one.
     """
     from scenewright.dataset_scene import produce_scene
-    from scenewright.dataset_stats import summarise, write_stats
 
     producer = producer or produce_scene
     workers = workers or default_workers()
@@ -299,17 +296,16 @@ def run_dataset(
                 bar.set_postfix(failed=failed_now, refresh=False)
             bar.close()
     seconds = time.perf_counter() - started
-    records = collect_records(root, spec.count)
-    written = write_metadata(root, records)
-    stats = summarise(records, made=made, seconds=seconds)
+    collector = publish_metadata(root, spec.count)
+    stats = collector.summary(made=made, seconds=seconds)
     write_stats(root, stats)
     return RunReport(
         directory=root,
         count=spec.count,
         made=made,
         skipped=spec.count - len(todo),
-        written=written,
-        failed=sum(not r["ok"] for r in records),
+        written=collector.written,
+        failed=collector.failed,
         seconds=seconds,
         stats=stats,
     )

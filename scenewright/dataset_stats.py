@@ -22,52 +22,60 @@ STATS_JSON = "stats.json"
 STATS_PNG = "stats.png"
 
 
-def summarise(records: list[dict], *, made: int, seconds: float) -> dict:
-    """Aggregate per-scene records (index order) into the stats.json dictionary."""
-    objects: Counter = Counter()
-    relations: dict[str, list[int]] = {}
-    problems: Counter = Counter()
-    text_words: list[int] = []
-    caption_words: list[int] = []
-    stage_seconds: dict[str, list[float]] = {}
-    for record in records:
+class StatsCollector:
+    """Adds up per-scene records one at a time (a dataset's records need not fit in memory)."""
+
+    def __init__(self) -> None:
+        self.scenes = self.written = self.failed = 0
+        self.objects: Counter = Counter()
+        self.relations: dict[str, list[int]] = {}
+        self.problems: Counter = Counter()
+        self.text_words: list[int] = []
+        self.caption_words: list[int] = []
+        self.stage_seconds: dict[str, list[float]] = {}
+
+    def add(self, record: dict) -> None:
+        self.scenes += 1
+        self.written += record["row"] is not None
+        self.failed += not record["ok"]
         stats = record["stats"]
-        objects.update(stats.get("objects", {}))
+        self.objects.update(stats.get("objects", {}))
         for label, (total, satisfied) in stats.get("relations", {}).items():
-            counts = relations.setdefault(label, [0, 0])
+            counts = self.relations.setdefault(label, [0, 0])
             counts[0] += total
             counts[1] += satisfied
-        problems.update(problem_kind(p) for p in stats.get("problems", []))
+        self.problems.update(problem_kind(p) for p in stats.get("problems", []))
         words = stats.get("words", {})
         if words:
-            text_words.append(words["text"])
-            caption_words.extend(words["captions"])
+            self.text_words.append(words["text"])
+            self.caption_words.extend(words["captions"])
         for stage, value in stats.get("seconds", {}).items():
-            stage_seconds.setdefault(stage, []).append(value)
-    failed = sum(not r["ok"] for r in records)
-    return {
-        "scenes": len(records),
-        "written": sum(r["row"] is not None for r in records),
-        "failed": failed,
-        "failure_rate": round(failed / len(records), 4) if records else 0.0,
-        "problems": dict(problems.most_common(20)),
-        "objects": dict(sorted(objects.items(), key=lambda item: (-item[1], item[0]))),
-        "relations": {
-            label: {"total": total, "satisfied": satisfied}
-            for label, (total, satisfied) in sorted(
-                relations.items(), key=lambda item: (-item[1][0], item[0])
-            )
-        },
-        "words": {"text": distribution(text_words, bins=12), "caption": distribution(caption_words, bins=12)},
-        "seconds_per_stage": {
-            stage: distribution(values, digits=4) for stage, values in stage_seconds.items()
-        },
-        "this_run": {
-            "scenes_made": made,
-            "seconds": round(seconds, 3),
-            "scenes_per_minute": round(60.0 * made / seconds, 1) if seconds > 0 else 0.0,
-        },
-    }
+            self.stage_seconds.setdefault(stage, []).append(value)
+
+    def summary(self, *, made: int, seconds: float) -> dict:
+        """The stats.json dictionary; ``made`` and ``seconds`` describe this run only."""
+        by_count = sorted(self.relations.items(), key=lambda item: (-item[1][0], item[0]))
+        return {
+            "scenes": self.scenes,
+            "written": self.written,
+            "failed": self.failed,
+            "failure_rate": round(self.failed / self.scenes, 4) if self.scenes else 0.0,
+            "problems": dict(self.problems.most_common(20)),
+            "objects": dict(sorted(self.objects.items(), key=lambda item: (-item[1], item[0]))),
+            "relations": {label: {"total": total, "satisfied": held} for label, (total, held) in by_count},
+            "words": {
+                "text": distribution(self.text_words, bins=12),
+                "caption": distribution(self.caption_words, bins=12),
+            },
+            "seconds_per_stage": {
+                stage: distribution(values, digits=4) for stage, values in self.stage_seconds.items()
+            },
+            "this_run": {
+                "scenes_made": made,
+                "seconds": round(seconds, 3),
+                "scenes_per_minute": round(60.0 * made / seconds, 1) if seconds > 0 else 0.0,
+            },
+        }
 
 
 def problem_kind(problem: str) -> str:

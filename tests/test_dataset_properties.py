@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from scenewright.atomic import remove_partials, write_atomic
 from scenewright.cli import image_size
-from scenewright.dataset import RECORDS_DIR, finished_indices, scene_stem, write_metadata
+from scenewright.dataset import METADATA_FILE, RECORDS_DIR, finished_indices, publish_metadata, scene_stem
 
 
 @settings(max_examples=40, deadline=None)
@@ -33,37 +33,39 @@ def test_atomic_write_leaves_the_last_payload_and_no_temporary(payloads):
 @settings(max_examples=40, deadline=None)
 @given(
     count=st.integers(1, 12),
-    states=st.lists(st.sampled_from(["done", "torn", "missing", "skipped"]), min_size=12, max_size=12),
+    states=st.lists(st.sampled_from(["done", "torn", "missing", "failed"]), min_size=12, max_size=12),
     order=st.permutations(range(12)),
 )
 def test_only_whole_records_count_and_metadata_follows_the_index(count, states, order):
     """Records written in any order, some torn or absent: exactly the whole ones are
-    finished, and metadata lists the written rows by index."""
+    finished; once the rest are made, metadata lists the written rows by index."""
+
+    def record_of(index: int) -> str:
+        failed = states[index] == "failed"
+        stats = {"objects": {"table": 1}}
+        return json.dumps(
+            {"index": index, "ok": not failed, "row": None if failed else {"i": index}, "stats": stats}
+        )
+
     with tempfile.TemporaryDirectory() as directory:
         root = Path(directory)
         (root / RECORDS_DIR).mkdir()
-        records = {}
         for index in order:
-            state = states[index]
-            record = {
-                "index": index,
-                "ok": state != "skipped",
-                "row": None if state == "skipped" else {"i": index},
-            }
             path = root / RECORDS_DIR / f"{scene_stem(index)}.json"
-            if state == "torn":  # what a non-atomic writer could leave behind
-                path.write_text(json.dumps(record)[:7])
-            elif state != "missing":
-                write_atomic(path, json.dumps(record))
-                records[index] = record
-        expected = {i for i in range(count) if states[i] in ("done", "skipped")}
+            if states[index] == "torn":  # what a writer that is not atomic could leave
+                path.write_text(record_of(index)[:7])
+            elif states[index] != "missing":
+                write_atomic(path, record_of(index))
+        expected = {i for i in range(count) if states[i] in ("done", "failed")}
         assert finished_indices(root, count) == expected
-        rows = write_metadata(root, [records[i] for i in sorted(records)])
-        lines = (root / "metadata.jsonl").read_text().splitlines()
-        assert rows == len(lines) == sum(state == "done" for state in states)
-        assert [json.loads(line)["i"] for line in lines] == sorted(
-            i for i, s in enumerate(states) if s == "done"
-        )
+
+        for index in reversed(order):  # a rerun makes the rest, finishing in any order
+            if index not in finished_indices(root, 12):
+                write_atomic(root / RECORDS_DIR / f"{scene_stem(index)}.json", record_of(index))
+        collector = publish_metadata(root, 12)
+        lines = (root / METADATA_FILE).read_text().splitlines()
+        assert [json.loads(line)["i"] for line in lines] == [i for i in range(12) if states[i] != "failed"]
+        assert (collector.scenes, collector.written, collector.objects["table"]) == (12, len(lines), 12)
 
 
 @given(width=st.integers(8, 8192), height=st.integers(8, 8192))
