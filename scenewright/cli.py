@@ -326,7 +326,7 @@ layout could not satisfy every relation the files are still written (scene.json 
 examples:
   scenewright dataset village -n 1000 -o data/village --captions 3 --size 512x512
   scenewright dataset desk -n 200 -o data/desk --seed 42 --workers 2 --depth --segmentation
-  scenewright dataset village -n 100000 -o /shared/village --scheduler tcp://head:8786
+  scenewright dataset village -n 100000 -o data/village --scheduler tcp://head:8786
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
