@@ -19,10 +19,6 @@ from .templates import render
 from .variation import Choices
 from .world import World
 
-#: How often a paraphrase variant leads an introduction with its place phrase.
-INVERSION_PROBABILITY = 0.4
-
-
 @dataclass(frozen=True)
 class Sentence:
     """One sentence of the text and the facts it states."""
@@ -123,22 +119,27 @@ class Realiser:
         clause = introduction.clause
         subjects = introduction.subjects
         plural = len(subjects) > 1 or len(subjects[0]) > 1
-        if place_phrases(clause.label, clause.chosen) and self.choices.coin(INVERSION_PROBABILITY):
-            # "On top of this table are two books.": the target is named first.
+        forms = ["plain"]
+        if place_phrases(clause.label, clause.chosen):
+            # "There is" agrees with its nearest noun, so it takes one noun only.
+            forms += ["inverted", "existential"] if len(subjects) == 1 else ["inverted"]
+        form = self.choices.pick(forms)
+        if form == "inverted":  # "On top of this table are two books.": the target comes first
             place = self.lexicon.place(clause.label, clause.chosen)
             target = self._targets(clause)
             subject = join_list([self.discourse.introduce(unit) for unit in subjects])
-            return render(
-                self.environment, "introduction.j2",
-                inverted=True, place=place, subject=subject, verb=verb_agreeing("is", plural), target=target,
-            )  # fmt: skip
-        subject = join_list([self.discourse.introduce(unit) for unit in subjects])
-        self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
-        verb = verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
+            verb = verb_agreeing("is", plural)
+        else:
+            subject = join_list([self.discourse.introduce(unit) for unit in subjects])
+            self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
+            if form == "existential":
+                place, verb = self.lexicon.place(clause.label, clause.chosen), verb_agreeing("is", plural)
+            else:
+                place, verb = "", verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
+            target = self._targets(clause)
         return render(
-            self.environment, "introduction.j2",
-            inverted=False, place="", subject=subject, verb=verb, target=self._targets(clause),
-        )  # fmt: skip
+            self.environment, "introduction.j2", form=form, place=place, subject=subject, verb=verb, target=target
+        )
 
     def _statement(self, statement: Statement) -> str:
         names = self.discourse.name_set(statement.subjects)
