@@ -9,7 +9,7 @@ import pytest
 
 from scenewright.api import generate
 from scenewright.cli import main
-from scenewright.dataset import METADATA_FILE, scene_seed
+from scenewright.dataset import METADATA_FILE, dataset_spec, run_dataset, scene_seed
 from test_dataset import dataset_bytes
 
 
@@ -22,8 +22,8 @@ def one_worker(tmp_path_factory):
     """
     generate("desk", seed=1, render=True, size=(32, 32))
     root = tmp_path_factory.mktemp("desk") / "one"
-    argv = ["dataset", "desk", "-n", "4", "-o", str(root), "--size", "64x64", "--captions", "2"]
-    assert main([*argv, "--workers", "1", "--depth", "--segmentation", "--quiet"]) == 0
+    spec = dataset_spec("desk", 4, captions=2, size=(64, 64), depth=True, segmentation=True)
+    run_dataset(spec, root, workers=1, progress=False)  # the API: any error shows in full
     return root
 
 
