@@ -7,9 +7,32 @@ inflection.
 
 from __future__ import annotations
 
-import inflect
+import importlib
+import sys
 
-_ENGINE = inflect.engine()
+
+def _import_inflect():
+    """Import inflect without typeguard's import-time instrumentation.
+
+    inflect 7 wraps its API in ``typeguard.typechecked``, which re-compiles each function
+    when the module is imported: about 2 s here, most of a ``generate`` run's start-up
+    (jaraco/inflect#212). We call inflect only with the types it declares, so it is
+    imported while ``typechecked`` is the identity, which typeguard itself does under
+    ``python -O``.
+    """
+    if "inflect" in sys.modules:
+        return sys.modules["inflect"]
+    import typeguard
+
+    original = typeguard.typechecked
+    typeguard.typechecked = lambda function=None, **_: function if function else (lambda f: f)
+    try:
+        return importlib.import_module("inflect")
+    finally:
+        typeguard.typechecked = original
+
+
+_ENGINE = _import_inflect().engine()
 
 
 def plural_of(noun: str, irregular: str | None = None) -> str:
