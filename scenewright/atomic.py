@@ -32,6 +32,8 @@ def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iter
     block ends without an error (text mode is UTF-8)."""
     target = Path(path)
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=PARTIAL_SUFFIX, dir=target.parent)
+    # mkstemp makes the file private (0600); give it the mode open() would have.
+    os.chmod(temporary, 0o666 & ~_UMASK)
     try:
         with os.fdopen(
             handle, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8"})
@@ -41,6 +43,15 @@ def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iter
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def _read_umask() -> int:
+    mask = os.umask(0)  # the only way to read it is to set it: do so once, at import
+    os.umask(mask)
+    return mask
+
+
+_UMASK = _read_umask()
 
 
 def remove_partials(directory: str | os.PathLike[str]) -> int:

@@ -78,3 +78,12 @@ def test_size_option_round_trips(width, height):
 def test_size_option_refuses(text):
     with pytest.raises(argparse.ArgumentTypeError):
         image_size(text)
+
+
+def test_atomic_write_gives_the_mode_open_would(tmp_path):
+    from scenewright.atomic import write_atomic
+
+    target = write_atomic(tmp_path / "a.txt", "x")
+    plain = tmp_path / "b.txt"
+    plain.write_text("x")
+    assert target.stat().st_mode & 0o777 == plain.stat().st_mode & 0o777
