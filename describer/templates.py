@@ -31,11 +31,32 @@ def template_environment(user_templates: str | Path | None = None) -> SandboxedE
     """A sandboxed environment reading ``user_templates`` first, then the package's templates."""
     folders = [PACKAGE_TEMPLATES]
     if user_templates is not None:
-        folder = Path(user_templates)
-        if not folder.is_dir():
-            raise TemplateError(f"description templates folder {str(folder)!r} does not exist")
-        folders.insert(0, folder.resolve())
+        folders.insert(0, _existing_folder(user_templates))
     return _environment(tuple(folders))
+
+
+def check_templates(user_templates: str | Path) -> str:
+    """The absolute path of a templates folder whose every ``*.j2`` file compiles.
+
+    Raises ``TemplateError`` for a missing folder or a template with a syntax error, so
+    a command can refuse bad templates before it spends time on layout. (Errors that
+    show only when rendering, such as a misspelt variable, are raised then.)
+    """
+    folder = _existing_folder(user_templates)
+    environment = template_environment(folder)
+    for path in sorted(folder.glob("*.j2")):
+        try:
+            environment.get_template(path.name)
+        except jinja2.TemplateError as error:
+            raise TemplateError(_error_text(path.name, error)) from None
+    return str(folder)
+
+
+def _existing_folder(user_templates: str | Path) -> Path:
+    folder = Path(user_templates)
+    if not folder.is_dir():
+        raise TemplateError(f"description templates folder {str(folder)!r} does not exist")
+    return folder.resolve()
 
 
 @lru_cache(maxsize=16)
@@ -59,5 +80,13 @@ def render(environment: SandboxedEnvironment, name: str, **context: object) -> s
     try:
         text = environment.get_template(name).render(**context)
     except jinja2.TemplateError as error:
-        raise TemplateError(f"description template {name}: {error}") from None
+        raise TemplateError(_error_text(name, error)) from None
     return " ".join(text.split())
+
+
+def _error_text(name: str, error: jinja2.TemplateError) -> str:
+    """One line naming the template (its file and line for a syntax error) and the fault."""
+    where = name
+    if isinstance(error, jinja2.TemplateSyntaxError) and error.filename:
+        where = f"{error.filename}:{error.lineno}"
+    return " ".join(f"description template {where}: {error.message or error}".split())

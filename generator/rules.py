@@ -31,7 +31,8 @@ class Rules:
     """A checked rule set, ready to expand.
 
     ``name`` is the rule set's name (the file name without ``.rules``); the scene
-    block's own name is ``params.name``. ``productions`` maps each nonterminal to its
+    block's own name is ``params.name``; its description templates folder, if it
+    brings one, is ``params.templates``. ``productions`` maps each nonterminal to its
     production; ``path`` is the root file.
     """
 
@@ -111,6 +112,7 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         extent=tuple(settings.get("extent", SceneParams.extent)),
         ground=settings.get("ground", SceneParams.ground),
         walls=bool(settings.get("walls", False)),
+        templates=_templates_folder(scene, tree),
     )
     productions = {p.name: p for file in tree.files for p in file.productions}
     return Rules(
@@ -125,6 +127,15 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         warnings=warnings,
         sources=tree.sources,
     )
+
+
+def _templates_folder(scene: ast.SceneDecl, tree: ParsedTree) -> str | None:
+    """The scene block's ``templates`` folder as an absolute path (it is written
+    relative to the file that holds the scene block), or None when there is none."""
+    for setting in scene.settings:
+        if setting.name == "templates":
+            return str((tree.paths[setting.location.file].parent / setting.value).resolve())
+    return None
 
 
 def hex_colour(text: str) -> tuple[float, float, float]:

@@ -17,8 +17,9 @@ from .catalog import SourceLocation
 class Setting:
     """One ``name value...`` line of a catalog entry, style or scene block.
 
-    ``value`` is a float, a string, a tuple of floats (``size``, ``extent``), or
-    ``True`` for a bare flag (``walls``).
+    ``value`` is a float, a string (``noun``, ``mesh``, ``templates``: a path kept as
+    written, relative to the file), a tuple of floats (``size``, ``extent``), or ``True``
+    for a bare flag (``walls``).
     """
 
     name: str

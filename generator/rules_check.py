@@ -1,7 +1,8 @@
 """Static checks of a parsed rule set: everything that can be wrong before expansion.
 
 ``check_tree`` looks at a file and its includes together and returns diagnostics in
-file order: the catalog (fields, values, styles, mesh files), the scene block, and
+file order: the catalog (fields, values, styles, mesh files), the scene block (and
+its templates folder), and
 the productions (labels, types, names in scope, calls and their arguments, counts,
 probabilities and weights, blocks on groups only, PathConnectedTo from a path to a
 junction), then the whole grammar: undefined
@@ -172,12 +173,21 @@ class _Checker:
                 self.error(at, "the extent must be positive")
             elif setting.name in ("max_depth", "max_nodes") and (value < 1 or not _is_whole(value)):
                 self.error(at, f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}")
+            elif setting.name == "templates":
+                self.check_templates(value, setting)
         if "max_nodes" in settings and _is_whole(settings["max_nodes"].value):
             self.max_nodes = int(settings["max_nodes"].value)
         if "start" not in settings:
             self.error(scene.location, "the scene block has no start symbol (add: start NONTERMINAL)")
             return None
         return settings["start"].value, settings["start"].value_location
+
+    def check_templates(self, folder_name: str, setting: ast.Setting) -> None:
+        """The description templates folder, like a mesh, is found relative to its file."""
+        folder = self.paths[setting.location.file].parent
+        if not (folder / folder_name).is_dir():
+            self.error(setting.value_location,
+                       f"templates folder '{folder_name}' not found (looked in {folder.resolve()})")
 
     def check_start(self, start: str, location: SourceLocation) -> None:
         if start not in self.productions:

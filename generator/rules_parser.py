@@ -29,7 +29,7 @@ from .rules_errors import Diagnostic, SourceTexts, did_you_mean
 
 #: Catalog fields and scene settings, as the grammar spells them (for error messages).
 ENTRY_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments")
-SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes")
+SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes", "templates")
 KINDS_WORDS = ("object", "group", "path", "junction")
 
 
@@ -80,7 +80,7 @@ class _ToAst(Transformer):
         return ast.Setting(name, value, self._at(meta), self._at(values[0]))
 
     def __default__(self, data, children, meta):
-        if data in ENTRY_FIELDS or data in ("extent", "ground", "walls", "max_depth", "max_nodes"):
+        if data in ENTRY_FIELDS or (data in SCENE_SETTINGS and data != "start"):
             return self._setting(str(data), meta, children)
         if data == "start_symbol":
             return self._setting("start", meta, children)

@@ -28,12 +28,15 @@ class SceneParams:
 
     ``extent`` is (width along x, depth along z) in metres, centred on the origin.
     ``walls``: the extent is a room bounded by walls (indoor rule sets).
+    ``templates``: the absolute path of the rule set's own description templates
+    folder (the scene block's ``templates``), or None for the package's templates.
     """
 
     name: str = "scene"
     extent: tuple[float, float] = (40.0, 40.0)
     ground: str = "grass"
     walls: bool = False
+    templates: str | None = None
 
 
 @dataclass(frozen=True)
@@ -183,6 +186,7 @@ class SceneGraph:
                 extent=tuple(params.get("extent", (40.0, 40.0))),
                 ground=params.get("ground", "grass"),
                 walls=bool(params.get("walls", False)),
+                templates=params.get("templates"),
             )
         )
         for raw in data["nodes"]:

@@ -65,8 +65,14 @@ def rules_label(rules: "Rules") -> str:
     return str(rules.path)
 
 
-def build_scene(rules: "str | os.PathLike[str] | Rules", seed: int) -> Scene:
-    """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images."""
+def build_scene(
+    rules: "str | os.PathLike[str] | Rules", seed: int, *, templates: "str | os.PathLike[str] | None" = None
+) -> Scene:
+    """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images.
+
+    ``templates``, a folder of description templates, replaces the rule set's own in
+    ``scene.templates`` (as an absolute path), so every description of the scene uses it.
+    """
     from scenewright.generator import expand
     from scenewright.generator.layout import layout_scene
 
@@ -77,16 +83,26 @@ def build_scene(rules: "str | os.PathLike[str] | Rules", seed: int) -> Scene:
     with timed(timings, "layout"):
         layout = layout_scene(graph, seed)
     scene = assemble_scene(graph, layout, rules=rules_label(loaded), seed=seed)
+    if templates is not None:
+        scene.templates = str(Path(templates).resolve())
     scene.timings.update(timings)
     return scene
 
 
-def describe_scene(scene: Scene, *, style: str = "full", variant: int = 0) -> "Description":
-    """Describe ``scene``, store the description in it, and return it."""
-    from scenewright.describer import describe
+def describe_scene(
+    scene: Scene,
+    *,
+    style: str = "full",
+    variant: int = 0,
+    templates: "str | os.PathLike[str] | None" = None,
+) -> "Description":
+    """Describe ``scene``, store the description in it, and return it.
 
+    ``templates``: a folder of description templates for this description only; by
+    default the scene's own (``scene.templates``, from its rule set), if any.
+    """
     with timed(scene.timings, "describe"):
-        description = describe(scene, style=style, variant=variant)
+        description = scene.describe(style=style, variant=variant, templates=templates)
     scene.description = description.to_dict()
     return description
 
@@ -131,6 +147,7 @@ def generate(
     *,
     style: str = "full",
     variant: int = 0,
+    templates: "str | os.PathLike[str] | None" = None,
     render: bool = False,
     size: tuple[int, int] = DEFAULT_SIZE,
     view: str = "perspective",
@@ -142,14 +159,28 @@ def generate(
     ``render=True`` its ``render`` metadata plus the pixels in ``scene.images``. A
     layout that could not satisfy everything is returned as it is, with
     ``scene.layout.ok`` false and ``scene.layout.problems`` saying why.
+
+    ``templates`` is a folder of description templates that replaces the rule set's
+    own (the scene block's ``templates``); the scene records it in ``scene.templates``
+    so that describing the scene again uses it too.
     """
     check_choice("style", style, STYLES)
     check_choice("view", view, VIEWS)
-    scene = build_scene(rules, seed)
+    scene = build_scene(rules, seed, templates=checked_templates(templates))
     describe_scene(scene, style=style, variant=variant)
     if render:
         render_scene(scene, size=size, view=view)
     return scene
+
+
+def checked_templates(templates: "str | os.PathLike[str] | None") -> str | None:
+    """A templates folder given by the user, as an absolute path once its templates
+    compile (``TemplateError`` if not); None stays None."""
+    if templates is None:
+        return None
+    from scenewright.describer.templates import check_templates
+
+    return check_templates(templates)
 
 
 def reproducible_json(scene: Scene) -> str:

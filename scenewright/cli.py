@@ -149,15 +149,17 @@ def read_scene(path: str):
 
 
 def run_generate(args: argparse.Namespace) -> int:
-    from scenewright.api import build_scene, describe_scene, export_scene, load_rules, render_scene
+    from scenewright.api import build_scene, checked_templates, describe_scene, export_scene, load_rules
+    from scenewright.api import render_scene
     from scenewright.api import reproducible_json, summary_line, timings_of
     from scenewright.atomic import staged_outputs
     from scenewright.generator.layout.plan import draw_plan
     from scenewright.render.offscreen import save_render
 
     rules = load_rules(args.rules)
+    templates = checked_templates(args.templates)
     directory = output_directory(args.output)
-    scene = build_scene(rules, args.seed)
+    scene = build_scene(rules, args.seed, templates=templates)
     description = describe_scene(scene, style=args.style, variant=args.variant)
     with staged_outputs(directory) as stage:
         (stage / "description.txt").write_text(description.text + "\n", encoding="utf-8")
@@ -190,6 +192,7 @@ def run_dataset(args: argparse.Namespace) -> int:
         args.count,
         base_seed=args.seed,
         captions=args.captions,
+        templates=args.templates,
         size=args.size,
         view=args.view,
         depth=args.depth,
@@ -218,12 +221,13 @@ def run_dataset(args: argparse.Namespace) -> int:
 
 
 def run_validate(args: argparse.Namespace) -> int:
-    from scenewright.generator import check_rules
+    from scenewright.generator import check_rules, shipped_rule_sets
 
+    shipped = shipped_rule_sets()
     any_error = False
     for name in args.files:
-        if not Path(name).is_file():
-            print(f"{name}: error: no such file")
+        if not Path(name).is_file() and name not in shipped:
+            print(f"{name}: error: no such file (nor a shipped rule set: {', '.join(shipped)})")
             any_error = True
         elif name.endswith(".json"):
             try:
@@ -260,7 +264,7 @@ def run_expand(args: argparse.Namespace) -> int:
 
 def run_describe(args: argparse.Namespace) -> int:
     scene = read_scene(args.scene)
-    print(scene.describe(style=args.style, variant=args.variant).text)
+    print(scene.describe(style=args.style, variant=args.variant, templates=args.templates).text)
     return 0
 
 
@@ -316,6 +320,7 @@ examples:
   scenewright generate village --seed 7 -o out/
   scenewright generate my_town.rules --seed 3 --style short --size 1024x768 -o town/
   scenewright generate desk --no-render -o desk/
+  scenewright generate market.rules --templates my_words/ -o market/
 
 writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
 preview.png (+ preview_depth.png, preview_seg.png, preview_ids.json), scene.glb and
@@ -334,7 +339,7 @@ interrupted run. The directory loads with
 datasets.load_dataset("imagefolder", data_dir=DIR).""",
     "validate": """\
 examples:
-  scenewright validate grammar_rules/village.rules
+  scenewright validate village
   scenewright validate my.rules out/scene.json
 
 Prints "FILE: ok" or every diagnostic (file:line:column with the line and a caret).
@@ -346,7 +351,11 @@ examples:
     "describe": """\
 examples:
   scenewright describe out/scene.json
-  scenewright describe out/scene.json --style short --variant 2""",
+  scenewright describe out/scene.json --style short --variant 2
+  scenewright describe out/scene.json --templates my_templates/
+
+uses the description templates the scene was generated with (scene.json's "templates",
+from the rule set or generate --templates) unless --templates names another folder.""",
     "render": """\
 examples:
   scenewright render out/scene.json -o out/preview.png
@@ -404,6 +413,14 @@ def build_parser() -> CommandLineParser:
         sub.add_argument(
             "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
         )
+        templates_option(sub)
+
+    def templates_option(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument(
+            "--templates",
+            metavar="DIR",
+            help="folder of description templates (*.j2) to use instead of the rule set's own",
+        )
 
     def view_options(sub: argparse.ArgumentParser, size: str) -> None:
         sub.add_argument(
@@ -437,6 +454,7 @@ def build_parser() -> CommandLineParser:
     dataset.add_argument(
         "--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)"
     )
+    templates_option(dataset)
     view_options(dataset, "512x512")
     dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
     dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
@@ -448,7 +466,9 @@ def build_parser() -> CommandLineParser:
     )
 
     validate = command("validate", "check rules files (and scene.json files)", run_validate)
-    validate.add_argument("files", nargs="+", metavar="FILE", help=".rules or scene .json files")
+    validate.add_argument(
+        "files", nargs="+", metavar="FILE", help=".rules files, shipped rule set names, or scene .json files"
+    )
 
     expand = command("expand", "print the scene graph that the grammar expands to", run_expand)
     expand.add_argument("rules", help="shipped rule set name or path to a .rules file")

@@ -76,6 +76,8 @@ class DatasetSpec:
     ``rules`` is how the user named the rule set (shipped name or path) and
     ``rules_digest`` a hash of its text, so a resumed run cannot silently mix rule
     versions. ``captions`` is the number of short captions per scene (variants 0..K-1).
+    ``templates`` is the absolute path of a description templates folder that replaces
+    the rule set's own, or None.
     """
 
     rules: str
@@ -83,6 +85,7 @@ class DatasetSpec:
     count: int
     base_seed: int = 0
     captions: int = 1
+    templates: str | None = None
     size: tuple[int, int] = (512, 512)
     view: str = "perspective"
     depth: bool = False
@@ -97,17 +100,26 @@ class DatasetSpec:
         return data
 
 
-def dataset_spec(rules, count: int, **settings) -> DatasetSpec:
+def dataset_spec(
+    rules, count: int, *, templates: str | os.PathLike[str] | None = None, **settings
+) -> DatasetSpec:
     """The spec for ``count`` scenes of a rule set (name, path or loaded Rules).
 
-    Loads (and so checks) the rules, names them as scene.json does, and hashes their
-    text. ``settings`` are the other ``DatasetSpec`` fields.
+    Loads (and so checks) the rules and the description templates the scenes will use
+    (``templates``, else the rule set's own), names the rules as scene.json does, and
+    hashes their text. ``settings`` are the other ``DatasetSpec`` fields.
     """
-    from scenewright.api import load_rules, rules_label
+    from scenewright.api import checked_templates, load_rules, rules_label
 
     loaded = load_rules(rules)
+    if templates is None:
+        checked_templates(loaded.params.templates)  # a broken one stops the run before any work
+    else:
+        templates = checked_templates(templates)
     digest = hashlib.sha256(Path(loaded.path).read_bytes()).hexdigest()
-    return DatasetSpec(rules=rules_label(loaded), rules_digest=digest, count=count, **settings)
+    return DatasetSpec(
+        rules=rules_label(loaded), rules_digest=digest, count=count, templates=templates, **settings
+    )
 
 
 @dataclass

@@ -55,7 +55,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
     try:
-        scene = build_scene(context.rules, seed)
+        scene = build_scene(context.rules, seed, templates=spec.templates)
     except ScenewrightError as error:  # e.g. an expansion that hit the rules' bounds
         return SceneProduct(index, seed, False, {}, None, {"problems": [str(error)]})
     if not scene.layout.ok and not spec.include_failed:

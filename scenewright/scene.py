@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
@@ -101,6 +102,9 @@ class Scene:
     layout: LayoutStats = field(default_factory=LayoutStats)
     walls: bool = False
     ground: str = "grass"
+    #: The folder of description templates the rule set brings (absolute path), which
+    #: ``describe`` reads unless told otherwise; None: the package's own templates.
+    templates: str | None = None
     description: dict[str, Any] | None = None
     render: dict[str, Any] | None = None
     timings: dict[str, float] = field(default_factory=dict)
@@ -171,6 +175,7 @@ class Scene:
             layout=build(LayoutStats, data.get("layout", {})),
             walls=bool(data.get("walls", False)),
             ground=data.get("ground", "grass"),
+            templates=data.get("templates"),
             description=data.get("description"),
             render=data.get("render"),
             timings=dict(data.get("timings", {})),
@@ -183,11 +188,14 @@ class Scene:
 
     # -- conveniences: thin wrappers over the pipeline stages (imported lazily) -------
 
-    def describe(self, style: str = "full", variant: int = 0):
-        """An English description of this scene (a ``Description``); the scene is unchanged."""
+    def describe(self, style: str = "full", variant: int = 0, templates: str | os.PathLike[str] | None = None):
+        """An English description of this scene (a ``Description``); the scene is unchanged.
+
+        ``templates``: a folder of description templates; default ``self.templates``.
+        """
         from scenewright.describer import describe
 
-        return describe(self, style=style, variant=variant)
+        return describe(self, style=style, variant=variant, templates=templates or self.templates)
 
     def render_image(self, width: int = 640, height: int = 480, view: str = "perspective"):
         """Render offscreen: fills ``render`` metadata and ``images``, returns the ``RenderResult``."""
@@ -209,7 +217,11 @@ class Scene:
         nodes.sort(key=lambda n: n["order"])
         return SceneGraph.from_dict(
             {
-                "params": asdict(SceneParams(extent=tuple(self.extent), ground=self.ground, walls=self.walls)),
+                "params": asdict(
+                    SceneParams(
+                        extent=tuple(self.extent), ground=self.ground, walls=self.walls, templates=self.templates
+                    )
+                ),
                 "nodes": nodes,
                 "edges": [{"source": r.source, "target": r.target, "label": r.label} for r in self.relations],
             }
@@ -276,6 +288,7 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
         layout=stats,
         walls=graph.params.walls,
         ground=graph.params.ground,
+        templates=graph.params.templates,
         version=__version__,
     )
 

@@ -72,3 +72,32 @@ def test_bad_style_view_and_rules_are_input_errors(tmp_path):
         generate("desk", view="side")
     with pytest.raises(InputError):
         generate(tmp_path / "missing.rules")
+
+
+STALL = Path(__file__).parent / "rules" / "stall" / "stall.rules"
+
+
+def test_a_rule_set_describes_its_scenes_with_its_own_templates():
+    scene = generate(STALL, seed=1)
+    assert scene.templates == str(STALL.parent.resolve() / "templates")
+    # templates/inventory.j2 beside the rules replaces the package's overview sentence
+    assert scene.description["text"].startswith("At this stall the scene offers ")
+    again = Scene.from_json(reproducible_json(scene))
+    assert again.templates == scene.templates and again.describe().text == scene.description["text"]
+    from scenewright.describer.templates import PACKAGE_TEMPLATES
+
+    assert scene.describe(templates=PACKAGE_TEMPLATES).text.startswith("The scene consists of ")
+
+
+def test_templates_given_to_generate_replace_the_rule_sets_own(tmp_path):
+    (tmp_path / "caption.j2").write_text("A tiny {{ setting }} with {{ items | join_list }}.")
+    scene = generate(STALL, seed=1, style="short", templates=tmp_path)
+    assert scene.templates == str(tmp_path.resolve())
+    assert scene.description["text"].startswith("A tiny stall with ")
+    # the rule set's inventory.j2 is not read: the package's stands in for it
+    assert scene.describe().text.startswith("The scene consists of ")
+    with pytest.raises(InputError, match="templates folder .* does not exist"):
+        generate(STALL, templates=tmp_path / "missing")
+    (tmp_path / "caption.j2").write_text("A {{ setting ")
+    with pytest.raises(InputError, match=r"caption\.j2:1: unexpected end of template"):
+        generate(STALL, templates=tmp_path)

@@ -338,3 +338,61 @@ def test_describe_command(capsys, tmp_path):
         capsys, "describe", str(tmp_path / "scene.json"), "--style", "short", "--variant", "1"
     )
     assert code == 0 and 0 < len(short) < len(out)
+
+
+def test_validate_accepts_shipped_rule_set_names(capsys):
+    code, out, _ = run(capsys, "validate", "desk", "village")
+    assert code == 0 and out.splitlines() == ["desk: ok", "village: ok"]
+    code, out, _ = run(capsys, "validate", "vilage")
+    assert code == 2
+    assert out.strip() == "vilage: error: no such file (nor a shipped rule set: bedroom, desk, village)"
+
+
+STALL = Path(__file__).parent / "rules" / "stall" / "stall.rules"
+
+
+def test_describe_uses_the_rule_sets_templates_unless_given_others(capsys, tmp_path):
+    code, _, err = run(capsys, "generate", str(STALL), "--seed", "1", "--no-render", "-o", str(tmp_path / "out"))
+    assert code == 0, err
+    scene_json = tmp_path / "out" / "scene.json"
+    assert json.loads(scene_json.read_text())["templates"] == str(STALL.parent.resolve() / "templates")
+    code, out, _ = run(capsys, "describe", str(scene_json))
+    assert code == 0 and out.startswith("At this stall the scene offers ")
+    assert out.strip() == (tmp_path / "out" / "description.txt").read_text().strip()
+    words = tmp_path / "words"
+    words.mkdir()
+    (words / "inventory.j2").write_text("Here {{ owner }} {{ verb }} {{ items | join_list }}.")
+    code, out, _ = run(capsys, "describe", str(scene_json), "--templates", str(words))
+    assert code == 0 and out.startswith("Here the scene consists of ")
+    code, out, err = run(capsys, "describe", str(scene_json), "--templates", str(tmp_path / "nowhere"))
+    assert code == 2 and out == ""
+    assert_one_line_error(err, "description templates folder", "nowhere", "does not exist")
+
+
+def test_generate_and_dataset_templates_option(capsys, tmp_path):
+    words = tmp_path / "words"
+    words.mkdir()
+    (words / "caption.j2").write_text("A small {{ setting }}.")
+    out_dir = tmp_path / "out"
+    code, _, err = run(capsys, "generate", "desk", "--no-render", "--style", "short", "--templates", str(words),
+                       "-o", str(out_dir))  # fmt: skip
+    assert code == 0, err
+    caption = (out_dir / "description.txt").read_text()
+    assert caption.startswith("A small desk.")
+    assert json.loads((out_dir / "scene.json").read_text())["templates"] == str(words.resolve())
+    code, out, _ = run(capsys, "describe", str(out_dir / "scene.json"), "--style", "short")
+    assert code == 0 and out == caption
+
+    (words / "caption.j2").write_text("A {% if %} desk.")  # a syntax error
+    for argv in (["generate", "desk", "-o", str(tmp_path / "again")], ["dataset", "desk", "-n", "1", "-o",
+                 str(tmp_path / "data")]):  # fmt: skip
+        code, out, err = run(capsys, *argv, "--templates", str(words))
+        assert code == 2 and out == ""
+        assert_one_line_error(err, f"description template {words.resolve() / 'caption.j2'}:1: ")
+        assert not (tmp_path / "again").exists() and not (tmp_path / "data").exists()
+
+    (words / "caption.j2").write_text("A {{ settting }}.")  # compiles, fails when rendered
+    code, out, err = run(capsys, "describe", str(out_dir / "scene.json"), "--style", "short",
+                         "--templates", str(words))  # fmt: skip
+    assert code == 2 and out == ""
+    assert_one_line_error(err, "description template caption.j2: 'settting' is undefined")

@@ -257,6 +257,23 @@ def test_mesh_files_are_found_relative_to_the_rules_file(in_tmp):
     assert load_rules("sub/mesh.rules").catalog["chair"].mesh == str(in_tmp / "sub" / "models" / "chair.glb")
 
 
+def test_templates_folder_is_found_relative_to_the_file_of_the_scene_block(in_tmp):
+    (in_tmp / "sub" / "words").mkdir(parents=True)
+    text = 'scene s {\n    start S\n    templates "wording"\n}\nobject table { noun "table" }\nS -> { table }\n'
+    Path("sub/own.rules").write_text(text)
+    (diagnostic,) = check_rules("sub/own.rules")
+    assert str(diagnostic) == (
+        f"sub/own.rules:3:15: error: templates folder 'wording' not found (looked in {in_tmp / 'sub'})\n"
+        '    templates "wording"\n'
+        "              ^"
+    )
+    Path("sub/own.rules").write_text(text.replace("wording", "words"))
+    assert load_rules("sub/own.rules").params.templates == str(in_tmp / "sub" / "words")
+    # a rule set that includes it keeps the folder relative to the scene block's file
+    Path("top.rules").write_text('include "sub/own.rules"\n')
+    assert load_rules("top.rules").params.templates == str(in_tmp / "sub" / "words")
+
+
 def test_include_cycle_and_missing_include(in_tmp):
     Path("a.rules").write_text('include "lib/b.rules"\nscene s { start S }\nS -> { }\n')
     Path("lib").mkdir()

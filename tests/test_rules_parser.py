@@ -37,14 +37,15 @@ def test_catalog_entry_fields_and_styles():
 
 def test_path_fields_and_scene_block():
     parsed = parse('path road { noun "road" width 3 max_length 30 segments 3 }\n'
-                   "scene village { extent 60 x 40; ground grass\n walls\n start Village max_depth 5 max_nodes 9 }")
+                   "scene village { extent 60 x 40; ground grass\n walls\n start Village max_depth 5 max_nodes 9\n"
+                   ' templates "words" }')
     assert {f.name: f.value for f in parsed.entries[0].fields} == {
         "noun": "road", "width": 3.0, "max_length": 30.0, "segments": 3.0}
     (scene,) = parsed.scenes
     assert scene.name == "village"
     assert [(s.name, s.value) for s in scene.settings] == [
         ("extent", (60.0, 40.0)), ("ground", "grass"), ("walls", True), ("start", "Village"),
-        ("max_depth", 5.0), ("max_nodes", 9.0)]
+        ("max_depth", 5.0), ("max_nodes", 9.0), ("templates", "words")]
 
 
 def test_statement_with_count_probability_binding_relations_and_block():

@@ -61,6 +61,18 @@ def test_graph_dict_round_trip():
     assert again.add_node(TABLE) == "table_2"
 
 
+def test_templates_folder_travels_from_params_to_scene_and_back():
+    graph = SceneGraph(params=SceneParams(templates="/rules/stall/templates"))
+    graph.add_node(TABLE)
+    assert SceneGraph.from_dict(graph.to_dict()).params == graph.params
+    layout = LayoutResult(poses={"table_1": Pose(0.0, 0.0, 0.0, 0.0)}, paths={}, relations=[], energy=0.0,
+                          parts={}, steps=1, acceptance=1.0, seconds=0.0, ok=True)  # fmt: skip
+    scene = assemble_scene(graph, layout, rules="test", seed=0)
+    assert scene.templates == "/rules/stall/templates"
+    assert Scene.from_json(scene.to_json()).templates == "/rules/stall/templates"
+    assert scene.graph().params.templates == "/rules/stall/templates"
+
+
 def test_scene_json_round_trip_and_group_box():
     graph = small_graph()
     layout = LayoutResult(

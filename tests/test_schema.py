@@ -32,6 +32,7 @@ def test_schema_is_valid_draft_2020_12_and_documents_every_key():
 
 def test_a_scene_validates_as_written_and_reproducibly():
     validate_scene_dict(scene_dict())
+    validate_scene_dict({**scene_dict(), "templates": "/rules/stall/templates"})
     validate_scene_dict(json.loads(market_scene().to_json(reproducible=True)))
 
 
@@ -53,6 +54,7 @@ def test_a_rendered_scene_validates():
         (lambda d: d.update(seed="seven"), "$.seed"),
         (lambda d: d.pop("objects"), "$"),
         (lambda d: d.update(description={"facts": []}), "$.description"),
+        (lambda d: d.update(templates=["words"]), "$.templates"),
     ],
 )
 def test_broken_documents_are_refused_with_their_location(break_it, path):
