@@ -205,9 +205,13 @@ def summary_line(scene: Scene) -> str:
     seconds = sum(scene.timings.values())
     verdict = "ok" if scene.layout.ok else "LAYOUT FAILED"
     return (
-        f"{verdict}: {objects} objects, {len(scene.paths)} paths, relations satisfied "
+        f"{verdict}: {_count(objects, 'object')}, {_count(len(scene.paths), 'path')}, relations satisfied "
         f"{satisfied}/{len(stated)}, energy {scene.layout.energy:.3g}, {seconds:.2f} s"
     )
+
+
+def _count(count: int, noun: str) -> str:
+    return f"{count} {noun}" if count == 1 else f"{count} {noun}s"
 
 
 def check_choice(what: str, value: Any, allowed: tuple[str, ...]) -> None:
