@@ -1,14 +1,14 @@
 """The object catalog: what each type in a rules file is (kind, noun, size, look).
 
-A ``Catalog`` is plain data built by the rules parser from a file's ``object``,
-``group``, ``path`` and ``junction`` entries. Grammar expansion copies the resolved
+A ``Catalog`` is plain data built by the rules loader (``rules``) from a file's
+``object``, ``group``, ``path`` and ``junction`` entries. Grammar expansion copies the resolved
 fields of an entry (after choosing a style) onto every node it creates, so the later
 stages read nodes, never the catalog.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
 #: The kinds of catalog entry. ``object``: has a collision box and a mesh; ``group``:
 #: abstract, its extent is the union of its members; ``path``: a polyline with a width;
@@ -44,6 +44,10 @@ class Style:
     colour: Vec3 | None = None
 
 
+#: The look fields a style may override, in declaration order (not its name or weight).
+STYLE_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(Style) if f.name not in ("name", "weight"))
+
+
 @dataclass(frozen=True)
 class CatalogEntry:
     """A type a rules file may instantiate.
@@ -51,8 +55,9 @@ class CatalogEntry:
     ``size`` is (width along local x, height along y, depth along local z) in metres.
     ``shape`` names a procedural mesh builder (``scenewright.render.builders``);
     ``mesh`` is instead a user mesh file (absolute path) fitted to ``size``.
-    ``colour`` is sRGB in [0, 1] (the hex value over 255, as written). Paths use ``width`` and ``max_length`` (the
-    paper's l_A) and ``segments`` (how many straight pieces the polyline has).
+    ``colour`` is sRGB in [0, 1] (the hex value over 255, as written). Paths use
+    ``width`` and ``max_length`` (the paper's l_A) and ``segments`` (how many straight
+    pieces the polyline has).
     """
 
     name: str
@@ -69,13 +74,13 @@ class CatalogEntry:
     segments: int = 3
     location: SourceLocation | None = None
 
-    def with_style(self, style: Style | None) -> "CatalogEntry":
+    def with_style(self, style: Style | None) -> CatalogEntry:
         """The entry as it looks in ``style`` (its overrides applied)."""
         if style is None:
             return self
         overrides = {
             name: getattr(style, name)
-            for name in ("noun", "plural", "size", "shape", "mesh", "colour")
+            for name in STYLE_FIELDS
             if getattr(style, name) is not None
         }
         if "noun" in overrides and "plural" not in overrides:

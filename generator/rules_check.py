@@ -1,14 +1,13 @@
 """Static checks of a parsed rule set: everything that can be wrong before expansion.
 
 ``check_tree`` looks at a file and its includes together and returns diagnostics in
-file order: the catalog (fields, values, styles, mesh files), the scene block (and
-its templates folder), and
-the productions (labels, types, names in scope, calls and their arguments, counts,
-probabilities and weights, blocks on groups only, PathConnectedTo from a path to a
-junction), then the whole grammar: undefined
-nonterminals, nonterminals that can never finish expanding (a fixpoint over the
-alternatives), and - as warnings - nonterminals the start symbol never reaches and
-types no statement creates.
+file order: the catalog (fields, values, styles, mesh files), the scene block (and its
+templates folder), and the productions (labels, types, names in scope, calls and their
+arguments, counts, probabilities and weights, blocks on groups only, PathConnectedTo
+from a path to a junction), then the whole grammar: undefined nonterminals,
+nonterminals that can never finish expanding (a fixpoint over the alternatives), and -
+as warnings - nonterminals the start symbol never reaches and types no statement
+creates.
 A rule set with no error diagnostics is safe to turn into a catalog and to expand.
 """
 
@@ -18,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import rules_ast as ast
-from .catalog import SourceLocation
+from .catalog import STYLE_FIELDS, SourceLocation
 from .relations import LABELS
 from .rules_errors import WARNING, Diagnostic, SourceTexts, did_you_mean
 from .rules_parser import ParsedTree
@@ -26,8 +25,7 @@ from .rules_parser import ParsedTree
 DEFAULT_MAX_DEPTH = 32
 DEFAULT_MAX_NODES = 2000
 
-#: Fields a style may override (the look of a type, not its path geometry).
-STYLE_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour")
+#: Fields that shape a path's polyline, so only ``path`` entries take them.
 PATH_FIELDS = ("width", "max_length", "segments")
 MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
 

@@ -24,13 +24,12 @@ from lark.exceptions import (
 )
 
 from . import rules_ast as ast
-from .catalog import SourceLocation
+from .catalog import KINDS, SourceLocation
 from .rules_errors import Diagnostic, SourceTexts, did_you_mean
 
 #: Catalog fields and scene settings, as the grammar spells them (for error messages).
 ENTRY_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments")
 SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes", "templates")
-KINDS_WORDS = ("object", "group", "path", "junction")
 
 
 @functools.cache
@@ -86,8 +85,7 @@ class _ToAst(Transformer):
             return self._setting("start", meta, children)
         return super().__default__(data, children, meta)
 
-    @v_args(meta=True)
-    def kind(self, meta, children):
+    def kind(self, children):
         return children[0]
 
     @v_args(meta=True)
@@ -113,8 +111,7 @@ class _ToAst(Transformer):
         name, *settings = children
         return ast.SceneDecl(str(name), tuple(settings), self._at(meta))
 
-    @v_args(meta=True)
-    def include(self, meta, children):
+    def include(self, children):
         return ast.IncludeDecl(children[0][1:-1], self._at(children[0]))
 
     # productions
@@ -136,8 +133,7 @@ class _ToAst(Transformer):
         name, ordinal = children
         return ast.Reference("nth", str(name), self._at(meta), int(ordinal[1:]))
 
-    @v_args(meta=True)
-    def arguments(self, meta, children):
+    def arguments(self, children):
         return tuple(child for child in children if child is not None)
 
     @v_args(meta=True)
@@ -145,8 +141,7 @@ class _ToAst(Transformer):
         name, arguments = children
         return ast.Call(str(name), arguments or (), self._at(meta))
 
-    @v_args(meta=True)
-    def relation(self, meta, children):
+    def relation(self, children):
         label, target = children
         return ast.Relation(str(label), target, self._at(label))
 
@@ -159,8 +154,7 @@ class _ToAst(Transformer):
     def probability(self, meta, children):
         return _Probability(float(children[0]), self._at(meta))
 
-    @v_args(meta=True)
-    def binding(self, meta, children):
+    def binding(self, children):
         return _Binding(str(children[0]), self._at(children[0]))
 
     @v_args(meta=True)
@@ -188,8 +182,7 @@ class _ToAst(Transformer):
         weight, block = children
         return ast.Alternative(float(weight) if weight is not None else None, block.statements, self._at(meta))
 
-    @v_args(meta=True)
-    def params(self, meta, children):
+    def params(self, children):
         return tuple(ast.Param(str(name), self._at(name)) for name in children if name is not None)
 
     @v_args(meta=True)
@@ -197,8 +190,7 @@ class _ToAst(Transformer):
         name, params, *alternatives = children
         return ast.Production(str(name), params or (), tuple(alternatives), self._at(meta))
 
-    @v_args(meta=True)
-    def start(self, meta, children):
+    def start(self, children):
         return ast.RulesFile(
             path=self.file,
             includes=tuple(c for c in children if isinstance(c, ast.IncludeDecl)),
@@ -342,8 +334,8 @@ def _expected_words(expected: set[str]) -> list[str]:
         words.append("a scene setting (" + ", ".join(SCENE_SETTINGS) + ")")
         keywords -= set(SCENE_SETTINGS)
     if "object" in keywords:  # the top level
-        words.append("a catalog entry (" + ", ".join(KINDS_WORDS) + ")")
-        keywords -= set(KINDS_WORDS)
+        words.append("a catalog entry (" + ", ".join(KINDS) + ")")
+        keywords -= set(KINDS)
         if "CAMEL" in expected:
             words.append("a production")
     elif "some" in keywords and "NUMBER" in expected:  # the start of a statement
@@ -453,5 +445,5 @@ def _unexpected_word_message(token: Token, expected: set[str]) -> str:
         if "extent" in keywords and word.isidentifier():
             return f"unknown scene setting '{word}'" + did_you_mean(word, SCENE_SETTINGS)
         if "object" in keywords and word.isidentifier():
-            return f"unexpected '{word}'" + did_you_mean(word, KINDS_WORDS + ("scene", "include"))
+            return f"unexpected '{word}'" + did_you_mean(word, KINDS + ("scene", "include"))
     return f"unexpected {_describe_token(token)}"
