@@ -54,17 +54,15 @@ class Energy:
             problem.support[b] == -1 and not problem.is_junction[b] for b in range(problem.n_boxes)
         ]
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
+        self.placeable = [t.placeable for t in problem.relations]
         self._pending: tuple | None = None
         self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
 
     def relation_active(self, term_index: int) -> bool:
-        term = self.problem.relations[term_index]
-        members = term.a.members + term.b.members
-        if (term.a.kind == "group" and not term.a.members) or (term.b.kind == "group" and not term.b.members):
-            return False
-        return all(self.active[box] for box in members)
+        """Whether the relation counts yet: both ends placeable and all their boxes placed."""
+        return self.placeable[term_index] and all(self.active[box] for box in self.term_boxes[term_index])
 
     def relation_energy(self, term_index: int) -> float:
         if not self.relation_active(term_index):

@@ -65,13 +65,12 @@ def _priorities(energy: Energy) -> dict[tuple[str, int], int]:
     problem = energy.problem
     unit_of: dict[tuple[str, int], tuple[str, int]] = {}
     own: dict[tuple[str, int], set[int]] = {}
-    for kind, index in problem.units:
-        members = problem.group_members[index] if kind == "group" else (index,)
-        own[(kind, index)] = set(members)
-        key = ("group", index) if kind == "group" else ("object", index)
-        unit_of[key] = (kind, index)
+    for unit in problem.units:
+        members = _boxes_of(problem, unit)
+        own[unit] = set(members)
+        unit_of[unit] = unit
         for box in members:
-            unit_of.setdefault(("object", box), (kind, index))
+            unit_of.setdefault(("object", box), unit)
     count = {unit: 0 for unit in problem.units}
     for term in problem.relations:
         source = unit_of.get((term.a.kind, term.a.index))
@@ -94,11 +93,16 @@ def _placed(energy: Energy, end: Endpoint) -> bool:
     return end.kind == "path" or (bool(end.members) and all(energy.active[b] for b in end.members))
 
 
-def _anchors_placed(energy: Energy, unit: tuple[str, int]) -> bool:
+def _boxes_of(problem, unit: tuple[str, int]) -> tuple[int, ...]:
+    """The boxes of a top-level item: a group's members, or the object itself."""
     kind, index = unit
-    own = energy.problem.group_members[index] if kind == "group" else (index,)
-    kind = "object" if kind == "box" else kind
-    return all(_placed(energy, t.b) or set(t.b.members) <= set(own) for t in _outgoing(energy, kind, index))
+    return problem.group_members[index] if kind == "group" else (index,)
+
+
+def _anchors_placed(energy: Energy, unit: tuple[str, int]) -> bool:
+    """Whether everything the item's relations point to (outside itself) is placed."""
+    own = set(_boxes_of(energy.problem, unit))
+    return all(_placed(energy, t.b) or set(t.b.members) <= own for t in _outgoing(energy, *unit))
 
 
 def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:

@@ -122,10 +122,9 @@ class Mover:
         self.groups = [g for g, members in enumerate(problem.group_members) if members]
         self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
         self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
-        self.relations = [  # relations a move can act on: nothing in them is an empty group
+        self.relations = [  # relations a move can act on
             t for t, term in enumerate(problem.relations)
-            if (self._movable(term.a) or self._movable(term.b))
-            and all(end.kind != "group" or end.members for end in (term.a, term.b))
+            if term.placeable and (self._movable(term.a) or self._movable(term.b))
         ]  # fmt: skip
         self.clusters = _clusters(problem)
         self.focus_positions: list[int] = []
@@ -458,7 +457,7 @@ class Mover:
         ex, ez = (problem.half_width[a], problem.half_depth[a]) if quarter % 2 == 0 else (problem.half_depth[a], problem.half_width[a])
         room_x = max(problem.half_width[b] - ex, 0.0)
         room_z = max(problem.half_depth[b] - ez, 0.0)
-        base = term.base.replace("IsPartOf", "OnTopOf")
+        base = term.base
         if base == "OnTopOfMiddle":
             lx = lz = 0.0
         elif base == "OnTopOfFrontEdge":

@@ -34,13 +34,18 @@ class RelationTerm:
     source: str
     target: str
     label: str  # as written (may be Implicit*)
-    base: str  # without the Implicit prefix
+    base: str  # the geometry it asks for: no Implicit prefix, IsPartOf* read as OnTopOf*
     a: Endpoint
     b: Endpoint
 
     @property
     def touches_path(self) -> bool:
         return self.a.kind == "path" or self.b.kind == "path"
+
+    @property
+    def placeable(self) -> bool:
+        """False when an end is a group with nothing in it: there is nothing to place."""
+        return all(end.kind != "group" or end.members for end in (self.a, self.b))
 
 
 @dataclass
@@ -70,7 +75,7 @@ class Problem:
     paths_of_junction: dict[int, list[int]] = field(default_factory=dict)
     top_groups: list[int] = field(default_factory=list)  # groups not inside another group
     free_boxes: list[int] = field(default_factory=list)  # ground boxes in no group, no junctions
-    units: list[tuple[str, int]] = field(default_factory=list)  # top groups and free boxes, creation order
+    units: list[tuple[str, int]] = field(default_factory=list)  # ("group", g) / ("object", box): top groups and free boxes, creation order
     outgoing: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of A
     incoming: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of B
 
@@ -140,7 +145,8 @@ def compile_problem(graph: SceneGraph) -> Problem:
     path_start = [-1] * len(path_ids)
     relations: list[RelationTerm] = []
     for edge in graph.edges():
-        base = base_label(edge.label)
+        # IsPartOf* differs from OnTopOf* only in wording, so the layout sees one geometry.
+        base = base_label(edge.label).replace("IsPartOf", "OnTopOf")
         if base == "PathConnectedTo":
             path, junction = _path_connection(edge, path_index, box_index)
             path_start[path] = junction
@@ -192,7 +198,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
         if node.id in group_index and group_index[node.id] in problem.top_groups:
             problem.units.append(("group", group_index[node.id]))
         elif node.id in box_index and box_index[node.id] in problem.free_boxes:
-            problem.units.append(("box", box_index[node.id]))
+            problem.units.append(("object", box_index[node.id]))
     return problem
 
 

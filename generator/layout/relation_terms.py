@@ -213,7 +213,7 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     hw, hd = rect_b.hw, rect_b.hd
     inside = abs(lx) <= hw and abs(lz) <= hd
     within = range_(lx, -hw, hw, params.h) + range_(lz, -hd, hd, params.h)
-    base = term.base.replace("IsPartOf", "OnTopOf")
+    base = term.base
     if base == "OnTopOf":
         return Measure(energy - within, height_gap=height_gap, inside=inside)
     if base == "OnTopOfMiddle":

@@ -53,7 +53,7 @@ _WORDS = {
 
 def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
     """Whether the relation holds geometrically (see the module docstring)."""
-    base = term.base.replace("IsPartOf", "OnTopOf")
+    base = term.base
     if base.startswith("NextTo"):
         near = measure.distance <= params.next_to_distance + EPSILON
         return near if base == "NextTo" else near and measure.angle <= DIRECTION_TOLERANCE + EPSILON
@@ -68,7 +68,7 @@ def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> boo
 
 
 def _complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    base = term.base.replace("IsPartOf", "OnTopOf")
+    base = term.base
     word = _WORDS[base]
     if base.startswith("NextTo"):
         if measure.distance > params.next_to_distance:
@@ -86,8 +86,8 @@ def assess(energy: Energy) -> tuple[list[RelationResult], list[str]]:
     problem, state, params = energy.problem, energy.state, energy.params
     results: list[RelationResult] = []
     problems: list[str] = []
-    for term_index, term in enumerate(problem.relations):
-        if not energy.relation_active(term_index):
+    for term in problem.relations:
+        if not term.placeable:
             results.append(RelationResult(term.source, term.target, term.label, 0.0, False))
             problems.append(f"{term.source} {term.label} {term.target}: a group with nothing in it cannot be placed")
             continue
