@@ -1,9 +1,9 @@
 """The object catalog: what each type in a rules file is (kind, noun, size, look).
 
 A ``Catalog`` is plain data built by the rules loader (``rules``) from a file's
-``object``, ``group``, ``path`` and ``junction`` entries. Grammar expansion copies the resolved
-fields of an entry (after choosing a style) onto every node it creates, so the later
-stages read nodes, never the catalog.
+``object``, ``group``, ``path`` and ``junction`` entries. Grammar expansion copies the
+resolved fields of an entry (after choosing a style) onto every node it creates, so
+the later stages read nodes, never the catalog.
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ productions that got there, so a runaway rule set fails fast instead of hanging.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NoReturn
 
 import numpy as np
 
@@ -21,9 +22,9 @@ from .rules import Rules
 from .rules_errors import ExpansionError
 from .scene_graph import SceneGraph
 
-#: Steps (repetitions of statements, calls) allowed per allowed node, on top of a fixed allowance: enough
-#: for any sensible rule set, small enough that a rule set which calls productions
-#: that create nothing, many times over, stops within a second.
+#: Steps (repetitions of statements, calls) allowed per allowed node, on top of a fixed
+#: allowance: enough for any sensible rule set, small enough that a rule set which calls
+#: productions that create nothing, many times over, stops within a second.
 _STEPS_PER_NODE = 50
 _BASE_STEPS = 10_000
 
@@ -51,9 +52,11 @@ class _Expansion:
     #: The nonterminals being expanded, outermost first.
     chain: list[str] = field(default_factory=list)
     steps: int = 0
+    max_steps: int = field(init=False)
 
     def __post_init__(self) -> None:
         self.graph = SceneGraph(params=self.rules.params)
+        self.max_steps = _BASE_STEPS + _STEPS_PER_NODE * self.rules.max_nodes
 
     # -- productions ------------------------------------------------------------
 
@@ -70,7 +73,8 @@ class _Expansion:
             self.fail(location, f"expansion deeper than max_depth {self.rules.max_depth}", production.name)
         weights = [alt.weight if alt.weight is not None else 1.0 for alt in production.alternatives]
         alternative = production.alternatives[self.pick(weights)]
-        scope = {param.name: nodes for param, nodes in zip(production.params, arguments)}
+        # the checks made every call pass exactly as many arguments as there are parameters
+        scope = {param.name: nodes for param, nodes in zip(production.params, arguments, strict=True)}
         self.chain.append(production.name)
         created: list[str] = []
         for statement in alternative.statements:
@@ -143,9 +147,9 @@ class _Expansion:
         if reference.kind == "name":
             return [node for node in scope[reference.name] if node != exclude]
         existing = self.by_type.get(reference.name, [])
-        noun = self.rules.catalog[reference.name].noun
         if reference.kind == "nth":
             if reference.index > len(existing):
+                noun = self.rules.catalog[reference.name].noun
                 self.fail(
                     reference.location,
                     f"'{reference.name} #{reference.index}' refers to {noun} number {reference.index}, "
@@ -157,6 +161,7 @@ class _Expansion:
         if reference.kind == "each":
             return candidates
         if not candidates:
+            noun = self.rules.catalog[reference.name].noun
             self.fail(reference.location, f"'some {reference.name}' finds no {noun} in the scene at this point")
         return [candidates[int(self.rng.integers(len(candidates)))]]
 
@@ -177,11 +182,10 @@ class _Expansion:
 
     def step(self, location: SourceLocation) -> None:
         self.steps += 1
-        limit = _BASE_STEPS + _STEPS_PER_NODE * self.rules.max_nodes
-        if self.steps > limit:
-            self.fail(location, f"expansion took more than {limit} steps")
+        if self.steps > self.max_steps:
+            self.fail(location, f"expansion took more than {self.max_steps} steps")
 
-    def fail(self, location: SourceLocation, message: str, next_call: str | None = None) -> None:
+    def fail(self, location: SourceLocation, message: str, next_call: str | None = None) -> NoReturn:
         chain = self.chain + ([next_call] if next_call else [])
         if len(chain) > _CHAIN_HEAD + _CHAIN_TAIL + 1:
             chain = chain[:_CHAIN_HEAD] + ["..."] + chain[-_CHAIN_TAIL:]
