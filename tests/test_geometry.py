@@ -11,8 +11,10 @@ from scenewright.generator.layout.geometry import (
     corners,
     make_rect,
     nearest_on_polyline,
+    polyline_length,
     polyline_rect_distance,
     polyline_rect_penetration,
+    polyline_turns,
     rect_distance,
     rect_penetration,
     segment_distance,
@@ -151,3 +153,7 @@ def test_segments_and_turns():
     assert segment_distance((0, 0), (1, 0), (0, 1), (1, 1)) == pytest.approx(1.0)
     assert turn_angle((0, 0), (1, 0), (2, 0)) == pytest.approx(0.0)
     assert turn_angle((0, 0), (1, 0), (1, 1)) == pytest.approx(math.pi / 2)
+    road = [[0.0, 0.0], [3.0, 4.0], [3.0, 10.0], [-3.0, 10.0]]
+    assert polyline_length(road) == pytest.approx(5.0 + 6.0 + 6.0)
+    assert polyline_turns(road) == pytest.approx([math.atan2(3.0, 4.0), math.pi / 2])
+    assert polyline_turns(road[:2]) == []

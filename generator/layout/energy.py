@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 
 from .factors import greater, less
-from .geometry import polyline_rect_penetration, rect_penetration, turn_angle
+from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_penetration
 from .params import LayoutParams
 from .problem import Problem
 from .relation_terms import evaluate
@@ -128,10 +128,9 @@ class Energy:
 
     def path_shape_energy(self, path: int) -> float:
         points, params = self.state.points[path], self.params
-        length = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
-        energy = -less(length, self.problem.path_max_length[path], params.h)
-        for i in range(1, len(points) - 1):
-            energy -= less(turn_angle(points[i - 1], points[i], points[i + 1]), params.gamma, params.h)
+        energy = -less(polyline_length(points), self.problem.path_max_length[path], params.h)
+        for turn in polyline_turns(points):
+            energy -= less(turn, params.gamma, params.h)
         return energy
 
     def junction_angles(self, junction: int) -> list[float]:

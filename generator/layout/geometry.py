@@ -258,6 +258,16 @@ def polyline_distance(first: list, second: list) -> float:
     )
 
 
+def polyline_length(points: list) -> float:
+    """Total length of a polyline."""
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+
+
+def polyline_turns(points: list) -> list[float]:
+    """The turn angle (radians) at each inner control point of a polyline."""
+    return [turn_angle(points[i - 1], points[i], points[i + 1]) for i in range(1, len(points) - 1)]
+
+
 def turn_angle(a: tuple, b: tuple, c: tuple) -> float:
     """The turn at b between a-b and b-c in radians (0 when straight on)."""
     ux, uz = b[0] - a[0], b[1] - a[1]

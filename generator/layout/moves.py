@@ -33,7 +33,7 @@ import numpy as np
 
 from .params import LayoutParams
 from .problem import Endpoint, Problem, RelationTerm
-from .relation_terms import COMPASS, anchor, centre, evaluate
+from .relation_terms import COMPASS, anchor, centre, evaluate, sides
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -403,15 +403,15 @@ class Mover:
     def _wanted_direction(self, base: str, c: float, s: float) -> tuple[float, float]:
         """A unit direction from B to A in which ``base`` holds (drawn for open ones)."""
         rng = self.rng
-        local = {"Left": (c, -s), "Right": (-c, s), "Front": (s, c), "Behind": (-s, -c)}
-        word = base[len("NextTo"):]
-        if word in local:
-            return local[word]
-        if word.lower() in COMPASS:
-            return COMPASS[word.lower()]
-        if word == "ChooseSide":
-            return local["Left"] if rng.random() < 0.5 else local["Right"]
-        if word == "ChooseDirection":
+        own = sides(c, s)
+        word = base[len("NextTo"):].lower()
+        if word in own:
+            return own[word]
+        if word in COMPASS:
+            return COMPASS[word]
+        if word == "chooseside":
+            return own["left"] if rng.random() < 0.5 else own["right"]
+        if word == "choosedirection":
             return list(COMPASS.values())[int(rng.integers(4))]
         angle = rng.uniform(-math.pi, math.pi)
         return math.sin(angle), math.cos(angle)

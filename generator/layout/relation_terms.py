@@ -38,6 +38,14 @@ from .state import State
 COMPASS = {"north": (0.0, -1.0), "east": (1.0, 0.0), "south": (0.0, 1.0), "west": (-1.0, 0.0)}
 
 
+def sides(c: float, s: float) -> dict[str, tuple[float, float]]:
+    """An object's own directions as world unit vectors (x, z), given its yaw's cos and sin.
+
+    Left is local +X and front local +Z, turned by the yaw (see ``geometry``).
+    """
+    return {"left": (c, -s), "right": (-c, s), "front": (s, c), "behind": (-s, -c)}
+
+
 class Measure(NamedTuple):
     """A relation's energy and the geometry its satisfaction threshold reads."""
 
@@ -168,14 +176,14 @@ def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     ax, az = centre(term.a, state) if term.a.kind != "path" else state.points[term.a.index][0]
     bx, bz, c, s = anchor(term.b, state, (ax, az))
     dx, dz = _unit(ax - bx, az - bz)
-    if base == "NextToChooseDirection":
-        wanted = dict(COMPASS)
-    elif base == "NextToChooseSide":
-        wanted = {"left": (c, -s), "right": (-c, s)}
+    word = base[len("NextTo"):].lower()
+    if word == "choosedirection":
+        wanted = COMPASS
+    elif word == "chooseside":
+        own = sides(c, s)
+        wanted = {"left": own["left"], "right": own["right"]}
     else:
-        word = base[len("NextTo"):].lower()
-        local = {"left": (c, -s), "right": (-c, s), "front": (s, c), "behind": (-s, -c)}
-        wanted = {word: COMPASS[word] if word in COMPASS else local[word]}
+        wanted = {word: COMPASS[word] if word in COMPASS else sides(c, s)[word]}
     chosen, best = None, math.inf
     for word, (wx, wz) in wanted.items():
         angle = angle_between(dx, dz, wx, wz)

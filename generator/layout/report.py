@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 
 from .energy import Energy
-from .geometry import turn_angle
+from .geometry import polyline_length, polyline_turns
 from .params import LayoutParams
 from .problem import RelationTerm
 from .relation_terms import Measure, evaluate
@@ -136,10 +136,10 @@ def _path_shapes(energy: Energy) -> list[str]:
     found = []
     for path in range(problem.n_paths):
         points = state.points[path]
-        length = sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+        length = polyline_length(points)
         if length > problem.path_max_length[path] + EPSILON:
             found.append(f"{problem.path_ids[path]} is {length:.1f} m long (at most {problem.path_max_length[path]:.0f} m)")
-        turns = [turn_angle(points[i - 1], points[i], points[i + 1]) for i in range(1, len(points) - 1)]
+        turns = polyline_turns(points)
         if turns and max(turns) > params.gamma + EPSILON:
             found.append(f"{problem.path_ids[path]} turns by {math.degrees(max(turns)):.0f}° (at most {math.degrees(params.gamma):.0f}°)")
     for junction in problem.paths_of_junction:

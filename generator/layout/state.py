@@ -93,13 +93,3 @@ class State:
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]
-
-    def snapshot(self) -> tuple:
-        """A copy of everything that changes, for keeping the best of several runs."""
-        return (list(self.x), list(self.z), list(self.yaw), [[list(p) for p in pts] for pts in self.points])
-
-    def restore(self, snapshot: tuple) -> None:
-        xs, zs, yaws, points = snapshot
-        for box in range(len(xs)):
-            self.set_pose(box, xs[box], zs[box], yaws[box])
-        self.points = [[list(p) for p in pts] for pts in points]
