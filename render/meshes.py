@@ -6,7 +6,8 @@ fitted exactly to the catalog size, so what is drawn is the box the layout place
 shape with no builder is drawn as a plain box of the object's size and colour: a rules
 file may name shapes this version does not model yet, and the box is still exactly the
 volume the layout reasoned about.
-``object_transform`` gives the local-to-world pose. Everything is in metres, +Y up.
+``object_transform`` gives the local-to-world pose. Rooms (``scene.walls``) get the
+walls a camera sees from inside (``room_walls``). Everything is in metres, +Y up.
 """
 
 from __future__ import annotations
@@ -25,6 +26,11 @@ from .builders import BUILDERS, coloured
 PATH_LIFT = 0.02
 #: Junction discs sit above the path ribbons that start at them.
 JUNCTION_LIFT = 0.03
+#: A room's walls: height and thickness (metres) and a plaster colour that sets the
+#: furniture off. They stand just outside the extent, so the floor the layout used is clear.
+WALL_HEIGHT = 2.4
+WALL_THICKNESS = 0.1
+WALL_COLOUR = (0.86, 0.83, 0.76)
 
 
 class MeshError(ValueError):
@@ -106,6 +112,35 @@ def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
     slab = trimesh.creation.box(extents=(w * margin, 0.02, d * margin))
     slab.apply_translation((0.0, -0.01, 0.0))  # top face at y = 0
     return coloured(slab, colour)
+
+
+def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
+    """The walls of a room (``scene.walls``) that a viewer looking from direction
+    ``towards_viewer`` (a world vector from the scene to the viewer) sees from inside:
+    those whose inner face turns towards the viewer, that is the far sides, which stand
+    behind the furniture and hide none of it. None when no wall qualifies (not a room,
+    or a viewer straight above, who would see only their tops).
+
+    Each wall runs the full length of its side plus the thickness at both ends, so two
+    walls meet in a closed corner (their overlap is the same colour, so it cannot flicker).
+    """
+    if not scene.walls:
+        return None
+    towards = np.asarray(towards_viewer, dtype=float)
+    w, d, t = scene.extent[0], scene.extent[1], WALL_THICKNESS
+    walls = []
+    # Per side: the wall's inward normal (x, z) and its box's centre and extents.
+    for inward, centre, extents in (
+        ((0.0, 1.0), (0.0, -(d + t) / 2), (w + 2 * t, WALL_HEIGHT, t)),  # north
+        ((0.0, -1.0), (0.0, (d + t) / 2), (w + 2 * t, WALL_HEIGHT, t)),  # south
+        ((1.0, 0.0), (-(w + t) / 2, 0.0), (t, WALL_HEIGHT, d + 2 * t)),  # west
+        ((-1.0, 0.0), ((w + t) / 2, 0.0), (t, WALL_HEIGHT, d + 2 * t)),  # east
+    ):
+        if inward[0] * towards[0] + inward[1] * towards[2] > 1e-9:
+            wall = trimesh.creation.box(extents=extents)
+            wall.apply_translation((centre[0], WALL_HEIGHT / 2, centre[1]))
+            walls.append(wall)
+    return coloured(trimesh.util.concatenate(walls), WALL_COLOUR) if walls else None
 
 
 @lru_cache(maxsize=64)

@@ -7,8 +7,9 @@ and visible fractions. ``save_render`` writes them as PNGs (atomically) and
 ``render_metadata`` gives the part that goes into scene.json.
 
 Drawn entities are objects (kind ``object``), junctions (a flat disc) and paths (a
-ribbon); groups have no body of their own. Each entity's index in ``RenderResult.ids``
-plus one is its value in the segmentation image (0 is background: sky and ground).
+ribbon); groups have no body of their own. The ground and a room's far walls are drawn
+as backdrop, not entities. Each entity's index in ``RenderResult.ids``
+plus one is its value in the segmentation image (0 is background: sky, ground, walls).
 
 The OpenGL backend is chosen before pyrender is imported: the user's
 ``PYOPENGL_PLATFORM`` if set, else EGL when libEGL is installed, else OSMesa. When none
@@ -35,7 +36,7 @@ from scenewright.errors import GenerationError
 from scenewright.scene import Scene
 
 from .camera import Camera, frame_scene
-from .meshes import ground_mesh, junction_mesh, object_transform, path_mesh, shaped_mesh
+from .meshes import ground_mesh, junction_mesh, object_transform, path_mesh, room_walls, shaped_mesh
 
 SKY = (0.62, 0.77, 0.92)
 AMBIENT = (0.35, 0.35, 0.38)
@@ -168,6 +169,11 @@ class Renderer:
         gl = self._gl
         world = gl.Scene(bg_color=(*SKY, 1.0), ambient_light=AMBIENT)
         world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
+        # A room's far walls are backdrop like the ground: drawn, but not entities, so
+        # they have no segmentation index, box or visible fraction.
+        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
+        if walls is not None:
+            world.add(_pyrender_mesh(gl, _drawable(walls)))
 
         entities: list[_Entity] = []
         for obj in scene.objects:

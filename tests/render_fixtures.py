@@ -47,8 +47,10 @@ def road(path_id: str, points, width: float = 3.0, start: str | None = None) -> 
     )  # fmt: skip
 
 
-def scene_of(objects, paths=(), extent=(30.0, 20.0)) -> Scene:
-    return Scene(rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[])
+def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False) -> Scene:
+    return Scene(
+        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[], walls=walls
+    )
 
 
 def market_scene() -> Scene:

@@ -105,6 +105,29 @@ def test_visible_fraction_drops_behind_an_occluder(renderer):
     assert 0.0 <= result.visible["target_1"] < 0.9
 
 
+def test_a_room_shows_its_far_walls_as_backdrop_not_entities(renderer):
+    things = [thing("rug_1", (0, 0, 0), (4.6, 0.02, 3.6))]  # frames the floor, hides no wall
+    room, open_floor = scene_of(things, extent=(5.0, 4.0), walls=True), scene_of(things, extent=(5.0, 4.0))
+    side, side_open = renderer.render(room), renderer.render(open_floor)
+    assert side.ids == side_open.ids == ["rug_1"]
+    assert np.array_equal(side.segmentation, side_open.segmentation)  # walls hide nothing
+    assert side.visible == side_open.visible
+    camera = Camera.from_dict(side.camera)
+    inner_faces = {"north": [-1.0, 1.0, -2.0], "west": [-2.5, 1.0, -1.0]}
+    for wall, point in inner_faces.items():
+        (u, v), depth = pixel_of(side, point), camera.project([point])[1][0]
+        assert side.segmentation[v, u] == 0 and side.depth[v, u] == pytest.approx(depth, abs=0.05), wall
+        assert not side_open.depth[v, u] == pytest.approx(depth, abs=0.05), wall
+    # The near walls (south, east) would stand between the camera and the room: the
+    # camera sees past where they would be.
+    for point in ([0.0, 1.0, 2.05], [2.55, 1.0, 0.0]):
+        u, v = pixel_of(side, point)
+        assert side.depth[v, u] > camera.project([point])[1][0] + 0.5, point
+
+    top, top_open = renderer.render(room, "top"), renderer.render(open_floor, "top")
+    assert np.array_equal(top.colour, top_open.colour) and np.array_equal(top.depth, top_open.depth)
+
+
 def test_rendering_is_deterministic(renderer):
     first, second = renderer.render(market_scene()), renderer.render(market_scene())
     assert np.array_equal(first.colour, second.colour)
