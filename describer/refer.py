@@ -8,10 +8,11 @@ form that is unambiguous here:
    singular one named there (or, inside one sentence, the only singular thing named
    besides the subject: "The chair is in front of the desk and faces it.");
 2. "the oak tree" when it is the scene's only oak tree;
-3. "this table" when the previous sentence named it and no other table;
+3. "this table" when the previous sentence named it and no other table, and the
+   phrase is not one of a list;
 4. inside a group's paragraph, a member of that group by its place in its cohort
    ("the sign", "the second sack of flour") while no same-noun thing from elsewhere
-   has been named in the paragraph;
+   has been named in the paragraph and none stands at the top level;
 5. otherwise its place in its cohort ("the first road"; "the other tower" for the
    second of two right after the first was named), followed by "of" and its group
    ("the sign of the third market stand", "the house on its own" for a top-level one)
@@ -87,13 +88,18 @@ class Discourse:
             return counted(len(ids), entity.noun, entity.plural)
         return f"another {entity.noun}" if len(ids) == 1 else f"{number_word(len(ids))} more {entity.plural}"
 
-    def name(self, entity_id: str, *, pronoun: bool = True) -> str:
-        """A definite phrase for one known entity; "it" only when ``pronoun`` is allowed here."""
+    def name(self, entity_id: str, *, pronoun: bool = True, demonstrative: bool = True) -> str:
+        """A definite phrase for one known entity.
+
+        "it" only when ``pronoun`` is allowed here, "this table" only when
+        ``demonstrative`` is: a phrase inside a list of others takes neither ("the
+        street lamp, this wagon and the mill" reads as if the wagon were special).
+        """
         entity = self.world[entity_id]
         if pronoun and self._may_be_it(entity_id):
             self._note((entity_id,), entity.noun, plural=False)
             return "it"
-        phrase, placed = self._definite(entity_id)
+        phrase, placed = self._definite(entity_id, demonstrative=demonstrative)
         self._note((entity_id,), entity.noun, plural=False)
         return phrase if placed else f"{phrase} {self._whereabouts(entity_id)}"
 
@@ -110,7 +116,7 @@ class Discourse:
         phrases = []
         for cohort, chosen in chunks:
             if len(chosen) == 1:
-                phrases.append(self.name(chosen[0], pronoun=alone))
+                phrases.append(self.name(chosen[0], pronoun=alone, demonstrative=alone))
             else:
                 phrases.append(self._name_part(cohort, tuple(chosen), alone))
         return phrases
@@ -127,14 +133,14 @@ class Discourse:
         singular_before = {m.ids for m in self.previous if not m.plural}
         return bool(self.previous) and self.previous[-1].ids == (entity_id,) and singular_before == {(entity_id,)}
 
-    def _definite(self, entity_id: str) -> tuple[str, bool]:
+    def _definite(self, entity_id: str, *, demonstrative: bool) -> tuple[str, bool]:
         """The definite phrase, and whether it is clear without saying where the entity belongs."""
         entity = self.world[entity_id]
         namesakes = self.world.namesakes(entity_id)
         if len(namesakes) == 1:
             return f"the {entity.noun}", True
         named_before = [m.ids for m in self.previous if m.noun == entity.noun]
-        if self.last_of_noun.get(entity.noun) == (entity_id,) and named_before == [(entity_id,)]:
+        if demonstrative and self.last_of_noun.get(entity.noun) == (entity_id,) and named_before == [(entity_id,)]:
             return f"this {entity.noun}", True
         cohort = self.world.cohort(entity_id)
         clear = len(cohort) == len(namesakes) or self._clear_in_paragraph(entity_id)
@@ -154,13 +160,18 @@ class Discourse:
         """Whether naming by place in the cohort alone is clear here.
 
         A member of the paragraph's group is clear while no namesake from elsewhere has
-        been named in the paragraph; a top-level entity while no namesake belonging to a
-        group has been introduced at all.
+        been named in the paragraph and none stands at the top level: a top-level entity
+        is named bare in every paragraph ("the cottage"), so once one is known, a
+        group's "the cottage" could mean it. A top-level entity is clear while no
+        namesake belonging to a group has been introduced at all.
         """
         entity = self.world[entity_id]
         cohort = set(self.world.cohort(entity_id))
+        others = [i for i in self.world.namesakes(entity_id) if i not in cohort and i in self.introduced]
         if entity.parent is None:
-            return all(i in cohort or i not in self.introduced for i in self.world.namesakes(entity_id))
+            return not others
+        if any(self.world[i].parent is None for i in others):
+            return False
         return entity.parent == self.focus and self.paragraph_nouns.get(entity.noun, set()) <= cohort
 
     def _whereabouts(self, entity_id: str, *, plural: bool = False) -> str:

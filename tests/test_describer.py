@@ -417,6 +417,36 @@ def test_top_level_namesake_of_a_member_is_on_its_own():
     assert "The barrel is next to this house. The shed is behind the house on its own." in text
 
 
+def test_a_members_bare_name_never_means_a_known_top_level_namesake():
+    # A top-level cottage is "the cottage" in any paragraph, so the farmstead's own
+    # cottage cannot also be "the cottage" once both are known.
+    b = SceneBuilder()
+    road = b.road()
+    cottage = b.add("cottage")
+    farm = b.group("farmstead")
+    farm_cottage = b.add("cottage", parent=farm)
+    field, shed = b.add("field", parent=farm), b.add("shed", parent=farm)
+    b.relate(cottage, "NextTo", road)
+    b.relate(field, "NextToEast", farm_cottage)
+    b.relate(shed, "NextToNorth", field)
+    b.relate(b.add("barrel", parent=farm), "NextTo", farm_cottage)
+    text = describe(b.scene()).text
+    assert "The field is east of this cottage. The shed is north of the field." in text
+    assert "The barrel is next to the cottage of the farmstead." in text
+
+
+def test_no_this_inside_a_list():
+    b = SceneBuilder()
+    road = b.road()
+    lamp, wagon, well = b.add("street_lamp"), b.add("wagon"), b.add("well")
+    mill = b.group("mill")
+    b.add("wagon", parent=mill)
+    for thing in (lamp, wagon, well):
+        b.relate(thing, "NextTo", road)
+    text = describe(b.scene()).text
+    assert "The street lamp, the wagon and the well are next to the road." in text
+
+
 def test_nested_groups_follow_their_parent():
     b = SceneBuilder()
     farm = b.group("farmstead")
