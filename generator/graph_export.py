@@ -30,9 +30,7 @@ def _node_line(node: SceneNode) -> str:
 def graph_to_dot(graph: SceneGraph) -> str:
     """The graph as a DOT ``digraph``: nodes in creation order, groups as clusters."""
     lines = [f"digraph {_quote(graph.params.name)} {{", f"{_INDENT}node [fontname=Helvetica];"]
-    members: dict[str | None, list[SceneNode]] = {}  # parent id (None: top level) -> its nodes
-    for node in graph.nodes():
-        members.setdefault(node.parent, []).append(node)
+    members = graph.by_parent()
 
     def emit(parent: str | None, depth: int) -> None:
         for node in members.get(parent, []):

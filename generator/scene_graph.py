@@ -13,8 +13,8 @@ chosen, so later stages never need the catalog itself.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import asdict, dataclass, field, fields
-from typing import Iterator
 
 import networkx as nx
 
@@ -114,10 +114,13 @@ class SceneGraph:
             max_length=entry.max_length if is_path else None,
             segments=entry.segments if is_path else None,
         )
+        self._store(node)
+        return node_id
+
+    def _store(self, node: SceneNode) -> None:
         # A shallow copy of the fields: they are immutable, and asdict's deep copy made
         # node creation most of the cost of grammar expansion.
-        self.graph.add_node(node_id, **{f.name: getattr(node, f.name) for f in fields(node)})
-        return node_id
+        self.graph.add_node(node.id, **{f.name: getattr(node, f.name) for f in fields(node)})
 
     def add_relation(self, source: str, target: str, label: str) -> None:
         """Add the edge ``source`` -label-> ``target`` (both must exist)."""
@@ -149,16 +152,28 @@ class SceneGraph:
             if label is None or data["label"] == label
         ]
 
+    def by_parent(self) -> dict[str | None, list[SceneNode]]:
+        """Each group's direct members (``None``: the top level), in creation order."""
+        members: dict[str | None, list[SceneNode]] = {}
+        for node in self.nodes():
+            members.setdefault(node.parent, []).append(node)
+        return members
+
     def children(self, group_id: str) -> list[SceneNode]:
         """Direct members of a group, in creation order."""
-        return [n for n in self.nodes() if n.parent == group_id]
+        return self.by_parent().get(group_id, [])
 
     def descendants(self, group_id: str) -> list[SceneNode]:
-        """All members of a group, nested groups' members included."""
+        """All members of a group, nested groups' members included (each after its group)."""
+        members = self.by_parent()
         found: list[SceneNode] = []
-        for child in self.children(group_id):
-            found.append(child)
-            found.extend(self.descendants(child.id))
+
+        def collect(parent: str) -> None:
+            for child in members.get(parent, []):
+                found.append(child)
+                collect(child.id)
+
+        collect(group_id)
         return found
 
     def __len__(self) -> int:
@@ -178,27 +193,24 @@ class SceneGraph:
         }
 
     @classmethod
-    def from_dict(cls, data: dict) -> "SceneGraph":
+    def from_dict(cls, data: dict) -> SceneGraph:
+        """The graph ``to_dict`` gave; missing parameters take their defaults."""
         params = data.get("params", {})
         scene_graph = cls(
             params=SceneParams(
-                name=params.get("name", "scene"),
-                extent=tuple(params.get("extent", (40.0, 40.0))),
-                ground=params.get("ground", "grass"),
-                walls=bool(params.get("walls", False)),
-                templates=params.get("templates"),
+                name=params.get("name", SceneParams.name),
+                extent=tuple(params.get("extent", SceneParams.extent)),
+                ground=params.get("ground", SceneParams.ground),
+                walls=bool(params.get("walls", SceneParams.walls)),
+                templates=params.get("templates", SceneParams.templates),
             )
         )
         for raw in data["nodes"]:
-            node = SceneNode(
-                **{
-                    **raw,
-                    "size": tuple(raw["size"]),
-                    "colour": tuple(raw["colour"]),
-                }
-            )
-            scene_graph.graph.add_node(node.id, **asdict(node))
-            counter = int(node.id.rsplit("_", 1)[1]) if node.id.rsplit("_", 1)[-1].isdigit() else 0
+            node = SceneNode(**{**raw, "size": tuple(raw["size"]), "colour": tuple(raw["colour"])})
+            scene_graph._store(node)
+            # new nodes of the type continue its numbering (``table_3`` after ``table_2``)
+            suffix = node.id.rsplit("_", 1)[-1]
+            counter = int(suffix) if suffix.isdigit() else 0
             scene_graph._counters[node.type] = max(scene_graph._counters.get(node.type, 0), counter)
         for raw in data["edges"]:
             scene_graph.add_relation(raw["source"], raw["target"], raw["label"])

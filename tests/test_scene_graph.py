@@ -44,6 +44,15 @@ def test_style_overrides_noun_and_size():
 def test_members_of_a_group():
     graph = small_graph()
     assert [n.id for n in graph.children("market_stand_1")] == ["table_1", "computer_1"]
+    crate = graph.add_node(STAND, parent="market_stand_1")
+    graph.add_node(TABLE, parent=crate)
+    assert [n.id for n in graph.children("market_stand_1")] == ["table_1", "computer_1", "market_stand_2"]
+    assert [n.id for n in graph.descendants("market_stand_1")] == [
+        "table_1", "computer_1", "market_stand_2", "table_2"]
+    assert {parent: [n.id for n in members] for parent, members in graph.by_parent().items()} == {
+        None: ["market_stand_1", "road_1"], "market_stand_1": ["table_1", "computer_1", "market_stand_2"],
+        "market_stand_2": ["table_2"]}
+    assert graph.children("road_1") == []
 
 
 def test_unknown_label_and_node_are_refused():
