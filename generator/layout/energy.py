@@ -28,6 +28,7 @@ them one item at a time through the same machinery.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 from .factors import greater, less
 from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_penetration
@@ -40,6 +41,29 @@ PARTS = ("relations", "collisions", "paths", "path_shape", "extent")
 
 #: Depths are clipped below 1 so the log penalty stays finite.
 MAX_DEPTH = 0.99
+
+
+class Changes(NamedTuple):
+    """What an incremental proposal changes: the part deltas and the new term values."""
+
+    delta: dict[str, float]  # by part
+    relation: dict[int, float]  # by term
+    moved: set[int]  # boxes whose pairs and path hits are replaced
+    pairs: dict[tuple[int, int], float]  # (box, other): the moved boxes' new collisions
+    moved_paths: set[int]  # paths whose hits are replaced
+    hits: dict[tuple[int, int], float]  # (box, path): new box-path collisions
+    shape: dict[int, float]  # by path
+    junction: dict[int, float]  # by junction box
+    box_extent: dict[int, float]
+    path_extent: dict[int, float]
+
+
+class Pending(NamedTuple):
+    """A proposal applied to the state but not yet accepted or rejected."""
+
+    saved_boxes: list[tuple[int, tuple[float, float, float]]]  # poses to restore on reject
+    saved_paths: list[tuple[int, list]]  # control points to restore on reject
+    update: Changes | dict  # incremental changes, or a full recomputation (``_fresh``)
 
 
 class Energy:
@@ -55,7 +79,7 @@ class Energy:
         ]
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.placeable = [t.placeable for t in problem.relations]
-        self._pending: tuple | None = None
+        self._pending: Pending | None = None
         self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
@@ -232,13 +256,13 @@ class Energy:
             state.points[path] = points
         if not self.params.incremental:
             fresh = self._fresh()
-            self._pending = ("full", saved_boxes, saved_paths, fresh)
+            self._pending = Pending(saved_boxes, saved_paths, fresh)
             return sum(fresh["parts"].values()) - self.total
         changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes))
-        self._pending = ("incremental", saved_boxes, saved_paths, changes)
-        return sum(changes[0].values())
+        self._pending = Pending(saved_boxes, saved_paths, changes)
+        return sum(changes.delta.values())
 
-    def _changes(self, boxes: list[int], paths: list[int], together: bool) -> tuple:
+    def _changes(self, boxes: list[int], paths: list[int], together: bool) -> Changes:
         """New values of every term touching the moved boxes and paths, and the part deltas.
 
         When the boxes moved ``together`` (one shared translation, no turn), terms and
@@ -306,7 +330,7 @@ class Energy:
         for path in paths:
             new_shape[path] = self.path_shape_energy(path)
             delta["path_shape"] += new_shape[path] - self.shape[path]
-        junctions = sorted({problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & set(self.junction)))
+        junctions = sorted({problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & self.junction.keys()))
         new_junction = {}
         for junction in junctions:
             new_junction[junction] = self.junction_energy(junction)
@@ -320,7 +344,10 @@ class Energy:
         for path in paths:
             new_path_extent[path] = self.path_extent_energy(path)
             delta["extent"] += new_path_extent[path] - self.path_extent[path]
-        return delta, new_relation, moved, new_pairs, moved_paths, new_hits, new_shape, new_junction, new_box_extent, new_path_extent
+        return Changes(
+            delta, new_relation, moved, new_pairs, moved_paths, new_hits,
+            new_shape, new_junction, new_box_extent, new_path_extent,
+        )  # fmt: skip
 
     def _boxes_near_path(self, path: int) -> list[int]:
         points = self.state.points[path]
@@ -333,39 +360,36 @@ class Energy:
     def accept(self) -> None:
         """Keep the proposed move: store its term values."""
         pending, self._pending = self._pending, None
-        if pending[0] == "full":
-            self._install(pending[3])
+        if isinstance(pending.update, dict):
+            self._install(pending.update)
             return
-        (delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-         new_shape, new_junction, new_box_extent, new_path_extent) = pending[3]  # fmt: skip
-        for term, value in new_relation.items():
+        changes, moved = pending.update, pending.update.moved
+        for term, value in changes.relation.items():
             self.relation[term] = value
         for box in moved:
             for other in self.pairs[box]:
                 if other not in moved:
                     del self.pairs[other][box]
             self.pairs[box] = {}
-        for (box, other), value in new_pairs.items():
+        for (box, other), value in changes.pairs.items():
             self.pairs[box][other] = value
             self.pairs[other][box] = value
-        for path in range(self.problem.n_paths):
-            hits = self.path_hits[path]
-            if path in moved_paths:
+        for path, hits in enumerate(self.path_hits):
+            if path in changes.moved_paths:
                 hits.clear()
             else:
                 for box in moved:
                     hits.pop(box, None)
-        for (box, path), value in new_hits.items():
+        for (box, path), value in changes.hits.items():
             self.path_hits[path][box] = value
-        for path, value in new_shape.items():
+        for path, value in changes.shape.items():
             self.shape[path] = value
-        for junction, value in new_junction.items():
-            self.junction[junction] = value
-        for box, value in new_box_extent.items():
+        self.junction.update(changes.junction)
+        for box, value in changes.box_extent.items():
             self.box_extent[box] = value
-        for path, value in new_path_extent.items():
+        for path, value in changes.path_extent.items():
             self.path_extent[path] = value
-        for part, value in delta.items():
+        for part, value in changes.delta.items():
             self.parts[part] += value
         self.total = sum(self.parts.values())
 
@@ -373,12 +397,12 @@ class Energy:
         """Undo the proposed move."""
         pending, self._pending = self._pending, None
         state, grid, problem = self.state, self.grid, self.problem
-        for box, (x, z, yaw) in pending[1]:
+        for box, (x, z, yaw) in pending.saved_boxes:
             state.set_pose(box, x, z, yaw)
             if self.active[box]:
                 grid.remove(box)
                 grid.insert(box, x, z, problem.size[box] / 2.0)
-        for path, points in pending[2]:
+        for path, points in pending.saved_paths:
             state.points[path] = points
 
 
