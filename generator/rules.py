@@ -107,12 +107,14 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
             catalog.add(_catalog_entry(entry, tree.paths[file.path].parent))
     scene = next(scene for file in tree.files for scene in file.scenes)
     settings = {setting.name: setting.value for setting in scene.settings}
+    templates = next((setting for setting in scene.settings if setting.name == "templates"), None)
     params = SceneParams(
         name=scene.name,
         extent=tuple(settings.get("extent", SceneParams.extent)),
         ground=settings.get("ground", SceneParams.ground),
-        walls=bool(settings.get("walls", False)),
-        templates=_templates_folder(scene, tree),
+        walls=bool(settings.get("walls", SceneParams.walls)),
+        # like a mesh, the folder is written relative to the file that names it
+        templates=_beside(tree.paths[templates.location.file].parent, templates.value) if templates else None,
     )
     productions = {p.name: p for file in tree.files for p in file.productions}
     return Rules(
@@ -129,16 +131,12 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
     )
 
 
-def _templates_folder(scene: ast.SceneDecl, tree: ParsedTree) -> str | None:
-    """The scene block's ``templates`` folder as an absolute path (it is written
-    relative to the file that holds the scene block), or None when there is none."""
-    for setting in scene.settings:
-        if setting.name == "templates":
-            return str((tree.paths[setting.location.file].parent / setting.value).resolve())
-    return None
+def _beside(folder: Path, relative: str) -> str:
+    """The absolute path of a file or folder a rules file names relative to itself."""
+    return str((folder / relative).resolve())
 
 
-def hex_colour(text: str) -> tuple[float, float, float]:
+def _hex_colour(text: str) -> tuple[float, float, float]:
     """``#8b5a2b`` -> RGB in [0, 1], the values as written (no gamma conversion)."""
     return tuple(int(text[i : i + 2], 16) / 255.0 for i in (1, 3, 5))
 
@@ -148,9 +146,9 @@ def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
     looks: dict = {}
     for setting in fields:
         if setting.name == "colour":
-            looks["colour"] = hex_colour(setting.value)
+            looks["colour"] = _hex_colour(setting.value)
         elif setting.name == "mesh":
-            looks["mesh"] = str((folder / setting.value).resolve())
+            looks["mesh"] = _beside(folder, setting.value)
         elif setting.name == "segments":
             looks["segments"] = int(setting.value)
         else:
