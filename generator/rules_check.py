@@ -140,10 +140,15 @@ class _Checker:
                 self.error(at, f"'{name}' must not be empty")
         return seen
 
+    def folder_of(self, setting: ast.Setting) -> Path:
+        """The folder of the file a setting is written in: its paths are relative to it."""
+        return self.paths[setting.location.file].parent
+
     def check_mesh(self, file: str, setting: ast.Setting) -> None:
-        folder = self.paths[setting.location.file].parent
+        folder = self.folder_of(setting)
         if not file.lower().endswith(MESH_SUFFIXES):
-            self.error(setting.value_location, f"mesh '{file}' is not a {', '.join(MESH_SUFFIXES)} file")
+            suffixes = ", ".join(MESH_SUFFIXES[:-1]) + " or " + MESH_SUFFIXES[-1]
+            self.error(setting.value_location, f"mesh '{file}' is not a {suffixes} file")
         elif not (folder / file).is_file():
             self.error(setting.value_location, f"mesh file '{file}' not found (looked in {folder.resolve()})")
 
@@ -182,7 +187,7 @@ class _Checker:
 
     def check_templates(self, folder_name: str, setting: ast.Setting) -> None:
         """The description templates folder, like a mesh, is found relative to its file."""
-        folder = self.paths[setting.location.file].parent
+        folder = self.folder_of(setting)
         if not (folder / folder_name).is_dir():
             self.error(setting.value_location,
                        f"templates folder '{folder_name}' not found (looked in {folder.resolve()})")

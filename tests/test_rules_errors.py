@@ -192,6 +192,78 @@ block_on_object.rules:4:14: error: a block nests nodes in a new group, but 'tabl
     S -> { table { table } }
                  ^""",
     ),
+    "bad_values": (
+        ('object lamp { noun "  " segments 2.5 mesh "lamp.png" }\n'
+         'path road { noun "road" segments 0 max_length -3 }\nobject chair { size 1 x 1 x 1 }\n'
+         "S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }\nP -> { }"),
+        """\
+bad_values.rules:4:20: error: 'noun' must not be empty
+    object lamp { noun "  " segments 2.5 mesh "lamp.png" }
+                       ^
+bad_values.rules:4:25: error: 'segments' applies to paths only, not to an object
+    object lamp { noun "  " segments 2.5 mesh "lamp.png" }
+                            ^
+bad_values.rules:4:34: error: 'segments' must be a whole number of at least 1, not 2.5
+    object lamp { noun "  " segments 2.5 mesh "lamp.png" }
+                                     ^
+bad_values.rules:4:43: error: mesh 'lamp.png' is not a .glb, .gltf, .obj, .ply or .stl file
+    object lamp { noun "  " segments 2.5 mesh "lamp.png" }
+                                              ^
+bad_values.rules:5:34: error: 'segments' must be a whole number of at least 1, not 0
+    path road { noun "road" segments 0 max_length -3 }
+                                     ^
+bad_values.rules:5:47: error: 'max_length' must be positive, not -3
+    path road { noun "road" segments 0 max_length -3 }
+                                                  ^
+bad_values.rules:6:8: error: catalog entry 'chair' has no noun (add: noun "...")
+    object chair { size 1 x 1 x 1 }
+           ^
+bad_values.rules:7:27: error: count 3000 exceeds max_nodes 2000
+    S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }
+                              ^
+bad_values.rules:7:50: error: a block nests nodes in a new group, but the subject refers to existing nodes
+    S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }
+                                                     ^
+bad_values.rules:7:63: error: a block nests nodes in a new group, but 'P' is a nonterminal call
+    S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }
+                                                                  ^""",
+    ),
+    "names_and_parameters": (
+        "S -> { table as table; P(table) }\nP(x, x) -> { table OnTopOf x }\nQ(table) -> { table }",
+        """\
+names_and_parameters.rules:4:17: error: 'table' is a type; bind the nodes to another name
+    S -> { table as table; P(table) }
+                    ^
+names_and_parameters.rules:4:24: error: 'P' takes 2 parameters (names_and_parameters.rules:5:1), but 1 is given
+    S -> { table as table; P(table) }
+                           ^
+names_and_parameters.rules:5:6: error: duplicate parameter 'x'
+    P(x, x) -> { table OnTopOf x }
+         ^
+names_and_parameters.rules:6:1: warning: nonterminal 'Q' is never used (start 'S' does not reach it)
+    Q(table) -> { table }
+    ^
+names_and_parameters.rules:6:3: error: parameter 'table' has the name of a type; choose another name
+    Q(table) -> { table }
+      ^""",
+    ),
+    "mutual_recursion": (
+        "S -> { table; 0.5? A }\nA -> { table; B }\nB -> 2: { A } | { table; B }",
+        """\
+mutual_recursion.rules:5:1: error: 'A' can never finish expanding: it always calls 'B', which never finishes (make the call optional, e.g. '0.5? B' or '0..2 B', or add an alternative without it)
+    A -> { table; B }
+    ^
+mutual_recursion.rules:6:1: error: 'B' can never finish expanding: it always calls 'A', which never finishes (make the call optional, e.g. '0.5? A' or '0..2 A', or add an alternative without it)
+    B -> 2: { A } | { table; B }
+    ^""",
+    ),
+    "unknown_setting": (
+        "scene t { walls; extnt 3 x 3 }",
+        """\
+unknown_setting.rules:4:18: error: unknown scene setting 'extnt'; did you mean 'extent'?
+    scene t { walls; extnt 3 x 3 }
+                     ^""",
+    ),
     "scene_without_start": (
         "S -> { table }",
         """\
@@ -231,6 +303,27 @@ def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
     assert "warning" not in str(error)
     Path("warn.rules").write_text(HEADER + "S -> { table }\nUnused -> { table }\n")
     assert [w.severity for w in load_rules("warn.rules").warnings] == ["warning"]
+
+
+def test_scene_settings_and_a_second_scene_block(in_tmp):
+    Path("scenes.rules").write_text("scene s { start S max_depth 0 max_nodes 2.5 start T }\nscene t { start S }\n"
+                                    "S(x) -> { }\n")
+    assert format_diagnostics(check_rules("scenes.rules")) == """\
+scenes.rules:1:17: error: start symbol 'S' takes parameters; it must take none
+    scene s { start S max_depth 0 max_nodes 2.5 start T }
+                    ^
+scenes.rules:1:29: error: 'max_depth' must be a whole number of at least 1, not 0
+    scene s { start S max_depth 0 max_nodes 2.5 start T }
+                                ^
+scenes.rules:1:41: error: 'max_nodes' must be a whole number of at least 1, not 2.5
+    scene s { start S max_depth 0 max_nodes 2.5 start T }
+                                            ^
+scenes.rules:1:45: error: duplicate scene setting 'start'
+    scene s { start S max_depth 0 max_nodes 2.5 start T }
+                                                ^
+scenes.rules:2:1: error: a second scene block (the first is at scenes.rules:1:1)
+    scene t { start S }
+    ^"""
 
 
 def test_missing_scene_block(in_tmp):
