@@ -34,8 +34,9 @@ def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = 
     Deterministic: the same graph, seed and params give the same result. Runs up to
     ``1 + params.restarts`` chains (each from a fresh initial placement, on its own
     stream derived from ``seed``) until one is ok, and returns the best: ok first, then
-    fewest problems, then lowest energy. Raises ``InputError`` for relations that cannot be laid out (an
-    OnTopOf between non-objects, a cycle of supports, a malformed PathConnectedTo).
+    fewest problems, then lowest energy. Raises ``InputError`` for relations that cannot
+    be laid out (an OnTopOf between non-objects, a cycle of supports, a malformed
+    PathConnectedTo).
     """
     params = params or LayoutParams()
     started = time.perf_counter()

@@ -242,7 +242,7 @@ def _place_box(
     energy.activate([box])
     _best_of(energy, draw, energy.params.initial_candidates)
     for term in facing:
-        _best_of(energy, lambda: (mover.turn_to_face(term), {}), 2)
+        _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
 
 
 def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
@@ -280,7 +280,7 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
         if t.base.startswith("Facing") and not set(t.b.members) <= set(members) and _placed(energy, t.b)
     ]  # fmt: skip
     for term in outside_facing:
-        _best_of(energy, lambda: (mover.turn_group_to_face(term), {}), 1)
+        _best_of(energy, lambda term=term: (mover.turn_group_to_face(term), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
         in_turn = itertools.cycle(anchors)
         keep = bool(outside_facing)

@@ -33,7 +33,7 @@ import numpy as np
 
 from .params import LayoutParams
 from .problem import Endpoint, Problem, RelationTerm
-from .relation_terms import COMPASS, anchor, centre, evaluate, sides
+from .relation_terms import COMPASS, anchor, centre, evaluate, sides, source_point
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -366,7 +366,7 @@ class Mover:
         """New poses for B (shifted, not turned) at which the NextTo* ``term`` holds."""
         problem, state = self.problem, self.state
         a, b = term.a, term.b
-        ax, az = centre(a, state) if a.kind != "path" else tuple(state.points[a.index][0])
+        ax, az = source_point(a, state)
         bx, bz, c, s = anchor(b, state, (ax, az))
         wx, wz = self._wanted_direction(term.base, c, s)
         if a.kind == "path":

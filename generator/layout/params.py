@@ -23,7 +23,7 @@ class LayoutParams:
     ``check_every`` how often the stop rule is tested; it stops once the layout is ok
     (every relation satisfied, nothing overlapping, all inside) and its energy is at most
     ``target_energy``; it gives up early when its count of problems has not fallen for
-``patience`` steps. ``restarts`` more runs from fresh initial placements are made while
+    ``patience`` steps. ``restarts`` more runs from fresh initial placements are made while
     the result is not ok, and the best is kept. The temperature falls geometrically from
     ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
     poses are tried for each item during the constructive initial placement.

@@ -73,6 +73,14 @@ def centre(end: Endpoint, state: State) -> tuple[float, float]:
     return (x0 + x1) / 2.0, (z0 + z1) / 2.0
 
 
+def source_point(end: Endpoint, state: State) -> tuple[float, float]:
+    """Where directions from A start: an object's or group's centre, a path's first point."""
+    if end.kind == "path":
+        x, z = state.points[end.index][0]
+        return x, z
+    return centre(end, state)
+
+
 def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[float, float, float, float]:
     """(x, z, cos yaw, sin yaw) of B as seen from a point: its centre and its axes.
 
@@ -173,7 +181,7 @@ def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     base = term.base
     if base == "NextTo":
         return Measure(energy, distance)
-    ax, az = centre(term.a, state) if term.a.kind != "path" else state.points[term.a.index][0]
+    ax, az = source_point(term.a, state)
     bx, bz, c, s = anchor(term.b, state, (ax, az))
     dx, dz = _unit(ax - bx, az - bz)
     word = base[len("NextTo"):].lower()
