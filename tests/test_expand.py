@@ -14,6 +14,7 @@ from scenewright.generator import (
     expand,
     graph_to_dot,
     load_rules,
+    shipped_rule_sets,
 )
 from scenewright.generator.relations import LABELS
 from scipy import stats
@@ -201,9 +202,7 @@ def test_missing_references_are_located_errors(tmp_path):
         expand(rules_from(tmp_path, "S -> { 2 a; b NextTo a #3 }"), 0)
 
 
-def test_shipped_rule_sets_expand(tmp_path):
-    from scenewright.generator import shipped_rule_sets
-
+def test_shipped_rule_sets_expand():
     assert {"village", "desk", "bedroom"} <= set(shipped_rule_sets())
     for name in shipped_rule_sets():
         rules = load_rules(name)
