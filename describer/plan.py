@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from scenewright.generator.relations import is_support
 from scenewright.scene import Relation, Scene
 
-from .lexicon import DESCRIBED_LABELS, SYMMETRIC_LABELS, place_phrases
+from .lexicon import DESCRIBED_LABELS, SYMMETRIC_LABELS, place_phrases, relation_wordings
 from .world import Entity, World
 
 #: The most clauses one statement joins ("The chair is in front of the desk and faces it.").
@@ -82,12 +82,16 @@ class Introduction:
 class Statement:
     """Known entities and one or more relations they share.
 
+    A clause's label gives its words; relations of other labels with the same words
+    ("to the left of" is ``NextToLeft`` or ``NextToChooseSide`` "left") are told in the
+    same clause, so ``facts`` lists what each subject's own relation is.
     ``also``: the statement continues the one before it with more subjects ("The mill
     and the well are also next to the road."); the two are never separated.
     """
 
     subjects: tuple[str, ...]
     clauses: tuple[Clause, ...]
+    facts: tuple[Fact, ...]
     also: bool = False
 
 
@@ -117,7 +121,7 @@ def facts_of(message: Message) -> list[Fact]:
     if isinstance(message, Introduction):
         subjects = tuple(s for unit in message.subjects for s in unit)
         return _clause_facts(subjects, message.clause)
-    return [fact for clause in message.clauses for fact in _clause_facts(message.subjects, clause)]
+    return list(message.facts)
 
 
 def introduced_by(message: Message) -> list[str]:
@@ -312,23 +316,40 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
     """Statements for relations: shared relations to one target joined, then shared subjects.
 
     "The mill and the street lamp are next to the first road."; "The chair is in front
-    of the desk and faces it." At most ``MAX_CLAUSES`` clauses go in one sentence.
+    of the desk and faces it." Relations are joined by what they say, not by label, so
+    one sentence never repeats another's predicate. At most ``MAX_CLAUSES`` clauses go
+    in one sentence.
     """
-    sources: dict[tuple[str, str | None, str], list[str]] = {}
+    by_target: dict[tuple[tuple[str, ...], str], list[Relation]] = {}
     for relation in relations:
-        sources.setdefault((relation.label, relation.chosen, relation.target), []).append(relation.source)
-    clauses: dict[tuple[str, ...], dict[tuple[str, str | None], list[str]]] = {}
-    for (label, chosen, target), subjects in sources.items():
-        key = tuple(sorted(dict.fromkeys(subjects), key=lambda s: world[s].order))
-        clauses.setdefault(key, {}).setdefault((label, chosen), []).append(target)
+        words = relation_wordings(relation.label, relation.chosen)
+        by_target.setdefault((words, relation.target), []).append(relation)
+    shared_by: dict[tuple[str, ...], dict[tuple[str, ...], list[Relation]]] = {}
+    for (words, _), found in by_target.items():
+        subjects = tuple(sorted(dict.fromkeys(r.source for r in found), key=lambda s: world[s].order))
+        shared_by.setdefault(subjects, {}).setdefault(words, []).extend(found)
     statements: list[Statement] = []
-    for subjects, by_label in clauses.items():
-        joined = [Clause(label, chosen, tuple(targets)) for (label, chosen), targets in by_label.items()]
+    for subjects, by_words in shared_by.items():
+        joined = list(by_words.values())
         for start in range(0, len(joined), MAX_CLAUSES):
-            shared = tuple(joined[start:start + MAX_CLAUSES])
+            shared = joined[start:start + MAX_CLAUSES]
+            clauses = tuple(
+                Clause(found[0].label, found[0].chosen, tuple(dict.fromkeys(r.target for r in found)))
+                for found in shared
+            )
             for index, piece in enumerate(_subject_pieces(subjects, world)):
-                statements.append(Statement(piece, shared, also=index > 0))
+                statements.append(Statement(piece, clauses, _piece_facts(piece, clauses, shared), also=index > 0))
     return statements
+
+
+def _piece_facts(piece: tuple[str, ...], clauses: tuple[Clause, ...], shared: list[list[Relation]]) -> tuple[Fact, ...]:
+    """The facts a statement about ``piece`` states: clause by clause, subject by subject, target by target."""
+    facts: list[Fact] = []
+    for clause, found in zip(clauses, shared):
+        told = [r for r in found if r.source in piece]
+        told.sort(key=lambda r: (piece.index(r.source), clause.targets.index(r.target)))
+        facts += [(r.source, r.label, r.target) for r in told]
+    return tuple(facts)
 
 
 def _subject_pieces(subjects: tuple[str, ...], world: World) -> list[tuple[str, ...]]:

@@ -308,6 +308,22 @@ def test_aggregation_counts_part_of_a_cohort():
     assert "The sixth street lamp is next to the fourth road." in text
 
 
+def test_labels_with_the_same_words_share_one_statement():
+    # NextToChooseSide "left" and NextToLeft both read "to the left of": one sentence.
+    b = SceneBuilder()
+    building, pallet, wagon = b.add("windmill_building"), b.add("pallet"), b.add("wagon")
+    b.add("well")
+    b.relate(pallet, "NextToChooseSide", building, chosen="left")
+    b.relate(wagon, "NextToLeft", building)
+    description = describe(b.scene())
+    assert "The pallet and the wagon are to the left of the windmill building." in description.text
+    assert description.text.count("to the left of") == 1
+    assert description.facts == [
+        ("pallet_1", "NextToChooseSide", "windmill_building_1"),
+        ("wagon_1", "NextToLeft", "windmill_building_1"),
+    ]
+
+
 def test_different_nouns_share_one_statement():
     b = SceneBuilder()
     road = b.road()
