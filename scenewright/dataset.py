@@ -34,10 +34,12 @@ import hashlib
 import json
 import multiprocessing
 import os
+import sys
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import TextIO
 
 import numpy as np
 
@@ -51,6 +53,9 @@ RECORDS_DIR = ".records"
 METADATA_FILE = "metadata.jsonl"
 #: What a worker imports; a fork server imports it once for all its workers.
 WORKER_MODULES = ["scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene"]
+#: When stderr is not a terminal (a log file, a batch job), progress is a plain line at
+#: most this often (seconds) and one at the end, not a bar redrawn after every scene.
+LOG_INTERVAL = 30.0
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -304,8 +309,8 @@ def run_dataset(
                 store_product(root, product)
                 made += 1
                 failed_now += not product.ok
-                bar.update(1)
                 bar.set_postfix(failed=failed_now, refresh=False)
+                bar.update(1)
             bar.close()
     seconds = time.perf_counter() - started
     collector = publish_metadata(root, spec.count)
@@ -354,9 +359,55 @@ def completed_products(
             future.cancel()
 
 
-def progress_bar(total: int, enabled: bool, already: int):
-    """A tqdm bar with rate and ETA on stderr (a silent stand-in when disabled)."""
+def progress_bar(total: int, enabled: bool, already: int, stream: TextIO | None = None):
+    """Progress with rate and ETA on ``stream`` (stderr): a tqdm bar on a terminal,
+    ``ProgressLines`` otherwise, a silent stand-in when disabled."""
     from tqdm import tqdm
 
+    stream = stream or sys.stderr
     description = f"scenes ({already} already done)" if already else "scenes"
-    return tqdm(total=total, unit="scene", desc=description, disable=not enabled, dynamic_ncols=True)
+    if enabled and not stream.isatty():
+        return ProgressLines(total, description, stream)
+    return tqdm(total=total, unit="scene", desc=description, disable=not enabled, dynamic_ncols=True, file=stream)
+
+
+class ProgressLines:
+    """Progress for a log: the bar's text (count, percentage, elapsed, ETA, rate,
+    failures) as a plain line at most every ``interval`` seconds and at ``close`` (unless
+    the last line already says it),
+    so a long run leaves a readable line per interval rather than a redraw per scene.
+    Offers the part of tqdm's interface ``run_dataset`` uses."""
+
+    FORMAT = "{desc}: {n_fmt}/{total_fmt} ({percentage:.0f}%) [{elapsed}<{remaining}, {rate_fmt}{postfix}]"
+
+    def __init__(
+        self, total: int, description: str, stream: TextIO, *, interval: float = LOG_INTERVAL, clock=time.monotonic
+    ):
+        self.total, self.description, self.stream = total, description, stream
+        self.interval, self.clock = interval, clock
+        self.count = 0
+        self.shown: int | None = None  # the count the last line showed
+        self.postfix = ""
+        self.started = self.printed = clock()
+
+    def set_postfix(self, *, refresh: bool = False, **values) -> None:
+        self.postfix = ", ".join(f"{key}={value}" for key, value in values.items())
+
+    def update(self, n: int = 1) -> None:
+        self.count += n
+        if self.clock() - self.printed >= self.interval:
+            self._print()
+
+    def close(self) -> None:
+        if self.shown != self.count:
+            self._print()
+
+    def _print(self) -> None:
+        from tqdm import tqdm
+
+        self.printed, self.shown = self.clock(), self.count
+        line = tqdm.format_meter(
+            self.count, self.total, self.printed - self.started, prefix=self.description, unit="scene",
+            postfix=self.postfix, bar_format=self.FORMAT,
+        )  # fmt: skip
+        print(line, file=self.stream, flush=True)

@@ -23,7 +23,9 @@ from scenewright.dataset import (
     METADATA_FILE,
     RECORDS_DIR,
     DatasetSpec,
+    ProgressLines,
     SceneProduct,
+    progress_bar,
     run_dataset,
     scene_seed,
     scene_stem,
@@ -244,3 +246,45 @@ def test_every_layout_failing_is_reported_and_the_command_exits_1(tmp_path, monk
         {"box is not north of box (#° off)": 3},
     )
     assert (tmp_path / "stats.png").stat().st_size > 0
+
+
+def test_progress_in_a_log_is_a_plain_line_per_interval(tmp_path, capsys):
+    # Under pytest stderr is not a terminal, as in a log file: a quick run prints one
+    # line at the end, not a redraw per scene.
+    run_dataset(spec_of(8), tmp_path, workers=1, producer=fake_scene)
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and "\r" not in lines[0]
+    assert lines[0].startswith("scenes: 8/8 (100%) [") and lines[0].endswith(", failed=1]")
+
+    now = [0.0]
+    log = io.StringIO()
+    progress = ProgressLines(100, "scenes", log, interval=30.0, clock=lambda: now[0])
+    for second in range(1, 91):  # a scene a second
+        now[0] = float(second)
+        progress.set_postfix(failed=second // 10)
+        progress.update(1)
+    progress.close()
+    assert log.getvalue().splitlines() == [
+        "scenes: 30/100 (30%) [00:30<01:10,  1.00scene/s, failed=3]",
+        "scenes: 60/100 (60%) [01:00<00:40,  1.00scene/s, failed=6]",
+        "scenes: 90/100 (90%) [01:30<00:10,  1.00scene/s, failed=9]",
+    ]
+    now[0] = 95.0
+    progress.update(5)  # the run ends between two lines: close says where it ended
+    progress.close()
+    assert log.getvalue().splitlines()[-1] == "scenes: 95/100 (95%) [01:35<00:05,  1.00scene/s, failed=9]"
+
+
+def test_progress_on_a_terminal_is_a_bar_and_silent_when_disabled():
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    bar = progress_bar(10, True, 4, Terminal())
+    assert not isinstance(bar, ProgressLines) and bar.desc == "scenes (4 already done)"
+    bar.close()
+    log = io.StringIO()
+    silent = progress_bar(10, False, 0, log)
+    silent.update(10)
+    silent.close()
+    assert log.getvalue() == ""
