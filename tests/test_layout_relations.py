@@ -97,6 +97,14 @@ def test_on_top_needs_the_centre_over_the_top(label):
     assert holds and not off
 
 
+@pytest.mark.parametrize("prefix", ["IsPartOf", "ImplicitIsPartOf"])
+@pytest.mark.parametrize("suffix", ["", "Middle", "Edge", "FrontEdge"])
+def test_is_part_of_has_the_geometry_of_on_top_of(prefix, suffix):
+    for pose in ((0.05, 0.0, 0.0), (-0.9, 0.1, 0.0), (0.2, 0.4, 0.3), (1.3, 0.0, 0.0)):
+        on_top = measure("OnTopOf" + suffix, pose, a_entry=CUP, b_entry=TABLE)
+        assert measure(prefix + suffix, pose, a_entry=CUP, b_entry=TABLE) == on_top
+
+
 def test_support_sets_the_height():
     problem, state = scene("OnTopOf", CUP, TABLE)
     assert state.y == [0.0, 1.0]
