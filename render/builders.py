@@ -16,7 +16,7 @@ rooms). Every builder stays well under 500 triangles.
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 import trimesh

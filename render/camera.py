@@ -106,7 +106,7 @@ class Camera:
         return data
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> "Camera":
+    def from_dict(cls, data: dict[str, Any]) -> Camera:
         """The camera back from ``to_dict`` (e.g. from a scene.json ``render`` entry)."""
         return cls(
             view=data["view"],

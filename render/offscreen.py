@@ -117,7 +117,7 @@ class Renderer:
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
 
-    def __enter__(self) -> "Renderer":
+    def __enter__(self) -> Renderer:
         return self
 
     def __exit__(self, *exc_info) -> None:

@@ -18,7 +18,8 @@ import os
 import time
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any
+from collections.abc import Iterator
 
 from scenewright.errors import InputError
 from scenewright.scene import Scene, assemble_scene
@@ -33,7 +34,7 @@ VIEWS = ("perspective", "top")
 DEFAULT_SIZE = (640, 480)
 
 
-def load_rules(source: "str | os.PathLike[str] | Rules") -> "Rules":
+def load_rules(source: str | os.PathLike[str] | Rules) -> Rules:
     """A loaded rule set from a shipped name (``"village"``), a path, or Rules as they are."""
     from scenewright.generator import load_rules as load
 
@@ -52,7 +53,7 @@ def timed(timings: dict[str, float], stage: str) -> Iterator[None]:
         timings[stage] = timings.get(stage, 0.0) + time.perf_counter() - start
 
 
-def rules_label(rules: "Rules") -> str:
+def rules_label(rules: Rules) -> str:
     """How scene.json names the rule set: the shipped name, or the file's path."""
     from importlib.resources import files
 
@@ -66,7 +67,7 @@ def rules_label(rules: "Rules") -> str:
 
 
 def build_scene(
-    rules: "str | os.PathLike[str] | Rules", seed: int, *, templates: "str | os.PathLike[str] | None" = None
+    rules: str | os.PathLike[str] | Rules, seed: int, *, templates: str | os.PathLike[str] | None = None
 ) -> Scene:
     """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images.
 
@@ -94,8 +95,8 @@ def describe_scene(
     *,
     style: str = "full",
     variant: int = 0,
-    templates: "str | os.PathLike[str] | None" = None,
-) -> "Description":
+    templates: str | os.PathLike[str] | None = None,
+) -> Description:
     """Describe ``scene``, store the description in it, and return it.
 
     ``templates``: a folder of description templates for this description only; by
@@ -112,8 +113,8 @@ def render_scene(
     *,
     size: tuple[int, int] = DEFAULT_SIZE,
     view: str = "perspective",
-    renderer: "Renderer | None" = None,
-) -> "RenderResult":
+    renderer: Renderer | None = None,
+) -> RenderResult:
     """Render ``scene`` offscreen, store the render metadata in it, and return the images.
 
     Pass a ``renderer`` to reuse one OpenGL context over many scenes; otherwise one is
@@ -142,12 +143,12 @@ def export_scene(scene: Scene, path: str | os.PathLike[str]) -> Path:
 
 
 def generate(
-    rules: "str | os.PathLike[str] | Rules",
+    rules: str | os.PathLike[str] | Rules,
     seed: int = 0,
     *,
     style: str = "full",
     variant: int = 0,
-    templates: "str | os.PathLike[str] | None" = None,
+    templates: str | os.PathLike[str] | None = None,
     render: bool = False,
     size: tuple[int, int] = DEFAULT_SIZE,
     view: str = "perspective",
@@ -173,7 +174,7 @@ def generate(
     return scene
 
 
-def checked_templates(templates: "str | os.PathLike[str] | None") -> str | None:
+def checked_templates(templates: str | os.PathLike[str] | None) -> str | None:
     """A templates folder given by the user, as an absolute path once its templates
     compile (``TemplateError`` if not); None stays None."""
     if templates is None:

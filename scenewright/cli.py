@@ -19,7 +19,7 @@ import sys
 import textwrap
 import traceback
 from pathlib import Path
-from typing import Callable
+from collections.abc import Callable
 
 from scenewright import __version__
 from scenewright.errors import InputError, ScenewrightError

@@ -160,7 +160,7 @@ class Scene:
         return json.dumps(_rounded(data), indent=indent, ensure_ascii=False) + "\n"
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> "Scene":
+    def from_dict(cls, data: dict[str, Any]) -> Scene:
         def build(kind, raw):
             names = {f.name for f in fields(kind)}
             return kind(**{k: v for k, v in raw.items() if k in names})
@@ -183,7 +183,7 @@ class Scene:
         )
 
     @classmethod
-    def from_json(cls, text: str) -> "Scene":
+    def from_json(cls, text: str) -> Scene:
         return cls.from_dict(json.loads(text))
 
     # -- conveniences: thin wrappers over the pipeline stages (imported lazily) -------
