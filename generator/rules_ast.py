@@ -137,6 +137,8 @@ class Alternative:
 
 @dataclass(frozen=True)
 class Param:
+    """One parameter of a production: a name bound, at each call, to an argument's nodes."""
+
     name: str
     location: SourceLocation
 

@@ -42,14 +42,11 @@ def _parser() -> Lark:
 
 
 @dataclass(frozen=True)
-class _Probability:
-    value: float
-    location: SourceLocation
+class _Located:
+    """A value and where it was written (a statement's probability or ``as`` name),
+    passed up to ``statement``, which keeps the two in separate fields."""
 
-
-@dataclass(frozen=True)
-class _Binding:
-    name: str
+    value: object
     location: SourceLocation
 
 
@@ -152,10 +149,10 @@ class _ToAst(Transformer):
 
     @v_args(meta=True)
     def probability(self, meta, children):
-        return _Probability(float(children[0]), self._at(meta))
+        return _Located(float(children[0]), self._at(meta))
 
     def binding(self, children):
-        return _Binding(str(children[0]), self._at(children[0]))
+        return _Located(str(children[0]), self._at(children[0]))
 
     @v_args(meta=True)
     def block(self, meta, children):
@@ -170,7 +167,7 @@ class _ToAst(Transformer):
             count=count,
             probability=probability.value if probability else None,
             probability_location=probability.location if probability else None,
-            binding=binding.name if binding else None,
+            binding=binding.value if binding else None,
             binding_location=binding.location if binding else None,
             relations=tuple(relations),
             block=block.statements if block else None,
