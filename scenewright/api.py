@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
-from collections.abc import Iterator
 
 from scenewright.errors import InputError
 from scenewright.scene import Scene, assemble_scene

@@ -12,10 +12,10 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO
-from collections.abc import Iterator
 
 PARTIAL_SUFFIX = ".partial"
 

@@ -18,8 +18,8 @@ import os
 import sys
 import textwrap
 import traceback
-from pathlib import Path
 from collections.abc import Callable
+from pathlib import Path
 
 from scenewright import __version__
 from scenewright.errors import InputError, ScenewrightError
