@@ -61,6 +61,10 @@ class SceneNode:
     segments: int | None = None  # paths only
 
 
+#: The attribute names a node is stored under in the networkx graph.
+_NODE_FIELDS = tuple(f.name for f in fields(SceneNode))
+
+
 @dataclass(frozen=True)
 class SceneEdge:
     """One relation of the scene graph: ``source`` -label-> ``target``."""
@@ -120,7 +124,7 @@ class SceneGraph:
     def _store(self, node: SceneNode) -> None:
         # A shallow copy of the fields: they are immutable, and asdict's deep copy made
         # node creation most of the cost of grammar expansion.
-        self.graph.add_node(node.id, **{f.name: getattr(node, f.name) for f in fields(node)})
+        self.graph.add_node(node.id, **{name: getattr(node, name) for name in _NODE_FIELDS})
 
     def add_relation(self, source: str, target: str, label: str) -> None:
         """Add the edge ``source`` -label-> ``target`` (both must exist)."""
