@@ -210,13 +210,26 @@ def test_shipped_rule_sets_expand():
         assert len(graph) > 0 and graph.to_dict() == expand(rules, 7).to_dict()
 
 
-def test_dot_export_shows_groups_as_clusters_and_labels_edges(tmp_path):
-    rules = rules_from(tmp_path, 'S -> { a as x; g { b ImplicitNextTo x } }')
-    dot = graph_to_dot(expand(rules, 0))
-    assert dot.startswith('digraph "s" {')
-    assert 'subgraph "cluster_g_1" {' in dot
-    assert '"b_1" -> "a_1" [label="ImplicitNextTo", style=dashed];' in dot
-    assert 'tooltip="rule: S"' in dot
+def test_dot_export_nests_groups_as_clusters_and_labels_edges(tmp_path):
+    rules = rules_from(tmp_path, "S -> { a as x; g { b ImplicitNextTo x; P } }\nP -> { g { c OnTopOf some a } }")
+    assert graph_to_dot(expand(rules, 0)) == """\
+digraph "s" {
+  node [fontname=Helvetica];
+  "a_1" [label="a_1\\na", shape=box, tooltip="rule: S"];
+  subgraph "cluster_g_1" {
+    label="g_1";
+    "g_1" [label="g_1\\ng", shape=folder, tooltip="rule: S"];
+    "b_1" [label="b_1\\nb", shape=box, tooltip="rule: S"];
+    subgraph "cluster_g_2" {
+      label="g_2";
+      "g_2" [label="g_2\\ng", shape=folder, tooltip="rule: P"];
+      "c_1" [label="c_1\\nc", shape=box, tooltip="rule: P"];
+    }
+  }
+  "b_1" -> "a_1" [label="ImplicitNextTo", style=dashed];
+  "c_1" -> "a_1" [label="OnTopOf"];
+}
+"""
 
 
 @functools.cache
