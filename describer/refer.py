@@ -15,8 +15,8 @@ form that is unambiguous here:
    has been named in the paragraph and none stands at the top level;
 5. otherwise its place in its cohort ("the first road"; "the other tower" for the
    second of two right after the first was named), followed by "of" and its group
-   ("the sign of the third market stand", "the house on its own" for a top-level one)
-   when a namesake from elsewhere could be meant.
+   ("the sign of the third market stand", "the wagon of grain at the mill", "the house
+   on its own" for a top-level one) when a namesake from elsewhere could be meant.
 
 Sets of entities (aggregated subjects) are named per cohort: "the three market
 stands", "both pallets", "four of the street lamps".
@@ -101,7 +101,7 @@ class Discourse:
             return "it"
         phrase, placed = self._definite(entity_id, demonstrative=demonstrative)
         self._note((entity_id,), entity.noun, plural=False)
-        return phrase if placed else f"{phrase} {self._whereabouts(entity_id)}"
+        return phrase if placed else self._placed(phrase, entity_id)
 
     def name_set(self, ids: tuple[str, ...]) -> list[str]:
         """Phrases naming a set of known entities, one per cohort, in order."""
@@ -174,12 +174,18 @@ class Discourse:
             return False
         return entity.parent == self.focus and self.paragraph_nouns.get(entity.noun, set()) <= cohort
 
-    def _whereabouts(self, entity_id: str, *, plural: bool = False) -> str:
-        """Where an entity belongs: "of the third market stand", or "on its own" for a top-level one."""
-        parent = self.world[entity_id].parent
-        if parent is None:
-            return "on their own" if plural else "on its own"
-        return "of " + self.name(parent, pronoun=False)
+    def _placed(self, phrase: str, entity_id: str, *, plural: bool = False) -> str:
+        """The phrase with where the entity belongs: "the table of the third market stand",
+        "the house on its own" for a top-level one.
+
+        A noun with an "of" of its own is placed "at" its group ("the wagon of grain at
+        the mill"): "the wagon of grain of the mill" stacks two "of"s.
+        """
+        entity = self.world[entity_id]
+        if entity.parent is None:
+            return f"{phrase} on their own" if plural else f"{phrase} on its own"
+        preposition = "at" if " of " in entity.noun else "of"
+        return f"{phrase} {preposition} {self.name(entity.parent, pronoun=False)}"
 
     def _name_part(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool) -> str:
         entity = self.world[chosen[0]]
@@ -190,7 +196,7 @@ class Discourse:
             phrase = f"{number_word(len(chosen))} of the {entity.plural}"
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
-        return phrase if clear else f"{phrase} {self._whereabouts(chosen[0], plural=True)}"
+        return phrase if clear else self._placed(phrase, chosen[0], plural=True)
 
     def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
         self.current.append(_Mention(ids, noun, plural))

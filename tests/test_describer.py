@@ -451,6 +451,24 @@ def test_a_members_bare_name_never_means_a_known_top_level_namesake():
     assert "The barrel is next to the cottage of the farmstead." in text
 
 
+def test_a_noun_with_its_own_of_is_placed_at_its_group():
+    b = SceneBuilder()
+    building = b.add("windmill_building")
+    b.add("wagon", "wagon of grain")
+    mill = b.group("mill")
+    wagon = b.add("wagon", "wagon of grain", parent=mill)
+    sacks = [b.add("sack", "sack of flour", plural="sacks of flour", parent=mill) for _ in range(3)]
+    b.add("well", parent=mill)
+    b.add("sack", "sack of flour", plural="sacks of flour")
+    for sack in sacks[:2]:
+        b.relate(sack, "NextToRight", building)
+    b.relate(wagon, "NextToLeft", building)
+    text = describe(b.scene()).text
+    # Not "the wagon of grain of the mill".
+    assert "Two of the sacks of flour at the mill are to the right of the windmill building." in text
+    assert "The wagon of grain at the mill is to the left of the windmill building." in text
+
+
 def test_no_this_inside_a_list():
     b = SceneBuilder()
     road = b.road()
