@@ -76,6 +76,8 @@ class _ToAst(Transformer):
         return ast.Setting(name, value, self._at(meta), self._at(values[0]))
 
     def __default__(self, data, children, meta):
+        # The grammar's rule `start` is a whole file, so the `start` setting's rule is
+        # `start_symbol`; every other field and setting rule is named like its keyword.
         if data in ENTRY_FIELDS or (data in SCENE_SETTINGS and data != "start"):
             return self._setting(str(data), meta, children)
         if data == "start_symbol":
