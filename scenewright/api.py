@@ -29,6 +29,8 @@ if TYPE_CHECKING:
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer, RenderResult
 
+#: The description styles and camera views, here as well as in the describer and the
+#: renderer so that checking an option does not import those (a test keeps them equal).
 STYLES = ("full", "short")
 VIEWS = ("perspective", "top")
 DEFAULT_SIZE = (640, 480)

@@ -22,6 +22,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from scenewright import __version__
+from scenewright.api import STYLES, VIEWS
 from scenewright.errors import InputError, ScenewrightError
 
 PROG = "scenewright"
@@ -61,12 +62,16 @@ def image_size(text: str) -> tuple[int, int]:
     return size
 
 
+def whole_number(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+
+
 def count_at_least(minimum: int) -> Callable[[str], int]:
     def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+        value = whole_number(text)
         if value < minimum:
             raise argparse.ArgumentTypeError(f"must be at least {minimum}, not {value}")
         return value
@@ -76,10 +81,7 @@ def count_at_least(minimum: int) -> Callable[[str], int]:
 
 
 def seed_value(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    value = whole_number(text)
     if not 0 <= value < 2**63:
         raise argparse.ArgumentTypeError(f"must be between 0 and 2**63-1, not {value}")
     return value
@@ -149,9 +151,10 @@ def read_scene(path: str):
 
 
 def run_generate(args: argparse.Namespace) -> int:
-    from scenewright.api import build_scene, checked_templates, describe_scene, export_scene, load_rules
-    from scenewright.api import render_scene
-    from scenewright.api import reproducible_json, summary_line, timings_of
+    from scenewright.api import (
+        build_scene, checked_templates, describe_scene, export_scene, load_rules, render_scene, reproducible_json,
+        summary_line, timings_of,
+    )  # fmt: skip
     from scenewright.atomic import staged_outputs
     from scenewright.generator.layout.plan import draw_plan
     from scenewright.render.offscreen import save_render
@@ -409,7 +412,7 @@ def build_parser() -> CommandLineParser:
         return sub
 
     def style_options(sub: argparse.ArgumentParser) -> None:
-        sub.add_argument("--style", choices=("full", "short"), default="full", help="description style")
+        sub.add_argument("--style", choices=STYLES, default="full", help="description style")
         sub.add_argument(
             "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
         )
@@ -426,7 +429,7 @@ def build_parser() -> CommandLineParser:
         sub.add_argument(
             "--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})"
         )
-        sub.add_argument("--view", choices=("perspective", "top"), default="perspective", help="camera")
+        sub.add_argument("--view", choices=VIEWS, default="perspective", help="camera")
 
     generate = command("generate", "generate one scene with its description, images and files", run_generate)
     generate.add_argument("rules", help="shipped rule set name (see 'list') or path to a .rules file")

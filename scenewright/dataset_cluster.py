@@ -4,7 +4,7 @@
 ``concurrent.futures.Executor`` over it (dask's own ``ClientExecutor``), so the dataset
 loop is the same code for a local process pool and for a cluster. Every worker needs
 scenewright installed (``pip install 'scenewright[dask]'``); each keeps its rules and
-renderer in a per-process cache (``dataset_scene.worker_context``), and returns encoded
+renderer per thread (``dataset_scene.worker_context``), and returns encoded
 files to this process, which alone writes the dataset directory.
 """
 
@@ -45,9 +45,8 @@ def cluster_executor(address: str) -> ClusterExecutor:
     except ImportError as error:
         raise InputError("--scheduler needs dask.distributed: pip install 'scenewright[dask]'") from error
     try:
-        client = Client(
-            address, timeout=CONNECT_TIMEOUT, set_as_default=False
-        )  # read per call: tests shorten it
+        # CONNECT_TIMEOUT is read here, at call time, so tests can shorten it.
+        client = Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
     except (OSError, TimeoutError, ValueError) as error:
         raise InputError(f"cannot reach the dask scheduler at {address}: {error}") from error
     return ClusterExecutor(client)

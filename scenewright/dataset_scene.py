@@ -14,11 +14,16 @@ from __future__ import annotations
 import threading
 from collections import Counter
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from scenewright.api import build_scene, describe_scene, render_scene, reproducible_json, timed, timings_of
 from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
 from scenewright.errors import ScenewrightError
 from scenewright.scene import Scene
+
+if TYPE_CHECKING:
+    from scenewright.generator.rules import Rules
+    from scenewright.render.offscreen import Renderer
 
 
 @dataclass
@@ -26,8 +31,8 @@ class WorkerContext:
     """What a worker builds once and reuses for every scene it makes."""
 
     settings: dict
-    rules: object  # scenewright.generator.rules.Rules
-    renderer: object  # scenewright.render.offscreen.Renderer
+    rules: Rules
+    renderer: Renderer
 
 
 _per_thread = threading.local()

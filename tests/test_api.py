@@ -74,6 +74,14 @@ def test_bad_style_view_and_rules_are_input_errors(tmp_path):
         generate(tmp_path / "missing.rules")
 
 
+def test_the_apis_styles_and_views_are_the_describers_and_renderers():
+    from scenewright.api import STYLES, VIEWS
+    from scenewright.describer import STYLES as DESCRIBER_STYLES
+    from scenewright.render.camera import VIEWS as CAMERA_VIEWS
+
+    assert STYLES == DESCRIBER_STYLES and VIEWS == CAMERA_VIEWS
+
+
 STALL = Path(__file__).parent / "rules" / "stall" / "stall.rules"
 
 
