@@ -22,11 +22,8 @@ import numpy as np
 
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import LayoutParams, layout_scene
-from scenewright.generator.layout.energy import Energy
-from scenewright.generator.layout.initial import place_initial
-from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.state import State
+from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.synthetic import village_graph
 
 
@@ -84,12 +81,7 @@ def scaling() -> None:
 def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
     """CPU microseconds per sampler step (propose + energy change + accept/reject), after the start."""
     params = LayoutParams(incremental=incremental)
-    problem = compile_problem(graph)
-    rng = np.random.default_rng(seed)
-    state = State(problem)
-    energy = Energy(problem, state, params)
-    mover = Mover(problem, state, rng, params)
-    place_initial(energy, mover, rng)
+    energy, mover = start_chain(compile_problem(graph), params, np.random.default_rng(seed))
     started = time.process_time()
     for _ in range(steps):
         proposal = mover.propose(energy.relation)

@@ -6,20 +6,14 @@ from hypothesis import given, settings, strategies as st
 
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.energy import Energy
-from scenewright.generator.layout.initial import place_initial
-from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.state import State
+from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.synthetic import village_graph
 
 
 def placed(seed: int, size: int = 24, params: LayoutParams | None = None):
-    problem = compile_problem(village_graph(size, seed))
     rng = np.random.default_rng(seed)
-    state = State(problem)
-    energy = Energy(problem, state, params or LayoutParams())
-    mover = Mover(problem, state, rng, energy.params)
-    place_initial(energy, mover, rng)
+    energy, mover = start_chain(compile_problem(village_graph(size, seed)), params or LayoutParams(), rng)
     return energy, mover, rng
 
 

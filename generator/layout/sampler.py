@@ -42,12 +42,18 @@ class Run:
         return not self.problems
 
 
-def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> Run:
-    """Place, then anneal until the stop rule holds or the step budget is spent."""
+def start_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> tuple[Energy, Mover]:
+    """A fresh state after the constructive initial placement, with its energy and mover."""
     state = State(problem)
     energy = Energy(problem, state, params)
     mover = Mover(problem, state, rng, params)
     place_initial(energy, mover, rng)
+    return energy, mover
+
+
+def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> Run:
+    """Place, then anneal until the stop rule holds or the step budget is spent."""
+    energy, mover = start_chain(problem, params, rng)
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
