@@ -12,8 +12,8 @@ from scenewright.generator.layout.geometry import (
     make_rect,
     nearest_on_polyline,
     polyline_length,
-    polyline_rect_distance,
     polyline_rect_penetration,
+    polyline_rects_distance,
     polyline_turns,
     rect_distance,
     rect_penetration,
@@ -138,12 +138,12 @@ def test_polyline_takes_the_worst_segment_and_the_nearest_point():
     road = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]
     beside = make_rect(11.0, 5.0, 1.0, 1.0, 0.0)
     assert polyline_rect_penetration(road, 1.5, beside) == pytest.approx(1.0)
-    assert polyline_rect_distance(road, beside) == pytest.approx(0.5)
+    assert polyline_rects_distance(road, [beside]) == pytest.approx(0.5)
     across = make_rect(10.2, 5.0, 1.0, 1.0, 0.0)  # pushed out east: 0.3 past the line + 1.5
     assert polyline_rect_penetration(road, 1.5, across) == pytest.approx(1.8)
-    assert polyline_rect_distance(road, across) == 0.0
+    assert polyline_rects_distance(road, [across]) == 0.0
     far = make_rect(5.0, 5.0, 1.0, 1.0, 0.0)
-    assert polyline_rect_distance(road, far) == pytest.approx(4.5)
+    assert polyline_rects_distance(road, [far]) == pytest.approx(4.5)
     distance, x, z, segment = nearest_on_polyline(road, 5.0, -2.0)
     assert (distance, x, z, segment) == pytest.approx((2.0, 5.0, 0.0, 0))
 
@@ -157,3 +157,13 @@ def test_segments_and_turns():
     assert polyline_length(road) == pytest.approx(5.0 + 6.0 + 6.0)
     assert polyline_turns(road) == pytest.approx([math.atan2(3.0, 4.0), math.pi / 2])
     assert polyline_turns(road[:2]) == []
+
+
+@settings(max_examples=40)
+@given(st.lists(st.tuples(coordinate, coordinate), min_size=2, max_size=5), st.lists(rects, min_size=1, max_size=4))
+def test_polyline_to_several_rects_is_the_exhaustive_minimum(points, rect_args):
+    shapes = [make_rect(*args) for args in rect_args]
+    exhaustive = min(
+        segment_rect_distance(*points[i], *points[i + 1], rect) for rect in shapes for i in range(len(points) - 1)
+    )
+    assert polyline_rects_distance([list(p) for p in points], shapes) == exhaustive

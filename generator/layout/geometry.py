@@ -211,23 +211,25 @@ def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     return best
 
 
-def polyline_rect_distance(points: list, rect: Rect) -> float:
-    """Minimum distance between a polyline's centre line and a filled rectangle.
+def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
+    """Minimum distance between a polyline's centre line and the nearest of some filled rectangles.
 
-    The centre's distance to a segment minus the circumradius bounds the exact distance
-    from below, so only segments that could beat the best so far are tested exactly.
+    A rectangle's centre distance to a segment minus its circumradius bounds their exact
+    distance from below, so (rectangle, segment) pairs are tested exactly nearest bound
+    first, and only while a bound could still beat the best so far.
     """
-    circumradius = math.hypot(rect.hw, rect.hd)
+    radii = [math.hypot(rect.hw, rect.hd) for rect in rects]
     bounds = sorted(
-        (nearest_on_segment(rect.cx, rect.cz, *points[i], *points[i + 1])[0] - circumradius, i)
+        (nearest_on_segment(rect.cx, rect.cz, *points[i], *points[i + 1])[0] - radii[k], k, i)
+        for k, rect in enumerate(rects)
         for i in range(len(points) - 1)
     )
     best = math.inf
-    for bound, index in bounds:
+    for bound, k, i in bounds:
         if bound >= best:
             break
-        (ax, az), (bx, bz) = points[index], points[index + 1]
-        best = min(best, segment_rect_distance(ax, az, bx, bz, rect))
+        (ax, az), (bx, bz) = points[i], points[i + 1]
+        best = min(best, segment_rect_distance(ax, az, bx, bz, rects[k]))
     return best
 
 

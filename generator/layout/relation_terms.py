@@ -29,7 +29,7 @@ import math
 from typing import NamedTuple
 
 from .factors import angle_between, equals, less, pointing_same_direction, range_
-from .geometry import nearest_on_polyline, polyline_distance, polyline_rect_distance, rect_distance, to_local
+from .geometry import nearest_on_polyline, polyline_distance, polyline_rects_distance, rect_distance, to_local
 from .params import LayoutParams
 from .problem import Endpoint, RelationTerm
 from .state import State
@@ -102,7 +102,8 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
     """Minimum distance between the collision geometry of two endpoints (0 when touching).
 
     Between groups, member pairs are visited nearest first by a cheap lower bound (centre
-    distance minus both circumradii), and the exact test stops once no bound can win.
+    distance minus both circumradii), and the exact test stops once no bound can win; to
+    a path, (member, segment) pairs likewise.
     """
     problem = state.problem
     if a.kind == "path" and b.kind == "path":
@@ -111,34 +112,20 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
     if a.kind == "path":
         a, b = b, a
     if b.kind == "path":
-        points, half = state.points[b.index], problem.path_width[b.index] / 2.0
-        if len(a.members) == 1:
-            return max(0.0, polyline_rect_distance(points, state.rects[a.members[0]]) - half)
-        bounds = sorted(
-            (nearest_on_polyline(points, state.x[box], state.z[box])[0] - problem.size[box] / 2.0 - half, box)
-            for box in a.members
-        )
-    else:
-        if len(a.members) == 1 and len(b.members) == 1:
-            return box_distance(a.members[0], b.members[0], state)
-        bounds = sorted(
-            (
-                math.hypot(state.x[p] - state.x[q], state.z[p] - state.z[q]) - (problem.size[p] + problem.size[q]) / 2.0,
-                p,
-                q,
-            )
-            for p in a.members
-            for q in b.members
-        )
+        gap = polyline_rects_distance(state.points[b.index], [state.rects[box] for box in a.members])
+        return max(0.0, gap - problem.path_width[b.index] / 2.0)
+    if len(a.members) == 1 and len(b.members) == 1:
+        return box_distance(a.members[0], b.members[0], state)
+    bounds = sorted(
+        (math.hypot(state.x[p] - state.x[q], state.z[p] - state.z[q]) - (problem.size[p] + problem.size[q]) / 2.0, p, q)
+        for p in a.members
+        for q in b.members
+    )
     best = math.inf
-    for bound, *pair in bounds:
+    for bound, p, q in bounds:
         if bound >= best:
             break
-        if b.kind == "path":
-            gap = max(0.0, polyline_rect_distance(points, state.rects[pair[0]]) - half)
-        else:
-            gap = box_distance(pair[0], pair[1], state)
-        best = min(best, gap)
+        best = min(best, box_distance(p, q, state))
     return best
 
 
