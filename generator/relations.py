@@ -80,13 +80,3 @@ def base_label(label: str) -> str:
 def is_support(label: str) -> bool:
     """True when the label stacks A on B (A's height follows B's top)."""
     return base_label(label) in SUPPORT_LABELS
-
-
-def is_next_to(label: str) -> bool:
-    """True when the label asks A to be within the next-to distance of B."""
-    return base_label(label) in NEXT_TO_LABELS
-
-
-def is_facing(label: str) -> bool:
-    """True when the label compares the forward vectors of A and B."""
-    return base_label(label) in FACING_LABELS

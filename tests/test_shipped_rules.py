@@ -11,11 +11,10 @@ from scenewright.generator import rules_ast as ast
 from scenewright.generator.expand import expand
 from scenewright.generator.relations import (
     FACING_LABELS,
-    NEXT_TO_LABELS,
-    SUPPORT_LABELS,
     LABELS,
-    base_label,
+    NEXT_TO_LABELS,
     is_implicit,
+    is_support,
 )
 from scenewright.generator.rules import Rules, check_rules, load_rules, shipped_rule_sets
 from scenewright.generator.scene_graph import SceneGraph
@@ -160,7 +159,7 @@ def test_every_market_stand_is_a_table_with_a_sign_and_goods_on_it_by_a_road():
             types = Counter(member.type for member in members)
             assert types["table"] == 1 and types["sign"] == 1
             table = next(m.id for m in members if m.type == "table")
-            supported = {e.source for e in graph.edges() if e.target == table and base_label(e.label) in SUPPORT_LABELS}
+            supported = {e.source for e in graph.edges() if e.target == table and is_support(e.label)}
             goods = {m.id for m in members if m.type not in ("table", "sign", "chair", "barrel")}
             assert goods and goods == supported
             assert any(e.target in roads and e.label == "NextTo" for e in graph.edges() if e.source == stand.id)
@@ -213,7 +212,7 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
             if node.type == "nightstand":
                 assert out & {("NextToLeft", "bed"), ("NextToRight", "bed"), ("NextToChooseSide", "bed")}
             if node.type == "lamp":
-                assert any(base_label(label) in SUPPORT_LABELS and target in ("nightstand", "desk") for label, target in out)
+                assert any(is_support(label) and target in ("nightstand", "desk") for label, target in out)
 
 
 # -- the vocabulary ------------------------------------------------------------------
