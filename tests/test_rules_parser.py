@@ -4,6 +4,7 @@ from pathlib import Path
 
 import pytest
 from scenewright.generator import rules_ast as ast
+from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.rules import check_rules, load_rules
 from scenewright.generator.rules_errors import Diagnostic
 from scenewright.generator.rules_parser import parse_text, parse_tree
@@ -65,7 +66,7 @@ def test_subjects_that_refer_and_call():
     call = only_statement("3 Goods(t, some road, lamp #1)").subject
     assert isinstance(call, ast.Call) and call.nonterminal == "Goods"
     assert [a.kind for a in call.arguments] == ["name", "some", "nth"]
-    assert only_statement("Goods").subject == ast.Call("Goods", (), call.location.__class__("t.rules", 1, 8))
+    assert only_statement("Goods").subject == ast.Call("Goods", (), SourceLocation("t.rules", 1, 8))
 
 
 def test_alternatives_on_their_own_lines_with_weights_and_comments():
