@@ -162,6 +162,12 @@ def test_groups_nest_their_block_and_calls_inherit_the_enclosing_group(tmp_path)
     assert graph.node("b_1").rule == "P" and graph.node("a_1").rule == "S"
 
 
+def test_a_group_binding_means_that_group_inside_its_block_and_every_group_after_it(tmp_path):
+    rules = rules_from(tmp_path, "S -> { 2 g as outer { a NextTo outer }; b NextTo outer }")
+    assert edges(expand(rules, 0)) == [
+        ("a_1", "NextTo", "g_1"), ("a_2", "NextTo", "g_2"), ("b_1", "NextTo", "g_1"), ("b_1", "NextTo", "g_2")]
+
+
 def test_a_call_statement_labels_and_binds_the_head_of_the_alternative(tmp_path):
     rules = rules_from(tmp_path, "S -> { a as x; P as p NextTo x; c OnTopOf p }\nP -> { 0 c; Q; b }\nQ -> { g { a } }")
     graph = expand(rules, 0)
