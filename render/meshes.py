@@ -20,7 +20,7 @@ import trimesh
 
 from scenewright.scene import Scene, SceneObject, ScenePath
 
-from .builders import BUILDERS, coloured
+from .builders import BUILDERS, block, coloured
 
 #: Roads sit this far above the ground so they do not z-fight with it.
 PATH_LIFT = 0.02
@@ -109,9 +109,7 @@ def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
     """The ground plane under the scene extent (a little larger, so edges show)."""
     w, d = scene.extent
     colour = (0.35, 0.55, 0.25) if scene.ground == "grass" else (0.62, 0.55, 0.45)
-    slab = trimesh.creation.box(extents=(w * margin, 0.02, d * margin))
-    slab.apply_translation((0.0, -0.01, 0.0))  # top face at y = 0
-    return coloured(slab, colour)
+    return block((w * margin, 0.02, d * margin), (0.0, -0.01, 0.0), colour)  # top face at y = 0
 
 
 def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
@@ -137,10 +135,8 @@ def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
         ((-1.0, 0.0), ((w + t) / 2, 0.0), (t, WALL_HEIGHT, d + 2 * t)),  # east
     ):
         if inward[0] * towards[0] + inward[1] * towards[2] > 1e-9:
-            wall = trimesh.creation.box(extents=extents)
-            wall.apply_translation((centre[0], WALL_HEIGHT / 2, centre[1]))
-            walls.append(wall)
-    return coloured(trimesh.util.concatenate(walls), WALL_COLOUR) if walls else None
+            walls.append(block(extents, (centre[0], WALL_HEIGHT / 2, centre[1]), WALL_COLOUR))
+    return trimesh.util.concatenate(walls) if walls else None
 
 
 @lru_cache(maxsize=64)
