@@ -110,6 +110,18 @@ def test_support_sets_the_height():
     assert state.y == [0.0, 1.0]
 
 
+def test_a_stack_rests_on_the_top_of_everything_beneath():
+    graph = SceneGraph(params=SceneParams(extent=(40.0, 40.0)))
+    table = graph.add_node(TABLE)
+    box = graph.add_node(BOX)
+    cup = graph.add_node(CUP)
+    graph.add_relation(cup, box, "OnTopOfMiddle")
+    graph.add_relation(box, table, "IsPartOf")
+    problem = compile_problem(graph)
+    assert problem.beneath(2) == [1, 0]
+    assert State(problem).y == [0.0, 1.0, 2.0]
+
+
 def test_middle_and_edges():
     _, middle, _ = measure("OnTopOfMiddle", (0.05, 0.0, 0.0), a_entry=CUP, b_entry=TABLE)
     _, aside, _ = measure("OnTopOfMiddle", (0.5, 0.0, 0.0), a_entry=CUP, b_entry=TABLE)

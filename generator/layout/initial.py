@@ -263,13 +263,7 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     if not anchors:
         borrowed = _borrowed_anchor(energy, Endpoint("group", group, members))
         anchors = [borrowed] if borrowed else []
-    depth = {}
-    for box in members:
-        level, below = 0, problem.support[box]
-        while below >= 0:
-            level, below = level + 1, problem.support[below]
-        depth[box] = level
-    order = sorted(members, key=lambda b: (depth[b], b))
+    order = sorted(members, key=lambda b: (len(problem.beneath(b)), b))  # supports first
     for position, box in enumerate(order):
         anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
         _place_box(energy, mover, rng, box, members, anchor)

@@ -488,9 +488,8 @@ def _clusters(problem: Problem) -> list[list[int]]:
             unit_of[box] = -1 - group
     for box in range(problem.n_boxes):
         if box not in unit_of and not problem.is_junction[box]:
-            root = box
-            while problem.support[root] >= 0:
-                root = problem.support[root]
+            beneath = problem.beneath(box)
+            root = beneath[-1] if beneath else box
             unit_of[box] = unit_of.get(root, root)
     parent: dict[int, int] = {unit: unit for unit in unit_of.values()}
 

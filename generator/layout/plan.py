@@ -60,9 +60,9 @@ def draw_plan(scene: Scene, path) -> Path:
     for relation in scene.relations:
         if relation.satisfied or relation.source not in centres or relation.target not in centres:
             continue
-        (ax_, az_), (bx, bz) = centres[relation.source], centres[relation.target]
-        axes.plot([ax_, bx], [az_, bz], color="red", lw=1.2, ls="--", zorder=7)
-        axes.annotate(relation.label, ((ax_ + bx) / 2, (az_ + bz) / 2), fontsize=6, color="red", zorder=7)
+        (sx, sz), (tx, tz) = centres[relation.source], centres[relation.target]
+        axes.plot([sx, tx], [sz, tz], color="red", lw=1.2, ls="--", zorder=7)
+        axes.annotate(relation.label, ((sx + tx) / 2, (sz + tz) / 2), fontsize=6, color="red", zorder=7)
     margin = 0.05 * max(width, depth)
     axes.set_xlim(-width / 2 - margin, width / 2 + margin)
     axes.set_ylim(depth / 2 + margin, -depth / 2 - margin)

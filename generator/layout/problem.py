@@ -87,6 +87,15 @@ class Problem:
     def n_paths(self) -> int:
         return len(self.path_ids)
 
+    def beneath(self, box: int) -> list[int]:
+        """The boxes under ``box``: its support, that one's support, ... down to the ground."""
+        found = []
+        below = self.support[box]
+        while below >= 0:
+            found.append(below)
+            below = self.support[below]
+        return found
+
     def carried(self, box: int) -> list[int]:
         """The box and everything resting on it, transitively (they move together)."""
         found = [box]

@@ -71,12 +71,8 @@ class State:
         self.s = [0.0] * n
         self.y = [0.0] * n
         self.rects = [Rect(0.0, 0.0, problem.half_width[b], problem.half_depth[b], 1.0, 0.0) for b in range(n)]
-        for box in range(n):
-            below, height = problem.support[box], 0.0
-            while below >= 0:  # rests on the top of its support's stack
-                height += problem.height[below]
-                below = problem.support[below]
-            self.y[box] = height
+        for box in range(n):  # rests on the top of its support's stack
+            self.y[box] = sum((problem.height[below] for below in problem.beneath(box)), 0.0)
         self.points: list[list[list[float]]] = [
             [[0.0, 0.0] for _ in range(segments + 1)] for segments in problem.path_segments
         ]
