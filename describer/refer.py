@@ -51,6 +51,7 @@ class Discourse:
     current: list[_Mention] = field(default_factory=list)
     last_of_noun: dict[str, tuple[str, ...]] = field(default_factory=dict)
     paragraph_nouns: dict[str, set[str]] = field(default_factory=dict)
+    named_in_paragraph: set[str] = field(default_factory=set)  # known entities named again
     sentence_subject: tuple[str, ...] = ()
 
     # -- structure --------------------------------------------------------------
@@ -58,6 +59,7 @@ class Discourse:
     def start_paragraph(self, owner: str | None) -> None:
         self.focus = owner
         self.paragraph_nouns = {}
+        self.named_in_paragraph = set()
 
     def start_sentence(self) -> None:
         self.previous = self.current
@@ -96,6 +98,7 @@ class Discourse:
         street lamp, this wagon and the mill" reads as if the wagon were special).
         """
         entity = self.world[entity_id]
+        self.named_in_paragraph.add(entity_id)
         if pronoun and self._may_be_it(entity_id):
             self._note((entity_id,), entity.noun, plural=False)
             return "it"
@@ -193,10 +196,26 @@ class Discourse:
             whole = len(chosen) == 2 and alone
             phrase = f"both {entity.plural}" if whole else f"the {number_word(len(chosen))} {entity.plural}"
         else:
-            phrase = f"{number_word(len(chosen))} of the {entity.plural}"
+            phrase = self._part_of_cohort(cohort, chosen)
+        self.named_in_paragraph.update(chosen)
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
         return phrase if clear else self._placed(phrase, chosen[0], plural=True)
+
+    def _part_of_cohort(self, cohort: tuple[str, ...], chosen: tuple[str, ...]) -> str:
+        """Some of a cohort: "two of the street lamps".
+
+        When others of the cohort were named in this paragraph and these were not, the
+        phrase says so, so a reader does not take them for the ones before: "two other
+        street lamps", or "the two other street lamps" when they are all the rest.
+        """
+        plural, count = self.world[chosen[0]].plural, number_word(len(chosen))
+        named = self.named_in_paragraph & set(cohort)
+        if named and not named & set(chosen):
+            if named == set(cohort) - set(chosen):
+                return f"the {count} other {plural}"
+            return f"{count} other {plural}"
+        return f"{count} of the {plural}"
 
     def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
         self.current.append(_Mention(ids, noun, plural))

@@ -304,8 +304,35 @@ def test_aggregation_counts_part_of_a_cohort():
     text = describe(lamp_scene()).text
     assert "four roads meeting at an intersection, a house and six street lamps." in text
     assert "The first street lamp is next to the intersection." in text
-    assert "Four of the street lamps are next to the third road." in text
+    # "other": not the first one, told just before.
+    assert "Four other street lamps are next to the third road." in text
     assert "The sixth street lamp is next to the fourth road." in text
+
+
+def test_part_of_a_cohort_says_other_only_when_none_was_named():
+    b = SceneBuilder()
+    road, well = b.road(), b.add("well")
+    lamps = [b.add("street_lamp") for _ in range(4)]
+    b.relate(lamps[0], "NextTo", well)
+    for lamp in lamps[1:3]:
+        b.relate(lamp, "NextTo", road)
+    for lamp in (lamps[0], lamps[3]):
+        b.relate(lamp, "NextToNorth", well)
+    text = describe(b.scene()).text
+    assert "The first street lamp is next to the well. Two other street lamps are next to the road." in text
+    # The first is one of these: not "other" ones.
+    assert "Two of the street lamps are north of the well." in text
+
+
+def test_the_rest_of_a_cohort_are_the_others():
+    b = SceneBuilder()
+    road, well = b.road(), b.add("well")
+    lamps = [b.add("street_lamp") for _ in range(3)]
+    b.relate(lamps[0], "NextTo", well)
+    for lamp in lamps[1:]:
+        b.relate(lamp, "NextTo", road)
+    text = describe(b.scene()).text
+    assert "The first street lamp is next to the well. The two other street lamps are next to the road." in text
 
 
 def test_labels_with_the_same_words_share_one_statement():
