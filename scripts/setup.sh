@@ -5,27 +5,32 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# apt_install_or_warn WHY CONSEQUENCE PACKAGE...: install Debian packages when we may
+# (root with apt-get), else warn what will not work without them.
+apt_install_or_warn() {
+  local why=$1 consequence=$2
+  shift 2
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+    echo "setup: installing $* $why"
+    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null; } \
+      || echo "setup: warning: could not install $*; $consequence" >&2
+  else
+    echo "setup: warning: missing $*; $consequence" >&2
+  fi
+}
+
 need_gl=()
 ldconfig -p | grep -q 'libEGL.so.1 ' || need_gl+=(libegl1)
 ldconfig -p | grep -q 'libEGL_mesa.so.0 ' || need_gl+=(libegl-mesa0)
 ldconfig -p | grep -q 'libGL.so.1 ' || need_gl+=(libgl1)
 if [ ${#need_gl[@]} -gt 0 ]; then
-  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-    echo "setup: installing GL libraries for offscreen rendering: ${need_gl[*]}"
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_gl[@]}" >/dev/null
-  else
-    echo "setup: warning: missing ${need_gl[*]}; rendering will fail until they are installed" >&2
-  fi
+  apt_install_or_warn "for offscreen rendering" "rendering will fail until they are installed" "${need_gl[@]}"
 fi
 
 # link-grammar's parser checks the describer's sentences in the tests.
 if ! command -v link-parser >/dev/null; then
-  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-    echo "setup: installing link-grammar for the grammar check of descriptions"
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq link-grammar >/dev/null
-  else
-    echo "setup: warning: missing link-grammar; the description grammar test will skip (fail under CI)" >&2
-  fi
+  apt_install_or_warn "for the grammar check of descriptions" \
+    "the description grammar test will skip (fail under CI)" link-grammar
 fi
 
 python3 -m venv .venv
