@@ -228,11 +228,12 @@ class _Checker:
                 scope[statement.binding] = self.subject_kind(statement.subject, scope)
 
     def check_statement(self, statement: ast.Statement, scope: dict[str, str | None]) -> None:
+        subject = statement.subject
         self.check_count(statement.count)
         if statement.probability is not None and not 0 <= statement.probability <= 1:
             self.error(statement.probability_location,
                        f"probability must be between 0 and 1, not {_number(statement.probability)}")
-        created_kind = self.check_subject(statement.subject, scope)
+        created_kind = self.check_subject(subject, scope)
         if statement.binding and statement.binding in self.kinds:
             self.error(statement.binding_location,
                        f"'{statement.binding}' is a type; bind the nodes to another name")
@@ -242,12 +243,20 @@ class _Checker:
                            f"unknown relation label '{relation.label}'" + did_you_mean(relation.label, LABELS))
             self.check_target(relation.target, scope)
             if relation.label == "PathConnectedTo":
-                self.check_path_connection(statement.subject, relation.target, scope)
-        if statement.block is None:
-            return
-        if created_kind != "group":
-            what = (f"'{statement.subject.name}' is {_with_article(created_kind)}" if created_kind
-                    else _subject_words(statement.subject))
+                self.check_path_connection(subject, relation.target, scope)
+        if statement.block is not None:
+            self.check_group_block(statement, created_kind, scope)
+
+    def check_group_block(
+        self, statement: ast.Statement, created_kind: str | None, scope: dict[str, str | None]
+    ) -> None:
+        """A block nests its nodes in the group its statement creates: only a new group takes one."""
+        subject = statement.subject
+        unknown_name = (isinstance(subject, ast.Reference) and subject.kind == "name"
+                        and subject.name not in scope and subject.name not in self.kinds)
+        if created_kind != "group" and not unknown_name:  # an unknown name is reported already
+            what = (f"'{subject.name}' is {_with_article(created_kind)}" if created_kind
+                    else _subject_words(subject))
             self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
         inner = dict(scope) | ({statement.binding: "group"} if statement.binding else {})
         self.check_block(statement.block, inner)

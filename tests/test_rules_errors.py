@@ -186,11 +186,14 @@ path_connection.rules:6:95: error: PathConnectedTo connects a path to a junction
                                                                                                   ^""",
     ),
     "block_on_object": (
-        "S -> { table { table } }",
+        "S -> { table { table }; tabel { table } }",
         """\
 block_on_object.rules:4:14: error: a block nests nodes in a new group, but 'table' is an object
-    S -> { table { table } }
-                 ^""",
+    S -> { table { table }; tabel { table } }
+                 ^
+block_on_object.rules:4:25: error: unknown type or name 'tabel'; did you mean 'table'?
+    S -> { table { table }; tabel { table } }
+                            ^""",
     ),
     "bad_values": (
         ('object lamp { noun "  " segments 2.5 mesh "lamp.png" }\n'
