@@ -284,18 +284,13 @@ class Mover:
         """
         state = self.state
         terms = self._placing_terms(end)
-        boxes = self.moving_boxes(end)
-        saved = [(box, state.pose(box)) for box in boxes]
         best, best_energy = None, math.inf
         for _ in range(MULTI_TRIES):
             proposal = self.place_for_relation(terms[int(self.rng.integers(len(terms)))])
             if not proposal:
                 continue
-            for box, pose in proposal.items():
-                state.set_pose(box, *pose)
-            energy = sum(evaluate(term, state, self.params).energy for term in terms)
-            for box, pose in saved:
-                state.set_pose(box, *pose)
+            with state.trying(proposal):
+                energy = sum(evaluate(term, state, self.params).energy for term in terms)
             if energy < best_energy:
                 best, best_energy = proposal, energy
         return best
@@ -350,13 +345,9 @@ class Mover:
         boxes = self.moving_boxes(a)
         pivot = (ax, az)
         if turn:  # measure A's reach and centre as they will be once turned
-            saved = [(box, state.pose(box)) for box in boxes]
-            for box, pose in rigid(state, boxes, pivot, turn, (0.0, 0.0)).items():
-                state.set_pose(box, *pose)
-            a_reach = end_reach(problem, state, a, -wx, -wz)
-            ax, az = centre(a, state)
-            for box, pose in saved:
-                state.set_pose(box, *pose)
+            with state.trying(rigid(state, boxes, pivot, turn, (0.0, 0.0))):
+                a_reach = end_reach(problem, state, a, -wx, -wz)
+                ax, az = centre(a, state)
         else:
             a_reach = end_reach(problem, state, a, -wx, -wz)
         distance = offset + a_reach + gap

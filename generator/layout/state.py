@@ -8,6 +8,8 @@ a box rests on the ground or on its support, and supports carry what rests on th
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from .geometry import Rect
 from .problem import Problem
@@ -89,3 +91,15 @@ class State:
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]
+
+    @contextmanager
+    def trying(self, poses: dict[int, tuple[float, float, float]]) -> Iterator[None]:
+        """Put boxes at ``{box: (x, z, yaw)}`` for the ``with`` block only (to measure a candidate)."""
+        saved = [(box, self.pose(box)) for box in poses]
+        for box, pose in poses.items():
+            self.set_pose(box, *pose)
+        try:
+            yield
+        finally:
+            for box, pose in saved:
+                self.set_pose(box, *pose)
