@@ -7,8 +7,8 @@ Plan (``plan``), then realise (``realise``) with the referring expressions of
 from __future__ import annotations
 
 import re
-from numbers import Integral
 from dataclasses import dataclass, field
+from numbers import Integral
 from pathlib import Path
 from typing import Any
 

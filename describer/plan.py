@@ -147,7 +147,7 @@ def plan_document(scene: Scene, world: World) -> list[Section]:
         pools[max(introduced_in)].append(relation)
     return [
         _section(owner, world.members(owner), pool, networks, world)
-        for owner, pool in zip(owners, pools)
+        for owner, pool in zip(owners, pools, strict=True)
     ]
 
 
@@ -345,7 +345,7 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
 def _piece_facts(piece: tuple[str, ...], clauses: tuple[Clause, ...], shared: list[list[Relation]]) -> tuple[Fact, ...]:
     """The facts a statement about ``piece`` states: clause by clause, subject by subject, target by target."""
     facts: list[Fact] = []
-    for clause, found in zip(clauses, shared):
+    for clause, found in zip(clauses, shared, strict=True):
         told = [r for r in found if r.source in piece]
         told.sort(key=lambda r: (piece.index(r.source), clause.targets.index(r.target)))
         facts += [(r.source, r.label, r.target) for r in told]

@@ -19,6 +19,7 @@ from .templates import render
 from .variation import Choices
 from .world import World
 
+
 @dataclass(frozen=True)
 class Sentence:
     """One sentence of the text and the facts it states."""

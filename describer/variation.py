@@ -7,7 +7,8 @@ k of a scene is always the same text and variant 0 is the canonical one.
 
 from __future__ import annotations
 
-from typing import Sequence, TypeVar
+from collections.abc import Sequence
+from typing import TypeVar
 
 import numpy as np
 
@@ -21,7 +22,7 @@ class Choices:
         self._rng = rng
 
     @classmethod
-    def for_variant(cls, seed: int, variant: int) -> "Choices":
+    def for_variant(cls, seed: int, variant: int) -> Choices:
         """Variant 0 is canonical; variant k draws from ``default_rng([seed, k])``."""
         # numpy seeds must not be negative; a negative scene seed maps to its 64-bit pattern.
         return cls(None if variant == 0 else np.random.default_rng([seed % 2**64, variant]))
@@ -37,7 +38,3 @@ class Choices:
         if self._rng is None or len(items) < 2:
             return list(items)
         return [items[i] for i in self._rng.permutation(len(items))]
-
-    def coin(self, probability: float) -> bool:
-        """False in the canonical text, else true with ``probability``."""
-        return self._rng is not None and bool(self._rng.random() < probability)

@@ -310,29 +310,24 @@ def test_aggregation_counts_part_of_a_cohort():
 
 
 def test_part_of_a_cohort_says_other_only_when_none_was_named():
-    b = SceneBuilder()
-    road, well = b.road(), b.add("well")
-    lamps = [b.add("street_lamp") for _ in range(4)]
-    b.relate(lamps[0], "NextTo", well)
-    for lamp in lamps[1:3]:
-        b.relate(lamp, "NextTo", road)
-    for lamp in (lamps[0], lamps[3]):
-        b.relate(lamp, "NextToNorth", well)
-    text = describe(b.scene()).text
-    assert "The first street lamp is next to the well. Two other street lamps are next to the road." in text
+    def described(lamp_count: int, north_of_well: tuple[int, ...]) -> str:
+        b = SceneBuilder()
+        road, well = b.road(), b.add("well")
+        lamps = [b.add("street_lamp") for _ in range(lamp_count)]
+        b.relate(lamps[0], "NextTo", well)
+        for lamp in lamps[1:3]:
+            b.relate(lamp, "NextTo", road)
+        for index in north_of_well:
+            b.relate(lamps[index], "NextToNorth", well)
+        return describe(b.scene()).text
+
+    first = "The first street lamp is next to the well. "
+    # All but the first one: "the two other".
+    assert first + "The two other street lamps are next to the road." in described(3, ())
+    text = described(4, (0, 3))
+    assert first + "Two other street lamps are next to the road." in text
     # The first is one of these: not "other" ones.
     assert "Two of the street lamps are north of the well." in text
-
-
-def test_the_rest_of_a_cohort_are_the_others():
-    b = SceneBuilder()
-    road, well = b.road(), b.add("well")
-    lamps = [b.add("street_lamp") for _ in range(3)]
-    b.relate(lamps[0], "NextTo", well)
-    for lamp in lamps[1:]:
-        b.relate(lamp, "NextTo", road)
-    text = describe(b.scene()).text
-    assert "The first street lamp is next to the well. The two other street lamps are next to the road." in text
 
 
 def test_labels_with_the_same_words_share_one_statement():
