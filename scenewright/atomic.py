@@ -36,9 +36,7 @@ def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iter
     # mkstemp makes the file private (0600); give it the mode open() would have.
     os.chmod(temporary, 0o666 & ~_UMASK)
     try:
-        with os.fdopen(
-            handle, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8"})
-        ) as stream:
+        with os.fdopen(handle, "wb") if binary else os.fdopen(handle, "w", encoding="utf-8") as stream:
             yield stream
         os.replace(temporary, target)
     except BaseException:

@@ -9,6 +9,7 @@ so stats.json, unlike the rest of the dataset, differs between runs.
 
 from __future__ import annotations
 
+import io
 import json
 import re
 from collections import Counter
@@ -114,9 +115,7 @@ def write_stats(root: Path, stats: dict) -> None:
 
 def stats_figure(stats: dict) -> bytes:
     """A 2x2 PNG: object frequencies, relations held, text lengths, seconds per stage."""
-    import io
-
-    import matplotlib
+    import matplotlib  # only here: a dataset run needs it once, at the end
 
     matplotlib.use("Agg")
     from matplotlib.figure import Figure

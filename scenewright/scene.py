@@ -148,7 +148,7 @@ class Scene:
         return data
 
     def to_json(self, indent: int | None = 1, *, reproducible: bool = False) -> str:
-        """scene.json text: deterministic (sorted nothing, rounded floats, fixed order).
+        """scene.json text: deterministic (keys in field order, floats rounded to 1e-6).
 
         ``reproducible`` leaves out the wall-clock times (``timings``, ``layout.seconds``),
         the only values that differ between two runs with the same rules and seed.
