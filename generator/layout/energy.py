@@ -101,7 +101,7 @@ class Energy:
         problem, state = self.problem, self.state
         if problem.support[first] == second or problem.support[second] == first:
             return 0.0
-        planar = rect_penetration(state.rect(first), state.rect(second))
+        planar = rect_penetration(state.rects[first], state.rects[second])
         if planar <= 0.0:
             return 0.0
         if problem.support[first] >= 0 or problem.support[second] >= 0:
@@ -121,7 +121,7 @@ class Energy:
         """Normalised depth of a ground box into a path's buffered polyline."""
         problem = self.problem
         width = problem.path_width[path]
-        depth = polyline_rect_penetration(self.state.points[path], width / 2.0, self.state.rect(box))
+        depth = polyline_rect_penetration(self.state.points[path], width / 2.0, self.state.rects[box])
         return depth / (problem.size[box] + width)
 
     def path_energy(self, box: int, path: int) -> float:

@@ -132,7 +132,7 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
 def box_distance(first: int, second: int, state: State) -> float:
     """Distance between two boxes: footprint gap combined with the vertical gap."""
     problem = state.problem
-    planar = rect_distance(state.rect(first), state.rect(second))
+    planar = rect_distance(state.rects[first], state.rects[second])
     vertical = max(
         state.y[first] - (state.y[second] + problem.height[second]),
         state.y[second] - (state.y[first] + problem.height[first]),
@@ -211,7 +211,7 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     top = state.y[b] + problem.height[b]
     height_gap = abs(state.y[a] - top)
     energy = -equals(state.y[a], top, params.sigma2)
-    rect_b = state.rect(b)
+    rect_b = state.rects[b]
     lx, lz = to_local(rect_b, state.x[a], state.z[a])
     hw, hd = rect_b.hw, rect_b.hd
     inside = abs(lx) <= hw and abs(lz) <= hd

@@ -71,10 +71,10 @@ class State:
         self.yaw = [0.0] * n
         self.c = [1.0] * n
         self.s = [0.0] * n
-        self.y = [0.0] * n
+        # Each box's footprint at its current pose, rebuilt by set_pose: the geometry reads it every step.
         self.rects = [Rect(0.0, 0.0, problem.half_width[b], problem.half_depth[b], 1.0, 0.0) for b in range(n)]
-        for box in range(n):  # rests on the top of its support's stack
-            self.y[box] = sum((problem.height[below] for below in problem.beneath(box)), 0.0)
+        # Heights never change: each box rests on the top of its support's stack.
+        self.y = [sum((problem.height[below] for below in problem.beneath(box)), 0.0) for box in range(n)]
         self.points: list[list[list[float]]] = [
             [[0.0, 0.0] for _ in range(segments + 1)] for segments in problem.path_segments
         ]
@@ -84,10 +84,6 @@ class State:
         self.x[box], self.z[box], self.yaw[box], self.c[box], self.s[box] = x, z, yaw, c, s
         rect = self.rects[box]
         self.rects[box] = Rect(x, z, rect.hw, rect.hd, c, s)
-
-    def rect(self, box: int) -> Rect:
-        """The box's footprint at its current pose."""
-        return self.rects[box]
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]
