@@ -119,8 +119,9 @@ def render_scene(
 ) -> RenderResult:
     """Render ``scene`` offscreen, store the render metadata in it, and return the images.
 
-    Pass a ``renderer`` to reuse one OpenGL context over many scenes; otherwise one is
-    made for this call and closed after it.
+    Pass a ``renderer`` to reuse one OpenGL context over many scenes (the image then has
+    the renderer's size, not ``size``); otherwise one is made for this call and closed
+    after it.
     """
     from scenewright.render.offscreen import Renderer, render_metadata
 
