@@ -38,6 +38,7 @@ class _Mention:
     ids: tuple[str, ...]
     noun: str
     plural: bool
+    embedded: bool = False  # inside another phrase: "the farmstead" in "the cottage of the farmstead"
 
 
 @dataclass
@@ -130,7 +131,9 @@ class Discourse:
         if entity_id in self.sentence_subject:
             return False  # the subject itself would be "itself"
         subject = set(self.sentence_subject)
-        named_here = [m.ids for m in self.current if not m.plural and not set(m.ids) <= subject]
+        # An owner inside a phrase ("the cottage of the farmstead") is no rival antecedent
+        # there: "... of the cottage of the farmstead and at a right angle to it".
+        named_here = [m.ids for m in self.current if not m.plural and not m.embedded and not set(m.ids) <= subject]
         if named_here:
             return all(ids == (entity_id,) for ids in named_here)
         singular_before = {m.ids for m in self.previous if not m.plural}
@@ -188,7 +191,11 @@ class Discourse:
         if entity.parent is None:
             return f"{phrase} on their own" if plural else f"{phrase} on its own"
         preposition = "at" if " of " in entity.noun else "of"
-        return f"{phrase} {preposition} {self.name(entity.parent, pronoun=False)}"
+        first = len(self.current)
+        owner = self.name(entity.parent, pronoun=False)
+        for mention in self.current[first:]:
+            mention.embedded = True
+        return f"{phrase} {preposition} {owner}"
 
     def _name_part(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool) -> str:
         entity = self.world[chosen[0]]

@@ -491,6 +491,21 @@ def test_a_noun_with_its_own_of_is_placed_at_its_group():
     assert "The wagon of grain at the mill is to the left of the windmill building." in text
 
 
+def test_it_after_a_phrase_that_says_whose():
+    b = SceneBuilder()
+    b.add("cottage")
+    farm = b.group("farmstead")
+    cottage = b.add("cottage", parent=farm)
+    field, shed = b.add("field", parent=farm), b.add("shed", parent=farm)
+    b.relate(field, "NextToNorth", cottage)
+    b.relate(b.add("barrel", parent=farm), "NextTo", field)
+    b.relate(shed, "NextToRight", cottage)
+    b.relate(shed, "FacingOrthogonalDirection", cottage)
+    text = describe(b.scene()).text
+    # "the farmstead" inside the phrase does not compete with the cottage for "it".
+    assert "The shed is to the right of the cottage of the farmstead and stands at a right angle to it." in text
+
+
 def test_no_this_inside_a_list():
     b = SceneBuilder()
     road = b.road()
