@@ -16,12 +16,7 @@ from importlib import resources
 from pathlib import Path
 
 from lark import Lark, Token, Transformer, v_args
-from lark.exceptions import (
-    UnexpectedCharacters,
-    UnexpectedEOF,
-    UnexpectedInput,
-    UnexpectedToken,
-)
+from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 
 from . import rules_ast as ast
 from .catalog import KINDS, SourceLocation
@@ -213,7 +208,7 @@ def parse_text(text: str, file: str, sources: SourceTexts | None = None) -> ast.
     sources.add(file, text)
     try:
         tree = _parser().parse(text)
-    except UnexpectedInput as error:
+    except (UnexpectedToken, UnexpectedCharacters) as error:  # the two LALR parse errors
         return _syntax_diagnostic(error, text, file, sources)
     return _ToAst(file).transform(tree)
 
@@ -393,45 +388,28 @@ def _end_position(text: str) -> tuple[int, int]:
     return len(lines), len(lines[-1]) + 1
 
 
-def _syntax_diagnostic(error: UnexpectedInput, text: str, file: str, sources: SourceTexts) -> Diagnostic:
-    expected = _acceptable(error, text)
-    if isinstance(error, UnexpectedToken) and error.token.type != "$END":
-        token = error.token
-        line, column = token.line, token.column
-        message = _unexpected_word_message(token, expected)
-    elif isinstance(error, (UnexpectedToken, UnexpectedEOF)):
-        line, column = _end_position(text)
-        message = "unexpected end of file"
-    elif isinstance(error, UnexpectedCharacters):
+def _syntax_diagnostic(
+    error: UnexpectedToken | UnexpectedCharacters, text: str, file: str, sources: SourceTexts
+) -> Diagnostic:
+    # Lark's ``expected`` is the LALR state's lookahead set, which merges contexts (a
+    # statement's subject would seem to accept ')' because an argument does); asking the
+    # parser where it failed which terminals it takes gives the exact set.
+    expected = set(error.interactive_parser.accepts())
+    if isinstance(error, UnexpectedCharacters):
         line, column = error.line, error.column
         message = f"unexpected character '{text[error.pos_in_stream]}'"
-    else:  # pragma: no cover - lark raises only the three kinds above
+    elif error.token.type == "$END":
         line, column = _end_position(text)
-        message = "syntax error"
+        message = "unexpected end of file"
+    else:
+        line, column = error.token.line, error.token.column
+        message = _unexpected_word_message(error.token, expected)
     words = _expected_words(expected)
     if words and "did you mean" not in message:
         message += f"; expected {_join_words(words)}"
     line = max(1, min(line or 1, len(text.split("\n"))))
     column = max(1, column or 1)
     return sources.diagnostic(SourceLocation(file, line, column), message)
-
-
-def _acceptable(error: UnexpectedInput, text: str) -> set[str]:
-    """The terminals the parser could really take where it failed.
-
-    Lark's ``expected`` is the LALR state's lookahead set, which merges contexts (a
-    statement's subject would seem to accept ')' because an argument does); asking the
-    parser to try each terminal gives the exact set.
-    """
-    parser_state = getattr(error, "interactive_parser", None)
-    if parser_state is None:  # a lexer error: replay the tokens up to it
-        parser_state = _parser().parse_interactive(text)
-        try:
-            for _ in parser_state.iter_parse():
-                pass
-        except UnexpectedInput:
-            pass
-    return set(parser_state.accepts())
 
 
 def _unexpected_word_message(token: Token, expected: set[str]) -> str:
