@@ -19,7 +19,8 @@ form that is unambiguous here:
    on its own" for a top-level one) when a namesake from elsewhere could be meant.
 
 Sets of entities (aggregated subjects) are named per cohort: "the three market
-stands", "both pallets", "four of the street lamps".
+stands", "both pallets", "four of the street lamps" ("four other street lamps" when
+others of the cohort, and none of these, were named before).
 """
 
 from __future__ import annotations
