@@ -46,6 +46,20 @@ syntax_after_subject.rules:4:14: error: unexpected character '='; expected 'as',
     S -> { table = 3 }
                  ^""",
     ),
+    "syntax_statement_start": (
+        "S -> { table; ) }",
+        """\
+syntax_statement_start.rules:4:15: error: unexpected ')'; expected a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count) or the end of the statement
+    S -> { table; ) }
+                  ^""",
+    ),
+    "syntax_subject_after_count": (
+        "S -> { 2 0.5? ) }",
+        """\
+syntax_subject_after_count.rules:4:15: error: unexpected ')'; expected a type, a nonterminal, a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'
+    S -> { 2 0.5? ) }
+                  ^""",
+    ),
     "syntax_alternative": (
         "S -> table",
         """\
