@@ -61,6 +61,11 @@ def test_unknown_label_and_node_are_refused():
         graph.add_relation("table_1", "road_1", "Besides")
     with pytest.raises(KeyError):
         graph.add_relation("table_1", "nowhere_1", "NextTo")
+    with pytest.raises(ValueError, match="to itself"):
+        graph.add_relation("table_1", "table_1", "NextTo")
+    with pytest.raises(KeyError, match="unknown parent"):
+        graph.add_node(TABLE, parent="nowhere_1")
+    assert len(graph) == 4  # nothing was added
 
 
 def test_graph_dict_round_trip():
