@@ -5,7 +5,7 @@ catalog type (object, group, path or junction) with a stable id such as
 ``market_stand_2`` (type name and a 1-based counter per type, in creation order). Each
 edge is one relation label from ``generator.relations`` pointing from A to B. Every node
 records the production that made it (its derivation) and its parent group, so the
-describer can follow the derivation and the later capabilities can reuse it.
+describer can follow the derivation and a group's extent can be taken from its members.
 
 Node attributes are plain values copied from the catalog entry after the style was
 chosen, so later stages never need the catalog itself.
