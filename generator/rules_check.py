@@ -13,7 +13,7 @@ A rule set with no error diagnostics is safe to turn into a catalog and to expan
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import rules_ast as ast
@@ -51,15 +51,15 @@ def _number(value: float) -> str:
 
 @dataclass
 class _Checker:
+    """One pass over a parsed rule set, collecting its diagnostics."""
+
     sources: SourceTexts
     paths: dict[str, Path]
-
-    def __post_init__(self) -> None:
-        self.diagnostics: list[Diagnostic] = []
-        self.kinds: dict[str, str] = {}  # type name -> kind
-        self.productions: dict[str, ast.Production] = {}
-        self.created_types: set[str] = set()
-        self.max_nodes = DEFAULT_MAX_NODES
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    kinds: dict[str, str] = field(default_factory=dict)  # type name -> kind
+    productions: dict[str, ast.Production] = field(default_factory=dict)  # the first of each name
+    created_types: set[str] = field(default_factory=set)  # types some statement creates
+    max_nodes: int = DEFAULT_MAX_NODES  # the scene's, once its block is checked
 
     def error(self, location: SourceLocation, message: str) -> None:
         self.diagnostics.append(self.sources.diagnostic(location, message))
