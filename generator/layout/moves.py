@@ -251,7 +251,10 @@ class Mover:
         weights = np.array([relation_energy[t] for t in self.relations]) ** 2 + 0.01
         for position in self.focus_positions:
             weights[position] += FOCUS_WEIGHT
-        term = self.problem.relations[self.relations[int(self.rng.choice(len(self.relations), p=weights / weights.sum()))]]
+        # Inverse-CDF sampling as rng.choice(p=...) does it, without its checks of p each step.
+        cdf = (weights / weights.sum()).cumsum()
+        cdf /= cdf[-1]
+        term = self.problem.relations[self.relations[int(cdf.searchsorted(self.rng.random(), side="right"))]]
         a_movable, b_movable = self._movable(term.a), self._movable(term.b)
         turnable = term.b.kind == "object" and b_movable and term.base in B_SIDE_LABELS
         if turnable and self.rng.random() < REVERSE_SHARE:
