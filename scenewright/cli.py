@@ -151,23 +151,26 @@ def read_scene(path: str):
 
 
 def run_generate(args: argparse.Namespace) -> int:
-    from scenewright.api import (
-        build_scene, checked_templates, describe_scene, export_scene, load_rules, render_scene, reproducible_json,
-        summary_line, timings_of,
-    )  # fmt: skip
+    from scenewright.api import export_scene, generate, reproducible_json, summary_line, timings_of
     from scenewright.atomic import staged_outputs
     from scenewright.generator.layout.plan import draw_plan
     from scenewright.render.offscreen import save_render
 
-    rules = load_rules(args.rules)
-    templates = checked_templates(args.templates)
-    directory = output_directory(args.output)
-    scene = build_scene(rules, args.seed, templates=templates)
-    description = describe_scene(scene, style=args.style, variant=args.variant)
+    scene = generate(
+        args.rules,
+        args.seed,
+        style=args.style,
+        variant=args.variant,
+        templates=args.templates,
+        render=args.render,
+        size=args.size,
+        view=args.view,
+    )
+    directory = output_directory(args.output)  # made only once there is something to write
     with staged_outputs(directory) as stage:
-        (stage / "description.txt").write_text(description.text + "\n", encoding="utf-8")
+        (stage / "description.txt").write_text(scene.description["text"] + "\n", encoding="utf-8")
         if args.render:
-            save_render(render_scene(scene, size=args.size, view=args.view), stage, stem="preview")
+            save_render(scene.images, stage, stem="preview")
         export_scene(scene, stage / "scene.glb")
         draw_plan(scene, stage / "plan.png")
         (stage / "scene.json").write_text(reproducible_json(scene), encoding="utf-8")
