@@ -2,7 +2,8 @@
 
 One run: a constructive initial placement, then up to ``params.steps`` steps (at least
 ``steps_per_box`` per box, so big scenes get a bigger budget). Each step draws a
-proposal (``moves.Mover``), gets its energy change from ``Energy.propose`` and accepts it with probability min(1, exp(-delta / T)), T falling geometrically from
+proposal (``moves.Mover``), gets its energy change from ``Energy.propose`` and accepts
+it with probability min(1, exp(-delta / T)), T falling geometrically from
 ``temperature_start`` to ``temperature_end``. Every ``check_every`` steps (after
 ``min_steps``) the stop rule is tested: the layout is ok (``report.assess``) and its
 energy is at most ``target_energy``. A chain whose count of problems has not fallen
