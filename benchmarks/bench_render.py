@@ -19,7 +19,7 @@ import numpy as np
 
 from scenewright.api import build_scene
 from scenewright.render.offscreen import Renderer
-from scenewright.scene import Scene
+from scenewright.core.scene import Scene
 
 
 def village_scenes(count: int) -> list[Scene]:

@@ -12,8 +12,8 @@ from numbers import Integral
 from pathlib import Path
 from typing import Any
 
-from scenewright.errors import InputError
-from scenewright.scene import Scene
+from scenewright.core.errors import InputError
+from scenewright.core.scene import Scene
 
 from .plan import Fact, Introduction, Inventory, Item, Network, Section, Statement, plan_document
 from .realise import Realiser, Sentence
@@ -54,8 +54,8 @@ def describe(
 
     ``style``: "full" (the scene, then each group, every object mentioned) or "short"
     (a caption of one or two sentences). ``variant`` 0 is the canonical text; variant k
-    is a seeded paraphrase (synonyms, order of list items and statements) drawn from
-    ``numpy.random.default_rng([scene.seed, k])``. ``templates``: a folder whose ``*.j2``
+    is a seeded paraphrase (synonyms, order of list items and statements) drawn from the
+    describer's child stream k of ``scene.seed`` (``core.seeds``). ``templates``: a folder whose ``*.j2``
     files replace the package's sentence templates of the same name.
     """
     if style not in STYLES:

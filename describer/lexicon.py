@@ -10,80 +10,34 @@ side.
 
 from __future__ import annotations
 
-from scenewright.generator.relations import (
-    COMPASS_DIRECTIONS,
-    LABELS,
-    PATH_LABELS,
-    SIDE_DIRECTIONS,
-    is_implicit,
-)
+from scenewright.core.relations import RELATIONS
 
 from .variation import Choices
 
-#: Labels the text may state: geometric ones that hold. ``Implicit*`` labels constrain the
-#: layout only; ``PathConnectedTo`` is told as the road network ("roads meeting at ...").
-DESCRIBED_LABELS: frozenset[str] = frozenset(
-    label for label in LABELS if not is_implicit(label) and label not in PATH_LABELS
-)
 
-#: Labels whose statement says the same read either way round ("A is next to B" is "B is
-#: next to A"); the describer states such a pair once.
-SYMMETRIC_LABELS: frozenset[str] = frozenset(
-    {"NextTo", "FacingSameDirection", "FacingOrthogonalDirection"}
-)
+def is_described(label: str) -> bool:
+    """Labels the text may state when they hold: not ``Implicit*``, not structural
+    (``PathConnectedTo`` is told as the road network: "roads meeting at ...")."""
+    return label in RELATIONS and RELATIONS[label].described
 
-_NEXT_TO = ("is next to", "is beside")
-_COMPASS = {d: (f"is {d} of", f"is on the {d} side of") for d in COMPASS_DIRECTIONS}
-_SIDE = {d: (f"is to the {d} of",) for d in SIDE_DIRECTIONS}
 
-_WORDING: dict[str, tuple[str, ...]] = {
-    "NextTo": _NEXT_TO,
-    "NextToNorth": _COMPASS["north"],
-    "NextToEast": _COMPASS["east"],
-    "NextToSouth": _COMPASS["south"],
-    "NextToWest": _COMPASS["west"],
-    "NextToLeft": _SIDE["left"],
-    "NextToRight": _SIDE["right"],
-    "NextToFront": ("is in front of",),
-    "NextToBehind": ("is behind",),
-    "OnTopOf": ("is on top of", "is on"),
-    "OnTopOfMiddle": ("is in the middle of", "stands in the middle of"),
-    "OnTopOfEdge": ("is on the edge of", "stands on the edge of"),
-    "OnTopOfFrontEdge": ("is at the front edge of", "stands at the front edge of"),
-    # IsPartOf* rests A on B like OnTopOf*, but A belongs to B (a sign on a stall).
-    "IsPartOf": ("is part of", "forms part of"),
-    "IsPartOfMiddle": ("is attached to the middle of",),
-    "IsPartOfEdge": ("is attached to the edge of",),
-    "IsPartOfFrontEdge": ("is attached to the front edge of",),
-    "FacingTowards": ("faces", "is turned towards"),
-    "FacingAwayFrom": ("faces away from", "is turned away from"),
-    "FacingSameDirection": ("faces the same way as", "faces the same direction as"),
-    "FacingOrthogonalDirection": ("stands at a right angle to", "is at a right angle to"),
-}
+def is_symmetric(label: str) -> bool:
+    """Labels whose statement says the same read either way round ("A is next to B" is
+    "B is next to A"); the describer states such a pair once."""
+    return RELATIONS[label].symmetric
 
 
 def relation_wordings(label: str, chosen: str | None = None) -> tuple[str, ...]:
-    """The verb phrases that state ``label`` (canonical first).
+    """The verb phrases that state ``label`` (canonical first), from the registry.
 
-    ``NextToChooseDirection`` / ``NextToChooseSide`` are worded from the direction the
-    layout chose; without a valid one they fall back to plain "next to", which holds
-    for every next-to label.
+    A label that chooses its direction (``NextToChooseDirection``) is worded from the
+    direction the layout chose; without a valid one it falls back to plain "next to",
+    which holds for every next-to label.
     """
-    if label == "NextToChooseDirection":
-        return _COMPASS.get(chosen or "", _NEXT_TO)
-    if label == "NextToChooseSide":
-        return _SIDE.get(chosen or "", _NEXT_TO)
-    if label not in _WORDING:
-        raise KeyError(f"relation label {label!r} has no wording")
-    return _WORDING[label]
-
-
-#: Labels that say where A is ("is on top of", "is north of"): "is" + a place phrase
-#: may be inverted ("On top of it is a pot."), unlike "is part of" or "faces".
-_PLACE_LABELS = frozenset(
-    {label for label in _WORDING if label.startswith(("NextTo", "OnTopOf"))}
-    | {"NextToChooseDirection", "NextToChooseSide"}
-)
+    spec = RELATIONS[label]
+    if not spec.described:
+        raise KeyError(f"relation label {label!r} is never stated")
+    return spec.wordings_for(chosen)
 
 
 def place_phrases(label: str, chosen: str | None = None) -> tuple[str, ...]:
@@ -92,7 +46,7 @@ def place_phrases(label: str, chosen: str | None = None) -> tuple[str, ...]:
     A place phrase can follow a noun ("a sign to the right of a table") or lead an
     inverted sentence ("On top of this table are two books.").
     """
-    if label not in _PLACE_LABELS:
+    if not RELATIONS[label].place:
         return ()
     return tuple(w[len("is "):] for w in relation_wordings(label, chosen) if w.startswith("is "))
 

@@ -19,10 +19,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from scenewright.generator.relations import is_support
-from scenewright.scene import Relation, Scene
+from scenewright.core.relations import RELATIONS, Relation
+from scenewright.core.scene import Scene
 
-from .lexicon import DESCRIBED_LABELS, SYMMETRIC_LABELS, place_phrases, relation_wordings
+from .lexicon import is_described, is_symmetric, place_phrases, relation_wordings
 from .world import Entity, World
 
 #: The most clauses one statement joins ("The chair is in front of the desk and faces it.").
@@ -156,13 +156,13 @@ def stated_relations(scene: Scene, world: World) -> list[Relation]:
     selected: list[Relation] = []
     seen: set[tuple[str, str, str]] = set()
     for relation in scene.relations:
-        if not relation.satisfied or relation.label not in DESCRIBED_LABELS:
+        if not relation.satisfied or not is_described(relation.label):
             continue
         if relation.source not in world or relation.target not in world:
             continue
         key = (relation.source, relation.label, relation.target)
         mirrored = (relation.target, relation.label, relation.source)
-        if key in seen or (relation.label in SYMMETRIC_LABELS and mirrored in seen):
+        if key in seen or (is_symmetric(relation.label) and mirrored in seen):
             continue
         seen.add(key)
         selected.append(relation)
@@ -177,7 +177,9 @@ def _network_links(scene: Scene, world: World) -> dict[str, str]:
     """
     starts = [(path.id, path.start) for path in scene.paths if path.start is not None]
     starts += [
-        (r.source, r.target) for r in scene.relations if r.label == "PathConnectedTo" and r.satisfied
+        (r.source, r.target)
+        for r in scene.relations
+        if r.label in RELATIONS and RELATIONS[r.label].family == "structural" and r.satisfied
     ]
     links: dict[str, str] = {}
     for path, junction in starts:
@@ -221,7 +223,7 @@ def _placements(members: list[Entity], pool: list[Relation]) -> dict[str, Relati
     ids = {m.id for m in members}
     support: dict[str, Relation] = {}
     for relation in pool:
-        if relation.source in ids and relation.target in ids and is_support(relation.label):
+        if relation.source in ids and relation.target in ids and RELATIONS[relation.label].support:
             support.setdefault(relation.source, relation)
     grounded: dict[str, Relation] = {}
     changed = True

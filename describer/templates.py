@@ -16,7 +16,7 @@ from pathlib import Path
 import jinja2
 from jinja2.sandbox import SandboxedEnvironment
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 from .english import join_list, with_article
 

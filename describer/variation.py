@@ -12,6 +12,8 @@ from typing import TypeVar
 
 import numpy as np
 
+from scenewright.core.seeds import MAX_SEED, stream
+
 T = TypeVar("T")
 
 
@@ -23,9 +25,10 @@ class Choices:
 
     @classmethod
     def for_variant(cls, seed: int, variant: int) -> Choices:
-        """Variant 0 is canonical; variant k draws from ``default_rng([seed, k])``."""
-        # numpy seeds must not be negative; a negative scene seed maps to its 64-bit pattern.
-        return cls(None if variant == 0 else np.random.default_rng([seed % 2**64, variant]))
+        """Variant 0 is canonical; variant k draws from the describer's child stream k of
+        the scene's seed (``core.seeds``), which no other stage shares."""
+        # A scene.json written by hand may carry any integer: fold it into the seed range.
+        return cls(None if variant == 0 else stream(seed % (MAX_SEED + 1), "describer", variant))
 
     def pick(self, options: Sequence[T]) -> T:
         """The first option in the canonical text, else one at random."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from scenewright.scene import Scene
+from scenewright.core.scene import Scene
 
 from .english import plural_of
 

@@ -2,9 +2,11 @@
 
 Expansion starts at the ``start`` nonterminal and runs depth-first in statement
 order. Every random choice (an alternative, a count in a range, an optional
-statement, a style, ``some TYPE``) is drawn from one ``numpy.random.Generator``
-seeded with the seed, in that fixed order, so the same rules and seed always give the
-same graph. Expansion is bounded: deeper than ``max_depth`` nested calls, more than
+statement, a style, ``some TYPE``) is drawn from the expansion's own child stream of
+the scene's seed (``core.seeds``), in that fixed order, so the same rules and seed
+always give the same graph. Each draw is recorded, in order, with the nodes it made,
+in the graph's ``derivation`` (format: ``generator.derivation``); recording draws
+nothing. Expansion is bounded: deeper than ``max_depth`` nested calls, more than
 ``max_nodes`` nodes or too many steps raises ``ExpansionError`` naming the chain of
 productions that got there, so a runaway rule set fails fast instead of hanging.
 """
@@ -16,11 +18,14 @@ from typing import NoReturn
 
 import numpy as np
 
+from scenewright.core.scene_graph import SceneGraph
+from scenewright.core.seeds import SeedLike, stage_stream
+
 from . import rules_ast as ast
 from .catalog import CatalogEntry, SourceLocation, Style
+from .derivation import choice
 from .rules import Rules
 from .rules_errors import ExpansionError
-from .scene_graph import SceneGraph
 
 #: Steps (repetitions of statements, calls) allowed per allowed node, on top of a fixed
 #: allowance: enough for any sensible rule set, small enough that a rule set which calls
@@ -32,9 +37,12 @@ _BASE_STEPS = 10_000
 _CHAIN_HEAD, _CHAIN_TAIL = 4, 2
 
 
-def expand(rules: Rules, seed: int) -> SceneGraph:
-    """Expand ``rules`` from its start symbol into a scene graph, deterministically."""
-    expansion = _Expansion(rules, np.random.default_rng(seed))
+def expand(rules: Rules, seed: SeedLike) -> SceneGraph:
+    """Expand ``rules`` from its start symbol into a scene graph, deterministically.
+
+    ``seed``: the scene's seed (an int), a Generator to draw from, or None (fresh entropy).
+    """
+    expansion = _Expansion(rules, stage_stream(seed, "expansion"))
     start = rules.productions[rules.start]
     expansion.call(start, arguments=[], parent=None, location=start.location)
     return expansion.graph
@@ -49,6 +57,8 @@ class _Expansion:
     graph: SceneGraph = field(init=False)
     #: Node ids of each type, in creation order (for ``some``, ``each`` and ``#N``).
     by_type: dict[str, list[str]] = field(default_factory=dict)
+    #: Every node id in creation order (the nodes a choice made are a slice of it).
+    made: list[str] = field(default_factory=list)
     #: The nonterminals being expanded, outermost first.
     chain: list[str] = field(default_factory=list)
     steps: int = 0
@@ -71,14 +81,17 @@ class _Expansion:
         self.step(location)
         if len(self.chain) >= self.rules.max_depth:
             self.fail(location, f"expansion deeper than max_depth {self.rules.max_depth}", production.name)
+        self.chain.append(production.name)
         weights = [alt.weight if alt.weight is not None else 1.0 for alt in production.alternatives]
-        alternative = production.alternatives[self.pick(weights)]
+        index, drawn = self.pick(weights, "alternative", production.location)
         # the checks made every call pass exactly as many arguments as there are parameters
         scope = {param.name: nodes for param, nodes in zip(production.params, arguments, strict=True)}
-        self.chain.append(production.name)
+        first = len(self.made)
         created: list[str] = []
-        for statement in alternative.statements:
+        for statement in production.alternatives[index].statements:
             created.extend(self.run(statement, scope, parent))
+        if drawn is not None:
+            drawn["nodes"] = self.made[first:]
         self.chain.pop()
         return created[:1]
 
@@ -89,13 +102,21 @@ class _Expansion:
 
         ``scope`` (bound names -> node ids) gains the statement's ``as`` binding.
         """
-        if statement.probability is not None and self.rng.random() >= statement.probability:
-            if statement.binding:
-                scope[statement.binding] = []  # later statements see it, bound to nothing
-            return []
+        first = len(self.made)
+        optional: dict | None = None
+        if statement.probability is not None:
+            taken = bool(self.rng.random() < statement.probability)
+            optional = self.note(
+                "optional", statement.probability_location, taken, probability=statement.probability
+            )
+            if not taken:
+                if statement.binding:
+                    scope[statement.binding] = []  # later statements see it, bound to nothing
+                return []
+        repetitions, counted = self.count(statement.count)
         created: list[str] = []
         subjects_of_all_repetitions: list[str] = []
-        for _ in range(self.count(statement.count)):
+        for _ in range(repetitions):
             self.step(statement.location)
             subjects, creates = self.subjects(statement.subject, scope, parent)
             for subject in subjects:
@@ -114,6 +135,9 @@ class _Expansion:
                 created.extend(subjects)
         if statement.binding:
             scope[statement.binding] = subjects_of_all_repetitions
+        for drawn in (optional, counted):
+            if drawn is not None:
+                drawn["nodes"] = self.made[first:]
         return created
 
     def subjects(
@@ -132,10 +156,16 @@ class _Expansion:
         if len(self.graph) >= self.rules.max_nodes:
             self.fail(location, f"more than max_nodes {self.rules.max_nodes} nodes")
         style: Style | None = None
+        drawn: dict | None = None
         if entry.styles:
-            style = entry.styles[self.pick([s.weight for s in entry.styles])]
+            weights = [s.weight for s in entry.styles]
+            index, drawn = self.pick(weights, "style", entry.location, type=entry.name)
+            style = entry.styles[index]
         node = self.graph.add_node(entry, style=style, parent=parent, rule=self.chain[-1])
         self.by_type.setdefault(entry.name, []).append(node)
+        self.made.append(node)
+        if drawn is not None:
+            drawn["nodes"] = [node]
         return node
 
     # -- references -------------------------------------------------------------
@@ -163,22 +193,46 @@ class _Expansion:
         if not candidates:
             noun = self.rules.catalog[reference.name].noun
             self.fail(reference.location, f"'some {reference.name}' finds no {noun} in the scene at this point")
-        return [candidates[int(self.rng.integers(len(candidates)))]]
+        index = int(self.rng.integers(len(candidates)))
+        picked = [candidates[index]]
+        self.note("some", reference.location, index, picked, options=len(candidates), type=reference.name)
+        return picked
 
     # -- draws and bounds -------------------------------------------------------
 
-    def pick(self, weights: list[float]) -> int:
-        """An index drawn with probability proportional to ``weights``."""
+    def pick(
+        self, weights: list[float], kind: str, location: SourceLocation | None, type: str | None = None
+    ) -> tuple[int, dict | None]:
+        """An index drawn with probability proportional to ``weights``, and its record
+        (None when there was nothing to draw: a single option)."""
         if len(weights) == 1:
-            return 0
+            return 0, None
         probabilities = np.asarray(weights, dtype=float)
-        return int(self.rng.choice(len(weights), p=probabilities / probabilities.sum()))
+        index = int(self.rng.choice(len(weights), p=probabilities / probabilities.sum()))
+        return index, self.note(kind, location, index, options=len(weights), type=type)
 
-    def count(self, count: ast.Count | None) -> int:
+    def count(self, count: ast.Count | None) -> tuple[int, dict | None]:
+        """How many times a statement runs, and the record of the draw (None when fixed)."""
         if count is None:
-            return 1
+            return 1, None
         low, high = int(count.low), int(count.high)
-        return low if low == high else int(self.rng.integers(low, high + 1))
+        if low == high:
+            return low, None
+        drawn = int(self.rng.integers(low, high + 1))
+        return drawn, self.note("count", count.location, drawn, low=low, high=high)
+
+    def note(
+        self,
+        kind: str,
+        location: SourceLocation | None,
+        value: int | bool,
+        nodes: list[str] | None = None,
+        **details: int | float | str | None,
+    ) -> dict:
+        """Append a record of a draw to the derivation; its nodes may be filled in later."""
+        record = choice(kind, self.chain[-1], location, value, nodes, **details)
+        self.graph.derivation.append(record)
+        return record
 
     def step(self, location: SourceLocation) -> None:
         self.steps += 1

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import json
 
-from .relations import is_implicit
-from .scene_graph import SceneGraph, SceneNode
+from scenewright.core.relations import RELATIONS
+from scenewright.core.scene_graph import SceneGraph, SceneNode
 
 _INDENT = "  "
 
@@ -46,7 +46,7 @@ def graph_to_dot(graph: SceneGraph) -> str:
 
     emit(None, 1)
     for edge in graph.edges():
-        style = ", style=dashed" if is_implicit(edge.label) else ""
+        style = ", style=dashed" if RELATIONS[edge.label].implicit else ""
         lines.append(f"{_INDENT}{_quote(edge.source)} -> {_quote(edge.target)} [label={_quote(edge.label)}{style}];")
     lines.append("}")
     return "\n".join(lines) + "\n"

@@ -20,7 +20,7 @@ from .catalog import Catalog, CatalogEntry, SourceLocation, Style
 from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, check_tree
 from .rules_errors import Diagnostic, RulesError, SourceTexts
 from .rules_parser import ParsedTree, parse_tree
-from .scene_graph import SceneParams
+from scenewright.core.scene_graph import SceneParams
 
 _SHIPPED_PACKAGE = "scenewright.grammar_rules"
 _SUFFIX = ".rules"

@@ -1,7 +1,8 @@
 """Static checks of a parsed rule set: everything that can be wrong before expansion.
 
 ``check_tree`` looks at a file and its includes together and returns diagnostics in
-file order: the catalog (fields, values, styles, mesh files), the scene block (and its
+file order: the catalog (fields, values, styles, mesh files that must load, shape
+names the renderer must know - a warning), the scene block (and its
 templates folder), and the productions (labels, types, names in scope, calls and their
 arguments, counts, probabilities and weights, blocks on groups only, PathConnectedTo
 from a path to a junction), then the whole grammar: undefined nonterminals,
@@ -16,10 +17,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenewright.core.relations import RELATIONS
+from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, MeshFileError, load_mesh_file
+
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation
-from .relations import LABELS
-from .rules_errors import WARNING, Diagnostic, SourceTexts, did_you_mean
+from .rules_errors import WARNING, Diagnostic, SourceTexts, case_mix_up, did_you_mean
 from .rules_parser import ParsedTree
 
 DEFAULT_MAX_DEPTH = 32
@@ -27,7 +30,6 @@ DEFAULT_MAX_NODES = 2000
 
 #: Fields that shape a path's polyline, so only ``path`` entries take them.
 PATH_FIELDS = ("width", "max_length", "segments")
-MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
 
 
 def check_tree(tree: ParsedTree) -> list[Diagnostic]:
@@ -136,6 +138,8 @@ class _Checker:
                 self.error(at, f"colour '{value}' is not of the form #rrggbb")
             elif name == "mesh":
                 self.check_mesh(value, setting)
+            elif name == "shape":
+                self.check_shape(value, setting)
             elif name in ("noun", "plural") and not value.strip():
                 self.error(at, f"'{name}' must not be empty")
         return seen
@@ -149,8 +153,19 @@ class _Checker:
         if not file.lower().endswith(MESH_SUFFIXES):
             suffixes = ", ".join(MESH_SUFFIXES[:-1]) + " or " + MESH_SUFFIXES[-1]
             self.error(setting.value_location, f"mesh '{file}' is not a {suffixes} file")
-        elif not (folder / file).is_file():
+        elif not (folder / file).exists():
             self.error(setting.value_location, f"mesh file '{file}' not found (looked in {folder.resolve()})")
+        else:
+            try:
+                load_mesh_file(folder / file)
+            except MeshFileError as problem:
+                self.error(setting.value_location, f"mesh file '{file}' {problem.reason}")
+
+    def check_shape(self, shape: str, setting: ast.Setting) -> None:
+        """A shape the renderer has no builder for is drawn as a plain box: warn."""
+        if shape not in SHAPES:
+            self.warning(setting.value_location, f"unknown shape '{shape}', drawn as a plain box"
+                         + (did_you_mean(shape, SHAPES) or "; 'scenewright list --shapes' lists the shapes"))
 
     # -- scene block --------------------------------------------------------------
 
@@ -238,11 +253,13 @@ class _Checker:
             self.error(statement.binding_location,
                        f"'{statement.binding}' is a type; bind the nodes to another name")
         for relation in statement.relations:
-            if relation.label not in LABELS:
+            if relation.label not in RELATIONS:
                 self.error(relation.location,
-                           f"unknown relation label '{relation.label}'" + did_you_mean(relation.label, LABELS))
+                           f"unknown relation label '{relation.label}'"
+                           + (case_mix_up(relation.label, RELATIONS.names(), "relation labels are CamelCase")
+                              or did_you_mean(relation.label, RELATIONS.names())))
             self.check_target(relation.target, scope)
-            if relation.label == "PathConnectedTo":
+            if relation.label in RELATIONS and RELATIONS[relation.label].family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
         if statement.block is not None:
             self.check_group_block(statement, created_kind, scope)
@@ -306,7 +323,8 @@ class _Checker:
                 self.created_types.add(subject.name)
                 return self.kinds[subject.name]
             self.error(subject.location, f"unknown type or name '{subject.name}'"
-                       + did_you_mean(subject.name, list(self.kinds) + sorted(scope)))
+                       + (case_mix_up(subject.name, self.productions, "nonterminals are CamelCase")
+                          or did_you_mean(subject.name, list(self.kinds) + sorted(scope))))
             return None
         self.check_type_reference(subject)
         return None
@@ -335,7 +353,9 @@ class _Checker:
         production = self.productions.get(call.nonterminal)
         if production is None:
             self.error(call.location, f"undefined nonterminal '{call.nonterminal}'"
-                       + did_you_mean(call.nonterminal, self.productions))
+                       + (case_mix_up(call.nonterminal, self.kinds, "types are snake_case")
+                          or case_mix_up(call.nonterminal, scope, "bound names are snake_case")
+                          or did_you_mean(call.nonterminal, self.productions)))
             return
         expected, given = len(production.params), len(call.arguments)
         if expected != given:

@@ -7,15 +7,19 @@ and the offending source line, so it prints as
     village.rules:12:9: error: unknown relation label 'NextTwo'; did you mean 'NextTo'?
         sign NextTwo t
              ^
+
+The suggestions that end many messages are worded here too: "did you mean" the nearest
+known word, and the case a word should be in (``case_mix_up``).
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from ..errors import InputError
+from scenewright.core.errors import InputError
 from .catalog import SourceLocation
 
 ERROR = "error"
@@ -81,6 +85,38 @@ def did_you_mean(word: str, known: Iterable[str]) -> str:
     """``"; did you mean 'X'?"`` for the closest known word, or ``""`` if none is close."""
     matches = difflib.get_close_matches(word, sorted(set(known)), n=1, cutoff=0.6)
     return f"; did you mean '{matches[0]}'?" if matches else ""
+
+
+# The language's two cases: types, bound names and parameters are snake_case;
+# nonterminals and relation labels are CamelCase.
+
+
+def snake_case(word: str) -> str:
+    """``MarketStand`` -> ``market_stand``: a word as a type or name is written."""
+    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Z])(?=[A-Z][a-z])", "_", word).replace("-", "_").lower()
+
+
+def camel_case(word: str) -> str:
+    """``market_stand``, ``marketStand`` -> ``MarketStand``: a word as a nonterminal or label is written."""
+    return "".join(part[:1].upper() + part[1:] for part in re.split(r"[_-]+", word))
+
+
+def case_hint(convention: str, suggestion: str) -> str:
+    """``"; nonterminals are CamelCase: did you mean 'Market'?"`` (``convention`` says which case)."""
+    return f"; {convention}: did you mean '{suggestion}'?"
+
+
+def case_mix_up(word: str, known: Iterable[str], convention: str) -> str:
+    """``case_hint`` for the known word that ``word`` spells in the wrong case (``next_to``
+    or ``nextTo`` for ``NextTo``), or ``""`` if no known word differs from it only in case
+    and underscores."""
+    key = _case_key(word)
+    matches = sorted(name for name in set(known) if _case_key(name) == key and name != word)
+    return case_hint(convention, matches[0]) if matches else ""
+
+
+def _case_key(word: str) -> str:
+    return word.replace("_", "").replace("-", "").lower()
 
 
 class SourceTexts:

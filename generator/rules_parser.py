@@ -4,25 +4,32 @@
 cached) and a lark ``Transformer``. ``parse_tree`` parses a file and, depth-first, the
 files it includes (paths relative to the including file; each file once; a cycle is
 reported at the ``include`` that closes it). Lark's exceptions become ``Diagnostic``s
-that say what was expected in words, never in terminal names.
+that say what was expected in words, never in terminal names: a '{' that is never
+closed is reported where it opened, and a word in the wrong place gets "did you mean"
+(a misspelt field or setting, a name in the wrong case).
 """
 
 from __future__ import annotations
 
 import functools
 import os
+import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
-from lark import Lark, Token, Transformer, v_args
-from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark import Lark, Token, Transformer, Tree, v_args
+from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+
+from scenewright.core.relations import RELATIONS
 
 from . import rules_ast as ast
-from .catalog import KINDS, SourceLocation
-from .rules_errors import Diagnostic, SourceTexts, did_you_mean
+from .catalog import SourceLocation
+from .rules_errors import Diagnostic, SourceTexts, camel_case, case_hint, case_mix_up, did_you_mean, snake_case
 
-#: Catalog fields and scene settings, as the grammar spells them (for error messages).
+#: Catalog fields and scene settings: the grammar's rules of these names each become an
+#: ``ast.Setting`` (the ``start`` setting's rule is ``start_symbol``).
 ENTRY_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments")
 SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes", "templates")
 
@@ -278,94 +285,437 @@ def _parse_into(
 
 
 # -- syntax errors in words ---------------------------------------------------------
+#
+# A syntax error is explained in three steps:
+# 1. A '{' never closed: if a '}' inserted before the line of the error (or before the
+#    unexpected word, or at the end of the file) lets the parser read the rest of that
+#    line, the error is the missing '}', reported at the '{' still open on the parser's
+#    stack.
+# 2. Where the parser stopped: the text before the error is parsed alone, so that the
+#    parser stops at its end in the state it was in before it saw the unexpected token
+#    (a token it cannot take may first make it finish a rule, in a way that depends on
+#    the token). Lark's ``UnexpectedInput.match_examples`` then finds the ``_CONTEXTS``
+#    entry with an example that stops in the same LALR state. The examples are parsed
+#    with the grammar of the day, so the table follows grammar changes; tests check that
+#    each example still stops in its place, and that every place in a valid file where a
+#    word may come next is in the table.
+# 3. What was expected, in words: the terminals the parser takes there, each said from
+#    its pattern (``Lark.get_terminal``): a keyword or punctuation as itself, the others
+#    from ``_WORDS``; the context says what its names and keywords are.
+
+
+@dataclass(frozen=True, eq=False)
+class _Context:
+    """A place in a rules file where the parser can stop, and how errors there are worded."""
+
+    #: Texts that end at this place (in each of its LALR states).
+    examples: tuple[str, ...]
+    #: What may stand here, said first; ``{keywords}`` lists the keywords taken here.
+    lead: tuple[str, ...] = ()
+    #: ``{keywords}`` lists only the keywords that start this grammar rule.
+    keywords_of: str = ""
+    #: Terminals the lead says already (named, or keywords and punctuation as written).
+    covers: frozenset[str] = frozenset()
+    #: What a terminal means here ({"CAMEL": "a relation label"}).
+    words: Mapping[str, str] = field(default_factory=dict)
+    #: What an unknown word here is ("catalog field"); without it, "unexpected 'word'".
+    unknown: str = ""
+    #: What the snake_case names here are ("types"), for a CamelCase word written here.
+    snake: str = "names here"
+    #: What the CamelCase names here are ("relation labels"), for a snake_case word here.
+    camel: str = ""
+    #: The CamelCase names that may stand here: the case hint is given only for one of them.
+    camel_known: Callable[[], Iterable[str]] | None = None
+    #: The case hint is given only when the text after the word matches this (a production's '->').
+    camel_when: str = ""
+    #: Right after a statement's snake_case subject: a '(' means a call in the wrong case.
+    calls: bool = False
+    #: ';' and new lines only separate declarations here: not "the end of the statement".
+    declarations: bool = False
+
+
+def _inside(opening: str, items: Iterable[str]) -> tuple[str, ...]:
+    """Texts that stop inside a block: after its '{', after a separator, after each item."""
+    items = tuple(items)
+    return (opening, f"{opening}\n", f"{opening} ;", f"{opening} {items[0]}\n", f"{opening} {items[0]};") + tuple(
+        f"{opening} {item}" for item in items)
+
+
+#: One of each catalog field, style, scene setting and statement: the parser is in a
+#: different LALR state after each, so the examples stop after every one of them.
+_FIELDS = ('noun "a"', 'plural "a"', "size 1 x 1 x 1", "shape a", 'mesh "a"', "colour #aaaaaa", "width 1",
+           "max_length 1", "segments 1")
+_STYLES = ("style s { }", "style s 2 { }", 'style s { noun "a" }', 'style s 2 { noun "a" }')
+_SETTINGS = ("extent 1 x 1", "ground a", "walls", "start A", "max_depth 1", "max_nodes 1", 'templates "a"')
+_BLOCKS = ("{ }", "{ a }", "{ a; }", "{ ; }", "{ a; b }", "{ ; a }", "{\na\n}")
+_STATEMENTS = ("A", "A()", "A(b)", "A(b, c)", "a as b", "a NextTo b", "a NextTo b NextTo c", "a as b NextTo c",
+               "some a", "each a", "a #1", "a NextTo some b", "a NextTo each b", "a NextTo b #1") + tuple(
+    f"a {block}" for block in _BLOCKS)  # and "a", a bare subject: the context "after a subject"
+
+_TARGET = ("a bound name", "'some TYPE'", "'each TYPE'", "'TYPE #N'")
+_AFTER_SUBJECT_WORDS = {"CAMEL": "a relation label"}
+
+
+#: Where the parser stops when the text before an error is a whole file (no examples:
+#: a text that parses is at the top level).
+_TOP_LEVEL = _Context(
+    examples=(), lead=("a catalog entry ({keywords})", "a production"), keywords_of="kind",
+    covers=frozenset({"CAMEL"}), camel="nonterminals", camel_when=r"\s*(->|\()", declarations=True)
+
+_CONTEXTS: dict[str, _Context] = {
+    "fields": _Context(
+        examples=_inside("object a {", _FIELDS + _STYLES) + _inside("object a { style s {", _FIELDS)
+        + _inside("object a { style s 2 {", _FIELDS),
+        lead=("a field ({keywords})",), keywords_of="_field", unknown="catalog field", declarations=True),
+    "scene settings": _Context(
+        examples=_inside("scene s {", _SETTINGS),
+        lead=("a scene setting ({keywords})",), keywords_of="_setting", unknown="scene setting", declarations=True),
+    "alternative": _Context(
+        examples=("S ->", "S ->\n", "S -> { } |", "S -> { } |\n", "S -> { }\n|", "S -> { } | { } |", "S(a) ->"),
+        lead=("an alternative: a block '{' or a weight like '2:'",), covers=frozenset({"{", "NUMBER", "_NL"})),
+    "block after a weight": _Context(
+        examples=("S -> 2:", "S -> 2:\n", "S -> { } | 2:", "S -> { } | 2:\n"),
+        lead=("a block '{'",), covers=frozenset({"{", "_NL"})),
+    "statement": _Context(
+        examples=("S -> {", "S -> {\n", "S -> { ;", "S -> { a\n", "S -> { a;", "S -> { a;;", "S -> { a\n\n",
+                  "S -> { a;\n"),
+        lead=("a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count)",),
+        covers=frozenset({"NAME", "CAMEL", "NUMBER", "some", "each"})),
+    "subject": _Context(
+        examples=("S -> { 2", "S -> { 0.5?", "S -> { 2 0.5?", "S -> { 1..2", "S -> { 1..2 0.5?"),
+        lead=("a type", "a nonterminal") + _TARGET, covers=frozenset({"NAME", "CAMEL", "some", "each"})),
+    "after a subject": _Context(
+        examples=("S -> { a", "S -> { 2 a", "S -> { 0.5? a", "S -> { 2 0.5? a", "S -> { 1..2 a"),
+        words=_AFTER_SUBJECT_WORDS, camel="relation labels", camel_known=RELATIONS.names, calls=True),
+    "after a statement part": _Context(
+        examples=tuple(f"S -> {{ {statement}" for statement in _STATEMENTS),
+        words=_AFTER_SUBJECT_WORDS, camel="relation labels", camel_known=RELATIONS.names),
+    "target": _Context(
+        examples=("S -> { a NextTo", "S -> { a NextTo b NextTo", "S -> { A(", "S -> { A(b,", "S -> { A(b, c,"),
+        lead=_TARGET, covers=frozenset({"NAME", "some", "each"}), snake="bound names"),
+    "type": _Context(examples=("S -> { some", "S -> { each", "S -> { a NextTo some", "S -> { a NextTo each"),
+                     words={"NAME": "a type"}, snake="types"),
+    "binding": _Context(examples=("S -> { a as",), words={"NAME": "a name to bind"}, snake="bound names"),
+    "parameters": _Context(examples=("P(", "P(a,"), words={"NAME": "a parameter name"}, snake="parameters"),
+    "start symbol": _Context(examples=("scene s { start",), words={"CAMEL": "a nonterminal"}, camel="nonterminals",
+                             camel_when=r"[ \t]*($|[\n;}#])"),
+    "type name": _Context(examples=("object", "group", "path", "junction"), words={"NAME": "a type name"},
+                          snake="types"),
+    "style name": _Context(examples=("object a { style",), words={"NAME": "a style name"}, snake="style names"),
+    "scene name": _Context(examples=("scene",), words={"NAME": "a scene name"}, snake="scene names"),
+    "ground": _Context(examples=("scene s { ground",), words={"NAME": "a ground name"}, snake="ground names"),
+    "shape": _Context(examples=("object a { shape",), words={"NAME": "a shape name"}, snake="shape names"),
+}
+
+#: The context of a place no example reaches: every terminal said on its own.
+_ANYWHERE = _Context(examples=())
 
 _END_OF_STATEMENT = "the end of the statement"
+_SEPARATORS = ("_NL", ";")
 
-#: What each terminal is, in words; keyword terminals not listed are quoted as is.
+#: What a terminal is, in words, where its pattern does not say it: regular expressions
+#: by terminal name, punctuation by its text (a keyword is always said as itself).
 _WORDS = {
     "NAME": "a name",
+    "CAMEL": "a CamelCase name",
     "NUMBER": "a number",
     "STRING": 'a quoted string ("...")',
     "COLOUR": "a colour like #8b5a2b",
     "ORDINAL": "an ordinal like #1",
-    "_NL": _END_OF_STATEMENT,
-    "SEMICOLON": _END_OF_STATEMENT,
     "$END": "the end of the file",
-    "LBRACE": "a block '{'",
-    "RBRACE": "'}'",
-    "LPAR": "'('",
-    "RPAR": "')'",
-    "COMMA": "','",
-    "COLON": "':'",
-    "QMARK": "'?'",
-    "VBAR": "'|'",
+    "{": "a block '{'",
 }
 
-
-def _terminal_text(name: str) -> str:
-    """The literal text of a keyword or punctuation terminal (``AS`` -> ``as``)."""
-    for terminal in _parser().terminals:
-        if terminal.name == name and terminal.pattern.type == "str":
-            return terminal.pattern.value
-    return name.lower()
+#: A word as the user wrote it: letters, digits, '_' and inner '-' (``max-depth``).
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:-[A-Za-z0-9_]+)*")
+_WORD_BEFORE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*$")
 
 
-def _expected_words(expected: set[str]) -> list[str]:
-    """The terminals a parser state accepts, as a short list of phrases.
+def _syntax_diagnostic(error: UnexpectedInput, text: str, file: str, sources: SourceTexts) -> Diagnostic:
+    unclosed = _unclosed_block(error, text)
+    if unclosed is not None:
+        brace, message = unclosed
+        return sources.diagnostic(SourceLocation(file, brace.line, brace.column), message)
+    offset, message = _explain(error, text)
+    line = text.count("\n", 0, offset) + 1
+    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
+    return sources.diagnostic(SourceLocation(file, line, column), message)
 
-    A state is recognised by a keyword it accepts (``noun``: inside a catalog entry;
-    ``extent``: a scene block; ``object``: the top level; ``some``: where a subject or
-    target may stand), so its whole family of keywords is said in one phrase.
-    """
-    if expected == {"NUMBER", "LBRACE", "_NL"}:  # after '->' or '|' (a newline may come first)
-        return ["an alternative: a block '{' or a weight like '2:'"]
-    keywords = {_terminal_text(name) for name in expected if name not in _WORDS and name not in ("NAME", "CAMEL")}
+
+def _literal(terminal: str) -> str | None:
+    """The text of a keyword or punctuation terminal (``AS`` -> ``as``); None for the others."""
+    pattern = _parser().get_terminal(terminal).pattern
+    return pattern.value if pattern.type == "str" else None
+
+
+def _error_offset(error: UnexpectedInput, text: str) -> int:
+    """Where in ``text`` the parser stopped (its length: at the end of the file)."""
+    if isinstance(error, UnexpectedCharacters):
+        return error.pos_in_stream
+    if error.token.type == "$END":
+        return len(text)
+    return error.token.start_pos
+
+
+# -- 1. a '{' never closed ----------------------------------------------------------
+
+
+def _unclosed_block(error: UnexpectedInput, text: str) -> tuple[Token, str] | None:
+    """The '{' that the error shows is never closed, and the message saying so; None if
+    the text has a '}' for every '{', or no '}' lets the parser read past the error."""
+    braces = [match.group() for match in _BRACES.finditer(text)]
+    unmatched = braces.count("{") - braces.count("}")
+    stack = error.interactive_parser.parser_state.value_stack
+    # A '{' is dropped from the tree when its block is reduced, so every '{' token still
+    # on the stack is a block that has not been closed yet.
+    opened = [index for index, value in enumerate(stack) if isinstance(value, Token) and _literal(value.type) == "{"]
+    offset = _error_offset(error, text)
+    # With the '}' the parser must read the rest of the error's line: one more word is
+    # not enough ("scene s { Extent 3 }" reads 'Extent' as a production's name).
+    line_end = text.find("\n", offset)
+    line_end = len(text) if line_end < 0 else line_end
+    for missing in range(1, min(unmatched, len(opened)) + 1):
+        closing = "}\n" * missing
+        for point, where in _closing_points(text, offset):
+            if _reads_past(text[:point] + closing + text[point:], line_end + len(closing)):
+                innermost = opened[-1]
+                owner = _block_owner(stack, innermost)
+                return stack[innermost], (f"the block {f'of {owner} ' if owner else ''}opened here is never "
+                                          f"closed (missing '}}' {where})")
+    return None
+
+
+#: Strings, comments (a '#' that no letter or digit follows, as one does in a colour or
+#: an ordinal) and braces: the braces found are those outside strings and comments.
+_BRACES = re.compile(r'"[^"\n]*"|#(?![0-9A-Za-z])[^\n]*|[{}]')
+
+
+def _closing_points(text: str, offset: int) -> list[tuple[int, str]]:
+    """Where a missing '}' may go, and how the message says where."""
+    if offset == len(text):
+        return [(offset, "at the end of the file")]
+    line_start = text.rfind("\n", 0, offset) + 1
+    line = text.count("\n", 0, offset) + 1
+    points = [(line_start, f"before line {line}")]
+    if text[line_start:offset].strip():
+        word = _WORD.match(text, offset)
+        points.append((offset, f"before '{word.group() if word else text[offset]}' on line {line}"))
+    return points
+
+
+def _reads_past(text: str, offset: int) -> bool:
+    """Whether ``text`` parses, or fails only after ``offset``."""
+    try:
+        _parser().parse(text)
+    except (UnexpectedToken, UnexpectedCharacters) as error:
+        return _error_offset(error, text) > offset
+    return True
+
+
+def _block_owner(stack: list, brace: int) -> str:
+    """What the '{' at ``stack[brace]`` opens, in words ("object 'table'", "production
+    'Stall'", "'stall'" for a statement's block), or "" if the stack does not say."""
+    for index in range(brace - 1, -1, -1):
+        value = stack[index]
+        if isinstance(value, Tree) and value.data == "kind":
+            return f"{value.children[0]} '{stack[index + 1]}'"
+        if isinstance(value, Tree) and value.data == "_subject":
+            return f"'{next(value.scan_values(lambda v: isinstance(v, Token)))}'"
+        literal = _literal(value.type) if isinstance(value, Token) else None
+        if literal in ("scene", "style"):
+            return f"{literal} '{stack[index + 1]}'"
+        if literal in ("->", "|"):
+            head = next((at for at in range(index - 1, -1, -1)
+                         if isinstance(stack[at], Token) and stack[at].type == "CAMEL"), None)
+            if head is None:
+                return ""
+            production = f"production '{stack[head]}'"
+            earlier = sum(1 for item in stack[head:index] if isinstance(item, Tree)
+                          for subtree in item.iter_subtrees() if subtree.data == "alternative")
+            return f"alternative {earlier + 1} of {production}" if literal == "|" else production
+        if literal == "{":
+            return ""
+    return ""
+
+
+# -- 2. where the parser stopped ----------------------------------------------------
+
+
+class _StateKey(int):
+    """The number of an LALR state, compared by ``match_examples`` in place of lark's
+    parser state, whose equality also counts the stack depth: with it an example would
+    only match stops nested exactly as deep as its own (in the first statement of a
+    top-level block, say); with the state alone it stands for its place at every depth."""
+
+    @classmethod
+    def of(cls, error: UnexpectedInput) -> _StateKey | None:
+        if isinstance(error.state, _StateKey):
+            return error.state
+        position = getattr(error.state, "position", None)
+        return cls(position) if isinstance(position, int) else None
+
+
+@functools.cache
+def _example_stop(example: str) -> UnexpectedInput | None:
+    """The error with which the parser stops at the end of an example (None if it parses)."""
+    try:
+        _parser().parse(example)
+    except (UnexpectedToken, UnexpectedCharacters) as error:
+        error.state = _StateKey.of(error)
+        return error
+    return None
+
+
+def _parse_example(example: str) -> None:
+    """``match_examples``'s parse function: raises the example's (cached) error."""
+    error = _example_stop(example)
+    if error is not None:
+        raise error.with_traceback(None)
+
+
+def _context(stop: UnexpectedInput) -> _Context:
+    """The ``_CONTEXTS`` entry with an example that stops where ``stop`` does."""
+    stop.state = _StateKey.of(stop)
+    if stop.state is None:
+        return _ANYWHERE
+    name = stop.match_examples(_parse_example, {name: context.examples for name, context in _CONTEXTS.items()})
+    return _CONTEXTS[name] if name else _ANYWHERE
+
+
+def _place(error: UnexpectedInput, text: str, offset: int) -> tuple[_Context, frozenset[str]]:
+    """Where the parser was before the unexpected input at ``offset``, and what it takes there."""
+    prefix = text[:offset]
+    try:
+        _parser().parse(prefix)
+    except (UnexpectedToken, UnexpectedCharacters) as stop:
+        if _error_offset(stop, prefix) < len(prefix):  # the text before reads otherwise alone (a new line before '|')
+            stop = error
+        return _context(stop), frozenset(stop.interactive_parser.accepts())
+    parser = _parser().parse_interactive(prefix)
+    parser.exhaust_lexer()
+    return _TOP_LEVEL, frozenset(parser.accepts())
+
+
+# -- 3. what was expected, in words ---------------------------------------------------
+
+
+def _explain(error: UnexpectedInput, text: str) -> tuple[int, str]:
+    """Where a syntax error is (an offset in ``text``) and what it is, in one sentence."""
+    offset = _word_start(text, _error_offset(error, text))
+    context, accepts = _place(error, text, offset)
+    hint = ""
+    if isinstance(error, UnexpectedCharacters):
+        unexpected = f"unexpected character '{text[offset]}'"
+    elif offset == len(text):
+        unexpected = "unexpected end of file"
+    elif error.token.type == "_NL":
+        unexpected = "unexpected end of line"
+    elif word := _WORD.match(text, offset):
+        word = word.group()
+        hint = _case_mix_up(context, word, accepts, text[offset + len(word):])
+        unexpected = f"unknown {context.unknown} '{word}'" if context.unknown and not hint else f"unexpected '{word}'"
+        hint = hint or _keyword_meant(word, _keywords(accepts))
+    else:
+        unexpected = f"unexpected '{error.token}'"
+        before = _WORD_BEFORE.search(text, 0, offset)
+        if context.calls and str(error.token) == "(" and before and before.group()[0].islower():
+            unexpected += f" after '{before.group()}'"
+            hint = case_hint("nonterminals are CamelCase", camel_case(before.group()))
+    if hint:
+        return offset, unexpected + hint
+    expected = _expected(context, accepts)
+    return offset, unexpected + (f"; expected {_join_words(expected)}" if expected else "")
+
+
+def _word_start(text: str, offset: int) -> int:
+    """Where the word that ``offset`` is in starts: a lexer that expects only keywords
+    reads ``nouns`` as the keyword ``noun`` and an unexpected ``s``, and the error is
+    about the whole word, where the keyword stood."""
+    start = offset
+    while start > 0 and (text[start - 1].isalnum() or text[start - 1] == "_"):
+        start -= 1
+    word = _WORD.match(text, start)
+    return start if word and word.end() > offset else offset
+
+
+def _keyword_meant(word: str, keywords: list[str]) -> str:
+    """"did you mean" the keyword nearest ``word``, or the longest one of four letters or
+    more that it starts with (``start_symbol``: 'start'); nothing for a single letter."""
+    if len(word) < 2:
+        return ""
+    prefixes = sorted((keyword for keyword in keywords if len(keyword) >= 4 and word.startswith(keyword)), key=len)
+    return did_you_mean(word, keywords) or (did_you_mean(prefixes[-1], prefixes[-1:]) if prefixes else "")
+
+
+def _case_mix_up(context: _Context, word: str, accepts: frozenset[str], after: str) -> str:
+    """The case hint for a word written in the other case than the names that may stand
+    here ("; types are snake_case: did you mean 'market_stand'?"), or ""."""
+    if word[0].isupper() and "NAME" in accepts and "CAMEL" not in accepts:
+        if word in RELATIONS or after.startswith("("):
+            return ""  # a relation label or a call where a name must stand: not a matter of case
+        return case_hint(f"{context.snake} are snake_case", snake_case(word))
+    if word[0].isupper() or "CAMEL" not in accepts or "NAME" in accepts or not context.camel:
+        return ""
+    convention = f"{context.camel} are CamelCase"
+    if context.camel_known is not None:
+        return case_mix_up(word, context.camel_known(), convention)
+    if context.camel_when and not re.match(context.camel_when, after):
+        return ""
+    return case_hint(convention, camel_case(word))
+
+
+def _keywords(accepts: Iterable[str], rule: str = "") -> list[str]:
+    """The keywords among ``accepts`` (those that start ``rule``, if given), in grammar order."""
+    first = _first_terminals(rule) if rule else None
+    return [literal for terminal in _parser().terminals
+            if terminal.name in accepts and (first is None or terminal.name in first)
+            and (literal := _literal(terminal.name)) and literal.isidentifier()]
+
+
+@functools.cache
+def _first_terminals(rule: str) -> frozenset[str]:
+    """The terminals that can start the grammar rule ``rule`` (its first symbols)."""
+    first: set[str] = set()
+    pending, seen = [rule], {rule}
+    while pending:
+        origin = pending.pop()
+        for grammar_rule in _parser().rules:
+            if grammar_rule.origin.name != origin or not grammar_rule.expansion:
+                continue
+            symbol = grammar_rule.expansion[0]
+            if symbol.is_term:
+                first.add(symbol.name)
+            elif symbol.name not in seen:
+                seen.add(symbol.name)
+                pending.append(symbol.name)
+    return frozenset(first)
+
+
+def _expected(context: _Context, accepts: frozenset[str]) -> list[str]:
+    """What the parser takes here, as phrases: the context's lead, the keywords, the
+    other terminals (named ones, then punctuation), the end of the statement and of the file."""
     words: list[str] = []
-    if "noun" in keywords:
-        words.append("a field (" + ", ".join(ENTRY_FIELDS + ("style",)) + ")")
-        keywords -= set(ENTRY_FIELDS) | {"style"}
-    if "extent" in keywords:
-        words.append("a scene setting (" + ", ".join(SCENE_SETTINGS) + ")")
-        keywords -= set(SCENE_SETTINGS)
-    if "object" in keywords:  # the top level
-        words.append("a catalog entry (" + ", ".join(KINDS) + ")")
-        keywords -= set(KINDS)
-        if "CAMEL" in expected:
-            words.append("a production")
-    elif "some" in keywords and "NUMBER" in expected:  # the start of a statement
-        words.append("a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count)")
-        keywords -= {"some", "each"}
-    elif "some" in keywords and "CAMEL" in expected:  # a subject after its count or '?'
-        words.append("a type, a nonterminal, a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
-        keywords -= {"some", "each"}
-    elif "some" in keywords:  # a relation's target or a call's argument
-        words.append("a bound name, 'some TYPE', 'each TYPE' or 'TYPE #N'")
-        keywords -= {"some", "each"}
-    elif "CAMEL" in expected:  # after a subject a label; after 'start' a nonterminal
-        words.append("a relation label" if "LBRACE" in expected else "a nonterminal")
-    elif "NAME" in expected:
-        words.append(_WORDS["NAME"])
-    if "as" in keywords:
-        words.insert(0, "'as'")
-        keywords.discard("as")
-    if "->" in keywords:
-        words.append("'->'")
-        keywords.discard("->")
-    words.extend(f"'{keyword}'" for keyword in sorted(keywords))
-    # A statement may end with either; a newline alone is only allowed layout (after '->').
-    # Between declarations, fields and scene settings, separators are only layout.
-    in_declarations = any(word.startswith(("a catalog entry", "a field", "a scene setting")) for word in words)
-    ends_statement = "SEMICOLON" in expected and not in_declarations
-    for name in ("NUMBER", "STRING", "COLOUR", "ORDINAL", "LPAR", "RPAR", "COMMA", "COLON", "QMARK",
-                 "VBAR", "LBRACE", "RBRACE", "_NL", "SEMICOLON", "$END"):
-        if name not in expected or (name == "RBRACE" and ends_statement):
-            continue
-        if name in ("_NL", "SEMICOLON") and not ends_statement:
-            continue
-        if name == "NUMBER" and any("count" in word for word in words):
-            continue
-        if _WORDS[name] not in words:
-            words.append(_WORDS[name])
+    covered = set(context.covers)
+    lead_keywords = _keywords(accepts, context.keywords_of)
+    for phrase in context.lead:
+        words.append(phrase.replace("{keywords}", ", ".join(lead_keywords)))
+        if "{keywords}" in phrase:
+            covered.update(lead_keywords)
+    ends_statement = not context.declarations and any(name in accepts and name not in covered for name in _SEPARATORS)
+    terminals = [terminal for terminal in _parser().terminals if terminal.name in accepts]
+    keywords = [terminal for terminal in terminals if (_literal(terminal.name) or "").isidentifier()]
+    others = sorted((terminal for terminal in terminals if terminal not in keywords),
+                    key=lambda terminal: terminal.pattern.type == "str")  # named terminals first
+    for terminal in keywords + others:
+        said_as = _literal(terminal.name) or terminal.name
+        if said_as in covered or said_as in _SEPARATORS or (said_as == "}" and ends_statement):
+            continue  # a '}' is the end of a block's last statement
+        words.append(context.words.get(said_as) or _WORDS.get(said_as)
+                     or (f"'{said_as}'" if _literal(terminal.name) else said_as.lower()))
+    if ends_statement:
+        words.append(_END_OF_STATEMENT)
+    if "$END" in accepts:
+        words.append(_WORDS["$END"])
     return words
 
 
@@ -373,54 +723,3 @@ def _join_words(words: list[str]) -> str:
     if len(words) <= 1:
         return "".join(words)
     return ", ".join(words[:-1]) + " or " + words[-1]
-
-
-def _describe_token(token: Token) -> str:
-    if token.type == "$END":
-        return "end of file"
-    if token.type == "_NL":
-        return "end of line"
-    return f"'{token}'"
-
-
-def _end_position(text: str) -> tuple[int, int]:
-    lines = text.split("\n")
-    return len(lines), len(lines[-1]) + 1
-
-
-def _syntax_diagnostic(
-    error: UnexpectedToken | UnexpectedCharacters, text: str, file: str, sources: SourceTexts
-) -> Diagnostic:
-    # Lark's ``expected`` is the LALR state's lookahead set, which merges contexts (a
-    # statement's subject would seem to accept ')' because an argument does); asking the
-    # parser where it failed which terminals it takes gives the exact set.
-    expected = set(error.interactive_parser.accepts())
-    if isinstance(error, UnexpectedCharacters):
-        line, column = error.line, error.column
-        message = f"unexpected character '{text[error.pos_in_stream]}'"
-    elif error.token.type == "$END":
-        line, column = _end_position(text)
-        message = "unexpected end of file"
-    else:
-        line, column = error.token.line, error.token.column
-        message = _unexpected_word_message(error.token, expected)
-    words = _expected_words(expected)
-    if words and "did you mean" not in message:
-        message += f"; expected {_join_words(words)}"
-    line = max(1, min(line or 1, len(text.split("\n"))))
-    column = max(1, column or 1)
-    return sources.diagnostic(SourceLocation(file, line, column), message)
-
-
-def _unexpected_word_message(token: Token, expected: set[str]) -> str:
-    """The message for an unexpected token, naming a misspelt field or setting."""
-    keywords = {_terminal_text(name) for name in expected}
-    word = str(token)
-    if token.type == "NAME" or token.type not in ("NUMBER", "STRING", "COLOUR", "ORDINAL", "CAMEL"):
-        if "noun" in keywords and word.isidentifier():
-            return f"unknown catalog field '{word}'" + did_you_mean(word, ENTRY_FIELDS + ("style",))
-        if "extent" in keywords and word.isidentifier():
-            return f"unknown scene setting '{word}'" + did_you_mean(word, SCENE_SETTINGS)
-        if "object" in keywords and word.isidentifier():
-            return f"unexpected '{word}'" + did_you_mean(word, KINDS + ("scene", "include"))
-    return f"unexpected {_describe_token(token)}"

@@ -1,8 +1,11 @@
 """Procedural low-poly mesh builders, one per ``shape`` name a catalog entry may use.
 
 A builder takes the catalog size (w, h, d) and colour and returns a ``trimesh.Trimesh``
-in the object's local frame: base centre at the origin, +Y up, front towards +Z
-(DESIGN.md conventions). ``scenewright.render.meshes`` then fits the result exactly to
+in the object's local frame: base centre at the origin, +Y up, front towards +Z (the
+convention of ``scenewright.core.frames``). The shape names, and what each one's front
+is, are the registry ``scenewright.core.shapes.SHAPES``, which the static checks read
+too; importing this module fails unless its builders and that registry name exactly
+the same shapes. ``scenewright.render.meshes`` then fits the result exactly to
 the size, so a builder only has to get proportions right; each one builds at the real
 size so the fit barely scales. Colours go on as per-face colours so one object can have
 several: the catalog colour is the main one (a house's walls), the builder picks the
@@ -16,10 +19,12 @@ rooms). Every builder stays well under 500 triangles.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import numpy as np
 import trimesh
+
+from scenewright.core.shapes import SHAPES, Shape
 
 Builder = Callable[[tuple[float, float, float], tuple[float, float, float]], trimesh.Trimesh]
 
@@ -869,3 +874,27 @@ def crate_wagon(size, colour) -> trimesh.Trimesh:
         return stack
 
     return _wagon(size, colour, crates)
+
+
+# ---------------------------------------------------------------------------------
+# The builders and the shape registry name the same shapes, or this module fails to import.
+
+
+class ShapeRegistryMismatch(RuntimeError):
+    """``BUILDERS`` and ``scenewright.core.shapes.SHAPES`` name different shapes."""
+
+
+def check_registry(builders: Mapping[str, Builder], shapes: Mapping[str, Shape]) -> None:
+    """Raise ``ShapeRegistryMismatch`` unless ``builders`` and ``shapes`` have the same names."""
+    unregistered = sorted(set(builders) - set(shapes))
+    unbuilt = sorted(set(shapes) - set(builders))
+    problems = []
+    if unregistered:
+        problems.append(f"builders with no entry in scenewright.core.shapes.SHAPES: {', '.join(unregistered)}")
+    if unbuilt:
+        problems.append(f"shapes in scenewright.core.shapes.SHAPES with no builder: {', '.join(unbuilt)}")
+    if problems:
+        raise ShapeRegistryMismatch("; ".join(problems))
+
+
+check_registry(BUILDERS, SHAPES)

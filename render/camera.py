@@ -22,8 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from scenewright.errors import InputError
-from scenewright.scene import Scene, footprint_corners
+from scenewright.core.errors import InputError
+from scenewright.core.scene import Scene, object_corners
 
 VIEWS = ("perspective", "top")
 
@@ -127,7 +127,7 @@ def scene_points(scene: Scene) -> np.ndarray:
     for obj in scene.objects:
         if obj.kind == "group":
             continue  # a group's box is the union of its members, framed through them
-        corners = footprint_corners(obj)
+        corners = object_corners([obj])[0]
         bottom, top = obj.position[1], obj.position[1] + obj.size[1]
         for y in (bottom, top):
             chunks.append(np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]))

@@ -16,7 +16,7 @@ import numpy as np
 import trimesh
 
 from scenewright.atomic import write_atomic
-from scenewright.scene import Scene, SceneObject, ScenePath
+from scenewright.core.scene import Scene, SceneObject, ScenePath
 
 from .meshes import ground_mesh, junction_mesh, object_mesh, object_transform, path_mesh
 

@@ -3,22 +3,24 @@
 Objects are built in their local frame by the procedural builder their ``shape`` names
 (``scenewright.render.builders``), or loaded from the user's mesh file, and always
 fitted exactly to the catalog size, so what is drawn is the box the layout placed. A
-shape with no builder is drawn as a plain box of the object's size and colour: a rules
-file may name shapes this version does not model yet, and the box is still exactly the
-volume the layout reasoned about.
+shape with no builder (``validate`` warns about it) is drawn as a plain box of the
+object's size and colour, still exactly the volume the layout reasoned about. A mesh
+file is read by ``scenewright.core.shapes.load_mesh_file``, as ``validate`` reads it:
+one that has become unreadable since raises its ``MeshFileError``, an input error.
 ``object_transform`` gives the local-to-world pose. Rooms (``scene.walls``) get the
 walls a camera sees from inside (``room_walls``). Everything is in metres, +Y up.
 """
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 import numpy as np
 import trimesh
 
-from scenewright.scene import Scene, SceneObject, ScenePath
+from scenewright.core.frames import transform_matrix
+from scenewright.core.scene import Scene, SceneObject, ScenePath
+from scenewright.core.shapes import DEFAULT_SHAPE, load_mesh_file
 
 from .builders import BUILDERS, block, coloured
 
@@ -33,10 +35,6 @@ WALL_THICKNESS = 0.1
 WALL_COLOUR = (0.86, 0.83, 0.76)
 
 
-class MeshError(ValueError):
-    """A user mesh file could not be loaded."""
-
-
 def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
     """The object's mesh in its local frame, fitted to ``obj.size`` (base centre at 0)."""
     return shaped_mesh(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
@@ -49,19 +47,14 @@ def shaped_mesh(shape: str | None, mesh_file: str | None, size: tuple, colour: t
         mesh = _load_user_mesh(mesh_file).copy()
         mesh = coloured(mesh, colour) if not _has_colours(mesh) else mesh
     else:
-        build = BUILDERS.get(shape or "box", BUILDERS["box"])  # unknown shape: its box
+        build = BUILDERS.get(shape or DEFAULT_SHAPE, BUILDERS[DEFAULT_SHAPE])  # unknown shape: its box
         mesh = build(size, colour)
     return fit_to_size(mesh, size)
 
 
 def object_transform(obj: SceneObject) -> np.ndarray:
     """4x4 local-to-world matrix: yaw about +Y, then the base centre."""
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    matrix = np.eye(4)
-    # Yaw turns local +Z (forward) towards +X: R = rotation about +Y by yaw.
-    matrix[:3, :3] = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
-    matrix[:3, 3] = obj.position
-    return matrix
+    return transform_matrix(*obj.position, obj.yaw)
 
 
 def fit_to_size(mesh: trimesh.Trimesh, size) -> trimesh.Trimesh:
@@ -141,13 +134,8 @@ def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
 
 @lru_cache(maxsize=64)
 def _load_user_mesh(path: str) -> trimesh.Trimesh:
-    try:
-        loaded = trimesh.load(path, force="mesh")
-    except Exception as error:  # trimesh raises many kinds for unreadable files
-        raise MeshError(f"{path}: cannot load mesh ({error})") from None
-    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise MeshError(f"{path}: file has no triangles")
-    return loaded
+    """A mesh file's triangles, read once per process (``MeshFileError`` if unusable)."""
+    return load_mesh_file(path)
 
 
 def _has_colours(mesh: trimesh.Trimesh) -> bool:

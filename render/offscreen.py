@@ -32,8 +32,8 @@ import trimesh
 from PIL import Image
 
 from scenewright.atomic import write_atomic
-from scenewright.errors import GenerationError
-from scenewright.scene import Scene
+from scenewright.core.errors import GenerationError
+from scenewright.core.scene import Scene
 
 from .camera import Camera, frame_scene
 from .meshes import ground_mesh, junction_mesh, object_transform, path_mesh, room_walls, shaped_mesh
@@ -235,12 +235,6 @@ class Renderer:
             pixels = np.bincount(_decode_index(seg_colour).ravel(), minlength=len(entities) + 1)
             counts[batch] = pixels[np.asarray(batch) + 1]
         return counts
-
-
-def render_scene(scene: Scene, view: str = "perspective", **renderer_options) -> RenderResult:
-    """Render one scene with a renderer made (and closed) for it; see ``Renderer``."""
-    with Renderer(**renderer_options) as renderer:
-        return renderer.render(scene, view)
 
 
 def save_render(result: RenderResult, directory: str | os.PathLike, *, stem: str = "preview") -> dict[str, Path]:

@@ -6,14 +6,8 @@ The pipeline (see DESIGN.md): a rules file is parsed into a grammar
 rendered and exported (``scenewright.render``).
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from scenewright.api import describe, export, generate, load_rules, render_image
+from scenewright.core import VERSION as __version__
+from scenewright.core.scene import Scene
 
-try:
-    __version__ = version("scenewright")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0.0.0"
-
-from scenewright.api import generate, load_rules
-from scenewright.scene import Scene
-
-__all__ = ["Scene", "__version__", "generate", "load_rules"]
+__all__ = ["Scene", "__version__", "describe", "export", "generate", "load_rules", "render_image"]

@@ -1,8 +1,13 @@
 """The pipeline in one call: rules -> scene graph -> layout -> Scene -> text -> images.
 
 ``generate`` is what the README shows and what the CLI and the dataset job build on;
-the smaller functions here are its steps, each timing itself into ``scene.timings``
-(seconds, keys ``expand``, ``layout``, ``describe``, ``render``, ``export``).
+the smaller functions here are its steps. Stages return values; the steps here join
+them into a new Scene (``dataclasses.replace``), never change the one they were given,
+and add their wall time to the new scene's ``timings`` (seconds, keys ``expand``,
+``layout``, ``describe``, ``render``, ``export``).
+
+Seeds: one int per scene, validated here (``check_seed``); each stage draws from its own
+child stream of it (``scenewright.core.seeds``).
 
 Reproducibility: the same rules, seed and scenewright version give the same scene. Wall
 clock times are the one thing that differs between runs, so ``reproducible_json`` leaves
@@ -18,11 +23,14 @@ import os
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from scenewright.errors import InputError
-from scenewright.scene import Scene, assemble_scene
+from scenewright.core.errors import InputError
+from scenewright.core.relations import RELATIONS
+from scenewright.core.scene import Scene, assemble_scene
+from scenewright.core.seeds import check_seed
 
 if TYPE_CHECKING:
     from scenewright.describer import Description
@@ -79,6 +87,7 @@ def build_scene(
     from scenewright.generator import expand
     from scenewright.generator.layout import layout_scene
 
+    seed = check_seed(seed)
     loaded = load_rules(rules)
     timings: dict[str, float] = {}
     with timed(timings, "expand"):
@@ -92,22 +101,57 @@ def build_scene(
     return scene
 
 
+def describe(
+    scene: Scene,
+    style: str = "full",
+    variant: int = 0,
+    templates: str | os.PathLike[str] | None = None,
+) -> Description:
+    """An English description of ``scene`` (a ``Description``); the scene is unchanged.
+
+    ``templates``: a folder of description templates for this description only; by
+    default the scene's own (``scene.templates``, from its rule set), if any.
+    """
+    from scenewright.describer import describe as describe_stage
+
+    check_choice("style", style, STYLES)
+    return describe_stage(scene, style=style, variant=variant, templates=templates or scene.templates)
+
+
 def describe_scene(
     scene: Scene,
     *,
     style: str = "full",
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
-) -> Description:
-    """Describe ``scene``, store the description in it, and return it.
+) -> Scene:
+    """``scene`` with its description (``describe``) and the time it took."""
+    timings = dict(scene.timings)
+    with timed(timings, "describe"):
+        description = describe(scene, style=style, variant=variant, templates=templates)
+    return replace(scene, description=description.to_dict(), timings=timings)
 
-    ``templates``: a folder of description templates for this description only; by
-    default the scene's own (``scene.templates``, from its rule set), if any.
+
+def render_image(
+    scene: Scene,
+    width: int = DEFAULT_SIZE[0],
+    height: int = DEFAULT_SIZE[1],
+    view: str = "perspective",
+    renderer: Renderer | None = None,
+) -> RenderResult:
+    """Render ``scene`` offscreen: colour, depth, segmentation and per-object metadata
+    (``RenderResult.metadata`` is what scene.json stores under ``render``).
+
+    Pass a ``renderer`` to reuse one OpenGL context over many scenes (the image then has
+    the renderer's size); otherwise one is made for this call and closed after it.
     """
-    with timed(scene.timings, "describe"):
-        description = scene.describe(style=style, variant=variant, templates=templates)
-    scene.description = description.to_dict()
-    return description
+    from scenewright.render.offscreen import Renderer
+
+    check_choice("view", view, VIEWS)
+    if renderer is not None:
+        return renderer.render(scene, view=view)
+    with Renderer(width, height) as own:
+        return own.render(scene, view=view)
 
 
 def render_scene(
@@ -116,32 +160,21 @@ def render_scene(
     size: tuple[int, int] = DEFAULT_SIZE,
     view: str = "perspective",
     renderer: Renderer | None = None,
-) -> RenderResult:
-    """Render ``scene`` offscreen, store the render metadata in it, and return the images.
+) -> tuple[Scene, RenderResult]:
+    """``scene`` with its render metadata and the time it took, and the images."""
+    from scenewright.render.offscreen import render_metadata
 
-    Pass a ``renderer`` to reuse one OpenGL context over many scenes (the image then has
-    the renderer's size, not ``size``); otherwise one is made for this call and closed
-    after it.
-    """
-    from scenewright.render.offscreen import Renderer, render_metadata
-
-    with timed(scene.timings, "render"):
-        if renderer is None:
-            with Renderer(*size) as own:
-                result = own.render(scene, view=view)
-        else:
-            result = renderer.render(scene, view=view)
-    scene.render = render_metadata(result)
-    scene.images = result
-    return result
+    timings = dict(scene.timings)
+    with timed(timings, "render"):
+        result = render_image(scene, *size, view=view, renderer=renderer)
+    return replace(scene, render=render_metadata(result), timings=timings), result
 
 
-def export_scene(scene: Scene, path: str | os.PathLike[str]) -> Path:
+def export(scene: Scene, path: str | os.PathLike[str]) -> Path:
     """Write the scene as a binary glTF file (one named node per object)."""
     from scenewright.render.export import export_glb
 
-    with timed(scene.timings, "export"):
-        export_glb(scene, path)
+    export_glb(scene, path)
     return Path(path)
 
 
@@ -152,29 +185,22 @@ def generate(
     style: str = "full",
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
-    render: bool = False,
-    size: tuple[int, int] = DEFAULT_SIZE,
-    view: str = "perspective",
 ) -> Scene:
-    """Generate one scene: expand, lay out, describe and (when ``render``) render it.
+    """Generate one scene: expand, lay out and describe it.
 
-    ``rules`` is a shipped rule-set name, a path to a ``.rules`` file, or loaded Rules.
-    The returned Scene has ``description`` filled, ``timings`` per stage, and with
-    ``render=True`` its ``render`` metadata plus the pixels in ``scene.images``. A
-    layout that could not satisfy everything is returned as it is, with
-    ``scene.layout.ok`` false and ``scene.layout.problems`` saying why.
+    ``rules`` is a shipped rule-set name, a path to a ``.rules`` file, or loaded Rules;
+    ``seed`` a whole number from 0 to 2**63 - 1. The returned Scene has ``description``
+    filled and ``timings`` per stage; ``render_image(scene)`` draws it and ``export(scene,
+    path)`` writes its GLB. A layout that could not satisfy everything is returned as
+    it is, with ``scene.layout.ok`` false and ``scene.layout.problems`` saying why.
 
     ``templates`` is a folder of description templates that replaces the rule set's
     own (the scene block's ``templates``); the scene records it in ``scene.templates``
     so that describing the scene again uses it too.
     """
     check_choice("style", style, STYLES)
-    check_choice("view", view, VIEWS)
     scene = build_scene(rules, seed, templates=checked_templates(templates))
-    describe_scene(scene, style=style, variant=variant)
-    if render:
-        render_scene(scene, size=size, view=view)
-    return scene
+    return describe_scene(scene, style=style, variant=variant)
 
 
 def checked_templates(templates: str | os.PathLike[str] | None) -> str | None:
@@ -204,7 +230,7 @@ def timings_of(scene: Scene) -> dict[str, float]:
 def summary_line(scene: Scene) -> str:
     """One line for people: objects, relations satisfied, energy, time."""
     objects = len(scene.placed_objects())
-    stated = [r for r in scene.relations if r.label != "PathConnectedTo"]
+    stated = [r for r in scene.relations if r.label in RELATIONS and RELATIONS[r.label].family != "structural"]
     satisfied = sum(r.satisfied for r in stated)
     seconds = sum(scene.timings.values())
     verdict = "ok" if scene.layout.ok else "LAYOUT FAILED"

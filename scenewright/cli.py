@@ -23,7 +23,7 @@ from pathlib import Path
 
 from scenewright import __version__
 from scenewright.api import STYLES, VIEWS
-from scenewright.errors import InputError, ScenewrightError
+from scenewright.core.errors import InputError, ScenewrightError
 
 PROG = "scenewright"
 #: Files ``generate`` writes; stale ones from an earlier run into the same directory
@@ -131,7 +131,7 @@ class SceneFileError(InputError):
 
 def read_scene(path: str):
     """A Scene from a scene.json file, checked against the schema; ``SceneFileError`` if bad."""
-    from scenewright.scene import Scene
+    from scenewright.core.scene import Scene
     from scenewright.schema_check import validate_scene_dict
 
     try:
@@ -151,27 +151,30 @@ def read_scene(path: str):
 
 
 def run_generate(args: argparse.Namespace) -> int:
-    from scenewright.api import export_scene, generate, reproducible_json, summary_line, timings_of
-    from scenewright.atomic import staged_outputs
-    from scenewright.generator.layout.plan import draw_plan
-    from scenewright.render.offscreen import save_render
+    from scenewright.api import generate, render_scene
 
-    scene = generate(
-        args.rules,
-        args.seed,
-        style=args.style,
-        variant=args.variant,
-        templates=args.templates,
-        render=args.render,
-        size=args.size,
-        view=args.view,
-    )
+    scene = generate(args.rules, args.seed, style=args.style, variant=args.variant, templates=args.templates)
+    images = None
+    if args.render:
+        scene, images = render_scene(scene, size=args.size, view=args.view)
+    return write_scene_outputs(args, scene, images)
+
+
+def write_scene_outputs(args: argparse.Namespace, scene, images) -> int:
+    """Write what ``generate`` writes for a finished scene (all files appear together or
+    not at all) and report the layout's verdict: exit 0 when ok, 1 when not."""
+    from scenewright.api import export, reproducible_json, summary_line, timed, timings_of
+    from scenewright.atomic import staged_outputs
+    from scenewright.render.offscreen import save_render
+    from scenewright.render.plan import draw_plan
+
     directory = output_directory(args.output)  # made only once there is something to write
     with staged_outputs(directory) as stage:
         (stage / "description.txt").write_text(scene.description["text"] + "\n", encoding="utf-8")
-        if args.render:
-            save_render(scene.images, stage, stem="preview")
-        export_scene(scene, stage / "scene.glb")
+        if images is not None:
+            save_render(images, stage, stem="preview")
+        with timed(scene.timings, "export"):
+            export(scene, stage / "scene.glb")
         draw_plan(scene, stage / "plan.png")
         (stage / "scene.json").write_text(reproducible_json(scene), encoding="utf-8")
         (stage / "timings.json").write_text(json.dumps(timings_of(scene), indent=1) + "\n", encoding="utf-8")
@@ -188,6 +191,48 @@ def run_generate(args: argparse.Namespace) -> int:
         file=sys.stderr,
     )
     return 1
+
+
+def run_layout(args: argparse.Namespace) -> int:
+    """Lay a scene.json out again, keeping the pinned ids where they are; write as generate does."""
+    from scenewright.api import checked_templates, describe_scene, render_scene, timed
+    from scenewright.core.scene import assemble_scene
+    from scenewright.generator.layout import layout_scene
+    from scenewright.generator.layout.pinning import pins_from_scene, scene_layout
+    from scenewright.generator.layout.problem import compile_problem
+
+    old = read_scene(args.scene)
+    templates = checked_templates(args.templates)
+    try:
+        graph = old.graph()
+        problem = compile_problem(graph)
+    except InputError as error:
+        raise SceneFileError(args.scene, str(error)) from error
+    except (KeyError, ValueError, TypeError) as error:
+        raise SceneFileError(args.scene, f"not a valid scene graph: {error}") from error
+    ids = [part.strip() for text in args.pin for part in text.split(",") if part.strip()]
+    pins = pins_from_scene(old, problem, ids)
+    start = None
+    if args.warm:
+        poses, points = scene_layout(old)
+        start = {**poses, **points}
+    timings: dict[str, float] = {}
+    with timed(timings, "layout"):
+        layout = layout_scene(graph, args.seed, pinned=pins.poses, pinned_paths=pins.paths, start=start)
+    scene = assemble_scene(graph, layout, rules=old.rules, seed=args.seed)
+    scene.derivation = list(old.derivation)
+    if templates is not None:
+        scene.templates = templates
+    scene.timings.update(timings)
+    scene = describe_scene(scene, style=args.style, variant=args.variant)
+    images = None
+    if args.render:
+        scene, images = render_scene(scene, size=args.size, view=args.view)
+    if ids:
+        named = list(dict.fromkeys(ids))
+        also = f" (with {', '.join(pins.added)})" if pins.added else ""
+        say(args, f"pinned: {', '.join(named)}{also}")
+    return write_scene_outputs(args, scene, images)
 
 
 def run_dataset(args: argparse.Namespace) -> int:
@@ -269,30 +314,32 @@ def run_expand(args: argparse.Namespace) -> int:
 
 
 def run_describe(args: argparse.Namespace) -> int:
+    from scenewright.api import describe
+
     scene = read_scene(args.scene)
-    print(scene.describe(style=args.style, variant=args.variant, templates=args.templates).text)
+    print(describe(scene, style=args.style, variant=args.variant, templates=args.templates).text)
     return 0
 
 
 def run_render(args: argparse.Namespace) -> int:
-    from scenewright.api import render_scene
+    from scenewright.api import render_image
     from scenewright.render.offscreen import save_render
 
     scene = read_scene(args.scene)
     target = Path(args.output)
     output_directory(str(target.parent))
-    result = render_scene(scene, size=args.size, view=args.view)
+    result = render_image(scene, *args.size, view=args.view)
     written = save_render(result, target.parent, stem=target.stem)
     say(args, "wrote " + ", ".join(str(p) for p in written.values()))
     return 0
 
 
 def run_export(args: argparse.Namespace) -> int:
-    from scenewright.api import export_scene
+    from scenewright.api import export
 
     scene = read_scene(args.scene)
     output_directory(str(Path(args.output).parent))
-    export_scene(scene, args.output)
+    export(scene, args.output)
     say(args, f"wrote {args.output}")
     return 0
 
@@ -306,8 +353,16 @@ def run_schema(args: argparse.Namespace) -> int:
 
 def run_list(args: argparse.Namespace) -> int:
     from scenewright.api import load_rules
+    from scenewright.core.shapes import SHAPES
     from scenewright.generator import shipped_rule_sets
 
+    if args.shapes:
+        rows = [("shape", "front (local +Z; its left is +X)", "used from")]
+        rows += [(shape.name, shape.front, shape.used_from) for shape in SHAPES.values()]
+        name_width, front_width = (max(len(row[column]) for row in rows) for column in (0, 1))
+        for name, front, used_from in rows:
+            print(f"{name:<{name_width}}  {front:<{front_width}}  {used_from}")
+        return 0
     for name in shipped_rule_sets():
         rules = load_rules(name)
         width, depth = rules.params.extent
@@ -333,6 +388,22 @@ preview.png (+ preview_depth.png, preview_seg.png, preview_ids.json), scene.glb 
 plan.png (a top-down debug plan). All files appear together or not at all. When the
 layout could not satisfy every relation the files are still written (scene.json says
 "ok": false) and the exit code is 1.""",
+    "layout": """\
+examples:
+  scenewright generate village --seed 7 -o out/
+  scenewright layout out/scene.json --pin tower_1,market_stand_1 --seed 2 -o out2/
+  scenewright layout out/scene.json --pin road_1 --pin windmill_1 --warm --no-render -o out3/
+
+lays the scene of SCENE_JSON out again with the layout seed N, keeping the pinned ids
+exactly where they are (x, y, z and yaw unchanged) and placing everything else around
+them. A group pins all its members, a path its control points and the junction it
+starts at, an object also the objects beneath it. Unpinned things start from a fresh
+placement, or with --warm from their poses in SCENE_JSON.
+
+writes the same files as generate, with a new description; scene.json keeps the rules,
+objects and relations and records --seed as its "seed". The same input file, pins and
+seed give the same scene.json. When the layout could not satisfy every relation the
+files are still written ("ok": false) and the exit code is 1.""",
     "dataset": """\
 examples:
   scenewright dataset village -n 1000 -o data/village --captions 3 --size 512x512
@@ -377,7 +448,11 @@ examples:
   scenewright schema > scene.schema.json""",
     "list": """\
 examples:
-  scenewright list""",
+  scenewright list
+  scenewright list --shapes
+
+--shapes prints each procedural shape a catalog entry may name ("shape NAME") with its
+footprint convention: what its front (local +Z) shows and where a person uses it from.""",
 }
 
 
@@ -442,6 +517,22 @@ def build_parser() -> CommandLineParser:
     generate.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(generate, "640x480")
 
+    layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
+    layout.add_argument("scene", metavar="SCENE_JSON")
+    layout.add_argument(
+        "--pin",
+        action="append",
+        default=[],
+        metavar="ID[,ID...]",
+        help="objects, groups, junctions or paths that keep their poses (repeatable)",
+    )
+    layout.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
+    layout.add_argument("--warm", action="store_true", help="start unpinned objects from their old poses")
+    layout.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
+    style_options(layout)
+    layout.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    view_options(layout, "640x480")
+
     dataset = command("dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset)
     dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
     dataset.add_argument(
@@ -498,7 +589,10 @@ def build_parser() -> CommandLineParser:
     export.add_argument("-o", "--output", default="scene.glb", metavar="GLB", help="output file (scene.glb)")
 
     command("schema", "print the scene.json JSON Schema", run_schema)
-    command("list", "list the shipped rule sets and their object types", run_list)
+    listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
+    listing.add_argument(
+        "--shapes", action="store_true", help="list the procedural shapes and the side each one faces instead"
+    )
     return parser
 
 
@@ -517,6 +611,11 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted (rerunning a dataset command resumes it)", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader stopped early (``scenewright list --shapes | head``): nothing is
+        # wrong. Point stdout at /dev/null so Python's flush at exit cannot fail again.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except Exception as error:  # a bug, not the user's fault: say so in one line
         if debug:
             traceback.print_exc()

@@ -45,7 +45,7 @@ import numpy as np
 
 from scenewright.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.dataset_stats import StatsCollector, write_stats
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 #: The settings that must not change when a run is resumed into the same directory.
 SETTINGS_FILE = "dataset.json"

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 #: How long to wait for the scheduler before saying it cannot be reached.
 CONNECT_TIMEOUT = "10s"

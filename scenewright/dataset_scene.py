@@ -16,10 +16,10 @@ from collections import Counter
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from scenewright.api import build_scene, describe_scene, render_scene, reproducible_json, timed, timings_of
+from scenewright.api import build_scene, describe, describe_scene, render_scene, reproducible_json, timed, timings_of
 from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
-from scenewright.errors import ScenewrightError
-from scenewright.scene import Scene
+from scenewright.core.errors import ScenewrightError
+from scenewright.core.scene import Scene
 
 if TYPE_CHECKING:
     from scenewright.generator.rules import Rules
@@ -67,10 +67,10 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         failed = {f"failed/{stem}.json": reproducible_json(scene).encode()}
         return SceneProduct(index, seed, False, failed, None, scene_stats(scene, []))
 
-    full = describe_scene(scene, style="full")
+    scene = describe_scene(scene, style="full")
     with timed(scene.timings, "describe"):
-        captions = [scene.describe(style="short", variant=k).text for k in range(spec.captions)]
-    result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
+        captions = [describe(scene, style="short", variant=k).text for k in range(spec.captions)]
+    scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
     images = {kind: data for kind, (_, data) in encode_render(result).items()}
 
     files = {f"images/{stem}.png": images["colour"]}
@@ -83,10 +83,11 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         files[f"segmentation/{stem}_ids.json"] = images["ids"]
         row["segmentation_file_name"] = f"segmentation/{stem}.png"
     files[f"scenes/{stem}.json"] = reproducible_json(scene).encode()
-    row.update(caption=captions[0], text=full.text)
+    full_text = scene.description["text"]
+    row.update(caption=captions[0], text=full_text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=scene.layout.ok)
-    return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full.text, *captions]))
+    return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full_text, *captions]))
 
 
 def scene_stats(scene: Scene, texts: list[str]) -> dict:

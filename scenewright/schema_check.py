@@ -16,7 +16,7 @@ from typing import Any
 import jsonschema
 from jsonschema.exceptions import best_match
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 SCHEMA_FILE = "scene.schema.json"
 

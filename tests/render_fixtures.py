@@ -7,8 +7,8 @@ import os
 
 import pytest
 
-from scenewright.errors import GenerationError
-from scenewright.scene import Scene, SceneObject, ScenePath
+from scenewright.core.errors import GenerationError
+from scenewright.core.scene import Scene, SceneObject, ScenePath
 
 
 def thing(

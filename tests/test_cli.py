@@ -15,7 +15,7 @@ import pytest
 
 from scenewright import __version__
 from scenewright.cli import main
-from scenewright.scene import LayoutStats, Relation, Scene, SceneObject, ScenePath
+from scenewright.core.scene import LayoutStats, Relation, Scene, SceneObject, ScenePath
 
 SCENEWRIGHT = Path(sys.executable).with_name("scenewright")
 
@@ -47,7 +47,7 @@ def scene_file(tmp_path) -> Path:
             SceneObject("pot_1", "pot", "object", "pot", None, None, None, [0.0, 0.8, 2.0], 0.0, [0.4, 0.3, 0.4], shape="box", order=2),
         ],
         paths=[ScenePath("road_1", "road", "road", None, None, [[-10.0, 0.0], [10.0, 0.0]], 3.0, order=0)],
-        relations=[Relation("pot_1", "table_1", "OnTopOf"), Relation("table_1", "road_1", "NextTo")],
+        relations=[Relation("pot_1", "table_1", "OnTopOf", 0.0, True), Relation("table_1", "road_1", "NextTo", -0.01, True)],
         layout=LayoutStats(energy=0.0, steps=10, acceptance=0.5, ok=True),
         version=__version__,
     )  # fmt: skip
@@ -303,13 +303,13 @@ def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
 
 def test_a_failing_stage_leaves_no_partial_outputs(capsys, tmp_path, monkeypatch):
     from scenewright import api
-    from scenewright.errors import GenerationError
+    from scenewright.core.errors import GenerationError
 
     def broken_export(scene, path):
         Path(path).write_bytes(b"half a file")
         raise GenerationError("the exporter broke")
 
-    monkeypatch.setattr(api, "export_scene", broken_export)
+    monkeypatch.setattr(api, "export", broken_export)
     code, _, err = run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path / "out"))
     assert code == 1
     assert_one_line_error(err, "the exporter broke")

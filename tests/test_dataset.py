@@ -30,7 +30,7 @@ from scenewright.dataset import (
     scene_seed,
     scene_stem,
 )
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 TESTS = Path(__file__).parent
 

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from scenewright.api import generate
+from scenewright.api import generate, render_image
 from scenewright.cli import main
 from scenewright.dataset import METADATA_FILE, dataset_spec, run_dataset, scene_seed
 from test_dataset import dataset_bytes
@@ -20,7 +20,7 @@ def one_worker(tmp_path_factory):
     This process renders first: a worker forked from a process holding an OpenGL
     context hangs (tried), so the pool must not inherit one (it uses forkserver).
     """
-    generate("desk", seed=1, render=True, size=(32, 32))
+    render_image(generate("desk", seed=1), 32, 32)
     root = tmp_path_factory.mktemp("desk") / "one"
     spec = dataset_spec("desk", 4, captions=2, size=(64, 64), depth=True, segmentation=True)
     run_dataset(spec, root, workers=1, progress=False)  # the API: any error shows in full

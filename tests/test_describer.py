@@ -9,12 +9,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.describer import Description, TemplateError, describe
-from scenewright.describer.lexicon import DESCRIBED_LABELS, relation_wordings
+from scenewright.describer.lexicon import relation_wordings
 from scenewright.describer.plan import introduced_by, plan_document, stated_relations
 from scenewright.describer.world import world_of
-from scenewright.errors import InputError
-from scenewright.generator.relations import COMPASS_DIRECTIONS, LABELS, SIDE_DIRECTIONS, is_implicit
-from scenewright.scene import Relation, Scene, SceneObject, ScenePath
+from scenewright.core.errors import InputError
+from scenewright.core.relations import COMPASS, RELATIONS, SIDES
+
+DESCRIBED_LABELS = sorted(label.name for label in RELATIONS if label.described)
+from scenewright.core.scene import Relation, Scene, SceneObject, ScenePath
 
 
 class SceneBuilder:
@@ -104,13 +106,15 @@ def sentences(text: str) -> list[str]:
 
 
 def test_every_described_label_has_wording():
-    assert DESCRIBED_LABELS == {label for label in LABELS if not is_implicit(label)} - {"PathConnectedTo"}
-    for label in sorted(DESCRIBED_LABELS):
-        for chosen in (None, *COMPASS_DIRECTIONS, *SIDE_DIRECTIONS):
+    assert set(DESCRIBED_LABELS) == {name for name in RELATIONS.names() if not name.startswith("Implicit")} - {
+        "PathConnectedTo"
+    }
+    for label in DESCRIBED_LABELS:
+        for chosen in (None, *COMPASS, *SIDES):
             assert relation_wordings(label, chosen), label
 
 
-@pytest.mark.parametrize("label", sorted(DESCRIBED_LABELS))
+@pytest.mark.parametrize("label", DESCRIBED_LABELS)
 def test_each_label_is_stated_with_its_words_and_fact(label):
     b = SceneBuilder()
     barrel, tower = b.add("barrel"), b.add("tower")
@@ -633,7 +637,7 @@ NOUNS = [
     ("oak tree", None), ("sack of flour", "sacks of flour"), ("table", None), ("hourglass", None),
     ("bush", "bushes"), ("sign", None), ("empty wagon", None), ("shelf", "shelves"),
 ]  # fmt: skip
-LABEL_LIST = sorted(LABELS - {"PathConnectedTo"})
+LABEL_LIST = sorted(RELATIONS.names() - {"PathConnectedTo"})
 
 
 @st.composite
@@ -656,7 +660,7 @@ def random_scenes(draw):
         source, target = draw(st.sampled_from(ids)), draw(st.sampled_from(ids))
         if source != target:
             label = draw(st.sampled_from(LABEL_LIST))
-            chosen = draw(st.sampled_from([None, *COMPASS_DIRECTIONS, *SIDE_DIRECTIONS]))
+            chosen = draw(st.sampled_from([None, *COMPASS, *SIDES]))
             b.relate(source, label, target, satisfied=draw(st.booleans()), chosen=chosen)
     return b.scene(), draw(st.integers(0, 3))
 

@@ -23,7 +23,7 @@ from scenewright.describer.plan import introduced_by, plan_document
 from scenewright.describer.world import world_of
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
-from scenewright.scene import Scene, assemble_scene
+from scenewright.core.scene import Scene, assemble_scene
 
 GOLDEN = Path(__file__).parent / "golden" / "descriptions"
 

@@ -16,7 +16,7 @@ from scenewright.generator import (
     load_rules,
     shipped_rule_sets,
 )
-from scenewright.generator.relations import LABELS
+from scenewright.core.relations import RELATIONS
 from scipy import stats
 
 RULES = Path(__file__).parent / "rules"
@@ -258,7 +258,7 @@ def test_any_seed_gives_a_well_formed_graph(seed, name):
         entry = rules.catalog[node.type]
         assert node.style in [None] + [style.name for style in entry.styles]
     for edge in graph.edges():
-        assert edge.source != edge.target and edge.label in LABELS
+        assert edge.source != edge.target and edge.label in RELATIONS
         if edge.label == "PathConnectedTo":
             assert (nodes[edge.source].kind, nodes[edge.target].kind) == ("path", "junction")
 

@@ -21,7 +21,7 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     turn_angle,
 )
-from scenewright.scene import SceneObject, footprint_corners
+from scenewright.core.scene import SceneObject, object_corners
 
 coordinate = st.floats(-10, 10, allow_nan=False)
 extent = st.floats(0.1, 4, allow_nan=False)
@@ -48,7 +48,7 @@ def boundary_samples(rect, count=60):
 def test_corners_match_the_scene_convention():
     obj = SceneObject("a", "t", "object", "a", None, None, None, [1.0, 0.0, 2.0], 0.7, [2.0, 1.0, 1.0])
     mine = sorted(corners(make_rect(1.0, 2.0, 2.0, 1.0, 0.7)))
-    theirs = sorted(map(tuple, footprint_corners(obj)))
+    theirs = sorted(map(tuple, object_corners([obj])[0]))
     assert np.allclose(mine, theirs)
 
 

@@ -11,7 +11,7 @@ from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import assess, satisfied
 from scenewright.generator.layout.state import State
-from scenewright.generator.scene_graph import SceneGraph, SceneParams
+from scenewright.core.scene_graph import SceneGraph, SceneParams
 
 BOX = CatalogEntry("box", "object", "box", size=(1.0, 1.0, 1.0))
 TABLE = CatalogEntry("table", "object", "table", size=(2.0, 1.0, 1.0))

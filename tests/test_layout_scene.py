@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene
-from scenewright.generator.layout.plan import draw_plan
+from scenewright.render.plan import draw_plan
 from scenewright.generator.layout.synthetic import village_graph
-from scenewright.generator.scene_graph import SceneGraph, SceneParams
-from scenewright.scene import assemble_scene
+from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.core.scene import assemble_scene
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9))
 SIGN = CatalogEntry("sign", "object", "sign", size=(0.6, 1.6, 0.2))

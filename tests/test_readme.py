@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from scenewright.api import build_scene, describe_scene
+from scenewright.api import build_scene, describe
 from scenewright.generator import check_rules, load_rules
 
 README = (Path(__file__).parents[1] / "README.md").read_text()
@@ -31,4 +31,4 @@ def test_tutorial_rules_have_no_diagnostics(tmp_path):
 def test_tutorial_generates_the_description_shown(tmp_path):
     scene = build_scene(load_rules(tutorial_rules(tmp_path)), 3)
     assert scene.layout.ok
-    assert describe_scene(scene).text == shown_description()
+    assert describe(scene).text == shown_description()

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from PIL import Image
 from render_fixtures import market_scene, renderer_or_skip, road, scene_of, thing
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 from scenewright.render.camera import Camera, frame_scene
 from scenewright.render.offscreen import encode_render, render_metadata, save_render
 
@@ -165,7 +165,7 @@ def test_metadata_for_scene_json(market):
 def test_missing_backend_is_a_clear_one_line_error():
     code = (
         "from scenewright.render.offscreen import Renderer\n"
-        "from scenewright.errors import GenerationError\n"
+        "from scenewright.core.errors import GenerationError\n"
         "try:\n    Renderer(8, 8)\nexcept GenerationError as error:\n    print(error)\n"
     )
     env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")

@@ -2,23 +2,27 @@
 
 Each case is a small file (a shared header plus the lines under test) and the exact
 diagnostics ``check_rules`` prints for it. The files are written into a temporary
-folder and named relatively, so the messages read as a user would see them.
+folder and named relatively, so the messages read as a user would see them. At the
+end: the syntax-error explainer's table of example places still fits the grammar.
 """
 
 import string
 from pathlib import Path
 
 import pytest
+import trimesh
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from scenewright.generator import (
     RulesError,
     check_rules,
     format_diagnostics,
     load_rules,
+    rules_parser,
 )
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 
 RULES = Path(__file__).parent / "rules"
 
@@ -70,7 +74,7 @@ syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative
     "syntax_in_entry": (
         'object chair { noun "chair" 3 }\nS -> { chair }',
         """\
-syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, style) or '}'
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments), 'style' or '}'
     object chair { noun "chair" 3 }
                                 ^""",
     ),
@@ -281,6 +285,180 @@ unknown_setting.rules:4:18: error: unknown scene setting 'extnt'; did you mean '
     scene t { walls; extnt 3 x 3 }
                      ^""",
     ),
+    # A misspelt setting is read as one word, even when a setting starts it.
+    "setting_longer_than_a_setting": (
+        "scene t { extents 3 x 3 }",
+        """\
+setting_longer_than_a_setting.rules:4:11: error: unknown scene setting 'extents'; did you mean 'extent'?
+    scene t { extents 3 x 3 }
+              ^""",
+    ),
+    "setting_starting_with_a_setting": (
+        "scene t { start_symbol S }",
+        """\
+setting_starting_with_a_setting.rules:4:11: error: unknown scene setting 'start_symbol'; did you mean 'start'?
+    scene t { start_symbol S }
+              ^""",
+    ),
+    "field_longer_than_a_field": (
+        'object chair { noun "chair" colours #ffffff }\nS -> { chair }',
+        """\
+field_longer_than_a_field.rules:4:29: error: unknown catalog field 'colours'; did you mean 'colour'?
+    object chair { noun "chair" colours #ffffff }
+                                ^""",
+    ),
+    "setting_with_a_hyphen": (
+        "scene t { max-depth 4 }",
+        """\
+setting_with_a_hyphen.rules:4:11: error: unknown scene setting 'max-depth'; did you mean 'max_depth'?
+    scene t { max-depth 4 }
+              ^""",
+    ),
+    # A '}' missing: the block still open, where it opened, and where the '}' is missing.
+    "unclosed_entry": (
+        'object chair { noun "chair"\n    size 0.5 x 0.9 x 0.5\nS -> { chair; table }',
+        """\
+unclosed_entry.rules:4:14: error: the block of object 'chair' opened here is never closed (missing '}' before line 6)
+    object chair { noun "chair"
+                 ^""",
+    ),
+    "unclosed_on_one_line": (
+        'object chair { noun "chair" object sign { noun "sign" }\nS -> { chair; sign; table }',
+        """\
+unclosed_on_one_line.rules:4:14: error: the block of object 'chair' opened here is never closed (missing '}' before 'object' on line 4)
+    object chair { noun "chair" object sign { noun "sign" }
+                 ^""",
+    ),
+    "unclosed_style": (
+        'object lamp { noun "lamp"\n    style big 2 { noun "big lamp"\nS -> { lamp; table }',
+        """\
+unclosed_style.rules:5:17: error: the block of style 'big' opened here is never closed (missing '}' before line 6)
+    style big 2 { noun "big lamp"
+                ^""",
+    ),
+    "unclosed_production": (
+        "S -> {\n    table\n    Top\n\nTop -> { table }",
+        """\
+unclosed_production.rules:4:6: error: the block of production 'S' opened here is never closed (missing '}' before line 8)
+    S -> {
+         ^""",
+    ),
+    "unclosed_alternative": (
+        'S -> 2: { table }\n   | 1: { table\n\nobject chair { noun "chair" }',
+        """\
+unclosed_alternative.rules:5:9: error: the block of alternative 2 of production 'S' opened here is never closed (missing '}' before line 7)
+    | 1: { table
+         ^""",
+    ),
+    "unclosed_group_block": (
+        'group stall { noun "stall" }\nS -> {\n    stall {\n        table',
+        """\
+unclosed_group_block.rules:6:11: error: the block of 'stall' opened here is never closed (missing '}' at the end of the file)
+    stall {
+          ^""",
+    ),
+    # A word in the other case than the language's convention for what stands there.
+    "label_in_snake_case": (
+        "S -> { table as t; table next_to t }",
+        """\
+label_in_snake_case.rules:4:26: error: unexpected 'next_to'; relation labels are CamelCase: did you mean 'NextTo'?
+    S -> { table as t; table next_to t }
+                             ^""",
+    ),
+    "label_starting_lower_case": (
+        "S -> { table as t; table nextTo t }",
+        """\
+label_starting_lower_case.rules:4:26: error: unexpected 'nextTo'; relation labels are CamelCase: did you mean 'NextTo'?
+    S -> { table as t; table nextTo t }
+                             ^""",
+    ),
+    "label_with_capitals_missing": (
+        "S -> { table as t; table Nextto t }",
+        """\
+label_with_capitals_missing.rules:4:26: error: unknown relation label 'Nextto'; relation labels are CamelCase: did you mean 'NextTo'?
+    S -> { table as t; table Nextto t }
+                             ^""",
+    ),
+    "type_declared_in_camel_case": (
+        'object MarketStand { noun "market stand" }',
+        """\
+type_declared_in_camel_case.rules:4:8: error: unexpected 'MarketStand'; types are snake_case: did you mean 'market_stand'?
+    object MarketStand { noun "market stand" }
+           ^""",
+    ),
+    "type_referred_to_in_camel_case": (
+        "S -> { table; table NextTo some Table }",
+        """\
+type_referred_to_in_camel_case.rules:4:33: error: unexpected 'Table'; types are snake_case: did you mean 'table'?
+    S -> { table; table NextTo some Table }
+                                    ^""",
+    ),
+    "type_created_in_camel_case": (
+        "S -> { Table }",
+        """\
+type_created_in_camel_case.rules:2:8: warning: type 'table' is never created (no statement makes one)
+    object table { noun "table" }
+           ^
+type_created_in_camel_case.rules:4:8: error: undefined nonterminal 'Table'; types are snake_case: did you mean 'table'?
+    S -> { Table }
+           ^""",
+    ),
+    "production_in_snake_case": (
+        "S -> { Stand }\nstand -> { table }",
+        """\
+production_in_snake_case.rules:5:1: error: unexpected 'stand'; nonterminals are CamelCase: did you mean 'Stand'?
+    stand -> { table }
+    ^""",
+    ),
+    "nonterminal_used_in_snake_case": (
+        "S -> { stand }\nStand -> { table }",
+        """\
+nonterminal_used_in_snake_case.rules:4:8: error: unknown type or name 'stand'; nonterminals are CamelCase: did you mean 'Stand'?
+    S -> { stand }
+           ^
+nonterminal_used_in_snake_case.rules:5:1: warning: nonterminal 'Stand' is never used (start 'S' does not reach it)
+    Stand -> { table }
+    ^""",
+    ),
+    "call_in_snake_case": (
+        "S -> { table as t; goods(t) }\nGoods(x) -> { table OnTopOf x }",
+        """\
+call_in_snake_case.rules:4:25: error: unexpected '(' after 'goods'; nonterminals are CamelCase: did you mean 'Goods'?
+    S -> { table as t; goods(t) }
+                            ^""",
+    ),
+    "bound_name_in_camel_case": (
+        "S -> { table as T }",
+        """\
+bound_name_in_camel_case.rules:4:17: error: unexpected 'T'; bound names are snake_case: did you mean 't'?
+    S -> { table as T }
+                    ^""",
+    ),
+    "parameter_in_camel_case": (
+        "S -> { table as t; P(t) }\nP(X) -> { table OnTopOf X }",
+        """\
+parameter_in_camel_case.rules:5:3: error: unexpected 'X'; parameters are snake_case: did you mean 'x'?
+    P(X) -> { table OnTopOf X }
+      ^""",
+    ),
+}
+
+#: Golden messages for whole files (their own scene block, no shared header).
+WHOLE_FILES = {
+    "unclosed_scene": (
+        'scene village {\n    extent 30 x 30\n    start Village\n\nobject table { noun "table" }\nVillage -> { table }',
+        """\
+unclosed_scene.rules:1:15: error: the block of scene 'village' opened here is never closed (missing '}' before line 5)
+    scene village {
+                  ^""",
+    ),
+    "start_in_snake_case": (
+        "scene s { start village }\nVillage -> { }",
+        """\
+start_in_snake_case.rules:1:17: error: unexpected 'village'; nonterminals are CamelCase: did you mean 'Village'?
+    scene s { start village }
+                    ^""",
+    ),
 }
 
 
@@ -295,6 +473,30 @@ def test_golden_messages(in_tmp, name):
     body, expected = GOLDEN[name]
     Path(f"{name}.rules").write_text(HEADER + body + "\n")
     assert format_diagnostics(check_rules(f"{name}.rules")) == expected
+
+
+@pytest.mark.parametrize("name", sorted(WHOLE_FILES))
+def test_golden_messages_of_whole_files(in_tmp, name):
+    text, expected = WHOLE_FILES[name]
+    Path(f"{name}.rules").write_text(text + "\n")
+    assert format_diagnostics(check_rules(f"{name}.rules")) == expected
+
+
+@pytest.mark.parametrize("kind", ["object", "group", "path", "junction"])
+def test_a_missing_brace_names_the_entry_of_every_kind(in_tmp, kind):
+    Path("entry.rules").write_text(HEADER + f'{kind} thing {{ noun "thing"\nS -> {{ table }}\n')
+    (diagnostic,) = check_rules("entry.rules")
+    assert (diagnostic.location.line, diagnostic.location.column) == (4, len(f"{kind} thing {{"))
+    assert diagnostic.message == (f"the block of {kind} 'thing' opened here is never closed (missing '}}' before "
+                                  "line 5)")
+
+
+def test_balanced_braces_are_not_reported_missing(in_tmp):
+    # '}' before 'Extent' would let the parser read 'Extent' as a production's name, but
+    # the braces match: the error is the word.
+    Path("balanced.rules").write_text(HEADER + "scene t { Extent 3 x 3 }\n")
+    (diagnostic,) = check_rules("balanced.rules")
+    assert diagnostic.message == "unknown scene setting 'Extent'; did you mean 'extent'?"
 
 
 def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
@@ -357,7 +559,7 @@ def test_undefined_start_symbol(in_tmp):
 
 def test_mesh_files_are_found_relative_to_the_rules_file(in_tmp):
     (in_tmp / "sub" / "models").mkdir(parents=True)
-    (in_tmp / "sub" / "models" / "chair.glb").write_bytes(b"glTF")
+    trimesh.creation.box().export(in_tmp / "sub" / "models" / "chair.glb")
     text = HEADER + 'object chair { noun "chair" mesh "models/chair.glb" }\n' \
                     'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench; table }\n'
     Path("sub/mesh.rules").write_text(text)
@@ -460,3 +662,58 @@ def test_a_file_that_is_not_utf8_text_is_a_rules_error(in_tmp):
     Path("latin1.rules").write_bytes("scene s { start S }\n# caf\xe9\n".encode("latin-1"))
     with pytest.raises(RulesError, match=r"^latin1\.rules:1:1: error: cannot read 'latin1\.rules': not UTF-8 text$"):
         load_rules("latin1.rules")
+
+
+# -- the syntax-error explainer's table of places -------------------------------------
+
+#: Every construct of the language, in the forms the parser tells apart.
+EVERY_CONSTRUCT = """\
+include "other.rules"; object a { }
+object b { ; noun "b"
+    style s { ; noun "c"; } ; style t 2 { } colour #aaaaaa; width 2
+    max_length 3 segments 2 mesh "m.glb" plural "bs" shape c size 1 x 1 x 1 }
+scene s { ; walls;
+    extent 1 x 2; ground g start S max_depth 2 max_nodes 3 templates "t" }
+P(a, b) -> 2: { 1..2 0.5? a as c NextTo some b FacingTowards each d OnTopOf e #1 { f; G(a, some b, each c, d #2) } }
+    | 3:
+    { }
+    | { A() }
+S -> { 2 0.5? a as b NextTo c #2 FacingTowards some d { }; some a as b; each a NextTo b; a #1 as b NextTo each c
+    A(b) as c NextTo d; A as b; A() NextTo b; 3 A(b, c) as d { a }
+    0.5? some a NextTo b; 1..2 each a as b { } }
+T -> { ; a
+
+    b;; c { ; d; e } }
+"""
+
+
+def test_every_example_of_the_explainer_stops_at_its_end_in_its_own_place():
+    for name, context in rules_parser._CONTEXTS.items():
+        for example in context.examples:
+            stop = rules_parser._example_stop(example)
+            assert stop is not None and rules_parser._error_offset(stop, example) == len(example), (name, example)
+            assert rules_parser._context(stop) is context, (name, example)
+
+
+def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
+    terminals = {terminal.name for terminal in rules_parser._parser().terminals}
+    assert {sample.split()[0] for sample in rules_parser._FIELDS} == set(rules_parser._keywords(terminals, "_field"))
+    assert {sample.split()[0] for sample in rules_parser._SETTINGS} == set(
+        rules_parser._keywords(terminals, "_setting"))
+
+
+@pytest.mark.parametrize("text", [EVERY_CONSTRUCT, (RULES / "market.rules").read_text()], ids=["every", "market"])
+def test_every_place_where_a_word_may_come_is_in_the_table(text):
+    """Wherever a valid file may be cut short before a token, the explainer knows the
+    place, unless only punctuation, a value or one keyword may come next (said alone)."""
+    parser = rules_parser._parser()
+    for token in parser.parse_interactive(text).iter_parse():
+        prefix = text[:token.start_pos]
+        try:
+            parser.parse(prefix)
+        except (UnexpectedToken, UnexpectedCharacters) as stop:
+            accepts = stop.interactive_parser.accepts()
+            words = [name for name in accepts if name in ("NAME", "CAMEL")
+                     or (name != "$END" and (rules_parser._literal(name) or "").isidentifier())]
+            if words and len(accepts) > 1:
+                assert rules_parser._context(stop) is not rules_parser._ANYWHERE, (prefix[-40:], sorted(accepts))

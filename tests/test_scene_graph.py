@@ -2,10 +2,13 @@
 
 import pytest
 
+from scenewright.core.relations import UnknownLabel
+
 from scenewright.generator.catalog import CatalogEntry, Style
-from scenewright.generator.layout.result import LayoutResult, Pose, RelationResult
-from scenewright.generator.scene_graph import SceneGraph, SceneParams
-from scenewright.scene import Scene, assemble_scene
+from scenewright.core.poses import LayoutResult, Pose
+from scenewright.core.relations import Relation
+from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.core.scene import Scene, assemble_scene
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9), shape="box")
 COMPUTER = CatalogEntry(
@@ -57,7 +60,7 @@ def test_members_of_a_group():
 
 def test_unknown_label_and_node_are_refused():
     graph = small_graph()
-    with pytest.raises(ValueError, match="unknown relation label"):
+    with pytest.raises(UnknownLabel, match="unknown relation label"):
         graph.add_relation("table_1", "road_1", "Besides")
     with pytest.raises(KeyError):
         graph.add_relation("table_1", "nowhere_1", "NextTo")
@@ -93,8 +96,8 @@ def test_scene_json_round_trip_and_group_box():
         poses={"table_1": Pose(1.0, 0.0, 2.0, 0.0), "computer_1": Pose(1.0, 0.8, 2.0, 0.0)},
         paths={"road_1": [[-10.0, 0.0], [10.0, 0.0]]},
         relations=[
-            RelationResult("computer_1", "table_1", "OnTopOfMiddle", 0.0, True),
-            RelationResult("market_stand_1", "road_1", "NextTo", -0.01, True),
+            Relation("computer_1", "table_1", "OnTopOfMiddle", 0.0, True),
+            Relation("market_stand_1", "road_1", "NextTo", -0.01, True),
         ],
         energy=0.01, parts={"relations": 0.01}, steps=10, acceptance=0.5, seconds=0.1, ok=True,
     )

@@ -7,9 +7,9 @@ import jsonschema
 import pytest
 from render_fixtures import market_scene, renderer_or_skip
 
-from scenewright.errors import InputError
+from scenewright.core.errors import InputError
 from scenewright.render.offscreen import render_metadata
-from scenewright.scene import Relation
+from scenewright.core.scene import Relation
 from scenewright.schema_check import SceneSchemaError, load_schema, validate_scene_dict
 
 

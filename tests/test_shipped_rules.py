@@ -9,15 +9,9 @@ import pytest
 
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.expand import expand
-from scenewright.generator.relations import (
-    FACING_LABELS,
-    LABELS,
-    NEXT_TO_LABELS,
-    is_implicit,
-    is_support,
-)
+from scenewright.core.relations import RELATIONS
 from scenewright.generator.rules import Rules, check_rules, load_rules, shipped_rule_sets
-from scenewright.generator.scene_graph import SceneGraph
+from scenewright.core.scene_graph import SceneGraph
 
 SHIPPED = ("village", "desk", "bedroom")
 SEEDS = range(1000)
@@ -48,7 +42,7 @@ def test_every_node_is_a_catalog_type_and_every_edge_a_known_label(name):
     for graph in expansions(name):
         for node in graph.nodes():
             assert node.type in catalog and catalog[node.type].kind == node.kind
-        assert {edge.label for edge in graph.edges()} <= LABELS
+        assert {edge.label for edge in graph.edges()} <= RELATIONS.names()
 
 
 # -- object budgets -------------------------------------------------------------------
@@ -159,7 +153,7 @@ def test_every_market_stand_is_a_table_with_a_sign_and_goods_on_it_by_a_road():
             types = Counter(member.type for member in members)
             assert types["table"] == 1 and types["sign"] == 1
             table = next(m.id for m in members if m.type == "table")
-            supported = {e.source for e in graph.edges() if e.target == table and is_support(e.label)}
+            supported = {e.source for e in graph.edges() if e.target == table and RELATIONS[e.label].support}
             goods = {m.id for m in members if m.type not in ("table", "sign", "chair", "barrel")}
             assert goods and goods == supported
             assert any(e.target in roads and e.label == "NextTo" for e in graph.edges() if e.source == stand.id)
@@ -212,7 +206,7 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
             if node.type == "nightstand":
                 assert out & {("NextToLeft", "bed"), ("NextToRight", "bed"), ("NextToChooseSide", "bed")}
             if node.type == "lamp":
-                assert any(is_support(label) and target in ("nightstand", "desk") for label, target in out)
+                assert any(RELATIONS[label].support and target in ("nightstand", "desk") for label, target in out)
 
 
 # -- the vocabulary ------------------------------------------------------------------
@@ -221,12 +215,12 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
 def test_every_label_family_is_used_by_the_shipped_sets():
     used = {edge.label for name in SHIPPED for graph in expansions(name) for edge in graph.edges()}
     families = {
-        "NextTo*": [label for label in used if not is_implicit(label) and label in NEXT_TO_LABELS and "Choose" not in label],
+        "NextTo*": [label for label in used if RELATIONS[label].family == "next_to" and not RELATIONS[label].implicit and not RELATIONS[label].chooses],
         "OnTopOf*": [label for label in used if label.startswith("OnTopOf")],
         "IsPartOf*": [label for label in used if label.startswith("IsPartOf")],
-        "Facing*": [label for label in used if label in FACING_LABELS],
+        "Facing*": [label for label in used if RELATIONS[label].family == "facing"],
         "Choose*": [label for label in used if "Choose" in label],
         "PathConnectedTo": [label for label in used if label == "PathConnectedTo"],
-        "Implicit*": [label for label in used if is_implicit(label)],
+        "Implicit*": [label for label in used if RELATIONS[label].implicit],
     }
     assert [family for family, labels in families.items() if not labels] == []

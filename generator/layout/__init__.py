@@ -9,42 +9,75 @@ constructive placement (``initial``) and runs annealed Metropolis-Hastings with 
 group and data-driven moves (``moves``) on incremental energy deltas. The result
 reports honestly (``report``): per relation its log factor and whether it holds under
 the documented thresholds; ``ok`` only when every relation holds, nothing overlaps by
-more than 1 % and everything is inside the extent. ``plan.draw_plan`` draws a top-down
-plan of a laid-out scene.
+more than 1 % and everything is inside the extent.
+
+Randomness: chain k draws from the layout stage's child stream k of the scene's seed
+(``core.seeds``), so restarts never share numbers with expansion, with the describer or
+with each other.
+
+``layout_scene`` can keep some objects, junctions and paths exactly where they are
+(``pinned``, ``pinned_paths``) and start its chains from given poses (``start``); the
+rules are in ``pinning``. ``measure_layout(graph, poses, paths)`` (``measure``) reports
+on a layout that already exists (an imported scene) without sampling.
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Mapping
 
 import numpy as np
 
-from ..scene_graph import SceneGraph
+from scenewright.core.poses import LayoutResult, Pose
+from scenewright.core.scene_graph import SceneGraph
+from scenewright.core.seeds import SeedLike, stage_stream
+
+from .measure import measure_layout
 from .params import LayoutParams
+from .pinning import compile_pins
 from .problem import compile_problem
-from .result import LayoutResult, Pose, RelationResult
 from .sampler import Run, run_chain
 
-__all__ = ["LayoutParams", "LayoutResult", "Pose", "RelationResult", "layout_scene"]
+__all__ = ["LayoutParams", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
 
 
-def layout_scene(graph: SceneGraph, seed: int, *, params: LayoutParams | None = None) -> LayoutResult:
+def layout_scene(
+    graph: SceneGraph,
+    seed: SeedLike,
+    *,
+    params: LayoutParams | None = None,
+    pinned: Mapping[str, Pose] | None = None,
+    pinned_paths: Mapping[str, object] | None = None,
+    start: Mapping[str, object] | None = None,
+) -> LayoutResult:
     """Lay out a scene graph: poses for objects and junctions, control points for paths.
 
-    Deterministic: the same graph, seed and params give the same result. Runs up to
-    ``1 + params.restarts`` chains (each from a fresh initial placement, on its own
-    stream derived from ``seed``) until one is ok, and returns the best: ok first, then
+    Deterministic: the same graph, seed and params give the same result. ``seed`` is
+    the scene's seed (an int: chain k uses the layout's child stream k), a Generator
+    (each chain uses a child spawned from it) or None (fresh entropy). Runs up to
+    ``1 + params.restarts`` chains (each from a fresh initial placement on its own
+    stream) until one is ok, and returns the best: ok first, then
     fewest problems, then lowest energy. Raises ``InputError`` for relations that cannot
     be laid out (an OnTopOf between non-objects, a cycle of supports, a malformed
     PathConnectedTo).
+
+    ``pinned`` (object or junction id -> Pose) and ``pinned_paths`` (path id -> control
+    points, segments + 1 of them) stay exactly as given in every chain; the rest is placed
+    around them. The supports beneath a pinned object, and the junction a pinned path
+    starts at, must be pinned too. ``start`` (id -> Pose, or path id -> points) is where
+    every chain starts instead of the constructive placement (a warm start; those may
+    move, and what it leaves out is placed around them). Unknown ids, group ids and
+    malformed poses are an ``InputError``. See ``pinning`` for the details.
     """
     params = params or LayoutParams()
     started = time.perf_counter()
     problem = compile_problem(graph)
+    pins = compile_pins(problem, pinned, pinned_paths, start)
     best: Run | None = None
     total_steps = total_accepted = 0
     for attempt in range(1 + params.restarts):
-        run = run_chain(problem, params, np.random.default_rng([seed, attempt]))
+        rng = seed.spawn(1)[0] if isinstance(seed, np.random.Generator) else stage_stream(seed, "layout", attempt)
+        run = run_chain(problem, params, rng, pins)
         total_steps += run.steps
         total_accepted += run.accepted
         if best is None or _rank(run) > _rank(best):

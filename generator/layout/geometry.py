@@ -4,7 +4,8 @@ Everything is in the ground plane (x, z). A footprint ``Rect`` is (cx, cz, hw, h
 its centre, half width along the object's local +X (its left), half depth along local
 +Z (its forward), and the cosine and sine of its yaw. Yaw turns forward (+Z) towards
 +X, so the local axes in world coordinates are left u = (c, -s) and forward v = (s, c)
-(the same matrix as ``scenewright.scene.footprint_corners``).
+(the convention of ``scenewright.core.frames``, whose vectorised forms the tests
+compare with these).
 
 The functions are scalar pure Python: the sampler evaluates a handful of small shapes
 per step, where this beats numpy by an order of magnitude. All are exact for convex
@@ -17,6 +18,8 @@ from __future__ import annotations
 
 import math
 from typing import NamedTuple
+
+from scenewright.core.frames import corners_of
 
 
 class Rect(NamedTuple):
@@ -37,14 +40,7 @@ def make_rect(cx: float, cz: float, width: float, depth: float, yaw: float) -> R
 
 def corners(rect: Rect) -> list[tuple[float, float]]:
     """The four (x, z) corners, counter-clockwise in local coordinates."""
-    cx, cz, hw, hd, c, s = rect
-    ux, uz, vx, vz = c * hw, -s * hw, s * hd, c * hd
-    return [
-        (cx - ux - vx, cz - uz - vz),
-        (cx + ux - vx, cz + uz - vz),
-        (cx + ux + vx, cz + uz + vz),
-        (cx - ux + vx, cz - uz + vz),
-    ]
+    return corners_of(*rect)
 
 
 def to_local(rect: Rect, px: float, pz: float) -> tuple[float, float]:

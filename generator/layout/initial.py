@@ -9,6 +9,15 @@ beside a placed mate; then the group is placed as a whole once more. Every place
 draws ``initial_candidates`` poses from the sampler's data-driven moves and keeps the
 one of lowest energy, so the start is already close to a valid layout. Items enter the
 energy only as they are placed.
+
+Pinned and warm-started boxes (``pinning.Pins``) enter first, at their given poses, and
+count as placed; pinned and started paths get their given points. Then each new
+junction with its roads (taking the evenly spread headings given roads leave free), and
+each new free road, is the best of ``initial_candidates`` random ones by the energy plus
+how far pinned things that must be next to a road are from it, and such roads are
+pulled towards those things (``Mover.pull``). The rest is placed around them as above.
+A group holding any given box is not placed again as a whole (its given boxes stay
+where they were put). Without pins or a start, nothing here draws a different number.
 """
 
 from __future__ import annotations
@@ -19,9 +28,13 @@ from dataclasses import replace
 
 import numpy as np
 
+from scenewright.core.relations import RELATIONS
+
 from .energy import Energy
 from .moves import Mover, rigid, wrap
+from .pinning import Pins
 from .problem import Endpoint, RelationTerm
+from .relation_terms import evaluate
 
 #: Paths stay this far (metres) inside the extent when first laid out.
 PATH_MARGIN = 1.0
@@ -33,12 +46,31 @@ LONE_PATH_SPREAD = 0.2
 FREE_PATH_SPREAD = 0.4
 #: Spread (radians) of the heading change at each control point of a new path.
 PATH_WIGGLE = 0.15
+#: Around pinned or started things, candidate junctions lie within this share of the
+#: extent from its centre (without them: 0.15).
+JUNCTION_SPREAD = 0.25
 
 
-def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> None:
-    """Lay out paths, junctions and all boxes; leaves every box active in ``energy``."""
-    _lay_paths(energy, rng)
-    problem = energy.problem
+def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: Pins | None = None) -> None:
+    """Lay out paths, junctions and all boxes; leaves every box active in ``energy``.
+
+    Pinned and started boxes go first, at their poses; then paths (pinned and started
+    ones at their points), then everything else around them.
+    """
+    problem, state = energy.problem, energy.state
+    pins = pins or Pins.none(problem)
+    preset = pins.preset_boxes()
+    if preset:
+        for box in sorted(preset):
+            pose = preset[box]
+            state.set_pose(box, pose.x, pose.z, pose.yaw)
+        energy.activate(sorted(preset))
+    held = _held_terms(energy, mover, pins)
+    _lay_paths(energy, rng, pins, held)
+    for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
+        _best_of(
+            energy, lambda term=term: mover.pull(problem.relations[term]), energy.params.initial_candidates, held
+        )
     pending = list(problem.units)
     priority = _priorities(energy)
     while pending:
@@ -48,7 +80,7 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator) -> Non
         kind, index = unit
         if kind == "group":
             _place_group(energy, mover, rng, index)
-        else:
+        elif not energy.active[index]:  # not pinned or started
             _place_box(energy, mover, rng, index, (), _borrowed_anchor(energy, Endpoint("object", index, (index,))))
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
@@ -116,12 +148,32 @@ def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
         if incoming.a.kind == "path":
             continue
         for term in problem.outgoing[(incoming.a.kind, incoming.a.index)]:
-            if term is not incoming and term.base.startswith("NextTo") and _placed(energy, term.b):
-                return replace(term, a=end, label="NextTo", base="NextTo")
+            if term is not incoming and term.spec.family == "next_to" and _placed(energy, term.b):
+                return replace(term, a=end, label="NextTo", spec=RELATIONS["NextTo"])
     return None
 
 
-def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
+def _held_terms(energy: Energy, mover: Mover, pins: Pins):
+    """A score of how far roads and junctions are from the pinned things that must be next
+    to them (None when there are none): the NextTo* terms ``Mover.pull`` mends, measured
+    from the pinned boxes of their source alone, since the rest of a group is not placed
+    yet while roads are laid."""
+    terms = []
+    for index in sorted(mover.pullable):
+        term = energy.problem.relations[index]
+        kept = tuple(box for box in term.a.members if pins.box[box])
+        if kept:
+            terms.append(replace(term, a=Endpoint(term.a.kind, term.a.index, kept)))
+    if not terms:
+        return None
+    state, params = energy.state, energy.params
+    return lambda: sum(evaluate(term, state, params).energy for term in terms)
+
+
+def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+    if pins.preset:
+        _lay_paths_around(energy, rng, pins, held)
+        return
     problem, state = energy.problem, energy.state
     half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
     junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
@@ -154,6 +206,32 @@ def _lay_paths(energy: Energy, rng: np.random.Generator) -> None:
         _set_path(energy, rng, path, start, heading, length)
 
 
+def _free_headings(energy: Energy, pins: Pins, junction: int, paths: list[int], base: float) -> list[float]:
+    """Headings for the roads of a junction, by position in ``paths``: evenly spread from
+    ``base``; when some roads are given, spread from the first given one's heading, each
+    given road taking the free slot nearest its own heading and the others the rest in
+    order."""
+    count = len(paths)
+    given = {path: pins.preset_points(path) for path in paths}
+    given = {path: points for path, points in given.items() if points is not None}
+    if not given:
+        return [base + 2.0 * math.pi * k / count for k in range(count)]
+    state = energy.state
+    start = (state.x[junction], state.z[junction])
+
+    def heading(points) -> float:
+        return math.atan2(points[1][1] - start[1], points[1][0] - start[0])
+
+    base = heading(next(iter(given.values())))
+    slots = [base + 2.0 * math.pi * k / count for k in range(count)]
+    for points in given.values():
+        own = heading(points)
+        nearest = min(range(len(slots)), key=lambda k: abs(wrap(slots[k] - own)))
+        slots.pop(nearest)
+    free_slots = iter(slots)
+    return [0.0 if path in given else next(free_slots) for path in paths]
+
+
 def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
     """How far one can go from ``start`` along ``heading`` and stay PATH_MARGIN inside."""
     dx, dz = math.cos(heading), math.sin(heading)
@@ -165,8 +243,100 @@ def _room(start: tuple[float, float], heading: float, half_x: float, half_z: flo
     return max(min(limits), 0.0)
 
 
+def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+    """Paths when some boxes or paths are given (pinned or started): given paths at their
+    points; each junction's other roads (and the junction, unless it is given) as the best
+    of ``initial_candidates`` fans, and each other free road as the best of as many
+    crossings, by the energy (which already holds the given boxes) plus ``held`` (how far
+    the pinned things that must be next to a road are from it): so new roads avoid
+    pinned things and pass by those that must be next to them."""
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    count = energy.params.initial_candidates
+    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
+        paths = problem.paths_of_junction.get(junction, [])
+        given = {path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None}
+        placed = energy.active[junction]
+        if not placed and given:  # where a given road starts
+            first = next(iter(given.values()))[0]
+            state.set_pose(junction, first[0], first[1], 0.0)
+            placed = True
+        if not energy.active[junction]:
+            energy.activate([junction])
+        for path, points in given.items():
+            points = [list(p) for p in points]
+            if not pins.path[path]:  # a started road begins at its junction
+                points[0] = [state.x[junction], state.z[junction]]
+            energy.propose({}, {path: points})
+            energy.accept()
+        if len(given) == len(paths) and placed:
+            continue
+
+        def fan(junction=junction, paths=paths, placed=placed) -> tuple[dict, dict]:
+            if placed:
+                x, z, boxes = state.x[junction], state.z[junction], {}
+            else:
+                x = rng.uniform(-JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_x
+                z = rng.uniform(-JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_z
+                boxes = {junction: (x, z, 0.0)}
+            slots = _free_headings(energy, pins, junction, paths, rng.uniform(0.0, 2.0 * math.pi))
+            laid = {}
+            for k, path in enumerate(paths):
+                if pins.preset_points(path) is None:
+                    heading = slots[k] + rng.normal(0.0, 0.1)
+                    room = _room((x, z), heading, half_x, half_z)
+                    laid[path] = _path_points(problem, rng, path, (x, z), heading, room)
+            return boxes, laid
+
+        _take_best(energy, fan, count, held)
+    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    for path in free:
+        given = pins.preset_points(path)
+        if given is not None:
+            energy.propose({}, {path: [list(p) for p in given]})
+            energy.accept()
+    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
+    for path in free:
+        if pins.preset_points(path) is not None:
+            continue
+
+        def crossing(path=path) -> tuple[dict, dict]:
+            heading = rng.uniform(0.0, 2.0 * math.pi)
+            middle = (rng.uniform(-spread, spread) * 2 * half_x, rng.uniform(-spread, spread) * 2 * half_z)
+            back = _room(middle, heading + math.pi, half_x, half_z)
+            ahead = _room(middle, heading, half_x, half_z)
+            length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
+            behind = min(back, length / 2.0)
+            start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+            return {}, {path: _path_points(problem, rng, path, start, heading, length)}
+
+        _take_best(energy, crossing, count, held)
+
+
+def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
+    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy (plus
+    ``extra()``, if given), even when it is worse than the state now (a placeholder)."""
+    best, best_delta = None, math.inf
+    for _ in range(count):
+        proposal = draw()
+        delta = energy.propose(*proposal)
+        if extra is not None:
+            delta += extra()
+        energy.reject()
+        if delta < best_delta:
+            best, best_delta = proposal, delta
+    if best is not None:
+        energy.propose(*best)
+        energy.accept()
+
+
 def _set_path(energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float) -> None:
-    problem = energy.problem
+    energy.propose({}, {path: _path_points(energy.problem, rng, path, start, heading, room)})
+    energy.accept()
+
+
+def _path_points(problem, rng: np.random.Generator, path: int, start, heading: float, room: float) -> list[list[float]]:
+    """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
     segments = problem.path_segments[path]
     step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
@@ -176,18 +346,21 @@ def _set_path(energy: Energy, rng: np.random.Generator, path: int, start, headin
         x = points[-1][0] + math.cos(heading) * step
         z = points[-1][1] + math.sin(heading) * step
         points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
-    energy.propose({}, {path: points})
-    energy.accept()
+    return points
 
 
-def _best_of(energy: Energy, draw, count: int) -> None:
-    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy."""
+def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
+    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy (plus
+    ``extra()``, a score outside the energy, if given) if it lowers it."""
     best, best_delta = None, 0.0
+    baseline = extra() if extra is not None else 0.0
     for _ in range(count):
         proposal = draw()
-        if proposal is None:
+        if proposal is None or proposal[0] is None:
             continue
         delta = energy.propose(*proposal)
+        if extra is not None:
+            delta += extra() - baseline
         energy.reject()
         if best is None or delta < best_delta:
             best, best_delta = proposal, delta
@@ -212,11 +385,11 @@ def _place_box(
     own = Endpoint("object", box, (box,))
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
-    positional = [t for t in outgoing if not t.base.startswith("Facing")]
-    facing = [t for t in outgoing if t.base.startswith("Facing")]
+    positional = [t for t in outgoing if t.spec.family != "facing"]
+    facing = [t for t in outgoing if t.spec.family == "facing"]
     incoming = [
         t for t in problem.incoming.get(("object", box), [])
-        if t.base.startswith("NextTo") and t.a.kind != "path" and _placed(energy, t.a)
+        if t.spec.family == "next_to" and t.a.kind != "path" and _placed(energy, t.a)
     ]  # fmt: skip
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
 
@@ -232,7 +405,7 @@ def _place_box(
             return mover.place_for_relation(anchor_term), {}
         if placed_mates:
             mate = placed_mates[int(rng.integers(len(placed_mates)))]
-            near = RelationTerm("", "", "NextTo", "NextTo", own, Endpoint("object", mate, (mate,)))
+            near = RelationTerm("", "", "NextTo", RELATIONS["NextTo"], own, Endpoint("object", mate, (mate,)))
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
@@ -259,19 +432,26 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
 def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: int) -> None:
     problem = energy.problem
     members = problem.group_members[group]
-    anchors = [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)]
-    if not anchors:
+    # Members already in (pinned or warm-started) stay where they are: the others are
+    # placed around them, and the group is not moved as a whole.
+    given = not mover.group_whole[group] or any(energy.active[box] for box in members)
+    anchors = [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)] if not given else []
+    if not anchors and not given:
         borrowed = _borrowed_anchor(energy, Endpoint("group", group, members))
         anchors = [borrowed] if borrowed else []
     order = sorted(members, key=lambda b: (len(problem.beneath(b)), b))  # supports first
     for position, box in enumerate(order):
+        if energy.active[box]:
+            continue
         anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
         _place_box(energy, mover, rng, box, members, anchor)
+    if given:
+        return
     # Facing relations to things outside the group turn the group as a whole; the
     # group is then only shifted into place, so they keep holding.
     outside_facing = [
         t for box in members for t in _outgoing(energy, "object", box)
-        if t.base.startswith("Facing") and not set(t.b.members) <= set(members) and _placed(energy, t.b)
+        if t.spec.family == "facing" and not set(t.b.members) <= set(members) and _placed(energy, t.b)
     ]  # fmt: skip
     for term in outside_facing:
         _best_of(energy, lambda term=term: (mover.turn_group_to_face(term), {}), 1)

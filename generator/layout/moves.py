@@ -22,6 +22,15 @@ After each check of the stop rule the sampler points the mover at what is still 
 (``focus``): unsatisfied relations are drawn more often for data-driven moves, and
 overlapping or outlying boxes for jitter.
 
+Pinned boxes and paths (``pinning.Pins``) are left out up front, so no check is made
+per proposal: jitter, rotate and junction moves draw from the free boxes only; group
+and cluster moves carry only their free boxes (pinned boxes and what rests on them stay
+behind); data-driven moves never place or turn a pinned box, nor a whole group holding
+a pinned box or one resting on it; path moves draw from the free paths. A NextTo*
+from a pinned box (or a group holding one) to a free path or junction cannot be
+mended by moving the box, so a data-driven ``pull`` brings the road to it instead: the
+path's nearest movable control point, or the junction with the starts of its paths.
+
 The same ``place_for_relation`` makes the constructive initial placement's candidates.
 """
 
@@ -31,9 +40,13 @@ import math
 
 import numpy as np
 
+from scenewright.core.frames import to_world
+
 from .params import LayoutParams
+from .pinning import Pins
 from .problem import Endpoint, Problem, RelationTerm
-from .relation_terms import COMPASS, anchor, centre, evaluate, sides, source_point
+from .geometry import nearest_on_polyline
+from .relation_terms import anchor, centre, evaluate, source_point
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -56,9 +69,6 @@ FOCUS_WEIGHT = 1.0
 
 #: Tries of a data-driven move for an item with several placing relations.
 MULTI_TRIES = 8
-
-#: NextTo* labels that name one of B's own sides: turning B can satisfy them.
-B_SIDE_LABELS = ("NextToLeft", "NextToRight", "NextToFront", "NextToBehind", "NextToChooseSide")
 
 HALF_PI = math.pi / 2.0
 
@@ -114,41 +124,70 @@ def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
 class Mover:
     """Draws proposals for one problem; holds the precomputed choices."""
 
-    def __init__(self, problem: Problem, state: State, rng: np.random.Generator, params: LayoutParams):
+    def __init__(
+        self, problem: Problem, state: State, rng: np.random.Generator, params: LayoutParams, pins: Pins | None = None
+    ):
         self.problem, self.state, self.rng, self.params = problem, state, rng, params
+        self.pins = pins = pins or Pins.none(problem)
         self._placing: dict[tuple[str, int], list[RelationTerm]] = {}
-        self.boxes = [b for b in range(problem.n_boxes) if not problem.is_junction[b]]
-        self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
-        self.groups = [g for g, members in enumerate(problem.group_members) if members]
-        self.group_boxes = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
+        # Whether a move may place this box by itself: a free (unpinned) non-junction object.
+        self.movable_box = [not problem.is_junction[b] and not pins.box[b] for b in range(problem.n_boxes)]
+        self.boxes = [b for b in range(problem.n_boxes) if self.movable_box[b]]
+        self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b] and not pins.box[b]]
+        self.paths = [p for p in range(problem.n_paths) if not pins.path[p]]
+        carried = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
+        # A group moves as a whole only when nothing in it is pinned or rests on a pinned box;
+        # random rigid moves carry its free boxes only.
+        self.group_whole = [not any(pins.fixed(b) for b in boxes) for boxes in carried]
+        self.group_boxes = [[b for b in boxes if not pins.fixed(b)] for boxes in carried]
+        self.groups = [g for g, members in enumerate(problem.group_members) if members and self.group_boxes[g]]
         self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
+        # NextTo* from something pins hold to a free path or junction: pulled (``pull``).
+        self.pullable = {
+            t for t, term in enumerate(problem.relations)
+            if term.placeable and term.spec.family == "next_to" and self._held(term.a) and self._pulls(term.b)
+        }  # fmt: skip
         self.relations = [  # relations a move can act on
             t for t, term in enumerate(problem.relations)
-            if term.placeable and (self._movable(term.a) or self._movable(term.b))
+            if term.placeable and (self._movable(term.a) or self._movable(term.b) or t in self.pullable)
         ]  # fmt: skip
-        self.clusters = _clusters(problem)
+        self.clusters = [c for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem)) if c]
         self.focus_positions: list[int] = []
         self.focus_boxes: list[int] = []
         available = {
             "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
             "cluster": bool(self.clusters),
-            "relation": bool(self.relations), "path": problem.n_paths > 0, "junction": bool(self.junctions),
+            "relation": bool(self.relations), "path": bool(self.paths), "junction": bool(self.junctions),
         }  # fmt: skip
         self.kinds = [kind for kind in MOVE_WEIGHTS if available[kind]]
         weights = np.array([MOVE_WEIGHTS[kind] for kind in self.kinds])
         self.cumulative = list(np.cumsum(weights / weights.sum())) if self.kinds else []
 
     def _movable(self, end: Endpoint) -> bool:
-        """Whether a move may place this end: a non-junction object, or a group with members."""
+        """Whether a move may place this end: a free non-junction object, or a group with
+        members none of which is pinned or rests on a pinned box."""
         if end.kind == "object":
-            return not self.problem.is_junction[end.index]
-        return end.kind == "group" and bool(end.members)
+            return self.movable_box[end.index]
+        return end.kind == "group" and bool(end.members) and self.group_whole[end.index]
+
+    def _held(self, end: Endpoint) -> bool:
+        """Whether pins keep this end from being placed: a pinned object, or a group holding
+        a pinned box (or one resting on a pinned box)."""
+        if end.kind == "object":
+            return self.pins.box[end.index]
+        return end.kind == "group" and bool(end.members) and not self.group_whole[end.index]
+
+    def _pulls(self, end: Endpoint) -> bool:
+        """Whether ``pull`` may move this end: a free path or a free junction."""
+        if end.kind == "path":
+            return not self.pins.path[end.index]
+        return end.kind == "object" and self.problem.is_junction[end.index] and not self.pins.box[end.index]
 
     def focus(self, unsatisfied: list[int], troubled: list[int]) -> None:
         """Steer later proposals to these relations (indices) and boxes (overlapping, outside)."""
         position = {term: k for k, term in enumerate(self.relations)}
         self.focus_positions = [position[t] for t in unsatisfied if t in position]
-        self.focus_boxes = [box for box in troubled if not self.problem.is_junction[box]]
+        self.focus_boxes = [box for box in troubled if self.movable_box[box]]
 
     def propose(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         """One random proposal; ``relation_energy`` steers the data-driven moves."""
@@ -173,7 +212,7 @@ class Mover:
         if kind == "relation":
             return self.relation_move(relation_energy)
         if kind == "path":
-            return self.move_path(int(self.rng.integers(self.problem.n_paths)))
+            return self.move_path(self.paths[int(self.rng.integers(len(self.paths)))])
         return self.move_junction(self.junctions[int(self.rng.integers(len(self.junctions)))])
 
     # -- local moves ---------------------------------------------------------------------
@@ -232,9 +271,14 @@ class Mover:
         return {}, {path: new}
 
     def move_junction(self, junction: int) -> tuple[dict, dict]:
-        problem, state, rng = self.problem, self.state, self.rng
+        rng = self.rng
         sigma = _log_uniform(rng, 0.05, 2.0)
         dx, dz = rng.normal(0.0, sigma), rng.normal(0.0, sigma)
+        return self._shift_junction(junction, dx, dz)
+
+    def _shift_junction(self, junction: int, dx: float, dz: float) -> tuple[dict, dict]:
+        """The junction shifted by (dx, dz), with the first point of every path leaving it."""
+        problem, state = self.problem, self.state
         boxes = {junction: (state.x[junction] + dx, state.z[junction] + dz, state.yaw[junction])}
         paths = {}
         for path in problem.paths_of_junction.get(junction, []):
@@ -254,27 +298,63 @@ class Mover:
         # Inverse-CDF sampling as rng.choice(p=...) does it, without its checks of p each step.
         cdf = (weights / weights.sum()).cumsum()
         cdf /= cdf[-1]
-        term = self.problem.relations[self.relations[int(cdf.searchsorted(self.rng.random(), side="right"))]]
+        index = self.relations[int(cdf.searchsorted(self.rng.random(), side="right"))]
+        term = self.problem.relations[index]
         a_movable, b_movable = self._movable(term.a), self._movable(term.b)
-        turnable = term.b.kind == "object" and b_movable and term.base in B_SIDE_LABELS
+        turnable = term.b.kind == "object" and b_movable and term.spec.names_target_side
         if turnable and self.rng.random() < REVERSE_SHARE:
             boxes = self.turn_target_for(term)
-        elif b_movable and term.base.startswith("NextTo") and (not a_movable or self.rng.random() < REVERSE_SHARE):
+        elif b_movable and term.spec.family == "next_to" and (not a_movable or self.rng.random() < REVERSE_SHARE):
             boxes = self.place_target_for(term)
         elif a_movable and len(self._placing_terms(term.a)) > 1:
             boxes = self.place_for_all(term.a)
         elif a_movable:
             boxes = self.place_for_relation(term)
+        elif index in self.pullable:
+            return self.pull(term)
         else:
             return None
         return (boxes, {}) if boxes else None
+
+    def pull(self, term: RelationTerm) -> tuple[dict, dict] | None:
+        """Bring B (a free path or junction) next to A (held by pins): the path's control
+        point nearest A goes to a small gap beside A, or the junction is shifted there."""
+        problem, state, rng = self.problem, self.state, self.rng
+        ax, az = centre(term.a, state)
+        gap = rng.uniform(*GAP_RANGE)
+        if term.b.kind == "path":
+            path = term.b.index
+            points = state.points[path]
+            _, nx, nz, segment = nearest_on_polyline(points, ax, az)
+            dx, dz = self._away(nx - ax, nz - az)
+            distance = end_reach(problem, state, term.a, dx, dz) + problem.path_width[path] / 2.0 + gap
+            tx, tz = ax + dx * distance, az + dz * distance
+            first = 1 if problem.path_start[path] >= 0 else 0
+            candidates = [k for k in (segment, segment + 1) if k >= first]
+            k = min(candidates, key=lambda k: math.hypot(points[k][0] - tx, points[k][1] - tz))
+            new = [list(p) for p in points]
+            new[k] = [tx, tz]
+            return {}, {path: new}
+        junction = term.b.index
+        jx, jz = state.x[junction], state.z[junction]
+        dx, dz = self._away(jx - ax, jz - az)
+        distance = end_reach(problem, state, term.a, dx, dz) + reach(problem, state, junction, -dx, -dz) + gap
+        return self._shift_junction(junction, ax + dx * distance - jx, az + dz * distance - jz)
+
+    def _away(self, dx: float, dz: float) -> tuple[float, float]:
+        """(dx, dz) as a unit vector; a random one when it is (almost) zero."""
+        length = math.hypot(dx, dz)
+        if length < 1e-9:
+            angle = self.rng.uniform(-math.pi, math.pi)
+            return math.sin(angle), math.cos(angle)
+        return dx / length, dz / length
 
     def _placing_terms(self, end: Endpoint) -> list[RelationTerm]:
         """A's relations that say where it goes (NextTo*, OnTopOf*), not only how it turns."""
         key = (end.kind, end.index)
         if key not in self._placing:
             self._placing[key] = [
-                t for t in self.problem.outgoing.get(key, []) if not t.base.startswith("Facing")
+                t for t in self.problem.outgoing.get(key, []) if t.spec.family != "facing"
             ]
         return self._placing[key]
 
@@ -303,12 +383,13 @@ class Mover:
 
         ``keep_heading``: a NextTo* placement only shifts A (never turns it to face a road).
         """
-        base = term.base
-        if base.startswith("NextTo"):
+        family = term.spec.family
+        if family == "next_to":
             return self._place_next_to(term, keep_heading)
-        if base.startswith("Facing"):
+        if family == "facing":
             if term.a.kind == "object" and term.a.index in self.top_group_of and self.rng.random() < 0.5:
-                return self.turn_group_to_face(term)
+                if self.group_whole[self.top_group_of[term.a.index]]:
+                    return self.turn_group_to_face(term)
             return self.turn_to_face(term)
         return self._place_on_top(term)
 
@@ -340,7 +421,7 @@ class Mover:
             wx, wz = nx, nz
         else:
             bx, bz, c, s = anchor(b, state, (ax, az))
-            wx, wz = self._wanted_direction(term.base, c, s)
+            wx, wz = self._wanted_direction(term, c, s)
             offset = end_reach(problem, state, b, wx, wz)
             # Slide sideways along B's side a little, so several things beside B can fit.
             slide = rng.uniform(-LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
@@ -362,7 +443,7 @@ class Mover:
         a, b = term.a, term.b
         ax, az = source_point(a, state)
         bx, bz, c, s = anchor(b, state, (ax, az))
-        wx, wz = self._wanted_direction(term.base, c, s)
+        wx, wz = self._wanted_direction(term, c, s)
         if a.kind == "path":
             a_reach = problem.path_width[a.index] / 2.0
         else:
@@ -371,22 +452,15 @@ class Mover:
         return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
 
     def turn_target_for(self, term: RelationTerm) -> dict:
-        """Turn B (an object, with what it carries) in place so that A is on the side named."""
+        """Turn B (an object, with what it carries) in place so that A is on the side named
+        (of several sides, the one reached by the smallest turn)."""
         state = self.state
         box = term.b.index
         ax, az = centre(term.a, state)
-        dx, dz = ax - state.x[box], az - state.z[box]
-        # The yaw at which B's side points along (dx, dz); left is (c, -s), forward (s, c).
-        side = {
-            "NextToLeft": math.atan2(-dz, dx), "NextToRight": math.atan2(dz, -dx),
-            "NextToFront": math.atan2(dx, dz), "NextToBehind": math.atan2(-dx, -dz),
-        }  # fmt: skip
-        if term.base == "NextToChooseSide":
-            left, right = side["NextToLeft"], side["NextToRight"]
-            yaw = left if abs(wrap(left - state.yaw[box])) < abs(wrap(right - state.yaw[box])) else right
-        else:
-            yaw = side[term.base]
-        turn = wrap(yaw - state.yaw[box])
+        heading = math.atan2(ax - state.x[box], az - state.z[box])  # B's yaw if A were in front
+        # A side at local (lx, lz) points along (dx, dz) when B's yaw is heading - atan2(lx, lz).
+        turns = [wrap(heading - math.atan2(lx, lz) - state.yaw[box]) for lx, lz in term.spec.directions.values()]
+        turn = min(turns, key=abs)
         return rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0))
 
     def _heading(self, end: Endpoint) -> float:
@@ -394,25 +468,23 @@ class Mover:
         box = end.index if end.kind == "object" else end.members[0]
         return self.state.yaw[box]
 
-    def _wanted_direction(self, base: str, c: float, s: float) -> tuple[float, float]:
-        """A unit direction from B to A in which ``base`` holds (drawn for open ones)."""
-        rng = self.rng
-        own = sides(c, s)
-        word = base[len("NextTo"):].lower()
-        if word in own:
-            return own[word]
-        if word in COMPASS:
-            return COMPASS[word]
-        if word == "chooseside":
-            return own["left"] if rng.random() < 0.5 else own["right"]
-        if word == "choosedirection":
-            return list(COMPASS.values())[int(rng.integers(4))]
-        angle = rng.uniform(-math.pi, math.pi)
+    def _wanted_direction(self, term: RelationTerm, c: float, s: float) -> tuple[float, float]:
+        """A unit direction from B to A in which ``term`` holds (drawn where it is open);
+        ``c``, ``s``: B's yaw's cosine and sine."""
+        wanted = list(term.spec.direction_vectors(c, s).values())
+        if len(wanted) == 1:
+            return wanted[0]
+        if wanted:
+            return wanted[int(self.rng.integers(len(wanted)))]
+        angle = self.rng.uniform(-math.pi, math.pi)
         return math.sin(angle), math.cos(angle)
 
-    def turn_group_to_face(self, term: RelationTerm) -> dict:
-        """Turn the whole top-level group holding A about its centre so A faces as ``term`` wants."""
+    def turn_group_to_face(self, term: RelationTerm) -> dict | None:
+        """Turn the whole top-level group holding A about its centre so A faces as ``term``
+        wants (None when something in the group is pinned)."""
         group = self.top_group_of[term.a.index]
+        if not self.group_whole[group]:
+            return None
         members = self.problem.group_members[group]
         pivot = centre(Endpoint("group", group, members), self.state)
         turn = self._facing_turn(term)
@@ -432,14 +504,14 @@ class Mover:
         a, b = term.a, term.b
         ax, az = state.x[a.index], state.z[a.index]
         bx, bz, c, s = anchor(b, state, (ax, az))
-        base = term.base
-        if base == "FacingTowards":
+        how = term.spec.facing
+        if how == "towards":
             yaw = math.atan2(bx - ax, bz - az)
-        elif base == "FacingAwayFrom":
+        elif how == "away":
             yaw = math.atan2(ax - bx, az - bz)
         else:
             b_yaw = math.atan2(s, c) if b.kind != "group" else 0.0
-            yaw = b_yaw if base == "FacingSameDirection" else b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
+            yaw = b_yaw if how == "same" else b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
         return wrap(yaw - state.yaw[a.index])
 
     def _place_on_top(self, term: RelationTerm) -> dict:
@@ -451,21 +523,18 @@ class Mover:
         ex, ez = (problem.half_width[a], problem.half_depth[a]) if quarter % 2 == 0 else (problem.half_depth[a], problem.half_width[a])
         room_x = max(problem.half_width[b] - ex, 0.0)
         room_z = max(problem.half_depth[b] - ez, 0.0)
-        base = term.base
-        if base == "OnTopOfMiddle":
+        placement = term.spec.placement
+        if placement == "middle":
             lx = lz = 0.0
-        elif base == "OnTopOfFrontEdge":
+        elif placement == "front_edge":
             lx, lz = rng.uniform(-room_x, room_x), room_z
-        elif base == "OnTopOfEdge":
+        elif placement == "edge":
             edge = int(rng.integers(4))
             lx = (room_x if edge == 0 else -room_x) if edge < 2 else rng.uniform(-room_x, room_x)
             lz = (room_z if edge == 2 else -room_z) if edge >= 2 else rng.uniform(-room_z, room_z)
         else:
             lx, lz = rng.uniform(-room_x, room_x), rng.uniform(-room_z, room_z)
-        c, s = state.c[b], state.s[b]
-        # Local (left, forward) of B to world: x = cx + lx c + lz s, z = cz - lx s + lz c.
-        x = state.x[b] + lx * c + lz * s
-        z = state.z[b] - lx * s + lz * c
+        x, z = to_world(state.x[b], state.z[b], state.yaw[b], lx, lz)
         return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))
 
 

@@ -12,10 +12,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from scenewright.errors import InputError
-
-from ..relations import base_label, is_support
-from ..scene_graph import SceneGraph
+from scenewright.core.errors import InputError
+from scenewright.core.relations import RELATIONS, RelationLabel
+from scenewright.core.scene_graph import SceneGraph
 
 
 @dataclass(frozen=True)
@@ -34,7 +33,7 @@ class RelationTerm:
     source: str
     target: str
     label: str  # as written (may be Implicit*)
-    base: str  # the geometry it asks for: no Implicit prefix, IsPartOf* read as OnTopOf*
+    spec: RelationLabel  # the registry's record: the geometry it asks for
     a: Endpoint
     b: Endpoint
 
@@ -68,6 +67,9 @@ class Problem:
     path_segments: list[int]
     path_start: list[int]  # junction box a path starts at, -1 if free
     relations: list[RelationTerm]
+    #: Every edge of the graph in order, as (source, target, label, index of its term in
+    #: ``relations``, or None for a structural edge such as PathConnectedTo).
+    edges: list[tuple[str, str, str, int | None]]
     extent: tuple[float, float]
     walls: bool
     terms_of_box: list[list[int]] = field(default_factory=list)
@@ -153,20 +155,22 @@ def compile_problem(graph: SceneGraph) -> Problem:
     support = [-1] * len(ids)
     path_start = [-1] * len(path_ids)
     relations: list[RelationTerm] = []
+    edges: list[tuple[str, str, str, int | None]] = []
     for edge in graph.edges():
-        # IsPartOf* differs from OnTopOf* only in wording, so the layout sees one geometry.
-        base = base_label(edge.label).replace("IsPartOf", "OnTopOf")
-        if base == "PathConnectedTo":
+        spec = RELATIONS[edge.label]
+        if spec.family == "structural":
             path, junction = _path_connection(edge, path_index, box_index)
             path_start[path] = junction
+            edges.append((edge.source, edge.target, edge.label, None))
             continue
         a, b = endpoint(edge.source), endpoint(edge.target)
-        if is_support(edge.label):
+        if spec.support:
             if a.kind != "object" or b.kind != "object":
                 raise InputError(f"{edge.source} {edge.label} {edge.target}: only objects can rest on objects")
             if support[a.index] == -1:
                 support[a.index] = b.index
-        relations.append(RelationTerm(edge.source, edge.target, edge.label, base, a, b))
+        edges.append((edge.source, edge.target, edge.label, len(relations)))
+        relations.append(RelationTerm(edge.source, edge.target, edge.label, spec, a, b))
 
     dependents: list[list[int]] = [[] for _ in ids]
     for box, below in enumerate(support):
@@ -179,7 +183,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
         height=height, size=size, support=support, dependents=dependents,
         group_ids=group_ids, group_members=[tuple(m) for m in group_members],
         path_ids=path_ids, path_width=path_width, path_max_length=path_max_length,
-        path_segments=path_segments, path_start=path_start, relations=relations,
+        path_segments=path_segments, path_start=path_start, relations=relations, edges=edges,
         extent=(float(graph.params.extent[0]), float(graph.params.extent[1])),
         walls=bool(graph.params.walls),
     )  # fmt: skip

@@ -26,7 +26,10 @@ leaves the geometry open:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import NamedTuple
+
+from scenewright.core.relations import FAMILIES
 
 from .factors import angle_between, equals, less, pointing_same_direction, range_
 from .geometry import nearest_on_polyline, polyline_distance, polyline_rects_distance, rect_distance, to_local
@@ -34,16 +37,14 @@ from .params import LayoutParams
 from .problem import Endpoint, RelationTerm
 from .state import State
 
-#: World directions (x, z): north is -Z, east +X.
-COMPASS = {"north": (0.0, -1.0), "east": (1.0, 0.0), "south": (0.0, 1.0), "west": (-1.0, 0.0)}
-
-
-def sides(c: float, s: float) -> dict[str, tuple[float, float]]:
-    """An object's own directions as world unit vectors (x, z), given its yaw's cos and sin.
-
-    Left is local +X and front local +Z, turned by the yaw (see ``geometry``).
-    """
-    return {"left": (c, -s), "right": (-c, s), "front": (s, c), "behind": (-s, -c)}
+#: Thresholds of ``satisfied`` (documented in ``report``).
+DIRECTION_TOLERANCE = math.radians(45.0)
+FACING_TOLERANCE = math.radians(30.0)
+HEIGHT_TOLERANCE = 0.01
+MIDDLE_TOLERANCE = 0.10
+EDGE_TOLERANCE = 0.05
+#: Small slack so a relation placed exactly on its threshold is not lost to rounding.
+EPSILON = 1e-9
 
 
 class Measure(NamedTuple):
@@ -154,55 +155,81 @@ def _forward(end: Endpoint, state: State) -> tuple[float, float]:
 
 def evaluate(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     """The energy (>= 0) of one relation edge and its geometric measures."""
-    base = term.base
-    if base.startswith("NextTo"):
-        return _next_to(term, state, params)
-    if base.startswith("Facing"):
-        return _facing(term, state, params)
-    return _support(term, state, params)
+    return FAMILY_TERMS[term.spec.family].evaluate(term, state, params)
+
+
+def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    """Whether the relation holds geometrically (the thresholds of ``report``)."""
+    return FAMILY_TERMS[term.spec.family].satisfied(term, measure, params)
+
+
+def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    """What is wrong with a relation that does not hold, in words."""
+    return FAMILY_TERMS[term.spec.family].complaint(term, measure, params)
+
+
+# -- next to -----------------------------------------------------------------------
 
 
 def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     distance = distance_between(term.a, term.b, state)
     energy = -less(distance, params.next_to_distance, params.h)
-    base = term.base
-    if base == "NextTo":
+    spec = term.spec
+    if not spec.directions:
         return Measure(energy, distance)
     ax, az = source_point(term.a, state)
     bx, bz, c, s = anchor(term.b, state, (ax, az))
     dx, dz = _unit(ax - bx, az - bz)
-    word = base[len("NextTo"):].lower()
-    if word == "choosedirection":
-        wanted = COMPASS
-    elif word == "chooseside":
-        own = sides(c, s)
-        wanted = {"left": own["left"], "right": own["right"]}
-    else:
-        wanted = {word: COMPASS[word] if word in COMPASS else sides(c, s)[word]}
     chosen, best = None, math.inf
-    for word, (wx, wz) in wanted.items():
+    for word, (wx, wz) in spec.direction_vectors(c, s).items():
         angle = angle_between(dx, dz, wx, wz)
         if angle < best - 1e-12:
             chosen, best = word, angle
     energy -= equals(best, 0.0, params.sigma2)
-    return Measure(energy, distance, best, chosen if base.startswith("NextToChoose") else None)
+    return Measure(energy, distance, best, chosen if spec.chooses else None)
+
+
+def _next_to_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    near = measure.distance <= params.next_to_distance + EPSILON
+    return near and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+
+
+def _next_to_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    words = term.spec.phrase
+    if measure.distance > params.next_to_distance:
+        return f"{term.source} is not {words} {term.target} (distance {measure.distance:.1f} m)"
+    return f"{term.source} is not {words} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+
+
+# -- facing ------------------------------------------------------------------------
 
 
 def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     fx, fz = _forward(term.a, state)
-    base = term.base
-    if base in ("FacingTowards", "FacingAwayFrom"):
+    how = term.spec.facing
+    if how in ("towards", "away"):
         ax, az = centre(term.a, state)
         bx, bz, _, _ = anchor(term.b, state, (ax, az))
-        dx, dz = _unit(bx - ax, bz - az) if base == "FacingTowards" else _unit(ax - bx, az - bz)
+        dx, dz = _unit(bx - ax, bz - az) if how == "towards" else _unit(ax - bx, az - bz)
         angle = angle_between(dx, dz, fx, fz)
         return Measure(-pointing_same_direction(dx, dz, fx, fz, params.sigma2), angle=angle)
     gx, gz = _forward(term.b, state)
     angle = angle_between(fx, fz, gx, gz)
-    if base == "FacingSameDirection":
+    if how == "same":
         return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
-    off = abs(angle - math.pi / 2.0)  # FacingOrthogonalDirection
+    off = abs(angle - math.pi / 2.0)  # orthogonal
     return Measure(-equals(angle, math.pi / 2.0, params.sigma2), angle=off)
+
+
+def _facing_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return measure.angle <= FACING_TOLERANCE + EPSILON
+
+
+def _facing_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    return f"{term.source} is not {term.spec.phrase} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+
+
+# -- support -----------------------------------------------------------------------
 
 
 def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
@@ -216,10 +243,10 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     hw, hd = rect_b.hw, rect_b.hd
     inside = abs(lx) <= hw and abs(lz) <= hd
     within = range_(lx, -hw, hw, params.h) + range_(lz, -hd, hd, params.h)
-    base = term.base
-    if base == "OnTopOf":
+    placement = term.spec.placement
+    if placement == "anywhere":
         return Measure(energy - within, height_gap=height_gap, inside=inside)
-    if base == "OnTopOfMiddle":
+    if placement == "middle":
         offset = math.hypot(lx, lz)
         return Measure(energy - equals(offset, 0.0, params.sigma2), height_gap=height_gap, inside=inside, offset=offset)
     # A's half extents along B's axes, then the gaps between A's sides and B's edges.
@@ -228,7 +255,7 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
     ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
     front = abs(hd - lz - ez)
-    if base == "OnTopOfFrontEdge":
+    if placement == "front_edge":
         offset = front
     else:
         offset = min(front, abs(hd + lz - ez), abs(hw - lx - ex), abs(hw + lx - ex))
@@ -237,3 +264,41 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     overhang = math.hypot(max(abs(lx) - hw, 0.0), max(abs(lz) - hd, 0.0))
     energy -= equals(offset, 0.0, params.sigma2) + equals(overhang, 0.0, params.sigma2)
     return Measure(energy, height_gap=height_gap, inside=inside, offset=offset)
+
+
+def _support_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    on_top = measure.height_gap <= HEIGHT_TOLERANCE and measure.inside
+    placement = term.spec.placement
+    if placement == "middle":
+        return on_top and measure.offset <= MIDDLE_TOLERANCE + EPSILON
+    if placement in ("edge", "front_edge"):
+        return on_top and measure.offset <= EDGE_TOLERANCE + EPSILON
+    return on_top
+
+
+def _support_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    if term.spec.placement == "anywhere" or measure.height_gap > HEIGHT_TOLERANCE or not measure.inside:
+        return f"{term.source} is not on top of {term.target}"
+    return f"{term.source} is not {term.spec.phrase} {term.target} ({measure.offset:.2f} m off)"
+
+
+class FamilyTerm(NamedTuple):
+    """The layout's side of a relation family: its energy and measures, the threshold
+    that decides whether it holds, and the words for when it does not."""
+
+    evaluate: Callable[[RelationTerm, State, LayoutParams], Measure]
+    satisfied: Callable[[RelationTerm, Measure, LayoutParams], bool]
+    complaint: Callable[[RelationTerm, Measure, LayoutParams], str]
+
+
+#: One entry per geometric family of the relation registry. (``structural`` relations
+#: become path starts when the problem is compiled and are never scored.)
+FAMILY_TERMS: dict[str, FamilyTerm] = {
+    "next_to": FamilyTerm(_next_to, _next_to_holds, _next_to_complaint),
+    "facing": FamilyTerm(_facing, _facing_holds, _facing_complaint),
+    "support": FamilyTerm(_support, _support_holds, _support_complaint),
+}
+
+_missing = set(FAMILIES) - set(FAMILY_TERMS) - {"structural"}
+if _missing:  # a registry family the layout cannot score: refuse at start-up
+    raise ImportError(f"the layout implements no relation family {', '.join(sorted(_missing))}")

@@ -23,79 +23,37 @@ from __future__ import annotations
 
 import math
 
+from scenewright.core.relations import Relation
+
 from .energy import Energy
 from .geometry import polyline_length, polyline_turns
-from .params import LayoutParams
-from .problem import RelationTerm
-from .relation_terms import Measure, evaluate
-from .result import RelationResult
+from .relation_terms import EPSILON, complaint, evaluate, satisfied
 
-DIRECTION_TOLERANCE = math.radians(45.0)
-FACING_TOLERANCE = math.radians(30.0)
-HEIGHT_TOLERANCE = 0.01
-MIDDLE_TOLERANCE = 0.10
-EDGE_TOLERANCE = 0.05
 OVERLAP_TOLERANCE = 0.01
 EXTENT_TOLERANCE = 0.001
-#: Small slack so a relation placed exactly on its threshold is not lost to rounding.
-EPSILON = 1e-9
-
-_WORDS = {
-    "NextTo": "next to", "NextToChooseDirection": "next to", "NextToChooseSide": "beside",
-    "NextToNorth": "north of", "NextToEast": "east of", "NextToSouth": "south of", "NextToWest": "west of",
-    "NextToLeft": "to the left of", "NextToRight": "to the right of", "NextToFront": "in front of",
-    "NextToBehind": "behind", "OnTopOf": "on top of", "OnTopOfMiddle": "in the middle of",
-    "OnTopOfEdge": "at the edge of", "OnTopOfFrontEdge": "at the front edge of",
-    "FacingTowards": "facing towards", "FacingAwayFrom": "facing away from",
-    "FacingSameDirection": "facing the same way as", "FacingOrthogonalDirection": "facing across",
-}  # fmt: skip
 
 
-def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    """Whether the relation holds geometrically (see the module docstring)."""
-    base = term.base
-    if base.startswith("NextTo"):
-        near = measure.distance <= params.next_to_distance + EPSILON
-        return near if base == "NextTo" else near and measure.angle <= DIRECTION_TOLERANCE + EPSILON
-    if base.startswith("Facing"):
-        return measure.angle <= FACING_TOLERANCE + EPSILON
-    on_top = measure.height_gap <= HEIGHT_TOLERANCE and measure.inside
-    if base == "OnTopOfMiddle":
-        return on_top and measure.offset <= MIDDLE_TOLERANCE + EPSILON
-    if base in ("OnTopOfEdge", "OnTopOfFrontEdge"):
-        return on_top and measure.offset <= EDGE_TOLERANCE + EPSILON
-    return on_top
-
-
-def _complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    base = term.base
-    word = _WORDS[base]
-    if base.startswith("NextTo"):
-        if measure.distance > params.next_to_distance:
-            return f"{term.source} is not {word} {term.target} (distance {measure.distance:.1f} m)"
-        return f"{term.source} is not {word} {term.target} ({math.degrees(measure.angle):.0f}° off)"
-    if base.startswith("Facing"):
-        return f"{term.source} is not {word} {term.target} ({math.degrees(measure.angle):.0f}° off)"
-    if base == "OnTopOf" or measure.height_gap > HEIGHT_TOLERANCE or not measure.inside:
-        return f"{term.source} is not on top of {term.target}"
-    return f"{term.source} is not {word} {term.target} ({measure.offset:.2f} m off)"
-
-
-def assess(energy: Energy) -> tuple[list[RelationResult], list[str]]:
-    """Per-relation verdicts and the list of problems (empty when the layout is ok)."""
+def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
+    """A verdict for every edge of the graph, in graph order, and the list of problems
+    (empty when the layout is ok). Structural edges (a path's start at its junction) hold
+    by construction."""
     problem, state, params = energy.problem, energy.state, energy.params
-    results: list[RelationResult] = []
+    results: list[Relation] = []
     problems: list[str] = []
-    for term in problem.relations:
+    for source, target, label, index in problem.edges:
+        if index is None:
+            results.append(Relation(source, target, label, 0.0, True))
+            continue
+        term = problem.relations[index]
         if not term.placeable:
-            results.append(RelationResult(term.source, term.target, term.label, 0.0, False))
-            problems.append(f"{term.source} {term.label} {term.target}: a group with nothing in it cannot be placed")
+            results.append(Relation(source, target, label, 0.0, False))
+            problems.append(f"{source} {label} {target}: a group with nothing in it cannot be placed")
             continue
         measure = evaluate(term, state, params)
         holds = satisfied(term, measure, params)
-        results.append(RelationResult(term.source, term.target, term.label, -measure.energy, holds, measure.chosen))
+        results.append(Relation(source, target, label, -measure.energy, holds, measure.chosen))
         if not holds:
-            problems.append(_complaint(term, measure, params))
+            problems.append(complaint(term, measure, params))
     problems.extend(_overlaps(energy))
     problems.extend(_outside(energy))
     problems.extend(_path_shapes(energy))

@@ -9,6 +9,10 @@ it with probability min(1, exp(-delta / T)), T falling geometrically from
 energy is at most ``target_energy``. A chain whose count of problems has not fallen
 for ``patience`` steps stops early, since a fresh start does better than waiting. The
 caller makes restarts.
+
+With ``pins`` (``pinning.Pins``) pinned boxes and paths are placed first and never
+moved, and warm-started ones are placed at their start poses before the constructive
+placement puts the rest around them.
 """
 
 from __future__ import annotations
@@ -18,13 +22,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scenewright.core.relations import Relation
+
 from .energy import Energy
 from .initial import place_initial
 from .moves import Mover
 from .params import LayoutParams
+from .pinning import Pins
 from .problem import Problem
 from .report import assess
-from .result import RelationResult
 from .state import State
 
 
@@ -33,7 +39,7 @@ class Run:
     """The outcome of one chain."""
 
     energy: Energy
-    relations: list[RelationResult]
+    relations: list[Relation]
     problems: list[str]
     steps: int
     accepted: int
@@ -43,23 +49,27 @@ class Run:
         return not self.problems
 
 
-def start_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> tuple[Energy, Mover]:
+def start_chain(
+    problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None
+) -> tuple[Energy, Mover]:
     """A fresh state after the constructive initial placement, with its energy and mover."""
+    pins = pins or Pins.none(problem)
     state = State(problem)
+    pins.set_heights(problem, state)
     energy = Energy(problem, state, params)
-    mover = Mover(problem, state, rng, params)
-    place_initial(energy, mover, rng)
+    mover = Mover(problem, state, rng, params, pins)
+    place_initial(energy, mover, rng, pins)
     return energy, mover
 
 
-def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator) -> Run:
+def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None) -> Run:
     """Place, then anneal until the stop rule holds or the step budget is spent."""
-    energy, mover = start_chain(problem, params, rng)
+    energy, mover = start_chain(problem, params, rng, pins)
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
     budget = max(params.steps, params.steps_per_box * problem.n_boxes)
-    patience = params.patience * budget // params.steps
+    patience = params.patience * budget // max(params.steps, 1)
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
     for step in range(budget):

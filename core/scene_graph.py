@@ -3,7 +3,7 @@
 A ``SceneGraph`` wraps a networkx ``MultiDiGraph``. Each node is one instance of a
 catalog type (object, group, path or junction) with a stable id such as
 ``market_stand_2`` (type name and a 1-based counter per type, in creation order). Each
-edge is one relation label from ``generator.relations`` pointing from A to B. Every node
+edge is one relation label of the registry (``core.relations``) pointing from A to B. Every node
 records the production that made it (its derivation) and its parent group, so the
 describer can follow the derivation and a group's extent can be taken from its members.
 
@@ -15,11 +15,36 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import asdict, dataclass, field, fields
+from typing import Protocol
 
 import networkx as nx
 
-from .catalog import CatalogEntry, Style, Vec3
-from .relations import LABELS
+from .relations import RELATIONS, Relation, UnknownLabel
+
+Vec3 = tuple[float, float, float]
+
+
+class NodeLooks(Protocol):
+    """What a node copies from its catalog entry once a style is applied."""
+
+    noun: str
+    plural: str | None
+    size: Vec3
+    shape: str | None
+    mesh: str | None
+    colour: Vec3
+
+
+class CatalogLike(NodeLooks, Protocol):
+    """A catalog entry as the graph reads it (the rules loader's ``CatalogEntry``)."""
+
+    name: str
+    kind: str
+    width: float
+    max_length: float
+    segments: int
+
+    def with_style(self, style) -> NodeLooks: ...
 
 
 @dataclass(frozen=True)
@@ -65,34 +90,28 @@ class SceneNode:
 _NODE_FIELDS = tuple(f.name for f in fields(SceneNode))
 
 
-@dataclass(frozen=True)
-class SceneEdge:
-    """One relation of the scene graph: ``source`` -label-> ``target``."""
-
-    source: str
-    target: str
-    label: str
-
-
 @dataclass
 class SceneGraph:
     """A scene relationship graph plus its scene parameters."""
 
     params: SceneParams = field(default_factory=SceneParams)
     graph: nx.MultiDiGraph = field(default_factory=nx.MultiDiGraph)
+    #: Every random choice expansion made, in the order it made them (see
+    #: ``generator.derivation``); empty for a graph not made by expansion.
+    derivation: list[dict] = field(default_factory=list)
     _counters: dict[str, int] = field(default_factory=dict, repr=False)
 
     # -- building -----------------------------------------------------------------
 
     def add_node(
         self,
-        entry: CatalogEntry,
+        entry: CatalogLike,
         *,
-        style: Style | None = None,
+        style=None,
         parent: str | None = None,
         rule: str | None = None,
     ) -> str:
-        """Add an instance of ``entry`` (in ``style``) and return its new id."""
+        """Add an instance of ``entry`` (in ``style``, one of its styles) and return its new id."""
         if parent is not None and parent not in self.graph:
             raise KeyError(f"unknown parent node {parent!r}")
         count = self._counters.get(entry.name, 0) + 1
@@ -100,15 +119,17 @@ class SceneGraph:
         node_id = f"{entry.name}_{count}"
         looks = entry.with_style(style)
         is_path = entry.kind == "path"
+        # A path has a width, a group the box of its members: neither a box nor a mesh of its own.
+        has_box = entry.kind in ("object", "junction")
         node = SceneNode(
             id=node_id,
             type=entry.name,
             kind=entry.kind,
             noun=looks.noun,
             plural=looks.plural,
-            size=tuple(float(v) for v in looks.size),
-            shape=looks.shape,
-            mesh=looks.mesh,
+            size=tuple(float(v) for v in looks.size) if has_box else (float(entry.width) if is_path else 0.0, 0.0, 0.0),
+            shape=looks.shape if has_box else None,
+            mesh=looks.mesh if has_box else None,
             colour=tuple(float(v) for v in looks.colour),
             style=style.name if style else None,
             parent=parent,
@@ -127,9 +148,9 @@ class SceneGraph:
         self.graph.add_node(node.id, **{name: getattr(node, name) for name in _NODE_FIELDS})
 
     def add_relation(self, source: str, target: str, label: str) -> None:
-        """Add the edge ``source`` -label-> ``target`` (both must exist)."""
-        if label not in LABELS:
-            raise ValueError(f"unknown relation label {label!r}")
+        """Add the edge ``source`` -label-> ``target`` (both must exist, the label registered)."""
+        if label not in RELATIONS:
+            raise UnknownLabel(label)
         for node_id in (source, target):
             if node_id not in self.graph:
                 raise KeyError(f"unknown node {node_id!r}")
@@ -148,10 +169,10 @@ class SceneGraph:
         found.sort(key=lambda n: n.order)
         return [n for n in found if kind is None or n.kind == kind]
 
-    def edges(self, label: str | None = None) -> list[SceneEdge]:
-        """Relations grouped by source (in node order), each source's in insertion order."""
+    def edges(self, label: str | None = None) -> list[Relation]:
+        """Relations (without a verdict) grouped by source, each source's in insertion order."""
         return [
-            SceneEdge(s, t, data["label"])
+            Relation(s, t, data["label"])
             for s, t, data in self.graph.edges(data=True)
             if label is None or data["label"] == label
         ]
@@ -189,16 +210,18 @@ class SceneGraph:
     # -- plain data ---------------------------------------------------------------
 
     def to_dict(self) -> dict:
-        """A JSON-ready dict: parameters, nodes (creation order) and edges."""
+        """A JSON-ready dict: parameters, nodes (creation order), edges and the derivation."""
         return {
             "params": asdict(self.params),
             "nodes": [asdict(n) for n in self.nodes()],
-            "edges": [asdict(e) for e in self.edges()],
+            "edges": [{"source": e.source, "target": e.target, "label": e.label} for e in self.edges()],
+            "derivation": [dict(record) for record in self.derivation],
         }
 
     @classmethod
     def from_dict(cls, data: dict) -> SceneGraph:
-        """The graph ``to_dict`` gave; missing parameters take their defaults."""
+        """The graph ``to_dict`` gave; missing parameters take their defaults, a missing
+        derivation is empty."""
         params = data.get("params", {})
         scene_graph = cls(
             params=SceneParams(
@@ -207,7 +230,8 @@ class SceneGraph:
                 ground=params.get("ground", SceneParams.ground),
                 walls=bool(params.get("walls", SceneParams.walls)),
                 templates=params.get("templates", SceneParams.templates),
-            )
+            ),
+            derivation=[dict(record) for record in data.get("derivation", [])],
         )
         for raw in data["nodes"]:
             node = SceneNode(**{**raw, "size": tuple(raw["size"]), "colour": tuple(raw["colour"])})

@@ -8,7 +8,6 @@ dashed line between the two ends of each relation the layout did not satisfy.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import matplotlib
@@ -18,7 +17,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 from matplotlib.patches import Polygon, Rectangle  # noqa: E402
 
-from scenewright.scene import Scene, footprint_corners  # noqa: E402
+from scenewright.core.frames import forward  # noqa: E402
+from scenewright.core.scene import Scene, object_corners  # noqa: E402
 
 #: Pixels per inch of the saved image.
 DPI = 110
@@ -44,7 +44,7 @@ def draw_plan(scene: Scene, path) -> Path:
         centres[obj.id] = (obj.position[0], obj.position[2])
         if obj.kind == "group":
             continue
-        corners = footprint_corners(obj)
+        corners = object_corners([obj])[0]
         if obj.kind == "junction":
             axes.add_patch(Polygon(corners, closed=True, fc="tan", ec="saddlebrown", lw=1, zorder=2))
             continue
@@ -52,7 +52,8 @@ def draw_plan(scene: Scene, path) -> Path:
         axes.add_patch(Polygon(corners, closed=True, fc=obj.colour, ec="black", lw=0.6, alpha=0.9, zorder=4 if stacked else 3))
         reach = obj.size[2] / 2.0
         x, z = obj.position[0], obj.position[2]
-        axes.plot([x, x + math.sin(obj.yaw) * reach], [z, z + math.cos(obj.yaw) * reach], color="black", lw=0.8, zorder=5)
+        fx, fz = forward(obj.yaw)
+        axes.plot([x, x + fx * reach], [z, z + fz * reach], color="black", lw=0.8, zorder=5)
         axes.annotate(obj.id, (x, z), fontsize=5, ha="center", va="bottom", zorder=6)
     for road in scene.paths:
         mid = road.points[len(road.points) // 2]

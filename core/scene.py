@@ -2,26 +2,31 @@
 
 A ``Scene`` is what the describer, the renderer and the exporter read: every object,
 group and junction with its pose and size, every path with its control points, every
-relation with its layout verdict, the layout's statistics, and (once made) the
-description and render metadata. ``assemble_scene`` builds one from a scene graph and
-a layout result; ``Scene.to_json`` / ``Scene.from_json`` are the scene.json contract
-documented by ``scenewright/schema/scene.schema.json``.
+relation (``PathConnectedTo`` included) with its layout verdict, the layout's
+statistics, and (once made) the description and render metadata. ``assemble_scene``
+builds one from a scene graph and a layout result; ``Scene.to_json`` /
+``Scene.from_json`` are the scene.json contract documented by
+``scenewright/schema/scene.schema.json``. A Scene is data: the stages that describe,
+render or export it take it as an argument and return their results as values.
 """
 
 from __future__ import annotations
 
 import json
-import math
-import os
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
-from scenewright.generator.layout.result import LayoutResult
-from scenewright.generator.scene_graph import SceneGraph, SceneNode, SceneParams
+from . import VERSION
+from .frames import footprint_corners_many
+from .poses import LayoutResult
+from .relations import Relation
+from .scene_graph import SceneGraph, SceneNode, SceneParams
 
-SCENE_FORMAT_VERSION = 1
+#: Bumped when scene.json changes shape or meaning. 2: relations keep PathConnectedTo,
+#: seeds are split into per-stage streams, ``derivation`` records every random choice.
+SCENE_FORMAT_VERSION = 2
 
 
 @dataclass
@@ -64,18 +69,8 @@ class ScenePath:
     colour: list[float] = field(default_factory=lambda: [0.55, 0.45, 0.3])
     rule: str | None = None
     order: int = 0
-
-
-@dataclass
-class Relation:
-    """A relation edge with the layout's verdict on it (see ``RelationResult``)."""
-
-    source: str
-    target: str
-    label: str
-    value: float = 0.0
-    satisfied: bool = True
-    chosen: str | None = None
+    max_length: float = 30.0  # the longest it may be, in metres
+    segments: int = 3  # straight pieces of its polyline
 
 
 @dataclass
@@ -102,18 +97,16 @@ class Scene:
     layout: LayoutStats = field(default_factory=LayoutStats)
     walls: bool = False
     ground: str = "grass"
+    name: str = "scene"
     #: The folder of description templates the rule set brings (absolute path), which
     #: ``describe`` reads unless told otherwise; None: the package's own templates.
     templates: str | None = None
+    #: Every random choice of the grammar expansion, in order (see ``generator.derivation``).
+    derivation: list[dict[str, Any]] = field(default_factory=list)
     description: dict[str, Any] | None = None
     render: dict[str, Any] | None = None
     timings: dict[str, float] = field(default_factory=dict)
     version: str = ""
-
-    #: The pixels of the last offscreen render (a ``RenderResult``) made by
-    #: ``render_image`` or ``generate(render=True)``. Not a dataclass field: images are
-    #: files beside scene.json, never part of it.
-    images = None
 
     # -- lookups ------------------------------------------------------------------
 
@@ -175,7 +168,9 @@ class Scene:
             layout=build(LayoutStats, data.get("layout", {})),
             walls=bool(data.get("walls", False)),
             ground=data.get("ground", "grass"),
+            name=data.get("name", "scene"),
             templates=data.get("templates"),
+            derivation=list(data.get("derivation", [])),
             description=data.get("description"),
             render=data.get("render"),
             timings=dict(data.get("timings", {})),
@@ -186,52 +181,30 @@ class Scene:
     def from_json(cls, text: str) -> Scene:
         return cls.from_dict(json.loads(text))
 
-    # -- conveniences: thin wrappers over the pipeline stages (imported lazily) -------
-
-    def describe(self, style: str = "full", variant: int = 0, templates: str | os.PathLike[str] | None = None):
-        """An English description of this scene (a ``Description``); the scene is unchanged.
-
-        ``templates``: a folder of description templates; default ``self.templates``.
-        """
-        from scenewright.describer import describe
-
-        return describe(self, style=style, variant=variant, templates=templates or self.templates)
-
-    def render_image(self, width: int = 640, height: int = 480, view: str = "perspective"):
-        """Render offscreen: fills ``render`` metadata and ``images``, returns the ``RenderResult``."""
-        from scenewright.api import render_scene
-
-        return render_scene(self, size=(width, height), view=view)
-
-    def export(self, path):
-        """Write this scene as a binary glTF (.glb) file with one named node per object."""
-        from scenewright.api import export_scene
-
-        return export_scene(self, path)
-
     # -- back to a graph ----------------------------------------------------------
 
     def graph(self) -> SceneGraph:
-        """The scene relationship graph this scene was laid out from."""
+        """The scene relationship graph this scene was laid out from (every node, every
+        relation, the scene parameters, the derivation)."""
         nodes = [_node_of(o) for o in self.objects] + [_node_of_path(p) for p in self.paths]
         nodes.sort(key=lambda n: n["order"])
         return SceneGraph.from_dict(
             {
                 "params": asdict(
                     SceneParams(
-                        extent=tuple(self.extent), ground=self.ground, walls=self.walls, templates=self.templates
+                        name=self.name, extent=tuple(self.extent), ground=self.ground, walls=self.walls,
+                        templates=self.templates,
                     )
                 ),
                 "nodes": nodes,
                 "edges": [{"source": r.source, "target": r.target, "label": r.label} for r in self.relations],
+                "derivation": self.derivation,
             }
         )
 
 
 def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed: int) -> Scene:
     """Join a scene graph and its layout into a ``Scene`` (groups get their members' box)."""
-    from scenewright import __version__
-
     objects: list[SceneObject] = []
     paths: list[ScenePath] = []
     starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
@@ -250,6 +223,8 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
                     colour=list(node.colour),
                     rule=node.rule,
                     order=node.order,
+                    max_length=float(node.max_length),
+                    segments=int(node.segments),
                 )
             )
         elif node.kind == "group":
@@ -266,8 +241,7 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     objects.sort(key=lambda o: o.order)
 
     relations = [
-        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen)
-        for r in layout.relations
+        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen) for r in layout.relations
     ]
     stats = LayoutStats(
         energy=float(layout.energy),
@@ -288,25 +262,25 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
         layout=stats,
         walls=graph.params.walls,
         ground=graph.params.ground,
+        name=graph.params.name,
         templates=graph.params.templates,
-        version=__version__,
+        derivation=list(graph.derivation),
+        version=VERSION,
     )
 
 
-def footprint_corners(obj: SceneObject) -> np.ndarray:
-    """The four (x, z) corners of an object's rotated footprint."""
-    w, _, d = obj.size
-    local = np.array([[-w, -d], [w, -d], [w, d], [-w, d]]) / 2.0
-    c, s = math.cos(obj.yaw), math.sin(obj.yaw)
-    # Yaw turns local +Z (forward) towards +X: x' = x c + z s, z' = -x s + z c.
-    rotation = np.array([[c, -s], [s, c]])
-    return local @ rotation + np.array([obj.position[0], obj.position[2]])
+def object_corners(objects: list[SceneObject]) -> np.ndarray:
+    """(n, 4, 2) corners (x, z) of the objects' turned footprints (``frames`` order)."""
+    centres = np.array([[o.position[0], o.position[2]] for o in objects], dtype=float).reshape(-1, 2)
+    yaw = np.array([o.yaw for o in objects], dtype=float)
+    sizes = np.array([[o.size[0], o.size[2]] for o in objects], dtype=float).reshape(-1, 2)
+    return footprint_corners_many(centres, yaw, sizes)
 
 
 def _union_box(members: list[SceneObject]) -> tuple[list[float], list[float]]:
     if not members:
         return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
-    corners = np.vstack([footprint_corners(m) for m in members])
+    corners = object_corners(members).reshape(-1, 2)
     lo, hi = corners.min(axis=0), corners.max(axis=0)
     top = max(m.position[1] + m.size[1] for m in members)
     bottom = min(m.position[1] for m in members)
@@ -341,7 +315,7 @@ def _object_of(node: SceneNode, position: list[float], yaw: float, size: list[fl
 def _node_of(obj: SceneObject) -> dict[str, Any]:
     return {
         "id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun, "plural": obj.plural,
-        "size": tuple(obj.size), "shape": obj.shape, "mesh": obj.mesh, "colour": tuple(obj.colour),
+        "size": (0.0, 0.0, 0.0) if obj.kind == "group" else tuple(obj.size), "shape": obj.shape, "mesh": obj.mesh, "colour": tuple(obj.colour),
         "style": obj.style, "parent": obj.parent, "rule": obj.rule, "order": obj.order,
     }  # fmt: skip
 
@@ -351,6 +325,7 @@ def _node_of_path(path: ScenePath) -> dict[str, Any]:
         "id": path.id, "type": path.type, "kind": "path", "noun": path.noun, "plural": path.plural,
         "size": (path.width, 0.0, 0.0), "shape": None, "mesh": None, "colour": tuple(path.colour),
         "parent": path.parent, "rule": path.rule, "order": path.order, "width": path.width,
+        "max_length": path.max_length, "segments": path.segments,
     }  # fmt: skip
 
 

@@ -1,6 +1,7 @@
-"""What a layout run returns: poses, path control points, and an honest report.
+"""What a layout returns: poses, path control points, and an honest report.
 
-Plain data only. ``ok`` is true only when every relation is satisfied, no two objects
+Plain data only, part of the core model so the scene can be assembled from it without
+importing the layout stage. ``ok`` is true only when every relation is satisfied, no two objects
 (or an object and a path) overlap beyond the tolerance, and everything lies inside the
 scene extent; ``problems`` says in words what failed otherwise.
 """
@@ -10,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from .relations import Relation
 
 
 @dataclass(frozen=True)
@@ -26,30 +29,13 @@ class Pose:
     yaw: float = 0.0
 
 
-@dataclass(frozen=True)
-class RelationResult:
-    """One relation edge after layout.
-
-    ``value`` is the log factor (<= 0; 0 when the relation holds perfectly);
-    ``satisfied`` applies the documented threshold; ``chosen`` is the direction word a
-    ``*Choose*`` label resolved to ("north", "left", ...), else None.
-    """
-
-    source: str
-    target: str
-    label: str
-    value: float
-    satisfied: bool
-    chosen: str | None = None
-
-
 @dataclass
 class LayoutResult:
     """The placed scene: a pose for every object and junction, points for every path."""
 
     poses: dict[str, Pose]
     paths: dict[str, np.ndarray]  # path id -> (n, 2) control points in (x, z)
-    relations: list[RelationResult]
+    relations: list[Relation]  # every edge of the graph, each with its verdict
     energy: float
     parts: dict[str, float]  # "relations", "collisions", "paths", "path_shape", "extent"
     steps: int

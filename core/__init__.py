@@ -1,0 +1,17 @@
+"""The core data model every stage reads and none imports upward from.
+
+``scenewright.core`` depends on no pipeline stage (``generator``, ``describer``,
+``render``) and on nothing of the application layer (``scenewright.api``, the CLI,
+datasets). It holds what the stages pass between them: the relation registry
+(``relations``), the scene graph (``scene_graph``), the laid-out scene and its poses
+(``scene``, ``poses``), the object frame convention (``frames``), the shape registry
+(``shapes``), the seeded random streams (``seeds``), and the two kinds of error a user
+can meet (``errors``).
+"""
+
+from importlib.metadata import PackageNotFoundError, version
+
+try:
+    VERSION = version("scenewright")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    VERSION = "0.0.0"

@@ -1,0 +1,78 @@
+"""Seeds: one ``SeedSequence`` per scene, an independent child stream per stage.
+
+A scene's seed makes one ``numpy.random.SeedSequence``; every stage draws from its own
+child of it, named by a fixed spawn key, so no stage's draws depend on how many numbers
+another stage drew, and no two streams coincide:
+
+    expansion            (0,)
+    layout chain k       (1, k)      restart k of the layout
+    describer variant k  (2, k)      paraphrase variant k
+    camera view k        (3, k)      sampled camera of view k
+    stage ``name``       (STAGE_KEYS[name], k) for later stages
+
+Public functions take ``seed: int | numpy.random.Generator | None``, as numpy and
+networkx do: an int names the scene's streams, a Generator is used as the stream itself
+(a stage that needs several children spawns them from it), None draws fresh entropy
+(not reproducible). ``check_seed`` validates an int at the boundary with a one-line
+``InputError``.
+"""
+
+from __future__ import annotations
+
+from typing import Union
+
+import numpy as np
+
+from .errors import InputError
+
+SeedLike = Union[int, np.integer, np.random.Generator, None]
+
+#: The first element of each stage's spawn key. New stages take new numbers; existing
+#: numbers never change, so existing scenes keep their bytes.
+STAGE_KEYS: dict[str, int] = {
+    "expansion": 0,
+    "layout": 1,
+    "describer": 2,
+    "camera": 3,
+}
+
+#: The largest seed accepted: seeds are stored in scene.json and file names as plain
+#: integers, and 2**63 - 1 round-trips through every JSON reader.
+MAX_SEED = 2**63 - 1
+
+
+def check_seed(seed: object, what: str = "seed") -> int:
+    """``seed`` as an int when it is one in [0, 2**63 - 1]; otherwise ``InputError``."""
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise InputError(f"{what} must be a whole number from 0 to {MAX_SEED}, got {seed!r}")
+    if not 0 <= int(seed) <= MAX_SEED:
+        raise InputError(f"{what} must be a whole number from 0 to {MAX_SEED}, got {int(seed)}")
+    return int(seed)
+
+
+def stream(seed: int, stage: str, index: int = 0) -> np.random.Generator:
+    """The Generator of ``stage`` (child ``index``) of the scene with ``seed``."""
+    key = (STAGE_KEYS[stage],) if stage == "expansion" else (STAGE_KEYS[stage], index)
+    return np.random.Generator(np.random.PCG64(np.random.SeedSequence(check_seed(seed), spawn_key=key)))
+
+
+def stage_streams(seed: SeedLike, stage: str, count: int) -> list[np.random.Generator]:
+    """``count`` independent Generators for one stage (layout chains, variants, views).
+
+    An int gives the stage's named children 0..count-1 (the same for every count); a
+    Generator spawns ``count`` children of its own; None uses fresh entropy.
+    """
+    if isinstance(seed, np.random.Generator):
+        return seed.spawn(count)
+    if seed is None:
+        return np.random.default_rng().spawn(count)
+    return [stream(seed, stage, k) for k in range(count)]
+
+
+def stage_stream(seed: SeedLike, stage: str, index: int = 0) -> np.random.Generator:
+    """One Generator for a stage: child ``index`` of an int seed, or the Generator given."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    if seed is None:
+        return np.random.default_rng()
+    return stream(seed, stage, index)

@@ -1,0 +1,267 @@
+"""What a catalog entry may look like, checked alike by ``validate`` and the renderer.
+
+An object's look is a ``shape`` (a procedural builder of ``scenewright.render.builders``)
+or a ``mesh`` file. ``SHAPES`` is the registry of shape names: for each, a one-line
+description and its footprint convention in the object frame of
+``scenewright.core.frames`` (forward is local +Z, left local +X, up +Y): what its front
+(+Z) shows, and from which side a person sits at, stands at or uses it. The static
+checks warn about a name not in it (it would be drawn as a plain box) and the renderer
+refuses to import if its builders and this registry differ.
+
+``load_mesh_file`` is the one way a mesh file is read, at ``validate`` time and when
+rendering: regular files only, at most ``MAX_MESH_BYTES`` (with the files a mesh refers
+to, such as a .gltf's buffers), and it must parse into at least one triangle. Anything
+else raises ``MeshFileError``, an ``InputError`` whose ``reason`` completes the
+sentence "mesh file 'F' ...".
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+import stat
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .errors import InputError
+
+if TYPE_CHECKING:
+    import trimesh
+
+#: The shape of an entry that names none: its box, exactly the volume the layout uses.
+DEFAULT_SHAPE = "box"
+
+
+@dataclass(frozen=True)
+class Shape:
+    """One procedural shape and its footprint convention (local +Z is its front)."""
+
+    name: str
+    description: str
+    #: What the front (+Z) shows, or "none ..." for a shape that looks alike from the front and the back.
+    front: str
+    #: Where a person is when sitting at, standing at or using it.
+    used_from: str
+
+
+_ROUND = "none (round)"
+_ANY_SIDE = "any side"
+
+SHAPES: dict[str, Shape] = {shape.name: shape for shape in (
+    Shape("anvil", "a smith's anvil: foot, waist, face block and a horn",
+          "none (the horn points left, +X)", "either long side (+Z or -Z)"),
+    Shape("barrel", "a bulging wooden barrel with two iron hoops", _ROUND, _ANY_SIDE),
+    Shape("bed", "frame, mattress, blanket and pillow, a headboard at one end",
+          "the foot end; headboard and pillow at -Z", "lies head at the back (-Z), feet to +Z"),
+    Shape("book", "a closed book lying flat, pages showing on three sides",
+          "cover up; spine on its right (-X)", "read from the front (+Z)"),
+    Shape("bookshelf", "an open shelf unit with a row of books on each shelf",
+          "the open shelves; back board at -Z", "the front (+Z)"),
+    Shape("bottle", "a glass bottle: body, shoulder, neck and cork", _ROUND, _ANY_SIDE),
+    Shape("box", "a plain box filling the whole size (the default shape)", "none", _ANY_SIDE),
+    Shape("brazier", "an iron fire bowl of glowing coals on three legs", _ROUND, _ANY_SIDE),
+    Shape("bucket", "a tapered pail of water with a bail handle",
+          "none (handle across, from -X to +X)", _ANY_SIDE),
+    Shape("bush", "three overlapping leafy lumps", _ROUND, _ANY_SIDE),
+    Shape("chair", "a seat on four legs with a back rest",
+          "the open seat; back rest at -Z", "sits on it facing +Z"),
+    Shape("clothes_line", "two posts with a line between them and laundry hanging on it",
+          "none (posts at the ends, -X and +X)", "either long side (+Z or -Z)"),
+    Shape("coal_bucket", "a tapered pail full of coal with a bail handle",
+          "none (handle across, from -X to +X)", _ANY_SIDE),
+    Shape("crate_wagon", "a two-axle cart loaded with wooden crates",
+          "the shaft", "drawn from the front (+Z)"),
+    Shape("desk", "a writing desk: top, a drawer pedestal and two legs",
+          "drawer fronts; pedestal on its right (-X)", "sits at the front (+Z), facing -Z"),
+    Shape("desk_lamp", "an angled lamp: base at the back, arm up and forward, shade aiming down",
+          "the shade, over what it lights; base at -Z", "lights what lies in front of it (+Z)"),
+    Shape("desk_phone", "a telephone: body, keypad and a handset lying across",
+          "the keypad; handset across the back (-Z)", "the front (+Z)"),
+    Shape("fancy_table", "a dark table with an apron, turned legs and a drawer",
+          "the drawer in the apron", "sits at the front (+Z), at the drawer"),
+    Shape("field", "a plot of tilled soil with rows of crop",
+          "none (crop rows run along Z)", _ANY_SIDE),
+    Shape("flowerpot", "a terracotta pot with leaves and a few blossoms", _ROUND, _ANY_SIDE),
+    Shape("forge", "a stone hearth with a chimney",
+          "the glowing mouth; chimney at the back (-Z)", "worked from the front (+Z)"),
+    Shape("grain_pallet", "a wooden pallet with six upright sheaves of grain", "none", _ANY_SIDE),
+    Shape("grain_wagon", "a two-axle cart heaped with grain",
+          "the shaft", "drawn from the front (+Z)"),
+    Shape("hammer", "a hammer lying flat, handle and iron head",
+          "none (the head is at its left end, +X)", _ANY_SIDE),
+    Shape("house", "a one-storey house: walls, a gable roof, door and windows",
+          "door and windows; roof ridge along X", "entered from the front (+Z)"),
+    Shape("lamp_post", "a wooden pole on a foot with a lit lantern under a little roof",
+          "none (square, lit on every side)", _ANY_SIDE),
+    Shape("laptop", "an open laptop: base with keyboard, screen upright",
+          "keyboard; screen upright at -Z, facing +Z", "sits at the front (+Z), facing -Z"),
+    Shape("nightstand", "a small cabinet with two drawers and knobs",
+          "the drawers and knobs", "the front (+Z)"),
+    Shape("oak_tree", "a thick trunk under a broad crown of leaf clusters", _ROUND, _ANY_SIDE),
+    Shape("paper", "a sheet of paper with a few printed lines",
+          "the foot of the page; heading line at -Z", "read from the front (+Z)"),
+    Shape("phone", "a mobile phone lying flat, screen up", "none (lies flat)", _ANY_SIDE),
+    Shape("pine_tree", "a trunk under three stacked cones", _ROUND, _ANY_SIDE),
+    Shape("pot", "a big iron cooking pot full of stew",
+          "none (round; handles at -X and +X)", _ANY_SIDE),
+    Shape("potted_plant", "a clay pot with a leafy crown", _ROUND, _ANY_SIDE),
+    Shape("rug", "a flat rug with a lighter border", "none (flat)", _ANY_SIDE),
+    Shape("sack", "a filled sack tied at the top", "none (round, flatter front to back)", _ANY_SIDE),
+    Shape("sheaf", "a bundle of straw tied at the waist", _ROUND, _ANY_SIDE),
+    Shape("shed", "plank walls under a straw roof with a wide double door",
+          "the double door", "entered from the front (+Z)"),
+    Shape("sign", "two posts holding a painted board",
+          "the painted board face; posts at -Z", "read from the front (+Z)"),
+    Shape("table", "a plank top on four legs", "none (the same on every side)", _ANY_SIDE),
+    Shape("table_lamp", "a bedside lamp: round base, stem and a cloth shade", _ROUND, _ANY_SIDE),
+    Shape("tablet", "a tablet computer lying flat, screen up", "none (lies flat)", _ANY_SIDE),
+    Shape("tower", "an octagonal stone tower with a pointed roof",
+          "door and windows", "entered from the front (+Z)"),
+    Shape("townhouse", "a two-storey house: walls, a gable roof, door and windows",
+          "door and windows; roof ridge along X", "entered from the front (+Z)"),
+    Shape("wagon", "an empty two-axle cart with side boards",
+          "the shaft", "drawn from the front (+Z)"),
+    Shape("wardrobe", "a tall cabinet with two doors",
+          "the doors and handles", "opened from the front (+Z)"),
+    Shape("well", "a round stone well with dark water inside its rim", _ROUND, _ANY_SIDE),
+    Shape("windmill", "a tapering mill house under a cap, with four sails",
+          "the sails and the door", "entered from the front (+Z)"),
+    Shape("wine_box", "an open wooden crate with six bottle necks showing",
+          "none (the same on every side)", _ANY_SIDE),
+)}
+
+# -- mesh files -----------------------------------------------------------------------
+
+#: The file types a mesh may be, by suffix (any case).
+MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
+#: The most a mesh file may hold, the files it refers to included (256 MiB).
+MAX_MESH_BYTES = 256 * 1024 * 1024
+
+
+class MeshFileError(InputError):
+    """A mesh file that cannot be used; ``reason`` completes "mesh file 'F' ..."."""
+
+    def __init__(self, path: str | os.PathLike[str], reason: str):
+        self.path = str(path)
+        self.reason = reason
+        super().__init__(f"mesh file '{self.path}' {reason}")
+
+
+class _Unusable(OSError):
+    """A file that is missing, not a regular file, or too large; the text says which.
+
+    An ``OSError``, as trimesh's loaders expect of a file they cannot get: an .obj whose
+    material file is unusable still loads, without its materials.
+    """
+
+
+def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
+    """The triangles of a .glb, .gltf, .obj, .ply or .stl file, all its parts in one mesh.
+
+    Raises ``MeshFileError`` when the file is missing, not a regular file, empty, larger
+    than ``MAX_MESH_BYTES``, not parsable as its suffix says, or has no triangles.
+    """
+    import trimesh  # imported on first use: checking rules without meshes stays quick
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in MESH_SUFFIXES:
+        raise MeshFileError(path, f"is not a {', '.join(MESH_SUFFIXES[:-1])} or {MESH_SUFFIXES[-1]} file")
+    try:
+        data = _read_regular_file(path, MAX_MESH_BYTES)
+    except _Unusable as problem:
+        raise MeshFileError(path, str(problem)) from None
+    if not data:
+        raise MeshFileError(path, "is empty")
+    if suffix == ".glb" and (problem := _glb_header_problem(data)):
+        raise MeshFileError(path, f"is not a valid .glb file ({problem})")
+    referred = _ReferredFiles(path.parent, MAX_MESH_BYTES - len(data))
+    try:
+        mesh = trimesh.load_mesh(io.BytesIO(data), file_type=suffix.lstrip("."), resolver=referred)
+    except _Unusable as problem:  # a file it refers to, such as a .gltf's buffer
+        raise MeshFileError(path, str(problem)) from None
+    except ImportError as error:  # a parser's optional helper, tried on a malformed file
+        raise MeshFileError(path, f"is not a valid {suffix} file (reading it needs the missing module "
+                                  f"'{error.name}')") from None
+    except Exception as error:  # trimesh's parsers raise many kinds for a malformed file
+        detail = " ".join(str(error).split())[:200] or type(error).__name__
+        raise MeshFileError(path, f"is not a valid {suffix} file ({detail})") from None
+    if len(mesh.faces) == 0:
+        raise MeshFileError(path, "has no triangles")
+    return mesh
+
+
+def _glb_header_problem(data: bytes) -> str | None:
+    """What is wrong with a binary glTF's 12-byte header (its magic word and length), if anything.
+
+    trimesh's own message for a cut-short file is an index error, so these are told first.
+    """
+    if len(data) < 12 or data[:4] != b"glTF":
+        return "it does not start with a binary glTF header"
+    declared = int.from_bytes(data[8:12], "little")
+    if declared > len(data):
+        return f"its header gives {declared} bytes but the file has only {len(data)}: cut short"
+    return None
+
+
+def _read_regular_file(path: Path, limit: int) -> bytes:
+    """The bytes of ``path``, which must be a regular file of at most ``limit`` bytes.
+
+    The checks are made on the opened file (no race with a swap of the name), and it is
+    opened non-blocking so that a named pipe cannot stall the read.
+    """
+    try:
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except FileNotFoundError:
+        raise _Unusable("does not exist") from None
+    except OSError as error:
+        raise _Unusable(f"cannot be read ({error.strerror or error})") from None
+    try:
+        status = os.fstat(descriptor)
+        if stat.S_ISDIR(status.st_mode):
+            raise _Unusable("is a directory, not a file")
+        if not stat.S_ISREG(status.st_mode):
+            raise _Unusable("is not a regular file")
+        if status.st_size > limit:
+            size, most = _mebibytes(status.st_size), _mebibytes(limit)
+            raise _Unusable(f"is {size}, more than the {most} a mesh may hold")
+        try:
+            with os.fdopen(descriptor, "rb", closefd=False) as stream:
+                data = stream.read(limit + 1)
+        except OSError as error:
+            raise _Unusable(f"cannot be read ({error.strerror or error})") from None
+    finally:
+        os.close(descriptor)
+    if len(data) > limit:  # it grew after the size was read
+        raise _Unusable(f"is more than the {_mebibytes(limit)} a mesh may hold")
+    return data
+
+
+def _mebibytes(count: int) -> str:
+    """``count`` bytes in MiB, rounded up to a tenth, so a file just over a limit reads as over it."""
+    return f"{math.ceil(count * 10 / 2**20) / 10:g} MiB"
+
+
+class _ReferredFiles:
+    """The files a mesh file refers to (a .gltf's buffers, an .obj's materials and
+    textures), for trimesh's loaders: found in the mesh file's folder or below it, read
+    as the mesh file is, and together within the bytes the mesh file left over."""
+
+    def __init__(self, folder: Path, budget: int):
+        self.folder = folder.resolve()
+        self.budget = budget
+
+    def get(self, name: str) -> bytes:
+        path = (self.folder / name.strip()).resolve()
+        if not path.is_relative_to(self.folder):
+            raise _Unusable(f"refers to '{name}', outside its folder")
+        try:
+            data = _read_regular_file(path, self.budget)
+        except _Unusable as problem:
+            raise _Unusable(f"refers to '{name}', which {problem}") from None
+        self.budget -= len(data)
+        return data
+
+    __getitem__ = get
