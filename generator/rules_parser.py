@@ -14,6 +14,7 @@ from __future__ import annotations
 import functools
 import os
 import re
+import threading
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
@@ -34,8 +35,19 @@ ENTRY_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour", "width", "m
 SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes", "templates")
 
 
-@functools.cache
+#: Building the parser twice at once fails: lark compiles the grammar's literals with
+#: ``ast.literal_eval``, which CPython 3.11 does not allow in two threads at a time
+#: ("AST constructor recursion depth mismatch", seen in dask's threaded workers).
+_BUILDING = threading.Lock()
+
+
 def _parser() -> Lark:
+    with _BUILDING:
+        return _build_parser()
+
+
+@functools.cache
+def _build_parser() -> Lark:
     grammar = resources.files("scenewright.generator").joinpath("rules.lark").read_text()
     return Lark(grammar, parser="lalr", lexer="contextual", propagate_positions=True, maybe_placeholders=True)
 

@@ -152,3 +152,26 @@ def test_windows_line_ends_parse_and_positions_count_lines_at_newlines(tmp_path)
     (diagnostic,) = check_rules(path)
     assert (diagnostic.location.line, diagnostic.location.column) == (5, 5)
     assert diagnostic.source_line == "  a NextTwo x }"
+
+
+def test_the_parser_can_be_built_from_several_threads_at_once():
+    """Dask runs tasks in threads: the first rules load of each must not race."""
+    import threading
+
+    from scenewright.generator import rules_parser
+
+    rules_parser._build_parser.cache_clear()
+    failures: list[BaseException] = []
+
+    def load() -> None:
+        try:
+            rules_parser._parser()
+        except BaseException as error:  # noqa: BLE001 - any failure is the finding
+            failures.append(error)
+
+    threads = [threading.Thread(target=load) for _ in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert failures == []
