@@ -71,6 +71,8 @@ SHAPES: dict[str, Shape] = {shape.name: shape for shape in (
           "none (posts at the ends, -X and +X)", "either long side (+Z or -Z)"),
     Shape("coal_bucket", "a tapered pail full of coal with a bail handle",
           "none (handle across, from -X to +X)", _ANY_SIDE),
+    Shape("crate", "a closed wooden crate: boards with darker slats across each side",
+          "none (the same on every side)", _ANY_SIDE),
     Shape("crate_wagon", "a two-axle cart loaded with wooden crates",
           "the shaft", "drawn from the front (+Z)"),
     Shape("desk", "a writing desk: top, a drawer pedestal and two legs",

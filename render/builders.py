@@ -449,6 +449,20 @@ def wine_box(size, colour) -> trimesh.Trimesh:
     )
 
 
+@builder("crate")
+def crate(size, colour) -> trimesh.Trimesh:
+    """A closed wooden crate: a box with darker slats round its sides and across its lid."""
+    w, h, d = size
+    slat = shade(colour, 0.7)
+    t = 0.02 * min(w, d)  # slats stand this far proud of the boards
+    bands = [
+        slab((-w / 2 - t, y - 0.04 * h, -d / 2 - t), (w / 2 + t, y + 0.04 * h, d / 2 + t), slat)
+        for y in (0.15 * h, 0.85 * h)
+    ]
+    lid = [slab((x - 0.04 * w, h, -d / 2), (x + 0.04 * w, h + t, d / 2), slat) for x in (-w / 3, w / 3)]
+    return combine(slab((-w / 2, 0.0, -d / 2), (w / 2, h, d / 2), colour), bands, lid)
+
+
 @builder("flowerpot")
 def flowerpot(size, colour) -> trimesh.Trimesh:
     """A terracotta pot (the catalog colour) with green leaves and a few blossoms."""

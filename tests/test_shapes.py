@@ -75,7 +75,7 @@ def test_check_registry_names_what_differs():
     "change, message",
     [
         ("del shapes.SHAPES['well']", "builders with no entry in scenewright.core.shapes.SHAPES: well"),
-        ("shapes.SHAPES['crate'] = shapes.SHAPES['box']", "with no builder: crate"),
+        ("shapes.SHAPES['crate_stack'] = shapes.SHAPES['box']", "with no builder: crate_stack"),
     ],
 )
 def test_the_renderer_refuses_to_import_when_the_registry_differs(change, message):
