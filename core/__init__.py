@@ -5,8 +5,9 @@
 datasets). It holds what the stages pass between them: the relation registry
 (``relations``), the scene graph (``scene_graph``), the laid-out scene and its poses
 (``scene``, ``poses``), the object frame convention (``frames``), the shape registry
-(``shapes``), the seeded random streams (``seeds``), and the two kinds of error a user
-can meet (``errors``).
+(``shapes``), the seeded random streams (``seeds``), bounded reading of the user's
+files (``files``), the bounds every input must keep (``limits``), and the two kinds of
+error a user can meet (``errors``).
 """
 
 from importlib.metadata import PackageNotFoundError, version

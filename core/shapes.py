@@ -18,14 +18,13 @@ sentence "mesh file 'F' ...".
 from __future__ import annotations
 
 import io
-import math
 import os
-import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import InputError
+from .files import UnusableFile, read_regular_file
 
 if TYPE_CHECKING:
     import trimesh
@@ -151,14 +150,6 @@ class MeshFileError(InputError):
         super().__init__(f"mesh file '{self.path}' {reason}")
 
 
-class _Unusable(OSError):
-    """A file that is missing, not a regular file, or too large; the text says which.
-
-    An ``OSError``, as trimesh's loaders expect of a file they cannot get: an .obj whose
-    material file is unusable still loads, without its materials.
-    """
-
-
 def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
     """The triangles of a .glb, .gltf, .obj, .ply or .stl file, all its parts in one mesh.
 
@@ -172,8 +163,8 @@ def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
     if suffix not in MESH_SUFFIXES:
         raise MeshFileError(path, f"is not a {', '.join(MESH_SUFFIXES[:-1])} or {MESH_SUFFIXES[-1]} file")
     try:
-        data = _read_regular_file(path, MAX_MESH_BYTES)
-    except _Unusable as problem:
+        data = _read_mesh_bytes(path, MAX_MESH_BYTES)
+    except UnusableFile as problem:
         raise MeshFileError(path, str(problem)) from None
     if not data:
         raise MeshFileError(path, "is empty")
@@ -182,7 +173,7 @@ def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
     referred = _ReferredFiles(path.parent, MAX_MESH_BYTES - len(data))
     try:
         mesh = trimesh.load_mesh(io.BytesIO(data), file_type=suffix.lstrip("."), resolver=referred)
-    except _Unusable as problem:  # a file it refers to, such as a .gltf's buffer
+    except UnusableFile as problem:  # a file it refers to, such as a .gltf's buffer
         raise MeshFileError(path, str(problem)) from None
     except ImportError as error:  # a parser's optional helper, tried on a malformed file
         raise MeshFileError(path, f"is not a valid {suffix} file (reading it needs the missing module "
@@ -208,42 +199,21 @@ def _glb_header_problem(data: bytes) -> str | None:
     return None
 
 
-def _read_regular_file(path: Path, limit: int) -> bytes:
-    """The bytes of ``path``, which must be a regular file of at most ``limit`` bytes.
+def _read_mesh_bytes(path: Path, limit: int) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes (``read_regular_file``).
 
-    The checks are made on the opened file (no race with a swap of the name), and it is
-    opened non-blocking so that a named pipe cannot stall the read.
+    Every failure is an ``UnusableFile`` whose text completes "mesh file 'F' ...": an
+    ``OSError``, as trimesh's loaders expect of a file they cannot get (an .obj whose
+    material file is unusable still loads, without its materials).
     """
     try:
-        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        return read_regular_file(path, limit, "a mesh")
+    except UnusableFile:
+        raise
     except FileNotFoundError:
-        raise _Unusable("does not exist") from None
+        raise UnusableFile("does not exist") from None
     except OSError as error:
-        raise _Unusable(f"cannot be read ({error.strerror or error})") from None
-    try:
-        status = os.fstat(descriptor)
-        if stat.S_ISDIR(status.st_mode):
-            raise _Unusable("is a directory, not a file")
-        if not stat.S_ISREG(status.st_mode):
-            raise _Unusable("is not a regular file")
-        if status.st_size > limit:
-            size, most = _mebibytes(status.st_size), _mebibytes(limit)
-            raise _Unusable(f"is {size}, more than the {most} a mesh may hold")
-        try:
-            with os.fdopen(descriptor, "rb", closefd=False) as stream:
-                data = stream.read(limit + 1)
-        except OSError as error:
-            raise _Unusable(f"cannot be read ({error.strerror or error})") from None
-    finally:
-        os.close(descriptor)
-    if len(data) > limit:  # it grew after the size was read
-        raise _Unusable(f"is more than the {_mebibytes(limit)} a mesh may hold")
-    return data
-
-
-def _mebibytes(count: int) -> str:
-    """``count`` bytes in MiB, rounded up to a tenth, so a file just over a limit reads as over it."""
-    return f"{math.ceil(count * 10 / 2**20) / 10:g} MiB"
+        raise UnusableFile(f"cannot be read ({error.strerror or error})") from None
 
 
 class _ReferredFiles:
@@ -258,11 +228,11 @@ class _ReferredFiles:
     def get(self, name: str) -> bytes:
         path = (self.folder / name.strip()).resolve()
         if not path.is_relative_to(self.folder):
-            raise _Unusable(f"refers to '{name}', outside its folder")
+            raise UnusableFile(f"refers to '{name}', outside its folder")
         try:
-            data = _read_regular_file(path, self.budget)
-        except _Unusable as problem:
-            raise _Unusable(f"refers to '{name}', which {problem}") from None
+            data = _read_mesh_bytes(path, self.budget)
+        except UnusableFile as problem:
+            raise UnusableFile(f"refers to '{name}', which {problem}") from None
         self.budget -= len(data)
         return data
 

@@ -2,7 +2,9 @@
 
 Thin wrappers around ``inflect`` so the rest of the describer never builds an English
 word form by hand. A catalog's irregular plural ("sacks of flour") always wins over
-inflection.
+inflection. inflect's plural takes time quadratic in the length of what it is given,
+so a noun phrase longer than ``MAX_INFLECTED_CHARS`` (only a hand-made scene.json has
+one: the rules checker refuses nouns that long) has only its last word inflected.
 """
 
 from __future__ import annotations
@@ -35,9 +37,25 @@ def _import_inflect():
 _ENGINE = _import_inflect().engine()
 
 
+#: The longest noun phrase given to inflect whole, in characters (the rules checker's
+#: limit on a noun's length).
+MAX_INFLECTED_CHARS = 200
+
+
 def plural_of(noun: str, irregular: str | None = None) -> str:
-    """The plural of a noun phrase: the catalog's irregular form when it has one."""
-    return irregular if irregular else _ENGINE.plural_noun(noun)
+    """The plural of a noun phrase: the catalog's irregular form when it has one.
+
+    A phrase longer than ``MAX_INFLECTED_CHARS`` keeps all but its last word as it is;
+    a last word that long alone gets an "s".
+    """
+    if irregular:
+        return irregular
+    if len(noun) <= MAX_INFLECTED_CHARS:
+        return _ENGINE.plural_noun(noun)
+    rest, space, last = noun.rpartition(" ")
+    if len(last) > MAX_INFLECTED_CHARS:
+        return noun + "s"
+    return rest + space + _ENGINE.plural_noun(last)
 
 
 def with_article(noun: str) -> str:

@@ -6,11 +6,17 @@ are parsed, statically checked (``rules_check``) and turned into a ``Catalog`` a
 ``SceneParams``; any error raises ``RulesError`` carrying all of them, warnings stay
 on ``Rules.warnings``. ``check_rules`` returns every diagnostic instead of raising, for
 ``scenewright validate``.
+
+A rule set reads files (includes, meshes, its templates folder) only inside the folder
+of the rules file named here; ``allow`` names more folders or files it may read, as
+does the ``SCENEWRIGHT_ALLOW_OUTSIDE`` environment variable (``rules_parser.ReadScope``,
+docs/security.md).
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -18,12 +24,11 @@ from pathlib import Path
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
 from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, check_tree
-from .rules_errors import Diagnostic, RulesError, SourceTexts
+from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
 from .rules_parser import ParsedTree, parse_tree
 from scenewright.core.scene_graph import SceneParams
 
 _SHIPPED_PACKAGE = "scenewright.grammar_rules"
-_SUFFIX = ".rules"
 
 
 @dataclass(frozen=True)
@@ -52,34 +57,39 @@ class Rules:
 def shipped_rule_sets() -> list[str]:
     """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``)."""
     folder = resources.files(_SHIPPED_PACKAGE)
-    return sorted(item.name[: -len(_SUFFIX)] for item in folder.iterdir() if item.name.endswith(_SUFFIX))
+    return sorted(item.name[: -len(RULES_SUFFIX)] for item in folder.iterdir() if item.name.endswith(RULES_SUFFIX))
 
 
-def load_rules(source: str | os.PathLike) -> Rules:
-    """Parse and check a rule set (shipped name or path); raise ``RulesError`` on errors."""
-    tree, diagnostics = _parse_and_check(source)
+def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> Rules:
+    """Parse and check a rule set (shipped name or path); raise ``RulesError`` on errors.
+
+    ``allow``: folders (with everything below them) or files outside the rule set's
+    folder that it may read.
+    """
+    tree, diagnostics = _parse_and_check(source, allow)
     errors = [d for d in diagnostics if d.is_error]
     if errors:
         raise RulesError(errors)
     return _build(tree, tuple(d for d in diagnostics if not d.is_error))
 
 
-def check_rules(source: str | os.PathLike) -> list[Diagnostic]:
+def check_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> list[Diagnostic]:
     """Every diagnostic about a rule set, warnings included; never raises for bad content.
 
-    A missing file still raises ``RulesError`` (there is nothing to check).
+    A missing file still raises ``RulesError`` (there is nothing to check). ``allow``
+    as for ``load_rules``.
     """
-    return _parse_and_check(source)[1]
+    return _parse_and_check(source, allow)[1]
 
 
 def _resolve(source: str | os.PathLike) -> tuple[Path, str]:
     """The file to read and the name to show in diagnostics."""
     text = os.fspath(source)
     if isinstance(source, str) and text in shipped_rule_sets():
-        shipped = resources.files(_SHIPPED_PACKAGE).joinpath(text + _SUFFIX)
-        return Path(str(shipped)), text + _SUFFIX
+        shipped = resources.files(_SHIPPED_PACKAGE).joinpath(text + RULES_SUFFIX)
+        return Path(str(shipped)), text + RULES_SUFFIX
     path = Path(text)
-    if not path.is_file():
+    if not path.exists():  # anything else that is there is read, or refused, as a rules file
         known = ", ".join(shipped_rule_sets())
         where = SourceLocation(text, 1, 1)
         raise RulesError(
@@ -88,9 +98,11 @@ def _resolve(source: str | os.PathLike) -> tuple[Path, str]:
     return path, text
 
 
-def _parse_and_check(source: str | os.PathLike) -> tuple[ParsedTree, list[Diagnostic]]:
+def _parse_and_check(
+    source: str | os.PathLike, allow: Iterable[str | os.PathLike]
+) -> tuple[ParsedTree, list[Diagnostic]]:
     path, display = _resolve(source)
-    tree = parse_tree(path, display)
+    tree = parse_tree(path, display, allow)
     if tree.diagnostics:  # syntax or include errors: the checks would only echo them
         return tree, list(tree.diagnostics)
     return tree, check_tree(tree)
@@ -118,7 +130,7 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
     )
     productions = {p.name: p for file in tree.files for p in file.productions}
     return Rules(
-        name=Path(root.path).name.removesuffix(_SUFFIX),
+        name=Path(root.path).name.removesuffix(RULES_SUFFIX),
         path=tree.paths[root.path],
         catalog=catalog,
         params=params,

@@ -1,14 +1,17 @@
 """Static checks of a parsed rule set: everything that can be wrong before expansion.
 
 ``check_tree`` looks at a file and its includes together and returns diagnostics in
-file order: the catalog (fields, values, styles, mesh files that must load, shape
-names the renderer must know - a warning), the scene block (and its
-templates folder), and the productions (labels, types, names in scope, calls and their
+file order: the catalog (fields, values, nouns of at most ``MAX_NOUN_CHARS``, styles,
+mesh files that must load and lie in the rule set's ``ReadScope``, shape names the
+renderer must know - a warning), the scene block (and its templates folder, in the
+scope too), and the productions (labels, types, names in scope, calls and their
 arguments, counts, probabilities and weights, blocks on groups only, PathConnectedTo
 from a path to a junction), then the whole grammar: undefined nonterminals,
 nonterminals that can never finish expanding (a fixpoint over the alternatives), and -
 as warnings - nonterminals the start symbol never reaches and types no statement
 creates.
+Numbers must lie within the bounds of ``scenewright.core.limits`` and text may hold
+no control or bidirectional-control characters.
 A rule set with no error diagnostics is safe to turn into a catalog and to expand.
 """
 
@@ -17,24 +20,48 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenewright.core.limits import (
+    MAX_DEPTH,
+    MAX_EXTENT,
+    MAX_NODES,
+    MAX_PATH_LENGTH,
+    MAX_SEGMENTS,
+    MAX_SIZE,
+    MAX_WEIGHT,
+    MIN_LENGTH,
+    forbidden_character,
+)
 from scenewright.core.relations import RELATIONS
 from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, MeshFileError, load_mesh_file
 
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation
 from .rules_errors import WARNING, Diagnostic, SourceTexts, case_mix_up, did_you_mean
-from .rules_parser import ParsedTree
+from .rules_parser import ParsedTree, ReadScope
 
 DEFAULT_MAX_DEPTH = 32
 DEFAULT_MAX_NODES = 2000
 
 #: Fields that shape a path's polyline, so only ``path`` entries take them.
 PATH_FIELDS = ("width", "max_length", "segments")
+#: The largest value of each numeric field and scene setting (``core.limits``).
+UPPER_LIMITS = {
+    "width": MAX_SIZE,
+    "max_length": MAX_PATH_LENGTH,
+    "segments": MAX_SEGMENTS,
+    "max_depth": MAX_DEPTH,
+    "max_nodes": MAX_NODES,
+}
+#: Where every limit is listed.
+LIMITS_DOC = "docs/limits.md"
+#: The longest noun or plural, in characters: a noun phrase is a few words, and the
+#: describer's English (inflection) takes time that grows fast with its length.
+MAX_NOUN_CHARS = 200
 
 
 def check_tree(tree: ParsedTree) -> list[Diagnostic]:
     """Every diagnostic about a parsed rule set (errors and warnings)."""
-    checker = _Checker(tree.sources, tree.paths)
+    checker = _Checker(tree.sources, tree.paths, tree.scope)
     checker.check(tree.files)
     file_order = {file.path: index for index, file in enumerate(tree.files)}
     return sorted(
@@ -57,6 +84,7 @@ class _Checker:
 
     sources: SourceTexts
     paths: dict[str, Path]
+    scope: ReadScope  # where the rule set may read files: meshes and templates must lie in it
     diagnostics: list[Diagnostic] = field(default_factory=list)
     kinds: dict[str, str] = field(default_factory=dict)  # type name -> kind
     productions: dict[str, ast.Production] = field(default_factory=dict)  # the first of each name
@@ -114,6 +142,8 @@ class _Checker:
             seen[style.name] = style
             if style.weight is not None and style.weight <= 0:
                 self.error(style.weight_location, f"style weight must be positive, not {_number(style.weight)}")
+            elif style.weight is not None and style.weight > MAX_WEIGHT:
+                self.error(style.weight_location, _too_large("a style weight", style.weight, MAX_WEIGHT, ""))
             self.check_fields(style.fields, entry.kind, style=True)
 
     def check_fields(self, fields: tuple[ast.Setting, ...], kind: str, style: bool) -> dict[str, ast.Setting]:
@@ -124,16 +154,26 @@ class _Checker:
                 self.error(setting.location, f"duplicate field '{name}'")
                 continue
             seen[name] = setting
+            if isinstance(value, str) and self.check_text(name, value, at):
+                continue
             if style and name not in STYLE_FIELDS:
                 self.error(setting.location, f"a style cannot set '{name}' (only {', '.join(STYLE_FIELDS)})")
             elif name in PATH_FIELDS and kind != "path":
                 self.error(setting.location, f"'{name}' applies to paths only, not to {_with_article(kind)}")
             if name == "size" and any(v <= 0 for v in value):
                 self.error(at, "sizes must be positive")
+            elif name == "size" and min(value) < MIN_LENGTH:
+                self.error(at, _too_small("each side of a size", min(value)))
+            elif name == "size" and max(value) > MAX_SIZE:
+                self.error(at, _too_large("each side of a size", max(value), MAX_SIZE, " m"))
             elif name in ("width", "max_length") and value <= 0:
                 self.error(at, f"'{name}' must be positive, not {_number(value)}")
+            elif name in ("width", "max_length") and value < MIN_LENGTH:
+                self.error(at, _too_small(f"'{name}'", value))
             elif name == "segments" and (value < 1 or not _is_whole(value)):
                 self.error(at, f"'segments' must be a whole number of at least 1, not {_number(value)}")
+            elif name in UPPER_LIMITS and value > UPPER_LIMITS[name]:
+                self.error(at, _too_large(f"'{name}'", value, UPPER_LIMITS[name], "" if name == "segments" else " m"))
             elif name == "colour" and not _is_hex_colour(value):
                 self.error(at, f"colour '{value}' is not of the form #rrggbb")
             elif name == "mesh":
@@ -142,7 +182,18 @@ class _Checker:
                 self.check_shape(value, setting)
             elif name in ("noun", "plural") and not value.strip():
                 self.error(at, f"'{name}' must not be empty")
+            elif name in ("noun", "plural") and len(value) > MAX_NOUN_CHARS:
+                self.error(at, f"'{name}' is {len(value)} characters long; it may have at most {MAX_NOUN_CHARS}")
         return seen
+
+    def check_text(self, name: str, value: str, at: SourceLocation) -> bool:
+        """Error (and True) when a string holds a control or bidirectional-control
+        character, which would garble or reorder the lines it is printed on."""
+        bad = forbidden_character(value)
+        if bad is not None:
+            self.error(at, f"'{name}' contains the character {bad}; text may not hold control or "
+                       "bidirectional-control characters")
+        return bad is not None
 
     def folder_of(self, setting: ast.Setting) -> Path:
         """The folder of the file a setting is written in: its paths are relative to it."""
@@ -153,6 +204,8 @@ class _Checker:
         if not file.lower().endswith(MESH_SUFFIXES):
             suffixes = ", ".join(MESH_SUFFIXES[:-1]) + " or " + MESH_SUFFIXES[-1]
             self.error(setting.value_location, f"mesh '{file}' is not a {suffixes} file")
+        elif (outside := self.scope.outside(folder / file)) is not None:
+            self.error(setting.value_location, f"mesh file '{file}' {outside}")
         elif not (folder / file).exists():
             self.error(setting.value_location, f"mesh file '{file}' not found (looked in {folder.resolve()})")
         else:
@@ -187,25 +240,53 @@ class _Checker:
                 continue
             settings[setting.name] = setting
             value, at = setting.value, setting.value_location
+            if isinstance(value, str) and self.check_text(setting.name, value, at):
+                continue
             if setting.name == "extent" and any(v <= 0 for v in value):
                 self.error(at, "the extent must be positive")
+            elif setting.name == "extent" and min(value) < MIN_LENGTH:
+                self.error(at, _too_small("each side of the extent", min(value)))
+            elif setting.name == "extent" and max(value) > MAX_EXTENT:
+                self.error(at, _too_large("each side of the extent", max(value), MAX_EXTENT, " m"))
             elif setting.name in ("max_depth", "max_nodes") and (value < 1 or not _is_whole(value)):
                 self.error(at, f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}")
+            elif setting.name in UPPER_LIMITS and value > UPPER_LIMITS[setting.name]:
+                self.error(at, _too_large(f"'{setting.name}'", value, UPPER_LIMITS[setting.name], ""))
             elif setting.name == "templates":
                 self.check_templates(value, setting)
-        if "max_nodes" in settings and _is_whole(settings["max_nodes"].value):
-            self.max_nodes = int(settings["max_nodes"].value)
+        max_nodes = settings.get("max_nodes")
+        if max_nodes is not None and _is_whole(max_nodes.value) and 1 <= max_nodes.value <= MAX_NODES:
+            self.max_nodes = int(max_nodes.value)
         if "start" not in settings:
             self.error(scene.location, "the scene block has no start symbol (add: start NONTERMINAL)")
             return None
         return settings["start"].value, settings["start"].value_location
 
     def check_templates(self, folder_name: str, setting: ast.Setting) -> None:
-        """The description templates folder, like a mesh, is found relative to its file."""
+        """The description templates folder, like a mesh, is found relative to its file
+        and must lie in the rule set's scope (its files are checked when read)."""
         folder = self.folder_of(setting)
-        if not (folder / folder_name).is_dir():
+        if (outside := self.scope.outside(folder / folder_name)) is not None:
+            self.error(setting.value_location, f"templates folder '{folder_name}' {outside}")
+        elif not (folder / folder_name).is_dir():
             self.error(setting.value_location,
                        f"templates folder '{folder_name}' not found (looked in {folder.resolve()})")
+        else:
+            self.check_template_files(folder / folder_name, setting)
+
+    def check_template_files(self, folder: Path, setting: ast.Setting) -> None:
+        """Each ``*.j2`` file of a templates folder must be a regular file in it once its
+        links are resolved: the describer reads no other."""
+        real_folder = folder.resolve()
+        for path in sorted(folder.glob("*.j2")):
+            real = path.resolve()
+            if not real.is_relative_to(real_folder):
+                problem = f"leads outside that folder (to {real})"
+            elif not real.is_file():
+                problem = "is not a regular file"
+            else:
+                continue
+            self.error(setting.value_location, f"template '{path.name}' of templates folder '{setting.value}' {problem}")
 
     def check_start(self, start: str, location: SourceLocation) -> None:
         if start not in self.productions:
@@ -232,6 +313,8 @@ class _Checker:
         for alternative in production.alternatives:
             if alternative.weight is not None and alternative.weight <= 0:
                 self.error(alternative.location, f"alternative weight must be positive, not {_number(alternative.weight)}")
+            elif alternative.weight is not None and alternative.weight > MAX_WEIGHT:
+                self.error(alternative.location, _too_large("an alternative weight", alternative.weight, MAX_WEIGHT, ""))
             self.check_block(alternative.statements, dict(scope))
 
     def check_block(self, statements: tuple[ast.Statement, ...], scope: dict[str, str | None]) -> None:
@@ -288,7 +371,9 @@ class _Checker:
         if count.low > count.high:
             self.error(count.location, f"range {_number(count.low)}..{_number(count.high)} has min > max")
         elif count.high > self.max_nodes:
-            self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes}")
+            raise_it = (f"raise it in the scene block, e.g. max_nodes {_number(count.high)}"
+                        if count.high <= MAX_NODES else f"max_nodes may be at most {MAX_NODES}, see {LIMITS_DOC}")
+            self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes} ({raise_it})")
 
     def check_path_connection(
         self, subject: ast.Reference | ast.Call, target: ast.Reference, scope: dict[str, str | None]
@@ -346,6 +431,9 @@ class _Checker:
             self.error(reference.location, f"unknown type '{reference.name}'" + did_you_mean(reference.name, self.kinds))
         if reference.kind == "nth" and reference.index < 1:
             self.error(reference.location, f"'#{reference.index}': ordinals count from #1")
+        elif reference.kind == "nth" and reference.index > self.max_nodes:
+            self.error(reference.location, f"this ordinal is larger than max_nodes {self.max_nodes}, "
+                       "so it can never name a node")
 
     def check_call(self, call: ast.Call, scope: dict[str, str | None]) -> None:
         for argument in call.arguments:
@@ -400,6 +488,15 @@ class _Checker:
             self.error(production.location, f"'{name}' can never finish expanding: {reason} "
                        f"(make the call optional, e.g. '0.5? {blocking}' or '0..2 {blocking}', "
                        "or add an alternative without it)")
+
+
+def _too_small(what: str, value: float) -> str:
+    return f"{what} must be at least {MIN_LENGTH:g} m, not {value:g} (the limits: {LIMITS_DOC})"
+
+
+def _too_large(what: str, value: float, limit: float, unit: str) -> str:
+    shown = _number(value) if value < 1e15 else f"{value:g}"
+    return f"{what} may be at most {limit:g}{unit}, not {shown} (the limits: {LIMITS_DOC})"
 
 
 def _is_hex_colour(text: str) -> bool:

@@ -10,6 +10,10 @@ and the offending source line, so it prints as
 
 The suggestions that end many messages are worded here too: "did you mean" the nearest
 known word, and the case a word should be in (``case_mix_up``).
+
+Only rules text is ever quoted: ``SourceTexts`` keeps the lines of files named
+``*.rules`` alone, so no diagnostic prints a line of another file (an include of a
+data file or of /etc/passwd, say), whatever is wrong with it.
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from scenewright.core.errors import InputError
+from scenewright.core.limits import printable
 from .catalog import SourceLocation
 
 ERROR = "error"
@@ -27,6 +32,14 @@ WARNING = "warning"
 
 #: Indentation of the quoted source line under a diagnostic's first line.
 _EXCERPT_INDENT = "    "
+
+#: The suffix of a rules file's name; the lines of files without it are never quoted.
+RULES_SUFFIX = ".rules"
+
+
+def is_rules_file_name(name: str) -> bool:
+    """Whether a file is named as a rules file (``*.rules``), so its lines may be quoted."""
+    return name.endswith(RULES_SUFFIX)
 
 
 @dataclass(frozen=True)
@@ -120,16 +133,21 @@ def _case_key(word: str) -> str:
 
 
 class SourceTexts:
-    """The text of every file read so far, to quote the line a diagnostic points at."""
+    """The text of every rules file read so far, to quote the line a diagnostic points at."""
 
     def __init__(self) -> None:
         self._lines: dict[str, list[str]] = {}
 
-    def add(self, file: str, text: str) -> None:
+    def add(self, file: str, text: str, quoted: bool = True) -> None:
+        """Keep ``file``'s lines for quoting, unless ``quoted`` is false or the file is
+        not named ``*.rules``: then its diagnostics show no line."""
+        if not (quoted and is_rules_file_name(file)):
+            return
         # Lines as the parser counts them: split at "\n" only (not at "\r", form feeds
         # or Unicode line separators, which str.splitlines would also split at).
         # A stray "\r" inside a line would move the terminal's cursor: show it as a space.
-        self._lines[file] = [line.rstrip("\r").replace("\r", " ") for line in text.split("\n")]
+        # Other control and bidirectional-control characters show as U+FFFD.
+        self._lines[file] = [printable(line.rstrip("\r").replace("\r", " ")) for line in text.split("\n")]
 
     def line(self, location: SourceLocation) -> str | None:
         lines = self._lines.get(location.file)

@@ -3,10 +3,14 @@
 ``parse_text`` parses one file with the LALR grammar in ``rules.lark`` (built once and
 cached) and a lark ``Transformer``. ``parse_tree`` parses a file and, depth-first, the
 files it includes (paths relative to the including file; each file once; a cycle is
-reported at the ``include`` that closes it). Lark's exceptions become ``Diagnostic``s
-that say what was expected in words, never in terminal names: a '{' that is never
-closed is reported where it opened, and a word in the wrong place gets "did you mean"
-(a misspelt field or setting, a name in the wrong case).
+reported at the ``include`` that closes it). A rule set reads only inside its
+``ReadScope`` (its own folder, unless the user allows more) and only regular files of
+at most ``MAX_RULES_BYTES``, so a pipe, a device or a huge file cannot stall or
+exhaust it; the text of a file not named ``*.rules`` is never quoted. Lark's
+exceptions become ``Diagnostic``s that say what was expected in words, never in
+terminal names: a '{' that is never closed is reported where it opened, and a word in
+the wrong place gets "did you mean" (a misspelt field or setting, a name in the wrong
+case).
 """
 
 from __future__ import annotations
@@ -23,11 +27,23 @@ from pathlib import Path
 from lark import Lark, Token, Transformer, Tree, v_args
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
+from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.limits import MAX_BLOCK_NESTING, MAX_NODES
 from scenewright.core.relations import RELATIONS
 
 from . import rules_ast as ast
 from .catalog import SourceLocation
-from .rules_errors import Diagnostic, SourceTexts, camel_case, case_hint, case_mix_up, did_you_mean, snake_case
+from .rules_errors import (
+    RULES_SUFFIX,
+    Diagnostic,
+    SourceTexts,
+    camel_case,
+    case_hint,
+    case_mix_up,
+    did_you_mean,
+    is_rules_file_name,
+    snake_case,
+)
 
 #: Catalog fields and scene settings: the grammar's rules of these names each become an
 #: ``ast.Setting`` (the ``start`` setting's rule is ``start_symbol``).
@@ -144,7 +160,7 @@ class _ToAst(Transformer):
     @v_args(meta=True)
     def nth_ref(self, meta, children):
         name, ordinal = children
-        return ast.Reference("nth", str(name), self._at(meta), int(ordinal[1:]))
+        return ast.Reference("nth", str(name), self._at(meta), _ordinal(ordinal))
 
     def arguments(self, children):
         return tuple(child for child in children if child is not None)
@@ -221,18 +237,102 @@ def _value(token: Token):
     return str(token)
 
 
-def parse_text(text: str, file: str, sources: SourceTexts | None = None) -> ast.RulesFile | Diagnostic:
-    """Parse one file's text; a syntax error is returned as its ``Diagnostic``."""
+def parse_text(
+    text: str, file: str, sources: SourceTexts | None = None, quoted: bool = True
+) -> ast.RulesFile | Diagnostic:
+    """Parse one file's text; a syntax error is returned as its ``Diagnostic``.
+
+    The text may be quoted in diagnostics when ``quoted`` and the file is named
+    ``*.rules``; a syntax error in any other file says only that it is not a rules
+    file, and where, without a word of its text.
+    """
     sources = sources or SourceTexts()
-    sources.add(file, text)
+    sources.add(file, text, quoted)
     try:
         tree = _parser().parse(text)
     except (UnexpectedToken, UnexpectedCharacters) as error:  # the two LALR parse errors
+        if not (quoted and is_rules_file_name(file)):
+            return _not_rules(error, text, file)
         return _syntax_diagnostic(error, text, file, sources)
+    too_deep = _too_deep_block(tree)
+    if too_deep is not None:
+        return sources.diagnostic(
+            SourceLocation(file, too_deep.meta.line, too_deep.meta.column),
+            f"blocks nested more than {MAX_BLOCK_NESTING} deep; move the inner ones into a production "
+            "of their own and call it (the limits: docs/limits.md)",
+        )
     return _ToAst(file).transform(tree)
 
 
+def _too_deep_block(tree: Tree) -> Tree | None:
+    """The first statement block nested more than ``MAX_BLOCK_NESTING`` deep inside a
+    production's block, if any: found without recursion, so that the transformer, which
+    recurses, only ever meets shallow trees."""
+    pending = [(tree, 0)]
+    while pending:
+        node, depth = pending.pop()
+        if node.data == "block":
+            depth += 1
+            if depth > MAX_BLOCK_NESTING + 1:  # the production's own block, then the nested ones
+                return node
+        pending.extend((child, depth) for child in reversed(node.children) if isinstance(child, Tree))
+    return None
+
+
+def _ordinal(token: Token) -> int:
+    """``#N`` as N. An N of more digits than any node count has (more than an int may
+    be read from) stands as one past ``MAX_NODES``: the checks report it out of range."""
+    digits = token[1:].lstrip("0") or "0"
+    return int(digits) if len(digits) <= len(str(MAX_NODES)) else MAX_NODES + 1
+
+
+def _not_rules(error: UnexpectedInput, text: str, file: str) -> Diagnostic:
+    """A syntax error in a file whose text must not be shown: where, and nothing of what."""
+    offset = _error_offset(error, text)
+    line = text.count("\n", 0, offset) + 1
+    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
+    return Diagnostic(SourceLocation(file, line, column), f"'{file}' is not a rules file: it does not parse as "
+                      f"rules here (the text of a file not named *{RULES_SUFFIX} is never shown)")
+
+
 # -- files and includes -------------------------------------------------------------
+
+
+#: The most a rules file may hold (4 MiB): far more than any rule set needs, little
+#: enough that reading and parsing it stays quick.
+MAX_RULES_BYTES = 4 * 1024 * 1024
+
+#: The environment variable that lets rule sets read more than their own folder:
+#: paths separated by ``os.pathsep`` (":"), each a folder (with all below it) or a file.
+ALLOW_VARIABLE = "SCENEWRIGHT_ALLOW_OUTSIDE"
+
+
+@dataclass(frozen=True)
+class ReadScope:
+    """Where a rule set may read files (includes, meshes, templates): inside its root,
+    the folder of the rules file the user named, and inside what the user allows
+    besides. Paths are compared with their links resolved, so a link in the rule set's
+    folder to a file elsewhere is outside."""
+
+    root: Path
+    allowed: tuple[Path, ...] = ()
+
+    @classmethod
+    def of(cls, path: str | os.PathLike[str], allow: Iterable[str | os.PathLike[str]] = ()) -> ReadScope:
+        """The scope of the rule set whose top file is ``path``, with the paths of
+        ``allow`` and of the ``ALLOW_VARIABLE`` environment variable allowed besides."""
+        from_environment = [item for item in os.environ.get(ALLOW_VARIABLE, "").split(os.pathsep) if item]
+        allowed = tuple(Path(item).resolve() for item in [*allow, *from_environment])
+        return cls(Path(path).parent.resolve(), allowed)
+
+    def outside(self, path: str | os.PathLike[str]) -> str | None:
+        """None when ``path`` is in the scope; else why not, completing "file 'F' ..."."""
+        real = Path(path).resolve()
+        if any(real.is_relative_to(place) for place in (self.root, *self.allowed)):
+            return None
+        link = f" (it leads to {real})" if real != Path(os.path.abspath(path)) else ""
+        return (f"is outside the rule set's folder {self.root}{link}; a rule set reads only its own folder "
+                f"unless the user allows more (--allow-outside PATH or {ALLOW_VARIABLE}, see docs/security.md)")
 
 
 @dataclass
@@ -240,18 +340,21 @@ class ParsedTree:
     """A rules file and everything it includes, parsed (or the diagnostics why not).
 
     ``files`` is in depth-first include order, each included file before the file
-    that includes it; ``paths`` maps each file's display name to its real path.
+    that includes it; ``paths`` maps each file's display name to its real path;
+    ``scope`` is where the rule set may read files.
     """
 
+    scope: ReadScope
     files: list[ast.RulesFile] = field(default_factory=list)
     paths: dict[str, Path] = field(default_factory=dict)
     sources: SourceTexts = field(default_factory=SourceTexts)
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
-def parse_tree(path: Path, display: str) -> ParsedTree:
-    """Parse ``path`` (shown as ``display`` in diagnostics) and the files it includes."""
-    tree = ParsedTree()
+def parse_tree(path: Path, display: str, allow: Iterable[str | os.PathLike[str]] = ()) -> ParsedTree:
+    """Parse ``path`` (shown as ``display`` in diagnostics) and the files it includes,
+    which must lie in its folder or in ``allow`` (``ReadScope``)."""
+    tree = ParsedTree(ReadScope.of(path, allow))
     _parse_into(tree, Path(path), display, include_stack=[], include_location=None)
     return tree
 
@@ -271,29 +374,51 @@ def _parse_into(
             return
     if any(known.resolve() == real for known in tree.paths.values()):
         return  # already included along another route: its declarations are in once
-    try:
-        # newline="": positions count lines as the parser does, at "\n" only
-        with open(path, encoding="utf-8", newline="") as stream:
-            text = stream.read()
-    except (OSError, UnicodeDecodeError) as error:
-        reason = "not UTF-8 text" if isinstance(error, UnicodeDecodeError) else (error.strerror or str(error))
-        if include_location is None:  # the file asked for: the error is at its start
-            tree.diagnostics.append(Diagnostic(SourceLocation(display, 1, 1), f"cannot read '{display}': {reason}"))
-        else:
-            tree.diagnostics.append(
-                tree.sources.diagnostic(include_location, f"cannot read included file '{display}': {reason}")
-            )
+    text = _read_rules_file(tree, path, display, include_location)
+    if text is None:
         return
     tree.paths[display] = path
-    parsed = parse_text(text, display, tree.sources)
+    # Quoted only when named *.rules both as written and where its links lead.
+    parsed = parse_text(text, display, tree.sources, quoted=is_rules_file_name(real.name))
     if isinstance(parsed, Diagnostic):
         tree.diagnostics.append(parsed)
         return
     stack = include_stack + [(real, display)]
     for include in parsed.includes:
+        child = path.parent / include.path
+        outside = tree.scope.outside(child)
+        if outside is not None:
+            message = f"included file '{include.path}' {outside}"
+            tree.diagnostics.append(tree.sources.diagnostic(include.location, message))
+            continue
         child_display = os.path.normpath(os.path.join(os.path.dirname(display), include.path))
-        _parse_into(tree, path.parent / include.path, child_display, stack, include.location)
+        _parse_into(tree, child, child_display, stack, include.location)
     tree.files.append(parsed)
+
+
+def _read_rules_file(
+    tree: ParsedTree, path: Path, display: str, include_location: SourceLocation | None
+) -> str | None:
+    """The text of a rules file: a regular file of at most ``MAX_RULES_BYTES`` of UTF-8;
+    or None, with a diagnostic saying why not (at the ``include``, for an included file)."""
+    try:
+        text = read_regular_file(path, MAX_RULES_BYTES, "a rules file").decode("utf-8")
+    except UnicodeDecodeError:
+        reason = "not UTF-8 text"
+    except UnusableFile as problem:
+        reason = f"it {problem}"
+    except OSError as error:
+        reason = error.strerror or str(error)
+    else:
+        # Lines are counted at "\n" only, as the parser counts them (no newline translation).
+        return text
+    if include_location is None:  # the file asked for: the error is at its start
+        tree.diagnostics.append(Diagnostic(SourceLocation(display, 1, 1), f"cannot read '{display}': {reason}"))
+    else:
+        tree.diagnostics.append(
+            tree.sources.diagnostic(include_location, f"cannot read included file '{display}': {reason}")
+        )
+    return None
 
 
 # -- syntax errors in words ---------------------------------------------------------

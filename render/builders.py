@@ -9,7 +9,9 @@ the same shapes. ``scenewright.render.meshes`` then fits the result exactly to
 the size, so a builder only has to get proportions right; each one builds at the real
 size so the fit barely scales. Colours go on as per-face colours so one object can have
 several: the catalog colour is the main one (a house's walls), the builder picks the
-others (its roof, door and windows) from the palette below.
+others (its roof, door and windows) from the palette below. A builder's detail never
+grows with the size: parts it repeats along a length (a field's crop rows) number at
+most ``MAX_REPEATS`` (``repeats``), so a 1 km field costs what a 30 m one does.
 
 The file is in three parts: colour and solid helpers, then the builders of the shipped
 rule sets grouped by where they appear (furniture and small wares, the village, indoor
@@ -24,6 +26,7 @@ from collections.abc import Callable, Mapping
 import numpy as np
 import trimesh
 
+from scenewright.core.limits import MAX_REPEATS
 from scenewright.core.shapes import SHAPES, Shape
 
 Builder = Callable[[tuple[float, float, float], tuple[float, float, float]], trimesh.Trimesh]
@@ -59,6 +62,12 @@ COAL = (0.08, 0.08, 0.09)
 SCREEN = (0.1, 0.14, 0.2)
 PAGES = (0.93, 0.9, 0.8)
 BLOSSOM = (0.9, 0.3, 0.45)
+
+
+def repeats(length: float, spacing: float, least: int = 1) -> int:
+    """How many parts ``spacing`` apart fit along ``length``: at least ``least``, at most
+    ``MAX_REPEATS``, so a mesh's triangle count is bounded whatever its size."""
+    return min(max(least, int(length / spacing)), MAX_REPEATS)
 
 
 def shade(colour, factor: float) -> tuple[float, float, float]:
@@ -749,7 +758,7 @@ def well(size, colour) -> trimesh.Trimesh:
 def field(size, colour) -> trimesh.Trimesh:
     """A plot of tilled soil with rows of crop (the catalog colour) running along z."""
     w, h, d = size
-    rows = max(3, int(w / 0.8))
+    rows = repeats(w, 0.8, least=3)
     row_w = 0.5 * w / rows
     crops = [
         slab((x - row_w / 2, 0.3 * h, -d / 2 + 0.2), (x + row_w / 2, h, d / 2 - 0.2), colour)

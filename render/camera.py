@@ -9,6 +9,10 @@ in the image. Two views:
 - ``top``: an orthographic view straight down with north (-Z) at the top of the image
   and east (+X) to the right.
 
+The points framed must be finite and within ``scenewright.core.limits`` (a scene.json
+is checked for that when read); a scene built otherwise with a coordinate beyond them
+is refused with an ``InputError`` rather than given a camera that cannot see it.
+
 Camera frame as in OpenGL / pyrender: the camera looks along its local -Z, local +Y is
 up in the image, local +X is right. Pixel coordinates: u to the right, v down, the
 top-left pixel covers [0, 1) x [0, 1).
@@ -23,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from scenewright.core.errors import InputError
+from scenewright.core.limits import MAX_COORDINATE, MAX_SIZE
 from scenewright.core.scene import Scene, object_corners
 
 VIEWS = ("perspective", "top")
@@ -146,9 +151,14 @@ def scene_points(scene: Scene) -> np.ndarray:
 def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, height: int = 480) -> Camera:
     """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths.
 
-    An unknown ``view`` is the user's mistake (a CLI option): ``InputError``.
+    An unknown ``view`` is the user's mistake (a CLI option): ``InputError``, as is a
+    point that is not finite or lies beyond the coordinate limit (with the object's size).
     """
     points = scene_points(scene)
+    reach = MAX_COORDINATE + MAX_SIZE
+    if not np.isfinite(points).all() or np.abs(points).max() > reach:
+        raise InputError(f"the scene reaches beyond {reach:g} m from the origin or has coordinates that are "
+                         "not finite numbers (the limits: docs/limits.md)")
     if view == "perspective":
         return perspective_camera(points, width, height)
     if view == "top":

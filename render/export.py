@@ -4,7 +4,8 @@ One named node per object, junction and path (node name = its id; id, type, kind
 noun in the node's ``extras``), groups as parent nodes of their members so a 3D tool
 shows the scene's hierarchy, and optionally the ground. Node transforms carry the
 poses, meshes stay in their local frame, so a tool can move an object as a whole.
-Colours are per-vertex on unshared vertices (flat shaded, one colour per face).
+Colours are per-vertex on unshared vertices (flat shaded, one colour per face). A scene
+with nothing to draw (no objects, or only groups) is a valid GLB with no meshes.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import trimesh
+from trimesh.exchange.gltf import export_glb as trimesh_glb
 
 from scenewright.atomic import write_atomic
 from scenewright.core.scene import Scene, SceneObject, ScenePath
@@ -34,7 +36,7 @@ def export_glb(scene: Scene, path: str | os.PathLike, *, ground: bool = False) -
 
 def glb_bytes(scene: Scene, *, ground: bool = False) -> bytes:
     """The GLB encoding of ``scene`` (see the module docstring for its structure)."""
-    return build_trimesh_scene(scene, ground=ground).export(file_type="glb")
+    return _without_empty_bin(trimesh_glb(build_trimesh_scene(scene, ground=ground)))
 
 
 def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
@@ -71,6 +73,15 @@ def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
     if ground:
         attach(GROUND_NODE, None, np.eye(4), {"kind": "ground"}, ground_mesh(scene))
     return out
+
+
+def _without_empty_bin(glb: bytes) -> bytes:
+    """``glb`` without a trailing BIN chunk of no bytes (what a scene without meshes
+    gets), which the glTF specification says to leave out."""
+    end_of_json = 20 + int.from_bytes(glb[12:16], "little")  # 12-byte header, then the JSON chunk
+    if glb[end_of_json:] != (0).to_bytes(4, "little") + b"BIN\x00":
+        return glb
+    return glb[:8] + end_of_json.to_bytes(4, "little") + glb[12:end_of_json]
 
 
 def _extras(obj: SceneObject) -> dict:

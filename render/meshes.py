@@ -9,16 +9,22 @@ file is read by ``scenewright.core.shapes.load_mesh_file``, as ``validate`` read
 one that has become unreadable since raises its ``MeshFileError``, an input error.
 ``object_transform`` gives the local-to-world pose. Rooms (``scene.walls``) get the
 walls a camera sees from inside (``room_walls``). Everything is in metres, +Y up.
+A size beyond ``scenewright.core.limits.MAX_SIZE`` (or not a finite number) is refused
+with an ``InputError`` before anything is built; within it, a builder's detail does not
+grow with the size.
 """
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
 import trimesh
 
+from scenewright.core.errors import InputError
 from scenewright.core.frames import transform_matrix
+from scenewright.core.limits import MAX_SIZE
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 from scenewright.core.shapes import DEFAULT_SHAPE, load_mesh_file
 
@@ -43,6 +49,9 @@ def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
 def shaped_mesh(shape: str | None, mesh_file: str | None, size: tuple, colour: tuple) -> trimesh.Trimesh:
     """A mesh from a builder name or a user mesh file, fitted to ``size``: everything
     an object's look depends on, so callers can cache by these arguments."""
+    if not all(math.isfinite(side) and 0 <= side <= MAX_SIZE for side in size):
+        raise InputError(f"object size {list(size)} is not within 0..{MAX_SIZE:g} m on each side "
+                         "(the limits: docs/limits.md)")
     if mesh_file:
         mesh = _load_user_mesh(mesh_file).copy()
         mesh = coloured(mesh, colour) if not _has_colours(mesh) else mesh

@@ -6,8 +6,32 @@ The pipeline (see DESIGN.md): a rules file is parsed into a grammar
 rendered and exported (``scenewright.render``).
 """
 
-from scenewright.api import describe, export, generate, load_rules, render_image
 from scenewright.core import VERSION as __version__
-from scenewright.core.scene import Scene
 
 __all__ = ["Scene", "__version__", "describe", "export", "generate", "load_rules", "render_image"]
+
+#: The public names and the modules they come from. They are imported on first use, so
+#: that ``scenewright --help`` (and a Ctrl-C during start-up) does not wait for numpy
+#: and networkx.
+_PUBLIC = {
+    "Scene": "scenewright.core.scene",
+    "describe": "scenewright.api",
+    "export": "scenewright.api",
+    "generate": "scenewright.api",
+    "load_rules": "scenewright.api",
+    "render_image": "scenewright.api",
+}
+
+
+def __getattr__(name: str):
+    if name in _PUBLIC:
+        import importlib
+
+        value = getattr(importlib.import_module(_PUBLIC[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'scenewright' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_PUBLIC))

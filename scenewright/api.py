@@ -13,8 +13,8 @@ Reproducibility: the same rules, seed and scenewright version give the same scen
 clock times are the one thing that differs between runs, so ``reproducible_json`` leaves
 them out of scene.json and callers store them beside it (``timings.json``).
 
-Stage modules are imported inside the functions: ``import scenewright`` and
-``scenewright --help`` stay fast and never start OpenGL.
+Stage modules (and numpy, networkx) are imported inside the functions: ``import
+scenewright`` and ``scenewright --help`` stay fast and never start OpenGL.
 """
 
 from __future__ import annotations
@@ -29,10 +29,9 @@ from typing import TYPE_CHECKING, Any
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS
-from scenewright.core.scene import Scene, assemble_scene
-from scenewright.core.seeds import check_seed
 
 if TYPE_CHECKING:
+    from scenewright.core.scene import Scene
     from scenewright.describer import Description
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer, RenderResult
@@ -86,6 +85,9 @@ def build_scene(
     """
     from scenewright.generator import expand
     from scenewright.generator.layout import layout_scene
+
+    from scenewright.core.scene import assemble_scene
+    from scenewright.core.seeds import check_seed
 
     seed = check_seed(seed)
     loaded = load_rules(rules)

@@ -1,23 +1,62 @@
-"""Files that appear whole or not at all: write to a temporary name, then rename.
+"""Outputs that appear whole or not at all: one file, or a directory of files together.
 
-``os.replace`` within one directory is atomic on POSIX, so a reader (or a run that is
-restarted after being killed) sees either the old file or the complete new one, never
-a torn one. Temporary files are hidden and end in ``.partial``; ``remove_partials``
-clears what a killed run left behind. Files are not fsynced: this guards against a
-killed process, not against losing power.
+``write_atomic`` / ``atomic_stream`` write one file under a temporary name beside it
+and ``os.replace`` it into place, so a reader (or a run restarted after being killed)
+sees the old file or the complete new one, never a torn one.
+
+``staged_outputs`` publishes a directory of outputs as one: the new directory is made
+beside the old one and swapped in with a single rename (Linux ``renameat2`` with
+``RENAME_EXCHANGE``; a plain rename when there is no old one), so whenever the process
+stops, even by ``kill -9``, the directory holds the old set of files or the new set,
+never a mixture. Files in it that the run does not write are kept (hard-linked into the
+new directory); a folder or a device in it is refused, as is the current directory,
+since the directory is replaced as a whole. Where the filesystem cannot exchange two
+names (NFS), the old directory is renamed aside first and the new one renamed in; a
+kill between the two leaves the old one aside, and the next run puts it back.
+
+Temporary names are hidden, end in ``.partial`` and carry the id of the process that
+made them (``.NAME.PID-XXXXXXXX.partial``). ``staged_outputs`` first removes the
+partials beside and inside its directory whose process is no longer running;
+``remove_partials`` removes every partial under a directory (a dataset directory, which
+one run owns). A write that fails (a full disk, a read-only folder) raises
+``OutputError`` naming the path (``writing`` names it for a library's writes). Files are not fsynced: this guards against a killed
+process, not against losing power.
 """
 
 from __future__ import annotations
 
+import ctypes
+import errno
+import functools
 import os
+import re
 import shutil
+import stat
+import sys
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Collection, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO
 
+from scenewright.core.errors import InputError
+
 PARTIAL_SUFFIX = ".partial"
+#: ``.NAME.PID-RANDOM.partial``: what a process of id PID is making in place of NAME.
+_PARTIAL_NAME = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)-(?P<tag>[^.]*)\.partial$")
+#: The tag of an old directory renamed aside where names cannot be exchanged.
+_ASIDE = "aside"
+_AT_FDCWD = -100
+_RENAME_EXCHANGE = 2
+
+
+class OutputError(InputError):
+    """An output that cannot be written (a full disk, a read-only or unsuitable folder):
+    exit code 2. ``path`` is the file or directory (``directory``: written into), ``reason`` why."""
+
+    def __init__(self, path: str | os.PathLike[str], reason: str, *, directory: bool = False):
+        self.path, self.reason = os.fspath(path), reason
+        super().__init__(f"cannot write {'to ' * directory}{self.path}: {reason}")
 
 
 def write_atomic(path: str | os.PathLike[str], data: bytes | str) -> Path:
@@ -30,18 +69,40 @@ def write_atomic(path: str | os.PathLike[str], data: bytes | str) -> Path:
 @contextmanager
 def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iterator[IO]:
     """A file to write ``path`` through, piece by piece; it replaces ``path`` only when the
-    block ends without an error (text mode is UTF-8)."""
+    block ends without an error (text mode is UTF-8). A write that fails raises
+    ``OutputError`` naming ``path``."""
     target = Path(path)
-    handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=PARTIAL_SUFFIX, dir=target.parent)
-    # mkstemp makes the file private (0600); give it the mode open() would have.
-    os.chmod(temporary, 0o666 & ~_UMASK)
+    temporary = None
     try:
+        handle, temporary = tempfile.mkstemp(prefix=_partial_prefix(target.name), suffix=PARTIAL_SUFFIX, dir=target.parent)
+        # mkstemp makes the file private (0600); give it the mode open() would have.
+        os.chmod(temporary, 0o666 & ~_UMASK)
         with os.fdopen(handle, "wb") if binary else os.fdopen(handle, "w", encoding="utf-8") as stream:
             yield stream
         os.replace(temporary, target)
-    except BaseException:
+    except OSError as error:
+        if temporary is None:  # the temporary file could not be made
+            raise OutputError(target, error.strerror or str(error)) from error
         Path(temporary).unlink(missing_ok=True)
+        if error.filename not in (None, temporary):
+            raise  # not the writing of this file: some other file the block used
+        raise OutputError(target, error.strerror or str(error)) from error
+    except BaseException:
+        if temporary is not None:
+            Path(temporary).unlink(missing_ok=True)
         raise
+
+
+@contextmanager
+def writing(path: str | os.PathLike[str]) -> Iterator[None]:
+    """A block that writes ``path`` through a library (matplotlib, PIL): a failed write
+    there names no file, so it is raised as ``OutputError`` naming ``path``."""
+    try:
+        yield
+    except OSError as error:
+        if error.filename is not None:
+            raise
+        raise OutputError(path, error.strerror or str(error)) from error
 
 
 def _read_umask() -> int:
@@ -54,29 +115,204 @@ _UMASK = _read_umask()
 
 
 def remove_partials(directory: str | os.PathLike[str]) -> int:
-    """Delete what a killed writer left under ``directory`` (temp files, scratch dirs)."""
+    """Delete every partial under ``directory`` (temporary files, scratch directories):
+    for a directory one run owns, which it clears when it starts."""
     leftovers = sorted(Path(directory).rglob(f".*{PARTIAL_SUFFIX}"))
     for leftover in leftovers:
-        if leftover.is_dir():
-            shutil.rmtree(leftover, ignore_errors=True)
-        else:
-            leftover.unlink(missing_ok=True)
+        _remove(leftover)
     return len(leftovers)
 
 
-@contextmanager
-def staged_outputs(directory: str | os.PathLike[str]) -> Iterator[Path]:
-    """A hidden scratch directory inside ``directory`` whose files are published together.
+def check_output_directory(directory: str | os.PathLike[str], replaces: Collection[str]) -> Path:
+    """The real path of ``directory`` if ``staged_outputs`` may replace it, else
+    ``OutputError`` saying why: it is a file, a mount point or the current directory
+    (or holds it), or it holds a folder or a device among the files it keeps."""
+    final = Path(directory).resolve()
+    here = Path.cwd().resolve()
+    if final == here or final in here.parents:
+        reason = ("it is (or holds) the current directory, and the output replaces its directory as a whole; "
+                  "give the output a folder of its own")
+        raise OutputError(directory, reason, directory=True)
+    if not final.exists():
+        return final
+    if not final.is_dir():
+        raise OutputError(directory, "it is a file, not a directory", directory=True)
+    if os.path.ismount(final):
+        reason = ("it is a mount point, and the output replaces its directory as a whole by swapping in a new "
+                  "one beside it; write into a folder inside it")
+        raise OutputError(directory, reason, directory=True)
+    foreign = sorted(entry.name for entry in _kept(final, replaces) if not _linkable(entry))
+    if foreign:
+        listed = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
+        reason = (f"it holds {listed}, which the output does not replace and which a new directory cannot take "
+                  "along (not a plain file); give the output a folder of its own")
+        raise OutputError(directory, reason, directory=True)
+    return final
 
-    Write every output into the yielded directory. When the block succeeds each file is
-    moved into ``directory`` with ``os.replace``; when it raises, the scratch directory
-    is deleted and ``directory`` is left as it was.
+
+@contextmanager
+def staged_outputs(directory: str | os.PathLike[str], replaces: Collection[str]) -> Iterator[Path]:
+    """A new directory to write the outputs into, which replaces ``directory`` as one.
+
+    ``replaces``: the names of the outputs. When the block succeeds, the files of
+    ``directory`` not among them are linked into the new directory and the two are
+    swapped; the old one is then deleted. Of the outputs, those the block did not
+    write are gone afterwards (a stale preview, say). ``directory`` is made at once if
+    it does not exist; when the block raises, it is left as it was (and so made empty).
+    ``check_output_directory``'s refusals apply.
     """
-    final = Path(directory)
-    scratch = Path(tempfile.mkdtemp(prefix=".scenewright-", suffix=PARTIAL_SUFFIX, dir=final))
+    final = check_output_directory(directory, replaces)
     try:
-        yield scratch
-        for staged in sorted(scratch.iterdir()):
-            os.replace(staged, final / staged.name)
-    finally:
-        shutil.rmtree(scratch, ignore_errors=True)
+        final.parent.mkdir(parents=True, exist_ok=True)
+        remove_dead_partials(final)  # first: it may put back the directory a killed run set aside
+        final.mkdir(exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=_partial_prefix(final.name), suffix=PARTIAL_SUFFIX, dir=final.parent))
+        os.chmod(stage, 0o777 & ~_UMASK)
+    except OSError as error:
+        reason = f"cannot make a folder beside it in {final.parent} ({error.strerror or error})"
+        raise OutputError(directory, reason, directory=True) from error
+    try:
+        yield stage
+        if final.exists():
+            check_output_directory(directory, replaces)  # nothing unsuitable appeared meanwhile
+            for entry in _kept(final, replaces):
+                if not (stage / entry.name).exists():
+                    _take_along(entry, stage / entry.name)
+        _publish(stage, final)
+    except OutputError as error:  # an output written with write_atomic: name it where it was going
+        _remove(stage)
+        shown = _shown_path(error.path, stage, directory)
+        if shown is None:
+            raise
+        raise OutputError(shown, error.reason) from error
+    except OSError as error:
+        _remove(stage)
+        if error.filename is not None and not _shown_path(error.filename, stage, directory):
+            raise  # not a write of an output: some other file the block used
+        raise OutputError(_shown_path(error.filename, stage, directory) or directory,
+                          error.strerror or str(error)) from error
+    except BaseException:
+        _remove(stage)
+        raise
+
+
+def remove_dead_partials(path: str | os.PathLike[str]) -> int:
+    """Remove the partials of ``path`` (beside it) and inside it (if a directory) whose
+    process is no longer running; put back a directory a killed run had renamed aside.
+    Return how many were removed or put back."""
+    final = Path(path)
+    count = 0
+    for folder, wanted in ((final.parent, final.name), (final, None)):
+        if not folder.is_dir():
+            continue
+        for entry in sorted(folder.iterdir()):
+            match = _PARTIAL_NAME.match(entry.name)
+            if match is None or (wanted is not None and match["name"] != wanted) or _alive(int(match["pid"])):
+                continue
+            if match["tag"] == _ASIDE and not os.path.lexists(final):
+                os.rename(entry, final)  # killed between the two renames: the old directory comes back
+            else:
+                _remove(entry)
+            count += 1
+    return count
+
+
+def _publish(stage: Path, final: Path) -> None:
+    """Put ``stage`` where ``final`` is, in one step where the filesystem allows."""
+    try:
+        os.rename(stage, final)  # there was no directory, or an empty one: replaced at once
+        return
+    except OSError as error:
+        if error.errno not in (errno.ENOTEMPTY, errno.EEXIST):
+            raise
+    if _exchange(stage, final):
+        _remove(stage)  # it now holds the old directory
+        return
+    aside = final.parent / f"{_partial_prefix(final.name)}{_ASIDE}{PARTIAL_SUFFIX}"
+    _remove(aside)  # left by an earlier process that had this one's id
+    os.rename(final, aside)
+    os.rename(stage, final)
+    _remove(aside)
+
+
+def _exchange(first: Path, second: Path) -> bool:
+    """Swap two paths in one step (``renameat2(..., RENAME_EXCHANGE)``); False where the
+    system or the filesystem cannot."""
+    renameat2 = _renameat2()
+    if renameat2 is None:
+        return False
+    if renameat2(_AT_FDCWD, os.fsencode(first), _AT_FDCWD, os.fsencode(second), _RENAME_EXCHANGE) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), str(second))
+
+
+@functools.cache
+def _renameat2():
+    """libc's ``renameat2`` (Linux, glibc 2.28 or later), or None."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        function = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):
+        return None
+    function.argtypes = (ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint)
+    function.restype = ctypes.c_int
+    return function
+
+
+def _kept(final: Path, replaces: Collection[str]) -> list[os.DirEntry]:
+    """The entries of ``final`` a new directory must take along: not outputs, not partials."""
+    with os.scandir(final) as entries:
+        return [e for e in entries if e.name not in replaces and not e.name.endswith(PARTIAL_SUFFIX)]
+
+
+def _linkable(entry: os.DirEntry) -> bool:
+    """A regular file or a symbolic link, which a hard link can take along."""
+    mode = entry.stat(follow_symlinks=False).st_mode
+    return stat.S_ISREG(mode) or stat.S_ISLNK(mode)
+
+
+def _take_along(entry: os.DirEntry, target: Path) -> None:
+    try:
+        os.link(entry.path, target, follow_symlinks=False)
+    except OSError:  # a filesystem without hard links, or protected ones: a copy will do
+        shutil.copy2(entry.path, target, follow_symlinks=False)
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # someone else's process
+    except (OverflowError, ValueError):
+        return False  # not a process id at all
+    return True
+
+
+def _partial_prefix(name: str) -> str:
+    return f".{name}.{os.getpid()}-"
+
+
+def _remove(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        path.unlink(missing_ok=True)
+
+
+def _shown_path(written, stage: Path, directory: str | os.PathLike[str]) -> str | None:
+    """Where a write into ``stage`` was going, as the user named it (``out/scene.glb``),
+    or None when ``written`` lies outside ``stage``."""
+    if written is None:
+        return None
+    path = Path(os.fsdecode(written))
+    if path == stage or path.is_relative_to(stage):
+        return os.path.join(os.fspath(directory), os.fspath(path.relative_to(stage)))
+    return None

@@ -6,8 +6,9 @@ pipeline functions of ``scenewright.api``; parsing and error reporting live here
 Exit codes: 0 done; 1 generation failed (e.g. a layout that could not satisfy every
 relation: its files are still written, marked ``ok: false``); 2 bad input (options,
 missing or unreadable files, an output directory that cannot be written, bad rules, a
-bad scene.json). Errors print as one line ``scenewright: error: ...`` (a rules error
-as its located excerpt) and no traceback unless ``--debug`` is given.
+bad scene.json, an output that cannot be written). Errors print as one line
+``scenewright: error: ...`` (a rules error as its located excerpt) and no traceback
+unless ``--debug`` is given; running out of memory says so, and in which stage.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import sys
 import textwrap
 import traceback
@@ -52,21 +54,28 @@ class CommandLineParser(argparse.ArgumentParser):
 
 
 def image_size(text: str) -> tuple[int, int]:
-    """``WxH`` in pixels, e.g. ``640x480``."""
-    width, sep, height = text.lower().partition("x")
-    if not (sep and width.isdigit() and height.isdigit()):
-        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 640x480, not {text!r}")
-    size = (int(width), int(height))
+    """``WxH`` in pixels, e.g. ``640x480`` (ASCII digits only)."""
+    match = re.fullmatch(r"([0-9]{1,5})[xX]([0-9]{1,5})", text)
+    if match is None:
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 640x480, not {_clipped(text)}")
+    size = (int(match[1]), int(match[2]))
     if not all(8 <= side <= 8192 for side in size):
-        raise argparse.ArgumentTypeError(f"each side must be 8..8192 pixels, not {text!r}")
+        raise argparse.ArgumentTypeError(f"each side must be 8..8192 pixels, not {_clipped(text)}")
     return size
 
 
 def whole_number(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, not {text!r}") from None
+    """An optionally negative whole number in ASCII digits (``int`` would also take
+    full-width digits, underscores and spaces)."""
+    if re.fullmatch(r"-?[0-9]{1,30}", text) is None:
+        raise argparse.ArgumentTypeError(f"expected a whole number, not {_clipped(text)}")
+    return int(text)
+
+
+def _clipped(text: str, limit: int = 40) -> str:
+    """An argument as it may be shown in an error: quoted, escaped, and not too long."""
+    shown = ascii(text)
+    return shown if len(shown) <= limit else shown[: limit - 4] + "...'"
 
 
 def count_at_least(minimum: int) -> Callable[[str], int]:
@@ -111,40 +120,56 @@ def output_directory(path: str) -> Path:
     return directory
 
 
-def write_output(path: str | os.PathLike[str], data: bytes | str) -> None:
-    """Write one output file atomically, turning OS errors into ``InputError``."""
-    from scenewright.atomic import write_atomic
-
-    try:
-        write_atomic(path, data)
-    except OSError as error:
-        raise InputError(f"cannot write {path}: {error.strerror or error}") from error
+def output_file(path: str, default_name: str) -> Path:
+    """The file ``-o PATH`` names: PATH, or ``default_name`` inside it when PATH is an
+    existing directory or ends in '/'. Its folder is created and checked writable."""
+    target = Path(path)
+    if path.endswith(("/", os.sep)) or target.is_dir():
+        target = target / default_name
+    output_directory(str(target.parent))
+    return target
 
 
 class SceneFileError(InputError):
-    """A scene.json that cannot be read, is not JSON, or does not follow the schema."""
+    """A scene.json that cannot be read, is not JSON, or does not pass ``schema_check``;
+    ``problems`` lists each problem as a line (one when the file could not be read)."""
 
-    def __init__(self, path: str, reason: str):
+    def __init__(self, path: str, reason: str, problems: list[str] | None = None):
         super().__init__(f"{path}: {reason}")
         self.path, self.reason = path, reason
+        self.problems = problems or [reason]
+
+
+def read_scene_data(path: str, *, check_files: bool = False) -> dict:
+    """The checked document of a scene.json file (``schema_check``; with ``check_files``
+    the files it names must exist too); ``SceneFileError`` if bad."""
+    from scenewright.core.files import UnusableFile, read_regular_file
+    from scenewright.core.limits import MAX_SCENE_JSON_BYTES
+    from scenewright.schema_check import SceneSchemaError, parse_scene_json, validate_scene_dict
+
+    try:
+        text = read_regular_file(path, MAX_SCENE_JSON_BYTES, "a scene.json").decode("utf-8")
+        data = parse_scene_json(text)
+        validate_scene_dict(data, check_files=check_files)
+    except UnusableFile as problem:
+        raise SceneFileError(path, f"cannot read: it {problem}") from None
+    except OSError as error:
+        raise SceneFileError(path, f"cannot read: {error.strerror or error}") from None
+    except UnicodeDecodeError:
+        raise SceneFileError(path, "not UTF-8 text") from None
+    except SceneSchemaError as error:
+        lines = [f"scene.json {where}: {message}" for where, message in error.problems]
+        raise SceneFileError(path, str(error), lines) from None
+    except ValueError as error:
+        raise SceneFileError(path, f"not JSON: {error}") from None
+    return data
 
 
 def read_scene(path: str):
-    """A Scene from a scene.json file, checked against the schema; ``SceneFileError`` if bad."""
+    """A Scene from a scene.json file, checked (``read_scene_data``)."""
     from scenewright.core.scene import Scene
-    from scenewright.schema_check import validate_scene_dict
 
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except OSError as error:
-        raise SceneFileError(path, f"cannot read: {error.strerror or error}") from error
-    except ValueError as error:
-        raise SceneFileError(path, f"not JSON: {error}") from error
-    try:
-        validate_scene_dict(data)
-    except InputError as error:
-        raise SceneFileError(path, str(error)) from error
-    return Scene.from_dict(data)
+    return Scene.from_dict(read_scene_data(path))
 
 
 # -- subcommands ----------------------------------------------------------------------
@@ -152,8 +177,12 @@ def read_scene(path: str):
 
 def run_generate(args: argparse.Namespace) -> int:
     from scenewright.api import generate, render_scene
+    from scenewright.atomic import check_output_directory
+    from scenewright.generator import load_rules
 
-    scene = generate(args.rules, args.seed, style=args.style, variant=args.variant, templates=args.templates)
+    check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
+    rules = load_rules(args.rules, allow=args.allow_outside)
+    scene = generate(rules, args.seed, style=args.style, variant=args.variant, templates=args.templates)
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view)
@@ -164,23 +193,22 @@ def write_scene_outputs(args: argparse.Namespace, scene, images) -> int:
     """Write what ``generate`` writes for a finished scene (all files appear together or
     not at all) and report the layout's verdict: exit 0 when ok, 1 when not."""
     from scenewright.api import export, reproducible_json, summary_line, timed, timings_of
-    from scenewright.atomic import staged_outputs
+    from scenewright.atomic import staged_outputs, write_atomic, writing
     from scenewright.render.offscreen import save_render
     from scenewright.render.plan import draw_plan
 
-    directory = output_directory(args.output)  # made only once there is something to write
-    with staged_outputs(directory) as stage:
-        (stage / "description.txt").write_text(scene.description["text"] + "\n", encoding="utf-8")
+    directory = args.output.rstrip("/") or "/"
+    with staged_outputs(args.output, GENERATE_OUTPUTS) as stage:
+        write_atomic(stage / "description.txt", scene.description["text"] + "\n")
         if images is not None:
             save_render(images, stage, stem="preview")
         with timed(scene.timings, "export"):
             export(scene, stage / "scene.glb")
-        draw_plan(scene, stage / "plan.png")
-        (stage / "scene.json").write_text(reproducible_json(scene), encoding="utf-8")
-        (stage / "timings.json").write_text(json.dumps(timings_of(scene), indent=1) + "\n", encoding="utf-8")
+        with writing(stage / "plan.png"):
+            draw_plan(scene, stage / "plan.png")
+        write_atomic(stage / "scene.json", reproducible_json(scene))
+        write_atomic(stage / "timings.json", json.dumps(timings_of(scene), indent=1) + "\n")
         written = sorted(p.name for p in stage.iterdir())
-    for stale in sorted(set(GENERATE_OUTPUTS) - set(written)):
-        (directory / stale).unlink(missing_ok=True)
     say(args, f"wrote {directory}/: {', '.join(written)}")
     say(args, summary_line(scene))
     if scene.layout.ok:
@@ -196,11 +224,13 @@ def write_scene_outputs(args: argparse.Namespace, scene, images) -> int:
 def run_layout(args: argparse.Namespace) -> int:
     """Lay a scene.json out again, keeping the pinned ids where they are; write as generate does."""
     from scenewright.api import checked_templates, describe_scene, render_scene, timed
+    from scenewright.atomic import check_output_directory
     from scenewright.core.scene import assemble_scene
     from scenewright.generator.layout import layout_scene
     from scenewright.generator.layout.pinning import pins_from_scene, scene_layout
     from scenewright.generator.layout.problem import compile_problem
 
+    check_output_directory(args.output, GENERATE_OUTPUTS)
     old = read_scene(args.scene)
     templates = checked_templates(args.templates)
     try:
@@ -235,8 +265,24 @@ def run_layout(args: argparse.Namespace) -> int:
     return write_scene_outputs(args, scene, images)
 
 
+def seconds_value(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
+    if not 0 < value < float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, not {text!r}")
+    return value
+
+
+def scheduler_address(text: str) -> str:
+    if not text.strip():
+        raise argparse.ArgumentTypeError("expected a scheduler address such as tcp://host:8786, not an empty string")
+    return text.strip()
+
+
 def run_dataset(args: argparse.Namespace) -> int:
-    from scenewright.dataset import dataset_spec, run_dataset as run
+    from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
 
     spec = dataset_spec(
         args.rules,
@@ -250,13 +296,29 @@ def run_dataset(args: argparse.Namespace) -> int:
         segmentation=args.segmentation,
         include_failed=args.include_failed,
     )
-    report = run(spec, args.output, workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)
+    cpus = available_cpus()
+    if args.workers and args.workers > cpus and not args.scheduler and not args.quiet:
+        print(
+            f"{PROG}: note: --workers {args.workers} is more than the CPUs this process may use ({cpus}); "
+            f"using {cpus}",
+            file=sys.stderr,
+        )
+    report = run(
+        spec,
+        args.output,
+        workers=args.workers,
+        scheduler=args.scheduler,
+        progress=not args.quiet,
+        worker_timeout=args.worker_timeout,
+    )
     failed_note = "included, ok=false" if args.include_failed else "left out"
     say(
         args,
         f"{report.directory}: {report.written} scenes in metadata.jsonl; {report.failed} of {report.count} "
         f"layouts failed ({failed_note}); made {report.made} now, {report.skipped} were already done",
     )
+    if report.beyond:
+        say(args, f"{report.beyond} finished scenes with index {report.count} or above stay on disk, not listed")
     if report.failed:
         common = "; ".join(f"{problem} ({n}x)" for problem, n in list(report.stats["problems"].items())[:3])
         say(args, f"most frequent layout problems: {common}")
@@ -281,14 +343,9 @@ def run_validate(args: argparse.Namespace) -> int:
             print(f"{name}: error: no such file (nor a shipped rule set: {', '.join(shipped)})")
             any_error = True
         elif name.endswith(".json"):
-            try:
-                read_scene(name)
-                print(f"{name}: ok")
-            except SceneFileError as error:
-                print(f"{name}: error: {error.reason}")
-                any_error = True
+            any_error |= not validate_scene_file(name)
         else:
-            diagnostics = check_rules(name)
+            diagnostics = check_rules(name, allow=args.allow_outside)
             for diagnostic in diagnostics:
                 print(diagnostic)
             errors = sum(d.severity == "error" for d in diagnostics)
@@ -299,14 +356,27 @@ def run_validate(args: argparse.Namespace) -> int:
     return 2 if any_error else 0
 
 
-def run_expand(args: argparse.Namespace) -> int:
-    from scenewright.api import load_rules
-    from scenewright.generator import expand, graph_to_dot
+def validate_scene_file(name: str) -> bool:
+    """Print ``NAME: ok`` or each problem of a scene.json (and of the files it names) on
+    a line of its own; return whether it is ok."""
+    try:
+        read_scene_data(name, check_files=True)
+    except SceneFileError as error:
+        for problem in error.problems:
+            print(f"{name}: error: {problem}")
+        return False
+    print(f"{name}: ok")
+    return True
 
-    graph = expand(load_rules(args.rules), args.seed)
+
+def run_expand(args: argparse.Namespace) -> int:
+    from scenewright.atomic import write_atomic
+    from scenewright.generator import expand, graph_to_dot, load_rules
+
+    graph = expand(load_rules(args.rules, allow=args.allow_outside), args.seed)
     text = graph_to_dot(graph) if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
     if args.output:
-        write_output(args.output, text)
+        write_atomic(args.output, text)
         say(args, f"wrote {args.output}")
     else:
         sys.stdout.write(text)
@@ -326,8 +396,7 @@ def run_render(args: argparse.Namespace) -> int:
     from scenewright.render.offscreen import save_render
 
     scene = read_scene(args.scene)
-    target = Path(args.output)
-    output_directory(str(target.parent))
+    target = output_file(args.output, "preview.png")
     result = render_image(scene, *args.size, view=args.view)
     written = save_render(result, target.parent, stem=target.stem)
     say(args, "wrote " + ", ".join(str(p) for p in written.values()))
@@ -338,9 +407,9 @@ def run_export(args: argparse.Namespace) -> int:
     from scenewright.api import export
 
     scene = read_scene(args.scene)
-    output_directory(str(Path(args.output).parent))
-    export(scene, args.output)
-    say(args, f"wrote {args.output}")
+    target = output_file(args.output, "scene.glb")
+    export(scene, target)
+    say(args, f"wrote {target}")
     return 0
 
 
@@ -412,8 +481,14 @@ examples:
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
-interrupted run. The directory loads with
-datasets.load_dataset("imagefolder", data_dir=DIR).""",
+interrupted run; rerunning with another -n grows the dataset or shrinks what
+metadata.jsonl and the statistics list (scenes at N and above stay on disk). One run at
+a time may use DIR (a second one exits 2). The directory loads with
+datasets.load_dataset("imagefolder", data_dir=DIR).
+
+exit codes: 0 done, 1 every layout failed or the work failed (a lost dask scheduler, a
+worker that died), 2 bad input (options, rules, DIR made with other settings or in
+use, an unreachable scheduler or one without workers), 130 interrupted (Ctrl-C).""",
     "validate": """\
 examples:
   scenewright validate village
@@ -439,10 +514,14 @@ examples:
   scenewright render out/scene.json -o top.png --view top --size 1024x1024
 
 writes the colour image and, beside it, STEM_depth.png (16-bit millimetres),
-STEM_seg.png (16-bit instance ids) and STEM_ids.json (id -> object).""",
+STEM_seg.png (16-bit instance ids) and STEM_ids.json (id -> object). When PNG is an
+existing directory or ends in '/', the files are preview.png etc. inside it.""",
     "export": """\
 examples:
-  scenewright export out/scene.json -o out/scene.glb""",
+  scenewright export out/scene.json -o out/scene.glb
+  scenewright export out/scene.json -o exports/
+
+When GLB is an existing directory or ends in '/', the file is scene.glb inside it.""",
     "schema": """\
 examples:
   scenewright schema > scene.schema.json""",
@@ -503,6 +582,16 @@ def build_parser() -> CommandLineParser:
             help="folder of description templates (*.j2) to use instead of the rule set's own",
         )
 
+    def allow_option(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument(
+            "--allow-outside",
+            action="append",
+            default=[],
+            metavar="PATH",
+            help="let the rule set also read PATH (a folder, with all below it, or a file) outside its own "
+            "folder (repeatable; see docs/security.md)",
+        )
+
     def view_options(sub: argparse.ArgumentParser, size: str) -> None:
         sub.add_argument(
             "--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})"
@@ -516,6 +605,7 @@ def build_parser() -> CommandLineParser:
     style_options(generate)
     generate.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(generate, "640x480")
+    allow_option(generate)
 
     layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
     layout.add_argument("scene", metavar="SCENE_JSON")
@@ -546,7 +636,8 @@ def build_parser() -> CommandLineParser:
         "--workers",
         type=count_at_least(1),
         metavar="K",
-        help="worker processes (default: one per core; ignored with --scheduler)",
+        help="worker processes (default and maximum: one per CPU this process may use, and at most one per "
+        "scene left to make; a larger K is lowered with a note; ignored with --scheduler)",
     )
     dataset.add_argument(
         "--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)"
@@ -556,7 +647,16 @@ def build_parser() -> CommandLineParser:
     dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
     dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
     dataset.add_argument(
-        "--scheduler", metavar="ADDRESS", help="run on a dask.distributed scheduler (tcp://host:8786)"
+        "--scheduler",
+        type=scheduler_address,
+        metavar="ADDRESS",
+        help="run on a dask.distributed scheduler (tcp://host:8786)",
+    )
+    dataset.add_argument(
+        "--worker-timeout",
+        type=seconds_value,
+        metavar="S",
+        help="with --scheduler: give up after S seconds without a dask worker, at the start or mid-run (60)",
     )
     dataset.add_argument(
         "--include-failed", action="store_true", help="keep scenes whose layout failed, flagged ok=false"
@@ -566,12 +666,14 @@ def build_parser() -> CommandLineParser:
     validate.add_argument(
         "files", nargs="+", metavar="FILE", help=".rules files, shipped rule set names, or scene .json files"
     )
+    allow_option(validate)
 
     expand = command("expand", "print the scene graph that the grammar expands to", run_expand)
     expand.add_argument("rules", help="shipped rule set name or path to a .rules file")
     expand.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
     expand.add_argument("--format", choices=("json", "dot"), default="json", help="output format (json)")
     expand.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    allow_option(expand)
 
     describe = command("describe", "print the English description of a scene.json", run_describe)
     describe.add_argument("scene", metavar="SCENE_JSON")
@@ -580,13 +682,16 @@ def build_parser() -> CommandLineParser:
     render = command("render", "render a scene.json offscreen", run_render)
     render.add_argument("scene", metavar="SCENE_JSON")
     render.add_argument(
-        "-o", "--output", default="preview.png", metavar="PNG", help="colour image (preview.png)"
+        "-o", "--output", default="preview.png", metavar="PNG",
+        help="colour image (preview.png), or a directory to write preview.png etc. into",
     )
     view_options(render, "640x480")
 
     export = command("export", "export a scene.json as binary glTF", run_export)
     export.add_argument("scene", metavar="SCENE_JSON")
-    export.add_argument("-o", "--output", default="scene.glb", metavar="GLB", help="output file (scene.glb)")
+    export.add_argument(
+        "-o", "--output", default="scene.glb", metavar="GLB", help="output file (scene.glb), or a directory"
+    )
 
     command("schema", "print the scene.json JSON Schema", run_schema)
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
@@ -616,6 +721,18 @@ def main(argv: list[str] | None = None) -> int:
         # wrong. Point stdout at /dev/null so Python's flush at exit cannot fail again.
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except MemoryError as error:
+        if debug:
+            traceback.print_exc()
+        print(f"{PROG}: error: out of memory while {activity(error)} (docs/limits.md lists the bounds on "
+              "input; this machine has less memory than the input needs)", file=sys.stderr)
+        return 1
+    except OSError as error:  # the system refused something (a device, a file): not a bug
+        if debug:
+            traceback.print_exc()
+        where = f"{error.filename}: " if error.filename is not None else ""
+        print(f"{PROG}: error: {where}{error.strerror or error}", file=sys.stderr)
+        return 1
     except Exception as error:  # a bug, not the user's fault: say so in one line
         if debug:
             traceback.print_exc()
@@ -624,6 +741,34 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 1
+
+
+#: What the code of each module does, to say in which stage memory ran out (the
+#: innermost module of the traceback that is listed here, by its longest prefix).
+ACTIVITIES = {
+    "scenewright.generator": "reading the rules",
+    "scenewright.generator.expand": "expanding the grammar",
+    "scenewright.generator.layout": "laying the scene out",
+    "scenewright.describer": "describing the scene",
+    "scenewright.render": "building meshes",
+    "scenewright.render.offscreen": "rendering",
+    "scenewright.render.plan": "drawing the plan",
+    "scenewright.schema_check": "reading the scene.json",
+    "scenewright.dataset": "making the dataset",
+}
+
+
+def activity(error: BaseException) -> str:
+    """What the program was doing where ``error`` was raised, in words."""
+    doing = "running"
+    trace = error.__traceback__
+    while trace is not None:
+        module = trace.tb_frame.f_globals.get("__name__", "")
+        known = [prefix for prefix in ACTIVITIES if module == prefix or module.startswith(prefix + ".")]
+        if known:
+            doing = ACTIVITIES[max(known, key=len)]
+        trace = trace.tb_next
+    return doing
 
 
 if __name__ == "__main__":

@@ -2,41 +2,50 @@
 
 Seeds. Scene ``i`` of a dataset with base seed ``b`` uses the seed
 ``SeedSequence([b, i]).generate_state(1)[0]`` (``scene_seed``): it depends on nothing
-but ``(b, i)``, so any scene can be regenerated alone and the bytes on disk do not
-depend on the number of workers or on the order in which scenes finish.
+but ``(b, i)``, so any scene can be regenerated alone, the bytes on disk do not depend
+on the number of workers or on the order in which scenes finish, and a dataset can grow
+or shrink by its count: scene ``i`` is the same whatever N it was made under.
 
 On disk (``DIR``)::
 
-    dataset.json           the settings; a rerun must use the same ones (count may grow)
-    metadata.jsonl         one row per written scene, ordered by index
+    dataset.json           the settings; a rerun must use the same ones (N is not one)
+    metadata.jsonl         one row per written scene with index < N, ordered by index
     images/000000.png      the preview
     scenes/000000.json     scene.json (no wall-clock times: reproducible)
     depth/, segmentation/  optional ground truth (16-bit PNGs)
     failed/000003.json     scene.json of a scene whose layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
     .records/000000.json   one record per finished scene: the commit marker for resume
+    .lock                  locked (flock) by the run using the directory, which writes its
+                           pid there while it runs
 
 Every file is written atomically; a scene counts as done only once its record exists,
 and the record is written after the scene's files. A run that is killed therefore
 resumes where it stopped: finished scenes are skipped, a half-finished one is made
 again (with the same bytes), and ``metadata.jsonl`` and the statistics are rebuilt
-from the records at the end.
+from the records at the end. Start-up reads the records folder once and walks the
+indices still to make lazily, so it costs the same whatever N is.
 
-Work runs on a process pool (one machine) or on a dask.distributed cluster (several);
-workers compute and encode, and only this process writes to ``DIR``, so a cluster's
-workers need no shared filesystem.
+Work runs on a process pool (one machine, ``WorkerPool``) or on a dask.distributed
+cluster (several, ``dataset_cluster``); workers compute and encode, and only this
+process writes to ``DIR``, so a cluster's workers need no shared filesystem.
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
+import fcntl
 import hashlib
 import json
 import multiprocessing
 import os
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
+from concurrent.futures.process import BrokenProcessPool
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TextIO
@@ -45,17 +54,23 @@ import numpy as np
 
 from scenewright.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.dataset_stats import StatsCollector, write_stats
-from scenewright.core.errors import InputError
+from scenewright.core.errors import GenerationError, InputError
 
 #: The settings that must not change when a run is resumed into the same directory.
 SETTINGS_FILE = "dataset.json"
 RECORDS_DIR = ".records"
 METADATA_FILE = "metadata.jsonl"
+#: Locked (``flock``) by the run using the directory, so a second run is refused; the
+#: kernel releases the lock when that run ends in any way, ``kill -9`` included.
+LOCK_FILE = ".lock"
 #: What a worker imports; a fork server imports it once for all its workers.
 WORKER_MODULES = ["scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene"]
 #: When stderr is not a terminal (a log file, a batch job), progress is a plain line at
 #: most this often (seconds) and one at the end, not a bar redrawn after every scene.
 LOG_INTERVAL = 30.0
+#: When no scene has finished for this long (seconds), the run asks its executor whether
+#: it can still make progress (a dask cluster may have lost its scheduler or workers).
+IDLE_CHECK = 5.0
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -63,11 +78,22 @@ def scene_seed(base_seed: int, index: int) -> int:
     return int(np.random.SeedSequence([base_seed, index]).generate_state(1)[0])
 
 
-def default_workers() -> int:
-    """One worker per core this process may run on (its CPU affinity, not the machine's)."""
+def available_cpus() -> int:
+    """The CPUs this process may run on (its affinity, not the machine's count): the
+    default and the most local worker processes a run starts."""
+    if hasattr(os, "process_cpu_count"):  # Python 3.13+
+        return os.process_cpu_count() or 1
     if hasattr(os, "sched_getaffinity"):
         return len(os.sched_getaffinity(0))
     return os.cpu_count() or 1
+
+
+def pool_size(requested: int | None, pending: int) -> int:
+    """Worker processes for ``pending`` scenes: ``requested`` (default: one per CPU), at
+    most one per CPU (more only compete for the same cores, each holding its own
+    pipeline and OpenGL context) and at most one per pending scene."""
+    cpus = available_cpus()
+    return max(1, min(requested or cpus, cpus, pending))
 
 
 def scene_stem(index: int) -> str:
@@ -77,6 +103,10 @@ def scene_stem(index: int) -> str:
 @dataclass(frozen=True)
 class DatasetSpec:
     """What to make. Everything here except ``count`` is fixed for a dataset directory.
+
+    ``count`` (N) is how many scenes, indices 0..N-1, metadata.jsonl and the statistics
+    cover; a rerun may raise it (more scenes are made) or lower it (scenes at N and
+    above stay on disk but are no longer listed).
 
     ``rules`` is how the user named the rule set (shipped name or path) and
     ``rules_digest`` a hash of its text, so a resumed run cannot silently mix rule
@@ -160,7 +190,12 @@ Producer = Callable[[DatasetSpec, int], SceneProduct]
 
 @dataclass
 class RunReport:
-    """What a run did: how many scenes exist, how many this run made, how long it took."""
+    """What a run did: how many scenes exist, how many this run made, how long it took.
+
+    ``beyond`` counts finished scenes with an index of ``count`` or more (from a run with a
+    larger N): they stay on disk, unlisted. ``workers`` is the number of scenes made at
+    once (pool processes or cluster threads; 0 when nothing was left to make).
+    """
 
     directory: Path
     count: int
@@ -170,49 +205,98 @@ class RunReport:
     failed: int
     seconds: float
     stats: dict = field(default_factory=dict)
+    beyond: int = 0
+    workers: int = 0
 
     @property
     def scenes_per_minute(self) -> float:
         return 60.0 * self.made / self.seconds if self.seconds > 0 else 0.0
 
 
-def prepare_directory(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Path:
-    """Create or reopen a dataset directory; refuse one made with other settings."""
+@contextmanager
+def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterator[Path]:
+    """Create or reopen a dataset directory and hold its lock for the block.
+
+    Refuses a directory that holds other files but no dataset, one made with other
+    settings, and one another run is using. Under the lock it removes what a killed run
+    left half-written (no other run can be writing it) and stores the settings.
+    """
     root = Path(directory)
-    settings_path = root / SETTINGS_FILE
     try:
         root.mkdir(parents=True, exist_ok=True)
-        if settings_path.exists():
-            check_same_settings(spec, json.loads(settings_path.read_text()), root)
-        elif any(root.iterdir()):
+        settings_path = root / SETTINGS_FILE
+        if not settings_path.exists() and any(entry.name != LOCK_FILE for entry in root.iterdir()):
             raise InputError(f"{root} is not empty and holds no scenewright dataset; choose a new directory")
-        for sub in ("images", "scenes", RECORDS_DIR):
-            (root / sub).mkdir(exist_ok=True)
-        remove_partials(root)
-        write_atomic(settings_path, json.dumps({**spec.settings(), "count": spec.count}, indent=1) + "\n")
+        lock = lock_directory(root)
     except OSError as error:
         raise InputError(f"cannot write the dataset to {root}: {error.strerror or error}") from error
-    return root
+    try:
+        try:
+            if settings_path.exists():
+                check_same_settings(spec, json.loads(settings_path.read_text()), root)
+            write_atomic(settings_path, json.dumps(spec.settings(), indent=1) + "\n")
+            for sub in ("images", "scenes", RECORDS_DIR):
+                (root / sub).mkdir(exist_ok=True)
+            remove_partials(root)
+        except OSError as error:
+            raise InputError(f"cannot write the dataset to {root}: {error.strerror or error}") from error
+        yield root
+    finally:
+        unlock_directory(lock)
+
+
+def lock_directory(root: Path) -> int:
+    """Take the directory's lock (``LOCK_FILE``) for this run and write this process's
+    pid into it; return the descriptor, whose closing releases the lock. Refuses with
+    the holder's pid when another run has it. The lock is ``flock``: the kernel drops it
+    when its holder ends, however, so a killed run never leaves the directory locked."""
+    descriptor = os.open(root / LOCK_FILE, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
+    try:
+        fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        holder = os.pread(descriptor, 32, 0).decode("ascii", "replace").strip() or "unknown"
+        os.close(descriptor)
+        raise InputError(f"{root} is in use by another scenewright dataset run (pid {holder})") from None
+    os.ftruncate(descriptor, 0)
+    os.pwrite(descriptor, f"{os.getpid()}\n".encode(), 0)
+    return descriptor
+
+
+def unlock_directory(descriptor: int) -> None:
+    """Empty the lock file (a finished dataset's files stay the same bytes whoever made
+    them) and release the lock."""
+    try:
+        os.ftruncate(descriptor, 0)
+    finally:
+        os.close(descriptor)
 
 
 def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
+    """Refuse a rerun whose settings differ from the stored ones (``count`` is not a
+    setting; a ``count`` that datasets made before it could change is ignored)."""
     differing = [key for key, value in spec.settings().items() if stored.get(key) != value]
     if differing:
         details = ", ".join(f"{key} {stored.get(key)!r} -> {spec.settings()[key]!r}" for key in differing)
         raise InputError(f"{root} holds a dataset made with other settings ({details}); use a new directory")
-    if spec.count < int(stored.get("count", 0)):
-        raise InputError(
-            f"{root} already holds a dataset of {stored['count']} scenes; a rerun may keep or raise -n, not lower it"
-        )
 
 
-def finished_indices(root: Path, count: int) -> set[int]:
-    """Indices whose record exists and reads back: those scenes are done."""
+def finished_indices(root: Path) -> set[int]:
+    """The indices whose record exists and reads back (those scenes are done), from one
+    pass over the records folder: the cost follows the records on disk, not N."""
     done: set[int] = set()
-    for path in (root / RECORDS_DIR).glob("*.json"):
-        if path.stem.isdigit() and int(path.stem) < count and read_record(path) is not None:
-            done.add(int(path.stem))
+    with os.scandir(root / RECORDS_DIR) as entries:
+        for entry in entries:
+            stem, _, suffix = entry.name.partition(".")
+            if suffix == "json" and stem.isdigit() and scene_stem(int(stem)) == stem:
+                if read_record(Path(entry.path)) is not None:
+                    done.add(int(stem))
     return done
+
+
+def pending_indices(count: int, done: set[int]) -> Iterator[int]:
+    """The indices below ``count`` not in ``done``, in order, one at a time (never a list
+    of N items: N may be far larger than what fits in memory)."""
+    return (index for index in range(count) if index not in done)
 
 
 def read_record(path: Path) -> dict | None:
@@ -247,34 +331,156 @@ def publish_metadata(root: Path, count: int) -> StatsCollector:
     return collector
 
 
-def make_executor(
-    workers: int, scheduler: str | None, producer: Producer, spec: DatasetSpec
-) -> tuple[cf.Executor, int]:
-    """A process pool on this machine, or an executor on a dask.distributed scheduler,
-    with the number of scenes it works on at once (``workers``, or the cluster's threads).
+@contextmanager
+def interrupts_deferred() -> Iterator[None]:
+    """Hold Ctrl-C (SIGINT) back until the block ends, then deliver it.
 
-    Pool workers start with ``forkserver`` (``spawn`` where it is missing): each creates
-    its own OpenGL context, and a context must not be inherited through ``fork``. Each
-    worker warms up once (rules parsed, renderer started) and keeps that for its life.
+    Wraps the calls that may start a pool worker: interrupted halfway, that start would
+    leave a worker that fails on its own, with a traceback of its own, after the clean
+    one-line report. Signals are handled in the main thread only; elsewhere (an API
+    caller's thread) this does nothing, as it does when SIGINT's handler was installed
+    by something other than Python (it could not be put back).
     """
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
+        yield  # not the main thread, or a handler Python did not install: leave it alone
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda number, frame: caught.append(number))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if caught:
+            signal.raise_signal(signal.SIGINT)
+
+
+def start_fork_server() -> None:
+    """Start the fork server with SIGINT blocked. It inherits the blocked signal, and so
+    does every worker forked from it: Ctrl-C on a terminal, sent to the whole process
+    group, reaches only this process, which then stops the pool, instead of printing a
+    KeyboardInterrupt traceback from the server's imports or from a worker. A signal
+    that arrives meanwhile is delivered here when the block ends.
+
+    The resource tracker starts first, on its own: starting it unblocks SIGINT in this
+    thread (CPython blocks and then unblocks it around that start), which would undo the
+    block if it happened inside ``forkserver.ensure_running``."""
+    from multiprocessing import forkserver, resource_tracker
+
+    resource_tracker.ensure_running()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        forkserver.ensure_running()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+def start_worker(lifeline, spec: DatasetSpec | None) -> None:
+    """A pool worker's initializer: leave Ctrl-C to the parent, exit as soon as the parent
+    closes or loses the lifeline, and with ``spec``, warm up (rules parsed, renderer
+    started) once for the worker's life.
+
+    SIGINT is also ignored here for a fork server that ``start_fork_server`` did not
+    start (one an API caller's process started earlier)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=exit_when_closed, args=(lifeline,), name="lifeline", daemon=True).start()
+    if spec is not None:
+        from scenewright.dataset_scene import worker_context
+
+        worker_context(spec)
+
+
+def exit_when_closed(lifeline) -> None:
+    """Wait on the lifeline; nothing is ever sent, so it wakes only at end-of-file, when
+    its one write end is closed: by ``WorkerPool.stop`` or by the kernel as the parent
+    dies (even by SIGKILL). Then end this worker at once, whatever it was doing."""
+    lifeline.poll(None)
+    os._exit(1)
+
+
+class WorkerPool(cf.ProcessPoolExecutor):
+    """The process pool on this machine, whose workers never outlive this process.
+
+    Workers start with ``forkserver`` (``spawn`` where it is missing): each creates its
+    own OpenGL context, and a context must not be inherited through ``fork``. Each worker
+    holds the read end of a pipe, the lifeline, whose only write end stays here, and a
+    thread waiting on it (``start_worker``). When this process dies, even by ``kill
+    -9``, the kernel closes the write end and every worker exits; the fork server then
+    sees its last client gone and exits, and the resource tracker after it, so nothing
+    is left running or holding the caller's stdout and stderr. Leaving the pool's
+    ``with`` block with an error (Ctrl-C included) closes the lifeline first, so the
+    workers stop at once rather than after their current scene.
+    """
+
+    def __init__(self, workers: int, warm_up: DatasetSpec | None) -> None:
+        methods = multiprocessing.get_all_start_methods()
+        context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+        if context.get_start_method() == "forkserver":
+            # Import the pipeline once in the fork server rather than in every worker (the
+            # imports take seconds); no OpenGL context exists yet at that point.
+            context.set_forkserver_preload(WORKER_MODULES)
+            start_fork_server()
+        self._lifeline_read, self._lifeline = context.Pipe(duplex=False)
+        super().__init__(
+            max_workers=workers, mp_context=context, initializer=start_worker, initargs=(self._lifeline_read, warm_up)
+        )
+        self.workers = workers
+
+    def slots(self) -> int:
+        return self.workers
+
+    def check(self) -> None:
+        """Nothing to check while waiting: a worker that dies breaks the pool, and the
+        pool reports that itself through the futures (``failure``)."""
+
+    def failure(self, future: cf.Future) -> BaseException | None:
+        """The error a finished future stands for, or None if it holds a scene."""
+        error = future.exception()
+        if isinstance(error, BrokenProcessPool):
+            lost = GenerationError(
+                "a worker process died (killed, or out of memory?); the scenes that finished are stored: "
+                "rerun the same command to resume"
+            )
+            lost.__cause__ = error
+            return lost
+        return error
+
+    def stop(self) -> None:
+        """End every worker now (they exit as soon as the lifeline closes)."""
+        self._lifeline.close()
+
+    def __exit__(self, exc_type, exc_value, traceback) -> bool:
+        if exc_type is not None:
+            self.stop()
+        with interrupts_deferred():
+            self.shutdown(wait=True)
+        self.stop()
+        self._lifeline_read.close()
+        return False
+
+
+def make_executor(
+    workers: int | None,
+    pending: int,
+    scheduler: str | None,
+    producer: Producer,
+    spec: DatasetSpec,
+    worker_timeout: float | None,
+    note: Callable[[str], None] | None,
+):
+    """Where the scenes are computed: a ``WorkerPool`` of ``pool_size(workers, pending)``
+    processes, or with a dask.distributed ``scheduler`` address a
+    ``dataset_cluster.ClusterExecutor`` (which tells ``note`` when it waits for a
+    worker). Both are ``concurrent.futures`` executors that also offer ``slots()``
+    (scenes made at once), ``check()`` (raise when no progress is possible) and
+    ``failure(future)`` (the error a finished future stands for)."""
     if scheduler:
-        from scenewright.dataset_cluster import cluster_executor
+        from scenewright.dataset_cluster import WORKER_TIMEOUT, cluster_executor
 
-        executor = cluster_executor(scheduler)
-        return executor, executor.slots()
-    from scenewright.dataset_scene import produce_scene, worker_context
+        timeout = WORKER_TIMEOUT if worker_timeout is None else worker_timeout
+        return cluster_executor(scheduler, timeout, note)
+    from scenewright.dataset_scene import produce_scene
 
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    if context.get_start_method() == "forkserver":
-        # Import the pipeline once in the fork server rather than in every worker (the
-        # imports take seconds); no OpenGL context exists yet at that point.
-        context.set_forkserver_preload(WORKER_MODULES)
-    warm_up = worker_context if producer is produce_scene else None
-    pool = cf.ProcessPoolExecutor(
-        max_workers=workers, mp_context=context, initializer=warm_up, initargs=(spec,)
-    )
-    return pool, workers
+    return WorkerPool(pool_size(workers, pending), spec if producer is produce_scene else None)
 
 
 def run_dataset(
@@ -285,78 +491,98 @@ def run_dataset(
     scheduler: str | None = None,
     producer: Producer | None = None,
     progress: bool = True,
+    worker_timeout: float | None = None,
 ) -> RunReport:
     """Make (or finish) the dataset ``spec`` in ``directory``; return what was done.
 
-    ``workers`` sizes the local process pool (default: one per core); with a dask
-    ``scheduler`` address the cluster's workers are used instead. ``producer`` computes
+    ``workers`` sizes the local process pool (default and maximum: one per CPU this
+    process may use, and no more than the scenes left to make); with a dask
+    ``scheduler`` address the cluster's workers are used instead, and
+    ``worker_timeout`` is how long (seconds) the cluster may have no workers before the
+    run gives up (``dataset_cluster.WORKER_TIMEOUT`` by default). ``producer`` computes
     one scene in a worker (default: the real pipeline, ``dataset_scene.produce_scene``);
-    tests inject a cheap one.
+    tests inject a cheap one. Holds the directory's lock throughout.
     """
     from scenewright.dataset_scene import produce_scene
 
     producer = producer or produce_scene
-    workers = workers or default_workers()
-    root = prepare_directory(spec, directory)
-    todo = [i for i in range(spec.count) if i not in finished_indices(root, spec.count)]
-    started = time.perf_counter()
-    made = failed_now = 0
-    if todo:
-        executor, slots = make_executor(workers, scheduler, producer, spec)
-        with executor:
-            bar = progress_bar(len(todo), progress, spec.count - len(todo))
-            for product in completed_products(executor, producer, spec, todo, window=4 * slots):
-                store_product(root, product)
-                made += 1
-                failed_now += not product.ok
-                bar.set_postfix(failed=failed_now, refresh=False)
-                bar.update(1)
-            bar.close()
-    seconds = time.perf_counter() - started
-    collector = publish_metadata(root, spec.count)
-    stats = collector.summary(made=made, seconds=seconds)
-    write_stats(root, stats)
+    with open_dataset(spec, directory) as root:
+        done = finished_indices(root)
+        skipped = sum(1 for index in done if index < spec.count)
+        pending = spec.count - skipped
+        started = time.perf_counter()
+        made = failed_now = slots = 0
+        if pending:
+            note = progress_note if progress else None
+            with make_executor(workers, pending, scheduler, producer, spec, worker_timeout, note) as executor:
+                slots = executor.slots()
+                bar = progress_bar(pending, progress, skipped)
+                try:
+                    todo = pending_indices(spec.count, done)
+                    for product in completed_products(executor, producer, spec, todo, window=4 * slots):
+                        store_product(root, product)
+                        made += 1
+                        failed_now += not product.ok
+                        bar.set_postfix(failed=failed_now, refresh=False)
+                        bar.update(1)
+                finally:
+                    bar.close()
+        seconds = time.perf_counter() - started
+        collector = publish_metadata(root, spec.count)
+        stats = collector.summary(made=made, seconds=seconds)
+        write_stats(root, stats)
     return RunReport(
         directory=root,
         count=spec.count,
         made=made,
-        skipped=spec.count - len(todo),
+        skipped=skipped,
         written=collector.written,
         failed=collector.failed,
         seconds=seconds,
         stats=stats,
+        beyond=len(done) - skipped,
+        workers=slots,
     )
 
 
 def completed_products(
-    executor: cf.Executor, producer: Producer, spec: DatasetSpec, todo: list[int], *, window: int
+    executor, producer: Producer, spec: DatasetSpec, todo: Iterator[int], *, window: int
 ) -> Iterator[SceneProduct]:
-    """Run ``producer`` over ``todo``, at most ``window`` at a time; yield as they finish.
+    """Run ``producer`` over the indices ``todo`` yields, at most ``window`` at a time;
+    yield the products as they finish.
 
-    The window bounds memory (each product carries encoded images). The first error
-    stops the run: pending work is cancelled and the error is raised here.
+    The window bounds memory (each product carries encoded images) and lets ``todo`` be
+    consumed lazily. While nothing finishes for ``IDLE_CHECK`` seconds the executor is
+    asked whether it can still make progress. The first error is raised here; the work
+    still pending is the executor's to drop as its ``with`` block ends with that error
+    (the pool stops its workers, the cluster cancels its tasks).
     """
     pending: set[cf.Future] = set()
-    queue = iter(todo)
-    try:
-        while True:
-            for index in queue:
+    while True:
+        with interrupts_deferred():
+            for index in todo:
                 pending.add(executor.submit(producer, spec, index))
                 if len(pending) >= window:
                     break
-            if not pending:
-                return
-            finished, pending = cf.wait(pending, return_when=cf.FIRST_COMPLETED)
-            # Store every scene that did finish before reporting one that failed.
-            failures = [future.exception() for future in finished if future.exception() is not None]
-            for future in finished:
-                if future.exception() is None:
-                    yield future.result()
-            if failures:
-                raise failures[0]
-    finally:
-        for future in pending:
-            future.cancel()
+        if not pending:
+            return
+        finished, pending = cf.wait(pending, timeout=IDLE_CHECK, return_when=cf.FIRST_COMPLETED)
+        if not finished:
+            executor.check()
+            continue
+        # Store every scene that did finish before reporting one that failed.
+        outcomes = [(future, executor.failure(future)) for future in finished]
+        for future, error in outcomes:
+            if error is None:
+                yield future.result()
+        failures = [error for _, error in outcomes if error is not None]
+        if failures:
+            raise failures[0]
+
+
+def progress_note(text: str) -> None:
+    """A line about the run's progress that is not a count (waiting for a dask worker)."""
+    print(text, file=sys.stderr, flush=True)
 
 
 def progress_bar(total: int, enabled: bool, already: int, stream: TextIO | None = None):

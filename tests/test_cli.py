@@ -395,4 +395,4 @@ def test_generate_and_dataset_templates_option(capsys, tmp_path):
     code, out, err = run(capsys, "describe", str(out_dir / "scene.json"), "--style", "short",
                          "--templates", str(words))  # fmt: skip
     assert code == 2 and out == ""
-    assert_one_line_error(err, "description template caption.j2: 'settting' is undefined")
+    assert_one_line_error(err, f"description template {words.resolve() / 'caption.j2'}:1: 'settting' is undefined")

@@ -241,3 +241,39 @@ def test_the_layout_scores_every_family_of_the_registry():
     from scenewright.generator.layout.relation_terms import FAMILY_TERMS
 
     assert set(FAMILIES) - {"structural"} == set(FAMILY_TERMS)
+
+
+# -- the package structure ----------------------------------------------------------------
+
+ROOT = __import__("pathlib").Path(__file__).parents[1]
+#: Folder -> the scenewright packages its modules may import (besides their own).
+ALLOWED_IMPORTS = {
+    "core": set(),
+    "generator": {"core"},
+    "describer": {"core"},
+    # The renderer writes its files whole through the atomic writer, a small file utility
+    # of the application package (no pipeline, API, CLI or dataset code).
+    "render": {"core", "atomic"},
+}
+
+
+@pytest.mark.parametrize("folder", sorted(ALLOWED_IMPORTS))
+def test_stages_import_only_the_core(folder):
+    """No stage imports another stage, the API, the CLI or datasets; the core imports none."""
+    import ast
+
+    found = set()
+    for path in (ROOT / folder).rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = []
+            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                names = [node.module]
+            elif isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            for name in names:
+                parts = name.split(".")
+                if parts[0] == "scenewright":
+                    package = parts[1] if len(parts) > 1 else "scenewright"
+                    if package != folder:
+                        found.add((path.name, package))
+    assert {(module, package) for module, package in found if package not in ALLOWED_IMPORTS[folder]} == set()

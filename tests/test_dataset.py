@@ -185,7 +185,7 @@ def test_resume_after_kill_minus_nine(tmp_path):
 
 def test_unreachable_scheduler_is_bad_input(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
-    monkeypatch.setattr("scenewright.dataset_cluster.CONNECT_TIMEOUT", "1s")
+    monkeypatch.setattr("scenewright.dataset_cluster.CONNECT_TIMEOUT", 1.0)
     with pytest.raises(InputError, match="cannot reach the dask scheduler"):
         run_dataset(spec_of(2), tmp_path, scheduler="tcp://127.0.0.1:9", producer=fake_scene, progress=False)
 
@@ -202,12 +202,10 @@ def test_huggingface_imagefolder_reads_it(tmp_path):
     assert loaded[0]["caption_1"] == "scene 0 caption 1"
 
 
-def test_refuses_other_settings_a_smaller_count_and_foreign_directories(tmp_path):
+def test_refuses_other_settings_and_foreign_directories(tmp_path):
     run_dataset(spec_of(4), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
     with pytest.raises(InputError, match="other settings .*base_seed 0 -> 1"):
         run_dataset(spec_of(4, base_seed=1), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
-    with pytest.raises(InputError, match="not lower it"):
-        run_dataset(spec_of(3), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
     (tmp_path / "other").mkdir()
     (tmp_path / "other" / "notes.txt").write_text("mine")
     with pytest.raises(InputError, match="not empty"):

@@ -239,7 +239,7 @@ bad_values.rules:5:47: error: 'max_length' must be positive, not -3
 bad_values.rules:6:8: error: catalog entry 'chair' has no noun (add: noun "...")
     object chair { size 1 x 1 x 1 }
            ^
-bad_values.rules:7:27: error: count 3000 exceeds max_nodes 2000
+bad_values.rules:7:27: error: count 3000 exceeds max_nodes 2000 (raise it in the scene block, e.g. max_nodes 3000)
     S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }
                               ^
 bad_values.rules:7:50: error: a block nests nodes in a new group, but the subject refers to existing nodes

@@ -1,0 +1,51 @@
+"""Reading a file that a user's input names: a regular file only, and a bounded one.
+
+``read_regular_file`` is how rules files, description templates and mesh files are
+read. It opens the file without blocking (a named pipe cannot stall it), checks on the
+opened file that it is a regular file (not a directory, pipe or device such as
+/dev/zero) of at most a given size, and reads no more than that. A file that fails a
+check raises ``UnusableFile``, whose text completes the sentence "file 'F' ...".
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import stat
+
+
+class UnusableFile(OSError):
+    """A file that is not a regular file or is too large; the text says which ("is not a
+    regular file"). An ``OSError``, like the errors of opening a file that is missing
+    or unreadable, which ``read_regular_file`` lets through unchanged."""
+
+
+def read_regular_file(path: str | os.PathLike[str], limit: int, holder: str) -> bytes:
+    """The bytes of ``path``, which must be a regular file of at most ``limit`` bytes.
+
+    ``holder`` says what the file is, for the message about its size ("a rules file":
+    "is 5 MiB, more than the 4 MiB a rules file may hold"). The checks are made on the
+    opened file, so swapping the name for another file after a check changes nothing.
+    Raises ``UnusableFile``, or the ``OSError`` of opening or reading the file.
+    """
+    descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        status = os.fstat(descriptor)
+        if stat.S_ISDIR(status.st_mode):
+            raise UnusableFile("is a directory, not a file")
+        if not stat.S_ISREG(status.st_mode):
+            raise UnusableFile("is not a regular file")
+        if status.st_size > limit:
+            raise UnusableFile(f"is {_mebibytes(status.st_size)}, more than the {_mebibytes(limit)} {holder} may hold")
+        with os.fdopen(descriptor, "rb", closefd=False) as stream:
+            data = stream.read(limit + 1)
+    finally:
+        os.close(descriptor)
+    if len(data) > limit:  # it grew after its size was read
+        raise UnusableFile(f"is more than the {_mebibytes(limit)} {holder} may hold")
+    return data
+
+
+def _mebibytes(count: int) -> str:
+    """``count`` bytes in MiB, rounded up to a tenth, so a file just over a limit reads as over it."""
+    return f"{math.ceil(count * 10 / 2**20) / 10:g} MiB"
