@@ -133,12 +133,6 @@ class RelationLabel:
             return DIRECTION_WORDINGS.get(chosen or "", _NEXT_TO_WORDINGS)
         return self.wordings
 
-    def phrase_for(self, chosen: str | None = None) -> str:
-        """How the report names the label (with the chosen direction, where there is one)."""
-        if self.chooses and chosen in DIRECTION_PHRASES:
-            return DIRECTION_PHRASES[chosen]
-        return self.phrase
-
 
 @dataclass(frozen=True)
 class Relation:
@@ -210,9 +204,6 @@ class Registry:
     def names(self) -> frozenset[str]:
         """Every label a rules file may use."""
         return frozenset(self._labels)
-
-    def families(self) -> frozenset[str]:
-        return frozenset(label.family for label in self._labels.values())
 
 
 def _check_complete(label: RelationLabel) -> None:

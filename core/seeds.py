@@ -56,19 +56,6 @@ def stream(seed: int, stage: str, index: int = 0) -> np.random.Generator:
     return np.random.Generator(np.random.PCG64(np.random.SeedSequence(check_seed(seed), spawn_key=key)))
 
 
-def stage_streams(seed: SeedLike, stage: str, count: int) -> list[np.random.Generator]:
-    """``count`` independent Generators for one stage (layout chains, variants, views).
-
-    An int gives the stage's named children 0..count-1 (the same for every count); a
-    Generator spawns ``count`` children of its own; None uses fresh entropy.
-    """
-    if isinstance(seed, np.random.Generator):
-        return seed.spawn(count)
-    if seed is None:
-        return np.random.default_rng().spawn(count)
-    return [stream(seed, stage, k) for k in range(count)]
-
-
 def stage_stream(seed: SeedLike, stage: str, index: int = 0) -> np.random.Generator:
     """One Generator for a stage: child ``index`` of an int seed, or the Generator given."""
     if isinstance(seed, np.random.Generator):

@@ -16,7 +16,7 @@ from scenewright.core import frames
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel, Relation, UnknownLabel
 from scenewright.core.scene_graph import SceneGraph, SceneParams
-from scenewright.core.seeds import MAX_SEED, check_seed, stage_stream, stage_streams, stream
+from scenewright.core.seeds import MAX_SEED, check_seed, stage_stream, stream
 from scenewright.describer import describe
 from scenewright.describer.variation import Choices
 from scenewright.generator import expand, load_rules
@@ -117,7 +117,6 @@ def test_generators_and_none_are_accepted_as_seeds():
     assert len(expand(rules, None)) > 0
     rng = np.random.default_rng(1)
     assert stage_stream(rng, "layout") is rng
-    assert len(stage_streams(np.random.default_rng(1), "camera", 3)) == 3
     graph = expand(rules, 3)
     a = layout_scene(graph, np.random.default_rng(9))
     b = layout_scene(graph, np.random.default_rng(9))
