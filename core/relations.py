@@ -4,7 +4,7 @@ Every edge of a scene graph carries one label of this registry. A label's record
 everything the stages need to know about it, so no stage routes on label spellings:
 
 - ``family``: which geometry it asks for (``next_to``, ``support``, ``facing``,
-  ``structural``). The layout implements one energy term, measurement (satisfied or
+  ``wall``, ``alignment``, ``structural``). The layout implements one energy term, measurement (satisfied or
   not, and the complaint when not) and data-driven proposer per family, and refuses at
   import a family it does not implement; a label's parameters below steer them.
 - next-to parameters: ``directions`` (name -> unit vector (x, z)) in ``frame``
@@ -12,7 +12,13 @@ everything the stages need to know about it, so no stage routes on label spellin
   next to. Several: the layout chooses whichever fits and records it as ``chosen``.
 - support parameters: ``placement`` (``anywhere``, ``middle``, ``edge``,
   ``front_edge``); support labels rest A on B (A's height follows B's top).
-- facing parameters: ``facing`` (``towards``, ``away``, ``same``, ``orthogonal``).
+- facing parameters: ``facing`` (``towards``, ``away``, ``same``, ``orthogonal``,
+  ``opposite``).
+- wall parameters: ``wall`` (``against``: A's back to a wall; ``corner``: against a
+  wall with one side against the next; ``under_window`` / ``beside_window``: against a
+  window's wall, under it or next to it). B is a wall or a window, or the room (the
+  layout then chooses the wall or window that fits and records it as ``chosen``).
+- ``alignment``: A parallel to B with one face flush (no parameters).
 - ``phrase``: how the layout report names it ("north of"); ``wordings``: the verb
   phrases the describer may use (canonical first); ``place``: the wording says where A
   is, so the describer may invert it ("On top of it is a pot."); ``symmetric``: A-B is
@@ -33,9 +39,12 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 #: The families a label may belong to. The layout implements each one.
-FAMILIES = ("next_to", "support", "facing", "structural")
+FAMILIES = ("next_to", "support", "facing", "wall", "alignment", "structural")
 
 IMPLICIT_PREFIX = "Implicit"
+
+#: How a wall label places A: its back against a wall, in a corner, under or beside a window.
+WALL_PLACEMENTS = ("against", "corner", "under_window", "beside_window")
 
 #: World directions (x, z): north is -Z, east +X.
 COMPASS: dict[str, tuple[float, float]] = {
@@ -91,6 +100,7 @@ class RelationLabel:
     frame: str | None = None  # "world" or "target" for next_to labels with directions
     placement: str | None = None  # support labels
     facing: str | None = None  # facing labels
+    wall: str | None = None  # wall labels: against, corner, under_window, beside_window
     place: bool = False
     symmetric: bool = False
     part_of: bool = False  # a support label worded as belonging ("is part of")
@@ -214,8 +224,10 @@ def _check_complete(label: RelationLabel) -> None:
         problems.append("directions need a frame, 'world' or 'target'")
     if label.family == "support" and label.placement not in ("anywhere", "middle", "edge", "front_edge"):
         problems.append(f"placement {label.placement!r} is not anywhere, middle, edge or front_edge")
-    if label.family == "facing" and label.facing not in ("towards", "away", "same", "orthogonal"):
-        problems.append(f"facing {label.facing!r} is not towards, away, same or orthogonal")
+    if label.family == "facing" and label.facing not in ("towards", "away", "same", "orthogonal", "opposite"):
+        problems.append(f"facing {label.facing!r} is not towards, away, same, orthogonal or opposite")
+    if label.family == "wall" and label.wall not in WALL_PLACEMENTS:
+        problems.append(f"wall placement {label.wall!r} is not one of {', '.join(WALL_PLACEMENTS)}")
     if label.family != "structural" and not label.chooses and not label.wordings:
         problems.append("it has no wording")
     for name, (x, z) in label.directions.items():
@@ -268,6 +280,16 @@ TABLE_1: tuple[RelationLabel, ...] = (
         "FacingOrthogonalDirection", "facing", "facing across",
         ("stands at a right angle to", "is at a right angle to"), facing="orthogonal", symmetric=True,
     ),
+    RelationLabel(
+        "FacingOpposite", "facing", "facing the opposite way to",
+        ("faces the opposite way to", "faces the opposite direction to"), facing="opposite", symmetric=True,
+    ),
+    RelationLabel("AlignedWith", "alignment", "lined up with", ("is lined up with", "is in line with"), symmetric=True),
+    # Rooms: B is a wall or a window, or the room itself (whichever wall or window fits).
+    RelationLabel("AgainstWall", "wall", "against", ("stands against", "is against"), wall="against", place=True),
+    RelationLabel("InCorner", "wall", "in a corner by", ("stands in a corner by", "is in a corner by"), wall="corner", place=True),
+    RelationLabel("UnderWindow", "wall", "under", ("is under", "stands under"), wall="under_window", place=True),
+    RelationLabel("BesideWindow", "wall", "beside", ("is beside", "stands beside"), wall="beside_window", place=True),
     # Structural: a path starts at a junction (written either way round). No energy of
     # its own (the path's end is attached to the junction); the text tells it as the
     # road network rather than as a relation.

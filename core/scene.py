@@ -22,11 +22,13 @@ from . import VERSION
 from .frames import footprint_corners_many
 from .poses import LayoutResult
 from .relations import Relation
+from .room import ROOM_KINDS, Room
 from .scene_graph import SceneGraph, SceneNode, SceneParams
 
 #: Bumped when scene.json changes shape or meaning. 2: relations keep PathConnectedTo,
 #: seeds are split into per-stage streams, ``derivation`` records every random choice.
-SCENE_FORMAT_VERSION = 2
+#: 3: ``room`` (walls, doors, windows) replaces the ``walls`` flag.
+SCENE_FORMAT_VERSION = 3
 
 
 @dataclass
@@ -52,6 +54,9 @@ class SceneObject:
     colour: list[float] = field(default_factory=lambda: [0.6, 0.6, 0.6])
     rule: str | None = None
     order: int = 0
+    #: Free floor kept beside it and the sides it is used from (``SceneNode``).
+    clearance: list[list] = field(default_factory=list)
+    access: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -95,12 +100,16 @@ class Scene:
     paths: list[ScenePath]
     relations: list[Relation]
     layout: LayoutStats = field(default_factory=LayoutStats)
-    walls: bool = False
+    #: The walls, doors and windows of an indoor scene (``core.room``); None outdoors.
+    room: Room | None = None
     ground: str = "grass"
     name: str = "scene"
     #: The folder of description templates the rule set brings (absolute path), which
     #: ``describe`` reads unless told otherwise; None: the package's own templates.
     templates: str | None = None
+    #: In a room: furniture kept square to the walls; relations need a line of sight.
+    square: bool = True
+    line_of_sight: bool = True
     #: Every random choice of the grammar expansion, in order (see ``generator.derivation``).
     derivation: list[dict[str, Any]] = field(default_factory=list)
     description: dict[str, Any] | None = None
@@ -135,8 +144,18 @@ class Scene:
 
     # -- scene.json ---------------------------------------------------------------
 
+    @property
+    def walls(self) -> bool:
+        """Whether the scene is a room bounded by walls."""
+        return self.room is not None
+
     def to_dict(self) -> dict[str, Any]:
-        data = asdict(self)
+        room, self.room = self.room, None  # asdict would take the room apart field by field
+        try:
+            data = asdict(self)
+        finally:
+            self.room = room
+        data["room"] = room.to_dict() if room else None
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
@@ -166,10 +185,12 @@ class Scene:
             paths=[build(ScenePath, p) for p in data.get("paths", [])],
             relations=[build(Relation, r) for r in data.get("relations", [])],
             layout=build(LayoutStats, data.get("layout", {})),
-            walls=bool(data.get("walls", False)),
+            room=SceneParams.from_dict(data).room,
             ground=data.get("ground", "grass"),
             name=data.get("name", "scene"),
             templates=data.get("templates"),
+            square=bool(data.get("square", True)),
+            line_of_sight=bool(data.get("line_of_sight", True)),
             derivation=list(data.get("derivation", [])),
             description=data.get("description"),
             render=data.get("render"),
@@ -190,12 +211,10 @@ class Scene:
         nodes.sort(key=lambda n: n["order"])
         return SceneGraph.from_dict(
             {
-                "params": asdict(
-                    SceneParams(
-                        name=self.name, extent=tuple(self.extent), ground=self.ground, walls=self.walls,
-                        templates=self.templates,
-                    )
-                ),
+                "params": SceneParams(
+                    name=self.name, extent=tuple(self.extent), ground=self.ground, room=self.room,
+                    templates=self.templates, square=self.square, line_of_sight=self.line_of_sight,
+                ).to_dict(),
                 "nodes": nodes,
                 "edges": [{"source": r.source, "target": r.target, "label": r.label} for r in self.relations],
                 "derivation": self.derivation,
@@ -229,6 +248,8 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
             )
         elif node.kind == "group":
             continue  # placed below, once its members are
+        elif node.kind in ROOM_KINDS:
+            continue  # the room is the scene's ``room``
         else:
             pose = layout.poses[node.id]
             objects.append(_object_of(node, [pose.x, pose.y, pose.z], pose.yaw, list(node.size)))
@@ -260,10 +281,12 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
         paths=paths,
         relations=relations,
         layout=stats,
-        walls=graph.params.walls,
+        room=graph.params.room,
         ground=graph.params.ground,
         name=graph.params.name,
         templates=graph.params.templates,
+        square=graph.params.square,
+        line_of_sight=graph.params.line_of_sight,
         derivation=list(graph.derivation),
         version=VERSION,
     )
@@ -309,6 +332,8 @@ def _object_of(node: SceneNode, position: list[float], yaw: float, size: list[fl
         colour=list(node.colour),
         rule=node.rule,
         order=node.order,
+        clearance=[[side, float(metres)] for side, metres in node.clearance],
+        access=list(node.access),
     )
 
 
@@ -317,6 +342,7 @@ def _node_of(obj: SceneObject) -> dict[str, Any]:
         "id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun, "plural": obj.plural,
         "size": (0.0, 0.0, 0.0) if obj.kind == "group" else tuple(obj.size), "shape": obj.shape, "mesh": obj.mesh, "colour": tuple(obj.colour),
         "style": obj.style, "parent": obj.parent, "rule": obj.rule, "order": obj.order,
+        "clearance": obj.clearance, "access": obj.access,
     }  # fmt: skip
 
 

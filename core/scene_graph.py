@@ -20,6 +20,10 @@ from typing import Protocol
 import networkx as nx
 
 from .relations import RELATIONS, Relation, UnknownLabel
+from .room import ROOM_KINDS, ROOM_NODE, WALL_THICKNESS, Room
+
+#: The colour room nodes carry (plaster); the renderer draws the room from ``params.room``.
+ROOM_COLOUR = (0.86, 0.84, 0.8)
 
 Vec3 = tuple[float, float, float]
 
@@ -33,6 +37,8 @@ class NodeLooks(Protocol):
     shape: str | None
     mesh: str | None
     colour: Vec3
+    clearance: tuple[tuple[str, float], ...]
+    access: tuple[str, ...]
 
 
 class CatalogLike(NodeLooks, Protocol):
@@ -52,7 +58,8 @@ class SceneParams:
     """Scene-wide parameters from a rules file's ``scene`` block.
 
     ``extent`` is (width along x, depth along z) in metres, centred on the origin.
-    ``walls``: the extent is a room bounded by walls (indoor rule sets).
+    ``room``: the walls, doors and windows of an indoor scene (``core.room``), or None
+    for open ground; the extent is then the room's bounding box.
     ``templates``: the absolute path of the rule set's own description templates
     folder (the scene block's ``templates``), or None for the package's templates.
     """
@@ -60,8 +67,42 @@ class SceneParams:
     name: str = "scene"
     extent: tuple[float, float] = (40.0, 40.0)
     ground: str = "grass"
-    walls: bool = False
+    room: Room | None = None
     templates: str | None = None
+    #: In a room: furniture stands square to the walls unless a relation turns it.
+    square: bool = True
+    #: In a room: "in front of" and facing relations do not hold through a tall object.
+    line_of_sight: bool = True
+
+    @property
+    def walls(self) -> bool:
+        """Whether the scene is a room bounded by walls."""
+        return self.room is not None
+
+    def to_dict(self) -> dict:
+        """Plain data: the room as scene.json writes it."""
+        return {
+            "name": self.name, "extent": list(self.extent), "ground": self.ground,
+            "room": self.room.to_dict() if self.room else None, "templates": self.templates,
+            "square": self.square, "line_of_sight": self.line_of_sight,
+        }  # fmt: skip
+
+    @classmethod
+    def from_dict(cls, params: dict) -> SceneParams:
+        """The parameters ``to_dict`` gave; missing ones take their defaults (an old
+        ``walls: true`` is a bare rectangular room the size of the extent)."""
+        extent = tuple(params.get("extent", cls.extent))
+        room = params.get("room")
+        if room:
+            room = Room.from_dict(room)
+        elif params.get("walls"):
+            room = Room.rectangle(*extent)
+        return cls(
+            name=params.get("name", cls.name), extent=extent, ground=params.get("ground", cls.ground),
+            room=room or None, templates=params.get("templates", cls.templates),
+            square=bool(params.get("square", cls.square)),
+            line_of_sight=bool(params.get("line_of_sight", cls.line_of_sight)),
+        )  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -84,6 +125,12 @@ class SceneNode:
     width: float | None = None  # paths only
     max_length: float | None = None  # paths only
     segments: int | None = None  # paths only
+    #: Free floor to keep beside the object, by side: (("front", 0.8),) keeps 0.8 m
+    #: clear in front of it (a wardrobe's doors, where a desk chair pulls out).
+    clearance: tuple[tuple[str, float], ...] = ()
+    #: The sides a person uses it from ("front", "back", "left", "right"), ("any",) for
+    #: any side, () for an object nobody needs to reach (a plant, a rug).
+    access: tuple[str, ...] = ("any",)
 
 
 #: The attribute names a node is stored under in the networkx graph.
@@ -100,6 +147,26 @@ class SceneGraph:
     #: ``generator.derivation``); empty for a graph not made by expansion.
     derivation: list[dict] = field(default_factory=list)
     _counters: dict[str, int] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.params.room is not None and ROOM_NODE not in self.graph:
+            self._add_room(self.params.room)
+
+    def _add_room(self, room: Room) -> None:
+        """The room's nodes: ``room`` (any wall or window), then each wall, door and window."""
+        height = room.height
+        width, depth = room.extent
+        self._store(SceneNode(ROOM_NODE, ROOM_NODE, ROOM_NODE, "room", "rooms", (width, height, depth), None, None,
+                              ROOM_COLOUR, order=len(self.graph), access=()))
+        for wall in room.walls:
+            self._store(SceneNode(wall.id, "wall", "wall", "wall", "walls", (wall.length, wall.height, WALL_THICKNESS),
+                                  None, None, ROOM_COLOUR, order=len(self.graph), access=()))
+        for opening in room.openings:
+            self._store(SceneNode(opening.id, opening.kind, opening.kind, opening.kind, opening.kind + "s",
+                                  (opening.width, opening.height, WALL_THICKNESS), None, None, ROOM_COLOUR,
+                                  order=len(self.graph), access=()))
+        for kind in ("wall", "door", "window"):
+            self._counters[kind] = sum(1 for n in self.graph.nodes.values() if n["kind"] == kind)
 
     # -- building -----------------------------------------------------------------
 
@@ -138,6 +205,8 @@ class SceneGraph:
             width=entry.width if is_path else None,
             max_length=entry.max_length if is_path else None,
             segments=entry.segments if is_path else None,
+            clearance=tuple((side, float(metres)) for side, metres in looks.clearance) if has_box else (),
+            access=tuple(looks.access) if has_box else (),
         )
         self._store(node)
         return node_id
@@ -212,7 +281,7 @@ class SceneGraph:
     def to_dict(self) -> dict:
         """A JSON-ready dict: parameters, nodes (creation order), edges and the derivation."""
         return {
-            "params": asdict(self.params),
+            "params": self.params.to_dict(),
             "nodes": [asdict(n) for n in self.nodes()],
             "edges": [{"source": e.source, "target": e.target, "label": e.label} for e in self.edges()],
             "derivation": [dict(record) for record in self.derivation],
@@ -222,19 +291,20 @@ class SceneGraph:
     def from_dict(cls, data: dict) -> SceneGraph:
         """The graph ``to_dict`` gave; missing parameters take their defaults, a missing
         derivation is empty."""
-        params = data.get("params", {})
         scene_graph = cls(
-            params=SceneParams(
-                name=params.get("name", SceneParams.name),
-                extent=tuple(params.get("extent", SceneParams.extent)),
-                ground=params.get("ground", SceneParams.ground),
-                walls=bool(params.get("walls", SceneParams.walls)),
-                templates=params.get("templates", SceneParams.templates),
-            ),
+            params=SceneParams.from_dict(data.get("params", {})),
             derivation=[dict(record) for record in data.get("derivation", [])],
         )
         for raw in data["nodes"]:
-            node = SceneNode(**{**raw, "size": tuple(raw["size"]), "colour": tuple(raw["colour"])})
+            if raw["kind"] in ROOM_KINDS:
+                continue  # made from the room in the parameters
+            node = SceneNode(
+                **{
+                    **raw, "size": tuple(raw["size"]), "colour": tuple(raw["colour"]),
+                    "clearance": tuple((side, float(m)) for side, m in raw.get("clearance", ())),
+                    "access": tuple(raw.get("access", ("any",) if raw["kind"] in ("object", "junction") else ())),
+                }
+            )  # fmt: skip
             scene_graph._store(node)
             # new nodes of the type continue its numbering (``table_3`` after ``table_2``)
             suffix = node.id.rsplit("_", 1)[-1]

@@ -72,6 +72,9 @@ class CatalogEntry:
     width: float = 3.0
     max_length: float = 30.0
     segments: int = 3
+    #: Free floor kept beside it, by side, and the sides it is used from (``SceneNode``).
+    clearance: tuple[tuple[str, float], ...] = ()
+    access: tuple[str, ...] = ("any",)
     location: SourceLocation | None = None
 
     def with_style(self, style: Style | None) -> CatalogEntry:

@@ -26,6 +26,7 @@ from .catalog import Catalog, CatalogEntry, SourceLocation, Style
 from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, check_tree
 from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
 from .rules_parser import ParsedTree, parse_tree
+from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneParams
 
 _SHIPPED_PACKAGE = "scenewright.grammar_rules"
@@ -124,7 +125,7 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         name=scene.name,
         extent=tuple(settings.get("extent", SceneParams.extent)),
         ground=settings.get("ground", SceneParams.ground),
-        walls=bool(settings.get("walls", SceneParams.walls)),
+        room=Room.rectangle(*settings["extent"]) if settings.get("walls") else None,
         # like a mesh, the folder is written relative to the file that names it
         templates=_beside(tree.paths[templates.location.file].parent, templates.value) if templates else None,
     )

@@ -8,6 +8,7 @@ import os
 import pytest
 
 from scenewright.core.errors import GenerationError
+from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 
 
@@ -49,7 +50,8 @@ def road(path_id: str, points, width: float = 3.0, start: str | None = None) -> 
 
 def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False) -> Scene:
     return Scene(
-        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[], walls=walls
+        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[],
+        room=Room.rectangle(*extent) if walls else None,
     )
 
 

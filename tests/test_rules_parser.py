@@ -3,6 +3,7 @@
 from pathlib import Path
 
 import pytest
+from scenewright.core.room import ROOM_KINDS
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.rules import check_rules, load_rules
@@ -141,7 +142,7 @@ def test_the_language_reference_examples_load_and_expand(tmp_path):
     (tmp_path / "desk.rules").write_text(blocks[0])
     rules = load_rules(tmp_path / "desk.rules")
     assert rules.warnings == () and rules.params.walls
-    assert expand(rules, 0).nodes()[0].type == "table"
+    assert expand(rules, 0).nodes("object")[0].type == "table"
     more_kinds = parse(blocks[1])
     assert [e.kind for e in more_kinds.entries] == ["object", "group", "path", "junction"]
 

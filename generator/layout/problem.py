@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel
+from scenewright.core.room import ROOM_KINDS, ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
 
 
@@ -21,9 +22,9 @@ from scenewright.core.scene_graph import SceneGraph
 class Endpoint:
     """One end of a relation: a box (``object``), a group of boxes, or a path."""
 
-    kind: str  # "object", "group" or "path"
-    index: int  # box index for an object, path index for a path, group index for a group
-    members: tuple[int, ...]  # the boxes whose poses it depends on (empty for a path)
+    kind: str  # "object", "group", "path", or a room's "wall", "opening" or "room"
+    index: int  # box, path or group index; a wall's or opening's index in the room (0 for "room")
+    members: tuple[int, ...]  # the boxes whose poses it depends on (empty for paths and room parts)
 
 
 @dataclass(frozen=True)
@@ -71,7 +72,12 @@ class Problem:
     #: ``relations``, or None for a structural edge such as PathConnectedTo).
     edges: list[tuple[str, str, str, int | None]]
     extent: tuple[float, float]
-    walls: bool
+    #: The walls, doors and windows (None outdoors), and the room's layout policies.
+    room: Room | None
+    square: bool
+    line_of_sight: bool
+    clearance: list[tuple[tuple[str, float], ...]]  # per box: free floor to keep, by side
+    access: list[tuple[str, ...]]  # per box: the sides a person uses it from
     terms_of_box: list[list[int]] = field(default_factory=list)
     terms_of_path: list[list[int]] = field(default_factory=list)
     paths_of_junction: dict[int, list[int]] = field(default_factory=dict)
@@ -80,6 +86,11 @@ class Problem:
     units: list[tuple[str, int]] = field(default_factory=list)  # ("group", g) / ("object", box): top groups and free boxes, creation order
     outgoing: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of A
     incoming: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of B
+
+    @property
+    def walls(self) -> bool:
+        """Whether the scene is a room bounded by walls."""
+        return self.room is not None
 
     @property
     def n_boxes(self) -> int:
@@ -109,6 +120,7 @@ class Problem:
 def compile_problem(graph: SceneGraph) -> Problem:
     """Index a scene graph's nodes and relations; refuse relations that cannot be laid out."""
     ids, is_junction, half_width, half_depth, height, size = [], [], [], [], [], []
+    clearance, access = [], []
     path_ids, path_width, path_max_length, path_segments = [], [], [], []
     group_ids: list[str] = []
     box_index: dict[str, int] = {}
@@ -126,12 +138,16 @@ def compile_problem(graph: SceneGraph) -> Problem:
             half_depth.append(depth / 2.0)
             height.append(tall)
             size.append(math.hypot(width, depth))
+            clearance.append(node.clearance)
+            access.append(node.access)
         elif node.kind == "path":
             path_index[node.id] = len(path_ids)
             path_ids.append(node.id)
             path_width.append(float(node.width or 3.0))
             path_max_length.append(float(node.max_length or 30.0))
             path_segments.append(max(int(node.segments or 1), 1))
+        elif node.kind in ROOM_KINDS:
+            continue  # fixed: the room's parts are endpoints, not boxes
         else:
             group_index[node.id] = len(group_ids)
             group_ids.append(node.id)
@@ -144,7 +160,16 @@ def compile_problem(graph: SceneGraph) -> Problem:
                 group_members[group_index[ancestor]].append(box)
             ancestor = parent_of.get(ancestor)
 
+    room = graph.params.room
+    room_parts = {}
+    if room is not None:
+        room_parts[ROOM_NODE] = Endpoint("room", 0, ())
+        room_parts.update({wall.id: Endpoint("wall", k, ()) for k, wall in enumerate(room.walls)})
+        room_parts.update({o.id: Endpoint("opening", k, ()) for k, o in enumerate(room.openings)})
+
     def endpoint(node_id: str) -> Endpoint:
+        if node_id in room_parts:
+            return room_parts[node_id]
         if node_id in box_index:
             return Endpoint("object", box_index[node_id], (box_index[node_id],))
         if node_id in path_index:
@@ -185,7 +210,8 @@ def compile_problem(graph: SceneGraph) -> Problem:
         path_ids=path_ids, path_width=path_width, path_max_length=path_max_length,
         path_segments=path_segments, path_start=path_start, relations=relations, edges=edges,
         extent=(float(graph.params.extent[0]), float(graph.params.extent[1])),
-        walls=bool(graph.params.walls),
+        room=room, square=graph.params.square, line_of_sight=graph.params.line_of_sight,
+        clearance=clearance, access=access,
     )  # fmt: skip
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]

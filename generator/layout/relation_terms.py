@@ -30,6 +30,7 @@ from collections.abc import Callable
 from typing import NamedTuple
 
 from scenewright.core.relations import FAMILIES
+from scenewright.core.room import Opening, Room, Wall
 
 from .factors import angle_between, equals, less, pointing_same_direction, range_
 from .geometry import nearest_on_polyline, polyline_distance, polyline_rects_distance, rect_distance, to_local
@@ -43,6 +44,20 @@ FACING_TOLERANCE = math.radians(30.0)
 HEIGHT_TOLERANCE = 0.01
 MIDDLE_TOLERANCE = 0.10
 EDGE_TOLERANCE = 0.05
+#: Wall labels: the back within 5 cm of the wall and parallel to it within 2 degrees
+#: (a corner's side within 5 cm too; centred under a window within MIDDLE_TOLERANCE);
+#: beside a window means at most BESIDE_DISTANCE from its edge along the wall.
+WALL_TOLERANCE = 0.05
+WALL_ANGLE_TOLERANCE = math.radians(2.0)
+BESIDE_DISTANCE = 0.6
+#: AlignedWith: parallel within 5 degrees, faces flush within WALL_TOLERANCE.
+ALIGN_TOLERANCE = math.radians(5.0)
+#: The wall and alignment terms pull in centimetres and degrees, so their Gaussians are
+#: narrower than the paper's sigma^2 = 0.1 (metres, radians): 10 cm off costs 1.
+WALL_SIGMA2 = 0.005
+WALL_ANGLE_SIGMA2 = 0.01
+#: Placements that stand by a window rather than a wall.
+WINDOW_PLACEMENTS = ("under_window", "beside_window")
 #: Small slack so a relation placed exactly on its threshold is not lost to rounding.
 EPSILON = 1e-9
 
@@ -60,10 +75,13 @@ class Measure(NamedTuple):
 
 
 def centre(end: Endpoint, state: State) -> tuple[float, float]:
-    """An object's or group's centre in (x, z): a group's is its members' bounding box centre."""
+    """An object's or group's centre in (x, z): a group's is its members' bounding box
+    centre; a wall's its middle, an opening's its own centre, the room's the origin."""
     if end.kind == "object":
         return state.x[end.index], state.z[end.index]
     problem = state.problem
+    if end.kind in ROOM_ENDS:
+        return _room_part_centre(end, problem.room)
     x0 = z0 = math.inf
     x1 = z1 = -math.inf
     for box in end.members:
@@ -92,6 +110,16 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
     if end.kind == "group":
         x, z = centre(end, state)
         return x, z, 1.0, 0.0
+    if end.kind in ("wall", "opening"):  # the nearest point of the wall, its inner normal as forward
+        wall = _wall_of(end, state.problem.room)
+        u, _ = wall.to_wall(*towards)
+        if end.kind == "opening":
+            opening = state.problem.room.openings[end.index]
+            u = min(max(u, opening.offset - opening.width / 2.0), opening.offset + opening.width / 2.0)
+        x, z = wall.to_world(min(max(u, 0.0), wall.length), 0.0)
+        return x, z, wall.normal[1], wall.normal[0]  # forward (sin, cos) = normal
+    if end.kind == "room":
+        return 0.0, 0.0, 1.0, 0.0
     points = state.points[end.index]
     _, x, z, segment = nearest_on_polyline(points, towards[0], towards[1])
     tx, tz = points[segment + 1][0] - points[segment][0], points[segment + 1][1] - points[segment][1]
@@ -107,6 +135,10 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
     a path, (member, segment) pairs likewise.
     """
     problem = state.problem
+    if a.kind in ROOM_ENDS:
+        a, b = b, a
+    if b.kind in ROOM_ENDS:
+        return _distance_to_room_part(a, b, state)
     if a.kind == "path" and b.kind == "path":
         gap = polyline_distance(state.points[a.index], state.points[b.index])
         return max(0.0, gap - (problem.path_width[a.index] + problem.path_width[b.index]) / 2.0)
@@ -150,7 +182,52 @@ def _unit(dx: float, dz: float) -> tuple[float, float]:
 def _forward(end: Endpoint, state: State) -> tuple[float, float]:
     if end.kind == "object":
         return state.s[end.index], state.c[end.index]
+    if end.kind in ("wall", "opening"):
+        return _wall_of(end, state.problem.room).normal  # a wall "faces" into the room
     return 0.0, 1.0  # groups and paths have no yaw of their own: the world's forward
+
+
+# -- room parts as relation ends -----------------------------------------------------------
+
+#: Endpoint kinds that stand for a room's parts.
+ROOM_ENDS = ("wall", "opening", "room")
+
+
+def _wall_of(end: Endpoint, room: Room) -> Wall:
+    """The wall an endpoint is (a wall) or is in (an opening)."""
+    if end.kind == "wall":
+        return room.walls[end.index]
+    return room.part(room.openings[end.index].wall)
+
+
+def _room_part_centre(end: Endpoint, room: Room) -> tuple[float, float]:
+    if end.kind == "wall":
+        return room.walls[end.index].to_world(room.walls[end.index].length / 2.0, 0.0)
+    if end.kind == "opening":
+        return room.openings[end.index].center
+    return 0.0, 0.0
+
+
+def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
+    """Distance from an endpoint's boxes (or path) to a wall, an opening's stretch of its
+    wall, or (the room) the nearest wall."""
+    room = state.problem.room
+    if b.kind == "room":
+        segments = [(w.start, w.end) for w in room.walls]
+    elif b.kind == "wall":
+        segments = [(room.walls[b.index].start, room.walls[b.index].end)]
+    else:
+        opening = room.openings[b.index]
+        wall = room.part(opening.wall)
+        half = opening.width / 2.0
+        segments = [(wall.to_world(opening.offset - half, 0.0), wall.to_world(opening.offset + half, 0.0))]
+    if a.kind == "path":
+        return min(
+            max(0.0, polyline_distance(state.points[a.index], [list(p), list(q)]) - state.problem.path_width[a.index] / 2.0)
+            for p, q in segments
+        )
+    rects = [state.rects[box] for box in a.members]
+    return min(polyline_rects_distance([list(p), list(q)], rects) for p, q in segments)
 
 
 def evaluate(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
@@ -215,6 +292,9 @@ def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
         return Measure(-pointing_same_direction(dx, dz, fx, fz, params.sigma2), angle=angle)
     gx, gz = _forward(term.b, state)
     angle = angle_between(fx, fz, gx, gz)
+    if how == "opposite":
+        angle = math.pi - angle
+        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
     if how == "same":
         return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
     off = abs(angle - math.pi / 2.0)  # orthogonal
@@ -282,6 +362,134 @@ def _support_complaint(term: RelationTerm, measure: Measure, params: LayoutParam
     return f"{term.source} is not {term.spec.phrase} {term.target} ({measure.offset:.2f} m off)"
 
 
+# -- walls -------------------------------------------------------------------------
+
+
+def _wall(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    """A's back against a wall (or in a corner, under or beside a window): the best of
+    the candidates when B is the room, which is then recorded as ``chosen``."""
+    room = state.problem.room
+    placement, b = term.spec.wall, term.b
+    if b.kind == "room":
+        candidates = list(room.windows) if placement in WINDOW_PLACEMENTS else list(room.walls)
+    elif b.kind == "wall":
+        candidates = [room.walls[b.index]]
+    else:
+        candidates = [room.openings[b.index]]
+    best = None
+    for target in candidates:
+        measure = _against(term.a.index, target, placement, state)
+        if best is None or measure.energy < best.energy - 1e-12:
+            best = measure
+    if best is None:  # a room without the window the label needs
+        return Measure(math.inf, offset=math.inf, inside=False)
+    return best if b.kind == "room" else best._replace(chosen=None)
+
+
+def _against(box: int, target: Wall | Opening, placement: str, state: State) -> Measure:
+    """The wall measures of box ``box`` against one wall or window (see ``_wall``).
+
+    ``distance``: the gap between the wall and the box's nearest corner (its back, once
+    parallel); ``angle``: the box's forward off the wall's inner normal; ``offset``: how
+    far the box runs past the ends of its wall, plus, in a corner, the gap between its
+    side and the neighbouring wall, under a window the distance off the window's
+    centre, beside one the overlap with it or the gap beyond ``BESIDE_DISTANCE``;
+    ``inside``: a box under a window is lower than its sill.
+    """
+    problem, room = state.problem, state.problem.room
+    window = target if isinstance(target, Opening) else None
+    wall = room.part(window.wall) if window else target
+    x, z, c, s = state.x[box], state.z[box], state.c[box], state.s[box]
+    hw, hd = problem.half_width[box], problem.half_depth[box]
+    nx, nz = wall.normal
+    tx, tz = wall.direction
+    # The box's reach along the wall's axes (its footprint's half extents there).
+    reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
+    reach_v = hw * abs(c * nx - s * nz) + hd * abs(s * nx + c * nz)
+    u, v = wall.to_wall(x, z)
+    gap = v - reach_v
+    angle = angle_between(s, c, nx, nz)
+    overhang = max(reach_u - u, u + reach_u - wall.length, 0.0)
+    offset = overhang
+    fits = True
+    if placement == "corner":
+        side = math.inf
+        before, after = room.neighbours(wall.id)
+        for other, at_start in ((before, True), (after, False)):
+            if not (room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)):
+                continue
+            _, v_other = other.to_wall(x, z)
+            reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(s * other.normal[0] + c * other.normal[1])
+            side = min(side, abs(v_other - reach_other))
+        offset += side
+    elif placement == "under_window":
+        offset += abs(u - window.offset)
+        fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
+    elif placement == "beside_window":
+        low, high = window.offset - window.width / 2.0, window.offset + window.width / 2.0
+        along = max(low - (u + reach_u), (u - reach_u) - high)  # < 0: overlaps the window along the wall
+        offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
+    energy = -equals(gap, 0.0, WALL_SIGMA2) - equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)
+    if not fits:
+        energy += 1.0  # cannot hold whatever the pose: a constant, so the rest still lays out
+    return Measure(energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits)
+
+
+def _wall_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return (
+        measure.inside
+        and abs(measure.distance) <= WALL_TOLERANCE + EPSILON
+        and measure.angle <= WALL_ANGLE_TOLERANCE + EPSILON
+        and measure.offset <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
+    )
+
+
+def _wall_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    target = measure.chosen or term.target
+    words = f"{term.source} is not {term.spec.phrase} {target}"
+    if math.isinf(measure.energy):
+        return f"{words} (the room has no window)"
+    if not measure.inside:
+        return f"{words} (it is taller than the window's sill)"
+    if abs(measure.distance) > WALL_TOLERANCE or measure.angle > WALL_ANGLE_TOLERANCE:
+        return f"{words} (its back is {measure.distance:.2f} m from the wall, {math.degrees(measure.angle):.0f}° off)"
+    return f"{words} ({measure.offset:.2f} m off)"
+
+
+# -- alignment -----------------------------------------------------------------------
+
+
+def _alignment(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    """A parallel to B (facing the same or the opposite way) with one of its faces in
+    the plane of B's face on the same side: ``angle`` off parallel, ``offset`` the gap
+    between the nearest pair of flush faces."""
+    problem = state.problem
+    a, b = term.a.index, term.b.index
+    angle = angle_between(state.s[a], state.c[a], state.s[b], state.c[b])
+    angle = min(angle, math.pi - angle)
+    rect_b = state.rects[b]
+    lx, lz = to_local(rect_b, state.x[a], state.z[a])
+    k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
+    k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
+    ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
+    ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
+    hw, hd = rect_b.hw, rect_b.hd
+    offset = min(abs(lz + ez - hd), abs(lz - ez + hd), abs(lx + ex - hw), abs(lx - ex + hw))
+    energy = -equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)
+    return Measure(energy, angle=angle, offset=offset)
+
+
+def _alignment_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return measure.angle <= ALIGN_TOLERANCE + EPSILON and measure.offset <= WALL_TOLERANCE + EPSILON
+
+
+def _alignment_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    return (
+        f"{term.source} is not {term.spec.phrase} {term.target} "
+        f"({math.degrees(measure.angle):.0f}° off parallel, faces {measure.offset:.2f} m apart)"
+    )
+
+
 class FamilyTerm(NamedTuple):
     """The layout's side of a relation family: its energy and measures, the threshold
     that decides whether it holds, and the words for when it does not."""
@@ -297,6 +505,8 @@ FAMILY_TERMS: dict[str, FamilyTerm] = {
     "next_to": FamilyTerm(_next_to, _next_to_holds, _next_to_complaint),
     "facing": FamilyTerm(_facing, _facing_holds, _facing_complaint),
     "support": FamilyTerm(_support, _support_holds, _support_complaint),
+    "wall": FamilyTerm(_wall, _wall_holds, _wall_complaint),
+    "alignment": FamilyTerm(_alignment, _alignment_holds, _alignment_complaint),
 }
 
 _missing = set(FAMILIES) - set(FAMILY_TERMS) - {"structural"}
