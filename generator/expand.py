@@ -18,6 +18,8 @@ from typing import NoReturn
 
 import numpy as np
 
+from scenewright.core.relations import RELATIONS
+from scenewright.core.room import ROOM_KINDS, ROOM_NODE
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
@@ -66,6 +68,9 @@ class _Expansion:
 
     def __post_init__(self) -> None:
         self.graph = SceneGraph(params=self.rules.params)
+        for node in self.graph.nodes():  # a room's walls, doors and windows are there from the start
+            if node.kind in ROOM_KINDS and node.kind != ROOM_NODE:
+                self.by_type.setdefault(node.type, []).append(node.id)
         self.max_steps = _BASE_STEPS + _STEPS_PER_NODE * self.rules.max_nodes
 
     # -- productions ------------------------------------------------------------
@@ -121,7 +126,7 @@ class _Expansion:
             subjects, creates = self.subjects(statement.subject, scope, parent)
             for subject in subjects:
                 for relation in statement.relations:
-                    for target in self.resolve(relation.target, scope, exclude=subject):
+                    for target in self.targets(relation, scope, subject):
                         self.graph.add_relation(subject, target, relation.label)
             if statement.block is not None:
                 for group in subjects:
@@ -153,7 +158,7 @@ class _Expansion:
         return self.resolve(subject, scope), False
 
     def create(self, entry: CatalogEntry, parent: str | None, location: SourceLocation) -> str:
-        if len(self.graph) >= self.rules.max_nodes:
+        if len(self.made) >= self.rules.max_nodes:  # the room's own nodes do not count
             self.fail(location, f"more than max_nodes {self.rules.max_nodes} nodes")
         style: Style | None = None
         drawn: dict | None = None
@@ -170,6 +175,19 @@ class _Expansion:
 
     # -- references -------------------------------------------------------------
 
+    def targets(self, relation: ast.Relation, scope: dict[str, list[str]], subject: str) -> list[str]:
+        """The targets of one relation from ``subject``. A wall label to ``some wall`` or
+        ``some window`` targets the room node: the layout chooses the wall or window
+        that fits (and records it), so no draw is made here."""
+        target = relation.target
+        if target.kind == "some" and target.name in ROOM_KINDS and RELATIONS[relation.label].family == "wall":
+            return [ROOM_NODE]
+        return self.resolve(target, scope, exclude=subject)
+
+    def noun(self, type_name: str) -> str:
+        """A type's noun for messages (a room's parts are no catalog entries)."""
+        return self.rules.catalog[type_name].noun if type_name in self.rules.catalog else type_name
+
     def resolve(
         self, reference: ast.Reference, scope: dict[str, list[str]], exclude: str | None = None
     ) -> list[str]:
@@ -179,7 +197,7 @@ class _Expansion:
         existing = self.by_type.get(reference.name, [])
         if reference.kind == "nth":
             if reference.index > len(existing):
-                noun = self.rules.catalog[reference.name].noun
+                noun = self.noun(reference.name)
                 self.fail(
                     reference.location,
                     f"'{reference.name} #{reference.index}' refers to {noun} number {reference.index}, "
@@ -191,7 +209,7 @@ class _Expansion:
         if reference.kind == "each":
             return candidates
         if not candidates:
-            noun = self.rules.catalog[reference.name].noun
+            noun = self.noun(reference.name)
             self.fail(reference.location, f"'some {reference.name}' finds no {noun} in the scene at this point")
         index = int(self.rng.integers(len(candidates)))
         picked = [candidates[index]]

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
-from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, check_tree
+from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, build_room, check_tree
 from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
 from .rules_parser import ParsedTree, parse_tree
 from scenewright.core.room import Room
@@ -121,11 +121,18 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
     scene = next(scene for file in tree.files for scene in file.scenes)
     settings = {setting.name: setting.value for setting in scene.settings}
     templates = next((setting for setting in scene.settings if setting.name == "templates"), None)
+    room = None
+    if "room" in settings:
+        room, _ = build_room(settings["room"])  # checked already: it builds
+    elif settings.get("walls"):
+        room = Room.rectangle(*settings.get("extent", SceneParams.extent))
     params = SceneParams(
         name=scene.name,
-        extent=tuple(settings.get("extent", SceneParams.extent)),
+        extent=room.extent if room else tuple(settings.get("extent", SceneParams.extent)),
         ground=settings.get("ground", SceneParams.ground),
-        room=Room.rectangle(*settings["extent"]) if settings.get("walls") else None,
+        room=room,
+        square=settings.get("square", "on") == "on",
+        line_of_sight=settings.get("line_of_sight", "on") == "on",
         # like a mesh, the folder is written relative to the file that names it
         templates=_beside(tree.paths[templates.location.file].parent, templates.value) if templates else None,
     )
@@ -164,6 +171,10 @@ def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
             looks["mesh"] = _beside(folder, setting.value)
         elif setting.name == "segments":
             looks["segments"] = int(setting.value)
+        elif setting.name == "clearance":
+            looks["clearance"] = (*looks.get("clearance", ()), setting.value)
+        elif setting.name == "access":
+            looks["access"] = () if setting.value == ("none",) else setting.value
         else:
             looks[setting.name] = setting.value
     return looks

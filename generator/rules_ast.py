@@ -18,14 +18,39 @@ class Setting:
     """One ``name value...`` line of a catalog entry, style or scene block.
 
     ``value`` is a float, a string (``noun``, ``mesh``, ``templates``: a path kept as
-    written, relative to the file), a tuple of floats (``size``, ``extent``), or ``True``
-    for a bare flag (``walls``).
+    written, relative to the file), a tuple of floats (``size``, ``extent``), a tuple
+    of words and numbers (``clearance front 0.8``, ``access left right``), a
+    ``RoomDecl`` (``room``), or ``True`` for a bare flag (``walls``).
     """
 
     name: str
     value: object
     location: SourceLocation
     value_location: SourceLocation
+
+
+@dataclass(frozen=True)
+class OpeningDecl:
+    """``door WALL OFFSET WIDTH [HEIGHT]`` or ``window WALL OFFSET WIDTH SILL HEIGHT`` in a room block."""
+
+    kind: str
+    wall: str
+    numbers: tuple[float, ...]
+    location: SourceLocation
+    wall_location: SourceLocation
+
+
+@dataclass(frozen=True)
+class RoomDecl:
+    """``room W x D { ... }`` or ``room (x, z) (x, z) ... { ... }``: exactly one of
+    ``size`` and ``corners``; ``height`` is the walls' height if given."""
+
+    size: tuple[float, float] | None
+    corners: tuple[tuple[float, float], ...] | None
+    height: float | None
+    openings: tuple[OpeningDecl, ...]
+    location: SourceLocation
+    height_location: SourceLocation | None = None
 
 
 @dataclass(frozen=True)

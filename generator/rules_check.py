@@ -32,12 +32,58 @@ from scenewright.core.limits import (
     forbidden_character,
 )
 from scenewright.core.relations import RELATIONS
+from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
 from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, MeshFileError, load_mesh_file
 
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation
 from .rules_errors import WARNING, Diagnostic, SourceTexts, case_mix_up, did_you_mean
 from .rules_parser import ParsedTree, ReadScope
+
+#: The sides a clearance or access may name, and the words access also takes.
+SIDE_WORDS = ("front", "back", "left", "right")
+ACCESS_WORDS = ("any", "none", *SIDE_WORDS)
+#: Type names a room's parts take: a catalog entry may not use them in a room.
+ROOM_TYPES = ("wall", "door", "window")
+#: The most free floor a clearance may keep beside an object (metres).
+MAX_CLEARANCE = 10.0
+
+
+def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocation, str]]]:
+    """The room a ``room`` setting declares, or None and what is wrong, where."""
+    try:
+        height = decl.height if decl.height is not None else DEFAULT_WALL_HEIGHT
+        if decl.size is not None:
+            if min(decl.size) < MIN_LENGTH or max(decl.size) > MAX_EXTENT:
+                return None, [(decl.location, f"each side of the room must lie between {MIN_LENGTH:g} and {MAX_EXTENT:g} m")]
+            room = Room.rectangle(*decl.size, height)
+        else:
+            if any(abs(v) > MAX_EXTENT for corner in decl.corners for v in corner):
+                return None, [(decl.location, f"a room corner lies further than {MAX_EXTENT:g} m out")]
+            room = Room.polygon(decl.corners, height)
+    except RoomError as problem:
+        return None, [(decl.height_location if "height" in str(problem) and decl.height_location else decl.location,
+                       f"bad room: {problem}")]
+    problems = []
+    for opening in decl.openings:
+        numbers = opening.numbers
+        if opening.kind == "door":
+            offset, width, *rest = numbers
+            arguments = dict(offset=offset, width=width, height=rest[0] if rest else None)
+        else:
+            offset, width, sill, high = numbers
+            arguments = dict(offset=offset, width=width, height=high, sill=sill)
+        if room.wall(opening.wall) is None:
+            problems.append((opening.wall_location, f"the room has no wall '{opening.wall}'; name a wall by its "
+                             f"side ({', '.join(dict.fromkeys(w.side for w in room.walls))}) or its number "
+                             f"(1 to {len(room.walls)}, in the order of the corners)"))
+            continue
+        try:
+            room = room.with_opening(opening.kind, opening.wall, **arguments)
+        except RoomError as problem:
+            problems.append((opening.location, str(problem)))
+    return (None if problems else room), problems
+
 
 DEFAULT_MAX_DEPTH = 32
 DEFAULT_MAX_NODES = 2000
@@ -90,6 +136,8 @@ class _Checker:
     productions: dict[str, ast.Production] = field(default_factory=dict)  # the first of each name
     created_types: set[str] = field(default_factory=set)  # types some statement creates
     max_nodes: int = DEFAULT_MAX_NODES  # the scene's, once its block is checked
+    room: Room | None = None  # the scene's room, once its block is checked
+    has_room: bool = False  # the scene declares a room (even one with errors)
 
     def error(self, location: SourceLocation, message: str) -> None:
         self.diagnostics.append(self.sources.diagnostic(location, message))
@@ -113,6 +161,11 @@ class _Checker:
             self.check_entry(entry)
 
         start = self.check_scenes(files)
+        if self.has_room:
+            for name in ROOM_TYPES:
+                if name in first_entry:
+                    self.error(first_entry[name].name_location, f"'{name}' names the room's {name}s in a scene "
+                               f"with a room; give this catalog entry another name")
         for file in files:
             for production in file.productions:
                 if production.name in self.productions:
@@ -148,12 +201,19 @@ class _Checker:
 
     def check_fields(self, fields: tuple[ast.Setting, ...], kind: str, style: bool) -> dict[str, ast.Setting]:
         seen: dict[str, ast.Setting] = {}
+        sides: set[str] = set()
         for setting in fields:
             name, value, at = setting.name, setting.value, setting.value_location
+            if name == "clearance":  # one line per side
+                self.check_clearance(setting, kind, sides)
+                continue
             if name in seen:
                 self.error(setting.location, f"duplicate field '{name}'")
                 continue
             seen[name] = setting
+            if name == "access":
+                self.check_access(setting, kind)
+                continue
             if isinstance(value, str) and self.check_text(name, value, at):
                 continue
             if style and name not in STYLE_FIELDS:
@@ -185,6 +245,35 @@ class _Checker:
             elif name in ("noun", "plural") and len(value) > MAX_NOUN_CHARS:
                 self.error(at, f"'{name}' is {len(value)} characters long; it may have at most {MAX_NOUN_CHARS}")
         return seen
+
+    def check_clearance(self, setting: ast.Setting, kind: str, sides: set[str]) -> None:
+        side, metres = setting.value
+        if kind != "object":
+            self.error(setting.location, f"'clearance' applies to objects only, not to {_with_article(kind)}")
+        elif side not in SIDE_WORDS:
+            self.error(setting.value_location, f"clearance side '{side}' is not one of {', '.join(SIDE_WORDS)}"
+                       + did_you_mean(side, SIDE_WORDS))
+        elif side in sides:
+            self.error(setting.location, f"a second clearance {side}")
+        elif not 0 < metres <= MAX_CLEARANCE:
+            self.error(setting.location, f"a clearance must be more than 0 and at most {MAX_CLEARANCE:g} m, "
+                       f"not {_number(metres)}")
+        sides.add(side)
+
+    def check_access(self, setting: ast.Setting, kind: str) -> None:
+        words = setting.value
+        if kind != "object":
+            self.error(setting.location, f"'access' applies to objects only, not to {_with_article(kind)}")
+            return
+        for word in words:
+            if word not in ACCESS_WORDS:
+                self.error(setting.value_location, f"access '{word}' is not one of {', '.join(ACCESS_WORDS)}"
+                           + did_you_mean(word, ACCESS_WORDS))
+                return
+        if len(words) > 1 and ({"any", "none"} & set(words)):
+            self.error(setting.value_location, "'access any' and 'access none' stand alone")
+        elif len(set(words)) < len(words):
+            self.error(setting.value_location, "a side is named twice")
 
     def check_text(self, name: str, value: str, at: SourceLocation) -> bool:
         """Error (and True) when a string holds a control or bidirectional-control
@@ -254,6 +343,16 @@ class _Checker:
                 self.error(at, _too_large(f"'{setting.name}'", value, UPPER_LIMITS[setting.name], ""))
             elif setting.name == "templates":
                 self.check_templates(value, setting)
+            elif setting.name in ("square", "line_of_sight") and value not in ("on", "off"):
+                self.error(at, f"'{setting.name}' is 'on' or 'off', not '{value}'")
+            elif setting.name == "room":
+                self.check_room(value, settings)
+        if "room" in settings:
+            for other in ("extent", "walls"):
+                if other in settings:
+                    self.error(settings[other].location, f"'{other}' and 'room' both set the scene's floor; "
+                               f"keep the room (its walls give the extent)")
+        self.has_room = "room" in settings or "walls" in settings
         max_nodes = settings.get("max_nodes")
         if max_nodes is not None and _is_whole(max_nodes.value) and 1 <= max_nodes.value <= MAX_NODES:
             self.max_nodes = int(max_nodes.value)
@@ -261,6 +360,11 @@ class _Checker:
             self.error(scene.location, "the scene block has no start symbol (add: start NONTERMINAL)")
             return None
         return settings["start"].value, settings["start"].value_location
+
+    def check_room(self, decl: ast.RoomDecl, settings: dict[str, ast.Setting]) -> None:
+        self.room, problems = build_room(decl)
+        for location, message in problems:
+            self.error(location, message)
 
     def check_templates(self, folder_name: str, setting: ast.Setting) -> None:
         """The description templates folder, like a mesh, is found relative to its file
@@ -344,8 +448,27 @@ class _Checker:
             self.check_target(relation.target, scope)
             if relation.label in RELATIONS and RELATIONS[relation.label].family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
+            if relation.label in RELATIONS and RELATIONS[relation.label].family == "wall":
+                self.check_wall_relation(relation)
         if statement.block is not None:
             self.check_group_block(statement, created_kind, scope)
+
+    def check_wall_relation(self, relation: ast.Relation) -> None:
+        """A wall label needs a room, and a wall (or, by a window, a window) as its target."""
+        label = RELATIONS[relation.label]
+        wanted = "window" if label.wall in ("under_window", "beside_window") else "wall"
+        target = relation.target
+        if not self.has_room:
+            self.error(relation.location, f"{relation.label} needs a room: give the scene block one "
+                       "(room W x D { door ... window ... })")
+        elif target.name != wanted or target.kind not in ("some", "nth"):
+            self.error(target.location, f"{relation.label} stands by a {wanted}: write 'some {wanted}' "
+                       f"(the layout picks the {wanted} that fits) or '{wanted} #N'")
+        elif self.room is not None and target.kind == "nth":
+            count = len(self.room.walls) if wanted == "wall" else len(self.room.windows)
+            if target.index > count:
+                self.error(target.location, f"'{wanted} #{target.index}': the room has {count} {wanted}"
+                           + ("" if count == 1 else "s"))
 
     def check_group_block(
         self, statement: ast.Statement, created_kind: str | None, scope: dict[str, str | None]
@@ -404,6 +527,10 @@ class _Checker:
         if subject.kind == "name":
             if subject.name in scope:
                 return None
+            if self.has_room and subject.name in ROOM_TYPES:
+                self.error(subject.location, f"the room's {subject.name}s come from its room block and cannot be "
+                           f"created; refer to them as 'some {subject.name}' or '{subject.name} #1'")
+                return None
             if subject.name in self.kinds:
                 self.created_types.add(subject.name)
                 return self.kinds[subject.name]
@@ -427,6 +554,8 @@ class _Checker:
             self.error(reference.location, f"unbound name '{reference.name}'" + did_you_mean(reference.name, scope))
 
     def check_type_reference(self, reference: ast.Reference) -> None:
+        if self.has_room and reference.name in ROOM_TYPES:
+            return
         if reference.name not in self.kinds:
             self.error(reference.location, f"unknown type '{reference.name}'" + did_you_mean(reference.name, self.kinds))
         if reference.kind == "nth" and reference.index < 1:

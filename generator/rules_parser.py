@@ -47,8 +47,12 @@ from .rules_errors import (
 
 #: Catalog fields and scene settings: the grammar's rules of these names each become an
 #: ``ast.Setting`` (the ``start`` setting's rule is ``start_symbol``).
-ENTRY_FIELDS = ("noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments")
-SCENE_SETTINGS = ("extent", "ground", "walls", "start", "max_depth", "max_nodes", "templates")
+ENTRY_FIELDS = (
+    "noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments", "clearance", "access",
+)  # fmt: skip
+SCENE_SETTINGS = (
+    "extent", "ground", "walls", "room", "square", "line_of_sight", "start", "max_depth", "max_nodes", "templates",
+)  # fmt: skip
 
 
 #: Building the parser twice at once fails: lark compiles the grammar's literals with
@@ -108,7 +112,12 @@ class _ToAst(Transformer):
     def __default__(self, data, children, meta):
         # The grammar's rule `start` is a whole file, so the `start` setting's rule is
         # `start_symbol`; every other field and setting rule is named like its keyword.
-        if data in ENTRY_FIELDS or (data in SCENE_SETTINGS and data != "start"):
+        if data == "access":  # always a tuple of sides, however many
+            setting = self._setting("access", meta, children)
+            return setting if isinstance(setting.value, tuple) else ast.Setting(
+                setting.name, (setting.value,), setting.location, setting.value_location
+            )
+        if data in ENTRY_FIELDS or (data in SCENE_SETTINGS and data not in ("start", "room")):
             return self._setting(str(data), meta, children)
         if data == "start_symbol":
             return self._setting("start", meta, children)
@@ -116,6 +125,54 @@ class _ToAst(Transformer):
 
     def kind(self, children):
         return children[0]
+
+    # the room block
+
+    @v_args(meta=True)
+    def room(self, meta, children):
+        shape, *rest = children
+        body = rest[-1] if rest and isinstance(rest[-1], list) else []
+        corners = [shape, *(item for item in rest if isinstance(item, tuple))]
+        size = shape[1] if shape[0] == "size" else None
+        height = next((item for item in body if isinstance(item, _Located)), None)
+        room = ast.RoomDecl(
+            size=size,
+            corners=None if size else tuple(corner[1] for corner in corners),
+            height=height.value if height else None,
+            openings=tuple(item for item in body if isinstance(item, ast.OpeningDecl)),
+            location=self._at(meta),
+            height_location=height.location if height else None,
+        )
+        return ast.Setting("room", room, self._at(meta), self._at(meta))
+
+    def room_size(self, children):
+        return ("size", (float(children[0]), float(children[1])))
+
+    def room_corner(self, children):
+        return ("corner", (float(children[0]), float(children[1])))
+
+    def room_body(self, children):
+        return [child for child in children if child is not None]
+
+    @v_args(meta=True)
+    def wall_height(self, meta, children):
+        return _Located(float(children[0]), self._at(children[0]))
+
+    def wall_name(self, children):
+        return children[0]
+
+    @v_args(meta=True)
+    def door(self, meta, children):
+        return self._opening("door", meta, children)
+
+    @v_args(meta=True)
+    def window(self, meta, children):
+        return self._opening("window", meta, children)
+
+    def _opening(self, kind: str, meta, children) -> ast.OpeningDecl:
+        wall, *numbers = children
+        values = tuple(float(n) for n in numbers if n is not None)
+        return ast.OpeningDecl(kind, str(wall), values, self._at(meta), self._at(wall))
 
     @v_args(meta=True)
     def style(self, meta, children):
@@ -482,8 +539,11 @@ def _inside(opening: str, items: Iterable[str]) -> tuple[str, ...]:
 #: different LALR state after each, so the examples stop after every one of them.
 _FIELDS = ('noun "a"', 'plural "a"', "size 1 x 1 x 1", "shape a", 'mesh "a"', "colour #aaaaaa", "width 1",
            "max_length 1", "segments 1")
+_ENTRY_FIELDS = ("clearance front 1", "access a", "access a b")
 _STYLES = ("style s { }", "style s 2 { }", 'style s { noun "a" }', 'style s 2 { noun "a" }')
-_SETTINGS = ("extent 1 x 1", "ground a", "walls", "start A", "max_depth 1", "max_nodes 1", 'templates "a"')
+_SETTINGS = ("extent 1 x 1", "ground a", "walls", "start A", "max_depth 1", "max_nodes 1", 'templates "a"',
+             "square a", "line_of_sight a", "room 1 x 1", "room 1 x 1 { }", "room (1, 1) (2, 2) (1, 2) { }")
+_ROOM_ITEMS = ("height 1", "door a 1 1", "door a 1 1 1", "door 1 1 1", "window a 1 1 1 1", "window 2 1 1 1 1")
 _BLOCKS = ("{ }", "{ a }", "{ a; }", "{ ; }", "{ a; b }", "{ ; a }", "{\na\n}")
 _STATEMENTS = ("A", "A()", "A(b)", "A(b, c)", "a as b", "a NextTo b", "a NextTo b NextTo c", "a as b NextTo c",
                "some a", "each a", "a #1", "a NextTo some b", "a NextTo each b", "a NextTo b #1") + tuple(
@@ -501,9 +561,25 @@ _TOP_LEVEL = _Context(
 
 _CONTEXTS: dict[str, _Context] = {
     "fields": _Context(
-        examples=_inside("object a {", _FIELDS + _STYLES) + _inside("object a { style s {", _FIELDS)
-        + _inside("object a { style s 2 {", _FIELDS),
-        lead=("a field ({keywords})",), keywords_of="_field", unknown="catalog field", declarations=True),
+        examples=_inside("object a {", _FIELDS + _ENTRY_FIELDS + _STYLES),
+        lead=("a field ({keywords})",), keywords_of="_entry_field", unknown="catalog field", declarations=True),
+    "style fields": _Context(
+        examples=_inside("object a { style s {", _FIELDS) + _inside("object a { style s 2 {", _FIELDS),
+        lead=("a field ({keywords})",), keywords_of="_field", unknown="style field", declarations=True),
+    "room": _Context(
+        examples=("scene s { room",), lead=("the room's size 'W x D' or its corners '(x, z) (x, z) ...'",),
+        covers=frozenset({"NUMBER", "("})),
+    "room corners": _Context(
+        examples=("scene s { room (1, 1)", "scene s { room (1, 1) (2, 2)", "scene s { room (1, 1) (2, 2) (1, 2)"),
+        lead=("another corner '(x, z)'", "the room's block '{'", "the end of the room"),
+        covers=frozenset({"(", "{"})),
+    "room items": _Context(
+        examples=_inside("scene s { room 1 x 1 {", _ROOM_ITEMS),
+        lead=("the room's wall height, a door or a window ({keywords})",), keywords_of="_room_item",
+        unknown="room item", declarations=True),
+    "wall name": _Context(
+        examples=("scene s { room 1 x 1 { door", "scene s { room 1 x 1 { window"),
+        lead=("the wall: its side (north, east, south, west) or its number",), covers=frozenset({"NAME", "NUMBER"})),
     "scene settings": _Context(
         examples=_inside("scene s {", _SETTINGS),
         lead=("a scene setting ({keywords})",), keywords_of="_setting", unknown="scene setting", declarations=True),

@@ -74,7 +74,7 @@ syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative
     "syntax_in_entry": (
         'object chair { noun "chair" 3 }\nS -> { chair }',
         """\
-syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments), 'style' or '}'
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access), 'style' or '}'
     object chair { noun "chair" 3 }
                                 ^""",
     ),
