@@ -6,8 +6,16 @@ in the image. Two views:
 
 - ``perspective``: a 3/4 view from the south-east, looking down at ``ELEVATION``,
   placed so every framed point lies inside the view frustum (tight fit, then a margin).
+  In a room it looks from outside the wall of the room's first door instead (turned
+  ``AZIMUTH`` to the right, as the south-east view is turned from the south), so that
+  wall is cut away and the far walls, with their windows, face the camera; a room with
+  windows but no door is seen from opposite its first window.
 - ``top``: an orthographic view straight down with north (-Z) at the top of the image
   and east (+X) to the right.
+
+``walls_in_view`` is the cut-away rule both views share: a room's walls are drawn
+only where their inner face turns towards the viewer (from straight above: all of them,
+of which only the tops show), so no wall stands between the camera and the room.
 
 The points framed must be finite and within ``scenewright.core.limits`` (a scene.json
 is checked for that when read); a scene built otherwise with a coordinate beyond them
@@ -28,6 +36,7 @@ import numpy as np
 
 from scenewright.core.errors import InputError
 from scenewright.core.limits import MAX_COORDINATE, MAX_SIZE
+from scenewright.core.room import WALL_THICKNESS, Room, Wall
 from scenewright.core.scene import Scene, object_corners
 
 VIEWS = ("perspective", "top")
@@ -126,8 +135,11 @@ class Camera:
         )
 
 
-def scene_points(scene: Scene) -> np.ndarray:
-    """World points (N, 3) the camera must keep in frame: object boxes and path edges."""
+def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
+    """World points (N, 3) the camera must keep in frame: object boxes and path edges;
+    in a room also its floor's corners and the tops of the walls a viewer looking from
+    ``towards_viewer`` sees (``walls_in_view``; None: from straight above, all walls),
+    their thickness included."""
     chunks = []
     for obj in scene.objects:
         if obj.kind == "group":
@@ -142,28 +154,68 @@ def scene_points(scene: Scene) -> np.ndarray:
         # The ribbon's outline lies within half a width of its control points.
         for dx, dz in ((-half, -half), (half, -half), (half, half), (-half, half)):
             chunks.append(np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz]))
+    if scene.room is not None:
+        chunks.append(_room_points(scene.room, [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer))
     if not chunks:  # nothing placed: frame the scene's extent
         w, d = scene.extent
         chunks.append(np.array([[-w / 2, 0, -d / 2], [w / 2, 0, -d / 2], [w / 2, 0, d / 2], [-w / 2, 0, d / 2]]))
     return np.vstack(chunks)
 
 
+def walls_in_view(room: Room, towards_viewer) -> list[Wall]:
+    """The walls of ``room`` drawn for a viewer in direction ``towards_viewer`` (a world
+    vector from the room to the viewer): those whose inner face turns towards it, the
+    far walls, which stand behind the furniture and hide none of it. A viewer straight
+    above sees every wall (only their tops, which hide no furniture)."""
+    towards = np.asarray(towards_viewer, dtype=float)
+    if math.hypot(towards[0], towards[2]) <= 1e-6 * float(np.linalg.norm(towards)):  # straight above
+        return list(room.walls)
+    return [wall for wall in room.walls if wall.normal[0] * towards[0] + wall.normal[1] * towards[2] > 1e-9]
+
+
+def room_azimuth(room: Room | None) -> float:
+    """The perspective view's azimuth (radians round from south towards east, as
+    ``AZIMUTH``) for a room: from outside the wall of its first door, turned ``AZIMUTH``
+    to the right, so that wall is cut away; without a door, from opposite its first
+    window, so the window's wall is seen; otherwise (or outdoors) ``AZIMUTH``."""
+    if room is None:
+        return AZIMUTH
+    if room.doors:
+        nx, nz = room.part(room.doors[0].wall).normal
+        return math.atan2(-nx, -nz) + AZIMUTH  # outwards through the door's wall
+    if room.windows:
+        nx, nz = room.part(room.windows[0].wall).normal
+        return math.atan2(nx, nz) + AZIMUTH  # across the room from the window
+    return AZIMUTH
+
+
+def view_direction(azimuth: float = AZIMUTH, elevation: float = ELEVATION) -> np.ndarray:
+    """Unit vector (3,) from the scene towards a perspective camera: south (+Z) turned
+    towards east (+X) by ``azimuth``, raised by ``elevation``."""
+    return np.array(
+        [math.cos(elevation) * math.sin(azimuth), math.sin(elevation), math.cos(elevation) * math.cos(azimuth)]
+    )
+
+
 def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, height: int = 480) -> Camera:
-    """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths.
+    """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths
+    (and in a room, its floor and the walls the view shows).
 
     An unknown ``view`` is the user's mistake (a CLI option): ``InputError``, as is a
     point that is not finite or lies beyond the coordinate limit (with the object's size).
     """
-    points = scene_points(scene)
+    if view not in VIEWS:
+        raise InputError(f"unknown view {view!r}; choose one of: {', '.join(VIEWS)}")
+    azimuth = room_azimuth(scene.room)
+    towards = view_direction(azimuth) if view == "perspective" else np.array([0.0, 1.0, 0.0])
+    points = scene_points(scene, towards)
     reach = MAX_COORDINATE + MAX_SIZE
     if not np.isfinite(points).all() or np.abs(points).max() > reach:
         raise InputError(f"the scene reaches beyond {reach:g} m from the origin or has coordinates that are "
                          "not finite numbers (the limits: docs/limits.md)")
     if view == "perspective":
-        return perspective_camera(points, width, height)
-    if view == "top":
-        return top_down_camera(points, width, height)
-    raise InputError(f"unknown view {view!r}; choose one of: {', '.join(VIEWS)}")
+        return perspective_camera(points, width, height, azimuth=azimuth)
+    return top_down_camera(points, width, height)
 
 
 def perspective_camera(
@@ -178,10 +230,7 @@ def perspective_camera(
 ) -> Camera:
     """A perspective camera looking along a fixed direction, as close as it can get
     while every point stays inside ``fill`` of the image in both directions."""
-    # Direction from the scene towards the camera: south (+Z) turned east by azimuth.
-    back = np.array(
-        [math.cos(elevation) * math.sin(azimuth), math.sin(elevation), math.cos(elevation) * math.cos(azimuth)]
-    )
+    back = view_direction(azimuth, elevation)  # from the scene towards the camera
     right = np.cross([0.0, 1.0, 0.0], back)
     right /= np.linalg.norm(right)
     up = np.cross(back, right)
@@ -225,6 +274,21 @@ def top_down_camera(points: np.ndarray, width: int, height: int, *, fill: float 
     depths = height_above - points[:, 1]
     znear, zfar = _clip_range(np.append(depths, height_above))  # the ground must be in range
     return Camera("top", pose, width, height, znear, zfar, xmag=xmag, ymag=ymag)
+
+
+def _room_points(room: Room, towards_viewer) -> np.ndarray:
+    """(M, 3) points a room adds to the framing: its floor's corners, and a square of
+    the wall's thickness round the top of each end of every wall in view."""
+    t = WALL_THICKNESS
+    floor = np.array([[x, 0.0, z] for x, z in room.corners])
+    tops = [
+        [x + dx, wall.height, z + dz]
+        for wall in walls_in_view(room, towards_viewer)
+        for x, z in (wall.start, wall.end)
+        for dx in (-t, t)
+        for dz in (-t, t)
+    ]
+    return np.vstack([floor, np.array(tops, dtype=float).reshape(-1, 3)])
 
 
 def _fit_axis(along: np.ndarray, depth: np.ndarray, tan: float) -> tuple[float, float]:

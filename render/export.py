@@ -2,7 +2,10 @@
 
 One named node per object, junction and path (node name = its id; id, type, kind and
 noun in the node's ``extras``), groups as parent nodes of their members so a 3D tool
-shows the scene's hierarchy, and optionally the ground. Node transforms carry the
+shows the scene's hierarchy, and optionally the ground (a room's floor). A room adds
+one node per wall (``wall_1``, ...: every wall, with its doors' and windows' holes cut;
+extras id, kind "wall" and side) and per door and window (``door_1``, ``window_1``, ...;
+extras id, kind "door" or "window" and the wall it is in). Node transforms carry the
 poses, meshes stay in their local frame, so a tool can move an object as a whole.
 Colours are per-vertex on unshared vertices (flat shaded, one colour per face). A scene
 with nothing to draw (no objects, or only groups) is a valid GLB with no meshes.
@@ -18,9 +21,20 @@ import trimesh
 from trimesh.exchange.gltf import export_glb as trimesh_glb
 
 from scenewright.atomic import write_atomic
+from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 
-from .meshes import ground_mesh, junction_mesh, object_mesh, object_transform, path_mesh
+from .meshes import (
+    ground_mesh,
+    junction_mesh,
+    object_mesh,
+    object_transform,
+    opening_mesh,
+    opening_transform,
+    path_mesh,
+    wall_mesh,
+    wall_transform,
+)
 
 #: Name of the ground's node when the ground is exported.
 GROUND_NODE = "ground"
@@ -70,9 +84,25 @@ def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
             attach(obj.id, obj.parent, object_transform(obj), _extras(obj), junction_mesh(obj))
     for scene_path in scene.paths:
         attach(scene_path.id, scene_path.parent, np.eye(4), _path_extras(scene_path), path_mesh(scene_path))
+    if scene.room is not None:
+        for node_name, world, extras, mesh in _room_parts(scene.room):
+            attach(node_name, None, world, extras, mesh)
     if ground:
         attach(GROUND_NODE, None, np.eye(4), {"kind": "ground"}, ground_mesh(scene))
     return out
+
+
+def _room_parts(room: Room):
+    """(node name, world transform, extras, mesh in its local frame) for each wall, door
+    and window of ``room``, in that order."""
+    for wall in room.walls:
+        world = wall_transform(wall)
+        mesh = wall_mesh(room, wall)  # built in world coordinates: bring it into the wall's frame
+        mesh.apply_transform(np.linalg.inv(world))
+        yield wall.id, world, {"id": wall.id, "kind": "wall", "side": wall.side}, mesh
+    for opening in room.openings:
+        extras = {"id": opening.id, "kind": opening.kind, "wall": opening.wall}
+        yield opening.id, opening_transform(room, opening), extras, opening_mesh(opening)
 
 
 def _without_empty_bin(glb: bytes) -> bytes:

@@ -1,4 +1,4 @@
-"""Triangle meshes for a scene: one per object, a ribbon per path, the ground.
+"""Triangle meshes for a scene: one per object, a ribbon per path, the ground, a room.
 
 Objects are built in their local frame by the procedural builder their ``shape`` names
 (``scenewright.render.builders``), or loaded from the user's mesh file, and always
@@ -7,11 +7,17 @@ shape with no builder (``validate`` warns about it) is drawn as a plain box of t
 object's size and colour, still exactly the volume the layout reasoned about. A mesh
 file is read by ``scenewright.core.shapes.load_mesh_file``, as ``validate`` reads it:
 one that has become unreadable since raises its ``MeshFileError``, an input error.
-``object_transform`` gives the local-to-world pose. Rooms (``scene.walls``) get the
-walls a camera sees from inside (``room_walls``). Everything is in metres, +Y up.
+``object_transform`` gives the local-to-world pose. Everything is in metres, +Y up.
 A size beyond ``scenewright.core.limits.MAX_SIZE`` (or not a finite number) is refused
 with an ``InputError`` before anything is built; within it, a builder's detail does not
 grow with the size.
+
+A room (``scene.room``, ``scenewright.core.room``) is drawn as its floor (the room's
+polygon, ``floor_mesh``), its walls (``wall_mesh``: a slab ``WALL_THICKNESS`` thick
+behind each inner face, built as boxes around its doors and windows, mitred at the
+corners so they close whatever the angle) and its doors and windows (``opening_mesh``,
+in the opening's own frame, posed by ``opening_transform``). ``room_walls`` gives the
+walls a viewer sees from inside (``scenewright.render.camera.walls_in_view``).
 """
 
 from __future__ import annotations
@@ -25,20 +31,32 @@ import trimesh
 from scenewright.core.errors import InputError
 from scenewright.core.frames import transform_matrix
 from scenewright.core.limits import MAX_SIZE
+from scenewright.core.room import WALL_THICKNESS, Opening, Room, Wall
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 from scenewright.core.shapes import DEFAULT_SHAPE, load_mesh_file
 
-from .builders import BUILDERS, block, coloured
+from .builders import BUILDERS, IRON, WOOD, block, coloured, combine, shade, slab
+from .camera import walls_in_view
 
 #: Roads sit this far above the ground so they do not z-fight with it.
 PATH_LIFT = 0.02
 #: Junction discs sit above the path ribbons that start at them.
 JUNCTION_LIFT = 0.03
-#: A room's walls: height and thickness (metres) and a plaster colour that sets the
-#: furniture off. They stand just outside the extent, so the floor the layout used is clear.
-WALL_HEIGHT = 2.4
-WALL_THICKNESS = 0.1
+#: A room's walls are plaster that sets the furniture off; their tops (the cut the
+#: cut-away view shows, and the outline the top view shows) are darker.
 WALL_COLOUR = (0.86, 0.83, 0.76)
+WALL_TOP_COLOUR = (0.45, 0.42, 0.38)
+#: A room's floor: a slab this thick (metres) under the room's polygon, top at y = 0,
+#: in a pale oak that most furniture colours stand out from.
+FLOOR_THICKNESS = 0.05
+FLOOR_COLOUR = (0.74, 0.63, 0.48)
+#: Door and window parts: painted frames, a wooden door leaf, pale-blue glass.
+FRAME_COLOUR = (0.95, 0.94, 0.91)
+DOOR_COLOUR = WOOD
+GLASS_COLOUR = (0.7, 0.85, 0.95)
+#: A mitred wall end reaches at most this many thicknesses past its corner, so a very
+#: sharp corner does not grow a long spike.
+MITRE_LIMIT = 4.0
 
 
 def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
@@ -108,37 +126,245 @@ def junction_mesh(obj: SceneObject) -> trimesh.Trimesh:
 
 
 def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
-    """The ground plane under the scene extent (a little larger, so edges show)."""
+    """The ground under the scene: outdoors a slab under the extent, ``margin`` times
+    as large so its edges show; in a room its floor (``floor_mesh``)."""
+    if scene.room is not None:
+        return floor_mesh(scene.room)
     w, d = scene.extent
     colour = (0.35, 0.55, 0.25) if scene.ground == "grass" else (0.62, 0.55, 0.45)
     return block((w * margin, 0.02, d * margin), (0.0, -0.01, 0.0), colour)  # top face at y = 0
 
 
-def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
-    """The walls of a room (``scene.walls``) that a viewer looking from direction
-    ``towards_viewer`` (a world vector from the scene to the viewer) sees from inside:
-    those whose inner face turns towards the viewer, that is the far sides, which stand
-    behind the furniture and hide none of it. None when no wall qualifies (not a room,
-    or a viewer straight above, who would see only their tops).
+# -- rooms ----------------------------------------------------------------------------
 
-    Each wall runs the full length of its side plus the thickness at both ends, so two
-    walls meet in a closed corner (their overlap is the same colour, so it cannot flicker).
-    """
-    if not scene.walls:
+
+def floor_mesh(room: Room) -> trimesh.Trimesh:
+    """A slab ``FLOOR_THICKNESS`` thick whose top (y = 0) is exactly the room's polygon,
+    any simple polygon (an L-shaped room's floor is L-shaped)."""
+    corners = np.asarray(room.corners, dtype=float)  # (n, 2): x, z
+    triangles = _triangulate(corners)
+    # trimesh extrudes a 2D triangulation along +Z; map its (X, Y, Z) to world (X, Z - t, Y).
+    slab_mesh = trimesh.creation.extrude_triangulation(corners, triangles, FLOOR_THICKNESS)
+    swap = np.array([[1.0, 0, 0, 0], [0, 0, 1.0, -FLOOR_THICKNESS], [0, 1.0, 0, 0], [0, 0, 0, 1.0]])
+    slab_mesh.apply_transform(swap)
+    if slab_mesh.volume < 0:  # the swap mirrors: turn the faces back outwards
+        slab_mesh.invert()
+    return coloured(slab_mesh, FLOOR_COLOUR)
+
+
+def room_walls(scene: Scene, towards_viewer) -> trimesh.Trimesh | None:
+    """The walls of the room (``scene.room``) that a viewer looking from direction
+    ``towards_viewer`` (a world vector from the scene to the viewer) sees from inside
+    (``walls_in_view``: in a perspective view the walls whose inner face turns towards
+    it, the far ones, which hide no furniture; from straight above, all of them), in
+    world coordinates, openings cut. None outdoors."""
+    if scene.room is None:
         return None
-    towards = np.asarray(towards_viewer, dtype=float)
-    w, d, t = scene.extent[0], scene.extent[1], WALL_THICKNESS
-    walls = []
-    # Per side: the wall's inward normal (x, z) and its box's centre and extents.
-    for inward, centre, extents in (
-        ((0.0, 1.0), (0.0, -(d + t) / 2), (w + 2 * t, WALL_HEIGHT, t)),  # north
-        ((0.0, -1.0), (0.0, (d + t) / 2), (w + 2 * t, WALL_HEIGHT, t)),  # south
-        ((1.0, 0.0), (-(w + t) / 2, 0.0), (t, WALL_HEIGHT, d + 2 * t)),  # west
-        ((-1.0, 0.0), ((w + t) / 2, 0.0), (t, WALL_HEIGHT, d + 2 * t)),  # east
-    ):
-        if inward[0] * towards[0] + inward[1] * towards[2] > 1e-9:
-            walls.append(block(extents, (centre[0], WALL_HEIGHT / 2, centre[1]), WALL_COLOUR))
+    walls = [wall_mesh(scene.room, wall) for wall in walls_in_view(scene.room, towards_viewer)]
     return trimesh.util.concatenate(walls) if walls else None
+
+
+def wall_mesh(room: Room, wall: Wall) -> trimesh.Trimesh:
+    """One wall in world coordinates: a slab ``WALL_THICKNESS`` thick behind its inner
+    face, ``wall.height`` tall, with a hole for each of its doors (floor to the door's
+    top) and windows (sill to top).
+
+    It is built of boxes around the openings (the full-height pieces between and beside
+    them, and the pieces below each sill and above each top), not by cutting solids. The
+    two end pieces are mitred: their outer face runs to where the neighbouring wall's
+    outer face meets it, so walls meet in a closed corner at any angle, convex or (an
+    L-shaped room's inside corner) reflex, without overlapping.
+    """
+    t = WALL_THICKNESS
+    before, after = room.neighbours(wall.id)
+    length, height = wall.length, wall.height
+    start_out = -_mitre(wall, before, at_end=False)  # where the outer face starts and ends
+    end_out = max(length + _mitre(wall, after, at_end=True), start_out)
+    openings = sorted(room.openings_on(wall.id), key=lambda o: o.offset)
+    # Rows (u0, u1 on the inner face; u0, u1 on the outer face; y0, y1). On the outer
+    # face every piece stops where the mitred ends do; the full-height pieces at the
+    # wall's ends reach them, so each corner is closed once.
+    pieces: list[tuple[float, float, float, float, float, float]] = []
+
+    def piece(u0: float, u1: float, y0: float, y1: float) -> None:
+        out0 = start_out if u0 <= 0.0 and y0 <= 0.0 and y1 >= height else max(u0, start_out)
+        out1 = end_out if u1 >= length and y0 <= 0.0 and y1 >= height else min(u1, end_out)
+        pieces.append((u0, u1, out0, max(out0, out1), y0, y1))
+
+    edge = 0.0
+    for opening in openings:
+        u0, u1 = opening.offset - opening.width / 2.0, opening.offset + opening.width / 2.0
+        piece(edge, u0, 0.0, height)  # beside it
+        piece(u0, u1, 0.0, opening.sill)  # below the sill (none for a door)
+        piece(u0, u1, opening.top, height)  # above its top
+        edge = u1
+    piece(edge, length, 0.0, height)
+    rows = np.array(
+        [p for p in pieces if p[5] - p[4] > 1e-9 and max(p[1] - p[0], p[3] - p[2]) > 1e-9], dtype=float
+    ).reshape(-1, 6)
+    mesh = _wall_pieces(wall, rows, t)
+    colours = np.tile(np.append(WALL_COLOUR, 1.0) * 255, (len(mesh.faces), 1))
+    colours[mesh.face_normals[:, 1] > 0.99] = np.append(WALL_TOP_COLOUR, 1.0) * 255  # the tops
+    mesh.visual.face_colors = colours.round().astype(np.uint8)
+    return mesh
+
+
+def wall_footprint(room: Room, wall: Wall) -> np.ndarray:
+    """(4, 2) corners (x, z) of the wall's plan, as ``wall_mesh`` builds it (openings
+    aside): inner face start and end, then outer face end and start (mitred)."""
+    start_out = -_mitre(wall, room.neighbours(wall.id)[0], at_end=False)
+    end_out = wall.length + _mitre(wall, room.neighbours(wall.id)[1], at_end=True)
+    end_out = max(end_out, start_out)  # a short wall between two reflex corners
+    t = WALL_THICKNESS
+    return np.array([wall.to_world(0.0, 0.0), wall.to_world(wall.length, 0.0), wall.to_world(end_out, -t), wall.to_world(start_out, -t)])
+
+
+def wall_transform(wall: Wall) -> np.ndarray:
+    """4x4 local-to-world matrix of a wall's own frame: origin at the middle of its inner
+    face on the floor, local +Z its inner normal (into the room), +Y up."""
+    x, z = wall.to_world(wall.length / 2.0, 0.0)
+    return transform_matrix(x, 0.0, z, wall.facing_yaw)
+
+
+def opening_transform(room: Room, opening: Opening) -> np.ndarray:
+    """4x4 local-to-world matrix of an opening's frame: origin at its centre on the
+    wall's inner face, on the floor; local +Z into the room, +X along the wall."""
+    wall = room.part(opening.wall)
+    return transform_matrix(opening.center[0], 0.0, opening.center[1], wall.facing_yaw)
+
+
+def opening_mesh(opening: Opening) -> trimesh.Trimesh:
+    """A door or window in its opening's frame (``opening_transform``): it fills the
+    hole ``opening.width`` wide from ``opening.sill`` to ``opening.top``, within the
+    wall's thickness (local z from ``-WALL_THICKNESS`` to 0), so it never reaches into
+    the room (a door's swing zone stays as free as the layout left it)."""
+    build = door_mesh if opening.kind == "door" else window_mesh
+    return build(opening.width, opening.height, opening.sill)
+
+
+def door_mesh(width: float, height: float, sill: float = 0.0) -> trimesh.Trimesh:
+    """A closed door in its frame: painted jambs and head lining the hole, a wooden leaf
+    set 1.5 cm back from the wall's face with two raised panels, and a handle."""
+    t = WALL_THICKNESS
+    w, top = width, sill + height
+    f = min(0.06, 0.15 * w, 0.15 * height)  # frame width
+    inner_w, leaf_top = w - 2 * f, top - f
+    panel_w = 0.7 * inner_w
+    panel_h = (leaf_top - sill) * 0.36
+    panels = [
+        slab((-panel_w / 2, y, -0.016), (panel_w / 2, y + panel_h, -0.009), shade(DOOR_COLOUR, 1.18))
+        for y in (sill + 0.08 * (leaf_top - sill), sill + 0.54 * (leaf_top - sill))
+    ]
+    handle_x = w / 2 - f - min(0.08, 0.15 * inner_w)
+    handle_y = sill + min(1.0, 0.48 * height)
+    return combine(
+        _frame(w, sill, top, f, t, FRAME_COLOUR),
+        slab((-w / 2 + f, sill + 0.005, -0.055), (w / 2 - f, leaf_top, -0.015), DOOR_COLOUR),
+        panels,
+        slab((handle_x - 0.07, handle_y - 0.012, -0.015), (handle_x + 0.01, handle_y + 0.012, 0.0), IRON),
+    )
+
+
+def window_mesh(width: float, height: float, sill: float) -> trimesh.Trimesh:
+    """A window in its frame: painted jambs, head and sill lining the hole, a pale-blue
+    pane in the middle of the wall's thickness, and glazing bars across it."""
+    t = WALL_THICKNESS
+    w, top = width, sill + height
+    f = min(0.06, 0.12 * w, 0.12 * height)
+    bar = 0.6 * f
+    middle_y = sill + 0.62 * height
+    return combine(
+        _frame(w, sill, top, f, t, FRAME_COLOUR),
+        slab((-w / 2 + f, sill + f, -t / 2 - 0.006), (w / 2 - f, top - f, -t / 2 + 0.006), GLASS_COLOUR),
+        slab((-bar / 2, sill + f, -t / 2 - 0.02), (bar / 2, top - f, -t / 2 + 0.02), FRAME_COLOUR),
+        slab((-w / 2 + f, middle_y - bar / 2, -t / 2 - 0.02), (w / 2 - f, middle_y + bar / 2, -t / 2 + 0.02), FRAME_COLOUR),
+    )
+
+
+def _frame(width: float, bottom: float, top: float, f: float, t: float, colour) -> list[trimesh.Trimesh]:
+    """Jambs, head and (for a window, ``bottom`` above the floor) sill lining a hole
+    ``width`` wide from ``bottom`` to ``top``, ``f`` wide, through the wall's thickness ``t``."""
+    w = width
+    parts = [
+        slab((-w / 2, bottom, -t), (-w / 2 + f, top, 0.0), colour),
+        slab((w / 2 - f, bottom, -t), (w / 2, top, 0.0), colour),
+        slab((-w / 2 + f, top - f, -t), (w / 2 - f, top, 0.0), colour),
+    ]
+    if bottom > 0.0:
+        parts.append(slab((-w / 2 + f, bottom, -t), (w / 2 - f, bottom + f, 0.0), shade(colour, 0.92)))
+    return parts
+
+
+def _mitre(wall: Wall, neighbour: Wall, *, at_end: bool) -> float:
+    """How far past its corner with ``neighbour`` (metres along the wall, outwards) the
+    wall's outer face runs to meet the neighbour's outer face: +t at a square convex
+    corner, -t at a square reflex one, 0 where the walls run straight on.
+
+    The outer face is the line v = -t of the wall's frame; the neighbour's outer face is
+    where (p - corner) . n' = -t. Along the first, that is at s * (d . n') - t (n . n') = -t
+    with s the distance from the corner in the wall's direction d (away from it at the end).
+    """
+    t = WALL_THICKNESS
+    d = np.array(wall.direction) * (1.0 if at_end else -1.0)  # pointing away from the wall, past the corner
+    n, other = np.array(wall.normal), np.array(neighbour.normal)
+    along = float(d @ other)
+    if abs(along) < 1e-9:  # the walls run straight on: the outer faces meet end to end
+        return 0.0
+    reach = t * (float(n @ other) - 1.0) / along
+    return float(np.clip(reach, -MITRE_LIMIT * t, MITRE_LIMIT * t))
+
+
+def _wall_pieces(wall: Wall, rows: np.ndarray, t: float) -> trimesh.Trimesh:
+    """The wall's pieces as one mesh. ``rows`` (P, 6): each piece's u range on the inner
+    face and on the outer face (v = -t), and its y range; a piece is a box, or a box with
+    slanted ends where it is mitred. Zero-area faces (a piece that is a triangle in plan,
+    where an opening meets a mitred corner) are left out."""
+    box = trimesh.creation.box(extents=(2.0, 2.0, 2.0))
+    signs = box.vertices > 0  # (8, 3): which end of each axis a corner is at
+    # A corner's u: the inner range for the +z (room) side, the outer range for -z.
+    u = np.where(signs[None, :, 2], np.where(signs[None, :, 0], rows[:, None, 1], rows[:, None, 0]),
+                 np.where(signs[None, :, 0], rows[:, None, 3], rows[:, None, 2]))  # (P, 8)
+    v = np.where(signs[:, 2], 0.0, -t)[None, :]
+    y = np.where(signs[None, :, 1], rows[:, None, 5], rows[:, None, 4])
+    (sx, sz), (dx, dz), (nx, nz) = wall.start, wall.direction, wall.normal
+    vertices = np.stack([sx + u * dx + v * nx, y, sz + u * dz + v * nz], axis=-1).reshape(-1, 3)
+    faces = (box.faces[None, :, :] + 8 * np.arange(len(rows))[:, None, None]).reshape(-1, 3)
+    if dx * nz - dz * nx < 0:  # the frame (along, up, normal) is left-handed: wind the other way
+        faces = faces[:, ::-1]
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    return trimesh.Trimesh(vertices, faces[mesh.area_faces > 1e-12], process=False)
+
+
+def _triangulate(points: np.ndarray) -> np.ndarray:
+    """Triangles (n - 2, 3) of indices into ``points`` (n, 2) covering the simple polygon
+    they outline, by ear clipping (a room has a handful of corners)."""
+    count = len(points)
+    order = list(range(count))
+    x, z = points[:, 0], points[:, 1]
+    if np.sum(x * np.roll(z, -1) - np.roll(x, -1) * z) < 0:
+        order.reverse()  # counter-clockwise in (x, z), so a convex corner turns left
+
+    def turn(a, b, c) -> float:
+        return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+
+    triangles = []
+    while len(order) > 3:
+        for k in range(len(order)):
+            i, j, m = order[k - 1], order[k], order[(k + 1) % len(order)]
+            a, b, c = points[i], points[j], points[m]
+            if turn(a, b, c) <= 1e-12:
+                continue  # a reflex or straight corner is no ear
+            others = [points[o] for o in order if o not in (i, j, m)]
+            if any(turn(a, b, p) >= 0 and turn(b, c, p) >= 0 and turn(c, a, p) >= 0 for p in others):
+                continue  # another corner lies in it
+            triangles.append((i, j, m))
+            del order[k]
+            break
+        else:  # only straight corners left (collinear walls): any one closes the fan
+            triangles.append((order[-1], order[0], order[1]))
+            del order[0]
+    triangles.append(tuple(order))
+    return np.array(triangles, dtype=np.int64)
 
 
 @lru_cache(maxsize=64)

@@ -6,10 +6,13 @@ returns a ``RenderResult``: colour, depth, instance segmentation, per-object 2D 
 and visible fractions. ``save_render`` writes them as PNGs (atomically) and
 ``render_metadata`` gives the part that goes into scene.json.
 
-Drawn entities are objects (kind ``object``), junctions (a flat disc) and paths (a
-ribbon); groups have no body of their own. The ground and a room's far walls are drawn
-as backdrop, not entities. Each entity's index in ``RenderResult.ids``
-plus one is its value in the segmentation image (0 is background: sky, ground, walls).
+Drawn entities are objects (kind ``object``), junctions (a flat disc), paths (a
+ribbon) and a room's doors and windows; groups have no body of their own. The ground
+(a room's floor) and a room's walls are drawn as backdrop, not entities. Each entity's
+index in ``RenderResult.ids`` plus one is its value in the segmentation image (0 is
+background: sky, ground, floor, walls). Every door and window of a room is an entity
+in every view, but one in a wall the view cuts away (``camera.walls_in_view``) is not
+drawn: it has no pixels, so no box, and a visible fraction of 0.
 
 The OpenGL backend is chosen before pyrender is imported: the user's
 ``PYOPENGL_PLATFORM`` if set, else EGL when libEGL is installed, else OSMesa. When none
@@ -33,17 +36,35 @@ from PIL import Image
 
 from scenewright.atomic import write_atomic
 from scenewright.core.errors import GenerationError
+from scenewright.core.room import Opening
 from scenewright.core.scene import Scene
 
-from .camera import Camera, frame_scene
-from .meshes import ground_mesh, junction_mesh, object_transform, path_mesh, room_walls, shaped_mesh
+from .camera import Camera, frame_scene, walls_in_view
+from .meshes import (
+    ground_mesh,
+    junction_mesh,
+    object_transform,
+    opening_mesh,
+    opening_transform,
+    path_mesh,
+    room_walls,
+    shaped_mesh,
+)
 
 SKY = (0.62, 0.77, 0.92)
+#: A room is drawn without its surroundings, in front of a plain light grey.
+INDOOR_BACKGROUND = (0.9, 0.9, 0.9)
 AMBIENT = (0.35, 0.35, 0.38)
 SUN_INTENSITY = 2.0
 #: Direction the sunlight travels: from high in the south-west towards the north-east,
 #: so shadows fall away from the south-east camera but stay visible beside objects.
 SUN_DIRECTION = np.array([0.45, -1.0, -0.35])
+#: In a room the light comes from nearly overhead (as from a ceiling), from the same
+#: side, so a wall's shadow is a narrow band along its foot rather than half the floor.
+ROOM_LIGHT_DIRECTION = np.array([0.12, -1.0, -0.09])
+#: ...and more light bounces about indoors: the walls, lit at a grazing angle by the
+#: light from above, stay light.
+ROOM_AMBIENT = (0.5, 0.5, 0.52)
 #: Paths are drawn this much apart in height (by their order) so crossing ribbons do
 #: not z-fight, which would make the segmentation at a crossing noisy.
 PATH_STEP = 0.002
@@ -62,11 +83,12 @@ class RenderResult:
     """One rendered view of a scene.
 
     ``depth`` is the distance along the camera's viewing axis in metres (0 where only
-    sky is seen). ``boxes`` maps each entity seen in the image to its pixel box
-    [x0, y0, x1, y1] (x1, y1 exclusive). ``visible`` maps every drawn entity to the
-    fraction of its in-frame silhouette not hidden by objects (1.0 unoccluded, 0.0
-    hidden or out of frame); paths and junctions lie in one ground layer and do not
-    count as hiding one another where they meet; the ground hides nothing.
+    sky, or a room's background, is seen). ``boxes`` maps each entity seen in the image
+    to its pixel box [x0, y0, x1, y1] (x1, y1 exclusive). ``visible`` maps every entity
+    to the fraction of its in-frame silhouette not hidden by other entities (1.0
+    unoccluded, 0.0 hidden, out of frame or not drawn); paths and junctions lie in one
+    ground layer and do not count as hiding one another where they meet; the ground
+    hides nothing, and what a wall hides is not part of the silhouette.
     """
 
     colour: np.ndarray
@@ -91,12 +113,14 @@ class _Drawable:
 
 @dataclass
 class _Entity:
-    """A drawn scene entity: its id, its look, its local-to-world pose and its node."""
+    """A scene entity: its id, its look, its local-to-world pose and its node (None for
+    a door or window in a wall the view cuts away, which is not drawn)."""
 
     id: str
     drawable: _Drawable
     pose: np.ndarray
     flat: bool = False  # a path or junction: part of the ground layer
+    drawn: bool = True
     node: Any = None
 
 
@@ -135,20 +159,20 @@ class Renderer:
             raise RuntimeError("this Renderer has been closed")
         gl = self._gl
         camera = frame_scene(scene, view, self.width, self.height)
-        world, entities = self._build(scene, camera)
+        world, entities, occluders = self._build(scene, camera)
 
         flags = gl.RenderFlags.SHADOWS_DIRECTIONAL if self.shadows else gl.RenderFlags.NONE
         colour, depth = self._renderer.render(world, flags=flags)
         if camera.orthographic:
             depth = _orthographic_depth(depth, camera)
 
-        seg_map = {entity.node: _index_colour(k + 1) for k, entity in enumerate(entities)}
+        seg_map = _segmentation_map(entities, range(len(entities)), occluders)
         seg_colour, _ = self._renderer.render(world, flags=gl.RenderFlags.SEG, seg_node_map=seg_map)
         segmentation = _decode_index(seg_colour)
 
         ids = [entity.id for entity in entities]
         seen = np.bincount(segmentation.ravel(), minlength=len(ids) + 1)
-        alone = self._alone_pixel_counts(world, entities, camera, seen)
+        alone = self._alone_pixel_counts(world, entities, occluders, camera, seen)
         visible = {
             entity_id: float(min(seen[k + 1] / alone[k], 1.0)) if alone[k] else 0.0
             for k, entity_id in enumerate(ids)
@@ -166,14 +190,22 @@ class Renderer:
     # -- scene building -------------------------------------------------------------
 
     def _build(self, scene: Scene, camera: Camera):
+        """The pyrender scene to draw, its entities (in ``ids`` order) and the backdrop
+        nodes that hide what is behind them (a room's walls)."""
         gl = self._gl
-        world = gl.Scene(bg_color=(*SKY, 1.0), ambient_light=AMBIENT)
+        background = SKY if scene.room is None else INDOOR_BACKGROUND
+        ambient = AMBIENT if scene.room is None else ROOM_AMBIENT
+        world = gl.Scene(bg_color=(*background, 1.0), ambient_light=ambient)
         world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
-        # A room's far walls are backdrop like the ground: drawn, but not entities, so
-        # they have no segmentation index, box or visible fraction.
-        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
+        # A room's walls in view are backdrop like the ground: drawn, but not entities,
+        # so they have no segmentation index, box or visible fraction. Unlike the ground
+        # they can stand in front of an entity (a wall's lintel over its door, seen from
+        # above), so the segmentation passes draw them too, as background.
+        occluders = []
+        towards = camera.pose[:3, 2]
+        walls = room_walls(scene, towards_viewer=towards)
         if walls is not None:
-            world.add(_pyrender_mesh(gl, _drawable(walls)))
+            occluders.append(world.add(_pyrender_mesh(gl, _drawable(walls))))
 
         entities: list[_Entity] = []
         for obj in scene.objects:
@@ -188,10 +220,18 @@ class Renderer:
             lifted = np.eye(4)
             lifted[1, 3] = PATH_STEP * order
             entities.append(_Entity(scene_path.id, _drawable(path_mesh(scene_path)), lifted, flat=True))
+        if scene.room is not None:
+            in_view = {wall.id for wall in walls_in_view(scene.room, towards)}
+            for opening in scene.room.openings:
+                look = _opening_drawable(opening.kind, opening.width, opening.height, opening.sill)
+                pose = opening_transform(scene.room, opening)
+                entities.append(_Entity(opening.id, look, pose, drawn=opening.wall in in_view))
         # A degenerate path (all its points in one place) has no triangles to draw.
         entities = [entity for entity in entities if len(entity.drawable.positions)]
         uploaded: dict[int, Any] = {}  # objects that look alike share one GPU mesh
         for entity in entities:
+            if not entity.drawn:
+                continue
             key = id(entity.drawable)
             if key not in uploaded:
                 uploaded[key] = _pyrender_mesh(gl, entity.drawable)
@@ -204,23 +244,27 @@ class Renderer:
                 camera.yfov, aspectRatio=camera.width / camera.height, znear=camera.znear, zfar=camera.zfar
             )
         world.add(lens, pose=camera.pose)
-        world.add(self._sun, pose=_sun_pose())
-        return world, entities
+        world.add(self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION))
+        return world, entities, occluders
 
-    def _alone_pixel_counts(self, world, entities: list[_Entity], camera: Camera, seen: np.ndarray) -> np.ndarray:
+    def _alone_pixel_counts(
+        self, world, entities: list[_Entity], occluders: list, camera: Camera, seen: np.ndarray
+    ) -> np.ndarray:
         """How many pixels each entity covers when drawn alone.
 
-        "Alone" means without the other objects; for paths and junctions, without the
-        objects but with the other paths and junctions, since they share one layer on
-        the ground and cover one another only where they meet, as they do in the image.
-        An entity that nothing can hide (no nearer entity's screen box overlaps its
-        own) covers alone what it covers in the full image (``seen``). The others are
-        drawn in extra segmentation passes: one for the ground layer, and a few for
-        objects, each holding objects whose screen boxes do not overlap (so they
-        cannot hide one another). Every count is exact.
+        "Alone" means without the other entities (the walls, ``occluders``, stay, as
+        in the image); for paths and junctions, without the objects but with the other
+        paths and junctions, since they share one layer on the ground and cover one
+        another only where they meet, as they do in the image. An entity that nothing
+        can hide (no nearer entity's screen box overlaps its own) covers alone what it
+        covers in the full image (``seen``); so does one that is not drawn (none). The
+        others are drawn in extra segmentation passes: one for the ground layer, and a
+        few for the rest, each holding entities whose screen boxes do not overlap (so
+        they cannot hide one another). Every count is exact.
         """
         counts = np.asarray(seen[1:], dtype=np.int64).copy()
         boxes, near, far = _screen_extents(entities, camera)
+        boxes[[not entity.drawn for entity in entities]] = 0.0  # no pixels: overlaps nothing
         overlap = _overlaps(boxes)
         may_hide = overlap & (near[:, None] < far[None, :])  # [j, k]: j may be in front of k
         np.fill_diagonal(may_hide, False)
@@ -230,7 +274,7 @@ class Renderer:
         if np.any(hidden_maybe & flat):
             batches.append(np.flatnonzero(flat).tolist())
         for batch in batches:
-            seg_map = {entities[k].node: _index_colour(k + 1) for k in batch}
+            seg_map = _segmentation_map(entities, batch, occluders)
             seg_colour, _ = self._renderer.render(world, flags=self._gl.RenderFlags.SEG, seg_node_map=seg_map)
             pixels = np.bincount(_decode_index(seg_colour).ravel(), minlength=len(entities) + 1)
             counts[batch] = pixels[np.asarray(batch) + 1]
@@ -319,6 +363,21 @@ def _object_drawable(shape: str | None, mesh_file: str | None, size: tuple, colo
     return _drawable(shaped_mesh(shape, mesh_file, size, colour))
 
 
+@lru_cache(maxsize=256)
+def _opening_drawable(kind: str, width: float, height: float, sill: float) -> _Drawable:
+    """A door's or window's look in its opening's frame, built once per process."""
+    return _drawable(opening_mesh(Opening("", kind, "", 0.0, width, height, sill)))
+
+
+def _segmentation_map(entities: list[_Entity], indices, occluders: list) -> dict:
+    """pyrender's ``seg_node_map`` for a segmentation pass: the drawn entities among
+    ``indices`` in their index colours, the ``occluders`` in the background's (0), so
+    what they hide is hidden in segmentation as in colour."""
+    seg_map = {node: _index_colour(0) for node in occluders}
+    seg_map.update({entities[k].node: _index_colour(k + 1) for k in indices if entities[k].drawn})
+    return seg_map
+
+
 def _drawable(mesh: trimesh.Trimesh) -> _Drawable:
     arrays = (
         mesh.vertices[mesh.faces].reshape(-1, 3),
@@ -346,9 +405,9 @@ def _pyrender_mesh(gl, drawable: _Drawable):
     return mesh
 
 
-def _sun_pose() -> np.ndarray:
-    """A light pose whose local -Z points along ``SUN_DIRECTION``."""
-    back = -SUN_DIRECTION / np.linalg.norm(SUN_DIRECTION)
+def _sun_pose(direction: np.ndarray) -> np.ndarray:
+    """A light pose whose local -Z points along ``direction`` (3,), where the light travels."""
+    back = -direction / np.linalg.norm(direction)
     right = np.cross([0.0, 1.0, 0.0], back)
     right /= np.linalg.norm(right)
     pose = np.eye(4)

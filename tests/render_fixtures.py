@@ -48,10 +48,15 @@ def road(path_id: str, points, width: float = 3.0, start: str | None = None) -> 
     )  # fmt: skip
 
 
-def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False) -> Scene:
+def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False, room: Room | None = None) -> Scene:
+    """A scene of these objects and paths: outdoors, or in a bare rectangular room the
+    size of the extent (``walls``), or in ``room`` (whose size is then the extent)."""
+    if room is None and walls:
+        room = Room.rectangle(*extent)
+    if room is not None:
+        extent = room.extent
     return Scene(
-        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[],
-        room=Room.rectangle(*extent) if walls else None,
+        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[], room=room
     )
 
 

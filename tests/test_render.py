@@ -106,26 +106,28 @@ def test_visible_fraction_drops_behind_an_occluder(renderer):
 
 
 def test_a_room_shows_its_far_walls_as_backdrop_not_entities(renderer):
-    things = [thing("rug_1", (0, 0, 0), (4.6, 0.02, 3.6))]  # frames the floor, hides no wall
-    room, open_floor = scene_of(things, extent=(5.0, 4.0), walls=True), scene_of(things, extent=(5.0, 4.0))
-    side, side_open = renderer.render(room), renderer.render(open_floor)
-    assert side.ids == side_open.ids == ["rug_1"]
-    assert np.array_equal(side.segmentation, side_open.segmentation)  # walls hide nothing
-    assert side.visible == side_open.visible
+    things = [thing("rug_1", (0, 0, 0), (4.6, 0.02, 3.6))]  # covers the floor, hides no wall
+    room = scene_of(things, extent=(5.0, 4.0), walls=True)  # a plain room: no door, no window
+    side = renderer.render(room)
+    assert side.ids == ["rug_1"] and side.visible["rug_1"] == pytest.approx(1.0)  # walls hide nothing
     camera = Camera.from_dict(side.camera)
     inner_faces = {"north": [-1.0, 1.0, -2.0], "west": [-2.5, 1.0, -1.0]}
     for wall, point in inner_faces.items():
         (u, v), depth = pixel_of(side, point), camera.project([point])[1][0]
         assert side.segmentation[v, u] == 0 and side.depth[v, u] == pytest.approx(depth, abs=0.05), wall
-        assert side_open.depth[v, u] != pytest.approx(depth, abs=0.05), wall
     # The near walls (south, east) would stand between the camera and the room: the
     # camera sees past where they would be.
     for point in ([0.0, 1.0, 2.05], [2.55, 1.0, 0.0]):
         u, v = pixel_of(side, point)
         assert side.depth[v, u] > camera.project([point])[1][0] + 0.5, point
+    assert side.depth[0, 0] == 0 and side.depth[-1, -1] == 0  # a room has no surroundings
 
-    top, top_open = renderer.render(room, "top"), renderer.render(open_floor, "top")
-    assert np.array_equal(top.colour, top_open.colour) and np.array_equal(top.depth, top_open.depth)
+    top = renderer.render(room, "top")
+    camera = Camera.from_dict(top.camera)
+    for point in ([0.0, 2.6, -2.06], [2.56, 2.6, 0.0], [0.0, 2.6, 2.06], [-2.56, 2.6, 0.0]):  # every wall's top
+        u, v = pixel_of(top, point)
+        assert top.depth[v, u] == pytest.approx(camera.pose[1, 3] - 2.6, abs=0.01), point
+        assert top.segmentation[v, u] == 0
 
 
 def test_rendering_is_deterministic(renderer):
@@ -203,7 +205,7 @@ def test_visible_fractions_equal_a_brute_force_count(renderer):
     from scenewright.render.offscreen import _decode_index, _index_colour
 
     camera = Camera.from_dict(result.camera)
-    world, entities = renderer._build(scene, camera)
+    world, entities, _ = renderer._build(scene, camera)
     gl = renderer._gl
     ground_layer = {"crossing_1", "road_1", "road_2"}
     for k, entity in enumerate(entities):
