@@ -175,8 +175,10 @@ class _Checker:
                     self.productions[production.name] = production
         for production in self.productions.values():
             self.check_production(production)
+        root = files[-1].path
         for entry in first_entry.values():
-            if entry.name not in self.created_types:
+            # An included file may be a catalog several rule sets share: each makes only some of it.
+            if entry.name not in self.created_types and entry.location.file == root:
                 self.warning(entry.name_location, f"type '{entry.name}' is never created (no statement makes one)")
         if start is not None:
             self.check_start(*start)

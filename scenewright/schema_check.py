@@ -32,6 +32,7 @@ from jsonschema.exceptions import best_match
 from scenewright.core.errors import InputError
 from scenewright.core.limits import MAX_GROUP_DEPTH, MAX_JSON_DEPTH, forbidden_character
 from scenewright.core.relations import RELATIONS
+from scenewright.core.room import ROOM_NODE, Room, RoomError
 
 SCHEMA_FILE = "scene.schema.json"
 
@@ -192,14 +193,40 @@ def _reference_problems(data: dict[str, Any]) -> list[Problem]:
         if start is not None and kinds.get(start) != "junction":
             what = f"is {_article(kinds[start])}" if start in kinds else "is not an id of this scene"
             problems.append((f"$.paths[{index}].start", f"the path starts at {start!r}, which {what}, not a junction"))
+    room_ids, room_problems = _room_parts(data.get("room"))
+    problems += room_problems
     for index, relation in enumerate(data["relations"]):
         for end in ("source", "target"):
-            if relation[end] not in kinds:
+            if relation[end] not in kinds and relation[end] not in room_ids:
                 problems.append((f"$.relations[{index}].{end}", f"{relation[end]!r} is not an id of this scene"))
         if relation["label"] not in RELATIONS:
             problems.append((f"$.relations[{index}].label", f"unknown relation label {relation['label']!r}"
                              + _nearest(relation["label"], RELATIONS.names())))
     return problems
+
+
+def _room_parts(room: dict[str, Any] | None) -> tuple[set[str], list[Problem]]:
+    """The ids relations may name in a room (its walls, doors, windows and ``room``), and
+    what is wrong with the room: walls that do not join up, openings in no wall."""
+    if not room:
+        return set(), []
+    problems: list[Problem] = []
+    walls = room["walls"]
+    for index, wall in enumerate(walls):
+        following = walls[(index + 1) % len(walls)]
+        if any(abs(a - b) > 1e-6 for a, b in zip(wall["to"], following["from"])):
+            problems.append((f"$.room.walls[{index}].to", f"wall {wall['id']!r} ends where the next wall does not start"))
+    wall_ids = {wall["id"] for wall in walls}
+    for index, opening in enumerate(room["openings"]):
+        if opening["wall"] not in wall_ids:
+            problems.append((f"$.room.openings[{index}].wall", f"{opening['wall']!r} is not a wall of this room"))
+    if not problems:
+        try:
+            Room.from_dict(room)
+        except RoomError as problem:
+            problems.append(("$.room", str(problem)))
+    ids = wall_ids | {opening["id"] for opening in room["openings"]} | {ROOM_NODE}
+    return ids, problems
 
 
 def _nesting_problems(data: dict[str, Any], entities: dict[str, tuple[str, dict]]) -> list[Problem]:

@@ -16,6 +16,7 @@ import pytest
 from scenewright import __version__
 from scenewright.cli import main
 from scenewright.core.scene import LayoutStats, Relation, Scene, SceneObject, ScenePath
+from scenewright.generator.rules import shipped_rule_sets
 
 SCENEWRIGHT = Path(sys.executable).with_name("scenewright")
 
@@ -125,7 +126,7 @@ def test_validate_shipped_rules_ok(capsys):
     code, out, _ = run(capsys, "validate", *(str(p) for p in Path("grammar_rules").glob("*.rules")))
     assert code == 0
     assert sorted(out.splitlines()) == [
-        f"grammar_rules/{n}.rules: ok" for n in ("bedroom", "desk", "village")
+        f"grammar_rules/{n}.rules: ok" for n in sorted(shipped_rule_sets())
     ]
 
 
@@ -162,7 +163,7 @@ def test_missing_rules_file_exit_2_on_one_line(capsys):
     assert code == 2 and out == ""
     assert err.strip() == (
         "nowhere.rules:1:1: error: no rules file 'nowhere.rules' "
-        "(and no shipped rule set of that name: bedroom, desk, village)"
+        "(and no shipped rule set of that name: bathroom, bedroom, classroom, desk, kitchen, living_room, study, village)"
     )
 
 
@@ -345,7 +346,7 @@ def test_validate_accepts_shipped_rule_set_names(capsys):
     assert code == 0 and out.splitlines() == ["desk: ok", "village: ok"]
     code, out, _ = run(capsys, "validate", "vilage")
     assert code == 2
-    assert out.strip() == "vilage: error: no such file (nor a shipped rule set: bedroom, desk, village)"
+    assert out.strip() == "vilage: error: no such file (nor a shipped rule set: bathroom, bedroom, classroom, desk, kitchen, living_room, study, village)"
 
 
 STALL = Path(__file__).parent / "rules" / "stall" / "stall.rules"

@@ -14,7 +14,8 @@ from scenewright.core.relations import RELATIONS
 from scenewright.generator.rules import Rules, check_rules, load_rules, shipped_rule_sets
 from scenewright.core.scene_graph import SceneGraph
 
-SHIPPED = ("village", "desk", "bedroom")
+ROOMS = ("bedroom", "living_room", "kitchen", "study", "classroom", "bathroom")
+SHIPPED = ("village", "desk", *ROOMS)
 SEEDS = range(1000)
 
 
@@ -91,7 +92,11 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
     return memo
 
 
-@pytest.mark.parametrize("name, bounds", [("village", (25, 40)), ("desk", (1, 8)), ("bedroom", (3, 15))])
+@pytest.mark.parametrize(
+    "name, bounds",
+    [("village", (25, 40)), ("desk", (1, 8)), ("bedroom", (3, 16)), ("living_room", (4, 14)), ("kitchen", (7, 12)),
+     ("study", (3, 13)), ("classroom", (15, 29)), ("bathroom", (3, 6))],
+)
 def test_object_budget_holds_for_every_seed(name, bounds):
     rules = load_rules(name)
     assert object_bounds(rules)[rules.start] == bounds
@@ -198,7 +203,16 @@ def test_desk_relevancies_and_computer_styles_follow_the_rules():
 
 def test_indoor_sets_are_rooms_with_walls():
     assert load_rules("desk").params.walls and load_rules("desk").params.extent == (3.0, 3.0)
-    assert load_rules("bedroom").params.walls and load_rules("bedroom").params.extent == (5.0, 4.0)
+    assert load_rules("bedroom").params.walls and load_rules("bedroom").params.extent == (4.6, 4.0)
+
+
+@pytest.mark.parametrize("name", ROOMS)
+def test_room_sets_have_a_door_and_a_window_and_put_furniture_against_walls(name):
+    room = load_rules(name).params.room
+    assert room.doors and room.windows
+    wall_labels = {"AgainstWall", "InCorner", "UnderWindow", "BesideWindow"}
+    for graph in expansions(name)[:100]:
+        assert any(edge.label in wall_labels for edge in graph.edges())
 
 
 def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
