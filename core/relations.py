@@ -284,7 +284,7 @@ TABLE_1: tuple[RelationLabel, ...] = (
         "FacingOpposite", "facing", "facing the opposite way to",
         ("faces the opposite way to", "faces the opposite direction to"), facing="opposite", symmetric=True,
     ),
-    RelationLabel("AlignedWith", "alignment", "lined up with", ("is lined up with", "is in line with"), symmetric=True),
+    RelationLabel("AlignedWith", "alignment", "lined up with", ("is lined up with", "is aligned with"), symmetric=True),
     # Rooms: B is a wall or a window, or the room itself (whichever wall or window fits).
     RelationLabel("AgainstWall", "wall", "against", ("stands against", "is against"), wall="against", place=True),
     RelationLabel("InCorner", "wall", "in a corner by", ("stands in a corner by", "is in a corner by"), wall="corner", place=True),

@@ -26,12 +26,17 @@ STYLES = ("full", "short")
 
 @dataclass
 class Description:
-    """A scene's description: the text and every (subject id, label, object id) it states."""
+    """A scene's description: the text and every (subject id, label, object id) it states.
+
+    ``sentences`` has the same text sentence by sentence, each with the facts it states
+    (what a truth check reads); scene.json stores only text and facts.
+    """
 
     text: str
     facts: list[Fact] = field(default_factory=list)
     style: str = "full"
     variant: int = 0
+    sentences: list[Sentence] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON-ready form stored in scene.json's ``description``."""
@@ -75,6 +80,7 @@ def describe(
         facts=[fact for s in sentences for fact in s.facts],
         style=style,
         variant=variant,
+        sentences=sentences,
     )
 
 
@@ -82,7 +88,9 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
     """What the scene holds at its top level, and one top-level statement if there is one.
 
     A scene whose top level is one group (a desk and what is on it) is captioned by
-    that group's contents instead.
+    that group's contents instead. In a room, the statement is where the most prominent
+    furniture stands against the room, when some statement says so ("The bed stands in
+    the north-east corner.").
     """
     by_owner = {section.owner: section for section in sections}
     owner: str | None = None
@@ -93,10 +101,23 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
     realiser.discourse.start_paragraph(owner)
     sentences = [realiser.caption(_setting(scene, world, owner), items)]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement) and not m.also]
+    by_room = [m for m in statements if any(world.place_kind(t) for c in m.clauses for t in c.targets)]
+    if by_room:
+        # The biggest thing placed against the room says most about how the room looks.
+        statements = sorted(by_room, key=lambda m: -max(_volume(scene, s) for s in m.subjects))
     if statements:
         # The canonical caption tells the first relation; a variant any one of them.
         sentences.append(realiser.message(realiser.choices.pick(statements)))
     return sentences
+
+
+def _volume(scene: Scene, entity_id: str) -> float:
+    """The volume of an object's or group's box (0 for a path): how prominent it is."""
+    try:
+        width, height, depth = scene.object(entity_id).size
+    except KeyError:  # a path has no box
+        return 0.0
+    return width * height * depth
 
 
 def _caption_items(section: Section, world: World) -> tuple[Item, ...]:

@@ -105,7 +105,8 @@ def without_repeated_copula(predicates: list[str]) -> list[str]:
     copula = predicates[0].split(" ", 1)[0] if predicates else ""
     if copula not in ("is", "are"):
         return list(predicates)
-    return predicates[:1] + [p.removeprefix(copula + " ") for p in predicates[1:]]
+    rest = [p.removeprefix(copula + " ") for p in predicates[1:]]
+    return predicates[:1] + rest
 
 
 def with_also(predicate: str) -> str:

@@ -5,7 +5,9 @@ Every relation label of Table 1 that the text may state (all but ``Implicit*`` a
 with the object to follow ("is next to", "faces away from"); the first is canonical,
 the others are synonyms for paraphrase variants. Direction words are B's: "A is to the
 left of B" means A is on B's own left (B's local +X), "in front of B" on B's forward
-side.
+side. Where the object phrase names a part of a room that the registry's words do not
+expect (``InCorner``'s words name a wall, "stands in a corner by the east wall"; the
+text names the corner itself), ``PLACE_WORDINGS`` has the words for that part.
 """
 
 from __future__ import annotations
@@ -27,20 +29,29 @@ def is_symmetric(label: str) -> bool:
     return RELATIONS[label].symmetric
 
 
-def relation_wordings(label: str, chosen: str | None = None) -> tuple[str, ...]:
+#: The verb phrases for a relation whose object phrase names this kind of room part
+#: rather than what the registry's words expect: a wall label's words name a wall or a
+#: window, but ``InCorner`` is told by the corner the object stands in.
+PLACE_WORDINGS: dict[str, tuple[str, ...]] = {"corner": ("stands in", "is in")}
+
+
+def relation_wordings(label: str, chosen: str | None = None, place_kind: str | None = None) -> tuple[str, ...]:
     """The verb phrases that state ``label`` (canonical first), from the registry.
 
     A label that chooses its direction (``NextToChooseDirection``) is worded from the
     direction the layout chose; without a valid one it falls back to plain "next to",
-    which holds for every next-to label.
+    which holds for every next-to label. ``place_kind``: the kind of room part the
+    object phrase names ("corner"), when it is one (see ``PLACE_WORDINGS``).
     """
     spec = RELATIONS[label]
     if not spec.described:
         raise KeyError(f"relation label {label!r} is never stated")
+    if place_kind in PLACE_WORDINGS:
+        return PLACE_WORDINGS[place_kind]
     return spec.wordings_for(chosen)
 
 
-def place_phrases(label: str, chosen: str | None = None) -> tuple[str, ...]:
+def place_phrases(label: str, chosen: str | None = None, place_kind: str | None = None) -> tuple[str, ...]:
     """The place phrases ("on top of", "north of") that say where A is, or () for other labels.
 
     A place phrase can follow a noun ("a sign to the right of a table") or lead an
@@ -48,7 +59,7 @@ def place_phrases(label: str, chosen: str | None = None) -> tuple[str, ...]:
     """
     if not RELATIONS[label].place:
         return ()
-    return tuple(w[len("is "):] for w in relation_wordings(label, chosen) if w.startswith("is "))
+    return tuple(w[len("is "):] for w in relation_wordings(label, chosen, place_kind) if w.startswith("is "))
 
 
 #: How a whole is said to be made of its parts ("The mill consists of ...").
@@ -64,8 +75,8 @@ class Lexicon:
     def __init__(self, choices: Choices) -> None:
         self._choices = choices
 
-    def relation(self, label: str, chosen: str | None = None) -> str:
-        return self._choices.pick(relation_wordings(label, chosen))
+    def relation(self, label: str, chosen: str | None = None, place_kind: str | None = None) -> str:
+        return self._choices.pick(relation_wordings(label, chosen, place_kind))
 
     def place(self, label: str, chosen: str | None = None) -> str:
         """A place phrase for a place label (see ``place_phrases``)."""

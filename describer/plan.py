@@ -6,11 +6,19 @@ then what stands on what and how they relate. Each group follows in depth-first
 derivation order with the same shape: its inventory, the members that stand on other
 members ("A big pot of stew is in the middle of this table."), then statements.
 
+In a room, the scene's inventory is followed by the room sentence: its shape when it is
+L-shaped and its doors and windows, wall by wall ("The room has a door in the south
+wall and two windows in the north wall."). Walls, doors, windows and corners are never
+in an inventory; relations to them are told like any other, naming the part of the
+room their words say (``World.target_of``: "The wardrobe stands against the north
+wall.").
+
 Only relations the layout reports as satisfied are selected; ``Implicit*`` never;
 ``PathConnectedTo`` only as a road network in an inventory. A relation is told in the
-first section where both its ends have been introduced. Statements are aggregated: the
-sources sharing a relation to one target become one subject ("The mill and the street
-lamp are next to the first road."), and the clauses of one subject one sentence.
+first section where both its ends have been introduced (a room's parts are known from
+the start). Statements are aggregated: the sources sharing a relation to one target
+become one subject ("The mill and the street lamp are next to the first road."), and
+the clauses of one subject one sentence.
 
 The plan is plain data over entity ids; referring expressions and words come later.
 """
@@ -71,6 +79,19 @@ class Inventory:
 
 
 @dataclass(frozen=True)
+class RoomOutline:
+    """The room sentence: "The L-shaped room has a door in the south wall and two windows
+    in the north wall."
+
+    ``shape``: "L-shaped" or None; ``openings``: (kind, wall id, opening ids) for each
+    wall with doors or windows of a kind.
+    """
+
+    shape: str | None
+    openings: tuple[tuple[str, str, tuple[str, ...]], ...]
+
+
+@dataclass(frozen=True)
 class Introduction:
     """New entities that stand on (or are part of) one already introduced: "Two books are on top of this table."."""
 
@@ -95,7 +116,7 @@ class Statement:
     also: bool = False
 
 
-Message = Inventory | Introduction | Statement
+Message = Inventory | RoomOutline | Introduction | Statement
 
 
 @dataclass(frozen=True)
@@ -121,6 +142,8 @@ def facts_of(message: Message) -> list[Fact]:
     if isinstance(message, Introduction):
         subjects = tuple(s for unit in message.subjects for s in unit)
         return _clause_facts(subjects, message.clause)
+    if isinstance(message, RoomOutline):
+        return []  # the room's own parts: no relation
     return list(message.facts)
 
 
@@ -143,8 +166,9 @@ def plan_document(scene: Scene, world: World) -> list[Section]:
     section_of_owner = {owner: index for index, owner in enumerate(owners)}
     pools: list[list[Relation]] = [[] for _ in owners]
     for relation in stated_relations(scene, world):
-        introduced_in = [section_of_owner[world[end].parent] for end in (relation.source, relation.target)]
-        pools[max(introduced_in)].append(relation)
+        # A room's parts are known from the start: only an entity end waits for its section.
+        ends = [end for end in (relation.source, relation.target) if end in world]
+        pools[max(section_of_owner[world[end].parent] for end in ends)].append(relation)
     return [
         _section(owner, world.members(owner), pool, networks, world)
         for owner, pool in zip(owners, pools, strict=True)
@@ -158,7 +182,7 @@ def stated_relations(scene: Scene, world: World) -> list[Relation]:
     for relation in scene.relations:
         if not relation.satisfied or not is_described(relation.label):
             continue
-        if relation.source not in world or relation.target not in world:
+        if relation.source not in world or world.target_of(relation) is None:
             continue
         key = (relation.source, relation.label, relation.target)
         mirrored = (relation.target, relation.label, relation.source)
@@ -209,6 +233,10 @@ def _section(
     messages: list[Message] = []
     if items or owner is None:  # an empty scene still says so
         messages.append(Inventory(owner, items, link))
+    if owner is None and world.room is not None:
+        outline = RoomOutline(world.room.shape, tuple(world.room.opening_groups()))
+        if outline.shape or outline.openings:
+            messages.append(outline)
     messages += _introductions(placements, world)
     messages += aggregate(remaining, world)
     return Section(owner, tuple(messages))
@@ -319,13 +347,16 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
 
     "The mill and the street lamp are next to the first road."; "The chair is in front
     of the desk and faces it." Relations are joined by what they say, not by label, so
-    one sentence never repeats another's predicate. At most ``MAX_CLAUSES`` clauses go
-    in one sentence.
+    one sentence never repeats another's predicate; and by what their object phrase
+    names (``World.target_of``), so a wardrobe against the room's chosen north wall and
+    one against that wall by name stand in one sentence. At most ``MAX_CLAUSES``
+    clauses go in one sentence.
     """
     by_target: dict[tuple[tuple[str, ...], str], list[Relation]] = {}
     for relation in relations:
-        words = relation_wordings(relation.label, relation.chosen)
-        by_target.setdefault((words, relation.target), []).append(relation)
+        target = world.target_of(relation)
+        words = relation_wordings(relation.label, relation.chosen, world.place_kind(target))
+        by_target.setdefault((words, target), []).append(relation)
     shared_by: dict[tuple[str, ...], dict[tuple[str, ...], list[Relation]]] = {}
     for (words, _), found in by_target.items():
         subjects = tuple(sorted(dict.fromkeys(r.source for r in found), key=lambda s: world[s].order))
@@ -336,20 +367,25 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
         for start in range(0, len(joined), MAX_CLAUSES):
             shared = joined[start:start + MAX_CLAUSES]
             clauses = tuple(
-                Clause(found[0].label, found[0].chosen, tuple(dict.fromkeys(r.target for r in found)))
+                Clause(found[0].label, found[0].chosen, tuple(dict.fromkeys(world.target_of(r) for r in found)))
                 for found in shared
             )
             for index, piece in enumerate(_subject_pieces(subjects, world)):
-                statements.append(Statement(piece, clauses, _piece_facts(piece, clauses, shared), also=index > 0))
+                facts = _piece_facts(piece, clauses, shared, world)
+                statements.append(Statement(piece, clauses, facts, also=index > 0))
     return statements
 
 
-def _piece_facts(piece: tuple[str, ...], clauses: tuple[Clause, ...], shared: list[list[Relation]]) -> tuple[Fact, ...]:
-    """The facts a statement about ``piece`` states: clause by clause, subject by subject, target by target."""
+def _piece_facts(
+    piece: tuple[str, ...], clauses: tuple[Clause, ...], shared: list[list[Relation]], world: World
+) -> tuple[Fact, ...]:
+    """The facts a statement about ``piece`` states: clause by clause, subject by subject,
+    target by target. A fact keeps the relation's own target (``room`` for a wall the
+    layout chose), whatever part of the room the words name."""
     facts: list[Fact] = []
     for clause, found in zip(clauses, shared, strict=True):
         told = [r for r in found if r.source in piece]
-        told.sort(key=lambda r: (piece.index(r.source), clause.targets.index(r.target)))
+        told.sort(key=lambda r: (piece.index(r.source), clause.targets.index(world.target_of(r))))
         facts += [(r.source, r.label, r.target) for r in told]
     return tuple(facts)
 

@@ -11,9 +11,11 @@ from dataclasses import dataclass
 
 from jinja2.sandbox import SandboxedEnvironment
 
-from .english import join_list, sentence_case, verb_agreeing, with_also, without_repeated_copula
+from .english import counted, join_list, plural_of, sentence_case, verb_agreeing, with_also, without_repeated_copula
 from .lexicon import Lexicon, place_phrases
-from .plan import Clause, Fact, Inventory, Introduction, Item, Message, Network, Section, Statement, facts_of
+from .plan import (
+    Clause, Fact, Inventory, Introduction, Item, Message, Network, RoomOutline, Section, Statement, facts_of,
+)
 from .refer import SCENE, Discourse
 from .templates import render
 from .variation import Choices
@@ -65,6 +67,8 @@ class Realiser:
         self.discourse.start_sentence()
         if isinstance(message, Inventory):
             text = self._inventory(message)
+        elif isinstance(message, RoomOutline):
+            text = self._room(message)
         elif isinstance(message, Introduction):
             text = self._introduction(message)
         else:
@@ -116,6 +120,19 @@ class Realiser:
             return render(self.environment, "network.j2", paths=paths, count=len(item.paths), junction=junction)
         return self.discourse.introduce(item)
 
+    def _room(self, outline: RoomOutline) -> str:
+        """"The room has a door in the south wall and two windows in the north wall."."""
+        room = self.discourse.room()
+        self.discourse.mark_subject(())
+        openings = []
+        for kind, wall, ids in self.choices.shuffled(outline.openings):
+            self.discourse.note_place(ids)
+            what = counted(len(ids), kind, plural_of(kind))
+            self.discourse.note_place((wall,))
+            phrase = render(self.environment, "opening.j2", openings=what, wall=self.world.room.wall_phrase(wall))
+            openings.append(phrase)
+        return render(self.environment, "room.j2", room=room, shape=outline.shape or "", openings=openings)
+
     def _introduction(self, introduction: Introduction) -> str:
         clause = introduction.clause
         subjects = introduction.subjects
@@ -147,13 +164,18 @@ class Realiser:
         self.discourse.mark_subject(statement.subjects)
         plural = len(statement.subjects) > 1
         predicates = [
-            f"{verb_agreeing(self.lexicon.relation(c.label, c.chosen), plural)} {self._targets(c)}"
+            f"{verb_agreeing(self._words(c), plural)} {self._targets(c)}"
             for c in statement.clauses
         ]
         predicates = without_repeated_copula(predicates)
         if statement.also:
             predicates[0] = with_also(predicates[0])
         return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
+
+    def _words(self, clause: Clause) -> str:
+        # A clause's targets share their words (``plan.aggregate``), so the first one's
+        # kind of room part, if it is one, stands for all.
+        return self.lexicon.relation(clause.label, clause.chosen, self.world.place_kind(clause.targets[0]))
 
     def _targets(self, clause: Clause) -> str:
         # Objects are named one by one: "next to two of the roads" would hide which.

@@ -21,6 +21,11 @@ form that is unambiguous here:
 Sets of entities (aggregated subjects) are named per cohort: "the three market
 stands", "both pallets", "four of the street lamps" ("four other street lamps" when
 others of the cohort, and none of these, were named before).
+
+A room's walls, doors, windows and corners always take the name that sets them apart
+in the room (``rooms``: "the north wall", "the window in the longer north wall", "the
+corner by the door"), never "it" or "this". They are still noted as things named, so an
+entity named beside one is not taken for the only thing "it" could mean.
 """
 
 from __future__ import annotations
@@ -32,6 +37,9 @@ from .world import World
 
 #: How "the scene" itself is tracked as a mention ("The scene consists of ...").
 SCENE = "<scene>"
+#: How a room, and each part of it, is tracked as a mention: a key no noun can be, so
+#: "this" and "the other" never count a wall as a namesake of an object.
+ROOM_PART = "<room>"
 
 
 @dataclass
@@ -78,6 +86,20 @@ class Discourse:
         self._note((SCENE,), SCENE, plural=False)
         return "the scene"
 
+    def room(self) -> str:
+        """The room itself: "the room"."""
+        self._note((ROOM_PART,), ROOM_PART, plural=False)
+        return "the room"
+
+    def name_place(self, place_id: str) -> str:
+        """A part of the room by the name that sets it apart (``rooms``)."""
+        self._note((place_id,), ROOM_PART, plural=False)
+        return self.world.room.name(place_id)
+
+    def note_place(self, place_ids: tuple[str, ...]) -> None:
+        """Record parts of the room named by other means (the room sentence's "two windows")."""
+        self._note(place_ids, ROOM_PART, plural=len(place_ids) > 1)
+
     def introduce(self, ids: tuple[str, ...]) -> str:
         """An indefinite phrase for new entities of one noun: "a table", "three books".
 
@@ -98,7 +120,10 @@ class Discourse:
         "it" only when ``pronoun`` is allowed here, "this table" only when
         ``demonstrative`` is: a phrase inside a list of others takes neither ("the
         street lamp, this wagon and the mill" reads as if the wagon were special).
+        A part of the room is named as ``name_place`` names it.
         """
+        if entity_id not in self.world:
+            return self.name_place(entity_id)
         entity = self.world[entity_id]
         self.named_in_paragraph.add(entity_id)
         if pronoun and self._may_be_it(entity_id):
@@ -227,7 +252,7 @@ class Discourse:
 
     def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
         self.current.append(_Mention(ids, noun, plural))
-        if noun != SCENE:
+        if noun not in (SCENE, ROOM_PART):
             self.last_of_noun[noun] = ids
             self.paragraph_nouns.setdefault(noun, set()).update(ids)
 

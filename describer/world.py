@@ -1,17 +1,26 @@
-"""What the describer can talk about: every entity of a scene with its noun and place in the derivation.
+"""What the describer can talk about: every entity of a scene with its noun and place in
+the derivation, and the parts of its room.
 
 An entity is an object, group, junction or path. Entities that share a noun and a
 parent form a *cohort* ("the three market stands" of the scene, "the two signs" of one
 stand): ordinals and counts are taken within a cohort, in derivation order.
+
+A room's walls, doors, windows and corners are not entities: they are never counted,
+never introduced as objects are, and always named by what sets them apart in the room
+("the north wall", "the corner by the door"; see ``rooms``). They can be what a
+relation's words name: ``target_of`` gives, for each relation, the entity or room part
+its object phrase names.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from scenewright.core.relations import Relation
 from scenewright.core.scene import Scene
 
 from .english import plural_of
+from .rooms import RoomView
 
 
 @dataclass(frozen=True)
@@ -34,12 +43,27 @@ class World:
     cohorts: dict[tuple[str, str | None], tuple[str, ...]]
     by_noun: dict[str, tuple[str, ...]]
     children: dict[str | None, tuple[str, ...]]
+    #: The scene's room as the text names it; None outdoors.
+    room: RoomView | None = None
 
     def __getitem__(self, entity_id: str) -> Entity:
         return self.entities[entity_id]
 
     def __contains__(self, entity_id: str) -> bool:
         return entity_id in self.entities
+
+    def target_of(self, relation: Relation) -> str | None:
+        """What the relation's object phrase names: its target entity, or the part of
+        the room its words name (``RoomView.place``); None when the text cannot name it."""
+        if relation.target in self.entities:
+            return relation.target
+        return self.room.place(relation) if self.room is not None else None
+
+    def place_kind(self, target_id: str) -> str | None:
+        """"wall", "door", "window" or "corner" for a part of the room; None for an entity."""
+        if target_id in self.entities or self.room is None:
+            return None
+        return self.room.kind(target_id)
 
     def cohort(self, entity_id: str) -> tuple[str, ...]:
         """The entities with the same noun and parent as this one (itself included)."""
@@ -93,4 +117,5 @@ def world_of(scene: Scene) -> World:
         cohorts[key] = cohorts.get(key, ()) + (entity.id,)
         by_noun[entity.noun] = by_noun.get(entity.noun, ()) + (entity.id,)
         children[entity.parent] = children.get(entity.parent, ()) + (entity.id,)
-    return World(entities, cohorts, by_noun, children)
+    room = RoomView(scene.room, scene.objects) if scene.room is not None else None
+    return World(entities, cohorts, by_noun, children, room)
