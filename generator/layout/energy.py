@@ -14,7 +14,10 @@ Parts (all >= 0, 0 when everything holds):
   each inner control point; per junction greater(angle, gamma) between neighbouring
   outgoing paths.
 - ``extent``: c times how far a box's corners (relative to its diagonal) or a path's
-  control points (relative to its width) stick out of the scene extent.
+  control points (relative to its width) stick out of the scene extent. In a room the
+  boxes' share is replaced by ``walls``.
+- ``walls``, ``square``, ``clearance``, ``door_swing``, ``access``: the room's own terms
+  (``room_terms``); 0 outdoors, where no ``RoomTerms`` is built and they cost nothing.
 
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
@@ -35,9 +38,10 @@ from .geometry import polyline_length, polyline_rect_penetration, polyline_turns
 from .params import LayoutParams
 from .problem import Problem
 from .relation_terms import evaluate
+from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
 from .state import Grid, State
 
-PARTS = ("relations", "collisions", "paths", "path_shape", "extent")
+PARTS = ("relations", "collisions", "paths", "path_shape", "extent") + ROOM_PARTS
 
 #: Depths are clipped below 1 so the log penalty stays finite.
 MAX_DEPTH = 0.99
@@ -56,6 +60,7 @@ class Changes(NamedTuple):
     junction: dict[int, float]  # by junction box
     box_extent: dict[int, float]
     path_extent: dict[int, float]
+    room: RoomChanges | None  # the room's terms (None outdoors)
 
 
 class Pending(NamedTuple):
@@ -80,6 +85,8 @@ class Energy:
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.placeable = [t.placeable for t in problem.relations]
         self._pending: Pending | None = None
+        #: The room's terms (walls, square, clearance, door swing, access); None outdoors.
+        self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
         self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
@@ -138,7 +145,7 @@ class Energy:
         return max(abs(state.x[box]) + reach_x - half_x, abs(state.z[box]) + reach_z - half_z, 0.0)
 
     def box_extent_energy(self, box: int) -> float:
-        if not self.active[box]:
+        if not self.active[box] or self.room is not None:  # in a room: the walls term instead
             return 0.0
         return self.params.collision_intensity * self.box_excess(box) / self.problem.size[box]
 
@@ -175,10 +182,13 @@ class Energy:
         return -sum(greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction))
 
     def troubled_boxes(self) -> list[int]:
-        """Boxes that currently overlap something or stick out of the extent."""
+        """Boxes that currently overlap something or stick out of the extent, and in a
+        room those in breach of a room term (``RoomTerms.troubled``)."""
         found = {box for box in range(self.problem.n_boxes) if self.pairs[box] or self.box_extent[box] > 0.0}
         for hits in self.path_hits:
             found.update(hits)
+        if self.room is not None:
+            found.update(self.room.troubled())
         return sorted(found)
 
     # -- the whole energy -------------------------------------------------------------
@@ -222,6 +232,9 @@ class Energy:
             "path_shape": sum(fresh["shape"]) + sum(fresh["junction"].values()),
             "extent": sum(fresh["box_extent"]) + sum(fresh["path_extent"]),
         }
+        fresh["room"] = self.room.fresh() if self.room is not None else None
+        for part in ROOM_PARTS:
+            fresh["parts"][part] = fresh["room"]["parts"][part] if self.room is not None else 0.0
         return fresh
 
     def _install(self, fresh: dict) -> None:
@@ -229,6 +242,8 @@ class Energy:
         self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
         self.shape, self.junction = fresh["shape"], fresh["junction"]
         self.box_extent, self.path_extent = fresh["box_extent"], fresh["path_extent"]
+        if self.room is not None:
+            self.room.install(fresh["room"])
         self.parts = dict(fresh["parts"])
         self.total = sum(self.parts.values())
 
@@ -344,9 +359,13 @@ class Energy:
         for path in paths:
             new_path_extent[path] = self.path_extent_energy(path)
             delta["extent"] += new_path_extent[path] - self.path_extent[path]
+        room = None
+        if self.room is not None and boxes:
+            room = self.room.changes(boxes)
+            delta.update(room.delta)
         return Changes(
             delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-            new_shape, new_junction, new_box_extent, new_path_extent,
+            new_shape, new_junction, new_box_extent, new_path_extent, room,
         )  # fmt: skip
 
     def _boxes_near_path(self, path: int) -> list[int]:
@@ -389,6 +408,8 @@ class Energy:
             self.box_extent[box] = value
         for path, value in changes.path_extent.items():
             self.path_extent[path] = value
+        if changes.room is not None:
+            self.room.accept(changes.room)
         for part, value in changes.delta.items():
             self.parts[part] += value
         self.total = sum(self.parts.values())

@@ -18,6 +18,14 @@ how far pinned things that must be next to a road are from it, and such roads ar
 pulled towards those things (``Mover.pull``). The rest is placed around them as above.
 A group holding any given box is not placed again as a whole (its given boxes stay
 where they were put). Without pins or a start, nothing here draws a different number.
+
+In a room, walls, doors and windows are fixed and count as placed, and furniture that
+stands against a wall (a wall relation) goes first: what has few places to go (under or
+beside a window, in a corner) before what may stand anywhere along a wall, each the
+largest footprint first, so the room starts from a plausible state: the desk takes the
+window and the bed a wall before the chair looks for a place in front of the desk. With line of sight, tall boxes not
+yet placed wait outside the room (``_park``), so they block no view before they have a
+place of their own.
 """
 
 from __future__ import annotations
@@ -33,7 +41,7 @@ from scenewright.core.relations import RELATIONS
 from .energy import Energy
 from .moves import Mover, rigid, wrap
 from .pinning import Pins
-from .problem import Endpoint, RelationTerm
+from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .relation_terms import evaluate
 
 #: Paths stay this far (metres) inside the extent when first laid out.
@@ -49,6 +57,8 @@ PATH_WIGGLE = 0.15
 #: Around pinned or started things, candidate junctions lie within this share of the
 #: extent from its centre (without them: 0.15).
 JUNCTION_SPREAD = 0.25
+#: Tries for a random spot on the floor of a room that is not a rectangle.
+FLOOR_TRIES = 20
 
 
 def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: Pins | None = None) -> None:
@@ -65,6 +75,7 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: 
             pose = preset[box]
             state.set_pose(box, pose.x, pose.z, pose.yaw)
         energy.activate(sorted(preset))
+    _park(energy)
     held = _held_terms(energy, mover, pins)
     _lay_paths(energy, rng, pins, held)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
@@ -73,9 +84,11 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: 
         )
     pending = list(problem.units)
     priority = _priorities(energy)
+    walls_first = _wall_order(energy)
     while pending:
         ready = [u for u in pending if _anchors_placed(energy, u)] or pending[:1]
-        unit = max(ready, key=lambda u: priority[u])  # the first of the most constrained
+        # Furniture against the walls (see _wall_order), then the first of the most constrained.
+        unit = max(ready, key=lambda u: (walls_first.get(u, (-1, 0.0)), priority[u]))
         pending.remove(unit)
         kind, index = unit
         if kind == "group":
@@ -117,12 +130,47 @@ def _priorities(energy: Energy) -> dict[tuple[str, int], int]:
     return priority
 
 
+def _wall_order(energy: Energy) -> dict[tuple[str, int], tuple[int, float]]:
+    """For each free object with a wall relation, its rank: first those with few places
+    to go (under or beside a window, in a corner), then those anywhere along a wall,
+    each the largest footprint first; others are not listed (nothing outdoors)."""
+    problem = energy.problem
+    order = {}
+    for unit in problem.units:
+        kind, index = unit
+        placements = [t.spec.wall for t in _outgoing(energy, kind, index) if t.spec.family == "wall"]
+        if kind == "object" and placements:
+            spots = 1 if any(p != "against" for p in placements) else 0
+            order[unit] = (spots, 4.0 * problem.half_width[index] * problem.half_depth[index])
+    return order
+
+
+def _park(energy: Energy) -> None:
+    """In a room with line of sight: put the tall boxes that may block a view, and what
+    rests on them, outside the room until they are placed (the state starts them all at
+    the origin, in the middle of the room). Inactive boxes count for nothing else."""
+    problem, state = energy.problem, energy.state
+    if problem.room is None or not problem.line_of_sight:
+        return
+    tall = sorted({box for term in problem.relations for box in term.sight if not energy.active[box]})
+    far = 10.0 * (max(problem.extent) + max(problem.size, default=1.0))  # well clear of the room
+    for k, box in enumerate(tall):
+        dx, dz = far + 2.0 * k * max(problem.size) - state.x[box], far - state.z[box]
+        for item in problem.carried(box):
+            if not energy.active[item]:
+                state.set_pose(item, state.x[item] + dx, state.z[item] + dz, state.yaw[item])
+
+
 def _outgoing(energy: Energy, end_kind: str, index: int) -> list[RelationTerm]:
     return energy.problem.outgoing.get((end_kind, index), [])
 
 
 def _placed(energy: Energy, end: Endpoint) -> bool:
-    return end.kind == "path" or (bool(end.members) and all(energy.active[b] for b in end.members))
+    """Whether an end has its place: a path (laid first), a room's part (fixed), or
+    boxes all in the energy."""
+    if end.kind == "path" or end.kind in ROOM_ENDS:
+        return True
+    return bool(end.members) and all(energy.active[b] for b in end.members)
 
 
 def _boxes_of(problem, unit: tuple[str, int]) -> tuple[int, ...]:
@@ -149,7 +197,7 @@ def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
             continue
         for term in problem.outgoing[(incoming.a.kind, incoming.a.index)]:
             if term is not incoming and term.spec.family == "next_to" and _placed(energy, term.b):
-                return replace(term, a=end, label="NextTo", spec=RELATIONS["NextTo"])
+                return replace(term, a=end, label="NextTo", spec=RELATIONS["NextTo"], sight=())
     return None
 
 
@@ -386,6 +434,7 @@ def _place_box(
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
     positional = [t for t in outgoing if t.spec.family != "facing"]
+    walls = [t for t in positional if t.spec.family == "wall"]
     facing = [t for t in outgoing if t.spec.family == "facing"]
     incoming = [
         t for t in problem.incoming.get(("object", box), [])
@@ -399,7 +448,7 @@ def _place_box(
         if positional or incoming:
             pick = int(rng.integers(len(positional) + len(incoming)))
             if pick < len(positional):
-                return mover.place_for_relation(positional[pick]), {}
+                return mover.place_by(positional[pick], walls), {}
             return mover.place_target_for(incoming[pick - len(positional)]), {}
         if anchor_term is not None:
             return mover.place_for_relation(anchor_term), {}
@@ -425,6 +474,12 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
     half_z = max(problem.extent[1] / 2.0 - reach, 0.0)
     yaw = wrap(math.pi / 2.0 * int(rng.integers(4)))
     x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
+    room = problem.room
+    if room is not None and len(room.walls) > 4:  # an L-shaped room's box has floor missing
+        for _ in range(FLOOR_TRIES):
+            if room.contains(x, z):
+                break
+            x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
     turn = wrap(yaw - state.yaw[box])
     return rigid(state, problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
 

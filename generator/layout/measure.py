@@ -3,9 +3,10 @@
 ``measure_layout(graph, poses, paths)`` puts every object and junction at its given pose
 and every path at its given points, and returns the ``LayoutResult`` the sampler would
 report for that state: each relation with its value, verdict and chosen direction, the
-problems, ``ok``, the energy and its parts, and ``steps`` 0. The poses are used as given,
-y included (heights are not recomputed from the supports), so a scene built by
-``layout_scene`` measures to the verdicts its layout reported.
+problems (in a room its own too: a box across a wall, in a door's swing, in a space kept
+free, out of reach), ``ok``, the energy and its parts, and ``steps`` 0. The poses are
+used as given, y included (heights are not recomputed from the supports), so a scene
+built by ``layout_scene`` measures to the verdicts its layout reported.
 """
 
 from __future__ import annotations

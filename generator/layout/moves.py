@@ -3,18 +3,32 @@
 A proposal is ``(boxes, paths)``: ``{box: (x, z, yaw)}`` and ``{path: points}``. Whatever
 rests on a moved box moves with it rigidly, so supports carry their stacks. Move types:
 
-- ``jitter``: shift one box (a stacked box slides over its support's top);
+- ``jitter``: shift one box (a stacked box slides over its support's top; a box
+  standing against a wall as its wall relation wants half the time slides along it);
 - ``rotate``: turn one box a little, or snap it to a multiple of 90 degrees;
 - ``group``: move or turn a whole group rigidly;
-  in a room (``walls``) boxes and groups only turn by quarter turns, so furniture stays
-  square to the walls unless a relation turns it (a chair facing a desk);
+  in a room (``walls``) boxes and groups only turn by quarter turns (square to the
+  room's longest wall), so furniture stays square to the walls unless a relation turns
+  it (a chair facing a desk);
 - ``cluster``: shift a set of items tied together by relations (a tower, the smithy
-  beside it and the sign behind it) as one, so they can leave a bad spot together;
+  beside it and the sign behind it) as one, so they can leave a bad spot together (in
+  a room, half the time along the wall the first of them against a wall stands at: a
+  bed with its nightstands moves along its wall);
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
   source where that relation holds (on the right side of B at a small gap, on B's top,
   beside a road at a random point along it, turned to face B, ...), or move its target
   instead (B shifted next to A, or turned so that A is on the side the label names); an
   A with several placing relations gets the best of a few tries under all of them;
+  in rooms: A with its back flush to a wall (``_place_at_wall``: at a random spot along
+  the wall, in a corner, under or beside a window; for the room as target, on a wall or
+  window drawn by how much room it leaves), parallel to B with a face flush
+  (AlignedWith, or B to A), turned to B's opposite heading (FacingOpposite), next to
+  a wall, window or the room at a small gap on the side named (into the room); a try by
+  another relation of an A that must also stand against a wall is then pushed back
+  onto the nearest fitting wall (``snap``), so "against the wall, left of the bed"
+  lands where both hold; a wall move sometimes carries along rigidly what is in place
+  by A (the bed goes to another wall with the nightstands beside it, the desk with its
+  chair);
 - ``path``: move one control point of a path, or bend the path's tail around a point;
 - ``junction``: move a junction, with the start of every path leaving it.
 
@@ -41,12 +55,13 @@ import math
 import numpy as np
 
 from scenewright.core.frames import to_world
+from scenewright.core.room import Wall
 
 from .params import LayoutParams
 from .pinning import Pins
-from .problem import Endpoint, Problem, RelationTerm
+from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm
 from .geometry import nearest_on_polyline
-from .relation_terms import anchor, centre, evaluate, source_point
+from .relation_terms import BESIDE_DISTANCE, WINDOW_PLACEMENTS, anchor, centre, evaluate, satisfied, source_point
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -69,6 +84,27 @@ FOCUS_WEIGHT = 1.0
 
 #: Tries of a data-driven move for an item with several placing relations.
 MULTI_TRIES = 8
+
+#: Gaps (metres) a data-driven AlignedWith proposal leaves between A and B, and a
+#: BesideWindow one between A and the window's edge.
+ALIGN_GAP = (0.02, 0.3)
+BESIDE_GAP = (0.02, min(0.25, BESIDE_DISTANCE))
+
+#: Random spots along a wall tried before one in front of a door (or of a window, for
+#: furniture taller than its sill) is taken anyway.
+WALL_TRIES = 6
+#: Furniture taller than a window's sill closer than this (metres) to its wall stands
+#: in front of the window (a door's zone is its swing, as deep as the door is wide).
+WINDOW_KEEP = 0.5
+#: Share of jitter and cluster moves of furniture standing against a wall that slide
+#: along the wall (a random shift would take it off the wall).
+SLIDE_SHARE = 0.5
+#: Share of data-driven wall moves of an A tied to others that carry those in place along.
+CARRY_SHARE = 0.3
+#: A box slides along its wall only when it stands against it: back within this gap
+#: (metres) and angle (radians).
+SLIDE_GAP = 0.1
+SLIDE_ANGLE = 0.1
 
 HALF_PI = math.pi / 2.0
 
@@ -152,6 +188,18 @@ class Mover:
             if term.placeable and (self._movable(term.a) or self._movable(term.b) or t in self.pullable)
         ]  # fmt: skip
         self.clusters = [c for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem)) if c]
+        self.cluster_of = {box: cluster for cluster in self.clusters for box in cluster}
+        # Free boxes with a wall relation (rooms only): their jitter may slide along the wall.
+        self.wall_terms: dict[int, list[RelationTerm]] = {}
+        for term in problem.relations:
+            if term.spec.family == "wall" and self.movable_box[term.a.index] and problem.support[term.a.index] < 0:
+                self.wall_terms.setdefault(term.a.index, []).append(term)
+        # Quarter turns in a room are square to its longest wall (0 when the walls run
+        # north-south and east-west, so those rooms snap as to the world's axes).
+        self.square_base = 0.0
+        if problem.room is not None:
+            longest = max(problem.room.walls, key=lambda wall: wall.length)
+            self.square_base = math.remainder(longest.facing_yaw, HALF_PI) + 0.0
         self.focus_positions: list[int] = []
         self.focus_boxes: list[int] = []
         available = {
@@ -223,12 +271,15 @@ class Mover:
         scale = min(problem.half_width[below], problem.half_depth[below]) if below >= 0 else 2.0
         sigma = _log_uniform(rng, 0.02, 1.0) * scale
         shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
+        if box in self.wall_terms and rng.random() < SLIDE_SHARE:
+            shift = self._along_wall(box, shift)
         return rigid(state, problem.carried(box), (state.x[box], state.z[box]), 0.0, shift), {}
 
     def rotate(self, box: int) -> tuple[dict, dict]:
         state, rng = self.state, self.rng
         if self.problem.walls or rng.random() < 0.3:
-            target = HALF_PI * (round(state.yaw[box] / HALF_PI) + int(rng.integers(-1, 2)))
+            base = self.square_base
+            target = base + HALF_PI * (round((state.yaw[box] - base) / HALF_PI) + int(rng.integers(-1, 2)))
             turn = target - state.yaw[box]
         else:
             turn = rng.normal(0.0, _log_uniform(rng, 0.02, 0.8))
@@ -248,6 +299,10 @@ class Mover:
     def move_cluster(self, boxes: list[int]) -> tuple[dict, dict]:
         sigma = _log_uniform(self.rng, 0.05, 2.0)
         shift = (self.rng.normal(0.0, sigma), self.rng.normal(0.0, sigma))
+        if self.wall_terms:
+            anchored = next((box for box in boxes if box in self.wall_terms), None)
+            if anchored is not None and self.rng.random() < SLIDE_SHARE:
+                shift = self._along_wall(anchored, shift)
         return rigid(self.state, boxes, (0.0, 0.0), 0.0, shift), {}
 
     def move_path(self, path: int) -> tuple[dict, dict] | None:
@@ -306,8 +361,12 @@ class Mover:
             boxes = self.turn_target_for(term)
         elif b_movable and term.spec.family == "next_to" and (not a_movable or self.rng.random() < REVERSE_SHARE):
             boxes = self.place_target_for(term)
+        elif term.spec.family == "alignment" and b_movable and (not a_movable or self.rng.random() < REVERSE_SHARE):
+            boxes = self.place_aligned(term.b.index, term.a.index)  # symmetric: line B up with A
         elif a_movable and len(self._placing_terms(term.a)) > 1:
             boxes = self.place_for_all(term.a)
+        elif a_movable and term.spec.family == "wall" and term.a.index in self.cluster_of and self.rng.random() < CARRY_SHARE:
+            boxes = self.carry_to_wall(term)
         elif a_movable:
             boxes = self.place_for_relation(term)
         elif index in self.pullable:
@@ -361,15 +420,17 @@ class Mover:
     def place_for_all(self, end: Endpoint) -> dict | None:
         """For an A with several placing relations: the best of a few data-driven poses.
 
-        Each try places A by one of its relations drawn at random; the tries are ranked by
-        the energy of all of A's placing relations together, so a smithy that must be both
-        beside a tower and next to a road lands where both hold, when any try found it.
+        Each try places A by one of its relations drawn at random (``place_by``); the
+        tries are ranked by the energy of all of A's placing relations together, so a
+        smithy that must be both beside a tower and next to a road lands where both
+        hold, when any try found it.
         """
         state = self.state
         terms = self._placing_terms(end)
+        walls = [t for t in terms if t.spec.family == "wall"]
         best, best_energy = None, math.inf
         for _ in range(MULTI_TRIES):
-            proposal = self.place_for_relation(terms[int(self.rng.integers(len(terms)))])
+            proposal = self.place_by(terms[int(self.rng.integers(len(terms)))], walls)
             if not proposal:
                 continue
             with state.trying(proposal):
@@ -377,6 +438,21 @@ class Mover:
             if energy < best_energy:
                 best, best_energy = proposal, energy
         return best
+
+    def place_by(self, term: RelationTerm, walls: list[RelationTerm]) -> dict | None:
+        """A placed by ``term``; when A must also stand against a wall (``walls``, its
+        wall relations) and ``term`` is another kind, then half the time pushed onto the
+        nearest spot that wall relation allows (keeping its place along the wall)."""
+        proposal = self.place_for_relation(term)
+        if not proposal or not walls or term.spec.family == "wall" or term.a.kind != "object":
+            return proposal
+        if self.rng.random() < 0.5:
+            wall_term = walls[int(self.rng.integers(len(walls)))]
+            with self.state.trying(proposal):
+                snapped = self._place_at_wall(wall_term, snap=True)
+            if snapped:
+                proposal = {**proposal, **snapped}
+        return proposal
 
     def place_for_relation(self, term: RelationTerm, *, keep_heading: bool = False) -> dict | None:
         """New poses for A (and all it carries) at which ``term`` holds, or None.
@@ -391,6 +467,10 @@ class Mover:
                 if self.group_whole[self.top_group_of[term.a.index]]:
                     return self.turn_group_to_face(term)
             return self.turn_to_face(term)
+        if family == "wall":
+            return self._place_at_wall(term)
+        if family == "alignment":
+            return self.place_aligned(term.a.index, term.b.index)
         return self._place_on_top(term)
 
     def moving_boxes(self, end: Endpoint) -> list[int]:
@@ -401,6 +481,8 @@ class Mover:
     def _place_next_to(self, term: RelationTerm, keep_heading: bool = False) -> dict:
         problem, state, rng = self.problem, self.state, self.rng
         a, b = term.a, term.b
+        if b.kind in ROOM_ENDS:
+            return self._place_by_room_part(term)
         ax, az = centre(a, state)
         gap = rng.uniform(*GAP_RANGE)
         turn = 0.0
@@ -511,7 +593,12 @@ class Mover:
             yaw = math.atan2(ax - bx, az - bz)
         else:
             b_yaw = math.atan2(s, c) if b.kind != "group" else 0.0
-            yaw = b_yaw if how == "same" else b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
+            if how == "same":
+                yaw = b_yaw
+            elif how == "opposite":
+                yaw = b_yaw + math.pi
+            else:
+                yaw = b_yaw + (HALF_PI if self.rng.random() < 0.5 else -HALF_PI)
         return wrap(yaw - state.yaw[a.index])
 
     def _place_on_top(self, term: RelationTerm) -> dict:
@@ -536,6 +623,244 @@ class Mover:
             lx, lz = rng.uniform(-room_x, room_x), rng.uniform(-room_z, room_z)
         x, z = to_world(state.x[b], state.z[b], state.yaw[b], lx, lz)
         return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))
+
+
+    # -- rooms ---------------------------------------------------------------------------
+
+    def _along_wall(self, box: int, shift: tuple[float, float]) -> tuple[float, float]:
+        """``shift`` projected onto the wall the box stands against by its (first) wall
+        relation (the wall, or window, that relation measures best), so the box stays
+        flush; unchanged when the box is not against that wall now."""
+        term = self.wall_terms[box][0]
+        measure = evaluate(term, self.state, self.params)
+        if math.isinf(measure.energy) or abs(measure.distance) > SLIDE_GAP or measure.angle > SLIDE_ANGLE:
+            return shift  # not against it (or no window for a window label)
+        room = self.problem.room
+        part = room.part(measure.chosen or term.target)
+        wall = part if isinstance(part, Wall) else room.part(part.wall)
+        tx, tz = wall.direction
+        along = shift[0] * tx + shift[1] * tz
+        return along * tx, along * tz
+
+    def _pose_box(self, box: int, x: float, z: float, yaw: float) -> dict:
+        """The box at exactly (x, z, yaw) (flush means flush, not flush up to rounding),
+        with what rests on it carried along rigidly."""
+        state = self.state
+        turn = wrap(yaw - state.yaw[box])
+        moved = rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
+        moved[box] = (x, z, yaw)
+        return moved
+
+    def _place_at_wall(self, term: RelationTerm, *, snap: bool = False) -> dict | None:
+        """A (an object on the ground) with its back flush to a wall: yaw the wall's
+        ``facing_yaw``, its centre half its depth from the wall, where the wall label
+        wants it (``_wall_spots``). A spot is drawn by how much room it leaves, then a
+        place along it at random, avoiding doors' swings and, for furniture taller than
+        a window's sill, the window. ``snap``: the spot nearest A as it stands, at the
+        place along the wall nearest A (no random draw)."""
+        problem, state, rng = self.problem, self.state, self.rng
+        box = term.a.index
+        if problem.support[box] >= 0:
+            return None  # it moves with what it rests on
+        spots = self._wall_spots(term)
+        if not spots:
+            return None
+        hd = problem.half_depth[box]
+        if snap:
+            best, best_distance = None, math.inf
+            for wall, low, high, _ in spots:
+                u, _ = wall.to_wall(state.x[box], state.z[box])
+                x, z = wall.to_world(min(max(u, low), high), hd)
+                distance = math.hypot(x - state.x[box], z - state.z[box])
+                if distance < best_distance - 1e-12:
+                    best, best_distance = (x, z, wall.facing_yaw), distance
+            return self._pose_box(box, *best)
+        total = sum(weight for *_, weight in spots)
+        draw = rng.random() * total
+        for wall, low, high, weight in spots:
+            draw -= weight
+            if draw < 0.0:
+                break
+        yaw = wall.facing_yaw
+        c, s = math.cos(yaw), math.sin(yaw)
+        for _ in range(WALL_TRIES if high > low else 1):
+            u = rng.uniform(low, high) if high > low else low
+            x, z = wall.to_world(u, hd)
+            if self._clear_of_openings(box, x, z, c, s):
+                break
+        return self._pose_box(box, x, z, yaw)
+
+    def carry_to_wall(self, term: RelationTerm) -> dict | None:
+        """A placed by its wall relation, and the free boxes a relation that holds now
+        ties to A (with what rests on them) turned and shifted with it rigidly, so a bed
+        moves to another wall with the nightstands that stand beside it; one that is
+        not in place yet stays to be placed on its own."""
+        problem, state = self.problem, self.state
+        box = term.a.index
+        placed = self._place_at_wall(term)
+        if not placed:
+            return None
+        in_place = set(problem.carried(box))
+        for index in problem.terms_of_box[box]:
+            tie = problem.relations[index]
+            if tie.a.kind != "object" or tie.b.kind != "object" or box not in (tie.a.index, tie.b.index):
+                continue
+            other = tie.b.index if tie.a.index == box else tie.a.index
+            if other in self.cluster_of[box] and satisfied(tie, evaluate(tie, state, self.params), self.params):
+                in_place.update(b for b in problem.carried(other) if b in self.cluster_of[box])
+        x, z, yaw = placed[box]
+        pivot = (state.x[box], state.z[box])
+        moved = rigid(state, sorted(in_place), pivot, wrap(yaw - state.yaw[box]), (x - pivot[0], z - pivot[1]))
+        moved[box] = (x, z, yaw)
+        return moved
+
+    def _wall_spots(self, term: RelationTerm) -> list[tuple[Wall, float, float, float]]:
+        """Where the wall label lets A's centre go, as (wall, lowest u, highest u, weight):
+        a stretch of a wall (against: where A's whole footprint stays on the wall) or a
+        single place (a corner, under a window, beside either edge of one). For the room
+        as target every wall or window is a candidate, weighted by the room left along
+        it (wall length minus A's width; 1 for a single place). Places A does not fit,
+        and single places in a door's swing (or, for furniture taller than its sill, in
+        front of a window), are left out unless nothing else is left."""
+        problem, state = self.problem, self.state
+        room, box, b = problem.room, term.a.index, term.b
+        hw = problem.half_width[box]
+        placement = term.spec.wall
+        if placement in WINDOW_PLACEMENTS:
+            openings = room.windows if b.kind == "room" else [room.openings[b.index]]
+            walls = []
+        else:
+            openings = []
+            if b.kind == "room":
+                walls = list(room.walls)
+            elif b.kind == "wall":
+                walls = [room.walls[b.index]]
+            else:
+                walls = [room.part(room.openings[b.index].wall)]
+        fitting: list[tuple[Wall, float, float, float]] = []
+        rest: list[tuple[Wall, float, float, float]] = []
+        for wall in walls:
+            length = wall.length
+            if placement == "against":
+                room_left = length - 2.0 * hw
+                spot = (wall, hw, length - hw, room_left) if room_left > 0.0 else (wall, length / 2.0, length / 2.0, 0.0)
+                (fitting if room_left > 0.0 else rest).append(spot)
+                continue
+            before, after = room.neighbours(wall.id)
+            for other, at_start in ((before, True), (after, False)):
+                if not (room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)):
+                    continue
+                u = self._corner_u(box, wall, other)
+                if u is None:
+                    continue
+                fits = hw - 1e-9 <= u <= length - hw + 1e-9 and self._clear_at(box, wall, u)
+                (fitting if fits else rest).append((wall, u, u, 1.0))
+        top = state.y[box] + problem.height[box]
+        for window in openings:
+            wall = room.part(window.wall)
+            if placement == "under_window":
+                u = window.offset
+                fits = top <= window.sill and hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
+                (fitting if fits else rest).append((wall, u, u, 1.0))
+                continue
+            gap = self.rng.uniform(*BESIDE_GAP)
+            for u in (window.offset - window.width / 2.0 - gap - hw, window.offset + window.width / 2.0 + gap + hw):
+                fits = hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
+                (fitting if fits else rest).append((wall, u, u, 1.0))
+        if fitting:
+            return fitting
+        return [(wall, low, high, 1.0) for wall, low, high, _ in rest]
+
+    def _corner_u(self, box: int, wall: Wall, other: Wall) -> float | None:
+        """Where along ``wall`` A's centre goes (back flush, yaw the wall's facing_yaw) so
+        that its footprint just touches the neighbouring wall ``other``: the distance of
+        its centre from ``other`` is then its reach towards it."""
+        problem = self.problem
+        yaw = wall.facing_yaw
+        c, s = math.cos(yaw), math.sin(yaw)
+        nx, nz = other.normal
+        reach_other = problem.half_width[box] * abs(c * nx - s * nz) + problem.half_depth[box] * abs(s * nx + c * nz)
+        tx, tz = wall.direction
+        rate = tx * nx + tz * nz  # how fast the distance from ``other`` changes along ``wall``
+        if abs(rate) < 1e-9:
+            return None
+        _, v0 = other.to_wall(*wall.to_world(0.0, problem.half_depth[box]))
+        return (reach_other - v0) / rate
+
+    def _clear_at(self, box: int, wall: Wall, u: float) -> bool:
+        """``_clear_of_openings`` for the box with its back flush to ``wall`` at ``u``."""
+        x, z = wall.to_world(u, self.problem.half_depth[box])
+        return self._clear_of_openings(box, x, z, math.cos(wall.facing_yaw), math.sin(wall.facing_yaw))
+
+    def _clear_of_openings(self, box: int, x: float, z: float, c: float, s: float) -> bool:
+        """Whether the box at (x, z) turned by (c, s) keeps out of every door's swing and
+        does not stand in front of a window lower than its top."""
+        problem, room = self.problem, self.problem.room
+        hw, hd = problem.half_width[box], problem.half_depth[box]
+        top = self.state.y[box] + problem.height[box]
+        for opening in room.openings:
+            if opening.kind == "window" and top <= opening.sill:
+                continue
+            wall = room.part(opening.wall)
+            tx, tz = wall.direction
+            nx, nz = wall.normal
+            reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
+            reach_v = hw * abs(c * nx - s * nz) + hd * abs(s * nx + c * nz)
+            u, v = wall.to_wall(x, z)
+            keep = opening.width if opening.kind == "door" else WINDOW_KEEP
+            if v - reach_v < keep and abs(u - opening.offset) < reach_u + opening.width / 2.0:
+                return False
+        return True
+
+    def place_aligned(self, mover: int, other: int) -> dict | None:
+        """Box ``mover`` parallel to box ``other`` with a face flush: beside it (to its left
+        or right) with the backs or the fronts in one line, or in front of or behind it
+        with a side in line with its side, at a small gap. A box already parallel keeps
+        its way round (same or opposite heading); another takes ``other``'s heading."""
+        problem, state, rng = self.problem, self.state, self.rng
+        if problem.support[mover] >= 0 or not self.movable_box[mover]:
+            return None
+        b_yaw = state.yaw[other]
+        dot = state.s[mover] * state.s[other] + state.c[mover] * state.c[other]
+        yaw = b_yaw + math.pi if dot < -0.5 else b_yaw
+        ex, ez = problem.half_width[mover], problem.half_depth[mover]  # parallel: its axes are B's
+        hw, hd = problem.half_width[other], problem.half_depth[other]
+        gap = rng.uniform(*ALIGN_GAP)
+        side = 1.0 if rng.random() < 0.5 else -1.0
+        if rng.random() < 0.75:  # beside B, backs (mostly) or fronts flush
+            lx = side * (hw + ex + gap)
+            lz = ez - hd if rng.random() < 0.7 else hd - ez
+        else:  # in front of or behind B, a side flush
+            lz = side * (hd + ez + gap)
+            lx = hw - ex if rng.random() < 0.5 else ex - hw
+        x, z = to_world(state.x[other], state.z[other], b_yaw, lx, lz)
+        return self._pose_box(mover, x, z, wrap(yaw))
+
+    def _place_by_room_part(self, term: RelationTerm) -> dict:
+        """A next to a wall, an opening or the room (a wall drawn by its length): at a
+        small gap from the wall, at a random place along it (along the opening's
+        stretch), on the side the label names (into the room by default)."""
+        problem, state, rng = self.problem, self.state, self.rng
+        room, b = problem.room, term.b
+        if b.kind == "opening":
+            opening = room.openings[b.index]
+            wall = room.part(opening.wall)
+            low, high = opening.offset - opening.width / 2.0, opening.offset + opening.width / 2.0
+        else:
+            if b.kind == "wall":
+                wall = room.walls[b.index]
+            else:
+                lengths = np.array([w.length for w in room.walls])
+                wall = room.walls[int(rng.choice(len(lengths), p=lengths / lengths.sum()))]
+            low, high = 0.0, wall.length
+        if term.spec.directions:
+            wx, wz = self._wanted_direction(term, wall.normal[1], wall.normal[0])  # the wall faces into the room
+        else:
+            wx, wz = wall.normal
+        px, pz = wall.to_world(rng.uniform(low, high), 0.0)
+        ax, az = centre(term.a, state)
+        distance = end_reach(problem, state, term.a, -wx, -wz) + rng.uniform(*GAP_RANGE)
+        return rigid(state, self.moving_boxes(term.a), (ax, az), 0.0, (px + wx * distance - ax, pz + wz * distance - az))
 
 
 def _clusters(problem: Problem) -> list[list[int]]:

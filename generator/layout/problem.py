@@ -5,17 +5,32 @@ from); groups become the tuple of boxes they contain; paths become numbered poly
 every relation edge becomes a ``RelationTerm`` whose endpoints say what geometry they
 stand for. Per box and per path the terms that touch it are listed up front, so a move
 re-evaluates only those.
+
+Line of sight (a room with ``line_of_sight``): "in front of" / "behind" (next-to labels
+whose directions are on B's own front or back) and FacingTowards / FacingAwayFrom
+between two objects do not hold through a tall object standing between them. Each such
+term lists, in ``sight``, the ground boxes at least ``SIGHT_HEIGHT`` tall that could
+stand in the way (all but A, B and what they rest on or carry), and those boxes list
+the term in ``terms_of_box``, so moving a tall box re-evaluates the relations it may
+block.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.core.room import ROOM_KINDS, ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
+
+#: Line of sight: a ground box at least this tall (metres) blocks the view between two
+#: objects (a seated person's eye height: a desk or a sofa does not, a wardrobe does).
+SIGHT_HEIGHT = 1.2
+
+#: Endpoint kinds that stand for a room's parts (fixed: they have no boxes).
+ROOM_ENDS = ("wall", "opening", "room")
 
 
 @dataclass(frozen=True)
@@ -37,15 +52,37 @@ class RelationTerm:
     spec: RelationLabel  # the registry's record: the geometry it asks for
     a: Endpoint
     b: Endpoint
+    #: Line of sight: the tall ground boxes that may stand between A and B (empty when
+    #: the relation does not need a clear view, outdoors, or with line of sight off).
+    sight: tuple[int, ...] = ()
 
     @property
     def touches_path(self) -> bool:
-        return self.a.kind == "path" or self.b.kind == "path"
+        """Whether the term reads geometry that does not move with its own boxes: a path,
+        a room's wall, window or door, or (``sight``) tall boxes that may stand between
+        its ends. A shared translation of its boxes can change such a term, so the
+        energy re-evaluates it after one (``Energy._changes``). (Named when paths were
+        the only such geometry.)"""
+        return bool(self.sight) or self.a.kind in _FIXED_ENDS or self.b.kind in _FIXED_ENDS
 
     @property
     def placeable(self) -> bool:
         """False when an end is a group with nothing in it: there is nothing to place."""
         return all(end.kind != "group" or end.members for end in (self.a, self.b))
+
+
+_FIXED_ENDS = ("path",) + ROOM_ENDS
+
+
+def needs_sight(spec: RelationLabel) -> bool:
+    """Whether a label needs a clear view from A to B: a next-to label whose directions
+    are all on B's own front or back ("in front of", "behind"), or facing towards or
+    away from B."""
+    if spec.family == "facing":
+        return spec.facing in ("towards", "away")
+    if spec.family == "next_to" and spec.frame == "target" and spec.directions:
+        return all(abs(lz) > abs(lx) for lx, lz in spec.directions.values())
+    return False
 
 
 @dataclass
@@ -189,6 +226,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
             edges.append((edge.source, edge.target, edge.label, None))
             continue
         a, b = endpoint(edge.source), endpoint(edge.target)
+        _refuse_room_misuse(edge, spec, a, b, room)
         if spec.support:
             if a.kind != "object" or b.kind != "object":
                 raise InputError(f"{edge.source} {edge.label} {edge.target}: only objects can rest on objects")
@@ -202,6 +240,8 @@ def compile_problem(graph: SceneGraph) -> Problem:
         if below >= 0:
             dependents[below].append(box)
     _refuse_support_cycles(support, ids)
+    if room is not None and graph.params.line_of_sight:
+        relations = _with_sight(relations, support, dependents, is_junction, height)
 
     problem = Problem(
         ids=ids, is_junction=is_junction, half_width=half_width, half_depth=half_depth,
@@ -222,6 +262,9 @@ def compile_problem(graph: SceneGraph) -> Problem:
                     problem.terms_of_box[box].append(term_index)
             if end.kind == "path" and term_index not in problem.terms_of_path[end.index]:
                 problem.terms_of_path[end.index].append(term_index)
+        for box in term.sight:  # a tall box moving may block or clear the view
+            if term_index not in problem.terms_of_box[box]:
+                problem.terms_of_box[box].append(term_index)
     for term in relations:
         problem.outgoing.setdefault((term.a.kind, term.a.index), []).append(term)
         problem.incoming.setdefault((term.b.kind, term.b.index), []).append(term)
@@ -239,6 +282,57 @@ def compile_problem(graph: SceneGraph) -> Problem:
         elif node.id in box_index and box_index[node.id] in problem.free_boxes:
             problem.units.append(("object", box_index[node.id]))
     return problem
+
+
+def _with_sight(relations, support, dependents, is_junction, height) -> list[RelationTerm]:
+    """The relations, each one that needs a clear view between two objects given the
+    tall ground boxes that may block it (``RelationTerm.sight``)."""
+    tall = [
+        box for box in range(len(support))
+        if support[box] == -1 and not is_junction[box] and height[box] >= SIGHT_HEIGHT
+    ]  # fmt: skip
+    if not tall:
+        return relations
+
+    def stack(box: int) -> set[int]:  # the box, what it rests on and what rests on it
+        found, below = {box}, support[box]
+        while below >= 0:
+            found.add(below)
+            below = support[below]
+        todo = [box]
+        while todo:
+            for above in dependents[todo.pop()]:
+                found.add(above)
+                todo.append(above)
+        return found
+
+    out = []
+    for term in relations:
+        if term.a.kind == "object" and term.b.kind == "object" and needs_sight(term.spec):
+            own = stack(term.a.index) | stack(term.b.index)
+            blockers = tuple(box for box in tall if box not in own)
+            if blockers:
+                term = replace(term, sight=blockers)
+        out.append(term)
+    return out
+
+
+def _refuse_room_misuse(edge, spec: RelationLabel, a: Endpoint, b: Endpoint, room: Room | None) -> None:
+    """Wall labels stand an object against a room's wall or window; AlignedWith lines up
+    two objects; and a room's parts are fixed, so they cannot be placed."""
+    where = f"{edge.source} {edge.label} {edge.target}"
+    if spec.family == "wall":
+        if a.kind != "object":
+            raise InputError(f"{where}: only an object can stand against a wall ({edge.source} is a {a.kind})")
+        door = b.kind == "opening" and room.openings[b.index].kind == "door"
+        if b.kind not in ROOM_ENDS or door:
+            raise InputError(f"{where}: the target must be a wall, a window or the room")
+        if spec.wall in ("under_window", "beside_window") and b.kind == "wall":
+            raise InputError(f"{where}: the target must be a window or the room, not a wall")
+    elif spec.family == "alignment" and (a.kind != "object" or b.kind != "object"):
+        raise InputError(f"{where}: only two objects can be lined up")
+    elif a.kind in ROOM_ENDS:
+        raise InputError(f"{where}: {edge.source} is part of the room and cannot be placed; write the relation from the object")
 
 
 def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, int]:

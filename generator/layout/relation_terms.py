@@ -21,6 +21,14 @@ leaves the geometry open:
 - FacingAwayFrom: the table's range(fA . fB, -1, 0) compares forward vectors, which
   cannot tell back-to-back from face-to-face. Since the describer says "A faces away
   from B", it is scored as A's forward pointing from B to A (FacingTowards mirrored).
+
+Rooms add the ``wall`` and ``alignment`` families (``_wall``, ``_alignment``) and line
+of sight: a relation whose term lists ``sight`` boxes (``problem.needs_sight``: in
+front of, behind, facing towards or away, between two objects) is blocked when the
+segment between A's and B's centres crosses the footprint of one of those tall boxes.
+A blocked relation does not hold whatever its other measures say; its energy gains
+``SIGHT_PENALTY`` plus how far (metres) the segment would have to shift sideways to
+clear each blocking box, so the sampler is pushed out of it by the shortest way.
 """
 
 from __future__ import annotations
@@ -35,7 +43,7 @@ from scenewright.core.room import Opening, Room, Wall
 from .factors import angle_between, equals, less, pointing_same_direction, range_
 from .geometry import nearest_on_polyline, polyline_distance, polyline_rects_distance, rect_distance, to_local
 from .params import LayoutParams
-from .problem import Endpoint, RelationTerm
+from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .state import State
 
 #: Thresholds of ``satisfied`` (documented in ``report``).
@@ -56,6 +64,10 @@ ALIGN_TOLERANCE = math.radians(5.0)
 #: narrower than the paper's sigma^2 = 0.1 (metres, radians): 10 cm off costs 1.
 WALL_SIGMA2 = 0.005
 WALL_ANGLE_SIGMA2 = 0.01
+#: Line of sight: a blocked relation's energy gains this much, plus the sideways
+#: shift (metres) that would clear each blocking box. (A box blocks when it stands on
+#: the ground and is at least ``problem.SIGHT_HEIGHT`` = 1.2 m tall, a seated person's eyes.)
+SIGHT_PENALTY = 1.0
 #: Placements that stand by a window rather than a wall.
 WINDOW_PLACEMENTS = ("under_window", "beside_window")
 #: Small slack so a relation placed exactly on its threshold is not lost to rounding.
@@ -72,6 +84,12 @@ class Measure(NamedTuple):
     height_gap: float = 0.0  # OnTopOf*: |A's base - B's top| in metres
     inside: bool = True  # OnTopOf*: A's centre over B's top
     offset: float = 0.0  # OnTopOfMiddle: centre distance; *Edge: gap to the edge
+    blocker: str | None = None  # line of sight: the tall object in the way (the deepest)
+
+    @property
+    def blocked(self) -> bool:
+        """Line of sight: a tall object stands between A and B."""
+        return self.blocker is not None
 
 
 def centre(end: Endpoint, state: State) -> tuple[float, float]:
@@ -189,9 +207,6 @@ def _forward(end: Endpoint, state: State) -> tuple[float, float]:
 
 # -- room parts as relation ends -----------------------------------------------------------
 
-#: Endpoint kinds that stand for a room's parts.
-ROOM_ENDS = ("wall", "opening", "room")
-
 
 def _wall_of(end: Endpoint, room: Room) -> Wall:
     """The wall an endpoint is (a wall) or is in (an opening)."""
@@ -254,6 +269,10 @@ def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     spec = term.spec
     if not spec.directions:
         return Measure(energy, distance)
+    blocker = None
+    if term.sight:
+        penalty, blocker = sight_blocked(term, state)
+        energy += penalty
     ax, az = source_point(term.a, state)
     bx, bz, c, s = anchor(term.b, state, (ax, az))
     dx, dz = _unit(ax - bx, az - bz)
@@ -263,16 +282,18 @@ def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
         if angle < best - 1e-12:
             chosen, best = word, angle
     energy -= equals(best, 0.0, params.sigma2)
-    return Measure(energy, distance, best, chosen if spec.chooses else None)
+    return Measure(energy, distance, best, chosen if spec.chooses else None, blocker=blocker)
 
 
 def _next_to_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
     near = measure.distance <= params.next_to_distance + EPSILON
-    return near and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+    return near and not measure.blocked and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
 
 
 def _next_to_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
     words = term.spec.phrase
+    if measure.blocked:
+        return _blocked_complaint(term, measure)
     if measure.distance > params.next_to_distance:
         return f"{term.source} is not {words} {term.target} (distance {measure.distance:.1f} m)"
     return f"{term.source} is not {words} {term.target} ({math.degrees(measure.angle):.0f}° off)"
@@ -289,7 +310,11 @@ def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
         bx, bz, _, _ = anchor(term.b, state, (ax, az))
         dx, dz = _unit(bx - ax, bz - az) if how == "towards" else _unit(ax - bx, az - bz)
         angle = angle_between(dx, dz, fx, fz)
-        return Measure(-pointing_same_direction(dx, dz, fx, fz, params.sigma2), angle=angle)
+        energy = -pointing_same_direction(dx, dz, fx, fz, params.sigma2)
+        if term.sight:
+            penalty, blocker = sight_blocked(term, state)
+            return Measure(energy + penalty, angle=angle, blocker=blocker)
+        return Measure(energy, angle=angle)
     gx, gz = _forward(term.b, state)
     angle = angle_between(fx, fz, gx, gz)
     if how == "opposite":
@@ -302,11 +327,65 @@ def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
 
 
 def _facing_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    return measure.angle <= FACING_TOLERANCE + EPSILON
+    return measure.angle <= FACING_TOLERANCE + EPSILON and not measure.blocked
 
 
 def _facing_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    if measure.blocked:
+        return _blocked_complaint(term, measure)
     return f"{term.source} is not {term.spec.phrase} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+
+
+# -- line of sight -------------------------------------------------------------------
+
+
+def sight_blocked(term: RelationTerm, state: State) -> tuple[float, str | None]:
+    """(energy penalty, id of the deepest blocking box or None) of the segment between
+    A's and B's centres (both objects) against the footprints of ``term.sight``.
+
+    A box blocks when the segment crosses its footprint (separating axis test on the
+    segment's normal and the box's two axes); its depth is how far the segment's line
+    would have to shift sideways to clear it.
+    """
+    problem = state.problem
+    a, b = term.a.index, term.b.index
+    ax, az, bx, bz = state.x[a], state.z[a], state.x[b], state.z[b]
+    dx, dz = bx - ax, bz - az
+    length = math.hypot(dx, dz)
+    if length < 1e-9:
+        return 0.0, None
+    tx, tz = dx / length, dz / length
+    total, deepest, worst = 0.0, EPSILON, -1
+    for box in term.sight:
+        px, pz = state.x[box] - ax, state.z[box] - az
+        along = px * tx + pz * tz
+        across = pz * tx - px * tz
+        radius = problem.size[box] / 2.0
+        if along < -radius or along > length + radius or abs(across) >= radius:
+            continue  # its bounding circle misses the segment
+        c, s, hw, hd = state.c[box], state.s[box], problem.half_width[box], problem.half_depth[box]
+        # Axis 1: the segment's normal (-tz, tx); the box's reach across it.
+        depth = hw * abs(c * tz + s * tx) + hd * abs(s * tz - c * tx) - abs(across)
+        if depth <= EPSILON:
+            continue
+        # Axes 2 and 3: the box's left (c, -s) and forward (s, c), with the segment's
+        # ends relative to the box's centre (-px, -pz) and (dx - px, dz - pz).
+        u0, u1 = -px * c + pz * s, (dx - px) * c - (dz - pz) * s
+        if min(u0, u1) >= hw or max(u0, u1) <= -hw:
+            continue
+        w0, w1 = -px * s - pz * c, (dx - px) * s + (dz - pz) * c
+        if min(w0, w1) >= hd or max(w0, w1) <= -hd:
+            continue
+        total += depth
+        if depth > deepest:
+            deepest, worst = depth, box
+    if worst < 0:
+        return 0.0, None
+    return SIGHT_PENALTY + total, problem.ids[worst]
+
+
+def _blocked_complaint(term: RelationTerm, measure: Measure) -> str:
+    return f"{term.source} is not {term.spec.phrase} {term.target} (the line of sight runs through {measure.blocker})"
 
 
 # -- support -----------------------------------------------------------------------

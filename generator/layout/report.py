@@ -16,7 +16,10 @@ The layout is ``ok`` when every relation is satisfied, no two boxes and no box a
 overlap by more than 1 % (depth over summed size, as in the energy), every box and path
 control point lies inside the scene extent (1 mm tolerance), every path is within its
 maximum length with turns of at most gamma, and paths leave a junction at least gamma
-apart.
+apart. In a room the walls replace the extent for boxes, and a layout is not ok either
+when a box crosses a wall, stands in a door's swing or in the space another box keeps
+free, when such a space runs into a wall, or when a box that needs reaching cannot be
+reached from a door (``room_terms.RoomTerms.problems``: 1 cm of slack on each distance).
 """
 
 from __future__ import annotations
@@ -57,6 +60,8 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
     problems.extend(_overlaps(energy))
     problems.extend(_outside(energy))
     problems.extend(_path_shapes(energy))
+    if energy.room is not None:
+        problems.extend(energy.room.problems())
     return results, problems
 
 
@@ -78,10 +83,11 @@ def _overlaps(energy: Energy) -> list[str]:
 
 def _outside(energy: Energy) -> list[str]:
     problem, found = energy.problem, []
-    for box in range(problem.n_boxes):
-        excess = energy.box_excess(box)
-        if excess > EXTENT_TOLERANCE:
-            found.append(f"{problem.ids[box]} is outside the scene by {excess:.2f} m")
+    if energy.room is None:  # in a room the walls say it ("crosses the wall")
+        for box in range(problem.n_boxes):
+            excess = energy.box_excess(box)
+            if excess > EXTENT_TOLERANCE:
+                found.append(f"{problem.ids[box]} is outside the scene by {excess:.2f} m")
     for path in range(problem.n_paths):
         excess = energy.path_excess(path)
         if excess > EXTENT_TOLERANCE:

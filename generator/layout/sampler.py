@@ -13,6 +13,14 @@ caller makes restarts.
 With ``pins`` (``pinning.Pins``) pinned boxes and paths are placed first and never
 moved, and warm-started ones are placed at their start poses before the constructive
 placement puts the rest around them.
+
+In a room a share RELOCATE_SHARE of the steps is a ``Relocator`` move instead: a
+troubled box (in a door's swing, in a kept-free zone or owning one that is taken,
+across a wall, out of reach or hemming in one that is) goes wherever one of its own
+relations puts it, with everything placed only by it carried along rigidly: a bed whose
+free side the desk takes moves to another corner with its nightstands and rug, where a
+lone bed jump would break their relations and be refused. Outdoors no such step is
+drawn, so village layouts draw the same random numbers as before.
 """
 
 from __future__ import annotations
@@ -26,12 +34,15 @@ from scenewright.core.relations import Relation
 
 from .energy import Energy
 from .initial import place_initial
-from .moves import Mover
+from .moves import Mover, rigid, wrap
 from .params import LayoutParams
 from .pinning import Pins
-from .problem import Problem
+from .problem import Endpoint, Problem
 from .report import assess
 from .state import State
+
+#: In a room, the share of steps that are ``Relocator`` moves (when some box is troubled).
+RELOCATE_SHARE = 0.05
 
 
 @dataclass
@@ -65,6 +76,7 @@ def start_chain(
 def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None) -> Run:
     """Place, then anneal until the stop rule holds or the step budget is spent."""
     energy, mover = start_chain(problem, params, rng, pins)
+    relocator = Relocator(problem, energy.state, mover) if problem.room is not None else None
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
@@ -83,7 +95,11 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, 
             elif step - since >= patience:
                 break
         steps = step + 1
-        proposal = mover.propose(energy.relation)
+        proposal = None
+        if relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
+            proposal = relocator.propose(mover.focus_boxes)
+        if proposal is None:
+            proposal = mover.propose(energy.relation)
         if proposal is None:
             continue
         delta = energy.propose(*proposal)
@@ -96,3 +112,59 @@ def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, 
     else:
         relations, problems = assess(energy)
     return Run(energy, relations, problems, steps, accepted)
+
+
+class Relocator:
+    """A room's move for a troubled box: put it where one of its own relations holds
+    (the mover's data-driven placement), and carry its satellites along rigidly.
+
+    A box's satellites are the movable ground objects whose every relation points at
+    the box or at its other satellites (a bed's nightstands and rug), with what stands on
+    them; they keep their places relative to the box, so their relations still hold.
+    """
+
+    def __init__(self, problem: Problem, state: State, mover: Mover):
+        self.problem, self.state, self.mover = problem, state, mover
+        self.satellites = [self._satellites(box) for box in range(problem.n_boxes)]
+
+    def _satellites(self, box: int) -> list[int]:
+        problem, movable = self.problem, self.mover.movable_box
+        held = set(problem.carried(box))
+        found: list[int] = []
+        grew = True
+        while grew:
+            grew = False
+            for term in problem.relations:
+                if term.a.kind != "object" or not term.b.members or not set(term.b.members) <= held:
+                    continue
+                other = term.a.index
+                if other in held or not movable[other] or problem.support[other] != -1:
+                    continue
+                own = problem.outgoing.get(("object", other), [])
+                if all(t.b.members and set(t.b.members) <= held for t in own):
+                    carried = problem.carried(other)
+                    held.update(carried)
+                    found.extend(carried)
+                    grew = True
+        return found
+
+    def propose(self, troubled: list[int]) -> tuple[dict, dict] | None:
+        """New poses for a troubled box (drawn from ``troubled``) placed by its relations,
+        and for its satellites; None when it has no relation that places it."""
+        problem, state, mover = self.problem, self.state, self.mover
+        box = troubled[int(mover.rng.integers(len(troubled)))]
+        placing = [t for t in problem.outgoing.get(("object", box), []) if t.spec.family != "facing"]
+        if not placing:
+            return None
+        end = Endpoint("object", box, (box,))
+        if len(placing) > 1:
+            boxes = mover.place_for_all(end)
+        else:
+            boxes = mover.place_for_relation(placing[0])
+        if not boxes or box not in boxes:
+            return None
+        x, z, yaw = state.pose(box)
+        new_x, new_z, new_yaw = boxes[box]
+        carried = [b for b in self.satellites[box] if b not in boxes]
+        boxes.update(rigid(state, carried, (x, z), wrap(new_yaw - yaw), (new_x - x, new_z - z)))
+        return boxes, {}

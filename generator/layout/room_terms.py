@@ -1,0 +1,1138 @@
+"""The energy terms a room adds to the layout, with their geometry and their caches.
+
+Five parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
+``RoomTerms`` and the parts cost nothing):
+
+- ``walls``: c * (how far a box's footprint crosses the walls / its diagonal), c the
+  collision intensity; the room's polygon replaces the rectangular extent for boxes, so a
+  box in an L-shaped room cannot cross the inner corner.
+- ``square``: per box (not junctions) -equals(off, 0, SQUARE_SIGMA2), ``off`` its yaw's
+  angle off the nearest wall axis (a multiple of 90 degrees from some wall's direction).
+- ``clearance``: per free zone a box keeps beside it (``problem.clearance``) and per
+  other ground box standing in it, the collision penalty of their overlap; plus, for a
+  zone that crosses a wall, the penalty of how far it does.
+- ``door_swing``: per door and ground box standing in its swing, the collision penalty.
+- ``access``: per box that needs reaching (``problem.access`` not empty) and cannot be
+  reached on foot from a door, ACCESS_BASE + ACCESS_SLOPE * its distance (metres, in
+  whole cells) to the floor that can. Global: any obstacle that moves can open or close
+  a way. 0 in a room without a door (nothing is reached from nowhere).
+
+Reachability is decided on an occupancy grid of about ACCESS_CELL metres (``AccessGrid``):
+free floor is the room's floor minus every tall ground box, both grown by CORRIDOR_HALF
+(so a way is at least 2 * CORRIDOR_HALF = 0.6 m wide); the reachable floor is the part
+of the free floor connected (4-neighbours) to a door's opening. A box is reachable when
+a reachable cell lies within CORRIDOR_HALF + one cell of its access sides (in front of
+a named side; anywhere round it for ("any",)).
+
+Incremental evaluation (``RoomTerms.changes``) re-evaluates only the moved boxes' own
+terms and the clearance zones they own or stand in. Access keeps the reachable floor
+of the current layout; after a move it is updated from the old one (``_reach_after``:
+take out the moved boxes' windows where that provably cuts no way, then grow what is
+left back over the free floor), or grown from the doors when that proof fails. A full
+recomputation (``RoomTerms.fresh``) labels the free floor instead
+(``scipy.ndimage.label``); both give the same cells, so the same values, exactly.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+from typing import NamedTuple
+
+import numpy as np
+from scipy import ndimage
+
+from scenewright.core.room import Room
+
+from .factors import equals
+from .geometry import Rect, corners, rect_penetration
+from .params import LayoutParams
+from .problem import Problem
+from .state import Grid, State
+
+#: ``scipy.ndimage.label``'s structure: cells connect through their sides only.
+FOUR_NEIGHBOURS = ndimage.generate_binary_structure(2, 1)
+
+#: The parts a room adds to the energy, in the order ``energy.PARTS`` lists them.
+ROOM_PARTS = ("walls", "square", "clearance", "door_swing", "access")
+
+#: Boxes at most this tall (metres; rugs, mats) are walked over: they block no corridor,
+#: no door swing and no clearance zone.
+FLAT_HEIGHT = 0.05
+
+#: The square term's Gaussian width (radians^2): off^2 / (2 * 0.05) costs 0.69 at 15
+#: degrees off the walls, 2.7 at 30 and 6.2 at 45 (the most a yaw can be off).
+SQUARE_SIGMA2 = 0.05
+
+#: Half the narrowest way a person walks (metres): corridors are at least 0.6 m wide.
+CORRIDOR_HALF = 0.3
+#: Side of a cell of the reachability grid (metres), grown for big rooms so the grid
+#: has at most MAX_ACCESS_CELLS cells.
+ACCESS_CELL = 0.1
+MAX_ACCESS_CELLS = 20_000
+#: Growths (cells) of a moved box's window tried in turn by the incremental proof that
+#: it cuts no way (``RoomTerms._reach_after``) before growing the reachable floor from
+#: the doors.
+CUT_TEST_GROWTH = (0, 3, 8, 16, 32)
+#: Grids of more cells than this find the reachable floor from scratch by labelling
+#: rather than by growing it from the doors (``AccessGrid.reachable``).
+FLOOD_CELLS = 3500
+#: Energy of a box nobody can reach: a constant (as much as a clearly broken relation)
+#: plus a slope per metre between its access sides and the reachable floor, so moves
+#: that bring it nearer the way in are favoured.
+ACCESS_BASE = 3.0
+ACCESS_SLOPE = 3.0
+
+#: Slack (metres) of the verdicts in ``problems``: crossing a wall, standing in a door's
+#: swing or in a kept-free zone by at most 1 cm still counts as clear.
+ROOM_TOLERANCE = 0.01
+
+#: The sides a clearance zone or an access side may name, and how the report says them.
+SIDES = ("front", "back", "left", "right")
+SIDE_WORDS = {"front": "in front of", "back": "behind", "left": "to the left of", "right": "to the right of"}
+
+#: Depths are clipped below 1 so the log penalty stays finite (as ``energy.MAX_DEPTH``).
+MAX_DEPTH = 0.99
+
+
+def penalty(depth: float, intensity: float) -> float:
+    """The collision penalty -c log(1 - depth) of a normalised depth (0 for depth 0)."""
+    return -intensity * math.log1p(-min(depth, MAX_DEPTH)) if depth > 0.0 else 0.0
+
+
+def square_off(yaw: float, axes: tuple[float, ...]) -> float:
+    """How far (radians, 0..pi/4) a yaw is off the nearest multiple of 90 degrees from any of ``axes``."""
+    quarter = math.pi / 2.0
+    best = math.pi
+    for axis in axes:
+        off = (yaw - axis) % quarter
+        off = min(off, quarter - off)
+        if off < best:
+            best = off
+    return best
+
+
+def wall_axes(room: Room) -> tuple[float, ...]:
+    """The yaws (mod 90 degrees, in [0, pi/2)) a box can have square to some wall: a
+    box whose forward (sin yaw, cos yaw) runs along or across a wall."""
+    axes = []
+    for wall in room.walls:
+        tx, tz = wall.direction
+        axis = math.atan2(tx, tz) % (math.pi / 2.0)
+        if axis > math.pi / 2.0 - 1e-9:
+            axis = 0.0
+        if all(abs(axis - other) > 1e-9 for other in axes):
+            axes.append(axis)
+    return tuple(sorted(axes))
+
+
+def zone_rect(rect: Rect, side: str, metres: float) -> Rect:
+    """The strip ``metres`` deep beside one side of a footprint, as wide as that side."""
+    cx, cz, hw, hd, c, s = rect
+    if side == "front":
+        lx, lz, zw, zd = 0.0, hd + metres / 2.0, hw, metres / 2.0
+    elif side == "back":
+        lx, lz, zw, zd = 0.0, -(hd + metres / 2.0), hw, metres / 2.0
+    elif side == "left":  # local +X is the box's left
+        lx, lz, zw, zd = hw + metres / 2.0, 0.0, metres / 2.0, hd
+    else:
+        lx, lz, zw, zd = -(hw + metres / 2.0), 0.0, metres / 2.0, hd
+    return Rect(cx + lx * c + lz * s, cz - lx * s + lz * c, zw, zd, c, s)
+
+
+def swing_rect(room: Room, door) -> Rect:
+    """A door's swing zone (``Room.swing_zone``) as a footprint: centred in front of the
+    door, its forward along the wall's inner normal."""
+    points = room.swing_zone(door)
+    cx = sum(p[0] for p in points) / 4.0
+    cz = sum(p[1] for p in points) / 4.0
+    nx, nz = room.part(door.wall).normal
+    return Rect(cx, cz, door.width / 2.0, door.width / 2.0, nz, nx)  # forward (s, c) = normal
+
+
+def bounds(rect: Rect, grow: float = 0.0) -> tuple[float, float, float, float]:
+    """Axis-aligned bounds (x0, z0, x1, z1) of a footprint grown by ``grow``."""
+    cx, cz, hw, hd, c, s = rect
+    reach_x = hw * abs(c) + hd * abs(s) + grow
+    reach_z = hw * abs(s) + hd * abs(c) + grow
+    return cx - reach_x, cz - reach_z, cx + reach_x, cz + reach_z
+
+
+#: A corner this close (metres) outside a wall counts as on it: furniture placed flush
+#: against a wall ends up a rounding error either side of it.
+FLUSH = 1e-9
+
+#: A footprint whose yaw's sine or cosine is below this is square to the world axes
+#: (quarter turns leave 6e-17, not 0) and is rasterised from templates.
+SQUARE_AXIS = 1e-9
+#: Rasters of footprints square to the axes put their centre on a 1/QUANTUM of a cell
+#: (2.5 cm): a shape then covers the same cells, relative to its cell, wherever it
+#: stands, and a template made once serves every pose (``AccessGrid._placed``).
+QUANTUM = 4
+
+
+def _square_extents(rect: Rect) -> tuple[float, float] | None:
+    """Half extents along world x and z of a footprint square to the axes, else None."""
+    if abs(rect.s) < SQUARE_AXIS:
+        return rect.hw, rect.hd
+    if abs(rect.c) < SQUARE_AXIS:
+        return rect.hd, rect.hw
+    return None
+
+
+class Walls:
+    """The room's polygon as the scalar tests the energy runs every step."""
+
+    def __init__(self, room: Room):
+        self.room = room
+        self.corners = room.corners
+        n = len(self.corners)
+        self.segments = [(self.corners[k], self.corners[(k + 1) % n]) for k in range(n)]
+        #: Each wall's line as (nx, nz, offset): n . p - offset is the signed distance of p
+        #: into the room. In a convex room a footprint whose corners all have it >= 0
+        #: stands on the floor (no room corner can be inside it): most of the time, so
+        #: the general test is skipped.
+        self.lines = [(w.normal[0], w.normal[1], w.normal[0] * w.start[0] + w.normal[1] * w.start[1]) for w in room.walls]
+        self.convex = all(room.convex_corner(room.walls[k], room.walls[(k + 1) % n]) for k in range(n))
+        #: For a room that is a rectangle square to the axes, its bounds (x0, z0, x1, z1):
+        #: a footprint's bounds within them (FLUSH aside) is all the convex test asks.
+        xs, zs = [p[0] for p in self.corners], [p[1] for p in self.corners]
+        square = n == 4 and all(abs(w.normal[0]) in (0.0, 1.0) for w in room.walls)
+        self.box = (min(xs) - FLUSH, min(zs) - FLUSH, max(xs) + FLUSH, max(zs) + FLUSH) if square else None
+
+    def contains(self, x: float, z: float) -> bool:
+        """Whether (x, z) is on the floor (crossing test, as ``Room.contains``)."""
+        inside = False
+        for (x0, z0), (x1, z1) in self.segments:
+            if (z0 > z) != (z1 > z) and x < x0 + (z - z0) * (x1 - x0) / (z1 - z0):
+                inside = not inside
+        return inside
+
+    def boundary_distance(self, x: float, z: float) -> float:
+        best = math.inf
+        for (x0, z0), (x1, z1) in self.segments:
+            dx, dz = x1 - x0, z1 - z0
+            length2 = dx * dx + dz * dz
+            t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((x - x0) * dx + (z - z0) * dz) / length2))
+            distance = math.hypot(x - x0 - t * dx, z - z0 - t * dz)
+            if distance < best:
+                best = distance
+        return best
+
+    def excess(self, rect: Rect) -> float:
+        """How far (metres) a footprint crosses the walls: the deepest of its corners
+        outside the floor and of the room's corners inside it (``Room.footprint_excess``
+        for a rectangle); 0 when it stands wholly on the floor."""
+        if self.box is not None:
+            x0, z0, x1, z1 = bounds(rect)
+            room_x0, room_z0, room_x1, room_z1 = self.box
+            if room_x0 <= x0 and x1 <= room_x1 and room_z0 <= z0 and z1 <= room_z1:
+                return 0.0
+        points = corners(rect)
+        if self.convex and all(nx * x + nz * z >= offset - FLUSH for x, z in points for nx, nz, offset in self.lines):
+            return 0.0
+        best = 0.0
+        for x, z in points:
+            if not self.contains(x, z):
+                distance = self.boundary_distance(x, z)
+                if distance > best:
+                    best = distance
+        cx, cz, hw, hd, c, s = rect
+        x0, z0, x1, z1 = bounds(rect)
+        for wx, wz in self.corners:  # a room corner poking into the footprint (L-shaped rooms)
+            if x0 < wx < x1 and z0 < wz < z1:
+                dx, dz = wx - cx, wz - cz
+                depth = min(hw - abs(dx * c - dz * s), hd - abs(dx * s + dz * c))
+                if depth > best:
+                    best = depth
+        return best
+
+
+class Raster(NamedTuple):
+    """Cells of the reachability grid a shape covers, as a plane (see ``AccessGrid``),
+    and the window (cell range [i0, i1) x [k0, k1) of the floor) holding those of them
+    that are on the floor (it may cover padding cells too, which are never free)."""
+
+    window: tuple[int, int, int, int]
+    bits: int
+
+
+class AccessGrid:
+    """The reachability grid of one room: its cells, the static free floor, the door
+    seeds, and the rasters of shapes on it.
+
+    A set of cells is a *plane*: one Python int, bit i * stride + k for the cell in row i,
+    column k. Unions, intersections and one step of growth (shifts by 1 and by the
+    stride) are then a few int operations on a few hundred bytes, where numpy's cost per
+    call would dominate at this size. The grid is padded by ``pad`` cells all round (as
+    far as a raster reaches past a box, and one more): row i, column k is the cell whose
+    centre is (x0 + (k - pad + 0.5) * cell, z0 + (i - pad + 0.5) * cell), the floor's
+    cells are rows [pad, pad + rows) and columns [pad, pad + cols). Padding cells are
+    never free, so shifts never carry a cell from one row's end to the next row, and
+    the rasters of furniture against a wall fit on the grid whole. numpy arrays of the
+    grid are (rows + 2 * pad, stride).
+    """
+
+    def __init__(self, room: Room):
+        xs = [p[0] for p in room.corners]
+        zs = [p[1] for p in room.corners]
+        self.x0, self.z0 = min(xs), min(zs)
+        width, depth = max(xs) - self.x0, max(zs) - self.z0
+        self.cell = max(ACCESS_CELL, math.sqrt(width * depth / MAX_ACCESS_CELLS))
+        self.cols = max(1, math.ceil(width / self.cell))
+        self.rows = max(1, math.ceil(depth / self.cell))
+        self.pad = math.ceil((CORRIDOR_HALF + self.cell) / self.cell) + 1
+        self.stride = 8 * ((self.cols + 2 * self.pad + 7) // 8)  # whole bytes per row: packbits gives planes directly
+        self.shape = (self.rows + 2 * self.pad, self.stride)
+        self.plane_bytes = self.shape[0] * self.stride // 8
+        # Cell centres, per column (x) and per row (z).
+        self.xc = self.x0 + (np.arange(self.stride) - self.pad + 0.5) * self.cell
+        self.zc = self.z0 + (np.arange(self.shape[0]) - self.pad + 0.5) * self.cell
+        gx, gz = np.meshgrid(self.xc, self.zc)
+        inside = np.zeros(self.shape, dtype=bool)  # the floor's cells, padding left out
+        floor = (slice(self.pad, self.pad + self.rows), slice(self.pad, self.pad + self.cols))
+        inside[floor] = _contains(room, gx[floor], gz[floor])
+        solid, doors = _wall_segments(room)
+        # Floor a person's centre can be on, boxes aside: inside, 0.3 m from solid wall
+        # (a doorway is no wall: the way in runs through it).
+        static = inside & (_segments_distance(gx, gz, solid) >= CORRIDOR_HALF)
+        #: The static free floor, and the cells that count as "at a door": free floor
+        #: within CORRIDOR_HALF + one cell of an opening.
+        self.static = self.plane(static)
+        seeds = static & (_segments_distance(gx, gz, doors) <= CORRIDOR_HALF + self.cell)
+        self.seeds = self.plane(seeds)
+        self.seed_cells = np.flatnonzero(seeds)
+        rows, cols = np.nonzero(seeds)
+        self.seed_box = (int(rows.min()), int(rows.max()), int(cols.min()), int(cols.max())) if rows.size else None
+        self.has_doors = bool(doors)
+        self._templates: dict[tuple, tuple] = {}  # (shape, f, g) -> ``_template``
+
+    # -- planes and arrays -------------------------------------------------------------------
+
+    def plane(self, mask: np.ndarray) -> int:
+        """The plane of a bool array (rows + 2 * pad, stride)."""
+        return int.from_bytes(np.packbits(mask, axis=1, bitorder="little").tobytes(), "little")
+
+    def array(self, plane: int) -> np.ndarray:
+        """The bool array (rows + 2 * pad, stride) of a plane."""
+        packed = np.frombuffer(plane.to_bytes(self.plane_bytes, "little"), dtype=np.uint8)
+        return np.unpackbits(packed, bitorder="little").reshape(self.shape).view(bool)
+
+    def window_plane(self, window: tuple[int, int, int, int]) -> int:
+        """The plane of every cell of a window."""
+        i0, i1, k0, k1 = window
+        stride = self.stride
+        row = ((1 << (k1 - k0)) - 1) << k0
+        repeat = ((1 << (stride * (i1 - i0))) - 1) // ((1 << stride) - 1)  # bit j * stride for each row j
+        return (row * repeat) << (i0 * stride)
+
+    def widen(self, window: tuple[int, int, int, int], grow: int) -> tuple[int, int, int, int]:
+        """A window grown by ``grow`` cells each way, kept on the floor's grid."""
+        i0, i1, k0, k1 = window
+        pad = self.pad
+        return max(i0 - grow, pad), min(i1 + grow, pad + self.rows), max(k0 - grow, pad), min(k1 + grow, pad + self.cols)
+
+    def keeps_a_door(self, reach: int, window: tuple[int, int, int, int]) -> bool:
+        """Whether the window holds no door cell, or a reachable door cell lies on the
+        ring just outside it (``_reach_after``'s second condition)."""
+        if not self.holds_seed(window):
+            return True
+        i0, i1, k0, k1 = window
+        ring = self.window_plane((i0 - 1, i1 + 1, k0 - 1, k1 + 1)) & ~self.window_plane(window)
+        return bool(ring & reach & self.seeds)
+
+    def holds_seed(self, window: tuple[int, int, int, int]) -> bool:
+        """Whether a window holds a door cell."""
+        seed = self.seed_box
+        i0, i1, k0, k1 = window
+        if seed is None or i1 <= seed[0] or seed[1] < i0 or k1 <= seed[2] or seed[3] < k0:
+            return False
+        return bool(self.seeds & self.window_plane(window))
+
+    # -- rasters ------------------------------------------------------------------------------
+
+    def window(self, rect: Rect, grow: float) -> tuple[int, int, int, int]:
+        """Padded cell range [i0, i1) x [k0, k1) of the cells whose centres lie in the
+        footprint's bounding box grown by ``grow`` (clipped to the floor; may be empty)."""
+        x0, z0, x1, z1 = bounds(rect, grow)
+        cell, pad = self.cell, self.pad
+        # Column k's centre sits at x0 + (k - pad + 0.5) * cell.
+        k0 = min(max(pad, math.ceil((x0 - self.x0) / cell + pad - 0.5)), pad + self.cols)
+        k1 = min(pad + self.cols, math.floor((x1 - self.x0) / cell + pad - 0.5) + 1)
+        i0 = min(max(pad, math.ceil((z0 - self.z0) / cell + pad - 0.5)), pad + self.rows)
+        i1 = min(pad + self.rows, math.floor((z1 - self.z0) / cell + pad - 0.5) + 1)
+        return i0, max(i0, i1), k0, max(k0, k1)
+
+    def _mask_plane(self, mask: np.ndarray, window: tuple[int, int, int, int]) -> int:
+        """The plane of a bool mask over a window."""
+        i0, i1, k0, k1 = window
+        full = np.zeros((i1 - i0, self.stride), dtype=bool)
+        full[:, k0:k1] = mask
+        return int.from_bytes(np.packbits(full, axis=1, bitorder="little").tobytes(), "little") << (i0 * self.stride)
+
+    def _local(self, rect: Rect, window: tuple[int, int, int, int]) -> tuple[np.ndarray, np.ndarray]:
+        """Window cell centres in the footprint's frame: (along its left, along its
+        forward), each (i1 - i0, k1 - k0)."""
+        i0, i1, k0, k1 = window
+        cx, cz, _, _, c, s = rect
+        dx = self.xc[k0:k1][None, :] - cx
+        dz = self.zc[i0:i1][:, None] - cz
+        return dx * c - dz * s, dx * s + dz * c
+
+    def obstacle(self, rect: Rect) -> Raster:
+        """The cells a box takes from the free floor: centres closer than CORRIDOR_HALF
+        to its footprint (for a footprint square to the axes, at its centre rounded to a
+        1/QUANTUM of a cell: see ``_placed``)."""
+        square = _square_extents(rect)
+        if square is not None:
+            hx, hz = square
+            return self._placed(("obstacle", hx, hz), rect, lambda f, g: self._rounded(f, g, hx, hz, CORRIDOR_HALF, True))
+        window = self.window(rect, CORRIDOR_HALF)
+        if window[0] == window[1] or window[2] == window[3]:
+            return Raster(window, 0)
+        lx, lz = self._local(rect, window)
+        ex = np.maximum(np.abs(lx) - rect.hw, 0.0)
+        ez = np.maximum(np.abs(lz) - rect.hd, 0.0)
+        return Raster(window, self._mask_plane(ex * ex + ez * ez < CORRIDOR_HALF * CORRIDOR_HALF, window))
+
+    def access(self, rect: Rect, sides: tuple[str, ...]) -> Raster:
+        """The cells a person may stand on to use a box: for ("any",) the centres within
+        CORRIDOR_HALF + one cell of its footprint; for named sides, those in front of a
+        side (in the band as long as the side) within that distance of it. A desk whose
+        front faces a wall 20 cm off is not used from its front, however open its ends."""
+        reach = CORRIDOR_HALF + self.cell
+        square = _square_extents(rect)
+        if square is not None:
+            if "any" in sides:
+                hx, hz = square
+                return self._placed(("any", hx, hz), rect, lambda f, g: self._rounded(f, g, hx, hz, reach, False))
+            bands = self._side_bands(rect, sides, reach)
+            return self._placed(("bands", *bands), rect, lambda f, g: self._bands(f, g, bands))
+        window = self.window(rect, reach)
+        if window[0] == window[1] or window[2] == window[3]:
+            return Raster(window, 0)
+        lx, lz = self._local(rect, window)
+        hw, hd, limit = rect.hw, rect.hd, reach * reach
+        if "any" in sides:
+            ex = np.maximum(np.abs(lx) - hw, 0.0)
+            ez = np.maximum(np.abs(lz) - hd, 0.0)
+            mask = ex * ex + ez * ez <= limit
+        else:
+            mask = np.zeros(lx.shape, dtype=bool)
+            for side in sides:
+                if side in ("front", "back"):
+                    mask |= (np.abs(lx) <= hw) & (np.abs(lz - (hd if side == "front" else -hd)) <= reach)
+                elif side in ("left", "right"):
+                    mask |= (np.abs(lz) <= hd) & (np.abs(lx - (hw if side == "left" else -hw)) <= reach)
+        return Raster(window, self._mask_plane(mask, window))
+
+    # Footprints square to the axes (nearly all, in a room) are rasterised from templates.
+    # The centre is rounded to a 1/QUANTUM of a cell, so it sits a whole number of cells
+    # (a, b) plus a fraction (f, g) / QUANTUM from the grid's corner; the cells are found
+    # by their offsets (m, n) from cell (a, b), whose centres lie (m + 0.5 - f / QUANTUM,
+    # n + 0.5 - g / QUANTUM) cells from the shape's centre: exact binary fractions, the
+    # same wherever the shape is. A template (the rows of offsets a shape covers, for one
+    # fraction) is made once per shape and fraction, shared by boxes of the same size, and
+    # placed by one shift of its plane.
+
+    def _placed(self, key: tuple, rect: Rect, make) -> Raster:
+        """The raster of a template shape (``key``; ``make(f, g)`` its rows) at a
+        footprint's centre: the template's plane shifted into place, or its rows put in
+        one by one where it would reach past the grid."""
+        u = round((rect.cx - self.x0) / self.cell * QUANTUM)
+        v = round((rect.cz - self.z0) / self.cell * QUANTUM)
+        a, f = divmod(u, QUANTUM)
+        b, g = divmod(v, QUANTUM)
+        template = self._templates.get((key, f, g))
+        if template is None:
+            template = self._templates[(key, f, g)] = self._template(make(f, g))
+        n0, n1, m0, m1, plane, spans = template
+        pad, rows, cols = self.pad, self.rows, self.cols
+        a, b = a + pad, b + pad  # padded cell (i, k) is offset (i - b, k - a)
+        i0, i1, k0, k1 = b + n0, b + n1, a + m0, a + m1
+        window = (min(max(i0, pad), pad + rows), min(max(i1, pad), pad + rows),
+                  min(max(k0, pad), pad + cols), min(max(k1, pad), pad + cols))  # fmt: skip
+        if plane is not None and i0 >= 0 and i1 <= self.shape[0] and k0 >= 0 and k1 <= self.stride:
+            return Raster(window, plane << (i0 * self.stride + k0))
+        bits = 0
+        for n, low, high in spans:  # the rows on the grid, clipped to it
+            i = b + n
+            low, high = max(a + low, 0), min(a + high, self.stride - 1)
+            if 0 <= i < self.shape[0] and low <= high:
+                bits |= ((1 << (high - low + 1)) - 1) << (i * self.stride + low)
+        return Raster(window, bits)
+
+    def _template(self, spans: list[tuple[int, int, int]]) -> tuple:
+        """(n0, n1, m0, m1, plane, spans) of the spans (n, m_low, m_high) a shape covers:
+        offsets [n0, n1) x [m0, m1), and the plane with bit (n - n0) * stride + m - m0
+        (None when wider than a row of the grid)."""
+        if not spans:
+            return 0, 0, 0, 0, 0, spans
+        n0, n1 = min(n for n, _, _ in spans), max(n for n, _, _ in spans) + 1
+        m0, m1 = min(low for _, low, _ in spans), max(high for _, _, high in spans) + 1
+        if m1 - m0 > self.stride:
+            return n0, n1, m0, m1, None, spans
+        plane = 0
+        for n, low, high in spans:
+            plane |= ((1 << (high - low + 1)) - 1) << ((n - n0) * self.stride + low - m0)
+        return n0, n1, m0, m1, plane, spans
+
+    def _rounded(self, f: int, g: int, hx: float, hz: float, r: float, strict: bool) -> list[tuple[int, int, int]]:
+        """Spans (n, m_low, m_high) of the cells within r (closer than r if ``strict``)
+        of a rectangle of half extents hx, hz (metres) centred at fraction (f, g) of cell
+        (0, 0), whose centre is half a cell past its corner."""
+        cell = self.cell
+        hx, hz, r = hx / cell, hz / cell, r / cell
+        fx, fz = f / QUANTUM - 0.5, g / QUANTUM - 0.5  # offset m's centre is m - fx from the shape's
+        spans = []
+        for n in range(math.floor(fz - hz - r), math.ceil(fz + hz + r) + 1):
+            ez = max(abs(n - fz) - hz, 0.0)
+            rest = r * r - ez * ez
+            if rest < 0.0 or (strict and rest == 0.0):
+                continue
+            half = hx + math.sqrt(rest)
+            low, high = (math.floor(fx - half) + 1, math.ceil(fx + half) - 1) if strict else (math.ceil(fx - half), math.floor(fx + half))
+            if low <= high:
+                spans.append((n, low, high))
+        return spans
+
+    def _bands(self, f: int, g: int, bands: tuple) -> list[tuple[int, int, int]]:
+        """Spans (n, m_low, m_high) of the cells in bands (ox, oz, hx, hz): rectangles at
+        offset (ox, oz) from a centre at fraction (f, g), half extents hx, hz (metres)."""
+        cell = self.cell
+        fx, fz = f / QUANTUM - 0.5, g / QUANTUM - 0.5
+        rows: dict[int, list[tuple[int, int]]] = {}
+        for ox, oz, hx, hz in bands:
+            ox, oz, hx, hz = ox / cell, oz / cell, hx / cell, hz / cell
+            low, high = math.ceil(fx + ox - hx), math.floor(fx + ox + hx)
+            if low > high:
+                continue
+            for n in range(math.ceil(fz + oz - hz), math.floor(fz + oz + hz) + 1):
+                rows.setdefault(n, []).append((low, high))
+        spans = []
+        for n, runs in sorted(rows.items()):  # runs of one row that meet or touch are joined
+            runs.sort()
+            low, high = runs[0]
+            for start, end in runs[1:]:
+                if start <= high + 1:
+                    high = max(high, end)
+                else:
+                    spans.append((n, low, high))
+                    low, high = start, end
+            spans.append((n, low, high))
+        return spans
+
+    @staticmethod
+    def _side_bands(rect: Rect, sides: tuple[str, ...], reach: float) -> tuple[tuple[float, float, float, float], ...]:
+        """The bands (ox, oz, hx, hz) in front of the named sides of a footprint square to
+        the axes (offsets from its centre), each as long as its side and ``reach`` either
+        way of it. Quarter turns leave sines and cosines a rounding error off 0 and 1:
+        they are taken exact, so each turn has one set of bands."""
+        _, _, hw, hd, c, s = rect
+        c, s = float(round(c)), float(round(s))
+        forward_x = c == 0.0  # forward along world x: front and back run along z
+        bands = []
+        for side in sides:
+            if side in ("front", "back"):
+                sign = 1.0 if side == "front" else -1.0
+                bands.append((sign * s * hd, sign * c * hd, reach, hw) if forward_x else (sign * s * hd, sign * c * hd, hw, reach))
+            elif side in ("left", "right"):
+                sign = 1.0 if side == "left" else -1.0
+                bands.append((sign * c * hw, -sign * s * hw, hd, reach) if forward_x else (sign * c * hw, -sign * s * hw, reach, hd))
+        return tuple(bands)
+
+    # -- reachability ---------------------------------------------------------------------
+
+    def label(self, free: int) -> int:
+        """The reachable floor from scratch: the free cells connected (4-neighbours) to a
+        door's seed cells (``scipy.ndimage.label``)."""
+        labels = np.empty(self.shape, dtype=np.int32)  # (not kept: a grid is shared between layouts)
+        ndimage.label(self.array(free), FOUR_NEIGHBOURS, output=labels)
+        found = set(labels.ravel()[self.seed_cells].tolist()) - {0}
+        if not found:
+            return 0
+        reach = labels == found.pop() if len(found) == 1 else np.isin(labels, sorted(found))
+        return self.plane(reach)
+
+    def reachable(self, free: int) -> int:
+        """The reachable floor from the doors alone: grown from the door cells on a small
+        grid, labelled on a big one (growing costs a round per cell of the longest way,
+        labelling a fixed ~50 us plus the grid's size; they cross at ~3500 cells)."""
+        if self.shape[0] * self.stride > FLOOD_CELLS:
+            return self.label(free)
+        return self.flood(self.seeds & free, free)
+
+    def flood(self, start: int, free: int) -> int:
+        """The free cells connected (4-neighbours) to ``start`` (a plane within ``free``):
+        grows it one cell a round until it stops. Rounds: the farthest new cell's
+        distance in cells from ``start``, a few when ``start`` is most of the answer."""
+        stride = self.stride
+        reach = start
+        while True:
+            grown = (reach | reach << 1 | reach >> 1 | reach << stride | reach >> stride) & free
+            if grown == reach:
+                return reach
+            reach = grown
+
+    def ring_single(self, reach: int, window: tuple[int, int, int, int]) -> bool:
+        """Whether the cells of ``reach`` on the ring just outside ``window`` form at most
+        one contiguous arc going round it: then taking the window out of ``reach`` cuts
+        no way, since a way entering and leaving the window can go round along the arc."""
+        i0, i1, k0, k1 = window
+        stride = self.stride
+        r0, c0, c1 = i0 - 1, k0 - 1, k1  # the ring: rows r0 and i1, columns c0 and c1
+        height = i1 - i0
+        size = (height + 2) * stride
+        # The ring's rows as a string of 0s and 1s, bit j of the block at index j.
+        cells = format((reach >> (r0 * stride)) & ((1 << size) - 1), f"0{size}b")[::-1]
+        bottom = (height + 1) * stride
+        ring = (
+            cells[c0:c1 + 1]  # top row, left to right
+            + cells[stride + c1:bottom:stride]  # right column, top to bottom
+            + cells[bottom + c0:bottom + c1 + 1][::-1]  # bottom row, right to left
+            + cells[stride + c0:bottom:stride][::-1]  # left column, bottom to top
+        )
+        return (ring[-1] + ring).count("01") <= 1  # arcs start where a 0 is followed by a 1
+
+    def distance(self, target: int, window: tuple[int, int, int, int], guess: int | None = None) -> int:
+        """Cells between a window and the nearest cell of ``target`` (a non-empty plane),
+        counted on both axes at once (Chebyshev): the fewest cells the window must grow
+        by to take one in. ``guess``: the answer last time, tried first (two tests when
+        it still holds)."""
+        rows, cols = self.shape
+        i0, i1, k0, k1 = window
+
+        def holds(grow: int) -> bool:
+            wider = (max(i0 - grow, 0), min(i1 + grow, rows), max(k0 - grow, 0), min(k1 + grow, cols))
+            return bool(target & self.window_plane(wider))
+
+        if guess is not None and holds(guess) and (guess == 0 or not holds(guess - 1)):
+            return guess
+        low, high = -1, max(rows, cols)  # holds(high); not holds(low) (nothing within -1)
+        while high - low > 1:
+            middle = (low + high) // 2
+            if holds(middle):
+                high = middle
+            else:
+                low = middle
+        return high
+
+
+#: One grid per room, shared by every chain and layout of it (its templates with it).
+_GRIDS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def access_grid(room: Room) -> AccessGrid:
+    """The room's reachability grid, made once per room (rooms equal in value share it).
+    Threads may share it: it is read-only once made but for its template cache, whose
+    entries come out the same whoever makes them."""
+    grid = _GRIDS.get(room)
+    if grid is None:
+        grid = _GRIDS[room] = AccessGrid(room)
+    return grid
+
+
+class AccessState(NamedTuple):
+    """Reachability as the energy knows it: ``reach``, the plane of the reachable floor;
+    per placed box that needs reaching a ``witness`` (a bit of ``reach`` among its access
+    cells, None when it is unreachable) and its energy (``values``); per unreachable box
+    its distance to the reachable floor in cells (``apart``)."""
+
+    reach: int
+    witness: dict[int, int | None]
+    values: dict[int, float]
+    apart: dict[int, int]
+
+
+class AccessChanges(NamedTuple):
+    """Reachability after a proposal, and the moved obstacles' new cells (planes)."""
+
+    state: AccessState
+    taken: dict[int, int]
+
+
+class RoomChanges(NamedTuple):
+    """What a proposal changes in the room's terms."""
+
+    delta: dict[str, float]  # by part
+    moved: set[int]
+    walls: dict[int, float]  # by box
+    square: dict[int, float]
+    swing: dict[int, float]
+    zones: set[int]  # zones whose owner moved: all their hits are replaced
+    hits: dict[tuple[int, int], float]  # (zone, box): new clearance overlaps
+    zone_wall: dict[int, float]  # by zone
+    access: AccessChanges | None  # None: reachability unchanged
+
+
+class RoomTerms:
+    """The room's energy terms for one problem: static geometry and cached values."""
+
+    def __init__(self, problem: Problem, state: State, params: LayoutParams, active: list[bool], grid: Grid):
+        self.problem, self.state, self.params, self.active, self.grid = problem, state, params, active, grid
+        room = problem.room
+        self.room = room
+        self.walls_geometry = Walls(room)
+        self.axes = wall_axes(room)
+        self.access_grid = access_grid(room)
+        n = problem.n_boxes
+        ground = [problem.support[b] == -1 and not problem.is_junction[b] for b in range(n)]
+        #: Tall ground boxes: they block corridors, door swings and clearance zones.
+        self.obstacle = [ground[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
+        self.obstacles = [b for b in range(n) if self.obstacle[b]]
+        #: Boxes someone must reach, and the sides they use ((("any",) for any side).
+        self.needs_access = [ground[b] and bool(problem.access[b]) for b in range(n)]
+        self.access_boxes = [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
+        self.swings = [(door.id, swing_rect(room, door)) for door in room.doors]
+        self.swing_size = [2.0 * math.hypot(r.hw, r.hd) for _, r in self.swings]
+        # Clearance zones: (owner, side, metres) each; per box the zones it owns.
+        self.zones: list[tuple[int, str, float]] = []
+        self.zones_of: list[list[int]] = [[] for _ in range(n)]
+        for box in range(n):
+            if problem.is_junction[box]:
+                continue
+            for side, metres in problem.clearance[box]:
+                if side in SIDES and metres > 0.0:
+                    self.zones_of[box].append(len(self.zones))
+                    self.zones.append((box, side, float(metres)))
+        self.zone_reach = max((m for _, _, m in self.zones), default=0.0)
+        #: Each zone's diagonal, the normaliser of depths into it.
+        self.zone_sizes = [
+            math.hypot(2.0 * (problem.half_width[o] if side in ("front", "back") else problem.half_depth[o]), m)
+            for o, side, m in self.zones
+        ]
+        # Who may stand in a box's zones anyway: its relation partners (a chair pulled up
+        # to a desk) and what it rests on.
+        partners: list[set[int]] = [set() for _ in range(n)]
+        for term in problem.relations:
+            for a in term.a.members:
+                for b in term.b.members:
+                    partners[a].add(b)
+                    partners[b].add(a)
+        self.exempt = [partners[b] | set(problem.beneath(b)) | {b} for b in range(n)]
+        self.intensity = params.collision_intensity
+        # Rasters of each box at the last two poses they were made for: box -> [(pose, Raster)].
+        self._obstacle_memo: dict[int, list[tuple[tuple, Raster]]] = {}
+        self._access_memo: dict[int, list[tuple[tuple, Raster]]] = {}
+        #: Proposals that moved an obstacle (``evaluated``), and those of them whose
+        #: reachable floor was found from the doors anew (``labelled``): for the benchmark.
+        self.labelled = self.evaluated = 0
+
+    # -- single terms ------------------------------------------------------------------
+
+    def wall_excess(self, box: int) -> float:
+        return self.walls_geometry.excess(self.state.rects[box])
+
+    def wall_energy(self, box: int) -> float:
+        if not self.active[box]:
+            return 0.0
+        return self.intensity * self.wall_excess(box) / self.problem.size[box]
+
+    def square_energy(self, box: int) -> float:
+        if not self.active[box] or not self.problem.square or self.problem.is_junction[box]:
+            return 0.0
+        return -equals(square_off(self.state.yaw[box], self.axes), 0.0, SQUARE_SIGMA2)
+
+    def swing_depth(self, door: int, box: int) -> float:
+        """Planar depth (metres) of a box in a door's swing zone."""
+        return rect_penetration(self.swings[door][1], self.state.rects[box])
+
+    def swing_energy(self, box: int) -> float:
+        if not self.active[box] or not self.obstacle[box]:
+            return 0.0
+        size = self.problem.size[box]
+        rect = self.state.rects[box]
+        x0, z0, x1, z1 = bounds(rect)
+        energy = 0.0
+        for door, (_, zone) in enumerate(self.swings):
+            sx0, sz0, sx1, sz1 = bounds(zone)
+            if x1 <= sx0 or sx1 <= x0 or z1 <= sz0 or sz1 <= z0:
+                continue
+            depth = rect_penetration(zone, rect)
+            if depth > 0.0:
+                energy += penalty(depth / (self.swing_size[door] + size), self.intensity)
+        return energy
+
+    def zone(self, zone: int) -> Rect:
+        owner, side, metres = self.zones[zone]
+        return zone_rect(self.state.rects[owner], side, metres)
+
+    def intrudes(self, zone: int, box: int) -> bool:
+        """Whether ``box`` counts when it stands in ``zone``: a tall ground box, placed,
+        neither the owner nor a partner of it nor under it."""
+        return self.obstacle[box] and self.active[box] and box not in self.exempt[self.zones[zone][0]]
+
+    def zone_depth(self, zone: int, rect: Rect, box: int) -> float:
+        """Planar depth (metres) of a box in a zone at ``rect``."""
+        return rect_penetration(rect, self.state.rects[box])
+
+    def zone_hit_energy(self, zone: int, rect: Rect, box: int) -> float:
+        depth = self.zone_depth(zone, rect, box)
+        if depth <= 0.0:
+            return 0.0
+        return penalty(depth / (self.zone_sizes[zone] + self.problem.size[box]), self.intensity)
+
+    def zone_wall_energy(self, zone: int, rect: Rect) -> float:
+        excess = self.walls_geometry.excess(rect)
+        return penalty(excess / self.zone_sizes[zone], self.intensity) if excess > 0.0 else 0.0
+
+    def _zone_candidates(self, rect: Rect) -> set[int]:
+        return self.grid.in_area(*bounds(rect))
+
+    def _owners_near(self, box: int) -> set[int]:
+        """Boxes whose zones may reach ``box``: owners within the longest zone of it."""
+        return self.grid.in_area(*bounds(self.state.rects[box], self.zone_reach))
+
+    # -- reachability -------------------------------------------------------------------
+
+    def obstacle_cells(self, box: int) -> Raster:
+        """The cells the box takes from the free floor at its current pose."""
+        return self._memoised(self._obstacle_memo, box, lambda rect: self.access_grid.obstacle(rect))
+
+    def access_cells(self, box: int) -> Raster:
+        """The cells a person may use the box from at its current pose."""
+        sides = self.problem.access[box]
+        return self._memoised(self._access_memo, box, lambda rect: self.access_grid.access(rect, sides))
+
+    def _memoised(self, memo: dict, box: int, make) -> Raster:
+        """A raster of the box at its current pose, made by ``make(rect)`` unless it is
+        one of the last two made (a rejected proposal comes back to the pose before)."""
+        pose = self.state.pose(box)
+        entries = memo.setdefault(box, [])
+        for known, raster in entries:
+            if known == pose:
+                return raster
+        raster = make(self.state.rects[box])
+        entries.insert(0, (pose, raster))
+        del entries[2:]
+        return raster
+
+    def free(self) -> int:
+        """The free floor: static floor no placed tall box takes."""
+        used = 0
+        for bits in self.taken:
+            used |= bits
+        return self.access_grid.static & ~used
+
+    def find_witness(self, box: int, reach: int) -> int | None:
+        """A bit of ``reach`` among the box's access cells, or None."""
+        hit = reach & self.access_cells(box).bits
+        return (hit & -hit).bit_length() - 1 if hit else None
+
+    def _evaluate_access(self, reach: int, known: AccessState, moved: set[int], same: bool) -> AccessState:
+        """Every placed access box's witness and energy on the reachable floor ``reach``.
+        ``known``: the witnesses and values before, still good for a box that has not
+        ``moved`` if its witness is in ``reach`` (and, unreachable, if ``reach`` is the
+        ``same`` as before)."""
+        old_witness, old_values = known.witness, known.values
+        witness: dict[int, int | None] = {}
+        values: dict[int, float] = {}
+        apart: dict[int, int] = {}
+        unreachable = []
+        for box in self.access_boxes:
+            if not self.active[box]:
+                continue
+            if box not in moved and box in old_witness:
+                cell = old_witness[box]
+                if cell is not None and (reach >> cell) & 1:
+                    witness[box], values[box] = cell, 0.0
+                    continue
+                if cell is None and same:  # unreachable before, and nothing changed
+                    witness[box], values[box], apart[box] = None, old_values[box], known.apart[box]
+                    continue
+            witness[box] = cell = self.find_witness(box, reach)
+            values[box] = 0.0
+            if cell is None:
+                unreachable.append(box)
+        if unreachable:
+            grid = self.access_grid
+            target = reach or grid.seeds or grid.static  # nothing reachable: how far from a door
+            for box in unreachable:
+                cells = grid.distance(target, self.access_cells(box).window, known.apart.get(box))
+                apart[box] = cells
+                values[box] = ACCESS_BASE + ACCESS_SLOPE * cells * grid.cell
+        return AccessState(reach, witness, values, apart)
+
+    def _reach_after(self, moved: list[int]) -> tuple[int, dict[int, int]]:
+        """The reachable floor with the moved obstacles at their new poses, computed from
+        the reachable floor before (exact), and the moved obstacles' new cells.
+
+        Take the window of each moved obstacle (its cells' bounding box) out of the
+        reachable floor; that cuts no way when the reachable cells on the ring just
+        outside the window form at most one arc (a way through the window can go round
+        along it) and, if the window holds door cells, the arc holds one too (else the
+        floor beyond might have been reached only through the door cells taken out). A
+        window that fails is tried again grown by CUT_TEST_GROWTH cells (a box in a gap
+        between two others: round both). What is left is reachable, so growing it (with
+        the door cells) over the free floor gives the reachable floor exactly, in as many
+        rounds as the farthest cell the moves freed is from it. When no window passes, the
+        reachable floor is found from the doors alone (``AccessGrid.reachable``).
+        """
+        grid = self.access_grid
+        taken = {box: self.obstacle_cells(box).bits for box in moved}
+        used = 0
+        for box, bits in enumerate(self.taken):
+            used |= taken[box] if box in taken else bits
+        free = grid.static & ~used
+        reach = self.access.reach
+        for box in moved:
+            window = self.obstacle_cells(box).window  # on the floor's grid
+            if window[0] == window[1] or window[2] == window[3]:
+                continue
+            for grow in CUT_TEST_GROWTH:
+                wider = grid.widen(window, grow)
+                if grid.ring_single(reach, wider) and grid.keeps_a_door(reach, wider):
+                    reach &= ~grid.window_plane(wider)
+                    break
+            else:
+                self.labelled += 1
+                return grid.reachable(free), taken
+        return grid.flood(reach | (grid.seeds & free), free), taken
+
+    def _access_changes(self, boxes: list[int]) -> AccessChanges | None:
+        """Reachability after a proposal moved ``boxes``, or None if it cannot have changed."""
+        moved = set(boxes)
+        obstacles = [b for b in boxes if self.obstacle[b] and self.active[b]]
+        if obstacles:
+            self.evaluated += 1
+            reach, taken = self._reach_after(obstacles)
+            return AccessChanges(self._evaluate_access(reach, self.access, moved, reach == self.access.reach), taken)
+        if any(self.needs_access[b] for b in boxes):
+            return AccessChanges(self._evaluate_access(self.access.reach, self.access, moved, True), {})
+        return None
+
+    # -- caches ---------------------------------------------------------------------------
+
+    def fresh(self) -> dict:
+        """Every room term recomputed from scratch (no cached value is read or changed;
+        only the per-pose memos of rasters, pure functions of the pose, are shared)."""
+        problem = self.problem
+        n = problem.n_boxes
+        walls = [self.wall_energy(b) for b in range(n)]
+        square = [self.square_energy(b) for b in range(n)]
+        swing = [self.swing_energy(b) for b in range(n)]
+        zone_hits: list[dict[int, float]] = [{} for _ in self.zones]
+        hits_of: list[dict[int, float]] = [{} for _ in range(n)]
+        zone_wall = [0.0] * len(self.zones)
+        for zone, (owner, _, _) in enumerate(self.zones):
+            if not self.active[owner]:
+                continue
+            rect = self.zone(zone)
+            zone_wall[zone] = self.zone_wall_energy(zone, rect)
+            for other in range(n):
+                if self.intrudes(zone, other):
+                    value = self.zone_hit_energy(zone, rect, other)
+                    if value > 0.0:
+                        zone_hits[zone][other] = hits_of[other][zone] = value
+        access = AccessState(0, {}, {}, {})
+        taken = [self.obstacle_cells(b).bits if self.obstacle[b] and self.active[b] else 0 for b in range(n)]
+        if self.access_boxes:
+            used = 0
+            for bits in taken:
+                used |= bits
+            reach = self.access_grid.label(self.access_grid.static & ~used)
+            access = self._evaluate_access(reach, access, set(), False)
+        parts = {
+            "walls": sum(walls),
+            "square": sum(square),
+            "clearance": sum(sum(h.values()) for h in zone_hits) + sum(zone_wall),
+            "door_swing": sum(swing),
+            "access": sum(access.values.values()),
+        }
+        return {
+            "walls": walls, "square": square, "swing": swing, "zone_hits": zone_hits, "hits_of": hits_of,
+            "zone_wall": zone_wall, "taken": taken, "access": access, "parts": parts,
+        }  # fmt: skip
+
+    def install(self, fresh: dict) -> None:
+        """Make freshly computed values the cache."""
+        self.walls, self.square, self.swing = fresh["walls"], fresh["square"], fresh["swing"]
+        self.zone_hits, self.hits_of, self.zone_wall = fresh["zone_hits"], fresh["hits_of"], fresh["zone_wall"]
+        self.taken, self.access = fresh["taken"], fresh["access"]
+
+    def changes(self, boxes: list[int]) -> RoomChanges:
+        """New values of the room terms the moved boxes touch (state and broad-phase grid
+        already at the proposal), with the part deltas."""
+        delta = dict.fromkeys(ROOM_PARTS, 0.0)
+        moved = set(boxes)
+        walls, square, swing = {}, {}, {}
+        for box in boxes:
+            walls[box] = self.wall_energy(box)
+            delta["walls"] += walls[box] - self.walls[box]
+            square[box] = self.square_energy(box)
+            delta["square"] += square[box] - self.square[box]
+            swing[box] = self.swing_energy(box)
+            delta["door_swing"] += swing[box] - self.swing[box]
+
+        zones: set[int] = set()
+        hits: dict[tuple[int, int], float] = {}
+        zone_wall: dict[int, float] = {}
+        if self.zones:
+            clearance = 0.0
+            for box in boxes:  # the zones the moved boxes own: every hit replaced
+                for zone in self.zones_of[box]:
+                    zones.add(zone)
+                    clearance -= sum(self.zone_hits[zone].values()) + self.zone_wall[zone]
+                    if not self.active[box]:
+                        zone_wall[zone] = 0.0
+                        continue
+                    rect = self.zone(zone)
+                    zone_wall[zone] = value = self.zone_wall_energy(zone, rect)
+                    clearance += value
+                    for other in sorted(self._zone_candidates(rect)):
+                        if self.intrudes(zone, other):
+                            value = self.zone_hit_energy(zone, rect, other)
+                            if value > 0.0:
+                                hits[(zone, other)] = value
+                                clearance += value
+            for box in boxes:  # the moved boxes standing in zones of boxes that stayed
+                if not self.obstacle[box]:
+                    continue
+                for zone, value in self.hits_of[box].items():
+                    if self.zones[zone][0] not in moved:
+                        clearance -= value
+                if not self.active[box]:
+                    continue
+                for owner in sorted(self._owners_near(box)):
+                    if owner in moved:
+                        continue
+                    for zone in self.zones_of[owner]:
+                        if self.intrudes(zone, box):
+                            value = self.zone_hit_energy(zone, self.zone(zone), box)
+                            if value > 0.0:
+                                hits[(zone, box)] = value
+                                clearance += value
+            delta["clearance"] = clearance
+
+        access = self._access_changes(boxes) if self.access_boxes else None
+        if access is not None:
+            delta["access"] = sum(access.state.values.values()) - sum(self.access.values.values())
+        return RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, access)
+
+    def accept(self, changes: RoomChanges) -> None:
+        """Keep a proposal's values."""
+        for box, value in changes.walls.items():
+            self.walls[box] = value
+        for box, value in changes.square.items():
+            self.square[box] = value
+        for box, value in changes.swing.items():
+            self.swing[box] = value
+        for zone in changes.zones:
+            for other in self.zone_hits[zone]:
+                del self.hits_of[other][zone]
+            self.zone_hits[zone] = {}
+        for box in changes.moved:
+            for zone in self.hits_of[box]:
+                del self.zone_hits[zone][box]
+            self.hits_of[box] = {}
+        for (zone, box), value in changes.hits.items():
+            self.zone_hits[zone][box] = value
+            self.hits_of[box][zone] = value
+        for zone, value in changes.zone_wall.items():
+            self.zone_wall[zone] = value
+        if changes.access is not None:
+            self.access = changes.access.state
+            for box, bits in changes.access.taken.items():
+                self.taken[box] = bits
+
+    # -- what the sampler and the report read ------------------------------------------------
+
+    def unreachable(self) -> list[int]:
+        """Boxes that need reaching and cannot be."""
+        return sorted(box for box, value in self.access.values.items() if value > 0.0)
+
+    def troubled(self) -> set[int]:
+        """Boxes in breach of a room term (a little square-off aside): across a wall, in
+        a door's swing, in a kept-free zone or owning one that is taken or crosses a
+        wall, out of reach, or hemming in a box out of reach."""
+        found = {b for b in range(self.problem.n_boxes) if self.walls[b] > 0.0 or self.swing[b] > 0.0}
+        for zone, hits in enumerate(self.zone_hits):
+            found.update(hits)
+            if hits or self.zone_wall[zone] > 0.0:
+                found.add(self.zones[zone][0])
+        for box in self.unreachable():
+            found.add(box)
+            found.update(self.blockers(box))
+        return found
+
+    def blockers(self, box: int) -> list[int]:
+        """The obstacles that hem in an unreachable box: those taking cells next to the
+        free floor around its access sides (its pocket) or covering its access cells."""
+        grid = self.access_grid
+        free = self.free()
+        cells = self.access_cells(box).bits
+        pocket = grid.flood(cells & free, free) | cells
+        stride = grid.stride
+        near = pocket | pocket << 1 | pocket >> 1 | pocket << stride | pocket >> stride
+        return [
+            other for other in self.obstacles
+            if other != box and self.active[other] and self.obstacle_cells(other).bits & near
+        ]  # fmt: skip
+
+    def problems(self) -> list[str]:
+        """The room's problems in words (ROOM_TOLERANCE of slack on every distance)."""
+        problem = self.problem
+        ids, found = problem.ids, []
+        for box in range(problem.n_boxes):
+            if self.active[box] and self.wall_excess(box) > ROOM_TOLERANCE:
+                found.append(f"{ids[box]} crosses the wall")
+        for door, (door_id, _) in enumerate(self.swings):
+            for box in self.obstacles:
+                if self.active[box] and self.swing_depth(door, box) > ROOM_TOLERANCE:
+                    found.append(f"{ids[box]} stands in the swing of {door_id}")
+        for zone, (owner, side, _) in enumerate(self.zones):
+            if not self.active[owner]:
+                continue
+            rect = self.zone(zone)
+            words = f"the space kept free {SIDE_WORDS[side]} {ids[owner]}"
+            for other in range(problem.n_boxes):
+                if self.intrudes(zone, other) and self.zone_depth(zone, rect, other) > ROOM_TOLERANCE:
+                    found.append(f"{ids[other]} stands in {words}")
+            if self.walls_geometry.excess(rect) > ROOM_TOLERANCE:
+                found.append(f"{words} runs into the wall")
+        width = 2.0 * CORRIDOR_HALF
+        for box in self.unreachable():
+            found.append(f"{ids[box]} cannot be reached from the door (no {width:.1f} m wide way)")
+        return found
+
+
+def _wall_segments(room: Room) -> tuple[list, list]:
+    """The room's walls as segments ((x0, z0), (x1, z1)): the solid stretches (doorways
+    cut out) and the doorways."""
+    solid, doors = [], []
+    for wall in room.walls:
+        cuts = sorted((d.offset - d.width / 2.0, d.offset + d.width / 2.0) for d in room.doors if d.wall == wall.id)
+        u = 0.0
+        for low, high in cuts:
+            if low > u:
+                solid.append((wall.to_world(u, 0.0), wall.to_world(low, 0.0)))
+            doors.append((wall.to_world(low, 0.0), wall.to_world(high, 0.0)))
+            u = max(u, high)
+        if u < wall.length:
+            solid.append((wall.to_world(u, 0.0), wall.to_world(wall.length, 0.0)))
+    return solid, doors
+
+
+def _segments_distance(gx: np.ndarray, gz: np.ndarray, segments: list) -> np.ndarray:
+    """Distance from every point (gx, gz) to the nearest of some segments (inf if none)."""
+    best = np.full(gx.shape, np.inf)
+    for (ax, az), (bx, bz) in segments:
+        ex, ez = bx - ax, bz - az
+        length2 = ex * ex + ez * ez
+        t = np.zeros(gx.shape) if length2 == 0.0 else np.clip(((gx - ax) * ex + (gz - az) * ez) / length2, 0.0, 1.0)
+        best = np.minimum(best, np.hypot(gx - ax - t * ex, gz - az - t * ez))
+    return best
+
+
+def _contains(room: Room, gx: np.ndarray, gz: np.ndarray) -> np.ndarray:
+    """``Room.contains`` for every point (gx, gz) at once."""
+    inside = np.zeros(gx.shape, dtype=bool)
+    points = room.corners
+    n = len(points)
+    for k in range(n):
+        (x0, z0), (x1, z1) = points[k], points[(k + 1) % n]
+        if z0 == z1:
+            continue
+        crosses = (z0 > gz) != (z1 > gz)
+        inside ^= crosses & (gx < x0 + (gz - z0) * (x1 - x0) / (z1 - z0))
+    return inside
