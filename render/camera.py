@@ -176,17 +176,30 @@ def walls_in_view(room: Room, towards_viewer) -> list[Wall]:
 def room_azimuth(room: Room | None) -> float:
     """The perspective view's azimuth (radians round from south towards east, as
     ``AZIMUTH``) for a room: from outside the wall of its first door, turned ``AZIMUTH``
-    to the right, so that wall is cut away; without a door, from opposite its first
-    window, so the window's wall is seen; otherwise (or outdoors) ``AZIMUTH``."""
+    to the right (or to the left, when that shows more of the windows), so that wall is
+    cut away; without a door, from opposite its first window, so the window's wall is
+    seen; otherwise (or outdoors) ``AZIMUTH``."""
     if room is None:
         return AZIMUTH
     if room.doors:
         nx, nz = room.part(room.doors[0].wall).normal
-        return math.atan2(-nx, -nz) + AZIMUTH  # outwards through the door's wall
+        outwards = math.atan2(-nx, -nz)  # through the door's wall
+        turns = [outwards + AZIMUTH, outwards - AZIMUTH]
+        return max(turns, key=lambda azimuth: _windows_seen(room, azimuth))  # the first wins a tie
     if room.windows:
         nx, nz = room.part(room.windows[0].wall).normal
         return math.atan2(nx, nz) + AZIMUTH  # across the room from the window
     return AZIMUTH
+
+
+def _windows_seen(room: Room, azimuth: float) -> int:
+    """How many windows are in walls a camera at ``azimuth`` sees from inside (the walls
+    whose inner face turns towards it; the others are cut away)."""
+    towards = view_direction(azimuth)
+    return sum(
+        1 for window in room.windows
+        if room.part(window.wall).normal[0] * towards[0] + room.part(window.wall).normal[1] * towards[2] > 1e-9
+    )  # fmt: skip
 
 
 def view_direction(azimuth: float = AZIMUTH, elevation: float = ELEVATION) -> np.ndarray:

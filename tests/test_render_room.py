@@ -268,9 +268,9 @@ def test_from_above_the_lintels_hide_the_doors_and_windows(renderer):
 def test_an_l_shaped_room_renders_with_its_openings(renderer):
     result = renderer.render(scene_of([], room=L_SHAPED))
     assert result.ids == ["door_1", "window_1", "door_2", "window_2"]
-    # Looking in through the notch's south-facing wall (door_1): the north and west walls
-    # face the camera, with window_1 and door_2; the notch's walls are cut away.
-    assert set(result.boxes) == {"window_1", "door_2"}
+    # Looking in through the notch's south-facing wall (door_1), turned to the side that
+    # shows both windows; the walls turned away from the camera are cut away.
+    assert set(result.boxes) == {"window_1", "window_2"}
 
 
 # -- GLB export and the plan ------------------------------------------------------------------
@@ -323,3 +323,13 @@ def test_the_plan_draws_walls_doors_and_windows(tmp_path):
     wall_grey = np.all(np.abs(pixels - 115) < 4, axis=-1)  # matplotlib's "0.45"
     window_blue = np.all(np.abs(pixels - [173, 216, 230]) < 4, axis=-1)  # "lightblue"
     assert wall_grey.sum() > 2000 and window_blue.sum() > 50
+
+
+def test_the_camera_turns_to_the_side_of_the_door_that_shows_the_windows():
+    door_south = Room.rectangle(5, 4).with_opening("door", "south", 1.0, 0.9)
+    assert room_azimuth(door_south) == pytest.approx(AZIMUTH)  # no window: turned east, as before
+    east_window = door_south.with_opening("window", "east", 2.0, 1.0, 1.0, 1.0)
+    west_window = door_south.with_opening("window", "west", 2.0, 1.0, 1.0, 1.0)
+    for room, seen in ((east_window, "east"), (west_window, "west")):
+        towards = np.array([math.sin(room_azimuth(room)), 0.0, math.cos(room_azimuth(room))])
+        assert seen in {wall.side for wall in walls_in_view(room, towards)}
