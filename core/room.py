@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 #: Scene-graph node kinds of a room and its parts, and the id of the node that stands for the room.
 ROOM_KINDS = ("room", "wall", "door", "window")
@@ -65,11 +66,12 @@ class Wall:
     #: Inner normal (x, z): unit, pointing into the room.
     normal: tuple[float, float]
 
-    @property
+    # Derived once: the layout asks for them at every step.
+    @cached_property
     def length(self) -> float:
         return math.hypot(self.end[0] - self.start[0], self.end[1] - self.start[1])
 
-    @property
+    @cached_property
     def direction(self) -> tuple[float, float]:
         """Unit vector (x, z) along the wall, start to end."""
         length = self.length
@@ -236,12 +238,16 @@ class Room:
 
     def neighbours(self, wall_id: str) -> tuple[Wall, Wall]:
         """The walls before and after this one around the room."""
-        index = next(k for k, wall in enumerate(self.walls) if wall.id == wall_id)
+        index = self._wall_index[wall_id]
         return self.walls[index - 1], self.walls[(index + 1) % len(self.walls)]
 
-    @property
-    def corners(self) -> list[tuple[float, float]]:
-        return [wall.start for wall in self.walls]
+    @cached_property
+    def _wall_index(self) -> dict[str, int]:
+        return {wall.id: k for k, wall in enumerate(self.walls)}
+
+    @cached_property
+    def corners(self) -> tuple[tuple[float, float], ...]:
+        return tuple(wall.start for wall in self.walls)
 
     @property
     def extent(self) -> tuple[float, float]:
@@ -290,9 +296,9 @@ class Room:
         for x, z in corners:
             if not self.contains(x, z):
                 excess = max(excess, self.boundary_distance(x, z))
+        clockwise = _signed_area(corners) < 0
         for wx, wz in self.corners:  # a room corner poking into the footprint (L-shaped rooms)
-            depth = _depth_in_convex(wx, wz, corners)
-            excess = max(excess, depth)
+            excess = max(excess, _depth_in_convex(wx, wz, corners, clockwise))
         return excess
 
     def swing_zone(self, door: Opening) -> list[tuple[float, float]]:
@@ -365,10 +371,10 @@ def _segment_distance(x: float, z: float, a: tuple[float, float], b: tuple[float
     return math.hypot(x - a[0] - t * dx, z - a[1] - t * dz)
 
 
-def _depth_in_convex(x: float, z: float, corners: list[tuple[float, float]]) -> float:
-    """How deep (x, z) lies inside a convex polygon: its distance to the nearest edge, or 0 outside."""
+def _depth_in_convex(x: float, z: float, corners: list[tuple[float, float]], clockwise: bool) -> float:
+    """How deep (x, z) lies inside a convex polygon (its corners going round ``clockwise``
+    or not, by the sign of its area): its distance to the nearest edge, or 0 outside."""
     n = len(corners)
-    area = _signed_area(corners)
     depth = math.inf
     for k in range(n):
         (x0, z0), (x1, z1) = corners[k], corners[(k + 1) % n]
@@ -377,7 +383,7 @@ def _depth_in_convex(x: float, z: float, corners: list[tuple[float, float]]) -> 
             continue
         # Signed distance to the edge's line, positive on the inside.
         cross = ((x1 - x0) * (z - z0) - (z1 - z0) * (x - x0)) / length
-        inside = cross if area > 0 else -cross
+        inside = -cross if clockwise else cross
         if inside <= 0.0:
             return 0.0
         depth = min(depth, inside)

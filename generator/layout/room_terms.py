@@ -185,9 +185,7 @@ class Walls:
 
     def __init__(self, room: Room):
         self.room = room
-        self.corners = room.corners
-        n = len(self.corners)
-        self.segments = [(self.corners[k], self.corners[(k + 1) % n]) for k in range(n)]
+        n = len(room.walls)
         #: Each wall's line as (nx, nz, offset): n . p - offset is the signed distance of p
         #: into the room. In a convex room a footprint whose corners all have it >= 0
         #: stands on the floor (no room corner can be inside it): most of the time, so
@@ -196,33 +194,13 @@ class Walls:
         self.convex = all(room.convex_corner(room.walls[k], room.walls[(k + 1) % n]) for k in range(n))
         #: For a room that is a rectangle square to the axes, its bounds (x0, z0, x1, z1):
         #: a footprint's bounds within them (FLUSH aside) is all the convex test asks.
-        xs, zs = [p[0] for p in self.corners], [p[1] for p in self.corners]
+        xs, zs = [p[0] for p in room.corners], [p[1] for p in room.corners]
         square = n == 4 and all(abs(w.normal[0]) in (0.0, 1.0) for w in room.walls)
         self.box = (min(xs) - FLUSH, min(zs) - FLUSH, max(xs) + FLUSH, max(zs) + FLUSH) if square else None
 
-    def contains(self, x: float, z: float) -> bool:
-        """Whether (x, z) is on the floor (crossing test, as ``Room.contains``)."""
-        inside = False
-        for (x0, z0), (x1, z1) in self.segments:
-            if (z0 > z) != (z1 > z) and x < x0 + (z - z0) * (x1 - x0) / (z1 - z0):
-                inside = not inside
-        return inside
-
-    def boundary_distance(self, x: float, z: float) -> float:
-        best = math.inf
-        for (x0, z0), (x1, z1) in self.segments:
-            dx, dz = x1 - x0, z1 - z0
-            length2 = dx * dx + dz * dz
-            t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((x - x0) * dx + (z - z0) * dz) / length2))
-            distance = math.hypot(x - x0 - t * dx, z - z0 - t * dz)
-            if distance < best:
-                best = distance
-        return best
-
     def excess(self, rect: Rect) -> float:
-        """How far (metres) a footprint crosses the walls: the deepest of its corners
-        outside the floor and of the room's corners inside it (``Room.footprint_excess``
-        for a rectangle); 0 when it stands wholly on the floor."""
+        """How far (metres) a footprint crosses the walls (``Room.footprint_excess``),
+        with the two quick answers of a footprint wholly inside first."""
         if self.box is not None:
             x0, z0, x1, z1 = bounds(rect)
             room_x0, room_z0, room_x1, room_z1 = self.box
@@ -231,21 +209,7 @@ class Walls:
         points = corners(rect)
         if self.convex and all(nx * x + nz * z >= offset - FLUSH for x, z in points for nx, nz, offset in self.lines):
             return 0.0
-        best = 0.0
-        for x, z in points:
-            if not self.contains(x, z):
-                distance = self.boundary_distance(x, z)
-                if distance > best:
-                    best = distance
-        cx, cz, hw, hd, c, s = rect
-        x0, z0, x1, z1 = bounds(rect)
-        for wx, wz in self.corners:  # a room corner poking into the footprint (L-shaped rooms)
-            if x0 < wx < x1 and z0 < wz < z1:
-                dx, dz = wx - cx, wz - cz
-                depth = min(hw - abs(dx * c - dz * s), hd - abs(dx * s + dz * c))
-                if depth > best:
-                    best = depth
-        return best
+        return self.room.footprint_excess(points)
 
 
 class Raster(NamedTuple):
