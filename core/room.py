@@ -118,6 +118,11 @@ class Opening:
     def top(self) -> float:
         return self.sill + self.height
 
+    @property
+    def span(self) -> tuple[float, float]:
+        """Where it starts and ends along its wall (u, metres from the wall's start)."""
+        return self.offset - self.width / 2.0, self.offset + self.width / 2.0
+
 
 @dataclass(frozen=True)
 class Room:
@@ -301,11 +306,16 @@ class Room:
             excess = max(excess, _depth_in_convex(wx, wz, corners, clockwise))
         return excess
 
+    def opening_ends(self, opening: Opening) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The two ends (x, z) of the stretch of wall an opening fills."""
+        wall, (u0, u1) = self.part(opening.wall), opening.span
+        return wall.to_world(u0, 0.0), wall.to_world(u1, 0.0)
+
     def swing_zone(self, door: Opening) -> list[tuple[float, float]]:
         """The door's swing zone: corners (x, z) of the ``width`` x ``width`` square in
         front of it, inside the room."""
         wall = self.part(door.wall)
-        u0, u1 = door.offset - door.width / 2.0, door.offset + door.width / 2.0
+        u0, u1 = door.span
         return [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, door.width), wall.to_world(u0, door.width)]
 
     # -- plain data -----------------------------------------------------------------

@@ -302,9 +302,7 @@ def _turned(vector: tuple[float, float], quarter: int) -> str:
 
 def _distance_to_opening(point: tuple[float, float], opening: Opening, room: Room) -> float:
     """Distance from a point on the floor to the stretch of wall an opening fills."""
-    wall = room.part(opening.wall)
-    half = opening.width / 2.0
-    (ax, az), (bx, bz) = wall.to_world(opening.offset - half, 0.0), wall.to_world(opening.offset + half, 0.0)
+    (ax, az), (bx, bz) = room.opening_ends(opening)
     dx, dz = bx - ax, bz - az
     t = max(0.0, min(1.0, ((point[0] - ax) * dx + (point[1] - az) * dz) / (dx * dx + dz * dz)))
     return math.hypot(point[0] - ax - t * dx, point[1] - az - t * dz)

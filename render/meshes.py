@@ -193,7 +193,7 @@ def wall_mesh(room: Room, wall: Wall) -> trimesh.Trimesh:
 
     edge = 0.0
     for opening in openings:
-        u0, u1 = opening.offset - opening.width / 2.0, opening.offset + opening.width / 2.0
+        u0, u1 = opening.span
         piece(edge, u0, 0.0, height)  # beside it
         piece(u0, u1, 0.0, opening.sill)  # below the sill (none for a door)
         piece(u0, u1, opening.top, height)  # above its top

@@ -102,7 +102,7 @@ def _draw_room(axes, room: Room) -> None:
         axes.add_patch(Polygon(wall_footprint(room, wall), closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2))
     for opening in room.openings:
         wall = room.part(opening.wall)
-        u0, u1 = opening.offset - opening.width / 2.0, opening.offset + opening.width / 2.0
+        u0, u1 = opening.span
         thickness = WALL_THICKNESS
         hole = [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, -thickness), wall.to_world(u0, -thickness)]
         if opening.kind == "window":

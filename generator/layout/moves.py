@@ -764,7 +764,8 @@ class Mover:
                 (fitting if fits else rest).append((wall, u, u, 1.0))
                 continue
             gap = self.rng.uniform(*BESIDE_GAP)
-            for u in (window.offset - window.width / 2.0 - gap - hw, window.offset + window.width / 2.0 + gap + hw):
+            low, high = window.span
+            for u in (low - gap - hw, high + gap + hw):
                 fits = hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
                 (fitting if fits else rest).append((wall, u, u, 1.0))
         if fitting:
@@ -845,7 +846,7 @@ class Mover:
         if b.kind == "opening":
             opening = room.openings[b.index]
             wall = room.part(opening.wall)
-            low, high = opening.offset - opening.width / 2.0, opening.offset + opening.width / 2.0
+            low, high = opening.span
         else:
             if b.kind == "wall":
                 wall = room.walls[b.index]

@@ -133,7 +133,8 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
         u, _ = wall.to_wall(*towards)
         if end.kind == "opening":
             opening = state.problem.room.openings[end.index]
-            u = min(max(u, opening.offset - opening.width / 2.0), opening.offset + opening.width / 2.0)
+            low, high = opening.span
+            u = min(max(u, low), high)
         x, z = wall.to_world(min(max(u, 0.0), wall.length), 0.0)
         return x, z, wall.normal[1], wall.normal[0]  # forward (sin, cos) = normal
     if end.kind == "room":
@@ -232,10 +233,7 @@ def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
     elif b.kind == "wall":
         segments = [(room.walls[b.index].start, room.walls[b.index].end)]
     else:
-        opening = room.openings[b.index]
-        wall = room.part(opening.wall)
-        half = opening.width / 2.0
-        segments = [(wall.to_world(opening.offset - half, 0.0), wall.to_world(opening.offset + half, 0.0))]
+        segments = [room.opening_ends(room.openings[b.index])]
     if a.kind == "path":
         return min(
             max(0.0, polyline_distance(state.points[a.index], [list(p), list(q)]) - state.problem.path_width[a.index] / 2.0)
@@ -505,7 +503,7 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
         offset += abs(u - window.offset)
         fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
     elif placement == "beside_window":
-        low, high = window.offset - window.width / 2.0, window.offset + window.width / 2.0
+        low, high = window.span
         along = max(low - (u + reach_u), (u - reach_u) - high)  # < 0: overlaps the window along the wall
         offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
     energy = -equals(gap, 0.0, WALL_SIGMA2) - equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)

@@ -1065,7 +1065,7 @@ def _wall_segments(room: Room) -> tuple[list, list]:
     cut out) and the doorways."""
     solid, doors = [], []
     for wall in room.walls:
-        cuts = sorted((d.offset - d.width / 2.0, d.offset + d.width / 2.0) for d in room.doors if d.wall == wall.id)
+        cuts = sorted(d.span for d in room.doors if d.wall == wall.id)
         u = 0.0
         for low, high in cuts:
             if low > u:
