@@ -358,7 +358,7 @@ def test_tall_boxes_list_the_terms_they_may_block():
     problem = compile_problem(graph)
     board = problem.ids.index("whiteboard_1")
     assert [problem.relations[t].label for t in problem.terms_of_box[board]] == ["NextToFront", "FacingTowards"]
-    assert all(term.touches_path for term in problem.relations)  # re-evaluated when its ends move together
+    assert all(term.reads_fixed_geometry for term in problem.relations)  # re-evaluated when its ends move together
 
 
 def test_layout_moves_the_chair_out_of_the_boards_way():

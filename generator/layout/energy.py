@@ -295,7 +295,7 @@ class Energy:
             terms.update(problem.terms_of_path[path])
         new_relation = {}
         for term in sorted(terms):
-            if together and not problem.relations[term].touches_path and self.term_boxes[term] <= moved:
+            if together and not problem.relations[term].reads_fixed_geometry and self.term_boxes[term] <= moved:
                 continue
             value = self.relation_energy(term)
             new_relation[term] = value

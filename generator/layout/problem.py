@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel
@@ -56,13 +57,12 @@ class RelationTerm:
     #: the relation does not need a clear view, outdoors, or with line of sight off).
     sight: tuple[int, ...] = ()
 
-    @property
-    def touches_path(self) -> bool:
+    @cached_property
+    def reads_fixed_geometry(self) -> bool:
         """Whether the term reads geometry that does not move with its own boxes: a path,
         a room's wall, window or door, or (``sight``) tall boxes that may stand between
         its ends. A shared translation of its boxes can change such a term, so the
-        energy re-evaluates it after one (``Energy._changes``). (Named when paths were
-        the only such geometry.)"""
+        energy re-evaluates it after one (``Energy._changes``)."""
         return bool(self.sight) or self.a.kind in _FIXED_ENDS or self.b.kind in _FIXED_ENDS
 
     @property
