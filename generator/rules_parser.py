@@ -69,7 +69,50 @@ def _parser() -> Lark:
 @functools.cache
 def _build_parser() -> Lark:
     grammar = resources.files("scenewright.generator").joinpath("rules.lark").read_text()
-    return Lark(grammar, parser="lalr", lexer="contextual", propagate_positions=True, maybe_placeholders=True)
+    whole_words = _WholeKeywords()
+    parser = Lark(
+        grammar,
+        parser="lalr",
+        lexer="contextual",
+        postlex=whole_words,
+        propagate_positions=True,
+        maybe_placeholders=True,
+    )
+    whole_words.keywords = frozenset(
+        terminal.name for terminal in parser.terminals
+        if terminal.pattern.type == "str" and terminal.pattern.value[:1].isalpha()
+    )
+    return parser
+
+
+class _WholeKeywords:
+    """Lark post-lexer that keeps keywords whole words.
+
+    Where the parser takes a keyword but no name, the contextual lexer reads ``doors``
+    as the keyword ``door`` and a name ``s``, and ``squareon`` as ``square on``, which
+    parses. A keyword that runs straight on into a name or number is therefore a syntax
+    error at the rest of the word, which the explainer reports as the whole word
+    (``unexpected 'doors'; did you mean 'door'?``). ``5x4`` stays a room size.
+    """
+
+    always_accept: tuple[str, ...] = ()
+
+    def __init__(self) -> None:
+        self.keywords: frozenset[str] = frozenset()
+
+    def process(self, stream: Iterable[Token]) -> Iterable[Token]:
+        previous = None
+        for token in stream:
+            if (
+                previous is not None
+                and previous.type in self.keywords
+                and token.start_pos == previous.end_pos
+                and (token.value[:1].isalnum() or token.value[:1] == "_")
+                and not (previous.value == "x" and token.type == "NUMBER")
+            ):
+                raise UnexpectedToken(token, set())
+            yield token
+            previous = token
 
 
 # -- text -> AST --------------------------------------------------------------------

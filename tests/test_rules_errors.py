@@ -459,6 +459,29 @@ start_in_snake_case.rules:1:17: error: unexpected 'village'; nonterminals are Ca
     scene s { start village }
                     ^""",
     ),
+    # A keyword run on into the next word is the whole word, never the keyword and a
+    # name: 'squareon' used to read as 'square on' and parse.
+    "keyword_run_on": (
+        "scene s {\n    room 5 x 4 { doors south 1.0 0.9 }\n    start S\n}\nS -> { }",
+        """\
+keyword_run_on.rules:2:18: error: unknown room item 'doors'; did you mean 'door'?
+    room 5 x 4 { doors south 1.0 0.9 }
+                 ^""",
+    ),
+    "setting_run_on": (
+        "scene s {\n    squareon\n    start S\n}\nS -> { }",
+        """\
+setting_run_on.rules:2:5: error: unknown scene setting 'squareon'; did you mean 'square'?
+    squareon
+    ^""",
+    ),
+    "start_run_on": (
+        "scene s {\n    room 5x4\n    startS\n}\nS -> { }",
+        """\
+start_run_on.rules:3:5: error: unknown scene setting 'startS'; did you mean 'start'?
+    startS
+    ^""",
+    ),
 }
 
 
