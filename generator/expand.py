@@ -236,7 +236,11 @@ class _Expansion:
         low, high = int(count.low), int(count.high)
         if low == high:
             return low, None
-        drawn = int(self.rng.integers(low, high + 1))
+        if count.weights is None:
+            drawn = int(self.rng.integers(low, high + 1))
+        else:
+            weights = np.asarray(count.weights, dtype=float)
+            drawn = low + int(self.rng.choice(len(weights), p=weights / weights.sum()))
         return drawn, self.note("count", count.location, drawn, low=low, high=high)
 
     def note(

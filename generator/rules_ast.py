@@ -128,11 +128,14 @@ class Relation:
 
 @dataclass(frozen=True)
 class Count:
-    """``N`` or ``MIN..MAX`` repetitions (uniform in the range, both ends included)."""
+    """``N`` or ``MIN..MAX`` repetitions: uniform in the range (both ends included), or
+    ``MIN..MAX {W W ...}`` with one weight per count from MIN to MAX."""
 
     low: float
     high: float
     location: SourceLocation
+    weights: tuple[float, ...] | None = None
+    weights_location: SourceLocation | None = None
 
 
 @dataclass(frozen=True)

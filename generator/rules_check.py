@@ -499,6 +499,23 @@ class _Checker:
             raise_it = (f"raise it in the scene block, e.g. max_nodes {_number(count.high)}"
                         if count.high <= MAX_NODES else f"max_nodes may be at most {MAX_NODES}, see {LIMITS_DOC}")
             self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes} ({raise_it})")
+        elif count.weights is not None:
+            self.check_count_weights(count)
+
+    def check_count_weights(self, count: ast.Count) -> None:
+        """``LOW..HIGH {W ...}``: one weight per count, none negative, not all zero."""
+        wanted = int(count.high - count.low) + 1
+        where = count.weights_location
+        if len(count.weights) != wanted:
+            self.error(where, f"range {_number(count.low)}..{_number(count.high)} has {wanted} counts but "
+                              f"{len(count.weights)} weight{'s' if len(count.weights) != 1 else ''}")
+        elif any(weight < 0 for weight in count.weights):
+            negative = next(weight for weight in count.weights if weight < 0)
+            self.error(where, f"count weights may not be negative, not {_number(negative)}")
+        elif any(weight > MAX_WEIGHT for weight in count.weights):
+            self.error(where, _too_large("a count weight", max(count.weights), MAX_WEIGHT, ""))
+        elif not any(count.weights):
+            self.error(where, "count weights are all 0: at least one count must be possible")
 
     def check_path_connection(
         self, subject: ast.Reference | ast.Call, target: ast.Reference, scope: dict[str, str | None]

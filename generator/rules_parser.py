@@ -276,8 +276,18 @@ class _ToAst(Transformer):
 
     @v_args(meta=True)
     def count(self, meta, children):
-        low, high = children
-        return ast.Count(float(low), float(high if high is not None else low), self._at(meta))
+        low, high, weights = children
+        return ast.Count(
+            float(low),
+            float(high if high is not None else low),
+            self._at(meta),
+            weights.value if weights else None,
+            weights.location if weights else None,
+        )
+
+    @v_args(meta=True)
+    def count_weights(self, meta, children):
+        return _Located(tuple(float(weight) for weight in children), self._at(meta))
 
     @v_args(meta=True)
     def probability(self, meta, children):

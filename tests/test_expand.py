@@ -111,6 +111,13 @@ def test_repetition_ranges_are_uniform_and_inclusive(tmp_path):
     assert types(expand(rules_from(tmp_path, "S -> { 3 a; 0 b; 1..1 c }"), 0)) == ["a", "a", "a", "c"]
 
 
+def test_weighted_counts_follow_their_weights_and_a_zero_weight_never_comes(tmp_path):
+    rules = rules_from(tmp_path, "S -> { 800 P }\nP -> { g { 1..4 {0 1 3 0.5} a } }")
+    sizes = group_sizes(expand(rules, 5))
+    assert set(sizes) == {2, 3, 4}
+    assert stats.chisquare([sizes[2], sizes[3], sizes[4]], [800 / 4.5, 800 * 3 / 4.5, 800 * 0.5 / 4.5]).pvalue > ALPHA
+
+
 def test_styles_are_drawn_by_weight(tmp_path):
     rules = rules_from(tmp_path, 'object d { noun "d" style x 4 { noun "ex" } style y { size 2 x 2 x 2 } }\n'
                                  "S -> { 1000 d }")

@@ -461,6 +461,19 @@ start_in_snake_case.rules:1:17: error: unexpected 'village'; nonterminals are Ca
     ),
     # A keyword run on into the next word is the whole word, never the keyword and a
     # name: 'squareon' used to read as 'square on' and parse.
+    "count_weights": (
+        'scene s { start S }\nobject table { noun "table" }\nS -> { 1..3 {1 2} table; 2..3 {-1 1} table; 0..1 {0 0} table }',
+        """\
+count_weights.rules:3:13: error: range 1..3 has 3 counts but 2 weights
+    S -> { 1..3 {1 2} table; 2..3 {-1 1} table; 0..1 {0 0} table }
+                ^
+count_weights.rules:3:31: error: count weights may not be negative, not -1
+    S -> { 1..3 {1 2} table; 2..3 {-1 1} table; 0..1 {0 0} table }
+                                  ^
+count_weights.rules:3:50: error: count weights are all 0: at least one count must be possible
+    S -> { 1..3 {1 2} table; 2..3 {-1 1} table; 0..1 {0 0} table }
+                                                     ^""",
+    ),
     "keyword_run_on": (
         "scene s {\n    room 5 x 4 { doors south 1.0 0.9 }\n    start S\n}\nS -> { }",
         """\
