@@ -162,7 +162,7 @@ def _parameters(rules: Rules) -> ChoiceCounts:
         if len(production.alternatives) > 1:
             tally.alternatives[production.name] = [0] * len(production.alternatives)
         for alternative in production.alternatives:
-            for statement in _statements(alternative.statements):
+            for statement in all_statements(alternative.statements):
                 count = statement.count
                 if count is not None and count.low != count.high:
                     drawn = range(int(count.low), int(count.high) + 1)
@@ -175,26 +175,27 @@ def _parameters(rules: Rules) -> ChoiceCounts:
     return tally
 
 
-def _statements(statements: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
+def all_statements(statements: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
     """The statements and, depth-first, those of their blocks."""
     for statement in statements:
         yield statement
         if statement.block is not None:
-            yield from _statements(statement.block)
+            yield from all_statements(statement.block)
 
 
 def _count(tally: ChoiceCounts, rules: Rules, record: dict) -> None:
     kind, value = record["kind"], record["value"]
+    root = _file_name(str(rules.path))
     if kind == "alternative":
         options = tally.alternatives.get(record["rule"])
         _check(options is not None and _is_whole(value) and 0 <= value < len(options), record)
         options[value] += 1
     elif kind == "count":
-        counts = tally.counts.get(_site(record))
+        counts = tally.counts.get(_site_in(tally.counts, record, root))
         _check(counts is not None and _is_whole(value) and value in counts, record)
         counts[value] += 1
     elif kind == "optional":
-        taken = tally.optional.get(_site(record))
+        taken = tally.optional.get(_site_in(tally.optional, record, root))
         _check(taken is not None and isinstance(value, bool), record)
         taken[value] += 1
     elif kind == "style":
@@ -205,7 +206,24 @@ def _count(tally: ChoiceCounts, rules: Rules, record: dict) -> None:
         _check(kind == "some", record)
 
 
-def _site(record: dict) -> Site | None:
+def _site_in(sites: dict[Site, object], record: dict, root: str) -> Site | None:
+    """The parameter site of ``sites`` that a count or optional record was drawn at: its
+    own site, or else the only one on its line. A scene made before the rule set's
+    numbers were edited (by ``scenewright fit``, say) has the old columns: an edit of
+    numbers moves what follows on the line but never changes the lines. A file name
+    the rules do not have is taken for the root file (``root``) under another name."""
+    site = _record_site(record)
+    if site is None or site in sites:
+        return site
+    if all(other.file != site.file for other in sites):
+        site = site._replace(file=root)  # made by a copy of the root file under another name
+        if site in sites:
+            return site
+    same_line = [other for other in sites if other.file == site.file and other.line == site.line]
+    return same_line[0] if len(same_line) == 1 else None
+
+
+def _record_site(record: dict) -> Site | None:
     if "at" not in record or "file" not in record:
         return None
     line, column = record["at"]
@@ -218,4 +236,8 @@ def _is_whole(value: object) -> bool:
 
 def _check(fits: bool, record: dict) -> None:
     if not fits:
-        raise ValueError(f"derivation record is not a draw of these rules: {record}")
+        what = record.get("kind", "?")
+        of = record.get("type") or record.get("rule", "?")
+        site = _record_site(record)
+        at = f" at {site}" if site else ""
+        raise ValueError(f"it draws {what} {of!r}{at} (value {record.get('value')!r}), which these rules do not have")

@@ -74,6 +74,16 @@ def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] 
     return _build(tree, tuple(d for d in diagnostics if not d.is_error))
 
 
+def parse_rules_tree(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> ParsedTree:
+    """The parsed files of a rule set that loads, with their real paths, for tools that
+    rewrite its text (``scenewright fit``); raise ``RulesError`` as ``load_rules`` does."""
+    tree, diagnostics = _parse_and_check(source, allow)
+    errors = [d for d in diagnostics if d.is_error]
+    if errors:
+        raise RulesError(errors)
+    return tree
+
+
 def check_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> list[Diagnostic]:
     """Every diagnostic about a rule set, warnings included; never raises for bad content.
 

@@ -1,0 +1,205 @@
+"""Fitting a rule set's weights to example derivations, and writing them back.
+
+Known answers (rules with set weights, many derivations, the fit within a few standard
+errors), the posterior itself, the rewriter (only numbers change; what it writes loads
+and means the fitted numbers), parameters no example drew, examples made before the
+numbers moved, and the command line's outputs and bad inputs.
+"""
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scenewright.cli import main
+from scenewright.generator import load_rules
+from scenewright.generator.expand import expand
+from scenewright.generator.rules import parse_rules_tree
+from scenewright.learning.rewrite import rewrite_rules
+from scenewright.learning.weights import fit_weights, posterior
+
+from test_cli import assert_one_line_error, run
+
+TRUTH = """\
+# a test grammar with every kind of parameter
+scene s { extent 20 x 20  start S  max_nodes 200 }
+
+object crate { noun "crate"  size 0.5 x 0.5 x 0.5
+    style red 3 { colour #aa2222 }
+    style blue { colour #2222aa }
+}
+object barrel { noun "barrel"  size 0.6 x 0.9 x 0.6 }
+group stack { noun "stack" }
+
+S -> { 4 Pile }
+Pile -> 0.7: { stack { 1..3 {1 2 1} crate; 0.3? barrel } }
+      | 0.3: { stack { 2..4 crate } }
+"""
+
+#: The lines of Pile's two alternatives.
+FIRST, SECOND = (TRUTH.splitlines().index(line) + 1 for line in TRUTH.splitlines() if "{ stack {" in line)
+
+#: The truth's parameters: counts and optionals by their line, the others by name.
+TRUE = {
+    ("alternative", "Pile"): [0.7, 0.3],
+    ("count", FIRST): [0.25, 0.5, 0.25],
+    ("count", SECOND): [1 / 3, 1 / 3, 1 / 3],
+    ("optional", FIRST): [0.7, 0.3],
+    ("style", "crate"): [0.75, 0.25],
+}
+
+
+def flattened(text: str) -> str:
+    """The same rules with every number it may fit set to a flat guess."""
+    text = re.sub(r"\b0\.[37]: ", "1: ", text)
+    text = text.replace("1..3 {1 2 1}", "1..3").replace("0.3?", "0.5?").replace("style red 3", "style red")
+    return text
+
+
+def write(folder: Path, name: str, text: str) -> Path:
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+def derivations(rules, seeds) -> list[list[dict]]:
+    return [expand(rules, seed).derivation for seed in seeds]
+
+
+def key(parameter):
+    return parameter.kind, (parameter.site.line if parameter.kind in ("count", "optional") else parameter.name)
+
+
+def test_posterior_is_the_dirichlet_mean_and_deviation():
+    mean, error = posterior([3, 1], prior=0.5)
+    assert mean == pytest.approx([0.7, 0.3])
+    assert error == pytest.approx(np.sqrt(mean * (1 - mean) / 6))
+    assert posterior([0, 0, 0])[0] == pytest.approx([1 / 3] * 3)  # nothing drawn: the prior
+
+
+def test_fit_recovers_known_weights_from_flattened_rules(tmp_path):
+    truth = load_rules(write(tmp_path, "truth.rules", TRUTH))
+    flat = load_rules(write(tmp_path, "flat.rules", flattened(TRUTH)))
+    fit = fit_weights(flat, derivations(truth, range(600)))  # traces of the truth, counted against the flat file
+    found = {key(parameter): parameter for parameter in fit.parameters}
+    assert set(found) == set(TRUE)
+    for name, truth_values in TRUE.items():
+        parameter = found[name]
+        assert parameter.identified
+        for estimate, error, true_value in zip(parameter.estimate, parameter.standard_error, truth_values):
+            assert abs(estimate - true_value) <= max(3 * error, 0.03), (name, parameter)
+    assert found[("optional", FIRST)].written == pytest.approx((0.5, 0.5))  # what the flat file said
+
+
+def test_rewritten_rules_change_only_numbers_and_load_with_the_fitted_values(tmp_path):
+    flat_text = flattened(TRUTH)
+    truth = load_rules(write(tmp_path, "truth.rules", TRUTH))
+    path = write(tmp_path, "flat.rules", flat_text)
+    fit = fit_weights(load_rules(path), derivations(truth, range(200)))
+    text = rewrite_rules(parse_rules_tree(path), fit)[str(path)]
+
+    def words(source: str) -> list[str]:  # everything but numbers, weights and weight prefixes
+        source = re.sub(r"\{[0-9. ]+\}|[0-9.]+:|[0-9.]+\?", " ", source)
+        return re.sub(r"[0-9.]+", " ", source).split()
+
+    assert words(text) == words(flat_text)
+    assert text.count("\n") == flat_text.count("\n")
+    assert text.splitlines()[0] == flat_text.splitlines()[0]  # comments kept
+    fitted = load_rules(write(tmp_path, "fitted.rules", text))
+    found = {key(parameter): parameter for parameter in fit.parameters}
+    pile = fitted.productions["Pile"]
+    assert [a.weight for a in pile.alternatives] == pytest.approx(found[("alternative", "Pile")].estimate, abs=5e-4)
+    counts = pile.alternatives[0].statements[0].block[0].count
+    assert np.asarray(counts.weights) == pytest.approx(found[("count", FIRST)].estimate, abs=5e-4)
+    assert [s.weight for s in fitted.catalog["crate"].styles] == pytest.approx(
+        found[("style", "crate")].estimate, abs=5e-4
+    )
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(seeds=st.lists(st.integers(0, 10**6), min_size=1, max_size=12, unique=True))
+def test_any_fit_rewrites_into_rules_that_load_and_refit_to_the_same_numbers(tmp_path, seeds):
+    path = write(tmp_path, "flat.rules", flattened(TRUTH))
+    flat = load_rules(path)
+    fit = fit_weights(flat, derivations(flat, seeds))
+    fitted_path = write(tmp_path, "fitted.rules", rewrite_rules(parse_rules_tree(path), fit)[str(path)])
+    # The examples were drawn from the flat file; their columns moved where weights were
+    # written in before a number on the same line, and they must still be counted.
+    refit = fit_weights(load_rules(fitted_path), derivations(flat, seeds))
+    assert [p.draws for p in refit.parameters] == [p.draws for p in fit.parameters]
+    for before, after in zip(fit.parameters, refit.parameters):
+        assert after.written == pytest.approx(before.estimate, abs=2e-3)
+
+
+def test_a_parameter_no_example_drew_is_unidentified_and_keeps_its_number(tmp_path):
+    text = TRUTH.replace("S -> { 4 Pile }", "S -> { 4 Pile; 0? Rare }") + "Rare -> 5: { barrel } | 1: { crate }\n"
+    path = write(tmp_path, "rare.rules", text)
+    rules = load_rules(path)
+    fit = fit_weights(rules, derivations(rules, range(30)))
+    assert [(p.kind, p.name) for p in fit.unidentified] == [("alternative", "Rare")]
+    rewritten = rewrite_rules(parse_rules_tree(path), fit)[str(path)]
+    assert "Rare -> 5: { barrel } | 1: { crate }" in rewritten
+    assert "0.016? Rare" in rewritten  # never taken in 30 draws: (0 + 0.5) / (30 + 1) under the prior
+    assert fit.to_dict()["unidentified"] == [f"alternative Rare at rare.rules:{len(TRUTH.splitlines()) + 1}:1"]
+
+
+def test_a_trace_of_other_rules_is_refused(tmp_path):
+    rules = load_rules(write(tmp_path, "truth.rules", TRUTH))
+    with pytest.raises(ValueError, match="which these rules do not have"):
+        fit_weights(rules, [expand(load_rules("desk"), 1).derivation])
+
+
+# -- the command line -------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def study_examples(tmp_path_factory) -> list[str]:
+    folder = tmp_path_factory.mktemp("examples")
+    paths = []
+    for seed in (1, 2, 3):
+        assert main(["-q", "generate", "study", "--seed", str(seed), "-o", str(folder / str(seed)), "--no-render"]) == 0
+        paths.append(str(folder / str(seed) / "scene.json"))
+    return paths
+
+
+def test_fit_command_writes_the_rules_their_includes_and_the_report(capsys, tmp_path, study_examples):
+    out = tmp_path / "fitted" / "study.rules"
+    report = tmp_path / "fitted" / "fit.json"
+    code, stdout, _ = run(capsys, "fit", "study", *study_examples, "-o", str(out), "--report", str(report))
+    assert code == 0, stdout
+    assert "fitted 21 parameters from 3 examples" in stdout
+    assert (out.parent / "catalog" / "indoor.rules").is_file()  # the include, beside it
+    assert load_rules(out).name == "study"
+    document = json.loads(report.read_text())
+    assert document["examples"] == 3 and document["prior"] == 0.5
+    parameter = document["parameters"][0]
+    assert set(parameter) == {"kind", "name", "at", "identified", "options", "draws", "estimate",
+                              "standard_error", "written"}  # fmt: skip
+    assert sum(document["parameters"][0]["draws"]) == 3  # Workplace is drawn once a scene
+    assert "style bed at indoor.rules:12:1" in document["unidentified"]
+
+
+def test_fit_command_bad_inputs_are_one_line_errors(capsys, tmp_path, study_examples):
+    out = str(tmp_path / "x.rules")
+    code, _, err = run(capsys, "fit", "village", study_examples[0], "-o", out)
+    assert code == 2
+    assert_one_line_error(err, "not a scene of village.rules", "these rules do not have")
+    bare = json.loads(Path(study_examples[0]).read_text())
+    bare["derivation"] = []
+    write(tmp_path, "bare.json", json.dumps(bare))
+    code, _, err = run(capsys, "fit", "study", str(tmp_path / "bare.json"), "-o", out)
+    assert code == 2
+    assert_one_line_error(err, "bare.json: the scene keeps no derivation")
+    code, _, err = run(capsys, "fit", "study", study_examples[0], "-o", out, "--prior", "0")
+    assert code == 2 and "must be above 0" in err
+    assert not Path(out).exists()
+    own = write(tmp_path, "mine.rules", TRUTH)
+    truth_scene = tmp_path / "truth"
+    assert main(["-q", "generate", str(own), "--seed", "1", "-o", str(truth_scene), "--no-render"]) in (0, 1)
+    code, _, err = run(capsys, "fit", str(own), str(truth_scene / "scene.json"), "-o", str(own))
+    assert code == 2
+    assert_one_line_error(err, "would overwrite the input")
+    assert own.read_text() == TRUTH
