@@ -3,6 +3,7 @@
     .venv/bin/python benchmarks/bench_fit.py                      # every shipped rule set, 500 scenes
     .venv/bin/python benchmarks/bench_fit.py study --scenes 200   # these rule sets (names or paths)
     .venv/bin/python benchmarks/bench_fit.py --cli 500            # also time the command on 500 scene.json files
+    .venv/bin/python benchmarks/bench_fit.py desk --em 200        # also fit 200 scenes without their derivations
 
 For each rule set (the truth): draw ``--scenes`` derivations from it, write a *flat*
 copy (every alternative and style weight equal, every optional 0.5, every range
@@ -39,8 +40,9 @@ import numpy as np
 
 from scenewright.generator import expand, load_rules
 from scenewright.generator.rules import parse_rules_tree, shipped_rule_sets
+from scenewright.learning.derivations import AmbiguousExample, derivations_of
 from scenewright.learning.rewrite import fitted_files, rewrite_rules
-from scenewright.learning.weights import Parameter, WeightFit, fit_weights
+from scenewright.learning.weights import Parameter, WeightFit, fit_weights, fit_weights_em
 
 FAMILIES = ("counts", "styles", "relations")
 
@@ -157,6 +159,27 @@ def bench(name: str, scenes: int, folder: Path) -> None:
         print(f"  {label:6s} vs truth: {ratios}")
 
 
+def bench_em(name: str, scenes: int, folder: Path) -> None:
+    """Fit the flat copy to ``scenes`` truth scenes without their derivations (EM)."""
+    truth = load_rules(name)
+    truth_fit = fit_weights(truth, [])
+    if not truth_fit.parameters:
+        return
+    flat = load_rules(folder / name / "flat.rules")
+    start = time.process_time()
+    try:
+        candidates = [derivations_of(flat, expand(truth, seed)) for seed in range(scenes)]
+    except AmbiguousExample as error:
+        print(f"{name} without derivations: {error} ({time.process_time() - start:.1f} CPU s)")
+        return
+    searched = time.process_time() - start
+    fit = fit_weights_em(flat, candidates)
+    within, total, worst = recovery(truth_fit, fit)
+    print(f"{name} without derivations: {scenes} scenes, {fit.ambiguous} with more than one derivation "
+          f"(at most {max(map(len, candidates))}); search {searched / scenes:.3f} CPU s per scene, "
+          f"EM {fit.iterations} rounds; recovered {within}/{total} within max(3 se, 0.03); worst: {worst}")
+
+
 def time_cli(name: str, scenes: int, folder: Path) -> None:
     from scenewright.api import generate
     from scenewright.api import reproducible_json
@@ -181,11 +204,15 @@ def main() -> None:
     parser.add_argument("rules", nargs="*", help="rule sets (default: every shipped one)")
     parser.add_argument("--scenes", type=int, default=500, help="scenes per sample (500)")
     parser.add_argument("--cli", type=int, default=0, metavar="N", help="also time the command on N scene.json files")
+    parser.add_argument("--em", type=int, default=0, metavar="N",
+                        help="also fit N scenes without their derivations (expectation-maximisation)")
     args = parser.parse_args()
     names = args.rules or shipped_rule_sets()
     with tempfile.TemporaryDirectory() as folder:
         for name in names:
             bench(name, args.scenes, Path(folder))
+            if args.em:
+                bench_em(name, args.em, Path(folder))
         if args.cli:
             time_cli(names[0], args.cli, Path(folder))
 

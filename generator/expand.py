@@ -44,10 +44,62 @@ def expand(rules: Rules, seed: SeedLike) -> SceneGraph:
 
     ``seed``: the scene's seed (an int), a Generator to draw from, or None (fresh entropy).
     """
-    expansion = _Expansion(rules, stage_stream(seed, "expansion"))
+    return expand_with(rules, RandomDraws(stage_stream(seed, "expansion")))
+
+
+def expand_with(rules: Rules, draws: Draws) -> SceneGraph:
+    """Expand ``rules`` answering each draw with ``draws``: the seeded stream (``expand``)
+    or another answerer, such as one that replays or enumerates derivations."""
+    expansion = _Expansion(rules, draws)
+    draws.watch(expansion.graph)
     start = rules.productions[rules.start]
     expansion.call(start, arguments=[], parent=None, location=start.location)
     return expansion.graph
+
+
+class Draws:
+    """What answers the random draws of an expansion, one method per kind of draw."""
+
+    def watch(self, graph: SceneGraph) -> None:
+        """Called once, before the first draw, with the graph the expansion builds."""
+
+    def optional(self, probability: float) -> bool:
+        """Whether a statement written with ``probability`` is carried out."""
+        raise NotImplementedError
+
+    def count(self, low: int, high: int, weights: tuple[float, ...] | None) -> int:
+        """A count from ``low`` to ``high``: uniform, or by ``weights`` (one per count)."""
+        raise NotImplementedError
+
+    def pick(self, probabilities: np.ndarray) -> int:
+        """An alternative's or style's index, drawn with ``probabilities`` (they sum to 1)."""
+        raise NotImplementedError
+
+    def some(self, candidates: int) -> int:
+        """Which of ``candidates`` nodes ``some TYPE`` means (uniform)."""
+        raise NotImplementedError
+
+
+class RandomDraws(Draws):
+    """Draws from a seeded stream, in the fixed order expansion makes them."""
+
+    def __init__(self, rng: np.random.Generator):
+        self.rng = rng
+
+    def optional(self, probability: float) -> bool:
+        return bool(self.rng.random() < probability)
+
+    def count(self, low: int, high: int, weights: tuple[float, ...] | None) -> int:
+        if weights is None:
+            return int(self.rng.integers(low, high + 1))
+        weights = np.asarray(weights, dtype=float)
+        return low + int(self.rng.choice(len(weights), p=weights / weights.sum()))
+
+    def pick(self, probabilities: np.ndarray) -> int:
+        return int(self.rng.choice(len(probabilities), p=probabilities))
+
+    def some(self, candidates: int) -> int:
+        return int(self.rng.integers(candidates))
 
 
 @dataclass
@@ -55,7 +107,7 @@ class _Expansion:
     """The state of one expansion: the graph so far and where in the rules we are."""
 
     rules: Rules
-    rng: np.random.Generator
+    draws: Draws
     graph: SceneGraph = field(init=False)
     #: Node ids of each type, in creation order (for ``some``, ``each`` and ``#N``).
     by_type: dict[str, list[str]] = field(default_factory=dict)
@@ -110,7 +162,7 @@ class _Expansion:
         first = len(self.made)
         optional: dict | None = None
         if statement.probability is not None:
-            taken = bool(self.rng.random() < statement.probability)
+            taken = self.draws.optional(statement.probability)
             optional = self.note(
                 "optional", statement.probability_location, taken, probability=statement.probability
             )
@@ -211,7 +263,7 @@ class _Expansion:
         if not candidates:
             noun = self.noun(reference.name)
             self.fail(reference.location, f"'some {reference.name}' finds no {noun} in the scene at this point")
-        index = int(self.rng.integers(len(candidates)))
+        index = self.draws.some(len(candidates))
         picked = [candidates[index]]
         self.note("some", reference.location, index, picked, options=len(candidates), type=reference.name)
         return picked
@@ -226,7 +278,7 @@ class _Expansion:
         if len(weights) == 1:
             return 0, None
         probabilities = np.asarray(weights, dtype=float)
-        index = int(self.rng.choice(len(weights), p=probabilities / probabilities.sum()))
+        index = self.draws.pick(probabilities / probabilities.sum())
         return index, self.note(kind, location, index, options=len(weights), type=type)
 
     def count(self, count: ast.Count | None) -> tuple[int, dict | None]:
@@ -236,11 +288,7 @@ class _Expansion:
         low, high = int(count.low), int(count.high)
         if low == high:
             return low, None
-        if count.weights is None:
-            drawn = int(self.rng.integers(low, high + 1))
-        else:
-            weights = np.asarray(count.weights, dtype=float)
-            drawn = low + int(self.rng.choice(len(weights), p=weights / weights.sum()))
+        drawn = self.draws.count(low, high, count.weights)
         return drawn, self.note("count", count.location, drawn, low=low, high=high)
 
     def note(

@@ -1,7 +1,9 @@
 """``scenewright fit``: a rule set and example scenes in, the fitted rule set and its report out.
 
 ``fit_rule_set`` reads each example's derivation (scene.json files made by scenewright
-keep it), estimates the rule set's parameters (``weights.fit_weights``), writes the
+keep it) or, for an example without one, finds the derivations that could have made it
+(``derivations``), estimates the rule set's parameters (``weights.fit_weights_em``:
+closed form when every example keeps its derivation), writes the
 rules with their new numbers (``rewrite``) and the report, each file whole or not at
 all, and checks that what it wrote loads as a rule set.
 """
@@ -14,26 +16,41 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 from scenewright.core.errors import InputError
+from scenewright.core.room import ROOM_KINDS
+from scenewright.core.scene import Scene
 from scenewright.generator import load_rules
-from scenewright.generator.rules import parse_rules_tree
+from scenewright.generator.derivation import choice_counts
+from scenewright.generator.rules import Rules, parse_rules_tree
 
+from .derivations import derivations_of
 from .rewrite import fitted_files, rewrite_rules
-from .weights import PRIOR, WeightFit, fit_weights
+from .weights import PRIOR, WeightFit, fit_weights_em
 
 
 class ExampleError(InputError):
     """An example scene that cannot be learned from, named with its file."""
 
 
-def example_derivation(path: str, scene: dict) -> list[dict]:
-    """The derivation an example scene keeps; ``ExampleError`` if it keeps none."""
+def example_candidates(rules: Rules, path: str, scene: dict) -> list[list[dict]]:
+    """The derivations an example scene may have come from: the one it keeps, or else
+    every derivation of ``rules`` that makes a scene like it (``derivations_of``).
+    ``ExampleError`` if its derivation is not of these rules, or none makes it."""
     derivation = scene.get("derivation")
-    if not derivation and scene.get("objects"):
+    if derivation or not scene.get("objects"):
+        try:
+            choice_counts(rules, derivation or [])
+        except ValueError as error:
+            raise ExampleError(f"{path}: not a scene of {rules.name}.rules ({error})") from None
+        return [derivation or []]
+    graph = Scene.from_dict(scene).graph()
+    found = derivations_of(rules, graph, path)
+    if not found:
+        types = sorted({node.type for node in graph.nodes() if node.kind not in ROOM_KINDS})
         raise ExampleError(
-            f"{path}: the scene keeps no derivation (the record of its grammar draws that fit counts); "
-            "fit reads scene.json files made by scenewright generate, layout or dataset"
+            f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
+            f"(same objects, groups and relations; its types: {', '.join(types)})"
         )
-    return derivation or []
+    return found
 
 
 def fit_rule_set(
@@ -54,15 +71,7 @@ def fit_rule_set(
     not a derivation of these rules, ``FitOutputError`` when the output cannot be placed.
     """
     rules = load_rules(rules_source, allow=allow)
-    derivations = []
-    for path, scene in examples:
-        derivation = example_derivation(path, scene)
-        try:
-            fit_weights(rules, [derivation], prior)
-        except ValueError as error:
-            raise ExampleError(f"{path}: not a scene of {rules.name}.rules ({error})") from None
-        derivations.append(derivation)
-    fit = fit_weights(rules, derivations, prior)
+    fit = fit_weights_em(rules, [example_candidates(rules, path, scene) for path, scene in examples], prior)
     tree = parse_rules_tree(rules_source, allow=allow)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
     for path, text in placed:

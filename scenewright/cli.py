@@ -567,8 +567,9 @@ prior of --prior pseudo-draws per option; the report gives every parameter with 
 draws, estimate, standard error and the value written before. A parameter no example
 drew keeps its number and is listed as unidentified. The output is the input with only
 its numbers changed; files it includes are written beside it at the same relative paths.
-Examples must be scene.json files made by scenewright from this rule set (they keep the
-derivation that fit counts).""",
+Examples are scene.json files of this rule set. Those made by scenewright keep their
+derivation (the draws fit counts); for one without, fit searches for the derivations
+that could have made it and fits by expectation-maximisation (docs/learning.md).""",
     "list": """\
 examples:
   scenewright list
@@ -806,6 +807,7 @@ ACTIVITIES = {
     "scenewright.generator.expand": "expanding the grammar",
     "scenewright.generator.layout": "laying the scene out",
     "scenewright.describer": "describing the scene",
+    "scenewright.learning": "learning from the examples",
     "scenewright.render": "building meshes",
     "scenewright.render.offscreen": "rendering",
     "scenewright.render.plan": "drawing the plan",
