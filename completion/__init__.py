@@ -1,0 +1,27 @@
+"""Complete a room from a few objects, from a set of furnished floor plans.
+
+The method is Fu et al., "Adaptive Synthesis of Indoor Scenes via Activity-Associated
+Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
+
+| module | job |
+|---|---|
+| ``plan`` | the plan format: read a plan (JSON, checked against ``plan.schema.json``) into ``Plan`` |
+| ``plan_checks`` | what makes a drawn plan wrong: furniture through walls, overlaps, a blocked door |
+| ``activity`` | how each category is used (stay at it, fetch from it), its use pose, touch and visual areas |
+| ``features`` | a plan's room feature and its 10 x 10 occupancy mask in the door-aware canonical frame |
+| ``model`` | the plan model: per type P(category), co-occurrence times the activity prior, masks and clusters |
+| ``selection`` | the paper's Algorithm 1: which categories to add to a room |
+
+The shipped plan set is ``completion/plans/<type>/*.json``; ``shipped_plans_dir()``
+names the folder.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+
+def shipped_plans_dir() -> Path:
+    """The folder of the plan set shipped with the package (one sub-folder per room type)."""
+    return Path(str(resources.files("scenewright.completion").joinpath("plans")))

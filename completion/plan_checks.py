@@ -1,0 +1,120 @@
+"""What makes a drawn plan wrong, each problem as (JSON path, message).
+
+A plan is design knowledge the product learns from, so it must be a room one could
+live in: every piece wholly inside the walls; no two pieces on the floor overlapping
+(a piece ``on`` another must lie within it, and flat things, a rug, may lie under
+anything); each door's swing (the square as deep as the door is wide, ``Room.swing_zone``)
+free; each piece's catalog clearance (``clearance front 0.8``: a wardrobe's doors, a
+desk's chair) inside the room and free of everything but the seats used at it
+(``activity.SEATS``); and nothing taller than a window's sill standing in front of it.
+Distances below ``TOLERANCE`` (5 mm) are drawing slack, not problems.
+"""
+
+from __future__ import annotations
+
+import math
+
+from scenewright.core.frames import to_local, to_world
+
+#: Metres of overlap or overhang taken as drawing slack.
+TOLERANCE = 0.005
+#: A piece this close to a window's wall (metres) stands in front of the window.
+WINDOW_DEPTH = 0.35
+#: A piece at most this tall (metres, the catalog's height) is flat: it may lie under others.
+FLAT_HEIGHT = 0.02
+
+
+def plan_problems(plan) -> list[tuple[str, str]]:
+    """Every problem of ``plan`` (a ``plan.Plan``), in furniture order; empty when it is sound."""
+    from scenewright.completion.activity import SEATS
+    from scenewright.completion.plan import catalog_categories
+
+    catalog = catalog_categories()
+    index = {piece.id: k for k, piece in enumerate(plan.furniture)}
+    room = plan.room
+    problems: list[tuple[str, str]] = []
+    floor = [piece for piece in plan.furniture if piece.on is None and not is_flat(piece, catalog)]
+    for k, piece in enumerate(plan.furniture):
+        where = f"$.furniture[{k}]"
+        excess = room.footprint_excess(piece.corners)
+        if excess > TOLERANCE:
+            problems.append((where, f"{piece.id} crosses the walls by {excess:.2f} m"))
+        if piece.on is not None:
+            support = plan.piece(piece.on)
+            overhang = _overhang(piece.corners, support)
+            if overhang > TOLERANCE:
+                problems.append((where, f"{piece.id} overhangs {support.id}, which it stands on, by {overhang:.2f} m"))
+    for k, first in enumerate(floor):
+        for second in floor[k + 1 :]:
+            depth = overlap_depth(first.corners, second.corners)
+            if depth > TOLERANCE:
+                problems.append((f"$.furniture[{index[second.id]}]",
+                                 f"{second.id} overlaps {first.id} by {depth:.2f} m"))  # fmt: skip
+    for door in room.doors:
+        swing = room.swing_zone(door)
+        for piece in floor:
+            if overlap_depth(swing, piece.corners) > TOLERANCE:
+                problems.append((f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in {door.id}'s swing"))
+    for piece in floor:
+        depth = dict(catalog[piece.category].clearance).get("front", 0.0)
+        if depth <= 0.0:
+            continue
+        zone = front_zone(piece, depth)
+        where = f"$.furniture[{index[piece.id]}]"
+        if room.footprint_excess(zone) > TOLERANCE:
+            problems.append((where, f"the {depth:g} m clearance in front of {piece.id} runs into a wall"))
+        for other in floor:
+            if other.id != piece.id and other.category not in SEATS and overlap_depth(zone, other.corners) > TOLERANCE:
+                problems.append((where, f"{other.id} stands in the {depth:g} m clearance in front of {piece.id}"))
+    for window in room.windows:
+        wall = room.part(window.wall)
+        u0, u1 = window.span
+        glass = [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, WINDOW_DEPTH),
+                 wall.to_world(u0, WINDOW_DEPTH)]  # fmt: skip
+        for piece in floor:
+            tall = catalog[piece.category].size[1] > window.sill + TOLERANCE
+            if tall and overlap_depth(glass, piece.corners) > TOLERANCE:
+                problems.append((f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in front of {window.id}"))
+    return problems
+
+
+def is_flat(piece, catalog) -> bool:
+    """Whether the piece lies flat on the floor (a rug): other pieces may stand on it."""
+    return catalog[piece.category].size[1] <= FLAT_HEIGHT
+
+
+def front_zone(piece, depth: float) -> list[tuple[float, float]]:
+    """Corners (x, z) of the floor ``depth`` metres deep in front of ``piece``, as wide as it."""
+    half_w, half_d = piece.size[0] / 2.0, piece.size[1] / 2.0
+    local = [(-half_w, half_d), (half_w, half_d), (half_w, half_d + depth), (-half_w, half_d + depth)]
+    return [to_world(piece.center[0], piece.center[1], piece.yaw, lx, lz) for lx, lz in local]
+
+
+def overlap_depth(first: list[tuple[float, float]], second: list[tuple[float, float]]) -> float:
+    """How deep two convex polygons (corners in order) overlap: the least overlap of
+    their projections over every edge normal of both (separating axis test); 0 apart."""
+    depth = math.inf
+    for polygon in (first, second):
+        n = len(polygon)
+        for k in range(n):
+            (x0, z0), (x1, z1) = polygon[k], polygon[(k + 1) % n]
+            length = math.hypot(x1 - x0, z1 - z0)
+            if length == 0.0:
+                continue
+            ax, az = (z0 - z1) / length, (x1 - x0) / length
+            a = [x * ax + z * az for x, z in first]
+            b = [x * ax + z * az for x, z in second]
+            overlap = min(max(a), max(b)) - max(min(a), min(b))
+            if overlap <= 0.0:
+                return 0.0
+            depth = min(depth, overlap)
+    return 0.0 if depth == math.inf else depth
+
+
+def _overhang(corners: list[tuple[float, float]], support) -> float:
+    """How far (metres) the corners reach beyond ``support``'s footprint."""
+    worst = 0.0
+    for x, z in corners:
+        lx, lz = to_local(support.center[0], support.center[1], support.yaw, x, z)
+        worst = max(worst, abs(lx) - support.size[0] / 2.0, abs(lz) - support.size[1] / 2.0)
+    return worst

@@ -1,0 +1,142 @@
+"""The plan format: the schema, the loader's located one-line errors, the drawing checks."""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+
+import pytest
+
+from scenewright.completion.plan import PlanError, load_plans, plan_from_dict, read_plan
+from scenewright.completion.plan_checks import overlap_depth
+from scenewright.core.room import Room
+
+
+def _room(width=4.0, depth=3.5) -> dict:
+    """A room with a 0.9 m door near the south-east corner and a window in the north
+    wall east of the bed (x 0.7 to 1.7)."""
+    room = Room.rectangle(width, depth).with_opening("door", "wall_3", 0.6, 0.9)
+    return room.with_opening("window", "wall_1", 3.2, 1.0, 1.3, 0.9).to_dict()
+
+
+def _plan(*pieces: dict, **extra) -> dict:
+    """A bedroom: a double bed with its head on the north wall, plus ``pieces``."""
+    bed = {"id": "bed_1", "category": "bed", "center": [0.0, -0.7], "size": [1.6, 2.1], "yaw": 0.0}
+    return {"id": "test_plan", "type": "bedroom", "room": _room(), "furniture": [bed, *pieces], **extra}
+
+
+def _piece(category, x, z, w, d, yaw=0.0, piece_id=None, **extra) -> dict:
+    return {"id": piece_id or f"{category}_1", "category": category, "center": [x, z], "size": [w, d], "yaw": yaw,
+            **extra}  # fmt: skip
+
+
+def _error(data) -> str:
+    with pytest.raises(PlanError) as caught:
+        plan_from_dict(data, "p.json")
+    message = str(caught.value)
+    assert "\n" not in message
+    return message
+
+
+def test_a_sound_plan_loads_and_round_trips():
+    lamp_table = _piece("nightstand", -1.1, -1.55, 0.5, 0.4)
+    lamp = _piece("lamp", -1.1, -1.55, 0.25, 0.25, on="nightstand_1")
+    plan = plan_from_dict(_plan(lamp_table, lamp, free_areas=[{"center": [1.5, 0.0], "size": [0.6, 0.6]}]))
+    assert [piece.category for piece in plan.furniture] == ["bed", "nightstand", "lamp"]
+    assert plan.room.area == pytest.approx(14.0)
+    assert plan_from_dict(plan.to_dict()).to_dict() == plan.to_dict()
+
+
+@pytest.mark.parametrize(
+    ("change", "expected"),
+    [
+        (lambda p: p.pop("furniture"), "p.json: $: 'furniture' is a required property"),
+        (lambda p: p["furniture"][0].update(size=[1.6]), "p.json: $.furniture[0].size: "),
+        (lambda p: p["furniture"][0].update(yaw="south"), "p.json: $.furniture[0].yaw: 'south' is not of type"),
+        (lambda p: p.update(colour="red"), "p.json: $: Additional properties are not allowed ('colour'"),
+        (lambda p: p["room"]["openings"][0].update(kind="hatch"), "p.json: $.room.openings[0].kind: 'hatch'"),
+        (lambda p: p["furniture"][0].update(category="bedd"),
+         "p.json: $.furniture[0].category: 'bedd' is not an indoor catalog entry; did you mean 'bed'?"),
+    ],
+)
+def test_schema_and_category_errors_name_the_file_and_json_path(change, expected):
+    data = _plan()
+    change(data)
+    assert _error(data).startswith(expected)
+
+
+def test_ids_must_be_unique_and_on_must_name_another_piece():
+    twice = _plan(_piece("nightstand", -1.1, -1.55, 0.5, 0.4, piece_id="bed_1"))
+    assert _error(twice) == "p.json: $.furniture[1].id: the id 'bed_1' is used twice"
+    floating = _plan(_piece("lamp", -1.1, -1.55, 0.25, 0.25, on="shelf_9"))
+    assert _error(floating) == "p.json: $.furniture[1].on: 'shelf_9' is not another piece of this plan"
+
+
+def test_a_room_that_does_not_build_is_located_at_the_room():
+    data = _plan()
+    data["room"]["walls"] = data["room"]["walls"][:2] + [dict(data["room"]["walls"][2], **{"from": [2.0, -1.75]})]
+    assert _error(data).startswith("p.json: $.room: ")
+
+
+@pytest.mark.parametrize(
+    ("piece", "expected"),
+    [
+        (_piece("dresser", 1.9, 0.0, 1.0, 0.5, yaw=-math.pi / 2), "dresser_1 crosses the walls by 0.15 m"),
+        (_piece("nightstand", 0.8, -1.55, 0.5, 0.4), "nightstand_1 overlaps bed_1 by 0.25 m"),
+        (_piece("plant", 1.35, 1.35, 0.4, 0.4), "plant_1 stands in door_1's swing"),
+        (_piece("wardrobe", 1.7, -0.7, 1.2, 0.6, yaw=-math.pi / 2),  # facing the bed, 0.6 m from it
+         "bed_1 stands in the 0.8 m clearance in front of wardrobe_1"),
+        (_piece("bookshelf", -1.83, 0.5, 0.9, 0.32, yaw=-math.pi / 2),  # facing the west wall
+         "the 0.5 m clearance in front of bookshelf_1 runs into a wall"),
+        (_piece("bookshelf", 1.35, -1.59, 0.9, 0.32), "bookshelf_1 stands in front of window_1"),
+    ],
+)
+def test_drawing_problems_are_located_at_the_piece(piece, expected):
+    message = _error(_plan(piece))
+    assert message.startswith("p.json: $.furniture[") and message.endswith(expected), message
+
+
+def test_flat_things_lie_under_others_and_seats_stand_in_a_desk_clearance():
+    rug = _piece("rug", 0.0, 0.3, 2.0, 1.4)
+    desk = _piece("desk", -1.2, 1.45, 1.2, 0.6, yaw=math.pi)  # back to the south wall, facing north
+    chair = _piece("office_chair", -1.2, 0.8, 0.5, 0.5)
+    plan = plan_from_dict(_plan(rug, desk, chair))
+    assert len(plan.furniture) == 4
+    stool = dict(chair, id="armchair_1", category="armchair")
+    assert "armchair_1 stands in the 0.7 m clearance in front of desk_1" in _error(_plan(rug, desk, stool))
+
+
+def test_overlap_depth_is_the_separating_axis_overlap():
+    square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+    assert overlap_depth(square, [(x + 0.75, z) for x, z in square]) == pytest.approx(0.25)
+    assert overlap_depth(square, [(x + 1.5, z) for x, z in square]) == 0.0
+    diamond = [(2.0, 0.5), (2.5, 0.0), (3.0, 0.5), (2.5, 1.0)]  # beyond the square's corner
+    assert overlap_depth(square, [(x - 1.1, z) for x, z in diamond]) == pytest.approx(0.1)
+
+
+def test_files_and_folders_give_one_line_errors(tmp_path):
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "bad.json").write_text("{not json")
+    with pytest.raises(PlanError, match=r"bad.json: not JSON: "):
+        read_plan(tmp_path / "a" / "bad.json")
+    (tmp_path / "a" / "bad.json").write_text(json.dumps(_plan()))
+    (tmp_path / "b.json").write_text(json.dumps(_plan()))
+    with pytest.raises(PlanError) as caught:
+        load_plans(tmp_path)
+    first, second = tmp_path / "a" / "bad.json", tmp_path / "b.json"
+    assert str(caught.value) == f"{second}: $.id: the plan id 'test_plan' is also used by {first}"
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(PlanError, match="empty: holds no plan files"):
+        load_plans(tmp_path / "empty")
+    nan = json.dumps(_plan()).replace("0.0, -0.7", "NaN, -0.7")
+    (tmp_path / "a" / "bad.json").write_text(nan)
+    with pytest.raises(PlanError, match="not JSON: NaN is not a number a plan may hold"):
+        read_plan(tmp_path / "a" / "bad.json")
+
+
+def test_the_plan_is_not_changed_by_loading():
+    data = _plan()
+    before = copy.deepcopy(data)
+    plan_from_dict(data)
+    assert data == before
