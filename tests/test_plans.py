@@ -140,3 +140,70 @@ def test_the_plan_is_not_changed_by_loading():
     before = copy.deepcopy(data)
     plan_from_dict(data)
     assert data == before
+
+
+# -- the shipped plan set ---------------------------------------------------------------
+
+SHIPPED_TYPES = ("bedroom", "living_room", "study", "dining_room")
+
+
+@pytest.fixture(scope="module")
+def shipped():
+    from scenewright.completion import shipped_plans_dir
+
+    return load_plans(shipped_plans_dir())
+
+
+def test_every_shipped_plan_loads_and_sits_in_its_type_folder(shipped):
+    for plan in shipped:  # load_plans ran every check: schema, catalog, walls, overlaps, swings, clearances
+        path = plan.source.replace("\\", "/")
+        assert path.endswith(f"/plans/{plan.type}/{plan.id}.json"), path
+    counts = {room_type: sum(plan.type == room_type for plan in shipped) for room_type in SHIPPED_TYPES}
+    assert set(plan.type for plan in shipped) == set(SHIPPED_TYPES)
+    assert min(counts.values()) >= 15, counts
+
+
+def test_shipped_plans_are_real_rooms(shipped):
+    for plan in shipped:
+        width, depth = sorted(plan.room.extent)
+        assert 2.8 <= width and depth <= 6.0 and width <= 5.0, (plan.id, plan.room.extent)
+        assert len(plan.room.doors) == 1 and plan.room.windows, plan.id
+        categories = [piece.category for piece in plan.furniture]
+        essential = {"bedroom": "bed", "living_room": "sofa", "study": "desk", "dining_room": "dining_table"}
+        assert essential[plan.type] in categories, plan.id
+    doors = {(plan.type, plan.room.part(plan.room.doors[0].wall).side) for plan in shipped}
+    assert all(sum(t == room_type for t, _ in doors) == 4 for room_type in SHIPPED_TYPES), "doors on every wall"
+
+
+def test_seats_are_at_what_they_serve(shipped):
+    """Every desk has a chair before it and every dining table chairs round it."""
+    from scenewright.completion.plan_checks import front_zone, overlap_depth
+
+    for plan in shipped:
+        seats = [piece for piece in plan.furniture if piece.category in ("chair", "office_chair")]
+        for piece in plan.furniture:
+            if piece.category == "desk":
+                zone = front_zone(piece, 0.7)
+                assert any(overlap_depth(zone, seat.corners) > 0.1 for seat in seats), (plan.id, piece.id)
+            if piece.category == "dining_table":
+                around = [seat for seat in seats if _gap(piece, seat) < 0.1]
+                assert len(around) >= 4, (plan.id, len(around))
+
+
+def _gap(table, seat) -> float:
+    from scenewright.core.frames import to_local
+
+    lx, lz = to_local(table.center[0], table.center[1], table.yaw, *seat.center)
+    half = max(seat.size) / 2.0
+    return max(abs(lx) - table.size[0] / 2.0 - half, abs(lz) - table.size[1] / 2.0 - half)
+
+
+def test_the_shipped_files_are_what_the_designs_draw(shipped):
+    from scenewright.completion.authoring import designs, plan_json
+
+    files = {plan.id: plan.source for plan in shipped}
+    drawn = designs()
+    assert sorted(design.id for design in drawn) == sorted(files)
+    for design in drawn:
+        with open(files[design.id], encoding="utf-8") as handle:
+            assert handle.read() == plan_json(design.plan().to_dict()), design.id
