@@ -24,6 +24,7 @@ import re
 import sys
 from pathlib import Path
 
+from scenewright.completion.plan import rounded
 from scenewright.core.frames import to_world
 from scenewright.core.room import Room
 
@@ -41,17 +42,6 @@ def _wrapped(yaw: float) -> float:
     """The yaw in (-pi, pi], rounded so written plans read cleanly."""
     yaw = math.atan2(math.sin(yaw), math.cos(yaw))
     return round(math.pi if yaw <= -math.pi + 1e-9 else yaw, 6)
-
-
-def _rounded(value):
-    """Numbers in nested lists and dicts rounded to a tenth of a millimetre (no float noise in files)."""
-    if isinstance(value, float):
-        return round(value, 4) + 0.0
-    if isinstance(value, list):
-        return [_rounded(item) for item in value]
-    if isinstance(value, dict):
-        return {key: _rounded(item) for key, item in value.items()}
-    return value
 
 
 class Design:
@@ -167,7 +157,7 @@ class Design:
     # -- output ---------------------------------------------------------------------------
 
     def to_dict(self) -> dict:
-        data = {"id": self.id, "type": self.type, "title": self.title, "room": _rounded(self.room.to_dict()),
+        data = {"id": self.id, "type": self.type, "title": self.title, "room": rounded(self.room.to_dict(), 4),
                 "furniture": self.pieces}  # fmt: skip
         if self.free_areas:
             data["free_areas"] = self.free_areas

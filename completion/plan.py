@@ -220,6 +220,18 @@ def catalog_categories() -> dict:
     return dict(load_rules("bedroom").catalog.entries)
 
 
+def rounded(value, decimals: int):
+    """``value`` with every float in its nested lists and dicts rounded to ``decimals``
+    (files written from floats carry no noise such as 1.4500000000000002; no -0.0)."""
+    if isinstance(value, float):
+        return round(value, decimals) + 0.0
+    if isinstance(value, list):
+        return [rounded(item, decimals) for item in value]
+    if isinstance(value, dict):
+        return {key: rounded(item, decimals) for key, item in value.items()}
+    return value
+
+
 def _pair(values) -> tuple[float, float]:
     return float(values[0]), float(values[1])
 

@@ -379,18 +379,24 @@ def validate_scene_file(name: str) -> bool:
     return True
 
 
-def run_expand(args: argparse.Namespace) -> int:
+def emit(args: argparse.Namespace, text: str) -> int:
+    """Write ``text`` to ``--output`` (atomically) or, without one, to stdout; exit code 0."""
     from scenewright.atomic import write_atomic
-    from scenewright.generator import expand, graph_to_dot, load_rules
 
-    graph = expand(load_rules(args.rules, allow=args.allow_outside), args.seed)
-    text = graph_to_dot(graph) if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
     if args.output:
         write_atomic(args.output, text)
         say(args, f"wrote {args.output}")
     else:
         sys.stdout.write(text)
     return 0
+
+
+def run_expand(args: argparse.Namespace) -> int:
+    from scenewright.generator import expand, graph_to_dot, load_rules
+
+    graph = expand(load_rules(args.rules, allow=args.allow_outside), args.seed)
+    text = graph_to_dot(graph) if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
+    return emit(args, text)
 
 
 def run_describe(args: argparse.Namespace) -> int:
@@ -469,6 +475,33 @@ def run_list(args: argparse.Namespace) -> int:
         print(f"{name}  ({width:g} x {depth:g} m{walls}; {len(types)} object types)")
         print(textwrap.fill(", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "))
     return 0
+
+
+def run_plans_build(args: argparse.Namespace) -> int:
+    """Read a plan set, build its model and write it (atomically)."""
+    from scenewright.atomic import write_atomic
+    from scenewright.completion.model import build_model, model_json
+    from scenewright.completion.plan import load_plans
+
+    plans = load_plans(args.plans)
+    model = build_model(plans)
+    target = output_file(args.output, "model.json")
+    write_atomic(target, model_json(model))
+    counts = ", ".join(f"{entry['plans']} {name}" for name, entry in model["types"].items())
+    say(args, f"wrote {target}: {len(plans)} plans ({counts}), {len(model['categories'])} categories")
+    return 0
+
+
+def run_plans_graph(args: argparse.Namespace) -> int:
+    """Print (or write) one room type's object relation graph."""
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.model import build_model, graph_dot, read_model, relation_graph
+    from scenewright.completion.plan import load_plans
+
+    model = read_model(args.model) if args.model else build_model(load_plans(args.plans or shipped_plans_dir()))
+    graph = relation_graph(model, args.type)
+    text = graph_dot(graph) if args.format == "dot" else json.dumps(graph, indent=1) + "\n"
+    return emit(args, text)
 
 
 # -- the parser -----------------------------------------------------------------------
@@ -570,6 +603,19 @@ its numbers changed; files it includes are written beside it at the same relativ
 Examples are scene.json files of this rule set. Those made by scenewright keep their
 derivation (the draws fit counts); for one without, fit searches for the derivations
 that could have made it and fits by expectation-maximisation (docs/learning.md).""",
+    "plans": """\
+examples:
+  scenewright plans build completion/plans -o model.json
+  scenewright plans graph --type bedroom --format dot | dot -Tsvg > bedroom.svg
+  scenewright plans graph --type study --format json --model model.json
+
+build reads every plan (*.json, in sub-folders too) of a plan set, checks each (one
+line naming the file and JSON path for the first problem, exit 2) and writes the plan
+model: per room type P(category | type), co-occurrence weighted by the activity prior,
+the most instances per plan, the mean room area; per plan its room feature and 10 x 10
+layout mask; the mask clusters. The same plans give the same bytes. graph prints a
+type's object relation graph (edges with weight > 0) from --model, --plans, or the
+shipped plan set. See docs/completion.md.""",
     "list": """\
 examples:
   scenewright list
@@ -749,6 +795,26 @@ def build_parser() -> CommandLineParser:
         "towards uniform)",
     )  # fmt: skip
     allow_option(fit)
+    plans = command("plans", "learn from furnished floor plans: build a plan model, show a relation graph", None)
+    plan_commands = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)
+    build = plan_commands.add_parser(
+        "build", help="check a plan set and write its model", parents=[common_options(suppress=True)],
+        epilog=EXAMPLES["plans"], formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    build.set_defaults(handler=run_plans_build)
+    build.add_argument("plans", metavar="PLANS_DIR", help="folder of plan files (the shipped set: completion/plans)")
+    build.add_argument("-o", "--output", required=True, metavar="FILE", help="model file (or a directory for model.json)")
+    graph = plan_commands.add_parser(
+        "graph", help="print a room type's object relation graph", parents=[common_options(suppress=True)],
+        epilog=EXAMPLES["plans"], formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    graph.set_defaults(handler=run_plans_graph)
+    graph.add_argument("--type", required=True, help="room type (bedroom, living_room, study, dining_room, ...)")
+    graph.add_argument("--format", choices=("dot", "json"), default="dot", help="output format (dot)")
+    source = graph.add_mutually_exclusive_group()
+    source.add_argument("--model", metavar="FILE", help="a model written by 'plans build'")
+    source.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
+    graph.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
 
     command("schema", "print the scene.json JSON Schema", run_schema)
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
@@ -813,6 +879,8 @@ ACTIVITIES = {
     "scenewright.render.plan": "drawing the plan",
     "scenewright.schema_check": "reading the scene.json",
     "scenewright.dataset": "making the dataset",
+    "scenewright.completion": "reading the plans",
+    "scenewright.completion.model": "building the plan model",
 }
 
 
