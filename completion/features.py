@@ -142,9 +142,14 @@ def door_window_angle(room) -> float:
 def room_feature(room, floor_area: float, type_mean_area: float) -> np.ndarray:
     """(4,) ``f_r`` of a room whose furniture covers ``floor_area`` square metres, in a
     type whose rooms average ``type_mean_area``: (angle / pi, r_s, r_e, phi)."""
+    angle, aspect, relative_size = room_parts(room, type_mean_area)
+    return np.array([angle, floor_area / room.area, aspect, relative_size])
+
+
+def room_parts(room, type_mean_area: float) -> np.ndarray:
+    """(3,) the parts of ``f_r`` that describe the room alone, without its furniture:
+    (angle / pi, r_e, phi)."""
     width, depth = room.extent
     area = room.area
-    return np.array(
-        [door_window_angle(room) / math.pi, floor_area / area, min(width, depth) / max(width, depth),
-         area / (area + type_mean_area)]
-    )  # fmt: skip
+    return np.array([door_window_angle(room) / math.pi, min(width, depth) / max(width, depth),
+                     area / (area + type_mean_area)])  # fmt: skip

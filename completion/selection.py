@@ -1,0 +1,125 @@
+"""Which categories to put in a room: the paper's Algorithm 1 (object exploration, Section 5.3).
+
+Start from every category of the type's relation graph (and the ones the user asked
+for), then repeatedly remove the non-requested category with the weakest mean edge
+weight to its remaining neighbours, ``E(W_s, o) = (1/J) sum_j W_s(o, o_j)``, and any
+non-requested category left without a neighbour; keep the set whose cost
+
+    C(O) = (1/K) sum_k |R(O, theta_r) - r_s^k|  -  omega * sum_{pairs in O} W_s(o_i, o_j)
+
+is lowest. ``R(O, theta_r) = sum theta_c / theta_r`` is the occupancy the set would give
+the room, ``r_s^k`` the occupancy of the k-th of the ``K = 10`` plans of the type most
+like the room, ``omega = 0.02``.
+
+Two readings where the paper is open:
+
+- *Which plans are "most like the room".* Its room feature includes the occupancy, which
+  is what the algorithm is choosing; comparing with it would pick plans as full as the
+  set being tried and make the cost agree with itself. So the K plans are the nearest
+  by the feature's room-only parts: the door-window angle, the aspect ratio and the
+  relative size (Euclidean, uniform weights, as the paper compares features).
+- *How much floor a category takes.* ``theta_c`` is the category's mean floor area; a
+  requested category counts as many times as asked, as the paper says. An added one
+  counts as many times as the reference plans that have it hold on average, rounded
+  (four chairs at the small tables of small dining rooms, six in larger ones; the whole
+  type's plans when no reference has it), where the paper counts one: ``r_s^k`` counts
+  every chair of a plan, so counting one would not compare like with like.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from scenewright.core.errors import InputError
+
+#: The paper's constants: how many similar plans the cost compares with, and the weight of relations.
+K = 10
+OMEGA = 0.02
+#: The parts of the room feature ``f_r`` that describe the room alone: angle, aspect, relative size.
+ROOM_PARTS = (0, 2, 3)
+
+
+@dataclass(frozen=True)
+class Exploration:
+    """Algorithm 1's answer: the categories (requested first, then added by how strongly
+    they are related), how many of each, the best cost, the reference plans, and every
+    step (the category removed, those removed with it as isolated, the cost after)."""
+
+    categories: tuple[str, ...]
+    counts: dict[str, int]
+    cost: float
+    references: tuple[str, ...]
+    steps: tuple[dict, ...] = field(default=())
+
+
+def nearest_plans(model: dict, room_type: str, room_parts, k: int = K) -> list[dict]:
+    """The ``k`` plans of ``room_type`` whose room-only feature parts are nearest to
+    ``room_parts`` (angle / pi, aspect, relative size); ties by plan id."""
+    plans = [plan for plan in model["plans"] if plan["type"] == room_type]
+    target = np.asarray(room_parts, dtype=float)
+    distance = {plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"])[list(ROOM_PARTS)] - target))
+                for plan in plans}  # fmt: skip
+    return sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
+
+
+def explore_categories(
+    model: dict, room_type: str, requested: dict[str, int], room_area: float, room_parts, *, k: int = K,
+    omega: float = OMEGA,
+) -> Exploration:  # fmt: skip
+    """Algorithm 1 for a room of ``room_area`` square metres whose room-only feature
+    parts are ``room_parts``, with ``requested`` categories and counts."""
+    if room_type not in model["types"]:
+        raise InputError(f"the plans have no type {room_type!r}")
+    entry = model["types"][room_type]
+    unknown = sorted(name for name in requested if name not in model["categories"])
+    if unknown:
+        raise InputError(f"no plan has a {unknown[0]!r}")
+    weights = {tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"] if pair["weight"] > 0.0}
+    references = nearest_plans(model, room_type, room_parts, k)
+    occupancies = np.array([plan["feature"][1] for plan in references])
+    typical = {**_typical_counts(model["plans"], room_type), **_typical_counts(references, room_type)}
+    counts = {name: requested.get(name, typical.get(name, 1)) for name in {n for p in weights for n in p} | set(requested)}
+
+    def weight(first: str, second: str) -> float:
+        return weights.get((min(first, second), max(first, second)), 0.0)
+
+    def cost(chosen: set[str]) -> float:
+        ratio = sum(model["categories"][name]["floor_area"] * counts[name] for name in chosen) / room_area
+        names = sorted(chosen)
+        related = sum(weight(a, b) for i, a in enumerate(names) for b in names[i + 1 :])
+        return float(np.mean(np.abs(ratio - occupancies))) - omega * related
+
+    def mean_weight(name: str, chosen: set[str]) -> float:
+        neighbours = [weight(name, other) for other in chosen if other != name and weight(name, other) > 0.0]
+        return sum(neighbours) / len(neighbours) if neighbours else 0.0
+
+    chosen = set(counts)
+    best, best_cost = set(chosen), cost(chosen)
+    steps = []
+    while len(chosen) > len(requested):
+        removable = sorted(name for name in chosen if name not in requested)
+        weakest = min(removable, key=lambda name: (mean_weight(name, chosen), name))
+        chosen.discard(weakest)
+        isolated = sorted(name for name in chosen if name not in requested and mean_weight(name, chosen) == 0.0)
+        chosen.difference_update(isolated)
+        now = cost(chosen)
+        steps.append({"removed": weakest, "isolated": isolated, "cost": now})
+        if now < best_cost:
+            best, best_cost = set(chosen), now
+    added = sorted(best - set(requested), key=lambda name: (-sum(weight(name, r) for r in requested), name))
+    ordered = tuple(sorted(requested)) + tuple(added)
+    return Exploration(ordered, {name: counts[name] for name in ordered}, best_cost,
+                       tuple(plan["id"] for plan in references), tuple(steps))  # fmt: skip
+
+
+def _typical_counts(plans: list[dict], room_type: str) -> dict[str, int]:
+    """Per category, the mean number of it in those of ``plans`` of the type that have
+    one, rounded (at least 1)."""
+    totals: dict[str, list[int]] = {}
+    for plan in plans:
+        if plan["type"] == room_type:
+            for name, count in plan["counts"].items():
+                totals.setdefault(name, []).append(count)
+    return {name: max(1, int(round(float(np.mean(values))))) for name, values in totals.items()}

@@ -1,0 +1,93 @@
+"""Algorithm 1 (object exploration): its cost on a worked example, isolation, adaptivity."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from scenewright.completion.features import room_parts
+from scenewright.completion.selection import explore_categories, nearest_plans
+from scenewright.core.errors import InputError
+from scenewright.core.room import Room
+
+
+def _model(weights: dict[tuple[str, str], float]) -> dict:
+    """Four categories a (2 m^2 of floor), b (1), c (0.5), d (0.25); plans p1 and p2 are
+    like the room (occupancy 0.3 and 0.2), p3 is not."""
+    floor = {"a": 2.0, "b": 1.0, "c": 0.5, "d": 0.25}
+    return {
+        "categories": {name: {"purpose": None, "size": [1.0, 1.0], "floor_area": area} for name, area in floor.items()},
+        "types": {"t": {"pairs": [{"pair": list(pair), "weight": w} for pair, w in weights.items()]}},
+        "plans": [
+            {"id": "p1", "type": "t", "feature": [0.5, 0.3, 0.8, 0.5], "counts": {"a": 1, "b": 1, "c": 1, "d": 1}},
+            {"id": "p2", "type": "t", "feature": [0.5, 0.2, 0.8, 0.5], "counts": {"a": 1, "b": 1, "c": 2}},
+            {"id": "p3", "type": "t", "feature": [0.0, 0.9, 0.1, 0.1], "counts": {"d": 4}},
+        ],
+    }
+
+
+def test_worked_example():
+    """By hand, K = 2, omega = 0.02, room 10 m^2, requested a. The references are p1, p2
+    (occupancy 0.3, 0.2); c counts twice (1 and 2 in them: 1.5, rounded to even 2).
+    {a, b, c, d}: R = (2 + 1 + 2 * 0.5 + 0.25) / 10 = 0.425, mean |R - r| = 0.175,
+    weights 1.5: C = 0.175 - 0.03 = 0.145. E: b 0.5, c 0.233, d 0.1: remove d.
+    {a, b, c}: R = 0.4, 0.15 - 0.02 * 1.4 = 0.122. E: b 0.5, c 0.3: remove c.
+    {a, b}: R = 0.3, 0.05 - 0.016 = 0.034. Remove b. {a}: R = 0.2, 0.05 - 0 = 0.05.
+    The best is {a, b}."""
+    model = _model({("a", "b"): 0.8, ("a", "c"): 0.4, ("b", "c"): 0.2, ("c", "d"): 0.1})
+    result = explore_categories(model, "t", {"a": 1}, 10.0, (0.5, 0.8, 0.5), k=2)
+    assert result.references == ("p1", "p2")
+    assert [step["removed"] for step in result.steps] == ["d", "c", "b"]
+    assert [step["cost"] for step in result.steps] == pytest.approx([0.122, 0.034, 0.05])
+    assert result.categories == ("a", "b") and result.counts == {"a": 1, "b": 1}
+    assert result.cost == pytest.approx(0.034)
+
+
+def test_a_category_left_without_neighbours_goes_with_the_one_removed():
+    model = _model({("a", "b"): 0.1, ("b", "c"): 0.9})
+    result = explore_categories(model, "t", {"a": 1}, 10.0, (0.5, 0.8, 0.5), k=2)
+    assert result.steps[0] == {"removed": "b", "isolated": ["c"], "cost": pytest.approx(0.05)}
+    assert len(result.steps) == 1
+
+
+def test_requested_categories_stay_and_count_as_asked():
+    model = _model({("a", "b"): 0.8, ("c", "d"): 0.1})
+    result = explore_categories(model, "t", {"d": 3, "a": 1}, 10.0, (0.5, 0.8, 0.5), k=2)
+    assert result.categories[:2] == ("a", "d") and result.counts["d"] == 3
+    with pytest.raises(InputError, match="no plan has a 'piano'"):
+        explore_categories(model, "t", {"piano": 1}, 10.0, (0.5, 0.8, 0.5))
+    with pytest.raises(InputError, match="no type 'gym'"):
+        explore_categories(model, "gym", {"a": 1}, 10.0, (0.5, 0.8, 0.5))
+
+
+def test_nearest_plans_use_the_room_only_parts_of_the_feature():
+    model = _model({})
+    assert [p["id"] for p in nearest_plans(model, "t", (0.0, 0.1, 0.1), k=1)] == ["p3"]
+    assert [p["id"] for p in nearest_plans(model, "t", (0.5, 0.8, 0.5))] == ["p1", "p2", "p3"]
+
+
+@pytest.fixture(scope="module")
+def shipped_model():
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.model import build_model
+    from scenewright.completion.plan import load_plans
+
+    return json.loads(json.dumps(build_model(load_plans(shipped_plans_dir()))))
+
+
+@pytest.mark.parametrize(
+    ("room_type", "requested"),
+    [("bedroom", {"bed": 1, "bookshelf": 1}), ("living_room", {"sofa": 1}), ("study", {"desk": 1}),
+     ("dining_room", {"dining_table": 1})],
+)  # fmt: skip
+def test_more_categories_are_added_to_larger_rooms(shipped_model, room_type, requested):
+    added = []
+    for width, depth in ((3.0, 3.0), (4.0, 3.5), (5.0, 4.0), (6.0, 5.0)):
+        room = Room.rectangle(width, depth).with_opening("door", "wall_3", width - 0.8, 0.9)
+        room = room.with_opening("window", "wall_1", width / 2, 1.4, 1.2, 0.9)
+        parts = room_parts(room, shipped_model["types"][room_type]["mean_area"])
+        result = explore_categories(shipped_model, room_type, requested, room.area, parts)
+        assert set(requested) <= set(result.categories)
+        added.append(len(result.categories) - len(requested))
+    assert added == sorted(added) and added[-1] > added[0], added
