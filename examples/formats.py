@@ -1,0 +1,99 @@
+"""Which reader reads a file (``FORMATS``, a registry), and loading one or more examples.
+
+A file is read whole (a regular file of at most ``MAX_EXAMPLE_BYTES``) and its format
+found from its content: ``glTF`` magic bytes for GLB, a JSON object with ``rules`` for
+a scenewright scene.json, any other JSON for the hand-written format. A folder holding
+a ``scene.json`` (what ``scenewright generate`` writes) stands for that file. An
+example's name is its file's stem, or its folder's name for a ``scene.json``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.limits import MAX_SCENE_JSON_BYTES
+from scenewright.core.scene import Scene
+
+from .glb import read_glb
+from .handwritten import read_handwritten
+from .model import Example, ExampleError
+from .scene_json import read_scene_json
+
+#: The largest example file read (a GLB with its meshes, or JSON).
+MAX_EXAMPLE_BYTES = max(MAX_SCENE_JSON_BYTES, 256 * 1024 * 1024)
+
+
+@dataclass(frozen=True)
+class ExampleFormat:
+    """One format: its name, whether some bytes are in it, and its reader
+    ``read(path, content, name) -> Scene`` (text for JSON formats, bytes for binary)."""
+
+    name: str
+    recognises: Callable[[bytes], bool]
+    read: Callable[[str, object, str], Scene]
+    binary: bool = False
+
+
+def _is_scene_json(data: bytes) -> bool:
+    # A scene.json is written by scenewright with "format" and "rules" near the top.
+    head = data.lstrip()[:4096]
+    return head.startswith(b"{") and b'"rules"' in data and b'"format"' in data
+
+
+#: Tried in order; the first that recognises a file reads it.
+FORMATS: tuple[ExampleFormat, ...] = (
+    ExampleFormat("glb", lambda data: data[:4] == b"glTF", read_glb, binary=True),
+    ExampleFormat("scene.json", _is_scene_json, read_scene_json),
+    ExampleFormat("example.json", lambda data: True, read_handwritten),
+)
+
+
+def load_example(path: str | os.PathLike[str], name: str | None = None) -> Example:
+    """The example in ``path`` (a file, or a folder holding a scene.json)."""
+    target = Path(path)
+    if target.is_dir() and (target / "scene.json").is_file():
+        target = target / "scene.json"
+    shown = str(path)
+    try:
+        data = read_regular_file(target, MAX_EXAMPLE_BYTES, "an example file")
+    except UnusableFile as problem:
+        raise ExampleError(shown, "", f"cannot read: it {problem}") from None
+    except OSError as error:
+        raise ExampleError(shown, "", f"cannot read: {error.strerror or error}") from None
+    default_name = target.parent.name if target.name == "scene.json" and target.parent.name else target.stem
+    name = name or default_name or "example"
+    for example_format in FORMATS:
+        if example_format.recognises(data):
+            if example_format.binary:
+                content: object = data
+            else:
+                try:
+                    content = data.decode("utf-8")
+                except UnicodeDecodeError as error:
+                    raise ExampleError(shown, "", f"not UTF-8 text (byte {error.start})") from None
+            scene = example_format.read(str(target), content, name)
+            return Example(name=name, path=str(target), format=example_format.name, scene=scene)
+    raise ExampleError(shown, "", "not a format examples are read from")  # pragma: no cover (the last one takes all)
+
+
+def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
+    """The examples of ``paths`` in order, their names made unique (``bedroom``,
+    ``bedroom-2``, ...)."""
+    examples: list[Example] = []
+    taken: set[str] = set()
+    for path in paths:
+        example = load_example(path)
+        name, count = example.name, 1
+        while name in taken:
+            count += 1
+            name = f"{example.name}-{count}"
+        taken.add(name)
+        example.name = name
+        examples.append(example)
+    if not examples:
+        raise ExampleError("examples", "", "no example files given")
+    return examples

@@ -1,0 +1,151 @@
+"""GLB files with one named node per object, as Blender (or ``scenewright export``) writes them.
+
+Every node with a mesh is an object, except room parts. Its type and style come from
+the node's name by the pattern ``TYPE[.STYLE][.NNN]``: ``desk.oak.001`` is a desk in
+style oak, ``desk.001`` and ``desk`` a desk of no style (``.NNN``, Blender's counter
+for copies, is dropped; so is a trailing ``_N``, scenewright's id counter). The id is
+the node name. A node's ``extras`` written by ``scenewright export`` (id, type, kind,
+style) take precedence over its name.
+
+Size is the mesh's bounds in the node's own frame times the node's scale, position the
+base centre of those bounds taken to the world, yaw the node's rotation about +Y (glTF
+is Y-up; Blender's exporter turns its Z-up into Y-up). A node tilted more than
+``MAX_TILT_DEGREES`` off upright is refused. Nodes of type ``wall``, ``floor``,
+``ground`` or ``ceiling`` (or extras kind wall, door, window, path, ground) are the
+room, not objects: walls make the room a rectangle (their inner bounding box), a floor
+or ground gives the extent; otherwise the extent is the objects' bounding box with
+``MARGIN`` around it. The scene is moved so the extent is centred on the origin.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import re
+import struct
+
+import numpy as np
+
+from scenewright.core.room import Room, RoomError
+from scenewright.core.scene import Scene
+
+from .model import ExampleError, ObjectRecord, example_scene
+
+#: Room parts by node type (without extras) and by extras kind (scenewright's export).
+ROOM_TYPES = ("wall", "floor", "ground", "ceiling")
+ROOM_KINDS = ("wall", "door", "window", "path", "ground", "junction", "group")
+MAX_TILT_DEGREES = 5.0
+#: Free floor (metres) around the objects when nothing gives the extent.
+MARGIN = 0.5
+
+_COUNTER = re.compile(r"(\.\d{3,}|_\d+)$")
+_NAME = re.compile(r"[^A-Za-z0-9_.-]")
+
+
+def parse_node_name(name: str) -> tuple[str, str | None]:
+    """(type, style) of a node name ``TYPE[.STYLE][.NNN]``."""
+    base = _COUNTER.sub("", name.strip()) or name.strip()
+    parts = [p for p in base.split(".") if p]
+    kind = _NAME.sub("_", parts[0]) if parts else "object"
+    style = _NAME.sub("_", ".".join(parts[1:])) if len(parts) > 1 else None
+    return kind, style
+
+
+def read_glb(path: str, data: bytes, name: str) -> Scene:
+    """The Scene of a GLB file's bytes (``path`` names it in errors)."""
+    import trimesh
+
+    order, extras = _nodes(path, data)
+    try:
+        loaded = trimesh.load(io.BytesIO(data), file_type="glb", force="scene")
+    except Exception as error:  # trimesh raises many kinds on a broken file
+        raise ExampleError(path, "", f"not a readable GLB file ({type(error).__name__}: {error})") from None
+    records: list[ObjectRecord] = []
+    walls: list[np.ndarray] = []
+    floors: list[np.ndarray] = []
+    for node in sorted(loaded.graph.nodes_geometry, key=lambda n: (order.get(n, len(order)), n)):
+        transform, geometry_name = loaded.graph[node]
+        mesh = loaded.geometry[geometry_name]
+        if not hasattr(mesh, "bounds") or mesh.bounds is None:
+            continue
+        meta = extras.get(node, {})
+        kind, style = parse_node_name(node)
+        kind, style = meta.get("type", kind), meta.get("style", style)
+        corners = trimesh.transform_points(trimesh.bounds.corners(mesh.bounds), transform)
+        if meta.get("kind") in ROOM_KINDS or (not meta and kind in ROOM_TYPES):
+            (walls if kind == "wall" or meta.get("kind") == "wall" else floors).append(corners)
+            continue
+        records.append(_record(path, node, meta.get("id", node), kind, style, np.asarray(transform), mesh.bounds))
+    if not records:
+        raise ExampleError(path, "", "has no object nodes (a node with a mesh that is not a wall, floor or ceiling)")
+    room, lo, hi = _floor(path, records, walls, floors)
+    shift = -(lo + hi) / 2.0
+    records = [
+        ObjectRecord(r.id, r.type, r.size, (r.position[0] + shift[0], r.position[1], r.position[2] + shift[1]), r.yaw, r.style)
+        for r in records
+    ]
+    extent = (float(hi[0] - lo[0]), float(hi[1] - lo[1]))
+    return example_scene(records, name=name, source=path, extent=extent, room=room)
+
+
+def _record(path: str, node: str, object_id: str, kind: str, style, transform: np.ndarray, bounds) -> ObjectRecord:
+    linear = transform[:3, :3]
+    scale = np.linalg.norm(linear, axis=0)
+    if np.any(scale < 1e-9):
+        raise ExampleError(path, f"node {node!r}", "has a zero scale")
+    rotation = linear / scale
+    tilt = math.degrees(math.acos(max(-1.0, min(1.0, rotation[1, 1]))))
+    if tilt > MAX_TILT_DEGREES:
+        raise ExampleError(path, f"node {node!r}", f"is tilted {tilt:.0f} degrees off upright (at most {MAX_TILT_DEGREES:g})")
+    lo, hi = np.asarray(bounds, dtype=float)
+    size = (hi - lo) * scale
+    base = np.array([(lo[0] + hi[0]) / 2.0, lo[1], (lo[2] + hi[2]) / 2.0, 1.0])
+    x, y, z = (transform @ base)[:3]
+    yaw = math.atan2(rotation[0, 2], rotation[2, 2])
+    object_id = _NAME.sub("_", object_id) or "object"
+    return ObjectRecord(object_id, kind, tuple(float(v) for v in np.maximum(size, 1e-3)), (float(x), float(y), float(z)), yaw, style)
+
+
+def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, np.ndarray]:
+    """The room (or None) and the (x, z) corners lo, hi of the extent, in the file's frame."""
+    if walls:
+        boxes = [(c[:, [0, 2]].min(axis=0), c[:, [0, 2]].max(axis=0)) for c in walls]
+        thickness = min(float(np.min(hi - lo)) for lo, hi in boxes)
+        lo = np.min([b[0] for b in boxes], axis=0) + thickness
+        hi = np.max([b[1] for b in boxes], axis=0) - thickness
+        height = max(float(c[:, 1].max()) for c in walls)
+        try:
+            return Room.rectangle(float(hi[0] - lo[0]), float(hi[1] - lo[1]), height), lo, hi
+        except RoomError as error:
+            raise ExampleError(path, "walls", str(error)) from None
+    if floors:
+        points = np.concatenate(floors)[:, [0, 2]]
+        return None, points.min(axis=0), points.max(axis=0)
+    points = []
+    for r in records:
+        reach = math.hypot(r.size[0], r.size[2]) / 2.0
+        points += [(r.position[0] - reach, r.position[2] - reach), (r.position[0] + reach, r.position[2] + reach)]
+    points = np.array(points)
+    return None, points.min(axis=0) - MARGIN, points.max(axis=0) + MARGIN
+
+
+def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
+    """Node name -> its place in the file, and -> its glTF ``extras`` (trimesh keeps
+    neither), from the JSON chunk."""
+    if len(data) < 20 or data[:4] != b"glTF":
+        raise ExampleError(path, "", "not a GLB file (it does not start with 'glTF')")
+    length, kind = struct.unpack("<I4s", data[12:20])
+    if kind != b"JSON" or 20 + length > len(data):
+        raise ExampleError(path, "", "not a GLB file (no JSON chunk after the header)")
+    try:
+        document = json.loads(data[20 : 20 + length])
+    except ValueError as error:
+        raise ExampleError(path, "", f"the GLB's JSON chunk is not JSON: {error}") from None
+    order, found = {}, {}
+    for index, node in enumerate(document.get("nodes", []) if isinstance(document, dict) else []):
+        if isinstance(node, dict) and isinstance(node.get("name"), str):
+            order.setdefault(node["name"], index)
+            if isinstance(node.get("extras"), dict):
+                found[node["name"]] = {k: v for k, v in node["extras"].items() if isinstance(v, str)}
+    return order, found

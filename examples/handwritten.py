@@ -1,0 +1,159 @@
+"""The hand-written example format: a JSON file a person writes (schema
+``examples/schema/example.schema.json``, documented in docs/examples.md).
+
+Checked in three passes, each naming the first problem with the file and the place in
+it: JSON syntax (``file:line:col``), the schema (``$.objects[2].size`` and the
+object's id), then references (unique ids, parents that exist and do not stand on
+themselves, a room that can be built). Yaw is in degrees in this format; the Scene
+keeps radians as everywhere else. A room given by corners is moved so its bounding box
+is centred on the origin, and its objects with it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from functools import lru_cache
+from importlib import resources
+from typing import Any
+
+import jsonschema
+from jsonschema.exceptions import best_match
+
+from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
+from scenewright.core.scene import Scene
+
+from .model import ExampleError, ObjectRecord, example_scene
+
+SCHEMA_FILE = "example.schema.json"
+
+
+def load_schema() -> dict[str, Any]:
+    """The hand-written example format's JSON Schema (draft 2020-12)."""
+    return json.loads(_schema_text())
+
+
+def read_handwritten(path: str, text: str, name: str) -> Scene:
+    """The Scene of a hand-written example's ``text`` (``path`` names it in errors)."""
+    data = parse_json(path, text)
+    error = best_match(_validator().iter_errors(data))
+    if error is not None:
+        raise ExampleError(path, _where(data, list(error.absolute_path)), _message(error))
+    raw_objects = data["objects"]
+    ids = [raw["id"] for raw in raw_objects]
+    seen: set[str] = set()
+    for index, object_id in enumerate(ids):
+        if object_id in seen:
+            raise ExampleError(path, f"$.objects[{index}].id", f"id {object_id!r} is used by an earlier object too")
+        seen.add(object_id)
+    parents = {raw["id"]: raw["parent"] for raw in raw_objects if raw.get("parent") is not None}
+    for index, raw in enumerate(raw_objects):
+        parent = raw.get("parent")
+        if parent is not None and parent not in seen:
+            raise ExampleError(path, f"$.objects[{index}].parent", f"{raw['id']!r} stands on {parent!r}, which is not an object of the file")
+        if parent is not None and _stands_on_itself(raw["id"], parents):
+            raise ExampleError(path, f"$.objects[{index}].parent", f"{raw['id']!r} stands on itself (through parents)")
+    room, shift = _room(path, data)
+    extent = room.extent if room is not None else tuple(data["extent"])
+    by_id = {raw["id"]: raw for raw in raw_objects}
+    records = [
+        ObjectRecord(
+            id=raw["id"], type=raw["type"], size=tuple(raw["size"]),
+            position=_position(raw, by_id, shift), yaw=math.radians(raw.get("yaw", 0.0)), style=raw.get("style"),
+        )
+        for raw in raw_objects
+    ]  # fmt: skip
+    return example_scene(records, name=data.get("name", name), source=path, extent=extent, room=room, parents=parents)
+
+
+def parse_json(path: str, text: str) -> Any:
+    """The JSON document of ``text``; ``ExampleError`` at ``file:line:col`` if it is not
+    JSON, or holds NaN or Infinity."""
+
+    def refuse(constant: str):
+        raise ValueError(f"{constant} is not a finite number")
+
+    try:
+        return json.loads(text, parse_constant=refuse)
+    except json.JSONDecodeError as error:
+        raise ExampleError(f"{path}:{error.lineno}:{error.colno}", "", f"not JSON: {error.msg}") from None
+    except (ValueError, RecursionError) as error:
+        raise ExampleError(path, "", f"not usable JSON: {error}") from None
+
+
+def _where(data: Any, parts: list) -> str:
+    """``$.objects[2].size (object 'lamp')`` for a JSON path into the document."""
+    text = "$" + "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in parts)
+    if len(parts) >= 2 and parts[0] == "objects" and isinstance(parts[1], int):
+        raw = data["objects"][parts[1]]
+        if isinstance(raw, dict) and isinstance(raw.get("id"), str):
+            text += f" (object {raw['id']!r})"
+    return text
+
+
+def _message(error: jsonschema.ValidationError) -> str:
+    """The schema's complaint in one short line (a ``oneOf`` of required keys said as such)."""
+    choices = [sub.get("required") for sub in error.schema.get("oneOf", [])] if error.validator == "oneOf" else []
+    if choices and all(choices):
+        return "needs exactly one of " + " or ".join("/".join(map(repr, keys)) for keys in choices)
+    return " ".join(error.message.split())[:200]
+
+
+def _stands_on_itself(object_id: str, parents: dict[str, str]) -> bool:
+    seen, current = set(), object_id
+    while current in parents:
+        if current in seen:
+            return True
+        seen.add(current)
+        current = parents[current]
+        if current == object_id:
+            return True
+    return False
+
+
+def _room(path: str, data: dict) -> tuple[Room | None, tuple[float, float]]:
+    """The room (or None) and the (x, z) shift that centres its bounding box."""
+    raw = data.get("room")
+    if raw is None:
+        return None, (0.0, 0.0)
+    height = float(raw.get("height", DEFAULT_WALL_HEIGHT))
+    try:
+        if "corners" in raw:
+            xs, zs = [c[0] for c in raw["corners"]], [c[1] for c in raw["corners"]]
+            shift = (-(min(xs) + max(xs)) / 2.0, -(min(zs) + max(zs)) / 2.0)
+            return Room.polygon(raw["corners"], height), shift
+        return Room.rectangle(float(raw["width"]), float(raw["depth"]), height), (0.0, 0.0)
+    except RoomError as error:
+        raise ExampleError(path, "$.room", str(error)) from None
+
+
+def _position(raw: dict, by_id: dict[str, dict], shift: tuple[float, float]) -> tuple[float, float, float]:
+    """Base centre (x, y, z) moved by ``shift``; a 2-number position stands on the
+    floor or on its parent's top."""
+    position = raw["position"]
+    if len(position) == 3:
+        x, y, z = position
+    else:
+        (x, z), y = position, _base_height(raw, by_id)
+    return float(x) + shift[0], float(y), float(z) + shift[1]
+
+
+def _base_height(raw: dict, by_id: dict[str, dict]) -> float:
+    parent = raw.get("parent")
+    if parent is None:
+        return 0.0
+    below = by_id[parent]
+    bottom = below["position"][1] if len(below["position"]) == 3 else _base_height(below, by_id)
+    return float(bottom) + float(below["size"][1])
+
+
+@lru_cache(maxsize=1)
+def _schema_text() -> str:
+    return resources.files("scenewright.examples").joinpath("schema", SCHEMA_FILE).read_text(encoding="utf-8")
+
+
+@lru_cache(maxsize=1)
+def _validator() -> jsonschema.Draft202012Validator:
+    schema = load_schema()
+    jsonschema.Draft202012Validator.check_schema(schema)
+    return jsonschema.Draft202012Validator(schema)

@@ -1,0 +1,110 @@
+"""The in-memory form of an example (``Example``: a core ``Scene`` and where it came
+from), its error, and ``example_scene``, which turns the objects a file lists into that
+Scene: noun from the type, the procedural shape of the same name if there is one, a
+colour of its own per type, and an ``OnTopOf`` relation for every support (given by
+the file or measured, ``stacking``)."""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+from scenewright import __version__
+from scenewright.core.errors import InputError
+from scenewright.core.relations import RELATIONS, Relation
+from scenewright.core.room import Room
+from scenewright.core.scene import LayoutStats, Scene, SceneObject
+from scenewright.core.shapes import SHAPES
+
+from .stacking import infer_supports
+
+#: The support label an importer records (rests anywhere on the supporter's top).
+SUPPORT_LABEL = "OnTopOf"
+
+
+class ExampleError(InputError):
+    """A file that cannot be read as an example; the message is one line that starts
+    with the file and says where in it the problem is."""
+
+    def __init__(self, path: str, where: str, message: str):
+        super().__init__(f"{path}: {where}: {message}" if where else f"{path}: {message}")
+        self.path, self.where, self.reason = str(path), where, message
+
+
+@dataclass
+class Example:
+    """One example scene: ``scene`` (objects of kind ``object`` carry the layout),
+    ``name`` (how reports call it; unique within one ``load_examples``), the file and
+    the format it was read from."""
+
+    name: str
+    path: str
+    format: str
+    scene: Scene
+
+    def objects(self) -> list[SceneObject]:
+        """The placed objects (kind ``object``), in file order."""
+        return self.scene.placed_objects()
+
+    def supports(self) -> dict[str, str]:
+        """Object id -> the id of the object it rests on (support-family relations)."""
+        placed = {o.id for o in self.objects()}
+        return {
+            r.source: r.target
+            for r in self.scene.relations
+            if r.label in RELATIONS and RELATIONS[r.label].support and r.source in placed and r.target in placed
+        }
+
+
+@dataclass(frozen=True)
+class ObjectRecord:
+    """One object as a file states it: pose in the scene frame, yaw in radians."""
+
+    id: str
+    type: str
+    size: tuple[float, float, float]
+    position: tuple[float, float, float]
+    yaw: float
+    style: str | None = None
+
+
+def type_colour(type_name: str) -> list[float]:
+    """A stable, mid-bright colour for a type name (so previews tell types apart)."""
+    digest = hashlib.sha256(type_name.encode("utf-8")).digest()
+    return [round(0.3 + 0.5 * digest[k] / 255.0, 3) for k in range(3)]
+
+
+def example_scene(
+    records: Sequence[ObjectRecord],
+    *,
+    name: str,
+    source: str,
+    extent: tuple[float, float],
+    room: Room | None,
+    parents: Mapping[str, str] | None = None,
+) -> Scene:
+    """The Scene of the objects a file lists; ``parents`` (id -> id it stands on) as
+    the file gave them, the other supports measured from the boxes."""
+    objects = [
+        SceneObject(
+            id=r.id, type=r.type, kind="object", noun=r.type.replace("_", " "), plural=None, parent=None,
+            style=r.style, position=[float(v) for v in r.position], yaw=_wrapped(r.yaw), size=[float(v) for v in r.size],
+            shape=r.type if r.type in SHAPES else None, colour=type_colour(r.type), rule=None, order=k,
+        )
+        for k, r in enumerate(records)
+    ]  # fmt: skip
+    supports = {**infer_supports(objects), **(parents or {})}
+    relations = [Relation(o.id, supports[o.id], SUPPORT_LABEL, 0.0, True) for o in objects if o.id in supports]
+    return Scene(
+        rules=source, seed=0, extent=[float(extent[0]), float(extent[1])], objects=objects, paths=[],
+        relations=relations, layout=LayoutStats(), room=room, ground="floor" if room else "grass", name=name,
+        version=__version__,
+    )  # fmt: skip
+
+
+def _wrapped(yaw: float) -> float:
+    """``yaw`` in (-pi, pi]."""
+    wrapped = math.atan2(math.sin(yaw), math.cos(yaw))
+    return math.pi if wrapped == -math.pi else wrapped
