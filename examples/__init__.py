@@ -22,6 +22,7 @@ whose one line names the file and where in it the problem is.
 """
 
 from .formats import FORMATS, Example, ExampleError, load_example, load_examples
+from .model import scene_supports
 from .stacking import infer_supports
 
-__all__ = ["FORMATS", "Example", "ExampleError", "infer_supports", "load_example", "load_examples"]
+__all__ = ["FORMATS", "Example", "ExampleError", "infer_supports", "load_example", "load_examples", "scene_supports"]

@@ -50,12 +50,18 @@ class Example:
 
     def supports(self) -> dict[str, str]:
         """Object id -> the id of the object it rests on (support-family relations)."""
-        placed = {o.id for o in self.objects()}
-        return {
-            r.source: r.target
-            for r in self.scene.relations
-            if r.label in RELATIONS and RELATIONS[r.label].support and r.source in placed and r.target in placed
-        }
+        return scene_supports(self.scene)
+
+
+def scene_supports(scene: Scene) -> dict[str, str]:
+    """Object id -> the id of the object it rests on, from the scene's support-family
+    relations between placed objects."""
+    placed = {o.id for o in scene.placed_objects()}
+    return {
+        r.source: r.target
+        for r in scene.relations
+        if r.label in RELATIONS and RELATIONS[r.label].support and r.source in placed and r.target in placed
+    }
 
 
 @dataclass(frozen=True)
