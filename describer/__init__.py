@@ -1,7 +1,8 @@
 """Turns a laid-out scene into grammatical English that is true of it.
 
 ``describe(scene, style="full" | "short", variant=k, templates=folder)`` returns a
-``Description``: the text and the (subject id, label, object id) facts it states. Only
+``Description``: the text, the (subject id, label, object id) facts it states and the
+mentions it makes (``grounding``: which characters name which objects). Only
 relations the layout satisfied are stated, never ``Implicit*`` ones. The pipeline is
 plan (``plan``: what to say, in derivation order, aggregated) -> referring expressions
 (``refer``) -> words (``lexicon``, ``english``) -> sentence templates (``templates``).

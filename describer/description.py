@@ -15,6 +15,7 @@ from typing import Any
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
+from .grounding import Mention
 from .plan import Fact, Introduction, Inventory, Item, Network, Section, Statement, plan_document
 from .realise import Realiser, Sentence
 from .templates import template_environment
@@ -29,7 +30,9 @@ class Description:
     """A scene's description: the text and every (subject id, label, object id) it states.
 
     ``sentences`` has the same text sentence by sentence, each with the facts it states
-    (what a truth check reads); scene.json stores only text and facts.
+    (what a truth check reads); scene.json stores only text and facts. ``mentions``: every
+    phrase that names something, as a character span into ``text`` with the entities it
+    names and their objects (``grounding``), in the order the phrases start.
     """
 
     text: str
@@ -37,6 +40,7 @@ class Description:
     style: str = "full"
     variant: int = 0
     sentences: list[Sentence] = field(default_factory=list)
+    mentions: list[Mention] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON-ready form stored in scene.json's ``description``."""
@@ -81,7 +85,19 @@ def describe(
         style=style,
         variant=variant,
         sentences=sentences,
+        mentions=_mentions_in_text(sentences, world),
     )
+
+
+def _mentions_in_text(sentences: list[Sentence], world: World) -> list[Mention]:
+    """Each sentence's mentions with offsets into the joined text and their objects filled in."""
+    found: list[Mention] = []
+    offset = 0
+    for sentence in sentences:
+        for m in sentence.mentions:
+            found.append(Mention(m.start + offset, m.end + offset, m.entities, world.grounded_ids(m.entities)))
+        offset += len(sentence.text) + 1  # the space joining sentences
+    return found
 
 
 def _caption(scene: Scene, world: World, sections: list[Section], realiser: Realiser) -> list[Sentence]:
@@ -99,7 +115,8 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
         owner = items[0][0]
         items = _caption_items(by_owner[owner], world)
     realiser.discourse.start_paragraph(owner)
-    sentences = [realiser.caption(_setting(scene, world, owner), items)]
+    setting_ids = (owner,) if owner is not None else ()
+    sentences = [realiser.caption(_setting(scene, world, owner), items, setting_ids)]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement) and not m.also]
     by_room = [m for m in statements if any(world.place_kind(t) for c in m.clauses for t in c.targets)]
     if by_room:

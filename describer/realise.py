@@ -2,7 +2,8 @@
 
 Walks the plan in reading order, names every entity with the referring-expression
 rules of ``refer.Discourse``, picks words from the lexicon, makes verbs agree and fills
-the sentence templates. Each sentence comes out with the facts it states.
+the sentence templates. Each sentence comes out with the facts it states and the
+mentions it makes (``grounding``: which characters name which entities).
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from dataclasses import dataclass
 from jinja2.sandbox import SandboxedEnvironment
 
 from .english import counted, join_list, plural_of, sentence_case, verb_agreeing, with_also, without_repeated_copula
+from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
 from .plan import (
     Clause, Fact, Inventory, Introduction, Item, Message, Network, RoomOutline, Section, Statement, facts_of,
@@ -24,10 +26,11 @@ from .world import World
 
 @dataclass(frozen=True)
 class Sentence:
-    """One sentence of the text and the facts it states."""
+    """One sentence of the text, the facts it states and its mentions (spans into ``text``)."""
 
     text: str
     facts: tuple[Fact, ...]
+    mentions: tuple[Mention, ...] = ()
 
 
 class Realiser:
@@ -73,17 +76,26 @@ class Realiser:
             text = self._introduction(message)
         else:
             text = self._statement(message)
-        return Sentence(sentence_case(text), tuple(facts_of(message)))
+        return self._sentence(text, facts_of(message))
 
-    def caption(self, setting: str, items: tuple[Item, ...]) -> Sentence:
-        """The short style's sentence: "A village with three roads meeting at an intersection, ..."."""
+    def caption(self, setting: str, items: tuple[Item, ...], setting_ids: tuple[str, ...] = ()) -> Sentence:
+        """The short style's sentence: "A village with three roads meeting at an intersection, ...".
+
+        ``setting_ids``: the group the setting word names ("A desk with ..."), if one.
+        """
         self.discourse.start_sentence()
+        if setting_ids:
+            setting = self.discourse.marks.mark(setting, setting_ids)
         phrases = [self._item(item) for item in self.choices.shuffled(items)]
         text = render(
             self.environment, "caption.j2", setting=setting, link=self.lexicon.caption_link(), items=phrases
         )
-        facts = facts_of(Inventory(None, items))
-        return Sentence(sentence_case(text), tuple(facts))
+        return self._sentence(text, facts_of(Inventory(None, items)))
+
+    def _sentence(self, marked: str, facts: list[Fact]) -> Sentence:
+        """The rendered sentence without its marks, capitalised, with its facts and mentions."""
+        text, mentions = self.discourse.marks.read(marked)
+        return Sentence(sentence_case(text), tuple(facts), mentions)
 
     # -- messages -------------------------------------------------------------------
 
@@ -127,7 +139,7 @@ class Realiser:
         openings = []
         for kind, wall, ids in self.choices.shuffled(outline.openings):
             self.discourse.note_place(ids)
-            what = counted(len(ids), kind, plural_of(kind))
+            what = self.discourse.marks.mark(counted(len(ids), kind, plural_of(kind)), ids)
             self.discourse.note_place((wall,))
             phrase = render(self.environment, "opening.j2", openings=what, wall=self.world.room.wall_phrase(wall))
             openings.append(phrase)

@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .english import counted, number_word, ordinal_word
+from .grounding import Marks
 from .world import World
 
 #: How "the scene" itself is tracked as a mention ("The scene consists of ...").
@@ -40,6 +41,8 @@ SCENE = "<scene>"
 #: How a room, and each part of it, is tracked as a mention: a key no noun can be, so
 #: "this" and "the other" never count a wall as a namesake of an object.
 ROOM_PART = "<room>"
+#: The parts of a room that are drawn as things of their own, and so grounded.
+SEEN_PARTS = ("door", "window")
 
 
 @dataclass
@@ -63,6 +66,8 @@ class Discourse:
     paragraph_nouns: dict[str, set[str]] = field(default_factory=dict)
     named_in_paragraph: set[str] = field(default_factory=set)  # known entities named again
     sentence_subject: tuple[str, ...] = ()
+    #: The phrases of the sentence being made and what each names (``grounding``).
+    marks: Marks = field(default_factory=Marks)
 
     # -- structure --------------------------------------------------------------
 
@@ -75,6 +80,7 @@ class Discourse:
         self.previous = self.current
         self.current = []
         self.sentence_subject = ()
+        self.marks.clear()
 
     def mark_subject(self, ids: tuple[str, ...]) -> None:
         """Record the current sentence's subject (a pronoun never refers back to it)."""
@@ -94,7 +100,9 @@ class Discourse:
     def name_place(self, place_id: str) -> str:
         """A part of the room by the name that sets it apart (``rooms``)."""
         self._note((place_id,), ROOM_PART, plural=False)
-        return self.world.room.name(place_id)
+        name = self.world.room.name(place_id)
+        # A door or a window is drawn, so its name is grounded; a wall or a corner is not.
+        return self.marks.mark(name, (place_id,)) if self.world.room.kind(place_id) in SEEN_PARTS else name
 
     def note_place(self, place_ids: tuple[str, ...]) -> None:
         """Record parts of the room named by other means (the room sentence's "two windows")."""
@@ -111,8 +119,12 @@ class Discourse:
         self.introduced.update(ids)
         self._note(ids, entity.noun, plural=len(ids) > 1)
         if not known:
-            return counted(len(ids), entity.noun, entity.plural)
-        return f"another {entity.noun}" if len(ids) == 1 else f"{number_word(len(ids))} more {entity.plural}"
+            phrase = counted(len(ids), entity.noun, entity.plural)
+        elif len(ids) == 1:
+            phrase = f"another {entity.noun}"
+        else:
+            phrase = f"{number_word(len(ids))} more {entity.plural}"
+        return self.marks.mark(phrase, ids)
 
     def name(self, entity_id: str, *, pronoun: bool = True, demonstrative: bool = True) -> str:
         """A definite phrase for one known entity.
@@ -128,10 +140,10 @@ class Discourse:
         self.named_in_paragraph.add(entity_id)
         if pronoun and self._may_be_it(entity_id):
             self._note((entity_id,), entity.noun, plural=False)
-            return "it"
+            return self.marks.mark("it", (entity_id,))
         phrase, placed = self._definite(entity_id, demonstrative=demonstrative)
         self._note((entity_id,), entity.noun, plural=False)
-        return phrase if placed else self._placed(phrase, entity_id)
+        return self.marks.mark(phrase if placed else self._placed(phrase, entity_id), (entity_id,))
 
     def name_set(self, ids: tuple[str, ...]) -> list[str]:
         """Phrases naming a set of known entities, one per cohort, in order."""
@@ -233,7 +245,7 @@ class Discourse:
         self.named_in_paragraph.update(chosen)
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
-        return phrase if clear else self._placed(phrase, chosen[0], plural=True)
+        return self.marks.mark(phrase if clear else self._placed(phrase, chosen[0], plural=True), chosen)
 
     def _part_of_cohort(self, cohort: tuple[str, ...], chosen: tuple[str, ...]) -> str:
         """Some of a cohort: "two of the street lamps".

@@ -36,6 +36,7 @@ from scenewright.core.limits import forbidden_character
 from scenewright.core.files import UnusableFile, read_regular_file
 
 from .english import join_list, with_article
+from .grounding import split_leading_marks
 
 PACKAGE_TEMPLATES = Path(__file__).parent / "templates"
 #: The most a template file may hold (1 MiB); the package's are under 1 KiB each.
@@ -97,9 +98,16 @@ def _environment(folders: tuple[Path, ...]) -> SandboxedEnvironment:
         autoescape=False,
     )
     environment.filters["join_list"] = join_list
-    environment.filters["with_article"] = with_article
+    environment.filters["with_article"] = _with_article_inside_marks
     environment.globals["range"] = _counted_range
     return environment
+
+
+def _with_article_inside_marks(phrase: str) -> str:
+    """``with_article`` for a phrase that may be marked as naming something
+    (``grounding``): the article goes inside the marks, so "a desk" is the mention."""
+    marks, rest = split_leading_marks(phrase)
+    return marks + with_article(rest)
 
 
 class _FolderLoader(jinja2.BaseLoader):

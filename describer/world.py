@@ -78,6 +78,23 @@ class World:
         """The direct members of a group, or the top-level entities for ``None``."""
         return [self.entities[i] for i in self.children.get(owner, ())]
 
+    def grounded_ids(self, named: tuple[str, ...]) -> tuple[str, ...]:
+        """What a phrase naming ``named`` shows in a picture: each entity itself, and for
+        a group its objects, paths and junctions, at any depth (no duplicates, in the order
+        named, members in derivation order). A door or window (not an entity) is itself."""
+        found: dict[str, None] = {}
+
+        def visit(entity_id: str) -> None:
+            if entity_id in self.entities and self.entities[entity_id].kind == "group":
+                for member in self.children.get(entity_id, ()):
+                    visit(member)
+            else:
+                found[entity_id] = None
+
+        for entity_id in named:
+            visit(entity_id)
+        return tuple(found)
+
     def owners(self) -> list[str | None]:
         """The scene (``None``) and then every entity with members, depth-first in derivation order."""
         found: list[str | None] = [None]
