@@ -67,6 +67,20 @@ def describe(
     describer's child stream k of ``scene.seed`` (``core.seeds``). ``templates``: a folder whose ``*.j2``
     files replace the package's sentence templates of the same name.
     """
+    return describe_frame(scene, style=style, variant=variant, templates=templates)
+
+
+def describe_frame(
+    scene: Scene,
+    *,
+    style: str = "full",
+    variant: int = 0,
+    templates: str | Path | None = None,
+    picture_sides: bool = False,
+) -> Description:
+    """``describe``, with ``picture_sides``: the scene's ``NextToChooseSide`` relations
+    are sides as a picture shows them ("to the left of the tent in the picture"), which
+    ``view.describe_view`` sets for its camera frame."""
     if style not in STYLES:
         raise InputError(f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}")
     if isinstance(variant, bool) or not isinstance(variant, Integral) or variant < 0:
@@ -74,7 +88,8 @@ def describe(
     variant = int(variant)  # a numpy integer from a dataset loop is welcome too
     world = world_of(scene)
     sections = plan_document(scene, world)
-    realiser = Realiser(world, template_environment(templates), Choices.for_variant(scene.seed, variant))
+    choices = Choices.for_variant(scene.seed, variant)
+    realiser = Realiser(world, template_environment(templates), choices, picture_sides=picture_sides)
     if style == "full":
         sentences = realiser.sections(sections)
     else:

@@ -24,6 +24,10 @@ from .variation import Choices
 from .world import World
 
 
+#: The label whose sides are the picture's when the realiser tells picture sides.
+PICTURE_SIDE_LABEL = "NextToChooseSide"
+
+
 @dataclass(frozen=True)
 class Sentence:
     """One sentence of the text, the facts it states and its mentions (spans into ``text``)."""
@@ -36,8 +40,12 @@ class Sentence:
 class Realiser:
     """Realises the messages of one description, in order (the discourse state is its memory)."""
 
-    def __init__(self, world: World, environment: SandboxedEnvironment, choices: Choices) -> None:
+    def __init__(
+        self, world: World, environment: SandboxedEnvironment, choices: Choices, *, picture_sides: bool = False
+    ) -> None:
         self.world = world
+        #: Sides are the picture's: a side clause's targets are followed by "in the picture".
+        self.picture_sides = picture_sides
         self.environment = environment
         self.choices = choices
         self.lexicon = Lexicon(choices)
@@ -114,7 +122,7 @@ class Realiser:
                     "linked_item.j2",
                     subject=self._item(subject),
                     place=self.lexicon.place(inventory.link.label, inventory.link.chosen),
-                    target=self._item(target),
+                    target=self._item(target) + self._frame_words(inventory.link),
                 )
             ]
         else:
@@ -176,7 +184,7 @@ class Realiser:
         self.discourse.mark_subject(statement.subjects)
         plural = len(statement.subjects) > 1
         predicates = [
-            f"{verb_agreeing(self._words(c), plural)} {self._targets(c)}"
+            f"{verb_agreeing(self._words(c), plural)} {self._targets(c)}{self._frame_words(c)}"
             for c in statement.clauses
         ]
         predicates = without_repeated_copula(predicates)
@@ -188,6 +196,10 @@ class Realiser:
         # A clause's targets share their words (``plan.aggregate``), so the first one's
         # kind of room part, if it is one, stands for all.
         return self.lexicon.relation(clause.label, clause.chosen, self.world.place_kind(clause.targets[0]))
+
+    def _frame_words(self, clause: Clause) -> str:
+        """" in the picture" after a side told as a picture shows it, else nothing."""
+        return " in the picture" if self.picture_sides and clause.label == PICTURE_SIDE_LABEL else ""
 
     def _targets(self, clause: Clause) -> str:
         # Objects are named one by one: "next to two of the roads" would hide which.

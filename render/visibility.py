@@ -41,7 +41,7 @@ import numpy as np
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
-from .camera import Camera
+from .camera import Camera, walls_in_view
 
 if TYPE_CHECKING:
     from .offscreen import RenderResult
@@ -93,7 +93,8 @@ class PictureView:
 
     ``segmentation``: (H, W) entity index + 1 per pixel (0 background); ``ids``: entity
     id of each index; ``entities``: every drawn entity; ``centres``: world centres (3,)
-    of objects, junctions and paths; ``flat``: paths and junctions (the ground layer).
+    of objects, junctions and paths; ``flat``: paths and junctions (the ground layer);
+    ``walls``: the ids of a room's walls the view draws (``camera.walls_in_view``).
     """
 
     camera: Camera
@@ -103,6 +104,7 @@ class PictureView:
     centres: dict[str, np.ndarray]
     flat: frozenset[str]
     thresholds: Thresholds = field(default_factory=Thresholds)
+    walls: frozenset[str] = frozenset()
 
     @classmethod
     def from_render(cls, result: RenderResult, scene: Scene, thresholds: Thresholds | None = None) -> PictureView:
@@ -115,14 +117,17 @@ class PictureView:
             )
             for k, entity_id in enumerate(result.ids)
         }
+        camera = Camera.from_dict(result.camera)
+        walls = walls_in_view(scene.room, camera.pose[:3, 2]) if scene.room is not None else []
         return cls(
-            camera=Camera.from_dict(result.camera),
+            camera=camera,
             segmentation=result.segmentation,
             ids=list(result.ids),
             entities=entities,
             centres=world_centres(scene),
             flat=frozenset(p.id for p in scene.paths) | {o.id for o in scene.objects if o.kind == "junction"},
             thresholds=thresholds or Thresholds(),
+            walls=frozenset(wall.id for wall in walls),
         )
 
     def seen(self, entity_id: str) -> bool:

@@ -27,7 +27,7 @@ def hidden_tiny_and_row():
         [
             thing("crate_1", (0, 0, 0), (4, 4, 4)),
             thing("cube_1", (-2.4, 0, -3.2), (0.6, 0.6, 0.6)),
-            thing("pebble_1", (6, 0, -6), (0.06, 0.06, 0.06)),
+            thing("pebble_1", (6, 0, -6), (0.3, 0.3, 0.3)),
             # Across the picture: the camera's right is (0.82, 0, -0.57) on the ground.
             thing("post_1", (-9.3, 0, 12.3), (1.5, 2.5, 1.5)),
             thing("wall_slab_1", (-6, 0, 10), (2.0, 5.0, 2.0)),
