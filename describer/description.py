@@ -76,11 +76,15 @@ def describe_frame(
     style: str = "full",
     variant: int = 0,
     templates: str | Path | None = None,
+    picture: bool = False,
     picture_sides: bool = False,
+    unseen: bool = False,
 ) -> Description:
-    """``describe``, with ``picture_sides``: the scene's ``NextToChooseSide`` relations
-    are sides as a picture shows them ("to the left of the tent in the picture"), which
-    ``view.describe_view`` sets for its camera frame."""
+    """``describe``, with the settings of ``view.describe_view``: ``picture``, the scene
+    is what a rendered picture shows of one (its caption may say "A picture of ...");
+    ``picture_sides``, its ``NextToChooseSide`` relations are sides as the picture shows
+    them ("to the left of the tent in the picture"); ``unseen``, the picture shows
+    nothing of a scene that has things (not "an empty village")."""
     if style not in STYLES:
         raise InputError(f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}")
     if isinstance(variant, bool) or not isinstance(variant, Integral) or variant < 0:
@@ -93,7 +97,7 @@ def describe_frame(
     if style == "full":
         sentences = realiser.sections(sections)
     else:
-        sentences = _caption(scene, world, sections, realiser)
+        sentences = _caption(scene, world, sections, realiser, picture=picture, unseen=unseen)
     return Description(
         text=" ".join(s.text for s in sentences),
         facts=[fact for s in sentences for fact in s.facts],
@@ -115,7 +119,9 @@ def _mentions_in_text(sentences: list[Sentence], world: World) -> list[Mention]:
     return found
 
 
-def _caption(scene: Scene, world: World, sections: list[Section], realiser: Realiser) -> list[Sentence]:
+def _caption(
+    scene: Scene, world: World, sections: list[Section], realiser: Realiser, *, picture: bool, unseen: bool
+) -> list[Sentence]:
     """What the scene holds at its top level, and one top-level statement if there is one.
 
     A scene whose top level is one group (a desk and what is on it) is captioned by
@@ -131,7 +137,7 @@ def _caption(scene: Scene, world: World, sections: list[Section], realiser: Real
         items = _caption_items(by_owner[owner], world)
     realiser.discourse.start_paragraph(owner)
     setting_ids = (owner,) if owner is not None else ()
-    sentences = [realiser.caption(_setting(scene, world, owner), items, setting_ids)]
+    sentences = [realiser.caption(_setting(scene, world, owner), items, setting_ids, picture=picture, unseen=unseen)]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement) and not m.also]
     by_room = [m for m in statements if any(world.place_kind(t) for c in m.clauses for t in c.targets)]
     if by_room:

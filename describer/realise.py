@@ -86,17 +86,28 @@ class Realiser:
             text = self._statement(message)
         return self._sentence(text, facts_of(message))
 
-    def caption(self, setting: str, items: tuple[Item, ...], setting_ids: tuple[str, ...] = ()) -> Sentence:
+    def caption(
+        self,
+        setting: str,
+        items: tuple[Item, ...],
+        setting_ids: tuple[str, ...] = (),
+        *,
+        picture: bool = False,
+        unseen: bool = False,
+    ) -> Sentence:
         """The short style's sentence: "A village with three roads meeting at an intersection, ...".
 
-        ``setting_ids``: the group the setting word names ("A desk with ..."), if one.
+        ``setting_ids``: the group the setting word names ("A desk with ..."), if one;
+        ``picture``: the caption is of a rendered picture; ``unseen``: that picture
+        shows nothing of the scene well enough to name (the scene is not empty).
         """
         self.discourse.start_sentence()
         if setting_ids:
             setting = self.discourse.marks.mark(setting, setting_ids)
         phrases = [self._item(item) for item in self.choices.shuffled(items)]
         text = render(
-            self.environment, "caption.j2", setting=setting, link=self.lexicon.caption_link(), items=phrases
+            self.environment, "caption.j2", setting=setting, link=self.lexicon.caption_link(), items=phrases,
+            picture=picture, unseen=unseen,
         )
         return self._sentence(text, facts_of(Inventory(None, items)))
 

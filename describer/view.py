@@ -59,7 +59,24 @@ def describe_view(
     if frame not in FRAMES:
         raise InputError(f"unknown caption frame {frame!r}; expected one of: {', '.join(FRAMES)}")
     view = view_scene(scene, picture, frame=frame)
-    return describe_frame(view, style="short", variant=variant, templates=templates, picture_sides=frame == "camera")
+    unseen = not (view.objects or view.paths) and bool(scene.objects or scene.paths)
+    return describe_frame(
+        view, style="short", variant=variant, templates=templates,
+        picture=True, picture_sides=frame == "camera", unseen=unseen,
+    )  # fmt: skip
+
+
+def grounding_records(description: Description, picture: PictureView) -> list[dict]:
+    """The description's mentions as a dataset row's ``grounding`` lists them:
+    ``{"span": [start, end], "ids": [...], "boxes": [[x0, y0, x1, y1] or None, ...]}``,
+    ``boxes`` the picture's pixel boxes of ``ids`` in the same order (None for one the
+    picture does not show at all: only the layout-true text names such). Mentions that
+    ground to nothing (a group without members) are left out."""
+    return [
+        {"span": [m.start, m.end], "ids": list(m.ids), "boxes": [picture.box(i) for i in m.ids]}
+        for m in description.mentions
+        if m.ids
+    ]
 
 
 def view_scene(scene: Scene, picture: PictureView, *, frame: str = "scene") -> Scene:

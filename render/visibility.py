@@ -13,7 +13,8 @@ are in the picture, and how two of them stand to each other in it.
   segmentation, ``RenderResult.boxes``; None when none of it is seen.
 - **seen**: visible enough to name in a caption of this picture: a visible fraction of
   at least ``Thresholds.min_visible`` (default 0.25) and a box whose longer side is at
-  least ``Thresholds.min_size`` pixels (default 16). Both are settable.
+  least ``Thresholds.min_size`` pixels (default: 16, or a sixteenth of the image's
+  shorter side when that is less, so a 64 x 64 thumbnail asks for 4). Both are settable.
 
 Two relations of the picture (``describer.view`` uses them to word captions true of it):
 
@@ -51,6 +52,8 @@ if TYPE_CHECKING:
 BETWEEN_FRACTION = 0.3
 #: Points sampled on the segment between two box centres.
 BETWEEN_SAMPLES = 64
+#: The default box size threshold, in pixels (for images of 256 pixels a side and more).
+DEFAULT_SIZE = 16
 
 
 @dataclass(frozen=True)
@@ -58,17 +61,25 @@ class Thresholds:
     """How much of an entity a picture must show for a caption of it to name the entity.
 
     ``min_visible``: the least visible fraction (0..1); ``min_size``: the least length,
-    in pixels, of the longer side of its box.
+    in pixels, of the longer side of its box; None: ``DEFAULT_SIZE``, or a sixteenth of
+    the image's shorter side when that is less (``size_in``).
     """
 
     min_visible: float = 0.25
-    min_size: int = 16
+    min_size: int | None = None
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.min_visible <= 1.0:
+        if isinstance(self.min_visible, bool) or not 0.0 <= self.min_visible <= 1.0:
             raise InputError(f"the visible fraction threshold must be between 0 and 1, got {self.min_visible!r}")
-        if isinstance(self.min_size, bool) or not isinstance(self.min_size, int) or self.min_size < 0:
-            raise InputError(f"the box size threshold must be a whole number of pixels >= 0, got {self.min_size!r}")
+        size = self.min_size
+        if size is not None and (isinstance(size, bool) or not isinstance(size, int) or size < 0):
+            raise InputError(f"the box size threshold must be a whole number of pixels >= 0, got {size!r}")
+
+    def size_in(self, width: int, height: int) -> int:
+        """The box size threshold for an image of ``width`` x ``height`` pixels."""
+        if self.min_size is not None:
+            return self.min_size
+        return min(DEFAULT_SIZE, min(width, height) // 16)
 
 
 @dataclass(frozen=True)
@@ -136,7 +147,7 @@ class PictureView:
         return (
             entity is not None
             and entity.visible >= self.thresholds.min_visible
-            and entity.size() >= self.thresholds.min_size
+            and entity.size() >= self.thresholds.size_in(self.camera.width, self.camera.height)
         )
 
     def box(self, entity_id: str) -> list[int] | None:

@@ -293,6 +293,7 @@ def scheduler_address(text: str) -> str:
 
 def run_dataset(args: argparse.Namespace) -> int:
     from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
+    from scenewright.dataset_scene import with_picture_captions
 
     spec = dataset_spec(
         args.rules,
@@ -305,6 +306,9 @@ def run_dataset(args: argparse.Namespace) -> int:
         depth=args.depth,
         segmentation=args.segmentation,
         include_failed=args.include_failed,
+    )
+    spec = with_picture_captions(
+        spec, grounding=args.grounding, frame=args.frame, min_visible=args.min_visible, min_size=args.min_size
     )
     cpus = available_cpus()
     if args.workers and args.workers > cpus and not args.scheduler and not args.quiet:
@@ -540,6 +544,7 @@ examples:
   scenewright dataset village -n 1000 -o data/village --captions 3 --size 512x512
   scenewright dataset desk -n 200 -o data/desk --seed 42 --workers 2 --depth --segmentation
   scenewright dataset village -n 100000 -o data/village --scheduler tcp://head:8786
+  scenewright dataset classroom -n 500 -o data/classroom --frame camera --min-visible 0.5 --min-size 24
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
@@ -751,6 +756,33 @@ def build_parser() -> CommandLineParser:
     )
     dataset.add_argument(
         "--include-failed", action="store_true", help="keep scenes whose layout failed, flagged ok=false"
+    )
+    dataset.add_argument(
+        "--frame",
+        choices=("scene", "camera"),
+        default="scene",
+        help="side words of the captions: the scene's (north of, B's own left) or the picture's "
+        "('to the left of the tent in the picture') (scene)",
+    )
+    dataset.add_argument(
+        "--min-visible",
+        type=float,
+        default=0.25,
+        metavar="F",
+        help="captions name only what shows at least this fraction of itself in the picture (0.25)",
+    )
+    dataset.add_argument(
+        "--min-size",
+        type=int,
+        metavar="PX",
+        help="...and whose pixel box is at least this long on its longer side (16, or a sixteenth of the "
+        "image's shorter side when that is less)",
+    )
+    dataset.add_argument(
+        "--no-grounding",
+        dest="grounding",
+        action="store_false",
+        help="leave out the rows' grounding column (spans of the captions and text, ids, pixel boxes)",
     )
 
     validate = command("validate", "check rules files (and scene.json files)", run_validate)

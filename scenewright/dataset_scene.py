@@ -7,23 +7,66 @@ only, so a worker process running several threads (a dask worker with ``--nthrea
 above 1) gets one context per thread. ``produce_scene`` turns a scene index into a
 ``SceneProduct``: the encoded files and the scene's record. It writes nothing into the
 dataset directory; the parent process does (``dataset.store_product``).
+
+Captions are made after the render, of the picture (``describer.view``: only what it
+shows well enough, only relations that hold in it), and with ``grounding`` every
+caption's and the full text's mentions go into the row with their pixel boxes.
+``PictureCaptions`` is a ``DatasetSpec`` that carries how (a plain ``DatasetSpec``
+means the defaults).
 """
 
 from __future__ import annotations
 
 import threading
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING
 
-from scenewright.api import build_scene, describe, describe_scene, render_scene, reproducible_json, timed, timings_of
+from scenewright.api import build_scene, describe, render_scene, reproducible_json, timed, timings_of
 from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
-from scenewright.core.errors import ScenewrightError
+from scenewright.core.errors import InputError, ScenewrightError
 from scenewright.core.scene import Scene
 
 if TYPE_CHECKING:
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer
+
+
+@dataclass(frozen=True)
+class PictureCaptions(DatasetSpec):
+    """A dataset's settings with how the captions of each picture are made.
+
+    ``grounding``: add the row's ``grounding`` column; ``frame``: "scene" or "camera"
+    (``describer.view``); ``min_visible`` and ``min_size``: the thresholds an entity must
+    pass to be named in a caption (``render.visibility.Thresholds``; ``min_size`` None:
+    16 pixels, or a sixteenth of the image's shorter side when that is less).
+    """
+
+    grounding: bool = True
+    frame: str = "scene"
+    min_visible: float = 0.25
+    min_size: int | None = None
+
+
+#: What a plain ``DatasetSpec`` gets: grounding on, the scene's frame, the default thresholds.
+DEFAULT_CAPTIONS = PictureCaptions(rules="", rules_digest="", count=0)
+
+
+def with_picture_captions(spec: DatasetSpec, **options) -> DatasetSpec:
+    """``spec`` with these caption ``options`` (``PictureCaptions``' fields), checked:
+    an ``InputError`` for an unknown frame or a threshold out of range. Default options
+    leave ``spec`` as it is, so its ``dataset.json`` is the same as a plain spec's."""
+    from scenewright.describer.view import FRAMES
+    from scenewright.render.visibility import Thresholds
+
+    settings = {f.name: getattr(spec, f.name) for f in fields(spec)} | options
+    made = PictureCaptions(**settings)
+    Thresholds(made.min_visible, made.min_size)
+    if made.frame not in FRAMES:
+        raise InputError(f"unknown caption frame {made.frame!r}; expected one of: {', '.join(FRAMES)}")
+    defaults = all(getattr(made, f.name) == getattr(DEFAULT_CAPTIONS, f.name) for f in fields(PictureCaptions)
+                   if f.name not in {g.name for g in fields(DatasetSpec)})  # fmt: skip
+    return spec if defaults and not isinstance(spec, PictureCaptions) else made
 
 
 @dataclass
@@ -67,11 +110,13 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         failed = {f"failed/{stem}.json": reproducible_json(scene).encode()}
         return SceneProduct(index, seed, False, failed, None, scene_stats(scene, []))
 
-    scene = describe_scene(scene, style="full")
     with timed(scene.timings, "describe"):
-        captions = [describe(scene, style="short", variant=k).text for k in range(spec.captions)]
+        full = describe(scene, style="full")
+    scene = replace(scene, description=full.to_dict())
     scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
     images = {kind: data for kind, (_, data) in encode_render(result).items()}
+    with timed(scene.timings, "describe"):
+        grounding, captions = picture_captions(spec, scene, result, full)
 
     files = {f"images/{stem}.png": images["colour"]}
     row: dict = {"file_name": f"images/{stem}.png"}
@@ -83,11 +128,32 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         files[f"segmentation/{stem}_ids.json"] = images["ids"]
         row["segmentation_file_name"] = f"segmentation/{stem}.png"
     files[f"scenes/{stem}.json"] = reproducible_json(scene).encode()
-    full_text = scene.description["text"]
-    row.update(caption=captions[0], text=full_text)
+    row.update(caption=captions[0], text=full.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=scene.layout.ok)
-    return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full_text, *captions]))
+    if grounding is not None:
+        row["grounding"] = grounding
+    return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full.text, *captions]))
+
+
+def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dict | None, list[str]]:
+    """The row's ``grounding`` (None when turned off) and its captions of the rendered
+    picture ``result``, variants 0..K-1; ``full`` is the scene's full ``Description``."""
+    from scenewright.describer.view import describe_view, grounding_records
+    from scenewright.render.visibility import PictureView, Thresholds
+
+    options = spec if isinstance(spec, PictureCaptions) else DEFAULT_CAPTIONS
+    picture = PictureView.from_render(result, scene, Thresholds(options.min_visible, options.min_size))
+    captions = [
+        describe_view(scene, picture, frame=options.frame, variant=k, templates=scene.templates)
+        for k in range(spec.captions)
+    ]
+    columns = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
+    grounding = None
+    if options.grounding:
+        grounding = {column: grounding_records(c, picture) for column, c in zip(columns, captions, strict=True)}
+        grounding["text"] = grounding_records(full, picture)
+    return grounding, [c.text for c in captions]
 
 
 def scene_stats(scene: Scene, texts: list[str]) -> dict:

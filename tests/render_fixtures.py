@@ -79,8 +79,13 @@ def renderer_or_skip(width: int = 160, height: int = 120):
     (where a missing backend is a failure: CI must exercise rendering)."""
     from scenewright.render.offscreen import Renderer
 
+    return or_skip_without_opengl(lambda: Renderer(width, height))
+
+
+def or_skip_without_opengl(make):
+    """``make()``; skips when it finds no OpenGL backend, unless under CI."""
     try:
-        return Renderer(width, height)
+        return make()
     except GenerationError as error:
         if os.environ.get("CI"):
             raise

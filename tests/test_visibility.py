@@ -55,11 +55,15 @@ def test_only_what_is_visible_enough_is_seen(picture):
     _, result, view = picture
     assert view.seen("crate_1")
     assert result.visible["cube_1"] < 0.25 and not view.seen("cube_1")
-    assert view.entities["pebble_1"].size() < 16 and not view.seen("pebble_1")
+    assert view.entities["pebble_1"].size() < 120 // 16 and not view.seen("pebble_1")
     for entity_id in result.ids:
         entity = view.entities[entity_id]
-        assert view.seen(entity_id) == (entity.visible >= 0.25 and entity.size() >= 16)
+        assert view.seen(entity_id) == (entity.visible >= 0.25 and entity.size() >= 120 // 16)
 
+
+def test_the_default_box_size_follows_small_images():
+    assert Thresholds().size_in(512, 384) == 16 and Thresholds().size_in(64, 64) == 4
+    assert Thresholds(min_size=30).size_in(64, 64) == 30
 
 def test_thresholds_are_settable(picture):
     scene, result, _ = picture
