@@ -89,7 +89,8 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
     old = [describe(scene, style="short", variant=k) for k in range(CAPTIONS)]
     started = tally.clock("layout-true captions", started)
     spec = _Spec()
-    grounding, _ = picture_captions(spec, scene, result, full)
+    columns, _ = picture_captions(spec, scene, result, full)
+    grounding = columns["grounding"]
     tally.clock("image captions + grounding", started)
 
     world = world_of(scene)

@@ -10,7 +10,8 @@ dataset directory; the parent process does (``dataset.store_product``).
 
 Captions are made after the render, of the picture (``describer.view``: only what it
 shows well enough, only relations that hold in it), and with ``grounding`` every
-caption's and the full text's mentions go into the row with their pixel boxes.
+caption's and the full text's mentions go into the row with their pixel boxes, and
+referring expressions for the objects the picture shows (``describer.refexp``).
 ``PictureCaptions`` is a ``DatasetSpec`` that carries how (a plain ``DatasetSpec``
 means the defaults).
 """
@@ -36,7 +37,7 @@ if TYPE_CHECKING:
 class PictureCaptions(DatasetSpec):
     """A dataset's settings with how the captions of each picture are made.
 
-    ``grounding``: add the row's ``grounding`` column; ``frame``: "scene" or "camera"
+    ``grounding``: add the row's ``grounding`` and ``refexps`` columns; ``frame``: "scene" or "camera"
     (``describer.view``); ``min_visible`` and ``min_size``: the thresholds an entity must
     pass to be named in a caption (``render.visibility.Thresholds``; ``min_size`` None:
     16 pixels, or a sixteenth of the image's shorter side when that is less).
@@ -116,7 +117,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
     images = {kind: data for kind, (_, data) in encode_render(result).items()}
     with timed(scene.timings, "describe"):
-        grounding, captions = picture_captions(spec, scene, result, full)
+        grounded, captions = picture_captions(spec, scene, result, full)
 
     files = {f"images/{stem}.png": images["colour"]}
     row: dict = {"file_name": f"images/{stem}.png"}
@@ -131,14 +132,15 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     row.update(caption=captions[0], text=full.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=scene.layout.ok)
-    if grounding is not None:
-        row["grounding"] = grounding
+    row.update(grounded)
     return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full.text, *captions]))
 
 
-def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dict | None, list[str]]:
-    """The row's ``grounding`` (None when turned off) and its captions of the rendered
-    picture ``result``, variants 0..K-1; ``full`` is the scene's full ``Description``."""
+def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dict, list[str]]:
+    """The row's ``grounding`` and ``refexps`` columns (none when grounding is turned
+    off) and its captions of the rendered picture ``result``, variants 0..K-1; ``full``
+    is the scene's full ``Description``."""
+    from scenewright.describer.refexp import PictureFacts, referring_expressions
     from scenewright.describer.view import describe_view, grounding_records
     from scenewright.render.visibility import PictureView, Thresholds
 
@@ -148,12 +150,13 @@ def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dic
         describe_view(scene, picture, frame=options.frame, variant=k, templates=scene.templates)
         for k in range(spec.captions)
     ]
+    texts = [c.text for c in captions]
+    if not options.grounding:
+        return {}, texts
     columns = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
-    grounding = None
-    if options.grounding:
-        grounding = {column: grounding_records(c, picture) for column, c in zip(columns, captions, strict=True)}
-        grounding["text"] = grounding_records(full, picture)
-    return grounding, [c.text for c in captions]
+    grounding = {column: grounding_records(c, picture) for column, c in zip(columns, captions, strict=True)}
+    grounding["text"] = grounding_records(full, picture)
+    return {"grounding": grounding, "refexps": referring_expressions(PictureFacts.of(scene, picture))}, texts
 
 
 def scene_stats(scene: Scene, texts: list[str]) -> dict:

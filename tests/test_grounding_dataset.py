@@ -53,13 +53,24 @@ def test_captions_name_only_what_the_picture_shows_well_enough(products):
                     assert rendered[entity_id]["visible"] >= 0.25 and max(x1 - x0, y1 - y0) >= 96 // 16
 
 
+def test_referring_expressions_name_seen_objects_once(products):
+    for product in products:
+        row, rendered = product.row, scene_of(product)["render"]["objects"]
+        assert row["refexps"]
+        assert len({e["id"] for e in row["refexps"]}) == len(row["refexps"])
+        for expression in row["refexps"]:
+            x0, y0, x1, y1 = rendered[expression["id"]]["bbox"]
+            assert rendered[expression["id"]]["visible"] >= 0.25 and max(x1 - x0, y1 - y0) >= 96 // 16
+            assert expression["program"][0] == {"function": "scene", "inputs": [], "side_inputs": []}
+
+
 def test_grounding_can_be_turned_off_and_defaults_keep_a_plain_spec():
     plain = dataset_spec("desk", 1, size=(32, 32))
     assert with_picture_captions(plain, grounding=True, frame="scene", min_visible=0.25, min_size=None) is plain
     off = with_picture_captions(plain, grounding=False)
     assert isinstance(off, PictureCaptions) and off.settings()["grounding"] is False
-    assert "grounding" not in produced(off, 0).row
-    assert "grounding" in produced(plain, 0).row
+    assert not {"grounding", "refexps"} & set(produced(off, 0).row)
+    assert {"grounding", "refexps"} <= set(produced(plain, 0).row)
 
 
 @pytest.mark.parametrize(("options", "message"), [
