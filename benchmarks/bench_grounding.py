@@ -8,12 +8,15 @@ two caption variants in each frame), checks and counts:
   grounding record's boxes are the rendered boxes of its ids;
 - visibility: mentions in the image's captions of objects below the thresholds (must
   be 0), and how many objects the layout-true caption names that the image's would not;
+- referring expressions: how many, how many of the seen objects have one, and how many
+  programs, executed again on the picture's objects, do not give exactly their object
+  (must be 0);
 - grammar: caption sentences link-grammar's ``link-parser`` finds no linkage for
   (needs the Debian package link-grammar);
 - cost: CPU seconds (``time.process_time``; the machine is shared) per scene of the
   work one dataset scene does: layout, full text, render, and the captions, the old
-  way (layout-true captions) and the new (the image's captions plus the grounding
-  column). Throughput with grounding relative to without is the ratio of the totals.
+  way (layout-true captions) and the new (the image's captions plus the grounding and
+  refexps columns). Throughput with grounding relative to without is the ratio of the totals.
 
     .venv/bin/python benchmarks/bench_grounding.py -n 200
     .venv/bin/python benchmarks/bench_grounding.py -n 20 --rules village desk
@@ -30,6 +33,7 @@ from pathlib import Path
 from scenewright.api import build_scene, describe, load_rules
 from scenewright.dataset import scene_seed
 from scenewright.dataset_scene import picture_captions
+from scenewright.describer.refexp import PictureFacts, ProgramError, execute
 from scenewright.describer.view import describe_view
 from scenewright.describer.world import world_of
 from scenewright.generator.rules import shipped_rule_sets
@@ -50,6 +54,7 @@ class Tally:
     TARGETS = (
         "text spans without their noun", "caption spans without their noun",
         "records whose boxes are not the rendered ones", "caption mentions of objects below the thresholds",
+        "refexp programs that do not give exactly their object",
     )  # fmt: skip
 
     def __init__(self) -> None:
@@ -91,7 +96,16 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
     spec = _Spec()
     columns, _ = picture_captions(spec, scene, result, full)
     grounding = columns["grounding"]
-    tally.clock("image captions + grounding", started)
+    facts = PictureFacts.of(scene, PictureView.from_render(result, scene))
+    tally.counts["seen objects"] += len(facts.objects)
+    for expression in columns["refexps"]:
+        tally.counts["refexps"] += 1
+        try:
+            picked = execute(expression["program"], facts)
+        except ProgramError:
+            picked = None
+        tally.counts["refexp programs that do not give exactly their object"] += picked != expression["id"]
+    tally.clock("image captions + grounding + refexps", started)
 
     world = world_of(scene)
     picture = PictureView.from_render(result, scene)
@@ -150,7 +164,7 @@ def report(name: str, count: int, tally: Tally) -> None:
     per_scene = {stage: seconds / scenes for stage, seconds in tally.seconds.items()}
     common = per_scene["layout"] + per_scene["full text"] + per_scene["render"]
     before = common + per_scene["layout-true captions"]
-    after = common + per_scene["image captions + grounding"]
+    after = common + per_scene["image captions + grounding + refexps"]
     print(f"== {name}: {tally.counts['scenes']} scenes laid out of {count} seeds")
     for key, value in sorted(tally.counts.items()):
         if key != "scenes":
