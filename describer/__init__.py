@@ -6,7 +6,9 @@ mentions it makes (``grounding``: which characters name which objects). Only
 relations the layout satisfied are stated, never ``Implicit*`` ones. The pipeline is
 plan (``plan``: what to say, in derivation order, aggregated) -> referring expressions
 (``refer``) -> words (``lexicon``, ``english``) -> sentence templates (``templates``).
-See docs/describer.md.
+``view.describe_view`` captions one rendered picture of the scene (only what it shows,
+only relations that hold in it) and ``refexp`` gives referring expressions for it with
+programs that pick out their object. See docs/describer.md.
 """
 
 from .description import STYLES, Description, describe
