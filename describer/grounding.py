@@ -51,9 +51,6 @@ class Mention:
     entities: tuple[str, ...]
     ids: tuple[str, ...] = ()
 
-    def to_dict(self) -> dict:
-        return {"span": [self.start, self.end], "entities": list(self.entities), "ids": list(self.ids)}
-
 
 class Marks:
     """The marked phrases of the sentence being made."""
