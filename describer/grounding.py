@@ -13,7 +13,8 @@ two spans with two different ids, however alike their words.
 Marks nest: "the sign of the third market stand" is one mention of the sign holding a
 mention of the market stand. A mark is ``OPEN``, one character of the Supplementary
 Private Use Area-A (U+F0000 + the table index) and, after the phrase, ``CLOSE``; no
-word of the describer's or of a scene uses those code points. A template that cuts a
+word of the describer's uses those code points, and ``world_of`` refuses a scene whose
+nouns do (``holds_marks``). A template that cuts a
 mark in two (slicing a string), or writes the marks itself, makes the sentence
 unreadable: ``TemplateError``.
 
@@ -99,6 +100,11 @@ class Marks:
             raise _broken(marked)
         found.sort()
         return "".join(plain), tuple(Mention(start, -end, self._named[index]) for start, end, index in found)
+
+
+def holds_marks(text: str) -> bool:
+    """Whether ``text`` holds a character the marks are made of (a noun must not)."""
+    return any(c in (OPEN, CLOSE) or INDEX_BASE <= ord(c) <= 0xFFFFD for c in text)
 
 
 def unmarked(text: str) -> str:

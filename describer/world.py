@@ -19,7 +19,10 @@ from dataclasses import dataclass
 from scenewright.core.relations import Relation
 from scenewright.core.scene import Scene
 
+from scenewright.core.errors import InputError
+
 from .english import plural_of
+from .grounding import holds_marks
 from .rooms import RoomView
 
 
@@ -117,6 +120,9 @@ def world_of(scene: Scene) -> World:
     object_ids = {o.id for o in scene.objects}
     entities: dict[str, Entity] = {}
     for _, is_path, _, thing in raw:
+        if holds_marks(thing.noun) or holds_marks(thing.plural or ""):
+            raise InputError(f"{thing.id}: its noun holds a private-use character (U+E000, U+E001 or "
+                             "U+F0000..U+FFFFD) the describer marks phrases with")
         entities[thing.id] = Entity(
             id=thing.id,
             kind="path" if is_path else thing.kind,

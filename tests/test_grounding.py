@@ -5,6 +5,7 @@ import re
 import pytest
 from hypothesis import given, settings
 
+from scenewright.core.errors import InputError
 from scenewright.describer import TemplateError, describe
 from scenewright.describer.world import world_of
 from test_describe_room import two_windows
@@ -130,6 +131,13 @@ def test_a_template_that_cuts_a_phrase_apart_is_an_error(tmp_path):
     b.relate(well, "NextTo", road)
     with pytest.raises(TemplateError, match="cut a named phrase apart"):
         describe(b.scene(), templates=tmp_path)
+
+
+def test_a_noun_holding_the_private_marks_is_refused():
+    b = SceneBuilder()
+    b.add("well", "well\ue001")
+    with pytest.raises(InputError, match="well_1: its noun holds a private-use character"):
+        describe(b.scene())
 
 
 @settings(max_examples=40, deadline=None)
