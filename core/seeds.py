@@ -8,6 +8,7 @@ another stage drew, and no two streams coincide:
     layout chain k       (1, k)      restart k of the layout
     describer variant k  (2, k)      paraphrase variant k
     camera view k        (3, k)      sampled camera of view k
+    layout retry k       (4, k)      the layout seed of a dataset's retry k (``retry_seed``)
     stage ``name``       (STAGE_KEYS[name], k) for later stages
 
 Public functions take ``seed: int | numpy.random.Generator | None``, as numpy and
@@ -34,6 +35,7 @@ STAGE_KEYS: dict[str, int] = {
     "layout": 1,
     "describer": 2,
     "camera": 3,
+    "retry": 4,
 }
 
 #: The largest seed accepted: seeds are stored in scene.json and file names as plain
@@ -63,3 +65,16 @@ def stage_stream(seed: SeedLike, stage: str, index: int = 0) -> np.random.Genera
     if seed is None:
         return np.random.default_rng()
     return stream(seed, stage, index)
+
+
+def retry_seed(seed: int, attempt: int) -> int:
+    """The layout seed of attempt ``attempt`` at laying out the scene with ``seed``.
+
+    Attempt 0 is the scene's own seed; attempt k > 0 (a dataset's retry after a failed
+    layout) draws a 32-bit seed from the scene's ``retry`` child k, so it depends on
+    nothing but ``(seed, k)`` and its layout streams are independent of every earlier
+    attempt's.
+    """
+    if attempt == 0:
+        return check_seed(seed)
+    return int(stream(seed, "retry", attempt).integers(0, 2**32))

@@ -24,7 +24,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from scenewright import __version__
-from scenewright.api import STYLES, VIEWS
+from scenewright.api import DATASET_RETRIES, STYLES, VIEWS
 from scenewright.core.errors import InputError, ScenewrightError
 
 PROG = "scenewright"
@@ -306,6 +306,7 @@ def run_dataset(args: argparse.Namespace) -> int:
         depth=args.depth,
         segmentation=args.segmentation,
         include_failed=args.include_failed,
+        retries=args.retries,
     )
     spec = with_picture_captions(
         spec, grounding=args.grounding, frame=args.frame, min_visible=args.min_visible, min_size=args.min_size
@@ -325,26 +326,12 @@ def run_dataset(args: argparse.Namespace) -> int:
         progress=not args.quiet,
         worker_timeout=args.worker_timeout,
     )
-    failed_note = "included, ok=false" if args.include_failed else "left out"
-    say(
-        args,
-        f"{report.directory}: {report.written} scenes in metadata.jsonl; {report.failed} of {report.count} "
-        f"layouts failed ({failed_note}); made {report.made} now, {report.skipped} were already done",
-    )
-    if report.beyond:
-        say(args, f"{report.beyond} finished scenes with index {report.count} or above stay on disk, not listed")
-    if report.failed:
-        common = "; ".join(f"{problem} ({n}x)" for problem, n in list(report.stats["problems"].items())[:3])
-        say(args, f"most frequent layout problems: {common}")
-    if report.made:
-        say(
-            args,
-            f"{report.seconds:.1f} s, {report.scenes_per_minute:.1f} scenes/min; statistics in stats.json, stats.png",
-        )
-    if report.written == 0 and report.count > 0:
-        print(f"{PROG}: error: every scene's layout failed; nothing usable was written", file=sys.stderr)
-        return 1
-    return 0
+    notes, errors = report.summary(spec)
+    for line in notes:
+        say(args, line)
+    for line in errors:
+        print(f"{PROG}: error: {line}", file=sys.stderr)
+    return 1 if report.failed else 0
 
 
 def run_validate(args: argparse.Namespace) -> int:
@@ -553,9 +540,20 @@ metadata.jsonl and the statistics list (scenes at N and above stay on disk). One
 a time may use DIR (a second one exits 2). The directory loads with
 datasets.load_dataset("imagefolder", data_dir=DIR).
 
-exit codes: 0 done, 1 every layout failed or the work failed (a lost dask scheduler, a
-worker that died), 2 bad input (options, rules, DIR made with other settings or in
-use, an unreachable scheduler or one without workers), 130 interrupted (Ctrl-C).""",
+A scene whose layout fails is laid out again (--retries K, default 3) with the layout
+seed retry_seed(seed, k) and the same objects, so failures do not favour small scenes;
+each row records its layout_seed and attempts, and stats.json the retries by scene size.
+
+exit codes:
+  0    all N scenes made, every layout ok
+  1    some scenes failed: a layout failed after every retry (in failed/, or with
+       --include-failed in metadata.jsonl as ok=false), or the rules could not make a
+       scene for its seed (an expansion error, printed with its file:line:col); the
+       other scenes are written. Also: the work failed (a lost dask scheduler, a worker
+       that died; rerun to resume)
+  2    bad input (options, rules, DIR made with other settings or in use, an
+       unreachable scheduler or one without workers)
+  130  interrupted (Ctrl-C; rerun to resume)""",
     "validate": """\
 examples:
   scenewright validate village
@@ -783,6 +781,14 @@ def build_parser() -> CommandLineParser:
         dest="grounding",
         action="store_false",
         help="leave out the rows' grounding column (spans of the captions and text, ids, pixel boxes)",
+    )
+    dataset.add_argument(
+        "--retries",
+        type=count_at_least(0),
+        default=DATASET_RETRIES,
+        metavar="K",
+        help=f"lay a scene whose layout failed out again up to K times, with derived layout seeds and the same "
+        f"objects ({DATASET_RETRIES}: with 30%% of layouts failing, 0.8%% of scenes still fail)",
     )
 
     validate = command("validate", "check rules files (and scene.json files)", run_validate)

@@ -52,9 +52,10 @@ from typing import TextIO
 
 import numpy as np
 
+from scenewright.api import DATASET_RETRIES
 from scenewright.atomic import atomic_stream, remove_partials, write_atomic
-from scenewright.dataset_stats import StatsCollector, write_stats
 from scenewright.core.errors import GenerationError, InputError
+from scenewright.dataset_stats import StatsCollector, write_stats
 
 #: The settings that must not change when a run is resumed into the same directory.
 SETTINGS_FILE = "dataset.json"
@@ -71,6 +72,9 @@ LOG_INTERVAL = 30.0
 #: When no scene has finished for this long (seconds), the run asks its executor whether
 #: it can still make progress (a dask cluster may have lost its scheduler or workers).
 IDLE_CHECK = 5.0
+#: What a setting stored by a version that did not have it meant (a dataset made before
+#: retries existed retried nothing), so such a dataset can be resumed with that value.
+SETTINGS_BEFORE = {"retries": 0}
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -111,6 +115,8 @@ class DatasetSpec:
     ``rules`` is how the user named the rule set (shipped name or path) and
     ``rules_digest`` a hash of its text, so a resumed run cannot silently mix rule
     versions. ``captions`` is the number of short captions per scene (variants 0..K-1).
+    ``retries`` is how many more times a failed layout is tried, with the layout seeds
+    ``core.seeds.retry_seed(seed, 1..retries)``, the scene's graph unchanged.
     ``templates`` is the absolute path of a description templates folder that replaces
     the rule set's own, or None.
     """
@@ -126,6 +132,7 @@ class DatasetSpec:
     depth: bool = False
     segmentation: bool = False
     include_failed: bool = False
+    retries: int = DATASET_RETRIES
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json``."""
@@ -212,6 +219,47 @@ class RunReport:
     def scenes_per_minute(self) -> float:
         return 60.0 * self.made / self.seconds if self.seconds > 0 else 0.0
 
+    def summary(self, spec: DatasetSpec) -> tuple[list[str], list[str]]:
+        """What the command says of the run: lines for people (progress, figures) and
+        error lines, one per kind of failure (a layout that failed after every retry,
+        the errors of scenes the rules could not make)."""
+        stats = self.stats
+        failed_layouts = stats["failed_layouts"]
+        kept = "included, ok=false" if spec.include_failed else "left out"
+        notes = [
+            f"{self.directory}: {self.written} scenes in metadata.jsonl; {failed_layouts} of {self.count} layouts "
+            f"failed after {spec.retries} retries ({kept}); made {self.made} now, {self.skipped} were already done"
+        ]
+        retries = stats["retries"]
+        if retries["scenes_retried"]:
+            notes.append(
+                f"{retries['scenes_retried']} scenes needed a layout retry ({retries['retries']} retries; by scene "
+                "size in stats.json)"
+            )
+        if self.beyond:
+            notes.append(f"{self.beyond} finished scenes with index {self.count} or above stay on disk, not listed")
+        if failed_layouts:
+            notes.append(f"most frequent layout problems: {counted(stats['problems'])}")
+        if self.made:
+            notes.append(
+                f"{self.seconds:.1f} s, {self.scenes_per_minute:.1f} scenes/min; statistics in stats.json, stats.png"
+            )
+        errors = [
+            f"the {stage} failed for {error['scenes']} of {self.count} scenes (not made): {counted(error['messages'])}"
+            for stage, error in stats["errors"].items()
+        ]
+        if failed_layouts:
+            which = "every scene's layout" if failed_layouts == self.count else f"{failed_layouts} of {self.count} layouts"
+            errors.append(f"{which} failed after {spec.retries} retries ({kept})")
+        if self.written == 0 and self.count > 0:
+            errors.append("nothing usable was written")
+        return notes, errors
+
+
+def counted(kinds: dict[str, int], shown: int = 3) -> str:
+    """The first ``shown`` of a {kind: count} dict as "kind (3x); other (1x)"."""
+    return "; ".join(f"{kind} ({n}x)" for kind, n in list(kinds.items())[:shown])
+
 
 @contextmanager
 def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterator[Path]:
@@ -273,7 +321,9 @@ def unlock_directory(descriptor: int) -> None:
 
 def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     """Refuse a rerun whose settings differ from the stored ones (``count`` is not a
-    setting; a ``count`` that datasets made before it could change is ignored)."""
+    setting; a ``count`` that datasets made before it could change is ignored, and a
+    setting they lack has its ``SETTINGS_BEFORE`` value)."""
+    stored = {**SETTINGS_BEFORE, **stored}
     differing = [key for key, value in spec.settings().items() if stored.get(key) != value]
     if differing:
         details = ", ".join(f"{key} {stored.get(key)!r} -> {spec.settings()[key]!r}" for key in differing)

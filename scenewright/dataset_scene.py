@@ -27,6 +27,8 @@ from scenewright.api import build_scene, describe, render_scene, reproducible_js
 from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
 from scenewright.core.errors import InputError, ScenewrightError
 from scenewright.core.scene import Scene
+from scenewright.core.seeds import retry_seed
+from scenewright.generator.rules_errors import ExpansionError
 
 if TYPE_CHECKING:
     from scenewright.generator.rules import Rules
@@ -104,12 +106,12 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
     try:
-        scene = build_scene(context.rules, seed, templates=spec.templates)
-    except ScenewrightError as error:  # e.g. an expansion that hit the rules' bounds
-        return SceneProduct(index, seed, False, {}, None, {"problems": [str(error)]})
+        scene, tried = laid_out_scene(context, spec, seed)
+    except ScenewrightError as error:  # the rules fail for this seed (an expansion past its bounds)
+        return SceneProduct(index, seed, False, {}, None, {"error": stage_error(error)})
     if not scene.layout.ok and not spec.include_failed:
         failed = {f"failed/{stem}.json": reproducible_json(scene).encode()}
-        return SceneProduct(index, seed, False, failed, None, scene_stats(scene, []))
+        return SceneProduct(index, seed, False, failed, None, {**scene_stats(scene, []), **tried})
 
     with timed(scene.timings, "describe"):
         full = describe(scene, style="full")
@@ -131,9 +133,10 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     files[f"scenes/{stem}.json"] = reproducible_json(scene).encode()
     row.update(caption=captions[0], text=full.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
-    row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=scene.layout.ok)
+    row.update(scene_id=stem, seed=seed, **tried, rules=spec.rules, ok=scene.layout.ok)
     row.update(grounded)
-    return SceneProduct(index, seed, scene.layout.ok, files, row, scene_stats(scene, [full.text, *captions]))
+    stats = {**scene_stats(scene, [full.text, *captions]), **tried}
+    return SceneProduct(index, seed, scene.layout.ok, files, row, stats)
 
 
 def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dict, list[str]]:
@@ -157,6 +160,32 @@ def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dic
     grounding = {column: grounding_records(c, picture) for column, c in zip(columns, captions, strict=True)}
     grounding["text"] = grounding_records(full, picture)
     return {"grounding": grounding, "refexps": referring_expressions(PictureFacts.of(scene, picture))}, texts
+
+
+def laid_out_scene(context: WorkerContext, spec: DatasetSpec, seed: int) -> tuple[Scene, dict]:
+    """The scene of ``seed``, its graph laid out with the layout seeds ``retry_seed(seed,
+    0..spec.retries)`` until one is ok (the last one if none is), and what its row
+    records of that: ``layout_seed`` (the one kept) and ``attempts``. The graph, and so
+    what the scene holds, is the same in every attempt: retrying does not favour the
+    scenes that are easy to lay out. ``timings`` add up the attempts."""
+    spent: Counter = Counter()
+    for attempt in range(spec.retries + 1):
+        layout_seed = retry_seed(seed, attempt)
+        scene = build_scene(context.rules, seed, templates=spec.templates, layout_seed=layout_seed)
+        spent.update(scene.timings)
+        if scene.layout.ok:
+            break
+    return replace(scene, timings=dict(spent)), {"layout_seed": layout_seed, "attempts": attempt + 1}
+
+
+def stage_error(error: ScenewrightError) -> dict:
+    """What a record says of a scene the rules could not make: the stage that failed and
+    the error's first line (``file:line:col: message`` for an expansion error, without
+    the quoted source line)."""
+    if isinstance(error, ExpansionError):
+        where = error.diagnostic
+        return {"stage": "expansion", "message": f"{where.location}: {where.message}"}
+    return {"stage": "layout", "message": str(error).splitlines()[0]}
 
 
 def scene_stats(scene: Scene, texts: list[str]) -> dict:

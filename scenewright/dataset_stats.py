@@ -1,8 +1,9 @@
 """A dataset's statistics: stats.json and a stats.png overview, built from the records.
 
-Counts (scenes, written, failed, the most frequent layout problems), object type and
-relation label frequencies (with how often each relation held), caption and text
-lengths in words, and seconds per pipeline stage. Frequencies cover every scene that
+Counts (scenes, written, failed, the most frequent layout problems, the errors of
+scenes the rules could not make), the layout retries scenes needed by their number of
+objects, object type and relation label frequencies (with how often each relation
+held), caption and text lengths in words, and seconds per pipeline stage. Frequencies cover every scene that
 was generated, failed ones included, so a failing rule shows up. Times are wall clock,
 so stats.json, unlike the rest of the dataset, differs between runs.
 """
@@ -21,6 +22,8 @@ from scenewright.atomic import write_atomic
 
 STATS_JSON = "stats.json"
 STATS_PNG = "stats.png"
+#: Scene sizes (objects per scene) are counted in at most this many bins of equal width.
+SIZE_BINS = 8
 
 
 class StatsCollector:
@@ -31,6 +34,9 @@ class StatsCollector:
         self.objects: Counter = Counter()
         self.relations: dict[str, list[int]] = {}
         self.problems: Counter = Counter()
+        self.errors: dict[str, Counter] = {}
+        self.failed_layouts = 0
+        self.tries: list[tuple[int, int, bool]] = []  # (objects, layouts tried, ok) per laid-out scene
         self.text_words: list[int] = []
         self.caption_words: list[int] = []
         self.stage_seconds: dict[str, list[float]] = {}
@@ -40,7 +46,14 @@ class StatsCollector:
         self.written += record["row"] is not None
         self.failed += not record["ok"]
         stats = record["stats"]
-        self.objects.update(stats.get("objects", {}))
+        if "error" in stats:  # the rules could not make this scene: nothing else to count
+            error = stats["error"]
+            self.errors.setdefault(error["stage"], Counter())[error_kind(error["message"])] += 1
+            return
+        self.failed_layouts += not record["ok"]
+        objects = stats.get("objects", {})
+        self.tries.append((sum(objects.values()), stats.get("attempts", 1), record["ok"]))
+        self.objects.update(objects)
         for label, (total, satisfied) in stats.get("relations", {}).items():
             counts = self.relations.setdefault(label, [0, 0])
             counts[0] += total
@@ -61,7 +74,13 @@ class StatsCollector:
             "written": self.written,
             "failed": self.failed,
             "failure_rate": round(self.failed / self.scenes, 4) if self.scenes else 0.0,
+            "failed_layouts": self.failed_layouts,
             "problems": dict(self.problems.most_common(20)),
+            "errors": {
+                stage: {"scenes": sum(kinds.values()), "messages": dict(kinds.most_common(20))}
+                for stage, kinds in sorted(self.errors.items())
+            },
+            "retries": retries_by_size(self.tries),
             "objects": dict(sorted(self.objects.items(), key=lambda item: (-item[1], item[0]))),
             "relations": {label: {"total": total, "satisfied": held} for label, (total, held) in by_count},
             "words": {
@@ -85,6 +104,50 @@ def problem_kind(problem: str) -> str:
     next to table (distance # m)"."""
     typed = re.sub(r"_\d+\b", "", problem)
     return re.sub(r"\d+(?:\.\d+)?", "#", typed)
+
+
+def error_kind(message: str) -> str:
+    """An error with what varies between seeds left out, so the errors of one cause count
+    together: an expansion error without the chain of productions that led to it
+    ("r.rules:9:31: expansion deeper than max_depth 3 (expanding Row -> Row)" ->
+    "r.rules:9:31: expansion deeper than max_depth 3"); its location stays as written."""
+    return re.sub(r" \(expanding .*\)$", "", message)
+
+
+def retries_by_size(tries: list[tuple[int, int, bool]]) -> dict:
+    """How many layout retries scenes needed, overall and by their number of objects.
+
+    ``tries`` holds (objects, layouts tried, ok) per laid-out scene. The sizes fall in
+    at most ``SIZE_BINS`` bins of equal whole-number width from the smallest scene up;
+    each bin says its scenes, those that needed a retry, the retries, the mean layouts
+    per scene and the scenes still failed after the last one.
+    """
+    if not tries:
+        return {"scenes_retried": 0, "retries": 0, "failed_after_retries": 0, "by_objects": []}
+    sizes = np.array([objects for objects, _, _ in tries])
+    attempts = np.array([tried for _, tried, _ in tries])
+    failed = np.array([not ok for _, _, ok in tries])
+    low = int(sizes.min())
+    width = max(1, -(-(int(sizes.max()) - low + 1) // SIZE_BINS))  # ceiling division
+    bins = (sizes - low) // width
+    by_objects = []
+    for k in np.unique(bins):
+        inside = bins == k
+        first = low + int(k) * width
+        by_objects.append({
+            "objects": f"{first}-{first + width - 1}" if width > 1 else str(first),
+            "scenes": int(inside.sum()),
+            "retried": int((attempts[inside] > 1).sum()),
+            "retries": int((attempts[inside] - 1).sum()),
+            "mean_layouts": round(float(attempts[inside].mean()), 3),
+            "failed_after_retries": int(failed[inside].sum()),
+        })  # fmt: skip
+    return {
+        "scenes_retried": int((attempts > 1).sum()),
+        "retries": int((attempts - 1).sum()),
+        "failed_after_retries": int(failed.sum()),
+        "by_objects": by_objects,
+    }
 
 
 def distribution(values: list[float], digits: int = 2, bins: int = 0) -> dict:
@@ -114,15 +177,21 @@ def write_stats(root: Path, stats: dict) -> None:
 
 
 def stats_figure(stats: dict) -> bytes:
-    """A 2x2 PNG: object frequencies, relations held, text lengths, seconds per stage."""
+    """A 2x3 PNG: object frequencies, relations held, layout retries by scene size; text
+    lengths, seconds per stage, and the most frequent errors of scenes the rules could
+    not make (if any)."""
     import matplotlib  # only here: a dataset run needs it once, at the end
 
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
 
-    figure = Figure(figsize=(12, 9), dpi=80, layout="constrained")
-    axes = figure.subplots(2, 2)
-    figure.suptitle(f"{stats['scenes']} scenes, {stats['written']} written, {stats['failed']} failed layouts")
+    figure = Figure(figsize=(17, 9), dpi=80, layout="constrained")
+    axes = figure.subplots(2, 3)
+    errored = stats["failed"] - stats["failed_layouts"]
+    figure.suptitle(
+        f"{stats['scenes']} scenes, {stats['written']} written, {stats['failed_layouts']} failed layouts, "
+        f"{errored} not made (rules errors), {stats['retries']['scenes_retried']} retried"
+    )
 
     top_objects = list(stats["objects"].items())[:20]
     bars(axes[0, 0], [name for name, _ in top_objects], [n for _, n in top_objects], "objects (top 20 types)")
@@ -148,6 +217,9 @@ def stats_figure(stats: dict) -> bytes:
     stages = stats["seconds_per_stage"]
     bars(axes[1, 1], list(stages), [stages[s]["mean"] for s in stages], "mean seconds per scene and stage")
 
+    retries_figure(axes[0, 2], stats["retries"]["by_objects"])
+    errors_figure(axes[1, 2], stats["errors"])
+
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png")
     return buffer.getvalue()
@@ -158,3 +230,25 @@ def bars(axis, names: list[str], values: list[float], title: str, alpha: float =
     axis.invert_yaxis()
     axis.set_title(title)
     axis.tick_params(axis="y", labelsize=8)
+
+
+def retries_figure(axis, by_objects: list[dict]) -> None:
+    """Scenes per size bin (light), those that needed a retry (dark) and those still
+    failed after the last retry (red)."""
+    names = [row["objects"] for row in by_objects]
+    bars(axis, names, [row["scenes"] for row in by_objects], "scenes by objects: retried (dark), failed (red)",
+         alpha=0.35)  # fmt: skip
+    axis.barh(names, [row["retried"] for row in by_objects], color="tab:blue")
+    axis.barh(names, [row["failed_after_retries"] for row in by_objects], color="tab:red", height=0.4)
+    axis.set_ylabel("objects per scene")
+
+
+def errors_figure(axis, errors: dict[str, dict]) -> None:
+    """The most frequent errors of scenes the rules could not make, as text."""
+    axis.set_axis_off()
+    lines = [f"{n}x  {stage}: {message}" for stage, error in errors.items() for message, n in error["messages"].items()]
+    if not lines:
+        return
+    axis.set_title("scenes the rules could not make")
+    axis.text(0.0, 1.0, "\n".join(line[:90] for line in lines[:12]), va="top", fontsize=8, family="monospace",
+              transform=axis.transAxes)  # fmt: skip
