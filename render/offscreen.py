@@ -25,6 +25,7 @@ import ctypes.util
 import io
 import json
 import os
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -71,6 +72,9 @@ PATH_STEP = 0.002
 #: The drawn ground reaches this many times the scene extent, so the perspective view
 #: shows grass, not sky, below the horizon.
 GROUND_MARGIN = 3.0
+#: The most GPU meshes of shared looks a renderer keeps between scenes (as many as the
+#: per-process caches of looks hold).
+SHARED_MESHES = 1024 + 256
 
 _INSTALL_HINT = (
     "install EGL (apt-get install libegl1 libegl-mesa0) and set PYOPENGL_PLATFORM=egl, "
@@ -122,6 +126,7 @@ class _Entity:
     flat: bool = False  # a path or junction: part of the ground layer
     drawn: bool = True
     node: Any = None
+    shared: bool = False  # its drawable comes from a per-process cache (many scenes share it)
 
 
 class Renderer:
@@ -140,6 +145,9 @@ class Renderer:
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
+        # The GPU meshes of shared drawables (id -> (drawable, mesh); the drawable is held
+        # so its id stays its own): a mesh used by consecutive scenes stays uploaded.
+        self._shared_meshes: dict[int, tuple[_Drawable, Any]] = {}
 
     def __enter__(self) -> Renderer:
         return self
@@ -159,13 +167,16 @@ class Renderer:
             raise RuntimeError("this Renderer has been closed")
         gl = self._gl
         camera = frame_scene(scene, view, self.width, self.height)
-        world, entities, occluders = self._build(scene, camera)
+        entities = _entities(scene, camera)
+        world, merged, occluders = self._build(scene, camera, entities)
 
+        _show_merged(merged, entities, True)
         flags = gl.RenderFlags.SHADOWS_DIRECTIONAL if self.shadows else gl.RenderFlags.NONE
         colour, depth = self._renderer.render(world, flags=flags)
         if camera.orthographic:
             depth = _orthographic_depth(depth, camera)
 
+        _show_merged(merged, entities, False)
         seg_map = _segmentation_map(entities, range(len(entities)), occluders)
         seg_colour, _ = self._renderer.render(world, flags=gl.RenderFlags.SEG, seg_node_map=seg_map)
         segmentation = _decode_index(seg_colour)
@@ -188,53 +199,44 @@ class Renderer:
         )
 
     # -- scene building -------------------------------------------------------------
+    #
+    # pyrender's cost is per drawn primitive (a dozen uniforms set from Python, the
+    # lights bound again), in the colour pass and again in the shadow pass, and a
+    # village has a hundred entities. They all share one matte material, so the colour
+    # and shadow passes draw them as one mesh in world coordinates (``_merged``). The
+    # segmentation passes need one node per entity, each in its own index colour: the
+    # frame holds both, and each pass shows only its own (``_show``). One pyrender
+    # scene rather than two, because pyrender drops from the GPU every mesh that the
+    # scene it draws lacks: the entities' meshes, most of them shared with the scenes
+    # before, stay uploaded.
 
-    def _build(self, scene: Scene, camera: Camera):
-        """The pyrender scene to draw, its entities (in ``ids`` order) and the backdrop
-        nodes that hide what is behind them (a room's walls)."""
+    def _build(self, scene: Scene, camera: Camera, entities: list[_Entity]):
+        """The pyrender scene of a frame, its merged entities' mesh (None if nothing is
+        drawn) and the nodes that hide what is behind them: a room's walls in view.
+
+        The walls are backdrop like the ground, not entities (no index, box or visible
+        fraction), but unlike the ground they can stand in front of an entity (a wall's
+        lintel over its door, seen from above), so the segmentation passes draw them
+        too, as background. Sets each drawn entity's ``node``."""
         gl = self._gl
         background = SKY if scene.room is None else INDOOR_BACKGROUND
         ambient = AMBIENT if scene.room is None else ROOM_AMBIENT
         world = gl.Scene(bg_color=(*background, 1.0), ambient_light=ambient)
         world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
-        # A room's walls in view are backdrop like the ground: drawn, but not entities,
-        # so they have no segmentation index, box or visible fraction. Unlike the ground
-        # they can stand in front of an entity (a wall's lintel over its door, seen from
-        # above), so the segmentation passes draw them too, as background.
         occluders = []
-        towards = camera.pose[:3, 2]
-        walls = room_walls(scene, towards_viewer=towards)
+        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
         if walls is not None:
             occluders.append(world.add(_pyrender_mesh(gl, _drawable(walls))))
-
-        entities: list[_Entity] = []
-        for obj in scene.objects:
-            if obj.kind == "object":
-                look = _object_drawable(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
-                entities.append(_Entity(obj.id, look, object_transform(obj)))
-            elif obj.kind == "junction":
-                lifted = object_transform(obj)
-                lifted[1, 3] += PATH_STEP * len(scene.paths)  # above every path ribbon
-                entities.append(_Entity(obj.id, _drawable(junction_mesh(obj)), lifted, flat=True))
-        for order, scene_path in enumerate(scene.paths):
-            lifted = np.eye(4)
-            lifted[1, 3] = PATH_STEP * order
-            entities.append(_Entity(scene_path.id, _drawable(path_mesh(scene_path)), lifted, flat=True))
-        if scene.room is not None:
-            in_view = {wall.id for wall in walls_in_view(scene.room, towards)}
-            for opening in scene.room.openings:
-                look = _opening_drawable(opening.kind, opening.width, opening.height, opening.sill)
-                pose = opening_transform(scene.room, opening)
-                entities.append(_Entity(opening.id, look, pose, drawn=opening.wall in in_view))
-        # A degenerate path (all its points in one place) has no triangles to draw.
-        entities = [entity for entity in entities if len(entity.drawable.positions)]
-        uploaded: dict[int, Any] = {}  # objects that look alike share one GPU mesh
-        for entity in entities:
-            if not entity.drawn:
-                continue
+        drawn = [entity for entity in entities if entity.drawn]
+        merged = _pyrender_mesh(gl, _merged(drawn)) if drawn else None
+        if merged is not None:
+            world.add(merged)
+        uploaded: dict[int, Any] = {}  # entities that look alike share one GPU mesh
+        for entity in drawn:
             key = id(entity.drawable)
             if key not in uploaded:
-                uploaded[key] = _pyrender_mesh(gl, entity.drawable)
+                look = entity.drawable
+                uploaded[key] = self._shared_mesh(look) if entity.shared else _pyrender_mesh(gl, look)
             entity.node = world.add(uploaded[key], pose=entity.pose, name=entity.id)
 
         if camera.orthographic:
@@ -245,7 +247,17 @@ class Renderer:
             )
         world.add(lens, pose=camera.pose)
         world.add(self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION))
-        return world, entities, occluders
+        return world, merged, occluders
+
+    def _shared_mesh(self, drawable: _Drawable):
+        """The GPU mesh of a drawable many scenes share, made once per renderer (the
+        cache is emptied when it outgrows the drawables' own)."""
+        key = id(drawable)
+        if key not in self._shared_meshes:
+            if len(self._shared_meshes) >= SHARED_MESHES:
+                self._shared_meshes.clear()
+            self._shared_meshes[key] = (drawable, _pyrender_mesh(self._gl, drawable))
+        return self._shared_meshes[key][1]
 
     def _alone_pixel_counts(
         self, world, entities: list[_Entity], occluders: list, camera: Camera, seen: np.ndarray
@@ -281,6 +293,59 @@ class Renderer:
         return counts
 
 
+def _entities(scene: Scene, camera: Camera) -> list[_Entity]:
+    """The scene's entities in ``RenderResult.ids`` order: objects and junctions, paths,
+    then a room's doors and windows (those in a wall the view cuts away not drawn);
+    a degenerate path (all its points in one place) has no triangles and is left out."""
+    entities: list[_Entity] = []
+    for obj in scene.objects:
+        if obj.kind == "object":
+            look = _object_drawable(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
+            entities.append(_Entity(obj.id, look, object_transform(obj), shared=True))
+        elif obj.kind == "junction":
+            lifted = object_transform(obj)
+            lifted[1, 3] += PATH_STEP * len(scene.paths)  # above every path ribbon
+            entities.append(_Entity(obj.id, _drawable(junction_mesh(obj)), lifted, flat=True))
+    for order, scene_path in enumerate(scene.paths):
+        lifted = np.eye(4)
+        lifted[1, 3] = PATH_STEP * order
+        entities.append(_Entity(scene_path.id, _drawable(path_mesh(scene_path)), lifted, flat=True))
+    if scene.room is not None:
+        in_view = {wall.id for wall in walls_in_view(scene.room, camera.pose[:3, 2])}
+        for opening in scene.room.openings:
+            look = _opening_drawable(opening.kind, opening.width, opening.height, opening.sill)
+            pose = opening_transform(scene.room, opening)
+            entities.append(_Entity(opening.id, look, pose, drawn=opening.wall in in_view, shared=True))
+    return [entity for entity in entities if len(entity.drawable.positions)]
+
+
+def _show_merged(merged, entities: list[_Entity], shown: bool) -> None:
+    """Show the ``merged`` mesh of the entities (colour and shadow passes) or, if not
+    ``shown``, their own meshes instead (segmentation passes)."""
+    if merged is not None:
+        merged.is_visible = shown
+    for entity in entities:
+        if entity.node is not None:
+            entity.node.mesh.is_visible = not shown
+
+
+def _merged(entities: list[_Entity]) -> _Drawable:
+    """The entities' triangles in world coordinates as one drawable (their poses are
+    rigid: rotation and translation only, so normals turn with the rotation)."""
+    positions, normals = [], []
+    for entity in entities:
+        rotation, offset = entity.pose[:3, :3], entity.pose[:3, 3]
+        positions.append(entity.drawable.positions @ rotation.T + offset)
+        normals.append(entity.drawable.normals @ rotation.T)
+    points = np.concatenate(positions)
+    return _Drawable(
+        points,
+        np.concatenate(normals),
+        np.concatenate([entity.drawable.colours for entity in entities]),
+        np.array([points.min(axis=0), points.max(axis=0)]),
+    )
+
+
 def save_render(result: RenderResult, directory: str | os.PathLike, *, stem: str = "preview") -> dict[str, Path]:
     """Write a render's images and id map into ``directory``; return the paths by kind.
 
@@ -294,24 +359,37 @@ def save_render(result: RenderResult, directory: str | os.PathLike, *, stem: str
     return paths
 
 
-def encode_render(result: RenderResult, *, stem: str = "preview") -> dict[str, tuple[str, bytes]]:
+#: What ``encode_render`` can encode, in the order it returns them.
+RENDER_KINDS = ("colour", "depth", "segmentation", "ids")
+
+
+def encode_render(
+    result: RenderResult, *, stem: str = "preview", kinds: Iterable[str] = RENDER_KINDS
+) -> dict[str, tuple[str, bytes]]:
     """A render's files as (file name, bytes) by kind, for writers that store them
-    elsewhere than a folder (an archive, a dataset shard).
+    elsewhere than a folder (an archive, a dataset shard); only the ``kinds`` asked for
+    are encoded (PNG encoding is a good part of the cost of a small image).
 
     ``colour``: ``{stem}.png`` (RGB). ``depth``: ``{stem}_depth.png``, 16-bit
     millimetres (0 = sky; clipped at 65.535 m). ``segmentation``: ``{stem}_seg.png``,
     16-bit entity indices (0 = background). ``ids``: ``{stem}_ids.json`` mapping each
     index to its entity id.
     """
-    if len(result.ids) > 65535:
+    asked = set(kinds)
+    if "segmentation" in asked and len(result.ids) > 65535:
         raise GenerationError(f"{len(result.ids)} entities do not fit a 16-bit segmentation image")
-    millimetres = np.clip(np.round(result.depth * 1000.0), 0, 65535).astype(np.uint16)
-    return {
-        "colour": (f"{stem}.png", _png(result.colour)),
-        "depth": (f"{stem}_depth.png", _png(millimetres)),
-        "segmentation": (f"{stem}_seg.png", _png(result.segmentation.astype(np.uint16))),
-        "ids": (f"{stem}_ids.json", _ids_json(result.ids)),
-    }
+    files = {}
+    for kind in (kind for kind in RENDER_KINDS if kind in asked):
+        if kind == "colour":
+            files[kind] = (f"{stem}.png", _png(result.colour))
+        elif kind == "depth":
+            millimetres = np.clip(np.round(result.depth * 1000.0), 0, 65535).astype(np.uint16)
+            files[kind] = (f"{stem}_depth.png", _png(millimetres))
+        elif kind == "segmentation":
+            files[kind] = (f"{stem}_seg.png", _png(result.segmentation.astype(np.uint16)))
+        else:
+            files[kind] = (f"{stem}_ids.json", _ids_json(result.ids))
+    return files
 
 
 def render_metadata(result: RenderResult) -> dict[str, Any]:

@@ -249,7 +249,9 @@ class RunReport:
             for stage, error in stats["errors"].items()
         ]
         if failed_layouts:
-            which = "every scene's layout" if failed_layouts == self.count else f"{failed_layouts} of {self.count} layouts"
+            which = f"{failed_layouts} of {self.count} layouts"
+            if failed_layouts == self.count:
+                which = "every scene's layout"
             errors.append(f"{which} failed after {spec.retries} retries ({kept})")
         if self.written == 0 and self.count > 0:
             errors.append("nothing usable was written")

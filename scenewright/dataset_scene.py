@@ -21,6 +21,7 @@ from __future__ import annotations
 import threading
 from collections import Counter
 from dataclasses import dataclass, fields, replace
+from time import process_time
 from typing import TYPE_CHECKING
 
 from scenewright.api import build_scene, describe, render_scene, reproducible_json, timed, timings_of
@@ -105,20 +106,26 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     context = worker_context(spec)
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
+    cpu: dict[str, float] = {}  # CPU seconds per stage (scene.timings are wall clock)
     try:
-        scene, tried = laid_out_scene(context, spec, seed)
+        with timed(cpu, "layout", process_time):
+            scene, tried = laid_out_scene(context, spec, seed)
     except ScenewrightError as error:  # the rules fail for this seed (an expansion past its bounds)
         return SceneProduct(index, seed, False, {}, None, {"error": stage_error(error)})
     if not scene.layout.ok and not spec.include_failed:
         failed = {f"failed/{stem}.json": reproducible_json(scene).encode()}
-        return SceneProduct(index, seed, False, failed, None, {**scene_stats(scene, []), **tried})
+        return SceneProduct(index, seed, False, failed, None, {**scene_stats(scene, [], cpu), **tried})
 
-    with timed(scene.timings, "describe"):
+    with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         full = describe(scene, style="full")
     scene = replace(scene, description=full.to_dict())
-    scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
-    images = {kind: data for kind, (_, data) in encode_render(result).items()}
-    with timed(scene.timings, "describe"):
+    with timed(cpu, "render", process_time):
+        scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
+    with timed(cpu, "encode", process_time):  # only the images asked for, and scene.json
+        kinds = ["colour", *["depth"] * spec.depth, *["segmentation", "ids"] * spec.segmentation]
+        images = {kind: data for kind, (_, data) in encode_render(result, kinds=kinds).items()}
+        scene_json = reproducible_json(scene).encode()
+    with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         grounded, captions = picture_captions(spec, scene, result, full)
 
     files = {f"images/{stem}.png": images["colour"]}
@@ -130,12 +137,12 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         files[f"segmentation/{stem}.png"] = images["segmentation"]
         files[f"segmentation/{stem}_ids.json"] = images["ids"]
         row["segmentation_file_name"] = f"segmentation/{stem}.png"
-    files[f"scenes/{stem}.json"] = reproducible_json(scene).encode()
+    files[f"scenes/{stem}.json"] = scene_json
     row.update(caption=captions[0], text=full.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, **tried, rules=spec.rules, ok=scene.layout.ok)
     row.update(grounded)
-    stats = {**scene_stats(scene, [full.text, *captions]), **tried}
+    stats = {**scene_stats(scene, [full.text, *captions], cpu), **tried}
     return SceneProduct(index, seed, scene.layout.ok, files, row, stats)
 
 
@@ -188,8 +195,10 @@ def stage_error(error: ScenewrightError) -> dict:
     return {"stage": "layout", "message": str(error).splitlines()[0]}
 
 
-def scene_stats(scene: Scene, texts: list[str]) -> dict:
-    """What stats.json aggregates over scenes: objects, relations, text lengths, times."""
+def scene_stats(scene: Scene, texts: list[str], cpu: dict[str, float]) -> dict:
+    """What stats.json aggregates over scenes: objects, relations, text lengths, wall
+    times per stage (``seconds``) and the worker's CPU times per stage (``cpu``: all its
+    threads, a software OpenGL's rasterizer included)."""
     relations: dict[str, list[int]] = {}
     for relation in scene.relations:
         counts = relations.setdefault(relation.label, [0, 0])
@@ -202,5 +211,6 @@ def scene_stats(scene: Scene, texts: list[str]) -> dict:
         if texts
         else {},
         "seconds": timings_of(scene),
+        "cpu": {stage: round(seconds, 6) for stage, seconds in cpu.items()},
         "problems": list(scene.layout.problems),
     }

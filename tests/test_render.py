@@ -202,10 +202,12 @@ def test_visible_fractions_equal_a_brute_force_count(renderer):
                      [road("road_1", [[-4, 4], [4, -4]], start="crossing_1"), road("road_2", [[-4, 4], [-8, 8]])])
     result = renderer.render(scene)
 
-    from scenewright.render.offscreen import _decode_index, _index_colour
+    from scenewright.render.offscreen import _decode_index, _entities, _index_colour, _show_merged
 
     camera = Camera.from_dict(result.camera)
-    world, entities, _ = renderer._build(scene, camera)
+    entities = _entities(scene, camera)
+    world, merged, _ = renderer._build(scene, camera, entities)
+    _show_merged(merged, entities, False)  # each entity's own mesh, as the segmentation passes draw
     gl = renderer._gl
     ground_layer = {"crossing_1", "road_1", "road_2"}
     for k, entity in enumerate(entities):
@@ -217,6 +219,22 @@ def test_visible_fractions_equal_a_brute_force_count(renderer):
         seen = np.count_nonzero(result.segmentation == k + 1)
         assert result.visible[entity.id] == pytest.approx(seen / alone), entity.id
     assert min(result.visible[f"crate_{k}"] for k in range(1, 5)) < 0.9  # the row does hide itself
+
+
+def test_the_merged_colour_pass_draws_what_one_node_per_entity_draws(renderer, market):
+    """The colour pass draws every entity as one mesh in world coordinates; drawing each
+    as its own node with its pose gives the same picture (but for rounding at edges)."""
+    from scenewright.render.offscreen import _entities, _show_merged
+
+    merged_colour, scene = market.colour, market_scene()
+    camera = Camera.from_dict(market.camera)
+    entities = _entities(scene, camera)
+    world, merged, _ = renderer._build(scene, camera, entities)
+    _show_merged(merged, entities, False)
+    per_node, _ = renderer._renderer.render(world, flags=renderer._gl.RenderFlags.SHADOWS_DIRECTIONAL)
+    differs = np.abs(per_node[..., :3].astype(int) - merged_colour.astype(int)).max(axis=2) > 8
+    assert differs.mean() < 0.005
+    assert len(np.unique(merged_colour.reshape(-1, 3), axis=0)) > 50  # a picture, not a blank
 
 
 placements = st.lists(
