@@ -10,7 +10,10 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 | ``activity`` | how each category is used (stay at it, fetch from it), its use pose, touch and visual areas |
 | ``features`` | a plan's room feature and its 10 x 10 occupancy mask in the door-aware canonical frame |
 | ``model`` | the plan model: per type P(category), co-occurrence times the activity prior, masks and clusters |
-| ``selection`` | the paper's Algorithm 1: which categories to add to a room |
+| ``selection`` | what a room should hold: its type(s) (Equation 2) and categories (Algorithm 1) |
+| ``layout_mask`` | where things should go: the mask amalgamated from the most similar plans (Equation 4) |
+| ``evaluation`` | leave-one-out over a plan set, against simple baselines |
+| ``authoring``, ``designs`` | the shipped plans, drawn by hand in a designer's terms |
 
 The shipped plan set is ``completion/plans/<type>/*.json``; ``shipped_plans_dir()``
 names the folder.

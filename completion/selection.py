@@ -1,6 +1,21 @@
-"""Which categories to put in a room: the paper's Algorithm 1 (object exploration, Section 5.3).
+"""What a room should hold: its type(s) (the paper's Equation 2, Section 5.2) and its
+categories (Algorithm 1, object exploration, Section 5.3).
 
-Start from every category of the type's relation graph (and the ones the user asked
+**Types.** ``choose_types`` searches every set of the model's types (exactly: there are
+few) for the one whose mean room areas add up closest to the room's area,
+``|theta_r - sum theta_s| / theta_r``, among the sets that can hold every requested
+category: some type of the set has it (``P(o | s) > 0``) and the set's plans hold as
+many as asked (``sum N(o, s) >= n_o``). The paper approximates the search greedily; with
+a handful of types the exact answer is cheap. One reading of ours: home rooms' mean
+areas lie close together (15 to 20 square metres on the shipped plans), so area alone
+would make a 14 square metre room with a desk a bedroom (15.3) rather than a study
+(15.6). Sets within ``AREA_SLACK`` of the best area error count as fitting the room
+equally well, and among them the set whose types have the requested categories most
+often wins (the sum over them of ``max P(o | s)``), then fewer types, then the smaller
+area error. Each requested category belongs to the type of the set that has it most
+often.
+
+**Categories.** Start from every category of the type's relation graph (and the ones the user asked
 for), then repeatedly remove the non-requested category with the weakest mean edge
 weight to its remaining neighbours, ``E(W_s, o) = (1/J) sum_j W_s(o, o_j)``, and any
 non-requested category left without a neighbour; keep the set whose cost
@@ -37,8 +52,62 @@ from scenewright.core.errors import InputError
 #: The paper's constants: how many similar plans the cost compares with, and the weight of relations.
 K = 10
 OMEGA = 0.02
+#: Area errors within this of the best are an equally good fit of the room's area.
+AREA_SLACK = 0.1
 #: The parts of the room feature ``f_r`` that describe the room alone: angle, aspect, relative size.
 ROOM_PARTS = (0, 2, 3)
+
+
+@dataclass(frozen=True)
+class TypeChoice:
+    """Equation 2's answer: the types (largest mean area first), which type each
+    requested category belongs to, and the relative area error of the set."""
+
+    types: tuple[str, ...]
+    owners: dict[str, str]
+    area_error: float
+
+
+def choose_types(model: dict, requested: dict[str, int], room_area: float) -> TypeChoice:
+    """The set of room types for a room of ``room_area`` square metres holding
+    ``requested`` (category -> count); ``InputError`` when no set can hold them."""
+    types = sorted(model["types"])
+    for name, count in sorted(requested.items()):
+        holders = [t for t in types if model["types"][t]["categories"].get(name, {}).get("p", 0.0) > 0.0]
+        if not holders:
+            raise InputError(f"no plan of any type has a {name!r} (the plans know {_known(model)})")
+        most = sum(model["types"][t]["categories"][name]["max_count"] for t in holders)
+        if most < count:
+            raise InputError(f"the plans hold at most {most} of {name!r} together, not {count}")
+    candidates = []  # the set of all types holds everything (checked above): never empty
+    for mask in range(1, 2 ** len(types)):
+        chosen = [t for k, t in enumerate(types) if mask >> k & 1]
+        if all(_holds(model, chosen, name, count) for name, count in requested.items()):
+            error = abs(room_area - sum(model["types"][t]["mean_area"] for t in chosen)) / room_area
+            fit = sum(max(_p(model, t, name) for t in chosen) for name in requested)
+            candidates.append((error, -fit, chosen))
+    least = min(error for error, _, _ in candidates)
+    error, _, chosen = min(
+        (c for c in candidates if c[0] <= least + AREA_SLACK), key=lambda c: (round(c[1], 9), len(c[2]), c[0], c[2])
+    )
+    ordered = tuple(sorted(chosen, key=lambda t: (-model["types"][t]["mean_area"], t)))
+    owners = {name: max(ordered, key=lambda t: (_p(model, t, name), -ordered.index(t))) for name in sorted(requested)}
+    return TypeChoice(ordered, owners, error)
+
+
+def _p(model: dict, room_type: str, name: str) -> float:
+    return model["types"][room_type]["categories"].get(name, {}).get("p", 0.0)
+
+
+def _holds(model: dict, chosen: list[str], name: str, count: int) -> bool:
+    if max(_p(model, t, name) for t in chosen) <= 0.0:
+        return False
+    return sum(model["types"][t]["categories"].get(name, {}).get("max_count", 0) for t in chosen) >= count
+
+
+def _known(model: dict) -> str:
+    names = sorted(model["categories"])
+    return ", ".join(names[:12]) + (", ..." if len(names) > 12 else "")
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,107 @@
+"""Leave-one-out over a plan set: how well the model predicts a held-out plan, against
+simple baselines.
+
+For each plan: build the model from all the other plans, take the plan's empty room and
+its ``requested`` largest categories (by the floor they take; ties by name) as the
+request, and compare what the model says with what the designer drew:
+
+- **room type**: ``choose_types`` (Equation 2) is right when it gives exactly the
+  plan's type (wrong when the other plans cannot hold the request at all). Baseline: the type whose plans have the requested categories most often
+  (the largest product of ``P(o | s)``), ignoring the room.
+- **categories**: Algorithm 1 run for the plan's true type; precision and recall of the
+  categories it adds against the ones the plan has beyond the request. Baseline
+  (co-occurrence only): as many categories as Algorithm 1 added, those most often seen
+  with the requested ones (the sum of ``P(o, o_req | s)``), ignoring the room.
+- **layout mask**: Equation 4's mask (with the plan's own furniture floor area as the
+  occupancy, so this measures the layout alone) against the plan's true mask, both in
+  the empty room's door-aware frame; soft IoU ``sum(min) / sum(max)``. Baseline: the
+  type's mean mask over the other plans.
+
+Every figure is the mean over plans (and per type).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import numpy as np
+
+from scenewright.completion.features import canonical_frame, occupancy_mask, room_parts
+from scenewright.completion.layout_mask import amalgamated_mask
+from scenewright.completion.model import build_model, floor_pieces
+from scenewright.completion.selection import choose_types, explore_categories
+from scenewright.core.errors import InputError
+
+METRICS = ("type", "type_baseline", "precision", "recall", "precision_baseline", "recall_baseline", "mask_iou",
+           "mask_iou_baseline")  # fmt: skip
+
+
+def request_of(plan, model: dict, size: int) -> dict[str, int]:
+    """The ``size`` categories of ``plan`` taking the most floor (all of its pieces of each), with their counts."""
+    counts = Counter(piece.category for piece in plan.furniture)
+    area = {name: model["categories"][name]["floor_area"] * counts[name] for name in counts if name in model["categories"]}
+    chosen = sorted(area, key=lambda name: (-area[name], name))[:size]
+    return {name: counts[name] for name in chosen}
+
+
+def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
+    """The metrics (``METRICS``) for one held-out ``plan`` under a model built without it."""
+    requested = request_of(plan, model, requested_size)
+    entry = model["types"][plan.type]
+    truth = {piece.category for piece in plan.furniture} - set(requested)
+    try:
+        predicted = choose_types(model, requested, plan.room.area).types
+    except InputError:  # the other plans cannot hold the request (two beds, where no other plan has two)
+        predicted = ()
+    baseline_type = max(
+        sorted(model["types"]),
+        key=lambda t: float(np.prod([model["types"][t]["categories"].get(n, {}).get("p", 0.0) for n in requested])),
+    )
+    parts = room_parts(plan.room, entry["mean_area"])
+    explored = explore_categories(model, plan.type, requested, plan.room.area, parts)
+    added = set(explored.categories) - set(requested)
+    together = {tuple(pair["pair"]): pair["cooccurrence"] for pair in entry["pairs"]}
+    candidates = sorted(name for name in entry["categories"] if name not in requested)
+    score = {name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in requested) for name in candidates}
+    baseline_added = set(sorted(candidates, key=lambda name: (-score[name], name))[: len(added)])
+    floor = floor_pieces(plan)
+    true_mask = occupancy_mask(plan.room, floor, canonical_frame(plan.room))
+    counts = Counter(piece.category for piece in plan.furniture)
+    layout = amalgamated_mask(model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]})
+    mean_mask = np.mean([np.asarray(p["mask"]) for p in model["plans"] if p["type"] == plan.type], axis=0)
+    return {
+        "type": float(predicted == (plan.type,)),
+        "type_baseline": float(baseline_type == plan.type),
+        "precision": _share(added & truth, added),
+        "recall": _share(added & truth, truth),
+        "precision_baseline": _share(baseline_added & truth, baseline_added),
+        "recall_baseline": _share(baseline_added & truth, truth),
+        "mask_iou": _soft_iou(layout.mask, true_mask),
+        "mask_iou_baseline": _soft_iou(mean_mask, true_mask),
+    }
+
+
+def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict[str, float]]:
+    """Mean metrics per type and over all plans (``"all"``); every type needs two plans."""
+    plans = sorted(plans, key=lambda plan: plan.id)
+    rows: dict[str, list[dict[str, float]]] = {}
+    for plan in plans:
+        model = build_model([other for other in plans if other.id != plan.id])
+        if plan.type in model["types"]:
+            rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
+    table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
+    table["all"] = _means([row for found in rows.values() for row in found])
+    return table
+
+
+def _means(rows: list[dict[str, float]]) -> dict[str, float]:
+    return {metric: round(float(np.mean([row[metric] for row in rows])), 3) for metric in METRICS} | {"plans": len(rows)}
+
+
+def _share(part: set, whole: set) -> float:
+    return len(part) / len(whole) if whole else 1.0
+
+
+def _soft_iou(first: np.ndarray, second: np.ndarray) -> float:
+    union = np.maximum(first, second).sum()
+    return float(np.minimum(first, second).sum() / union) if union > 0 else 1.0

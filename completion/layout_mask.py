@@ -1,0 +1,73 @@
+"""Where furniture should go in a room: the layout mask amalgamated from the most similar
+plans (the paper's Equation 4, Section 5.3).
+
+The room's feature ``f_r`` is worked out with the chosen categories' floor areas as its
+occupancy; the ``K`` plans of the type nearest to it (Euclidean distance over the four
+parts) are the references. If they fall in several mask clusters, the cluster with most
+of them is used (ties: the one holding the nearest plan), and its members' masks are
+averaged with weights ``(1 / D_k) / sum_j (1 / D_j)``. The paper prints the weight as
+``D_k / sum_j D_j``, which would give the least similar plan the most say, against its
+own text (the plans "with similar room features" guide the layout); inverse distances
+are what it means. A reference at distance 0 takes the whole weight.
+
+The mask is in the room's door-aware canonical frame (``features``): ``mask_at`` reads it
+at room positions, which is how a layout uses it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from scenewright.completion.features import CanonicalFrame, canonical_frame, room_centre, room_feature
+from scenewright.completion.selection import K
+
+#: Distances below this count as 0 (the same room).
+SAME = 1e-9
+
+
+@dataclass(frozen=True)
+class LayoutMask:
+    """The amalgamated ``mask`` (10, 10) in the room's canonical ``frame``, the room's
+    feature, and the references used with their weights (plan id -> weight)."""
+
+    mask: np.ndarray
+    frame: CanonicalFrame
+    feature: np.ndarray
+    weights: dict[str, float]
+
+
+def amalgamated_mask(model: dict, room_type: str, room, counts: dict[str, int], k: int = K) -> LayoutMask:
+    """The layout mask of ``room`` holding ``counts`` (category -> number) of ``room_type``."""
+    entry = model["types"][room_type]
+    floor = sum(model["categories"][name]["floor_area"] * n for name, n in counts.items())
+    feature = room_feature(room, floor, entry["mean_area"])
+    plans = [plan for plan in model["plans"] if plan["type"] == room_type]
+    distance = {plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"]) - feature)) for plan in plans}
+    nearest = sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
+    by_cluster: dict[int, list[dict]] = {}
+    for plan in nearest:  # nearest first, so each group's first member is its nearest
+        by_cluster.setdefault(plan.get("cluster", 0), []).append(plan)
+    group = max(by_cluster.values(), key=lambda members: (len(members), -nearest.index(members[0])))
+    if distance[group[0]["id"]] <= SAME:
+        weights = {plan["id"]: float(distance[plan["id"]] <= SAME) for plan in group}
+        total = sum(weights.values())
+        weights = {name: value / total for name, value in weights.items()}
+    else:
+        inverse = {plan["id"]: 1.0 / distance[plan["id"]] for plan in group}
+        total = sum(inverse.values())
+        weights = {name: value / total for name, value in inverse.items()}
+    mask = sum(weights[plan["id"]] * np.asarray(plan["mask"]) for plan in group)
+    return LayoutMask(np.asarray(mask), canonical_frame(room), feature, weights)
+
+
+def mask_at(layout: LayoutMask, room, points) -> np.ndarray:
+    """(n,) the mask's value at room points (n, 2): the cell each falls in, in the frame."""
+    width, depth = room.extent
+    long_side, short_side = (depth, width) if layout.frame.transpose else (width, depth)
+    local = layout.frame.apply(np.asarray(points, dtype=float) - room_centre(room))
+    size = layout.mask.shape[0]
+    columns = np.clip(((local[:, 0] / long_side + 0.5) * size).astype(int), 0, size - 1)
+    rows = np.clip(((local[:, 1] / short_side + 0.5) * size).astype(int), 0, size - 1)
+    return layout.mask[rows, columns]

@@ -1,0 +1,117 @@
+"""Equation 4's layout mask, type choice (Equation 2) and the leave-one-out evaluation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from scenewright.completion.evaluation import METRICS, _soft_iou, leave_one_out, request_of
+from scenewright.completion.features import room_feature
+from scenewright.completion.layout_mask import amalgamated_mask, mask_at
+from scenewright.completion.selection import choose_types
+from scenewright.core.errors import InputError
+from scenewright.core.room import Room
+
+
+def _room(width=4.0, depth=3.0) -> Room:
+    room = Room.rectangle(width, depth).with_opening("door", "wall_3", 0.8, 0.9)
+    return room.with_opening("window", "wall_1", width / 2, 1.2, 1.2, 0.9)
+
+
+def _model(features: dict[str, tuple[list[float], int, float]]) -> dict:
+    """Plans of type t: id -> (feature, cluster, the value their whole mask holds)."""
+    return {
+        "categories": {"bed": {"floor_area": 3.0}},
+        "types": {"t": {"mean_area": 12.0, "categories": {"bed": {"p": 1.0, "max_count": 1}}}},
+        "plans": [{"id": name, "type": "t", "feature": feature, "cluster": cluster, "mask": np.full((10, 10), value)}
+                  for name, (feature, cluster, value) in features.items()],  # fmt: skip
+    }
+
+
+def test_the_mask_is_the_inverse_distance_mean_of_the_largest_cluster_of_references():
+    room = _room()
+    target = room_feature(room, 3.0, 12.0)
+    model = _model({
+        "near": (list(target + [0.1, 0, 0, 0]), 0, 1.0),
+        "far": (list(target + [0.3, 0, 0, 0]), 0, 0.0),
+        "odd": (list(target + [0.05, 0, 0, 0]), 1, 0.5),  # nearest, but alone in its cluster
+    })  # fmt: skip
+    layout = amalgamated_mask(model, "t", room, {"bed": 1})
+    assert layout.weights == pytest.approx({"near": 0.75, "far": 0.25})  # 1/0.1 : 1/0.3
+    assert layout.mask == pytest.approx(np.full((10, 10), 0.75))
+    same = _model({"same": (list(target), 0, 0.2), "other": (list(target + 0.2), 0, 1.0)})
+    assert amalgamated_mask(same, "t", room, {"bed": 1}).weights == {"same": 1.0, "other": 0.0}
+
+
+def test_mask_at_reads_the_cell_under_a_room_point():
+    room = _room()  # door near the south-east corner: mirrored in x and z to bring it to the top left
+    model = _model({"only": (list(room_feature(room, 3.0, 12.0)), 0, 0.0)})
+    layout = amalgamated_mask(model, "t", room, {"bed": 1})
+    assert layout.frame.to_dict() == {"transpose": False, "flip_x": True, "flip_z": True}
+    mask = np.zeros((10, 10))
+    mask[0, 0] = 1.0  # canonical top-left: the room's south-east corner
+    layout = type(layout)(mask, layout.frame, layout.feature, layout.weights)
+    assert mask_at(layout, room, [(1.9, 1.4), (-1.9, 1.4), (1.9, -1.4)]).tolist() == [1.0, 0.0, 0.0]
+
+
+def _type_model() -> dict:
+    def entry(area, **categories):
+        return {"mean_area": area, "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()}}
+
+    return {
+        "categories": {"bed": {}, "desk": {}, "sofa": {}, "chair": {}},
+        "types": {
+            "bedroom": entry(14.0, bed=(1.0, 1), desk=(0.3, 1), chair=(0.1, 1)),
+            "study": entry(12.0, desk=(1.0, 2), chair=(0.5, 2)),
+            "living_room": entry(20.0, sofa=(1.0, 1), chair=(0.2, 4)),
+        },
+    }
+
+
+@pytest.mark.parametrize(
+    ("requested", "area", "types"),
+    [
+        ({"bed": 1}, 14.0, ("bedroom",)),
+        ({"desk": 1}, 13.0, ("study",)),  # bedroom and study fit the area alike; desks are in every study
+        ({"bed": 1, "desk": 1}, 26.0, ("bedroom", "study")),  # 14 + 12: a bedroom with a study corner
+        ({"sofa": 1, "bed": 1}, 34.0, ("living_room", "bedroom")),
+        ({"chair": 6}, 32.0, ("living_room", "study")),  # 4 + 2 chairs: the two types that hold the most
+    ],
+)
+def test_choose_types(requested, area, types):
+    assert choose_types(_type_model(), requested, area).types == types
+
+
+def test_choose_types_refuses_what_no_plan_holds():
+    with pytest.raises(InputError, match="no plan of any type has a 'piano'"):
+        choose_types(_type_model(), {"piano": 1}, 20.0)
+    with pytest.raises(InputError, match="the plans hold at most 7 of 'chair' together, not 8"):
+        choose_types(_type_model(), {"chair": 8}, 20.0)
+
+
+def test_soft_iou_and_the_request():
+    assert _soft_iou(np.array([1.0, 0.5, 0.0]), np.array([0.5, 0.5, 1.0])) == pytest.approx(1.0 / 2.5)
+    assert _soft_iou(np.zeros(3), np.zeros(3)) == 1.0
+
+
+@pytest.fixture(scope="module")
+def some_plans():
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.plan import load_plans
+
+    plans = load_plans(shipped_plans_dir())
+    return [plan for plan in plans if plan.id.endswith(("_01", "_02", "_09"))]
+
+
+def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
+    from scenewright.completion.model import build_model
+
+    model = build_model(some_plans)
+    bedroom = next(plan for plan in some_plans if plan.id == "bedroom_09")
+    # the king bed's 3.78 m^2, then two armchairs' 1.28 before the wide wardrobe's 1.08
+    assert request_of(bedroom, model, 2) == {"bed": 1, "armchair": 2}
+    table = leave_one_out(some_plans, 1)
+    assert sorted(table) == ["all", "bedroom", "dining_room", "living_room", "study"]
+    assert table["all"]["plans"] == 12 and all(table[t]["plans"] == 3 for t in table if t != "all")
+    assert all(0.0 <= table["all"][metric] <= 1.0 for metric in METRICS)
+    assert table["all"]["type_baseline"] == 1.0  # a bed, a sofa, a desk or a dining table names its type
