@@ -6,7 +6,8 @@ live in: every piece wholly inside the walls; no two pieces on the floor overlap
 anything); each door's swing (the square as deep as the door is wide, ``Room.swing_zone``)
 free; each piece's catalog clearance (``clearance front 0.8``: a wardrobe's doors, a
 desk's chair) inside the room and free of everything but the seats used at it
-(``activity.SEATS``); and nothing taller than a window's sill standing in front of it.
+(``activity.SEATS``); nothing taller than a window's sill standing in front of it; and
+each free area clear of all of these.
 Distances below ``TOLERANCE`` (5 mm) are drawing slack, not problems.
 """
 
@@ -66,6 +67,7 @@ def plan_problems(plan) -> list[tuple[str, str]]:
         for other in floor:
             if other.id != piece.id and other.category not in SEATS and overlap_depth(zone, other.corners) > TOLERANCE:
                 problems.append((where, f"{other.id} stands in the {depth:g} m clearance in front of {piece.id}"))
+    problems += _free_area_problems(plan, floor, catalog)
     for window in room.windows:
         wall = room.part(window.wall)
         u0, u1 = window.span
@@ -75,6 +77,28 @@ def plan_problems(plan) -> list[tuple[str, str]]:
             tall = catalog[piece.category].size[1] > window.sill + TOLERANCE
             if tall and overlap_depth(glass, piece.corners) > TOLERANCE:
                 problems.append((f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in front of {window.id}"))
+    return problems
+
+
+def _free_area_problems(plan, floor, catalog) -> list[tuple[str, str]]:
+    """A free area must be free: on the floor, clear of the furniture (rugs aside), of
+    the doors' swings and of every clearance (it is where something more could stand
+    without getting in the way)."""
+    zones = [(f"{door.id}'s swing", plan.room.swing_zone(door)) for door in plan.room.doors]
+    for piece in floor:
+        depth = dict(catalog[piece.category].clearance).get("front", 0.0)
+        if depth > 0.0:
+            zones.append((f"the clearance in front of {piece.id}", front_zone(piece, depth)))
+    zones += [(piece.id, piece.corners) for piece in floor]
+    problems = []
+    for k, area in enumerate(plan.free_areas):
+        (x, z), (w, d) = area.center, area.size
+        corners = [(x - w / 2, z - d / 2), (x + w / 2, z - d / 2), (x + w / 2, z + d / 2), (x - w / 2, z + d / 2)]
+        if plan.room.footprint_excess(corners) > TOLERANCE:
+            problems.append((f"$.free_areas[{k}]", "the free area crosses the walls"))
+        for name, zone in zones:
+            if overlap_depth(corners, zone) > TOLERANCE:
+                problems.append((f"$.free_areas[{k}]", f"the free area is not free: {name} is in it"))
     return problems
 
 

@@ -97,6 +97,18 @@ def test_drawing_problems_are_located_at_the_piece(piece, expected):
     assert message.startswith("p.json: $.furniture[") and message.endswith(expected), message
 
 
+@pytest.mark.parametrize(
+    ("area", "expected"),
+    [
+        ({"center": [0.0, 0.0], "size": [0.6, 0.6]}, "the free area is not free: bed_1 is in it"),
+        ({"center": [1.4, 1.3], "size": [0.6, 0.6]}, "the free area is not free: door_1's swing is in it"),
+        ({"center": [1.9, 0.0], "size": [0.6, 0.6]}, "the free area crosses the walls"),
+    ],
+)
+def test_free_areas_must_be_free(area, expected):
+    assert _error(_plan(free_areas=[area])) == f"p.json: $.free_areas[0]: {expected}"
+
+
 def test_flat_things_lie_under_others_and_seats_stand_in_a_desk_clearance():
     rug = _piece("rug", 0.0, 0.3, 2.0, 1.4)
     desk = _piece("desk", -1.2, 1.45, 1.2, 0.6, yaw=math.pi)  # back to the south wall, facing north

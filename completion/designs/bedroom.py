@@ -56,6 +56,7 @@ def king_with_tv():
     d.against("S", "dresser", 2.9, DRESSER)
     d.place("rug", 3.05, 2.1, RUG, "east")
     d.against("S", "armchair", 4.3, ARMCHAIR, gap=0.05)
+    d.free(0.35, 3.85, 0.6, 0.6, "plant", "floor_lamp")
     return d
 
 
@@ -144,6 +145,7 @@ def master_suite():
     d.place("floor_lamp", 0.3, 0.3, FLOOR_LAMP, "south")
     d.place("rug", 3.5, 2.8, RUG, "south")
     d.against("S", "plant", 1.0, PLANT, gap=0.05)
+    d.free(0.55, 3.9, 1, 0.6, "bookshelf", "dresser")
     return d
 
 
@@ -198,6 +200,7 @@ def double_door_west():
     d.against("W", "wardrobe", 2.6, WIDE_WARDROBE)
     d.against("S", "dresser", 2.5, DRESSER)
     d.against("S", "armchair", 3.9, ARMCHAIR, gap=0.05)
+    d.free(4.3, 0.5, 0.5, 0.8, "plant", "floor_lamp")
     return d
 
 

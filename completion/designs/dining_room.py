@@ -31,6 +31,7 @@ def six_seat_classic():
     d.place("rug", 2.3, 1.9, LARGE_RUG, "south")
     d.against("N", "dresser", 2.3, SIDEBOARD)
     d.against("S", "bookshelf", 2.6, WIDE_BOOKSHELF)
+    d.free(0.35, 0.6, 0.6, 1, "refrigerator", "plant")
     return d
 
 
@@ -47,6 +48,7 @@ def banquet_room():
     d.against("E", "dresser", 2.0, LONG_DRESSER)
     d.against("N", "plant", 0.4, LARGE_PLANT, gap=0.05)
     d.against("S", "plant", 0.4, LARGE_PLANT, gap=0.05)
+    d.free(3, 0.3, 1.6, 0.6, "dresser")
     return d
 
 
@@ -96,6 +98,7 @@ def family_dining():
     d.against("W", "dresser", 2.5, SIDEBOARD)
     d.place("armchair", 4.2, 3.6, ARMCHAIR, -2.4)
     d.against("N", "bookshelf", 3.0, BOOKSHELF)
+    d.free(4.4, 0.5, 0.7, 0.7, "refrigerator", "plant")
     return d
 
 
@@ -161,6 +164,7 @@ def eight_in_a_square_room():
     d.against("N", "dresser", 2.5, SIDEBOARD)
     d.against("W", "bookshelf", 2.4, WIDE_BOOKSHELF)
     d.against("S", "plant", 4.5, PLANT, gap=0.05)
+    d.free(4.6, 4, 0.7, 0.8, "refrigerator", "plant")
     return d
 
 

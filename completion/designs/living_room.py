@@ -113,6 +113,7 @@ def tv_on_the_long_wall():
     d.place("armchair", 4.4, 1.6, ARMCHAIR, -2.2)
     d.against("E", "bookshelf", 2.6, BOOKSHELF)
     d.against("E", "floor_lamp", 0.4, FLOOR_LAMP, gap=0.05)
+    d.free(0.3, 0.6, 0.5, 0.5, "plant", "floor_lamp")
     return d
 
 
@@ -164,6 +165,7 @@ def large_family_room():
     d.against("S", "bookshelf", 3.0, WIDE_BOOKSHELF)
     d.against("N", "plant", 0.4, LARGE_PLANT, gap=0.05)
     d.against("N", "floor_lamp", 5.6, FLOOR_LAMP, gap=0.05)
+    d.free(0.4, 1.1, 0.7, 1, "bookshelf", "floor_lamp")
     return d
 
 
@@ -178,6 +180,7 @@ def narrow_living():
     d.place("rug", 1.9, 2.5, RUG, "east")
     d.against("N", "armchair", 0.6, ARMCHAIR, gap=0.1)
     d.against("S", "bookshelf", 1.0, BOOKSHELF)
+    d.free(0.3, 3.85, 0.5, 0.9, "plant", "floor_lamp")
     return d
 
 

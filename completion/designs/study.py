@@ -46,6 +46,7 @@ def library_study():
     d.on(desk, "desk_lamp", DESK_LAMP, across=-0.6)
     d.place("armchair", 3.7, 2.7, ARMCHAIR, "west")
     d.place("floor_lamp", 4.15, 3.5, FLOOR_LAMP, "south")
+    d.free(4.1, 0.7, 0.55, 0.7, "plant")
     return d
 
 
@@ -73,6 +74,7 @@ def writer_room():
     d.place("armchair", 2.7, 1.5, ARMCHAIR, -2.4)
     d.place("floor_lamp", 3.55, 1.1, FLOOR_LAMP, "south")
     d.against("S", "plant", 0.35, PLANT, gap=0.05)
+    d.free(0.35, 2.5, 0.6, 0.7, "filing_cabinet", "plant")
     return d
 
 
@@ -106,6 +108,7 @@ def managers_office():
     d.against("W", "bookshelf", 1.2, WIDE_BOOKSHELF)
     d.against("W", "filing_cabinet", 2.3, FILING_CABINET)
     d.against("S", "plant", 4.6, PLANT, gap=0.05)
+    d.free(4.65, 0.6, 0.6, 1, "filing_cabinet", "plant")
     return d
 
 
