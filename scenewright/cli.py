@@ -495,6 +495,30 @@ def run_plans_graph(args: argparse.Namespace) -> int:
     return emit(args, text)
 
 
+def run_plans_draw(args: argparse.Namespace) -> int:
+    """Draw plans of a set (all, or the ids named) on one sheet."""
+    from scenewright.atomic import atomic_stream, writing
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.drawing import MAX_PANELS, draw_plans
+    from scenewright.completion.plan import load_plans
+
+    plans = load_plans(args.plans or shipped_plans_dir())
+    if args.only:
+        wanted = [part.strip() for text in args.only for part in text.split(",") if part.strip()]
+        by_id = {plan.id: plan for plan in plans}
+        missing = [name for name in wanted if name not in by_id]
+        if missing:
+            raise InputError(f"no plan {missing[0]!r} in the plan set")
+        plans = [by_id[name] for name in dict.fromkeys(wanted)]
+    if len(plans) > MAX_PANELS:
+        raise InputError(f"{len(plans)} plans are more than one sheet holds ({MAX_PANELS}); name some with --only")
+    target = output_file(args.output, "plans.png")
+    with atomic_stream(target, binary=True) as stream, writing(target):
+        draw_plans(plans, stream, masks=args.masks)
+    say(args, f"wrote {target} ({len(plans)} plans)")
+    return 0
+
+
 def run_plans_evaluate(args: argparse.Namespace) -> int:
     """Leave-one-out over a plan set: the model's predictions against simple baselines."""
     from scenewright.completion import shipped_plans_dir
@@ -626,6 +650,7 @@ examples:
   scenewright plans graph --type bedroom --format dot | dot -Tsvg > bedroom.svg
   scenewright plans graph --type study --format json --model model.json
   scenewright plans evaluate --requested 2
+  scenewright plans draw --only bedroom_01,study_06 --masks -o plans.png
 
 build reads every plan (*.json, in sub-folders too) of a plan set, checks each (one
 line naming the file and JSON path for the first problem, exit 2) and writes the plan
@@ -636,7 +661,8 @@ type's object relation graph (edges with weight > 0) from --model, --plans, or t
 shipped plan set. evaluate holds each plan out in turn and prints, per type, how often
 the model finds its room type, the precision and recall of the categories it adds, and
 its layout mask's IoU with the plan's, each beside a simple baseline (about a minute of
-CPU for the shipped set). See docs/completion.md.""",
+CPU for the shipped set). draw puts plans on one PNG sheet (with --masks, each beside
+its layout mask). See docs/completion.md.""",
     "list": """\
 examples:
   scenewright list
@@ -852,37 +878,42 @@ def build_parser() -> CommandLineParser:
     )  # fmt: skip
     allow_option(fit)
     plans = command("plans", "learn from furnished floor plans: build a plan model, show a relation graph", None)
-    plan_commands = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)
-    build = plan_commands.add_parser(
-        "build", help="check a plan set and write its model", parents=[common_options(suppress=True)],
-        epilog=EXAMPLES["plans"], formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    build.set_defaults(handler=run_plans_build)
+    plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)
+
+    def plan_action(name: str, summary: str, handler) -> CommandLineParser:
+        action = plan_actions.add_parser(
+            name, help=summary, description=summary, epilog=EXAMPLES["plans"],
+            formatter_class=argparse.RawDescriptionHelpFormatter, parents=[common_options(suppress=True)],
+        )  # fmt: skip
+        action.set_defaults(handler=handler)
+        return action
+
+    def plan_set(action: argparse.ArgumentParser) -> None:
+        action.add_argument("plans", metavar="PLANS_DIR", nargs="?", help="a plan set (default: the shipped one)")
+
+    build = plan_action("build", "check a plan set and write its model", run_plans_build)
     build.add_argument("plans", metavar="PLANS_DIR", help="folder of plan files (the shipped set: completion/plans)")
     build.add_argument("-o", "--output", required=True, metavar="FILE", help="model file (or a directory for model.json)")
-    graph = plan_commands.add_parser(
-        "graph", help="print a room type's object relation graph", parents=[common_options(suppress=True)],
-        epilog=EXAMPLES["plans"], formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    graph.set_defaults(handler=run_plans_graph)
+    graph = plan_action("graph", "print a room type's object relation graph", run_plans_graph)
     graph.add_argument("--type", required=True, help="room type (bedroom, living_room, study, dining_room, ...)")
     graph.add_argument("--format", choices=("dot", "json"), default="dot", help="output format (dot)")
     source = graph.add_mutually_exclusive_group()
     source.add_argument("--model", metavar="FILE", help="a model written by 'plans build'")
     source.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
     graph.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
-
-    evaluate = plan_commands.add_parser(
-        "evaluate", help="leave-one-out: predictions for each held-out plan against baselines",
-        parents=[common_options(suppress=True)], epilog=EXAMPLES["plans"],
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )  # fmt: skip
-    evaluate.set_defaults(handler=run_plans_evaluate)
-    evaluate.add_argument("plans", metavar="PLANS_DIR", nargs="?", help="a plan set (default: the shipped one)")
+    evaluate = plan_action(
+        "evaluate", "leave-one-out: predictions for each held-out plan against baselines", run_plans_evaluate
+    )
+    plan_set(evaluate)
     evaluate.add_argument(
         "--requested", type=int, choices=(1, 2), default=1,
         help="how many of each plan's categories (those taking the most floor) make the request (1)",
     )  # fmt: skip
+    draw = plan_action("draw", "draw plans (and their layout masks) on one PNG sheet", run_plans_draw)
+    plan_set(draw)
+    draw.add_argument("--only", action="append", default=[], metavar="ID[,ID...]", help="the plans to draw (repeatable)")
+    draw.add_argument("--masks", action="store_true", help="draw each plan's layout mask beside it")
+    draw.add_argument("-o", "--output", required=True, metavar="PNG", help="image file (or a directory for plans.png)")
 
     command("schema", "print the scene.json JSON Schema", run_schema)
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)

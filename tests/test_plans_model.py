@@ -189,3 +189,12 @@ def test_plans_commands_refuse_bad_input_in_one_line(tmp_path, capsys):
     (tmp_path / "m.json").write_text('{"format": "other"}')
     assert main(["plans", "graph", "--type", "bedroom", "--model", str(tmp_path / "m.json")]) == 2
     assert "not a plan model" in capsys.readouterr().err
+
+
+def test_plans_draw_writes_one_png_sheet(tmp_path, capsys):
+    target = tmp_path / "sheet.png"
+    assert main(["plans", "draw", "--only", "bedroom_01,study_06", "--masks", "-o", str(target), "-q"]) == 0
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(["plans", "draw", "--only", "bedroom_99", "-o", str(tmp_path / "other.png")]) == 2
+    assert capsys.readouterr().err == "scenewright: error: no plan 'bedroom_99' in the plan set\n"
+    assert not (tmp_path / "other.png").exists()
