@@ -7,6 +7,8 @@ import json
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scenewright.completion.plan import PlanError, load_plans, plan_from_dict, read_plan
 from scenewright.completion.plan_checks import overlap_depth
@@ -125,6 +127,29 @@ def test_overlap_depth_is_the_separating_axis_overlap():
     assert overlap_depth(square, [(x + 1.5, z) for x, z in square]) == 0.0
     diamond = [(2.0, 0.5), (2.5, 0.0), (3.0, 0.5), (2.5, 1.0)]  # beyond the square's corner
     assert overlap_depth(square, [(x - 1.1, z) for x, z in diamond]) == pytest.approx(0.1)
+
+
+_box = st.tuples(st.floats(-3, 3), st.floats(-3, 3), st.floats(0.1, 2.5), st.floats(0.1, 2.5))
+
+
+@settings(max_examples=200, deadline=None)
+@given(first=_box, second=_box, turn=st.floats(-math.pi, math.pi))
+def test_overlap_depth_of_boxes_is_their_least_axis_overlap_however_both_are_turned(first, second, turn):
+    from scenewright.core.frames import footprint_corners
+
+    def corners(box, yaw=0.0):
+        x, z, w, d = box
+        c, s = math.cos(yaw), math.sin(yaw)
+        return [(px * c + pz * s, -px * s + pz * c) for px, pz in footprint_corners(x, z, 0.0, w, d)]
+
+    (x0, z0, w0, d0), (x1, z1, w1, d1) = first, second
+    along_x = min(x0 + w0 / 2, x1 + w1 / 2) - max(x0 - w0 / 2, x1 - w1 / 2)
+    along_z = min(z0 + d0 / 2, z1 + d1 / 2) - max(z0 - d0 / 2, z1 - d1 / 2)
+    expected = max(0.0, min(along_x, along_z))
+    assert overlap_depth(corners(first), corners(second)) == pytest.approx(expected, abs=1e-9)
+    turned = overlap_depth(corners(first, turn), corners(second, turn))
+    assert turned == pytest.approx(expected, abs=1e-6)
+    assert overlap_depth(corners(second, turn), corners(first, turn)) == pytest.approx(turned, abs=1e-12)
 
 
 def test_files_and_folders_give_one_line_errors(tmp_path):
