@@ -149,19 +149,22 @@ def explore_categories(
     references = nearest_plans(model, room_type, room_parts, k)
     occupancies = np.array([plan["feature"][1] for plan in references])
     typical = {**_typical_counts(model["plans"], room_type), **_typical_counts(references, room_type)}
-    counts = {name: requested.get(name, typical.get(name, 1)) for name in {n for p in weights for n in p} | set(requested)}
+    names = sorted({name for pair in weights for name in pair} | set(requested))
+    counts = {name: requested.get(name, typical.get(name, 1)) for name in names}
 
     def weight(first: str, second: str) -> float:
         return weights.get((min(first, second), max(first, second)), 0.0)
 
+    # Sums run over sorted names: a set's order changes with the interpreter's hash seed,
+    # and a float sum's last bit with its order, which could flip a tie between two costs.
     def cost(chosen: set[str]) -> float:
-        ratio = sum(model["categories"][name]["floor_area"] * counts[name] for name in chosen) / room_area
         names = sorted(chosen)
+        ratio = sum(model["categories"][name]["floor_area"] * counts[name] for name in names) / room_area
         related = sum(weight(a, b) for i, a in enumerate(names) for b in names[i + 1 :])
         return float(np.mean(np.abs(ratio - occupancies))) - omega * related
 
     def mean_weight(name: str, chosen: set[str]) -> float:
-        neighbours = [weight(name, other) for other in chosen if other != name and weight(name, other) > 0.0]
+        neighbours = [weight(name, other) for other in sorted(chosen) if other != name and weight(name, other) > 0.0]
         return sum(neighbours) / len(neighbours) if neighbours else 0.0
 
     chosen = set(counts)

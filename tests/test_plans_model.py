@@ -198,3 +198,21 @@ def test_plans_draw_writes_one_png_sheet(tmp_path, capsys):
     assert main(["plans", "draw", "--only", "bedroom_99", "-o", str(tmp_path / "other.png")]) == 2
     assert capsys.readouterr().err == "scenewright: error: no plan 'bedroom_99' in the plan set\n"
     assert not (tmp_path / "other.png").exists()
+
+
+def test_the_model_file_is_the_same_whatever_the_hash_seed(tmp_path):
+    """Sets of category names change order with PYTHONHASHSEED; the model must not."""
+    import os
+    import subprocess
+    import sys
+
+    from scenewright.completion import shipped_plans_dir
+
+    outputs = []
+    for seed in ("1", "2"):
+        target = tmp_path / f"model_{seed}.json"
+        env = dict(os.environ, PYTHONHASHSEED=seed)
+        command = [sys.executable, "-m", "scenewright.cli", "plans", "build", str(shipped_plans_dir()), "-o", str(target)]
+        subprocess.run(command, check=True, env=env, capture_output=True)
+        outputs.append(target.read_bytes())
+    assert outputs[0] == outputs[1]
