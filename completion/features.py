@@ -17,9 +17,9 @@ The layout mask is a 10 x 10 matrix of how much of each cell furniture covers, i
 canonical frame. The paper aligns masks "by the long edges of the rooms" and flips them
 so the furniture's barycentre is in the bottom-right; an empty room being completed has
 no furniture, so here the flips are chosen by the door, which every room has
-(door-aware): the long side runs along the mask's rows (x, columns), and the room is
-flipped so the doors' mean position is in the top-left quarter (canonical x <= 0,
-z <= 0). When the doors sit on a centre line the windows decide (their mean to the
+(door-aware): the room is turned so its long side is canonical x (the mask's columns
+run along it), and flipped so the doors' mean position is in the top-left quarter
+(canonical x <= 0, z <= 0). When the doors sit on a centre line the windows decide (their mean to the
 bottom-right), then, for a furnished plan, the furniture's barycentre, as in the paper.
 Row 0 of the mask is canonical -z (the top), column 0 canonical -x (the left).
 """
