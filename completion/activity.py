@@ -15,7 +15,9 @@ categories are related when
 The paper labels each plan's people by hand. Here each stay or fetch category has one
 use pose, read off its shape's "used from" convention (``core.shapes``): a person lies
 on a bed with their head at the headboard, sits on a seat facing its front, sits on the
-bench before a piano, stands before a wardrobe facing it. The paper's "all regions in
+bench before a piano, stands before a wardrobe facing it. A seated person's body is
+0.25 m behind the seat's front edge, whatever the seat's depth, so the coffee table
+0.45 m before a deep sofa is within their reach. The paper's "all regions in
 front of the agent" would relate nearly everything in a room to a bed; a 60-degree
 cone is the field one watches a television or a desk in, so that is the visual area.
 Things nobody stays at or fetches from (a table, a night table, a television) have no
@@ -52,7 +54,8 @@ class UsePose:
     towards: bool
 
 
-_SEATED = UsePose("centre", 0.0, towards=False)
+#: Seated with the knees at the seat's front edge: the body 0.25 m behind it.
+_SEATED = UsePose("front", -0.25, towards=False)
 _STANDING_BEFORE = UsePose("front", 0.4, towards=True)
 
 #: Category -> (functional purpose, use pose): the categories people are placed at.

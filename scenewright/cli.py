@@ -877,7 +877,8 @@ def build_parser() -> CommandLineParser:
         "towards uniform)",
     )  # fmt: skip
     allow_option(fit)
-    plans = command("plans", "learn from furnished floor plans: build a plan model, show a relation graph", None)
+
+    plans = command("plans", "furnished floor plans: build their model, show a relation graph, evaluate, draw", None)
     plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)
 
     def plan_action(name: str, summary: str, handler) -> CommandLineParser:

@@ -89,6 +89,10 @@ def test_touch_and_visual_areas_come_from_use_poses(tiny):
                        ("tv_stand", 1.5, 1.775, (1.2, 0.45), NORTH))  # fmt: skip
     assert ("bed", "tv_stand", "visual") in interactions(television)
     assert activity_prior([television])[("bed", "tv_stand")] == "visual"
+    # seated at a deep sofa's front edge, the coffee table 0.45 m before it is within reach
+    sitting = _plan("sit", "living_room", _room(5.0, 4.0), ("sofa", 0.0, -1.55, (2.2, 0.9), SOUTH),
+                    ("coffee_table", 0.0, -0.35, (1.1, 0.6), SOUTH))  # fmt: skip
+    assert ("sofa", "coffee_table", "touch") in interactions(sitting)
 
 
 def test_room_feature_and_mask(tiny_model):
