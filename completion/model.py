@@ -164,6 +164,12 @@ def read_model(path: str) -> dict:
         raise InputError(f"{path}: not a plan model ('format' is not {MODEL_FORMAT!r})")
     if data.get("version") != MODEL_VERSION:
         raise InputError(f"{path}: plan model version {data.get('version')!r}; this scenewright reads {MODEL_VERSION}")
+    for key, kind in (("categories", dict), ("activity", list), ("types", dict), ("plans", list)):
+        if not isinstance(data.get(key), kind):
+            raise InputError(f"{path}: $.{key}: missing or not a JSON {'object' if kind is dict else 'array'}")
+    for name, entry in data["types"].items():
+        if not isinstance(entry, dict) or not all(isinstance(entry.get(k), list) for k in ("pairs", "clusters")):
+            raise InputError(f"{path}: $.types.{name}: not a type entry of a plan model")
     return data
 
 

@@ -220,3 +220,35 @@ def test_the_model_file_is_the_same_whatever_the_hash_seed(tmp_path):
         subprocess.run(command, check=True, env=env, capture_output=True)
         outputs.append(target.read_bytes())
     assert outputs[0] == outputs[1]
+
+
+def test_a_damaged_model_file_is_refused_in_one_line(tmp_path, capsys):
+    target = tmp_path / "m.json"
+    target.write_text(json.dumps({"format": "scenewright-plan-model", "version": 1, "categories": {}, "activity": [],
+                                  "types": {"bedroom": {"pairs": "?"}}, "plans": []}))  # fmt: skip
+    assert main(["plans", "graph", "--type", "bedroom", "--model", str(target)]) == 2
+    assert capsys.readouterr().err == f"scenewright: error: {target}: $.types.bedroom: not a type entry of a plan model\n"
+
+
+def test_every_shipped_plan_has_its_door_top_left_in_its_frame(shipped_plans):
+    for plan in shipped_plans:
+        frame = canonical_frame(plan.room)
+        door = frame.apply(np.array([plan.room.doors[0].center]))[0]
+        assert door[0] <= 1e-9 and door[1] <= 1e-9, plan.id
+
+
+def test_an_l_shaped_room_without_a_window_builds_a_model():
+    room = Room.polygon([(0, 0), (5, 0), (5, 2), (2.5, 2), (2.5, 4), (0, 4)]).with_opening("door", "wall_5", 1.0, 0.9)
+    plan = _plan("l", "study", room, ("desk", 0.0, -1.7, (1.2, 0.6), SOUTH), ("office_chair", 0.0, -1.05, (0.5, 0.5), NORTH))
+    entry = build_model([plan])["plans"][0]
+    assert entry["frame"]["transpose"] is False and entry["feature"][0] == 0.5  # no window: the middle angle
+    mask = np.array(entry["mask"])
+    assert mask.sum() > 0 and mask.shape == (10, 10)
+
+
+@pytest.fixture(scope="module")
+def shipped_plans():
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.plan import load_plans
+
+    return load_plans(shipped_plans_dir())
