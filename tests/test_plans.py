@@ -10,8 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from scenewright.completion.authoring import Design
 from scenewright.completion.plan import PlanError, load_plans, plan_from_dict, read_plan
 from scenewright.completion.plan_checks import overlap_depth
+from scenewright.core.frames import forward
 from scenewright.core.room import Room
 
 
@@ -244,3 +246,27 @@ def test_the_shipped_files_are_what_the_designs_draw(shipped):
     for design in drawn:
         with open(files[design.id], encoding="utf-8") as handle:
             assert handle.read() == plan_json(design.plan().to_dict()), design.id
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    width=st.floats(3.0, 6.0),
+    depth=st.floats(3.0, 5.0),
+    wall=st.sampled_from("NESW"),
+    along=st.floats(0.2, 0.8),
+    size=st.tuples(st.floats(0.3, 2.0), st.floats(0.3, 1.0)),
+)
+def test_a_piece_drawn_against_a_wall_has_its_back_on_it_and_faces_in(width, depth, wall, along, size):
+    design = Design("p", "bedroom", "", width, depth)
+    length = width if wall in "NS" else depth
+    at = size[0] / 2 + along * (length - size[0])
+    design.against(wall, "dresser", at, size)
+    piece = design.pieces[0]
+    plan_wall = design.room.walls["NESW".index(wall)]
+    x, z = piece["center"]
+    u, v = plan_wall.to_wall(x, z)
+    assert v == pytest.approx(size[1] / 2, abs=1e-3)  # its back on the wall's face
+    fx, fz = forward(piece["yaw"])
+    assert (fx, fz) == pytest.approx(plan_wall.normal, abs=1e-6)  # facing into the room
+    from_west_or_north = x + width / 2 if wall in "NS" else z + depth / 2
+    assert from_west_or_north == pytest.approx(at, abs=1e-3)
