@@ -4,7 +4,7 @@ shelves, lamps, plants and sometimes a piano on the walls left free."""
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    ARMCHAIR, BOOKSHELF, CHAIR, COFFEE_TABLE, FLOOR_LAMP, LARGE_PLANT, LARGE_RUG, LOVESEAT, PIANO, PIANO_BENCH, PLANT,
+    ARMCHAIR, BOOKSHELF, COFFEE_TABLE, FLOOR_LAMP, LARGE_PLANT, LARGE_RUG, LOVESEAT, PIANO, PIANO_BENCH, PLANT,
     RUG, SMALL_COFFEE_TABLE, SMALL_TV, SMALL_TV_STAND, SOFA, TV, TV_STAND, WIDE_BOOKSHELF,
 )  # fmt: skip
 
