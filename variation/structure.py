@@ -58,7 +58,7 @@ FACING_CONE = math.radians(45.0)
 #: Yaw difference modulo 90 degrees below which two boxes are parallel.
 PARALLEL = math.radians(5.0)
 #: Distance (metres) within which two parallel sides are flush.
-FLUSH = 0.05
+FLUSH = 0.1
 
 
 def wrap(angle: float) -> float:
@@ -168,8 +168,16 @@ def measure_edges(graph: StructureGraph) -> None:
     """Fill ``graph.edges`` from the boxes (both directions of every related pair)."""
     graph.edges.clear()
     n = len(graph)
+    radii = np.hypot(graph.sizes[:, 0], graph.sizes[:, 2]) / 2.0
     for i in range(n):
         for j in range(i + 1, n):
+            # Skip pairs surely farther apart than "near" (most pairs of a large scene): one
+            # of i's axes is within 45 degrees of the line between the centres, and along
+            # it the separation is at least distance / sqrt(2) minus the two radii.
+            lower_gap = float(np.hypot(*(graph.centres[i] - graph.centres[j]))) / math.sqrt(2.0) - radii[i] - radii[j]
+            supported = graph.supporter.get(i) == j or graph.supporter.get(j) == i
+            if not supported and lower_gap > NEAR_FACTOR * max(radii[i], radii[j]):
+                continue
             forward, backward = measure_pair(graph, i, j), measure_pair(graph, j, i)
             if forward is not None or backward is not None:  # F may hold one way only
                 graph.edges[(i, j)] = forward or _empty(graph, i, j)
@@ -177,7 +185,8 @@ def measure_edges(graph: StructureGraph) -> None:
 
 
 def _empty(graph: StructureGraph, i: int, j: int) -> Edge:
-    return Edge(frozenset(), *_measures(graph, i, j))
+    gap, _, facing_angle, contact_angles, scale = _measures(graph, i, j)
+    return Edge(frozenset(), gap, facing_angle, contact_angles, scale)
 
 
 def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge | None:
@@ -187,7 +196,7 @@ def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge | None:
         relations.add("S")
     if graph.supporter.get(i) == j:
         relations.add("s")
-    gap, facing_angle, contact_angles, scale = _measures(graph, i, j)
+    gap, normal, facing_angle, contact_angles, scale = _measures(graph, i, j)
     near = gap <= NEAR_FACTOR * float(np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]).max()) / 2.0
     floor_pair = i not in graph.supporter and j not in graph.supporter
     heights_overlap = min(graph.bottoms[i] + graph.sizes[i, 1], graph.bottoms[j] + graph.sizes[j, 1]) > max(
@@ -200,21 +209,21 @@ def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge | None:
             relations.add("C")
         if _aligned(graph, i, j):
             relations.add("A")
-        if abs(_signed_angle(graph.forwards[i], separation(graph, i, j)[1])) <= FACING_CONE:
+        if abs(_signed_angle(graph.forwards[i], normal)) <= FACING_CONE:
             relations.add("F")
     if not relations:
         return None
     return Edge(frozenset(relations), gap, facing_angle, contact_angles, scale)
 
 
-def _measures(graph: StructureGraph, i: int, j: int) -> tuple[float, float, tuple[float, float], float]:
-    """Gap, facing angle (j's yaw minus i's), contact angles (from i's and j's forwards
-    to the normal i -> j) and the pair's mean half diagonal."""
+def _measures(graph: StructureGraph, i: int, j: int) -> tuple[float, np.ndarray, float, tuple[float, float], float]:
+    """Gap, the separating normal i -> j, facing angle (j's yaw minus i's), contact
+    angles (from i's and j's forwards to the normal) and the pair's mean half diagonal."""
     gap, normal = separation(graph, i, j)
     contact_angles = (_signed_angle(graph.forwards[i], normal), _signed_angle(graph.forwards[j], normal))
     facing_angle = wrap(float(graph.yaws[j] - graph.yaws[i]))
     half_diagonals = np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]) / 2.0
-    return gap, facing_angle, contact_angles, float(half_diagonals.mean())
+    return gap, normal, facing_angle, contact_angles, float(half_diagonals.mean())
 
 
 def separation(graph: StructureGraph, i: int, j: int) -> tuple[float, np.ndarray]:

@@ -1,0 +1,128 @@
+"""Graph matching: the quadratic assignment, its spectral solution, confidence, partial matches."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.variation import structure_graph
+from scenewright.variation.matching import exhaustive_solution, layout_problem, match_graphs, solve
+from scenewright.variation.perturb import perturbed_copy
+
+
+def scene_of(records, extent=(8.0, 8.0)):
+    return example_scene(list(records), name="t", source="t", extent=extent, room=None)
+
+
+def box(object_id, kind, x, z, yaw_degrees, size, y=0.0):
+    return ObjectRecord(object_id, kind, size, (x, y, z), math.radians(yaw_degrees))
+
+
+#: A hand-built room: a bed between two nightstands, a desk with a chair, a wardrobe
+#: beside a dresser, a lamp on the desk.
+BEDROOM = [
+    box("bed", "bed", 0.0, 0.0, 0.0, (1.6, 0.5, 2.0)),
+    box("left_stand", "nightstand", 1.05, -0.75, 0.0, (0.5, 0.55, 0.5)),
+    box("right_stand", "nightstand", -1.05, -0.75, 0.0, (0.5, 0.55, 0.5)),
+    box("desk", "desk", 2.8, 2.5, -90.0, (1.2, 0.75, 0.6)),
+    box("chair", "chair", 2.05, 2.5, 90.0, (0.45, 0.9, 0.45)),
+    box("lamp", "lamp", 2.8, 2.8, 0.0, (0.2, 0.4, 0.2), y=0.75),
+    box("wardrobe", "wardrobe", -2.5, 2.0, 90.0, (1.2, 2.0, 0.6)),
+    box("dresser", "dresser", -2.5, 0.6, 90.0, (1.0, 0.8, 0.5)),
+]
+
+
+def test_a_scene_matches_itself_with_full_confidence():
+    graph = structure_graph(scene_of(BEDROOM))
+    matching = match_graphs(graph, graph)
+    assert matching.mapping() == {i: i for i in ["bed", "left_stand", "right_stand", "desk", "chair", "wardrobe", "dresser"]}
+    assert all(p.confidence == pytest.approx(1.0) for p in matching.pairs)
+    assert matching.unmatched_a == [] and matching.withdrawn == []
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_disguised_copy_matches_each_object_to_its_original(seed):
+    scene = scene_of(BEDROOM)
+    copy, truth = perturbed_copy(scene, np.random.default_rng(seed))
+    first, second = structure_graph(scene), structure_graph(copy)
+    survivors = [i for i in truth if i != "lamp"]
+    # Every surviving object is assigned its copy ...
+    assigned = match_graphs(first, second, threshold=0.0).mapping()
+    assert {i: assigned.get(i) for i in survivors} == {i: truth[i] for i in survivors}
+    # ... and the confident pairs are right; an object whose neighbour was removed or
+    # got the added box beside it may be withdrawn, the removed and added ones are.
+    kept = match_graphs(first, second)
+    assert all(truth.get(p.a) == p.b for p in kept.pairs)
+    assert len(kept.pairs) >= len(survivors) - 2
+
+
+def test_different_names_same_role():
+    # A desk in one study and a dresser in the other, each with a chair in front and a
+    # cabinet touching its right side: roles, not names, are matched.
+    first = scene_of([
+        box("d", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+        box("c", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+        box("k", "cabinet", -0.95, 0.0, 0.0, (0.5, 0.7, 0.6)),
+    ])  # fmt: skip
+    second = scene_of([
+        box("x", "stool", 1.0, 1.8, 90.0, (0.45, 0.8, 0.45)),  # far, unrelated
+        box("y", "drawers", 0.0, -0.9, 0.0, (0.4, 0.8, 0.5)),
+        box("z", "dresser", 0.85, -0.9, 0.0, (1.2, 0.8, 0.6)),
+        box("w", "seat", 0.85, -0.2, 180.0, (0.5, 0.9, 0.5)),
+    ])  # fmt: skip
+    matching = match_graphs(structure_graph(first), structure_graph(second))
+    assert matching.mapping() == {"d": "z", "c": "w", "k": "y"}
+
+
+def test_matching_does_not_depend_on_object_order():
+    graph = structure_graph(scene_of(BEDROOM))
+    shuffled = structure_graph(scene_of([BEDROOM[k] for k in (6, 3, 0, 7, 1, 5, 4, 2)]))
+    forward, backward = match_graphs(graph, shuffled), match_graphs(shuffled, graph)
+    assert forward.mapping() == {a: a for a in forward.mapping()} and len(forward.pairs) == 7
+    assert backward.mapping() == forward.mapping()
+    assert forward.energy == pytest.approx(backward.energy)
+
+
+def test_type_prior_breaks_a_tie_between_identical_boxes():
+    first = scene_of([box("a", "plant", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("b", "bin", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
+    second = scene_of([box("p", "bin", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("q", "plant", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
+    assert match_graphs(structure_graph(first), structure_graph(second), type_prior=0.5).mapping() == {"a": "q", "b": "p"}
+
+
+random_scenes = st.lists(
+    st.tuples(st.floats(-2.5, 2.5), st.floats(-2.5, 2.5), st.sampled_from([0.0, 90.0, 180.0, -90.0]),
+              st.floats(0.3, 1.5), st.floats(0.3, 1.5)),
+    min_size=2, max_size=6,
+)  # fmt: skip
+
+
+def graph_of_tuples(boxes):
+    return structure_graph(scene_of([box(f"o{k}", "t", x, z, yaw, (w, 0.8, d)) for k, (x, z, yaw, w, d) in enumerate(boxes)]))
+
+
+@settings(max_examples=25, deadline=None)
+@given(random_scenes, random_scenes)
+def test_energy_is_the_quadratic_form_of_the_affinity(first, second):
+    problem, _, _ = layout_problem(graph_of_tuples(first), graph_of_tuples(second))
+    assignment = solve(problem)
+    assert sorted(assignment) == list(range(problem.size))  # one-to-one over the padded size
+    vector = np.zeros(problem.size**2)
+    vector[np.arange(problem.size) * problem.size + assignment] = 1.0
+    assert vector @ (problem.affinity() @ vector) == pytest.approx(problem.energy(assignment))
+
+
+@settings(max_examples=20, deadline=None)
+@given(random_scenes, random_scenes)
+def test_solution_is_near_the_exhaustive_optimum(first, second):
+    problem, _, _ = layout_problem(graph_of_tuples(first), graph_of_tuples(second))
+    _, best = exhaustive_solution(problem)
+    spectral = problem.energy(solve(problem, refined=False))
+    refined = problem.energy(solve(problem))
+    assert spectral <= best + 1e-9 and refined <= best + 1e-9
+    assert refined >= spectral - 1e-9
+    assert refined >= 0.9 * best

@@ -1,0 +1,66 @@
+"""The match / augment / vary commands: output, and bad input as one line with exit 2."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from scenewright.cli import main
+
+ROOM = {
+    "extent": [6, 6],
+    "objects": [
+        {"id": "desk", "type": "desk", "size": [1.4, 0.75, 0.7], "position": [0, 0, 0], "yaw": 0},
+        {"id": "chair", "type": "chair", "size": [0.5, 0.9, 0.5], "position": [0, 0, 0.8], "yaw": 180},
+        {"id": "lamp", "type": "lamp", "size": [0.2, 0.4, 0.2], "position": [0.4, 0], "parent": "desk"},
+        {"id": "shelf", "type": "shelf", "size": [0.9, 1.8, 0.35], "position": [-1.5, 0, -0.2], "yaw": 0},
+    ],
+}
+
+
+def run(capsys, *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+@pytest.fixture
+def rooms(tmp_path):
+    first = tmp_path / "first.json"
+    first.write_text(json.dumps(ROOM))
+    renamed = json.loads(json.dumps(ROOM))
+    for obj in renamed["objects"]:
+        obj["type"] = "thing_" + obj["type"]
+    renamed["objects"][3]["position"] = [1.8, 0, -0.1]
+    second = tmp_path / "second.json"
+    second.write_text(json.dumps(renamed))
+    return first, second
+
+
+def test_match_prints_pairs_and_json(capsys, rooms):
+    code, out, _ = run(capsys, "match", str(rooms[0]), str(rooms[1]))
+    assert code == 0
+    assert out.splitlines()[0].startswith("first -> second: 3 matched")
+    assert any(line.split()[:3] == ["desk", "->", "desk"] for line in out.splitlines())
+    code, out, _ = run(capsys, "match", str(rooms[0]), str(rooms[1]), "--json")
+    data = json.loads(out)
+    assert {(p["a"], p["b"]) for p in data["pairs"]} == {("desk", "desk"), ("chair", "chair"), ("shelf", "shelf")}
+
+
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        (["match", "{a}", "{missing}"], "cannot read"),
+        (["match", "{a}", "{bad}"], "bad.json:1:2: not JSON"),
+        (["match", "{a}", "{a}", "--threshold", "1.5"], "argument --threshold: must be from 0 to 1"),
+        (["match", "{a}"], "the following arguments are required"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(capsys, tmp_path, rooms, argv, fragment):
+    (tmp_path / "bad.json").write_text("{oops")
+    names = {"a": str(rooms[0]), "missing": str(tmp_path / "missing.json"), "bad": str(tmp_path / "bad.json")}
+    code, out, err = run(capsys, *[part.format(**names) for part in argv])
+    assert code == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("scenewright: error: ") and fragment in lines[0], err

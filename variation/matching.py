@@ -1,0 +1,411 @@
+"""Graph matching of two layout subgraphs, as the paper's quadratic assignment.
+
+The energy of a matching f of the objects of G onto those of G' is
+
+    E(f) = sum_i phi_i(f(v_i)) + lambda * sum_(e_ij) phi(e_ij, f(e_ij)),   lambda = 0.5
+
+written ``E = x^T W x`` for the assignment vector x (x_ik = 1 when i matches k). Terms:
+
+- object similarity ``phi_i(k) = exp((1 - prod_a g(theta_a, theta'_a)) / sigma)`` with
+  ``g(x, y) = 1 + |x - y| / |x + y|`` over the box's width, height and depth. ``g`` is a
+  ratio, so the term is dimensionless; the paper divides by a length (sigma = the
+  scene's diagonal), which makes it depend on the unit. We take ``sigma`` =
+  ``UNARY_SIGMA`` (1, no unit). Type names enter only as an optional soft prior
+  (``type_prior``: phi is multiplied by 1 - type_prior when the names differ);
+- edge similarity ``phi(e, e') = d_V + d_A + d_F + d_C``: d_A = 1 when both are
+  aligned; d_V = exp(-(|da| + |db|) / 2 pi) over the two contact angles (the paper's
+  exp(-|d alpha_v| / pi) of their mean, where the mean is defined); d_F =
+  exp(-|d alpha_f| / pi) when both face (the paper's indicator tests V there, a typo);
+  d_C = exp(-|d - d'| / s) when both are close, s the mean half diagonal of the four
+  objects (the paper's sigma_c is a length: this makes it dimensionless). Edges are
+  directed: the pairs (i, j) -> (k, l) and (j, i) -> (l, k) each weigh lambda / 2, so a
+  pair matched in reverse compares the reversed edge (``structure``).
+
+The maximiser is found as SMAC does (Cour, Srinivasan and Shi, "Balanced graph
+matching", 2006): the one-to-one constraints (each row and each column of the
+assignment sums to 1, the smaller graph padded with dummy objects, which are "no
+match") are affine, ``C x = b``; they are made homogeneous by subtracting the last one
+scaled, the symmetric ``W`` is projected on their null space, its leading eigenvector
+is the relaxed solution, scaled so the constraints hold. The Hungarian method
+(``scipy.optimize.linear_sum_assignment``) makes it a one-to-one assignment.
+
+A pair's *confidence* is the share of its best possible score it gets: its object
+similarity plus lambda times its matched edges' similarities, over 1 + lambda times
+the larger of the two objects' own edge scores (what each gets matched to a copy of
+itself). The paper keeps a match whose confidence exceeds gamma = 0.8 and withdraws
+the rest; its confidence is the leading eigenvalue, which has no fixed scale, so we
+use this per-pair share with the same threshold (``CONFIDENCE``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import sparse
+from scipy.optimize import linear_sum_assignment
+from scipy.sparse.linalg import LinearOperator, eigsh
+
+from .structure import StructureGraph
+
+LAMBDA = 0.5
+UNARY_SIGMA = 1.0
+CONFIDENCE = 0.6
+
+#: Relation bits of an edge for the vectorised similarity.
+_BITS = {"V": 1, "A": 2, "F": 4, "C": 8}
+
+
+@dataclass
+class EdgeTable:
+    """The directed edges among some nodes, as arrays (E edges): ``source``, ``target``
+    (E,) node positions; ``bits`` (E,) relation bits; ``facing`` (E,); ``contact``
+    (E, 2); ``gap`` (E,); ``scale`` (E,) metres."""
+
+    source: np.ndarray
+    target: np.ndarray
+    bits: np.ndarray
+    facing: np.ndarray
+    contact: np.ndarray
+    gap: np.ndarray
+    scale: np.ndarray
+
+    @classmethod
+    def of(cls, graph: StructureGraph, nodes: list[int]) -> EdgeTable:
+        """The edges of ``graph`` between ``nodes`` (positions in ``nodes``), those with a
+        layout relation."""
+        where = {node: position for position, node in enumerate(nodes)}
+        rows = []
+        for (i, j), edge in sorted(graph.edges.items()):
+            bits = sum(bit for code, bit in _BITS.items() if code in edge.relations)
+            if i in where and j in where and bits:
+                rows.append((where[i], where[j], bits, edge.facing_angle, *edge.contact_angles, edge.gap, edge.scale))
+        table = np.array(rows, dtype=float).reshape(-1, 8)
+        return cls(
+            table[:, 0].astype(int), table[:, 1].astype(int), table[:, 2].astype(int), table[:, 3],
+            table[:, 4:6], table[:, 6], table[:, 7],
+        )  # fmt: skip
+
+    def __len__(self) -> int:
+        return len(self.source)
+
+    def self_scores(self, count: int) -> np.ndarray:
+        """(count,) each node's edge score matched to itself: its edges' relation counts."""
+        scores = np.zeros(count)
+        np.add.at(scores, self.source, _popcount(self.bits))
+        return scores
+
+
+def _popcount(bits: np.ndarray) -> np.ndarray:
+    return sum((bits >> k) & 1 for k in range(4)).astype(float)
+
+
+def _angle_gap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """|a - b| wrapped into [0, pi]."""
+    return np.abs(np.angle(np.exp(1j * (a - b))))
+
+
+def edge_similarity(first: EdgeTable, second: EdgeTable) -> np.ndarray:
+    """(E1, E2) phi(e, e') for every directed edge of ``first`` against every one of ``second``."""
+    shared = first.bits[:, None] & second.bits[None, :]
+    similarity = ((shared & _BITS["A"]) > 0).astype(float)
+    contact = _angle_gap(first.contact[:, None, 0], second.contact[None, :, 0])
+    contact = contact + _angle_gap(first.contact[:, None, 1], second.contact[None, :, 1])
+    direction = np.exp(-contact / (2.0 * math.pi))
+    similarity += np.where(shared & _BITS["V"], direction, 0.0)
+    facing = _angle_gap(first.facing[:, None], second.facing[None, :])
+    similarity += np.where(shared & _BITS["F"], np.exp(-facing / math.pi), 0.0)
+    scale = (first.scale[:, None] + second.scale[None, :]) / 2.0
+    close = np.abs(first.gap[:, None] - second.gap[None, :]) / np.maximum(scale, 1e-9)
+    similarity += np.where(shared & _BITS["C"], np.exp(-close) * direction, 0.0)
+    return similarity
+
+
+def box_similarity(sizes: np.ndarray, other: np.ndarray, sigma: float = UNARY_SIGMA) -> np.ndarray:
+    """(m, n) object similarity of boxes ``sizes`` (m, 3) against ``other`` (n, 3)."""
+    a, b = sizes[:, None, :], other[None, :, :]
+    g = 1.0 + np.abs(a - b) / np.maximum(np.abs(a + b), 1e-12)
+    return np.exp((1.0 - g.prod(axis=-1)) / sigma)
+
+
+@dataclass
+class Problem:
+    """A quadratic assignment: ``unary`` (m, n), pairwise terms between matched edges
+    (``first`` and ``second`` edge tables, ``pairwise`` (E1, E2) their similarities)."""
+
+    unary: np.ndarray
+    first: EdgeTable
+    second: EdgeTable
+    pairwise: np.ndarray
+    lam: float = LAMBDA
+
+    @property
+    def size(self) -> int:
+        """N: the larger side; the smaller is padded with dummies to N."""
+        return max(self.unary.shape)
+
+    def affinity(self) -> sparse.csr_matrix:
+        """(N*N, N*N) symmetric sparse W with E = x^T W x, x indexed i * N + k (i in the
+        first graph, k in the second, dummies included)."""
+        size = self.size
+        m, n = self.unary.shape
+        diagonal = (np.arange(m)[:, None] * size + np.arange(n)[None, :]).ravel()
+        e1, e2 = np.nonzero(self.pairwise)
+        a = self.first.source[e1] * size + self.second.source[e2]
+        b = self.first.target[e1] * size + self.second.target[e2]
+        rows = np.concatenate([diagonal, a])
+        columns = np.concatenate([diagonal, b])
+        values = np.concatenate([self.unary.ravel(), self.lam / 2.0 * self.pairwise[e1, e2]])
+        matrix = sparse.coo_matrix((values, (rows, columns)), shape=(size * size, size * size)).tocsr()
+        return ((matrix + matrix.T) / 2.0).tocsr()
+
+    def energy(self, assignment: np.ndarray) -> float:
+        """E of a full assignment (``assignment[i]`` = k, over the padded N)."""
+        m, n = self.unary.shape
+        rows = np.flatnonzero(assignment[:m] < n)
+        total = self.unary[rows, assignment[rows]].sum()
+        return float(total + self.lam / 2.0 * self.pairwise[self.matched_edges(assignment)].sum())
+
+    def matched_edges(self, assignment: np.ndarray) -> np.ndarray:
+        """(E1, E2) whether ``assignment`` maps first-graph edge e onto second-graph edge e'."""
+        return (assignment[self.first.source][:, None] == self.second.source[None, :]) & (
+            assignment[self.first.target][:, None] == self.second.target[None, :]
+        )
+
+
+def spectral_solution(affinity: sparse.spmatrix, size: int) -> np.ndarray:
+    """(N, N) relaxed assignment: SMAC's leading eigenvector of W under the affine
+    one-to-one constraints (rows and columns sum to 1), scaled so they hold.
+
+    The eigenvector of P W P (P the projection on the constraints' null space) is found
+    by Lanczos iteration (``eigsh``) from a fixed start, so it is deterministic."""
+    count = size * size
+
+    def project(vector: np.ndarray) -> np.ndarray:
+        # The constraints made homogeneous (each row and column sum minus the last
+        # column's) say "all row and column sums are equal". Their row space is the
+        # matrices a_i + b_k whose entries sum to 0; projecting that out of X leaves
+        # X - row means - column means + 2 * grand mean.
+        matrix = np.reshape(vector, (size, size))
+        grand = matrix.mean()
+        return (matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + 2.0 * grand).ravel()
+
+    def apply(vector: np.ndarray) -> np.ndarray:
+        return project(affinity @ project(np.ravel(vector)))
+
+    if count <= 64:  # small: a dense eigensolver is exact and as fast
+        dense = np.stack([apply(column) for column in np.eye(count)], axis=1)
+        values, vectors = np.linalg.eigh((dense + dense.T) / 2.0)
+        vector = vectors[:, np.argmax(values)]
+    else:
+        operator = LinearOperator((count, count), matvec=apply, dtype=float)
+        start = project(np.linspace(1.0, 2.0, count))
+        _, vectors = eigsh(operator, k=1, which="LA", v0=start, tol=1e-8, maxiter=20 * count)
+        vector = vectors[:, 0]
+    total = vector.reshape(size, size)[:, -1].sum()  # the last column's sum, as every other's
+    if abs(total) < 1e-12:
+        vector = vector if vector.sum() >= 0 else -vector
+    else:
+        vector = vector / total  # the last constraint holds, hence all of them
+    return vector.reshape(size, size)
+
+
+def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50) -> np.ndarray:
+    """(N,) the best one-to-one assignment the Integer Projected Fixed Point method
+    (Leordeanu, Hebert and Sukthankar, 2009) reaches from the relaxed solution: each
+    step moves x towards the Hungarian assignment b maximising b^T W x, with an exact
+    line search; the best discrete b seen is kept."""
+    size = relaxed.shape[0]
+    current = relaxed.ravel().copy()
+    best, best_score = None, -math.inf
+    for _ in range(iterations):
+        target = discretise((affinity @ current).reshape(size, size))
+        vector = np.zeros(size * size)
+        vector[np.arange(size) * size + target] = 1.0
+        score = float(vector @ (affinity @ vector))
+        if score > best_score + 1e-12:
+            best, best_score = target, score
+        step = vector - current
+        slope = float(current @ (affinity @ step))
+        curvature = float(step @ (affinity @ step))
+        rate = 1.0 if curvature >= 0.0 else min(-slope / curvature, 1.0)
+        if np.abs(rate * step).max() < 1e-9:
+            break
+        current = current + rate * step
+    return best
+
+
+def discretise(relaxed: np.ndarray) -> np.ndarray:
+    """(N,) the one-to-one assignment nearest the relaxed one (Hungarian method)."""
+    rows, columns = linear_sum_assignment(-relaxed)
+    assignment = np.empty(len(rows), dtype=int)
+    assignment[rows] = columns
+    return assignment
+
+
+def exhaustive_solution(problem: Problem) -> tuple[np.ndarray, float]:
+    """The best assignment by trying every permutation (for small graphs: the yardstick)."""
+    from itertools import permutations
+
+    best, best_energy = None, -math.inf
+    for order in permutations(range(problem.size)):
+        assignment = np.array(order)
+        energy = problem.energy(assignment)
+        if energy > best_energy:
+            best, best_energy = assignment, energy
+    return best, best_energy
+
+
+@dataclass
+class Correspondence:
+    """One matched pair: ids in the first and the second scene, confidence in [0, 1]."""
+
+    a: str
+    b: str
+    confidence: float
+    object_similarity: float
+
+
+@dataclass
+class Matching:
+    """The result of ``match_graphs``: the pairs kept (confidence at least the
+    threshold), those withdrawn, the objects left unmatched, the energy and time."""
+
+    pairs: list[Correspondence]
+    withdrawn: list[Correspondence]
+    unmatched_a: list[str]
+    unmatched_b: list[str]
+    energy: float
+    seconds: float
+    threshold: float = CONFIDENCE
+
+    def mapping(self) -> dict[str, str]:
+        """First-scene id -> second-scene id of the kept pairs."""
+        return {pair.a: pair.b for pair in self.pairs}
+
+    def lines(self) -> list[str]:
+        """The matching for people: one line per pair, then what was left out."""
+        width = max([len(p.a) for p in self.pairs + self.withdrawn] + [1])
+        other = max([len(p.b) for p in self.pairs + self.withdrawn] + [1])
+        shown = [f"  {p.a:<{width}}  ->  {p.b:<{other}}  confidence {p.confidence:.2f}, boxes {p.object_similarity:.2f}"
+                 for p in self.pairs]  # fmt: skip
+        shown += [f"  {p.a:<{width}}  ?>  {p.b:<{other}}  confidence {p.confidence:.2f} < {self.threshold:g}: withdrawn"
+                  for p in self.withdrawn]  # fmt: skip
+        for side, ids in (("first", self.unmatched_a), ("second", self.unmatched_b)):
+            if ids:
+                shown.append(f"  unmatched in the {side}: {', '.join(ids)}")
+        return shown
+
+    def to_dict(self) -> dict:
+        return {
+            "pairs": [_pair_dict(p) for p in self.pairs],
+            "withdrawn": [_pair_dict(p) for p in self.withdrawn],
+            "unmatched_a": self.unmatched_a,
+            "unmatched_b": self.unmatched_b,
+            "energy": round(self.energy, 6),
+            "threshold": self.threshold,
+        }
+
+
+def _pair_dict(pair: Correspondence) -> dict:
+    return {"a": pair.a, "b": pair.b, "confidence": round(pair.confidence, 4),
+            "object_similarity": round(pair.object_similarity, 4)}  # fmt: skip
+
+
+def layout_problem(
+    first: StructureGraph, second: StructureGraph, *, lam: float = LAMBDA, type_prior: float = 0.0
+) -> tuple[Problem, list[int], list[int]]:
+    """The quadratic assignment between two layout subgraphs, and their node lists."""
+    nodes_a, nodes_b = first.layout_nodes(), second.layout_nodes()
+    unary = box_similarity(first.sizes[nodes_a], second.sizes[nodes_b])
+    if type_prior:
+        same = np.array([[first.types[i] == second.types[k] for k in nodes_b] for i in nodes_a], dtype=float)
+        unary = unary * (1.0 - type_prior * (1.0 - same.reshape(unary.shape)))
+    table_a, table_b = EdgeTable.of(first, nodes_a), EdgeTable.of(second, nodes_b)
+    return Problem(unary, table_a, table_b, edge_similarity(table_a, table_b), lam), nodes_a, nodes_b
+
+
+def solve(problem: Problem, *, refined: bool = True) -> np.ndarray:
+    """The assignment (N,) of a problem: spectral, then Hungarian. With ``refined``
+    (the default), the best of that and the fixed-point refinement started from the
+    same relaxation, each then improved by pairwise exchanges."""
+    size = problem.size
+    if size == 0:
+        return np.zeros(0, dtype=int)
+    affinity = problem.affinity()
+    relaxed = spectral_solution(affinity, size)
+    assignment = discretise(relaxed)
+    if not refined:
+        return assignment
+    candidates = [exchange(problem, start) for start in (assignment, refine(affinity, relaxed))]
+    energies = [problem.energy(candidate) for candidate in candidates]
+    return candidates[int(np.argmax(energies))]  # the first on a tie: deterministic
+
+
+def exchange(problem: Problem, assignment: np.ndarray, passes: int = 10) -> np.ndarray:
+    """``assignment`` improved by swapping the partners of two objects while any swap
+    raises the energy (first improvement, in index order: deterministic)."""
+    current = assignment.copy()
+    energy = problem.energy(current)
+    for _ in range(passes):
+        improved = False
+        for i in range(problem.size):
+            for j in range(i + 1, problem.size):
+                current[i], current[j] = current[j], current[i]
+                trial = problem.energy(current)
+                if trial > energy + 1e-9:
+                    energy, improved = trial, True
+                else:
+                    current[i], current[j] = current[j], current[i]
+        if not improved:
+            break
+    return current
+
+
+def confidences(problem: Problem, assignment: np.ndarray) -> np.ndarray:
+    """(m,) each first-graph node's confidence under ``assignment`` (0 for a dummy match)."""
+    m, n = problem.unary.shape
+    gained = np.zeros(m)
+    np.add.at(gained, problem.first.source, (problem.pairwise * problem.matched_edges(assignment)).sum(axis=1))
+    own_a = problem.first.self_scores(m)
+    own_b = problem.second.self_scores(n)
+    result = np.zeros(m)
+    for i in range(m):
+        k = assignment[i]
+        if k < n:
+            best = 1.0 + problem.lam * (own_a[i] + own_b[k]) / 2.0
+            result[i] = (problem.unary[i, k] + problem.lam * gained[i]) / best
+    return result
+
+
+def match_graphs(
+    first: StructureGraph,
+    second: StructureGraph,
+    *,
+    lam: float = LAMBDA,
+    threshold: float = CONFIDENCE,
+    type_prior: float = 0.0,
+) -> Matching:
+    """Match the layout subgraphs of two structure graphs (see the module docstring)."""
+    started = time.process_time()
+    problem, nodes_a, nodes_b = layout_problem(first, second, lam=lam, type_prior=type_prior)
+    assignment = solve(problem)
+    confidence = confidences(problem, assignment)
+    m, n = problem.unary.shape
+    kept, withdrawn = [], []
+    for i in range(m):
+        k = int(assignment[i])
+        if k >= n:
+            continue
+        pair = Correspondence(first.ids[nodes_a[i]], second.ids[nodes_b[k]], float(confidence[i]), float(problem.unary[i, k]))
+        (kept if confidence[i] >= threshold else withdrawn).append(pair)
+    matched_a, matched_b = {p.a for p in kept}, {p.b for p in kept}
+    return Matching(
+        pairs=kept, withdrawn=withdrawn,
+        unmatched_a=[first.ids[i] for i in nodes_a if first.ids[i] not in matched_a],
+        unmatched_b=[second.ids[k] for k in nodes_b if second.ids[k] not in matched_b],
+        energy=problem.energy(assignment) if problem.size else 0.0,
+        seconds=time.process_time() - started, threshold=threshold,
+    )  # fmt: skip
