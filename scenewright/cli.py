@@ -474,6 +474,24 @@ def run_match(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_augment(args: argparse.Namespace) -> int:
+    from scenewright.atomic import write_atomic
+    from scenewright.examples import load_examples
+    from scenewright.variation import augment
+
+    graph = augment(load_examples(args.examples), threshold=args.threshold)
+    text = graph.to_dot() if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
+    if args.output:
+        target = output_file(args.output, "ag.dot" if args.format == "dot" else "ag.json")
+        write_atomic(target, text)
+        merged = sum(len(node.members) > 1 for node in graph.nodes)
+        say(args, f"wrote {target}: {len(graph.nodes)} nodes ({merged} merged from several examples), "
+                  f"{len(graph.to_dict()['edges'])} edges")  # fmt: skip
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
 def run_list(args: argparse.Namespace) -> int:
     from scenewright.api import load_rules
     from scenewright.core.shapes import SHAPES
@@ -703,6 +721,16 @@ the relations between objects (facing, touching, aligned, close), not their type
 (--type-prior lets equal names count a little). Prints each pair with its confidence;
 pairs below --threshold are withdrawn. Objects standing on others are not matched
 (they travel with what carries them). See docs/variation.md.""",
+    "augment": """\
+examples:
+  scenewright augment rooms/a rooms/b rooms/c -o ag.json
+  scenewright augment a.json b.glb --format dot -o ag.dot && dot -Tsvg ag.dot > ag.svg
+
+merges the example scenes into one Augmented Graph: each node a set of objects matched
+across the examples (by 'scenewright match'), each edge the union of its members'
+relations (S support, F facing, V touching, A aligned, C close). Every input object is
+in exactly one node; objects standing on others are nodes resting on their supporter's.
+Without -o the graph is printed. See docs/variation.md.""",
     "list": """\
 examples:
   scenewright list
@@ -967,6 +995,14 @@ def build_parser() -> CommandLineParser:
     match.add_argument(
         "--type-prior", type=fraction, default=0.0, metavar="P",
         help="how much different type names lower a pair's box similarity (0: names ignored)",
+    )
+
+    augment = command("augment", "merge example scenes into one Augmented Graph", run_augment)
+    augment.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)")
+    augment.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    augment.add_argument("--format", choices=("json", "dot"), default="json", help="output format (json)")
+    augment.add_argument(
+        "--threshold", type=fraction, default=0.6, metavar="C", help="matching confidence to merge two objects (0.6)"
     )
 
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)

@@ -64,3 +64,21 @@ def test_bad_input_is_one_line_and_exit_2(capsys, tmp_path, rooms, argv, fragmen
     assert code == 2 and out == ""
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("scenewright: error: ") and fragment in lines[0], err
+
+
+def test_augment_writes_json_or_dot(capsys, tmp_path, rooms):
+    target = tmp_path / "ag.json"
+    code, out, _ = run(capsys, "augment", str(rooms[0]), str(rooms[1]), "-o", str(target))
+    assert code == 0 and out.startswith(f"wrote {target}: ")
+    data = json.loads(target.read_text())
+    assert len([n for n in data["nodes"] if len(n["members"]) == 2]) == 3  # desk, chair, shelf merged
+    code, out, _ = run(capsys, "augment", str(rooms[0]), str(rooms[1]), "--format", "dot")
+    assert code == 0 and out.startswith("digraph augmented {")
+
+
+def test_augment_bad_example_writes_nothing(capsys, tmp_path, rooms):
+    (tmp_path / "bad.json").write_text('{"extent": [4, 4], "objects": [{"id": "x"}]}')
+    target = tmp_path / "ag.json"
+    code, _, err = run(capsys, "augment", str(rooms[0]), str(tmp_path / "bad.json"), "-o", str(target))
+    assert code == 2 and not target.exists()
+    assert len(err.strip().splitlines()) == 1 and "bad.json: $.objects[0] (object 'x')" in err
