@@ -492,6 +492,24 @@ def run_augment(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_vary(args: argparse.Namespace) -> int:
+    from scenewright.atomic import check_output_directory
+    from scenewright.examples import load_examples
+    from scenewright.variation.synthesis import vary
+    from scenewright.variation.write import FOLDERS, summary, write_variants
+
+    check_output_directory(args.output, FOLDERS)  # before any work: it is replaced as a whole
+    examples = load_examples(args.examples)
+    results = vary(examples, args.count, args.seed, max_operations=args.operations)
+    index = write_variants(results, examples, args.output, args.seed, render=args.render, size=args.size)
+    say(args, summary(index, args.output))
+    if len(results) < args.count:
+        print(f"{PROG}: error: made {len(results)} distinct variants of the {args.count} asked for (files kept)",
+              file=sys.stderr)  # fmt: skip
+        return 1
+    return 0
+
+
 def run_list(args: argparse.Namespace) -> int:
     from scenewright.api import load_rules
     from scenewright.core.shapes import SHAPES
@@ -731,6 +749,20 @@ across the examples (by 'scenewright match'), each edge the union of its members
 relations (S support, F facing, V touching, A aligned, C close). Every input object is
 in exactly one node; objects standing on others are nodes resting on their supporter's.
 Without -o the graph is printed. See docs/variation.md.""",
+    "vary": """\
+examples:
+  scenewright vary rooms/a rooms/b rooms/c -n 30 --seed 1 -o variants/
+  scenewright vary my_room.json room.glb -n 10 --no-render -o out/
+
+makes N new scenes from the examples (scene.json, hand-written .json or .glb) by
+replacing an object by one matched to it in another example, growing an object one
+example has next to its matched neighbour, or moving what stands on a table onto its
+counterpart; each operation is laid out again with everything it did not touch pinned,
+and only compatible ones are kept. Writes DIR/variant_001/ ... (best first), each like
+'generate' writes a scene, with scene.json's "synthesis" record naming every
+operation, its compatibility and each object's source; and DIR/index.json. Same
+examples and seed: same output. Exit 1 when fewer than N distinct variants could be
+made (those made are written). See docs/variation.md.""",
     "list": """\
 examples:
   scenewright list
@@ -1004,6 +1036,17 @@ def build_parser() -> CommandLineParser:
     augment.add_argument(
         "--threshold", type=fraction, default=0.6, metavar="C", help="matching confidence to merge two objects (0.6)"
     )
+
+    vary_command = command("vary", "make new scenes by reshuffling objects of example scenes", run_vary)
+    vary_command.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)")
+    vary_command.add_argument("-n", "--count", type=count_at_least(1), default=10, metavar="N", help="variants to make (10)")
+    vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
+    vary_command.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
+    vary_command.add_argument(
+        "--operations", type=count_at_least(1), default=3, metavar="K", help="at most K operations per variant (3)"
+    )
+    vary_command.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    view_options(vary_command, "640x480")
 
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
     listing.add_argument(
