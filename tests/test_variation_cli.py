@@ -82,3 +82,31 @@ def test_augment_bad_example_writes_nothing(capsys, tmp_path, rooms):
     code, _, err = run(capsys, "augment", str(rooms[0]), str(tmp_path / "bad.json"), "-o", str(target))
     assert code == 2 and not target.exists()
     assert len(err.strip().splitlines()) == 1 and "bad.json: $.objects[0] (object 'x')" in err
+
+
+def test_vary_writes_ranked_variant_folders(capsys, tmp_path, rooms):
+    out = tmp_path / "variants"
+    code, stdout, err = run(capsys, "vary", str(rooms[0]), str(rooms[1]), "-n", "2", "--seed", "3", "--no-render",
+                            "-o", str(out))  # fmt: skip
+    index = json.loads((out / "index.json").read_text())
+    assert len(index["variants"]) == 2 and code == 0, err
+    assert stdout.startswith(f"wrote {out}/: 2 variants")
+    for entry in index["variants"]:
+        folder = out / entry["folder"]
+        assert sorted(p.name for p in folder.iterdir()) == ["description.txt", "plan.png", "scene.glb", "scene.json"]
+        scene = json.loads((folder / "scene.json").read_text())
+        assert scene["synthesis"]["operations"] and set(scene["synthesis"]["sources"]) == {
+            o["id"] for o in scene["objects"] if o["kind"] == "object"
+        }
+    again = tmp_path / "again"
+    run(capsys, "vary", str(rooms[0]), str(rooms[1]), "-n", "2", "--seed", "3", "--no-render", "-o", str(again))
+    assert (again / "variant_001" / "scene.json").read_bytes() == (out / "variant_001" / "scene.json").read_bytes()
+
+
+def test_vary_bad_input_writes_nothing(capsys, tmp_path, rooms):
+    out = tmp_path / "variants"
+    code, _, err = run(capsys, "vary", str(rooms[0]), str(tmp_path / "none.glb"), "-n", "2", "-o", str(out))
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "none.glb: cannot read" in err
+    assert not out.exists() or not any(out.iterdir())
+    code, _, err = run(capsys, "vary", str(rooms[0]), "-n", "0", "-o", str(out))
+    assert code == 2 and "must be at least 1" in err

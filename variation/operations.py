@@ -223,9 +223,9 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
     lx, lz = to_local(near.position[0], near.position[2], near.yaw, source.position[0], source.position[2])
     # Keep the gap to the neighbour's face when the neighbours differ in size.
     if abs(lx) > near.size[0] / 2.0:
-        lx += math.copysign((there.size[0] - near.size[0]) / 2.0, lx)
+        lx += math.copysign(1.0, lx) * (there.size[0] - near.size[0]) / 2.0
     if abs(lz) > near.size[2] / 2.0:
-        lz += math.copysign((there.size[2] - near.size[2]) / 2.0, lz)
+        lz += math.copysign(1.0, lz) * (there.size[2] - near.size[2]) / 2.0
     x, z = to_world(there.position[0], there.position[2], there.yaw, lx, lz)
     new_id = variant.fresh_id(source.type)
     new = replace(source, id=new_id, position=[x, 0.0, z], yaw=source.yaw - near.yaw + there.yaw, parent=None,
@@ -234,6 +234,8 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
     items = [(example.object(c), (member[0], c)) for c in carried]
     placed, relations = _moved_items(variant, ag, items, source, new, new_id, {new_id})
     relations += _brought_relations(variant, ag, member, new_id)
+    if not any(r.source == new_id and r.target == there.id for r in relations):
+        relations.append(Relation(new_id, there.id, "NextTo", 0.0, True))
     return Change(
         "grow", 1.0, [], [(new, member), *placed], relations,
         {"operation": "grow", "node": node_id, "object": new_id, "next_to": there.id,

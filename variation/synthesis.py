@@ -7,9 +7,11 @@ each drawn at random from those possible: replacing an object by another member 
 node, growing a node the variant lacks, transferring what a supporter carries. An
 operation whose compatibility is at most ``KEEP`` (0.8, the paper's) is not applied; one
 that would bring the variant's product K below ``STOP`` (0.2) ends it. After each
-operation the variant is laid out again (``layout_scene``) with every object the
-operation did not touch pinned (exactly where it was) and the new ones starting where
-the operation put them; an operation whose layout is not ok is undone. Variants equal
+operation the variant is checked where the operation put the new objects
+(``measure_layout``); when that is not ok (an overlap, a broken relation) it is laid
+out again (``layout_scene``) with every object the operation did not touch pinned
+(exactly where it was) and the new ones starting where the operation put them; an
+operation whose layout is still not ok is undone. Variants equal
 to an earlier one (same objects from the same sources at the same places, to 5 cm and
 0.1 rad) are dropped. Variants are ranked by K (then by the order they were made).
 
@@ -101,7 +103,7 @@ def propose(variant: Variant, ag: AugmentedGraph, kind: str, argument: str, memb
 def apply_change(variant: Variant, ag: AugmentedGraph, change: Change, rng: np.random.Generator) -> Variant | None:
     """The variant with ``change`` applied and laid out (untouched objects pinned), or
     None when its layout is not ok or a grown object's compatibility is too low."""
-    from scenewright.generator.layout import layout_scene
+    from scenewright.generator.layout import layout_scene, measure_layout
     from scenewright.generator.layout.pinning import scene_layout
 
     removed = set(change.removed)
@@ -115,7 +117,9 @@ def apply_change(variant: Variant, ag: AugmentedGraph, change: Change, rng: np.r
     poses, paths = scene_layout(scene)
     pinned = {object_id: pose for object_id, pose in poses.items() if object_id not in added}
     start = {object_id: poses[object_id] for object_id in added}
-    layout = layout_scene(graph, rng, pinned=pinned, pinned_paths=paths, start=start)
+    layout = measure_layout(graph, poses, paths)  # where the operation put them may do as it is
+    if not layout.ok:
+        layout = layout_scene(graph, rng, pinned=pinned, pinned_paths=paths, start=start)
     if not layout.ok:
         return None
     laid = assemble_scene(graph, layout, rules=scene.rules, seed=scene.seed)

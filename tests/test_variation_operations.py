@@ -1,0 +1,144 @@
+"""Replace, grow and transfer, the compatibility filter, pinning and determinism."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from scenewright.core.frames import to_local
+from scenewright.examples import Example
+from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.variation import augment
+from scenewright.variation.operations import grow_node, replace_object, transfer_items
+from scenewright.variation.synthesis import apply_change, start_variant, vary
+
+
+def box(object_id, kind, x, z, yaw_degrees, size, y=0.0):
+    return ObjectRecord(object_id, kind, size, (x, y, z), math.radians(yaw_degrees))
+
+
+def example(name, records):
+    return Example(name, f"{name}.json", "example.json", example_scene(records, name=name, source=name, extent=(7.0, 7.0), room=None))
+
+
+# Two studies: a desk with a chair in front; the first has a lamp on the desk and a
+# shelf, the second a bigger table with two books and a cabinet touching its left side.
+FIRST = example("first", [
+    box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+    box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+    box("lamp", "lamp", 0.4, -0.1, 0.0, (0.2, 0.4, 0.2), y=0.75),
+    box("shelf", "shelf", -2.5, -2.0, 0.0, (0.9, 1.8, 0.35)),
+])  # fmt: skip
+SECOND = example("second", [
+    box("table", "table", 0.5, 0.5, 0.0, (1.6, 0.74, 0.8)),
+    box("seat", "stool", 0.5, 1.35, 180.0, (0.5, 0.85, 0.5)),
+    box("book_a", "book", 0.0, 0.4, 0.0, (0.2, 0.05, 0.3), y=0.74),
+    box("book_b", "book", 0.9, 0.6, 90.0, (0.2, 0.05, 0.3), y=0.74),
+    box("cabinet", "cabinet", 1.6, 0.5, 0.0, (0.6, 0.7, 0.6)),
+])  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def graph():
+    return augment([FIRST, SECOND])
+
+
+def test_roles_merge(graph):
+    assert graph.node_of[(0, "desk")] == graph.node_of[(1, "table")]
+    assert graph.node_of[(0, "chair")] == graph.node_of[(1, "seat")]
+
+
+def test_replace_anchors_on_the_face_towards_the_chair(graph):
+    variant = start_variant(0, FIRST)
+    change = replace_object(variant, graph, "desk", (1, "table"))
+    new = change.added[0][0]
+    assert new.type == "table" and new.yaw == pytest.approx(0.0)
+    # The desk's front (towards the chair, +Z) stays where it was; the table grows backwards.
+    assert new.position[2] + new.size[2] / 2 == pytest.approx(0.0 + 0.35)
+    assert new.position[0] == pytest.approx(0.0)
+    assert change.compatibility == pytest.approx(math.exp(1 - (1 + 0.2 / 3.0) * (1 + 0.01 / 1.49) * (1 + 0.1 / 1.5)))
+    # The lamp rides along onto the table's top, its place scaled.
+    lamp = next(obj for obj, _ in change.added if obj.type == "lamp")
+    assert lamp.position[1] == pytest.approx(0.74)
+    lx, _ = to_local(new.position[0], new.position[2], new.yaw, lamp.position[0], lamp.position[2])
+    assert lx == pytest.approx(0.4 * 1.6 / 1.4)
+
+
+def test_grow_keeps_the_gap_to_the_neighbour_face(graph):
+    variant = start_variant(0, FIRST)
+    node = graph.node_of[(1, "cabinet")]
+    change = grow_node(variant, graph, node, (1, "cabinet"))
+    cabinet = change.added[0][0]
+    # In the second study the cabinet touches the table's +X side (gap 0); the desk is
+    # narrower, so it comes in to touch the desk's side.
+    assert cabinet.position[0] - cabinet.size[0] / 2 == pytest.approx(0.7)
+    assert change.record["next_to"] == "desk"
+
+
+def test_transfer_onto_a_top_and_refused_where_nothing_can_stand(graph):
+    variant = start_variant(0, FIRST)
+    change = transfer_items(variant, graph, "desk", (1, "table"))
+    assert change.removed == ["lamp"]
+    books = [obj for obj, _ in change.added]
+    assert [b.type for b in books] == ["book", "book"] and all(b.position[1] == pytest.approx(0.75) for b in books)
+    assert all(r.target == "desk" for r in change.relations)
+    # A top 2.1 m up, or one narrower than a book, cannot carry them.
+    tall = example("tall", [box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 2.1, 0.7))])
+    assert transfer_items(start_variant(0, tall), graph, "desk", (1, "table")) is None
+    narrow = example("narrow", [box("desk", "desk", 0.0, 0.0, 0.0, (0.15, 0.75, 0.15))])
+    assert transfer_items(start_variant(0, narrow), graph, "desk", (1, "table")) is None
+
+
+def test_applied_change_pins_everything_untouched(graph):
+    variant = start_variant(0, FIRST)
+    change = replace_object(variant, graph, "desk", (1, "table"))
+    done = apply_change(variant, graph, change, np.random.default_rng(0))
+    assert done is not None and done.scene.layout.ok
+    before = variant.objects()
+    for object_id in ("chair", "shelf"):
+        after = done.objects()[object_id]
+        assert after.position == before[object_id].position and after.yaw == before[object_id].yaw
+    assert done.origin["table_1"] == (1, "table") and "desk" not in done.objects()
+    assert done.operations[0]["operation"] == "replace" and done.compatibility == pytest.approx(change.compatibility)
+
+
+def test_regrown_object_returns_to_its_place():
+    # The first study without its shelf, and with it: growing the shelf back into the
+    # first from the second puts it where it was.
+    full = example("full", [
+        box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+        box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+        box("shelf", "shelf", -1.2, 0.0, 0.0, (0.9, 1.8, 0.35)),
+    ])  # fmt: skip
+    cut = example("cut", [r for r in [
+        box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+        box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+    ]])  # fmt: skip
+    graph = augment([cut, full])
+    node = graph.node_of[(1, "shelf")]
+    variant = start_variant(0, cut)
+    done = apply_change(variant, graph, grow_node(variant, graph, node, (1, "shelf")), np.random.default_rng(1))
+    shelf = done.objects()["shelf_1"]
+    assert math.hypot(shelf.position[0] + 1.2, shelf.position[2]) <= 0.2
+    assert abs(math.remainder(shelf.yaw, 2 * math.pi)) <= math.radians(15)
+
+
+def test_low_compatibility_operations_are_not_applied():
+    # The only member to swap in is a very different box: similarity far below 0.8.
+    small = example("small", [box("crate", "crate", 0.0, 0.0, 0.0, (0.3, 0.3, 0.3))])
+    big = example("big", [box("hall", "hall", 0.0, 0.0, 0.0, (3.0, 2.5, 3.0))])
+    graph = augment([small, big], threshold=0.0)  # merge them anyway
+    assert graph.node_of[(0, "crate")] == graph.node_of[(1, "hall")]
+    assert replace_object(start_variant(0, small), graph, "crate", (1, "hall")).compatibility < 0.8
+    assert vary([small, big], 3, seed=0, ag=graph, attempts=4) == []
+
+
+def test_vary_is_deterministic():
+    first = vary([FIRST, SECOND], 3, seed=7, attempts=6)
+    second = vary([FIRST, SECOND], 3, seed=7, attempts=6)
+    assert first and [r.scene.to_json(reproducible=True) for r in first] == [r.scene.to_json(reproducible=True) for r in second]
+    assert [r.synthesis() for r in first] == [r.synthesis() for r in second]
+    assert all(r.scene.layout.ok for r in first)
+    assert [r.compatibility for r in first] == sorted((r.compatibility for r in first), reverse=True)
