@@ -11,8 +11,8 @@ operation proposes new or moved objects (``Change``) with the paper's compatibil
   the top scaled. zeta_r = the object similarity of u and w (``box_similarity``:
   dimensionless, as in matching; the paper divides by the scene's diagonal, a length).
 - ``grow``: a node absent from the variant joins it next to a present neighbour: a
-  member w of the node is placed at its pose relative to its neighbour m in its own
-  example, taken to m's counterpart in the variant (the gap to the neighbour's face
+  member w of the node is placed at its pose relative to its largest neighbour m in
+  its own example that has a counterpart in the variant, taken to m's counterpart in the variant (the gap to the neighbour's face
   kept when the two neighbours differ in size), with what w carries. zeta_g is the
   mean over w's neighbours that have a counterpart of exp(-|d - d'| / diagonal), d the
   centre distance in w's example and d' in the variant (the paper sums the signed
@@ -211,15 +211,16 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
     graph = ag.graphs[member[0]]
     source = example.object(member[1])
     i = graph.index(member[1])
-    anchor = None
+    anchors = []
     for j in graph.neighbours(i, set(graph.layout_nodes())):
         present = variant.counterpart(ag, ag.node_of[(member[0], graph.ids[j])])
         if present is not None:
-            anchor = (example.object(graph.ids[j]), variant.objects()[present])
-            break
-    if anchor is None:
+            anchors.append((example.object(graph.ids[j]), variant.objects()[present]))
+    if not anchors:
         return None
-    near, there = anchor
+    # The largest neighbour is the surest anchor (of four alike chairs, the counterpart
+    # may be another one than in the example).
+    near, there = max(anchors, key=lambda pair: pair[0].size[0] * pair[0].size[2])
     lx, lz = to_local(near.position[0], near.position[2], near.yaw, source.position[0], source.position[2])
     # Keep the gap to the neighbour's face when the neighbours differ in size.
     if abs(lx) > near.size[0] / 2.0:
