@@ -110,3 +110,11 @@ def test_vary_bad_input_writes_nothing(capsys, tmp_path, rooms):
     assert not out.exists() or not any(out.iterdir())
     code, _, err = run(capsys, "vary", str(rooms[0]), "-n", "0", "-o", str(out))
     assert code == 2 and "must be at least 1" in err
+
+
+def test_help_has_examples(capsys):
+    for command in ("match", "augment", "vary"):
+        with pytest.raises(SystemExit) as exit_info:
+            main([command, "--help"])
+        out = capsys.readouterr().out
+        assert exit_info.value.code == 0 and f"examples:\n  scenewright {command} " in out

@@ -44,7 +44,7 @@ def is_new(result: Result, examples: list[Example]) -> bool:
 
 def write_variants(
     results: list[Result], examples: list[Example], directory: str | os.PathLike[str], seed: int, *, render: bool = False,
-    size: tuple[int, int] = (640, 480),
+    size: tuple[int, int] = (640, 480), view: str = "perspective",
 ) -> dict:
     """Write the variants and index.json; return the index."""
     from scenewright.api import describe_scene, export, render_scene, reproducible_json
@@ -59,7 +59,7 @@ def write_variants(
             folder.mkdir()
             scene = describe_scene(result.scene)
             if render:
-                scene, images = render_scene(scene, size=size)
+                scene, images = render_scene(scene, size=size, view=view)
                 save_render(images, folder, stem="preview")
             export(scene, folder / "scene.glb")
             with writing(folder / "plan.png"):
