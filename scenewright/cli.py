@@ -501,7 +501,9 @@ def run_vary(args: argparse.Namespace) -> int:
     check_output_directory(args.output, FOLDERS)  # before any work: it is replaced as a whole
     examples = load_examples(args.examples)
     results = vary(examples, args.count, args.seed, max_operations=args.operations)
-    index = write_variants(results, examples, args.output, args.seed, render=args.render, size=args.size, view=args.view)
+    index = write_variants(
+        results, examples, args.output, args.seed, render=args.render, size=args.size, view=args.view
+    )
     say(args, summary(index, args.output))
     if len(results) < args.count:
         print(f"{PROG}: error: made {len(results)} distinct variants of the {args.count} asked for (files kept)",

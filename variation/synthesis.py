@@ -11,9 +11,8 @@ operation the variant is checked where the operation put the new objects
 (``measure_layout``); when that is not ok (an overlap, a broken relation) it is laid
 out again (``layout_scene``) with every object the operation did not touch pinned
 (exactly where it was) and the new ones starting where the operation put them; an
-operation whose layout is still not ok is undone. Variants equal
-to an earlier one (same objects from the same sources at the same places, to 5 cm and
-0.1 rad) are dropped. Variants are ranked by K (then by the order they were made).
+operation whose layout is still not ok is undone. Variants that look like an example
+or an earlier variant (``signature``) are dropped. Variants are ranked by K (then by the order they were made).
 
 Deterministic: variant attempt k draws from the ``variation`` child stream k of the
 seed, and its layouts from children of that stream.
@@ -82,7 +81,7 @@ def proposals(variant: Variant, ag: AugmentedGraph) -> list[tuple]:
         for member in node.members:
             if member == variant.origin[object_id]:
                 continue
-            if not node.supported:
+            if not node.supported and _looks(_source(ag, member)) != _looks(obj):  # not a swap for an identical one
                 found.append(("replace", object_id, member))
             if carried_by(ag.examples[member[0]].scene, member[1]):
                 found.append(("transfer", object_id, member))
@@ -90,6 +89,14 @@ def proposals(variant: Variant, ag: AugmentedGraph) -> list[tuple]:
         if node.id not in present:
             found += [("grow", node.id, member) for member in node.members]
     return found
+
+
+def _source(ag: AugmentedGraph, member) -> object:
+    return ag.examples[member[0]].scene.object(member[1])
+
+
+def _looks(obj) -> tuple:
+    return obj.type, obj.style, tuple(round(v, 3) for v in obj.size)
 
 
 def propose(variant: Variant, ag: AugmentedGraph, kind: str, argument: str, member) -> Change | None:
@@ -163,9 +170,11 @@ def vary_one(variant: Variant, ag: AugmentedGraph, rng: np.random.Generator, max
 
 
 def signature(variant: Variant) -> tuple:
-    """What makes two variants the same: sources and places (5 cm, 0.1 rad)."""
+    """What makes two variants look the same: the same kinds of object (type, style,
+    size to 1 cm) at the same places (5 cm, 0.1 rad), wherever they came from."""
     return tuple(sorted(
-        (variant.origin[o.id], round(o.position[0] / 0.05), round(o.position[2] / 0.05), round(o.yaw / 0.1) % 63)
+        (o.type, o.style or "", *(round(v / 0.01) for v in o.size), round(o.position[0] / 0.05),
+         round(o.position[1] / 0.05), round(o.position[2] / 0.05), round(o.yaw / 0.1) % 63)
         for o in variant.scene.placed_objects()
     ))  # fmt: skip
 
