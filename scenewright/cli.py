@@ -926,7 +926,8 @@ def build_parser() -> CommandLineParser:
         "--no-grounding",
         dest="grounding",
         action="store_false",
-        help="leave out the rows' grounding column (spans of the captions and text, ids, pixel boxes)",
+        help="leave out the rows' grounding column (spans of the captions and text, ids, pixel boxes) and "
+        "refexps column (referring expressions with their programs)",
     )
     dataset.add_argument(
         "--retries",
