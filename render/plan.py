@@ -8,11 +8,19 @@ width with their control points; junctions; every object's rotated footprint wit
 tick from its centre towards its forward side; ids as labels; and a red dashed line
 between the two ends of each relation the layout did not satisfy (a wall, door or
 window at its inner face's middle; "the room" at the wall the layout chose).
+
+Labels never cover one another (``place_labels``): each goes at its anchor or just
+beside it, wherever it first finds room, in order of importance (the unsatisfied
+relations, then paths, then the objects those relations name, then the other objects,
+largest first); one that finds no room is left out, and the title says how many were.
+The picture grows with the number of labels (``figure_inches``), so a 300-object town
+still names most of its objects at a readable size.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import matplotlib
@@ -22,6 +30,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
 from matplotlib.patches import Polygon, Rectangle  # noqa: E402
+from matplotlib.patheffects import withStroke  # noqa: E402
 
 from scenewright.core.frames import forward  # noqa: E402
 from scenewright.core.room import ROOM_NODE, WALL_THICKNESS, Room  # noqa: E402
@@ -30,26 +39,56 @@ from scenewright.render.meshes import wall_footprint  # noqa: E402
 
 #: Pixels per inch of the saved image.
 DPI = 110
+#: The picture's larger side in inches: ``BASE_INCHES`` up to ``BASE_LABELS`` labels,
+#: growing with the square root of their number (so their density on the page stays
+#: the same) up to ``MAX_INCHES``.
+BASE_INCHES = 9.0
+BASE_LABELS = 60
+MAX_INCHES = 24.0
+#: Where a label may go, tried in turn: on its anchor, then above, below, right and
+#: left of it (in points; the anchor is the text's centre).
+LABEL_OFFSETS = ((0, 0), (0, 7), (0, -7), (14, 0), (-14, 0), (10, 7), (-10, 7), (10, -7), (-10, -7))
+#: A thin light outline around every label's letters.
+HALO = withStroke(linewidth=1.5, foreground="white", alpha=0.8)
+#: Label ranks: lower goes first (see the module docstring).
+RELATION, PATH, INVOLVED, OBJECT = range(4)
+
+
+@dataclass
+class Label:
+    """A text to place near ``anchor`` (data x, z); lower ``rank`` first, and within a
+    rank larger ``weight`` first."""
+
+    text: str
+    anchor: tuple[float, float]
+    rank: int
+    weight: float = 0.0
+    size: float = 5.0
+    colour: str = "black"
 
 
 def draw_plan(scene: Scene, path) -> Path:
     """Write the scene's top-down plan to ``path`` (PNG) and return the path."""
     width, depth = scene.extent
-    size = 9.0
-    figure, axes = plt.subplots(figsize=(size, size * depth / width + 0.6))
+    unsatisfied = [relation for relation in scene.relations if not relation.satisfied]
+    involved = {relation.source for relation in unsatisfied} | {relation.target for relation in unsatisfied}
+    labels: list[Label] = []
+    size = figure_inches(len(scene.objects) + len(scene.paths) + len(unsatisfied))
+    # At the saved resolution from the start: the label boxes are measured as saved.
+    figure, axes = plt.subplots(figsize=(size, size * depth / width + 0.6), dpi=DPI)
     axes.set_aspect("equal")
     # Data y is z; inverting the axis puts north (-Z) at the top of the picture.
     if scene.room is None:
         axes.add_patch(Rectangle((-width / 2, -depth / 2), width, depth, fill=False, lw=1.5, ec="black"))
     else:
-        _draw_room(axes, scene.room)
+        labels += _draw_room(axes, scene.room)
     points_per_metre = _points_per_metre(figure, axes, width, depth)
     for road in scene.paths:
         xs = [p[0] for p in road.points]
         zs = [p[1] for p in road.points]
         axes.plot(xs, zs, color=road.colour, lw=road.width * points_per_metre, solid_capstyle="round", alpha=0.8, zorder=1)
         axes.plot(xs, zs, "k.", ms=3, zorder=2)
-        axes.annotate(road.id, (xs[-1], zs[-1]), fontsize=7, color="saddlebrown", zorder=6)
+        labels.append(Label(road.id, (xs[-1], zs[-1]), PATH, size=7, colour="saddlebrown"))
     centres = {}
     for obj in scene.objects:
         centres[obj.id] = (obj.position[0], obj.position[2])
@@ -65,7 +104,8 @@ def draw_plan(scene: Scene, path) -> Path:
         x, z = obj.position[0], obj.position[2]
         fx, fz = forward(obj.yaw)
         axes.plot([x, x + fx * reach], [z, z + fz * reach], color="black", lw=0.8, zorder=5)
-        axes.annotate(obj.id, (x, z), fontsize=5, ha="center", va="bottom", zorder=6)
+        rank = INVOLVED if obj.id in involved else OBJECT
+        labels.append(Label(obj.id, (x, z), rank, weight=obj.size[0] * obj.size[2]))
     for road in scene.paths:
         mid = road.points[len(road.points) // 2]
         centres[road.id] = (mid[0], mid[1])
@@ -74,13 +114,13 @@ def draw_plan(scene: Scene, path) -> Path:
             centres[wall.id] = wall.to_world(wall.length / 2.0, 0.0)
         for opening in scene.room.openings:
             centres[opening.id] = opening.center
-    for relation in scene.relations:
+    for relation in unsatisfied:
         target = relation.chosen if relation.target == ROOM_NODE and relation.chosen else relation.target
-        if relation.satisfied or relation.source not in centres or target not in centres:
+        if relation.source not in centres or target not in centres:
             continue
         (sx, sz), (tx, tz) = centres[relation.source], centres[target]
         axes.plot([sx, tx], [sz, tz], color="red", lw=1.2, ls="--", zorder=7)
-        axes.annotate(relation.label, ((sx + tx) / 2, (sz + tz) / 2), fontsize=6, color="red", zorder=7)
+        labels.append(Label(relation.label, ((sx + tx) / 2, (sz + tz) / 2), RELATION, size=6, colour="red"))
     margin = 0.05 * max(width, depth)
     if scene.room is not None:  # the walls and the openings' labels stand outside the extent
         margin = max(margin, WALL_THICKNESS + 0.5)
@@ -88,16 +128,78 @@ def draw_plan(scene: Scene, path) -> Path:
     axes.set_ylim(depth / 2 + margin, -depth / 2 - margin)
     axes.set_xlabel("x (east) [m]")
     axes.set_ylabel("z (south) [m]")
+    left_out = len(labels) - place_labels(axes, labels)
     status = "ok" if scene.layout.ok else f"{len(scene.layout.problems)} problems"
-    axes.set_title(f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}", fontsize=9)
+    crowded = f"  ({left_out} of {len(labels)} labels left out: no room)" if left_out else ""
+    axes.set_title(f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}{crowded}", fontsize=9)
     target = Path(path)
     figure.savefig(target, dpi=DPI, bbox_inches="tight")
     plt.close(figure)
     return target
 
 
-def _draw_room(axes, room: Room) -> None:
-    """The room's walls, doors and windows (see the module docstring)."""
+def figure_inches(labels: int) -> float:
+    """The picture's larger side for a plan with this many labels (see ``BASE_INCHES``)."""
+    return min(MAX_INCHES, BASE_INCHES * max(1.0, math.sqrt(labels / BASE_LABELS)))
+
+
+def place_labels(axes, labels: list[Label]) -> int:
+    """Draw the labels that find room, each at the first of ``LABEL_OFFSETS`` from its
+    anchor where its box overlaps no label drawn before and stays inside the axes, in
+    order of rank and then weight; return how many were drawn. The axes' limits and
+    aspect must be final (the boxes are measured on the page)."""
+    renderer = axes.figure.canvas.get_renderer()
+    axes.apply_aspect()
+    inside = axes.get_window_extent(renderer)
+    points = axes.figure.dpi / 72.0  # pixels per point
+    taken = _BoxGrid()
+    placed = 0
+    for label in sorted(labels, key=lambda label: (label.rank, -label.weight)):
+        text = axes.annotate(
+            label.text, label.anchor, xytext=(0, 0), textcoords="offset points", fontsize=label.size,
+            color=label.colour, ha="center", va="center", zorder=8 if label.rank == RELATION else 6,
+            path_effects=[HALO],  # readable over footprints, roads and dashed lines
+        )  # fmt: skip
+        centred = text.get_window_extent(renderer)  # measured once, then moved
+        for dx, dy in LABEL_OFFSETS:
+            box = centred.translated(dx * points, dy * points)
+            fits = inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+            if fits and not taken.overlaps(box):
+                text.xyann = (dx, dy)
+                taken.add(box)
+                placed += 1
+                break
+        else:
+            text.remove()
+    return placed
+
+
+class _BoxGrid:
+    """Boxes on the page (pixels), kept in square cells so that a new box is compared
+    with its neighbours only (a plan may have hundreds of labels)."""
+
+    CELL = 40.0
+
+    def __init__(self) -> None:
+        self.cells: dict[tuple[int, int], list] = {}
+
+    def _cells(self, box):
+        for i in range(int(box.x0 // self.CELL), int(box.x1 // self.CELL) + 1):
+            for j in range(int(box.y0 // self.CELL), int(box.y1 // self.CELL) + 1):
+                yield i, j
+
+    def overlaps(self, box) -> bool:
+        return any(box.overlaps(other) for cell in self._cells(box) for other in self.cells.get(cell, ()))
+
+    def add(self, box) -> None:
+        for cell in self._cells(box):
+            self.cells.setdefault(cell, []).append(box)
+
+
+def _draw_room(axes, room: Room) -> list[Label]:
+    """The room's walls, doors and windows (see the module docstring); returns the
+    openings' labels."""
+    labels = []
     for wall in room.walls:
         axes.add_patch(Polygon(wall_footprint(room, wall), closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2))
     for opening in room.openings:
@@ -118,7 +220,8 @@ def _draw_room(axes, room: Room) -> None:
             leaf = [wall.to_world(u0, 0.0), wall.to_world(u0, opening.width)]
             axes.plot([p[0] for p in leaf], [p[1] for p in leaf], color="0.2", lw=1.2, zorder=2.6)
         x, z = wall.to_world(opening.offset, -thickness - 0.15)
-        axes.annotate(opening.id, (x, z), fontsize=5, ha="center", va="center", color="0.2", zorder=6)
+        labels.append(Label(opening.id, (x, z), PATH, colour="0.2"))
+    return labels
 
 
 def _points_per_metre(figure, axes, width: float, depth: float) -> float:
