@@ -24,6 +24,7 @@ from __future__ import annotations
 import ctypes.util
 import io
 import json
+import math
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -75,6 +76,9 @@ GROUND_MARGIN = 3.0
 #: The most GPU meshes of shared looks a renderer keeps between scenes (as many as the
 #: per-process caches of looks hold).
 SHARED_MESHES = 1024 + 256
+
+#: The sun's shadow map has at most pyrender's own size, 2048 texels a side.
+MAX_SHADOW_MAP = 2048
 
 _INSTALL_HINT = (
     "install EGL (apt-get install libegl1 libegl-mesa0) and set PYOPENGL_PLATFORM=egl, "
@@ -145,6 +149,10 @@ class Renderer:
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
+        from OpenGL.GL import GL_FLOAT  # only now: the backend is chosen by _load_pyrender
+
+        side = shadow_map_size(self.width, self.height)
+        self._sun.shadow_texture = self._gl.Texture(width=side, height=side, source_channels="D", data_format=GL_FLOAT)
         # The GPU meshes of shared drawables (id -> (drawable, mesh); the drawable is held
         # so its id stays its own): a mesh used by consecutive scenes stays uploaded.
         self._shared_meshes: dict[int, tuple[_Drawable, Any]] = {}
@@ -291,6 +299,17 @@ class Renderer:
             pixels = np.bincount(_decode_index(seg_colour).ravel(), minlength=len(entities) + 1)
             counts[batch] = pixels[np.asarray(batch) + 1]
         return counts
+
+
+def shadow_map_size(width: int, height: int) -> int:
+    """Texels a side of the sun's shadow map for a ``width`` x ``height`` image: the
+    power of two that gives about one texel per image pixel (the map spans the drawn
+    ground, ``GROUND_MARGIN`` times the scene, which the image about fills), at most
+    ``MAX_SHADOW_MAP``. A 256x256 dataset image gets 1024 rather than pyrender's 2048,
+    whose rasterizing costs a software OpenGL a tenth of the frame and adds nothing
+    seen at that size."""
+    needed = GROUND_MARGIN * max(width, height)
+    return int(min(MAX_SHADOW_MAP, 2 ** math.ceil(math.log2(max(needed, 1.0)))))
 
 
 def _entities(scene: Scene, camera: Camera) -> list[_Entity]:

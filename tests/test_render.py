@@ -266,3 +266,13 @@ def test_ground_truth_is_consistent_for_any_small_scene(renderer, placed, view):
     # The automatic camera frames everything: every object's centre lands in the image.
     pixels, _ = Camera.from_dict(result.camera).project([[o.position[0], o.size[1] / 2, o.position[2]] for o in objects])
     assert np.all((pixels >= 0) & (pixels < [160, 120]))
+
+
+@pytest.mark.parametrize(
+    "size, side", [((64, 48), 256), ((256, 256), 1024), ((512, 512), 2048), ((4096, 2048), 2048)]
+)
+def test_the_shadow_map_has_about_one_texel_per_pixel_up_to_pyrenders_size(size, side):
+    from scenewright.render.offscreen import GROUND_MARGIN, shadow_map_size
+
+    assert shadow_map_size(*size) == side
+    assert side >= min(GROUND_MARGIN * max(size), 2048) > side / 2 or side == 2048
