@@ -630,12 +630,13 @@ writes the same files as generate, with a new description; scene.json keeps the 
 objects and relations and records --seed as its "seed". The same input file, pins and
 seed give the same scene.json. When the layout could not satisfy every relation the
 files are still written ("ok": false) and the exit code is 1.""",
-    "dataset": """\
+    "dataset": f"""\
 examples:
   scenewright dataset village -n 1000 -o data/village --captions 3 --size 512x512
   scenewright dataset desk -n 200 -o data/desk --seed 42 --workers 2 --depth --segmentation
   scenewright dataset village -n 100000 -o data/village --scheduler tcp://head:8786
   scenewright dataset classroom -n 500 -o data/classroom --frame camera --min-visible 0.5 --min-size 24
+  scenewright dataset my_town.rules -n 500 -o data/town --retries 6 --include-failed
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
@@ -644,7 +645,7 @@ metadata.jsonl and the statistics list (scenes at N and above stay on disk). One
 a time may use DIR (a second one exits 2). The directory loads with
 datasets.load_dataset("imagefolder", data_dir=DIR).
 
-A scene whose layout fails is laid out again (--retries K, default 3) with the layout
+A scene whose layout fails is laid out again (--retries K, default {DATASET_RETRIES}) with the layout
 seed retry_seed(seed, k) and the same objects, so failures do not favour small scenes;
 each row records its layout_seed and attempts, and stats.json the retries by scene size.
 
