@@ -133,6 +133,31 @@ class _Entity:
     shared: bool = False  # its drawable comes from a per-process cache (many scenes share it)
 
 
+def _keep_display_on_delete(renderer) -> None:
+    """Make deleting ``renderer`` (a pyrender OffscreenRenderer) leave the EGL display up.
+
+    pyrender's EGL platform terminates the EGL display when a renderer is deleted. The
+    display is one and the same for every renderer of the process, so closing one
+    renderer broke every other one still alive (their next eglMakeCurrent failed with
+    EGL_BAD_DISPLAY): a dataset worker's kept renderer after a test, or another thread's,
+    had drawn and closed its own. Only the renderer's own context is released here.
+    """
+    platform = getattr(renderer, "_platform", None)
+    if platform is None or type(platform).__name__ != "EGLPlatform":
+        return
+
+    def delete_context() -> None:
+        from OpenGL.EGL import EGL_NO_CONTEXT, EGL_NO_SURFACE, eglDestroyContext, eglMakeCurrent
+
+        if platform._egl_display is not None and platform._egl_context is not None:
+            eglMakeCurrent(platform._egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT)
+            eglDestroyContext(platform._egl_display, platform._egl_context)
+        platform._egl_context = None
+        platform._egl_display = None
+
+    platform.delete_context = delete_context
+
+
 class Renderer:
     """An offscreen renderer of ``width`` x ``height`` pixels; reuse it across scenes.
 
@@ -146,6 +171,7 @@ class Renderer:
             self._renderer = self._gl.OffscreenRenderer(self.width, self.height)
         except Exception as error:  # each backend fails in its own way; all mean the same
             raise _backend_error(error) from None
+        _keep_display_on_delete(self._renderer)
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)

@@ -53,6 +53,15 @@ def test_segmentation_holds_exactly_the_drawn_entities(market):
         assert (x0, y0, x1, y1) == (cols.min(), rows.min(), cols.max() + 1, rows.max() + 1)
 
 
+def test_closing_one_renderer_leaves_the_others_working(renderer):
+    """Every renderer of a process shares one EGL display; closing one used to end it
+    for all (a dataset worker's kept renderer failed after a test had closed its own)."""
+    other = renderer_or_skip(32, 24)
+    other.render(market_scene())
+    other.close()
+    assert renderer.render(market_scene()).colour.any()
+
+
 def test_a_box_appears_at_its_projected_centre(renderer):
     scene = scene_of([thing("crate_1", (2.0, 0.0, -1.0), (1.0, 1.0, 1.0)), thing("barrel_1", (-6.0, 0.0, 5.0))])
     for view in ("perspective", "top"):
