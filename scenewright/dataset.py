@@ -13,11 +13,15 @@ On disk (``DIR``)::
     images/000000.png      the preview
     scenes/000000.json     scene.json (no wall-clock times: reproducible)
     depth/, segmentation/  optional ground truth (16-bit PNGs)
-    failed/000003.json     scene.json of a scene whose layout failed (not in metadata)
+    failed/000003.json     scene.json of a scene whose every layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
     .records/000000.json   one record per finished scene: the commit marker for resume
     .lock                  locked (flock) by the run using the directory, which writes its
                            pid there while it runs
+
+A scene whose layout fails is laid out again, up to ``DatasetSpec.retries`` times, with
+the layout seeds ``core.seeds.retry_seed(seed, k)`` and the same scene graph, so the
+dataset keeps the rule set's mix of scene sizes (``dataset_scene.laid_out_scene``).
 
 Every file is written atomically; a scene counts as done only once its record exists,
 and the record is written after the scene's files. A run that is killed therefore
