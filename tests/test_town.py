@@ -1,0 +1,63 @@
+"""The shipped town rule set: its object budget holds for every seed, its notes say it
+truly, and its scenes are the town its comments promise (road networks, homes with
+gardens beside roads, a market, parks, street lamps)."""
+
+import re
+from collections import Counter
+from functools import cache
+
+from test_shipped_rules import object_bounds
+
+from scenewright.generator.expand import expand
+from scenewright.generator.rules import check_rules, load_rules, shipped_rule_sets
+
+SEEDS = range(100)
+
+
+@cache
+def towns():
+    rules = load_rules("town")
+    return tuple(expand(rules, seed) for seed in SEEDS)
+
+
+def test_town_is_shipped_and_validates():
+    assert "town" in shipped_rule_sets()
+    assert [str(d) for d in check_rules("town") if d.is_error] == []
+
+
+def test_object_budget_holds_and_the_notes_say_it():
+    rules = load_rules("town")
+    bounds = object_bounds(rules)
+    assert bounds[rules.start] == (163, 287)
+    counts = [len(graph.nodes("object")) for graph in towns()]
+    assert 163 <= min(counts) and max(counts) <= 287 and len(set(counts)) > 10
+    lines = rules.path.read_text().splitlines()
+    noted = {}
+    for name, production in rules.productions.items():
+        line = production.location.line - 2
+        while line >= 0 and lines[line].startswith("#"):
+            found = re.search(r"\[(\d+)\.\.(\d+)\]", lines[line])
+            if found:
+                noted[name] = (int(found.group(1)), int(found.group(2)))
+            line -= 1
+    assert noted == bounds
+
+
+def test_towns_have_road_networks_homes_a_market_parks_and_lamps():
+    for graph in towns():
+        junctions = graph.nodes("junction")
+        assert 2 <= len(junctions) <= 3
+        for junction in junctions:
+            roads = [e.source for e in graph.edges("PathConnectedTo") if e.target == junction.id]
+            assert 3 <= len(roads) <= 4
+        paths = {node.id for node in graph.nodes("path")}
+        groups = Counter(node.type for node in graph.nodes("group"))
+        assert 32 <= groups["home"] <= 38 and groups["market"] == 1 and groups["park"] == 2
+        beside_roads = {e.source for e in graph.edges("NextTo") if e.target in paths}
+        for group in graph.nodes("group"):
+            if group.type in ("home", "market", "park"):
+                assert group.id in beside_roads, group.id
+            if group.type == "home":
+                assert [m.type for m in graph.children(group.id)].count("house") == 1
+        lamps = [node for node in graph.nodes("object") if node.type == "street_lamp"]
+        assert 10 <= len(lamps) <= 18
