@@ -32,6 +32,7 @@ from scenewright.core.poses import LayoutResult, Pose
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
+from .decompose import decomposes, frame_streams, lay_out_frames, run_decomposed_chain
 from .measure import measure_layout
 from .params import LayoutParams
 from .pinning import compile_pins
@@ -75,9 +76,16 @@ def layout_scene(
     pins = compile_pins(problem, pinned, pinned_paths, start)
     best: Run | None = None
     total_steps = total_accepted = 0
+    frames = None
+    if params.decompose and decomposes(problem, pins):
+        frames = lay_out_frames(graph, problem, params, frame_streams(_chain_stream(seed, 0), problem))
+        total_steps += frames.steps
     for attempt in range(1 + params.restarts):
-        rng = seed.spawn(1)[0] if isinstance(seed, np.random.Generator) else stage_stream(seed, "layout", attempt)
-        run = run_chain(problem, params, rng, pins)
+        rng = _chain_stream(seed, attempt)
+        if frames is not None:  # restarts keep the groups' frames: they do not depend on the rest
+            run = run_decomposed_chain(problem, params, rng, frames)
+        else:
+            run = run_chain(problem, params, rng, pins)
         total_steps += run.steps
         total_accepted += run.accepted
         if best is None or _rank(run) > _rank(best):
@@ -103,6 +111,12 @@ def layout_scene(
         ok=best.ok,
         problems=list(best.problems),
     )
+
+
+def _chain_stream(seed: SeedLike, attempt: int) -> np.random.Generator:
+    """Chain ``attempt``'s stream: the layout's child stream ``attempt`` of an int seed, or
+    a child spawned from a Generator."""
+    return seed.spawn(1)[0] if isinstance(seed, np.random.Generator) else stage_stream(seed, "layout", attempt)
 
 
 def _rank(run: Run) -> tuple:

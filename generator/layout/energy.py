@@ -85,6 +85,10 @@ class Energy:
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.placeable = [t.placeable for t in problem.relations]
         self._pending: Pending | None = None
+        # Per path, its control points' bounding box grown by half its width (x0, x1, z0,
+        # z1): a box whose bounding circle misses it cannot touch the path, so the exact
+        # test is skipped (it would give 0 too).
+        self.path_bounds = [self._path_bounds(path) for path in range(problem.n_paths)]
         #: The room's terms (walls, square, clearance, door swing, access); None outdoors.
         self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
         self._install(self._fresh())
@@ -124,9 +128,23 @@ class Energy:
         depth = self.pair_depth(first, second)
         return self.penalty(depth) if depth > 0.0 else 0.0
 
+    def _path_bounds(self, path: int) -> tuple[float, float, float, float]:
+        points, reach = self.state.points[path], self.problem.path_width[path] / 2.0
+        xs = [p[0] for p in points]
+        zs = [p[1] for p in points]
+        return min(xs) - reach, max(xs) + reach, min(zs) - reach, max(zs) + reach
+
+    def may_touch_path(self, box: int, path: int) -> bool:
+        """False when the box's bounding circle misses the path's grown bounding box."""
+        x0, x1, z0, z1 = self.path_bounds[path]
+        x, z, radius = self.state.x[box], self.state.z[box], self.problem.size[box] / 2.0
+        return x + radius >= x0 and x - radius <= x1 and z + radius >= z0 and z - radius <= z1
+
     def path_depth(self, box: int, path: int) -> float:
         """Normalised depth of a ground box into a path's buffered polyline."""
         problem = self.problem
+        if not self.may_touch_path(box, path):
+            return 0.0
         width = problem.path_width[path]
         depth = polyline_rect_penetration(self.state.points[path], width / 2.0, self.state.rects[box])
         return depth / (problem.size[box] + width)
@@ -269,6 +287,7 @@ class Energy:
                 grid.insert(box, x, z, problem.size[box] / 2.0)
         for path, points in paths.items():
             state.points[path] = points
+            self.path_bounds[path] = self._path_bounds(path)
         if not self.params.incremental:
             fresh = self._fresh()
             self._pending = Pending(saved_boxes, saved_paths, fresh)
@@ -369,12 +388,8 @@ class Energy:
         )  # fmt: skip
 
     def _boxes_near_path(self, path: int) -> list[int]:
-        points = self.state.points[path]
-        reach = self.problem.path_width[path] / 2.0
-        xs = [p[0] for p in points]
-        zs = [p[1] for p in points]
-        found = self.grid.in_area(min(xs) - reach, min(zs) - reach, max(xs) + reach, max(zs) + reach)
-        return sorted(found)
+        x0, x1, z0, z1 = self.path_bounds[path]
+        return sorted(self.grid.in_area(x0, z0, x1, z1))
 
     def accept(self) -> None:
         """Keep the proposed move: store its term values."""
@@ -425,6 +440,7 @@ class Energy:
                 grid.insert(box, x, z, problem.size[box] / 2.0)
         for path, points in pending.saved_paths:
             state.points[path] = points
+            self.path_bounds[path] = self._path_bounds(path)
 
 
 def _translated_together(saved: list, boxes: dict) -> bool:

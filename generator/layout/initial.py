@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Mapping
 from dataclasses import replace
 
 import numpy as np
@@ -42,7 +43,7 @@ from .energy import Energy
 from .moves import Mover, rigid, wrap
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
-from .relation_terms import evaluate
+from .relation_terms import centre, evaluate
 
 #: Paths stay this far (metres) inside the extent when first laid out.
 PATH_MARGIN = 1.0
@@ -57,16 +58,29 @@ PATH_WIGGLE = 0.15
 #: Around pinned or started things, candidate junctions lie within this share of the
 #: extent from its centre (without them: 0.15).
 JUNCTION_SPREAD = 0.25
+#: Several junctions lie within this share of the extent from its centre, each the
+#: farthest from the others of this many candidate points.
+JUNCTIONS_SPREAD = 0.3
+SPREAD_CANDIDATES = 8
 #: Tries for a random spot on the floor of a room that is not a rectangle.
 FLOOR_TRIES = 20
 
 
-def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: Pins | None = None) -> None:
+def place_initial(
+    energy: Energy,
+    mover: Mover,
+    rng: np.random.Generator,
+    pins: Pins | None = None,
+    frames: Mapping[int, Mapping[int, tuple[float, float, float]]] | None = None,
+) -> None:
     """Lay out paths, junctions and all boxes; leaves every box active in ``energy``.
 
     Pinned and started boxes go first, at their poses; then paths (pinned and started
-    ones at their points), then everything else around them.
+    ones at their points), then everything else around them. A group in ``frames``
+    (group -> {box: (x, z, yaw)} about the group's centre, its own layout) keeps its
+    members' poses relative to each other and is placed as one rigid footprint.
     """
+    frames = frames or {}
     problem, state = energy.problem, energy.state
     pins = pins or Pins.none(problem)
     preset = pins.preset_boxes()
@@ -92,7 +106,7 @@ def place_initial(energy: Energy, mover: Mover, rng: np.random.Generator, pins: 
         pending.remove(unit)
         kind, index = unit
         if kind == "group":
-            _place_group(energy, mover, rng, index)
+            _place_group(energy, mover, rng, index, frames.get(index))
         elif not energy.active[index]:  # not pinned or started
             _place_box(energy, mover, rng, index, (), _borrowed_anchor(energy, Endpoint("object", index, (index,))))
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
@@ -225,8 +239,11 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
     problem, state = energy.problem, energy.state
     half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
     junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
-    for junction in junctions:
-        state.set_pose(junction, rng.uniform(-0.15, 0.15) * 2 * half_x, rng.uniform(-0.15, 0.15) * 2 * half_z, 0.0)
+    if len(junctions) > 1:
+        _spread_junctions(energy, rng, junctions)
+    else:
+        for junction in junctions:
+            state.set_pose(junction, rng.uniform(-0.15, 0.15) * 2 * half_x, rng.uniform(-0.15, 0.15) * 2 * half_z, 0.0)
     energy.activate(junctions)
     for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
@@ -252,6 +269,23 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
         behind = min(back, length / 2.0)
         start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
         _set_path(energy, rng, path, start, heading, length)
+
+
+def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[int]) -> None:
+    """Several junctions (road networks) spread over the scene: each at the candidate
+    point (of ``SPREAD_CANDIDATES`` within ``JUNCTIONS_SPREAD`` of the extent from its
+    centre) farthest from the junctions placed before it, so the networks' roads give
+    the items beside them room instead of crossing each other in the middle."""
+    state, (width, depth) = energy.state, energy.problem.extent
+    placed: list[tuple[float, float]] = []
+    for junction in junctions:
+        candidates = [
+            (rng.uniform(-JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width, rng.uniform(-JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth)
+            for _ in range(SPREAD_CANDIDATES)
+        ]
+        x, z = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0))
+        placed.append((x, z))
+        state.set_pose(junction, x, z, 0.0)
 
 
 def _free_headings(energy: Energy, pins: Pins, junction: int, paths: list[int], base: float) -> list[float]:
@@ -484,7 +518,9 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
     return rigid(state, problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
 
 
-def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: int) -> None:
+def _place_group(
+    energy: Energy, mover: Mover, rng: np.random.Generator, group: int, frame: Mapping | None = None
+) -> None:
     problem = energy.problem
     members = problem.group_members[group]
     # Members already in (pinned or warm-started) stay where they are: the others are
@@ -494,6 +530,8 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
     if not anchors and not given:
         borrowed = _borrowed_anchor(energy, Endpoint("group", group, members))
         anchors = [borrowed] if borrowed else []
+    if frame is not None and not given:
+        _place_frame(energy, mover, rng, group, frame, anchors)
     order = sorted(members, key=lambda b: (len(problem.beneath(b)), b))  # supports first
     for position, box in enumerate(order):
         if energy.active[box]:
@@ -518,3 +556,32 @@ def _place_group(energy: Energy, mover: Mover, rng: np.random.Generator, group: 
             lambda: (mover.place_for_relation(next(in_turn), keep_heading=keep), {}),
             energy.params.initial_candidates * len(anchors),
         )
+
+
+def _place_frame(
+    energy: Energy, mover: Mover, rng: np.random.Generator, group: int, frame: Mapping, anchors: list[RelationTerm]
+) -> None:
+    """Bring a group laid out in its own frame in as one rigid footprint: its members at
+    their frame poses, the whole put by one of its anchors (then by all of them in turn,
+    as every group is), or, when nothing anchors it, the best of ``initial_candidates``
+    spots anywhere in the extent, each turned by a quarter turn."""
+    problem, state = energy.problem, energy.state
+    members = problem.group_members[group]
+    for box in members:
+        state.set_pose(box, *frame[box])
+    whole = Endpoint("group", group, members)
+
+    def draw() -> tuple[dict, dict]:
+        if anchors:
+            return mover.place_for_relation(anchors[int(rng.integers(len(anchors)))]), {}
+        half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+        x, z = centre(whole, state)
+        turn = wrap(math.pi / 2.0 * int(rng.integers(4)))
+        shift = (rng.uniform(-half_x, half_x) - x, rng.uniform(-half_z, half_z) - z)
+        return rigid(state, list(members), (x, z), turn, shift), {}
+
+    for box, pose in draw()[0].items():
+        state.set_pose(box, *pose)
+    energy.activate(list(members))
+    if not anchors:  # else the group is placed by its anchors once more, as every group is
+        _best_of(energy, draw, energy.params.initial_candidates)

@@ -6,7 +6,9 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
 - ``jitter``: shift one box (a stacked box slides over its support's top; a box
   standing against a wall as its wall relation wants half the time slides along it);
 - ``rotate``: turn one box a little, or snap it to a multiple of 90 degrees;
-- ``group``: move or turn a whole group rigidly;
+- ``group``: move or turn a whole group rigidly; a group laid out in its own frame
+  (``rigid_groups``) that is in trouble is drawn half the time, and then half the time
+  put anew where its relations hold (``relocate_group``);
   in a room (``walls``) boxes and groups only turn by quarter turns (square to the
   room's longest wall), so furniture stays square to the walls unless a relation turns
   it (a chair facing a desk);
@@ -51,6 +53,7 @@ The same ``place_for_relation`` makes the constructive initial placement's candi
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
 import numpy as np
 
@@ -161,13 +164,24 @@ class Mover:
     """Draws proposals for one problem; holds the precomputed choices."""
 
     def __init__(
-        self, problem: Problem, state: State, rng: np.random.Generator, params: LayoutParams, pins: Pins | None = None
+        self,
+        problem: Problem,
+        state: State,
+        rng: np.random.Generator,
+        params: LayoutParams,
+        pins: Pins | None = None,
+        rigid_groups: Iterable[int] = (),
     ):
         self.problem, self.state, self.rng, self.params = problem, state, rng, params
         self.pins = pins = pins or Pins.none(problem)
         self._placing: dict[tuple[str, int], list[RelationTerm]] = {}
+        # Boxes of ``rigid_groups`` move only with their whole group (a group laid out in its
+        # own frame first, ``decompose``): no move places or turns one of them alone.
+        held_in_group = {box for group in rigid_groups for box in problem.group_members[group]}
         # Whether a move may place this box by itself: a free (unpinned) non-junction object.
-        self.movable_box = [not problem.is_junction[b] and not pins.box[b] for b in range(problem.n_boxes)]
+        self.movable_box = [
+            not problem.is_junction[b] and not pins.box[b] and b not in held_in_group for b in range(problem.n_boxes)
+        ]
         self.boxes = [b for b in range(problem.n_boxes) if self.movable_box[b]]
         self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b] and not pins.box[b]]
         self.paths = [p for p in range(problem.n_paths) if not pins.path[p]]
@@ -176,7 +190,12 @@ class Mover:
         # random rigid moves carry its free boxes only.
         self.group_whole = [not any(pins.fixed(b) for b in boxes) for boxes in carried]
         self.group_boxes = [[b for b in boxes if not pins.fixed(b)] for boxes in carried]
-        self.groups = [g for g, members in enumerate(problem.group_members) if members and self.group_boxes[g]]
+        rigid = set(rigid_groups)
+        self.rigid_group_of = {box: g for g in rigid for box in problem.group_members[g]}
+        self.groups = [
+            g for g, members in enumerate(problem.group_members)
+            if members and self.group_boxes[g] and (g in rigid or not set(members) <= held_in_group)
+        ]  # fmt: skip
         self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
         # NextTo* from something pins hold to a free path or junction: pulled (``pull``).
         self.pullable = {
@@ -202,6 +221,7 @@ class Mover:
             self.square_base = math.remainder(longest.facing_yaw, HALF_PI) + 0.0
         self.focus_positions: list[int] = []
         self.focus_boxes: list[int] = []
+        self.focus_groups: list[int] = []  # rigid groups holding a troubled box
         available = {
             "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
             "cluster": bool(self.clusters),
@@ -236,6 +256,7 @@ class Mover:
         position = {term: k for k, term in enumerate(self.relations)}
         self.focus_positions = [position[t] for t in unsatisfied if t in position]
         self.focus_boxes = [box for box in troubled if self.movable_box[box]]
+        self.focus_groups = sorted({self.rigid_group_of[box] for box in troubled if box in self.rigid_group_of})
 
     def propose(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         """One random proposal; ``relation_energy`` steers the data-driven moves."""
@@ -254,6 +275,8 @@ class Mover:
         if kind == "rotate":
             return self.rotate(self.boxes[int(self.rng.integers(len(self.boxes)))])
         if kind == "group":
+            if self.focus_groups and self.rng.random() < 0.5:
+                return self.relocate_group(self.focus_groups[int(self.rng.integers(len(self.focus_groups)))])
             return self.move_group(self.groups[int(self.rng.integers(len(self.groups)))])
         if kind == "cluster":
             return self.move_cluster(self.clusters[int(self.rng.integers(len(self.clusters)))])
@@ -295,6 +318,16 @@ class Mover:
             turn = HALF_PI * (1 if rng.random() < 0.5 else -1) if self.problem.walls else rng.normal(0.0, 0.3)
         shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
         return rigid(state, self.group_boxes[group], pivot, turn, shift), {}
+
+    def relocate_group(self, group: int) -> tuple[dict, dict] | None:
+        """A rigid group in trouble (overlapping, outside): half the time a random rigid
+        move, half the time put anew where its own relations hold (the best of a few
+        tries, ``place_for_all``), e.g. at another spot along its road."""
+        end = Endpoint("group", group, self.problem.group_members[group])
+        if self.rng.random() < 0.5 or not self._placing_terms(end):
+            return self.move_group(group)
+        boxes = self.place_for_all(end)
+        return (boxes, {}) if boxes else None
 
     def move_cluster(self, boxes: list[int]) -> tuple[dict, dict]:
         sigma = _log_uniform(self.rng, 0.05, 2.0)

@@ -28,6 +28,11 @@ class LayoutParams:
     ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
     poses are tried for each item during the constructive initial placement.
     ``incremental=False`` recomputes the full energy every step (for comparison).
+
+    Group decomposition (``decompose``): ``workers`` processes lay out the groups' own
+    frames (1: in this process; the result is the same for any number);
+    ``decompose=False`` never decomposes (one chain over the whole scene, for
+    comparison), True follows the documented rule of ``decompose.decomposes``.
     """
 
     h: float = DEFAULT_H
@@ -46,3 +51,5 @@ class LayoutParams:
     temperature_end: float = 0.002
     initial_candidates: int = 16
     incremental: bool = True
+    decompose: bool = True
+    workers: int = 1

@@ -76,11 +76,18 @@ def start_chain(
 def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None) -> Run:
     """Place, then anneal until the stop rule holds or the step budget is spent."""
     energy, mover = start_chain(problem, params, rng, pins)
+    return anneal(energy, mover, params, rng, max(params.steps, params.steps_per_box * problem.n_boxes))
+
+
+def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Generator, budget: int) -> Run:
+    """Anneal the placed state with ``mover``'s proposals for at most ``budget`` steps,
+    under the stop rule (ok and at most ``target_energy``) and the patience rule (which
+    grows with the budget as the budget grows past ``params.steps``)."""
+    problem = energy.problem
     relocator = Relocator(problem, energy.state, mover) if problem.room is not None else None
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
-    budget = max(params.steps, params.steps_per_box * problem.n_boxes)
     patience = params.patience * budget // max(params.steps, 1)
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
