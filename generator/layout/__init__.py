@@ -37,6 +37,7 @@ from .measure import measure_layout
 from .params import LayoutParams
 from .pinning import compile_pins
 from .problem import compile_problem
+from .repair import repair_pins
 from .sampler import Run, run_chain
 
 __all__ = ["LayoutParams", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
@@ -56,9 +57,11 @@ def layout_scene(
     Deterministic: the same graph, seed and params give the same result. ``seed`` is
     the scene's seed (an int: chain k uses the layout's child stream k), a Generator
     (each chain uses a child spawned from it) or None (fresh entropy). Runs up to
-    ``1 + params.restarts`` chains (each from a fresh initial placement on its own
-    stream) until one is ok, and returns the best: ok first, then
-    fewest problems, then lowest energy. Raises ``InputError`` for relations that cannot
+    ``1 + params.restarts`` chains, each on its own stream, until one is ok, and returns
+    the best: ok first, then fewest problems, then lowest energy. The first starts from
+    the constructive placement (in a large scene of groups, ``decompose``); the others
+    but the last start from the best so far with its troubled items placed anew
+    (``repair``), the last from a fresh placement. Raises ``InputError`` for relations that cannot
     be laid out (an OnTopOf between non-objects, a cycle of supports, a malformed
     PathConnectedTo).
 
@@ -77,12 +80,15 @@ def layout_scene(
     best: Run | None = None
     total_steps = total_accepted = 0
     frames = None
+    warm = bool(pins.start_poses or pins.start_points)  # a given start: every chain starts there
     if params.decompose and decomposes(problem, pins):
         frames = lay_out_frames(graph, problem, params, frame_streams(_chain_stream(seed, 0), problem))
         total_steps += frames.steps
     for attempt in range(1 + params.restarts):
         rng = _chain_stream(seed, attempt)
-        if frames is not None:  # restarts keep the groups' frames: they do not depend on the rest
+        if best is not None and attempt < params.restarts and not warm:  # keep what was fine, redo the rest
+            run = run_chain(problem, params, rng, repair_pins(problem, best, pins))
+        elif frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
         else:
             run = run_chain(problem, params, rng, pins)

@@ -106,29 +106,38 @@ def frame_extent(problem: Problem, members: tuple[int, ...]) -> float:
     return max(FRAME_MIN_SIDE, FRAME_SPREAD * spread)
 
 
-def group_scene(graph: SceneGraph, group_id: str, side: float) -> SceneGraph:
-    """A scene of one group alone: the group, its nodes and the relations among them, on
-    a ``side`` x ``side`` extent."""
-    keep = {group_id} | {node.id for node in graph.descendants(group_id)}
+def group_scenes(graph: SceneGraph, problem: Problem, groups: list[int]) -> list[SceneGraph]:
+    """For each of ``groups`` (top-level group indices) a scene of that group alone: the
+    group, its nodes and the relations among them, on a square extent of side
+    ``frame_extent``. One pass over the scene's nodes and edges for all of them."""
     whole = graph.graph
-    own = nx.MultiDiGraph()
+    group_of: dict[str, int] = {}
+    for position, group in enumerate(groups):
+        group_of[problem.group_ids[group]] = position
+    for node_id, data in whole.nodes(data=True):  # creation order: parents come first
+        if data["parent"] in group_of:
+            group_of.setdefault(node_id, group_of[data["parent"]])
+    own = [nx.MultiDiGraph() for _ in groups]
     # In the scene's own order (a networkx subgraph would list them in a set's order,
-    # which changes from run to run), so the group's layout is the same every time.
-    own.add_nodes_from((node, data) for node, data in whole.nodes(data=True) if node in keep)
-    own.add_edges_from(
-        (source, target, data) for source, target, data in whole.edges(data=True) if source in keep and target in keep
-    )
-    return SceneGraph(params=replace(graph.params, extent=(side, side)), graph=own)
+    # which changes from run to run), so a group's layout is the same every time.
+    for node_id, data in whole.nodes(data=True):
+        if node_id in group_of:
+            own[group_of[node_id]].add_node(node_id, **data)
+    for source, target, data in whole.edges(data=True):
+        position = group_of.get(source)
+        if position is not None and group_of.get(target) == position:
+            own[position].add_edge(source, target, **data)
+    return [
+        SceneGraph(params=replace(graph.params, extent=(side, side)), graph=members)
+        for members, side in zip(own, (frame_extent(problem, problem.group_members[g]) for g in groups))
+    ]
 
 
 def lay_out_frames(graph: SceneGraph, problem: Problem, params: LayoutParams, rngs: list[np.random.Generator]) -> Frames:
     """Phase 1: every framed group laid out alone, group k on ``rngs[k]``; in
     ``params.workers`` processes when more than one (same results either way)."""
     groups = framed_groups(problem)
-    tasks = [
-        (group_scene(graph, problem.group_ids[g], frame_extent(problem, problem.group_members[g])), params, rngs[k])
-        for k, g in enumerate(groups)
-    ]
+    tasks = [(scene, params, rng) for scene, rng in zip(group_scenes(graph, problem, groups), rngs)]
     if params.workers > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(max_workers=params.workers) as pool:
             results = list(pool.map(_frame, tasks, chunksize=max(1, len(tasks) // (4 * params.workers))))
