@@ -140,6 +140,10 @@ class Energy:
         x, z, radius = self.state.x[box], self.state.z[box], self.problem.size[box] / 2.0
         return x + radius >= x0 and x - radius <= x1 and z + radius >= z0 and z - radius <= z1
 
+    def paths_near(self, box: int) -> list[int]:
+        """The paths the box may touch (``may_touch_path``), in order."""
+        return [path for path in range(self.problem.n_paths) if self.may_touch_path(box, path)]
+
     def path_depth(self, box: int, path: int) -> float:
         """Normalised depth of a ground box into a path's buffered polyline."""
         problem = self.problem
@@ -238,7 +242,7 @@ class Energy:
                         fresh["pairs"][box][other] = fresh["pairs"][other][box] = value
                         collisions += value
             if self.collides_with_paths[box]:
-                for path in range(problem.n_paths):
+                for path in self.paths_near(box):
                     value = self.path_energy(box, path)
                     if value > 0.0:
                         fresh["path_hits"][path][box] = value
@@ -343,8 +347,11 @@ class Energy:
         new_hits: dict[tuple[int, int], float] = {}
         for box in boxes:
             if active[box] and self.collides_with_paths[box]:
-                for path in range(problem.n_paths):
+                x, z, radius = self.state.x[box], self.state.z[box], problem.size[box] / 2.0
+                for path, (x0, x1, z0, z1) in enumerate(self.path_bounds):
                     delta["paths"] -= self.path_hits[path].get(box, 0.0)
+                    if x + radius < x0 or x - radius > x1 or z + radius < z0 or z - radius > z1:
+                        continue  # cannot touch it (``may_touch_path``, inlined: this runs every step)
                     value = self.path_energy(box, path)
                     if value > 0.0:
                         new_hits[(box, path)] = value

@@ -74,7 +74,7 @@ def _overlaps(energy: Energy) -> list[str]:
                 if depth > OVERLAP_TOLERANCE:
                     found.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
         if energy.collides_with_paths[box]:
-            for path in range(problem.n_paths):
+            for path in energy.paths_near(box):
                 depth = energy.path_depth(box, path)
                 if depth > OVERLAP_TOLERANCE:
                     found.append(f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} %")
