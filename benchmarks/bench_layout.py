@@ -5,6 +5,7 @@
     .venv/bin/python benchmarks/bench_layout.py --village 100 --restarts 0   # first chains only
     .venv/bin/python benchmarks/bench_layout.py --scaling       # 10, 30, 100, 300 objects
     .venv/bin/python benchmarks/bench_layout.py --compare       # per-step cost, full vs incremental
+    .venv/bin/python benchmarks/bench_layout.py --synthetic 1000 --seeds 3   # one size, its target
 
 Prints figures only; nothing is asserted. One process, one core. Times are given as
 wall seconds (what ``LayoutResult.seconds`` records) and as this process's CPU seconds,
@@ -46,11 +47,21 @@ def village(seeds: int, rules_name: str, params: LayoutParams) -> None:
     print(f"  ok {100 * ok / seeds:.1f} %   mean steps {statistics.mean(steps):.0f}")
     for name, values in (("wall", sorted(times)), ("cpu", sorted(cpu))):
         print(
-            f"  {name:4s} seconds: median {statistics.median(values):.3f}  "
+            f"  {name:4s} seconds: mean {statistics.mean(values):.3f}  median {statistics.median(values):.3f}  "
             f"p90 {values[int(0.9 * (seeds - 1))]:.3f}  max {values[-1]:.3f}"
         )
     if failures:
         print("  problems by kind:", dict(failures.most_common()))
+    cpu.sort()
+    mean, p90, share = statistics.mean(cpu), cpu[int(0.9 * (seeds - 1))], ok / seeds
+    print(
+        f"  targets (cpu): mean <= 0.1 s {_met(mean <= 0.1)}, p90 <= 0.2 s {_met(p90 <= 0.2)}, "
+        f"100 % ok {_met(share == 1.0)}"
+    )
+
+
+def _met(held: bool) -> str:
+    return "met" if held else "MISSED"
 
 
 def _kind(problem: str) -> str:
@@ -76,6 +87,23 @@ def scaling() -> None:
             f"  {size:7d}   {statistics.median(seconds):12.3f}   {statistics.median(steps):5.0f}"
             f"   {statistics.median(per_step):11.1f}"
         )
+
+
+def synthetic(size: int, seeds: int) -> None:
+    """Layout CPU seconds of synthetic village graphs of ``size`` objects, seeds 0..seeds-1."""
+    seconds, steps, ok = [], [], 0
+    for seed in range(seeds):
+        graph = village_graph(size, seed)
+        started = time.process_time()
+        result = layout_scene(graph, seed)
+        seconds.append(time.process_time() - started)
+        steps.append(result.steps)
+        ok += result.ok
+    median = statistics.median(seconds)
+    print(f"synthetic village graphs, {size} objects, seeds 0..{seeds - 1}:")
+    print(f"  layout cpu seconds: median {median:.2f}  max {max(seconds):.2f}   steps median {statistics.median(steps):.0f}   ok {ok}/{seeds}")
+    if size == 1000:
+        print(f"  target (cpu): median <= 3 s {_met(median <= 3.0)}")
 
 
 def step_cost(graph, seed: int, *, incremental: bool, steps: int) -> float:
@@ -110,8 +138,12 @@ def main() -> None:
     parser.add_argument("--restarts", type=int, help="chains after the first for --village (default: LayoutParams)")
     parser.add_argument("--scaling", action="store_true")
     parser.add_argument("--compare", action="store_true")
+    parser.add_argument("--synthetic", type=int, metavar="OBJECTS", help="lay out synthetic graphs of this size")
+    parser.add_argument("--seeds", type=int, default=5, help="seeds for --synthetic (default 5)")
     args = parser.parse_args()
-    everything = not (args.village or args.scaling or args.compare)
+    if args.synthetic:
+        synthetic(args.synthetic, args.seeds)
+    everything = not (args.village or args.scaling or args.compare or args.synthetic)
     if args.village or everything:
         params = LayoutParams() if args.restarts is None else LayoutParams(restarts=args.restarts)
         village(args.village or 200, args.rules, params)

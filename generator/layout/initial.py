@@ -30,9 +30,10 @@ place of their own.
 
 from __future__ import annotations
 
+import heapq
 import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import replace
 
 import numpy as np
@@ -96,14 +97,7 @@ def place_initial(
         _best_of(
             energy, lambda term=term: mover.pull(problem.relations[term]), energy.params.initial_candidates, held
         )
-    pending = list(problem.units)
-    priority = _priorities(energy)
-    walls_first = _wall_order(energy)
-    while pending:
-        ready = [u for u in pending if _anchors_placed(energy, u)] or pending[:1]
-        # Furniture against the walls (see _wall_order), then the first of the most constrained.
-        unit = max(ready, key=lambda u: (walls_first.get(u, (-1, 0.0)), priority[u]))
-        pending.remove(unit)
+    for unit in _placing_order(energy):
         kind, index = unit
         if kind == "group":
             _place_group(energy, mover, rng, index, frames.get(index))
@@ -112,6 +106,35 @@ def place_initial(
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
+
+
+def _placing_order(energy: Energy) -> Iterator[tuple[str, int]]:
+    """The top-level items in the order they are placed: of those whose anchors (what
+    their relations point to) are placed, furniture against the walls first
+    (``_wall_order``), then the most constrained (``_priorities``), then the first
+    created; when none is ready, the first created. Anchors once placed stay placed,
+    so the ready items wait in a heap and only the others are looked at again."""
+    problem = energy.problem
+    priority = _priorities(energy)
+    walls_first = _wall_order(energy)
+    first: dict[tuple[str, int], tuple] = {}  # smallest goes first
+    for position, unit in enumerate(problem.units):
+        spots, area = walls_first.get(unit, (-1, 0.0))
+        first[unit] = (-spots, -area, -priority[unit], position)
+    waiting = list(problem.units)
+    ready: list[tuple] = []
+    while waiting or ready:
+        still = []
+        for unit in waiting:
+            if _anchors_placed(energy, unit):
+                heapq.heappush(ready, (first[unit], unit))
+            else:
+                still.append(unit)
+        waiting = still
+        if ready:
+            yield heapq.heappop(ready)[1]
+        else:
+            yield waiting.pop(0)
 
 
 def _priorities(energy: Energy) -> dict[tuple[str, int], int]:
