@@ -59,9 +59,10 @@ def layout_scene(
     (each chain uses a child spawned from it) or None (fresh entropy). Runs up to
     ``1 + params.restarts`` chains, each on its own stream, until one is ok, and returns
     the best: ok first, then fewest problems, then lowest energy. The first starts from
-    the constructive placement (in a large scene of groups, ``decompose``); the others
-    but the last start from the best so far with its troubled items placed anew
-    (``repair``), the last from a fresh placement. Raises ``InputError`` for relations that cannot
+    the constructive placement; the others but the last start from the best so far with
+    its troubled items placed anew (``repair``), the last from a fresh placement. In a
+    large scene of groups (``decompose``) every chain places the groups' frames, laid
+    out once, anew. Raises ``InputError`` for relations that cannot
     be laid out (an OnTopOf between non-objects, a cycle of supports, a malformed
     PathConnectedTo).
 
@@ -86,10 +87,10 @@ def layout_scene(
         total_steps += frames.steps
     for attempt in range(1 + params.restarts):
         rng = _chain_stream(seed, attempt)
-        if best is not None and attempt < params.restarts and not warm:  # keep what was fine, redo the rest
-            run = run_chain(problem, params, rng, repair_pins(problem, best, pins))
-        elif frames is not None:  # the groups' frames do not depend on the rest: computed once
+        if frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
+        elif best is not None and attempt < params.restarts and not warm:  # keep what was fine, redo the rest
+            run = run_chain(problem, params, rng, repair_pins(problem, best, pins))
         else:
             run = run_chain(problem, params, rng, pins)
         total_steps += run.steps
