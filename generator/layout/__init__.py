@@ -59,8 +59,9 @@ def layout_scene(
     (each chain uses a child spawned from it) or None (fresh entropy). Runs up to
     ``1 + params.restarts`` chains, each on its own stream, until one is ok, and returns
     the best: ok first, then fewest problems, then lowest energy. The first starts from
-    the constructive placement; the others but the last start from the best so far with
-    its troubled items placed anew (``repair``), the last from a fresh placement. In a
+    the constructive placement; outdoors the others but the last start from the best so
+    far with its troubled items placed anew (``repair``), the last (and in a room every
+    one) from a fresh placement. In a
     large scene of groups (``decompose``) every chain places the groups' frames, laid
     out once, anew. Raises ``InputError`` for relations that cannot
     be laid out (an OnTopOf between non-objects, a cycle of supports, a malformed
@@ -81,7 +82,9 @@ def layout_scene(
     best: Run | None = None
     total_steps = total_accepted = 0
     frames = None
-    warm = bool(pins.start_poses or pins.start_points)  # a given start: every chain starts there
+    # Repairing restarts outdoors, without a given start (every chain starts there then);
+    # in a room the walls tie items together, and fresh chains did better (docs/layout.md).
+    repairs = problem.room is None and not (pins.start_poses or pins.start_points)
     if params.decompose and decomposes(problem, pins):
         frames = lay_out_frames(graph, problem, params, frame_streams(_chain_stream(seed, 0), problem))
         total_steps += frames.steps
@@ -89,7 +92,7 @@ def layout_scene(
         rng = _chain_stream(seed, attempt)
         if frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
-        elif best is not None and attempt < params.restarts and not warm:  # keep what was fine, redo the rest
+        elif best is not None and attempt < params.restarts and repairs:  # keep what was fine, redo the rest
             run = run_chain(problem, params, rng, repair_pins(problem, best, pins))
         else:
             run = run_chain(problem, params, rng, pins)
