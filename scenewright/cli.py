@@ -1020,7 +1020,6 @@ def build_parser() -> CommandLineParser:
     draw.add_argument("--masks", action="store_true", help="draw each plan's layout mask beside it")
     draw.add_argument("-o", "--output", required=True, metavar="PNG", help="image file (or a directory for plans.png)")
 
-    command("schema", "print the scene.json JSON Schema", run_schema)
     match = command("match", "match the objects of two example scenes by their role in the layout", run_match)
     match.add_argument("first", metavar="A", help="example scene: scene.json (or its folder), hand-written .json, or .glb")
     match.add_argument("second", metavar="B", help="the other example scene")
@@ -1052,6 +1051,7 @@ def build_parser() -> CommandLineParser:
     vary_command.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(vary_command, "640x480")
 
+    command("schema", "print the scene.json JSON Schema", run_schema)
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
     listing.add_argument(
         "--shapes", action="store_true", help="list the procedural shapes and the side each one faces instead"
