@@ -71,10 +71,6 @@ FRAME_MIN_SIDE = 10.0
 #: A group's own chain tests its stop rule this often (steps): a group of a few boxes is
 #: often ok after a few dozen steps, and assessing it is cheap.
 FRAME_CHECK_EVERY = 25
-#: Candidates per item in a group's own constructive placement (the scene's default is
-#: 16): a group's few boxes are annealed until ok anyway, and placement is most of a
-#: frame's cost (town seeds 0..2: 1.2 s for 116 frames with 8, 1.7 s with 16, all ok).
-FRAME_CANDIDATES = 8
 
 #: A group's frame: {box index in the scene: (x, z, yaw)} about the group's centre.
 Frame = dict[int, tuple[float, float, float]]
@@ -160,18 +156,12 @@ def _frame(task: tuple[SceneGraph, LayoutParams, np.random.Generator]) -> tuple[
     """One group's own layout: its poses about its centre, whether it was ok, its steps.
 
     Chains stop as soon as the group is ok, tested every ``FRAME_CHECK_EVERY`` steps (no
-    minimum of polishing steps: the joint refinement polishes), and place their items
-    from ``FRAME_CANDIDATES`` candidates each; up to
+    minimum of polishing steps: the joint refinement polishes); up to
     ``params.restarts`` more run while it is not.
     """
     graph, params, rng = task
     sub = compile_problem(graph)
-    own = replace(
-        params,
-        min_steps=0,
-        check_every=FRAME_CHECK_EVERY,
-        initial_candidates=min(params.initial_candidates, FRAME_CANDIDATES),
-    )
+    own = replace(params, min_steps=0, check_every=FRAME_CHECK_EVERY)
     best, steps = None, 0
     for _ in range(1 + params.restarts):
         run = run_chain(sub, own, rng)
