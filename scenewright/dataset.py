@@ -327,12 +327,17 @@ def unlock_directory(descriptor: int) -> None:
 
 def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     """Refuse a rerun whose settings differ from the stored ones (``count`` is not a
-    setting; a ``count`` that datasets made before it could change is ignored, and a
-    setting they lack has its ``SETTINGS_BEFORE`` value)."""
-    stored = {**SETTINGS_BEFORE, **stored}
-    differing = [key for key, value in spec.settings().items() if stored.get(key) != value]
+    setting; a ``count`` that datasets made before it could change is ignored). A
+    setting missing on either side has its default: its ``SETTINGS_BEFORE`` value, or
+    for the caption settings, which are stored only when not the defaults, those."""
+    from scenewright.dataset_scene import CAPTION_DEFAULTS
+
+    defaults = {**CAPTION_DEFAULTS, **SETTINGS_BEFORE}
+    stored, current = {**defaults, **stored}, {**defaults, **spec.settings()}
+    keys = [key for key in dict.fromkeys([*current, *stored]) if key != "count"]
+    differing = [key for key in keys if stored.get(key) != current.get(key)]
     if differing:
-        details = ", ".join(f"{key} {stored.get(key)!r} -> {spec.settings()[key]!r}" for key in differing)
+        details = ", ".join(f"{key} {stored.get(key)!r} -> {current.get(key)!r}" for key in differing)
         raise InputError(f"{root} holds a dataset made with other settings ({details}); use a new directory")
 
 

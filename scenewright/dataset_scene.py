@@ -55,6 +55,11 @@ class PictureCaptions(DatasetSpec):
 #: What a plain ``DatasetSpec`` gets: grounding on, the scene's frame, the default thresholds.
 DEFAULT_CAPTIONS = PictureCaptions(rules="", rules_digest="", count=0)
 
+#: The caption settings' defaults by name, which a plain ``DatasetSpec`` stores none of.
+CAPTION_DEFAULTS = {
+    f.name: getattr(DEFAULT_CAPTIONS, f.name) for f in fields(PictureCaptions) if f.name not in DatasetSpec.__dataclass_fields__
+}
+
 
 def with_picture_captions(spec: DatasetSpec, **options) -> DatasetSpec:
     """``spec`` with these caption ``options`` (``PictureCaptions``' fields), checked:
@@ -68,8 +73,7 @@ def with_picture_captions(spec: DatasetSpec, **options) -> DatasetSpec:
     Thresholds(made.min_visible, made.min_size)
     if made.frame not in FRAMES:
         raise InputError(f"unknown caption frame {made.frame!r}; expected one of: {', '.join(FRAMES)}")
-    defaults = all(getattr(made, f.name) == getattr(DEFAULT_CAPTIONS, f.name) for f in fields(PictureCaptions)
-                   if f.name not in {g.name for g in fields(DatasetSpec)})  # fmt: skip
+    defaults = all(getattr(made, name) == value for name, value in CAPTION_DEFAULTS.items())
     return spec if defaults and not isinstance(spec, PictureCaptions) else made
 
 

@@ -96,3 +96,14 @@ def test_rows_follow_the_shipped_row_schema(products):
     broken = dict(products[0].row, grounding={"caption": [{"span": [0, 3], "ids": [], "boxes": []}], "text": []})
     with pytest.raises(jsonschema.ValidationError):
         jsonschema.validate(broken, schema)
+
+
+def test_a_rerun_with_other_caption_settings_is_refused(tmp_path, capsys):
+    """Caption settings are stored only when not the defaults: a rerun with the defaults
+    must still see that the dataset was made with others."""
+    out = str(tmp_path / "data")
+    common = ["-q", "dataset", "desk", "-n", "1", "-o", out, "--size", "32x32", "--workers", "1"]
+    assert or_skip_without_opengl(lambda: main([*common, "--frame", "camera"])) == 0
+    capsys.readouterr()
+    assert main(common) == 2
+    assert "made with other settings (frame 'camera' -> 'scene')" in capsys.readouterr().err
