@@ -114,6 +114,9 @@ class Scene:
     derivation: list[dict[str, Any]] = field(default_factory=list)
     description: dict[str, Any] | None = None
     render: dict[str, Any] | None = None
+    #: How ``scenewright complete`` chose the room's contents (``completion.complete``);
+    #: None (and absent from scene.json) for a scene made from rules.
+    completion: dict[str, Any] | None = None
     timings: dict[str, float] = field(default_factory=dict)
     version: str = ""
 
@@ -156,6 +159,8 @@ class Scene:
         finally:
             self.room = room
         data["room"] = room.to_dict() if room else None
+        if data["completion"] is None:
+            del data["completion"]
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
@@ -194,6 +199,7 @@ class Scene:
             derivation=list(data.get("derivation", [])),
             description=data.get("description"),
             render=data.get("render"),
+            completion=data.get("completion"),
             timings=dict(data.get("timings", {})),
             version=data.get("version", ""),
         )

@@ -599,6 +599,26 @@ def run_plans_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_complete(args: argparse.Namespace) -> int:
+    """Complete an empty room from a few categories; write as generate does."""
+    from scenewright.api import checked_templates, describe_scene, render_scene
+    from scenewright.atomic import check_output_directory
+    from scenewright.completion.complete import complete, parse_request, summary_of
+    from scenewright.completion.plan import catalog_categories
+
+    check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
+    catalog = catalog_categories()
+    request = parse_request(args.room, args.door, args.window, args.categories, catalog)
+    templates = checked_templates(args.templates)
+    scene = complete(request, args.seed, plans=args.plans, catalog=catalog)
+    say(args, summary_of(scene.completion))
+    scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates)
+    images = None
+    if args.render:
+        scene, images = render_scene(scene, size=args.size, view=args.view)
+    return write_scene_outputs(args, scene, images)
+
+
 # -- the parser -----------------------------------------------------------------------
 
 EXAMPLES = {
@@ -766,6 +786,27 @@ and only compatible ones are kept. Writes DIR/variant_001/ ... (best first), eac
 operation, its compatibility and each object's source; and DIR/index.json. Same
 examples and seed: same output. Exit 1 when fewer than N distinct variants could be
 made (those made are written). See docs/variation.md.""",
+    "complete": """\
+examples:
+  scenewright complete --room 5x4 --door S:0.8:0.9 --window N:2.5:1.4 --with bed,bookshelf --seed 1 -o bedroom/
+  scenewright complete --room 6x5 --door W:1:0.9 --with dining_table --with chair=6 --no-render -o dining/
+  scenewright complete --room "0,0 6,0 6,3 3,3 3,5 0,5" --door 1:1:0.9 --with desk -o office/
+
+completes an empty room from the categories asked for (--with NAME[=COUNT], names of
+the indoor catalog, repeatable), from a set of furnished floor plans (--plans, default
+the shipped set): the room's type(s) by area (Equation 2 of Fu et al. 2017), the other
+categories by their relation graph (Algorithm 1), starting places along the walls from
+the layout mask of the most similar plans (Equation 4), then the MCMC layout. --room is
+W x D or the corners x,z in order; a door is WALL:OFFSET:WIDTH[:HEIGHT], a window
+WALL:OFFSET:WIDTH[:SILL[:HEIGHT]] (sill 0.9, height 1.2 by default), WALL one of N, E,
+S, W or a wall number, OFFSET the centre's metres from the wall's start (a rectangle's
+north and south walls start at their west end, east and west walls at their north end).
+
+writes the same files as generate; scene.json's "completion" records the types, each
+chosen category with its P(category | type) and relation weight, the reference plans
+and the mask with its plans' weights. The same request and seed give the same
+scene.json. When the layout could not satisfy every relation the files are still
+written ("ok": false) and the exit code is 1. See docs/completion.md.""",
     "list": """\
 examples:
   scenewright list
@@ -1050,6 +1091,20 @@ def build_parser() -> CommandLineParser:
     )
     vary_command.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(vary_command, "640x480")
+    complete = command("complete", "furnish an empty room from a few objects, learned from floor plans", run_complete)
+    complete.add_argument("--room", required=True, metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ...")
+    complete.add_argument("--door", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:HEIGHT]",
+                          help="a door (repeatable)")
+    complete.add_argument("--window", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]",
+                          help="a window (repeatable)")
+    complete.add_argument("--with", dest="categories", action="append", required=True, metavar="NAME[=N][,...]",
+                          help="categories the room must hold (repeatable)")
+    complete.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
+    complete.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
+    complete.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
+    style_options(complete)
+    complete.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    view_options(complete, "640x480")
 
     command("schema", "print the scene.json JSON Schema", run_schema)
     listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
@@ -1116,6 +1171,7 @@ ACTIVITIES = {
     "scenewright.dataset": "making the dataset",
     "scenewright.completion": "reading the plans",
     "scenewright.completion.model": "building the plan model",
+    "scenewright.completion.complete": "completing the room",
 }
 
 

@@ -1,0 +1,496 @@
+"""Complete a room end to end: a request (an empty room and a few categories) -> a
+furnished, laid-out scene (``scenewright complete``).
+
+The steps, each a function here:
+
+1. ``parse_request``: the room (``W x D`` or its corners, as the rules language takes
+   them), its doors and windows (``WALL:OFFSET:WIDTH[:...]``) and the requested
+   categories (``bed,bookshelf``, ``chair=4``) -> a ``Request`` holding a ``core.room.Room``.
+2. ``choose_contents``: the room's type(s) (Equation 2, ``selection.choose_types``) and
+   per type its categories (Algorithm 1, ``selection.explore_categories``) with the room's
+   area shared among the types by their mean areas; the layout mask of the first type
+   (Equation 4, ``layout_mask.amalgamated_mask``).
+3. ``build_graph``: a ``SceneGraph`` of the indoor catalog's entries with relations a
+   room's rules would state (``RELATION_RULES``): big pieces against a wall, night tables
+   either side of the bed, a desk under the window with its chair before it, chairs
+   round a table, small things on their supports. What a piece stands beside is its
+   strongest partner in the type's relation graph (the weight ``W`` of the plan model).
+4. ``starting_poses``: the pieces that stand against a wall go, largest first, to the
+   place along the walls whose footprint covers the most of the layout mask, clear of
+   the door swings and of what is already placed. The mask is in the room's door-aware
+   canonical frame; ``layout_mask.mask_at`` reads it at room positions.
+5. ``complete``: the MCMC layout (``generator.layout.layout_scene``) from those poses,
+   whose energy holds the walls, clearances, door swings and reachability; the scene
+   with its ``completion`` record (``completion_record``).
+
+The mask guides the start only: the layout's energy has no mask term (it belongs to
+``generator.layout``), so the chains may move pieces off the mask where the relations
+ask for it. Everything is deterministic for the seed: the selection and the starting
+poses draw nothing, the layout draws from the seed's layout streams.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from scenewright.core.errors import InputError
+from scenewright.core.limits import MAX_EXTENT
+from scenewright.core.poses import Pose
+from scenewright.core.room import ROOM_NODE, Room, RoomError
+from scenewright.core.scene_graph import SceneGraph, SceneParams
+
+#: Wall letters a door or window may name, besides the words and numbers ``Room.wall`` takes.
+WALL_LETTERS = {"N": "north", "E": "east", "S": "south", "W": "west"}
+#: A window's sill and height when the request does not give them (metres).
+DEFAULT_SILL = 0.9
+DEFAULT_WINDOW_HEIGHT = 1.2
+#: The most of one category a request may ask for.
+MAX_COUNT = 20
+#: Starting poses: the step along a wall between candidate places (metres), the samples
+#: per side of a footprint read from the mask, the gap kept to a wall.
+WALL_STEP = 0.1
+FOOTPRINT_SAMPLES = 5
+WALL_GAP = 0.02
+
+#: What stands on what: a category that stands on another, with the supports it takes in
+#: order of preference and the relation it uses. One with none of its supports in the
+#: room is left out (and recorded as such).
+SUPPORTS = {
+    "lamp": (("nightstand", "dresser", "desk"), "OnTopOf"),
+    "desk_lamp": (("desk",), "OnTopOfEdge"),
+    "laptop": (("desk", "dining_table"), "OnTopOfMiddle"),
+    "tv": (("tv_stand", "dresser"), "OnTopOfMiddle"),
+    "book": (("bookshelf", "desk", "nightstand"), "OnTopOf"),
+}
+#: Categories that stand with their back to a wall. The rest stand by a partner (a chair
+#: at its desk or table, an armchair by the coffee table) or in a corner.
+AGAINST_WALL = frozenset({
+    "bed", "wardrobe", "dresser", "bookshelf", "filing_cabinet", "tv_stand", "piano", "refrigerator",
+    "kitchen_counter", "sofa", "desk",
+})  # fmt: skip
+#: Seats and what they are pulled up to, in order of preference.
+SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_table", "desk")}
+#: The sides of a table its chairs take in turn.
+TABLE_SIDES = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
+#: Stand in a corner when nothing in the room is related to them.
+CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
+
+
+@dataclass(frozen=True)
+class Request:
+    """What the user asked for: the empty ``room`` and ``requested`` category -> count."""
+
+    room: Room
+    requested: dict[str, int]
+
+
+# -- 1. the request -----------------------------------------------------------------
+
+
+def parse_room(text: str) -> Room:
+    """``W x D`` (``5x4``) or corners ``x,z x,z ...`` (at least three) -> a Room."""
+    spec = text.strip()
+    size = re.fullmatch(r"([0-9.]+)\s*[xX]\s*([0-9.]+)", spec)
+    try:
+        if size:
+            width, depth = (_number(part, "room side") for part in size.groups())
+            if not (0.5 <= width <= MAX_EXTENT and 0.5 <= depth <= MAX_EXTENT):
+                raise InputError(f"room {spec!r}: each side must lie between 0.5 and {MAX_EXTENT:g} m")
+            return Room.rectangle(width, depth)
+        corners = []
+        for point in spec.replace(";", " ").split():
+            parts = point.strip("()").split(",")
+            if len(parts) != 2:
+                raise InputError(f"room {spec!r}: give W x D (5x4) or corners x,z x,z x,z ... ({point!r} is neither)")
+            corners.append(tuple(_number(part, "room corner") for part in parts))
+        if any(abs(v) > MAX_EXTENT for corner in corners for v in corner):
+            raise InputError(f"room {spec!r}: a corner lies further than {MAX_EXTENT:g} m out")
+        return Room.polygon(corners)
+    except RoomError as problem:
+        raise InputError(f"room {spec!r}: {problem}") from None
+
+
+def add_opening(room: Room, kind: str, text: str) -> Room:
+    """``room`` with the door ``WALL:OFFSET:WIDTH[:HEIGHT]`` or the window
+    ``WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]``; WALL is N, E, S, W, a side word or a wall number,
+    OFFSET the centre's distance from the wall's start (its west or north end for a
+    rectangle's walls, as in a rules file)."""
+    parts = text.split(":")
+    most = 4 if kind == "door" else 5
+    if not 3 <= len(parts) <= most:
+        form = "WALL:OFFSET:WIDTH[:HEIGHT]" if kind == "door" else "WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]"
+        raise InputError(f"{kind} {text!r}: give {form}, e.g. {'S:0.8:0.9' if kind == 'door' else 'N:2.5:1.4'}")
+    wall_name = WALL_LETTERS.get(parts[0].strip().upper(), parts[0].strip().lower())
+    wall = room.wall(wall_name)
+    if wall is None:
+        sides = ", ".join(dict.fromkeys(w.side for w in room.walls))
+        raise InputError(f"{kind} {text!r}: the room has no wall {parts[0]!r} (sides: {sides}; or 1 to {len(room.walls)})")
+    numbers = [_number(part, f"{kind} {text!r}") for part in parts[1:]]
+    offset, width = numbers[0], numbers[1]
+    if kind == "door":
+        arguments = dict(height=numbers[2] if len(numbers) > 2 else None)
+    else:
+        sill = numbers[2] if len(numbers) > 2 else DEFAULT_SILL
+        arguments = dict(sill=sill, height=numbers[3] if len(numbers) > 3 else DEFAULT_WINDOW_HEIGHT)
+    try:
+        return room.with_opening(kind, wall.id, offset, width, **arguments)
+    except RoomError as problem:
+        raise InputError(f"{kind} {text!r}: {problem}") from None
+
+
+def parse_categories(texts: list[str], known) -> dict[str, int]:
+    """``["bed,bookshelf", "chair=4"]`` -> ``{"bed": 1, "bookshelf": 1, "chair": 4}``; each
+    name must be in ``known`` (the indoor catalog)."""
+    requested: dict[str, int] = {}
+    for text in texts:
+        for item in (part.strip() for part in text.split(",")):
+            if not item:
+                continue
+            name, _, count_text = item.partition("=")
+            name = name.strip()
+            if name not in known:
+                from difflib import get_close_matches
+
+                close = get_close_matches(name, sorted(known), n=1)
+                hint = f"; did you mean {close[0]!r}?" if close else ""
+                raise InputError(f"--with {item!r}: {name!r} is not an indoor catalog entry{hint}")
+            count = 1
+            if count_text:
+                if not count_text.strip().isdigit() or not 1 <= int(count_text) <= MAX_COUNT:
+                    raise InputError(f"--with {item!r}: the count must be a whole number from 1 to {MAX_COUNT}")
+                count = int(count_text)
+            requested[name] = requested.get(name, 0) + count
+    if not requested:
+        raise InputError("--with names no category: ask for at least one (--with bed,bookshelf)")
+    return requested
+
+
+def parse_request(room: str, doors: list[str], windows: list[str], categories: list[str], known) -> Request:
+    """The request the command line states (see the functions above for each part)."""
+    built = parse_room(room)
+    for text in doors:
+        built = add_opening(built, "door", text)
+    for text in windows:
+        built = add_opening(built, "window", text)
+    return Request(built, parse_categories(categories, known))
+
+
+def _number(text: str, what: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{what}: {text.strip()!r} is not a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{what}: {text.strip()!r} is not a finite number")
+    return value
+
+
+# -- 2. what the room holds -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Contents:
+    """The room's types, per type Algorithm 1's answer, the merged counts (category ->
+    number, requested first) and the layout mask of the first type."""
+
+    types: tuple[str, ...]
+    owners: dict[str, str]
+    explorations: dict
+    counts: dict[str, int]
+    mask: object
+    dropped: tuple[str, ...] = field(default=())
+
+
+def choose_contents(model: dict, request: Request) -> Contents:
+    """Equation 2, then Algorithm 1 per type (the room's area shared among the types by
+    their mean areas), then Equation 4 for the first (largest) type."""
+    from scenewright.completion.features import room_parts
+    from scenewright.completion.layout_mask import amalgamated_mask
+    from scenewright.completion.selection import choose_types, explore_categories
+
+    room = request.room
+    choice = choose_types(model, request.requested, room.area)
+    total = sum(model["types"][t]["mean_area"] for t in choice.types)
+    explorations = {}
+    counts: dict[str, int] = dict(sorted(request.requested.items()))
+    for room_type in choice.types:
+        owned = {name: n for name, n in request.requested.items() if choice.owners[name] == room_type}
+        share = room.area * model["types"][room_type]["mean_area"] / total
+        parts = room_parts(room, model["types"][room_type]["mean_area"])
+        exploration = explore_categories(model, room_type, owned, share, parts)
+        explorations[room_type] = exploration
+        for name, n in exploration.counts.items():
+            if name not in request.requested:
+                counts[name] = max(counts.get(name, 0), n)
+    mask = amalgamated_mask(model, choice.types[0], room, counts)
+    return Contents(choice.types, choice.owners, explorations, counts, mask)
+
+
+# -- 3. the scene graph ------------------------------------------------------------------
+
+
+def build_graph(model: dict, contents: Contents, room: Room, catalog) -> tuple[SceneGraph, tuple[str, ...]]:
+    """The scene graph of the room holding ``contents.counts`` (``catalog``: the indoor
+    catalog's entries by name) and the categories left out (a lamp with nothing to stand
+    on). Relations follow ``RELATION_RULES`` in the module docstring."""
+    params = SceneParams(name=contents.types[0], extent=room.extent, ground="floor", room=room)
+    graph = SceneGraph(params=params)
+    weights = _relation_weights(model, contents.types)
+    counts = dict(contents.counts)
+    dropped = []
+    for name in list(counts):
+        if name in SUPPORTS and not any(counts.get(s) for s in SUPPORTS[name][0]):
+            dropped.append(name)
+            del counts[name]
+    # Floor pieces first (anchors before what relates to them), then what stands on them.
+    order = sorted(counts, key=lambda n: (n in SUPPORTS, n not in AGAINST_WALL, n in SEAT_TARGETS, n))
+    made: dict[str, list[str]] = {}
+    for name in order:
+        made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
+    for name in order:
+        for index, node in enumerate(made[name]):
+            for label, target in _relations_of(name, index, made, weights, room):
+                graph.add_relation(node, target, label)
+    return graph, tuple(dropped)
+
+
+def _relation_weights(model: dict, types) -> dict[tuple[str, str], float]:
+    """Pair (sorted) -> the strongest weight W any of the types gives it."""
+    weights: dict[tuple[str, str], float] = {}
+    for room_type in types:
+        for pair in model["types"][room_type]["pairs"]:
+            key = tuple(pair["pair"])
+            weights[key] = max(weights.get(key, 0.0), pair["weight"])
+    return weights
+
+
+def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room) -> list[tuple[str, str]]:
+    """The relations (label, target) of the ``index``-th piece of category ``name``."""
+    if name in SUPPORTS:
+        supports, label = SUPPORTS[name]
+        holders = [node for support in supports for node in made.get(support, [])]
+        return [(label, holders[index % len(holders)])]
+    if name == "nightstand" and made.get("bed"):
+        bed = made["bed"][index // 2 % len(made["bed"])]
+        side = "NextToLeft" if index % 2 == 0 else "NextToRight"
+        return [(side, bed), ("ImplicitAlignedWith", bed), ("ImplicitAgainstWall", ROOM_NODE)]
+    if name == "desk" and room.windows and index == 0:
+        return [("UnderWindow", ROOM_NODE)]
+    if name == "bookshelf" and index > 0:
+        first = made["bookshelf"][0]
+        return [("NextToChooseSide", first), ("ImplicitAlignedWith", first), ("ImplicitAgainstWall", ROOM_NODE)]
+    if name == "sofa" and made.get("tv_stand"):
+        return [("FacingTowards", made["tv_stand"][0]), ("ImplicitAgainstWall", ROOM_NODE)]
+    if name == "coffee_table" and made.get("sofa"):
+        sofa = made["sofa"][0]
+        return [("NextToFront", sofa), ("ImplicitAlignedWith", sofa)]
+    if name in SEAT_TARGETS:
+        seat = _seat_relations(name, index, made)
+        if seat:
+            return seat
+    if name in AGAINST_WALL:
+        return [("AgainstWall", ROOM_NODE)]
+    partner = _strongest_partner(name, made, weights)
+    if name == "rug":
+        anchor = partner or next((made[n][0] for n in ("bed", "sofa", "dining_table") if made.get(n)), None)
+        return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
+    if name == "armchair" and made.get("coffee_table"):
+        return [("NextToChooseSide", made["coffee_table"][0]), ("FacingTowards", made["coffee_table"][0])]
+    if name in CORNER_ITEMS or partner is None:
+        return [("InCorner", ROOM_NODE)] if name in CORNER_ITEMS else [("AgainstWall", ROOM_NODE)]
+    return [("NextToChooseSide", partner)]
+
+
+def _seat_relations(name: str, index: int, made: dict) -> list[tuple[str, str]]:
+    """A seat pulled up to its desk or table: the first office chair (or, without one,
+    chair) at each desk, chairs round a dining table side by side in turn."""
+    for target in SEAT_TARGETS[name]:
+        tables = made.get(target, [])
+        if not tables:
+            continue
+        if target == "desk":
+            taken = len(made.get("office_chair", [])) if name == "chair" else 0
+            if index + taken < len(tables):
+                desk = tables[index + taken]
+                return [("NextToFront", desk), ("FacingTowards", desk)]
+            continue
+        table = tables[index % len(tables)]
+        return [(TABLE_SIDES[index // len(tables) % len(TABLE_SIDES)], table), ("FacingTowards", table)]
+    return []
+
+
+def _strongest_partner(name: str, made: dict, weights: dict) -> str | None:
+    """The first piece of the floor category most strongly related to ``name`` (W > 0)."""
+    best, best_weight = None, 0.0
+    for other in sorted(made):
+        if other == name or other in SUPPORTS or other in ("rug",):
+            continue
+        weight = weights.get((min(name, other), max(name, other)), 0.0)
+        if weight > best_weight:
+            best, best_weight = made[other][0], weight
+    return best
+
+
+# -- 4. starting poses ------------------------------------------------------------------------
+
+
+def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
+    """Poses for the pieces that stand against a wall (``AgainstWall``, ``UnderWindow``
+    to the room), largest first: each at the place along the walls whose footprint
+    covers most of the layout ``mask`` and whose footprint and clearance are clear of the
+    door swings, the room's outline and the pieces already placed. Under a window a
+    piece goes to the window's middle. What flanks a piece along its wall (night tables
+    ``NextToLeft``/``NextToRight`` of the bed) is placed with it, one unit."""
+    from scenewright.completion.layout_mask import mask_at
+    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
+
+    wall_of = {r.source: r.label for r in graph.edges() if r.target == ROOM_NODE and r.label in ("AgainstWall", "UnderWindow")}
+    flanks: dict[str, list[tuple[str, float]]] = {}  # piece -> (flanking piece, side: -1 left, +1 right)
+    for relation in graph.edges():
+        if relation.label in ("NextToLeft", "NextToRight") and relation.target in wall_of:
+            flanks.setdefault(relation.target, []).append((relation.source, -1.0 if relation.label == "NextToLeft" else 1.0))
+    nodes = sorted((graph.node(n) for n in wall_of), key=lambda n: (-n.size[0] * n.size[2], n.order))
+    swings = [_bounding_rect(room.swing_zone(door)) for door in room.doors]
+    placed: list = []
+    poses: dict[str, Pose] = {}
+    grid = (np.arange(FOOTPRINT_SAMPLES) + 0.5) / FOOTPRINT_SAMPLES - 0.5
+    for node in nodes:
+        width, _, depth = node.size
+        sides = [(graph.node(other), side) for other, side in flanks.get(node.id, [])]
+        left = sum(other.size[0] for other, side in sides if side < 0)
+        unit = width + left + sum(other.size[0] for other, side in sides if side > 0)
+        reach = depth + dict(node.clearance).get("front", 0.0)
+        best = None
+        for wall, u in _wall_places(room, unit, wall_of[node.id] == "UnderWindow"):
+            middle = u - unit / 2.0 + left + width / 2.0  # the piece's own centre along the wall
+            x, z = wall.to_world(middle, depth / 2.0 + WALL_GAP)
+            cx, cz = wall.to_world(u, reach / 2.0 + WALL_GAP)
+            rect = make_rect(cx, cz, unit, reach, wall.facing_yaw)
+            if room.footprint_excess(corners(rect)) > 1e-6:
+                continue
+            if any(rect_overlap(rect, other) > 1e-6 for other in swings + placed):
+                continue
+            local = np.array([(a * width, b * depth) for a in grid for b in grid])
+            c, s = math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
+            points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
+            score = float(np.mean(mask_at(mask, room, points)))
+            if best is None or score > best[0] + 1e-12:
+                best = (score, rect, wall, middle)
+        if best is None:
+            continue  # no place along the walls: the layout's constructive placement finds one
+        _, rect, wall, middle = best
+        placed.append(rect)
+        poses[node.id] = _against(wall, middle, depth)
+        for other, side in sides:
+            # The piece's local left is the wall's -u when it faces into the room.
+            offset = (width + other.size[0]) / 2.0 + WALL_GAP
+            poses[other.id] = _against(wall, middle - side * offset, other.size[2])
+    return poses
+
+
+def _against(wall, u: float, depth: float) -> Pose:
+    """The pose of a piece ``depth`` deep with its back to ``wall`` at ``u`` along it."""
+    x, z = wall.to_world(u, depth / 2.0 + WALL_GAP)
+    return Pose(float(x), 0.0, float(z), float(wall.facing_yaw))
+
+
+def _wall_places(room: Room, width: float, under_window: bool):
+    """(wall, u) candidates: the middles of the windows, or every ``WALL_STEP`` along
+    every wall where a piece ``width`` wide fits."""
+    if under_window:
+        for window in room.windows:
+            yield room.part(window.wall), window.offset
+        return
+    for wall in room.walls:
+        steps = int((wall.length - width) / WALL_STEP)
+        for k in range(steps + 1):
+            yield wall, width / 2.0 + k * WALL_STEP
+
+
+def _bounding_rect(points):
+    from scenewright.generator.layout.geometry import make_rect
+
+    xs, zs = [p[0] for p in points], [p[1] for p in points]
+    return make_rect((min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0)
+
+
+# -- 5. the whole -------------------------------------------------------------------------------
+
+
+def completion_record(contents: Contents, dropped, model: dict) -> dict:
+    """What scene.json's ``completion`` holds: the types, per type the categories
+    Algorithm 1 chose (requested or added, with their count, P(category | type) and the
+    summed relation weight to the requested ones), its cost and reference plans, and the
+    layout mask's reference plans with their weights."""
+    types = {}
+    for room_type, exploration in contents.explorations.items():
+        entry = model["types"][room_type]
+        weights = {tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"]}
+        requested = [n for n, owner in contents.owners.items() if owner == room_type]
+        types[room_type] = {
+            "categories": [
+                {"category": name, "count": count, "requested": name in requested,
+                 "p": entry["categories"].get(name, {}).get("p", 0.0),
+                 "weight_to_requested": sum(weights.get((min(name, r), max(name, r)), 0.0) for r in requested
+                                            if r != name)}
+                for name, count in exploration.counts.items()
+            ],
+            "cost": exploration.cost,
+            "references": list(exploration.references),
+        }  # fmt: skip
+    return {
+        "types": list(contents.types),
+        "owners": dict(sorted(contents.owners.items())),
+        "selection": types,
+        "counts": dict(contents.counts),
+        "left_out": list(dropped),
+        "mask": {"type": contents.types[0], "frame": contents.mask.frame.to_dict(),
+                 "references": dict(sorted(contents.mask.weights.items())),
+                 "cells": np.round(contents.mask.mask, 6).tolist()},
+    }  # fmt: skip
+
+
+def complete(request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None):
+    """The completed room as a ``Scene`` (laid out, not yet described): ``plans`` is a
+    plan set folder (default: the shipped one), or give a built ``model``. A layout that
+    could not satisfy everything comes back with ``scene.layout.ok`` false."""
+    import time
+
+    from scenewright.api import timed
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.model import build_model
+    from scenewright.completion.plan import catalog_categories, load_plans
+    from scenewright.core.scene import assemble_scene
+    from scenewright.core.seeds import check_seed
+    from scenewright.generator.layout import layout_scene
+
+    seed = check_seed(seed)
+    timings: dict[str, float] = {}
+    with timed(timings, "complete"):
+        model = model or build_model(load_plans(plans or shipped_plans_dir()))
+        catalog = catalog or catalog_categories()
+        contents = choose_contents(model, request)
+        graph, dropped = build_graph(model, contents, request.room, catalog)
+        start = starting_poses(graph, request.room, contents.mask)
+    with timed(timings, "layout", time.perf_counter):
+        layout = layout_scene(graph, seed, start=start)
+    scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
+    scene.completion = completion_record(contents, dropped, model)
+    scene.timings.update(timings)
+    return scene
+
+
+def summary_of(record: dict) -> str:
+    """One line for people: the room's types and what was added to the request."""
+    added = []
+    for entry in record["selection"].values():
+        for item in entry["categories"]:
+            if not item["requested"] and item["category"] not in record["left_out"]:
+                count = record["counts"][item["category"]]
+                added.append(item["category"] + (f" x{count}" if count > 1 else ""))
+    left = f"; left out (nothing to stand on): {', '.join(record['left_out'])}" if record["left_out"] else ""
+    return f"room type {' + '.join(record['types'])}; added {', '.join(dict.fromkeys(added)) or 'nothing'}{left}"
