@@ -11,7 +11,7 @@ The steps, each a function here:
    area shared among the types by their mean areas; the layout mask of the first type
    (Equation 4, ``layout_mask.amalgamated_mask``).
 3. ``build_graph``: a ``SceneGraph`` of the indoor catalog's entries with relations a
-   room's rules would state (``RELATION_RULES``): big pieces against a wall, night tables
+   room's rules would state: big pieces against a wall, night tables
    either side of the bed, a desk under the window with its chair before it, chairs
    round a table, small things on their supports. What a piece stands beside is its
    strongest partner in the type's relation graph (the weight ``W`` of the plan model).
@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -76,6 +76,13 @@ AGAINST_WALL = frozenset({
 SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_table", "desk")}
 #: The sides of a table its chairs take in turn.
 TABLE_SIDES = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
+#: Why a category the selection chose is not in the room.
+NOTHING_TO_STAND_ON = "nothing in the room it fits on"
+NO_FLOOR = "no free floor for it at the start"
+#: Pieces at most this tall (metres) lie flat: a rug. The selection counts no floor for
+#: them (plans lay rugs under furniture) but the layout keeps every piece apart, so one
+#: the starting poses find no free floor for is left out rather than failing the layout.
+FLAT = 0.02
 #: Stand in a corner when nothing in the room is related to them.
 CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 
@@ -202,7 +209,6 @@ class Contents:
     explorations: dict
     counts: dict[str, int]
     mask: object
-    dropped: tuple[str, ...] = field(default=())
 
 
 def choose_contents(model: dict, request: Request) -> Contents:
@@ -233,19 +239,25 @@ def choose_contents(model: dict, request: Request) -> Contents:
 # -- 3. the scene graph ------------------------------------------------------------------
 
 
-def build_graph(model: dict, contents: Contents, room: Room, catalog) -> tuple[SceneGraph, tuple[str, ...]]:
-    """The scene graph of the room holding ``contents.counts`` (``catalog``: the indoor
-    catalog's entries by name) and the categories left out (a lamp with nothing to stand
-    on). Relations follow ``RELATION_RULES`` in the module docstring."""
+def build_graph(
+    model: dict, contents: Contents, room: Room, catalog, leave_out=()
+) -> tuple[SceneGraph, dict[str, str]]:
+    """The scene graph of the room holding ``contents.counts`` but the categories in
+    ``leave_out`` (``catalog``: the indoor catalog's entries by name), and the categories
+    left out with why (also a lamp or a television with nothing in the room to stand on).
+    Relations: see the module docstring, step 3."""
     params = SceneParams(name=contents.types[0], extent=room.extent, ground="floor", room=room)
     graph = SceneGraph(params=params)
     weights = _relation_weights(model, contents.types)
-    counts = dict(contents.counts)
-    dropped = []
+    counts = {name: n for name, n in contents.counts.items() if name not in leave_out}
+    dropped = {name: NO_FLOOR for name in leave_out}
+    supports = {}  # what stands on something -> the support categories present that it fits on
     for name in list(counts):
-        if name in SUPPORTS and not any(counts.get(s) for s in SUPPORTS[name][0]):
-            dropped.append(name)
-            del counts[name]
+        if name in SUPPORTS:
+            supports[name] = [s for s in SUPPORTS[name][0] if counts.get(s) and _fits_on(catalog[name], catalog[s])]
+            if not supports[name]:
+                dropped[name] = NOTHING_TO_STAND_ON
+                del counts[name]
     # Floor pieces first (anchors before what relates to them), then what stands on them.
     order = sorted(counts, key=lambda n: (n in SUPPORTS, n not in AGAINST_WALL, n in SEAT_TARGETS, n))
     made: dict[str, list[str]] = {}
@@ -253,9 +265,9 @@ def build_graph(model: dict, contents: Contents, room: Room, catalog) -> tuple[S
         made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
     for name in order:
         for index, node in enumerate(made[name]):
-            for label, target in _relations_of(name, index, made, weights, room):
+            for label, target in _relations_of(name, index, made, weights, room, supports):
                 graph.add_relation(node, target, label)
-    return graph, tuple(dropped)
+    return graph, dropped
 
 
 def _relation_weights(model: dict, types) -> dict[tuple[str, str], float]:
@@ -268,11 +280,18 @@ def _relation_weights(model: dict, types) -> dict[tuple[str, str], float]:
     return weights
 
 
-def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room) -> list[tuple[str, str]]:
-    """The relations (label, target) of the ``index``-th piece of category ``name``."""
+def _fits_on(item, support) -> bool:
+    """Whether ``item``'s footprint fits on ``support``'s top (a television wider than a
+    dresser would hang off it)."""
+    return item.size[0] <= support.size[0] + 1e-9 and item.size[2] <= support.size[2] + 1e-9
+
+
+def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room, supports: dict) -> list[tuple[str, str]]:
+    """The relations (label, target) of the ``index``-th piece of category ``name``;
+    ``supports``: per category that stands on another, the support categories it fits on."""
     if name in SUPPORTS:
-        supports, label = SUPPORTS[name]
-        holders = [node for support in supports for node in made.get(support, [])]
+        label = SUPPORTS[name][1]
+        holders = [node for support in supports[name] for node in made[support]]
         return [(label, holders[index % len(holders)])]
     if name == "nightstand" and made.get("bed"):
         bed = made["bed"][index // 2 % len(made["bed"])]
@@ -340,7 +359,7 @@ def _strongest_partner(name: str, made: dict, weights: dict) -> str | None:
 
 def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     """Poses for the pieces that stand against a wall (``AgainstWall``, ``UnderWindow``
-    to the room), largest first: each at the place along the walls whose footprint
+    to the room), those under a window first, then the largest first: each at the place along the walls whose footprint
     covers most of the layout ``mask`` and whose footprint and clearance are clear of the
     door swings, the room's outline and the pieces already placed. Under a window a
     piece goes to the window's middle. What flanks a piece along its wall (night tables
@@ -353,9 +372,11 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     for relation in graph.edges():
         if relation.label in ("NextToLeft", "NextToRight") and relation.target in wall_of:
             flanks.setdefault(relation.target, []).append((relation.source, -1.0 if relation.label == "NextToLeft" else 1.0))
-    nodes = sorted((graph.node(n) for n in wall_of), key=lambda n: (-n.size[0] * n.size[2], n.order))
+    # Pieces under a window first: they have one place each; then the largest first.
+    nodes = sorted((graph.node(n) for n in wall_of),
+                   key=lambda n: (wall_of[n.id] != "UnderWindow", -n.size[0] * n.size[2], n.order))  # fmt: skip
     swings = [_bounding_rect(room.swing_zone(door)) for door in room.doors]
-    placed: list = []
+    placed: dict[str, object] = {}  # piece -> its footprint with its front clearance
     poses: dict[str, Pose] = {}
     grid = (np.arange(FOOTPRINT_SAMPLES) + 0.5) / FOOTPRINT_SAMPLES - 0.5
     for node in nodes:
@@ -372,7 +393,7 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
             rect = make_rect(cx, cz, unit, reach, wall.facing_yaw)
             if room.footprint_excess(corners(rect)) > 1e-6:
                 continue
-            if any(rect_overlap(rect, other) > 1e-6 for other in swings + placed):
+            if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
                 continue
             local = np.array([(a * width, b * depth) for a in grid for b in grid])
             c, s = math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
@@ -383,13 +404,39 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
         if best is None:
             continue  # no place along the walls: the layout's constructive placement finds one
         _, rect, wall, middle = best
-        placed.append(rect)
+        placed[node.id] = rect
         poses[node.id] = _against(wall, middle, depth)
         for other, side in sides:
             # The piece's local left is the wall's -u when it faces into the room.
             offset = (width + other.size[0]) / 2.0 + WALL_GAP
             poses[other.id] = _against(wall, middle - side * offset, other.size[2])
+    _start_in_front(graph, room, poses, placed, swings)
     return poses
+
+
+def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, swings: list) -> None:
+    """Start what stands ``NextToFront`` of a started piece (a chair at its desk, a rug
+    before the bed, a coffee table before the sofa) just in front of it, turned to it
+    when it also faces it, where that is inside the room and clear of the door
+    ``swings`` and the ``placed`` pieces' footprints and clearances (but its own
+    piece's: a chair stands in the space kept free before its desk)."""
+    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
+
+    facing = {(r.source, r.target) for r in graph.edges("FacingTowards")}
+    for relation in graph.edges("NextToFront"):
+        anchor = poses.get(relation.target)
+        if anchor is None or relation.source in poses:
+            continue
+        node, target = graph.node(relation.source), graph.node(relation.target)
+        reach = (target.size[2] + node.size[2]) / 2.0 + WALL_GAP
+        x, z = anchor.x + reach * math.sin(anchor.yaw), anchor.z + reach * math.cos(anchor.yaw)
+        yaw = anchor.yaw + math.pi if (node.id, target.id) in facing else anchor.yaw
+        rect = make_rect(x, z, node.size[0], node.size[2], yaw)
+        others = swings + [other for key, other in placed.items() if key != target.id]
+        if room.footprint_excess(corners(rect)) > 1e-6 or any(rect_overlap(rect, other) > 1e-6 for other in others):
+            continue
+        placed[node.id] = rect
+        poses[node.id] = Pose(float(x), 0.0, float(z), float(math.atan2(math.sin(yaw), math.cos(yaw))))
 
 
 def _against(wall, u: float, depth: float) -> Pose:
@@ -446,8 +493,8 @@ def completion_record(contents: Contents, dropped, model: dict) -> dict:
         "types": list(contents.types),
         "owners": dict(sorted(contents.owners.items())),
         "selection": types,
-        "counts": dict(contents.counts),
-        "left_out": list(dropped),
+        "counts": {name: n for name, n in contents.counts.items() if name not in dropped},
+        "left_out": dict(sorted(dropped.items())),
         "mask": {"type": contents.types[0], "frame": contents.mask.frame.to_dict(),
                  "references": dict(sorted(contents.mask.weights.items())),
                  "cells": np.round(contents.mask.mask, 6).tolist()},
@@ -476,6 +523,10 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
         contents = choose_contents(model, request)
         graph, dropped = build_graph(model, contents, request.room, catalog)
         start = starting_poses(graph, request.room, contents.mask)
+        unplaced = sorted({n.type for n in graph.nodes("object") if n.size[1] <= FLAT and n.id not in start})
+        if unplaced:
+            graph, dropped = build_graph(model, contents, request.room, catalog, leave_out=unplaced)
+            start = starting_poses(graph, request.room, contents.mask)
     with timed(timings, "layout", time.perf_counter):
         layout = layout_scene(graph, seed, start=start)
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
@@ -492,5 +543,5 @@ def summary_of(record: dict) -> str:
             if not item["requested"] and item["category"] not in record["left_out"]:
                 count = record["counts"][item["category"]]
                 added.append(item["category"] + (f" x{count}" if count > 1 else ""))
-    left = f"; left out (nothing to stand on): {', '.join(record['left_out'])}" if record["left_out"] else ""
+    left = "".join(f"; left out {name} ({why})" for name, why in record["left_out"].items())
     return f"room type {' + '.join(record['types'])}; added {', '.join(dict.fromkeys(added)) or 'nothing'}{left}"

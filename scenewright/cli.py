@@ -799,8 +799,9 @@ categories by their relation graph (Algorithm 1), starting places along the wall
 the layout mask of the most similar plans (Equation 4), then the MCMC layout. --room is
 W x D or the corners x,z in order; a door is WALL:OFFSET:WIDTH[:HEIGHT], a window
 WALL:OFFSET:WIDTH[:SILL[:HEIGHT]] (sill 0.9, height 1.2 by default), WALL one of N, E,
-S, W or a wall number, OFFSET the centre's metres from the wall's start (a rectangle's
-north and south walls start at their west end, east and west walls at their north end).
+S, W or a wall number, OFFSET the centre's metres from the wall's start as in a rules
+file (walls run clockwise seen from above: the north wall from its west end, the east
+from its north end, the south from its east end, the west from its south end).
 
 writes the same files as generate; scene.json's "completion" records the types, each
 chosen category with its P(category | type) and relation weight, the reference plans

@@ -1,0 +1,128 @@
+"""`scenewright complete`: a request becomes a furnished, laid-out scene (completion.complete)."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from scenewright.cli import main
+from scenewright.completion import shipped_plans_dir
+from scenewright.completion.complete import choose_contents, complete, parse_request
+from scenewright.completion.model import build_model
+from scenewright.completion.plan import catalog_categories, load_plans
+from scenewright.core.errors import InputError
+from scenewright.generator.layout.geometry import make_rect, rect_overlap
+
+
+@pytest.fixture(scope="module")
+def model():
+    return build_model(load_plans(shipped_plans_dir()))
+
+
+@pytest.fixture(scope="module")
+def catalog():
+    return catalog_categories()
+
+
+def _swing_rect(room, door):
+    points = room.swing_zone(door)
+    xs, zs = [p[0] for p in points], [p[1] for p in points]
+    return make_rect((min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0)
+
+
+def test_a_5x4_bedroom_with_a_bed_and_a_bookshelf_is_completed_and_laid_out(model, catalog):
+    request = parse_request("5x4", ["S:0.8:0.9"], ["N:2.5:1.4"], ["bed,bookshelf"], catalog)
+    scene = complete(request, 1, model=model, catalog=catalog)
+    types = {o.type for o in scene.placed_objects()}
+    assert {"bed", "bookshelf"} <= types
+    assert len(types) >= 6  # the request plus what the bedroom plans hold with them
+    assert {"nightstand", "wardrobe"} <= types
+    assert scene.completion["types"] == ["bedroom"]
+    assert scene.layout.ok, scene.layout.problems
+    swing = _swing_rect(scene.room, scene.room.doors[0])
+    for obj in scene.placed_objects():
+        if obj.position[1] > 0.01:
+            continue  # stands on another piece
+        footprint = make_rect(obj.position[0], obj.position[2], obj.size[0], obj.size[2], obj.yaw)
+        assert rect_overlap(footprint, swing) < 1e-3, obj.id
+    by_label = {(r.source.split("_")[0], r.label) for r in scene.relations}
+    assert ("nightstand", "NextToLeft") in by_label and ("desk", "UnderWindow") in by_label
+
+
+def test_a_larger_room_gets_more_categories(model, catalog):
+    def added(size):
+        request = parse_request(size, ["S:0.6:0.8"], ["N:1.5:1.0"], ["bed,bookshelf"], catalog)
+        return sum(choose_contents(model, request).counts.values()) - 2
+
+    assert added("3x3") < added("4x3.5") < added("5x4")
+
+
+def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(model, catalog):
+    request = parse_request("4x3.6", ["S:3.2:0.85"], ["E:1.8:1.3"], ["desk"], catalog)
+    contents = choose_contents(model, request)
+    scene = complete(request, 2, model=model, catalog=catalog)
+    record = scene.completion
+    assert record["types"] == ["study"]
+    chosen = record["selection"]["study"]["categories"]
+    assert [c["category"] for c in chosen][0] == "desk" and chosen[0]["requested"]
+    assert all(0.0 < c["p"] <= 1.0 for c in chosen)
+    assert sum(record["mask"]["references"].values()) == pytest.approx(1.0)
+    assert record["counts"] == {n: c for n, c in contents.counts.items() if n not in record["left_out"]}
+
+
+@pytest.mark.parametrize(
+    "argv, fragment",
+    [
+        (["--room", "5by4", "--with", "bed"], "give W x D"),
+        (["--room", "5x4", "--door", "Q:1:0.9", "--with", "bed"], "no wall 'Q'"),
+        (["--room", "5x4", "--door", "S:4.8:0.9", "--with", "bed"], "runs past the end"),
+        (["--room", "5x4", "--window", "N:2:x", "--with", "bed"], "'x' is not a number"),
+        (["--room", "5x4", "--with", "bedd"], "did you mean 'bed'"),
+        (["--room", "5x4", "--with", "chair=0"], "whole number from 1"),
+        (["--room", "5x4", "--with", "treadmill"], "not an indoor catalog entry"),
+        (["--room", "5x4", "--with", "chair=20"], "at most"),
+    ],
+)
+def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, argv, fragment):
+    target = tmp_path / "out"
+    assert main(["complete", *argv, "--no-render", "-o", str(target)]) == 2
+    err = capsys.readouterr().err
+    assert fragment in err and err.count("\n") == 1 and "Traceback" not in err
+    assert not target.exists() or not any(target.iterdir())
+
+
+def test_the_same_request_and_seed_give_the_same_scene_json(tmp_path):
+    argv = ["complete", "--room", "3.2x3", "--door", "S:0.6:0.8", "--window", "N:1.6:1.0", "--with", "desk",
+            "--seed", "5", "--no-render", "-q"]  # fmt: skip
+    assert main([*argv, "-o", str(tmp_path / "a")]) == 0
+    assert main([*argv, "-o", str(tmp_path / "b")]) == 0
+    first, second = (tmp_path / "a" / "scene.json").read_bytes(), (tmp_path / "b" / "scene.json").read_bytes()
+    assert first == second and b'"completion"' in first
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    width=st.floats(2.0, 9.0), depth=st.floats(2.0, 9.0), wall=st.sampled_from("NESW"),
+    where=st.floats(0.0, 1.0), sill=st.floats(0.3, 1.0),
+)  # fmt: skip
+def test_any_fitting_door_and_window_land_on_the_wall_named(width, depth, wall, where, sill):
+    catalog = {"bed": None}
+    length = width if wall in "NS" else depth
+    offset = 0.45 + where * (length - 0.9)
+    request = parse_request(f"{width}x{depth}", [f"{wall}:{offset}:0.9"], [], ["bed"], catalog)
+    door = request.room.doors[0]
+    side = {"N": "north", "E": "east", "S": "south", "W": "west"}[wall]
+    assert request.room.part(door.wall).side == side
+    assert door.offset == pytest.approx(offset) and door.width == pytest.approx(0.9)
+    assert request.room.area == pytest.approx(width * depth)
+    other = "N" if wall != "N" else "S"
+    windowed = parse_request(f"{width}x{depth}", [], [f"{other}:1.0:0.8:{sill}"], ["bed=2"], catalog)
+    assert windowed.room.windows[0].sill == pytest.approx(sill) and windowed.requested == {"bed": 2}
+
+
+def test_polygon_rooms_are_read_as_corners(catalog):
+    request = parse_request("0,0 6,0 6,3 3,3 3,5 0,5", ["2:1:0.9"], [], ["desk"], catalog)
+    assert request.room.area == pytest.approx(6 * 3 + 3 * 2) and len(request.room.walls) == 6
+    with pytest.raises(InputError, match="at least 3 corners"):
+        parse_request("0,0 1,1", [], [], ["desk"], catalog)
