@@ -545,3 +545,49 @@ def summary_of(record: dict) -> str:
                 added.append(item["category"] + (f" x{count}" if count > 1 else ""))
     left = "".join(f"; left out {name} ({why})" for name, why in record["left_out"].items())
     return f"room type {' + '.join(record['types'])}; added {', '.join(dict.fromkeys(added)) or 'nothing'}{left}"
+
+
+def draw_explanation(scene, target) -> None:
+    """Write a PNG to ``target`` (a path or binary file): the layout mask of
+    ``scene.completion`` mapped back onto the room (darker: more of the reference plans'
+    furniture stood there), with the room's outline, its doors (red) and windows (blue)
+    and the laid-out floor pieces' outlines, north up."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Polygon
+
+    from scenewright.completion.features import CanonicalFrame
+    from scenewright.completion.layout_mask import LayoutMask, mask_at
+    from scenewright.core.frames import corners_of
+
+    record, room = scene.completion["mask"], scene.room
+    layout = LayoutMask(np.asarray(record["cells"]), CanonicalFrame(**record["frame"]), np.zeros(4), record["references"])
+    xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
+    grid_x, grid_z = np.meshgrid(np.linspace(xs.min(), xs.max(), 200), np.linspace(zs.min(), zs.max(), 160))
+    values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(grid_x.shape)
+    inside = np.array([room.contains(x, z) for x, z in zip(grid_x.ravel(), grid_z.ravel())]).reshape(grid_x.shape)
+    figure, axis = plt.subplots(figsize=(6.0, 6.0 * float(np.ptp(zs) / np.ptp(xs)) + 0.6))
+    axis.imshow(np.where(inside, values, np.nan), cmap="Greys", vmin=0.0, vmax=1.0, origin="upper",
+                extent=(xs.min(), xs.max(), zs.max(), zs.min()))  # fmt: skip
+    outline = list(room.corners) + [room.corners[0]]
+    axis.plot([c[0] for c in outline], [c[1] for c in outline], color="0.2", lw=2.5)
+    for opening in room.openings:
+        start, end = room.opening_ends(opening)
+        axis.plot([start[0], end[0]], [start[1], end[1]], color="#c04040" if opening.kind == "door" else "#4a90c8", lw=4)
+    for obj in scene.placed_objects():
+        if obj.position[1] > 0.01:
+            continue  # stands on another piece
+        corners = corners_of(obj.position[0], obj.position[2], obj.size[0] / 2, obj.size[2] / 2,
+                             math.cos(obj.yaw), math.sin(obj.yaw))  # fmt: skip
+        axis.add_patch(Polygon(corners, closed=True, fill=False, ec="#e07020", lw=1.2))
+        axis.annotate(obj.id, (obj.position[0], obj.position[2]), fontsize=6, ha="center", va="center", color="#a04000")
+    axis.set_title(f"layout mask of {record['type']} ({len(record['references'])} reference plans) and the layout",
+                   fontsize=8)  # fmt: skip
+    axis.set_xlabel("x (east) [m]")
+    axis.set_ylabel("z (south) [m]")
+    axis.set_aspect("equal")
+    figure.tight_layout()
+    figure.savefig(target, dpi=90, format="png")
+    plt.close(figure)

@@ -41,6 +41,8 @@ GENERATE_OUTPUTS = (
     "scene.glb",
     "plan.png",
 )
+#: ``complete`` writes generate's files and, with --explain, its layout mask.
+COMPLETE_OUTPUTS = GENERATE_OUTPUTS + ("mask.png",)
 
 
 class CommandLineParser(argparse.ArgumentParser):
@@ -199,17 +201,24 @@ def run_generate(args: argparse.Namespace) -> int:
     return write_scene_outputs(args, scene, images)
 
 
-def write_scene_outputs(args: argparse.Namespace, scene, images) -> int:
+def write_scene_outputs(
+    args: argparse.Namespace, scene, images, outputs=GENERATE_OUTPUTS, extra: dict | None = None
+) -> int:
     """Write what ``generate`` writes for a finished scene (all files appear together or
-    not at all) and report the layout's verdict: exit 0 when ok, 1 when not."""
+    not at all) and report the layout's verdict: exit 0 when ok, 1 when not. ``extra``
+    (file name -> function writing it to a path) adds files; ``outputs`` names every
+    file the command may write (stale ones not written this time are removed)."""
     from scenewright.api import export, reproducible_json, summary_line, timed, timings_of
     from scenewright.atomic import staged_outputs, write_atomic, writing
     from scenewright.render.offscreen import save_render
     from scenewright.render.plan import draw_plan
 
     directory = args.output.rstrip("/") or "/"
-    with staged_outputs(args.output, GENERATE_OUTPUTS) as stage:
+    with staged_outputs(args.output, outputs) as stage:
         write_atomic(stage / "description.txt", scene.description["text"] + "\n")
+        for name, write in (extra or {}).items():
+            with writing(stage / name):
+                write(stage / name)
         if images is not None:
             save_render(images, stage, stem="preview")
         with timed(scene.timings, "export"):
@@ -603,10 +612,10 @@ def run_complete(args: argparse.Namespace) -> int:
     """Complete an empty room from a few categories; write as generate does."""
     from scenewright.api import checked_templates, describe_scene, render_scene
     from scenewright.atomic import check_output_directory
-    from scenewright.completion.complete import complete, parse_request, summary_of
+    from scenewright.completion.complete import complete, draw_explanation, parse_request, summary_of
     from scenewright.completion.plan import catalog_categories
 
-    check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
+    check_output_directory(args.output, COMPLETE_OUTPUTS)  # before any work: it is replaced as a whole
     catalog = catalog_categories()
     request = parse_request(args.room, args.door, args.window, args.categories, catalog)
     templates = checked_templates(args.templates)
@@ -616,7 +625,8 @@ def run_complete(args: argparse.Namespace) -> int:
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view)
-    return write_scene_outputs(args, scene, images)
+    extra = {"mask.png": lambda path: draw_explanation(scene, path)} if args.explain else None
+    return write_scene_outputs(args, scene, images, COMPLETE_OUTPUTS, extra)
 
 
 # -- the parser -----------------------------------------------------------------------
@@ -807,7 +817,8 @@ writes the same files as generate; scene.json's "completion" records the types, 
 chosen category with its P(category | type) and relation weight, the reference plans
 and the mask with its plans' weights. The same request and seed give the same
 scene.json. When the layout could not satisfy every relation the files are still
-written ("ok": false) and the exit code is 1. See docs/completion.md.""",
+written ("ok": false) and the exit code is 1. --explain adds mask.png: the layout mask
+drawn on the room with the laid-out pieces over it. See docs/completion.md.""",
     "list": """\
 examples:
   scenewright list
@@ -1100,6 +1111,8 @@ def build_parser() -> CommandLineParser:
                           help="a window (repeatable)")
     complete.add_argument("--with", dest="categories", action="append", required=True, metavar="NAME[=N][,...]",
                           help="categories the room must hold (repeatable)")
+    complete.add_argument("--explain", action="store_true",
+                          help="also write mask.png: the layout mask on the room, with the pieces laid out")
     complete.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
     complete.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
     complete.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")

@@ -92,13 +92,15 @@ def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, arg
     assert not target.exists() or not any(target.iterdir())
 
 
-def test_the_same_request_and_seed_give_the_same_scene_json(tmp_path):
+def test_the_same_request_and_seed_give_the_same_scene_json_and_explain_draws_the_mask(tmp_path):
     argv = ["complete", "--room", "3.2x3", "--door", "S:0.6:0.8", "--window", "N:1.6:1.0", "--with", "desk",
             "--seed", "5", "--no-render", "-q"]  # fmt: skip
-    assert main([*argv, "-o", str(tmp_path / "a")]) == 0
+    assert main([*argv, "--explain", "-o", str(tmp_path / "a")]) == 0
     assert main([*argv, "-o", str(tmp_path / "b")]) == 0
     first, second = (tmp_path / "a" / "scene.json").read_bytes(), (tmp_path / "b" / "scene.json").read_bytes()
     assert first == second and b'"completion"' in first
+    assert (tmp_path / "a" / "mask.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not (tmp_path / "b" / "mask.png").exists()
 
 
 @settings(max_examples=40, deadline=None)
