@@ -74,8 +74,15 @@ AGAINST_WALL = frozenset({
 })  # fmt: skip
 #: Seats and what they are pulled up to, in order of preference.
 SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_table", "desk")}
-#: The sides of a table its chairs take in turn.
-TABLE_SIDES = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
+#: The sides of a table its chairs take in turn, each with how a chair there faces the
+#: table: turned to its centre at the ends, square to it along the long sides (where two
+#: chairs side by side cannot both point at the centre).
+TABLE_SIDES = (
+    ("NextToFront", "FacingOpposite"), ("NextToBehind", "FacingSameDirection"),
+    ("NextToLeft", "FacingTowards"), ("NextToRight", "FacingTowards"),
+)  # fmt: skip
+#: What others gather round: it stands free, the relations are theirs.
+CENTRE_PIECES = frozenset({"dining_table", "coffee_table"})
 #: Why a category the selection chose is not in the room.
 NOTHING_TO_STAND_ON = "nothing in the room it fits on"
 NO_FLOOR = "no free floor for it at the start"
@@ -313,10 +320,13 @@ def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room, 
             return seat
     if name in AGAINST_WALL:
         return [("AgainstWall", ROOM_NODE)]
-    partner = _strongest_partner(name, made, weights)
+    if name in CENTRE_PIECES:
+        return []
     if name == "rug":
-        anchor = partner or next((made[n][0] for n in ("bed", "sofa", "dining_table") if made.get(n)), None)
+        anchor = next((made[n][0] for n in ("bed", "sofa", "dining_table") if made.get(n)), None)
+        anchor = anchor or _strongest_partner(name, made, weights)
         return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
+    partner = _strongest_partner(name, made, weights)
     if name == "armchair" and made.get("coffee_table"):
         return [("NextToChooseSide", made["coffee_table"][0]), ("FacingTowards", made["coffee_table"][0])]
     if name in CORNER_ITEMS or partner is None:
@@ -338,15 +348,17 @@ def _seat_relations(name: str, index: int, made: dict) -> list[tuple[str, str]]:
                 return [("NextToFront", desk), ("FacingTowards", desk)]
             continue
         table = tables[index % len(tables)]
-        return [(TABLE_SIDES[index // len(tables) % len(TABLE_SIDES)], table), ("FacingTowards", table)]
+        side, facing = TABLE_SIDES[index // len(tables) % len(TABLE_SIDES)]
+        return [(side, table), (facing, table)]
     return []
 
 
 def _strongest_partner(name: str, made: dict, weights: dict) -> str | None:
-    """The first piece of the floor category most strongly related to ``name`` (W > 0)."""
+    """The first piece of the floor category most strongly related to ``name`` (W > 0),
+    seats and rugs aside (one stands beside furniture, not beside a chair)."""
     best, best_weight = None, 0.0
     for other in sorted(made):
-        if other == name or other in SUPPORTS or other in ("rug",):
+        if other == name or other in SUPPORTS or other in SEAT_TARGETS or other == "rug":
             continue
         weight = weights.get((min(name, other), max(name, other)), 0.0)
         if weight > best_weight:
