@@ -535,7 +535,8 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
         contents = choose_contents(model, request)
         graph, dropped = build_graph(model, contents, request.room, catalog)
         start = starting_poses(graph, request.room, contents.mask)
-        unplaced = sorted({n.type for n in graph.nodes("object") if n.size[1] <= FLAT and n.id not in start})
+        unplaced = sorted({n.type for n in graph.nodes("object")
+                           if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start})  # fmt: skip
         if unplaced:
             graph, dropped = build_graph(model, contents, request.room, catalog, leave_out=unplaced)
             start = starting_poses(graph, request.room, contents.mask)

@@ -123,6 +123,14 @@ def test_any_fitting_door_and_window_land_on_the_wall_named(width, depth, wall, 
     assert windowed.room.windows[0].sill == pytest.approx(sill) and windowed.requested == {"bed": 2}
 
 
+def test_an_l_shaped_study_without_a_window_keeps_its_laptop_on_the_desk(model, catalog):
+    request = parse_request("0,0 6,0 6,3 3,3 3,5 0,5", ["1:1:0.9"], [], ["desk"], catalog)
+    scene = complete(request, 0, model=model, catalog=catalog)
+    assert "laptop" in scene.completion["counts"] and "laptop" not in scene.completion["left_out"]
+    assert any(r.source.startswith("laptop") and r.target == "desk_1" for r in scene.relations)
+    assert ("desk_1", "AgainstWall") in {(r.source, r.label) for r in scene.relations}
+
+
 def test_polygon_rooms_are_read_as_corners(catalog):
     request = parse_request("0,0 6,0 6,3 3,3 3,5 0,5", ["2:1:0.9"], [], ["desk"], catalog)
     assert request.room.area == pytest.approx(6 * 3 + 3 * 2) and len(request.room.walls) == 6
