@@ -81,6 +81,11 @@ TABLE_SIDES = (
     ("NextToFront", "FacingOpposite"), ("NextToBehind", "FacingSameDirection"),
     ("NextToLeft", "FacingTowards"), ("NextToRight", "FacingTowards"),
 )  # fmt: skip
+#: Per table side, the table-local (left, forward) directions along it and out of it.
+SIDE_DIRECTIONS = {
+    "NextToFront": ((1.0, 0.0), (0.0, 1.0)), "NextToBehind": ((1.0, 0.0), (0.0, -1.0)),
+    "NextToLeft": ((0.0, 1.0), (1.0, 0.0)), "NextToRight": ((0.0, 1.0), (-1.0, 0.0)),
+}  # fmt: skip
 #: What others gather round: it stands free, the relations are theirs.
 CENTRE_PIECES = frozenset({"dining_table", "coffee_table"})
 #: Why a category the selection chose is not in the room.
@@ -422,8 +427,56 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
             # The piece's local left is the wall's -u when it faces into the room.
             offset = (width + other.size[0]) / 2.0 + WALL_GAP
             poses[other.id] = _against(wall, middle - side * offset, other.size[2])
+    _start_tables(graph, room, mask, poses, placed, swings)
     _start_in_front(graph, room, poses, placed, swings)
     return poses
+
+
+def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict, swings: list) -> None:
+    """Start a free-standing table (``CENTRE_PIECES`` with no relation of its own) where
+    it and a ring of its chairs' depth round it cover most of the mask, inside the room
+    and clear of the rest, and its chairs spread evenly along the sides they sit at,
+    facing it."""
+    from scenewright.completion.layout_mask import mask_at
+    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
+
+    sources = {r.source for r in graph.edges()}
+    for table in graph.nodes("object"):
+        if table.type not in CENTRE_PIECES or table.id in sources or table.id in poses:
+            continue
+        seats = [(r.source, r.label) for r in graph.edges()
+                 if r.target == table.id and r.label in SIDE_DIRECTIONS and graph.node(r.source).type in SEAT_TARGETS]
+        ring = max((graph.node(seat).size[2] for seat, _ in seats), default=0.3) + 2 * WALL_GAP
+        width, _, depth = table.size
+        xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
+        best = None
+        for yaw in (0.0, math.pi / 2.0):
+            for x in np.arange(xs.min(), xs.max(), WALL_STEP):
+                for z in np.arange(zs.min(), zs.max(), WALL_STEP):
+                    rect = make_rect(x, z, width + 2 * ring, depth + 2 * ring, yaw)
+                    if room.footprint_excess(corners(rect)) > 1e-6:
+                        continue
+                    if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
+                        continue
+                    score = float(mask_at(mask, room, np.array([[x, z]]))[0])
+                    if best is None or score > best[0] + 1e-12:
+                        best = (score, rect, float(x), float(z), yaw)
+        if best is None:
+            continue
+        _, rect, x, z, yaw = best
+        placed[table.id] = rect
+        poses[table.id] = Pose(x, 0.0, z, yaw)
+        c, s = math.cos(yaw), math.sin(yaw)
+        for label, (along, out) in SIDE_DIRECTIONS.items():
+            here = [seat for seat, side in seats if side == label]
+            span = width if out[1] else depth  # chairs at the front or back spread along the width
+            for k, seat in enumerate(here):
+                chair = graph.node(seat)
+                shift = ((k + 0.5) / len(here) - 0.5) * span
+                reach = (depth if out[1] else width) / 2.0 + chair.size[2] / 2.0 + WALL_GAP
+                lx, lz = along[0] * shift + out[0] * reach, along[1] * shift + out[1] * reach
+                wx, wz = x + lx * c + lz * s, z - lx * s + lz * c  # local (left, forward) -> world
+                poses[seat] = Pose(float(wx), 0.0, float(wz), float(math.atan2(x - wx, z - wz)))
 
 
 def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, swings: list) -> None:

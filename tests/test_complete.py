@@ -131,6 +131,26 @@ def test_an_l_shaped_study_without_a_window_keeps_its_laptop_on_the_desk(model, 
     assert ("desk_1", "AgainstWall") in {(r.source, r.label) for r in scene.relations}
 
 
+def test_a_dining_table_starts_free_with_its_chairs_spread_round_it(model, catalog):
+    from scenewright.completion.complete import build_graph, starting_poses
+    from scenewright.generator.layout.geometry import rect_distance
+
+    request = parse_request("4.5x4", ["W:1:0.9"], ["N:2.2:1.4"], ["dining_table"], catalog)
+    contents = choose_contents(model, request)
+    graph, _ = build_graph(model, contents, request.room, catalog)
+    poses = starting_poses(graph, request.room, contents.mask)
+    table = graph.node("dining_table_1")
+    pose = poses[table.id]
+    table_rect = make_rect(pose.x, pose.z, table.size[0], table.size[2], pose.yaw)
+    chairs = [n for n in graph.nodes("object") if n.type == "chair"]
+    assert len(chairs) == 6
+    rects = [make_rect(poses[c.id].x, poses[c.id].z, c.size[0], c.size[2], poses[c.id].yaw) for c in chairs]
+    for chair, rect in zip(chairs, rects):
+        assert rect_distance(rect, table_rect) < 0.1, chair.id  # at the table
+        assert request.room.footprint_excess([(rect.cx, rect.cz)]) == 0.0
+    assert all(rect_overlap(a, b) < 1e-9 for i, a in enumerate(rects) for b in rects[i + 1 :])
+
+
 def test_polygon_rooms_are_read_as_corners(catalog):
     request = parse_request("0,0 6,0 6,3 3,3 3,5 0,5", ["2:1:0.9"], [], ["desk"], catalog)
     assert request.room.area == pytest.approx(6 * 3 + 3 * 2) and len(request.room.walls) == 6
