@@ -24,7 +24,7 @@ def names_its_entities(phrase: str, entities: tuple[str, ...], world) -> bool:
     for entity_id in entities:
         if entity_id in world:
             entity = world[entity_id]
-            if entity.noun not in lowered and entity.plural not in lowered:
+            if entity.noun.lower() not in lowered and entity.plural.lower() not in lowered:
                 return False
         elif not re.search(r"\b(door|window)s?\b", lowered):
             return False
