@@ -1,6 +1,6 @@
 """scenewright: procedural 3D scenes from a graph grammar, described in true English.
 
-The pipeline (see DESIGN.md): a rules file is parsed into a grammar
+The pipeline (README.md, "How it works"): a rules file is parsed into a grammar
 (``scenewright.generator``), expanded into a scene graph, laid out by MCMC
 (``scenewright.generator.layout``), then described (``scenewright.describer``),
 rendered and exported (``scenewright.render``).
