@@ -190,7 +190,7 @@ def time_cli(name: str, scenes: int, folder: Path) -> None:
         path = examples / f"{seed:06d}.json"
         if not path.exists():
             path.write_text(reproducible_json(generate(name, seed)))
-    command = [sys.executable, "-m", "scenewright", "fit", name, *map(str, sorted(examples.glob("*.json"))),
+    command = [sys.executable, "-m", "scenewright.cli", "fit", name, *map(str, sorted(examples.glob("*.json"))),
                "-o", str(folder / "cli-out" / "fitted.rules")]
     start = time.perf_counter()
     result = subprocess.run(command, capture_output=True, text=True)
