@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import json
 import math
-from functools import lru_cache
-from importlib import resources
 from typing import Any
 
 import jsonschema
@@ -22,6 +20,7 @@ from jsonschema.exceptions import best_match
 
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
 from scenewright.core.scene import Scene
+from scenewright.schema_check import packaged_schema_text, packaged_validator
 
 from .model import ExampleError, ObjectRecord, example_scene
 
@@ -147,13 +146,9 @@ def _base_height(raw: dict, by_id: dict[str, dict]) -> float:
     return float(bottom) + float(below["size"][1])
 
 
-@lru_cache(maxsize=1)
 def _schema_text() -> str:
-    return resources.files("scenewright.examples").joinpath("schema", SCHEMA_FILE).read_text(encoding="utf-8")
+    return packaged_schema_text("scenewright.examples", "schema", SCHEMA_FILE)
 
 
-@lru_cache(maxsize=1)
 def _validator() -> jsonschema.Draft202012Validator:
-    schema = load_schema()
-    jsonschema.Draft202012Validator.check_schema(schema)
-    return jsonschema.Draft202012Validator(schema)
+    return packaged_validator("scenewright.examples", "schema", SCHEMA_FILE)

@@ -268,16 +268,26 @@ def _article(kind: str) -> str:
 # -- schema ----------------------------------------------------------------------
 
 
-@lru_cache(maxsize=1)
-def _schema_text() -> str:
-    return resources.files("scenewright").joinpath("schema", SCHEMA_FILE).read_text(encoding="utf-8")
+@lru_cache(maxsize=None)
+def packaged_schema_text(package: str, *path: str) -> str:
+    """The text of a JSON Schema shipped as package data (``package``, then its path)."""
+    return resources.files(package).joinpath(*path).read_text(encoding="utf-8")
 
 
-@lru_cache(maxsize=1)
-def _validator() -> jsonschema.Draft202012Validator:
-    schema = load_schema()
+@lru_cache(maxsize=None)
+def packaged_validator(package: str, *path: str) -> jsonschema.Draft202012Validator:
+    """A checked draft 2020-12 validator of a JSON Schema shipped as package data."""
+    schema = json.loads(packaged_schema_text(package, *path))
     jsonschema.Draft202012Validator.check_schema(schema)
     return jsonschema.Draft202012Validator(schema)
+
+
+def _schema_text() -> str:
+    return packaged_schema_text("scenewright", "schema", SCHEMA_FILE)
+
+
+def _validator() -> jsonschema.Draft202012Validator:
+    return packaged_validator("scenewright", "schema", SCHEMA_FILE)
 
 
 def _one_line(message: str, limit: int = 200) -> str:
