@@ -61,7 +61,7 @@ def test_referring_expressions_name_seen_objects_once(products):
         for expression in row["refexps"]:
             x0, y0, x1, y1 = rendered[expression["id"]]["bbox"]
             assert rendered[expression["id"]]["visible"] >= 0.25 and max(x1 - x0, y1 - y0) >= 96 // 16
-            assert expression["program"][0] == {"function": "scene", "inputs": [], "side_inputs": []}
+            assert expression["program"][0] == {"function": "scene", "inputs": [], "value_inputs": []}
 
 
 def test_grounding_can_be_turned_off_and_defaults_keep_a_plain_spec():

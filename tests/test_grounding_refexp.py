@@ -48,13 +48,13 @@ def test_programs_run_to_their_object_and_fail_loudly_otherwise():
     for expression in referring_expressions(picture):
         assert execute(expression["program"], picture) == expression["id"]
     the_sign = [
-        {"function": "scene", "inputs": [], "side_inputs": []},
-        {"function": "filter_noun", "inputs": [0], "side_inputs": ["sign"]},
-        {"function": "unique", "inputs": [1], "side_inputs": []},
+        {"function": "scene", "inputs": [], "value_inputs": []},
+        {"function": "filter_noun", "inputs": [0], "value_inputs": ["sign"]},
+        {"function": "unique", "inputs": [1], "value_inputs": []},
     ]
     with pytest.raises(ProgramError, match="2 objects, not one"):
         execute(the_sign, picture)
-    both = the_sign[:2] + [{"function": "intersect", "inputs": [0, 1], "side_inputs": []}]
+    both = the_sign[:2] + [{"function": "intersect", "inputs": [0, 1], "value_inputs": []}]
     assert execute(both, picture) == ["sign_1", "sign_2"]
 
 
@@ -84,7 +84,7 @@ def test_every_expression_is_true_and_unique_by_an_independent_count(drawn):
             side = words[-1]
             ordered = sorted(alike, key=lambda o: o.across if side == "left" else -o.across)
             place = ordered.index(me) + 1
-            assert expression["program"][-1]["side_inputs"] == [side, str(place)]
+            assert expression["program"][-1]["value_inputs"] == [side, str(place)]
             assert sum(1 for o in alike if (o.across < me.across if side == "left" else o.across > me.across)) == place - 1
             neighbours = ordered[max(place - 2, 0):place - 1] + ordered[place:place + 1]
             assert all(abs(o.across - me.across) >= SIDE_MARGIN for o in neighbours)
