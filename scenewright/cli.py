@@ -318,7 +318,12 @@ def run_dataset(args: argparse.Namespace) -> int:
         retries=args.retries,
     )
     spec = with_picture_captions(
-        spec, grounding=args.grounding, frame=args.frame, min_visible=args.min_visible, min_size=args.min_size
+        spec,
+        grounding=args.grounding,
+        questions=args.questions,
+        frame=args.frame,
+        min_visible=args.min_visible,
+        min_size=args.min_size,
     )
     cpus = available_cpus()
     if args.workers and args.workers > cpus and not args.scheduler and not args.quiet:
@@ -982,6 +987,13 @@ def build_parser() -> CommandLineParser:
         action="store_false",
         help="leave out the rows' grounding column (spans of the captions and text, ids, pixel boxes) and "
         "refexps column (referring expressions with their programs)",
+    )
+    dataset.add_argument(
+        "--no-questions",
+        dest="questions",
+        action="store_false",
+        help="leave out the rows' questions column (CLEVR-style questions with programs and answers) and "
+        "questions.json",
     )
     dataset.add_argument(
         "--retries",

@@ -15,6 +15,7 @@ On disk (``DIR``)::
     depth/, segmentation/  optional ground truth (16-bit PNGs)
     failed/000003.json     scene.json of a scene whose every layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
+    questions.json         every row's questions, CLEVR's layout (``dataset_questions``)
     .records/000000.json   one record per finished scene: the commit marker for resume
     .lock                  locked (flock) by the run using the directory, which writes its
                            pid there while it runs
@@ -564,6 +565,7 @@ def run_dataset(
     one scene in a worker (default: the real pipeline, ``dataset_scene.produce_scene``);
     tests inject a cheap one. Holds the directory's lock throughout.
     """
+    from scenewright.dataset_questions import publish_questions
     from scenewright.dataset_scene import produce_scene
 
     producer = producer or produce_scene
@@ -590,6 +592,7 @@ def run_dataset(
                     bar.close()
         seconds = time.perf_counter() - started
         collector = publish_metadata(root, spec.count)
+        publish_questions(root, spec)
         stats = collector.summary(made=made, seconds=seconds)
         write_stats(root, stats)
     return RunReport(

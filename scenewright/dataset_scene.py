@@ -11,8 +11,9 @@ dataset directory; the parent process does (``dataset.store_product``).
 Captions are made after the render, of the picture (``describer.view``: only what it
 shows well enough, only relations that hold in it), and with ``grounding`` every
 caption's and the full text's mentions go into the row with their pixel boxes, and
-referring expressions for the objects the picture shows (``describer.refexp``).
-``PictureCaptions`` is a ``DatasetSpec`` that carries how (a plain ``DatasetSpec``
+referring expressions for the objects the picture shows (``describer.refexp``); with
+``questions``, CLEVR-style questions about the picture with their programs and answers
+(``describer.questions``). ``PictureCaptions`` is a ``DatasetSpec`` that carries how (a plain ``DatasetSpec``
 means the defaults).
 """
 
@@ -40,19 +41,21 @@ if TYPE_CHECKING:
 class PictureCaptions(DatasetSpec):
     """A dataset's settings with how the captions of each picture are made.
 
-    ``grounding``: add the row's ``grounding`` and ``refexps`` columns; ``frame``: "scene" or "camera"
+    ``grounding``: add the row's ``grounding`` and ``refexps`` columns; ``questions``: add
+    its ``questions`` column (and the dataset's questions.json); ``frame``: "scene" or "camera"
     (``describer.view``); ``min_visible`` and ``min_size``: the thresholds an entity must
     pass to be named in a caption (``render.visibility.Thresholds``; ``min_size`` None:
     16 pixels, or a sixteenth of the image's shorter side when that is less).
     """
 
     grounding: bool = True
+    questions: bool = True
     frame: str = "scene"
     min_visible: float = 0.25
     min_size: int | None = None
 
 
-#: What a plain ``DatasetSpec`` gets: grounding on, the scene's frame, the default thresholds.
+#: What a plain ``DatasetSpec`` gets: grounding and questions on, the scene's frame, the default thresholds.
 DEFAULT_CAPTIONS = PictureCaptions(rules="", rules_digest="", count=0)
 
 #: The caption settings' defaults by name, which a plain ``DatasetSpec`` stores none of.
@@ -130,7 +133,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         images = {kind: data for kind, (_, data) in encode_render(result, kinds=kinds).items()}
         scene_json = reproducible_json(scene).encode()
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
-        grounded, captions = picture_captions(spec, scene, result, full)
+        grounded, captions = picture_captions(spec, scene, result, full, rules=context.rules)
 
     files = {f"images/{stem}.png": images["colour"]}
     row: dict = {"file_name": f"images/{stem}.png"}
@@ -150,27 +153,40 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     return SceneProduct(index, seed, scene.layout.ok, files, row, stats)
 
 
-def picture_captions(spec: DatasetSpec, scene: Scene, result, full) -> tuple[dict, list[str]]:
+def picture_captions(spec: DatasetSpec, scene: Scene, result, full, rules: Rules | None = None) -> tuple[dict, list[str]]:
     """The row's ``grounding`` and ``refexps`` columns (none when grounding is turned
-    off) and its captions of the rendered picture ``result``, variants 0..K-1; ``full``
-    is the scene's full ``Description``."""
-    from scenewright.describer.refexp import PictureFacts, referring_expressions
+    off), its ``questions`` column (none when questions are turned off) and its captions
+    of the rendered picture ``result``, variants 0..K-1; ``full`` is the scene's full
+    ``Description``; ``rules``: the scene's rule set, whose nouns questions may ask about
+    (``describer.questions.vocabulary_of``; None: the scene's own nouns only)."""
+    from scenewright.describer.programs import PictureFacts
+    from scenewright.describer.questions import picture_questions, vocabulary_of
+    from scenewright.describer.refexp import referring_expressions
     from scenewright.describer.view import describe_view, grounding_records
     from scenewright.render.visibility import PictureView, Thresholds
 
-    options = spec if isinstance(spec, PictureCaptions) else DEFAULT_CAPTIONS
+    options = captions_options(spec)
     picture = PictureView.from_render(result, scene, Thresholds(options.min_visible, options.min_size))
     captions = [
         describe_view(scene, picture, frame=options.frame, variant=k, templates=scene.templates)
         for k in range(spec.captions)
     ]
     texts = [c.text for c in captions]
-    if not options.grounding:
-        return {}, texts
-    columns = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
-    grounding = {column: grounding_records(c, picture) for column, c in zip(columns, captions, strict=True)}
-    grounding["text"] = grounding_records(full, picture)
-    return {"grounding": grounding, "refexps": referring_expressions(PictureFacts.of(scene, picture))}, texts
+    columns: dict = {}
+    facts = PictureFacts.of(scene, picture) if options.grounding or options.questions else None
+    if options.grounding:
+        names = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
+        grounding = {column: grounding_records(c, picture) for column, c in zip(names, captions, strict=True)}
+        grounding["text"] = grounding_records(full, picture)
+        columns.update(grounding=grounding, refexps=referring_expressions(facts))
+    if options.questions:
+        columns["questions"] = picture_questions(facts, vocabulary_of(rules, scene), scene.seed)
+    return columns, texts
+
+
+def captions_options(spec: DatasetSpec) -> PictureCaptions:
+    """How the captions of ``spec``'s pictures are made (a plain ``DatasetSpec``: the defaults)."""
+    return spec if isinstance(spec, PictureCaptions) else DEFAULT_CAPTIONS
 
 
 def laid_out_scene(context: WorkerContext, spec: DatasetSpec, seed: int) -> tuple[Scene, dict]:
