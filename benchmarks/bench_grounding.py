@@ -11,12 +11,17 @@ two caption variants in each frame), checks and counts:
 - referring expressions: how many, how many of the seen objects have one, and how many
   programs, executed again on the picture's objects, do not give exactly their object
   (must be 0);
-- grammar: caption sentences link-grammar's ``link-parser`` finds no linkage for
-  (needs the Debian package link-grammar);
+- questions (``describer.questions``): how many per family, the answers' spread per
+  family, and how many programs, executed again on the picture's objects, do not give
+  their stored answer (must be 0);
+- grammar: caption sentences and questions link-grammar's ``link-parser`` finds no
+  linkage for (needs the Debian package link-grammar);
 - cost: CPU seconds (``time.process_time``; the machine is shared) per scene of the
   work one dataset scene does: layout, full text, render, and the captions, the old
   way (layout-true captions) and the new (the image's captions plus the grounding and
-  refexps columns). Throughput with grounding relative to without is the ratio of the totals.
+  refexps columns), and the questions column apart. Throughput with grounding relative
+  to without is the ratio of the totals, and so is throughput with questions relative
+  to without (both with the grounding).
 
     .venv/bin/python benchmarks/bench_grounding.py -n 200
     .venv/bin/python benchmarks/bench_grounding.py -n 20 --rules village desk
@@ -32,8 +37,9 @@ from pathlib import Path
 
 from scenewright.api import build_scene, describe, load_rules
 from scenewright.dataset import scene_seed
-from scenewright.dataset_scene import picture_captions
-from scenewright.describer.refexp import PictureFacts, ProgramError, execute
+from scenewright.dataset_scene import PictureCaptions, picture_captions
+from scenewright.describer.programs import PictureFacts, ProgramError, answer_text, execute
+from scenewright.describer.questions import picture_questions, vocabulary_of
 from scenewright.describer.view import describe_view
 from scenewright.describer.world import world_of
 from scenewright.generator.rules import shipped_rule_sets
@@ -54,13 +60,16 @@ class Tally:
     TARGETS = (
         "text spans without their noun", "caption spans without their noun",
         "records whose boxes are not the rendered ones", "caption mentions of objects below the thresholds",
-        "refexp programs that do not give exactly their object",
+        "refexp programs that do not give exactly their object", "question programs that do not give their answer",
     )  # fmt: skip
 
     def __init__(self) -> None:
         self.counts: Counter[str] = Counter(dict.fromkeys(self.TARGETS, 0))
         self.seconds: Counter[str] = Counter()
         self.sentences: list[str] = []
+        self.questions: list[str] = []
+        #: family -> answer -> how many questions
+        self.answers: dict[str, Counter[str]] = {}
 
     def clock(self, stage: str, started: float) -> float:
         now = time.process_time()
@@ -93,8 +102,7 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
     started = tally.clock("render", started)
     old = [describe(scene, style="short", variant=k) for k in range(CAPTIONS)]
     started = tally.clock("layout-true captions", started)
-    spec = _Spec()
-    columns, _ = picture_captions(spec, scene, result, full)
+    columns, _ = picture_captions(WITHOUT_QUESTIONS, scene, result, full)
     grounding = columns["grounding"]
     facts = PictureFacts.of(scene, PictureView.from_render(result, scene))
     tally.counts["seen objects"] += len(facts.objects)
@@ -105,10 +113,21 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
         except ProgramError:
             picked = None
         tally.counts["refexp programs that do not give exactly their object"] += picked != expression["id"]
-    tally.clock("image captions + grounding + refexps", started)
+    started = tally.clock("image captions + grounding + refexps", started)
+    picture = PictureView.from_render(result, scene)
+    asked = picture_questions(PictureFacts.of(scene, picture), vocabulary_of(rules, scene), scene.seed)
+    tally.clock("questions", started)
+    for question in asked:
+        tally.counts["questions"] += 1
+        tally.answers.setdefault(question["family"], Counter())[question["answer"]] += 1
+        tally.questions.append(question["question"])
+        try:
+            answer = answer_text(execute(question["program"], facts))
+        except ProgramError:
+            answer = None
+        tally.counts["question programs that do not give their answer"] += answer != question["answer"]
 
     world = world_of(scene)
-    picture = PictureView.from_render(result, scene)
     for column, records in grounding.items():
         for record in records:
             tally.counts["grounding records"] += 1
@@ -130,10 +149,8 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
     tally.counts["...of which below the thresholds"] += sum(not picture.seen(i) for i in layout_true)
 
 
-class _Spec:
-    """The dataset defaults for ``picture_captions``: two captions, grounding on."""
-
-    captions = CAPTIONS
+#: The dataset defaults for ``picture_captions`` but two captions and no questions (timed apart).
+WITHOUT_QUESTIONS = PictureCaptions(rules="", rules_digest="", count=0, captions=CAPTIONS, questions=False)
 
 
 def main() -> None:
@@ -148,15 +165,24 @@ def main() -> None:
         rules = load_rules(name)
         for index in range(args.count):
             measure_scene(rules, scene_seed(0, index), renderer, tally)
-        bad = ungrammatical(list(dict.fromkeys(tally.sentences)))
-        tally.counts["caption sentences"] += len(set(tally.sentences))
-        tally.counts["caption sentences link-grammar rejects"] += len(bad)
-        for sentence in bad[:5]:
-            print(f"  unparsed: {sentence}", file=sys.stderr)
+        check_grammar(tally.sentences, tally, "caption sentences")
+        check_grammar(tally.questions, tally, "questions")
         report(name, args.count, tally)
         totals.counts.update(tally.counts)
         totals.seconds.update(tally.seconds)
+        for family, answers in tally.answers.items():
+            totals.answers.setdefault(family, Counter()).update(answers)
     report("all", args.count, totals)
+
+
+def check_grammar(sentences: list[str], tally: Tally, kind: str) -> None:
+    """Count the distinct ``sentences`` and those link-grammar finds no linkage for."""
+    distinct = list(dict.fromkeys(sentences))
+    bad = ungrammatical(distinct)
+    tally.counts[f"{kind} (distinct)"] += len(distinct)
+    tally.counts[f"{kind} link-grammar rejects"] += len(bad)
+    for sentence in bad[:5]:
+        print(f"  unparsed: {sentence}", file=sys.stderr)
 
 
 def report(name: str, count: int, tally: Tally) -> None:
@@ -171,6 +197,11 @@ def report(name: str, count: int, tally: Tally) -> None:
             print(f"  {key}: {value}")
     print("  CPU s/scene: " + ", ".join(f"{stage} {seconds:.4f}" for stage, seconds in per_scene.items()))
     print(f"  throughput with grounding / without: {before / after:.3f}")
+    print(f"  throughput with questions / without: {after / (after + per_scene['questions']):.3f}")
+    for family, answers in tally.answers.items():
+        total = sum(answers.values())
+        spread = ", ".join(f"{answer} {n / total:.0%}" for answer, n in answers.most_common(6))
+        print(f"  {family}: {total} questions; answers {spread}" + (" ..." if len(answers) > 6 else ""))
 
 
 if __name__ == "__main__":
