@@ -7,8 +7,9 @@ relations the layout satisfied are stated, never ``Implicit*`` ones. The pipelin
 plan (``plan``: what to say, in derivation order, aggregated) -> referring expressions
 (``refer``) -> words (``lexicon``, ``english``) -> sentence templates (``templates``).
 ``view.describe_view`` captions one rendered picture of the scene (only what it shows,
-only relations that hold in it) and ``refexp`` gives referring expressions for it with
-programs that pick out their object. See docs/describer.md.
+only relations that hold in it), ``refexp`` gives referring expressions for it with
+programs that pick out their object and ``questions`` asks CLEVR-style questions about
+it with programs that answer them (both run by ``programs``). See docs/describer.md.
 """
 
 from .description import STYLES, Description, describe
