@@ -142,7 +142,9 @@ def test_the_command_reports_retries_by_size_errors_with_locations_and_exits_1(m
     assert stats["errors"] == {
         "expansion": {"scenes": counts["error"], "messages": {expected_error: counts["error"]}}
     }
-    assert stats["problems"] == {"crate overlaps crate by # %": counts["fails"]}
+    # Two crates always overlap in the yard; pushing them apart may also push one out.
+    assert stats["problems"]["crate overlaps crate by # %"] == counts["fails"]
+    assert set(stats["problems"]) <= {"crate overlaps crate by # %", "crate is outside the scene by # m"}
     assert stats["retries"]["by_objects"] == [
         {"objects": "1", "scenes": counts["ok"], "retried": 0, "retries": 0, "mean_layouts": 1.0,
          "failed_after_retries": 0},

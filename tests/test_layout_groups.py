@@ -152,10 +152,13 @@ def test_decomposition_can_be_turned_off():
 
 
 def failed_run():
-    """A chain stopped early on a hamlet, so some relations still fail."""
+    """A chain stopped after one step from a one-candidate placement of a hamlet, so some
+    relations still fail."""
     graph = hamlet(12, side=60.0)
     problem = compile_problem(graph)
-    run = run_chain(problem, LayoutParams(steps=1, steps_per_box=0, min_steps=0), stage_stream(0, "layout", 0))
+    run = run_chain(
+        problem, LayoutParams(steps=1, steps_per_box=0, min_steps=0, initial_candidates=1), stage_stream(0, "layout", 0)
+    )
     return problem, run
 
 

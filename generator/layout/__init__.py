@@ -24,6 +24,7 @@ on a layout that already exists (an imported scene) without sampling.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from collections.abc import Mapping
 
 import numpy as np
@@ -90,12 +91,15 @@ def layout_scene(
         total_steps += frames.steps
     for attempt in range(1 + params.restarts):
         rng = _chain_stream(seed, attempt)
+        # A chain that a repairing restart follows gives up sooner: the repair mends a
+        # stuck item in far fewer steps than waiting it out (docs/layout.md).
+        chain_params = replace(params, patience=params.repair_patience) if repairs and attempt + 1 < params.restarts else params
         if frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
         elif best is not None and attempt < params.restarts and repairs:  # keep what was fine, redo the rest
-            run = run_chain(problem, params, rng, repair_pins(problem, best, pins))
+            run = run_chain(problem, chain_params, rng, repair_pins(problem, best, pins))
         else:
-            run = run_chain(problem, params, rng, pins)
+            run = run_chain(problem, chain_params, rng, pins)
         total_steps += run.steps
         total_accepted += run.accepted
         if best is None or _rank(run) > _rank(best):

@@ -13,7 +13,7 @@ energy only as they are placed.
 Pinned and warm-started boxes (``pinning.Pins``) enter first, at their given poses, and
 count as placed; pinned and started paths get their given points. Then each new
 junction with its roads (taking the evenly spread headings given roads leave free), and
-each new free road, is the best of ``initial_candidates`` random ones by the energy plus
+each new free road, is the best of ``path_candidates`` random ones by the energy plus
 how far pinned things that must be next to a road are from it, and such roads are
 pulled towards those things (``Mover.pull``). The rest is placed around them as above.
 A group holding any given box is not placed again as a whole (its given boxes stay
@@ -95,7 +95,7 @@ def place_initial(
     _lay_paths(energy, rng, pins, held)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
         _best_of(
-            energy, lambda term=term: mover.pull(problem.relations[term]), energy.params.initial_candidates, held
+            energy, lambda term=term: mover.pull(problem.relations[term]), energy.params.path_candidates, held
         )
     for unit in _placing_order(energy):
         kind, index = unit
@@ -351,13 +351,13 @@ def _room(start: tuple[float, float], heading: float, half_x: float, half_z: flo
 def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
     """Paths when some boxes or paths are given (pinned or started): given paths at their
     points; each junction's other roads (and the junction, unless it is given) as the best
-    of ``initial_candidates`` fans, and each other free road as the best of as many
+    of ``path_candidates`` fans, and each other free road as the best of as many
     crossings, by the energy (which already holds the given boxes) plus ``held`` (how far
     the pinned things that must be next to a road are from it): so new roads avoid
     pinned things and pass by those that must be next to them."""
     problem, state = energy.problem, energy.state
     half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
-    count = energy.params.initial_candidates
+    count = energy.params.path_candidates
     for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
         paths = problem.paths_of_junction.get(junction, [])
         given = {path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None}

@@ -23,10 +23,14 @@ class LayoutParams:
     ``check_every`` how often the stop rule is tested; it stops once the layout is ok
     (every relation satisfied, nothing overlapping, all inside) and its energy is at most
     ``target_energy``; it gives up early when its count of problems has not fallen for
-    ``patience`` steps. ``restarts`` more runs from fresh initial placements are made while
-    the result is not ok, and the best is kept. The temperature falls geometrically from
+    ``patience`` steps (``repair_patience`` for a chain that a repairing restart follows,
+    outdoors: mending the items it is stuck on is quicker than waiting it out). ``restarts``
+    more runs are made while the result is not ok (``layout_scene`` says from where), and the
+    best is kept. The temperature falls geometrically from
     ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
-    poses are tried for each item during the constructive initial placement.
+    poses are tried for each item during the constructive initial placement, and
+    ``path_candidates`` for each road and junction laid around pinned or started things
+    (few, and everything else is placed by them, so they get more tries).
     ``incremental=False`` recomputes the full energy every step (for comparison).
 
     Group decomposition (``decompose``): ``workers`` processes lay out the groups' own
@@ -42,14 +46,16 @@ class LayoutParams:
     next_to_distance: float = 2.0
     steps: int = 4000
     steps_per_box: int = 100
-    min_steps: int = 200
-    check_every: int = 200
+    min_steps: int = 50
+    check_every: int = 25
     patience: int = 1200
+    repair_patience: int = 400
     target_energy: float = math.inf
-    restarts: int = 3
+    restarts: int = 4
     temperature_start: float = 0.05
     temperature_end: float = 0.002
-    initial_candidates: int = 16
+    initial_candidates: int = 8
+    path_candidates: int = 16
     incremental: bool = True
     decompose: bool = True
     workers: int = 1
