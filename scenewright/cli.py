@@ -304,6 +304,8 @@ def run_dataset(args: argparse.Namespace) -> int:
     from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
     from scenewright.dataset_scene import with_picture_captions
 
+    if not args.images and (args.depth or args.segmentation):
+        raise InputError("--depth and --segmentation are images: they cannot be made with --no-images")
     spec = dataset_spec(
         args.rules,
         args.count,
@@ -316,6 +318,7 @@ def run_dataset(args: argparse.Namespace) -> int:
         segmentation=args.segmentation,
         include_failed=args.include_failed,
         retries=args.retries,
+        images=args.images,
     )
     spec = with_picture_captions(
         spec,
@@ -457,6 +460,16 @@ def run_fit(args: argparse.Namespace) -> int:
               + (f"; {len(unidentified)} no example drew kept their numbers: "
                  + ", ".join(f"{p.kind} {p.name}" for p in unidentified) if unidentified else ""))
     say(args, "wrote " + ", ".join(str(path) for path in written))
+    return 0
+
+
+def run_relations(args: argparse.Namespace) -> int:
+    from scenewright.examples import load_examples
+    from scenewright.learning.relations import find_relations
+
+    examples = load_examples(args.examples)
+    result = find_relations([e.scene for e in examples], test=args.test, seed=args.seed, prune=args.prune)
+    sys.stdout.write(json.dumps(result.to_dict(), indent=1) + "\n" if args.json else result.table())
     return 0
 
 
@@ -672,13 +685,16 @@ examples:
   scenewright dataset village -n 100000 -o data/village --scheduler tcp://head:8786
   scenewright dataset classroom -n 500 -o data/classroom --frame camera --min-visible 0.5 --min-size 24
   scenewright dataset my_town.rules -n 500 -o data/town --retries 6 --include-failed
+  scenewright dataset bedroom -n 500 -o data/bedroom --no-images
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
 interrupted run; rerunning with another -n grows the dataset or shrinks what
 metadata.jsonl and the statistics list (scenes at N and above stay on disk). One run at
 a time may use DIR (a second one exits 2). The directory loads with
-datasets.load_dataset("imagefolder", data_dir=DIR).
+datasets.load_dataset("imagefolder", data_dir=DIR). With --no-images nothing is rendered:
+each scene is scenes/STEM.json and its description texts/STEM.txt, and its row names
+both (scene_file_name, text_file_name) and holds the text (no captions of a picture).
 
 A scene whose layout fails is laid out again (--retries K, default {DATASET_RETRIES}) with the layout
 seed retry_seed(seed, k) and the same objects, so failures do not favour small scenes;
@@ -746,6 +762,25 @@ its numbers changed; files it includes are written beside it at the same relativ
 Examples are scene.json files of this rule set. Those made by scenewright keep their
 derivation (the draws fit counts); for one without, fit searches for the derivations
 that could have made it and fits by expectation-maximisation (docs/learning.md).""",
+    "relations": """\
+examples:
+  scenewright dataset bedroom -n 500 -o data/bedroom --no-images
+  scenewright relations data/bedroom/scenes/*.json
+  scenewright relations rooms/*.json room.glb --json
+  scenewright relations data/bedroom/scenes/*.json --test angle --seed 3
+
+finds which pairs of object types stand in a pattern relative to each other in the
+example scenes (scene.json or its folder, the hand-written example format, GLB). The
+default test compares where a b stands in an a's frame (position and turn) within a
+scene with an a and a b of two different scenes, whose placements are independent
+(energy distance, 199 permutations, related at p <= 0.01); --test angle is the test of
+complete spatial randomness by angles of Zhang et al. (related at d >= 1.628);
+--test cooccurrence calls a pair related when most scenes hold both. Of a triangle of
+related types the weakest pair is reported as indirect (a lamp on a nightstand by a
+bed relates to the bed through the nightstand); --no-prune keeps it. Prints a table
+of every pair of types that share a scene, or with --json the same fields (a, b,
+related, statistic, p_value, pairs, scenes, tested, pruned). The same examples and
+seed print the same result. See docs/learning.md.""",
     "plans": """\
 examples:
   scenewright plans build completion/plans -o model.json
@@ -943,6 +978,10 @@ def build_parser() -> CommandLineParser:
     )
     templates_option(dataset)
     view_options(dataset, "512x512")
+    dataset.add_argument(
+        "--no-images", dest="images", action="store_false",
+        help="no render: write each scene's scene.json and its description (texts/) only, for fast example corpora",
+    )  # fmt: skip
     dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
     dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
     dataset.add_argument(
@@ -1046,6 +1085,21 @@ def build_parser() -> CommandLineParser:
         "towards uniform)",
     )  # fmt: skip
     allow_option(fit)
+
+    relations = command("relations", "find which object type pairs are spatially related in example scenes", run_relations)
+    relations.add_argument(
+        "examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)"
+    )
+    relations.add_argument("--json", action="store_true", help="print the result as JSON")
+    relations.add_argument(
+        "--test", choices=("permutation", "angle", "cooccurrence"), default="permutation",
+        help="permutation (default: within- vs across-scene poses), angle (complete spatial randomness by "
+        "angles) or cooccurrence (a baseline)",
+    )  # fmt: skip
+    relations.add_argument("--seed", type=seed_value, default=0, help="seed of the tests' random draws (0)")
+    relations.add_argument(
+        "--no-prune", dest="prune", action="store_false", help="keep indirect relations (the weakest pair of a triangle)"
+    )
 
     plans = command("plans", "furnished floor plans: build their model, show a relation graph, evaluate, draw", None)
     plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)

@@ -12,6 +12,7 @@ On disk (``DIR``)::
     metadata.jsonl         one row per written scene with index < N, ordered by index
     images/000000.png      the preview
     scenes/000000.json     scene.json (no wall-clock times: reproducible)
+    texts/000000.txt       the full description, instead of images/ (``images`` off)
     depth/, segmentation/  optional ground truth (16-bit PNGs)
     failed/000003.json     scene.json of a scene whose every layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
@@ -79,7 +80,7 @@ LOG_INTERVAL = 30.0
 IDLE_CHECK = 5.0
 #: What a setting stored by a version that did not have it meant (a dataset made before
 #: retries existed retried nothing), so such a dataset can be resumed with that value.
-SETTINGS_BEFORE = {"retries": 0}
+SETTINGS_BEFORE = {"retries": 0, "images": True}
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -138,6 +139,9 @@ class DatasetSpec:
     segmentation: bool = False
     include_failed: bool = False
     retries: int = DATASET_RETRIES
+    #: False: no render, no images and no picture captions; a scene is its scene.json
+    #: and its description (``texts/STEM.txt``), for fast example corpora.
+    images: bool = True
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json``."""
@@ -290,7 +294,7 @@ def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterat
             if settings_path.exists():
                 check_same_settings(spec, json.loads(settings_path.read_text()), root)
             write_atomic(settings_path, json.dumps(spec.settings(), indent=1) + "\n")
-            for sub in ("images", "scenes", RECORDS_DIR):
+            for sub in ("images" if spec.images else "texts", "scenes", RECORDS_DIR):
                 (root / sub).mkdir(exist_ok=True)
             remove_partials(root)
         except OSError as error:

@@ -86,7 +86,7 @@ class WorkerContext:
 
     settings: dict
     rules: Rules
-    renderer: Renderer
+    renderer: Renderer | None  # None for a dataset without images
 
 
 _per_thread = threading.local()
@@ -99,9 +99,10 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
         from scenewright.api import load_rules
         from scenewright.render.offscreen import Renderer
 
-        if context is not None:
+        if context is not None and context.renderer is not None:
             context.renderer.close()
-        context = WorkerContext(spec.settings(), load_rules(spec.rules), Renderer(*spec.size))
+        renderer = Renderer(*spec.size) if spec.images else None
+        context = WorkerContext(spec.settings(), load_rules(spec.rules), renderer)
         _per_thread.context = context
     return context
 
@@ -126,6 +127,8 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         full = describe(scene, style="full")
     scene = replace(scene, description=full.to_dict())
+    if not spec.images:
+        return text_product(spec, index, seed, scene, full.text, tried, cpu)
     with timed(cpu, "render", process_time):
         scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
     with timed(cpu, "encode", process_time):  # only the images asked for, and scene.json
@@ -151,6 +154,18 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     row.update(grounded)
     stats = {**scene_stats(scene, [full.text, *captions], cpu), **tried}
     return SceneProduct(index, seed, scene.layout.ok, files, row, stats)
+
+
+def text_product(
+    spec: DatasetSpec, index: int, seed: int, scene: Scene, text: str, tried: dict, cpu: dict[str, float]
+) -> SceneProduct:
+    """Scene ``index`` of a dataset without images: its scene.json and its full
+    description, and a row naming both (no picture, so no captions)."""
+    stem = scene_stem(index)
+    files = {f"scenes/{stem}.json": reproducible_json(scene).encode(), f"texts/{stem}.txt": (text + "\n").encode()}
+    row = {"scene_file_name": f"scenes/{stem}.json", "text_file_name": f"texts/{stem}.txt", "text": text, "scene_id": stem,
+           "seed": seed, **tried, "rules": spec.rules, "ok": scene.layout.ok}  # fmt: skip
+    return SceneProduct(index, seed, scene.layout.ok, files, row, {**scene_stats(scene, [text], cpu), **tried})
 
 
 def picture_captions(spec: DatasetSpec, scene: Scene, result, full, rules: Rules | None = None) -> tuple[dict, list[str]]:

@@ -1,0 +1,164 @@
+"""Which type pairs ``scenewright relations`` finds, against the pairs the grammar relates.
+
+    .venv/bin/python benchmarks/bench_relations.py                       # every shipped rule set, 500 scenes
+    .venv/bin/python benchmarks/bench_relations.py desk kitchen --scenes 200
+    .venv/bin/python benchmarks/bench_relations.py classroom --scenes 100 --workers 2
+    .venv/bin/python benchmarks/bench_relations.py --generate-only        # fill the scene cache, nothing else
+
+For each rule set: lay out scenes 0..N-1 with ``api.build_scene`` (expansion and
+layout, no description, no render) and keep their scene.json in a cache folder
+(``--cache``, default a folder in the system's temp directory, keyed by a digest of the
+rules files and of the generator's and core's sources, so a changed rule set or layout
+is generated afresh); scenes whose layout failed are left out, as a dataset leaves them
+out. The truth is every unordered pair of object types that some relation statement
+of the grammar links in these scenes (the relation edges of their scene graphs between
+two objects, Implicit ones included; edges to walls, windows, the room, groups and
+paths relate no two object types). Then each test of ``learning.relations`` (the
+permutation test, the angle test, co-occurrence) is run on the cached scene.json files
+as ``scenewright relations`` reads them, and its precision and recall against the
+truth are printed with the pairs it missed and the ones it made up.
+
+Prints figures only; nothing is asserted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import multiprocessing
+import tempfile
+import time
+from collections import Counter
+from pathlib import Path
+
+from scenewright import __version__
+from scenewright.api import build_scene, load_rules, reproducible_json
+from scenewright.core.scene import Scene
+from scenewright.examples import load_examples
+from scenewright.generator.rules import shipped_rule_sets
+
+PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+#: Sources whose change changes the scenes a seed makes (the cache key covers them).
+GENERATING_SOURCES = ("generator", "core")
+
+
+def cache_folder(root: Path, name: str) -> Path:
+    """The folder of ``name``'s cached scenes: keyed by the rules files, the generating
+    code and the version, so any change to them starts a new folder."""
+    rules = load_rules(name)
+    digest = hashlib.sha256(__version__.encode())
+    files = sorted(Path(rules.path).parent.rglob("*.rules"))
+    for folder in GENERATING_SOURCES:
+        files += sorted((PACKAGE_ROOT / folder).rglob("*.py"))
+    for path in files:
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return root / f"{name}-{digest.hexdigest()[:16]}"
+
+
+def _make_scene(job: tuple[str, int, str]) -> tuple[int, bool, float]:
+    """Lay out scene ``seed`` of rule set ``name`` into ``folder/SEED.json`` (a failed
+    layout into ``SEED.failed.json``); return the seed, whether it is ok, CPU seconds."""
+    name, seed, folder = job
+    started = time.process_time()
+    scene = build_scene(name, seed)
+    suffix = ".json" if scene.layout.ok else ".failed.json"
+    target = Path(folder) / f"{seed:06d}{suffix}"
+    partial = target.with_suffix(".partial")
+    partial.write_text(reproducible_json(scene))
+    partial.replace(target)
+    return seed, scene.layout.ok, time.process_time() - started
+
+
+def generated_scenes(name: str, count: int, cache: Path, workers: int) -> tuple[list[Path], int, float]:
+    """The scene.json files of seeds 0..count-1 of ``name`` whose layout is ok (made
+    where the cache lacks them); also the number of failed layouts and the CPU seconds
+    spent making scenes now."""
+    folder = cache_folder(cache, name)
+    folder.mkdir(parents=True, exist_ok=True)
+    missing = [
+        (name, seed, str(folder))
+        for seed in range(count)
+        if not (folder / f"{seed:06d}.json").exists() and not (folder / f"{seed:06d}.failed.json").exists()
+    ]
+    spent = 0.0
+    if missing:
+        with multiprocessing.get_context("forkserver").Pool(workers) as pool:
+            for _, _, seconds in pool.imap_unordered(_make_scene, missing, chunksize=4):
+                spent += seconds
+    ok = [folder / f"{seed:06d}.json" for seed in range(count) if (folder / f"{seed:06d}.json").exists()]
+    return ok, count - len(ok), spent
+
+
+def true_pairs(scenes: list[Scene]) -> Counter:
+    """Unordered object type pairs some relation edge links, with the number of scenes
+    holding such an edge."""
+    held: Counter = Counter()
+    for scene in scenes:
+        types = {o.id: o.type for o in scene.placed_objects()}
+        pairs = {
+            tuple(sorted((types[r.source], types[r.target])))
+            for r in scene.relations
+            if r.source in types and r.target in types
+        }
+        held.update(pairs)
+    return held
+
+
+def scored(found: set, truth: set) -> tuple[float, float]:
+    hits = len(found & truth)
+    precision = hits / len(found) if found else float("nan")
+    recall = hits / len(truth) if truth else float("nan")
+    return precision, recall
+
+
+def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> None:
+    from scenewright.learning.relations import TESTS, find_relations
+
+    started = time.process_time()
+    examples = load_examples(paths)
+    loading = time.process_time() - started
+    truth_counts = true_pairs([e.scene for e in examples])
+    truth = set(truth_counts)
+    print(f"{name}: {len(paths)} scenes ({failed} failed layouts left out), {len(truth)} true pairs; "
+          f"reading {loading:.1f} CPU s")  # fmt: skip
+    for test in TESTS:
+        started = time.process_time()
+        result = find_relations([e.scene for e in examples], test=test, seed=seed)
+        seconds = time.process_time() - started
+        found = {(pair.a, pair.b) for pair in result.pairs if pair.related}
+        precision, recall = scored(found, truth)
+        pruned = sum(pair.pruned for pair in result.pairs)
+        print(f"  {test:12s} precision {precision:.2f}  recall {recall:.2f}  "
+              f"({len(found & truth)} of {len(found)} found are true; {pruned} pruned as indirect; "
+              f"{len(result.pairs)} pairs tested; {seconds:.1f} CPU s)")  # fmt: skip
+        missed = sorted(truth - found)
+        extra = sorted(found - truth)
+        if missed:
+            print("    missed: " + ", ".join(f"{a}-{b} ({truth_counts[(a, b)]} scenes)" for a, b in missed))
+        if extra:
+            print("    not in the grammar: " + ", ".join(f"{a}-{b}" for a, b in extra))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("rules", nargs="*", help="shipped rule sets (default: all)")
+    parser.add_argument("--scenes", type=int, default=500, help="scenes per rule set (500)")
+    parser.add_argument("--workers", type=int, default=2, help="processes laying scenes out (2)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the tests' streams (0)")
+    parser.add_argument(
+        "--cache", type=Path, default=Path(tempfile.gettempdir()) / "scenewright-bench-relations",
+        help="folder of cached scene.json files",
+    )  # fmt: skip
+    parser.add_argument("--generate-only", action="store_true", help="fill the cache and stop")
+    args = parser.parse_args()
+    for name in args.rules or shipped_rule_sets():
+        paths, failed, spent = generated_scenes(name, args.scenes, args.cache, args.workers)
+        if spent:
+            print(f"{name}: laid out {args.scenes} scenes' missing ones in {spent:.0f} CPU s", flush=True)
+        if not args.generate_only:
+            evaluate(name, paths, failed, args.seed)
+
+
+if __name__ == "__main__":
+    main()

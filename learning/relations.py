@@ -1,0 +1,560 @@
+"""Which pairs of object types are spatially related in a set of example scenes.
+
+A type pair (a, b) is *related* when where a b stands relative to an a is not what it
+would be if the two were placed independently of each other. ``find_relations(scenes,
+test=...)`` runs one test of ``TESTS`` (a registry) on every pair of object types that
+occur together in some scene, same-type pairs included, and returns a
+``RelationsResult``: per pair whether it is related, the test's statistic and p-value,
+how many poses and scenes it rests on. Every random draw comes from the pair's own
+stream ``core.seeds.stream(seed, "relations", k)``, k a hash of the two type names, so
+a pair's verdict depends on nothing but its own data and the seed.
+
+The relative pose of b in a's frame is (x, z), b's base centre along a's left and
+forward (``core.frames``), and the relative yaw as (cos, sin): a point of R^4.
+
+permutation (the default, for continuous layouts)
+    Tests within-scene poses against poses of an a and a b paired across scenes. The
+    scenes share one frame (a room's walls stand at the same place in each), so an a of
+    scene i with the b's of scene j keeps everything each object owes to the room and
+    loses only what it owes to the other: that is the null of objects placed
+    independently of each other. To make the null exact, the scenes holding both types
+    (two of a, when a == b) are split at random into two halves:
+
+    - first half: in each scene one a at random and the b nearest it (another a when
+      a == b): one within-scene pose per scene;
+    - second half, in a random cyclic order: one a at random of each scene and the b
+      nearest it among the next scene's b's: one across-scene pose per scene. For
+      a == b the a's counterpart in the next scene is left out first, so that the b is
+      chosen among as many candidates as in the a's own scene: the a of the same index
+      (objects of one type are listed in the order the rules made them, so it plays the
+      same part, the left counter rather than the right one), or a random one where
+      that scene has fewer.
+
+    Under the null each scene's objects are used once and independently of the others,
+    so all these poses are independent and identically distributed, and a permutation
+    test of the two samples holds its level exactly. One pose per scene, to the nearest
+    b, because with twenty desks and twenty chairs a chair relates to its own desk, not
+    to the others, and twenty poses of one scene are not twenty independent ones.
+
+    Statistic: the energy distance (Szekely & Rizzo) of the two samples X (within, n
+    poses) and Y (across, m), each coordinate divided by its pooled standard deviation,
+
+        E = 2 mean |X - Y| - mean |X - X'| - mean |Y - Y'|     (V-statistic means)
+
+    which is zero only when the two distributions are equal. p = (1 + #{permutations
+    with E >= the observed E}) / (1 + PERMUTATIONS), PERMUTATIONS = 199 random
+    relabellings of the pooled poses. All permutations are evaluated at once from one
+    distance matrix (``scipy.spatial.distance.cdist``). Related when p <= alpha (0.01)
+    and the within-scene poses are the tighter sample: tightness
+    1 - mean |X - X'| / mean |Y - Y'| > 0 (below). The energy distance also finds
+    objects that keep *away* from each other (a refrigerator and dining chairs
+    competing for the walls), which is a dependence but no relation a rule states.
+    A pair held by fewer than ``MIN_SCENES`` scenes is not tested; one held by more than
+    ``MAX_SCENES`` is tested on a random ``MAX_SCENES`` of them.
+
+angle
+    The test of complete spatial randomness by means of angles (Assuncao 1994) as
+    Zhang et al., "Fast 3D Indoor Scene Synthesis by Learning Spatial Relation Priors of
+    Objects" (IEEE TVCG 2021) use it. The points are the relative positions (x, z) of
+    every b in the frame of every a of the same scene (all co-occurrences, as their
+    multigraph keeps them). A random 10 % of the points (at least one) are centres O;
+    for each, with P and Q its two nearest other points, theta is the angle between OP
+    and OQ, in [0, pi] (0 when P or Q coincides with O). Under complete spatial
+    randomness theta is uniform on [0, pi], so with F_e the empirical distribution of
+    the m angles and F_c(theta) = theta / pi,
+
+        d = sqrt(m) sup |F_c(theta) - F_e(theta)|
+
+    and the pair is related when d >= 1.628, the threshold they take from Assuncao (the
+    Kolmogorov distribution's 1 % point; the p-value reported is that distribution's
+    tail at d). Fewer than three points: not tested.
+
+cooccurrence
+    The baseline the paper argues against: related when more than half of the scenes
+    hold both types (two of a, when a == b); the statistic is that share.
+
+Indirect relations are pruned (tests whose ``prunes`` is set: permutation and angle).
+In every triangle of types whose three pairs were all found related (*strong*), one
+pair is carried by the other two and is reported as not related, ``pruned``:
+
+- where one type of the triangle rests on another (in at least half the scenes holding
+  both, measured from the boxes by ``examples.stacking``, whatever the file says), its
+  pair with the third type: what stands on a thing moves with it, so a lamp on a
+  nightstand beside a bed relates to the bed through the nightstand, and a chair in
+  front of a table to the computer on the table through the table;
+- otherwise the pair of the smallest *strength* (the *weakest*). The permutation
+  test's strength is the *tightness* of the within-scene poses against the
+  across-scene ones, 1 - mean |X - X'| / mean |Y - Y'| (1: all within-scene poses
+  equal; 0: as spread as the null): an indirect relation adds the spreads of its two
+  links. Not the energy distance, which also grows with how far the within-scene poses
+  lie from the middle of the null's, nor the p-value: every clear relation reaches the
+  smallest one 199 permutations can give, 1/200. The angle test's strength is its d.
+
+A resting pair itself is never pruned. A same-type pair (a, a) closes a triangle with
+each type w related to a (two a's and a w, two of its pairs being (a, w)): it is
+pruned when a rests on w (books on one shelf) or (a, w) is the tighter relation. Pairs
+are pruned all at once, each triangle judged on the verdicts before pruning (the data
+processing inequality argument of ARACNE, Margolin et al. 2006), so the order of the
+pairs does not matter.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections import Counter, defaultdict
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.spatial import cKDTree
+from scipy.spatial.distance import cdist
+from scipy.special import kolmogorov
+
+from scenewright.core.errors import InputError
+from scenewright.core.frames import to_local_many
+from scenewright.core.scene import Scene
+from scenewright.core.seeds import check_seed, stream
+from scenewright.examples.stacking import infer_supports
+
+#: The permutation test's level and its number of random relabellings.
+ALPHA = 0.01
+PERMUTATIONS = 199
+#: The fewest scenes holding a pair that the permutation test tests (two halves of 5).
+MIN_SCENES = 10
+#: The most scenes of a pair the permutation test uses (a random subset beyond): its
+#: distance matrix has (MAX_SCENES)^2 entries.
+MAX_SCENES = 2000
+#: The angle test: the share of points taken as centres, and the threshold on d.
+ANGLE_SAMPLE = 0.1
+ANGLE_THRESHOLD = 1.628
+#: Co-occurrence: related when more than this share of the scenes hold both types.
+COOCCURRENCE_SHARE = 0.5
+#: A coordinate whose pooled standard deviation is below this is left unscaled (it is
+#: constant: every pose has the same value there).
+SCALE_FLOOR = 1e-9
+
+
+@dataclass(frozen=True)
+class TypePoses:
+    """Where the objects of one type stand in each of S scenes: ``poses`` (S, K, 3) as
+    (x, z, yaw) in the scene's frame, K the most objects of the type in one scene, NaN
+    past ``counts`` (S,), the objects of the type in each scene."""
+
+    poses: np.ndarray
+    counts: np.ndarray
+
+
+def type_poses(scenes: Sequence[Scene]) -> dict[str, TypePoses]:
+    """Every placed object type of ``scenes`` with its poses, in type order."""
+    per_type: dict[str, list[list[tuple[float, float, float]]]] = defaultdict(lambda: [[] for _ in scenes])
+    for index, scene in enumerate(scenes):
+        for obj in scene.placed_objects():
+            per_type[obj.type][index].append((obj.position[0], obj.position[2], obj.yaw))
+    table: dict[str, TypePoses] = {}
+    for type_name in sorted(per_type):
+        lists = per_type[type_name]
+        counts = np.array([len(poses) for poses in lists])
+        poses = np.full((len(scenes), int(counts.max()), 3), np.nan)
+        for index, scene_poses in enumerate(lists):
+            if scene_poses:
+                poses[index, : len(scene_poses)] = scene_poses
+        table[type_name] = TypePoses(poses, counts)
+    return table
+
+
+def holding_both(first: TypePoses, second: TypePoses, same: bool) -> np.ndarray:
+    """Indices of the scenes holding an a and a b (two a's when ``same``)."""
+    if same:
+        return np.flatnonzero(first.counts >= 2)
+    return np.flatnonzero((first.counts >= 1) & (second.counts >= 1))
+
+
+def relative_poses(centres: np.ndarray, others: np.ndarray) -> np.ndarray:
+    """Poses ``others`` (n, k, 3) in the frames of ``centres`` (n, 3), both (x, z, yaw)
+    -> (n, k, 4): x, z in the centre's frame, cos and sin of the relative yaw."""
+    local = to_local_many(centres[:, :2], centres[:, 2], others[..., :2])
+    turn = others[..., 2] - centres[:, None, 2]
+    return np.concatenate([local, np.cos(turn)[..., None], np.sin(turn)[..., None]], axis=-1)
+
+
+def nearest_poses(
+    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, same: bool,
+    rng: np.random.Generator,
+) -> np.ndarray:  # fmt: skip
+    """One pose per scene: a random a of scene ``a_scenes[k]`` and the nearest b of
+    scene ``b_scenes[k]`` in its frame -> (n, 4). When ``same``, the a itself is no
+    candidate in its own scene, and in another scene one random a is left out."""
+    rows = np.arange(len(a_scenes))
+    chosen = np.floor(rng.random(len(a_scenes)) * first.counts[a_scenes]).astype(int)
+    centres = first.poses[a_scenes, chosen]
+    candidates = second.poses[b_scenes]
+    valid = np.arange(candidates.shape[1])[None, :] < second.counts[b_scenes][:, None]
+    if same:
+        # The a's counterpart is left out: the object of the same index, which in a scene
+        # made from rules plays the same part (the left counter, not the right one);
+        # where the other scene has no such index, a random one.
+        counts = second.counts[b_scenes]
+        at_random = np.floor(rng.random(len(b_scenes)) * counts).astype(int)
+        valid[rows, np.where(chosen < counts, chosen, at_random)] = False
+    relative = relative_poses(centres, candidates)
+    distance = np.where(valid, np.hypot(relative[..., 0], relative[..., 1]), np.inf)
+    return relative[rows, np.argmin(distance, axis=1)]
+
+
+def energy_test(
+    within: np.ndarray, across: np.ndarray, permutations: int, rng: np.random.Generator
+) -> tuple[float, float, float]:
+    """The energy distance of two samples (n, D) and (m, D), each coordinate scaled by
+    its pooled standard deviation; its permutation p-value over ``permutations`` random
+    relabellings of the pooled sample; and the tightness 1 - mean |X - X'| / mean |Y - Y'|
+    of the first sample against the second."""
+    pooled = np.vstack([within, across])
+    scale = pooled.std(axis=0)
+    scale[scale < SCALE_FLOOR] = 1.0
+    distances = cdist(pooled / scale, pooled / scale)  # (N, N)
+    n, m = len(within), len(across)
+    total = n + m
+    labels = np.zeros((permutations + 1, total))  # row 0: the observed split, then the relabellings
+    labels[0, :n] = 1.0
+    firsts = np.argsort(rng.random((permutations, total)), axis=1)[:, :n]
+    np.put_along_axis(labels[1:], firsts, 1.0, axis=1)
+    row_sums = distances.sum(axis=1)
+    first_first = np.einsum("kn,nk->k", labels, distances @ labels.T)  # sum of |X - X'| per labelling
+    first_second = labels @ row_sums - first_first
+    second_second = row_sums.sum() - 2.0 * first_second - first_first
+    energy = 2.0 * first_second / (n * m) - first_first / n**2 - second_second / m**2
+    observed = energy[0]
+    # A relabelling as far apart as the observed split counts, within rounding.
+    as_large = np.count_nonzero(energy[1:] >= observed - 1e-12 * abs(observed))
+    spread_ratio = (first_first[0] / n**2) / (second_second[0] / m**2) if second_second[0] > 0 else 1.0
+    return float(observed), (1 + as_large) / (permutations + 1), float(1.0 - spread_ratio)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """One test's verdict on one type pair before pruning (``statistic`` and ``p_value``
+    None when it was not tested); ``strength`` ranks related pairs for pruning."""
+
+    related: bool
+    statistic: float | None
+    p_value: float | None
+    poses: int
+    scenes: int
+    strength: float | None = None
+
+
+def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+    """The permutation test of one pair (module docstring)."""
+    together = holding_both(first, second, same)
+    if len(together) < MIN_SCENES:
+        return Outcome(False, None, None, 0, len(together))
+    order = rng.permutation(together)[:MAX_SCENES]
+    half = len(order) // 2
+    own, shuffled = order[:half], order[half:]
+    within = nearest_poses(first, second, own, own, same, rng)
+    across = nearest_poses(first, second, shuffled, np.roll(shuffled, -1), same, rng)
+    energy, p_value, tightness = energy_test(within, across, PERMUTATIONS, rng)
+    return Outcome(p_value <= alpha and tightness > 0, energy, p_value, len(within), len(together), tightness)
+
+
+def all_positions(first: TypePoses, second: TypePoses, same: bool, scenes: np.ndarray) -> np.ndarray:
+    """The (x, z) of every b in the frame of every a of the same scene, over ``scenes``
+    (an object is not paired with itself) -> (n, 2)."""
+    centres = first.poses[scenes]  # (S, Ka, 3)
+    others = second.poses[scenes]  # (S, Kb, 3)
+    ka, kb = centres.shape[1], others.shape[1]
+    relative = relative_poses(centres.reshape(-1, 3), np.repeat(others, ka, axis=0))[..., :2]  # (S*Ka, Kb, 2)
+    valid = (np.arange(ka)[None, :, None] < first.counts[scenes][:, None, None]) & (
+        np.arange(kb)[None, None, :] < second.counts[scenes][:, None, None]
+    )
+    if same:
+        valid &= ~np.eye(ka, kb, dtype=bool)[None]
+    return relative[valid.reshape(-1, kb)]
+
+
+def nearest_neighbour_angles(points: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """For each centre index O of ``points`` (n, 2), the angle in [0, pi] between the
+    directions to its two nearest other points (0 when one of them coincides with O)."""
+    _, neighbours = cKDTree(points).query(points[centres], k=3)
+    # Drop the centre itself; among coincident points it need not come first.
+    is_self = neighbours == centres[:, None]
+    is_self[~is_self.any(axis=1), 2] = True
+    pairs = neighbours[~is_self].reshape(len(centres), 2)
+    first = points[pairs[:, 0]] - points[centres]
+    second = points[pairs[:, 1]] - points[centres]
+    lengths = np.linalg.norm(first, axis=1) * np.linalg.norm(second, axis=1)
+    cosine = np.divide(np.einsum("ij,ij->i", first, second), lengths, out=np.ones(len(centres)), where=lengths > 0)
+    return np.arccos(np.clip(cosine, -1.0, 1.0))
+
+
+def angle_statistic(angles: np.ndarray) -> float:
+    """d = sqrt(m) sup |theta / pi - F_e(theta)| of m angles in [0, pi]."""
+    m = len(angles)
+    uniform = np.sort(angles) / np.pi
+    steps = np.arange(1, m + 1) / m
+    return float(np.sqrt(m) * max(np.max(steps - uniform), np.max(uniform - (steps - 1.0 / m))))
+
+
+def angle_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+    """The angle test of one pair (module docstring); ``alpha`` is not used: the
+    threshold 1.628 is the test's own."""
+    together = holding_both(first, second, same)
+    points = all_positions(first, second, same, together)
+    if len(points) < 3:
+        return Outcome(False, None, None, len(points), len(together))
+    sampled = max(1, int(round(ANGLE_SAMPLE * len(points))))
+    centres = rng.choice(len(points), size=sampled, replace=False)
+    d = angle_statistic(nearest_neighbour_angles(points, centres))
+    return Outcome(d >= ANGLE_THRESHOLD, d, float(kolmogorov(d)), len(points), len(together), d)
+
+
+def cooccurrence_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+    """Co-occurrence: the share of scenes holding both types."""
+    together = holding_both(first, second, same)
+    share = len(together) / len(first.counts)
+    pairs = first.counts[together] * (second.counts[together] - same)
+    return Outcome(share > COOCCURRENCE_SHARE, share, None, int(pairs.sum()), len(together), share)
+
+
+@dataclass(frozen=True)
+class RelationTest:
+    """One test: its name, what it does in a line, what its statistic is, how it
+    decides one pair ``outcome(first, second, same, rng, alpha)``, whether indirect
+    relations are pruned from its verdicts, and what its strength is when that is not
+    the statistic itself."""
+
+    name: str
+    summary: str
+    statistic: str
+    outcome: Callable[[TypePoses, TypePoses, bool, np.random.Generator, float], Outcome]
+    prunes: bool
+    strength: str | None = None
+
+
+#: The tests by name; the first is the default.
+TESTS: dict[str, RelationTest] = {
+    test.name: test
+    for test in (
+        RelationTest(
+            "permutation",
+            f"within- vs across-scene relative poses, energy distance, {PERMUTATIONS} permutations",
+            "energy distance",
+            permutation_outcome,
+            prunes=True,
+            strength="tightness",
+        ),
+        RelationTest(
+            "angle",
+            f"nearest-neighbour angles of relative positions against complete spatial randomness, "
+            f"related at d >= {ANGLE_THRESHOLD}",
+            "d",
+            angle_outcome,
+            prunes=True,
+        ),
+        RelationTest(
+            "cooccurrence",
+            f"related when more than {COOCCURRENCE_SHARE:.0%} of the scenes hold both",
+            "share of scenes",
+            cooccurrence_outcome,
+            prunes=False,
+        ),
+    )
+}
+
+
+@dataclass(frozen=True)
+class PairRelation:
+    """The verdict on the type pair (``a``, ``b``), a <= b: ``related``; the test's
+    ``statistic`` and ``p_value`` (None when not tested or, for co-occurrence, no
+    p-value); ``pairs``, the relative poses the test used; ``scenes``, the scenes that
+    hold both; ``strength``, what ranks related pairs for pruning (the permutation
+    test's tightness, the angle test's d, the co-occurrence share); ``pruned``: found
+    related but pruned as indirect."""
+
+    a: str
+    b: str
+    related: bool
+    statistic: float | None
+    p_value: float | None
+    pairs: int
+    scenes: int
+    strength: float | None = None
+    tested: bool = True
+    pruned: bool = False
+
+    def to_dict(self) -> dict:
+        return {
+            "a": self.a,
+            "b": self.b,
+            "related": self.related,
+            "statistic": None if self.statistic is None else round(self.statistic, 6),
+            "p_value": None if self.p_value is None else round(self.p_value, 6),
+            "pairs": self.pairs,
+            "scenes": self.scenes,
+            "strength": None if self.strength is None else round(self.strength, 6),
+            "tested": self.tested,
+            "pruned": self.pruned,
+        }
+
+    @property
+    def verdict(self) -> str:
+        """How the table says it: yes, no, indirect (pruned) or untested."""
+        if not self.tested:
+            return "untested"
+        return "yes" if self.related else "indirect" if self.pruned else "no"
+
+
+@dataclass(frozen=True)
+class RelationsResult:
+    """Every type pair that occurs together in some scene, in (a, b) order, with the
+    test, its level, the seed and the number of example scenes."""
+
+    test: str
+    examples: int
+    seed: int
+    alpha: float
+    pairs: tuple[PairRelation, ...]
+
+    def related(self) -> list[tuple[str, str]]:
+        return [(pair.a, pair.b) for pair in self.pairs if pair.related]
+
+    def to_dict(self) -> dict:
+        test = TESTS[self.test]
+        settings: dict = {"alpha": self.alpha, "permutations": PERMUTATIONS} if self.test == "permutation" else {}
+        if self.test == "angle":
+            settings = {"threshold": ANGLE_THRESHOLD, "sample": ANGLE_SAMPLE}
+        return {
+            "test": self.test,
+            "statistic": test.statistic,
+            **settings,
+            "examples": self.examples,
+            "seed": self.seed,
+            "pruned_indirect": test.prunes,
+            "pairs": [pair.to_dict() for pair in self.pairs],
+        }
+
+    def table(self) -> str:
+        """A table for people: one line per pair, related ones marked."""
+        test = TESTS[self.test]
+        header = ("a", "b", "related", test.statistic, "p-value", "n pairs", "scenes")
+        if test.strength:
+            header += (test.strength,)
+        rows = [
+            (
+                pair.a, pair.b, pair.verdict,
+                "-" if pair.statistic is None else f"{pair.statistic:.3f}",
+                "-" if pair.p_value is None else f"{pair.p_value:.3g}",
+                str(pair.pairs), str(pair.scenes),
+                *(["-" if pair.strength is None else f"{pair.strength:.3f}"] if test.strength else []),
+            )
+            for pair in self.pairs
+        ]  # fmt: skip
+        widths = [max(len(row[k]) for row in [header, *rows]) for k in range(len(header))]
+        found = sum(pair.related for pair in self.pairs)
+        lines = [
+            f"{self.test} test ({test.summary}) on {self.examples} scenes, seed {self.seed}: "
+            f"{found} of {len(self.pairs)} type pairs related"
+        ]
+        for k, row in enumerate([header, *rows]):
+            cells = [cell.ljust(width) if column < 3 else cell.rjust(width) for column, (cell, width) in enumerate(zip(row, widths))]
+            lines.append("  ".join(cells).rstrip())
+            if k == 0:
+                lines.append("  ".join("-" * width for width in widths))
+        return "\n".join(lines) + "\n"
+
+
+def pair_stream(seed: int, a: str, b: str) -> np.random.Generator:
+    """The stream of the pair (a, b): child k of the ``relations`` stage, k a hash of the names."""
+    key = int.from_bytes(hashlib.sha256(f"{a}\0{b}".encode()).digest()[:4], "big")
+    return stream(seed, "relations", key)
+
+
+def resting_pairs(scenes: Sequence[Scene], poses: dict[str, TypePoses]) -> set[tuple[str, str]]:
+    """(upper type, lower type) for the types of which an object rests on one of the
+    other (measured from the boxes, ``examples.stacking``) in at least half the scenes
+    holding both."""
+    held: Counter = Counter()
+    for scene in scenes:
+        objects = scene.placed_objects()
+        types = {o.id: o.type for o in objects}
+        held.update({(types[upper], types[lower]) for upper, lower in infer_supports(objects).items()})
+    return {
+        (upper, lower)
+        for (upper, lower), count in held.items()
+        if upper != lower and 2 * count >= len(holding_both(poses[upper], poses[lower], False))
+    }
+
+
+def prune_indirect(pairs: Sequence[PairRelation], resting: set[tuple[str, str]] = frozenset()) -> list[PairRelation]:
+    """``pairs`` with the indirect pair of every triangle of related pairs marked not
+    related and ``pruned``: the pair of a third type with one that rests on another of
+    the triangle (``resting``: (upper, lower) type pairs), else the pair of the smallest
+    strength. A resting pair itself is never pruned (module docstring)."""
+    strength = {(p.a, p.b): p.strength for p in pairs if p.related}
+    neighbours: dict[str, set[str]] = defaultdict(set)
+    for a, b in strength:
+        if a != b:
+            neighbours[a].add(b)
+            neighbours[b].add(a)
+
+    def key(u: str, v: str) -> tuple[str, str]:
+        return (u, v) if u < v else (v, u)
+
+    def supported(u: str, v: str) -> bool:
+        return (u, v) in resting or (v, u) in resting
+
+    indirect: set[tuple[str, str]] = set()
+    for a, b in strength:
+        if a == b:  # two a's and a third type w: the a's relate through w if they rest on it
+            if any((a, w) in resting or strength[key(a, w)] > strength[(a, a)] for w in neighbours[a]):
+                indirect.add((a, a))
+            continue
+        for w in neighbours[a] & neighbours[b]:
+            if w < b or b < a:  # each triangle once, as a < b < w
+                continue
+            edges = [(a, b), key(a, w), key(b, w)]
+            riders = [
+                key(third, upper)
+                for upper, lower, third in ((a, b, w), (b, a, w), (a, w, b), (w, a, b), (b, w, a), (w, b, a))
+                if (upper, lower) in resting and not supported(third, upper)
+            ]
+            if riders:  # what rests on another relates to the third through it
+                indirect.update(riders)
+            else:
+                weakest = min(edges, key=lambda edge: strength[edge])
+                if not supported(*weakest):
+                    indirect.add(weakest)
+    return [replace(p, related=False, pruned=True) if (p.a, p.b) in indirect else p for p in pairs]
+
+
+def find_relations(
+    scenes: Sequence[Scene], *, test: str = "permutation", seed: int = 0, alpha: float = ALPHA, prune: bool = True
+) -> RelationsResult:
+    """Which object type pairs of ``scenes`` are spatially related, by ``test`` (a name
+    of ``TESTS``); ``prune`` removes indirect relations where the test allows it.
+    ``InputError`` for fewer than two scenes, an unknown test, or scenes without two
+    objects together."""
+    if test not in TESTS:
+        raise InputError(f"unknown relation test {test!r}; choose one of {', '.join(TESTS)}")
+    seed = check_seed(seed)
+    if len(scenes) < 2:
+        raise InputError(f"finding relations needs at least 2 example scenes, got {len(scenes)}")
+    chosen = TESTS[test]
+    poses = type_poses(scenes)
+    names = list(poses)
+    results = []
+    for i, a in enumerate(names):
+        for b in names[i:]:
+            same = a == b
+            if len(holding_both(poses[a], poses[b], same)) == 0:
+                continue
+            outcome = chosen.outcome(poses[a], poses[b], same, pair_stream(seed, a, b), alpha)
+            results.append(PairRelation(
+                a, b, outcome.related, outcome.statistic, outcome.p_value, outcome.poses, outcome.scenes,
+                outcome.strength, tested=outcome.statistic is not None,
+            ))  # fmt: skip
+    if not results:
+        raise InputError(f"no two objects stand in one scene in any of the {len(scenes)} example scenes")
+    if prune and chosen.prunes:
+        results = prune_indirect(results, resting_pairs(scenes, poses))
+    return RelationsResult(test, len(scenes), seed, alpha, tuple(results))
