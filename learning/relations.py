@@ -227,7 +227,7 @@ def energy_test(
     # A relabelling as far apart as the observed split counts, within rounding.
     as_large = np.count_nonzero(energy[1:] >= observed - 1e-12 * abs(observed))
     spread_ratio = (first_first[0] / n**2) / (second_second[0] / m**2) if second_second[0] > 0 else 1.0
-    return float(observed), (1 + as_large) / (permutations + 1), float(1.0 - spread_ratio)
+    return float(observed), float((1 + as_large) / (permutations + 1)), float(1.0 - spread_ratio)
 
 
 @dataclass(frozen=True)
@@ -550,7 +550,7 @@ def find_relations(
                 continue
             outcome = chosen.outcome(poses[a], poses[b], same, pair_stream(seed, a, b), alpha)
             results.append(PairRelation(
-                a, b, outcome.related, outcome.statistic, outcome.p_value, outcome.poses, outcome.scenes,
+                a, b, bool(outcome.related), outcome.statistic, outcome.p_value, outcome.poses, outcome.scenes,
                 outcome.strength, tested=outcome.statistic is not None,
             ))  # fmt: skip
     if not results:

@@ -1,0 +1,297 @@
+"""Finding spatially related type pairs: the permutation test's level on independent
+objects and its power on a planted relation, the angle test on configurations whose d
+is known by hand, pruning of indirect relations, the command line, and datasets
+without images (the fast way to make example corpora)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scenewright.cli import EXAMPLES, main
+from scenewright.core.scene import Scene, SceneObject
+from scenewright.dataset import check_same_settings, dataset_spec
+from scenewright.dataset_scene import produce_scene
+from scenewright.learning.relations import (
+    ANGLE_THRESHOLD,
+    TESTS,
+    PairRelation,
+    angle_statistic,
+    find_relations,
+    nearest_neighbour_angles,
+    prune_indirect,
+)
+
+from test_cli import assert_one_line_error, run
+
+SIZES = {"table": (1.2, 0.75, 0.7), "chair": (0.5, 0.9, 0.5), "plant": (0.4, 1.0, 0.4), "cup": (0.1, 0.1, 0.1)}
+
+
+def scene_of(placed: list[tuple[str, float, float, float]], name: str = "s", heights: dict | None = None) -> Scene:
+    """A scene of objects (type, x, z, yaw) on a 10 x 10 m ground."""
+    objects = [
+        SceneObject(
+            id=f"{kind}{k}", type=kind, kind="object", noun=kind, plural=None, parent=None, style=None,
+            position=[x, (heights or {}).get(kind, 0.0), z], yaw=yaw, size=list(SIZES.get(kind, (0.5, 0.5, 0.5))),
+            order=k,
+        )
+        for k, (kind, x, z, yaw) in enumerate(placed)
+    ]  # fmt: skip
+    return Scene(rules="test", seed=0, extent=[10.0, 10.0], objects=objects, paths=[], relations=[], name=name)
+
+
+def uniform_pose(rng: np.random.Generator) -> tuple[float, float, float]:
+    return float(rng.uniform(-4, 4)), float(rng.uniform(-4, 4)), float(rng.uniform(-math.pi, math.pi))
+
+
+def offset(pose: tuple[float, float, float], left: float, forward: float, turn: float, rng, jitter: float = 0.05):
+    """The pose ``left``/``forward`` metres from ``pose`` in its frame, turned by ``turn``, jittered."""
+    x, z, yaw = pose
+    lx, lz = left + rng.normal(0, jitter), forward + rng.normal(0, jitter)
+    return x + lx * math.cos(yaw) + lz * math.sin(yaw), z - lx * math.sin(yaw) + lz * math.cos(yaw), yaw + turn + rng.normal(0, jitter)
+
+
+def independent_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
+    """Scenes of 1-3 tables, 1-3 chairs and 2-3 plants, every object placed uniformly
+    and independently of every other."""
+    scenes = []
+    for index in range(count):
+        placed = [(kind, *uniform_pose(rng)) for kind, low, high in (("table", 1, 3), ("chair", 1, 3), ("plant", 2, 3))
+                  for _ in range(rng.integers(low, high + 1))]  # fmt: skip
+        scenes.append(scene_of(placed, f"s{index}"))
+    return scenes
+
+
+def test_permutation_test_holds_its_level_on_independent_objects():
+    # 40 data sets of 60 independent scenes, four pairs each (two of them same-type or
+    # with several objects per scene): 160 p-values, each exactly uniform on the grid
+    # k/200 if the test is right. At alpha 0.01 about 1.6 rejections are expected; 7 or
+    # more has probability below 0.01 even for a fair test. Also a test far too careful
+    # (almost no small p-values) fails: about 32 of 160 should be at most 0.2.
+    rng = np.random.default_rng(20240601)
+    p_values = []
+    for dataset in range(40):
+        result = find_relations(independent_scenes(rng, 60), seed=dataset, prune=False)
+        assert {(p.a, p.b) for p in result.pairs} == {
+            ("chair", "chair"), ("chair", "plant"), ("chair", "table"), ("plant", "plant"), ("plant", "table"),
+            ("table", "table"),
+        }  # fmt: skip
+        p_values += [p.p_value for p in result.pairs if (p.a, p.b) in {("chair", "table"), ("plant", "plant"),
+                                                                       ("chair", "plant"), ("table", "table")}]  # fmt: skip
+    p_values = np.array(p_values)
+    assert len(p_values) == 160
+    assert np.count_nonzero(p_values <= 0.01) <= 6
+    assert 16 <= np.count_nonzero(p_values <= 0.2) <= 48
+    assert 0.4 <= np.median(p_values) <= 0.6
+
+
+def planted_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
+    """A chair 0.9 m in front of each table, turned to face it; a plant anywhere."""
+    scenes = []
+    for index in range(count):
+        table = uniform_pose(rng)
+        chair = offset(table, 0.0, 0.9, math.pi, rng)
+        scenes.append(scene_of([("table", *table), ("chair", *chair), ("plant", *uniform_pose(rng))], f"s{index}"))
+    return scenes
+
+
+def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
+    result = find_relations(planted_scenes(np.random.default_rng(5), 60), seed=1)
+    verdicts = {(p.a, p.b): p for p in result.pairs}
+    assert verdicts[("chair", "table")].related
+    assert verdicts[("chair", "table")].p_value == pytest.approx(1 / 200)
+    assert verdicts[("chair", "table")].strength > 0.8  # nearly all poses in one place
+    assert not verdicts[("chair", "plant")].related and not verdicts[("plant", "table")].related
+    assert verdicts[("chair", "table")].pairs == 30 and verdicts[("chair", "table")].scenes == 60
+
+
+def test_same_examples_and_seed_give_the_same_result_and_another_seed_other_draws():
+    scenes = planted_scenes(np.random.default_rng(5), 30)
+    first, again = find_relations(scenes, seed=4), find_relations(scenes, seed=4)
+    assert first.to_dict() == again.to_dict()
+    other = find_relations(scenes, seed=5)
+    assert [p.statistic for p in other.pairs] != [p.statistic for p in first.pairs]
+
+
+def circle_scenes(points: int) -> list[Scene]:
+    """A table at the origin facing south and a chair on a circle of radius 2 around
+    it, at ``points`` evenly spaced angles: the chairs' relative positions make a
+    regular polygon."""
+    return [
+        scene_of([("table", 0.0, 0.0, 0.0), ("chair", 2 * math.cos(2 * math.pi * k / points),
+                                              2 * math.sin(2 * math.pi * k / points), 0.0)], f"s{k}")
+        for k in range(points)
+    ]  # fmt: skip
+
+
+def test_angle_test_on_a_regular_polygon():
+    # 40 points on a circle: each point's two nearest are its neighbours, at the angle
+    # (40 - 2) / 40 * pi = 0.95 pi; 10 % of 40 = 4 centres. The empirical distribution
+    # jumps from 0 to 1 at 0.95 pi, where the uniform one is 0.95: d = sqrt(4) * 0.95.
+    result = find_relations(circle_scenes(40), test="angle", seed=0)
+    (pair,) = result.pairs
+    assert (pair.a, pair.b, pair.pairs) == ("chair", "table", 40)
+    assert pair.statistic == pytest.approx(2 * 0.95)
+    assert pair.related and pair.statistic >= ANGLE_THRESHOLD
+
+
+def test_angle_statistic_and_angles_by_hand():
+    assert angle_statistic(np.full(4, math.pi / 2)) == pytest.approx(1.0)  # sup 0.5, sqrt(4) * 0.5
+    assert angle_statistic(np.array([0.0, math.pi])) == pytest.approx(math.sqrt(2) * 0.5)
+    # A right angle, a straight line, and a point that coincides with its neighbour.
+    points = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.1], [5.0, 5.0], [4.0, 5.0], [6.1, 5.0], [9.0, 0.0], [9.0, 0.0], [9.0, 2.0]])
+    angles = nearest_neighbour_angles(points, np.array([0, 3, 6]))
+    assert angles == pytest.approx([math.pi / 2, math.pi, 0.0])
+
+
+def test_angle_test_finds_no_pattern_in_uniform_points():
+    rng = np.random.default_rng(3)
+    scenes = [scene_of([("table", 0.0, 0.0, 0.0), ("chair", *uniform_pose(rng))]) for _ in range(400)]
+    (pair,) = find_relations(scenes, test="angle", seed=2).pairs
+    assert not pair.related and pair.p_value > 0.01
+
+
+def chain_scenes(rng: np.random.Generator, count: int, cup_height: float | None = None) -> list[Scene]:
+    """A table, a chair in front of it, a plant to the chair's left: table-plant holds
+    only through the chair. With ``cup_height``, a cup stands on the table too."""
+    scenes = []
+    for index in range(count):
+        table = uniform_pose(rng)
+        chair = offset(table, 0.0, 0.9, math.pi, rng)
+        plant = offset(chair, 0.8, 0.0, 0.0, rng)
+        placed = [("table", *table), ("chair", *chair), ("plant", *plant)]
+        heights = None
+        if cup_height is not None:
+            placed.append(("cup", *offset(table, 0.0, 0.0, 0.0, rng, jitter=0.02)))
+            heights = {"cup": cup_height}
+        scenes.append(scene_of(placed, f"s{index}", heights))
+    return scenes
+
+
+def test_the_weakest_pair_of_a_planted_triangle_is_pruned():
+    scenes = chain_scenes(np.random.default_rng(8), 80)
+    kept = {(p.a, p.b): p for p in find_relations(scenes, seed=0, prune=False).pairs}
+    assert all(kept[pair].related for pair in [("chair", "table"), ("chair", "plant"), ("plant", "table")])
+    pruned = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
+    assert pruned[("chair", "table")].related and pruned[("chair", "plant")].related
+    assert not pruned[("plant", "table")].related and pruned[("plant", "table")].pruned
+    assert pruned[("plant", "table")].verdict == "indirect"
+
+
+def test_what_rests_on_an_object_relates_to_others_through_it():
+    # The cup on the table is as tightly placed relative to the chair as the table is;
+    # it is the cup's pair with the chair that goes, because the cup rests on the table.
+    scenes = chain_scenes(np.random.default_rng(9), 80, cup_height=SIZES["table"][1])
+    related = {(p.a, p.b) for p in find_relations(scenes, seed=0).pairs if p.related}
+    assert related == {("chair", "table"), ("cup", "table"), ("chair", "plant")}
+
+
+def pair(a: str, b: str, strength: float, related: bool = True) -> PairRelation:
+    return PairRelation(a, b, related, strength, 0.005, 50, 50, strength)
+
+
+def test_pruning_by_strength_and_by_resting():
+    pairs = [pair("a", "b", 0.9), pair("a", "c", 0.3), pair("b", "c", 0.8), pair("c", "d", 0.1), pair("b", "d", 0.2, related=False)]
+    verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs)}
+    assert verdicts == {("a", "b"): True, ("a", "c"): False, ("b", "c"): True, ("c", "d"): True, ("b", "d"): False}
+    # With c resting on a, its pair with b is the indirect one, however strong, and the
+    # resting pair itself stays even when it is the weakest.
+    verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs, {("c", "a")})}
+    assert verdicts[("a", "c")] and not verdicts[("b", "c")] and verdicts[("a", "b")]
+    # Same-type pairs: two c's resting on a relate through it.
+    doubled = [*pairs, pair("c", "c", 0.95)]
+    assert not {(p.a, p.b): p.related for p in prune_indirect(doubled, {("c", "a")})}[("c", "c")]
+    assert {(p.a, p.b): p.related for p in prune_indirect(doubled)}[("c", "c")]
+
+
+def test_cooccurrence_is_the_share_of_scenes_holding_both():
+    scenes = [scene_of([("table", 0, 0, 0), ("chair", 1, 1, 0)])] * 3 + [scene_of([("table", 0, 0, 0), ("plant", 1, 1, 0)])] * 2
+    verdicts = {(p.a, p.b): p for p in find_relations(scenes, test="cooccurrence").pairs}
+    assert verdicts[("chair", "table")].statistic == pytest.approx(0.6) and verdicts[("chair", "table")].related
+    assert verdicts[("plant", "table")].statistic == pytest.approx(0.4) and not verdicts[("plant", "table")].related
+
+
+def write_examples(folder, scenes: list[Scene]) -> list[str]:
+    """The scenes as hand-written example files (yaw in degrees)."""
+    paths = []
+    for k, scene in enumerate(scenes):
+        objects = [{"id": o.id, "type": o.type, "size": o.size, "position": [o.position[0], o.position[2]],
+                    "yaw": math.degrees(o.yaw)} for o in scene.placed_objects()]  # fmt: skip
+        path = folder / f"room{k:02d}.json"
+        path.write_text(json.dumps({"extent": [10, 10], "objects": objects}))
+        paths.append(str(path))
+    return paths
+
+
+def test_command_prints_a_table_or_json(tmp_path, capsys):
+    paths = write_examples(tmp_path, planted_scenes(np.random.default_rng(5), 40))
+    code, out, err = run(capsys, "relations", *paths)
+    assert code == 0 and not err
+    lines = out.splitlines()
+    assert lines[0].startswith("permutation test") and "1 of 3 type pairs related" in lines[0]
+    assert lines[1].split()[:7] == ["a", "b", "related", "energy", "distance", "p-value", "n"]
+    row = next(line for line in lines if line.startswith("chair") and "table" in line).split()
+    assert row[:3] == ["chair", "table", "yes"] and row[4] == "0.005" and row[5:7] == ["20", "40"]
+    code, out, _ = run(capsys, "relations", *paths, "--json", "--seed", "3")
+    document = json.loads(out)
+    assert document["test"] == "permutation" and document["examples"] == 40 and document["seed"] == 3
+    chair_table = next(p for p in document["pairs"] if (p["a"], p["b"]) == ("chair", "table"))
+    assert set(chair_table) >= {"a", "b", "related", "statistic", "p_value", "pairs", "scenes"}
+    assert chair_table["related"] is True
+    code, out, _ = run(capsys, "relations", *paths, "--json", "--test", "angle")
+    assert json.loads(out)["test"] == "angle" and json.loads(out)["threshold"] == ANGLE_THRESHOLD
+
+
+def test_command_refuses_bad_input_in_one_line(tmp_path, capsys):
+    paths = write_examples(tmp_path, planted_scenes(np.random.default_rng(5), 3))
+    code, out, err = run(capsys, "relations", paths[0])
+    assert code == 2 and not out
+    assert_one_line_error(err, "at least 2 example scenes")
+    (tmp_path / "broken.json").write_text("{")
+    code, out, err = run(capsys, "relations", paths[0], str(tmp_path / "broken.json"))
+    assert code == 2 and not out
+    assert_one_line_error(err, "broken.json", "not JSON")
+    code, _, err = run(capsys, "relations", *paths, "--test", "nearest")
+    assert code == 2
+    assert_one_line_error(err, "--test")
+    code, _, err = run(capsys, "relations", *paths, "--seed", "-1")
+    assert code == 2
+    assert_one_line_error(err, "--seed")
+    assert "scenewright relations" in EXAMPLES["relations"]
+
+
+def test_command_offers_every_test_of_the_registry(capsys):
+    with pytest.raises(SystemExit):
+        main(["relations", "--help"])
+    out = capsys.readouterr().out
+    assert "{" + ",".join(TESTS) + "}" in out
+    assert "scenewright relations data/bedroom/scenes/*.json" in out
+
+
+def test_a_dataset_without_images_writes_scene_json_and_text(tmp_path, capsys):
+    spec = dataset_spec("desk", 12, images=False)
+    for index in range(12):
+        product = produce_scene(spec, index)
+        if product.row is None:
+            continue
+        stem = f"{index:06d}"
+        assert set(product.files) == {f"scenes/{stem}.json", f"texts/{stem}.txt"}
+        text = product.files[f"texts/{stem}.txt"].decode()
+        assert text.strip() == product.row["text"] and text.startswith("The scene")
+        assert product.row["scene_file_name"] == f"scenes/{stem}.json" and "caption" not in product.row
+        scene = json.loads(product.files[f"scenes/{stem}.json"])
+        assert scene["render"] is None and scene["description"]["text"] == product.row["text"]
+        (tmp_path / f"{stem}.json").write_bytes(product.files[f"scenes/{stem}.json"])
+    code, out, _ = run(capsys, "relations", *sorted(str(p) for p in tmp_path.glob("*.json")), "--test", "cooccurrence")
+    assert code == 0 and "chair     table     yes" in out
+    code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--depth")
+    assert code == 2 and not (tmp_path / "d").exists()
+    assert_one_line_error(err, "--no-images")
+
+
+def test_a_dataset_made_before_images_could_be_turned_off_resumes_with_images(tmp_path):
+    stored = dataset_spec("desk", 4).settings()
+    del stored["images"]
+    check_same_settings(dataset_spec("desk", 4), stored, tmp_path)
+    with pytest.raises(Exception, match="images True -> False"):
+        check_same_settings(dataset_spec("desk", 4, images=False), stored, tmp_path)
