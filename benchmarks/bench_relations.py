@@ -4,6 +4,7 @@
     .venv/bin/python benchmarks/bench_relations.py desk kitchen --scenes 200
     .venv/bin/python benchmarks/bench_relations.py classroom --scenes 100 --workers 2
     .venv/bin/python benchmarks/bench_relations.py --generate-only        # fill the scene cache, nothing else
+    .venv/bin/python benchmarks/bench_relations.py --jitter               # one planted relation, growing jitter
 
 For each rule set: lay out scenes 0..N-1 with ``api.build_scene`` (expansion and
 layout, no description, no render) and keep their scene.json in a cache folder
@@ -16,7 +17,9 @@ two objects, Implicit ones included; edges to walls, windows, the room, groups a
 paths relate no two object types). Then each test of ``learning.relations`` (the
 permutation test, the angle test, co-occurrence) is run on the cached scene.json files
 as ``scenewright relations`` reads them, and its precision and recall against the
-truth are printed with the pairs it missed and the ones it made up.
+truth are printed with the pairs it missed (with their p-value and strength, or
+pruned) and the ones it made up. ``--jitter`` shows instead what the permutation and
+the angle test make of one planted relation as its jitter grows.
 
 Prints figures only; nothing is asserted.
 """
@@ -134,10 +137,59 @@ def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> None:
               f"{len(result.pairs)} pairs tested; {seconds:.1f} CPU s)")  # fmt: skip
         missed = sorted(truth - found)
         extra = sorted(found - truth)
+        verdicts = {(pair.a, pair.b): pair for pair in result.pairs}
         if missed:
-            print("    missed: " + ", ".join(f"{a}-{b} ({truth_counts[(a, b)]} scenes)" for a, b in missed))
+            print("    missed: " + ", ".join(f"{a}-{b} ({truth_counts[(a, b)]} scenes{_figures(verdicts.get((a, b)))})"
+                                         for a, b in missed))  # fmt: skip
         if extra:
             print("    not in the grammar: " + ", ".join(f"{a}-{b}" for a, b in extra))
+
+
+def _figures(pair) -> str:
+    """How a missed pair fared: pruned, or its p-value and strength."""
+    if pair is None or not pair.tested:
+        return ", untested"
+    if pair.pruned:
+        return ", pruned"
+    p_value = "" if pair.p_value is None else f", p {pair.p_value:.3g}"
+    return f"{p_value}, strength {pair.strength:.2f}"
+
+
+def jitter_sweep(count: int, seed: int) -> None:
+    """A chair 0.9 m in front of a table and turned to face it, placed with Gaussian
+    jitter of each size, in ``count`` scenes of 8 x 8 m: what each test makes of it."""
+    import math
+
+    import numpy as np
+
+    from scenewright.core.scene import SceneObject
+    from scenewright.learning.relations import find_relations
+
+    def scene(placed):
+        objects = [
+            SceneObject(id=f"{kind}{k}", type=kind, kind="object", noun=kind, plural=None, parent=None, style=None,
+                        position=[x, 0.0, z], yaw=yaw, size=[0.5, 0.8, 0.5], order=k)
+            for k, (kind, x, z, yaw) in enumerate(placed)
+        ]  # fmt: skip
+        return Scene(rules="jitter", seed=0, extent=[8.0, 8.0], objects=objects, paths=[], relations=[])
+
+    print(f"a chair 0.9 m in front of a table, facing it, in {count} scenes; jitter = sd of the chair's offset "
+          "(m) and turn (rad)")  # fmt: skip
+    for jitter in (0.0, 0.001, 0.01, 0.05, 0.2):
+        rng = np.random.default_rng(seed)
+        scenes = []
+        for _ in range(count):
+            x, z, yaw = rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-math.pi, math.pi)
+            lx, lz = rng.normal(0, jitter), 0.9 + rng.normal(0, jitter)
+            chair = (x + lx * math.cos(yaw) + lz * math.sin(yaw), z - lx * math.sin(yaw) + lz * math.cos(yaw),
+                     yaw + math.pi + rng.normal(0, jitter))  # fmt: skip
+            scenes.append(scene([("table", x, z, yaw), ("chair", *chair)]))
+        cells = []
+        for test in ("permutation", "angle"):
+            (pair,) = find_relations(scenes, test=test, seed=seed).pairs
+            cells.append(f"{test} {'related' if pair.related else 'not related':11s} statistic {pair.statistic:6.3f} "
+                         f"p {pair.p_value:.3g}")  # fmt: skip
+        print(f"  jitter {jitter:5.3f}: " + "; ".join(cells))
 
 
 def main() -> None:
@@ -151,7 +203,13 @@ def main() -> None:
         help="folder of cached scene.json files",
     )  # fmt: skip
     parser.add_argument("--generate-only", action="store_true", help="fill the cache and stop")
+    parser.add_argument(
+        "--jitter", action="store_true", help="instead: one planted relation under growing jitter, both tests"
+    )
     args = parser.parse_args()
+    if args.jitter:
+        jitter_sweep(args.scenes, args.seed)
+        return
     for name in args.rules or shipped_rule_sets():
         paths, failed, spent = generated_scenes(name, args.scenes, args.cache, args.workers)
         if spent:
