@@ -13,6 +13,11 @@ in the image. Two views:
 - ``top``: an orthographic view straight down with north (-Z) at the top of the image
   and east (+X) to the right.
 
+``aimed_camera`` is a perspective camera given its direction and distance: it looks
+at the centre of a target (an entity, or the whole scene) from any azimuth and
+elevation, at a multiple of the distance that just frames the target (``render.views``
+draws these from ranges).
+
 ``walls_in_view`` is the cut-away rule both views share: a room's walls are drawn
 only where their inner face turns towards the viewer (from straight above: all of them,
 of which only the tops show), so no wall stands between the camera and the room.
@@ -109,6 +114,29 @@ class Camera:
         pixels = (self.intrinsics() @ homogeneous.T).T[:, :2]
         return pixels, depth
 
+    def opencv(self) -> dict[str, Any]:
+        """The camera in the computer-vision convention, as a dataset row records it.
+
+        Axes x right, y down, z forward (OpenCV; the OpenGL frame of ``pose`` with y and
+        z flipped). ``world_to_camera`` (4x4, row-major) takes world points to those
+        axes; ``fx``, ``fy``, ``cx``, ``cy`` are pixels, the pixel grid as in the module
+        docstring. Perspective: ``(u, v) = (fx x / z + cx, fy y / z + cy)``; orthographic
+        (``projection`` says which): ``(fx x + cx, fy y + cy)``, fx and fy in pixels per metre.
+        """
+        k = self.intrinsics()
+        flip = np.diag([1.0, -1.0, -1.0, 1.0])  # OpenGL camera axes -> OpenCV's
+        world_to_camera = flip @ self.extrinsics()
+        return {
+            "projection": "orthographic" if self.orthographic else "perspective",
+            "width": self.width,
+            "height": self.height,
+            "fx": round(float(k[0, 0]), 6),
+            "fy": round(float(-k[1, 1]), 6),
+            "cx": round(float(k[0, 2]), 6),
+            "cy": round(float(k[1, 2]), 6),
+            "world_to_camera": [[round(float(v), 9) + 0.0 for v in row] for row in world_to_camera],
+        }
+
     def to_dict(self) -> dict[str, Any]:
         """The camera parameters for scene.json's ``render.camera``."""
         data: dict[str, Any] = {"view": self.view, "width": self.width, "height": self.height}
@@ -140,26 +168,59 @@ def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
     in a room also its floor's corners and the tops of the walls a viewer looking from
     ``towards_viewer`` sees (``walls_in_view``; None: from straight above, all walls),
     their thickness included."""
-    chunks = []
-    for obj in scene.objects:
-        if obj.kind == "group":
-            continue  # a group's box is the union of its members, framed through them
-        corners = object_corners([obj])[0]
-        bottom, top = obj.position[1], obj.position[1] + obj.size[1]
-        for y in (bottom, top):
-            chunks.append(np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]))
-    for path in scene.paths:
-        points = np.asarray(path.points, dtype=float)
-        half = path.width / 2.0
-        # The ribbon's outline lies within half a width of its control points.
-        for dx, dz in ((-half, -half), (half, -half), (half, half), (-half, half)):
-            chunks.append(np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz]))
+    # A group's box is the union of its members, framed through them.
+    chunks = [_box_points(obj) for obj in scene.objects if obj.kind != "group"]
+    chunks.extend(_ribbon_points(path) for path in scene.paths)
     if scene.room is not None:
         chunks.append(_room_points(scene.room, [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer))
     if not chunks:  # nothing placed: frame the scene's extent
         w, d = scene.extent
         chunks.append(np.array([[-w / 2, 0, -d / 2], [w / 2, 0, -d / 2], [w / 2, 0, d / 2], [-w / 2, 0, d / 2]]))
     return np.vstack(chunks)
+
+
+def entity_points(scene: Scene, entity_id: str) -> np.ndarray:
+    """World points (N, 3) of one entity's extent: an object's or junction's box, a
+    path's ribbon, a group's members (at any depth). ``KeyError`` for an unknown id."""
+    scene.entity(entity_id)  # raises KeyError for an id the scene lacks
+    inside = entity_family(scene, entity_id)
+    chunks = [_box_points(o) for o in scene.objects if o.kind != "group" and o.id in inside]
+    chunks.extend(_ribbon_points(p) for p in scene.paths if p.id in inside)
+    if not chunks:  # an empty group: its own box
+        chunks.append(_box_points(scene.object(entity_id)))
+    return np.vstack(chunks)
+
+
+def entity_family(scene: Scene, entity_id: str) -> set[str]:
+    """The ids of ``entity_id`` and of the objects, groups, junctions and paths within it
+    at any depth (a group's members, their members, ...)."""
+    owners = {**{o.id: o.parent for o in scene.objects}, **{p.id: p.parent for p in scene.paths}}
+    family = set()
+    for item_id in owners:
+        owner: str | None = item_id
+        while owner is not None and owner != entity_id:
+            owner = owners.get(owner)
+        if owner == entity_id:
+            family.add(item_id)
+    return family
+
+
+def _box_points(obj) -> np.ndarray:
+    """The 8 corners (8, 3) of an object's box (turned by its yaw)."""
+    corners = object_corners([obj])[0]
+    bottom, top = obj.position[1], obj.position[1] + obj.size[1]
+    return np.vstack([np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]) for y in (bottom, top)])
+
+
+def _ribbon_points(path) -> np.ndarray:
+    """Points (4N, 3) round a path's ribbon: its outline lies within half a width of its
+    N control points."""
+    points = np.asarray(path.points, dtype=float)
+    half = path.width / 2.0
+    corners = ((-half, -half), (half, -half), (half, half), (-half, half))
+    return np.vstack(
+        [np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz]) for dx, dz in corners]
+    )
 
 
 def walls_in_view(room: Room, towards_viewer) -> list[Wall]:
@@ -221,14 +282,71 @@ def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, heigh
         raise InputError(f"unknown view {view!r}; choose one of: {', '.join(VIEWS)}")
     azimuth = room_azimuth(scene.room)
     towards = view_direction(azimuth) if view == "perspective" else np.array([0.0, 1.0, 0.0])
-    points = scene_points(scene, towards)
+    points = _checked(scene_points(scene, towards))
+    if view == "perspective":
+        return perspective_camera(points, width, height, azimuth=azimuth)
+    return top_down_camera(points, width, height)
+
+
+def _checked(points: np.ndarray) -> np.ndarray:
+    """``points`` when finite and within the coordinate limits, else ``InputError``."""
     reach = MAX_COORDINATE + MAX_SIZE
     if not np.isfinite(points).all() or np.abs(points).max() > reach:
         raise InputError(f"the scene reaches beyond {reach:g} m from the origin or has coordinates that are "
                          "not finite numbers (the limits: docs/limits.md)")
-    if view == "perspective":
-        return perspective_camera(points, width, height, azimuth=azimuth)
-    return top_down_camera(points, width, height)
+    return points
+
+
+def aimed_camera(
+    scene: Scene,
+    width: int,
+    height: int,
+    *,
+    azimuth: float,
+    elevation: float,
+    distance: float = 1.0,
+    target: str | None = None,
+    yfov: float = YFOV,
+    fill: float = FILL,
+) -> Camera:
+    """A perspective camera that looks at the centre of ``target`` from ``azimuth`` and
+    ``elevation`` (radians, as ``view_direction``), ``distance`` times as far from it as
+    the nearest camera on that line that keeps all of the target inside ``fill`` of
+    the image (and ``MIN_DISTANCE`` in front of it).
+
+    ``target``: an entity id (``entity_points``; ``KeyError`` if the scene lacks it) or
+    None, the whole scene (``scene_points``, a room's walls in view included). The
+    centre is the middle of the box round the target's points, and lands in the middle
+    of the image. The clipping planes cover the whole scene, whatever the target.
+    """
+    back = view_direction(azimuth, elevation)
+    everything = _checked(scene_points(scene, back))
+    framed = everything if target is None else _checked(entity_points(scene, target))
+    centre = (framed.min(axis=0) + framed.max(axis=0)) / 2.0
+    rotation = _view_rotation(back)
+    local = (framed - centre) @ rotation  # camera axes, the centre at the origin
+    tan_y = math.tan(yfov / 2.0) * fill
+    tan_x = math.tan(yfov / 2.0) * (width / height) * fill
+    # A point (x, y, z) is inside the frame when |x| <= tan_x (d - z), |y| <= tan_y (d - z).
+    fit = max(
+        float(np.max(local[:, 2] + np.abs(local[:, 0]) / tan_x)),
+        float(np.max(local[:, 2] + np.abs(local[:, 1]) / tan_y)),
+        float(local[:, 2].max()) + MIN_DISTANCE,
+    )
+    origin = centre + back * fit * distance
+    pose = np.eye(4)
+    pose[:3, :3] = rotation
+    pose[:3, 3] = origin
+    znear, zfar = _clip_range((origin - everything) @ back)
+    return Camera("perspective", pose, width, height, znear, zfar, yfov=yfov)
+
+
+def _view_rotation(back: np.ndarray) -> np.ndarray:
+    """Camera axes (3, 3) as columns (right, up, back) in world coordinates for a camera
+    whose local +Z is ``back`` (it looks along -``back``), level: right is horizontal."""
+    right = np.cross([0.0, 1.0, 0.0], back)
+    right /= np.linalg.norm(right)
+    return np.column_stack([right, np.cross(back, right), back])
 
 
 def perspective_camera(
@@ -244,10 +362,7 @@ def perspective_camera(
     """A perspective camera looking along a fixed direction, as close as it can get
     while every point stays inside ``fill`` of the image in both directions."""
     back = view_direction(azimuth, elevation)  # from the scene towards the camera
-    right = np.cross([0.0, 1.0, 0.0], back)
-    right /= np.linalg.norm(right)
-    up = np.cross(back, right)
-    rotation = np.column_stack([right, up, back])  # camera axes in world coordinates
+    rotation = _view_rotation(back)  # camera axes in world coordinates
 
     local = points @ rotation  # points in the camera's axes (camera at origin for now)
     tan_y = math.tan(yfov / 2.0) * fill

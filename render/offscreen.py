@@ -195,12 +195,15 @@ class Renderer:
             self._renderer.delete()
             self._renderer = None
 
-    def render(self, scene: Scene, view: str = "perspective") -> RenderResult:
-        """Render ``scene`` from the automatic ``view`` ("perspective" or "top")."""
+    def render(self, scene: Scene, view: str = "perspective", *, camera: Camera | None = None) -> RenderResult:
+        """Render ``scene`` from the automatic ``view`` ("perspective" or "top"), or from
+        ``camera`` (of this renderer's size; ``camera.aimed_camera``, say) when given."""
         if self._renderer is None:
             raise RuntimeError("this Renderer has been closed")
+        if camera is not None and (camera.width, camera.height) != (self.width, self.height):
+            raise ValueError(f"a {camera.width}x{camera.height} camera for a {self.width}x{self.height} renderer")
         gl = self._gl
-        camera = frame_scene(scene, view, self.width, self.height)
+        camera = camera or frame_scene(scene, view, self.width, self.height)
         entities = _entities(scene, camera)
         world, merged, occluders = self._build(scene, camera, entities)
 

@@ -35,6 +35,7 @@ if TYPE_CHECKING:
     from scenewright.describer import Description
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer, RenderResult
+    from scenewright.render.views import CameraRanges
 
 #: The description styles and camera views, here as well as in the describer and the
 #: renderer so that checking an option does not import those (a test keeps them equal).
@@ -153,20 +154,41 @@ def render_image(
     height: int = DEFAULT_SIZE[1],
     view: str = "perspective",
     renderer: Renderer | None = None,
+    *,
+    camera: CameraRanges | None = None,
+    camera_view: int = 0,
 ) -> RenderResult:
     """Render ``scene`` offscreen: colour, depth, segmentation and per-object metadata
     (``RenderResult.metadata`` is what scene.json stores under ``render``).
 
     Pass a ``renderer`` to reuse one OpenGL context over many scenes (the image then has
     the renderer's size); otherwise one is made for this call and closed after it.
+
+    ``camera``: draw a perspective camera from these ranges (``render.views``) with the
+    scene's ``camera`` stream ``camera_view`` (``core.seeds``) instead of the automatic
+    one; a target the scene lacks is an ``InputError``, as is ``view="top"`` with it.
     """
     from scenewright.render.offscreen import Renderer
 
     check_choice("view", view, VIEWS)
+    if camera is not None and view != "perspective":
+        raise InputError("a drawn camera (--camera) is a perspective one; leave out --view top")
     if renderer is not None:
-        return renderer.render(scene, view=view)
+        return _render_with(renderer, scene, view, camera, camera_view)
     with Renderer(width, height) as own:
-        return own.render(scene, view=view)
+        return _render_with(own, scene, view, camera, camera_view)
+
+
+def _render_with(
+    renderer: Renderer, scene: Scene, view: str, camera: CameraRanges | None, camera_view: int
+) -> RenderResult:
+    if camera is None:
+        return renderer.render(scene, view=view)
+    from scenewright.core.seeds import stream
+    from scenewright.render.views import aimed_view
+
+    rng = stream(scene.seed, "camera", camera_view)
+    return aimed_view(renderer, scene, camera, rng, require_target=True)
 
 
 def render_scene(
@@ -175,13 +197,16 @@ def render_scene(
     size: tuple[int, int] = DEFAULT_SIZE,
     view: str = "perspective",
     renderer: Renderer | None = None,
+    camera: CameraRanges | None = None,
+    camera_view: int = 0,
 ) -> tuple[Scene, RenderResult]:
-    """``scene`` with its render metadata and the time it took, and the images."""
+    """``scene`` with its render metadata and the time it took, and the images
+    (``camera``, ``camera_view``: as ``render_image``)."""
     from scenewright.render.offscreen import render_metadata
 
     timings = dict(scene.timings)
     with timed(timings, "render"):
-        result = render_image(scene, *size, view=view, renderer=renderer)
+        result = render_image(scene, *size, view=view, renderer=renderer, camera=camera, camera_view=camera_view)
     return replace(scene, render=render_metadata(result), timings=timings), result
 
 
