@@ -91,6 +91,31 @@ def count_at_least(minimum: int) -> Callable[[str], int]:
     return parse
 
 
+def camera_range(name: str) -> Callable[[str], tuple[float, float]]:
+    """An option's ``A`` or ``LOW:HIGH`` (``render.views.parse_range`` for ``name``)."""
+
+    def parse(text: str) -> tuple[float, float]:
+        from scenewright.render.views import parse_range
+
+        try:
+            return parse_range(text, name)
+        except InputError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+
+    parse.__name__ = f"{name} range"
+    return parse
+
+
+def camera_settings(text: str):
+    """``generate --camera``'s ``KEY=VALUE,...`` (``render.views.parse_camera``)."""
+    from scenewright.render.views import parse_camera
+
+    try:
+        return parse_camera(text)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
 def seed_value(text: str) -> int:
     value = whole_number(text)
     if not 0 <= value < 2**63:
@@ -197,7 +222,9 @@ def run_generate(args: argparse.Namespace) -> int:
     scene = generate(rules, args.seed, style=args.style, variant=args.variant, templates=args.templates)
     images = None
     if args.render:
-        scene, images = render_scene(scene, size=args.size, view=args.view)
+        scene, images = render_scene(scene, size=args.size, view=args.view, camera=args.camera)
+    elif args.camera is not None:
+        raise InputError("--camera places the preview's camera; it needs the preview (leave out --no-render)")
     return write_scene_outputs(args, scene, images)
 
 
@@ -300,12 +327,39 @@ def scheduler_address(text: str) -> str:
     return text.strip()
 
 
+def dataset_cameras(args: argparse.Namespace):
+    """The ``CameraRanges`` of ``dataset``'s camera options, or None when none is given
+    (the automatic camera); ``InputError`` for several views that could not differ."""
+    from scenewright.render.views import MIN_TARGET_VISIBLE, VIEW_TRIES, CameraRanges
+
+    given = [args.azimuth, args.elevation, args.distance, args.target, args.target_visible, args.view_tries]
+    if args.views == 1 and all(value is None for value in given):
+        return None
+    if args.view != "perspective":
+        raise InputError("camera options (--views, --azimuth, ...) draw perspective cameras; leave out --view top")
+    ranges = CameraRanges(
+        azimuth=args.azimuth,
+        elevation=args.elevation,
+        distance=args.distance,
+        target=args.target,
+        min_visible=MIN_TARGET_VISIBLE if args.target_visible is None else args.target_visible,
+        tries=VIEW_TRIES if args.view_tries is None else args.view_tries,
+    )
+    if args.views > 1 and not ranges.varies():
+        raise InputError(
+            f"--views {args.views} would draw {args.views} identical views; give --azimuth, --elevation or "
+            "--distance a range LOW:HIGH"
+        )
+    return ranges
+
+
 def run_dataset(args: argparse.Namespace) -> int:
     from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
     from scenewright.dataset_scene import with_picture_captions
 
     if not args.images and (args.depth or args.segmentation):
         raise InputError("--depth and --segmentation are images: they cannot be made with --no-images")
+    cameras = dataset_cameras(args)
     spec = dataset_spec(
         args.rules,
         args.count,
@@ -319,6 +373,9 @@ def run_dataset(args: argparse.Namespace) -> int:
         include_failed=args.include_failed,
         retries=args.retries,
         images=args.images,
+        coco=args.coco,
+        views=args.views,
+        camera=cameras,
     )
     spec = with_picture_captions(
         spec,
@@ -939,6 +996,14 @@ def build_parser() -> CommandLineParser:
     style_options(generate)
     generate.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(generate, "640x480")
+    generate.add_argument(
+        "--camera",
+        type=camera_settings,
+        metavar="KEY=VALUE,...",
+        help="place the preview's camera: azimuth (degrees from south towards east), elevation (degrees), "
+        "distance (times the framing distance), target (an id or type); a number may be a range LOW:HIGH, drawn "
+        "from the seed (e.g. azimuth=30,elevation=45,distance=1.2)",
+    )
     allow_option(generate)
 
     layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
@@ -1034,6 +1099,36 @@ def build_parser() -> CommandLineParser:
         help="leave out the rows' questions column (CLEVR-style questions with programs and answers) and "
         "questions.json",
     )
+    dataset.add_argument(
+        "--no-coco",
+        dest="coco",
+        action="store_false",
+        help="leave out annotations/instances.json (COCO instances of every image, from the segmentation)",
+    )
+    dataset.add_argument(
+        "--views", type=count_at_least(1), default=1, metavar="N",
+        help="images per scene, each its own row, their cameras drawn from the ranges below (1)",
+    )  # fmt: skip
+    for name, meaning in (
+        ("azimuth", "in degrees from south towards east, e.g. 0:360 (the automatic view's)"),
+        ("elevation", "in degrees above the horizon, within 0:89 (35)"),
+        ("distance", "as a factor of the one that frames the target, within 0.1:10 (1)"),
+    ):
+        dataset.add_argument(
+            f"--{name}", type=camera_range(name), metavar="X|LOW:HIGH", help=f"the cameras' {name} {meaning}"
+        )
+    dataset.add_argument(
+        "--target", metavar="ID|TYPE",
+        help="aim the cameras at this entity (or the first of this type); a scene without it is framed whole",
+    )  # fmt: skip
+    dataset.add_argument(
+        "--target-visible", type=fraction, metavar="F",
+        help="draw a view again while its target shows less than this visible fraction (0.5)...",
+    )  # fmt: skip
+    dataset.add_argument(
+        "--view-tries", type=count_at_least(1), metavar="K",
+        help="...up to K draws in all, keeping the view that showed the most (8)",
+    )  # fmt: skip
     dataset.add_argument(
         "--retries",
         type=count_at_least(0),

@@ -9,14 +9,15 @@ or shrink by its count: scene ``i`` is the same whatever N it was made under.
 On disk (``DIR``)::
 
     dataset.json           the settings; a rerun must use the same ones (N is not one)
-    metadata.jsonl         one row per written scene with index < N, ordered by index
-    images/000000.png      the preview
+    metadata.jsonl         one row per image of a written scene with index < N, ordered by index
+    images/000000.png      the preview (000000_0.png, 000000_1.png, ... with several views)
     scenes/000000.json     scene.json (no wall-clock times: reproducible)
     texts/000000.txt       the full description, instead of images/ (``images`` off)
     depth/, segmentation/  optional ground truth (16-bit PNGs)
     failed/000003.json     scene.json of a scene whose every layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
     questions.json         every row's questions, CLEVR's layout (``dataset_questions``)
+    annotations/instances.json  COCO instances of every image (``dataset_coco``)
     .records/000000.json   one record per finished scene: the commit marker for resume
     .lock                  locked (flock) by the run using the directory, which writes its
                            pid there while it runs
@@ -51,17 +52,21 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures.process import BrokenProcessPool
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 import numpy as np
 
 from scenewright.api import DATASET_RETRIES
 from scenewright.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.core.errors import GenerationError, InputError
+from scenewright.dataset_coco import coco_sink
 from scenewright.dataset_stats import StatsCollector, write_stats
+
+if TYPE_CHECKING:
+    from scenewright.render.views import CameraRanges
 
 #: The settings that must not change when a run is resumed into the same directory.
 SETTINGS_FILE = "dataset.json"
@@ -79,8 +84,9 @@ LOG_INTERVAL = 30.0
 #: it can still make progress (a dask cluster may have lost its scheduler or workers).
 IDLE_CHECK = 5.0
 #: What a setting stored by a version that did not have it meant (a dataset made before
-#: retries existed retried nothing), so such a dataset can be resumed with that value.
-SETTINGS_BEFORE = {"retries": 0, "images": True}
+#: retries existed retried nothing, one made before COCO output wrote none, one made
+#: before datasets without images had images), so such a dataset can be resumed with that value.
+SETTINGS_BEFORE = {"retries": 0, "images": True, "coco": False, "views": 1, "camera": None}
 
 
 def scene_seed(base_seed: int, index: int) -> int:
@@ -124,7 +130,9 @@ class DatasetSpec:
     ``retries`` is how many more times a failed layout is tried, with the layout seeds
     ``core.seeds.retry_seed(seed, 1..retries)``, the scene's graph unchanged.
     ``templates`` is the absolute path of a description templates folder that replaces
-    the rule set's own, or None.
+    the rule set's own, or None. ``coco``: write ``annotations/instances.json``
+    (``dataset_coco``). ``views``: images per scene, each its own row; ``camera``: the
+    ranges their cameras are drawn from (``render.views``), None for the automatic one.
     """
 
     rules: str
@@ -142,11 +150,14 @@ class DatasetSpec:
     #: False: no render, no images and no picture captions; a scene is its scene.json
     #: and its description (``texts/STEM.txt``), for fast example corpora.
     images: bool = True
+    coco: bool = True
+    views: int = 1
+    camera: CameraRanges | None = None
 
     def settings(self) -> dict:
-        """The fixed part, as stored in ``dataset.json``."""
-        data = asdict(self)
-        data["size"] = list(self.size)
+        """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads
+        them back)."""
+        data = json.loads(json.dumps(asdict(self)))
         del data["count"]
         return data
 
@@ -158,7 +169,8 @@ def dataset_spec(
 
     Loads (and so checks) the rules and the description templates the scenes will use
     (``templates``, else the rule set's own), names the rules as scene.json does, and
-    hashes their text. ``settings`` are the other ``DatasetSpec`` fields.
+    hashes their text. ``settings`` are the other ``DatasetSpec`` fields; without images
+    there is no COCO file, and several views or camera ranges are an ``InputError``.
     """
     from scenewright.api import checked_templates, load_rules, rules_label
 
@@ -167,6 +179,10 @@ def dataset_spec(
         checked_templates(loaded.params.templates)  # a broken one stops the run before any work
     else:
         templates = checked_templates(templates)
+    if not settings.get("images", True):
+        if settings.get("views", 1) > 1 or settings.get("camera") is not None:
+            raise InputError("--views and the camera options are for images: they cannot be used with --no-images")
+        settings["coco"] = False  # no picture, nothing to annotate
     digest = hashlib.sha256(Path(loaded.path).read_bytes()).hexdigest()
     return DatasetSpec(
         rules=rules_label(loaded), rules_digest=digest, count=count, templates=templates, **settings
@@ -180,6 +196,9 @@ class SceneProduct:
     ``files`` maps paths relative to the dataset directory to their bytes. ``row`` is
     the scene's metadata.jsonl row, or None when the scene is left out (failed layout
     without ``include_failed``). ``stats`` feeds stats.json (see ``dataset_stats``).
+    ``views``: the rows of the scene's further views (1, 2, ...), after ``row``, that of
+    view 0. ``coco``: the COCO annotations of each row's image (``dataset_coco``), or
+    None without COCO output.
     """
 
     index: int
@@ -188,9 +207,11 @@ class SceneProduct:
     files: dict[str, bytes]
     row: dict | None
     stats: dict = field(default_factory=dict)
+    views: list[dict] = field(default_factory=list)
+    coco: list[list[dict]] | None = None
 
     def record(self) -> dict:
-        return {
+        record = {
             "index": self.index,
             "seed": self.seed,
             "ok": self.ok,
@@ -198,6 +219,11 @@ class SceneProduct:
             "row": self.row,
             "stats": self.stats,
         }
+        if self.views:
+            record["views"] = self.views
+        if self.coco is not None:
+            record["coco"] = self.coco
+        return record
 
 
 #: Computes one scene in a worker process: ``produce(spec, index) -> SceneProduct``.
@@ -235,9 +261,10 @@ class RunReport:
         stats = self.stats
         failed_layouts = stats["failed_layouts"]
         kept = "included, ok=false" if spec.include_failed else "left out"
+        images = f" ({self.written * spec.views} images)" if spec.views > 1 else ""
         notes = [
-            f"{self.directory}: {self.written} scenes in metadata.jsonl; {failed_layouts} of {self.count} layouts "
-            f"failed after {spec.retries} retries ({kept}); made {self.made} now, {self.skipped} were already done"
+            f"{self.directory}: {self.written} scenes{images} in metadata.jsonl; {failed_layouts} of {self.count} "
+            f"layouts failed after {spec.retries} retries ({kept}); made {self.made} now, {self.skipped} were already done"
         ]
         retries = stats["retries"]
         if retries["scenes_retried"]:
@@ -382,18 +409,23 @@ def store_product(root: Path, product: SceneProduct) -> None:
     write_atomic(root / RECORDS_DIR / f"{scene_stem(product.index)}.json", record)
 
 
-def publish_metadata(root: Path, count: int) -> StatsCollector:
-    """Rebuild metadata.jsonl from the records, in index order, one record at a time;
-    return the records' statistics. Every record must exist (the run has finished)."""
+def publish_metadata(root: Path, count: int, coco=None) -> StatsCollector:
+    """Rebuild metadata.jsonl from the records, in index order, one record at a time
+    (a scene's rows: its views in order); return the records' statistics. Every record
+    must exist (the run has finished). ``coco``: a ``dataset_coco.coco_writer`` to pass
+    every record to as well, or None."""
     collector = StatsCollector()
-    with atomic_stream(root / METADATA_FILE) as metadata:
+    with atomic_stream(root / METADATA_FILE) as metadata, coco or nullcontext(None) as add_coco:
         for index in range(count):
             record = read_record(root / RECORDS_DIR / f"{scene_stem(index)}.json")
             if record is None:
                 raise RuntimeError(f"scene {index} has no record after the run; rerun to finish it")
             collector.add(record)
             if record["row"] is not None:
-                metadata.write(json.dumps(record["row"], ensure_ascii=False) + "\n")
+                for row in [record["row"], *record.get("views", [])]:
+                    metadata.write(json.dumps(row, ensure_ascii=False) + "\n")
+            if add_coco is not None:
+                add_coco(record)
     return collector
 
 
@@ -595,7 +627,7 @@ def run_dataset(
                 finally:
                     bar.close()
         seconds = time.perf_counter() - started
-        collector = publish_metadata(root, spec.count)
+        collector = publish_metadata(root, spec.count, coco_sink(root, spec))
         publish_questions(root, spec)
         stats = collector.summary(made=made, seconds=seconds)
         write_stats(root, stats)

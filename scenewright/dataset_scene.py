@@ -8,6 +8,11 @@ above 1) gets one context per thread. ``produce_scene`` turns a scene index into
 ``SceneProduct``: the encoded files and the scene's record. It writes nothing into the
 dataset directory; the parent process does (``dataset.store_product``).
 
+A scene has ``spec.views`` pictures (``view_picture``), each with its own row, files,
+captions and COCO annotations (``dataset_coco``): from the automatic camera, or from
+one drawn from ``spec.camera`` with the scene's camera stream of that view
+(``render.views``). The layout and the full text are made once per scene.
+
 Captions are made after the render, of the picture (``describer.view``: only what it
 shows well enough, only relations that hold in it), and with ``grounding`` every
 caption's and the full text's mentions go into the row with their pixel boxes, and
@@ -108,9 +113,8 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
 
 
 def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
-    """Make scene ``index`` of ``spec``: its files (images, scene.json) and its record."""
-    from scenewright.render.offscreen import encode_render
-
+    """Make scene ``index`` of ``spec``: its files (images of each view, scene.json) and
+    its record."""
     context = worker_context(spec)
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
@@ -129,31 +133,92 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     scene = replace(scene, description=full.to_dict())
     if not spec.images:
         return text_product(spec, index, seed, scene, full.text, tried, cpu)
+    pictures, renders = [], []
+    for view in range(spec.views):
+        scene, picture = view_picture(context, spec, scene, full, ViewName(stem, view, seed, tried), cpu)
+        pictures.append(picture)
+        renders.append(scene.render)
+    scene = replace(scene, render=renders[0])  # scene.json holds the first view's render
+    with timed(cpu, "encode", process_time):
+        files = {name: data for picture in pictures for name, data in picture.files.items()}
+        files[f"scenes/{stem}.json"] = reproducible_json(scene).encode()
+    rows = [picture.row for picture in pictures]
+    coco = [picture.annotations for picture in pictures] if spec.coco else None
+    captions = [caption for picture in pictures for caption in picture.captions]
+    stats = {**scene_stats(scene, [full.text, *captions], cpu), **tried}
+    return SceneProduct(index, seed, scene.layout.ok, files, rows[0], stats, views=rows[1:], coco=coco)
+
+
+@dataclass(frozen=True)
+class ViewName:
+    """Which picture: the scene's stem, the view's number, and what its row records of
+    the scene (its seed, and ``layout_seed`` and ``attempts``)."""
+
+    stem: str
+    view: int
+    seed: int
+    tried: dict
+
+    def image_stem(self, views: int) -> str:
+        """The stem of the view's images: the scene's with one view per scene, else
+        ``<stem>_<view>``."""
+        return self.stem if views == 1 else f"{self.stem}_{self.view}"
+
+
+@dataclass
+class ViewPicture:
+    """One view of a scene: its files, metadata row, captions and COCO annotations."""
+
+    files: dict[str, bytes]
+    row: dict
+    captions: list[str]
+    annotations: list[dict]
+
+
+def view_picture(
+    context: WorkerContext, spec: DatasetSpec, scene: Scene, full, name: ViewName, cpu: dict[str, float]
+) -> tuple[Scene, ViewPicture]:
+    """Render view ``name.view`` of ``scene`` (described in full by ``full``), encode it,
+    caption it; return the scene with that view's render and the view's picture. The
+    camera is the automatic one, or drawn from ``spec.camera`` with the scene's camera
+    stream of the view (a target the scene lacks: the whole scene)."""
+    from scenewright.dataset_coco import view_annotations
+    from scenewright.render.offscreen import encode_render
+    from scenewright.render.views import camera_column, resolve_target
+
+    camera = spec.camera
+    if camera is not None and resolve_target(scene, camera.target) is None:
+        camera = replace(camera, target=None)
     with timed(cpu, "render", process_time):
-        scene, result = render_scene(scene, size=spec.size, view=spec.view, renderer=context.renderer)
-    with timed(cpu, "encode", process_time):  # only the images asked for, and scene.json
+        scene, result = render_scene(
+            scene, size=spec.size, view=spec.view, renderer=context.renderer, camera=camera, camera_view=name.view
+        )
+    with timed(cpu, "encode", process_time):  # only the images asked for
         kinds = ["colour", *["depth"] * spec.depth, *["segmentation", "ids"] * spec.segmentation]
         images = {kind: data for kind, (_, data) in encode_render(result, kinds=kinds).items()}
-        scene_json = reproducible_json(scene).encode()
+        annotations = view_annotations(result, scene) if spec.coco else []
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         grounded, captions = picture_captions(spec, scene, result, full, rules=context.rules)
 
-    files = {f"images/{stem}.png": images["colour"]}
-    row: dict = {"file_name": f"images/{stem}.png"}
+    image = name.image_stem(spec.views)
+    files = {f"images/{image}.png": images["colour"]}
+    row: dict = {"file_name": f"images/{image}.png"}
     if spec.depth:
-        files[f"depth/{stem}.png"] = images["depth"]
-        row["depth_file_name"] = f"depth/{stem}.png"
+        files[f"depth/{image}.png"] = images["depth"]
+        row["depth_file_name"] = f"depth/{image}.png"
     if spec.segmentation:
-        files[f"segmentation/{stem}.png"] = images["segmentation"]
-        files[f"segmentation/{stem}_ids.json"] = images["ids"]
-        row["segmentation_file_name"] = f"segmentation/{stem}.png"
-    files[f"scenes/{stem}.json"] = scene_json
+        files[f"segmentation/{image}.png"] = images["segmentation"]
+        files[f"segmentation/{image}_ids.json"] = images["ids"]
+        row["segmentation_file_name"] = f"segmentation/{image}.png"
     row.update(caption=captions[0], text=full.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
-    row.update(scene_id=stem, seed=seed, **tried, rules=spec.rules, ok=scene.layout.ok)
+    row["scene_id"] = name.stem
+    if spec.camera is not None:
+        row["view"] = name.view
+    row.update(seed=name.seed, **name.tried, rules=spec.rules, ok=scene.layout.ok)
+    row["camera"] = camera_column(result.camera)
     row.update(grounded)
-    stats = {**scene_stats(scene, [full.text, *captions], cpu), **tried}
-    return SceneProduct(index, seed, scene.layout.ok, files, row, stats)
+    return scene, ViewPicture(files, row, captions, annotations)
 
 
 def text_product(

@@ -83,7 +83,9 @@ def failing_scene(spec: DatasetSpec, index: int) -> SceneProduct:
 
 
 def spec_of(count: int = 8, **settings) -> DatasetSpec:
-    return DatasetSpec(rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), **settings)
+    """A spec for ``fake_scene``, which makes no COCO annotations (nor has real rules to take
+    categories from)."""
+    return DatasetSpec(rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), coco=False, **settings)
 
 
 def dataset_bytes(root: Path) -> dict[str, bytes]:

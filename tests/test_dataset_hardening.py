@@ -312,7 +312,8 @@ def test_too_many_workers_is_a_note_not_an_error(tmp_path, monkeypatch, capsys):
 
     monkeypatch.setattr(scenewright.dataset, "run_dataset", fake_run)
     monkeypatch.setattr(scenewright.dataset, "available_cpus", lambda: 1)
-    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1000"]) == 0
+    # --no-coco: fake_scene makes no COCO annotations
+    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1000", "--no-coco"]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err[0] == "scenewright: note: --workers 1000 is more than the CPUs this process may use (1); using 1"
     assert used["workers"] == 1
