@@ -14,7 +14,7 @@ its object phrase names.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from scenewright.core.relations import Relation
 from scenewright.core.scene import Scene
@@ -48,6 +48,8 @@ class World:
     children: dict[str | None, tuple[str, ...]]
     #: The scene's room as the text names it; None outdoors.
     room: RoomView | None = None
+    #: ``_shown_by``'s answers so far (a cache, not part of the world's value).
+    _shown: dict[str, tuple[str, ...]] = field(default_factory=dict, compare=False, repr=False)
 
     def __getitem__(self, entity_id: str) -> Entity:
         return self.entities[entity_id]
@@ -86,17 +88,25 @@ class World:
         a group its objects, paths and junctions, at any depth (no duplicates, in the order
         named, members in derivation order). A door or window (not an entity) is itself."""
         found: dict[str, None] = {}
-
-        def visit(entity_id: str) -> None:
-            if entity_id in self.entities and self.entities[entity_id].kind == "group":
-                for member in self.children.get(entity_id, ()):
-                    visit(member)
-            else:
-                found[entity_id] = None
-
         for entity_id in named:
-            visit(entity_id)
+            found.update(dict.fromkeys(self._shown_by(entity_id)))
         return tuple(found)
+
+    def _shown_by(self, entity_id: str) -> tuple[str, ...]:
+        """``grounded_ids`` of one entity, kept: every mention of a group (and of each
+        group around it, in nested phrases) asks again, and deep nesting made that
+        quadratic."""
+        shown = self._shown.get(entity_id)
+        if shown is None:
+            if entity_id in self.entities and self.entities[entity_id].kind == "group":
+                found: dict[str, None] = {}
+                for member in self.children.get(entity_id, ()):
+                    found.update(dict.fromkeys(self._shown_by(member)))
+                shown = tuple(found)
+            else:
+                shown = (entity_id,)
+            self._shown[entity_id] = shown
+        return shown
 
     def owners(self) -> list[str | None]:
         """The scene (``None``) and then every entity with members, depth-first in derivation order."""
