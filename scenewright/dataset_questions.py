@@ -28,10 +28,11 @@ QUESTIONS_FILE = "questions.json"
 
 def publish_questions(root: Path, spec: DatasetSpec) -> int | None:
     """Write ``QUESTIONS_FILE`` from ``root``'s metadata.jsonl; return how many questions
-    it holds (None, and nothing written, when ``spec`` turns questions off)."""
+    it holds (None, and nothing written, when ``spec`` turns questions or images off).
+    An image's ``image_index`` counts images: scene i's view v is ``i * views + v``."""
     from scenewright.dataset_scene import captions_options
 
-    if not captions_options(spec).questions:
+    if not captions_options(spec).questions or not spec.images:
         return None
     info = {"rules": spec.rules, "rules_digest": spec.rules_digest, "base_seed": spec.base_seed, "count": spec.count}
     written = 0
@@ -41,7 +42,7 @@ def publish_questions(root: Path, spec: DatasetSpec) -> int | None:
             row = json.loads(line)
             for question in row.get("questions", ()):
                 entry = {
-                    "image_index": int(row["scene_id"]), "image_filename": row["file_name"], "image": row["scene_id"],
+                    "image_index": int(row["scene_id"]) * spec.views + row.get("view", 0), "image_filename": row["file_name"], "image": row["scene_id"],
                     "question_index": written, "question_family": question["family"],
                     "question": question["question"], "answer": question["answer"], "program": question["program"],
                 }  # fmt: skip
