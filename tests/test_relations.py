@@ -287,6 +287,10 @@ def test_a_dataset_without_images_writes_scene_json_and_text(tmp_path, capsys):
     code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--depth")
     assert code == 2 and not (tmp_path / "d").exists()
     assert_one_line_error(err, "--no-images")
+    code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--views", "2", "--azimuth", "0:90")
+    assert code == 2 and not (tmp_path / "d").exists()
+    assert_one_line_error(err, "--no-images")
+    assert spec.coco is False  # no picture, nothing to annotate
 
 
 def test_a_dataset_made_before_images_could_be_turned_off_resumes_with_images(tmp_path):
