@@ -33,7 +33,7 @@ from scenewright.core.poses import LayoutResult, Pose
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
-from .decompose import decomposes, frame_streams, lay_out_frames, run_decomposed_chain
+from .decompose import decomposes, frame_streams, lay_out_frames, large_scene_params, run_decomposed_chain
 from .measure import measure_layout
 from .params import LayoutParams
 from .pinning import compile_pins
@@ -87,6 +87,7 @@ def layout_scene(
     # in a room the walls tie items together, and fresh chains did better (docs/layout.md).
     repairs = problem.room is None and not (pins.start_poses or pins.start_points)
     if params.decompose and decomposes(problem, pins):
+        params = large_scene_params(params)
         frames = lay_out_frames(graph, problem, params, frame_streams(_chain_stream(seed, 0), problem))
         total_steps += frames.steps
     for attempt in range(1 + params.restarts):
