@@ -20,13 +20,17 @@ The steps, each a function here:
    the door swings and of what is already placed. The mask is in the room's door-aware
    canonical frame; ``layout_mask.mask_at`` reads it at room positions.
 5. ``complete``: the MCMC layout (``generator.layout.layout_scene``) from those poses,
-   whose energy holds the walls, clearances, door swings and reachability; the scene
-   with its ``completion`` record (``completion_record``).
+   whose energy holds the walls, clearances, door swings and reachability, and the
+   layout mask as a preference for the large pieces (``MASKED``; the energy's ``mask``
+   part, ``generator.layout.mask_term``); the scene with its ``completion`` record
+   (``completion_record``).
 
-The mask guides the start only: the layout's energy has no mask term (it belongs to
-``generator.layout``), so the chains may move pieces off the mask where the relations
-ask for it. Everything is deterministic for the seed: the selection and the starting
-poses draw nothing, the layout draws from the seed's layout streams.
+The mask guides the start and, through its energy part, the chains: a large piece
+costs more the less of the mask lies under it. It is a preference: the layout's
+verdict does not read it, so it may cost a relation nothing and the chains still move
+pieces off the mask where the relations ask for it. Everything is deterministic for
+the seed: the selection and the starting poses draw nothing, the layout draws from the
+seed's layout streams.
 """
 
 from __future__ import annotations
@@ -97,6 +101,11 @@ NO_FLOOR = "no free floor for it at the start"
 FLAT = 0.02
 #: Stand in a corner when nothing in the room is related to them.
 CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
+#: The large furniture the layout mask is for in the layout's energy: what stands
+#: against a wall and the free-standing tables (the pieces whose starting poses the mask
+#: chooses). Their accessories (night tables, chairs, lamps) follow them by relations,
+#: as the paper places accessories after their large furniture.
+MASKED = AGAINST_WALL | CENTRE_PIECES
 
 
 @dataclass(frozen=True)
@@ -533,11 +542,12 @@ def _bounding_rect(points):
 # -- 5. the whole -------------------------------------------------------------------------------
 
 
-def completion_record(contents: Contents, dropped, model: dict) -> dict:
+def completion_record(contents: Contents, dropped, model: dict, masked=()) -> dict:
     """What scene.json's ``completion`` holds: the types, per type the categories
     Algorithm 1 chose (requested or added, with their count, P(category | type) and the
     summed relation weight to the requested ones), its cost and reference plans, and the
-    layout mask's reference plans with their weights."""
+    layout mask's reference plans with their weights and the pieces ``masked`` in the
+    layout's energy."""
     types = {}
     for room_type, exploration in contents.explorations.items():
         entry = model["types"][room_type]
@@ -562,18 +572,21 @@ def completion_record(contents: Contents, dropped, model: dict) -> dict:
         "left_out": dict(sorted(dropped.items())),
         "mask": {"type": contents.types[0], "frame": contents.mask.frame.to_dict(),
                  "references": dict(sorted(contents.mask.weights.items())),
-                 "cells": np.round(contents.mask.mask, 6).tolist()},
+                 "cells": np.round(contents.mask.mask, 6).tolist(), "boxes": list(masked)},
     }  # fmt: skip
 
 
-def complete(request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None):
+def complete(request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None, mask_term: bool = True):
     """The completed room as a ``Scene`` (laid out, not yet described): ``plans`` is a
     plan set folder (default: the shipped one), or give a built ``model``. A layout that
-    could not satisfy everything comes back with ``scene.layout.ok`` false."""
+    could not satisfy everything comes back with ``scene.layout.ok`` false.
+    ``mask_term=False`` leaves the mask out of the layout's energy (it then only
+    chooses the starting poses), for comparison."""
     import time
 
     from scenewright.api import timed
     from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.layout_mask import floor_mask
     from scenewright.completion.model import build_model
     from scenewright.completion.plan import catalog_categories, load_plans
     from scenewright.core.scene import assemble_scene
@@ -593,10 +606,12 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
         if unplaced:
             graph, dropped = build_graph(model, contents, request.room, catalog, leave_out=unplaced)
             start = starting_poses(graph, request.room, contents.mask)
+    masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
+    mask = floor_mask(contents.mask, request.room, masked) if masked else None
     with timed(timings, "layout", time.perf_counter):
-        layout = layout_scene(graph, seed, start=start)
+        layout = layout_scene(graph, seed, start=start, mask=mask)
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
-    scene.completion = completion_record(contents, dropped, model)
+    scene.completion = completion_record(contents, dropped, model, masked)
     scene.timings.update(timings)
     return scene
 

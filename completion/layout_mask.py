@@ -11,7 +11,8 @@ own text (the plans "with similar room features" guide the layout); inverse dist
 are what it means. A reference at distance 0 takes the whole weight.
 
 The mask is in the room's door-aware canonical frame (``features``): ``mask_at`` reads it
-at room positions, which is how a layout uses it.
+at room positions, which is how a layout uses it; ``floor_mask`` lays it over the room's
+bounding box as the layout energy's ``mask`` part takes it (``generator.layout.mask_term``).
 """
 
 from __future__ import annotations
@@ -71,3 +72,20 @@ def mask_at(layout: LayoutMask, room, points) -> np.ndarray:
     columns = np.clip(((local[:, 0] / long_side + 0.5) * size).astype(int), 0, size - 1)
     rows = np.clip(((local[:, 1] / short_side + 0.5) * size).astype(int), 0, size - 1)
     return layout.mask[rows, columns]
+
+
+def floor_mask(layout: LayoutMask, room, boxes) -> "FloorMask":
+    """The mask over the room's bounding box, north-west cell first (rows along z), as a
+    ``FloorMask`` for the layout pieces ``boxes`` (ids). The canonical frame only turns
+    and mirrors the room, so each canonical cell is one cell of this grid: it is read
+    at the cells' centres with ``mask_at``."""
+    from scenewright.generator.layout.mask_term import FloorMask
+
+    corners = np.array(room.corners)
+    (x0, z0), (x1, z1) = corners.min(axis=0), corners.max(axis=0)
+    size = layout.mask.shape[0]
+    xs = x0 + (np.arange(size) + 0.5) * (x1 - x0) / size
+    zs = z0 + (np.arange(size) + 0.5) * (z1 - z0) / size
+    grid_x, grid_z = np.meshgrid(xs, zs)  # (size, size): row = z
+    values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(size, size)
+    return FloorMask(np.clip(values, 0.0, 1.0), (float(x0), float(z0), float(x1), float(z1)), tuple(boxes))

@@ -17,7 +17,7 @@ from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
-from scenewright.generator.layout.energy import PARTS, Energy
+from scenewright.generator.layout.energy import Energy
 from scenewright.generator.layout.geometry import Rect, corners, make_rect
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.room_terms import (
@@ -88,7 +88,7 @@ def measured(graph: SceneGraph, poses: dict):
 
 def assert_cached_parts_true(energy: Energy) -> None:
     full = energy.full()
-    for part in PARTS:
+    for part in energy.part_names:
         assert energy.parts[part] == pytest.approx(full[part], abs=1e-9), part
 
 
@@ -432,7 +432,8 @@ def random_room_scene(seed: int) -> SceneGraph:
     return graph
 
 
-def check_moves(energy: Energy, mover, rng: np.random.Generator, moves: int, relocator=None) -> None:
+def check_moves(energy: Energy, mover, rng: np.random.Generator, moves: int, relocator=None, parts=ROOM_PARTS) -> None:
+    """Random moves, each delta against full recomputation (in all and for each of ``parts``)."""
     for _ in range(moves):
         if relocator is not None and rng.random() < 0.3:
             proposal = relocator.propose(list(range(energy.problem.n_boxes)))
@@ -444,7 +445,7 @@ def check_moves(energy: Energy, mover, rng: np.random.Generator, moves: int, rel
         delta = energy.propose(*proposal)
         after = energy.full()
         assert delta == pytest.approx(sum(after.values()) - sum(before.values()), abs=1e-9)
-        for part in ROOM_PARTS:  # the room's own deltas, part by part
+        for part in parts:  # the parts' own deltas, one by one
             change = energy._pending.update.delta[part]
             assert change == pytest.approx(after[part] - before[part], abs=1e-9), part
         if rng.random() < 0.5:

@@ -17,7 +17,8 @@ with each other.
 
 ``layout_scene`` can keep some objects, junctions and paths exactly where they are
 (``pinned``, ``pinned_paths``) and start its chains from given poses (``start``); the
-rules are in ``pinning``. ``measure_layout(graph, poses, paths)`` (``measure``) reports
+rules are in ``pinning``. A layout mask (``mask``, see ``mask_term``) adds a preference
+for where some boxes stand. ``measure_layout(graph, poses, paths)`` (``measure``) reports
 on a layout that already exists (an imported scene) without sampling.
 """
 
@@ -34,6 +35,7 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
 from .decompose import decomposes, frame_streams, lay_out_frames, large_scene_params, run_decomposed_chain
+from .mask_term import FloorMask, compile_mask
 from .measure import measure_layout
 from .params import LayoutParams
 from .pinning import compile_pins
@@ -41,7 +43,7 @@ from .problem import compile_problem
 from .repair import repair_pins
 from .sampler import Run, run_chain
 
-__all__ = ["LayoutParams", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
+__all__ = ["FloorMask", "LayoutParams", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
 
 
 def layout_scene(
@@ -52,6 +54,7 @@ def layout_scene(
     pinned: Mapping[str, Pose] | None = None,
     pinned_paths: Mapping[str, object] | None = None,
     start: Mapping[str, object] | None = None,
+    mask: FloorMask | None = None,
 ) -> LayoutResult:
     """Lay out a scene graph: poses for objects and junctions, control points for paths.
 
@@ -75,10 +78,16 @@ def layout_scene(
     every chain starts instead of the constructive placement (a warm start; those may
     move, and what it leaves out is placed around them). Unknown ids, group ids and
     malformed poses are an ``InputError``. See ``pinning`` for the details.
+
+    ``mask`` (``mask_term.FloorMask``) adds the energy part ``mask``: the boxes it names
+    prefer to stand where its grid is high. It is a preference: the verdict (``ok``, the
+    problems) never reads it. Without it the layout is exactly the one it was before.
     """
     params = params or LayoutParams()
     started = time.perf_counter()
     problem = compile_problem(graph)
+    if mask is not None:
+        problem.mask = compile_mask(mask, problem.ids)
     pins = compile_pins(problem, pinned, pinned_paths, start)
     best: Run | None = None
     total_steps = total_accepted = 0

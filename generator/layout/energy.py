@@ -18,6 +18,9 @@ Parts (all >= 0, 0 when everything holds):
   boxes' share is replaced by ``walls``.
 - ``walls``, ``square``, ``clearance``, ``door_swing``, ``access``: the room's own terms
   (``room_terms``); 0 outdoors, where no ``RoomTerms`` is built and they cost nothing.
+- ``mask``: only when the problem has a layout mask (``mask_term``): per box it is for,
+  the weight times 1 less the mask's mean under its footprint. Without a mask the part
+  does not exist (``parts`` has no such key), so layouts without one are unchanged.
 
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
@@ -42,6 +45,8 @@ from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
 from .state import Grid, State
 
 PARTS = ("relations", "collisions", "paths", "path_shape", "extent") + ROOM_PARTS
+#: The part a layout mask adds (after ``PARTS``), present only when there is a mask.
+MASK_PART = "mask"
 
 #: Depths are clipped below 1 so the log penalty stays finite.
 MAX_DEPTH = 0.99
@@ -61,6 +66,7 @@ class Changes(NamedTuple):
     box_extent: dict[int, float]
     path_extent: dict[int, float]
     room: RoomChanges | None  # the room's terms (None outdoors)
+    mask: dict[int, float]  # by box: the moved listed boxes' new mask values
 
 
 class Pending(NamedTuple):
@@ -91,6 +97,8 @@ class Energy:
         self.path_bounds = [self._path_bounds(path) for path in range(problem.n_paths)]
         #: The room's terms (walls, square, clearance, door swing, access); None outdoors.
         self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
+        #: The part names this energy has: ``PARTS``, and ``MASK_PART`` with a mask.
+        self.part_names = PARTS + ((MASK_PART,) if problem.mask is not None else ())
         self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
@@ -203,6 +211,13 @@ class Energy:
         params = self.params
         return -sum(greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction))
 
+    def mask_energy(self, box: int) -> float:
+        """The ``mask`` part's term of a box: 0 unless the mask is for it and it is placed."""
+        mask = self.problem.mask
+        if mask is None or not mask.listed[box] or not self.active[box]:
+            return 0.0
+        return self.params.mask_weight * (1.0 - mask.mean_under(self.state.rects[box]))
+
     def troubled_boxes(self) -> list[int]:
         """Boxes that currently overlap something or stick out of the extent, and in a
         room those in breach of a room term (``RoomTerms.troubled``)."""
@@ -230,6 +245,7 @@ class Energy:
             "junction": {j: self.junction_energy(j) for j in problem.paths_of_junction},
             "box_extent": [self.box_extent_energy(b) for b in range(problem.n_boxes)],
             "path_extent": [self.path_extent_energy(p) for p in range(problem.n_paths)],
+            "mask": [self.mask_energy(b) for b in range(problem.n_boxes)],
         }
         collisions = paths = 0.0
         for box in range(problem.n_boxes):
@@ -257,6 +273,8 @@ class Energy:
         fresh["room"] = self.room.fresh() if self.room is not None else None
         for part in ROOM_PARTS:
             fresh["parts"][part] = fresh["room"]["parts"][part] if self.room is not None else 0.0
+        if problem.mask is not None:
+            fresh["parts"][MASK_PART] = sum(fresh["mask"])
         return fresh
 
     def _install(self, fresh: dict) -> None:
@@ -264,6 +282,7 @@ class Energy:
         self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
         self.shape, self.junction = fresh["shape"], fresh["junction"]
         self.box_extent, self.path_extent = fresh["box_extent"], fresh["path_extent"]
+        self.mask = fresh["mask"]
         if self.room is not None:
             self.room.install(fresh["room"])
         self.parts = dict(fresh["parts"])
@@ -309,7 +328,7 @@ class Energy:
         problem, active = self.problem, self.active
         moved = set(boxes)
         moved_paths = set(paths)
-        delta = dict.fromkeys(PARTS, 0.0)
+        delta = dict.fromkeys(self.part_names, 0.0)
 
         terms: set[int] = set()
         for box in boxes:
@@ -389,9 +408,15 @@ class Energy:
         if self.room is not None and boxes:
             room = self.room.changes(boxes)
             delta.update(room.delta)
+        new_mask = {}
+        if problem.mask is not None:
+            for box in boxes:
+                if problem.mask.listed[box]:
+                    new_mask[box] = self.mask_energy(box)
+                    delta[MASK_PART] += new_mask[box] - self.mask[box]
         return Changes(
             delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-            new_shape, new_junction, new_box_extent, new_path_extent, room,
+            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask,
         )  # fmt: skip
 
     def _boxes_near_path(self, path: int) -> list[int]:
@@ -432,6 +457,8 @@ class Energy:
             self.path_extent[path] = value
         if changes.room is not None:
             self.room.accept(changes.room)
+        for box, value in changes.mask.items():
+            self.mask[box] = value
         for part, value in changes.delta.items():
             self.parts[part] += value
         self.total = sum(self.parts.values())

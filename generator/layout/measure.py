@@ -21,6 +21,7 @@ from scenewright.core.poses import LayoutResult, Pose
 from scenewright.core.scene_graph import SceneGraph
 
 from .energy import Energy
+from .mask_term import FloorMask, compile_mask
 from .params import LayoutParams
 from .pinning import check_points, check_pose
 from .problem import compile_problem
@@ -33,17 +34,21 @@ def measure_layout(
     poses: Mapping[str, Pose],
     paths: Mapping[str, object],
     params: LayoutParams | None = None,
+    mask: FloorMask | None = None,
 ) -> LayoutResult:
     """The verdict on ``graph`` laid out at ``poses`` (id -> Pose for every object and
     junction) and ``paths`` (id -> [[x, z], ...] for every path); nothing is moved.
 
     Poses given for groups are ignored (a group's place is its members'). A missing
     object, junction or path, an id that is not in the graph, or a malformed pose or
-    point list is an ``InputError``.
+    point list is an ``InputError``. ``mask`` (``mask_term.FloorMask``) adds the
+    energy's ``mask`` part, as ``layout_scene`` does; the verdict does not read it.
     """
     params = params or LayoutParams()
     started = time.perf_counter()
     problem = compile_problem(graph)
+    if mask is not None:
+        problem.mask = compile_mask(mask, problem.ids)
     groups = set(problem.group_ids)
     box_ids, path_ids = set(problem.ids), set(problem.path_ids)
     for entry_id in poses:

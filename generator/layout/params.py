@@ -15,7 +15,9 @@ class LayoutParams:
     Energy: ``h`` and ``sigma2`` are the factor functions' steepness (paper: 3.0, 0.1);
     ``gamma`` the path turn / junction angle limit (paper: 60 degrees);
     ``collision_intensity`` the paper's c in -c log(1 - penetration);
-    ``next_to_distance`` the distance NextTo* asks for (paper: 2 m).
+    ``next_to_distance`` the distance NextTo* asks for (paper: 2 m);
+    ``mask_weight`` the ``mask`` part's weight per box (``mask_term``; a box standing
+    where the layout mask is 0 costs this much more than where it is 1).
 
     Sampler: ``steps`` is the step budget of one run, raised to ``steps_per_box`` times
     the number of boxes for big scenes (``patience`` grows alike); ``min_steps`` the steps always
@@ -44,6 +46,7 @@ class LayoutParams:
     gamma: float = math.radians(60.0)
     collision_intensity: float = 30.0
     next_to_distance: float = 2.0
+    mask_weight: float = 1.0
     steps: int = 4000
     steps_per_box: int = 100
     min_steps: int = 50

@@ -123,6 +123,9 @@ class Problem:
     units: list[tuple[str, int]] = field(default_factory=list)  # ("group", g) / ("object", box): top groups and free boxes, creation order
     outgoing: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of A
     incoming: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of B
+    #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
+    #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
+    mask: object | None = None
 
     @property
     def walls(self) -> bool:

@@ -1,0 +1,188 @@
+"""Completion benchmark: how often ``complete`` lays a room out ok, and what the layout
+mask's energy part buys.
+
+    .venv/bin/python benchmarks/bench_complete.py                  # both parts below
+    .venv/bin/python benchmarks/bench_complete.py --table          # the docs' six requests, seeds 0..9
+    .venv/bin/python benchmarks/bench_complete.py --random 50      # 50 random rooms, seed 0 each
+    .venv/bin/python benchmarks/bench_complete.py --without-mask-term   # the mask chooses the starts only
+
+``--table`` runs the requests of docs/completion.md's table (room, door, window,
+requested categories) for layout seeds 0..9 and prints per request: ok, layout CPU
+seconds per scene (median), and the *mask cover* on seeds 0..4: the mean, over the
+laid-out floor pieces (those not standing on another, flat ones aside), of the layout
+mask read at 5 x 5 points of each footprint (``layout_mask.mask_at``); and the same
+over the large pieces the mask term is for (``complete.MASKED``).
+
+``--random N`` draws N rooms from a fixed stream (sides 3.0-6.5 x 3.0-5.5 m, a door on
+one wall and a window on another, one of the four home types' main piece requested,
+with a second category half the time) and completes each with layout seed 0. It
+prints: ok (share of rooms laid out with no problem), blocked doors (rooms where a
+piece stands in a door's swing), reachability (of the pieces someone must reach, the
+share reachable from the door), categories added per room (mean, beyond the request),
+and CPU seconds per room (the whole ``complete`` call, the plan model built once
+beforehand), with the mask cover as above.
+
+Prints figures only; nothing is asserted. One process, one core.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import numpy as np
+
+from scenewright.completion import shipped_plans_dir
+from scenewright.completion.complete import MASKED, complete, parse_request
+from scenewright.completion.features import CanonicalFrame
+from scenewright.completion.layout_mask import LayoutMask, mask_at
+from scenewright.completion.model import build_model
+from scenewright.completion.plan import catalog_categories, load_plans
+from scenewright.generator import layout as layout_module
+
+#: The docs' table: room, door, window, requested.
+TABLE = (
+    ("5x4", "S:0.8:0.9", "N:2.5:1.4", "bed,bookshelf"),
+    ("3x3", "S:0.6:0.8", "N:1.5:1.0", "bed"),
+    ("4x3.6", "S:3.2:0.85", "E:1.8:1.3", "desk"),
+    ("5x4", "S:0.8:0.9", "E:2:1.2", "sofa"),
+    ("4.5x4", "W:1:0.9", "N:2.2:1.4", "dining_table"),
+    ("7x6", "S:1:0.9", "N:3:1.4", "bed,bookshelf"),
+)
+#: Random requests: a type's main piece, and the second categories one may come with.
+MAIN = {"bed": ("bookshelf", "desk", "wardrobe"), "sofa": ("bookshelf", "armchair", "tv_stand"),
+        "desk": ("bookshelf", "filing_cabinet", "armchair"), "dining_table": ("dresser", "bookshelf")}  # fmt: skip
+#: Pieces at most this tall lie flat (a rug) and are left out of the cover.
+FLAT = 0.02
+SAMPLES = 5
+STREAM_SEED = 2024
+
+
+def mask_cover(scene, only=None) -> float:
+    """Mean mask value at 5 x 5 points of each floor piece's footprint (``only``: those categories)."""
+    record, room = scene.completion["mask"], scene.room
+    layout = LayoutMask(np.asarray(record["cells"]), CanonicalFrame(**record["frame"]), np.zeros(4), record["references"])
+    grid = (np.arange(SAMPLES) + 0.5) / SAMPLES - 0.5
+    values = []
+    for obj in scene.placed_objects():
+        if obj.position[1] > 0.01 or obj.size[1] <= FLAT or (only is not None and obj.type not in only):
+            continue
+        width, depth = obj.size[0], obj.size[2]
+        local = np.array([(a * width, b * depth) for a in grid for b in grid])
+        c, s = np.cos(obj.yaw), np.sin(obj.yaw)
+        x, z = obj.position[0], obj.position[2]
+        points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
+        values.append(float(np.mean(mask_at(layout, room, points))))
+    return float(np.mean(values)) if values else float("nan")
+
+
+class LayoutClock:
+    """CPU seconds spent in ``layout_scene`` (``complete`` imports it when called, so
+    wrapping the module's attribute times its calls)."""
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+        self._original = layout_module.layout_scene
+
+        def timed(*args, **kwargs):
+            started = time.process_time()
+            try:
+                return self._original(*args, **kwargs)
+            finally:
+                self.seconds += time.process_time() - started
+
+        layout_module.layout_scene = timed
+
+
+CLOCK: LayoutClock | None = None
+
+
+def run(request, seed, model, catalog, mask_term):
+    """The completed scene, the CPU seconds of the whole call and of its layout."""
+    global CLOCK
+    CLOCK = CLOCK or LayoutClock()
+    before = CLOCK.seconds
+    started = time.process_time()
+    scene = complete(request, seed, model=model, catalog=catalog, mask_term=mask_term)
+    return scene, time.process_time() - started, CLOCK.seconds - before
+
+
+def table(model, catalog, seeds: int, mask_term: bool) -> None:
+    known = set(catalog)
+    print("| room | door; window | requested | ok | layout CPU s (median) | mask cover: floor pieces / large pieces (seeds 0-4) |")
+    print("|---|---|---|---|---|---|")
+    for room, door, window, requested in TABLE:
+        request = parse_request(room, [door], [window], [requested], known)
+        oks, seconds, cover, cover_large = 0, [], [], []
+        for seed in range(seeds):
+            scene, _, layout_seconds = run(request, seed, model, catalog, mask_term)
+            oks += scene.layout.ok
+            seconds.append(layout_seconds)
+            if seed < 5:
+                cover.append(mask_cover(scene))
+                cover_large.append(mask_cover(scene, MASKED))
+        print(f"| {room.replace('x', ' x ')} | {door}; {window} | {requested.replace(',', ', ')} | {oks}/{seeds} "
+              f"| {statistics.median(seconds):.2f} | {np.mean(cover):.3f} / {np.mean(cover_large):.3f} |")  # fmt: skip
+
+
+def random_rooms(count: int, known) -> list:
+    """``count`` requests drawn from a fixed stream (module docstring)."""
+    rng = np.random.default_rng(STREAM_SEED)
+    requests = []
+    walls = ("N", "E", "S", "W")
+    while len(requests) < count:
+        width, depth = round(float(rng.uniform(3.0, 6.5)), 1), round(float(rng.uniform(3.0, 5.5)), 1)
+        door_wall, window_wall = rng.choice(4, size=2, replace=False)
+        door_length = width if walls[door_wall] in "NS" else depth
+        window_length = width if walls[window_wall] in "NS" else depth
+        door_width = round(float(rng.uniform(0.8, 0.95)), 2)
+        window_width = round(float(rng.uniform(1.0, min(1.8, window_length - 0.6))), 2)
+        door = f"{walls[door_wall]}:{rng.uniform(0.5 + door_width / 2, door_length - 0.5 - door_width / 2):.2f}:{door_width}"
+        window = f"{walls[window_wall]}:{rng.uniform(0.3 + window_width / 2, window_length - 0.3 - window_width / 2):.2f}:{window_width}"
+        main = list(MAIN)[int(rng.integers(len(MAIN)))]
+        wanted = [main] + ([str(rng.choice(MAIN[main]))] if rng.random() < 0.5 else [])
+        requests.append((f"{width}x{depth}", door, window, ",".join(wanted)))
+    return [(spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests]
+
+
+def random_table(model, catalog, count: int, mask_term: bool) -> None:
+    oks = blocked = reach_needed = unreachable = added = 0
+    seconds, cover, cover_large = [], [], []
+    for spec, request in random_rooms(count, set(catalog)):
+        scene, cpu, _ = run(request, 0, model, catalog, mask_term)
+        seconds.append(cpu)
+        oks += scene.layout.ok
+        problems = scene.layout.problems
+        blocked += any("stands in the swing of" in p for p in problems)
+        reach_needed += sum(1 for o in scene.placed_objects() if o.access and o.position[1] <= 0.01)
+        unreachable += sum(1 for p in problems if "cannot be reached" in p)
+        added += sum(n for name, n in scene.completion["counts"].items() if name not in request.requested)
+        cover.append(mask_cover(scene))
+        cover_large.append(mask_cover(scene, MASKED))
+    print(f"{count} random rooms (layout seed 0), mask term {'on' if mask_term else 'off'}:")
+    print(f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
+          f"reachable {reach_needed - unreachable}/{reach_needed} ({100 * (reach_needed - unreachable) / max(reach_needed, 1):.1f} %); "
+          f"categories added per room {added / count:.1f}; CPU s per room median {statistics.median(seconds):.2f}, "
+          f"mean {statistics.mean(seconds):.2f}; mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}")  # fmt: skip
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--table", action="store_true", help="the docs' six requests only")
+    parser.add_argument("--random", type=int, default=None, metavar="N", help="N random rooms only")
+    parser.add_argument("--seeds", type=int, default=10, help="layout seeds per request of --table (10)")
+    parser.add_argument("--without-mask-term", action="store_true", help="the mask chooses the starting poses only")
+    args = parser.parse_args()
+    model = build_model(load_plans(shipped_plans_dir()))
+    catalog = catalog_categories()
+    mask_term = not args.without_mask_term
+    both = not args.table and args.random is None
+    if args.table or both:
+        table(model, catalog, args.seeds, mask_term)
+    if args.random is not None or both:
+        random_table(model, catalog, args.random or 50, mask_term)
+
+
+if __name__ == "__main__":
+    main()
