@@ -9,6 +9,16 @@ desk's chair) inside the room and free of everything but the seats used at it
 (``activity.SEATS``); nothing taller than a window's sill standing in front of it; and
 each free area clear of all of these.
 Distances below ``TOLERANCE`` (5 mm) are drawing slack, not problems.
+
+``unreachable`` finds the pieces no way at least 0.6 m wide from a door reaches. It is
+not yet one of the rules a plan must pass: 16 of the 64 shipped plans still hem a piece
+in (a test holds that list, so it can only shrink). The walkable way is the layout's
+own test (``generator.layout.room_terms``): the free floor is the floor at least 0.3 m from the walls and from every floor piece taller than
+a rug, the way in is the free floor connected to a door, and a piece whose catalog entry
+names sides it is used from (``access``) is reached when the way comes within 0.4 m of
+them. A piece used from a seat (a desk, a dining table: a seat within that 0.4 m) is
+reached through the seat too: one pulls the chair out to use it, as seats may stand in
+a piece's clearance.
 """
 
 from __future__ import annotations
@@ -100,6 +110,35 @@ def _free_area_problems(plan, floor, catalog) -> list[tuple[str, str]]:
             if overlap_depth(corners, zone) > TOLERANCE:
                 problems.append((f"$.free_areas[{k}]", f"the free area is not free: {name} is in it"))
     return problems
+
+
+def unreachable(plan, catalog) -> list:
+    """The floor pieces of ``plan`` someone uses (their catalog entry names access sides)
+    that no 0.6 m wide way from a door reaches, in furniture order (module docstring);
+    none in a room without a door."""
+    from scenewright.completion.activity import SEATS
+    from scenewright.generator.layout.geometry import make_rect, rect_distance
+    from scenewright.generator.layout.room_terms import CORRIDOR_HALF, FLAT_HEIGHT as WALKED_OVER, access_grid
+
+    grid = access_grid(plan.room)
+    if not grid.has_doors:
+        return []
+    ground = [piece for piece in plan.furniture if piece.on is None]
+    rects = {p.id: make_rect(p.center[0], p.center[1], p.size[0], p.size[1], p.yaw) for p in ground}
+    taken = 0
+    for piece in ground:
+        if catalog[piece.category].size[1] > WALKED_OVER:
+            taken |= grid.obstacle(rects[piece.id]).bits
+    way = grid.label(grid.static & ~taken)
+    used = [piece for piece in ground if catalog[piece.category].access]
+    reached = {p.id: bool(way & grid.access(rects[p.id], catalog[p.category].access).bits) for p in used}
+    reach = CORRIDOR_HALF + grid.cell  # how near the way must come to a side used (the layout's)
+    seats = [p for p in used if p.category in SEATS and reached[p.id]]
+    return [
+        piece for piece in used
+        if not reached[piece.id] and not any(
+            seat.id != piece.id and rect_distance(rects[seat.id], rects[piece.id]) <= reach for seat in seats)
+    ]  # fmt: skip
 
 
 def is_flat(piece, catalog) -> bool:

@@ -23,7 +23,7 @@ def double_by_the_window():
     d.window("N", 2.0, 1.4)
     bed = d.against("N", "bed", 2.0, DOUBLE_BED)
     _night_tables(d, bed)
-    d.against("W", "wardrobe", 2.85, WARDROBE)
+    d.against("W", "wardrobe", 3.1, NARROW_WARDROBE)
     d.against("E", "dresser", 1.3, DRESSER)
     d.against("S", "plant", 2.4, PLANT, gap=0.05)
     return d
@@ -48,15 +48,15 @@ def king_with_tv():
                5.0, 4.2)  # fmt: skip
     d.door("N", 4.4)
     d.window("S", 2.5, 1.8)
-    bed = d.against("W", "bed", 2.1, KING_BED)
+    bed = d.against("W", "bed", 2.2, KING_BED)
     _night_tables(d, bed)
     stand = d.against("E", "tv_stand", 2.1, SMALL_TV_STAND)
     d.on(stand, "tv", SMALL_TV)
     d.against("N", "wardrobe", 3.0, WIDE_WARDROBE)
-    d.against("S", "dresser", 2.9, DRESSER)
-    d.place("rug", 3.05, 2.1, RUG, "east")
+    d.against("S", "dresser", 3.1, DRESSER)
+    d.place("rug", 3.05, 2.2, RUG, "east")
     d.against("S", "armchair", 4.3, ARMCHAIR, gap=0.05)
-    d.free(0.35, 3.85, 0.6, 0.6, "plant", "floor_lamp")
+    d.free(0.35, 3.95, 0.5, 0.5, "plant", "floor_lamp")
     return d
 
 
@@ -80,10 +80,10 @@ def double_east_wall():
                3.8, 3.4)  # fmt: skip
     d.door("N", 0.6)
     d.window("S", 2.4, 1.2)
-    bed = d.against("E", "bed", 1.7, DOUBLE_BED)
+    bed = d.against("E", "bed", 1.6, DOUBLE_BED)
     _night_tables(d, bed)
     d.against("W", "wardrobe", 1.55, WARDROBE)
-    d.against("S", "dresser", 0.9, DRESSER)
+    d.against("S", "dresser", 0.55, DRESSER)
     return d
 
 
@@ -122,8 +122,8 @@ def guest_twin():
     d.window("N", 1.9, 1.2)
     table = d.against("E", "nightstand", 2.0, NIGHT_TABLE)
     d.on(table, "lamp", BEDSIDE_LAMP)
-    d.against("E", "bed", 1.225, SINGLE_BED)
-    d.against("E", "bed", 2.775, SINGLE_BED)
+    d.against("E", "bed", 1.1, SINGLE_BED)
+    d.against("E", "bed", 2.9, SINGLE_BED)
     d.against("W", "wardrobe", 2.0, WARDROBE)
     d.against("N", "plant", 0.4, PLANT, gap=0.05)
     return d
@@ -140,8 +140,8 @@ def master_suite():
     dresser = d.against("S", "dresser", 3.5, LONG_DRESSER)
     d.on(dresser, "tv", SMALL_TV)
     d.against("E", "wardrobe", 2.6, WIDE_WARDROBE)
-    d.place("armchair", 1.0, 1.2, ARMCHAIR, "south")
-    d.place("armchair", 1.0, 2.3, ARMCHAIR, "north")
+    d.place("armchair", 1.0, 1.1, ARMCHAIR, "south")
+    d.place("armchair", 1.0, 2.7, ARMCHAIR, "north")
     d.place("floor_lamp", 0.3, 0.3, FLOOR_LAMP, "south")
     d.place("rug", 3.5, 2.8, RUG, "south")
     d.against("S", "plant", 1.0, PLANT, gap=0.05)
@@ -154,7 +154,7 @@ def study_bedroom():
                4.2, 3.6)  # fmt: skip
     d.door("W", 3.05)
     d.window("E", 1.4, 1.2)
-    bed = d.against("N", "bed", 1.5, DOUBLE_BED)
+    bed = d.against("N", "bed", 1.45, DOUBLE_BED)
     _night_tables(d, bed)
     desk = d.against("E", "desk", 1.4, DESK)
     d.before(desk, "office_chair", OFFICE_CHAIR, 0.05)
@@ -169,7 +169,7 @@ def compact_double():
                3.6, 3.4)  # fmt: skip
     d.door("E", 2.9, 0.8)
     d.window("W", 1.4, 1.0)
-    bed = d.against("W", "bed", 1.4, DOUBLE_BED)
+    bed = d.against("W", "bed", 1.55, DOUBLE_BED)
     _night_tables(d, bed, SMALL_NIGHT_TABLE)
     d.against("E", "wardrobe", 1.2, WARDROBE)
     return d
@@ -180,9 +180,9 @@ def kids_room():
                3.4, 3.2)  # fmt: skip
     d.door("N", 2.9, 0.8)
     d.window("W", 1.3, 1.2)
-    bed = d.against("E", "bed", 2.2, SINGLE_BED)
+    bed = d.against("E", "bed", 2.45, SINGLE_BED)
     d.beside(bed, "nightstand", SMALL_NIGHT_TABLE, "right")
-    desk = d.against("W", "desk", 1.3, SMALL_DESK)
+    desk = d.against("W", "desk", 1.1, SMALL_DESK)
     d.before(desk, "chair", CHAIR, 0.05)
     d.against("N", "bookshelf", 1.2, BOOKSHELF)
     d.against("S", "wardrobe", 0.95, NARROW_WARDROBE)
@@ -210,13 +210,13 @@ def loft_style():
     d.door("S", 0.7)
     d.window("N", 1.6, 1.4)
     d.window("E", 0.6, 0.8)
-    bed = d.against("E", "bed", 2.3, KING_BED)
+    bed = d.against("E", "bed", 2.2, KING_BED)
     _night_tables(d, bed)
     desk = d.against("N", "desk", 1.6, DESK)
     d.before(desk, "office_chair", OFFICE_CHAIR, 0.05)
     d.on(desk, "desk_lamp", DESK_LAMP, across=0.45)
     d.against("W", "wardrobe", 1.8, WIDE_WARDROBE)
-    d.against("S", "dresser", 2.4, DRESSER)
+    d.against("S", "dresser", 1.9, DRESSER)
     d.place("rug", 2.55, 2.3, RUG, "east")
     return d
 
@@ -239,12 +239,12 @@ def double_with_bookshelves():
     d.door("E", 3.45)
     d.window("N", 0.6, 0.8)
     d.window("N", 3.4, 0.8)
-    bed = d.against("N", "bed", 2.0, DOUBLE_BED)
+    bed = d.against("N", "bed", 2.1, DOUBLE_BED)
     _night_tables(d, bed)
     d.against("S", "bookshelf", 1.6, BOOKSHELF)
     d.against("S", "bookshelf", 2.55, BOOKSHELF)
-    d.against("W", "wardrobe", 2.8, WARDROBE)
-    d.place("rug", 2.0, 2.6, (1.6, 1.0), "south")
+    d.against("W", "wardrobe", 3.05, WARDROBE)
+    d.place("rug", 2.1, 2.6, (1.6, 1.0), "south")
     return d
 
 

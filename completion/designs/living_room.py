@@ -44,7 +44,7 @@ def small_flat():
     _television(d, "N", 1.7, SMALL_TV_STAND, SMALL_TV)
     sofa = d.against("S", "sofa", 1.5, LOVESEAT)
     _sofa_group(d, sofa, SMALL_COFFEE_TABLE)
-    d.place("armchair", 2.85, 1.7, ARMCHAIR, "west")
+    d.place("armchair", 0.55, 1.7, ARMCHAIR, "east")
     d.against("W", "plant", 0.35, PLANT, gap=0.05)
     return d
 
