@@ -24,6 +24,10 @@ from .world import World, world_of
 
 STYLES = ("full", "short")
 
+#: How many times the full text is planned again to put paragraphs in the order of
+#: their groups' ordinals (one is enough unless a paragraph names a later group first).
+MAX_REORDERINGS = 3
+
 
 @dataclass
 class Description:
@@ -91,11 +95,22 @@ def describe_frame(
         raise InputError(f"description variant must be a whole number >= 0, got {variant!r}")
     variant = int(variant)  # a numpy integer from a dataset loop is welcome too
     world = world_of(scene)
+    environment = template_environment(templates)
     sections = plan_document(scene, world)
-    choices = Choices.for_variant(scene.seed, variant)
-    realiser = Realiser(world, template_environment(templates), choices, picture_sides=picture_sides)
+    realiser = Realiser(world, environment, Choices.for_variant(scene.seed, variant), picture_sides=picture_sides)
     if style == "full":
         sentences = realiser.sections(sections)
+        for _ in range(MAX_REORDERINGS):
+            # Ordinals count in the order the text first names things, so a group named
+            # before its paragraph ("next to the first park") has its paragraph first:
+            # plan again with the paragraphs in that order, until they agree.
+            first = realiser.discourse.rank_order()
+            again = plan_document(scene, world, first)
+            if [s.owner for s in again] == [s.owner for s in sections]:
+                break
+            sections = again
+            realiser = Realiser(world, environment, Choices.for_variant(scene.seed, variant), picture_sides=picture_sides)
+            sentences = realiser.sections(sections)
     else:
         sentences = _caption(scene, world, sections, realiser, picture=picture, unseen=unseen)
     return Description(

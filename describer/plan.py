@@ -159,10 +159,11 @@ def introduced_by(message: Message) -> list[str]:
     return []
 
 
-def plan_document(scene: Scene, world: World) -> list[Section]:
-    """The sections of the full description, in reading order."""
+def plan_document(scene: Scene, world: World, first: dict[str, int] | None = None) -> list[Section]:
+    """The sections of the full description, in reading order: a group's paragraph
+    before its siblings' when ``first`` puts it first (``World.owners``)."""
     networks = _network_links(scene, world)
-    owners = world.owners()
+    owners = world.owners(first)
     section_of_owner = {owner: index for index, owner in enumerate(owners)}
     pools: list[list[Relation]] = [[] for _ in owners]
     for relation in stated_relations(scene, world):

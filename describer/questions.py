@@ -58,6 +58,7 @@ from scenewright.core.seeds import SeedLike, stage_stream
 
 from .colours import COLOUR_TERMS
 from .english import plural_of, sentence_case, with_article
+from .world import is_kind_of
 from .programs import MARGINS, RELATE_SIDES, PictureFacts, Program, ProgramError, answer_text, execute, step
 
 if TYPE_CHECKING:
@@ -99,13 +100,6 @@ def register_family(family: QuestionFamily) -> QuestionFamily:
         raise ValueError(f"question family {family.name!r} is registered twice")
     FAMILIES[family.name] = family
     return family
-
-
-def is_kind_of(noun: str, general: str) -> bool:
-    """Whether a ``noun`` thing is also a ``general`` one to a person: ``general`` has no
-    "of" phrase and ``noun``'s head (before any "of") ends with it ("office chair",
-    "armchair" and "bucket of coal" are kinds of "chair", "chair" and "bucket")."""
-    return noun != general and " of " not in general and noun.split(" of ")[0].endswith(general)
 
 
 @dataclass(frozen=True)

@@ -191,7 +191,8 @@ class Realiser:
         )
 
     def _statement(self, statement: Statement) -> str:
-        names = self.discourse.name_set(statement.subjects)
+        targets = tuple(t for clause in statement.clauses for t in clause.targets)
+        names = self.discourse.name_set(statement.subjects, alongside=targets)
         self.discourse.mark_subject(statement.subjects)
         plural = len(statement.subjects) > 1
         predicates = [

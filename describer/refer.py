@@ -65,6 +65,9 @@ class Discourse:
     last_of_noun: dict[str, tuple[str, ...]] = field(default_factory=dict)
     paragraph_nouns: dict[str, set[str]] = field(default_factory=dict)
     named_in_paragraph: set[str] = field(default_factory=set)  # known entities named again
+    #: Ordinals as the text has given them: family key -> ids in the order the text first
+    #: named each by its place ("the first road" is the first road the text singled out).
+    ranks: dict[tuple[str, ...], list[str]] = field(default_factory=dict)
     sentence_subject: tuple[str, ...] = ()
     #: The phrases of the sentence being made and what each names (``grounding``).
     marks: Marks = field(default_factory=Marks)
@@ -139,14 +142,21 @@ class Discourse:
         entity = self.world[entity_id]
         self.named_in_paragraph.add(entity_id)
         if pronoun and self._may_be_it(entity_id):
+            self._rank(entity_id)
             self._note((entity_id,), entity.noun, plural=False)
             return self.marks.mark("it", (entity_id,))
         phrase, placed = self._definite(entity_id, demonstrative=demonstrative)
+        self._rank(entity_id)  # "the white desk" counts among the desks too
         self._note((entity_id,), entity.noun, plural=False)
         return self.marks.mark(phrase if placed else self._placed(phrase, entity_id), (entity_id,))
 
-    def name_set(self, ids: tuple[str, ...]) -> list[str]:
-        """Phrases naming a set of known entities, one per cohort, in order."""
+    def name_set(self, ids: tuple[str, ...], alongside: tuple[str, ...] = ()) -> list[str]:
+        """Phrases naming a set of known entities, one per cohort, in order.
+
+        ``alongside``: what the rest of the sentence names ("the first desk" in "The two
+        other desks face the same way as the first desk"), so a part of a cohort is
+        "other" than those too.
+        """
         by_cohort: dict[tuple[str, ...], list[str]] = {}
         for entity_id in ids:
             by_cohort.setdefault(self.world.cohort(entity_id), []).append(entity_id)
@@ -160,8 +170,12 @@ class Discourse:
             if len(chosen) == 1:
                 phrases.append(self.name(chosen[0], pronoun=alone, demonstrative=alone))
             else:
-                phrases.append(self._name_part(cohort, tuple(chosen), alone))
+                phrases.append(self._name_part(cohort, tuple(chosen), alone, alongside))
         return phrases
+
+    def rank_order(self) -> dict[str, int]:
+        """Each entity the text has named by an ordinal -> its place in its family's order."""
+        return {entity_id: k for ranked in self.ranks.values() for k, entity_id in enumerate(ranked)}
 
     # -- the rules ----------------------------------------------------------------
 
@@ -186,19 +200,44 @@ class Discourse:
         named_before = [m.ids for m in self.previous if m.noun == entity.noun]
         if demonstrative and self.last_of_noun.get(entity.noun) == (entity_id,) and named_before == [(entity_id,)]:
             return f"this {entity.noun}", True
+        if entity.noun in self.world.nested_nouns:
+            # Counted across the scene: "the row of desks at the row of desks" tells nothing.
+            return self._place_in_cohort(entity_id), True
         cohort = self.world.cohort(entity_id)
         clear = len(cohort) == len(namesakes) or self._clear_in_paragraph(entity_id)
-        return self._place_in_cohort(entity_id, cohort), clear
+        return self._place_in_cohort(entity_id), clear
 
-    def _place_in_cohort(self, entity_id: str, cohort: tuple[str, ...]) -> str:
+    def _place_in_cohort(self, entity_id: str) -> str:
+        """"the sign", "the other tower" or "the third road".
+
+        Ordinals count in the order the text first names each thing on its own (``_rank``),
+        so a reader meets "the first road" before "the second". A noun counts what it
+        covers among its siblings (``World.family``): "the second desk" is the second desk
+        named, white ones included; "the second white desk" the second white one.
+        """
         entity = self.world[entity_id]
-        if len(cohort) == 1:
-            return f"the {entity.noun}"
+        family = self.world.family(entity_id)
+        if len(family) == 1 or (len(self.world.cohort(entity_id)) == 1 and entity.noun not in self.world.nested_nouns):
+            return f"the {entity.noun}"  # its noun alone sets it apart among its siblings
+        ranked = self._rank(entity_id)
         # "the other" always means the later of two, said right after the first was named,
         # so it never flips between the two.
-        if len(cohort) == 2 and entity_id == cohort[1] and self.last_of_noun.get(entity.noun) == cohort[:1]:
+        others = [i for i in family if i != entity_id]
+        if (
+            len(family) == 2 and ranked.index(entity_id) == 1 and self.world[others[0]].noun == entity.noun
+            and self.last_of_noun.get(entity.noun) == tuple(others)
+        ):  # fmt: skip
             return f"the other {entity.noun}"
-        return f"the {ordinal_word(cohort.index(entity_id) + 1)} {entity.noun}"
+        if self.world.family_noun(entity_id) != entity.noun:
+            ranked = [i for i in ranked if self.world[i].noun == entity.noun]
+        return f"the {ordinal_word(ranked.index(entity_id) + 1)} {entity.noun}"
+
+    def _rank(self, entity_id: str) -> list[str]:
+        """Its family in the order the text has named them one by one, with it counted."""
+        ranked = self.ranks.setdefault(self.world.family(entity_id), [])
+        if entity_id not in ranked:
+            ranked.append(entity_id)
+        return ranked
 
     def _clear_in_paragraph(self, entity_id: str) -> bool:
         """Whether naming by place in the cohort alone is clear here.
@@ -235,27 +274,34 @@ class Discourse:
             mention.embedded = True
         return f"{phrase} {preposition} {owner}"
 
-    def _name_part(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool) -> str:
+    def _name_part(
+        self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool, alongside: tuple[str, ...] = ()
+    ) -> str:
         entity = self.world[chosen[0]]
         if len(chosen) == len(cohort):
             whole = len(chosen) == 2 and alone
             phrase = f"both {entity.plural}" if whole else f"the {number_word(len(chosen))} {entity.plural}"
         else:
-            phrase = self._part_of_cohort(cohort, chosen)
+            phrase = self._part_of_cohort(cohort, chosen, alongside)
         self.named_in_paragraph.update(chosen)
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
         return self.marks.mark(phrase if clear else self._placed(phrase, chosen[0], plural=True), chosen)
 
-    def _part_of_cohort(self, cohort: tuple[str, ...], chosen: tuple[str, ...]) -> str:
+    def _part_of_cohort(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alongside: tuple[str, ...]) -> str:
         """Some of a cohort: "two of the street lamps".
 
-        When others of the cohort were named in this paragraph and these were not, the
-        phrase says so, so a reader does not take them for the ones before: "two other
-        street lamps", or "the two other street lamps" when they are all the rest.
+        When others of the cohort were named in this paragraph or are named in the rest
+        of the sentence (``alongside``) and these were not, the phrase says so, so a
+        reader does not take them for those: "two other street lamps", or "the two other
+        street lamps" when they are all the rest ("The two other desks face the same way
+        as the first desk.", not "Two of the desks ...").
         """
         plural, count = self.world[chosen[0]].plural, number_word(len(chosen))
-        named = self.named_in_paragraph & set(cohort)
+        besides = set(alongside) & set(cohort)
+        if besides and not besides & set(chosen) and besides | set(chosen) == set(cohort):
+            return f"the {count} other {plural}"  # the sentence names the rest of the cohort
+        named = (self.named_in_paragraph | besides) & set(cohort)
         if named and not named & set(chosen):
             if named == set(cohort) - set(chosen):
                 return f"the {count} other {plural}"

@@ -48,6 +48,12 @@ class World:
     children: dict[str | None, tuple[str, ...]]
     #: The scene's room as the text names it; None outdoors.
     room: RoomView | None = None
+    #: (noun, parent) -> the noun whose ordinals it shares: the most general noun among
+    #: its siblings that it is a kind of ("white desk" -> "desk"), else its own.
+    families: dict[tuple[str, str | None], str] = field(default_factory=dict)
+    #: Nouns of groups nested in a group of the same noun (a row of desks made of rows
+    #: of desks): their members are counted across the whole scene, never "at" their group.
+    nested_nouns: frozenset[str] = frozenset()
     #: ``_shown_by``'s answers so far (a cache, not part of the world's value).
     _shown: dict[str, tuple[str, ...]] = field(default_factory=dict, compare=False, repr=False)
 
@@ -74,6 +80,25 @@ class World:
         """The entities with the same noun and parent as this one (itself included)."""
         entity = self.entities[entity_id]
         return self.cohorts[(entity.noun, entity.parent)]
+
+    def family(self, entity_id: str) -> tuple[str, ...]:
+        """The siblings whose nouns share this one's ordinals (itself included), in
+        derivation order: its cohort and the cohorts of kinds of the same thing ("desk"
+        and "white desk"), so "the second desk" never counts apart from "the first
+        white desk". For a nested noun, every namesake in the scene."""
+        entity = self.entities[entity_id]
+        if entity.noun in self.nested_nouns:
+            return self.namesakes(entity_id)
+        family = self.families.get((entity.noun, entity.parent), entity.noun)
+        return tuple(
+            i for i in self.children.get(entity.parent, ())
+            if self.families.get((self.entities[i].noun, entity.parent), self.entities[i].noun) == family
+        )
+
+    def family_noun(self, entity_id: str) -> str:
+        """The noun that covers its whole family ("desk" for a "white desk" beside desks)."""
+        entity = self.entities[entity_id]
+        return self.families.get((entity.noun, entity.parent), entity.noun)
 
     def namesakes(self, entity_id: str) -> tuple[str, ...]:
         """Every entity in the scene with this one's noun (itself included)."""
@@ -108,12 +133,20 @@ class World:
             self._shown[entity_id] = shown
         return shown
 
-    def owners(self) -> list[str | None]:
-        """The scene (``None``) and then every entity with members, depth-first in derivation order."""
+    def owners(self, first: dict[str, int] | None = None) -> list[str | None]:
+        """The scene (``None``) and then every entity with members, depth-first in derivation
+        order; within a family (``family``), members in ``first`` go first, in its order."""
         found: list[str | None] = [None]
+        first = first or {}
 
         def visit(owner: str | None) -> None:
-            for member in self.members(owner):
+            members = self.members(owner)
+            queues: dict[tuple[str, ...], list[Entity]] = {}
+            for member in members:
+                queues.setdefault(self.family(member.id), []).append(member)
+            for queue in queues.values():
+                queue.sort(key=lambda m: first.get(m.id, len(members)))
+            for member in [queues[self.family(m.id)].pop(0) for m in members]:
                 if self.members(member.id):
                     found.append(member.id)
                     visit(member.id)
@@ -151,4 +184,36 @@ def world_of(scene: Scene) -> World:
         by_noun[entity.noun] = by_noun.get(entity.noun, ()) + (entity.id,)
         children[entity.parent] = children.get(entity.parent, ()) + (entity.id,)
     room = RoomView(scene.room, scene.objects) if scene.room is not None else None
-    return World(entities, cohorts, by_noun, children, room)
+    return World(entities, cohorts, by_noun, children, room, _families(cohorts), _nested_nouns(entities))
+
+
+def is_kind_of(noun: str, general: str) -> bool:
+    """Whether a ``noun`` thing is also a ``general`` one to a person: ``general`` has no
+    "of" phrase and ``noun``'s head (before any "of") ends with it ("office chair",
+    "armchair" and "bucket of coal" are kinds of "chair", "chair" and "bucket")."""
+    return noun != general and " of " not in general and noun.split(" of ")[0].endswith(general)
+
+
+def _families(cohorts: dict[tuple[str, str | None], tuple[str, ...]]) -> dict[tuple[str, str | None], str]:
+    """Each cohort's family noun: the most general sibling noun it is a kind of, or its own."""
+    nouns_of: dict[str | None, list[str]] = {}
+    for noun, parent in cohorts:
+        nouns_of.setdefault(parent, []).append(noun)
+    families = {}
+    for (noun, parent) in cohorts:
+        general = [n for n in nouns_of[parent] if is_kind_of(noun, n)]
+        families[(noun, parent)] = min(general, key=len) if general else noun
+    return families
+
+
+def _nested_nouns(entities: dict[str, Entity]) -> frozenset[str]:
+    """Nouns of entities with an ancestor of the same noun."""
+    nested = set()
+    for entity in entities.values():
+        parent = entity.parent
+        while parent is not None:
+            if entities[parent].noun == entity.noun:
+                nested.add(entity.noun)
+                break
+            parent = entities[parent].parent
+    return frozenset(nested)

@@ -114,6 +114,8 @@ def check_true_and_complete(scene: Scene) -> list[str]:
     assert sorted(introduced) == sorted(world.entities), f"seed {scene.seed}: not every entity is mentioned"
     descriptions = [description] + [describe(scene, variant=k) for k in (1, 2)]
     descriptions.append(describe(scene, style="short"))
+    for told in descriptions:
+        check_ordinals(scene, told)
     if scene.room is not None:
         for told in descriptions:
             check_room_text(scene, told)
@@ -123,6 +125,61 @@ def check_true_and_complete(scene: Scene) -> list[str]:
         words = sentence.lower().rstrip(".").split()
         assert sentence[0].isupper() and sentence.endswith(".") and "  " not in sentence, sentence
         assert all(a != b for a, b in zip(words, words[1:])), f"seed {scene.seed}: word repeated: {sentence}"
+    return found
+
+
+# -- ordinals: a reader meets "the first" before "the second" ---------------------------------
+
+ORDINAL_WORDS = [
+    "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth",
+    "eleventh", "twelfth", "thirteenth", "fourteenth", "fifteenth", "sixteenth", "seventeenth",
+    "eighteenth", "nineteenth", "twentieth",
+]  # fmt: skip
+INDEFINITE = ("a ", "an ", "another ")
+
+
+def is_kind_of(noun: str, general: str) -> bool:
+    """The reader's own test: a "white desk" is a desk, an "armchair" a chair, a "sack of flour" no flour."""
+    return noun == general or (" of " not in general and noun.split(" of ")[0].endswith(general))
+
+
+def check_ordinals(scene: Scene, description: Description) -> None:
+    """Every "the k-th N" names a thing after the text has singled out k - 1 others that
+    an N covers (its noun, or a kind of it: a "white desk" is a desk) among its siblings
+    (for a noun nested in itself, in the whole scene), and always the same k for it."""
+    things = {o.id: o for o in [*scene.objects, *scene.paths]}
+    parent = {i: (t.parent if t.parent in things else None) for i, t in things.items()}
+    nested = {
+        t.noun for t in things.values()
+        if any(things[a].noun == t.noun for a in ancestors(t.id, parent))
+    }  # fmt: skip
+    singled: list[str] = []  # things named on their own, in reading order
+    told: dict[str, int] = {}
+    for mention in description.mentions:
+        words = description.text[mention.start:mention.end]
+        if len(mention.entities) != 1 or words.lower().startswith(INDEFINITE):
+            continue
+        (entity,) = mention.entities
+        match = re.match(r"[Tt]he (\w+) ", words)
+        if entity in things and match and match.group(1) in ORDINAL_WORDS:
+            k = ORDINAL_WORDS.index(match.group(1)) + 1
+            noun = things[entity].noun
+            assert words[match.end():].startswith(noun), words
+            scope = [
+                i for i in dict.fromkeys(singled)
+                if i != entity and is_kind_of(things[i].noun, noun)
+                and (noun in nested or parent[i] == parent[entity])
+            ]  # fmt: skip
+            expected = told.setdefault(entity, len(scope) + 1)
+            assert k == expected, f"seed {scene.seed}: {words!r} is the {expected}th singled out: {description.text}"
+        singled.append(entity)
+
+
+def ancestors(entity_id: str, parent: dict) -> list[str]:
+    found, up = [], parent.get(entity_id)
+    while up is not None:
+        found.append(up)
+        up = parent.get(up)
     return found
 
 
