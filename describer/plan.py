@@ -31,6 +31,9 @@ from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.scene import Scene
 
 from .lexicon import is_described, is_symmetric, place_phrases, relation_wordings
+from .summary import (
+    Composition, Pattern, Quantified, compositions, hidden_owners, patterns, quantified, summarised_groups,
+)
 from .world import Entity, World
 
 #: The most clauses one statement joins ("The chair is in front of the desk and faces it.").
@@ -116,7 +119,7 @@ class Statement:
     also: bool = False
 
 
-Message = Inventory | RoomOutline | Introduction | Statement
+Message = Inventory | RoomOutline | Introduction | Statement | Composition | Pattern | Quantified
 
 
 @dataclass(frozen=True)
@@ -142,8 +145,8 @@ def facts_of(message: Message) -> list[Fact]:
     if isinstance(message, Introduction):
         subjects = tuple(s for unit in message.subjects for s in unit)
         return _clause_facts(subjects, message.clause)
-    if isinstance(message, RoomOutline):
-        return []  # the room's own parts: no relation
+    if isinstance(message, (RoomOutline, Composition)):
+        return []  # the room's own parts, what groups hold: no relation
     return list(message.facts)
 
 
@@ -159,21 +162,44 @@ def introduced_by(message: Message) -> list[str]:
     return []
 
 
-def plan_document(scene: Scene, world: World, first: dict[str, int] | None = None) -> list[Section]:
+def plan_document(
+    scene: Scene, world: World, first: dict[str, int] | None = None, *, summary: bool = False
+) -> list[Section]:
     """The sections of the full description, in reading order: a group's paragraph
-    before its siblings' when ``first`` puts it first (``World.owners``)."""
+    before its siblings' when ``first`` puts it first (``World.owners``).
+
+    ``summary``: the summary level (``summary``): big cohorts of groups get no paragraphs
+    of their own but counts in their parent's, and a big cohort's relations to several
+    things of one noun are told as one count.
+    """
     networks = _network_links(scene, world)
     owners = world.owners(first)
     section_of_owner = {owner: index for index, owner in enumerate(owners)}
     pools: list[list[Relation]] = [[] for _ in owners]
-    for relation in stated_relations(scene, world):
+    stated = stated_relations(scene, world)
+    for relation in stated:
         # A room's parts are known from the start: only an entity end waits for its section.
         ends = [end for end in (relation.source, relation.target) if end in world]
         pools[max(section_of_owner[world[end].parent] for end in ends)].append(relation)
-    return [
-        _section(owner, world.members(owner), pool, networks, world)
-        for owner, pool in zip(owners, pools, strict=True)
-    ]
+    if not summary:
+        return [
+            _section(owner, world.members(owner), pool, networks, world)
+            for owner, pool in zip(owners, pools, strict=True)
+        ]
+    cohorts = summarised_groups(world)
+    hidden = hidden_owners(world, cohorts)
+    sections = []
+    for owner, pool in zip(owners, pools, strict=True):
+        if owner in hidden:
+            continue  # told by the counts in its parent's paragraph, with what it holds
+        counts, rest = quantified(pool, world)
+        section = _section(owner, world.members(owner), rest, networks, world)
+        extra: list[Message] = list(counts)
+        for cohort in cohorts:
+            if world[cohort[0]].parent == owner:
+                extra += compositions(cohort, world) + patterns(cohort, stated, world)
+        sections.append(Section(owner, section.messages + tuple(extra)))
+    return sections
 
 
 def stated_relations(scene: Scene, world: World) -> list[Relation]:

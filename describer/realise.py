@@ -12,13 +12,16 @@ from dataclasses import dataclass
 
 from jinja2.sandbox import SandboxedEnvironment
 
-from .english import counted, join_list, plural_of, sentence_case, verb_agreeing, with_also, without_repeated_copula
+from .english import (
+    counted, join_list, number_word, plural_of, sentence_case, verb_agreeing, with_also, with_article, without_repeated_copula,
+)
 from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
 from .plan import (
     Clause, Fact, Inventory, Introduction, Item, Message, Network, RoomOutline, Section, Statement, facts_of,
 )
 from .refer import SCENE, Discourse
+from .summary import Claim, Composition, Pattern, Quantified
 from .templates import render
 from .variation import Choices
 from .world import World
@@ -30,11 +33,13 @@ PICTURE_SIDE_LABEL = "NextToChooseSide"
 
 @dataclass(frozen=True)
 class Sentence:
-    """One sentence of the text, the facts it states and its mentions (spans into ``text``)."""
+    """One sentence of the text, the facts it states, its mentions (spans into ``text``)
+    and the counts it claims (``summary.Claim``: "Most of the thirty-eight homes ...")."""
 
     text: str
     facts: tuple[Fact, ...]
     mentions: tuple[Mention, ...] = ()
+    claims: tuple[Claim, ...] = ()
 
 
 class Realiser:
@@ -71,20 +76,18 @@ class Realiser:
                 blocks[-1].append(message)
             elif isinstance(message, Statement):
                 blocks.append([message])
-        others = [m for m in messages if not isinstance(m, Statement)]
-        return others + [m for block in self.choices.shuffled(blocks) for m in block]
+        # The summary level's counts: those of relations with the statements, then what
+        # the groups of a big cohort hold and how their members stand.
+        counts = [m for m in messages if isinstance(m, Quantified)]
+        groups = [m for m in messages if isinstance(m, (Composition, Pattern))]
+        others = [m for m in messages if not isinstance(m, (Statement, Quantified, Composition, Pattern))]
+        return others + counts + [m for block in self.choices.shuffled(blocks) for m in block] + groups
 
     def message(self, message: Message) -> Sentence:
         self.discourse.start_sentence()
-        if isinstance(message, Inventory):
-            text = self._inventory(message)
-        elif isinstance(message, RoomOutline):
-            text = self._room(message)
-        elif isinstance(message, Introduction):
-            text = self._introduction(message)
-        else:
-            text = self._statement(message)
-        return self._sentence(text, facts_of(message))
+        text = _REALISERS[type(message)](self, message)
+        claims = (message.claim,) if isinstance(message, (Composition, Pattern, Quantified)) else ()
+        return self._sentence(text, facts_of(message), claims)
 
     def caption(
         self,
@@ -111,10 +114,10 @@ class Realiser:
         )
         return self._sentence(text, facts_of(Inventory(None, items)))
 
-    def _sentence(self, marked: str, facts: list[Fact]) -> Sentence:
-        """The rendered sentence without its marks, capitalised, with its facts and mentions."""
+    def _sentence(self, marked: str, facts: list[Fact], claims: tuple[Claim, ...] = ()) -> Sentence:
+        """The rendered sentence without its marks, capitalised, with its facts, mentions and claims."""
         text, mentions = self.discourse.marks.read(marked)
-        return Sentence(sentence_case(text), tuple(facts), mentions)
+        return Sentence(sentence_case(text), tuple(facts), mentions, claims)
 
     # -- messages -------------------------------------------------------------------
 
@@ -204,6 +207,61 @@ class Realiser:
             predicates[0] = with_also(predicates[0])
         return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
 
+    # -- the summary level's counts ("summary") --------------------------------------------
+
+    def _counted_members(self, claim: Claim) -> str:
+        """"all thirty-eight homes", "most of the thirty-eight homes", "one of the four
+        market stands": the members a claim counts, marked as the ones it holds for,
+        around the whole cohort."""
+        members = self.world[claim.members[0]]
+        count = f"{number_word(len(claim.members))} {members.plural}"
+        self.discourse.mark_subject(claim.holders)
+        if claim.quantifier == "all":
+            return self.discourse.marks.mark(f"all {count}", claim.members)
+        cohort = self.discourse.marks.mark(f"the {count}", claim.members)
+        return self.discourse.marks.mark(f"{claim.quantifier} of {cohort}", claim.holders)
+
+    def _composition(self, composition: Composition) -> str:
+        """"All four market stands have a table and a sign."."""
+        claim = composition.claim
+        owner = self._counted_members(claim)
+        items = [
+            self.discourse.marks.mark(counted(number, noun, self._plural(claim, noun)), self._held(claim, noun))
+            for noun, number in claim.items
+        ]
+        verb = "has" if claim.quantifier == "one" else "have"
+        return render(self.environment, "inventory.j2", owner=owner, verb=verb, items=items)
+
+    def _plural(self, claim: Claim, noun: str) -> str:
+        return next(m.plural for g in claim.members for m in self.world.members(g) if m.noun == noun)
+
+    def _held(self, claim: Claim, noun: str) -> tuple[str, ...]:
+        return tuple(m.id for g in claim.holders for m in self.world.members(g) if m.noun == noun)
+
+    def _pattern(self, pattern: Pattern) -> str:
+        """"In most of the thirty-eight homes, the flowerpot is in front of the house."."""
+        claim = pattern.claim
+        groups = self._counted_members(claim)
+        subjects = tuple(dict.fromkeys(s for s, _, _ in pattern.facts))
+        subject = self._generic(claim.subject_noun, pattern.subject_definite, subjects)
+        target = self._generic(claim.target_noun, pattern.target_definite, pattern.targets)
+        verb = self.lexicon.relation(claim.label, claim.chosen)
+        return render(self.environment, "pattern.j2", groups=groups, subject=subject, predicate=f"{verb} {target}")
+
+    def _generic(self, noun: str, definite: bool, ids: tuple[str, ...]) -> str:
+        """"the house" (one in each group) or "a bush", naming the ones the count reaches."""
+        return self.discourse.marks.mark(f"the {noun}" if definite else with_article(noun), ids)
+
+    def _quantified(self, quantified: Quantified) -> str:
+        """"Most of the twelve street lamps are next to a road."."""
+        claim = quantified.claim
+        subject = self._counted_members(claim)
+        noun = claim.target_noun
+        same = noun == self.world[claim.members[0]].noun
+        target = self.discourse.marks.mark(f"another {noun}" if same else with_article(noun), quantified.targets)
+        predicate = f"{verb_agreeing(self.lexicon.relation(claim.label, claim.chosen), True)} {target}"
+        return render(self.environment, "statement.j2", subject=subject, predicates=[predicate])
+
     def _words(self, clause: Clause) -> str:
         # A clause's targets share their words (``plan.aggregate``), so the first one's
         # kind of room part, if it is one, stands for all.
@@ -216,3 +274,15 @@ class Realiser:
     def _targets(self, clause: Clause) -> str:
         # Objects are named one by one: "next to two of the roads" would hide which.
         return join_list([self.discourse.name(t) for t in clause.targets])
+
+
+#: How each kind of planned message becomes a sentence.
+_REALISERS = {
+    Inventory: Realiser._inventory,
+    RoomOutline: Realiser._room,
+    Introduction: Realiser._introduction,
+    Statement: Realiser._statement,
+    Composition: Realiser._composition,
+    Pattern: Realiser._pattern,
+    Quantified: Realiser._quantified,
+}

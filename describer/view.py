@@ -22,8 +22,14 @@ does not settle it, or an end is a path (a road has no one centre to be left of)
 is told as plain "next to", which every next-to relation implies. Such a relation's
 fact is then ``NextToChooseSide`` (the side: the picture's) or ``NextTo``.
 
-Ordinals and counts are those of the view scene ("the first road" is the first of the
-roads in the picture). The layout-true full description is ``describe``'s, unchanged.
+A large scene (``LARGE_SCENE`` objects or more: a town) is captioned by concrete
+things: each group the picture shows is named by the one of its objects the picture
+shows that most of the group's relations lead to, the biggest on a tie ("three houses
+and a cottage", not "four homes"; "two tents", not "two camp pitches"), and the
+caption's second sentence only relates things it named.
+
+Ordinals and counts are those of the view scene, ordinals in the order the caption
+names things. The layout-true full description is ``describe``'s, unchanged.
 """
 
 from __future__ import annotations
@@ -45,6 +51,10 @@ if TYPE_CHECKING:
 
 #: The frames side words may be told in: the scene's (compass, and B's own sides) or the picture's.
 FRAMES = ("scene", "camera")
+#: A scene of at least this many objects (groups not counted) is captioned by concrete
+#: things: each group a picture shows by the thing of it, among those it shows, that the
+#: group is arranged around.
+LARGE_SCENE = 100
 
 
 def describe_view(
@@ -60,9 +70,10 @@ def describe_view(
         raise InputError(f"unknown caption frame {frame!r}; expected one of: {', '.join(FRAMES)}")
     view = view_scene(scene, picture, frame=frame)
     unseen = not (view.objects or view.paths) and bool(scene.objects or scene.paths)
+    large = sum(o.kind == "object" for o in scene.objects) >= LARGE_SCENE
     return describe_frame(
         view, style="short", variant=variant, templates=templates,
-        picture=True, picture_sides=frame == "camera", unseen=unseen,
+        picture=True, picture_sides=frame == "camera", unseen=unseen, concrete=large,
     )  # fmt: skip
 
 

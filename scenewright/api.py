@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 
 #: The description styles and camera views, here as well as in the describer and the
 #: renderer so that checking an option does not import those (a test keeps them equal).
-STYLES = ("full", "short")
+STYLES = ("full", "summary", "short")
 VIEWS = ("perspective", "top")
 DEFAULT_SIZE = (640, 480)
 #: A dataset's layout retries per scene (``DatasetSpec.retries``, ``dataset --retries``):
@@ -122,16 +122,18 @@ def describe(
     style: str = "full",
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
+    words: int | None = None,
 ) -> Description:
     """An English description of ``scene`` (a ``Description``); the scene is unchanged.
 
     ``templates``: a folder of description templates for this description only; by
     default the scene's own (``scene.templates``, from its rule set), if any.
+    ``words``: a word budget that chooses the style instead (``describer.describe``).
     """
     from scenewright.describer import describe as describe_stage
 
     check_choice("style", style, STYLES)
-    return describe_stage(scene, style=style, variant=variant, templates=templates or scene.templates)
+    return describe_stage(scene, style=style, variant=variant, templates=templates or scene.templates, words=words)
 
 
 def describe_scene(
@@ -140,11 +142,12 @@ def describe_scene(
     style: str = "full",
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
+    words: int | None = None,
 ) -> Scene:
     """``scene`` with its description (``describe``) and the time it took."""
     timings = dict(scene.timings)
     with timed(timings, "describe"):
-        description = describe(scene, style=style, variant=variant, templates=templates)
+        description = describe(scene, style=style, variant=variant, templates=templates, words=words)
     return replace(scene, description=description.to_dict(), timings=timings)
 
 
@@ -225,8 +228,9 @@ def generate(
     style: str = "full",
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
+    words: int | None = None,
 ) -> Scene:
-    """Generate one scene: expand, lay out and describe it.
+    """Generate one scene: expand, lay out and describe it (``words``: a word budget, see ``describe``).
 
     ``rules`` is a shipped rule-set name, a path to a ``.rules`` file, or loaded Rules;
     ``seed`` a whole number from 0 to 2**63 - 1. The returned Scene has ``description``
@@ -240,7 +244,7 @@ def generate(
     """
     check_choice("style", style, STYLES)
     scene = build_scene(rules, seed, templates=checked_templates(templates))
-    return describe_scene(scene, style=style, variant=variant)
+    return describe_scene(scene, style=style, variant=variant, words=words)
 
 
 def checked_templates(templates: str | os.PathLike[str] | None) -> str | None:

@@ -219,7 +219,9 @@ def run_generate(args: argparse.Namespace) -> int:
 
     check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
     rules = load_rules(args.rules, allow=args.allow_outside)
-    scene = generate(rules, args.seed, style=args.style, variant=args.variant, templates=args.templates)
+    scene = generate(
+        rules, args.seed, style=args.style, variant=args.variant, templates=args.templates, words=args.words
+    )
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view, camera=args.camera)
@@ -300,7 +302,7 @@ def run_layout(args: argparse.Namespace) -> int:
     if templates is not None:
         scene.templates = templates
     scene.timings.update(timings)
-    scene = describe_scene(scene, style=args.style, variant=args.variant)
+    scene = describe_scene(scene, style=args.style, variant=args.variant, words=args.words)
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view)
@@ -468,7 +470,7 @@ def run_describe(args: argparse.Namespace) -> int:
     from scenewright.api import describe
 
     scene = read_scene(args.scene)
-    print(describe(scene, style=args.style, variant=args.variant, templates=args.templates).text)
+    print(describe(scene, style=args.style, variant=args.variant, templates=args.templates, words=args.words).text)
     return 0
 
 
@@ -696,7 +698,7 @@ def run_complete(args: argparse.Namespace) -> int:
     templates = checked_templates(args.templates)
     scene = complete(request, args.seed, plans=args.plans, catalog=catalog)
     say(args, summary_of(scene.completion))
-    scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates)
+    scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates, words=args.words)
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view)
@@ -961,6 +963,11 @@ def build_parser() -> CommandLineParser:
 
     def style_options(sub: argparse.ArgumentParser) -> None:
         sub.add_argument("--style", choices=STYLES, default="full", help="description style")
+        sub.add_argument(
+            "--words", type=count_at_least(1), default=None, metavar="N",
+            help="a word budget: the most detailed style (full, summary, short) whose text has at most N "
+            "words (short when none has), instead of --style",
+        )  # fmt: skip
         sub.add_argument(
             "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
         )

@@ -24,6 +24,7 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
+import inflect
 import pytest
 
 from scenewright.core.relations import RELATIONS
@@ -31,6 +32,7 @@ from scenewright.core.room import ROOM_NODE, Room, compass_word
 from scenewright.core.scene import Scene, assemble_scene
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.describer import Description, describe
+from scenewright.describer.english import plural_of
 from scenewright.describer.plan import introduced_by, plan_document
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.describer.world import world_of
@@ -114,6 +116,12 @@ def check_true_and_complete(scene: Scene) -> list[str]:
     assert sorted(introduced) == sorted(world.entities), f"seed {scene.seed}: not every entity is mentioned"
     descriptions = [description] + [describe(scene, variant=k) for k in (1, 2)]
     descriptions.append(describe(scene, style="short"))
+    summaries = [describe(scene, style="summary"), describe(scene, style="summary", variant=1)]
+    for summary in summaries:
+        check_claims(scene, summary)
+        for fact in summary.facts:
+            assert fact in holds or fact in starts, f"seed {scene.seed}: summary states but not true: {fact}"
+    descriptions += summaries
     for told in descriptions:
         check_ordinals(scene, told)
     if scene.room is not None:
@@ -126,6 +134,92 @@ def check_true_and_complete(scene: Scene) -> list[str]:
         assert sentence[0].isupper() and sentence.endswith(".") and "  " not in sentence, sentence
         assert all(a != b for a, b in zip(words, words[1:])), f"seed {scene.seed}: word repeated: {sentence}"
     return found
+
+
+# -- counts: the summary level's claims, counted again from the scene -------------------------
+
+#: The fixed label a chosen side or direction is measured by.
+CHOSEN_LABEL = {
+    "left": "NextToLeft", "right": "NextToRight", "front": "NextToFront", "behind": "NextToBehind",
+    "north": "NextToNorth", "east": "NextToEast", "south": "NextToSouth", "west": "NextToWest",
+}  # fmt: skip
+
+
+def number_words(count: int) -> str:
+    return inflect.engine().number_to_words(count)
+
+
+def quantifier_holds(word: str, count: int, total: int, *, exact: bool) -> bool:
+    """Whether ``word`` is true of ``count`` of ``total``: "all" every one, "most" more than
+    half, "some" at least two, "one" exactly one. An exact count (what groups hold) must
+    also not fit a stronger word; a measured one is a lower bound of what the text knows."""
+    if word == "all":
+        return count == total
+    if word == "most":
+        return 2 * count > total and (count < total or not exact)
+    if word == "some":
+        return count >= 2 and (2 * count <= total or not exact)
+    if word == "one":
+        return count == 1
+    return False
+
+
+def measured_many(scene: Scene, triples: list[tuple[str, str, str]]) -> dict[tuple[str, str, str], bool]:
+    """Each (source, label, target) measured at the scene's poses by the layout's own code, in one pass."""
+    if not triples:
+        return {}
+    data = scene.graph().to_dict()
+    data["edges"] = [{"source": a, "target": b, "label": label} for a, label, b in triples]
+    poses, paths = scene_layout(scene)
+    relations = measure_layout(SceneGraph.from_dict(data), poses, paths).relations
+    return {triple: bool(r.satisfied) for triple, r in zip(triples, relations, strict=True)}
+
+
+def check_claims(scene: Scene, description: Description) -> None:
+    """Every count a sentence claims ("Most of the thirty-eight homes have a flowerpot.")
+    is counted again from the scene alone: the cohort is every thing of that noun and
+    parent and the sentence gives its size; what groups hold is counted member by member;
+    a relation is measured between every pair that could make it true."""
+    things = {t.id: t for t in [*scene.objects, *scene.paths]}
+    members_of: dict[str, list] = {}
+    for thing in things.values():
+        members_of.setdefault(thing.parent, []).append(thing)
+    for sentence in description.sentences:
+        for claim in sentence.claims:
+            first = things[claim.members[0]]
+            cohort = [t.id for t in things.values() if t.noun == first.noun and t.parent == first.parent]
+            assert sorted(cohort) == sorted(claim.members), sentence.text
+            size = f"{number_words(len(cohort))} {plural_of(first.noun, first.plural)}"
+            said = f"all {size}" if claim.quantifier == "all" else f"{claim.quantifier} of the {size}"
+            assert said in sentence.text.lower(), f"{said!r} not in {sentence.text!r}"
+            if claim.kind == "has":
+                def holds(group, items=claim.items):
+                    nouns = [m.noun for m in members_of.get(group, [])]
+                    return all(nouns.count(noun) == number for noun, number in items)
+
+                count = sum(holds(g) for g in cohort)
+                assert quantifier_holds(claim.quantifier, count, len(cohort), exact=True), (
+                    f"seed {scene.seed}: {count} of {len(cohort)}: {sentence.text!r}"
+                )
+                continue
+            label = CHOSEN_LABEL.get(claim.chosen, claim.label) if claim.label.startswith("NextToChoose") else claim.label
+            pairs: dict[str, list[tuple[str, str, str]]] = {}
+            for member in cohort:
+                if claim.kind == "is":
+                    sources = [member]
+                    targets = [t.id for t in things.values() if t.noun == claim.target_noun and t.id != member]
+                else:
+                    inside = members_of.get(member, [])
+                    sources = [t.id for t in inside if t.noun == claim.subject_noun]
+                    targets = [t.id for t in inside if t.noun == claim.target_noun]
+                pairs[member] = [(a, label, b) for a in sources for b in targets if a != b]
+            verdicts = measured_many(scene, [p for found in pairs.values() for p in found])
+            count = sum(any(verdicts[p] for p in found) for found in pairs.values())
+            assert quantifier_holds(claim.quantifier, count, len(cohort), exact=False), (
+                f"seed {scene.seed}: measured {count} of {len(cohort)}: {sentence.text!r}"
+            )
+            for noun in (claim.subject_noun, claim.target_noun):
+                assert noun in sentence.text, sentence.text
 
 
 # -- ordinals: a reader meets "the first" before "the second" ---------------------------------
@@ -160,8 +254,10 @@ def check_ordinals(scene: Scene, description: Description) -> None:
         if len(mention.entities) != 1 or words.lower().startswith(INDEFINITE):
             continue
         (entity,) = mention.entities
+        if entity not in things:
+            continue  # a door or a window: named by its place in the room, never by an ordinal
         match = re.match(r"[Tt]he (\w+) ", words)
-        if entity in things and match and match.group(1) in ORDINAL_WORDS:
+        if match and match.group(1) in ORDINAL_WORDS:
             k = ORDINAL_WORDS.index(match.group(1)) + 1
             noun = things[entity].noun
             assert words[match.end():].startswith(noun), words
