@@ -1,6 +1,6 @@
 """Turns a laid-out scene into grammatical English that is true of it.
 
-``describe(scene, style="full" | "short", variant=k, templates=folder)`` returns a
+``describe(scene, style="full" | "summary" | "short", variant=k, templates=folder, words=n)`` returns a
 ``Description``: the text, the (subject id, label, object id) facts it states and the
 mentions it makes (``grounding``: which characters name which objects). Only
 relations the layout satisfied are stated, never ``Implicit*`` ones. The pipeline is
