@@ -11,6 +11,7 @@ another stage drew, and no two streams coincide:
     layout retry k       (4, k)      the layout seed of a dataset's retry k (``retry_seed``)
     questions of view k  (5, k)      which questions are asked of picture k (``describer.questions``)
     relations test k     (6, k)      the tests of type pair k (``learning.relations``)
+    learn check k        (7, k)      scene k made from induced rules (``learning.learn``)
     stage ``name``       (STAGE_KEYS[name], k) for later stages
 
 Public functions take ``seed: int | numpy.random.Generator | None``, as numpy and
@@ -40,6 +41,7 @@ STAGE_KEYS: dict[str, int] = {
     "retry": 4,
     "questions": 5,
     "relations": 6,
+    "learn": 7,
 }
 
 #: The largest seed accepted: seeds are stored in scene.json and file names as plain

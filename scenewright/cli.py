@@ -532,6 +532,28 @@ def run_relations(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_learn(args: argparse.Namespace) -> int:
+    from scenewright.atomic import write_atomic
+    from scenewright.examples import load_examples
+    from scenewright.learning.learn import learn_rule_set
+
+    examples = load_examples(args.examples)
+    output = output_file(args.output, "induced.rules")
+    report = output_file(args.report, "learn.json") if args.report else None
+    learned = learn_rule_set(
+        examples, output, report=report, seed=args.seed, test=args.test, check=args.check, write=write_atomic
+    )
+    induction = learned.induction
+    related = sum(pair.related for pair in induction.relations.pairs)
+    say(args, f"induced {len(induction.catalog)} types, {len(induction.groups)} group"
+              f"{'s' * (len(induction.groups) != 1)} and {len(induction.written_pairs())} relations from "
+              f"{induction.scenes} examples ({related} related type pairs by the {induction.relations.test} test)")
+    if learned.check is not None:
+        say(args, learned.check.summary())
+    say(args, "wrote " + ", ".join(str(path) for path in learned.written))
+    return 0
+
+
 def fraction(text: str) -> float:
     """A number from 0 to 1."""
     try:
@@ -840,6 +862,24 @@ bed relates to the bed through the nightstand); --no-prune keeps it. Prints a ta
 of every pair of types that share a scene, or with --json the same fields (a, b,
 related, statistic, p_value, pairs, scenes, tested, pruned). The same examples and
 seed print the same result. See docs/learning.md.""",
+    "learn": """\
+examples:
+  scenewright learn examples/sets/desks/*.json -o desks.rules --report learn.json
+  scenewright learn data/bedroom/scenes/*.json -o bedroom_learned.rules --seed 3 --check 0
+  scenewright validate desks.rules && scenewright generate desks.rules --seed 1 -o out/
+
+induces a rule set from example scenes alone (scene.json or its folder, the
+hand-written example format, GLB): a catalog of the types seen (median sizes, styles
+weighted by how often each was seen), the type pairs related by --test (and what rests
+on what, measured from the boxes) grouped around an anchor object, each member placed
+relative to its parent by the labels that hold at the density-peak clusters of its
+relative poses (several clusters: weighted alternatives), and how often and how many
+of each were seen ('0.85? 1..3 {6 4 1}'). The file is checked like 'validate' does,
+then --check N scenes (50) are generated from it and compared with the examples: each
+type's count per scene, the share of scenes holding each related pair, the share of
+objects for which the written placement holds. --report gives every type pair (test
+statistic, p-value, the labels chosen and their clusters), the catalog, the groups and
+that comparison. The same examples and seed give the same files. See docs/learning.md.""",
     "plans": """\
 examples:
   scenewright plans build completion/plans -o model.json
@@ -1202,6 +1242,22 @@ def build_parser() -> CommandLineParser:
     relations.add_argument(
         "--no-prune", dest="prune", action="store_false", help="keep indirect relations (the weakest pair of a triangle)"
     )
+
+    learn = command("learn", "induce a rule set from example scenes alone", run_learn)
+    learn.add_argument(
+        "examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)"
+    )
+    learn.add_argument("-o", "--output", required=True, metavar="RULES", help="the rules file to write")
+    learn.add_argument("--report", metavar="JSON", help="also write the pairs, catalog, groups and the check here")
+    learn.add_argument("--seed", type=seed_value, default=0, help="seed of the relation test and the check scenes (0)")
+    learn.add_argument(
+        "--test", choices=("permutation", "angle", "cooccurrence"), default="permutation",
+        help="which test finds the related type pairs (permutation; see 'relations --help')",
+    )  # fmt: skip
+    learn.add_argument(
+        "--check", type=count_at_least(0), default=50, metavar="N",
+        help="scenes to generate from the induced rules and compare with the examples (50; 0: none)",
+    )  # fmt: skip
 
     plans = command("plans", "furnished floor plans: build their model, show a relation graph, evaluate, draw", None)
     plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)

@@ -1,0 +1,783 @@
+"""A rule set induced from example scenes alone: what ``scenewright learn`` writes.
+
+``induce(examples, seed=..., test=...)`` reads the examples' objects and returns an
+``Induction``: the catalog, the groups and the loose objects, each with the numbers it
+rests on; ``Induction.text()`` is the rules file and ``to_dict()`` the report.
+
+1. **Catalog.** Every type seen (its name made a rules identifier: lower case,
+   ``_`` for anything else) with its median size (W x H x D), its styles weighted by how
+   often each was seen (a style's own median size where it differs by more than
+   ``STYLE_SIZE_TOLERANCE``), and its looks as the examples carry them: noun, shape,
+   colour (a scene.json keeps the rule set's; the hand-written format and GLB give the
+   type name as noun, the shape of that name if there is one, a colour per type). A
+   type whose examples carry only those defaults and whose name is an entry of the
+   shipped indoor catalog takes that entry's noun, plural, shape and colour
+   (``borrowed``). Every type is declared in the output, so it is one self-contained
+   file (a rule set reads no file outside its folder).
+2. **Relations.** The type pairs ``learning.relations`` finds related (by the chosen
+   test, indirect relations pruned), and the pairs of which one type rests on the other
+   in at least half the scenes holding both (``relations.resting_pairs``: support
+   measured from the boxes), which are written even when the test has too few scenes.
+   Pairs of one type (two books) are reported, not written.
+3. **Groups.** Connected components of the graph of those pairs. The *anchor* is the
+   type with the most related types (then the largest footprint) among those resting
+   on no other type of the group; the rest hang off it along a maximum spanning tree
+   (support pairs first, then the test's strength), so each member is placed relative
+   to its parent in the tree. A group is a production named after its anchor.
+4. **Placements.** For each tree edge parent -> child, every child object is paired
+   with the parent object it rests on (through others: a book on a book on a desk) or
+   else the nearest one of its scene; its pose in that parent's frame (x along the
+   parent's left, z along its front, the turn between them, and whether it rests on
+   it) is a point. The points are clustered by density peaks (``density_peaks``;
+   ``POSE_SCALE``, ``POSE_SEPARATION``, ``TURN_METRES``, ``RESTING_METRES`` set the
+   distances); outliers are left out. Each cluster's labels are those whose measured
+   predicate holds at its centre and for most of its members (``pose_labels``): one
+   placement label, one facing label, AlignedWith (measured with each object's own size and its
+   parent's). Clusters with the same labels are
+   one alternative; several alternatives become a production of weighted alternatives
+   (weights: the objects of each).
+5. **Counts.** How many children each parent object had (``0.85? 1..3 {6 4 1}``: with
+   85 % of the parents, one to three, weighted as seen); how many anchors each scene
+   had; types related to no other type, and children seen in scenes without their
+   parent type, stand alone in the start production with their counts per scene.
+6. **Walls.** In examples with a room, each standing object is measured against the
+   wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
+   gets it (``AgainstWall some wall``: the layout chooses the wall).
+7. **Scene.** The room of the example whose room is nearest the median size (its walls,
+   doors and windows), or the median extent of open ground.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections import Counter, defaultdict
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+import networkx as nx
+import numpy as np
+
+from scenewright.core.errors import InputError
+from scenewright.core.frames import to_local
+from scenewright.core.room import Room
+from scenewright.core.scene import Scene, SceneObject
+from scenewright.examples import Example, scene_supports
+from scenewright.examples.model import type_colour
+
+from .density_peaks import density_peaks
+from .pose_labels import CATEGORIES, RESTING_CATEGORIES, STANDING_CATEGORIES, most_specific, pair_holds, wall_holds
+from .relations import RelationsResult, find_relations, resting_pairs, type_poses
+
+#: A style's median size is written when it differs from its type's by more than this share.
+STYLE_SIZE_TOLERANCE = 0.05
+#: Relative poses closer than this (metres) are one place; centres stand at least
+#: POSE_SEPARATION apart.
+POSE_SCALE = 0.1
+POSE_SEPARATION = 0.25
+#: Metres a unit of (cos, sin) of the turn counts as: a quarter turn (|d| = 1.41) is 0.7 m.
+TURN_METRES = 0.5
+#: A pose resting on the parent and one standing on the floor are never one cluster.
+RESTING_METRES = 100.0
+#: A wall label is written for a type when it holds for at least this share of its objects.
+WALL_SHARE = 0.5
+#: Names a type may not have in a room scene (its parts), nor anywhere (``room``).
+RESERVED_TYPES = frozenset({"wall", "door", "window", "room"})
+
+_NOT_NAME = re.compile(r"[^a-z0-9_]+")
+
+
+# -- names --------------------------------------------------------------------------
+
+
+def identifier(raw: str, taken: set[str], reserved: frozenset[str] = frozenset()) -> str:
+    """``raw`` as a rules identifier (``[a-z_][a-z0-9_]*``) not in ``taken`` or
+    ``reserved``; added to ``taken``."""
+    base = _NOT_NAME.sub("_", raw.strip().lower()).strip("_") or "thing"
+    if base[0].isdigit():
+        base = "n_" + base
+    name, k = base, 1
+    while name in taken or name in reserved:
+        k += 1
+        name = f"{base}_{k}"
+    taken.add(name)
+    return name
+
+
+def camel(name: str) -> str:
+    """``writing_desk`` -> ``WritingDesk`` (a nonterminal)."""
+    words = [w for w in name.split("_") if w]
+    text = "".join(w[:1].upper() + w[1:] for w in words) or "Thing"
+    return text if text[0].isalpha() else "N" + text
+
+
+def _unique(name: str, taken: set[str]) -> str:
+    candidate, k = name, 1
+    while candidate in taken:
+        k += 1
+        candidate = f"{name}{k}"
+    taken.add(candidate)
+    return candidate
+
+
+def colour_text(colour: Sequence[float]) -> str:
+    """``#rrggbb`` of a colour in [0, 1]."""
+    return "#" + "".join(f"{min(255, max(0, round(float(v) * 255))):02x}" for v in colour)
+
+
+# -- the catalog ----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class StyleStats:
+    """One style of a type: how many objects had it, and its looks where they differ
+    from the type's (None where they do not)."""
+
+    name: str
+    source: str | None  # the style as the examples name it (None: no style given)
+    count: int
+    size: tuple[float, float, float] | None = None
+    noun: str | None = None
+    shape: str | None = None
+    colour: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class TypeEntry:
+    """One type of the induced catalog (see the module docstring)."""
+
+    name: str
+    sources: tuple[str, ...]
+    objects: int
+    scenes: int
+    size: tuple[float, float, float]
+    noun: str
+    plural: str | None
+    shape: str | None
+    colour: tuple[float, ...]
+    styles: tuple[StyleStats, ...]
+    borrowed: str | None = None
+
+    def to_dict(self) -> dict:
+        return {
+            "type": self.name,
+            "seen_as": list(self.sources),
+            "objects": self.objects,
+            "scenes": self.scenes,
+            "size": [round(v, 4) for v in self.size],
+            "noun": self.noun,
+            "plural": self.plural,
+            "shape": self.shape,
+            "colour": colour_text(self.colour),
+            "looks_from": self.borrowed or "examples",
+            "styles": [
+                {"style": s.name, "seen_as": s.source, "objects": s.count, "weight": s.count,
+                 **({"size": [round(v, 4) for v in s.size]} if s.size else {})}
+                for s in self.styles
+            ],
+        }  # fmt: skip
+
+
+def _median_size(objects: Sequence[SceneObject]) -> tuple[float, float, float]:
+    values = np.median(np.array([o.size for o in objects], dtype=float), axis=0)
+    return tuple(round(float(v), 3) for v in values)  # type: ignore[return-value]
+
+
+def _most_common(values):
+    counted = Counter(values)
+    return max(counted, key=lambda value: (counted[value], repr(value)))
+
+
+def _colour_key(colour: Sequence[float]) -> tuple[float, ...]:
+    return tuple(round(float(v), 3) for v in colour)
+
+
+def _differs(size: Sequence[float], base: Sequence[float]) -> bool:
+    return any(abs(a - b) > STYLE_SIZE_TOLERANCE * b for a, b in zip(size, base))
+
+
+def catalog_entry(name: str, objects: Sequence[SceneObject], sources: Sequence[str], scenes: int, shipped: dict) -> TypeEntry:
+    """The catalog entry of one type from all its objects (``sources``: its names in
+    the examples; ``shipped``: the indoor catalog's entries by name)."""
+    size = _median_size(objects)
+    noun = _most_common([o.noun for o in objects])
+    plural = _most_common([o.plural for o in objects])
+    shape = _most_common([o.shape for o in objects])
+    colour = _most_common([_colour_key(o.colour) for o in objects])
+    borrowed = None
+    defaults = all(o.noun == o.type.replace("_", " ") and _colour_key(o.colour) == _colour_key(type_colour(source))
+                   for o, source in zip(objects, _sources_of(objects, sources)))  # fmt: skip
+    if defaults and name in shipped:
+        entry = shipped[name]
+        noun, plural, shape, colour, borrowed = entry.noun, entry.plural, entry.shape, _colour_key(entry.colour), "indoor catalog"
+    by_style: dict[str | None, list[SceneObject]] = defaultdict(list)
+    for obj in objects:
+        by_style[obj.style].append(obj)
+    styles: list[StyleStats] = []
+    if any(style is not None for style in by_style):
+        taken: set[str] = set()
+        ordered = sorted(by_style.items(), key=lambda item: (-len(item[1]), item[0] or ""))
+        named = {style: identifier(style, taken) for style, _ in ordered if style is not None}
+        for style, members in ordered:
+            style_name = named[style] if style is not None else identifier("plain", taken)
+            style_size = _median_size(members)
+            style_noun = _most_common([o.noun for o in members])
+            style_shape = _most_common([o.shape for o in members])
+            style_colour = _most_common([_colour_key(o.colour) for o in members])
+            if borrowed:  # the shipped style of the same name, if there is one, else the entry's looks
+                like = {s.name: s for s in shipped[name].styles}.get(style_name)
+                style_noun = like.noun if like and like.noun else noun
+                style_shape = like.shape if like and like.shape else shape
+                style_colour = _colour_key(like.colour) if like and like.colour else colour
+            styles.append(StyleStats(
+                style_name, style, len(members),
+                style_size if _differs(style_size, size) else None,
+                style_noun if style_noun != noun else None,
+                style_shape if style_shape != shape and style_shape is not None else None,
+                style_colour if style_colour != colour else None,
+            ))  # fmt: skip
+    return TypeEntry(name, tuple(sources), len(objects), scenes, size, noun, plural, shape, colour, tuple(styles), borrowed)
+
+
+def _sources_of(objects: Sequence[SceneObject], sources: Sequence[str]) -> list[str]:
+    """Each object's type as the examples named it (kept in ``SceneObject.rule`` while
+    inducing; see ``renamed_scenes``)."""
+    return [o.rule or (sources[0] if sources else o.type) for o in objects]
+
+
+def renamed_scenes(examples: Sequence[Example]) -> tuple[list[Scene], dict[str, list[str]]]:
+    """The examples' scenes with every type and style made a rules identifier (the
+    name as written kept in the object's ``rule`` field, which examples leave empty),
+    and each new type name's names in the examples."""
+    rooms = any(example.scene.room is not None for example in examples)
+    reserved = RESERVED_TYPES if rooms else frozenset({"room"})
+    raw_types = sorted({o.type for example in examples for o in example.scene.placed_objects()})
+    taken: set[str] = set()
+    name_of = {raw: identifier(raw, taken, reserved) for raw in raw_types}
+    sources: dict[str, list[str]] = defaultdict(list)
+    for raw, name in name_of.items():
+        sources[name].append(raw)
+    scenes = []
+    for example in examples:
+        objects = [
+            replace(o, type=name_of[o.type], rule=o.type) if o.kind == "object" else o for o in example.scene.objects
+        ]
+        scenes.append(replace(example.scene, objects=objects))
+    return scenes, dict(sources)
+
+
+# -- relative poses of a parent type and a child type -------------------------------------
+
+
+@dataclass(frozen=True)
+class EdgeInstances:
+    """The child objects of one tree edge paired with parent objects.
+
+    ``poses`` (n, 3): each child's (x, z, turn) in its parent's frame; ``resting`` (n,):
+    whether it rests on that parent (directly or on something that does);
+    ``per_parent``: how many children each parent object had -> how many parent
+    objects had that many; ``orphans`` (S,): children in each scene holding no parent."""
+
+    poses: np.ndarray
+    resting: np.ndarray
+    per_parent: Counter
+    orphans: np.ndarray
+    parent_sizes: np.ndarray  # (n, 3) each pose's parent's size
+    child_sizes: np.ndarray  # (n, 3) each pose's child's size
+
+    def holds(self, rests: bool) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """The indices (m,) of the poses that rest on their parent (or stand, when not
+        ``rests``) and, per candidate label, whether it holds at each of them (m,),
+        measured with each pose's own parent and child sizes (``pose_labels.pair_holds``)."""
+        chosen = np.flatnonzero(self.resting == rests)
+        found: dict[str, np.ndarray] = {}
+        sizes = np.hstack([self.parent_sizes[chosen], self.child_sizes[chosen]])
+        for key in sorted({tuple(row) for row in sizes.tolist()}):
+            rows = np.flatnonzero(np.all(sizes == key, axis=1))
+            for label, held in pair_holds(key[:3], key[3:], self.poses[chosen[rows]], rests).items():
+                found.setdefault(label, np.zeros(len(chosen), dtype=bool))[rows] = held
+        return chosen, found
+
+
+def _supporters(object_id: str, supports: dict[str, str]) -> list[str]:
+    """What ``object_id`` rests on, and what that rests on, and so on."""
+    chain, current = [], object_id
+    while current in supports and supports[current] not in chain and len(chain) < len(supports):
+        current = supports[current]
+        chain.append(current)
+    return chain
+
+
+def _turn(angle: float) -> float:
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def edge_instances(scenes: Sequence[Scene], supports: Sequence[dict[str, str]], parent: str, child: str) -> EdgeInstances:
+    """Every ``child`` object of ``scenes`` in the frame of its ``parent`` object (the
+    one it rests on, else the nearest), and the children per parent object."""
+    poses, resting, parent_sizes, child_sizes = [], [], [], []
+    per_parent: Counter = Counter()
+    orphans = np.zeros(len(scenes), dtype=int)
+    for index, (scene, support) in enumerate(zip(scenes, supports)):
+        objects = scene.placed_objects()
+        parents = [o for o in objects if o.type == parent]
+        children = [o for o in objects if o.type == child]
+        if not parents:
+            orphans[index] = len(children)
+            continue
+        by_id = {o.id: o for o in parents}
+        counts = dict.fromkeys(by_id, 0)
+        for obj in children:
+            below = [i for i in _supporters(obj.id, support) if i in by_id]
+            if below:
+                host, rests = by_id[below[0]], True
+            else:
+                host = min(parents, key=lambda p: (math.hypot(p.position[0] - obj.position[0], p.position[2] - obj.position[2]), p.id))
+                rests = False
+            x, z = to_local(host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2])
+            poses.append((x, z, _turn(obj.yaw - host.yaw)))
+            resting.append(rests)
+            parent_sizes.append(host.size)
+            child_sizes.append(obj.size)
+            counts[host.id] += 1
+        per_parent.update(counts.values())
+    return EdgeInstances(
+        np.array(poses, dtype=float).reshape(-1, 3), np.array(resting, dtype=bool), per_parent, orphans,
+        np.array(parent_sizes, dtype=float).reshape(-1, 3), np.array(child_sizes, dtype=float).reshape(-1, 3),
+    )  # fmt: skip
+
+
+def pose_features(poses: np.ndarray, resting: np.ndarray) -> np.ndarray:
+    """(n, 5) points to cluster: x, z, TURN_METRES * (cos, sin) of the turn, and
+    RESTING_METRES for a resting pose."""
+    turn = poses[:, 2]
+    return np.column_stack([
+        poses[:, 0], poses[:, 1], TURN_METRES * np.cos(turn), TURN_METRES * np.sin(turn), RESTING_METRES * resting,
+    ])  # fmt: skip
+
+
+# -- placements -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Cluster:
+    """One cluster of relative poses: its size, its centre pose (x, z, turn in
+    degrees), whether it rests on the parent, and the labels that hold there (empty
+    when no label of the vocabulary does)."""
+
+    size: int
+    centre: tuple[float, float, float]
+    resting: bool
+    labels: tuple[str, ...]
+
+    def to_dict(self) -> dict:
+        return {"size": self.size, "centre": [round(v, 3) for v in self.centre], "rests_on_parent": self.resting,
+                "labels": list(self.labels)}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Placement:
+    """One way a child stands by its parent: the labels written and how many objects
+    (the clusters' members) stood that way."""
+
+    labels: tuple[str, ...]
+    weight: int
+
+
+def written_labels(category_labels: dict[str, str | None], resting: bool) -> tuple[str, ...]:
+    """The labels of one cluster as written: placement, then facing (the turn of a
+    resting child written ``Implicit``), then alignment."""
+    found = []
+    for category in RESTING_CATEGORIES if resting else STANDING_CATEGORIES:
+        label = category_labels.get(category)
+        if label is None:
+            continue
+        found.append("Implicit" + label if category == "turn" else label)
+    return tuple(found)
+
+
+def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Cluster], int]:
+    """The placements of one tree edge, its clusters, and how many poses were outliers."""
+    if len(instances.poses) == 0:
+        return [], [], 0
+    features = pose_features(instances.poses, instances.resting)
+    peaks = density_peaks(features, scale=POSE_SCALE, min_separation=POSE_SEPARATION)
+    holds: dict[bool, dict[str, np.ndarray]] = {}
+    index_in: dict[bool, np.ndarray] = {}
+    for rests in (True, False):
+        chosen, holds[rests] = instances.holds(rests)
+        index_in[rests] = np.full(len(instances.poses), -1)
+        index_in[rests][chosen] = np.arange(len(chosen))
+    clusters: list[Cluster] = []
+    for number_, centre in enumerate(peaks.centres):
+        members = peaks.members(number_)
+        rests = bool(instances.resting[centre])
+        local = index_in[rests]
+        categories = RESTING_CATEGORIES if rests else STANDING_CATEGORIES
+        chosen = {c: most_specific(c, holds[rests], int(local[centre]), local[members]) for c in categories}
+        x, z, turn = instances.poses[centre]
+        clusters.append(Cluster(len(members), (float(x), float(z), math.degrees(turn)), rests, written_labels(chosen, rests)))
+    weights: dict[tuple[str, ...], int] = {}
+    for cluster in clusters:
+        if cluster.labels and cluster.labels[0] in (*CATEGORIES["support"], *CATEGORIES["near"]):
+            weights[cluster.labels] = weights.get(cluster.labels, 0) + cluster.size
+        elif cluster.labels:  # facing alone: still a way to stand, without a place
+            weights[cluster.labels] = weights.get(cluster.labels, 0) + cluster.size
+    placements = [Placement(labels, weight) for labels, weight in sorted(weights.items(), key=lambda item: (-item[1], item[0]))]
+    return placements, clusters, len(peaks.outliers)
+
+
+# -- the model of the induced rules --------------------------------------------------------
+
+
+@dataclass
+class Member:
+    """A child type placed relative to its parent type in a group (a tree edge)."""
+
+    type: str
+    parent: str
+    instances: int
+    per_parent: Counter
+    placements: list[Placement]
+    clusters: list[Cluster]
+    outliers: int
+    wall: str | None
+    children: list[Member] = field(default_factory=list)
+
+    @property
+    def parents(self) -> int:
+        return sum(self.per_parent.values())
+
+    def to_dict(self) -> dict:
+        return {
+            "type": self.type,
+            "parent": self.parent,
+            "objects": self.instances,
+            "parent_objects": self.parents,
+            "children_per_parent": {str(k): v for k, v in sorted(self.per_parent.items())},
+            "placements": [{"labels": list(p.labels), "objects": p.weight} for p in self.placements],
+            "clusters": [c.to_dict() for c in self.clusters],
+            "outliers": self.outliers,
+            "wall": self.wall,
+            "children": [child.to_dict() for child in self.children],
+        }
+
+
+@dataclass
+class Group:
+    """A connected component of related types: a production named ``rule``."""
+
+    rule: str
+    anchor: str
+    per_scene: Counter
+    wall: str | None
+    members: list[Member]
+    types: list[str]
+    unwritten: list[tuple[str, str]]
+
+    def to_dict(self) -> dict:
+        return {
+            "rule": self.rule,
+            "anchor": self.anchor,
+            "types": self.types,
+            "anchors_per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
+            "wall": self.wall,
+            "members": [member.to_dict() for member in self.members],
+            "related_but_placed_through_the_tree": [list(pair) for pair in self.unwritten],
+        }
+
+
+@dataclass
+class Loose:
+    """A type made at the top level, counted per scene: related to no other type, or
+    a child seen in scenes without its parent type (``without``)."""
+
+    type: str
+    per_scene: Counter
+    wall: str | None
+    without: str | None = None
+
+    def to_dict(self) -> dict:
+        return {"type": self.type, "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
+                "wall": self.wall, "seen_without": self.without}  # fmt: skip
+
+
+@dataclass
+class WallShare:
+    """How many standing objects of a type were measured against walls, and per label
+    how many it held for."""
+
+    objects: int = 0
+    held: Counter = field(default_factory=Counter)
+
+    def label(self) -> str | None:
+        for label in CATEGORIES["wall"]:
+            if self.objects and self.held[label] >= WALL_SHARE * self.objects:
+                return label
+        return None
+
+
+@dataclass
+class Induction:
+    """Everything ``learn`` induced from the examples (module docstring)."""
+
+    name: str
+    examples: list[str]
+    seed: int
+    relations: RelationsResult
+    resting: set[tuple[str, str]]
+    resting_counts: dict[tuple[str, str], tuple[int, int]]
+    routes: dict[tuple[str, str], tuple[str, str] | None]
+    catalog: dict[str, TypeEntry]
+    groups: list[Group]
+    loose: list[Loose]
+    walls: dict[str, WallShare]
+    room: Room | None
+    room_source: str | None
+    extent: tuple[float, float]
+    ground: str
+    scenes: int
+
+    def text(self) -> str:
+        """The rules file (``rules_text``)."""
+        from .rules_text import RulesWriter
+
+        return RulesWriter(self).text()
+
+    def written_pairs(self) -> dict[tuple[str, str], Member]:
+        """(a, b) in name order -> the member that writes the relation of that pair."""
+        found = {}
+
+        def visit(member: Member) -> None:
+            found[tuple(sorted((member.parent, member.type)))] = member
+            for child in member.children:
+                visit(child)
+
+        for group in self.groups:
+            for member in group.members:
+                visit(member)
+        return found
+
+    def pairs_report(self) -> list[dict]:
+        written = self.written_pairs()
+        rows = []
+        for pair in self.relations.pairs:
+            key = (pair.a, pair.b)
+            member = written.get(key)
+            supported = [(u, v) for u, v in ((pair.a, pair.b), (pair.b, pair.a)) if (u, v) in self.resting]
+            row = {
+                **pair.to_dict(),
+                "support": [{"upper": u, "lower": v, "scenes": self.resting_counts[(u, v)][0],
+                             "scenes_holding_both": self.resting_counts[(u, v)][1]} for u, v in supported],
+                "written": member is not None,
+            }  # fmt: skip
+            if member is not None:
+                row["parent"], row["child"] = member.parent, member.type
+                row["labels"] = [{"labels": list(p.labels), "objects": p.weight} for p in member.placements]
+                row["clusters"] = [c.to_dict() for c in member.clusters]
+                row["outliers"] = member.outliers
+            elif pair.a == pair.b and pair.related:
+                row["why_not_written"] = "two objects of one type: not written as a relation"
+            elif pair.related and self.routes.get(key) is None:
+                row["why_not_written"] = "both rest on one thing, which places them"
+            elif pair.related and self.routes[key] != key:
+                first, second = self.routes[key]
+                row["why_not_written"] = f"written between {first} and {second}: what rests on a thing is placed by it"
+            elif pair.related:
+                row["why_not_written"] = "its types are placed through other members of their group"
+            rows.append(row)
+        return rows
+
+    def to_dict(self) -> dict:
+        return {
+            "rules": self.name,
+            "examples": self.examples,
+            "seed": self.seed,
+            "relations": {key: value for key, value in self.relations.to_dict().items() if key != "pairs"},
+            "pairs": self.pairs_report(),
+            "catalog": [entry.to_dict() for entry in self.catalog.values()],
+            "groups": [group.to_dict() for group in self.groups],
+            "loose": [item.to_dict() for item in self.loose],
+            "walls": {name: {"objects": share.objects, **{label: share.held[label] for label in CATEGORIES["wall"]},
+                             "written": share.label()} for name, share in sorted(self.walls.items())},
+            "room": self.room.to_dict() if self.room else None,
+            "room_from": self.room_source,
+            "extent": [round(v, 3) for v in self.extent],
+        }  # fmt: skip
+
+
+# -- inducing -------------------------------------------------------------------------
+
+
+def _support_counts(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[tuple[str, str], tuple[int, int]]:
+    """(upper, lower) -> (scenes where an upper rests on a lower, scenes holding both)."""
+    rests: Counter = Counter()
+    both: Counter = Counter()
+    for scene, support in zip(scenes, supports):
+        types = {o.id: o.type for o in scene.placed_objects()}
+        present = set(types.values())
+        rests.update({(types[u], types[l]) for u, l in support.items() if u in types and l in types and types[u] != types[l]})
+        both.update({(u, l) for u in present for l in present if u != l})
+    return {pair: (count, both[pair]) for pair, count in rests.items()}
+
+
+def carried_routes(
+    related: Sequence[tuple[str, str]], resting: set[tuple[str, str]], counts: dict[tuple[str, str], tuple[int, int]]
+) -> dict[tuple[str, str], tuple[str, str] | None]:
+    """Each related pair -> the pair its relation is written between (None: not written).
+
+    What rests on a thing is carried by it, so a relation with it is a relation with
+    its carrier (followed down to what stands on the floor): a chair related to the
+    monitor on a desk is placed by the desk, and two things on one desk are placed
+    through the desk alone. A pair of which one rests (through others) on the other
+    stays as it is."""
+    carrier: dict[str, str] = {}
+    for upper, lower in sorted(resting, key=lambda pair: (-counts.get(pair, (0, 0))[0], pair)):
+        carrier.setdefault(upper, lower)
+
+    def chain(type_name: str) -> list[str]:
+        found = [type_name]
+        while found[-1] in carrier and carrier[found[-1]] not in found:
+            found.append(carrier[found[-1]])
+        return found
+
+    routes: dict[tuple[str, str], tuple[str, str] | None] = {}
+    for a, b in related:
+        below_a, below_b = chain(a), chain(b)
+        if a in below_b or b in below_a:
+            routes[(a, b)] = (a, b)
+            continue
+        root_a, root_b = below_a[-1], below_b[-1]
+        routes[(a, b)] = tuple(sorted((root_a, root_b))) if root_a != root_b else None  # type: ignore[assignment]
+    return routes
+
+
+def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[str, WallShare]:
+    shares: dict[str, WallShare] = defaultdict(WallShare)
+    for scene, support in zip(scenes, supports):
+        if scene.room is None:
+            continue
+        objects = scene.placed_objects()
+        held = wall_holds(objects, scene.room, set(support))
+        types = {o.id: o.type for o in objects}
+        for object_id, labels in held.items():
+            share = shares[types[object_id]]
+            share.objects += 1
+            share.held.update(labels)
+    return dict(shares)
+
+
+def _anchor(component: set[str], graph: nx.Graph, resting: set[tuple[str, str]], catalog: dict[str, TypeEntry]) -> str:
+    uppers = {u for u, l in resting if u in component and l in component}
+    candidates = sorted(component - uppers) or sorted(component)
+    return max(candidates, key=lambda t: (graph.degree(t), catalog[t].size[0] * catalog[t].size[2], [-ord(c) for c in t]))
+
+
+def _tree(component: set[str], graph: nx.Graph, anchor: str) -> dict[str, list[str]]:
+    """Parent type -> its child types along the maximum spanning tree from ``anchor``."""
+    tree = nx.maximum_spanning_tree(graph.subgraph(component), weight="weight")
+    children: dict[str, list[str]] = defaultdict(list)
+    seen, queue = {anchor}, [anchor]
+    while queue:
+        current = queue.pop(0)
+        for neighbour in sorted(tree.neighbors(current)):
+            if neighbour not in seen:
+                seen.add(neighbour)
+                children[current].append(neighbour)
+                queue.append(neighbour)
+    return children
+
+
+def _medoid_room(scenes: Sequence[Scene], names: Sequence[str]) -> tuple[Room | None, str | None]:
+    rooms = [(scene.room, name) for scene, name in zip(scenes, names) if scene.room is not None]
+    if not rooms or 2 * len(rooms) < len(scenes):
+        return None, None
+    extents = np.array([room.extent for room, _ in rooms])
+    median = np.median(extents, axis=0)
+    best = int(np.argmin(np.abs(extents - median).sum(axis=1)))
+    return rooms[best]
+
+
+def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0, test: str = "permutation") -> Induction:
+    """Induce a rule set from ``examples`` (module docstring). ``InputError`` when they
+    cannot be learned from (fewer than two, no two objects in one scene)."""
+    if len(examples) < 2:
+        raise InputError(f"learning a rule set needs at least 2 example scenes, got {len(examples)}")
+    scenes, sources = renamed_scenes(examples)
+    names = [example.name for example in examples]
+    if not any(scene.placed_objects() for scene in scenes):
+        raise InputError("the example scenes hold no objects")
+    relations = find_relations(scenes, test=test, seed=seed)
+    supports = [scene_supports(scene) for scene in scenes]
+    resting = resting_pairs(scenes, type_poses(scenes))
+    resting_counts = _support_counts(scenes, supports)
+
+    by_type: dict[str, list[SceneObject]] = defaultdict(list)
+    scenes_of: Counter = Counter()
+    for scene in scenes:
+        present = set()
+        for obj in scene.placed_objects():
+            by_type[obj.type].append(obj)
+            present.add(obj.type)
+        scenes_of.update(present)
+    from scenewright.completion.plan import catalog_categories  # the shipped indoor catalog
+
+    shipped = catalog_categories()
+    catalog = {t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)}
+    walls = _walls(scenes, supports)
+
+    graph = nx.Graph()
+    graph.add_nodes_from(sorted(catalog))
+    routes = carried_routes([(p.a, p.b) for p in relations.pairs if p.related and p.a != p.b], resting, resting_counts)
+    strength: dict[tuple[str, str], float] = {}
+    for pair in relations.pairs:
+        route = routes.get((pair.a, pair.b))
+        if route is not None:
+            strength[route] = max(strength.get(route, 0.0), pair.strength or 0.0)
+    for u, l in sorted(resting):
+        strength[tuple(sorted((u, l)))] = 1000.0  # support first: what rests on a thing goes with it
+    for (a, b), weight in sorted(strength.items()):
+        graph.add_edge(a, b, weight=weight)
+
+    rule_names: set[str] = {"Scene"}
+    groups: list[Group] = []
+    loose: list[Loose] = []
+    components = sorted((set(c) for c in nx.connected_components(graph)), key=lambda c: sorted(c))
+    for component in components:
+        if len(component) == 1:
+            (only,) = component
+            loose.append(Loose(only, Counter(len([o for o in s.placed_objects() if o.type == only]) for s in scenes),
+                               walls.get(only, WallShare()).label()))  # fmt: skip
+            continue
+        anchor = _anchor(component, graph, resting, catalog)
+        tree = _tree(component, graph, anchor)
+
+        def member(parent: str, child: str) -> Member:
+            instances = edge_instances(scenes, supports, parent, child)
+            placements, clusters, outliers = placements_of(instances)
+            if instances.orphans.any():
+                loose.append(Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent))
+            rests = bool(instances.resting.mean() >= 0.5) if len(instances.resting) else False
+            return Member(
+                child, parent, len(instances.poses), instances.per_parent, placements, clusters, outliers,
+                None if rests else walls.get(child, WallShare()).label(),
+                [member(child, grandchild) for grandchild in tree.get(child, [])],
+            )  # fmt: skip
+
+        members = [member(anchor, child) for child in tree.get(anchor, [])]
+        tree_pairs = {tuple(sorted((p, c))) for p, cs in tree.items() for c in cs}
+        unwritten = sorted(pair for pair in strength if pair[0] in component and pair not in tree_pairs)
+        per_scene = Counter(len([o for o in s.placed_objects() if o.type == anchor]) for s in scenes)
+        groups.append(Group(_unique(camel(anchor), rule_names), anchor, per_scene, walls.get(anchor, WallShare()).label(),
+                            members, sorted(component), unwritten))  # fmt: skip
+    loose.sort(key=lambda item: (item.without is not None, item.type))
+
+    room, room_source = _medoid_room(scenes, names)
+    extents = np.median(np.array([scene.extent for scene in scenes], dtype=float), axis=0)
+    ground = _most_common([scene.ground for scene in scenes]) if room is None else "floor"
+    return Induction(
+        name=name, examples=names, seed=seed, relations=relations, resting=resting, resting_counts=resting_counts,
+        routes=routes,
+        catalog=catalog, groups=groups, loose=loose, walls=walls, room=room, room_source=room_source,
+        extent=(float(extents[0]), float(extents[1])), ground=ground, scenes=len(scenes),
+    )  # fmt: skip

@@ -1,0 +1,192 @@
+"""``scenewright learn``: example scenes in; an induced rule set, checked, and its report out.
+
+``learn_rule_set`` induces the rules (``induce``), checks that the text passes the
+static checks (as ``scenewright validate`` does) and loads, then makes ``check`` scenes
+from it (expansion and layout, no text or images; scene k with the seed drawn from
+the ``learn`` stream k of ``seed``) and compares them with the examples:
+
+- per type, the distribution of its count per scene, examples against generated
+  scenes, as a total variation distance (0: the same; 1: disjoint);
+- per written relation (a tree edge parent -> child), the share of scenes holding both
+  types, and the share of child objects for which one of the written placement labels
+  holds relative to its parent (measured as the induction measured the examples), in
+  both;
+- how many of the generated layouts are ok.
+
+Nothing is written until all of that has succeeded; then the rules file and the
+report, each whole (``write``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections import Counter
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from scenewright.core.scene import Scene
+from scenewright.core.seeds import check_seed, stream
+from scenewright.examples import Example, scene_supports
+from scenewright.generator import check_rules, load_rules
+from scenewright.generator.rules import Rules
+
+from .induce import Induction, Member, edge_instances, induce, renamed_scenes
+
+#: Scenes generated from the induced rules to compare with the examples.
+CHECK_SCENES = 50
+
+
+class InducedRulesError(RuntimeError):
+    """The induced text did not pass the static checks: a fault of ``induce``, not of the input."""
+
+
+def check_seed_of(seed: int, index: int) -> int:
+    """The seed of check scene ``index``: a 31-bit draw from the ``learn`` stream ``index``."""
+    return int(stream(seed, "learn", index).integers(0, 2**31))
+
+
+def count_distribution(scenes: Sequence[Scene], type_name: str) -> dict[int, float]:
+    """count -> share of ``scenes`` holding that many objects of ``type_name``."""
+    counted = Counter(sum(o.type == type_name for o in scene.placed_objects()) for scene in scenes)
+    return {k: counted[k] / len(scenes) for k in sorted(counted)}
+
+
+def total_variation(first: dict[int, float], second: dict[int, float]) -> float:
+    """Half the L1 distance of two distributions over counts."""
+    return 0.5 * sum(abs(first.get(k, 0.0) - second.get(k, 0.0)) for k in set(first) | set(second))
+
+
+def label_share(scenes: Sequence[Scene], member: Member, induction: Induction) -> float | None:
+    """The share of ``member``'s objects in ``scenes`` (with a parent) for which one of
+    its written placement labels holds relative to the parent; None without any."""
+    instances = edge_instances(scenes, [scene_supports(s) for s in scenes], member.parent, member.type)
+    placement = {p.labels[0] for p in member.placements if p.labels}
+    if len(instances.poses) == 0 or not placement:
+        return None
+    held = np.zeros(len(instances.poses), dtype=bool)
+    for rests in (True, False):
+        chosen, holds = instances.holds(rests)
+        for label in placement & set(holds):
+            held[chosen] |= holds[label]
+    return float(held.mean())
+
+
+def _share_holding_both(scenes: Sequence[Scene], first: str, second: str) -> float:
+    return float(np.mean([{first, second} <= {o.type for o in s.placed_objects()} for s in scenes]))
+
+
+@dataclass(frozen=True)
+class Check:
+    """The comparison of ``scenes`` generated scenes with the examples (module docstring)."""
+
+    scenes: int
+    layouts_ok: int
+    types: list[dict]
+    pairs: list[dict]
+
+    @property
+    def mean_total_variation(self) -> float:
+        return float(np.mean([row["total_variation"] for row in self.types])) if self.types else 0.0
+
+    def to_dict(self) -> dict:
+        return {
+            "scenes": self.scenes,
+            "layouts_ok": self.layouts_ok,
+            "mean_total_variation": round(self.mean_total_variation, 4),
+            "types": self.types,
+            "pairs": self.pairs,
+        }
+
+    def summary(self) -> str:
+        differences = [abs(p["examples_both"] - p["generated_both"]) for p in self.pairs]
+        held = [(p["examples_label_holds"], p["generated_label_holds"]) for p in self.pairs
+                if p["examples_label_holds"] is not None and p["generated_label_holds"] is not None]  # fmt: skip
+        text = (f"{self.scenes} scenes generated from it ({self.layouts_ok} laid out ok): per-type counts "
+                f"{self.mean_total_variation:.3f} mean total variation from the examples")  # fmt: skip
+        if differences:
+            text += f"; pairs present together {np.mean(differences):.3f} apart on average"
+        if held:
+            text += (f"; placement labels hold for {np.mean([g for _, g in held]):.0%} of related objects "
+                     f"({np.mean([e for e, _ in held]):.0%} in the examples)")  # fmt: skip
+        return text
+
+
+def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count: int, seed: int) -> Check:
+    """Generate ``count`` scenes from ``rules`` and compare them with ``examples``
+    (the examples' scenes with the induced type names)."""
+    from scenewright.api import build_scene
+
+    generated = [build_scene(rules, check_seed_of(seed, k)) for k in range(count)]
+    types = []
+    for type_name in induction.catalog:
+        seen, made = count_distribution(examples, type_name), count_distribution(generated, type_name)
+        types.append({
+            "type": type_name,
+            "examples": {str(k): round(v, 4) for k, v in seen.items()},
+            "generated": {str(k): round(v, 4) for k, v in made.items()},
+            "total_variation": round(total_variation(seen, made), 4),
+        })  # fmt: skip
+    pairs = []
+    for (first, second), member in sorted(induction.written_pairs().items()):
+        seen_held, made_held = label_share(examples, member, induction), label_share(generated, member, induction)
+        pairs.append({
+            "parent": member.parent,
+            "child": member.type,
+            "labels": sorted({p.labels[0] for p in member.placements if p.labels}),
+            "examples_both": round(_share_holding_both(examples, first, second), 4),
+            "generated_both": round(_share_holding_both(generated, first, second), 4),
+            "examples_label_holds": None if seen_held is None else round(seen_held, 4),
+            "generated_label_holds": None if made_held is None else round(made_held, 4),
+        })  # fmt: skip
+    return Check(count, sum(scene.layout.ok for scene in generated), types, pairs)
+
+
+@dataclass(frozen=True)
+class Learned:
+    """What ``learn_rule_set`` made: the induction, its rules text, the check (None
+    when no scenes were generated) and the files written."""
+
+    induction: Induction
+    text: str
+    check: Check | None
+    written: list[Path]
+
+
+def learn_rule_set(
+    examples: Sequence[Example],
+    output: Path,
+    *,
+    report: Path | None = None,
+    seed: int = 0,
+    test: str = "permutation",
+    check: int = CHECK_SCENES,
+    write: Callable[[Path, str], object],
+) -> Learned:
+    """Induce a rule set from ``examples``, check it (module docstring) and write it to
+    ``output`` and the report to ``report``; ``write(path, text)`` writes one file whole."""
+    seed = check_seed(seed)
+    name = output.stem if output.suffix == ".rules" else output.name
+    induction = induce(examples, name=name, seed=seed, test=test)
+    text = induction.text()
+    with tempfile.TemporaryDirectory(prefix="scenewright-learn-") as folder:
+        trial = Path(folder) / f"{name}.rules"
+        trial.write_text(text, encoding="utf-8")
+        errors = [d for d in check_rules(trial) if d.is_error]
+        if errors:
+            raise InducedRulesError("the induced rules do not pass the checks:\n" + "\n".join(str(d) for d in errors))
+        rules = load_rules(trial)
+        scenes, _ = renamed_scenes(examples)
+        result = compare(induction, scenes, rules, check, seed) if check > 0 else None
+    written = []
+    write(output, text)
+    written.append(output)
+    if report is not None:
+        document = {"output": os.fspath(output), **induction.to_dict(), "check": result.to_dict() if result else None}
+        write(report, json.dumps(document, indent=1, ensure_ascii=False) + "\n")
+        written.append(report)
+    return Learned(induction, text, result, written)

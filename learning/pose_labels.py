@@ -1,0 +1,129 @@
+"""Which relation labels hold where, measured by the layout's own predicates.
+
+A learned relation is written with a label of the registry (``core.relations``), and
+the label is chosen by where it *holds*: ``generator.layout.measure_layout`` puts
+objects at given poses and reports, for every relation edge, whether the layout's
+satisfaction threshold is met (``relation_terms.satisfied``: "in front of" within 45
+degrees and 2 m, "facing" within 30 degrees, "on the edge" within 5 cm, ...). Nothing
+here restates those thresholds.
+
+``pair_holds`` measures one child type placed at many relative poses about one parent
+type (each at its median size, the parent at the origin facing +Z) against the
+candidate labels of ``CATEGORIES``; ``wall_holds`` measures every standing object of a
+room scene against the wall labels. ``most_specific`` picks, per category, the first
+label (the most specific) that holds at a cluster's centre and for most of its members.
+
+Categories, most specific first:
+
+- ``support`` (the child rests on the parent): OnTopOfFrontEdge, OnTopOfMiddle,
+  OnTopOfEdge, OnTopOf;
+- ``near`` (it stands on the floor): NextToFront, NextToBehind, NextToLeft,
+  NextToRight (the parent's own sides), NextTo;
+- ``facing`` (floor objects): FacingTowards, FacingAwayFrom, FacingSameDirection,
+  FacingOpposite, FacingOrthogonalDirection;
+- ``turn`` (objects resting on their parent, for which facing towards the parent's
+  centre says nothing): FacingSameDirection, FacingOpposite, FacingOrthogonalDirection,
+  written ``Implicit``: the support already places the object, and "the laptop faces
+  the same way as the desk" is no sentence a person says;
+- ``alignment`` (floor objects only): AlignedWith;
+- ``wall`` (per object, in a room): InCorner, AgainstWall.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from scenewright.core.poses import Pose
+from scenewright.core.relations import RELATIONS
+from scenewright.core.room import ROOM_NODE, Room
+from scenewright.core.scene import SceneObject
+from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.generator.catalog import CatalogEntry
+from scenewright.generator.layout import measure_layout
+
+#: The candidate labels of each category, most specific first.
+CATEGORIES: dict[str, tuple[str, ...]] = {
+    "support": ("OnTopOfFrontEdge", "OnTopOfMiddle", "OnTopOfEdge", "OnTopOf"),
+    "near": ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight", "NextTo"),
+    "facing": ("FacingTowards", "FacingAwayFrom", "FacingSameDirection", "FacingOpposite", "FacingOrthogonalDirection"),
+    "turn": ("FacingSameDirection", "FacingOpposite", "FacingOrthogonalDirection"),
+    "alignment": ("AlignedWith",),
+    "wall": ("InCorner", "AgainstWall"),
+}
+#: The family each category's labels must belong to (checked against the registry at import).
+_FAMILIES = {"support": "support", "near": "next_to", "facing": "facing", "turn": "facing", "alignment": "alignment",
+             "wall": "wall"}  # fmt: skip
+for _category, _labels in CATEGORIES.items():
+    for _label in _labels:
+        if RELATIONS[_label].family != _FAMILIES[_category]:
+            raise ValueError(f"{_label} is registered in family {RELATIONS[_label].family}, not {_FAMILIES[_category]}")
+
+#: The categories measured between a child and its parent, by whether the child rests on it.
+RESTING_CATEGORIES = ("support", "turn")
+STANDING_CATEGORIES = ("near", "facing", "alignment")
+#: The least share of a cluster's members a label must hold for (as well as at its centre).
+MAJORITY = 0.5
+#: Open ground around a measured pair: large enough that no pose is outside it.
+_GROUND = 1000.0
+
+
+def _entry(name: str, size: Sequence[float]) -> CatalogEntry:
+    return CatalogEntry(name, "object", name.replace("_", " "), size=tuple(float(v) for v in size))
+
+
+def pair_holds(
+    parent_size: Sequence[float], child_size: Sequence[float], poses: np.ndarray, resting: bool
+) -> dict[str, np.ndarray]:
+    """For each candidate label of the pair's categories (``RESTING_CATEGORIES`` when
+    the child rests on the parent, else ``STANDING_CATEGORIES``), whether ``child
+    LABEL parent`` holds at each pose: ``poses`` (n, 3) the child's (x, z, yaw) in the
+    parent's frame (x along its left, z along its forward, yaw relative), the parent at
+    the origin with yaw 0, a resting child at the parent's height. Returns label ->
+    (n,) bool."""
+    graph = SceneGraph(params=SceneParams(extent=(_GROUND, _GROUND)))
+    parent = graph.add_node(_entry("parent", parent_size))
+    child = graph.add_node(_entry("child", child_size))
+    labels = [label for category in (RESTING_CATEGORIES if resting else STANDING_CATEGORIES) for label in CATEGORIES[category]]
+    for label in labels:
+        graph.add_relation(child, parent, label)
+    height = float(parent_size[1]) if resting else 0.0
+    holds = {label: np.zeros(len(poses), dtype=bool) for label in labels}
+    for k, (x, z, yaw) in enumerate(np.asarray(poses, dtype=float).reshape(-1, 3)):
+        result = measure_layout(graph, {parent: Pose(0.0, 0.0, 0.0, 0.0), child: Pose(float(x), height, float(z), float(yaw))}, {})
+        for relation in result.relations:
+            holds[relation.label][k] = bool(relation.satisfied)
+    return holds
+
+
+def wall_holds(objects: Sequence[SceneObject], room: Room, resting: set[str]) -> dict[str, set[str]]:
+    """Object id -> the wall labels of ``CATEGORIES["wall"]`` that hold for it against
+    some wall of ``room`` (the layout chooses the wall, as for ``AgainstWall some
+    wall``). Objects in ``resting`` (ids of objects standing on another) are left out."""
+    graph = SceneGraph(params=SceneParams(extent=room.extent, ground="floor", room=room))
+    node_of: dict[str, str] = {}
+    poses: dict[str, Pose] = {}
+    for obj in objects:
+        node = graph.add_node(_entry(obj.type, obj.size))
+        node_of[obj.id] = node
+        poses[node] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+    standing = [obj.id for obj in objects if obj.id not in resting]
+    for object_id in standing:
+        for label in CATEGORIES["wall"]:
+            graph.add_relation(node_of[object_id], ROOM_NODE, label)
+    by_node = {node: object_id for object_id, node in node_of.items()}
+    found: dict[str, set[str]] = {object_id: set() for object_id in standing}
+    for relation in measure_layout(graph, poses, {}).relations:
+        if relation.satisfied:
+            found[by_node[relation.source]].add(relation.label)
+    return found
+
+
+def most_specific(category: str, holds: dict[str, np.ndarray], centre: int, members: np.ndarray) -> str | None:
+    """The first label of ``category`` that holds at point ``centre`` and for at least
+    ``MAJORITY`` of ``members`` (indices into the (n,) arrays of ``holds``), or None."""
+    for label in CATEGORIES[category]:
+        if label in holds and holds[label][centre] and holds[label][members].mean() >= MAJORITY:
+            return label
+    return None

@@ -1,0 +1,326 @@
+"""Writes an ``Induction`` (``induce``) as a rules file a person can read and edit.
+
+The file has the scene block (the room or extent, ``max_nodes`` the most objects the
+rules can make), the catalog (one entry per type, a comment saying how many objects
+and examples it rests on), the start production ``Scene`` (each group's production and
+each loose type with its count per scene), each group's production (its anchor bound
+as ``the_ANCHOR``, then a statement per member relative to it), and the productions of
+members with several placements (``ChairAtDesk(the_desk) -> 14: {...} | 3: {...}``) or
+with members of their own. Every number carries a comment saying what it was read
+from ("with 12 of 20 desks (1: 5, 2: 5, 3: 2)"). Numbers are written as the grammar
+reads them: decimals without exponents, probabilities with two decimals and never 0.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+from collections import Counter
+from collections.abc import Sequence
+
+from scenewright.core.room import Room
+from scenewright.describer.english import plural_of, with_article
+
+from .induce import Group, Induction, Member, Placement, _unique, camel, colour_text, identifier
+
+#: Probabilities are written with two decimals, never as 0.
+PROBABILITY_DECIMALS = 2
+
+
+def number(value: float, decimals: int = 3) -> str:
+    """A decimal the rules grammar reads (no exponent), trailing zeros dropped."""
+    text = f"{value:.{decimals}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def size_text(size: Sequence[float]) -> str:
+    return " x ".join(number(max(v, 0.001)) for v in size)
+
+
+def probability_text(share: float) -> str:
+    return number(max(round(share, PROBABILITY_DECIMALS), 10.0**-PROBABILITY_DECIMALS), PROBABILITY_DECIMALS)
+
+
+def _quoted(text: str) -> str:
+    return '"' + text.replace('"', "'").replace("\n", " ")[:200] + '"'
+
+
+# -- writing the rules ------------------------------------------------------------------
+
+
+def count_parts(distribution: Counter, total: int) -> tuple[str, str, str]:
+    """The ``[COUNT] [PROB?]`` words of a statement made ``distribution`` times (count ->
+    how many of ``total`` parents or scenes had that many); how many had any ("12 of
+    20"); and how many had how many ("1: 5, 2: 5, 3: 2"; empty when always the same)."""
+    present = {k: v for k, v in distribution.items() if k > 0}
+    seen = sum(present.values())
+    if not present:
+        return "", f"0 of {total}", ""
+    words = []
+    low, high = min(present), max(present)
+    if low == high:
+        if low > 1:
+            words.append(str(low))
+    else:
+        words.append(f"{low}..{high} {{{' '.join(str(present.get(k, 0)) for k in range(low, high + 1))}}}")
+    if seen < total:
+        words.append(probability_text(seen / total) + "?")
+    detail = "" if low == high else ", ".join(f"{k}: {present[k]}" for k in sorted(present))
+    return " ".join(words), f"{seen} of {total}", detail
+
+
+def comment_lines(text: str, width: int = 100) -> list[str]:
+    """``text`` as ``#`` comment lines of at most ``width`` characters."""
+    return ["# " + line for line in textwrap.wrap(text, width - 2, break_on_hyphens=False)]
+
+
+class RulesWriter:
+    """Writes an ``Induction`` as a rules file a person can read and edit."""
+
+    INDENT = "    "
+
+    def __init__(self, induction: Induction):
+        self.induction = induction
+        self.productions: list[list[str]] = []
+        self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
+        self.depth = 1
+        self.types = set(induction.catalog)
+
+    # -- names --
+
+    def binding(self, type_name: str, taken: set[str]) -> str:
+        base = f"the_{type_name}"
+        name, k = base, 1
+        while name in self.types or name in taken:
+            k += 1
+            name = f"{base}_{k}"
+        taken.add(name)
+        return name
+
+    # -- parts --
+
+    def header(self) -> list[str]:
+        ind = self.induction
+        shown = ", ".join(ind.examples[:3]) + (", ..." if len(ind.examples) > 3 else "")
+        return [
+            f"# {ind.name}.rules - induced by `scenewright learn` from {ind.scenes} example scenes ({shown}),",
+            f"# seed {ind.seed}. Related type pairs: the {ind.relations.test} test (learning/relations.py), and",
+            "# what rests on what, measured from the boxes. Where each object stands by its parent:",
+            "# density-peak clusters of its relative poses, labelled by the relations that hold at each",
+            "# cluster's centre (the layout's own measures). 'k of n' says how many examples, or parent",
+            "# objects, showed it. An ordinary rules file: edit it freely.",
+            "",
+        ]
+
+    def scene_block(self, max_nodes: int) -> list[str]:
+        ind = self.induction
+        lines = [f"scene {identifier(ind.name, set())} {{"]
+        if ind.room is not None:
+            lines += self.room_lines(ind.room, ind.room_source)
+        else:
+            lines.append(f"{self.INDENT}extent {number(ind.extent[0], 2)} x {number(ind.extent[1], 2)}"
+                         f"    # the median extent of the {ind.scenes} examples")  # fmt: skip
+            lines.append(f"{self.INDENT}ground {identifier(ind.ground, set())}")
+        lines += [
+            f"{self.INDENT}start Scene",
+            f"{self.INDENT}max_depth {self.depth + 2}",
+            f"{self.INDENT}max_nodes {max(max_nodes, 1)}    # the most objects these rules can make",
+            "}",
+            "",
+        ]
+        return lines
+
+    def room_lines(self, room: Room, source: str | None) -> list[str]:
+        width, depth = room.extent
+        hw, hd = width / 2.0, depth / 2.0
+        rectangle = [(-hw, -hd), (hw, -hd), (hw, hd), (-hw, hd)]
+        is_rectangle = len(room.corners) == 4 and all(
+            math.isclose(x, rx, abs_tol=1e-6) and math.isclose(z, rz, abs_tol=1e-6)
+            for (x, z), (rx, rz) in zip(room.corners, rectangle)
+        )
+        shape = (f"{number(width)} x {number(depth)}" if is_rectangle
+                 else " ".join(f"({number(x)}, {number(z)})" for x, z in room.corners))  # fmt: skip
+        lines = [f"{self.INDENT}room {shape} {{    # the room of {source}, the example room nearest the median size"]
+        lines.append(f"{self.INDENT * 2}height {number(room.height)}")
+        wall_number = {wall.id: k + 1 for k, wall in enumerate(room.walls)}
+        for opening in room.openings:
+            where = f"{wall_number[opening.wall]} {number(opening.offset)} {number(opening.width)}"
+            if opening.kind == "door":
+                lines.append(f"{self.INDENT * 2}door {where} {number(opening.height)}")
+            else:
+                lines.append(f"{self.INDENT * 2}window {where} {number(opening.sill)} {number(opening.height)}")
+        lines.append(f"{self.INDENT}}}")
+        return lines
+
+    def catalog_lines(self) -> list[str]:
+        ind = self.induction
+        lines = [f"# -- catalog: the {len(ind.catalog)} types seen; sizes are medians (W x H x D, metres) " + "-" * 8, ""]
+        for entry in ind.catalog.values():
+            seen_as = f" (seen as {', '.join(entry.sources)})" if list(entry.sources) != [entry.name] else ""
+            borrowed = f"; noun, shape and colour from the shipped {entry.borrowed}" if entry.borrowed else ""
+            lines.append(f"# {entry.name}: {entry.objects} objects in {entry.scenes} of {ind.scenes} examples{seen_as}{borrowed}")
+            lines.append(f"object {entry.name} {{")
+            lines.append(f"{self.INDENT}noun {_quoted(entry.noun)}")
+            if entry.plural:
+                lines.append(f"{self.INDENT}plural {_quoted(entry.plural)}")
+            lines.append(f"{self.INDENT}size {size_text(entry.size)}")
+            if entry.shape:
+                lines.append(f"{self.INDENT}shape {entry.shape}")
+            lines.append(f"{self.INDENT}colour {colour_text(entry.colour)}")
+            for style in entry.styles:
+                fields = []
+                if style.noun:
+                    fields.append(f"noun {_quoted(style.noun)}")
+                if style.size:
+                    fields.append(f"size {size_text(style.size)}")
+                if style.shape:
+                    fields.append(f"shape {style.shape}")
+                if style.colour:
+                    fields.append(f"colour {colour_text(style.colour)}")
+                body = "{ " + " ".join(fields) + " }" if fields else "{ }"
+                seen = "no style given" if style.source is None else f"{style.source!r}" if style.source != style.name else ""
+                note = f"{style.count} of {entry.objects}" + (f", {seen}" if seen else "")
+                lines.append(f"{self.INDENT}style {style.name} {style.count} {body}    # {note}")
+            lines.append("}")
+            lines.append("")
+        return lines
+
+    def relation_words(self, labels: Sequence[str], target: str) -> str:
+        return " ".join(f"{label} {target}" for label in labels)
+
+    @staticmethod
+    def wall_words(wall: str | None) -> str:
+        return f" {wall} some wall" if wall else ""
+
+    def noun_plural(self, type_name: str) -> str:
+        """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
+        entry = self.induction.catalog[type_name]
+        return plural_of(entry.noun, entry.plural)
+
+    def member_statement(self, member: Member, target: str, depth: int) -> tuple[str, int]:
+        """The statement that makes ``member``'s objects by one parent object bound to
+        ``target``, and the most objects it can make."""
+        self.depth = max(self.depth, depth)
+        counts, seen, detail = count_parts(member.per_parent, member.parents)
+        prefix = (counts + " ") if counts else ""
+        note = f"with {seen} {self.noun_plural(member.parent)}" + (f" ({detail})" if detail else "")
+        if member.outliers:
+            note += f", {member.outliers} outlier{'s' * (member.outliers != 1)} left out"
+        unplaced = sum(c.size for c in member.clusters if not c.labels)
+        if unplaced:
+            note += f", {unplaced} in a cluster no label fits"
+        largest = max(member.per_parent) if member.per_parent else 0
+        if member.children or len(member.placements) > 1:
+            name, below = self.member_production(member, depth + 1)
+            return f"{prefix}{name}({target})    # {note}", largest * below
+        labels = member.placements[0].labels if member.placements else ()
+        if member.placements:
+            note += f"; {member.placements[0].weight} of {member.instances} stood so"
+        text = f"{prefix}{member.type} {self.relation_words(labels, target)}".rstrip() + self.wall_words(member.wall)
+        return f"{text}    # {note}", largest
+
+    def member_production(self, member: Member, depth: int) -> tuple[str, int]:
+        """Write the production(s) of a member with several placements or with
+        children of its own; returns the production to call with the parent's binding
+        and the most objects one call makes."""
+        self.depth = max(self.depth, depth)
+        param = self.binding(member.parent, set())
+        placed = member.placements or [Placement((), member.instances)]
+        total = sum(p.weight for p in placed)
+        noun, parent_noun = self.induction.catalog[member.type].noun, self.induction.catalog[member.parent].noun
+        lines: list[str] = []
+        places = None
+        if len(placed) > 1:
+            places = _unique(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
+            lines += comment_lines(f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
+                                   f"{total} of them in {len(placed)} ways")  # fmt: skip
+            head = f"{places}({param}) -> "
+            for k, placement in enumerate(placed):
+                body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
+                body += self.wall_words(member.wall) + " }"
+                lead = head if k == 0 else " " * (len(head) - 2) + "| "
+                lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
+            lines.append("")
+            if not member.children:
+                self.productions.append(lines)
+                return places, 1
+            self.depth = max(self.depth, depth + 1)
+        own = _unique(camel(member.type), self.rule_names)
+        bound = self.binding(member.type, {param})
+        body_lines = comment_lines(f"{own}: {with_article(noun)} by its {parent_noun}, and what stands by it")
+        body_lines.append(f"{own}({param}) -> {{")
+        if places:
+            body_lines.append(f"{self.INDENT}{places}({param}) as {bound}")
+        else:
+            words = self.relation_words(placed[0].labels, param)
+            body_lines.append(f"{self.INDENT}{member.type} as {bound} {words}".rstrip() + self.wall_words(member.wall))
+        most = 1
+        for child in member.children:
+            statement, made = self.member_statement(child, bound, depth + 1)
+            body_lines.append(self.INDENT + statement)
+            most += made
+        body_lines += ["}", ""]
+        self.productions.append(lines + body_lines)
+        return own, most
+
+    def group_lines(self, group: Group) -> tuple[list[str], int]:
+        taken: set[str] = set()
+        bound = self.binding(group.anchor, taken)
+        ind = self.induction
+        related = [p for p in ind.relations.pairs if p.related and p.a in group.types and p.b in group.types and p.a != p.b]
+        pairs = ", ".join(f"{p.a}-{p.b} (p {p.p_value:.3g})" for p in related if p.p_value is not None)
+        lines = comment_lines(f"{group.rule}: {with_article(ind.catalog[group.anchor].noun)} and what stands by it.")
+        if pairs:
+            lines += comment_lines(f"Related pairs ({ind.relations.test} test): {pairs}.")
+        supports = sorted((u, l) for u, l in ind.resting if u in group.types and l in group.types)
+        if supports:
+            lines += comment_lines("Resting: " + ", ".join(
+                f"{u} on {l} in {ind.resting_counts[(u, l)][0]} of {ind.resting_counts[(u, l)][1]} scenes holding both"
+                for u, l in supports) + ".")  # fmt: skip
+        lines.append(f"{group.rule} -> {{")
+        wall_note = ""
+        if group.wall:
+            share = ind.walls[group.anchor]
+            wall_note = f"    # {group.wall}: {share.held[group.wall]} of {share.objects} {self.noun_plural(group.anchor)}"
+        lines.append(f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}")
+        most = 1
+        for member in group.members:
+            statement, made = self.member_statement(member, bound, 2)
+            lines.append(self.INDENT + statement)
+            most += made
+        lines += ["}", ""]
+        return lines, most
+
+    def text(self) -> str:
+        ind = self.induction
+        start = ["# -- the scene " + "-" * 74, "", "Scene -> {"]
+        most = 0
+        group_blocks = []
+        for group in ind.groups:
+            counts, seen, detail = count_parts(group.per_scene, ind.scenes)
+            block, per_group = self.group_lines(group)
+            group_blocks.append(block)
+            noun = ind.catalog[group.anchor].noun
+            start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{group.rule}    # {with_article(noun)} "
+                         f"in {seen} examples" + (f" ({detail})" if detail else ""))  # fmt: skip
+            most += max(group.per_scene) * per_group
+        for item in ind.loose:
+            counts, seen, detail = count_parts(item.per_scene, ind.scenes)
+            why = (f"seen without {with_article(ind.catalog[item.without].noun)}" if item.without
+                   else "related to no other type")  # fmt: skip
+            seen += f" ({detail})" if detail else ""
+            wall = ""
+            if item.wall:
+                share = ind.walls[item.type]
+                wall = f"; {item.wall} {share.held[item.wall]} of {share.objects} times"
+            start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
+                         f"    # {why}: in {seen} examples{wall}")  # fmt: skip
+            most += max(item.per_scene)
+        start += ["}", ""]
+        body: list[str] = []
+        for block in group_blocks:
+            body += block
+        for production in self.productions:
+            body += production
+        lines = self.header() + self.scene_block(most) + self.catalog_lines() + start + body
+        return "\n".join(lines).rstrip() + "\n"
