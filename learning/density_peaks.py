@@ -142,7 +142,7 @@ def density_peaks(
         else:
             labels[point] = labels[nearest_denser[point]]  # -1 when that one is an outlier
 
-    labels, centres = _merge_across_saddles(labels, centres, distances < cutoff, rho)
+    labels, centres = _merge_across_saddles(labels, centres, distances < cutoff, smooth)
     sizes = np.bincount(labels[labels >= 0], minlength=len(centres))
     kept = [c for c in range(len(centres)) if sizes[c] >= min_size]
     renumber = np.full(len(centres) + 1, -1)

@@ -79,6 +79,8 @@ POSE_SEPARATION = 0.25
 TURN_METRES = 0.5
 #: A pose resting on the parent and one standing on the floor are never one cluster.
 RESTING_METRES = 100.0
+#: A resting child's turn is written when it holds for at least this share of a placement's objects.
+TURN_SHARE = 0.8
 #: A wall label is written for a type when it holds for at least this share of its objects.
 WALL_SHARE = 0.5
 #: Names a type may not have in a room scene (its parts), nor anywhere (``room``).
@@ -312,9 +314,12 @@ def _turn(angle: float) -> float:
     return math.atan2(math.sin(angle), math.cos(angle))
 
 
-def edge_instances(scenes: Sequence[Scene], supports: Sequence[dict[str, str]], parent: str, child: str) -> EdgeInstances:
+def edge_instances(
+    scenes: Sequence[Scene], supports: Sequence[dict[str, str]], parent: str, child: str, *, resting_only: bool = False
+) -> EdgeInstances:
     """Every ``child`` object of ``scenes`` in the frame of its ``parent`` object (the
-    one it rests on, else the nearest), and the children per parent object."""
+    one it rests on, else the nearest; with ``resting_only`` only the children resting
+    on a parent object), and the children per parent object."""
     poses, resting, parent_sizes, child_sizes = [], [], [], []
     per_parent: Counter = Counter()
     orphans = np.zeros(len(scenes), dtype=int)
@@ -331,6 +336,8 @@ def edge_instances(scenes: Sequence[Scene], supports: Sequence[dict[str, str]], 
             below = [i for i in _supporters(obj.id, support) if i in by_id]
             if below:
                 host, rests = by_id[below[0]], True
+            elif resting_only:
+                continue
             else:
                 host = min(parents, key=lambda p: (math.hypot(p.position[0] - obj.position[0], p.position[2] - obj.position[2]), p.id))
                 rests = False
@@ -397,7 +404,12 @@ def written_labels(category_labels: dict[str, str | None], resting: bool) -> tup
 
 
 def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Cluster], int]:
-    """The placements of one tree edge, its clusters, and how many poses were outliers."""
+    """The placements of one tree edge, its clusters, and how many poses were outliers.
+
+    Clusters whose labels differ only in the turn of a resting child (the laptop
+    turned like the desk, or across it) are one placement: a turn is written for it
+    only when one holds for at least ``TURN_SHARE`` of its objects (and at the largest
+    cluster's centre); otherwise the layout turns it freely."""
     if len(instances.poses) == 0:
         return [], [], 0
     features = pose_features(instances.poses, instances.resting)
@@ -409,6 +421,7 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         index_in[rests] = np.full(len(instances.poses), -1)
         index_in[rests][chosen] = np.arange(len(chosen))
     clusters: list[Cluster] = []
+    merged: dict[tuple[bool, tuple[str, ...]], list[int]] = {}  # (rests, labels but the turn) -> cluster numbers
     for number_, centre in enumerate(peaks.centres):
         members = peaks.members(number_)
         rests = bool(instances.resting[centre])
@@ -417,13 +430,20 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         chosen = {c: most_specific(c, holds[rests], int(local[centre]), local[members]) for c in categories}
         x, z, turn = instances.poses[centre]
         clusters.append(Cluster(len(members), (float(x), float(z), math.degrees(turn)), rests, written_labels(chosen, rests)))
-    weights: dict[tuple[str, ...], int] = {}
-    for cluster in clusters:
-        if cluster.labels and cluster.labels[0] in (*CATEGORIES["support"], *CATEGORIES["near"]):
-            weights[cluster.labels] = weights.get(cluster.labels, 0) + cluster.size
-        elif cluster.labels:  # facing alone: still a way to stand, without a place
-            weights[cluster.labels] = weights.get(cluster.labels, 0) + cluster.size
-    placements = [Placement(labels, weight) for labels, weight in sorted(weights.items(), key=lambda item: (-item[1], item[0]))]
+        if chosen.get("support") or chosen.get("near") or chosen.get("facing"):
+            key = written_labels({c: label for c, label in chosen.items() if c != "turn"}, rests)
+            merged.setdefault((rests, key), []).append(number_)
+    placements = []
+    for (rests, key), numbers in merged.items():
+        labels = key
+        if rests:
+            members = np.concatenate([peaks.members(k) for k in numbers])
+            largest = max(numbers, key=lambda k: (len(peaks.members(k)), -k))
+            local = index_in[rests]
+            turn = most_specific("turn", holds[rests], int(local[peaks.centres[largest]]), local[members], TURN_SHARE)
+            labels = written_labels({"support": key[0], "turn": turn}, rests)
+        placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
+    placements.sort(key=lambda placement: (-placement.weight, placement.labels))
     return placements, clusters, len(peaks.outliers)
 
 
@@ -443,6 +463,8 @@ class Member:
     outliers: int
     wall: str | None
     children: list[Member] = field(default_factory=list)
+    #: It rests on its parent (only the objects resting on one are its members).
+    carried: bool = False
 
     @property
     def parents(self) -> int:
@@ -459,6 +481,7 @@ class Member:
             "clusters": [c.to_dict() for c in self.clusters],
             "outliers": self.outliers,
             "wall": self.wall,
+            "rests_on_parent": self.carried,
             "children": [child.to_dict() for child in self.children],
         }
 
@@ -489,17 +512,21 @@ class Group:
 
 @dataclass
 class Loose:
-    """A type made at the top level, counted per scene: related to no other type, or
-    a child seen in scenes without its parent type (``without``)."""
+    """A type made at the top level, counted per scene: related to no other type, a
+    child seen in scenes without its parent type (``without``), or objects of a type
+    that usually rests on others resting on none of them (``unsupported``)."""
 
     type: str
     per_scene: Counter
     wall: str | None
     without: str | None = None
+    #: ``without`` names what it usually rests on (it was seen resting on none of them).
+    unsupported: bool = False
 
     def to_dict(self) -> dict:
         return {"type": self.type, "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
-                "wall": self.wall, "seen_without": self.without}  # fmt: skip
+                "wall": self.wall, "seen_without": None if self.unsupported else self.without,
+                "seen_resting_on_none_of": self.without.split(" or ") if self.unsupported else None}  # fmt: skip
 
 
 @dataclass
@@ -667,10 +694,9 @@ def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[
     return dict(shares)
 
 
-def _anchor(component: set[str], graph: nx.Graph, resting: set[tuple[str, str]], catalog: dict[str, TypeEntry]) -> str:
-    uppers = {u for u, l in resting if u in component and l in component}
-    candidates = sorted(component - uppers) or sorted(component)
-    return max(candidates, key=lambda t: (graph.degree(t), catalog[t].size[0] * catalog[t].size[2], [-ord(c) for c in t]))
+def _anchor(component: set[str], graph: nx.Graph, catalog: dict[str, TypeEntry]) -> str:
+    """The type of ``component`` related to the most others, then with the largest footprint."""
+    return max(sorted(component), key=lambda t: (graph.degree(t), catalog[t].size[0] * catalog[t].size[2], [-ord(c) for c in t]))
 
 
 def _tree(component: set[str], graph: nx.Graph, anchor: str) -> dict[str, list[str]]:
@@ -726,50 +752,77 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
     catalog = {t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)}
     walls = _walls(scenes, supports)
 
-    graph = nx.Graph()
-    graph.add_nodes_from(sorted(catalog))
+    # Types that rest on others hang off what carries them (each of its carriers: books on
+    # desks and on shelves); the others are grouped by their relations.
+    lowers: dict[str, list[str]] = defaultdict(list)
+    for upper, lower in sorted(resting, key=lambda pair: (-resting_counts.get(pair, (0, 0))[0], pair)):
+        lowers[upper].append(lower)
+    uppers_of: dict[str, list[str]] = defaultdict(list)
+    for upper, below in sorted(lowers.items()):
+        for lower in below:
+            uppers_of[lower].append(upper)
     routes = carried_routes([(p.a, p.b) for p in relations.pairs if p.related and p.a != p.b], resting, resting_counts)
+    graph = nx.Graph()
+    graph.add_nodes_from(t for t in sorted(catalog) if t not in lowers)
     strength: dict[tuple[str, str], float] = {}
     for pair in relations.pairs:
         route = routes.get((pair.a, pair.b))
-        if route is not None:
+        if route is not None and route[0] not in lowers and route[1] not in lowers:
             strength[route] = max(strength.get(route, 0.0), pair.strength or 0.0)
-    for u, l in sorted(resting):
-        strength[tuple(sorted((u, l)))] = 1000.0  # support first: what rests on a thing goes with it
     for (a, b), weight in sorted(strength.items()):
         graph.add_edge(a, b, weight=weight)
+
+    def count_per_scene(type_name: str) -> Counter:
+        return Counter(sum(o.type == type_name for o in s.placed_objects()) for s in scenes)
 
     rule_names: set[str] = {"Scene"}
     groups: list[Group] = []
     loose: list[Loose] = []
+    tree: dict[str, list[str]] = {}
+
+    def member(parent: str, child: str, carried: bool, depth: int = 0) -> Member:
+        instances = edge_instances(scenes, supports, parent, child, resting_only=carried)
+        placements, clusters, outliers = placements_of(instances)
+        if not carried and instances.orphans.any():
+            loose.append(Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent))
+        below = [] if depth > len(catalog) else (
+            [member(child, c, False, depth + 1) for c in tree.get(child, [])]
+            + [member(child, u, True, depth + 1) for u in uppers_of.get(child, [])]
+        )  # fmt: skip
+        return Member(
+            child, parent, len(instances.poses), instances.per_parent, placements, clusters, outliers,
+            None if carried else walls.get(child, WallShare()).label(), below, carried,
+        )  # fmt: skip
+
     components = sorted((set(c) for c in nx.connected_components(graph)), key=lambda c: sorted(c))
     for component in components:
-        if len(component) == 1:
+        if len(component) == 1 and not uppers_of.get(next(iter(component))):
             (only,) = component
-            loose.append(Loose(only, Counter(len([o for o in s.placed_objects() if o.type == only]) for s in scenes),
-                               walls.get(only, WallShare()).label()))  # fmt: skip
+            loose.append(Loose(only, count_per_scene(only), walls.get(only, WallShare()).label()))
             continue
-        anchor = _anchor(component, graph, resting, catalog)
+        anchor = _anchor(component, graph, catalog)
         tree = _tree(component, graph, anchor)
-
-        def member(parent: str, child: str) -> Member:
-            instances = edge_instances(scenes, supports, parent, child)
-            placements, clusters, outliers = placements_of(instances)
-            if instances.orphans.any():
-                loose.append(Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent))
-            rests = bool(instances.resting.mean() >= 0.5) if len(instances.resting) else False
-            return Member(
-                child, parent, len(instances.poses), instances.per_parent, placements, clusters, outliers,
-                None if rests else walls.get(child, WallShare()).label(),
-                [member(child, grandchild) for grandchild in tree.get(child, [])],
-            )  # fmt: skip
-
-        members = [member(anchor, child) for child in tree.get(anchor, [])]
+        members = [member(anchor, child, False) for child in tree.get(anchor, [])]
+        members += [member(anchor, upper, True) for upper in uppers_of.get(anchor, [])]
         tree_pairs = {tuple(sorted((p, c))) for p, cs in tree.items() for c in cs}
         unwritten = sorted(pair for pair in strength if pair[0] in component and pair not in tree_pairs)
-        per_scene = Counter(len([o for o in s.placed_objects() if o.type == anchor]) for s in scenes)
-        groups.append(Group(_unique(camel(anchor), rule_names), anchor, per_scene, walls.get(anchor, WallShare()).label(),
-                            members, sorted(component), unwritten))  # fmt: skip
+        written = set(component)
+        pending = list(members)
+        while pending:
+            current = pending.pop()
+            written.add(current.type)
+            pending += current.children
+        groups.append(Group(_unique(camel(anchor), rule_names), anchor, count_per_scene(anchor),
+                            walls.get(anchor, WallShare()).label(), members, sorted(written), unwritten))  # fmt: skip
+    for upper, below in sorted(lowers.items()):
+        unsupported = Counter(
+            sum(o.type == upper and not ({types[i] for i in _supporters(o.id, support)} & set(below))
+                for o in scene.placed_objects())
+            for scene, support, types in ((s, sup, {o.id: o.type for o in s.placed_objects()})
+                                          for s, sup in zip(scenes, supports))
+        )  # fmt: skip
+        if set(unsupported) != {0}:
+            loose.append(Loose(upper, unsupported, walls.get(upper, WallShare()).label(), " or ".join(below), True))
     loose.sort(key=lambda item: (item.without is not None, item.type))
 
     room, room_source = _medoid_room(scenes, names)

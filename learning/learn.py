@@ -64,7 +64,9 @@ def total_variation(first: dict[int, float], second: dict[int, float]) -> float:
 def label_share(scenes: Sequence[Scene], member: Member, induction: Induction) -> float | None:
     """The share of ``member``'s objects in ``scenes`` (with a parent) for which one of
     its written placement labels holds relative to the parent; None without any."""
-    instances = edge_instances(scenes, [scene_supports(s) for s in scenes], member.parent, member.type)
+    instances = edge_instances(
+        scenes, [scene_supports(s) for s in scenes], member.parent, member.type, resting_only=member.carried
+    )
     placement = {p.labels[0] for p in member.placements if p.labels}
     if len(instances.poses) == 0 or not placement:
         return None

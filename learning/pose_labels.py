@@ -120,10 +120,12 @@ def wall_holds(objects: Sequence[SceneObject], room: Room, resting: set[str]) ->
     return found
 
 
-def most_specific(category: str, holds: dict[str, np.ndarray], centre: int, members: np.ndarray) -> str | None:
+def most_specific(
+    category: str, holds: dict[str, np.ndarray], centre: int, members: np.ndarray, share: float = MAJORITY
+) -> str | None:
     """The first label of ``category`` that holds at point ``centre`` and for at least
-    ``MAJORITY`` of ``members`` (indices into the (n,) arrays of ``holds``), or None."""
+    ``share`` of ``members`` (indices into the (n,) arrays of ``holds``), or None."""
     for label in CATEGORIES[category]:
-        if label in holds and holds[label][centre] and holds[label][members].mean() >= MAJORITY:
+        if label in holds and holds[label][centre] and holds[label][members].mean() >= share:
             return label
     return None

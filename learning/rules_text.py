@@ -306,15 +306,19 @@ class RulesWriter:
             most += max(group.per_scene) * per_group
         for item in ind.loose:
             counts, seen, detail = count_parts(item.per_scene, ind.scenes)
-            why = (f"seen without {with_article(ind.catalog[item.without].noun)}" if item.without
-                   else "related to no other type")  # fmt: skip
-            seen += f" ({detail})" if detail else ""
+            if item.unsupported:
+                why = "resting on no " + " or ".join(ind.catalog[t].noun for t in item.without.split(" or "))
+            elif item.without:
+                why = f"seen without {with_article(ind.catalog[item.without].noun)}"
+            else:
+                why = "related to no other type"
+            seen += " examples" + (f" ({detail})" if detail else "")
             wall = ""
             if item.wall:
                 share = ind.walls[item.type]
                 wall = f"; {item.wall} {share.held[item.wall]} of {share.objects} times"
             start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
-                         f"    # {why}: in {seen} examples{wall}")  # fmt: skip
+                         f"    # {why}: in {seen}{wall}")  # fmt: skip
             most += max(item.per_scene)
         start += ["}", ""]
         body: list[str] = []

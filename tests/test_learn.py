@@ -1,0 +1,239 @@
+"""Inducing a rule set from examples (``scenewright learn``): density-peak clustering on
+planted clusters with outliers, learning the desk rule set back from its own scenes,
+hand-written examples with free type names, the shipped desk examples end to end, and
+the command's bad inputs."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from scenewright.api import build_scene
+from scenewright.cli import EXAMPLES
+from scenewright.examples import Example, load_examples
+from scenewright.generator import check_rules, load_rules
+from scenewright.learning.density_peaks import density_peaks
+from scenewright.learning.induce import identifier, induce
+from scenewright.learning.learn import learn_rule_set
+
+from test_cli import assert_one_line_error, run
+
+DESKS = sorted((Path(__file__).parents[1] / "examples" / "sets" / "desks").glob("desk_*.json"))
+PLANTED = np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]])
+
+
+def planted_points(seed: int, spread: float = 0.15, per_cluster: int = 40, outliers: int = 12):
+    """Three Gaussian clusters and ``outliers`` uniform points at least 1.5 from every
+    planted centre -> (points, index of the first outlier)."""
+    rng = np.random.default_rng(seed)
+    clusters = np.vstack([centre + rng.normal(0.0, spread, (per_cluster, 2)) for centre in PLANTED])
+    far = []
+    while len(far) < outliers:
+        point = rng.uniform(-2.5, 5.5, 2)
+        if np.min(np.linalg.norm(PLANTED - point, axis=1)) >= 1.5:
+            far.append(point)
+    return np.vstack([clusters, far]), len(clusters)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_density_peaks_find_the_planted_centres_and_leave_the_outliers_out(seed):
+    points, first_outlier = planted_points(seed)
+    peaks = density_peaks(points)
+    assert len(peaks.centres) == 3
+    found = points[peaks.centres]
+    # One centre near each planted one (within two spreads).
+    nearest = np.argmin(np.linalg.norm(found[:, None, :] - PLANTED[None], axis=2), axis=1)
+    assert sorted(nearest) == [0, 1, 2]
+    assert np.all(np.linalg.norm(found - PLANTED[nearest], axis=1) < 0.3)
+    # No outlier is a centre, and every one is left out of the clusters.
+    assert np.all(peaks.centres < first_outlier)
+    assert np.all(peaks.labels[first_outlier:] == -1)
+    # The clusters are the planted ones: each point with its own centre's cluster (a
+    # few points in the far tail may be left out as outliers too).
+    truth = np.repeat(np.arange(3), 40)
+    labelled = peaks.labels[:first_outlier] >= 0
+    assert labelled.mean() >= 0.9
+    assert np.all(nearest[peaks.labels[:first_outlier][labelled]] == truth[labelled])
+    # Centres stand high on both axes of the decision graph.
+    assert np.all(peaks.gamma[peaks.centres] >= np.sort(peaks.gamma)[-len(points) // 10])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_density_peaks_keep_a_spread_out_placement(seed):
+    # Forty objects anywhere on a 1.2 x 0.7 table top: not noise, and not split into
+    # many clusters by the chance bumps of their density.
+    rng = np.random.default_rng(seed)
+    points = rng.uniform([-0.6, -0.35], [0.6, 0.35], (40, 2))
+    peaks = density_peaks(points, scale=0.1, min_separation=0.25)
+    assert 1 <= len(peaks.centres) <= 2
+    assert (peaks.labels >= 0).mean() >= 0.9
+
+
+def test_density_peaks_dissolve_clusters_too_small_to_be_templates():
+    points = np.array([[0.0, 0.0]] * 10 + [[5.0, 5.0], [5.05, 5.0]])  # a pair far away: noise
+    peaks = density_peaks(points, scale=0.1)
+    assert len(peaks.centres) == 1
+    assert list(peaks.labels[-2:]) == [-1, -1]
+
+
+@pytest.fixture(scope="module")
+def desk_induction():
+    """The rules induced from 40 scenes of the shipped desk rule set (layout, no render)."""
+    scenes = [build_scene("desk", seed) for seed in range(40)]
+    examples = [Example(f"desk-{k}", f"desk-{k}", "scene.json", scene) for k, scene in enumerate(scenes)]
+    return induce(examples, name="desk_learned", seed=0)
+
+
+def test_rules_learned_from_desk_scenes_validate_and_hold_its_main_relations(desk_induction, tmp_path):
+    path = tmp_path / "desk_learned.rules"
+    path.write_text(desk_induction.text())
+    assert [d for d in check_rules(path) if d.is_error] == []
+    written = desk_induction.written_pairs()
+
+    def labels(parent, child):
+        return [placement.labels for placement in written[tuple(sorted((parent, child)))].placements]
+
+    # desk.rules: chair NextToFront t FacingTowards t; computer OnTopOfMiddle t;
+    # lamp OnTopOfEdge t; paper OnTopOfFrontEdge t; phone and books OnTopOf t.
+    assert labels("table", "chair")[0] == ("NextToFront", "FacingTowards")
+    assert labels("table", "computer")[0][0] == "OnTopOfMiddle"
+    assert labels("table", "lamp")[0][0] == "OnTopOfEdge"
+    assert labels("table", "paper")[0][0] == "OnTopOfFrontEdge"
+    assert labels("table", "phone")[0][0] == "OnTopOf"
+    assert {placement[0] for placement in labels("table", "book")} == {"OnTopOf"}
+    assert [group.anchor for group in desk_induction.groups] == ["table"]
+    # The styles come back with their shares and own sizes (fancy tables are larger).
+    table = desk_induction.catalog["table"]
+    assert {style.name for style in table.styles} == {"plain", "fancy"}
+    assert sum(style.count for style in table.styles) == 40
+    fancy = next(style for style in table.styles if style.name == "fancy")
+    assert fancy.size == pytest.approx((1.4, 0.76, 0.75))
+    # The learned rules make desks.
+    scene = build_scene(load_rules(path), 5)
+    assert scene.layout.ok and {o.type for o in scene.placed_objects()} >= {"table"}
+
+
+def free_example(index: int) -> dict:
+    """A writing desk (free type names, open ground) with a stool in front of it and a
+    kettle on it; the desk's place and turn and the others' offsets vary by index."""
+    yaw = (index * 37) % 360
+    x, z = -1.5 + 0.25 * (index % 5), 1.0 - 0.3 * (index % 4)
+    turn = math.radians(yaw)
+
+    def at(lx, lz):
+        return [round(x + lx * math.cos(turn) + lz * math.sin(turn), 4), round(z - lx * math.sin(turn) + lz * math.cos(turn), 4)]
+
+    objects = [
+        {"id": "d", "type": "Writing-Desk", "style": "Oak" if index % 3 else "pine", "size": [1.3, 0.76, 0.65],
+         "position": [x, z], "yaw": yaw},
+        {"id": "s", "type": "stool.v2", "size": [0.4, 0.5, 0.4], "position": at(0.02 * (index % 3), 0.72), "yaw": yaw + 180},
+        {"id": "k", "type": "Kettle", "size": [0.2, 0.25, 0.15], "position": at(0.3, 0.05 * (index % 2)), "yaw": yaw,
+         "parent": "d"},
+    ]  # fmt: skip
+    if index % 4 == 0:
+        objects.append({"id": "r", "type": "rock_42", "size": [0.5, 0.4, 0.5], "position": [2.5, -2.0], "yaw": 0})
+    return {"extent": [7, 6], "objects": objects}
+
+
+def test_hand_written_examples_with_free_type_names(tmp_path):
+    paths = []
+    for index in range(14):
+        path = tmp_path / f"ex{index:02d}.json"
+        path.write_text(json.dumps(free_example(index)))
+        paths.append(path)
+    induction = induce(load_examples(paths), name="free", seed=0)
+    assert set(induction.catalog) == {"writing_desk", "stool_v2", "kettle", "rock_42"}
+    assert induction.catalog["writing_desk"].sources == ("Writing-Desk",)
+    assert induction.catalog["writing_desk"].noun == "Writing-Desk"  # the type name, as the importer made it
+    assert {s.name for s in induction.catalog["writing_desk"].styles} == {"oak", "pine"}
+    written = induction.written_pairs()
+    assert written[("stool_v2", "writing_desk")].placements[0].labels == ("NextToFront", "FacingTowards")
+    assert written[("kettle", "writing_desk")].placements[0].labels[0] == "OnTopOf"
+    assert [item.type for item in induction.loose] == ["rock_42"]  # in 4 of 14, related to nothing
+    text = induction.text()
+    assert "object writing_desk {" in text and "0.29? rock_42" in text and "extent 7 x 6" in text
+    rules_path = tmp_path / "free.rules"
+    rules_path.write_text(text)
+    assert check_rules(rules_path) == []
+    scene = build_scene(load_rules(rules_path), 2)
+    assert scene.layout.ok
+
+
+def test_identifiers_of_free_names():
+    taken: set[str] = set()
+    assert identifier("Writing-Desk", taken) == "writing_desk"
+    assert identifier("writing.desk", taken) == "writing_desk_2"
+    assert identifier("3d_box", taken) == "n_3d_box"
+    assert identifier("wall", taken, frozenset({"wall"})) == "wall_2"
+
+
+def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_seed(tmp_path, capsys):
+    assert len(DESKS) == 20
+    outputs = []
+    for run_number in range(2):
+        rules, report = tmp_path / "desks.rules", tmp_path / "learn.json"  # the second run writes over the first
+        code, out, err = run(capsys, "learn", *map(str, DESKS), "-o", str(rules), "--report", str(report), "--check", "4")
+        assert code == 0, err
+        assert "wrote" in out and "4 scenes generated" in out
+        outputs.append((rules.read_bytes(), report.read_bytes()))
+    assert outputs[0] == outputs[1]
+    text = outputs[0][0].decode()
+    assert "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk }" in text
+    assert "0.5? plant InCorner some wall" in text
+    document = json.loads(outputs[0][1])
+    pair = next(p for p in document["pairs"] if (p["a"], p["b"]) == ("desk", "monitor"))
+    assert pair["related"] and pair["p_value"] <= 0.01 and pair["labels"][0]["labels"][0] == "OnTopOfEdge"
+    assert sum(c["size"] for c in pair["clusters"]) + pair["outliers"] == 19
+    assert {entry["type"] for entry in document["catalog"]} >= {"desk", "monitor", "mug", "waste_bin"}
+    assert document["groups"][0]["anchor"] == "desk"
+    assert document["check"]["scenes"] == 4 and len(document["check"]["types"]) == 8
+
+
+def test_learn_help_has_an_example(capsys):
+    assert "scenewright learn examples/sets/desks/*.json -o desks.rules" in EXAMPLES["learn"]
+    with pytest.raises(SystemExit):
+        run(capsys, "learn", "--help")
+    assert "scenewright learn" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    "arguments, fragment",
+    [
+        (["{one}"], "at least 2 example scenes"),
+        (["{one}", "{missing}"], "missing.json: cannot read"),
+        (["{one}", "{broken}"], "broken.json:1:"),
+        (["{one}", "{one}", "--check", "-1"], "--check"),
+        (["{one}", "{one}", "--seed", "x"], "--seed"),
+        (["{one}", "{one}", "--test", "nope"], "--test"),
+    ],
+)
+def test_learn_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path, capsys, arguments, fragment):
+    one = tmp_path / "one.json"
+    one.write_text(json.dumps(free_example(1)))
+    (tmp_path / "broken.json").write_text("{not json")
+    names = {"one": str(one), "missing": str(tmp_path / "missing.json"), "broken": str(tmp_path / "broken.json")}
+    out_dir = tmp_path / "out"
+    code, _, err = run(capsys, "learn", *[a.format(**names) for a in arguments], "-o", str(out_dir / "x.rules"),
+                       "--report", str(out_dir / "x.json"))  # fmt: skip
+    assert code == 2
+    assert_one_line_error(err, fragment)
+    assert not (out_dir / "x.rules").exists() and not (out_dir / "x.json").exists()
+
+
+def test_learn_refuses_an_output_it_cannot_write(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    code, _, err = run(capsys, "learn", *map(str, DESKS[:2]), "-o", str(blocker / "x.rules"))
+    assert code == 2
+    assert_one_line_error(err, "cannot write")
+
+
+def test_learn_rule_set_writes_nothing_when_the_examples_cannot_be_learned(tmp_path):
+    written = []
+    with pytest.raises(Exception, match="at least 2"):
+        learn_rule_set(load_examples(DESKS[:1]), tmp_path / "x.rules", write=lambda p, t: written.append(p))
+    assert written == [] and not (tmp_path / "x.rules").exists()
