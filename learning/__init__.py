@@ -1,2 +1,4 @@
 """Learning from example scenes: a rule set's numbers re-estimated from what the
-examples drew (``weights``) and written back into its text (``rewrite``)."""
+examples drew (``weights``) and written back into its text (``rewrite``); which object
+types the examples relate (``relations``); and a whole rule set induced from examples
+alone (``induce``, written by ``rules_text``, checked by ``learn``)."""
