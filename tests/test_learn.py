@@ -237,3 +237,32 @@ def test_learn_rule_set_writes_nothing_when_the_examples_cannot_be_learned(tmp_p
     with pytest.raises(Exception, match="at least 2"):
         learn_rule_set(load_examples(DESKS[:1]), tmp_path / "x.rules", write=lambda p, t: written.append(p))
     assert written == [] and not (tmp_path / "x.rules").exists()
+
+
+def test_a_type_resting_on_two_types_hangs_off_each(tmp_path):
+    # Books on the desk and on the bookshelf: each carrier gets its books (counted per
+    # carrier object), and the bookshelf is no child of a book.
+    paths = []
+    for index in range(12):
+        objects = [
+            {"id": "d", "type": "desk", "size": [1.2, 0.75, 0.6], "position": [-1.0 + 0.1 * (index % 3), 0.5], "yaw": 0},
+            {"id": "s", "type": "bookshelf", "size": [0.9, 1.0, 0.32], "position": [1.5, -1.0 + 0.2 * (index % 4)],
+             "yaw": -90},
+            {"id": "b1", "type": "book", "size": [0.17, 0.03, 0.24], "position": [-1.2 + 0.1 * (index % 3), 0.5],
+             "parent": "d"},
+        ]  # fmt: skip
+        if index % 2:
+            objects.append({"id": "b2", "type": "book", "size": [0.17, 0.03, 0.24],
+                            "position": [1.5, -1.2 + 0.2 * (index % 4)], "yaw": -90, "parent": "s"})  # fmt: skip
+        path = tmp_path / f"ex{index:02d}.json"
+        path.write_text(json.dumps({"extent": [5, 4], "objects": objects}))
+        paths.append(path)
+    induction = induce(load_examples(paths), name="books", seed=0)
+    members = {group.anchor: [(m.type, m.carried, dict(m.per_parent)) for m in group.members] for group in induction.groups}
+    assert members == {"bookshelf": [("book", True, {0: 6, 1: 6})], "desk": [("book", True, {1: 12})]}
+    text = induction.text()
+    # (the shelf is 0.32 deep, the book 0.24: its front is within 5 cm of the shelf's front edge)
+    assert "0.5? book OnTopOfFrontEdge the_bookshelf" in text and "    book OnTopOf the_desk" in text
+    rules_path = tmp_path / "books.rules"
+    rules_path.write_text(text)
+    assert [d for d in check_rules(rules_path) if d.is_error] == []
