@@ -79,12 +79,19 @@ def describe_view(
 
 def grounding_records(description: Description, picture: PictureView) -> list[dict]:
     """The description's mentions as a dataset row's ``grounding`` lists them:
-    ``{"span": [start, end], "ids": [...], "boxes": [[x0, y0, x1, y1] or None, ...]}``,
-    ``boxes`` the picture's pixel boxes of ``ids`` in the same order (None for one the
-    picture does not show at all: only the layout-true text names such). Mentions that
-    ground to nothing (a group without members) are left out."""
+    ``{"span": [start, end], "ids": [...], "boxes": [[x0, y0, x1, y1] or None, ...],
+    "segments": [label or None, ...]}``, ``boxes`` the picture's pixel boxes of ``ids`` in
+    the same order (None for one the picture does not show at all: only the layout-true
+    text names such) and ``segments`` their labels in the segmentation image (None for
+    one the picture does not draw). Mentions that ground to nothing (a group without
+    members) are left out."""
     return [
-        {"span": [m.start, m.end], "ids": list(m.ids), "boxes": [picture.box(i) for i in m.ids]}
+        {
+            "span": [m.start, m.end],
+            "ids": list(m.ids),
+            "boxes": [picture.box(i) for i in m.ids],
+            "segments": [picture.segment(i) for i in m.ids],
+        }
         for m in description.mentions
         if m.ids
     ]

@@ -155,6 +155,11 @@ class PictureView:
         entity = self.entities.get(entity_id)
         return list(entity.box) if entity is not None and entity.box is not None else None
 
+    def segment(self, entity_id: str) -> int | None:
+        """The entity's label in the segmentation image (its index in ``ids`` + 1), or
+        None when the picture does not draw it."""
+        return self.ids.index(entity_id) + 1 if entity_id in self.entities else None
+
     def union_box(self, entity_ids) -> tuple[float, float, float, float] | None:
         """The box round the seen boxes of ``entity_ids`` (a group's members), or None."""
         boxes = [self.entities[i].box for i in entity_ids if i in self.entities and self.entities[i].box]

@@ -1,10 +1,13 @@
 """Dataset rows: captions of the picture and the grounding column, on the real pipeline."""
 
+import io
 import json
 from importlib import resources
 
 import jsonschema
+import numpy as np
 import pytest
+from PIL import Image
 
 from render_fixtures import or_skip_without_opengl
 from scenewright.cli import main
@@ -42,6 +45,24 @@ def test_every_span_names_what_it_links_to_with_the_rendered_boxes(products):
                 assert phrase == "it" or any(nouns[i][0] in phrase or nouns[i][1] in phrase for i in mention["ids"]) \
                     or any(o["noun"] in phrase for o in scene["objects"] if o["kind"] == "group"), phrase
                 assert mention["boxes"] == [rendered[i]["bbox"] for i in mention["ids"]]
+
+
+def test_segments_are_the_labels_whose_pixels_make_up_each_box():
+    product = produced(dataset_spec("desk", 1, size=(96, 96), segmentation=True), 0)
+    labels = np.asarray(Image.open(io.BytesIO(product.files["segmentation/000000.png"])))
+    names = json.loads(product.files["segmentation/000000_ids.json"])
+    checked = 0
+    for mentions in product.row["grounding"].values():
+        for mention in mentions:
+            for entity_id, box, segment in zip(mention["ids"], mention["boxes"], mention["segments"], strict=True):
+                if segment is None:  # not drawn (only the full text names such)
+                    assert box is None
+                    continue
+                assert names[str(segment)] == entity_id
+                rows, columns = np.nonzero(labels == segment)
+                assert box == [columns.min(), rows.min(), columns.max() + 1, rows.max() + 1]
+                checked += 1
+    assert checked > 5
 
 
 def test_captions_name_only_what_the_picture_shows_well_enough(products):
