@@ -89,6 +89,12 @@ IDLE_CHECK = 5.0
 SETTINGS_BEFORE = {"retries": 0, "images": True, "coco": False, "views": 1, "camera": None}
 
 
+def image_number(index: int, view: int, views: int) -> int:
+    """Image ``view`` of scene ``index`` counted over the dataset's images (0-based), with
+    ``views`` images a scene: unchanged when the dataset grows or shrinks."""
+    return index * views + view
+
+
 def scene_seed(base_seed: int, index: int) -> int:
     """The seed of scene ``index`` in a dataset with ``base_seed`` (a 32-bit integer)."""
     return int(np.random.SeedSequence([base_seed, index]).generate_state(1)[0])

@@ -15,7 +15,7 @@ area and run-length encoded mask, with category *names*) and they travel in the
 scene's record. At the end of every run, resumed or not, ``coco_writer`` rebuilds the
 file from the records in index order, as ``metadata.jsonl`` is: so a run killed and
 resumed writes the same bytes as one that was not, whatever the number of workers.
-Image ids are ``index * views + view + 1`` (stable when N grows or shrinks);
+Image ids are ``dataset.image_number(index, view, views) + 1`` (stable when N grows or shrinks);
 annotation ids count from 1 in file order.
 """
 
@@ -90,6 +90,8 @@ def coco_writer(root: Path, spec: DatasetSpec, categories: list[dict]) -> Iterat
     without an error. Images are written as they come and annotations to a spool file
     (unnamed, so a killed run leaves nothing), copied in after them: neither list is
     held in memory."""
+    from scenewright.dataset import image_number  # dataset imports this module
+
     ids = {category["name"]: category["id"] for category in categories}
     width, height = spec.size
     views = spec.views
@@ -108,7 +110,7 @@ def coco_writer(root: Path, spec: DatasetSpec, categories: list[dict]) -> Iterat
             if rows and "coco" not in record:
                 raise RuntimeError(f"the record of scene {record['index']} holds no COCO annotations")
             for view, (row, annotations) in enumerate(zip(rows, record.get("coco", []), strict=True)):
-                image_id = record["index"] * views + view + 1
+                image_id = image_number(record["index"], view, views) + 1
                 image = {"id": image_id, "file_name": row["file_name"], "width": width, "height": height,
                          "scene_id": row["scene_id"], "view": view}  # fmt: skip
                 out.write(("\n" if not written["images"] else ",\n") + json.dumps(image, ensure_ascii=False))

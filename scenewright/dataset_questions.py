@@ -21,7 +21,7 @@ import json
 from pathlib import Path
 
 from scenewright.atomic import atomic_stream
-from scenewright.dataset import METADATA_FILE, DatasetSpec
+from scenewright.dataset import METADATA_FILE, DatasetSpec, image_number
 
 QUESTIONS_FILE = "questions.json"
 
@@ -42,7 +42,7 @@ def publish_questions(root: Path, spec: DatasetSpec) -> int | None:
             row = json.loads(line)
             for question in row.get("questions", ()):
                 entry = {
-                    "image_index": int(row["scene_id"]) * spec.views + row.get("view", 0), "image_filename": row["file_name"], "image": row["scene_id"],
+                    "image_index": image_number(int(row["scene_id"]), row.get("view", 0), spec.views), "image_filename": row["file_name"], "image": row["scene_id"],
                     "question_index": written, "question_family": question["family"],
                     "question": question["question"], "answer": question["answer"], "program": question["program"],
                 }  # fmt: skip
