@@ -41,7 +41,8 @@ Answers are balanced within each family as CLEVR balances them, by rejection: th
 candidates are grouped by answer; a yes/no family takes as many "yes" as "no"
 (``QUESTIONS_PER_FAMILY`` // 2 of each, or none when the picture offers only one), and
 a family of other answers takes ``QUESTIONS_PER_FAMILY`` different answers drawn
-uniformly, each with one of its questions drawn uniformly. So no answer can dominate a
+uniformly, each with one of its questions drawn uniformly; a family of counts asks "0"
+only beside a count of something the picture shows. So no answer can dominate a
 family within a picture, and over a dataset "yes" and "no" are exactly even. Every draw
 comes from the picture's own stream (``core.seeds``, stage ``questions``): the same
 seed gives the same questions.
@@ -83,12 +84,15 @@ Candidate = tuple[str, dict[str, str], Callable[[], Program]]
 class QuestionFamily:
     """One kind of question: ``templates`` by form ("{a_noun}" and the like are filled
     from a candidate's words), ``candidates`` the questions it could ask of a picture,
-    and ``yes_no``: whether its answers are yes and no (balanced one for one)."""
+    and ``yes_no``: whether its answers are yes and no (balanced one for one);
+    ``counts``: whether its answers are counts, so that "0" (what is absent) is asked
+    only beside the count of something present."""
 
     name: str
     templates: dict[str, str]
     candidates: Callable[[Asking], Iterable[Candidate]]
     yes_no: bool
+    counts: bool = False
 
 
 #: The families, in the order a row lists their questions.
@@ -156,7 +160,10 @@ def picture_questions(facts: PictureFacts, vocabulary: dict[str, str], seed: See
     asked = []
     for family in FAMILIES.values():
         candidates = list(family.candidates(asking))
-        chosen = _yes_and_no(candidates, facts, rng) if family.yes_no else _different_answers(candidates, facts, rng)
+        if family.yes_no:
+            chosen = _yes_and_no(candidates, facts, rng)
+        else:
+            chosen = _different_answers(candidates, facts, rng, absence_alone=not family.counts)
         for answer, (form, words, program) in chosen:
             question = sentence_case(family.templates[form].format(**words))
             asked.append({"family": family.name, "question": question, "answer": answer, "program": program()})
@@ -189,15 +196,24 @@ def _yes_and_no(candidates: list[Candidate], facts: PictureFacts, rng: np.random
     return [chosen[k] for k in rng.permutation(len(chosen))]
 
 
-def _different_answers(candidates: list[Candidate], facts: PictureFacts, rng: np.random.Generator) -> list:
+def _different_answers(
+    candidates: list[Candidate], facts: PictureFacts, rng: np.random.Generator, *, absence_alone: bool = True
+) -> list:
     """Up to ``QUESTIONS_PER_FAMILY`` (answer, candidate) with different answers: the
-    answers drawn uniformly among those the candidates give, then one candidate of each."""
+    answers drawn uniformly among those the candidates give, then one candidate of each.
+
+    ``absence_alone=False``: none when "0" is the only answer the candidates give. A
+    picture of many objects leaves few counts clear, and every noun it does not show
+    answers "0": asked alone, absence would be nearly every count question of such
+    scenes (it was 99 % of a town's), and a model could answer them without looking."""
     by_answer: dict[str, list[Candidate]] = {}
     for candidate in candidates:
         answer = _answer(candidate, facts)
         if answer is not None:
             by_answer.setdefault(answer, []).append(candidate)
     answers = sorted(by_answer)
+    if not absence_alone and answers == ["0"]:
+        return []
     chosen = rng.choice(len(answers), size=min(QUESTIONS_PER_FAMILY, len(answers)), replace=False)
     return [(answers[k], by_answer[answers[k]][rng.integers(len(by_answer[answers[k]]))]) for k in chosen]
 
@@ -344,7 +360,7 @@ def _query_colour(asking: Asking) -> Iterator[Candidate]:
 
 for _family in (
     QuestionFamily("exist", {"exist": "is there {a_noun}?", "exist_any": "are there any {plural}?"}, _exist, True),
-    QuestionFamily("count", {"count": "how many {plural} are there?"}, _count, False),
+    QuestionFamily("count", {"count": "how many {plural} are there?"}, _count, False, counts=True),
     QuestionFamily(
         "compare_count",
         {
@@ -366,6 +382,7 @@ for _family in (
         {"relate_count": "how many {plural} are {side} the {anchor}{where}?"},
         partial(_related, last="count"),
         False,
+        counts=True,
     ),
     QuestionFamily(
         "query_noun",

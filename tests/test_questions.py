@@ -159,6 +159,19 @@ def test_a_family_with_only_one_possible_answer_asks_nothing():
     assert {q["answer"] for q in asked if q["family"] == "count"} == {"1"}  # one answer, asked once
 
 
+def test_counts_ask_zero_only_beside_something_present():
+    # One tent seen and another shown too little to name: how many tents is not clear,
+    # so every count the picture leaves clear is of an absent noun ("0").
+    vocabulary = {"tent": "tents", "table": "tables", "well": "wells"}
+    absent_only = picture_of([("tent", 10, 10, "red")], glimpsed=[("tent", 20.0, 3.0)])
+    for seed in range(10):
+        asked = picture_questions(absent_only, vocabulary, seed)
+        assert not [q for q in asked if FAMILIES[q["family"]].counts]
+    present = picture_of([("well", 10, 10, "red"), ("well", 30, 2, "red")])
+    answers = {q["answer"] for q in picture_questions(present, vocabulary, 4) if q["family"] == "count"}
+    assert answers == {"0", "2"}  # "How many tables?" beside "How many wells?"
+
+
 def test_unclear_nouns_are_never_asked_about():
     # A bucket shown too little to name, and an office chair (a kind of chair) seen: how
     # many buckets or chairs the picture shows is not clear to a person.
