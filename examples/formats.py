@@ -3,8 +3,11 @@
 A file is read whole (a regular file of at most ``MAX_EXAMPLE_BYTES``) and its format
 found from its content: ``glTF`` magic bytes for GLB, a JSON object with ``rules`` for
 a scenewright scene.json, any other JSON for the hand-written format. A folder holding
-a ``scene.json`` (what ``scenewright generate`` writes) stands for that file. An
-example's name is its file's stem, or its folder's name for a ``scene.json``.
+a ``scene.json`` (what ``scenewright generate`` writes) stands for that file; any other
+folder for the examples in it (``folder_examples``: its ``.json`` and ``.glb`` files
+and its sub-folders holding a scene.json, in name order), so a set of examples can be
+named by its folder. An example's name is its file's stem, or its folder's name for a
+``scene.json``.
 """
 
 from __future__ import annotations
@@ -80,12 +83,33 @@ def load_example(path: str | os.PathLike[str], name: str | None = None) -> Examp
     raise ExampleError(shown, "", "not a format examples are read from")  # pragma: no cover (the last one takes all)
 
 
+#: The file endings of examples a folder of examples is read for.
+EXAMPLE_SUFFIXES = (".json", ".glb")
+
+
+def folder_examples(folder: Path) -> list[Path]:
+    """The examples a folder without a scene.json stands for (module docstring)."""
+    found = sorted(
+        entry for entry in folder.iterdir()
+        if (entry.is_file() and entry.suffix.lower() in EXAMPLE_SUFFIXES)
+        or (entry.is_dir() and (entry / "scene.json").is_file())
+    )  # fmt: skip
+    if not found:
+        raise ExampleError(str(folder), "", "holds no examples (.json or .glb files, or folders with a scene.json)")
+    return found
+
+
 def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
-    """The examples of ``paths`` in order, their names made unique (``bedroom``,
-    ``bedroom-2``, ...)."""
+    """The examples of ``paths`` in order (a folder of examples: each in name order),
+    their names made unique (``bedroom``, ``bedroom-2``, ...)."""
     examples: list[Example] = []
     taken: set[str] = set()
+    expanded: list[str | os.PathLike[str]] = []
     for path in paths:
+        folder = Path(path)
+        is_set = folder.is_dir() and not (folder / "scene.json").is_file()
+        expanded += folder_examples(folder) if is_set else [path]
+    for path in expanded:
         example = load_example(path)
         name, count = example.name, 1
         while name in taken:

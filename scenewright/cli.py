@@ -866,10 +866,11 @@ seed print the same result. See docs/learning.md.""",
 examples:
   scenewright learn examples/sets/desks/*.json -o desks.rules --report learn.json
   scenewright learn data/bedroom/scenes/*.json -o bedroom_learned.rules --seed 3 --check 0
+  scenewright learn examples/sets/bedrooms -o bedrooms.rules   # a folder: every example in it
   scenewright validate desks.rules && scenewright generate desks.rules --seed 1 -o out/
 
 induces a rule set from example scenes alone (scene.json or its folder, the
-hand-written example format, GLB): a catalog of the types seen (median sizes, styles
+hand-written example format, GLB; a folder of such files): a catalog of the types seen (median sizes, styles
 weighted by how often each was seen), the type pairs related by --test (and what rests
 on what, measured from the boxes) grouped around an anchor object, each member placed
 relative to its parent by the labels that hold at the density-peak clusters of its

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -57,6 +58,24 @@ def test_extent_example_and_names_made_unique(tmp_path):
     examples = load_examples([first, second])
     assert [e.name for e in examples] == ["a", "a-2"]
     assert examples[0].scene.room is None and examples[0].scene.extent == [6.0, 5.0]
+
+
+def test_a_folder_of_examples_stands_for_its_files_in_name_order(tmp_path):
+    data = {"extent": [6, 5], "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}
+    folder = tmp_path / "set"
+    folder.mkdir()
+    for name in ("b.json", "a.json"):
+        write(folder, name, data)
+    (folder / "notes.txt").write_text("not an example")
+    (folder / "generated").mkdir()  # a generate output folder: its scene.json
+    write(folder / "generated", "scene.json", data)
+    (folder / "empty").mkdir()
+    examples = load_examples([folder])
+    assert [e.name for e in examples] == ["a", "b", "generated"]
+    with pytest.raises(ExampleError, match="empty: holds no examples"):
+        load_examples([folder / "empty"])
+    # The shipped hand-written sets load by their folder.
+    assert len(load_examples([Path(__file__).parents[1] / "examples" / "sets" / "bedrooms"])) == 10
 
 
 @pytest.mark.parametrize(

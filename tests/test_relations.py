@@ -105,6 +105,37 @@ def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
     assert verdicts[("chair", "table")].pairs == 30 and verdicts[("chair", "table")].scenes == 60
 
 
+def test_few_scenes_are_tested_by_pairing_scenes_and_hold_the_level():
+    # 60 data sets of 7 independent scenes (fewer than MIN_SCENES: the scene-pairing
+    # test, every one of the 7! pairings): 240 p-values, about 2.4 at most 0.01 for a
+    # right test (9 or more has probability below 0.001), about 48 at most 0.2.
+    rng = np.random.default_rng(20261124)
+    p_values = []
+    for dataset in range(60):
+        result = find_relations(independent_scenes(rng, 7), seed=dataset, prune=False)
+        tested = {(p.a, p.b): p for p in result.pairs}
+        p_values += [tested[pair].p_value for pair in (("chair", "table"), ("plant", "plant"), ("chair", "plant"), ("plant", "table"))]
+    p_values = np.array(p_values)
+    assert np.count_nonzero(p_values <= 0.01) <= 8
+    assert 24 <= np.count_nonzero(p_values <= 0.2) <= 72
+    assert 0.35 <= np.median(p_values) <= 0.65
+
+
+@pytest.mark.parametrize("count", [5, 6, 9])
+def test_a_planted_relation_in_a_few_scenes_is_found(count):
+    result = find_relations(planted_scenes(np.random.default_rng(count), count), seed=1)
+    verdicts = {(p.a, p.b): p for p in result.pairs}
+    found = verdicts[("chair", "table")]
+    assert found.related and found.scenes == count and found.pairs == count * count
+    assert found.p_value == pytest.approx(1 / math.factorial(count) if count <= 7 else 1 / 2000)
+    assert not verdicts[("chair", "plant")].related and not verdicts[("plant", "table")].related
+
+
+def test_a_pair_in_fewer_than_five_scenes_is_not_tested():
+    result = find_relations(planted_scenes(np.random.default_rng(4), 4), seed=1)
+    assert all(p.p_value is None and not p.related for p in result.pairs)
+
+
 def test_same_examples_and_seed_give_the_same_result_and_another_seed_other_draws():
     scenes = planted_scenes(np.random.default_rng(5), 30)
     first, again = find_relations(scenes, seed=4), find_relations(scenes, seed=4)
