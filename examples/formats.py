@@ -99,17 +99,34 @@ def folder_examples(folder: Path) -> list[Path]:
     return found
 
 
+def example_paths(paths: Iterable[str | os.PathLike[str]]) -> list[str | os.PathLike[str]]:
+    """``paths`` with each folder of examples (one without a scene.json) replaced by
+    the examples in it (``folder_examples``)."""
+    expanded: list[str | os.PathLike[str]] = []
+    for path in paths:
+        folder = Path(path)
+        expanded += folder_examples(folder) if folder.is_dir() and not (folder / "scene.json").is_file() else [path]
+    return expanded
+
+
+def is_scene_json_file(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` (a file, or a folder holding a scene.json) is a scenewright
+    scene.json, by the same test the readers use; False when it cannot be read (its
+    reader then says why)."""
+    target = Path(path)
+    target = target / "scene.json" if target.is_dir() else target
+    try:
+        return _is_scene_json(read_regular_file(target, MAX_EXAMPLE_BYTES, "an example file"))
+    except (UnusableFile, OSError):
+        return False
+
+
 def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
     """The examples of ``paths`` in order (a folder of examples: each in name order),
     their names made unique (``bedroom``, ``bedroom-2``, ...)."""
     examples: list[Example] = []
     taken: set[str] = set()
-    expanded: list[str | os.PathLike[str]] = []
-    for path in paths:
-        folder = Path(path)
-        is_set = folder.is_dir() and not (folder / "scene.json").is_file()
-        expanded += folder_examples(folder) if is_set else [path]
-    for path in expanded:
+    for path in example_paths(paths):
         example = load_example(path)
         name, count = example.name, 1
         while name in taken:

@@ -1,8 +1,8 @@
 """``scenewright fit``: a rule set and example scenes in, the fitted rule set and its report out.
 
 ``fit_rule_set`` reads each example's derivation (scene.json files made by scenewright
-keep it) or, for an example without one, finds the derivations that could have made it
-(``derivations``), estimates the rule set's parameters (``weights.fit_weights_em``:
+keep it) or, for an example without one (a scene.json without it, a hand-written
+example, a GLB), finds the derivations that could have made it (``derivations``), estimates the rule set's parameters (``weights.fit_weights_em``:
 closed form when every example keeps its derivation), writes the
 rules with their new numbers (``rewrite``) and the report, each file whole or not at
 all, and checks that what it wrote loads as a rule set.
@@ -22,7 +22,7 @@ from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.rules import Rules, parse_rules_tree
 
-from .derivations import derivations_of
+from .derivations import derivations_of, measured_derivations_of
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
@@ -31,10 +31,20 @@ class ExampleError(InputError):
     """An example scene that cannot be learned from, named with its file."""
 
 
-def example_candidates(rules: Rules, path: str, scene: dict) -> list[list[dict]]:
+def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[list[dict]]:
     """The derivations an example scene may have come from: the one it keeps, or else
-    every derivation of ``rules`` that makes a scene like it (``derivations_of``).
+    every derivation of ``rules`` that makes a scene like it (``derivations_of``; for
+    an example read from geometry alone, a ``Scene``, ``measured_derivations_of``).
     ``ExampleError`` if its derivation is not of these rules, or none makes it."""
+    if isinstance(scene, Scene):
+        found = measured_derivations_of(rules, scene, path)
+        if not found:
+            types = sorted({o.type for o in scene.placed_objects()})
+            raise ExampleError(
+                f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
+                f"(same objects, styles and what rests on what; its types: {', '.join(types)})"
+            )
+        return found
     derivation = scene.get("derivation")
     if derivation or not scene.get("objects"):
         try:
@@ -63,7 +73,8 @@ def fit_rule_set(
     prior: float = PRIOR,
     write: Callable[[Path, str], object],
 ) -> tuple[WeightFit, list[Path]]:
-    """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs) and
+    """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
+    (file name, Scene) for examples read from geometry alone) and
     write the fitted rules to ``output`` (with its included files beside it) and the
     report to ``report``. ``write(path, text)`` writes one file atomically.
 

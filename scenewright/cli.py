@@ -507,7 +507,9 @@ def run_fit(args: argparse.Namespace) -> int:
     from scenewright.atomic import write_atomic
     from scenewright.learning.fit import fit_rule_set
 
-    examples = [(path, read_scene_data(path)) for path in args.examples]
+    from scenewright.examples.formats import example_paths
+
+    examples = [(str(path), read_fit_example(path)) for path in example_paths(args.examples)]
     output = output_file(args.output, "fitted.rules")
     report = output_file(args.report, "fit.json") if args.report else None
     fit, written = fit_rule_set(
@@ -520,6 +522,18 @@ def run_fit(args: argparse.Namespace) -> int:
                  + ", ".join(f"{p.kind} {p.name}" for p in unidentified) if unidentified else ""))
     say(args, "wrote " + ", ".join(str(path) for path in written))
     return 0
+
+
+def read_fit_example(path: str | os.PathLike):
+    """A scene.json document (checked; its derivation, when kept, is what is fitted), or
+    the Scene of an example read from geometry alone (the hand-written format, GLB)."""
+    from scenewright.examples import load_example
+    from scenewright.examples.formats import is_scene_json_file
+
+    if is_scene_json_file(path):
+        folder = Path(path)
+        return read_scene_data(str(folder / "scene.json" if folder.is_dir() else folder))
+    return load_example(path).scene
 
 
 def run_relations(args: argparse.Namespace) -> int:
@@ -832,6 +846,7 @@ examples:
   scenewright dataset study -n 500 -o data/study --size 64x64
   scenewright fit study data/study/scenes/*.json -o fitted/study.rules --report fitted/fit.json
   scenewright fit my.rules liked/*.json -o my_fitted.rules
+  scenewright fit bedroom my_rooms/ -o my_bedroom.rules   # hand-written examples or GLB, a folder of them
 
 Re-estimates the rule set's numbers from what the example scenes drew: alternative
 weights, optional probabilities, count distributions (a range becomes a weighted range
@@ -842,7 +857,9 @@ drew keeps its number and is listed as unidentified. The output is the input wit
 its numbers changed; files it includes are written beside it at the same relative paths.
 Examples are scene.json files of this rule set. Those made by scenewright keep their
 derivation (the draws fit counts); for one without, fit searches for the derivations
-that could have made it and fits by expectation-maximisation (docs/learning.md).""",
+that could have made it and fits by expectation-maximisation (docs/learning.md).
+Hand-written examples and GLB files (their types named as in the rules) are fitted the
+same way, the derivations told apart by which of their relations the geometry holds.""",
     "relations": """\
 examples:
   scenewright dataset bedroom -n 500 -o data/bedroom --no-images

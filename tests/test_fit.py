@@ -222,6 +222,71 @@ def test_em_with_one_derivation_per_example_is_the_closed_form(tmp_path):
     assert [p.estimate for p in em.parameters] == [p.estimate for p in fit_weights(rules, derivations).parameters]
 
 
+#: A room whose alternatives differ only in where things stand: which side of the bed a
+#: nightstand is on, and whether the chest stands against a wall or by the bed's foot.
+ROOM = """\
+scene r { room 4 x 4  start R  max_nodes 20 }
+object bed { noun "bed"  size 1.4 x 0.5 x 2 }
+object nightstand { noun "nightstand"  size 0.45 x 0.55 x 0.4 }
+object lamp { noun "lamp"  size 0.25 x 0.4 x 0.25 }
+object chest { noun "chest"  size 0.9 x 0.5 x 0.45 }
+R -> { bed as b AgainstWall some wall; Side(b); 0.6? chest AgainstWall some wall }
+Side(b) -> 0.8: { nightstand as n NextToLeft b FacingSameDirection b; 0.7? lamp OnTopOf n }
+         | 0.2: { nightstand as n NextToRight b FacingSameDirection b; 0.7? lamp OnTopOf n }
+"""
+
+
+def handwritten(scene) -> dict:
+    """The hand-written example of a generated scene: boxes, poses and styles only."""
+    objects = [{"id": o.id, "type": o.type, "size": list(o.size), "position": list(o.position),
+                "yaw": float(np.degrees(o.yaw)), **({"style": o.style} if o.style else {})}
+               for o in scene.placed_objects()]  # fmt: skip
+    return {"room": {"corners": [list(c) for c in scene.room.corners], "height": 2.6}, "objects": objects}
+
+
+def test_examples_read_from_geometry_fit_like_their_derivations(tmp_path):
+    from scenewright.api import build_scene
+    from scenewright.examples import load_example
+    from scenewright.learning.fit import example_candidates
+
+    truth = write(tmp_path, "truth.rules", ROOM)
+    flat = load_rules(write(tmp_path, "flat.rules", ROOM.replace("0.8:", "1:").replace("0.2:", "1:").replace("0.6?", "0.5?").replace("0.7?", "0.5?")))
+    scenes = [scene for scene in (build_scene(str(truth), seed) for seed in range(40)) if scene.layout.ok]
+    assert len(scenes) >= 36
+    measured, traced = [], []
+    for index, scene in enumerate(scenes):
+        example = load_example(write(tmp_path, f"{index}.json", json.dumps(handwritten(scene)))).scene
+        assert example.relations == [r for r in example.relations if r.label == "OnTopOf"]  # geometry alone
+        found = example_candidates(flat, f"{index}.json", example)
+        assert len(found) == 1  # the side the nightstand stands on decides
+        measured.append(found)
+        traced.append([scene.derivation])
+    by_geometry, by_trace = fit_weights_em(flat, measured), fit_weights_em(flat, traced)
+    assert [p.estimate for p in by_geometry.parameters] == [p.estimate for p in by_trace.parameters]
+    side = next(p for p in by_geometry.parameters if p.name == "Side")
+    assert side.estimate[0] > 0.6  # the truth's 0.8 against the flat 0.5
+
+
+def test_fit_command_reads_a_folder_of_hand_written_examples(capsys, tmp_path):
+    from scenewright.api import build_scene
+
+    truth = write(tmp_path, "truth.rules", ROOM)
+    folder = tmp_path / "mine"
+    folder.mkdir()
+    for seed in range(6):
+        write(folder, f"room_{seed}.json", json.dumps(handwritten(build_scene(str(truth), seed))))
+    report = tmp_path / "fit.json"
+    code, stdout, err = run(capsys, "fit", str(truth), str(folder), "-o", str(tmp_path / "f.rules"), "--report", str(report))
+    assert code == 0, err
+    assert "from 6 examples" in stdout
+    assert json.loads(report.read_text())["examples"] == 6
+    (folder / "room_0.json").write_text(json.dumps({"extent": [4, 4], "objects": [
+        {"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}))  # fmt: skip
+    code, _, err = run(capsys, "fit", str(truth), str(folder), "-o", str(tmp_path / "g.rules"))
+    assert code == 2 and "room_0.json: no derivation of truth.rules makes a scene like this one" in err
+    assert "its types: table" in err and not (tmp_path / "g.rules").exists()
+
+
 # -- the command line -------------------------------------------------------------------
 
 
