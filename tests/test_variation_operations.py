@@ -125,6 +125,26 @@ def test_regrown_object_returns_to_its_place():
     assert abs(math.remainder(shelf.yaw, 2 * math.pi)) <= math.radians(15)
 
 
+def test_a_regrown_desk_brings_a_lamp_beside_its_laptop_on_its_own_top():
+    # The lamp stands on the desk 2 cm below the laptop's top, beside it: it rests on
+    # the desk, not on the laptop (before, height alone put it on the laptop, and no
+    # layout could hold that).
+    desk = [
+        box("desk", "desk", 0.0, 0.0, 0.0, (1.2, 0.75, 0.6)),
+        box("laptop", "laptop", 0.0, 0.0, 0.0, (0.34, 0.02, 0.24), y=0.75),
+        box("lamp", "lamp", -0.45, 0.15, 0.0, (0.2, 0.45, 0.2), y=0.75),
+    ]
+    chair = box("chair", "chair", 0.0, 0.7, 180.0, (0.5, 0.9, 0.5))
+    full, cut = example("full", [*desk, chair]), example("cut", [chair])
+    graph = augment([cut, full])
+    variant = start_variant(0, cut)
+    change = grow_node(variant, graph, graph.node_of[(1, "desk")], (1, "desk"))
+    rests_on = {r.source: r.target for r in change.relations if r.label == "OnTopOf"}
+    assert rests_on == {"laptop_1": "desk_1", "lamp_1": "desk_1"}
+    done = apply_change(variant, graph, change, np.random.default_rng(0))
+    assert done is not None and done.scene.layout.ok
+
+
 def test_low_compatibility_operations_are_not_applied():
     # The only member to swap in is a very different box: similarity far below 0.8.
     small = example("small", [box("crate", "crate", 0.0, 0.0, 0.0, (0.3, 0.3, 0.3))])

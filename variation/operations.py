@@ -148,8 +148,16 @@ def _moved_items(
 
 
 def _supporter_in(items: list[tuple[SceneObject, Member]], item: SceneObject, base: SceneObject) -> str:
-    """What ``item`` rests on among ``items`` (or ``base``): the highest top at its base."""
-    below = [other for other, _ in items if other.id != item.id and abs(top_of(other) - item.position[1]) < 0.03]
+    """What ``item`` rests on among ``items`` (or ``base``): one whose top is at its base
+    and whose footprint holds its centre. Height alone is not enough: a lamp beside a
+    laptop on a desk stands 2 cm below the laptop's top, on the desk."""
+
+    def holds(other: SceneObject) -> bool:
+        lx, lz = to_local(other.position[0], other.position[2], other.yaw, item.position[0], item.position[2])
+        return abs(lx) <= other.size[0] / 2.0 and abs(lz) <= other.size[2] / 2.0
+
+    below = [other for other, _ in items
+             if other.id != item.id and abs(top_of(other) - item.position[1]) < 0.03 and holds(other)]  # fmt: skip
     return below[0].id if below else base.id
 
 
