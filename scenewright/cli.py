@@ -378,6 +378,7 @@ def run_dataset(args: argparse.Namespace) -> int:
         coco=args.coco,
         views=args.views,
         camera=cameras,
+        text_words=args.text_words,
     )
     spec = with_picture_captions(
         spec,
@@ -1111,6 +1112,11 @@ def build_parser() -> CommandLineParser:
     dataset.add_argument(
         "--no-images", dest="images", action="store_false",
         help="no render: write each scene's scene.json and its description (texts/) only, for fast example corpora",
+    )  # fmt: skip
+    dataset.add_argument(
+        "--text-words", type=count_at_least(1), default=None, metavar="N",
+        help="the text column: the most detailed description (full, summary, short) of at most N words, "
+        "for large scenes (default: the full description; scene.json keeps it either way)",
     )  # fmt: skip
     dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
     dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")

@@ -86,7 +86,7 @@ IDLE_CHECK = 5.0
 #: What a setting stored by a version that did not have it meant (a dataset made before
 #: retries existed retried nothing, one made before COCO output wrote none, one made
 #: before datasets without images had images), so such a dataset can be resumed with that value.
-SETTINGS_BEFORE = {"retries": 0, "images": True, "coco": False, "views": 1, "camera": None}
+SETTINGS_BEFORE = {"retries": 0, "images": True, "coco": False, "views": 1, "camera": None, "text_words": None}
 
 
 def image_number(index: int, view: int, views: int) -> int:
@@ -139,6 +139,9 @@ class DatasetSpec:
     the rule set's own, or None. ``coco``: write ``annotations/instances.json``
     (``dataset_coco``). ``views``: images per scene, each its own row; ``camera``: the
     ranges their cameras are drawn from (``render.views``), None for the automatic one.
+    ``text_words``: the ``text`` column is the most detailed description (full, summary,
+    short) of at most this many words (``describe(words=...)``), None: the full one;
+    scene.json keeps the full description either way.
     """
 
     rules: str
@@ -159,6 +162,7 @@ class DatasetSpec:
     coco: bool = True
     views: int = 1
     camera: CameraRanges | None = None
+    text_words: int | None = None
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads

@@ -130,12 +130,13 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
 
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         full = describe(scene, style="full")
+        text = full if spec.text_words is None else describe(scene, words=spec.text_words)
     scene = replace(scene, description=full.to_dict())
     if not spec.images:
-        return text_product(spec, index, seed, scene, full.text, tried, cpu)
+        return text_product(spec, index, seed, scene, text.text, tried, cpu)
     pictures, renders = [], []
     for view in range(spec.views):
-        scene, picture = view_picture(context, spec, scene, full, ViewName(stem, view, seed, tried), cpu)
+        scene, picture = view_picture(context, spec, scene, text, ViewName(stem, view, seed, tried), cpu)
         pictures.append(picture)
         renders.append(scene.render)
     scene = replace(scene, render=renders[0])  # scene.json holds the first view's render
@@ -145,7 +146,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     rows = [picture.row for picture in pictures]
     coco = [picture.annotations for picture in pictures] if spec.coco else None
     captions = [caption for picture in pictures for caption in picture.captions]
-    stats = {**scene_stats(scene, [full.text, *captions], cpu), **tried}
+    stats = {**scene_stats(scene, [text.text, *captions], cpu), **tried}
     return SceneProduct(index, seed, scene.layout.ok, files, rows[0], stats, views=rows[1:], coco=coco)
 
 
@@ -176,9 +177,10 @@ class ViewPicture:
 
 
 def view_picture(
-    context: WorkerContext, spec: DatasetSpec, scene: Scene, full, name: ViewName, cpu: dict[str, float]
+    context: WorkerContext, spec: DatasetSpec, scene: Scene, text, name: ViewName, cpu: dict[str, float]
 ) -> tuple[Scene, ViewPicture]:
-    """Render view ``name.view`` of ``scene`` (described in full by ``full``), encode it,
+    """Render view ``name.view`` of ``scene`` (``text``: the ``Description`` of the row's
+    ``text`` column, the full one or the one within ``spec.text_words``), encode it,
     caption it; return the scene with that view's render and the view's picture. The
     camera is the automatic one, or drawn from ``spec.camera`` with the scene's camera
     stream of the view (a target the scene lacks: the whole scene)."""
@@ -198,7 +200,7 @@ def view_picture(
         images = {kind: data for kind, (_, data) in encode_render(result, kinds=kinds).items()}
         annotations = view_annotations(result, scene) if spec.coco else []
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
-        grounded, captions = picture_captions(spec, scene, result, full, rules=context.rules)
+        grounded, captions = picture_captions(spec, scene, result, text, rules=context.rules)
 
     image = name.image_stem(spec.views)
     files = {f"images/{image}.png": images["colour"]}
@@ -210,7 +212,7 @@ def view_picture(
         files[f"segmentation/{image}.png"] = images["segmentation"]
         files[f"segmentation/{image}_ids.json"] = images["ids"]
         row["segmentation_file_name"] = f"segmentation/{image}.png"
-    row.update(caption=captions[0], text=full.text)
+    row.update(caption=captions[0], text=text.text)
     row.update({f"caption_{k}": caption for k, caption in enumerate(captions[1:], start=1)})
     row["scene_id"] = name.stem
     if spec.camera is not None:
@@ -224,8 +226,9 @@ def view_picture(
 def text_product(
     spec: DatasetSpec, index: int, seed: int, scene: Scene, text: str, tried: dict, cpu: dict[str, float]
 ) -> SceneProduct:
-    """Scene ``index`` of a dataset without images: its scene.json and its full
-    description, and a row naming both (no picture, so no captions)."""
+    """Scene ``index`` of a dataset without images: its scene.json and its description
+    (``text``: the full one, or within ``spec.text_words``), and a row naming both (no
+    picture, so no captions)."""
     stem = scene_stem(index)
     files = {f"scenes/{stem}.json": reproducible_json(scene).encode(), f"texts/{stem}.txt": (text + "\n").encode()}
     row = {"scene_file_name": f"scenes/{stem}.json", "text_file_name": f"texts/{stem}.txt", "text": text, "scene_id": stem,
@@ -233,11 +236,11 @@ def text_product(
     return SceneProduct(index, seed, scene.layout.ok, files, row, {**scene_stats(scene, [text], cpu), **tried})
 
 
-def picture_captions(spec: DatasetSpec, scene: Scene, result, full, rules: Rules | None = None) -> tuple[dict, list[str]]:
+def picture_captions(spec: DatasetSpec, scene: Scene, result, text, rules: Rules | None = None) -> tuple[dict, list[str]]:
     """The row's ``grounding`` and ``refexps`` columns (none when grounding is turned
     off), its ``questions`` column (none when questions are turned off) and its captions
-    of the rendered picture ``result``, variants 0..K-1; ``full`` is the scene's full
-    ``Description``; ``rules``: the scene's rule set, whose nouns questions may ask about
+    of the rendered picture ``result``, variants 0..K-1; ``text`` is the ``Description``
+    of the row's ``text`` column; ``rules``: the scene's rule set, whose nouns questions may ask about
     (``describer.questions.vocabulary_of``; None: the scene's own nouns only)."""
     from scenewright.describer.programs import PictureFacts
     from scenewright.describer.questions import picture_questions, vocabulary_of
@@ -257,7 +260,7 @@ def picture_captions(spec: DatasetSpec, scene: Scene, result, full, rules: Rules
     if options.grounding:
         names = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
         grounding = {column: grounding_records(c, picture) for column, c in zip(names, captions, strict=True)}
-        grounding["text"] = grounding_records(full, picture)
+        grounding["text"] = grounding_records(text, picture)
         columns.update(grounding=grounding, refexps=referring_expressions(facts))
     if options.questions:
         columns["questions"] = picture_questions(facts, vocabulary_of(rules, scene), scene.seed)

@@ -128,3 +128,23 @@ def test_a_rerun_with_other_caption_settings_is_refused(tmp_path, capsys):
     capsys.readouterr()
     assert main(common) == 2
     assert "made with other settings (frame 'camera' -> 'scene')" in capsys.readouterr().err
+
+
+def test_a_word_budget_shortens_the_text_column_and_grounds_what_it_says(tmp_path, capsys):
+    """--text-words: the row's text is the most detailed description within the budget,
+    grounded like the full one; scene.json keeps the full description; a rerun with
+    another budget is refused."""
+    spec = dataset_spec("village", 1, size=(64, 64), text_words=60)
+    product = produced(spec, 0)
+    row, scene = product.row, scene_of(product)
+    assert len(row["text"].split()) <= 60 < len(scene["description"]["text"].split())
+    for mention in row["grounding"]["text"]:
+        start, end = mention["span"]
+        assert 0 <= start < end <= len(row["text"])
+    assert row["grounding"]["text"]  # the budgeted text is grounded too
+    out = str(tmp_path / "data")
+    common = ["-q", "dataset", "desk", "-n", "1", "-o", out, "--size", "32x32", "--workers", "1"]
+    assert main([*common, "--text-words", "30"]) == 0
+    capsys.readouterr()
+    assert main(common) == 2
+    assert "made with other settings (text_words 30 -> None)" in capsys.readouterr().err
