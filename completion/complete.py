@@ -23,7 +23,11 @@ The steps, each a function here:
    whose energy holds the walls, clearances, door swings and reachability, and the
    layout mask as a preference for the large pieces (``MASKED``; the energy's ``mask``
    part, ``generator.layout.mask_term``); the scene with its ``completion`` record
-   (``completion_record``).
+   (``completion_record``). While the layout is not ok, the room gives up one added
+   piece (``fewer_pieces``: of the added categories its problems name, the one most
+   weakly tied to the request) and is laid out again, at most ``FIT_ATTEMPTS`` times:
+   Algorithm 1 weighs floor area, not whether the pieces fit round the door and each
+   other, so a small room can be chosen more than it holds.
 
 The mask guides the start and, through its energy part, the chains: a large piece
 costs more the less of the mask lies under it. It is a preference: the layout's
@@ -37,7 +41,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -46,6 +50,7 @@ from scenewright.core.limits import MAX_EXTENT
 from scenewright.core.poses import Pose
 from scenewright.core.room import ROOM_NODE, Room, RoomError
 from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.generator.layout.params import LayoutParams
 
 #: Wall letters a door or window may name, besides the words and numbers ``Room.wall`` takes.
 WALL_LETTERS = {"N": "north", "E": "east", "S": "south", "W": "west"}
@@ -106,6 +111,14 @@ CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 #: chooses). Their accessories (night tables, chairs, lamps) follow them by relations,
 #: as the paper places accessories after their large furniture.
 MASKED = AGAINST_WALL | CENTRE_PIECES
+#: Layouts tried with one added piece fewer each (``fewer_pieces``) while the layout is
+#: not ok: a room the selection filled past what can be laid out gives up its weakest pieces.
+FIT_ATTEMPTS = 4
+#: Why a category the selection chose is not in the room: the layout failed with it.
+#: The layout's parameters for each try: two chains (one restart), as most rooms are ok
+#: on their first chain and one that fails twice is better off with a piece fewer.
+FIT_PARAMS = LayoutParams(restarts=1)
+ROOM_FULL = "no room for it with the rest: the layout failed with it"
 
 
 @dataclass(frozen=True)
@@ -539,15 +552,64 @@ def _bounding_rect(points):
     return make_rect((min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0)
 
 
-# -- 5. the whole -------------------------------------------------------------------------------
+# -- 5. fitting the contents to the room ------------------------------------------------------
 
 
-def completion_record(contents: Contents, dropped, model: dict, masked=()) -> dict:
+def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
+    """The scene graph of ``contents``, the categories left out with why, and the
+    starting poses; a rug the starting poses find no free floor for is left out."""
+    graph, dropped = build_graph(model, contents, room, catalog)
+    start = starting_poses(graph, room, contents.mask)
+    unplaced = sorted({n.type for n in graph.nodes("object")
+                       if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start})  # fmt: skip
+    if unplaced:
+        graph, dropped = build_graph(model, contents, room, catalog, leave_out=unplaced)
+        start = starting_poses(graph, room, contents.mask)
+    return graph, dropped, start
+
+
+def fewer_pieces(model: dict, contents: Contents, request: Request, graph: SceneGraph, problems) -> Contents | None:
+    """``contents`` with one added piece fewer after a layout with ``problems`` (its
+    report's lines): of the added categories whose pieces the problems name (all added
+    ones when they name none), the one most weakly tied to the requested categories
+    (summed relation weight ``W``; then the larger footprint, then the name) loses one
+    piece, or the whole category at its last. None when nothing was added. Requested
+    categories keep their counts: the request is what the room must hold."""
+    added = [name for name in contents.counts if name not in request.requested]
+    if not added:
+        return None
+    types = {node.id: node.type for node in graph.nodes("object")}
+    named = {types[word] for line in problems for word in re.findall(r"[A-Za-z0-9_]+", line) if word in types}
+    candidates = [name for name in added if name in named] or added
+    weights = _relation_weights(model, contents.types)
+    sizes = {node.type: node.size[0] * node.size[2] for node in graph.nodes("object")}
+
+    def tie(name: str) -> float:
+        return sum(weights.get((min(name, r), max(name, r)), 0.0) for r in request.requested if r != name)
+
+    weakest = min(candidates, key=lambda name: (tie(name), -sizes.get(name, 0.0), name))
+    counts = dict(contents.counts)
+    counts[weakest] -= 1
+    if not counts[weakest]:
+        del counts[weakest]
+        # A seat added for the piece just left out goes with it (what stood on it
+        # ``build_graph`` leaves out by itself).
+        for seat, targets in SEAT_TARGETS.items():
+            if seat in added and weakest in targets and not any(counts.get(t) for t in targets):
+                counts.pop(seat, None)
+    return replace(contents, counts=counts)
+
+
+# -- 6. the whole -------------------------------------------------------------------------------
+
+
+def completion_record(contents: Contents, dropped, model: dict, masked=(), given_up=None) -> dict:
     """What scene.json's ``completion`` holds: the types, per type the categories
     Algorithm 1 chose (requested or added, with their count, P(category | type) and the
     summed relation weight to the requested ones), its cost and reference plans, and the
     layout mask's reference plans with their weights and the pieces ``masked`` in the
-    layout's energy."""
+    layout's energy; ``given_up``: category -> pieces of it the room gave up to be laid
+    out (``fewer_pieces``; a category given up whole is also in ``left_out``)."""
     types = {}
     for room_type, exploration in contents.explorations.items():
         entry = model["types"][room_type]
@@ -570,6 +632,7 @@ def completion_record(contents: Contents, dropped, model: dict, masked=()) -> di
         "selection": types,
         "counts": {name: n for name, n in contents.counts.items() if name not in dropped},
         "left_out": dict(sorted(dropped.items())),
+        "given_up": dict(sorted((given_up or {}).items())),
         "mask": {"type": contents.types[0], "frame": contents.mask.frame.to_dict(),
                  "references": dict(sorted(contents.mask.weights.items())),
                  "cells": np.round(contents.mask.mask, 6).tolist(), "boxes": list(masked)},
@@ -599,19 +662,26 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
         model = model or build_model(load_plans(plans or shipped_plans_dir()))
         catalog = catalog or catalog_categories()
         contents = choose_contents(model, request)
-        graph, dropped = build_graph(model, contents, request.room, catalog)
-        start = starting_poses(graph, request.room, contents.mask)
-        unplaced = sorted({n.type for n in graph.nodes("object")
-                           if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start})  # fmt: skip
-        if unplaced:
-            graph, dropped = build_graph(model, contents, request.room, catalog, leave_out=unplaced)
-            start = starting_poses(graph, request.room, contents.mask)
-    masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
-    mask = floor_mask(contents.mask, request.room, masked) if masked else None
-    with timed(timings, "layout", time.perf_counter):
-        layout = layout_scene(graph, seed, start=start, mask=mask)
+    chosen = dict(contents.counts)
+    for attempt in range(1 + FIT_ATTEMPTS):
+        with timed(timings, "complete"):
+            graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
+        masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
+        mask = floor_mask(contents.mask, request.room, masked) if masked else None
+        with timed(timings, "layout", time.perf_counter):
+            layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS)
+        if layout.ok or attempt == FIT_ATTEMPTS:
+            break
+        smaller = fewer_pieces(model, contents, request, graph, layout.problems)
+        if smaller is None:
+            break
+        contents = smaller
+    given_up = {name: n - contents.counts.get(name, 0) for name, n in chosen.items() if contents.counts.get(name, 0) < n}
+    for name in given_up:
+        if name not in contents.counts:
+            dropped.setdefault(name, ROOM_FULL)
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
-    scene.completion = completion_record(contents, dropped, model, masked)
+    scene.completion = completion_record(contents, dropped, model, masked, given_up)
     scene.timings.update(timings)
     return scene
 
@@ -625,6 +695,8 @@ def summary_of(record: dict) -> str:
                 count = record["counts"][item["category"]]
                 added.append(item["category"] + (f" x{count}" if count > 1 else ""))
     left = "".join(f"; left out {name} ({why})" for name, why in record["left_out"].items())
+    left += "".join(f"; {n} {name} fewer (no room for more with the rest)"
+                    for name, n in record.get("given_up", {}).items() if name not in record["left_out"])  # fmt: skip
     return f"room type {' + '.join(record['types'])}; added {', '.join(dict.fromkeys(added)) or 'nothing'}{left}"
 
 

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.cli import main
 from scenewright.completion import shipped_plans_dir
-from scenewright.completion.complete import choose_contents, complete, parse_request
+from scenewright.completion import complete as completion_module
+from scenewright.completion.complete import (
+    ROOM_FULL, build_graph, choose_contents, complete, fewer_pieces, parse_request, summary_of,
+)
 from scenewright.completion.model import build_model
 from scenewright.completion.plan import catalog_categories, load_plans
 from scenewright.core.errors import InputError
@@ -156,3 +161,69 @@ def test_polygon_rooms_are_read_as_corners(catalog):
     assert request.room.area == pytest.approx(6 * 3 + 3 * 2) and len(request.room.walls) == 6
     with pytest.raises(InputError, match="at least 3 corners"):
         parse_request("0,0 1,1", [], [], ["desk"], catalog)
+
+
+# -- a room too full to lay out gives up its weakest added pieces (fewer_pieces) --
+
+#: A 3.1 x 4.3 m room asked for a sofa: the study it becomes holds two bookshelves,
+#: and with both no layout seed 0 tries leaves the door's swing free.
+CROWDED = ("3.1x4.3", "N:1.06:0.92", "W:2.47:1.38", "sofa")
+
+
+def _contents(model, catalog, room, door, window, wanted):
+    request = parse_request(room, [door], [window], [wanted], catalog)
+    contents = choose_contents(model, request)
+    graph, _ = build_graph(model, contents, request.room, catalog)
+    return request, contents, graph
+
+
+def test_the_weakest_added_piece_the_problems_name_goes_one_at_a_time(model, catalog):
+    request, contents, graph = _contents(model, catalog, "5x4", "S:0.8:0.9", "N:2.5:1.4", "bed")
+    assert contents.counts["nightstand"] == 2
+    problems = ["nightstand_2 cannot be reached from the door (no 0.6 m wide way)", "bed_1 overlaps wardrobe_1 by 3 %"]
+    fewer = fewer_pieces(model, contents, request, graph, problems)
+    # The bed is requested; of the named added pieces the wardrobe is tied to it less
+    # than the night tables, and it is the only one of its kind: it goes whole.
+    changed = {name: (contents.counts[name], fewer.counts.get(name, 0))
+               for name in contents.counts if fewer.counts.get(name, 0) != contents.counts[name]}  # fmt: skip
+    assert changed == {"wardrobe": (1, 0)}
+    again = fewer_pieces(model, fewer, request, graph, problems[:1])
+    assert again.counts["nightstand"] == 1 and again.counts["bed"] == 1
+
+
+def test_a_desk_given_up_takes_its_added_chair_along_and_a_requested_one_never_goes(model, catalog):
+    request, contents, graph = _contents(model, catalog, "4x3.6", "S:3.2:0.85", "E:1.8:1.3", "bookshelf")
+    assert contents.counts.get("desk") == 1 and contents.counts.get("office_chair")
+    fewer = fewer_pieces(model, contents, request, graph, ["desk_1 overlaps bookshelf_1 by 5 %"])
+    assert "desk" not in fewer.counts and "office_chair" not in fewer.counts
+    assert fewer.counts["bookshelf"] == contents.counts["bookshelf"]
+    only_requested = replace(contents, counts={"bookshelf": contents.counts["bookshelf"]})
+    assert fewer_pieces(model, only_requested, request, graph, ["bookshelf_1 overlaps x by 5 %"]) is None
+
+
+def test_a_crowded_room_is_ok_with_a_piece_fewer_and_says_which(model, catalog, monkeypatch):
+    room, door, window, wanted = CROWDED
+    request = parse_request(room, [door], [window], [wanted], catalog)
+    scene = complete(request, 0, model=model, catalog=catalog)
+    assert scene.layout.ok, scene.layout.problems
+    record = scene.completion
+    assert record["given_up"] == {"bookshelf": 1}
+    assert "bookshelf" not in record["left_out"] and record["counts"]["bookshelf"] == 1
+    assert "sofa" in record["counts"]
+    assert {o.type for o in scene.placed_objects()} >= {"sofa", "bookshelf"}
+    assert "1 bookshelf fewer" in summary_of(record)
+    # Without giving anything up, the same seed's layout leaves a piece in the swing.
+    monkeypatch.setattr(completion_module, "FIT_ATTEMPTS", 0)
+    crowded = complete(request, 0, model=model, catalog=catalog)
+    assert not crowded.layout.ok and any("swing" in p for p in crowded.layout.problems)
+    assert crowded.completion["given_up"] == {} and crowded.completion["counts"]["bookshelf"] == 2
+
+
+def test_a_category_given_up_whole_is_left_out_with_why(model, catalog):
+    request = parse_request("3.5x3.7", ["E:2.48:0.94"], ["N:2.41:1.23"], ["bed"], catalog)
+    scene = complete(request, 0, model=model, catalog=catalog)
+    assert scene.layout.ok, scene.layout.problems
+    record = scene.completion
+    whole = {name for name in record["given_up"] if name not in record["counts"]}
+    assert whole and all(record["left_out"][name] == ROOM_FULL for name in whole)
+    assert "bed" in record["counts"]
