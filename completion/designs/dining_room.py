@@ -150,7 +150,7 @@ def breakfast_room():
     d.window("W", 1.3, 1.2)
     table = d.place("dining_table", 1.6, 1.2, SQUARE_TABLE, "south")
     d.chairs_around(table, 1, ends=2)
-    d.against("S", "refrigerator", 0.45, REFRIGERATOR)
+    d.against("W", "refrigerator", 2.55, REFRIGERATOR)  # opens to the way from the door
     return d
 
 
@@ -176,7 +176,7 @@ def cottage_dining():
     table = d.place("dining_table", 1.8, 2.0, FOUR_SEAT_TABLE, "east")
     d.chairs_around(table, 2)
     d.against("W", "dresser", 0.9, DRESSER)
-    d.against("E", "bookshelf", 2.0, BOOKSHELF)
+    d.against("S", "bookshelf", 0.6, BOOKSHELF)  # beside the window, clear of the chairs' backs
     return d
 
 

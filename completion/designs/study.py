@@ -59,7 +59,7 @@ def corner_desk_office():
     d.against("N", "filing_cabinet", 0.4, FILING_CABINET)
     d.against("N", "filing_cabinet", 0.9, FILING_CABINET)
     d.against("S", "bookshelf", 2.4, BOOKSHELF)
-    d.place("chair", 1.0, 1.3, CHAIR, "east")
+    d.place("chair", 1.1, 1.65, CHAIR, "east")  # clear of the filing cabinets' drawers
     return d
 
 
