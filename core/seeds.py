@@ -12,6 +12,7 @@ another stage drew, and no two streams coincide:
     questions of view k  (5, k)      which questions are asked of picture k (``describer.questions``)
     relations test k     (6, k)      the tests of type pair k (``learning.relations``)
     learn check k        (7, k)      scene k made from induced rules (``learning.learn``)
+    context layout k     (8, k)      layout k of a context fit's iterative scaling (``learning.context``)
     stage ``name``       (STAGE_KEYS[name], k) for later stages
 
 Public functions take ``seed: int | numpy.random.Generator | None``, as numpy and
@@ -42,6 +43,7 @@ STAGE_KEYS: dict[str, int] = {
     "questions": 5,
     "relations": 6,
     "learn": 7,
+    "context": 8,
 }
 
 #: The largest seed accepted: seeds are stored in scene.json and file names as plain

@@ -18,7 +18,9 @@ with each other.
 ``layout_scene`` can keep some objects, junctions and paths exactly where they are
 (``pinned``, ``pinned_paths``) and start its chains from given poses (``start``); the
 rules are in ``pinning``. A layout mask (``mask``, see ``mask_term``) adds a preference
-for where some boxes stand. ``measure_layout(graph, poses, paths)`` (``measure``) reports
+for where some boxes stand; a learned context (``context``, see ``learned_term``) adds
+spatial priors learned from examples, sampled at temperature 1 (``sampler``).
+``measure_layout(graph, poses, paths)`` (``measure``) reports
 on a layout that already exists (an imported scene) without sampling.
 """
 
@@ -35,6 +37,7 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
 from .decompose import decomposes, frame_streams, lay_out_frames, large_scene_params, run_decomposed_chain
+from .learned_term import LearnedContext, compile_learned
 from .mask_term import FloorMask, compile_mask
 from .measure import measure_layout
 from .params import LayoutParams
@@ -43,7 +46,7 @@ from .problem import compile_problem
 from .repair import repair_pins
 from .sampler import Run, run_chain
 
-__all__ = ["FloorMask", "LayoutParams", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
+__all__ = ["FloorMask", "LayoutParams", "LearnedContext", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
 
 
 def layout_scene(
@@ -55,6 +58,7 @@ def layout_scene(
     pinned_paths: Mapping[str, object] | None = None,
     start: Mapping[str, object] | None = None,
     mask: FloorMask | None = None,
+    context: LearnedContext | None = None,
 ) -> LayoutResult:
     """Lay out a scene graph: poses for objects and junctions, control points for paths.
 
@@ -82,12 +86,20 @@ def layout_scene(
     ``mask`` (``mask_term.FloorMask``) adds the energy part ``mask``: the boxes it names
     prefer to stand where its grid is high. It is a preference: the verdict (``ok``, the
     problems) never reads it. Without it the layout is exactly the one it was before.
+
+    ``context`` (``learned_term.LearnedContext``, from ``scenewright fit --what
+    context``) adds the energy part ``learned`` for every related pair of a kind it has,
+    and the chain then samples those pairs at temperature 1 (``sampler``). A context with
+    no kind of this graph, or None, leaves the layout exactly as it was.
     """
     params = params or LayoutParams()
     started = time.perf_counter()
     problem = compile_problem(graph)
     if mask is not None:
         problem.mask = compile_mask(mask, problem.ids)
+    if context is not None:
+        learned = compile_learned(context, problem, [graph.node(box_id).type for box_id in problem.ids])
+        problem.learned = learned if learned.pairs else None
     pins = compile_pins(problem, pinned, pinned_paths, start)
     best: Run | None = None
     total_steps = total_accepted = 0

@@ -21,6 +21,14 @@ Parts (all >= 0, 0 when everything holds):
 - ``mask``: only when the problem has a layout mask (``mask_term``): per box it is for,
   the weight times 1 less the mask's mean under its footprint. Without a mask the part
   does not exist (``parts`` has no such key), so layouts without one are unchanged.
+- ``learned``: only with a learned context (``learned_term``): per related pair of a
+  kind the context has, the learned weights of its relative pose. Without a context the
+  part does not exist either.
+
+Tempering: with a context, the sampler takes the ``learned`` part at temperature 1, lets
+it stand in for the relation terms of its pairs, and anneals the rest (``sampler``);
+``soft_delta`` is the share of a proposal's change that is not annealed (the learned
+part and those relation terms), ``learned_delta`` the learned part's.
 
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
@@ -47,6 +55,8 @@ from .state import Grid, State
 PARTS = ("relations", "collisions", "paths", "path_shape", "extent") + ROOM_PARTS
 #: The part a layout mask adds (after ``PARTS``), present only when there is a mask.
 MASK_PART = "mask"
+#: The part a learned context adds (last), present only when there is one.
+LEARNED_PART = "learned"
 
 #: Depths are clipped below 1 so the log penalty stays finite.
 MAX_DEPTH = 0.99
@@ -67,6 +77,7 @@ class Changes(NamedTuple):
     path_extent: dict[int, float]
     room: RoomChanges | None  # the room's terms (None outdoors)
     mask: dict[int, float]  # by box: the moved listed boxes' new mask values
+    learned: dict[int, float]  # by learned pair: the new values of the moved boxes' pairs
 
 
 class Pending(NamedTuple):
@@ -99,6 +110,12 @@ class Energy:
         self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
         #: The part names this energy has: ``PARTS``, and ``MASK_PART`` with a mask.
         self.part_names = PARTS + ((MASK_PART,) if problem.mask is not None else ())
+        self.part_names += (LEARNED_PART,) if problem.learned is not None else ()
+        #: The relation terms the learned part stands in for while sampling (none without one).
+        self.tempered = problem.learned.tempered if problem.learned is not None else frozenset()
+        #: The pending proposal's change in the learned part and the ``tempered`` terms, and in
+        #: the learned part alone.
+        self.soft_delta = self.learned_delta = 0.0
         self._install(self._fresh())
 
     # -- single terms ---------------------------------------------------------------
@@ -218,6 +235,13 @@ class Energy:
             return 0.0
         return self.params.mask_weight * (1.0 - mask.mean_under(self.state.rects[box]))
 
+    def learned_energy(self, pair: int) -> float:
+        """A learned pair's term: 0 until both its boxes are placed."""
+        source, target, _ = self.problem.learned.pairs[pair]
+        if not (self.active[source] and self.active[target]):
+            return 0.0
+        return self.problem.learned.value(pair, self.state)
+
     def troubled_boxes(self) -> list[int]:
         """Boxes that currently overlap something or stick out of the extent, and in a
         room those in breach of a room term (``RoomTerms.troubled``)."""
@@ -246,6 +270,7 @@ class Energy:
             "box_extent": [self.box_extent_energy(b) for b in range(problem.n_boxes)],
             "path_extent": [self.path_extent_energy(p) for p in range(problem.n_paths)],
             "mask": [self.mask_energy(b) for b in range(problem.n_boxes)],
+            "learned": [self.learned_energy(k) for k in range(len(problem.learned.pairs))] if problem.learned else [],
         }
         collisions = paths = 0.0
         for box in range(problem.n_boxes):
@@ -275,6 +300,8 @@ class Energy:
             fresh["parts"][part] = fresh["room"]["parts"][part] if self.room is not None else 0.0
         if problem.mask is not None:
             fresh["parts"][MASK_PART] = sum(fresh["mask"])
+        if problem.learned is not None:
+            fresh["parts"][LEARNED_PART] = sum(fresh["learned"])
         return fresh
 
     def _install(self, fresh: dict) -> None:
@@ -283,6 +310,7 @@ class Energy:
         self.shape, self.junction = fresh["shape"], fresh["junction"]
         self.box_extent, self.path_extent = fresh["box_extent"], fresh["path_extent"]
         self.mask = fresh["mask"]
+        self.learned = fresh["learned"]
         if self.room is not None:
             self.room.install(fresh["room"])
         self.parts = dict(fresh["parts"])
@@ -314,9 +342,17 @@ class Energy:
         if not self.params.incremental:
             fresh = self._fresh()
             self._pending = Pending(saved_boxes, saved_paths, fresh)
+            if self.problem.learned is not None:
+                self.learned_delta = fresh["parts"][LEARNED_PART] - self.parts[LEARNED_PART]
+                self.soft_delta = self.learned_delta + sum(fresh["relation"][t] - self.relation[t] for t in self.tempered)
             return sum(fresh["parts"].values()) - self.total
         changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes))
         self._pending = Pending(saved_boxes, saved_paths, changes)
+        if self.problem.learned is not None:
+            self.learned_delta = changes.delta[LEARNED_PART]
+            self.soft_delta = self.learned_delta + sum(
+                value - self.relation[t] for t, value in changes.relation.items() if t in self.tempered
+            )
         return sum(changes.delta.values())
 
     def _changes(self, boxes: list[int], paths: list[int], together: bool) -> Changes:
@@ -414,9 +450,18 @@ class Energy:
                 if problem.mask.listed[box]:
                     new_mask[box] = self.mask_energy(box)
                     delta[MASK_PART] += new_mask[box] - self.mask[box]
+        new_learned = {}
+        if problem.learned is not None:
+            learned_pairs = problem.learned.pairs
+            for pair in sorted({k for box in boxes for k in problem.learned.pairs_of_box[box]}):
+                source, target, _ = learned_pairs[pair]
+                if together and source in moved and target in moved:
+                    continue  # a shared translation keeps the relative pose
+                new_learned[pair] = self.learned_energy(pair)
+                delta[LEARNED_PART] += new_learned[pair] - self.learned[pair]
         return Changes(
             delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask,
+            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned,
         )  # fmt: skip
 
     def _boxes_near_path(self, path: int) -> list[int]:
@@ -459,6 +504,8 @@ class Energy:
             self.room.accept(changes.room)
         for box, value in changes.mask.items():
             self.mask[box] = value
+        for pair, value in changes.learned.items():
+            self.learned[pair] = value
         for part, value in changes.delta.items():
             self.parts[part] += value
         self.total = sum(self.parts.values())

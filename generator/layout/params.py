@@ -35,6 +35,12 @@ class LayoutParams:
     (few, and everything else is placed by them, so they get more tries).
     ``incremental=False`` recomputes the full energy every step (for comparison).
 
+    Learned context (``learned_term``; no effect without one): ``tempered`` samples the
+    learned part and the relations of its pairs at temperature 1 while the rest is
+    annealed (False anneals everything, for comparison); ``learned_share`` of the steps
+    are learned moves; the stop rule waits until ``learned_sweeps`` of them were
+    accepted for every learned pair (``sampler``).
+
     Group decomposition (``decompose``): ``workers`` processes lay out the groups' own
     frames (1: in this process; the result is the same for any number);
     ``decompose=False`` never decomposes (one chain over the whole scene, for
@@ -60,5 +66,8 @@ class LayoutParams:
     initial_candidates: int = 8
     path_candidates: int = 16
     incremental: bool = True
+    tempered: bool = True
+    learned_share: float = 0.5
+    learned_sweeps: int = 3
     decompose: bool = True
     workers: int = 1

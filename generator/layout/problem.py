@@ -126,6 +126,9 @@ class Problem:
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
     mask: object | None = None
+    #: The learned pairs the energy's ``learned`` part reads (``learned_term.CompiledLearned``);
+    #: None (no such part) unless ``layout_scene`` is given a context.
+    learned: object | None = None
 
     @property
     def walls(self) -> bool:

@@ -21,6 +21,27 @@ relations puts it, with everything placed only by it carried along rigidly: a be
 free side the desk takes moves to another corner with its nightstands and rug, where a
 lone bed jump would break their relations and be refused. Outdoors no such step is
 drawn, so village layouts draw the same random numbers as before.
+
+With a learned context (``learned_term``) the chain *samples* instead of optimising
+what the context models: a proposal is accepted with probability
+
+    min(1, exp(-(delta - soft) / T - learned + correction))
+
+``learned`` is the proposal's change in the ``learned`` part, taken at temperature 1;
+``soft`` is that plus the change in the relation terms of the learned pairs
+(``Energy.soft_delta``), which the learned part stands in for: the examples, not the
+rules' hand-set factors, say where a learned pair's source stands (in Hammoud et al.'s
+model the learned histograms and the hard intersection constraint are the whole
+energy). The rest (collisions, extent, paths, the room's terms, the other relations) is
+annealed as always, and the verdict still checks every relation. ``correction`` is the
+Hastings term of a learned move (0 for the others). A
+share ``params.learned_share`` of the steps is a learned move (``LearnedMoves``: a
+pair's source drawn from the pair's learned distribution), and the stop rule waits until
+every pair has had ``params.learned_sweeps`` such moves accepted, so that no source is
+left where the constructive placement put it (those leftovers, not the learned terms,
+would set the spread). ``params.tempered=False`` anneals the learned terms with the rest (the
+optimiser's way, which collapses every scene onto the most likely pose: for
+comparison). Without a context nothing here changes a single random draw.
 """
 
 from __future__ import annotations
@@ -34,6 +55,7 @@ from scenewright.core.relations import Relation
 
 from .energy import Energy
 from .initial import place_initial
+from .learned_term import LearnedMoves
 from .moves import Mover, rigid, wrap
 from .params import LayoutParams
 from .pinning import Pins
@@ -85,6 +107,9 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     grows with the budget as the budget grows past ``params.steps``)."""
     problem = energy.problem
     relocator = Relocator(problem, energy.state, mover) if problem.room is not None else None
+    learned = None
+    if problem.learned is not None:
+        learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box)
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
@@ -92,7 +117,7 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
     for step in range(budget):
-        if step >= params.min_steps and step % params.check_every == 0:
+        if step >= params.min_steps and step % params.check_every == 0 and (learned is None or learned.mixed(params)):
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
                 break
@@ -102,6 +127,10 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
             elif step - since >= patience:
                 break
         steps = step + 1
+        if learned is not None:
+            if learned_step(energy, mover, relocator, learned, params, params.temperature_start * math.exp(cooling * step)):
+                accepted += 1
+            continue
         proposal = None
         if relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
             proposal = relocator.propose(mover.focus_boxes)
@@ -119,6 +148,38 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     else:
         relations, problems = assess(energy)
     return Run(energy, relations, problems, steps, accepted)
+
+
+def learned_step(
+    energy: Energy, mover: Mover, relocator: Relocator | None, learned: LearnedMoves, params: LayoutParams,
+    temperature: float,
+) -> bool:
+    """One step of a chain with a learned context (module docstring); True when accepted."""
+    uniform = mover.rng.random
+    proposal, correction = None, 0.0
+    pair = None
+    if learned.pairs and uniform() < params.learned_share:
+        drawn = learned.propose()
+        if drawn is not None:
+            proposal, correction, pair = (drawn[0], {}), drawn[1], drawn[2]
+    if proposal is None and relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
+        proposal = relocator.propose(mover.focus_boxes)
+    if proposal is None:
+        proposal = mover.propose(energy.relation)
+    if proposal is None:
+        return False
+    delta = energy.propose(*proposal)
+    if params.tempered:
+        exponent = -(delta - energy.soft_delta) / temperature - energy.learned_delta + correction
+    else:
+        exponent = -delta / temperature + correction
+    if exponent >= 0.0 or uniform() < math.exp(exponent):
+        energy.accept()
+        if pair is not None:
+            learned.redrawn[pair] += 1
+        return True
+    energy.reject()
+    return False
 
 
 class Relocator:

@@ -1,0 +1,314 @@
+"""The ``learned`` energy part: spatial priors learned from example scenes (a context).
+
+A *context* (``LearnedContext``, written by ``scenewright fit --what context`` as
+``NAME.context.json``) holds, per related pair *kind* ``(source type, target type,
+labels)``, the maximum-entropy weights of the contextual constraints of Hammoud et
+al., "A Relevancy, Hierarchical and Contextual Maximum Entropy Framework for a
+Data-Driven 3D Scene Generation" (Entropy 2014): one weight per bin of a 2-D histogram
+of where the source stands in the target's frame, and one per bin of a histogram of
+the source's yaw relative to the target's. A related pair is two objects joined by one
+or more relation edges of the rules (a chair ``NextToFront t FacingTowards t``: one
+pair, kind ``(chair, table, FacingTowards+NextToFront)``); object-to-object edges only.
+
+Per pair whose kind the context has, with (x, z) the source's base centre in the
+target's frame (``core.frames.to_local``: along its left, along its forward) and
+t = wrap(source yaw - target yaw):
+
+    learned = position[cell(x, z)] + yaw[bin(t)]
+
+``position`` has BINS x BINS cells over the rectangle ``bounds`` (row i along z, column k
+along x, flattened i * BINS + k) and one more weight, its last, for anywhere outside the
+rectangle; ``yaw`` has YAW_BINS bins over [-pi, pi). This is the paper's Gibbs energy
+sum_l lambda_l . C_l for one scene (its histograms C_l counted over the scene's pairs),
+with the 32 bins the paper uses per histogram. The weights are fitted
+(``learning.context``) so that scenes laid out with them have the examples' histograms.
+
+Each pair's value depends on the poses of its two boxes only, so a move re-evaluates
+the pairs of the moved boxes (``Energy`` caches them per pair); a shared translation of
+both leaves a pair's value as it was.
+
+``LearnedMoves.propose`` is the matching proposal: a pair's source put at a pose drawn
+from the pair's own learned distribution, exp(-weight) per cell and bin, uniform inside
+them (the target stays). Its Hastings correction is the pair's own change in the
+learned energy, which the sampler adds back, so such a move is accepted by what the
+rest of the energy says: an independence sampler for that pair's factor.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from scenewright.core.errors import InputError
+from scenewright.core.frames import to_local, to_world
+
+from .moves import rigid, wrap
+
+#: Bins per axis of the 2-D position histogram, and bins of the relative-yaw histogram
+#: (the paper's 32-bin histograms).
+BINS = 32
+YAW_BINS = 32
+#: What the file says it is, and the version of its layout.
+FORMAT = "scenewright-context"
+VERSION = 1
+#: Largest weight magnitude a file may hold (the fit's weights are logs of shares of at
+#: least 1e-7, so about 16; anything far beyond is not a file the fit wrote).
+MAX_WEIGHT = 1e3
+
+TAU = 2.0 * math.pi
+
+
+def pair_kind_name(source: str, target: str, labels: Sequence[str]) -> str:
+    """How reports and errors name a pair kind: ``chair -FacingTowards+NextToFront-> table``."""
+    return f"{source} -{'+'.join(labels)}-> {target}"
+
+
+@dataclass(frozen=True)
+class PairContext:
+    """The learned weights of one pair kind: ``position`` (BINS * BINS + 1,) over
+    ``bounds`` (x0, z0, x1, z1) in the target's frame, the last for outside; ``yaw``
+    (YAW_BINS,) over [-pi, pi); ``examples`` the pairs of the examples they were fitted to."""
+
+    source: str
+    target: str
+    labels: tuple[str, ...]
+    bounds: tuple[float, float, float, float]
+    position: np.ndarray
+    yaw: np.ndarray
+    examples: int = 0
+
+    @property
+    def kind(self) -> tuple[str, str, tuple[str, ...]]:
+        return self.source, self.target, self.labels
+
+    def cell(self, x: float, z: float) -> int:
+        """The position weight's index of a relative position: its cell, or BINS * BINS outside."""
+        x0, z0, x1, z1 = self.bounds
+        k = math.floor((x - x0) / (x1 - x0) * BINS)
+        i = math.floor((z - z0) / (z1 - z0) * BINS)
+        if 0 <= k < BINS and 0 <= i < BINS:
+            return i * BINS + k
+        return BINS * BINS
+
+    @staticmethod
+    def yaw_bin(turn: float) -> int:
+        """The yaw weight's index of a relative yaw (radians, any value)."""
+        return min(int((wrap(turn) + math.pi) / TAU * YAW_BINS), YAW_BINS - 1)
+
+    def energy(self, pose: tuple[float, float, float]) -> float:
+        """The learned energy of a relative pose (x, z, turn)."""
+        return float(self.position[self.cell(pose[0], pose[1])] + self.yaw[self.yaw_bin(pose[2])])
+
+    def to_dict(self) -> dict:
+        return {
+            "source": self.source,
+            "target": self.target,
+            "labels": list(self.labels),
+            "examples": self.examples,
+            "bounds": [round(float(v), 6) for v in self.bounds],
+            "position": [round(float(v), 6) for v in self.position],
+            "yaw": [round(float(v), 6) for v in self.yaw],
+        }
+
+
+@dataclass(frozen=True)
+class LearnedContext:
+    """Every learned pair kind, and what the fit reported (kept as it is, for people)."""
+
+    pairs: tuple[PairContext, ...]
+    fit: dict | None = None
+
+    def to_dict(self) -> dict:
+        document = {"format": FORMAT, "version": VERSION, "bins": BINS, "yaw_bins": YAW_BINS}
+        document["pairs"] = [pair.to_dict() for pair in self.pairs]
+        if self.fit is not None:
+            document["fit"] = self.fit
+        return document
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=1) + "\n"
+
+    @classmethod
+    def from_dict(cls, document: object, where: str = "context") -> LearnedContext:
+        """A context from its JSON document; ``InputError`` (one line, naming ``where``
+        and the field) for anything a fit would not have written."""
+        if not isinstance(document, dict) or document.get("format") != FORMAT:
+            raise InputError(f"{where}: not a context file (no \"format\": \"{FORMAT}\")")
+        if document.get("version") != VERSION:
+            raise InputError(f"{where}: context version {document.get('version')!r}; this scenewright reads {VERSION}")
+        if document.get("bins") != BINS or document.get("yaw_bins") != YAW_BINS:
+            raise InputError(f"{where}: bins must be {BINS} and yaw_bins {YAW_BINS}")
+        pairs = document.get("pairs")
+        if not isinstance(pairs, list):
+            raise InputError(f"{where}: \"pairs\" must be a list")
+        parsed, seen = [], set()
+        for k, entry in enumerate(pairs):
+            pair = _parse_pair(entry, f"{where}: pairs[{k}]")
+            if pair.kind in seen:
+                raise InputError(f"{where}: pairs[{k}]: {pair_kind_name(*pair.kind)} is given twice")
+            seen.add(pair.kind)
+            parsed.append(pair)
+        fit = document.get("fit")
+        return cls(tuple(parsed), fit if isinstance(fit, dict) else None)
+
+
+def _parse_pair(entry: object, where: str) -> PairContext:
+    if not isinstance(entry, dict):
+        raise InputError(f"{where}: must be an object")
+    names = []
+    for field in ("source", "target"):
+        value = entry.get(field)
+        if not isinstance(value, str) or not value:
+            raise InputError(f"{where}: \"{field}\" must be a type name")
+        names.append(value)
+    labels = entry.get("labels")
+    if not isinstance(labels, list) or not labels or not all(isinstance(v, str) and v for v in labels):
+        raise InputError(f"{where}: \"labels\" must be a non-empty list of relation labels")
+    if labels != sorted(set(labels)):
+        raise InputError(f"{where}: \"labels\" must be sorted and without repeats")
+    bounds = _numbers(entry.get("bounds"), 4, where, "bounds")
+    if not (bounds[2] > bounds[0] and bounds[3] > bounds[1]):
+        raise InputError(f"{where}: \"bounds\" [x0, z0, x1, z1] must have x1 > x0 and z1 > z0")
+    position = _numbers(entry.get("position"), BINS * BINS + 1, where, "position")
+    yaw = _numbers(entry.get("yaw"), YAW_BINS, where, "yaw")
+    examples = entry.get("examples", 0)
+    if isinstance(examples, bool) or not isinstance(examples, int) or examples < 0:
+        raise InputError(f"{where}: \"examples\" must be a whole number >= 0")
+    return PairContext(names[0], names[1], tuple(labels), tuple(bounds), np.array(position), np.array(yaw), examples)
+
+
+def _numbers(value: object, count: int, where: str, field: str) -> list[float]:
+    if not isinstance(value, list) or len(value) != count:
+        raise InputError(f"{where}: \"{field}\" must be a list of {count} numbers")
+    numbers = []
+    for v in value:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or abs(v) > MAX_WEIGHT:
+            raise InputError(f"{where}: \"{field}\" must hold finite numbers of size at most {MAX_WEIGHT:g}")
+        numbers.append(float(v))
+    return numbers
+
+
+def read_context(path: str) -> LearnedContext:
+    """The context a file holds; ``InputError`` naming the file when it cannot be read or is not one."""
+    from scenewright.core.files import UnusableFile, read_regular_file
+    from scenewright.core.limits import MAX_SCENE_JSON_BYTES
+
+    try:
+        text = read_regular_file(path, MAX_SCENE_JSON_BYTES, "a context file").decode("utf-8")
+        document = json.loads(text)
+    except UnusableFile as problem:
+        raise InputError(f"{path}: cannot read: it {problem}") from None
+    except OSError as error:
+        raise InputError(f"{path}: cannot read: {error.strerror or error}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text") from None
+    except ValueError as error:
+        raise InputError(f"{path}: not JSON: {error}") from None
+    return LearnedContext.from_dict(document, str(path))
+
+
+def related_pairs(problem, types: Sequence[str]) -> list[tuple[int, int, tuple[str, str, tuple[str, ...]]]]:
+    """Every related pair of a problem: (source box, target box, kind), in the order of
+    their first edge. ``types`` (n_boxes,) is each box's type."""
+    labels: dict[tuple[int, int], set[str]] = {}
+    for term in problem.relations:
+        if term.a.kind == "object" and term.b.kind == "object" and term.spec.family != "structural":
+            labels.setdefault((term.a.index, term.b.index), set()).add(term.label)
+    return [(a, b, (types[a], types[b], tuple(sorted(names)))) for (a, b), names in labels.items()]
+
+
+def relative_pose(source: tuple[float, float, float], target: tuple[float, float, float]) -> tuple[float, float, float]:
+    """(x, z, turn) of a source pose (x, z, yaw) in a target's frame."""
+    x, z = to_local(target[0], target[1], target[2], source[0], source[1])
+    return x, z, wrap(source[2] - target[2])
+
+
+@dataclass(frozen=True)
+class CompiledLearned:
+    """A context for one problem: the pairs it has a kind for (``pairs``: source box,
+    target box, the kind's ``PairContext``), per box the pairs touching it, and the
+    relation terms those pairs stand for (``tempered``: sampled with them)."""
+
+    pairs: tuple[tuple[int, int, PairContext], ...]
+    pairs_of_box: tuple[tuple[int, ...], ...]
+    tempered: frozenset[int]
+
+    def value(self, pair: int, state) -> float:
+        """The pair's learned energy at the state's poses."""
+        source, target, table = self.pairs[pair]
+        return table.energy(relative_pose(state.pose(source), state.pose(target)))
+
+
+def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> CompiledLearned:
+    """The pairs of a problem whose kind ``context`` has (``types``: each box's type)."""
+    by_kind = {pair.kind: pair for pair in context.pairs}
+    pairs = []
+    for source, target, kind in related_pairs(problem, types):
+        if kind in by_kind:
+            pairs.append((source, target, by_kind[kind]))
+    pairs_of_box: list[list[int]] = [[] for _ in range(problem.n_boxes)]
+    for k, (source, target, _) in enumerate(pairs):
+        pairs_of_box[source].append(k)
+        pairs_of_box[target].append(k)
+    joined = {(source, target) for source, target, _ in pairs}
+    tempered = frozenset(
+        t for t, term in enumerate(problem.relations)
+        if term.a.kind == "object" and term.b.kind == "object" and (term.a.index, term.b.index) in joined
+    )  # fmt: skip
+    return CompiledLearned(tuple(pairs), tuple(tuple(p) for p in pairs_of_box), tempered)
+
+
+class LearnedMoves:
+    """Proposals drawn from the learned pairs' own distributions (see the module docstring)."""
+
+    def __init__(self, learned: CompiledLearned, problem, state, rng: np.random.Generator, movable: Sequence[bool]):
+        self.learned, self.problem, self.state, self.rng = learned, problem, state, rng
+        # Only pairs whose source a move may place by itself (free, not in a rigid group).
+        self.pairs = [k for k, (source, _, _) in enumerate(learned.pairs) if movable[source]]
+        #: Per learned pair, how many of its moves the chain accepted.
+        self.redrawn = [0] * len(learned.pairs)
+        self._cumulative: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def _tables(self, table: PairContext) -> tuple[np.ndarray, np.ndarray]:
+        """Cumulative shares exp(-weight) of the cells and of the yaw bins (cached per kind)."""
+        key = id(table)
+        if key not in self._cumulative:
+            cells = np.exp(-(table.position[:-1] - table.position[:-1].min()))
+            turns = np.exp(-(table.yaw - table.yaw.min()))
+            self._cumulative[key] = (np.cumsum(cells) / cells.sum(), np.cumsum(turns) / turns.sum())
+        return self._cumulative[key]
+
+    def mixed(self, params) -> bool:
+        """Whether every pair a move may redraw had ``params.learned_sweeps`` moves accepted."""
+        return all(self.redrawn[pair] >= params.learned_sweeps for pair in self.pairs)
+
+    def propose(self) -> tuple[dict, float, int] | None:
+        """A new pose for one pair's source (with what rests on it), the Hastings
+        correction (the pair's learned energy after the move less before) and the pair.
+        None when no pair's source may move."""
+        if not self.pairs:
+            return None
+        rng, state = self.rng, self.state
+        pair = self.pairs[int(rng.integers(len(self.pairs)))]
+        source, target, table = self.learned.pairs[pair]
+        cells, turns = self._tables(table)
+        cell = min(int(np.searchsorted(cells, rng.random(), side="right")), BINS * BINS - 1)
+        turn_bin = min(int(np.searchsorted(turns, rng.random(), side="right")), YAW_BINS - 1)
+        x0, z0, x1, z1 = table.bounds
+        i, k = divmod(cell, BINS)
+        lx = x0 + (k + rng.random()) * (x1 - x0) / BINS
+        lz = z0 + (i + rng.random()) * (z1 - z0) / BINS
+        turn = -math.pi + (turn_bin + rng.random()) * TAU / YAW_BINS
+        tx, tz, tyaw = state.pose(target)
+        x, z = to_world(tx, tz, tyaw, lx, lz)
+        yaw = wrap(tyaw + turn)
+        sx, sz, syaw = state.pose(source)
+        boxes = rigid(state, self.problem.carried(source), (sx, sz), wrap(yaw - syaw), (x - sx, z - sz))
+        # The correction is read where the source really lands (rounding may cross a bin edge).
+        nx, nz, nyaw = boxes[source]
+        after = table.energy(relative_pose((nx, nz, nyaw), (tx, tz, tyaw)))
+        return boxes, after - self.learned.value(pair, state), pair
