@@ -1,0 +1,197 @@
+"""Diversity: does sampling with learned context terms keep the examples' spread?
+
+The dining-table comparison of Hammoud et al. (Entropy 2014, section 5.2): one table
+and six chairs in one arrangement, jittered into ``--examples`` example scenes (each
+chair's offset by a Gaussian of ``--jitter`` metres per axis, its turn by one of 0.1 rad,
+the table's place and turn too; seeded). ``fit_context`` learns the context from them,
+then ``--scenes`` new scenes of the same rules are laid out three ways:
+
+- ``temperature 1``: the learned terms (and the relations of their pairs) sampled at
+  temperature 1, the rest annealed (the default with a context);
+- ``annealed``: the same energy, everything annealed (the optimiser's way);
+- ``no context``: the rules alone, as ``generate`` lays them out without a context.
+
+Per chair *slot* (the arrangement's six places; in each scene the chairs are matched
+to the slots by the smallest total distance, as two chairs of one relation are
+interchangeable) the spread is the root mean square distance of the chair's position
+in the table's frame from the slot's mean position; the table prints each slot's
+generated spread over the examples' and the mean of these ratios (target: within
+[0.8, 1.25] at temperature 1, below 0.8 when annealed), and the layout time per scene
+of each way (target: temperature 1 at most 2x no context).
+
+    .venv/bin/python benchmarks/bench_diversity.py
+    .venv/bin/python benchmarks/bench_diversity.py --examples 30 --scenes 100 --seed 0
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from scenewright.api import build_scene  # noqa: E402
+from scenewright.generator import expand, load_rules  # noqa: E402
+from scenewright.generator.layout import LayoutParams, layout_scene  # noqa: E402
+from scenewright.learning.context import fit_context  # noqa: E402
+
+RULES = """\
+# dining.rules - one table with six chairs around it (the diversity benchmark).
+scene dining {
+    extent 5 x 5
+    ground floor
+    start Dining
+}
+
+object table { noun "table" size 1.6 x 0.75 x 0.9 shape table colour #9a6a3a }
+object chair { noun "chair" size 0.45 x 0.9 x 0.45 shape chair colour #3a3a44 }
+
+Dining -> {
+    table as t
+    2 chair NextToFront t FacingTowards t
+    2 chair NextToBehind t FacingTowards t
+    chair NextToLeft t FacingTowards t
+    chair NextToRight t FacingTowards t
+}
+"""
+
+#: The arrangement in the table's frame (x along its left, z along its forward), per
+#: side label: the chairs' places and the yaw that faces the table.
+SLOTS = {
+    "NextToFront": ([(-0.4, 0.8), (0.4, 0.8)], math.pi),
+    "NextToBehind": ([(-0.4, -0.8), (0.4, -0.8)], 0.0),
+    "NextToLeft": ([(1.15, 0.0)], -math.pi / 2.0),
+    "NextToRight": ([(-1.15, 0.0)], math.pi / 2.0),
+}
+
+
+def write_rules(folder: Path) -> Path:
+    path = folder / "dining.rules"
+    path.write_text(RULES, encoding="utf-8")
+    return path
+
+
+def side_of(scene: dict) -> dict[str, str]:
+    """Chair id -> its NextTo label."""
+    return {r["source"]: r["label"] for r in scene["relations"] if r["label"] in SLOTS}
+
+
+def jittered_examples(rules: Path, count: int, jitter: float, seed: int) -> list[tuple[str, dict]]:
+    """``count`` example scene.json documents: a scene of the rules with its objects moved
+    to the jittered arrangement (the derivation and relations kept)."""
+    rng = np.random.default_rng(seed)
+    template = build_scene(load_rules(rules), 0).to_dict()
+    sides = side_of(template)
+    examples = []
+    for k in range(count):
+        scene = {**template, "objects": [dict(o) for o in template["objects"]]}
+        tx, tz, tyaw = rng.normal(0.0, 0.3), rng.normal(0.0, 0.3), rng.normal(0.0, 0.2)
+        c, s = math.cos(tyaw), math.sin(tyaw)
+        used: dict[str, int] = {}
+        for obj in scene["objects"]:
+            if obj["type"] == "table":
+                obj["position"] = [tx, 0.0, tz]
+                obj["yaw"] = tyaw
+            elif obj["id"] in sides:
+                side = sides[obj["id"]]
+                places, yaw = SLOTS[side]
+                lx, lz = places[used.get(side, 0)]
+                used[side] = used.get(side, 0) + 1
+                lx, lz = lx + rng.normal(0.0, jitter), lz + rng.normal(0.0, jitter)
+                obj["position"] = [tx + lx * c + lz * s, 0.0, tz - lx * s + lz * c]
+                obj["yaw"] = math.atan2(math.sin(tyaw + yaw + rng.normal(0.0, 0.1)), math.cos(tyaw + yaw))
+        examples.append((f"example_{k:02d}", scene))
+    return examples
+
+
+def chair_positions(objects: list[tuple[str, float, float, float]]) -> np.ndarray:
+    """(6, 2) chair positions in the table's frame, matched to the arrangement's slots.
+    ``objects``: (type, x, z, yaw)."""
+    table = next(o for o in objects if o[0] == "table")
+    c, s = math.cos(table[3]), math.sin(table[3])
+    local = []
+    for kind, x, z, _ in objects:
+        if kind == "chair":
+            dx, dz = x - table[1], z - table[2]
+            local.append((dx * c - dz * s, dx * s + dz * c))
+    slots = np.array([place for places, _ in SLOTS.values() for place in places])
+    local = np.array(local)
+    cost = np.linalg.norm(slots[:, None, :] - local[None, :, :], axis=2)
+    rows, cols = linear_sum_assignment(cost)
+    return local[cols[np.argsort(rows)]]
+
+
+def spreads(positions: np.ndarray) -> np.ndarray:
+    """(6,) RMS distance of each slot's chair from its mean; ``positions`` (n, 6, 2)."""
+    centred = positions - positions.mean(axis=0, keepdims=True)
+    return np.sqrt((centred**2).sum(axis=2).mean(axis=0))
+
+
+def sample(rules: Path, count: int, context, params: LayoutParams) -> tuple[np.ndarray, float, int]:
+    """Chair positions (count, 6, 2) of ``count`` scenes, seconds per layout, layouts ok."""
+    loaded = load_rules(rules)
+    positions, seconds, ok = [], 0.0, 0
+    for seed in range(count):
+        graph = expand(loaded, seed)
+        start = time.process_time()
+        result = layout_scene(graph, seed, params=params, context=context)
+        seconds += time.process_time() - start
+        ok += result.ok
+        objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
+        positions.append(chair_positions(objects))
+    return np.array(positions), seconds / count, ok
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--examples", type=int, default=30)
+    parser.add_argument("--scenes", type=int, default=100)
+    parser.add_argument("--jitter", type=float, default=0.08, help="metres per axis (0.08)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--rounds", type=int, default=6)
+    parser.add_argument("--layouts", type=int, default=40, help="layouts per round of the fit (40)")
+    args = parser.parse_args()
+
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        rules = write_rules(Path(folder))
+        examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
+        observed = np.array([
+            chair_positions([(o["type"], o["position"][0], o["position"][2], o["yaw"]) for o in scene["objects"]])
+            for _, scene in examples
+        ])  # fmt: skip
+        start = time.process_time()
+        fitted = fit_context(examples, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
+        fit_seconds = time.process_time() - start
+        print(f"fit: {len(examples)} examples, {len(fitted.context.pairs)} pair kinds, "
+              f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
+              f"{fit_seconds:.1f} CPU s")
+        reference = spreads(observed)
+        ways = {
+            "temperature 1": (fitted.context, LayoutParams()),
+            "annealed": (fitted.context, replace(LayoutParams(), tempered=False)),
+            "no context": (None, LayoutParams()),
+        }
+        print(f"\n{'':14s} " + " ".join(f"slot {k + 1}" for k in range(6)) + "   mean   s/layout  ok")
+        print(f"{'examples (m)':14s} " + " ".join(f"{v:6.3f}" for v in reference))
+        times = {}
+        for name, (context, params) in ways.items():
+            positions, seconds, ok = sample(rules, args.scenes, context, params)
+            ratio = spreads(positions) / reference
+            times[name] = seconds
+            print(f"{name:14s} " + " ".join(f"{v:6.2f}" for v in ratio) + f"  {ratio.mean():5.2f}  {seconds:8.4f}  "
+                  f"{ok}/{args.scenes}")
+        print(f"\nlayout time, temperature 1 / no context: {times['temperature 1'] / times['no context']:.2f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,267 @@
+"""Learning a context: the ``learned`` layout part's weights, fitted by iterative scaling.
+
+``fit_context(examples, seed)`` measures, in every example scene, the related pairs
+(``learned_term.related_pairs``: objects joined by relation edges of the rules) and per
+pair kind builds the two histograms of the maximum-entropy framework of Hammoud et
+al. (Entropy 2014): where the source stands in the target's frame (BINS x BINS cells
+over the examples' range grown by ``PAD`` on each side, plus one bin for outside) and
+its yaw relative to the target's (YAW_BINS bins).
+
+Histograms are *shares* made comparable between a few dozen examples and a few dozen
+generated scenes: counts blurred by a Gaussian of ``SMOOTH`` bins (the position grid
+with zeros beyond its edge, the yaw circularly), divided by their total, plus ``FLOOR``
+in every bin and normalised again, so every bin has a share and a log.
+
+The weights start at lambda = -log(observed share): the exact answer when nothing but
+the learned terms acts on a pair (the outside bin's weight is raised by the log of how
+many grid cells the scene's floor would hold, as its share is spread over all of it).
+The layout adds collisions, the room and the rules'
+own relation terms, so the weights are then corrected by iterative scaling: each round
+lays out ``layouts`` scenes (the examples' own scene graphs in turn, each on its stream
+``core.seeds.stream(seed, "context", k)``) with the current weights, at temperature 1
+(``sampler``), measures their shares, and moves every weight by
+
+    lambda += RATE * log(generated share / observed share)     (clipped to +-MAX_STEP)
+
+the multiplicative form of iterative scaling (Darroch and Ratcliff's generalised
+iterative scaling, step 1/C with C = 2 histograms per pair): a bin the generated
+scenes visit too often gets costlier in proportion. The paper updates additively,
+lambda += eta (generated - observed) with eta = 1, on 32-bin histograms whose shares are
+tenths; on a 1024-cell grid the shares are thousandths and that step would not move.
+
+Each round's *divergence* is the mean over pair kinds of the total variation distance
+between observed and generated shares (position and yaw averaged). The weights kept
+are those of the round with the smallest divergence (after the last update one more
+round is laid out to measure it), so the figure reported is the one measured for the
+weights written.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.ndimage import gaussian_filter, gaussian_filter1d
+
+from scenewright.core.errors import InputError
+from scenewright.core.scene import Scene
+from scenewright.core.scene_graph import SceneGraph
+from scenewright.core.seeds import stream
+from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.layout.learned_term import (
+    BINS,
+    YAW_BINS,
+    LearnedContext,
+    PairContext,
+    pair_kind_name,
+    related_pairs,
+    relative_pose,
+)
+from scenewright.generator.layout.problem import compile_problem
+
+#: Blur of the histograms, in bins (standard deviation of the Gaussian): SMOOTH for the
+#: starting weights, UPDATE_SMOOTH for the comparisons iterative scaling makes (a few
+#: dozen generated pairs per round give a noisy fine histogram; what the weights must
+#: correct, the pull of collisions and of the rules' own relation terms, is smooth).
+SMOOTH = 1.0
+UPDATE_SMOOTH = 3.0
+#: Share added to every bin before normalising, so that every bin has a finite log.
+FLOOR = 1e-6
+#: The position grid reaches this share of the examples' range (at least MIN_PAD metres)
+#: beyond their extreme positions on each side.
+PAD = 0.25
+MIN_PAD = 0.1
+#: Iterative scaling's step (1 / C, C = 2 histograms per pair) and its largest change
+#: of one weight in one round.
+RATE = 0.5
+MAX_STEP = 2.0
+#: Defaults: rounds of iterative scaling and scenes laid out per round.
+ROUNDS = 6
+LAYOUTS = 40
+#: Fewest examples of a pair kind worth a histogram.
+MIN_PAIRS = 2
+
+Kind = tuple[str, str, tuple[str, ...]]
+
+
+@dataclass
+class ExampleLayout:
+    """One example's scene graph and its related pairs' relative poses (kind, (x, z, turn))."""
+
+    graph: SceneGraph
+    poses: list[tuple[Kind, tuple[float, float, float]]]
+
+
+def graph_pair_poses(graph: SceneGraph, poses: dict[str, tuple[float, float, float]]) -> list[tuple[Kind, tuple]]:
+    """The relative pose of every related pair of ``graph`` at ``poses`` (id -> (x, z, yaw))."""
+    problem = compile_problem(graph)
+    types = [graph.node(box_id).type for box_id in problem.ids]
+    found = []
+    for source, target, kind in related_pairs(problem, types):
+        found.append((kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]])))
+    return found
+
+
+def example_layout(name: str, document: dict) -> ExampleLayout:
+    """An example scene.json document's graph and pair poses; ``InputError`` naming it when
+    it is not a scene graph."""
+    try:
+        scene = Scene.from_dict(document)
+        graph = scene.graph()
+    except InputError as error:
+        raise InputError(f"{name}: {error}") from None
+    except (KeyError, ValueError, TypeError) as error:
+        raise InputError(f"{name}: not a valid scene graph: {error}") from None
+    poses = {o.id: (float(o.position[0]), float(o.position[2]), float(o.yaw)) for o in scene.objects}
+    return ExampleLayout(graph, graph_pair_poses(graph, poses))
+
+
+def grid_bounds(points: np.ndarray) -> tuple[float, float, float, float]:
+    """The position grid (x0, z0, x1, z1) around relative positions ``points`` (n, 2)."""
+    low, high = points.min(axis=0), points.max(axis=0)
+    pad = np.maximum(PAD * (high - low), MIN_PAD)
+    return float(low[0] - pad[0]), float(low[1] - pad[1]), float(high[0] + pad[0]), float(high[1] + pad[1])
+
+
+def counts(table: PairContext, poses: Sequence[tuple[float, float, float]]) -> tuple[np.ndarray, np.ndarray]:
+    """Raw histograms of relative poses in ``table``'s bins: position (BINS * BINS + 1,), yaw (YAW_BINS,)."""
+    position, yaw = np.zeros(BINS * BINS + 1), np.zeros(YAW_BINS)
+    for pose in poses:
+        position[table.cell(pose[0], pose[1])] += 1.0
+        yaw[table.yaw_bin(pose[2])] += 1.0
+    return position, yaw
+
+
+def shares(position: np.ndarray, yaw: np.ndarray, smooth: float = SMOOTH) -> tuple[np.ndarray, np.ndarray]:
+    """Shares of raw histograms blurred by ``smooth`` bins and floored (module
+    docstring); same shapes."""
+    grid = gaussian_filter(position[:-1].reshape(BINS, BINS), smooth, mode="constant", cval=0.0).ravel()
+    inside = position[:-1].sum()
+    if grid.sum() > 0.0:
+        grid *= inside / grid.sum()  # the blur keeps what was inside the grid inside it
+    blurred = np.append(grid, position[-1])
+    turns = gaussian_filter1d(yaw, smooth, mode="wrap")
+    return _floored(blurred), _floored(turns)
+
+
+def _floored(values: np.ndarray) -> np.ndarray:
+    total = values.sum()
+    values = values / total if total > 0.0 else np.full(len(values), 1.0 / len(values))
+    values = values + FLOOR
+    return values / values.sum()
+
+
+def _cell_area(bounds: tuple[float, float, float, float]) -> float:
+    return (bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / (BINS * BINS)
+
+
+def scaling_step(weights: np.ndarray, observed: np.ndarray, generated: np.ndarray, rate: float = RATE) -> np.ndarray:
+    """One iterative-scaling update of a histogram's weights (module docstring)."""
+    step = np.clip(rate * np.log(generated / observed), -MAX_STEP, MAX_STEP)
+    updated = weights + step
+    return updated - updated.min()
+
+
+def total_variation(first: np.ndarray, second: np.ndarray) -> float:
+    return 0.5 * float(np.abs(first - second).sum())
+
+
+@dataclass
+class ContextFit:
+    """A fitted context with its record: divergence per round, the round kept, the
+    pair kinds and how many example pairs each had."""
+
+    context: LearnedContext
+    divergence: list[float]
+    kept: int
+    layouts: int
+    skipped: list[str]
+
+
+def fit_context(
+    examples: Sequence[tuple[str, dict]],
+    *,
+    seed: int = 0,
+    rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
+    params: LayoutParams | None = None,
+) -> ContextFit:
+    """Fit a context to example scene.json documents ((name, document) pairs); see the
+    module docstring. ``InputError`` when no pair kind has MIN_PAIRS example pairs."""
+    from scenewright.generator.layout.learned_term import pair_kind_name
+
+    laid = [example_layout(name, document) for name, document in examples]
+    observed_poses: dict[Kind, list[tuple]] = {}
+    extents: dict[Kind, float] = {}  # the largest scene area a kind is seen in (m^2)
+    for (_, document), example in zip(examples, laid):
+        area = float(np.prod(document.get("extent") or [1.0, 1.0]))
+        for kind, pose in example.poses:
+            observed_poses.setdefault(kind, []).append(pose)
+            extents[kind] = max(extents.get(kind, 0.0), area)
+    kinds = sorted(kind for kind, poses in observed_poses.items() if len(poses) >= MIN_PAIRS)
+    skipped = sorted(pair_kind_name(*kind) for kind in observed_poses if kind not in kinds)
+    if not kinds:
+        raise InputError(
+            "no related pair of objects (two objects joined by a relation of the rules) occurs in at least "
+            f"{MIN_PAIRS} examples, so there is no context to learn"
+        )
+    tables: dict[Kind, PairContext] = {}
+    raw: dict[Kind, tuple[np.ndarray, np.ndarray]] = {}
+    observed: dict[Kind, tuple[np.ndarray, np.ndarray]] = {}  # shares at UPDATE_SMOOTH
+    for kind in kinds:
+        poses = observed_poses[kind]
+        bounds = grid_bounds(np.array([(x, z) for x, z, _ in poses]))
+        blank = PairContext(*kind, bounds, np.zeros(BINS * BINS + 1), np.zeros(YAW_BINS), len(poses))
+        raw[kind] = counts(blank, poses)
+        observed[kind] = shares(*raw[kind], UPDATE_SMOOTH)
+        position, yaw = (-np.log(share) for share in shares(*raw[kind]))
+        # The outside bin stands for all the floor beyond the grid, so its weight holds
+        # the log of how many cells that floor would make: without it, a share of FLOOR
+        # spread over the whole scene outweighs the grid (module docstring).
+        position[-1] += np.log(max(extents[kind] / _cell_area(bounds), 1.0))
+        tables[kind] = PairContext(*kind, bounds, position - position.min(), yaw - yaw.min(), len(poses))
+
+    divergence: list[float] = []
+    best: tuple[float, int, dict[Kind, PairContext]] | None = None
+    graphs = [example.graph for example in laid]
+    for round_index in range(rounds + 1):
+        context = LearnedContext(tuple(tables[kind] for kind in kinds))
+        generated_poses: dict[Kind, list[tuple]] = {kind: [] for kind in kinds}
+        for k in range(layouts):
+            graph = graphs[k % len(graphs)]
+            rng = stream(seed, "context", round_index * layouts + k)
+            result = layout_scene(graph, rng, params=params, context=context)
+            poses = {box_id: (pose.x, pose.z, pose.yaw) for box_id, pose in result.poses.items()}
+            for kind, pose in graph_pair_poses(graph, poses):
+                if kind in generated_poses:
+                    generated_poses[kind].append(pose)
+        distances, updated = [], {}
+        for kind in kinds:
+            table = tables[kind]
+            generated = shares(*counts(table, generated_poses[kind]), UPDATE_SMOOTH)
+            target = observed[kind]
+            distances.append(0.5 * (total_variation(generated[0], target[0]) + total_variation(generated[1], target[1])))
+            updated[kind] = PairContext(
+                *kind, table.bounds, scaling_step(table.position, target[0], generated[0]),
+                scaling_step(table.yaw, target[1], generated[1]), table.examples,
+            )  # fmt: skip
+        divergence.append(float(np.mean(distances)))
+        if best is None or divergence[-1] < best[0]:
+            best = (divergence[-1], round_index, dict(tables))
+        tables = updated
+    _, kept, chosen = best
+    record = {
+        "seed": seed, "rounds": rounds, "layouts_per_round": layouts, "kept_round": kept,
+        "divergence": [round(d, 6) for d in divergence], "skipped": skipped,
+    }  # fmt: skip
+    return ContextFit(LearnedContext(tuple(chosen[kind] for kind in kinds), record), divergence, kept, layouts, skipped)
+
+
+def context_path(rules_output: str | Path) -> Path:
+    """Where the context of a fitted rules file goes: ``NAME.context.json`` beside
+    ``NAME.rules`` (or beside ``NAME`` when the name has no ``.rules``)."""
+    path = Path(rules_output)
+    stem = path.name[: -len(".rules")] if path.name.endswith(".rules") else path.name
+    return path.with_name(stem + ".context.json")
