@@ -78,10 +78,10 @@ MIN_PAD = 0.1
 RATE = 0.5
 MAX_STEP = 2.0
 #: Defaults: rounds of iterative scaling and scenes laid out per round.
-ROUNDS = 6
+ROUNDS = 2
 LAYOUTS = 40
-#: Fewest examples of a pair kind worth a histogram.
-MIN_PAIRS = 2
+#: Fewest examples holding a pair kind for it to get a histogram (one scene shows no spread).
+MIN_EXAMPLES = 2
 
 Kind = tuple[str, str, tuple[str, ...]]
 
@@ -189,23 +189,26 @@ def fit_context(
     params: LayoutParams | None = None,
 ) -> ContextFit:
     """Fit a context to example scene.json documents ((name, document) pairs); see the
-    module docstring. ``InputError`` when no pair kind has MIN_PAIRS example pairs."""
+    module docstring. ``InputError`` when no pair kind is held by MIN_EXAMPLES examples."""
     from scenewright.generator.layout.learned_term import pair_kind_name
 
     laid = [example_layout(name, document) for name, document in examples]
     observed_poses: dict[Kind, list[tuple]] = {}
     extents: dict[Kind, float] = {}  # the largest scene area a kind is seen in (m^2)
+    holding: dict[Kind, int] = {}  # examples holding the kind
     for (_, document), example in zip(examples, laid):
         area = float(np.prod(document.get("extent") or [1.0, 1.0]))
         for kind, pose in example.poses:
             observed_poses.setdefault(kind, []).append(pose)
             extents[kind] = max(extents.get(kind, 0.0), area)
-    kinds = sorted(kind for kind, poses in observed_poses.items() if len(poses) >= MIN_PAIRS)
+        for kind in {kind for kind, _ in example.poses}:
+            holding[kind] = holding.get(kind, 0) + 1
+    kinds = sorted(kind for kind in observed_poses if holding[kind] >= MIN_EXAMPLES)
     skipped = sorted(pair_kind_name(*kind) for kind in observed_poses if kind not in kinds)
     if not kinds:
         raise InputError(
             "no related pair of objects (two objects joined by a relation of the rules) occurs in at least "
-            f"{MIN_PAIRS} examples, so there is no context to learn"
+            f"{MIN_EXAMPLES} examples, so there is no context to learn"
         )
     tables: dict[Kind, PairContext] = {}
     raw: dict[Kind, tuple[np.ndarray, np.ndarray]] = {}

@@ -6,6 +6,12 @@ example, a GLB), finds the derivations that could have made it (``derivations``)
 closed form when every example keeps its derivation), writes the
 rules with their new numbers (``rewrite``) and the report, each file whole or not at
 all, and checks that what it wrote loads as a rule set.
+
+``what`` chooses what is fitted (``WHAT``): ``weights`` (the above), ``context`` (the
+learned layout part, ``context``: written beside the rules as ``NAME.context.json``,
+which ``generate`` picks up), or both. Without ``weights`` the rules are written with
+their numbers as they were. The context is fitted before anything is written, so a
+failure leaves no file behind.
 """
 
 from __future__ import annotations
@@ -22,9 +28,23 @@ from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.rules import Rules, parse_rules_tree
 
+from .context import LAYOUTS, ROUNDS, ContextFit, context_path, fit_context
 from .derivations import derivations_of, measured_derivations_of
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
+
+
+#: What ``fit`` can fit, for ``--what``.
+WHAT = ("weights", "context")
+
+
+def parse_what(text: str) -> frozenset[str]:
+    """``--what``'s comma-separated choices; ``InputError`` for an unknown or empty one."""
+    chosen = [part.strip() for part in text.split(",")]
+    unknown = [part for part in chosen if part not in WHAT]
+    if not text.strip() or unknown:
+        raise InputError(f"--what: unknown choice {(unknown or [text])[0]!r}; choose from {', '.join(WHAT)} (comma-separated)")
+    return frozenset(chosen)
 
 
 class ExampleError(InputError):
@@ -72,19 +92,40 @@ def fit_rule_set(
     allow: Iterable[str | os.PathLike] = (),
     prior: float = PRIOR,
     write: Callable[[Path, str], object],
-) -> tuple[WeightFit, list[Path]]:
+    what: frozenset[str] = frozenset({"weights"}),
+    seed: int = 0,
+    rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
+) -> tuple[WeightFit, ContextFit | None, list[Path]]:
     """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
     (file name, Scene) for examples read from geometry alone) and
     write the fitted rules to ``output`` (with its included files beside it) and the
     report to ``report``. ``write(path, text)`` writes one file atomically.
 
-    Returns the fit and the files written. Raises ``ExampleError`` for an example that is
-    not a derivation of these rules, ``FitOutputError`` when the output cannot be placed.
+    ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds`` and ``layouts`` are the
+    context fit's (``context.fit_context``).
+
+    Returns the weights' fit (with ``weights`` left out: the fit that changes nothing),
+    the context's fit (None without ``context``) and the files written. Raises
+    ``ExampleError`` for an example that is not a derivation of these rules,
+    ``FitOutputError`` when the output cannot be placed, ``InputError`` when the
+    examples hold no pair to learn a context from.
     """
     rules = load_rules(rules_source, allow=allow)
+    measured = [path for path, scene in examples if isinstance(scene, Scene)]
+    if "context" in what and measured:
+        raise ExampleError(
+            f"{measured[0]}: a context is learned from scene.json examples, whose relations say which objects "
+            "are related; this one was read from geometry alone (fit it with --what weights)"
+        )
     fit = fit_weights_em(rules, [example_candidates(rules, path, scene) for path, scene in examples], prior)
+    context = fit_context(examples, seed=seed, rounds=rounds, layouts=layouts) if "context" in what else None
     tree = parse_rules_tree(rules_source, allow=allow)
+    if "weights" not in what:
+        fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
+    if context is not None:
+        placed.append((context_path(output), context.context.to_json()))
     for path, text in placed:
         path.parent.mkdir(parents=True, exist_ok=True)
         write(path, text)
@@ -92,6 +133,8 @@ def fit_rule_set(
     written = [path for path, _ in placed]
     if report is not None:
         document = {"rules": os.fspath(rules_source), "output": os.fspath(output), **fit.to_dict()}
+        if context is not None:
+            document["context"] = {"file": os.fspath(context_path(output)), **context.context.fit}
         write(report, json.dumps(document, indent=2) + "\n")
         written.append(report)
-    return fit, written
+    return fit, context, written

@@ -33,6 +33,7 @@ from scenewright.core.relations import RELATIONS
 if TYPE_CHECKING:
     from scenewright.core.scene import Scene
     from scenewright.describer import Description
+    from scenewright.generator.layout.learned_term import LearnedContext
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer, RenderResult
     from scenewright.render.views import CameraRanges
@@ -88,8 +89,11 @@ def build_scene(
     *,
     templates: str | os.PathLike[str] | None = None,
     layout_seed: int | None = None,
+    context: LearnedContext | None = None,
 ) -> Scene:
     """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images.
+
+    ``context``: a learned context (``rules_context``) the layout samples with.
 
     ``templates``, a folder of description templates, replaces the rule set's own in
     ``scene.templates`` (as an absolute path), so every description of the scene uses it.
@@ -109,7 +113,7 @@ def build_scene(
     with timed(timings, "expand"):
         graph = expand(loaded, seed)
     with timed(timings, "layout"):
-        layout = layout_scene(graph, layout_seed)
+        layout = layout_scene(graph, layout_seed, context=context)
     scene = assemble_scene(graph, layout, rules=rules_label(loaded), seed=seed)
     if templates is not None:
         scene.templates = str(Path(templates).resolve())
@@ -229,6 +233,7 @@ def generate(
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
     words: int | None = None,
+    context: LearnedContext | None = None,
 ) -> Scene:
     """Generate one scene: expand, lay out and describe it (``words``: a word budget, see ``describe``).
 
@@ -241,10 +246,31 @@ def generate(
     ``templates`` is a folder of description templates that replaces the rule set's
     own (the scene block's ``templates``); the scene records it in ``scene.templates``
     so that describing the scene again uses it too.
+
+    ``context`` is a learned context (``scenewright fit --what context``; read one with
+    ``rules_context``): the layout then samples its pairs at temperature 1. The CLI's
+    ``generate`` uses the one beside a rules file by default; this function only the
+    one it is given.
     """
     check_choice("style", style, STYLES)
-    scene = build_scene(rules, seed, templates=checked_templates(templates))
+    scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)
     return describe_scene(scene, style=style, variant=variant, words=words)
+
+
+def rules_context(rules: Rules, path: str | os.PathLike[str] | None = None) -> tuple[str, LearnedContext] | None:
+    """The learned context at ``path``, or else the one beside a rules file
+    (``NAME.context.json`` beside ``NAME.rules``, as ``fit --what context`` writes it),
+    with the file it came from; None when there is none. ``InputError`` for a file that
+    is not a context."""
+    from scenewright.generator.layout.learned_term import read_context
+    from scenewright.learning.context import context_path
+
+    if path is None:
+        beside = context_path(rules.path)
+        if rules_label(rules) == rules.name or not beside.is_file():
+            return None
+        path = beside
+    return str(path), read_context(str(path))
 
 
 def checked_templates(templates: str | os.PathLike[str] | None) -> str | None:

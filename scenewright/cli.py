@@ -218,10 +218,18 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.generator import load_rules
 
     check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
+    from scenewright.api import rules_context
+
     rules = load_rules(args.rules, allow=args.allow_outside)
+    if args.context is not None and args.no_context:
+        raise InputError("--context and --no-context contradict each other; give one")
+    context = None if args.no_context else rules_context(rules, args.context)
+    if context is not None:
+        say(args, f"context: {context[0]} ({len(context[1].pairs)} pair kinds)")
     scene = generate(
-        rules, args.seed, style=args.style, variant=args.variant, templates=args.templates, words=args.words
-    )
+        rules, args.seed, style=args.style, variant=args.variant, templates=args.templates, words=args.words,
+        context=context[1] if context is not None else None,
+    )  # fmt: skip
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view, camera=args.camera)
@@ -506,21 +514,28 @@ def run_schema(args: argparse.Namespace) -> int:
 
 def run_fit(args: argparse.Namespace) -> int:
     from scenewright.atomic import write_atomic
-    from scenewright.learning.fit import fit_rule_set
+    from scenewright.learning.fit import fit_rule_set, parse_what
 
     from scenewright.examples.formats import example_paths
 
+    what = parse_what(args.what)
     examples = [(str(path), read_fit_example(path)) for path in example_paths(args.examples)]
     output = output_file(args.output, "fitted.rules")
     report = output_file(args.report, "fit.json") if args.report else None
-    fit, written = fit_rule_set(
-        args.rules, examples, output, report=report, allow=args.allow_outside, prior=args.prior, write=write_atomic
-    )
+    fit, context, written = fit_rule_set(
+        args.rules, examples, output, report=report, allow=args.allow_outside, prior=args.prior, write=write_atomic,
+        what=what, seed=args.seed, rounds=args.rounds, layouts=args.layouts,
+    )  # fmt: skip
     unidentified = fit.unidentified
-    say(args, f"fitted {len(fit.parameters)} parameters from {fit.examples} example"
-              f"{'s' if fit.examples != 1 else ''}"
-              + (f"; {len(unidentified)} no example drew kept their numbers: "
-                 + ", ".join(f"{p.kind} {p.name}" for p in unidentified) if unidentified else ""))
+    if "weights" in what:
+        say(args, f"fitted {len(fit.parameters)} parameters from {fit.examples} example"
+                  f"{'s' if fit.examples != 1 else ''}"
+                  + (f"; {len(unidentified)} no example drew kept their numbers: "
+                     + ", ".join(f"{p.kind} {p.name}" for p in unidentified) if unidentified else ""))
+    if context is not None:
+        say(args, f"fitted a context of {len(context.context.pairs)} pair kind"
+                  f"{'s' * (len(context.context.pairs) != 1)} from {len(examples)} examples "
+                  f"(divergence {context.divergence[0]:.3f} at the start, {context.divergence[context.kept]:.3f} kept)")
     say(args, "wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -1070,6 +1085,12 @@ def build_parser() -> CommandLineParser:
         "distance (times the framing distance), target (an id or type); a number may be a range LOW:HIGH, drawn "
         "from the seed (e.g. azimuth=30,elevation=45,distance=1.2)",
     )
+    generate.add_argument(
+        "--context", metavar="JSON",
+        help="a learned context (scenewright fit --what context); by default NAME.context.json beside a "
+        "NAME.rules file is used when it exists",
+    )  # fmt: skip
+    generate.add_argument("--no-context", action="store_true", help="ignore NAME.context.json beside the rules")
     allow_option(generate)
 
     layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
@@ -1250,6 +1271,18 @@ def build_parser() -> CommandLineParser:
         help="Dirichlet pseudo-draws per option (0.5: Jeffreys' prior; more pulls rarely drawn parameters "
         "towards uniform)",
     )  # fmt: skip
+    fit.add_argument(
+        "--what", default="weights", metavar="WHAT[,WHAT]",
+        help="what to fit: weights (the rules' numbers, the default), context (spatial priors learned from the "
+        "examples' layouts, written beside the rules as NAME.context.json), or weights,context",
+    )  # fmt: skip
+    fit.add_argument("--seed", type=seed_value, default=0, help="seed of the context fit's layouts (0)")
+    fit.add_argument(
+        "--rounds", type=count_at_least(0), default=2, metavar="N", help="context: rounds of iterative scaling (2)"
+    )
+    fit.add_argument(
+        "--layouts", type=count_at_least(1), default=40, metavar="N", help="context: scenes laid out per round (40)"
+    )
     allow_option(fit)
 
     relations = command("relations", "find which object type pairs are spatially related in example scenes", run_relations)

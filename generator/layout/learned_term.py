@@ -265,8 +265,10 @@ def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> C
 class LearnedMoves:
     """Proposals drawn from the learned pairs' own distributions (see the module docstring)."""
 
-    def __init__(self, learned: CompiledLearned, problem, state, rng: np.random.Generator, movable: Sequence[bool]):
-        self.learned, self.problem, self.state, self.rng = learned, problem, state, rng
+    def __init__(
+        self, learned: CompiledLearned, problem, state, rng: np.random.Generator, movable: Sequence[bool], sweeps: int
+    ):
+        self.learned, self.problem, self.state, self.rng, self.sweeps = learned, problem, state, rng, sweeps
         # Only pairs whose source a move may place by itself (free, not in a rigid group).
         self.pairs = [k for k, (source, _, _) in enumerate(learned.pairs) if movable[source]]
         #: Per learned pair, how many of its moves the chain accepted.
@@ -282,9 +284,9 @@ class LearnedMoves:
             self._cumulative[key] = (np.cumsum(cells) / cells.sum(), np.cumsum(turns) / turns.sum())
         return self._cumulative[key]
 
-    def mixed(self, params) -> bool:
-        """Whether every pair a move may redraw had ``params.learned_sweeps`` moves accepted."""
-        return all(self.redrawn[pair] >= params.learned_sweeps for pair in self.pairs)
+    def mixed(self) -> bool:
+        """Whether every pair a move may redraw had ``sweeps`` of its moves accepted."""
+        return all(self.redrawn[pair] >= self.sweeps for pair in self.pairs)
 
     def propose(self) -> tuple[dict, float, int] | None:
         """A new pose for one pair's source (with what rests on it), the Hastings
@@ -293,7 +295,12 @@ class LearnedMoves:
         if not self.pairs:
             return None
         rng, state = self.rng, self.state
-        pair = self.pairs[int(rng.integers(len(self.pairs)))]
+        # Until every pair has been redrawn (``mixed``), the pairs still short of it are
+        # drawn: the burn-in then ends after a few tries per pair, not when the unluckiest
+        # of a uniform draw's pairs has caught up.
+        lagging = [pair for pair in self.pairs if self.redrawn[pair] < self.sweeps]
+        choices = lagging or self.pairs
+        pair = choices[int(rng.integers(len(choices)))]
         source, target, table = self.learned.pairs[pair]
         cells, turns = self._tables(table)
         cell = min(int(np.searchsorted(cells, rng.random(), side="right")), BINS * BINS - 1)

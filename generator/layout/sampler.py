@@ -37,9 +37,9 @@ annealed as always, and the verdict still checks every relation. ``correction`` 
 Hastings term of a learned move (0 for the others). A
 share ``params.learned_share`` of the steps is a learned move (``LearnedMoves``: a
 pair's source drawn from the pair's learned distribution), and the stop rule waits until
-every pair has had ``params.learned_sweeps`` such moves accepted, so that no source is
-left where the constructive placement put it (those leftovers, not the learned terms,
-would set the spread). ``params.tempered=False`` anneals the learned terms with the rest (the
+every pair has had ``params.learned_sweeps`` such moves accepted (drawing the pairs
+still short of it first), so that no source is left where the constructive placement
+put it (those leftovers, not the learned terms, would set the spread). ``params.tempered=False`` anneals the learned terms with the rest (the
 optimiser's way, which collapses every scene onto the most likely pose: for
 comparison). Without a context nothing here changes a single random draw.
 """
@@ -109,7 +109,7 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     relocator = Relocator(problem, energy.state, mover) if problem.room is not None else None
     learned = None
     if problem.learned is not None:
-        learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box)
+        learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box, params.learned_sweeps)
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
@@ -117,7 +117,7 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
     for step in range(budget):
-        if step >= params.min_steps and step % params.check_every == 0 and (learned is None or learned.mixed(params)):
+        if step >= params.min_steps and step % params.check_every == 0 and (learned is None or learned.mixed()):
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
                 break

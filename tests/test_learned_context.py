@@ -1,0 +1,254 @@
+"""The learned layout part (``learned_term``), its fit by iterative scaling
+(``learning.context``) and ``fit --what context`` / ``generate --context``."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from scenewright.api import build_scene
+from scenewright.cli import main
+from scenewright.generator import expand, load_rules
+from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.layout.learned_term import (
+    BINS,
+    YAW_BINS,
+    LearnedContext,
+    LearnedMoves,
+    PairContext,
+    compile_learned,
+    related_pairs,
+    relative_pose,
+)
+from scenewright.generator.layout.problem import compile_problem
+from scenewright.generator.layout.sampler import start_chain
+from scenewright.learning.context import fit_context, scaling_step, total_variation
+
+DINING = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
+
+
+def random_context(graph, seed: int = 0) -> LearnedContext:
+    """Random weights for every pair kind of a graph, over a grid around the target."""
+    problem = compile_problem(graph)
+    types = [graph.node(i).type for i in problem.ids]
+    rng = np.random.default_rng(seed)
+    kinds = sorted({kind for _, _, kind in related_pairs(problem, types)})
+    return LearnedContext(tuple(
+        PairContext(*kind, (-1.5, -1.2, 1.5, 1.2), rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1)
+        for kind in kinds
+    ))  # fmt: skip
+
+
+def dining_problem(seed: int = 0):
+    graph = expand(load_rules(DINING), seed)
+    problem = compile_problem(graph)
+    problem.learned = compile_learned(random_context(graph, seed), problem, [graph.node(i).type for i in problem.ids])
+    return problem
+
+
+@pytest.mark.parametrize("incremental", [True, False])
+def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
+    problem = dining_problem(1)
+    assert len(problem.learned.pairs) == 6 and problem.learned.tempered
+    params = LayoutParams(incremental=incremental)
+    rng = np.random.default_rng(5)
+    energy, mover = start_chain(problem, params, rng)
+    learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box, 1)
+    checked = 0
+    for step in range(300):
+        drawn = learned.propose() if step % 2 else None
+        proposal = (drawn[0], {}) if drawn else mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        before = energy.full()
+        delta = energy.propose(*proposal)
+        after = energy.full()
+        assert delta == pytest.approx(sum(after.values()) - sum(before.values()), abs=1e-9)
+        assert energy.learned_delta == pytest.approx(after["learned"] - before["learned"], abs=1e-9)
+        assert energy.soft_delta - energy.learned_delta == pytest.approx(_tempered_relations(energy, problem), abs=1e-9)
+        if drawn:  # the Hastings correction is the moved pair's own change
+            pair = drawn[2]
+            source, target, table = problem.learned.pairs[pair]
+            old = energy.learned[pair]
+            new = problem.learned.value(pair, energy.state)
+            assert drawn[1] == pytest.approx(new - old, abs=1e-9)
+        if rng.random() < 0.5:
+            energy.accept()
+        else:
+            energy.reject()
+        assert energy.total == pytest.approx(sum(energy.full().values()), abs=1e-7)
+        checked += 1
+    assert checked > 250
+
+
+def _tempered_relations(energy, problem) -> float:
+    """The pending proposal's change in the tempered relation terms, recomputed."""
+    return sum(energy.relation_energy(t) - energy.relation[t] for t in problem.learned.tempered)
+
+
+def test_iterative_scaling_matches_the_observed_shares_on_a_known_model():
+    # A pair's model: base measure b over (position bin, yaw bin), times exp(-lambda_p - lambda_y).
+    rng = np.random.default_rng(0)
+    base = rng.uniform(0.2, 3.0, (8, 5))
+    observed_p, observed_y = rng.dirichlet(np.ones(8)), rng.dirichlet(np.ones(5))
+    weights_p, weights_y = np.zeros(8), np.zeros(5)
+
+    def model():
+        joint = base * np.exp(-weights_p)[:, None] * np.exp(-weights_y)[None, :]
+        joint /= joint.sum()
+        return joint.sum(axis=1), joint.sum(axis=0)
+
+    start = total_variation(model()[0], observed_p) + total_variation(model()[1], observed_y)
+    for _ in range(60):
+        generated_p, generated_y = model()
+        weights_p = scaling_step(weights_p, observed_p, generated_p)
+        weights_y = scaling_step(weights_y, observed_y, generated_y)
+    generated_p, generated_y = model()
+    assert start > 0.1
+    assert total_variation(generated_p, observed_p) < 1e-4 and total_variation(generated_y, observed_y) < 1e-4
+    assert weights_p.min() == 0.0  # normalised to start at 0
+
+
+def dining_examples(count: int, seed: int = 0) -> list[tuple[str, dict]]:
+    """``count`` dining scenes, the chairs' layouts jittered around one arrangement."""
+    template = build_scene(load_rules(DINING), 0).to_dict()
+    side = {r["source"]: r["label"] for r in template["relations"] if r["label"].startswith("NextTo")}
+    places = {"NextToFront": [(-0.4, 0.8), (0.4, 0.8)], "NextToBehind": [(-0.4, -0.8), (0.4, -0.8)],
+              "NextToLeft": [(1.15, 0.0)], "NextToRight": [(-1.15, 0.0)]}  # fmt: skip
+    yaws = {"NextToFront": math.pi, "NextToBehind": 0.0, "NextToLeft": -math.pi / 2, "NextToRight": math.pi / 2}
+    rng = np.random.default_rng(seed)
+    examples = []
+    for k in range(count):
+        used: dict[str, int] = {}
+        objects = []
+        for o in template["objects"]:
+            o = dict(o)
+            if o["type"] == "table":
+                o["position"], o["yaw"] = [0.0, 0.0, 0.0], 0.0
+            elif o["id"] in side:
+                label = side[o["id"]]
+                x, z = places[label][used.get(label, 0)]
+                used[label] = used.get(label, 0) + 1
+                o["position"] = [x + rng.normal(0, 0.05), 0.0, z + rng.normal(0, 0.05)]
+                o["yaw"] = yaws[label]
+            objects.append(o)
+        examples.append((f"example_{k}", {**template, "objects": objects}))
+    return examples
+
+
+def test_fit_context_is_deterministic_and_learns_every_pair_kind():
+    examples = dining_examples(6)
+    first = fit_context(examples, seed=3, rounds=1, layouts=4)
+    again = fit_context(examples, seed=3, rounds=1, layouts=4)
+    assert first.context.to_json() == again.context.to_json()
+    assert len(first.context.pairs) == 4 and len(first.divergence) == 2
+    # Each weight vector starts at 0 and the lowest cells hold the examples.
+    front = next(p for p in first.context.pairs if "NextToFront" in p.labels)
+    assert front.position.min() == 0.0
+    assert front.position[front.cell(0.4, 0.8)] < front.position[front.cell(0.0, 0.8)]
+    assert front.position[-1] > front.position[:-1].max() - 1e-9 or front.position[-1] > 10.0
+
+
+def test_a_context_of_other_types_leaves_the_layout_unchanged():
+    graph = expand(load_rules(DINING), 2)
+    other = LearnedContext((PairContext("lamp", "desk", ("OnTopOf",), (-1, -1, 1, 1), np.zeros(BINS * BINS + 1),
+                                        np.zeros(YAW_BINS)),))  # fmt: skip
+    plain = layout_scene(graph, 2)
+    assert replace(layout_scene(graph, 2, context=other), seconds=plain.seconds) == plain
+
+
+def test_tempered_sampling_spreads_where_annealing_collapses():
+    """Where the chair at the table's left end stands in the table's frame."""
+    graph = expand(load_rules(DINING), 0)
+    examples = dining_examples(12)
+    context = fit_context(examples, seed=0, rounds=0, layouts=2).context
+    spread = {}
+    for tempered in (True, False):
+        chairs = []
+        for seed in range(8):
+            result = layout_scene(graph, seed, context=context, params=replace(LayoutParams(), tempered=tempered,
+                                                                               restarts=0))  # fmt: skip
+            assert "learned" in result.parts
+            chair, table = result.poses["chair_5"], result.poses["table_1"]
+            chairs.append(relative_pose((chair.x, chair.z, chair.yaw), (table.x, table.z, table.yaw))[:2])
+        spread[tempered] = float(np.linalg.norm(np.std(chairs, axis=0)))
+    assert spread[True] > spread[False]
+
+
+def write_examples(folder: Path, examples) -> list[str]:
+    paths = []
+    for name, scene in examples:
+        path = folder / f"{name}.json"
+        path.write_text(json.dumps(scene), encoding="utf-8")
+        paths.append(str(path))
+    return paths
+
+
+def test_fit_what_context_round_trip(tmp_path, capsys):
+    paths = write_examples(tmp_path, dining_examples(5))
+    out = tmp_path / "out" / "fitted.rules"
+    code = main(["fit", str(DINING), *paths, "-o", str(out), "--what", "weights,context", "--rounds", "1",
+                 "--layouts", "3", "--report", str(tmp_path / "fit.json")])  # fmt: skip
+    assert code == 0, capsys.readouterr().err
+    sidecar = tmp_path / "out" / "fitted.context.json"
+    document = json.loads(sidecar.read_text())
+    assert document["format"] == "scenewright-context" and len(document["pairs"]) == 4
+    assert json.loads((tmp_path / "fit.json").read_text())["context"]["file"] == str(sidecar)
+    first = sidecar.read_bytes()
+    assert main(["fit", str(DINING), *paths, "-o", str(out), "--what", "context", "--rounds", "1",
+                 "--layouts", "3"]) == 0  # fmt: skip
+    assert sidecar.read_bytes() == first  # deterministic
+    assert out.read_text() == DINING.read_text()  # context only: the numbers as they were
+    # generate picks the context up beside the rules; --no-context leaves it out.
+    capsys.readouterr()
+    assert main(["generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g1")]) == 0
+    assert "context: " in capsys.readouterr().out
+    scene = json.loads((tmp_path / "g1" / "scene.json").read_text())
+    assert "learned" in scene["layout"]["parts"]
+    assert main(["generate", str(out), "--seed", "1", "--no-render", "--no-context", "-o", str(tmp_path / "g2")]) == 0
+    assert "learned" not in json.loads((tmp_path / "g2" / "scene.json").read_text())["layout"]["parts"]
+    assert main(["generate", str(DINING), "--seed", "1", "--no-render", "--context", str(sidecar),
+                 "-o", str(tmp_path / "g3")]) == 0  # fmt: skip
+    given, beside = (json.loads((tmp_path / g / "scene.json").read_text()) for g in ("g3", "g1"))
+    assert given["rules"] != beside["rules"]  # the file's path
+    assert {**given, "rules": None} == {**beside, "rules": None}
+
+
+def _one_line_error(capsys) -> str:
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    return err
+
+
+def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
+    paths = write_examples(tmp_path, dining_examples(2))
+    out = tmp_path / "o" / "fitted.rules"
+    assert main(["fit", str(DINING), *paths, "-o", str(out), "--what", "colours"]) == 2
+    assert "--what" in _one_line_error(capsys)
+    # Examples holding no related pair of a kind in two of them: nothing is written.
+    lone = write_examples(tmp_path, dining_examples(1))
+    assert main(["fit", str(DINING), *lone, "-o", str(out), "--what", "context"]) == 2
+    assert "no related pair" in _one_line_error(capsys)
+    assert not out.exists() and not (tmp_path / "o" / "fitted.context.json").exists()
+    bad = tmp_path / "bad.context.json"
+    for text, words in [("{", "not JSON"), ('{"format": "x"}', "not a context file"),
+                        (json.dumps({"format": "scenewright-context", "version": 1, "bins": BINS,
+                                     "yaw_bins": YAW_BINS, "pairs": [{"source": "chair"}]}), "target")]:  # fmt: skip
+        bad.write_text(text)
+        assert main(["generate", str(DINING), "--no-render", "--context", str(bad), "-o", str(tmp_path / "g")]) == 2
+        assert words in _one_line_error(capsys)
+        assert not (tmp_path / "g").exists()
+    # A broken sidecar beside the rules is refused too.
+    rules = tmp_path / "mine.rules"
+    rules.write_text(DINING.read_text())
+    (tmp_path / "mine.context.json").write_text("[]")
+    assert main(["generate", str(rules), "--no-render", "-o", str(tmp_path / "g")]) == 2
+    assert "mine.context.json" in _one_line_error(capsys)
+    assert main(["generate", str(rules), "--no-render", "--no-context", "--context", str(bad), "-o",
+                 str(tmp_path / "g")]) == 2  # fmt: skip
+    _one_line_error(capsys)
