@@ -21,11 +21,13 @@ of each way (target: temperature 1 at most 2x no context).
 
     .venv/bin/python benchmarks/bench_diversity.py
     .venv/bin/python benchmarks/bench_diversity.py --examples 30 --scenes 60 --seed 1
+    .venv/bin/python benchmarks/bench_diversity.py --write-examples dining_examples   # the examples only
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 import time
@@ -133,10 +135,18 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--layouts", type=int, default=40, help="layouts per round of the fit (40)")
+    parser.add_argument("--write-examples", metavar="DIR", help="only write the examples as DIR/example_NN.json")
     args = parser.parse_args()
 
     rules = RULES
     examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
+    if args.write_examples:
+        folder = Path(args.write_examples)
+        folder.mkdir(parents=True, exist_ok=True)
+        for name, scene in examples:
+            (folder / f"{name}.json").write_text(json.dumps(scene, indent=1) + "\n", encoding="utf-8")
+        print(f"wrote {len(examples)} examples to {folder}/")
+        return 0
     observed = np.array([
         chair_positions([(o["type"], o["position"][0], o["position"][2], o["yaw"]) for o in scene["objects"]])
         for _, scene in examples
