@@ -288,7 +288,7 @@ def quick_layout(monkeypatch):
     monkeypatch.setattr(
         layout,
         "layout_scene",
-        lambda graph, seed: real(graph, seed, params=LayoutParams(steps=300, restarts=0)),
+        lambda graph, seed, **options: real(graph, seed, params=LayoutParams(steps=300, restarts=0), **options),
     )
 
 
