@@ -79,14 +79,22 @@ def test_a_mask_pulls_its_box_to_where_it_is_high():
 @settings(max_examples=9, deadline=None)
 @given(seed=st.integers(0, 10_000))
 def test_incremental_mask_deltas_equal_full_recomputation_on_random_moves(seed):
+    def one_mask(ids, rng, xs, zs):
+        listed = [box_id for box_id in ids if rng.random() < 0.7]
+        return FloorMask(rng.random((10, 10)), (min(xs), min(zs), max(xs), max(zs)), tuple(listed))
+
+    check_mask_deltas(seed, one_mask)
+
+
+def check_mask_deltas(seed, masks_for):
+    """Random moves in a random room with the masks ``masks_for(ids, rng, xs, zs)``
+    makes, each delta of the mask part against full recomputation."""
     graph = random_room_scene(seed)
     problem = compile_problem(graph)
     rng = np.random.default_rng(seed)
     room = graph.params.room
     xs, zs = [c[0] for c in room.corners], [c[1] for c in room.corners]
-    listed = [box_id for box_id in problem.ids if rng.random() < 0.7]
-    mask = FloorMask(rng.random((10, 10)), (min(xs), min(zs), max(xs), max(zs)), tuple(listed))
-    problem.mask = compile_mask(mask, problem.ids)
+    problem.mask = compile_mask(masks_for(problem.ids, rng, xs, zs), problem.ids)
     energy, mover = start_chain(problem, LayoutParams(), rng)
     check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover), parts=(MASK_PART,))
 
@@ -108,9 +116,51 @@ def test_the_floor_mask_reads_what_mask_at_reads_at_every_room_point(transpose, 
     room = Room.rectangle(3.0, 4.2) if transpose else Room.rectangle(4.6, 3.4)  # deeper than wide: transposed
     layout = LayoutMask(rng.random((10, 10)), CanonicalFrame(transpose, flip_x, flip_z), np.zeros(4), {})
     floor = floor_mask(layout, room, ())
-    compiled = compile_mask(floor, [])
+    compiled = compile_mask(floor, []).grids[0]
     width, depth = room.extent
     points = (rng.random((200, 2)) - 0.5) * np.array([width, depth]) * 0.999
     cells = [compiled.rows[min(int((z - compiled.z0) / compiled.cell_z), 9)][min(int((x - compiled.x0) / compiled.cell_x), 9)]
              for x, z in points]  # fmt: skip
     assert cells == mask_at(layout, room, points).tolist()
+
+
+@settings(max_examples=9, deadline=None)
+@given(seed=st.integers(0, 10_000))
+def test_incremental_deltas_with_several_weighted_confining_masks_equal_full_recomputation(seed):
+    def halves(ids, rng, xs, zs):
+        middle = (min(xs) + max(xs)) / 2.0
+        west, east = [b for b in ids if rng.random() < 0.5], [b for b in ids if rng.random() < 0.5]
+        return [  # two halves reading 0 beyond themselves; a box may be listed by both and by a confining one
+            FloorMask(rng.random((10, 10)), (min(xs), min(zs), middle, max(zs)), tuple(west), outside=0.0),
+            FloorMask(rng.random((4, 6)), (middle, min(zs), max(xs), max(zs)), tuple(east), outside=0.0, weight=2.5),
+            FloorMask(np.ones((1, 1)), (min(xs), min(zs), middle, max(zs)), tuple(east), outside=0.0, weight=3.0,
+                      confine=True),
+        ]  # fmt: skip
+
+    check_mask_deltas(seed, halves)
+
+
+def test_a_mask_with_an_outside_value_costs_what_lies_beyond_it_and_confining_makes_it_a_problem():
+    graph = graph_of(bedroom(), ("crate", CRATE))
+    west_half = FloorMask(np.ones((1, 1)), (-2.5, -2.0, 0.0, 2.0), ("crate_1",), outside=0.0, weight=2.0)
+    edge = replace_mask(west_half, outside=None)
+    east = {"crate_1": (1.0, 0.0, 0.0)}
+    assert measured(graph, east, edge).parts[MASK_PART] == 0.0  # the nearest edge cell reads 1
+    assert measured(graph, east, west_half).parts[MASK_PART] == pytest.approx(2.0)  # wholly beyond: the weight
+    assert measured(graph, east, west_half).ok  # a preference only
+    confined = measured(graph, east, replace_mask(west_half, confine=True))
+    assert not confined.ok and confined.problems == ["crate_1 stands outside its part of the room"]
+    assert measured(graph, {"crate_1": (-1.0, 0.0, 0.0)}, replace_mask(west_half, confine=True)).ok
+
+
+def test_bad_mask_weights_and_outside_values_are_refused():
+    with pytest.raises(InputError, match="outside value"):
+        compile_mask(FloorMask(np.ones((2, 2)), (0, 0, 1, 1), (), outside=2.0), [])
+    with pytest.raises(InputError, match="weight"):
+        compile_mask([FloorMask(np.ones((2, 2)), (0, 0, 1, 1), ()), FloorMask(np.ones((2, 2)), (0, 0, 1, 1), (), weight=0.0)], [])
+
+
+def replace_mask(mask, **changes):
+    from dataclasses import replace
+
+    return replace(mask, **changes)

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -57,7 +57,7 @@ def layout_scene(
     pinned: Mapping[str, Pose] | None = None,
     pinned_paths: Mapping[str, object] | None = None,
     start: Mapping[str, object] | None = None,
-    mask: FloorMask | None = None,
+    mask: FloorMask | Sequence[FloorMask] | None = None,
     context: LearnedContext | None = None,
 ) -> LayoutResult:
     """Lay out a scene graph: poses for objects and junctions, control points for paths.
@@ -83,9 +83,11 @@ def layout_scene(
     move, and what it leaves out is placed around them). Unknown ids, group ids and
     malformed poses are an ``InputError``. See ``pinning`` for the details.
 
-    ``mask`` (``mask_term.FloorMask``) adds the energy part ``mask``: the boxes it names
-    prefer to stand where its grid is high. It is a preference: the verdict (``ok``, the
-    problems) never reads it. Without it the layout is exactly the one it was before.
+    ``mask`` (``mask_term.FloorMask``, or a sequence of them for different boxes) adds
+    the energy part ``mask``: the boxes each names prefer to stand where its grid is
+    high. It is a preference the verdict (``ok``, the problems) does not read, except
+    for a mask that confines its boxes (a composite room's part): a box whose centre
+    leaves it is a problem. Without it the layout is exactly the one it was before.
 
     ``context`` (``learned_term.LearnedContext``, from ``scenewright fit --what
     context``) adds the energy part ``learned`` for every related pair of a kind it has,

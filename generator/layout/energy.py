@@ -19,7 +19,8 @@ Parts (all >= 0, 0 when everything holds):
 - ``walls``, ``square``, ``clearance``, ``door_swing``, ``access``: the room's own terms
   (``room_terms``); 0 outdoors, where no ``RoomTerms`` is built and they cost nothing.
 - ``mask``: only when the problem has a layout mask (``mask_term``): per box it is for,
-  the weight times 1 less the mask's mean under its footprint. Without a mask the part
+  the weight times 1 less the mask's mean under its footprint (summed over the masks
+  for it, each with its own weight). Without a mask the part
   does not exist (``parts`` has no such key), so layouts without one are unchanged.
 - ``learned``: only with a learned context (``learned_term``): per related pair of a
   kind the context has, the learned weights of its relative pose. Without a context the
@@ -233,7 +234,7 @@ class Energy:
         mask = self.problem.mask
         if mask is None or not mask.listed[box] or not self.active[box]:
             return 0.0
-        return self.params.mask_weight * (1.0 - mask.mean_under(self.state.rects[box]))
+        return self.params.mask_weight * mask.cost(box, self.state.rects[box])
 
     def learned_energy(self, pair: int) -> float:
         """A learned pair's term: 0 until both its boxes are placed."""
@@ -250,7 +251,16 @@ class Energy:
             found.update(hits)
         if self.room is not None:
             found.update(self.room.troubled())
+        found.update(self.strays())
         return sorted(found)
+
+    def strays(self) -> list[int]:
+        """Placed boxes whose centre lies beyond a mask that confines them (``mask_term``)."""
+        mask = self.problem.mask
+        if mask is None:
+            return []
+        return [box for box in range(self.problem.n_boxes)
+                if mask.listed[box] and self.active[box] and mask.strays(box, self.state.rects[box])]  # fmt: skip
 
     # -- the whole energy -------------------------------------------------------------
 

@@ -12,7 +12,7 @@ built by ``layout_scene`` measures to the verdicts its layout reported.
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -34,14 +34,14 @@ def measure_layout(
     poses: Mapping[str, Pose],
     paths: Mapping[str, object],
     params: LayoutParams | None = None,
-    mask: FloorMask | None = None,
+    mask: FloorMask | Sequence[FloorMask] | None = None,
 ) -> LayoutResult:
     """The verdict on ``graph`` laid out at ``poses`` (id -> Pose for every object and
     junction) and ``paths`` (id -> [[x, z], ...] for every path); nothing is moved.
 
     Poses given for groups are ignored (a group's place is its members'). A missing
     object, junction or path, an id that is not in the graph, or a malformed pose or
-    point list is an ``InputError``. ``mask`` (``mask_term.FloorMask``) adds the
+    point list is an ``InputError``. ``mask`` (``mask_term.FloorMask`` or several) adds the
     energy's ``mask`` part, as ``layout_scene`` does; the verdict does not read it.
     """
     params = params or LayoutParams()

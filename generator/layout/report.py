@@ -19,7 +19,8 @@ maximum length with turns of at most gamma, and paths leave a junction at least 
 apart. In a room the walls replace the extent for boxes, and a layout is not ok either
 when a box crosses a wall, stands in a door's swing or in the space another box keeps
 free, when such a space runs into a wall, or when a box that needs reaching cannot be
-reached from a door (``room_terms.RoomTerms.problems``: 1 cm of slack on each distance).
+reached from a door (``room_terms.RoomTerms.problems``: 1 cm of slack on each distance),
+or when a box's centre lies beyond a layout mask that confines it (``mask_term``).
 """
 
 from __future__ import annotations
@@ -62,6 +63,7 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
     problems.extend(_path_shapes(energy))
     if energy.room is not None:
         problems.extend(energy.room.problems())
+    problems.extend(f"{problem.ids[box]} stands outside its part of the room" for box in energy.strays())
     return results, problems
 
 
