@@ -5,6 +5,7 @@ mask's energy part buys.
     .venv/bin/python benchmarks/bench_complete.py --table          # the docs' six requests, seeds 0..9
     .venv/bin/python benchmarks/bench_complete.py --random 50      # 50 random rooms, seed 0 each
     .venv/bin/python benchmarks/bench_complete.py --without-mask-term   # the mask chooses the starts only
+    .venv/bin/python benchmarks/bench_complete.py --composite 20   # 20 large two-type requests, split and not
 
 ``--table`` runs the requests of docs/completion.md's table (room, door, window,
 requested categories) for layout seeds 0..9 and prints per request: ok, layout CPU
@@ -22,6 +23,16 @@ share reachable from the door), categories added per room (mean, beyond the requ
 and CPU seconds per room (the whole ``complete`` call, the plan model built once
 beforehand), with the mask cover as above.
 
+``--composite N`` draws N large rooms from another fixed stream (sides 6-9 m, a door
+and a window on two walls, two requested categories that belong to different home
+types: bed + sofa, desk + dining table, ...) and completes each with layout seed 0
+twice: split by virtual walls (``complete``'s default) and not split (``split=False``:
+the room whole, the first type's mask, the old behaviour) as the baseline. It prints
+for each: ok, rooms of more than one type, and over those the share of floor pieces
+whose centre lies in the region they belong to (``complete.region_boxes``; for the
+baseline the regions the split would have made, with the baseline's own categories),
+the mean share of their footprints inside it, and CPU seconds per room.
+
 Prints figures only; nothing is asserted. One process, one core.
 """
 
@@ -34,9 +45,10 @@ import time
 import numpy as np
 
 from scenewright.completion import shipped_plans_dir
-from scenewright.completion.complete import MASKED, complete, parse_request
-from scenewright.completion.features import CanonicalFrame
-from scenewright.completion.layout_mask import LayoutMask, mask_at
+from scenewright.completion.complete import (
+    MASKED, category_owners, choose_contents, complete, parse_request, recorded_mask_values, region_boxes,
+)  # fmt: skip
+from scenewright.completion.regions import footprint_share, split_room
 from scenewright.completion.model import build_model
 from scenewright.completion.plan import catalog_categories, load_plans
 from scenewright.generator import layout as layout_module
@@ -61,8 +73,6 @@ STREAM_SEED = 2024
 
 def mask_cover(scene, only=None) -> float:
     """Mean mask value at 5 x 5 points of each floor piece's footprint (``only``: those categories)."""
-    record, room = scene.completion["mask"], scene.room
-    layout = LayoutMask(np.asarray(record["cells"]), CanonicalFrame(**record["frame"]), np.zeros(4), record["references"])
     grid = (np.arange(SAMPLES) + 0.5) / SAMPLES - 0.5
     values = []
     for obj in scene.placed_objects():
@@ -73,7 +83,7 @@ def mask_cover(scene, only=None) -> float:
         c, s = np.cos(obj.yaw), np.sin(obj.yaw)
         x, z = obj.position[0], obj.position[2]
         points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
-        values.append(float(np.mean(mask_at(layout, room, points))))
+        values.append(float(np.mean(recorded_mask_values(scene.completion, scene.room, points))))
     return float(np.mean(values)) if values else float("nan")
 
 
@@ -98,13 +108,13 @@ class LayoutClock:
 CLOCK: LayoutClock | None = None
 
 
-def run(request, seed, model, catalog, mask_term):
+def run(request, seed, model, catalog, mask_term, split=True):
     """The completed scene, the CPU seconds of the whole call and of its layout."""
     global CLOCK
     CLOCK = CLOCK or LayoutClock()
     before = CLOCK.seconds
     started = time.process_time()
-    scene = complete(request, seed, model=model, catalog=catalog, mask_term=mask_term)
+    scene = complete(request, seed, model=model, catalog=catalog, mask_term=mask_term, split=split)
     return scene, time.process_time() - started, CLOCK.seconds - before
 
 
@@ -167,16 +177,94 @@ def random_table(model, catalog, count: int, mask_term: bool) -> None:
           f"mean {statistics.mean(seconds):.2f}; mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}")  # fmt: skip
 
 
+#: Composite requests: two categories that belong to different home types.
+PAIRS = (("bed", "sofa"), ("desk", "dining_table"), ("bed", "desk"), ("sofa", "dining_table"),
+         ("bed", "dining_table"), ("sofa", "desk"))  # fmt: skip
+COMPOSITE_SEED = 2025
+
+
+def composite_rooms(count: int, known) -> list:
+    """``count`` large two-type requests drawn from a fixed stream (module docstring)."""
+    rng = np.random.default_rng(COMPOSITE_SEED)
+    walls = ("N", "E", "S", "W")
+    requests = []
+    for k in range(count):
+        width, depth = round(float(rng.uniform(6.0, 9.0)), 1), round(float(rng.uniform(6.0, 9.0)), 1)
+        door_wall, window_wall = rng.choice(4, size=2, replace=False)
+        door_length = width if walls[door_wall] in "NS" else depth
+        window_length = width if walls[window_wall] in "NS" else depth
+        door = f"{walls[door_wall]}:{rng.uniform(0.6, door_length - 0.6):.2f}:0.9"
+        window = f"{walls[window_wall]}:{rng.uniform(1.0, window_length - 1.0):.2f}:1.4"
+        wanted = ",".join(PAIRS[k % len(PAIRS)])
+        requests.append((f"{width}x{depth}", door, window, wanted))
+    return [(spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests]
+
+
+def region_figures(scene, model, request) -> tuple[list[bool], list[float]] | None:
+    """Per floor piece of a room of several types: whether its centre lies in the region
+    it belongs to, and the share of its footprint there; None for a room of one type."""
+    record = scene.completion
+    if len(record["types"]) < 2:
+        return None
+    if "regions" in record:
+        regions = split_room(model, scene.room, tuple(record["types"]))
+        boxes = [entry["pieces"] for entry in record["regions"]]
+    else:  # the baseline: the regions the split would make, its own categories' owners
+        contents = choose_contents(model, request, split=False)
+        regions = split_room(model, scene.room, contents.types)
+        index = {region.room_type: k for k, region in enumerate(regions)}
+        owners = category_owners(model, contents.types, contents.owners, contents.explorations, contents.counts)
+        types = {o.id: o.type for o in scene.placed_objects()}
+        relations = [(r.source, r.target) for r in scene.relations]
+        boxes = region_boxes(types, relations, {name: index[t] for name, t in owners.items()}, len(regions))
+    objects = {o.id: o for o in scene.placed_objects()}
+    inside, shares = [], []
+    for region, ids in zip(regions, boxes):
+        for box in ids:
+            obj = objects.get(box)
+            if obj is None:
+                continue
+            inside.append(bool(region.contains([[obj.position[0], obj.position[2]]])[0]))
+            shares.append(footprint_share(region, obj.position[0], obj.position[2], obj.size[0], obj.size[2], obj.yaw))
+    return inside, shares
+
+
+def composite_table(model, catalog, count: int) -> None:
+    rooms = composite_rooms(count, set(catalog))
+    for split in (True, False):
+        oks = several = 0
+        seconds, inside, shares = [], [], []
+        for spec, request in rooms:
+            scene, cpu, _ = run(request, 0, model, catalog, True, split)
+            seconds.append(cpu)
+            oks += scene.layout.ok
+            figures = region_figures(scene, model, request)
+            if figures is not None:
+                several += 1
+                inside += figures[0]
+                shares += figures[1]
+        print(f"{count} large two-type rooms (layout seed 0), {'split by virtual walls' if split else 'not split (baseline)'}:")
+        print(f"  ok {oks}/{count} ({100 * oks / count:.0f} %); rooms of several types {several}; pieces with their "
+              f"centre in their region {sum(inside)}/{len(inside)} ({100 * sum(inside) / max(len(inside), 1):.0f} %); "
+              f"footprint share inside {np.mean(shares):.3f}; CPU s per room median {statistics.median(seconds):.2f}, "
+              f"mean {statistics.mean(seconds):.2f}")  # fmt: skip
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--table", action="store_true", help="the docs' six requests only")
     parser.add_argument("--random", type=int, default=None, metavar="N", help="N random rooms only")
     parser.add_argument("--seeds", type=int, default=10, help="layout seeds per request of --table (10)")
     parser.add_argument("--without-mask-term", action="store_true", help="the mask chooses the starting poses only")
+    parser.add_argument("--composite", type=int, default=None, metavar="N",
+                        help="N large two-type rooms only, split by virtual walls and not")  # fmt: skip
     args = parser.parse_args()
     model = build_model(load_plans(shipped_plans_dir()))
     catalog = catalog_categories()
     mask_term = not args.without_mask_term
+    if args.composite is not None:
+        composite_table(model, catalog, args.composite)
+        return
     both = not args.table and args.random is None
     if args.table or both:
         table(model, catalog, args.seeds, mask_term)

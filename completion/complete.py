@@ -236,38 +236,102 @@ def _number(text: str, what: str) -> float:
 @dataclass(frozen=True)
 class Contents:
     """The room's types, per type Algorithm 1's answer, the merged counts (category ->
-    number, requested first) and the layout mask of the first type."""
+    number, requested first) and the layout mask: the first type's ``LayoutMask`` over
+    the whole room, or, for a room split by virtual walls (``regions``, one per type),
+    a ``layout_mask.RegionMasks``."""
 
     types: tuple[str, ...]
     owners: dict[str, str]
     explorations: dict
     counts: dict[str, int]
     mask: object
+    regions: tuple = ()
 
 
-def choose_contents(model: dict, request: Request) -> Contents:
-    """Equation 2, then Algorithm 1 per type (the room's area shared among the types by
-    their mean areas), then Equation 4 for the first (largest) type."""
+def choose_contents(model: dict, request: Request, *, split: bool = True) -> Contents:
+    """Equation 2, then Algorithm 1 per type, then Equation 4. One type, or a room
+    that is not split (``split`` False, or not a rectangle): the room's area is shared
+    among the types by their mean areas, and the mask is the first (largest) type's
+    over the whole room. Several types in a rectangle: the room is split by virtual
+    walls (``regions.split_room``) and each type's categories and mask are those of
+    its own region, as a room of its own."""
     from scenewright.completion.features import room_parts
-    from scenewright.completion.layout_mask import amalgamated_mask
+    from scenewright.completion.layout_mask import RegionMasks, amalgamated_mask
+    from scenewright.completion.regions import split_room
     from scenewright.completion.selection import choose_types, explore_categories
 
     room = request.room
     choice = choose_types(model, request.requested, room.area)
+    regions = split_room(model, room, choice.types) if split else ()
+    region_of = {region.room_type: k for k, region in enumerate(regions)}
     total = sum(model["types"][t]["mean_area"] for t in choice.types)
     explorations = {}
     counts: dict[str, int] = dict(sorted(request.requested.items()))
     for room_type in choice.types:
         owned = {name: n for name, n in request.requested.items() if choice.owners[name] == room_type}
-        share = room.area * model["types"][room_type]["mean_area"] / total
-        parts = room_parts(room, model["types"][room_type]["mean_area"])
+        if regions:
+            part = regions[region_of[room_type]].room
+            share, parts = part.area, room_parts(part, model["types"][room_type]["mean_area"])
+        else:
+            share = room.area * model["types"][room_type]["mean_area"] / total
+            parts = room_parts(room, model["types"][room_type]["mean_area"])
         exploration = explore_categories(model, room_type, owned, share, parts)
         explorations[room_type] = exploration
         for name, n in exploration.counts.items():
             if name not in request.requested:
                 counts[name] = max(counts.get(name, 0), n)
-    mask = amalgamated_mask(model, choice.types[0], room, counts)
-    return Contents(choice.types, choice.owners, explorations, counts, mask)
+    if not regions:
+        mask = amalgamated_mask(model, choice.types[0], room, counts)
+        return Contents(choice.types, choice.owners, explorations, counts, mask)
+    owners = category_owners(model, choice.types, choice.owners, explorations, counts)
+    masks = tuple(
+        amalgamated_mask(model, region.room_type, region.room,
+                         {name: n for name, n in counts.items() if owners[name] == region.room_type})
+        for region in regions
+    )  # fmt: skip
+    mask = RegionMasks(regions, masks, {name: region_of[owner] for name, owner in owners.items()})
+    return Contents(choice.types, choice.owners, explorations, counts, mask, regions)
+
+
+def category_owners(model: dict, types, requested_owners: dict, explorations: dict, counts) -> dict[str, str]:
+    """Category -> the type (region) it belongs to: a requested one its Equation 2
+    owner (``requested_owners``); an added one the type, of those whose Algorithm 1
+    chose it, that has it most often (the paper's rule for requested categories,
+    ``max P(o | s)``); ties: the earlier of ``types``."""
+    owners = {}
+    for name in counts:
+        if name in requested_owners:
+            owners[name] = requested_owners[name]
+            continue
+        choosers = [t for t in types if name in explorations[t].counts] or list(types)
+        owners[name] = max(choosers, key=lambda t: (model["types"][t]["categories"].get(name, {}).get("p", 0.0),
+                                                    -list(types).index(t)))  # fmt: skip
+    return owners
+
+
+def region_boxes(types: dict[str, str], relations, owners: dict[str, int], count: int) -> list[list[str]]:
+    """Per region (``count`` of them) the ids of the floor pieces that belong there,
+    from the pieces' categories (``types``: id -> category), the ``relations`` (source,
+    target) between them and the region of each category (``owners``). A large piece
+    (``MASKED``) belongs to its category's region; any other follows the piece its first
+    relation to another piece names, up to a large one (a night table stays by its bed,
+    a chair at its table, wherever their categories' types would put them); one with no
+    such relation goes by its own category. Pieces that stand on others belong nowhere:
+    they go with their support."""
+    anchor: dict[str, str] = {}
+    for source, target in relations:
+        if source in types and target in types and source not in anchor and types[source] not in MASKED:
+            anchor[source] = target
+    out: list[list[str]] = [[] for _ in range(count)]
+    for box, category in types.items():
+        if category in SUPPORTS:
+            continue
+        root, seen = box, {box}
+        while types[root] not in MASKED and root in anchor and anchor[root] not in seen:
+            root = anchor[root]
+            seen.add(root)
+        out[owners[types[root]]].append(box)
+    return out
 
 
 # -- 3. the scene graph ------------------------------------------------------------------
@@ -297,9 +361,12 @@ def build_graph(
     made: dict[str, list[str]] = {}
     for name in order:
         made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
+    windows = bool(room.windows)
+    if contents.regions and "desk" in counts:  # a desk goes under a window of its own region
+        windows = bool(contents.regions[contents.mask.owners["desk"]].room.windows)
     for name in order:
         for index, node in enumerate(made[name]):
-            for label, target in _relations_of(name, index, made, weights, room, supports):
+            for label, target in _relations_of(name, index, made, weights, windows, supports):
                 graph.add_relation(node, target, label)
     return graph, dropped
 
@@ -320,9 +387,10 @@ def _fits_on(item, support) -> bool:
     return item.size[0] <= support.size[0] + 1e-9 and item.size[2] <= support.size[2] + 1e-9
 
 
-def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room, supports: dict) -> list[tuple[str, str]]:
+def _relations_of(name: str, index: int, made: dict, weights: dict, windows: bool, supports: dict) -> list[tuple[str, str]]:
     """The relations (label, target) of the ``index``-th piece of category ``name``;
-    ``supports``: per category that stands on another, the support categories it fits on."""
+    ``windows``: whether the first desk has a window to stand under; ``supports``: per
+    category that stands on another, the support categories it fits on."""
     if name in SUPPORTS:
         label = SUPPORTS[name][1]
         holders = [node for support in supports[name] for node in made[support]]
@@ -331,7 +399,7 @@ def _relations_of(name: str, index: int, made: dict, weights: dict, room: Room, 
         bed = made["bed"][index // 2 % len(made["bed"])]
         side = "NextToLeft" if index % 2 == 0 else "NextToRight"
         return [(side, bed), ("ImplicitAlignedWith", bed), ("ImplicitAgainstWall", ROOM_NODE)]
-    if name == "desk" and room.windows and index == 0:
+    if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
     if name == "bookshelf" and index > 0:
         first = made["bookshelf"][0]
@@ -403,7 +471,7 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     door swings, the room's outline and the pieces already placed. Under a window a
     piece goes to the window's middle. What flanks a piece along its wall (night tables
     ``NextToLeft``/``NextToRight`` of the bed) is placed with it, one unit."""
-    from scenewright.completion.layout_mask import mask_at
+    from scenewright.completion.layout_mask import mask_values
     from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     wall_of = {r.source: r.label for r in graph.edges() if r.target == ROOM_NODE and r.label in ("AgainstWall", "UnderWindow")}
@@ -437,7 +505,7 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
             local = np.array([(a * width, b * depth) for a in grid for b in grid])
             c, s = math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
             points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
-            score = float(np.mean(mask_at(mask, room, points)))
+            score = float(np.mean(mask_values(mask, room, node.type, points)))
             if best is None or score > best[0] + 1e-12:
                 best = (score, rect, wall, middle)
         if best is None:
@@ -459,7 +527,7 @@ def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict
     it and a ring of its chairs' depth round it cover most of the mask, inside the room
     and clear of the rest, and its chairs spread evenly along the sides they sit at,
     facing it."""
-    from scenewright.completion.layout_mask import mask_at
+    from scenewright.completion.layout_mask import mask_values
     from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     sources = {r.source for r in graph.edges()}
@@ -480,7 +548,7 @@ def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict
                         continue
                     if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
                         continue
-                    score = float(mask_at(mask, room, np.array([[x, z]]))[0])
+                    score = float(mask_values(mask, room, table.type, np.array([[x, z]]))[0])
                     if best is None or score > best[0] + 1e-12:
                         best = (score, rect, float(x), float(z), yaw)
         if best is None:
@@ -603,13 +671,16 @@ def fewer_pieces(model: dict, contents: Contents, request: Request, graph: Scene
 # -- 6. the whole -------------------------------------------------------------------------------
 
 
-def completion_record(contents: Contents, dropped, model: dict, masked=(), given_up=None) -> dict:
+def completion_record(contents: Contents, dropped, model: dict, masked=(), given_up=None, by_region=()) -> dict:
     """What scene.json's ``completion`` holds: the types, per type the categories
     Algorithm 1 chose (requested or added, with their count, P(category | type) and the
     summed relation weight to the requested ones), its cost and reference plans, and the
     layout mask's reference plans with their weights and the pieces ``masked`` in the
     layout's energy; ``given_up``: category -> pieces of it the room gave up to be laid
-    out (``fewer_pieces``; a category given up whole is also in ``left_out``)."""
+    out (``fewer_pieces``; a category given up whole is also in ``left_out``). A room
+    split by virtual walls also has ``regions`` (per region its type, rectangle, whether
+    its door is virtual, its layout mask and the pieces that belong there, ``by_region``)
+    and ``virtual_walls``; its ``mask`` is the first region's."""
     types = {}
     for room_type, exploration in contents.explorations.items():
         entry = model["types"][room_type]
@@ -626,30 +697,52 @@ def completion_record(contents: Contents, dropped, model: dict, masked=(), given
             "cost": exploration.cost,
             "references": list(exploration.references),
         }  # fmt: skip
-    return {
+    record = {
         "types": list(contents.types),
         "owners": dict(sorted(contents.owners.items())),
         "selection": types,
         "counts": {name: n for name, n in contents.counts.items() if name not in dropped},
         "left_out": dict(sorted(dropped.items())),
         "given_up": dict(sorted((given_up or {}).items())),
-        "mask": {"type": contents.types[0], "frame": contents.mask.frame.to_dict(),
-                 "references": dict(sorted(contents.mask.weights.items())),
-                 "cells": np.round(contents.mask.mask, 6).tolist(), "boxes": list(masked)},
-    }  # fmt: skip
+    }
+    if not contents.regions:
+        record["mask"] = _mask_record(contents.types[0], contents.mask, masked)
+        return record
+    from scenewright.completion.regions import virtual_walls
+
+    regions = []
+    for k, (region, layout) in enumerate(zip(contents.regions, contents.mask.masks)):
+        pieces = list(by_region[k]) if by_region else []
+        entry = {**region.to_dict(), **_mask_record(region.room_type, layout, [b for b in pieces if b in masked])}
+        entry["pieces"] = pieces
+        entry["categories"] = sorted(name for name, k_ in contents.mask.owners.items() if k_ == k and name not in dropped)
+        regions.append(entry)
+    record["mask"] = {key: regions[0][key] for key in ("type", "frame", "references", "cells", "boxes", "bounds")}
+    record["regions"] = regions
+    record["virtual_walls"] = [[list(a), list(b)] for a, b in virtual_walls(contents.regions)]
+    return record
 
 
-def complete(request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None, mask_term: bool = True):
+def _mask_record(room_type: str, layout, boxes) -> dict:
+    return {"type": room_type, "frame": layout.frame.to_dict(), "references": dict(sorted(layout.weights.items())),
+            "cells": np.round(layout.mask, 6).tolist(), "boxes": list(boxes)}  # fmt: skip
+
+
+def complete(
+    request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None, mask_term: bool = True,
+    split: bool = True,
+):  # fmt: skip
     """The completed room as a ``Scene`` (laid out, not yet described): ``plans`` is a
     plan set folder (default: the shipped one), or give a built ``model``. A layout that
     could not satisfy everything comes back with ``scene.layout.ok`` false.
     ``mask_term=False`` leaves the mask out of the layout's energy (it then only
-    chooses the starting poses), for comparison."""
+    chooses the starting poses), for comparison; ``split=False`` keeps a room of
+    several types whole, with the first type's mask (no virtual walls), likewise."""
     import time
 
     from scenewright.api import timed
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.layout_mask import floor_mask
+    from scenewright.completion.layout_mask import floor_mask, region_floor_masks
     from scenewright.completion.model import build_model
     from scenewright.completion.plan import catalog_categories, load_plans
     from scenewright.core.scene import assemble_scene
@@ -661,13 +754,20 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
     with timed(timings, "complete"):
         model = model or build_model(load_plans(plans or shipped_plans_dir()))
         catalog = catalog or catalog_categories()
-        contents = choose_contents(model, request)
+        contents = choose_contents(model, request, split=split)
     chosen = dict(contents.counts)
     for attempt in range(1 + FIT_ATTEMPTS):
         with timed(timings, "complete"):
             graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
         masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
-        mask = floor_mask(contents.mask, request.room, masked) if masked else None
+        if contents.regions:
+            by_region = region_boxes({n.id: n.type for n in graph.nodes("object")},
+                                     [(r.source, r.target) for r in graph.edges()], contents.mask.owners,
+                                     len(contents.regions))  # fmt: skip
+            mask = region_floor_masks(contents.mask, by_region, set(masked)) if mask_term else None
+        else:
+            by_region = []
+            mask = floor_mask(contents.mask, request.room, masked) if masked else None
         with timed(timings, "layout", time.perf_counter):
             layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS)
         if layout.ok or attempt == FIT_ATTEMPTS:
@@ -681,7 +781,7 @@ def complete(request: Request, seed: int, *, plans=None, model: dict | None = No
         if name not in contents.counts:
             dropped.setdefault(name, ROOM_FULL)
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
-    scene.completion = completion_record(contents, dropped, model, masked, given_up)
+    scene.completion = completion_record(contents, dropped, model, masked, given_up, by_region)
     scene.timings.update(timings)
     return scene
 
@@ -704,23 +804,23 @@ def draw_explanation(scene, target) -> None:
     """Write a PNG to ``target`` (a path or binary file): the layout mask of
     ``scene.completion`` mapped back onto the room (darker: more of the reference plans'
     furniture stood there), with the room's outline, its doors (red) and windows (blue)
-    and the laid-out floor pieces' outlines, north up."""
+    and the laid-out floor pieces' outlines, north up. A room split by virtual walls
+    shows each region's mask in its region, the virtual walls dashed (green) and each
+    region's type."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.patches import Polygon
 
-    from scenewright.completion.features import CanonicalFrame
-    from scenewright.completion.layout_mask import LayoutMask, mask_at
     from scenewright.core.frames import corners_of
 
-    record, room = scene.completion["mask"], scene.room
-    layout = LayoutMask(np.asarray(record["cells"]), CanonicalFrame(**record["frame"]), np.zeros(4), record["references"])
+    record, room = scene.completion, scene.room
     xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
     grid_x, grid_z = np.meshgrid(np.linspace(xs.min(), xs.max(), 200), np.linspace(zs.min(), zs.max(), 160))
-    values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(grid_x.shape)
-    inside = np.array([room.contains(x, z) for x, z in zip(grid_x.ravel(), grid_z.ravel())]).reshape(grid_x.shape)
+    points = np.column_stack([grid_x.ravel(), grid_z.ravel()])
+    values = recorded_mask_values(record, room, points).reshape(grid_x.shape)
+    inside = np.array([room.contains(x, z) for x, z in points]).reshape(grid_x.shape)
     figure, axis = plt.subplots(figsize=(6.0, 6.0 * float(np.ptp(zs) / np.ptp(xs)) + 0.6))
     axis.imshow(np.where(inside, values, np.nan), cmap="Greys", vmin=0.0, vmax=1.0, origin="upper",
                 extent=(xs.min(), xs.max(), zs.max(), zs.min()))  # fmt: skip
@@ -729,6 +829,12 @@ def draw_explanation(scene, target) -> None:
     for opening in room.openings:
         start, end = room.opening_ends(opening)
         axis.plot([start[0], end[0]], [start[1], end[1]], color="#c04040" if opening.kind == "door" else "#4a90c8", lw=4)
+    for (ax, az), (bx, bz) in record.get("virtual_walls", []):
+        axis.plot([ax, bx], [az, bz], color="#2a9a4a", lw=2.5, ls="--")
+    for region in record.get("regions", []):
+        x0, z0, x1, z1 = region["bounds"]
+        axis.annotate(region["type"].replace("_", " "), ((x0 + x1) / 2.0, z0 + 0.25), fontsize=8, ha="center",
+                      va="center", color="#2a7a3a", weight="bold")  # fmt: skip
     for obj in scene.placed_objects():
         if obj.position[1] > 0.01:
             continue  # stands on another piece
@@ -736,11 +842,49 @@ def draw_explanation(scene, target) -> None:
                              math.cos(obj.yaw), math.sin(obj.yaw))  # fmt: skip
         axis.add_patch(Polygon(corners, closed=True, fill=False, ec="#e07020", lw=1.2))
         axis.annotate(obj.id, (obj.position[0], obj.position[2]), fontsize=6, ha="center", va="center", color="#a04000")
-    axis.set_title(f"layout mask of {record['type']} ({len(record['references'])} reference plans) and the layout",
-                   fontsize=8)  # fmt: skip
+    if "regions" in record:
+        title = " | ".join(f"{r['type']} ({len(r['references'])} plans)" for r in record["regions"])
+        axis.set_title(f"layout masks split by virtual walls: {title}", fontsize=8)
+    else:
+        mask = record["mask"]
+        axis.set_title(f"layout mask of {mask['type']} ({len(mask['references'])} reference plans) and the layout",
+                       fontsize=8)  # fmt: skip
     axis.set_xlabel("x (east) [m]")
     axis.set_ylabel("z (south) [m]")
     axis.set_aspect("equal")
     figure.tight_layout()
     figure.savefig(target, dpi=90, format="png")
     plt.close(figure)
+
+
+def recorded_mask_values(record: dict, room: Room, points) -> np.ndarray:
+    """(n,) the layout mask a ``completion`` record holds, read at room points (n, 2):
+    the room's mask, or for a room split by virtual walls each region's in its region."""
+    from scenewright.completion.features import CanonicalFrame
+    from scenewright.completion.layout_mask import LayoutMask, mask_at
+    from scenewright.completion.regions import region_of_points
+
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    if "regions" not in record:
+        mask = record["mask"]
+        layout = LayoutMask(np.asarray(mask["cells"]), CanonicalFrame(**mask["frame"]), np.zeros(4), mask["references"])
+        return mask_at(layout, room, points)
+    values = np.zeros(len(points))
+    regions = [recorded_region(entry, room) for entry in record["regions"]]
+    where = region_of_points(regions, points)
+    for k, entry in enumerate(record["regions"]):
+        chosen = where == k
+        if chosen.any():
+            layout = LayoutMask(np.asarray(entry["cells"]), CanonicalFrame(**entry["frame"]), np.zeros(4), {})
+            values[chosen] = mask_at(layout, regions[k].room, points[chosen])
+    return values
+
+
+def recorded_region(entry: dict, room: Room):
+    """A ``regions.Region`` from its entry in a ``completion`` record (its sub-room's
+    walls; the openings, which only the mask's frame needed, are not rebuilt)."""
+    from scenewright.completion.regions import Region
+
+    x0, z0, x1, z1 = entry["bounds"]
+    sub = Room.polygon([(x0, z0), (x1, z0), (x1, z1), (x0, z1)], room.height, centre=False)
+    return Region(entry["type"], (x0, z0, x1, z1), sub, entry["virtual_door"])

@@ -17,7 +17,7 @@ bounding box as the layout energy's ``mask`` part takes it (``generator.layout.m
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -26,6 +26,9 @@ from scenewright.completion.selection import K
 
 #: Distances below this count as 0 (the same room).
 SAME = 1e-9
+#: A composite room's region term per piece: the cost, times the layout's ``mask_weight``,
+#: of a piece standing wholly beyond its region's virtual walls (a layout mask's is at most 1).
+REGION_WEIGHT = 3.0
 
 
 @dataclass(frozen=True)
@@ -89,3 +92,51 @@ def floor_mask(layout: LayoutMask, room, boxes) -> "FloorMask":
     grid_x, grid_z = np.meshgrid(xs, zs)  # (size, size): row = z
     values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(size, size)
     return FloorMask(np.clip(values, 0.0, 1.0), (float(x0), float(z0), float(x1), float(z1)), tuple(boxes))
+
+
+@dataclass(frozen=True)
+class RegionMasks:
+    """The layout masks of a composite room (``regions``): per region its type's mask
+    in the region's own canonical frame (``masks``, one per region, in order), and the
+    region each category belongs to (``owners``: category -> region index)."""
+
+    regions: tuple
+    masks: tuple[LayoutMask, ...]
+    owners: dict[str, int]
+
+    def at(self, category: str, points) -> np.ndarray:
+        """(n,) the mask of the category's region at room points (n, 2); 0 outside
+        the region (the virtual walls bound it)."""
+        k = self.owners[category]
+        region, points = self.regions[k], np.asarray(points, dtype=float).reshape(-1, 2)
+        return np.where(region.contains(points), mask_at(self.masks[k], region.room, points), 0.0)
+
+
+def mask_values(mask, room, category: str, points) -> np.ndarray:
+    """(n,) where a piece of ``category`` should stand, at room points (n, 2): the
+    room's ``LayoutMask`` read by ``mask_at``, or a composite room's ``RegionMasks``
+    read for the category's region."""
+    if isinstance(mask, RegionMasks):
+        return mask.at(category, points)
+    return mask_at(mask, room, points)
+
+
+def region_floor_masks(masks: RegionMasks, boxes_by_region, large, *, region_weight: float = REGION_WEIGHT) -> list:
+    """The layout energy's masks for a composite room, per region: its layout mask over
+    its rectangle for the region's ``large`` pieces (ids), reading 0 beyond it; and for
+    every piece of the region a mask of 1 over the rectangle and 0 beyond it, weighing
+    ``region_weight``, that ``confine``s them (a piece whose centre crosses a virtual
+    wall is a problem of the layout's verdict). ``boxes_by_region``: per region the ids
+    of the pieces that belong there."""
+    from scenewright.generator.layout.mask_term import FloorMask
+
+    out = []
+    for k, (region, layout) in enumerate(zip(masks.regions, masks.masks)):
+        ids = tuple(boxes_by_region[k])
+        pulled = [box for box in ids if box in large]
+        if pulled:
+            out.append(replace(floor_mask(layout, region.room, pulled), outside=0.0))
+        if ids:
+            out.append(FloorMask(np.ones((1, 1)), tuple(region.bounds), ids, outside=0.0, weight=region_weight,
+                                 confine=True))  # fmt: skip
+    return out
