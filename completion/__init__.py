@@ -12,6 +12,7 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 | ``model`` | the plan model: per type P(category), co-occurrence times the activity prior, masks and clusters |
 | ``selection`` | what a room should hold: its type(s) (Equation 2) and categories (Algorithm 1) |
 | ``layout_mask`` | where things should go: the mask amalgamated from the most similar plans (Equation 4) |
+| ``regions`` | a room of several types split by virtual walls into one region per type |
 | ``complete`` | a request (an empty room, a few categories) -> a furnished, laid-out scene (``scenewright complete``) |
 | ``evaluation`` | leave-one-out over a plan set, against simple baselines |
 | ``drawing`` | plans (and their layout masks) drawn on one PNG sheet |

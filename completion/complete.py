@@ -9,7 +9,9 @@ The steps, each a function here:
 2. ``choose_contents``: the room's type(s) (Equation 2, ``selection.choose_types``) and
    per type its categories (Algorithm 1, ``selection.explore_categories``) with the room's
    area shared among the types by their mean areas; the layout mask of the first type
-   (Equation 4, ``layout_mask.amalgamated_mask``).
+   (Equation 4, ``layout_mask.amalgamated_mask``). A rectangular room of several types
+   is split by virtual walls (``regions``): each type's categories and mask come from
+   its own region, and the layout keeps its pieces there.
 3. ``build_graph``: a ``SceneGraph`` of the indoor catalog's entries with relations a
    room's rules would state: big pieces against a wall, night tables
    either side of the bed, a desk under the window with its chair before it, chairs
