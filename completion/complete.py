@@ -732,14 +732,17 @@ def _mask_record(room_type: str, layout, boxes) -> dict:
 
 def complete(
     request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None, mask_term: bool = True,
-    split: bool = True,
+    split: bool = True, keep=None,
 ):  # fmt: skip
     """The completed room as a ``Scene`` (laid out, not yet described): ``plans`` is a
     plan set folder (default: the shipped one), or give a built ``model``. A layout that
     could not satisfy everything comes back with ``scene.layout.ok`` false.
     ``mask_term=False`` leaves the mask out of the layout's energy (it then only
     chooses the starting poses), for comparison; ``split=False`` keeps a room of
-    several types whole, with the first type's mask (no virtual walls), likewise."""
+    several types whole, with the first type's mask (no virtual walls), likewise.
+    ``keep``: a furnished room (a ``Scene``) being completed (``existing_request``):
+    what it holds is pinned where it stands (``pin_existing``) and the room is not split
+    (its pieces stand where they stand, whatever part a split would give them)."""
     import time
 
     from scenewright.api import timed
@@ -756,7 +759,7 @@ def complete(
     with timed(timings, "complete"):
         model = model or build_model(load_plans(plans or shipped_plans_dir()))
         catalog = catalog or catalog_categories()
-        contents = choose_contents(model, request, split=split)
+        contents = choose_contents(model, request, split=split and keep is None)
     chosen = dict(contents.counts)
     for attempt in range(1 + FIT_ATTEMPTS):
         with timed(timings, "complete"):
@@ -770,8 +773,12 @@ def complete(
         else:
             by_region = []
             mask = floor_mask(contents.mask, request.room, masked) if masked else None
+        pinned = None
+        if keep is not None:
+            graph, pinned = pin_existing(graph, keep)
+            start = {}  # the new pieces go where the layout's own placement finds room among the kept
         with timed(timings, "layout", time.perf_counter):
-            layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS)
+            layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned)
         if layout.ok or attempt == FIT_ATTEMPTS:
             break
         smaller = fewer_pieces(model, contents, request, graph, layout.problems)
@@ -786,6 +793,57 @@ def complete(
     scene.completion = completion_record(contents, dropped, model, masked, given_up, by_region)
     scene.timings.update(timings)
     return scene
+
+
+def existing_request(scene, added: dict[str, int], known) -> Request:
+    """The request that completes a furnished ``scene`` (a scene.json's Scene, indoor):
+    its room, its objects' categories as requested (so none is given up) and ``added``
+    on top. ``InputError`` for a scene without a room or with an object whose type is no
+    category of the indoor catalog ``known``."""
+    if scene.room is None:
+        raise InputError("the scene has no room (walls): only an indoor scene can be completed")
+    requested: dict[str, int] = {}
+    for obj in scene.placed_objects():
+        if obj.type not in known:
+            raise InputError(f"the scene's {obj.id} is a {obj.type!r}, which is no category of the indoor catalog")
+        requested[obj.type] = requested.get(obj.type, 0) + 1
+    for name, count in added.items():
+        requested[name] = requested.get(name, 0) + count
+    return Request(scene.room, requested)
+
+
+def pin_existing(graph: SceneGraph, scene) -> tuple[SceneGraph, dict[str, Pose]]:
+    """``graph`` with a node for each object of the furnished ``scene`` pinned at its
+    pose (a type's nodes in id order for its objects in id order), and between things
+    that no longer move (two of those objects, or one and the room) the scene's own
+    relations instead of those ``build_graph`` would state: the room had them, or not,
+    before it was completed; what is new is placed by its relations to them."""
+    from scenewright.core.relations import RELATIONS
+
+    nodes: dict[str, list[str]] = {}
+    for node in sorted(graph.nodes("object"), key=lambda n: _id_order(n.id)):
+        nodes.setdefault(node.type, []).append(node.id)
+    pinned: dict[str, Pose] = {}
+    node_of: dict[str, str] = {}
+    for obj in sorted(scene.placed_objects(), key=lambda o: _id_order(o.id)):
+        node_of[obj.id] = nodes[obj.type].pop(0)
+        pinned[node_of[obj.id]] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+    fixed = set(pinned) | {n.id for n in graph.nodes() if n.kind in ("room", "wall", "door", "window")}
+    kept = replace(graph, graph=graph.graph.copy())
+    kept.graph.remove_edges_from([(a, b, k) for a, b, k in kept.graph.edges(keys=True) if a in fixed and b in fixed])
+    # The scene's own relations among what it holds: a chair's "in front of the desk"
+    # also lets it stand in the desk's clearance; what rests on what keeps it on top.
+    for relation in scene.relations:
+        source, target = node_of.get(relation.source), node_of.get(relation.target, relation.target)
+        if source is not None and target in fixed and relation.label in RELATIONS:
+            kept.add_relation(source, target, relation.label)
+    return kept, pinned
+
+
+def _id_order(object_id: str) -> tuple[str, int]:
+    """``bed_10`` after ``bed_2``."""
+    stem, _, number = object_id.rpartition("_")
+    return (stem, int(number)) if number.isdigit() else (object_id, 0)
 
 
 def summary_of(record: dict) -> str:

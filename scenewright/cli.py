@@ -746,10 +746,31 @@ def run_complete(args: argparse.Namespace) -> int:
 
     check_output_directory(args.output, COMPLETE_OUTPUTS)  # before any work: it is replaced as a whole
     catalog = catalog_categories()
-    request = parse_request(args.room, args.door, args.window, args.categories, catalog)
+    keep = None
+    if args.scene is not None:
+        from scenewright.completion.complete import existing_request, parse_categories
+
+        stated = [name for name, given in (("--room", args.room), ("--door", args.door), ("--window", args.window),
+                                           ("--with", args.categories)) if given]  # fmt: skip
+        if stated:
+            raise InputError(f"{stated[0]} describes an empty room; a scene.json brings its own (name what to add with --add)")
+        if not args.add:
+            raise InputError("completing a scene.json needs --add NAME[=N][,...]: what to add to it")
+        keep = read_scene(args.scene)
+        request = existing_request(keep, parse_categories(args.add, catalog), catalog)
+    else:
+        if args.add:
+            raise InputError("--add adds to a scene.json (scenewright complete out/scene.json --add piano); "
+                             "for an empty room name its categories with --with")
+        if args.room is None or not args.categories:
+            raise InputError("an empty room needs --room and --with (or give a scene.json to complete)")
+        request = parse_request(args.room, args.door, args.window, args.categories, catalog)
     templates = checked_templates(args.templates)
-    scene = complete(request, args.seed, plans=args.plans, catalog=catalog)
+    scene = complete(request, args.seed, plans=args.plans, catalog=catalog, keep=keep)
     say(args, summary_of(scene.completion))
+    if keep is not None:
+        kept = len(keep.placed_objects())
+        say(args, f"kept {kept} pieces where they stood; added {len(scene.placed_objects()) - kept}")
     scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates, words=args.words)
     images = None
     if args.render:
@@ -974,6 +995,7 @@ examples:
   scenewright complete --room 5x4 --door S:0.8:0.9 --window N:2.5:1.4 --with bed,bookshelf --seed 1 -o bedroom/
   scenewright complete --room 6x5 --door W:1:0.9 --with dining_table --with chair=6 --no-render -o dining/
   scenewright complete --room "0,0 6,0 6,3 3,3 3,5 0,5" --door 1:1:0.9 --with desk -o office/
+  scenewright complete bedroom/scene.json --add piano -o bedroom2/   # what is there stays put
 
 completes an empty room from the categories asked for (--with NAME[=COUNT], names of
 the indoor catalog, repeatable), from a set of furnished floor plans (--plans, default
@@ -1385,12 +1407,16 @@ def build_parser() -> CommandLineParser:
     vary_command.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
     view_options(vary_command, "640x480")
     complete = command("complete", "furnish an empty room from a few objects, learned from floor plans", run_complete)
-    complete.add_argument("--room", required=True, metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ...")
+    complete.add_argument("scene", nargs="?", metavar="SCENE_JSON",
+                          help="a furnished room (scene.json) to add to: what it holds stays where it is")
+    complete.add_argument("--add", action="append", default=[], metavar="NAME[=N][,...]",
+                          help="with SCENE_JSON: categories to add (repeatable)")
+    complete.add_argument("--room", metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ...")
     complete.add_argument("--door", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:HEIGHT]",
                           help="a door (repeatable)")
     complete.add_argument("--window", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]",
                           help="a window (repeatable)")
-    complete.add_argument("--with", dest="categories", action="append", required=True, metavar="NAME[=N][,...]",
+    complete.add_argument("--with", dest="categories", action="append", default=[], metavar="NAME[=N][,...]",
                           help="categories the room must hold (repeatable)")
     complete.add_argument("--explain", action="store_true",
                           help="also write mask.png: the layout mask on the room, with the pieces laid out")

@@ -227,3 +227,51 @@ def test_a_category_given_up_whole_is_left_out_with_why(model, catalog):
     whole = {name for name in record["given_up"] if name not in record["counts"]}
     assert whole and all(record["left_out"][name] == ROOM_FULL for name in whole)
     assert "bed" in record["counts"]
+
+
+@pytest.fixture(scope="module")
+def furnished(tmp_path_factory):
+    """A completed 4.5 x 4 m bedroom, as scene.json."""
+    folder = tmp_path_factory.mktemp("furnished")
+    argv = ["complete", "--room", "4.5x4", "--door", "S:0.6:0.9", "--window", "N:2:1.2", "--with", "bed",
+            "--seed", "3", "--no-render", "-q", "-o", str(folder / "room")]  # fmt: skip
+    assert main(argv) == 0
+    return folder / "room" / "scene.json"
+
+
+def test_adding_to_a_furnished_room_keeps_every_piece_where_it_stood(furnished, tmp_path, capsys):
+    import json
+
+    before = json.loads(furnished.read_text())
+    assert main(["complete", str(furnished), "--add", "floor_lamp", "--seed", "1", "--no-render", "-o",
+                 str(tmp_path / "more")]) == 0  # fmt: skip
+    assert "kept" in capsys.readouterr().out
+    after = json.loads((tmp_path / "more" / "scene.json").read_text())
+    assert after["layout"]["ok"]
+    placed = {o["id"]: o for o in after["objects"] if o["kind"] == "object"}
+    for obj in (o for o in before["objects"] if o["kind"] == "object"):
+        assert placed[obj["id"]]["position"] == obj["position"] and placed[obj["id"]]["yaw"] == obj["yaw"]
+    kinds = [o["type"] for o in placed.values()]
+    assert kinds.count("floor_lamp") == [o["type"] for o in before["objects"]].count("floor_lamp") + 1
+
+
+@pytest.mark.parametrize(
+    "extra, fragment",
+    [
+        (["--add", "piano", "--room", "5x4"], "--room describes an empty room"),
+        ([], "needs --add"),
+        (["--add", "treadmill"], "not an indoor catalog entry"),
+    ],
+)
+def test_bad_additions_exit_2_on_one_line(furnished, tmp_path, capsys, extra, fragment):
+    assert main(["complete", str(furnished), *extra, "--no-render", "-o", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert fragment in err and err.count("\n") == 1
+
+
+def test_add_needs_a_scene_and_a_scene_needs_a_room(tmp_path, capsys):
+    assert main(["complete", "--room", "5x4", "--with", "bed", "--add", "piano", "-o", str(tmp_path / "x")]) == 2
+    assert "--add adds to a scene.json" in capsys.readouterr().err
+    assert main(["-q", "generate", "village", "--seed", "1", "--no-render", "-o", str(tmp_path / "v")]) == 0
+    assert main(["complete", str(tmp_path / "v" / "scene.json"), "--add", "piano", "-o", str(tmp_path / "y")]) == 2
+    assert "only an indoor scene can be completed" in capsys.readouterr().err
