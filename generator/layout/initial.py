@@ -26,6 +26,14 @@ largest footprint first, so the room starts from a plausible state: the desk tak
 window and the bed a wall before the chair looks for a place in front of the desk. With line of sight, tall boxes not
 yet placed wait outside the room (``_park``), so they block no view before they have a
 place of their own.
+
+A box whose facing relation fixes its heading alone (same, opposite or square to B's)
+takes that heading before its place is drawn, so what is placed beside it keeps to its
+sides. In a room a group is put together on its own terms: each member's candidates are
+judged by the relations among the members placed so far and their overlaps only
+(``_best_among_mates``), not at the group's provisional spot, where a wall or another
+group makes a row of desks fold into a block; a group nothing places is then put at the
+best of ``initial_candidates`` spots on the floor (``_group_anywhere``).
 """
 
 from __future__ import annotations
@@ -41,7 +49,8 @@ import numpy as np
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
-from .moves import Mover, rigid, wrap
+from .moves import HEADING_ONLY, Mover, rigid, wrap
+from .moves import reach as footprint_reach
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .relation_terms import centre, evaluate
@@ -515,21 +524,72 @@ def _place_box(
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
+    # A heading its facing relations fix whatever the place (same, opposite or square to
+    # B's) is taken before the place: NextTo* placements keep A's heading and AlignedWith
+    # keeps its way round, so a desk placed left of a desk already facing the board stays
+    # left of it once turned (turned after, about its own centre, it would not).
+    for term in facing:
+        if term.spec.facing in HEADING_ONLY and not support:
+            turned = mover.turn_to_face(term)
+            for item, pose in (turned or {}).items():
+                state.set_pose(item, *pose)
     first = draw()[0]
     for item, pose in first.items():
         state.set_pose(item, *pose)
     energy.activate([box])
-    _best_of(energy, draw, energy.params.initial_candidates)
+    if mates and energy.problem.room is not None:
+        _best_among_mates(energy, draw, energy.params.initial_candidates, mates)
+    else:
+        _best_of(energy, draw, energy.params.initial_candidates)
     for term in facing:
         _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
 
 
-def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
+def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...]) -> None:
+    """``_best_of`` for a member of a group being put together, judged by the group
+    alone: the relations among its placed members and their overlaps with each other.
+
+    The group is placed as a whole afterwards; judged by the whole energy, a member's
+    candidates would be judged at the group's provisional spot, where a wall or another
+    row of desks makes the wrong arrangement (a desk behind its neighbour instead of
+    beside it) the cheapest.
+    """
     problem, state = energy.problem, energy.state
-    reach = problem.size[box] / 2.0
-    half_x = max(problem.extent[0] / 2.0 - reach, 0.0)
-    half_z = max(problem.extent[1] / 2.0 - reach, 0.0)
-    yaw = wrap(math.pi / 2.0 * int(rng.integers(4)))
+    placed = [m for m in mates if energy.active[m]]
+    inside = set(placed)
+    terms = [
+        problem.relations[t] for t in sorted({t for m in placed for t in problem.terms_of_box[m]})
+        if energy.placeable[t] and energy.term_boxes[t] <= inside
+    ]  # fmt: skip
+    ground = [m for m in placed if problem.support[m] < 0]
+
+    def score() -> float:
+        total = sum(evaluate(term, state, energy.params).energy for term in terms)
+        for k, first in enumerate(ground):
+            for second in ground[k + 1 :]:
+                total += energy.pair_energy(first, second)
+        return total
+
+    best, best_score = None, score()
+    for _ in range(count):
+        proposal = draw()
+        if proposal is None or proposal[0] is None:
+            continue
+        with state.trying(proposal[0]):
+            value = score()
+        if value < best_score:
+            best, best_score = proposal, value
+    if best is not None:
+        energy.propose(*best)
+        energy.accept()
+
+
+def _floor_spot(energy: Energy, rng: np.random.Generator, reach_x: float, reach_z: float) -> tuple[float, float]:
+    """A random (x, z) at least (reach_x, reach_z) inside the extent, and in a room that
+    is not a rectangle on its floor when one of FLOOR_TRIES draws is."""
+    problem = energy.problem
+    half_x = max(problem.extent[0] / 2.0 - reach_x, 0.0)
+    half_z = max(problem.extent[1] / 2.0 - reach_z, 0.0)
     x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
     room = problem.room
     if room is not None and len(room.walls) > 4:  # an L-shaped room's box has floor missing
@@ -537,6 +597,14 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
             if room.contains(x, z):
                 break
             x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
+    return x, z
+
+
+def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
+    problem, state = energy.problem, energy.state
+    reach = problem.size[box] / 2.0
+    yaw = wrap(math.pi / 2.0 * int(rng.integers(4)))
+    x, z = _floor_spot(energy, rng, reach, reach)
     turn = wrap(yaw - state.yaw[box])
     return rigid(state, problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
 
@@ -579,6 +647,28 @@ def _place_group(
             lambda: (mover.place_for_relation(next(in_turn), keep_heading=keep), {}),
             energy.params.initial_candidates * len(anchors),
         )
+    elif problem.room is not None:  # nothing places it: the best spot on the floor
+        whole = Endpoint("group", group, members)
+        _best_of(
+            energy,
+            lambda: (_group_anywhere(energy, mover, rng, whole, turn=not outside_facing), {}),
+            energy.params.initial_candidates,
+        )
+
+
+def _group_anywhere(energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool) -> dict:
+    """A group shifted rigidly to a random spot where its footprint lies within the
+    extent (a room: on the floor), turned by a random quarter turn when ``turn``."""
+    problem, state = energy.problem, energy.state
+    x, z = centre(whole, state)
+    quarter = wrap(math.pi / 2.0 * int(rng.integers(4))) if turn else 0.0
+    boxes = mover.moving_boxes(whole)
+    turned = rigid(state, boxes, (x, z), quarter, (0.0, 0.0))
+    with state.trying(turned):  # how far the turned footprint reaches from its centre
+        reach_x = max(abs(state.x[b] - x) + footprint_reach(problem, state, b, 1.0, 0.0) for b in whole.members)
+        reach_z = max(abs(state.z[b] - z) + footprint_reach(problem, state, b, 0.0, 1.0) for b in whole.members)
+    nx, nz = _floor_spot(energy, rng, reach_x, reach_z)
+    return rigid(state, boxes, (x, z), quarter, (nx - x, nz - z))
 
 
 def _place_frame(

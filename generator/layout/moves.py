@@ -13,7 +13,8 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
   room's longest wall), so furniture stays square to the walls unless a relation turns
   it (a chair facing a desk);
 - ``cluster``: shift a set of items tied together by relations (a tower, the smithy
-  beside it and the sign behind it) as one, so they can leave a bad spot together (in
+  beside it and the sign behind it; in a room facing relations that ask for a heading
+  only tie nothing) as one, so they can leave a bad spot together (in
   a room, half the time along the wall the first of them against a wall stands at: a
   bed with its nightstands moves along its wall);
 - ``relation`` (data-driven): pick a relation, favouring badly scored ones, and put its
@@ -24,8 +25,13 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
   in rooms: A with its back flush to a wall (``_place_at_wall``: at a random spot along
   the wall, in a corner, under or beside a window; for the room as target, on a wall or
   window drawn by how much room it leaves), parallel to B with a face flush
-  (AlignedWith, or B to A), turned to B's opposite heading (FacingOpposite), next to
-  a wall, window or the room at a small gap on the side named (into the room); a try by
+  (AlignedWith, or B to A; for an A not held by a wall, half the time by the smallest
+  correction where it stands, ``snap_aligned``, so a desk a few centimetres out of its
+  row is pushed back into line instead of moved away), turned to B's opposite heading (FacingOpposite), next to
+  a wall, window or the room at a small gap on the side named (into the room);
+  beside an object that keeps free space on that side, A stands beyond that space when
+  things placed by A may not stand in it (``kept_free``: the teacher's chair between
+  the teacher's desk and the board); a try by
   another relation of an A that must also stand against a wall is then pushed back
   onto the nearest fitting wall (``snap``), so "against the wall, left of the bed"
   lands where both hold; a wall move sometimes carries along rigidly what is in place
@@ -57,7 +63,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from scenewright.core.frames import to_world
+from scenewright.core.frames import to_local, to_world
 from scenewright.core.room import Wall
 
 from .params import LayoutParams
@@ -93,6 +99,11 @@ MULTI_TRIES = 8
 ALIGN_GAP = (0.02, 0.3)
 BESIDE_GAP = (0.02, min(0.25, BESIDE_DISTANCE))
 
+#: Share of data-driven AlignedWith placements of an A without a wall relation that only
+#: correct A where it stands (``snap_aligned``) rather than draw a new place beside B
+#: (``place_aligned``).
+SNAP_ALIGN_SHARE = 0.5
+
 #: Random spots along a wall tried before one in front of a door (or of a window, for
 #: furniture taller than its sill) is taken anyway.
 WALL_TRIES = 6
@@ -110,6 +121,9 @@ SLIDE_GAP = 0.1
 SLIDE_ANGLE = 0.1
 
 HALF_PI = math.pi / 2.0
+
+#: Facing relations that ask only for A's heading relative to B's, wherever A stands.
+HEADING_ONLY = ("same", "opposite", "orthogonal")
 
 
 def wrap(angle: float) -> float:
@@ -208,6 +222,17 @@ class Mover:
         ]  # fmt: skip
         self.clusters = [c for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem)) if c]
         self.cluster_of = {box: cluster for cluster in self.clusters for box in cluster}
+        # Per box, the boxes its relation partners are, and those placed by a relation to it
+        # (``kept_free``).
+        self.partners: list[set[int]] = [set() for _ in range(problem.n_boxes)]
+        self.followers: list[set[int]] = [set() for _ in range(problem.n_boxes)]
+        for term in problem.relations:
+            for first in term.a.members:
+                for second in term.b.members:
+                    self.partners[first].add(second)
+                    self.partners[second].add(first)
+            if term.a.kind == "object" and term.b.kind == "object":
+                self.followers[term.b.index].add(term.a.index)
         # Free boxes with a wall relation (rooms only): their jitter may slide along the wall.
         self.wall_terms: dict[int, list[RelationTerm]] = {}
         for term in problem.relations:
@@ -503,6 +528,10 @@ class Mover:
         if family == "wall":
             return self._place_at_wall(term)
         if family == "alignment":
+            # Not for A held by a wall: standing against B's wall lines its back up with
+            # B's already, and a shift in B's frame could take it off the wall.
+            if term.a.index not in self.wall_terms and self.rng.random() < SNAP_ALIGN_SHARE:
+                return self.snap_aligned(term.a.index, term.b.index)
             return self.place_aligned(term.a.index, term.b.index)
         return self._place_on_top(term)
 
@@ -537,7 +566,7 @@ class Mover:
         else:
             bx, bz, c, s = anchor(b, state, (ax, az))
             wx, wz = self._wanted_direction(term, c, s)
-            offset = end_reach(problem, state, b, wx, wz)
+            offset = end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz)
             # Slide sideways along B's side a little, so several things beside B can fit.
             slide = rng.uniform(-LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
             bx, bz = bx - wz * slide, bz + wx * slide
@@ -563,8 +592,30 @@ class Mover:
             a_reach = problem.path_width[a.index] / 2.0
         else:
             a_reach = end_reach(problem, state, a, -wx, -wz)
-        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.rng.uniform(*GAP_RANGE)
+        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz) + self.rng.uniform(*GAP_RANGE)
         return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
+
+    def kept_free(self, a: Endpoint, end: Endpoint, wx: float, wz: float) -> float:
+        """How far (metres) a NextTo* placement of ``a`` beside ``end`` in the unit
+        direction (wx, wz) stays off ``end``: the depth of the free space ``end`` keeps
+        on that side (its catalog ``clearance``), when ``a`` is an object that others
+        are placed by and some of them may not stand in that space (they are no partners
+        of ``end``'s); else 0 (``a`` itself, as ``end``'s partner, may stand in it: a
+        chair pulled up to a desk). So a teacher's desk in front of a board stands beyond
+        the space kept in front of the board, with room for its chair between."""
+        if end.kind != "object" or a.kind != "object" or not self.problem.clearance[end.index]:
+            return 0.0
+        if not self.followers[a.index] - self.partners[end.index]:
+            return 0.0
+        kept = self.problem.clearance[end.index]
+        box = end.index
+        c, s = self.state.c[box], self.state.s[box]
+        lx, lz = wx * c - wz * s, wx * s + wz * c  # B's local axes: +x its left, +z its front
+        if abs(lz) >= abs(lx):
+            side = "front" if lz > 0.0 else "back"
+        else:
+            side = "left" if lx > 0.0 else "right"
+        return max((metres for named, metres in kept if named == side), default=0.0)
 
     def turn_target_for(self, term: RelationTerm) -> dict:
         """Turn B (an object, with what it carries) in place so that A is on the side named
@@ -870,6 +921,35 @@ class Mover:
         x, z = to_world(state.x[other], state.z[other], b_yaw, lx, lz)
         return self._pose_box(mover, x, z, wrap(yaw))
 
+    def snap_aligned(self, mover: int, other: int) -> dict | None:
+        """Box ``mover`` lined up with box ``other`` by the smallest correction: turned
+        parallel to it (whichever way round is nearer) about its own centre, then shifted
+        along one of ``other``'s axes until the nearest pair of faces that can be flush
+        without the two overlapping is flush. A desk 6 cm out of line with its neighbour
+        in a row is pushed back into line where it stands, still beside it, where
+        ``place_aligned`` would draw a new place (and break what holds there)."""
+        problem, state = self.problem, self.state
+        if problem.support[mover] >= 0 or not self.movable_box[mover]:
+            return None
+        b_yaw = state.yaw[other]
+        dot = state.s[mover] * state.s[other] + state.c[mover] * state.c[other]
+        yaw = wrap(b_yaw + math.pi if dot < 0.0 else b_yaw)
+        ex, ez = problem.half_width[mover], problem.half_depth[mover]  # parallel: its axes are B's
+        hw, hd = problem.half_width[other], problem.half_depth[other]
+        lx, lz = to_local(state.x[other], state.z[other], b_yaw, state.x[mover], state.z[mover])
+        best = None
+        for axis, flush in ((0, hw - ex), (0, ex - hw), (1, hd - ez), (1, ez - hd)):
+            nx, nz = (flush, lz) if axis == 0 else (lx, flush)
+            if abs(nx) < hw + ex - 1e-9 and abs(nz) < hd + ez - 1e-9:
+                continue  # the two would overlap
+            shift = abs(nx - lx) + abs(nz - lz)
+            if best is None or shift < best[0]:
+                best = (shift, nx, nz)
+        if best is None:  # A lies across B: no face can be made flush by one shift
+            return self.place_aligned(mover, other)
+        x, z = to_world(state.x[other], state.z[other], b_yaw, best[1], best[2])
+        return self._pose_box(mover, x, z, yaw)
+
     def _place_by_room_part(self, term: RelationTerm) -> dict:
         """A next to a wall, an opening or the room (a wall drawn by its length): at a
         small gap from the wall, at a random place along it (along the opening's
@@ -901,7 +981,10 @@ def _clusters(problem: Problem) -> list[list[int]]:
     """Sets of top-level items (with all their boxes) that relations tie together.
 
     Items are top-level groups and boxes outside groups (a stacked box belongs to what
-    it rests on); two items are tied when a relation joins anything in them. Paths and
+    it rests on); two items are tied when a relation joins anything in them, except, in
+    a room, a facing relation that asks only for a heading (same, opposite or square to
+    B's): every desk facing the board would otherwise tie the whole room into one
+    cluster, board and all, and a cluster move would take the board off its wall. Paths and
     junctions tie nothing. Only sets of two or more items are returned, in a fixed order.
     """
     unit_of: dict[int, int] = {}
@@ -922,6 +1005,8 @@ def _clusters(problem: Problem) -> list[list[int]]:
         return unit
 
     for term in problem.relations:
+        if problem.room is not None and term.spec.facing in HEADING_ONLY:
+            continue  # a shared shift keeps it: it ties no cluster (else all desks facing a board are one)
         ends = [unit_of[box] for box in term.a.members[:1] + term.b.members[:1] if box in unit_of]
         if len(ends) == 2 and find(ends[0]) != find(ends[1]):
             parent[find(ends[0])] = find(ends[1])

@@ -102,11 +102,20 @@ def centre(end: Endpoint, state: State) -> tuple[float, float]:
         return _room_part_centre(end, problem.room)
     x0 = z0 = math.inf
     x1 = z1 = -math.inf
-    for box in end.members:
-        ex = problem.half_width[box] * abs(state.c[box]) + problem.half_depth[box] * abs(state.s[box])
-        ez = problem.half_width[box] * abs(state.s[box]) + problem.half_depth[box] * abs(state.c[box])
-        x0, x1 = min(x0, state.x[box] - ex), max(x1, state.x[box] + ex)
-        z0, z1 = min(z0, state.z[box] - ez), max(z1, state.z[box] + ez)
+    half_width, half_depth, cs, ss, xs, zs = problem.half_width, problem.half_depth, state.c, state.s, state.x, state.z
+    for box in end.members:  # (plain comparisons: this runs for every group term, every step)
+        c, s = abs(cs[box]), abs(ss[box])
+        ex = half_width[box] * c + half_depth[box] * s
+        ez = half_width[box] * s + half_depth[box] * c
+        x, z = xs[box], zs[box]
+        if x - ex < x0:
+            x0 = x - ex
+        if x + ex > x1:
+            x1 = x + ex
+        if z - ez < z0:
+            z0 = z - ez
+        if z + ez > z1:
+            z1 = z + ez
     return (x0 + x1) / 2.0, (z0 + z1) / 2.0
 
 
@@ -149,9 +158,9 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
 def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
     """Minimum distance between the collision geometry of two endpoints (0 when touching).
 
-    Between groups, member pairs are visited nearest first by a cheap lower bound (centre
-    distance minus both circumradii), and the exact test stops once no bound can win; to
-    a path, (member, segment) pairs likewise.
+    Between groups, the member pair of least cheap lower bound (centre distance minus
+    both circumradii) is measured first, then only pairs whose bound could beat the best
+    so far; to a path, (member, segment) pairs likewise.
     """
     problem = state.problem
     if a.kind in ROOM_ENDS:
@@ -168,16 +177,21 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
         return max(0.0, gap - problem.path_width[b.index] / 2.0)
     if len(a.members) == 1 and len(b.members) == 1:
         return box_distance(a.members[0], b.members[0], state)
-    bounds = sorted(
-        (math.hypot(state.x[p] - state.x[q], state.z[p] - state.z[q]) - (problem.size[p] + problem.size[q]) / 2.0, p, q)
+    xs, zs, size = state.x, state.z, problem.size
+    bounds = [
+        (math.hypot(xs[p] - xs[q], zs[p] - zs[q]) - (size[p] + size[q]) / 2.0, p, q)
         for p in a.members
         for q in b.members
-    )
-    best = math.inf
+    ]
+    # The pair of least bound first (its exact distance bounds the rest), then only the
+    # pairs whose bound could beat the best so far: the same minimum as visiting all.
+    _, p, q = min(bounds)
+    best = box_distance(p, q, state)
     for bound, p, q in bounds:
-        if bound >= best:
-            break
-        best = min(best, box_distance(p, q, state))
+        if bound < best:
+            distance = box_distance(p, q, state)
+            if distance < best:
+                best = distance
     return best
 
 
