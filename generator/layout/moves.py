@@ -500,14 +500,26 @@ class Mover:
     def place_by(self, term: RelationTerm, walls: list[RelationTerm]) -> dict | None:
         """A placed by ``term``; when A must also stand against a wall (``walls``, its
         wall relations) and ``term`` is another kind, then half the time pushed onto the
-        nearest spot that wall relation allows (keeping its place along the wall)."""
+        nearest spot that wall relation allows (keeping its place along the wall). An A
+        held by no wall that must be lined up with a box (AlignedWith) is likewise, half
+        the time, lined up with it where ``term`` put it (``snap_aligned``): a desk put
+        left of its neighbour lands in line with it too."""
         proposal = self.place_for_relation(term)
-        if not proposal or not walls or term.spec.family == "wall" or term.a.kind != "object":
+        if not proposal or term.a.kind != "object":
             return proposal
-        if self.rng.random() < 0.5:
-            wall_term = walls[int(self.rng.integers(len(walls)))]
+        if walls:
+            if term.spec.family != "wall" and self.rng.random() < 0.5:
+                wall_term = walls[int(self.rng.integers(len(walls)))]
+                with self.state.trying(proposal):
+                    snapped = self._place_at_wall(wall_term, snap=True)
+                if snapped:
+                    proposal = {**proposal, **snapped}
+            return proposal
+        lines = [t for t in self._placing_terms(term.a) if t.spec.family == "alignment" and t.b.kind == "object"]
+        if lines and term.spec.family != "alignment" and self.rng.random() < 0.5:
+            line = lines[int(self.rng.integers(len(lines)))]
             with self.state.trying(proposal):
-                snapped = self._place_at_wall(wall_term, snap=True)
+                snapped = self.snap_aligned(term.a.index, line.b.index)
             if snapped:
                 proposal = {**proposal, **snapped}
         return proposal
