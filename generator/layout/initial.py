@@ -27,9 +27,9 @@ window and the bed a wall before the chair looks for a place in front of the des
 yet placed wait outside the room (``_park``), so they block no view before they have a
 place of their own.
 
-A box whose facing relation fixes its heading alone (same, opposite or square to B's)
-takes that heading before its place is drawn, so what is placed beside it keeps to its
-sides. In a room a group is put together on its own terms: each member's candidates are
+In a room a box whose facing relation fixes its heading alone (same, opposite or square
+to B's) takes that heading before its place is drawn, so what is placed beside it keeps
+to its sides, and a group is put together on its own terms: each member's candidates are
 judged by the relations among the members placed so far and their overlaps only
 (``_best_among_mates``), not at the group's provisional spot, where a wall or another
 group makes a row of desks fold into a block; a group nothing places is then put at the
@@ -524,12 +524,13 @@ def _place_box(
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
-    # A heading its facing relations fix whatever the place (same, opposite or square to
-    # B's) is taken before the place: NextTo* placements keep A's heading and AlignedWith
-    # keeps its way round, so a desk placed left of a desk already facing the board stays
-    # left of it once turned (turned after, about its own centre, it would not).
+    # In a room, a heading its facing relations fix whatever the place (same, opposite or
+    # square to B's) is taken before the place: NextTo* placements keep A's heading and
+    # AlignedWith keeps its way round, so a desk placed left of a desk already facing the
+    # board stays left of it once turned (turned after, about its own centre, it would
+    # not). Outdoors it sped the village up but lengthened the town's tail (docs/layout.md).
     for term in facing:
-        if term.spec.facing in HEADING_ONLY and not support:
+        if problem.room is not None and term.spec.facing in HEADING_ONLY and not support:
             turned = mover.turn_to_face(term)
             for item, pose in (turned or {}).items():
                 state.set_pose(item, *pose)
