@@ -17,9 +17,9 @@ one the expansion refuses (too many nodes, ``some`` with no candidate). The sear
 stops with ``AmbiguousExample`` after ``MAX_REPLAYS`` replays.
 
 An example read from geometry alone (the hand-written format, GLB) has no relation
-labels but what rests on what. Its signature (``measured_signature``) is the multiset
-of its objects' (type, style) and of (type, the type it rests on), a derivation's
-resting pairs being its support-family relations. Every derivation of that signature
+labels but what rests on what. Its signature (``resting_signature`` of its graph) is
+the multiset of its objects' (type, style) and of (type, the type it rests on), as its
+support-family relations and a derivation's say. Every derivation of that signature
 is then scored by the geometry (``geometric_agreement``): for each of its relation
 statements (subject type, label, target), whether the example holds it, measured by the
 layout's own predicates between objects of those types (a wall's, a window's or the
@@ -46,7 +46,6 @@ from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_KINDS, ROOM_NODE
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
-from scenewright.examples import scene_supports
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import measure_layout
 from scenewright.generator.expand import Draws, expand_with
@@ -98,17 +97,6 @@ def resting_signature(graph: SceneGraph) -> Signature:
     )
 
 
-def measured_signature(scene: Scene) -> Signature:
-    """The resting signature of an example read from geometry (module docstring)."""
-    types = {obj.id: obj.type for obj in scene.placed_objects()}
-    supports = scene_supports(scene)
-    return Signature(
-        Counter((obj.type, obj.style) for obj in scene.placed_objects()),
-        Counter((obj.type, types.get(supports.get(obj.id, ""))) for obj in scene.placed_objects()),
-        None,
-    )
-
-
 def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
     """Statement -> how many objects of its subject type the example ``scene`` holds it
     for (with some other object of the target type, or against its room), for every
@@ -138,17 +126,12 @@ def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
         (relation.source, relation.label, type_of.get(relation.target, ROOM_NODE))
         for relation in measure_layout(graph, poses, {}).relations if relation.satisfied
     }  # fmt: skip
-    counts: Counter = Counter()
-    for subject_type, label, target in statements:
-        if _unmeasurable(label, scene):
-            counts[(subject_type, label, target)] = len(objects)  # may hold for every one: tells nothing
-            continue
-        role = ROOM_NODE if target in ROOM_KINDS else target
-        counts[(subject_type, label, target)] = sum(
-            1 for subject, held_label, held_role in held
-            if type_of[subject] == subject_type and held_label == label and held_role == role
-        )  # fmt: skip
-    return counts
+    held_by_type = Counter((type_of[subject], label, role) for subject, label, role in held)
+    return Counter({
+        (subject_type, label, target): len(objects) if _unmeasurable(label, scene)  # may hold for every one: tells nothing
+        else held_by_type[(subject_type, label, ROOM_NODE if target in ROOM_KINDS else target)]
+        for subject_type, label, target in statements
+    })  # fmt: skip
 
 
 def _unmeasurable(label: str, scene: Scene) -> bool:
@@ -244,7 +227,7 @@ def measured_derivations_of(rules: Rules, example: Scene, name: str = "example")
     only when none is found does it take every derivation of the resting signature and
     keep the best-agreeing ones."""
     holding = _HoldingCache(example)
-    wanted = measured_signature(example)
+    wanted = resting_signature(example.graph())
     graphs = _search(rules, wanted, resting_signature, name, holding.holds_all)
     if not graphs:
         graphs = _search(rules, wanted, resting_signature, name)

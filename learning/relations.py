@@ -238,6 +238,14 @@ def nearest_poses(
     return relative[rows, np.argmin(distance, axis=1)]
 
 
+def scaled_distances(pooled: np.ndarray) -> np.ndarray:
+    """(N, N) distances between the poses ``pooled`` (N, D), each coordinate divided by
+    its standard deviation over them (left as it is when constant)."""
+    scale = pooled.std(axis=0)
+    scale[scale < SCALE_FLOOR] = 1.0
+    return cdist(pooled / scale, pooled / scale)
+
+
 def energy_test(
     within: np.ndarray, across: np.ndarray, permutations: int, rng: np.random.Generator
 ) -> tuple[float, float, float]:
@@ -246,9 +254,7 @@ def energy_test(
     relabellings of the pooled sample; and the tightness 1 - mean |X - X'| / mean |Y - Y'|
     of the first sample against the second."""
     pooled = np.vstack([within, across])
-    scale = pooled.std(axis=0)
-    scale[scale < SCALE_FLOOR] = 1.0
-    distances = cdist(pooled / scale, pooled / scale)  # (N, N)
+    distances = scaled_distances(pooled)  # (N, N)
     n, m = len(within), len(across)
     total = n + m
     labels = np.zeros((permutations + 1, total))  # row 0: the observed split, then the relabellings
@@ -285,10 +291,7 @@ def pairing_test(poses: np.ndarray, rng: np.random.Generator) -> tuple[float, fl
     energy distance of the diagonal {P[i, i]} from all n^2 poses, its p-value over the
     pairings of scenes, and the diagonal's tightness against all poses."""
     n = poses.shape[0]
-    pooled = poses.reshape(n * n, -1)
-    scale = pooled.std(axis=0)
-    scale[scale < SCALE_FLOOR] = 1.0
-    distances = cdist(pooled / scale, pooled / scale)  # (n^2, n^2)
+    distances = scaled_distances(poses.reshape(n * n, -1))  # (n^2, n^2)
     if math.factorial(n) <= EXACT_PAIRINGS:
         pairings = np.array(list(itertools.permutations(range(n))))  # the identity first
     else:
