@@ -131,11 +131,7 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
             if learned_step(energy, mover, relocator, learned, params, params.temperature_start * math.exp(cooling * step)):
                 accepted += 1
             continue
-        proposal = None
-        if relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
-            proposal = relocator.propose(mover.focus_boxes)
-        if proposal is None:
-            proposal = mover.propose(energy.relation)
+        proposal = ordinary_proposal(energy, mover, relocator, uniform)
         if proposal is None:
             continue
         delta = energy.propose(*proposal)
@@ -150,6 +146,17 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     return Run(energy, relations, problems, steps, accepted)
 
 
+def ordinary_proposal(energy: Energy, mover: Mover, relocator: Relocator | None, uniform):
+    """A proposal of the mover's, or now and then (``RELOCATE_SHARE``, indoors, while
+    some box is in trouble; ``uniform`` the chain's draw) a relocation of a troubled
+    box; None when there is none."""
+    if relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
+        proposal = relocator.propose(mover.focus_boxes)
+        if proposal is not None:
+            return proposal
+    return mover.propose(energy.relation)
+
+
 def learned_step(
     energy: Energy, mover: Mover, relocator: Relocator | None, learned: LearnedMoves, params: LayoutParams,
     temperature: float,
@@ -162,10 +169,8 @@ def learned_step(
         drawn = learned.propose()
         if drawn is not None:
             proposal, correction, pair = (drawn[0], {}), drawn[1], drawn[2]
-    if proposal is None and relocator is not None and mover.focus_boxes and uniform() < RELOCATE_SHARE:
-        proposal = relocator.propose(mover.focus_boxes)
     if proposal is None:
-        proposal = mover.propose(energy.relation)
+        proposal = ordinary_proposal(energy, mover, relocator, uniform)
     if proposal is None:
         return False
     delta = energy.propose(*proposal)
