@@ -4,8 +4,8 @@ A ``FloorMask`` is a grid of values in [0, 1] laid over an axis-aligned rectangl
 the ground (a room's bounding box): ``values`` (rows, cols), row i along z, column k
 along x, and the ids of the boxes it is for. ``layout_scene(..., mask=)`` and
 ``measure_layout(..., mask=)`` take one, or a sequence of them for different boxes
-(a room split into parts, each with its own mask over its own rectangle; a box may be
-listed by one of them only); without it the layout has no ``mask`` part at all (its
+(a room split into parts, each with its own mask over its own rectangle; a box named
+by several pays each); without it the layout has no ``mask`` part at all (its
 parts and results are what they were).
 
 The part: per listed box that is placed,
