@@ -67,6 +67,13 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
     return results, problems
 
 
+def unsatisfied_terms(energy: Energy, relations: list[Relation]) -> list[int]:
+    """The relation terms (indices into ``problem.relations``) of the verdicts in
+    ``relations`` (``assess``'s, in graph order, structural edges included) that do not hold."""
+    edges = energy.problem.edges
+    return [index for (_, _, _, index), relation in zip(edges, relations) if index is not None and not relation.satisfied]
+
+
 def _overlaps(energy: Energy) -> list[str]:
     problem, found = energy.problem, []
     for box in range(problem.n_boxes):

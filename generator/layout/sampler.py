@@ -60,7 +60,7 @@ from .moves import Mover, rigid, wrap
 from .params import LayoutParams
 from .pinning import Pins
 from .problem import Endpoint, Problem
-from .report import assess
+from .report import assess, unsatisfied_terms
 from .state import State
 
 #: In a room, the share of steps that are ``Relocator`` moves (when some box is troubled).
@@ -121,7 +121,7 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
                 break
-            mover.focus([t for t, r in enumerate(relations) if not r.satisfied], energy.troubled_boxes())
+            mover.focus(unsatisfied_terms(energy, relations), energy.troubled_boxes())
             if len(problems) < fewest:
                 fewest, since = len(problems), step
             elif step - since >= patience:
