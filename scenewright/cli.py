@@ -218,14 +218,8 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.generator import load_rules
 
     check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
-    from scenewright.api import rules_context
-
     rules = load_rules(args.rules, allow=args.allow_outside)
-    if args.context is not None and args.no_context:
-        raise InputError("--context and --no-context contradict each other; give one")
-    context = None if args.no_context else rules_context(rules, args.context)
-    if context is not None:
-        say(args, f"context: {context[0]} ({len(context[1].pairs)} pair kinds)")
+    context = chosen_context(args, rules)
     scene = generate(
         rules, args.seed, style=args.style, variant=args.variant, templates=args.templates, words=args.words,
         context=context[1] if context is not None else None,
@@ -363,16 +357,33 @@ def dataset_cameras(args: argparse.Namespace):
     return ranges
 
 
+def chosen_context(args: argparse.Namespace, rules):
+    """The learned context ``--context`` names, else the one beside the rules, as (file,
+    context); None with ``--no-context`` or when there is none. Says which it uses."""
+    from scenewright.api import rules_context
+
+    if args.context is not None and args.no_context:
+        raise InputError("--context and --no-context contradict each other; give one")
+    context = None if args.no_context else rules_context(rules, args.context)
+    if context is not None:
+        say(args, f"context: {context[0]} ({len(context[1].pairs)} pair kinds)")
+    return context
+
+
 def run_dataset(args: argparse.Namespace) -> int:
     from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
+    from scenewright.generator import load_rules
     from scenewright.dataset_scene import with_picture_captions
 
     if not args.images and (args.depth or args.segmentation):
         raise InputError("--depth and --segmentation are images: they cannot be made with --no-images")
     cameras = dataset_cameras(args)
+    rules = load_rules(args.rules)
+    context = chosen_context(args, rules)
     spec = dataset_spec(
-        args.rules,
+        rules,
         args.count,
+        context=context[0] if context is not None else None,
         base_seed=args.seed,
         captions=args.captions,
         templates=args.templates,
@@ -818,6 +829,7 @@ examples:
   scenewright dataset classroom -n 500 -o data/classroom --frame camera --min-visible 0.5 --min-size 24
   scenewright dataset my_town.rules -n 500 -o data/town --retries 6 --include-failed
   scenewright dataset bedroom -n 500 -o data/bedroom --no-images
+  scenewright dataset fitted/dining.rules -n 1000 -o data/dining   # with fitted/dining.context.json
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
@@ -1086,6 +1098,14 @@ def build_parser() -> CommandLineParser:
             "folder (repeatable; see docs/security.md)",
         )
 
+    def context_options(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument(
+            "--context", metavar="JSON",
+            help="a learned context (scenewright fit --what context); by default NAME.context.json beside a "
+            "NAME.rules file is used when it exists",
+        )  # fmt: skip
+        sub.add_argument("--no-context", action="store_true", help="ignore NAME.context.json beside the rules")
+
     def view_options(sub: argparse.ArgumentParser, size: str) -> None:
         sub.add_argument(
             "--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})"
@@ -1107,12 +1127,7 @@ def build_parser() -> CommandLineParser:
         "distance (times the framing distance), target (an id or type); a number may be a range LOW:HIGH, drawn "
         "from the seed (e.g. azimuth=30,elevation=45,distance=1.2)",
     )
-    generate.add_argument(
-        "--context", metavar="JSON",
-        help="a learned context (scenewright fit --what context); by default NAME.context.json beside a "
-        "NAME.rules file is used when it exists",
-    )  # fmt: skip
-    generate.add_argument("--no-context", action="store_true", help="ignore NAME.context.json beside the rules")
+    context_options(generate)
     allow_option(generate)
 
     layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
@@ -1140,6 +1155,7 @@ def build_parser() -> CommandLineParser:
         "-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)"
     )
     dataset.add_argument("--seed", type=seed_value, default=0, help="base seed (0)")
+    context_options(dataset)
     dataset.add_argument(
         "--workers",
         type=count_at_least(1),

@@ -86,7 +86,10 @@ IDLE_CHECK = 5.0
 #: What a setting stored by a version that did not have it meant (a dataset made before
 #: retries existed retried nothing, one made before COCO output wrote none, one made
 #: before datasets without images had images), so such a dataset can be resumed with that value.
-SETTINGS_BEFORE = {"retries": 0, "images": True, "coco": False, "views": 1, "camera": None, "text_words": None}
+SETTINGS_BEFORE = {
+    "retries": 0, "images": True, "coco": False, "views": 1, "camera": None, "text_words": None,
+    "context": None, "context_digest": None,
+}  # fmt: skip
 
 
 def image_number(index: int, view: int, views: int) -> int:
@@ -141,7 +144,10 @@ class DatasetSpec:
     ranges their cameras are drawn from (``render.views``), None for the automatic one.
     ``text_words``: the ``text`` column is the most detailed description (full, summary,
     short) of at most this many words (``describe(words=...)``), None: the full one;
-    scene.json keeps the full description either way.
+    scene.json keeps the full description either way. ``context``: the absolute path of
+    the learned context every layout samples with (``scenewright fit --what context``),
+    None for none; ``context_digest`` a hash of its text, so a resumed run cannot mix
+    contexts.
     """
 
     rules: str
@@ -163,6 +169,8 @@ class DatasetSpec:
     views: int = 1
     camera: CameraRanges | None = None
     text_words: int | None = None
+    context: str | None = None
+    context_digest: str | None = None
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads
@@ -173,16 +181,23 @@ class DatasetSpec:
 
 
 def dataset_spec(
-    rules, count: int, *, templates: str | os.PathLike[str] | None = None, **settings
+    rules,
+    count: int,
+    *,
+    templates: str | os.PathLike[str] | None = None,
+    context: str | os.PathLike[str] | None = None,
+    **settings,
 ) -> DatasetSpec:
     """The spec for ``count`` scenes of a rule set (name, path or loaded Rules).
 
     Loads (and so checks) the rules and the description templates the scenes will use
     (``templates``, else the rule set's own), names the rules as scene.json does, and
-    hashes their text. ``settings`` are the other ``DatasetSpec`` fields; without images
-    there is no COCO file, and several views or camera ranges are an ``InputError``.
+    hashes their text. ``context`` is a learned context file to lay every scene out
+    with (read, so checked, and hashed; ``api.rules_context`` finds the one beside the
+    rules). ``settings`` are the other ``DatasetSpec`` fields; without images there is
+    no COCO file, and several views or camera ranges are an ``InputError``.
     """
-    from scenewright.api import checked_templates, load_rules, rules_label
+    from scenewright.api import checked_templates, load_rules, rules_context, rules_label
 
     loaded = load_rules(rules)
     if templates is None:
@@ -193,10 +208,18 @@ def dataset_spec(
         if settings.get("views", 1) > 1 or settings.get("camera") is not None:
             raise InputError("--views and the camera options are for images: they cannot be used with --no-images")
         settings["coco"] = False  # no picture, nothing to annotate
-    digest = hashlib.sha256(Path(loaded.path).read_bytes()).hexdigest()
+    digest = file_digest(loaded.path)
+    if context is not None:
+        path, _ = rules_context(loaded, context)  # an InputError for a file that is not a context
+        settings.update(context=str(Path(path).resolve()), context_digest=file_digest(path))
     return DatasetSpec(
         rules=rules_label(loaded), rules_digest=digest, count=count, templates=templates, **settings
     )
+
+
+def file_digest(path: str | os.PathLike[str]) -> str:
+    """The SHA-256 of a file's bytes, in hex."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
 @dataclass

@@ -38,6 +38,7 @@ from scenewright.core.seeds import retry_seed
 from scenewright.generator.rules_errors import ExpansionError
 
 if TYPE_CHECKING:
+    from scenewright.generator.layout.learned_term import LearnedContext
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import Renderer
 
@@ -92,6 +93,7 @@ class WorkerContext:
     settings: dict
     rules: Rules
     renderer: Renderer | None  # None for a dataset without images
+    context: LearnedContext | None = None  # the learned context layouts sample with
 
 
 _per_thread = threading.local()
@@ -107,9 +109,22 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
         if context is not None and context.renderer is not None:
             context.renderer.close()
         renderer = Renderer(*spec.size) if spec.images else None
-        context = WorkerContext(spec.settings(), load_rules(spec.rules), renderer)
+        context = WorkerContext(spec.settings(), load_rules(spec.rules), renderer, spec_context(spec))
         _per_thread.context = context
     return context
+
+
+def spec_context(spec: DatasetSpec) -> LearnedContext | None:
+    """The learned context ``spec`` names, read once per worker; an ``InputError`` when
+    its file changed since the dataset was set up (its digest differs)."""
+    if spec.context is None:
+        return None
+    from scenewright.dataset import file_digest
+    from scenewright.generator.layout.learned_term import read_context
+
+    if file_digest(spec.context) != spec.context_digest:
+        raise InputError(f"{spec.context}: the learned context changed since this dataset was set up")
+    return read_context(spec.context)
 
 
 def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
@@ -281,7 +296,9 @@ def laid_out_scene(context: WorkerContext, spec: DatasetSpec, seed: int) -> tupl
     spent: Counter = Counter()
     for attempt in range(spec.retries + 1):
         layout_seed = retry_seed(seed, attempt)
-        scene = build_scene(context.rules, seed, templates=spec.templates, layout_seed=layout_seed)
+        scene = build_scene(
+            context.rules, seed, templates=spec.templates, layout_seed=layout_seed, context=context.context
+        )
         spent.update(scene.timings)
         if scene.layout.ok:
             break

@@ -252,3 +252,43 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     assert main(["generate", str(rules), "--no-render", "--no-context", "--context", str(bad), "-o",
                  str(tmp_path / "g")]) == 2  # fmt: skip
     _one_line_error(capsys)
+
+
+def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_path, capsys):
+    rules = tmp_path / "dining.rules"
+    rules.write_text(DINING.read_text())
+    sidecar = tmp_path / "dining.context.json"
+    sidecar.write_text(fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json())
+    common = [str(rules), "-n", "3", "--no-images", "--workers", "1", "-q"]
+    assert main(["dataset", *common, "-o", str(tmp_path / "with")]) == 0, capsys.readouterr().err
+    assert main(["dataset", *common, "--no-context", "-o", str(tmp_path / "without")]) == 0
+    settings = json.loads((tmp_path / "with" / "dataset.json").read_text())
+    assert settings["context"] == str(sidecar.resolve()) and len(settings["context_digest"]) == 64
+    assert json.loads((tmp_path / "without" / "dataset.json").read_text())["context"] is None
+    with_scene, without_scene = (
+        json.loads((tmp_path / name / "scenes" / "000000.json").read_text()) for name in ("with", "without")
+    )
+    assert "learned" in with_scene["layout"]["parts"] and "learned" not in without_scene["layout"]["parts"]
+    again = api_scene_with_context(rules, sidecar, settings)
+    assert with_scene["objects"] == again["objects"]  # the same layout as build_scene with the context gives
+    # A rerun with another context (or none) is refused, and nothing is added.
+    sidecar.write_text(random_context(expand(load_rules(DINING), 0), seed=5).to_json())
+    capsys.readouterr()
+    assert main(["dataset", *common, "-o", str(tmp_path / "with")]) == 2
+    assert "context_digest" in _one_line_error(capsys)
+    assert main(["dataset", *common, "--no-context", "-o", str(tmp_path / "with")]) == 2
+    _one_line_error(capsys)
+    assert main(["dataset", *common, "--context", str(tmp_path / "missing.json"), "-o", str(tmp_path / "x")]) == 2
+    _one_line_error(capsys)
+    assert not (tmp_path / "x").exists()
+
+
+def api_scene_with_context(rules: Path, sidecar: Path, settings: dict) -> dict:
+    """Scene 0 of a dataset with ``settings`` made by the Python API with the context."""
+    from scenewright.api import reproducible_json, rules_context
+    from scenewright.dataset import scene_seed
+
+    loaded = load_rules(rules)
+    seed = scene_seed(settings["base_seed"], 0)
+    scene = build_scene(loaded, seed, context=rules_context(loaded, sidecar)[1])
+    return json.loads(reproducible_json(scene))
