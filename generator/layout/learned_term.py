@@ -262,6 +262,38 @@ def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> C
     return CompiledLearned(tuple(pairs), tuple(tuple(p) for p in pairs_of_box), tempered)
 
 
+def cumulative_shares(table: PairContext) -> tuple[np.ndarray, np.ndarray]:
+    """Cumulative shares exp(-weight) of a kind's grid cells (BINS * BINS,) and of its
+    yaw bins (YAW_BINS,): what a draw from its learned distribution searches."""
+    cells = np.exp(-(table.position[:-1] - table.position[:-1].min()))
+    turns = np.exp(-(table.yaw - table.yaw.min()))
+    return np.cumsum(cells) / cells.sum(), np.cumsum(turns) / turns.sum()
+
+
+def draw_source(
+    problem, state, rng: np.random.Generator, source: int, target: int, table: PairContext,
+    cumulative: tuple[np.ndarray, np.ndarray],
+) -> dict[int, tuple[float, float, float]]:
+    """A pose for a pair's source drawn from its kind's learned distribution, relative to
+    the target where it stands now: a cell by its share exp(-weight) and a point uniform
+    inside it, a yaw bin likewise (``cumulative``: ``cumulative_shares(table)``). Returns
+    the new poses (box -> (x, z, yaw)) of the source and what rests on it, moved rigidly.
+    Five draws from ``rng``, always in this order."""
+    cells, turns = cumulative
+    cell = min(int(np.searchsorted(cells, rng.random(), side="right")), BINS * BINS - 1)
+    turn_bin = min(int(np.searchsorted(turns, rng.random(), side="right")), YAW_BINS - 1)
+    x0, z0, x1, z1 = table.bounds
+    i, k = divmod(cell, BINS)
+    lx = x0 + (k + rng.random()) * (x1 - x0) / BINS
+    lz = z0 + (i + rng.random()) * (z1 - z0) / BINS
+    turn = -math.pi + (turn_bin + rng.random()) * TAU / YAW_BINS
+    tx, tz, tyaw = state.pose(target)
+    x, z = to_world(tx, tz, tyaw, lx, lz)
+    yaw = wrap(tyaw + turn)
+    sx, sz, syaw = state.pose(source)
+    return rigid(state, problem.carried(source), (sx, sz), wrap(yaw - syaw), (x - sx, z - sz))
+
+
 class LearnedMoves:
     """Proposals drawn from the learned pairs' own distributions (see the module docstring)."""
 
@@ -276,12 +308,10 @@ class LearnedMoves:
         self._cumulative: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
     def _tables(self, table: PairContext) -> tuple[np.ndarray, np.ndarray]:
-        """Cumulative shares exp(-weight) of the cells and of the yaw bins (cached per kind)."""
+        """``cumulative_shares`` of a kind, cached per kind."""
         key = id(table)
         if key not in self._cumulative:
-            cells = np.exp(-(table.position[:-1] - table.position[:-1].min()))
-            turns = np.exp(-(table.yaw - table.yaw.min()))
-            self._cumulative[key] = (np.cumsum(cells) / cells.sum(), np.cumsum(turns) / turns.sum())
+            self._cumulative[key] = cumulative_shares(table)
         return self._cumulative[key]
 
     def mixed(self) -> bool:
@@ -302,19 +332,8 @@ class LearnedMoves:
         choices = lagging or self.pairs
         pair = choices[int(rng.integers(len(choices)))]
         source, target, table = self.learned.pairs[pair]
-        cells, turns = self._tables(table)
-        cell = min(int(np.searchsorted(cells, rng.random(), side="right")), BINS * BINS - 1)
-        turn_bin = min(int(np.searchsorted(turns, rng.random(), side="right")), YAW_BINS - 1)
-        x0, z0, x1, z1 = table.bounds
-        i, k = divmod(cell, BINS)
-        lx = x0 + (k + rng.random()) * (x1 - x0) / BINS
-        lz = z0 + (i + rng.random()) * (z1 - z0) / BINS
-        turn = -math.pi + (turn_bin + rng.random()) * TAU / YAW_BINS
+        boxes = draw_source(self.problem, state, rng, source, target, table, self._tables(table))
         tx, tz, tyaw = state.pose(target)
-        x, z = to_world(tx, tz, tyaw, lx, lz)
-        yaw = wrap(tyaw + turn)
-        sx, sz, syaw = state.pose(source)
-        boxes = rigid(state, self.problem.carried(source), (sx, sz), wrap(yaw - syaw), (x - sx, z - sz))
         # The correction is read where the source really lands (rounding may cross a bin edge).
         nx, nz, nyaw = boxes[source]
         after = table.energy(relative_pose((nx, nz, nyaw), (tx, tz, tyaw)))
