@@ -54,6 +54,7 @@ from .moves import reach as footprint_reach
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .relation_terms import centre, evaluate
+from .templates import not_templated, template_draw
 
 #: Paths stay this far (metres) inside the extent when first laid out.
 PATH_MARGIN = 1.0
@@ -524,6 +525,9 @@ def _place_box(
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
+    template = template_draw(energy, rng, box)
+    if template is not None:  # a learned pair's source: its template gives place and turn
+        draw, facing = template, not_templated(energy, facing)
     # In a room, a heading its facing relations fix whatever the place (same, opposite or
     # square to B's) is taken before the place: NextTo* placements keep A's heading and
     # AlignedWith keeps its way round, so a desk placed left of a desk already facing the

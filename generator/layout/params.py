@@ -41,6 +41,8 @@ class LayoutParams:
     are learned moves; the stop rule waits until ``learned_sweeps`` of them were
     accepted for every learned pair (``sampler``): 2, since 3 cost 1.8-2.3x the layout
     time without a context and 1 let single chairs stray (``bench_diversity``).
+    ``template_init`` draws the constructive placement of a learned pair's source from
+    the pair's learned template (``templates``) instead of from its relations.
 
     Group decomposition (``decompose``): ``workers`` processes lay out the groups' own
     frames (1: in this process; the result is the same for any number);
@@ -70,5 +72,6 @@ class LayoutParams:
     tempered: bool = True
     learned_share: float = 0.5
     learned_sweeps: int = 2
+    template_init: bool = False
     decompose: bool = True
     workers: int = 1
