@@ -17,9 +17,22 @@ interchangeable) the spread is the root mean square distance of the chair's posi
 in the table's frame from the slot's mean position; the table prints each slot's
 generated spread over the examples' and the mean of these ratios (target: within
 [0.8, 1.25] at temperature 1, below 0.8 when annealed), and the layout time per scene
-of each way (target: temperature 1 at most 2x no context).
+of each way (target: temperature 1 at most 2x no context), with the mean steps per
+layout and the *divergence*: per learned pair kind the total variation distance of the
+generated scenes' relative-pose shares from the examples' (as ``fit`` measures it:
+blurred by 3 bins, position and yaw averaged), the mean over kinds.
+
+``--template-init`` lays out temperature 1 twice, its constructive placement from the
+rules' relations (``rules init``) and from the learned templates (``templates``,
+``LayoutParams.template_init``), to compare steps, time, ok and the figures above
+(and leaves ``annealed`` out).
+``--rules R --from DIR`` takes another rule set and its scene.json examples (a fitted
+``--context FILE`` instead of fitting one, if given): the new scenes are expanded from
+R with seeds 0.., and only the dining set prints slot spreads.
 
     .venv/bin/python benchmarks/bench_diversity.py
+    .venv/bin/python benchmarks/bench_diversity.py --template-init
+    .venv/bin/python benchmarks/bench_diversity.py --template-init --rules bedrooms.rules --from scenes/ --context bedrooms.context.json
     .venv/bin/python benchmarks/bench_diversity.py --examples 30 --scenes 60 --seed 1
     .venv/bin/python benchmarks/bench_diversity.py --write-examples dining_examples   # the examples only
 """
@@ -42,7 +55,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from scenewright.api import build_scene  # noqa: E402
 from scenewright.generator import expand, load_rules  # noqa: E402
 from scenewright.generator.layout import LayoutParams, layout_scene  # noqa: E402
-from scenewright.learning.context import fit_context  # noqa: E402
+from scenewright.generator.layout.learned_term import read_context  # noqa: E402
+from scenewright.learning.context import (  # noqa: E402
+    UPDATE_SMOOTH,
+    counts,
+    example_layout,
+    fit_context,
+    graph_pair_poses,
+    share_distance,
+    shares,
+)
 
 RULES = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
 
@@ -112,19 +134,36 @@ def spreads(positions: np.ndarray) -> np.ndarray:
     return np.sqrt((centred**2).sum(axis=2).mean(axis=0))
 
 
-def sample(rules: Path, count: int, context, params: LayoutParams) -> tuple[np.ndarray, float, int]:
-    """Chair positions (count, 6, 2) of ``count`` scenes, seconds per layout, layouts ok."""
+def sample(rules: Path, count: int, context, params: LayoutParams, slots: bool) -> dict:
+    """Lay out ``count`` scenes of the rules (seeds 0..count-1): their chair positions
+    (count, 6, 2) when ``slots`` (the dining set), related pairs' relative poses per kind,
+    CPU seconds and steps per layout, and how many were ok."""
     loaded = load_rules(rules)
-    positions, seconds, ok = [], 0.0, 0
+    positions, poses, seconds, steps, ok = [], {}, 0.0, 0, 0
     for seed in range(count):
         graph = expand(loaded, seed)
         start = time.process_time()
         result = layout_scene(graph, seed, params=params, context=context)
         seconds += time.process_time() - start
+        steps += result.steps
         ok += result.ok
-        objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
-        positions.append(chair_positions(objects))
-    return np.array(positions), seconds / count, ok
+        if slots:
+            objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
+            positions.append(chair_positions(objects))
+        for kind, pose in graph_pair_poses(graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}):
+            poses.setdefault(kind, []).append(pose)
+    return {"positions": np.array(positions), "poses": poses, "seconds": seconds / count, "steps": steps / count, "ok": ok}
+
+
+def divergence(context, observed: dict, generated: dict) -> float:
+    """Mean over the context's pair kinds of the distance of generated from observed
+    shares (``learning.context.share_distance`` at UPDATE_SMOOTH); poses per kind."""
+    distances = []
+    for table in context.pairs:
+        target = shares(*counts(table, observed.get(table.kind, [])), UPDATE_SMOOTH)
+        made = shares(*counts(table, generated.get(table.kind, [])), UPDATE_SMOOTH)
+        distances.append(share_distance(made, target))
+    return float(np.mean(distances))
 
 
 def main() -> int:
@@ -136,10 +175,18 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--layouts", type=int, default=40, help="layouts per round of the fit (40)")
     parser.add_argument("--write-examples", metavar="DIR", help="only write the examples as DIR/example_NN.json")
+    parser.add_argument("--template-init", action="store_true", help="compare the initial placement from templates")
+    parser.add_argument("--rules", type=Path, default=RULES, help="another rule set (with --from)")
+    parser.add_argument("--from", dest="source", type=Path, metavar="DIR", help="scene.json examples of --rules")
+    parser.add_argument("--context", type=Path, metavar="FILE", help="a fitted context instead of fitting one")
     args = parser.parse_args()
 
-    rules = RULES
-    examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
+    rules = args.rules
+    slots = args.source is None
+    if slots:
+        examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
+    else:
+        examples = [(p.stem, json.loads(p.read_text(encoding="utf-8"))) for p in sorted(args.source.glob("*.json"))]
     if args.write_examples:
         folder = Path(args.write_examples)
         folder.mkdir(parents=True, exist_ok=True)
@@ -147,32 +194,54 @@ def main() -> int:
             (folder / f"{name}.json").write_text(json.dumps(scene, indent=1) + "\n", encoding="utf-8")
         print(f"wrote {len(examples)} examples to {folder}/")
         return 0
-    observed = np.array([
-        chair_positions([(o["type"], o["position"][0], o["position"][2], o["yaw"]) for o in scene["objects"]])
-        for _, scene in examples
-    ])  # fmt: skip
-    start = time.process_time()
-    fitted = fit_context(examples, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
-    fit_seconds = time.process_time() - start
-    print(f"fit: {len(examples)} examples, {len(fitted.context.pairs)} pair kinds, "
-          f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
-          f"{fit_seconds:.1f} CPU s")
-    reference = spreads(observed)
-    ways = {
-        "temperature 1": (fitted.context, LayoutParams()),
-        "annealed": (fitted.context, replace(LayoutParams(), tempered=False)),
-        "no context": (None, LayoutParams()),
-    }
-    print(f"\n{'':14s} " + " ".join(f"slot {k + 1}" for k in range(6)) + "   mean   s/layout  ok")
-    print(f"{'examples (m)':14s} " + " ".join(f"{v:6.3f}" for v in reference))
+    observed: dict = {}
+    for name, scene in examples:
+        for kind, pose in example_layout(name, scene).poses:
+            observed.setdefault(kind, []).append(pose)
+    if args.context is not None:
+        context = read_context(str(args.context))
+        print(f"context: {args.context}, {len(context.pairs)} pair kinds; {len(examples)} examples")
+    else:
+        start = time.process_time()
+        fitted = fit_context(examples, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
+        context = fitted.context
+        print(f"fit: {len(examples)} examples, {len(context.pairs)} pair kinds, "
+              f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
+              f"{time.process_time() - start:.1f} CPU s")
+    if args.template_init:  # the comparison of the two starts (annealed left out: it is not sampling)
+        ways = {
+            "rules init": (context, replace(LayoutParams(), template_init=False)),
+            "templates": (context, replace(LayoutParams(), template_init=True)),
+        }
+    else:
+        ways = {"temperature 1": (context, LayoutParams()), "annealed": (context, replace(LayoutParams(), tempered=False))}
+    ways["no context"] = (None, LayoutParams())
+    reference = None
+    if slots:
+        reference = spreads(np.array([
+            chair_positions([(o["type"], o["position"][0], o["position"][2], o["yaw"]) for o in scene["objects"]])
+            for _, scene in examples
+        ]))  # fmt: skip
+        print(f"\n{'':14s} " + " ".join(f"slot {k + 1}" for k in range(6)) + "   mean", end="")
+    else:
+        print(f"\n{'':14s}", end="")
+    print("   s/layout  steps  ok      divergence")
+    if slots:
+        print(f"{'examples (m)':14s} " + " ".join(f"{v:6.3f}" for v in reference))
     times = {}
-    for name, (context, params) in ways.items():
-        positions, seconds, ok = sample(rules, args.scenes, context, params)
-        ratio = spreads(positions) / reference
-        times[name] = seconds
-        print(f"{name:14s} " + " ".join(f"{v:6.2f}" for v in ratio) + f"  {ratio.mean():5.2f}  {seconds:8.4f}  "
-              f"{ok}/{args.scenes}")
-    print(f"\nlayout time, temperature 1 / no context: {times['temperature 1'] / times['no context']:.2f}x")
+    for name, (way_context, params) in ways.items():
+        made = sample(rules, args.scenes, way_context, params, slots)
+        times[name] = made["seconds"]
+        line = f"{name:14s} "
+        if slots:
+            ratio = spreads(made["positions"]) / reference
+            line += " ".join(f"{v:6.2f}" for v in ratio) + f"  {ratio.mean():5.2f} "
+        line += f"  {made['seconds']:8.4f}  {made['steps']:5.0f}  {made['ok']}/{args.scenes}   "
+        print(line + f"{divergence(context, observed, made['poses']):.3f}")
+    first = next(iter(ways))
+    print(f"\nlayout time, {first} / no context: {times[first] / times['no context']:.2f}x")
+    if args.template_init:
+        print(f"layout time, templates / rules init: {times['templates'] / times['rules init']:.2f}x")
     return 0
 
 

@@ -168,6 +168,12 @@ def total_variation(first: np.ndarray, second: np.ndarray) -> float:
     return 0.5 * float(np.abs(first - second).sum())
 
 
+def share_distance(first: tuple[np.ndarray, np.ndarray], second: tuple[np.ndarray, np.ndarray]) -> float:
+    """The divergence of one pair kind: the total variation distance of two (position,
+    yaw) shares, position and yaw averaged."""
+    return 0.5 * (total_variation(first[0], second[0]) + total_variation(first[1], second[1]))
+
+
 @dataclass
 class ContextFit:
     """A fitted context with its record: divergence per round, the round kept, the
@@ -245,7 +251,7 @@ def fit_context(
             table = tables[kind]
             generated = shares(*counts(table, generated_poses[kind]), UPDATE_SMOOTH)
             target = observed[kind]
-            distances.append(0.5 * (total_variation(generated[0], target[0]) + total_variation(generated[1], target[1])))
+            distances.append(share_distance(generated, target))
             updated[kind] = PairContext(
                 *kind, table.bounds, scaling_step(table.position, target[0], generated[0]),
                 scaling_step(table.yaw, target[1], generated[1]), table.examples,
