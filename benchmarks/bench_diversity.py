@@ -32,7 +32,7 @@ R with seeds 0.., and only the dining set prints slot spreads.
 
     .venv/bin/python benchmarks/bench_diversity.py
     .venv/bin/python benchmarks/bench_diversity.py --template-init
-    .venv/bin/python benchmarks/bench_diversity.py --template-init --rules bedrooms.rules --from scenes/ --context bedrooms.context.json
+    .venv/bin/python benchmarks/bench_diversity.py --template-init --rules R --from DIR --context R.context.json
     .venv/bin/python benchmarks/bench_diversity.py --examples 30 --scenes 60 --seed 1
     .venv/bin/python benchmarks/bench_diversity.py --write-examples dining_examples   # the examples only
 """
@@ -152,7 +152,9 @@ def sample(rules: Path, count: int, context, params: LayoutParams, slots: bool) 
             positions.append(chair_positions(objects))
         for kind, pose in graph_pair_poses(graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}):
             poses.setdefault(kind, []).append(pose)
-    return {"positions": np.array(positions), "poses": poses, "seconds": seconds / count, "steps": steps / count, "ok": ok}
+    return {
+        "positions": np.array(positions), "poses": poses, "seconds": seconds / count, "steps": steps / count, "ok": ok,
+    }  # fmt: skip
 
 
 def divergence(context, observed: dict, generated: dict) -> float:
@@ -214,7 +216,10 @@ def main() -> int:
             "templates": (context, replace(LayoutParams(), template_init=True)),
         }
     else:
-        ways = {"temperature 1": (context, LayoutParams()), "annealed": (context, replace(LayoutParams(), tempered=False))}
+        ways = {
+            "temperature 1": (context, LayoutParams()),
+            "annealed": (context, replace(LayoutParams(), tempered=False)),
+        }
     ways["no context"] = (None, LayoutParams())
     reference = None
     if slots:
