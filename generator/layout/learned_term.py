@@ -31,7 +31,9 @@ both leaves a pair's value as it was.
 from the pair's own learned distribution, exp(-weight) per cell and bin, uniform inside
 them (the target stays). Its Hastings correction is the pair's own change in the
 learned energy, which the sampler adds back, so such a move is accepted by what the
-rest of the energy says: an independence sampler for that pair's factor.
+rest of the energy says: an independence sampler for that pair's factor. The draw
+itself (``draw_source``) is shared with the constructive placement's templates
+(``templates``).
 """
 
 from __future__ import annotations
