@@ -5,7 +5,8 @@ away from a board on the wall (FacingOpposite), with a chair behind each. Covere
 constructive placement builds the row as a row (every relation inside it holds right
 after it, whatever spot the row gets), ``Mover.snap_aligned`` mends a desk a few
 centimetres out of line where it stands, ``Mover.kept_free`` leaves a board's free
-space in front of it when what stands by a desk may not stand there, a room's clusters
+space in front of it when what stands by a desk may not stand there and a way to a
+desk's only used side, ``_push_off_walls`` shifts rows off a wall, a room's clusters
 are not tied by heading-only facing relations, and ``rect_distance``'s shortcut for
 rectangles square to each other.
 """
@@ -21,9 +22,12 @@ from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.geometry import Rect, corners, point_rect_distance, rect_distance, rect_overlap
+from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.initial import _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate, satisfied
+from scenewright.generator.layout.room_terms import CORRIDOR_HALF, access_grid
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 
@@ -116,6 +120,17 @@ def test_snap_aligned_falls_back_to_a_new_place_when_a_lies_across_b():
         assert holds(problem, state, second, "AlignedWith") == [True]
 
 
+def placed_beside(graph: SceneGraph, *sources: str):
+    """The problem, a fresh state and its mover, the source end of each of ``sources``'
+    first relation, and the target of the first one's."""
+    problem = compile_problem(graph)
+    state = State(problem)
+    mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
+    ends = {name: next(t.a for t in problem.relations if t.source == name) for name in sources}
+    target = next(t.b for t in problem.relations if t.source == sources[0])
+    return problem, state, mover, ends, target
+
+
 def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
     room = Room.rectangle(7.5, 7).with_opening("door", "east", 1.4, 1.0)
     graph = SceneGraph(SceneParams(extent=room.extent, room=room))
@@ -127,15 +142,12 @@ def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
     graph.add_relation(alone, board, "NextToFront")
     chair = graph.add_node(CHAIR)
     graph.add_relation(chair, teacher, "NextToBehind")
-    problem = compile_problem(graph)
-    state = State(problem)
+    problem, state, mover, ends, target = placed_beside(graph, teacher, alone)
     index = {box_id: box for box, box_id in enumerate(problem.ids)}
-    mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
-    ends = {name: next(t.a for t in problem.relations if t.source == name) for name in (teacher, alone)}
-    target = next(t.b for t in problem.relations if t.source == teacher)
     assert target.index == index[board]
     # The board faces +z (yaw 0): its front is +z, where the kept space is.
-    assert mover.kept_free(ends[teacher], target, 0.0, 1.0) == pytest.approx(0.8)  # its chair would stand there
+    # Its chair would stand there: the space, and room for the chair (its shorter side) before it.
+    assert mover.kept_free(ends[teacher], target, 0.0, 1.0) == pytest.approx(0.8 + 0.45)
     assert mover.kept_free(ends[teacher], target, 1.0, 0.0) == 0.0  # no space kept to the side
     assert mover.kept_free(ends[alone], target, 0.0, 1.0) == 0.0  # nothing of its own: it may stand there
     # The data-driven placement in front of the board leaves the space for the chair.
@@ -143,7 +155,35 @@ def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
         proposal = mover.place_for_relation(next(t for t in problem.relations if t.source == teacher))
         box = index[teacher]
         back = proposal[box][1] - problem.half_depth[box]
-        assert back - (state.z[index[board]] + problem.half_depth[index[board]]) >= 0.8
+        assert back - (state.z[index[board]] + problem.half_depth[index[board]]) >= 0.8 + 0.45
+
+
+def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
+    """A chair placed behind a desk used from its back stands a way's width (two half
+    corridors and a cell) off it; not beside it, not a flat box, not in a room without a
+    door, where nothing is reached from."""
+    rug = CatalogEntry("rug", "object", "rug", size=(0.45, 0.01, 0.5))
+    for door in (True, False):
+        room = Room.rectangle(7.5, 7)
+        room = room.with_opening("door", "east", 1.4, 1.0) if door else room
+        graph = SceneGraph(SceneParams(extent=room.extent, room=room))
+        desk = graph.add_node(DESK)
+        chair = graph.add_node(CHAIR)
+        graph.add_relation(chair, desk, "NextToBehind")
+        mat = graph.add_node(rug)
+        graph.add_relation(mat, desk, "NextToBehind")
+        problem, state, mover, ends, target = placed_beside(graph, chair, mat)
+        # The desk faces +z (yaw 0): its back is -z.
+        way = 2 * CORRIDOR_HALF + access_grid(room).cell if door else 0.0
+        assert mover.kept_free(ends[chair], target, 0.0, -1.0) == pytest.approx(way)
+        assert mover.kept_free(ends[chair], target, 1.0, 0.0) == 0.0
+        assert mover.kept_free(ends[mat], target, 0.0, -1.0) == 0.0
+        if door:  # every placement behind the desk leaves the way
+            term = next(t for t in problem.relations if t.source == chair)
+            for _ in range(20):
+                proposal = mover.place_for_relation(term)
+                gap = (state.z[target.index] - problem.half_depth[target.index]) - (proposal[ends[chair].index][1] + problem.half_depth[ends[chair].index])
+                assert gap >= way
 
 
 def test_heading_only_facings_tie_no_cluster_in_a_room():
@@ -168,3 +208,36 @@ def test_rect_distance_of_square_rectangles_matches_the_corner_walk():
             apart += 1
         assert rect_distance(a, b) == pytest.approx(walk, abs=1e-12)
     assert 500 < apart < 2000  # both cases were met
+
+
+def test_a_row_across_the_wall_is_pushed_off_it_with_the_row_it_hangs_on():
+    """Two rows, the second south of the first, the first so far south that the second
+    crosses the south wall: ``_push_off_walls`` shifts both north together, by as far as
+    it crosses, and the energy falls."""
+    room = Room.rectangle(7.5, 7).with_opening("door", "east", 1.4, 1.0)
+    graph = SceneGraph(SceneParams(extent=room.extent, room=room))
+    rows = []
+    for _ in range(2):
+        row = graph.add_node(ROW)
+        desks = [graph.add_node(DESK, parent=row) for _ in range(2)]
+        graph.add_relation(desks[1], desks[0], "NextToLeft")
+        rows.append((row, desks))
+    graph.add_relation(rows[1][0], rows[0][0], "NextToSouth")
+    problem = compile_problem(graph)
+    state = State(problem)
+    index = {box_id: box for box, box_id in enumerate(problem.ids)}
+    for (_, desks), z in zip(rows, (2.4, 3.4)):  # the room runs from z -3.5 to 3.5
+        for k, desk in enumerate(desks):
+            state.set_pose(index[desk], 1.0 - 0.8 * k, z, 0.0)
+    energy = Energy(problem, state, PARAMS)
+    energy.activate(list(range(problem.n_boxes)))
+    mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
+    group = problem.group_ids.index(rows[1][0])
+    anchors = [t for t in problem.relations if t.a.kind == "group" and t.a.index == group]
+    before, poses = energy.total, [state.pose(b) for b in range(problem.n_boxes)]
+    assert max(energy.room.wall_excess(b) for b in range(problem.n_boxes)) > 0.1
+    _push_off_walls(energy, mover, group, anchors)
+    assert max(energy.room.wall_excess(b) for b in range(problem.n_boxes)) == 0.0
+    assert energy.total < before
+    shifts = {(round(state.x[b] - poses[b][0], 9), round(state.z[b] - poses[b][1], 9)) for b in range(problem.n_boxes)}
+    assert len(shifts) == 1 and next(iter(shifts))[1] < 0.0  # all together, north

@@ -75,6 +75,9 @@ JUNCTIONS_SPREAD = 0.3
 SPREAD_CANDIDATES = 8
 #: Tries for a random spot on the floor of a room that is not a rectangle.
 FLOOR_TRIES = 20
+#: How much further (metres) than it crosses a wall a group is pushed off it
+#: (``_push_off_walls``).
+PUSH_MARGIN = 0.05
 
 
 def place_initial(
@@ -652,6 +655,7 @@ def _place_group(
             lambda: (mover.place_for_relation(next(in_turn), keep_heading=keep), {}),
             energy.params.initial_candidates * len(anchors),
         )
+        _push_off_walls(energy, mover, group, anchors)
     elif problem.room is not None:  # nothing places it: the best spot on the floor
         whole = Endpoint("group", group, members)
         _best_of(
@@ -659,6 +663,34 @@ def _place_group(
             lambda: (_group_anywhere(energy, mover, rng, whole, turn=not outside_facing), {}),
             energy.params.initial_candidates,
         )
+
+
+def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[RelationTerm]) -> None:
+    """In a room, when a group placed by its relations to other groups still crosses a
+    wall (the third row of desks south of a first row put in the middle of the room),
+    shift it with the groups it hangs on (through their relations to groups, in turn)
+    rigidly away from the wall it crosses, by as far as it crosses it: the best of one
+    shift per wall direction by the energy, kept only if it lowers it. The rows before
+    had their spots chosen before the ones relying on them were placed."""
+    room = energy.room
+    if room is None:
+        return
+    problem = energy.problem
+    excess = max(room.wall_excess(box) for box in problem.group_members[group])
+    if excess <= 0.0:
+        return
+    chain, todo = [group], [t.b.index for t in anchors if t.b.kind == "group"]
+    while todo:
+        other = todo.pop()
+        if other in chain or not mover.group_whole[other]:
+            continue
+        chain.append(other)
+        todo.extend(t.b.index for t in _outgoing(energy, "group", other) if t.b.kind == "group" and _placed(energy, t.b))
+    boxes = sorted({box for member in chain for box in mover.group_boxes[member]})
+    directions = sorted({wall.normal for wall in room.room.walls})
+    shift = excess + PUSH_MARGIN
+    candidates = iter([(rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {}) for nx, nz in directions])
+    _best_of(energy, lambda: next(candidates), len(directions))
 
 
 def _group_anywhere(energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool) -> dict:

@@ -70,6 +70,7 @@ from .params import LayoutParams
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm
 from .geometry import nearest_on_polyline
+from .room_terms import CORRIDOR_HALF, FLAT_HEIGHT, access_grid
 from .relation_terms import BESIDE_DISTANCE, WINDOW_PLACEMENTS, anchor, centre, evaluate, satisfied, source_point
 from .state import State
 
@@ -233,6 +234,16 @@ class Mover:
                     self.partners[second].add(first)
             if term.a.kind == "object" and term.b.kind == "object":
                 self.followers[term.b.index].add(term.a.index)
+        # Boxes that take floor a person walks on, and the width of a way to a box's side
+        # (``kept_free``): in a room with a door only, where reachability is scored.
+        grid = access_grid(problem.room) if problem.room is not None else None
+        scored = grid is not None and grid.has_doors
+        self.blocks_way = [
+            scored and problem.support[b] < 0 and not problem.is_junction[b] and problem.height[b] > FLAT_HEIGHT
+            for b in range(problem.n_boxes)
+        ]  # fmt: skip
+        #: Two half corridors and a cell of the grid, so the way survives its rounding.
+        self.way_width = 2.0 * CORRIDOR_HALF + grid.cell if grid is not None else 0.0
         # Free boxes with a wall relation (rooms only): their jitter may slide along the wall.
         self.wall_terms: dict[int, list[RelationTerm]] = {}
         for term in problem.relations:
@@ -614,12 +625,15 @@ class Mover:
         are placed by and some of them may not stand in that space (they are no partners
         of ``end``'s); else 0 (``a`` itself, as ``end``'s partner, may stand in it: a
         chair pulled up to a desk). So a teacher's desk in front of a board stands beyond
-        the space kept in front of the board, with room for its chair between."""
-        if end.kind != "object" or a.kind != "object" or not self.problem.clearance[end.index]:
+        the space kept in front of the board, with room for its chair between.
+
+        When that side is the only one ``end`` is used from (its ``access``) and ``a``
+        would block a way (a tall box on the ground, in a room with a door), ``a`` stands
+        a way's width off it instead (``way_width``): a pupil's chair behind a desk used
+        from its back leaves the aisle to it, where one pulled up close took the desk's
+        only way in and the chain had to pull every chair back."""
+        if end.kind != "object" or a.kind != "object":
             return 0.0
-        if not self.followers[a.index] - self.partners[end.index]:
-            return 0.0
-        kept = self.problem.clearance[end.index]
         box = end.index
         c, s = self.state.c[box], self.state.s[box]
         lx, lz = wx * c - wz * s, wx * s + wz * c  # B's local axes: +x its left, +z its front
@@ -627,7 +641,17 @@ class Mover:
             side = "front" if lz > 0.0 else "back"
         else:
             side = "left" if lx > 0.0 else "right"
-        return max((metres for named, metres in kept if named == side), default=0.0)
+        way = self.way_width if self.problem.access[box] == (side,) and self.blocks_way[a.index] else 0.0
+        strangers = self.followers[a.index] - self.partners[box]
+        if not self.problem.clearance[box] or not strangers:
+            return way
+        kept = max((metres for named, metres in self.problem.clearance[box] if named == side), default=0.0)
+        if kept == 0.0:
+            return way
+        # Room for those placed by A between it and the space: the deepest of them, by its
+        # shorter side (they stand on A's side towards B or not: the tries decide).
+        between = max(2.0 * min(self.problem.half_width[f], self.problem.half_depth[f]) for f in strangers)
+        return max(way, kept + between)
 
     def turn_target_for(self, term: RelationTerm) -> dict:
         """Turn B (an object, with what it carries) in place so that A is on the side named
