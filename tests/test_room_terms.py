@@ -15,6 +15,7 @@ from hypothesis import example, given, settings, strategies as st
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
 from scenewright.generator.layout.energy import Energy
@@ -463,6 +464,36 @@ def test_incremental_room_terms_equal_full_recomputation_on_random_moves(seed):
     energy, mover = start_chain(problem, LayoutParams(), rng)
     assert_cached_parts_true(energy)
     check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover))
+
+
+def test_the_reachable_floor_after_every_move_of_a_classroom_is_the_labelled_one():
+    """The incremental reachable floor (kept from the last one, windows taken out, or
+    left whole where the moved boxes land on none of it) is, cell for cell, the free
+    floor connected to the door, on a classroom's rows of desks and chairs."""
+    graph = expand(load_rules("classroom"), 3)
+    problem = compile_problem(graph)
+    rng = np.random.default_rng(3)
+    energy, mover = start_chain(problem, LayoutParams(), rng)
+    room, grid = energy.room, energy.room.access_grid
+    kept = 0
+    for _ in range(120):
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        energy.propose(*proposal)
+        access = energy._pending.update.room.access
+        if access is not None:
+            taken = [access.taken.get(box, bits) for box, bits in enumerate(room.taken)]
+            used = 0
+            for bits in taken:
+                used |= bits
+            assert access.state.reach == grid.label(grid.static & ~used)
+            kept += access.state.reach == room.access.reach
+        if rng.random() < 0.5:
+            energy.accept()
+        else:
+            energy.reject()
+    assert kept  # some moves left the reachable floor as it was
 
 
 def test_full_recomputation_mode_gives_the_same_room_deltas():

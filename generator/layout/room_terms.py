@@ -821,8 +821,9 @@ class RoomTerms:
         """The reachable floor with the moved obstacles at their new poses, computed from
         the reachable floor before (exact), and the moved obstacles' new cells.
 
-        Take the window of each moved obstacle (its cells' bounding box) out of the
-        reachable floor; that cuts no way when the reachable cells on the ring just
+        Take the window of each moved obstacle whose new cells meet the reachable floor
+        (its cells' bounding box) out of the reachable floor (one that lands on none of it
+        leaves it whole: what it freed can only add to it); that cuts no way when the reachable cells on the ring just
         outside the window form at most one arc (a way through the window can go round
         along it) and, if the window holds door cells, the arc holds one too (else the
         floor beyond might have been reached only through the door cells taken out). A
@@ -840,6 +841,8 @@ class RoomTerms:
         free = grid.static & ~used
         reach = self.access.reach
         for box in moved:
+            if not taken[box] & reach:  # it lands on no reachable cell: nothing to take out
+                continue
             window = self.obstacle_cells(box).window  # on the floor's grid
             if window[0] == window[1] or window[2] == window[3]:
                 continue
