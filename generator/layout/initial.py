@@ -49,6 +49,7 @@ import numpy as np
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
+from .geometry import corners
 from .moves import HEADING_ONLY, Mover, rigid, wrap
 from .moves import reach as footprint_reach
 from .pinning import Pins
@@ -670,7 +671,8 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
     wall (the third row of desks south of a first row put in the middle of the room),
     shift it with the groups it hangs on (through their relations to groups, in turn)
     rigidly away from the wall it crosses, by as far as it crosses it: the best of one
-    shift per wall direction by the energy, kept only if it lowers it. The rows before
+    shift per wall crossed (along its inner normal) by the energy, kept only if it
+    lowers it. The rows before
     had their spots chosen before the ones relying on them were placed."""
     room = energy.room
     if room is None:
@@ -687,7 +689,10 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
         chain.append(other)
         todo.extend(t.b.index for t in _outgoing(energy, "group", other) if t.b.kind == "group" and _placed(energy, t.b))
     boxes = sorted({box for member in chain for box in mover.group_boxes[member]})
-    directions = sorted({wall.normal for wall in room.room.walls})
+    # Away from the walls it crosses: those whose line a corner of its footprints is beyond.
+    points = [point for box in problem.group_members[group] for point in corners(energy.state.rects[box])]
+    lines = room.walls_geometry.lines
+    directions = sorted({(nx, nz) for nx, nz, offset in lines if any(nx * x + nz * z < offset for x, z in points)})
     shift = excess + PUSH_MARGIN
     candidates = iter([(rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {}) for nx, nz in directions])
     _best_of(energy, lambda: next(candidates), len(directions))
