@@ -496,6 +496,16 @@ def test_the_reachable_floor_after_every_move_of_a_classroom_is_the_labelled_one
     assert kept  # some moves left the reachable floor as it was
 
 
+def test_incremental_energy_of_a_classroom_equals_full_recomputation():
+    """Rows of desks facing the board and chairs facing their desks (facing relations
+    that read headings only, kept when no box of theirs turns), moved at random."""
+    problem = compile_problem(expand(load_rules("classroom"), 5))
+    assert any(t.spec.family == "facing" and t.spec.facing == "opposite" for t in problem.relations)
+    rng = np.random.default_rng(5)
+    energy, mover = start_chain(problem, LayoutParams(), rng)
+    check_moves(energy, mover, rng, 40, parts=("relations",) + ROOM_PARTS)
+
+
 def test_full_recomputation_mode_gives_the_same_room_deltas():
     problem = compile_problem(random_room_scene(4))
     incremental, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))

@@ -71,7 +71,7 @@ from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm
 from .geometry import nearest_on_polyline
 from .room_terms import CORRIDOR_HALF, FLAT_HEIGHT, access_grid
-from .relation_terms import BESIDE_DISTANCE, WINDOW_PLACEMENTS, anchor, centre, evaluate, satisfied, source_point
+from .relation_terms import BESIDE_DISTANCE, HEADING_FACINGS, WINDOW_PLACEMENTS, anchor, centre, evaluate, satisfied, source_point
 from .state import State
 
 #: Relative frequencies of the move types.
@@ -124,7 +124,7 @@ SLIDE_ANGLE = 0.1
 HALF_PI = math.pi / 2.0
 
 #: Facing relations that ask only for A's heading relative to B's, wherever A stands.
-HEADING_ONLY = ("same", "opposite", "orthogonal")
+HEADING_ONLY = HEADING_FACINGS
 
 
 def wrap(angle: float) -> float:

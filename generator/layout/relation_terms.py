@@ -313,6 +313,10 @@ def _next_to_complaint(term: RelationTerm, measure: Measure, params: LayoutParam
 
 # -- facing ------------------------------------------------------------------------
 
+#: Facing relations that ask only for A's heading relative to B's, wherever A stands:
+#: their energy reads the two yaws alone.
+HEADING_FACINGS = ("same", "opposite", "orthogonal")
+
 
 def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     fx, fz = _forward(term.a, state)
