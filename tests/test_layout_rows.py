@@ -241,3 +241,26 @@ def test_a_row_across_the_wall_is_pushed_off_it_with_the_row_it_hangs_on():
     assert energy.total < before
     shifts = {(round(state.x[b] - poses[b][0], 9), round(state.z[b] - poses[b][1], 9)) for b in range(problem.n_boxes)}
     assert len(shifts) == 1 and next(iter(shifts))[1] < 0.0  # all together, north
+
+
+def test_faces_as_asked_only_when_the_heading_is_already_the_one_asked_for():
+    """The constructive placement makes no turn proposal for a desk already facing
+    opposite to the board (it would leave it where it is); it does for one turned."""
+    graph, _, desks = classroom(1)
+    problem = compile_problem(graph)
+    state = State(problem)
+    mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
+    index = {box_id: box for box, box_id in enumerate(problem.ids)}
+    opposite = next(t for t in problem.relations if t.source == desks[0] and t.label == "FacingOpposite")
+    same = next(t for t in problem.relations if t.label == "FacingSameDirection")  # the chair and its desk
+    state.set_pose(index["whiteboard_1"], 0.0, -3.0, 0.0)
+    state.set_pose(index[desks[0]], 0.0, 0.0, -math.pi)
+    assert mover.faces_as_asked(opposite)
+    state.set_pose(index[desks[0]], 0.0, 0.0, math.pi)  # the same heading, the other end of the range
+    assert mover.faces_as_asked(opposite)
+    state.set_pose(index[desks[0]], 0.0, 0.0, math.pi / 2.0)
+    assert not mover.faces_as_asked(opposite)
+    state.set_pose(same.a.index, 0.0, 1.0, math.pi / 2.0 + 1e-6)
+    assert not mover.faces_as_asked(same)
+    state.set_pose(same.a.index, 0.0, 1.0, math.pi / 2.0)
+    assert mover.faces_as_asked(same)

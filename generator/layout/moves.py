@@ -125,6 +125,8 @@ HALF_PI = math.pi / 2.0
 
 #: Facing relations that ask only for A's heading relative to B's, wherever A stands.
 HEADING_ONLY = HEADING_FACINGS
+#: A heading this close (radians) to the one a facing relation asks for already has it.
+FACED = 1e-9
 
 
 def wrap(angle: float) -> float:
@@ -699,6 +701,20 @@ class Mover:
         box = term.a.index
         pivot = (self.state.x[box], self.state.z[box])
         return rigid(self.state, self.problem.carried(box), pivot, self._facing_turn(term), (0.0, 0.0))
+
+    def faces_as_asked(self, term: RelationTerm) -> bool:
+        """Whether A (an object) already has the heading a facing relation that asks for
+        a heading only (same, opposite or square to B's) wants, to FACED (radians): then
+        a turn to face would leave it where it is, and the constructive placement makes
+        no such proposal. False for the other facing relations."""
+        if term.spec.facing not in HEADING_ONLY or term.a.kind != "object":
+            return False
+        b_yaw = self.state.yaw[term.b.index] if term.b.kind == "object" else 0.0
+        if term.b.kind not in ("object", "group"):
+            return False
+        off = wrap(self.state.yaw[term.a.index] - b_yaw)
+        wanted = {"same": 0.0, "opposite": math.pi, "orthogonal": HALF_PI}[term.spec.facing]
+        return abs(abs(off) - wanted) < FACED
 
     def _facing_turn(self, term: RelationTerm) -> float:
         """The turn of A (an object) after which the Facing* ``term`` holds."""
