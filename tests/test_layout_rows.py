@@ -160,8 +160,9 @@ def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
 
 def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
     """A chair placed behind a desk used from its back stands a way's width (two half
-    corridors and a cell) off it; not beside it, not a flat box, not in a room without a
-    door, where nothing is reached from."""
+    corridors and a cell) off it; not beside it, not a flat box, not a chair at a desk
+    wide enough to be reached past it, not in a room without a door, where nothing is
+    reached from."""
     rug = CatalogEntry("rug", "object", "rug", size=(0.45, 0.01, 0.5))
     for door in (True, False):
         room = Room.rectangle(7.5, 7)
@@ -178,6 +179,11 @@ def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
         assert mover.kept_free(ends[chair], target, 0.0, -1.0) == pytest.approx(way)
         assert mover.kept_free(ends[chair], target, 1.0, 0.0) == 0.0
         assert mover.kept_free(ends[mat], target, 0.0, -1.0) == 0.0
+        wide = graph.add_node(CatalogEntry("desk", "object", "desk", size=(1.2, 0.75, 0.6), access=("back",)))
+        graph.add_relation(graph.add_node(CHAIR), wide, "NextToBehind")
+        problem_wide, _, mover_wide, ends_wide, target_wide = placed_beside(graph, graph.nodes()[-1].id)
+        # A chair at a 1.2 m desk leaves its ends free: no way kept behind it.
+        assert mover_wide.kept_free(ends_wide[graph.nodes()[-1].id], target_wide, 0.0, -1.0) == 0.0
         if door:  # every placement behind the desk leaves the way
             term = next(t for t in problem.relations if t.source == chair)
             for _ in range(20):

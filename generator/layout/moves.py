@@ -630,10 +630,11 @@ class Mover:
         the space kept in front of the board, with room for its chair between.
 
         When that side is the only one ``end`` is used from (its ``access``) and ``a``
-        would block a way (a tall box on the ground, in a room with a door), ``a`` stands
-        a way's width off it instead (``way_width``): a pupil's chair behind a desk used
-        from its back leaves the aisle to it, where one pulled up close took the desk's
-        only way in and the chain had to pull every chair back."""
+        would bar the way to it (``_bars``: a tall box on the ground as wide as the side,
+        in a room with a door), ``a`` stands a way's width off it instead (``way_width``):
+        a pupil's chair behind a desk used from its back leaves the aisle to it, where
+        one pulled up close took the desk's only way in and the chain had to pull every
+        chair back."""
         if end.kind != "object" or a.kind != "object":
             return 0.0
         box = end.index
@@ -643,7 +644,7 @@ class Mover:
             side = "front" if lz > 0.0 else "back"
         else:
             side = "left" if lx > 0.0 else "right"
-        way = self.way_width if self.problem.access[box] == (side,) and self.blocks_way[a.index] else 0.0
+        way = self.way_width if self.problem.access[box] == (side,) and self._bars(a, box, side, wx, wz) else 0.0
         strangers = self.followers[a.index] - self.partners[box]
         if not self.problem.clearance[box] or not strangers:
             return way
@@ -654,6 +655,19 @@ class Mover:
         # shorter side (they stand on A's side towards B or not: the tries decide).
         between = max(2.0 * min(self.problem.half_width[f], self.problem.half_depth[f]) for f in strangers)
         return max(way, kept + between)
+
+    def _bars(self, a: Endpoint, box: int, side: str, wx: float, wz: float) -> bool:
+        """Whether ``a`` (an object), standing beside ``box``'s ``side`` in the unit
+        direction (wx, wz), would leave no way to that side however far off it stood: it
+        blocks ways and, with a half corridor either side of it, it is as wide as the side
+        is long (a pupil's chair behind a 0.7 m desk; not a chair at a 1.2 m desk, whose
+        ends stay free)."""
+        if not self.blocks_way[a.index]:
+            return False
+        problem = self.problem
+        across = 2.0 * end_reach(problem, self.state, a, -wz, wx)
+        length = 2.0 * (problem.half_width[box] if side in ("front", "back") else problem.half_depth[box])
+        return across + 2.0 * CORRIDOR_HALF >= length
 
     def turn_target_for(self, term: RelationTerm) -> dict:
         """Turn B (an object, with what it carries) in place so that A is on the side named
