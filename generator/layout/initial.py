@@ -545,10 +545,11 @@ def _place_box(
     first = draw()[0]
     for item, pose in first.items():
         state.set_pose(item, *pose)
-    energy.activate([box])
-    if mates and energy.problem.room is not None:
-        _best_among_mates(energy, draw, energy.params.initial_candidates, mates)
+    if mates and energy.problem.room is not None:  # judged among its mates: it enters once, at its best pose
+        _best_among_mates(energy, draw, energy.params.initial_candidates, mates, box)
+        energy.activate([box])
     else:
+        energy.activate([box])
         _best_of(energy, draw, energy.params.initial_candidates)
     for term in facing:
         if mover.faces_as_asked(term):  # its heading came first and the place kept it
@@ -556,9 +557,12 @@ def _place_box(
         _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
 
 
-def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...]) -> None:
+def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...], newcomer: int) -> None:
     """``_best_of`` for a member of a group being put together, judged by the group
     alone: the relations among its placed members and their overlaps with each other.
+    The member (``newcomer``) is not in the energy yet: the best pose is set in the
+    state (the caller then brings it in, once, where the energy would have had it
+    move), unless a candidate moves something already in the energy.
 
     The group is placed as a whole afterwards; judged by the whole energy, a member's
     candidates would be judged at the group's provisional spot, where a wall or another
@@ -566,7 +570,7 @@ def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...]) 
     beside it) the cheapest.
     """
     problem, state = energy.problem, energy.state
-    placed = [m for m in mates if energy.active[m]]
+    placed = [m for m in mates if energy.active[m] or m == newcomer]
     inside = set(placed)
     terms = [
         problem.relations[t] for t in sorted({t for m in placed for t in problem.terms_of_box[m]})
@@ -590,9 +594,14 @@ def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...]) 
             value = score()
         if value < best_score:
             best, best_score = proposal, value
-    if best is not None:
+    if best is None:
+        return
+    if any(energy.active[item] for item in best[0]) or best[1]:
         energy.propose(*best)
         energy.accept()
+    else:
+        for item, pose in best[0].items():
+            state.set_pose(item, *pose)
 
 
 def _floor_spot(energy: Energy, rng: np.random.Generator, reach_x: float, reach_z: float) -> tuple[float, float]:
