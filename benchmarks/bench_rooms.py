@@ -22,8 +22,10 @@ Per rule set (default: every shipped rule set whose scene is a room) it prints:
   the machine does not count);
 - reachability: CPU microseconds per proposal spent on the access term
   (``RoomTerms._access_changes``, timed around each call), averaged over all proposals
-  and over those that moved an obstacle, and the share of the latter that had to grow
-  the reachable floor from the doors instead of from the old one.
+  and over those that moved an obstacle and had it evaluated (the sampler skips it for
+  a step the rest of the energy already rejects: ``sampler.metropolis``), and the share
+  of the latter that had to grow the reachable floor from the doors instead of from
+  the old one.
 
 Prints figures only; nothing is asserted. One process, one core.
 """
@@ -152,7 +154,7 @@ def bench(name: str, seeds: int, without: bool = False) -> None:
         per_moved = 1e6 * clock.seconds / clock.moved if clock.moved else 0.0
         print(
             f"  reachability: {1e6 * clock.seconds / clock.proposals:.1f} us per proposal "
-            f"({clock.proposals} proposals), {per_moved:.1f} us per proposal moving an obstacle "
+            f"({clock.proposals} proposals), {per_moved:.1f} us per evaluated proposal moving an obstacle "
             f"({clock.moved}; grown from the doors in {_share(clock.grown_from_doors, clock.moved)})"
         )
     if kinds:

@@ -30,7 +30,7 @@ from scenewright.generator.layout.room_terms import (
     AccessGrid,
     Walls,
 )
-from scenewright.generator.layout.sampler import Relocator, start_chain
+from scenewright.generator.layout.sampler import Relocator, metropolis, start_chain
 from scenewright.generator.layout.state import State
 from scenewright.generator.layout.synthetic import village_graph
 
@@ -504,6 +504,47 @@ def test_incremental_energy_of_a_classroom_equals_full_recomputation():
     rng = np.random.default_rng(5)
     energy, mover = start_chain(problem, LayoutParams(), rng)
     check_moves(energy, mover, rng, 40, parts=("relations",) + ROOM_PARTS)
+
+
+def test_deferred_access_gives_the_same_delta_and_the_same_decisions():
+    """A proposal with its access part deferred: the rest minus ``access_floor`` never
+    exceeds the whole change, ``complete`` gives exactly the change ``propose`` gives
+    without deferring, and ``metropolis`` decides as the plain rule on the same draws."""
+    problem = compile_problem(expand(load_rules("classroom"), 2))
+    rng = np.random.default_rng(2)
+    energy, mover = start_chain(problem, LayoutParams(), rng)
+    assert energy.parts["access"] > 0.0  # desks out of reach: moves can lower the access part
+    skipped = lowered = 0
+    for step in range(150):
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        plain = energy.propose(*proposal)
+        energy.reject()
+        partial = energy.propose(*proposal, defer_access=True)
+        assert partial - energy.access_floor() <= plain + 1e-12
+        assert energy.complete() == plain
+        lowered += energy._pending.update.delta["access"] < 0.0
+        energy.reject()
+        temperature = 0.05 * 0.99**step
+        seed = int(rng.integers(1 << 30))
+        plain_draws = np.random.default_rng(seed).random
+        expected = energy.propose(*proposal)
+        expected = expected <= 0.0 or plain_draws() < math.exp(-expected / temperature)
+        energy.reject()
+        calls = []
+        original = energy.room._access_changes
+        energy.room._access_changes = lambda boxes: calls.append(boxes) or original(boxes)
+        decided = metropolis(energy, proposal, temperature, np.random.default_rng(seed).random, True)
+        energy.room._access_changes = original
+        skipped += not calls and any(problem.height[b] > 0.05 for b in proposal[0])
+        assert decided == expected
+        if decided:
+            energy.accept()
+        else:
+            energy.reject()
+        assert_cached_parts_true(energy)
+    assert skipped and lowered  # some steps decided without reachability, some made a box reachable
 
 
 def test_full_recomputation_mode_gives_the_same_room_deltas():

@@ -341,8 +341,14 @@ class Energy:
         self.propose({box: self.state.pose(box) for box in boxes}, {}, entering=True)
         self.accept()
 
-    def propose(self, boxes: dict, paths: dict, *, entering: bool = False) -> float:
-        """Apply new box poses {box: (x, z, yaw)} and path points {path: points}; return the energy change."""
+    def propose(self, boxes: dict, paths: dict, *, entering: bool = False, defer_access: bool = False) -> float:
+        """Apply new box poses {box: (x, z, yaw)} and path points {path: points}; return the energy change.
+
+        ``defer_access`` (a room, incremental): the change without the ``access`` part,
+        which can fall by at most ``access_floor()`` and is added by ``complete()``; a
+        proposal that is rejected on the rest alone never computes it (``sampler``).
+        Without a room's access terms, or with ``incremental=False``, the change is whole.
+        """
         state, grid, problem = self.state, self.grid, self.problem
         saved_boxes = [(box, state.pose(box)) for box in boxes]
         saved_paths = [(path, state.points[path]) for path in paths]
@@ -364,7 +370,7 @@ class Energy:
             return sum(fresh["parts"].values()) - self.total
         # Boxes whose heading changed (all of them while entering: their terms start to count).
         turned = set(boxes) if entering else {box for box, (_, _, yaw) in saved_boxes if boxes[box][2] != yaw}
-        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), turned)
+        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), turned, defer_access)
         self._pending = Pending(saved_boxes, saved_paths, changes)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
@@ -373,7 +379,9 @@ class Energy:
             )
         return sum(changes.delta.values())
 
-    def _changes(self, boxes: list[int], paths: list[int], together: bool, turned: set[int] | None = None) -> Changes:
+    def _changes(
+        self, boxes: list[int], paths: list[int], together: bool, turned: set[int] | None = None, defer_access: bool = False
+    ) -> Changes:
         """New values of every term touching the moved boxes and paths, and the part deltas.
 
         When the boxes moved ``together`` (one shared translation, no turn), terms and
@@ -465,7 +473,7 @@ class Energy:
             delta["extent"] += new_path_extent[path] - self.path_extent[path]
         room = None
         if self.room is not None and boxes:
-            room = self.room.changes(boxes)
+            room = self.room.changes(boxes, defer_access)
             delta.update(room.delta)
         new_mask = {}
         if problem.mask is not None:
@@ -487,12 +495,33 @@ class Energy:
             new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned,
         )  # fmt: skip
 
+    def access_floor(self) -> float:
+        """How far the pending proposal's deferred ``access`` part can lower the energy at
+        most (0 when nothing was deferred): all of the access part there is now."""
+        room = self._pending.update.room if self._pending is not None and not isinstance(self._pending.update, dict) else None
+        return self.room.access_total() if room is not None and room.deferred else 0.0
+
+    def complete(self) -> float:
+        """The pending proposal's whole energy change, its deferred ``access`` part added
+        (the same number ``propose`` gives without deferring)."""
+        pending = self._pending
+        changes = pending.update
+        if not isinstance(changes, dict) and changes.room is not None and changes.room.deferred:
+            room = self.room.access_changes(changes.room, [box for box, _ in pending.saved_boxes])
+            changes.delta["access"] = room.delta["access"]
+            changes = changes._replace(room=room)
+            self._pending = pending._replace(update=changes)
+        if isinstance(changes, dict):
+            return sum(changes["parts"].values()) - self.total
+        return sum(changes.delta.values())
+
     def _boxes_near_path(self, path: int) -> list[int]:
         x0, x1, z0, z1 = self.path_bounds[path]
         return sorted(self.grid.in_area(x0, z0, x1, z1))
 
     def accept(self) -> None:
         """Keep the proposed move: store its term values."""
+        self.complete()  # a deferred access part is evaluated before it is kept
         pending, self._pending = self._pending, None
         if isinstance(pending.update, dict):
             self._install(pending.update)

@@ -626,7 +626,8 @@ class RoomChanges(NamedTuple):
     zones: set[int]  # zones whose owner moved: all their hits are replaced
     hits: dict[tuple[int, int], float]  # (zone, box): new clearance overlaps
     zone_wall: dict[int, float]  # by zone
-    access: AccessChanges | None  # None: reachability unchanged
+    access: AccessChanges | None  # None: reachability unchanged (or not yet evaluated: ``deferred``)
+    deferred: bool = False  # reachability left for ``access_changes`` (``RoomTerms.changes``)
 
 
 class RoomTerms:
@@ -917,9 +918,11 @@ class RoomTerms:
         self.zone_hits, self.hits_of, self.zone_wall = fresh["zone_hits"], fresh["hits_of"], fresh["zone_wall"]
         self.taken, self.access = fresh["taken"], fresh["access"]
 
-    def changes(self, boxes: list[int]) -> RoomChanges:
+    def changes(self, boxes: list[int], defer_access: bool = False) -> RoomChanges:
         """New values of the room terms the moved boxes touch (state and broad-phase grid
-        already at the proposal), with the part deltas."""
+        already at the proposal), with the part deltas. ``defer_access``: leave the
+        access part out (its delta 0 for now) until ``access_changes`` adds it; it can
+        fall by at most ``access_total()``."""
         delta = dict.fromkeys(ROOM_PARTS, 0.0)
         moved = set(boxes)
         walls, square, swing = {}, {}, {}
@@ -971,10 +974,20 @@ class RoomTerms:
                                 clearance += value
             delta["clearance"] = clearance
 
+        if defer_access and self.access_boxes:
+            return RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, None, True)
+        return self.access_changes(RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, None), boxes)
+
+    def access_changes(self, changes: RoomChanges, boxes: list[int]) -> RoomChanges:
+        """``changes`` with the access part evaluated (the state still at the proposal)."""
         access = self._access_changes(boxes) if self.access_boxes else None
         if access is not None:
-            delta["access"] = sum(access.state.values.values()) - sum(self.access.values.values())
-        return RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, access)
+            changes.delta["access"] = sum(access.state.values.values()) - sum(self.access.values.values())
+        return changes._replace(access=access, deferred=False)
+
+    def access_total(self) -> float:
+        """The access part now, as the deltas reckon it: how far it can fall at most."""
+        return sum(self.access.values.values())
 
     def accept(self, changes: RoomChanges) -> None:
         """Keep a proposal's values."""

@@ -116,6 +116,9 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     patience = params.patience * budget // max(params.steps, 1)
     cooling = math.log(params.temperature_end / params.temperature_start) / max(budget, 1)
     uniform = rng.random
+    # In a room, the access part (the costliest) waits until the rest has not already
+    # decided the step (``metropolis``).
+    defer = energy.room is not None and params.incremental
     for step in range(budget):
         if step >= params.min_steps and step % params.check_every == 0 and (learned is None or learned.mixed()):
             relations, problems = assess(energy)
@@ -134,9 +137,8 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
         proposal = ordinary_proposal(energy, mover, relocator, uniform)
         if proposal is None:
             continue
-        delta = energy.propose(*proposal)
         temperature = params.temperature_start * math.exp(cooling * step)
-        if delta <= 0.0 or uniform() < math.exp(-delta / temperature):
+        if metropolis(energy, proposal, temperature, uniform, defer):
             energy.accept()
             accepted += 1
         else:
@@ -144,6 +146,29 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     else:
         relations, problems = assess(energy)
     return Run(energy, relations, problems, steps, accepted)
+
+
+def metropolis(energy: Energy, proposal, temperature: float, uniform, defer: bool) -> bool:
+    """Propose and decide (True: accept) with probability min(1, exp(-delta / T)),
+    drawing ``uniform()`` only when delta > 0, exactly as the plain rule does.
+
+    With ``defer`` the room's access part is left out at first: it can lower the energy
+    by at most all of it there is now (``Energy.access_floor``), so when the rest minus
+    that is already above 0, the draw is made (the plain rule makes it too: delta is
+    above 0) and a draw that rejects even that lower bound rejects the step without
+    computing reachability; otherwise the access part is added (``Energy.complete``) and
+    the same draw decides. Same draws, same decisions, same layouts."""
+    delta = energy.propose(*proposal, defer_access=defer)
+    if defer:
+        lower = delta - energy.access_floor()
+        if lower > 0.0:
+            draw = uniform()
+            if not draw < math.exp(-lower / temperature):
+                return False
+            delta = energy.complete()
+            return delta <= 0.0 or draw < math.exp(-delta / temperature)
+        delta = energy.complete()
+    return delta <= 0.0 or uniform() < math.exp(-delta / temperature)
 
 
 def ordinary_proposal(energy: Energy, mover: Mover, relocator: Relocator | None, uniform):
