@@ -19,11 +19,12 @@ import pytest
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.geometry import Rect, corners, point_rect_distance, rect_distance, rect_overlap
 from scenewright.generator.layout.energy import Energy
-from scenewright.generator.layout.initial import _push_off_walls
+from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate, satisfied
@@ -270,3 +271,24 @@ def test_faces_as_asked_only_when_the_heading_is_already_the_one_asked_for():
     assert not mover.faces_as_asked(same)
     state.set_pose(same.a.index, 0.0, 1.0, math.pi / 2.0)
     assert mover.faces_as_asked(same)
+
+
+def test_best_of_skips_reachability_only_for_candidates_that_cannot_win():
+    """``_best_of`` in a room leaves out the access part of a candidate whose other parts,
+    less all the access part there is, already do not beat the best so far: the same
+    picks, on the same draws, as evaluating every candidate whole."""
+    problem = compile_problem(expand(load_rules("classroom"), 2))
+    chains = [start_chain(problem, PARAMS, np.random.default_rng(2)) for _ in range(2)]
+    whole_energy = chains[1][0]
+    whole_energy.access_floor = lambda: math.inf  # no candidate can be ruled out early
+    evaluated = []
+    for k, (energy, mover) in enumerate(chains):
+        original = energy.room._access_changes
+        energy.room._access_changes = lambda boxes, k=k, original=original: evaluated.append(k) or original(boxes)
+        mover.rng = np.random.default_rng(9)
+        for _ in range(12):
+            _best_of(energy, lambda energy=energy, mover=mover: mover.propose(energy.relation), 8)
+    (first, _), (second, _) = chains
+    assert [first.state.pose(b) for b in range(problem.n_boxes)] == [second.state.pose(b) for b in range(problem.n_boxes)]
+    assert first.total == second.total
+    assert evaluated.count(0) < evaluated.count(1)  # some candidates were ruled out without it

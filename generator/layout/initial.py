@@ -473,11 +473,19 @@ def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
     ``extra()``, a score outside the energy, if given) if it lowers it."""
     best, best_delta = None, 0.0
     baseline = extra() if extra is not None else 0.0
+    defer = extra is None and energy.room is not None and energy.params.incremental
     for _ in range(count):
         proposal = draw()
         if proposal is None or proposal[0] is None:
             continue
-        delta = energy.propose(*proposal)
+        delta = energy.propose(*proposal, defer_access=defer)
+        if defer:
+            # Its access part can lower it by at most all there is: one that cannot beat
+            # the best so far even so is not worth reachability's cost.
+            if best is not None and delta - energy.access_floor() >= best_delta:
+                energy.reject()
+                continue
+            delta = energy.complete()
         if extra is not None:
             delta += extra() - baseline
         energy.reject()
