@@ -33,7 +33,10 @@ to its sides, and a group is put together on its own terms: each member's candid
 judged by the relations among the members placed so far and their overlaps only
 (``_best_among_mates``), not at the group's provisional spot, where a wall or another
 group makes a row of desks fold into a block; a group nothing places is then put at the
-best of ``initial_candidates`` spots on the floor (``_group_anywhere``).
+best of ``initial_candidates`` spots on the floor (``_group_anywhere``). A group placed
+by its relations to other groups that still crosses a wall is pushed off it together
+with the groups it hangs on (``_push_off_walls``: a third row south of a first row put
+in the middle of the room).
 """
 
 from __future__ import annotations

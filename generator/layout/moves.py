@@ -31,7 +31,8 @@ rests on a moved box moves with it rigidly, so supports carry their stacks. Move
   a wall, window or the room at a small gap on the side named (into the room);
   beside an object that keeps free space on that side, A stands beyond that space when
   things placed by A may not stand in it (``kept_free``: the teacher's chair between
-  the teacher's desk and the board); a try by
+  the teacher's desk and the board), and a way's width off the only side B is used
+  from when A, as wide as that side, would bar it (a pupil's chair behind a desk); a try by
   another relation of an A that must also stand against a wall is then pushed back
   onto the nearest fitting wall (``snap``), so "against the wall, left of the bed"
   lands where both hold; a wall move sometimes carries along rigidly what is in place

@@ -4,7 +4,9 @@ One run: a constructive initial placement, then up to ``params.steps`` steps (at
 ``steps_per_box`` per box, so big scenes get a bigger budget). Each step draws a
 proposal (``moves.Mover``), gets its energy change from ``Energy.propose`` and accepts
 it with probability min(1, exp(-delta / T)), T falling geometrically from
-``temperature_start`` to ``temperature_end``. Every ``check_every`` steps (after
+``temperature_start`` to ``temperature_end`` (``metropolis``; in a room the costly
+access part is computed only when the rest of the change has not decided the step
+already, with the same draws and decisions). Every ``check_every`` steps (after
 ``min_steps``) the stop rule is tested: the layout is ok (``report.assess``) and its
 energy is at most ``target_energy``. A chain whose count of problems has not fallen
 for ``patience`` steps stops early, since a fresh start does better than waiting. The
