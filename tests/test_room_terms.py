@@ -498,7 +498,7 @@ def test_the_reachable_floor_after_every_move_of_a_classroom_is_the_labelled_one
 
 def test_incremental_energy_of_a_classroom_equals_full_recomputation():
     """Rows of desks facing the board and chairs facing their desks (facing relations
-    that read headings only, kept when no box of theirs turns), moved at random."""
+    that read headings only), moved at random."""
     problem = compile_problem(expand(load_rules("classroom"), 5))
     assert any(t.spec.family == "facing" and t.spec.facing == "opposite" for t in problem.relations)
     rng = np.random.default_rng(5)

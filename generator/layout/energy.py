@@ -49,7 +49,7 @@ from .factors import greater, less
 from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_penetration
 from .params import LayoutParams
 from .problem import Problem
-from .relation_terms import HEADING_FACINGS, evaluate
+from .relation_terms import evaluate
 from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
 from .state import Grid, State
 
@@ -102,12 +102,6 @@ class Energy:
         ]
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.placeable = [t.placeable for t in problem.relations]
-        #: Facing relations between objects whose energy is a function of their two yaws
-        #: alone (same, opposite or square headings; ``relation_terms._facing``).
-        self.heading_only = [
-            t.spec.family == "facing" and t.spec.facing in HEADING_FACINGS and t.a.kind == "object" and t.b.kind == "object"
-            for t in problem.relations
-        ]  # fmt: skip
         self._pending: Pending | None = None
         # Per path, its control points' bounding box grown by half its width (x0, x1, z0,
         # z1): a box whose bounding circle misses it cannot touch the path, so the exact
@@ -368,9 +362,7 @@ class Energy:
                 self.learned_delta = fresh["parts"][LEARNED_PART] - self.parts[LEARNED_PART]
                 self.soft_delta = self.learned_delta + sum(fresh["relation"][t] - self.relation[t] for t in self.tempered)
             return sum(fresh["parts"].values()) - self.total
-        # Boxes whose heading changed (all of them while entering: their terms start to count).
-        turned = set(boxes) if entering else {box for box, (_, _, yaw) in saved_boxes if boxes[box][2] != yaw}
-        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), turned, defer_access)
+        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access)
         self._pending = Pending(saved_boxes, saved_paths, changes)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
@@ -379,16 +371,12 @@ class Energy:
             )
         return sum(changes.delta.values())
 
-    def _changes(
-        self, boxes: list[int], paths: list[int], together: bool, turned: set[int] | None = None, defer_access: bool = False
-    ) -> Changes:
+    def _changes(self, boxes: list[int], paths: list[int], together: bool, defer_access: bool = False) -> Changes:
         """New values of every term touching the moved boxes and paths, and the part deltas.
 
         When the boxes moved ``together`` (one shared translation, no turn), terms and
-        pairs among themselves cannot have changed and keep their cached values. A
-        facing relation that asks only for a heading (``heading_only``) reads nothing but
-        its boxes' yaws, so it keeps its value unless one of them is in ``turned`` (None:
-        every moved box).
+        pairs among themselves cannot have changed and keep their cached values.
+        ``defer_access``: see ``propose``.
         """
         problem, active = self.problem, self.active
         moved = set(boxes)
@@ -403,8 +391,6 @@ class Energy:
         new_relation = {}
         for term in sorted(terms):
             if together and not problem.relations[term].reads_fixed_geometry and self.term_boxes[term] <= moved:
-                continue
-            if self.heading_only[term] and turned is not None and not self.term_boxes[term] & turned:
                 continue
             value = self.relation_energy(term)
             new_relation[term] = value

@@ -563,7 +563,7 @@ def _place_box(
         energy.activate([box])
         _best_of(energy, draw, energy.params.initial_candidates)
     for term in facing:
-        if mover.faces_as_asked(term):  # its heading came first and the place kept it
+        if problem.room is not None and mover.faces_as_asked(term):  # its heading came first and the place kept it
             continue
         _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
 
@@ -669,7 +669,7 @@ def _place_group(
         if t.spec.family == "facing" and not set(t.b.members) <= set(members) and _placed(energy, t.b)
     ]  # fmt: skip
     for term in outside_facing:
-        if mover.faces_as_asked(term):
+        if problem.room is not None and mover.faces_as_asked(term):
             continue
         _best_of(energy, lambda term=term: (mover.turn_group_to_face(term), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
