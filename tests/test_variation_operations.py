@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -162,3 +163,20 @@ def test_vary_is_deterministic():
     assert [r.synthesis() for r in first] == [r.synthesis() for r in second]
     assert all(r.scene.layout.ok for r in first)
     assert [r.compatibility for r in first] == sorted((r.compatibility for r in first), reverse=True)
+
+
+def test_a_change_no_layout_holds_is_not_laid_out_again(monkeypatch):
+    # Every layout fails: each variant starts from an example, so the same first change
+    # on the same example comes up in several attempts; it is laid out only once.
+    import scenewright.generator.layout as layout
+
+    laid: list[str] = []
+
+    def failing(graph, seed, *, pinned=None, pinned_paths=None, start=None, **options):
+        laid.append(repr(sorted({**pinned, **start}.items())) + repr(sorted(map(repr, graph.edges()))))
+        return SimpleNamespace(ok=False)
+
+    monkeypatch.setattr(layout, "layout_scene", failing)
+    monkeypatch.setattr(layout, "measure_layout", lambda graph, poses, paths: SimpleNamespace(ok=False))
+    assert vary([FIRST, SECOND], 3, seed=7, attempts=8) == []
+    assert len(laid) > 2 and len(set(laid)) == len(laid)

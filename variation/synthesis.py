@@ -11,7 +11,11 @@ operation the variant is checked where the operation put the new objects
 (``measure_layout``); when that is not ok (an overlap, a broken relation) it is laid
 out again (``layout_scene``) with every object the operation did not touch pinned
 (exactly where it was) and the new ones starting where the operation put them; an
-operation whose layout is still not ok is undone. Variants that look like an example
+operation whose layout is still not ok is undone, and within one ``vary`` the same
+change on the same variant is not laid out again (``layout_key``): a failing layout
+runs every chain to its patience, and a change the examples' matching makes impossible
+(a second bed grown where the variant's bed stands, when the matching left the two beds
+apart) comes up again in later variants of the same example. Variants that look like an example
 or an earlier variant (``signature``) are dropped. Variants are ranked by K (then by the order they were made).
 
 Deterministic: variant attempt k draws from the ``variation`` child stream k of the
@@ -107,9 +111,23 @@ def propose(variant: Variant, ag: AugmentedGraph, kind: str, argument: str, memb
     return transfer_items(variant, ag, argument, member)
 
 
-def apply_change(variant: Variant, ag: AugmentedGraph, change: Change, rng: np.random.Generator) -> Variant | None:
+def layout_key(variant: Variant, change: Change) -> tuple:
+    """What decides the layout ``apply_change`` asks for: the variant's room, objects and
+    relations and the change's (exact reprs, so equal keys mean the same problem)."""
+    scene = variant.scene
+    return (
+        repr(scene.room), tuple(scene.extent), tuple(map(repr, scene.objects)), tuple(map(repr, scene.paths)),
+        tuple(map(repr, scene.relations)), tuple(change.removed), tuple(repr(obj) for obj, _ in change.added),
+        tuple(map(repr, change.relations)),
+    )  # fmt: skip
+
+
+def apply_change(
+    variant: Variant, ag: AugmentedGraph, change: Change, rng: np.random.Generator, *, unplaceable: set | None = None,
+) -> Variant | None:
     """The variant with ``change`` applied and laid out (untouched objects pinned), or
-    None when its layout is not ok or a grown object's compatibility is too low."""
+    None when its layout is not ok or a grown object's compatibility is too low. A
+    layout that is not ok adds the change's ``layout_key`` to ``unplaceable``."""
     from scenewright.generator.layout import layout_scene, measure_layout
     from scenewright.generator.layout.pinning import scene_layout
 
@@ -128,6 +146,8 @@ def apply_change(variant: Variant, ag: AugmentedGraph, change: Change, rng: np.r
     if not layout.ok:
         layout = layout_scene(graph, rng, pinned=pinned, pinned_paths=paths, start=start)
     if not layout.ok:
+        if unplaceable is not None:
+            unplaceable.add(layout_key(variant, change))
         return None
     laid = assemble_scene(graph, layout, rules=scene.rules, seed=scene.seed)
     laid = replace(laid, derivation=[], templates=scene.templates, version=scene.version)
@@ -144,8 +164,13 @@ def apply_change(variant: Variant, ag: AugmentedGraph, change: Change, rng: np.r
     return result
 
 
-def vary_one(variant: Variant, ag: AugmentedGraph, rng: np.random.Generator, max_operations: int) -> Variant:
-    """Up to ``max_operations`` operations on ``variant`` (see the module docstring)."""
+def vary_one(
+    variant: Variant, ag: AugmentedGraph, rng: np.random.Generator, max_operations: int, unplaceable: set | None = None,
+) -> Variant:
+    """Up to ``max_operations`` operations on ``variant`` (see the module docstring);
+    changes in ``unplaceable`` (``layout_key``s whose layout failed) are passed over
+    without counting as a try, and new failures join it."""
+    unplaceable = set() if unplaceable is None else unplaceable
     wanted = int(rng.integers(1, max_operations + 1))
     for _ in range(wanted):
         options = proposals(variant, ag)
@@ -157,8 +182,10 @@ def vary_one(variant: Variant, ag: AugmentedGraph, rng: np.random.Generator, max
                 continue
             if variant.compatibility * change.compatibility < STOP:
                 return variant
+            if layout_key(variant, change) in unplaceable:
+                continue
             tries += 1
-            done = apply_change(variant, ag, change, rng.spawn(1)[0])
+            done = apply_change(variant, ag, change, rng.spawn(1)[0], unplaceable=unplaceable)
             if done is not None:
                 variant = done
                 break
@@ -187,12 +214,13 @@ def vary(
     ag = ag or augment(examples)
     seen = {signature(start_variant(k, e)) for k, e in enumerate(examples)}
     made: list[Result] = []
+    unplaceable: set[tuple] = set()  # layout_keys of changes no layout was found for
     for attempt in range(attempts if attempts is not None else 6 * count):
         if len(made) >= count:
             break
         base = attempt % len(examples)
         rng = stream(seed, "variation", attempt)
-        variant = vary_one(start_variant(base, examples[base]), ag, rng, max_operations)
+        variant = vary_one(start_variant(base, examples[base]), ag, rng, max_operations, unplaceable)
         key = signature(variant)
         if not variant.operations or key in seen:
             continue
