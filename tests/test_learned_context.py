@@ -292,3 +292,22 @@ def api_scene_with_context(rules: Path, sidecar: Path, settings: dict) -> dict:
     seed = scene_seed(settings["base_seed"], 0)
     scene = build_scene(loaded, seed, context=rules_context(loaded, sidecar)[1])
     return json.loads(reproducible_json(scene))
+
+
+def test_the_wait_for_learned_moves_ends_for_a_pair_whose_draws_are_always_refused():
+    from scenewright.generator.layout.learned_term import TRIES_PER_SWEEP
+
+    problem = dining_problem(1)
+    energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(2))
+    learned = LearnedMoves(problem.learned, problem, energy.state, np.random.default_rng(3), mover.movable_box, 2)
+    accepted_pair = learned.pairs[0]
+    drawn = []
+    while not learned.mixed():
+        _, _, pair = learned.propose()
+        drawn.append(pair)
+        if pair == accepted_pair:  # only this pair's moves are ever accepted
+            learned.redrawn[pair] += 1
+        assert len(drawn) <= TRIES_PER_SWEEP * 2 * len(learned.pairs)
+    refused = [pair for pair in learned.pairs if pair != accepted_pair]
+    assert all(drawn.count(pair) == TRIES_PER_SWEEP * 2 for pair in refused)
+    assert drawn.count(accepted_pair) == 2  # lagging pairs are drawn first, and it caught up at once

@@ -39,8 +39,9 @@ class LayoutParams:
     learned part and the relations of its pairs at temperature 1 while the rest is
     annealed (False anneals everything, for comparison); ``learned_share`` of the steps
     are learned moves; the stop rule waits until ``learned_sweeps`` of them were
-    accepted for every learned pair (``sampler``): 2, since 3 cost 1.8-2.3x the layout
-    time without a context and 1 let single chairs stray (``bench_diversity``).
+    accepted for every learned pair, or five times as many proposed
+    (``learned_term.TRIES_PER_SWEEP``; ``sampler``): 2, since 3 cost 1.8-2.3x the
+    layout time without a context and 1 let single chairs stray (``bench_diversity``).
     ``template_init`` draws the constructive placement of a learned pair's source from
     the pair's learned template (``templates``) instead of from its relations.
 

@@ -41,7 +41,10 @@ share ``params.learned_share`` of the steps is a learned move (``LearnedMoves``:
 pair's source drawn from the pair's learned distribution), and the stop rule waits until
 every pair has had ``params.learned_sweeps`` such moves accepted (drawing the pairs
 still short of it first), so that no source is left where the constructive placement
-put it (those leftovers, not the learned terms, would set the spread). ``params.tempered=False`` anneals the learned terms with the rest (the
+put it (those leftovers, not the learned terms, would set the spread); a pair whose
+moves the rest of the energy keeps refusing (a nightstand held against its wall) stops
+the wait after ``learned_term.TRIES_PER_SWEEP`` proposals a sweep.
+``params.tempered=False`` anneals the learned terms with the rest (the
 optimiser's way, which collapses every scene onto the most likely pose: for
 comparison). Without a context nothing here changes a single random draw.
 """
