@@ -297,8 +297,15 @@ def run_layout(args: argparse.Namespace) -> int:
         poses, points = scene_layout(old)
         start = {**poses, **points}
     timings: dict[str, float] = {}
+    context = None
+    if args.context is not None:
+        from scenewright.generator.layout.learned_term import read_context
+
+        context = read_context(args.context)
     with timed(timings, "layout"):
-        layout = layout_scene(graph, args.seed, pinned=pins.poses, pinned_paths=pins.paths, start=start)
+        layout = layout_scene(
+            graph, args.seed, pinned=pins.poses, pinned_paths=pins.paths, start=start, context=context
+        )
     scene = assemble_scene(graph, layout, rules=old.rules, seed=args.seed)
     scene.derivation = list(old.derivation)
     if templates is not None:
@@ -810,12 +817,14 @@ examples:
   scenewright generate village --seed 7 -o out/
   scenewright layout out/scene.json --pin tower_1,market_stand_1 --seed 2 -o out2/
   scenewright layout out/scene.json --pin road_1 --pin windmill_1 --warm --no-render -o out3/
+  scenewright layout dining/scene.json --pin table_1 --context fitted/dining.context.json -o out4/
 
 lays the scene of SCENE_JSON out again with the layout seed N, keeping the pinned ids
 exactly where they are (x, y, z and yaw unchanged) and placing everything else around
 them. A group pins all its members, a path its control points and the junction it
 starts at, an object also the objects beneath it. Unpinned things start from a fresh
-placement, or with --warm from their poses in SCENE_JSON.
+placement, or with --warm from their poses in SCENE_JSON. --context samples the layout
+with a learned context, as generate does with the one beside its rules.
 
 writes the same files as generate, with a new description; scene.json keeps the rules,
 objects and relations and records --seed as its "seed". The same input file, pins and
@@ -1141,6 +1150,10 @@ def build_parser() -> CommandLineParser:
     )
     layout.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
     layout.add_argument("--warm", action="store_true", help="start unpinned objects from their old poses")
+    layout.add_argument(
+        "--context", metavar="JSON",
+        help="a learned context to sample the layout with (scenewright fit --what context); none by default",
+    )  # fmt: skip
     layout.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     style_options(layout)
     layout.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")

@@ -311,3 +311,20 @@ def test_the_wait_for_learned_moves_ends_for_a_pair_whose_draws_are_always_refus
     refused = [pair for pair in learned.pairs if pair != accepted_pair]
     assert all(drawn.count(pair) == TRIES_PER_SWEEP * 2 for pair in refused)
     assert drawn.count(accepted_pair) == 2  # lagging pairs are drawn first, and it caught up at once
+
+
+def test_layout_lays_a_scene_out_again_with_a_context(tmp_path, capsys):
+    sidecar = tmp_path / "dining.context.json"
+    sidecar.write_text(fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json())
+    assert main(["generate", str(DINING), "--seed", "2", "--no-render", "-q", "-o", str(tmp_path / "g")]) == 0
+    scene = str(tmp_path / "g" / "scene.json")
+    runs = {}
+    for name, extra in (("a", ["--context", str(sidecar)]), ("b", ["--context", str(sidecar)]), ("c", [])):
+        code = main(["layout", scene, "--pin", "table_1", "--no-render", "-q", *extra, "-o", str(tmp_path / name)])
+        assert code == 0, capsys.readouterr().err
+        runs[name] = json.loads((tmp_path / name / "scene.json").read_text())
+    assert "learned" in runs["a"]["layout"]["parts"] and "learned" not in runs["c"]["layout"]["parts"]
+    assert runs["a"] == runs["b"]
+    assert main(["layout", scene, "--context", str(tmp_path / "none.json"), "-o", str(tmp_path / "d")]) == 2
+    _one_line_error(capsys)
+    assert not (tmp_path / "d").exists()
