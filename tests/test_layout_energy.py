@@ -70,20 +70,3 @@ def test_placement_activates_every_box_and_parts_are_non_negative():
     energy, _, _ = placed(0, size=12)
     assert all(value >= -1e-12 for value in energy.full().values())
     assert all(energy.active)
-
-
-def test_boxes_brought_in_together_count_what_lies_among_them():
-    """``activate`` with several boxes (a warm start, a group's frame): their overlaps
-    and the relations among them enter the cached energy at once, not when one moves."""
-    from scenewright.generator.layout.state import State
-
-    problem = compile_problem(village_graph(12, 3))
-    state = State(problem)
-    energy = Energy(problem, state, LayoutParams())
-    boxes = [box for box in range(problem.n_boxes) if problem.support[box] < 0 and not problem.is_junction[box]]
-    for k, box in enumerate(boxes):  # all in a heap at the origin: they overlap
-        state.set_pose(box, 0.1 * k, 0.0, 0.0)
-    energy.activate(boxes)
-    assert energy.parts["collisions"] > 0.0
-    for name, value in energy.full().items():
-        assert energy.parts[name] == pytest.approx(value, abs=1e-6), name

@@ -362,9 +362,7 @@ class Energy:
                 self.learned_delta = fresh["parts"][LEARNED_PART] - self.parts[LEARNED_PART]
                 self.soft_delta = self.learned_delta + sum(fresh["relation"][t] - self.relation[t] for t in self.tempered)
             return sum(fresh["parts"].values()) - self.total
-        # Boxes entering together did not move together: what lies among them is new too.
-        together = not entering and _translated_together(saved_boxes, boxes)
-        changes = self._changes(list(boxes), list(paths), together, defer_access)
+        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access)
         self._pending = Pending(saved_boxes, saved_paths, changes)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
