@@ -172,6 +172,9 @@ class Renderer:
         except Exception as error:  # each backend fails in its own way; all mean the same
             raise _backend_error(error) from None
         _keep_display_on_delete(self._renderer)
+        # pyrender's own renderer holds no OpenGL object until its first frame, so it can
+        # be swapped for ours now, while the new context is current.
+        self._renderer._renderer = _pass_renderer_class(self._gl)(self.width, self.height)
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
@@ -469,6 +472,67 @@ def _load_pyrender():
     except Exception as error:  # PyOpenGL raises various errors for a broken platform
         raise _backend_error(error) from None
     return pyrender
+
+
+@lru_cache(maxsize=1)
+def _pass_renderer_class(gl):
+    """pyrender's Renderer with cheaper segmentation passes (same pixels).
+
+    pyrender draws every pass into its 4x multisampled framebuffer, then resolves its
+    colour and depth, reads the depth as floats and linearises it. A segmentation pass
+    is drawn with multisampling off (each pixel takes its centre's triangle), so its
+    samples are all alike: it is drawn here into a plain framebuffer of the same size
+    instead, and only its colour is read (its depth, which nobody uses, is returned as
+    None). Colour passes are pyrender's own.
+    """
+    from OpenGL import GL
+
+    class PassRenderer(gl.Renderer):
+        _seg_fb = None
+        _seg_buffers = None
+
+        def _configure_forward_pass_viewport(self, flags):
+            if not (flags & gl.RenderFlags.SEG and flags & gl.RenderFlags.OFFSCREEN):
+                return super()._configure_forward_pass_viewport(flags)
+            if self._seg_fb is None:
+                colour, depth = GL.glGenRenderbuffers(2)
+                GL.glBindRenderbuffer(GL.GL_RENDERBUFFER, colour)
+                GL.glRenderbufferStorage(GL.GL_RENDERBUFFER, GL.GL_RGBA, self.viewport_width, self.viewport_height)
+                GL.glBindRenderbuffer(GL.GL_RENDERBUFFER, depth)
+                GL.glRenderbufferStorage(
+                    GL.GL_RENDERBUFFER, GL.GL_DEPTH_COMPONENT24, self.viewport_width, self.viewport_height
+                )
+                self._seg_fb = GL.glGenFramebuffers(1)
+                GL.glBindFramebuffer(GL.GL_DRAW_FRAMEBUFFER, self._seg_fb)
+                GL.glFramebufferRenderbuffer(
+                    GL.GL_DRAW_FRAMEBUFFER, GL.GL_COLOR_ATTACHMENT0, GL.GL_RENDERBUFFER, colour
+                )
+                GL.glFramebufferRenderbuffer(GL.GL_DRAW_FRAMEBUFFER, GL.GL_DEPTH_ATTACHMENT, GL.GL_RENDERBUFFER, depth)
+                self._seg_buffers = (colour, depth)
+            GL.glBindFramebuffer(GL.GL_DRAW_FRAMEBUFFER, self._seg_fb)
+            GL.glViewport(0, 0, self.viewport_width, self.viewport_height)
+            GL.glEnable(GL.GL_DEPTH_TEST)
+            GL.glDepthMask(GL.GL_TRUE)
+            GL.glDepthFunc(GL.GL_LESS)
+            GL.glDepthRange(0.0, 1.0)
+
+        def _read_main_framebuffer(self, scene, flags):
+            if not flags & gl.RenderFlags.SEG:
+                return super()._read_main_framebuffer(scene, flags)
+            width, height = self.viewport_width, self.viewport_height
+            GL.glBindFramebuffer(GL.GL_READ_FRAMEBUFFER, self._seg_fb)
+            pixels = GL.glReadPixels(0, 0, width, height, GL.GL_RGB, GL.GL_UNSIGNED_BYTE)
+            colour = np.frombuffer(pixels, dtype=np.uint8).reshape((height, width, 3))
+            return np.flip(colour, axis=0), None
+
+        def delete(self):
+            super().delete()
+            if self._seg_fb is not None:
+                GL.glDeleteFramebuffers(1, [self._seg_fb])
+                GL.glDeleteRenderbuffers(2, list(self._seg_buffers))
+                self._seg_fb = self._seg_buffers = None
+
+    return PassRenderer
 
 
 def _backend_error(error: Exception) -> GenerationError:
