@@ -174,7 +174,8 @@ class Renderer:
         _keep_display_on_delete(self._renderer)
         # pyrender's own renderer holds no OpenGL object until its first frame, so it can
         # be swapped for ours now, while the new context is current.
-        self._renderer._renderer = _pass_renderer_class(self._gl)(self.width, self.height)
+        self._classes = _pyrender_classes(self._gl)
+        self._renderer._renderer = self._classes.renderer(self.width, self.height)
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
@@ -261,7 +262,7 @@ class Renderer:
         gl = self._gl
         background = SKY if scene.room is None else INDOOR_BACKGROUND
         ambient = AMBIENT if scene.room is None else ROOM_AMBIENT
-        world = gl.Scene(bg_color=(*background, 1.0), ambient_light=ambient)
+        world = self._classes.scene(bg_color=(*background, 1.0), ambient_light=ambient)
         world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
         occluders = []
         walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
@@ -474,9 +475,17 @@ def _load_pyrender():
     return pyrender
 
 
+@dataclass(frozen=True)
+class _Classes:
+    """The pyrender classes a ``Renderer`` draws with."""
+
+    renderer: type
+    scene: type
+
+
 @lru_cache(maxsize=1)
-def _pass_renderer_class(gl):
-    """pyrender's Renderer with cheaper segmentation passes (same pixels).
+def _pyrender_classes(gl) -> _Classes:
+    """pyrender's Renderer and Scene with less work per pass, drawing the same pixels.
 
     pyrender draws every pass into its 4x multisampled framebuffer, then resolves its
     colour and depth, reads the depth as floats and linearises it. A segmentation pass
@@ -484,12 +493,76 @@ def _pass_renderer_class(gl):
     samples are all alike: it is drawn here into a plain framebuffer of the same size
     instead, and only its colour is read (its depth, which nobody uses, is returned as
     None). Colour passes are pyrender's own.
+
+    pyrender also recomputes, in every pass, every node's world pose (for each
+    primitive drawn, and again for the camera's position), the nodes' order by distance
+    from the camera, and which meshes and textures the GPU holds; a frame draws one
+    scene in up to a dozen passes without changing it, so these are kept until the
+    scene changes (a node added, removed or moved through the scene).
     """
     from OpenGL import GL
+
+    class FrameScene(gl.Scene):
+        """A pyrender scene that keeps node poses and the renderer's per-scene
+        results until it changes."""
+
+        def __init__(self, *args, **kwargs):
+            self._poses: dict = {}
+            self.frame_cache: dict = {}  # the renderer's results for this scene as it is
+            self.version = 0  # counts the changes
+            super().__init__(*args, **kwargs)
+
+        def _changed(self) -> None:
+            self._poses.clear()
+            self.frame_cache.clear()
+            self.version += 1
+
+        def add_node(self, node, parent_node=None):
+            self._changed()
+            return super().add_node(node, parent_node=parent_node)
+
+        def remove_node(self, node):
+            self._changed()
+            return super().remove_node(node)
+
+        def set_pose(self, node, pose):
+            self._changed()
+            return super().set_pose(node, pose)
+
+        def clear(self):
+            self._changed()
+            return super().clear()
+
+        def get_pose(self, node):
+            pose = self._poses.get(node)
+            if pose is None:
+                pose = super().get_pose(node)
+                pose.setflags(write=False)  # shared by every caller; pyrender copies before changing one
+                self._poses[node] = pose
+            return pose
 
     class PassRenderer(gl.Renderer):
         _seg_fb = None
         _seg_buffers = None
+        _context_of = None  # (scene, its version, shadow flags) of the last context update
+
+        def _sorted_mesh_nodes(self, scene):
+            if not isinstance(scene, FrameScene):
+                return super()._sorted_mesh_nodes(scene)
+            if "sorted" not in scene.frame_cache:
+                scene.frame_cache["sorted"] = super()._sorted_mesh_nodes(scene)
+            return scene.frame_cache["sorted"]
+
+        def _update_context(self, scene, flags):
+            # What pyrender updates depends on the scene and the shadow flags only.
+            shadows = flags & (
+                gl.RenderFlags.SHADOWS_DIRECTIONAL | gl.RenderFlags.SHADOWS_SPOT | gl.RenderFlags.SHADOWS_POINT
+            )
+            last = self._context_of
+            if isinstance(scene, FrameScene) and last and last[0] is scene and last[1:] == (scene.version, shadows):
+                return
+            super()._update_context(scene, flags)
+            self._context_of = (scene, scene.version, shadows) if isinstance(scene, FrameScene) else None
 
         def _configure_forward_pass_viewport(self, flags):
             if not (flags & gl.RenderFlags.SEG and flags & gl.RenderFlags.OFFSCREEN):
@@ -527,12 +600,13 @@ def _pass_renderer_class(gl):
 
         def delete(self):
             super().delete()
+            self._context_of = None
             if self._seg_fb is not None:
                 GL.glDeleteFramebuffers(1, [self._seg_fb])
                 GL.glDeleteRenderbuffers(2, list(self._seg_buffers))
                 self._seg_fb = self._seg_buffers = None
 
-    return PassRenderer
+    return _Classes(renderer=PassRenderer, scene=FrameScene)
 
 
 def _backend_error(error: Exception) -> GenerationError:
