@@ -278,7 +278,8 @@ class Renderer:
             if key not in uploaded:
                 look = entity.drawable
                 uploaded[key] = self._shared_mesh(look) if entity.shared else _pyrender_mesh(gl, look)
-            entity.node = world.add(uploaded[key], pose=entity.pose, name=entity.id)
+            entity.node = _posed_node(gl, uploaded[key], entity.pose, entity.id)
+            world.add_node(entity.node)
 
         if camera.orthographic:
             lens = gl.OrthographicCamera(camera.xmag, camera.ymag, znear=camera.znear, zfar=camera.zfar)
@@ -667,6 +668,38 @@ def _pyrender_mesh(gl, drawable: _Drawable):
     # the shadow pass needs the bounds, so give them from the trimesh we already have.
     mesh._bounds = drawable.bounds.copy()
     return mesh
+
+
+def _posed_node(gl, mesh, pose: np.ndarray, name: str):
+    """A pyrender node of ``mesh`` at ``pose`` (4, 4), the very node ``Scene.add`` makes.
+
+    pyrender turns a node's matrix into a quaternion and back (through trimesh, a few
+    hundred microseconds a node), and draws with the matrix that comes back; that part
+    depends on the rotation only, and entities share a few rotations (most villages'
+    objects stand square), so it is computed once per rotation (``_node_rotation``)."""
+    quaternion, scale, rotation_scale = _node_rotation(gl, pose[:3, :3].tobytes())
+    node = gl.Node(name=name, mesh=mesh, rotation=quaternion, scale=scale, translation=pose[:3, 3])
+    translation = np.eye(4)
+    translation[:3, 3] = node.translation
+    node._matrix = translation.dot(rotation_scale)  # what pyrender's Node.matrix computes from them
+    return node
+
+
+@lru_cache(maxsize=4096)
+def _node_rotation(gl, rotation: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """pyrender's quaternion (4,) and scale (3,) of a node whose matrix has this
+    rotation part (3, 3 float64 bytes), and the product of their matrices (4, 4), as
+    pyrender's ``Node`` computes them."""
+    matrix = np.eye(4)
+    matrix[:3, :3] = np.frombuffer(rotation, dtype=float).reshape(3, 3)
+    node = gl.Node(matrix=matrix)
+    rotation_matrix, scale_matrix = np.eye(4), np.eye(4)
+    rotation_matrix[:3, :3] = gl.Node._r_from_q(node.rotation)
+    scale_matrix[:3, :3] = np.diag(node.scale)
+    arrays = (node.rotation, node.scale, rotation_matrix.dot(scale_matrix))
+    for array in arrays:
+        array.setflags(write=False)  # shared through the cache
+    return arrays
 
 
 def _sun_pose(direction: np.ndarray) -> np.ndarray:
