@@ -1,0 +1,40 @@
+"""The renderer's cheaper passes (``offscreen._pyrender_classes``, ``_posed_node``)
+draw exactly what pyrender's own Renderer, Scene and nodes draw: every array and
+value of a RenderResult byte for byte, outdoors and in a room, from both views."""
+
+from __future__ import annotations
+
+import pytest
+
+from render_fixtures import or_skip_without_opengl
+from scenewright.api import build_scene
+from scenewright.render import offscreen
+
+SIZE = (256, 256)  # the dataset's image size
+VIEWS = ("perspective", "top")
+
+
+def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
+    """The scene from both views, drawn through pyrender's own classes and
+    ``Scene.add``'s nodes if ``plain``, else through the renderer's own."""
+    with monkeypatch.context() as patch:
+        if plain:
+            patch.setattr(offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene))
+            patch.setattr(offscreen, "_posed_node", lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh))
+        with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
+            chosen = offscreen._pyrender_classes(renderer._gl).renderer
+            assert (type(renderer._renderer._renderer) is chosen) and (chosen.__module__ == "pyrender.renderer") == plain
+            return [renderer.render(scene, view) for view in VIEWS]
+
+
+@pytest.mark.parametrize("rules, seed", [("village", 0), ("village", 3), ("bedroom", 1)])
+def test_same_pixels_as_pyrenders_own_classes(monkeypatch, rules, seed):
+    scene = build_scene(rules, seed)
+    expected = renders(scene, plain=True, monkeypatch=monkeypatch)
+    got = renders(scene, plain=False, monkeypatch=monkeypatch)
+    for view, want, have in zip(VIEWS, expected, got):
+        for name in ("colour", "depth", "segmentation"):
+            a, b = getattr(want, name), getattr(have, name)
+            assert (a.dtype, a.shape, a.tobytes()) == (b.dtype, b.shape, b.tobytes()), (view, name)
+        assert (have.ids, have.boxes, have.visible, have.camera) == (want.ids, want.boxes, want.visible, want.camera)
+        assert len(have.ids) > 3 and have.boxes  # something to see
