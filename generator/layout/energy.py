@@ -490,6 +490,14 @@ class Energy:
     def complete(self) -> float:
         """The pending proposal's whole energy change, its deferred ``access`` part added
         (the same number ``propose`` gives without deferring)."""
+        changes = self._add_deferred_access()
+        if isinstance(changes, dict):
+            return sum(changes["parts"].values()) - self.total
+        return sum(changes.delta.values())
+
+    def _add_deferred_access(self) -> Changes | dict:
+        """The pending proposal's update, with its deferred ``access`` part evaluated
+        (at most once) when ``propose`` left it out."""
         pending = self._pending
         changes = pending.update
         if not isinstance(changes, dict) and changes.room is not None and changes.room.deferred:
@@ -497,9 +505,7 @@ class Energy:
             changes.delta["access"] = room.delta["access"]
             changes = changes._replace(room=room)
             self._pending = pending._replace(update=changes)
-        if isinstance(changes, dict):
-            return sum(changes["parts"].values()) - self.total
-        return sum(changes.delta.values())
+        return changes
 
     def _boxes_near_path(self, path: int) -> list[int]:
         x0, x1, z0, z1 = self.path_bounds[path]
@@ -507,7 +513,7 @@ class Energy:
 
     def accept(self) -> None:
         """Keep the proposed move: store its term values."""
-        self.complete()  # a deferred access part is evaluated before it is kept
+        self._add_deferred_access()  # a deferred access part is evaluated before it is kept
         pending, self._pending = self._pending, None
         if isinstance(pending.update, dict):
             self._install(pending.update)

@@ -53,11 +53,11 @@ from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
 from .geometry import corners
-from .moves import HEADING_ONLY, Mover, rigid, wrap
+from .moves import Mover, rigid, wrap
 from .moves import reach as footprint_reach
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
-from .relation_terms import centre, evaluate
+from .relation_terms import HEADING_FACINGS, centre, evaluate
 from .templates import not_templated, template_draw
 
 #: Paths stay this far (metres) inside the extent when first laid out.
@@ -549,7 +549,7 @@ def _place_box(
     # board stays left of it once turned (turned after, about its own centre, it would
     # not). Outdoors it sped the village up but lengthened the town's tail (docs/layout.md).
     for term in facing:
-        if problem.room is not None and term.spec.facing in HEADING_ONLY and not support:
+        if problem.room is not None and term.spec.facing in HEADING_FACINGS and not support:
             turned = mover.turn_to_face(term)
             for item, pose in (turned or {}).items():
                 state.set_pose(item, *pose)
@@ -696,8 +696,8 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
     shift it with the groups it hangs on (through their relations to groups, in turn)
     rigidly away from the wall it crosses, by as far as it crosses it: the best of one
     shift per wall crossed (along its inner normal) by the energy, kept only if it
-    lowers it. The rows before
-    had their spots chosen before the ones relying on them were placed."""
+    lowers it. The rows before had their spots chosen before the ones relying on them
+    were placed."""
     room = energy.room
     if room is None:
         return

@@ -124,8 +124,6 @@ SLIDE_ANGLE = 0.1
 
 HALF_PI = math.pi / 2.0
 
-#: Facing relations that ask only for A's heading relative to B's, wherever A stands.
-HEADING_ONLY = HEADING_FACINGS
 #: A heading this close (radians) to the one a facing relation asks for already has it.
 FACED = 1e-9
 
@@ -722,11 +720,9 @@ class Mover:
         a heading only (same, opposite or square to B's) wants, to FACED (radians): then
         a turn to face would leave it where it is, and the constructive placement makes
         no such proposal. False for the other facing relations."""
-        if term.spec.facing not in HEADING_ONLY or term.a.kind != "object":
+        if term.spec.facing not in HEADING_FACINGS or term.a.kind != "object" or term.b.kind not in ("object", "group"):
             return False
-        b_yaw = self.state.yaw[term.b.index] if term.b.kind == "object" else 0.0
-        if term.b.kind not in ("object", "group"):
-            return False
+        b_yaw = self.state.yaw[term.b.index] if term.b.kind == "object" else 0.0  # a group faces the world's forward
         off = wrap(self.state.yaw[term.a.index] - b_yaw)
         wanted = {"same": 0.0, "opposite": math.pi, "orthogonal": HALF_PI}[term.spec.facing]
         return abs(abs(off) - wanted) < FACED
@@ -1072,7 +1068,7 @@ def _clusters(problem: Problem) -> list[list[int]]:
         return unit
 
     for term in problem.relations:
-        if problem.room is not None and term.spec.facing in HEADING_ONLY:
+        if problem.room is not None and term.spec.facing in HEADING_FACINGS:
             continue  # a shared shift keeps it: it ties no cluster (else all desks facing a board are one)
         ends = [unit_of[box] for box in term.a.members[:1] + term.b.members[:1] if box in unit_of]
         if len(ends) == 2 and find(ends[0]) != find(ends[1]):
