@@ -255,8 +255,11 @@ def _caption_items(section: Section, world: World) -> tuple[Item, ...]:
 
 
 def _setting(scene: Scene, world: World, owner: str | None) -> str:
-    """What the caption calls the whole: the captioned group's noun, the rule set's name, or "scene"."""
+    """What the caption calls the whole: the captioned group's noun, the name of the
+    rule set's ``scene`` block (``scene music_room``: "music room"; a scene without one
+    goes by the rules file's name), or "scene"."""
     if owner is not None:
         return world[owner].noun
-    name = Path(scene.rules).stem.replace("_", " ")
+    named = scene.name if scene.name != "scene" else Path(scene.rules).stem
+    name = named.replace("_", " ")
     return name if re.fullmatch(r"[A-Za-z]+( [A-Za-z]+)*", name) else "scene"

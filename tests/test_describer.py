@@ -696,3 +696,16 @@ def test_random_scenes_state_exactly_the_true_relations(drawn):
     assert describe(scene, variant=variant) == description
     assert isinstance(describe(scene, style="short", variant=variant), Description)
     well_formed(describe(scene, style="short", variant=variant).text)
+
+
+def test_the_caption_calls_the_scene_by_its_scene_block_not_its_file_name(tmp_path):
+    from scenewright.api import build_scene
+
+    rules = tmp_path / "music.rules"
+    rules.write_text(
+        'object piano { noun "piano" size 1.5 x 1.2 x 0.6 }\n'
+        "scene music_room { extent 10 x 10; start Room }\n"
+        "Room -> { piano }\n"
+    )
+    scene = build_scene(str(rules), 1)
+    assert describe(scene, style="short").text == "A music room with a piano."
