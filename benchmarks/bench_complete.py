@@ -20,8 +20,9 @@ with a second category half the time) and completes each with layout seed 0. It
 prints: ok (share of rooms laid out with no problem), blocked doors (rooms where a
 piece stands in a door's swing), reachability (of the pieces someone must reach, the
 share reachable from the door), categories added per room (mean, beyond the request),
-and CPU seconds per room (the whole ``complete`` call, the plan model built once
-beforehand), with the mask cover as above.
+CPU seconds per room (the whole ``complete`` call, the plan model built once
+beforehand: median, mean, and the slowest room's with its request), the mask cover as
+above, and how many rooms Equation 2 gave several types.
 
 ``--composite N`` draws N large rooms from another fixed stream (sides 6-9 m, a door
 and a window on two walls, two requested categories that belong to different home
@@ -158,10 +159,13 @@ def random_rooms(count: int, known) -> list:
 
 def random_table(model, catalog, count: int, mask_term: bool) -> None:
     oks = blocked = reach_needed = unreachable = added = 0
-    seconds, cover, cover_large = [], [], []
+    seconds, cover, cover_large, split = [], [], [], 0
+    slowest = (0.0, None)
     for spec, request in random_rooms(count, set(catalog)):
         scene, cpu, _ = run(request, 0, model, catalog, mask_term)
         seconds.append(cpu)
+        slowest = max(slowest, (cpu, spec))
+        split += len(scene.completion["types"]) > 1
         oks += scene.layout.ok
         problems = scene.layout.problems
         blocked += any("stands in the swing of" in p for p in problems)
@@ -174,7 +178,8 @@ def random_table(model, catalog, count: int, mask_term: bool) -> None:
     print(f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
           f"reachable {reach_needed - unreachable}/{reach_needed} ({100 * (reach_needed - unreachable) / max(reach_needed, 1):.1f} %); "
           f"categories added per room {added / count:.1f}; CPU s per room median {statistics.median(seconds):.2f}, "
-          f"mean {statistics.mean(seconds):.2f}; mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}")  # fmt: skip
+          f"mean {statistics.mean(seconds):.2f}, max {slowest[0]:.2f} ({' '.join(slowest[1])}); "
+          f"mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}; rooms of several types {split}")  # fmt: skip
 
 
 #: Composite requests: two categories that belong to different home types.

@@ -8,7 +8,7 @@ import pytest
 from scenewright.completion.evaluation import METRICS, _soft_iou, leave_one_out, request_of
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
-from scenewright.completion.selection import choose_types
+from scenewright.completion.selection import area_spreads, choose_types
 from scenewright.core.errors import InputError
 from scenewright.core.room import Room
 
@@ -54,9 +54,12 @@ def test_mask_at_reads_the_cell_under_a_room_point():
     assert mask_at(layout, room, [(1.9, 1.4), (-1.9, 1.4), (1.9, -1.4)]).tolist() == [1.0, 0.0, 0.0]
 
 
-def _type_model() -> dict:
+def _type_model(plans: int = 10) -> dict:
+    """Three types of ``plans`` plans each; no plan areas listed, so each spread is 0.2 x its mean."""
+
     def entry(area, **categories):
-        return {"mean_area": area, "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()}}
+        return {"mean_area": area, "plans": plans,
+                "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()}}  # fmt: skip
 
     return {
         "categories": {"bed": {}, "desk": {}, "sofa": {}, "chair": {}},
@@ -80,6 +83,32 @@ def _type_model() -> dict:
 )
 def test_choose_types(requested, area, types):
     assert choose_types(_type_model(), requested, area).types == types
+
+
+def test_choose_types_weighs_area_against_evidence_and_extra_types():
+    model = _type_model()
+    # 15 m2 with a sofa: as many spreads from the study's 12 +- 2.4 as from the living
+    # room's 20 +- 4, and one study in two has no sofa: the living room.
+    model["types"]["study"]["categories"]["sofa"] = {"p": 0.5, "max_count": 1}
+    assert choose_types(model, {"sofa": 1}, 15.0).types == ("living_room",)
+    model["types"]["study"]["categories"]["sofa"]["p"] = 0.8  # most studies have one: the nearer study
+    assert choose_types(model, {"sofa": 1}, 15.0).types == ("study",)
+    # 21 m2 with a bed: too large for the bedroom's 14 +- 2.8 (2.5 spreads), yet a second
+    # type costs log(1 + 30 plans): one bedroom is the likelier room.
+    assert choose_types(model, {"bed": 1}, 21.0).types == ("bedroom",)
+    # 25 m2 (3.9 spreads): the bedroom with a study corner (14 + 12) wins.
+    assert choose_types(model, {"bed": 1}, 25.0).types == ("bedroom", "study")
+    # With no plans behind the types a second type costs nothing: the 21 m2 room splits.
+    assert choose_types(_type_model(plans=0), {"bed": 1}, 21.0).types == ("bedroom", "study")
+
+
+def test_area_spreads_come_from_the_plans_with_a_floor():
+    model = _type_model()
+    model["plans"] = [{"type": "bedroom", "area": a} for a in (10.0, 14.0, 18.0, 14.0)] + [{"type": "study", "area": 12.0}]
+    spreads = area_spreads(model)
+    assert spreads["bedroom"] == pytest.approx(np.std([10.0, 14.0, 18.0, 14.0]))
+    assert spreads["study"] == pytest.approx(0.2 * 12.0)  # one plan: no spread of its own
+    assert spreads["living_room"] == pytest.approx(4.0)
 
 
 def test_choose_types_refuses_what_no_plan_holds():
