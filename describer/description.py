@@ -15,6 +15,7 @@ from typing import Any
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
+from .english import singular_of
 from .grounding import Mention
 from .plan import Fact, Introduction, Inventory, Item, Network, Section, Statement, introduced_by, plan_document
 from .realise import Realiser, Sentence
@@ -257,9 +258,10 @@ def _caption_items(section: Section, world: World) -> tuple[Item, ...]:
 def _setting(scene: Scene, world: World, owner: str | None) -> str:
     """What the caption calls the whole: the captioned group's noun, the name of the
     rule set's ``scene`` block (``scene music_room``: "music room"; a scene without one
-    goes by the rules file's name), or "scene"."""
+    goes by the rules file's name), made singular ("bedrooms.rules": "A bedroom with"),
+    or "scene"."""
     if owner is not None:
         return world[owner].noun
     named = scene.name if scene.name != "scene" else Path(scene.rules).stem
     name = named.replace("_", " ")
-    return name if re.fullmatch(r"[A-Za-z]+( [A-Za-z]+)*", name) else "scene"
+    return singular_of(name) if re.fullmatch(r"[A-Za-z]+( [A-Za-z]+)*", name) else "scene"

@@ -58,6 +58,26 @@ def plural_of(noun: str, irregular: str | None = None) -> str:
     return rest + space + _ENGINE.plural_noun(last)
 
 
+#: Endings of words that look plural but are not ("class", "physics", "lens"), which
+#: inflect's singular_noun would cut.
+_NOT_PLURAL_ENDINGS = ("ss", "us", "is", "ics", "news", "series", "species", "lens")
+
+
+def singular_of(name: str) -> str:
+    """A name whose last word is a plural noun, made singular ("bedrooms" -> "bedroom",
+    "dining rooms" -> "dining room"); any other name as it is. Cautious: only a form
+    whose plural gives the word back and that does not end in a vowel inflect guessed
+    ("campus" is not "campu"), and never a word with an ending in ``_NOT_PLURAL_ENDINGS``."""
+    rest, space, last = name.rpartition(" ")
+    word = last.lower()
+    if not word.endswith("s") or word.endswith(_NOT_PLURAL_ENDINGS) or len(word) > MAX_INFLECTED_CHARS:
+        return name
+    one = _ENGINE.singular_noun(word)
+    if not one or one[-1] in "aiu" or _ENGINE.plural_noun(one) != word:
+        return name
+    return rest + space + one
+
+
 def with_article(noun: str) -> str:
     """The noun phrase with "a" or "an" in front ("an oak tree", "a big pot of stew")."""
     return _ENGINE.a(noun)

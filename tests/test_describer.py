@@ -709,3 +709,23 @@ def test_the_caption_calls_the_scene_by_its_scene_block_not_its_file_name(tmp_pa
     )
     scene = build_scene(str(rules), 1)
     assert describe(scene, style="short").text == "A music room with a piano."
+
+
+def test_a_plural_scene_name_is_made_singular_in_the_caption(tmp_path):
+    from scenewright.api import build_scene
+
+    rules = tmp_path / "bedrooms.rules"  # as `learn examples/sets/bedrooms -o bedrooms.rules` names it
+    rules.write_text('object bed { noun "bed" size 2 x 0.5 x 1.6 }\nscene bedrooms { extent 10 x 10; start Room }\nRoom -> { bed }\n')
+    assert describe(build_scene(str(rules), 1), style="short").text == "A bedroom with a bed."
+
+
+@pytest.mark.parametrize(
+    ("name", "singular"),
+    [("bedrooms", "bedroom"), ("dining rooms", "dining room"), ("libraries", "library"), ("offices", "office"),
+     ("village", "village"), ("class", "class"), ("campus", "campus"), ("canvas", "canvas"), ("physics", "physics"),
+     ("series", "series"), ("news", "news"), ("lens", "lens")],
+)  # fmt: skip
+def test_singular_of_cuts_only_real_plurals(name, singular):
+    from scenewright.describer.english import singular_of
+
+    assert singular_of(name) == singular
