@@ -366,9 +366,13 @@ def build_graph(
     windows = bool(room.windows)
     if contents.regions and "desk" in counts:  # a desk goes under a window of its own region
         windows = bool(contents.regions[contents.mask.owners["desk"]].room.windows)
+    cornerless = {  # categories whose region is a strip between virtual walls: no room corner in it
+        name for name in counts
+        if contents.regions and not contents.regions[contents.mask.owners[name]].has_room_corner(room)
+    }  # fmt: skip
     for name in order:
         for index, node in enumerate(made[name]):
-            for label, target in _relations_of(name, index, made, weights, windows, supports):
+            for label, target in _relations_of(name, index, made, weights, windows, supports, name in cornerless):
                 graph.add_relation(node, target, label)
     return graph, dropped
 
@@ -389,10 +393,14 @@ def _fits_on(item, support) -> bool:
     return item.size[0] <= support.size[0] + 1e-9 and item.size[2] <= support.size[2] + 1e-9
 
 
-def _relations_of(name: str, index: int, made: dict, weights: dict, windows: bool, supports: dict) -> list[tuple[str, str]]:
+def _relations_of(
+    name: str, index: int, made: dict, weights: dict, windows: bool, supports: dict, cornerless: bool = False
+) -> list[tuple[str, str]]:
     """The relations (label, target) of the ``index``-th piece of category ``name``;
     ``windows``: whether the first desk has a window to stand under; ``supports``: per
-    category that stands on another, the support categories it fits on."""
+    category that stands on another, the support categories it fits on; ``cornerless``:
+    whether the piece's part of the room has no corner of the room (a corner piece
+    stands against a wall there instead)."""
     if name in SUPPORTS:
         label = SUPPORTS[name][1]
         holders = [node for support in supports[name] for node in made[support]]
@@ -427,7 +435,7 @@ def _relations_of(name: str, index: int, made: dict, weights: dict, windows: boo
     if name == "armchair" and made.get("coffee_table"):
         return [("NextToChooseSide", made["coffee_table"][0]), ("FacingTowards", made["coffee_table"][0])]
     if name in CORNER_ITEMS or partner is None:
-        return [("InCorner", ROOM_NODE)] if name in CORNER_ITEMS else [("AgainstWall", ROOM_NODE)]
+        return [("InCorner", ROOM_NODE)] if name in CORNER_ITEMS and not cornerless else [("AgainstWall", ROOM_NODE)]
     return [("NextToChooseSide", partner)]
 
 

@@ -64,6 +64,14 @@ class Region:
     def to_dict(self) -> dict:
         return {"type": self.room_type, "bounds": [float(v) for v in self.bounds], "virtual_door": self.virtual_door}
 
+    def has_room_corner(self, room: Room) -> bool:
+        """Whether a corner of the whole (rectangular) ``room`` is a corner of this region:
+        a strip between two virtual walls has none, so nothing of it can stand in one."""
+        corners = np.asarray(room.corners, dtype=float)
+        x0, z0, x1, z1 = self.bounds
+        mine = np.array([(x0, z0), (x0, z1), (x1, z0), (x1, z1)])
+        return bool((np.abs(corners[:, None, :] - mine[None, :, :]).max(axis=2) < 1e-6).any())
+
 
 def is_rectangle(room: Room) -> bool:
     """Whether the room is an axis-aligned rectangle (four corners on its bounding box)."""
