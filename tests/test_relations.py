@@ -330,3 +330,34 @@ def test_a_dataset_made_before_images_could_be_turned_off_resumes_with_images(tm
     check_same_settings(dataset_spec("desk", 4), stored, tmp_path)
     with pytest.raises(Exception, match="images True -> False"):
         check_same_settings(dataset_spec("desk", 4, images=False), stored, tmp_path)
+
+
+def test_the_benchmark_tells_a_relation_the_room_pins_from_one_the_poses_show():
+    # A chair in front of a table placed anywhere: the linked poses show it. A counter
+    # beside a sink that stands in the same place in every scene: within a scene and
+    # across scenes the counter stands the same way to the sink, so nothing shows it.
+    import sys
+    from pathlib import Path
+
+    from scenewright.core.relations import Relation
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
+    from bench_relations import oracle_verdicts, true_pairs
+
+    rng = np.random.default_rng(11)
+    scenes = []
+    for index in range(60):
+        table = uniform_pose(rng)
+        counter = (1.0 + rng.uniform(0.0, 0.4), -4.0, 0.0)
+        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.9, math.pi, rng)), ("sink", 0.0, -4.0, 0.0), ("counter", *counter)]
+        scene = scene_of(placed, f"s{index}")
+        links = [Relation("chair1", "table0", "NextToFront"), Relation("counter3", "sink2", "NextToLeft"), Relation("sink2", "room", "UnderWindow")]
+        scenes.append(Scene(**{**scene.__dict__, "relations": links}))
+    assert dict(true_pairs(scenes)) == {("chair", "table"): 60, ("counter", "sink"): 60}
+    verdicts = oracle_verdicts(scenes, seed=0)
+    shows, p_value, tightness = verdicts[("chair", "table")]
+    assert shows and p_value == pytest.approx(1 / 200) and tightness > 0.8
+    shows, p_value, _ = verdicts[("counter", "sink")]
+    assert not shows and p_value > 0.05
+    # Fewer than ten linked scenes: not shown, not tested.
+    assert oracle_verdicts(scenes[:9], seed=0)[("chair", "table")] == (False, None, None)
