@@ -106,7 +106,8 @@ NO_FLOOR = "no free floor for it at the start"
 #: them (plans lay rugs under furniture) but the layout keeps every piece apart, so one
 #: the starting poses find no free floor for is left out rather than failing the layout.
 FLAT = 0.02
-#: Stand in a corner when nothing in the room is related to them.
+#: Stand in a corner when nothing in the room is related to them (against a wall in a
+#: split room's middle part, which holds no corner of the room).
 CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 #: The large furniture the layout mask is for in the layout's energy: what stands
 #: against a wall and the free-standing tables (the pieces whose starting poses the mask

@@ -9,7 +9,7 @@ import hashlib
 import numpy as np
 import pytest
 
-from scenewright.completion.complete import choose_contents, complete, parse_request, region_boxes
+from scenewright.completion.complete import CORNER_ITEMS, build_graph, choose_contents, complete, parse_request, region_boxes
 from scenewright.completion.features import canonical_frame
 from scenewright.completion.layout_mask import RegionMasks, amalgamated_mask
 from scenewright.completion.regions import is_rectangle, split_room, strips, sub_room, virtual_walls
@@ -62,6 +62,24 @@ def test_the_split_shares_the_room_by_the_types_mean_areas_and_tiles_it(model):
     assert split_room(model, room, ("bedroom",)) == ()  # one type: no split
     ell = Room.polygon([(0, 0), (6, 0), (6, 3), (3, 3), (3, 6), (0, 6)])
     assert not is_rectangle(ell) and split_room(model, ell, types) == ()
+
+
+def test_a_middle_strip_has_no_corner_of_the_room_and_its_corner_pieces_stand_at_a_wall(model, catalog):
+    room = Room.rectangle(9.0, 7.0).with_opening("door", "south", 4.5, 0.9).with_opening("window", "north", 4.5, 1.4)
+    regions = split_room(model, room, ("living_room", "dining_room", "bedroom"))
+    ends = sorted(regions, key=lambda r: r.bounds[0])
+    assert [r.has_room_corner(room) for r in ends] == [True, False, True]
+    request = parse_request("7.7x7.4", ["W:4.01:0.9"], ["E:6.24:1.4"], ["bed,desk"], catalog)
+    contents = choose_contents(model, request)
+    graph, _ = build_graph(model, contents, request.room, catalog)
+    middle = next(k for k, r in enumerate(contents.regions) if not r.has_room_corner(request.room))
+    assert contents.regions[middle].room_type == "living_room"
+    placed = {}
+    for node in graph.nodes():
+        if node.type in CORNER_ITEMS and {r.label for r in graph.edges() if r.source == node.id} <= {"InCorner", "AgainstWall"}:
+            placed[node.type, contents.mask.owners[node.type] == middle] = {r.label for r in graph.edges() if r.source == node.id}
+    assert any(in_middle for _, in_middle in placed)  # the living room's plant or floor lamp
+    assert all(labels == ({"AgainstWall"} if in_middle else {"InCorner"}) for (_, in_middle), labels in placed.items())
 
 
 def test_each_region_has_its_types_mask_in_its_own_frame_and_reads_0_beyond_it(model, catalog):
