@@ -108,6 +108,24 @@ def test_desk_lamp_shade_hangs_over_the_front():
     assert len(shade) and shade[:, 2].mean() > 0.1 * d
 
 
+@pytest.mark.parametrize("shape", ["treadmill", "exercise_bike", "rowing_machine"])
+def test_cardio_machines_have_their_console_or_flywheel_at_the_back(shape):
+    """One gets on at the front (+Z) and faces the back (-Z): the console (a treadmill's,
+    a bike's) or the flywheel housing (a rower's) is the high part, and it is behind."""
+    w, h, d = LOOKS[shape]
+    high = face_centres(BUILDERS[shape]((w, h, d), MAIN), lambda c: c[:, 1] > 0.9 * h)
+    assert len(high) and np.all(high[:, 2] < -0.2 * d), high[:, 2].max()
+
+
+def test_weight_bench_pads_run_along_it_on_feet_across_it():
+    w, h, d = LOOKS["weight_bench"]
+    mesh = BUILDERS["weight_bench"]((w, h, d), MAIN)
+    pads = face_centres(mesh, lambda c: c[:, 1] > 0.85 * h)
+    assert np.ptp(pads[:, 2]) > 0.8 * d and np.all(np.abs(pads[:, 0]) < 0.3 * w)
+    feet = face_centres(mesh, lambda c: c[:, 1] < 0.05 * h)
+    assert np.abs(feet[:, 0]).max() > 0.4 * w
+
+
 @pytest.mark.parametrize("shape", ["house", "townhouse", "shed", "tower", "sign", "windmill", "wardrobe"])
 def test_detailed_face_looks_forward(shape):
     """Doors, sign boards and sails are on the front (+Z): the +Z half has more faces."""
