@@ -15,7 +15,8 @@ categories are related when
 The paper labels each plan's people by hand. Here each stay or fetch category has one
 use pose, read off its shape's "used from" convention (``core.shapes``): a person lies
 on a bed with their head at the headboard, sits on a seat facing its front, sits on the
-bench before a piano, stands before a wardrobe facing it. A seated person's body is
+bench before a piano, stands before a wardrobe facing it, walks on a treadmill or rides
+a bike facing its console. A seated person's body is
 0.25 m behind the seat's front edge, whatever the seat's depth, so the coffee table
 0.45 m before a deep sofa is within their reach. The paper's "all regions in
 front of the agent" would relate nearly everything in a room to a bed; a 60-degree
@@ -72,6 +73,16 @@ USES: dict[str, tuple[str, UsePose]] = {
     "filing_cabinet": (FETCH, _STANDING_BEFORE),
     "refrigerator": (FETCH, _STANDING_BEFORE),
     "kitchen_counter": (FETCH, _STANDING_BEFORE),
+    # Gym equipment is stayed at (the paper's gym: one exercises on a machine a while):
+    # on a treadmill's belt, a bike's saddle or a rower's seat one faces the console or
+    # flywheel at the back; one sits on a bench's seat end, lies on a mat; the weights
+    # are fetched from their rack.
+    "treadmill": (STAY, UsePose("front", -0.7, towards=True)),
+    "exercise_bike": (STAY, UsePose("front", -0.3, towards=True)),
+    "rowing_machine": (STAY, UsePose("front", -1.0, towards=True)),
+    "weight_bench": (STAY, _SEATED),
+    "exercise_mat": (STAY, UsePose("centre", 0.0, towards=False)),
+    "dumbbell_rack": (FETCH, _STANDING_BEFORE),
 }
 
 #: Categories that may stand in another piece's clearance: one sits on them at it.

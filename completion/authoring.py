@@ -35,7 +35,7 @@ AWAY_FROM = {"N": 0.0, "E": -math.pi / 2.0, "S": math.pi, "W": math.pi / 2.0}
 #: Facing words for free-standing pieces.
 FACING = {"south": 0.0, "east": math.pi / 2.0, "north": math.pi, "west": -math.pi / 2.0}
 #: The room types of the shipped set: one design module each.
-TYPES = ("bedroom", "living_room", "study", "dining_room")
+TYPES = ("bedroom", "living_room", "study", "dining_room", "gym")
 
 
 def _wrapped(yaw: float) -> float:

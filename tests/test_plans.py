@@ -94,6 +94,9 @@ def test_a_room_that_does_not_build_is_located_at_the_room():
         (_piece("bookshelf", -1.83, 0.5, 0.9, 0.32, yaw=-math.pi / 2),  # facing the west wall
          "the 0.5 m clearance in front of bookshelf_1 runs into a wall"),
         (_piece("bookshelf", 1.35, -1.59, 0.9, 0.32), "bookshelf_1 stands in front of window_1"),
+        # A weight bench keeps 0.5 m free either side (its left is its own +X).
+        (_piece("weight_bench", 1.2, 0.0, 0.6, 1.3), "bed_1 stands in the 0.5 m clearance to the right of weight_bench_1"),
+        (_piece("weight_bench", 1.5, 0.0, 0.6, 1.3), "the 0.5 m clearance to the left of weight_bench_1 runs into a wall"),
     ],
 )
 def test_drawing_problems_are_located_at_the_piece(piece, expected):
@@ -183,7 +186,9 @@ def test_the_plan_is_not_changed_by_loading():
 
 # -- the shipped plan set ---------------------------------------------------------------
 
-SHIPPED_TYPES = ("bedroom", "living_room", "study", "dining_room")
+SHIPPED_TYPES = ("bedroom", "living_room", "study", "dining_room", "gym")
+#: Gym equipment: a gym plan has some of it.
+GYM_EQUIPMENT = {"treadmill", "exercise_bike", "rowing_machine", "weight_bench", "dumbbell_rack"}
 
 
 @pytest.fixture(scope="module")
@@ -205,9 +210,15 @@ def test_every_shipped_plan_loads_and_sits_in_its_type_folder(shipped):
 def test_shipped_plans_are_real_rooms(shipped):
     for plan in shipped:
         width, depth = sorted(plan.room.extent)
-        assert 2.8 <= width and depth <= 6.0 and width <= 5.0, (plan.id, plan.room.extent)
+        if plan.type == "gym":  # home gyms, and studio and club rooms up to 8 x 5.5 m
+            assert 3.0 <= width <= 5.5 and depth <= 8.0 and 9.0 <= plan.room.area <= 40.0, (plan.id, plan.room.extent)
+        else:
+            assert 2.8 <= width and depth <= 6.0 and width <= 5.0, (plan.id, plan.room.extent)
         assert len(plan.room.doors) == 1 and plan.room.windows, plan.id
         categories = [piece.category for piece in plan.furniture]
+        if plan.type == "gym":
+            assert GYM_EQUIPMENT & set(categories), plan.id
+            continue
         essential = {"bedroom": "bed", "living_room": "sofa", "study": "desk", "dining_room": "dining_table"}
         assert essential[plan.type] in categories, plan.id
     doors = {(plan.type, plan.room.part(plan.room.doors[0].wall).side) for plan in shipped}

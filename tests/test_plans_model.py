@@ -175,6 +175,13 @@ def test_shipped_model_statistics(tmp_path, capsys):
         assert model["types"][room_type]["categories"][essential]["p"] == 1.0
         assert sum(len(c["plans"]) for c in model["types"][room_type]["clusters"]) == 16
     assert model["types"]["dining_room"]["categories"]["chair"]["max_count"] == 8  # the eight-seat tables
+    gym = model["types"]["gym"]
+    machines = {"treadmill", "exercise_bike", "rowing_machine", "weight_bench", "exercise_mat"}
+    assert gym["plans"] == 16 and machines | {"dumbbell_rack"} <= set(gym["categories"])
+    assert not machines & {name for t, entry in model["types"].items() if t != "gym" for name in entry["categories"]}
+    assert {model["categories"][name]["purpose"] for name in machines} == {"stay"}  # the paper's gym: stay objects
+    assert model["categories"]["dumbbell_rack"]["purpose"] == "fetch"
+    assert gym["categories"]["treadmill"]["max_count"] >= 3
     assert main(["plans", "graph", "--type", "bedroom", "--model", str(target)]) == 0
     dot = capsys.readouterr().out
     assert dot.startswith('graph "bedroom" {') and '"bed" -- "nightstand" [label="1.00"' in dot
@@ -189,7 +196,7 @@ def test_plans_commands_refuse_bad_input_in_one_line(tmp_path, capsys):
     assert error == f"scenewright: error: {folder / 'x.json'}: $: 'type' is a required property\n"
     assert not (tmp_path / "m.json").exists()
     assert main(["plans", "graph", "--type", "garage"]) == 2
-    assert "the plans have no type 'garage' (they have bedroom, dining_room, living_room, study)" in capsys.readouterr().err
+    assert "the plans have no type 'garage' (they have bedroom, dining_room, gym, living_room, study)" in capsys.readouterr().err
     (tmp_path / "m.json").write_text('{"format": "other"}')
     assert main(["plans", "graph", "--type", "bedroom", "--model", str(tmp_path / "m.json")]) == 2
     assert "not a plan model" in capsys.readouterr().err

@@ -3,7 +3,10 @@
 
 Sizes are (width, depth) in metres, as sold: a double bed's frame is 1.6 x 2.1, a
 king-size 1.8 x 2.1, a single 0.95 x 2.0; a night table 0.5 x 0.4; a wardrobe 1.2 (two
-doors) or 1.8 (three) by 0.6; a desk 1.2-1.6 by 0.6-0.7; a three-seat sofa 2.2 x 0.9.
+doors) or 1.8 (three) by 0.6; a desk 1.2-1.6 by 0.6-0.7; a three-seat sofa 2.2 x 0.9;
+a treadmill 0.8 x 1.9, an exercise bike 0.55 x 1.1, a rowing machine 0.6 x 2.2, a
+flat weight bench 0.6 x 1.3 with its feet, a two-tier dumbbell rack 1.2 x 0.5, an
+exercise mat 1.8 x 0.6.
 """
 
 SINGLE_BED = (0.95, 2.0)
@@ -50,3 +53,17 @@ SQUARE_TABLE = (0.9, 0.9)
 SIDEBOARD = (1.6, 0.5)
 REFRIGERATOR = (0.7, 0.7)
 WHITEBOARD = (1.8, 0.1)
+TREADMILL = (0.8, 1.9)
+EXERCISE_BIKE = (0.55, 1.1)
+ROWING_MACHINE = (0.6, 2.2)
+WEIGHT_BENCH = (0.6, 1.3)
+DUMBBELL_RACK = (1.2, 0.5)
+EXERCISE_MAT = (1.8, 0.6)
+
+
+def television(design, wall: str, at: float, stand=TV_STAND, screen=TV) -> str:
+    """A television on its stand with its back to ``wall`` of ``design`` (an
+    ``authoring.Design``), centred ``at`` along it; returns the stand's id."""
+    stand_id = design.against(wall, "tv_stand", at, stand)
+    design.on(stand_id, "tv", screen)
+    return stand_id

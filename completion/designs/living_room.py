@@ -5,14 +5,9 @@ shelves, lamps, plants and sometimes a piano on the walls left free."""
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
     ARMCHAIR, BOOKSHELF, COFFEE_TABLE, FLOOR_LAMP, LARGE_PLANT, LARGE_RUG, LOVESEAT, PIANO, PIANO_BENCH, PLANT,
-    RUG, SMALL_COFFEE_TABLE, SMALL_TV, SMALL_TV_STAND, SOFA, TV, TV_STAND, WIDE_BOOKSHELF,
+    RUG, SMALL_COFFEE_TABLE, SMALL_TV, SMALL_TV_STAND, SOFA, WIDE_BOOKSHELF, television,
 )  # fmt: skip
 
-
-def _television(d: Design, wall: str, at: float, stand=TV_STAND, screen=TV) -> str:
-    stand_id = d.against(wall, "tv_stand", at, stand)
-    d.on(stand_id, "tv", screen)
-    return stand_id
 
 
 def _sofa_group(d: Design, sofa: str, table=COFFEE_TABLE) -> str:
@@ -25,7 +20,7 @@ def east_west_classic():
                5.0, 4.0)  # fmt: skip
     d.door("S", 0.6)
     d.window("N", 2.5, 1.8)
-    _television(d, "W", 2.0)
+    television(d, "W", 2.0)
     sofa = d.against("E", "sofa", 2.0, SOFA)
     _sofa_group(d, sofa)
     d.place("rug", 3.3, 2.0, LARGE_RUG, "east")
@@ -41,7 +36,7 @@ def small_flat():
                3.4, 3.8)  # fmt: skip
     d.door("E", 3.25, 0.8)
     d.window("W", 1.9, 1.4)
-    _television(d, "N", 1.7, SMALL_TV_STAND, SMALL_TV)
+    television(d, "N", 1.7, SMALL_TV_STAND, SMALL_TV)
     sofa = d.against("S", "sofa", 1.5, LOVESEAT)
     _sofa_group(d, sofa, SMALL_COFFEE_TABLE)
     d.place("armchair", 0.55, 1.7, ARMCHAIR, "east")
@@ -55,7 +50,7 @@ def long_room_with_piano():
     d.door("N", 5.3)
     d.window("S", 1.8, 2.0)
     d.window("W", 2.0, 1.2)
-    _television(d, "E", 2.0)
+    television(d, "E", 2.0)
     sofa = d.place("sofa", 2.35, 2.0, SOFA, "east")
     _sofa_group(d, sofa)
     d.place("rug", 3.6, 2.0, LARGE_RUG, "east")
@@ -73,7 +68,7 @@ def corner_window():
     d.door("W", 3.9)
     d.window("N", 2.25, 2.0)
     d.window("E", 1.5, 1.2)
-    _television(d, "S", 2.6)
+    television(d, "S", 2.6)
     sofa = d.place("sofa", 2.6, 1.3, SOFA, "south")
     _sofa_group(d, sofa)
     d.place("rug", 2.6, 2.3, RUG, "south")
@@ -105,7 +100,7 @@ def tv_on_the_long_wall():
                5.6, 3.8)  # fmt: skip
     d.door("W", 3.2)
     d.window("S", 2.8, 2.4)
-    _television(d, "N", 2.8)
+    television(d, "N", 2.8)
     sofa = d.place("sofa", 2.8, 2.75, SOFA, "north")
     _sofa_group(d, sofa)
     d.place("rug", 2.8, 1.9, LARGE_RUG, "south")
@@ -137,7 +132,7 @@ def open_door_north():
                4.8, 4.2)  # fmt: skip
     d.door("N", 0.6)
     d.window("E", 2.1, 1.8)
-    _television(d, "N", 2.8)
+    television(d, "N", 2.8)
     sofa = d.against("S", "sofa", 2.8, SOFA)
     _sofa_group(d, sofa)
     d.place("rug", 2.8, 2.1, LARGE_RUG, "south")
@@ -154,7 +149,7 @@ def large_family_room():
     d.door("S", 5.4)
     d.window("N", 3.0, 2.4)
     d.window("W", 2.5, 1.6)
-    _television(d, "E", 2.0)
+    television(d, "E", 2.0)
     sofa = d.place("sofa", 2.75, 2.0, SOFA, "east")
     _sofa_group(d, sofa)
     d.place("sofa", 4.1, 3.55, LOVESEAT, "north")
@@ -174,7 +169,7 @@ def narrow_living():
                3.6, 5.0)  # fmt: skip
     d.door("S", 3.0, 0.8)
     d.window("N", 1.8, 1.6)
-    _television(d, "W", 2.5)
+    television(d, "W", 2.5)
     sofa = d.against("E", "sofa", 2.5, SOFA)
     _sofa_group(d, sofa, SMALL_COFFEE_TABLE)
     d.place("rug", 1.9, 2.5, RUG, "east")
@@ -189,7 +184,7 @@ def lounge_with_corner_seats():
                4.6, 4.0)  # fmt: skip
     d.door("W", 0.6)
     d.window("E", 2.0, 1.6)
-    _television(d, "N", 2.6, SMALL_TV_STAND, SMALL_TV)
+    television(d, "N", 2.6, SMALL_TV_STAND, SMALL_TV)
     sofa = d.against("S", "sofa", 2.6, SOFA)
     _sofa_group(d, sofa)
     d.place("armchair", 1.1, 2.3, ARMCHAIR, "east")
@@ -207,7 +202,7 @@ def bay_window_room():
     d.against("S", "armchair", 1.4, ARMCHAIR, gap=0.1)
     d.against("S", "armchair", 2.6, ARMCHAIR, gap=0.1)
     d.place("coffee_table", 2.0, 2.95, SMALL_COFFEE_TABLE, "south")
-    _television(d, "E", 2.0)
+    television(d, "E", 2.0)
     sofa = d.against("W", "sofa", 1.8, SOFA)
     _sofa_group(d, sofa)
     d.place("rug", 2.3, 1.8, RUG, "east")
@@ -220,7 +215,7 @@ def studio_sitting():
                3.6, 3.4)  # fmt: skip
     d.door("N", 0.55, 0.8)
     d.window("S", 1.8, 1.2)
-    _television(d, "E", 1.7, SMALL_TV_STAND, SMALL_TV)
+    television(d, "E", 1.7, SMALL_TV_STAND, SMALL_TV)
     sofa = d.against("W", "sofa", 1.8, LOVESEAT)
     _sofa_group(d, sofa, SMALL_COFFEE_TABLE)
     d.against("N", "plant", 3.2, PLANT, gap=0.05)
@@ -247,7 +242,7 @@ def tv_wall_between_windows():
     d.door("E", 4.0)
     d.window("N", 2.7, 1.6)
     d.window("S", 2.0, 1.6)
-    _television(d, "W", 2.3)
+    television(d, "W", 2.3)
     sofa = d.place("sofa", 3.75, 2.3, SOFA, "west")
     _sofa_group(d, sofa)
     d.place("rug", 2.6, 2.3, LARGE_RUG, "east")
@@ -263,7 +258,7 @@ def den():
                4.0, 3.6)  # fmt: skip
     d.door("S", 0.55, 0.8)
     d.window("E", 1.8, 1.2)
-    _television(d, "W", 1.6, SMALL_TV_STAND, SMALL_TV)
+    television(d, "W", 1.6, SMALL_TV_STAND, SMALL_TV)
     sofa = d.against("E", "sofa", 1.8, SOFA)
     _sofa_group(d, sofa)
     d.against("N", "bookshelf", 1.4, BOOKSHELF)
