@@ -15,7 +15,9 @@ The steps, each a function here:
 3. ``build_graph``: a ``SceneGraph`` of the indoor catalog's entries with relations a
    room's rules would state: big pieces against a wall, night tables
    either side of the bed, a desk under the window with its chair before it, chairs
-   round a table, small things on their supports. What a piece stands beside is its
+   round a table, small things on their supports; in a gym treadmills and bikes in a
+   row against a wall (console to it), a weight bench before the dumbbell rack, a mat
+   before the television or the rack. What a piece stands beside is its
    strongest partner in the type's relation graph (the weight ``W`` of the plan model).
 4. ``starting_poses``: the pieces that stand against a wall go, largest first, to the
    place along the walls whose footprint covers the most of the layout mask, clear of
@@ -81,8 +83,18 @@ SUPPORTS = {
 #: at its desk or table, an armchair by the coffee table) or in a corner.
 AGAINST_WALL = frozenset({
     "bed", "wardrobe", "dresser", "bookshelf", "filing_cabinet", "tv_stand", "piano", "refrigerator",
-    "kitchen_counter", "sofa", "desk",
+    "kitchen_counter", "sofa", "desk", "treadmill", "exercise_bike", "rowing_machine", "dumbbell_rack",
 })  # fmt: skip
+#: Pieces that stand in a row along a wall: beside the first piece of the first of their
+#: categories in the room (not themselves), backs flush: bookshelves side by side,
+#: treadmills and bikes in a row facing the same wall (the gyms' cardio rows).
+ROWS = {"bookshelf": ("bookshelf",), "treadmill": ("treadmill",), "exercise_bike": ("treadmill", "exercise_bike")}
+#: What a flat piece lies before, in order of preference: a rug before the bed, sofa or
+#: table; an exercise mat before the television or the dumbbell rack.
+FLAT_BEFORE = {"rug": ("bed", "sofa", "dining_table"), "exercise_mat": ("tv_stand", "dumbbell_rack")}
+#: Free-standing pieces that stand before a piece against a wall (beyond its clearance):
+#: a weight bench before the dumbbell rack.
+STANDS_BEFORE = {"weight_bench": ("dumbbell_rack",)}
 #: Seats and what they are pulled up to, in order of preference.
 SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_table", "desk")}
 #: The sides of a table its chairs take in turn, each with how a chair there faces the
@@ -412,9 +424,10 @@ def _relations_of(
         return [(side, bed), ("ImplicitAlignedWith", bed), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
-    if name == "bookshelf" and index > 0:
-        first = made["bookshelf"][0]
-        return [("NextToChooseSide", first), ("ImplicitAlignedWith", first), ("ImplicitAgainstWall", ROOM_NODE)]
+    if name in ROWS:
+        first = next((made[n][0] for n in ROWS[name] if made.get(n) and made[n][0] != made[name][index]), None)
+        if first is not None:
+            return [("NextToChooseSide", first), ("ImplicitAlignedWith", first), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "sofa" and made.get("tv_stand"):
         return [("FacingTowards", made["tv_stand"][0]), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "coffee_table" and made.get("sofa"):
@@ -428,10 +441,13 @@ def _relations_of(
         return [("AgainstWall", ROOM_NODE)]
     if name in CENTRE_PIECES:
         return []
-    if name == "rug":
-        anchor = next((made[n][0] for n in ("bed", "sofa", "dining_table") if made.get(n)), None)
+    if name in FLAT_BEFORE:
+        anchor = next((made[n][0] for n in FLAT_BEFORE[name] if made.get(n)), None)
         anchor = anchor or _strongest_partner(name, made, weights)
         return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
+    before = next((made[n][index % len(made[n])] for n in STANDS_BEFORE.get(name, ()) if made.get(n)), None)
+    if before is not None:
+        return [("NextToFront", before)]
     partner = _strongest_partner(name, made, weights)
     if name == "armchair" and made.get("coffee_table"):
         return [("NextToChooseSide", made["coffee_table"][0]), ("FacingTowards", made["coffee_table"][0])]
@@ -464,7 +480,7 @@ def _strongest_partner(name: str, made: dict, weights: dict) -> str | None:
     seats and rugs aside (one stands beside furniture, not beside a chair)."""
     best, best_weight = None, 0.0
     for other in sorted(made):
-        if other == name or other in SUPPORTS or other in SEAT_TARGETS or other == "rug":
+        if other == name or other in SUPPORTS or other in SEAT_TARGETS or other in FLAT_BEFORE:
             continue
         weight = weights.get((min(name, other), max(name, other)), 0.0)
         if weight > best_weight:
@@ -586,6 +602,7 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
     when it also faces it, where that is inside the room and clear of the door
     ``swings`` and the ``placed`` pieces' footprints and clearances (but its own
     piece's: a chair stands in the space kept free before its desk)."""
+    from scenewright.completion.activity import SEATS
     from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     facing = {(r.source, r.target) for r in graph.edges("FacingTowards")}
@@ -595,6 +612,8 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
             continue
         node, target = graph.node(relation.source), graph.node(relation.target)
         reach = (target.size[2] + node.size[2]) / 2.0 + WALL_GAP
+        if node.type not in SEATS and node.size[1] > FLAT:  # a seat or a rug may stand in the clearance
+            reach += dict(target.clearance).get("front", 0.0)
         x, z = anchor.x + reach * math.sin(anchor.yaw), anchor.z + reach * math.cos(anchor.yaw)
         yaw = anchor.yaw + math.pi if (node.id, target.id) in facing else anchor.yaw
         rect = make_rect(x, z, node.size[0], node.size[2], yaw)

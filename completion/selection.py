@@ -17,7 +17,10 @@ the room's area under the set's area distribution (each type's plans' mean and s
 deviation, ``area_spreads``; areas of several types add), how often the set's types have
 what was asked, and a cost for each type beyond the first: the plans show ``n`` rooms of
 one type and none of several, so by the rule of succession a room of several types is
-``1 / (1 + n)`` as likely. A room splits only when no single type's rooms come near its
+``1 / (1 + n)`` as likely. A type joins a set of several only when it has a requested
+category or the plans have seen it with one (``_joins``): the plans of some type have
+both a category of its own (one it has more often than any other type) and a requested
+category. A room splits only when no single type's rooms come near its
 area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
 three spreads above the bedrooms' mean; at 31 it becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
 most often.
@@ -89,9 +92,12 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
             raise InputError(f"the plans hold at most {most} of {name!r} together, not {count}")
     spreads = area_spreads(model)
     extra_type = math.log(1 + sum(entry.get("plans", 0) for entry in model["types"].values()))
-    candidates = []  # the set of all types holds everything (checked above): never empty
+    joins = {t for t in types if _joins(model, t, requested)}
+    candidates = []  # the set of the types that have a requested category holds everything (checked above)
     for mask in range(1, 2 ** len(types)):
         chosen = [t for k, t in enumerate(types) if mask >> k & 1]
+        if len(chosen) > 1 and not joins.issuperset(chosen):
+            continue
         if all(_holds(model, chosen, name, count) for name, count in requested.items()):
             mean = sum(model["types"][t]["mean_area"] for t in chosen)
             variance = sum(spreads[t] ** 2 for t in chosen)
@@ -116,6 +122,32 @@ def area_spreads(model: dict) -> dict[str, float]:
         t: max(float(np.std(areas[t])) if len(areas[t]) > 1 else 0.0, MIN_AREA_SPREAD * entry["mean_area"])
         for t, entry in model["types"].items()
     }
+
+
+def own_categories(model: dict) -> dict[str, set[str]]:
+    """Per type, the categories it has more often than every other type (the largest
+    P(category | type); ties to the first type by name): a bed is a bedroom's, a sofa
+    and a television a living room's, a treadmill a gym's."""
+    owned: dict[str, set[str]] = {t: set() for t in model["types"]}
+    for name in sorted(model["categories"]):
+        best = max(sorted(model["types"]), key=lambda t: _p(model, t, name))
+        if _p(model, best, name) > 0.0:
+            owned[best].add(name)
+    return owned
+
+
+def _joins(model: dict, room_type: str, requested) -> bool:
+    """Whether ``room_type`` may be one of several types of a room asked for ``requested``:
+    it has a requested category, or the plans of some type have both one of its own
+    categories (``own_categories``) and a requested one (bedrooms have desks, so a study
+    may join a bedroom; no type has both a treadmill and a bed)."""
+    if any(_p(model, room_type, name) > 0.0 for name in requested):
+        return True
+    own = own_categories(model)[room_type]
+    return any(
+        any(_p(model, other, name) > 0.0 for name in own) and any(_p(model, other, name) > 0.0 for name in requested)
+        for other in model["types"]
+    )
 
 
 def _p(model: dict, room_type: str, name: str) -> float:

@@ -55,6 +55,28 @@ def test_a_5x4_bedroom_with_a_bed_and_a_bookshelf_is_completed_and_laid_out(mode
     assert ("nightstand", "NextToLeft") in by_label and ("desk", "UnderWindow") in by_label
 
 
+def test_three_treadmills_in_a_living_room_sized_room_make_a_laid_out_gym(model, catalog):
+    """The paper's adaptivity: what is asked for decides the room's type."""
+    request = parse_request("5x4", ["S:0.8:0.9"], ["N:2.5:1.4"], ["treadmill=3"], catalog)
+    scene = complete(request, 0, model=model, catalog=catalog)
+    assert scene.completion["types"] == ["gym"]
+    assert scene.layout.ok, scene.layout.problems
+    types = [o.type for o in scene.placed_objects()]
+    assert types.count("treadmill") == 3 and len(set(types)) >= 2
+    labels = {(r.source, r.label) for r in scene.relations}
+    assert ("treadmill_1", "AgainstWall") in labels  # its console to a wall, the others in a row beside it
+
+
+def test_a_small_gym_keeps_its_machines_and_the_bench_stands_before_the_rack(model, catalog):
+    request = parse_request("3.6x3.4", ["S:0.5:0.8"], ["W:1.7:1.2"], ["weight_bench,dumbbell_rack,exercise_bike"],
+                            catalog)  # fmt: skip
+    scene = complete(request, 0, model=model, catalog=catalog)
+    assert scene.completion["types"] == ["gym"]
+    assert scene.layout.ok, scene.layout.problems
+    assert {"weight_bench", "dumbbell_rack", "exercise_bike"} <= {o.type for o in scene.placed_objects()}
+    assert ("weight_bench_1", "NextToFront", "dumbbell_rack_1") in {(r.source, r.label, r.target) for r in scene.relations}
+
+
 def test_a_larger_room_gets_more_categories(model, catalog):
     def added(size):
         request = parse_request(size, ["S:0.6:0.8"], ["N:1.5:1.0"], ["bed,bookshelf"], catalog)
@@ -85,7 +107,8 @@ def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(mo
         (["--room", "5x4", "--window", "N:2:x", "--with", "bed"], "'x' is not a number"),
         (["--room", "5x4", "--with", "bedd"], "did you mean 'bed'"),
         (["--room", "5x4", "--with", "chair=0"], "whole number from 1"),
-        (["--room", "5x4", "--with", "treadmill"], "not an indoor catalog entry"),
+        (["--room", "5x4", "--with", "tredmill"], "did you mean 'treadmill'"),
+        (["--room", "5x4", "--with", "bathtub"], "no plan of any type has a 'bathtub'"),
         (["--room", "5x4", "--with", "chair=20"], "at most"),
     ],
 )
@@ -260,7 +283,8 @@ def test_adding_to_a_furnished_room_keeps_every_piece_where_it_stood(furnished, 
     [
         (["--add", "piano", "--room", "5x4"], "--room describes an empty room"),
         ([], "needs --add"),
-        (["--add", "treadmill"], "not an indoor catalog entry"),
+        (["--add", "tredmill"], "not an indoor catalog entry"),
+        (["--add", "bathtub"], "no plan of any type has a 'bathtub'"),
     ],
 )
 def test_bad_additions_exit_2_on_one_line(furnished, tmp_path, capsys, extra, fragment):

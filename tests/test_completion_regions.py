@@ -19,7 +19,9 @@ from test_complete import catalog, model  # noqa: F401 (the fixtures)
 
 
 #: sha256 of the reproducible scene.json of the 5 x 4 bedroom below, seed 1, from the
-#: code before composite rooms were split: a room of one type must not change.
+#: code before composite rooms were split: a room of one type must not change. It is
+#: made from the plans of the four home types (the gyms came later: their plants move
+#: the plant's mean footprint, so the model, not the code, differs with them).
 ONE_TYPE_DIGEST = "4f1ddf1bc01689d8782d37514e4df5f7958a9ac20e88a5d9174c0e81035265bd"
 
 
@@ -121,7 +123,12 @@ def test_a_seeded_composite_room_lays_each_types_pieces_out_in_its_region(model,
     assert len(record["virtual_walls"]) == 1 and record["mask"]["bounds"] == record["regions"][0]["bounds"]
 
 
-def test_a_room_of_one_type_is_exactly_what_it_was(model, catalog):
+def test_a_room_of_one_type_is_exactly_what_it_was(catalog):
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.model import build_model
+    from scenewright.completion.plan import load_plans
+
+    model = build_model([plan for plan in load_plans(shipped_plans_dir()) if plan.type != "gym"])
     request = request_of(catalog, "5x4", "S:0.8:0.9", "N:2.5:1.4", "bed,bookshelf")
     split, whole = (complete(request, 1, model=model, catalog=catalog, split=flag) for flag in (True, False))
     assert split.completion["types"] == ["bedroom"] and "regions" not in split.completion

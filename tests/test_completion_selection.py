@@ -91,3 +91,12 @@ def test_more_categories_are_added_to_larger_rooms(shipped_model, room_type, req
         assert set(requested) <= set(result.categories)
         added.append(len(result.categories) - len(requested))
     assert added == sorted(added) and added[-1] > added[0], added
+
+
+def test_three_treadmills_make_a_gym_and_gyms_join_no_home_room(shipped_model):
+    from scenewright.completion.selection import choose_types
+
+    assert choose_types(shipped_model, {"treadmill": 3}, 20.0).types == ("gym",)
+    for asked in ("bed", "sofa", "desk", "dining_table"):
+        for area in (25.0, 35.0, 45.0, 60.0):
+            assert "gym" not in choose_types(shipped_model, {asked: 1}, area).types, (asked, area)
