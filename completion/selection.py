@@ -22,7 +22,7 @@ category or the plans have seen it with one (``_joins``): the plans of some type
 both a category of its own (one it has more often than any other type) and a requested
 category. A room splits only when no single type's rooms come near its
 area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
-three spreads above the bedrooms' mean; at 31 it becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
+three spreads above the bedrooms' mean; a 5.5 x 5.7 m one becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
 most often.
 
 **Categories.** Start from every category of the type's relation graph (and the ones the user asked
