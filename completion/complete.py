@@ -566,21 +566,26 @@ def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict
         ring = max((graph.node(seat).size[2] for seat, _ in seats), default=0.3) + 2 * WALL_GAP
         width, _, depth = table.size
         xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
+        grid = [(x, z) for x in np.arange(xs.min(), xs.max(), WALL_STEP) for z in np.arange(zs.min(), zs.max(), WALL_STEP)]
+        if not grid:
+            continue
+        scores = mask_values(mask, room, table.type, np.array(grid))
+        # Both turns at every grid point, best mask value first (ties in grid order): the
+        # first that fits is the best place, found without testing the whole grid.
+        order = np.lexsort((np.arange(2 * len(grid)), -np.concatenate([scores, scores])))
         best = None
-        for yaw in (0.0, math.pi / 2.0):
-            for x in np.arange(xs.min(), xs.max(), WALL_STEP):
-                for z in np.arange(zs.min(), zs.max(), WALL_STEP):
-                    rect = make_rect(x, z, width + 2 * ring, depth + 2 * ring, yaw)
-                    if room.footprint_excess(corners(rect)) > 1e-6:
-                        continue
-                    if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
-                        continue
-                    score = float(mask_values(mask, room, table.type, np.array([[x, z]]))[0])
-                    if best is None or score > best[0] + 1e-12:
-                        best = (score, rect, float(x), float(z), yaw)
+        for k in order:
+            (x, z), yaw = grid[k % len(grid)], (0.0, math.pi / 2.0)[k // len(grid)]
+            rect = make_rect(x, z, width + 2 * ring, depth + 2 * ring, yaw)
+            if room.footprint_excess(corners(rect)) > 1e-6:
+                continue
+            if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
+                continue
+            best = (rect, float(x), float(z), yaw)
+            break
         if best is None:
             continue
-        _, rect, x, z, yaw = best
+        rect, x, z, yaw = best
         placed[table.id] = rect
         poses[table.id] = Pose(x, 0.0, z, yaw)
         c, s = math.cos(yaw), math.sin(yaw)
