@@ -5,6 +5,7 @@ and time.
     .venv/bin/python benchmarks/bench_matching.py              # everything, 4 seeds per rule set
     .venv/bin/python benchmarks/bench_matching.py --seeds 8
     .venv/bin/python benchmarks/bench_matching.py --only copies
+    .venv/bin/python benchmarks/bench_matching.py --seeds 8 --first-seed 8   # scenes 8..15
 
 Copies: each scene against ``perturbed_copy`` of it (every type and id renamed, 5 cm
 jitter, one standing object removed, one box added, order shuffled). "Kept and right"
@@ -36,8 +37,8 @@ from scenewright.variation.structure import structure_graph
 RULE_SETS = ("bedroom", "living_room", "kitchen", "study", "classroom", "bathroom", "desk")
 
 
-def scenes_of(seeds: int) -> dict[str, list]:
-    return {rules: [build_scene(rules, seed) for seed in range(seeds)] for rules in RULE_SETS}
+def scenes_of(seeds: int, first: int = 0) -> dict[str, list]:
+    return {rules: [build_scene(rules, seed) for seed in range(first, first + seeds)] for rules in RULE_SETS}
 
 
 def copies(scenes: dict[str, list]) -> None:
@@ -167,9 +168,10 @@ def timing(scenes: dict[str, list]) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seeds", type=int, default=4, help="scenes per rule set (4)")
+    parser.add_argument("--first-seed", type=int, default=0, help="first scene seed (0), to measure on other scenes")
     parser.add_argument("--only", choices=("copies", "exhaustive", "roles", "timing"))
     args = parser.parse_args()
-    scenes = scenes_of(args.seeds)
+    scenes = scenes_of(args.seeds, args.first_seed)
     for name, run in (("copies", copies), ("exhaustive", exhaustive), ("roles", roles), ("timing", timing)):
         if args.only in (None, name):
             run(scenes)
