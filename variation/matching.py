@@ -24,17 +24,23 @@ written ``E = x^T W x`` for the assignment vector x (x_ik = 1 when i matches k).
 The maximiser is found as SMAC does (Cour, Srinivasan and Shi, "Balanced graph
 matching", 2006): the one-to-one constraints (each row and each column of the
 assignment sums to 1, the smaller graph padded with dummy objects, which are "no
-match") are affine, ``C x = b``; they are made homogeneous by subtracting the last one
-scaled, the symmetric ``W`` is projected on their null space, its leading eigenvector
-is the relaxed solution, scaled so the constraints hold. The Hungarian method
-(``scipy.optimize.linear_sum_assignment``) makes it a one-to-one assignment.
+match") are affine, ``C x = b``; they are made homogeneous, the symmetric affinity is
+projected on their null space, its leading eigenvector is the relaxed solution, scaled
+so the constraints hold. The Hungarian method (``scipy.optimize.linear_sum_assignment``)
+makes it a one-to-one assignment. Written x^T W x, as the paper does, the object
+similarities u sit on W's diagonal; on a 0/1 vector that is the linear term u^T x,
+and we give it to the relaxation as one: a homogeneous coordinate t with one more
+affine constraint, t = 1, makes it quadratic (``spectral_solution``). On the diagonal
+it would only count x_ik^2, small where the relaxed vector spreads, and the edges
+would drown it.
 
 A pair's *confidence* is the share of its best possible score it gets: its object
 similarity plus lambda times its matched edges' similarities, over 1 + lambda times
-the larger of the two objects' own edge scores (what each gets matched to a copy of
+the mean of the two objects' own edge scores (what each gets matched to a copy of
 itself). The paper keeps a match whose confidence exceeds gamma = 0.8 and withdraws
 the rest; its confidence is the leading eigenvalue, which has no fixed scale, so we
-use this per-pair share with the same threshold (``CONFIDENCE``).
+use this per-pair share, with its own threshold (``CONFIDENCE``, 0.6; docs/variation.md
+gives the measurements behind it).
 """
 
 from __future__ import annotations
@@ -176,40 +182,51 @@ class Problem:
 
 
 def spectral_solution(affinity: sparse.spmatrix, size: int) -> np.ndarray:
-    """(N, N) relaxed assignment: SMAC's leading eigenvector of W under the affine
-    one-to-one constraints (rows and columns sum to 1), scaled so they hold.
+    """(N, N) relaxed assignment: SMAC's leading eigenvector under the affine one-to-one
+    constraints (rows and columns sum to 1), with the unary terms as a linear term.
 
-    The eigenvector of P W P (P the projection on the constraints' null space) is found
-    by Lanczos iteration (``eigsh``) from a fixed start, so it is deterministic."""
+    On a 0/1 vector x_ik^2 = x_ik, so W's diagonal u (the object similarities) is the
+    linear term of E = x^T (W - diag u) x + u^T x. It is made quadratic with a
+    homogeneous coordinate t and one more affine constraint, t = 1: the lifted vector
+    y = (x, t) (N*N + 1,) has E = y^T L y, L = [[W - diag u, u / 2], [u^T / 2, 0]].
+    Left on the diagonal, a unary term only counts x_ik^2, which is small where the
+    relaxation spreads its mass, so the pairwise terms drown the object similarities
+    (measured in docs/variation.md). The eigenvector of P L P (P the projection on the
+    constraints' null space) is found by Lanczos iteration (``eigsh``) from a fixed
+    start, so it is deterministic; it is scaled so t = 1, which makes every constraint
+    hold."""
     count = size * size
+    unary = np.asarray(affinity.diagonal()).ravel()
+    pairwise = affinity - sparse.diags(unary)
 
     def project(vector: np.ndarray) -> np.ndarray:
-        # The constraints made homogeneous (each row and column sum minus the last
-        # column's) say "all row and column sums are equal". Their row space is the
-        # matrices a_i + b_k whose entries sum to 0; projecting that out of X leaves
-        # X - row means - column means + 2 * grand mean.
-        matrix = np.reshape(vector, (size, size))
-        grand = matrix.mean()
-        return (matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + 2.0 * grand).ravel()
+        # Made homogeneous against t = 1, the constraints say "every row and column of
+        # X sums to t". Their null space is X = t / N + Z, Z with zero row and column
+        # sums: the direction (1/N, ..., 1/N, 1) (squared length 2) and the doubly
+        # centred matrices, which are orthogonal to it.
+        matrix, homogeneous = np.reshape(vector[:count], (size, size)), vector[count]
+        centred = matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + matrix.mean()
+        along = (matrix.sum() / size + homogeneous) / 2.0
+        return np.append(centred.ravel() + along / size, along)
 
     def apply(vector: np.ndarray) -> np.ndarray:
-        return project(affinity @ project(np.ravel(vector)))
+        projected = project(np.ravel(vector))
+        assignment, homogeneous = projected[:count], projected[count]
+        lifted = np.append(pairwise @ assignment + homogeneous / 2.0 * unary, unary @ assignment / 2.0)
+        return project(lifted)
 
     if count <= 64:  # small: a dense eigensolver is exact and as fast
-        dense = np.stack([apply(column) for column in np.eye(count)], axis=1)
+        dense = np.stack([apply(column) for column in np.eye(count + 1)], axis=1)
         values, vectors = np.linalg.eigh((dense + dense.T) / 2.0)
         vector = vectors[:, np.argmax(values)]
     else:
-        operator = LinearOperator((count, count), matvec=apply, dtype=float)
-        start = project(np.linspace(1.0, 2.0, count))
-        _, vectors = eigsh(operator, k=1, which="LA", v0=start, tol=1e-8, maxiter=20 * count)
+        operator = LinearOperator((count + 1, count + 1), matvec=apply, dtype=float)
+        start = project(np.linspace(1.0, 2.0, count + 1))
+        _, vectors = eigsh(operator, k=1, which="LA", v0=start, tol=1e-8, maxiter=20 * (count + 1))
         vector = vectors[:, 0]
-    total = vector.reshape(size, size)[:, -1].sum()  # the last column's sum, as every other's
-    if abs(total) < 1e-12:
-        vector = vector if vector.sum() >= 0 else -vector
-    else:
-        vector = vector / total  # the last constraint holds, hence all of them
-    return vector.reshape(size, size)
+    if abs(vector[count]) > 1e-12:  # t = 0: no part along the constraints' solutions to scale
+        vector = vector / vector[count]  # t = 1: every row and column then sums to 1
+    return vector[:count].reshape(size, size)
 
 
 def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50) -> np.ndarray:
