@@ -61,6 +61,8 @@ from scenewright.generator.layout.learned_term import (
 )
 from scenewright.generator.layout.problem import compile_problem
 
+from .derivations import closest_derivation
+
 #: Blur of the histograms, in bins (standard deviation of the Gaussian): SMOOTH for the
 #: starting weights, UPDATE_SMOOTH for the comparisons iterative scaling makes (a few
 #: dozen generated pairs per round give a noisy fine histogram; what the weights must
@@ -86,12 +88,18 @@ MIN_EXAMPLES = 2
 Kind = tuple[str, str, tuple[str, ...]]
 
 
+class NoRelatedPairs(InputError):
+    """The examples hold no pair kind in MIN_EXAMPLES of them: there is no context to learn."""
+
+
 @dataclass
 class ExampleLayout:
-    """One example's scene graph and its related pairs' relative poses (kind, (x, z, turn))."""
+    """One example's scene graph, its related pairs' relative poses (kind, (x, z, turn))
+    and its floor's area (m^2, the extent's)."""
 
     graph: SceneGraph
     poses: list[tuple[Kind, tuple[float, float, float]]]
+    area: float
 
 
 def graph_pair_poses(graph: SceneGraph, poses: dict[str, tuple[float, float, float]]) -> list[tuple[Kind, tuple]]:
@@ -102,6 +110,10 @@ def graph_pair_poses(graph: SceneGraph, poses: dict[str, tuple[float, float, flo
     for source, target, kind in related_pairs(problem, types):
         found.append((kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]])))
     return found
+
+
+def _floor_area(extent) -> float:
+    return float(np.prod(extent or [1.0, 1.0]))
 
 
 def example_layout(name: str, document: dict) -> ExampleLayout:
@@ -115,7 +127,24 @@ def example_layout(name: str, document: dict) -> ExampleLayout:
     except (KeyError, ValueError, TypeError) as error:
         raise InputError(f"{name}: not a valid scene graph: {error}") from None
     poses = {o.id: (float(o.position[0]), float(o.position[2]), float(o.yaw)) for o in scene.objects}
-    return ExampleLayout(graph, graph_pair_poses(graph, poses))
+    return ExampleLayout(graph, graph_pair_poses(graph, poses), _floor_area(document.get("extent")))
+
+
+def measured_example_layout(name: str, scene: Scene, derivations: Sequence[SceneGraph]) -> ExampleLayout:
+    """An example read from geometry alone (``scene``: no relation edges but what rests on
+    what), related as one of its best derivations relates its objects: ``derivations``
+    are their scene graphs (``derivations.measured_derivation_graphs``), of which the one
+    the example comes nearest to holding is taken (``derivations.closest_derivation``),
+    each of its object nodes standing for the example object assigned to it, at that
+    object's pose; the graph laid out in the fit's rounds is that derivation's."""
+    try:
+        derivation, chosen = closest_derivation(derivations, scene)
+    except InputError as error:
+        raise InputError(f"{name}: {error}") from None
+    objects = {o.id: o for o in scene.placed_objects()}
+    poses = {node: (float(objects[o].position[0]), float(objects[o].position[2]), float(objects[o].yaw))
+             for node, o in chosen.items()}  # fmt: skip
+    return ExampleLayout(derivation, graph_pair_poses(derivation, poses), _floor_area(scene.extent))
 
 
 def grid_bounds(points: np.ndarray) -> tuple[float, float, float, float]:
@@ -195,24 +224,36 @@ def fit_context(
     params: LayoutParams | None = None,
 ) -> ContextFit:
     """Fit a context to example scene.json documents ((name, document) pairs); see the
-    module docstring. ``InputError`` when no pair kind is held by MIN_EXAMPLES examples."""
-    from scenewright.generator.layout.learned_term import pair_kind_name
-
+    module docstring. ``NoRelatedPairs`` (an ``InputError``) when no pair kind is held by
+    MIN_EXAMPLES examples."""
     laid = [example_layout(name, document) for name, document in examples]
+    return fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts, params=params)
+
+
+def fit_example_layouts(
+    laid: Sequence[ExampleLayout],
+    *,
+    seed: int = 0,
+    rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
+    params: LayoutParams | None = None,
+) -> ContextFit:
+    """Fit a context to examples' layouts (``example_layout``, ``measured_example_layout``);
+    see the module docstring. ``NoRelatedPairs`` (an ``InputError``) when no pair kind is
+    held by MIN_EXAMPLES examples."""
     observed_poses: dict[Kind, list[tuple]] = {}
     extents: dict[Kind, float] = {}  # the largest scene area a kind is seen in (m^2)
     holding: dict[Kind, int] = {}  # examples holding the kind
-    for (_, document), example in zip(examples, laid):
-        area = float(np.prod(document.get("extent") or [1.0, 1.0]))
+    for example in laid:
         for kind, pose in example.poses:
             observed_poses.setdefault(kind, []).append(pose)
-            extents[kind] = max(extents.get(kind, 0.0), area)
+            extents[kind] = max(extents.get(kind, 0.0), example.area)
         for kind in {kind for kind, _ in example.poses}:
             holding[kind] = holding.get(kind, 0) + 1
     kinds = sorted(kind for kind in observed_poses if holding[kind] >= MIN_EXAMPLES)
     skipped = sorted(pair_kind_name(*kind) for kind in observed_poses if kind not in kinds)
     if not kinds:
-        raise InputError(
+        raise NoRelatedPairs(
             "no related pair of objects (two objects joined by a relation of the rules) occurs in at least "
             f"{MIN_EXAMPLES} examples, so there is no context to learn"
         )

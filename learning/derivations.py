@@ -35,17 +35,19 @@ for every derivation, so it decides nothing.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import linear_sum_assignment
 
 from scenewright.core.errors import InputError
 from scenewright.core.poses import Pose
-from scenewright.core.relations import RELATIONS
+from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import ROOM_KINDS, ROOM_NODE
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.examples.model import scene_supports
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import measure_layout
 from scenewright.generator.expand import Draws, expand_with
@@ -97,10 +99,13 @@ def resting_signature(graph: SceneGraph) -> Signature:
     )
 
 
-def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
-    """Statement -> how many objects of its subject type the example ``scene`` holds it
-    for (with some other object of the target type, or against its room), for every
-    statement of ``statements`` that is not a support (those are in the signature)."""
+def measured_relations(
+    scene: Scene, wanted: Iterable[tuple[str, str, str | None]]
+) -> dict[tuple[str, str, str | None], Relation]:
+    """The layout's verdict (``core.relations.Relation``: ``value``, ``satisfied``) on each
+    of ``wanted``, (subject object id, label, other object id or None for the room) in the
+    example ``scene``, measured by the layout's own predicates at the example's poses and
+    sizes, all in one ``measure_layout``."""
     objects = scene.placed_objects()
     graph = SceneGraph(params=SceneParams(extent=tuple(scene.extent), ground="floor" if scene.room else "grass",
                                           room=scene.room))  # fmt: skip
@@ -108,23 +113,37 @@ def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
     for obj in objects:
         node_of[obj.id] = graph.add_node(CatalogEntry(obj.type, "object", obj.noun or obj.type, size=tuple(obj.size)))
         poses[node_of[obj.id]] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
-    type_of = {node_of[obj.id]: obj.type for obj in objects}
-    measured = set()
+    object_of = {node: object_id for object_id, node in node_of.items()}  # anything else is the room's
+    added = set()
+    for subject, label, other in wanted:
+        edge = (node_of[subject], ROOM_NODE if other is None else node_of[other], label)
+        if edge not in added:
+            added.add(edge)
+            graph.add_relation(*edge)
+    return {
+        (object_of[relation.source], relation.label, object_of.get(relation.target)): relation
+        for relation in measure_layout(graph, poses, {}).relations
+    }  # fmt: skip
+
+
+def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
+    """Statement -> how many objects of its subject type the example ``scene`` holds it
+    for (with some other object of the target type, or against its room), for every
+    statement of ``statements`` that is not a support (those are in the signature)."""
+    objects = scene.placed_objects()
+    type_of = {obj.id: obj.type for obj in objects}
+    wanted = []
     for subject_type, label, target in statements:
         if RELATIONS[label].support or _unmeasurable(label, scene):
             continue
-        for subject in (node_of[o.id] for o in objects if o.type == subject_type):
+        for subject in (o.id for o in objects if o.type == subject_type):
             if target in ROOM_KINDS:
-                others = [ROOM_NODE]
+                wanted.append((subject, label, None))
             else:
-                others = [node_of[o.id] for o in objects if o.type == target and node_of[o.id] != subject]
-            for other in others:
-                if (subject, label, other) not in measured:
-                    measured.add((subject, label, other))
-                    graph.add_relation(subject, other, label)
+                wanted.extend((subject, label, o.id) for o in objects if o.type == target and o.id != subject)
     held = {
-        (relation.source, relation.label, type_of.get(relation.target, ROOM_NODE))
-        for relation in measure_layout(graph, poses, {}).relations if relation.satisfied
+        (subject, label, ROOM_NODE if other is None else type_of[other])
+        for (subject, label, other), relation in measured_relations(scene, wanted).items() if relation.satisfied
     }  # fmt: skip
     held_by_type = Counter((type_of[subject], label, role) for subject, label, role in held)
     return Counter({
@@ -218,9 +237,15 @@ def derivations_of(rules: Rules, example: SceneGraph, name: str = "example") -> 
 
 
 def measured_derivations_of(rules: Rules, example: Scene, name: str = "example") -> list[list[dict]]:
-    """The derivations of ``rules`` that make an example read from geometry alone: those
-    of its resting signature that state the most relations the example holds (module
-    docstring), in the order the search finds them.
+    """The derivations of ``rules`` that make an example read from geometry alone
+    (``measured_derivation_graphs``), as lists of derivation records."""
+    return [graph.derivation for graph in measured_derivation_graphs(rules, example, name)]
+
+
+def measured_derivation_graphs(rules: Rules, example: Scene, name: str = "example") -> list[SceneGraph]:
+    """The scene graphs of the derivations of ``rules`` that make an example read from
+    geometry alone: those of its resting signature that state the most relations the
+    example holds (module docstring), in the order the search finds them.
 
     The search first keeps to derivations every statement of which the example holds
     (partial ones pruned as soon as they state one it does not, which makes it fast);
@@ -235,7 +260,118 @@ def measured_derivations_of(rules: Rules, example: Scene, name: str = "example")
         return []
     agreement = [geometric_agreement(graph, holding.counts(signature(graph).relations)) for graph in graphs]
     best = max(agreement)
-    return [graph.derivation for graph, score in zip(graphs, agreement) if score == best]
+    return [graph for graph, score in zip(graphs, agreement) if score == best]
+
+
+#: How much the assignment of derivation nodes to example objects weighs how far a
+#: relation is from holding (its log factor, squashed to [0, 1)) against whether it holds
+#: (1 per relation): a tie-break between assignments holding as many relations.
+NEAR_MISS = 1e-3
+
+
+def closest_derivation(graphs: Sequence[SceneGraph], example: Scene) -> tuple[SceneGraph, dict[str, str]]:
+    """Of the scene graphs of an example's best derivations (``measured_derivation_graphs``,
+    which state equally much that the example holds), the one whose relations the
+    example's objects come nearest to holding, with its assignment (``assign_objects``):
+    the least assignment cost, near misses included; the first on a tie. (A nightstand
+    that is quite next to neither side of the bed leaves "left of it" and "right of it"
+    tied in the search; the side it is nearer wins here.)"""
+    best: tuple[float, SceneGraph, dict[str, str]] | None = None
+    for graph in graphs:
+        chosen, cost = _assignment(graph, example)
+        if best is None or cost < best[0] - 1e-12:
+            best = (cost, graph, chosen)
+    assert best is not None, "no derivation to choose from"
+    return best[1], best[2]
+
+
+def assign_objects(graph: SceneGraph, example: Scene) -> dict[str, str]:
+    """Which object of ``example`` (an example read from geometry alone) each object node
+    of ``graph`` (the scene graph of one of its derivations, ``measured_derivation_graphs``)
+    stands for: node id -> object id, one to one.
+
+    A node is assigned an object of its type and style. Of all such assignments the one
+    sought holds the most of the graph's relation edges between objects: a support edge
+    holds when the example rests the one object on the other; any other edge when the
+    layout's predicate holds between the two objects at the example's poses
+    (``measured_relations``); a node resting on nothing gets an object resting on
+    nothing. Ties go to the assignment whose broken relations miss by least
+    (``NEAR_MISS``). It is found block by block, a block being the nodes of one (type,
+    style) with its objects (linear assignment, ``scipy.optimize.linear_sum_assignment``):
+    first in the order the graph made the blocks, each against the blocks assigned
+    before it; then again against all the others, keeping a block's new assignment only
+    when the whole holds more, until none changes. Deterministic."""
+    return _assignment(graph, example)[0]
+
+
+def _assignment(graph: SceneGraph, example: Scene) -> tuple[dict[str, str], float]:
+    """``assign_objects``' assignment and its cost: relations broken, plus ``NEAR_MISS``
+    times how far each misses."""
+    objects = example.placed_objects()
+    nodes = [node for node in graph.nodes() if node.kind == "object"]
+    blocks: dict[tuple[str, str | None], tuple[list[str], list[str]]] = {}
+    for node in nodes:
+        blocks.setdefault((node.type, node.style), ([], []))[0].append(node.id)
+    for obj in objects:
+        if (obj.type, obj.style) not in blocks:
+            raise InputError(f"the derivation has no {obj.type} (style {obj.style}) for example object {obj.id!r}")
+        blocks[(obj.type, obj.style)][1].append(obj.id)
+    for (type_name, _), (block_nodes, block_objects) in blocks.items():
+        if len(block_nodes) != len(block_objects):
+            raise InputError(f"the derivation makes {len(block_nodes)} {type_name}, the example has {len(block_objects)}")
+    node_ids = {node.id for node in nodes}
+    edges = [edge for edge in graph.edges() if edge.source in node_ids and edge.target in node_ids]
+    rests_on = scene_supports(example)
+    type_of = {obj.id: obj.type for obj in objects}
+    wanted = [
+        (a, edge.label, b)
+        for edge in edges if not RELATIONS[edge.label].support
+        for a in type_of if type_of[a] == graph.node(edge.source).type
+        for b in type_of if type_of[b] == graph.node(edge.target).type and b != a
+    ]  # fmt: skip
+    verdicts = measured_relations(example, wanted)
+    supported = {edge.source for edge in edges if RELATIONS[edge.label].support}
+
+    def edge_cost(source: str, label: str, target: str) -> float:
+        if RELATIONS[label].support:
+            return 0.0 if rests_on.get(source) == target else 1.0
+        verdict = verdicts[(source, label, target)]
+        miss = -float(verdict.value or 0.0)
+        return (0.0 if verdict.satisfied else 1.0) + NEAR_MISS * miss / (1.0 + miss)
+
+    def node_cost(node: str, obj: str, chosen: dict[str, str]) -> float:
+        cost = 0.0 if (node in supported) == (obj in rests_on) else 1.0
+        for edge in edges:
+            if edge.source == node and edge.target in chosen:
+                cost += edge_cost(obj, edge.label, chosen[edge.target])
+            elif edge.target == node and edge.source in chosen:
+                cost += edge_cost(chosen[edge.source], edge.label, obj)
+        return cost
+
+    def total(chosen: dict[str, str]) -> float:
+        unary = sum((node in supported) != (obj in rests_on) for node, obj in chosen.items())
+        return unary + sum(edge_cost(chosen[e.source], e.label, chosen[e.target]) for e in edges)
+
+    def assigned(block_nodes: list[str], block_objects: list[str], chosen: dict[str, str]) -> dict[str, str]:
+        others = {node: obj for node, obj in chosen.items() if node not in block_nodes}
+        costs = np.array([[node_cost(node, obj, others) for obj in block_objects] for node in block_nodes])
+        rows, columns = linear_sum_assignment(costs)
+        return {block_nodes[r]: block_objects[c] for r, c in zip(rows, columns)}
+
+    chosen: dict[str, str] = {}
+    for block_nodes, block_objects in blocks.values():
+        chosen.update(assigned(block_nodes, block_objects, chosen))
+    best = total(chosen)
+    for _ in range(len(blocks)):
+        improved = False
+        for block_nodes, block_objects in blocks.values():
+            trial = {**chosen, **assigned(block_nodes, block_objects, chosen)}
+            score = total(trial)
+            if score < best - 1e-12:
+                chosen, best, improved = trial, score, True
+        if not improved:
+            break
+    return chosen, best
 
 
 class _HoldingCache:

@@ -9,7 +9,11 @@ all, and checks that what it wrote loads as a rule set.
 
 ``what`` chooses what is fitted (``WHAT``): ``weights`` (the above), ``context`` (the
 learned layout part, ``context``: written beside the rules as ``NAME.context.json``,
-which ``generate`` picks up), or both. Without ``weights`` the rules are written with
+which ``generate`` picks up), or both. The context is learned from the examples' related
+pairs: a scene.json's relation edges say which objects are related; an example read
+from geometry alone is related as the one of its best derivations it comes nearest to
+holding relates it, its objects assigned to that derivation's nodes by which of its
+relations they hold (``context.measured_example_layout``). Without ``weights`` the rules are written with
 their numbers as they were. The context is fitted before anything is written, so a
 failure leaves no file behind.
 """
@@ -24,12 +28,23 @@ from pathlib import Path
 from scenewright.core.errors import InputError
 from scenewright.core.room import ROOM_KINDS
 from scenewright.core.scene import Scene
+from scenewright.core.scene_graph import SceneGraph
 from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.rules import Rules, parse_rules_tree
 
-from .context import LAYOUTS, ROUNDS, ContextFit, context_path, fit_context
-from .derivations import derivations_of, measured_derivations_of
+from .context import (
+    LAYOUTS,
+    ROUNDS,
+    ContextFit,
+    ExampleLayout,
+    NoRelatedPairs,
+    context_path,
+    example_layout,
+    fit_example_layouts,
+    measured_example_layout,
+)
+from .derivations import derivations_of, measured_derivation_graphs
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
@@ -54,17 +69,10 @@ class ExampleError(InputError):
 def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[list[dict]]:
     """The derivations an example scene may have come from: the one it keeps, or else
     every derivation of ``rules`` that makes a scene like it (``derivations_of``; for
-    an example read from geometry alone, a ``Scene``, ``measured_derivations_of``).
+    an example read from geometry alone, a ``Scene``, ``measured_candidates``).
     ``ExampleError`` if its derivation is not of these rules, or none makes it."""
     if isinstance(scene, Scene):
-        found = measured_derivations_of(rules, scene, path)
-        if not found:
-            types = sorted({o.type for o in scene.placed_objects()})
-            raise ExampleError(
-                f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
-                f"(same objects, styles and what rests on what; its types: {', '.join(types)})"
-            )
-        return found
+        return [graph.derivation for graph in measured_candidates(rules, path, scene)]
     derivation = scene.get("derivation")
     if derivation or not scene.get("objects"):
         try:
@@ -81,6 +89,33 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
             f"(same objects, groups and relations; its types: {', '.join(types)})"
         )
     return found
+
+
+def measured_candidates(rules: Rules, path: str, scene: Scene) -> list[SceneGraph]:
+    """The scene graphs of the derivations that make an example read from geometry alone
+    (``measured_derivation_graphs``); ``ExampleError`` when none does."""
+    found = measured_derivation_graphs(rules, scene, path)
+    if not found:
+        types = sorted({o.type for o in scene.placed_objects()})
+        raise ExampleError(
+            f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
+            f"(same objects, styles and what rests on what; its types: {', '.join(types)})"
+        )
+    return found
+
+
+def example_candidates_and_layout(
+    rules: Rules, path: str, scene: dict | Scene, with_layout: bool
+) -> tuple[list[list[dict]], ExampleLayout | None]:
+    """``example_candidates``, and when ``with_layout`` the example's layout for the
+    context fit: a scene.json's own (``example_layout``), or for an example read from
+    geometry alone its objects related as one of its best derivations relates them
+    (``measured_example_layout``)."""
+    if not isinstance(scene, Scene):
+        return example_candidates(rules, path, scene), example_layout(path, scene) if with_layout else None
+    graphs = measured_candidates(rules, path, scene)
+    layout = measured_example_layout(path, scene, graphs) if with_layout else None
+    return [graph.derivation for graph in graphs], layout
 
 
 def fit_rule_set(
@@ -108,18 +143,25 @@ def fit_rule_set(
     Returns the weights' fit (with ``weights`` left out: the fit that changes nothing),
     the context's fit (None without ``context``) and the files written. Raises
     ``ExampleError`` for an example that is not a derivation of these rules,
-    ``FitOutputError`` when the output cannot be placed, ``InputError`` when the
-    examples hold no pair to learn a context from.
+    ``FitOutputError`` when the output cannot be placed, ``context.NoRelatedPairs`` (an
+    ``InputError``) when the examples hold no pair to learn a context from.
     """
     rules = load_rules(rules_source, allow=allow)
-    measured = [path for path, scene in examples if isinstance(scene, Scene)]
-    if "context" in what and measured:
-        raise ExampleError(
-            f"{measured[0]}: a context is learned from scene.json examples, whose relations say which objects "
-            "are related; this one was read from geometry alone (fit it with --what weights)"
-        )
-    fit = fit_weights_em(rules, [example_candidates(rules, path, scene) for path, scene in examples], prior)
-    context = fit_context(examples, seed=seed, rounds=rounds, layouts=layouts) if "context" in what else None
+    candidates, laid = [], []
+    for path, scene in examples:
+        found, layout = example_candidates_and_layout(rules, path, scene, "context" in what)
+        candidates.append(found)
+        laid.append(layout)
+    fit = fit_weights_em(rules, candidates, prior)
+    context = None
+    if "context" in what:
+        try:
+            context = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+        except NoRelatedPairs as error:
+            if any(isinstance(scene, Scene) for _, scene in examples):
+                raise NoRelatedPairs(f"{error} (the objects of an example read from geometry alone are related "
+                                     "as its derivation relates them)") from None  # fmt: skip
+            raise
     tree = parse_rules_tree(rules_source, allow=allow)
     if "weights" not in what:
         fit = WeightFit((), fit.examples, prior)

@@ -13,8 +13,15 @@ the ``learn`` stream k of ``seed``) and compares them with the examples:
   both;
 - how many of the generated layouts are ok.
 
-Nothing is written until all of that has succeeded; then the rules file and the
-report, each whole (``write``).
+With ``context`` it also learns a context from the same examples against the induced
+rules (``learned_context``: each example related as one of its best derivations of
+those rules relates it, as ``fit --what context`` does for examples read from geometry
+alone), to be written beside the rules as ``NAME.context.json``; examples no derivation
+makes are left out of it, and when no related pair occurs in enough examples
+(``context.NoRelatedPairs``) the rules are written without one and the reason kept.
+
+Nothing is written until all of that has succeeded; then the rules file, the context
+and the report, each whole (``write``).
 """
 
 from __future__ import annotations
@@ -35,6 +42,16 @@ from scenewright.examples import Example, scene_supports
 from scenewright.generator import check_rules, load_rules
 from scenewright.generator.rules import Rules
 
+from .context import (
+    LAYOUTS,
+    ROUNDS,
+    ContextFit,
+    NoRelatedPairs,
+    context_path,
+    fit_example_layouts,
+    measured_example_layout,
+)
+from .derivations import AmbiguousExample, measured_derivation_graphs
 from .induce import Induction, Member, edge_instances, induce, renamed_scenes
 
 #: Scenes generated from the induced rules to compare with the examples.
@@ -149,13 +166,59 @@ def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count
 
 
 @dataclass(frozen=True)
+class InducedContext:
+    """The context ``learn`` fitted (None when it learned none, ``why_not`` saying why) and
+    the examples left out of it (no derivation of the induced rules makes them)."""
+
+    fit: ContextFit | None
+    why_not: str | None
+    used: int
+    left_out: list[str]
+
+    def to_dict(self, path: Path | None) -> dict:
+        document = {"file": os.fspath(path) if self.fit is not None and path is not None else None,
+                    "examples": self.used, "left_out": self.left_out}  # fmt: skip
+        if self.fit is not None:
+            document.update(self.fit.context.fit or {})
+        else:
+            document["why_not"] = self.why_not
+        return document
+
+
+def learned_context(
+    rules: Rules, names: Sequence[str], scenes: Sequence[Scene], *, seed: int, rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
+) -> InducedContext:  # fmt: skip
+    """A context fitted to ``scenes`` (named ``names``) against ``rules``, each scene
+    related as one of its best derivations relates it (``measured_example_layout``);
+    scenes no derivation makes, or with too many to search, are left out."""
+    laid, left_out = [], []
+    for name, scene in zip(names, scenes):
+        try:
+            graphs = measured_derivation_graphs(rules, scene, name)
+        except AmbiguousExample:
+            graphs = []
+        if graphs:
+            laid.append(measured_example_layout(name, scene, graphs))
+        else:
+            left_out.append(name)
+    try:
+        fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+    except NoRelatedPairs as error:
+        return InducedContext(None, str(error), len(laid), left_out)
+    return InducedContext(fit, None, len(laid), left_out)
+
+
+@dataclass(frozen=True)
 class Learned:
     """What ``learn_rule_set`` made: the induction, its rules text, the check (None
-    when no scenes were generated) and the files written."""
+    when no scenes were generated), the context (None when not asked for) and the
+    files written."""
 
     induction: Induction
     text: str
     check: Check | None
+    context: InducedContext | None
     written: list[Path]
 
 
@@ -167,10 +230,15 @@ def learn_rule_set(
     seed: int = 0,
     test: str = "permutation",
     check: int = CHECK_SCENES,
+    context: bool = True,
+    rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
     write: Callable[[Path, str], object],
 ) -> Learned:
     """Induce a rule set from ``examples``, check it (module docstring) and write it to
-    ``output`` and the report to ``report``; ``write(path, text)`` writes one file whole."""
+    ``output``, with ``context`` its context beside it (``context_path``; ``rounds`` and
+    ``layouts`` are the context fit's) and the report to ``report``; ``write(path, text)``
+    writes one file whole."""
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
@@ -184,11 +252,18 @@ def learn_rule_set(
         rules = load_rules(trial)
         scenes, _ = renamed_scenes(examples)
         result = compare(induction, scenes, rules, check, seed) if check > 0 else None
+        names = [example.name for example in examples]
+        fitted = learned_context(rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts) if context else None
     written = []
     write(output, text)
     written.append(output)
+    sidecar = context_path(output)
+    if fitted is not None and fitted.fit is not None:
+        write(sidecar, fitted.fit.context.to_json())
+        written.append(sidecar)
     if report is not None:
-        document = {"output": os.fspath(output), **induction.to_dict(), "check": result.to_dict() if result else None}
+        document = {"output": os.fspath(output), **induction.to_dict(), "check": result.to_dict() if result else None,
+                    "context": fitted.to_dict(sidecar) if fitted is not None else None}  # fmt: skip
         write(report, json.dumps(document, indent=1, ensure_ascii=False) + "\n")
         written.append(report)
-    return Learned(induction, text, result, written)
+    return Learned(induction, text, result, fitted, written)

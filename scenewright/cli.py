@@ -583,14 +583,16 @@ def run_relations(args: argparse.Namespace) -> int:
 def run_learn(args: argparse.Namespace) -> int:
     from scenewright.atomic import write_atomic
     from scenewright.examples import load_examples
+    from scenewright.learning.context import context_path
     from scenewright.learning.learn import learn_rule_set
 
     examples = load_examples(args.examples)
     output = output_file(args.output, "induced.rules")
     report = output_file(args.report, "learn.json") if args.report else None
     learned = learn_rule_set(
-        examples, output, report=report, seed=args.seed, test=args.test, check=args.check, write=write_atomic
-    )
+        examples, output, report=report, seed=args.seed, test=args.test, check=args.check, context=args.context,
+        rounds=args.rounds, layouts=args.layouts, write=write_atomic,
+    )  # fmt: skip
     induction = learned.induction
     related = sum(pair.related for pair in induction.relations.pairs)
     say(args, f"induced {len(induction.catalog)} types, {len(induction.groups)} group"
@@ -598,6 +600,21 @@ def run_learn(args: argparse.Namespace) -> int:
               f"{induction.scenes} examples ({related} related type pairs by the {induction.relations.test} test)")
     if learned.check is not None:
         say(args, learned.check.summary())
+    context = learned.context
+    if context is not None:
+        left_out = (f"; {len(context.left_out)} example{'s' * (len(context.left_out) != 1)} no derivation of the "
+                    f"induced rules makes left out ({', '.join(context.left_out)})" if context.left_out else "")  # fmt: skip
+        if context.fit is not None:
+            pairs = context.fit.context.pairs
+            say(args, f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "
+                      f"examples (divergence {context.fit.divergence[0]:.3f} at the start, "
+                      f"{context.fit.divergence[context.fit.kept]:.3f} kept){left_out}")  # fmt: skip
+        else:
+            say(args, f"no context learned: {context.why_not}{left_out}")
+    sidecar = context_path(output)
+    if sidecar not in learned.written and sidecar.exists():
+        say(args, f"note: {sidecar} beside the rules is not from this run; generate will use it (--no-context "
+                  "leaves it out)")  # fmt: skip
     say(args, "wrote " + ", ".join(str(path) for path in learned.written))
     return 0
 
@@ -941,7 +958,8 @@ seed print the same result. See docs/learning.md.""",
 examples:
   scenewright learn examples/sets/desks/*.json -o desks.rules --report learn.json
   scenewright learn data/bedroom/scenes/*.json -o bedroom_learned.rules --seed 3 --check 0
-  scenewright learn examples/sets/bedrooms -o bedrooms.rules   # a folder: every example in it
+  scenewright learn examples/sets/bedrooms -o bedrooms.rules   # a folder; writes bedrooms.context.json too
+  scenewright learn examples/sets/desks/*.json -o desks.rules --no-context   # the rules alone
   scenewright validate desks.rules && scenewright generate desks.rules --seed 1 -o out/
 
 induces a rule set from example scenes alone (scene.json or its folder, the
@@ -953,9 +971,13 @@ relative poses (several clusters: weighted alternatives), and how often and how 
 of each were seen ('0.85? 1..3 {6 4 1}'). The file is checked like 'validate' does,
 then --check N scenes (50) are generated from it and compared with the examples: each
 type's count per scene, the share of scenes holding each related pair, the share of
-objects for which the written placement holds. --report gives every type pair (test
-statistic, p-value, the labels chosen and their clusters), the catalog, the groups and
-that comparison. The same examples and seed give the same files. See docs/learning.md.""",
+objects for which the written placement holds. Unless --no-context, a context (spatial
+priors, as 'fit --what context' learns them) is fitted to the same examples against the
+induced rules and written beside them as NAME.context.json; when no related pair occurs
+in two examples, the rules are written without one and a line says why. --report gives
+every type pair (test statistic, p-value, the labels chosen and their clusters), the
+catalog, the groups, that comparison and the context's fit. The same examples and seed
+give the same files. See docs/learning.md.""",
     "plans": """\
 examples:
   scenewright plans build completion/plans -o model.json
@@ -1366,6 +1388,17 @@ def build_parser() -> CommandLineParser:
         "--check", type=count_at_least(0), default=50, metavar="N",
         help="scenes to generate from the induced rules and compare with the examples (50; 0: none)",
     )  # fmt: skip
+    learn.add_argument(
+        "--no-context", dest="context", action="store_false",
+        help="write no context: by default spatial priors are learned from the examples' layouts against the "
+        "induced rules and written beside them as NAME.context.json, which generate uses",
+    )  # fmt: skip
+    learn.add_argument(
+        "--rounds", type=count_at_least(0), default=2, metavar="N", help="context: rounds of iterative scaling (2)"
+    )
+    learn.add_argument(
+        "--layouts", type=count_at_least(1), default=40, metavar="N", help="context: scenes laid out per round (40)"
+    )
 
     plans = command("plans", "furnished floor plans: build their model, show a relation graph, evaluate, draw", None)
     plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)

@@ -176,11 +176,13 @@ def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_s
     outputs = []
     for run_number in range(2):
         rules, report = tmp_path / "desks.rules", tmp_path / "learn.json"  # the second run writes over the first
-        code, out, err = run(capsys, "learn", *map(str, DESKS), "-o", str(rules), "--report", str(report), "--check", "4")
+        code, out, err = run(capsys, "learn", *map(str, DESKS), "-o", str(rules), "--report", str(report), "--check", "4",
+                             "--no-context")  # fmt: skip
         assert code == 0, err
         assert "wrote" in out and "4 scenes generated" in out
         outputs.append((rules.read_bytes(), report.read_bytes()))
     assert outputs[0] == outputs[1]
+    assert not (tmp_path / "desks.context.json").exists() and "context" not in out  # --no-context: none learned
     text = outputs[0][0].decode()
     assert "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk }" in text
     assert "0.5? plant InCorner some wall" in text

@@ -1,0 +1,165 @@
+"""A context learned from examples read from geometry alone (the hand-written format,
+GLB): their objects related as their derivation relates them
+(``derivations.assign_objects``, ``context.measured_example_layout``), so that they give
+the context their scene.json files give; ``fit --what context`` on such files, and
+``learn`` writing a context beside the rules it induces (or not, and why)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from scenewright.api import build_scene, export
+from scenewright.core.scene import Scene
+from scenewright.examples import load_example
+from scenewright.generator import load_rules
+from scenewright.learning.context import example_layout, fit_context, fit_example_layouts, measured_example_layout
+from scenewright.learning.derivations import measured_derivation_graphs
+
+from test_cli import assert_one_line_error, run
+from test_learned_context import DINING, dining_examples
+
+BEDROOMS = Path(__file__).resolve().parents[1] / "examples" / "sets" / "bedrooms"
+
+
+def hand_written(scene: Scene, order: np.ndarray) -> dict:
+    """The hand-written example of a scene: its boxes and poses only, the objects in
+    ``order`` and renamed, so that neither ids nor file order tell which is which."""
+    objects = scene.placed_objects()
+    where = {"room": {"corners": [list(c) for c in scene.room.corners], "height": 2.6}} if scene.room else {
+        "extent": list(scene.extent)}  # fmt: skip
+    return {**where, "objects": [
+        {"id": f"thing_{k}", "type": objects[i].type, "size": list(objects[i].size),
+         "position": list(objects[i].position), "yaw": math.degrees(objects[i].yaw),
+         **({"style": objects[i].style} if objects[i].style else {})}
+        for k, i in enumerate(order)
+    ]}  # fmt: skip
+
+
+def write_hand_written(folder: Path, named_scenes, seed: int = 0) -> list[Path]:
+    rng = np.random.default_rng(seed)
+    paths = []
+    for name, scene in named_scenes:
+        path = folder / f"{name}.json"
+        path.write_text(json.dumps(hand_written(scene, rng.permutation(len(scene.placed_objects())))))
+        paths.append(path)
+    return paths
+
+
+def pair_poses(layout) -> list:
+    return sorted((kind, tuple(np.round(pose, 4))) for kind, pose in layout.poses)
+
+
+def test_hand_written_dining_examples_give_the_context_of_their_scene_json(tmp_path):
+    examples = dining_examples(6)
+    paths = write_hand_written(tmp_path, [(name, Scene.from_dict(document)) for name, document in examples])
+    rules = load_rules(DINING)
+    laid = []
+    for path in paths:
+        scene = load_example(path).scene
+        assert all(r.label == "OnTopOf" for r in scene.relations)  # geometry alone: no relation says who is related
+        laid.append(measured_example_layout(path.name, scene, measured_derivation_graphs(rules, scene)))
+    measured = fit_example_layouts(laid, seed=0, rounds=0, layouts=2).context
+    stated = fit_context(examples, seed=0, rounds=0, layouts=2).context
+    assert [pair.kind for pair in measured.pairs] == [pair.kind for pair in stated.pairs] and len(stated.pairs) == 4
+    for mine, theirs in zip(measured.pairs, stated.pairs):
+        assert mine.examples == theirs.examples and mine.bounds == theirs.bounds
+        assert np.array_equal(mine.position, theirs.position) and np.array_equal(mine.yaw, theirs.yaw)
+
+
+def test_bedrooms_hand_written_and_exported_to_glb_relate_their_objects_as_their_scene_json(tmp_path):
+    # Two nightstands with a lamp each, a desk and its chair: which nightstand is the
+    # left one, and which lamp is on it, is read off the geometry.
+    rules = load_rules("bedroom")
+    scenes = {seed: build_scene(rules, seed) for seed in (0, 5)}
+    paths = write_hand_written(tmp_path, [(f"bedroom_{seed}", scene) for seed, scene in scenes.items()])
+    export(scenes[5], tmp_path / "bedroom_5.glb")
+    for path, seed in [*zip(paths, scenes), (tmp_path / "bedroom_5.glb", 5)]:
+        scene = load_example(path).scene
+        graphs = measured_derivation_graphs(rules, scene, path.name)
+        mine = pair_poses(measured_example_layout(path.name, scene, graphs))
+        theirs = pair_poses(example_layout(path.name, scenes[seed].to_dict()))
+        assert len(theirs) >= 6 and {kind[1] for kind, _ in theirs} >= {"bed", "nightstand"}
+        assert [kind for kind, _ in mine] == [kind for kind, _ in theirs]
+        assert np.allclose([pose for _, pose in mine], [pose for _, pose in theirs], atol=1e-3)
+
+
+def test_fit_what_context_reads_hand_written_examples(tmp_path, capsys):
+    examples = dining_examples(5)
+    folder = tmp_path / "mine"
+    folder.mkdir()
+    write_hand_written(folder, [(name, Scene.from_dict(document)) for name, document in examples])
+    for name, document in examples:
+        (tmp_path / f"{name}.json").write_text(json.dumps(document))
+    common = ["--what", "weights,context", "--rounds", "0", "--layouts", "2"]
+    code, out, err = run(capsys, "fit", str(DINING), str(folder), "-o", str(tmp_path / "a" / "d.rules"), *common)
+    assert code == 0, err
+    assert "fitted a context of 4 pair kinds from 5 examples" in out
+    code, _, err = run(capsys, "fit", str(DINING), *(str(tmp_path / f"{name}.json") for name, _ in examples),
+                       "-o", str(tmp_path / "b" / "d.rules"), *common)  # fmt: skip
+    assert code == 0, err
+    measured, stated = (json.loads((tmp_path / side / "d.context.json").read_text()) for side in "ab")
+    assert measured["pairs"] == stated["pairs"]
+    # One example holds each pair once: nothing to learn, said in one line, nothing written.
+    code, _, err = run(capsys, "fit", str(DINING), str(folder / "example_0.json"), "-o", str(tmp_path / "c" / "d.rules"),
+                       "--what", "context")  # fmt: skip
+    assert code == 2
+    assert_one_line_error(err, "no related pair", "read from geometry alone")
+    assert not (tmp_path / "c" / "d.rules").exists() and not (tmp_path / "c" / "d.context.json").exists()
+
+
+def test_learn_writes_a_context_beside_the_rules_it_induces(tmp_path, capsys):
+    out = tmp_path / "bedrooms.rules"
+    code, stdout, err = run(capsys, "learn", str(BEDROOMS), "-o", str(out), "--check", "0", "--rounds", "0",
+                            "--layouts", "2", "--report", str(tmp_path / "learn.json"))  # fmt: skip
+    assert code == 0, err
+    assert "fitted a context of 4 pair kinds from 10 examples" in stdout
+    sidecar = tmp_path / "bedrooms.context.json"
+    document = json.loads(sidecar.read_text())
+    pairs = {(p["source"], p["target"], tuple(p["labels"])): p["examples"] for p in document["pairs"]}
+    # The pairs the relation test finds in the ten bedrooms, each as often as the
+    # induction counted it (a nightstand left of its bed 7 times, right 8).
+    assert pairs == {
+        ("chair", "desk", ("FacingTowards", "NextToFront")): 5,
+        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToLeft")): 7,
+        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToRight")): 8,
+        ("table_lamp", "nightstand", ("ImplicitFacingSameDirection", "OnTopOfMiddle")): 11,
+    }
+    report = json.loads((tmp_path / "learn.json").read_text())["context"]
+    assert report["file"] == str(sidecar) and report["examples"] == 10 and report["left_out"] == []
+    assert "NightstandAtBed(the_bed) -> 8:" in out.read_text()
+    code, stdout, _ = run(capsys, "generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g"))
+    assert code in (0, 1)  # 1: the layout missed a relation (its files are kept); the context is used either way
+    assert f"context: {sidecar} (4 pair kinds)" in stdout
+    assert "learned" in json.loads((tmp_path / "g" / "scene.json").read_text())["layout"]["parts"]
+    # --no-context: the rules alone; the context left from the run before is pointed out.
+    before = sidecar.read_bytes()
+    code, stdout, err = run(capsys, "learn", str(BEDROOMS), "-o", str(out), "--check", "0", "--no-context")
+    assert code == 0, err
+    assert "fitted a context" not in stdout and f"note: {sidecar}" in stdout and sidecar.read_bytes() == before
+
+
+def test_learn_without_related_pairs_writes_the_rules_and_says_why_there_is_no_context(tmp_path, capsys):
+    rng = np.random.default_rng(4)
+    paths = []
+    for k in range(6):  # a crate and a barrel anywhere, independently: no pair to relate
+        objects = [{"id": name, "type": name, "size": [0.5, 0.6, 0.5],
+                    "position": [float(rng.uniform(-2.5, 2.5)), 0.0, float(rng.uniform(-2.5, 2.5))],
+                    "yaw": float(rng.uniform(0, 360))} for name in ("crate", "barrel")]  # fmt: skip
+        if np.hypot(objects[0]["position"][0] - objects[1]["position"][0],
+                    objects[0]["position"][2] - objects[1]["position"][2]) < 1.0:  # fmt: skip
+            objects[1]["position"][0] = -objects[0]["position"][0]
+        path = tmp_path / f"yard_{k}.json"
+        path.write_text(json.dumps({"extent": [6, 6], "objects": objects}))
+        paths.append(str(path))
+    out = tmp_path / "yard.rules"
+    code, stdout, err = run(capsys, "learn", *paths, "-o", str(out), "--check", "0", "--report", str(tmp_path / "r.json"))
+    assert code == 0, err
+    lines = [line for line in stdout.splitlines() if "context" in line]
+    assert len(lines) == 1 and lines[0].startswith("no context learned: no related pair of objects")
+    assert out.is_file() and not (tmp_path / "yard.context.json").exists()
+    report = json.loads((tmp_path / "r.json").read_text())["context"]
+    assert report["file"] is None and report["why_not"].startswith("no related pair")
