@@ -26,13 +26,17 @@ blurred by 3 bins, position and yaw averaged), the mean over kinds.
 rules' relations (``rules init``) and from the learned templates (``templates``,
 ``LayoutParams.template_init``), to compare steps, time, ok and the figures above
 (and leaves ``annealed`` out).
-``--rules R --from DIR`` takes another rule set and its scene.json examples (a fitted
+``--rules R --from DIR`` takes another rule set and its examples (a fitted
 ``--context FILE`` instead of fitting one, if given): the new scenes are expanded from
-R with seeds 0.., and only the dining set prints slot spreads.
+R with seeds 0.., and only the dining set prints slot spreads. The examples are DIR's
+scene.json files, or else every example in it (hand-written, GLB) read from geometry
+alone and related as its derivation of R relates it, as ``fit`` and ``learn`` do
+(``learning.context.measured_example_layout``).
 
     .venv/bin/python benchmarks/bench_diversity.py
     .venv/bin/python benchmarks/bench_diversity.py --template-init
     .venv/bin/python benchmarks/bench_diversity.py --template-init --rules R --from DIR --context R.context.json
+    .venv/bin/python benchmarks/bench_diversity.py --rules bedrooms.rules --from examples/sets/bedrooms --context bedrooms.context.json
     .venv/bin/python benchmarks/bench_diversity.py --examples 30 --scenes 60 --seed 1
     .venv/bin/python benchmarks/bench_diversity.py --write-examples dining_examples   # the examples only
 """
@@ -56,12 +60,17 @@ from scenewright.api import build_scene  # noqa: E402
 from scenewright.generator import expand, load_rules  # noqa: E402
 from scenewright.generator.layout import LayoutParams, layout_scene  # noqa: E402
 from scenewright.generator.layout.learned_term import read_context  # noqa: E402
+from scenewright.examples import load_examples  # noqa: E402
+from scenewright.examples.formats import is_scene_json_file  # noqa: E402
+from scenewright.learning.derivations import measured_derivation_graphs  # noqa: E402
+from scenewright.learning.induce import renamed_scenes  # noqa: E402
 from scenewright.learning.context import (  # noqa: E402
     UPDATE_SMOOTH,
     counts,
     example_layout,
-    fit_context,
+    fit_example_layouts,
     graph_pair_poses,
+    measured_example_layout,
     share_distance,
     shares,
 )
@@ -157,6 +166,20 @@ def sample(rules: Path, count: int, context, params: LayoutParams, slots: bool) 
     }  # fmt: skip
 
 
+def measured_layouts(rules: Path, folder: Path) -> list:
+    """The examples in ``folder`` read from geometry alone, each related as its
+    derivation of ``rules`` relates it (those no derivation makes are left out, as
+    ``learn`` leaves them out)."""
+    loaded = load_rules(rules)
+    found = load_examples([folder])
+    laid = []
+    for example, scene in zip(found, renamed_scenes(found)[0]):
+        graphs = measured_derivation_graphs(loaded, scene, example.name)
+        if graphs:
+            laid.append(measured_example_layout(example.name, scene, graphs))
+    return laid
+
+
 def divergence(context, observed: dict, generated: dict) -> float:
     """Mean over the context's pair kinds of the distance of generated from observed
     shares (``learning.context.share_distance`` at UPDATE_SMOOTH); poses per kind."""
@@ -187,8 +210,11 @@ def main() -> int:
     slots = args.source is None
     if slots:
         examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
-    else:
+    elif all(is_scene_json_file(p) for p in args.source.glob("*.json")):
         examples = [(p.stem, json.loads(p.read_text(encoding="utf-8"))) for p in sorted(args.source.glob("*.json"))]
+    else:
+        examples = []  # read from geometry alone (measured_layouts)
+    laid = [example_layout(name, scene) for name, scene in examples] if examples else measured_layouts(rules, args.source)
     if args.write_examples:
         folder = Path(args.write_examples)
         folder.mkdir(parents=True, exist_ok=True)
@@ -197,17 +223,17 @@ def main() -> int:
         print(f"wrote {len(examples)} examples to {folder}/")
         return 0
     observed: dict = {}
-    for name, scene in examples:
-        for kind, pose in example_layout(name, scene).poses:
+    for example in laid:
+        for kind, pose in example.poses:
             observed.setdefault(kind, []).append(pose)
     if args.context is not None:
         context = read_context(str(args.context))
-        print(f"context: {args.context}, {len(context.pairs)} pair kinds; {len(examples)} examples")
+        print(f"context: {args.context}, {len(context.pairs)} pair kinds; {len(laid)} examples")
     else:
         start = time.process_time()
-        fitted = fit_context(examples, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
+        fitted = fit_example_layouts(laid, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
         context = fitted.context
-        print(f"fit: {len(examples)} examples, {len(context.pairs)} pair kinds, "
+        print(f"fit: {len(laid)} examples, {len(context.pairs)} pair kinds, "
               f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
               f"{time.process_time() - start:.1f} CPU s")
     if args.template_init:  # the comparison of the two starts (annealed left out: it is not sampling)

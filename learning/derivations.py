@@ -30,6 +30,12 @@ one where the example's nightstand stands is kept; where the geometry cannot tel
 between them. A statement the example cannot show (a window label in a room the
 hand-written format gave no windows, a wall label without a room) counts as holding
 for every derivation, so it decides nothing.
+
+A learned context needs more than the derivation: which of the example's objects each
+of its nodes stands for, so that its relation edges say which objects are related
+(``assign_objects``: per type, the assignment that holds the most of the derivation's
+relations between objects). Of several best derivations, ``closest_derivation`` takes
+the one the example comes nearest to holding.
 """
 
 from __future__ import annotations

@@ -922,6 +922,7 @@ examples:
   scenewright fit study data/study/scenes/*.json -o fitted/study.rules --report fitted/fit.json
   scenewright fit my.rules liked/*.json -o my_fitted.rules
   scenewright fit bedroom my_rooms/ -o my_bedroom.rules   # hand-written examples or GLB, a folder of them
+  scenewright fit bedroom my_rooms/ -o my_bedroom.rules --what weights,context   # and spatial priors
 
 Re-estimates the rule set's numbers from what the example scenes drew: alternative
 weights, optional probabilities, count distributions (a range becomes a weighted range
@@ -934,7 +935,8 @@ Examples are scene.json files of this rule set. Those made by scenewright keep t
 derivation (the draws fit counts); for one without, fit searches for the derivations
 that could have made it and fits by expectation-maximisation (docs/learning.md).
 Hand-written examples and GLB files (their types named as in the rules) are fitted the
-same way, the derivations told apart by which of their relations the geometry holds.""",
+same way, the derivations told apart by which of their relations the geometry holds;
+for --what context their objects are related as their derivation relates them.""",
     "relations": """\
 examples:
   scenewright dataset bedroom -n 500 -o data/bedroom --no-images
@@ -1336,7 +1338,10 @@ def build_parser() -> CommandLineParser:
 
     fit = command("fit", "re-estimate a rule set's weights from example scenes", run_fit)
     fit.add_argument("rules", help="shipped rule set name or path to a .rules file")
-    fit.add_argument("examples", nargs="+", metavar="EXAMPLE", help="scene.json files made from the rule set")
+    fit.add_argument(
+        "examples", nargs="+", metavar="EXAMPLE",
+        help="example scenes of the rule set (scene.json, the hand-written format, GLB, or a folder of them)",
+    )  # fmt: skip
     fit.add_argument("-o", "--output", required=True, metavar="RULES", help="the fitted rules file to write")
     fit.add_argument("--report", metavar="JSON", help="also write every parameter with its standard error here")
     fit.add_argument(
@@ -1378,8 +1383,12 @@ def build_parser() -> CommandLineParser:
         "examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)"
     )
     learn.add_argument("-o", "--output", required=True, metavar="RULES", help="the rules file to write")
-    learn.add_argument("--report", metavar="JSON", help="also write the pairs, catalog, groups and the check here")
-    learn.add_argument("--seed", type=seed_value, default=0, help="seed of the relation test and the check scenes (0)")
+    learn.add_argument(
+        "--report", metavar="JSON", help="also write the pairs, catalog, groups, the check and the context's fit here"
+    )
+    learn.add_argument(
+        "--seed", type=seed_value, default=0, help="seed of the relation test, the check scenes and the context fit (0)"
+    )
     learn.add_argument(
         "--test", choices=("permutation", "angle", "cooccurrence"), default="permutation",
         help="which test finds the related type pairs (permutation; see 'relations --help')",
