@@ -46,6 +46,7 @@ import numpy as np
 from scipy.ndimage import gaussian_filter, gaussian_filter1d
 
 from scenewright.core.errors import InputError
+from scenewright.core.relations import RELATIONS
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import stream
@@ -61,7 +62,7 @@ from scenewright.generator.layout.learned_term import (
 )
 from scenewright.generator.layout.problem import compile_problem
 
-from .derivations import closest_derivation
+from .derivations import closest_derivation, measured_relations
 
 #: Blur of the histograms, in bins (standard deviation of the Gaussian): SMOOTH for the
 #: starting weights, UPDATE_SMOOTH for the comparisons iterative scaling makes (a few
@@ -102,13 +103,18 @@ class ExampleLayout:
     area: float
 
 
-def graph_pair_poses(graph: SceneGraph, poses: dict[str, tuple[float, float, float]]) -> list[tuple[Kind, tuple]]:
-    """The relative pose of every related pair of ``graph`` at ``poses`` (id -> (x, z, yaw))."""
+def graph_pair_poses(
+    graph: SceneGraph, poses: dict[str, tuple[float, float, float]], broken: frozenset[tuple[str, str]] = frozenset()
+) -> list[tuple[Kind, tuple]]:
+    """The relative pose of every related pair of ``graph`` at ``poses`` (id -> (x, z,
+    yaw)), but the pairs in ``broken`` ((source id, target id): a relation between them
+    does not hold at these poses)."""
     problem = compile_problem(graph)
     types = [graph.node(box_id).type for box_id in problem.ids]
     found = []
     for source, target, kind in related_pairs(problem, types):
-        found.append((kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]])))
+        if (problem.ids[source], problem.ids[target]) not in broken:
+            found.append((kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]])))
     return found
 
 
@@ -136,7 +142,9 @@ def measured_example_layout(name: str, scene: Scene, derivations: Sequence[Scene
     are their scene graphs (``derivations.measured_derivation_graphs``), of which the one
     the example comes nearest to holding is taken (``derivations.closest_derivation``),
     each of its object nodes standing for the example object assigned to it, at that
-    object's pose; the graph laid out in the fit's rounds is that derivation's."""
+    object's pose; the graph laid out in the fit's rounds is that derivation's. A pair
+    whose relation the example breaks (measured as the layout's verdict would) gives no
+    pose: the learned term would pull towards poses the verdict refuses."""
     try:
         derivation, chosen = closest_derivation(derivations, scene)
     except InputError as error:
@@ -144,7 +152,14 @@ def measured_example_layout(name: str, scene: Scene, derivations: Sequence[Scene
     objects = {o.id: o for o in scene.placed_objects()}
     poses = {node: (float(objects[o].position[0]), float(objects[o].position[2]), float(objects[o].yaw))
              for node, o in chosen.items()}  # fmt: skip
-    return ExampleLayout(derivation, graph_pair_poses(derivation, poses), _floor_area(scene.extent))
+    # A hand-placed pair that breaks the rules' own relation (a nightstand 46 degrees off
+    # "right of the bed") would teach the learned term poses the layout's verdict refuses.
+    wanted = [(chosen[e.source], e.label, chosen[e.target]) for e in derivation.edges()
+              if e.source in chosen and e.target in chosen and not RELATIONS[e.label].support]  # fmt: skip
+    verdicts = measured_relations(scene, wanted)
+    node_of = {o: node for node, o in chosen.items()}
+    broken = frozenset((node_of[a], node_of[b]) for (a, _, b), verdict in verdicts.items() if not verdict.satisfied)
+    return ExampleLayout(derivation, graph_pair_poses(derivation, poses, broken), _floor_area(scene.extent))
 
 
 def grid_bounds(points: np.ndarray) -> tuple[float, float, float, float]:

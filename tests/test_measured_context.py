@@ -121,18 +121,19 @@ def test_learn_writes_a_context_beside_the_rules_it_induces(tmp_path, capsys):
     document = json.loads(sidecar.read_text())
     pairs = {(p["source"], p["target"], tuple(p["labels"])): p["examples"] for p in document["pairs"]}
     # The pairs the relation test finds in the ten bedrooms, each as often as the
-    # induction counted it (a nightstand left of its bed 7 times, right 8).
+    # examples hold its relation: the induction counted a nightstand left of its bed 7
+    # times and right 8, but three stand too far round a single bed's head to be either.
     assert pairs == {
         ("chair", "desk", ("FacingTowards", "NextToFront")): 5,
-        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToLeft")): 7,
-        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToRight")): 8,
+        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToLeft")): 6,
+        ("nightstand", "bed", ("AlignedWith", "FacingSameDirection", "NextToRight")): 6,
         ("table_lamp", "nightstand", ("ImplicitFacingSameDirection", "OnTopOfMiddle")): 11,
     }
     report = json.loads((tmp_path / "learn.json").read_text())["context"]
     assert report["file"] == str(sidecar) and report["examples"] == 10 and report["left_out"] == []
     assert "NightstandAtBed(the_bed) -> 8:" in out.read_text()
     code, stdout, _ = run(capsys, "generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g"))
-    assert code in (0, 1)  # 1: the layout missed a relation (its files are kept); the context is used either way
+    assert code == 0  # no learned pose pulls against the rules' own relations
     assert f"context: {sidecar} (4 pair kinds)" in stdout
     assert "learned" in json.loads((tmp_path / "g" / "scene.json").read_text())["layout"]["parts"]
     # --no-context: the rules alone; the context left from the run before is pointed out.
@@ -163,3 +164,22 @@ def test_learn_without_related_pairs_writes_the_rules_and_says_why_there_is_no_c
     assert out.is_file() and not (tmp_path / "yard.context.json").exists()
     report = json.loads((tmp_path / "r.json").read_text())["context"]
     assert report["file"] is None and report["why_not"].startswith("no related pair")
+
+
+def test_a_hand_placed_pair_that_breaks_its_relation_teaches_no_pose(tmp_path):
+    rules = load_rules("bedroom")
+    scene = build_scene(rules, 0)
+    document = hand_written(scene, np.arange(len(scene.placed_objects())))
+    whole = load_example(_written(tmp_path / "whole.json", document)).scene
+    kept = pair_poses(measured_example_layout("whole", whole, measured_derivation_graphs(rules, whole)))
+    chair = next(o for o in document["objects"] if o["type"] == "chair")
+    chair["yaw"] += 90.0  # turned side-on to its desk: no longer facing it
+    turned = load_example(_written(tmp_path / "turned.json", document)).scene
+    left = pair_poses(measured_example_layout("turned", turned, measured_derivation_graphs(rules, turned)))
+    chair_pairs = [kind for kind, _ in kept if kind[0] == "chair"]
+    assert chair_pairs and [kind for kind, _ in left] == [kind for kind, _ in kept if kind[0] != "chair"]
+
+
+def _written(path: Path, document: dict) -> Path:
+    path.write_text(json.dumps(document))
+    return path
