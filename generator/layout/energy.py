@@ -33,7 +33,8 @@ part and those relation terms), ``learned_delta`` the learned part's.
 
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
-grid finds the colliding pairs); ``accept`` keeps it, ``reject`` undoes it. With
+grid finds the colliding pairs, and in a scene of many paths a second grid the paths a
+box may touch); ``accept`` keeps it, ``reject`` undoes it. With
 ``incremental=False`` it recomputes every term instead (for comparison); either way the
 caches the sampler reads (relation energies, troubled boxes) stay current.
 Boxes start inactive (absent from the energy) so the constructive placement can add
@@ -43,10 +44,11 @@ them one item at a time through the same machinery.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from typing import NamedTuple
 
 from .factors import greater, less
-from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_penetration
+from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_overlap
 from .params import LayoutParams
 from .problem import Problem
 from .relation_terms import evaluate
@@ -61,6 +63,9 @@ LEARNED_PART = "learned"
 
 #: Depths are clipped below 1 so the log penalty stays finite.
 MAX_DEPTH = 0.99
+#: Scenes with at least this many paths file them in a grid (``Energy.path_grid``); with
+#: fewer, testing each path's bounds is cheaper than keeping the grid up to date.
+PATH_GRID_MIN = 16
 
 
 class Changes(NamedTuple):
@@ -87,6 +92,7 @@ class Pending(NamedTuple):
     saved_boxes: list[tuple[int, tuple[float, float, float]]]  # poses to restore on reject
     saved_paths: list[tuple[int, list]]  # control points to restore on reject
     update: Changes | dict  # incremental changes, or a full recomputation (``_fresh``)
+    filings: dict  # box -> where the grid filed it before (``Grid.filing``), for reject
 
 
 class Energy:
@@ -102,11 +108,18 @@ class Energy:
         ]
         self.term_boxes = [frozenset(t.a.members + t.b.members) for t in problem.relations]
         self.placeable = [t.placeable for t in problem.relations]
+        self.live = [False] * len(problem.relations)  # relations found active (``relation_active``)
         self._pending: Pending | None = None
         # Per path, its control points' bounding box grown by half its width (x0, x1, z0,
         # z1): a box whose bounding circle misses it cannot touch the path, so the exact
         # test is skipped (it would give 0 too).
         self.path_bounds = [self._path_bounds(path) for path in range(problem.n_paths)]
+        # With many paths, the paths filed by those bounds in cells like the boxes', so a
+        # box finds the few it may touch from the cells it is filed under.
+        self.path_grid = Grid(self.grid.cell) if problem.n_paths >= PATH_GRID_MIN else None
+        self.hit_paths: list[set[int]] = [set() for _ in range(problem.n_boxes)]  # set by ``_install``
+        for path in range(problem.n_paths):
+            self._file_path(path)
         #: The room's terms (walls, square, clearance, door swing, access); None outdoors.
         self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
         #: The part names this energy has: ``PARTS``, and ``MASK_PART`` with a mask.
@@ -123,7 +136,11 @@ class Energy:
 
     def relation_active(self, term_index: int) -> bool:
         """Whether the relation counts yet: both ends placeable and all their boxes placed."""
-        return self.placeable[term_index] and all(self.active[box] for box in self.term_boxes[term_index])
+        if self.live[term_index]:
+            return True
+        live = self.placeable[term_index] and all(self.active[box] for box in self.term_boxes[term_index])
+        self.live[term_index] = live  # placed boxes stay placed: once live, always live
+        return live
 
     def relation_energy(self, term_index: int) -> float:
         if not self.relation_active(term_index):
@@ -138,8 +155,8 @@ class Energy:
         problem, state = self.problem, self.state
         if problem.support[first] == second or problem.support[second] == first:
             return 0.0
-        planar = rect_penetration(state.rects[first], state.rects[second])
-        if planar <= 0.0:
+        planar = rect_overlap(state.rects[first], state.rects[second])  # its penetration when positive
+        if not planar > 0.0:
             return 0.0
         if problem.support[first] >= 0 or problem.support[second] >= 0:
             vertical = min(state.y[first] + problem.height[first], state.y[second] + problem.height[second]) - max(
@@ -168,7 +185,29 @@ class Energy:
 
     def paths_near(self, box: int) -> list[int]:
         """The paths the box may touch (``may_touch_path``), in order."""
-        return [path for path in range(self.problem.n_paths) if self.may_touch_path(box, path)]
+        return [path for path in self._paths_to_test(box) if self.may_touch_path(box, path)]
+
+    def _paths_to_test(self, box: int) -> Iterable[int]:
+        """In order, every path the box may touch (``may_touch_path``) or is caching a hit
+        with (``hit_paths``), and perhaps a few more: those ``path_grid`` files in the
+        cells the box's bounding circle's square meets, or every path without the grid."""
+        if self.path_grid is None:
+            return range(self.problem.n_paths)
+        filing = self.grid.filing(box) if self.active[box] else None
+        if filing is not None:  # filed at its current pose: the same cells
+            near = self.path_grid.in_cells_of(filing)
+        else:
+            x, z, radius = self.state.x[box], self.state.z[box], self.problem.size[box] / 2.0
+            near = self.path_grid.in_area(x - radius, z - radius, x + radius, z + radius)
+        near.update(self.hit_paths[box])
+        return sorted(near)
+
+    def _file_path(self, path: int) -> None:
+        """(Re)file a path in ``path_grid`` under its current ``path_bounds``."""
+        if self.path_grid is not None:
+            x0, x1, z0, z1 = self.path_bounds[path]
+            self.path_grid.remove(path)
+            self.path_grid.insert_area(path, x0, z0, x1, z1)
 
     def path_depth(self, box: int, path: int) -> float:
         """Normalised depth of a ground box into a path's buffered polyline."""
@@ -317,6 +356,11 @@ class Energy:
     def _install(self, fresh: dict) -> None:
         """Make freshly computed terms the cache."""
         self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
+        # Per box, the paths whose hits hold it (the reverse of ``path_hits``).
+        self.hit_paths = [set() for _ in range(self.problem.n_boxes)]
+        for path, hits in enumerate(self.path_hits):
+            for box in hits:
+                self.hit_paths[box].add(path)
         self.shape, self.junction = fresh["shape"], fresh["junction"]
         self.box_extent, self.path_extent = fresh["box_extent"], fresh["path_extent"]
         self.mask = fresh["mask"]
@@ -346,24 +390,29 @@ class Energy:
         state, grid, problem = self.state, self.grid, self.problem
         saved_boxes = [(box, state.pose(box)) for box in boxes]
         saved_paths = [(path, state.points[path]) for path in paths]
+        filings = {}
+        active, size = self.active, problem.size
         for box, (x, z, yaw) in boxes.items():
             state.set_pose(box, x, z, yaw)
-            if self.active[box]:
-                if not entering:
-                    grid.remove(box)
-                grid.insert(box, x, z, problem.size[box] / 2.0)
+            if active[box]:
+                if entering:
+                    grid.insert(box, x, z, size[box] / 2.0)
+                else:
+                    filings[box] = grid.filing(box)
+                    grid.move(box, x, z, size[box] / 2.0)
         for path, points in paths.items():
             state.points[path] = points
             self.path_bounds[path] = self._path_bounds(path)
+            self._file_path(path)
         if not self.params.incremental:
             fresh = self._fresh()
-            self._pending = Pending(saved_boxes, saved_paths, fresh)
+            self._pending = Pending(saved_boxes, saved_paths, fresh, filings)
             if self.problem.learned is not None:
                 self.learned_delta = fresh["parts"][LEARNED_PART] - self.parts[LEARNED_PART]
                 self.soft_delta = self.learned_delta + sum(fresh["relation"][t] - self.relation[t] for t in self.tempered)
             return sum(fresh["parts"].values()) - self.total
         changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access)
-        self._pending = Pending(saved_boxes, saved_paths, changes)
+        self._pending = Pending(saved_boxes, saved_paths, changes, filings)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
             self.soft_delta = self.learned_delta + sum(
@@ -382,6 +431,7 @@ class Energy:
         moved = set(boxes)
         moved_paths = set(paths)
         delta = dict.fromkeys(self.part_names, 0.0)
+        # Each part's change is summed in a local, in the order the terms come (the same sums).
 
         terms: set[int] = set()
         for box in boxes:
@@ -389,74 +439,96 @@ class Energy:
         for path in paths:
             terms.update(problem.terms_of_path[path])
         new_relation = {}
+        relations, term_boxes, relation = problem.relations, self.term_boxes, self.relation
+        change = 0.0
         for term in sorted(terms):
-            if together and not problem.relations[term].reads_fixed_geometry and self.term_boxes[term] <= moved:
+            if together and not relations[term].reads_fixed_geometry and term_boxes[term] <= moved:
                 continue
             value = self.relation_energy(term)
             new_relation[term] = value
-            delta["relations"] += value - self.relation[term]
+            change += value - relation[term]
+        delta["relations"] = change
 
         new_pairs: dict[tuple[int, int], float] = {}
+        pairs, near_box, pair_depth, penalty = self.pairs, self.grid.near_box, self.pair_depth, self.penalty
+        change = 0.0
         for box in boxes:
             if not active[box]:
                 continue
-            for other, value in self.pairs[box].items():
+            for other, value in pairs[box].items():
                 if other not in moved:
-                    delta["collisions"] -= value
+                    change -= value
                 elif other > box:
                     if together:
                         new_pairs[(box, other)] = value
                     else:
-                        delta["collisions"] -= value
-            for other in self.grid.near_box(box):
+                        change -= value
+            for other in near_box(box):
                 if other == box or (other in moved and (other < box or together)):
                     continue
-                value = self.pair_energy(box, other)
-                if value > 0.0:
-                    new_pairs[(box, other)] = value
-                    delta["collisions"] += value
+                depth = pair_depth(box, other)  # ``pair_energy``, unfolded: most pairs are apart
+                if depth > 0.0:
+                    value = penalty(depth)
+                    if value > 0.0:
+                        new_pairs[(box, other)] = value
+                        change += value
+        delta["collisions"] = change
 
         new_hits: dict[tuple[int, int], float] = {}
+        path_bounds, path_hits, collides, xs, zs, size = (
+            self.path_bounds, self.path_hits, self.collides_with_paths, self.state.x, self.state.z, problem.size
+        )
+        change = 0.0
         for box in boxes:
-            if active[box] and self.collides_with_paths[box]:
-                x, z, radius = self.state.x[box], self.state.z[box], problem.size[box] / 2.0
-                for path, (x0, x1, z0, z1) in enumerate(self.path_bounds):
-                    delta["paths"] -= self.path_hits[path].get(box, 0.0)
+            if active[box] and collides[box] and path_bounds:
+                x, z, radius = xs[box], zs[box], size[box] / 2.0
+                # Paths it was off and may not touch now would add 0 (an old hit of 0 and
+                # the skip below): only the others are visited, in order.
+                for path in self._paths_to_test(box):
+                    x0, x1, z0, z1 = path_bounds[path]
+                    change -= path_hits[path].get(box, 0.0)
                     if x + radius < x0 or x - radius > x1 or z + radius < z0 or z - radius > z1:
                         continue  # cannot touch it (``may_touch_path``, inlined: this runs every step)
                     value = self.path_energy(box, path)
                     if value > 0.0:
                         new_hits[(box, path)] = value
-                        delta["paths"] += value
+                        change += value
         for path in paths:
-            for box, value in self.path_hits[path].items():
+            for box, value in path_hits[path].items():
                 if box not in moved:
-                    delta["paths"] -= value
+                    change -= value
             for box in self._boxes_near_path(path):
-                if box not in moved and self.collides_with_paths[box]:
+                if box not in moved and collides[box]:
                     value = self.path_energy(box, path)
                     if value > 0.0:
                         new_hits[(box, path)] = value
-                        delta["paths"] += value
+                        change += value
+        delta["paths"] = change
 
         new_shape = {}
+        change = 0.0
         for path in paths:
             new_shape[path] = self.path_shape_energy(path)
-            delta["path_shape"] += new_shape[path] - self.shape[path]
-        junctions = sorted({problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & self.junction.keys()))
+            change += new_shape[path] - self.shape[path]
         new_junction = {}
-        for junction in junctions:
-            new_junction[junction] = self.junction_energy(junction)
-            delta["path_shape"] += new_junction[junction] - self.junction[junction]
+        if paths or self.junction:
+            starts = {problem.path_start[p] for p in paths if problem.path_start[p] >= 0}
+            for junction in sorted(starts | (moved & self.junction.keys())):
+                new_junction[junction] = self.junction_energy(junction)
+                change += new_junction[junction] - self.junction[junction]
+        delta["path_shape"] = change
 
         new_box_extent = {}
+        box_extent = self.box_extent
+        change = 0.0
         for box in boxes:
-            new_box_extent[box] = self.box_extent_energy(box)
-            delta["extent"] += new_box_extent[box] - self.box_extent[box]
+            value = new_box_extent[box] = self.box_extent_energy(box)
+            change += value - box_extent[box]
         new_path_extent = {}
         for path in paths:
             new_path_extent[path] = self.path_extent_energy(path)
-            delta["extent"] += new_path_extent[path] - self.path_extent[path]
+            change += new_path_extent[path] - self.path_extent[path]
+        delta["extent"] = change
         room = None
         if self.room is not None and boxes:
             room = self.room.changes(boxes, defer_access)
@@ -529,14 +601,18 @@ class Energy:
         for (box, other), value in changes.pairs.items():
             self.pairs[box][other] = value
             self.pairs[other][box] = value
-        for path, hits in enumerate(self.path_hits):
-            if path in changes.moved_paths:
-                hits.clear()
-            else:
-                for box in moved:
-                    hits.pop(box, None)
+        path_hits, hit_paths = self.path_hits, self.hit_paths
+        for path in changes.moved_paths:
+            for box in path_hits[path]:
+                hit_paths[box].discard(path)
+            path_hits[path].clear()
+        for box in moved:
+            for path in hit_paths[box]:
+                path_hits[path].pop(box, None)
+            hit_paths[box].clear()
         for (box, path), value in changes.hits.items():
-            self.path_hits[path][box] = value
+            path_hits[path][box] = value
+            hit_paths[box].add(path)
         for path, value in changes.shape.items():
             self.shape[path] = value
         self.junction.update(changes.junction)
@@ -558,14 +634,15 @@ class Energy:
         """Undo the proposed move."""
         pending, self._pending = self._pending, None
         state, grid, problem = self.state, self.grid, self.problem
+        filings = pending.filings
         for box, (x, z, yaw) in pending.saved_boxes:
             state.set_pose(box, x, z, yaw)
             if self.active[box]:
-                grid.remove(box)
-                grid.insert(box, x, z, problem.size[box] / 2.0)
+                grid.move(box, x, z, problem.size[box] / 2.0, filings.get(box))
         for path, points in pending.saved_paths:
             state.points[path] = points
             self.path_bounds[path] = self._path_bounds(path)
+            self._file_path(path)
 
 
 def _translated_together(saved: list, boxes: dict) -> bool:

@@ -8,11 +8,11 @@ a box rests on the ground or on its support, and supports carry what rests on th
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from contextlib import contextmanager
 
 from .geometry import Rect
 from .problem import Problem
+
+_new_rect = tuple.__new__
 
 
 class Grid:
@@ -36,6 +36,7 @@ class Grid:
         self.cells: dict[tuple[int, int], list[int]] = {}
         self.keys: dict[int, list[tuple[int, int]]] = {}
         self.large: dict[int, tuple[int, int, int, int]] = {}  # box -> its cell range i0, i1, k0, k1
+        self.spans: dict[int, tuple[int, int, int, int]] = {}  # every filed box's cell range
 
     def _range(self, x0: float, z0: float, x1: float, z1: float) -> tuple[int, int, int, int]:
         cell = self.cell
@@ -55,20 +56,60 @@ class Grid:
         return [box for box, (a0, a1, b0, b1) in self.large.items() if a0 <= i1 and i0 <= a1 and b0 <= k1 and k0 <= b1]
 
     def insert(self, box: int, x: float, z: float, radius: float) -> None:
-        span = self._range(x - radius, z - radius, x + radius, z + radius)
+        self.insert_area(box, x - radius, z - radius, x + radius, z + radius)
+
+    def insert_area(self, item: int, x0: float, z0: float, x1: float, z1: float) -> None:
+        """File an item under the cells meeting the axis-aligned area (a path's bounds)."""
+        self._file(item, self._range(x0, z0, x1, z1), None)
+
+    def _file(self, item: int, span: tuple[int, int, int, int], keys: list[tuple[int, int]] | None) -> None:
+        """File ``item`` under ``span``'s cells, whose keys (in ``_cells_in`` order) may be given."""
+        self.spans[item] = span
         if self._count(span) > self.MAX_SPAN:
-            self.large[box] = span
-            self.keys[box] = []
+            self.large[item] = span
+            self.keys[item] = []
             return
-        keys = self._cells_in(span)
-        self.keys[box] = keys
+        if keys is None:
+            keys = self._cells_in(span)
+        self.keys[item] = keys
+        cells = self.cells
         for key in keys:
-            self.cells.setdefault(key, []).append(box)
+            if key in cells:
+                cells[key].append(item)
+            else:
+                cells[key] = [item]
 
     def remove(self, box: int) -> None:
         self.large.pop(box, None)
+        self.spans.pop(box, None)
+        cells = self.cells
         for key in self.keys.pop(box, ()):
-            self.cells[key].remove(box)
+            cells[key].remove(box)
+
+    def filing(self, item: int) -> tuple[tuple[int, int, int, int], list[tuple[int, int]]] | None:
+        """Where the item is filed now (its span and keys), for ``move``'s ``previous``."""
+        span = self.spans.get(item)
+        return None if span is None else (span, self.keys[item])
+
+    def move(self, box: int, x: float, z: float, radius: float, previous=None) -> None:
+        """``remove`` then ``insert``, with the same cell lists in the same order after it;
+        the keys are not rebuilt when the span is the one the box had, or ``previous``'s
+        (a ``filing``: a rejected move puts the box back where it was filed)."""
+        cell = self.cell  # ``_range`` inlined: this runs twice a proposal
+        span = (
+            math.floor((x - radius) / cell), math.floor((x + radius) / cell),
+            math.floor((z - radius) / cell), math.floor((z + radius) / cell),
+        )  # fmt: skip
+        if self.spans.get(box) == span and box not in self.large:  # the same cells: it only goes last in each
+            for key in self.keys[box]:
+                boxes = self.cells[key]
+                if boxes[-1] != box:
+                    boxes.remove(box)
+                    boxes.append(box)
+            return
+        keys = previous[1] if previous is not None and previous[0] == span else None
+        self.remove(box)
+        self._file(box, span, keys)
 
     def near_box(self, box: int) -> set[int]:
         """Boxes sharing a cell with ``box`` (itself included)."""
@@ -80,6 +121,22 @@ class Grid:
             found.update(cells[key])
         if self.large and box in self.keys:
             found.update(self._large_meeting(self._span_of(self.keys[box])))
+        return found
+
+    def in_cells_of(self, filing: tuple[tuple[int, int, int, int], list[tuple[int, int]]]) -> set[int]:
+        """Items registered in the cells of a ``filing`` of another grid of the same cell
+        size (the cells a box of it is filed under): the same as ``in_area`` of the area
+        that filing was made for, without working out its cells again."""
+        span, keys = filing
+        if not keys:  # filed whole (``large``): its cells were never listed
+            return self._in_span(span)
+        found: set[int] = set()
+        cells = self.cells
+        for key in keys:
+            if key in cells:
+                found.update(cells[key])
+        if self.large:
+            found.update(self._large_meeting(span))
         return found
 
     def in_area(self, x0: float, z0: float, x1: float, z1: float) -> set[int]:
@@ -126,22 +183,39 @@ class State:
         ]
 
     def set_pose(self, box: int, x: float, z: float, yaw: float) -> None:
-        c, s = math.cos(yaw), math.sin(yaw)
-        self.x[box], self.z[box], self.yaw[box], self.c[box], self.s[box] = x, z, yaw, c, s
+        if yaw is self.yaw[box]:  # not turned (the very float it has): its cosine and sine stand
+            c, s = self.c[box], self.s[box]
+        else:
+            c, s = math.cos(yaw), math.sin(yaw)
+            self.yaw[box], self.c[box], self.s[box] = yaw, c, s
+        self.x[box], self.z[box] = x, z
         rect = self.rects[box]
-        self.rects[box] = Rect(x, z, rect.hw, rect.hd, c, s)
+        self.rects[box] = _new_rect(Rect, (x, z, rect.hw, rect.hd, c, s))  # Rect(...) without its Python-level __new__
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]
 
-    @contextmanager
-    def trying(self, poses: dict[int, tuple[float, float, float]]) -> Iterator[None]:
+    def trying(self, poses: dict[int, tuple[float, float, float]]) -> Trying:
         """Put boxes at ``{box: (x, z, yaw)}`` for the ``with`` block only (to measure a candidate)."""
-        saved = [(box, self.pose(box)) for box in poses]
-        for box, pose in poses.items():
-            self.set_pose(box, *pose)
-        try:
-            yield
-        finally:
-            for box, pose in saved:
-                self.set_pose(box, *pose)
+        return Trying(self, poses)
+
+
+class Trying:
+    """``State.trying``'s context: the poses set on entering, the old ones back on leaving
+    (a plain class: a generator-made context costs several times as much, and the moves
+    measure a candidate this way many times a step)."""
+
+    __slots__ = ("state", "poses", "saved")
+
+    def __init__(self, state: State, poses: dict[int, tuple[float, float, float]]):
+        self.state, self.poses, self.saved = state, poses, []
+
+    def __enter__(self) -> None:
+        state = self.state
+        self.saved = [(box, state.pose(box)) for box in self.poses]
+        for box, pose in self.poses.items():
+            state.set_pose(box, *pose)
+
+    def __exit__(self, *_) -> None:
+        for box, pose in self.saved:
+            self.state.set_pose(box, *pose)

@@ -1,0 +1,91 @@
+"""The layout's shortcuts for speed give what the long way gives, number for number.
+
+The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
+every path, and the overlap report's bounding-circle skip against measuring every pair.
+"""
+
+import math
+import random
+
+import numpy as np
+import pytest
+
+from scenewright.generator.layout import LayoutParams
+from scenewright.generator.layout.energy import PATH_GRID_MIN
+from scenewright.generator.layout.problem import compile_problem
+from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps
+from scenewright.generator.layout.sampler import start_chain
+from scenewright.generator.layout.state import Grid
+from scenewright.generator.layout.synthetic import village_graph
+
+
+def test_grid_move_leaves_the_cells_as_remove_then_insert_does():
+    rng = random.Random(3)
+    moved, plain = Grid(0.5), Grid(0.5)
+    where = {}
+    for box in range(40):
+        x, z, radius = rng.uniform(-20, 20), rng.uniform(-20, 20), rng.choice([0.1, 0.4, 1.5, 30.0])
+        moved.insert(box, x, z, radius)
+        plain.insert(box, x, z, radius)
+        where[box] = (x, z, radius)
+    for step in range(400):
+        box = rng.randrange(40)
+        x, z, radius = where[box]
+        before = moved.filing(box)
+        new = (x + rng.gauss(0.0, rng.choice([0.01, 0.3, 5.0])), z + rng.gauss(0.0, 0.3), radius)
+        moved.move(box, *new)
+        plain.remove(box)
+        plain.insert(box, *new)
+        if rng.random() < 0.5:  # rejected: back where it was filed
+            moved.move(box, x, z, radius, before)
+            plain.remove(box)
+            plain.insert(box, x, z, radius)
+        else:
+            where[box] = new
+        assert moved.keys[box] == plain.keys[box] and moved.large == plain.large
+        assert all(moved.cells[key] == plain.cells[key] for key in plain.keys[box])  # same order too
+    assert moved.cells == plain.cells and moved.keys == plain.keys
+    # Neighbours in the same order as well: the energy sums over them in that order.
+    assert [list(moved.near_box(b)) for b in range(40)] == [list(plain.near_box(b)) for b in range(40)]
+
+
+def chain(seed: int, size: int):
+    return start_chain(compile_problem(village_graph(size, seed)), LayoutParams(), np.random.default_rng(seed))
+
+
+def test_the_path_index_finds_every_path_a_box_may_touch_as_the_energy_moves():
+    energy, mover = chain(1, 220)
+    problem = energy.problem
+    assert energy.path_grid is not None and problem.n_paths >= PATH_GRID_MIN
+    for step in range(300):
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        energy.propose(*proposal)
+        energy.accept() if step % 3 else energy.reject()
+        if step % 25 == 0:
+            for box in range(problem.n_boxes):
+                every = [path for path in range(problem.n_paths) if energy.may_touch_path(box, path)]
+                assert energy.paths_near(box) == every
+            hit = [{path for path, hits in enumerate(energy.path_hits) if box in hits} for box in range(problem.n_boxes)]
+            assert energy.hit_paths == hit
+    parts = energy.full()
+    assert energy.parts["paths"] == pytest.approx(parts["paths"], abs=1e-9)
+
+
+def test_the_overlap_report_skips_no_pair_that_overlaps():
+    energy, _ = chain(2, 120)
+    problem, state, rng = energy.problem, energy.state, random.Random(2)
+    for box in range(0, problem.n_boxes, 3):  # onto another box, partly
+        other = rng.randrange(problem.n_boxes)
+        pose = (state.x[other] + rng.uniform(-2.0, 2.0), state.z[other] + rng.uniform(-2.0, 2.0), rng.uniform(-3.0, 3.0))
+        energy.propose({box: pose}, {})
+        energy.accept()
+    every = []
+    for box in range(problem.n_boxes):
+        for other in range(box + 1, problem.n_boxes):
+            depth = energy.pair_depth(box, other)
+            if depth > OVERLAP_TOLERANCE:
+                every.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
+    reported = [line for line in _overlaps(energy) if not any(path_id in line for path_id in problem.path_ids)]
+    assert every and reported == every
