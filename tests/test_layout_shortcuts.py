@@ -1,7 +1,8 @@
 """The layout's shortcuts for speed give what the long way gives, number for number.
 
 The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
-every path, and the overlap report's bounding-circle skip against measuring every pair.
+every path, the overlap report's bounding-circle skip against measuring every pair, and
+``polyline_rects_distance`` against sorting every bound.
 """
 
 import math
@@ -12,6 +13,7 @@ import pytest
 
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN
+from scenewright.generator.layout.geometry import make_rect, nearest_on_segment, polyline_rects_distance, segment_rect_distance
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps
 from scenewright.generator.layout.sampler import start_chain
@@ -89,3 +91,33 @@ def test_the_overlap_report_skips_no_pair_that_overlaps():
                 every.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
     reported = [line for line in _overlaps(energy) if not any(path_id in line for path_id in problem.path_ids)]
     assert every and reported == every
+
+
+def sorting_every_bound(points: list, rects: list) -> float:
+    """``polyline_rects_distance`` as it was: every (rectangle, segment) bound sorted."""
+    radii = [math.hypot(rect.hw, rect.hd) for rect in rects]
+    bounds = sorted(
+        (nearest_on_segment(rect.cx, rect.cz, *points[i], *points[i + 1])[0] - radii[k], k, i)
+        for k, rect in enumerate(rects)
+        for i in range(len(points) - 1)
+    )
+    best = math.inf
+    for bound, k, i in bounds:
+        if bound >= best:
+            break
+        (ax, az), (bx, bz) = points[i], points[i + 1]
+        best = min(best, segment_rect_distance(ax, az, bx, bz, rects[k]))
+    return best
+
+
+def test_polyline_rects_distance_is_the_sorted_search_to_the_last_bit():
+    rng = random.Random(8)
+    for _ in range(3000):
+        points = [[rng.uniform(-20, 20), rng.uniform(-20, 20)] for _ in range(rng.randint(1, 5))]
+        if rng.random() < 0.1:
+            points.append(list(points[-1]))  # a segment of length 0
+        rects = [
+            make_rect(rng.uniform(-25, 25), rng.uniform(-25, 25), rng.uniform(0.1, 8), rng.uniform(0.1, 8), rng.uniform(-4, 4))
+            for _ in range(rng.randint(0, 5))
+        ]
+        assert polyline_rects_distance(points, rects) == sorting_every_bound(points, rects)

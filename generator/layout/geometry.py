@@ -234,14 +234,26 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     distance from below, so (rectangle, segment) pairs are tested exactly nearest bound
     first, and only while a bound could still beat the best so far.
     """
-    radii = [math.hypot(rect.hw, rect.hd) for rect in rects]
-    bounds = sorted(
-        (nearest_on_segment(rect.cx, rect.cz, *points[i], *points[i + 1])[0] - radii[k], k, i)
-        for k, rect in enumerate(rects)
-        for i in range(len(points) - 1)
-    )
-    best = math.inf
-    for bound, k, i in bounds:
+    segments = []
+    for i in range(len(points) - 1):
+        (ax, az), (bx, bz) = points[i], points[i + 1]
+        ex, ez = bx - ax, bz - az
+        segments.append((ax, az, ex, ez, ex * ex + ez * ez, i))
+    bounds = []
+    for k, (px, pz, hw, hd, _, _) in enumerate(rects):
+        radius = math.hypot(hw, hd)
+        for ax, az, ex, ez, length2, i in segments:  # ``nearest_on_segment``'s distance, inlined
+            t = 0.0 if length2 <= 0.0 else max(0.0, min(1.0, ((px - ax) * ex + (pz - az) * ez) / length2))
+            bounds.append((math.hypot(px - (ax + t * ex), pz - (az + t * ez)) - radius, k, i))
+    # The pair of least bound first; then, nearest bound first, those whose bound could
+    # beat the best so far (only fewer as it falls): the pairs and order a sort of all
+    # of them would visit, without sorting all.
+    if not bounds:
+        return math.inf
+    first = min(bounds)
+    (ax, az), (bx, bz) = points[first[2]], points[first[2] + 1]
+    best = min(math.inf, segment_rect_distance(ax, az, bx, bz, rects[first[1]]))
+    for bound, k, i in sorted(entry for entry in bounds if entry[0] < best and entry is not first):
         if bound >= best:
             break
         (ax, az), (bx, bz) = points[i], points[i + 1]
