@@ -1,8 +1,9 @@
 """The layout's shortcuts for speed give what the long way gives, number for number.
 
 The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
-every path, the overlap report's bounding-circle skip against measuring every pair, and
-``polyline_rects_distance`` against sorting every bound.
+every path, the overlap report's bounding-circle skip against measuring every pair,
+``polyline_rects_distance`` against sorting every bound, and ``moves.uniform`` against
+``Generator.uniform``.
 """
 
 import math
@@ -14,11 +15,37 @@ import pytest
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN
 from scenewright.generator.layout.geometry import make_rect, nearest_on_segment, polyline_rects_distance, segment_rect_distance
+from scenewright.generator.layout.moves import uniform
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import Grid
 from scenewright.generator.layout.synthetic import village_graph
+
+
+def test_uniform_draws_what_generator_uniform_draws_and_leaves_the_stream_alike():
+    ours, numpys, ranges = np.random.default_rng(5), np.random.default_rng(5), np.random.default_rng(6)
+    edges = [0.0, -0.0, 5e-324, 1e-300, 0.05, 0.8, 1.0, math.pi, 1e300]
+    for k in range(20_000):
+        if k % 3 == 0:
+            low, high = sorted((float(ranges.choice(edges)) * ranges.choice([-1, 1]), float(ranges.choice(edges))))
+        else:
+            low, high = sorted(float(v) for v in ranges.normal(0.0, 10.0 ** int(ranges.integers(-4, 5)), 2))
+        if math.copysign(1.0, high - low) < 0.0:  # 0.0 to -0.0: refused (the test below)
+            continue
+        if k % 5 == 0:  # other draws between, as the moves make them
+            assert ours.integers(7) == numpys.integers(7)
+        drawn, expected = uniform(ours, low, high), numpys.uniform(low, high)
+        assert drawn == expected and math.copysign(1.0, drawn) == math.copysign(1.0, expected)
+    assert ours.random() == numpys.random()
+
+
+@pytest.mark.parametrize("low, high", [(1.0, 0.0), (0.0, -0.0), (-1e308, 1e308)])
+def test_uniform_refuses_what_generator_uniform_refuses(low, high):
+    with pytest.raises((ValueError, OverflowError)) as numpys:
+        np.random.default_rng(0).uniform(low, high)
+    with pytest.raises(numpys.type):
+        uniform(np.random.default_rng(0), low, high)
 
 
 def test_grid_move_leaves_the_cells_as_remove_then_insert_does():

@@ -53,7 +53,7 @@ from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
 from .geometry import corners
-from .moves import Mover, rigid, wrap
+from .moves import Mover, rigid, uniform, wrap
 from .moves import reach as footprint_reach
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
@@ -283,11 +283,11 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
         _spread_junctions(energy, rng, junctions)
     else:
         for junction in junctions:
-            state.set_pose(junction, rng.uniform(-0.15, 0.15) * 2 * half_x, rng.uniform(-0.15, 0.15) * 2 * half_z, 0.0)
+            state.set_pose(junction, uniform(rng, -0.15, 0.15) * 2 * half_x, uniform(rng, -0.15, 0.15) * 2 * half_z, 0.0)
     energy.activate(junctions)
     for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
-        base = rng.uniform(0.0, 2.0 * math.pi)
+        base = uniform(rng, 0.0, 2.0 * math.pi)
         for k, path in enumerate(paths):
             heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
             start = (state.x[junction], state.z[junction])
@@ -297,10 +297,10 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
     # point farthest from the roads laid so far.
     spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
     for path in free:
-        heading = rng.uniform(0.0, 2.0 * math.pi)
+        heading = uniform(rng, 0.0, 2.0 * math.pi)
         laid = [p for other in range(problem.n_paths) if other not in free or other < path for p in state.points[other]]
         candidates = [
-            (rng.uniform(-spread, spread) * 2 * half_x, rng.uniform(-spread, spread) * 2 * half_z) for _ in range(8)
+            (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z) for _ in range(8)
         ]
         middle = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0))
         back = _room(middle, heading + math.pi, half_x, half_z)
@@ -320,7 +320,7 @@ def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[
     placed: list[tuple[float, float]] = []
     for junction in junctions:
         candidates = [
-            (rng.uniform(-JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width, rng.uniform(-JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth)
+            (uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width, uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth)
             for _ in range(SPREAD_CANDIDATES)
         ]
         x, z = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0))
@@ -398,10 +398,10 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             if placed:
                 x, z, boxes = state.x[junction], state.z[junction], {}
             else:
-                x = rng.uniform(-JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_x
-                z = rng.uniform(-JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_z
+                x = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_x
+                z = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_z
                 boxes = {junction: (x, z, 0.0)}
-            slots = _free_headings(energy, pins, junction, paths, rng.uniform(0.0, 2.0 * math.pi))
+            slots = _free_headings(energy, pins, junction, paths, uniform(rng, 0.0, 2.0 * math.pi))
             laid = {}
             for k, path in enumerate(paths):
                 if pins.preset_points(path) is None:
@@ -423,8 +423,8 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             continue
 
         def crossing(path=path) -> tuple[dict, dict]:
-            heading = rng.uniform(0.0, 2.0 * math.pi)
-            middle = (rng.uniform(-spread, spread) * 2 * half_x, rng.uniform(-spread, spread) * 2 * half_z)
+            heading = uniform(rng, 0.0, 2.0 * math.pi)
+            middle = (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z)
             back = _room(middle, heading + math.pi, half_x, half_z)
             ahead = _room(middle, heading, half_x, half_z)
             length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
@@ -621,13 +621,13 @@ def _floor_spot(energy: Energy, rng: np.random.Generator, reach_x: float, reach_
     problem = energy.problem
     half_x = max(problem.extent[0] / 2.0 - reach_x, 0.0)
     half_z = max(problem.extent[1] / 2.0 - reach_z, 0.0)
-    x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
+    x, z = uniform(rng, -half_x, half_x), uniform(rng, -half_z, half_z)
     room = problem.room
     if room is not None and len(room.walls) > 4:  # an L-shaped room's box has floor missing
         for _ in range(FLOOR_TRIES):
             if room.contains(x, z):
                 break
-            x, z = rng.uniform(-half_x, half_x), rng.uniform(-half_z, half_z)
+            x, z = uniform(rng, -half_x, half_x), uniform(rng, -half_z, half_z)
     return x, z
 
 
@@ -756,7 +756,7 @@ def _place_frame(
         half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
         x, z = centre(whole, state)
         turn = wrap(math.pi / 2.0 * int(rng.integers(4)))
-        shift = (rng.uniform(-half_x, half_x) - x, rng.uniform(-half_z, half_z) - z)
+        shift = (uniform(rng, -half_x, half_x) - x, uniform(rng, -half_z, half_z) - z)
         return rigid(state, list(members), (x, z), turn, shift), {}
 
     for box, pose in draw()[0].items():

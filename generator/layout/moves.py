@@ -172,8 +172,19 @@ def end_reach(problem: Problem, state: State, end: Endpoint, wx: float, wz: floa
     )
 
 
+def uniform(rng: np.random.Generator, low: float, high: float) -> float:
+    """The number ``rng.uniform(low, high)`` draws, without its cost per call: numpy's
+    ``Generator.uniform`` is low + (high - low) times one standard uniform draw, the one
+    ``rng.random()`` makes (``tests/test_layout_shortcuts.py`` holds them equal). A range it
+    refuses (high below low, or not finite) is left to it, so that it raises as ever."""
+    span = high - low
+    if 0.0 <= span < math.inf and math.copysign(1.0, span) > 0.0:
+        return low + span * rng.random()
+    return rng.uniform(low, high)
+
+
 def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
-    return math.exp(rng.uniform(math.log(low), math.log(high)))
+    return math.exp(uniform(rng, math.log(low), math.log(high)))
 
 
 class Mover:
@@ -450,7 +461,7 @@ class Mover:
         point nearest A goes to a small gap beside A, or the junction is shifted there."""
         problem, state, rng = self.problem, self.state, self.rng
         ax, az = centre(term.a, state)
-        gap = rng.uniform(*GAP_RANGE)
+        gap = uniform(rng, *GAP_RANGE)
         if term.b.kind == "path":
             path = term.b.index
             points = state.points[path]
@@ -474,7 +485,7 @@ class Mover:
         """(dx, dz) as a unit vector; a random one when it is (almost) zero."""
         length = math.hypot(dx, dz)
         if length < 1e-9:
-            angle = self.rng.uniform(-math.pi, math.pi)
+            angle = uniform(self.rng, -math.pi, math.pi)
             return math.sin(angle), math.cos(angle)
         return dx / length, dz / length
 
@@ -570,12 +581,12 @@ class Mover:
         if b.kind in ROOM_ENDS:
             return self._place_by_room_part(term)
         ax, az = centre(a, state)
-        gap = rng.uniform(*GAP_RANGE)
+        gap = uniform(rng, *GAP_RANGE)
         turn = 0.0
         if b.kind == "path":
             points = state.points[b.index]
             segment = int(rng.integers(len(points) - 1))
-            t = rng.uniform(0.05, 0.95)
+            t = uniform(rng, 0.05, 0.95)
             (p0x, p0z), (p1x, p1z) = points[segment], points[segment + 1]
             length = math.hypot(p1x - p0x, p1z - p0z) or 1.0
             tx, tz = (p1x - p0x) / length, (p1z - p0z) / length
@@ -592,7 +603,7 @@ class Mover:
             wx, wz = self._wanted_direction(term, c, s)
             offset = end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz)
             # Slide sideways along B's side a little, so several things beside B can fit.
-            slide = rng.uniform(-LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
+            slide = uniform(rng, -LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
             bx, bz = bx - wz * slide, bz + wx * slide
         boxes = self.moving_boxes(a)
         pivot = (ax, az)
@@ -616,7 +627,7 @@ class Mover:
             a_reach = problem.path_width[a.index] / 2.0
         else:
             a_reach = end_reach(problem, state, a, -wx, -wz)
-        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz) + self.rng.uniform(*GAP_RANGE)
+        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz) + uniform(self.rng, *GAP_RANGE)
         return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
 
     def kept_free(self, a: Endpoint, end: Endpoint, wx: float, wz: float) -> float:
@@ -693,7 +704,7 @@ class Mover:
             return wanted[0]
         if wanted:
             return wanted[int(self.rng.integers(len(wanted)))]
-        angle = self.rng.uniform(-math.pi, math.pi)
+        angle = uniform(self.rng, -math.pi, math.pi)
         return math.sin(angle), math.cos(angle)
 
     def turn_group_to_face(self, term: RelationTerm) -> dict | None:
@@ -761,13 +772,13 @@ class Mover:
         if placement == "middle":
             lx = lz = 0.0
         elif placement == "front_edge":
-            lx, lz = rng.uniform(-room_x, room_x), room_z
+            lx, lz = uniform(rng, -room_x, room_x), room_z
         elif placement == "edge":
             edge = int(rng.integers(4))
-            lx = (room_x if edge == 0 else -room_x) if edge < 2 else rng.uniform(-room_x, room_x)
-            lz = (room_z if edge == 2 else -room_z) if edge >= 2 else rng.uniform(-room_z, room_z)
+            lx = (room_x if edge == 0 else -room_x) if edge < 2 else uniform(rng, -room_x, room_x)
+            lz = (room_z if edge == 2 else -room_z) if edge >= 2 else uniform(rng, -room_z, room_z)
         else:
-            lx, lz = rng.uniform(-room_x, room_x), rng.uniform(-room_z, room_z)
+            lx, lz = uniform(rng, -room_x, room_x), uniform(rng, -room_z, room_z)
         x, z = to_world(state.x[b], state.z[b], state.yaw[b], lx, lz)
         return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))
 
@@ -831,7 +842,7 @@ class Mover:
         yaw = wall.facing_yaw
         c, s = math.cos(yaw), math.sin(yaw)
         for _ in range(WALL_TRIES if high > low else 1):
-            u = rng.uniform(low, high) if high > low else low
+            u = uniform(rng, low, high) if high > low else low
             x, z = wall.to_world(u, hd)
             if self._clear_of_openings(box, x, z, c, s):
                 break
@@ -910,7 +921,7 @@ class Mover:
                 fits = top <= window.sill and hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
                 (fitting if fits else rest).append((wall, u, u, 1.0))
                 continue
-            gap = self.rng.uniform(*BESIDE_GAP)
+            gap = uniform(self.rng, *BESIDE_GAP)
             low, high = window.span
             for u in (low - gap - hw, high + gap + hw):
                 fits = hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
@@ -973,7 +984,7 @@ class Mover:
         yaw = b_yaw + math.pi if dot < -0.5 else b_yaw
         ex, ez = problem.half_width[mover], problem.half_depth[mover]  # parallel: its axes are B's
         hw, hd = problem.half_width[other], problem.half_depth[other]
-        gap = rng.uniform(*ALIGN_GAP)
+        gap = uniform(rng, *ALIGN_GAP)
         side = 1.0 if rng.random() < 0.5 else -1.0
         if rng.random() < 0.75:  # beside B, backs (mostly) or fronts flush
             lx = side * (hw + ex + gap)
@@ -1034,9 +1045,9 @@ class Mover:
             wx, wz = self._wanted_direction(term, wall.normal[1], wall.normal[0])  # the wall faces into the room
         else:
             wx, wz = wall.normal
-        px, pz = wall.to_world(rng.uniform(low, high), 0.0)
+        px, pz = wall.to_world(uniform(rng, low, high), 0.0)
         ax, az = centre(term.a, state)
-        distance = end_reach(problem, state, term.a, -wx, -wz) + rng.uniform(*GAP_RANGE)
+        distance = end_reach(problem, state, term.a, -wx, -wz) + uniform(rng, *GAP_RANGE)
         return rigid(state, self.moving_boxes(term.a), (ax, az), 0.0, (px + wx * distance - ax, pz + wz * distance - az))
 
 
