@@ -240,11 +240,19 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
         ex, ez = bx - ax, bz - az
         segments.append((ax, az, ex, ez, ex * ex + ez * ez, i))
     bounds = []
+    hypot = math.hypot
     for k, (px, pz, hw, hd, _, _) in enumerate(rects):
         radius = math.hypot(hw, hd)
         for ax, az, ex, ez, length2, i in segments:  # ``nearest_on_segment``'s distance, inlined
-            t = 0.0 if length2 <= 0.0 else max(0.0, min(1.0, ((px - ax) * ex + (pz - az) * ez) / length2))
-            bounds.append((math.hypot(px - (ax + t * ex), pz - (az + t * ez)) - radius, k, i))
+            if length2 > 0.0:
+                t = ((px - ax) * ex + (pz - az) * ez) / length2
+                if t < 0.0:  # as max(0, min(1, t)); a t of -0.0 kept as it is moves the point no less
+                    t = 0.0
+                elif t > 1.0:
+                    t = 1.0
+            else:
+                t = 0.0
+            bounds.append((hypot(px - (ax + t * ex), pz - (az + t * ez)) - radius, k, i))
     # The pair of least bound first; then, nearest bound first, those whose bound could
     # beat the best so far (only fewer as it falls): the pairs and order a sort of all
     # of them would visit, without sorting all.

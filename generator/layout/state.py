@@ -94,22 +94,40 @@ class Grid:
     def move(self, box: int, x: float, z: float, radius: float, previous=None) -> None:
         """``remove`` then ``insert``, with the same cell lists in the same order after it;
         the keys are not rebuilt when the span is the one the box had, or ``previous``'s
-        (a ``filing``: a rejected move puts the box back where it was filed)."""
-        cell = self.cell  # ``_range`` inlined: this runs twice a proposal
-        span = (
-            math.floor((x - radius) / cell), math.floor((x + radius) / cell),
-            math.floor((z - radius) / cell), math.floor((z + radius) / cell),
-        )  # fmt: skip
-        if self.spans.get(box) == span and box not in self.large:  # the same cells: it only goes last in each
+        (a ``filing``: a rejected move puts the box back where it was filed). Written out
+        (``_range``, ``remove``, ``_file``): it runs twice a proposal."""
+        cell, cells, spans, large = self.cell, self.cells, self.spans, self.large
+        i0, i1 = math.floor((x - radius) / cell), math.floor((x + radius) / cell)
+        k0, k1 = math.floor((z - radius) / cell), math.floor((z + radius) / cell)
+        span = (i0, i1, k0, k1)
+        if spans.get(box) == span and box not in large:  # the same cells: it only goes last in each
             for key in self.keys[box]:
-                boxes = self.cells[key]
+                boxes = cells[key]
                 if boxes[-1] != box:
                     boxes.remove(box)
                     boxes.append(box)
             return
-        keys = previous[1] if previous is not None and previous[0] == span else None
-        self.remove(box)
-        self._file(box, span, keys)
+        large.pop(box, None)
+        for key in self.keys.pop(box, ()):
+            cells[key].remove(box)
+        spans[box] = span
+        if (i1 - i0 + 1) * (k1 - k0 + 1) > self.MAX_SPAN:
+            large[box] = span
+            self.keys[box] = []
+            return
+        if previous is not None and previous[0] == span:
+            keys = previous[1]
+        elif i0 == i1 and k0 == k1:
+            keys = [(i0, k0)]
+        else:
+            keys = [(i, k) for i in range(i0, i1 + 1) for k in range(k0, k1 + 1)]
+        self.keys[box] = keys
+        for key in keys:
+            boxes = cells.get(key)
+            if boxes is None:
+                cells[key] = [box]
+            else:
+                boxes.append(box)
 
     def near_box(self, box: int) -> set[int]:
         """Boxes sharing a cell with ``box`` (itself included)."""
