@@ -2,8 +2,8 @@
 
 The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
 every path, the overlap report's bounding-circle skip against measuring every pair,
-``polyline_rects_distance`` against sorting every bound, and ``moves.uniform`` against
-``Generator.uniform``.
+``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
+``point_rect_distance`` from every corner, and ``moves.uniform`` against ``Generator.uniform``.
 """
 
 import math
@@ -14,7 +14,10 @@ import pytest
 
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN
-from scenewright.generator.layout.geometry import make_rect, nearest_on_segment, polyline_rects_distance, segment_rect_distance
+from scenewright.generator.layout.geometry import (
+    corners, make_rect, nearest_on_segment, point_rect_distance, polyline_rects_distance, rect_distance, rect_overlap,
+    segment_rect_distance,
+)
 from scenewright.generator.layout.moves import uniform
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps
@@ -148,3 +151,17 @@ def test_polyline_rects_distance_is_the_sorted_search_to_the_last_bit():
             for _ in range(rng.randint(0, 5))
         ]
         assert polyline_rects_distance(points, rects) == sorting_every_bound(points, rects)
+
+
+def test_rect_distance_is_the_least_corner_distance_to_the_last_bit():
+    rng = random.Random(9)
+    for _ in range(5000):
+        a, b = (
+            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.uniform(-4, 4))
+            for _ in range(2)
+        )
+        expected = min(
+            [point_rect_distance(px, pz, b) for px, pz in corners(a)] + [point_rect_distance(px, pz, a) for px, pz in corners(b)]
+        )
+        if rect_overlap(a, b) < 0.0 and abs(a.c * b.s - a.s * b.c) > 1e-6 and abs(a.c * b.c + a.s * b.s) > 1e-6:
+            assert rect_distance(a, b) == expected
