@@ -3,7 +3,8 @@
 The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
 every path, the overlap report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
-``point_rect_distance`` from every corner, and ``moves.uniform`` against ``Generator.uniform``.
+``point_rect_distance`` from every corner, the segment-to-box distances against their
+step-by-step form, and ``moves.uniform`` against ``Generator.uniform``.
 """
 
 import math
@@ -15,8 +16,8 @@ import pytest
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN
 from scenewright.generator.layout.geometry import (
-    corners, make_rect, nearest_on_segment, point_rect_distance, polyline_rects_distance, rect_distance, rect_overlap,
-    segment_rect_distance,
+    _local_overlap, capsule_rect_penetration, corners, make_rect, nearest_on_segment, point_rect_distance,
+    polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
 )
 from scenewright.generator.layout.moves import uniform
 from scenewright.generator.layout.problem import compile_problem
@@ -165,3 +166,35 @@ def test_rect_distance_is_the_least_corner_distance_to_the_last_bit():
         )
         if rect_overlap(a, b) < 0.0 and abs(a.c * b.s - a.s * b.c) > 1e-6 and abs(a.c * b.c + a.s * b.s) > 1e-6:
             assert rect_distance(a, b) == expected
+
+
+def step_by_step_distance(ax, az, bx, bz, hw, hd):
+    """``geometry._local_distance`` as it was, a call per corner."""
+
+    def point_segment(px, pz, ex, ez, length2):
+        t = 0.0 if length2 <= 0.0 else ((px - ax) * ex + (pz - az) * ez) / length2
+        t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+        return math.hypot(px - ax - t * ex, pz - az - t * ez)
+
+    best = min(
+        math.hypot(max(abs(ax) - hw, 0.0), max(abs(az) - hd, 0.0)),
+        math.hypot(max(abs(bx) - hw, 0.0), max(abs(bz) - hd, 0.0)),
+    )
+    ex, ez = bx - ax, bz - az
+    for px, pz in ((hw, hd), (-hw, hd), (hw, -hd), (-hw, -hd)):
+        best = min(best, point_segment(px, pz, ex, ez, ex * ex + ez * ez))
+    return best
+
+
+def test_segment_to_box_distances_are_the_step_by_step_ones_to_the_last_bit():
+    rng = random.Random(10)
+    for _ in range(5000):
+        rect = make_rect(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.1, 6), rng.uniform(0.1, 6), rng.uniform(-4, 4))
+        ax, az = rng.uniform(-9, 9), rng.uniform(-9, 9)
+        bx, bz = (ax, az) if rng.random() < 0.05 else (rng.uniform(-9, 9), rng.uniform(-9, 9))
+        (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
+        overlap = _local_overlap(lax, laz, lbx, lbz, rect.hw, rect.hd)
+        gap = step_by_step_distance(lax, laz, lbx, lbz, rect.hw, rect.hd)
+        assert segment_rect_distance(ax, az, bx, bz, rect) == (0.0 if overlap >= 0.0 else gap)
+        deepest = 1.5 + overlap if overlap >= 0.0 else (1.5 - gap if gap < 1.5 else 0.0)
+        assert capsule_rect_penetration(ax, az, bx, bz, 1.5, rect) == deepest

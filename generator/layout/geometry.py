@@ -155,13 +155,6 @@ def nearest_on_polyline(points: list, px: float, pz: float) -> tuple[float, floa
     return best
 
 
-def _point_segment_distance(px: float, pz: float, ax: float, az: float, ex: float, ez: float, length2: float) -> float:
-    """Distance from p to the segment from a along (ex, ez), whose squared length is given."""
-    t = 0.0 if length2 <= 0.0 else ((px - ax) * ex + (pz - az) * ez) / length2
-    t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
-    return math.hypot(px - ax - t * ex, pz - az - t * ez)
-
-
 def _local_overlap(ax: float, az: float, bx: float, bz: float, hw: float, hd: float) -> float:
     """SAT overlap of segment a-b and the box [-hw, hw] x [-hd, hd] (both in the box's frame).
 
@@ -192,16 +185,29 @@ def _local_distance(ax: float, az: float, bx: float, bz: float, hw: float, hd: f
     )
     ex, ez = bx - ax, bz - az
     length2 = ex * ex + ez * ez
+    hypot = math.hypot
     for px, pz in ((hw, hd), (-hw, hd), (hw, -hd), (-hw, -hd)):
-        distance = _point_segment_distance(px, pz, ax, az, ex, ez, length2)
+        if length2 <= 0.0:  # ``_point_segment_distance``, written out: paths test boxes every step
+            t = 0.0
+        else:
+            t = ((px - ax) * ex + (pz - az) * ez) / length2
+            t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+        distance = hypot(px - ax - t * ex, pz - az - t * ez)
         if distance < best:
             best = distance
     return best
 
 
+def _segment_in(rect: Rect, ax: float, az: float, bx: float, bz: float) -> tuple[float, float, float, float]:
+    """Both ends of a segment in the rectangle's frame (``to_local`` of each, in one call)."""
+    cx, cz, _, _, c, s = rect
+    dx, dz, ex, ez = ax - cx, az - cz, bx - cx, bz - cz
+    return dx * c - dz * s, dx * s + dz * c, ex * c - ez * s, ex * s + ez * c
+
+
 def segment_rect_distance(ax: float, az: float, bx: float, bz: float, rect: Rect) -> float:
     """Minimum distance between a segment and a filled rectangle (0 when they meet)."""
-    (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
+    lax, laz, lbx, lbz = _segment_in(rect, ax, az, bx, bz)
     if _local_overlap(lax, laz, lbx, lbz, rect.hw, rect.hd) >= 0.0:
         return 0.0
     return _local_distance(lax, laz, lbx, lbz, rect.hw, rect.hd)
@@ -214,7 +220,7 @@ def capsule_rect_penetration(ax: float, az: float, bx: float, bz: float, radius:
     centre line it grows by the rectangle's SAT overlap with the segment, so the value
     is continuous and keeps growing the deeper the rectangle sits.
     """
-    (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
+    lax, laz, lbx, lbz = _segment_in(rect, ax, az, bx, bz)
     overlap = _local_overlap(lax, laz, lbx, lbz, rect.hw, rect.hd)
     if overlap >= 0.0:
         return radius + overlap
