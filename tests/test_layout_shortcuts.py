@@ -1,7 +1,8 @@
 """The layout's shortcuts for speed give what the long way gives, number for number.
 
 The grid's ``move`` against ``remove`` then ``insert``, the path index against testing
-every path, the overlap report's bounding-circle skip against measuring every pair,
+every path, the relation measures ``Energy`` keeps against measuring anew, the overlap
+report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
 ``point_rect_distance`` from every corner, the segment-to-box distances against their
 step-by-step form, and ``moves.uniform`` against ``Generator.uniform``.
@@ -14,14 +15,15 @@ import numpy as np
 import pytest
 
 from scenewright.generator.layout import LayoutParams
-from scenewright.generator.layout.energy import PATH_GRID_MIN
+from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
 from scenewright.generator.layout.geometry import (
     _local_overlap, capsule_rect_penetration, corners, make_rect, nearest_on_segment, point_rect_distance,
     polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
 )
 from scenewright.generator.layout.moves import uniform
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps
+from scenewright.generator.layout.relation_terms import evaluate
+from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps, assess
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import Grid
 from scenewright.generator.layout.synthetic import village_graph
@@ -104,6 +106,31 @@ def test_the_path_index_finds_every_path_a_box_may_touch_as_the_energy_moves():
             assert energy.hit_paths == hit
     parts = energy.full()
     assert energy.parts["paths"] == pytest.approx(parts["paths"], abs=1e-9)
+
+
+def test_the_measures_the_energy_keeps_are_those_measured_anew():
+    energy, mover = chain(3, 60)
+    problem, state, params = energy.problem, energy.state, energy.params
+    kept = 0
+    for step in range(400):
+        proposal = mover.propose(energy.relation)
+        if proposal is None:
+            continue
+        energy.propose(*proposal)
+        energy.accept() if step % 2 else energy.reject()
+        if step % 40 == 0:
+            kept += len(energy.measures)
+            for term, measure in energy.measures.items():
+                assert measure == evaluate(problem.relations[term], state, params)
+            assert assess(energy) == assess(fresh_copy(energy))
+    assert kept > 0
+
+
+def fresh_copy(energy: Energy) -> Energy:
+    """An energy over the same poses and paths that has measured nothing yet."""
+    copy = Energy(energy.problem, energy.state, energy.params)
+    copy.activate([box for box in range(energy.problem.n_boxes) if energy.active[box]])
+    return copy
 
 
 def test_the_overlap_report_skips_no_pair_that_overlaps():

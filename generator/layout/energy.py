@@ -51,7 +51,7 @@ from .factors import greater, less
 from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_overlap
 from .params import LayoutParams
 from .problem import Problem
-from .relation_terms import evaluate
+from .relation_terms import Measure, evaluate
 from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
 from .state import Grid, State
 
@@ -84,6 +84,7 @@ class Changes(NamedTuple):
     room: RoomChanges | None  # the room's terms (None outdoors)
     mask: dict[int, float]  # by box: the moved listed boxes' new mask values
     learned: dict[int, float]  # by learned pair: the new values of the moved boxes' pairs
+    measures: dict[int, Measure]  # by term: the measures behind ``relation`` (active terms)
 
 
 class Pending(NamedTuple):
@@ -146,6 +147,23 @@ class Energy:
         if not self.relation_active(term_index):
             return 0.0
         return evaluate(self.problem.relations[term_index], self.state, self.params).energy
+
+    def measure(self, term_index: int) -> Measure:
+        """``evaluate`` of a relation at the current state (what ``report.assess`` reads).
+
+        Kept from the last time it was measured while none of the boxes and paths it
+        reads (``terms_of_box``, ``terms_of_path``: its ends and what may block its view)
+        has moved since: ``accept`` drops the measures of the terms a move touches and
+        keeps those the move computed. Poses change only through ``propose``, so a kept
+        measure is the one ``evaluate`` would give again. Between checks of a chain few
+        relations move, and a large scene's check no longer measures them all."""
+        kept = self.measures.get(term_index)
+        if kept is not None:
+            return kept
+        measure = evaluate(self.problem.relations[term_index], self.state, self.params)
+        if self._pending is None and self.relation_active(term_index):
+            self.measures[term_index] = measure
+        return measure
 
     def penalty(self, depth: float) -> float:
         return -self.params.collision_intensity * math.log1p(-min(depth, MAX_DEPTH))
@@ -356,6 +374,7 @@ class Energy:
     def _install(self, fresh: dict) -> None:
         """Make freshly computed terms the cache."""
         self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
+        self.measures: dict[int, Measure] = {}  # kept relation measures (``measure``)
         # Per box, the paths whose hits hold it (the reverse of ``path_hits``).
         self.hit_paths = [set() for _ in range(self.problem.n_boxes)]
         for path, hits in enumerate(self.path_hits):
@@ -438,13 +457,17 @@ class Energy:
             terms.update(problem.terms_of_box[box])
         for path in paths:
             terms.update(problem.terms_of_path[path])
-        new_relation = {}
-        relations, term_boxes, relation = problem.relations, self.term_boxes, self.relation
+        new_relation, new_measures = {}, {}
+        relations, term_boxes, relation, state, params = problem.relations, self.term_boxes, self.relation, self.state, self.params
         change = 0.0
         for term in sorted(terms):
             if together and not relations[term].reads_fixed_geometry and term_boxes[term] <= moved:
                 continue
-            value = self.relation_energy(term)
+            if self.relation_active(term):  # ``relation_energy``, its measure kept for ``accept``
+                measure = new_measures[term] = evaluate(relations[term], state, params)
+                value = measure.energy
+            else:
+                value = 0.0
             new_relation[term] = value
             change += value - relation[term]
         delta["relations"] = change
@@ -550,7 +573,7 @@ class Energy:
                 delta[LEARNED_PART] += new_learned[pair] - self.learned[pair]
         return Changes(
             delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned,
+            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned, new_measures,
         )  # fmt: skip
 
     def access_floor(self) -> float:
@@ -593,6 +616,14 @@ class Energy:
         changes, moved = pending.update, pending.update.moved
         for term, value in changes.relation.items():
             self.relation[term] = value
+        measures, problem = self.measures, self.problem
+        for box in moved:  # what the move touched is measured anew (``measure``) ...
+            for term in problem.terms_of_box[box]:
+                measures.pop(term, None)
+        for path in changes.moved_paths:
+            for term in problem.terms_of_path[path]:
+                measures.pop(term, None)
+        measures.update(changes.measures)  # ... but for what it measured already
         for box in moved:
             for other in self.pairs[box]:
                 if other not in moved:

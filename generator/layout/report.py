@@ -31,7 +31,7 @@ from scenewright.core.relations import Relation
 
 from .energy import Energy
 from .geometry import polyline_length, polyline_turns
-from .relation_terms import EPSILON, complaint, evaluate, satisfied
+from .relation_terms import EPSILON, complaint, satisfied
 
 OVERLAP_TOLERANCE = 0.01
 EXTENT_TOLERANCE = 0.001
@@ -40,8 +40,9 @@ EXTENT_TOLERANCE = 0.001
 def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
     """A verdict for every edge of the graph, in graph order, and the list of problems
     (empty when the layout is ok). Structural edges (a path's start at its junction) hold
-    by construction."""
-    problem, state, params = energy.problem, energy.state, energy.params
+    by construction. Relations are measured through ``Energy.measure``, which keeps the
+    measures of those nothing has moved since."""
+    problem, params = energy.problem, energy.params
     results: list[Relation] = []
     problems: list[str] = []
     for source, target, label, index in problem.edges:
@@ -53,7 +54,7 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
             results.append(Relation(source, target, label, 0.0, False))
             problems.append(f"{source} {label} {target}: a group with nothing in it cannot be placed")
             continue
-        measure = evaluate(term, state, params)
+        measure = energy.measure(index)
         holds = satisfied(term, measure, params)
         results.append(Relation(source, target, label, -measure.energy, holds, measure.chosen))
         if not holds:
