@@ -88,16 +88,23 @@ def chain(seed: int, size: int):
     return start_chain(compile_problem(village_graph(size, seed)), LayoutParams(), np.random.default_rng(seed))
 
 
-def test_the_path_index_finds_every_path_a_box_may_touch_as_the_energy_moves():
-    energy, mover = chain(1, 220)
-    problem = energy.problem
-    assert energy.path_grid is not None and problem.n_paths >= PATH_GRID_MIN
-    for step in range(300):
+def random_walk(energy: Energy, mover, steps: int, reject_every: int):
+    """The mover's proposals, each kept but every ``reject_every``-th; yields the step
+    number after each."""
+    for step in range(steps):
         proposal = mover.propose(energy.relation)
         if proposal is None:
             continue
         energy.propose(*proposal)
-        energy.accept() if step % 3 else energy.reject()
+        energy.reject() if step % reject_every == 0 else energy.accept()
+        yield step
+
+
+def test_the_path_index_finds_every_path_a_box_may_touch_as_the_energy_moves():
+    energy, mover = chain(1, 220)
+    problem = energy.problem
+    assert energy.path_grid is not None and problem.n_paths >= PATH_GRID_MIN
+    for step in random_walk(energy, mover, 300, reject_every=3):
         if step % 25 == 0:
             for box in range(problem.n_boxes):
                 every = [path for path in range(problem.n_paths) if energy.may_touch_path(box, path)]
@@ -112,12 +119,7 @@ def test_the_measures_the_energy_keeps_are_those_measured_anew():
     energy, mover = chain(3, 60)
     problem, state, params = energy.problem, energy.state, energy.params
     kept = 0
-    for step in range(400):
-        proposal = mover.propose(energy.relation)
-        if proposal is None:
-            continue
-        energy.propose(*proposal)
-        energy.accept() if step % 2 else energy.reject()
+    for step in random_walk(energy, mover, 400, reject_every=2):
         if step % 40 == 0:
             kept += len(energy.measures)
             for term, measure in energy.measures.items():
