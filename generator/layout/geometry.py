@@ -260,12 +260,15 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     for i in range(len(points) - 1):
         (ax, az), (bx, bz) = points[i], points[i + 1]
         ex, ez = bx - ax, bz - az
-        segments.append((ax, az, ex, ez, ex * ex + ez * ez, i))
-    bounds = []
+        segments.append((ax, az, ex, ez, ex * ex + ez * ez))
+    # Bound of pair (rectangle k, segment i) at position k * segments + i, so that the
+    # order of (bound, position) is that of (bound, k, i); the least, first in that order.
+    bounds: list[float] = []
+    first, least = -1, math.inf
     hypot = math.hypot
-    for k, (px, pz, hw, hd, _, _) in enumerate(rects):
-        radius = math.hypot(hw, hd)
-        for ax, az, ex, ez, length2, i in segments:  # ``nearest_on_segment``'s distance, inlined
+    for px, pz, hw, hd, _, _ in rects:
+        radius = hypot(hw, hd)
+        for ax, az, ex, ez, length2 in segments:  # ``nearest_on_segment``'s distance, inlined
             if length2 > 0.0:
                 t = ((px - ax) * ex + (pz - az) * ez) / length2
                 if t < 0.0:  # as max(0, min(1, t)); a t of -0.0 kept as it is moves the point no less
@@ -274,20 +277,23 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
                     t = 1.0
             else:
                 t = 0.0
-            bounds.append((hypot(px - (ax + t * ex), pz - (az + t * ez)) - radius, k, i))
+            bound = hypot(px - (ax + t * ex), pz - (az + t * ez)) - radius
+            if bound < least:
+                first, least = len(bounds), bound
+            bounds.append(bound)
+    if first < 0:
+        return math.inf
     # The pair of least bound first; then, nearest bound first, those whose bound could
     # beat the best so far (only fewer as it falls): the pairs and order a sort of all
     # of them would visit, without sorting all.
-    if not bounds:
-        return math.inf
-    first = min(bounds)
-    (ax, az), (bx, bz) = points[first[2]], points[first[2] + 1]
-    best = min(math.inf, segment_rect_distance(ax, az, bx, bz, rects[first[1]]))
-    for bound, k, i in sorted(entry for entry in bounds if entry[0] < best and entry is not first):
+    count = len(segments)
+    k, i = divmod(first, count)
+    best = min(math.inf, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
+    for bound, position in sorted((bound, position) for position, bound in enumerate(bounds) if bound < best and position != first):
         if bound >= best:
             break
-        (ax, az), (bx, bz) = points[i], points[i + 1]
-        best = min(best, segment_rect_distance(ax, az, bx, bz, rects[k]))
+        k, i = divmod(position, count)
+        best = min(best, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
     return best
 
 
