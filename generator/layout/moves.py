@@ -233,6 +233,7 @@ class Mover:
             t for t, term in enumerate(problem.relations)
             if term.placeable and (self._movable(term.a) or self._movable(term.b) or t in self.pullable)
         ]  # fmt: skip
+        self._relation_positions = np.array(self.relations, dtype=np.intp)  # for ``relation_move``'s weights
         self.clusters = [c for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem)) if c]
         self.cluster_of = {box: cluster for cluster in self.clusters for box in cluster}
         # Per box, the boxes its relation partners are, and those placed by a relation to it
@@ -428,7 +429,7 @@ class Mover:
     def relation_move(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         # Squared, so clearly violated relations (energy above ~1) win over the small
         # residues soft factors always keep; relations last found unsatisfied get a boost.
-        weights = np.array([relation_energy[t] for t in self.relations]) ** 2 + 0.01
+        weights = np.array(relation_energy, dtype=float)[self._relation_positions] ** 2 + 0.01
         for position in self.focus_positions:
             weights[position] += FOCUS_WEIGHT
         # Inverse-CDF sampling as rng.choice(p=...) does it, without its checks of p each step.
