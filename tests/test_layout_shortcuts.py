@@ -5,7 +5,8 @@ every path, the relation measures ``Energy`` keeps against measuring anew, the o
 report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
 ``point_rect_distance`` from every corner, the segment-to-box distances against their
-step-by-step form, and ``moves.uniform`` against ``Generator.uniform``.
+step-by-step form, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
+calls they stand for.
 """
 
 import math
@@ -20,7 +21,7 @@ from scenewright.generator.layout.geometry import (
     _local_overlap, capsule_rect_penetration, corners, make_rect, nearest_on_segment, point_rect_distance,
     polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
 )
-from scenewright.generator.layout.moves import uniform
+from scenewright.generator.layout.moves import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps, assess
@@ -44,6 +45,18 @@ def test_uniform_draws_what_generator_uniform_draws_and_leaves_the_stream_alike(
         drawn, expected = uniform(ours, low, high), numpys.uniform(low, high)
         assert drawn == expected and math.copysign(1.0, drawn) == math.copysign(1.0, expected)
     assert ours.random() == numpys.random()
+
+
+def test_draw_index_draws_what_generator_integers_draws_and_leaves_the_stream_alike():
+    ours, numpys, counts = np.random.default_rng(7), np.random.default_rng(7), random.Random(7)
+    for _ in range(5000):
+        count = counts.choice([1, 1, 1, 2, 3, 4, 7, 1000])
+        assert draw_index(ours, count) == int(numpys.integers(count))
+        if counts.random() < 0.3:
+            assert ours.random() == numpys.random()
+    assert ours.bit_generator.state == numpys.bit_generator.state
+    with pytest.raises(ValueError):
+        draw_index(ours, 0)
 
 
 @pytest.mark.parametrize("low, high", [(1.0, 0.0), (0.0, -0.0), (-1e308, 1e308)])

@@ -53,7 +53,7 @@ from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
 from .geometry import corners
-from .moves import Mover, rigid, uniform, wrap
+from .moves import Mover, draw_index, rigid, uniform, wrap
 from .moves import reach as footprint_reach
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
@@ -528,14 +528,14 @@ def _place_box(
         if support:
             return mover.place_for_relation(support[0]), {}
         if positional or incoming:
-            pick = int(rng.integers(len(positional) + len(incoming)))
+            pick = draw_index(rng, len(positional) + len(incoming))
             if pick < len(positional):
                 return mover.place_by(positional[pick], walls), {}
             return mover.place_target_for(incoming[pick - len(positional)]), {}
         if anchor_term is not None:
             return mover.place_for_relation(anchor_term), {}
         if placed_mates:
-            mate = placed_mates[int(rng.integers(len(placed_mates)))]
+            mate = placed_mates[draw_index(rng, len(placed_mates))]
             near = RelationTerm("", "", "NextTo", RELATIONS["NextTo"], own, Endpoint("object", mate, (mate,)))
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
@@ -752,7 +752,7 @@ def _place_frame(
 
     def draw() -> tuple[dict, dict]:
         if anchors:
-            return mover.place_for_relation(anchors[int(rng.integers(len(anchors)))]), {}
+            return mover.place_for_relation(anchors[draw_index(rng, len(anchors))]), {}
         half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
         x, z = centre(whole, state)
         turn = wrap(math.pi / 2.0 * int(rng.integers(4)))

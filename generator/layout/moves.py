@@ -183,6 +183,13 @@ def uniform(rng: np.random.Generator, low: float, high: float) -> float:
     return rng.uniform(low, high)
 
 
+def draw_index(rng: np.random.Generator, count: int) -> int:
+    """A uniform index below ``count``, the one ``int(rng.integers(count))`` draws: for a
+    count of 1 numpy returns 0 without drawing, so no call is made (it costs microseconds,
+    and many picks are from one thing: a group's one anchor, a road's one junction)."""
+    return 0 if count == 1 else int(rng.integers(count))
+
+
 def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
     return math.exp(uniform(rng, math.log(low), math.log(high)))
 
@@ -319,21 +326,21 @@ class Mover:
                 break
         if kind == "jitter":
             if self.focus_boxes and self.rng.random() < 0.5:
-                return self.jitter(self.focus_boxes[int(self.rng.integers(len(self.focus_boxes)))])
-            return self.jitter(self.boxes[int(self.rng.integers(len(self.boxes)))])
+                return self.jitter(self.focus_boxes[draw_index(self.rng, len(self.focus_boxes))])
+            return self.jitter(self.boxes[draw_index(self.rng, len(self.boxes))])
         if kind == "rotate":
-            return self.rotate(self.boxes[int(self.rng.integers(len(self.boxes)))])
+            return self.rotate(self.boxes[draw_index(self.rng, len(self.boxes))])
         if kind == "group":
             if self.focus_groups and self.rng.random() < 0.5:
-                return self.relocate_group(self.focus_groups[int(self.rng.integers(len(self.focus_groups)))])
-            return self.move_group(self.groups[int(self.rng.integers(len(self.groups)))])
+                return self.relocate_group(self.focus_groups[draw_index(self.rng, len(self.focus_groups))])
+            return self.move_group(self.groups[draw_index(self.rng, len(self.groups))])
         if kind == "cluster":
-            return self.move_cluster(self.clusters[int(self.rng.integers(len(self.clusters)))])
+            return self.move_cluster(self.clusters[draw_index(self.rng, len(self.clusters))])
         if kind == "relation":
             return self.relation_move(relation_energy)
         if kind == "path":
-            return self.move_path(self.paths[int(self.rng.integers(len(self.paths)))])
-        return self.move_junction(self.junctions[int(self.rng.integers(len(self.junctions)))])
+            return self.move_path(self.paths[draw_index(self.rng, len(self.paths))])
+        return self.move_junction(self.junctions[draw_index(self.rng, len(self.junctions))])
 
     # -- local moves ---------------------------------------------------------------------
 
@@ -512,7 +519,7 @@ class Mover:
         walls = [t for t in terms if t.spec.family == "wall"]
         best, best_energy = None, math.inf
         for _ in range(MULTI_TRIES):
-            proposal = self.place_by(terms[int(self.rng.integers(len(terms)))], walls)
+            proposal = self.place_by(terms[draw_index(self.rng, len(terms))], walls)
             if not proposal:
                 continue
             with state.trying(proposal):
@@ -533,7 +540,7 @@ class Mover:
             return proposal
         if walls:
             if term.spec.family != "wall" and self.rng.random() < 0.5:
-                wall_term = walls[int(self.rng.integers(len(walls)))]
+                wall_term = walls[draw_index(self.rng, len(walls))]
                 with self.state.trying(proposal):
                     snapped = self._place_at_wall(wall_term, snap=True)
                 if snapped:
@@ -541,7 +548,7 @@ class Mover:
             return proposal
         lines = [t for t in self._placing_terms(term.a) if t.spec.family == "alignment" and t.b.kind == "object"]
         if lines and term.spec.family != "alignment" and self.rng.random() < 0.5:
-            line = lines[int(self.rng.integers(len(lines)))]
+            line = lines[draw_index(self.rng, len(lines))]
             with self.state.trying(proposal):
                 snapped = self.snap_aligned(term.a.index, line.b.index)
             if snapped:
@@ -586,7 +593,7 @@ class Mover:
         turn = 0.0
         if b.kind == "path":
             points = state.points[b.index]
-            segment = int(rng.integers(len(points) - 1))
+            segment = draw_index(rng, len(points) - 1)
             t = uniform(rng, 0.05, 0.95)
             (p0x, p0z), (p1x, p1z) = points[segment], points[segment + 1]
             length = math.hypot(p1x - p0x, p1z - p0z) or 1.0
@@ -704,7 +711,7 @@ class Mover:
         if len(wanted) == 1:
             return wanted[0]
         if wanted:
-            return wanted[int(self.rng.integers(len(wanted)))]
+            return wanted[draw_index(self.rng, len(wanted))]
         angle = uniform(self.rng, -math.pi, math.pi)
         return math.sin(angle), math.cos(angle)
 

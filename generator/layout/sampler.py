@@ -61,7 +61,7 @@ from scenewright.core.relations import Relation
 from .energy import Energy
 from .initial import place_initial
 from .learned_term import LearnedMoves
-from .moves import Mover, rigid, wrap
+from .moves import Mover, draw_index, rigid, wrap
 from .params import LayoutParams
 from .pinning import Pins
 from .problem import Endpoint, Problem
@@ -255,7 +255,7 @@ class Relocator:
         """New poses for a troubled box (drawn from ``troubled``) placed by its relations,
         and for its satellites; None when it has no relation that places it."""
         problem, state, mover = self.problem, self.state, self.mover
-        box = troubled[int(mover.rng.integers(len(troubled)))]
+        box = troubled[draw_index(mover.rng, len(troubled))]
         placing = [t for t in problem.outgoing.get(("object", box), []) if t.spec.family != "facing"]
         if not placing:
             return None
