@@ -407,17 +407,18 @@ class Energy:
         Without a room's access terms, or with ``incremental=False``, the change is whole.
         """
         state, grid, problem = self.state, self.grid, self.problem
-        saved_boxes = [(box, state.pose(box)) for box in boxes]
+        xs, zs, yaws = state.x, state.z, state.yaw
+        saved_boxes = [(box, (xs[box], zs[box], yaws[box])) for box in boxes]  # ``State.pose``
         saved_paths = [(path, state.points[path]) for path in paths]
         filings = {}
-        active, size = self.active, problem.size
+        active, size, set_pose, spans, keys = self.active, problem.size, state.set_pose, grid.spans, grid.keys
         for box, (x, z, yaw) in boxes.items():
-            state.set_pose(box, x, z, yaw)
+            set_pose(box, x, z, yaw)
             if active[box]:
                 if entering:
                     grid.insert(box, x, z, size[box] / 2.0)
                 else:
-                    filings[box] = grid.filing(box)
+                    filings[box] = (spans[box], keys[box])  # ``Grid.filing``: an active box is filed
                     grid.move(box, x, z, size[box] / 2.0)
         for path, points in paths.items():
             state.points[path] = points
@@ -459,11 +460,12 @@ class Energy:
             terms.update(problem.terms_of_path[path])
         new_relation, new_measures = {}, {}
         relations, term_boxes, relation, state, params = problem.relations, self.term_boxes, self.relation, self.state, self.params
+        live = self.live
         change = 0.0
         for term in sorted(terms):
             if together and not relations[term].reads_fixed_geometry and term_boxes[term] <= moved:
                 continue
-            if self.relation_active(term):  # ``relation_energy``, its measure kept for ``accept``
+            if live[term] or self.relation_active(term):  # ``relation_energy``, its measure kept for ``accept``
                 measure = new_measures[term] = evaluate(relations[term], state, params)
                 value = measure.energy
             else:
@@ -544,8 +546,10 @@ class Energy:
         new_box_extent = {}
         box_extent = self.box_extent
         change = 0.0
+        outdoors, intensity = self.room is None, self.params.collision_intensity  # ``box_extent_energy``:
         for box in boxes:
-            value = new_box_extent[box] = self.box_extent_energy(box)
+            value = intensity * self.box_excess(box) / size[box] if active[box] and outdoors else 0.0
+            new_box_extent[box] = value
             change += value - box_extent[box]
         new_path_extent = {}
         for path in paths:
