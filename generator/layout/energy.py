@@ -504,6 +504,7 @@ class Energy:
             self.path_bounds, self.path_hits, self.collides_with_paths, self.state.x, self.state.z, problem.size
         )
         change = 0.0
+        path_width, points, rects = problem.path_width, self.state.points, self.state.rects
         for box in boxes:
             if active[box] and collides[box] and path_bounds:
                 x, z, radius = xs[box], zs[box], size[box] / 2.0
@@ -514,10 +515,13 @@ class Energy:
                     change -= path_hits[path].get(box, 0.0)
                     if x + radius < x0 or x - radius > x1 or z + radius < z0 or z - radius > z1:
                         continue  # cannot touch it (``may_touch_path``, inlined: this runs every step)
-                    value = self.path_energy(box, path)
-                    if value > 0.0:
-                        new_hits[(box, path)] = value
-                        change += value
+                    width = path_width[path]  # ``path_energy``, its test just made
+                    depth = polyline_rect_penetration(points[path], width / 2.0, rects[box]) / (size[box] + width)
+                    if depth > 0.0:
+                        value = penalty(depth)
+                        if value > 0.0:
+                            new_hits[(box, path)] = value
+                            change += value
         for path in paths:
             for box, value in path_hits[path].items():
                 if box not in moved:
