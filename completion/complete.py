@@ -31,7 +31,9 @@ The steps, each a function here:
    piece (``fewer_pieces``: of the added categories its problems name, the one most
    weakly tied to the request) and is laid out again, at most ``FIT_ATTEMPTS`` times:
    Algorithm 1 weighs floor area, not whether the pieces fit round the door and each
-   other, so a small room can be chosen more than it holds.
+   other, so a small room can be chosen more than it holds. A try after a failed one
+   first starts one short chain where the failed layout left the remaining pieces
+   (``WARM_PARAMS``) and lays the room out afresh only when that is not ok.
 
 The mask guides the start and, through its energy part, the chains: a large piece
 costs more the less of the mask lies under it. It is a preference: the layout's
@@ -133,6 +135,12 @@ FIT_ATTEMPTS = 4
 #: The layout's parameters for each try: two chains (one restart), as most rooms are ok
 #: on their first chain and one that fails twice is better off with a piece fewer.
 FIT_PARAMS = LayoutParams(restarts=1)
+#: A try after a failed one first runs one chain from the failed layout's poses (the
+#: pieces still in the room where they stood; a warm start), which gives up after
+#: ``patience`` steps without progress: the piece given up mostly was what kept the rest
+#: from fitting, so the chain is ok within a few hundred steps. Only when it is not does
+#: the try lay the room out afresh (``FIT_PARAMS``).
+WARM_PARAMS = LayoutParams(restarts=0, patience=400)
 ROOM_FULL = "no room for it with the rest: the layout failed with it"
 
 
@@ -794,6 +802,7 @@ def complete(
         catalog = catalog or catalog_categories()
         contents = choose_contents(model, request, split=split and keep is None)
     chosen = dict(contents.counts)
+    failed = None  # the last failed try's poses (box id -> Pose), where the next try starts first
     for attempt in range(1 + FIT_ATTEMPTS):
         with timed(timings, "complete"):
             graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
@@ -811,9 +820,16 @@ def complete(
             graph, pinned = pin_existing(graph, keep)
             start = {}  # the new pieces go where the layout's own placement finds room among the kept
         with timed(timings, "layout", time.perf_counter):
-            layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned)
+            layout = None
+            if failed is not None:
+                boxes = {n.id for n in graph.nodes("object")} - set(pinned or {})
+                warm = {box: pose for box, pose in failed.items() if box in boxes}
+                layout = layout_scene(graph, seed, start=warm, mask=mask, params=WARM_PARAMS, pinned=pinned)
+            if layout is None or not layout.ok:
+                layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned)
         if layout.ok or attempt == FIT_ATTEMPTS:
             break
+        failed = layout.poses
         smaller = fewer_pieces(model, contents, request, graph, layout.problems)
         if smaller is None:
             break
