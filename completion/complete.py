@@ -527,20 +527,27 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
         left = sum(other.size[0] for other, side in sides if side < 0)
         unit = width + left + sum(other.size[0] for other, side in sides if side > 0)
         reach = depth + dict(node.clearance).get("front", 0.0)
-        best = None
+        local = np.array([(a * width, b * depth) for a in grid for b in grid])  # (samples^2, 2)
+        others = swings + list(placed.values())
+        fitting, points = [], []  # the places clear of the walls and the rest; their footprints' samples
         for wall, u in _wall_places(room, unit, wall_of[node.id] == "UnderWindow"):
             middle = u - unit / 2.0 + left + width / 2.0  # the piece's own centre along the wall
-            x, z = wall.to_world(middle, depth / 2.0 + WALL_GAP)
             cx, cz = wall.to_world(u, reach / 2.0 + WALL_GAP)
             rect = make_rect(cx, cz, unit, reach, wall.facing_yaw)
             if room.footprint_excess(corners(rect)) > 1e-6:
                 continue
-            if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
+            if any(rect_overlap(rect, other) > 1e-6 for other in others):
                 continue
-            local = np.array([(a * width, b * depth) for a in grid for b in grid])
+            x, z = wall.to_world(middle, depth / 2.0 + WALL_GAP)
             c, s = math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
-            points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
-            score = float(np.mean(mask_values(mask, room, node.type, points)))
+            points.append(np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c]))
+            fitting.append((rect, wall, middle))
+        # One read of the mask for every place (elementwise, so each place's values are
+        # those a read of its own gives); the first place of the highest mean wins.
+        values = mask_values(mask, room, node.type, np.concatenate(points)) if points else ()
+        best = None
+        for k, (rect, wall, middle) in enumerate(fitting):
+            score = float(np.mean(values[k * len(local):(k + 1) * len(local)]))
             if best is None or score > best[0] + 1e-12:
                 best = (score, rect, wall, middle)
         if best is None:
@@ -674,8 +681,16 @@ def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
     unplaced = sorted({n.type for n in graph.nodes("object")
                        if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start})  # fmt: skip
     if unplaced:
+        before = graph
         graph, dropped = build_graph(model, contents, room, catalog, leave_out=unplaced)
-        start = starting_poses(graph, room, contents.mask)
+        kept = {n.id for n in graph.nodes("object")}
+        gone = {n.id for n in before.nodes("object")} - kept
+        # A piece with no starting pose took no place another's start depends on: when
+        # the rest of the graph is the same, the rest's starts are too.
+        if [r for r in before.edges() if r.source not in gone and r.target not in gone] == graph.edges():
+            start = {box: pose for box, pose in start.items() if box in kept}
+        else:
+            start = starting_poses(graph, room, contents.mask)
     return graph, dropped, start
 
 
