@@ -12,7 +12,7 @@ from scenewright.cli import main
 from scenewright.completion import shipped_plans_dir
 from scenewright.completion import complete as completion_module
 from scenewright.completion.complete import (
-    ROOM_FULL, build_graph, choose_contents, complete, fewer_pieces, parse_request, summary_of,
+    MASKED, ROOM_FULL, build_graph, choose_contents, complete, fewer_pieces, parse_request, summary_of,
 )
 from scenewright.completion.model import build_model
 from scenewright.completion.plan import catalog_categories, load_plans
@@ -299,3 +299,20 @@ def test_add_needs_a_scene_and_a_scene_needs_a_room(tmp_path, capsys):
     assert main(["-q", "generate", "village", "--seed", "1", "--no-render", "-o", str(tmp_path / "v")]) == 0
     assert main(["complete", str(tmp_path / "v" / "scene.json"), "--add", "piano", "-o", str(tmp_path / "y")]) == 2
     assert "only an indoor scene can be completed" in capsys.readouterr().err
+
+
+def test_a_try_run_chain_by_chain_is_the_layouts_own_two_chains(model, catalog, monkeypatch):
+    # _fit runs a try's second chain as a layout of its own (to give it its own patience):
+    # at the layout's patience it is the very chain layout_scene's restart runs.
+    from scenewright.completion.layout_mask import floor_mask
+    from scenewright.generator.layout import layout_scene
+
+    request = parse_request("3.7x5.2", ["N:2.61:0.91"], ["W:2.74:1.53"], ["bed"], set(catalog))
+    contents = choose_contents(model, request)
+    graph, _, start = completion_module._graph_and_start(model, contents, request.room, catalog)
+    mask = floor_mask(contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED])
+    monkeypatch.setattr(completion_module, "RESTART_PATIENCE", completion_module.FIT_PARAMS.patience)
+    both = layout_scene(graph, 0, start=start, mask=mask, params=completion_module.FIT_PARAMS)
+    assert not both.ok  # the room is crowded: both chains ran
+    split = completion_module._fit(graph, 0, start, mask, None)
+    assert (split.poses, split.problems, split.steps) == (both.poses, both.problems, both.steps)
