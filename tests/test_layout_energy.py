@@ -70,3 +70,33 @@ def test_placement_activates_every_box_and_parts_are_non_negative():
     energy, _, _ = placed(0, size=12)
     assert all(value >= -1e-12 for value in energy.full().values())
     assert all(energy.active)
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_a_kept_update_reproposed_after_others_is_the_one_computed_anew(seed):
+    # Two copies of one placed village take the same proposals: one tries a first,
+    # keeps its update, tries others (all rejected) and puts it back from the kept
+    # update; the other computes it again. Their energies stay equal to the last bit.
+    kept_side, mover, _ = placed(seed)
+    fresh_side, _, _ = placed(seed)
+    mover.rng = np.random.default_rng(seed + 100)
+    for _ in range(25):
+        proposals = [p for p in (mover.propose(kept_side.relation) for _ in range(4)) if p is not None]
+        if not proposals:
+            continue
+        delta = kept_side.propose(*proposals[0])
+        kept = kept_side.kept(delta)
+        assert kept is not None  # outdoors: no room part
+        kept_side.reject()
+        for other in proposals[1:]:
+            kept_side.propose(*other)
+            kept_side.reject()
+            fresh_side.propose(*other)
+            fresh_side.reject()
+        assert kept_side.repropose(proposals[0], kept) == fresh_side.propose(*proposals[0]) == delta
+        assert kept_side._pending.update == fresh_side._pending.update
+        kept_side.accept()
+        fresh_side.accept()
+        assert kept_side.parts == fresh_side.parts
+        assert kept_side.total == fresh_side.total
+    assert kept_side.total == pytest.approx(full_total(kept_side), abs=1e-6)

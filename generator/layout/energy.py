@@ -96,6 +96,15 @@ class Pending(NamedTuple):
     filings: dict  # box -> where the grid filed it before (``Grid.filing``), for reject
 
 
+class Kept(NamedTuple):
+    """A proposal's computed update, kept while others are tried (``Energy.kept``)."""
+
+    update: Changes | dict
+    delta: float  # the energy change ``propose`` returned (completed when deferred)
+    learned_delta: float  # ``Energy.learned_delta`` and ``soft_delta`` it set
+    soft_delta: float
+
+
 class Energy:
     """Cached energy terms of a state, with propose / accept / reject."""
 
@@ -398,13 +407,17 @@ class Energy:
         self.propose({box: self.state.pose(box) for box in boxes}, {}, entering=True)
         self.accept()
 
-    def propose(self, boxes: dict, paths: dict, *, entering: bool = False, defer_access: bool = False) -> float:
+    def propose(
+        self, boxes: dict, paths: dict, *, entering: bool = False, defer_access: bool = False, known: Kept | None = None
+    ) -> float:
         """Apply new box poses {box: (x, z, yaw)} and path points {path: points}; return the energy change.
 
         ``defer_access`` (a room, incremental): the change without the ``access`` part,
         which can fall by at most ``access_floor()`` and is added by ``complete()``; a
         proposal that is rejected on the rest alone never computes it (``sampler``).
         Without a room's access terms, or with ``incremental=False``, the change is whole.
+        ``known``: this very proposal's update, ``kept`` when it was last pending (see
+        ``repropose``), is taken instead of being computed again.
         """
         state, grid, problem = self.state, self.grid, self.problem
         xs, zs, yaws = state.x, state.z, state.yaw
@@ -424,6 +437,11 @@ class Energy:
             state.points[path] = points
             self.path_bounds[path] = self._path_bounds(path)
             self._file_path(path)
+        if known is not None:
+            self._pending = Pending(saved_boxes, saved_paths, known.update, filings)
+            if self.problem.learned is not None:
+                self.learned_delta, self.soft_delta = known.learned_delta, known.soft_delta
+            return known.delta
         if not self.params.incremental:
             fresh = self._fresh()
             self._pending = Pending(saved_boxes, saved_paths, fresh, filings)
@@ -583,6 +601,28 @@ class Energy:
             delta, new_relation, moved, new_pairs, moved_paths, new_hits,
             new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned, new_measures,
         )  # fmt: skip
+
+    def kept(self, delta: float) -> Kept | None:
+        """The pending proposal's computed update (its energy change ``delta`` as its caller
+        took it), to be put back by ``repropose`` after it is rejected and others are
+        tried; None when it holds a room's part (its access part may have been deferred
+        and completed, which ``repropose`` would not redo the same way)."""
+        update = self._pending.update
+        if self.room is not None:
+            return None
+        learned = (self.learned_delta, self.soft_delta) if self.problem.learned is not None else (0.0, 0.0)
+        return Kept(update, delta, *learned)
+
+    def repropose(self, proposal: tuple[dict, dict], kept: Kept | None) -> float:
+        """``propose(*proposal)`` once more, after it was rejected and only other
+        proposals (all rejected) came between: the state it meets is the one it met then
+        (poses, path points and bounds, the grids' cell lists, in the same order: a
+        rejected move's boxes and paths go back last in the cells they left, and a
+        proposal puts them last in the cells it files them under), so its update is the
+        one ``kept`` holds and is not computed again. Without one, it is computed."""
+        if kept is None:
+            return self.propose(*proposal)
+        return self.propose(*proposal, known=kept)
 
     def access_floor(self) -> float:
         """How far the pending proposal's deferred ``access`` part can lower the energy at

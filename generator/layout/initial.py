@@ -442,13 +442,14 @@ def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
     for _ in range(count):
         proposal = draw()
         delta = energy.propose(*proposal)
+        kept = energy.kept(delta)
         if extra is not None:
             delta += extra()
         energy.reject()
         if delta < best_delta:
-            best, best_delta = proposal, delta
+            best, best_delta, best_kept = proposal, delta, kept
     if best is not None:
-        energy.propose(*best)
+        energy.repropose(best, best_kept)
         energy.accept()
 
 
@@ -489,13 +490,14 @@ def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
                 energy.reject()
                 continue
             delta = energy.complete()
+        kept = energy.kept(delta)
         if extra is not None:
             delta += extra() - baseline
         energy.reject()
         if best is None or delta < best_delta:
-            best, best_delta = proposal, delta
+            best, best_delta, best_kept = proposal, delta, kept
     if best is not None and best_delta < 0.0:
-        energy.propose(*best)
+        energy.repropose(best, best_kept)  # its update as computed when it was tried
         energy.accept()
 
 
