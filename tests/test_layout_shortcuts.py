@@ -5,7 +5,8 @@ every path, the relation measures ``Energy`` keeps against measuring anew, the o
 report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
 ``point_rect_distance`` from every corner, the segment-to-box distances against their
-step-by-step form, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
+step-by-step form, ``polyline_rect_penetration``'s skip by a lower bound against testing
+every segment, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
 calls they stand for.
 """
 
@@ -19,7 +20,7 @@ from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
 from scenewright.generator.layout.geometry import (
     _local_overlap, capsule_rect_penetration, corners, make_rect, nearest_on_segment, point_rect_distance,
-    polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
+    polyline_rect_penetration, polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
 )
 from scenewright.generator.layout.moves import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
@@ -240,3 +241,28 @@ def test_segment_to_box_distances_are_the_step_by_step_ones_to_the_last_bit():
         assert segment_rect_distance(ax, az, bx, bz, rect) == (0.0 if overlap >= 0.0 else gap)
         deepest = 1.5 + overlap if overlap >= 0.0 else (1.5 - gap if gap < 1.5 else 0.0)
         assert capsule_rect_penetration(ax, az, bx, bz, 1.5, rect) == deepest
+
+
+def test_polyline_rect_penetration_skips_no_segment_that_reaches_the_rectangle():
+    # Random polylines, and segments square to the line from a rectangle's centre to
+    # one of its corners whose gap to that corner is the buffer give or take a hair
+    # (where the bound is tightest), near the origin and 10 km from it.
+    rng = random.Random(11)
+    for case in range(6000):
+        offset = 0.0 if case % 2 else 1.0e4
+        rect = make_rect(offset + rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.1, 6), rng.uniform(0.1, 6), rng.uniform(-4, 4))
+        radius = rng.uniform(0.05, 3.0)
+        if case % 3:
+            points = [[offset + rng.uniform(-15, 15), rng.uniform(-15, 15)] for _ in range(rng.randint(2, 6))]
+        else:
+            (cx, cz), (px, pz) = (rect.cx, rect.cz), corners(rect)[rng.randrange(4)]
+            circumradius = math.hypot(rect.hw, rect.hd)
+            ux, uz = (px - cx) / circumradius, (pz - cz) / circumradius
+            hair = rng.choice([0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, 1e-6, 1e-3]) * (1.0 + offset)
+            reach = circumradius + radius + hair
+            mx, mz, half = cx + ux * reach, cz + uz * reach, rng.uniform(0.0, 4.0)
+            points = [[mx - uz * half, mz + ux * half], [mx + uz * half, mz - ux * half]]
+        every_segment = max(
+            [0.0] + [capsule_rect_penetration(*points[i], *points[i + 1], radius, rect) for i in range(len(points) - 1)]
+        )
+        assert polyline_rect_penetration(points, radius, rect) == every_segment

@@ -42,6 +42,11 @@ def make_rect(cx: float, cz: float, width: float, depth: float, yaw: float) -> R
 #: cosine) of the angle between them is below this: quarter turns leave it at ~1e-16.
 SQUARE_EPSILON = 1e-9
 
+#: ``polyline_rect_penetration`` skips a segment on a lower bound of its gap only when
+#: the bound clears the buffer by this share of the coordinates' magnitude: the exact
+#: test's rounding is ~1e-15 of it, so a skipped segment would have given 0 there too.
+BOUND_MARGIN = 1e-9
+
 
 def corners(rect: Rect) -> list[tuple[float, float]]:
     """The four (x, z) corners, counter-clockwise in local coordinates."""
@@ -232,16 +237,30 @@ def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     """Deepest penetration of a rectangle into a buffered polyline (its worst segment).
 
     Segments whose bounding box, grown by ``radius``, misses the rectangle's bounding
-    box cannot touch it and are skipped before the exact test.
+    box cannot touch it and are skipped before the exact test; so are those whose
+    distance to the rectangle's centre, less its circumradius (a lower bound of their
+    gap), exceeds ``radius`` by more than ``BOUND_MARGIN`` of the coordinates' scale.
+    Past that margin, rounding cannot make the exact test give anything but 0 (it
+    errs by a few units in the last place of that scale): the same result.
     """
     best = 0.0
     cx, cz, hw, hd, c, s = rect
     reach_x = hw * abs(c) + hd * abs(s) + radius
     reach_z = hw * abs(s) + hd * abs(c) + radius
     x0, x1, z0, z1 = cx - reach_x, cx + reach_x, cz - reach_z, cz + reach_z
+    clear = radius + math.hypot(hw, hd)  # a centre farther than this (and the margin) is clear
+    scale = abs(cx) + abs(cz) + clear
     for index in range(len(points) - 1):
         (ax, az), (bx, bz) = points[index], points[index + 1]
         if (ax < x0 and bx < x0) or (ax > x1 and bx > x1) or (az < z0 and bz < z0) or (az > z1 and bz > z1):
+            continue
+        ex, ez = bx - ax, bz - az  # the centre's nearest point on the segment (``nearest_on_segment``)
+        length2 = ex * ex + ez * ez
+        t = ((cx - ax) * ex + (cz - az) * ez) / length2 if length2 > 0.0 else 0.0
+        t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+        if math.hypot(cx - ax - t * ex, cz - az - t * ez) > clear + BOUND_MARGIN * (
+            scale + abs(ax) + abs(az) + abs(bx) + abs(bz)
+        ):
             continue
         depth = capsule_rect_penetration(ax, az, bx, bz, radius, rect)
         if depth > best:
