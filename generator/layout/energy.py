@@ -558,9 +558,13 @@ class Energy:
             new_shape[path] = self.path_shape_energy(path)
             change += new_shape[path] - self.shape[path]
         new_junction = {}
-        if paths or self.junction:
-            starts = {problem.path_start[p] for p in paths if problem.path_start[p] >= 0}
-            for junction in sorted(starts | (moved & self.junction.keys())):
+        junctions = self.junction
+        if paths:
+            touched = {problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & junctions.keys())
+        else:  # the moved boxes that are junctions (most moves: none), no set made
+            touched = [box for box in boxes if box in junctions] if junctions else ()
+        if touched:
+            for junction in sorted(touched):
                 new_junction[junction] = self.junction_energy(junction)
                 change += new_junction[junction] - self.junction[junction]
         delta["path_shape"] = change

@@ -308,7 +308,7 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     count = len(segments)
     k, i = divmod(first, count)
     best = min(math.inf, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
-    for bound, position in sorted((bound, position) for position, bound in enumerate(bounds) if bound < best and position != first):
+    for bound, position in sorted([(bound, position) for position, bound in enumerate(bounds) if bound < best and position != first]):
         if bound >= best:
             break
         k, i = divmod(position, count)
