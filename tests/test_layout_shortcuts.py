@@ -6,7 +6,7 @@ report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
 ``point_rect_distance`` from every corner, the segment-to-box distances against their
 step-by-step form, ``polyline_rect_penetration``'s skip by a lower bound against testing
-every segment, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
+every segment, ``rect_overlap`` against its form by field names, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
 calls they stand for.
 """
 
@@ -266,3 +266,21 @@ def test_polyline_rect_penetration_skips_no_segment_that_reaches_the_rectangle()
             [0.0] + [capsule_rect_penetration(*points[i], *points[i + 1], radius, rect) for i in range(len(points) - 1)]
         )
         assert polyline_rect_penetration(points, radius, rect) == every_segment
+
+
+def test_rect_overlap_is_its_form_by_field_names_to_the_last_bit():
+    rng = random.Random(12)
+    for _ in range(5000):
+        a, b = (
+            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.choice([0.0, rng.uniform(-4, 4)]))
+            for _ in range(2)
+        )
+        dx, dz = b.cx - a.cx, b.cz - a.cz
+        k1, k2 = abs(a.c * b.c + a.s * b.s), abs(a.c * b.s - a.s * b.c)
+        expected = min(
+            a.hw + b.hw * k1 + b.hd * k2 - abs(dx * a.c - dz * a.s),
+            a.hd + b.hw * k2 + b.hd * k1 - abs(dx * a.s + dz * a.c),
+            b.hw + a.hw * k1 + a.hd * k2 - abs(dx * b.c - dz * b.s),
+            b.hd + a.hw * k2 + a.hd * k1 - abs(dx * b.s + dz * b.c),
+        )
+        assert rect_overlap(a, b) == expected

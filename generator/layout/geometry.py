@@ -75,17 +75,19 @@ def rect_overlap(a: Rect, b: Rect) -> float:
     Negative (or zero) when a separating axis exists; its magnitude is then a lower bound
     of the gap. The four candidate axes are both rectangles' local axes.
     """
-    dx, dz = b.cx - a.cx, b.cz - a.cz
-    k1 = abs(a.c * b.c + a.s * b.s)  # |cos(yaw_b - yaw_a)|
-    k2 = abs(a.c * b.s - a.s * b.c)  # |sin(yaw_b - yaw_a)|
-    best = a.hw + b.hw * k1 + b.hd * k2 - abs(dx * a.c - dz * a.s)
-    overlap = a.hd + b.hw * k2 + b.hd * k1 - abs(dx * a.s + dz * a.c)
+    acx, acz, ahw, ahd, ac, as_ = a  # unpacked once: field reads by name cost a call each
+    bcx, bcz, bhw, bhd, bc, bs = b
+    dx, dz = bcx - acx, bcz - acz
+    k1 = abs(ac * bc + as_ * bs)  # |cos(yaw_b - yaw_a)|
+    k2 = abs(ac * bs - as_ * bc)  # |sin(yaw_b - yaw_a)|
+    best = ahw + bhw * k1 + bhd * k2 - abs(dx * ac - dz * as_)
+    overlap = ahd + bhw * k2 + bhd * k1 - abs(dx * as_ + dz * ac)
     if overlap < best:
         best = overlap
-    overlap = b.hw + a.hw * k1 + a.hd * k2 - abs(dx * b.c - dz * b.s)
+    overlap = bhw + ahw * k1 + ahd * k2 - abs(dx * bc - dz * bs)
     if overlap < best:
         best = overlap
-    overlap = b.hd + a.hw * k2 + a.hd * k1 - abs(dx * b.s + dz * b.c)
+    overlap = bhd + ahw * k2 + ahd * k1 - abs(dx * bs + dz * bc)
     if overlap < best:
         best = overlap
     return best
