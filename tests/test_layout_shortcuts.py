@@ -6,7 +6,7 @@ report's bounding-circle skip against measuring every pair,
 ``polyline_rects_distance`` against sorting every bound, ``rect_distance`` against
 ``point_rect_distance`` from every corner, the segment-to-box distances against their
 step-by-step form, ``polyline_rect_penetration``'s skip by a lower bound against testing
-every segment, ``rect_overlap`` against its form by field names, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
+every segment, ``rect_overlap`` and ``rect_distance`` (square) against their forms by field names, and ``moves.uniform`` and ``moves.draw_index`` against the numpy
 calls they stand for.
 """
 
@@ -284,3 +284,19 @@ def test_rect_overlap_is_its_form_by_field_names_to_the_last_bit():
             b.hd + a.hw * k2 + a.hd * k1 - abs(dx * b.s + dz * b.c),
         )
         assert rect_overlap(a, b) == expected
+
+
+def test_rect_distance_between_square_rectangles_is_its_form_by_field_names_to_the_last_bit():
+    rng = random.Random(13)
+    for _ in range(5000):
+        a, b = (
+            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.randrange(4) * math.pi / 2)
+            for _ in range(2)
+        )
+        k2 = a.c * b.s - a.s * b.c
+        bw, bd = (b.hw, b.hd) if abs(k2) < 1e-9 else (b.hd, b.hw)
+        dx, dz = b.cx - a.cx, b.cz - a.cz
+        gx = abs(dx * a.c - dz * a.s) - a.hw - bw
+        gz = abs(dx * a.s + dz * a.c) - a.hd - bd
+        expected = 0.0 if gx <= 0.0 and gz <= 0.0 else math.hypot(max(gx, 0.0), max(gz, 0.0))
+        assert rect_distance(a, b) == expected

@@ -106,13 +106,15 @@ def rect_distance(a: Rect, b: Rect) -> float:
     mostly is) are separated along a's axes: the distance is the hypotenuse of the two
     gaps between their extents, without visiting corners.
     """
-    k2 = a.c * b.s - a.s * b.c  # sin(yaw_b - yaw_a)
-    k1 = a.c * b.c + a.s * b.s  # cos(yaw_b - yaw_a)
+    acx, acz, ahw, ahd, ac, as_ = a  # unpacked once, as in ``rect_overlap``
+    bcx, bcz, bhw, bhd, bc, bs = b
+    k2 = ac * bs - as_ * bc  # sin(yaw_b - yaw_a)
+    k1 = ac * bc + as_ * bs  # cos(yaw_b - yaw_a)
     if -SQUARE_EPSILON < k2 < SQUARE_EPSILON or -SQUARE_EPSILON < k1 < SQUARE_EPSILON:
-        bw, bd = (b.hw, b.hd) if -SQUARE_EPSILON < k2 < SQUARE_EPSILON else (b.hd, b.hw)
-        dx, dz = b.cx - a.cx, b.cz - a.cz
-        gx = abs(dx * a.c - dz * a.s) - a.hw - bw
-        gz = abs(dx * a.s + dz * a.c) - a.hd - bd
+        bw, bd = (bhw, bhd) if -SQUARE_EPSILON < k2 < SQUARE_EPSILON else (bhd, bhw)
+        dx, dz = bcx - acx, bcz - acz
+        gx = abs(dx * ac - dz * as_) - ahw - bw
+        gz = abs(dx * as_ + dz * ac) - ahd - bd
         if gx <= 0.0 and gz <= 0.0:
             return 0.0
         return math.hypot(gx if gx > 0.0 else 0.0, gz if gz > 0.0 else 0.0)
