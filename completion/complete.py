@@ -33,8 +33,8 @@ The steps, each a function here:
    Algorithm 1 weighs floor area, not whether the pieces fit round the door and each
    other, so a small room can be chosen more than it holds. A try after a failed one
    first starts one short chain where the failed layout left the remaining pieces
-   (``WARM_PARAMS``) and lays the room out afresh only when that is not ok (``_fit``;
-   its second chain waits ``RESTART_PATIENCE`` steps for progress).
+   (``WARM_PARAMS``) and lays the room out afresh only when that is not ok
+   (``FIT_PARAMS``: its second chain waits 800 steps for progress).
 
 The mask guides the start and, through its energy part, the chains: a large piece
 costs more the less of the mask lies under it. It is a preference: the layout's
@@ -57,7 +57,6 @@ from scenewright.core.limits import MAX_EXTENT
 from scenewright.core.poses import Pose
 from scenewright.core.room import ROOM_NODE, Room, RoomError
 from scenewright.core.scene_graph import SceneGraph, SceneParams
-from scenewright.core.seeds import STAGE_KEYS
 from scenewright.generator.layout.params import LayoutParams
 
 #: Wall letters a door or window may name, besides the words and numbers ``Room.wall`` takes.
@@ -135,21 +134,19 @@ MASKED = AGAINST_WALL | CENTRE_PIECES
 FIT_ATTEMPTS = 4
 #: Why a category the selection chose is not in the room: the layout failed with it.
 #: The layout's parameters for each try: two chains (one restart), as most rooms are ok
-#: on their first chain and one that fails twice is better off with a piece fewer.
-FIT_PARAMS = LayoutParams(restarts=1)
+#: on their first chain and one that fails twice is better off with a piece fewer. The
+#: restart gives up after 800 steps without progress, not 1200: a restart that rescues a
+#: try is mostly ok well within that, and 800 gives up as many pieces on the benchmark's
+#: 50 random rooms as 1200 did (11), 600 two more (``benchmarks/bench_complete.py --random 50``).
+FIT_PARAMS = LayoutParams(restarts=1, restart_patience=800)
 #: A try after a failed one first runs one chain from the failed layout's poses (the
 #: pieces still in the room where they stood; a warm start), which gives up after
 #: ``patience`` steps without progress: the piece given up mostly was what kept the rest
 #: from fitting, so the chain is often ok at once (on the benchmark's 50 random rooms 4
 #: of 9 warm tries, in 50-150 steps; 5 of 9 when they waited 400 steps, the fifth after
 #: 250, for the same pieces given up). Only when it is not does the try lay the room
-#: out afresh (``_fit``).
+#: out afresh with ``FIT_PARAMS``.
 WARM_PARAMS = LayoutParams(restarts=0, patience=200)
-#: The patience of a try's second chain (``_fit``): a restart that rescues a try is mostly
-#: ok well within it, and one that fails waited 1200 steps for nothing. 800 gives up as
-#: many pieces on the benchmark's 50 random rooms as 1200 did (11), 600 two more
-#: (``benchmarks/bench_complete.py --random 50``).
-RESTART_PATIENCE = 800
 ROOM_FULL = "no room for it with the rest: the layout failed with it"
 
 
@@ -850,7 +847,7 @@ def complete(
                 warm = {box: pose for box, pose in failed.items() if box in boxes}
                 layout = layout_scene(graph, seed, start=warm, mask=mask, params=WARM_PARAMS, pinned=pinned)
             if layout is None or not layout.ok:
-                layout = _fit(graph, seed, start, mask, pinned)
+                layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned)
         if layout.ok or attempt == FIT_ATTEMPTS:
             break
         failed = layout.poses
@@ -866,30 +863,6 @@ def complete(
     scene.completion = completion_record(contents, dropped, model, masked, given_up, by_region)
     scene.timings.update(timings)
     return scene
-
-
-def _fit(graph: SceneGraph, seed: int, start, mask, pinned):
-    """The layout of one try: ``FIT_PARAMS``'s chains, the restart (chain 1, on the
-    layout's stream 1 as ``layout_scene`` would draw it) giving up after
-    ``RESTART_PATIENCE`` steps without progress; the best of the two as ``layout_scene``
-    ranks them (ok, fewest problems, then the lower energy; the first on a tie), but
-    by the exact energy the results report, where ``layout_scene`` compares its chains'
-    running sums (of the 50 random rooms one failed try picked the other chain so)."""
-    from scenewright.generator.layout import layout_scene
-
-    single = replace(FIT_PARAMS, restarts=0)
-    first = layout_scene(graph, seed, start=start, mask=mask, params=single, pinned=pinned)
-    if first.ok or FIT_PARAMS.restarts < 1:
-        return first
-    # A Generator's chain 0 is its first spawned child: this parent's is the layout's stream 1.
-    parent = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(STAGE_KEYS["layout"],),
-                                                                        n_children_spawned=1)))  # fmt: skip
-    second = layout_scene(graph, parent, start=start, mask=mask, params=replace(single, patience=RESTART_PATIENCE),
-                          pinned=pinned)  # fmt: skip
-    best = max((first, second), key=lambda run: (run.ok, -len(run.problems), -run.energy))
-    steps = first.steps + second.steps
-    accepted = round(first.acceptance * first.steps) + round(second.acceptance * second.steps)
-    return replace(best, steps=steps, acceptance=accepted / steps if steps else 0.0, seconds=first.seconds + second.seconds)
 
 
 def existing_request(scene, added: dict[str, int], known) -> Request:

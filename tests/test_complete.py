@@ -301,9 +301,11 @@ def test_add_needs_a_scene_and_a_scene_needs_a_room(tmp_path, capsys):
     assert "only an indoor scene can be completed" in capsys.readouterr().err
 
 
-def test_a_try_run_chain_by_chain_is_the_layouts_own_two_chains(model, catalog, monkeypatch):
-    # _fit runs a try's second chain as a layout of its own (to give it its own patience):
-    # at the layout's patience it is the very chain layout_scene's restart runs.
+def test_a_tries_restart_waits_its_own_patience(model, catalog):
+    # A crowded room: both chains fail. The restart alone gives up sooner; the first
+    # chain is the same either way.
+    from dataclasses import replace as with_params
+
     from scenewright.completion.layout_mask import floor_mask
     from scenewright.generator.layout import layout_scene
 
@@ -311,8 +313,13 @@ def test_a_try_run_chain_by_chain_is_the_layouts_own_two_chains(model, catalog, 
     contents = choose_contents(model, request)
     graph, _, start = completion_module._graph_and_start(model, contents, request.room, catalog)
     mask = floor_mask(contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED])
-    monkeypatch.setattr(completion_module, "RESTART_PATIENCE", completion_module.FIT_PARAMS.patience)
-    both = layout_scene(graph, 0, start=start, mask=mask, params=completion_module.FIT_PARAMS)
-    assert not both.ok  # the room is crowded: both chains ran
-    split = completion_module._fit(graph, 0, start, mask, None)
-    assert (split.poses, split.problems, split.steps) == (both.poses, both.problems, both.steps)
+    params = completion_module.FIT_PARAMS
+    assert params.restarts == 1 and params.restart_patience < params.patience
+
+    def run(**changes):
+        return layout_scene(graph, 0, start=start, mask=mask, params=with_params(params, **changes))
+
+    first = run(restarts=0)
+    patient, hasty = run(restart_patience=None), run()
+    assert not first.ok and not patient.ok and not hasty.ok  # the room is crowded: both chains ran
+    assert first.steps < hasty.steps < patient.steps

@@ -117,7 +117,11 @@ def layout_scene(
         rng = _chain_stream(seed, attempt)
         # A chain that a repairing restart follows gives up sooner: the repair mends a
         # stuck item in far fewer steps than waiting it out (docs/layout.md).
-        chain_params = replace(params, patience=params.repair_patience) if repairs and attempt + 1 < params.restarts else params
+        chain_params = params
+        if attempt > 0 and params.restart_patience is not None:
+            chain_params = replace(params, patience=params.restart_patience)
+        if repairs and attempt + 1 < params.restarts:
+            chain_params = replace(chain_params, patience=params.repair_patience)
         if frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
         elif best is not None and attempt < params.restarts and repairs:  # keep what was fine, redo the rest

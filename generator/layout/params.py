@@ -26,7 +26,8 @@ class LayoutParams:
     (every relation satisfied, nothing overlapping, all inside) and its energy is at most
     ``target_energy``; it gives up early when its count of problems has not fallen for
     ``patience`` steps (``repair_patience`` for a chain that a repairing restart follows,
-    outdoors: mending the items it is stuck on is quicker than waiting it out). ``restarts``
+    outdoors: mending the items it is stuck on is quicker than waiting it out;
+    ``restart_patience``, when set, for every chain after the first). ``restarts``
     more runs are made while the result is not ok (``layout_scene`` says from where), and the
     best is kept. The temperature falls geometrically from
     ``temperature_start`` to ``temperature_end`` over ``steps``. ``initial_candidates``
@@ -63,6 +64,7 @@ class LayoutParams:
     check_every: int = 25
     patience: int = 1200
     repair_patience: int = 400
+    restart_patience: int | None = None
     target_energy: float = math.inf
     restarts: int = 4
     temperature_start: float = 0.05
