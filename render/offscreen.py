@@ -565,6 +565,12 @@ def _pyrender_classes(gl) -> _Classes:
             super()._update_context(scene, flags)
             self._context_of = (scene, scene.version, shadows) if isinstance(scene, FrameScene) else None
 
+        def _configure_shadow_mapping_viewport(self, light, flags):
+            # pyrender sets the viewport to its default map size (2048) whatever the
+            # light's texture is: a smaller map then held only a corner of the view.
+            super()._configure_shadow_mapping_viewport(light, flags)
+            GL.glViewport(0, 0, light.shadow_texture.width, light.shadow_texture.height)
+
         def _configure_forward_pass_viewport(self, flags):
             if not (flags & gl.RenderFlags.SEG and flags & gl.RenderFlags.OFFSCREEN):
                 return super()._configure_forward_pass_viewport(flags)

@@ -11,8 +11,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from PIL import Image
-from render_fixtures import market_scene, renderer_or_skip, road, scene_of, thing
+from render_fixtures import market_scene, or_skip_without_opengl, renderer_or_skip, road, scene_of, thing
 
+from scenewright.api import build_scene
 from scenewright.core.errors import InputError
 from scenewright.render.camera import Camera, frame_scene
 from scenewright.render.offscreen import encode_render, render_metadata, save_render
@@ -285,3 +286,20 @@ def test_the_shadow_map_has_about_one_texel_per_pixel_up_to_pyrenders_size(size,
 
     assert shadow_map_size(*size) == side
     assert side >= min(GROUND_MARGIN * max(size), 2048) > side / 2 or side == 2048
+
+
+@pytest.mark.parametrize("size", [(256, 256), (96, 72)])
+def test_shadows_fall_with_a_smaller_shadow_map_too(size):
+    # pyrender draws the shadow map with its default size's viewport whatever the map's
+    # size: a smaller map held only a corner of the sun's view and no shadow showed.
+    from scenewright.render.offscreen import Renderer, shadow_map_size
+
+    assert shadow_map_size(*size) < 2048
+    scene = build_scene("village", 3)
+    colours = {}
+    for shadows in (True, False):
+        with or_skip_without_opengl(lambda: Renderer(*size, shadows=shadows)) as renderer:
+            colours[shadows] = renderer.render(scene).colour.astype(int).sum(axis=-1)
+    darker = colours[True] < colours[False] - 30
+    assert darker.mean() > 0.005  # shadows beside the buildings and trees
+    assert not (colours[True] > colours[False] + 30).any()  # a shadow only darkens

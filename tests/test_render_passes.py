@@ -1,6 +1,7 @@
 """The renderer's cheaper passes (``offscreen._pyrender_classes``, ``_posed_node``)
 draw exactly what pyrender's own Renderer, Scene and nodes draw: every array and
-value of a RenderResult byte for byte, outdoors and in a room, from both views."""
+value of a RenderResult byte for byte, outdoors and in a room, from both views (with
+pyrender's own shadow map size, the one size its shadow pass draws right)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
     """The scene from both views, drawn through pyrender's own classes and
     ``Scene.add``'s nodes if ``plain``, else through the renderer's own."""
     with monkeypatch.context() as patch:
+        patch.setattr(offscreen, "shadow_map_size", lambda width, height: offscreen.MAX_SHADOW_MAP)
         if plain:
             patch.setattr(offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene))
             patch.setattr(offscreen, "_posed_node", lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh))
