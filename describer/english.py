@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+from functools import lru_cache
 
 
 def _import_inflect():
@@ -41,7 +42,13 @@ _ENGINE = _import_inflect().engine()
 #: limit on a noun's length).
 MAX_INFLECTED_CHARS = 200
 
+#: The word forms below are pure functions of their arguments, kept once computed: a
+#: dataset asks for the same few catalog nouns and numbers thousands of times, and
+#: each of inflect's answers runs dozens of regular expressions.
+_remembered = lru_cache(maxsize=4096)
 
+
+@_remembered
 def plural_of(noun: str, irregular: str | None = None) -> str:
     """The plural of a noun phrase: the catalog's irregular form when it has one.
 
@@ -78,16 +85,19 @@ def singular_of(name: str) -> str:
     return rest + space + one
 
 
+@_remembered
 def with_article(noun: str) -> str:
     """The noun phrase with "a" or "an" in front ("an oak tree", "a big pot of stew")."""
     return _ENGINE.a(noun)
 
 
+@_remembered
 def number_word(count: int) -> str:
     """A count as a word ("three", "twenty-one")."""
     return _ENGINE.number_to_words(count)
 
 
+@_remembered
 def ordinal_word(position: int) -> str:
     """A 1-based position as an ordinal word ("first", "twenty-second")."""
     return _ENGINE.number_to_words(_ENGINE.ordinal(position))
@@ -107,6 +117,7 @@ def join_list(items: list[str]) -> str:
     return ", ".join(items[:-1]) + " and " + items[-1]
 
 
+@_remembered
 def verb_agreeing(verb_phrase: str, plural: bool) -> str:
     """A verb phrase written in the third person singular, made to agree with its subject.
 
