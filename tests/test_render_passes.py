@@ -1,7 +1,8 @@
 """The renderer's cheaper passes (``offscreen._pyrender_classes``, ``_posed_node``)
 draw exactly what pyrender's own Renderer, Scene and nodes draw: every array and
 value of a RenderResult byte for byte, outdoors and in a room, from both views (with
-pyrender's own shadow map size, the one size its shadow pass draws right)."""
+pyrender's own shadow map size, the one size its shadow pass draws right, and its own
+shadow filter); and the one shadow filter changes only the edges of shadows."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
     ``Scene.add``'s nodes if ``plain``, else through the renderer's own."""
     with monkeypatch.context() as patch:
         patch.setattr(offscreen, "shadow_map_size", lambda width, height: offscreen.MAX_SHADOW_MAP)
+        patch.setattr(offscreen, "_shader_source", lambda name, text: text)
         if plain:
             patch.setattr(offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene))
             patch.setattr(offscreen, "_posed_node", lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh))
@@ -40,3 +42,30 @@ def test_same_pixels_as_pyrenders_own_classes(monkeypatch, rules, seed):
             assert (a.dtype, a.shape, a.tobytes()) == (b.dtype, b.shape, b.tobytes()), (view, name)
         assert (have.ids, have.boxes, have.visible, have.camera) == (want.ids, want.boxes, want.visible, want.camera)
         assert len(have.ids) > 3 and have.boxes  # something to see
+
+
+def test_one_shadow_lookup_changes_only_the_edges_of_shadows():
+    from pathlib import Path
+
+    import numpy as np
+    import pyrender
+
+    text = (Path(pyrender.__file__).parent / "shaders" / "mesh.frag").read_text()
+    assert offscreen._PYRENDER_SHADOW_FILTER in text  # the pinned pyrender's filter
+    assert offscreen._shader_source("mesh.frag", text).count("texture2DShadowLerp(") == 2  # defined, used once
+    with pytest.raises(offscreen.GenerationError, match="mesh.frag"):
+        offscreen._shader_source("mesh.frag", text.replace("result/9.0", "result/4.0"))
+
+    scene = build_scene("village", 3)
+    colours = {}
+    for ours in (True, False):
+        with pytest.MonkeyPatch.context() as patch:
+            if not ours:
+                patch.setattr(offscreen, "_shader_source", lambda name, text: text)
+            offscreen._pyrender_classes.cache_clear()
+            with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
+                colours[ours] = renderer.render(scene).colour.astype(int)
+        offscreen._pyrender_classes.cache_clear()
+    changed = np.abs(colours[True] - colours[False]).max(axis=-1)
+    # Soft edges a little sharper: a few levels on a few percent of the pixels.
+    assert 0 < (changed > 0).mean() < 0.1 and np.median(changed[changed > 0]) <= 8 and (changed > 20).mean() < 0.01
