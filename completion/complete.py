@@ -287,9 +287,10 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
     from scenewright.completion.features import room_parts
     from scenewright.completion.layout_mask import RegionMasks, amalgamated_mask
     from scenewright.completion.regions import split_room
-    from scenewright.completion.selection import choose_types, explore_categories
+    from scenewright.completion.selection import check_counts, choose_types, explore_categories
 
     room = request.room
+    check_counts(model, request.requested)
     choice = choose_types(model, request.requested, room.area)
     regions = split_room(model, room, choice.types) if split else ()
     region_of = {region.room_type: k for k, region in enumerate(regions)}

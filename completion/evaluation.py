@@ -6,8 +6,9 @@ its ``requested`` largest categories (by the floor they take; ties by name) as t
 request, and compare what the model says with what the designer drew:
 
 - **room type**: ``choose_types`` (Equation 2) is right when it gives exactly the
-  plan's type (wrong when the other plans cannot hold the request at all). Baseline: the type whose plans have the requested categories most often
-  (the largest product of ``P(o | s)``), ignoring the room.
+  plan's type (wrong when no other plan has a requested category). Baseline: the type
+  whose plans have the requested categories most often (the largest product of
+  ``P(o | s)``), ignoring the room.
 - **categories**: Algorithm 1 run for the plan's true type; precision and recall of the
   categories it adds against the ones the plan has beyond the request. Baseline
   (co-occurrence only): as many categories as Algorithm 1 added, those most often seen
@@ -51,7 +52,7 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
     truth = {piece.category for piece in plan.furniture} - set(requested)
     try:
         predicted = choose_types(model, requested, plan.room.area).types
-    except InputError:  # the other plans cannot hold the request (two beds, where no other plan has two)
+    except InputError:  # no other plan has a requested category
         predicted = ()
     baseline_type = max(
         sorted(model["types"]),

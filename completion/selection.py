@@ -2,8 +2,9 @@
 categories (Algorithm 1, object exploration, Section 5.3).
 
 **Types.** ``choose_types`` searches every set of the model's types (exactly: there are
-few) among the sets that can hold every requested category: some type of the set has it
-(``P(o | s) > 0``) and the set's plans hold as many as asked (``sum N(o, s) >= n_o``).
+few) among the sets in which some type has each requested category (``P(o | s) > 0``).
+The paper also requires the set's plans to hold as many as asked (``sum N(o, s) >=
+n_o``, ``N`` the most of ``o`` in one plan of ``s``); here that bound is soft (below).
 The paper then takes the set whose mean room areas add up closest to the room's area,
 ``|theta_r - sum theta_s| / theta_r``, and approximates that search greedily; with a
 handful of types the exact answer is cheap. Our reading of "close": home rooms' mean
@@ -11,13 +12,21 @@ areas lie near one another (15 to 20 square metres on the shipped plans) while e
 type's rooms spread by about 5, so the nearest mean alone made every living room under
 16 square metres with a sofa a study. Each set is scored as a likelihood instead:
 
-    log N(theta_r; sum mu_s, sum sigma_s^2)  +  sum_o log max_s P(o | s)  -  (|S| - 1) log(1 + n)
+    log N(theta_r; sum mu_s, sum sigma_s^2)  +  sum_o log max_s P(o | s)
+      -  b log(1 + n_S)  -  (|S| - 1) log(1 + n)
 
 the room's area under the set's area distribution (each type's plans' mean and standard
 deviation, ``area_spreads``; areas of several types add), how often the set's types have
-what was asked, and a cost for each type beyond the first: the plans show ``n`` rooms of
-one type and none of several, so by the rule of succession a room of several types is
-``1 / (1 + n)`` as likely. A type joins a set of several only when it has a requested
+what was asked, a cost for the ``b`` requested categories of which the set's ``n_S``
+plans never held as many as asked (``sum N(o, s) < n_o``), and a cost for each type
+beyond the first. Both costs are the rule of succession: after ``n_S`` plans none of
+which held more, one that does is ``1 / (1 + n_S)`` as likely; the plans show ``n``
+rooms of one type and none of several, so a room of several types is ``1 / (1 + n)``
+as likely. The paper's hard bound read every request for one more than the plans
+showed (two beds where every bedroom has one, four treadmills where the gyms have up to
+three) as a room of several types, or as no room at all. (The command still refuses a
+count beyond what the plans of all types hold together, ``check_counts``: it lays out
+no more of a thing than the designers drew.) A type joins a set of several only when it has a requested
 category or the plans have seen it with one (``_joins``): the plans of some type have
 both a category of its own (one it has more often than any other type) and a requested
 category. A room splits only when no single type's rooms come near its
@@ -81,29 +90,27 @@ class TypeChoice:
 
 def choose_types(model: dict, requested: dict[str, int], room_area: float) -> TypeChoice:
     """The set of room types for a room of ``room_area`` square metres holding
-    ``requested`` (category -> count); ``InputError`` when no set can hold them."""
+    ``requested`` (category -> count); ``InputError`` when no plan has one of them."""
     types = sorted(model["types"])
-    for name, count in sorted(requested.items()):
-        holders = [t for t in types if model["types"][t]["categories"].get(name, {}).get("p", 0.0) > 0.0]
-        if not holders:
+    for name in sorted(requested):
+        if not any(_p(model, t, name) > 0.0 for t in types):
             raise InputError(f"no plan of any type has a {name!r} (the plans know {_known(model)})")
-        most = sum(model["types"][t]["categories"][name]["max_count"] for t in holders)
-        if most < count:
-            raise InputError(f"the plans hold at most {most} of {name!r} together, not {count}")
     spreads = area_spreads(model)
     extra_type = math.log(1 + sum(entry.get("plans", 0) for entry in model["types"].values()))
     joins = {t for t in types if _joins(model, t, requested)}
-    candidates = []  # the set of the types that have a requested category holds everything (checked above)
+    candidates = []  # the set of the types that have a requested category has each of them
     for mask in range(1, 2 ** len(types)):
         chosen = [t for k, t in enumerate(types) if mask >> k & 1]
         if len(chosen) > 1 and not joins.issuperset(chosen):
             continue
-        if all(_holds(model, chosen, name, count) for name, count in requested.items()):
+        if all(max(_p(model, t, name) for t in chosen) > 0.0 for name in requested):
             mean = sum(model["types"][t]["mean_area"] for t in chosen)
             variance = sum(spreads[t] ** 2 for t in chosen)
             log_area = -0.5 * (room_area - mean) ** 2 / variance - 0.5 * math.log(2 * math.pi * variance)
             log_holds = sum(math.log(max(_p(model, t, name) for t in chosen)) for name in requested)
-            score = log_area + log_holds - extra_type * (len(chosen) - 1)
+            unseen = math.log(1 + sum(model["types"][t].get("plans", 0) for t in chosen))
+            beyond = sum(1 for name, count in requested.items() if _most(model, chosen, name) < count)
+            score = log_area + log_holds - unseen * beyond - extra_type * (len(chosen) - 1)
             candidates.append((-round(score, 9), len(chosen), chosen, abs(room_area - mean) / room_area))
     _, _, chosen, error = min(candidates)
     ordered = tuple(sorted(chosen, key=lambda t: (-model["types"][t]["mean_area"], t)))
@@ -154,10 +161,19 @@ def _p(model: dict, room_type: str, name: str) -> float:
     return model["types"][room_type]["categories"].get(name, {}).get("p", 0.0)
 
 
-def _holds(model: dict, chosen: list[str], name: str, count: int) -> bool:
-    if max(_p(model, t, name) for t in chosen) <= 0.0:
-        return False
-    return sum(model["types"][t]["categories"].get(name, {}).get("max_count", 0) for t in chosen) >= count
+def _most(model: dict, chosen, name: str) -> int:
+    """``sum N(o, s)`` over the ``chosen`` types: the most of ``name`` their plans hold, one plan of each."""
+    return sum(model["types"][t]["categories"].get(name, {}).get("max_count", 0) for t in chosen)
+
+
+def check_counts(model: dict, requested: dict[str, int]) -> None:
+    """``InputError`` for a count beyond what the plans of every type hold together (one
+    plan of each): Equation 2 only charges a set for holding fewer than asked, but a
+    room is not laid out with more of a thing than any designer drew."""
+    for name, count in sorted(requested.items()):
+        most = _most(model, sorted(model["types"]), name)
+        if most < count:
+            raise InputError(f"the plans hold at most {most} of {name!r} together, not {count}")
 
 
 def _known(model: dict) -> str:

@@ -8,7 +8,7 @@ import pytest
 from scenewright.completion.evaluation import METRICS, _soft_iou, leave_one_out, request_of
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
-from scenewright.completion.selection import area_spreads, choose_types
+from scenewright.completion.selection import area_spreads, check_counts, choose_types
 from scenewright.core.errors import InputError
 from scenewright.core.room import Room
 
@@ -124,11 +124,24 @@ def test_area_spreads_come_from_the_plans_with_a_floor():
     assert spreads["living_room"] == pytest.approx(4.0)
 
 
-def test_choose_types_refuses_what_no_plan_holds():
+def test_choose_types_refuses_what_no_plan_has_and_the_command_more_than_all_plans_hold():
     with pytest.raises(InputError, match="no plan of any type has a 'piano'"):
         choose_types(_type_model(), {"piano": 1}, 20.0)
+    check_counts(_type_model(), {"chair": 7, "desk": 3})  # 4 + 2 + 1 chairs, 2 + 1 desks
     with pytest.raises(InputError, match="the plans hold at most 7 of 'chair' together, not 8"):
-        choose_types(_type_model(), {"chair": 8}, 20.0)
+        check_counts(_type_model(), {"chair": 8})
+
+
+def test_a_count_beyond_the_plans_most_costs_likelihood_rather_than_ruling_a_type_out():
+    """Three desks where studies hold two and bedrooms one: the 13 m2 room is a study
+    (its plans never held three, a 1 / (1 + 10) event), not a bedroom with a study of
+    26 m2, which the hard bound ``sum N(o, s) >= n_o`` made the only answer."""
+    model = _type_model()
+    assert choose_types(model, {"desk": 3}, 13.0).types == ("study",)
+    assert choose_types(model, {"desk": 3}, 26.0).types == ("bedroom", "study")  # the area of both, and as many desks
+    # The cost is per category asked for beyond the most: one more chair than the
+    # living rooms held (5 > 4) still leaves a 20 m2 room a living room.
+    assert choose_types(model, {"chair": 5}, 20.0).types == ("living_room",)
 
 
 def test_soft_iou_and_the_request():
