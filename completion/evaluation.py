@@ -9,16 +9,21 @@ request, and compare what the model says with what the designer drew:
   plan's type (wrong when no other plan has a requested category). Baseline: the type
   whose plans have the requested categories most often (the largest product of
   ``P(o | s)``), ignoring the room.
-- **categories**: Algorithm 1 run for the plan's true type; precision and recall of the
-  categories it adds against the ones the plan has beyond the request. Baseline
+- **categories**: Algorithm 1 run for the plan's true type; precision, recall and F1 of
+  the categories it adds against the ones the plan has beyond the request. Baseline
   (co-occurrence only): as many categories as Algorithm 1 added, those most often seen
   with the requested ones (the sum of ``P(o, o_req | s)``), ignoring the room.
+- **how many categories**: the absolute difference between the number Algorithm 1 adds
+  and the number the plan has beyond the request. Baseline: the mean of that number
+  over the type's other plans, rounded, whatever the room. A second baseline for the
+  categories themselves, F1 only: the type's usual categories, those at least half its
+  other plans have (``P(o | s) >= 0.5``), whatever the room and the request.
 - **layout mask**: Equation 4's mask (with the plan's own furniture floor area as the
   occupancy, so this measures the layout alone) against the plan's true mask, both in
   the empty room's door-aware frame; soft IoU ``sum(min) / sum(max)``. Baseline: the
   type's mean mask over the other plans.
 
-Every figure is the mean over plans (and per type).
+Every figure is the mean over plans (and per type); ``report`` sets ours beside each baseline.
 """
 
 from __future__ import annotations
@@ -33,8 +38,20 @@ from scenewright.completion.model import build_model, floor_pieces
 from scenewright.completion.selection import choose_types, explore_categories
 from scenewright.core.errors import InputError
 
-METRICS = ("type", "type_baseline", "precision", "recall", "precision_baseline", "recall_baseline", "mask_iou",
-           "mask_iou_baseline")  # fmt: skip
+#: Each measure: its name, the key of ours and of the baseline's figure, what each is,
+#: and whether more is better.
+COMPARISONS = (
+    ("room type", "type", "type_baseline", "Equation 2", "the type whose plans have the request most often", True),
+    ("precision", "precision", "precision_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
+    ("recall", "recall", "recall_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
+    ("F1", "f1", "f1_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
+    ("F1, usual categories", "f1", "f1_usual", "Algorithm 1", "the categories of half the type's plans or more",
+     True),
+    ("number added: error", "added_error", "added_error_baseline", "Algorithm 1", "the type's usual number",
+     False),
+    ("mask IoU", "mask_iou", "mask_iou_baseline", "Equation 4", "the type's mean mask", True),
+)  # fmt: skip
+METRICS = tuple(dict.fromkeys(key for comparison in COMPARISONS for key in comparison[1:3]))
 
 
 def request_of(plan, model: dict, size: int) -> dict[str, int]:
@@ -65,6 +82,8 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
     candidates = sorted(name for name in entry["categories"] if name not in requested)
     score = {name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in requested) for name in candidates}
     baseline_added = set(sorted(candidates, key=lambda name: (-score[name], name))[: len(added)])
+    usual = np.mean([len(set(p["counts"]) - set(requested)) for p in model["plans"] if p["type"] == plan.type])
+    common = {name for name, seen in entry["categories"].items() if seen["p"] >= 0.5} - set(requested)
     floor = floor_pieces(plan)
     true_mask = occupancy_mask(plan.room, floor, canonical_frame(plan.room))
     counts = Counter(piece.category for piece in plan.furniture)
@@ -75,8 +94,13 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
         "type_baseline": float(baseline_type == plan.type),
         "precision": _share(added & truth, added),
         "recall": _share(added & truth, truth),
+        "f1": _f1(added, truth),
         "precision_baseline": _share(baseline_added & truth, baseline_added),
         "recall_baseline": _share(baseline_added & truth, truth),
+        "f1_baseline": _f1(baseline_added, truth),
+        "f1_usual": _f1(common, truth),
+        "added_error": float(abs(len(added) - len(truth))),
+        "added_error_baseline": float(abs(int(round(float(usual))) - len(truth))),
         "mask_iou": _soft_iou(layout.mask, true_mask),
         "mask_iou_baseline": _soft_iou(mean_mask, true_mask),
     }
@@ -99,8 +123,34 @@ def _means(rows: list[dict[str, float]]) -> dict[str, float]:
     return {metric: round(float(np.mean([row[metric] for row in rows])), 3) for metric in METRICS} | {"plans": len(rows)}
 
 
+def report(table: dict[str, dict[str, float]], requested_size: int) -> str:
+    """``leave_one_out``'s table as text: per type each measure as ours / baseline, then
+    over all plans each measure in words with which side is better and by how much."""
+    plural = "category" if requested_size == 1 else "categories"
+    lines = [f"Leave-one-out over {table['all']['plans']} plans, {requested_size} requested {plural}; "
+             "each cell: ours / baseline.", "",
+             "| room type | plans | " + " | ".join(c[0] for c in COMPARISONS) + " |",
+             "|---|---|" + "---|" * len(COMPARISONS)]  # fmt: skip
+    for name, row in table.items():
+        cells = [f"{row[ours]:.3f} / {row[base]:.3f}" for _, ours, base, *_ in COMPARISONS]
+        lines.append(f"| {name} | {row['plans']} | " + " | ".join(cells) + " |")
+    lines += ["", "Over all plans:"]
+    for name, ours, base, what, baseline, more_is_better in COMPARISONS:
+        a, b = table["all"][ours], table["all"][base]
+        better = (a > b) == more_is_better
+        verdict = "equal" if a == b else f"{'ours' if better else 'the baseline'} better by {abs(a - b):.3f}"
+        lines.append(f"- {name}: {what} {a:.3f}, baseline ({baseline}) {b:.3f}: {verdict}")
+    return "\n".join(lines) + "\n"
+
+
 def _share(part: set, whole: set) -> float:
     return len(part) / len(whole) if whole else 1.0
+
+
+def _f1(chosen: set, truth: set) -> float:
+    """The harmonic mean of precision and recall (1 when both sets are empty, 0 when nothing is right)."""
+    precision, recall = _share(chosen & truth, chosen), _share(chosen & truth, truth)
+    return 2 * precision * recall / (precision + recall) if precision + recall > 0 else 0.0
 
 
 def _soft_iou(first: np.ndarray, second: np.ndarray) -> float:

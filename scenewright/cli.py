@@ -761,14 +761,11 @@ def run_plans_draw(args: argparse.Namespace) -> int:
 def run_plans_evaluate(args: argparse.Namespace) -> int:
     """Leave-one-out over a plan set: the model's predictions against simple baselines."""
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.evaluation import METRICS, leave_one_out
+    from scenewright.completion.evaluation import leave_one_out, report
     from scenewright.completion.plan import load_plans
 
     table = leave_one_out(load_plans(args.plans or shipped_plans_dir()), args.requested)
-    print("| room type | plans | " + " | ".join(METRICS) + " |")
-    print("|---|---|" + "---|" * len(METRICS))
-    for name, row in table.items():
-        print(f"| {name} | {row['plans']} | " + " | ".join(f"{row[metric]:.3f}" for metric in METRICS) + " |")
+    sys.stdout.write(report(table, args.requested))
     return 0
 
 
@@ -995,9 +992,10 @@ the most instances per plan, the mean room area; per plan its room feature and 1
 layout mask; the mask clusters. The same plans give the same bytes. graph prints a
 type's object relation graph (edges with weight > 0) from --model, --plans, or the
 shipped plan set. evaluate holds each plan out in turn and prints, per type, how often
-the model finds its room type, the precision and recall of the categories it adds, and
-its layout mask's IoU with the plan's, each beside a simple baseline (about a minute of
-CPU for the shipped set). draw puts plans on one PNG sheet (with --masks, each beside
+the model finds its room type, the precision, recall and F1 of the categories it adds,
+how far the number it adds is from the plan's, and its layout mask's IoU with the
+plan's, each as ours / a simple baseline, then over all plans which side is better and
+by how much (about a minute of CPU for the shipped set). draw puts plans on one PNG sheet (with --masks, each beside
 its layout mask). See docs/completion.md.""",
     "match": """\
 examples:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from scenewright.completion.evaluation import METRICS, _soft_iou, leave_one_out, request_of
+from scenewright.completion.evaluation import COMPARISONS, METRICS, _f1, _soft_iou, leave_one_out, report, request_of
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
 from scenewright.completion.selection import area_spreads, check_counts, choose_types
@@ -168,5 +168,23 @@ def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
     table = leave_one_out(some_plans, 1)
     assert sorted(table) == ["all", "bedroom", "dining_room", "gym", "living_room", "study"]
     assert table["all"]["plans"] == 15 and all(table[t]["plans"] == 3 for t in table if t != "all")
-    assert all(0.0 <= table["all"][metric] <= 1.0 for metric in METRICS)
+    counts = ("added_error", "added_error_baseline")  # numbers of categories, not shares
+    assert all(0.0 <= table["all"][metric] <= 1.0 for metric in METRICS if metric not in counts)
+    assert all(table["all"][metric] >= 0.0 for metric in counts)
     assert table["all"]["type_baseline"] == 1.0  # a bed, a sofa, a desk, a dining table or a machine names its type
+    text = report(table, 1)
+    assert text.startswith("Leave-one-out over 15 plans, 1 requested category; each cell: ours / baseline.")
+    assert f"| all | 15 | {table['all']['type']:.3f} / {table['all']['type_baseline']:.3f} |" in text
+    assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(COMPARISONS)
+
+
+def test_f1_and_the_report_say_which_side_is_better():
+    assert _f1({"a", "b"}, {"b", "c"}) == pytest.approx(0.5)  # precision 1/2, recall 1/2
+    assert _f1(set(), set()) == 1.0 and _f1({"a"}, {"b"}) == 0.0
+    row = {metric: 0.5 for metric in METRICS} | {"plans": 4, "type": 0.75, "added_error": 2.0, "added_error_baseline": 1.0}
+    lines = report({"all": row}, 2).splitlines()
+    assert "- room type: Equation 2 0.750, baseline (the type whose plans have the request most often) 0.500: " \
+           "ours better by 0.250" in lines
+    assert any(line.startswith("- number added: error: Algorithm 1 2.000,") and line.endswith("the baseline better by 1.000")
+               for line in lines)  # fewer is better
+    assert any(line.startswith("- mask IoU:") and line.endswith(": equal") for line in lines)
