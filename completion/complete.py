@@ -290,8 +290,8 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
     from scenewright.completion.selection import check_counts, choose_types, explore_categories
 
     room = request.room
+    choice = choose_types(model, request.requested, room.area)  # first: it names a category no plan has
     check_counts(model, request.requested)
-    choice = choose_types(model, request.requested, room.area)
     regions = split_room(model, room, choice.types) if split else ()
     region_of = {region.room_type: k for k, region in enumerate(regions)}
     total = sum(model["types"][t]["mean_area"] for t in choice.types)
