@@ -62,8 +62,10 @@ def request_of(plan, model: dict, size: int) -> dict[str, int]:
     return {name: counts[name] for name in chosen}
 
 
-def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
-    """The metrics (``METRICS``) for one held-out ``plan`` under a model built without it."""
+def evaluate_plan(plan, model: dict, requested_size: int) -> dict:
+    """The metrics (``METRICS``) for one held-out ``plan`` under a model built without
+    it, and ``miss``: when Equation 2 or the baseline gets its type wrong, a line saying
+    what each answered (else None)."""
     requested = request_of(plan, model, requested_size)
     entry = model["types"][plan.type]
     truth = {piece.category for piece in plan.furniture} - set(requested)
@@ -103,11 +105,15 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict[str, float]:
         "added_error_baseline": float(abs(int(round(float(usual))) - len(truth))),
         "mask_iou": _soft_iou(layout.mask, true_mask),
         "mask_iou_baseline": _soft_iou(mean_mask, true_mask),
-    }
+        "miss": None if predicted == (plan.type,) and baseline_type == plan.type else (
+            f"{plan.id} ({plan.room.area:.1f} m2, {_listed(requested)}): Equation 2 "
+            f"{' + '.join(predicted) or 'none'}, baseline {baseline_type}"),
+    }  # fmt: skip
 
 
-def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict[str, float]]:
-    """Mean metrics per type and over all plans (``"all"``); every type needs two plans."""
+def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
+    """Mean metrics per type and over all plans (``"all"``, which also lists the plans
+    whose type either side got wrong under ``"misses"``); every type needs two plans."""
     plans = sorted(plans, key=lambda plan: plan.id)
     rows: dict[str, list[dict[str, float]]] = {}
     for plan in plans:
@@ -116,6 +122,7 @@ def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict[str, float]]
             rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
     table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
     table["all"] = _means([row for found in rows.values() for row in found])
+    table["all"]["misses"] = [row["miss"] for found in rows.values() for row in found if row["miss"]]
     return table
 
 
@@ -140,7 +147,14 @@ def report(table: dict[str, dict[str, float]], requested_size: int) -> str:
         better = (a > b) == more_is_better
         verdict = "equal" if a == b else f"{'ours' if better else 'the baseline'} better by {abs(a - b):.3f}"
         lines.append(f"- {name}: {what} {a:.3f}, baseline ({baseline}) {b:.3f}: {verdict}")
+    misses = table["all"].get("misses", ())
+    lines += ["", "Room types missed by either side:" if misses else "No room type missed by either side."]
+    lines += [f"- {miss}" for miss in misses]
     return "\n".join(lines) + "\n"
+
+
+def _listed(requested: dict[str, int]) -> str:
+    return ", ".join(name if count == 1 else f"{name} x{count}" for name, count in requested.items())
 
 
 def _share(part: set, whole: set) -> float:

@@ -995,7 +995,8 @@ shipped plan set. evaluate holds each plan out in turn and prints, per type, how
 the model finds its room type, the precision, recall and F1 of the categories it adds,
 how far the number it adds is from the plan's, and its layout mask's IoU with the
 plan's, each as ours / a simple baseline, then over all plans which side is better and
-by how much (about a minute of CPU for the shipped set). draw puts plans on one PNG sheet (with --masks, each beside
+by how much, and the plans whose type either side got wrong (about a minute of CPU for
+the shipped set). draw puts plans on one PNG sheet (with --masks, each beside
 its layout mask). See docs/completion.md.""",
     "match": """\
 examples:

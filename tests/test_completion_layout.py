@@ -175,7 +175,10 @@ def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
     text = report(table, 1)
     assert text.startswith("Leave-one-out over 15 plans, 1 requested category; each cell: ours / baseline.")
     assert f"| all | 15 | {table['all']['type']:.3f} / {table['all']['type_baseline']:.3f} |" in text
-    assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(COMPARISONS)
+    misses = table["all"]["misses"]  # the baseline misses none, so each is one of Equation 2's
+    assert len(misses) == round((1.0 - table["all"]["type"]) * 15)
+    assert all(miss.split(" ")[0] in {plan.id for plan in some_plans} and ": Equation 2 " in miss for miss in misses)
+    assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(COMPARISONS) + len(misses)
 
 
 def test_f1_and_the_report_say_which_side_is_better():
@@ -188,3 +191,6 @@ def test_f1_and_the_report_say_which_side_is_better():
     assert any(line.startswith("- number added: error: Algorithm 1 2.000,") and line.endswith("the baseline better by 1.000")
                for line in lines)  # fewer is better
     assert any(line.startswith("- mask IoU:") and line.endswith(": equal") for line in lines)
+    assert lines[-1] == "No room type missed by either side."
+    row["misses"] = ["bedroom_09 (30.0 m2, bed): Equation 2 study + bedroom, baseline bedroom"]
+    assert report({"all": row}, 2).splitlines()[-2:] == ["Room types missed by either side:", "- " + row["misses"][0]]
