@@ -130,7 +130,7 @@ def _means(rows: list[dict[str, float]]) -> dict[str, float]:
     return {metric: round(float(np.mean([row[metric] for row in rows])), 3) for metric in METRICS} | {"plans": len(rows)}
 
 
-def report(table: dict[str, dict[str, float]], requested_size: int) -> str:
+def report(table: dict[str, dict], requested_size: int) -> str:
     """``leave_one_out``'s table as text: per type each measure as ours / baseline, then
     over all plans each measure in words with which side is better and by how much."""
     plural = "category" if requested_size == 1 else "categories"

@@ -22,15 +22,15 @@ plans never held as many as asked (``sum N(o, s) < n_o``), and a cost for each t
 beyond the first. Both costs are the rule of succession: after ``n_S`` plans none of
 which held more, one that does is ``1 / (1 + n_S)`` as likely; the plans show ``n``
 rooms of one type and none of several, so a room of several types is ``1 / (1 + n)``
-as likely. The paper's hard bound read every request for one more than the plans
-showed (two beds where every bedroom has one, four treadmills where the gyms have up to
-three) as a room of several types, or as no room at all. (The command still refuses a
+as likely. The paper's hard bound read every request for more than the plans showed
+(two beds where the bedrooms seen hold one, four treadmills where the gyms seen hold up
+to three) as a room of several types, or as no room at all. (The command still refuses a
 count beyond what the plans of all types hold together, ``check_counts``: it lays out
-no more of a thing than the designers drew.) A type joins a set of several only when it has a requested
-category or the plans have seen it with one (``_joins``): the plans of some type have
-both a category of its own (one it has more often than any other type) and a requested
-category. A room splits only when no single type's rooms come near its
-area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
+no more of a thing than the designers drew.) A type joins a set of several only when
+it has a requested category or the plans have seen it with one (``_joins``): the plans
+of some type have both a category of its own (one it has more often than any other
+type) and a requested category. A room splits only when no single type's rooms come
+near its area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
 three spreads above the bedrooms' mean; a 5.5 x 5.7 m one becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
 most often.
 
