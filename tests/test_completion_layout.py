@@ -194,3 +194,17 @@ def test_f1_and_the_report_say_which_side_is_better():
     assert lines[-1] == "No room type missed by either side."
     row["misses"] = ["bedroom_09 (30.0 m2, bed): Equation 2 study + bedroom, baseline bedroom"]
     assert report({"all": row}, 2).splitlines()[-2:] == ["Room types missed by either side:", "- " + row["misses"][0]]
+
+
+def test_every_shipped_plans_mask_frame_is_its_empty_rooms():
+    """The leave-one-out compares Equation 4's mask, made in the empty room's frame, with
+    the plan's mask and the type's mean of masks made in the furnished plans' frames: the
+    furniture must never be what decides a shipped plan's frame (doors and windows do)."""
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.features import canonical_frame
+    from scenewright.completion.model import floor_pieces
+    from scenewright.completion.plan import load_plans
+
+    plans = load_plans(shipped_plans_dir())
+    assert len(plans) == 80
+    assert [p.id for p in plans if canonical_frame(p.room, floor_pieces(p)) != canonical_frame(p.room)] == []
