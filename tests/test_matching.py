@@ -17,6 +17,7 @@ from scenewright.variation.matching import (
     EdgeTable,
     Problem,
     exhaustive_solution,
+    interchangeable,
     layout_problem,
     match_graphs,
     solve,
@@ -101,6 +102,25 @@ def test_type_prior_breaks_a_tie_between_identical_boxes():
     first = scene_of([box("a", "plant", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("b", "bin", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
     second = scene_of([box("p", "bin", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("q", "plant", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
     assert match_graphs(structure_graph(first), structure_graph(second), type_prior=0.5).mapping() == {"a": "q", "b": "p"}
+
+
+def test_identical_boxes_with_the_same_relations_are_interchangeable():
+    # Two identical stools standing alone, a third against the table and a bin of the
+    # same box alone too: the lone stools and the bin cannot be told apart; the stool at
+    # the table can, and so can the table.
+    stool = (0.4, 0.5, 0.4)
+    graph = structure_graph(scene_of([
+        box("s1", "stool", -3.0, -3.0, 0.0, stool), box("s2", "stool", 3.0, 3.0, 90.0, stool),
+        box("bin", "bin", -3.0, 3.0, 0.0, stool), box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8)),
+        box("s3", "stool", 0.0, 0.62, 0.0, stool),
+    ]))  # fmt: skip
+    group = interchangeable(graph)
+    assert group["s1"] == group["s2"] == group["bin"]
+    assert len({group["s1"], group["s3"], group["table"]}) == 3
+    # Put beside the table, s2's relations tell it from s1.
+    beside = structure_graph(scene_of([box("s1", "stool", -3.0, -3.0, 0.0, stool), box("s2", "stool", 0.9, 0.0, 0.0, stool),
+                                       box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8))]))  # fmt: skip
+    assert interchangeable(beside)["s1"] != interchangeable(beside)["s2"]
 
 
 random_scenes = st.lists(

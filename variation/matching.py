@@ -275,6 +275,35 @@ def exhaustive_solution(problem: Problem) -> tuple[np.ndarray, float]:
     return best, best_energy
 
 
+def interchangeable(graph: StructureGraph) -> dict[str, int]:
+    """Layout objects the energy cannot tell apart, as object id -> group number (the
+    same for objects of one group; every object has one, most a group of their own).
+    Two objects are interchangeable when matching the layout subgraph onto itself with
+    the two swapped scores exactly what the identity does: the same box and the same
+    relations, with the same measures, to every other object (two identical chairs with
+    no neighbour). A matching that swaps them is as good as any: nothing in the
+    structure graph says which is which."""
+    problem, nodes, _ = layout_problem(graph, graph)
+    identity = np.arange(problem.size)
+    energy = problem.energy(identity)
+    group = list(range(len(nodes)))
+
+    def root(p: int) -> int:
+        while group[p] != p:
+            p = group[p]
+        return p
+
+    for p in range(len(nodes)):
+        for q in range(p + 1, len(nodes)):
+            if root(p) == root(q) or not np.array_equal(graph.sizes[nodes[p]], graph.sizes[nodes[q]]):
+                continue
+            swapped = identity.copy()
+            swapped[[p, q]] = [q, p]
+            if problem.energy(swapped) >= energy - 1e-9 * max(energy, 1.0):
+                group[root(q)] = root(p)
+    return {graph.ids[nodes[p]]: root(p) for p in range(len(nodes))}
+
+
 @dataclass
 class Correspondence:
     """One matched pair: ids in the first and the second scene, confidence in [0, 1]."""
