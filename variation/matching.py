@@ -32,7 +32,8 @@ similarities u sit on W's diagonal; on a 0/1 vector that is the linear term u^T 
 and we give it to the relaxation as one: a homogeneous coordinate t with one more
 affine constraint, t = 1, makes it quadratic (``spectral_solution``). On the diagonal
 it would only count x_ik^2, small where the relaxed vector spreads, and the edges
-would drown it.
+would drown it. ``solve`` (beyond the paper) starts local search from both readings'
+relaxations, and keeps the best.
 
 A pair's *confidence* is the share of its best possible score it gets: its object
 similarity plus lambda times its matched edges' similarities, over 1 + lambda times
@@ -181,9 +182,10 @@ class Problem:
         )
 
 
-def spectral_solution(affinity: sparse.spmatrix, size: int) -> np.ndarray:
+def spectral_solution(affinity: sparse.spmatrix, size: int, *, lifted: bool = True) -> np.ndarray:
     """(N, N) relaxed assignment: SMAC's leading eigenvector under the affine one-to-one
-    constraints (rows and columns sum to 1), with the unary terms as a linear term.
+    constraints (rows and columns sum to 1), with the unary terms as a linear term
+    (``lifted``, the default) or, with ``lifted=False``, left on W's diagonal.
 
     On a 0/1 vector x_ik^2 = x_ik, so W's diagonal u (the object similarities) is the
     linear term of E = x^T (W - diag u) x + u^T x. It is made quadratic with a
@@ -194,8 +196,26 @@ def spectral_solution(affinity: sparse.spmatrix, size: int) -> np.ndarray:
     (measured in docs/variation.md). The eigenvector of P L P (P the projection on the
     constraints' null space) is found by Lanczos iteration (``eigsh``) from a fixed
     start, so it is deterministic; it is scaled so t = 1, which makes every constraint
-    hold."""
+    hold. Unlifted, it is the eigenvector of P W P, scaled so the last column sums to 1
+    (every row and column then does), or negated when its negative's Hungarian
+    assignment scores higher."""
     count = size * size
+    if not lifted:
+
+        def centre(vector: np.ndarray) -> np.ndarray:
+            # Made homogeneous, the constraints say "all row and column sums are equal";
+            # projecting their row space out of X leaves X - row means - column means
+            # + 2 * grand mean.
+            matrix = np.reshape(vector, (size, size))
+            grand = matrix.mean()
+            return (matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + 2.0 * grand).ravel()
+
+        vector = _leading(lambda v: centre(affinity @ centre(np.ravel(v))), centre, count).reshape(size, size)
+        total = vector[:, -1].sum()
+        vector = vector / total if abs(total) > 1e-12 else vector
+        # The common row sum can be tiny beside the rest, and then its sign says little:
+        # of the eigenvector and its negative, the one whose assignment scores higher.
+        return max((vector, -vector), key=lambda relaxed: _score(affinity, discretise(relaxed)))
     unary = np.asarray(affinity.diagonal()).ravel()
     pairwise = affinity - sparse.diags(unary)
 
@@ -215,18 +235,23 @@ def spectral_solution(affinity: sparse.spmatrix, size: int) -> np.ndarray:
         lifted = np.append(pairwise @ assignment + homogeneous / 2.0 * unary, unary @ assignment / 2.0)
         return project(lifted)
 
-    if count <= 64:  # small: a dense eigensolver is exact and as fast
-        dense = np.stack([apply(column) for column in np.eye(count + 1)], axis=1)
-        values, vectors = np.linalg.eigh((dense + dense.T) / 2.0)
-        vector = vectors[:, np.argmax(values)]
-    else:
-        operator = LinearOperator((count + 1, count + 1), matvec=apply, dtype=float)
-        start = project(np.linspace(1.0, 2.0, count + 1))
-        _, vectors = eigsh(operator, k=1, which="LA", v0=start, tol=1e-8, maxiter=20 * (count + 1))
-        vector = vectors[:, 0]
+    vector = _leading(apply, project, count + 1)
     if abs(vector[count]) > 1e-12:  # t = 0: no part along the constraints' solutions to scale
         vector = vector / vector[count]  # t = 1: every row and column then sums to 1
     return vector[:count].reshape(size, size)
+
+
+def _leading(apply, project, dimension: int) -> np.ndarray:
+    """The leading eigenvector of the symmetric operator ``apply`` (dense when small,
+    else Lanczos from the projected fixed start ``project(linspace(1, 2))``)."""
+    if dimension <= 65:  # small: a dense eigensolver is exact and as fast
+        dense = np.stack([apply(column) for column in np.eye(dimension)], axis=1)
+        values, vectors = np.linalg.eigh((dense + dense.T) / 2.0)
+        return vectors[:, np.argmax(values)]
+    operator = LinearOperator((dimension, dimension), matvec=apply, dtype=float)
+    start = project(np.linspace(1.0, 2.0, dimension))
+    _, vectors = eigsh(operator, k=1, which="LA", v0=start, tol=1e-8, maxiter=20 * dimension)
+    return vectors[:, 0]
 
 
 def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50) -> np.ndarray:
@@ -239,9 +264,8 @@ def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50)
     best, best_score = None, -math.inf
     for _ in range(iterations):
         target = discretise((affinity @ current).reshape(size, size))
-        vector = np.zeros(size * size)
-        vector[np.arange(size) * size + target] = 1.0
-        score = float(vector @ (affinity @ vector))
+        vector = _indicator(target)
+        score = _score(affinity, target)
         if score > best_score + 1e-12:
             best, best_score = target, score
         step = vector - current
@@ -252,6 +276,20 @@ def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50)
             break
         current = current + rate * step
     return best
+
+
+def _indicator(assignment: np.ndarray) -> np.ndarray:
+    """(N*N,) the 0/1 vector x of an assignment."""
+    size = len(assignment)
+    vector = np.zeros(size * size)
+    vector[np.arange(size) * size + assignment] = 1.0
+    return vector
+
+
+def _score(affinity: sparse.spmatrix, assignment: np.ndarray) -> float:
+    """x^T W x of an assignment: its energy."""
+    vector = _indicator(assignment)
+    return float(vector @ (affinity @ vector))
 
 
 def discretise(relaxed: np.ndarray) -> np.ndarray:
@@ -375,8 +413,10 @@ def layout_problem(
 
 def solve(problem: Problem, *, refined: bool = True) -> np.ndarray:
     """The assignment (N,) of a problem: spectral, then Hungarian. With ``refined``
-    (the default), the best of that and the fixed-point refinement started from the
-    same relaxation, each then improved by pairwise exchanges."""
+    (the default), the best of several starts, each improved by pairwise exchanges: for
+    each of the two relaxations (the unary terms lifted to a linear term, and left on
+    W's diagonal), its Hungarian assignment and the fixed-point refinement started from
+    it. The two relaxations go wrong on different scenes (docs/variation.md)."""
     size = problem.size
     if size == 0:
         return np.zeros(0, dtype=int)
@@ -385,7 +425,9 @@ def solve(problem: Problem, *, refined: bool = True) -> np.ndarray:
     assignment = discretise(relaxed)
     if not refined:
         return assignment
-    candidates = [exchange(problem, start) for start in (assignment, refine(affinity, relaxed))]
+    diagonal = spectral_solution(affinity, size, lifted=False)
+    starts = (assignment, refine(affinity, relaxed), discretise(diagonal), refine(affinity, diagonal))
+    candidates = [exchange(problem, start) for start in starts]
     energies = [problem.energy(candidate) for candidate in candidates]
     return candidates[int(np.argmax(energies))]  # the first on a tie: deterministic
 
