@@ -126,6 +126,20 @@ def test_identical_boxes_with_the_same_relations_are_interchangeable():
     assert interchangeable(beside)["s1"] != interchangeable(beside)["s2"]
 
 
+@pytest.mark.parametrize("reverse", [False, True])
+def test_place_breaks_a_tie_between_identical_boxes_alone(reverse):
+    # Two identical stools standing alone, renamed in the second room and moved a
+    # little: nothing but their places tells them apart (without the tie-break, one of
+    # the two orders came out swapped).
+    stool = (0.4, 0.5, 0.4)
+    first = scene_of([box("a", "stool", -2.0, 1.0, 0.0, stool), box("b", "stool", 2.0, -1.0, 0.0, stool)])
+    others = [box("p", "stool", 2.1, -1.0, 0.0, stool), box("q", "stool", -2.0, 0.9, 0.0, stool)]
+    second = scene_of(others[::-1] if reverse else others)
+    matching = match_graphs(structure_graph(first), structure_graph(second))
+    assert matching.mapping() == {"a": "q", "b": "p"}
+    assert all(p.confidence == pytest.approx(1.0) for p in matching.pairs)
+
+
 random_scenes = st.lists(
     st.tuples(st.floats(-2.5, 2.5), st.floats(-2.5, 2.5), st.sampled_from([0.0, 90.0, 180.0, -90.0]),
               st.floats(0.3, 1.5), st.floats(0.3, 1.5)),

@@ -23,7 +23,18 @@ import numpy as np
 
 from scenewright.examples import Example
 
-from .matching import CONFIDENCE, LAMBDA, EdgeTable, Problem, box_similarity, confidences, edge_similarity, match_graphs, solve
+from .matching import (
+    CONFIDENCE,
+    LAMBDA,
+    EdgeTable,
+    Problem,
+    box_similarity,
+    confidences,
+    edge_similarity,
+    match_graphs,
+    place_similarity,
+    solve,
+)
 from .structure import RELATION_CODES, StructureGraph, structure_graph
 
 Member = tuple[int, str]  # (example index, object id)
@@ -188,9 +199,12 @@ def _match_to_ag(ag: AugmentedGraph, k: int, threshold: float, lam: float) -> di
         return {}
     position = {node.id: p for p, node in enumerate(nodes)}
     unary = np.zeros((len(nodes), len(nodes_b)))
+    place = np.zeros((len(nodes), len(nodes_b)))
     for p, node in enumerate(nodes):
         sizes = np.array([ag.graphs[e].sizes[ag.index((e, o))] for e, o in node.members])
         unary[p] = box_similarity(sizes, graph.sizes[nodes_b]).max(axis=0)
+        places = np.array([ag.graphs[e].places[ag.index((e, o))] for e, o in node.members])
+        place[p] = place_similarity(places, graph.places[nodes_b]).max(axis=0)
     table_b = EdgeTable.of(graph, nodes_b)
     rows = []
     for e, member_graph in enumerate(ag.graphs):
@@ -201,7 +215,7 @@ def _match_to_ag(ag: AugmentedGraph, k: int, threshold: float, lam: float) -> di
         to_ag = np.array([position[ag.node_of[(e, member_graph.ids[i])]] for i in members])
         rows.append((table, to_ag))
     first, pairwise = _max_table(rows, table_b)
-    problem = Problem(unary, first, table_b, pairwise, lam)
+    problem = Problem(unary, first, table_b, pairwise, lam, place)
     assignment = solve(problem)
     confidence = confidences(problem, assignment)
     return {

@@ -94,10 +94,19 @@ class StructureGraph:
     supporter: dict[int, int]  # supported object -> the object it rests on
     edges: dict[tuple[int, int], Edge] = field(default_factory=dict)
     name: str = ""
+    extent: tuple[float, float] | None = None  # the room's floor (x, z), centred on the origin
 
     @property
     def forwards(self) -> np.ndarray:
         return np.stack([np.sin(self.yaws), np.cos(self.yaws)], axis=-1)
+
+    @property
+    def places(self) -> np.ndarray:
+        """(n, 2) the centres as shares of the room's extent (in [-0.5, 0.5] inside it),
+        comparable between rooms of different sizes; the centres when there is no extent."""
+        if not self.extent or min(self.extent) <= 0.0:
+            return self.centres
+        return self.centres / np.asarray(self.extent, dtype=float)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -159,6 +168,7 @@ def structure_graph(scene: Scene) -> StructureGraph:
         bottoms=np.array([o.position[1] for o in objects], dtype=float),
         sizes=np.array([o.size for o in objects], dtype=float).reshape(-1, 3),
         yaws=np.array([o.yaw for o in objects], dtype=float), supporter=supporter, name=scene.name,
+        extent=(float(scene.extent[0]), float(scene.extent[1])),
     )  # fmt: skip
     measure_edges(graph)
     return graph
