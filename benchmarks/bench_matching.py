@@ -19,8 +19,9 @@ matching scores at least the true one's energy. The baseline matches by box
 similarity alone (Hungarian on phi_i). The last line counts the relations between
 surviving objects that the copy's moves changed (the relations are thresholds, and a
 5 cm move carries a pair across one).
-Exhaustive: layout subgraphs cut to 7 objects, spectral (the paper's: no refinement)
-and refined, against the best of all 7! assignments. Time: CPU seconds of this process
+Exhaustive: layout subgraphs cut to 7 objects, spectral (no refinement: the better
+of the two relaxations' Hungarian assignments) and refined, against the best of all
+7! assignments. Time: CPU seconds of this process
 (``time.process_time``), which do not grow when other work shares the machine. Prints
 figures only; nothing is asserted.
 """

@@ -187,12 +187,16 @@ def test_spectral_solution_alone_reaches_the_optimum_on_a_disguised_copy(seed):
 
 @settings(max_examples=20, deadline=None)
 @given(random_scenes, random_scenes)
-def test_unlifted_relaxation_takes_the_better_sign(first, second):
+def test_unlifted_relaxation_takes_the_better_sign_and_spectral_the_better_relaxation(first, second):
     problem, _, _ = layout_problem(graph_of_tuples(first), graph_of_tuples(second))
     affinity = problem.affinity()
     relaxed = spectral_solution(affinity, problem.size, lifted=False)
     assert np.allclose(relaxed.sum(axis=0), relaxed.sum(axis=0)[0]) and np.allclose(relaxed.sum(axis=1), relaxed.sum(axis=1)[0])
     assert problem.energy(discretise(relaxed)) >= problem.energy(discretise(-relaxed)) - 1e-9
+    # The spectral solution alone is the better of the two relaxations' assignments.
+    lifted = discretise(spectral_solution(affinity, problem.size))
+    best = max(problem.energy(lifted), problem.energy(discretise(relaxed)))
+    assert problem.energy(solve(problem, refined=False)) == pytest.approx(best)
 
 
 def test_rows_of_identical_desks_reach_the_true_matching_energy():

@@ -37,8 +37,8 @@ similarities u sit on W's diagonal; on a 0/1 vector that is the linear term u^T 
 and we give it to the relaxation as one: a homogeneous coordinate t with one more
 affine constraint, t = 1, makes it quadratic (``spectral_solution``). On the diagonal
 it would only count x_ik^2, small where the relaxed vector spreads, and the edges
-would drown it. ``solve`` (beyond the paper) starts local search from both readings'
-relaxations, and keeps the best.
+would drown it. ``solve`` takes the better of both readings' assignments, and
+(beyond the paper) starts local search from both relaxations, keeping the best.
 
 A pair's *confidence* is the share of its best possible score it gets: its object
 similarity plus lambda times its matched edges' similarities, over 1 + lambda times
@@ -438,21 +438,22 @@ def layout_problem(
 
 
 def solve(problem: Problem, *, refined: bool = True) -> np.ndarray:
-    """The assignment (N,) of a problem: spectral, then Hungarian. With ``refined``
-    (the default), the best of several starts, each improved by pairwise exchanges: for
-    each of the two relaxations (the unary terms lifted to a linear term, and left on
-    W's diagonal), its Hungarian assignment and the fixed-point refinement started from
-    it. The two relaxations go wrong on different scenes (docs/variation.md)."""
+    """The assignment (N,) of a problem: spectral, then Hungarian, for each of the two
+    relaxations (the unary terms lifted to a linear term, and left on W's diagonal),
+    which go wrong on different scenes (docs/variation.md); without ``refined``, the
+    better of the two assignments. With ``refined`` (the default), the best of four
+    starts, each improved by pairwise exchanges: the two assignments and the
+    fixed-point refinements started from the two relaxations."""
     size = problem.size
     if size == 0:
         return np.zeros(0, dtype=int)
     affinity = problem.affinity()
     relaxed = spectral_solution(affinity, size)
-    assignment = discretise(relaxed)
-    if not refined:
-        return assignment
     diagonal = spectral_solution(affinity, size, lifted=False)
-    starts = (assignment, refine(affinity, relaxed), discretise(diagonal), refine(affinity, diagonal))
+    assignments = [discretise(relaxed), discretise(diagonal)]
+    if not refined:
+        return max(assignments, key=problem.energy)
+    starts = (assignments[0], refine(affinity, relaxed), assignments[1], refine(affinity, diagonal))
     candidates = [exchange(problem, start) for start in starts]
     energies = [problem.energy(candidate) for candidate in candidates]
     return candidates[int(np.argmax(energies))]  # the first on a tie: deterministic
