@@ -13,6 +13,7 @@ import pytest
 
 from scenewright.api import build_scene
 from scenewright.cli import main
+from scenewright.core.frames import to_world
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.learned_term import (
@@ -32,46 +33,53 @@ from scenewright.learning.context import fit_context, scaling_step, total_variat
 DINING = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
 
 
-def random_context(graph, seed: int = 0) -> LearnedContext:
+def random_context(graph, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)) -> LearnedContext:
     """Random weights for every pair kind of a graph, over a grid around the target."""
     problem = compile_problem(graph)
     types = [graph.node(i).type for i in problem.ids]
     rng = np.random.default_rng(seed)
     kinds = sorted({kind for _, _, kind in related_pairs(problem, types)})
     return LearnedContext(tuple(
-        PairContext(*kind, (-1.5, -1.2, 1.5, 1.2), rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1)
+        PairContext(*kind, bounds, rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1)
         for kind in kinds
     ))  # fmt: skip
 
 
-def dining_problem(seed: int = 0):
-    graph = expand(load_rules(DINING), seed)
+def learned_problem(rules, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)):
+    graph = expand(load_rules(rules), seed)
     problem = compile_problem(graph)
-    problem.learned = compile_learned(random_context(graph, seed), problem, [graph.node(i).type for i in problem.ids])
+    types = [graph.node(i).type for i in problem.ids]
+    problem.learned = compile_learned(random_context(graph, seed, bounds), problem, types)
     return problem
 
 
+# A grid that holds the chairs at the table's sides but not the one at either end
+# (1.15 m out), so that pairs stand both on and off their grids.
 @pytest.mark.parametrize("incremental", [True, False])
 def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
-    problem = dining_problem(1)
-    assert len(problem.learned.pairs) == 6 and problem.learned.tempered
+    problem = learned_problem(DINING, 1, (-0.9, -1.2, 0.9, 1.2))
+    assert len(problem.learned.pairs) == 6 and problem.learned.tempered and problem.learned.swaps
     params = LayoutParams(incremental=incremental)
     rng = np.random.default_rng(5)
     energy, mover = start_chain(problem, params, rng)
     learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box, 1)
-    checked = 0
+    checked, swaps, grid_sides = 0, 0, set()
     for step in range(300):
         drawn = learned.propose() if step % 2 else None
         proposal = (drawn[0], {}) if drawn else mover.propose(energy.relation)
         if proposal is None:
             continue
-        before = energy.full()
+        before, soft_before, sides = energy.full(), _soft_relations(energy), _grid_sides(energy)
         delta = energy.propose(*proposal)
-        after = energy.full()
+        after, soft_after = energy.full(), _soft_relations(energy)
+        grid_sides |= sides & _grid_sides(energy)
         assert delta == pytest.approx(sum(after.values()) - sum(before.values()), abs=1e-9)
         assert energy.learned_delta == pytest.approx(after["learned"] - before["learned"], abs=1e-9)
-        assert energy.soft_delta - energy.learned_delta == pytest.approx(_tempered_relations(energy, problem), abs=1e-9)
-        if drawn:  # the Hastings correction is the moved pair's own change
+        assert energy.soft_delta - energy.learned_delta == pytest.approx(soft_after - soft_before, abs=1e-9)
+        if drawn and drawn[2] is None:  # an exchange of two interchangeable chairs
+            assert drawn[1] == 0.0
+            swaps += 1
+        elif drawn:  # the Hastings correction is the moved pair's own change
             pair = drawn[2]
             source, target, table = problem.learned.pairs[pair]
             old = energy.learned[pair]
@@ -83,12 +91,89 @@ def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
             energy.reject()
         assert energy.total == pytest.approx(sum(energy.full().values()), abs=1e-7)
         checked += 1
-    assert checked > 250
+    assert checked > 250 and swaps > 10
+    assert grid_sides == {True, False}  # some pair stayed on its grid and some off it across a move
 
 
-def _tempered_relations(energy, problem) -> float:
-    """The pending proposal's change in the tempered relation terms, recomputed."""
-    return sum(energy.relation_energy(t) - energy.relation[t] for t in problem.learned.tempered)
+def _soft_relations(energy) -> float:
+    """The tempered relation terms that are sampled with the learned part, recomputed:
+    those of pairs whose source stands on the pair's grid."""
+    learned, pose = energy.problem.learned, energy.state.pose
+    return sum(
+        energy.relation_energy(t) for t, pair in learned.tempered.items()
+        if learned.on_grid(pair, pose(learned.pairs[pair][0]), pose(learned.pairs[pair][1]))
+    )  # fmt: skip
+
+
+def _grid_sides(energy) -> set[bool]:
+    """Whether each learned pair's source stands on its grid, as a set."""
+    learned, pose = energy.problem.learned, energy.state.pose
+    return {learned.on_grid(k, pose(source), pose(target)) for k, (source, target, _) in enumerate(learned.pairs)}
+
+
+def test_an_off_grid_pair_anneals_its_relations_and_an_on_grid_one_samples_them():
+    problem = learned_problem(DINING, 1, (-0.9, -1.2, 0.9, 1.2))
+    energy, _ = start_chain(problem, LayoutParams(), np.random.default_rng(2))
+    learned, state = problem.learned, energy.state
+    for pair, (source, target, _) in enumerate(learned.pairs):
+        terms = [t for t, k in learned.tempered.items() if k == pair]
+        tx, tz, tyaw = state.pose(target)
+        start = state.pose(source)
+        for first, second, on_grid in ((0.0, 0.2, True), (3.0, 3.5, False)):  # beside the table, or metres off
+            for lx in (first, second):
+                x, z = to_world(tx, tz, tyaw, lx, 0.8)
+                energy.propose({source: (x, z, state.yaw[source])}, {})
+                if lx == first:
+                    energy.accept()
+            assert learned.on_grid(pair, state.pose(source), state.pose(target)) is on_grid
+            relations = sum(energy.relation_energy(t) - energy.relation[t] for t in terms)
+            if on_grid:  # sampled with the learned part
+                assert energy.soft_delta == pytest.approx(energy.learned_delta + relations, abs=1e-12)
+            else:  # annealed with the rest: the further off, the more broken its NextTo
+                assert relations > 0.1 and energy.soft_delta == energy.learned_delta
+            energy.reject()
+        energy.propose({source: start}, {})
+        energy.accept()
+
+
+def test_interchangeable_boxes_swap_with_what_rests_on_them_and_a_swap_undoes_itself():
+    problem = learned_problem("bedroom", 2)
+    ids, learned = problem.ids, problem.learned
+    swaps = {(ids[a], ids[b]) for a, b in learned.swaps}
+    # The lamps are of one type too, but each rests on its own nightstand.
+    assert swaps == {("nightstand_1", "nightstand_2"), ("book_1", "book_2")}
+    energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))
+    state = energy.state
+    moves = LearnedMoves(learned, problem, state, np.random.default_rng(0), mover.movable_box, 2)
+    a, b = ids.index("nightstand_1"), ids.index("nightstand_2")
+    lamp = ids.index("lamp_1")
+    assert problem.support[lamp] == a
+    start = {box: state.pose(box) for box in range(problem.n_boxes)}
+    on_a = relative_pose(state.pose(lamp), state.pose(a))
+    for _ in range(2):
+        before = energy.full()
+        delta = energy.propose(moves.swap(a, b), {})
+        assert delta == pytest.approx(sum(energy.full().values()) - sum(before.values()), abs=1e-9)
+        energy.accept()
+    swapped = {box: state.pose(box) for box in range(problem.n_boxes)}
+    # Twice is once there and back: the move is its own inverse.
+    for box, pose in start.items():
+        assert swapped[box] == pytest.approx(pose, abs=1e-12)
+    energy.propose(moves.swap(a, b), {})
+    assert state.pose(a) == start[b] and state.pose(b) == start[a]
+    assert relative_pose(state.pose(lamp), state.pose(a)) == pytest.approx(on_a, abs=1e-12)
+    others = set(range(problem.n_boxes)) - set(problem.carried(a)) - set(problem.carried(b))
+    assert all(state.pose(box) == start[box] for box in others)
+
+
+def test_a_share_of_learned_moves_are_swaps_and_they_are_not_counted_as_redraws():
+    problem = learned_problem("bedroom", 2)
+    energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))
+    moves = LearnedMoves(problem.learned, problem, energy.state, np.random.default_rng(1), mover.movable_box, 2)
+    kinds = [moves.propose() for _ in range(400)]
+    swaps = [drawn for drawn in kinds if drawn[2] is None]
+    assert 0.15 < len(swaps) / len(kinds) < 0.35  # SWAP_SHARE of the learned moves
+    assert sum(moves.tried) == len(kinds) - len(swaps)
 
 
 def test_iterative_scaling_matches_the_observed_shares_on_a_known_model():
@@ -297,13 +382,15 @@ def api_scene_with_context(rules: Path, sidecar: Path, settings: dict) -> dict:
 def test_the_wait_for_learned_moves_ends_for_a_pair_whose_draws_are_always_refused():
     from scenewright.generator.layout.learned_term import TRIES_PER_SWEEP
 
-    problem = dining_problem(1)
+    problem = learned_problem(DINING, 1)
     energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(2))
     learned = LearnedMoves(problem.learned, problem, energy.state, np.random.default_rng(3), mover.movable_box, 2)
     accepted_pair = learned.pairs[0]
     drawn = []
     while not learned.mixed():
         _, _, pair = learned.propose()
+        if pair is None:  # an exchange of two chairs: no learned draw, not part of the wait
+            continue
         drawn.append(pair)
         if pair == accepted_pair:  # only this pair's moves are ever accepted
             learned.redrawn[pair] += 1

@@ -27,9 +27,10 @@ Parts (all >= 0, 0 when everything holds):
   part does not exist either.
 
 Tempering: with a context, the sampler takes the ``learned`` part at temperature 1, lets
-it stand in for the relation terms of its pairs, and anneals the rest (``sampler``);
-``soft_delta`` is the share of a proposal's change that is not annealed (the learned
-part and those relation terms), ``learned_delta`` the learned part's.
+it stand in for the relation terms of its pairs while a pair's source stands on the
+pair's grid, and anneals the rest (``sampler``); ``soft_delta`` is the share of a
+proposal's change that is not annealed (the learned part and those relation terms),
+``learned_delta`` the learned part's.
 
 ``Energy`` caches every term. ``propose`` applies a move to the state and returns the
 energy change computed from the terms touching the moved boxes and paths only (the
@@ -136,7 +137,7 @@ class Energy:
         self.part_names = PARTS + ((MASK_PART,) if problem.mask is not None else ())
         self.part_names += (LEARNED_PART,) if problem.learned is not None else ()
         #: The relation terms the learned part stands in for while sampling (none without one).
-        self.tempered = problem.learned.tempered if problem.learned is not None else frozenset()
+        self.tempered = problem.learned.tempered if problem.learned is not None else {}
         #: The pending proposal's change in the learned part and the ``tempered`` terms, and in
         #: the learned part alone.
         self.soft_delta = self.learned_delta = 0.0
@@ -447,16 +448,38 @@ class Energy:
             self._pending = Pending(saved_boxes, saved_paths, fresh, filings)
             if self.problem.learned is not None:
                 self.learned_delta = fresh["parts"][LEARNED_PART] - self.parts[LEARNED_PART]
-                self.soft_delta = self.learned_delta + sum(fresh["relation"][t] - self.relation[t] for t in self.tempered)
+                self.soft_delta = self.learned_delta + self._soft_relations(
+                    {t: fresh["relation"][t] for t in self.tempered}, dict(saved_boxes)
+                )
             return sum(fresh["parts"].values()) - self.total
         changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access)
         self._pending = Pending(saved_boxes, saved_paths, changes, filings)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
-            self.soft_delta = self.learned_delta + sum(
-                value - self.relation[t] for t, value in changes.relation.items() if t in self.tempered
-            )
+            self.soft_delta = self.learned_delta + self._soft_relations(changes.relation, dict(saved_boxes))
         return sum(changes.delta.values())
+
+    def _soft_relations(self, new_relation: dict[int, float], saved: dict[int, tuple[float, float, float]]) -> float:
+        """The change in the tempered relation terms among ``new_relation`` (term -> new
+        value) that is sampled with the learned part: a term counts while its pair's
+        source stands on the pair's grid (``CompiledLearned.on_grid``), before the move
+        at the ``saved`` poses of the moved boxes, after it at the state's."""
+        learned, tempered, pose, relation = self.problem.learned, self.tempered, self.state.pose, self.relation
+
+        def before(box: int) -> tuple[float, float, float]:
+            return saved[box] if box in saved else pose(box)
+
+        change = 0.0
+        for t, value in new_relation.items():
+            pair = tempered.get(t)
+            if pair is None:
+                continue
+            source, target, _ = learned.pairs[pair]
+            if learned.on_grid(pair, pose(source), pose(target)):
+                change += value
+            if learned.on_grid(pair, before(source), before(target)):
+                change -= relation[t]
+        return change
 
     def _changes(self, boxes: list[int], paths: list[int], together: bool, defer_access: bool = False) -> Changes:
         """New values of every term touching the moved boxes and paths, and the part deltas.

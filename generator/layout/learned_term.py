@@ -33,7 +33,18 @@ them (the target stays). Its Hastings correction is the pair's own change in the
 learned energy, which the sampler adds back, so such a move is accepted by what the
 rest of the energy says: an independence sampler for that pair's factor. The draw
 itself (``draw_source``) is shared with the constructive placement's templates
-(``templates``).
+(``templates``). A share of these moves instead exchange the poses of two
+interchangeable boxes (``interchangeable``: one type and size on one support, such as a
+bed's two nightstands), each with what rests on it: a symmetric move, so it needs no
+correction. Without it a nightstand that drifted to the other's side of the bed had to
+cross the bed, through a collision, to get back.
+
+While a pair's source stands on its kind's grid the learned weights stand in for the
+pair's relation terms (the sampler takes both at temperature 1); off the grid the single
+outside weight says nothing about where it stands, so there its relation terms are
+annealed with the rest of the energy (``CompiledLearned.on_grid``,
+``Energy.soft_delta``), which brings a source the grid cannot hold (a second nightstand
+of the kind on the same side) back to where its relations hold.
 """
 
 from __future__ import annotations
@@ -65,6 +76,9 @@ TAU = 2.0 * math.pi
 #: The stop rule's wait for a pair's learned moves (``LearnedMoves.mixed``) ends after
 #: this many proposals per sweep even if too few were accepted.
 TRIES_PER_SWEEP = 5
+#: The share of learned moves that exchange two interchangeable boxes (``LearnedMoves``)
+#: when the problem has any.
+SWAP_SHARE = 0.25
 
 
 def pair_kind_name(source: str, target: str, labels: Sequence[str]) -> str:
@@ -235,17 +249,29 @@ def relative_pose(source: tuple[float, float, float], target: tuple[float, float
 @dataclass(frozen=True)
 class CompiledLearned:
     """A context for one problem: the pairs it has a kind for (``pairs``: source box,
-    target box, the kind's ``PairContext``), per box the pairs touching it, and the
-    relation terms those pairs stand for (``tempered``: sampled with them)."""
+    target box, the kind's ``PairContext``), per box the pairs touching it, the
+    relation terms those pairs stand for (``tempered``: term -> its pair; sampled with
+    the pair while it stands on its grid, ``on_grid``), and the ``swaps``: pairs of
+    interchangeable boxes (``interchangeable``) whose poses a learned move may exchange."""
 
     pairs: tuple[tuple[int, int, PairContext], ...]
     pairs_of_box: tuple[tuple[int, ...], ...]
-    tempered: frozenset[int]
+    tempered: dict[int, int]
+    swaps: tuple[tuple[int, int], ...] = ()
 
     def value(self, pair: int, state) -> float:
         """The pair's learned energy at the state's poses."""
         source, target, table = self.pairs[pair]
         return table.energy(relative_pose(state.pose(source), state.pose(target)))
+
+    def on_grid(self, pair: int, source: tuple[float, float, float], target: tuple[float, float, float]) -> bool:
+        """Whether the pair's source stands on its kind's grid (not in the outside bin)
+        relative to the target, at the given poses (x, z, yaw). There the learned
+        weights say where it stands and its relation terms are sampled with them; off
+        the grid the one outside weight says nothing about where, and the relation
+        terms are annealed with the rest (``Energy.soft_delta``)."""
+        x, z, _ = relative_pose(source, target)
+        return self.pairs[pair][2].cell(x, z) < BINS * BINS
 
 
 def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> CompiledLearned:
@@ -259,12 +285,38 @@ def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> C
     for k, (source, target, _) in enumerate(pairs):
         pairs_of_box[source].append(k)
         pairs_of_box[target].append(k)
-    joined = {(source, target) for source, target, _ in pairs}
-    tempered = frozenset(
-        t for t, term in enumerate(problem.relations)
+    joined = {(source, target): k for k, (source, target, _) in enumerate(pairs)}
+    tempered = {
+        t: joined[term.a.index, term.b.index] for t, term in enumerate(problem.relations)
         if term.a.kind == "object" and term.b.kind == "object" and (term.a.index, term.b.index) in joined
+    }  # fmt: skip
+    sources = {source for source, _, _ in pairs}
+    return CompiledLearned(
+        tuple(pairs), tuple(tuple(p) for p in pairs_of_box), tempered, interchangeable(problem, types, sources)
+    )
+
+
+def interchangeable(problem, types: Sequence[str], sources: set[int]) -> tuple[tuple[int, int], ...]:
+    """Pairs (a, b), a < b, of boxes of one type and size resting on the same thing (the
+    ground, or one box), at least one of them a learned pair's source: pieces the rules
+    tell apart only by their relations (the two nightstands of a bed, one to its left
+    and one to its right). Exchanging their poses (``LearnedMoves.propose``) moves each
+    piece, with what rests on it, to where the other stood."""
+    found = []
+    for a in range(problem.n_boxes):
+        for b in range(a + 1, problem.n_boxes):
+            if (a in sources or b in sources) and types[a] == types[b] and _same_footing(problem, a, b):
+                found.append((a, b))
+    return tuple(found)
+
+
+def _same_footing(problem, a: int, b: int) -> bool:
+    """Whether boxes a and b are objects of one footprint and height on the same support."""
+    return (
+        not problem.is_junction[a] and not problem.is_junction[b] and problem.support[a] == problem.support[b]
+        and (problem.half_width[a], problem.half_depth[a], problem.height[a])
+        == (problem.half_width[b], problem.half_depth[b], problem.height[b])
     )  # fmt: skip
-    return CompiledLearned(tuple(pairs), tuple(tuple(p) for p in pairs_of_box), tempered)
 
 
 def cumulative_shares(table: PairContext) -> tuple[np.ndarray, np.ndarray]:
@@ -308,6 +360,7 @@ class LearnedMoves:
         self.learned, self.problem, self.state, self.rng, self.sweeps = learned, problem, state, rng, sweeps
         # Only pairs whose source a move may place by itself (free, not in a rigid group).
         self.pairs = [k for k, (source, _, _) in enumerate(learned.pairs) if movable[source]]
+        self.swaps = [(a, b) for a, b in learned.swaps if movable[a] and movable[b]]
         #: Per learned pair, how many of its moves the chain accepted, and proposed.
         self.redrawn = [0] * len(learned.pairs)
         self.tried = [0] * len(learned.pairs)
@@ -329,13 +382,18 @@ class LearnedMoves:
         cap = TRIES_PER_SWEEP * self.sweeps
         return all(self.redrawn[pair] >= self.sweeps or self.tried[pair] >= cap for pair in self.pairs)
 
-    def propose(self) -> tuple[dict, float, int] | None:
+    def propose(self) -> tuple[dict, float, int | None] | None:
         """A new pose for one pair's source (with what rests on it), the Hastings
         correction (the pair's learned energy after the move less before) and the pair.
-        None when no pair's source may move."""
+        None when no pair's source may move.
+
+        With interchangeable boxes (``swaps``), a share SWAP_SHARE of the moves exchange
+        the poses of one such pair instead (``swap``; correction 0, pair None)."""
         if not self.pairs:
             return None
         rng, state = self.rng, self.state
+        if self.swaps and rng.random() < SWAP_SHARE:
+            return self.swap(*self.swaps[int(rng.integers(len(self.swaps)))]), 0.0, None
         # Until every pair has been redrawn (``mixed``), the pairs still short of it are
         # drawn: the burn-in then ends after a few tries per pair, not when the unluckiest
         # of a uniform draw's pairs has caught up.
@@ -351,3 +409,15 @@ class LearnedMoves:
         nx, nz, nyaw = boxes[source]
         after = table.energy(relative_pose((nx, nz, nyaw), (tx, tz, tyaw)))
         return boxes, after - self.learned.value(pair, state), pair
+
+    def swap(self, a: int, b: int) -> dict[int, tuple[float, float, float]]:
+        """New poses exchanging boxes a and b, each with what rests on it carried
+        rigidly. The move is its own inverse and drawn with the same probability from
+        either side, so it is symmetric and needs no Hastings correction."""
+        state, problem = self.state, self.problem
+        pose_a, pose_b = state.pose(a), state.pose(b)
+        boxes = {}
+        for box, (x, z, yaw), (nx, nz, nyaw) in ((a, pose_a, pose_b), (b, pose_b, pose_a)):
+            boxes.update(rigid(state, problem.carried(box), (x, z), wrap(nyaw - yaw), (nx - x, nz - z)))
+            boxes[box] = (nx, nz, nyaw)
+        return boxes

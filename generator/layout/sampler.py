@@ -30,20 +30,22 @@ what the context models: a proposal is accepted with probability
     min(1, exp(-(delta - soft) / T - learned + correction))
 
 ``learned`` is the proposal's change in the ``learned`` part, taken at temperature 1;
-``soft`` is that plus the change in the relation terms of the learned pairs
-(``Energy.soft_delta``), which the learned part stands in for: the examples, not the
-rules' hand-set factors, say where a learned pair's source stands (in Hammoud et al.'s
-model the learned histograms and the hard intersection constraint are the whole
-energy). The rest (collisions, extent, paths, the room's terms, the other relations) is
-annealed as always, and the verdict still checks every relation. ``correction`` is the
-Hastings term of a learned move (0 for the others). A
-share ``params.learned_share`` of the steps is a learned move (``LearnedMoves``: a
-pair's source drawn from the pair's learned distribution), and the stop rule waits until
-every pair has had ``params.learned_sweeps`` such moves accepted (drawing the pairs
-still short of it first), so that no source is left where the constructive placement
-put it (those leftovers, not the learned terms, would set the spread); a pair whose
-moves the rest of the energy keeps refusing (a nightstand held against its wall) stops
-the wait after ``learned_term.TRIES_PER_SWEEP`` proposals a sweep.
+``soft`` is that plus the change in the relation terms of the learned pairs whose
+source stands on the pair's grid (``Energy.soft_delta``), which the learned part stands
+in for: the examples, not the rules' hand-set factors, say where a learned pair's
+source stands (in Hammoud et al.'s model the learned histograms and the hard
+intersection constraint are the whole energy); off the grid the learned part has one
+weight for anywhere, and the relation terms are annealed with the rest. The rest
+(collisions, extent, paths, the room's terms, the other relations) is annealed as
+always, and the verdict still checks every relation. ``correction`` is the Hastings
+term of a learned move (0 for the others). A share ``params.learned_share`` of the
+steps is a learned move (``LearnedMoves``: a pair's source drawn from the pair's
+learned distribution, or an exchange of two interchangeable boxes), and the stop rule
+waits until every pair has had ``params.learned_sweeps`` such draws accepted (drawing
+the pairs still short of it first), so that no source is left where the constructive
+placement put it (those leftovers, not the learned terms, would set the spread); a pair
+whose moves the rest of the energy keeps refusing (a nightstand held against its wall)
+stops the wait after ``learned_term.TRIES_PER_SWEEP`` proposals a sweep.
 ``params.tempered=False`` anneals the learned terms with the rest (the
 optimiser's way, which collapses every scene onto the most likely pose: for
 comparison). Without a context nothing here changes a single random draw.
