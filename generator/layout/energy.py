@@ -469,15 +469,22 @@ class Energy:
         def before(box: int) -> tuple[float, float, float]:
             return saved[box] if box in saved else pose(box)
 
+        sides: dict[int, tuple[bool, bool]] = {}  # per pair: on its grid after the move, before it
         change = 0.0
         for t, value in new_relation.items():
             pair = tempered.get(t)
             if pair is None:
                 continue
-            source, target, _ = learned.pairs[pair]
-            if learned.on_grid(pair, pose(source), pose(target)):
+            if pair not in sides:
+                source, target, _ = learned.pairs[pair]
+                sides[pair] = (
+                    learned.on_grid(pair, pose(source), pose(target)),
+                    learned.on_grid(pair, before(source), before(target)),
+                )
+            after, earlier = sides[pair]
+            if after:
                 change += value
-            if learned.on_grid(pair, before(source), before(target)):
+            if earlier:
                 change -= relation[t]
         return change
 

@@ -270,7 +270,7 @@ class CompiledLearned:
         weights say where it stands and its relation terms are sampled with them; off
         the grid the one outside weight says nothing about where, and the relation
         terms are annealed with the rest (``Energy.soft_delta``)."""
-        x, z, _ = relative_pose(source, target)
+        x, z = to_local(target[0], target[1], target[2], source[0], source[1])
         return self.pairs[pair][2].cell(x, z) < BINS * BINS
 
 
