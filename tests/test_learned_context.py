@@ -69,6 +69,8 @@ def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
         proposal = (drawn[0], {}) if drawn else mover.propose(energy.relation)
         if proposal is None:
             continue
+        if not drawn:  # as the sampler makes it: now and then the table takes its chairs along
+            proposal = (learned.carry(proposal[0]), proposal[1])
         before, soft_before, sides = energy.full(), _soft_relations(energy), _grid_sides(energy)
         delta = energy.propose(*proposal)
         after, soft_after = energy.full(), _soft_relations(energy)
@@ -174,6 +176,36 @@ def test_a_share_of_learned_moves_are_swaps_and_they_are_not_counted_as_redraws(
     swaps = [drawn for drawn in kinds if drawn[2] is None]
     assert 0.15 < len(swaps) / len(kinds) < 0.35  # SWAP_SHARE of the learned moves
     assert sum(moves.tried) == len(kinds) - len(swaps)
+
+
+def test_a_learned_target_carries_its_sources_in_half_its_ordinary_moves():
+    problem = learned_problem("bedroom", 2)
+    ids = problem.ids
+    energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))
+    state = energy.state
+    moves = LearnedMoves(problem.learned, problem, state, np.random.default_rng(6), mover.movable_box, 2)
+    bed = ids.index("bed_1")
+    followers = {ids[box] for box in moves.followers[bed]}
+    assert {"nightstand_1", "nightstand_2", "lamp_1", "lamp_2"} <= followers and "bed_1" not in followers
+    x, z, yaw = state.pose(bed)
+    turned = {bed: (x + 0.3, z - 0.2, yaw + 0.5)}
+    carried = 0
+    for _ in range(200):
+        proposal = moves.carry(turned)
+        assert proposal[bed] == turned[bed]
+        if len(proposal) == 1:
+            continue
+        carried += 1
+        assert {ids[box] for box in proposal} == {"bed_1"} | followers
+        for box in moves.followers[bed]:  # each follower keeps its pose in the bed's frame
+            assert relative_pose(proposal[box], proposal[bed]) == pytest.approx(
+                relative_pose(state.pose(box), state.pose(bed)), abs=1e-9
+            )
+    assert 70 < carried < 130  # CARRY_SHARE of the calls
+    # A follower the proposal moves itself keeps the proposal's pose.
+    a = ids.index("nightstand_1")
+    own = {bed: turned[bed], a: (0.0, 0.0, 0.0)}
+    assert all(moves.carry(own)[a] == (0.0, 0.0, 0.0) for _ in range(20))
 
 
 def test_iterative_scaling_matches_the_observed_shares_on_a_known_model():

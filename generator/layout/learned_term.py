@@ -37,7 +37,9 @@ itself (``draw_source``) is shared with the constructive placement's templates
 interchangeable boxes (``interchangeable``: one type and size on one support, such as a
 bed's two nightstands), each with what rests on it: a symmetric move, so it needs no
 correction. Without it a nightstand that drifted to the other's side of the bed had to
-cross the bed, through a collision, to get back.
+cross the bed, through a collision, to get back. Half the chain's ordinary moves of a
+learned target take the sources of its pairs along (``LearnedMoves.carry``), so that a
+bed held by its nightstands' learned places can still move in the room.
 
 While a pair's source stands on its kind's grid the learned weights stand in for the
 pair's relation terms (the sampler takes both at temperature 1); off the grid the single
@@ -79,6 +81,9 @@ TRIES_PER_SWEEP = 5
 #: The share of learned moves that exchange two interchangeable boxes (``LearnedMoves``)
 #: when the problem has any.
 SWAP_SHARE = 0.25
+#: The share of ordinary moves of a learned pair's target that carry the pair's source
+#: along (``LearnedMoves.carry``): half, neither kernel preferred.
+CARRY_SHARE = 0.5
 
 
 def pair_kind_name(source: str, target: str, labels: Sequence[str]) -> str:
@@ -361,10 +366,54 @@ class LearnedMoves:
         # Only pairs whose source a move may place by itself (free, not in a rigid group).
         self.pairs = [k for k, (source, _, _) in enumerate(learned.pairs) if movable[source]]
         self.swaps = [(a, b) for a, b in learned.swaps if movable[a] and movable[b]]
+        self.followers = self._followers(movable)
         #: Per learned pair, how many of its moves the chain accepted, and proposed.
         self.redrawn = [0] * len(learned.pairs)
         self.tried = [0] * len(learned.pairs)
         self._cumulative: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def _followers(self, movable: Sequence[bool]) -> dict[int, list[int]]:
+        """Per learned target, the movable sources of its pairs, theirs in turn, and what
+        rests on them: the boxes ``carry`` moves along with it."""
+        sources: dict[int, list[int]] = {}
+        for source, target, _ in self.learned.pairs:
+            if movable[source]:
+                sources.setdefault(target, []).append(source)
+        followers = {}
+        for target, own in sources.items():
+            found: list[int] = []
+            for box in own:
+                for item in self.problem.carried(box):
+                    if item != target and item not in found:
+                        found.append(item)
+            for item in found:  # ``found`` grows while it is walked: sources of sources
+                for box in sources.get(item, ()):
+                    for rest in self.problem.carried(box):
+                        if rest != target and rest not in found:
+                            found.append(rest)
+            followers[target] = found
+        return followers
+
+    def carry(self, boxes: dict[int, tuple[float, float, float]]) -> dict[int, tuple[float, float, float]]:
+        """An ordinary proposal's new poses; a share CARRY_SHARE of the time with every
+        moved learned target's followers (``followers``) moved rigidly along with it,
+        where the proposal does not move them itself. The learned part holds a source
+        near one place in its target's frame, so a target that moves alone breaks its
+        pairs and is refused: a bed a few centimetres off its wall stayed there while
+        its nightstands held it (only a move of the whole cluster that happened to land
+        at the wall freed it). Moving alone, a target still lets its sources' relative
+        poses change. Either kernel is symmetric when the proposal is (a rigid move of
+        what it moves), and so is their mixture. One draw from the stream per call."""
+        if self.rng.random() >= CARRY_SHARE:
+            return boxes
+        state, followers = self.state, self.followers
+        moved = dict(boxes)
+        for box, (nx, nz, nyaw) in boxes.items():
+            carried = [item for item in followers.get(box, ()) if item not in moved]
+            if carried:
+                x, z, yaw = state.pose(box)
+                moved.update(rigid(state, carried, (x, z), wrap(nyaw - yaw), (nx - x, nz - z)))
+        return moved
 
     def _tables(self, table: PairContext) -> tuple[np.ndarray, np.ndarray]:
         """``cumulative_shares`` of a kind, cached per kind."""

@@ -38,14 +38,16 @@ intersection constraint are the whole energy); off the grid the learned part has
 weight for anywhere, and the relation terms are annealed with the rest. The rest
 (collisions, extent, paths, the room's terms, the other relations) is annealed as
 always, and the verdict still checks every relation. ``correction`` is the Hastings
-term of a learned move (0 for the others). A share ``params.learned_share`` of the
-steps is a learned move (``LearnedMoves``: a pair's source drawn from the pair's
-learned distribution, or an exchange of two interchangeable boxes), and the stop rule
-waits until every pair has had ``params.learned_sweeps`` such draws accepted (drawing
-the pairs still short of it first), so that no source is left where the constructive
-placement put it (those leftovers, not the learned terms, would set the spread); a pair
-whose moves the rest of the energy keeps refusing (a nightstand held against its wall)
-stops the wait after ``learned_term.TRIES_PER_SWEEP`` proposals a sweep.
+term of a learned move (0 for the others; an ordinary move of a learned pair's target
+takes the pair's source along half the time, ``LearnedMoves.carry``). A share
+``params.learned_share`` of the steps is a learned move (``LearnedMoves``: a pair's
+source drawn from the pair's learned distribution, or an exchange of two
+interchangeable boxes), and the stop rule waits until every pair has had
+``params.learned_sweeps`` such draws accepted (drawing the pairs still short of it
+first), so that no source is left where the constructive placement put it (those
+leftovers, not the learned terms, would set the spread); a pair whose moves the rest of
+the energy keeps refusing (a nightstand held against its wall) stops the wait after
+``learned_term.TRIES_PER_SWEEP`` proposals a sweep.
 ``params.tempered=False`` anneals the learned terms with the rest (the
 optimiser's way, which collapses every scene onto the most likely pose: for
 comparison). Without a context nothing here changes a single random draw.
@@ -203,8 +205,9 @@ def learned_step(
             proposal, correction, pair = (drawn[0], {}), drawn[1], drawn[2]
     if proposal is None:
         proposal = ordinary_proposal(energy, mover, relocator, uniform)
-    if proposal is None:
-        return False
+        if proposal is None:
+            return False
+        proposal = (learned.carry(proposal[0]), proposal[1])
     delta = energy.propose(*proposal)
     if params.tempered:
         exponent = -(delta - energy.soft_delta) / temperature - energy.learned_delta + correction
