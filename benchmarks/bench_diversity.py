@@ -17,7 +17,8 @@ interchangeable) the spread is the root mean square distance of the chair's posi
 in the table's frame from the slot's mean position; the table prints each slot's
 generated spread over the examples' and the mean of these ratios (target: within
 [0.8, 1.25] at temperature 1, below 0.8 when annealed), and the layout time per scene
-of each way (target: temperature 1 at most 2x no context), with the mean steps per
+of each way (target: temperature 1 at most 2x no context; the ways are laid out in turn
+scene by scene, so that the machine's load weighs on each alike), with the mean steps per
 layout and the *divergence*: per learned pair kind the total variation distance of the
 generated scenes' relative-pose shares from the examples' (as ``fit`` measures it:
 blurred by 3 bins, position and yaw averaged), the mean over kinds.
@@ -143,27 +144,33 @@ def spreads(positions: np.ndarray) -> np.ndarray:
     return np.sqrt((centred**2).sum(axis=2).mean(axis=0))
 
 
-def sample(rules: Path, count: int, context, params: LayoutParams, slots: bool) -> dict:
-    """Lay out ``count`` scenes of the rules (seeds 0..count-1): their chair positions
-    (count, 6, 2) when ``slots`` (the dining set), related pairs' relative poses per kind,
-    CPU seconds and steps per layout, and how many were ok."""
+def sample(rules: Path, count: int, ways: dict, slots: bool) -> dict[str, dict]:
+    """Lay out ``count`` scenes of the rules (seeds 0..count-1) each way of ``ways``
+    (name -> (context, params)), the ways in turn scene by scene, so that a change in the
+    machine's load while it runs weighs on every way alike. Per way: the chair positions
+    (count, 6, 2) when ``slots`` (the dining set), related pairs' relative poses per
+    kind, CPU seconds and steps per layout, and how many were ok."""
     loaded = load_rules(rules)
-    positions, poses, seconds, steps, ok = [], {}, 0.0, 0, 0
+    made = {name: {"positions": [], "poses": {}, "seconds": 0.0, "steps": 0, "ok": 0} for name in ways}
     for seed in range(count):
         graph = expand(loaded, seed)
-        start = time.process_time()
-        result = layout_scene(graph, seed, params=params, context=context)
-        seconds += time.process_time() - start
-        steps += result.steps
-        ok += result.ok
-        if slots:
-            objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
-            positions.append(chair_positions(objects))
-        for kind, pose in graph_pair_poses(graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}):
-            poses.setdefault(kind, []).append(pose)
-    return {
-        "positions": np.array(positions), "poses": poses, "seconds": seconds / count, "steps": steps / count, "ok": ok,
-    }  # fmt: skip
+        for name, (context, params) in ways.items():
+            way = made[name]
+            start = time.process_time()
+            result = layout_scene(graph, seed, params=params, context=context)
+            way["seconds"] += time.process_time() - start
+            way["steps"] += result.steps
+            way["ok"] += result.ok
+            if slots:
+                objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
+                way["positions"].append(chair_positions(objects))
+            for kind, pose in graph_pair_poses(graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}):
+                way["poses"].setdefault(kind, []).append(pose)
+    for way in made.values():
+        way["positions"] = np.array(way["positions"])
+        way["seconds"] /= count
+        way["steps"] /= count
+    return made
 
 
 def measured_layouts(rules: Path, folder: Path) -> list:
@@ -260,8 +267,7 @@ def main() -> int:
     if slots:
         print(f"{'examples (m)':14s} " + " ".join(f"{v:6.3f}" for v in reference))
     times = {}
-    for name, (way_context, params) in ways.items():
-        made = sample(rules, args.scenes, way_context, params, slots)
+    for name, made in sample(rules, args.scenes, ways, slots).items():
         times[name] = made["seconds"]
         line = f"{name:14s} "
         if slots:
