@@ -104,3 +104,32 @@ def test_every_edge_is_stored_both_ways_consistently(boxes):
         if edge.gap > 1e-6:  # separated: one separating axis, seen from either side
             for a, b in zip(reversed(edge.contact_angles), back.contact_angles):
                 assert abs(wrap(b - a - math.pi)) == pytest.approx(0.0, abs=1e-6)
+
+
+def test_graded_memberships_fall_off_smoothly_around_each_threshold():
+    from scenewright.variation.structure import CONTACT, fade
+
+    assert fade(0.0, CONTACT, CONTACT) == 1.0 and fade(2 * CONTACT, CONTACT, CONTACT) == 0.0
+    assert fade(CONTACT, CONTACT, CONTACT) == pytest.approx(0.5)
+    values = [fade(gap / 100.0, CONTACT, CONTACT) for gap in range(11)]
+    assert values == sorted(values, reverse=True)
+
+    def grades(gap):
+        graph = graph_of(box("a", 0.0, 0.0), box("b", 1.0 + gap, 0.0))  # 1 m cubes side by side
+        return dict(zip("VAFC", graph.edges[(0, 1)].grades)), relations(graph, "a", "b")
+
+    touching, crisp = grades(0.0)
+    assert touching["V"] == 1.0 and touching["C"] == 0.0 and crisp == {"V", "A"}
+    at_threshold, crisp = grades(CONTACT - 1e-9)
+    assert at_threshold["V"] == pytest.approx(0.5) and at_threshold["C"] == pytest.approx(0.5) and "V" in crisp
+
+
+def test_a_pair_just_beyond_near_is_in_the_fringe_not_an_edge():
+    # 1 m cubes: near up to a gap of their half diagonal, 0.707 m; just beyond it no
+    # relation holds, but near's fall-off still gives a graded membership.
+    graph = graph_of(box("a", 0.0, 0.0), box("b", 1.72, 0.0))
+    assert relations(graph, "a", "b") == set() and (0, 1) not in graph.edges
+    grades = dict(zip("VAFC", graph.fringe[(0, 1)].grades))
+    assert 0.0 < grades["C"] < 0.5 and grades["V"] == 0.0
+    far = graph_of(box("a", 0.0, 0.0), box("b", 3.0, 0.0))
+    assert far.edges == {} and far.fringe == {}

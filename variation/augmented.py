@@ -29,11 +29,11 @@ from .matching import (
     EdgeTable,
     Problem,
     box_similarity,
-    confidences,
     edge_similarity,
     match_graphs,
     place_similarity,
     solve,
+    withdraw,
 )
 from .structure import RELATION_CODES, StructureGraph, structure_graph
 
@@ -217,11 +217,11 @@ def _match_to_ag(ag: AugmentedGraph, k: int, threshold: float, lam: float) -> di
     first, pairwise = _max_table(rows, table_b)
     problem = Problem(unary, first, table_b, pairwise, lam, place)
     assignment = solve(problem)
-    confidence = confidences(problem, assignment)
+    _, kept = withdraw(problem, assignment, threshold)
     return {
         graph.ids[nodes_b[assignment[p]]]: nodes[p].id
         for p in range(len(nodes))
-        if assignment[p] < len(nodes_b) and confidence[p] >= threshold
+        if kept[p]
     }
 
 
@@ -239,14 +239,12 @@ def _max_table(rows: list[tuple[EdgeTable, np.ndarray]], second: EdgeTable) -> t
                 continue
             if key not in keys:
                 keys[key] = len(merged)
-                merged.append([key[0], key[1], int(table.bits[r]), table.facing[r], *table.contact[r], table.gap[r], table.scale[r]])
+                merged.append([*key, *table.row(r)[2:]])
                 similarity_rows.append(similarities[r].copy())
             else:
                 at = keys[key]
-                merged[at][2] |= int(table.bits[r])
+                merged[at][2:6] = np.maximum(merged[at][2:6], table.grades[r]).tolist()
                 similarity_rows[at] = np.maximum(similarity_rows[at], similarities[r])
-    data = np.array(merged, dtype=float).reshape(-1, 8)
-    table = EdgeTable(data[:, 0].astype(int), data[:, 1].astype(int), data[:, 2].astype(int), data[:, 3],
-                      data[:, 4:6], data[:, 6], data[:, 7])  # fmt: skip
+    table = EdgeTable.from_rows(merged)
     pairwise = np.array(similarity_rows).reshape(len(merged), len(second))
     return table, pairwise

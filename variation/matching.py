@@ -22,7 +22,11 @@ written ``E = x^T W x`` for the assignment vector x (x_ik = 1 when i matches k).
   exp(-|d alpha_v| / pi) of their mean, where the mean is defined); d_F =
   exp(-|d alpha_f| / pi) when both face (the paper's indicator tests V there, a typo);
   d_C = exp(-|d - d'| / s) when both are close, s the mean half diagonal of the four
-  objects (the paper's sigma_c is a length: this makes it dimensionless). Edges are
+  objects (the paper's sigma_c is a length: this makes it dimensionless). Beyond the
+  paper, "when both hold" is graded: each term weighs the geometric mean of the two
+  edges' memberships of its relation (``structure``: a smooth fall-off around each
+  threshold), so a pair a small move carried across a threshold keeps most of its
+  score, and an edge matched to itself scores its summed memberships. Edges are
   directed: the pairs (i, j) -> (k, l) and (j, i) -> (l, k) each weigh lambda / 2, so a
   pair matched in reverse compares the reversed edge (``structure``).
 
@@ -46,7 +50,10 @@ the mean of the two objects' own edge scores (what each gets matched to a copy o
 itself). The paper keeps a match whose confidence exceeds gamma = 0.8 and withdraws
 the rest; its confidence is the leading eigenvalue, which has no fixed scale, so we
 use this per-pair share, with its own threshold (``CONFIDENCE``, 0.6; docs/variation.md
-gives the measurements behind it).
+gives the measurements behind it). A pair below half the threshold is taken as
+objects without a counterpart (``withdraw``), and the others' shares are counted
+without their edges to it: an object that gained a neighbour the other scene does not
+have (or lost one) is not held to a relation no pairing could match.
 """
 
 from __future__ import annotations
@@ -60,7 +67,7 @@ from scipy import sparse
 from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import LinearOperator, eigsh
 
-from .structure import StructureGraph
+from .structure import GRADED_CODES, StructureGraph
 
 LAMBDA = 0.5
 UNARY_SIGMA = 1.0
@@ -69,19 +76,20 @@ CONFIDENCE = 0.6
 #: similarities make, so it only decides between matchings they score alike.
 PLACE_WEIGHT = 1e-6
 
-#: Relation bits of an edge for the vectorised similarity.
-_BITS = {"V": 1, "A": 2, "F": 4, "C": 8}
+#: Columns of ``EdgeTable.grades``.
+_V, _A, _F, _C = (GRADED_CODES.index(code) for code in "VAFC")
 
 
 @dataclass
 class EdgeTable:
     """The directed edges among some nodes, as arrays (E edges): ``source``, ``target``
-    (E,) node positions; ``bits`` (E,) relation bits; ``facing`` (E,); ``contact``
-    (E, 2); ``gap`` (E,); ``scale`` (E,) metres."""
+    (E,) node positions; ``grades`` (E, 4) memberships of the graded relations
+    (``structure.GRADED_CODES``); ``facing`` (E,); ``contact`` (E, 2); ``gap`` (E,);
+    ``scale`` (E,) metres."""
 
     source: np.ndarray
     target: np.ndarray
-    bits: np.ndarray
+    grades: np.ndarray
     facing: np.ndarray
     contact: np.ndarray
     gap: np.ndarray
@@ -89,32 +97,44 @@ class EdgeTable:
 
     @classmethod
     def of(cls, graph: StructureGraph, nodes: list[int]) -> EdgeTable:
-        """The edges of ``graph`` between ``nodes`` (positions in ``nodes``), those with a
-        layout relation."""
+        """The edges of ``graph`` between ``nodes`` (positions in ``nodes``) with a graded
+        layout relation, the fringe's included."""
         where = {node: position for position, node in enumerate(nodes)}
-        rows = []
-        for (i, j), edge in sorted(graph.edges.items()):
-            bits = sum(bit for code, bit in _BITS.items() if code in edge.relations)
-            if i in where and j in where and bits:
-                rows.append((where[i], where[j], bits, edge.facing_angle, *edge.contact_angles, edge.gap, edge.scale))
-        table = np.array(rows, dtype=float).reshape(-1, 8)
+        rows = [
+            (where[i], where[j], *edge.grades, edge.facing_angle, *edge.contact_angles, edge.gap, edge.scale)
+            for (i, j), edge in sorted({**graph.edges, **graph.fringe}.items())
+            if i in where and j in where and max(edge.grades) > 0.0
+        ]
+        return cls.from_rows(rows)
+
+    @classmethod
+    def from_rows(cls, rows: list) -> EdgeTable:
+        """From rows (source, target, 4 grades, facing, 2 contact angles, gap, scale)."""
+        table = np.array(rows, dtype=float).reshape(-1, 11)
         return cls(
-            table[:, 0].astype(int), table[:, 1].astype(int), table[:, 2].astype(int), table[:, 3],
-            table[:, 4:6], table[:, 6], table[:, 7],
+            table[:, 0].astype(int), table[:, 1].astype(int), table[:, 2:6], table[:, 6],
+            table[:, 7:9], table[:, 9], table[:, 10],
         )  # fmt: skip
+
+    def row(self, r: int) -> list:
+        """Edge r as a row of ``from_rows``."""
+        return [self.source[r], self.target[r], *self.grades[r], self.facing[r], *self.contact[r], self.gap[r], self.scale[r]]
 
     def __len__(self) -> int:
         return len(self.source)
 
-    def self_scores(self, count: int) -> np.ndarray:
-        """(count,) each node's edge score matched to itself: its edges' relation counts."""
+    def self_scores(self, count: int, counted: np.ndarray | None = None) -> np.ndarray:
+        """(count,) each node's edge score matched to itself: its edges' summed
+        memberships (only the edges ``counted`` (E,) when given)."""
         scores = np.zeros(count)
-        np.add.at(scores, self.source, _popcount(self.bits))
+        weights = np.ones(len(self)) if counted is None else counted
+        np.add.at(scores, self.source, self.grades.sum(axis=1) * weights)
         return scores
 
 
-def _popcount(bits: np.ndarray) -> np.ndarray:
-    return sum((bits >> k) & 1 for k in range(4)).astype(float)
+def _both(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """How far a relation holds in both edges: the geometric mean of the memberships."""
+    return np.sqrt(a * b)
 
 
 def _angle_gap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -123,19 +143,19 @@ def _angle_gap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def edge_similarity(first: EdgeTable, second: EdgeTable) -> np.ndarray:
-    """(E1, E2) phi(e, e') for every directed edge of ``first`` against every one of ``second``."""
-    shared = first.bits[:, None] & second.bits[None, :]
-    similarity = ((shared & _BITS["A"]) > 0).astype(float)
+    """(E1, E2) phi(e, e') for every directed edge of ``first`` against every one of
+    ``second``: each relation's term weighs how far it holds in both (``_both``)."""
+    shared = _both(first.grades[:, None, :], second.grades[None, :, :])
     contact = _angle_gap(first.contact[:, None, 0], second.contact[None, :, 0])
     contact = contact + _angle_gap(first.contact[:, None, 1], second.contact[None, :, 1])
     direction = np.exp(-contact / (2.0 * math.pi))
-    similarity += np.where(shared & _BITS["V"], direction, 0.0)
     facing = _angle_gap(first.facing[:, None], second.facing[None, :])
-    similarity += np.where(shared & _BITS["F"], np.exp(-facing / math.pi), 0.0)
     scale = (first.scale[:, None] + second.scale[None, :]) / 2.0
     close = np.abs(first.gap[:, None] - second.gap[None, :]) / np.maximum(scale, 1e-9)
-    similarity += np.where(shared & _BITS["C"], np.exp(-close) * direction, 0.0)
-    return similarity
+    return (
+        shared[..., _A] + shared[..., _V] * direction + shared[..., _F] * np.exp(-facing / math.pi)
+        + shared[..., _C] * np.exp(-close) * direction
+    )  # fmt: skip
 
 
 def box_similarity(sizes: np.ndarray, other: np.ndarray, sigma: float = UNARY_SIGMA) -> np.ndarray:
@@ -479,20 +499,41 @@ def exchange(problem: Problem, assignment: np.ndarray, passes: int = 10) -> np.n
     return current
 
 
-def confidences(problem: Problem, assignment: np.ndarray) -> np.ndarray:
-    """(m,) each first-graph node's confidence under ``assignment`` (0 for a dummy match)."""
+def confidences(problem: Problem, assignment: np.ndarray, kept: np.ndarray | None = None) -> np.ndarray:
+    """(m,) each first-graph node's confidence under ``assignment`` (0 for a dummy match),
+    counting only edges between kept pairs (``kept`` (m,), all pairs matched to an object
+    when not given): what an object's withdrawn or unmatched neighbours do is no evidence
+    for or against its own pair."""
     m, n = problem.unary.shape
+    first, second = problem.first, problem.second
+    if kept is None:
+        kept = assignment[:m] < n
+    partner = np.zeros(n, dtype=bool)
+    partner[assignment[:m][kept]] = True
+    counted = kept[first.target]
     gained = np.zeros(m)
-    np.add.at(gained, problem.first.source, (problem.pairwise * problem.matched_edges(assignment)).sum(axis=1))
-    own_a = problem.first.self_scores(m)
-    own_b = problem.second.self_scores(n)
+    np.add.at(gained, first.source, (problem.pairwise * problem.matched_edges(assignment))[:, partner[second.target]].sum(axis=1) * counted)
+    own_a = first.self_scores(m, kept[first.target])
+    own_b = second.self_scores(n, partner[second.target])
     result = np.zeros(m)
-    for i in range(m):
+    for i in np.flatnonzero(kept):
         k = assignment[i]
-        if k < n:
-            best = 1.0 + problem.lam * (own_a[i] + own_b[k]) / 2.0
-            result[i] = (problem.unary[i, k] + problem.lam * gained[i]) / best
+        best = 1.0 + problem.lam * (own_a[i] + own_b[k]) / 2.0
+        result[i] = (problem.unary[i, k] + problem.lam * gained[i]) / best
     return result
+
+
+def withdraw(problem: Problem, assignment: np.ndarray, threshold: float) -> tuple[np.ndarray, np.ndarray]:
+    """(m,) confidences and (m,) which pairs are kept (confidence at least ``threshold``).
+    A pair below half the threshold is taken as objects without a counterpart (on a
+    disguised copy, the removed object paired with the added one); the others'
+    confidences are then counted without its edges, which say nothing about their own
+    pairs. It keeps the confidence it had."""
+    m, n = problem.unary.shape
+    confidence = confidences(problem, assignment)
+    context = (assignment[:m] < n) & (confidence >= threshold / 2.0)
+    confidence = np.where(context, confidences(problem, assignment, context), confidence)
+    return confidence, context & (confidence >= threshold)
 
 
 def match_graphs(
@@ -507,7 +548,7 @@ def match_graphs(
     started = time.process_time()
     problem, nodes_a, nodes_b = layout_problem(first, second, lam=lam, type_prior=type_prior)
     assignment = solve(problem)
-    confidence = confidences(problem, assignment)
+    confidence, keep = withdraw(problem, assignment, threshold)
     m, n = problem.unary.shape
     kept, withdrawn = [], []
     for i in range(m):
@@ -515,7 +556,7 @@ def match_graphs(
         if k >= n:
             continue
         pair = Correspondence(first.ids[nodes_a[i]], second.ids[nodes_b[k]], float(confidence[i]), float(problem.unary[i, k]))
-        (kept if confidence[i] >= threshold else withdrawn).append(pair)
+        (kept if keep[i] else withdrawn).append(pair)
     matched_a, matched_b = {p.a for p in kept}, {p.b for p in kept}
     return Matching(
         pairs=kept, withdrawn=withdrawn,

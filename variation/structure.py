@@ -26,6 +26,15 @@ from the separating axes of the two turned footprints (the largest separation al
 the four box axes: the true distance for boxes face to face, a lower bound corner to
 corner).
 
+Each relation is a threshold, and a move of a few centimetres carries a pair across
+one. So every edge also holds *graded memberships* (``Edge.grades``) of V, A, F and C:
+each threshold is the middle of a smooth fall-off (``fade``: 1 well inside, 1/2 at the
+threshold, 0 well outside), near's a share ``NEAR_BAND`` of its own limit (scale-free),
+contact's from touching to twice ``CONTACT``, flush's, parallel's and the facing
+cone's a half or a quarter of theirs. C is near and not touching, V near and touching.
+Pairs just outside every threshold, with no relation but a membership above 0, are kept
+apart in ``fringe``: the matching compares them, nothing else reads them.
+
 Edges are stored per ordered pair, both ways: ``edges[(i, j)]`` is A = i, B = j,
 measured from i's side: the reverse holds the other object's facing, the negated facing
 angle and the contact angle turned by pi, so matching an edge in reverse compares the
@@ -59,6 +68,17 @@ FACING_CONE = math.radians(45.0)
 PARALLEL = math.radians(5.0)
 #: Distance (metres) within which two parallel sides are flush.
 FLUSH = 0.1
+#: Graded relations (``Edge.grades``): each threshold above is the middle of a smooth
+#: fall-off this wide on either side (membership 1 below it, 1/2 at the threshold, 0
+#: above it). Near's is a share of its own limit, so it scales with the furniture; the
+#: others are half their threshold (contact: from touching to twice the contact gap).
+NEAR_BAND = 0.05
+CONTACT_BAND = CONTACT
+FLUSH_BAND = FLUSH / 2.0
+PARALLEL_BAND = PARALLEL / 2.0
+FACING_BAND = FACING_CONE / 4.0
+#: The relations that have a graded membership, in the order of ``Edge.grades``.
+GRADED_CODES = ("V", "A", "F", "C")
 
 
 def wrap(angle: float) -> float:
@@ -77,7 +97,7 @@ class Edge:
     facing_angle: float  # B's yaw minus A's, wrapped
     contact_angles: tuple[float, float]  # from A's and from B's forward to the normal A -> B
     scale: float  # the pair's mean footprint half diagonal (metres): the length unit of similarities
-
+    grades: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # memberships of GRADED_CODES in [0, 1]
 
 
 @dataclass
@@ -93,6 +113,9 @@ class StructureGraph:
     yaws: np.ndarray
     supporter: dict[int, int]  # supported object -> the object it rests on
     edges: dict[tuple[int, int], Edge] = field(default_factory=dict)
+    #: Pairs where no relation holds but one is within its fall-off (a graded membership
+    #: above 0): the matching compares them, nothing else reads them.
+    fringe: dict[tuple[int, int], Edge] = field(default_factory=dict)
     name: str = ""
     extent: tuple[float, float] | None = None  # the room's floor (x, z), centred on the origin
 
@@ -175,55 +198,71 @@ def structure_graph(scene: Scene) -> StructureGraph:
 
 
 def measure_edges(graph: StructureGraph) -> None:
-    """Fill ``graph.edges`` from the boxes (both directions of every related pair)."""
+    """Fill ``graph.edges`` from the boxes (both directions of every related pair), and
+    ``graph.fringe`` with the pairs only a graded membership relates."""
     graph.edges.clear()
+    graph.fringe.clear()
     n = len(graph)
     radii = np.hypot(graph.sizes[:, 0], graph.sizes[:, 2]) / 2.0
     for i in range(n):
         for j in range(i + 1, n):
-            # Skip pairs surely farther apart than "near" (most pairs of a large scene): one
-            # of i's axes is within 45 degrees of the line between the centres, and along
-            # it the separation is at least distance / sqrt(2) minus the two radii.
+            # Skip pairs surely farther apart than the end of near's fall-off (most pairs of
+            # a large scene): one of i's axes is within 45 degrees of the line between the
+            # centres, and along it the separation is at least distance / sqrt(2) minus the
+            # two radii.
             lower_gap = float(np.hypot(*(graph.centres[i] - graph.centres[j]))) / math.sqrt(2.0) - radii[i] - radii[j]
             supported = graph.supporter.get(i) == j or graph.supporter.get(j) == i
-            if not supported and lower_gap > NEAR_FACTOR * max(radii[i], radii[j]):
+            if not supported and lower_gap > (1.0 + NEAR_BAND) * NEAR_FACTOR * max(radii[i], radii[j]):
                 continue
             forward, backward = measure_pair(graph, i, j), measure_pair(graph, j, i)
-            if forward is not None or backward is not None:  # F may hold one way only
-                graph.edges[(i, j)] = forward or _empty(graph, i, j)
-                graph.edges[(j, i)] = backward or _empty(graph, j, i)
+            if forward.relations or backward.relations:  # F may hold one way only
+                graph.edges[(i, j)], graph.edges[(j, i)] = forward, backward
+            elif max(forward.grades + backward.grades) > 0.0:
+                graph.fringe[(i, j)], graph.fringe[(j, i)] = forward, backward
 
 
-def _empty(graph: StructureGraph, i: int, j: int) -> Edge:
-    gap, _, facing_angle, contact_angles, scale = _measures(graph, i, j)
-    return Edge(frozenset(), gap, facing_angle, contact_angles, scale)
+def fade(value: float, threshold: float, band: float) -> float:
+    """Membership of ``value <= threshold`` with a smooth fall-off: 1 up to
+    threshold - band, 0 from threshold + band, 1/2 at the threshold (smoothstep between)."""
+    share = min(max((threshold + band - value) / (2.0 * band), 0.0), 1.0)
+    return share * share * (3.0 - 2.0 * share)
 
 
-def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge | None:
-    """The relations from i to j (F: i faces j), or None when there are none."""
+def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge:
+    """The relations from i to j (F: i faces j; none when they are unrelated) and their
+    graded memberships (``Edge.grades``)."""
     relations: set[str] = set()
     if graph.supporter.get(j) == i:
         relations.add("S")
     if graph.supporter.get(i) == j:
         relations.add("s")
     gap, normal, facing_angle, contact_angles, scale = _measures(graph, i, j)
-    near = gap <= NEAR_FACTOR * float(np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]).max()) / 2.0
+    limit = NEAR_FACTOR * float(np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]).max()) / 2.0
     floor_pair = i not in graph.supporter and j not in graph.supporter
     heights_overlap = min(graph.bottoms[i] + graph.sizes[i, 1], graph.bottoms[j] + graph.sizes[j, 1]) > max(
         graph.bottoms[i], graph.bottoms[j]
     )
-    if near and floor_pair:
+    turn, offset = _alignment(graph, i, j)
+    off_axis = abs(_signed_angle(graph.forwards[i], normal))
+    if gap <= limit and floor_pair:
         if gap <= CONTACT and heights_overlap:
             relations.add("V")
         elif gap > CONTACT:
             relations.add("C")
-        if _aligned(graph, i, j):
+        if turn <= PARALLEL and offset <= FLUSH:
             relations.add("A")
-        if abs(_signed_angle(graph.forwards[i], normal)) <= FACING_CONE:
+        if off_axis <= FACING_CONE:
             relations.add("F")
-    if not relations:
-        return None
-    return Edge(frozenset(relations), gap, facing_angle, contact_angles, scale)
+    grades = (0.0, 0.0, 0.0, 0.0)
+    if floor_pair:
+        near, touching = fade(gap, limit, NEAR_BAND * limit), fade(gap, CONTACT, CONTACT_BAND)
+        grades = (
+            near * touching * float(heights_overlap),
+            near * fade(turn, PARALLEL, PARALLEL_BAND) * fade(offset, FLUSH, FLUSH_BAND),
+            near * fade(off_axis, FACING_CONE, FACING_BAND),
+            near * (1.0 - touching),
+        )
+    return Edge(frozenset(relations), gap, facing_angle, contact_angles, scale, grades)
 
 
 def _measures(graph: StructureGraph, i: int, j: int) -> tuple[float, np.ndarray, float, tuple[float, float], float]:
@@ -262,18 +301,18 @@ def _signed_angle(a: np.ndarray, b: np.ndarray) -> float:
     return wrap(math.atan2(b[0], b[1]) - math.atan2(a[0], a[1]))
 
 
-def _aligned(graph: StructureGraph, i: int, j: int) -> bool:
-    """Parallel, with a side of i's box flush with the same side of j's."""
+def _alignment(graph: StructureGraph, i: int, j: int) -> tuple[float, float]:
+    """How far two boxes are from aligned: the yaw difference modulo 90 degrees (radians,
+    0 when parallel) and the smallest distance between a side of i's box and the same
+    side of j's (metres), along either box's axes (the same answer both ways round)."""
     turn = (graph.yaws[j] - graph.yaws[i]) % (math.pi / 2.0)
-    if min(turn, math.pi / 2.0 - turn) > PARALLEL:
-        return False
     corners_i, corners_j = np.array(_corners(graph, i)), np.array(_corners(graph, j))
-    for yaw in (graph.yaws[i], graph.yaws[j]):  # either box's axes: the same answer both ways round
+    offset = math.inf
+    for yaw in (graph.yaws[i], graph.yaws[j]):
         for axis in _axes(yaw):
             pi, pj = corners_i @ axis, corners_j @ axis
-            if abs(pi.min() - pj.min()) <= FLUSH or abs(pi.max() - pj.max()) <= FLUSH:
-                return True
-    return False
+            offset = min(offset, abs(pi.min() - pj.min()), abs(pi.max() - pj.max()))
+    return float(min(turn, math.pi / 2.0 - turn)), float(offset)
 
 
 def _axes(yaw: float) -> tuple[np.ndarray, np.ndarray]:
