@@ -6,6 +6,7 @@ and time.
     .venv/bin/python benchmarks/bench_matching.py --seeds 8
     .venv/bin/python benchmarks/bench_matching.py --only copies
     .venv/bin/python benchmarks/bench_matching.py --seeds 8 --first-seed 8   # scenes 8..15
+    .venv/bin/python benchmarks/bench_matching.py --only copies --misses     # what each scene got wrong
 
 Copies: each scene against ``perturbed_copy`` of it (every type and id renamed, 5 cm
 jitter, one standing object removed, one box added, order shuffled). "Kept and right"
@@ -55,7 +56,7 @@ def scenes_of(seeds: int, first: int = 0) -> dict[str, list]:
     return {rules: [build_scene(rules, seed) for seed in range(first, first + seeds)] for rules in RULE_SETS}
 
 
-def copies(scenes: dict[str, list]) -> None:
+def copies(scenes: dict[str, list], misses: bool = False) -> None:
     print("disguised copies (types renamed, 5 cm jitter, one removed, one added):")
     print(f"  {'rule set':12s} objects  kept+right  assigned-right  as-good-as-truth  baseline  spurious-kept  kept,own-copy")
     totals, changes = defaultdict(float), defaultdict(int)
@@ -65,11 +66,15 @@ def copies(scenes: dict[str, list]) -> None:
             copy, truth = perturbed_copy(scene, np.random.default_rng(seed))
             first, second = structure_graph(scene), structure_graph(copy)
             loose = match_graphs(first, second, threshold=0.0)
-            kept = match_graphs(first, second).mapping()
+            matching = match_graphs(first, second)
+            kept = matching.mapping()
             problem, nodes_a, nodes_b = layout_problem(first, second)
             found = solve(problem)
+            shortfall = problem.energy(_truth_assignment(problem, first, second, nodes_a, nodes_b, truth)) - problem.energy(found)
             row["tie_pairs"] += 1
-            row["ties"] += problem.energy(found) >= problem.energy(_truth_assignment(problem, first, second, nodes_a, nodes_b, truth)) - 1e-9
+            row["ties"] += shortfall <= 1e-9
+            if misses:
+                _print_misses(scene, first, matching, truth, shortfall)
             baseline = _baseline(first, second, nodes_a, nodes_b)
             row["objects"] += sum(first.ids[i] in truth for i in nodes_a)
             row["kept"] += _right(kept, first, truth)
@@ -114,6 +119,23 @@ def _relation_changes(first, second, truth: dict[str, str]) -> dict[str, int]:
                 first.relation_set(j, i) & {"F"} != second.relation_set(l, k) & {"F"}
             )
     return counts
+
+
+def _print_misses(scene, first, matching, truth: dict[str, str], shortfall: float) -> None:
+    """The surviving objects a scene's matching got wrong or withdrew, and how far its
+    energy is below the true matching's."""
+    group, original = interchangeable(first), {b: a for a, b in truth.items()}
+    lines = []
+    for pair in matching.pairs + matching.withdrawn:
+        right = pair.b in original and group.get(original[pair.b]) == group.get(pair.a)
+        if pair.a in truth and not (right and pair in matching.pairs):
+            taken = original.get(pair.b, "the added box")
+            state = "kept" if pair in matching.pairs else "withdrawn"
+            lines.append(f"      {pair.a} -> copy of {taken}, confidence {pair.confidence:.2f}, {state}")
+    if lines or shortfall > 1e-9:
+        energy = f"{shortfall:.3f} below the truth's" if shortfall > 1e-9 else "at least the truth's"
+        print(f"    {scene.rules} seed {scene.seed}: energy {energy}")
+        print("\n".join(lines))
 
 
 def _print_row(name, row) -> None:
@@ -220,9 +242,11 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=4, help="scenes per rule set (4)")
     parser.add_argument("--first-seed", type=int, default=0, help="first scene seed (0), to measure on other scenes")
     parser.add_argument("--only", choices=("copies", "exhaustive", "roles", "timing"))
+    parser.add_argument("--misses", action="store_true", help="copies: list each scene's wrong or withdrawn objects")
     args = parser.parse_args()
     scenes = scenes_of(args.seeds, args.first_seed)
-    for name, run in (("copies", copies), ("exhaustive", exhaustive), ("roles", roles), ("timing", timing)):
+    runs = (("copies", lambda s: copies(s, args.misses)), ("exhaustive", exhaustive), ("roles", roles), ("timing", timing))
+    for name, run in runs:
         if args.only in (None, name):
             run(scenes)
 
