@@ -70,7 +70,8 @@ def copies(scenes: dict[str, list], misses: bool = False) -> None:
             kept = matching.mapping()
             problem, nodes_a, nodes_b = layout_problem(first, second)
             found = solve(problem)
-            shortfall = problem.energy(_truth_assignment(problem, first, second, nodes_a, nodes_b, truth)) - problem.energy(found)
+            true = _truth_assignment(problem, first, second, nodes_a, nodes_b, truth)
+            shortfall = problem.energy(true) - problem.energy(found)
             row["tie_pairs"] += 1
             row["ties"] += shortfall <= 1e-9
             if misses:

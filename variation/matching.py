@@ -51,8 +51,8 @@ itself). The paper keeps a match whose confidence exceeds gamma = 0.8 and withdr
 the rest; its confidence is the leading eigenvalue, which has no fixed scale, so we
 use this per-pair share, with its own threshold (``CONFIDENCE``, 0.6; docs/variation.md
 gives the measurements behind it). A pair below half the threshold is taken as
-objects without a counterpart (``withdraw``), and the others' shares are counted
-without their edges to it: an object that gained a neighbour the other scene does not
+objects without a counterpart (``withdraw``), as is an object left to a dummy, and the
+others' shares are counted without their edges to them: an object that gained a neighbour the other scene does not
 have (or lost one) is not held to a relation no pairing could match.
 """
 
@@ -510,9 +510,9 @@ def confidences(problem: Problem, assignment: np.ndarray, kept: np.ndarray | Non
         kept = assignment[:m] < n
     partner = np.zeros(n, dtype=bool)
     partner[assignment[:m][kept]] = True
-    counted = kept[first.target]
+    matched = (problem.pairwise * problem.matched_edges(assignment)).sum(axis=1)
     gained = np.zeros(m)
-    np.add.at(gained, first.source, (problem.pairwise * problem.matched_edges(assignment))[:, partner[second.target]].sum(axis=1) * counted)
+    np.add.at(gained, first.source, matched * kept[first.target])
     own_a = first.self_scores(m, kept[first.target])
     own_b = second.self_scores(n, partner[second.target])
     result = np.zeros(m)
