@@ -5,6 +5,7 @@
     .venv/bin/python benchmarks/bench_relations.py classroom --scenes 100 --workers 2
     .venv/bin/python benchmarks/bench_relations.py --generate-only        # fill the scene cache, nothing else
     .venv/bin/python benchmarks/bench_relations.py --jitter               # one planted relation, growing jitter
+    .venv/bin/python benchmarks/bench_relations.py benchmarks/relation_rules/*.rules   # rule sets the tests were not tuned on
 
 For each rule set: lay out scenes 0..N-1 with ``api.build_scene`` (expansion and
 layout, no description, no render) and keep their scene.json in a cache folder
@@ -69,7 +70,7 @@ def cache_folder(root: Path, name: str) -> Path:
     for path in files:
         digest.update(path.name.encode())
         digest.update(path.read_bytes())
-    return root / f"{name}-{digest.hexdigest()[:16]}"
+    return root / f"{Path(name).stem}-{digest.hexdigest()[:16]}"
 
 
 def _make_scene(job: tuple[str, int, str]) -> tuple[int, bool, float]:
@@ -273,7 +274,7 @@ def jitter_sweep(count: int, seed: int) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("rules", nargs="*", help="shipped rule sets (default: all)")
+    parser.add_argument("rules", nargs="*", help="shipped rule sets or .rules files (default: every shipped set)")
     parser.add_argument("--scenes", type=int, default=500, help="scenes per rule set (500)")
     parser.add_argument("--workers", type=int, default=2, help="processes laying scenes out (2)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the tests' streams (0)")
@@ -294,7 +295,7 @@ def main() -> None:
         if spent:
             print(f"{name}: laid out {args.scenes} scenes' missing ones in {spent:.0f} CPU s", flush=True)
         if not args.generate_only:
-            evaluate(name, paths, failed, args.seed)
+            evaluate(Path(name).stem, paths, failed, args.seed)
 
 
 if __name__ == "__main__":
