@@ -14,6 +14,7 @@ from scenewright.dataset import check_same_settings, dataset_spec
 from scenewright.dataset_scene import produce_scene
 from scenewright.learning.relations import (
     ANGLE_THRESHOLD,
+    MIN_LOCAL_TIGHTNESS,
     TESTS,
     PairRelation,
     angle_statistic,
@@ -103,6 +104,39 @@ def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
     assert verdicts[("chair", "table")].strength > 0.8  # nearly all poses in one place
     assert not verdicts[("chair", "plant")].related and not verdicts[("plant", "table")].related
     assert verdicts[("chair", "table")].pairs == 30 and verdicts[("chair", "table")].scenes == 60
+
+
+def test_a_relation_of_one_of_several_objects_is_tested_in_the_frame_of_the_type_with_fewer():
+    # Three chairs per scene, one of them 0.9 m in front of the one table: a random chair
+    # and the table nearest it would find the relation in a third of the scenes; the
+    # table and the chair nearest it find it in nearly every one.
+    rng = np.random.default_rng(12)
+    scenes = []
+    for index in range(200):
+        table = uniform_pose(rng)
+        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.9, math.pi, rng))]
+        placed += [("chair", *uniform_pose(rng)) for _ in range(2)]
+        scenes.append(scene_of(placed, f"s{index}"))
+    found = {(p.a, p.b): p for p in find_relations(scenes, seed=2).pairs}[("chair", "table")]
+    assert found.related and found.p_value == pytest.approx(1 / 200) and found.strength > 0.6
+
+
+@pytest.mark.parametrize("share", [0.3, 0.5, 1.0])
+def test_the_nearest_neighbour_tightness_of_a_relation_in_a_share_of_the_scenes(share):
+    # The chair stands 0.9 m left or right of the table in a share f of the scenes,
+    # anywhere in the others: the nearest-neighbour tightness of halves of 100 poses is
+    # about 1 - (1 - f)^(3/4) (the module docstring), near linear in f.
+    rng = np.random.default_rng(int(share * 10))
+    scenes = []
+    for index in range(200):
+        table = uniform_pose(rng)
+        side = 0.9 if rng.random() < 0.5 else -0.9
+        chair = offset(table, side, 0.0, 0.0, rng) if rng.random() < share else uniform_pose(rng)
+        scenes.append(scene_of([("table", *table), ("chair", *chair)], f"s{index}"))
+    found = {(p.a, p.b): p for p in find_relations(scenes, seed=3).pairs}[("chair", "table")]
+    assert found.pairs == 100 and found.p_value <= 0.01
+    assert found.strength == pytest.approx(1 - (1 - share) ** 0.75, abs=0.08)
+    assert found.related == (found.strength >= MIN_LOCAL_TIGHTNESS)
 
 
 def test_few_scenes_are_tested_by_pairing_scenes_and_hold_the_level():
