@@ -6,6 +6,7 @@
     .venv/bin/python benchmarks/bench_relations.py --generate-only        # fill the scene cache, nothing else
     .venv/bin/python benchmarks/bench_relations.py --jitter               # one planted relation, growing jitter
     .venv/bin/python benchmarks/bench_relations.py benchmarks/relation_rules/*.rules   # rule sets the tests were not tuned on
+    .venv/bin/python benchmarks/bench_relations.py village --floor 0.3   # another nearest-neighbour tightness floor
 
 For each rule set: lay out scenes 0..N-1 with ``api.build_scene`` (expansion and
 layout, no description, no render) and keep their scene.json in a cache folder
@@ -284,9 +285,17 @@ def main() -> None:
     )  # fmt: skip
     parser.add_argument("--generate-only", action="store_true", help="fill the cache and stop")
     parser.add_argument(
+        "--floor", type=float, default=None,
+        help="the permutation test's nearest-neighbour tightness floor (default: the module's MIN_LOCAL_TIGHTNESS)",
+    )  # fmt: skip
+    parser.add_argument(
         "--jitter", action="store_true", help="instead: one planted relation under growing jitter, both tests"
     )
     args = parser.parse_args()
+    if args.floor is not None:
+        from scenewright.learning import relations
+
+        relations.MIN_LOCAL_TIGHTNESS = args.floor
     if args.jitter:
         jitter_sweep(args.scenes, args.seed)
         return

@@ -73,7 +73,7 @@ permutation (the default, for continuous layouts)
     far), close to linear in f, and k places widen a place's own nearest-neighbour
     distances by only k^(1/4). The value 0.35 is the least that leaves out every pair of
     the benchmark's desk, kitchen, living room and study scenes that no rule relates and
-    that pruning keeps (up to 0.33; the related ones have 0.48 and more); it was then
+    that pruning would keep (up to 0.33; the related ones found have 0.48 and more); it was then
     checked on the village, the bedroom and three rule sets written for the check
     (docs/learning.md).
 
