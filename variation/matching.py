@@ -63,6 +63,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from networkx.utils import UnionFind
 from scipy import sparse
 from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import LinearOperator, eigsh
@@ -259,7 +260,7 @@ def spectral_solution(affinity: sparse.spmatrix, size: int, *, lifted: bool = Tr
         vector = vector / total if abs(total) > 1e-12 else vector
         # The common row sum can be tiny beside the rest, and then its sign says little:
         # of the eigenvector and its negative, the one whose assignment scores higher.
-        return max((vector, -vector), key=lambda relaxed: _score(affinity, discretise(relaxed)))
+        return max((vector, -vector), key=lambda relaxed: _score(affinity, _indicator(discretise(relaxed))))
     unary = np.asarray(affinity.diagonal()).ravel()
     pairwise = affinity - sparse.diags(unary)
 
@@ -309,7 +310,7 @@ def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50)
     for _ in range(iterations):
         target = discretise((affinity @ current).reshape(size, size))
         vector = _indicator(target)
-        score = _score(affinity, target)
+        score = _score(affinity, vector)
         if score > best_score + 1e-12:
             best, best_score = target, score
         step = vector - current
@@ -330,9 +331,8 @@ def _indicator(assignment: np.ndarray) -> np.ndarray:
     return vector
 
 
-def _score(affinity: sparse.spmatrix, assignment: np.ndarray) -> float:
-    """x^T W x of an assignment: its energy."""
-    vector = _indicator(assignment)
+def _score(affinity: sparse.spmatrix, vector: np.ndarray) -> float:
+    """x^T W x of an assignment's 0/1 vector x (``_indicator``): its energy."""
     return float(vector @ (affinity @ vector))
 
 
@@ -369,22 +369,16 @@ def interchangeable(graph: StructureGraph) -> dict[str, int]:
     problem.place = None  # the tie-break tells them apart, by design
     identity = np.arange(problem.size)
     energy = problem.energy(identity)
-    group = list(range(len(nodes)))
-
-    def root(p: int) -> int:
-        while group[p] != p:
-            p = group[p]
-        return p
-
+    groups = UnionFind(range(len(nodes)))
     for p in range(len(nodes)):
         for q in range(p + 1, len(nodes)):
-            if root(p) == root(q) or not np.array_equal(graph.sizes[nodes[p]], graph.sizes[nodes[q]]):
+            if groups[p] == groups[q] or not np.array_equal(graph.sizes[nodes[p]], graph.sizes[nodes[q]]):
                 continue
             swapped = identity.copy()
             swapped[[p, q]] = [q, p]
             if problem.energy(swapped) >= energy - 1e-9 * max(energy, 1.0):
-                group[root(q)] = root(p)
-    return {graph.ids[nodes[p]]: root(p) for p in range(len(nodes))}
+                groups.union(p, q)
+    return {graph.ids[nodes[p]]: int(groups[p]) for p in range(len(nodes))}
 
 
 @dataclass
