@@ -382,15 +382,12 @@ class LearnedMoves:
         followers = {}
         for target, own in sources.items():
             found: list[int] = []
-            for box in own:
+            queue = list(own)
+            for box in queue:  # ``queue`` grows while it is walked: sources of sources
                 for item in self.problem.carried(box):
                     if item != target and item not in found:
                         found.append(item)
-            for item in found:  # ``found`` grows while it is walked: sources of sources
-                for box in sources.get(item, ()):
-                    for rest in self.problem.carried(box):
-                        if rest != target and rest not in found:
-                            found.append(rest)
+                        queue.extend(sources.get(item, ()))
             followers[target] = found
         return followers
 
