@@ -103,11 +103,12 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
         chosen = [t for k, t in enumerate(types) if mask >> k & 1]
         if len(chosen) > 1 and not joins.issuperset(chosen):
             continue
-        if all(max(_p(model, t, name) for t in chosen) > 0.0 for name in requested):
+        holds = [max(_p(model, t, name) for t in chosen) for name in requested]
+        if all(p > 0.0 for p in holds):
             mean = sum(model["types"][t]["mean_area"] for t in chosen)
             variance = sum(spreads[t] ** 2 for t in chosen)
             log_area = -0.5 * (room_area - mean) ** 2 / variance - 0.5 * math.log(2 * math.pi * variance)
-            log_holds = sum(math.log(max(_p(model, t, name) for t in chosen)) for name in requested)
+            log_holds = sum(math.log(p) for p in holds)
             unseen = math.log(1 + sum(model["types"][t].get("plans", 0) for t in chosen))
             beyond = sum(1 for name, count in requested.items() if _most(model, chosen, name) < count)
             score = log_area + log_holds - unseen * beyond - extra_type * (len(chosen) - 1)
