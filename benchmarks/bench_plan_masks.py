@@ -33,7 +33,7 @@ import numpy as np
 from scipy.stats import spearmanr
 
 from scenewright.completion import shipped_plans_dir
-from scenewright.completion.evaluation import _soft_iou
+from scenewright.completion.evaluation import soft_iou
 from scenewright.completion.features import canonical_frame, occupancy_mask, room_centre
 from scenewright.completion.layout_mask import amalgamated_mask
 from scenewright.completion.model import build_model, floor_pieces
@@ -64,13 +64,13 @@ def main() -> None:
         others = [other.id for other in plans if other.type == plan.type and other.id != plan.id]
         counts = Counter(piece.category for piece in plan.furniture)
         layout = amalgamated_mask(model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]})
-        single = sorted((_soft_iou(truth[other], truth[plan.id]) for other in others), reverse=True)
-        nearest = sorted(others, key=lambda other: -_soft_iou(truth[other], truth[plan.id]))[:10]
+        alike = {other: soft_iou(truth[other], truth[plan.id]) for other in others}
+        nearest = sorted(others, key=lambda other: -alike[other])[:10]
         rows.setdefault(plan.type, []).append((
-            _soft_iou(layout.mask, truth[plan.id]),
-            _soft_iou(np.mean([truth[other] for other in others], axis=0), truth[plan.id]),
-            single[0],
-            _soft_iou(np.mean([truth[other] for other in nearest], axis=0), truth[plan.id]),
+            soft_iou(layout.mask, truth[plan.id]),
+            soft_iou(np.mean([truth[other] for other in others], axis=0), truth[plan.id]),
+            alike[nearest[0]],
+            soft_iou(np.mean([truth[other] for other in nearest], axis=0), truth[plan.id]),
         ))  # fmt: skip
     print("| room type | plans | eq4 | mean | best | best10 |")
     print("|---|---|---|---|---|---|")
@@ -86,7 +86,7 @@ def main() -> None:
     for room_type in sorted(rows):
         ids = [plan.id for plan in plans if plan.type == room_type]
         pairs = list(itertools.combinations(ids, 2))
-        iou = [_soft_iou(truth[a], truth[b]) for a, b in pairs]
+        iou = [soft_iou(truth[a], truth[b]) for a, b in pairs]
         rho = [spearmanr([-abs(feature[a][k] - feature[b][k]) for a, b in pairs], iou).correlation for k in range(4)]
         rho.append(spearmanr([-np.linalg.norm(feature[a] - feature[b]) for a, b in pairs], iou).correlation)
         same = [value for (a, b), value in zip(pairs, iou) if openings[a] == openings[b]]

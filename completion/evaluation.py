@@ -103,8 +103,8 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict:
         "f1_usual": _f1(common, truth),
         "added_error": float(abs(len(added) - len(truth))),
         "added_error_baseline": float(abs(int(round(float(usual))) - len(truth))),
-        "mask_iou": _soft_iou(layout.mask, true_mask),
-        "mask_iou_baseline": _soft_iou(mean_mask, true_mask),
+        "mask_iou": soft_iou(layout.mask, true_mask),
+        "mask_iou_baseline": soft_iou(mean_mask, true_mask),
         "miss": None if predicted == (plan.type,) and baseline_type == plan.type else (
             f"{plan.id} ({plan.room.area:.1f} m2, {_listed(requested)}): Equation 2 "
             f"{' + '.join(predicted) or 'none'}, baseline {baseline_type}"),
@@ -167,6 +167,8 @@ def _f1(chosen: set, truth: set) -> float:
     return 2 * precision * recall / (precision + recall) if precision + recall > 0 else 0.0
 
 
-def _soft_iou(first: np.ndarray, second: np.ndarray) -> float:
+def soft_iou(first: np.ndarray, second: np.ndarray) -> float:
+    """Soft IoU of two masks of one shape: the sum of their minima over the sum of their
+    maxima (1 when both are empty)."""
     union = np.maximum(first, second).sum()
     return float(np.minimum(first, second).sum() / union) if union > 0 else 1.0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from scenewright.completion.evaluation import COMPARISONS, METRICS, _f1, _soft_iou, leave_one_out, report, request_of
+from scenewright.completion.evaluation import COMPARISONS, METRICS, _f1, soft_iou, leave_one_out, report, request_of
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
 from scenewright.completion.selection import area_spreads, check_counts, choose_types
@@ -145,8 +145,8 @@ def test_a_count_beyond_the_plans_most_costs_likelihood_rather_than_ruling_a_typ
 
 
 def test_soft_iou_and_the_request():
-    assert _soft_iou(np.array([1.0, 0.5, 0.0]), np.array([0.5, 0.5, 1.0])) == pytest.approx(1.0 / 2.5)
-    assert _soft_iou(np.zeros(3), np.zeros(3)) == 1.0
+    assert soft_iou(np.array([1.0, 0.5, 0.0]), np.array([0.5, 0.5, 1.0])) == pytest.approx(1.0 / 2.5)
+    assert soft_iou(np.zeros(3), np.zeros(3)) == 1.0
 
 
 @pytest.fixture(scope="module")
