@@ -61,7 +61,9 @@ SCENE_SETTINGS = (
 _BUILDING = threading.Lock()
 
 
-def _parser() -> Lark:
+def lalr_parser() -> Lark:
+    """The rules language's LALR parser, built once per process (building its tables
+    from the grammar takes about 0.1 s)."""
     with _BUILDING:
         return _build_parser()
 
@@ -359,7 +361,7 @@ def parse_text(
     sources = sources or SourceTexts()
     sources.add(file, text, quoted)
     try:
-        tree = _parser().parse(text)
+        tree = lalr_parser().parse(text)
     except (UnexpectedToken, UnexpectedCharacters) as error:  # the two LALR parse errors
         if not (quoted and is_rules_file_name(file)):
             return _not_rules(error, text, file)
@@ -710,7 +712,7 @@ def _syntax_diagnostic(error: UnexpectedInput, text: str, file: str, sources: So
 
 def _literal(terminal: str) -> str | None:
     """The text of a keyword or punctuation terminal (``AS`` -> ``as``); None for the others."""
-    pattern = _parser().get_terminal(terminal).pattern
+    pattern = lalr_parser().get_terminal(terminal).pattern
     return pattern.value if pattern.type == "str" else None
 
 
@@ -772,7 +774,7 @@ def _closing_points(text: str, offset: int) -> list[tuple[int, str]]:
 def _reads_past(text: str, offset: int) -> bool:
     """Whether ``text`` parses, or fails only after ``offset``."""
     try:
-        _parser().parse(text)
+        lalr_parser().parse(text)
     except (UnexpectedToken, UnexpectedCharacters) as error:
         return _error_offset(error, text) > offset
     return True
@@ -825,7 +827,7 @@ class _StateKey(int):
 def _example_stop(example: str) -> UnexpectedInput | None:
     """The error with which the parser stops at the end of an example (None if it parses)."""
     try:
-        _parser().parse(example)
+        lalr_parser().parse(example)
     except (UnexpectedToken, UnexpectedCharacters) as error:
         error.state = _StateKey.of(error)
         return error
@@ -852,12 +854,12 @@ def _place(error: UnexpectedInput, text: str, offset: int) -> tuple[_Context, fr
     """Where the parser was before the unexpected input at ``offset``, and what it takes there."""
     prefix = text[:offset]
     try:
-        _parser().parse(prefix)
+        lalr_parser().parse(prefix)
     except (UnexpectedToken, UnexpectedCharacters) as stop:
         if _error_offset(stop, prefix) < len(prefix):  # the text before reads otherwise alone (a new line before '|')
             stop = error
         return _context(stop), frozenset(stop.interactive_parser.accepts())
-    parser = _parser().parse_interactive(prefix)
+    parser = lalr_parser().parse_interactive(prefix)
     parser.exhaust_lexer()
     return _TOP_LEVEL, frozenset(parser.accepts())
 
@@ -933,7 +935,7 @@ def _case_mix_up(context: _Context, word: str, accepts: frozenset[str], after: s
 def _keywords(accepts: Iterable[str], rule: str = "") -> list[str]:
     """The keywords among ``accepts`` (those that start ``rule``, if given), in grammar order."""
     first = _first_terminals(rule) if rule else None
-    return [literal for terminal in _parser().terminals
+    return [literal for terminal in lalr_parser().terminals
             if terminal.name in accepts and (first is None or terminal.name in first)
             and (literal := _literal(terminal.name)) and literal.isidentifier()]
 
@@ -945,7 +947,7 @@ def _first_terminals(rule: str) -> frozenset[str]:
     pending, seen = [rule], {rule}
     while pending:
         origin = pending.pop()
-        for grammar_rule in _parser().rules:
+        for grammar_rule in lalr_parser().rules:
             if grammar_rule.origin.name != origin or not grammar_rule.expansion:
                 continue
             symbol = grammar_rule.expansion[0]
@@ -968,7 +970,7 @@ def _expected(context: _Context, accepts: frozenset[str]) -> list[str]:
         if "{keywords}" in phrase:
             covered.update(lead_keywords)
     ends_statement = not context.declarations and any(name in accepts and name not in covered for name in _SEPARATORS)
-    terminals = [terminal for terminal in _parser().terminals if terminal.name in accepts]
+    terminals = [terminal for terminal in lalr_parser().terminals if terminal.name in accepts]
     keywords = [terminal for terminal in terminals if (_literal(terminal.name) or "").isidentifier()]
     others = sorted((terminal for terminal in terminals if terminal not in keywords),
                     key=lambda terminal: terminal.pattern.type == "str")  # named terminals first

@@ -180,7 +180,7 @@ class Renderer:
 
     def __init__(self, width: int = 640, height: int = 480, *, shadows: bool = True):
         self.width, self.height, self.shadows = int(width), int(height), shadows
-        self._gl = _load_pyrender()
+        self._gl = load_pyrender()
         try:
             self._renderer = self._gl.OffscreenRenderer(self.width, self.height)
         except Exception as error:  # each backend fails in its own way; all mean the same
@@ -193,7 +193,7 @@ class Renderer:
         # One sun for every scene: pyrender keeps a light's shadow map on the GPU while
         # the light stays in use, instead of allocating a new one per scene.
         self._sun = self._gl.DirectionalLight(color=np.ones(3), intensity=SUN_INTENSITY)
-        from OpenGL.GL import GL_FLOAT  # only now: the backend is chosen by _load_pyrender
+        from OpenGL.GL import GL_FLOAT  # only now: the backend is chosen by load_pyrender
 
         side = shadow_map_size(self.width, self.height)
         self._sun.shadow_texture = self._gl.Texture(width=side, height=side, source_channels="D", data_format=GL_FLOAT)
@@ -474,7 +474,7 @@ def render_metadata(result: RenderResult) -> dict[str, Any]:
 # -- OpenGL backend ------------------------------------------------------------------
 
 
-def _load_pyrender():
+def load_pyrender():
     """Import pyrender with an offscreen platform chosen, or say what to install."""
     if "PYOPENGL_PLATFORM" not in os.environ:
         if ctypes.util.find_library("EGL"):

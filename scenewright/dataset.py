@@ -61,7 +61,7 @@ import numpy as np
 
 from scenewright.api import DATASET_RETRIES
 from scenewright.atomic import atomic_stream, remove_partials, write_atomic
-from scenewright.core.errors import GenerationError, InputError
+from scenewright.core.errors import GenerationError, InputError, ScenewrightError
 from scenewright.dataset_coco import coco_sink
 from scenewright.dataset_stats import StatsCollector, write_stats
 
@@ -75,8 +75,11 @@ METADATA_FILE = "metadata.jsonl"
 #: Locked (``flock``) by the run using the directory, so a second run is refused; the
 #: kernel releases the lock when that run ends in any way, ``kill -9`` included.
 LOCK_FILE = ".lock"
-#: What a worker imports; a fork server imports it once for all its workers.
-WORKER_MODULES = ["scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene"]
+#: What a worker imports; a fork server imports it once for all its workers
+#: (``worker_preload`` loads pyrender and builds the rules parser there too).
+WORKER_MODULES = [
+    "scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene", "scenewright.worker_preload"
+]
 #: When stderr is not a terminal (a log file, a batch job), progress is a plain line at
 #: most this often (seconds) and one at the end, not a bar redrawn after every scene.
 LOG_INTERVAL = 30.0
@@ -522,7 +525,12 @@ def start_worker(lifeline, spec: DatasetSpec | None) -> None:
     if spec is not None:
         from scenewright.dataset_scene import worker_context
 
-        worker_context(spec)
+        try:
+            worker_context(spec)
+        except ScenewrightError:
+            # Raised again by the worker's first scene, whose future carries it to the
+            # parent as one line; raised here, it would only break the pool.
+            pass
 
 
 def exit_when_closed(lifeline) -> None:

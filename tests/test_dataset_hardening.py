@@ -169,6 +169,22 @@ def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards
     assert len(metadata_rows(root)) == 1
 
 
+def test_a_missing_opengl_backend_in_the_workers_is_one_line_not_a_dead_pool(tmp_path):
+    """The workers start their renderer before their first scene; when it cannot start,
+    the error comes back through that scene as one line, instead of breaking the pool
+    ("a worker process died") with the initializer's traceback."""
+    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
+    done = subprocess.run(
+        [sys.executable, "-m", "scenewright.cli", "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"),
+         "--size", "32x32", "--workers", "2"],
+        env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 1 and "Traceback" not in done.stderr, done.stderr
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith("scenewright: error: offscreen OpenGL backend PYOPENGL_PLATFORM='no-such-platform'")
+    assert "died" not in done.stderr
+
+
 def test_shrinking_lists_only_scenes_below_n_and_growing_back_makes_nothing(tmp_path):
     grown = tmp_path / "grown"
     run_dataset(spec_of(9), grown, workers=1, producer=fake_scene, progress=False)

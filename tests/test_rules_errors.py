@@ -732,7 +732,7 @@ def test_every_example_of_the_explainer_stops_at_its_end_in_its_own_place():
 
 
 def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
-    terminals = {terminal.name for terminal in rules_parser._parser().terminals}
+    terminals = {terminal.name for terminal in rules_parser.lalr_parser().terminals}
     assert {sample.split()[0] for sample in rules_parser._FIELDS} == set(rules_parser._keywords(terminals, "_field"))
     assert {sample.split()[0] for sample in rules_parser._SETTINGS} == set(
         rules_parser._keywords(terminals, "_setting"))
@@ -742,7 +742,7 @@ def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
 def test_every_place_where_a_word_may_come_is_in_the_table(text):
     """Wherever a valid file may be cut short before a token, the explainer knows the
     place, unless only punctuation, a value or one keyword may come next (said alone)."""
-    parser = rules_parser._parser()
+    parser = rules_parser.lalr_parser()
     for token in parser.parse_interactive(text).iter_parse():
         prefix = text[:token.start_pos]
         try:

@@ -166,7 +166,7 @@ def test_the_parser_can_be_built_from_several_threads_at_once():
 
     def load() -> None:
         try:
-            rules_parser._parser()
+            rules_parser.lalr_parser()
         except BaseException as error:  # noqa: BLE001 - any failure is the finding
             failures.append(error)
 
