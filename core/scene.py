@@ -13,7 +13,7 @@ render or export it take it as an argument and return their results as values.
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields, is_dataclass
 from typing import Any
 
 import numpy as np
@@ -158,7 +158,12 @@ class Scene:
             data = asdict(self)
         finally:
             self.room = room
-        data["room"] = room.to_dict() if room else None
+        return self._completed(data, room.to_dict() if room else None)
+
+    def _completed(self, data: dict[str, Any], room: dict | None) -> dict[str, Any]:
+        """``data`` (the fields, room in place) with the room's own dict, without an absent
+        ``completion``, with the format's version: the part of scene.json beyond fields."""
+        data["room"] = room
         if data["completion"] is None:
             del data["completion"]
         data["format"] = SCENE_FORMAT_VERSION
@@ -170,11 +175,13 @@ class Scene:
         ``reproducible`` leaves out the wall-clock times (``timings``, ``layout.seconds``),
         the only values that differ between two runs with the same rules and seed.
         """
-        data = self.to_dict()
+        # ``to_dict`` then ``_rounded`` in one pass: a dataset writes one per scene.
+        fields_ = {f.name: None if f.name == "room" else _rounded(getattr(self, f.name)) for f in fields(self)}
+        data = self._completed(fields_, _rounded(self.room.to_dict()) if self.room else None)
         if reproducible:
             del data["timings"]
             del data["layout"]["seconds"]
-        return json.dumps(_rounded(data), indent=indent, ensure_ascii=False) + "\n"
+        return json.dumps(data, indent=indent, ensure_ascii=False) + "\n"
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Scene:
@@ -362,7 +369,8 @@ def _node_of_path(path: ScenePath) -> dict[str, Any]:
 
 
 def _rounded(value: Any, digits: int = 6) -> Any:
-    """Round floats so scene.json is stable and readable (micrometre precision)."""
+    """Round floats so scene.json is stable and readable (micrometre precision); a
+    dataclass becomes the dict of its fields, as ``asdict`` makes it."""
     if isinstance(value, float):
         rounded = round(value, digits)
         return 0.0 if rounded == 0 else rounded
@@ -370,4 +378,6 @@ def _rounded(value: Any, digits: int = 6) -> Any:
         return {k: _rounded(v, digits) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [_rounded(v, digits) for v in value]
+    if is_dataclass(value) and not isinstance(value, type):
+        return {f.name: _rounded(getattr(value, f.name), digits) for f in fields(value)}
     return value
