@@ -96,24 +96,28 @@ def fit_to_size(mesh: trimesh.Trimesh, size) -> trimesh.Trimesh:
 
 
 def path_mesh(path: ScenePath) -> trimesh.Trimesh:
-    """A flat ribbon of the path's width along its control points, just above the ground."""
-    points = np.asarray(path.points, dtype=float)
+    """A flat ribbon of the path's width along its control points, just above the ground:
+    a quad (two triangles) a segment, and a disc at each joint so turns have no gaps (and
+    at the start when no junction covers it). Built as arrays in one go: a dataset draws
+    every road of every scene anew."""
+    points = np.asarray(path.points, dtype=float).reshape(-1, 2)
     half = path.width / 2.0
-    pieces = []
-    for a, b in zip(points[:-1], points[1:]):
-        direction = b - a
-        length = float(np.hypot(*direction))
-        if length < 1e-9:
-            continue
-        normal = np.array([-direction[1], direction[0]]) / length * half
-        quad = np.array([a + normal, a - normal, b - normal, b + normal])
-        pieces.append(_flat_polygon(quad))
-    for point in points[1:-1]:  # round the joints so turns have no gaps
-        pieces.append(_flat_disc(point, half))
+    starts, ends = points[:-1], points[1:]
+    direction = ends - starts
+    length = np.hypot(direction[:, 0], direction[:, 1])
+    keep = length >= 1e-9
+    starts, ends, direction, length = starts[keep], ends[keep], direction[keep], length[keep]
+    normal = np.column_stack([-direction[:, 1], direction[:, 0]]) / length[:, None] * half
+    # (segments, 4, 2): a + n, a - n, b - n, b + n, counter-clockwise seen from above (+Y).
+    quads = np.stack([starts + normal, starts - normal, ends - normal, ends + normal], axis=1).reshape(-1, 2)
+    quad_faces = (np.arange(len(starts))[:, None, None] * 4 + np.array([[0, 2, 1], [0, 3, 2]])).reshape(-1, 3)
+    centres = points[1:-1]
     if path.start is None and len(points):
-        pieces.append(_flat_disc(points[0], half))
-    mesh = trimesh.util.concatenate(pieces)
-    return coloured(mesh, path.colour)
+        centres = np.vstack([centres, points[:1]])
+    disc_vertices, disc_faces = _flat_discs(centres, half)
+    vertices = _lifted(np.vstack([quads, disc_vertices]), PATH_LIFT)
+    faces = np.vstack([quad_faces, disc_faces + len(quads)])
+    return coloured(_flat_mesh(vertices, faces), path.colour)
 
 
 def junction_mesh(obj: SceneObject) -> trimesh.Trimesh:
@@ -122,7 +126,8 @@ def junction_mesh(obj: SceneObject) -> trimesh.Trimesh:
     It sits a little above path ribbons so the crossing it marks is drawn on top.
     """
     radius = max(min(obj.size[0], obj.size[2]) / 2.0, 0.1)
-    return coloured(_flat_disc(np.zeros(2), radius, lift=JUNCTION_LIFT), obj.colour)
+    vertices, faces = _flat_discs(np.zeros((1, 2)), radius)
+    return coloured(_flat_mesh(_lifted(vertices, JUNCTION_LIFT), faces), obj.colour)
 
 
 def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
@@ -377,22 +382,28 @@ def _has_colours(mesh: trimesh.Trimesh) -> bool:
     return mesh.visual.kind in ("face", "vertex", "texture")
 
 
-def _flat_polygon(quad: np.ndarray) -> trimesh.Trimesh:
-    vertices = np.column_stack([quad[:, 0], np.full(len(quad), PATH_LIFT), quad[:, 1]])
-    # Counter-clockwise seen from above (+Y) so normals point up.
-    faces = np.array([[0, 2, 1], [0, 3, 2]])
-    mesh = trimesh.Trimesh(vertices, faces, process=False)
-    if mesh.face_normals[:, 1].mean() < 0:
-        mesh.invert()
-    return mesh
-
-
-def _flat_disc(centre: np.ndarray, radius: float, sections: int = 16, lift: float = PATH_LIFT) -> trimesh.Trimesh:
+def _flat_discs(centres: np.ndarray, radius: float, sections: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    """(x, z) vertices (n * (1 + sections), 2) and triangles (n * sections, 3) of a disc
+    of ``radius`` around each of ``centres`` (n, 2): its centre, then its rim counter-
+    clockwise seen from above, each triangle (centre, next, this) facing up."""
     angles = np.linspace(0, 2 * np.pi, sections, endpoint=False)
-    ring = np.column_stack([centre[0] + radius * np.cos(angles), centre[1] + radius * np.sin(angles)])
-    vertices = np.vstack([[centre[0], lift, centre[1]], np.column_stack([ring[:, 0], np.full(sections, lift), ring[:, 1]])])
-    faces = np.array([[0, 1 + (i + 1) % sections, 1 + i] for i in range(sections)])
-    mesh = trimesh.Trimesh(vertices, faces, process=False)
-    if mesh.face_normals[:, 1].mean() < 0:
-        mesh.invert()
-    return mesh
+    rim_x = centres[:, :1] + radius * np.cos(angles)  # (n, sections)
+    rim_z = centres[:, 1:] + radius * np.sin(angles)
+    vertices = np.concatenate([centres[:, None, :], np.stack([rim_x, rim_z], axis=2)], axis=1).reshape(-1, 2)
+    around = np.arange(sections)
+    one = np.column_stack([np.zeros(sections, dtype=int), 1 + (around + 1) % sections, 1 + around])
+    faces = (np.arange(len(centres))[:, None, None] * (1 + sections) + one).reshape(-1, 3)
+    return vertices, faces
+
+
+def _lifted(points: np.ndarray, lift: float) -> np.ndarray:
+    """(n, 2) ground points (x, z) as (n, 3) vertices ``lift`` above the ground."""
+    return np.column_stack([points[:, 0], np.full(len(points), lift), points[:, 1]])
+
+
+def _flat_mesh(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh:
+    """A mesh of horizontal triangles wound to face up: its normals are +Y exactly, given
+    rather than computed."""
+    normals = np.zeros((len(faces), 3))
+    normals[:, 1] = 1.0
+    return trimesh.Trimesh(vertices, faces, face_normals=normals, process=False)

@@ -559,8 +559,42 @@ def _pyrender_classes(gl) -> _Classes:
             return pose
 
     class Program(ShaderProgram):
+        """pyrender's shader program, with our shadow filter (``_shader_source``) and its
+        uniforms' locations asked of OpenGL once per compiled program instead of at
+        every ``set_uniform`` (a frame sets some 2000; the location was a tenth of a
+        frame's CPU time). ``set_uniform`` is pyrender's otherwise, down to ignoring a
+        name the program lacks or a value of no known type."""
+
+        _locations: dict | None = None
+
         def _load(self, shader_filename):
             return _shader_source(os.path.basename(shader_filename), super()._load(shader_filename))
+
+        def _add_to_context(self):
+            self._locations = {}  # a new program: its locations are its own
+            return super()._add_to_context()
+
+        def set_uniform(self, name, value, unsigned=False):
+            loc = self._locations.get(name)
+            if loc is None:
+                loc = self._locations[name] = GL.glGetUniformLocation(self._program_id, name)
+            if loc == -1:
+                return
+            if isinstance(value, np.ndarray):
+                if value.ndim == 1:
+                    if np.issubdtype(value.dtype, np.unsignedinteger) or unsigned:
+                        kind, value = "u", value.astype(np.uint32)
+                    elif np.issubdtype(value.dtype, np.integer):
+                        kind, value = "i", value.astype(np.int32)
+                    else:
+                        kind, value = "f", value.astype(np.float32)
+                    self._FUNC_MAP[(value.shape[0], kind)](loc, 1, value)
+                else:
+                    self._FUNC_MAP[value.shape](loc, 1, GL.GL_TRUE, value)
+            elif isinstance(value, float):
+                GL.glUniform1f(loc, value)
+            elif isinstance(value, int):  # bool included, as 0 or 1
+                (GL.glUniform1ui if unsigned else GL.glUniform1i)(loc, int(value))
 
     class Programs(ShaderProgramCache):
         def get_program(self, *args, **kwargs):
@@ -577,6 +611,27 @@ def _pyrender_classes(gl) -> _Classes:
         def __init__(self, *args, **kwargs):
             super().__init__(*args, **kwargs)
             self._program_cache = Programs()
+            self._max_lights: dict = {}
+
+        def _compute_max_n_lights(self, flags):
+            # pyrender asks it for every primitive drawn; it depends on the flags and the
+            # context's count of texture units only.
+            if flags not in self._max_lights:
+                self._max_lights[flags] = super()._compute_max_n_lights(flags)
+            return self._max_lights[flags]
+
+        def _get_light_cam_matrices(self, scene, light_node, flags):
+            # Asked for every primitive drawn with shadows; it depends on the scene's
+            # bounds and the light's pose, which a FrameScene keeps until it changes.
+            if not isinstance(scene, FrameScene):
+                return super()._get_light_cam_matrices(scene, light_node, flags)
+            key = ("light matrices", light_node)
+            if key not in scene.frame_cache:
+                matrices = super()._get_light_cam_matrices(scene, light_node, flags)
+                for matrix in matrices:
+                    matrix.setflags(write=False)
+                scene.frame_cache[key] = matrices
+            return scene.frame_cache[key]
 
         def _sorted_mesh_nodes(self, scene):
             if not isinstance(scene, FrameScene):

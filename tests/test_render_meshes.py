@@ -9,7 +9,8 @@ from render_fixtures import scene_of, thing
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, WALL_THICKNESS
 from scenewright.core.shapes import SHAPES
 from scenewright.render.builders import BUILDERS, CHROME, SCREEN, SHOWER_GLASS, shade
-from scenewright.render.meshes import fit_to_size, junction_mesh, object_mesh, room_walls
+from scenewright.core.scene import ScenePath
+from scenewright.render.meshes import fit_to_size, junction_mesh, object_mesh, path_mesh, room_walls
 
 
 def test_shape_without_a_builder_is_drawn_as_its_box():
@@ -27,6 +28,21 @@ def test_junction_is_a_flat_disc_above_the_ground_facing_up():
     assert np.ptp(disc.vertices[:, 1]) == 0 and disc.vertices[0, 1] > 0
     assert np.allclose(disc.extents[[0, 2]], 3.0, atol=0.05)  # inscribed in the footprint
     assert np.all(disc.face_normals[:, 1] > 0.99)
+
+
+@pytest.mark.parametrize("start", [None, "crossing_1"])
+def test_a_path_is_a_ribbon_of_its_width_facing_up_with_round_joints(start):
+    points = [[0.0, 0.0], [4.0, 0.0], [4.0, 0.0], [4.0, 3.0]]  # a repeated point: no quad there
+    road = ScenePath("road_1", "road", "road", None, None, points, 2.0, start=start)
+    mesh = path_mesh(road)
+    discs = 2 + (start is None)  # one at each inner point, one at a start no junction covers
+    assert len(mesh.faces) == 2 * 2 + 16 * discs
+    assert np.ptp(mesh.vertices[:, 1]) == 0 and mesh.vertices[0, 1] > 0
+    winding = np.cross(*(mesh.vertices[mesh.faces[:, k]] - mesh.vertices[mesh.faces[:, 0]] for k in (1, 2)))
+    assert np.all(winding[:, 1] > 0) and np.array_equal(mesh.face_normals, np.tile([0.0, 1.0, 0.0], (len(mesh.faces), 1)))
+    # Quads of the width along each segment, discs of the width at the joints.
+    assert np.allclose(mesh.bounds[:, [0, 2]], [[-1.0 if start is None else 0.0, -1.0], [5.0, 3.0]])
+    assert mesh.area == pytest.approx(2.0 * 4.0 + 2.0 * 3.0 + discs * 16 / 2 * np.sin(2 * np.pi / 16))
 
 
 def test_a_room_has_walls_on_the_sides_a_viewer_sees_from_inside():
