@@ -50,7 +50,7 @@ seed gives the same questions.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import partial
 from typing import TYPE_CHECKING
@@ -159,7 +159,9 @@ def picture_questions(facts: PictureFacts, vocabulary: dict[str, str], seed: See
     rng = stage_stream(seed, "questions", view)
     asked = []
     for family in FAMILIES.values():
-        candidates = list(family.candidates(asking))
+        candidates = family.candidates(asking)
+        if not isinstance(candidates, Sequence):
+            candidates = list(candidates)
         if family.yes_no:
             chosen = _yes_and_no(candidates, facts, rng)
         else:
@@ -268,15 +270,31 @@ def _compared(first: str, second: str, comparison: str) -> Program:
     ]  # fmt: skip
 
 
-def _compare_count(asking: Asking) -> Iterator[Candidate]:
-    seen = set(asking.seen_nouns())
-    for first in asking.clear:
-        for second in asking.clear:
-            if first == second or not {first, second} & seen:
-                continue
-            words = {"first": asking.vocabulary[first], "second": asking.vocabulary[second]}
-            for comparison in ("greater_than", "less_than", "equal_integer"):
-                yield comparison, words, partial(_compared, first, second, comparison)
+class _CountComparisons(Sequence):
+    """The compare-count candidates: each comparison of each ordered pair of clear nouns,
+    one of them seen, in that order; each made when read, since a picture of n such
+    nouns has 3 n (n - 1) of them (some 2700 in a village) and the family reads a few."""
+
+    COMPARISONS = ("greater_than", "less_than", "equal_integer")
+
+    def __init__(self, asking: Asking):
+        seen = set(asking.seen_nouns())
+        self.vocabulary = asking.vocabulary
+        self.pairs = [
+            (first, second) for first in asking.clear for second in asking.clear
+            if first != second and (first in seen or second in seen)
+        ]  # fmt: skip
+
+    def __len__(self) -> int:
+        return len(self.COMPARISONS) * len(self.pairs)
+
+    def __getitem__(self, index: int) -> Candidate:
+        if not 0 <= index < len(self):
+            raise IndexError(index)
+        first, second = self.pairs[index // len(self.COMPARISONS)]
+        comparison = self.COMPARISONS[index % len(self.COMPARISONS)]
+        words = {"first": self.vocabulary[first], "second": self.vocabulary[second]}
+        return comparison, words, partial(_compared, first, second, comparison)
 
 
 def _related_program(anchor_noun: str, side: str, noun: str, last: str) -> Program:
@@ -368,7 +386,7 @@ for _family in (
             "less_than": "are there fewer {first} than {second}?",
             "equal_integer": "are there as many {first} as {second}?",
         },
-        _compare_count,
+        _CountComparisons,
         True,
     ),
     QuestionFamily(
