@@ -103,7 +103,7 @@ def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
     assert verdicts[("chair", "table")].p_value == pytest.approx(1 / 200)
     assert verdicts[("chair", "table")].strength > 0.8  # nearly all poses in one place
     assert not verdicts[("chair", "plant")].related and not verdicts[("plant", "table")].related
-    assert verdicts[("chair", "table")].pairs == 30 and verdicts[("chair", "table")].scenes == 60
+    assert verdicts[("chair", "table")].pairs == 60 and verdicts[("chair", "table")].scenes == 60
 
 
 def test_a_relation_of_one_of_several_objects_is_tested_in_the_frame_of_the_type_with_fewer():
@@ -121,22 +121,47 @@ def test_a_relation_of_one_of_several_objects_is_tested_in_the_frame_of_the_type
     assert found.related and found.p_value == pytest.approx(1 / 200) and found.strength > 0.6
 
 
-@pytest.mark.parametrize("share", [0.3, 0.5, 1.0])
-def test_the_nearest_neighbour_tightness_of_a_relation_in_a_share_of_the_scenes(share):
-    # The chair stands 0.9 m left or right of the table in a share f of the scenes,
-    # anywhere in the others: the nearest-neighbour tightness of halves of 100 poses is
-    # about 1 - (1 - f)^(3/4) (the module docstring), near linear in f.
-    rng = np.random.default_rng(int(share * 10))
+def shared_relation_scenes(rng: np.random.Generator, count: int, share: float, forward: float = 0.0) -> list[Scene]:
+    """The chair stands 0.9 m left or right of the table (``forward`` m in front of it)
+    in a share of the scenes, anywhere in the others."""
     scenes = []
-    for index in range(200):
+    for index in range(count):
         table = uniform_pose(rng)
         side = 0.9 if rng.random() < 0.5 else -0.9
-        chair = offset(table, side, 0.0, 0.0, rng) if rng.random() < share else uniform_pose(rng)
+        chair = offset(table, side, forward, 0.0, rng) if rng.random() < share else uniform_pose(rng)
         scenes.append(scene_of([("table", *table), ("chair", *chair)], f"s{index}"))
-    found = {(p.a, p.b): p for p in find_relations(scenes, seed=3).pairs}[("chair", "table")]
-    assert found.pairs == 100 and found.p_value <= 0.01
-    assert found.strength == pytest.approx(1 - (1 - share) ** 0.75, abs=0.08)
-    assert found.related == (found.strength >= MIN_LOCAL_TIGHTNESS)
+    return scenes
+
+
+@pytest.mark.parametrize("share", [0.3, 0.5, 1.0])
+def test_the_nearest_neighbour_tightness_of_a_relation_in_a_share_of_the_scenes(share):
+    # The nearest-neighbour tightness of samples of 200 poses (one per scene) is about
+    # 1 - (1 - f)^(2/3) (the module docstring), near linear in f; one data set's
+    # tightness varies by about 0.04 (sd), so the mean of four is compared.
+    rng = np.random.default_rng(int(share * 10))
+    strengths = []
+    for dataset in range(4):
+        found = {(p.a, p.b): p for p in find_relations(shared_relation_scenes(rng, 200, share), seed=dataset).pairs}[
+            ("chair", "table")
+        ]
+        assert found.pairs == 200 and found.p_value <= 0.01
+        assert found.related == (found.strength >= MIN_LOCAL_TIGHTNESS)
+        strengths.append(found.strength)
+    assert np.mean(strengths) == pytest.approx(1 - (1 - share) ** (2 / 3), abs=0.05)
+
+
+def test_pairs_of_scenes_find_a_relation_in_a_fifth_of_the_scenes():
+    # 20 data sets of 200 scenes, the chair beside the table in a fifth of them: on
+    # pairs of scenes (200 within-scene poses against 200 across) p <= 0.01 in 18; on
+    # halves of the scenes (100 against 100, the test before) it was 9.
+    rng = np.random.default_rng(77)
+    p_values = [
+        {(p.a, p.b): p for p in find_relations(shared_relation_scenes(rng, 200, 0.2), seed=d, prune=False).pairs}[
+            ("chair", "table")
+        ].p_value
+        for d in range(20)
+    ]
+    assert np.count_nonzero(np.array(p_values) <= 0.01) >= 16
 
 
 def test_few_scenes_are_tested_by_pairing_scenes_and_hold_the_level():
@@ -296,7 +321,7 @@ def test_command_prints_a_table_or_json(tmp_path, capsys):
     assert lines[0].startswith("permutation test") and "1 of 3 type pairs related" in lines[0]
     assert lines[1].split()[:7] == ["a", "b", "related", "energy", "distance", "p-value", "n"]
     row = next(line for line in lines if line.startswith("chair") and "table" in line).split()
-    assert row[:3] == ["chair", "table", "yes"] and row[4] == "0.005" and row[5:7] == ["20", "40"]
+    assert row[:3] == ["chair", "table", "yes"] and row[4] == "0.005" and row[5:7] == ["40", "40"]
     code, out, _ = run(capsys, "relations", *paths, "--json", "--seed", "3")
     document = json.loads(out)
     assert document["test"] == "permutation" and document["examples"] == 40 and document["seed"] == 3
