@@ -169,7 +169,10 @@ pair is carried by the other two and is reported as not related, ``pruned``:
 
 A resting pair itself is never pruned. A same-type pair (a, a) closes a triangle with
 each type w related to a (two a's and a w, two of its pairs being (a, w)): it is
-pruned when a rests on w (books on one shelf) or (a, w) is the tighter relation. Pairs
+pruned when a rests on w (books on one shelf) or (a, w) is the tighter relation, unless
+w rests on a: what stands on one a moves with it and carries nothing between two (the
+books of one of two shelves side by side are tighter to their shelf than the shelves to
+each other, yet the shelves' relation is their own). Pairs
 are pruned all at once, each triangle judged on the verdicts before pruning (the data
 processing inequality argument of ARACNE, Margolin et al. 2006), so the order of the
 pairs does not matter.
@@ -716,7 +719,11 @@ def prune_indirect(pairs: Sequence[PairRelation], resting: set[tuple[str, str]] 
     indirect: set[tuple[str, str]] = set()
     for a, b in strength:
         if a == b:  # two a's and a third type w: the a's relate through w if they rest on it
-            if any((a, w) in resting or strength[key(a, w)] > strength[(a, a)] for w in neighbours[a]):
+            # or it is tighter to them, unless it rests on one a (then it is that a's alone)
+            if any(
+                (a, w) in resting or ((w, a) not in resting and strength[key(a, w)] > strength[(a, a)])
+                for w in neighbours[a]
+            ):
                 indirect.add((a, a))
             continue
         for w in neighbours[a] & neighbours[b]:

@@ -292,6 +292,11 @@ def test_pruning_by_strength_and_by_resting():
     doubled = [*pairs, pair("c", "c", 0.95)]
     assert not {(p.a, p.b): p.related for p in prune_indirect(doubled, {("c", "a")})}[("c", "c")]
     assert {(p.a, p.b): p.related for p in prune_indirect(doubled)}[("c", "c")]
+    # Two a's (shelves side by side) and a w on one of them (its books): w stands on one
+    # a and carries no relation between the two, however much tighter (a, w) is.
+    shelves = [pair("a", "a", 0.93), pair("a", "w", 0.97)]
+    assert not {(p.a, p.b): p.related for p in prune_indirect(shelves)}[("a", "a")]
+    assert {(p.a, p.b): p.related for p in prune_indirect(shelves, {("w", "a")})}[("a", "a")]
 
 
 def test_cooccurrence_is_the_share_of_scenes_holding_both():
