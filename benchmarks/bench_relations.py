@@ -24,9 +24,9 @@ so no test of where things stand relative to each other, within against across
 scenes, can tell it from the room's own pattern. So each true pair is also tested by
 an *oracle*, the permutation test's energy test told which objects the grammar linked
 (``oracle_verdicts``: one linked edge per scene, the source in its target's frame,
-against the source of the next scene's edge, on halves of the scenes): the pair is
+against the source of the other scene's edge, on random pairs of scenes): the pair is
 *shown by the geometry* when p <= 0.01 and the linked poses are the tighter
-(tightness > 0), and not shown when fewer than 10 scenes link it. Recall is printed
+(tightness > 0), and not shown when fewer than 20 scenes link it. Recall is printed
 against all true pairs and against the shown ones; precision always against all of
 them: the oracle only says which misses no test of poses could avoid at this many
 scenes. Then each test of ``learning.relations`` (the
@@ -131,20 +131,20 @@ def linked_objects(scenes: list[Scene]) -> dict[tuple[str, str], dict[int, list[
 def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tuple[bool, float | None, float | None]]:
     """Per true pair: whether the geometry shows it to a test told which objects the
     grammar linked, with that test's p-value and tightness (None, None: in fewer than
-    ``MIN_SCENES`` scenes). The test is the permutation test's (halves of the scenes,
-    energy distance, ``PERMUTATIONS`` relabellings), on one linked edge per scene: the
-    source's pose in its target's frame, against the source of the next scene's edge in
-    the target's frame; the pair shows when p <= ``ALPHA`` and the within-scene poses are
-    tighter (tightness > 0)."""
+    ``PAIR_SCENES`` scenes). The test is the permutation test's (random pairs of scenes,
+    energy distance, ``PERMUTATIONS`` flip patterns), on one linked edge per scene: the
+    source's pose in its target's frame, against the source of the paired scene's edge
+    in the target's frame; the pair shows when p <= ``ALPHA`` and the within-scene poses
+    are tighter (tightness > 0)."""
     import numpy as np
 
-    from scenewright.learning.relations import ALPHA, MIN_SCENES, PERMUTATIONS, energy_test, pair_stream, relative_poses
+    from scenewright.learning.relations import ALPHA, PAIR_SCENES, PERMUTATIONS, flip_test, pair_stream, relative_poses
 
     verdicts = {}
     for (a, b), per_scene in linked_objects(scenes).items():
         rng = pair_stream(seed, a, b)
         indices = sorted(per_scene)
-        if len(indices) < MIN_SCENES:
+        if len(indices) < PAIR_SCENES:
             verdicts[(a, b)] = (False, None, None)
             continue
         objects = [{o.id: o for o in scenes[index].placed_objects()} for index in indices]
@@ -158,13 +158,14 @@ def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tup
                 source, target = options[int(rng.integers(len(options)))]
                 edges.append((objects[k][source], objects[k][target]))
         order = rng.permutation(len(edges))
-        half = len(order) // 2
-        own, shuffled = order[:half], order[half:]
-        targets = _poses([edges[k][1] for k in own]), _poses([edges[k][1] for k in shuffled])
-        sources = _poses([edges[k][0] for k in own]), _poses([edges[k][0] for k in np.roll(shuffled, -1)])
-        within = relative_poses(targets[0], sources[0][:, None])[:, 0]
-        across = relative_poses(targets[1], sources[1][:, None])[:, 0]
-        _, p_value, tightness = energy_test(within, across, PERMUTATIONS, rng)
+        pairs = len(order) // 2
+        ones, twos = order[:pairs], order[pairs : 2 * pairs]  # scene pair k: ones[k], twos[k]
+        targets = _poses([edges[k][1] for k in np.concatenate([ones, twos])])
+        sources = _poses([edges[k][0] for k in np.concatenate([ones, twos])])
+        swapped = np.concatenate([sources[pairs:], sources[:pairs]])  # the other scene's source
+        within = relative_poses(targets, sources[:, None])[:, 0]
+        across = relative_poses(targets, swapped[:, None])[:, 0]
+        _, p_value, tightness = flip_test(within, across, PERMUTATIONS, rng)
         verdicts[(a, b)] = (p_value <= ALPHA and tightness > 0, p_value, tightness)
     return verdicts
 
