@@ -42,8 +42,8 @@ permutation (the default, for continuous layouts)
     (a1, B1, a2, B2) is distributed as (a1, B2, a2, B1): swapping the b's of a pair
     exactly swaps its two within-scene poses with its two across-scene ones. The
     permutation distribution is therefore that of flipping each pair with probability
-    1/2, and the test holds its level exactly. Each pose of the test before (halves of
-    the scenes, below) stood for two scenes; here each stands for one.
+    1/2, and the test holds its level exactly. n scenes give n poses to each side,
+    where the halves below give n / 2.
 
     Halves (10 to 19 scenes: 2^(K-1) flip patterns, up to the swap of the two samples,
     are too few for p <= 0.01 below K = 10). The scenes are split at random into two
@@ -233,7 +233,8 @@ MIN_PAIRED_TIGHTNESS = 0.5
 EXACT_PAIRINGS = 5040
 PAIRINGS = 1999
 #: The most scenes of a pair the permutation test uses (a random subset beyond): its
-#: distance matrix has (2 MAX_SCENES)^2 entries.
+#: distance matrix has (2 MAX_SCENES)^2 entries, 2000 x 2000 as for the halves of 2000
+#: scenes the test had before the pairs of scenes.
 MAX_SCENES = 1000
 #: The angle test: the share of points taken as centres, and the threshold on d.
 ANGLE_SAMPLE = 0.1
