@@ -185,6 +185,22 @@ def test_a_missing_opengl_backend_in_the_workers_is_one_line_not_a_dead_pool(tmp
     assert "died" not in done.stderr
 
 
+def test_the_fork_servers_preload_survives_a_missing_opengl_backend():
+    """The fork server imports ``worker_preload`` before any worker exists and dies of
+    any error but ImportError: a backend that cannot load must leave the import whole,
+    for the worker to report (the test above), with the parser built all the same."""
+    code = (
+        "import scenewright.worker_preload\n"
+        "from scenewright.generator.rules_parser import _build_parser\n"
+        "print(_build_parser.cache_info().currsize)\n"
+    )
+    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+    assert done.stdout.strip() == "1"
+    assert "scenewright.worker_preload" in scenewright.dataset.WORKER_MODULES
+
+
 def test_shrinking_lists_only_scenes_below_n_and_growing_back_makes_nothing(tmp_path):
     grown = tmp_path / "grown"
     run_dataset(spec_of(9), grown, workers=1, producer=fake_scene, progress=False)
