@@ -4,6 +4,8 @@ export tests."""
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 
 import pytest
 
@@ -90,3 +92,10 @@ def or_skip_without_opengl(make):
         if os.environ.get("CI"):
             raise
         pytest.skip(f"no offscreen OpenGL backend: {error}")
+
+
+def run_without_opengl(code: str) -> subprocess.CompletedProcess:
+    """Python ``code`` run in a fresh interpreter whose OpenGL platform cannot load
+    (``PYOPENGL_PLATFORM`` names none), its output captured as text."""
+    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
+    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)

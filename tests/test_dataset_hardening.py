@@ -33,6 +33,7 @@ from scenewright.dataset import (
     available_cpus,
     run_dataset,
 )
+from render_fixtures import run_without_opengl
 from test_dataset import dataset_bytes, fake_scene, metadata_rows, spec_of
 
 TESTS = Path(__file__).parent
@@ -194,8 +195,7 @@ def test_the_fork_servers_preload_survives_a_missing_opengl_backend():
         "from scenewright.generator.rules_parser import _build_parser\n"
         "print(_build_parser.cache_info().currsize)\n"
     )
-    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
-    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    done = run_without_opengl(code)
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
     assert done.stdout.strip() == "1"
     assert "scenewright.worker_preload" in scenewright.dataset.WORKER_MODULES

@@ -2,16 +2,13 @@
 
 import json
 import math
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from PIL import Image
-from render_fixtures import market_scene, or_skip_without_opengl, renderer_or_skip, road, scene_of, thing
+from render_fixtures import market_scene, or_skip_without_opengl, renderer_or_skip, road, run_without_opengl, scene_of, thing
 
 from scenewright.api import build_scene
 from scenewright.core.errors import InputError
@@ -180,8 +177,7 @@ def test_missing_backend_is_a_clear_one_line_error():
         "from scenewright.core.errors import GenerationError\n"
         "try:\n    Renderer(8, 8)\nexcept GenerationError as error:\n    print(error)\n"
     )
-    env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
-    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    done = run_without_opengl(code)
     lines = done.stdout.strip().splitlines()
     assert done.returncode == 0, done.stderr
     assert len(lines) == 1 and "Traceback" not in done.stderr
