@@ -948,8 +948,11 @@ scene with an a and a b of two different scenes, whose placements are independen
 (energy distance, 199 permutations, related at p <= 0.01); --test angle is the test of
 complete spatial randomness by angles of Zhang et al. (related at d >= 1.628);
 --test cooccurrence calls a pair related when most scenes hold both. Of a triangle of
-related types the weakest pair is reported as indirect (a lamp on a nightstand by a
-bed relates to the bed through the nightstand); --no-prune keeps it. Prints a table
+related types a pair that holds only through the third type is reported as indirect
+(a lamp on a nightstand by a bed relates to the bed through the nightstand): one
+resting on another, else for the default test a pair whose poses are no tighter than
+their composition through the third type (the weakest of such), else the weakest
+pair; --no-prune keeps them. Prints a table
 of every pair of types that share a scene, or with --json the same fields (a, b,
 related, statistic, p_value, pairs, scenes, tested, pruned). The same examples and
 seed print the same result. See docs/learning.md.""",
@@ -1374,7 +1377,7 @@ def build_parser() -> CommandLineParser:
     )  # fmt: skip
     relations.add_argument("--seed", type=seed_value, default=0, help="seed of the tests' random draws (0)")
     relations.add_argument(
-        "--no-prune", dest="prune", action="store_false", help="keep indirect relations (the weakest pair of a triangle)"
+        "--no-prune", dest="prune", action="store_false", help="keep indirect relations (a pair of a triangle that holds through the third type)"
     )
 
     learn = command("learn", "induce a rule set from example scenes alone", run_learn)

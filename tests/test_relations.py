@@ -261,7 +261,9 @@ def chain_scenes(rng: np.random.Generator, count: int, cup_height: float | None 
     return scenes
 
 
-def test_the_weakest_pair_of_a_planted_triangle_is_pruned():
+def test_the_indirect_pair_of_a_planted_chain_is_pruned():
+    # table -> chair -> plant: the plant stands where it does relative to the table only
+    # through the chair.
     scenes = chain_scenes(np.random.default_rng(8), 80)
     kept = {(p.a, p.b): p for p in find_relations(scenes, seed=0, prune=False).pairs}
     assert all(kept[pair].related for pair in [("chair", "table"), ("chair", "plant"), ("plant", "table")])
@@ -269,6 +271,34 @@ def test_the_weakest_pair_of_a_planted_triangle_is_pruned():
     assert pruned[("chair", "table")].related and pruned[("chair", "plant")].related
     assert not pruned[("plant", "table")].related and pruned[("plant", "table")].pruned
     assert pruned[("plant", "table")].verdict == "indirect"
+
+
+def distracted_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
+    """A table, a chair loosely in front of it, a plant placed by the table (beside the
+    chair) and four plants anywhere: the chair-plant pair holds only through the table,
+    yet the table's nearest plant is a stray one more often than the chair's is, so the
+    direct table-plant pair is the weakest of the triangle."""
+    scenes = []
+    for index in range(count):
+        table = uniform_pose(rng)
+        chair = offset(table, 0.4, 0.9, math.pi, rng, jitter=0.3)
+        plant = offset(table, 1.2, 1.4, 0.0, rng, jitter=0.05)
+        strays = [("plant", *uniform_pose(rng)) for _ in range(4)]
+        scenes.append(scene_of([("table", *table), ("chair", *chair), ("plant", *plant), *strays], f"s{index}"))
+    return scenes
+
+
+def test_a_pair_is_pruned_when_its_poses_are_no_tighter_than_their_composition_through_the_third():
+    # The direct table-plant pair is the weakest of its triangle and stays; the pair
+    # that holds only through the table, chair-plant, goes.
+    scenes = distracted_scenes(np.random.default_rng(1), 120)
+    found = {(p.a, p.b): p for p in find_relations(scenes, seed=0, prune=False).pairs}
+    triangle = [("chair", "plant"), ("chair", "table"), ("plant", "table")]
+    assert all(found[pair].related for pair in triangle)
+    assert found[("plant", "table")].strength < min(found[pair].strength for pair in triangle[:2])
+    pruned = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
+    assert pruned[("plant", "table")].related and pruned[("chair", "table")].related
+    assert pruned[("chair", "plant")].pruned
 
 
 def test_what_rests_on_an_object_relates_to_others_through_it():
