@@ -13,7 +13,7 @@ render or export it take it as an argument and return their results as values.
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field, fields, is_dataclass
 from typing import Any
 
 import numpy as np
@@ -29,6 +29,8 @@ from .scene_graph import SceneGraph, SceneNode, SceneParams
 #: seeds are split into per-stage streams, ``derivation`` records every random choice.
 #: 3: ``room`` (walls, doors, windows) replaces the ``walls`` flag.
 SCENE_FORMAT_VERSION = 3
+#: Decimal places of the floats in scene.json: micrometres.
+JSON_DIGITS = 6
 
 
 @dataclass
@@ -153,21 +155,7 @@ class Scene:
         return self.room is not None
 
     def to_dict(self) -> dict[str, Any]:
-        room, self.room = self.room, None  # asdict would take the room apart field by field
-        try:
-            data = asdict(self)
-        finally:
-            self.room = room
-        return self._completed(data, room.to_dict() if room else None)
-
-    def _completed(self, data: dict[str, Any], room: dict | None) -> dict[str, Any]:
-        """``data`` (the fields, room in place) with the room's own dict, without an absent
-        ``completion``, with the format's version: the part of scene.json beyond fields."""
-        data["room"] = room
-        if data["completion"] is None:
-            del data["completion"]
-        data["format"] = SCENE_FORMAT_VERSION
-        return data
+        return self._as_dict(None)
 
     def to_json(self, indent: int | None = 1, *, reproducible: bool = False) -> str:
         """scene.json text: deterministic (keys in field order, floats rounded to 1e-6).
@@ -175,13 +163,22 @@ class Scene:
         ``reproducible`` leaves out the wall-clock times (``timings``, ``layout.seconds``),
         the only values that differ between two runs with the same rules and seed.
         """
-        # ``to_dict`` then ``_rounded`` in one pass: a dataset writes one per scene.
-        fields_ = {f.name: None if f.name == "room" else _rounded(getattr(self, f.name)) for f in fields(self)}
-        data = self._completed(fields_, _rounded(self.room.to_dict()) if self.room else None)
+        data = self._as_dict(JSON_DIGITS)
         if reproducible:
             del data["timings"]
             del data["layout"]["seconds"]
         return json.dumps(data, indent=indent, ensure_ascii=False) + "\n"
+
+    def _as_dict(self, digits: int | None) -> dict[str, Any]:
+        """The fields as plain data (``_plain``; floats rounded to ``digits`` when given),
+        the room as its own dict, an absent ``completion`` left out, and the format's
+        version: scene.json's content, in one pass over the scene."""
+        room = self.room.to_dict() if self.room is not None else None
+        data = {f.name: _plain(room if f.name == "room" else getattr(self, f.name), digits) for f in fields(self)}
+        if data["completion"] is None:
+            del data["completion"]
+        data["format"] = SCENE_FORMAT_VERSION
+        return data
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Scene:
@@ -368,16 +365,19 @@ def _node_of_path(path: ScenePath) -> dict[str, Any]:
     }  # fmt: skip
 
 
-def _rounded(value: Any, digits: int = 6) -> Any:
-    """Round floats so scene.json is stable and readable (micrometre precision); a
-    dataclass becomes the dict of its fields, as ``asdict`` makes it."""
+def _plain(value: Any, digits: int | None) -> Any:
+    """``value`` as JSON data: a dataclass as the dict of its fields (as ``asdict``
+    makes it), tuples as lists, floats rounded to ``digits`` when given (scene.json keeps
+    micrometres, so it is stable and readable)."""
     if isinstance(value, float):
+        if digits is None:
+            return value
         rounded = round(value, digits)
         return 0.0 if rounded == 0 else rounded
     if isinstance(value, dict):
-        return {k: _rounded(v, digits) for k, v in value.items()}
+        return {k: _plain(v, digits) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_rounded(v, digits) for v in value]
+        return [_plain(v, digits) for v in value]
     if is_dataclass(value) and not isinstance(value, type):
-        return {f.name: _rounded(getattr(value, f.name), digits) for f in fields(value)}
+        return {f.name: _plain(getattr(value, f.name), digits) for f in fields(value)}
     return value
