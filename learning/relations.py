@@ -461,6 +461,14 @@ def paired_outcome(first: TypePoses, second: TypePoses, same: bool, together: np
     return Outcome(p_value <= alpha and tightness >= MIN_PAIRED_TIGHTNESS, energy, p_value, n * n, n, tightness)
 
 
+def framed(first: TypePoses, second: TypePoses, together: np.ndarray) -> tuple[TypePoses, TypePoses]:
+    """The two types with the frame first: the one with fewer objects in the scenes
+    ``together`` (``first`` on a tie; module docstring)."""
+    if second.counts[together].sum() < first.counts[together].sum():
+        return second, first
+    return first, second
+
+
 def pair_poses(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     """The within- and across-scene poses of the scene-pair test (module docstring) on
     the scenes ``together``, at most ``MAX_SCENES`` of them: (2K, 4) each, the pose of
@@ -486,8 +494,8 @@ def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np
     together = holding_both(first, second, same)
     if len(together) < MIN_PAIRED_SCENES:
         return Outcome(False, None, None, 0, len(together))
-    if not same and second.counts[together].sum() < first.counts[together].sum():
-        first, second = second, first  # the frame: the type with fewer objects
+    if not same:
+        first, second = framed(first, second, together)
     if len(together) < MIN_SCENES:
         return paired_outcome(first, second, same, together, rng, alpha)
     if len(together) >= PAIR_SCENES:
@@ -762,8 +770,7 @@ def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: 
     together = np.flatnonzero((first.counts >= 1) & (second.counts >= 1) & (middle.counts >= 1))
     if len(together) < PAIR_SCENES:
         return None
-    if second.counts[together].sum() < first.counts[together].sum():
-        first, second = second, first  # the frame: the type with fewer objects, as the pair test takes it
+    first, second = framed(first, second, together)
     rng = pair_stream(seed, a, c, b)
     within, composed = composed_poses(first, middle, second, together, rng)
     _, p_value, strength = flip_test(within, composed, PERMUTATIONS, rng)
