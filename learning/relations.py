@@ -317,6 +317,21 @@ def relative_poses(centres: np.ndarray, others: np.ndarray) -> np.ndarray:
     return np.concatenate([local, np.cos(turn)[..., None], np.sin(turn)[..., None]], axis=-1)
 
 
+def nearest_objects(
+    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None
+) -> np.ndarray:
+    """The pose (x, z, yaw) of the object of ``others`` nearest each of ``centres`` (n,
+    3), in the scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given ->
+    (n, 3)."""
+    rows = np.arange(len(scenes))
+    candidates = others.poses[scenes]  # (n, K, 3)
+    valid = np.arange(candidates.shape[1])[None, :] < others.counts[scenes][:, None]
+    if left_out is not None:
+        valid[rows, left_out] = False
+    distance = np.where(valid, np.hypot(*(candidates[..., :2] - centres[:, None, :2]).transpose(2, 0, 1)), np.inf)
+    return candidates[rows, np.argmin(distance, axis=1)]
+
+
 def nearest_poses(
     first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, same: bool,
     rng: np.random.Generator, chosen: np.ndarray | None = None,
@@ -325,22 +340,19 @@ def nearest_poses(
     when given) and the nearest b of scene ``b_scenes[k]`` in its frame -> (n, 4). When
     ``same``, the a itself is no candidate in its own scene, and in another scene one
     random a is left out."""
-    rows = np.arange(len(a_scenes))
     if chosen is None:
         chosen = np.floor(rng.random(len(a_scenes)) * first.counts[a_scenes]).astype(int)
     centres = first.poses[a_scenes, chosen]
-    candidates = second.poses[b_scenes]
-    valid = np.arange(candidates.shape[1])[None, :] < second.counts[b_scenes][:, None]
+    left_out = None
     if same:
         # The a's counterpart is left out: the object of the same index, which in a scene
         # made from rules plays the same part (the left counter, not the right one);
         # where the other scene has no such index, a random one.
         counts = second.counts[b_scenes]
         at_random = np.floor(rng.random(len(b_scenes)) * counts).astype(int)
-        valid[rows, np.where(chosen < counts, chosen, at_random)] = False
-    relative = relative_poses(centres, candidates)
-    distance = np.where(valid, np.hypot(relative[..., 0], relative[..., 1]), np.inf)
-    return relative[rows, np.argmin(distance, axis=1)]
+        left_out = np.where(chosen < counts, chosen, at_random)
+    nearest = nearest_objects(centres, second, b_scenes, left_out)
+    return relative_poses(centres, nearest[:, None])[:, 0]
 
 
 def scaled_distances(pooled: np.ndarray) -> np.ndarray:
@@ -730,15 +742,6 @@ def pair_stream(seed: int, *names: str) -> np.random.Generator:
     given: child k of the ``relations`` stage, k a hash of the names."""
     key = int.from_bytes(hashlib.sha256("\0".join(names).encode()).digest()[:4], "big")
     return stream(seed, "relations", key)
-
-
-def nearest_objects(centres: np.ndarray, others: TypePoses, scenes: np.ndarray) -> np.ndarray:
-    """The pose (x, z, yaw) of the object of ``others`` nearest each of ``centres`` (n,
-    3), in the scene ``scenes[k]`` -> (n, 3)."""
-    candidates = others.poses[scenes]  # (n, K, 3)
-    valid = np.arange(candidates.shape[1])[None, :] < others.counts[scenes][:, None]
-    distance = np.where(valid, np.hypot(*(candidates[..., :2] - centres[:, None, :2]).transpose(2, 0, 1)), np.inf)
-    return candidates[np.arange(len(scenes)), np.argmin(distance, axis=1)]
 
 
 def composed_poses(
