@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scenewright.cli import EXAMPLES, main
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.dataset import check_same_settings, dataset_spec
@@ -447,6 +449,31 @@ def test_a_fixed_arrangement_needs_most_scenes_and_the_two_next_to_each_other(sh
     result = find_relations(pinned_scenes(np.random.default_rng(4), 200, share, left), seed=0)
     pair = {(p.a, p.b): p for p in result.pairs}[("counter", "sink")]
     assert pair.related is related and pair.fixed is related
+
+
+@settings(max_examples=25, deadline=None)
+@given(count=st.integers(5, 40), seed=st.integers(0, 2**16), anchor=st.booleans())
+def test_no_pair_placed_independently_is_a_fixed_arrangement(count, seed, anchor):
+    # Tables, chairs and plants anywhere in a 4 x 4 m room (next to each other often),
+    # one table at a fixed place when ``anchor``: nothing stands at one pose to another
+    # in three scenes of four, within a scene and across scenes alike.
+    rng = np.random.default_rng(seed)
+    scenes = []
+    for index in range(count):
+        placed = [(kind, float(rng.uniform(-2, 2)), float(rng.uniform(-2, 2)), float(rng.uniform(-math.pi, math.pi)))
+                  for kind, most in (("table", 2), ("chair", 3), ("plant", 2)) for _ in range(rng.integers(1, most + 1))]  # fmt: skip
+        if anchor:
+            placed[0] = ("table", 0.0, -1.5, 0.0)
+        scenes.append(scene_of(placed, f"s{index}"))
+    assert not any(pair.fixed for pair in find_relations(scenes, seed=seed % 7, prune=False).pairs)
+
+
+@settings(max_examples=20, deadline=None)
+@given(count=st.integers(5, 60), seed=st.integers(0, 2**16), left=st.floats(0.6, 2.4))
+def test_a_counter_fixed_beside_a_fixed_sink_is_always_related(count, seed, left):
+    # However many scenes (from five) and however far apart within NextTo's 2 m gap.
+    pair = {(p.a, p.b): p for p in find_relations(pinned_scenes(np.random.default_rng(seed), count, 1.0, left)).pairs}
+    assert pair[("counter", "sink")].related
 
 
 def test_a_dataset_without_images_writes_scene_json_and_text(tmp_path, capsys):
