@@ -34,7 +34,8 @@ permutation test, the angle test, co-occurrence) is run on the cached scene.json
 as ``scenewright relations`` reads them, and its precision and recall against the
 truth are printed with the pairs it missed (with their p-value and strength, or
 pruned) and the ones it made up. ``--jitter`` shows instead what the permutation and
-the angle test make of one planted relation as its jitter grows.
+the angle test make of one planted relation as its jitter grows. With more than one
+rule set, a last table gives every set's precision and recall per test.
 
 Prints figures only; nothing is asserted.
 """
@@ -43,6 +44,7 @@ from __future__ import annotations
 
 import argparse
 import hashlib
+import math
 import multiprocessing
 import tempfile
 import time
@@ -184,7 +186,9 @@ def scored(found: set, truth: set) -> tuple[float, float]:
     return precision, recall
 
 
-def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> None:
+def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> dict[str, tuple[float, float]]:
+    """Print how each test fares on the scenes ``paths``; return per test its precision
+    and recall."""
     from scenewright.learning.relations import TESTS, find_relations
 
     started = time.process_time()
@@ -200,12 +204,14 @@ def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> None:
     if hidden:
         print("  not shown even to a test told the linked objects: " + ", ".join(
             f"{a}-{b} ({_oracle_figures(oracle[(a, b)])})" for a, b in hidden))  # fmt: skip
+    scores = {}
     for test in TESTS:
         started = time.process_time()
         result = find_relations([e.scene for e in examples], test=test, seed=seed)
         seconds = time.process_time() - started
         found = {(pair.a, pair.b) for pair in result.pairs if pair.related}
         precision, recall = scored(found, truth)
+        scores[test] = (precision, recall)
         _, shown_recall = scored(found, visible)
         pruned = sum(pair.pruned for pair in result.pairs)
         print(f"  {test:12s} precision {precision:.2f}  recall {recall:.2f}  recall of the shown {shown_recall:.2f}  "
@@ -219,6 +225,23 @@ def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> None:
                                          for a, b in missed))  # fmt: skip
         if extra:
             print("    not in the grammar: " + ", ".join(f"{a}-{b}" for a, b in extra))
+    return scores
+
+
+def summary(scores: dict[str, dict[str, tuple[float, float]]]) -> str:
+    """A table of every rule set's precision and recall per test ("-" where there is no
+    true pair, or nothing found)."""
+    tests = list(next(iter(scores.values())))
+    width = max(len(name) for name in scores) + 2
+    lines = [" " * width + "".join(f"{test:>22s}" for test in tests),
+             " " * width + "".join(f"{'precision  recall':>22s}" for _ in tests)]  # fmt: skip
+    for name, per_test in scores.items():
+        cells = "".join(
+            f"{'-' if math.isnan(p) else f'{p:.2f}':>13s}{'-' if math.isnan(r) else f'{r:.2f}':>9s}"
+            for p, r in per_test.values()
+        )
+        lines.append(f"{name:<{width}s}{cells}")
+    return "\n".join(lines)
 
 
 def _oracle_figures(verdict: tuple[bool, float | None, float | None]) -> str:
@@ -240,8 +263,6 @@ def _figures(pair) -> str:
 def jitter_sweep(count: int, seed: int) -> None:
     """A chair 0.9 m in front of a table and turned to face it, placed with Gaussian
     jitter of each size, in ``count`` scenes of 8 x 8 m: what each test makes of it."""
-    import math
-
     import numpy as np
 
     from scenewright.core.scene import SceneObject
@@ -300,12 +321,16 @@ def main() -> None:
     if args.jitter:
         jitter_sweep(args.scenes, args.seed)
         return
+    scores = {}
     for name in args.rules or shipped_rule_sets():
         paths, failed, spent = generated_scenes(name, args.scenes, args.cache, args.workers)
         if spent:
             print(f"{name}: laid out {args.scenes} scenes' missing ones in {spent:.0f} CPU s", flush=True)
         if not args.generate_only:
-            evaluate(Path(name).stem, paths, failed, args.seed)
+            scores[Path(name).stem] = evaluate(Path(name).stem, paths, failed, args.seed)
+    if len(scores) > 1:
+        print(f"\nprecision and recall against the grammar's pairs, {args.scenes} scenes each, seed {args.seed}:")
+        print(summary(scores))
 
 
 if __name__ == "__main__":
