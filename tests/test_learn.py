@@ -268,3 +268,28 @@ def test_a_type_resting_on_two_types_hangs_off_each(tmp_path):
     rules_path = tmp_path / "books.rules"
     rules_path.write_text(text)
     assert [d for d in check_rules(rules_path) if d.is_error] == []
+
+
+
+def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
+    # A rug in front of the reading chair in 6 corners of 10, related to the chair and
+    # to the lamp beside it (the most related types, and the largest footprint): anchored
+    # on the rug, the group would leave the chair and the lamp of the other four corners
+    # standing alone. The chair is in every corner: it holds all the group's objects.
+    from types import SimpleNamespace
+
+    import networkx as nx
+
+    from scenewright.learning.induce import _anchor
+
+    def corner(with_rug: bool):
+        kinds = ["reading_chair", "floor_lamp"] + (["rug"] if with_rug else [])
+        return SimpleNamespace(placed_objects=lambda: [SimpleNamespace(type=kind) for kind in kinds])
+
+    graph = nx.Graph([("rug", "reading_chair"), ("rug", "floor_lamp")])
+    catalog = {"rug": SimpleNamespace(size=(1.4, 0.01, 1.0)), "reading_chair": SimpleNamespace(size=(0.85, 1.0, 0.85)),
+               "floor_lamp": SimpleNamespace(size=(0.35, 1.6, 0.35))}  # fmt: skip
+    scenes = [corner(index < 6) for index in range(10)]
+    assert _anchor(set(graph), graph, catalog, scenes) == "reading_chair"
+    # With the rug in every corner, it is the anchor again (most related, largest).
+    assert _anchor(set(graph), graph, catalog, [corner(True) for _ in range(10)]) == "rug"
