@@ -664,7 +664,8 @@ def carried_routes(
     its carrier (followed down to what stands on the floor): a chair related to the
     monitor on a desk is placed by the desk, and two things on one desk are placed
     through the desk alone. A pair of which one rests (through others) on the other
-    stays as it is."""
+    stays as it is, and so does a resting pair whose upper type is carried by another
+    type in more scenes (books on the desk in most, on the bookshelf in some)."""
     carrier: dict[str, str] = {}
     for upper, lower in sorted(resting, key=lambda pair: (-counts.get(pair, (0, 0))[0], pair)):
         carrier.setdefault(upper, lower)
@@ -678,7 +679,7 @@ def carried_routes(
     routes: dict[tuple[str, str], tuple[str, str] | None] = {}
     for a, b in related:
         below_a, below_b = chain(a), chain(b)
-        if a in below_b or b in below_a:
+        if a in below_b or b in below_a or (a, b) in resting or (b, a) in resting:
             routes[(a, b)] = (a, b)
             continue
         root_a, root_b = below_a[-1], below_b[-1]
