@@ -952,12 +952,13 @@ related types a pair that holds only through the third type is reported as indir
 (a lamp on a nightstand by a bed relates to the bed through the nightstand): one
 resting on another, else for the default test a pair whose poses are no tighter than
 their composition through the third type (the weakest of such), else the weakest
-pair; --no-prune keeps them. A pair the room fixes side by side in most scenes (a
-stove beside a sink under the one window), which no test of poses can contrast, is
-related as "fixed". Prints a table of every pair of types that share a scene, or
-with --json the same fields (a, b, related, statistic, p_value, pairs, scenes,
-strength, tested, fixed, pruned). The same examples and
-seed print the same result. See docs/learning.md.""",
+pair; --no-prune keeps them. A type resting on another in half the scenes holding both
+or more (measured from the boxes) is related to it whatever the p-value, from 5 scenes. A
+pair the room fixes side by side in most scenes (a stove beside a sink under the one
+window), which no test of poses can contrast, is related as "fixed". Prints a table
+of every pair of types that share a scene, or with --json the same fields (a, b,
+related, statistic, p_value, pairs, scenes, strength, tested, fixed, pruned). The
+same examples and seed print the same result. See docs/learning.md.""",
     "learn": """\
 examples:
   scenewright learn examples/sets/desks/*.json -o desks.rules --report learn.json
