@@ -43,7 +43,9 @@ rests on; ``Induction.text()`` is the rules file and ``to_dict()`` the report.
 5. **Counts.** How many children each parent object had (``0.85? 1..3 {6 4 1}``: with
    85 % of the parents, one to three, weighted as seen); how many anchors each scene
    had; types related to no other type, and children seen in scenes without their
-   parent type, stand alone in the start production with their counts per scene.
+   parent type, stand alone in the start production with their counts per scene (a
+   child with members of its own brings them: ``rules_text`` writes it a production
+   of its own, ``SideTableAlone``).
 6. **Walls.** In examples with a room, each standing object is measured against the
    wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
    gets it (``AgainstWall some wall``: the layout chooses the wall).

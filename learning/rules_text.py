@@ -85,6 +85,8 @@ class RulesWriter:
         self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
         self.depth = 1
         self.types = set(induction.catalog)
+        #: Member productions written, by member: written once, called wherever needed.
+        self.written: dict[int, tuple[str, int]] = {}
 
     # -- names --
 
@@ -211,7 +213,9 @@ class RulesWriter:
             note += f", {unplaced} in a cluster no label fits"
         largest = max(member.per_parent) if member.per_parent else 0
         if member.children or len(member.placements) > 1:
-            name, below = self.member_production(member, depth + 1)
+            if id(member) not in self.written:
+                self.written[id(member)] = self.member_production(member, depth + 1)
+            name, below = self.written[id(member)]
             return f"{prefix}{name}({target})    # {note}", largest * below
         labels = member.placements[0].labels if member.placements else ()
         if member.placements:
@@ -263,6 +267,40 @@ class RulesWriter:
         self.productions.append(lines + body_lines)
         return own, most
 
+    def member_of(self, type_name: str, parent: str) -> Member | None:
+        """The member of some group that places ``type_name`` by ``parent``."""
+        stack = [m for group in self.induction.groups for m in group.members]
+        while stack:
+            member = stack.pop()
+            if member.type == type_name and member.parent == parent:
+                return member
+            stack += member.children
+        return None
+
+    def alone_production(self, member: Member, wall: str | None) -> tuple[str, int]:
+        """Write the production of ``member``'s type made without its parent (objects
+        seen without one) with its own members by it; returns its name and the most
+        objects it makes."""
+        name = _unique(f"{camel(member.type)}Alone", self.rule_names)
+        bound = self.binding(member.type, set())
+        noun = self.induction.catalog[member.type].noun
+        lines = comment_lines(f"{name}: {with_article(noun)} seen without {with_article(self.induction.catalog[member.parent].noun)}, "
+                              "and what stands by it")  # fmt: skip
+        lines += [f"{name} -> {{", f"{self.INDENT}{member.type} as {bound}{self.wall_words(wall)}"]
+        body, most = self.members_body(member.children, bound)
+        self.productions.append(lines + body)
+        return name, most
+
+    def members_body(self, members: Sequence[Member], bound: str) -> tuple[list[str], int]:
+        """The statements making ``members`` by the object bound to ``bound``, closing a
+        production's body; and the most objects the body makes with that object."""
+        lines, most = [], 1
+        for member in members:
+            statement, made = self.member_statement(member, bound, 2)
+            lines.append(self.INDENT + statement)
+            most += made
+        return lines + ["}", ""], most
+
     def group_lines(self, group: Group) -> tuple[list[str], int]:
         taken: set[str] = set()
         bound = self.binding(group.anchor, taken)
@@ -283,13 +321,8 @@ class RulesWriter:
             share = ind.walls[group.anchor]
             wall_note = f"    # {group.wall}: {share.held[group.wall]} of {share.objects} {self.noun_plural(group.anchor)}"
         lines.append(f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}")
-        most = 1
-        for member in group.members:
-            statement, made = self.member_statement(member, bound, 2)
-            lines.append(self.INDENT + statement)
-            most += made
-        lines += ["}", ""]
-        return lines, most
+        body, most = self.members_body(group.members, bound)
+        return lines + body, most
 
     def text(self) -> str:
         ind = self.induction
@@ -306,6 +339,7 @@ class RulesWriter:
             most += max(group.per_scene) * per_group
         for item in ind.loose:
             counts, seen, detail = count_parts(item.per_scene, ind.scenes)
+            member = None if item.unsupported or not item.without else self.member_of(item.type, item.without)
             if item.unsupported:
                 why = "resting on no " + " or ".join(ind.catalog[t].noun for t in item.without.split(" or "))
             elif item.without:
@@ -317,6 +351,12 @@ class RulesWriter:
             if item.wall:
                 share = ind.walls[item.type]
                 wall = f"; {item.wall} {share.held[item.wall]} of {share.objects} times"
+            if member is not None and member.children:
+                # Seen without its parent, it still brings what stands by it.
+                name, made = self.alone_production(member, item.wall)
+                start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{name}    # {why}: in {seen}{wall}")
+                most += max(item.per_scene) * made
+                continue
             start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
                          f"    # {why}: in {seen}{wall}")  # fmt: skip
             most += max(item.per_scene)

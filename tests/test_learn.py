@@ -293,3 +293,59 @@ def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
     assert _anchor(set(graph), graph, catalog, scenes) == "reading_chair"
     # With the rug in every corner, it is the anchor again (most related, largest).
     assert _anchor(set(graph), graph, catalog, [corner(True) for _ in range(10)]) == "rug"
+
+
+def reading_corners(folder: Path) -> list[Path]:
+    """Fourteen hand-written reading corners: a reading chair with its back to some wall,
+    a floor lamp on one side of it, a side table on the other (a teacup on it in most), a
+    rug in front of the chair in some, a bookshelf against the opposite wall."""
+    import random
+
+    draw = random.Random(5)
+    paths = []
+    for index in range(14):
+        width, depth = draw.choice([(3.6, 3.0), (4.0, 3.4), (4.4, 3.6)])
+        wall = draw.choice(["north", "south", "east", "west"])
+        along = draw.uniform(-0.8, 0.8)
+        x, z, yaw = {"north": (along * width / 2, -depth / 2 + 0.5, 0), "south": (along * width / 2, depth / 2 - 0.5, 180),
+                     "east": (width / 2 - 0.5, along * depth / 2, 270), "west": (-width / 2 + 0.5, along * depth / 2, 90)}[wall]  # fmt: skip
+        turn = math.radians(yaw)
+
+        def by(left: float, front: float) -> list[float]:  # a point left/front of the chair, in its frame
+            return [round(x + left * math.cos(turn) + front * math.sin(turn), 3), round(z - left * math.sin(turn) + front * math.cos(turn), 3)]
+
+        side = draw.choice([-1, 1])
+        objects = [
+            {"id": "chair", "type": "reading_chair", "size": [0.85, 1.0, 0.85], "position": by(0, 0), "yaw": yaw},
+            {"id": "lamp", "type": "floor_lamp", "size": [0.35, 1.6, 0.35],
+             "position": by(side * (0.775 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)), "yaw": yaw},
+            {"id": "table", "type": "side_table", "size": [0.45, 0.55, 0.45],
+             "position": by(-side * (0.725 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)), "yaw": yaw},
+        ]  # fmt: skip
+        if draw.random() < 0.7:
+            objects.append({"id": "cup", "type": "teacup", "size": [0.1, 0.1, 0.1], "position": objects[2]["position"], "parent": "table"})
+        if draw.random() < 0.6:
+            objects.append({"id": "rug", "type": "rug", "size": [1.4, 0.01, 1.0], "position": by(0, 1.025), "yaw": yaw})
+        opposite = {"north": ("south", 180), "south": ("north", 0), "east": ("west", 90), "west": ("east", 270)}[wall]
+        offset = draw.uniform(-0.6, 0.6)
+        shelf = {"north": [offset * width / 2, -depth / 2 + 0.18], "south": [offset * width / 2, depth / 2 - 0.18],
+                 "east": [width / 2 - 0.18, offset * depth / 2], "west": [-width / 2 + 0.18, offset * depth / 2]}[opposite[0]]  # fmt: skip
+        objects.append({"id": "shelf", "type": "bookshelf", "size": [1.0, 1.8, 0.35], "position": [round(v, 3) for v in shelf], "yaw": opposite[1]})
+        path = folder / f"nook{index:02d}.json"
+        path.write_text(json.dumps({"room": {"width": width, "depth": depth}, "objects": objects}))
+        paths.append(path)
+    return paths
+
+
+def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path):
+    # The side tables hang off the rug (the tests relate them to it), but five corners
+    # have no rug: their side tables, made at the top level, keep their teacups and the
+    # bookshelf across the room, so every corner has a derivation of the learned rules.
+    induction = induce(load_examples(reading_corners(tmp_path)), name="corners", seed=0)
+    text = induction.text()
+    alone = text[text.index("SideTableAlone -> {"):]
+    alone = alone[: alone.index("}")]
+    assert "? SideTableAlone" in text and "teacup OnTopOf" in alone and "bookshelf" in alone
+    rules_path = tmp_path / "corners.rules"
+    rules_path.write_text(text)
+    assert [d for d in check_rules(rules_path) if d.is_error] == []
