@@ -551,8 +551,9 @@ def share_at_one_pose(
 ) -> float:
     """The share of the a's ``first.poses[a_scenes, chosen]`` whose nearest b of the scene
     ``b_scenes[k]`` stands next to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of the
-    median of those poses in a's frame (when ``same``, the a's own index is no
-    candidate)."""
+    median of those poses in a's frame (when ``same``, the object of the a's index is
+    no candidate: the a itself in its own scene, its counterpart in another, the first
+    a there when that scene has fewer)."""
     centres = first.poses[a_scenes, chosen]
     left_out = np.where(chosen < second.counts[b_scenes], chosen, 0) if same else None
     index = nearest_indices(centres, second, b_scenes, left_out)
@@ -737,8 +738,8 @@ class PairRelation:
     ``statistic`` and ``p_value`` (None when not tested or, for co-occurrence, no
     p-value); ``pairs``, the relative poses the test used; ``scenes``, the scenes that
     hold both; ``strength``, what ranks related pairs for pruning (the permutation
-    test's tightness, the angle test's d, the co-occurrence share); ``fixed``: related
-    as a fixed arrangement, which the test itself did not find (module docstring);
+    test's tightness, the angle test's d, the co-occurrence share); ``fixed``: found
+    related as a fixed arrangement, which the test itself did not find (module docstring);
     ``pruned``: found related but pruned as indirect."""
 
     a: str
