@@ -388,16 +388,19 @@ def nearest_poses(
     if chosen is None:
         chosen = np.floor(rng.random(len(a_scenes)) * first.counts[a_scenes]).astype(int)
     centres = first.poses[a_scenes, chosen]
-    left_out = None
-    if same:
-        # The a's counterpart is left out: the object of the same index, which in a scene
-        # made from rules plays the same part (the left counter, not the right one);
-        # where the other scene has no such index, a random one.
-        counts = second.counts[b_scenes]
-        at_random = np.floor(rng.random(len(b_scenes)) * counts).astype(int)
-        left_out = np.where(chosen < counts, chosen, at_random)
+    left_out = counterparts(second, b_scenes, chosen, rng) if same else None
     nearest = nearest_objects(centres, second, b_scenes, left_out)
     return relative_poses(centres, nearest[:, None])[:, 0]
+
+
+def counterparts(others: TypePoses, scenes: np.ndarray, chosen: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """For two objects of one type: the object of scene ``scenes[k]`` left out as the
+    counterpart of the ``chosen[k]``-th a (the a itself in its own scene) -> (n,). The
+    object of the same index, which in a scene made from rules plays the same part (the
+    left counter, not the right one); where that scene has no such index, a random one."""
+    counts = others.counts[scenes]
+    at_random = np.floor(rng.random(len(scenes)) * counts).astype(int)
+    return np.where(chosen < counts, chosen, at_random)
 
 
 def scaled_distances(pooled: np.ndarray) -> np.ndarray:
@@ -547,15 +550,15 @@ def pair_poses(first: TypePoses, second: TypePoses, same: bool, together: np.nda
 
 
 def share_at_one_pose(
-    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool
-) -> float:
+    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
+    rng: np.random.Generator,
+) -> float:  # fmt: skip
     """The share of the a's ``first.poses[a_scenes, chosen]`` whose nearest b of the scene
     ``b_scenes[k]`` stands next to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of the
-    median of those poses in a's frame (when ``same``, the object of the a's index is
-    no candidate: the a itself in its own scene, its counterpart in another, the first
-    a there when that scene has fewer)."""
+    median of those poses in a's frame (when ``same``, the a's ``counterparts`` are no
+    candidates)."""
     centres = first.poses[a_scenes, chosen]
-    left_out = np.where(chosen < second.counts[b_scenes], chosen, 0) if same else None
+    left_out = counterparts(second, b_scenes, chosen, rng) if same else None
     index = nearest_indices(centres, second, b_scenes, left_out)
     pose = relative_poses(centres, second.poses[b_scenes, index][:, None])[:, 0]  # (n, 4)
     turn = np.arctan2(pose[:, 3], pose[:, 2])
@@ -578,9 +581,9 @@ def fixed_arrangement(first: TypePoses, second: TypePoses, same: bool, together:
     does the nearest b of the next scene of the cycle (the room fixes both)."""
     scenes = rng.permutation(together)[:MAX_SCENES]
     chosen = np.floor(rng.random(len(scenes)) * first.counts[scenes]).astype(int)
-    if share_at_one_pose(first, second, scenes, scenes, chosen, same) < FIXED_SHARE:
+    if share_at_one_pose(first, second, scenes, scenes, chosen, same, rng) < FIXED_SHARE:
         return False
-    return share_at_one_pose(first, second, scenes, np.roll(scenes, -1), chosen, same) >= FIXED_SHARE
+    return share_at_one_pose(first, second, scenes, np.roll(scenes, -1), chosen, same, rng) >= FIXED_SHARE
 
 
 def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
