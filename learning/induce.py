@@ -531,6 +531,9 @@ class Loose:
     without: str | None = None
     #: ``without`` names what it usually rests on (it was seen resting on none of them).
     unsupported: bool = False
+    #: For a child seen without its parent: the group member it is elsewhere, whose own
+    #: members it brings (``rules_text``).
+    member: Member | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict:
         return {"type": self.type, "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
@@ -704,13 +707,14 @@ def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[
     return dict(shares)
 
 
-def _anchor(component: set[str], graph: nx.Graph, catalog: dict[str, TypeEntry], scenes: Sequence[Scene]) -> str:
+def _anchor(component: set[str], graph: nx.Graph, catalog: dict[str, TypeEntry], counts: dict[str, np.ndarray]) -> str:
     """The type of ``component`` whose scenes hold the most of the component's objects
-    (module docstring), then related to the most others, then with the largest footprint."""
-    types_per_scene = [Counter(o.type for o in s.placed_objects()) for s in scenes]
+    (module docstring), then related to the most others, then with the largest
+    footprint; ``counts``: each type's objects per scene."""
+    held = sum(counts[u] for u in component)  # (scenes,): the component's objects
 
     def covered(t: str) -> int:
-        return sum(sum(counts[u] for u in component) for counts in types_per_scene if counts[t])
+        return int(held[counts[t] > 0].sum())
 
     return max(
         sorted(component),
@@ -754,7 +758,8 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
         raise InputError("the example scenes hold no objects")
     relations = find_relations(scenes, test=test, seed=seed)
     supports = [scene_supports(scene) for scene in scenes]
-    resting = resting_pairs(scenes, type_poses(scenes))
+    poses = type_poses(scenes)
+    resting = resting_pairs(scenes, poses)
     resting_counts = _support_counts(scenes, supports)
 
     by_type: dict[str, list[SceneObject]] = defaultdict(list)
@@ -791,8 +796,10 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
     for (a, b), weight in sorted(strength.items()):
         graph.add_edge(a, b, weight=weight)
 
+    counts = {t: poses[t].counts for t in poses}  # each type's objects per scene
+
     def count_per_scene(type_name: str) -> Counter:
-        return Counter(sum(o.type == type_name for o in s.placed_objects()) for s in scenes)
+        return Counter(counts[type_name].tolist())
 
     rule_names: set[str] = {"Scene"}
     groups: list[Group] = []
@@ -802,16 +809,21 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
     def member(parent: str, child: str, carried: bool, depth: int = 0) -> Member:
         instances = edge_instances(scenes, supports, parent, child, resting_only=carried)
         placements, clusters, outliers = placements_of(instances)
+        orphans = None
         if not carried and instances.orphans.any():
-            loose.append(Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent))
+            orphans = Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent)
+            loose.append(orphans)
         below = [] if depth > len(catalog) else (
             [member(child, c, False, depth + 1) for c in tree.get(child, [])]
             + [member(child, u, True, depth + 1) for u in uppers_of.get(child, [])]
         )  # fmt: skip
-        return Member(
+        made = Member(
             child, parent, len(instances.poses), instances.per_parent, placements, clusters, outliers,
             None if carried else walls.get(child, WallShare()).label(), below, carried,
         )  # fmt: skip
+        if orphans is not None:
+            orphans.member = made
+        return made
 
     components = sorted((set(c) for c in nx.connected_components(graph)), key=lambda c: sorted(c))
     for component in components:
@@ -819,7 +831,7 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
             (only,) = component
             loose.append(Loose(only, count_per_scene(only), walls.get(only, WallShare()).label()))
             continue
-        anchor = _anchor(component, graph, catalog, scenes)
+        anchor = _anchor(component, graph, catalog, counts)
         tree = _tree(component, graph, anchor)
         members = [member(anchor, child, False) for child in tree.get(anchor, [])]
         members += [member(anchor, upper, True) for upper in uppers_of.get(anchor, [])]

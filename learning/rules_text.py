@@ -267,16 +267,6 @@ class RulesWriter:
         self.productions.append(lines + body_lines)
         return own, most
 
-    def member_of(self, type_name: str, parent: str) -> Member | None:
-        """The member of some group that places ``type_name`` by ``parent``."""
-        stack = [m for group in self.induction.groups for m in group.members]
-        while stack:
-            member = stack.pop()
-            if member.type == type_name and member.parent == parent:
-                return member
-            stack += member.children
-        return None
-
     def alone_production(self, member: Member, wall: str | None) -> tuple[str, int]:
         """Write the production of ``member``'s type made without its parent (objects
         seen without one) with its own members by it; returns its name and the most
@@ -339,7 +329,6 @@ class RulesWriter:
             most += max(group.per_scene) * per_group
         for item in ind.loose:
             counts, seen, detail = count_parts(item.per_scene, ind.scenes)
-            member = None if item.unsupported or not item.without else self.member_of(item.type, item.without)
             if item.unsupported:
                 why = "resting on no " + " or ".join(ind.catalog[t].noun for t in item.without.split(" or "))
             elif item.without:
@@ -351,9 +340,9 @@ class RulesWriter:
             if item.wall:
                 share = ind.walls[item.type]
                 wall = f"; {item.wall} {share.held[item.wall]} of {share.objects} times"
-            if member is not None and member.children:
+            if item.member is not None and item.member.children:
                 # Seen without its parent, it still brings what stands by it.
-                name, made = self.alone_production(member, item.wall)
+                name, made = self.alone_production(item.member, item.wall)
                 start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{name}    # {why}: in {seen}{wall}")
                 most += max(item.per_scene) * made
                 continue

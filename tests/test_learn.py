@@ -282,17 +282,14 @@ def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
 
     from scenewright.learning.induce import _anchor
 
-    def corner(with_rug: bool):
-        kinds = ["reading_chair", "floor_lamp"] + (["rug"] if with_rug else [])
-        return SimpleNamespace(placed_objects=lambda: [SimpleNamespace(type=kind) for kind in kinds])
-
     graph = nx.Graph([("rug", "reading_chair"), ("rug", "floor_lamp")])
     catalog = {"rug": SimpleNamespace(size=(1.4, 0.01, 1.0)), "reading_chair": SimpleNamespace(size=(0.85, 1.0, 0.85)),
                "floor_lamp": SimpleNamespace(size=(0.35, 1.6, 0.35))}  # fmt: skip
-    scenes = [corner(index < 6) for index in range(10)]
-    assert _anchor(set(graph), graph, catalog, scenes) == "reading_chair"
+    everywhere = np.ones(10, dtype=int)
+    counts = {"reading_chair": everywhere, "floor_lamp": everywhere, "rug": (np.arange(10) < 6).astype(int)}
+    assert _anchor(set(graph), graph, catalog, counts) == "reading_chair"
     # With the rug in every corner, it is the anchor again (most related, largest).
-    assert _anchor(set(graph), graph, catalog, [corner(True) for _ in range(10)]) == "rug"
+    assert _anchor(set(graph), graph, catalog, {**counts, "rug": everywhere}) == "rug"
 
 
 def reading_corners(folder: Path) -> list[Path]:
