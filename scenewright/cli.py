@@ -955,10 +955,13 @@ their composition through the third type (the weakest of such), else the weakest
 pair; --no-prune keeps them. A type resting on another in half the scenes holding both
 or more (measured from the boxes) is related to it whatever the p-value, from 5 scenes. A
 pair the room fixes side by side in most scenes (a stove beside a sink under the one
-window), which no test of poses can contrast, is related as "fixed". Prints a table
-of every pair of types that share a scene, or with --json the same fields (a, b,
-related, statistic, p_value, pairs, scenes, strength, tested, fixed, pruned). The
-same examples and seed print the same result. See docs/learning.md.""",
+window), which no test of poses can contrast, is related as "fixed". In scenes with
+groups (a home, a market stand) each type is tested in each kind of group it stands in
+(a bush in a home, a bush in a park), and a type pair takes the verdict of its most
+related pair of such roles ("in groups"). Prints a table of every pair of types that
+share a scene, or with --json the same fields (a, b, related, statistic, p_value,
+pairs, scenes, strength, tested, fixed, pruned, groups). The same examples and seed
+print the same result. See docs/learning.md.""",
     "learn": """\
 examples:
   scenewright learn examples/sets/desks/*.json -o desks.rules --report learn.json
