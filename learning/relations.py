@@ -283,6 +283,7 @@ pairs does not matter.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import itertools
 import math
@@ -1069,6 +1070,27 @@ def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: 
     return min(float(np.mean(tightnesses)) for tightnesses in draws) < MIN_DIRECT_TIGHTNESS
 
 
+def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float, float]:
+    """How far apart an a and a b stand: in each scene holding both, the pair of an a
+    and a b closest by the gap between their footprints (rounded to 0.1 m, as the layout
+    measures boxes square to each other), then by the distance of their centres; the
+    medians over the scenes of that gap and that distance."""
+    gaps, centres = [], []
+    for scene in holding_both(first, second, same):
+        a, b = first.poses[scene, : first.counts[scene]], second.poses[scene, : second.counts[scene]]
+        a_sizes, b_sizes = first.footprints[scene, : first.counts[scene]], second.footprints[scene, : second.counts[scene]]
+        pose = relative_poses(np.repeat(a, len(b), axis=0), np.tile(b, (len(a), 1))[:, None])[:, 0]  # every a with every b
+        reach = footprint_reach_many(np.arctan2(pose[:, 3], pose[:, 2]), np.tile(b_sizes, (len(a), 1)))
+        gap = np.round(np.hypot(*np.maximum(np.abs(pose[:, :2]) - np.repeat(a_sizes, len(b), axis=0) / 2.0 - reach, 0.0).T), 1)
+        centre = np.hypot(pose[:, 0], pose[:, 1])
+        if same:  # an object is not its own partner
+            gap[:: len(b) + 1] = np.inf
+        closest = np.lexsort((centre, gap))[0]
+        gaps.append(gap[closest])
+        centres.append(centre[closest])
+    return float(np.median(gaps)), float(np.median(centres))
+
+
 def resting_pairs(
     scenes: Sequence[Scene], poses: dict[str, TypePoses], names: Sequence[dict[str, str]] | None = None
 ) -> set[tuple[str, str]]:
@@ -1091,14 +1113,16 @@ def resting_pairs(
 def prune_indirect(
     pairs: Sequence[PairRelation], resting: set[tuple[str, str]] = frozenset(),
     through: Callable[[str, str, str], bool | None] | None = None,
+    apart: Callable[[str, str], tuple[float, float]] | None = None,
 ) -> list[PairRelation]:  # fmt: skip
     """``pairs`` with the indirect pairs of every triangle of related pairs marked not
     related and ``pruned``: the pair of a third type with one that rests on another of
     the triangle (``resting``: (upper, lower) type pairs); else, given ``through(a, c,
-    b)``, whether (a, c) is indirect through b (None: cannot tell), the weakest of the
-    triangle's pairs it finds indirect, and where it cannot tell for some pair of the
-    triangle, the pair of the smallest strength. A resting pair itself is never pruned
-    (module docstring)."""
+    b)``, whether (a, c) is indirect through b (None: cannot tell), of the triangle's
+    pairs it finds indirect the one whose objects stand farthest apart (``apart(a, c)``,
+    compared as tuples; the weakest without it), and where it cannot tell for some pair
+    of the triangle, the pair of the smallest strength. A resting pair itself is never
+    pruned (module docstring)."""
     strength = {(p.a, p.b): p.strength for p in pairs if p.related}
     neighbours: dict[str, set[str]] = defaultdict(set)
     for a, b in strength:
@@ -1141,10 +1165,10 @@ def prune_indirect(
                 weakest = min(edges, key=lambda edge: strength[edge])
                 if not supported(*weakest):
                     indirect.add(weakest)
-            else:  # of the pairs found indirect, the weakest: two found so explain each other
+            else:  # of the pairs found indirect, the farthest apart: two found so explain each other
                 found = [edge for edge, through_third in zip(edges, verdicts) if through_third and not supported(*edge)]
                 if found:
-                    indirect.add(min(found, key=lambda edge: strength[edge]))
+                    indirect.add(max(found, key=lambda edge: (*apart(*edge), -strength[edge]) if apart else -strength[edge]))
     return [replace(p, related=False, pruned=True) if (p.a, p.b) in indirect else p for p in pairs]
 
 
@@ -1191,7 +1215,8 @@ def find_relations(
         raise InputError(f"no two objects stand in one scene in any of the {len(scenes)} example scenes")
     if prune and chosen.prunes:
         through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha)) if chosen.tests_indirect else None
-        results = prune_indirect(results, resting, through)
+        apart = functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c)) if chosen.tests_indirect else None
+        results = prune_indirect(results, resting, through, apart)
     results = [pair for pair in results if pair.a not in paths and pair.b not in paths]
     return RelationsResult(test, len(scenes), seed, alpha, tuple(by_type(results, role_of)))
 

@@ -15,6 +15,7 @@ from scenewright.learning.relations import (
     object_roles,
     prune_indirect,
     type_poses,
+    typical_gap,
 )
 
 from test_relations import offset, shared_relation_scenes, uniform_pose
@@ -169,3 +170,31 @@ def test_world_direction_scenes_place_what_they_say():
     crate, barrel, sack = (scene.object(name) for name in ("crate", "barrel", "sack"))
     assert 1.0 <= crate.position[2] - barrel.position[2] <= 2.0 and barrel.position[0] == crate.position[0]
     assert 1.0 <= sack.position[0] - crate.position[0] <= 2.0 and math.isclose(sack.position[2], crate.position[2])
+
+
+def test_of_two_pairs_found_indirect_through_each_other_the_one_standing_farther_apart_goes():
+    # A table in front of a sign in front of a tower: the tower's pairs with the sign and
+    # with the table are each as tight through the other, and the table, standing beyond
+    # the sign, is the one that holds only through it, however the strengths fall.
+    def pair(a, b, strength):
+        return PairRelation(a, b, True, 1.0, 0.005, 40, 40, strength)
+
+    line = [pair("sign", "table", 0.91), pair("sign", "tower", 0.88), pair("table", "tower", 0.89)]
+    through = {("sign", "table", "tower"): False, ("sign", "tower", "table"): True, ("table", "tower", "sign"): True}
+    apart = {("sign", "table"): (0.2, 0.9), ("sign", "tower"): (0.0, 3.2), ("table", "tower"): (0.0, 3.5)}
+    verdicts = {(p.a, p.b): p.related for p in prune_indirect(line, set(), lambda a, c, b: through[(a, c, b)], lambda a, c: apart[(a, c)])}
+    assert verdicts == {("sign", "table"): True, ("sign", "tower"): True, ("table", "tower"): False}
+    # Without distances the weaker goes: the sign's pair, by 0.01.
+    assert not {(p.a, p.b): p.related for p in prune_indirect(line, set(), lambda a, c, b: through[(a, c, b)])}[("sign", "tower")]
+
+
+def test_the_typical_gap_is_the_median_of_each_scenes_closest_pair():
+    # Per scene two 0.5 m boxes 0.5 m (scene 1), 1.5 m and 2.5 m apart, and a far third.
+    scenes = []
+    for index, gap in enumerate((0.5, 1.5, 2.5)):
+        objects = [entity("a", "a", "object", None, (0.0, 0.0, 0.0)), entity("b", "b", "object", None, (0.5 + gap, 0.0, 0.0), 1),
+                   entity("b2", "b", "object", None, (9.0, 9.0, 1.0), 2)]  # fmt: skip
+        scenes.append(Scene(rules="test", seed=0, extent=[20.0, 20.0], objects=objects, paths=[], relations=[], name=f"s{index}"))
+    poses = type_poses(scenes)
+    gap, centre = typical_gap(poses["a"], poses["b"], False)
+    assert gap == 1.5 and math.isclose(centre, 2.0)
