@@ -235,8 +235,9 @@ the permutation test each path type ("road path") stands as points ``PATH_STEP``
 m) apart along its paths' centre lines, turned along them, and its pairs with the
 object roles are tested like any pair, so that it closes triangles (house, street lamp,
 road) and the pair that holds only through the road is found indirect through it. A
-pair with a path is never reported: the grammar's relations to paths relate no two
-types.
+pair with a path is pruned like any other (a bush relates to the road through its
+house, which stands between them) but never reported: the grammar's relations to
+paths relate no two types.
 
 Composition in the world's axes. Table 1 places some objects by a direction of the
 world, not of the other object (a flowerpot north of a farmhouse, whatever way the

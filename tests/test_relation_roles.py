@@ -5,7 +5,7 @@ objects that each stand by their own partner."""
 import math
 
 import numpy as np
-from scenewright.core.scene import Scene, SceneObject
+from scenewright.core.scene import Scene, SceneObject, ScenePath
 from scenewright.learning.relations import (
     PairRelation,
     Role,
@@ -198,3 +198,36 @@ def test_the_typical_gap_is_the_median_of_each_scenes_closest_pair():
     poses = type_poses(scenes)
     gap, centre = typical_gap(poses["a"], poses["b"], False)
     assert gap == 1.5 and math.isclose(centre, 2.0)
+
+
+def roadside_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
+    """A 40 m road through the middle of 60 x 60 m, turned any way; two houses and a lamp
+    each 0.5-1.5 m beside it, on either side, anywhere along it, facing it. No house
+    stands by the lamp: both stand by the road."""
+    scenes = []
+    for index in range(count):
+        heading = rng.uniform(-math.pi, math.pi)
+        direction = np.array([math.sin(heading), math.cos(heading)])
+        start = rng.uniform(-5, 5, size=2) - 20 * direction
+        road = ScenePath(id="road", type="road", noun="road", plural=None, parent=None,
+                         points=[start.tolist(), (start + 40 * direction).tolist()], width=3.0)  # fmt: skip
+        objects = []
+        for k, kind in enumerate(["house", "house", "lamp"]):
+            side = rng.choice([-1.0, 1.0])
+            normal = side * np.array([direction[1], -direction[0]])
+            reach = 1.5 + SIZES[kind][2] / 2 + rng.uniform(0.5, 1.5)
+            x, z = start + rng.uniform(0, 40) * direction + reach * normal
+            facing = math.atan2(-normal[0], -normal[1])
+            objects.append(entity(f"{kind}{k}", kind, "object", None, (float(x), float(z), facing), k))
+        scenes.append(Scene(rules="test", seed=0, extent=[60.0, 60.0], objects=objects, paths=[road], relations=[],
+                            name=f"s{index}"))  # fmt: skip
+    return scenes
+
+
+def test_a_pair_that_holds_only_through_the_road_both_stand_by_is_pruned():
+    scenes = roadside_scenes(np.random.default_rng(2), 200)
+    kept = {(p.a, p.b): p for p in find_relations(scenes, seed=0, prune=False).pairs}
+    assert kept[("house", "lamp")].related  # a house and a lamp of one scene stand nearer
+    found = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
+    assert not found[("house", "lamp")].related and found[("house", "lamp")].pruned
+    assert all("road" not in (p.a, p.b) for p in found.values())  # the road is no reported type
