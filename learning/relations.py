@@ -394,16 +394,18 @@ def type_poses(scenes: Sequence[Scene], names: Sequence[dict[str, str]] | None =
         for obj in scene.placed_objects():
             name = obj.type if names is None else names[index][obj.id]
             per_type[name][index].append((obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2]))
-    table: dict[str, TypePoses] = {}
-    for type_name in sorted(per_type):
-        lists = per_type[type_name]
-        counts = np.array([len(rows) for rows in lists])
-        rows = np.full((len(scenes), int(counts.max()), 5), np.nan)
-        for index, scene_rows in enumerate(lists):
-            if scene_rows:
-                rows[index, : len(scene_rows)] = scene_rows
-        table[type_name] = TypePoses(rows[..., :3], counts, rows[..., 3:])
-    return table
+    return {name: padded(per_type[name]) for name in sorted(per_type)}
+
+
+def padded(per_scene: Sequence[Sequence[Sequence[float]]]) -> TypePoses:
+    """``TypePoses`` of rows (x, z, yaw, width, depth) listed per scene, NaN past each
+    scene's count."""
+    counts = np.array([len(rows) for rows in per_scene])
+    table = np.full((len(per_scene), int(counts.max()), 5), np.nan)
+    for index, rows in enumerate(per_scene):
+        if len(rows):
+            table[index, : len(rows)] = rows
+    return TypePoses(table[..., :3], counts, table[..., 3:])
 
 
 @dataclass(frozen=True, order=True)
@@ -445,24 +447,11 @@ def path_poses(scenes: Sequence[Scene]) -> dict[str, TypePoses]:
             corners = np.asarray(path.points, dtype=float)
             for start, end in zip(corners[:-1], corners[1:]):
                 length = float(np.hypot(*(end - start)))
-                if length == 0.0:
-                    continue
-                steps = np.arange(0.0, length, PATH_STEP)[:, None] / length
-                points = start + steps * (end - start)
+                points = start + np.arange(0.0, length, PATH_STEP)[:, None] / max(length, 1e-12) * (end - start)
                 yaw = math.atan2(end[0] - start[0], end[1] - start[1])  # forward is +z at yaw 0
-                per_type[f"{path.type} path"][index].append(
-                    np.column_stack([points, np.full(len(points), yaw), np.full(len(points), path.width),
-                                     np.full(len(points), PATH_STEP)])  # fmt: skip
-                )
-    table: dict[str, TypePoses] = {}
-    for name in sorted(per_type):
-        stacked = [np.vstack(chunks) if chunks else np.empty((0, 5)) for chunks in per_type[name]]
-        counts = np.array([len(rows) for rows in stacked])
-        rows = np.full((len(scenes), int(counts.max()), 5), np.nan)
-        for index, scene_rows in enumerate(stacked):
-            rows[index, : len(scene_rows)] = scene_rows
-        table[name] = TypePoses(rows[..., :3], counts, rows[..., 3:])
-    return table
+                rows = np.column_stack([points, np.tile([yaw, path.width, PATH_STEP], (len(points), 1))])
+                per_type[f"{path.type} path"][index].append(rows)
+    return {name: padded([np.vstack(chunks) if chunks else () for chunks in per_type[name]]) for name in sorted(per_type)}
 
 
 def holding_both(first: TypePoses, second: TypePoses, same: bool) -> np.ndarray:
@@ -691,6 +680,14 @@ def pair_poses(first: TypePoses, second: TypePoses, same: bool, together: np.nda
     return within, across
 
 
+def footprint_gaps(pose: np.ndarray, a_sizes: np.ndarray, b_sizes: np.ndarray) -> np.ndarray:
+    """The gap between an a's footprint and a b's, b at ``pose`` (n, 4) in a's frame,
+    footprints (n, 2) each -> (n,): along a's axes, with b's reach there once turned, as
+    the layout measures two boxes square to each other."""
+    reach = footprint_reach_many(np.arctan2(pose[:, 3], pose[:, 2]), b_sizes)
+    return np.hypot(*np.maximum(np.abs(pose[:, :2]) - a_sizes / 2.0 - reach, 0.0).T)
+
+
 def share_at_one_pose(
     first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
     rng: np.random.Generator,
@@ -704,11 +701,7 @@ def share_at_one_pose(
     index = nearest_indices(centres, second, b_scenes, left_out)
     pose = relative_poses(centres, second.poses[b_scenes, index][:, None])[:, 0]  # (n, 4)
     turn = np.arctan2(pose[:, 3], pose[:, 2])
-    # The gap between the footprints along a's axes (b's reach there once turned), as
-    # the layout measures two boxes square to each other.
-    reach = footprint_reach_many(turn, second.footprints[b_scenes, index])
-    gaps = np.abs(pose[:, :2]) - first.footprints[a_scenes, chosen] / 2.0 - reach
-    next_to = np.hypot(*np.maximum(gaps, 0.0).T) <= NEXT_TO_DISTANCE
+    next_to = footprint_gaps(pose, first.footprints[a_scenes, chosen], second.footprints[b_scenes, index]) <= NEXT_TO_DISTANCE
     middle = np.median(pose[:, :2], axis=0)
     middle_turn = np.arctan2(np.median(pose[:, 3]), np.median(pose[:, 2]))
     off_turn = np.abs(np.angle(np.exp(1j * (turn - middle_turn))))
@@ -1085,8 +1078,7 @@ def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float,
         a, b = first.poses[scene, : first.counts[scene]], second.poses[scene, : second.counts[scene]]
         a_sizes, b_sizes = first.footprints[scene, : first.counts[scene]], second.footprints[scene, : second.counts[scene]]
         pose = relative_poses(np.repeat(a, len(b), axis=0), np.tile(b, (len(a), 1))[:, None])[:, 0]  # every a with every b
-        reach = footprint_reach_many(np.arctan2(pose[:, 3], pose[:, 2]), np.tile(b_sizes, (len(a), 1)))
-        gap = np.round(np.hypot(*np.maximum(np.abs(pose[:, :2]) - np.repeat(a_sizes, len(b), axis=0) / 2.0 - reach, 0.0).T), 1)
+        gap = np.round(footprint_gaps(pose, np.repeat(a_sizes, len(b), axis=0), np.tile(b_sizes, (len(a), 1))), 1)
         centre = np.hypot(pose[:, 0], pose[:, 1])
         if same:  # an object is not its own partner
             gap[:: len(b) + 1] = np.inf
