@@ -212,8 +212,7 @@ one pair is carried by the other two and is reported as not related, ``pruned``:
   scene's b, in a's frame. Swapping the c-in-b of a pair of scenes swaps the two
   samples' poses, so ``flip_test`` holds its level exactly under the null of
   indirectness. The pair is direct through b when the within-scene poses are clearly
-  the tighter: p <= alpha and tightness (jointly or in one coordinate of position,
-  below) at least ``MIN_DIRECT_TIGHTNESS`` (0.35, the
+  the tighter: p <= alpha and tightness at least ``MIN_DIRECT_TIGHTNESS`` (0.35, the
   same effect size the pair test asks of a pair against independent placement;
   composition adds b's slack to a direct pair's poses). Of a triangle's pairs found
   indirect through their third type (a resting pair excepted), the one whose objects
@@ -248,20 +247,6 @@ are made twice, in b's frame and along the world's axes (the other scene's offse
 from its b and c's own yaw), and a pair is direct through b only when its within-scene
 poses are clearly tighter than both: p <= alpha in each test, and each tightness, the
 mean of ``STRENGTH_DRAWS`` draws (below), at least ``MIN_DIRECT_TIGHTNESS``.
-
-Composition per coordinate. The tightness is measured over the four coordinates of a
-pose together, where a relation often fixes one: a teacher's desk in front of a board
-stands at one depth before it, anywhere along it, and both turn the same way. Its
-chair, behind the desk, stands between the two. The desk's depth through the chair is
-looser than its own (the chair's slack is added), but its sideways place and its turn
-are as loose as their composition, and over the four coordinates the desk's pair came
-out no more direct than the chair's (0.14 against 0.18), though it is the chair's pair
-with the board that holds only through the desk. So each coordinate of position (along
-a's x and z) is also measured alone, and the tightness against a composition is the
-largest of the joint and the two coordinates' (each the mean over the draws): the
-desk's depth, about 0.5; the chair's, about -0.1 (its sideways place -0.1 to -0.4).
-The p-value is still the joint test's, and the yaw is not taken alone: two objects
-turned square to a room agree in it whatever holds them.
 
 Strength. The permutation test's strength is the tightness of the within-scene poses
 against the across-scene ones (the scene-pairing test's and the halves' for pairs held
@@ -1061,8 +1046,7 @@ def composed_poses(
 def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float) -> bool | None:
     """Whether the pair (a, c) is indirect through b (module docstring): its poses within
     scenes not clearly tighter than the composition of b in a's frame and c in b's from
-    two scenes, in b's frame or in the world's axes (jointly, or in one coordinate of
-    position: "Composition per coordinate"). None when fewer than
+    two scenes, in b's frame or in the world's axes. None when fewer than
     ``PAIR_SCENES`` scenes hold all three."""
     first, second, middle = poses[a], poses[c], poses[b]
     together = np.flatnonzero((first.counts >= 1) & (second.counts >= 1) & (middle.counts >= 1))
@@ -1071,43 +1055,17 @@ def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: 
     first, second = framed(first, second, together)
     rng = pair_stream(seed, a, c, b)
     within, in_frame, along_axes = composed_poses(first, middle, second, together, rng)
-    draws: list[list[list[float]]] = []  # per composition, per draw: the joint tightness, then x's and z's
+    draws = []
     for composed in (in_frame, along_axes):
         _, p_value, strength = flip_test(within, composed, PERMUTATIONS, rng)
         if p_value > alpha:
             return True
-        draws.append([[strength, *position_tightness(within, composed)]])
+        draws.append([strength])
     for _ in range(STRENGTH_DRAWS - 1):
         within, in_frame, along_axes = composed_poses(first, middle, second, together, rng)
-        for tightnesses, composed in zip(draws, (in_frame, along_axes)):
-            tightnesses.append([sample_tightness(within, composed), *position_tightness(within, composed)])
-    # Each measure averaged over the draws; the composition is beaten by the best of them.
-    return min(float(np.mean(tightnesses, axis=0).max()) for tightnesses in draws) < MIN_DIRECT_TIGHTNESS
-
-
-def position_tightness(within: np.ndarray, composed: np.ndarray) -> tuple[float, float]:
-    """``sample_tightness`` of the poses ``within`` (n, 4) against ``composed`` (m, 4) in
-    each coordinate of position alone: (along a's x, along a's z). A relation that fixes
-    one coordinate (a desk's depth in front of a board, its sideways place left free)
-    is tighter than its composition there, a gain the joint tightness dilutes with the
-    coordinates where the two agree (module docstring, "Composition per coordinate")."""
-    return coordinate_tightness(within[:, 0], composed[:, 0]), coordinate_tightness(within[:, 1], composed[:, 1])
-
-
-def coordinate_tightness(within: np.ndarray, composed: np.ndarray) -> float:
-    """``sample_tightness`` of the values ``within`` (n,) against ``composed`` (m,): on a
-    line a value's nearest neighbour is one of the two beside it once sorted, so no k-d
-    tree is needed (a fiftieth of its time), and the pooled scale cancels."""
-    if len(within) < LOCAL_POSES:
-        return sample_tightness(within[:, None], composed[:, None])
-    nearest_first, nearest_second = mean_nearest_gap(within), mean_nearest_gap(composed)
-    return float(1.0 - nearest_first / nearest_second) if nearest_second > 0 else 0.0
-
-
-def mean_nearest_gap(values: np.ndarray) -> float:
-    """The mean distance of each of ``values`` (n,), n >= 2, to its nearest other one."""
-    gaps = np.diff(np.sort(values))
-    return float(np.minimum(np.append(np.inf, gaps), np.append(gaps, np.inf)).mean())
+        draws[0].append(sample_tightness(within, in_frame))
+        draws[1].append(sample_tightness(within, along_axes))
+    return min(float(np.mean(tightnesses)) for tightnesses in draws) < MIN_DIRECT_TIGHTNESS
 
 
 def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float, float]:

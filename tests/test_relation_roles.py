@@ -5,20 +5,15 @@ objects that each stand by their own partner."""
 import math
 
 import numpy as np
-from hypothesis import given, settings
-from hypothesis import strategies as st
 from scenewright.core.scene import Scene, SceneObject, ScenePath
-from scenewright.learning import relations
 from scenewright.learning.relations import (
     PairRelation,
     Role,
     by_type,
-    coordinate_tightness,
     find_relations,
     indirect_through,
     object_roles,
     prune_indirect,
-    sample_tightness,
     type_poses,
     typical_gap,
 )
@@ -236,44 +231,3 @@ def test_a_pair_that_holds_only_through_the_road_both_stand_by_is_pruned():
     found = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
     assert not found[("house", "lamp")].related and found[("house", "lamp")].pruned
     assert all("road" not in (p.a, p.b) for p in found.values())  # the road is no reported type
-
-
-def board_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
-    """A board anywhere along a wall, facing into the room; a desk 2 m in front of it
-    (depth jittered by 0.1 m, anywhere within 1 m either side of the board's middle);
-    its chair 0.7 m behind it, between desk and board (jittered by 0.1 m sideways and
-    0.12 m in depth). Every object turned to the room, by a few degrees either way."""
-    scenes = []
-    for index in range(count):
-        board = (float(rng.uniform(-3, 3)), -3.0, 0.0)
-        desk = (board[0] + rng.uniform(-1.0, 1.0), board[1] + 2.0 + rng.normal(0, 0.1), rng.normal(0, 0.05))
-        chair = (desk[0] + rng.normal(0, 0.1), desk[1] - 0.7 + rng.normal(0, 0.12), desk[2] + rng.normal(0, 0.05))
-        objects = [entity(kind, kind, "object", None, pose, k)
-                   for k, (kind, pose) in enumerate([("board", board), ("desk", desk), ("chair", chair)])]  # fmt: skip
-        scenes.append(Scene(rules="test", seed=0, extent=[10.0, 10.0], objects=objects, paths=[], relations=[], name=f"s{index}"))
-    return scenes
-
-
-def test_a_pair_that_fixes_one_coordinate_is_direct_through_what_stands_between(monkeypatch):
-    # The desk's depth before the board is tighter than through its chair, which stands
-    # between them; its sideways place and turn are as loose as the composition. The
-    # chair is where it is before the board only through the desk.
-    for seed in range(3):
-        poses = type_poses(board_scenes(np.random.default_rng(seed), 200))
-        assert not indirect_through(poses, "board", "desk", "chair", 0, 0.01)
-        assert indirect_through(poses, "board", "chair", "desk", 0, 0.01)
-    verdicts = {(p.a, p.b): p.related for p in find_relations(board_scenes(np.random.default_rng(0), 200)).pairs}
-    assert verdicts == {("board", "chair"): False, ("board", "desk"): True, ("chair", "desk"): True}
-    # Over the four coordinates together the desk's pair is no more direct than the chair's.
-    monkeypatch.setattr(relations, "position_tightness", lambda within, composed: (-math.inf, -math.inf))
-    assert indirect_through(poses, "board", "desk", "chair", 0, 0.01)
-
-
-@settings(max_examples=40, deadline=None)
-@given(n=st.integers(2, 80), m=st.integers(2, 80), seed=st.integers(0, 2**16), ties=st.booleans())
-def test_the_tightness_of_one_coordinate_is_the_k_d_trees(n, m, seed, ties):
-    rng = np.random.default_rng(seed)
-    within, composed = rng.normal(0, 0.5, n), rng.normal(0, 1.0, m)
-    if ties:  # fixed arrangements repeat a value exactly
-        within = np.round(within, 1)
-    assert math.isclose(coordinate_tightness(within, composed), sample_tightness(within[:, None], composed[:, None]), abs_tol=1e-9)
