@@ -227,6 +227,15 @@ one pair is carried by the other two and is reported as not related, ``pruned``:
   types) the pair of the smallest *strength* (the *weakest*). The angle test's
   strength is its d; the permutation test's is below.
 
+Triangles within groups. Where the three types of a triangle play parts in one kind of
+group (a fish stall's table, crates and barrel), the test of indirectness takes an a
+whose group also holds a b and a c, and that group's b nearest it and c nearest that
+b. The nearest b of the scene is otherwise another group's wherever a's group goes
+without one (a stall without its optional barrel), and the c nearest that b is then
+the other group's too: within and composed poses alike become a mixture of two groups'
+parts, and a pair the rules state (the stall's crates behind its table) came out
+indirect through the part it does not need.
+
 Paths. Outdoors, objects are placed beside roads (a house next to some road, a street
 lamp next to some road), and roads run differently in every scene: so a house and a
 lamp of one scene stand closer than a house and a lamp of two, a dependence the room's
@@ -379,11 +388,14 @@ class TypePoses:
     """Where the objects of one type stand in each of S scenes: ``poses`` (S, K, 3) as
     (x, z, yaw) in the scene's frame, K the most objects of the type in one scene, NaN
     past ``counts`` (S,), the objects of the type in each scene; ``footprints`` (S, K, 2)
-    their (width, depth) in their own frame, NaN past ``counts``."""
+    their (width, depth) in their own frame, NaN past ``counts``; ``holders`` (S, K) the
+    group that holds each object, numbered within its scene (-1 at the top level and
+    past ``counts``)."""
 
     poses: np.ndarray
     counts: np.ndarray
     footprints: np.ndarray
+    holders: np.ndarray
 
 
 def type_poses(scenes: Sequence[Scene], names: Sequence[dict[str, str]] | None = None) -> dict[str, TypePoses]:
@@ -391,21 +403,25 @@ def type_poses(scenes: Sequence[Scene], names: Sequence[dict[str, str]] | None =
     ``names`` (per scene, object id -> name), every name instead (the roles' names)."""
     per_type: dict[str, list[list[tuple[float, ...]]]] = defaultdict(lambda: [[] for _ in scenes])
     for index, scene in enumerate(scenes):
+        groups = holding_groups(scene)
+        numbers = {group: number for number, group in enumerate(sorted(set(groups.values()) - {""}))}
         for obj in scene.placed_objects():
             name = obj.type if names is None else names[index][obj.id]
-            per_type[name][index].append((obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2]))
+            holder = numbers.get(groups[obj.id], -1)
+            per_type[name][index].append((obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2], holder))
     return {name: padded(per_type[name]) for name in sorted(per_type)}
 
 
 def padded(per_scene: Sequence[Sequence[Sequence[float]]]) -> TypePoses:
-    """``TypePoses`` of rows (x, z, yaw, width, depth) listed per scene, NaN past each
-    scene's count."""
+    """``TypePoses`` of rows (x, z, yaw, width, depth, holder) listed per scene, NaN past
+    each scene's count (holder -1)."""
     counts = np.array([len(rows) for rows in per_scene])
-    table = np.full((len(per_scene), int(counts.max()), 5), np.nan)
+    table = np.full((len(per_scene), int(counts.max()), 6), np.nan)
     for index, rows in enumerate(per_scene):
         if len(rows):
             table[index, : len(rows)] = rows
-    return TypePoses(table[..., :3], counts, table[..., 3:])
+    holders = np.nan_to_num(table[..., 5], nan=-1.0).astype(int)
+    return TypePoses(table[..., :3], counts, table[..., 3:5], holders)
 
 
 @dataclass(frozen=True, order=True)
@@ -427,14 +443,22 @@ def object_roles(scene: Scene) -> dict[str, Role]:
     """The role of every placed object of ``scene``, by id: the group is the type of the
     nearest group among the object's parents (an object a hand-written example puts on
     another has that one as parent, and no group)."""
+    groups = holding_groups(scene)
+    kinds = {obj.id: obj.type for obj in scene.objects}
+    return {obj.id: Role(obj.type, kinds[groups[obj.id]] if groups[obj.id] else "") for obj in scene.placed_objects()}
+
+
+def holding_groups(scene: Scene) -> dict[str, str]:
+    """The id of the innermost group holding each placed object of ``scene``, by id (""
+    at the top level)."""
     entities = {obj.id: obj for obj in scene.objects}
-    roles = {}
+    holders = {}
     for obj in scene.placed_objects():
         parent = entities.get(obj.parent) if obj.parent else None
         while parent is not None and parent.kind != "group":
             parent = entities.get(parent.parent) if parent.parent else None
-        roles[obj.id] = Role(obj.type, parent.type if parent is not None else "")
-    return roles
+        holders[obj.id] = parent.id if parent is not None else ""
+    return holders
 
 
 def path_poses(scenes: Sequence[Scene]) -> dict[str, TypePoses]:
@@ -449,7 +473,7 @@ def path_poses(scenes: Sequence[Scene]) -> dict[str, TypePoses]:
                 length = float(np.hypot(*(end - start)))
                 points = start + np.arange(0.0, length, PATH_STEP)[:, None] / max(length, 1e-12) * (end - start)
                 yaw = math.atan2(end[0] - start[0], end[1] - start[1])  # forward is +z at yaw 0
-                rows = np.column_stack([points, np.tile([yaw, path.width, PATH_STEP], (len(points), 1))])
+                rows = np.column_stack([points, np.tile([yaw, path.width, PATH_STEP, -1], (len(points), 1))])
                 per_type[f"{path.type} path"][index].append(rows)
     return {name: padded([np.vstack(chunks) if chunks else () for chunks in per_type[name]]) for name in sorted(per_type)}
 
@@ -470,15 +494,19 @@ def relative_poses(centres: np.ndarray, others: np.ndarray) -> np.ndarray:
 
 
 def nearest_indices(
-    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None
-) -> np.ndarray:
+    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None,
+    holders: np.ndarray | None = None,
+) -> np.ndarray:  # fmt: skip
     """The index of the object of ``others`` nearest each of ``centres`` (n, 3) in the
-    scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given -> (n,)."""
+    scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given, and only
+    among those the group ``holders[k]`` holds when given -> (n,)."""
     rows = np.arange(len(scenes))
     candidates = others.poses[scenes]  # (n, K, 3)
     valid = np.arange(candidates.shape[1])[None, :] < others.counts[scenes][:, None]
     if left_out is not None:
         valid[rows, left_out] = False
+    if holders is not None:
+        valid &= others.holders[scenes] == holders[:, None]
     distance = np.where(valid, np.hypot(*(candidates[..., :2] - centres[:, None, :2]).transpose(2, 0, 1)), np.inf)
     return np.argmin(distance, axis=1)
 
@@ -490,6 +518,15 @@ def nearest_objects(
     3), in the scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given ->
     (n, 3)."""
     return others.poses[scenes, nearest_indices(centres, others, scenes, left_out)]
+
+
+def fellows_held(frame: TypePoses, *others: TypePoses) -> np.ndarray:
+    """(S, K) whether each object of ``frame`` stands in a group that also holds an
+    object of each of ``others`` (False past the counts and at the top level)."""
+    held = frame.holders >= 0
+    for other in others:
+        held &= (frame.holders[:, :, None] == other.holders[:, None, :]).any(axis=2)
+    return held
 
 
 def nearest_poses(
@@ -1017,8 +1054,9 @@ def pair_stream(seed: int, *names: str) -> np.random.Generator:
 
 
 def composed_poses(
-    frame: TypePoses, middle: TypePoses, end: TypePoses, together: np.ndarray, rng: np.random.Generator
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    frame: TypePoses, middle: TypePoses, end: TypePoses, together: np.ndarray, rng: np.random.Generator,
+    grouped: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
     """The within- and composed poses of the test of indirectness (module docstring) on
     the scenes ``together`` holding all three types, at most ``MAX_SCENES`` of them, in
     pairs of scenes as ``pair_poses`` gives them: per scene a random a, its nearest b,
@@ -1026,13 +1064,25 @@ def composed_poses(
     (2K, 4) each. Within: c in a's frame. Composed in b's frame: the c of the other
     scene of the pair put where it stands relative to its own b, in that b's frame,
     relative to this scene's b; in the world's axes: the same offset along the world's
-    axes and the same turn, for a c placed by a world direction (north of b)."""
+    axes and the same turn, for a c placed by a world direction (north of b). With
+    ``grouped`` ((S, K), ``fellows_held``), the a is one whose group holds a b and a c,
+    and they are that group's (module docstring, "Triangles within groups")."""
     order = rng.permutation(together)[:MAX_SCENES]
     pairs = len(order) // 2
     scenes = order[: 2 * pairs]
-    a = frame.poses[scenes, np.floor(rng.random(2 * pairs) * frame.counts[scenes]).astype(int)]
-    b = nearest_objects(a, middle, scenes)
-    c = nearest_objects(b, end, scenes)
+    if grouped is None:
+        chosen = np.floor(rng.random(2 * pairs) * frame.counts[scenes]).astype(int)
+        a = frame.poses[scenes, chosen]
+        b = nearest_objects(a, middle, scenes)
+        c = nearest_objects(b, end, scenes)
+    else:  # a random a among those whose group holds the other two, as the i-th of them
+        eligible = grouped[scenes]
+        rank = np.floor(rng.random(2 * pairs) * eligible.sum(axis=1)).astype(int)
+        chosen = np.argmax(np.cumsum(eligible, axis=1) > rank[:, None], axis=1)
+        a = frame.poses[scenes, chosen]
+        holder = frame.holders[scenes, chosen]
+        b = middle.poses[scenes, nearest_indices(a, middle, scenes, holders=holder)]
+        c = end.poses[scenes, nearest_indices(b, end, scenes, holders=holder)]
     c_in_b = relative_poses(b, c[:, None])[:, 0]  # (2K, 4)
     swapped = np.roll(c_in_b, pairs, axis=0)  # the c of the pair's other scene, relative to its b
     turn = np.arctan2(swapped[:, 3], swapped[:, 2])
@@ -1043,18 +1093,28 @@ def composed_poses(
     return within, relative_poses(a, moved[:, None])[:, 0], relative_poses(a, along_axes[:, None])[:, 0]
 
 
-def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float) -> bool | None:
+def indirect_through(
+    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float, kinds: dict[str, str] | None = None
+) -> bool | None:  # fmt: skip
     """Whether the pair (a, c) is indirect through b (module docstring): its poses within
     scenes not clearly tighter than the composition of b in a's frame and c in b's from
-    two scenes, in b's frame or in the world's axes. None when fewer than
-    ``PAIR_SCENES`` scenes hold all three."""
+    two scenes, in b's frame or in the world's axes. Where ``kinds`` (name -> the kind
+    of group of its role) puts all three in one kind of group, within each group only
+    ("Triangles within groups"). None when fewer than ``PAIR_SCENES`` scenes hold all
+    three (in one group)."""
     first, second, middle = poses[a], poses[c], poses[b]
     together = np.flatnonzero((first.counts >= 1) & (second.counts >= 1) & (middle.counts >= 1))
     if len(together) < PAIR_SCENES:
         return None
     first, second = framed(first, second, together)
+    grouped = None
+    if kinds is not None and kinds.get(a, "") != "" and kinds.get(a) == kinds.get(b) == kinds.get(c):
+        grouped = fellows_held(first, middle, second)
+        together = together[grouped[together].any(axis=1)]
+        if len(together) < PAIR_SCENES:
+            return None
     rng = pair_stream(seed, a, c, b)
-    within, in_frame, along_axes = composed_poses(first, middle, second, together, rng)
+    within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
     draws = []
     for composed in (in_frame, along_axes):
         _, p_value, strength = flip_test(within, composed, PERMUTATIONS, rng)
@@ -1062,7 +1122,7 @@ def indirect_through(poses: dict[str, TypePoses], a: str, c: str, b: str, seed: 
             return True
         draws.append([strength])
     for _ in range(STRENGTH_DRAWS - 1):
-        within, in_frame, along_axes = composed_poses(first, middle, second, together, rng)
+        within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
         draws[0].append(sample_tightness(within, in_frame))
         draws[1].append(sample_tightness(within, along_axes))
     return min(float(np.mean(tightnesses)) for tightnesses in draws) < MIN_DIRECT_TIGHTNESS
@@ -1211,7 +1271,8 @@ def find_relations(
     if not results:
         raise InputError(f"no two objects stand in one scene in any of the {len(scenes)} example scenes")
     if prune and chosen.prunes:
-        through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha)) if chosen.tests_indirect else None
+        kinds = {name: role.group for name, role in role_of.items()}
+        through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha, kinds)) if chosen.tests_indirect else None
         apart = functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c)) if chosen.tests_indirect else None
         results = prune_indirect(results, resting, through, apart)
     results = [pair for pair in results if pair.a not in paths and pair.b not in paths]
