@@ -14,7 +14,10 @@ these, so those draws are answered with the first candidate and not enumerated.
 replayed from the start (an expansion is small and cheap to restart); a prefix whose
 partial scene already has more objects of a type than the example is cut off, as is
 one the expansion refuses (too many nodes, ``some`` with no candidate). The search
-stops with ``AmbiguousExample`` after ``MAX_REPLAYS`` replays.
+stops with ``AmbiguousExample`` after ``MAX_REPLAYS`` replays. Searches for many
+examples in a row can share a ``ReplayBudget``, which stops them with ``BudgetSpent``
+once it is spent: where the rules leave most examples ambiguous (chairs that could
+belong to any of several tables), each one otherwise costs the full ``MAX_REPLAYS``.
 
 An example read from geometry alone (the hand-written format, GLB) has no relation
 labels but what rests on what. Its signature (``resting_signature`` of its graph) is
@@ -68,6 +71,24 @@ MAX_REPLAYS = 20_000
 
 class AmbiguousExample(InputError):
     """An example with more possible derivations than the search may try."""
+
+
+class BudgetSpent(AmbiguousExample):
+    """The replays shared by several searches (``ReplayBudget``) ran out during this one."""
+
+
+@dataclass
+class ReplayBudget:
+    """Replays that several searches share: each replay of each takes one."""
+
+    left: int
+
+    def take(self, name: str) -> None:
+        """One replay for the search of the example ``name``; ``BudgetSpent`` when none
+        is left."""
+        if self.left <= 0:
+            raise BudgetSpent(f"{name}: the searches of the examples before it spent the replays they share")
+        self.left -= 1
 
 
 @dataclass(frozen=True)
@@ -248,7 +269,9 @@ def measured_derivations_of(rules: Rules, example: Scene, name: str = "example")
     return [graph.derivation for graph in measured_derivation_graphs(rules, example, name)]
 
 
-def measured_derivation_graphs(rules: Rules, example: Scene, name: str = "example") -> list[SceneGraph]:
+def measured_derivation_graphs(
+    rules: Rules, example: Scene, name: str = "example", budget: ReplayBudget | None = None
+) -> list[SceneGraph]:  # fmt: skip
     """The scene graphs of the derivations of ``rules`` that make an example read from
     geometry alone: those of its resting signature that state the most relations the
     example holds (module docstring), in the order the search finds them.
@@ -256,12 +279,12 @@ def measured_derivation_graphs(rules: Rules, example: Scene, name: str = "exampl
     The search first keeps to derivations every statement of which the example holds
     (partial ones pruned as soon as they state one it does not, which makes it fast);
     only when none is found does it take every derivation of the resting signature and
-    keep the best-agreeing ones."""
+    keep the best-agreeing ones. ``budget``: replays shared with other searches."""
     holding = _HoldingCache(example)
     wanted = resting_signature(example.graph())
-    graphs = _search(rules, wanted, resting_signature, name, holding.holds_all)
+    graphs = _search(rules, wanted, resting_signature, name, holding.holds_all, budget)
     if not graphs:
-        graphs = _search(rules, wanted, resting_signature, name)
+        graphs = _search(rules, wanted, resting_signature, name, budget=budget)
     if not graphs:
         return []
     agreement = [geometric_agreement(graph, holding.counts(signature(graph).relations)) for graph in graphs]
@@ -406,16 +429,19 @@ class _HoldingCache:
 
 def _search(
     rules: Rules, wanted: Signature, sign: Callable[[SceneGraph], Signature], name: str,
-    fits: Callable[[SceneGraph], bool] | None = None,
+    fits: Callable[[SceneGraph], bool] | None = None, budget: ReplayBudget | None = None,
 ) -> list[SceneGraph]:  # fmt: skip
     """The expansions of ``rules`` whose ``sign`` is ``wanted`` (module docstring) and,
-    when given, that ``fits`` (which must also hold of every partial expansion on the way)."""
+    when given, that ``fits`` (which must also hold of every partial expansion on the way);
+    each replay also taken from ``budget`` when given."""
     found: list[SceneGraph] = []
     pending: list[list[int]] = [[]]
     replays = 0
     while pending:
         script = pending.pop()
         replays += 1
+        if budget is not None:
+            budget.take(name)
         if replays > MAX_REPLAYS:
             raise AmbiguousExample(
                 f"{name}: more than {MAX_REPLAYS} partial derivations could lead to this scene; "

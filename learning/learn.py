@@ -17,8 +17,10 @@ With ``context`` it also learns a context from the same examples against the ind
 rules (``learned_context``: each example related as one of its best derivations of
 those rules relates it, as ``fit --what context`` does for examples read from geometry
 alone), to be written beside the rules as ``NAME.context.json``; examples no derivation
-makes are left out of it, and when no related pair occurs in enough examples
-(``context.NoRelatedPairs``) the rules are written without one and the reason kept.
+makes, or too many to search, are left out of it, the searches of all the examples
+share ``CONTEXT_REPLAYS`` replays (those after are not searched), and when no related
+pair occurs in enough examples (``context.NoRelatedPairs``) the rules are written
+without one and the reason kept.
 
 Nothing is written until all of that has succeeded; then the rules file, the context
 and the report, each whole (``write``).
@@ -51,11 +53,17 @@ from .context import (
     fit_example_layouts,
     measured_example_layout,
 )
-from .derivations import AmbiguousExample, measured_derivation_graphs
+from .derivations import AmbiguousExample, BudgetSpent, ReplayBudget, measured_derivation_graphs
 from .induce import Induction, Member, edge_instances, induce, renamed_scenes
 
 #: Scenes generated from the induced rules to compare with the examples.
 CHECK_SCENES = 50
+#: Replays the derivation searches of all the examples share when ``learn`` fits a
+#: context (``derivations.ReplayBudget``): five examples' worth of
+#: ``derivations.MAX_REPLAYS``, about a minute here. The shipped example sets take
+#: 1,709 (10 bedrooms) and 5,689 (20 desks); rules that leave every example ambiguous
+#: (chairs that could be any table's) would otherwise take 20,000 replays an example.
+CONTEXT_REPLAYS = 100_000
 
 
 class InducedRulesError(RuntimeError):
@@ -167,17 +175,23 @@ def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count
 
 @dataclass(frozen=True)
 class InducedContext:
-    """The context ``learn`` fitted (None when it learned none, ``why_not`` saying why) and
-    the examples left out of it (no derivation of the induced rules makes them)."""
+    """The context ``learn`` fitted (None when it learned none, ``why_not`` saying why)
+    and the examples left out of it: ``left_out``, no derivation of the induced rules
+    makes them; ``ambiguous``, more might than one search may try
+    (``derivations.MAX_REPLAYS``); ``unsearched``, the searches before them spent the
+    replays all share (``CONTEXT_REPLAYS``)."""
 
     fit: ContextFit | None
     why_not: str | None
     used: int
     left_out: list[str]
+    ambiguous: list[str]
+    unsearched: list[str]
 
     def to_dict(self, path: Path | None) -> dict:
         document = {"file": os.fspath(path) if self.fit is not None and path is not None else None,
-                    "examples": self.used, "left_out": self.left_out}  # fmt: skip
+                    "examples": self.used, "left_out": self.left_out, "ambiguous": self.ambiguous,
+                    "unsearched": self.unsearched}  # fmt: skip
         if self.fit is not None:
             document.update(self.fit.context.fit or {})
         else:
@@ -187,26 +201,42 @@ class InducedContext:
 
 def learned_context(
     rules: Rules, names: Sequence[str], scenes: Sequence[Scene], *, seed: int, rounds: int = ROUNDS,
-    layouts: int = LAYOUTS,
+    layouts: int = LAYOUTS, replays: int = CONTEXT_REPLAYS, progress: Callable[[str], object] = lambda message: None,
 ) -> InducedContext:  # fmt: skip
     """A context fitted to ``scenes`` (named ``names``) against ``rules``, each scene
     related as one of its best derivations relates it (``measured_example_layout``);
-    scenes no derivation makes, or with too many to search, are left out."""
-    laid, left_out = [], []
-    for name, scene in zip(names, scenes):
+    scenes no derivation makes, or with too many to search, are left out, and once the
+    searches have spent ``replays`` the rest are not searched. ``progress`` hears how
+    the searches go, about ten times."""
+    laid, left_out, ambiguous, unsearched = [], [], [], []
+    budget = ReplayBudget(replays)
+    every = max(1, len(scenes) // 10)
+    for index, (name, scene) in enumerate(zip(names, scenes)):
         try:
-            graphs = measured_derivation_graphs(rules, scene, name)
+            graphs = measured_derivation_graphs(rules, scene, name, budget)
+        except BudgetSpent:
+            unsearched = list(names[index:])
+            progress(f"context: the derivation searches spent their {replays} replays; "
+                     f"{len(unsearched)} of {len(scenes)} examples not searched")  # fmt: skip
+            break
         except AmbiguousExample:
-            graphs = []
+            ambiguous.append(name)
+            continue
         if graphs:
             laid.append(measured_example_layout(name, scene, graphs))
         else:
             left_out.append(name)
+        if (index + 1) % every == 0 or index + 1 == len(scenes):
+            progress(f"context: searched the derivations of {index + 1} of {len(scenes)} examples ({len(laid)} made "
+                     "by the induced rules)")  # fmt: skip
+    if not laid and (ambiguous or unsearched):
+        why = "the induced rules make the examples in too many ways to search for one of them"
+        return InducedContext(None, why, 0, left_out, ambiguous, unsearched)
     try:
         fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
     except NoRelatedPairs as error:
-        return InducedContext(None, str(error), len(laid), left_out)
-    return InducedContext(fit, None, len(laid), left_out)
+        return InducedContext(None, str(error), len(laid), left_out, ambiguous, unsearched)
+    return InducedContext(fit, None, len(laid), left_out, ambiguous, unsearched)
 
 
 @dataclass(frozen=True)
@@ -234,11 +264,12 @@ def learn_rule_set(
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
     write: Callable[[Path, str], object],
+    progress: Callable[[str], object] = lambda message: None,
 ) -> Learned:
     """Induce a rule set from ``examples``, check it (module docstring) and write it to
     ``output``, with ``context`` its context beside it (``context_path``; ``rounds`` and
     ``layouts`` are the context fit's) and the report to ``report``; ``write(path, text)``
-    writes one file whole."""
+    writes one file whole; ``progress`` hears which stage is under way."""
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
@@ -251,9 +282,14 @@ def learn_rule_set(
             raise InducedRulesError("the induced rules do not pass the checks:\n" + "\n".join(str(d) for d in errors))
         rules = load_rules(trial)
         scenes, _ = renamed_scenes(examples)
+        if check > 0:
+            progress(f"checking the induced rules on {check} generated scenes")
         result = compare(induction, scenes, rules, check, seed) if check > 0 else None
         names = [example.name for example in examples]
-        fitted = learned_context(rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts) if context else None
+        fitted = None
+        if context:
+            progress(f"fitting a context: searching the derivations of {len(scenes)} examples")
+            fitted = learned_context(rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts, progress=progress)
     written = []
     write(output, text)
     written.append(output)

@@ -142,6 +142,13 @@ def say(args: argparse.Namespace, text: str) -> None:
         print(text, flush=True)
 
 
+def note_progress(args: argparse.Namespace, text: str) -> None:
+    """Print a line on how long work goes to stderr unless ``--quiet``: stdout keeps the
+    summary alone."""
+    if not args.quiet:
+        print(text, file=sys.stderr, flush=True)
+
+
 def output_directory(path: str) -> Path:
     """``path`` created if needed and checked writable, else ``InputError``."""
     directory = Path(path)
@@ -584,7 +591,7 @@ def run_learn(args: argparse.Namespace) -> int:
     from scenewright.atomic import write_atomic
     from scenewright.examples import load_examples
     from scenewright.learning.context import context_path
-    from scenewright.learning.learn import learn_rule_set
+    from scenewright.learning.learn import CONTEXT_REPLAYS, learn_rule_set
 
     examples = load_examples(args.examples)
     output = output_file(args.output, "induced.rules")
@@ -592,6 +599,7 @@ def run_learn(args: argparse.Namespace) -> int:
     learned = learn_rule_set(
         examples, output, report=report, seed=args.seed, test=args.test, check=args.check, context=args.context,
         rounds=args.rounds, layouts=args.layouts, write=write_atomic,
+        progress=lambda message: note_progress(args, message),
     )  # fmt: skip
     induction = learned.induction
     related = sum(pair.related for pair in induction.relations.pairs)
@@ -604,6 +612,12 @@ def run_learn(args: argparse.Namespace) -> int:
     if context is not None:
         left_out = (f"; {len(context.left_out)} example{'s' * (len(context.left_out) != 1)} no derivation of the "
                     f"induced rules makes left out ({', '.join(context.left_out)})" if context.left_out else "")  # fmt: skip
+        if context.ambiguous:
+            left_out += (f"; {len(context.ambiguous)} example{'s' * (len(context.ambiguous) != 1)} the induced rules "
+                         f"make in too many ways to search left out ({', '.join(context.ambiguous)})")  # fmt: skip
+        if context.unsearched:
+            left_out += (f"; {len(context.unsearched)} not searched (the searches before them spent the "
+                         f"{CONTEXT_REPLAYS} replays all share)")  # fmt: skip
         if context.fit is not None:
             pairs = context.fit.context.pairs
             say(args, f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "

@@ -183,3 +183,36 @@ def test_a_hand_placed_pair_that_breaks_its_relation_teaches_no_pose(tmp_path):
 def _written(path: Path, document: dict) -> Path:
     path.write_text(json.dumps(document))
     return path
+
+
+def bedroom_rules_and_scenes(tmp_path: Path):
+    """The rules ``learn`` induces from the ten shipped bedrooms, and those bedrooms with
+    the induced type names."""
+    from scenewright.examples import load_examples
+    from scenewright.learning.induce import induce, renamed_scenes
+
+    examples = load_examples([str(BEDROOMS)])
+    rules_file = tmp_path / "bedrooms.rules"
+    rules_file.write_text(induce(examples, name="bedrooms", seed=0).text())
+    scenes, _ = renamed_scenes(examples)
+    return load_rules(rules_file), [example.name for example in examples], scenes
+
+
+def test_learns_derivation_searches_share_one_budget_of_replays(tmp_path, monkeypatch):
+    from scenewright.learning import derivations
+    from scenewright.learning.learn import learned_context
+
+    rules, names, scenes = bedroom_rules_and_scenes(tmp_path)
+    heard = []
+    whole = learned_context(rules, names, scenes, seed=0, rounds=0, layouts=2, progress=heard.append)
+    assert whole.used == 10 and whole.unsearched == [] and whole.ambiguous == []
+    assert heard[-1] == "context: searched the derivations of 10 of 10 examples (10 made by the induced rules)"
+    # The ten searches take 1,709 replays together; 400 last for a few of them only.
+    heard.clear()
+    cut = learned_context(rules, names, scenes, seed=0, rounds=0, layouts=2, replays=400, progress=heard.append)
+    assert 0 < cut.used < 10 and cut.unsearched == names[cut.used:] and cut.left_out == []
+    assert any("spent their 400 replays" in line for line in heard)
+    # A search allowed fewer replays than an example needs calls it ambiguous and goes on.
+    monkeypatch.setattr(derivations, "MAX_REPLAYS", 5)
+    none = learned_context(rules, names, scenes, seed=0, rounds=0, layouts=2)
+    assert none.used == 0 and none.ambiguous == names and none.fit is None and "too many ways" in none.why_not
