@@ -972,7 +972,8 @@ pair the room fixes side by side in most scenes (a stove beside a sink under the
 window), which no test of poses can contrast, is related as "fixed". In scenes with
 groups (a home, a market stand) each type is tested in each kind of group it stands in
 (a bush in a home, a bush in a park), and a type pair takes the verdict of its most
-related pair of such roles ("in groups"). Prints a table of every pair of types that
+related pair of such roles ("in groups"); a triangle of parts of one kind of group is
+judged within each group. Prints a table of every pair of types that
 share a scene, or with --json the same fields (a, b, related, statistic, p_value,
 pairs, scenes, strength, tested, fixed, pruned, groups). The same examples and seed
 print the same result. See docs/learning.md.""",
