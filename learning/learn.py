@@ -177,9 +177,9 @@ def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count
 class InducedContext:
     """The context ``learn`` fitted (None when it learned none, ``why_not`` saying why)
     and the examples left out of it: ``left_out``, no derivation of the induced rules
-    makes them; ``ambiguous``, more might than one search may try
-    (``derivations.MAX_REPLAYS``); ``unsearched``, the searches before them spent the
-    replays all share (``CONTEXT_REPLAYS``)."""
+    makes them; ``ambiguous``, the rules might make them in more ways than one search
+    may try (``derivations.MAX_REPLAYS``); ``unsearched``, the searches before them
+    spent the replays all share (``CONTEXT_REPLAYS``)."""
 
     fit: ContextFit | None
     why_not: str | None
