@@ -512,12 +512,13 @@ def nearest_indices(
 
 
 def nearest_objects(
-    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None
-) -> np.ndarray:
+    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None,
+    holders: np.ndarray | None = None,
+) -> np.ndarray:  # fmt: skip
     """The pose (x, z, yaw) of the object of ``others`` nearest each of ``centres`` (n,
-    3), in the scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given ->
-    (n, 3)."""
-    return others.poses[scenes, nearest_indices(centres, others, scenes, left_out)]
+    3), in the scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given and
+    only among those the group ``holders[k]`` holds when given -> (n, 3)."""
+    return others.poses[scenes, nearest_indices(centres, others, scenes, left_out, holders)]
 
 
 def fellows_held(frame: TypePoses, *others: TypePoses) -> np.ndarray:
@@ -1072,17 +1073,15 @@ def composed_poses(
     scenes = order[: 2 * pairs]
     if grouped is None:
         chosen = np.floor(rng.random(2 * pairs) * frame.counts[scenes]).astype(int)
-        a = frame.poses[scenes, chosen]
-        b = nearest_objects(a, middle, scenes)
-        c = nearest_objects(b, end, scenes)
+        holder = None
     else:  # a random a among those whose group holds the other two, as the i-th of them
         eligible = grouped[scenes]
         rank = np.floor(rng.random(2 * pairs) * eligible.sum(axis=1)).astype(int)
         chosen = np.argmax(np.cumsum(eligible, axis=1) > rank[:, None], axis=1)
-        a = frame.poses[scenes, chosen]
         holder = frame.holders[scenes, chosen]
-        b = middle.poses[scenes, nearest_indices(a, middle, scenes, holders=holder)]
-        c = end.poses[scenes, nearest_indices(b, end, scenes, holders=holder)]
+    a = frame.poses[scenes, chosen]
+    b = nearest_objects(a, middle, scenes, holders=holder)
+    c = nearest_objects(b, end, scenes, holders=holder)
     c_in_b = relative_poses(b, c[:, None])[:, 0]  # (2K, 4)
     swapped = np.roll(c_in_b, pairs, axis=0)  # the c of the pair's other scene, relative to its b
     turn = np.arctan2(swapped[:, 3], swapped[:, 2])

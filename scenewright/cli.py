@@ -610,11 +610,12 @@ def run_learn(args: argparse.Namespace) -> int:
         say(args, learned.check.summary())
     context = learned.context
     if context is not None:
-        left_out = (f"; {len(context.left_out)} example{'s' * (len(context.left_out) != 1)} no derivation of the "
-                    f"induced rules makes left out ({', '.join(context.left_out)})" if context.left_out else "")  # fmt: skip
-        if context.ambiguous:
-            left_out += (f"; {len(context.ambiguous)} example{'s' * (len(context.ambiguous) != 1)} the induced rules "
-                         f"make in too many ways to search left out ({', '.join(context.ambiguous)})")  # fmt: skip
+        left_out = "".join(
+            f"; {len(names)} example{'s' * (len(names) != 1)} {why} left out ({', '.join(names)})"
+            for names, why in ((context.left_out, "no derivation of the induced rules makes"),
+                               (context.ambiguous, "the induced rules make in too many ways to search"))
+            if names
+        )  # fmt: skip
         if context.unsearched:
             left_out += (f"; {len(context.unsearched)} not searched (the searches before them spent the "
                          f"{CONTEXT_REPLAYS} replays all share)")  # fmt: skip
@@ -966,16 +967,17 @@ related types a pair that holds only through the third type is reported as indir
 (a lamp on a nightstand by a bed relates to the bed through the nightstand): one
 resting on another, else for the default test a pair whose poses are no tighter than
 their composition through the third type (of such, the one standing farthest apart;
-roads close triangles too), else the weakest pair; --no-prune keeps them. A type resting on another in half the scenes holding both
-or more (measured from the boxes) is related to it whatever the p-value, from 5 scenes. A
-pair the room fixes side by side in most scenes (a stove beside a sink under the one
-window), which no test of poses can contrast, is related as "fixed". In scenes with
+roads close triangles too), else the weakest pair; --no-prune keeps them. A type
+resting on another in half the scenes holding both or more (measured from the boxes)
+is related to it whatever the p-value, from 5 scenes. A pair the room fixes side by
+side in most scenes (a stove beside a sink under the one window), which no test of
+poses can contrast, is related as "fixed". In scenes with
 groups (a home, a market stand) each type is tested in each kind of group it stands in
 (a bush in a home, a bush in a park), and a type pair takes the verdict of its most
 related pair of such roles ("in groups"); a triangle of parts of one kind of group is
-judged within each group. Prints a table of every pair of types that
-share a scene, or with --json the same fields (a, b, related, statistic, p_value,
-pairs, scenes, strength, tested, fixed, pruned, groups). The same examples and seed
+judged within each group. Prints a table of every pair of types that share a scene,
+or with --json the same fields (a, b, related, statistic, p_value, pairs, scenes,
+strength, tested, fixed, pruned, groups). The same examples and seed
 print the same result. See docs/learning.md.""",
     "learn": """\
 examples:
