@@ -12,6 +12,7 @@ named by its folder. An example's name is its file's stem, or its folder's name 
 
 from __future__ import annotations
 
+import codecs
 import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -67,6 +68,10 @@ def load_example(path: str | os.PathLike[str], name: str | None = None) -> Examp
         raise ExampleError(shown, "", f"cannot read: it {problem}") from None
     except OSError as error:
         raise ExampleError(shown, "", f"cannot read: {error.strerror or error}") from None
+    if not data:
+        raise ExampleError(shown, "", "is empty")
+    if data.startswith(codecs.BOM_UTF8) and data[:4] != b"glTF":  # Windows editors write one; JSON has none
+        data = data[len(codecs.BOM_UTF8) :]
     default_name = target.parent.name if target.name == "scene.json" and target.parent.name else target.stem
     name = name or default_name or "example"
     for example_format in FORMATS:
@@ -123,10 +128,22 @@ def is_scene_json_file(path: str | os.PathLike[str]) -> bool:
 
 def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
     """The examples of ``paths`` in order (a folder of examples: each in name order),
-    their names made unique (``bedroom``, ``bedroom-2``, ...)."""
+    their names made unique (``bedroom``, ``bedroom-2``, ...). A file named twice (a
+    folder and a file in it: ``dining/ dining/*.json``) is refused: counted twice, it
+    would weigh double in every statistic learned from the examples."""
     examples: list[Example] = []
     taken: set[str] = set()
+    read: dict[Path, str] = {}
     for path in example_paths(paths):
+        target = Path(path) / "scene.json" if Path(path).is_dir() else Path(path)
+        try:
+            key = target.resolve()
+        except OSError:
+            key = target
+        if key in read:
+            also = "" if read[key] == str(path) else f" (also as {read[key]})"
+            raise ExampleError(str(path), "", f"is named twice{also}: an example counts once")
+        read[key] = str(path)
         example = load_example(path)
         name, count = example.name, 1
         while name in taken:

@@ -3,8 +3,11 @@
 Every node with a mesh is an object, except room parts. Its type and style come from
 the node's name by the pattern ``TYPE[.STYLE][.NNN]``: ``desk.oak.001`` is a desk in
 style oak, ``desk.001`` and ``desk`` a desk of no style (``.NNN``, Blender's counter
-for copies, is dropped; so is a trailing ``_N``, scenewright's id counter). The id is
-the node name. A node's ``extras`` written by ``scenewright export`` (id, type, kind,
+for copies, is dropped; so is a trailing ``_N``, scenewright's id counter). Type and
+style are read in lower case, spaces as underscores (Blender names its copies
+``Chair.001``; types are lower-case names everywhere else), so ``Dining Chair.002`` is
+a dining_chair. The id is the node name; a mesh node without a name is refused, since
+nothing would say what it is. A node's ``extras`` written by ``scenewright export`` (id, type, kind,
 style) take precedence over its name.
 
 Size is the mesh's bounds in the node's own frame times the node's scale, position the
@@ -44,9 +47,9 @@ _NAME = re.compile(r"[^A-Za-z0-9_.-]")
 
 
 def parse_node_name(name: str) -> tuple[str, str | None]:
-    """(type, style) of a node name ``TYPE[.STYLE][.NNN]``."""
+    """(type, style) of a node name ``TYPE[.STYLE][.NNN]``, in lower case."""
     base = _COUNTER.sub("", name.strip()) or name.strip()
-    parts = [p for p in base.split(".") if p]
+    parts = [p for p in base.lower().split(".") if p]
     kind = _NAME.sub("_", parts[0]) if parts else "object"
     style = _NAME.sub("_", ".".join(parts[1:])) if len(parts) > 1 else None
     return kind, style
@@ -69,6 +72,8 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
         mesh = loaded.geometry[geometry_name]
         if not hasattr(mesh, "bounds") or mesh.bounds is None:
             continue
+        if node not in order:  # trimesh names an unnamed node by its index
+            raise ExampleError(path, f"node {node}", "has no name: name each object's node TYPE[.STYLE][.NNN], e.g. chair.001")
         meta = extras.get(node, {})
         kind, style = parse_node_name(node)
         kind, style = meta.get("type", kind), meta.get("style", style)

@@ -3,8 +3,9 @@
 
 Checked in three passes, each naming the first problem with the file and the place in
 it: JSON syntax (``file:line:col``), the schema (``$.objects[2].size`` and the
-object's id), then references (unique ids, parents that exist and do not stand on
-themselves, a room that can be built). Yaw is in degrees in this format; the Scene
+object's id), then references and places (unique ids, parents that exist and do not
+stand on themselves, a room that can be built, every object's base centre inside the
+room or extent, an object given a parent touching its top over its footprint). Yaw is in degrees in this format; the Scene
 keeps radians as everywhere else. A room given by corners is moved so its bounding box
 is centred on the origin, and its objects with it.
 """
@@ -18,11 +19,13 @@ from typing import Any
 import jsonschema
 from jsonschema.exceptions import best_match
 
+from scenewright.core.frames import to_local
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
 from scenewright.core.scene import Scene
 from scenewright.schema_check import packaged_schema_text, packaged_validator
 
 from .model import ExampleError, ObjectRecord, example_scene
+from .stacking import CONTACT
 
 SCHEMA_FILE = "example.schema.json"
 
@@ -62,7 +65,34 @@ def read_handwritten(path: str, text: str, name: str) -> Scene:
         )
         for raw in raw_objects
     ]  # fmt: skip
+    for index, record in enumerate(records):
+        _check_place(path, index, record, records, parents, room, extent)
     return example_scene(records, name=data.get("name", name), source=path, extent=extent, room=room, parents=parents)
+
+
+def _check_place(path: str, index: int, record: ObjectRecord, records: list[ObjectRecord], parents: dict[str, str],
+                 room: Room | None, extent: tuple[float, float]) -> None:  # fmt: skip
+    """Refuse an object that stands outside the room (or extent), or that the file says
+    stands on a parent it does not touch: every stage after reading trusts both."""
+    where = f"$.objects[{index}].position (object {record.id!r})"
+    x, y, z = record.position
+    if room is not None:
+        outside = not room.contains(x, z)
+    else:
+        outside = abs(x) > extent[0] / 2.0 or abs(z) > extent[1] / 2.0
+    if outside:
+        raise ExampleError(path, where, f"its base centre ({x:g}, {z:g}) is outside the {'room' if room else 'extent'}")
+    parent = parents.get(record.id)
+    if parent is None:
+        return
+    below = next(r for r in records if r.id == parent)
+    top = below.position[1] + below.size[1]
+    if abs(y - top) > CONTACT:
+        raise ExampleError(path, where, f"stands on {parent!r}, whose top is at height {top:g}, but its base is at {y:g}"
+                                        " (give the position as [x, z] to put it on top)")  # fmt: skip
+    lx, lz = to_local(below.position[0], below.position[2], below.yaw, x, z)
+    if abs(lx) > below.size[0] / 2.0 + 1e-6 or abs(lz) > below.size[2] / 2.0 + 1e-6:
+        raise ExampleError(path, where, f"stands on {parent!r}, but its base centre is not over the footprint of {parent!r}")
 
 
 def parse_json(path: str, text: str) -> Any:

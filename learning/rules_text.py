@@ -219,7 +219,7 @@ class RulesWriter:
             return f"{prefix}{name}({target})    # {note}", largest * below
         labels = member.placements[0].labels if member.placements else ()
         if member.placements:
-            note += f"; {member.placements[0].weight} of {member.instances} stood so"
+            note += f"; {member.placements[0].weight} of {member.instances} in one cluster of poses"
         text = f"{prefix}{member.type} {self.relation_words(labels, target)}".rstrip() + self.wall_words(member.wall)
         return f"{text}    # {note}", largest
 

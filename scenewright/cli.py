@@ -1534,6 +1534,7 @@ def build_parser() -> CommandLineParser:
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; return the exit code (the console script exits with it)."""
     debug = "--debug" in (sys.argv[1:] if argv is None else argv)
+    args = None
     try:
         args = build_parser().parse_args(argv)
         return args.handler(args)
@@ -1544,7 +1545,8 @@ def main(argv: list[str] | None = None) -> int:
         print(str(error) if located else f"{PROG}: error: {error}", file=sys.stderr)
         return error.exit_code
     except KeyboardInterrupt:
-        print(f"{PROG}: interrupted (rerunning a dataset command resumes it)", file=sys.stderr)
+        resumes = " (rerunning a dataset command resumes it)" if getattr(args, "command", None) == "dataset" else ""
+        print(f"{PROG}: interrupted{resumes}", file=sys.stderr)
         return 130
     except BrokenPipeError:
         # The reader stopped early (``scenewright list --shapes | head``): nothing is

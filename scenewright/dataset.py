@@ -299,8 +299,9 @@ class RunReport:
         kept = "included, ok=false" if spec.include_failed else "left out"
         images = f" ({self.written * spec.views} images)" if spec.views > 1 else ""
         notes = [
-            f"{self.directory}: {self.written} scenes{images} in metadata.jsonl; {failed_layouts} of {self.count} "
-            f"layouts failed after {spec.retries} retries ({kept}); made {self.made} now, {self.skipped} were already done"
+            f"{self.directory}: {self.written} scene{'s' * (self.written != 1)}{images} in metadata.jsonl; {failed_layouts} "
+            f"of {self.count} layouts failed after {spec.retries} retries ({kept}); ran {self.made} now, {self.skipped} "
+            "were already done"
         ]
         retries = stats["retries"]
         if retries["scenes_retried"]:

@@ -166,7 +166,7 @@ def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards
         timeout=120,
     )
     assert rerun.returncode == 0, rerun.stderr
-    assert "1 scenes in metadata.jsonl" in rerun.stdout and "made 0 now, 1 were already done" in rerun.stdout
+    assert "1 scene in metadata.jsonl" in rerun.stdout and "ran 0 now, 1 were already done" in rerun.stdout
     if made > 1:
         assert f"{made - 1} finished scenes with index 1 or above stay on disk, not listed" in rerun.stdout
     assert len(metadata_rows(root)) == 1

@@ -89,6 +89,10 @@ def test_a_folder_of_examples_stands_for_its_files_in_name_order(tmp_path):
         (lambda d: d["room"].update(corners=[[0, 0], [1, 1], [0, 1], [1, 0]]), ["$.room", "cross"]),
         (lambda d: d.pop("room"), ["$: needs exactly one of", "extent", "room"]),
         (lambda d: d["objects"][0].update(colour="red"), ["$.objects[0]", "colour"]),
+        # Places every later stage trusts: inside the room, and touching the parent given.
+        (lambda d: d["objects"][1].update(position=[30, 0, 1]), ["$.objects[1].position (object 'chair')", "outside the room"]),
+        (lambda d: d["objects"][2].update(position=[2.3, 0, 0.5]), ["$.objects[2].position (object 'lamp')", "top is at height 0.75", "base is at 0"]),
+        (lambda d: d["objects"][2].update(position=[3.5, 0.75, 2.5]), ["stands on 'desk'", "not over the footprint"]),
     ],
 )
 def test_bad_handwritten_files_name_the_place(tmp_path, change, fragments):
@@ -108,13 +112,23 @@ def test_bad_handwritten_files_name_the_place(tmp_path, change, fragments):
     [
         ('{"extent": [4, 4],\n "objects": [1, 2,]}', "bad.json:2:19: not JSON"),
         ('{"extent": [NaN, 4], "objects": []}', "NaN is not a finite number"),
-        ("", "bad.json:1:1: not JSON"),
+        ("", "bad.json: is empty"),
     ],
 )
 def test_broken_json_is_located(tmp_path, text, fragment):
     path = write(tmp_path, "bad.json", text)
     with pytest.raises(ExampleError, match=fragment.replace("[", r"\[")):
         load_example(path)
+
+
+def test_a_file_named_twice_is_refused_and_a_bom_is_read(tmp_path):
+    folder = tmp_path / "set"
+    folder.mkdir()
+    path = write(folder, "a.json", DESK_ROOM)
+    with pytest.raises(ExampleError, match=r"a.json: is named twice: an example counts once"):
+        load_examples([folder, path])  # the folder holds it already: it would weigh double
+    (tmp_path / "bom.json").write_bytes(b"\xef\xbb\xbf" + json.dumps(DESK_ROOM).encode())
+    assert len(load_example(tmp_path / "bom.json").objects()) == 4
 
 
 def test_unreadable_inputs(tmp_path):
@@ -148,7 +162,8 @@ def test_scene_json_keeps_the_grammar_relations(tmp_path):
 @pytest.mark.parametrize(
     ("name", "expected"),
     [("desk.oak.001", ("desk", "oak")), ("desk.001", ("desk", None)), ("desk", ("desk", None)),
-     ("desk_3", ("desk", None)), ("office chair.black", ("office_chair", "black"))],
+     ("desk_3", ("desk", None)), ("office chair.black", ("office_chair", "black")),
+     ("Dining Chair.002", ("dining_chair", None)), ("Wall.001", ("wall", None)), ("Desk.Oak", ("desk", "oak"))],
 )  # fmt: skip
 def test_node_names(name, expected):
     assert parse_node_name(name) == expected
@@ -199,6 +214,32 @@ def test_blender_style_glb(tmp_path):
     assert lamp_object.size == pytest.approx([0.2, 0.4, 0.2]) and lamp_object.yaw == pytest.approx(math.radians(30))
     assert example.supports() == {"lamp.002": "desk.oak.001"}
     assert example.scene.room is not None and example.scene.extent == pytest.approx([6.0, 4.0])
+
+
+def test_blender_default_names_and_unnamed_nodes(tmp_path):
+    box = trimesh.creation.box([1.0, 0.8, 1.0])
+    wall = trimesh.creation.box([4.2, 2.5, 0.1])
+    side = trimesh.creation.box([0.1, 2.5, 4.2])
+    path = blender_style_glb(
+        tmp_path,
+        [("Dining Table", box, pose(0, 0.4, 0, 0)), ("Wall", wall, pose(0, 1.25, -2.05, 0)), ("Wall.001", wall, pose(0, 1.25, 2.05, 0)),
+         ("Wall.002", side, pose(2.05, 1.25, 0, 0)), ("Wall.003", side, pose(-2.05, 1.25, 0, 0))],
+    )  # fmt: skip
+    example = load_example(path)
+    assert [(o.id, o.type) for o in example.objects()] == [("Dining_Table", "dining_table")]
+    assert example.scene.room is not None and example.scene.extent == pytest.approx([4.0, 4.0])
+    # A mesh node without a name says nothing of what it is.
+    scene = trimesh.Scene()
+    scene.add_geometry(box, geom_name="mesh")
+    document = scene.export(file_type="glb")
+    length = int.from_bytes(document[12:16], "little")
+    chunk = json.loads(document[20 : 20 + length])
+    for node in chunk["nodes"]:
+        node.pop("name", None)
+    text = json.dumps(chunk, separators=(",", ":")).encode().ljust(length)  # shorter: the name is gone
+    (tmp_path / "unnamed.glb").write_bytes(document[:20] + text + document[20 + length :])
+    with pytest.raises(ExampleError, match="unnamed.glb: node 0: has no name"):
+        load_example(tmp_path / "unnamed.glb")
 
 
 def test_tilted_node_is_refused(tmp_path):

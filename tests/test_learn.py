@@ -303,7 +303,7 @@ def reading_corners(folder: Path) -> list[Path]:
     for index in range(14):
         width, depth = draw.choice([(3.6, 3.0), (4.0, 3.4), (4.4, 3.6)])
         wall = draw.choice(["north", "south", "east", "west"])
-        along = draw.uniform(-0.8, 0.8)
+        along = draw.uniform(-0.45, 0.45)  # the side table and lamp stay inside the room
         x, z, yaw = {"north": (along * width / 2, -depth / 2 + 0.5, 0), "south": (along * width / 2, depth / 2 - 0.5, 180),
                      "east": (width / 2 - 0.5, along * depth / 2, 270), "west": (-width / 2 + 0.5, along * depth / 2, 90)}[wall]  # fmt: skip
         turn = math.radians(yaw)
