@@ -103,8 +103,10 @@ def _resolve(source: str | os.PathLike) -> tuple[Path, str]:
     if not path.exists():  # anything else that is there is read, or refused, as a rules file
         known = ", ".join(shipped_rule_sets())
         where = SourceLocation(text, 1, 1)
+        with_suffix = path.with_name(path.name + RULES_SUFFIX)
+        hint = f"; did you mean '{with_suffix}'?" if not text.endswith(RULES_SUFFIX) and with_suffix.is_file() else ""
         raise RulesError(
-            [Diagnostic(where, f"no rules file '{text}' (and no shipped rule set of that name: {known})")]
+            [Diagnostic(where, f"no rules file '{text}' (and no shipped rule set of that name: {known}){hint}")]
         )
     return path, text
 

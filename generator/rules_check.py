@@ -447,7 +447,9 @@ class _Checker:
                            f"unknown relation label '{relation.label}'"
                            + (case_mix_up(relation.label, RELATIONS.names(), "relation labels are CamelCase")
                               or did_you_mean(relation.label, RELATIONS.names())))
-            self.check_target(relation.target, scope)
+            by_wall = relation.label in RELATIONS and RELATIONS[relation.label].family == "wall"
+            if not (by_wall and not self.has_room):  # the wall label's own error says it all
+                self.check_target(relation.target, scope)
             if relation.label in RELATIONS and RELATIONS[relation.label].family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
             if relation.label in RELATIONS and RELATIONS[relation.label].family == "wall":

@@ -57,7 +57,7 @@ class CommandLineParser(argparse.ArgumentParser):
 
 def image_size(text: str) -> tuple[int, int]:
     """``WxH`` in pixels, e.g. ``640x480`` (ASCII digits only)."""
-    match = re.fullmatch(r"([0-9]{1,5})[xX]([0-9]{1,5})", text)
+    match = re.fullmatch(r"([0-9]{1,9})[xX]([0-9]{1,9})", text)
     if match is None:
         raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 640x480, not {_clipped(text)}")
     size = (int(match[1]), int(match[2]))

@@ -636,6 +636,9 @@ def test_include_cycle_and_missing_include(in_tmp):
 def test_unknown_rule_set_name(in_tmp):
     with pytest.raises(RulesError, match=r"no rules file 'vilage' \(and no shipped rule set of that name: .*village"):
         load_rules("vilage")
+    Path("campsite.rules").write_text("")
+    with pytest.raises(RulesError, match=r"did you mean 'campsite.rules'\?"):
+        load_rules("campsite")
 
 
 # -- robustness: whatever the text, a RulesError with valid positions or Rules ------

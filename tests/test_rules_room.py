@@ -126,6 +126,7 @@ def test_a_wall_label_needs_a_room(tmp_path):
     text = 'scene s { extent 4 x 4\n start S }\nobject a { noun "a" }\nS -> { a AgainstWall some wall }\n'
     printed = diagnostics(tmp_path, text)
     assert "room.rules:4:10: error: AgainstWall needs a room" in printed
+    assert printed.count("error:") == 1, printed  # not also "unknown type 'wall'"
 
 
 def test_a_catalog_entry_may_not_take_a_room_part_name(tmp_path):
