@@ -39,7 +39,7 @@ weights written.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -154,12 +154,25 @@ def measured_example_layout(name: str, scene: Scene, derivations: Sequence[Scene
              for node, o in chosen.items()}  # fmt: skip
     # A hand-placed pair that breaks the rules' own relation (a nightstand 46 degrees off
     # "right of the bed") would teach the learned term poses the layout's verdict refuses.
-    wanted = [(chosen[e.source], e.label, chosen[e.target]) for e in derivation.edges()
-              if e.source in chosen and e.target in chosen and not RELATIONS[e.label].support]  # fmt: skip
-    verdicts = measured_relations(scene, wanted)
+    # So would a vase on a sideboard's end taught to "in the middle of" it: a support
+    # with a placement is measured in the plane, the object set on its support's top (the
+    # stacking that found the support allows 3 cm, the verdict's height 1 cm).
+    pairs = [(chosen[e.source], e.label, chosen[e.target]) for e in derivation.edges() if e.source in chosen and e.target in chosen]
+    wanted = [pair for pair in pairs if not RELATIONS[pair[1]].support]
+    placed = [pair for pair in pairs if RELATIONS[pair[1]].support and RELATIONS[pair[1]].placement != "anywhere"]
+    verdicts = {**measured_relations(scene, wanted), **measured_relations(set_on_supports(scene, placed), placed)}
     node_of = {o: node for node, o in chosen.items()}
     broken = frozenset((node_of[a], node_of[b]) for (a, _, b), verdict in verdicts.items() if not verdict.satisfied)
     return ExampleLayout(derivation, graph_pair_poses(derivation, poses, broken), _floor_area(scene.extent))
+
+
+def set_on_supports(scene: Scene, supports: Sequence[tuple[str, str, str]]) -> Scene:
+    """A copy of ``scene`` with the subject of each (subject id, label, support id) set
+    on its support's top."""
+    objects = {o.id: o for o in scene.objects}
+    tops = {subject: objects[below].position[1] + objects[below].size[1] for subject, _, below in supports}
+    moved = [replace(o, position=[o.position[0], tops[o.id], o.position[2]]) if o.id in tops else o for o in scene.objects]
+    return replace(scene, objects=moved)
 
 
 def grid_bounds(points: np.ndarray) -> tuple[float, float, float, float]:

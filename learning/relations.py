@@ -168,6 +168,23 @@ permutation (the default, for continuous layouts)
     each, seeds 0, 1 and 2) the only fixed pairs are the kitchen's sink_counter-stove
     and kitchen_counter-sink_counter (docs/learning.md).
 
+    Chairs around a table. Where an a has two or more b's about it in most scenes
+    (``surrounds``: four to six chairs at a dining table), the b nearest a random a is
+    any of them and no one pose describes it: their median stands between the seats.
+    And with fewer than ``PAIR_SCENES`` scenes (a dozen hand-made dining rooms) the
+    test has halves of six poses, too few to see such a pair even where the room does
+    not fix the table (twelve rooms: p 0.36; forty reach p 0.01). So a pair the test
+    does not relate, held by ``MIN_PAIRED_SCENES`` to ``PAIR_SCENES`` - 1 scenes with an
+    a surrounded so, is related as fixed (``surrounding_arrangement``) when in at least
+    ``FIXED_SHARE`` of the scenes, in a random cycle, the b nearest a random a stands
+    next to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of where *some* b stands
+    about the next scene's a (a random one too), both in their a's frame: the b's stand
+    at the same places from scene to scene. The across-scene condition of a fixed
+    arrangement is not asked: with so few scenes a pair the test misses need not be the
+    room's doing. From ``PAIR_SCENES`` scenes the test has the power and this is not
+    asked, so the benchmark's 500 scenes of a rule set meet it only in pairs of roles
+    held by few scenes.
+
 angle
     The test of complete spatial randomness by means of angles (Assuncao 1994) as
     Zhang et al., "Fast 3D Indoor Scene Synthesis by Learning Spatial Relation Priors of
@@ -759,6 +776,49 @@ def fixed_arrangement(first: TypePoses, second: TypePoses, same: bool, together:
     return share_at_one_pose(first, second, scenes, np.roll(scenes, -1), chosen, same, rng) >= FIXED_SHARE
 
 
+def surrounds(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray) -> bool:
+    """Whether an a has two or more b's (besides itself) in at least ``FIXED_SHARE`` of
+    the scenes ``together``: chairs around a table, where the b nearest an a is any
+    of them."""
+    others = second.counts[together] - (1 if same else 0)
+    return bool(np.mean(others >= 2) >= FIXED_SHARE)
+
+
+def share_at_some_pose(
+    first: TypePoses, second: TypePoses, scenes: np.ndarray, chosen: np.ndarray, same: bool, rng: np.random.Generator
+) -> float:  # fmt: skip
+    """The share of the a's ``first.poses[scenes, chosen]`` whose nearest b stands next
+    to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of where some b stands about the
+    a of the next scene (``np.roll(scenes, -1)``, its a ``np.roll(chosen, -1)``), both in
+    their a's frame; for one type, an a's counterpart is not its b."""
+    centres = first.poses[scenes, chosen]
+    left_out = counterparts(second, scenes, chosen, rng) if same else None
+    index = nearest_indices(centres, second, scenes, left_out)
+    pose = relative_poses(centres, second.poses[scenes, index][:, None])[:, 0]  # (n, 4)
+    next_to = footprint_gaps(pose, first.footprints[scenes, chosen], second.footprints[scenes, index]) <= NEXT_TO_DISTANCE
+    around = relative_poses(np.roll(centres, -1, axis=0), second.poses[np.roll(scenes, -1)])  # (n, K, 4)
+    valid = np.arange(second.poses.shape[1])[None, :] < second.counts[np.roll(scenes, -1)][:, None]
+    if same:  # the next scene's a is no b about itself
+        valid[np.arange(len(scenes)), np.roll(chosen, -1)] = False
+    offset = np.hypot(*(around[..., :2] - pose[:, None, :2]).transpose(2, 0, 1))
+    turn = np.abs(np.angle(np.exp(1j * (np.arctan2(around[..., 3], around[..., 2]) - np.arctan2(pose[:, 3], pose[:, 2])[:, None]))))
+    matched = np.any(valid & (offset <= FIXED_OFFSET) & (turn <= FIXED_TURN), axis=1)
+    return float(np.mean(matched & next_to))
+
+
+def surrounding_arrangement(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> bool:
+    """Whether a's b's stand about it at the same places from scene to scene, with too
+    few scenes for the test (module docstring, "A fixed arrangement"): fewer than
+    ``PAIR_SCENES`` scenes, an a surrounded by two or more b's in most (``surrounds``),
+    and in at least ``FIXED_SHARE`` of the scenes, in a random cycle, the b nearest a
+    random a next to it where some b stands about the next scene's a."""
+    if len(together) >= PAIR_SCENES or not surrounds(first, second, same, together):
+        return False
+    scenes = rng.permutation(together)
+    chosen = np.floor(rng.random(len(scenes)) * first.counts[scenes]).astype(int)
+    return share_at_some_pose(first, second, scenes, chosen, same, rng) >= FIXED_SHARE
+
+
 def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
     """The permutation test of one pair (module docstring): on pairs of scenes, on
     halves of them when they are fewer than ``PAIR_SCENES``, by pairing scenes when
@@ -774,7 +834,9 @@ def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np
         strength = pair_strength(first, second, same, together, outcome.strength, rng)
         floor = MIN_LOCAL_TIGHTNESS if outcome.poses >= LOCAL_POSES else MIN_TIGHTNESS
         outcome = replace(outcome, related=strength >= floor, strength=strength)
-    if not outcome.related and fixed_arrangement(first, second, same, together, rng):
+    if not outcome.related and (
+        fixed_arrangement(first, second, same, together, rng) or surrounding_arrangement(first, second, same, together, rng)
+    ):
         return replace(outcome, related=True, fixed=True)
     return outcome
 

@@ -296,7 +296,10 @@ class RulesWriter:
         bound = self.binding(group.anchor, taken)
         ind = self.induction
         related = [p for p in ind.relations.pairs if p.related and p.a in group.types and p.b in group.types and p.a != p.b]
-        pairs = ", ".join(f"{p.a}-{p.b} (p {p.p_value:.3g})" for p in related if p.p_value is not None)
+        pairs = ", ".join(
+            f"{p.a}-{p.b} (" + ("a fixed arrangement" if p.fixed else f"p {p.p_value:.3g}") + ")"
+            for p in related if p.p_value is not None
+        )  # fmt: skip
         lines = comment_lines(f"{group.rule}: {with_article(ind.catalog[group.anchor].noun)} and what stands by it.")
         if pairs:
             lines += comment_lines(f"Related pairs ({ind.relations.test} test): {pairs}.")

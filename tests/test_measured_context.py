@@ -180,6 +180,26 @@ def test_a_hand_placed_pair_that_breaks_its_relation_teaches_no_pose(tmp_path):
     assert chair_pairs and [kind for kind, _ in left] == [kind for kind, _ in kept if kind[0] != "chair"]
 
 
+def test_a_hand_placed_support_off_its_placement_teaches_no_pose(tmp_path):
+    # A desk lamp "on the edge of" the desk set down in the desk's middle: still on top
+    # (measured in the plane, so the 3 cm the stacking allows do not count against it),
+    # but its pose would pull generated lamps where the verdict refuses the edge.
+    rules = load_rules("bedroom")
+    scene = next(s for s in (build_scene(rules, seed) for seed in range(20)) if any(o.type == "desk_lamp" for o in s.objects))
+    document = hand_written(scene, np.arange(len(scene.placed_objects())))
+    lamp = next(o for o in document["objects"] if o["type"] == "desk_lamp")
+    lamp["position"][1] += 0.02  # within the stacking's contact, off the verdict's 1 cm
+    raised = load_example(_written(tmp_path / "raised.json", document)).scene
+    kept = pair_poses(measured_example_layout("raised", raised, measured_derivation_graphs(rules, raised)))
+    assert any(kind[:2] == ("desk_lamp", "desk") for kind, _ in kept)
+    desk = next(o for o in document["objects"] if o["type"] == "desk")
+    lamp["position"][0], lamp["position"][2] = desk["position"][0], desk["position"][2]
+    moved = load_example(_written(tmp_path / "moved.json", document)).scene
+    left = pair_poses(measured_example_layout("moved", moved, measured_derivation_graphs(rules, moved)))
+    assert not any(kind[:2] == ("desk_lamp", "desk") for kind, _ in left)
+    assert [kind for kind, _ in left] == [kind for kind, _ in kept if kind[:2] != ("desk_lamp", "desk")]
+
+
 def _written(path: Path, document: dict) -> Path:
     path.write_text(json.dumps(document))
     return path
