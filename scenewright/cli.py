@@ -445,6 +445,7 @@ def run_dataset(args: argparse.Namespace) -> int:
 
 
 def run_validate(args: argparse.Namespace) -> int:
+    from scenewright.examples.formats import is_scene_json_file
     from scenewright.generator import check_rules, shipped_rule_sets
 
     shipped = shipped_rule_sets()
@@ -453,6 +454,8 @@ def run_validate(args: argparse.Namespace) -> int:
         if not Path(name).is_file() and name not in shipped:
             print(f"{name}: error: no such file (nor a shipped rule set: {', '.join(shipped)})")
             any_error = True
+        elif name.lower().endswith(".glb") or (name.endswith(".json") and not is_scene_json_file(name)):
+            any_error |= not validate_example_file(name)
         elif name.endswith(".json"):
             any_error |= not validate_scene_file(name)
         else:
@@ -465,6 +468,23 @@ def run_validate(args: argparse.Namespace) -> int:
             if not errors:
                 print(f"{name}: ok" + (f" ({warnings} warning{'s' * (warnings != 1)})" if warnings else ""))
     return 2 if any_error else 0
+
+
+def validate_example_file(name: str) -> bool:
+    """Print ``NAME: ok`` (with what it holds) or its problem, for a hand-written example
+    or a GLB (``examples``, the reader learn, fit and vary use); return whether it is ok."""
+    from scenewright.examples import ExampleError, load_example
+
+    try:
+        example = load_example(name)
+    except ExampleError as error:
+        print(f"{error.path}: error: " + (f"{error.where}: {error.reason}" if error.where else error.reason))
+        return False
+    objects = len(example.objects())
+    kind = {"glb": "GLB", "example.json": "hand-written"}.get(example.format, example.format)
+    room = "a room" if example.scene.room is not None else "open ground"
+    print(f"{name}: ok ({kind} example: {objects} object{'s' * (objects != 1)} in {room})")
+    return True
 
 
 def validate_scene_file(name: str) -> bool:
@@ -896,6 +916,7 @@ exit codes:
 examples:
   scenewright validate village
   scenewright validate my.rules out/scene.json
+  scenewright validate my_rooms/study.json my_rooms/kitchen.glb    # example scenes, as learn reads them
 
 Prints "FILE: ok" or every diagnostic (file:line:column with the line and a caret).
 Exit 2 when any file has an error; warnings alone exit 0.""",
@@ -1330,10 +1351,11 @@ def build_parser() -> CommandLineParser:
         f"objects ({DATASET_RETRIES}: with 30%% of layouts failing, 0.8%% of scenes still fail)",
     )
 
-    validate = command("validate", "check rules files (and scene.json files)", run_validate)
+    validate = command("validate", "check rules files (and scene.json files and example scenes)", run_validate)
     validate.add_argument(
-        "files", nargs="+", metavar="FILE", help=".rules files, shipped rule set names, or scene .json files"
-    )
+        "files", nargs="+", metavar="FILE",
+        help=".rules files, shipped rule set names, scene .json files, or example scenes (hand-written .json, .glb)",
+    )  # fmt: skip
     allow_option(validate)
 
     expand = command("expand", "print the scene graph that the grammar expands to", run_expand)

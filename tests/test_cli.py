@@ -149,6 +149,20 @@ def test_validate_scene_json(capsys, scene_file, tmp_path):
     assert lines[1].startswith(f"{broken}: error: ") and "$.seed" in lines[1]
 
 
+def test_validate_example_scenes_as_learn_reads_them(capsys, scene_file, tmp_path):
+    desks = sorted((Path(__file__).parents[1] / "examples" / "sets" / "desks").glob("*.json"))[:2]
+    broken = tmp_path / "broken.json"
+    document = json.loads(desks[0].read_text())
+    document["objects"][0]["position"] = [40, 0, 0]
+    broken.write_text(json.dumps(document))
+    code, out, _ = run(capsys, "validate", *map(str, desks), str(broken), str(scene_file))
+    assert code == 2
+    lines = out.splitlines()
+    assert lines[0].startswith(f"{desks[0]}: ok (hand-written example: ") and "in a room)" in lines[0]
+    assert lines[2].startswith(f"{broken}: error: $.objects[0].position") and "outside the room" in lines[2]
+    assert lines[3] == f"{scene_file}: ok"  # a scene.json is still checked against its schema
+
+
 def test_bad_rules_print_the_located_excerpt_and_exit_2(capsys, tmp_path):
     bad = tmp_path / "bad.rules"
     bad.write_text(BAD_RULES)
