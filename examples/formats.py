@@ -114,6 +114,17 @@ def example_paths(paths: Iterable[str | os.PathLike[str]]) -> list[str | os.Path
     return expanded
 
 
+def is_handwritten_example(path: str | os.PathLike[str]) -> bool:
+    """Whether the file ``path`` is JSON for the hand-written reader rather than a
+    scene.json: it lists ``objects`` and names no ``rules`` (every scene.json does; the
+    hand-written format has no such key). False when it cannot be read."""
+    try:
+        data = read_regular_file(Path(path), MAX_EXAMPLE_BYTES, "an example file")
+    except (UnusableFile, OSError):
+        return False
+    return not _is_scene_json(data) and b'"objects"' in data and b'"rules"' not in data
+
+
 def is_scene_json_file(path: str | os.PathLike[str]) -> bool:
     """Whether ``path`` (a file, or a folder holding a scene.json) is a scenewright
     scene.json, by the same test the readers use; False when it cannot be read (its

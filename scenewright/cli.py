@@ -445,7 +445,7 @@ def run_dataset(args: argparse.Namespace) -> int:
 
 
 def run_validate(args: argparse.Namespace) -> int:
-    from scenewright.examples.formats import is_scene_json_file
+    from scenewright.examples.formats import is_handwritten_example
     from scenewright.generator import check_rules, shipped_rule_sets
 
     shipped = shipped_rule_sets()
@@ -454,7 +454,7 @@ def run_validate(args: argparse.Namespace) -> int:
         if not Path(name).is_file() and name not in shipped:
             print(f"{name}: error: no such file (nor a shipped rule set: {', '.join(shipped)})")
             any_error = True
-        elif name.lower().endswith(".glb") or (name.endswith(".json") and not is_scene_json_file(name)):
+        elif name.lower().endswith(".glb") or (name.endswith(".json") and is_handwritten_example(name)):
             any_error |= not validate_example_file(name)
         elif name.endswith(".json"):
             any_error |= not validate_scene_file(name)
@@ -1567,7 +1567,9 @@ def main(argv: list[str] | None = None) -> int:
         print(str(error) if located else f"{PROG}: error: {error}", file=sys.stderr)
         return error.exit_code
     except KeyboardInterrupt:
-        resumes = " (rerunning a dataset command resumes it)" if getattr(args, "command", None) == "dataset" else ""
+        words = sys.argv[1:] if argv is None else argv
+        command = args.command if args is not None else next((w for w in words if not w.startswith("-")), None)
+        resumes = " (rerunning a dataset command resumes it)" if command == "dataset" else ""
         print(f"{PROG}: interrupted{resumes}", file=sys.stderr)
         return 130
     except BrokenPipeError:

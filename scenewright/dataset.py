@@ -406,10 +406,7 @@ def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     keys = [key for key in dict.fromkeys([*current, *stored]) if key != "count"]
     differing = [key for key in keys if stored.get(key) != current.get(key)]
     if differing:
-        def shown(value) -> str:  # as dataset.json stores it
-            return json.dumps(value, ensure_ascii=False)
-
-        details = ", ".join(f"{key} {shown(stored.get(key))} -> {shown(current.get(key))}" for key in differing)
+        details = ", ".join(f"{key} {stored.get(key)!r} -> {current.get(key)!r}" for key in differing)
         raise InputError(f"{root} holds a dataset made with other settings ({details}); use a new directory")
 
 

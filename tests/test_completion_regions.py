@@ -21,8 +21,10 @@ from test_complete import catalog, model  # noqa: F401 (the fixtures)
 #: sha256 of the reproducible scene.json of the 5 x 4 bedroom below, seed 1, from the
 #: code before composite rooms were split: a room of one type must not change. It is
 #: made from the plans of the four home types (the gyms came later: their plants move
-#: the plant's mean footprint, so the model, not the code, differs with them).
-ONE_TYPE_DIGEST = "4f1ddf1bc01689d8782d37514e4df5f7958a9ac20e88a5d9174c0e81035265bd"
+#: the plant's mean footprint, so the model, not the code, differs with them). Made
+#: anew when the layout gained the windows term (tall furniture kept from before a
+#: window), which moves this room's pieces; the split and the whole room still agree.
+ONE_TYPE_DIGEST = "241d898b0264d84432cd10c1c36cc5da51a1558c59eac0a09de820d7ba6810f2"
 
 
 def request_of(catalog, room, door, window, wanted):

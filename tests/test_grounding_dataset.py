@@ -127,7 +127,7 @@ def test_a_rerun_with_other_caption_settings_is_refused(tmp_path, capsys):
     assert or_skip_without_opengl(lambda: main([*common, "--frame", "camera"])) == 0
     capsys.readouterr()
     assert main(common) == 2
-    assert 'made with other settings (frame "camera" -> "scene")' in capsys.readouterr().err
+    assert "made with other settings (frame 'camera' -> 'scene')" in capsys.readouterr().err
 
 
 def test_a_word_budget_shortens_the_text_column_and_grounds_what_it_says(tmp_path, capsys):
@@ -147,4 +147,4 @@ def test_a_word_budget_shortens_the_text_column_and_grounds_what_it_says(tmp_pat
     assert main([*common, "--text-words", "30"]) == 0
     capsys.readouterr()
     assert main(common) == 2
-    assert "made with other settings (text_words 30 -> null)" in capsys.readouterr().err
+    assert "made with other settings (text_words 30 -> None)" in capsys.readouterr().err

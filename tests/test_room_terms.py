@@ -237,6 +237,33 @@ def test_a_door_in_a_rotated_room_swings_into_the_room():
     assert measured(graph, {"crate_1": (x, z, yaw)}).parts["door_swing"] == 0.0
 
 
+# -- windows --------------------------------------------------------------------------------
+
+
+def test_a_tall_box_before_a_window_pays_and_the_layout_stays_ok():
+    # The window (north wall, x -0.7..0.7, sill 0.9): a wardrobe against it hides it, a
+    # desk about as high as the sill does not, and beside it the wardrobe hides nothing.
+    graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("desk", DESK))
+    before = measured(graph, {"wardrobe_1": (0.0, -1.7, 0.0), "desk_1": (-1.8, -1.7, 0.0)})
+    assert before.parts["windows"] > 0.0 and before.ok, before.problems  # soft: no rule is broken
+    beside = measured(graph, {"wardrobe_1": (-1.6, -1.7, 0.0), "desk_1": (0.0, -1.7, 0.0)})
+    assert beside.parts["windows"] == 0.0
+    away = measured(graph, {"wardrobe_1": (0.0, -1.0, 0.0), "desk_1": (-1.8, -1.7, 0.0)})  # 0.7 m off the wall
+    assert away.parts["windows"] == 0.0
+
+
+def test_against_some_wall_a_wardrobe_leaves_the_window_free():
+    graph = graph_of(bedroom(), ("wardrobe", dict(WARDROBE, size=(2.0, 2.0, 0.6))))
+    graph.add_relation("wardrobe_1", "room", "AgainstWall")
+    before = 0
+    for seed in range(12):
+        result = layout_scene(graph, np.random.default_rng(seed))
+        assert result.ok
+        x, z = result.poses["wardrobe_1"].x, result.poses["wardrobe_1"].z
+        before += z < -1.5 and abs(x) < 1.6  # its back to the north wall, across the window
+    assert before == 0
+
+
 # -- access ---------------------------------------------------------------------------------
 
 

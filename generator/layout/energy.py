@@ -16,7 +16,7 @@ Parts (all >= 0, 0 when everything holds):
 - ``extent``: c times how far a box's corners (relative to its diagonal) or a path's
   control points (relative to its width) stick out of the scene extent. In a room the
   boxes' share is replaced by ``walls``.
-- ``walls``, ``square``, ``clearance``, ``door_swing``, ``access``: the room's own terms
+- ``walls``, ``square``, ``clearance``, ``door_swing``, ``windows``, ``access``: the room's own terms
   (``room_terms``); 0 outdoors, where no ``RoomTerms`` is built and they cost nothing.
 - ``mask``: only when the problem has a layout mask (``mask_term``): per box it is for,
   the weight times 1 less the mask's mean under its footprint (summed over the masks

@@ -1,6 +1,6 @@
 """The energy terms a room adds to the layout, with their geometry and their caches.
 
-Five parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
+Six parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
 ``RoomTerms`` and the parts cost nothing):
 
 - ``walls``: c * (how far a box's footprint crosses the walls / its diagonal), c the
@@ -12,6 +12,10 @@ Five parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
   other ground box standing in it, the collision penalty of their overlap; plus, for a
   zone that crosses a wall, the penalty of how far it does.
 - ``door_swing``: per door and ground box standing in its swing, the collision penalty.
+- ``windows``: per window and ground box standing in front of it (``view_rect``) whose
+  top rises more than WINDOW_VIEW_MARGIN above the sill, the collision penalty: a
+  wardrobe or a piano is not put against a window when another place will do. Soft: it
+  is no problem of the layout's verdict, since a rule may leave the box nowhere else.
 - ``access``: per box that needs reaching (``problem.access`` not empty) and cannot be
   reached on foot from a door, ACCESS_BASE + ACCESS_SLOPE * its distance (metres, in
   whole cells) to the floor that can. Global: any obstacle that moves can open or close
@@ -54,7 +58,7 @@ from .state import Grid, State
 FOUR_NEIGHBOURS = ndimage.generate_binary_structure(2, 1)
 
 #: The parts a room adds to the energy, in the order ``energy.PARTS`` lists them.
-ROOM_PARTS = ("walls", "square", "clearance", "door_swing", "access")
+ROOM_PARTS = ("walls", "square", "clearance", "door_swing", "windows", "access")
 
 #: Boxes at most this tall (metres; rugs, mats) are walked over: they block no corridor,
 #: no door swing and no clearance zone.
@@ -63,6 +67,13 @@ FLAT_HEIGHT = 0.05
 #: The square term's Gaussian width (radians^2): off^2 / (2 * 0.05) costs 0.69 at 15
 #: degrees off the walls, 2.7 at 30 and 6.2 at 45 (the most a yaw can be off).
 SQUARE_SIGMA2 = 0.05
+
+#: A window's view: the strip as wide as the window and WINDOW_VIEW_DEPTH deep in front
+#: of it (metres), kept free of ground boxes whose top rises more than
+#: WINDOW_VIEW_MARGIN above the sill (a desk or a sofa about as high as the sill may
+#: stand there; a bookshelf may not).
+WINDOW_VIEW_DEPTH = 0.5
+WINDOW_VIEW_MARGIN = 0.3
 
 #: Half the narrowest way a person walks (metres): corridors are at least 0.6 m wide.
 CORRIDOR_HALF = 0.3
@@ -148,6 +159,15 @@ def swing_rect(room: Room, door) -> Rect:
     cz = sum(p[1] for p in points) / 4.0
     nx, nz = room.part(door.wall).normal
     return Rect(cx, cz, door.width / 2.0, door.width / 2.0, nz, nx)  # forward (s, c) = normal
+
+
+def view_rect(room: Room, window) -> Rect:
+    """A window's view (WINDOW_VIEW_DEPTH deep, as wide as the window) as a footprint:
+    its forward along the wall's inner normal."""
+    wall = room.part(window.wall)
+    cx, cz = wall.to_world(window.offset, WINDOW_VIEW_DEPTH / 2.0)
+    nx, nz = wall.normal
+    return Rect(cx, cz, window.width / 2.0, WINDOW_VIEW_DEPTH / 2.0, nz, nx)  # forward (s, c) = normal
 
 
 def bounds(rect: Rect, grow: float = 0.0) -> tuple[float, float, float, float]:
@@ -623,6 +643,7 @@ class RoomChanges(NamedTuple):
     walls: dict[int, float]  # by box
     square: dict[int, float]
     swing: dict[int, float]
+    view: dict[int, float]
     zones: set[int]  # zones whose owner moved: all their hits are replaced
     hits: dict[tuple[int, int], float]  # (zone, box): new clearance overlaps
     zone_wall: dict[int, float]  # by zone
@@ -650,6 +671,9 @@ class RoomTerms:
         self.access_boxes = [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
         self.swings = [(door.id, swing_rect(room, door)) for door in room.doors]
         self.swing_size = [2.0 * math.hypot(r.hw, r.hd) for _, r in self.swings]
+        #: Each window's view, the lowest top that blocks it, and its diagonal.
+        self.views = [(view_rect(room, w), w.sill + WINDOW_VIEW_MARGIN, 2.0 * math.hypot(w.width / 2.0, WINDOW_VIEW_DEPTH / 2.0))
+                      for w in room.windows]  # fmt: skip
         # Clearance zones: (owner, side, metres) each; per box the zones it owns.
         self.zones: list[tuple[int, str, float]] = []
         self.zones_of: list[list[int]] = [[] for _ in range(n)]
@@ -879,6 +903,7 @@ class RoomTerms:
         walls = [self.wall_energy(b) for b in range(n)]
         square = [self.square_energy(b) for b in range(n)]
         swing = [self.swing_energy(b) for b in range(n)]
+        view = [self.view_energy(b) for b in range(n)]
         zone_hits: list[dict[int, float]] = [{} for _ in self.zones]
         hits_of: list[dict[int, float]] = [{} for _ in range(n)]
         zone_wall = [0.0] * len(self.zones)
@@ -905,16 +930,17 @@ class RoomTerms:
             "square": sum(square),
             "clearance": sum(sum(h.values()) for h in zone_hits) + sum(zone_wall),
             "door_swing": sum(swing),
+            "windows": sum(view),
             "access": sum(access.values.values()),
         }
         return {
-            "walls": walls, "square": square, "swing": swing, "zone_hits": zone_hits, "hits_of": hits_of,
+            "walls": walls, "square": square, "swing": swing, "view": view, "zone_hits": zone_hits, "hits_of": hits_of,
             "zone_wall": zone_wall, "taken": taken, "access": access, "parts": parts,
         }  # fmt: skip
 
     def install(self, fresh: dict) -> None:
         """Make freshly computed values the cache."""
-        self.walls, self.square, self.swing = fresh["walls"], fresh["square"], fresh["swing"]
+        self.walls, self.square, self.swing, self.view = fresh["walls"], fresh["square"], fresh["swing"], fresh["view"]
         self.zone_hits, self.hits_of, self.zone_wall = fresh["zone_hits"], fresh["hits_of"], fresh["zone_wall"]
         self.taken, self.access = fresh["taken"], fresh["access"]
 
@@ -925,7 +951,7 @@ class RoomTerms:
         fall by at most ``access_total()``."""
         delta = dict.fromkeys(ROOM_PARTS, 0.0)
         moved = set(boxes)
-        walls, square, swing = {}, {}, {}
+        walls, square, swing, view = {}, {}, {}, {}
         for box in boxes:
             walls[box] = self.wall_energy(box)
             delta["walls"] += walls[box] - self.walls[box]
@@ -933,6 +959,8 @@ class RoomTerms:
             delta["square"] += square[box] - self.square[box]
             swing[box] = self.swing_energy(box)
             delta["door_swing"] += swing[box] - self.swing[box]
+            view[box] = self.view_energy(box)
+            delta["windows"] += view[box] - self.view[box]
 
         zones: set[int] = set()
         hits: dict[tuple[int, int], float] = {}
@@ -975,8 +1003,8 @@ class RoomTerms:
             delta["clearance"] = clearance
 
         if defer_access and self.access_boxes:
-            return RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, None, True)
-        return self.access_changes(RoomChanges(delta, moved, walls, square, swing, zones, hits, zone_wall, None), boxes)
+            return RoomChanges(delta, moved, walls, square, swing, view, zones, hits, zone_wall, None, True)
+        return self.access_changes(RoomChanges(delta, moved, walls, square, swing, view, zones, hits, zone_wall, None), boxes)
 
     def access_changes(self, changes: RoomChanges, boxes: list[int]) -> RoomChanges:
         """``changes`` with the access part evaluated (the state still at the proposal)."""
@@ -997,6 +1025,8 @@ class RoomTerms:
             self.square[box] = value
         for box, value in changes.swing.items():
             self.swing[box] = value
+        for box, value in changes.view.items():
+            self.view[box] = value
         for zone in changes.zones:
             for other in self.zone_hits[zone]:
                 del self.hits_of[other][zone]
@@ -1016,6 +1046,27 @@ class RoomTerms:
                 self.taken[box] = bits
 
     # -- what the sampler and the report read ------------------------------------------------
+
+    def view_energy(self, box: int) -> float:
+        """What a ground box standing in front of a window, and taller than its sill by
+        more than WINDOW_VIEW_MARGIN, pays (module docstring)."""
+        if not self.active[box] or not self.obstacle[box] or not self.views:
+            return 0.0
+        top = self.state.y[box] + self.problem.height[box]
+        size = self.problem.size[box]
+        rect = self.state.rects[box]
+        x0, z0, x1, z1 = bounds(rect)
+        energy = 0.0
+        for zone, lowest, diagonal in self.views:
+            if top <= lowest:
+                continue
+            vx0, vz0, vx1, vz1 = bounds(zone)
+            if x1 <= vx0 or vx1 <= x0 or z1 <= vz0 or vz1 <= z0:
+                continue
+            depth = rect_penetration(zone, rect)
+            if depth > 0.0:
+                energy += penalty(depth / (diagonal + size), self.intensity)
+        return energy
 
     def unreachable(self) -> list[int]:
         """Boxes that need reaching and cannot be."""
