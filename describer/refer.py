@@ -14,9 +14,12 @@ form that is unambiguous here:
    ("the sign", "the second sack of flour") while no same-noun thing from elsewhere
    has been named in the paragraph and none stands at the top level;
 5. otherwise its place in its cohort ("the first road"; "the other tower" for the
-   second of two right after the first was named), followed by "of" and its group
-   ("the sign of the third market stand", "the wagon of grain at the mill", "the house
-   on its own" for a top-level one) when a namesake from elsewhere could be meant.
+   second of two right after the first was named, and "the other pine tree" for the
+   last of a cohort whose others were named, some only in a set), followed by "of" and
+   its group ("the sign of the third market stand", "the wagon of grain at the mill",
+   "the house on its own" for a top-level one) when a namesake from elsewhere could be
+   meant. Ordinals count after what sets named before ("two of the pine trees", then
+   "the third pine tree"), so one never suggests a member of such a set it is not.
 
 Sets of entities (aggregated subjects) are named per cohort: "the three market
 stands", "both pallets", "four of the street lamps" ("four other street lamps" when
@@ -66,8 +69,12 @@ class Discourse:
     paragraph_nouns: dict[str, set[str]] = field(default_factory=dict)
     named_in_paragraph: set[str] = field(default_factory=set)  # known entities named again
     #: Ordinals as the text has given them: family key -> ids in the order the text first
-    #: named each by its place ("the first road" is the first road the text singled out).
+    #: named each by its place ("the first road" is the first road the text singled out),
+    #: a set's members together where the set was named ("two of the pine trees").
     ranks: dict[tuple[str, ...], list[str]] = field(default_factory=dict)
+    #: Entities named only in a set so far -> that set's members not named before it: they
+    #: hold its places in ``ranks``, in the order they are singled out later.
+    unsettled: dict[str, frozenset[str]] = field(default_factory=dict)
     sentence_subject: tuple[str, ...] = ()
     #: The phrases of the sentence being made and what each names (``grounding``).
     marks: Marks = field(default_factory=Marks)
@@ -219,6 +226,7 @@ class Discourse:
         family = self.world.family(entity_id)
         if len(family) == 1 or (len(self.world.cohort(entity_id)) == 1 and entity.noun not in self.world.nested_nouns):
             return f"the {entity.noun}"  # its noun alone sets it apart among its siblings
+        new = entity_id not in self.ranks.get(family, ())
         ranked = self._rank(entity_id)
         # "the other" always means the later of two, said right after the first was named,
         # so it never flips between the two.
@@ -228,16 +236,39 @@ class Discourse:
             and self.last_of_noun.get(entity.noun) == tuple(others)
         ):  # fmt: skip
             return f"the other {entity.noun}"
-        if self.world.family_noun(entity_id) != entity.noun:
+        if self.world.family_noun(entity_id) != entity.noun:  # "the second white desk": white ones only
             ranked = [i for i in ranked if self.world[i].noun == entity.noun]
+            family = tuple(i for i in family if self.world[i].noun == entity.noun)
+        if new and len(ranked) == len(family) and any(i in self.unsettled for i in ranked):
+            # The last one, every other named before and some only in a set ("two of the
+            # pine trees"): an ordinal could be taken for one of the set, "the other" cannot.
+            return f"the other {entity.noun}"
         return f"the {ordinal_word(ranked.index(entity_id) + 1)} {entity.noun}"
 
     def _rank(self, entity_id: str) -> list[str]:
-        """Its family in the order the text has named them one by one, with it counted."""
+        """Its family in the order the text has named them one by one, with it counted.
+
+        One named before only in a set takes the first of that set's places not yet
+        taken: after "two of the pine trees" and "the third pine tree", the first of
+        the two singled out is "the first pine tree", the other "the second".
+        """
         ranked = self.ranks.setdefault(self.world.family(entity_id), [])
         if entity_id not in ranked:
             ranked.append(entity_id)
+        elif entity_id in self.unsettled:
+            block = self.unsettled.pop(entity_id)
+            first = min(ranked.index(i) for i in block if i in self.unsettled or i == entity_id)
+            here = ranked.index(entity_id)
+            ranked[first], ranked[here] = ranked[here], ranked[first]
         return ranked
+
+    def _rank_set(self, cohort: tuple[str, ...], chosen: tuple[str, ...]) -> None:
+        """Give the members of a set named together the next places of their family, to
+        be taken in the order they are singled out (``_rank``)."""
+        ranked = self.ranks.setdefault(self.world.family(chosen[0]), [])
+        new = [i for i in cohort if i in chosen and i not in ranked]
+        ranked.extend(new)
+        self.unsettled.update(dict.fromkeys(new, frozenset(new)))
 
     def _clear_in_paragraph(self, entity_id: str) -> bool:
         """Whether naming by place in the cohort alone is clear here.
@@ -278,35 +309,43 @@ class Discourse:
         self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool, alongside: tuple[str, ...] = ()
     ) -> str:
         entity = self.world[chosen[0]]
+        before: tuple[str, ...] = ()
         if len(chosen) == len(cohort):
             whole = len(chosen) == 2 and alone
             phrase = f"both {entity.plural}" if whole else f"the {number_word(len(chosen))} {entity.plural}"
         else:
-            phrase = self._part_of_cohort(cohort, chosen, alongside)
+            phrase, before = self._part_of_cohort(cohort, chosen, alongside)
         self.named_in_paragraph.update(chosen)
+        for other in before:
+            self._rank(other)  # "The two other desks face the same way as the first desk."
+        self._rank_set(cohort, chosen)
         clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
         self._note(chosen, entity.noun, plural=True)
         return self.marks.mark(phrase if clear else self._placed(phrase, chosen[0], plural=True), chosen)
 
-    def _part_of_cohort(self, cohort: tuple[str, ...], chosen: tuple[str, ...], alongside: tuple[str, ...]) -> str:
-        """Some of a cohort: "two of the street lamps".
+    def _part_of_cohort(
+        self, cohort: tuple[str, ...], chosen: tuple[str, ...], alongside: tuple[str, ...]
+    ) -> tuple[str, tuple[str, ...]]:
+        """Some of a cohort: "two of the street lamps"; and what of the rest of the
+        sentence the phrase counts before them.
 
         When others of the cohort were named in this paragraph or are named in the rest
         of the sentence (``alongside``) and these were not, the phrase says so, so a
         reader does not take them for those: "two other street lamps", or "the two other
         street lamps" when they are all the rest ("The two other desks face the same way
-        as the first desk.", not "Two of the desks ...").
+        as the first desk.", not "Two of the desks ..."). Those of the rest of the
+        sentence then count before these: "the first desk" there, not "the other desk".
         """
         plural, count = self.world[chosen[0]].plural, number_word(len(chosen))
-        besides = set(alongside) & set(cohort)
-        if besides and not besides & set(chosen) and besides | set(chosen) == set(cohort):
-            return f"the {count} other {plural}"  # the sentence names the rest of the cohort
-        named = (self.named_in_paragraph | besides) & set(cohort)
+        besides = tuple(i for i in alongside if i in cohort)
+        if besides and not set(besides) & set(chosen) and set(besides) | set(chosen) == set(cohort):
+            return f"the {count} other {plural}", besides  # the sentence names the rest of the cohort
+        named = (self.named_in_paragraph | set(besides)) & set(cohort)
         if named and not named & set(chosen):
             if named == set(cohort) - set(chosen):
-                return f"the {count} other {plural}"
-            return f"{count} other {plural}"
-        return f"{count} of the {plural}"
+                return f"the {count} other {plural}", besides
+            return f"{count} other {plural}", besides
+        return f"{count} of the {plural}", ()
 
     def _note(self, ids: tuple[str, ...], noun: str, *, plural: bool) -> None:
         self.current.append(_Mention(ids, noun, plural))

@@ -1,7 +1,12 @@
 """Referring expressions for a rendered picture, each with a program that picks out its object.
 
 For every object the picture shows well enough (``PictureView.seen``), the first of
-these forms that picks out exactly that object among the seen ones:
+these forms that picks out exactly that object among the seen ones. A noun is used
+(for the object or an anchor) only when no other seen object has a noun that is a kind
+of it (``world.is_kind_of``, as ``questions`` asks): a person takes an armchair for a
+chair and a green armchair for an armchair, but the programs compare nouns exactly, so
+"the chair" beside an armchair, or "the armchair" beside a green armchair, would not
+pick out one thing to a reader. An object of such a noun gets no expression.
 
 1. "the tent": the only seen object of its noun;
 2. "the sign to the left of the table" (or "to the right of"): the only one of its noun
@@ -26,6 +31,7 @@ from __future__ import annotations
 
 from .english import ordinal_word
 from .programs import DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, ProgramError, Seen, execute, step
+from .world import is_kind_of
 
 __all__ = [
     "DEPTH_MARGIN", "MAX_PLACE", "SIDE_MARGIN", "PictureFacts", "ProgramError", "Seen", "execute",
@@ -56,8 +62,12 @@ def _candidates(facts: PictureFacts, entity_id: str):
     """The forms of the module docstring for one object, in order, as (text, program)."""
     noun = facts.objects[entity_id].noun
     nouns = [o.noun for o in facts.objects.values()]
+    if not _clear(noun, nouns):
+        return  # "the chair" beside an armchair: a reader counts the armchair too
     yield f"the {noun}", [step("scene"), step("filter_noun", noun, 0), step("unique", None, 1)]
-    anchors = sorted(i for i, o in facts.objects.items() if i != entity_id and nouns.count(o.noun) == 1)
+    anchors = sorted(
+        i for i, o in facts.objects.items() if i != entity_id and nouns.count(o.noun) == 1 and _clear(o.noun, nouns)
+    )
     for anchor in anchors:
         anchor_noun = facts.objects[anchor].noun
         for side in ("left", "right"):
@@ -76,3 +86,9 @@ def _candidates(facts: PictureFacts, entity_id: str):
     for which in ("nearest", "farthest"):
         yield f"the {which} {noun}", [step("scene"), step("filter_noun", noun, 0), step("extreme", which, 1)]
 
+
+
+def _clear(noun: str, nouns: list[str]) -> bool:
+    """Whether ``noun`` means to a reader just the seen objects of that noun: no seen
+    object's noun is a kind of it ("armchair" of "chair", "green armchair" of "armchair")."""
+    return not any(is_kind_of(other, noun) for other in nouns)

@@ -310,11 +310,12 @@ def test_aggregation_counts_part_of_a_cohort():
     assert "The first street lamp is next to the intersection." in text
     # "other": not the first one, told just before.
     assert "Four other street lamps are next to the second road." in text
-    # Ordinals count in the order the text singles things out: the lamp told after the
-    # first is the second, on the third road named (the derivation's sixth lamp and
-    # fourth road: "The sixth street lamp is next to the fourth road." named things a
-    # reader had never been shown in order).
-    assert text.endswith("The second street lamp is next to the third road.")
+    # The lamp told last is the derivation's sixth, on its fourth road; the roads count in
+    # the order the text singles them out ("The sixth street lamp is next to the fourth
+    # road." named things a reader had never been shown in order). Every other lamp has
+    # been named by then, four of them only as a set, so it is "the other" one: "the
+    # second street lamp" read as one of the four.
+    assert text.endswith("The other street lamp is next to the third road.")
 
 
 def test_part_of_a_cohort_says_other_only_when_none_was_named():

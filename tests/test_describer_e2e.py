@@ -238,37 +238,93 @@ def is_kind_of(noun: str, general: str) -> bool:
 
 
 def check_ordinals(scene: Scene, description: Description) -> None:
-    """Every "the k-th N" names a thing after the text has singled out k - 1 others that
-    an N covers (its noun, or a kind of it: a "white desk" is a desk) among its siblings
-    (for a noun nested in itself, in the whole scene), and always the same k for it."""
+    """Every "the k-th N" counts what an N covers (its noun, or a kind of it: a "white desk"
+    is a desk) among its siblings (for a noun nested in itself, in the whole scene) that
+    the text named before it, on its own or in a set ("two of the pine trees"), and
+    always gives the same k. A set's members count together where the set was named,
+    taking its places in the order the text singles them out later: after "two of the
+    pine trees" and "the third pine tree", the first of the two singled out is "the
+    first pine tree"; a set said to be "other" than what the rest of its sentence names
+    comes after that ("The two other desks face the same way as the first desk.").
+    Every "the other N" comes after every other thing it could mean was named, on its
+    own or in a set."""
     things = {o.id: o for o in [*scene.objects, *scene.paths]}
     parent = {i: (t.parent if t.parent in things else None) for i, t in things.items()}
     nested = {
         t.noun for t in things.values()
         if any(things[a].noun == t.noun for a in ancestors(t.id, parent))
     }  # fmt: skip
+    named: list[tuple[str, ...]] = []  # a thing named on its own, or a set's new members, in reading order
     singled: list[str] = []  # things named on their own, in reading order
     told: dict[str, int] = {}
-    for mention in description.mentions:
+    for mention in reading_order(description, lambda i: (things[i].noun, parent[i]) if i in things else i):
         words = description.text[mention.start:mention.end]
-        if len(mention.entities) != 1 or words.lower().startswith(INDEFINITE):
+        if words.lower().startswith(INDEFINITE) or not set(mention.entities) <= set(things):
+            continue  # a door or a window: named by its place in the room, never by an ordinal
+        if len(mention.entities) > 1:
+            if names_a_set(words, len(mention.entities)) and not inside_another(mention, description):
+                new = tuple(i for i in mention.entities if not any(i in before for before in named))
+                named += [new] if new else []
             continue
         (entity,) = mention.entities
-        if entity not in things:
-            continue  # a door or a window: named by its place in the room, never by an ordinal
+        noun = things[entity].noun
+
+        def covered(i: str, noun=noun, entity=entity) -> bool:
+            return i != entity and is_kind_of(things[i].noun, noun) and (noun in nested or parent[i] == parent[entity])
+
+        at = next((k for k, before in enumerate(named) if entity in before), len(named))
         match = re.match(r"[Tt]he (\w+) ", words)
         if match and match.group(1) in ORDINAL_WORDS:
             k = ORDINAL_WORDS.index(match.group(1)) + 1
-            noun = things[entity].noun
             assert words[match.end():].startswith(noun), words
-            scope = [
-                i for i in dict.fromkeys(singled)
-                if i != entity and is_kind_of(things[i].noun, noun)
-                and (noun in nested or parent[i] == parent[entity])
-            ]  # fmt: skip
-            expected = told.setdefault(entity, len(scope) + 1)
-            assert k == expected, f"seed {scene.seed}: {words!r} is the {expected}th singled out: {description.text}"
+            before = sum(covered(i) for earlier in named[:at] for i in earlier)
+            within = sum(covered(i) for i in dict.fromkeys(singled) if at < len(named) and i in named[at])
+            expected = told.setdefault(entity, before + within + 1)
+            assert k == expected, f"seed {scene.seed}: {words!r} is the {expected}th named: {description.text}"
+        elif words.lower().startswith(f"the other {noun}"):
+            unnamed = [i for i in things if covered(i) and not any(i in earlier for earlier in named)]
+            assert not unnamed, f"seed {scene.seed}: {words!r} before {unnamed} were named: {description.text}"
         singled.append(entity)
+        named += [] if at < len(named) else [(entity,)]
+
+
+def reading_order(description: Description, cohort_of) -> list:
+    """The mentions in the order a reader counts them: the order they start in, but a set
+    said to be "other" ("the two other desks") after what of its cohort (``cohort_of``:
+    an id -> its noun and parent) the rest of its sentence names: it is other than those."""
+    found, offset = [], 0
+    for sentence in description.sentences:
+        end = offset + len(sentence.text)
+        here = [m for m in description.mentions if offset <= m.start < end]
+        place = {id(m): float(k) for k, m in enumerate(here)}
+        for k, mention in enumerate(here):
+            words = description.text[mention.start:mention.end].lower()
+            if len(mention.entities) > 1 and " other " in f" {words}" and names_a_set(words, len(mention.entities)):
+                cohort = {cohort_of(i) for i in mention.entities}
+                for later in here[k + 1:]:
+                    if len(later.entities) == 1 and cohort_of(later.entities[0]) in cohort:
+                        place[id(later)] = k - 0.5
+        found += sorted(here, key=lambda m: place[id(m)])
+        offset = end + 1  # the space joining sentences
+    return found
+
+
+def names_a_set(words: str, size: int) -> bool:
+    """Whether a phrase names known things together: "both pallets", "the three market
+    stands", "two of the pine trees", "(the) two other desks"; not "two more desks" or
+    "three desks" (new ones) or "most of the homes"."""
+    count = number_words(size)
+    sets = ["both"] if size == 2 else []
+    sets += [f"the {count}", f"the {count} other", f"{count} of the", f"{count} other"]
+    return any(words.lower().startswith(f"{words_before} ") for words_before in sets)
+
+
+def inside_another(mention, description: Description) -> bool:
+    """Whether a mention is part of a larger one ("the five homes" in "most of the five homes")."""
+    return any(
+        other.start <= mention.start and mention.end <= other.end and (other.start, other.end) != (mention.start, mention.end)
+        for other in description.mentions
+    )
 
 
 def ancestors(entity_id: str, parent: dict) -> list[str]:
