@@ -16,7 +16,8 @@ is Y-up; Blender's exporter turns its Z-up into Y-up). A node tilted more than
 ``MAX_TILT_DEGREES`` off upright is refused. Nodes of type ``wall``, ``floor``,
 ``ground`` or ``ceiling`` (or extras kind wall, door, window, path, ground) are the
 room, not objects: walls make the room a rectangle (their inner bounding box), a floor
-or ground gives the extent; otherwise the extent is the objects' bounding box with
+or ground gives the extent; otherwise the extent is the bounding box of the circles
+round the objects' footprints (half their diagonal, so any turn stays inside) with
 ``MARGIN`` around it. The scene is moved so the extent is centred on the origin.
 """
 

@@ -38,9 +38,11 @@ def load_schema() -> dict[str, Any]:
 def read_handwritten(path: str, text: str, name: str) -> Scene:
     """The Scene of a hand-written example's ``text`` (``path`` names it in errors)."""
     data = parse_json(path, text)
-    error = best_match(_validator().iter_errors(data))
+    errors = list(_validator().iter_errors(data))
+    error = best_match(errors)
     if error is not None:
-        raise ExampleError(path, _where(data, list(error.absolute_path)), _message(error))
+        more = f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""
+        raise ExampleError(path, _where(data, list(error.absolute_path)), _message(error) + more)
     raw_objects = data["objects"]
     ids = [raw["id"] for raw in raw_objects]
     seen: set[str] = set()

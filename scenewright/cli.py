@@ -1007,6 +1007,7 @@ examples:
   scenewright learn examples/sets/bedrooms -o bedrooms.rules   # a folder; writes bedrooms.context.json too
   scenewright learn examples/sets/desks/*.json -o desks.rules --no-context   # the rules alone
   scenewright validate desks.rules && scenewright generate desks.rules --seed 1 -o out/
+  (examples/sets/ is in the repository: run these from its root, or name your own files)
 
 induces a rule set from example scenes alone (scene.json or its folder, the
 hand-written example format, GLB; a folder of such files): a catalog of the types seen (median sizes, styles
@@ -1031,6 +1032,7 @@ examples:
   scenewright plans graph --type study --format json --model model.json
   scenewright plans evaluate --requested 2
   scenewright plans draw --only bedroom_01,study_06 --masks -o plans.png
+  (completion/plans is in the repository: run 'plans build' from its root, or name your own folder)
 
 build reads every plan (*.json, in sub-folders too) of a plan set, checks each (one
 line naming the file and JSON path for the first problem, exit 2) and writes the plan
