@@ -735,11 +735,26 @@ def run_list(args: argparse.Namespace) -> int:
     for name in shipped_rule_sets():
         rules = load_rules(name)
         width, depth = rules.params.extent
-        types = sorted(entry.name for entry in rules.catalog if entry.kind == "object")
+        catalog = {entry.name for entry in rules.catalog if entry.kind == "object"}
+        types = sorted(created_types(rules) & catalog)  # a room set's catalog is shared: it makes only some
         walls = ", walls" if rules.params.walls else ""
-        print(f"{name}  ({width:g} x {depth:g} m{walls}; {len(types)} object types)")
+        print(f"{name}  ({width:g} x {depth:g} m{walls}; makes {len(types)} of its catalog's {len(catalog)} object types)")
         print(textwrap.fill(", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "))
     return 0
+
+
+def created_types(rules) -> set[str]:
+    """The names some statement of ``rules`` creates (types and groups)."""
+    from scenewright.generator import rules_ast as ast
+
+    found: set[str] = set()
+    pending = [s for production in rules.productions.values() for a in production.alternatives for s in a.statements]
+    while pending:
+        statement = pending.pop()
+        if isinstance(statement.subject, ast.Reference):
+            found.add(statement.subject.name)
+        pending.extend(statement.block or ())
+    return found
 
 
 def run_plans_build(args: argparse.Namespace) -> int:

@@ -197,6 +197,9 @@ def test_list_and_schema(capsys):
     code, out, _ = run(capsys, "list")
     assert code == 0
     assert "village  (60 x 60 m;" in out and "windmill" in out and "desk  (" in out
+    # A room set lists what it makes, not the whole shared indoor catalog.
+    bathroom = out[out.index("bathroom  ("): out.index("bedroom  (")]
+    assert "makes 7 of its catalog's 43 object types" in bathroom and "toilet" in bathroom and "piano" not in bathroom
     code, out, _ = run(capsys, "schema")
     assert code == 0 and "layout" in json.loads(out)["properties"]
 
