@@ -14,6 +14,7 @@ from __future__ import annotations
 import io
 import json
 import re
+import textwrap
 from collections import Counter
 from pathlib import Path
 
@@ -202,12 +203,14 @@ def stats_figure(stats: dict) -> bytes:
 
     top_objects = list(stats["objects"].items())[:20]
     bars(axes[0, 0], [name for name, _ in top_objects], [n for _, n in top_objects], "objects (top 20 types)")
+    whole_counts(axes[0, 0].xaxis)
 
     labels = list(stats["relations"])
     totals = [stats["relations"][label]["total"] for label in labels]
     held = [stats["relations"][label]["satisfied"] for label in labels]
     bars(axes[0, 1], labels, totals, "relations: total (light) and satisfied (dark)", alpha=0.35)
     axes[0, 1].barh(labels, held, color="tab:blue")
+    whole_counts(axes[0, 1].xaxis)
 
     lengths = axes[1, 0]
     described = {name: summary for name, summary in stats["words"].items() if summary["count"]}
@@ -218,6 +221,7 @@ def stats_figure(stats: dict) -> bytes:
     lengths.set_title("length in words (full text, short captions)")
     lengths.set_xlabel("words")
     lengths.set_ylabel("texts")
+    whole_counts(lengths.yaxis)
     if described:
         lengths.legend()
 
@@ -248,6 +252,14 @@ def retries_figure(axis, by_objects: list[dict]) -> None:
     axis.barh(names, [row["retried"] for row in by_objects], color="tab:blue")
     axis.barh(names, [row["failed_after_retries"] for row in by_objects], color="tab:red", height=0.4)
     axis.set_ylabel("objects per scene")
+    whole_counts(axis.xaxis)
+
+
+def whole_counts(axis) -> None:
+    """Ticks at whole numbers only on an axis that counts (no "1.5 scenes")."""
+    from matplotlib.ticker import MaxNLocator
+
+    axis.set_major_locator(MaxNLocator(integer=True))
 
 
 def errors_figure(axis, errors: dict[str, dict]) -> None:
@@ -257,5 +269,8 @@ def errors_figure(axis, errors: dict[str, dict]) -> None:
     if not lines:
         return
     axis.set_title("scenes the rules could not make")
-    axis.text(0.0, 1.0, "\n".join(line[:90] for line in lines[:12]), va="top", fontsize=8, family="monospace",
-              transform=axis.transAxes)  # fmt: skip
+    # Wrapped to the panel's width (about 60 monospace characters at this size), each
+    # error on at most three lines, so the text stays inside the figure.
+    wrapped = [textwrap.wrap(line, 60, subsequent_indent="    ")[:3] for line in lines[:8]]
+    axis.text(0.0, 1.0, "\n".join(part for parts in wrapped for part in parts), va="top", fontsize=8,
+              family="monospace", transform=axis.transAxes)  # fmt: skip
