@@ -31,6 +31,7 @@ Categories, most specific first:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -97,17 +98,64 @@ def pair_holds(
     return holds
 
 
+#: A person placing things by hand leaves a few centimetres to a wall, and turns a round
+#: thing (a floor lamp, a plant) any way: before the wall labels are measured, a standing
+#: object within HAND_GAP (metres, between footprint and wall) of a wall as it stands is
+#: set flush to it, as the layout would set it, an object whose footprint is square
+#: within SQUARE_ASPECT first turned with its back to the nearest (``hand_placed``).
+HAND_GAP = 0.15
+SQUARE_ASPECT = 1.2
+
+
+def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
+    """(x, z, yaw) of a standing object as its placer meant it against the walls
+    (``HAND_GAP``, ``SQUARE_ASPECT``): unchanged where no wall is that near."""
+    x, z, yaw = float(obj.position[0]), float(obj.position[2]), float(obj.yaw)
+    half_width, half_depth = obj.size[0] / 2.0, obj.size[2] / 2.0
+
+    def gap(wall, x: float, z: float, yaw: float) -> float | None:
+        """The gap between the footprint and ``wall``, None when the object is not beside it."""
+        u, v = wall.to_wall(x, z)
+        (tx, tz), (nx, nz) = wall.direction, wall.normal
+        c, s = math.cos(yaw), math.sin(yaw)
+        reach_u = half_width * abs(c * tx - s * tz) + half_depth * abs(s * tx + c * tz)
+        reach_v = half_width * abs(c * nx - s * nz) + half_depth * abs(s * nx + c * nz)
+        if u + reach_u < 0.0 or u - reach_u > wall.length:
+            return None
+        return v - reach_v
+
+    # The walls it was set against, as it stands; then turned (a round thing) and flush.
+    near = sorted(((g, k) for k, wall in enumerate(room.walls) if (g := gap(wall, x, z, yaw)) is not None
+                   and 0.0 <= g <= HAND_GAP))  # fmt: skip
+    if not near:
+        return x, z, yaw
+    if max(half_width, half_depth) <= SQUARE_ASPECT * min(half_width, half_depth):
+        yaw = room.walls[near[0][1]].facing_yaw  # a round thing's turn means nothing
+    for _, k in near:
+        wall = room.walls[k]
+        g = gap(wall, x, z, yaw)
+        if g is not None and g > 0.0:
+            nx, nz = wall.normal
+            x, z = x - g * nx, z - g * nz
+    return x, z, yaw
+
+
 def wall_holds(objects: Sequence[SceneObject], room: Room, resting: set[str]) -> dict[str, set[str]]:
     """Object id -> the wall labels of ``CATEGORIES["wall"]`` that hold for it against
     some wall of ``room`` (the layout chooses the wall, as for ``AgainstWall some
-    wall``). Objects in ``resting`` (ids of objects standing on another) are left out."""
+    wall``), standing as its placer meant it (``hand_placed``). Objects in ``resting``
+    (ids of objects standing on another) are left out."""
     graph = SceneGraph(params=SceneParams(extent=room.extent, ground="floor", room=room))
     node_of: dict[str, str] = {}
     poses: dict[str, Pose] = {}
     for obj in objects:
         node = graph.add_node(_entry(obj.type, obj.size))
         node_of[obj.id] = node
-        poses[node] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+        if obj.id in resting:
+            poses[node] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+        else:
+            x, z, yaw = hand_placed(obj, room)
+            poses[node] = Pose(x, float(obj.position[1]), z, yaw)
     standing = [obj.id for obj in objects if obj.id not in resting]
     for object_id in standing:
         for label in CATEGORIES["wall"]:
