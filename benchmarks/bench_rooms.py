@@ -6,7 +6,7 @@
     .venv/bin/python benchmarks/bench_rooms.py --without-room-terms   # what they buy
 
 ``--without-room-terms`` lays every scene out with the room's own energy terms switched
-off (walls, square, clearance, door swing, access) and then measures the result with
+off (walls, square, clearance, door swing, windows, access) and then measures the result with
 them (``measure_layout``), so the figures show what a layout ignorant of them gets wrong.
 
 Per rule set (default: every shipped rule set whose scene is a room) it prints:
@@ -16,6 +16,9 @@ Per rule set (default: every shipped rule set whose scene is a room) it prints:
   UnderWindow, BesideWindow and their Implicit forms), the share whose wall relations
   all hold;
 - in a door's swing, crossing a wall: objects the layout reports so, in all scenes;
+- before a window: scenes with a tall ground object in a window's view (the room's
+  ``windows`` term above 0: its top more than 0.3 m above the sill, within 0.5 m of the
+  window), which the layout avoids where it can but does not count as a problem;
 - reachable: of the ground objects someone must reach (``access`` not empty), the share
   reachable from a door (all of them when the room has no door);
 - layout CPU seconds, median and 90th percentile (this process only, so other work on
@@ -111,7 +114,7 @@ class NoRoomTerms:
 def bench(name: str, seeds: int, without: bool = False) -> None:
     rules = load_rules(name)
     cpu, counts = [], []
-    ok = walled = held = used = reached = swing = crossing = 0
+    ok = walled = held = used = reached = swing = crossing = windowed = 0
     kinds: Counter[str] = Counter()
     with AccessClock() as clock:
         for seed in range(seeds):
@@ -127,6 +130,7 @@ def bench(name: str, seeds: int, without: bool = False) -> None:
                 result = layout_scene(graph, seed)
             cpu.append(time.process_time() - started)
             ok += result.ok
+            windowed += result.parts.get("windows", 0.0) > 0.0
             unreachable = {p.split(" ", 1)[0] for p in result.problems if "cannot be reached" in p}
             swing += sum("stands in the swing of" in p for p in result.problems)
             crossing += sum(p.endswith("crosses the wall") for p in result.problems)
@@ -148,6 +152,7 @@ def bench(name: str, seeds: int, without: bool = False) -> None:
     print(f"  ok {100 * ok / seeds:.1f} %")
     print(f"  held by a wall {_share(held, walled)} of {walled} objects with a wall relation")
     print(f"  in a door's swing {swing}   crossing a wall {crossing}   (objects, all scenes)")
+    print(f"  before a window: {windowed} of {seeds} scenes (a tall object in a window's view)")
     print(f"  reachable {_share(reached, used)} of {used} objects someone must reach")
     print(f"  layout cpu seconds: median {statistics.median(cpu):.3f}  p90 {cpu[int(0.9 * (seeds - 1))]:.3f}")
     if clock.proposals and not without:
