@@ -808,7 +808,7 @@ def share_at_some_pose(
 
 def surrounding_arrangement(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> bool:
     """Whether a's b's stand about it at the same places from scene to scene, with too
-    few scenes for the test (module docstring, "A fixed arrangement"): fewer than
+    few scenes for the test (module docstring, "Chairs around a table"): fewer than
     ``PAIR_SCENES`` scenes, an a surrounded by two or more b's in most (``surrounds``),
     and in at least ``FIXED_SHARE`` of the scenes, in a random cycle, the b nearest a
     random a next to it where some b stands about the next scene's a."""
