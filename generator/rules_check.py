@@ -135,6 +135,9 @@ class _Checker:
     kinds: dict[str, str] = field(default_factory=dict)  # type name -> kind
     productions: dict[str, ast.Production] = field(default_factory=dict)  # the first of each name
     created_types: set[str] = field(default_factory=set)  # types some statement creates
+    #: Type -> the statements that create it and whether each may make none (``0.6? T``,
+    #: ``0..2 T``): a ``some T`` where every one may is a warning (``check_type_reference``).
+    makers: dict[str, list[tuple[bool, SourceLocation]]] = field(default_factory=dict)
     max_nodes: int = DEFAULT_MAX_NODES  # the scene's, once its block is checked
     room: Room | None = None  # the scene's room, once its block is checked
     has_room: bool = False  # the scene declares a room (even one with errors)
@@ -173,6 +176,8 @@ class _Checker:
                                f"(first at {self.productions[production.name].location})")
                 else:
                     self.productions[production.name] = production
+        for production in self.productions.values():
+            self.note_makers(production)
         for production in self.productions.values():
             self.check_production(production)
         root = files[-1].path
@@ -408,6 +413,18 @@ class _Checker:
 
     # -- productions --------------------------------------------------------------
 
+    def note_makers(self, production: ast.Production) -> None:
+        """Record in ``makers`` each statement of ``production`` that creates a type."""
+        pending = [statement for alternative in production.alternatives for statement in alternative.statements]
+        while pending:
+            statement = pending.pop()
+            subject = statement.subject
+            if isinstance(subject, ast.Reference) and subject.kind == "name" and subject.name in self.kinds:
+                optional = (statement.probability is not None and statement.probability < 1) or (
+                    statement.count is not None and statement.count.low == 0)
+                self.makers.setdefault(subject.name, []).append((optional, statement.location))
+            pending.extend(statement.block or ())
+
     def check_production(self, production: ast.Production) -> None:
         scope: dict[str, str | None] = {}
         for param in production.params:
@@ -584,6 +601,12 @@ class _Checker:
         elif reference.kind == "nth" and reference.index > self.max_nodes:
             self.error(reference.location, f"this ordinal is larger than max_nodes {self.max_nodes}, "
                        "so it can never name a node")
+        makers = self.makers.get(reference.name, [])
+        if reference.kind in ("some", "nth") and makers and all(optional for optional, _ in makers):
+            written = f"some {reference.name}" if reference.kind == "some" else f"{reference.name} #{reference.index}"
+            self.warning(reference.location, f"'{written}' may find none: every statement that makes "
+                         f"{_with_article(reference.name)} may make none (line {makers[0][1].line}), and where a scene "
+                         "has none its expansion stops here; refer to it only where one is certain")
 
     def check_call(self, call: ast.Call, scope: dict[str, str | None]) -> None:
         for argument in call.arguments:

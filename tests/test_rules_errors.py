@@ -549,6 +549,25 @@ def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
     assert [w.severity for w in load_rules("warn.rules").warnings] == ["warning"]
 
 
+@pytest.mark.parametrize(
+    ("statements", "warned"),
+    [
+        ("0.6? table\n0..2 cup OnTopOf some table", True),  # in four scenes of ten there is no table
+        ("0..1 table\ncup OnTopOf table #1", True),
+        ("table\n0.6? table\ncup OnTopOf some table", False),  # one table is certain
+        ("0.6? table\ncup NextTo each table", False),  # each of none is none
+    ],
+)
+def test_a_reference_to_a_type_every_maker_of_which_may_make_none_is_warned(in_tmp, statements, warned):
+    Path("maybe.rules").write_text(HEADER + 'object cup { noun "cup" }\nS -> {\n' + statements + "\n}\n")
+    diagnostics = check_rules("maybe.rules")
+    assert all(d.severity == "warning" for d in diagnostics)
+    messages = [d.message for d in diagnostics if "may find none" in d.message]
+    assert bool(messages) is warned, diagnostics
+    if warned:
+        assert messages[0].endswith("where a scene has none its expansion stops here; refer to it only where one is certain")
+
+
 def test_scene_settings_and_a_second_scene_block(in_tmp):
     Path("scenes.rules").write_text("scene s { start S max_depth 0 max_nodes 2.5 start T }\nscene t { start S }\n"
                                     "S(x) -> { }\n")
