@@ -851,8 +851,9 @@ def run_complete(args: argparse.Namespace) -> int:
     scene = complete(request, args.seed, plans=args.plans, catalog=catalog, keep=keep)
     say(args, summary_of(scene.completion))
     if keep is not None:
-        kept = len(keep.placed_objects())
-        say(args, f"kept {kept} pieces where they stood; added {len(scene.placed_objects()) - kept}")
+        kept, new = len(keep.placed_objects()), len(scene.placed_objects()) - len(keep.placed_objects())
+        say(args, f"kept {kept} piece{'s' * (kept != 1)} where {'they' if kept != 1 else 'it'} stood; placed {new} new "
+                  f"(what --add asked for, and what the line above says the plans added)")
     scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates, words=args.words)
     images = None
     if args.render:

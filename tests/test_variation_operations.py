@@ -86,6 +86,7 @@ def test_transfer_onto_a_top_and_refused_where_nothing_can_stand(graph):
     assert change.removed == ["lamp"]
     books = [obj for obj, _ in change.added]
     assert [b.type for b in books] == ["book", "book"] and all(b.position[1] == pytest.approx(0.75) for b in books)
+    assert len({b.id for b in books}) == 2 and len(set(change.record["items"])) == 2  # two books, two ids
     assert all(r.target == "desk" for r in change.relations)
     # A top 2.1 m up, or one narrower than a book, cannot carry them.
     tall = example("tall", [box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 2.1, 0.7))])

@@ -129,9 +129,11 @@ def _moved_items(
     """Items resting on ``old`` (objects of any scene, with their origins) placed on
     ``new`` (id ``new_id``) at the same place relative to the top, scaled, with new ids."""
     placed, relations = [], []
-    ids = {item.id: variant.fresh_id(item.type, taken) for item, _ in items}
-    for item, origin in items:
+    ids: dict[str, str] = {}
+    for item, _ in items:  # one at a time: two books of one shelf need two ids
+        ids[item.id] = variant.fresh_id(item.type, taken)
         taken.add(ids[item.id])
+    for item, origin in items:
         lx, lz = to_local(old.position[0], old.position[2], old.yaw, item.position[0], item.position[2])
         sx, sz = new.size[0] / max(old.size[0], 1e-9), new.size[2] / max(old.size[2], 1e-9)
         lx = float(np.clip(lx * sx, -(new.size[0] - item.size[0]) / 2.0, (new.size[0] - item.size[0]) / 2.0))
