@@ -65,7 +65,6 @@ its second alternative, whose ``2..3 road`` drew 2::
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import NamedTuple
@@ -73,6 +72,7 @@ from typing import NamedTuple
 from . import rules_ast as ast
 from .catalog import SourceLocation
 from .rules import Rules
+from .rules_ast import all_statements
 
 
 class Site(NamedTuple):
@@ -173,14 +173,6 @@ def _parameters(rules: Rules) -> ChoiceCounts:
         if len(entry.styles) > 1:
             tally.styles[entry.name] = {style.name: 0 for style in entry.styles}
     return tally
-
-
-def all_statements(statements: tuple[ast.Statement, ...]) -> Iterator[ast.Statement]:
-    """The statements and, depth-first, those of their blocks."""
-    for statement in statements:
-        yield statement
-        if statement.block is not None:
-            yield from all_statements(statement.block)
 
 
 def _count(tally: ChoiceCounts, rules: Rules, record: dict) -> None:

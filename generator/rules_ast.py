@@ -8,6 +8,7 @@ scene parameters. Values are kept as written (numbers as floats, colours as the
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from .catalog import SourceLocation
@@ -190,3 +191,17 @@ class RulesFile:
     scenes: tuple[SceneDecl, ...] = ()
     entries: tuple[EntryDecl, ...] = ()
     productions: tuple[Production, ...] = ()
+
+
+def all_statements(statements: tuple[Statement, ...]) -> Iterator[Statement]:
+    """The statements and, depth-first, those of their blocks."""
+    for statement in statements:
+        yield statement
+        if statement.block is not None:
+            yield from all_statements(statement.block)
+
+
+def production_statements(production: Production) -> Iterator[Statement]:
+    """Every statement of every alternative of ``production``, blocks included."""
+    for alternative in production.alternatives:
+        yield from all_statements(alternative.statements)

@@ -415,15 +415,12 @@ class _Checker:
 
     def note_makers(self, production: ast.Production) -> None:
         """Record in ``makers`` each statement of ``production`` that creates a type."""
-        pending = [statement for alternative in production.alternatives for statement in alternative.statements]
-        while pending:
-            statement = pending.pop()
+        for statement in ast.production_statements(production):
             subject = statement.subject
             if isinstance(subject, ast.Reference) and subject.kind == "name" and subject.name in self.kinds:
                 optional = (statement.probability is not None and statement.probability < 1) or (
                     statement.count is not None and statement.count.low == 0)
                 self.makers.setdefault(subject.name, []).append((optional, statement.location))
-            pending.extend(statement.block or ())
 
     def check_production(self, production: ast.Production) -> None:
         scope: dict[str, str | None] = {}
@@ -691,19 +688,11 @@ def _subject_words(subject: ast.Reference | ast.Call) -> str:
     return "the subject refers to existing nodes"
 
 
-def _walk(statements: tuple[ast.Statement, ...]):
-    for statement in statements:
-        yield statement
-        if statement.block:
-            yield from _walk(statement.block)
-
-
 def _calls(production: ast.Production) -> list[str]:
     """Every nonterminal a production may call, in order of appearance."""
     return [
         statement.subject.nonterminal
-        for alternative in production.alternatives
-        for statement in _walk(alternative.statements)
+        for statement in ast.production_statements(production)
         if isinstance(statement.subject, ast.Call)
     ]
 

@@ -744,17 +744,16 @@ def run_list(args: argparse.Namespace) -> int:
 
 
 def created_types(rules) -> set[str]:
-    """The names some statement of ``rules`` creates (types and groups)."""
+    """The names the subjects of ``rules``' statements give (types and groups made, and
+    names bound before)."""
     from scenewright.generator import rules_ast as ast
 
-    found: set[str] = set()
-    pending = [s for production in rules.productions.values() for a in production.alternatives for s in a.statements]
-    while pending:
-        statement = pending.pop()
-        if isinstance(statement.subject, ast.Reference):
-            found.add(statement.subject.name)
-        pending.extend(statement.block or ())
-    return found
+    return {
+        statement.subject.name
+        for production in rules.productions.values()
+        for statement in ast.production_statements(production)
+        if isinstance(statement.subject, ast.Reference)
+    }
 
 
 def run_plans_build(args: argparse.Namespace) -> int:
