@@ -170,6 +170,19 @@ def view_rect(room: Room, window) -> Rect:
     return Rect(cx, cz, window.width / 2.0, WINDOW_VIEW_DEPTH / 2.0, nz, nx)  # forward (s, c) = normal
 
 
+class KeptZone(NamedTuple):
+    """A fixed footprint kept free of tall boxes (a door's swing, a window's view), with
+    its axis-aligned bounds and its diagonal, both computed once."""
+
+    rect: Rect
+    bounds: tuple[float, float, float, float]
+    diagonal: float
+
+
+def kept_zone(rect: Rect) -> KeptZone:
+    return KeptZone(rect, bounds(rect), 2.0 * math.hypot(rect.hw, rect.hd))
+
+
 def bounds(rect: Rect, grow: float = 0.0) -> tuple[float, float, float, float]:
     """Axis-aligned bounds (x0, z0, x1, z1) of a footprint grown by ``grow``."""
     cx, cz, hw, hd, c, s = rect
@@ -670,10 +683,10 @@ class RoomTerms:
         self.needs_access = [ground[b] and bool(problem.access[b]) for b in range(n)]
         self.access_boxes = [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
         self.swings = [(door.id, swing_rect(room, door)) for door in room.doors]
-        self.swing_size = [2.0 * math.hypot(r.hw, r.hd) for _, r in self.swings]
-        #: Each window's view, the lowest top that blocks it, and its diagonal.
-        self.views = [(view_rect(room, w), w.sill + WINDOW_VIEW_MARGIN, 2.0 * math.hypot(w.width / 2.0, WINDOW_VIEW_DEPTH / 2.0))
-                      for w in room.windows]  # fmt: skip
+        #: Zones kept free of tall boxes (``kept_zone``): each door's swing, and each
+        #: window's view with the lowest top that blocks it.
+        self.swing_zones = [kept_zone(rect) for _, rect in self.swings]
+        self.views = [(kept_zone(view_rect(room, w)), w.sill + WINDOW_VIEW_MARGIN) for w in room.windows]
         # Clearance zones: (owner, side, metres) each; per box the zones it owns.
         self.zones: list[tuple[int, str, float]] = []
         self.zones_of: list[list[int]] = [[] for _ in range(n)]
@@ -729,17 +742,30 @@ class RoomTerms:
     def swing_energy(self, box: int) -> float:
         if not self.active[box] or not self.obstacle[box]:
             return 0.0
+        return self.zones_energy(box, self.swing_zones)
+
+    def view_energy(self, box: int) -> float:
+        """What a ground box standing in front of a window, and taller than its sill by
+        more than WINDOW_VIEW_MARGIN, pays (module docstring)."""
+        if not self.active[box] or not self.obstacle[box] or not self.views:
+            return 0.0
+        top = self.state.y[box] + self.problem.height[box]
+        return self.zones_energy(box, [zone for zone, lowest in self.views if top > lowest])
+
+    def zones_energy(self, box: int, zones: list[KeptZone]) -> float:
+        """The collision penalty of the box in each of ``zones``, its depth in the zone
+        over the two diagonals."""
         size = self.problem.size[box]
         rect = self.state.rects[box]
         x0, z0, x1, z1 = bounds(rect)
         energy = 0.0
-        for door, (_, zone) in enumerate(self.swings):
-            sx0, sz0, sx1, sz1 = bounds(zone)
-            if x1 <= sx0 or sx1 <= x0 or z1 <= sz0 or sz1 <= z0:
+        for zone in zones:
+            zx0, zz0, zx1, zz1 = zone.bounds
+            if x1 <= zx0 or zx1 <= x0 or z1 <= zz0 or zz1 <= z0:
                 continue
-            depth = rect_penetration(zone, rect)
+            depth = rect_penetration(zone.rect, rect)
             if depth > 0.0:
-                energy += penalty(depth / (self.swing_size[door] + size), self.intensity)
+                energy += penalty(depth / (zone.diagonal + size), self.intensity)
         return energy
 
     def zone(self, zone: int) -> Rect:
@@ -1046,27 +1072,6 @@ class RoomTerms:
                 self.taken[box] = bits
 
     # -- what the sampler and the report read ------------------------------------------------
-
-    def view_energy(self, box: int) -> float:
-        """What a ground box standing in front of a window, and taller than its sill by
-        more than WINDOW_VIEW_MARGIN, pays (module docstring)."""
-        if not self.active[box] or not self.obstacle[box] or not self.views:
-            return 0.0
-        top = self.state.y[box] + self.problem.height[box]
-        size = self.problem.size[box]
-        rect = self.state.rects[box]
-        x0, z0, x1, z1 = bounds(rect)
-        energy = 0.0
-        for zone, lowest, diagonal in self.views:
-            if top <= lowest:
-                continue
-            vx0, vz0, vx1, vz1 = bounds(zone)
-            if x1 <= vx0 or vx1 <= x0 or z1 <= vz0 or vz1 <= z0:
-                continue
-            depth = rect_penetration(zone, rect)
-            if depth > 0.0:
-                energy += penalty(depth / (diagonal + size), self.intensity)
-        return energy
 
     def unreachable(self) -> list[int]:
         """Boxes that need reaching and cannot be."""
