@@ -19,13 +19,12 @@ from typing import Any
 import jsonschema
 from jsonschema.exceptions import best_match
 
-from scenewright.core.frames import to_local
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
 from scenewright.core.scene import Scene
 from scenewright.schema_check import packaged_schema_text, packaged_validator
 
 from .model import ExampleError, ObjectRecord, example_scene
-from .stacking import CONTACT
+from .stacking import over_footprint, touches_top
 
 SCHEMA_FILE = "example.schema.json"
 
@@ -88,12 +87,11 @@ def _check_place(path: str, index: int, record: ObjectRecord, records: list[Obje
     if parent is None:
         return
     below = next(r for r in records if r.id == parent)
-    top = below.position[1] + below.size[1]
-    if abs(y - top) > CONTACT:
+    if not touches_top(record, below):
+        top = below.position[1] + below.size[1]
         raise ExampleError(path, where, f"stands on {parent!r}, whose top is at height {top:g}, but its base is at {y:g}"
                                         " (give the position as [x, z] to put it on top)")  # fmt: skip
-    lx, lz = to_local(below.position[0], below.position[2], below.yaw, x, z)
-    if abs(lx) > below.size[0] / 2.0 + 1e-6 or abs(lz) > below.size[2] / 2.0 + 1e-6:
+    if not over_footprint(record, below):
         raise ExampleError(path, where, f"stands on {parent!r}, but its base centre is not over the footprint of {parent!r}")
 
 

@@ -12,6 +12,7 @@ structure graph's support relation.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Protocol
 
 from scenewright.core.frames import to_local
 from scenewright.core.scene import SceneObject
@@ -20,15 +21,31 @@ from scenewright.core.scene import SceneObject
 CONTACT = 0.03
 
 
-def rests_on(upper: SceneObject, lower: SceneObject) -> bool:
+class Boxed(Protocol):
+    """A box: a SceneObject, or a record read from an example file."""
+
+    id: str
+    position: Sequence[float]  # base centre (x, y, z)
+    size: Sequence[float]  # width, height, depth
+    yaw: float
+
+
+def touches_top(upper: Boxed, lower: Boxed) -> bool:
+    """Whether ``upper``'s base is within ``CONTACT`` of ``lower``'s top."""
+    return abs(upper.position[1] - (lower.position[1] + lower.size[1])) <= CONTACT
+
+
+def over_footprint(upper: Boxed, lower: Boxed) -> bool:
+    """Whether ``upper``'s base centre lies over ``lower``'s footprint."""
+    lx, lz = to_local(lower.position[0], lower.position[2], lower.yaw, upper.position[0], upper.position[2])
+    return abs(lx) <= lower.size[0] / 2.0 + 1e-6 and abs(lz) <= lower.size[2] / 2.0 + 1e-6
+
+
+def rests_on(upper: Boxed, lower: Boxed) -> bool:
     """Whether ``upper``'s base touches ``lower``'s top over ``lower``'s footprint."""
     if upper.id == lower.id or upper.position[1] <= CONTACT:
         return False
-    top = lower.position[1] + lower.size[1]
-    if abs(upper.position[1] - top) > CONTACT:
-        return False
-    lx, lz = to_local(lower.position[0], lower.position[2], lower.yaw, upper.position[0], upper.position[2])
-    return abs(lx) <= lower.size[0] / 2.0 + 1e-6 and abs(lz) <= lower.size[2] / 2.0 + 1e-6
+    return touches_top(upper, lower) and over_footprint(upper, lower)
 
 
 def infer_supports(objects: Sequence[SceneObject]) -> dict[str, str]:
