@@ -743,25 +743,38 @@ def footprint_gaps(pose: np.ndarray, a_sizes: np.ndarray, b_sizes: np.ndarray) -
     return np.hypot(*np.maximum(np.abs(pose[:, :2]) - a_sizes / 2.0 - reach, 0.0).T)
 
 
+def nearest_next_to(
+    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
+    rng: np.random.Generator,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """For the a's ``first.poses[a_scenes, chosen]``: the pose of the nearest b of the
+    scene ``b_scenes[k]`` in a's frame (n, 4), and whether it stands next to it (n,)
+    (when ``same``, the a's ``counterparts`` are no candidates)."""
+    centres = first.poses[a_scenes, chosen]
+    left_out = counterparts(second, b_scenes, chosen, rng) if same else None
+    index = nearest_indices(centres, second, b_scenes, left_out)
+    pose = relative_poses(centres, second.poses[b_scenes, index][:, None])[:, 0]
+    next_to = footprint_gaps(pose, first.footprints[a_scenes, chosen], second.footprints[b_scenes, index]) <= NEXT_TO_DISTANCE
+    return pose, next_to
+
+
+def at_pose(pose: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """Whether relative poses (..., 4) stand within ``FIXED_OFFSET`` and ``FIXED_TURN`` of
+    ``reference`` poses (broadcast against them)."""
+    turn = np.arctan2(pose[..., 3], pose[..., 2]) - np.arctan2(reference[..., 3], reference[..., 2])
+    close = np.hypot(pose[..., 0] - reference[..., 0], pose[..., 1] - reference[..., 1]) <= FIXED_OFFSET
+    return close & (np.abs(np.angle(np.exp(1j * turn))) <= FIXED_TURN)
+
+
 def share_at_one_pose(
     first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
     rng: np.random.Generator,
 ) -> float:  # fmt: skip
     """The share of the a's ``first.poses[a_scenes, chosen]`` whose nearest b of the scene
     ``b_scenes[k]`` stands next to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of the
-    median of those poses in a's frame (when ``same``, the a's ``counterparts`` are no
-    candidates)."""
-    centres = first.poses[a_scenes, chosen]
-    left_out = counterparts(second, b_scenes, chosen, rng) if same else None
-    index = nearest_indices(centres, second, b_scenes, left_out)
-    pose = relative_poses(centres, second.poses[b_scenes, index][:, None])[:, 0]  # (n, 4)
-    turn = np.arctan2(pose[:, 3], pose[:, 2])
-    next_to = footprint_gaps(pose, first.footprints[a_scenes, chosen], second.footprints[b_scenes, index]) <= NEXT_TO_DISTANCE
-    middle = np.median(pose[:, :2], axis=0)
-    middle_turn = np.arctan2(np.median(pose[:, 3]), np.median(pose[:, 2]))
-    off_turn = np.abs(np.angle(np.exp(1j * (turn - middle_turn))))
-    at_one_pose = (np.hypot(*(pose[:, :2] - middle).T) <= FIXED_OFFSET) & (off_turn <= FIXED_TURN)
-    return float(np.mean(at_one_pose & next_to))
+    median of those poses in a's frame (``nearest_next_to``)."""
+    pose, next_to = nearest_next_to(first, second, a_scenes, b_scenes, chosen, same, rng)
+    return float(np.mean(at_pose(pose, np.median(pose, axis=0)) & next_to))
 
 
 def fixed_arrangement(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> bool:
@@ -791,18 +804,13 @@ def share_at_some_pose(
     to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of where some b stands about the
     a of the next scene (``np.roll(scenes, -1)``, its a ``np.roll(chosen, -1)``), both in
     their a's frame; for one type, an a's counterpart is not its b."""
-    centres = first.poses[scenes, chosen]
-    left_out = counterparts(second, scenes, chosen, rng) if same else None
-    index = nearest_indices(centres, second, scenes, left_out)
-    pose = relative_poses(centres, second.poses[scenes, index][:, None])[:, 0]  # (n, 4)
-    next_to = footprint_gaps(pose, first.footprints[scenes, chosen], second.footprints[scenes, index]) <= NEXT_TO_DISTANCE
-    around = relative_poses(np.roll(centres, -1, axis=0), second.poses[np.roll(scenes, -1)])  # (n, K, 4)
-    valid = np.arange(second.poses.shape[1])[None, :] < second.counts[np.roll(scenes, -1)][:, None]
+    pose, next_to = nearest_next_to(first, second, scenes, scenes, chosen, same, rng)
+    following, its_a = np.roll(scenes, -1), np.roll(chosen, -1)
+    around = relative_poses(first.poses[following, its_a], second.poses[following])  # (n, K, 4)
+    valid = np.arange(second.poses.shape[1])[None, :] < second.counts[following][:, None]
     if same:  # the next scene's a is no b about itself
-        valid[np.arange(len(scenes)), np.roll(chosen, -1)] = False
-    offset = np.hypot(*(around[..., :2] - pose[:, None, :2]).transpose(2, 0, 1))
-    turn = np.abs(np.angle(np.exp(1j * (np.arctan2(around[..., 3], around[..., 2]) - np.arctan2(pose[:, 3], pose[:, 2])[:, None]))))
-    matched = np.any(valid & (offset <= FIXED_OFFSET) & (turn <= FIXED_TURN), axis=1)
+        valid[np.arange(len(scenes)), its_a] = False
+    matched = np.any(valid & at_pose(pose[:, None, :], around), axis=1)
     return float(np.mean(matched & next_to))
 
 
