@@ -31,11 +31,11 @@ Categories, most specific first:
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
 
+from scenewright.core.frames import footprint_reach
 from scenewright.core.poses import Pose
 from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_NODE, Room
@@ -99,10 +99,11 @@ def pair_holds(
 
 
 #: A person placing things by hand leaves a few centimetres to a wall, and turns a round
-#: thing (a floor lamp, a plant) any way: before the wall labels are measured, a standing
-#: object within HAND_GAP (metres, between footprint and wall) of a wall as it stands is
-#: set flush to it, as the layout would set it, an object whose footprint is square
-#: within SQUARE_ASPECT first turned with its back to the nearest (``hand_placed``).
+#: thing (a floor lamp, a plant) any way, its box's corners then a little into the walls:
+#: before the wall labels are measured, a standing object within HAND_GAP (metres,
+#: between footprint and wall, either side of it) of a wall as it stands is set flush to
+#: it, as the layout would set it, an object whose footprint is square within
+#: SQUARE_ASPECT first turned with its back to the nearest (``hand_placed``).
 HAND_GAP = 0.15
 SQUARE_ASPECT = 1.2
 
@@ -111,30 +112,27 @@ def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     """(x, z, yaw) of a standing object as its placer meant it against the walls
     (``HAND_GAP``, ``SQUARE_ASPECT``): unchanged where no wall is that near."""
     x, z, yaw = float(obj.position[0]), float(obj.position[2]), float(obj.yaw)
-    half_width, half_depth = obj.size[0] / 2.0, obj.size[2] / 2.0
 
     def gap(wall, x: float, z: float, yaw: float) -> float | None:
         """The gap between the footprint and ``wall``, None when the object is not beside it."""
         u, v = wall.to_wall(x, z)
-        (tx, tz), (nx, nz) = wall.direction, wall.normal
-        c, s = math.cos(yaw), math.sin(yaw)
-        reach_u = half_width * abs(c * tx - s * tz) + half_depth * abs(s * tx + c * tz)
-        reach_v = half_width * abs(c * nx - s * nz) + half_depth * abs(s * nx + c * nz)
+        reach_u, reach_v = footprint_reach(yaw - wall.facing_yaw, obj.size[0], obj.size[2])  # along it, off it
         if u + reach_u < 0.0 or u - reach_u > wall.length:
             return None
         return v - reach_v
 
-    # The walls it was set against, as it stands; then turned (a round thing) and flush.
-    near = sorted(((g, k) for k, wall in enumerate(room.walls) if (g := gap(wall, x, z, yaw)) is not None
-                   and 0.0 <= g <= HAND_GAP))  # fmt: skip
+    # The walls it was set against, as it stands (a few centimetres off, or a turned box's
+    # corners a little into one); then turned (a round thing) and flush.
+    near = sorted(((abs(g), k) for k, wall in enumerate(room.walls) if (g := gap(wall, x, z, yaw)) is not None
+                   and abs(g) <= HAND_GAP))  # fmt: skip
     if not near:
         return x, z, yaw
-    if max(half_width, half_depth) <= SQUARE_ASPECT * min(half_width, half_depth):
+    if max(obj.size[0], obj.size[2]) <= SQUARE_ASPECT * min(obj.size[0], obj.size[2]):
         yaw = room.walls[near[0][1]].facing_yaw  # a round thing's turn means nothing
     for _, k in near:
         wall = room.walls[k]
         g = gap(wall, x, z, yaw)
-        if g is not None and g > 0.0:
+        if g is not None:
             nx, nz = wall.normal
             x, z = x - g * nx, z - g * nz
     return x, z, yaw

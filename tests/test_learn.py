@@ -348,11 +348,12 @@ def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path)
     assert [d for d in check_rules(rules_path) if d.is_error] == []
 
 
-@pytest.mark.parametrize("turned", [True, False])
-def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(tmp_path, turned):
+@pytest.mark.parametrize(("turned", "gaps"), [(True, (0.02, 0.09)), (False, (0.02, 0.09)), (True, (-0.07, -0.02))])
+def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(tmp_path, turned, gaps):
     # Ten rooms, a floor lamp in some corner 2 to 9 cm off both walls, turned towards the
     # room as a person would set it down (or square to the walls): its turn means nothing
-    # for a round lamp, and the gap is the few centimetres a hand leaves.
+    # for a round lamp, and the gap is the few centimetres a hand leaves. Or set down as
+    # the round thing it is, its turned box's corners 2 to 7 cm into the walls.
     draw = np.random.default_rng(11)
     paths = []
     for index in range(10):
@@ -360,7 +361,7 @@ def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(tmp
         sx, sz = draw.choice([-1, 1], size=2)
         yaw = math.degrees(math.atan2(-sx, -sz)) if turned else float(draw.choice([0, 90, 180, 270]))
         reach = 0.2 * (abs(math.cos(math.radians(yaw))) + abs(math.sin(math.radians(yaw))))  # the square's, turned
-        lamp = [float(sx * (width / 2 - reach - draw.uniform(0.02, 0.09))), float(sz * (depth / 2 - reach - draw.uniform(0.02, 0.09)))]
+        lamp = [float(sx * (width / 2 - reach - draw.uniform(*gaps))), float(sz * (depth / 2 - reach - draw.uniform(*gaps)))]
         objects = [
             {"id": "table", "type": "table", "size": [1.2, 0.75, 0.8], "position": [0.0, 0.0], "yaw": 0},
             {"id": "lamp", "type": "floor_lamp", "size": [0.4, 1.6, 0.4], "position": lamp, "yaw": round(yaw, 1)},
