@@ -56,11 +56,15 @@ FORMATS: tuple[ExampleFormat, ...] = (
 )
 
 
+def example_file(path: str | os.PathLike[str]) -> Path:
+    """The file an example path names: itself, or the scene.json of a folder holding one."""
+    target = Path(path)
+    return target / "scene.json" if target.is_dir() and (target / "scene.json").is_file() else target
+
+
 def load_example(path: str | os.PathLike[str], name: str | None = None) -> Example:
     """The example in ``path`` (a file, or a folder holding a scene.json)."""
-    target = Path(path)
-    if target.is_dir() and (target / "scene.json").is_file():
-        target = target / "scene.json"
+    target = example_file(path)
     shown = str(path)
     try:
         data = read_regular_file(target, MAX_EXAMPLE_BYTES, "an example file")
@@ -114,27 +118,28 @@ def example_paths(paths: Iterable[str | os.PathLike[str]]) -> list[str | os.Path
     return expanded
 
 
+def _example_bytes(path: str | os.PathLike[str]) -> bytes | None:
+    """The bytes of the file an example path names, or None when it cannot be read
+    (its reader then says why)."""
+    try:
+        return read_regular_file(example_file(path), MAX_EXAMPLE_BYTES, "an example file")
+    except (UnusableFile, OSError):
+        return None
+
+
 def is_handwritten_example(path: str | os.PathLike[str]) -> bool:
     """Whether the file ``path`` is JSON for the hand-written reader rather than a
     scene.json: it lists ``objects`` and names no ``rules`` (every scene.json does; the
     hand-written format has no such key). False when it cannot be read."""
-    try:
-        data = read_regular_file(Path(path), MAX_EXAMPLE_BYTES, "an example file")
-    except (UnusableFile, OSError):
-        return False
-    return not _is_scene_json(data) and b'"objects"' in data and b'"rules"' not in data
+    data = _example_bytes(path)
+    return data is not None and not _is_scene_json(data) and b'"objects"' in data and b'"rules"' not in data
 
 
 def is_scene_json_file(path: str | os.PathLike[str]) -> bool:
     """Whether ``path`` (a file, or a folder holding a scene.json) is a scenewright
-    scene.json, by the same test the readers use; False when it cannot be read (its
-    reader then says why)."""
-    target = Path(path)
-    target = target / "scene.json" if target.is_dir() else target
-    try:
-        return _is_scene_json(read_regular_file(target, MAX_EXAMPLE_BYTES, "an example file"))
-    except (UnusableFile, OSError):
-        return False
+    scene.json, by the same test the readers use; False when it cannot be read."""
+    data = _example_bytes(path)
+    return data is not None and _is_scene_json(data)
 
 
 def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
@@ -146,7 +151,7 @@ def load_examples(paths: Iterable[str | os.PathLike[str]]) -> list[Example]:
     taken: set[str] = set()
     read: dict[Path, str] = {}
     for path in example_paths(paths):
-        target = Path(path) / "scene.json" if Path(path).is_dir() else Path(path)
+        target = example_file(path)
         try:
             key = target.resolve()
         except OSError:
