@@ -29,6 +29,8 @@ or "right"), ``nth`` and ``extreme``.
 
 from __future__ import annotations
 
+from collections import Counter
+
 from .english import ordinal_word
 from .programs import DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, ProgramError, Seen, execute, step
 from .world import is_kind_of
@@ -46,8 +48,12 @@ def referring_expressions(facts: PictureFacts) -> list[dict]:
     """One ``{"text", "id", "program"}`` for each seen object some form picks out, in id
     order; each program, executed on ``facts``, gives its ``id``."""
     found = []
+    counts = Counter(o.noun for o in facts.objects.values())
+    # A noun a reader takes to mean just the objects of that noun: no seen object's noun
+    # is a kind of it ("armchair" of "chair", "green armchair" of "armchair").
+    clear = {noun for noun in counts if not any(is_kind_of(other, noun) for other in counts)}
     for entity_id in sorted(facts.objects):
-        for text, program in _candidates(facts, entity_id):
+        for text, program in _candidates(facts, entity_id, counts, clear):
             try:
                 picked = execute(program, facts)
             except ProgramError:
@@ -58,16 +64,15 @@ def referring_expressions(facts: PictureFacts) -> list[dict]:
     return found
 
 
-def _candidates(facts: PictureFacts, entity_id: str):
-    """The forms of the module docstring for one object, in order, as (text, program)."""
+def _candidates(facts: PictureFacts, entity_id: str, counts: Counter, clear: set[str]):
+    """The forms of the module docstring for one object, in order, as (text, program);
+    ``counts``: the seen objects per noun, ``clear``: the nouns a reader takes for just
+    those objects."""
     noun = facts.objects[entity_id].noun
-    nouns = [o.noun for o in facts.objects.values()]
-    if not _clear(noun, nouns):
+    if noun not in clear:
         return  # "the chair" beside an armchair: a reader counts the armchair too
     yield f"the {noun}", [step("scene"), step("filter_noun", noun, 0), step("unique", None, 1)]
-    anchors = sorted(
-        i for i, o in facts.objects.items() if i != entity_id and nouns.count(o.noun) == 1 and _clear(o.noun, nouns)
-    )
+    anchors = sorted(i for i, o in facts.objects.items() if i != entity_id and counts[o.noun] == 1 and o.noun in clear)
     for anchor in anchors:
         anchor_noun = facts.objects[anchor].noun
         for side in ("left", "right"):
@@ -85,10 +90,3 @@ def _candidates(facts: PictureFacts, entity_id: str):
         yield f"the {ordinal_word(place)} {noun} from the {side}", program
     for which in ("nearest", "farthest"):
         yield f"the {which} {noun}", [step("scene"), step("filter_noun", noun, 0), step("extreme", which, 1)]
-
-
-
-def _clear(noun: str, nouns: list[str]) -> bool:
-    """Whether ``noun`` means to a reader just the seen objects of that noun: no seen
-    object's noun is a kind of it ("armchair" of "chair", "green armchair" of "armchair")."""
-    return not any(is_kind_of(other, noun) for other in nouns)
