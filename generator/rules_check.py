@@ -461,12 +461,12 @@ class _Checker:
                            f"unknown relation label '{relation.label}'"
                            + (case_mix_up(relation.label, RELATIONS.names(), "relation labels are CamelCase")
                               or did_you_mean(relation.label, RELATIONS.names())))
-            by_wall = relation.label in RELATIONS and RELATIONS[relation.label].family == "wall"
-            if not (by_wall and not self.has_room):  # the wall label's own error says it all
+            family = RELATIONS[relation.label].family if relation.label in RELATIONS else None
+            if family != "wall" or self.has_room:  # outdoors, the wall label's own error says it all
                 self.check_target(relation.target, scope)
-            if relation.label in RELATIONS and RELATIONS[relation.label].family == "structural":
+            if family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
-            if relation.label in RELATIONS and RELATIONS[relation.label].family == "wall":
+            if family == "wall":
                 self.check_wall_relation(relation)
         if statement.block is not None:
             self.check_group_block(statement, created_kind, scope)
