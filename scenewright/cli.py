@@ -1532,7 +1532,7 @@ def build_parser() -> CommandLineParser:
     )
 
     vary_command = command("vary", "make new scenes by reshuffling objects of example scenes", run_vary)
-    vary_command.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)")
+    vary_command.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes, two or more (scene.json or its folder, .json, .glb)")
     vary_command.add_argument("-n", "--count", type=count_at_least(1), default=10, metavar="N", help="variants to make (10)")
     vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
     vary_command.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")

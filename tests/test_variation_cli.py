@@ -110,6 +110,9 @@ def test_vary_bad_input_writes_nothing(capsys, tmp_path, rooms):
     assert not out.exists() or not any(out.iterdir())
     code, _, err = run(capsys, "vary", str(rooms[0]), "-n", "0", "-o", str(out))
     assert code == 2 and "must be at least 1" in err
+    code, _, err = run(capsys, "vary", str(rooms[0]), "-n", "2", "-o", str(out))
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "at least 2 example scenes, got 1" in err
+    assert not out.exists() or not any(out.iterdir())
 
 
 def test_help_has_examples(capsys):

@@ -28,6 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene, assemble_scene
 from scenewright.core.seeds import STAGE_KEYS, stream
 from scenewright.examples import Example
@@ -210,7 +211,13 @@ def vary(
     examples: list[Example], count: int, seed: int, *, max_operations: int = 3, ag: AugmentedGraph | None = None,
     attempts: int | None = None,
 ) -> list[Result]:
-    """Up to ``count`` distinct variants of ``examples``, best K first."""
+    """Up to ``count`` distinct variants of ``examples``, best K first. ``InputError``
+    for fewer than two examples: every operation brings in what another example has."""
+    if len(examples) < 2:
+        raise InputError(
+            f"varying needs at least 2 example scenes, got {len(examples)}: every operation brings in objects "
+            "from another example"
+        )
     ag = ag or augment(examples)
     seen = {signature(start_variant(k, e)) for k, e in enumerate(examples)}
     made: list[Result] = []
