@@ -208,7 +208,14 @@ cooccurrence
 
 Indirect relations are pruned (tests whose ``prunes`` is set: permutation and angle).
 In every triangle of types whose three pairs were all found related (*strong*), at most
-one pair is carried by the other two and is reported as not related, ``pruned``:
+one pair is carried by the other two and is reported as not related, ``pruned``. A pair
+(a, c) can be carried by a third type b only where b is: one b stands in at least
+``THIRD_SHARE`` (three in four) of the scenes holding a and c, or that pair is not
+judged in this triangle. A chair stands in front of its table in sixteen living rooms
+and a rug lies under the table in eight: the rug's pairs are the tighter, yet in the
+eight rooms without one the chair still stands by its table, so the rug cannot carry
+that relation (the rug's pair with the chair, held in its eight rooms by the table,
+goes). Of the pairs judged:
 
 - where one type of the triangle rests on another (in at least half the scenes holding
   both, measured from the boxes by ``examples.stacking``, whatever the file says), its
@@ -378,6 +385,9 @@ FIXED_SHARE = 0.75
 FIXED_OFFSET = 0.25
 FIXED_TURN = math.radians(15.0)
 NEXT_TO_DISTANCE = LayoutParams().next_to_distance
+#: A pair is pruned as indirect through a third type only when that type stands in at
+#: least this share of the scenes holding the pair (module docstring).
+THIRD_SHARE = 0.75
 #: A path (a road) stands in triangles as points this many metres apart along it
 #: (module docstring, "Paths").
 PATH_STEP = 1.0
@@ -1236,10 +1246,17 @@ def resting_pairs(
     }
 
 
+def third_share(poses: dict[str, TypePoses], a: str, b: str, third: str) -> float:
+    """The share of the scenes holding a and b (two a's when a == b) that hold a ``third``."""
+    both = holding_both(poses[a], poses[b], a == b)
+    return float(np.mean(poses[third].counts[both] >= 1)) if len(both) else 0.0
+
+
 def prune_indirect(
     pairs: Sequence[PairRelation], resting: set[tuple[str, str]] = frozenset(),
     through: Callable[[str, str, str], bool | None] | None = None,
     apart: Callable[[str, str], tuple[float, float]] | None = None,
+    present: Callable[[str, str, str], float] | None = None,
 ) -> list[PairRelation]:  # fmt: skip
     """``pairs`` with the indirect pairs of every triangle of related pairs marked not
     related and ``pruned``: the pair of a third type with one that rests on another of
@@ -1247,7 +1264,9 @@ def prune_indirect(
     b)``, whether (a, c) is indirect through b (None: cannot tell), of the triangle's
     pairs it finds indirect the one whose objects stand farthest apart (``apart(a, c)``,
     compared as tuples; the weakest without it), and where it cannot tell for some pair
-    of the triangle, the pair of the smallest strength. A resting pair itself is never
+    of the triangle, the pair of the smallest strength. Given ``present(a, c, b)``, the
+    share of the scenes holding a and c that hold a b, a pair is judged in a triangle
+    only when that share is at least ``THIRD_SHARE``. A resting pair itself is never
     pruned (module docstring)."""
     strength = {(p.a, p.b): p.strength for p in pairs if p.related}
     neighbours: dict[str, set[str]] = defaultdict(set)
@@ -1262,16 +1281,21 @@ def prune_indirect(
     def supported(u: str, v: str) -> bool:
         return (u, v) in resting or (v, u) in resting
 
+    def explains(u: str, v: str, third: str) -> bool:  # the third stands in enough of the pair's scenes
+        return present is None or present(u, v, third) >= THIRD_SHARE
+
     indirect: set[tuple[str, str]] = set()
     for a, b in strength:
         if a == b:  # two a's and a third type w: the a's relate through w if they rest on it,
             # or, unless w rests on one a (then it is that a's alone), if w is tighter to them
             # (one w between them) or two w's are tighter to each other (each a by its own w)
             if any(
-                (a, w) in resting
-                or ((w, a) not in resting and max(strength[key(a, w)], strength.get((w, w), -math.inf)) > strength[(a, a)])
+                explains(a, a, w) and (
+                    (a, w) in resting
+                    or ((w, a) not in resting and max(strength[key(a, w)], strength.get((w, w), -math.inf)) > strength[(a, a)])
+                )
                 for w in neighbours[a]
-            ):
+            ):  # fmt: skip
                 indirect.add((a, a))
             continue
         for w in neighbours[a] & neighbours[b]:
@@ -1281,12 +1305,16 @@ def prune_indirect(
             riders = [
                 key(third, upper)
                 for upper, lower, third in ((a, b, w), (b, a, w), (a, w, b), (w, a, b), (b, w, a), (w, b, a))
-                if (upper, lower) in resting and not supported(third, upper)
+                if (upper, lower) in resting and not supported(third, upper) and explains(third, upper, lower)
             ]
             if riders:  # what rests on another relates to the third through it
                 indirect.update(riders)
                 continue
-            verdicts = [through(*edge, third) for edge, third in zip(edges, (w, b, a))] if through else [None]
+            thirds = dict(zip(edges, (w, b, a)))
+            edges = [edge for edge in edges if explains(*edge, thirds[edge])]
+            if not edges:
+                continue
+            verdicts = [through(*edge, thirds[edge]) for edge in edges] if through else [None]
             if None in verdicts:  # no test of indirectness: the weakest pair goes
                 weakest = min(edges, key=lambda edge: strength[edge])
                 if not supported(*weakest):
@@ -1343,7 +1371,7 @@ def find_relations(
         kinds = {name: role.group for name, role in role_of.items()}
         through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha, kinds)) if chosen.tests_indirect else None
         apart = functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c)) if chosen.tests_indirect else None
-        results = prune_indirect(results, resting, through, apart)
+        results = prune_indirect(results, resting, through, apart, functools.partial(third_share, poses))
     results = [pair for pair in results if pair.a not in paths and pair.b not in paths]
     return RelationsResult(test, len(scenes), seed, alpha, tuple(by_type(results, role_of)))
 

@@ -366,6 +366,32 @@ def test_pruning_by_strength_and_by_resting():
     assert {(p.a, p.b): p.related for p in prune_indirect(shelves, {("w", "a")})}[("a", "a")]
 
 
+def test_a_pair_is_not_pruned_through_a_type_missing_from_many_of_its_scenes():
+    # Sixteen hand-made rooms: a chair in front of its table in each, a rug under the
+    # table in eight. The rug's two pairs are tighter (it lies where the table stands),
+    # but in the eight rooms without a rug the chair still stands by its table: the rug
+    # cannot carry that relation. The rug's pair with the chair holds through the table.
+    rng = np.random.default_rng(3)
+    scenes = []
+    for index in range(16):
+        table = uniform_pose(rng)
+        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.8, math.pi, rng))]
+        if index % 2 == 0:
+            placed.append(("rug", *offset(table, 0.0, 0.0, 0.0, rng, jitter=0.02)))
+        scenes.append(scene_of(placed, f"s{index}"))
+    verdicts = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
+    assert verdicts[("chair", "table")].related
+    assert verdicts[("rug", "table")].related
+    assert verdicts[("chair", "rug")].pruned
+    # prune_indirect itself: the weakest pair of a triangle stays when its third type
+    # stands in fewer than THIRD_SHARE of the pair's scenes.
+    pairs = [pair("a", "b", 0.5), pair("a", "c", 0.9), pair("b", "c", 0.8)]
+    share = {("a", "b", "c"): 0.5, ("a", "c", "b"): 1.0, ("b", "c", "a"): 1.0}
+    verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs, present=lambda u, v, w: share[(u, v, w)])}
+    assert verdicts == {("a", "b"): True, ("a", "c"): True, ("b", "c"): False}
+    assert not {(p.a, p.b): p.related for p in prune_indirect(pairs)}[("a", "b")]
+
+
 def test_cooccurrence_is_the_share_of_scenes_holding_both():
     scenes = [scene_of([("table", 0, 0, 0), ("chair", 1, 1, 0)])] * 3 + [scene_of([("table", 0, 0, 0), ("plant", 1, 1, 0)])] * 2
     verdicts = {(p.a, p.b): p for p in find_relations(scenes, test="cooccurrence").pairs}
