@@ -89,11 +89,12 @@ def build_scene(
     *,
     templates: str | os.PathLike[str] | None = None,
     layout_seed: int | None = None,
-    context: LearnedContext | None = None,
+    context: LearnedContext | str | os.PathLike[str] | None = None,
 ) -> Scene:
     """Expand the grammar with ``seed`` and lay the graph out: a Scene without text or images.
 
-    ``context``: a learned context (``rules_context``) the layout samples with.
+    ``context``: a learned context the layout samples with, or the path of a context
+    file (``NAME.context.json``, as ``fit --what context`` writes it).
 
     ``templates``, a folder of description templates, replaces the rule set's own in
     ``scene.templates`` (as an absolute path), so every description of the scene uses it.
@@ -108,6 +109,10 @@ def build_scene(
 
     seed = check_seed(seed)
     layout_seed = seed if layout_seed is None else check_seed(layout_seed, "layout seed")
+    if isinstance(context, (str, os.PathLike)):
+        from scenewright.generator.layout.learned_term import read_context
+
+        context = read_context(os.fspath(context))
     loaded = load_rules(rules)
     timings: dict[str, float] = {}
     with timed(timings, "expand"):
@@ -233,7 +238,7 @@ def generate(
     variant: int = 0,
     templates: str | os.PathLike[str] | None = None,
     words: int | None = None,
-    context: LearnedContext | None = None,
+    context: LearnedContext | str | os.PathLike[str] | None = None,
 ) -> Scene:
     """Generate one scene: expand, lay out and describe it (``words``: a word budget, see ``describe``).
 
@@ -247,10 +252,10 @@ def generate(
     own (the scene block's ``templates``); the scene records it in ``scene.templates``
     so that describing the scene again uses it too.
 
-    ``context`` is a learned context (``scenewright fit --what context``; read one with
-    ``rules_context``): the layout then samples its pairs at temperature 1. The CLI's
+    ``context`` is a learned context (``scenewright fit --what context``), or the path
+    of its file: the layout then samples its pairs at temperature 1. The CLI's
     ``generate`` uses the one beside a rules file by default; this function only the
-    one it is given.
+    one it is given (``rules_context`` finds the one beside a rules file).
     """
     check_choice("style", style, STYLES)
     scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)

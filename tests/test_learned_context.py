@@ -447,3 +447,18 @@ def test_layout_lays_a_scene_out_again_with_a_context(tmp_path, capsys):
     assert main(["layout", scene, "--context", str(tmp_path / "none.json"), "-o", str(tmp_path / "d")]) == 2
     _one_line_error(capsys)
     assert not (tmp_path / "d").exists()
+
+
+def test_the_api_takes_a_context_by_the_path_of_its_file(tmp_path):
+    from scenewright.api import reproducible_json, rules_context
+    from scenewright.core.errors import InputError
+
+    loaded = load_rules(DINING)
+    sidecar = tmp_path / "dining.context.json"
+    sidecar.write_text(random_context(expand(loaded, 0), seed=5).to_json())
+    by_path = reproducible_json(build_scene(loaded, 1, context=sidecar))
+    assert by_path == reproducible_json(build_scene(loaded, 1, context=str(sidecar)))
+    assert by_path == reproducible_json(build_scene(loaded, 1, context=rules_context(loaded, sidecar)[1]))
+    assert by_path != reproducible_json(build_scene(loaded, 1))  # the context moved something
+    with pytest.raises(InputError, match="missing.json: cannot read"):
+        build_scene(loaded, 1, context=tmp_path / "missing.json")
