@@ -51,7 +51,8 @@ from scenewright.completion.complete import (
 )  # fmt: skip
 from scenewright.completion.regions import footprint_share, split_room
 from scenewright.completion.model import build_model
-from scenewright.completion.plan import catalog_categories, load_plans
+from scenewright.completion.plan import load_plans
+from scenewright.generator import indoor_catalog
 from scenewright.generator import layout as layout_module
 
 #: The docs' table: room, door, window, requested.
@@ -265,7 +266,7 @@ def main() -> None:
                         help="N large two-type rooms only, split by virtual walls and not")  # fmt: skip
     args = parser.parse_args()
     model = build_model(load_plans(shipped_plans_dir()))
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     mask_term = not args.without_mask_term
     if args.composite is not None:
         composite_table(model, catalog, args.composite)

@@ -812,16 +812,17 @@ def complete(
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.layout_mask import floor_mask, region_floor_masks
     from scenewright.completion.model import build_model
-    from scenewright.completion.plan import catalog_categories, load_plans
+    from scenewright.completion.plan import load_plans
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed
+    from scenewright.generator import indoor_catalog
     from scenewright.generator.layout import layout_scene
 
     seed = check_seed(seed)
     timings: dict[str, float] = {}
     with timed(timings, "complete"):
         model = model or build_model(load_plans(plans or shipped_plans_dir()))
-        catalog = catalog or catalog_categories()
+        catalog = catalog or indoor_catalog()
         contents = choose_contents(model, request, split=split and keep is None)
     chosen = dict(contents.counts)
     failed = None  # the last failed try's poses (box id -> Pose), where the next try starts first

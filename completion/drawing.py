@@ -22,8 +22,8 @@ from matplotlib.patches import Polygon, Rectangle  # noqa: E402
 from scenewright.completion.activity import FETCH, STAY, purpose  # noqa: E402
 from scenewright.completion.features import canonical_frame, occupancy_mask  # noqa: E402
 from scenewright.completion.model import floor_pieces  # noqa: E402
-from scenewright.completion.plan import catalog_categories  # noqa: E402
 from scenewright.completion.plan_checks import is_flat  # noqa: E402
+from scenewright.generator import indoor_catalog  # noqa: E402
 
 COLOURS = {STAY: "#e8a25a", FETCH: "#6fae6f", None: "#a8adb4"}
 #: The most panels one sheet holds (a sheet is one image; draw more as several sheets).
@@ -73,7 +73,7 @@ def _draw_plan(axis, plan) -> None:
         arc = [wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
                for a in np.linspace(0.0, math.pi / 2.0, 16)]  # fmt: skip
         axis.plot([p[0] for p in arc], [p[1] for p in arc], color="#c04040", lw=0.8)
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     for piece in plan.furniture:
         flat = is_flat(piece, catalog)
         colour = COLOURS[purpose(piece.category)]

@@ -40,9 +40,10 @@ import numpy as np
 
 from scenewright.completion.activity import activity_prior, purpose
 from scenewright.completion.features import MASK_SIZE, canonical_frame, occupancy_mask, room_feature
-from scenewright.completion.plan import catalog_categories, rounded
+from scenewright.completion.plan import rounded
 from scenewright.completion.plan_checks import FLAT_HEIGHT, is_flat
 from scenewright.core.errors import InputError
+from scenewright.generator import indoor_catalog
 
 MODEL_FORMAT = "scenewright-plan-model"
 MODEL_VERSION = 1
@@ -56,7 +57,7 @@ DECIMALS = 6
 
 def floor_pieces(plan, catalog=None) -> list:
     """The pieces of ``plan`` that cover floor: not standing on another, not flat."""
-    catalog = catalog or catalog_categories()
+    catalog = catalog or indoor_catalog()
     return [piece for piece in plan.furniture if piece.on is None and not is_flat(piece, catalog)]
 
 
@@ -65,7 +66,7 @@ def build_model(plans) -> dict:
     plans = sorted(plans, key=lambda plan: plan.id)
     if not plans:
         raise InputError("a plan model needs at least one plan")
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     categories = _category_table(plans, catalog)
     types = sorted({plan.type for plan in plans})
     prior = activity_prior(plans)

@@ -140,6 +140,7 @@ def read_plan(path: str | Path) -> Plan:
 def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
     """A checked ``Plan`` from its JSON document (see the module docstring)."""
     from scenewright.completion.plan_checks import plan_problems
+    from scenewright.generator import indoor_catalog
 
     error = best_match(_validator().iter_errors(data))
     if error is not None:
@@ -148,7 +149,7 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
         room = Room.from_dict(data["room"])
     except RoomError as problem:
         raise PlanError(source, "$.room", str(problem)) from None
-    known = catalog_categories()
+    known = indoor_catalog()
     seen: set[str] = set()
     for index, raw in enumerate(data["furniture"]):
         where = f"$.furniture[{index}]"
@@ -207,17 +208,6 @@ def load_plans(folder: str | Path) -> list[Plan]:
         first_seen[plan.id] = str(path)
         plans.append(plan)
     return plans
-
-
-@lru_cache(maxsize=1)
-def catalog_categories() -> dict:
-    """The indoor catalog's entries by name (``CatalogEntry``): the categories a plan may use.
-
-    Read through a shipped room rule set, which includes the catalog (a catalog file
-    alone has no scene block to load)."""
-    from scenewright.generator import load_rules
-
-    return dict(load_rules("bedroom").catalog.entries)
 
 
 def rounded(value, decimals: int):

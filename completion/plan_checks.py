@@ -40,9 +40,9 @@ FLAT_HEIGHT = 0.02
 def plan_problems(plan) -> list[tuple[str, str]]:
     """Every problem of ``plan`` (a ``plan.Plan``), in furniture order; empty when it is sound."""
     from scenewright.completion.activity import SEATS
-    from scenewright.completion.plan import catalog_categories
+    from scenewright.generator import indoor_catalog
 
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     index = {piece.id: k for k, piece in enumerate(plan.furniture)}
     room = plan.room
     problems: list[tuple[str, str]] = []

@@ -1,8 +1,9 @@
 """The in-memory form of an example (``Example``: a core ``Scene`` and where it came
 from), its error, and ``example_scene``, which turns the objects a file lists into that
-Scene: noun from the type, the procedural shape of the same name if there is one, a
-colour of its own per type, and an ``OnTopOf`` relation for every support (given by
-the file or measured, ``stacking``)."""
+Scene: each object's looks (``default_looks``: the shipped indoor catalog's noun, shape
+and colour for a type it has, else a noun from the type, the procedural shape of the
+same name if there is one, and a colour of its own per type), and an ``OnTopOf``
+relation for every support (given by the file or measured, ``stacking``)."""
 
 from __future__ import annotations
 
@@ -82,6 +83,37 @@ def type_colour(type_name: str) -> list[float]:
     return [round(0.3 + 0.5 * digest[k] / 255.0, 3) for k in range(3)]
 
 
+@dataclass(frozen=True)
+class Looks:
+    """How an example's object is named and drawn: ``noun`` and ``plural`` (None: the
+    regular one), ``shape`` (a procedural shape, None: a box) and ``colour`` (sRGB)."""
+
+    noun: str
+    plural: str | None
+    shape: str | None
+    colour: list[float]
+
+
+def default_looks(type_name: str, style: str | None = None) -> Looks:
+    """The looks of an example's object of ``type_name`` (and ``style``), which a file
+    does not give: those of the shipped indoor catalog's entry of that name, where it
+    has one (with its style of that name, where it has one: a white wardrobe), so a
+    user's ``plant`` is a potted plant and a ``tv_stand`` a "TV stand"; else the type
+    with underscores as spaces, the procedural shape of the same name if there is one,
+    and ``type_colour``."""
+    from scenewright.generator import indoor_catalog
+
+    entry = indoor_catalog().get(type_name)
+    if entry is None or entry.kind != "object":
+        return Looks(type_name.replace("_", " "), None, type_name if type_name in SHAPES else None, type_colour(type_name))
+    look = next((s for s in entry.styles if s.name == style), None) if style else None
+    noun = look.noun if look and look.noun else entry.noun
+    plural = look.plural if look and look.plural else (entry.plural if noun == entry.noun else None)
+    shape = look.shape if look and look.shape else entry.shape
+    colour = look.colour if look and look.colour else entry.colour
+    return Looks(noun, plural, shape, [float(v) for v in colour] if colour is not None else type_colour(type_name))
+
+
 def example_scene(
     records: Sequence[ObjectRecord],
     *,
@@ -95,11 +127,12 @@ def example_scene(
     the file gave them, the other supports measured from the boxes."""
     objects = [
         SceneObject(
-            id=r.id, type=r.type, kind="object", noun=r.type.replace("_", " "), plural=None, parent=None,
-            style=r.style, position=[float(v) for v in r.position], yaw=_wrapped(r.yaw), size=[float(v) for v in r.size],
-            shape=r.type if r.type in SHAPES else None, colour=type_colour(r.type), rule=None, order=k,
+            id=r.id, type=r.type, kind="object", noun=looks.noun, plural=looks.plural, parent=None, style=r.style,
+            position=[float(v) for v in r.position], yaw=_wrapped(r.yaw), size=[float(v) for v in r.size],
+            shape=looks.shape, colour=looks.colour, rule=None, order=k,
         )
         for k, r in enumerate(records)
+        for looks in [default_looks(r.type, r.style)]
     ]  # fmt: skip
     supports = {**infer_supports(objects), **(parents or {})}
     relations = [Relation(o.id, supports[o.id], SUPPORT_LABEL, 0.0, True) for o in objects if o.id in supports]

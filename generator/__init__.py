@@ -2,7 +2,7 @@
 
 from .expand import expand
 from .graph_export import graph_to_dot
-from .rules import Rules, check_rules, load_rules, shipped_rule_sets
+from .rules import Rules, check_rules, indoor_catalog, load_rules, shipped_rule_sets
 from .rules_errors import Diagnostic, ExpansionError, RulesError, format_diagnostics
 
 __all__ = [
@@ -14,6 +14,7 @@ __all__ = [
     "expand",
     "format_diagnostics",
     "graph_to_dot",
+    "indoor_catalog",
     "load_rules",
     "shipped_rule_sets",
 ]

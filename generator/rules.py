@@ -15,6 +15,7 @@ docs/security.md).
 
 from __future__ import annotations
 
+import functools
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -55,10 +56,27 @@ class Rules:
     sources: SourceTexts = field(default_factory=SourceTexts, compare=False, repr=False)
 
 
+#: A shipped room rule set, read for the indoor catalog it includes.
+INDOOR_CATALOG_READER = "bedroom"
+
+
 def shipped_rule_sets() -> list[str]:
     """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``)."""
     folder = resources.files(_SHIPPED_PACKAGE)
     return sorted(item.name[: -len(RULES_SUFFIX)] for item in folder.iterdir() if item.name.endswith(RULES_SUFFIX))
+
+
+@functools.cache
+def _indoor_catalog() -> tuple[tuple[str, CatalogEntry], ...]:
+    return tuple(load_rules(INDOOR_CATALOG_READER).catalog.entries.items())
+
+
+def indoor_catalog() -> dict[str, CatalogEntry]:
+    """The shipped indoor catalog's entries by name (``CatalogEntry``): the types every
+    shipped room rule set draws from, and the looks (noun, shape, colour) an example's
+    object of such a type borrows. Read once, through a shipped room rule set that
+    includes it (a catalog file alone has no scene block to load)."""
+    return dict(_indoor_catalog())
 
 
 def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> Rules:

@@ -69,7 +69,7 @@ from scenewright.core.frames import to_local
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.examples import Example, scene_supports
-from scenewright.examples.model import type_colour
+from scenewright.examples.model import default_looks
 
 from .density_peaks import density_peaks
 from .pose_labels import CATEGORIES, RESTING_CATEGORIES, STANDING_CATEGORIES, most_specific, pair_holds, wall_holds
@@ -216,8 +216,11 @@ def catalog_entry(name: str, objects: Sequence[SceneObject], sources: Sequence[s
     shape = _most_common([o.shape for o in objects])
     colour = _most_common([_colour_key(o.colour) for o in objects])
     borrowed = None
-    defaults = all(o.noun == o.type.replace("_", " ") and _colour_key(o.colour) == _colour_key(type_colour(source))
-                   for o, source in zip(objects, _sources_of(objects, sources)))  # fmt: skip
+    defaults = all(
+        o.noun == looks.noun and _colour_key(o.colour) == _colour_key(looks.colour)
+        for o, source in zip(objects, _sources_of(objects, sources))
+        for looks in [default_looks(source, o.style)]
+    )  # the looks the examples' reader gives a type its file says nothing of
     if defaults and name in shipped:
         entry = shipped[name]
         noun, plural, shape, colour, borrowed = entry.noun, entry.plural, entry.shape, _colour_key(entry.colour), "indoor catalog"
@@ -770,9 +773,9 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
             by_type[obj.type].append(obj)
             present.add(obj.type)
         scenes_of.update(present)
-    from scenewright.completion.plan import catalog_categories  # the shipped indoor catalog
+    from scenewright.generator import indoor_catalog
 
-    shipped = catalog_categories()
+    shipped = indoor_catalog()
     catalog = {t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)}
     walls = _walls(scenes, supports)
 

@@ -823,10 +823,10 @@ def run_complete(args: argparse.Namespace) -> int:
     from scenewright.api import checked_templates, describe_scene, render_scene
     from scenewright.atomic import check_output_directory
     from scenewright.completion.complete import complete, draw_explanation, parse_request, summary_of
-    from scenewright.completion.plan import catalog_categories
+    from scenewright.generator import indoor_catalog
 
     check_output_directory(args.output, COMPLETE_OUTPUTS)  # before any work: it is replaced as a whole
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     keep = None
     if args.scene is not None:
         from scenewright.completion.complete import existing_request, parse_categories

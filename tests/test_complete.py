@@ -15,8 +15,9 @@ from scenewright.completion.complete import (
     MASKED, ROOM_FULL, build_graph, choose_contents, complete, fewer_pieces, parse_request, summary_of,
 )
 from scenewright.completion.model import build_model
-from scenewright.completion.plan import catalog_categories, load_plans
+from scenewright.completion.plan import load_plans
 from scenewright.core.errors import InputError
+from scenewright.generator import indoor_catalog
 from scenewright.generator.layout.geometry import make_rect, rect_overlap
 
 
@@ -27,7 +28,7 @@ def model():
 
 @pytest.fixture(scope="module")
 def catalog():
-    return catalog_categories()
+    return indoor_catalog()
 
 
 def _swing_rect(room, door):

@@ -50,6 +50,29 @@ def test_handwritten_example_reads_into_a_scene(tmp_path):
     assert example.supports() == {"lamp": "desk", "book": "desk"}
 
 
+def test_a_type_of_the_shipped_catalog_looks_as_the_catalog_has_it(tmp_path):
+    from scenewright.examples.model import type_colour
+    from scenewright.generator import indoor_catalog
+
+    catalog = indoor_catalog()
+    objects = [
+        {"id": "p", "type": "plant", "size": [0.4, 1.0, 0.4], "position": [1, 1]},
+        {"id": "tv", "type": "tv_stand", "size": [1.6, 0.5, 0.4], "position": [2, 1]},
+        {"id": "w", "type": "wardrobe", "style": "white", "size": [1.2, 2.0, 0.6], "position": [0.8, 2.5]},
+        {"id": "x", "type": "wardrobe", "style": "polka", "size": [1.2, 2.0, 0.6], "position": [2.5, 2.5]},
+    ]
+    room = dict(DESK_ROOM, objects=objects)
+    placed = {o.id: o for o in load_example(write(tmp_path, "r.json", room)).objects()}
+    assert (placed["p"].noun, placed["p"].shape) == ("plant", catalog["plant"].shape) != ("plant", None)
+    assert placed["p"].colour == pytest.approx(list(catalog["plant"].colour))
+    assert placed["tv"].noun == "TV stand"
+    white = next(s for s in catalog["wardrobe"].styles if s.name == "white")
+    assert placed["w"].noun == white.noun and placed["w"].colour == pytest.approx(list(white.colour))
+    assert placed["x"].noun == "wardrobe" and placed["x"].style == "polka"  # a style the catalog lacks: the entry's looks
+    # A type the catalog does not have keeps the reader's own looks (as the study above).
+    assert load_example(write(tmp_path, "s.json", DESK_ROOM)).scene.objects[0].colour == type_colour("writing_desk")
+
+
 def test_extent_example_and_names_made_unique(tmp_path):
     data = {"extent": [6, 5], "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}
     first = write(tmp_path, "a.json", data)

@@ -250,10 +250,10 @@ HEMMED_IN = frozenset({
 
 
 def test_a_walkable_way_reaches_every_piece_used_in_the_shipped_plans(shipped):
-    from scenewright.completion.plan import catalog_categories
     from scenewright.completion.plan_checks import unreachable
+    from scenewright.generator import indoor_catalog
 
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
     hemmed = {plan.id: [piece.id for piece in unreachable(plan, catalog)] for plan in shipped}
     assert {plan_id for plan_id, pieces in hemmed.items() if pieces} == HEMMED_IN, hemmed
     assert not any(hemmed[plan.id] for plan in shipped if plan.type == "bedroom")
@@ -263,10 +263,10 @@ def test_the_walkable_way_is_the_layouts_and_seats_are_pulled_out():
     """A night table hemmed in between the bed and a wall is unreachable, reachable once
     the bed leaves a way beside it; a desk whose chair stands before it is reached
     through the chair; a room without a door reaches nothing and asks nothing."""
-    from scenewright.completion.plan import catalog_categories
     from scenewright.completion.plan_checks import unreachable
+    from scenewright.generator import indoor_catalog
 
-    catalog = catalog_categories()
+    catalog = indoor_catalog()
 
     def hemmed(bed_at: float, door: bool = True) -> list[str]:
         design = Design("p", "bedroom", "", 3.6, 3.4)
