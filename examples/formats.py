@@ -6,8 +6,9 @@ a scenewright scene.json, any other JSON for the hand-written format. A folder h
 a ``scene.json`` (what ``scenewright generate`` writes) stands for that file; any other
 folder for the examples in it (``folder_examples``: its ``.json`` and ``.glb`` files
 and its sub-folders holding a scene.json, in name order), so a set of examples can be
-named by its folder. An example's name is its file's stem, or its folder's name for a
-``scene.json``.
+named by its folder. A folder ``scenewright dataset`` wrote (its ``dataset.json`` beside
+a ``scenes`` folder) stands for the scenes in that folder. An example's name is its
+file's stem, or its folder's name for a ``scene.json``.
 """
 
 from __future__ import annotations
@@ -96,8 +97,15 @@ def load_example(path: str | os.PathLike[str], name: str | None = None) -> Examp
 EXAMPLE_SUFFIXES = (".json", ".glb")
 
 
+#: What ``scenewright dataset`` writes into its folder: its settings, and the folder of
+#: its scenes' scene.json files.
+DATASET_SETTINGS, DATASET_SCENES = "dataset.json", "scenes"
+
+
 def folder_examples(folder: Path) -> list[Path]:
     """The examples a folder without a scene.json stands for (module docstring)."""
+    if (folder / DATASET_SETTINGS).is_file() and (folder / DATASET_SCENES).is_dir():
+        return folder_examples(folder / DATASET_SCENES)  # a dataset: its scenes
     found = sorted(
         entry for entry in folder.iterdir()
         if (entry.is_file() and entry.suffix.lower() in EXAMPLE_SUFFIXES)

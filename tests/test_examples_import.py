@@ -95,6 +95,14 @@ def test_a_folder_of_examples_stands_for_its_files_in_name_order(tmp_path):
     (folder / "empty").mkdir()
     examples = load_examples([folder])
     assert [e.name for e in examples] == ["a", "b", "generated"]
+    # A folder `scenewright dataset` wrote stands for its scenes, not its settings.
+    dataset = tmp_path / "data"
+    (dataset / "scenes").mkdir(parents=True)
+    write(dataset, "dataset.json", {"rules": "desk", "count": 2})
+    write(dataset, "stats.json", {"scenes": 2})
+    for name in ("000001.json", "000000.json"):
+        write(dataset / "scenes", name, data)
+    assert [e.name for e in load_examples([dataset])] == ["000000", "000001"]
     with pytest.raises(ExampleError, match="empty: holds no examples"):
         load_examples([folder / "empty"])
     # The shipped hand-written sets load by their folder.
