@@ -239,17 +239,37 @@ goes). Of the pairs judged:
   the tighter: p <= alpha and tightness at least ``MIN_DIRECT_TIGHTNESS`` (0.35, the
   same effect size the pair test asks of a pair against independent placement;
   composition adds b's slack to a direct pair's poses). Of a triangle's pairs found
-  indirect through their third type (a resting pair excepted), the one whose objects
-  stand farthest apart goes (``typical_gap``: per scene the closest a and c by the gap
-  between their footprints, to 0.1 m, then by their centres' distance; the medians),
-  and none goes when none is found indirect: two pairs found so explain each other (a
-  table in front of a sign in front of a tower: the tower's pose through the sign is as
-  tight as its own, and through the table the sign's is), and of a chain a-b-c what
-  holds only through another stands beyond it; the data processing inequality removes
-  one. The weaker of the two, the rule before, went by margins of 0.01 there;
+  indirect through their third type (a resting pair excepted), one goes, and none
+  when none is found indirect (below, "Choosing the indirect pair");
 - otherwise (the angle test, or a triangle with fewer scenes holding its three
   types) the pair of the smallest *strength* (the *weakest*). The angle test's
   strength is its d; the permutation test's is below.
+
+Choosing the indirect pair. Two pairs of a triangle found indirect explain each other:
+a table in front of a sign in front of a tower, the tower's pose through the sign is
+as tight as its own, and through the table the sign's is. The data processing
+inequality removes one; the one that goes is the least direct of them, and of those
+within ``DIRECTNESS_MARGIN`` (0.1) of it the one whose objects stand farthest apart
+(``typical_gap``: per scene the closest a and c by the gap between their footprints,
+to 0.1 m, then by their centres' distance; the medians): of a chain a-b-c, what holds
+only through another stands beyond it. The weaker of the two, the rule before, went by
+margins of 0.01 there. How direct a pair is (``informative_directness``) is its
+tightness against its composition through the third type, measured only in the
+coordinates of a pose that hold its relation. The room fixes some coordinates for
+every scene alike: a classroom's board stands on the north wall, and the teacher's
+desk and its chair stand at depths the room leaves them, in every scene the same way,
+whatever their relation. Composition adds the third type's slack to such a
+coordinate, so there every pair looks direct, and the four coordinates together
+found the desk's pair with the board no more direct than its chair's (0.14 against
+0.18 in the composition test), though along the board the desk follows the board and
+the chair the desk. So each coordinate counts by how much tighter the pair's poses
+are within scenes than across them (the log of the ratio of the mean absolute
+differences, ``coordinate_spreads``; 0 where they are no tighter, as depth before a
+board fixed on one wall), and the pair's directness is 1 - the weighted geometric mean
+of its within-scene spread over its composed one: the board's chair -0.03 through the
+desk, the desk 0.14 through the chair, so the chair's pair goes, as the grammar has
+it. Where the two are about as direct (a market's crate behind its stall table and a
+sign in front: crate-sign 0.03, crate-stall_table 0.02), where they stand decides.
 
 Triangles within groups. Where the three types of a triangle play parts in one kind of
 group (a fish stall's table, crates and barrel), the test of indirectness takes an a
@@ -388,6 +408,12 @@ NEXT_TO_DISTANCE = LayoutParams().next_to_distance
 #: A pair is pruned as indirect through a third type only when that type stands in at
 #: least this share of the scenes holding the pair (module docstring).
 THIRD_SHARE = 0.75
+#: Of a triangle's pairs found indirect, those whose informative directness is within
+#: this much of the least are told apart by how far apart they stand (module
+#: docstring, "Choosing the indirect pair"). An effect size, as the floors are: the
+#: market's crate pairs (0.03 and 0.02) are as direct as each other, the classroom's
+#: board pairs (-0.03 and 0.14) are not.
+DIRECTNESS_MARGIN = 0.1
 #: A path (a road) stands in triangles as points this many metres apart along it
 #: (module docstring, "Paths").
 PATH_STEP = 1.0
@@ -1172,26 +1198,36 @@ def composed_poses(
     return within, relative_poses(a, moved[:, None])[:, 0], relative_poses(a, along_axes[:, None])[:, 0]
 
 
-def indirect_through(
-    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float, kinds: dict[str, str] | None = None
-) -> bool | None:  # fmt: skip
-    """Whether the pair (a, c) is indirect through b (module docstring): its poses within
-    scenes not clearly tighter than the composition of b in a's frame and c in b's from
-    two scenes, in b's frame or in the world's axes. Where ``kinds`` (name -> the kind
-    of group of its role) puts all three in one kind of group, within each group only
-    ("Triangles within groups"). None when fewer than ``PAIR_SCENES`` scenes hold all
-    three (in one group)."""
+def triangle_scenes(
+    poses: dict[str, TypePoses], a: str, c: str, b: str, kinds: dict[str, str] | None = None
+) -> tuple[TypePoses, TypePoses, TypePoses, np.ndarray, np.ndarray | None]:  # fmt: skip
+    """The scenes a test of (a, c) through b looks at: (frame type, other type, b,
+    the scenes holding all three, and per object of the frame type whether its group
+    holds a b and a c, or None). The pair's frame is its type with fewer objects in
+    them (``framed``); where ``kinds`` (name -> the kind of group of its role) puts all
+    three in one kind of group, only scenes with such a group count ("Triangles within
+    groups")."""
     first, second, middle = poses[a], poses[c], poses[b]
     together = np.flatnonzero((first.counts >= 1) & (second.counts >= 1) & (middle.counts >= 1))
-    if len(together) < PAIR_SCENES:
-        return None
     first, second = framed(first, second, together)
     grouped = None
     if kinds is not None and kinds.get(a, "") != "" and kinds.get(a) == kinds.get(b) == kinds.get(c):
         grouped = fellows_held(first, middle, second)
         together = together[grouped[together].any(axis=1)]
-        if len(together) < PAIR_SCENES:
-            return None
+    return first, second, middle, together, grouped
+
+
+def indirect_through(
+    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float, kinds: dict[str, str] | None = None
+) -> bool | None:  # fmt: skip
+    """Whether the pair (a, c) is indirect through b (module docstring): its poses within
+    scenes not clearly tighter than the composition of b in a's frame and c in b's from
+    two scenes, in b's frame or in the world's axes (``triangle_scenes`` picks the
+    scenes). None when fewer than ``PAIR_SCENES`` scenes hold all three (in one
+    group)."""
+    first, second, middle, together, grouped = triangle_scenes(poses, a, c, b, kinds)
+    if len(together) < PAIR_SCENES:
+        return None
     rng = pair_stream(seed, a, c, b)
     within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
     draws = []
@@ -1205,6 +1241,44 @@ def indirect_through(
         draws[0].append(sample_tightness(within, in_frame))
         draws[1].append(sample_tightness(within, along_axes))
     return min(float(np.mean(tightnesses)) for tightnesses in draws) < MIN_DIRECT_TIGHTNESS
+
+
+def coordinate_spreads(values: np.ndarray) -> np.ndarray:
+    """The mean absolute difference of two of the n rows of ``values`` (n, D), per
+    coordinate -> (D,): from the sorted values, sum_k (2k - n - 1) x_(k) over n(n - 1)/2."""
+    n = len(values)
+    ordered = np.sort(values, axis=0)
+    rank = np.arange(1, n + 1)[:, None]
+    return 2.0 * ((2 * rank - n - 1) * ordered).sum(axis=0) / (n * (n - 1))
+
+
+def informative_directness(
+    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, kinds: dict[str, str] | None = None
+) -> float:  # fmt: skip
+    """How much tighter the pair (a, c) stands within scenes than composed through b,
+    in the coordinates that hold its relation (module docstring, "Choosing the
+    indirect pair"): 1 - the geometric mean, over the coordinates of a pose, of the
+    within-scene spread over the composed one, each coordinate weighted by the log of
+    the across-scene spread over the within-scene one (0 where the within-scene poses
+    are no tighter); the smaller over the two compositions (b's frame, the world's
+    axes), averaged over ``STRENGTH_DRAWS`` draws (0 in a draw where no coordinate
+    holds the relation)."""
+    first, second, middle, together, grouped = triangle_scenes(poses, a, c, b, kinds)
+    rng = pair_stream(seed, a, c, b, "directness")
+    values = []
+    for _ in range(STRENGTH_DRAWS):
+        within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
+        _, across = pair_poses(first, second, False, together, rng)
+        spread = np.maximum(coordinate_spreads(within), SCALE_FLOOR)
+        weight = np.log(np.maximum(coordinate_spreads(across), SCALE_FLOOR) / spread).clip(min=0.0)
+        if weight.sum() <= 0.0:
+            values.append(0.0)
+            continue
+        values.append(min(
+            1.0 - float(np.exp(weight @ np.log(spread / np.maximum(coordinate_spreads(composed), SCALE_FLOOR)) / weight.sum()))
+            for composed in (in_frame, along_axes)
+        ))  # fmt: skip
+    return float(np.mean(values))
 
 
 def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float, float]:
@@ -1257,6 +1331,7 @@ def prune_indirect(
     through: Callable[[str, str, str], bool | None] | None = None,
     apart: Callable[[str, str], tuple[float, float]] | None = None,
     present: Callable[[str, str, str], float] | None = None,
+    direct: Callable[[str, str, str], float] | None = None,
 ) -> list[PairRelation]:  # fmt: skip
     """``pairs`` with the indirect pairs of every triangle of related pairs marked not
     related and ``pruned``: the pair of a third type with one that rests on another of
@@ -1264,10 +1339,13 @@ def prune_indirect(
     b)``, whether (a, c) is indirect through b (None: cannot tell), of the triangle's
     pairs it finds indirect the one whose objects stand farthest apart (``apart(a, c)``,
     compared as tuples; the weakest without it), and where it cannot tell for some pair
-    of the triangle, the pair of the smallest strength. Given ``present(a, c, b)``, the
-    share of the scenes holding a and c that hold a b, a pair is judged in a triangle
-    only when that share is at least ``THIRD_SHARE``. A resting pair itself is never
-    pruned (module docstring)."""
+    of the triangle, the pair of the smallest strength. Given ``direct(a, c, b)``, how
+    direct (a, c) is against its composition through b, the farthest apart is taken only
+    among the pairs found indirect within ``DIRECTNESS_MARGIN`` of the least direct of
+    them. Given
+    ``present(a, c, b)``, the share of the scenes holding a and c that hold a b, a pair
+    is judged in a triangle only when that share is at least ``THIRD_SHARE``. A resting
+    pair itself is never pruned (module docstring)."""
     strength = {(p.a, p.b): p.strength for p in pairs if p.related}
     neighbours: dict[str, set[str]] = defaultdict(set)
     for a, b in strength:
@@ -1319,8 +1397,12 @@ def prune_indirect(
                 weakest = min(edges, key=lambda edge: strength[edge])
                 if not supported(*weakest):
                     indirect.add(weakest)
-            else:  # of the pairs found indirect, the farthest apart: two found so explain each other
+            else:  # of the pairs found indirect, the least direct; of those about as direct, the farthest apart
                 found = [edge for edge, through_third in zip(edges, verdicts) if through_third and not supported(*edge)]
+                if found and direct and len(found) > 1:
+                    directness = {edge: direct(*edge, thirds[edge]) for edge in found}
+                    least = min(directness.values())
+                    found = [edge for edge in found if directness[edge] <= least + DIRECTNESS_MARGIN]
                 if found:
                     indirect.add(max(found, key=lambda edge: (*apart(*edge), -strength[edge]) if apart else -strength[edge]))
     return [replace(p, related=False, pruned=True) if (p.a, p.b) in indirect else p for p in pairs]
@@ -1371,7 +1453,8 @@ def find_relations(
         kinds = {name: role.group for name, role in role_of.items()}
         through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha, kinds)) if chosen.tests_indirect else None
         apart = functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c)) if chosen.tests_indirect else None
-        results = prune_indirect(results, resting, through, apart, functools.partial(third_share, poses))
+        direct = (lambda a, c, b: informative_directness(poses, a, c, b, seed, kinds)) if chosen.tests_indirect else None
+        results = prune_indirect(results, resting, through, apart, functools.partial(third_share, poses), direct)
     results = [pair for pair in results if pair.a not in paths and pair.b not in paths]
     return RelationsResult(test, len(scenes), seed, alpha, tuple(by_type(results, role_of)))
 
