@@ -60,6 +60,9 @@ def cli_command(*argv: str, before: str = "") -> list[str]:
     so a test can interrupt it after start-up (Ctrl-C during the imports themselves is
     outside the dataset command)."""
     script = (
+        # Ctrl-C as on a terminal: a shell that runs the tests as a background job starts
+        # its children with SIGINT ignored, and Python then leaves it ignored.
+        "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "import scenewright.cli, scenewright.dataset\n"
         f"{before}\n"
@@ -72,6 +75,9 @@ def cli_command(*argv: str, before: str = "") -> list[str]:
 def fake_job(directory: Path, count: int, workers: int = 2) -> list[str]:
     """``run_dataset`` on the stand-in scene, in a fresh interpreter."""
     script = (
+        # Ctrl-C as on a terminal: a shell that runs the tests as a background job starts
+        # its children with SIGINT ignored, and Python then leaves it ignored.
+        "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "from test_dataset import fake_scene, spec_of\n"
         "from scenewright.dataset import run_dataset\n"
