@@ -1342,10 +1342,9 @@ def prune_indirect(
     of the triangle, the pair of the smallest strength. Given ``direct(a, c, b)``, how
     direct (a, c) is against its composition through b, the farthest apart is taken only
     among the pairs found indirect within ``DIRECTNESS_MARGIN`` of the least direct of
-    them. Given
-    ``present(a, c, b)``, the share of the scenes holding a and c that hold a b, a pair
-    is judged in a triangle only when that share is at least ``THIRD_SHARE``. A resting
-    pair itself is never pruned (module docstring)."""
+    them. Given ``present(a, c, b)``, the share of the scenes holding a and c that hold
+    a b, a pair is judged in a triangle only when that share is at least
+    ``THIRD_SHARE``. A resting pair itself is never pruned (module docstring)."""
     strength = {(p.a, p.b): p.strength for p in pairs if p.related}
     neighbours: dict[str, set[str]] = defaultdict(set)
     for a, b in strength:
