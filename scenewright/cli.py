@@ -1002,8 +1002,10 @@ complete spatial randomness by angles of Zhang et al. (related at d >= 1.628);
 related types a pair that holds only through the third type is reported as indirect
 (a lamp on a nightstand by a bed relates to the bed through the nightstand): one
 resting on another, else for the default test a pair whose poses are no tighter than
-their composition through the third type (of such, the one standing farthest apart;
-roads close triangles too), else the weakest pair; --no-prune keeps them. A type
+their composition through the third type (of such, the least direct in the
+coordinates that hold its relation, or of those about as direct the one standing
+farthest apart; roads close triangles too), else the weakest pair; a third type in
+fewer than 3 of 4 of a pair's scenes carries nothing; --no-prune keeps them. A type
 resting on another in half the scenes holding both or more (measured from the boxes)
 is related to it whatever the p-value, from 5 scenes. A pair the room fixes side by
 side in most scenes (a stove beside a sink under the one window), which no test of
