@@ -428,6 +428,19 @@ def test_coordinate_spreads_are_the_mean_absolute_difference_of_two_rows(rows):
     assert np.allclose(coordinate_spreads(values), brute, atol=1e-9)
 
 
+@pytest.mark.parametrize(("strength", "error", "related"), [(0.40, 0.01, True), (0.40, 0.05, False), (0.30, 0.0, False)])
+def test_a_strength_clears_the_floor_only_when_its_draws_pin_it_down(monkeypatch, strength, error, related):
+    # Two plants competing for a room's corners came out at a mean strength of 0.366
+    # over eight draws that ran from far below the 0.35 floor to far above it (standard
+    # error 0.12, where related pairs have 0.01 or less): such a mean clears nothing.
+    from scenewright.learning import relations
+
+    monkeypatch.setattr(relations, "pair_strength", lambda *args: (strength, error))
+    verdict = {(p.a, p.b): p for p in find_relations(planted_scenes(np.random.default_rng(5), 60), seed=1).pairs}
+    assert verdict[("chair", "table")].related is related
+    assert verdict[("chair", "table")].strength == strength
+
+
 def test_cooccurrence_is_the_share_of_scenes_holding_both():
     scenes = [scene_of([("table", 0, 0, 0), ("chair", 1, 1, 0)])] * 3 + [scene_of([("table", 0, 0, 0), ("plant", 1, 1, 0)])] * 2
     verdicts = {(p.a, p.b): p for p in find_relations(scenes, test="cooccurrence").pairs}
