@@ -17,10 +17,11 @@ from __future__ import annotations
 
 import functools
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from types import MappingProxyType
 
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
@@ -67,16 +68,12 @@ def shipped_rule_sets() -> list[str]:
 
 
 @functools.cache
-def _indoor_catalog() -> tuple[tuple[str, CatalogEntry], ...]:
-    return tuple(load_rules(INDOOR_CATALOG_READER).catalog.entries.items())
-
-
-def indoor_catalog() -> dict[str, CatalogEntry]:
-    """The shipped indoor catalog's entries by name (``CatalogEntry``): the types every
-    shipped room rule set draws from, and the looks (noun, shape, colour) an example's
-    object of such a type borrows. Read once, through a shipped room rule set that
-    includes it (a catalog file alone has no scene block to load)."""
-    return dict(_indoor_catalog())
+def indoor_catalog() -> Mapping[str, CatalogEntry]:
+    """The shipped indoor catalog's entries by name (``CatalogEntry``, read-only): the
+    types every shipped room rule set draws from, and the looks (noun, shape, colour) an
+    example's object of such a type borrows. Read once, through a shipped room rule set
+    that includes it (a catalog file alone has no scene block to load)."""
+    return MappingProxyType(dict(load_rules(INDOOR_CATALOG_READER).catalog.entries))
 
 
 def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> Rules:
