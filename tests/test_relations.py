@@ -92,14 +92,15 @@ def test_permutation_test_holds_its_level_on_independent_objects():
     assert 0.4 <= np.median(p_values) <= 0.6
 
 
+def table_and_chair(rng: np.random.Generator, forward: float = 0.9) -> list[tuple[str, float, float, float]]:
+    """A table anywhere and a chair ``forward`` metres in front of it, turned to face it."""
+    table = uniform_pose(rng)
+    return [("table", *table), ("chair", *offset(table, 0.0, forward, math.pi, rng))]
+
+
 def planted_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
     """A chair 0.9 m in front of each table, turned to face it; a plant anywhere."""
-    scenes = []
-    for index in range(count):
-        table = uniform_pose(rng)
-        chair = offset(table, 0.0, 0.9, math.pi, rng)
-        scenes.append(scene_of([("table", *table), ("chair", *chair), ("plant", *uniform_pose(rng))], f"s{index}"))
-    return scenes
+    return [scene_of([*table_and_chair(rng), ("plant", *uniform_pose(rng))], f"s{index}") for index in range(count)]
 
 
 def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
@@ -119,9 +120,7 @@ def test_a_relation_of_one_of_several_objects_is_tested_in_the_frame_of_the_type
     rng = np.random.default_rng(12)
     scenes = []
     for index in range(200):
-        table = uniform_pose(rng)
-        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.9, math.pi, rng))]
-        placed += [("chair", *uniform_pose(rng)) for _ in range(2)]
+        placed = table_and_chair(rng) + [("chair", *uniform_pose(rng)) for _ in range(2)]
         scenes.append(scene_of(placed, f"s{index}"))
     found = {(p.a, p.b): p for p in find_relations(scenes, seed=2).pairs}[("chair", "table")]
     assert found.related and found.p_value == pytest.approx(1 / 200) and found.strength > 0.6
@@ -375,10 +374,9 @@ def test_a_pair_is_not_pruned_through_a_type_missing_from_many_of_its_scenes():
     rng = np.random.default_rng(3)
     scenes = []
     for index in range(16):
-        table = uniform_pose(rng)
-        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.8, math.pi, rng))]
+        placed = table_and_chair(rng, forward=0.8)
         if index % 2 == 0:
-            placed.append(("rug", *offset(table, 0.0, 0.0, 0.0, rng, jitter=0.02)))
+            placed.append(("rug", *offset(placed[0][1:], 0.0, 0.0, 0.0, rng, jitter=0.02)))
         scenes.append(scene_of(placed, f"s{index}"))
     verdicts = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
     assert verdicts[("chair", "table")].related
