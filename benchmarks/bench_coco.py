@@ -20,7 +20,9 @@ from scenewright.render.offscreen import Renderer
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--rules", nargs="+", default=["village", "classroom"])
     parser.add_argument("--size", type=int, default=512, help="image side in pixels (512)")
     parser.add_argument("--scenes", type=int, default=3, help="scenes per rule set (3)")

@@ -47,11 +47,17 @@ import numpy as np
 
 from scenewright.completion import shipped_plans_dir
 from scenewright.completion.complete import (
-    MASKED, category_owners, choose_contents, complete, parse_request, recorded_mask_values, region_boxes,
-)  # fmt: skip
-from scenewright.completion.regions import footprint_share, split_room
+    MASKED,
+    category_owners,
+    choose_contents,
+    complete,
+    parse_request,
+    recorded_mask_values,
+    region_boxes,
+)
 from scenewright.completion.model import build_model
 from scenewright.completion.plan import load_plans
+from scenewright.completion.regions import footprint_share, split_room
 from scenewright.generator import indoor_catalog
 from scenewright.generator import layout as layout_module
 
@@ -65,8 +71,12 @@ TABLE = (
     ("7x6", "S:1:0.9", "N:3:1.4", "bed,bookshelf"),
 )
 #: Random requests: a type's main piece, and the second categories one may come with.
-MAIN = {"bed": ("bookshelf", "desk", "wardrobe"), "sofa": ("bookshelf", "armchair", "tv_stand"),
-        "desk": ("bookshelf", "filing_cabinet", "armchair"), "dining_table": ("dresser", "bookshelf")}  # fmt: skip
+MAIN = {
+    "bed": ("bookshelf", "desk", "wardrobe"),
+    "sofa": ("bookshelf", "armchair", "tv_stand"),
+    "desk": ("bookshelf", "filing_cabinet", "armchair"),
+    "dining_table": ("dresser", "bookshelf"),
+}
 #: Pieces at most this tall lie flat (a rug) and are left out of the cover.
 FLAT = 0.02
 SAMPLES = 5
@@ -78,13 +88,19 @@ def mask_cover(scene, only=None) -> float:
     grid = (np.arange(SAMPLES) + 0.5) / SAMPLES - 0.5
     values = []
     for obj in scene.placed_objects():
-        if obj.position[1] > 0.01 or obj.size[1] <= FLAT or (only is not None and obj.type not in only):
+        if (
+            obj.position[1] > 0.01
+            or obj.size[1] <= FLAT
+            or (only is not None and obj.type not in only)
+        ):
             continue
         width, depth = obj.size[0], obj.size[2]
         local = np.array([(a * width, b * depth) for a in grid for b in grid])
         c, s = np.cos(obj.yaw), np.sin(obj.yaw)
         x, z = obj.position[0], obj.position[2]
-        points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
+        points = np.column_stack(
+            [x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c]
+        )
         values.append(float(np.mean(recorded_mask_values(scene.completion, scene.room, points))))
     return float(np.mean(values)) if values else float("nan")
 
@@ -122,7 +138,9 @@ def run(request, seed, model, catalog, mask_term, split=True):
 
 def table(model, catalog, seeds: int, mask_term: bool) -> None:
     known = set(catalog)
-    print("| room | door; window | requested | ok | layout CPU s (median) | mask cover: floor pieces / large pieces (seeds 0-4) |")
+    print(
+        "| room | door; window | requested | ok | layout CPU s (median) | mask cover: floor pieces / large pieces (seeds 0-4) |"
+    )
     print("|---|---|---|---|---|---|")
     for room, door, window, requested in TABLE:
         request = parse_request(room, [door], [window], [requested], known)
@@ -134,8 +152,10 @@ def table(model, catalog, seeds: int, mask_term: bool) -> None:
             if seed < 5:
                 cover.append(mask_cover(scene))
                 cover_large.append(mask_cover(scene, MASKED))
-        print(f"| {room.replace('x', ' x ')} | {door}; {window} | {requested.replace(',', ', ')} | {oks}/{seeds} "
-              f"| {statistics.median(seconds):.2f} | {np.mean(cover):.3f} / {np.mean(cover_large):.3f} |")  # fmt: skip
+        print(
+            f"| {room.replace('x', ' x ')} | {door}; {window} | {requested.replace(',', ', ')} | {oks}/{seeds} "
+            f"| {statistics.median(seconds):.2f} | {np.mean(cover):.3f} / {np.mean(cover_large):.3f} |"
+        )
 
 
 def random_rooms(count: int, known) -> list:
@@ -144,7 +164,10 @@ def random_rooms(count: int, known) -> list:
     requests = []
     walls = ("N", "E", "S", "W")
     while len(requests) < count:
-        width, depth = round(float(rng.uniform(3.0, 6.5)), 1), round(float(rng.uniform(3.0, 5.5)), 1)
+        width, depth = (
+            round(float(rng.uniform(3.0, 6.5)), 1),
+            round(float(rng.uniform(3.0, 5.5)), 1),
+        )
         door_wall, window_wall = rng.choice(4, size=2, replace=False)
         door_length = width if walls[door_wall] in "NS" else depth
         window_length = width if walls[window_wall] in "NS" else depth
@@ -155,7 +178,9 @@ def random_rooms(count: int, known) -> list:
         main = list(MAIN)[int(rng.integers(len(MAIN)))]
         wanted = [main] + ([str(rng.choice(MAIN[main]))] if rng.random() < 0.5 else [])
         requests.append((f"{width}x{depth}", door, window, ",".join(wanted)))
-    return [(spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests]
+    return [
+        (spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests
+    ]
 
 
 def random_table(model, catalog, count: int, mask_term: bool) -> None:
@@ -172,20 +197,30 @@ def random_table(model, catalog, count: int, mask_term: bool) -> None:
         blocked += any("stands in the swing of" in p for p in problems)
         reach_needed += sum(1 for o in scene.placed_objects() if o.access and o.position[1] <= 0.01)
         unreachable += sum(1 for p in problems if "cannot be reached" in p)
-        added += sum(n for name, n in scene.completion["counts"].items() if name not in request.requested)
+        added += sum(
+            n for name, n in scene.completion["counts"].items() if name not in request.requested
+        )
         cover.append(mask_cover(scene))
         cover_large.append(mask_cover(scene, MASKED))
     print(f"{count} random rooms (layout seed 0), mask term {'on' if mask_term else 'off'}:")
-    print(f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
-          f"reachable {reach_needed - unreachable}/{reach_needed} ({100 * (reach_needed - unreachable) / max(reach_needed, 1):.1f} %); "
-          f"categories added per room {added / count:.1f}; CPU s per room median {statistics.median(seconds):.2f}, "
-          f"mean {statistics.mean(seconds):.2f}, max {slowest[0]:.2f} ({' '.join(slowest[1])}); "
-          f"mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}; rooms of several types {split}")  # fmt: skip
+    print(
+        f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
+        f"reachable {reach_needed - unreachable}/{reach_needed} ({100 * (reach_needed - unreachable) / max(reach_needed, 1):.1f} %); "
+        f"categories added per room {added / count:.1f}; CPU s per room median {statistics.median(seconds):.2f}, "
+        f"mean {statistics.mean(seconds):.2f}, max {slowest[0]:.2f} ({' '.join(slowest[1])}); "
+        f"mask cover {np.nanmean(cover):.3f} / large {np.nanmean(cover_large):.3f}; rooms of several types {split}"
+    )
 
 
 #: Composite requests: two categories that belong to different home types.
-PAIRS = (("bed", "sofa"), ("desk", "dining_table"), ("bed", "desk"), ("sofa", "dining_table"),
-         ("bed", "dining_table"), ("sofa", "desk"))  # fmt: skip
+PAIRS = (
+    ("bed", "sofa"),
+    ("desk", "dining_table"),
+    ("bed", "desk"),
+    ("sofa", "dining_table"),
+    ("bed", "dining_table"),
+    ("sofa", "desk"),
+)
 COMPOSITE_SEED = 2025
 
 
@@ -195,7 +230,10 @@ def composite_rooms(count: int, known) -> list:
     walls = ("N", "E", "S", "W")
     requests = []
     for k in range(count):
-        width, depth = round(float(rng.uniform(6.0, 9.0)), 1), round(float(rng.uniform(6.0, 9.0)), 1)
+        width, depth = (
+            round(float(rng.uniform(6.0, 9.0)), 1),
+            round(float(rng.uniform(6.0, 9.0)), 1),
+        )
         door_wall, window_wall = rng.choice(4, size=2, replace=False)
         door_length = width if walls[door_wall] in "NS" else depth
         window_length = width if walls[window_wall] in "NS" else depth
@@ -203,7 +241,9 @@ def composite_rooms(count: int, known) -> list:
         window = f"{walls[window_wall]}:{rng.uniform(1.0, window_length - 1.0):.2f}:1.4"
         wanted = ",".join(PAIRS[k % len(PAIRS)])
         requests.append((f"{width}x{depth}", door, window, wanted))
-    return [(spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests]
+    return [
+        (spec, parse_request(spec[0], [spec[1]], [spec[2]], [spec[3]], known)) for spec in requests
+    ]
 
 
 def region_figures(scene, model, request) -> tuple[list[bool], list[float]] | None:
@@ -219,19 +259,27 @@ def region_figures(scene, model, request) -> tuple[list[bool], list[float]] | No
         contents = choose_contents(model, request, split=False)
         regions = split_room(model, scene.room, contents.types)
         index = {region.room_type: k for k, region in enumerate(regions)}
-        owners = category_owners(model, contents.types, contents.owners, contents.explorations, contents.counts)
+        owners = category_owners(
+            model, contents.types, contents.owners, contents.explorations, contents.counts
+        )
         types = {o.id: o.type for o in scene.placed_objects()}
         relations = [(r.source, r.target) for r in scene.relations]
-        boxes = region_boxes(types, relations, {name: index[t] for name, t in owners.items()}, len(regions))
+        boxes = region_boxes(
+            types, relations, {name: index[t] for name, t in owners.items()}, len(regions)
+        )
     objects = {o.id: o for o in scene.placed_objects()}
     inside, shares = [], []
-    for region, ids in zip(regions, boxes):
+    for region, ids in zip(regions, boxes, strict=False):
         for box in ids:
             obj = objects.get(box)
             if obj is None:
                 continue
             inside.append(bool(region.contains([[obj.position[0], obj.position[2]]])[0]))
-            shares.append(footprint_share(region, obj.position[0], obj.position[2], obj.size[0], obj.size[2], obj.yaw))
+            shares.append(
+                footprint_share(
+                    region, obj.position[0], obj.position[2], obj.size[0], obj.size[2], obj.yaw
+                )
+            )
     return inside, shares
 
 
@@ -240,7 +288,7 @@ def composite_table(model, catalog, count: int) -> None:
     for split in (True, False):
         oks = several = 0
         seconds, inside, shares = [], [], []
-        for spec, request in rooms:
+        for _spec, request in rooms:
             scene, cpu, _ = run(request, 0, model, catalog, True, split)
             seconds.append(cpu)
             oks += scene.layout.ok
@@ -249,21 +297,34 @@ def composite_table(model, catalog, count: int) -> None:
                 several += 1
                 inside += figures[0]
                 shares += figures[1]
-        print(f"{count} large two-type rooms (layout seed 0), {'split by virtual walls' if split else 'not split (baseline)'}:")
-        print(f"  ok {oks}/{count} ({100 * oks / count:.0f} %); rooms of several types {several}; pieces with their "
-              f"centre in their region {sum(inside)}/{len(inside)} ({100 * sum(inside) / max(len(inside), 1):.0f} %); "
-              f"footprint share inside {np.mean(shares):.3f}; CPU s per room median {statistics.median(seconds):.2f}, "
-              f"mean {statistics.mean(seconds):.2f}")  # fmt: skip
+        print(
+            f"{count} large two-type rooms (layout seed 0), {'split by virtual walls' if split else 'not split (baseline)'}:"
+        )
+        print(
+            f"  ok {oks}/{count} ({100 * oks / count:.0f} %); rooms of several types {several}; pieces with their "
+            f"centre in their region {sum(inside)}/{len(inside)} ({100 * sum(inside) / max(len(inside), 1):.0f} %); "
+            f"footprint share inside {np.mean(shares):.3f}; CPU s per room median {statistics.median(seconds):.2f}, "
+            f"mean {statistics.mean(seconds):.2f}"
+        )
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--table", action="store_true", help="the docs' six requests only")
     parser.add_argument("--random", type=int, default=None, metavar="N", help="N random rooms only")
-    parser.add_argument("--seeds", type=int, default=10, help="layout seeds per request of --table (10)")
-    parser.add_argument("--without-mask-term", action="store_true", help="the mask chooses the starting poses only")
-    parser.add_argument("--composite", type=int, default=None, metavar="N",
-                        help="N large two-type rooms only, split by virtual walls and not")  # fmt: skip
+    parser.add_argument(
+        "--seeds", type=int, default=10, help="layout seeds per request of --table (10)"
+    )
+    parser.add_argument(
+        "--without-mask-term", action="store_true", help="the mask chooses the starting poses only"
+    )
+    parser.add_argument(
+        "--composite",
+        type=int,
+        default=None,
+        metavar="N",
+        help="N large two-type rooms only, split by virtual walls and not",
+    )
     args = parser.parse_args()
     model = build_model(load_plans(shipped_plans_dir()))
     catalog = indoor_catalog()

@@ -75,7 +75,9 @@ def main() -> None:
         )
     if len(rates) > 1:
         lowest, highest = min(rates), max(rates)
-        print(f"scaling {lowest} -> {highest} workers (wall): x{rates[highest] / rates[lowest]:.2f}")
+        print(
+            f"scaling {lowest} -> {highest} workers (wall): x{rates[highest] / rates[lowest]:.2f}"
+        )
 
 
 if __name__ == "__main__":

@@ -26,9 +26,15 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument(
-        "--counts", type=int, nargs="+", default=[500, 2000], help="dataset sizes, ascending (500 2000)"
+        "--counts",
+        type=int,
+        nargs="+",
+        default=[500, 2000],
+        help="dataset sizes, ascending (500 2000)",
     )
-    parser.add_argument("--workers", type=int, help="worker processes while making (default: one per CPU)")
+    parser.add_argument(
+        "--workers", type=int, help="worker processes while making (default: one per CPU)"
+    )
     parser.add_argument("--rules", default="desk")
     args = parser.parse_args()
 

@@ -35,14 +35,18 @@ def main() -> None:
             for style in args.styles:
                 description = describe(scene, style=style)
                 counts[style].append(len(description.text.split()))
-                claims += sum(bool(s.claims) for s in description.sentences) if style == "summary" else 0
+                claims += (
+                    sum(bool(s.claims) for s in description.sentences) if style == "summary" else 0
+                )
         for style, found in counts.items():
             print(
                 f"{name:10s} {style:8s} words: median {statistics.median(found):6.0f}  "
                 f"min {min(found):5d}  max {max(found):5d}  per seed {found}"
             )
         if "summary" in counts:
-            print(f"{name:10s} summary sentences claiming a count: {claims} over {args.seeds} seeds")
+            print(
+                f"{name:10s} summary sentences claiming a count: {claims} over {args.seeds} seeds"
+            )
 
 
 if __name__ == "__main__":

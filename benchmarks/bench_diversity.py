@@ -58,13 +58,11 @@ from scipy.optimize import linear_sum_assignment
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from scenewright.api import build_scene  # noqa: E402
+from scenewright.examples import load_examples  # noqa: E402
+from scenewright.examples.formats import is_scene_json_file  # noqa: E402
 from scenewright.generator import expand, load_rules  # noqa: E402
 from scenewright.generator.layout import LayoutParams, layout_scene  # noqa: E402
 from scenewright.generator.layout.learned_term import read_context  # noqa: E402
-from scenewright.examples import load_examples  # noqa: E402
-from scenewright.examples.formats import is_scene_json_file  # noqa: E402
-from scenewright.learning.derivations import measured_derivation_graphs  # noqa: E402
-from scenewright.learning.induce import renamed_scenes  # noqa: E402
 from scenewright.learning.context import (  # noqa: E402
     UPDATE_SMOOTH,
     counts,
@@ -75,6 +73,8 @@ from scenewright.learning.context import (  # noqa: E402
     share_distance,
     shares,
 )
+from scenewright.learning.derivations import measured_derivation_graphs  # noqa: E402
+from scenewright.learning.induce import renamed_scenes  # noqa: E402
 
 RULES = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
 
@@ -116,7 +116,9 @@ def jittered_examples(rules: Path, count: int, jitter: float, seed: int) -> list
                 used[side] = used.get(side, 0) + 1
                 lx, lz = lx + rng.normal(0.0, jitter), lz + rng.normal(0.0, jitter)
                 obj["position"] = [tx + lx * c + lz * s, 0.0, tz - lx * s + lz * c]
-                obj["yaw"] = math.atan2(math.sin(tyaw + yaw + rng.normal(0.0, 0.1)), math.cos(tyaw + yaw))
+                obj["yaw"] = math.atan2(
+                    math.sin(tyaw + yaw + rng.normal(0.0, 0.1)), math.cos(tyaw + yaw)
+                )
         examples.append((f"example_{k:02d}", scene))
     return examples
 
@@ -151,7 +153,9 @@ def sample(rules: Path, count: int, ways: dict, slots: bool) -> dict[str, dict]:
     (count, 6, 2) when ``slots`` (the dining set), related pairs' relative poses per
     kind, CPU seconds and steps per layout, and how many were ok."""
     loaded = load_rules(rules)
-    made = {name: {"positions": [], "poses": {}, "seconds": 0.0, "steps": 0, "ok": 0} for name in ways}
+    made = {
+        name: {"positions": [], "poses": {}, "seconds": 0.0, "steps": 0, "ok": 0} for name in ways
+    }
     for seed in range(count):
         graph = expand(loaded, seed)
         for name, (context, params) in ways.items():
@@ -164,7 +168,9 @@ def sample(rules: Path, count: int, ways: dict, slots: bool) -> dict[str, dict]:
             if slots:
                 objects = [(graph.node(i).type, p.x, p.z, p.yaw) for i, p in result.poses.items()]
                 way["positions"].append(chair_positions(objects))
-            for kind, pose in graph_pair_poses(graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}):
+            for kind, pose in graph_pair_poses(
+                graph, {i: (p.x, p.z, p.yaw) for i, p in result.poses.items()}
+            ):
                 way["poses"].setdefault(kind, []).append(pose)
     for way in made.values():
         way["positions"] = np.array(way["positions"])
@@ -180,7 +186,7 @@ def measured_layouts(rules: Path, folder: Path) -> list:
     loaded = load_rules(rules)
     found = load_examples([folder])
     laid = []
-    for example, scene in zip(found, renamed_scenes(found)[0]):
+    for example, scene in zip(found, renamed_scenes(found)[0], strict=False):
         graphs = measured_derivation_graphs(loaded, scene, example.name)
         if graphs:
             laid.append(measured_example_layout(example.name, scene, graphs))
@@ -199,18 +205,28 @@ def divergence(context, observed: dict, generated: dict) -> float:
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--examples", type=int, default=30)
     parser.add_argument("--scenes", type=int, default=60)
     parser.add_argument("--jitter", type=float, default=0.08, help="metres per axis (0.08)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--layouts", type=int, default=40, help="layouts per round of the fit (40)")
-    parser.add_argument("--write-examples", metavar="DIR", help="only write the examples as DIR/example_NN.json")
-    parser.add_argument("--template-init", action="store_true", help="compare the initial placement from templates")
+    parser.add_argument(
+        "--write-examples", metavar="DIR", help="only write the examples as DIR/example_NN.json"
+    )
+    parser.add_argument(
+        "--template-init", action="store_true", help="compare the initial placement from templates"
+    )
     parser.add_argument("--rules", type=Path, default=RULES, help="another rule set (with --from)")
-    parser.add_argument("--from", dest="source", type=Path, metavar="DIR", help="scene.json examples of --rules")
-    parser.add_argument("--context", type=Path, metavar="FILE", help="a fitted context instead of fitting one")
+    parser.add_argument(
+        "--from", dest="source", type=Path, metavar="DIR", help="scene.json examples of --rules"
+    )
+    parser.add_argument(
+        "--context", type=Path, metavar="FILE", help="a fitted context instead of fitting one"
+    )
     args = parser.parse_args()
 
     rules = args.rules
@@ -218,15 +234,24 @@ def main() -> int:
     if slots:
         examples = jittered_examples(rules, args.examples, args.jitter, args.seed)
     elif all(is_scene_json_file(p) for p in args.source.glob("*.json")):
-        examples = [(p.stem, json.loads(p.read_text(encoding="utf-8"))) for p in sorted(args.source.glob("*.json"))]
+        examples = [
+            (p.stem, json.loads(p.read_text(encoding="utf-8")))
+            for p in sorted(args.source.glob("*.json"))
+        ]
     else:
         examples = []  # read from geometry alone (measured_layouts)
-    laid = [example_layout(name, scene) for name, scene in examples] if examples else measured_layouts(rules, args.source)
+    laid = (
+        [example_layout(name, scene) for name, scene in examples]
+        if examples
+        else measured_layouts(rules, args.source)
+    )
     if args.write_examples:
         folder = Path(args.write_examples)
         folder.mkdir(parents=True, exist_ok=True)
         for name, scene in examples:
-            (folder / f"{name}.json").write_text(json.dumps(scene, indent=1) + "\n", encoding="utf-8")
+            (folder / f"{name}.json").write_text(
+                json.dumps(scene, indent=1) + "\n", encoding="utf-8"
+            )
         print(f"wrote {len(examples)} examples to {folder}/")
         return 0
     observed: dict = {}
@@ -240,10 +265,14 @@ def main() -> int:
         start = time.process_time()
         fitted = fit_example_layouts(laid, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
         context = fitted.context
-        print(f"fit: {len(laid)} examples, {len(context.pairs)} pair kinds, "
-              f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
-              f"{time.process_time() - start:.1f} CPU s")
-    if args.template_init:  # the comparison of the two starts (annealed left out: it is not sampling)
+        print(
+            f"fit: {len(laid)} examples, {len(context.pairs)} pair kinds, "
+            f"divergence per round {' '.join(f'{d:.3f}' for d in fitted.divergence)}, kept round {fitted.kept}; "
+            f"{time.process_time() - start:.1f} CPU s"
+        )
+    if (
+        args.template_init
+    ):  # the comparison of the two starts (annealed left out: it is not sampling)
         ways = {
             "rules init": (context, replace(LayoutParams(), template_init=False)),
             "templates": (context, replace(LayoutParams(), template_init=True)),
@@ -256,10 +285,19 @@ def main() -> int:
     ways["no context"] = (None, LayoutParams())
     reference = None
     if slots:
-        reference = spreads(np.array([
-            chair_positions([(o["type"], o["position"][0], o["position"][2], o["yaw"]) for o in scene["objects"]])
-            for _, scene in examples
-        ]))  # fmt: skip
+        reference = spreads(
+            np.array(
+                [
+                    chair_positions(
+                        [
+                            (o["type"], o["position"][0], o["position"][2], o["yaw"])
+                            for o in scene["objects"]
+                        ]
+                    )
+                    for _, scene in examples
+                ]
+            )
+        )
         print(f"\n{'':14s} " + " ".join(f"slot {k + 1}" for k in range(6)) + "   mean", end="")
     else:
         print(f"\n{'':14s}", end="")
@@ -278,7 +316,9 @@ def main() -> int:
     first = next(iter(ways))
     print(f"\nlayout time, {first} / no context: {times[first] / times['no context']:.2f}x")
     if args.template_init:
-        print(f"layout time, templates / rules init: {times['templates'] / times['rules init']:.2f}x")
+        print(
+            f"layout time, templates / rules init: {times['templates'] / times['rules init']:.2f}x"
+        )
     return 0
 
 

@@ -52,7 +52,18 @@ def flat_fit(fit: WeightFit) -> WeightFit:
     flat = []
     for p in fit.parameters:
         uniform = tuple(1.0 / len(p.options) for _ in p.options)
-        flat.append(Parameter(p.kind, p.name, p.site, p.options, (1,) * len(p.options), uniform, uniform, p.written))
+        flat.append(
+            Parameter(
+                p.kind,
+                p.name,
+                p.site,
+                p.options,
+                (1,) * len(p.options),
+                uniform,
+                uniform,
+                p.written,
+            )
+        )
     return WeightFit(tuple(flat), 1, fit.prior)
 
 
@@ -101,7 +112,9 @@ def distance(first: dict, second: dict) -> dict[str, float]:
         if family == "relations":
             values = [abs(first[family].get(k, 0.0) - second[family].get(k, 0.0)) for k in keys]
         else:
-            values = [tvd(first[family].get(k, Counter()), second[family].get(k, Counter())) for k in keys]
+            values = [
+                tvd(first[family].get(k, Counter()), second[family].get(k, Counter())) for k in keys
+            ]
         out[family] = float(np.mean(values)) if values else 0.0
     return out
 
@@ -114,7 +127,13 @@ def recovery(truth_fit: WeightFit, fit: WeightFit) -> tuple[int, int, str]:
     for p in fit.parameters:
         if not p.identified:
             continue
-        for option, estimate, error, true in zip(p.options, p.estimate, p.standard_error, truth[(p.kind, p.name, p.site.line)]):
+        for option, estimate, error, true in zip(
+            p.options,
+            p.estimate,
+            p.standard_error,
+            truth[(p.kind, p.name, p.site.line)],
+            strict=False,
+        ):
             tolerance = max(3 * error, 0.03)
             total += 1
             within += abs(estimate - true) <= tolerance
@@ -146,14 +165,17 @@ def bench(name: str, scenes: int, folder: Path) -> None:
         "flat": statistics_of(flat, range(4 * 10**6, 4 * 10**6 + scenes)),
     }
     floor = distance(samples["truth"], samples["truth again"])
-    print(f"{name}: {len(fit.parameters)} parameters, {len(fit.unidentified)} unidentified; "
-          f"recovered {within}/{total} values within max(3 se, 0.03); fit {seconds:.3f} CPU s for {scenes} scenes")
+    print(
+        f"{name}: {len(fit.parameters)} parameters, {len(fit.unidentified)} unidentified; "
+        f"recovered {within}/{total} values within max(3 se, 0.03); fit {seconds:.3f} CPU s for {scenes} scenes"
+    )
     print(f"  worst: {worst}")
     for label in ("fitted", "flat"):
         d = distance(samples["truth"], samples[label])
         ratios = ", ".join(
             f"{family} {d[family]:.4f} ({d[family] / floor[family]:.2f}x floor {floor[family]:.4f})"
-            if floor[family] else f"{family} {d[family]:.4f} (floor 0)"
+            if floor[family]
+            else f"{family} {d[family]:.4f} (floor 0)"
             for family in FAMILIES
         )
         print(f"  {label:6s} vs truth: {ratios}")
@@ -175,14 +197,15 @@ def bench_em(name: str, scenes: int, folder: Path) -> None:
     searched = time.process_time() - start
     fit = fit_weights_em(flat, candidates)
     within, total, worst = recovery(truth_fit, fit)
-    print(f"{name} without derivations: {scenes} scenes, {fit.ambiguous} with more than one derivation "
-          f"(at most {max(map(len, candidates))}); search {searched / scenes:.3f} CPU s per scene, "
-          f"EM {fit.iterations} rounds; recovered {within}/{total} within max(3 se, 0.03); worst: {worst}")
+    print(
+        f"{name} without derivations: {scenes} scenes, {fit.ambiguous} with more than one derivation "
+        f"(at most {max(map(len, candidates))}); search {searched / scenes:.3f} CPU s per scene, "
+        f"EM {fit.iterations} rounds; recovered {within}/{total} within max(3 se, 0.03); worst: {worst}"
+    )
 
 
 def time_cli(name: str, scenes: int, folder: Path) -> None:
-    from scenewright.api import generate
-    from scenewright.api import reproducible_json
+    from scenewright.api import generate, reproducible_json
 
     examples = folder / "cli"
     examples.mkdir(parents=True, exist_ok=True)
@@ -190,22 +213,45 @@ def time_cli(name: str, scenes: int, folder: Path) -> None:
         path = examples / f"{seed:06d}.json"
         if not path.exists():
             path.write_text(reproducible_json(generate(name, seed)))
-    command = [sys.executable, "-m", "scenewright.cli", "fit", name, *map(str, sorted(examples.glob("*.json"))),
-               "-o", str(folder / "cli-out" / "fitted.rules")]
+    command = [
+        sys.executable,
+        "-m",
+        "scenewright.cli",
+        "fit",
+        name,
+        *map(str, sorted(examples.glob("*.json"))),
+        "-o",
+        str(folder / "cli-out" / "fitted.rules"),
+    ]
     start = time.perf_counter()
     result = subprocess.run(command, capture_output=True, text=True)
     seconds = time.perf_counter() - start
-    print(f"cli: scenewright fit {name} on {scenes} scene.json files: {seconds:.1f} s wall, exit {result.returncode}")
+    print(
+        f"cli: scenewright fit {name} on {scenes} scene.json files: {seconds:.1f} s wall, exit {result.returncode}"
+    )
     print("  " + (result.stdout.strip().splitlines() or [result.stderr.strip()])[0])
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("rules", nargs="*", help="rule sets (default: every shipped one)")
     parser.add_argument("--scenes", type=int, default=500, help="scenes per sample (500)")
-    parser.add_argument("--cli", type=int, default=0, metavar="N", help="also time the command on N scene.json files")
-    parser.add_argument("--em", type=int, default=0, metavar="N",
-                        help="also fit N scenes without their derivations (expectation-maximisation)")
+    parser.add_argument(
+        "--cli",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also time the command on N scene.json files",
+    )
+    parser.add_argument(
+        "--em",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also fit N scenes without their derivations (expectation-maximisation)",
+    )
     args = parser.parse_args()
     names = args.rules or shipped_rule_sets()
     with tempfile.TemporaryDirectory() as folder:

@@ -58,10 +58,13 @@ class Tally:
 
     #: The counts the targets are about, reported even when 0.
     TARGETS = (
-        "text spans without their noun", "caption spans without their noun",
-        "records whose boxes are not the rendered ones", "caption mentions of objects below the thresholds",
-        "refexp programs that do not give exactly their object", "question programs that do not give their answer",
-    )  # fmt: skip
+        "text spans without their noun",
+        "caption spans without their noun",
+        "records whose boxes are not the rendered ones",
+        "caption mentions of objects below the thresholds",
+        "refexp programs that do not give exactly their object",
+        "question programs that do not give their answer",
+    )
 
     def __init__(self) -> None:
         self.counts: Counter[str] = Counter(dict.fromkeys(self.TARGETS, 0))
@@ -79,7 +82,7 @@ class Tally:
 
 def check_mentions(description, world, tally: Tally, kind: str) -> None:
     for mention in description.mentions:
-        phrase = description.text[mention.start:mention.end]
+        phrase = description.text[mention.start : mention.end]
         tally.counts[f"{kind} spans"] += 1
         if phrase.lower() == "it":
             tally.counts[f"{kind} pronoun spans"] += 1
@@ -112,10 +115,14 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
             picked = execute(expression["program"], facts)
         except ProgramError:
             picked = None
-        tally.counts["refexp programs that do not give exactly their object"] += picked != expression["id"]
+        tally.counts["refexp programs that do not give exactly their object"] += (
+            picked != expression["id"]
+        )
     started = tally.clock("image captions + grounding + refexps", started)
     picture = PictureView.from_render(result, scene)
-    asked = picture_questions(PictureFacts.of(scene, picture), vocabulary_of(rules, scene), scene.seed)
+    asked = picture_questions(
+        PictureFacts.of(scene, picture), vocabulary_of(rules, scene), scene.seed
+    )
     tally.clock("questions", started)
     for question in asked:
         tally.counts["questions"] += 1
@@ -125,10 +132,12 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
             answer = answer_text(execute(question["program"], facts))
         except ProgramError:
             answer = None
-        tally.counts["question programs that do not give their answer"] += answer != question["answer"]
+        tally.counts["question programs that do not give their answer"] += (
+            answer != question["answer"]
+        )
 
     world = world_of(scene)
-    for column, records in grounding.items():
+    for _column, records in grounding.items():
         for record in records:
             tally.counts["grounding records"] += 1
             if record["boxes"] != [result.boxes.get(i) for i in record["ids"]]:
@@ -143,18 +152,26 @@ def measure_scene(rules, seed: int, renderer: Renderer, tally: Tally) -> None:
                 tally.counts["caption mentions of objects below the thresholds"] += sum(
                     not picture.seen(i) for i in mention.ids
                 )
-            tally.counts["captions too small to make out"] += "too small to make out" in caption.text
+            tally.counts["captions too small to make out"] += (
+                "too small to make out" in caption.text
+            )
     layout_true = {i for m in old[0].mentions for i in m.ids}
     tally.counts["objects named by the layout-true caption"] += len(layout_true)
-    tally.counts["...of which below the thresholds"] += sum(not picture.seen(i) for i in layout_true)
+    tally.counts["...of which below the thresholds"] += sum(
+        not picture.seen(i) for i in layout_true
+    )
 
 
 #: The dataset defaults for ``picture_captions`` but two captions and no questions (timed apart).
-WITHOUT_QUESTIONS = PictureCaptions(rules="", rules_digest="", count=0, captions=CAPTIONS, questions=False)
+WITHOUT_QUESTIONS = PictureCaptions(
+    rules="", rules_digest="", count=0, captions=CAPTIONS, questions=False
+)
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("-n", "--count", type=int, default=200, help="scenes per rule set (200)")
     parser.add_argument("--rules", nargs="+", default=None, help="rule sets (all shipped)")
     args = parser.parse_args()
@@ -195,13 +212,19 @@ def report(name: str, count: int, tally: Tally) -> None:
     for key, value in sorted(tally.counts.items()):
         if key != "scenes":
             print(f"  {key}: {value}")
-    print("  CPU s/scene: " + ", ".join(f"{stage} {seconds:.4f}" for stage, seconds in per_scene.items()))
+    print(
+        "  CPU s/scene: "
+        + ", ".join(f"{stage} {seconds:.4f}" for stage, seconds in per_scene.items())
+    )
     print(f"  throughput with grounding / without: {before / after:.3f}")
     print(f"  throughput with questions / without: {after / (after + per_scene['questions']):.3f}")
     for family, answers in tally.answers.items():
         total = sum(answers.values())
         spread = ", ".join(f"{answer} {n / total:.0%}" for answer, n in answers.most_common(6))
-        print(f"  {family}: {total} questions; answers {spread}" + (" ..." if len(answers) > 6 else ""))
+        print(
+            f"  {family}: {total} questions; answers {spread}"
+            + (" ..." if len(answers) > 6 else "")
+        )
 
 
 if __name__ == "__main__":

@@ -101,7 +101,9 @@ def synthetic(size: int, seeds: int) -> None:
         ok += result.ok
     median = statistics.median(seconds)
     print(f"synthetic village graphs, {size} objects, seeds 0..{seeds - 1}:")
-    print(f"  layout cpu seconds: median {median:.2f}  max {max(seconds):.2f}   steps median {statistics.median(steps):.0f}   ok {ok}/{seeds}")
+    print(
+        f"  layout cpu seconds: median {median:.2f}  max {max(seconds):.2f}   steps median {statistics.median(steps):.0f}   ok {ok}/{seeds}"
+    )
     if size == 1000:
         print(f"  target (cpu): median <= 3 s {_met(median <= 3.0)}")
 
@@ -128,17 +130,25 @@ def compare() -> None:
         graph = village_graph(size, 0)
         naive = step_cost(graph, 0, incremental=False, steps=300)
         incremental = step_cost(graph, 0, incremental=True, steps=300)
-        print(f"  {size:4d} objects: full {naive:9.1f}   incremental {incremental:7.1f}   ratio {naive / incremental:6.1f}x")
+        print(
+            f"  {size:4d} objects: full {naive:9.1f}   incremental {incremental:7.1f}   ratio {naive / incremental:6.1f}x"
+        )
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--village", type=int, metavar="SEEDS", help="lay out this many village scenes")
+    parser.add_argument(
+        "--village", type=int, metavar="SEEDS", help="lay out this many village scenes"
+    )
     parser.add_argument("--rules", default="village", help="rule set for --village")
-    parser.add_argument("--restarts", type=int, help="chains after the first for --village (default: LayoutParams)")
+    parser.add_argument(
+        "--restarts", type=int, help="chains after the first for --village (default: LayoutParams)"
+    )
     parser.add_argument("--scaling", action="store_true")
     parser.add_argument("--compare", action="store_true")
-    parser.add_argument("--synthetic", type=int, metavar="OBJECTS", help="lay out synthetic graphs of this size")
+    parser.add_argument(
+        "--synthetic", type=int, metavar="OBJECTS", help="lay out synthetic graphs of this size"
+    )
     parser.add_argument("--seeds", type=int, default=5, help="seeds for --synthetic (default 5)")
     args = parser.parse_args()
     if args.synthetic:

@@ -56,17 +56,27 @@ def grammar_labels(scenes) -> dict[tuple[str, str], set[str]]:
 
 
 def check_line(check: Check) -> str:
-    pairs = np.mean([abs(p["examples_both"] - p["generated_both"]) for p in check.pairs]) if check.pairs else 0.0
-    held = [p["generated_label_holds"] for p in check.pairs if p["generated_label_holds"] is not None]
+    pairs = (
+        np.mean([abs(p["examples_both"] - p["generated_both"]) for p in check.pairs])
+        if check.pairs
+        else 0.0
+    )
+    held = [
+        p["generated_label_holds"] for p in check.pairs if p["generated_label_holds"] is not None
+    ]
     holds = f"{np.mean(held):.0%}" if held else "-"
-    return (f"counts {check.mean_total_variation:.3f}, pairs {pairs:.3f}, placements hold {holds}, "
-            f"{check.layouts_ok}/{check.scenes} layouts ok")  # fmt: skip
+    return (
+        f"counts {check.mean_total_variation:.3f}, pairs {pairs:.3f}, placements hold {holds}, "
+        f"{check.layouts_ok}/{check.scenes} layouts ok"
+    )
 
 
 def learn_from(examples, check: int, seed: int):
     with tempfile.TemporaryDirectory() as folder:
         started = time.process_time()
-        learned = learn_rule_set(examples, Path(folder) / "learned.rules", seed=seed, check=0, write=lambda p, t: None)
+        learned = learn_rule_set(
+            examples, Path(folder) / "learned.rules", seed=seed, check=0, write=lambda p, t: None
+        )
         seconds = time.process_time() - started
         rules = Path(folder) / "learned.rules"
         rules.write_text(learned.text)
@@ -74,7 +84,9 @@ def learn_from(examples, check: int, seed: int):
         from scenewright.learning.induce import renamed_scenes
 
         renamed, _ = renamed_scenes(examples)
-        result = compare(learned.induction, renamed, load_rules(rules), check, seed) if check else None
+        result = (
+            compare(learned.induction, renamed, load_rules(rules), check, seed) if check else None
+        )
     return learned, result, seconds, scenes
 
 
@@ -88,13 +100,19 @@ def evaluate(name: str, count: int, check: int, seed: int, cache: Path, workers:
     hits = set(written) & set(truth)
     precision = len(hits) / len(written) if written else float("nan")
     recall = len(hits) / len(truth) if truth else float("nan")
-    print(f"{name}: {len(paths)} examples ({failed} failed layouts left out); learned in {seconds:.1f} CPU s: "
-          f"{len(induction.catalog)} types, {len(induction.groups)} groups, {len(written)} relations written; "
-          f"against the grammar's {len(truth)} pairs: precision {precision:.2f}, recall {recall:.2f}")  # fmt: skip
+    print(
+        f"{name}: {len(paths)} examples ({failed} failed layouts left out); learned in {seconds:.1f} CPU s: "
+        f"{len(induction.catalog)} types, {len(induction.groups)} groups, {len(written)} relations written; "
+        f"against the grammar's {len(truth)} pairs: precision {precision:.2f}, recall {recall:.2f}"
+    )
     for pair in sorted(set(truth) | set(written)):
         member = written.get(pair)
-        learned_labels = " | ".join("+".join(p.labels) for p in member.placements) if member else "-"
-        print(f"    {pair[0]}-{pair[1]}: grammar {'+'.join(sorted(truth.get(pair, ()))) or '-'}; learned {learned_labels}")
+        learned_labels = (
+            " | ".join("+".join(p.labels) for p in member.placements) if member else "-"
+        )
+        print(
+            f"    {pair[0]}-{pair[1]}: grammar {'+'.join(sorted(truth.get(pair, ()))) or '-'}; learned {learned_labels}"
+        )
     if result is not None:
         floor = compare(induction, [e.scene for e in examples], load_rules(name), check, seed + 1)
         print(f"  learned rules vs examples: {check_line(result)}")
@@ -108,14 +126,18 @@ def main() -> None:
     parser.add_argument("--check", type=int, default=50, help="scenes generated to compare (50)")
     parser.add_argument("--seed", type=int, default=0, help="seed of learn (0)")
     parser.add_argument("--workers", type=int, default=2, help="processes laying scenes out (2)")
-    parser.add_argument("--cache", type=Path, default=Path(tempfile.gettempdir()) / "scenewright-bench-relations")
+    parser.add_argument(
+        "--cache", type=Path, default=Path(tempfile.gettempdir()) / "scenewright-bench-relations"
+    )
     parser.add_argument("--examples", nargs="+", type=Path, help="learn from these files instead")
     args = parser.parse_args()
     if args.examples:
         examples = load_examples(args.examples)
         learned, result, seconds, _ = learn_from(examples, args.check, args.seed)
-        print(f"{len(examples)} examples: learned in {seconds:.1f} CPU s; {len(learned.induction.written_pairs())} "
-              f"relations written")  # fmt: skip
+        print(
+            f"{len(examples)} examples: learned in {seconds:.1f} CPU s; {len(learned.induction.written_pairs())} "
+            f"relations written"
+        )
         if result is not None:
             print(f"  learned rules vs examples: {check_line(result)}")
     for name in args.rules:

@@ -53,12 +53,17 @@ RULE_SETS = ("bedroom", "living_room", "kitchen", "study", "classroom", "bathroo
 
 
 def scenes_of(seeds: int, first: int = 0) -> dict[str, list]:
-    return {rules: [build_scene(rules, seed) for seed in range(first, first + seeds)] for rules in RULE_SETS}
+    return {
+        rules: [build_scene(rules, seed) for seed in range(first, first + seeds)]
+        for rules in RULE_SETS
+    }
 
 
 def copies(scenes: dict[str, list], misses: bool = False) -> None:
     print("disguised copies (types renamed, 5 cm jitter, one removed, one added):")
-    print(f"  {'rule set':12s} objects  kept+right  assigned-right  as-good-as-truth  baseline  spurious-kept  kept,own-copy")
+    print(
+        f"  {'rule set':12s} objects  kept+right  assigned-right  as-good-as-truth  baseline  spurious-kept  kept,own-copy"
+    )
     totals, changes = defaultdict(float), defaultdict(int)
     for rules, group in scenes.items():
         row = defaultdict(float)
@@ -92,9 +97,11 @@ def copies(scenes: dict[str, list], misses: bool = False) -> None:
             totals[key] += value
         _print_row(rules, row)
     _print_row("all", totals)
-    print(f"  relations between surviving standing objects: {changes['held']}; the copy's moves made "
-          f"{changes['vanished']} vanish and {changes['appeared']} appear, turned {changes['V/C']} from contact "
-          f"to close or back, {changes['A']} aligned and {changes['F']} facing on or off")  # fmt: skip
+    print(
+        f"  relations between surviving standing objects: {changes['held']}; the copy's moves made "
+        f"{changes['vanished']} vanish and {changes['appeared']} appear, turned {changes['V/C']} from contact "
+        f"to close or back, {changes['A']} aligned and {changes['F']} facing on or off"
+    )
 
 
 def _relation_changes(first, second, truth: dict[str, str]) -> dict[str, int]:
@@ -107,18 +114,18 @@ def _relation_changes(first, second, truth: dict[str, str]) -> dict[str, int]:
     for i, j in sorted(pairs):
         if first.ids[i] not in truth or first.ids[j] not in truth:
             continue
-        k, l = where[truth[first.ids[i]]], where[truth[first.ids[j]]]
+        k, m = where[truth[first.ids[i]]], where[truth[first.ids[j]]]
         before = first.relation_set(i, j) | first.relation_set(j, i)
-        after = second.relation_set(k, l) | second.relation_set(l, k)
+        after = second.relation_set(k, m) | second.relation_set(m, k)
         counts["held"] += bool(before)
         counts["vanished"] += bool(before) and not after
         counts["appeared"] += bool(after) and not before
         if before and after:
             counts["V/C"] += ("V" in before) != ("V" in after) or ("C" in before) != ("C" in after)
             counts["A"] += ("A" in before) != ("A" in after)
-            counts["F"] += first.relation_set(i, j) & {"F"} != second.relation_set(k, l) & {"F"} or (
-                first.relation_set(j, i) & {"F"} != second.relation_set(l, k) & {"F"}
-            )
+            counts["F"] += first.relation_set(i, j) & {"F"} != second.relation_set(k, m) & {
+                "F"
+            } or (first.relation_set(j, i) & {"F"} != second.relation_set(m, k) & {"F"})
     return counts
 
 
@@ -132,9 +139,13 @@ def _print_misses(scene, first, matching, truth: dict[str, str], shortfall: floa
         if pair.a in truth and not (right and pair in matching.pairs):
             taken = original.get(pair.b, "the added box")
             state = "kept" if pair in matching.pairs else "withdrawn"
-            lines.append(f"      {pair.a} -> copy of {taken}, confidence {pair.confidence:.2f}, {state}")
+            lines.append(
+                f"      {pair.a} -> copy of {taken}, confidence {pair.confidence:.2f}, {state}"
+            )
     if lines or shortfall > 1e-9:
-        energy = f"{shortfall:.3f} below the truth's" if shortfall > 1e-9 else "at least the truth's"
+        energy = (
+            f"{shortfall:.3f} below the truth's" if shortfall > 1e-9 else "at least the truth's"
+        )
         print(f"    {scene.rules} seed {scene.seed}: energy {energy}")
         print("\n".join(lines))
 
@@ -174,7 +185,9 @@ def _truth_assignment(problem, first, second, nodes_a, nodes_b, truth) -> np.nda
 def _baseline(first, second, nodes_a, nodes_b) -> dict[str, str]:
     similarity = box_similarity(first.sizes[nodes_a], second.sizes[nodes_b])
     rows, columns = linear_sum_assignment(-similarity)
-    return {first.ids[nodes_a[r]]: second.ids[nodes_b[c]] for r, c in zip(rows, columns)}
+    return {
+        first.ids[nodes_a[r]]: second.ids[nodes_b[c]] for r, c in zip(rows, columns, strict=False)
+    }
 
 
 def _cut(scene, count: int):
@@ -190,12 +203,14 @@ def _cut(scene, count: int):
 def exhaustive(scenes: dict[str, list], size: int = 7) -> None:
     print(f"spectral against the exhaustive optimum (layout subgraphs of at most {size} objects):")
     ratios = {"spectral": [], "refined": []}
-    for rules, group in scenes.items():
+    for _rules, group in scenes.items():
         for a in range(len(group)):
             for b in range(len(group)):
                 if a == b:
                     continue
-                problem, _, _ = layout_problem(structure_graph(_cut(group[a], size)), structure_graph(_cut(group[b], size)))
+                problem, _, _ = layout_problem(
+                    structure_graph(_cut(group[a], size)), structure_graph(_cut(group[b], size))
+                )
                 if problem.size < 2:
                     continue
                 _, best = exhaustive_solution(problem)
@@ -203,12 +218,16 @@ def exhaustive(scenes: dict[str, list], size: int = 7) -> None:
                     ratios[name].append(problem.energy(solve(problem, refined=refined)) / best)
     for name, values in ratios.items():
         values = np.array(values)
-        print(f"  {name:9s} pairs {len(values)}: within 95 % of the optimum in {100 * (values >= 0.95).mean():.1f} %, "
-              f"mean ratio {values.mean():.3f}, worst {values.min():.3f}")  # fmt: skip
+        print(
+            f"  {name:9s} pairs {len(values)}: within 95 % of the optimum in {100 * (values >= 0.95).mean():.1f} %, "
+            f"mean ratio {values.mean():.3f}, worst {values.min():.3f}"
+        )
 
 
 def roles(scenes: dict[str, list]) -> None:
-    print("two different scenes of a rule set, pairs kept against the derivation (same type = same role):")
+    print(
+        "two different scenes of a rule set, pairs kept against the derivation (same type = same role):"
+    )
     for rules, group in scenes.items():
         right = kept = possible = 0
         for a in range(len(group)):
@@ -216,16 +235,26 @@ def roles(scenes: dict[str, list]) -> None:
             first, second = structure_graph(group[a]), structure_graph(group[b])
             matching = match_graphs(first, second)
             kept += len(matching.pairs)
-            right += sum(first.types[first.index(p.a)] == second.types[second.index(p.b)] for p in matching.pairs)
+            right += sum(
+                first.types[first.index(p.a)] == second.types[second.index(p.b)]
+                for p in matching.pairs
+            )
             types_a = [first.types[i] for i in first.layout_nodes()]
             types_b = [second.types[i] for i in second.layout_nodes()]
             possible += sum(min(types_a.count(t), types_b.count(t)) for t in set(types_a))
-        print(f"  {rules:12s} precision {right / max(kept, 1):.3f}  recall {right / max(possible, 1):.3f}  ({kept} kept)")
+        print(
+            f"  {rules:12s} precision {right / max(kept, 1):.3f}  recall {right / max(possible, 1):.3f}  ({kept} kept)"
+        )
 
 
 def timing(scenes: dict[str, list]) -> None:
     print("time to match two scenes of 20 standing objects (CPU seconds):")
-    big = [_cut(s, 20) for group in scenes.values() for s in group if len(structure_graph(s).layout_nodes()) >= 20]
+    big = [
+        _cut(s, 20)
+        for group in scenes.values()
+        for s in group
+        if len(structure_graph(s).layout_nodes()) >= 20
+    ]
     for seed, scene in enumerate(big[:5]):
         copy, _ = perturbed_copy(scene, np.random.default_rng(seed))
         started = time.process_time()
@@ -233,20 +262,33 @@ def timing(scenes: dict[str, list]) -> None:
         built = time.process_time()
         matching = match_graphs(first, second)
         done = time.process_time()
-        print(f"  {scene.rules} seed {scene.seed}: {len(first.layout_nodes())} x {len(second.layout_nodes())} standing "
-              f"objects: structure graphs {built - started:.3f} s, matching {done - built:.3f} s "
-              f"({matching.seconds:.3f} s inside match_graphs)")  # fmt: skip
+        print(
+            f"  {scene.rules} seed {scene.seed}: {len(first.layout_nodes())} x {len(second.layout_nodes())} standing "
+            f"objects: structure graphs {built - started:.3f} s, matching {done - built:.3f} s "
+            f"({matching.seconds:.3f} s inside match_graphs)"
+        )
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--seeds", type=int, default=4, help="scenes per rule set (4)")
-    parser.add_argument("--first-seed", type=int, default=0, help="first scene seed (0), to measure on other scenes")
+    parser.add_argument(
+        "--first-seed", type=int, default=0, help="first scene seed (0), to measure on other scenes"
+    )
     parser.add_argument("--only", choices=("copies", "exhaustive", "roles", "timing"))
-    parser.add_argument("--misses", action="store_true", help="copies: list each scene's wrong or withdrawn objects")
+    parser.add_argument(
+        "--misses", action="store_true", help="copies: list each scene's wrong or withdrawn objects"
+    )
     args = parser.parse_args()
     scenes = scenes_of(args.seeds, args.first_seed)
-    runs = (("copies", lambda s: copies(s, args.misses)), ("exhaustive", exhaustive), ("roles", roles), ("timing", timing))
+    runs = (
+        ("copies", lambda s: copies(s, args.misses)),
+        ("exhaustive", exhaustive),
+        ("roles", roles),
+        ("timing", timing),
+    )
     for name, run in runs:
         if args.only in (None, name):
             run(scenes)

@@ -49,7 +49,10 @@ def sides(room, openings) -> tuple[str, ...]:
     long_side, short_side = (depth, width) if frame.transpose else (width, depth)
     found = set()
     for opening in openings:
-        x, z = frame.apply(np.asarray(opening.center) - room_centre(room))[0] / (long_side, short_side)
+        x, z = frame.apply(np.asarray(opening.center) - room_centre(room))[0] / (
+            long_side,
+            short_side,
+        )
         gaps = {"top": z + 0.5, "bottom": 0.5 - z, "left": x + 0.5, "right": 0.5 - x}
         found.add(min(sorted(gaps), key=lambda side: gaps[side]))
     return tuple(sorted(found))
@@ -57,42 +60,78 @@ def sides(room, openings) -> tuple[str, ...]:
 
 def main() -> None:
     plans = sorted(load_plans(shipped_plans_dir()), key=lambda plan: plan.id)
-    truth = {plan.id: occupancy_mask(plan.room, floor_pieces(plan), canonical_frame(plan.room)) for plan in plans}
+    truth = {
+        plan.id: occupancy_mask(plan.room, floor_pieces(plan), canonical_frame(plan.room))
+        for plan in plans
+    }
     rows: dict[str, list[tuple[float, ...]]] = {}
     for plan in plans:
         model = build_model([other for other in plans if other.id != plan.id])
         others = [other.id for other in plans if other.type == plan.type and other.id != plan.id]
         counts = Counter(piece.category for piece in plan.furniture)
-        layout = amalgamated_mask(model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]})
+        layout = amalgamated_mask(
+            model,
+            plan.type,
+            plan.room,
+            {n: c for n, c in counts.items() if n in model["categories"]},
+        )
         alike = {other: soft_iou(truth[other], truth[plan.id]) for other in others}
         nearest = sorted(others, key=lambda other: -alike[other])[:10]
-        rows.setdefault(plan.type, []).append((
-            soft_iou(layout.mask, truth[plan.id]),
-            soft_iou(np.mean([truth[other] for other in others], axis=0), truth[plan.id]),
-            alike[nearest[0]],
-            soft_iou(np.mean([truth[other] for other in nearest], axis=0), truth[plan.id]),
-        ))  # fmt: skip
+        rows.setdefault(plan.type, []).append(
+            (
+                soft_iou(layout.mask, truth[plan.id]),
+                soft_iou(np.mean([truth[other] for other in others], axis=0), truth[plan.id]),
+                alike[nearest[0]],
+                soft_iou(np.mean([truth[other] for other in nearest], axis=0), truth[plan.id]),
+            )
+        )
     print("| room type | plans | eq4 | mean | best | best10 |")
     print("|---|---|---|---|---|---|")
-    for name, found in [*sorted(rows.items()), ("all", [row for found in rows.values() for row in found])]:
-        print(f"| {name} | {len(found)} | " + " | ".join(f"{value:.3f}" for value in np.mean(found, axis=0)) + " |")
+    for name, found in [
+        *sorted(rows.items()),
+        ("all", [row for rows_of_type in rows.values() for row in rows_of_type]),
+    ]:
+        print(
+            f"| {name} | {len(found)} | "
+            + " | ".join(f"{value:.3f}" for value in np.mean(found, axis=0))
+            + " |"
+        )
 
     model = build_model(plans)
     feature = {entry["id"]: np.asarray(entry["feature"]) for entry in model["plans"]}
-    openings = {plan.id: (sides(plan.room, plan.room.doors), sides(plan.room, plan.room.windows)) for plan in plans}
+    openings = {
+        plan.id: (sides(plan.room, plan.room.doors), sides(plan.room, plan.room.windows))
+        for plan in plans
+    }
     print()
-    print("| room type | pairs | " + " | ".join(f"rho {part}" for part in PARTS) + " | rho f_r | IoU same walls (pairs) | IoU other walls |")
+    print(
+        "| room type | pairs | "
+        + " | ".join(f"rho {part}" for part in PARTS)
+        + " | rho f_r | IoU same walls (pairs) | IoU other walls |"
+    )
     print("|---|---|" + "---|" * (len(PARTS) + 3))
     for room_type in sorted(rows):
         ids = [plan.id for plan in plans if plan.type == room_type]
         pairs = list(itertools.combinations(ids, 2))
         iou = [soft_iou(truth[a], truth[b]) for a, b in pairs]
-        rho = [spearmanr([-abs(feature[a][k] - feature[b][k]) for a, b in pairs], iou).correlation for k in range(4)]
-        rho.append(spearmanr([-np.linalg.norm(feature[a] - feature[b]) for a, b in pairs], iou).correlation)
-        same = [value for (a, b), value in zip(pairs, iou) if openings[a] == openings[b]]
-        other = [value for (a, b), value in zip(pairs, iou) if openings[a] != openings[b]]
-        print(f"| {room_type} | {len(pairs)} | " + " | ".join(f"{value:+.2f}" for value in rho)
-              + f" | {np.mean(same):.3f} ({len(same)}) | {np.mean(other):.3f} |")  # fmt: skip
+        rho = [
+            spearmanr([-abs(feature[a][k] - feature[b][k]) for a, b in pairs], iou).correlation
+            for k in range(4)
+        ]
+        rho.append(
+            spearmanr([-np.linalg.norm(feature[a] - feature[b]) for a, b in pairs], iou).correlation
+        )
+        same = [
+            value for (a, b), value in zip(pairs, iou, strict=False) if openings[a] == openings[b]
+        ]
+        other = [
+            value for (a, b), value in zip(pairs, iou, strict=False) if openings[a] != openings[b]
+        ]
+        print(
+            f"| {room_type} | {len(pairs)} | "
+            + " | ".join(f"{value:+.2f}" for value in rho)
+            + f" | {np.mean(same):.3f} ({len(same)}) | {np.mean(other):.3f} |"
+        )
 
 
 if __name__ == "__main__":

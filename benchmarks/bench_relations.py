@@ -51,6 +51,8 @@ import time
 from collections import Counter, defaultdict
 from pathlib import Path
 
+import numpy as np
+
 from scenewright import __version__
 from scenewright.api import build_scene, load_rules, reproducible_json
 from scenewright.core.scene import Scene
@@ -90,7 +92,9 @@ def _make_scene(job: tuple[str, int, str]) -> tuple[int, bool, float]:
     return seed, scene.layout.ok, time.process_time() - started
 
 
-def generated_scenes(name: str, count: int, cache: Path, workers: int) -> tuple[list[Path], int, float]:
+def generated_scenes(
+    name: str, count: int, cache: Path, workers: int
+) -> tuple[list[Path], int, float]:
     """The scene.json files of seeds 0..count-1 of ``name`` whose layout is ok (made
     where the cache lacks them); also the number of failed layouts and the CPU seconds
     spent making scenes now."""
@@ -99,14 +103,19 @@ def generated_scenes(name: str, count: int, cache: Path, workers: int) -> tuple[
     missing = [
         (name, seed, str(folder))
         for seed in range(count)
-        if not (folder / f"{seed:06d}.json").exists() and not (folder / f"{seed:06d}.failed.json").exists()
+        if not (folder / f"{seed:06d}.json").exists()
+        and not (folder / f"{seed:06d}.failed.json").exists()
     ]
     spent = 0.0
     if missing:
         with multiprocessing.get_context("forkserver").Pool(workers) as pool:
             for _, _, seconds in pool.imap_unordered(_make_scene, missing, chunksize=4):
                 spent += seconds
-    ok = [folder / f"{seed:06d}.json" for seed in range(count) if (folder / f"{seed:06d}.json").exists()]
+    ok = [
+        folder / f"{seed:06d}.json"
+        for seed in range(count)
+        if (folder / f"{seed:06d}.json").exists()
+    ]
     return ok, count - len(ok), spent
 
 
@@ -125,12 +134,17 @@ def linked_objects(scenes: list[Scene]) -> dict[tuple[str, str], dict[int, list[
         for r in scene.relations:
             if r.source in types and r.target in types:
                 edges = links[tuple(sorted((types[r.source], types[r.target])))][index]
-                if (r.source, r.target) not in edges:  # one edge per object pair, however many labels
+                if (
+                    r.source,
+                    r.target,
+                ) not in edges:  # one edge per object pair, however many labels
                     edges.append((r.source, r.target))
     return links
 
 
-def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tuple[bool, float | None, float | None]]:
+def oracle_verdicts(
+    scenes: list[Scene], seed: int
+) -> dict[tuple[str, str], tuple[bool, float | None, float | None]]:
     """Per true pair: whether the geometry shows it to a test told which objects the
     grammar linked, with that test's p-value and tightness (None, None: in fewer than
     ``PAIR_SCENES`` scenes). The test is the permutation test's (random pairs of scenes,
@@ -140,7 +154,14 @@ def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tup
     are tighter (tightness > 0)."""
     import numpy as np
 
-    from scenewright.learning.relations import ALPHA, PAIR_SCENES, PERMUTATIONS, flip_test, pair_stream, relative_poses
+    from scenewright.learning.relations import (
+        ALPHA,
+        PAIR_SCENES,
+        PERMUTATIONS,
+        flip_test,
+        pair_stream,
+        relative_poses,
+    )
 
     verdicts = {}
     for (a, b), per_scene in linked_objects(scenes).items():
@@ -151,11 +172,19 @@ def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tup
             continue
         objects = [{o.id: o for o in scenes[index].placed_objects()} for index in indices]
         # One edge per scene, of the pair's usual direction (source type, target type).
-        directions = Counter((objects[k][s].type, objects[k][t].type) for k, i in enumerate(indices) for s, t in per_scene[i])
+        directions = Counter(
+            (objects[k][s].type, objects[k][t].type)
+            for k, i in enumerate(indices)
+            for s, t in per_scene[i]
+        )
         usual = directions.most_common(1)[0][0]
         edges = []
         for k, index in enumerate(indices):
-            options = [(s, t) for s, t in per_scene[index] if (objects[k][s].type, objects[k][t].type) == usual]
+            options = [
+                (s, t)
+                for s, t in per_scene[index]
+                if (objects[k][s].type, objects[k][t].type) == usual
+            ]
             if options:
                 source, target = options[int(rng.integers(len(options)))]
                 edges.append((objects[k][source], objects[k][target]))
@@ -172,9 +201,8 @@ def oracle_verdicts(scenes: list[Scene], seed: int) -> dict[tuple[str, str], tup
     return verdicts
 
 
-def _poses(objects: list) -> "np.ndarray":
+def _poses(objects: list) -> np.ndarray:
     """(x, z, yaw) of each object -> (n, 3)."""
-    import numpy as np
 
     return np.array([(o.position[0], o.position[2], o.yaw) for o in objects])
 
@@ -186,7 +214,9 @@ def scored(found: set, truth: set) -> tuple[float, float]:
     return precision, recall
 
 
-def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> dict[str, tuple[float, float]]:
+def evaluate(
+    name: str, paths: list[Path], failed: int, seed: int
+) -> dict[str, tuple[float, float]]:
     """Print how each test fares on the scenes ``paths``; return per test its precision
     and recall."""
     from scenewright.learning.relations import TESTS, find_relations
@@ -198,12 +228,16 @@ def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> dict[str, 
     truth = set(truth_counts)
     oracle = oracle_verdicts([e.scene for e in examples], seed)
     visible = {pair for pair, (shows, _, _) in oracle.items() if shows}
-    print(f"{name}: {len(paths)} scenes ({failed} failed layouts left out), {len(truth)} true pairs, "
-          f"{len(visible)} of them shown by the geometry; reading {loading:.1f} CPU s")  # fmt: skip
+    print(
+        f"{name}: {len(paths)} scenes ({failed} failed layouts left out), {len(truth)} true pairs, "
+        f"{len(visible)} of them shown by the geometry; reading {loading:.1f} CPU s"
+    )
     hidden = sorted(truth - visible)
     if hidden:
-        print("  not shown even to a test told the linked objects: " + ", ".join(
-            f"{a}-{b} ({_oracle_figures(oracle[(a, b)])})" for a, b in hidden))  # fmt: skip
+        print(
+            "  not shown even to a test told the linked objects: "
+            + ", ".join(f"{a}-{b} ({_oracle_figures(oracle[(a, b)])})" for a, b in hidden)
+        )
     scores = {}
     for test in TESTS:
         started = time.process_time()
@@ -214,15 +248,22 @@ def evaluate(name: str, paths: list[Path], failed: int, seed: int) -> dict[str, 
         scores[test] = (precision, recall)
         _, shown_recall = scored(found, visible)
         pruned = sum(pair.pruned for pair in result.pairs)
-        print(f"  {test:12s} precision {precision:.2f}  recall {recall:.2f}  recall of the shown {shown_recall:.2f}  "
-              f"({len(found & truth)} of {len(found)} found are true; {pruned} pruned as indirect; "
-              f"{len(result.pairs)} pairs tested; {seconds:.1f} CPU s)")  # fmt: skip
+        print(
+            f"  {test:12s} precision {precision:.2f}  recall {recall:.2f}  recall of the shown {shown_recall:.2f}  "
+            f"({len(found & truth)} of {len(found)} found are true; {pruned} pruned as indirect; "
+            f"{len(result.pairs)} pairs tested; {seconds:.1f} CPU s)"
+        )
         missed = sorted(truth - found)
         extra = sorted(found - truth)
         verdicts = {(pair.a, pair.b): pair for pair in result.pairs}
         if missed:
-            print("    missed: " + ", ".join(f"{a}-{b} ({truth_counts[(a, b)]} scenes{_figures(verdicts.get((a, b)))})"
-                                         for a, b in missed))  # fmt: skip
+            print(
+                "    missed: "
+                + ", ".join(
+                    f"{a}-{b} ({truth_counts[(a, b)]} scenes{_figures(verdicts.get((a, b)))})"
+                    for a, b in missed
+                )
+            )
         if extra:
             print("    not in the grammar: " + ", ".join(f"{a}-{b}" for a, b in extra))
     return scores
@@ -233,8 +274,10 @@ def summary(scores: dict[str, dict[str, tuple[float, float]]]) -> str:
     true pair, or nothing found)."""
     tests = list(next(iter(scores.values())))
     width = max(len(name) for name in scores) + 2
-    lines = [" " * width + "".join(f"{test:>22s}" for test in tests),
-             " " * width + "".join(f"{'precision  recall':>22s}" for _ in tests)]  # fmt: skip
+    lines = [
+        " " * width + "".join(f"{test:>22s}" for test in tests),
+        " " * width + "".join(f"{'precision  recall':>22s}" for _ in tests),
+    ]
     for name, per_test in scores.items():
         cells = "".join(
             f"{'-' if math.isnan(p) else f'{p:.2f}':>13s}{'-' if math.isnan(r) else f'{r:.2f}':>9s}"
@@ -270,48 +313,76 @@ def jitter_sweep(count: int, seed: int) -> None:
 
     def scene(placed):
         objects = [
-            SceneObject(id=f"{kind}{k}", type=kind, kind="object", noun=kind, plural=None, parent=None, style=None,
-                        position=[x, 0.0, z], yaw=yaw, size=[0.5, 0.8, 0.5], order=k)
+            SceneObject(
+                id=f"{kind}{k}",
+                type=kind,
+                kind="object",
+                noun=kind,
+                plural=None,
+                parent=None,
+                style=None,
+                position=[x, 0.0, z],
+                yaw=yaw,
+                size=[0.5, 0.8, 0.5],
+                order=k,
+            )
             for k, (kind, x, z, yaw) in enumerate(placed)
-        ]  # fmt: skip
-        return Scene(rules="jitter", seed=0, extent=[8.0, 8.0], objects=objects, paths=[], relations=[])
+        ]
+        return Scene(
+            rules="jitter", seed=0, extent=[8.0, 8.0], objects=objects, paths=[], relations=[]
+        )
 
-    print(f"a chair 0.9 m in front of a table, facing it, in {count} scenes; jitter = sd of the chair's offset "
-          "(m) and turn (rad)")  # fmt: skip
+    print(
+        f"a chair 0.9 m in front of a table, facing it, in {count} scenes; jitter = sd of the chair's offset "
+        "(m) and turn (rad)"
+    )
     for jitter in (0.0, 0.001, 0.01, 0.05, 0.2):
         rng = np.random.default_rng(seed)
         scenes = []
         for _ in range(count):
             x, z, yaw = rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-math.pi, math.pi)
             lx, lz = rng.normal(0, jitter), 0.9 + rng.normal(0, jitter)
-            chair = (x + lx * math.cos(yaw) + lz * math.sin(yaw), z - lx * math.sin(yaw) + lz * math.cos(yaw),
-                     yaw + math.pi + rng.normal(0, jitter))  # fmt: skip
+            chair = (
+                x + lx * math.cos(yaw) + lz * math.sin(yaw),
+                z - lx * math.sin(yaw) + lz * math.cos(yaw),
+                yaw + math.pi + rng.normal(0, jitter),
+            )
             scenes.append(scene([("table", x, z, yaw), ("chair", *chair)]))
         cells = []
         for test in ("permutation", "angle"):
             (pair,) = find_relations(scenes, test=test, seed=seed).pairs
-            cells.append(f"{test} {'related' if pair.related else 'not related':11s} statistic {pair.statistic:6.3f} "
-                         f"p {pair.p_value:.3g}")  # fmt: skip
+            cells.append(
+                f"{test} {'related' if pair.related else 'not related':11s} statistic {pair.statistic:6.3f} "
+                f"p {pair.p_value:.3g}"
+            )
         print(f"  jitter {jitter:5.3f}: " + "; ".join(cells))
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("rules", nargs="*", help="shipped rule sets or .rules files (default: every shipped set)")
+    parser.add_argument(
+        "rules", nargs="*", help="shipped rule sets or .rules files (default: every shipped set)"
+    )
     parser.add_argument("--scenes", type=int, default=500, help="scenes per rule set (500)")
     parser.add_argument("--workers", type=int, default=2, help="processes laying scenes out (2)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the tests' streams (0)")
     parser.add_argument(
-        "--cache", type=Path, default=Path(tempfile.gettempdir()) / "scenewright-bench-relations",
+        "--cache",
+        type=Path,
+        default=Path(tempfile.gettempdir()) / "scenewright-bench-relations",
         help="folder of cached scene.json files",
-    )  # fmt: skip
+    )
     parser.add_argument("--generate-only", action="store_true", help="fill the cache and stop")
     parser.add_argument(
-        "--floor", type=float, default=None,
+        "--floor",
+        type=float,
+        default=None,
         help="the permutation test's nearest-neighbour tightness floor (default: the module's MIN_LOCAL_TIGHTNESS)",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--jitter", action="store_true", help="instead: one planted relation under growing jitter, both tests"
+        "--jitter",
+        action="store_true",
+        help="instead: one planted relation under growing jitter, both tests",
     )
     args = parser.parse_args()
     if args.floor is not None:
@@ -325,11 +396,16 @@ def main() -> None:
     for name in args.rules or shipped_rule_sets():
         paths, failed, spent = generated_scenes(name, args.scenes, args.cache, args.workers)
         if spent:
-            print(f"{name}: laid out {args.scenes} scenes' missing ones in {spent:.0f} CPU s", flush=True)
+            print(
+                f"{name}: laid out {args.scenes} scenes' missing ones in {spent:.0f} CPU s",
+                flush=True,
+            )
         if not args.generate_only:
             scores[Path(name).stem] = evaluate(Path(name).stem, paths, failed, args.seed)
     if len(scores) > 1:
-        print(f"\nprecision and recall against the grammar's pairs, {args.scenes} scenes each, seed {args.seed}:")
+        print(
+            f"\nprecision and recall against the grammar's pairs, {args.scenes} scenes each, seed {args.seed}:"
+        )
         print(summary(scores))
 
 

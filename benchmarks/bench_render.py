@@ -18,8 +18,8 @@ import time
 import numpy as np
 
 from scenewright.api import build_scene
-from scenewright.render.offscreen import Renderer
 from scenewright.core.scene import Scene
+from scenewright.render.offscreen import Renderer
 
 
 def village_scenes(count: int) -> list[Scene]:

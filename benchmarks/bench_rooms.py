@@ -41,9 +41,8 @@ import time
 from collections import Counter
 
 from scenewright.generator import expand, load_rules
-from scenewright.generator.layout import layout_scene, measure_layout
 from scenewright.generator.layout import energy as energy_module
-from scenewright.generator.layout import room_terms
+from scenewright.generator.layout import layout_scene, measure_layout, room_terms
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.rules import shipped_rule_sets
 
@@ -137,24 +136,33 @@ def bench(name: str, seeds: int, without: bool = False) -> None:
             for problem_text in result.problems:
                 kinds[_kind(problem_text)] += 1
             verdicts: dict[str, list[bool]] = {}
-            for term, relation in zip(_terms_by_edge(problem), result.relations):
+            for term, relation in zip(_terms_by_edge(problem), result.relations, strict=False):
                 if term is not None and term.spec.family == "wall":
                     verdicts.setdefault(relation.source, []).append(relation.satisfied)
             walled += len(verdicts)
             held += sum(all(v) for v in verdicts.values())
             doors = bool(graph.params.room.doors)
             for box, box_id in enumerate(problem.ids):
-                if problem.support[box] == -1 and not problem.is_junction[box] and problem.access[box]:
+                if (
+                    problem.support[box] == -1
+                    and not problem.is_junction[box]
+                    and problem.access[box]
+                ):
                     used += 1
                     reached += box_id not in unreachable if doors else 1
     cpu.sort()
-    print(f"{name}: {seeds} seeds, {min(counts)}..{max(counts)} objects per scene" + (", laid out WITHOUT the room terms" if without else ""))
+    print(
+        f"{name}: {seeds} seeds, {min(counts)}..{max(counts)} objects per scene"
+        + (", laid out WITHOUT the room terms" if without else "")
+    )
     print(f"  ok {100 * ok / seeds:.1f} %")
     print(f"  held by a wall {_share(held, walled)} of {walled} objects with a wall relation")
     print(f"  in a door's swing {swing}   crossing a wall {crossing}   (objects, all scenes)")
     print(f"  before a window: {windowed} of {seeds} scenes (a tall object in a window's view)")
     print(f"  reachable {_share(reached, used)} of {used} objects someone must reach")
-    print(f"  layout cpu seconds: median {statistics.median(cpu):.3f}  p90 {cpu[int(0.9 * (seeds - 1))]:.3f}")
+    print(
+        f"  layout cpu seconds: median {statistics.median(cpu):.3f}  p90 {cpu[int(0.9 * (seeds - 1))]:.3f}"
+    )
     if clock.proposals and not without:
         per_moved = 1e6 * clock.seconds / clock.moved if clock.moved else 0.0
         print(
@@ -176,7 +184,15 @@ def _share(part: int, whole: int) -> str:
 
 
 def _kind(problem: str) -> str:
-    for words in ("swing", "kept free", "cannot be reached", "crosses the wall", "overlaps", "is not", "runs into"):
+    for words in (
+        "swing",
+        "kept free",
+        "cannot be reached",
+        "crosses the wall",
+        "overlaps",
+        "is not",
+        "runs into",
+    ):
         if words in problem:
             return words
     return "other"
@@ -185,8 +201,14 @@ def _kind(problem: str) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("rules", nargs="*", help="rule sets (default: every shipped room rule set)")
-    parser.add_argument("--seeds", type=int, default=50, help="seeds 0..N-1 per rule set (default 50)")
-    parser.add_argument("--without-room-terms", action="store_true", help="lay out without them, then measure with them")
+    parser.add_argument(
+        "--seeds", type=int, default=50, help="seeds 0..N-1 per rule set (default 50)"
+    )
+    parser.add_argument(
+        "--without-room-terms",
+        action="store_true",
+        help="lay out without them, then measure with them",
+    )
     args = parser.parse_args()
     for name in args.rules or room_rule_sets():
         bench(name, args.seeds, args.without_room_terms)

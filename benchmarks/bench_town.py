@@ -49,10 +49,16 @@ def bench(rules_name: str, seeds: int, params: LayoutParams, verbose: bool) -> N
         oks += result.ok
         kinds.update(problem_kind(problem) for problem in result.problems)
         if verbose:
-            print(f"  seed {seed:3d}: {counts[-1]:3d} objects  {cpu[-1]:7.2f} s  ok {result.ok}  {result.problems[:3]}")
+            print(
+                f"  seed {seed:3d}: {counts[-1]:3d} objects  {cpu[-1]:7.2f} s  ok {result.ok}  {result.problems[:3]}"
+            )
     median, p90, share = statistics.median(cpu), percentile(cpu, 0.9), oks / seeds
-    print(f"{rules_name}: seeds 0..{seeds - 1}, {min(counts)}..{max(counts)} objects per scene (mean {statistics.mean(counts):.0f})")
-    print(f"  layout cpu seconds: median {median:.2f}  p90 {p90:.2f}  max {max(cpu):.2f}  mean {statistics.mean(cpu):.2f}")
+    print(
+        f"{rules_name}: seeds 0..{seeds - 1}, {min(counts)}..{max(counts)} objects per scene (mean {statistics.mean(counts):.0f})"
+    )
+    print(
+        f"  layout cpu seconds: median {median:.2f}  p90 {p90:.2f}  max {max(cpu):.2f}  mean {statistics.mean(cpu):.2f}"
+    )
     print(f"  ok {100 * share:.0f} %   overlaps {kinds['overlaps']}")
     if kinds:
         print("  problems by kind:", dict(kinds.most_common()))
@@ -65,14 +71,20 @@ def bench(rules_name: str, seeds: int, params: LayoutParams, verbose: bool) -> N
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=20, help="lay out seeds 0..SEEDS-1 (default 20)")
+    parser.add_argument(
+        "--seeds", type=int, default=20, help="lay out seeds 0..SEEDS-1 (default 20)"
+    )
     parser.add_argument("--rules", default="town", help="rule set (default town)")
     parser.add_argument("--verbose", action="store_true", help="one line per seed")
     parser.add_argument(
-        "--decompose", choices=("auto", "off"), default="auto",
+        "--decompose",
+        choices=("auto", "off"),
+        default="auto",
         help="auto: group decomposition where its rule says (default); off: one chain over the whole scene",
     )
-    parser.add_argument("--workers", type=int, default=1, help="processes laying out the groups' frames (default 1)")
+    parser.add_argument(
+        "--workers", type=int, default=1, help="processes laying out the groups' frames (default 1)"
+    )
     args = parser.parse_args()
     params = LayoutParams(decompose=args.decompose == "auto", workers=args.workers)
     bench(args.rules, args.seeds, params, args.verbose)

@@ -29,7 +29,7 @@ from scenewright.api import build_scene
 from scenewright.examples import Example
 from scenewright.variation import augment, structure_graph
 from scenewright.variation.operations import grow_node
-from scenewright.variation.synthesis import apply_change, signature, start_variant, vary, Variant
+from scenewright.variation.synthesis import Variant, apply_change, signature, start_variant, vary
 from scenewright.variation.write import is_new
 
 
@@ -48,23 +48,37 @@ def regrow(rule_sets: list[str], seeds: int) -> None:
                 if not graph.neighbours(i, set(graph.layout_nodes())):
                     continue
                 gone = {graph.ids[i], *(graph.ids[j] for j in graph.carried(i))}
-                cut = replace(scene, objects=[o for o in scene.objects if o.id not in gone],
-                              relations=[r for r in scene.relations if r.source not in gone and r.target not in gone])  # fmt: skip
+                cut = replace(
+                    scene,
+                    objects=[o for o in scene.objects if o.id not in gone],
+                    relations=[
+                        r for r in scene.relations if r.source not in gone and r.target not in gone
+                    ],
+                )
                 ag = augment([as_example(cut, "cut"), as_example(scene, "full")])
                 variant = start_variant(0, as_example(cut, "cut"))
                 change = grow_node(variant, ag, ag.node_of[(1, graph.ids[i])], (1, graph.ids[i]))
                 tried += 1
-                done = apply_change(variant, ag, change, np.random.default_rng(seed)) if change else None
+                done = (
+                    apply_change(variant, ag, change, np.random.default_rng(seed))
+                    if change
+                    else None
+                )
                 if done is None:
                     failed += 1
                     continue
                 grown = done.objects()[change.added[0][0].id]
                 original = scene.object(graph.ids[i])
-                distance = math.hypot(grown.position[0] - original.position[0], grown.position[2] - original.position[2])
+                distance = math.hypot(
+                    grown.position[0] - original.position[0],
+                    grown.position[2] - original.position[2],
+                )
                 turn = abs(math.remainder(grown.yaw - original.yaw, 2 * math.pi))
                 close += distance <= 0.2 and turn <= math.radians(15)
-        print(f"  {rules:12s} {tried} objects: within 0.2 m and 15 deg {close / max(tried, 1):.3f}; "
-              f"not regrown (no layout found, or too incompatible) {failed}")  # fmt: skip
+        print(
+            f"  {rules:12s} {tried} objects: within 0.2 m and 15 deg {close / max(tried, 1):.3f}; "
+            f"not regrown (no layout found, or too incompatible) {failed}"
+        )
 
 
 def variants(rule_sets: list[str], count: int) -> None:
@@ -79,20 +93,29 @@ def variants(rule_sets: list[str], count: int) -> None:
         keys = {signature(Variant(r.scene, dict(r.origin))) for r in results}
         new = sum(is_new(r, examples) for r in results)
         operations = Counter(op["operation"] for r in results for op in r.operations)
-        print(f"  {rules:12s} made {len(results)}: ok {ok}, with overlaps {overlaps}, distinct {len(keys)}, new {new}; "
-              f"K {min((r.compatibility for r in results), default=0):.2f}..{max((r.compatibility for r in results), default=0):.2f}; "
-              f"operations {dict(sorted(operations.items()))}; {seconds:.1f} CPU s")  # fmt: skip
+        print(
+            f"  {rules:12s} made {len(results)}: ok {ok}, with overlaps {overlaps}, distinct {len(keys)}, new {new}; "
+            f"K {min((r.compatibility for r in results), default=0):.2f}..{max((r.compatibility for r in results), default=0):.2f}; "
+            f"operations {dict(sorted(operations.items()))}; {seconds:.1f} CPU s"
+        )
 
 
 OPTIONS = (
     ("--seeds", int, 4, "scenes per rule set for regrow (4)"),
     ("--count", int, 40, "variants asked for (40)"),
-    ("--rules", str, "bedroom,living_room,study", "rule sets, comma-separated (bedroom,living_room,study)"),
+    (
+        "--rules",
+        str,
+        "bedroom,living_room,study",
+        "rule sets, comma-separated (bedroom,living_room,study)",
+    ),
 )
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     for flag, kind, default, words in OPTIONS:
         parser.add_argument(flag, type=kind, default=default, help=words)
     parser.add_argument("--only", choices=("regrow", "vary"))

@@ -175,6 +175,10 @@ def _in_view(piece, x: float, z: float, facing_yaw: float) -> bool:
         wx, wz = to_world(piece.center[0], piece.center[1], piece.yaw, lx, lz)
         ahead_x, ahead_z = to_local(x, z, facing_yaw, wx, wz)  # (left, forward) of the person
         distance = math.hypot(ahead_x, ahead_z)
-        if 0.0 < distance <= VISUAL_RANGE and ahead_z > 0.0 and math.atan2(abs(ahead_x), ahead_z) <= VISUAL_HALF_ANGLE:
+        if (
+            0.0 < distance <= VISUAL_RANGE
+            and ahead_z > 0.0
+            and math.atan2(abs(ahead_x), ahead_z) <= VISUAL_HALF_ANGLE
+        ):
             return True
     return False

@@ -48,7 +48,15 @@ class Design:
     """One plan being drawn. Positions along a wall (``at``) are measured from the
     west end of a north or south wall and from the north end of an east or west wall."""
 
-    def __init__(self, plan_id: str, room_type: str, title: str, width: float, depth: float, height: float = 2.6):
+    def __init__(
+        self,
+        plan_id: str,
+        room_type: str,
+        title: str,
+        width: float,
+        depth: float,
+        height: float = 2.6,
+    ):
         self.id, self.type, self.title = plan_id, room_type, title
         self.width, self.depth = width, depth
         self.room = Room.rectangle(width, depth, height)
@@ -64,21 +72,32 @@ class Design:
         return length - at if wall in "SW" else at
 
     def door(self, wall: str, at: float, width: float = 0.9) -> None:
-        self.room = self.room.with_opening("door", f"wall_{WALLS[wall] + 1}", self._wall_offset(wall, at), width)
+        self.room = self.room.with_opening(
+            "door", f"wall_{WALLS[wall] + 1}", self._wall_offset(wall, at), width
+        )
 
-    def window(self, wall: str, at: float, width: float, sill: float = 0.9, height: float = 1.3) -> None:
+    def window(
+        self, wall: str, at: float, width: float, sill: float = 0.9, height: float = 1.3
+    ) -> None:
         self.room = self.room.with_opening(
             "window", f"wall_{WALLS[wall] + 1}", self._wall_offset(wall, at), width, height, sill
         )
 
     # -- furniture ------------------------------------------------------------------------
 
-    def _add(self, category: str, x: float, z: float, size, yaw: float, on: str | None = None) -> str:
+    def _add(
+        self, category: str, x: float, z: float, size, yaw: float, on: str | None = None
+    ) -> str:
         """Add a piece at plan position (x, z) (from the north-west corner); return its id."""
         self._counts[category] = self._counts.get(category, 0) + 1
         piece_id = f"{category}_{self._counts[category]}"
-        piece = {"id": piece_id, "category": category, "center": self._centred(x, z),
-                 "size": [float(size[0]), float(size[1])], "yaw": _wrapped(yaw)}  # fmt: skip
+        piece = {
+            "id": piece_id,
+            "category": category,
+            "center": self._centred(x, z),
+            "size": [float(size[0]), float(size[1])],
+            "yaw": _wrapped(yaw),
+        }
         if on is not None:
             piece["on"] = on
         self.pieces.append(piece)
@@ -86,7 +105,10 @@ class Design:
 
     def _centred(self, x: float, z: float) -> list[float]:
         """Plan (x, z) from the north-west corner as room coordinates (origin at the centre)."""
-        return [round(x - self.width / 2.0, 4) + 0.0, round(z - self.depth / 2.0, 4) + 0.0]  # + 0.0: no -0.0
+        return [
+            round(x - self.width / 2.0, 4) + 0.0,
+            round(z - self.depth / 2.0, 4) + 0.0,
+        ]  # + 0.0: no -0.0
 
     def _get(self, piece_id: str) -> tuple[float, float, float, float, float]:
         """A piece's plan x, z, yaw, width and depth."""
@@ -98,12 +120,19 @@ class Design:
         """``category`` with its back to ``wall`` (``gap`` metres off it), centred ``at`` along it."""
         w, d = size
         off = gap + d / 2.0
-        x, z = {"N": (at, off), "S": (at, self.depth - off), "W": (off, at), "E": (self.width - off, at)}[wall]
+        x, z = {
+            "N": (at, off),
+            "S": (at, self.depth - off),
+            "W": (off, at),
+            "E": (self.width - off, at),
+        }[wall]
         return self._add(category, x, z, size, AWAY_FROM[wall])
 
     def place(self, category: str, x: float, z: float, size, facing: str | float) -> str:
         """A free-standing piece centred at plan (x, z), facing a compass word or a yaw."""
-        return self._add(category, x, z, size, FACING[facing] if isinstance(facing, str) else facing)
+        return self._add(
+            category, x, z, size, FACING[facing] if isinstance(facing, str) else facing
+        )
 
     def beside(self, anchor: str, category: str, size, side: str, gap: float = 0.05) -> str:
         """Beside ``anchor`` on its own ``left`` or ``right``, backs flush, facing the same way."""
@@ -116,22 +145,38 @@ class Design:
     def either_side(self, anchor: str, category: str, size, gap: float = 0.05) -> list[str]:
         return [self.beside(anchor, category, size, side, gap) for side in ("left", "right")]
 
-    def before(self, anchor: str, category: str, size, distance: float, facing: str = "towards",
-               across: float = 0.0) -> str:  # fmt: skip
+    def before(
+        self,
+        anchor: str,
+        category: str,
+        size,
+        distance: float,
+        facing: str = "towards",
+        across: float = 0.0,
+    ) -> str:
         """In front of ``anchor``, ``distance`` metres between their faces, ``across``
         metres to its left; facing it (``towards``) or the way it faces (``same``)."""
         ax, az, yaw, aw, ad = self._get(anchor)
         x, z = to_world(ax, az, yaw, across, ad / 2.0 + distance + size[1] / 2.0)
         return self._add(category, x, z, size, yaw + (math.pi if facing == "towards" else 0.0))
 
-    def on(self, support: str, category: str, size, across: float = 0.0, forward: float = 0.0) -> str:
+    def on(
+        self, support: str, category: str, size, across: float = 0.0, forward: float = 0.0
+    ) -> str:
         """A small thing standing on ``support``, ``across`` to its left and ``forward`` of its centre."""
         sx, sz, yaw, _, _ = self._get(support)
         x, z = to_world(sx, sz, yaw, across, forward)
         return self._add(category, x, z, size, yaw, on=support)
 
-    def chairs_around(self, table: str, per_side: int, ends: int = 0, size=(0.45, 0.5), gap: float = 0.05,
-                      sides: str = "both") -> list[str]:  # fmt: skip
+    def chairs_around(
+        self,
+        table: str,
+        per_side: int,
+        ends: int = 0,
+        size=(0.45, 0.5),
+        gap: float = 0.05,
+        sides: str = "both",
+    ) -> list[str]:
         """Chairs facing ``table``: ``per_side`` along each long side (``sides``: both,
         front or back), evenly spaced, and ``ends`` (0, 1 or 2) at its ends."""
         tx, tz, yaw, tw, td = self._get(table)
@@ -157,8 +202,13 @@ class Design:
     # -- output ---------------------------------------------------------------------------
 
     def to_dict(self) -> dict:
-        data = {"id": self.id, "type": self.type, "title": self.title, "room": rounded(self.room.to_dict(), 4),
-                "furniture": self.pieces}  # fmt: skip
+        data = {
+            "id": self.id,
+            "type": self.type,
+            "title": self.title,
+            "room": rounded(self.room.to_dict(), 4),
+            "furniture": self.pieces,
+        }
         if self.free_areas:
             data["free_areas"] = self.free_areas
         return data
@@ -182,8 +232,14 @@ def designs() -> list[Design]:
 def plan_json(data: dict) -> str:
     """A plan's JSON text as people read it: indented, with each list of numbers on one line."""
     text = json.dumps(data, indent=1)
-    return re.sub(r"\[\s+(-?[0-9.e+-]+(?:,\s+-?[0-9.e+-]+)*)\s+\]",
-                  lambda match: "[" + ", ".join(match[1].replace(",", " ").split()) + "]", text) + "\n"  # fmt: skip
+    return (
+        re.sub(
+            r"\[\s+(-?[0-9.e+-]+(?:,\s+-?[0-9.e+-]+)*)\s+\]",
+            lambda match: "[" + ", ".join(match[1].replace(",", " ").split()) + "]",
+            text,
+        )
+        + "\n"
+    )
 
 
 def write_plan_set(folder: Path) -> list[str]:

@@ -84,17 +84,39 @@ SUPPORTS = {
 }
 #: Categories that stand with their back to a wall. The rest stand by a partner (a chair
 #: at its desk or table, an armchair by the coffee table) or in a corner.
-AGAINST_WALL = frozenset({
-    "bed", "wardrobe", "dresser", "bookshelf", "filing_cabinet", "tv_stand", "piano", "refrigerator",
-    "kitchen_counter", "sofa", "desk", "treadmill", "exercise_bike", "rowing_machine", "dumbbell_rack",
-})  # fmt: skip
+AGAINST_WALL = frozenset(
+    {
+        "bed",
+        "wardrobe",
+        "dresser",
+        "bookshelf",
+        "filing_cabinet",
+        "tv_stand",
+        "piano",
+        "refrigerator",
+        "kitchen_counter",
+        "sofa",
+        "desk",
+        "treadmill",
+        "exercise_bike",
+        "rowing_machine",
+        "dumbbell_rack",
+    }
+)
 #: Pieces that stand in a row along a wall: beside the first piece of the first of their
 #: categories in the room (not themselves), backs flush: bookshelves side by side,
 #: treadmills and bikes in a row facing the same wall (the gyms' cardio rows).
-ROWS = {"bookshelf": ("bookshelf",), "treadmill": ("treadmill",), "exercise_bike": ("treadmill", "exercise_bike")}
+ROWS = {
+    "bookshelf": ("bookshelf",),
+    "treadmill": ("treadmill",),
+    "exercise_bike": ("treadmill", "exercise_bike"),
+}
 #: What a flat piece lies before, in order of preference: a rug before the bed, sofa or
 #: table; an exercise mat before the television or the dumbbell rack.
-FLAT_BEFORE = {"rug": ("bed", "sofa", "dining_table"), "exercise_mat": ("tv_stand", "dumbbell_rack")}
+FLAT_BEFORE = {
+    "rug": ("bed", "sofa", "dining_table"),
+    "exercise_mat": ("tv_stand", "dumbbell_rack"),
+}
 #: Free-standing pieces that stand before a piece against a wall (beyond its clearance):
 #: a weight bench before the dumbbell rack.
 STANDS_BEFORE = {"weight_bench": ("dumbbell_rack",)}
@@ -104,14 +126,18 @@ SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_tabl
 #: table: turned to its centre at the ends, square to it along the long sides (where two
 #: chairs side by side cannot both point at the centre).
 TABLE_SIDES = (
-    ("NextToFront", "FacingOpposite"), ("NextToBehind", "FacingSameDirection"),
-    ("NextToLeft", "FacingTowards"), ("NextToRight", "FacingTowards"),
-)  # fmt: skip
+    ("NextToFront", "FacingOpposite"),
+    ("NextToBehind", "FacingSameDirection"),
+    ("NextToLeft", "FacingTowards"),
+    ("NextToRight", "FacingTowards"),
+)
 #: Per table side, the table-local (left, forward) directions along it and out of it.
 SIDE_DIRECTIONS = {
-    "NextToFront": ((1.0, 0.0), (0.0, 1.0)), "NextToBehind": ((1.0, 0.0), (0.0, -1.0)),
-    "NextToLeft": ((0.0, 1.0), (1.0, 0.0)), "NextToRight": ((0.0, 1.0), (-1.0, 0.0)),
-}  # fmt: skip
+    "NextToFront": ((1.0, 0.0), (0.0, 1.0)),
+    "NextToBehind": ((1.0, 0.0), (0.0, -1.0)),
+    "NextToLeft": ((0.0, 1.0), (1.0, 0.0)),
+    "NextToRight": ((0.0, 1.0), (-1.0, 0.0)),
+}
 #: What others gather round: it stands free, the relations are theirs.
 CENTRE_PIECES = frozenset({"dining_table", "coffee_table"})
 #: Why a category the selection chose is not in the room.
@@ -169,13 +195,17 @@ def parse_room(text: str) -> Room:
         if size:
             width, depth = (_number(part, "room side") for part in size.groups())
             if not (0.5 <= width <= MAX_EXTENT and 0.5 <= depth <= MAX_EXTENT):
-                raise InputError(f"room {spec!r}: each side must lie between 0.5 and {MAX_EXTENT:g} m")
+                raise InputError(
+                    f"room {spec!r}: each side must lie between 0.5 and {MAX_EXTENT:g} m"
+                )
             return Room.rectangle(width, depth)
         corners = []
         for point in spec.replace(";", " ").split():
             parts = point.strip("()").split(",")
             if len(parts) != 2:
-                raise InputError(f"room {spec!r}: give W x D (5x4) or corners x,z x,z x,z ... ({point!r} is neither)")
+                raise InputError(
+                    f"room {spec!r}: give W x D (5x4) or corners x,z x,z x,z ... ({point!r} is neither)"
+                )
             corners.append(tuple(_number(part, "room corner") for part in parts))
         if any(abs(v) > MAX_EXTENT for corner in corners for v in corner):
             raise InputError(f"room {spec!r}: a corner lies further than {MAX_EXTENT:g} m out")
@@ -192,20 +222,28 @@ def add_opening(room: Room, kind: str, text: str) -> Room:
     parts = text.split(":")
     most = 4 if kind == "door" else 5
     if not 3 <= len(parts) <= most:
-        form = "WALL:OFFSET:WIDTH[:HEIGHT]" if kind == "door" else "WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]"
-        raise InputError(f"{kind} {text!r}: give {form}, e.g. {'S:0.8:0.9' if kind == 'door' else 'N:2.5:1.4'}")
+        form = (
+            "WALL:OFFSET:WIDTH[:HEIGHT]" if kind == "door" else "WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]"
+        )
+        raise InputError(
+            f"{kind} {text!r}: give {form}, e.g. {'S:0.8:0.9' if kind == 'door' else 'N:2.5:1.4'}"
+        )
     wall_name = WALL_LETTERS.get(parts[0].strip().upper(), parts[0].strip().lower())
     wall = room.wall(wall_name)
     if wall is None:
         sides = ", ".join(dict.fromkeys(w.side for w in room.walls))
-        raise InputError(f"{kind} {text!r}: the room has no wall {parts[0]!r} (sides: {sides}; or 1 to {len(room.walls)})")
+        raise InputError(
+            f"{kind} {text!r}: the room has no wall {parts[0]!r} (sides: {sides}; or 1 to {len(room.walls)})"
+        )
     numbers = [_number(part, f"{kind} {text!r}") for part in parts[1:]]
     offset, width = numbers[0], numbers[1]
     if kind == "door":
         arguments = dict(height=numbers[2] if len(numbers) > 2 else None)
     else:
         sill = numbers[2] if len(numbers) > 2 else DEFAULT_SILL
-        arguments = dict(sill=sill, height=numbers[3] if len(numbers) > 3 else DEFAULT_WINDOW_HEIGHT)
+        arguments = dict(
+            sill=sill, height=numbers[3] if len(numbers) > 3 else DEFAULT_WINDOW_HEIGHT
+        )
     try:
         return room.with_opening(kind, wall.id, offset, width, **arguments)
     except RoomError as problem:
@@ -231,7 +269,9 @@ def parse_categories(texts: list[str], known) -> dict[str, int]:
             count = 1
             if count_text:
                 if not count_text.strip().isdigit() or not 1 <= int(count_text) <= MAX_COUNT:
-                    raise InputError(f"--with {item!r}: the count must be a whole number from 1 to {MAX_COUNT}")
+                    raise InputError(
+                        f"--with {item!r}: the count must be a whole number from 1 to {MAX_COUNT}"
+                    )
                 count = int(count_text)
             requested[name] = requested.get(name, 0) + count
     if not requested:
@@ -239,7 +279,9 @@ def parse_categories(texts: list[str], known) -> dict[str, int]:
     return requested
 
 
-def parse_request(room: str, doors: list[str], windows: list[str], categories: list[str], known) -> Request:
+def parse_request(
+    room: str, doors: list[str], windows: list[str], categories: list[str], known
+) -> Request:
     """The request the command line states (see the functions above for each part)."""
     built = parse_room(room)
     for text in doors:
@@ -290,7 +332,9 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
     from scenewright.completion.selection import check_counts, choose_types, explore_categories
 
     room = request.room
-    choice = choose_types(model, request.requested, room.area)  # first: it names a category no plan has
+    choice = choose_types(
+        model, request.requested, room.area
+    )  # first: it names a category no plan has
     check_counts(model, request.requested)
     regions = split_room(model, room, choice.types) if split else ()
     region_of = {region.room_type: k for k, region in enumerate(regions)}
@@ -298,7 +342,9 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
     explorations = {}
     counts: dict[str, int] = dict(sorted(request.requested.items()))
     for room_type in choice.types:
-        owned = {name: n for name, n in request.requested.items() if choice.owners[name] == room_type}
+        owned = {
+            name: n for name, n in request.requested.items() if choice.owners[name] == room_type
+        }
         if regions:
             part = regions[region_of[room_type]].room
             share, parts = part.area, room_parts(part, model["types"][room_type]["mean_area"])
@@ -315,15 +361,21 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
         return Contents(choice.types, choice.owners, explorations, counts, mask)
     owners = category_owners(model, choice.types, choice.owners, explorations, counts)
     masks = tuple(
-        amalgamated_mask(model, region.room_type, region.room,
-                         {name: n for name, n in counts.items() if owners[name] == region.room_type})
+        amalgamated_mask(
+            model,
+            region.room_type,
+            region.room,
+            {name: n for name, n in counts.items() if owners[name] == region.room_type},
+        )
         for region in regions
-    )  # fmt: skip
+    )
     mask = RegionMasks(regions, masks, {name: region_of[owner] for name, owner in owners.items()})
     return Contents(choice.types, choice.owners, explorations, counts, mask, regions)
 
 
-def category_owners(model: dict, types, requested_owners: dict, explorations: dict, counts) -> dict[str, str]:
+def category_owners(
+    model: dict, types, requested_owners: dict, explorations: dict, counts
+) -> dict[str, str]:
     """Category -> the type (region) it belongs to: a requested one its Equation 2
     owner (``requested_owners``); an added one the type, of those whose Algorithm 1
     chose it, that has it most often (the paper's rule for requested categories,
@@ -334,12 +386,19 @@ def category_owners(model: dict, types, requested_owners: dict, explorations: di
             owners[name] = requested_owners[name]
             continue
         choosers = [t for t in types if name in explorations[t].counts] or list(types)
-        owners[name] = max(choosers, key=lambda t: (model["types"][t]["categories"].get(name, {}).get("p", 0.0),
-                                                    -list(types).index(t)))  # fmt: skip
+        owners[name] = max(
+            choosers,
+            key=lambda t: (
+                model["types"][t]["categories"].get(name, {}).get("p", 0.0),
+                -list(types).index(t),
+            ),
+        )
     return owners
 
 
-def region_boxes(types: dict[str, str], relations, owners: dict[str, int], count: int) -> list[list[str]]:
+def region_boxes(
+    types: dict[str, str], relations, owners: dict[str, int], count: int
+) -> list[list[str]]:
     """Per region (``count`` of them) the ids of the floor pieces that belong there,
     from the pieces' categories (``types``: id -> category), the ``relations`` (source,
     target) between them and the region of each category (``owners``). A large piece
@@ -350,7 +409,12 @@ def region_boxes(types: dict[str, str], relations, owners: dict[str, int], count
     they go with their support."""
     anchor: dict[str, str] = {}
     for source, target in relations:
-        if source in types and target in types and source not in anchor and types[source] not in MASKED:
+        if (
+            source in types
+            and target in types
+            and source not in anchor
+            and types[source] not in MASKED
+        ):
             anchor[source] = target
     out: list[list[str]] = [[] for _ in range(count)]
     for box, category in types.items():
@@ -382,12 +446,18 @@ def build_graph(
     supports = {}  # what stands on something -> the support categories present that it fits on
     for name in list(counts):
         if name in SUPPORTS:
-            supports[name] = [s for s in SUPPORTS[name][0] if counts.get(s) and _fits_on(catalog[name], catalog[s])]
+            supports[name] = [
+                s
+                for s in SUPPORTS[name][0]
+                if counts.get(s) and _fits_on(catalog[name], catalog[s])
+            ]
             if not supports[name]:
                 dropped[name] = NOTHING_TO_STAND_ON
                 del counts[name]
     # Floor pieces first (anchors before what relates to them), then what stands on them.
-    order = sorted(counts, key=lambda n: (n in SUPPORTS, n not in AGAINST_WALL, n in SEAT_TARGETS, n))
+    order = sorted(
+        counts, key=lambda n: (n in SUPPORTS, n not in AGAINST_WALL, n in SEAT_TARGETS, n)
+    )
     made: dict[str, list[str]] = {}
     for name in order:
         made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
@@ -395,12 +465,16 @@ def build_graph(
     if contents.regions and "desk" in counts:  # a desk goes under a window of its own region
         windows = bool(contents.regions[contents.mask.owners["desk"]].room.windows)
     cornerless = {  # categories whose region is a strip between virtual walls: no room corner in it
-        name for name in counts
-        if contents.regions and not contents.regions[contents.mask.owners[name]].has_room_corner(room)
-    }  # fmt: skip
+        name
+        for name in counts
+        if contents.regions
+        and not contents.regions[contents.mask.owners[name]].has_room_corner(room)
+    }
     for name in order:
         for index, node in enumerate(made[name]):
-            for label, target in _relations_of(name, index, made, weights, windows, supports, name in cornerless):
+            for label, target in _relations_of(
+                name, index, made, weights, windows, supports, name in cornerless
+            ):
                 graph.add_relation(node, target, label)
     return graph, dropped
 
@@ -422,7 +496,13 @@ def _fits_on(item, support) -> bool:
 
 
 def _relations_of(
-    name: str, index: int, made: dict, weights: dict, windows: bool, supports: dict, cornerless: bool = False
+    name: str,
+    index: int,
+    made: dict,
+    weights: dict,
+    windows: bool,
+    supports: dict,
+    cornerless: bool = False,
 ) -> list[tuple[str, str]]:
     """The relations (label, target) of the ``index``-th piece of category ``name``;
     ``windows``: whether the first desk has a window to stand under; ``supports``: per
@@ -440,9 +520,16 @@ def _relations_of(
     if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
     if name in ROWS:
-        first = next((made[n][0] for n in ROWS[name] if made.get(n) and made[n][0] != made[name][index]), None)
+        first = next(
+            (made[n][0] for n in ROWS[name] if made.get(n) and made[n][0] != made[name][index]),
+            None,
+        )
         if first is not None:
-            return [("NextToChooseSide", first), ("ImplicitAlignedWith", first), ("ImplicitAgainstWall", ROOM_NODE)]
+            return [
+                ("NextToChooseSide", first),
+                ("ImplicitAlignedWith", first),
+                ("ImplicitAgainstWall", ROOM_NODE),
+            ]
     if name == "sofa" and made.get("tv_stand"):
         return [("FacingTowards", made["tv_stand"][0]), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "coffee_table" and made.get("sofa"):
@@ -460,14 +547,23 @@ def _relations_of(
         anchor = next((made[n][0] for n in FLAT_BEFORE[name] if made.get(n)), None)
         anchor = anchor or _strongest_partner(name, made, weights)
         return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
-    before = next((made[n][index % len(made[n])] for n in STANDS_BEFORE.get(name, ()) if made.get(n)), None)
+    before = next(
+        (made[n][index % len(made[n])] for n in STANDS_BEFORE.get(name, ()) if made.get(n)), None
+    )
     if before is not None:
         return [("NextToFront", before)]
     partner = _strongest_partner(name, made, weights)
     if name == "armchair" and made.get("coffee_table"):
-        return [("NextToChooseSide", made["coffee_table"][0]), ("FacingTowards", made["coffee_table"][0])]
+        return [
+            ("NextToChooseSide", made["coffee_table"][0]),
+            ("FacingTowards", made["coffee_table"][0]),
+        ]
     if name in CORNER_ITEMS or partner is None:
-        return [("InCorner", ROOM_NODE)] if name in CORNER_ITEMS and not cornerless else [("AgainstWall", ROOM_NODE)]
+        return (
+            [("InCorner", ROOM_NODE)]
+            if name in CORNER_ITEMS and not cornerless
+            else [("AgainstWall", ROOM_NODE)]
+        )
     return [("NextToChooseSide", partner)]
 
 
@@ -516,14 +612,24 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     from scenewright.completion.layout_mask import mask_values
     from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
-    wall_of = {r.source: r.label for r in graph.edges() if r.target == ROOM_NODE and r.label in ("AgainstWall", "UnderWindow")}
-    flanks: dict[str, list[tuple[str, float]]] = {}  # piece -> (flanking piece, side: -1 left, +1 right)
+    wall_of = {
+        r.source: r.label
+        for r in graph.edges()
+        if r.target == ROOM_NODE and r.label in ("AgainstWall", "UnderWindow")
+    }
+    flanks: dict[
+        str, list[tuple[str, float]]
+    ] = {}  # piece -> (flanking piece, side: -1 left, +1 right)
     for relation in graph.edges():
         if relation.label in ("NextToLeft", "NextToRight") and relation.target in wall_of:
-            flanks.setdefault(relation.target, []).append((relation.source, -1.0 if relation.label == "NextToLeft" else 1.0))
+            flanks.setdefault(relation.target, []).append(
+                (relation.source, -1.0 if relation.label == "NextToLeft" else 1.0)
+            )
     # Pieces under a window first: they have one place each; then the largest first.
-    nodes = sorted((graph.node(n) for n in wall_of),
-                   key=lambda n: (wall_of[n.id] != "UnderWindow", -n.size[0] * n.size[2], n.order))  # fmt: skip
+    nodes = sorted(
+        (graph.node(n) for n in wall_of),
+        key=lambda n: (wall_of[n.id] != "UnderWindow", -n.size[0] * n.size[2], n.order),
+    )
     swings = [_bounding_rect(room.swing_zone(door)) for door in room.doors]
     placed: dict[str, object] = {}  # piece -> its footprint with its front clearance
     poses: dict[str, Pose] = {}
@@ -536,7 +642,10 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
         reach = depth + dict(node.clearance).get("front", 0.0)
         local = np.array([(a * width, b * depth) for a in grid for b in grid])  # (samples^2, 2)
         others = swings + list(placed.values())
-        fitting, points = [], []  # the places clear of the walls and the rest; their footprints' samples
+        fitting, points = (
+            [],
+            [],
+        )  # the places clear of the walls and the rest; their footprints' samples
         for wall, u in _wall_places(room, unit, wall_of[node.id] == "UnderWindow"):
             middle = u - unit / 2.0 + left + width / 2.0  # the piece's own centre along the wall
             cx, cz = wall.to_world(u, reach / 2.0 + WALL_GAP)
@@ -547,14 +656,18 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
                 continue
             x, z = wall.to_world(middle, depth / 2.0 + WALL_GAP)
             c, s = math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
-            points.append(np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c]))
+            points.append(
+                np.column_stack(
+                    [x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c]
+                )
+            )
             fitting.append((rect, wall, middle))
         # One read of the mask for every place (elementwise, so each place's values are
         # those a read of its own gives); the first place of the highest mean wins.
         values = mask_values(mask, room, node.type, np.concatenate(points)) if points else ()
         best = None
         for k, (rect, wall, middle) in enumerate(fitting):
-            score = float(np.mean(values[k * len(local):(k + 1) * len(local)]))
+            score = float(np.mean(values[k * len(local) : (k + 1) * len(local)]))
             if best is None or score > best[0] + 1e-12:
                 best = (score, rect, wall, middle)
         if best is None:
@@ -571,7 +684,9 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     return poses
 
 
-def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict, swings: list) -> None:
+def _start_tables(
+    graph: SceneGraph, room: Room, mask, poses: dict, placed: dict, swings: list
+) -> None:
     """Start a free-standing table (``CENTRE_PIECES`` with no relation of its own) where
     it and a ring of its chairs' depth round it cover most of the mask, inside the room
     and clear of the rest, and its chairs spread evenly along the sides they sit at,
@@ -583,12 +698,21 @@ def _start_tables(graph: SceneGraph, room: Room, mask, poses: dict, placed: dict
     for table in graph.nodes("object"):
         if table.type not in CENTRE_PIECES or table.id in sources or table.id in poses:
             continue
-        seats = [(r.source, r.label) for r in graph.edges()
-                 if r.target == table.id and r.label in SIDE_DIRECTIONS and graph.node(r.source).type in SEAT_TARGETS]
+        seats = [
+            (r.source, r.label)
+            for r in graph.edges()
+            if r.target == table.id
+            and r.label in SIDE_DIRECTIONS
+            and graph.node(r.source).type in SEAT_TARGETS
+        ]
         ring = max((graph.node(seat).size[2] for seat, _ in seats), default=0.3) + 2 * WALL_GAP
         width, _, depth = table.size
         xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
-        grid = [(x, z) for x in np.arange(xs.min(), xs.max(), WALL_STEP) for z in np.arange(zs.min(), zs.max(), WALL_STEP)]
+        grid = [
+            (x, z)
+            for x in np.arange(xs.min(), xs.max(), WALL_STEP)
+            for z in np.arange(zs.min(), zs.max(), WALL_STEP)
+        ]
         if not grid:
             continue
         scores = mask_values(mask, room, table.type, np.array(grid))
@@ -639,16 +763,22 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
             continue
         node, target = graph.node(relation.source), graph.node(relation.target)
         reach = (target.size[2] + node.size[2]) / 2.0 + WALL_GAP
-        if node.type not in SEATS and node.size[1] > FLAT:  # a seat or a rug may stand in the clearance
+        if (
+            node.type not in SEATS and node.size[1] > FLAT
+        ):  # a seat or a rug may stand in the clearance
             reach += dict(target.clearance).get("front", 0.0)
         x, z = anchor.x + reach * math.sin(anchor.yaw), anchor.z + reach * math.cos(anchor.yaw)
         yaw = anchor.yaw + math.pi if (node.id, target.id) in facing else anchor.yaw
         rect = make_rect(x, z, node.size[0], node.size[2], yaw)
         others = swings + [other for key, other in placed.items() if key != target.id]
-        if room.footprint_excess(corners(rect)) > 1e-6 or any(rect_overlap(rect, other) > 1e-6 for other in others):
+        if room.footprint_excess(corners(rect)) > 1e-6 or any(
+            rect_overlap(rect, other) > 1e-6 for other in others
+        ):
             continue
         placed[node.id] = rect
-        poses[node.id] = Pose(float(x), 0.0, float(z), float(math.atan2(math.sin(yaw), math.cos(yaw))))
+        poses[node.id] = Pose(
+            float(x), 0.0, float(z), float(math.atan2(math.sin(yaw), math.cos(yaw)))
+        )
 
 
 def _against(wall, u: float, depth: float) -> Pose:
@@ -674,7 +804,9 @@ def _bounding_rect(points):
     from scenewright.generator.layout.geometry import make_rect
 
     xs, zs = [p[0] for p in points], [p[1] for p in points]
-    return make_rect((min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0)
+    return make_rect(
+        (min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0
+    )
 
 
 # -- 5. fitting the contents to the room ------------------------------------------------------
@@ -685,8 +817,13 @@ def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
     starting poses; a rug the starting poses find no free floor for is left out."""
     graph, dropped = build_graph(model, contents, room, catalog)
     start = starting_poses(graph, room, contents.mask)
-    unplaced = sorted({n.type for n in graph.nodes("object")
-                       if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start})  # fmt: skip
+    unplaced = sorted(
+        {
+            n.type
+            for n in graph.nodes("object")
+            if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start
+        }
+    )
     if unplaced:
         before = graph
         graph, dropped = build_graph(model, contents, room, catalog, leave_out=unplaced)
@@ -694,14 +831,18 @@ def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
         gone = {n.id for n in before.nodes("object")} - kept
         # A piece with no starting pose took no place another's start depends on: when
         # the rest of the graph is the same, the rest's starts are too.
-        if [r for r in before.edges() if r.source not in gone and r.target not in gone] == graph.edges():
+        if [
+            r for r in before.edges() if r.source not in gone and r.target not in gone
+        ] == graph.edges():
             start = {box: pose for box, pose in start.items() if box in kept}
         else:
             start = starting_poses(graph, room, contents.mask)
     return graph, dropped, start
 
 
-def fewer_pieces(model: dict, contents: Contents, request: Request, graph: SceneGraph, problems) -> Contents | None:
+def fewer_pieces(
+    model: dict, contents: Contents, request: Request, graph: SceneGraph, problems
+) -> Contents | None:
     """``contents`` with one added piece fewer after a layout with ``problems`` (its
     report's lines): of the added categories whose pieces the problems name (all added
     ones when they name none), the one most weakly tied to the requested categories
@@ -712,13 +853,20 @@ def fewer_pieces(model: dict, contents: Contents, request: Request, graph: Scene
     if not added:
         return None
     types = {node.id: node.type for node in graph.nodes("object")}
-    named = {types[word] for line in problems for word in re.findall(r"[A-Za-z0-9_]+", line) if word in types}
+    named = {
+        types[word]
+        for line in problems
+        for word in re.findall(r"[A-Za-z0-9_]+", line)
+        if word in types
+    }
     candidates = [name for name in added if name in named] or added
     weights = _relation_weights(model, contents.types)
     sizes = {node.type: node.size[0] * node.size[2] for node in graph.nodes("object")}
 
     def tie(name: str) -> float:
-        return sum(weights.get((min(name, r), max(name, r)), 0.0) for r in request.requested if r != name)
+        return sum(
+            weights.get((min(name, r), max(name, r)), 0.0) for r in request.requested if r != name
+        )
 
     weakest = min(candidates, key=lambda name: (tie(name), -sizes.get(name, 0.0), name))
     counts = dict(contents.counts)
@@ -736,7 +884,9 @@ def fewer_pieces(model: dict, contents: Contents, request: Request, graph: Scene
 # -- 6. the whole -------------------------------------------------------------------------------
 
 
-def completion_record(contents: Contents, dropped, model: dict, masked=(), given_up=None, by_region=()) -> dict:
+def completion_record(
+    contents: Contents, dropped, model: dict, masked=(), given_up=None, by_region=()
+) -> dict:
     """What scene.json's ``completion`` holds: the types, per type the categories
     Algorithm 1 chose (requested or added, with their count, P(category | type) and the
     summed relation weight to the requested ones), its cost and reference plans, and the
@@ -753,15 +903,22 @@ def completion_record(contents: Contents, dropped, model: dict, masked=(), given
         requested = [n for n, owner in contents.owners.items() if owner == room_type]
         types[room_type] = {
             "categories": [
-                {"category": name, "count": count, "requested": name in requested,
-                 "p": entry["categories"].get(name, {}).get("p", 0.0),
-                 "weight_to_requested": sum(weights.get((min(name, r), max(name, r)), 0.0) for r in requested
-                                            if r != name)}
+                {
+                    "category": name,
+                    "count": count,
+                    "requested": name in requested,
+                    "p": entry["categories"].get(name, {}).get("p", 0.0),
+                    "weight_to_requested": sum(
+                        weights.get((min(name, r), max(name, r)), 0.0)
+                        for r in requested
+                        if r != name
+                    ),
+                }
                 for name, count in exploration.counts.items()
             ],
             "cost": exploration.cost,
             "references": list(exploration.references),
-        }  # fmt: skip
+        }
     record = {
         "types": list(contents.types),
         "owners": dict(sorted(contents.owners.items())),
@@ -776,27 +933,46 @@ def completion_record(contents: Contents, dropped, model: dict, masked=(), given
     from scenewright.completion.regions import virtual_walls
 
     regions = []
-    for k, (region, layout) in enumerate(zip(contents.regions, contents.mask.masks)):
+    for k, (region, layout) in enumerate(zip(contents.regions, contents.mask.masks, strict=False)):
         pieces = list(by_region[k]) if by_region else []
-        entry = {**region.to_dict(), **_mask_record(region.room_type, layout, [b for b in pieces if b in masked])}
+        entry = {
+            **region.to_dict(),
+            **_mask_record(region.room_type, layout, [b for b in pieces if b in masked]),
+        }
         entry["pieces"] = pieces
-        entry["categories"] = sorted(name for name, k_ in contents.mask.owners.items() if k_ == k and name not in dropped)
+        entry["categories"] = sorted(
+            name for name, k_ in contents.mask.owners.items() if k_ == k and name not in dropped
+        )
         regions.append(entry)
-    record["mask"] = {key: regions[0][key] for key in ("type", "frame", "references", "cells", "boxes", "bounds")}
+    record["mask"] = {
+        key: regions[0][key] for key in ("type", "frame", "references", "cells", "boxes", "bounds")
+    }
     record["regions"] = regions
     record["virtual_walls"] = [[list(a), list(b)] for a, b in virtual_walls(contents.regions)]
     return record
 
 
 def _mask_record(room_type: str, layout, boxes) -> dict:
-    return {"type": room_type, "frame": layout.frame.to_dict(), "references": dict(sorted(layout.weights.items())),
-            "cells": np.round(layout.mask, 6).tolist(), "boxes": list(boxes)}  # fmt: skip
+    return {
+        "type": room_type,
+        "frame": layout.frame.to_dict(),
+        "references": dict(sorted(layout.weights.items())),
+        "cells": np.round(layout.mask, 6).tolist(),
+        "boxes": list(boxes),
+    }
 
 
 def complete(
-    request: Request, seed: int, *, plans=None, model: dict | None = None, catalog=None, mask_term: bool = True,
-    split: bool = True, keep=None,
-):  # fmt: skip
+    request: Request,
+    seed: int,
+    *,
+    plans=None,
+    model: dict | None = None,
+    catalog=None,
+    mask_term: bool = True,
+    split: bool = True,
+    keep=None,
+):
     """The completed room as a ``Scene`` (laid out, not yet described): ``plans`` is a
     plan set folder (default: the shipped one), or give a built ``model``. A layout that
     could not satisfy everything comes back with ``scene.layout.ok`` false.
@@ -831,9 +1007,12 @@ def complete(
             graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
         masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
         if contents.regions:
-            by_region = region_boxes({n.id: n.type for n in graph.nodes("object")},
-                                     [(r.source, r.target) for r in graph.edges()], contents.mask.owners,
-                                     len(contents.regions))  # fmt: skip
+            by_region = region_boxes(
+                {n.id: n.type for n in graph.nodes("object")},
+                [(r.source, r.target) for r in graph.edges()],
+                contents.mask.owners,
+                len(contents.regions),
+            )
             mask = region_floor_masks(contents.mask, by_region, set(masked)) if mask_term else None
         else:
             by_region = []
@@ -847,9 +1026,13 @@ def complete(
             if failed is not None:
                 boxes = {n.id for n in graph.nodes("object")} - set(pinned or {})
                 warm = {box: pose for box, pose in failed.items() if box in boxes}
-                layout = layout_scene(graph, seed, start=warm, mask=mask, params=WARM_PARAMS, pinned=pinned)
+                layout = layout_scene(
+                    graph, seed, start=warm, mask=mask, params=WARM_PARAMS, pinned=pinned
+                )
             if layout is None or not layout.ok:
-                layout = layout_scene(graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned)
+                layout = layout_scene(
+                    graph, seed, start=start, mask=mask, params=FIT_PARAMS, pinned=pinned
+                )
         if layout.ok or attempt == FIT_ATTEMPTS:
             break
         failed = layout.poses
@@ -857,7 +1040,11 @@ def complete(
         if smaller is None:
             break
         contents = smaller
-    given_up = {name: n - contents.counts.get(name, 0) for name, n in chosen.items() if contents.counts.get(name, 0) < n}
+    given_up = {
+        name: n - contents.counts.get(name, 0)
+        for name, n in chosen.items()
+        if contents.counts.get(name, 0) < n
+    }
     for name in given_up:
         if name not in contents.counts:
             dropped.setdefault(name, ROOM_FULL)
@@ -877,7 +1064,9 @@ def existing_request(scene, added: dict[str, int], known) -> Request:
     requested: dict[str, int] = {}
     for obj in scene.placed_objects():
         if obj.type not in known:
-            raise InputError(f"the scene's {obj.id} is a {obj.type!r}, which is no category of the indoor catalog")
+            raise InputError(
+                f"the scene's {obj.id} is a {obj.type!r}, which is no category of the indoor catalog"
+            )
         requested[obj.type] = requested.get(obj.type, 0) + 1
     for name, count in added.items():
         requested[name] = requested.get(name, 0) + count
@@ -900,9 +1089,13 @@ def pin_existing(graph: SceneGraph, scene) -> tuple[SceneGraph, dict[str, Pose]]
     for obj in sorted(scene.placed_objects(), key=lambda o: _id_order(o.id)):
         node_of[obj.id] = nodes[obj.type].pop(0)
         pinned[node_of[obj.id]] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
-    fixed = set(pinned) | {n.id for n in graph.nodes() if n.kind in ("room", "wall", "door", "window")}
+    fixed = set(pinned) | {
+        n.id for n in graph.nodes() if n.kind in ("room", "wall", "door", "window")
+    }
     kept = replace(graph, graph=graph.graph.copy())
-    kept.graph.remove_edges_from([(a, b, k) for a, b, k in kept.graph.edges(keys=True) if a in fixed and b in fixed])
+    kept.graph.remove_edges_from(
+        [(a, b, k) for a, b, k in kept.graph.edges(keys=True) if a in fixed and b in fixed]
+    )
     # The scene's own relations among what it holds: a chair's "in front of the desk"
     # also lets it stand in the desk's clearance; what rests on what keeps it on top.
     for relation in scene.relations:
@@ -927,8 +1120,11 @@ def summary_of(record: dict) -> str:
                 count = record["counts"][item["category"]]
                 added.append(item["category"] + (f" x{count}" if count > 1 else ""))
     left = "".join(f"; left out {name} ({why})" for name, why in record["left_out"].items())
-    left += "".join(f"; {n} {name} fewer (no room for more with the rest)"
-                    for name, n in record.get("given_up", {}).items() if name not in record["left_out"])  # fmt: skip
+    left += "".join(
+        f"; {n} {name} fewer (no room for more with the rest)"
+        for name, n in record.get("given_up", {}).items()
+        if name not in record["left_out"]
+    )
     return f"room type {' + '.join(record['types'])}; added {', '.join(dict.fromkeys(added)) or 'nothing'}{left}"
 
 
@@ -949,38 +1145,73 @@ def draw_explanation(scene, target) -> None:
 
     record, room = scene.completion, scene.room
     xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
-    grid_x, grid_z = np.meshgrid(np.linspace(xs.min(), xs.max(), 200), np.linspace(zs.min(), zs.max(), 160))
+    grid_x, grid_z = np.meshgrid(
+        np.linspace(xs.min(), xs.max(), 200), np.linspace(zs.min(), zs.max(), 160)
+    )
     points = np.column_stack([grid_x.ravel(), grid_z.ravel()])
     values = recorded_mask_values(record, room, points).reshape(grid_x.shape)
     inside = np.array([room.contains(x, z) for x, z in points]).reshape(grid_x.shape)
     figure, axis = plt.subplots(figsize=(6.0, 6.0 * float(np.ptp(zs) / np.ptp(xs)) + 0.6))
-    axis.imshow(np.where(inside, values, np.nan), cmap="Greys", vmin=0.0, vmax=1.0, origin="upper",
-                extent=(xs.min(), xs.max(), zs.max(), zs.min()))  # fmt: skip
+    axis.imshow(
+        np.where(inside, values, np.nan),
+        cmap="Greys",
+        vmin=0.0,
+        vmax=1.0,
+        origin="upper",
+        extent=(xs.min(), xs.max(), zs.max(), zs.min()),
+    )
     outline = list(room.corners) + [room.corners[0]]
     axis.plot([c[0] for c in outline], [c[1] for c in outline], color="0.2", lw=2.5)
     for opening in room.openings:
         start, end = room.opening_ends(opening)
-        axis.plot([start[0], end[0]], [start[1], end[1]], color="#c04040" if opening.kind == "door" else "#4a90c8", lw=4)
+        axis.plot(
+            [start[0], end[0]],
+            [start[1], end[1]],
+            color="#c04040" if opening.kind == "door" else "#4a90c8",
+            lw=4,
+        )
     for (ax, az), (bx, bz) in record.get("virtual_walls", []):
         axis.plot([ax, bx], [az, bz], color="#2a9a4a", lw=2.5, ls="--")
     for region in record.get("regions", []):
         x0, z0, x1, z1 = region["bounds"]
-        axis.annotate(region["type"].replace("_", " "), ((x0 + x1) / 2.0, z0 + 0.25), fontsize=8, ha="center",
-                      va="center", color="#2a7a3a", weight="bold")  # fmt: skip
+        axis.annotate(
+            region["type"].replace("_", " "),
+            ((x0 + x1) / 2.0, z0 + 0.25),
+            fontsize=8,
+            ha="center",
+            va="center",
+            color="#2a7a3a",
+            weight="bold",
+        )
     for obj in scene.placed_objects():
         if obj.position[1] > 0.01:
             continue  # stands on another piece
-        corners = corners_of(obj.position[0], obj.position[2], obj.size[0] / 2, obj.size[2] / 2,
-                             math.cos(obj.yaw), math.sin(obj.yaw))  # fmt: skip
+        corners = corners_of(
+            obj.position[0],
+            obj.position[2],
+            obj.size[0] / 2,
+            obj.size[2] / 2,
+            math.cos(obj.yaw),
+            math.sin(obj.yaw),
+        )
         axis.add_patch(Polygon(corners, closed=True, fill=False, ec="#e07020", lw=1.2))
-        axis.annotate(obj.id, (obj.position[0], obj.position[2]), fontsize=6, ha="center", va="center", color="#a04000")
+        axis.annotate(
+            obj.id,
+            (obj.position[0], obj.position[2]),
+            fontsize=6,
+            ha="center",
+            va="center",
+            color="#a04000",
+        )
     if "regions" in record:
         title = " | ".join(f"{r['type']} ({len(r['references'])} plans)" for r in record["regions"])
         axis.set_title(f"layout masks split by virtual walls: {title}", fontsize=8)
     else:
         mask = record["mask"]
-        axis.set_title(f"layout mask of {mask['type']} ({len(mask['references'])} reference plans) and the layout",
-                       fontsize=8)  # fmt: skip
+        axis.set_title(
+            f"layout mask of {mask['type']} ({len(mask['references'])} reference plans) and the layout",
+            fontsize=8,
+        )
     axis.set_xlabel("x (east) [m]")
     axis.set_ylabel("z (south) [m]")
     axis.set_aspect("equal")
@@ -999,7 +1230,12 @@ def recorded_mask_values(record: dict, room: Room, points) -> np.ndarray:
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     if "regions" not in record:
         mask = record["mask"]
-        layout = LayoutMask(np.asarray(mask["cells"]), CanonicalFrame(**mask["frame"]), np.zeros(4), mask["references"])
+        layout = LayoutMask(
+            np.asarray(mask["cells"]),
+            CanonicalFrame(**mask["frame"]),
+            np.zeros(4),
+            mask["references"],
+        )
         return mask_at(layout, room, points)
     values = np.zeros(len(points))
     regions = [recorded_region(entry, room) for entry in record["regions"]]
@@ -1007,7 +1243,9 @@ def recorded_mask_values(record: dict, room: Room, points) -> np.ndarray:
     for k, entry in enumerate(record["regions"]):
         chosen = where == k
         if chosen.any():
-            layout = LayoutMask(np.asarray(entry["cells"]), CanonicalFrame(**entry["frame"]), np.zeros(4), {})
+            layout = LayoutMask(
+                np.asarray(entry["cells"]), CanonicalFrame(**entry["frame"]), np.zeros(4), {}
+            )
             values[chosen] = mask_at(layout, regions[k].room, points[chosen])
     return values
 

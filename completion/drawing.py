@@ -11,6 +11,7 @@ to check a hand-drawn plan by (``scenewright plans draw``).
 from __future__ import annotations
 
 import math
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -37,8 +38,9 @@ def draw_plans(plans, target, *, masks: bool = False, columns: int | None = None
     per_plan = 2 if masks else 1
     columns = max(1, min(columns or (2 if masks else 4), len(plans)))
     rows = math.ceil(len(plans) / columns)
-    figure, axes = plt.subplots(rows, columns * per_plan, figsize=(3.6 * columns * per_plan, 3.6 * rows),
-                                squeeze=False)  # fmt: skip
+    figure, axes = plt.subplots(
+        rows, columns * per_plan, figsize=(3.6 * columns * per_plan, 3.6 * rows), squeeze=False
+    )
     for axis in axes.flat:
         axis.set_axis_off()
     for index, plan in enumerate(plans):
@@ -70,23 +72,37 @@ def _draw_plan(axis, plan) -> None:
         axis.plot([start[0], end[0]], [start[1], end[1]], color="white", lw=4)
         axis.add_patch(Polygon(room.swing_zone(opening), fill=False, ec="#c04040", ls=":", lw=0.8))
         wall, (u0, _) = room.part(opening.wall), opening.span
-        arc = [wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
-               for a in np.linspace(0.0, math.pi / 2.0, 16)]  # fmt: skip
+        arc = [
+            wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
+            for a in np.linspace(0.0, math.pi / 2.0, 16)
+        ]
         axis.plot([p[0] for p in arc], [p[1] for p in arc], color="#c04040", lw=0.8)
     catalog = indoor_catalog()
     for piece in plan.furniture:
         flat = is_flat(piece, catalog)
         colour = COLOURS[purpose(piece.category)]
-        axis.add_patch(Polygon(piece.corners, closed=True, fc=colour, ec="0.25", lw=0.6,
-                               alpha=0.25 if flat else (1.0 if piece.on else 0.75)))  # fmt: skip
+        axis.add_patch(
+            Polygon(
+                piece.corners,
+                closed=True,
+                fc=colour,
+                ec="0.25",
+                lw=0.6,
+                alpha=0.25 if flat else (1.0 if piece.on else 0.75),
+            )
+        )
         x, z = piece.center
         tip = (x + 0.25 * math.sin(piece.yaw), z + 0.25 * math.cos(piece.yaw))
         axis.plot([x, tip[0]], [z, tip[1]], color="0.15", lw=0.8)
         if not piece.on and not flat:
-            axis.annotate(piece.category.replace("_", " "), (x, z), fontsize=5, ha="center", va="center")
+            axis.annotate(
+                piece.category.replace("_", " "), (x, z), fontsize=5, ha="center", va="center"
+            )
     for area in plan.free_areas:
         (x, z), (w, d) = area.center, area.size
-        axis.add_patch(Rectangle((x - w / 2, z - d / 2), w, d, fill=False, ec="#8060c0", ls="--", lw=0.8))
+        axis.add_patch(
+            Rectangle((x - w / 2, z - d / 2), w, d, fill=False, ec="#8060c0", ls="--", lw=0.8)
+        )
     width, depth = room.extent
     axis.set_title(f"{plan.id}  {width:g} x {depth:g} m", fontsize=8)
     axis.set_aspect("equal")

@@ -41,23 +41,60 @@ from scenewright.core.errors import InputError
 #: Each measure: its name, the key of ours and of the baseline's figure, what each is,
 #: and whether more is better.
 COMPARISONS = (
-    ("room type", "type", "type_baseline", "Equation 2", "the type whose plans have the request most often", True),
-    ("precision", "precision", "precision_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
-    ("recall", "recall", "recall_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
+    (
+        "room type",
+        "type",
+        "type_baseline",
+        "Equation 2",
+        "the type whose plans have the request most often",
+        True,
+    ),
+    (
+        "precision",
+        "precision",
+        "precision_baseline",
+        "Algorithm 1",
+        "co-occurrence, as many categories",
+        True,
+    ),
+    (
+        "recall",
+        "recall",
+        "recall_baseline",
+        "Algorithm 1",
+        "co-occurrence, as many categories",
+        True,
+    ),
     ("F1", "f1", "f1_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
-    ("F1, usual categories", "f1", "f1_usual", "Algorithm 1", "the categories of half the type's plans or more",
-     True),
-    ("number added: error", "added_error", "added_error_baseline", "Algorithm 1", "the type's usual number",
-     False),
+    (
+        "F1, usual categories",
+        "f1",
+        "f1_usual",
+        "Algorithm 1",
+        "the categories of half the type's plans or more",
+        True,
+    ),
+    (
+        "number added: error",
+        "added_error",
+        "added_error_baseline",
+        "Algorithm 1",
+        "the type's usual number",
+        False,
+    ),
     ("mask IoU", "mask_iou", "mask_iou_baseline", "Equation 4", "the type's mean mask", True),
-)  # fmt: skip
+)
 METRICS = tuple(dict.fromkeys(key for comparison in COMPARISONS for key in comparison[1:3]))
 
 
 def request_of(plan, model: dict, size: int) -> dict[str, int]:
     """The ``size`` categories of ``plan`` taking the most floor (all of its pieces of each), with their counts."""
     counts = Counter(piece.category for piece in plan.furniture)
-    area = {name: model["categories"][name]["floor_area"] * counts[name] for name in counts if name in model["categories"]}
+    area = {
+        name: model["categories"][name]["floor_area"] * counts[name]
+        for name in counts
+        if name in model["categories"]
+    }
     chosen = sorted(area, key=lambda name: (-area[name], name))[:size]
     return {name: counts[name] for name in chosen}
 
@@ -75,22 +112,35 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict:
         predicted = ()
     baseline_type = max(
         sorted(model["types"]),
-        key=lambda t: float(np.prod([model["types"][t]["categories"].get(n, {}).get("p", 0.0) for n in requested])),
+        key=lambda t: float(
+            np.prod([model["types"][t]["categories"].get(n, {}).get("p", 0.0) for n in requested])
+        ),
     )
     parts = room_parts(plan.room, entry["mean_area"])
     explored = explore_categories(model, plan.type, requested, plan.room.area, parts)
     added = set(explored.categories) - set(requested)
     together = {tuple(pair["pair"]): pair["cooccurrence"] for pair in entry["pairs"]}
     candidates = sorted(name for name in entry["categories"] if name not in requested)
-    score = {name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in requested) for name in candidates}
+    score = {
+        name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in requested)
+        for name in candidates
+    }
     baseline_added = set(sorted(candidates, key=lambda name: (-score[name], name))[: len(added)])
-    usual = np.mean([len(set(p["counts"]) - set(requested)) for p in model["plans"] if p["type"] == plan.type])
-    common = {name for name, seen in entry["categories"].items() if seen["p"] >= 0.5} - set(requested)
+    usual = np.mean(
+        [len(set(p["counts"]) - set(requested)) for p in model["plans"] if p["type"] == plan.type]
+    )
+    common = {name for name, seen in entry["categories"].items() if seen["p"] >= 0.5} - set(
+        requested
+    )
     floor = floor_pieces(plan)
     true_mask = occupancy_mask(plan.room, floor, canonical_frame(plan.room))
     counts = Counter(piece.category for piece in plan.furniture)
-    layout = amalgamated_mask(model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]})
-    mean_mask = np.mean([np.asarray(p["mask"]) for p in model["plans"] if p["type"] == plan.type], axis=0)
+    layout = amalgamated_mask(
+        model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]}
+    )
+    mean_mask = np.mean(
+        [np.asarray(p["mask"]) for p in model["plans"] if p["type"] == plan.type], axis=0
+    )
     return {
         "type": float(predicted == (plan.type,)),
         "type_baseline": float(baseline_type == plan.type),
@@ -105,10 +155,13 @@ def evaluate_plan(plan, model: dict, requested_size: int) -> dict:
         "added_error_baseline": float(abs(int(round(float(usual))) - len(truth))),
         "mask_iou": soft_iou(layout.mask, true_mask),
         "mask_iou_baseline": soft_iou(mean_mask, true_mask),
-        "miss": None if predicted == (plan.type,) and baseline_type == plan.type else (
+        "miss": None
+        if predicted == (plan.type,) and baseline_type == plan.type
+        else (
             f"{plan.id} ({plan.room.area:.1f} m2, {_listed(requested)}): Equation 2 "
-            f"{' + '.join(predicted) or 'none'}, baseline {baseline_type}"),
-    }  # fmt: skip
+            f"{' + '.join(predicted) or 'none'}, baseline {baseline_type}"
+        ),
+    }
 
 
 def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
@@ -122,22 +175,29 @@ def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
             rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
     table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
     table["all"] = _means([row for found in rows.values() for row in found])
-    table["all"]["misses"] = [row["miss"] for found in rows.values() for row in found if row["miss"]]
+    table["all"]["misses"] = [
+        row["miss"] for found in rows.values() for row in found if row["miss"]
+    ]
     return table
 
 
 def _means(rows: list[dict[str, float]]) -> dict[str, float]:
-    return {metric: round(float(np.mean([row[metric] for row in rows])), 3) for metric in METRICS} | {"plans": len(rows)}
+    return {
+        metric: round(float(np.mean([row[metric] for row in rows])), 3) for metric in METRICS
+    } | {"plans": len(rows)}
 
 
 def report(table: dict[str, dict], requested_size: int) -> str:
     """``leave_one_out``'s table as text: per type each measure as ours / baseline, then
     over all plans each measure in words with which side is better and by how much."""
     plural = "category" if requested_size == 1 else "categories"
-    lines = [f"Leave-one-out over {table['all']['plans']} plans, {requested_size} requested {plural}; "
-             "each cell: ours / baseline.", "",
-             "| room type | plans | " + " | ".join(c[0] for c in COMPARISONS) + " |",
-             "|---|---|" + "---|" * len(COMPARISONS)]  # fmt: skip
+    lines = [
+        f"Leave-one-out over {table['all']['plans']} plans, {requested_size} requested {plural}; "
+        "each cell: ours / baseline.",
+        "",
+        "| room type | plans | " + " | ".join(c[0] for c in COMPARISONS) + " |",
+        "|---|---|" + "---|" * len(COMPARISONS),
+    ]
     for name, row in table.items():
         cells = [f"{row[ours]:.3f} / {row[base]:.3f}" for _, ours, base, *_ in COMPARISONS]
         lines.append(f"| {name} | {row['plans']} | " + " | ".join(cells) + " |")
@@ -145,16 +205,25 @@ def report(table: dict[str, dict], requested_size: int) -> str:
     for name, ours, base, what, baseline, more_is_better in COMPARISONS:
         a, b = table["all"][ours], table["all"][base]
         better = (a > b) == more_is_better
-        verdict = "equal" if a == b else f"{'ours' if better else 'the baseline'} better by {abs(a - b):.3f}"
+        verdict = (
+            "equal"
+            if a == b
+            else f"{'ours' if better else 'the baseline'} better by {abs(a - b):.3f}"
+        )
         lines.append(f"- {name}: {what} {a:.3f}, baseline ({baseline}) {b:.3f}: {verdict}")
     misses = table["all"].get("misses", ())
-    lines += ["", "Room types missed by either side:" if misses else "No room type missed by either side."]
+    lines += [
+        "",
+        "Room types missed by either side:" if misses else "No room type missed by either side.",
+    ]
     lines += [f"- {miss}" for miss in misses]
     return "\n".join(lines) + "\n"
 
 
 def _listed(requested: dict[str, int]) -> str:
-    return ", ".join(name if count == 1 else f"{name} x{count}" for name, count in requested.items())
+    return ", ".join(
+        name if count == 1 else f"{name} x{count}" for name, count in requested.items()
+    )
 
 
 def _share(part: set, whole: set) -> float:

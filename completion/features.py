@@ -90,7 +90,9 @@ def canonical_frame(room, furniture=()) -> CanonicalFrame:
     mass = None
     if floor:
         areas = np.array([p.area for p in floor])
-        mass = (unflipped.apply(np.array([p.center for p in floor]) - centre) * areas[:, None]).sum(axis=0) / areas.sum()
+        mass = (unflipped.apply(np.array([p.center for p in floor]) - centre) * areas[:, None]).sum(
+            axis=0
+        ) / areas.sum()
     flips = []
     for axis in (0, 1):
         flip = False
@@ -151,5 +153,10 @@ def room_parts(room, type_mean_area: float) -> np.ndarray:
     (angle / pi, r_e, phi)."""
     width, depth = room.extent
     area = room.area
-    return np.array([door_window_angle(room) / math.pi, min(width, depth) / max(width, depth),
-                     area / (area + type_mean_area)])  # fmt: skip
+    return np.array(
+        [
+            door_window_angle(room) / math.pi,
+            min(width, depth) / max(width, depth),
+            area / (area + type_mean_area),
+        ]
+    )

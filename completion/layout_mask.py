@@ -18,11 +18,20 @@ bounding box as the layout energy's ``mask`` part takes it (``generator.layout.m
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from scenewright.completion.features import CanonicalFrame, canonical_frame, room_centre, room_feature
+from scenewright.completion.features import (
+    CanonicalFrame,
+    canonical_frame,
+    room_centre,
+    room_feature,
+)
 from scenewright.completion.selection import K
+
+if TYPE_CHECKING:
+    from scenewright.generator.layout.mask_term import FloorMask
 
 #: Distances below this count as 0 (the same room).
 SAME = 1e-9
@@ -42,13 +51,17 @@ class LayoutMask:
     weights: dict[str, float]
 
 
-def amalgamated_mask(model: dict, room_type: str, room, counts: dict[str, int], k: int = K) -> LayoutMask:
+def amalgamated_mask(
+    model: dict, room_type: str, room, counts: dict[str, int], k: int = K
+) -> LayoutMask:
     """The layout mask of ``room`` holding ``counts`` (category -> number) of ``room_type``."""
     entry = model["types"][room_type]
     floor = sum(model["categories"][name]["floor_area"] * n for name, n in counts.items())
     feature = room_feature(room, floor, entry["mean_area"])
     plans = [plan for plan in model["plans"] if plan["type"] == room_type]
-    distance = {plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"]) - feature)) for plan in plans}
+    distance = {
+        plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"]) - feature)) for plan in plans
+    }
     nearest = sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
     by_cluster: dict[int, list[dict]] = {}
     for plan in nearest:  # nearest first, so each group's first member is its nearest
@@ -77,7 +90,7 @@ def mask_at(layout: LayoutMask, room, points) -> np.ndarray:
     return layout.mask[rows, columns]
 
 
-def floor_mask(layout: LayoutMask, room, boxes) -> "FloorMask":
+def floor_mask(layout: LayoutMask, room, boxes) -> FloorMask:
     """The mask over the room's bounding box, north-west cell first (rows along z), as a
     ``FloorMask`` for the layout pieces ``boxes`` (ids). The canonical frame only turns
     and mirrors the room, so each canonical cell is one cell of this grid: it is read
@@ -90,8 +103,12 @@ def floor_mask(layout: LayoutMask, room, boxes) -> "FloorMask":
     xs = x0 + (np.arange(size) + 0.5) * (x1 - x0) / size
     zs = z0 + (np.arange(size) + 0.5) * (z1 - z0) / size
     grid_x, grid_z = np.meshgrid(xs, zs)  # (size, size): row = z
-    values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(size, size)
-    return FloorMask(np.clip(values, 0.0, 1.0), (float(x0), float(z0), float(x1), float(z1)), tuple(boxes))
+    values = mask_at(layout, room, np.column_stack([grid_x.ravel(), grid_z.ravel()])).reshape(
+        size, size
+    )
+    return FloorMask(
+        np.clip(values, 0.0, 1.0), (float(x0), float(z0), float(x1), float(z1)), tuple(boxes)
+    )
 
 
 @dataclass(frozen=True)
@@ -121,7 +138,9 @@ def mask_values(mask, room, category: str, points) -> np.ndarray:
     return mask_at(mask, room, points)
 
 
-def region_floor_masks(masks: RegionMasks, boxes_by_region, large, *, region_weight: float = REGION_WEIGHT) -> list:
+def region_floor_masks(
+    masks: RegionMasks, boxes_by_region, large, *, region_weight: float = REGION_WEIGHT
+) -> list:
     """The layout energy's masks for a composite room, per region: its layout mask over
     its rectangle for the region's ``large`` pieces (ids), reading 0 beyond it; and for
     every piece of the region a mask of 1 over the rectangle and 0 beyond it, weighing
@@ -131,12 +150,20 @@ def region_floor_masks(masks: RegionMasks, boxes_by_region, large, *, region_wei
     from scenewright.generator.layout.mask_term import FloorMask
 
     out = []
-    for k, (region, layout) in enumerate(zip(masks.regions, masks.masks)):
+    for k, (region, layout) in enumerate(zip(masks.regions, masks.masks, strict=False)):
         ids = tuple(boxes_by_region[k])
         pulled = [box for box in ids if box in large]
         if pulled:
             out.append(replace(floor_mask(layout, region.room, pulled), outside=0.0))
         if ids:
-            out.append(FloorMask(np.ones((1, 1)), tuple(region.bounds), ids, outside=0.0, weight=region_weight,
-                                 confine=True))  # fmt: skip
+            out.append(
+                FloorMask(
+                    np.ones((1, 1)),
+                    tuple(region.bounds),
+                    ids,
+                    outside=0.0,
+                    weight=region_weight,
+                    confine=True,
+                )
+            )
     return out

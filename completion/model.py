@@ -74,32 +74,44 @@ def build_model(plans) -> dict:
     for room_type in types:
         members = [plan for plan in plans if plan.type == room_type]
         mean_area = float(np.mean([plan.room.area for plan in members]))
-        known = sorted({piece.category for plan in members for piece in plan.furniture}
-                       | {name for plan in members for area in plan.free_areas for name in area.suits})
+        known = sorted(
+            {piece.category for plan in members for piece in plan.furniture}
+            | {name for plan in members for area in plan.free_areas for name in area.suits}
+        )
         exists = [_existence(plan, known, categories) for plan in members]
         entries = []
-        for plan, exist in zip(members, exists):
+        for plan, exist in zip(members, exists, strict=False):
             floor = floor_pieces(plan, catalog)
             frame = canonical_frame(plan.room, floor)
-            entries.append({
-                "id": plan.id,
-                "type": room_type,
-                "area": plan.room.area,
-                "counts": dict(sorted(Counter(piece.category for piece in plan.furniture).items())),
-                "exist": {name: value for name, value in sorted(exist.items()) if value > 0.0},
-                "frame": frame.to_dict(),
-                "feature": room_feature(plan.room, sum(p.area for p in floor), mean_area).tolist(),
-                "mask": occupancy_mask(plan.room, floor, frame).tolist(),
-            })  # fmt: skip
+            entries.append(
+                {
+                    "id": plan.id,
+                    "type": room_type,
+                    "area": plan.room.area,
+                    "counts": dict(
+                        sorted(Counter(piece.category for piece in plan.furniture).items())
+                    ),
+                    "exist": {name: value for name, value in sorted(exist.items()) if value > 0.0},
+                    "frame": frame.to_dict(),
+                    "feature": room_feature(
+                        plan.room, sum(p.area for p in floor), mean_area
+                    ).tolist(),
+                    "mask": occupancy_mask(plan.room, floor, frame).tolist(),
+                }
+            )
         clusters = _clusters(entries)
         model_types[room_type] = {
             "plans": len(members),
             "mean_area": mean_area,
             "categories": {
-                name: {"p": float(np.mean([exist.get(name, 0.0) for exist in exists])),
-                       "max_count": max(plan_counts.get(name, 0) for plan_counts in (e["counts"] for e in entries))}
+                name: {
+                    "p": float(np.mean([exist.get(name, 0.0) for exist in exists])),
+                    "max_count": max(
+                        plan_counts.get(name, 0) for plan_counts in (e["counts"] for e in entries)
+                    ),
+                }
                 for name in known
-            },  # fmt: skip
+            },
             "pairs": _pairs(known, exists, prior),
             "clusters": clusters,
         }
@@ -124,12 +136,20 @@ def relation_graph(model: dict, room_type: str) -> dict:
     """A type's object relation graph: the edges with ``W_s > 0`` and the categories
     they join (isolated ones removed, as in the paper)."""
     if room_type not in model["types"]:
-        raise InputError(f"the plans have no type {room_type!r} (they have {', '.join(sorted(model['types']))})")
+        raise InputError(
+            f"the plans have no type {room_type!r} (they have {', '.join(sorted(model['types']))})"
+        )
     entry = model["types"][room_type]
     edges = [dict(pair) for pair in entry["pairs"] if pair["weight"] > 0.0]
     names = sorted({name for edge in edges for name in edge["pair"]})
-    nodes = [{"category": name, "p": entry["categories"][name]["p"],
-              "purpose": model["categories"][name]["purpose"]} for name in names]  # fmt: skip
+    nodes = [
+        {
+            "category": name,
+            "p": entry["categories"][name]["p"],
+            "purpose": model["categories"][name]["purpose"],
+        }
+        for name in names
+    ]
     return {"type": room_type, "nodes": nodes, "edges": edges}
 
 
@@ -139,12 +159,14 @@ def graph_dot(graph: dict) -> str:
     lines = [f"graph {json.dumps(graph['type'])} {{", "  node [shape=box];"]
     for node in graph["nodes"]:
         label = f"{node['category']}\\nP={node['p']:.2f}"
-        lines.append(f"  {json.dumps(node['category'])} [label=\"{label}\"];")
+        lines.append(f'  {json.dumps(node["category"])} [label="{label}"];')
     for edge in graph["edges"]:
         first, second = edge["pair"]
         width = 0.5 + 4.0 * edge["weight"]
-        lines.append(f"  {json.dumps(first)} -- {json.dumps(second)} "
-                     f"[label=\"{edge['weight']:.2f}\", penwidth={width:.2f}];")  # fmt: skip
+        lines.append(
+            f"  {json.dumps(first)} -- {json.dumps(second)} "
+            f'[label="{edge["weight"]:.2f}", penwidth={width:.2f}];'
+        )
     lines.append("}")
     return "\n".join(lines) + "\n"
 
@@ -164,12 +186,18 @@ def read_model(path: str) -> dict:
     if not isinstance(data, dict) or data.get("format") != MODEL_FORMAT:
         raise InputError(f"{path}: not a plan model ('format' is not {MODEL_FORMAT!r})")
     if data.get("version") != MODEL_VERSION:
-        raise InputError(f"{path}: plan model version {data.get('version')!r}; this scenewright reads {MODEL_VERSION}")
+        raise InputError(
+            f"{path}: plan model version {data.get('version')!r}; this scenewright reads {MODEL_VERSION}"
+        )
     for key, kind in (("categories", dict), ("activity", list), ("types", dict), ("plans", list)):
         if not isinstance(data.get(key), kind):
-            raise InputError(f"{path}: $.{key}: missing or not a JSON {'object' if kind is dict else 'array'}")
+            raise InputError(
+                f"{path}: $.{key}: missing or not a JSON {'object' if kind is dict else 'array'}"
+            )
     for name, entry in data["types"].items():
-        if not isinstance(entry, dict) or not all(isinstance(entry.get(k), list) for k in ("pairs", "clusters")):
+        if not isinstance(entry, dict) or not all(
+            isinstance(entry.get(k), list) for k in ("pairs", "clusters")
+        ):
             raise InputError(f"{path}: $.types.{name}: not a type entry of a plan model")
     return data
 
@@ -188,7 +216,11 @@ def _category_table(plans, catalog) -> dict:
         pieces = [piece for plan in plans for piece in plan.furniture if piece.category == name]
         if pieces:
             sides = np.array([sorted(piece.size) for piece in pieces]).mean(axis=0).tolist()
-            floor = float(np.mean([0.0 if p.on is not None or is_flat(p, catalog) else p.area for p in pieces]))
+            floor = float(
+                np.mean(
+                    [0.0 if p.on is not None or is_flat(p, catalog) else p.area for p in pieces]
+                )
+            )
         else:
             width, height, depth = catalog[name].size
             sides = sorted((width, depth))
@@ -209,7 +241,9 @@ def _existence(plan, known: list[str], categories: dict) -> dict[str, float]:
             object_short, object_long = categories[name]["size"]
             if object_short > short or object_long > long:
                 continue
-            fit = math.exp(-((object_short - short) ** 2 + (object_long - long) ** 2) / FIT_SCALE**2)
+            fit = math.exp(
+                -((object_short - short) ** 2 + (object_long - long) ** 2) / FIT_SCALE**2
+            )
             exist[name] = max(exist.get(name, 0.0), fit)
     return exist
 
@@ -219,12 +253,20 @@ def _pairs(known: list[str], exists: list[dict], prior: dict) -> list[dict]:
     pairs = []
     for k, first in enumerate(known):
         for second in known[k + 1 :]:
-            together = float(np.mean([exist.get(first, 0.0) * exist.get(second, 0.0) for exist in exists]))
+            together = float(
+                np.mean([exist.get(first, 0.0) * exist.get(second, 0.0) for exist in exists])
+            )
             if together <= 0.0:
                 continue
             why = prior.get((first, second))
-            pairs.append({"pair": [first, second], "cooccurrence": together, "activity": why,
-                          "weight": together if why else 0.0})  # fmt: skip
+            pairs.append(
+                {
+                    "pair": [first, second],
+                    "cooccurrence": together,
+                    "activity": why,
+                    "weight": together if why else 0.0,
+                }
+            )
     return pairs
 
 
@@ -244,11 +286,17 @@ def _clusters(entries: list[dict]) -> list[dict]:
     groups: dict[int, list[int]] = {}
     for index, label in enumerate(labels):
         groups.setdefault(int(label), []).append(index)
-    ordered = sorted(groups.values(), key=lambda members: (-len(members), entries[members[0]]["id"]))
+    ordered = sorted(
+        groups.values(), key=lambda members: (-len(members), entries[members[0]]["id"])
+    )
     clusters = []
     for number, members in enumerate(ordered):
         for index in members:
             entries[index]["cluster"] = number
-        clusters.append({"plans": [entries[index]["id"] for index in members],
-                         "mask": masks[members].mean(axis=0).reshape(MASK_SIZE, MASK_SIZE).tolist()})  # fmt: skip
+        clusters.append(
+            {
+                "plans": [entries[index]["id"] for index in members],
+                "mask": masks[members].mean(axis=0).reshape(MASK_SIZE, MASK_SIZE).tolist(),
+            }
+        )
     return clusters

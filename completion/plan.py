@@ -67,11 +67,18 @@ class Furniture:
     @cached_property
     def corners(self) -> list[tuple[float, float]]:
         """Footprint corners (x, z), in ``core.frames.footprint_corners`` order."""
-        return footprint_corners(self.center[0], self.center[1], self.yaw, self.size[0], self.size[1])
+        return footprint_corners(
+            self.center[0], self.center[1], self.yaw, self.size[0], self.size[1]
+        )
 
     def to_dict(self) -> dict:
-        data = {"id": self.id, "category": self.category, "center": list(self.center), "size": list(self.size),
-                "yaw": self.yaw}  # fmt: skip
+        data = {
+            "id": self.id,
+            "category": self.category,
+            "center": list(self.center),
+            "size": list(self.size),
+            "yaw": self.yaw,
+        }
         if self.on is not None:
             data["on"] = self.on
         return data
@@ -144,7 +151,9 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
 
     error = best_match(_validator().iter_errors(data))
     if error is not None:
-        raise PlanError(source, json_path(error.absolute_path), " ".join(error.message.split())[:200])
+        raise PlanError(
+            source, json_path(error.absolute_path), " ".join(error.message.split())[:200]
+        )
     try:
         room = Room.from_dict(data["room"])
     except RoomError as problem:
@@ -156,26 +165,44 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
         if raw["category"] not in known:
             nearest = difflib.get_close_matches(raw["category"], sorted(known), n=1)
             hint = f"; did you mean {nearest[0]!r}?" if nearest else ""
-            raise PlanError(source, f"{where}.category", f"{raw['category']!r} is not an indoor catalog entry{hint}")
+            raise PlanError(
+                source,
+                f"{where}.category",
+                f"{raw['category']!r} is not an indoor catalog entry{hint}",
+            )
         if raw["id"] in seen:
             raise PlanError(source, f"{where}.id", f"the id {raw['id']!r} is used twice")
         seen.add(raw["id"])
     for index, raw in enumerate(data["furniture"]):
         if raw.get("on") is not None and (raw["on"] not in seen or raw["on"] == raw["id"]):
-            raise PlanError(source, f"$.furniture[{index}].on", f"{raw['on']!r} is not another piece of this plan")
+            raise PlanError(
+                source,
+                f"$.furniture[{index}].on",
+                f"{raw['on']!r} is not another piece of this plan",
+            )
     for index, area in enumerate(data.get("free_areas", [])):
         for k, name in enumerate(area.get("suits", [])):
             if name not in known:
-                raise PlanError(source, f"$.free_areas[{index}].suits[{k}]", f"{name!r} is not an indoor catalog entry")
+                raise PlanError(
+                    source,
+                    f"$.free_areas[{index}].suits[{k}]",
+                    f"{name!r} is not an indoor catalog entry",
+                )
     plan = Plan(
         id=data["id"],
         type=data["type"],
         room=room,
         furniture=tuple(
-            Furniture(raw["id"], raw["category"], _pair(raw["center"]), _pair(raw["size"]), float(raw["yaw"]),
-                      raw.get("on"))
+            Furniture(
+                raw["id"],
+                raw["category"],
+                _pair(raw["center"]),
+                _pair(raw["size"]),
+                float(raw["yaw"]),
+                raw.get("on"),
+            )
             for raw in data["furniture"]
-        ),  # fmt: skip
+        ),
         free_areas=tuple(
             FreeArea(_pair(area["center"]), _pair(area["size"]), tuple(area.get("suits", ())))
             for area in data.get("free_areas", [])
@@ -204,7 +231,9 @@ def load_plans(folder: str | Path) -> list[Plan]:
     for path in files:
         plan = read_plan(path)
         if plan.id in first_seen:
-            raise PlanError(str(path), "$.id", f"the plan id {plan.id!r} is also used by {first_seen[plan.id]}")
+            raise PlanError(
+                str(path), "$.id", f"the plan id {plan.id!r} is also used by {first_seen[plan.id]}"
+            )
         first_seen[plan.id] = str(path)
         plans.append(plan)
     return plans
@@ -233,9 +262,14 @@ def _refuse_constant(name: str):
 @lru_cache(maxsize=1)
 def _validator() -> jsonschema.Draft202012Validator:
     scene_schema = load_schema()
-    plan_schema = json.loads(resources.files("scenewright.completion").joinpath(SCHEMA_FILE).read_text("utf-8"))
+    plan_schema = json.loads(
+        resources.files("scenewright.completion").joinpath(SCHEMA_FILE).read_text("utf-8")
+    )
     registry = referencing.Registry().with_resources(
-        [(schema["$id"], referencing.Resource.from_contents(schema)) for schema in (scene_schema, plan_schema)]
+        [
+            (schema["$id"], referencing.Resource.from_contents(schema))
+            for schema in (scene_schema, plan_schema)
+        ]
     )
     jsonschema.Draft202012Validator.check_schema(plan_schema)
     return jsonschema.Draft202012Validator(plan_schema, registry=registry)

@@ -32,7 +32,12 @@ TOLERANCE = 0.005
 #: A piece this close to a window's wall (metres) stands in front of the window.
 WINDOW_DEPTH = 0.35
 #: How a problem names the floor kept free on each side of a piece.
-SIDE_WORDS = {"front": "in front of", "back": "behind", "left": "to the left of", "right": "to the right of"}
+SIDE_WORDS = {
+    "front": "in front of",
+    "back": "behind",
+    "left": "to the left of",
+    "right": "to the right of",
+}
 #: A piece at most this tall (metres, the catalog's height) is flat: it may lie under others.
 FLAT_HEIGHT = 0.02
 
@@ -56,37 +61,64 @@ def plan_problems(plan) -> list[tuple[str, str]]:
             support = plan.piece(piece.on)
             overhang = _overhang(piece.corners, support)
             if overhang > TOLERANCE:
-                problems.append((where, f"{piece.id} overhangs {support.id}, which it stands on, by {overhang:.2f} m"))
+                problems.append(
+                    (
+                        where,
+                        f"{piece.id} overhangs {support.id}, which it stands on, by {overhang:.2f} m",
+                    )
+                )
     for k, first in enumerate(floor):
         for second in floor[k + 1 :]:
             depth = overlap_depth(first.corners, second.corners)
             if depth > TOLERANCE:
-                problems.append((f"$.furniture[{index[second.id]}]",
-                                 f"{second.id} overlaps {first.id} by {depth:.2f} m"))  # fmt: skip
+                problems.append(
+                    (
+                        f"$.furniture[{index[second.id]}]",
+                        f"{second.id} overlaps {first.id} by {depth:.2f} m",
+                    )
+                )
     for door in room.doors:
         swing = room.swing_zone(door)
         for piece in floor:
             if overlap_depth(swing, piece.corners) > TOLERANCE:
-                problems.append((f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in {door.id}'s swing"))
+                problems.append(
+                    (f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in {door.id}'s swing")
+                )
     for piece in floor:
         where = f"$.furniture[{index[piece.id]}]"
         for side, depth in catalog[piece.category].clearance:
-            zone, named = clearance_zone(piece, side, depth), f"the {depth:g} m clearance {SIDE_WORDS[side]} {piece.id}"
+            zone, named = (
+                clearance_zone(piece, side, depth),
+                f"the {depth:g} m clearance {SIDE_WORDS[side]} {piece.id}",
+            )
             if room.footprint_excess(zone) > TOLERANCE:
                 problems.append((where, f"{named} runs into a wall"))
             for other in floor:
-                if other.id != piece.id and other.category not in SEATS and overlap_depth(zone, other.corners) > TOLERANCE:
+                if (
+                    other.id != piece.id
+                    and other.category not in SEATS
+                    and overlap_depth(zone, other.corners) > TOLERANCE
+                ):
                     problems.append((where, f"{other.id} stands in {named}"))
     problems += _free_area_problems(plan, floor, catalog)
     for window in room.windows:
         wall = room.part(window.wall)
         u0, u1 = window.span
-        glass = [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, WINDOW_DEPTH),
-                 wall.to_world(u0, WINDOW_DEPTH)]  # fmt: skip
+        glass = [
+            wall.to_world(u0, 0.0),
+            wall.to_world(u1, 0.0),
+            wall.to_world(u1, WINDOW_DEPTH),
+            wall.to_world(u0, WINDOW_DEPTH),
+        ]
         for piece in floor:
             tall = catalog[piece.category].size[1] > window.sill + TOLERANCE
             if tall and overlap_depth(glass, piece.corners) > TOLERANCE:
-                problems.append((f"$.furniture[{index[piece.id]}]", f"{piece.id} stands in front of {window.id}"))
+                problems.append(
+                    (
+                        f"$.furniture[{index[piece.id]}]",
+                        f"{piece.id} stands in front of {window.id}",
+                    )
+                )
     return problems
 
 
@@ -97,17 +129,26 @@ def _free_area_problems(plan, floor, catalog) -> list[tuple[str, str]]:
     zones = [(f"{door.id}'s swing", plan.room.swing_zone(door)) for door in plan.room.doors]
     for piece in floor:
         for side, depth in catalog[piece.category].clearance:
-            zones.append((f"the clearance {SIDE_WORDS[side]} {piece.id}", clearance_zone(piece, side, depth)))
+            zones.append(
+                (f"the clearance {SIDE_WORDS[side]} {piece.id}", clearance_zone(piece, side, depth))
+            )
     zones += [(piece.id, piece.corners) for piece in floor]
     problems = []
     for k, area in enumerate(plan.free_areas):
         (x, z), (w, d) = area.center, area.size
-        corners = [(x - w / 2, z - d / 2), (x + w / 2, z - d / 2), (x + w / 2, z + d / 2), (x - w / 2, z + d / 2)]
+        corners = [
+            (x - w / 2, z - d / 2),
+            (x + w / 2, z - d / 2),
+            (x + w / 2, z + d / 2),
+            (x - w / 2, z + d / 2),
+        ]
         if plan.room.footprint_excess(corners) > TOLERANCE:
             problems.append((f"$.free_areas[{k}]", "the free area crosses the walls"))
         for name, zone in zones:
             if overlap_depth(corners, zone) > TOLERANCE:
-                problems.append((f"$.free_areas[{k}]", f"the free area is not free: {name} is in it"))
+                problems.append(
+                    (f"$.free_areas[{k}]", f"the free area is not free: {name} is in it")
+                )
     return problems
 
 
@@ -117,7 +158,8 @@ def unreachable(plan, catalog) -> list:
     none in a room without a door."""
     from scenewright.completion.activity import SEATS
     from scenewright.generator.layout.geometry import make_rect, rect_distance
-    from scenewright.generator.layout.room_terms import CORRIDOR_HALF, FLAT_HEIGHT as WALKED_OVER, access_grid
+    from scenewright.generator.layout.room_terms import CORRIDOR_HALF, access_grid
+    from scenewright.generator.layout.room_terms import FLAT_HEIGHT as WALKED_OVER
 
     grid = access_grid(plan.room)
     if not grid.has_doors:
@@ -130,14 +172,20 @@ def unreachable(plan, catalog) -> list:
             taken |= grid.obstacle(rects[piece.id]).bits
     way = grid.label(grid.static & ~taken)
     used = [piece for piece in ground if catalog[piece.category].access]
-    reached = {p.id: bool(way & grid.access(rects[p.id], catalog[p.category].access).bits) for p in used}
+    reached = {
+        p.id: bool(way & grid.access(rects[p.id], catalog[p.category].access).bits) for p in used
+    }
     reach = CORRIDOR_HALF + grid.cell  # how near the way must come to a side used (the layout's)
     seats = [p for p in used if p.category in SEATS and reached[p.id]]
     return [
-        piece for piece in used
-        if not reached[piece.id] and not any(
-            seat.id != piece.id and rect_distance(rects[seat.id], rects[piece.id]) <= reach for seat in seats)
-    ]  # fmt: skip
+        piece
+        for piece in used
+        if not reached[piece.id]
+        and not any(
+            seat.id != piece.id and rect_distance(rects[seat.id], rects[piece.id]) <= reach
+            for seat in seats
+        )
+    ]
 
 
 def is_flat(piece, catalog) -> bool:
@@ -154,11 +202,15 @@ def clearance_zone(piece, side: str, depth: float) -> list[tuple[float, float]]:
     """Corners (x, z) of the floor ``depth`` metres deep beside ``piece`` on its own
     ``side`` (``front``, ``back``, ``left``: local +X, ``right``), as long as that side."""
     half_w, half_d = piece.size[0] / 2.0, piece.size[1] / 2.0
-    ux, uz = {"front": (0.0, 1.0), "back": (0.0, -1.0), "left": (1.0, 0.0), "right": (-1.0, 0.0)}[side]
+    ux, uz = {"front": (0.0, 1.0), "back": (0.0, -1.0), "left": (1.0, 0.0), "right": (-1.0, 0.0)}[
+        side
+    ]
     # The side's own half length (along it) and its distance from the centre (out of it).
     along, out = (half_w, half_d) if uz else (half_d, half_w)
-    local = [(ux * (out + k) + uz * a, uz * (out + k) + ux * a) for k, a in ((0.0, -along), (0.0, along),
-             (depth, along), (depth, -along))]  # fmt: skip
+    local = [
+        (ux * (out + k) + uz * a, uz * (out + k) + ux * a)
+        for k, a in ((0.0, -along), (0.0, along), (depth, along), (depth, -along))
+    ]
     return [to_world(piece.center[0], piece.center[1], piece.yaw, lx, lz) for lx, lz in local]
 
 

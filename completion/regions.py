@@ -59,10 +59,19 @@ class Region:
         """(n,) whether each of the (n, 2) points lies in the region's rectangle."""
         points = np.asarray(points, dtype=float).reshape(-1, 2)
         x0, z0, x1, z1 = self.bounds
-        return (points[:, 0] >= x0) & (points[:, 0] <= x1) & (points[:, 1] >= z0) & (points[:, 1] <= z1)
+        return (
+            (points[:, 0] >= x0)
+            & (points[:, 0] <= x1)
+            & (points[:, 1] >= z0)
+            & (points[:, 1] <= z1)
+        )
 
     def to_dict(self) -> dict:
-        return {"type": self.room_type, "bounds": [float(v) for v in self.bounds], "virtual_door": self.virtual_door}
+        return {
+            "type": self.room_type,
+            "bounds": [float(v) for v in self.bounds],
+            "virtual_door": self.virtual_door,
+        }
 
     def has_room_corner(self, room: Room) -> bool:
         """Whether a corner of the whole (rectangular) ``room`` is a corner of this region:
@@ -102,7 +111,7 @@ def strips(room: Room, lengths, order) -> list[tuple[float, float, float, float]
 def virtual_walls(regions) -> list[tuple[tuple[float, float], tuple[float, float]]]:
     """The segments ((x, z), (x, z)) between neighbouring regions, in order."""
     walls = []
-    for first, second in zip(regions, regions[1:]):
+    for first, second in zip(regions, regions[1:], strict=False):
         ax0, az0, ax1, az1 = first.bounds
         bx0, bz0, _, _ = second.bounds
         if abs(ax1 - bx0) < 1e-9 and bz0 == az0:  # side by side along x: the wall runs along z
@@ -129,9 +138,15 @@ def sub_room(room: Room, bounds, door_side=None) -> tuple[Room, bool]:
             low, high = max(u - opening.width / 2.0, 0.0), min(u + opening.width / 2.0, wall.length)
             if high - low < 0.05:
                 break
-            extra = {"height": opening.height} if opening.kind == "door" else {"height": opening.height, "sill": opening.sill}
+            extra = (
+                {"height": opening.height}
+                if opening.kind == "door"
+                else {"height": opening.height, "sill": opening.sill}
+            )
             try:
-                sub = sub.with_opening(opening.kind, wall.id, (low + high) / 2.0, high - low, **extra)
+                sub = sub.with_opening(
+                    opening.kind, wall.id, (low + high) / 2.0, high - low, **extra
+                )
             except RoomError:
                 pass  # overlapping another cut opening: the region's mask frame needs no more
             break
@@ -163,7 +178,14 @@ def split_room(model: dict, room: Room, types) -> tuple[Region, ...]:
             mean_area = model["types"][region.room_type]["mean_area"]
             parts = room_parts(region.room, mean_area)
             plans = nearest_plans(model, region.room_type, parts)
-            distance += float(np.mean([np.linalg.norm(np.asarray(p["feature"])[list(ROOM_PARTS)] - parts) for p in plans]))
+            distance += float(
+                np.mean(
+                    [
+                        np.linalg.norm(np.asarray(p["feature"])[list(ROOM_PARTS)] - parts)
+                        for p in plans
+                    ]
+                )
+            )
         window = _window_distance(room, regions[order.index(largest)])
         key = (round(distance, 9), round(window, 9), order)
         if best is None or key < best[0]:
@@ -181,7 +203,11 @@ def _regions_in_order(room: Room, types, lengths, order) -> tuple[Region, ...]:
     for k, box in enumerate(boxes):
         sub, virtual = rooms[k]
         if not sub.doors:
-            towards = min(with_door, key=lambda j: (abs(j - k), j)) if with_door else (k - 1 if k else k + 1)
+            towards = (
+                min(with_door, key=lambda j: (abs(j - k), j))
+                if with_door
+                else (k - 1 if k else k + 1)
+            )
             # Walls of a rectangle: 0 north, 1 east, 2 south, 3 west.
             side = (1 if towards > k else 3) if along_x else (2 if towards > k else 0)
             sub, virtual = sub_room(room, box, side)
@@ -208,11 +234,15 @@ def region_of_points(regions, points) -> np.ndarray:
     return found
 
 
-def footprint_share(region: Region, x: float, z: float, width: float, depth: float, yaw: float, samples: int = 5) -> float:
+def footprint_share(
+    region: Region, x: float, z: float, width: float, depth: float, yaw: float, samples: int = 5
+) -> float:
     """The share of a footprint (centre, sides, yaw) inside the region: of its
     ``samples`` x ``samples`` points, those in the rectangle."""
     grid = (np.arange(samples) + 0.5) / samples - 0.5
     local = np.array([(a * width, b * depth) for a in grid for b in grid])
     c, s = math.cos(yaw), math.sin(yaw)
-    points = np.column_stack([x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c])
+    points = np.column_stack(
+        [x + local[:, 0] * c + local[:, 1] * s, z - local[:, 0] * s + local[:, 1] * c]
+    )
     return float(np.mean(region.contains(points)))

@@ -107,15 +107,24 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
         if all(p > 0.0 for p in holds):
             mean = sum(model["types"][t]["mean_area"] for t in chosen)
             variance = sum(spreads[t] ** 2 for t in chosen)
-            log_area = -0.5 * (room_area - mean) ** 2 / variance - 0.5 * math.log(2 * math.pi * variance)
+            log_area = -0.5 * (room_area - mean) ** 2 / variance - 0.5 * math.log(
+                2 * math.pi * variance
+            )
             log_holds = sum(math.log(p) for p in holds)
             unseen = math.log(1 + sum(model["types"][t].get("plans", 0) for t in chosen))
-            beyond = sum(1 for name, count in requested.items() if _most(model, chosen, name) < count)
+            beyond = sum(
+                1 for name, count in requested.items() if _most(model, chosen, name) < count
+            )
             score = log_area + log_holds - unseen * beyond - extra_type * (len(chosen) - 1)
-            candidates.append((-round(score, 9), len(chosen), chosen, abs(room_area - mean) / room_area))
+            candidates.append(
+                (-round(score, 9), len(chosen), chosen, abs(room_area - mean) / room_area)
+            )
     _, _, chosen, error = min(candidates)
     ordered = tuple(sorted(chosen, key=lambda t: (-model["types"][t]["mean_area"], t)))
-    owners = {name: max(ordered, key=lambda t: (_p(model, t, name), -ordered.index(t))) for name in sorted(requested)}
+    owners = {
+        name: max(ordered, key=lambda t: (_p(model, t, name), -ordered.index(t)))
+        for name in sorted(requested)
+    }
     return TypeChoice(ordered, owners, error)
 
 
@@ -127,7 +136,10 @@ def area_spreads(model: dict) -> dict[str, float]:
     for plan in model.get("plans", ()):
         areas.setdefault(plan["type"], []).append(plan["area"])
     return {
-        t: max(float(np.std(areas[t])) if len(areas[t]) > 1 else 0.0, MIN_AREA_SPREAD * entry["mean_area"])
+        t: max(
+            float(np.std(areas[t])) if len(areas[t]) > 1 else 0.0,
+            MIN_AREA_SPREAD * entry["mean_area"],
+        )
         for t, entry in model["types"].items()
     }
 
@@ -153,7 +165,8 @@ def _joins(model: dict, room_type: str, requested) -> bool:
         return True
     own = own_categories(model)[room_type]
     return any(
-        any(_p(model, other, name) > 0.0 for name in own) and any(_p(model, other, name) > 0.0 for name in requested)
+        any(_p(model, other, name) > 0.0 for name in own)
+        and any(_p(model, other, name) > 0.0 for name in requested)
         for other in model["types"]
     )
 
@@ -200,15 +213,23 @@ def nearest_plans(model: dict, room_type: str, room_parts, k: int = K) -> list[d
     ``room_parts`` (angle / pi, aspect, relative size); ties by plan id."""
     plans = [plan for plan in model["plans"] if plan["type"] == room_type]
     target = np.asarray(room_parts, dtype=float)
-    distance = {plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"])[list(ROOM_PARTS)] - target))
-                for plan in plans}  # fmt: skip
+    distance = {
+        plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"])[list(ROOM_PARTS)] - target))
+        for plan in plans
+    }
     return sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
 
 
 def explore_categories(
-    model: dict, room_type: str, requested: dict[str, int], room_area: float, room_parts, *, k: int = K,
+    model: dict,
+    room_type: str,
+    requested: dict[str, int],
+    room_area: float,
+    room_parts,
+    *,
+    k: int = K,
     omega: float = OMEGA,
-) -> Exploration:  # fmt: skip
+) -> Exploration:
     """Algorithm 1 for a room of ``room_area`` square metres whose room-only feature
     parts are ``room_parts``, with ``requested`` categories and counts."""
     if room_type not in model["types"]:
@@ -217,10 +238,15 @@ def explore_categories(
     unknown = sorted(name for name in requested if name not in model["categories"])
     if unknown:
         raise InputError(f"no plan has a {unknown[0]!r}")
-    weights = {tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"] if pair["weight"] > 0.0}
+    weights = {
+        tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"] if pair["weight"] > 0.0
+    }
     references = nearest_plans(model, room_type, room_parts, k)
     occupancies = np.array([plan["feature"][1] for plan in references])
-    typical = {**_typical_counts(model["plans"], room_type), **_typical_counts(references, room_type)}
+    typical = {
+        **_typical_counts(model["plans"], room_type),
+        **_typical_counts(references, room_type),
+    }
     names = sorted({name for pair in weights for name in pair} | set(requested))
     counts = {name: requested.get(name, typical.get(name, 1)) for name in names}
 
@@ -231,12 +257,19 @@ def explore_categories(
     # and a float sum's last bit with its order, which could flip a tie between two costs.
     def cost(chosen: set[str]) -> float:
         names = sorted(chosen)
-        ratio = sum(model["categories"][name]["floor_area"] * counts[name] for name in names) / room_area
+        ratio = (
+            sum(model["categories"][name]["floor_area"] * counts[name] for name in names)
+            / room_area
+        )
         related = sum(weight(a, b) for i, a in enumerate(names) for b in names[i + 1 :])
         return float(np.mean(np.abs(ratio - occupancies))) - omega * related
 
     def mean_weight(name: str, chosen: set[str]) -> float:
-        neighbours = [weight(name, other) for other in sorted(chosen) if other != name and weight(name, other) > 0.0]
+        neighbours = [
+            weight(name, other)
+            for other in sorted(chosen)
+            if other != name and weight(name, other) > 0.0
+        ]
         return sum(neighbours) / len(neighbours) if neighbours else 0.0
 
     chosen = set(counts)
@@ -246,16 +279,25 @@ def explore_categories(
         removable = sorted(name for name in chosen if name not in requested)
         weakest = min(removable, key=lambda name: (mean_weight(name, chosen), name))
         chosen.discard(weakest)
-        isolated = sorted(name for name in chosen if name not in requested and mean_weight(name, chosen) == 0.0)
+        isolated = sorted(
+            name for name in chosen if name not in requested and mean_weight(name, chosen) == 0.0
+        )
         chosen.difference_update(isolated)
         now = cost(chosen)
         steps.append({"removed": weakest, "isolated": isolated, "cost": now})
         if now < best_cost:
             best, best_cost = set(chosen), now
-    added = sorted(best - set(requested), key=lambda name: (-sum(weight(name, r) for r in requested), name))
+    added = sorted(
+        best - set(requested), key=lambda name: (-sum(weight(name, r) for r in requested), name)
+    )
     ordered = tuple(sorted(requested)) + tuple(added)
-    return Exploration(ordered, {name: counts[name] for name in ordered}, best_cost,
-                       tuple(plan["id"] for plan in references), tuple(steps))  # fmt: skip
+    return Exploration(
+        ordered,
+        {name: counts[name] for name in ordered},
+        best_cost,
+        tuple(plan["id"] for plan in references),
+        tuple(steps),
+    )
 
 
 def _typical_counts(plans: list[dict], room_type: str) -> dict[str, int]:

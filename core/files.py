@@ -36,7 +36,9 @@ def read_regular_file(path: str | os.PathLike[str], limit: int, holder: str) -> 
         if not stat.S_ISREG(status.st_mode):
             raise UnusableFile("is not a regular file")
         if status.st_size > limit:
-            raise UnusableFile(f"is {_mebibytes(status.st_size)}, more than the {_mebibytes(limit)} {holder} may hold")
+            raise UnusableFile(
+                f"is {_mebibytes(status.st_size)}, more than the {_mebibytes(limit)} {holder} may hold"
+            )
         with os.fdopen(descriptor, "rb", closefd=False) as stream:
             data = stream.read(limit + 1)
     finally:

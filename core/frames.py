@@ -51,13 +51,17 @@ def to_local(cx: float, cz: float, yaw: float, px: float, pz: float) -> tuple[fl
     return dx * c - dz * s, dx * s + dz * c
 
 
-def footprint_corners(cx: float, cz: float, yaw: float, width: float, depth: float) -> list[tuple[float, float]]:
+def footprint_corners(
+    cx: float, cz: float, yaw: float, width: float, depth: float
+) -> list[tuple[float, float]]:
     """The four (x, z) corners of a ``width`` x ``depth`` footprint, counter-clockwise in
     local coordinates: back-right, back-left, front-left, front-right."""
     return corners_of(cx, cz, width / 2.0, depth / 2.0, math.cos(yaw), math.sin(yaw))
 
 
-def corners_of(cx: float, cz: float, hw: float, hd: float, c: float, s: float) -> list[tuple[float, float]]:
+def corners_of(
+    cx: float, cz: float, hw: float, hd: float, c: float, s: float
+) -> list[tuple[float, float]]:
     """``footprint_corners`` from half extents and the yaw's cosine and sine (the form
     the layout keeps for every box, so its inner loop never recomputes them)."""
     ux, uz, vx, vz = c * hw, -s * hw, s * hd, c * hd
@@ -104,7 +108,9 @@ def to_world_many(centres: np.ndarray, yaw: np.ndarray, local: np.ndarray) -> np
     local = np.asarray(local, dtype=float)
     lx, lz = local[..., 0], local[..., 1]
     centres = np.asarray(centres, dtype=float)
-    return np.stack([centres[:, None, 0] + lx * c + lz * s, centres[:, None, 1] - lx * s + lz * c], axis=-1)
+    return np.stack(
+        [centres[:, None, 0] + lx * c + lz * s, centres[:, None, 1] - lx * s + lz * c], axis=-1
+    )
 
 
 def to_local_many(centres: np.ndarray, yaw: np.ndarray, points: np.ndarray) -> np.ndarray:

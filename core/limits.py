@@ -51,7 +51,9 @@ MAX_JSON_DEPTH = 64
 MAX_SCENE_JSON_BYTES = 64 * 1024 * 1024
 
 #: Characters that change the direction of the text after them (Unicode Bidi_Control).
-_BIDI_CONTROLS = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
+_BIDI_CONTROLS = frozenset(
+    "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
+)
 
 
 def _forbidden(character: str) -> bool:
@@ -71,4 +73,6 @@ def forbidden_character(text: str) -> str | None:
 def printable(line: str) -> str:
     """``line`` with each forbidden character but the tab replaced by U+FFFD, one for
     one, so it prints as it reads and columns stay where they were."""
-    return "".join("\ufffd" if character != "\t" and _forbidden(character) else character for character in line)
+    return "".join(
+        "\ufffd" if character != "\t" and _forbidden(character) else character for character in line
+    )

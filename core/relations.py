@@ -134,7 +134,9 @@ class RelationLabel:
         if self.frame != "target":
             return dict(self.directions)
         # B's local (lx, lz) in the world: lx * left + lz * forward, left (c, -s), forward (s, c)
-        return {name: (lx * c + lz * s, -lx * s + lz * c) for name, (lx, lz) in self.directions.items()}
+        return {
+            name: (lx * c + lz * s, -lx * s + lz * c) for name, (lx, lz) in self.directions.items()
+        }
 
     def wordings_for(self, chosen: str | None = None) -> tuple[str, ...]:
         """The verb phrases that state this label (canonical first); a label that chooses
@@ -176,7 +178,9 @@ class Registry:
         _check_complete(label)
         forms = [replace(label, base=label.name)]
         if label.implicitable:
-            forms.append(replace(label, name=IMPLICIT_PREFIX + label.name, implicit=True, base=label.name))
+            forms.append(
+                replace(label, name=IMPLICIT_PREFIX + label.name, implicit=True, base=label.name)
+            )
         for form in forms:
             if form.name in self._labels:
                 raise ValueError(f"relation label {form.name!r} is registered twice")
@@ -222,10 +226,25 @@ def _check_complete(label: RelationLabel) -> None:
         problems.append(f"family {label.family!r} is not one of {', '.join(FAMILIES)}")
     if label.family == "next_to" and label.directions and label.frame not in ("world", "target"):
         problems.append("directions need a frame, 'world' or 'target'")
-    if label.family == "support" and label.placement not in ("anywhere", "middle", "edge", "front_edge"):
-        problems.append(f"placement {label.placement!r} is not anywhere, middle, edge or front_edge")
-    if label.family == "facing" and label.facing not in ("towards", "away", "same", "orthogonal", "opposite"):
-        problems.append(f"facing {label.facing!r} is not towards, away, same, orthogonal or opposite")
+    if label.family == "support" and label.placement not in (
+        "anywhere",
+        "middle",
+        "edge",
+        "front_edge",
+    ):
+        problems.append(
+            f"placement {label.placement!r} is not anywhere, middle, edge or front_edge"
+        )
+    if label.family == "facing" and label.facing not in (
+        "towards",
+        "away",
+        "same",
+        "orthogonal",
+        "opposite",
+    ):
+        problems.append(
+            f"facing {label.facing!r} is not towards, away, same, orthogonal or opposite"
+        )
     if label.family == "wall" and label.wall not in WALL_PLACEMENTS:
         problems.append(f"wall placement {label.wall!r} is not one of {', '.join(WALL_PLACEMENTS)}")
     if label.family != "structural" and not label.chooses and not label.wordings:
@@ -242,16 +261,29 @@ def _check_complete(label: RelationLabel) -> None:
 _NEXT_TO_WORDINGS = ("is next to", "is beside")
 
 
-def _next_to(name: str, phrase: str, wordings: tuple[str, ...], directions: tuple[str, ...] = (), **more) -> RelationLabel:
+def _next_to(
+    name: str, phrase: str, wordings: tuple[str, ...], directions: tuple[str, ...] = (), **more
+) -> RelationLabel:
     table = COMPASS if all(d in COMPASS for d in directions) else SIDES
     frame = None if not directions else ("world" if table is COMPASS else "target")
     return RelationLabel(
-        name, "next_to", phrase, wordings, directions={d: table[d] for d in directions}, frame=frame, place=True, **more
+        name,
+        "next_to",
+        phrase,
+        wordings,
+        directions={d: table[d] for d in directions},
+        frame=frame,
+        place=True,
+        **more,
     )
 
 
-def _support(name: str, placement: str, phrase: str, wordings: tuple[str, ...], *, part_of: bool = False) -> RelationLabel:
-    return RelationLabel(name, "support", phrase, wordings, placement=placement, part_of=part_of, place=not part_of)
+def _support(
+    name: str, placement: str, phrase: str, wordings: tuple[str, ...], *, part_of: bool = False
+) -> RelationLabel:
+    return RelationLabel(
+        name, "support", phrase, wordings, placement=placement, part_of=part_of, place=not part_of
+    )
 
 
 #: The vocabulary of Table 1.
@@ -259,42 +291,136 @@ TABLE_1: tuple[RelationLabel, ...] = (
     _next_to("NextTo", "next to", _NEXT_TO_WORDINGS, symmetric=True),
     _next_to("NextToChooseDirection", "next to", (), tuple(COMPASS)),
     _next_to("NextToChooseSide", "beside", (), ("left", "right")),
-    *(_next_to(f"NextTo{d.title()}", DIRECTION_PHRASES[d], DIRECTION_WORDINGS[d], (d,)) for d in COMPASS),
-    *(_next_to(f"NextTo{d.title()}", DIRECTION_PHRASES[d], DIRECTION_WORDINGS[d], (d,)) for d in SIDES),
+    *(
+        _next_to(f"NextTo{d.title()}", DIRECTION_PHRASES[d], DIRECTION_WORDINGS[d], (d,))
+        for d in COMPASS
+    ),
+    *(
+        _next_to(f"NextTo{d.title()}", DIRECTION_PHRASES[d], DIRECTION_WORDINGS[d], (d,))
+        for d in SIDES
+    ),
     _support("OnTopOf", "anywhere", "on top of", ("is on top of", "is on")),
-    _support("OnTopOfMiddle", "middle", "in the middle of", ("is in the middle of", "stands in the middle of")),
-    _support("OnTopOfEdge", "edge", "at the edge of", ("is on the edge of", "stands on the edge of")),
-    _support("OnTopOfFrontEdge", "front_edge", "at the front edge of", ("is at the front edge of", "stands at the front edge of")),
+    _support(
+        "OnTopOfMiddle",
+        "middle",
+        "in the middle of",
+        ("is in the middle of", "stands in the middle of"),
+    ),
+    _support(
+        "OnTopOfEdge", "edge", "at the edge of", ("is on the edge of", "stands on the edge of")
+    ),
+    _support(
+        "OnTopOfFrontEdge",
+        "front_edge",
+        "at the front edge of",
+        ("is at the front edge of", "stands at the front edge of"),
+    ),
     # IsPartOf* rests A on B like OnTopOf*, but A belongs to B (a sign on a stall).
     _support("IsPartOf", "anywhere", "part of", ("is part of", "forms part of"), part_of=True),
-    _support("IsPartOfMiddle", "middle", "attached to the middle of", ("is attached to the middle of",), part_of=True),
-    _support("IsPartOfEdge", "edge", "attached to the edge of", ("is attached to the edge of",), part_of=True),
-    _support("IsPartOfFrontEdge", "front_edge", "attached to the front edge of", ("is attached to the front edge of",), part_of=True),
-    RelationLabel("FacingTowards", "facing", "facing towards", ("faces", "is turned towards"), facing="towards"),
-    RelationLabel("FacingAwayFrom", "facing", "facing away from", ("faces away from", "is turned away from"), facing="away"),
-    RelationLabel(
-        "FacingSameDirection", "facing", "facing the same way as",
-        ("faces the same way as", "faces the same direction as"), facing="same", symmetric=True,
+    _support(
+        "IsPartOfMiddle",
+        "middle",
+        "attached to the middle of",
+        ("is attached to the middle of",),
+        part_of=True,
+    ),
+    _support(
+        "IsPartOfEdge",
+        "edge",
+        "attached to the edge of",
+        ("is attached to the edge of",),
+        part_of=True,
+    ),
+    _support(
+        "IsPartOfFrontEdge",
+        "front_edge",
+        "attached to the front edge of",
+        ("is attached to the front edge of",),
+        part_of=True,
     ),
     RelationLabel(
-        "FacingOrthogonalDirection", "facing", "facing across",
-        ("stands at a right angle to", "is at a right angle to"), facing="orthogonal", symmetric=True,
+        "FacingTowards",
+        "facing",
+        "facing towards",
+        ("faces", "is turned towards"),
+        facing="towards",
     ),
     RelationLabel(
-        "FacingOpposite", "facing", "facing the opposite way to",
-        ("faces the opposite way to", "faces the opposite direction to"), facing="opposite", symmetric=True,
+        "FacingAwayFrom",
+        "facing",
+        "facing away from",
+        ("faces away from", "is turned away from"),
+        facing="away",
     ),
-    RelationLabel("AlignedWith", "alignment", "lined up with", ("is lined up with", "is aligned with"), symmetric=True),
+    RelationLabel(
+        "FacingSameDirection",
+        "facing",
+        "facing the same way as",
+        ("faces the same way as", "faces the same direction as"),
+        facing="same",
+        symmetric=True,
+    ),
+    RelationLabel(
+        "FacingOrthogonalDirection",
+        "facing",
+        "facing across",
+        ("stands at a right angle to", "is at a right angle to"),
+        facing="orthogonal",
+        symmetric=True,
+    ),
+    RelationLabel(
+        "FacingOpposite",
+        "facing",
+        "facing the opposite way to",
+        ("faces the opposite way to", "faces the opposite direction to"),
+        facing="opposite",
+        symmetric=True,
+    ),
+    RelationLabel(
+        "AlignedWith",
+        "alignment",
+        "lined up with",
+        ("is lined up with", "is aligned with"),
+        symmetric=True,
+    ),
     # Rooms: B is a wall or a window, or the room itself (whichever wall or window fits).
-    RelationLabel("AgainstWall", "wall", "against", ("stands against", "is against"), wall="against", place=True),
-    RelationLabel("InCorner", "wall", "in a corner by", ("stands in a corner by", "is in a corner by"), wall="corner", place=True),
-    RelationLabel("UnderWindow", "wall", "under", ("is under", "stands under"), wall="under_window", place=True),
-    RelationLabel("BesideWindow", "wall", "beside", ("is beside", "stands beside"), wall="beside_window", place=True),
+    RelationLabel(
+        "AgainstWall",
+        "wall",
+        "against",
+        ("stands against", "is against"),
+        wall="against",
+        place=True,
+    ),
+    RelationLabel(
+        "InCorner",
+        "wall",
+        "in a corner by",
+        ("stands in a corner by", "is in a corner by"),
+        wall="corner",
+        place=True,
+    ),
+    RelationLabel(
+        "UnderWindow",
+        "wall",
+        "under",
+        ("is under", "stands under"),
+        wall="under_window",
+        place=True,
+    ),
+    RelationLabel(
+        "BesideWindow",
+        "wall",
+        "beside",
+        ("is beside", "stands beside"),
+        wall="beside_window",
+        place=True,
+    ),
     # Structural: a path starts at a junction (written either way round). No energy of
     # its own (the path's end is attached to the junction); the text tells it as the
     # road network rather than as a relation.
     RelationLabel("PathConnectedTo", "structural", "connected to", implicitable=False),
-)  # fmt: skip
+)
 
 #: The registry every stage reads.
 RELATIONS = Registry(TABLE_1)

@@ -39,11 +39,15 @@ WALL_THICKNESS = 0.12
 
 #: Eight compass words by the direction (x, z) they name (north is -Z, east +X).
 _COMPASS8 = (
-    ("north", (0.0, -1.0)), ("north-east", (math.sqrt(0.5), -math.sqrt(0.5))),
-    ("east", (1.0, 0.0)), ("south-east", (math.sqrt(0.5), math.sqrt(0.5))),
-    ("south", (0.0, 1.0)), ("south-west", (-math.sqrt(0.5), math.sqrt(0.5))),
-    ("west", (-1.0, 0.0)), ("north-west", (-math.sqrt(0.5), -math.sqrt(0.5))),
-)  # fmt: skip
+    ("north", (0.0, -1.0)),
+    ("north-east", (math.sqrt(0.5), -math.sqrt(0.5))),
+    ("east", (1.0, 0.0)),
+    ("south-east", (math.sqrt(0.5), math.sqrt(0.5))),
+    ("south", (0.0, 1.0)),
+    ("south-west", (-math.sqrt(0.5), math.sqrt(0.5))),
+    ("west", (-1.0, 0.0)),
+    ("north-west", (-math.sqrt(0.5), -math.sqrt(0.5))),
+)
 
 
 class RoomError(ValueError):
@@ -97,7 +101,9 @@ class Wall:
     def to_world(self, u: float, v: float) -> tuple[float, float]:
         """The wall frame's (u, v) in world (x, z)."""
         tx, tz = self.direction
-        return self.start[0] + u * tx + v * self.normal[0], self.start[1] + u * tz + v * self.normal[1]
+        return self.start[0] + u * tx + v * self.normal[0], self.start[
+            1
+        ] + u * tz + v * self.normal[1]
 
 
 @dataclass(frozen=True)
@@ -162,7 +168,9 @@ class Room:
         for k in range(n):
             a, b = points[k], points[(k + 1) % n]
             if math.hypot(b[0] - a[0], b[1] - a[1]) < 0.05:
-                raise RoomError(f"wall {k + 1} is shorter than 5 cm (corners {k + 1} and {(k + 1) % n + 1} coincide)")
+                raise RoomError(
+                    f"wall {k + 1} is shorter than 5 cm (corners {k + 1} and {(k + 1) % n + 1} coincide)"
+                )
         _refuse_self_crossing(points)
         area = _signed_area(points)
         if abs(area) < 0.25:
@@ -180,7 +188,13 @@ class Room:
         return cls(tuple(walls))
 
     def with_opening(
-        self, kind: str, wall: str, offset: float, width: float, height: float | None = None, sill: float = 0.0
+        self,
+        kind: str,
+        wall: str,
+        offset: float,
+        width: float,
+        height: float | None = None,
+        sill: float = 0.0,
     ) -> Room:
         """This room with one more door or window; refuses one that does not fit its wall."""
         if kind not in OPENING_KINDS:
@@ -198,20 +212,35 @@ class Room:
         if sill < 0.0 or not math.isfinite(sill):
             raise RoomError(f"the window's sill {sill:g} is below the floor")
         if width > target.length + 1e-9:
-            raise RoomError(f"the {kind} ({width:g} m wide) is wider than {_wall_words(target)} ({target.length:g} m)")
+            raise RoomError(
+                f"the {kind} ({width:g} m wide) is wider than {_wall_words(target)} ({target.length:g} m)"
+            )
         if offset - width / 2.0 < -1e-9 or offset + width / 2.0 > target.length + 1e-9:
             raise RoomError(
                 f"the {kind} at {offset:g} m, {width:g} m wide, runs past the end of "
                 f"{_wall_words(target)} ({target.length:g} m long)"
             )
         if sill + height > target.height + 1e-9:
-            raise RoomError(f"the {kind}'s top ({sill + height:g} m) is above the wall ({target.height:g} m)")
+            raise RoomError(
+                f"the {kind}'s top ({sill + height:g} m) is above the wall ({target.height:g} m)"
+            )
         for other in self.openings_on(target.id):
             if abs(other.offset - offset) < (other.width + width) / 2.0 - 1e-9:
-                raise RoomError(f"the {kind} overlaps {other.id.replace('_', ' ')} on {_wall_words(target)}")
+                raise RoomError(
+                    f"the {kind} overlaps {other.id.replace('_', ' ')} on {_wall_words(target)}"
+                )
         count = sum(1 for o in self.openings if o.kind == kind) + 1
         center = target.to_world(offset, 0.0)
-        opening = Opening(f"{kind}_{count}", kind, target.id, float(offset), float(width), float(height), float(sill), center)
+        opening = Opening(
+            f"{kind}_{count}",
+            kind,
+            target.id,
+            float(offset),
+            float(width),
+            float(height),
+            float(sill),
+            center,
+        )
         return Room(self.walls, self.openings + (opening,))
 
     # -- lookups ------------------------------------------------------------------
@@ -316,20 +345,35 @@ class Room:
         front of it, inside the room."""
         wall = self.part(door.wall)
         u0, u1 = door.span
-        return [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, door.width), wall.to_world(u0, door.width)]
+        return [
+            wall.to_world(u0, 0.0),
+            wall.to_world(u1, 0.0),
+            wall.to_world(u1, door.width),
+            wall.to_world(u0, door.width),
+        ]
 
     # -- plain data -----------------------------------------------------------------
 
     def to_dict(self) -> dict:
         """scene.json's ``room``: walls (inner faces, in order) and openings."""
         return {
-            "walls": [{"id": w.id, "from": list(w.start), "to": list(w.end), "height": w.height} for w in self.walls],
+            "walls": [
+                {"id": w.id, "from": list(w.start), "to": list(w.end), "height": w.height}
+                for w in self.walls
+            ],
             "openings": [
-                {"id": o.id, "kind": o.kind, "wall": o.wall, "center": list(o.center), "width": o.width,
-                 "height": o.height, "sill": o.sill}
+                {
+                    "id": o.id,
+                    "kind": o.kind,
+                    "wall": o.wall,
+                    "center": list(o.center),
+                    "width": o.width,
+                    "height": o.height,
+                    "sill": o.sill,
+                }
                 for o in self.openings
             ],
-        }  # fmt: skip
+        }
 
     @classmethod
     def from_dict(cls, data: dict) -> Room:
@@ -340,8 +384,14 @@ class Room:
         room = cls.polygon(corners, max(heights), centre=False)
         # Keep each wall's own id and height as written.
         walls = tuple(
-            Wall(str(raw["id"]), wall.start, wall.end, float(raw.get("height", wall.height)), wall.normal)
-            for raw, wall in zip(raw_walls, room.walls)
+            Wall(
+                str(raw["id"]),
+                wall.start,
+                wall.end,
+                float(raw.get("height", wall.height)),
+                wall.normal,
+            )
+            for raw, wall in zip(raw_walls, room.walls, strict=False)
         )
         room = cls(walls)
         by_id = {w.id: w for w in walls}
@@ -349,12 +399,22 @@ class Room:
         for raw in data.get("openings", []):
             wall = by_id.get(raw["wall"])
             if wall is None:
-                raise RoomError(f"opening {raw['id']!r} is in wall {raw['wall']!r}, which the room does not have")
+                raise RoomError(
+                    f"opening {raw['id']!r} is in wall {raw['wall']!r}, which the room does not have"
+                )
             u, _ = wall.to_wall(*raw["center"])
             openings.append(
-                Opening(str(raw["id"]), raw["kind"], wall.id, u, float(raw["width"]), float(raw["height"]),
-                        float(raw.get("sill", 0.0)), tuple(float(v) for v in raw["center"]))
-            )  # fmt: skip
+                Opening(
+                    str(raw["id"]),
+                    raw["kind"],
+                    wall.id,
+                    u,
+                    float(raw["width"]),
+                    float(raw["height"]),
+                    float(raw.get("sill", 0.0)),
+                    tuple(float(v) for v in raw["center"]),
+                )
+            )
         return cls(walls, tuple(openings))
 
 
@@ -371,7 +431,10 @@ def _wall_words(wall: Wall) -> str:
 
 def _signed_area(points: list[tuple[float, float]]) -> float:
     n = len(points)
-    return 0.5 * sum(points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1] for k in range(n))
+    return 0.5 * sum(
+        points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
+        for k in range(n)
+    )
 
 
 def _segment_distance(x: float, z: float, a: tuple[float, float], b: tuple[float, float]) -> float:
@@ -381,7 +444,9 @@ def _segment_distance(x: float, z: float, a: tuple[float, float], b: tuple[float
     return math.hypot(x - a[0] - t * dx, z - a[1] - t * dz)
 
 
-def _depth_in_convex(x: float, z: float, corners: list[tuple[float, float]], clockwise: bool) -> float:
+def _depth_in_convex(
+    x: float, z: float, corners: list[tuple[float, float]], clockwise: bool
+) -> float:
     """How deep (x, z) lies inside a convex polygon (its corners going round ``clockwise``
     or not, by the sign of its area): its distance to the nearest edge, or 0 outside."""
     n = len(corners)
@@ -409,7 +474,9 @@ def _refuse_self_crossing(points: list[tuple[float, float]]) -> None:
                 continue  # neighbouring walls share a corner
             b0, b1 = points[j], points[(j + 1) % n]
             if _segments_cross(a0, a1, b0, b1):
-                raise RoomError(f"walls {i + 1} and {j + 1} cross: the corners must go once around the room")
+                raise RoomError(
+                    f"walls {i + 1} and {j + 1} cross: the corners must go once around the room"
+                )
 
 
 def _segments_cross(p, q, r, s) -> bool:

@@ -174,7 +174,10 @@ class Scene:
         the room as its own dict, an absent ``completion`` left out, and the format's
         version: scene.json's content, in one pass over the scene."""
         room = self.room.to_dict() if self.room is not None else None
-        data = {f.name: _plain(room if f.name == "room" else getattr(self, f.name), digits) for f in fields(self)}
+        data = {
+            f.name: _plain(room if f.name == "room" else getattr(self, f.name), digits)
+            for f in fields(self)
+        }
         if data["completion"] is None:
             del data["completion"]
         data["format"] = SCENE_FORMAT_VERSION
@@ -222,11 +225,19 @@ class Scene:
         return SceneGraph.from_dict(
             {
                 "params": SceneParams(
-                    name=self.name, extent=tuple(self.extent), ground=self.ground, room=self.room,
-                    templates=self.templates, square=self.square, line_of_sight=self.line_of_sight,
+                    name=self.name,
+                    extent=tuple(self.extent),
+                    ground=self.ground,
+                    room=self.room,
+                    templates=self.templates,
+                    square=self.square,
+                    line_of_sight=self.line_of_sight,
                 ).to_dict(),
                 "nodes": nodes,
-                "edges": [{"source": r.source, "target": r.target, "label": r.label} for r in self.relations],
+                "edges": [
+                    {"source": r.source, "target": r.target, "label": r.label}
+                    for r in self.relations
+                ],
                 "derivation": self.derivation,
             }
         )
@@ -272,7 +283,8 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     objects.sort(key=lambda o: o.order)
 
     relations = [
-        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen) for r in layout.relations
+        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen)
+        for r in layout.relations
     ]
     stats = LayoutStats(
         energy=float(layout.energy),
@@ -304,7 +316,9 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
 
 def object_corners(objects: list[SceneObject]) -> np.ndarray:
     """(n, 4, 2) corners (x, z) of the objects' turned footprints (``frames`` order)."""
-    centres = np.array([[o.position[0], o.position[2]] for o in objects], dtype=float).reshape(-1, 2)
+    centres = np.array([[o.position[0], o.position[2]] for o in objects], dtype=float).reshape(
+        -1, 2
+    )
     yaw = np.array([o.yaw for o in objects], dtype=float)
     sizes = np.array([[o.size[0], o.size[2]] for o in objects], dtype=float).reshape(-1, 2)
     return footprint_corners_many(centres, yaw, sizes)
@@ -325,7 +339,9 @@ def _union_box(members: list[SceneObject]) -> tuple[list[float], list[float]]:
     ]
 
 
-def _object_of(node: SceneNode, position: list[float], yaw: float, size: list[float]) -> SceneObject:
+def _object_of(
+    node: SceneNode, position: list[float], yaw: float, size: list[float]
+) -> SceneObject:
     return SceneObject(
         id=node.id,
         type=node.type,
@@ -349,20 +365,42 @@ def _object_of(node: SceneNode, position: list[float], yaw: float, size: list[fl
 
 def _node_of(obj: SceneObject) -> dict[str, Any]:
     return {
-        "id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun, "plural": obj.plural,
-        "size": (0.0, 0.0, 0.0) if obj.kind == "group" else tuple(obj.size), "shape": obj.shape, "mesh": obj.mesh, "colour": tuple(obj.colour),
-        "style": obj.style, "parent": obj.parent, "rule": obj.rule, "order": obj.order,
-        "clearance": obj.clearance, "access": obj.access,
-    }  # fmt: skip
+        "id": obj.id,
+        "type": obj.type,
+        "kind": obj.kind,
+        "noun": obj.noun,
+        "plural": obj.plural,
+        "size": (0.0, 0.0, 0.0) if obj.kind == "group" else tuple(obj.size),
+        "shape": obj.shape,
+        "mesh": obj.mesh,
+        "colour": tuple(obj.colour),
+        "style": obj.style,
+        "parent": obj.parent,
+        "rule": obj.rule,
+        "order": obj.order,
+        "clearance": obj.clearance,
+        "access": obj.access,
+    }
 
 
 def _node_of_path(path: ScenePath) -> dict[str, Any]:
     return {
-        "id": path.id, "type": path.type, "kind": "path", "noun": path.noun, "plural": path.plural,
-        "size": (path.width, 0.0, 0.0), "shape": None, "mesh": None, "colour": tuple(path.colour),
-        "parent": path.parent, "rule": path.rule, "order": path.order, "width": path.width,
-        "max_length": path.max_length, "segments": path.segments,
-    }  # fmt: skip
+        "id": path.id,
+        "type": path.type,
+        "kind": "path",
+        "noun": path.noun,
+        "plural": path.plural,
+        "size": (path.width, 0.0, 0.0),
+        "shape": None,
+        "mesh": None,
+        "colour": tuple(path.colour),
+        "parent": path.parent,
+        "rule": path.rule,
+        "order": path.order,
+        "width": path.width,
+        "max_length": path.max_length,
+        "segments": path.segments,
+    }
 
 
 def _plain(value: Any, digits: int | None) -> Any:

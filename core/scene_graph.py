@@ -82,10 +82,14 @@ class SceneParams:
     def to_dict(self) -> dict:
         """Plain data: the room as scene.json writes it."""
         return {
-            "name": self.name, "extent": list(self.extent), "ground": self.ground,
-            "room": self.room.to_dict() if self.room else None, "templates": self.templates,
-            "square": self.square, "line_of_sight": self.line_of_sight,
-        }  # fmt: skip
+            "name": self.name,
+            "extent": list(self.extent),
+            "ground": self.ground,
+            "room": self.room.to_dict() if self.room else None,
+            "templates": self.templates,
+            "square": self.square,
+            "line_of_sight": self.line_of_sight,
+        }
 
     @classmethod
     def from_dict(cls, params: dict) -> SceneParams:
@@ -98,11 +102,14 @@ class SceneParams:
         elif params.get("walls"):
             room = Room.rectangle(*extent)
         return cls(
-            name=params.get("name", cls.name), extent=extent, ground=params.get("ground", cls.ground),
-            room=room or None, templates=params.get("templates", cls.templates),
+            name=params.get("name", cls.name),
+            extent=extent,
+            ground=params.get("ground", cls.ground),
+            room=room or None,
+            templates=params.get("templates", cls.templates),
             square=bool(params.get("square", cls.square)),
             line_of_sight=bool(params.get("line_of_sight", cls.line_of_sight)),
-        )  # fmt: skip
+        )
 
 
 @dataclass(frozen=True)
@@ -156,15 +163,53 @@ class SceneGraph:
         """The room's nodes: ``room`` (any wall or window), then each wall, door and window."""
         height = room.height
         width, depth = room.extent
-        self._store(SceneNode(ROOM_NODE, ROOM_NODE, ROOM_NODE, "room", "rooms", (width, height, depth), None, None,
-                              ROOM_COLOUR, order=len(self.graph), access=()))
+        self._store(
+            SceneNode(
+                ROOM_NODE,
+                ROOM_NODE,
+                ROOM_NODE,
+                "room",
+                "rooms",
+                (width, height, depth),
+                None,
+                None,
+                ROOM_COLOUR,
+                order=len(self.graph),
+                access=(),
+            )
+        )
         for wall in room.walls:
-            self._store(SceneNode(wall.id, "wall", "wall", "wall", "walls", (wall.length, wall.height, WALL_THICKNESS),
-                                  None, None, ROOM_COLOUR, order=len(self.graph), access=()))
+            self._store(
+                SceneNode(
+                    wall.id,
+                    "wall",
+                    "wall",
+                    "wall",
+                    "walls",
+                    (wall.length, wall.height, WALL_THICKNESS),
+                    None,
+                    None,
+                    ROOM_COLOUR,
+                    order=len(self.graph),
+                    access=(),
+                )
+            )
         for opening in room.openings:
-            self._store(SceneNode(opening.id, opening.kind, opening.kind, opening.kind, opening.kind + "s",
-                                  (opening.width, opening.height, WALL_THICKNESS), None, None, ROOM_COLOUR,
-                                  order=len(self.graph), access=()))
+            self._store(
+                SceneNode(
+                    opening.id,
+                    opening.kind,
+                    opening.kind,
+                    opening.kind,
+                    opening.kind + "s",
+                    (opening.width, opening.height, WALL_THICKNESS),
+                    None,
+                    None,
+                    ROOM_COLOUR,
+                    order=len(self.graph),
+                    access=(),
+                )
+            )
         for kind in ("wall", "door", "window"):
             self._counters[kind] = sum(1 for n in self.graph.nodes.values() if n["kind"] == kind)
 
@@ -194,7 +239,9 @@ class SceneGraph:
             kind=entry.kind,
             noun=looks.noun,
             plural=looks.plural,
-            size=tuple(float(v) for v in looks.size) if has_box else (float(entry.width) if is_path else 0.0, 0.0, 0.0),
+            size=tuple(float(v) for v in looks.size)
+            if has_box
+            else (float(entry.width) if is_path else 0.0, 0.0, 0.0),
             shape=looks.shape if has_box else None,
             mesh=looks.mesh if has_box else None,
             colour=tuple(float(v) for v in looks.colour),
@@ -205,7 +252,9 @@ class SceneGraph:
             width=entry.width if is_path else None,
             max_length=entry.max_length if is_path else None,
             segments=entry.segments if is_path else None,
-            clearance=tuple((side, float(metres)) for side, metres in looks.clearance) if has_box else (),
+            clearance=tuple((side, float(metres)) for side, metres in looks.clearance)
+            if has_box
+            else (),
             access=tuple(looks.access) if has_box else (),
         )
         self._store(node)
@@ -283,7 +332,9 @@ class SceneGraph:
         return {
             "params": self.params.to_dict(),
             "nodes": [asdict(n) for n in self.nodes()],
-            "edges": [{"source": e.source, "target": e.target, "label": e.label} for e in self.edges()],
+            "edges": [
+                {"source": e.source, "target": e.target, "label": e.label} for e in self.edges()
+            ],
             "derivation": [dict(record) for record in self.derivation],
         }
 
@@ -300,11 +351,15 @@ class SceneGraph:
                 continue  # made from the room in the parameters
             node = SceneNode(
                 **{
-                    **raw, "size": tuple(raw["size"]), "colour": tuple(raw["colour"]),
+                    **raw,
+                    "size": tuple(raw["size"]),
+                    "colour": tuple(raw["colour"]),
                     "clearance": tuple((side, float(m)) for side, m in raw.get("clearance", ())),
-                    "access": tuple(raw.get("access", ("any",) if raw["kind"] in ("object", "junction") else ())),
+                    "access": tuple(
+                        raw.get("access", ("any",) if raw["kind"] in ("object", "junction") else ())
+                    ),
                 }
-            )  # fmt: skip
+            )
             scene_graph._store(node)
             # new nodes of the type continue its numbering (``table_3`` after ``table_2``)
             suffix = node.id.rsplit("_", 1)[-1]

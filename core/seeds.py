@@ -24,13 +24,11 @@ networkx do: an int names the scene's streams, a Generator is used as the stream
 
 from __future__ import annotations
 
-from typing import Union
-
 import numpy as np
 
 from .errors import InputError
 
-SeedLike = Union[int, np.integer, np.random.Generator, None]
+SeedLike = int | np.integer | np.random.Generator | None
 
 #: The first element of each stage's spawn key. New stages take new numbers; existing
 #: numbers never change, so existing scenes keep their bytes.
@@ -63,7 +61,9 @@ def check_seed(seed: object, what: str = "seed") -> int:
 def stream(seed: int, stage: str, index: int = 0) -> np.random.Generator:
     """The Generator of ``stage`` (child ``index``) of the scene with ``seed``."""
     key = (STAGE_KEYS[stage],) if stage == "expansion" else (STAGE_KEYS[stage], index)
-    return np.random.Generator(np.random.PCG64(np.random.SeedSequence(check_seed(seed), spawn_key=key)))
+    return np.random.Generator(
+        np.random.PCG64(np.random.SeedSequence(check_seed(seed), spawn_key=key))
+    )
 
 
 def stage_stream(seed: SeedLike, stage: str, index: int = 0) -> np.random.Generator:

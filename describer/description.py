@@ -17,7 +17,17 @@ from scenewright.core.scene import Scene
 
 from .english import singular_of
 from .grounding import Mention
-from .plan import Fact, Introduction, Inventory, Item, Network, Section, Statement, introduced_by, plan_document
+from .plan import (
+    Fact,
+    Introduction,
+    Inventory,
+    Item,
+    Network,
+    Section,
+    Statement,
+    introduced_by,
+    plan_document,
+)
 from .realise import Realiser, Sentence
 from .templates import template_environment
 from .variation import Choices
@@ -108,7 +118,9 @@ def describe_frame(
     caption names each group by the thing it is arranged around ("three houses", not
     "three homes"), and states only relations among what it names."""
     if style not in STYLES:
-        raise InputError(f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}")
+        raise InputError(
+            f"unknown description style {style!r}; expected one of: {', '.join(STYLES)}"
+        )
     if isinstance(variant, bool) or not isinstance(variant, Integral) or variant < 0:
         raise InputError(f"description variant must be a whole number >= 0, got {variant!r}")
     variant = int(variant)  # a numpy integer from a dataset loop is welcome too
@@ -116,7 +128,9 @@ def describe_frame(
     environment = template_environment(templates)
     summary = style == "summary"
     sections = plan_document(scene, world, summary=summary)
-    realiser = Realiser(world, environment, Choices.for_variant(scene.seed, variant), picture_sides=picture_sides)
+    realiser = Realiser(
+        world, environment, Choices.for_variant(scene.seed, variant), picture_sides=picture_sides
+    )
     if style != "short":
         sentences = realiser.sections(sections)
         for _ in range(MAX_REORDERINGS):
@@ -128,10 +142,17 @@ def describe_frame(
             if [s.owner for s in again] == [s.owner for s in sections]:
                 break
             sections = again
-            realiser = Realiser(world, environment, Choices.for_variant(scene.seed, variant), picture_sides=picture_sides)
+            realiser = Realiser(
+                world,
+                environment,
+                Choices.for_variant(scene.seed, variant),
+                picture_sides=picture_sides,
+            )
             sentences = realiser.sections(sections)
     else:
-        sentences = _caption(scene, world, sections, realiser, picture=picture, unseen=unseen, concrete=concrete)
+        sentences = _caption(
+            scene, world, sections, realiser, picture=picture, unseen=unseen, concrete=concrete
+        )
     return Description(
         text=" ".join(s.text for s in sentences),
         facts=[fact for s in sentences for fact in s.facts],
@@ -148,13 +169,23 @@ def _mentions_in_text(sentences: list[Sentence], world: World) -> list[Mention]:
     offset = 0
     for sentence in sentences:
         for m in sentence.mentions:
-            found.append(Mention(m.start + offset, m.end + offset, m.entities, world.grounded_ids(m.entities)))
+            found.append(
+                Mention(
+                    m.start + offset, m.end + offset, m.entities, world.grounded_ids(m.entities)
+                )
+            )
         offset += len(sentence.text) + 1  # the space joining sentences
     return found
 
 
 def _caption(
-    scene: Scene, world: World, sections: list[Section], realiser: Realiser, *, picture: bool, unseen: bool,
+    scene: Scene,
+    world: World,
+    sections: list[Section],
+    realiser: Realiser,
+    *,
+    picture: bool,
+    unseen: bool,
     concrete: bool = False,
 ) -> list[Sentence]:
     """What the scene holds at its top level, and one top-level statement if there is one.
@@ -167,22 +198,35 @@ def _caption(
     by_owner = {section.owner: section for section in sections}
     owner: str | None = None
     items = _caption_items(by_owner[None], world)
-    while len(items) == 1 and not isinstance(items[0], Network) and len(items[0]) == 1 and items[0][0] in by_owner:
+    while (
+        len(items) == 1
+        and not isinstance(items[0], Network)
+        and len(items[0]) == 1
+        and items[0][0] in by_owner
+    ):
         owner = items[0][0]
         items = _caption_items(by_owner[owner], world)
     if concrete:
         items = _concrete_items(scene, world, items)
     realiser.discourse.start_paragraph(owner)
     setting_ids = (owner,) if owner is not None else ()
-    sentences = [realiser.caption(_setting(scene, world, owner), items, setting_ids, picture=picture, unseen=unseen)]
+    sentences = [
+        realiser.caption(
+            _setting(scene, world, owner), items, setting_ids, picture=picture, unseen=unseen
+        )
+    ]
     statements = [m for m in by_owner[owner].messages if isinstance(m, Statement) and not m.also]
     if concrete:  # only what the caption named: no abstract group turns up unannounced
         named = set(introduced_by(Inventory(None, items)))
         statements = [
-            m for m in statements
-            if set(m.subjects) <= named and all(t in named or t not in world for c in m.clauses for t in c.targets)
-        ]  # fmt: skip
-    by_room = [m for m in statements if any(world.place_kind(t) for c in m.clauses for t in c.targets)]
+            m
+            for m in statements
+            if set(m.subjects) <= named
+            and all(t in named or t not in world for c in m.clauses for t in c.targets)
+        ]
+    by_room = [
+        m for m in statements if any(world.place_kind(t) for c in m.clauses for t in c.targets)
+    ]
     if by_room:
         # The biggest thing placed against the room says most about how the room looks.
         statements = sorted(by_room, key=lambda m: -max(_volume(scene, s) for s in m.subjects))
@@ -217,8 +261,16 @@ def _concrete_items(scene: Scene, world: World, items: tuple[Item, ...]) -> tupl
             concrete.append(item)
             continue
         for entity_id in item:
-            objects = [i for i in world.grounded_ids((entity_id,)) if i in world and world[i].kind == "object"]
-            chosen = max(objects, key=lambda i: (leading_to.get(i, 0), _volume(scene, i))) if objects else entity_id
+            objects = [
+                i
+                for i in world.grounded_ids((entity_id,))
+                if i in world and world[i].kind == "object"
+            ]
+            chosen = (
+                max(objects, key=lambda i: (leading_to.get(i, 0), _volume(scene, i)))
+                if objects
+                else entity_id
+            )
             noun = world[chosen].noun
             if noun in by_noun:
                 concrete[by_noun[noun]] = concrete[by_noun[noun]] + (chosen,)

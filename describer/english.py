@@ -77,7 +77,11 @@ def singular_of(name: str) -> str:
     ("campus" is not "campu"), and never a word with an ending in ``_NOT_PLURAL_ENDINGS``."""
     rest, space, last = name.rpartition(" ")
     word = last.lower()
-    if not word.endswith("s") or word.endswith(_NOT_PLURAL_ENDINGS) or len(word) > MAX_INFLECTED_CHARS:
+    if (
+        not word.endswith("s")
+        or word.endswith(_NOT_PLURAL_ENDINGS)
+        or len(word) > MAX_INFLECTED_CHARS
+    ):
         return name
     one = _ENGINE.singular_noun(word)
     if not one or one[-1] in "aiu" or _ENGINE.plural_noun(one) != word:

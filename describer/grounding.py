@@ -99,7 +99,9 @@ class Marks:
         if open_at:
             raise _broken(marked)
         found.sort()
-        return "".join(plain), tuple(Mention(start, -end, self._named[index]) for start, end, index in found)
+        return "".join(plain), tuple(
+            Mention(start, -end, self._named[index]) for start, end, index in found
+        )
 
 
 def holds_marks(text: str) -> bool:

@@ -35,7 +35,9 @@ def is_symmetric(label: str) -> bool:
 PLACE_WORDINGS: dict[str, tuple[str, ...]] = {"corner": ("stands in", "is in")}
 
 
-def relation_wordings(label: str, chosen: str | None = None, place_kind: str | None = None) -> tuple[str, ...]:
+def relation_wordings(
+    label: str, chosen: str | None = None, place_kind: str | None = None
+) -> tuple[str, ...]:
     """The verb phrases that state ``label`` (canonical first), from the registry.
 
     A label that chooses its direction (``NextToChooseDirection``) is worded from the
@@ -51,7 +53,9 @@ def relation_wordings(label: str, chosen: str | None = None, place_kind: str | N
     return spec.wordings_for(chosen)
 
 
-def place_phrases(label: str, chosen: str | None = None, place_kind: str | None = None) -> tuple[str, ...]:
+def place_phrases(
+    label: str, chosen: str | None = None, place_kind: str | None = None
+) -> tuple[str, ...]:
     """The place phrases ("on top of", "north of") that say where A is, or () for other labels.
 
     A place phrase can follow a noun ("a sign to the right of a table") or lead an
@@ -59,7 +63,9 @@ def place_phrases(label: str, chosen: str | None = None, place_kind: str | None 
     """
     if not RELATIONS[label].place:
         return ()
-    return tuple(w[len("is "):] for w in relation_wordings(label, chosen, place_kind) if w.startswith("is "))
+    return tuple(
+        w[len("is ") :] for w in relation_wordings(label, chosen, place_kind) if w.startswith("is ")
+    )
 
 
 #: How a whole is said to be made of its parts ("The mill consists of ...").

@@ -32,7 +32,14 @@ from scenewright.core.scene import Scene
 
 from .lexicon import is_described, is_symmetric, place_phrases, relation_wordings
 from .summary import (
-    Composition, Pattern, Quantified, compositions, hidden_owners, patterns, quantified, summarised_groups,
+    Composition,
+    Pattern,
+    Quantified,
+    compositions,
+    hidden_owners,
+    patterns,
+    quantified,
+    summarised_groups,
 )
 from .world import Entity, World
 
@@ -236,7 +243,11 @@ def _network_links(scene: Scene, world: World) -> dict[str, str]:
     for path, junction in starts:
         if path in links or path not in world or junction not in world:
             continue
-        if world[path].kind == "path" and world[junction].kind == "junction" and world[path].parent == world[junction].parent:
+        if (
+            world[path].kind == "path"
+            and world[junction].kind == "junction"
+            and world[path].parent == world[junction].parent
+        ):
             links[path] = junction
     return links
 
@@ -285,7 +296,9 @@ def _placements(members: list[Entity], pool: list[Relation]) -> dict[str, Relati
     while changed:
         changed = False
         for source, relation in support.items():
-            if source not in grounded and (relation.target not in support or relation.target in grounded):
+            if source not in grounded and (
+                relation.target not in support or relation.target in grounded
+            ):
                 grounded[source] = relation
                 changed = True
     return {m.id: grounded[m.id] for m in members if m.id in grounded}
@@ -337,9 +350,16 @@ def _link(items: tuple[Item, ...], pool: list[Relation]) -> tuple[tuple[Item, ..
     return items, None
 
 
-def _find(pool: list[Relation], source: str, label: str, chosen: str | None, target: str) -> Relation | None:
+def _find(
+    pool: list[Relation], source: str, label: str, chosen: str | None, target: str
+) -> Relation | None:
     for relation in pool:
-        if (relation.source, relation.label, relation.chosen, relation.target) == (source, label, chosen, target):
+        if (relation.source, relation.label, relation.chosen, relation.target) == (
+            source,
+            label,
+            chosen,
+            target,
+        ):
             return relation
     return None
 
@@ -353,9 +373,13 @@ def _introductions(placements: dict[str, Relation], world: World) -> list[Introd
         ready = {s: r for s, r in pending.items() if r.target not in pending}
         grouped: dict[tuple[str, str | None, str], list[str]] = {}
         for source, relation in ready.items():
-            grouped.setdefault((relation.label, relation.chosen, relation.target), []).append(source)
+            grouped.setdefault((relation.label, relation.chosen, relation.target), []).append(
+                source
+            )
         for (label, chosen, target), sources in grouped.items():
-            introductions.append(Introduction(_by_noun(sources, world), Clause(label, chosen, (target,))))
+            introductions.append(
+                Introduction(_by_noun(sources, world), Clause(label, chosen, (target,)))
+            )
         told.update(ready)
         pending = {s: r for s, r in pending.items() if s not in told}
     return introductions
@@ -386,15 +410,21 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
         by_target.setdefault((words, target), []).append(relation)
     shared_by: dict[tuple[str, ...], dict[tuple[str, ...], list[Relation]]] = {}
     for (words, _), found in by_target.items():
-        subjects = tuple(sorted(dict.fromkeys(r.source for r in found), key=lambda s: world[s].order))
+        subjects = tuple(
+            sorted(dict.fromkeys(r.source for r in found), key=lambda s: world[s].order)
+        )
         shared_by.setdefault(subjects, {}).setdefault(words, []).extend(found)
     statements: list[Statement] = []
     for subjects, by_words in shared_by.items():
         joined = list(by_words.values())
         for start in range(0, len(joined), MAX_CLAUSES):
-            shared = joined[start:start + MAX_CLAUSES]
+            shared = joined[start : start + MAX_CLAUSES]
             clauses = tuple(
-                Clause(found[0].label, found[0].chosen, tuple(dict.fromkeys(world.target_of(r) for r in found)))
+                Clause(
+                    found[0].label,
+                    found[0].chosen,
+                    tuple(dict.fromkeys(world.target_of(r) for r in found)),
+                )
                 for found in shared
             )
             for index, piece in enumerate(_subject_pieces(subjects, world)):

@@ -145,7 +145,12 @@ def _unique(_facts: PictureFacts, _values: list[str], found: list[str]) -> str:
 
 
 #: For each side ``relate`` knows: which measure it compares and the sign of "on that side".
-RELATE_SIDES = {"left": ("across", -1.0), "right": ("across", 1.0), "front": ("depth", -1.0), "behind": ("depth", 1.0)}
+RELATE_SIDES = {
+    "left": ("across", -1.0),
+    "right": ("across", 1.0),
+    "front": ("depth", -1.0),
+    "behind": ("depth", 1.0),
+}
 #: The margin of each measure.
 MARGINS = {"across": SIDE_MARGIN, "depth": DEPTH_MARGIN}
 
@@ -177,12 +182,17 @@ def _extreme(facts: PictureFacts, values: list[str], found: list[str]) -> str:
     ordered = sorted(found, key=lambda i: facts.objects[i].depth, reverse=which == "farthest")
     if not ordered:
         raise ProgramError("extreme: no objects")
-    if len(ordered) > 1 and abs(facts.objects[ordered[1]].depth - facts.objects[ordered[0]].depth) < DEPTH_MARGIN:
+    if (
+        len(ordered) > 1
+        and abs(facts.objects[ordered[1]].depth - facts.objects[ordered[0]].depth) < DEPTH_MARGIN
+    ):
         raise ProgramError(f"extreme: the {which} is not clear")
     return ordered[0]
 
 
-def _intersect(_facts: PictureFacts, _values: list[str], first: list[str], second: list[str]) -> list[str]:
+def _intersect(
+    _facts: PictureFacts, _values: list[str], first: list[str], second: list[str]
+) -> list[str]:
     return sorted(set(first) & set(second))
 
 
@@ -219,8 +229,18 @@ def _query_colour(facts: PictureFacts, _values: list[str], found: str) -> str:
 
 #: Every function a program may call, by name.
 FUNCTIONS = {
-    "scene": _scene, "filter_noun": _filter_noun, "unique": _unique, "relate": _relate,
-    "nth": _nth, "extreme": _extreme, "intersect": _intersect, "count": _count, "exist": _exist,
-    "greater_than": _greater_than, "less_than": _less_than, "equal_integer": _equal_integer,
-    "query_noun": _query_noun, "query_colour": _query_colour,
-}  # fmt: skip
+    "scene": _scene,
+    "filter_noun": _filter_noun,
+    "unique": _unique,
+    "relate": _relate,
+    "nth": _nth,
+    "extreme": _extreme,
+    "intersect": _intersect,
+    "count": _count,
+    "exist": _exist,
+    "greater_than": _greater_than,
+    "less_than": _less_than,
+    "equal_integer": _equal_integer,
+    "query_noun": _query_noun,
+    "query_colour": _query_colour,
+}

@@ -59,8 +59,17 @@ from scenewright.core.seeds import SeedLike, stage_stream
 
 from .colours import COLOUR_TERMS
 from .english import plural_of, sentence_case, with_article
+from .programs import (
+    MARGINS,
+    RELATE_SIDES,
+    PictureFacts,
+    Program,
+    ProgramError,
+    answer_text,
+    execute,
+    step,
+)
 from .world import is_kind_of
-from .programs import MARGINS, RELATE_SIDES, PictureFacts, Program, ProgramError, answer_text, execute, step
 
 if TYPE_CHECKING:
     import numpy as np
@@ -71,7 +80,12 @@ if TYPE_CHECKING:
 #: How many questions each family asks of one picture, at most.
 QUESTIONS_PER_FAMILY = 2
 #: The words of each side ``relate`` knows, as the camera-frame captions say them.
-SIDE_WORDS = {"left": "to the left of", "right": "to the right of", "front": "in front of", "behind": "behind"}
+SIDE_WORDS = {
+    "left": "to the left of",
+    "right": "to the right of",
+    "front": "in front of",
+    "behind": "behind",
+}
 #: What a side phrase ends with, so it is read as the picture's side, not the anchor's own.
 IN_PICTURE = " in the picture"
 
@@ -131,7 +145,11 @@ class Asking:
             )
         )
         seen = [o.noun for o in facts.objects.values()]
-        anchors = tuple(sorted(i for i, o in facts.objects.items() if o.noun in clear and seen.count(o.noun) == 1))
+        anchors = tuple(
+            sorted(
+                i for i, o in facts.objects.items() if o.noun in clear and seen.count(o.noun) == 1
+            )
+        )
         return cls(facts, vocabulary, clear, anchors)
 
     def seen_nouns(self) -> list[str]:
@@ -144,10 +162,14 @@ class Asking:
         measure, _ = RELATE_SIDES[side]
         at = getattr(self.facts.objects[anchor], measure)
         known = {**self.facts.glimpsed, **self.facts.objects}
-        return all(abs(getattr(known[i], measure) - at) >= MARGINS[measure] for i in ids if i != anchor)
+        return all(
+            abs(getattr(known[i], measure) - at) >= MARGINS[measure] for i in ids if i != anchor
+        )
 
 
-def picture_questions(facts: PictureFacts, vocabulary: dict[str, str], seed: SeedLike, *, view: int = 0) -> list[dict]:
+def picture_questions(
+    facts: PictureFacts, vocabulary: dict[str, str], seed: SeedLike, *, view: int = 0
+) -> list[dict]:
     """The questions of every family about the picture ``facts`` describe, family by
     family: ``{"family", "question", "answer", "program"}``, each answer the string its
     program gives when executed on ``facts`` (``programs.answer_text``).
@@ -168,7 +190,14 @@ def picture_questions(facts: PictureFacts, vocabulary: dict[str, str], seed: See
             chosen = _different_answers(candidates, facts, rng, absence_alone=not family.counts)
         for answer, (form, words, program) in chosen:
             question = sentence_case(family.templates[form].format(**words))
-            asked.append({"family": family.name, "question": question, "answer": answer, "program": program()})
+            asked.append(
+                {
+                    "family": family.name,
+                    "question": question,
+                    "answer": answer,
+                    "program": program(),
+                }
+            )
     return asked
 
 
@@ -199,7 +228,11 @@ def _yes_and_no(candidates: list[Candidate], facts: PictureFacts, rng: np.random
 
 
 def _different_answers(
-    candidates: list[Candidate], facts: PictureFacts, rng: np.random.Generator, *, absence_alone: bool = True
+    candidates: list[Candidate],
+    facts: PictureFacts,
+    rng: np.random.Generator,
+    *,
+    absence_alone: bool = True,
 ) -> list:
     """Up to ``QUESTIONS_PER_FAMILY`` (answer, candidate) with different answers: the
     answers drawn uniformly among those the candidates give, then one candidate of each.
@@ -217,7 +250,10 @@ def _different_answers(
     if not absence_alone and answers == ["0"]:
         return []
     chosen = rng.choice(len(answers), size=min(QUESTIONS_PER_FAMILY, len(answers)), replace=False)
-    return [(answers[k], by_answer[answers[k]][rng.integers(len(by_answer[answers[k]]))]) for k in chosen]
+    return [
+        (answers[k], by_answer[answers[k]][rng.integers(len(by_answer[answers[k]]))])
+        for k in chosen
+    ]
 
 
 def vocabulary_of(rules: Rules | None, scene: Scene | None = None) -> dict[str, str]:
@@ -265,9 +301,12 @@ def _count(asking: Asking) -> Iterator[Candidate]:
 def _compared(first: str, second: str, comparison: str) -> Program:
     """The program comparing how many ``first`` and ``second`` things there are."""
     return [
-        *_counted(first), step("scene"), step("filter_noun", second, 3), step("count", None, 4),
+        *_counted(first),
+        step("scene"),
+        step("filter_noun", second, 3),
+        step("count", None, 4),
         step(comparison, None, 2, 5),
-    ]  # fmt: skip
+    ]
 
 
 class _CountComparisons(Sequence):
@@ -281,9 +320,11 @@ class _CountComparisons(Sequence):
         seen = set(asking.seen_nouns())
         self.vocabulary = asking.vocabulary
         self.pairs = [
-            (first, second) for first in asking.clear for second in asking.clear
+            (first, second)
+            for first in asking.clear
+            for second in asking.clear
             if first != second and (first in seen or second in seen)
-        ]  # fmt: skip
+        ]
 
     def __len__(self) -> int:
         return len(self.COMPARISONS) * len(self.pairs)
@@ -300,9 +341,13 @@ class _CountComparisons(Sequence):
 def _related_program(anchor_noun: str, side: str, noun: str, last: str) -> Program:
     """``last`` ("exist" or "count") of the ``noun`` things on ``side`` of the only ``anchor_noun``."""
     return [
-        step("scene"), step("filter_noun", anchor_noun, 0), step("unique", None, 1),
-        step("relate", side, 2), step("filter_noun", noun, 3), step(last, None, 4),
-    ]  # fmt: skip
+        step("scene"),
+        step("filter_noun", anchor_noun, 0),
+        step("unique", None, 1),
+        step("relate", side, 2),
+        step("filter_noun", noun, 3),
+        step(last, None, 4),
+    ]
 
 
 def _related(asking: Asking, last: str) -> Iterator[Candidate]:
@@ -316,17 +361,28 @@ def _related(asking: Asking, last: str) -> Iterator[Candidate]:
                 if noun == anchor_noun or not asking.clearly_sided(anchor, side, ids):
                     continue
                 words = {
-                    "a_noun": with_article(noun), "plural": asking.vocabulary[noun],
-                    "side": side_words, "anchor": anchor_noun, "where": IN_PICTURE,
-                }  # fmt: skip
-                yield f"relate_{last}", words, partial(_related_program, anchor_noun, side, noun, last)
+                    "a_noun": with_article(noun),
+                    "plural": asking.vocabulary[noun],
+                    "side": side_words,
+                    "anchor": anchor_noun,
+                    "where": IN_PICTURE,
+                }
+                yield (
+                    f"relate_{last}",
+                    words,
+                    partial(_related_program, anchor_noun, side, noun, last),
+                )
 
 
 def _query_side(anchor_noun: str, side: str) -> Program:
     return [
-        step("scene"), step("filter_noun", anchor_noun, 0), step("unique", None, 1),
-        step("relate", side, 2), step("unique", None, 3), step("query_noun", None, 4),
-    ]  # fmt: skip
+        step("scene"),
+        step("filter_noun", anchor_noun, 0),
+        step("unique", None, 1),
+        step("relate", side, 2),
+        step("unique", None, 3),
+        step("query_noun", None, 4),
+    ]
 
 
 def _query_extreme(which: str) -> Program:
@@ -373,11 +429,20 @@ def _query_colour(asking: Asking) -> Iterator[Candidate]:
             yield "query_colour", {"noun": noun}, partial(_colour_of, noun, None)
             continue
         for which in ("nearest", "farthest"):
-            yield "query_colour_extreme", {"noun": noun, "which": which}, partial(_colour_of, noun, which)
+            yield (
+                "query_colour_extreme",
+                {"noun": noun, "which": which},
+                partial(_colour_of, noun, which),
+            )
 
 
 for _family in (
-    QuestionFamily("exist", {"exist": "is there {a_noun}?", "exist_any": "are there any {plural}?"}, _exist, True),
+    QuestionFamily(
+        "exist",
+        {"exist": "is there {a_noun}?", "exist_any": "are there any {plural}?"},
+        _exist,
+        True,
+    ),
     QuestionFamily("count", {"count": "how many {plural} are there?"}, _count, False, counts=True),
     QuestionFamily(
         "compare_count",
@@ -404,13 +469,19 @@ for _family in (
     ),
     QuestionFamily(
         "query_noun",
-        {"query_side": "what is {side} the {anchor}{where}?", "query_extreme": "what is the {which} thing?"},
+        {
+            "query_side": "what is {side} the {anchor}{where}?",
+            "query_extreme": "what is the {which} thing?",
+        },
         _query_noun,
         False,
     ),
     QuestionFamily(
         "query_colour",
-        {"query_colour": "what colour is the {noun}?", "query_colour_extreme": "what colour is the {which} {noun}?"},
+        {
+            "query_colour": "what colour is the {noun}?",
+            "query_colour_extreme": "what colour is the {which} {noun}?",
+        },
         _query_colour,
         False,
     ),

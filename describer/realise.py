@@ -13,19 +13,36 @@ from dataclasses import dataclass
 from jinja2.sandbox import SandboxedEnvironment
 
 from .english import (
-    counted, join_list, number_word, plural_of, sentence_case, verb_agreeing, with_also, with_article, without_repeated_copula,
+    counted,
+    join_list,
+    number_word,
+    plural_of,
+    sentence_case,
+    verb_agreeing,
+    with_also,
+    with_article,
+    without_repeated_copula,
 )
 from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
 from .plan import (
-    Clause, Fact, Inventory, Introduction, Item, Message, Network, RoomOutline, Section, Statement, facts_of,
+    Clause,
+    Fact,
+    Introduction,
+    Inventory,
+    Item,
+    Message,
+    Network,
+    RoomOutline,
+    Section,
+    Statement,
+    facts_of,
 )
 from .refer import SCENE, Discourse
 from .summary import Claim, Composition, Pattern, Quantified
 from .templates import render
 from .variation import Choices
 from .world import World
-
 
 #: The label whose sides are the picture's when the realiser tells picture sides.
 PICTURE_SIDE_LABEL = "NextToChooseSide"
@@ -46,7 +63,12 @@ class Realiser:
     """Realises the messages of one description, in order (the discourse state is its memory)."""
 
     def __init__(
-        self, world: World, environment: SandboxedEnvironment, choices: Choices, *, picture_sides: bool = False
+        self,
+        world: World,
+        environment: SandboxedEnvironment,
+        choices: Choices,
+        *,
+        picture_sides: bool = False,
     ) -> None:
         self.world = world
         #: Sides are the picture's: a side clause's targets are followed by "in the picture".
@@ -80,8 +102,12 @@ class Realiser:
         # the groups of a big cohort hold and how their members stand.
         counts = [m for m in messages if isinstance(m, Quantified)]
         groups = [m for m in messages if isinstance(m, (Composition, Pattern))]
-        others = [m for m in messages if not isinstance(m, (Statement, Quantified, Composition, Pattern))]
-        return others + counts + [m for block in self.choices.shuffled(blocks) for m in block] + groups
+        others = [
+            m for m in messages if not isinstance(m, (Statement, Quantified, Composition, Pattern))
+        ]
+        return (
+            others + counts + [m for block in self.choices.shuffled(blocks) for m in block] + groups
+        )
 
     def message(self, message: Message) -> Sentence:
         self.discourse.start_sentence()
@@ -109,8 +135,13 @@ class Realiser:
             setting = self.discourse.marks.mark(setting, setting_ids)
         phrases = [self._item(item) for item in self.choices.shuffled(items)]
         text = render(
-            self.environment, "caption.j2", setting=setting, link=self.lexicon.caption_link(), items=phrases,
-            picture=picture, unseen=unseen,
+            self.environment,
+            "caption.j2",
+            setting=setting,
+            link=self.lexicon.caption_link(),
+            items=phrases,
+            picture=picture,
+            unseen=unseen,
         )
         return self._sentence(text, facts_of(Inventory(None, items)))
 
@@ -151,11 +182,17 @@ class Realiser:
                 by_noun[noun] = by_noun.get(noun, ()) + (path,)
             paths = [self.discourse.introduce(ids) for ids in by_noun.values()]
             junction = self.discourse.introduce((item.junction,))
-            return render(self.environment, "network.j2", paths=paths, count=len(item.paths), junction=junction)
+            return render(
+                self.environment,
+                "network.j2",
+                paths=paths,
+                count=len(item.paths),
+                junction=junction,
+            )
         return self.discourse.introduce(item)
 
     def _room(self, outline: RoomOutline) -> str:
-        """"The room has a door in the south wall and two windows in the north wall."."""
+        """ "The room has a door in the south wall and two windows in the north wall."."""
         room = self.discourse.room()
         self.discourse.mark_subject(())
         openings = []
@@ -163,9 +200,16 @@ class Realiser:
             self.discourse.note_place(ids)
             what = self.discourse.marks.mark(counted(len(ids), kind, plural_of(kind)), ids)
             self.discourse.note_place((wall,))
-            phrase = render(self.environment, "opening.j2", openings=what, wall=self.world.room.wall_phrase(wall))
+            phrase = render(
+                self.environment,
+                "opening.j2",
+                openings=what,
+                wall=self.world.room.wall_phrase(wall),
+            )
             openings.append(phrase)
-        return render(self.environment, "room.j2", room=room, shape=outline.shape or "", openings=openings)
+        return render(
+            self.environment, "room.j2", room=room, shape=outline.shape or "", openings=openings
+        )
 
     def _introduction(self, introduction: Introduction) -> str:
         clause = introduction.clause
@@ -185,12 +229,24 @@ class Realiser:
             subject = join_list([self.discourse.introduce(unit) for unit in subjects])
             self.discourse.mark_subject(tuple(s for unit in subjects for s in unit))
             if form == "existential":
-                place, verb = self.lexicon.place(clause.label, clause.chosen), verb_agreeing("is", plural)
+                place, verb = (
+                    self.lexicon.place(clause.label, clause.chosen),
+                    verb_agreeing("is", plural),
+                )
             else:
-                place, verb = "", verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural)
+                place, verb = (
+                    "",
+                    verb_agreeing(self.lexicon.relation(clause.label, clause.chosen), plural),
+                )
             target = self._targets(clause)
         return render(
-            self.environment, "introduction.j2", form=form, place=place, subject=subject, verb=verb, target=target
+            self.environment,
+            "introduction.j2",
+            form=form,
+            place=place,
+            subject=subject,
+            verb=verb,
+            target=target,
         )
 
     def _statement(self, statement: Statement) -> str:
@@ -205,12 +261,14 @@ class Realiser:
         predicates = without_repeated_copula(predicates)
         if statement.also:
             predicates[0] = with_also(predicates[0])
-        return render(self.environment, "statement.j2", subject=join_list(names), predicates=predicates)
+        return render(
+            self.environment, "statement.j2", subject=join_list(names), predicates=predicates
+        )
 
     # -- the summary level's counts ("summary") --------------------------------------------
 
     def _counted_members(self, claim: Claim) -> str:
-        """"all thirty-eight homes", "most of the thirty-eight homes", "one of the four
+        """ "all thirty-eight homes", "most of the thirty-eight homes", "one of the four
         market stands": the members a claim counts, marked as the ones it holds for,
         around the whole cohort."""
         members = self.world[claim.members[0]]
@@ -222,54 +280,72 @@ class Realiser:
         return self.discourse.marks.mark(f"{claim.quantifier} of {cohort}", claim.holders)
 
     def _composition(self, composition: Composition) -> str:
-        """"All four market stands have a table and a sign."."""
+        """ "All four market stands have a table and a sign."."""
         claim = composition.claim
         owner = self._counted_members(claim)
         items = [
-            self.discourse.marks.mark(counted(number, noun, self._plural(claim, noun)), self._held(claim, noun))
+            self.discourse.marks.mark(
+                counted(number, noun, self._plural(claim, noun)), self._held(claim, noun)
+            )
             for noun, number in claim.items
         ]
         verb = "has" if claim.quantifier == "one" else "have"
         return render(self.environment, "inventory.j2", owner=owner, verb=verb, items=items)
 
     def _plural(self, claim: Claim, noun: str) -> str:
-        return next(m.plural for g in claim.members for m in self.world.members(g) if m.noun == noun)
+        return next(
+            m.plural for g in claim.members for m in self.world.members(g) if m.noun == noun
+        )
 
     def _held(self, claim: Claim, noun: str) -> tuple[str, ...]:
         return tuple(m.id for g in claim.holders for m in self.world.members(g) if m.noun == noun)
 
     def _pattern(self, pattern: Pattern) -> str:
-        """"In most of the thirty-eight homes, the flowerpot is in front of the house."."""
+        """ "In most of the thirty-eight homes, the flowerpot is in front of the house."."""
         claim = pattern.claim
         groups = self._counted_members(claim)
         subjects = tuple(dict.fromkeys(s for s, _, _ in pattern.facts))
         subject = self._generic(claim.subject_noun, pattern.subject_definite, subjects)
         target = self._generic(claim.target_noun, pattern.target_definite, pattern.targets)
         verb = self.lexicon.relation(claim.label, claim.chosen)
-        return render(self.environment, "pattern.j2", groups=groups, subject=subject, predicate=f"{verb} {target}")
+        return render(
+            self.environment,
+            "pattern.j2",
+            groups=groups,
+            subject=subject,
+            predicate=f"{verb} {target}",
+        )
 
     def _generic(self, noun: str, definite: bool, ids: tuple[str, ...]) -> str:
-        """"the house" (one in each group) or "a bush", naming the ones the count reaches."""
+        """ "the house" (one in each group) or "a bush", naming the ones the count reaches."""
         return self.discourse.marks.mark(f"the {noun}" if definite else with_article(noun), ids)
 
     def _quantified(self, quantified: Quantified) -> str:
-        """"Most of the twelve street lamps are next to a road."."""
+        """ "Most of the twelve street lamps are next to a road."."""
         claim = quantified.claim
         subject = self._counted_members(claim)
         noun = claim.target_noun
         same = noun == self.world[claim.members[0]].noun
-        target = self.discourse.marks.mark(f"another {noun}" if same else with_article(noun), quantified.targets)
-        predicate = f"{verb_agreeing(self.lexicon.relation(claim.label, claim.chosen), True)} {target}"
+        target = self.discourse.marks.mark(
+            f"another {noun}" if same else with_article(noun), quantified.targets
+        )
+        predicate = (
+            f"{verb_agreeing(self.lexicon.relation(claim.label, claim.chosen), True)} {target}"
+        )
         return render(self.environment, "statement.j2", subject=subject, predicates=[predicate])
 
     def _words(self, clause: Clause) -> str:
         # A clause's targets share their words (``plan.aggregate``), so the first one's
         # kind of room part, if it is one, stands for all.
-        return self.lexicon.relation(clause.label, clause.chosen, self.world.place_kind(clause.targets[0]))
+        return self.lexicon.relation(
+            clause.label, clause.chosen, self.world.place_kind(clause.targets[0])
+        )
 
     def _frame_words(self, clause: Clause) -> str:
-        """" in the picture" after a side told as a picture shows it, else nothing."""
-        return " in the picture" if self.picture_sides and clause.label == PICTURE_SIDE_LABEL else ""
+        """ " in the picture" after a side told as a picture shows it, else nothing."""
+        return (
+            " in the picture" if self.picture_sides and clause.label == PICTURE_SIDE_LABEL else ""
+        )
 
     def _targets(self, clause: Clause) -> str:
         # Objects are named one by one: "next to two of the roads" would hide which.

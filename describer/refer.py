@@ -53,7 +53,9 @@ class _Mention:
     ids: tuple[str, ...]
     noun: str
     plural: bool
-    embedded: bool = False  # inside another phrase: "the farmstead" in "the cottage of the farmstead"
+    embedded: bool = (
+        False  # inside another phrase: "the farmstead" in "the cottage of the farmstead"
+    )
 
 
 @dataclass
@@ -112,7 +114,11 @@ class Discourse:
         self._note((place_id,), ROOM_PART, plural=False)
         name = self.world.room.name(place_id)
         # A door or a window is drawn, so its name is grounded; a wall or a corner is not.
-        return self.marks.mark(name, (place_id,)) if self.world.room.kind(place_id) in SEEN_PARTS else name
+        return (
+            self.marks.mark(name, (place_id,))
+            if self.world.room.kind(place_id) in SEEN_PARTS
+            else name
+        )
 
     def note_place(self, place_ids: tuple[str, ...]) -> None:
         """Record parts of the room named by other means (the room sentence's "two windows")."""
@@ -182,7 +188,9 @@ class Discourse:
 
     def rank_order(self) -> dict[str, int]:
         """Each entity the text has named by an ordinal -> its place in its family's order."""
-        return {entity_id: k for ranked in self.ranks.values() for k, entity_id in enumerate(ranked)}
+        return {
+            entity_id: k for ranked in self.ranks.values() for k, entity_id in enumerate(ranked)
+        }
 
     # -- the rules ----------------------------------------------------------------
 
@@ -192,11 +200,19 @@ class Discourse:
         subject = set(self.sentence_subject)
         # An owner inside a phrase ("the cottage of the farmstead") is no rival antecedent
         # there: "... of the cottage of the farmstead and at a right angle to it".
-        named_here = [m.ids for m in self.current if not m.plural and not m.embedded and not set(m.ids) <= subject]
+        named_here = [
+            m.ids
+            for m in self.current
+            if not m.plural and not m.embedded and not set(m.ids) <= subject
+        ]
         if named_here:
             return all(ids == (entity_id,) for ids in named_here)
         singular_before = {m.ids for m in self.previous if not m.plural}
-        return bool(self.previous) and self.previous[-1].ids == (entity_id,) and singular_before == {(entity_id,)}
+        return (
+            bool(self.previous)
+            and self.previous[-1].ids == (entity_id,)
+            and singular_before == {(entity_id,)}
+        )
 
     def _definite(self, entity_id: str, *, demonstrative: bool) -> tuple[str, bool]:
         """The definite phrase, and whether it is clear without saying where the entity belongs."""
@@ -205,7 +221,11 @@ class Discourse:
         if len(namesakes) == 1:
             return f"the {entity.noun}", True
         named_before = [m.ids for m in self.previous if m.noun == entity.noun]
-        if demonstrative and self.last_of_noun.get(entity.noun) == (entity_id,) and named_before == [(entity_id,)]:
+        if (
+            demonstrative
+            and self.last_of_noun.get(entity.noun) == (entity_id,)
+            and named_before == [(entity_id,)]
+        ):
             return f"this {entity.noun}", True
         if entity.noun in self.world.nested_nouns:
             # Counted across the scene: "the row of desks at the row of desks" tells nothing.
@@ -215,7 +235,7 @@ class Discourse:
         return self._place_in_cohort(entity_id), clear
 
     def _place_in_cohort(self, entity_id: str) -> str:
-        """"the sign", "the other tower" or "the third road".
+        """ "the sign", "the other tower" or "the third road".
 
         Ordinals count in the order the text first names each thing on its own (``_rank``),
         so a reader meets "the first road" before "the second". A noun counts what it
@@ -224,7 +244,9 @@ class Discourse:
         """
         entity = self.world[entity_id]
         family = self.world.family(entity_id)
-        if len(family) == 1 or (len(self.world.cohort(entity_id)) == 1 and entity.noun not in self.world.nested_nouns):
+        if len(family) == 1 or (
+            len(self.world.cohort(entity_id)) == 1 and entity.noun not in self.world.nested_nouns
+        ):
             return f"the {entity.noun}"  # its noun alone sets it apart among its siblings
         new = entity_id not in self.ranks.get(family, ())
         ranked = self._rank(entity_id)
@@ -232,11 +254,15 @@ class Discourse:
         # so it never flips between the two.
         others = [i for i in family if i != entity_id]
         if (
-            len(family) == 2 and ranked.index(entity_id) == 1 and self.world[others[0]].noun == entity.noun
+            len(family) == 2
+            and ranked.index(entity_id) == 1
+            and self.world[others[0]].noun == entity.noun
             and self.last_of_noun.get(entity.noun) == tuple(others)
-        ):  # fmt: skip
+        ):
             return f"the other {entity.noun}"
-        if self.world.family_noun(entity_id) != entity.noun:  # "the second white desk": white ones only
+        if (
+            self.world.family_noun(entity_id) != entity.noun
+        ):  # "the second white desk": white ones only
             ranked = [i for i in ranked if self.world[i].noun == entity.noun]
             family = tuple(i for i in family if self.world[i].noun == entity.noun)
         if new and len(ranked) == len(family) and any(i in self.unsettled for i in ranked):
@@ -281,12 +307,16 @@ class Discourse:
         """
         entity = self.world[entity_id]
         cohort = set(self.world.cohort(entity_id))
-        others = [i for i in self.world.namesakes(entity_id) if i not in cohort and i in self.introduced]
+        others = [
+            i for i in self.world.namesakes(entity_id) if i not in cohort and i in self.introduced
+        ]
         if entity.parent is None:
             return not others
         if any(self.world[i].parent is None for i in others):
             return False
-        return entity.parent == self.focus and self.paragraph_nouns.get(entity.noun, set()) <= cohort
+        return (
+            entity.parent == self.focus and self.paragraph_nouns.get(entity.noun, set()) <= cohort
+        )
 
     def _placed(self, phrase: str, entity_id: str, *, plural: bool = False) -> str:
         """The phrase with where the entity belongs: "the table of the third market stand",
@@ -306,22 +336,34 @@ class Discourse:
         return f"{phrase} {preposition} {owner}"
 
     def _name_part(
-        self, cohort: tuple[str, ...], chosen: tuple[str, ...], alone: bool, alongside: tuple[str, ...] = ()
+        self,
+        cohort: tuple[str, ...],
+        chosen: tuple[str, ...],
+        alone: bool,
+        alongside: tuple[str, ...] = (),
     ) -> str:
         entity = self.world[chosen[0]]
         before: tuple[str, ...] = ()
         if len(chosen) == len(cohort):
             whole = len(chosen) == 2 and alone
-            phrase = f"both {entity.plural}" if whole else f"the {number_word(len(chosen))} {entity.plural}"
+            phrase = (
+                f"both {entity.plural}"
+                if whole
+                else f"the {number_word(len(chosen))} {entity.plural}"
+            )
         else:
             phrase, before = self._part_of_cohort(cohort, chosen, alongside)
         self.named_in_paragraph.update(chosen)
         for other in before:
             self._rank(other)  # "The two other desks face the same way as the first desk."
         self._rank_set(cohort, chosen)
-        clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(chosen[0])
+        clear = len(cohort) == len(self.world.namesakes(chosen[0])) or self._clear_in_paragraph(
+            chosen[0]
+        )
         self._note(chosen, entity.noun, plural=True)
-        return self.marks.mark(phrase if clear else self._placed(phrase, chosen[0], plural=True), chosen)
+        return self.marks.mark(
+            phrase if clear else self._placed(phrase, chosen[0], plural=True), chosen
+        )
 
     def _part_of_cohort(
         self, cohort: tuple[str, ...], chosen: tuple[str, ...], alongside: tuple[str, ...]
@@ -339,7 +381,10 @@ class Discourse:
         plural, count = self.world[chosen[0]].plural, number_word(len(chosen))
         besides = tuple(i for i in alongside if i in cohort)
         if besides and not set(besides) & set(chosen) and set(besides) | set(chosen) == set(cohort):
-            return f"the {count} other {plural}", besides  # the sentence names the rest of the cohort
+            return (
+                f"the {count} other {plural}",
+                besides,
+            )  # the sentence names the rest of the cohort
         named = (self.named_in_paragraph | set(besides)) & set(cohort)
         if named and not named & set(chosen):
             if named == set(cohort) - set(chosen):

@@ -36,9 +36,15 @@ from .programs import DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, ProgramError, See
 from .world import is_kind_of
 
 __all__ = [
-    "DEPTH_MARGIN", "MAX_PLACE", "SIDE_MARGIN", "PictureFacts", "ProgramError", "Seen", "execute",
+    "DEPTH_MARGIN",
+    "MAX_PLACE",
+    "SIDE_MARGIN",
+    "PictureFacts",
+    "ProgramError",
+    "Seen",
+    "execute",
     "referring_expressions",
-]  # fmt: skip
+]
 
 #: The furthest place in an order across the picture an expression counts to.
 MAX_PLACE = 5
@@ -72,14 +78,22 @@ def _candidates(facts: PictureFacts, entity_id: str, counts: Counter, clear: set
     if noun not in clear:
         return  # "the chair" beside an armchair: a reader counts the armchair too
     yield f"the {noun}", [step("scene"), step("filter_noun", noun, 0), step("unique", None, 1)]
-    anchors = sorted(i for i, o in facts.objects.items() if i != entity_id and counts[o.noun] == 1 and o.noun in clear)
+    anchors = sorted(
+        i
+        for i, o in facts.objects.items()
+        if i != entity_id and counts[o.noun] == 1 and o.noun in clear
+    )
     for anchor in anchors:
         anchor_noun = facts.objects[anchor].noun
         for side in ("left", "right"):
             program = [
-                step("scene"), step("filter_noun", anchor_noun, 0), step("unique", None, 1),
-                step("relate", side, 2), step("filter_noun", noun, 3), step("unique", None, 4),
-            ]  # fmt: skip
+                step("scene"),
+                step("filter_noun", anchor_noun, 0),
+                step("unique", None, 1),
+                step("relate", side, 2),
+                step("filter_noun", noun, 3),
+                step("unique", None, 4),
+            ]
             yield f"the {noun} to the {side} of the {anchor_noun}", program
     same = sorted((o for o in facts.objects.values() if o.noun == noun), key=lambda o: o.across)
     position = [o.id for o in same].index(entity_id) + 1
@@ -89,4 +103,7 @@ def _candidates(facts: PictureFacts, entity_id: str, counts: Counter, clear: set
         program = [step("scene"), step("filter_noun", noun, 0), step("nth", [side, str(place)], 1)]
         yield f"the {ordinal_word(place)} {noun} from the {side}", program
     for which in ("nearest", "farthest"):
-        yield f"the {which} {noun}", [step("scene"), step("filter_noun", noun, 0), step("extreme", which, 1)]
+        yield (
+            f"the {which} {noun}",
+            [step("scene"), step("filter_noun", noun, 0), step("extreme", which, 1)],
+        )

@@ -63,14 +63,19 @@ COMPASS_VECTORS: dict[str, tuple[float, float]] = {
 
 #: What the words of a wall label name, by its placement (``RelationLabel.wall``): the
 #: wall the object's back is against, the corner it stands in, or the window.
-PLACEMENT_NAMES = {"against": "wall", "corner": "corner", "under_window": "opening", "beside_window": "opening"}
+PLACEMENT_NAMES = {
+    "against": "wall",
+    "corner": "corner",
+    "under_window": "opening",
+    "beside_window": "opening",
+}
 
 #: Separates a corner's walls in its id ("wall_4|wall_1"): no scene-graph id holds it.
 CORNER_ID_SEPARATOR = "|"
 
 
 def direction_adjective(word: str, count: int) -> str:
-    """"western" to tell one of two apart, "westernmost" one of three or more."""
+    """ "western" to tell one of two apart, "westernmost" one of three or more."""
     return f"{word}ern" if count == 2 else f"{word}ernmost"
 
 
@@ -101,7 +106,9 @@ class RoomView:
                 continue
             bx, bz = before.normal[0] + after.normal[0], before.normal[1] + after.normal[1]
             corner_id = f"{before.id}{CORNER_ID_SEPARATOR}{after.id}"
-            self.corners[corner_id] = Corner(corner_id, after.start, before.id, after.id, compass_word(-bx, -bz))
+            self.corners[corner_id] = Corner(
+                corner_id, after.start, before.id, after.id, compass_word(-bx, -bz)
+            )
         self.names: dict[str, str | None] = {}
         for wall in walls:
             self.names[wall.id] = self._wall_name(wall)
@@ -114,7 +121,7 @@ class RoomView:
     # -- what the text asks ------------------------------------------------------------
 
     def kind(self, place_id: str) -> str | None:
-        """"wall", "door", "window" or "corner" for a part of the room, None otherwise."""
+        """ "wall", "door", "window" or "corner" for a part of the room, None otherwise."""
         if place_id in self.corners:
             return "corner"
         part = self._part(place_id)
@@ -128,7 +135,7 @@ class RoomView:
 
     @property
     def shape(self) -> str | None:
-        """"L-shaped" for six walls with one reflex corner; None for other shapes."""
+        """ "L-shaped" for six walls with one reflex corner; None for other shapes."""
         return "L-shaped" if len(self.room.walls) == 6 and self.reflex_corners == 1 else None
 
     def opening_groups(self) -> list[tuple[str, str, tuple[str, ...]]]:
@@ -179,7 +186,9 @@ class RoomView:
         thing = self._objects.get(source)
         if thing is None:
             return None
-        footprint = footprint_corners(thing.position[0], thing.position[2], thing.yaw, thing.size[0], thing.size[2])
+        footprint = footprint_corners(
+            thing.position[0], thing.position[2], thing.yaw, thing.size[0], thing.size[2]
+        )
         best, best_gap = None, math.inf
         for corner in self.corners.values():
             if wall.id not in (corner.before, corner.after):
@@ -240,7 +249,9 @@ class RoomView:
     def _corner_name(self, corner: Corner) -> str | None:
         for door in self.room.doors:
             near = [
-                c for c in self.corners.values() if _distance_to_opening(c.point, door, self.room) <= DOOR_NEAR_CORNER
+                c
+                for c in self.corners.values()
+                if _distance_to_opening(c.point, door, self.room) <= DOOR_NEAR_CORNER
             ]
             if near == [corner] and self.names[door.id]:
                 return f"the corner by {self.names[door.id]}"
@@ -256,7 +267,11 @@ class RoomView:
 
 
 #: How ``RoomView.place`` finds the part a wall label's words name, by ``PLACEMENT_NAMES``.
-_PLACE_FINDERS = {"wall": RoomView._the_wall, "corner": RoomView._the_corner, "opening": RoomView._the_opening}
+_PLACE_FINDERS = {
+    "wall": RoomView._the_wall,
+    "corner": RoomView._the_corner,
+    "opening": RoomView._the_opening,
+}
 
 
 def _longer_or_shorter(wall: Wall, namesakes: list[Wall]) -> str | None:
@@ -283,6 +298,7 @@ def _outer_or_inner(wall: Wall, namesakes: list[Wall]) -> str | None:
 def _furthest(wall: Wall, namesakes: list[Wall], direction: tuple[float, float]) -> bool:
     """Whether ``wall``'s middle is further along ``direction`` than every namesake's by
     ``POSITION_MARGIN``."""
+
     def along(w: Wall) -> float:
         x, z = _midpoint(w)
         return x * direction[0] + z * direction[1]

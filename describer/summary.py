@@ -65,14 +65,14 @@ class Claim:
 
 @dataclass(frozen=True)
 class Composition:
-    """"All four market stands have a table and a sign."."""
+    """ "All four market stands have a table and a sign."."""
 
     claim: Claim
 
 
 @dataclass(frozen=True)
 class Pattern:
-    """"In most of the thirty-eight homes, the flowerpot is in front of the house."
+    """ "In most of the thirty-eight homes, the flowerpot is in front of the house."
 
     ``subject_definite`` / ``target_definite``: every counted group has exactly one
     member of that noun ("the house"), else "a bush"."""
@@ -86,7 +86,7 @@ class Pattern:
 
 @dataclass(frozen=True)
 class Quantified:
-    """"Most of the twelve street lamps are next to a road."."""
+    """ "Most of the twelve street lamps are next to a road."."""
 
     claim: Claim
     facts: tuple[Fact, ...]
@@ -97,7 +97,7 @@ SummaryMessage = Composition | Pattern | Quantified
 
 
 def quantifier(count: int, total: int, *, exact: bool) -> str | None:
-    """"all", "most", "some" or (``exact`` counts only) "one": the word for ``count`` of ``total``."""
+    """ "all", "most", "some" or (``exact`` counts only) "one": the word for ``count`` of ``total``."""
     if count == total:
         return "all"
     if 2 * count > total:
@@ -113,7 +113,11 @@ def summarised_groups(world: World) -> list[tuple[str, ...]]:
     hidden: set[str] = set()
     for cohort in world.cohorts.values():
         first = world[cohort[0]]
-        if first.kind != "group" or len(cohort) < SUMMARY_COHORT or _has_ancestor_in(first, hidden, world):
+        if (
+            first.kind != "group"
+            or len(cohort) < SUMMARY_COHORT
+            or _has_ancestor_in(first, hidden, world)
+        ):
             continue
         found.append(cohort)
         hidden.update(cohort)
@@ -133,9 +137,10 @@ def hidden_owners(world: World, cohorts: list[tuple[str, ...]]) -> set[str]:
     """Every group inside a summarised cohort (its groups too): none gets a paragraph."""
     inside = {i for cohort in cohorts for i in cohort}
     return {
-        owner for owner in world.entities
+        owner
+        for owner in world.entities
         if owner in inside or _has_ancestor_in(world[owner], inside, world)
-    }  # fmt: skip
+    }
 
 
 def compositions(cohort: tuple[str, ...], world: World) -> list[Composition]:
@@ -182,9 +187,15 @@ def patterns(cohort: tuple[str, ...], relations: list[Relation], world: World) -
         if word is None:
             continue
         claim = Claim(
-            "in", word, cohort, holders, label=told[0].label, chosen=told[0].chosen,
-            subject_noun=subject_noun, target_noun=target_noun,
-        )  # fmt: skip
+            "in",
+            word,
+            cohort,
+            holders,
+            label=told[0].label,
+            chosen=told[0].chosen,
+            subject_noun=subject_noun,
+            target_noun=target_noun,
+        )
         messages.append(
             Pattern(
                 claim,
@@ -226,7 +237,17 @@ def quantified(relations: list[Relation], world: World) -> tuple[list[Quantified
         if len(holders) < 2 or len(targets) < 2:
             continue
         word = quantifier(len(holders), len(cohort), exact=False)
-        claim = Claim("is", word, cohort, holders, label=group[0].label, chosen=group[0].chosen, target_noun=target_noun)
-        messages.append(Quantified(claim, tuple((r.source, r.label, r.target) for r in group), targets))
+        claim = Claim(
+            "is",
+            word,
+            cohort,
+            holders,
+            label=group[0].label,
+            chosen=group[0].chosen,
+            target_noun=target_noun,
+        )
+        messages.append(
+            Quantified(claim, tuple((r.source, r.label, r.target) for r in group), targets)
+        )
         told.update(id(r) for r in group)
     return messages, [r for r in relations if id(r) not in told]

@@ -32,8 +32,8 @@ from jinja2.loaders import split_template_path
 from jinja2.sandbox import SandboxedEnvironment
 
 from scenewright.core.errors import InputError
-from scenewright.core.limits import forbidden_character
 from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.limits import forbidden_character
 
 from .english import join_list, with_article
 from .grounding import split_leading_marks
@@ -118,7 +118,9 @@ class _FolderLoader(jinja2.BaseLoader):
     def __init__(self, folders: tuple[Path, ...]):
         self.folders = tuple(folder.resolve() for folder in folders)
 
-    def get_source(self, environment: jinja2.Environment, template: str) -> tuple[str, str, Callable[[], bool]]:
+    def get_source(
+        self, environment: jinja2.Environment, template: str
+    ) -> tuple[str, str, Callable[[], bool]]:
         pieces = split_template_path(template)  # no ".." and no absolute names
         for folder in self.folders:
             path = folder.joinpath(*pieces)
@@ -131,7 +133,9 @@ def _read_template(folder: Path, path: Path) -> tuple[str, str, Callable[[], boo
     """A template file's text, its name for messages, and whether it is unchanged since."""
     real = path.resolve()
     if not real.is_relative_to(folder):
-        raise TemplateError(f"description template {path}: it leads outside its folder {folder} (to {real})")
+        raise TemplateError(
+            f"description template {path}: it leads outside its folder {folder} (to {real})"
+        )
     try:
         modified = os.stat(real).st_mtime
         text = read_regular_file(real, MAX_TEMPLATE_BYTES, "a template").decode("utf-8")
@@ -140,7 +144,9 @@ def _read_template(folder: Path, path: Path) -> tuple[str, str, Callable[[], boo
     except UnusableFile as problem:
         raise TemplateError(f"description template {path}: it {problem}") from None
     except OSError as error:
-        raise TemplateError(f"description template {path}: cannot read it ({error.strerror or error})") from None
+        raise TemplateError(
+            f"description template {path}: cannot read it ({error.strerror or error})"
+        ) from None
 
     def unchanged() -> bool:
         try:
@@ -169,8 +175,10 @@ def render(environment: SandboxedEnvironment, name: str, **context: object) -> s
         _steps_left.reset(budget)
     line = " ".join(text.split())
     if (bad := forbidden_character(line)) is not None:
-        raise TemplateError(f"description template {template.filename or name}: it writes the character {bad}; "
-                            "text may not hold control or bidirectional-control characters")
+        raise TemplateError(
+            f"description template {template.filename or name}: it writes the character {bad}; "
+            "text may not hold control or bidirectional-control characters"
+        )
     return line
 
 
@@ -179,7 +187,9 @@ class _BoundedSandbox(SandboxedEnvironment):
 
     intercepted_binops = frozenset({"*", "**", "+"})
 
-    def call_binop(self, context: jinja2.runtime.Context, operator: str, left: object, right: object) -> object:
+    def call_binop(
+        self, context: jinja2.runtime.Context, operator: str, left: object, right: object
+    ) -> object:
         if _result_size(operator, left, right) > MAX_TEMPLATE_RESULT:
             raise jinja2.exceptions.SecurityError(
                 f"'{operator}' would make a result larger than {MAX_TEMPLATE_RESULT} (characters, items or digits)"
@@ -190,7 +200,9 @@ class _BoundedSandbox(SandboxedEnvironment):
 def _result_size(operator: str, left: object, right: object) -> float:
     """About how many characters, items or digits ``left operator right`` makes."""
     if operator == "+":
-        return len(left) + len(right) if hasattr(left, "__len__") and hasattr(right, "__len__") else 0
+        return (
+            len(left) + len(right) if hasattr(left, "__len__") and hasattr(right, "__len__") else 0
+        )
     if operator == "*":
         for sequence, count in ((left, right), (right, left)):
             if hasattr(sequence, "__len__") and isinstance(count, int):

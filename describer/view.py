@@ -72,9 +72,15 @@ def describe_view(
     unseen = not (view.objects or view.paths) and bool(scene.objects or scene.paths)
     large = sum(o.kind == "object" for o in scene.objects) >= LARGE_SCENE
     return describe_frame(
-        view, style="short", variant=variant, templates=templates,
-        picture=True, picture_sides=frame == "camera", unseen=unseen, concrete=large,
-    )  # fmt: skip
+        view,
+        style="short",
+        variant=variant,
+        templates=templates,
+        picture=True,
+        picture_sides=frame == "camera",
+        unseen=unseen,
+        concrete=large,
+    )
 
 
 def grounding_records(description: Description, picture: PictureView) -> list[dict]:
@@ -117,7 +123,9 @@ def view_scene(scene: Scene, picture: PictureView, *, frame: str = "scene") -> S
         if relation.source not in kept or not relation.satisfied:
             continue
         if relation.target in world:
-            if relation.target not in kept or _something_between(relation, world, seen, resting, picture):
+            if relation.target not in kept or _something_between(
+                relation, world, seen, resting, picture
+            ):
                 continue
             if frame == "camera" and _names_a_side(relation.label):
                 relation = _in_picture_words(relation, world, picture)
@@ -152,7 +160,11 @@ def _resting_on(scene: Scene) -> dict[str, set[str]]:
 
 
 def _something_between(
-    relation: Relation, world: World, seen: set[str], resting: dict[str, set[str]], picture: PictureView
+    relation: Relation,
+    world: World,
+    seen: set[str],
+    resting: dict[str, set[str]],
+    picture: PictureView,
 ) -> bool:
     """Whether a third solid thing stands between the relation's ends in the picture."""
     ends = []

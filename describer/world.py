@@ -16,10 +16,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from scenewright.core.errors import InputError
 from scenewright.core.relations import Relation
 from scenewright.core.scene import Scene
-
-from scenewright.core.errors import InputError
 
 from .english import plural_of
 from .grounding import holds_marks
@@ -71,7 +70,7 @@ class World:
         return self.room.place(relation) if self.room is not None else None
 
     def place_kind(self, target_id: str) -> str | None:
-        """"wall", "door", "window" or "corner" for a part of the room; None for an entity."""
+        """ "wall", "door", "window" or "corner" for a part of the room; None for an entity."""
         if target_id in self.entities or self.room is None:
             return None
         return self.room.kind(target_id)
@@ -91,8 +90,10 @@ class World:
             return self.namesakes(entity_id)
         family = self.families.get((entity.noun, entity.parent), entity.noun)
         return tuple(
-            i for i in self.children.get(entity.parent, ())
-            if self.families.get((self.entities[i].noun, entity.parent), self.entities[i].noun) == family
+            i
+            for i in self.children.get(entity.parent, ())
+            if self.families.get((self.entities[i].noun, entity.parent), self.entities[i].noun)
+            == family
         )
 
     def family_noun(self, entity_id: str) -> str:
@@ -164,8 +165,10 @@ def world_of(scene: Scene) -> World:
     entities: dict[str, Entity] = {}
     for _, is_path, _, thing in raw:
         if holds_marks(thing.noun) or holds_marks(thing.plural or ""):
-            raise InputError(f"{thing.id}: its noun holds a private-use character (U+E000, U+E001 or "
-                             "U+F0000..U+FFFFD) the describer marks phrases with")
+            raise InputError(
+                f"{thing.id}: its noun holds a private-use character (U+E000, U+E001 or "
+                "U+F0000..U+FFFFD) the describer marks phrases with"
+            )
         entities[thing.id] = Entity(
             id=thing.id,
             kind="path" if is_path else thing.kind,
@@ -184,7 +187,9 @@ def world_of(scene: Scene) -> World:
         by_noun[entity.noun] = by_noun.get(entity.noun, ()) + (entity.id,)
         children[entity.parent] = children.get(entity.parent, ()) + (entity.id,)
     room = RoomView(scene.room, scene.objects) if scene.room is not None else None
-    return World(entities, cohorts, by_noun, children, room, _families(cohorts), _nested_nouns(entities))
+    return World(
+        entities, cohorts, by_noun, children, room, _families(cohorts), _nested_nouns(entities)
+    )
 
 
 def is_kind_of(noun: str, general: str) -> bool:
@@ -194,13 +199,15 @@ def is_kind_of(noun: str, general: str) -> bool:
     return noun != general and " of " not in general and noun.split(" of ")[0].endswith(general)
 
 
-def _families(cohorts: dict[tuple[str, str | None], tuple[str, ...]]) -> dict[tuple[str, str | None], str]:
+def _families(
+    cohorts: dict[tuple[str, str | None], tuple[str, ...]],
+) -> dict[tuple[str, str | None], str]:
     """Each cohort's family noun: the most general sibling noun it is a kind of, or its own."""
     nouns_of: dict[str | None, list[str]] = {}
     for noun, parent in cohorts:
         nouns_of.setdefault(parent, []).append(noun)
     families = {}
-    for (noun, parent) in cohorts:
+    for noun, parent in cohorts:
         general = [n for n in nouns_of[parent] if is_kind_of(noun, n)]
         families[(noun, parent)] = min(general, key=len) if general else noun
     return families

@@ -25,4 +25,12 @@ from .formats import FORMATS, Example, ExampleError, load_example, load_examples
 from .model import scene_supports
 from .stacking import infer_supports
 
-__all__ = ["FORMATS", "Example", "ExampleError", "infer_supports", "load_example", "load_examples", "scene_supports"]
+__all__ = [
+    "FORMATS",
+    "Example",
+    "ExampleError",
+    "infer_supports",
+    "load_example",
+    "load_examples",
+    "scene_supports",
+]

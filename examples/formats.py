@@ -60,7 +60,9 @@ FORMATS: tuple[ExampleFormat, ...] = (
 def example_file(path: str | os.PathLike[str]) -> Path:
     """The file an example path names: itself, or the scene.json of a folder holding one."""
     target = Path(path)
-    return target / "scene.json" if target.is_dir() and (target / "scene.json").is_file() else target
+    return (
+        target / "scene.json" if target.is_dir() and (target / "scene.json").is_file() else target
+    )
 
 
 def load_example(path: str | os.PathLike[str], name: str | None = None) -> Example:
@@ -75,9 +77,13 @@ def load_example(path: str | os.PathLike[str], name: str | None = None) -> Examp
         raise ExampleError(shown, "", f"cannot read: {error.strerror or error}") from None
     if not data:
         raise ExampleError(shown, "", "is empty")
-    if data.startswith(codecs.BOM_UTF8) and data[:4] != b"glTF":  # Windows editors write one; JSON has none
+    if (
+        data.startswith(codecs.BOM_UTF8) and data[:4] != b"glTF"
+    ):  # Windows editors write one; JSON has none
         data = data[len(codecs.BOM_UTF8) :]
-    default_name = target.parent.name if target.name == "scene.json" and target.parent.name else target.stem
+    default_name = (
+        target.parent.name if target.name == "scene.json" and target.parent.name else target.stem
+    )
     name = name or default_name or "example"
     for example_format in FORMATS:
         if example_format.recognises(data):
@@ -90,7 +96,9 @@ def load_example(path: str | os.PathLike[str], name: str | None = None) -> Examp
                     raise ExampleError(shown, "", f"not UTF-8 text (byte {error.start})") from None
             scene = example_format.read(str(target), content, name)
             return Example(name=name, path=str(target), format=example_format.name, scene=scene)
-    raise ExampleError(shown, "", "not a format examples are read from")  # pragma: no cover (the last one takes all)
+    raise ExampleError(
+        shown, "", "not a format examples are read from"
+    )  # pragma: no cover (the last one takes all)
 
 
 #: The file endings of examples a folder of examples is read for.
@@ -107,12 +115,15 @@ def folder_examples(folder: Path) -> list[Path]:
     if (folder / DATASET_SETTINGS).is_file() and (folder / DATASET_SCENES).is_dir():
         return folder_examples(folder / DATASET_SCENES)  # a dataset: its scenes
     found = sorted(
-        entry for entry in folder.iterdir()
+        entry
+        for entry in folder.iterdir()
         if (entry.is_file() and entry.suffix.lower() in EXAMPLE_SUFFIXES)
         or (entry.is_dir() and (entry / "scene.json").is_file())
-    )  # fmt: skip
+    )
     if not found:
-        raise ExampleError(str(folder), "", "holds no examples (.json or .glb files, or folders with a scene.json)")
+        raise ExampleError(
+            str(folder), "", "holds no examples (.json or .glb files, or folders with a scene.json)"
+        )
     return found
 
 
@@ -122,7 +133,11 @@ def example_paths(paths: Iterable[str | os.PathLike[str]]) -> list[str | os.Path
     expanded: list[str | os.PathLike[str]] = []
     for path in paths:
         folder = Path(path)
-        expanded += folder_examples(folder) if folder.is_dir() and not (folder / "scene.json").is_file() else [path]
+        expanded += (
+            folder_examples(folder)
+            if folder.is_dir() and not (folder / "scene.json").is_file()
+            else [path]
+        )
     return expanded
 
 
@@ -140,7 +155,12 @@ def is_handwritten_example(path: str | os.PathLike[str]) -> bool:
     scene.json: it lists ``objects`` and names no ``rules`` (every scene.json does; the
     hand-written format has no such key). False when it cannot be read."""
     data = _example_bytes(path)
-    return data is not None and not _is_scene_json(data) and b'"objects"' in data and b'"rules"' not in data
+    return (
+        data is not None
+        and not _is_scene_json(data)
+        and b'"objects"' in data
+        and b'"rules"' not in data
+    )
 
 
 def is_scene_json_file(path: str | os.PathLike[str]) -> bool:

@@ -64,7 +64,9 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
     try:
         loaded = trimesh.load(io.BytesIO(data), file_type="glb", force="scene")
     except Exception as error:  # trimesh raises many kinds on a broken file
-        raise ExampleError(path, "", f"not a readable GLB file ({type(error).__name__}: {error})") from None
+        raise ExampleError(
+            path, "", f"not a readable GLB file ({type(error).__name__}: {error})"
+        ) from None
     records: list[ObjectRecord] = []
     walls: list[np.ndarray] = []
     floors: list[np.ndarray] = []
@@ -74,7 +76,11 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
         if not hasattr(mesh, "bounds") or mesh.bounds is None:
             continue
         if node not in order:  # trimesh names an unnamed node by its index
-            raise ExampleError(path, f"node {node}", "has no name: name each object's node TYPE[.STYLE][.NNN], e.g. chair.001")
+            raise ExampleError(
+                path,
+                f"node {node}",
+                "has no name: name each object's node TYPE[.STYLE][.NNN], e.g. chair.001",
+            )
         meta = extras.get(node, {})
         kind, style = parse_node_name(node)
         kind, style = meta.get("type", kind), meta.get("style", style)
@@ -82,20 +88,37 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
         if meta.get("kind") in ROOM_KINDS or (not meta and kind in ROOM_TYPES):
             (walls if kind == "wall" or meta.get("kind") == "wall" else floors).append(corners)
             continue
-        records.append(_record(path, node, meta.get("id", node), kind, style, np.asarray(transform), mesh.bounds))
+        records.append(
+            _record(
+                path, node, meta.get("id", node), kind, style, np.asarray(transform), mesh.bounds
+            )
+        )
     if not records:
-        raise ExampleError(path, "", "has no object nodes (a node with a mesh that is not a wall, floor or ceiling)")
+        raise ExampleError(
+            path,
+            "",
+            "has no object nodes (a node with a mesh that is not a wall, floor or ceiling)",
+        )
     room, lo, hi = _floor(path, records, walls, floors)
     shift = -(lo + hi) / 2.0
     records = [
-        ObjectRecord(r.id, r.type, r.size, (r.position[0] + shift[0], r.position[1], r.position[2] + shift[1]), r.yaw, r.style)
+        ObjectRecord(
+            r.id,
+            r.type,
+            r.size,
+            (r.position[0] + shift[0], r.position[1], r.position[2] + shift[1]),
+            r.yaw,
+            r.style,
+        )
         for r in records
     ]
     extent = (float(hi[0] - lo[0]), float(hi[1] - lo[1]))
     return example_scene(records, name=name, source=path, extent=extent, room=room)
 
 
-def _record(path: str, node: str, object_id: str, kind: str, style, transform: np.ndarray, bounds) -> ObjectRecord:
+def _record(
+    path: str, node: str, object_id: str, kind: str, style, transform: np.ndarray, bounds
+) -> ObjectRecord:
     linear = transform[:3, :3]
     scale = np.linalg.norm(linear, axis=0)
     if np.any(scale < 1e-9):
@@ -103,14 +126,25 @@ def _record(path: str, node: str, object_id: str, kind: str, style, transform: n
     rotation = linear / scale
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, rotation[1, 1]))))
     if tilt > MAX_TILT_DEGREES:
-        raise ExampleError(path, f"node {node!r}", f"is tilted {tilt:.0f} degrees off upright (at most {MAX_TILT_DEGREES:g})")
+        raise ExampleError(
+            path,
+            f"node {node!r}",
+            f"is tilted {tilt:.0f} degrees off upright (at most {MAX_TILT_DEGREES:g})",
+        )
     lo, hi = np.asarray(bounds, dtype=float)
     size = (hi - lo) * scale
     base = np.array([(lo[0] + hi[0]) / 2.0, lo[1], (lo[2] + hi[2]) / 2.0, 1.0])
     x, y, z = (transform @ base)[:3]
     yaw = math.atan2(rotation[0, 2], rotation[2, 2])
     object_id = _NAME.sub("_", object_id) or "object"
-    return ObjectRecord(object_id, kind, tuple(float(v) for v in np.maximum(size, 1e-3)), (float(x), float(y), float(z)), yaw, style)
+    return ObjectRecord(
+        object_id,
+        kind,
+        tuple(float(v) for v in np.maximum(size, 1e-3)),
+        (float(x), float(y), float(z)),
+        yaw,
+        style,
+    )
 
 
 def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, np.ndarray]:
@@ -131,7 +165,10 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
     points = []
     for r in records:
         reach = math.hypot(r.size[0], r.size[2]) / 2.0
-        points += [(r.position[0] - reach, r.position[2] - reach), (r.position[0] + reach, r.position[2] + reach)]
+        points += [
+            (r.position[0] - reach, r.position[2] - reach),
+            (r.position[0] + reach, r.position[2] + reach),
+        ]
     points = np.array(points)
     return None, points.min(axis=0) - MARGIN, points.max(axis=0) + MARGIN
 
@@ -153,5 +190,7 @@ def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
         if isinstance(node, dict) and isinstance(node.get("name"), str):
             order.setdefault(node["name"], index)
             if isinstance(node.get("extras"), dict):
-                found[node["name"]] = {k: v for k, v in node["extras"].items() if isinstance(v, str)}
+                found[node["name"]] = {
+                    k: v for k, v in node["extras"].items() if isinstance(v, str)
+                }
     return order, found

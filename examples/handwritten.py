@@ -47,32 +47,55 @@ def read_handwritten(path: str, text: str, name: str) -> Scene:
     seen: set[str] = set()
     for index, object_id in enumerate(ids):
         if object_id in seen:
-            raise ExampleError(path, f"$.objects[{index}].id", f"id {object_id!r} is used by an earlier object too")
+            raise ExampleError(
+                path, f"$.objects[{index}].id", f"id {object_id!r} is used by an earlier object too"
+            )
         seen.add(object_id)
     parents = {raw["id"]: raw["parent"] for raw in raw_objects if raw.get("parent") is not None}
     for index, raw in enumerate(raw_objects):
         parent = raw.get("parent")
         if parent is not None and parent not in seen:
-            raise ExampleError(path, f"$.objects[{index}].parent", f"{raw['id']!r} stands on {parent!r}, which is not an object of the file")
+            raise ExampleError(
+                path,
+                f"$.objects[{index}].parent",
+                f"{raw['id']!r} stands on {parent!r}, which is not an object of the file",
+            )
         if parent is not None and _stands_on_itself(raw["id"], parents):
-            raise ExampleError(path, f"$.objects[{index}].parent", f"{raw['id']!r} stands on itself (through parents)")
+            raise ExampleError(
+                path,
+                f"$.objects[{index}].parent",
+                f"{raw['id']!r} stands on itself (through parents)",
+            )
     room, shift = _room(path, data)
     extent = room.extent if room is not None else tuple(data["extent"])
     by_id = {raw["id"]: raw for raw in raw_objects}
     records = [
         ObjectRecord(
-            id=raw["id"], type=raw["type"], size=tuple(raw["size"]),
-            position=_position(raw, by_id, shift), yaw=math.radians(raw.get("yaw", 0.0)), style=raw.get("style"),
+            id=raw["id"],
+            type=raw["type"],
+            size=tuple(raw["size"]),
+            position=_position(raw, by_id, shift),
+            yaw=math.radians(raw.get("yaw", 0.0)),
+            style=raw.get("style"),
         )
         for raw in raw_objects
-    ]  # fmt: skip
+    ]
     for index, record in enumerate(records):
         _check_place(path, index, record, records, parents, room, extent)
-    return example_scene(records, name=data.get("name", name), source=path, extent=extent, room=room, parents=parents)
+    return example_scene(
+        records, name=data.get("name", name), source=path, extent=extent, room=room, parents=parents
+    )
 
 
-def _check_place(path: str, index: int, record: ObjectRecord, records: list[ObjectRecord], parents: dict[str, str],
-                 room: Room | None, extent: tuple[float, float]) -> None:  # fmt: skip
+def _check_place(
+    path: str,
+    index: int,
+    record: ObjectRecord,
+    records: list[ObjectRecord],
+    parents: dict[str, str],
+    room: Room | None,
+    extent: tuple[float, float],
+) -> None:
     """Refuse an object that stands outside the room (or extent), or that the file says
     stands on a parent it does not touch: every stage after reading trusts both."""
     where = f"$.objects[{index}].position (object {record.id!r})"
@@ -82,17 +105,29 @@ def _check_place(path: str, index: int, record: ObjectRecord, records: list[Obje
     else:
         outside = abs(x) > extent[0] / 2.0 or abs(z) > extent[1] / 2.0
     if outside:
-        raise ExampleError(path, where, f"its base centre ({x:g}, {z:g}) is outside the {'room' if room else 'extent'}")
+        raise ExampleError(
+            path,
+            where,
+            f"its base centre ({x:g}, {z:g}) is outside the {'room' if room else 'extent'}",
+        )
     parent = parents.get(record.id)
     if parent is None:
         return
     below = next(r for r in records if r.id == parent)
     if not touches_top(record, below):
         top = below.position[1] + below.size[1]
-        raise ExampleError(path, where, f"stands on {parent!r}, whose top is at height {top:g}, but its base is at {y:g}"
-                                        " (give the position as [x, z] to put it on top)")  # fmt: skip
+        raise ExampleError(
+            path,
+            where,
+            f"stands on {parent!r}, whose top is at height {top:g}, but its base is at {y:g}"
+            " (give the position as [x, z] to put it on top)",
+        )
     if not over_footprint(record, below):
-        raise ExampleError(path, where, f"stands on {parent!r}, but its base centre is not over the footprint of {parent!r}")
+        raise ExampleError(
+            path,
+            where,
+            f"stands on {parent!r}, but its base centre is not over the footprint of {parent!r}",
+        )
 
 
 def parse_json(path: str, text: str) -> Any:
@@ -105,7 +140,9 @@ def parse_json(path: str, text: str) -> Any:
     try:
         return json.loads(text, parse_constant=refuse)
     except json.JSONDecodeError as error:
-        raise ExampleError(f"{path}:{error.lineno}:{error.colno}", "", f"not JSON: {error.msg}") from None
+        raise ExampleError(
+            f"{path}:{error.lineno}:{error.colno}", "", f"not JSON: {error.msg}"
+        ) from None
     except (ValueError, RecursionError) as error:
         raise ExampleError(path, "", f"not usable JSON: {error}") from None
 
@@ -122,7 +159,11 @@ def _where(data: Any, parts: list) -> str:
 
 def _message(error: jsonschema.ValidationError) -> str:
     """The schema's complaint in one short line (a ``oneOf`` of required keys said as such)."""
-    choices = [sub.get("required") for sub in error.schema.get("oneOf", [])] if error.validator == "oneOf" else []
+    choices = (
+        [sub.get("required") for sub in error.schema.get("oneOf", [])]
+        if error.validator == "oneOf"
+        else []
+    )
     if choices and all(choices):
         return "needs exactly one of " + " or ".join("/".join(map(repr, keys)) for keys in choices)
     return " ".join(error.message.split())[:200]
@@ -156,7 +197,9 @@ def _room(path: str, data: dict) -> tuple[Room | None, tuple[float, float]]:
         raise ExampleError(path, "$.room", str(error)) from None
 
 
-def _position(raw: dict, by_id: dict[str, dict], shift: tuple[float, float]) -> tuple[float, float, float]:
+def _position(
+    raw: dict, by_id: dict[str, dict], shift: tuple[float, float]
+) -> tuple[float, float, float]:
     """Base centre (x, y, z) moved by ``shift``; a 2-number position stands on the
     floor or on its parent's top."""
     position = raw["position"]

@@ -61,7 +61,10 @@ def scene_supports(scene: Scene) -> dict[str, str]:
     return {
         r.source: r.target
         for r in scene.relations
-        if r.label in RELATIONS and RELATIONS[r.label].support and r.source in placed and r.target in placed
+        if r.label in RELATIONS
+        and RELATIONS[r.label].support
+        and r.source in placed
+        and r.target in placed
     }
 
 
@@ -105,13 +108,23 @@ def default_looks(type_name: str, style: str | None = None) -> Looks:
 
     entry = indoor_catalog().get(type_name)
     if entry is None or entry.kind != "object":
-        return Looks(type_name.replace("_", " "), None, type_name if type_name in SHAPES else None, type_colour(type_name))
+        return Looks(
+            type_name.replace("_", " "),
+            None,
+            type_name if type_name in SHAPES else None,
+            type_colour(type_name),
+        )
     look = next((s for s in entry.styles if s.name == style), None) if style else None
     noun = look.noun if look and look.noun else entry.noun
     plural = look.plural if look and look.plural else (entry.plural if noun == entry.noun else None)
     shape = look.shape if look and look.shape else entry.shape
     colour = look.colour if look and look.colour else entry.colour
-    return Looks(noun, plural, shape, [float(v) for v in colour] if colour is not None else type_colour(type_name))
+    return Looks(
+        noun,
+        plural,
+        shape,
+        [float(v) for v in colour] if colour is not None else type_colour(type_name),
+    )
 
 
 def example_scene(
@@ -127,20 +140,43 @@ def example_scene(
     the file gave them, the other supports measured from the boxes."""
     objects = [
         SceneObject(
-            id=r.id, type=r.type, kind="object", noun=looks.noun, plural=looks.plural, parent=None, style=r.style,
-            position=[float(v) for v in r.position], yaw=_wrapped(r.yaw), size=[float(v) for v in r.size],
-            shape=looks.shape, colour=looks.colour, rule=None, order=k,
+            id=r.id,
+            type=r.type,
+            kind="object",
+            noun=looks.noun,
+            plural=looks.plural,
+            parent=None,
+            style=r.style,
+            position=[float(v) for v in r.position],
+            yaw=_wrapped(r.yaw),
+            size=[float(v) for v in r.size],
+            shape=looks.shape,
+            colour=looks.colour,
+            rule=None,
+            order=k,
         )
         for k, r in enumerate(records)
         for looks in [default_looks(r.type, r.style)]
-    ]  # fmt: skip
+    ]
     supports = {**infer_supports(objects), **(parents or {})}
-    relations = [Relation(o.id, supports[o.id], SUPPORT_LABEL, 0.0, True) for o in objects if o.id in supports]
+    relations = [
+        Relation(o.id, supports[o.id], SUPPORT_LABEL, 0.0, True)
+        for o in objects
+        if o.id in supports
+    ]
     return Scene(
-        rules=source, seed=0, extent=[float(extent[0]), float(extent[1])], objects=objects, paths=[],
-        relations=relations, layout=LayoutStats(), room=room, ground="floor" if room else "grass", name=name,
+        rules=source,
+        seed=0,
+        extent=[float(extent[0]), float(extent[1])],
+        objects=objects,
+        paths=[],
+        relations=relations,
+        layout=LayoutStats(),
+        room=room,
+        ground="floor" if room else "grass",
+        name=name,
         version=__version__,
-    )  # fmt: skip
+    )
 
 
 def _wrapped(yaw: float) -> float:

@@ -24,9 +24,17 @@ def read_scene_json(path: str, text: str, name: str) -> Scene:
         raise ExampleError(path, error.path, error.problems[0][1]) from None
     try:
         scene = Scene.from_dict(data)
-    except (KeyError, TypeError, ValueError) as error:  # what the schema lets through and the model refuses
-        raise ExampleError(path, "", f"not a usable scene.json: {type(error).__name__}: {error}") from None
-    supported = {r.source for r in scene.relations if r.label in RELATIONS and RELATIONS[r.label].support}
+    except (
+        KeyError,
+        TypeError,
+        ValueError,
+    ) as error:  # what the schema lets through and the model refuses
+        raise ExampleError(
+            path, "", f"not a usable scene.json: {type(error).__name__}: {error}"
+        ) from None
+    supported = {
+        r.source for r in scene.relations if r.label in RELATIONS and RELATIONS[r.label].support
+    }
     measured = [
         Relation(upper, lower, SUPPORT_LABEL, 0.0, True)
         for upper, lower in infer_supports(scene.placed_objects()).items()

@@ -37,7 +37,9 @@ def touches_top(upper: Boxed, lower: Boxed) -> bool:
 
 def over_footprint(upper: Boxed, lower: Boxed) -> bool:
     """Whether ``upper``'s base centre lies over ``lower``'s footprint."""
-    lx, lz = to_local(lower.position[0], lower.position[2], lower.yaw, upper.position[0], upper.position[2])
+    lx, lz = to_local(
+        lower.position[0], lower.position[2], lower.yaw, upper.position[0], upper.position[2]
+    )
     return abs(lx) <= lower.size[0] / 2.0 + 1e-6 and abs(lz) <= lower.size[2] / 2.0 + 1e-6
 
 
@@ -54,6 +56,12 @@ def infer_supports(objects: Sequence[SceneObject]) -> dict[str, str]:
     for upper in objects:
         below = [lower for lower in objects if rests_on(upper, lower)]
         if below:
-            nearest = min(below, key=lambda lower: (abs(upper.position[1] - lower.position[1] - lower.size[1]), lower.id))
+            nearest = min(
+                below,
+                key=lambda lower: (
+                    abs(upper.position[1] - lower.position[1] - lower.size[1]),
+                    lower.id,
+                ),
+            )
             supports[upper.id] = nearest.id
     return supports

@@ -45,7 +45,9 @@ class Style:
 
 
 #: The look fields a style may override, in declaration order (not its name or weight).
-STYLE_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(Style) if f.name not in ("name", "weight"))
+STYLE_FIELDS: tuple[str, ...] = tuple(
+    f.name for f in fields(Style) if f.name not in ("name", "weight")
+)
 
 
 @dataclass(frozen=True)
@@ -82,9 +84,7 @@ class CatalogEntry:
         if style is None:
             return self
         overrides = {
-            name: getattr(style, name)
-            for name in STYLE_FIELDS
-            if getattr(style, name) is not None
+            name: getattr(style, name) for name in STYLE_FIELDS if getattr(style, name) is not None
         }
         if "noun" in overrides and "plural" not in overrides:
             overrides["plural"] = None  # a new noun must not keep the old irregular plural

@@ -69,7 +69,6 @@ from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import NamedTuple
 
-from . import rules_ast as ast
 from .catalog import SourceLocation
 from .rules import Rules
 from .rules_ast import all_statements
@@ -116,7 +115,13 @@ def choice(
         site = site_of(location)
         record["at"] = [site.line, site.column]
         record["file"] = site.file
-    details = {"options": options, "low": low, "high": high, "probability": probability, "type": type}
+    details = {
+        "options": options,
+        "low": low,
+        "high": high,
+        "probability": probability,
+        "type": type,
+    }
     record.update((name, detail) for name, detail in details.items() if detail is not None)
     record["value"] = value
     record["nodes"] = [] if nodes is None else nodes
@@ -232,4 +237,6 @@ def _check(fits: bool, record: dict) -> None:
         of = record.get("type") or record.get("rule", "?")
         site = _record_site(record)
         at = f" at {site}" if site else ""
-        raise ValueError(f"it draws {what} {of!r}{at} (value {record.get('value')!r}), which these rules do not have")
+        raise ValueError(
+            f"it draws {what} {of!r}{at} (value {record.get('value')!r}), which these rules do not have"
+        )

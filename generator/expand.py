@@ -120,7 +120,9 @@ class _Expansion:
 
     def __post_init__(self) -> None:
         self.graph = SceneGraph(params=self.rules.params)
-        for node in self.graph.nodes():  # a room's walls, doors and windows are there from the start
+        for (
+            node
+        ) in self.graph.nodes():  # a room's walls, doors and windows are there from the start
             if node.kind in ROOM_KINDS and node.kind != ROOM_NODE:
                 self.by_type.setdefault(node.type, []).append(node.id)
         self.max_steps = _BASE_STEPS + _STEPS_PER_NODE * self.rules.max_nodes
@@ -137,12 +139,16 @@ class _Expansion:
         """Expand one production; return its head (the first node it creates), if any."""
         self.step(location)
         if len(self.chain) >= self.rules.max_depth:
-            self.fail(location, f"expansion deeper than max_depth {self.rules.max_depth}", production.name)
+            self.fail(
+                location, f"expansion deeper than max_depth {self.rules.max_depth}", production.name
+            )
         self.chain.append(production.name)
         weights = [alt.weight if alt.weight is not None else 1.0 for alt in production.alternatives]
         index, drawn = self.pick(weights, "alternative", production.location)
         # the checks made every call pass exactly as many arguments as there are parameters
-        scope = {param.name: nodes for param, nodes in zip(production.params, arguments, strict=True)}
+        scope = {
+            param.name: nodes for param, nodes in zip(production.params, arguments, strict=True)
+        }
         first = len(self.made)
         created: list[str] = []
         for statement in production.alternatives[index].statements:
@@ -154,7 +160,9 @@ class _Expansion:
 
     # -- statements -------------------------------------------------------------
 
-    def run(self, statement: ast.Statement, scope: dict[str, list[str]], parent: str | None) -> list[str]:
+    def run(
+        self, statement: ast.Statement, scope: dict[str, list[str]], parent: str | None
+    ) -> list[str]:
         """Carry out one statement; return the nodes it created at this level.
 
         ``scope`` (bound names -> node ids) gains the statement's ``as`` binding.
@@ -227,12 +235,18 @@ class _Expansion:
 
     # -- references -------------------------------------------------------------
 
-    def targets(self, relation: ast.Relation, scope: dict[str, list[str]], subject: str) -> list[str]:
+    def targets(
+        self, relation: ast.Relation, scope: dict[str, list[str]], subject: str
+    ) -> list[str]:
         """The targets of one relation from ``subject``. A wall label to ``some wall`` or
         ``some window`` targets the room node: the layout chooses the wall or window
         that fits (and records it), so no draw is made here."""
         target = relation.target
-        if target.kind == "some" and target.name in ROOM_KINDS and RELATIONS[relation.label].family == "wall":
+        if (
+            target.kind == "some"
+            and target.name in ROOM_KINDS
+            and RELATIONS[relation.label].family == "wall"
+        ):
             return [ROOM_NODE]
         return self.resolve(target, scope, exclude=subject)
 
@@ -262,16 +276,25 @@ class _Expansion:
             return candidates
         if not candidates:
             noun = self.noun(reference.name)
-            self.fail(reference.location, f"'some {reference.name}' finds no {noun} in the scene at this point")
+            self.fail(
+                reference.location,
+                f"'some {reference.name}' finds no {noun} in the scene at this point",
+            )
         index = self.draws.some(len(candidates))
         picked = [candidates[index]]
-        self.note("some", reference.location, index, picked, options=len(candidates), type=reference.name)
+        self.note(
+            "some", reference.location, index, picked, options=len(candidates), type=reference.name
+        )
         return picked
 
     # -- draws and bounds -------------------------------------------------------
 
     def pick(
-        self, weights: list[float], kind: str, location: SourceLocation | None, type: str | None = None
+        self,
+        weights: list[float],
+        kind: str,
+        location: SourceLocation | None,
+        type: str | None = None,
     ) -> tuple[int, dict | None]:
         """An index drawn with probability proportional to ``weights``, and its record
         (None when there was nothing to draw: a single option)."""
@@ -309,9 +332,13 @@ class _Expansion:
         if self.steps > self.max_steps:
             self.fail(location, f"expansion took more than {self.max_steps} steps")
 
-    def fail(self, location: SourceLocation, message: str, next_call: str | None = None) -> NoReturn:
+    def fail(
+        self, location: SourceLocation, message: str, next_call: str | None = None
+    ) -> NoReturn:
         chain = self.chain + ([next_call] if next_call else [])
         if len(chain) > _CHAIN_HEAD + _CHAIN_TAIL + 1:
             chain = chain[:_CHAIN_HEAD] + ["..."] + chain[-_CHAIN_TAIL:]
         shown = " -> ".join(chain)
-        raise ExpansionError(self.rules.sources.diagnostic(location, f"{message} (expanding {shown})"))
+        raise ExpansionError(
+            self.rules.sources.diagnostic(location, f"{message} (expanding {shown})")
+        )

@@ -47,6 +47,8 @@ def graph_to_dot(graph: SceneGraph) -> str:
     emit(None, 1)
     for edge in graph.edges():
         style = ", style=dashed" if RELATIONS[edge.label].implicit else ""
-        lines.append(f"{_INDENT}{_quote(edge.source)} -> {_quote(edge.target)} [label={_quote(edge.label)}{style}];")
+        lines.append(
+            f"{_INDENT}{_quote(edge.source)} -> {_quote(edge.target)} [label={_quote(edge.label)}{style}];"
+        )
     lines.append("}")
     return "\n".join(lines) + "\n"

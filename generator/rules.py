@@ -23,13 +23,14 @@ from importlib import resources
 from pathlib import Path
 from types import MappingProxyType
 
+from scenewright.core.room import Room
+from scenewright.core.scene_graph import SceneParams
+
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
 from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, build_room, check_tree
 from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
 from .rules_parser import ParsedTree, parse_tree
-from scenewright.core.room import Room
-from scenewright.core.scene_graph import SceneParams
 
 _SHIPPED_PACKAGE = "scenewright.grammar_rules"
 
@@ -64,7 +65,11 @@ INDOOR_CATALOG_READER = "bedroom"
 def shipped_rule_sets() -> list[str]:
     """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``)."""
     folder = resources.files(_SHIPPED_PACKAGE)
-    return sorted(item.name[: -len(RULES_SUFFIX)] for item in folder.iterdir() if item.name.endswith(RULES_SUFFIX))
+    return sorted(
+        item.name[: -len(RULES_SUFFIX)]
+        for item in folder.iterdir()
+        if item.name.endswith(RULES_SUFFIX)
+    )
 
 
 @functools.cache
@@ -89,7 +94,9 @@ def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] 
     return _build(tree, tuple(d for d in diagnostics if not d.is_error))
 
 
-def parse_rules_tree(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> ParsedTree:
+def parse_rules_tree(
+    source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()
+) -> ParsedTree:
     """The parsed files of a rule set that loads, with their real paths, for tools that
     rewrite its text (``scenewright fit``); raise ``RulesError`` as ``load_rules`` does."""
     tree, diagnostics = _parse_and_check(source, allow)
@@ -99,7 +106,9 @@ def parse_rules_tree(source: str | os.PathLike, *, allow: Iterable[str | os.Path
     return tree
 
 
-def check_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> list[Diagnostic]:
+def check_rules(
+    source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()
+) -> list[Diagnostic]:
     """Every diagnostic about a rule set, warnings included; never raises for bad content.
 
     A missing file still raises ``RulesError`` (there is nothing to check). ``allow``
@@ -119,9 +128,18 @@ def _resolve(source: str | os.PathLike) -> tuple[Path, str]:
         known = ", ".join(shipped_rule_sets())
         where = SourceLocation(text, 1, 1)
         with_suffix = path.with_name(path.name + RULES_SUFFIX)
-        hint = f"; did you mean '{with_suffix}'?" if not text.endswith(RULES_SUFFIX) and with_suffix.is_file() else ""
+        hint = (
+            f"; did you mean '{with_suffix}'?"
+            if not text.endswith(RULES_SUFFIX) and with_suffix.is_file()
+            else ""
+        )
         raise RulesError(
-            [Diagnostic(where, f"no rules file '{text}' (and no shipped rule set of that name: {known}){hint}")]
+            [
+                Diagnostic(
+                    where,
+                    f"no rules file '{text}' (and no shipped rule set of that name: {known}){hint}",
+                )
+            ]
         )
     return path, text
 
@@ -161,7 +179,9 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         square=settings.get("square", "on") == "on",
         line_of_sight=settings.get("line_of_sight", "on") == "on",
         # like a mesh, the folder is written relative to the file that names it
-        templates=_beside(tree.paths[templates.location.file].parent, templates.value) if templates else None,
+        templates=_beside(tree.paths[templates.location.file].parent, templates.value)
+        if templates
+        else None,
     )
     productions = {p.name: p for file in tree.files for p in file.productions}
     return Rules(
@@ -209,7 +229,11 @@ def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
 
 def _catalog_entry(entry: ast.EntryDecl, folder: Path) -> CatalogEntry:
     styles = tuple(
-        Style(style.name, style.weight if style.weight is not None else 1.0, **_looks(style.fields, folder))
+        Style(
+            style.name,
+            style.weight if style.weight is not None else 1.0,
+            **_looks(style.fields, folder),
+        )
         for style in entry.styles
     )
     looks = _looks(entry.fields, folder)

@@ -55,15 +55,28 @@ def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocati
         height = decl.height if decl.height is not None else DEFAULT_WALL_HEIGHT
         if decl.size is not None:
             if min(decl.size) < MIN_LENGTH or max(decl.size) > MAX_EXTENT:
-                return None, [(decl.location, f"each side of the room must lie between {MIN_LENGTH:g} and {MAX_EXTENT:g} m")]
+                return None, [
+                    (
+                        decl.location,
+                        f"each side of the room must lie between {MIN_LENGTH:g} and {MAX_EXTENT:g} m",
+                    )
+                ]
             room = Room.rectangle(*decl.size, height)
         else:
             if any(abs(v) > MAX_EXTENT for corner in decl.corners for v in corner):
-                return None, [(decl.location, f"a room corner lies further than {MAX_EXTENT:g} m out")]
+                return None, [
+                    (decl.location, f"a room corner lies further than {MAX_EXTENT:g} m out")
+                ]
             room = Room.polygon(decl.corners, height)
     except RoomError as problem:
-        return None, [(decl.height_location if "height" in str(problem) and decl.height_location else decl.location,
-                       f"bad room: {problem}")]
+        return None, [
+            (
+                decl.height_location
+                if "height" in str(problem) and decl.height_location
+                else decl.location,
+                f"bad room: {problem}",
+            )
+        ]
     problems = []
     for opening in decl.openings:
         numbers = opening.numbers
@@ -74,9 +87,14 @@ def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocati
             offset, width, sill, high = numbers
             arguments = dict(offset=offset, width=width, height=high, sill=sill)
         if room.wall(opening.wall) is None:
-            problems.append((opening.wall_location, f"the room has no wall '{opening.wall}'; name a wall by its "
-                             f"side ({', '.join(dict.fromkeys(w.side for w in room.walls))}) or its number "
-                             f"(1 to {len(room.walls)}, in the order of the corners)"))
+            problems.append(
+                (
+                    opening.wall_location,
+                    f"the room has no wall '{opening.wall}'; name a wall by its "
+                    f"side ({', '.join(dict.fromkeys(w.side for w in room.walls))}) or its number "
+                    f"(1 to {len(room.walls)}, in the order of the corners)",
+                )
+            )
             continue
         try:
             room = room.with_opening(opening.kind, opening.wall, **arguments)
@@ -155,8 +173,11 @@ class _Checker:
         first_entry: dict[str, ast.EntryDecl] = {}
         for entry in entries:
             if entry.name in first_entry:
-                self.error(entry.name_location, f"duplicate catalog entry '{entry.name}' "
-                           f"(first declared at {first_entry[entry.name].location})")
+                self.error(
+                    entry.name_location,
+                    f"duplicate catalog entry '{entry.name}' "
+                    f"(first declared at {first_entry[entry.name].location})",
+                )
                 continue
             first_entry[entry.name] = entry
             self.kinds[entry.name] = entry.kind
@@ -167,13 +188,19 @@ class _Checker:
         if self.has_room:
             for name in ROOM_TYPES:
                 if name in first_entry:
-                    self.error(first_entry[name].name_location, f"'{name}' names the room's {name}s in a scene "
-                               f"with a room; give this catalog entry another name")
+                    self.error(
+                        first_entry[name].name_location,
+                        f"'{name}' names the room's {name}s in a scene "
+                        f"with a room; give this catalog entry another name",
+                    )
         for file in files:
             for production in file.productions:
                 if production.name in self.productions:
-                    self.error(production.location, f"duplicate production for '{production.name}' "
-                               f"(first at {self.productions[production.name].location})")
+                    self.error(
+                        production.location,
+                        f"duplicate production for '{production.name}' "
+                        f"(first at {self.productions[production.name].location})",
+                    )
                 else:
                     self.productions[production.name] = production
         for production in self.productions.values():
@@ -184,7 +211,10 @@ class _Checker:
         for entry in first_entry.values():
             # An included file may be a catalog several rule sets share: each makes only some of it.
             if entry.name not in self.created_types and entry.location.file == root:
-                self.warning(entry.name_location, f"type '{entry.name}' is never created (no statement makes one)")
+                self.warning(
+                    entry.name_location,
+                    f"type '{entry.name}' is never created (no statement makes one)",
+                )
         if start is not None:
             self.check_start(*start)
         self.check_termination()
@@ -194,19 +224,29 @@ class _Checker:
     def check_entry(self, entry: ast.EntryDecl) -> None:
         fields = self.check_fields(entry.fields, entry.kind, style=False)
         if "noun" not in fields:
-            self.error(entry.name_location, f"catalog entry '{entry.name}' has no noun (add: noun \"...\")")
+            self.error(
+                entry.name_location, f"catalog entry '{entry.name}' has no noun (add: noun \"...\")"
+            )
         seen: dict[str, ast.StyleDecl] = {}
         for style in entry.styles:
             if style.name in seen:
                 self.error(style.location, f"duplicate style '{style.name}' of '{entry.name}'")
             seen[style.name] = style
             if style.weight is not None and style.weight <= 0:
-                self.error(style.weight_location, f"style weight must be positive, not {_number(style.weight)}")
+                self.error(
+                    style.weight_location,
+                    f"style weight must be positive, not {_number(style.weight)}",
+                )
             elif style.weight is not None and style.weight > MAX_WEIGHT:
-                self.error(style.weight_location, _too_large("a style weight", style.weight, MAX_WEIGHT, ""))
+                self.error(
+                    style.weight_location,
+                    _too_large("a style weight", style.weight, MAX_WEIGHT, ""),
+                )
             self.check_fields(style.fields, entry.kind, style=True)
 
-    def check_fields(self, fields: tuple[ast.Setting, ...], kind: str, style: bool) -> dict[str, ast.Setting]:
+    def check_fields(
+        self, fields: tuple[ast.Setting, ...], kind: str, style: bool
+    ) -> dict[str, ast.Setting]:
         seen: dict[str, ast.Setting] = {}
         sides: set[str] = set()
         for setting in fields:
@@ -224,9 +264,15 @@ class _Checker:
             if isinstance(value, str) and self.check_text(name, value, at):
                 continue
             if style and name not in STYLE_FIELDS:
-                self.error(setting.location, f"a style cannot set '{name}' (only {', '.join(STYLE_FIELDS)})")
+                self.error(
+                    setting.location,
+                    f"a style cannot set '{name}' (only {', '.join(STYLE_FIELDS)})",
+                )
             elif name in PATH_FIELDS and kind != "path":
-                self.error(setting.location, f"'{name}' applies to paths only, not to {_with_article(kind)}")
+                self.error(
+                    setting.location,
+                    f"'{name}' applies to paths only, not to {_with_article(kind)}",
+                )
             if name == "size" and any(v <= 0 for v in value):
                 self.error(at, "sizes must be positive")
             elif name == "size" and min(value) < MIN_LENGTH:
@@ -238,9 +284,16 @@ class _Checker:
             elif name in ("width", "max_length") and value < MIN_LENGTH:
                 self.error(at, _too_small(f"'{name}'", value))
             elif name == "segments" and (value < 1 or not _is_whole(value)):
-                self.error(at, f"'segments' must be a whole number of at least 1, not {_number(value)}")
+                self.error(
+                    at, f"'segments' must be a whole number of at least 1, not {_number(value)}"
+                )
             elif name in UPPER_LIMITS and value > UPPER_LIMITS[name]:
-                self.error(at, _too_large(f"'{name}'", value, UPPER_LIMITS[name], "" if name == "segments" else " m"))
+                self.error(
+                    at,
+                    _too_large(
+                        f"'{name}'", value, UPPER_LIMITS[name], "" if name == "segments" else " m"
+                    ),
+                )
             elif name == "colour" and not _is_hex_colour(value):
                 self.error(at, f"colour '{value}' is not of the form #rrggbb")
             elif name == "mesh":
@@ -250,32 +303,49 @@ class _Checker:
             elif name in ("noun", "plural") and not value.strip():
                 self.error(at, f"'{name}' must not be empty")
             elif name in ("noun", "plural") and len(value) > MAX_NOUN_CHARS:
-                self.error(at, f"'{name}' is {len(value)} characters long; it may have at most {MAX_NOUN_CHARS}")
+                self.error(
+                    at,
+                    f"'{name}' is {len(value)} characters long; it may have at most {MAX_NOUN_CHARS}",
+                )
         return seen
 
     def check_clearance(self, setting: ast.Setting, kind: str, sides: set[str]) -> None:
         side, metres = setting.value
         if kind != "object":
-            self.error(setting.location, f"'clearance' applies to objects only, not to {_with_article(kind)}")
+            self.error(
+                setting.location,
+                f"'clearance' applies to objects only, not to {_with_article(kind)}",
+            )
         elif side not in SIDE_WORDS:
-            self.error(setting.value_location, f"clearance side '{side}' is not one of {', '.join(SIDE_WORDS)}"
-                       + did_you_mean(side, SIDE_WORDS))
+            self.error(
+                setting.value_location,
+                f"clearance side '{side}' is not one of {', '.join(SIDE_WORDS)}"
+                + did_you_mean(side, SIDE_WORDS),
+            )
         elif side in sides:
             self.error(setting.location, f"a second clearance {side}")
         elif not 0 < metres <= MAX_CLEARANCE:
-            self.error(setting.location, f"a clearance must be more than 0 and at most {MAX_CLEARANCE:g} m, "
-                       f"not {_number(metres)}")
+            self.error(
+                setting.location,
+                f"a clearance must be more than 0 and at most {MAX_CLEARANCE:g} m, "
+                f"not {_number(metres)}",
+            )
         sides.add(side)
 
     def check_access(self, setting: ast.Setting, kind: str) -> None:
         words = setting.value
         if kind != "object":
-            self.error(setting.location, f"'access' applies to objects only, not to {_with_article(kind)}")
+            self.error(
+                setting.location, f"'access' applies to objects only, not to {_with_article(kind)}"
+            )
             return
         for word in words:
             if word not in ACCESS_WORDS:
-                self.error(setting.value_location, f"access '{word}' is not one of {', '.join(ACCESS_WORDS)}"
-                           + did_you_mean(word, ACCESS_WORDS))
+                self.error(
+                    setting.value_location,
+                    f"access '{word}' is not one of {', '.join(ACCESS_WORDS)}"
+                    + did_you_mean(word, ACCESS_WORDS),
+                )
                 return
         if len(words) > 1 and ({"any", "none"} & set(words)):
             self.error(setting.value_location, "'access any' and 'access none' stand alone")
@@ -287,8 +357,11 @@ class _Checker:
         character, which would garble or reorder the lines it is printed on."""
         bad = forbidden_character(value)
         if bad is not None:
-            self.error(at, f"'{name}' contains the character {bad}; text may not hold control or "
-                       "bidirectional-control characters")
+            self.error(
+                at,
+                f"'{name}' contains the character {bad}; text may not hold control or "
+                "bidirectional-control characters",
+            )
         return bad is not None
 
     def folder_of(self, setting: ast.Setting) -> Path:
@@ -303,7 +376,10 @@ class _Checker:
         elif (outside := self.scope.outside(folder / file)) is not None:
             self.error(setting.value_location, f"mesh file '{file}' {outside}")
         elif not (folder / file).exists():
-            self.error(setting.value_location, f"mesh file '{file}' not found (looked in {folder.resolve()})")
+            self.error(
+                setting.value_location,
+                f"mesh file '{file}' not found (looked in {folder.resolve()})",
+            )
         else:
             try:
                 load_mesh_file(folder / file)
@@ -313,8 +389,11 @@ class _Checker:
     def check_shape(self, shape: str, setting: ast.Setting) -> None:
         """A shape the renderer has no builder for is drawn as a plain box: warn."""
         if shape not in SHAPES:
-            self.warning(setting.value_location, f"unknown shape '{shape}', drawn as a plain box"
-                         + (did_you_mean(shape, SHAPES) or "; 'scenewright list --shapes' lists the shapes"))
+            self.warning(
+                setting.value_location,
+                f"unknown shape '{shape}', drawn as a plain box"
+                + (did_you_mean(shape, SHAPES) or "; 'scenewright list --shapes' lists the shapes"),
+            )
 
     # -- scene block --------------------------------------------------------------
 
@@ -323,11 +402,15 @@ class _Checker:
         scenes = [scene for file in files for scene in file.scenes]
         if not scenes:
             root = files[-1].path
-            self.error(SourceLocation(root, 1, 1),
-                       "no scene block; add one, e.g. scene village { extent 40 x 40  start Village }")
+            self.error(
+                SourceLocation(root, 1, 1),
+                "no scene block; add one, e.g. scene village { extent 40 x 40  start Village }",
+            )
             return None
         for extra in scenes[1:]:
-            self.error(extra.location, f"a second scene block (the first is at {scenes[0].location})")
+            self.error(
+                extra.location, f"a second scene block (the first is at {scenes[0].location})"
+            )
         scene = scenes[0]
         settings: dict[str, ast.Setting] = {}
         for setting in scene.settings:
@@ -345,9 +428,14 @@ class _Checker:
             elif setting.name == "extent" and max(value) > MAX_EXTENT:
                 self.error(at, _too_large("each side of the extent", max(value), MAX_EXTENT, " m"))
             elif setting.name in ("max_depth", "max_nodes") and (value < 1 or not _is_whole(value)):
-                self.error(at, f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}")
+                self.error(
+                    at,
+                    f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}",
+                )
             elif setting.name in UPPER_LIMITS and value > UPPER_LIMITS[setting.name]:
-                self.error(at, _too_large(f"'{setting.name}'", value, UPPER_LIMITS[setting.name], ""))
+                self.error(
+                    at, _too_large(f"'{setting.name}'", value, UPPER_LIMITS[setting.name], "")
+                )
             elif setting.name == "templates":
                 self.check_templates(value, setting)
             elif setting.name in ("square", "line_of_sight") and value not in ("on", "off"):
@@ -357,14 +445,23 @@ class _Checker:
         if "room" in settings:
             for other in ("extent", "walls"):
                 if other in settings:
-                    self.error(settings[other].location, f"'{other}' and 'room' both set the scene's floor; "
-                               f"keep the room (its walls give the extent)")
+                    self.error(
+                        settings[other].location,
+                        f"'{other}' and 'room' both set the scene's floor; "
+                        f"keep the room (its walls give the extent)",
+                    )
         self.has_room = "room" in settings or "walls" in settings
         max_nodes = settings.get("max_nodes")
-        if max_nodes is not None and _is_whole(max_nodes.value) and 1 <= max_nodes.value <= MAX_NODES:
+        if (
+            max_nodes is not None
+            and _is_whole(max_nodes.value)
+            and 1 <= max_nodes.value <= MAX_NODES
+        ):
             self.max_nodes = int(max_nodes.value)
         if "start" not in settings:
-            self.error(scene.location, "the scene block has no start symbol (add: start NONTERMINAL)")
+            self.error(
+                scene.location, "the scene block has no start symbol (add: start NONTERMINAL)"
+            )
             return None
         return settings["start"].value, settings["start"].value_location
 
@@ -380,8 +477,10 @@ class _Checker:
         if (outside := self.scope.outside(folder / folder_name)) is not None:
             self.error(setting.value_location, f"templates folder '{folder_name}' {outside}")
         elif not (folder / folder_name).is_dir():
-            self.error(setting.value_location,
-                       f"templates folder '{folder_name}' not found (looked in {folder.resolve()})")
+            self.error(
+                setting.value_location,
+                f"templates folder '{folder_name}' not found (looked in {folder.resolve()})",
+            )
         else:
             self.check_template_files(folder / folder_name, setting)
 
@@ -397,19 +496,27 @@ class _Checker:
                 problem = "is not a regular file"
             else:
                 continue
-            self.error(setting.value_location, f"template '{path.name}' of templates folder '{setting.value}' {problem}")
+            self.error(
+                setting.value_location,
+                f"template '{path.name}' of templates folder '{setting.value}' {problem}",
+            )
 
     def check_start(self, start: str, location: SourceLocation) -> None:
         if start not in self.productions:
-            self.error(location, f"start symbol '{start}' has no production" + did_you_mean(start, self.productions))
+            self.error(
+                location,
+                f"start symbol '{start}' has no production" + did_you_mean(start, self.productions),
+            )
             return
         if self.productions[start].params:
             self.error(location, f"start symbol '{start}' takes parameters; it must take none")
         reached = self.reachable(start)
         for name, production in self.productions.items():
             if name not in reached:
-                self.warning(production.location, f"nonterminal '{name}' is never used (start '{start}' "
-                             "does not reach it)")
+                self.warning(
+                    production.location,
+                    f"nonterminal '{name}' is never used (start '{start}' does not reach it)",
+                )
 
     # -- productions --------------------------------------------------------------
 
@@ -417,9 +524,14 @@ class _Checker:
         """Record in ``makers`` each statement of ``production`` that creates a type."""
         for statement in ast.production_statements(production):
             subject = statement.subject
-            if isinstance(subject, ast.Reference) and subject.kind == "name" and subject.name in self.kinds:
+            if (
+                isinstance(subject, ast.Reference)
+                and subject.kind == "name"
+                and subject.name in self.kinds
+            ):
                 optional = (statement.probability is not None and statement.probability < 1) or (
-                    statement.count is not None and statement.count.low == 0)
+                    statement.count is not None and statement.count.low == 0
+                )
                 self.makers.setdefault(subject.name, []).append((optional, statement.location))
 
     def check_production(self, production: ast.Production) -> None:
@@ -428,16 +540,27 @@ class _Checker:
             if param.name in scope:
                 self.error(param.location, f"duplicate parameter '{param.name}'")
             elif param.name in self.kinds:
-                self.error(param.location, f"parameter '{param.name}' has the name of a type; choose another name")
+                self.error(
+                    param.location,
+                    f"parameter '{param.name}' has the name of a type; choose another name",
+                )
             scope[param.name] = None  # what an argument is, is known only at the call
         for alternative in production.alternatives:
             if alternative.weight is not None and alternative.weight <= 0:
-                self.error(alternative.location, f"alternative weight must be positive, not {_number(alternative.weight)}")
+                self.error(
+                    alternative.location,
+                    f"alternative weight must be positive, not {_number(alternative.weight)}",
+                )
             elif alternative.weight is not None and alternative.weight > MAX_WEIGHT:
-                self.error(alternative.location, _too_large("an alternative weight", alternative.weight, MAX_WEIGHT, ""))
+                self.error(
+                    alternative.location,
+                    _too_large("an alternative weight", alternative.weight, MAX_WEIGHT, ""),
+                )
             self.check_block(alternative.statements, dict(scope))
 
-    def check_block(self, statements: tuple[ast.Statement, ...], scope: dict[str, str | None]) -> None:
+    def check_block(
+        self, statements: tuple[ast.Statement, ...], scope: dict[str, str | None]
+    ) -> None:
         """Check statements in order; ``scope`` (bound name -> kind of its nodes, if
         known) gains each statement's binding."""
         for statement in statements:
@@ -449,20 +572,32 @@ class _Checker:
         subject = statement.subject
         self.check_count(statement.count)
         if statement.probability is not None and not 0 <= statement.probability <= 1:
-            self.error(statement.probability_location,
-                       f"probability must be between 0 and 1, not {_number(statement.probability)}")
+            self.error(
+                statement.probability_location,
+                f"probability must be between 0 and 1, not {_number(statement.probability)}",
+            )
         created_kind = self.check_subject(subject, scope)
         if statement.binding and statement.binding in self.kinds:
-            self.error(statement.binding_location,
-                       f"'{statement.binding}' is a type; bind the nodes to another name")
+            self.error(
+                statement.binding_location,
+                f"'{statement.binding}' is a type; bind the nodes to another name",
+            )
         for relation in statement.relations:
             if relation.label not in RELATIONS:
-                self.error(relation.location,
-                           f"unknown relation label '{relation.label}'"
-                           + (case_mix_up(relation.label, RELATIONS.names(), "relation labels are CamelCase")
-                              or did_you_mean(relation.label, RELATIONS.names())))
+                self.error(
+                    relation.location,
+                    f"unknown relation label '{relation.label}'"
+                    + (
+                        case_mix_up(
+                            relation.label, RELATIONS.names(), "relation labels are CamelCase"
+                        )
+                        or did_you_mean(relation.label, RELATIONS.names())
+                    ),
+                )
             family = RELATIONS[relation.label].family if relation.label in RELATIONS else None
-            if family != "wall" or self.has_room:  # outdoors, the wall label's own error says it all
+            if (
+                family != "wall" or self.has_room
+            ):  # outdoors, the wall label's own error says it all
                 self.check_target(relation.target, scope)
             if family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
@@ -477,27 +612,43 @@ class _Checker:
         wanted = "window" if label.wall in ("under_window", "beside_window") else "wall"
         target = relation.target
         if not self.has_room:
-            self.error(relation.location, f"{relation.label} needs a room: give the scene block one "
-                       "(room W x D { door ... window ... })")
+            self.error(
+                relation.location,
+                f"{relation.label} needs a room: give the scene block one "
+                "(room W x D { door ... window ... })",
+            )
         elif target.name != wanted or target.kind not in ("some", "nth"):
-            self.error(target.location, f"{relation.label} stands by a {wanted}: write 'some {wanted}' "
-                       f"(the layout picks the {wanted} that fits) or '{wanted} #N'")
+            self.error(
+                target.location,
+                f"{relation.label} stands by a {wanted}: write 'some {wanted}' "
+                f"(the layout picks the {wanted} that fits) or '{wanted} #N'",
+            )
         elif self.room is not None and target.kind == "nth":
             count = len(self.room.walls) if wanted == "wall" else len(self.room.windows)
             if target.index > count:
-                self.error(target.location, f"'{wanted} #{target.index}': the room has {count} {wanted}"
-                           + ("" if count == 1 else "s"))
+                self.error(
+                    target.location,
+                    f"'{wanted} #{target.index}': the room has {count} {wanted}"
+                    + ("" if count == 1 else "s"),
+                )
 
     def check_group_block(
         self, statement: ast.Statement, created_kind: str | None, scope: dict[str, str | None]
     ) -> None:
         """A block nests its nodes in the group its statement creates: only a new group takes one."""
         subject = statement.subject
-        unknown_name = (isinstance(subject, ast.Reference) and subject.kind == "name"
-                        and subject.name not in scope and subject.name not in self.kinds)
+        unknown_name = (
+            isinstance(subject, ast.Reference)
+            and subject.kind == "name"
+            and subject.name not in scope
+            and subject.name not in self.kinds
+        )
         if created_kind != "group" and not unknown_name:  # an unknown name is reported already
-            what = (f"'{subject.name}' is {_with_article(created_kind)}" if created_kind
-                    else _subject_words(subject))
+            what = (
+                f"'{subject.name}' is {_with_article(created_kind)}"
+                if created_kind
+                else _subject_words(subject)
+            )
             self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
         inner = dict(scope) | ({statement.binding: "group"} if statement.binding else {})
         self.check_block(statement.block, inner)
@@ -510,11 +661,19 @@ class _Checker:
                 self.error(count.location, f"a count must be a whole number, not {_number(value)}")
                 return
         if count.low > count.high:
-            self.error(count.location, f"range {_number(count.low)}..{_number(count.high)} has min > max")
+            self.error(
+                count.location, f"range {_number(count.low)}..{_number(count.high)} has min > max"
+            )
         elif count.high > self.max_nodes:
-            raise_it = (f"raise it in the scene block, e.g. max_nodes {_number(count.high)}"
-                        if count.high <= MAX_NODES else f"max_nodes may be at most {MAX_NODES}, see {LIMITS_DOC}")
-            self.error(count.location, f"count {_number(count.high)} exceeds max_nodes {self.max_nodes} ({raise_it})")
+            raise_it = (
+                f"raise it in the scene block, e.g. max_nodes {_number(count.high)}"
+                if count.high <= MAX_NODES
+                else f"max_nodes may be at most {MAX_NODES}, see {LIMITS_DOC}"
+            )
+            self.error(
+                count.location,
+                f"count {_number(count.high)} exceeds max_nodes {self.max_nodes} ({raise_it})",
+            )
         elif count.weights is not None:
             self.check_count_weights(count)
 
@@ -523,8 +682,11 @@ class _Checker:
         wanted = int(count.high - count.low) + 1
         where = count.weights_location
         if len(count.weights) != wanted:
-            self.error(where, f"range {_number(count.low)}..{_number(count.high)} has {wanted} counts but "
-                              f"{len(count.weights)} weight{'s' if len(count.weights) != 1 else ''}")
+            self.error(
+                where,
+                f"range {_number(count.low)}..{_number(count.high)} has {wanted} counts but "
+                f"{len(count.weights)} weight{'s' if len(count.weights) != 1 else ''}",
+            )
         elif any(weight < 0 for weight in count.weights):
             negative = next(weight for weight in count.weights if weight < 0)
             self.error(where, f"count weights may not be negative, not {_number(negative)}")
@@ -542,10 +704,15 @@ class _Checker:
             (target, self.reference_kind(target, scope), "junction"),
         ):
             if kind is not None and kind != wanted:
-                self.error(reference.location, f"PathConnectedTo connects a path to a junction, "
-                           f"but '{reference.name}' is {_with_article(kind)}")
+                self.error(
+                    reference.location,
+                    f"PathConnectedTo connects a path to a junction, "
+                    f"but '{reference.name}' is {_with_article(kind)}",
+                )
 
-    def subject_kind(self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]) -> str | None:
+    def subject_kind(
+        self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]
+    ) -> str | None:
         """The kind of a subject's nodes, when known without expanding."""
         return None if isinstance(subject, ast.Call) else self.reference_kind(subject, scope)
 
@@ -554,7 +721,9 @@ class _Checker:
             return scope[reference.name]
         return self.kinds.get(reference.name)
 
-    def check_subject(self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]) -> str | None:
+    def check_subject(
+        self, subject: ast.Reference | ast.Call, scope: dict[str, str | None]
+    ) -> str | None:
         """Check a statement's subject; return the kind of type it creates, if it creates one."""
         if isinstance(subject, ast.Call):
             self.check_call(subject, scope)
@@ -563,15 +732,23 @@ class _Checker:
             if subject.name in scope:
                 return None
             if self.has_room and subject.name in ROOM_TYPES:
-                self.error(subject.location, f"the room's {subject.name}s come from its room block and cannot be "
-                           f"created; refer to them as 'some {subject.name}' or '{subject.name} #1'")
+                self.error(
+                    subject.location,
+                    f"the room's {subject.name}s come from its room block and cannot be "
+                    f"created; refer to them as 'some {subject.name}' or '{subject.name} #1'",
+                )
                 return None
             if subject.name in self.kinds:
                 self.created_types.add(subject.name)
                 return self.kinds[subject.name]
-            self.error(subject.location, f"unknown type or name '{subject.name}'"
-                       + (case_mix_up(subject.name, self.productions, "nonterminals are CamelCase")
-                          or did_you_mean(subject.name, list(self.kinds) + sorted(scope))))
+            self.error(
+                subject.location,
+                f"unknown type or name '{subject.name}'"
+                + (
+                    case_mix_up(subject.name, self.productions, "nonterminals are CamelCase")
+                    or did_you_mean(subject.name, list(self.kinds) + sorted(scope))
+                ),
+            )
             return None
         self.check_type_reference(subject)
         return None
@@ -583,42 +760,69 @@ class _Checker:
             return
         elif reference.name in self.kinds:
             name = reference.name
-            self.error(reference.location, f"'{name}' is a type, not a bound name; write "
-                       f"'some {name}', 'each {name}' or '{name} #1'")
+            self.error(
+                reference.location,
+                f"'{name}' is a type, not a bound name; write "
+                f"'some {name}', 'each {name}' or '{name} #1'",
+            )
         else:
-            self.error(reference.location, f"unbound name '{reference.name}'" + did_you_mean(reference.name, scope))
+            self.error(
+                reference.location,
+                f"unbound name '{reference.name}'" + did_you_mean(reference.name, scope),
+            )
 
     def check_type_reference(self, reference: ast.Reference) -> None:
         if self.has_room and reference.name in ROOM_TYPES:
             return
         if reference.name not in self.kinds:
-            self.error(reference.location, f"unknown type '{reference.name}'" + did_you_mean(reference.name, self.kinds))
+            self.error(
+                reference.location,
+                f"unknown type '{reference.name}'" + did_you_mean(reference.name, self.kinds),
+            )
         if reference.kind == "nth" and reference.index < 1:
             self.error(reference.location, f"'#{reference.index}': ordinals count from #1")
         elif reference.kind == "nth" and reference.index > self.max_nodes:
-            self.error(reference.location, f"this ordinal is larger than max_nodes {self.max_nodes}, "
-                       "so it can never name a node")
+            self.error(
+                reference.location,
+                f"this ordinal is larger than max_nodes {self.max_nodes}, "
+                "so it can never name a node",
+            )
         makers = self.makers.get(reference.name, [])
         if reference.kind in ("some", "nth") and makers and all(optional for optional, _ in makers):
-            written = f"some {reference.name}" if reference.kind == "some" else f"{reference.name} #{reference.index}"
-            self.warning(reference.location, f"'{written}' may find none: every statement that makes "
-                         f"{_with_article(reference.name)} may make none (line {makers[0][1].line}), and where a scene "
-                         "has none its expansion stops here; refer to it only where one is certain")
+            written = (
+                f"some {reference.name}"
+                if reference.kind == "some"
+                else f"{reference.name} #{reference.index}"
+            )
+            self.warning(
+                reference.location,
+                f"'{written}' may find none: every statement that makes "
+                f"{_with_article(reference.name)} may make none (line {makers[0][1].line}), and where a scene "
+                "has none its expansion stops here; refer to it only where one is certain",
+            )
 
     def check_call(self, call: ast.Call, scope: dict[str, str | None]) -> None:
         for argument in call.arguments:
             self.check_target(argument, scope)
         production = self.productions.get(call.nonterminal)
         if production is None:
-            self.error(call.location, f"undefined nonterminal '{call.nonterminal}'"
-                       + (case_mix_up(call.nonterminal, self.kinds, "types are snake_case")
-                          or case_mix_up(call.nonterminal, scope, "bound names are snake_case")
-                          or did_you_mean(call.nonterminal, self.productions)))
+            self.error(
+                call.location,
+                f"undefined nonterminal '{call.nonterminal}'"
+                + (
+                    case_mix_up(call.nonterminal, self.kinds, "types are snake_case")
+                    or case_mix_up(call.nonterminal, scope, "bound names are snake_case")
+                    or did_you_mean(call.nonterminal, self.productions)
+                ),
+            )
             return
         expected, given = len(production.params), len(call.arguments)
         if expected != given:
-            self.error(call.location, f"'{call.nonterminal}' takes {_parameters(expected)} "
-                       f"({production.location}), but {given} {'is' if given == 1 else 'are'} given")
+            self.error(
+                call.location,
+                f"'{call.nonterminal}' takes {_parameters(expected)} "
+                f"({production.location}), but {given} {'is' if given == 1 else 'are'} given",
+            )
 
     # -- the grammar --------------------------------------------------------------
 
@@ -645,19 +849,34 @@ class _Checker:
             for name, production in self.productions.items():
                 if name in terminating:
                     continue
-                if any(all(call in terminating or call not in self.productions
-                           for call in _required_calls(alt.statements)) for alt in production.alternatives):
+                if any(
+                    all(
+                        call in terminating or call not in self.productions
+                        for call in _required_calls(alt.statements)
+                    )
+                    for alt in production.alternatives
+                ):
                     terminating.add(name)
                     changed = True
         for name, production in self.productions.items():
             if name in terminating:
                 continue
-            blocking = next(call for call in _required_calls(production.alternatives[0].statements)
-                            if call not in terminating and call in self.productions)
-            reason = "it always calls itself" if blocking == name else f"it always calls '{blocking}', which never finishes"
-            self.error(production.location, f"'{name}' can never finish expanding: {reason} "
-                       f"(make the call optional, e.g. '0.5? {blocking}' or '0..2 {blocking}', "
-                       "or add an alternative without it)")
+            blocking = next(
+                call
+                for call in _required_calls(production.alternatives[0].statements)
+                if call not in terminating and call in self.productions
+            )
+            reason = (
+                "it always calls itself"
+                if blocking == name
+                else f"it always calls '{blocking}', which never finishes"
+            )
+            self.error(
+                production.location,
+                f"'{name}' can never finish expanding: {reason} "
+                f"(make the call optional, e.g. '0.5? {blocking}' or '0..2 {blocking}', "
+                "or add an alternative without it)",
+            )
 
 
 def _too_small(what: str, value: float) -> str:

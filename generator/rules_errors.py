@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 from scenewright.core.errors import InputError
 from scenewright.core.limits import printable
+
 from .catalog import SourceLocation
 
 ERROR = "error"
@@ -106,7 +107,11 @@ def did_you_mean(word: str, known: Iterable[str]) -> str:
 
 def snake_case(word: str) -> str:
     """``MarketStand`` -> ``market_stand``: a word as a type or name is written."""
-    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Z])(?=[A-Z][a-z])", "_", word).replace("-", "_").lower()
+    return (
+        re.sub(r"(?<=[a-z0-9])(?=[A-Z])|(?<=[A-Z])(?=[A-Z][a-z])", "_", word)
+        .replace("-", "_")
+        .lower()
+    )
 
 
 def camel_case(word: str) -> str:
@@ -147,7 +152,9 @@ class SourceTexts:
         # or Unicode line separators, which str.splitlines would also split at).
         # A stray "\r" inside a line would move the terminal's cursor: show it as a space.
         # Other control and bidirectional-control characters show as U+FFFD.
-        self._lines[file] = [printable(line.rstrip("\r").replace("\r", " ")) for line in text.split("\n")]
+        self._lines[file] = [
+            printable(line.rstrip("\r").replace("\r", " ")) for line in text.split("\n")
+        ]
 
     def line(self, location: SourceLocation) -> str | None:
         lines = self._lines.get(location.file)

@@ -48,11 +48,30 @@ from .rules_errors import (
 #: Catalog fields and scene settings: the grammar's rules of these names each become an
 #: ``ast.Setting`` (the ``start`` setting's rule is ``start_symbol``).
 ENTRY_FIELDS = (
-    "noun", "plural", "size", "shape", "mesh", "colour", "width", "max_length", "segments", "clearance", "access",
-)  # fmt: skip
+    "noun",
+    "plural",
+    "size",
+    "shape",
+    "mesh",
+    "colour",
+    "width",
+    "max_length",
+    "segments",
+    "clearance",
+    "access",
+)
 SCENE_SETTINGS = (
-    "extent", "ground", "walls", "room", "square", "line_of_sight", "start", "max_depth", "max_nodes", "templates",
-)  # fmt: skip
+    "extent",
+    "ground",
+    "walls",
+    "room",
+    "square",
+    "line_of_sight",
+    "start",
+    "max_depth",
+    "max_nodes",
+    "templates",
+)
 
 
 #: Building the parser twice at once fails: lark compiles the grammar's literals with
@@ -81,7 +100,8 @@ def _build_parser() -> Lark:
         maybe_placeholders=True,
     )
     whole_words.keywords = frozenset(
-        terminal.name for terminal in parser.terminals
+        terminal.name
+        for terminal in parser.terminals
         if terminal.pattern.type == "str" and terminal.pattern.value[:1].isalpha()
     )
     return parser
@@ -159,8 +179,12 @@ class _ToAst(Transformer):
         # `start_symbol`; every other field and setting rule is named like its keyword.
         if data == "access":  # always a tuple of sides, however many
             setting = self._setting("access", meta, children)
-            return setting if isinstance(setting.value, tuple) else ast.Setting(
-                setting.name, (setting.value,), setting.location, setting.value_location
+            return (
+                setting
+                if isinstance(setting.value, tuple)
+                else ast.Setting(
+                    setting.name, (setting.value,), setting.location, setting.value_location
+                )
             )
         if data in ENTRY_FIELDS or (data in SCENE_SETTINGS and data not in ("start", "room")):
             return self._setting(str(data), meta, children)
@@ -321,7 +345,9 @@ class _ToAst(Transformer):
     @v_args(meta=True)
     def alternative(self, meta, children):
         weight, block = children
-        return ast.Alternative(float(weight) if weight is not None else None, block.statements, self._at(meta))
+        return ast.Alternative(
+            float(weight) if weight is not None else None, block.statements, self._at(meta)
+        )
 
     def params(self, children):
         return tuple(ast.Param(str(name), self._at(name)) for name in children if name is not None)
@@ -387,7 +413,9 @@ def _too_deep_block(tree: Tree) -> Tree | None:
             depth += 1
             if depth > MAX_BLOCK_NESTING + 1:  # the production's own block, then the nested ones
                 return node
-        pending.extend((child, depth) for child in reversed(node.children) if isinstance(child, Tree))
+        pending.extend(
+            (child, depth) for child in reversed(node.children) if isinstance(child, Tree)
+        )
     return None
 
 
@@ -403,8 +431,11 @@ def _not_rules(error: UnexpectedInput, text: str, file: str) -> Diagnostic:
     offset = _error_offset(error, text)
     line = text.count("\n", 0, offset) + 1
     column = offset - (text.rfind("\n", 0, offset) + 1) + 1
-    return Diagnostic(SourceLocation(file, line, column), f"'{file}' is not a rules file: it does not parse as "
-                      f"rules here (the text of a file not named *{RULES_SUFFIX} is never shown)")
+    return Diagnostic(
+        SourceLocation(file, line, column),
+        f"'{file}' is not a rules file: it does not parse as "
+        f"rules here (the text of a file not named *{RULES_SUFFIX} is never shown)",
+    )
 
 
 # -- files and includes -------------------------------------------------------------
@@ -430,10 +461,14 @@ class ReadScope:
     allowed: tuple[Path, ...] = ()
 
     @classmethod
-    def of(cls, path: str | os.PathLike[str], allow: Iterable[str | os.PathLike[str]] = ()) -> ReadScope:
+    def of(
+        cls, path: str | os.PathLike[str], allow: Iterable[str | os.PathLike[str]] = ()
+    ) -> ReadScope:
         """The scope of the rule set whose top file is ``path``, with the paths of
         ``allow`` and of the ``ALLOW_VARIABLE`` environment variable allowed besides."""
-        from_environment = [item for item in os.environ.get(ALLOW_VARIABLE, "").split(os.pathsep) if item]
+        from_environment = [
+            item for item in os.environ.get(ALLOW_VARIABLE, "").split(os.pathsep) if item
+        ]
         allowed = tuple(Path(item).resolve() for item in [*allow, *from_environment])
         return cls(Path(path).parent.resolve(), allowed)
 
@@ -443,8 +478,10 @@ class ReadScope:
         if any(real.is_relative_to(place) for place in (self.root, *self.allowed)):
             return None
         link = f" (it leads to {real})" if real != Path(os.path.abspath(path)) else ""
-        return (f"is outside the rule set's folder {self.root}{link}; a rule set reads only its own folder "
-                f"unless the user allows more (--allow-outside PATH or {ALLOW_VARIABLE}, see docs/security.md)")
+        return (
+            f"is outside the rule set's folder {self.root}{link}; a rule set reads only its own folder "
+            f"unless the user allows more (--allow-outside PATH or {ALLOW_VARIABLE}, see docs/security.md)"
+        )
 
 
 @dataclass
@@ -463,7 +500,9 @@ class ParsedTree:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
-def parse_tree(path: Path, display: str, allow: Iterable[str | os.PathLike[str]] = ()) -> ParsedTree:
+def parse_tree(
+    path: Path, display: str, allow: Iterable[str | os.PathLike[str]] = ()
+) -> ParsedTree:
     """Parse ``path`` (shown as ``display`` in diagnostics) and the files it includes,
     which must lie in its folder or in ``allow`` (``ReadScope``)."""
     tree = ParsedTree(ReadScope.of(path, allow))
@@ -482,7 +521,9 @@ def _parse_into(
     for index, (seen, _) in enumerate(include_stack):
         if seen == real:
             chain = " -> ".join([name for _, name in include_stack[index:]] + [display])
-            tree.diagnostics.append(tree.sources.diagnostic(include_location, f"include cycle: {chain}"))
+            tree.diagnostics.append(
+                tree.sources.diagnostic(include_location, f"include cycle: {chain}")
+            )
             return
     if any(known.resolve() == real for known in tree.paths.values()):
         return  # already included along another route: its declarations are in once
@@ -525,10 +566,14 @@ def _read_rules_file(
         # Lines are counted at "\n" only, as the parser counts them (no newline translation).
         return text
     if include_location is None:  # the file asked for: the error is at its start
-        tree.diagnostics.append(Diagnostic(SourceLocation(display, 1, 1), f"cannot read '{display}': {reason}"))
+        tree.diagnostics.append(
+            Diagnostic(SourceLocation(display, 1, 1), f"cannot read '{display}': {reason}")
+        )
     else:
         tree.diagnostics.append(
-            tree.sources.diagnostic(include_location, f"cannot read included file '{display}': {reason}")
+            tree.sources.diagnostic(
+                include_location, f"cannot read included file '{display}': {reason}"
+            )
         )
     return None
 
@@ -586,23 +631,71 @@ class _Context:
 def _inside(opening: str, items: Iterable[str]) -> tuple[str, ...]:
     """Texts that stop inside a block: after its '{', after a separator, after each item."""
     items = tuple(items)
-    return (opening, f"{opening}\n", f"{opening} ;", f"{opening} {items[0]}\n", f"{opening} {items[0]};") + tuple(
-        f"{opening} {item}" for item in items)
+    return (
+        opening,
+        f"{opening}\n",
+        f"{opening} ;",
+        f"{opening} {items[0]}\n",
+        f"{opening} {items[0]};",
+    ) + tuple(f"{opening} {item}" for item in items)
 
 
 #: One of each catalog field, style, scene setting and statement: the parser is in a
 #: different LALR state after each, so the examples stop after every one of them.
-_FIELDS = ('noun "a"', 'plural "a"', "size 1 x 1 x 1", "shape a", 'mesh "a"', "colour #aaaaaa", "width 1",
-           "max_length 1", "segments 1")
+_FIELDS = (
+    'noun "a"',
+    'plural "a"',
+    "size 1 x 1 x 1",
+    "shape a",
+    'mesh "a"',
+    "colour #aaaaaa",
+    "width 1",
+    "max_length 1",
+    "segments 1",
+)
 _ENTRY_FIELDS = ("clearance front 1", "access a", "access a b")
 _STYLES = ("style s { }", "style s 2 { }", 'style s { noun "a" }', 'style s 2 { noun "a" }')
-_SETTINGS = ("extent 1 x 1", "ground a", "walls", "start A", "max_depth 1", "max_nodes 1", 'templates "a"',
-             "square a", "line_of_sight a", "room 1 x 1", "room 1 x 1 { }", "room (1, 1) (2, 2) (1, 2) { }")
-_ROOM_ITEMS = ("height 1", "door a 1 1", "door a 1 1 1", "door 1 1 1", "window a 1 1 1 1", "window 2 1 1 1 1")
+_SETTINGS = (
+    "extent 1 x 1",
+    "ground a",
+    "walls",
+    "start A",
+    "max_depth 1",
+    "max_nodes 1",
+    'templates "a"',
+    "square a",
+    "line_of_sight a",
+    "room 1 x 1",
+    "room 1 x 1 { }",
+    "room (1, 1) (2, 2) (1, 2) { }",
+)
+_ROOM_ITEMS = (
+    "height 1",
+    "door a 1 1",
+    "door a 1 1 1",
+    "door 1 1 1",
+    "window a 1 1 1 1",
+    "window 2 1 1 1 1",
+)
 _BLOCKS = ("{ }", "{ a }", "{ a; }", "{ ; }", "{ a; b }", "{ ; a }", "{\na\n}")
-_STATEMENTS = ("A", "A()", "A(b)", "A(b, c)", "a as b", "a NextTo b", "a NextTo b NextTo c", "a as b NextTo c",
-               "some a", "each a", "a #1", "a NextTo some b", "a NextTo each b", "a NextTo b #1") + tuple(
-    f"a {block}" for block in _BLOCKS)  # and "a", a bare subject: the context "after a subject"
+_STATEMENTS = (
+    "A",
+    "A()",
+    "A(b)",
+    "A(b, c)",
+    "a as b",
+    "a NextTo b",
+    "a NextTo b NextTo c",
+    "a as b NextTo c",
+    "some a",
+    "each a",
+    "a #1",
+    "a NextTo some b",
+    "a NextTo each b",
+    "a NextTo b #1",
+) + tuple(
+    f"a {block}" for block in _BLOCKS
+)  # and "a", a bare subject: the context "after a subject"
 
 _TARGET = ("a bound name", "'some TYPE'", "'each TYPE'", "'TYPE #N'")
 _AFTER_SUBJECT_WORDS = {"CAMEL": "a relation label"}
@@ -611,68 +704,160 @@ _AFTER_SUBJECT_WORDS = {"CAMEL": "a relation label"}
 #: Where the parser stops when the text before an error is a whole file (no examples:
 #: a text that parses is at the top level).
 _TOP_LEVEL = _Context(
-    examples=(), lead=("a catalog entry ({keywords})", "a production"), keywords_of="kind",
-    covers=frozenset({"CAMEL"}), camel="nonterminals", camel_when=r"\s*(->|\()", declarations=True)
+    examples=(),
+    lead=("a catalog entry ({keywords})", "a production"),
+    keywords_of="kind",
+    covers=frozenset({"CAMEL"}),
+    camel="nonterminals",
+    camel_when=r"\s*(->|\()",
+    declarations=True,
+)
 
 _CONTEXTS: dict[str, _Context] = {
     "fields": _Context(
         examples=_inside("object a {", _FIELDS + _ENTRY_FIELDS + _STYLES),
-        lead=("a field ({keywords})",), keywords_of="_entry_field", unknown="catalog field", declarations=True),
+        lead=("a field ({keywords})",),
+        keywords_of="_entry_field",
+        unknown="catalog field",
+        declarations=True,
+    ),
     "style fields": _Context(
-        examples=_inside("object a { style s {", _FIELDS) + _inside("object a { style s 2 {", _FIELDS),
-        lead=("a field ({keywords})",), keywords_of="_field", unknown="style field", declarations=True),
+        examples=_inside("object a { style s {", _FIELDS)
+        + _inside("object a { style s 2 {", _FIELDS),
+        lead=("a field ({keywords})",),
+        keywords_of="_field",
+        unknown="style field",
+        declarations=True,
+    ),
     "room": _Context(
-        examples=("scene s { room",), lead=("the room's size 'W x D' or its corners '(x, z) (x, z) ...'",),
-        covers=frozenset({"NUMBER", "("})),
+        examples=("scene s { room",),
+        lead=("the room's size 'W x D' or its corners '(x, z) (x, z) ...'",),
+        covers=frozenset({"NUMBER", "("}),
+    ),
     "room corners": _Context(
-        examples=("scene s { room (1, 1)", "scene s { room (1, 1) (2, 2)", "scene s { room (1, 1) (2, 2) (1, 2)"),
+        examples=(
+            "scene s { room (1, 1)",
+            "scene s { room (1, 1) (2, 2)",
+            "scene s { room (1, 1) (2, 2) (1, 2)",
+        ),
         lead=("another corner '(x, z)'", "the room's block '{'", "the end of the room"),
-        covers=frozenset({"(", "{"})),
+        covers=frozenset({"(", "{"}),
+    ),
     "room items": _Context(
         examples=_inside("scene s { room 1 x 1 {", _ROOM_ITEMS),
-        lead=("the room's wall height, a door or a window ({keywords})",), keywords_of="_room_item",
-        unknown="room item", declarations=True),
+        lead=("the room's wall height, a door or a window ({keywords})",),
+        keywords_of="_room_item",
+        unknown="room item",
+        declarations=True,
+    ),
     "wall name": _Context(
         examples=("scene s { room 1 x 1 { door", "scene s { room 1 x 1 { window"),
-        lead=("the wall: its side (north, east, south, west) or its number",), covers=frozenset({"NAME", "NUMBER"})),
+        lead=("the wall: its side (north, east, south, west) or its number",),
+        covers=frozenset({"NAME", "NUMBER"}),
+    ),
     "scene settings": _Context(
         examples=_inside("scene s {", _SETTINGS),
-        lead=("a scene setting ({keywords})",), keywords_of="_setting", unknown="scene setting", declarations=True),
+        lead=("a scene setting ({keywords})",),
+        keywords_of="_setting",
+        unknown="scene setting",
+        declarations=True,
+    ),
     "alternative": _Context(
-        examples=("S ->", "S ->\n", "S -> { } |", "S -> { } |\n", "S -> { }\n|", "S -> { } | { } |", "S(a) ->"),
-        lead=("an alternative: a block '{' or a weight like '2:'",), covers=frozenset({"{", "NUMBER", "_NL"})),
+        examples=(
+            "S ->",
+            "S ->\n",
+            "S -> { } |",
+            "S -> { } |\n",
+            "S -> { }\n|",
+            "S -> { } | { } |",
+            "S(a) ->",
+        ),
+        lead=("an alternative: a block '{' or a weight like '2:'",),
+        covers=frozenset({"{", "NUMBER", "_NL"}),
+    ),
     "block after a weight": _Context(
         examples=("S -> 2:", "S -> 2:\n", "S -> { } | 2:", "S -> { } | 2:\n"),
-        lead=("a block '{'",), covers=frozenset({"{", "_NL"})),
+        lead=("a block '{'",),
+        covers=frozenset({"{", "_NL"}),
+    ),
     "statement": _Context(
-        examples=("S -> {", "S -> {\n", "S -> { ;", "S -> { a\n", "S -> { a;", "S -> { a;;", "S -> { a\n\n",
-                  "S -> { a;\n"),
+        examples=(
+            "S -> {",
+            "S -> {\n",
+            "S -> { ;",
+            "S -> { a\n",
+            "S -> { a;",
+            "S -> { a;;",
+            "S -> { a\n\n",
+            "S -> { a;\n",
+        ),
         lead=("a statement (a type, a nonterminal, a bound name, 'some', 'each' or a count)",),
-        covers=frozenset({"NAME", "CAMEL", "NUMBER", "some", "each"})),
+        covers=frozenset({"NAME", "CAMEL", "NUMBER", "some", "each"}),
+    ),
     "subject": _Context(
         examples=("S -> { 2", "S -> { 0.5?", "S -> { 2 0.5?", "S -> { 1..2", "S -> { 1..2 0.5?"),
-        lead=("a type", "a nonterminal") + _TARGET, covers=frozenset({"NAME", "CAMEL", "some", "each"})),
+        lead=("a type", "a nonterminal") + _TARGET,
+        covers=frozenset({"NAME", "CAMEL", "some", "each"}),
+    ),
     "after a subject": _Context(
         examples=("S -> { a", "S -> { 2 a", "S -> { 0.5? a", "S -> { 2 0.5? a", "S -> { 1..2 a"),
-        words=_AFTER_SUBJECT_WORDS, camel="relation labels", camel_known=RELATIONS.names, calls=True),
+        words=_AFTER_SUBJECT_WORDS,
+        camel="relation labels",
+        camel_known=RELATIONS.names,
+        calls=True,
+    ),
     "after a statement part": _Context(
         examples=tuple(f"S -> {{ {statement}" for statement in _STATEMENTS),
-        words=_AFTER_SUBJECT_WORDS, camel="relation labels", camel_known=RELATIONS.names),
+        words=_AFTER_SUBJECT_WORDS,
+        camel="relation labels",
+        camel_known=RELATIONS.names,
+    ),
     "target": _Context(
-        examples=("S -> { a NextTo", "S -> { a NextTo b NextTo", "S -> { A(", "S -> { A(b,", "S -> { A(b, c,"),
-        lead=_TARGET, covers=frozenset({"NAME", "some", "each"}), snake="bound names"),
-    "type": _Context(examples=("S -> { some", "S -> { each", "S -> { a NextTo some", "S -> { a NextTo each"),
-                     words={"NAME": "a type"}, snake="types"),
-    "binding": _Context(examples=("S -> { a as",), words={"NAME": "a name to bind"}, snake="bound names"),
-    "parameters": _Context(examples=("P(", "P(a,"), words={"NAME": "a parameter name"}, snake="parameters"),
-    "start symbol": _Context(examples=("scene s { start",), words={"CAMEL": "a nonterminal"}, camel="nonterminals",
-                             camel_when=r"[ \t]*($|[\n;}#])"),
-    "type name": _Context(examples=("object", "group", "path", "junction"), words={"NAME": "a type name"},
-                          snake="types"),
-    "style name": _Context(examples=("object a { style",), words={"NAME": "a style name"}, snake="style names"),
-    "scene name": _Context(examples=("scene",), words={"NAME": "a scene name"}, snake="scene names"),
-    "ground": _Context(examples=("scene s { ground",), words={"NAME": "a ground name"}, snake="ground names"),
-    "shape": _Context(examples=("object a { shape",), words={"NAME": "a shape name"}, snake="shape names"),
+        examples=(
+            "S -> { a NextTo",
+            "S -> { a NextTo b NextTo",
+            "S -> { A(",
+            "S -> { A(b,",
+            "S -> { A(b, c,",
+        ),
+        lead=_TARGET,
+        covers=frozenset({"NAME", "some", "each"}),
+        snake="bound names",
+    ),
+    "type": _Context(
+        examples=("S -> { some", "S -> { each", "S -> { a NextTo some", "S -> { a NextTo each"),
+        words={"NAME": "a type"},
+        snake="types",
+    ),
+    "binding": _Context(
+        examples=("S -> { a as",), words={"NAME": "a name to bind"}, snake="bound names"
+    ),
+    "parameters": _Context(
+        examples=("P(", "P(a,"), words={"NAME": "a parameter name"}, snake="parameters"
+    ),
+    "start symbol": _Context(
+        examples=("scene s { start",),
+        words={"CAMEL": "a nonterminal"},
+        camel="nonterminals",
+        camel_when=r"[ \t]*($|[\n;}#])",
+    ),
+    "type name": _Context(
+        examples=("object", "group", "path", "junction"),
+        words={"NAME": "a type name"},
+        snake="types",
+    ),
+    "style name": _Context(
+        examples=("object a { style",), words={"NAME": "a style name"}, snake="style names"
+    ),
+    "scene name": _Context(
+        examples=("scene",), words={"NAME": "a scene name"}, snake="scene names"
+    ),
+    "ground": _Context(
+        examples=("scene s { ground",), words={"NAME": "a ground name"}, snake="ground names"
+    ),
+    "shape": _Context(
+        examples=("object a { shape",), words={"NAME": "a shape name"}, snake="shape names"
+    ),
 }
 
 #: The context of a place no example reaches: every terminal said on its own.
@@ -699,7 +884,9 @@ _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:-[A-Za-z0-9_]+)*")
 _WORD_BEFORE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*$")
 
 
-def _syntax_diagnostic(error: UnexpectedInput, text: str, file: str, sources: SourceTexts) -> Diagnostic:
+def _syntax_diagnostic(
+    error: UnexpectedInput, text: str, file: str, sources: SourceTexts
+) -> Diagnostic:
     unclosed = _unclosed_block(error, text)
     if unclosed is not None:
         brace, message = unclosed
@@ -736,7 +923,11 @@ def _unclosed_block(error: UnexpectedInput, text: str) -> tuple[Token, str] | No
     stack = error.interactive_parser.parser_state.value_stack
     # A '{' is dropped from the tree when its block is reduced, so every '{' token still
     # on the stack is a block that has not been closed yet.
-    opened = [index for index, value in enumerate(stack) if isinstance(value, Token) and _literal(value.type) == "{"]
+    opened = [
+        index
+        for index, value in enumerate(stack)
+        if isinstance(value, Token) and _literal(value.type) == "{"
+    ]
     offset = _error_offset(error, text)
     # With the '}' the parser must read the rest of the error's line: one more word is
     # not enough ("scene s { Extent 3 }" reads 'Extent' as a production's name).
@@ -748,8 +939,10 @@ def _unclosed_block(error: UnexpectedInput, text: str) -> tuple[Token, str] | No
             if _reads_past(text[:point] + closing + text[point:], line_end + len(closing)):
                 innermost = opened[-1]
                 owner = _block_owner(stack, innermost)
-                return stack[innermost], (f"the block {f'of {owner} ' if owner else ''}opened here is never "
-                                          f"closed (missing '}}' {where})")
+                return stack[innermost], (
+                    f"the block {f'of {owner} ' if owner else ''}opened here is never "
+                    f"closed (missing '}}' {where})"
+                )
     return None
 
 
@@ -793,13 +986,24 @@ def _block_owner(stack: list, brace: int) -> str:
         if literal in ("scene", "style"):
             return f"{literal} '{stack[index + 1]}'"
         if literal in ("->", "|"):
-            head = next((at for at in range(index - 1, -1, -1)
-                         if isinstance(stack[at], Token) and stack[at].type == "CAMEL"), None)
+            head = next(
+                (
+                    at
+                    for at in range(index - 1, -1, -1)
+                    if isinstance(stack[at], Token) and stack[at].type == "CAMEL"
+                ),
+                None,
+            )
             if head is None:
                 return ""
             production = f"production '{stack[head]}'"
-            earlier = sum(1 for item in stack[head:index] if isinstance(item, Tree)
-                          for subtree in item.iter_subtrees() if subtree.data == "alternative")
+            earlier = sum(
+                1
+                for item in stack[head:index]
+                if isinstance(item, Tree)
+                for subtree in item.iter_subtrees()
+                if subtree.data == "alternative"
+            )
             return f"alternative {earlier + 1} of {production}" if literal == "|" else production
         if literal == "{":
             return ""
@@ -846,7 +1050,9 @@ def _context(stop: UnexpectedInput) -> _Context:
     stop.state = _StateKey.of(stop)
     if stop.state is None:
         return _ANYWHERE
-    name = stop.match_examples(_parse_example, {name: context.examples for name, context in _CONTEXTS.items()})
+    name = stop.match_examples(
+        _parse_example, {name: context.examples for name, context in _CONTEXTS.items()}
+    )
     return _CONTEXTS[name] if name else _ANYWHERE
 
 
@@ -856,7 +1062,9 @@ def _place(error: UnexpectedInput, text: str, offset: int) -> tuple[_Context, fr
     try:
         lalr_parser().parse(prefix)
     except (UnexpectedToken, UnexpectedCharacters) as stop:
-        if _error_offset(stop, prefix) < len(prefix):  # the text before reads otherwise alone (a new line before '|')
+        if _error_offset(stop, prefix) < len(
+            prefix
+        ):  # the text before reads otherwise alone (a new line before '|')
             stop = error
         return _context(stop), frozenset(stop.interactive_parser.accepts())
     parser = lalr_parser().parse_interactive(prefix)
@@ -880,8 +1088,12 @@ def _explain(error: UnexpectedInput, text: str) -> tuple[int, str]:
         unexpected = "unexpected end of line"
     elif word := _WORD.match(text, offset):
         word = word.group()
-        hint = _case_mix_up(context, word, accepts, text[offset + len(word):])
-        unexpected = f"unknown {context.unknown} '{word}'" if context.unknown and not hint else f"unexpected '{word}'"
+        hint = _case_mix_up(context, word, accepts, text[offset + len(word) :])
+        unexpected = (
+            f"unknown {context.unknown} '{word}'"
+            if context.unknown and not hint
+            else f"unexpected '{word}'"
+        )
         hint = hint or _keyword_meant(word, _keywords(accepts))
     else:
         unexpected = f"unexpected '{error.token}'"
@@ -907,12 +1119,16 @@ def _word_start(text: str, offset: int) -> int:
 
 
 def _keyword_meant(word: str, keywords: list[str]) -> str:
-    """"did you mean" the keyword nearest ``word``, or the longest one of four letters or
+    """ "did you mean" the keyword nearest ``word``, or the longest one of four letters or
     more that it starts with (``start_symbol``: 'start'); nothing for a single letter."""
     if len(word) < 2:
         return ""
-    prefixes = sorted((keyword for keyword in keywords if len(keyword) >= 4 and word.startswith(keyword)), key=len)
-    return did_you_mean(word, keywords) or (did_you_mean(prefixes[-1], prefixes[-1:]) if prefixes else "")
+    prefixes = sorted(
+        (keyword for keyword in keywords if len(keyword) >= 4 and word.startswith(keyword)), key=len
+    )
+    return did_you_mean(word, keywords) or (
+        did_you_mean(prefixes[-1], prefixes[-1:]) if prefixes else ""
+    )
 
 
 def _case_mix_up(context: _Context, word: str, accepts: frozenset[str], after: str) -> str:
@@ -935,9 +1151,14 @@ def _case_mix_up(context: _Context, word: str, accepts: frozenset[str], after: s
 def _keywords(accepts: Iterable[str], rule: str = "") -> list[str]:
     """The keywords among ``accepts`` (those that start ``rule``, if given), in grammar order."""
     first = _first_terminals(rule) if rule else None
-    return [literal for terminal in lalr_parser().terminals
-            if terminal.name in accepts and (first is None or terminal.name in first)
-            and (literal := _literal(terminal.name)) and literal.isidentifier()]
+    return [
+        literal
+        for terminal in lalr_parser().terminals
+        if terminal.name in accepts
+        and (first is None or terminal.name in first)
+        and (literal := _literal(terminal.name))
+        and literal.isidentifier()
+    ]
 
 
 @functools.cache
@@ -969,17 +1190,26 @@ def _expected(context: _Context, accepts: frozenset[str]) -> list[str]:
         words.append(phrase.replace("{keywords}", ", ".join(lead_keywords)))
         if "{keywords}" in phrase:
             covered.update(lead_keywords)
-    ends_statement = not context.declarations and any(name in accepts and name not in covered for name in _SEPARATORS)
+    ends_statement = not context.declarations and any(
+        name in accepts and name not in covered for name in _SEPARATORS
+    )
     terminals = [terminal for terminal in lalr_parser().terminals if terminal.name in accepts]
-    keywords = [terminal for terminal in terminals if (_literal(terminal.name) or "").isidentifier()]
-    others = sorted((terminal for terminal in terminals if terminal not in keywords),
-                    key=lambda terminal: terminal.pattern.type == "str")  # named terminals first
+    keywords = [
+        terminal for terminal in terminals if (_literal(terminal.name) or "").isidentifier()
+    ]
+    others = sorted(
+        (terminal for terminal in terminals if terminal not in keywords),
+        key=lambda terminal: terminal.pattern.type == "str",
+    )  # named terminals first
     for terminal in keywords + others:
         said_as = _literal(terminal.name) or terminal.name
         if said_as in covered or said_as in _SEPARATORS or (said_as == "}" and ends_statement):
             continue  # a '}' is the end of a block's last statement
-        words.append(context.words.get(said_as) or _WORDS.get(said_as)
-                     or (f"'{said_as}'" if _literal(terminal.name) else said_as.lower()))
+        words.append(
+            context.words.get(said_as)
+            or _WORDS.get(said_as)
+            or (f"'{said_as}'" if _literal(terminal.name) else said_as.lower())
+        )
     if ends_statement:
         words.append(_END_OF_STATEMENT)
     if "$END" in accepts:

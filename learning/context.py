@@ -104,7 +104,9 @@ class ExampleLayout:
 
 
 def graph_pair_poses(
-    graph: SceneGraph, poses: dict[str, tuple[float, float, float]], broken: frozenset[tuple[str, str]] = frozenset()
+    graph: SceneGraph,
+    poses: dict[str, tuple[float, float, float]],
+    broken: frozenset[tuple[str, str]] = frozenset(),
 ) -> list[tuple[Kind, tuple]]:
     """The relative pose of every related pair of ``graph`` at ``poses`` (id -> (x, z,
     yaw)), but the pairs in ``broken`` ((source id, target id): a relation between them
@@ -114,7 +116,9 @@ def graph_pair_poses(
     found = []
     for source, target, kind in related_pairs(problem, types):
         if (problem.ids[source], problem.ids[target]) not in broken:
-            found.append((kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]])))
+            found.append(
+                (kind, relative_pose(poses[problem.ids[source]], poses[problem.ids[target]]))
+            )
     return found
 
 
@@ -132,11 +136,15 @@ def example_layout(name: str, document: dict) -> ExampleLayout:
         raise InputError(f"{name}: {error}") from None
     except (KeyError, ValueError, TypeError) as error:
         raise InputError(f"{name}: not a valid scene graph: {error}") from None
-    poses = {o.id: (float(o.position[0]), float(o.position[2]), float(o.yaw)) for o in scene.objects}
+    poses = {
+        o.id: (float(o.position[0]), float(o.position[2]), float(o.yaw)) for o in scene.objects
+    }
     return ExampleLayout(graph, graph_pair_poses(graph, poses), _floor_area(document.get("extent")))
 
 
-def measured_example_layout(name: str, scene: Scene, derivations: Sequence[SceneGraph]) -> ExampleLayout:
+def measured_example_layout(
+    name: str, scene: Scene, derivations: Sequence[SceneGraph]
+) -> ExampleLayout:
     """An example read from geometry alone (``scene``: no relation edges but what rests on
     what), related as one of its best derivations relates its objects: ``derivations``
     are their scene graphs (``derivations.measured_derivation_graphs``), of which the one
@@ -150,28 +158,51 @@ def measured_example_layout(name: str, scene: Scene, derivations: Sequence[Scene
     except InputError as error:
         raise InputError(f"{name}: {error}") from None
     objects = {o.id: o for o in scene.placed_objects()}
-    poses = {node: (float(objects[o].position[0]), float(objects[o].position[2]), float(objects[o].yaw))
-             for node, o in chosen.items()}  # fmt: skip
+    poses = {
+        node: (float(objects[o].position[0]), float(objects[o].position[2]), float(objects[o].yaw))
+        for node, o in chosen.items()
+    }
     # A hand-placed pair that breaks the rules' own relation (a nightstand 46 degrees off
     # "right of the bed") would teach the learned term poses the layout's verdict refuses.
     # So would a vase on a sideboard's end taught to "in the middle of" it: a support
     # with a placement is measured in the plane, the object set on its support's top (the
     # stacking that found the support allows 3 cm, the verdict's height 1 cm).
-    pairs = [(chosen[e.source], e.label, chosen[e.target]) for e in derivation.edges() if e.source in chosen and e.target in chosen]
+    pairs = [
+        (chosen[e.source], e.label, chosen[e.target])
+        for e in derivation.edges()
+        if e.source in chosen and e.target in chosen
+    ]
     wanted = [pair for pair in pairs if not RELATIONS[pair[1]].support]
-    placed = [pair for pair in pairs if RELATIONS[pair[1]].support and RELATIONS[pair[1]].placement != "anywhere"]
-    verdicts = {**measured_relations(scene, wanted), **measured_relations(set_on_supports(scene, placed), placed)}
+    placed = [
+        pair
+        for pair in pairs
+        if RELATIONS[pair[1]].support and RELATIONS[pair[1]].placement != "anywhere"
+    ]
+    verdicts = {
+        **measured_relations(scene, wanted),
+        **measured_relations(set_on_supports(scene, placed), placed),
+    }
     node_of = {o: node for node, o in chosen.items()}
-    broken = frozenset((node_of[a], node_of[b]) for (a, _, b), verdict in verdicts.items() if not verdict.satisfied)
-    return ExampleLayout(derivation, graph_pair_poses(derivation, poses, broken), _floor_area(scene.extent))
+    broken = frozenset(
+        (node_of[a], node_of[b]) for (a, _, b), verdict in verdicts.items() if not verdict.satisfied
+    )
+    return ExampleLayout(
+        derivation, graph_pair_poses(derivation, poses, broken), _floor_area(scene.extent)
+    )
 
 
 def set_on_supports(scene: Scene, supports: Sequence[tuple[str, str, str]]) -> Scene:
     """A copy of ``scene`` with the subject of each (subject id, label, support id) set
     on its support's top."""
     objects = {o.id: o for o in scene.objects}
-    tops = {subject: objects[below].position[1] + objects[below].size[1] for subject, _, below in supports}
-    moved = [replace(o, position=[o.position[0], tops[o.id], o.position[2]]) if o.id in tops else o for o in scene.objects]
+    tops = {
+        subject: objects[below].position[1] + objects[below].size[1]
+        for subject, _, below in supports
+    }
+    moved = [
+        replace(o, position=[o.position[0], tops[o.id], o.position[2]]) if o.id in tops else o
+        for o in scene.objects
+    ]
     return replace(scene, objects=moved)
 
 
@@ -179,10 +210,17 @@ def grid_bounds(points: np.ndarray) -> tuple[float, float, float, float]:
     """The position grid (x0, z0, x1, z1) around relative positions ``points`` (n, 2)."""
     low, high = points.min(axis=0), points.max(axis=0)
     pad = np.maximum(PAD * (high - low), MIN_PAD)
-    return float(low[0] - pad[0]), float(low[1] - pad[1]), float(high[0] + pad[0]), float(high[1] + pad[1])
+    return (
+        float(low[0] - pad[0]),
+        float(low[1] - pad[1]),
+        float(high[0] + pad[0]),
+        float(high[1] + pad[1]),
+    )
 
 
-def counts(table: PairContext, poses: Sequence[tuple[float, float, float]]) -> tuple[np.ndarray, np.ndarray]:
+def counts(
+    table: PairContext, poses: Sequence[tuple[float, float, float]]
+) -> tuple[np.ndarray, np.ndarray]:
     """Raw histograms of relative poses in ``table``'s bins: position (BINS * BINS + 1,), yaw (YAW_BINS,)."""
     position, yaw = np.zeros(BINS * BINS + 1), np.zeros(YAW_BINS)
     for pose in poses:
@@ -191,10 +229,14 @@ def counts(table: PairContext, poses: Sequence[tuple[float, float, float]]) -> t
     return position, yaw
 
 
-def shares(position: np.ndarray, yaw: np.ndarray, smooth: float = SMOOTH) -> tuple[np.ndarray, np.ndarray]:
+def shares(
+    position: np.ndarray, yaw: np.ndarray, smooth: float = SMOOTH
+) -> tuple[np.ndarray, np.ndarray]:
     """Shares of raw histograms blurred by ``smooth`` bins and floored (module
     docstring); same shapes."""
-    grid = gaussian_filter(position[:-1].reshape(BINS, BINS), smooth, mode="constant", cval=0.0).ravel()
+    grid = gaussian_filter(
+        position[:-1].reshape(BINS, BINS), smooth, mode="constant", cval=0.0
+    ).ravel()
     inside = position[:-1].sum()
     if grid.sum() > 0.0:
         grid *= inside / grid.sum()  # the blur keeps what was inside the grid inside it
@@ -214,7 +256,9 @@ def _cell_area(bounds: tuple[float, float, float, float]) -> float:
     return (bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / (BINS * BINS)
 
 
-def scaling_step(weights: np.ndarray, observed: np.ndarray, generated: np.ndarray, rate: float = RATE) -> np.ndarray:
+def scaling_step(
+    weights: np.ndarray, observed: np.ndarray, generated: np.ndarray, rate: float = RATE
+) -> np.ndarray:
     """One iterative-scaling update of a histogram's weights (module docstring)."""
     step = np.clip(rate * np.log(generated / observed), -MAX_STEP, MAX_STEP)
     updated = weights + step
@@ -225,7 +269,9 @@ def total_variation(first: np.ndarray, second: np.ndarray) -> float:
     return 0.5 * float(np.abs(first - second).sum())
 
 
-def share_distance(first: tuple[np.ndarray, np.ndarray], second: tuple[np.ndarray, np.ndarray]) -> float:
+def share_distance(
+    first: tuple[np.ndarray, np.ndarray], second: tuple[np.ndarray, np.ndarray]
+) -> float:
     """The divergence of one pair kind: the total variation distance of two (position,
     yaw) shares, position and yaw averaged."""
     return 0.5 * (total_variation(first[0], second[0]) + total_variation(first[1], second[1]))
@@ -291,7 +337,9 @@ def fit_example_layouts(
     for kind in kinds:
         poses = observed_poses[kind]
         bounds = grid_bounds(np.array([(x, z) for x, z, _ in poses]))
-        blank = PairContext(*kind, bounds, np.zeros(BINS * BINS + 1), np.zeros(YAW_BINS), len(poses))
+        blank = PairContext(
+            *kind, bounds, np.zeros(BINS * BINS + 1), np.zeros(YAW_BINS), len(poses)
+        )
         raw[kind] = counts(blank, poses)
         observed[kind] = shares(*raw[kind], UPDATE_SMOOTH)
         position, yaw = (-np.log(share) for share in shares(*raw[kind]))
@@ -299,7 +347,9 @@ def fit_example_layouts(
         # the log of how many cells that floor would make: without it, a share of FLOOR
         # spread over the whole scene outweighs the grid (module docstring).
         position[-1] += np.log(max(extents[kind] / _cell_area(bounds), 1.0))
-        tables[kind] = PairContext(*kind, bounds, position - position.min(), yaw - yaw.min(), len(poses))
+        tables[kind] = PairContext(
+            *kind, bounds, position - position.min(), yaw - yaw.min(), len(poses)
+        )
 
     divergence: list[float] = []
     best: tuple[float, int, dict[Kind, PairContext]] | None = None
@@ -322,19 +372,32 @@ def fit_example_layouts(
             target = observed[kind]
             distances.append(share_distance(generated, target))
             updated[kind] = PairContext(
-                *kind, table.bounds, scaling_step(table.position, target[0], generated[0]),
-                scaling_step(table.yaw, target[1], generated[1]), table.examples,
-            )  # fmt: skip
+                *kind,
+                table.bounds,
+                scaling_step(table.position, target[0], generated[0]),
+                scaling_step(table.yaw, target[1], generated[1]),
+                table.examples,
+            )
         divergence.append(float(np.mean(distances)))
         if best is None or divergence[-1] < best[0]:
             best = (divergence[-1], round_index, dict(tables))
         tables = updated
     _, kept, chosen = best
     record = {
-        "seed": seed, "rounds": rounds, "layouts_per_round": layouts, "kept_round": kept,
-        "divergence": [round(d, 6) for d in divergence], "skipped": skipped,
-    }  # fmt: skip
-    return ContextFit(LearnedContext(tuple(chosen[kind] for kind in kinds), record), divergence, kept, layouts, skipped)
+        "seed": seed,
+        "rounds": rounds,
+        "layouts_per_round": layouts,
+        "kept_round": kept,
+        "divergence": [round(d, 6) for d in divergence],
+        "skipped": skipped,
+    }
+    return ContextFit(
+        LearnedContext(tuple(chosen[kind] for kind in kinds), record),
+        divergence,
+        kept,
+        layouts,
+        skipped,
+    )
 
 
 def context_path(rules_output: str | Path) -> Path:

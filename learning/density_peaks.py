@@ -102,7 +102,11 @@ def cutoff_distance(distances: np.ndarray, scale: float = 0.0) -> float:
 
 
 def density_peaks(
-    points: np.ndarray, *, scale: float = 0.0, min_separation: float = 0.0, min_size: int | None = None
+    points: np.ndarray,
+    *,
+    scale: float = 0.0,
+    min_separation: float = 0.0,
+    min_size: int | None = None,
 ) -> DensityPeaks:
     """Cluster ``points`` (n, D) by density peaks (module docstring). ``scale``: the
     least cutoff (distances below it are one place); ``min_separation``: the least
@@ -116,7 +120,9 @@ def density_peaks(
         min_size = max(MIN_CLUSTER, math.ceil(MIN_CLUSTER_SHARE * n))
     if n == 0:
         empty = np.zeros(0)
-        return DensityPeaks(empty, empty, np.zeros(0, dtype=int), np.zeros(0, dtype=int), max(scale, 1e-12), 0.0)
+        return DensityPeaks(
+            empty, empty, np.zeros(0, dtype=int), np.zeros(0, dtype=int), max(scale, 1e-12), 0.0
+        )
     distances = squareform(pdist(points)) if n > 1 else np.zeros((1, 1))
     cutoff = cutoff_distance(distances, scale)
     rho = (distances < cutoff).sum(axis=1) - 1.0  # not counting the point itself
@@ -148,7 +154,9 @@ def density_peaks(
     renumber = np.full(len(centres) + 1, -1)
     renumber[kept] = np.arange(len(kept))
     labels = renumber[labels]  # labels -1 index the trailing -1
-    return DensityPeaks(rho, delta, np.array([centres[c] for c in kept], dtype=int), labels, cutoff, separation)
+    return DensityPeaks(
+        rho, delta, np.array([centres[c] for c in kept], dtype=int), labels, cutoff, separation
+    )
 
 
 def _merge_across_saddles(
@@ -169,7 +177,7 @@ def _merge_across_saddles(
     across = (labels[first] >= 0) & (labels[second] >= 0) & (labels[first] != labels[second])
     first, second = first[across], second[across]
     saddles: dict[tuple[int, int], float] = {}
-    for i, j in zip(first.tolist(), second.tolist()):
+    for i, j in zip(first.tolist(), second.tolist(), strict=False):
         key = (min(labels[i], labels[j]), max(labels[i], labels[j]))
         saddles[key] = max(saddles.get(key, 0.0), float(min(rho[i], rho[j])))
     owner = list(range(len(centres)))

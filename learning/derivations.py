@@ -58,8 +58,8 @@ from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.examples.model import scene_supports
 from scenewright.generator.catalog import CatalogEntry
-from scenewright.generator.layout import measure_layout
 from scenewright.generator.expand import Draws, expand_with
+from scenewright.generator.layout import measure_layout
 from scenewright.generator.rules import Rules
 from scenewright.generator.rules_errors import ExpansionError
 
@@ -87,7 +87,9 @@ class ReplayBudget:
         """One replay for the search of the example ``name``; ``BudgetSpent`` when none
         is left."""
         if self.left <= 0:
-            raise BudgetSpent(f"{name}: the searches of the examples before it spent the replays they share")
+            raise BudgetSpent(
+                f"{name}: the searches of the examples before it spent the replays they share"
+            )
         self.left -= 1
 
 
@@ -110,7 +112,11 @@ class Signature:
     def like(self, other: Signature) -> bool:
         """The same signature (relations compared only when both have them)."""
         both = self.relations is not None and other.relations is not None
-        return self.objects == other.objects and self.parents == other.parents and (not both or self.relations == other.relations)
+        return (
+            self.objects == other.objects
+            and self.parents == other.parents
+            and (not both or self.relations == other.relations)
+        )
 
 
 def resting_signature(graph: SceneGraph) -> Signature:
@@ -118,7 +124,11 @@ def resting_signature(graph: SceneGraph) -> Signature:
     type its support-family relation rests it on); relations not compared."""
     nodes = {node.id: node for node in graph.nodes()}
     things = [node for node in nodes.values() if node.kind not in ROOM_KINDS]
-    rests_on = {edge.source: nodes[edge.target].type for edge in graph.edges() if RELATIONS[edge.label].support}
+    rests_on = {
+        edge.source: nodes[edge.target].type
+        for edge in graph.edges()
+        if RELATIONS[edge.label].support
+    }
     return Signature(
         Counter((node.type, node.style) for node in things),
         Counter((node.type, rests_on.get(node.id)) for node in things),
@@ -134,13 +144,20 @@ def measured_relations(
     example ``scene``, measured by the layout's own predicates at the example's poses and
     sizes, all in one ``measure_layout``."""
     objects = scene.placed_objects()
-    graph = SceneGraph(params=SceneParams(extent=tuple(scene.extent), ground="floor" if scene.room else "grass",
-                                          room=scene.room))  # fmt: skip
+    graph = SceneGraph(
+        params=SceneParams(
+            extent=tuple(scene.extent), ground="floor" if scene.room else "grass", room=scene.room
+        )
+    )
     node_of, poses = {}, {}
     for obj in objects:
-        node_of[obj.id] = graph.add_node(CatalogEntry(obj.type, "object", obj.noun or obj.type, size=tuple(obj.size)))
+        node_of[obj.id] = graph.add_node(
+            CatalogEntry(obj.type, "object", obj.noun or obj.type, size=tuple(obj.size))
+        )
         poses[node_of[obj.id]] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
-    object_of = {node: object_id for object_id, node in node_of.items()}  # anything else is the room's
+    object_of = {
+        node: object_id for object_id, node in node_of.items()
+    }  # anything else is the room's
     added = set()
     for subject, label, other in wanted:
         edge = (node_of[subject], ROOM_NODE if other is None else node_of[other], label)
@@ -150,7 +167,7 @@ def measured_relations(
     return {
         (object_of[relation.source], relation.label, object_of.get(relation.target)): relation
         for relation in measure_layout(graph, poses, {}).relations
-    }  # fmt: skip
+    }
 
 
 def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
@@ -167,17 +184,23 @@ def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
             if target in ROOM_KINDS:
                 wanted.append((subject, label, None))
             else:
-                wanted.extend((subject, label, o.id) for o in objects if o.type == target and o.id != subject)
+                wanted.extend(
+                    (subject, label, o.id) for o in objects if o.type == target and o.id != subject
+                )
     held = {
         (subject, label, ROOM_NODE if other is None else type_of[other])
-        for (subject, label, other), relation in measured_relations(scene, wanted).items() if relation.satisfied
-    }  # fmt: skip
+        for (subject, label, other), relation in measured_relations(scene, wanted).items()
+        if relation.satisfied
+    }
     held_by_type = Counter((type_of[subject], label, role) for subject, label, role in held)
-    return Counter({
-        (subject_type, label, target): len(objects) if _unmeasurable(label, scene)  # may hold for every one: tells nothing
-        else held_by_type[(subject_type, label, ROOM_NODE if target in ROOM_KINDS else target)]
-        for subject_type, label, target in statements
-    })  # fmt: skip
+    return Counter(
+        {
+            (subject_type, label, target): len(objects)
+            if _unmeasurable(label, scene)  # may hold for every one: tells nothing
+            else held_by_type[(subject_type, label, ROOM_NODE if target in ROOM_KINDS else target)]
+            for subject_type, label, target in statements
+        }
+    )
 
 
 def _unmeasurable(label: str, scene: Scene) -> bool:
@@ -189,7 +212,9 @@ def _unmeasurable(label: str, scene: Scene) -> bool:
         return False
     if scene.room is None:
         return True
-    return wall in ("under_window", "beside_window") and not any(o.kind == "window" for o in scene.room.openings)
+    return wall in ("under_window", "beside_window") and not any(
+        o.kind == "window" for o in scene.room.openings
+    )
 
 
 def geometric_agreement(derivation_graph: SceneGraph, holding: Counter) -> int:
@@ -263,7 +288,9 @@ def derivations_of(rules: Rules, example: SceneGraph, name: str = "example") -> 
     return [graph.derivation for graph in _search(rules, signature(example), signature, name)]
 
 
-def measured_derivations_of(rules: Rules, example: Scene, name: str = "example") -> list[list[dict]]:
+def measured_derivations_of(
+    rules: Rules, example: Scene, name: str = "example"
+) -> list[list[dict]]:
     """The derivations of ``rules`` that make an example read from geometry alone
     (``measured_derivation_graphs``), as lists of derivation records."""
     return [graph.derivation for graph in measured_derivation_graphs(rules, example, name)]
@@ -271,7 +298,7 @@ def measured_derivations_of(rules: Rules, example: Scene, name: str = "example")
 
 def measured_derivation_graphs(
     rules: Rules, example: Scene, name: str = "example", budget: ReplayBudget | None = None
-) -> list[SceneGraph]:  # fmt: skip
+) -> list[SceneGraph]:
     """The scene graphs of the derivations of ``rules`` that make an example read from
     geometry alone: those of its resting signature that state the most relations the
     example holds (module docstring), in the order the search finds them.
@@ -287,9 +314,11 @@ def measured_derivation_graphs(
         graphs = _search(rules, wanted, resting_signature, name, budget=budget)
     if not graphs:
         return []
-    agreement = [geometric_agreement(graph, holding.counts(signature(graph).relations)) for graph in graphs]
+    agreement = [
+        geometric_agreement(graph, holding.counts(signature(graph).relations)) for graph in graphs
+    ]
     best = max(agreement)
-    return [graph for graph, score in zip(graphs, agreement) if score == best]
+    return [graph for graph, score in zip(graphs, agreement, strict=False) if score == best]
 
 
 #: How much the assignment of derivation nodes to example objects weighs how far a
@@ -298,7 +327,9 @@ def measured_derivation_graphs(
 NEAR_MISS = 1e-3
 
 
-def closest_derivation(graphs: Sequence[SceneGraph], example: Scene) -> tuple[SceneGraph, dict[str, str]]:
+def closest_derivation(
+    graphs: Sequence[SceneGraph], example: Scene
+) -> tuple[SceneGraph, dict[str, str]]:
     """Of the scene graphs of an example's best derivations (``measured_derivation_graphs``,
     which state equally much that the example holds), the one whose relations the
     example's objects come nearest to holding, with its assignment (``assign_objects``):
@@ -343,21 +374,28 @@ def _assignment(graph: SceneGraph, example: Scene) -> tuple[dict[str, str], floa
         blocks.setdefault((node.type, node.style), ([], []))[0].append(node.id)
     for obj in objects:
         if (obj.type, obj.style) not in blocks:
-            raise InputError(f"the derivation has no {obj.type} (style {obj.style}) for example object {obj.id!r}")
+            raise InputError(
+                f"the derivation has no {obj.type} (style {obj.style}) for example object {obj.id!r}"
+            )
         blocks[(obj.type, obj.style)][1].append(obj.id)
     for (type_name, _), (block_nodes, block_objects) in blocks.items():
         if len(block_nodes) != len(block_objects):
-            raise InputError(f"the derivation makes {len(block_nodes)} {type_name}, the example has {len(block_objects)}")
+            raise InputError(
+                f"the derivation makes {len(block_nodes)} {type_name}, the example has {len(block_objects)}"
+            )
     node_ids = {node.id for node in nodes}
     edges = [edge for edge in graph.edges() if edge.source in node_ids and edge.target in node_ids]
     rests_on = scene_supports(example)
     type_of = {obj.id: obj.type for obj in objects}
     wanted = [
         (a, edge.label, b)
-        for edge in edges if not RELATIONS[edge.label].support
-        for a in type_of if type_of[a] == graph.node(edge.source).type
-        for b in type_of if type_of[b] == graph.node(edge.target).type and b != a
-    ]  # fmt: skip
+        for edge in edges
+        if not RELATIONS[edge.label].support
+        for a in type_of
+        if type_of[a] == graph.node(edge.source).type
+        for b in type_of
+        if type_of[b] == graph.node(edge.target).type and b != a
+    ]
     verdicts = measured_relations(example, wanted)
     supported = {edge.source for edge in edges if RELATIONS[edge.label].support}
 
@@ -381,11 +419,15 @@ def _assignment(graph: SceneGraph, example: Scene) -> tuple[dict[str, str], floa
         unary = sum((node in supported) != (obj in rests_on) for node, obj in chosen.items())
         return unary + sum(edge_cost(chosen[e.source], e.label, chosen[e.target]) for e in edges)
 
-    def assigned(block_nodes: list[str], block_objects: list[str], chosen: dict[str, str]) -> dict[str, str]:
+    def assigned(
+        block_nodes: list[str], block_objects: list[str], chosen: dict[str, str]
+    ) -> dict[str, str]:
         others = {node: obj for node, obj in chosen.items() if node not in block_nodes}
-        costs = np.array([[node_cost(node, obj, others) for obj in block_objects] for node in block_nodes])
+        costs = np.array(
+            [[node_cost(node, obj, others) for obj in block_objects] for node in block_nodes]
+        )
         rows, columns = linear_sum_assignment(costs)
-        return {block_nodes[r]: block_objects[c] for r, c in zip(rows, columns)}
+        return {block_nodes[r]: block_objects[c] for r, c in zip(rows, columns, strict=False)}
 
     chosen: dict[str, str] = {}
     for block_nodes, block_objects in blocks.values():
@@ -423,14 +465,20 @@ class _HoldingCache:
         it states it (supports aside: the signature has them)."""
         stated = signature(graph).relations
         known = self.counts(stated)
-        return all(RELATIONS[label].support or count <= known[(subject, label, target)]
-                   for (subject, label, target), count in stated.items())  # fmt: skip
+        return all(
+            RELATIONS[label].support or count <= known[(subject, label, target)]
+            for (subject, label, target), count in stated.items()
+        )
 
 
 def _search(
-    rules: Rules, wanted: Signature, sign: Callable[[SceneGraph], Signature], name: str,
-    fits: Callable[[SceneGraph], bool] | None = None, budget: ReplayBudget | None = None,
-) -> list[SceneGraph]:  # fmt: skip
+    rules: Rules,
+    wanted: Signature,
+    sign: Callable[[SceneGraph], Signature],
+    name: str,
+    fits: Callable[[SceneGraph], bool] | None = None,
+    budget: ReplayBudget | None = None,
+) -> list[SceneGraph]:
     """The expansions of ``rules`` whose ``sign`` is ``wanted`` (module docstring) and,
     when given, that ``fits`` (which must also hold of every partial expansion on the way);
     each replay also taken from ``budget`` when given."""

@@ -48,7 +48,6 @@ from .derivations import derivations_of, measured_derivation_graphs
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
-
 #: What ``fit`` can fit, for ``--what``.
 WHAT = ("weights", "context")
 
@@ -58,7 +57,9 @@ def parse_what(text: str) -> frozenset[str]:
     chosen = [part.strip() for part in text.split(",")]
     unknown = [part for part in chosen if part not in WHAT]
     if not text.strip() or unknown:
-        raise InputError(f"--what: unknown choice {(unknown or [text])[0]!r}; choose from {', '.join(WHAT)} (comma-separated)")
+        raise InputError(
+            f"--what: unknown choice {(unknown or [text])[0]!r}; choose from {', '.join(WHAT)} (comma-separated)"
+        )
     return frozenset(chosen)
 
 
@@ -112,7 +113,9 @@ def example_candidates_and_layout(
     geometry alone its objects related as one of its best derivations relates them
     (``measured_example_layout``)."""
     if not isinstance(scene, Scene):
-        return example_candidates(rules, path, scene), example_layout(path, scene) if with_layout else None
+        return example_candidates(rules, path, scene), example_layout(
+            path, scene
+        ) if with_layout else None
     graphs = measured_candidates(rules, path, scene)
     layout = measured_example_layout(path, scene, graphs) if with_layout else None
     return [graph.derivation for graph in graphs], layout
@@ -159,8 +162,10 @@ def fit_rule_set(
             context = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
         except NoRelatedPairs as error:
             if any(isinstance(scene, Scene) for _, scene in examples):
-                raise NoRelatedPairs(f"{error} (the objects of an example read from geometry alone are related "
-                                     "as its derivation relates them)") from None  # fmt: skip
+                raise NoRelatedPairs(
+                    f"{error} (the objects of an example read from geometry alone are related "
+                    "as its derivation relates them)"
+                ) from None
             raise
     tree = parse_rules_tree(rules_source, allow=allow)
     if "weights" not in what:
@@ -171,7 +176,9 @@ def fit_rule_set(
     for path, text in placed:
         path.parent.mkdir(parents=True, exist_ok=True)
         write(path, text)
-    load_rules(output, allow=allow)  # the fitted file must load: only numbers changed, within their ranges
+    load_rules(
+        output, allow=allow
+    )  # the fitted file must load: only numbers changed, within their ranges
     written = [path for path, _ in placed]
     if report is not None:
         document = {"rules": os.fspath(rules_source), "output": os.fspath(output), **fit.to_dict()}

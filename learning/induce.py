@@ -72,7 +72,14 @@ from scenewright.examples import Example, scene_supports
 from scenewright.examples.model import default_looks
 
 from .density_peaks import density_peaks
-from .pose_labels import CATEGORIES, RESTING_CATEGORIES, STANDING_CATEGORIES, most_specific, pair_holds, wall_holds
+from .pose_labels import (
+    CATEGORIES,
+    RESTING_CATEGORIES,
+    STANDING_CATEGORIES,
+    most_specific,
+    pair_holds,
+    wall_holds,
+)
 from .relations import RelationsResult, find_relations, resting_pairs, type_poses
 
 #: A style's median size is written when it differs from its type's by more than this share.
@@ -182,11 +189,16 @@ class TypeEntry:
             "colour": colour_text(self.colour),
             "looks_from": self.borrowed or "examples",
             "styles": [
-                {"style": s.name, "seen_as": s.source, "objects": s.count, "weight": s.count,
-                 **({"size": [round(v, 4) for v in s.size]} if s.size else {})}
+                {
+                    "style": s.name,
+                    "seen_as": s.source,
+                    "objects": s.count,
+                    "weight": s.count,
+                    **({"size": [round(v, 4) for v in s.size]} if s.size else {}),
+                }
                 for s in self.styles
             ],
-        }  # fmt: skip
+        }
 
 
 def _median_size(objects: Sequence[SceneObject]) -> tuple[float, float, float]:
@@ -204,10 +216,12 @@ def _colour_key(colour: Sequence[float]) -> tuple[float, ...]:
 
 
 def _differs(size: Sequence[float], base: Sequence[float]) -> bool:
-    return any(abs(a - b) > STYLE_SIZE_TOLERANCE * b for a, b in zip(size, base))
+    return any(abs(a - b) > STYLE_SIZE_TOLERANCE * b for a, b in zip(size, base, strict=False))
 
 
-def catalog_entry(name: str, objects: Sequence[SceneObject], sources: Sequence[str], scenes: int, shipped: dict) -> TypeEntry:
+def catalog_entry(
+    name: str, objects: Sequence[SceneObject], sources: Sequence[str], scenes: int, shipped: dict
+) -> TypeEntry:
     """The catalog entry of one type from all its objects (``sources``: its names in
     the examples; ``shipped``: the indoor catalog's entries by name)."""
     size = _median_size(objects)
@@ -218,12 +232,18 @@ def catalog_entry(name: str, objects: Sequence[SceneObject], sources: Sequence[s
     borrowed = None
     defaults = all(
         o.noun == looks.noun and _colour_key(o.colour) == _colour_key(looks.colour)
-        for o, source in zip(objects, _sources_of(objects, sources))
+        for o, source in zip(objects, _sources_of(objects, sources), strict=False)
         for looks in [default_looks(source, o.style)]
     )  # the looks the examples' reader gives a type its file says nothing of
     if defaults and name in shipped:
         entry = shipped[name]
-        noun, plural, shape, colour, borrowed = entry.noun, entry.plural, entry.shape, _colour_key(entry.colour), "indoor catalog"
+        noun, plural, shape, colour, borrowed = (
+            entry.noun,
+            entry.plural,
+            entry.shape,
+            _colour_key(entry.colour),
+            "indoor catalog",
+        )
     by_style: dict[str | None, list[SceneObject]] = defaultdict(list)
     for obj in objects:
         by_style[obj.style].append(obj)
@@ -238,19 +258,37 @@ def catalog_entry(name: str, objects: Sequence[SceneObject], sources: Sequence[s
             style_noun = _most_common([o.noun for o in members])
             style_shape = _most_common([o.shape for o in members])
             style_colour = _most_common([_colour_key(o.colour) for o in members])
-            if borrowed:  # the shipped style of the same name, if there is one, else the entry's looks
+            if (
+                borrowed
+            ):  # the shipped style of the same name, if there is one, else the entry's looks
                 like = {s.name: s for s in shipped[name].styles}.get(style_name)
                 style_noun = like.noun if like and like.noun else noun
                 style_shape = like.shape if like and like.shape else shape
                 style_colour = _colour_key(like.colour) if like and like.colour else colour
-            styles.append(StyleStats(
-                style_name, style, len(members),
-                style_size if _differs(style_size, size) else None,
-                style_noun if style_noun != noun else None,
-                style_shape if style_shape != shape and style_shape is not None else None,
-                style_colour if style_colour != colour else None,
-            ))  # fmt: skip
-    return TypeEntry(name, tuple(sources), len(objects), scenes, size, noun, plural, shape, colour, tuple(styles), borrowed)
+            styles.append(
+                StyleStats(
+                    style_name,
+                    style,
+                    len(members),
+                    style_size if _differs(style_size, size) else None,
+                    style_noun if style_noun != noun else None,
+                    style_shape if style_shape != shape and style_shape is not None else None,
+                    style_colour if style_colour != colour else None,
+                )
+            )
+    return TypeEntry(
+        name,
+        tuple(sources),
+        len(objects),
+        scenes,
+        size,
+        noun,
+        plural,
+        shape,
+        colour,
+        tuple(styles),
+        borrowed,
+    )
 
 
 def _sources_of(objects: Sequence[SceneObject], sources: Sequence[str]) -> list[str]:
@@ -274,7 +312,8 @@ def renamed_scenes(examples: Sequence[Example]) -> tuple[list[Scene], dict[str, 
     scenes = []
     for example in examples:
         objects = [
-            replace(o, type=name_of[o.type], rule=o.type) if o.kind == "object" else o for o in example.scene.objects
+            replace(o, type=name_of[o.type], rule=o.type) if o.kind == "object" else o
+            for o in example.scene.objects
         ]
         scenes.append(replace(example.scene, objects=objects))
     return scenes, dict(sources)
@@ -308,7 +347,9 @@ class EdgeInstances:
         sizes = np.hstack([self.parent_sizes[chosen], self.child_sizes[chosen]])
         for key in sorted({tuple(row) for row in sizes.tolist()}):
             rows = np.flatnonzero(np.all(sizes == key, axis=1))
-            for label, held in pair_holds(key[:3], key[3:], self.poses[chosen[rows]], rests).items():
+            for label, held in pair_holds(
+                key[:3], key[3:], self.poses[chosen[rows]], rests
+            ).items():
                 found.setdefault(label, np.zeros(len(chosen), dtype=bool))[rows] = held
         return chosen, found
 
@@ -327,7 +368,12 @@ def _turn(angle: float) -> float:
 
 
 def edge_instances(
-    scenes: Sequence[Scene], supports: Sequence[dict[str, str]], parent: str, child: str, *, resting_only: bool = False
+    scenes: Sequence[Scene],
+    supports: Sequence[dict[str, str]],
+    parent: str,
+    child: str,
+    *,
+    resting_only: bool = False,
 ) -> EdgeInstances:
     """Every ``child`` object of ``scenes`` in the frame of its ``parent`` object (the
     one it rests on, else the nearest; with ``resting_only`` only the children resting
@@ -335,7 +381,7 @@ def edge_instances(
     poses, resting, parent_sizes, child_sizes = [], [], [], []
     per_parent: Counter = Counter()
     orphans = np.zeros(len(scenes), dtype=int)
-    for index, (scene, support) in enumerate(zip(scenes, supports)):
+    for index, (scene, support) in enumerate(zip(scenes, supports, strict=False)):
         objects = scene.placed_objects()
         parents = [o for o in objects if o.type == parent]
         children = [o for o in objects if o.type == child]
@@ -351,9 +397,19 @@ def edge_instances(
             elif resting_only:
                 continue
             else:
-                host = min(parents, key=lambda p: (math.hypot(p.position[0] - obj.position[0], p.position[2] - obj.position[2]), p.id))
+                host = min(
+                    parents,
+                    key=lambda p: (
+                        math.hypot(
+                            p.position[0] - obj.position[0], p.position[2] - obj.position[2]
+                        ),
+                        p.id,
+                    ),
+                )
                 rests = False
-            x, z = to_local(host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2])
+            x, z = to_local(
+                host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2]
+            )
             poses.append((x, z, _turn(obj.yaw - host.yaw)))
             resting.append(rests)
             parent_sizes.append(host.size)
@@ -361,18 +417,28 @@ def edge_instances(
             counts[host.id] += 1
         per_parent.update(counts.values())
     return EdgeInstances(
-        np.array(poses, dtype=float).reshape(-1, 3), np.array(resting, dtype=bool), per_parent, orphans,
-        np.array(parent_sizes, dtype=float).reshape(-1, 3), np.array(child_sizes, dtype=float).reshape(-1, 3),
-    )  # fmt: skip
+        np.array(poses, dtype=float).reshape(-1, 3),
+        np.array(resting, dtype=bool),
+        per_parent,
+        orphans,
+        np.array(parent_sizes, dtype=float).reshape(-1, 3),
+        np.array(child_sizes, dtype=float).reshape(-1, 3),
+    )
 
 
 def pose_features(poses: np.ndarray, resting: np.ndarray) -> np.ndarray:
     """(n, 5) points to cluster: x, z, TURN_METRES * (cos, sin) of the turn, and
     RESTING_METRES for a resting pose."""
     turn = poses[:, 2]
-    return np.column_stack([
-        poses[:, 0], poses[:, 1], TURN_METRES * np.cos(turn), TURN_METRES * np.sin(turn), RESTING_METRES * resting,
-    ])  # fmt: skip
+    return np.column_stack(
+        [
+            poses[:, 0],
+            poses[:, 1],
+            TURN_METRES * np.cos(turn),
+            TURN_METRES * np.sin(turn),
+            RESTING_METRES * resting,
+        ]
+    )
 
 
 # -- placements -----------------------------------------------------------------------
@@ -390,8 +456,12 @@ class Cluster:
     labels: tuple[str, ...]
 
     def to_dict(self) -> dict:
-        return {"size": self.size, "centre": [round(v, 3) for v in self.centre], "rests_on_parent": self.resting,
-                "labels": list(self.labels)}  # fmt: skip
+        return {
+            "size": self.size,
+            "centre": [round(v, 3) for v in self.centre],
+            "rests_on_parent": self.resting,
+            "labels": list(self.labels),
+        }
 
 
 @dataclass(frozen=True)
@@ -433,15 +503,27 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         index_in[rests] = np.full(len(instances.poses), -1)
         index_in[rests][chosen] = np.arange(len(chosen))
     clusters: list[Cluster] = []
-    merged: dict[tuple[bool, tuple[str, ...]], list[int]] = {}  # (rests, labels but the turn) -> cluster numbers
+    merged: dict[
+        tuple[bool, tuple[str, ...]], list[int]
+    ] = {}  # (rests, labels but the turn) -> cluster numbers
     for number_, centre in enumerate(peaks.centres):
         members = peaks.members(number_)
         rests = bool(instances.resting[centre])
         local = index_in[rests]
         categories = RESTING_CATEGORIES if rests else STANDING_CATEGORIES
-        chosen = {c: most_specific(c, holds[rests], int(local[centre]), local[members]) for c in categories}
+        chosen = {
+            c: most_specific(c, holds[rests], int(local[centre]), local[members])
+            for c in categories
+        }
         x, z, turn = instances.poses[centre]
-        clusters.append(Cluster(len(members), (float(x), float(z), math.degrees(turn)), rests, written_labels(chosen, rests)))
+        clusters.append(
+            Cluster(
+                len(members),
+                (float(x), float(z), math.degrees(turn)),
+                rests,
+                written_labels(chosen, rests),
+            )
+        )
         if chosen.get("support") or chosen.get("near") or chosen.get("facing"):
             key = written_labels({c: label for c, label in chosen.items() if c != "turn"}, rests)
             merged.setdefault((rests, key), []).append(number_)
@@ -452,7 +534,9 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
             members = np.concatenate([peaks.members(k) for k in numbers])
             largest = max(numbers, key=lambda k: (len(peaks.members(k)), -k))
             local = index_in[rests]
-            turn = most_specific("turn", holds[rests], int(local[peaks.centres[largest]]), local[members], TURN_SHARE)
+            turn = most_specific(
+                "turn", holds[rests], int(local[peaks.centres[largest]]), local[members], TURN_SHARE
+            )
             labels = written_labels({"support": key[0], "turn": turn}, rests)
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
     placements.sort(key=lambda placement: (-placement.weight, placement.labels))
@@ -489,7 +573,9 @@ class Member:
             "objects": self.instances,
             "parent_objects": self.parents,
             "children_per_parent": {str(k): v for k, v in sorted(self.per_parent.items())},
-            "placements": [{"labels": list(p.labels), "objects": p.weight} for p in self.placements],
+            "placements": [
+                {"labels": list(p.labels), "objects": p.weight} for p in self.placements
+            ],
             "clusters": [c.to_dict() for c in self.clusters],
             "outliers": self.outliers,
             "wall": self.wall,
@@ -539,9 +625,13 @@ class Loose:
     member: Member | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict:
-        return {"type": self.type, "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
-                "wall": self.wall, "seen_without": None if self.unsupported else self.without,
-                "seen_resting_on_none_of": self.without.split(" or ") if self.unsupported else None}  # fmt: skip
+        return {
+            "type": self.type,
+            "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
+            "wall": self.wall,
+            "seen_without": None if self.unsupported else self.without,
+            "seen_resting_on_none_of": self.without.split(" or ") if self.unsupported else None,
+        }
 
 
 @dataclass
@@ -606,16 +696,27 @@ class Induction:
         for pair in self.relations.pairs:
             key = (pair.a, pair.b)
             member = written.get(key)
-            supported = [(u, v) for u, v in ((pair.a, pair.b), (pair.b, pair.a)) if (u, v) in self.resting]
+            supported = [
+                (u, v) for u, v in ((pair.a, pair.b), (pair.b, pair.a)) if (u, v) in self.resting
+            ]
             row = {
                 **pair.to_dict(),
-                "support": [{"upper": u, "lower": v, "scenes": self.resting_counts[(u, v)][0],
-                             "scenes_holding_both": self.resting_counts[(u, v)][1]} for u, v in supported],
+                "support": [
+                    {
+                        "upper": u,
+                        "lower": v,
+                        "scenes": self.resting_counts[(u, v)][0],
+                        "scenes_holding_both": self.resting_counts[(u, v)][1],
+                    }
+                    for u, v in supported
+                ],
                 "written": member is not None,
-            }  # fmt: skip
+            }
             if member is not None:
                 row["parent"], row["child"] = member.parent, member.type
-                row["labels"] = [{"labels": list(p.labels), "objects": p.weight} for p in member.placements]
+                row["labels"] = [
+                    {"labels": list(p.labels), "objects": p.weight} for p in member.placements
+                ]
                 row["clusters"] = [c.to_dict() for c in member.clusters]
                 row["outliers"] = member.outliers
             elif pair.a == pair.b and pair.related:
@@ -624,7 +725,9 @@ class Induction:
                 row["why_not_written"] = "both rest on one thing, which places them"
             elif pair.related and self.routes[key] != key:
                 first, second = self.routes[key]
-                row["why_not_written"] = f"written between {first} and {second}: what rests on a thing is placed by it"
+                row["why_not_written"] = (
+                    f"written between {first} and {second}: what rests on a thing is placed by it"
+                )
             elif pair.related:
                 row["why_not_written"] = "its types are placed through other members of their group"
             rows.append(row)
@@ -635,36 +738,54 @@ class Induction:
             "rules": self.name,
             "examples": self.examples,
             "seed": self.seed,
-            "relations": {key: value for key, value in self.relations.to_dict().items() if key != "pairs"},
+            "relations": {
+                key: value for key, value in self.relations.to_dict().items() if key != "pairs"
+            },
             "pairs": self.pairs_report(),
             "catalog": [entry.to_dict() for entry in self.catalog.values()],
             "groups": [group.to_dict() for group in self.groups],
             "loose": [item.to_dict() for item in self.loose],
-            "walls": {name: {"objects": share.objects, **{label: share.held[label] for label in CATEGORIES["wall"]},
-                             "written": share.label()} for name, share in sorted(self.walls.items())},
+            "walls": {
+                name: {
+                    "objects": share.objects,
+                    **{label: share.held[label] for label in CATEGORIES["wall"]},
+                    "written": share.label(),
+                }
+                for name, share in sorted(self.walls.items())
+            },
             "room": self.room.to_dict() if self.room else None,
             "room_from": self.room_source,
             "extent": [round(v, 3) for v in self.extent],
-        }  # fmt: skip
+        }
 
 
 # -- inducing -------------------------------------------------------------------------
 
 
-def _support_counts(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[tuple[str, str], tuple[int, int]]:
+def _support_counts(
+    scenes: Sequence[Scene], supports: Sequence[dict[str, str]]
+) -> dict[tuple[str, str], tuple[int, int]]:
     """(upper, lower) -> (scenes where an upper rests on a lower, scenes holding both)."""
     rests: Counter = Counter()
     both: Counter = Counter()
-    for scene, support in zip(scenes, supports):
+    for scene, support in zip(scenes, supports, strict=False):
         types = {o.id: o.type for o in scene.placed_objects()}
         present = set(types.values())
-        rests.update({(types[u], types[l]) for u, l in support.items() if u in types and l in types and types[u] != types[l]})
-        both.update({(u, l) for u in present for l in present if u != l})
+        rests.update(
+            {
+                (types[upper], types[lower])
+                for upper, lower in support.items()
+                if upper in types and lower in types and types[upper] != types[lower]
+            }
+        )
+        both.update({(upper, lower) for upper in present for lower in present if upper != lower})
     return {pair: (count, both[pair]) for pair, count in rests.items()}
 
 
 def carried_routes(
-    related: Sequence[tuple[str, str]], resting: set[tuple[str, str]], counts: dict[tuple[str, str], tuple[int, int]]
+    related: Sequence[tuple[str, str]],
+    resting: set[tuple[str, str]],
+    counts: dict[tuple[str, str], tuple[int, int]],
 ) -> dict[tuple[str, str], tuple[str, str] | None]:
     """Each related pair -> the pair its relation is written between (None: not written).
 
@@ -697,7 +818,7 @@ def carried_routes(
 
 def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[str, WallShare]:
     shares: dict[str, WallShare] = defaultdict(WallShare)
-    for scene, support in zip(scenes, supports):
+    for scene, support in zip(scenes, supports, strict=False):
         if scene.room is None:
             continue
         objects = scene.placed_objects()
@@ -710,7 +831,12 @@ def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[
     return dict(shares)
 
 
-def _anchor(component: set[str], graph: nx.Graph, catalog: dict[str, TypeEntry], counts: dict[str, np.ndarray]) -> str:
+def _anchor(
+    component: set[str],
+    graph: nx.Graph,
+    catalog: dict[str, TypeEntry],
+    counts: dict[str, np.ndarray],
+) -> str:
     """The type of ``component`` whose scenes hold the most of the component's objects
     (module docstring), then related to the most others, then with the largest
     footprint; ``counts``: each type's objects per scene."""
@@ -721,7 +847,12 @@ def _anchor(component: set[str], graph: nx.Graph, catalog: dict[str, TypeEntry],
 
     return max(
         sorted(component),
-        key=lambda t: (covered(t), graph.degree(t), catalog[t].size[0] * catalog[t].size[2], [-ord(c) for c in t]),
+        key=lambda t: (
+            covered(t),
+            graph.degree(t),
+            catalog[t].size[0] * catalog[t].size[2],
+            [-ord(c) for c in t],
+        ),
     )
 
 
@@ -741,7 +872,11 @@ def _tree(component: set[str], graph: nx.Graph, anchor: str) -> dict[str, list[s
 
 
 def _medoid_room(scenes: Sequence[Scene], names: Sequence[str]) -> tuple[Room | None, str | None]:
-    rooms = [(scene.room, name) for scene, name in zip(scenes, names) if scene.room is not None]
+    rooms = [
+        (scene.room, name)
+        for scene, name in zip(scenes, names, strict=False)
+        if scene.room is not None
+    ]
     if not rooms or 2 * len(rooms) < len(scenes):
         return None, None
     extents = np.array([room.extent for room, _ in rooms])
@@ -750,11 +885,15 @@ def _medoid_room(scenes: Sequence[Scene], names: Sequence[str]) -> tuple[Room | 
     return rooms[best]
 
 
-def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0, test: str = "permutation") -> Induction:
+def induce(
+    examples: Sequence[Example], *, name: str = "induced", seed: int = 0, test: str = "permutation"
+) -> Induction:
     """Induce a rule set from ``examples`` (module docstring). ``InputError`` when they
     cannot be learned from (fewer than two, no two objects in one scene)."""
     if len(examples) < 2:
-        raise InputError(f"learning a rule set needs at least 2 example scenes, got {len(examples)}")
+        raise InputError(
+            f"learning a rule set needs at least 2 example scenes, got {len(examples)}"
+        )
     scenes, sources = renamed_scenes(examples)
     names = [example.name for example in examples]
     if not any(scene.placed_objects() for scene in scenes):
@@ -776,19 +915,25 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
     from scenewright.generator import indoor_catalog
 
     shipped = indoor_catalog()
-    catalog = {t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)}
+    catalog = {
+        t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)
+    }
     walls = _walls(scenes, supports)
 
     # Types that rest on others hang off what carries them (each of its carriers: books on
     # desks and on shelves); the others are grouped by their relations.
     lowers: dict[str, list[str]] = defaultdict(list)
-    for upper, lower in sorted(resting, key=lambda pair: (-resting_counts.get(pair, (0, 0))[0], pair)):
+    for upper, lower in sorted(
+        resting, key=lambda pair: (-resting_counts.get(pair, (0, 0))[0], pair)
+    ):
         lowers[upper].append(lower)
     uppers_of: dict[str, list[str]] = defaultdict(list)
     for upper, below in sorted(lowers.items()):
         for lower in below:
             uppers_of[lower].append(upper)
-    routes = carried_routes([(p.a, p.b) for p in relations.pairs if p.related and p.a != p.b], resting, resting_counts)
+    routes = carried_routes(
+        [(p.a, p.b) for p in relations.pairs if p.related and p.a != p.b], resting, resting_counts
+    )
     graph = nx.Graph()
     graph.add_nodes_from(t for t in sorted(catalog) if t not in lowers)
     strength: dict[tuple[str, str], float] = {}
@@ -814,16 +959,33 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
         placements, clusters, outliers = placements_of(instances)
         orphans = None
         if not carried and instances.orphans.any():
-            orphans = Loose(child, Counter(instances.orphans.tolist()), walls.get(child, WallShare()).label(), parent)
+            orphans = Loose(
+                child,
+                Counter(instances.orphans.tolist()),
+                walls.get(child, WallShare()).label(),
+                parent,
+            )
             loose.append(orphans)
-        below = [] if depth > len(catalog) else (
-            [member(child, c, False, depth + 1) for c in tree.get(child, [])]
-            + [member(child, u, True, depth + 1) for u in uppers_of.get(child, [])]
-        )  # fmt: skip
+        below = (
+            []
+            if depth > len(catalog)
+            else (
+                [member(child, c, False, depth + 1) for c in tree.get(child, [])]
+                + [member(child, u, True, depth + 1) for u in uppers_of.get(child, [])]
+            )
+        )
         made = Member(
-            child, parent, len(instances.poses), instances.per_parent, placements, clusters, outliers,
-            None if carried else walls.get(child, WallShare()).label(), below, carried,
-        )  # fmt: skip
+            child,
+            parent,
+            len(instances.poses),
+            instances.per_parent,
+            placements,
+            clusters,
+            outliers,
+            None if carried else walls.get(child, WallShare()).label(),
+            below,
+            carried,
+        )
         if orphans is not None:
             orphans.member = made
         return made
@@ -839,32 +1001,68 @@ def induce(examples: Sequence[Example], *, name: str = "induced", seed: int = 0,
         members = [member(anchor, child, False) for child in tree.get(anchor, [])]
         members += [member(anchor, upper, True) for upper in uppers_of.get(anchor, [])]
         tree_pairs = {tuple(sorted((p, c))) for p, cs in tree.items() for c in cs}
-        unwritten = sorted(pair for pair in strength if pair[0] in component and pair not in tree_pairs)
+        unwritten = sorted(
+            pair for pair in strength if pair[0] in component and pair not in tree_pairs
+        )
         written = set(component)
         pending = list(members)
         while pending:
             current = pending.pop()
             written.add(current.type)
             pending += current.children
-        groups.append(Group(_unique(camel(anchor), rule_names), anchor, count_per_scene(anchor),
-                            walls.get(anchor, WallShare()).label(), members, sorted(written), unwritten))  # fmt: skip
+        groups.append(
+            Group(
+                _unique(camel(anchor), rule_names),
+                anchor,
+                count_per_scene(anchor),
+                walls.get(anchor, WallShare()).label(),
+                members,
+                sorted(written),
+                unwritten,
+            )
+        )
     for upper, below in sorted(lowers.items()):
         unsupported = Counter(
-            sum(o.type == upper and not ({types[i] for i in _supporters(o.id, support)} & set(below))
-                for o in scene.placed_objects())
-            for scene, support, types in ((s, sup, {o.id: o.type for o in s.placed_objects()})
-                                          for s, sup in zip(scenes, supports))
-        )  # fmt: skip
+            sum(
+                o.type == upper
+                and not ({types[i] for i in _supporters(o.id, support)} & set(below))
+                for o in scene.placed_objects()
+            )
+            for scene, support, types in (
+                (s, sup, {o.id: o.type for o in s.placed_objects()})
+                for s, sup in zip(scenes, supports, strict=False)
+            )
+        )
         if set(unsupported) != {0}:
-            loose.append(Loose(upper, unsupported, walls.get(upper, WallShare()).label(), " or ".join(below), True))
+            loose.append(
+                Loose(
+                    upper,
+                    unsupported,
+                    walls.get(upper, WallShare()).label(),
+                    " or ".join(below),
+                    True,
+                )
+            )
     loose.sort(key=lambda item: (item.without is not None, item.type))
 
     room, room_source = _medoid_room(scenes, names)
     extents = np.median(np.array([scene.extent for scene in scenes], dtype=float), axis=0)
     ground = _most_common([scene.ground for scene in scenes]) if room is None else "floor"
     return Induction(
-        name=name, examples=names, seed=seed, relations=relations, resting=resting, resting_counts=resting_counts,
+        name=name,
+        examples=names,
+        seed=seed,
+        relations=relations,
+        resting=resting,
+        resting_counts=resting_counts,
         routes=routes,
-        catalog=catalog, groups=groups, loose=loose, walls=walls, room=room, room_source=room_source,
-        extent=(float(extents[0]), float(extents[1])), ground=ground, scenes=len(scenes),
-    )  # fmt: skip
+        catalog=catalog,
+        groups=groups,
+        loose=loose,
+        walls=walls,
+        room=room,
+        room_source=room_source,
+        extent=(float(extents[0]), float(extents[1])),
+        ground=ground,
+        scenes=len(scenes),
+    )

@@ -90,7 +90,11 @@ def label_share(scenes: Sequence[Scene], member: Member, induction: Induction) -
     """The share of ``member``'s objects in ``scenes`` (with a parent) for which one of
     its written placement labels holds relative to the parent; None without any."""
     instances = edge_instances(
-        scenes, [scene_supports(s) for s in scenes], member.parent, member.type, resting_only=member.carried
+        scenes,
+        [scene_supports(s) for s in scenes],
+        member.parent,
+        member.type,
+        resting_only=member.carried,
     )
     placement = {p.labels[0] for p in member.placements if p.labels}
     if len(instances.poses) == 0 or not placement:
@@ -131,19 +135,28 @@ class Check:
 
     def summary(self) -> str:
         differences = [abs(p["examples_both"] - p["generated_both"]) for p in self.pairs]
-        held = [(p["examples_label_holds"], p["generated_label_holds"]) for p in self.pairs
-                if p["examples_label_holds"] is not None and p["generated_label_holds"] is not None]  # fmt: skip
-        text = (f"{self.scenes} scenes generated from it ({self.layouts_ok} laid out ok): per-type counts "
-                f"{self.mean_total_variation:.3f} mean total variation from the examples")  # fmt: skip
+        held = [
+            (p["examples_label_holds"], p["generated_label_holds"])
+            for p in self.pairs
+            if p["examples_label_holds"] is not None and p["generated_label_holds"] is not None
+        ]
+        text = (
+            f"{self.scenes} scenes generated from it ({self.layouts_ok} laid out ok): per-type counts "
+            f"{self.mean_total_variation:.3f} mean total variation from the examples"
+        )
         if differences:
             text += f"; pairs present together {np.mean(differences):.3f} apart on average"
         if held:
-            text += (f"; placement labels hold for {np.mean([g for _, g in held]):.0%} of related objects "
-                     f"({np.mean([e for e, _ in held]):.0%} in the examples)")  # fmt: skip
+            text += (
+                f"; placement labels hold for {np.mean([g for _, g in held]):.0%} of related objects "
+                f"({np.mean([e for e, _ in held]):.0%} in the examples)"
+            )
         return text
 
 
-def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count: int, seed: int) -> Check:
+def compare(
+    induction: Induction, examples: Sequence[Scene], rules: Rules, count: int, seed: int
+) -> Check:
     """Generate ``count`` scenes from ``rules`` and compare them with ``examples``
     (the examples' scenes with the induced type names)."""
     from scenewright.api import build_scene
@@ -151,25 +164,35 @@ def compare(induction: Induction, examples: Sequence[Scene], rules: Rules, count
     generated = [build_scene(rules, check_seed_of(seed, k)) for k in range(count)]
     types = []
     for type_name in induction.catalog:
-        seen, made = count_distribution(examples, type_name), count_distribution(generated, type_name)
-        types.append({
-            "type": type_name,
-            "examples": {str(k): round(v, 4) for k, v in seen.items()},
-            "generated": {str(k): round(v, 4) for k, v in made.items()},
-            "total_variation": round(total_variation(seen, made), 4),
-        })  # fmt: skip
+        seen, made = (
+            count_distribution(examples, type_name),
+            count_distribution(generated, type_name),
+        )
+        types.append(
+            {
+                "type": type_name,
+                "examples": {str(k): round(v, 4) for k, v in seen.items()},
+                "generated": {str(k): round(v, 4) for k, v in made.items()},
+                "total_variation": round(total_variation(seen, made), 4),
+            }
+        )
     pairs = []
     for (first, second), member in sorted(induction.written_pairs().items()):
-        seen_held, made_held = label_share(examples, member, induction), label_share(generated, member, induction)
-        pairs.append({
-            "parent": member.parent,
-            "child": member.type,
-            "labels": sorted({p.labels[0] for p in member.placements if p.labels}),
-            "examples_both": round(_share_holding_both(examples, first, second), 4),
-            "generated_both": round(_share_holding_both(generated, first, second), 4),
-            "examples_label_holds": None if seen_held is None else round(seen_held, 4),
-            "generated_label_holds": None if made_held is None else round(made_held, 4),
-        })  # fmt: skip
+        seen_held, made_held = (
+            label_share(examples, member, induction),
+            label_share(generated, member, induction),
+        )
+        pairs.append(
+            {
+                "parent": member.parent,
+                "child": member.type,
+                "labels": sorted({p.labels[0] for p in member.placements if p.labels}),
+                "examples_both": round(_share_holding_both(examples, first, second), 4),
+                "generated_both": round(_share_holding_both(generated, first, second), 4),
+                "examples_label_holds": None if seen_held is None else round(seen_held, 4),
+                "generated_label_holds": None if made_held is None else round(made_held, 4),
+            }
+        )
     return Check(count, sum(scene.layout.ok for scene in generated), types, pairs)
 
 
@@ -189,9 +212,13 @@ class InducedContext:
     unsearched: list[str]
 
     def to_dict(self, path: Path | None) -> dict:
-        document = {"file": os.fspath(path) if self.fit is not None and path is not None else None,
-                    "examples": self.used, "left_out": self.left_out, "ambiguous": self.ambiguous,
-                    "unsearched": self.unsearched}  # fmt: skip
+        document = {
+            "file": os.fspath(path) if self.fit is not None and path is not None else None,
+            "examples": self.used,
+            "left_out": self.left_out,
+            "ambiguous": self.ambiguous,
+            "unsearched": self.unsearched,
+        }
         if self.fit is not None:
             document.update(self.fit.context.fit or {})
         else:
@@ -200,9 +227,16 @@ class InducedContext:
 
 
 def learned_context(
-    rules: Rules, names: Sequence[str], scenes: Sequence[Scene], *, seed: int, rounds: int = ROUNDS,
-    layouts: int = LAYOUTS, replays: int = CONTEXT_REPLAYS, progress: Callable[[str], object] = lambda message: None,
-) -> InducedContext:  # fmt: skip
+    rules: Rules,
+    names: Sequence[str],
+    scenes: Sequence[Scene],
+    *,
+    seed: int,
+    rounds: int = ROUNDS,
+    layouts: int = LAYOUTS,
+    replays: int = CONTEXT_REPLAYS,
+    progress: Callable[[str], object] = lambda message: None,
+) -> InducedContext:
     """A context fitted to ``scenes`` (named ``names``) against ``rules``, each scene
     related as one of its best derivations relates it (``measured_example_layout``);
     scenes no derivation makes, or with too many to search, are left out, and once the
@@ -211,13 +245,15 @@ def learned_context(
     laid, left_out, ambiguous, unsearched = [], [], [], []
     budget = ReplayBudget(replays)
     every = max(1, len(scenes) // 10)
-    for index, (name, scene) in enumerate(zip(names, scenes)):
+    for index, (name, scene) in enumerate(zip(names, scenes, strict=False)):
         try:
             graphs = measured_derivation_graphs(rules, scene, name, budget)
         except BudgetSpent:
             unsearched = list(names[index:])
-            progress(f"context: the derivation searches spent their {replays} replays; "
-                     f"{len(unsearched)} of {len(scenes)} examples not searched")  # fmt: skip
+            progress(
+                f"context: the derivation searches spent their {replays} replays; "
+                f"{len(unsearched)} of {len(scenes)} examples not searched"
+            )
             break
         except AmbiguousExample:
             ambiguous.append(name)
@@ -227,8 +263,10 @@ def learned_context(
         else:
             left_out.append(name)
         if (index + 1) % every == 0 or index + 1 == len(scenes):
-            progress(f"context: searched the derivations of {index + 1} of {len(scenes)} examples ({len(laid)} made "
-                     "by the induced rules)")  # fmt: skip
+            progress(
+                f"context: searched the derivations of {index + 1} of {len(scenes)} examples ({len(laid)} made "
+                "by the induced rules)"
+            )
     if not laid and (ambiguous or unsearched):
         why = "the induced rules make the examples in too many ways to search for one of them"
         return InducedContext(None, why, 0, left_out, ambiguous, unsearched)
@@ -279,7 +317,9 @@ def learn_rule_set(
         trial.write_text(text, encoding="utf-8")
         errors = [d for d in check_rules(trial) if d.is_error]
         if errors:
-            raise InducedRulesError("the induced rules do not pass the checks:\n" + "\n".join(str(d) for d in errors))
+            raise InducedRulesError(
+                "the induced rules do not pass the checks:\n" + "\n".join(str(d) for d in errors)
+            )
         rules = load_rules(trial)
         scenes, _ = renamed_scenes(examples)
         if check > 0:
@@ -289,7 +329,9 @@ def learn_rule_set(
         fitted = None
         if context:
             progress(f"fitting a context: searching the derivations of {len(scenes)} examples")
-            fitted = learned_context(rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts, progress=progress)
+            fitted = learned_context(
+                rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts, progress=progress
+            )
     written = []
     write(output, text)
     written.append(output)
@@ -298,8 +340,12 @@ def learn_rule_set(
         write(sidecar, fitted.fit.context.to_json())
         written.append(sidecar)
     if report is not None:
-        document = {"output": os.fspath(output), **induction.to_dict(), "check": result.to_dict() if result else None,
-                    "context": fitted.to_dict(sidecar) if fitted is not None else None}  # fmt: skip
+        document = {
+            "output": os.fspath(output),
+            **induction.to_dict(),
+            "check": result.to_dict() if result else None,
+            "context": fitted.to_dict(sidecar) if fitted is not None else None,
+        }
         write(report, json.dumps(document, indent=1, ensure_ascii=False) + "\n")
         written.append(report)
     return Learned(induction, text, result, fitted, written)

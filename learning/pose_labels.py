@@ -48,18 +48,32 @@ from scenewright.generator.layout import measure_layout
 CATEGORIES: dict[str, tuple[str, ...]] = {
     "support": ("OnTopOfFrontEdge", "OnTopOfMiddle", "OnTopOfEdge", "OnTopOf"),
     "near": ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight", "NextTo"),
-    "facing": ("FacingTowards", "FacingAwayFrom", "FacingSameDirection", "FacingOpposite", "FacingOrthogonalDirection"),
+    "facing": (
+        "FacingTowards",
+        "FacingAwayFrom",
+        "FacingSameDirection",
+        "FacingOpposite",
+        "FacingOrthogonalDirection",
+    ),
     "turn": ("FacingSameDirection", "FacingOpposite", "FacingOrthogonalDirection"),
     "alignment": ("AlignedWith",),
     "wall": ("InCorner", "AgainstWall"),
 }
 #: The family each category's labels must belong to (checked against the registry at import).
-_FAMILIES = {"support": "support", "near": "next_to", "facing": "facing", "turn": "facing", "alignment": "alignment",
-             "wall": "wall"}  # fmt: skip
+_FAMILIES = {
+    "support": "support",
+    "near": "next_to",
+    "facing": "facing",
+    "turn": "facing",
+    "alignment": "alignment",
+    "wall": "wall",
+}
 for _category, _labels in CATEGORIES.items():
     for _label in _labels:
         if RELATIONS[_label].family != _FAMILIES[_category]:
-            raise ValueError(f"{_label} is registered in family {RELATIONS[_label].family}, not {_FAMILIES[_category]}")
+            raise ValueError(
+                f"{_label} is registered in family {RELATIONS[_label].family}, not {_FAMILIES[_category]}"
+            )
 
 #: The categories measured between a child and its parent, by whether the child rests on it.
 RESTING_CATEGORIES = ("support", "turn")
@@ -86,13 +100,21 @@ def pair_holds(
     graph = SceneGraph(params=SceneParams(extent=(_GROUND, _GROUND)))
     parent = graph.add_node(_entry("parent", parent_size))
     child = graph.add_node(_entry("child", child_size))
-    labels = [label for category in (RESTING_CATEGORIES if resting else STANDING_CATEGORIES) for label in CATEGORIES[category]]
+    labels = [
+        label
+        for category in (RESTING_CATEGORIES if resting else STANDING_CATEGORIES)
+        for label in CATEGORIES[category]
+    ]
     for label in labels:
         graph.add_relation(child, parent, label)
     height = float(parent_size[1]) if resting else 0.0
     holds = {label: np.zeros(len(poses), dtype=bool) for label in labels}
     for k, (x, z, yaw) in enumerate(np.asarray(poses, dtype=float).reshape(-1, 3)):
-        result = measure_layout(graph, {parent: Pose(0.0, 0.0, 0.0, 0.0), child: Pose(float(x), height, float(z), float(yaw))}, {})
+        result = measure_layout(
+            graph,
+            {parent: Pose(0.0, 0.0, 0.0, 0.0), child: Pose(float(x), height, float(z), float(yaw))},
+            {},
+        )
         for relation in result.relations:
             holds[relation.label][k] = bool(relation.satisfied)
     return holds
@@ -116,15 +138,22 @@ def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     def gap(wall, x: float, z: float, yaw: float) -> float | None:
         """The gap between the footprint and ``wall``, None when the object is not beside it."""
         u, v = wall.to_wall(x, z)
-        reach_u, reach_v = footprint_reach(yaw - wall.facing_yaw, obj.size[0], obj.size[2])  # along it, off it
+        reach_u, reach_v = footprint_reach(
+            yaw - wall.facing_yaw, obj.size[0], obj.size[2]
+        )  # along it, off it
         if u + reach_u < 0.0 or u - reach_u > wall.length:
             return None
         return v - reach_v
 
     # The walls it was set against, as it stands (a few centimetres off, or a turned box's
     # corners a little into one); then turned (a round thing) and flush.
-    near = sorted(((abs(g), k) for k, wall in enumerate(room.walls) if (g := gap(wall, x, z, yaw)) is not None
-                   and abs(g) <= HAND_GAP))  # fmt: skip
+    near = sorted(
+        (
+            (abs(g), k)
+            for k, wall in enumerate(room.walls)
+            if (g := gap(wall, x, z, yaw)) is not None and abs(g) <= HAND_GAP
+        )
+    )
     if not near:
         return x, z, yaw
     if max(obj.size[0], obj.size[2]) <= SQUARE_ASPECT * min(obj.size[0], obj.size[2]):
@@ -138,7 +167,9 @@ def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     return x, z, yaw
 
 
-def wall_holds(objects: Sequence[SceneObject], room: Room, resting: set[str]) -> dict[str, set[str]]:
+def wall_holds(
+    objects: Sequence[SceneObject], room: Room, resting: set[str]
+) -> dict[str, set[str]]:
     """Object id -> the wall labels of ``CATEGORIES["wall"]`` that hold for it against
     some wall of ``room`` (the layout chooses the wall, as for ``AgainstWall some
     wall``), standing as its placer meant it (``hand_placed``). Objects in ``resting``
@@ -167,7 +198,11 @@ def wall_holds(objects: Sequence[SceneObject], room: Room, resting: set[str]) ->
 
 
 def most_specific(
-    category: str, holds: dict[str, np.ndarray], centre: int, members: np.ndarray, share: float = MAJORITY
+    category: str,
+    holds: dict[str, np.ndarray],
+    centre: int,
+    members: np.ndarray,
+    share: float = MAJORITY,
 ) -> str | None:
     """The first label of ``category`` that holds at point ``centre`` and for at least
     ``share`` of ``members`` (indices into the (n,) arrays of ``holds``), or None."""

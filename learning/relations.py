@@ -458,17 +458,23 @@ class TypePoses:
     holders: np.ndarray
 
 
-def type_poses(scenes: Sequence[Scene], names: Sequence[dict[str, str]] | None = None) -> dict[str, TypePoses]:
+def type_poses(
+    scenes: Sequence[Scene], names: Sequence[dict[str, str]] | None = None
+) -> dict[str, TypePoses]:
     """Every placed object type of ``scenes`` with its poses, in type order; with
     ``names`` (per scene, object id -> name), every name instead (the roles' names)."""
     per_type: dict[str, list[list[tuple[float, ...]]]] = defaultdict(lambda: [[] for _ in scenes])
     for index, scene in enumerate(scenes):
         groups = holding_groups(scene)
-        numbers = {group: number for number, group in enumerate(sorted(set(groups.values()) - {""}))}
+        numbers = {
+            group: number for number, group in enumerate(sorted(set(groups.values()) - {""}))
+        }
         for obj in scene.placed_objects():
             name = obj.type if names is None else names[index][obj.id]
             holder = numbers.get(groups[obj.id], -1)
-            per_type[name][index].append((obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2], holder))
+            per_type[name][index].append(
+                (obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2], holder)
+            )
     return {name: padded(per_type[name]) for name in sorted(per_type)}
 
 
@@ -505,7 +511,10 @@ def object_roles(scene: Scene) -> dict[str, Role]:
     another has that one as parent, and no group)."""
     groups = holding_groups(scene)
     kinds = {obj.id: obj.type for obj in scene.objects}
-    return {obj.id: Role(obj.type, kinds[groups[obj.id]] if groups[obj.id] else "") for obj in scene.placed_objects()}
+    return {
+        obj.id: Role(obj.type, kinds[groups[obj.id]] if groups[obj.id] else "")
+        for obj in scene.placed_objects()
+    }
 
 
 def holding_groups(scene: Scene) -> dict[str, str]:
@@ -529,13 +538,20 @@ def path_poses(scenes: Sequence[Scene]) -> dict[str, TypePoses]:
     for index, scene in enumerate(scenes):
         for path in scene.paths:
             corners = np.asarray(path.points, dtype=float)
-            for start, end in zip(corners[:-1], corners[1:]):
+            for start, end in zip(corners[:-1], corners[1:], strict=False):
                 length = float(np.hypot(*(end - start)))
-                points = start + np.arange(0.0, length, PATH_STEP)[:, None] / max(length, 1e-12) * (end - start)
+                points = start + np.arange(0.0, length, PATH_STEP)[:, None] / max(length, 1e-12) * (
+                    end - start
+                )
                 yaw = math.atan2(end[0] - start[0], end[1] - start[1])  # forward is +z at yaw 0
-                rows = np.column_stack([points, np.tile([yaw, path.width, PATH_STEP, -1], (len(points), 1))])
+                rows = np.column_stack(
+                    [points, np.tile([yaw, path.width, PATH_STEP, -1], (len(points), 1))]
+                )
                 per_type[f"{path.type} path"][index].append(rows)
-    return {name: padded([np.vstack(chunks) if chunks else () for chunks in per_type[name]]) for name in sorted(per_type)}
+    return {
+        name: padded([np.vstack(chunks) if chunks else () for chunks in per_type[name]])
+        for name in sorted(per_type)
+    }
 
 
 def holding_both(first: TypePoses, second: TypePoses, same: bool) -> np.ndarray:
@@ -554,9 +570,12 @@ def relative_poses(centres: np.ndarray, others: np.ndarray) -> np.ndarray:
 
 
 def nearest_indices(
-    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None,
+    centres: np.ndarray,
+    others: TypePoses,
+    scenes: np.ndarray,
+    left_out: np.ndarray | None = None,
     holders: np.ndarray | None = None,
-) -> np.ndarray:  # fmt: skip
+) -> np.ndarray:
     """The index of the object of ``others`` nearest each of ``centres`` (n, 3) in the
     scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given, and only
     among those the group ``holders[k]`` holds when given -> (n,)."""
@@ -567,14 +586,19 @@ def nearest_indices(
         valid[rows, left_out] = False
     if holders is not None:
         valid &= others.holders[scenes] == holders[:, None]
-    distance = np.where(valid, np.hypot(*(candidates[..., :2] - centres[:, None, :2]).transpose(2, 0, 1)), np.inf)
+    distance = np.where(
+        valid, np.hypot(*(candidates[..., :2] - centres[:, None, :2]).transpose(2, 0, 1)), np.inf
+    )
     return np.argmin(distance, axis=1)
 
 
 def nearest_objects(
-    centres: np.ndarray, others: TypePoses, scenes: np.ndarray, left_out: np.ndarray | None = None,
+    centres: np.ndarray,
+    others: TypePoses,
+    scenes: np.ndarray,
+    left_out: np.ndarray | None = None,
     holders: np.ndarray | None = None,
-) -> np.ndarray:  # fmt: skip
+) -> np.ndarray:
     """The pose (x, z, yaw) of the object of ``others`` nearest each of ``centres`` (n,
     3), in the scene ``scenes[k]``, leaving out its object ``left_out[k]`` when given and
     only among those the group ``holders[k]`` holds when given -> (n, 3)."""
@@ -591,9 +615,14 @@ def fellows_held(frame: TypePoses, *others: TypePoses) -> np.ndarray:
 
 
 def nearest_poses(
-    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, same: bool,
-    rng: np.random.Generator, chosen: np.ndarray | None = None,
-) -> np.ndarray:  # fmt: skip
+    first: TypePoses,
+    second: TypePoses,
+    a_scenes: np.ndarray,
+    b_scenes: np.ndarray,
+    same: bool,
+    rng: np.random.Generator,
+    chosen: np.ndarray | None = None,
+) -> np.ndarray:
     """One pose per scene: a random a of scene ``a_scenes[k]`` (the ``chosen[k]``-th
     when given) and the nearest b of scene ``b_scenes[k]`` in its frame -> (n, 4). When
     ``same``, the a itself is no candidate in its own scene, and in another scene one
@@ -606,7 +635,9 @@ def nearest_poses(
     return relative_poses(centres, nearest[:, None])[:, 0]
 
 
-def counterparts(others: TypePoses, scenes: np.ndarray, chosen: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+def counterparts(
+    others: TypePoses, scenes: np.ndarray, chosen: np.ndarray, rng: np.random.Generator
+) -> np.ndarray:
     """For two objects of one type: the object of scene ``scenes[k]`` left out as the
     counterpart of the ``chosen[k]``-th a (the a itself in its own scene) -> (n,). The
     object of the same index, which in a scene made from rules plays the same part (the
@@ -632,7 +663,9 @@ def energy_permutations(distances: np.ndarray, labels: np.ndarray) -> tuple[floa
     n = int(labels[0].sum())
     m = labels.shape[1] - n
     row_sums = distances.sum(axis=1)
-    first_first = np.einsum("kn,nk->k", labels, distances @ labels.T)  # sum of |X - X'| per labelling
+    first_first = np.einsum(
+        "kn,nk->k", labels, distances @ labels.T
+    )  # sum of |X - X'| per labelling
     first_second = labels @ row_sums - first_first
     second_second = row_sums.sum() - 2.0 * first_second - first_first
     energy = 2.0 * first_second / (n * m) - first_first / n**2 - second_second / m**2
@@ -699,7 +732,9 @@ def flip_test(
     (each pair swapped with probability 1/2), and ``within``'s tightness."""
     pairs = len(within) // 2
     distances = scaled_distances(np.vstack([within, across]))  # (4K, 4K)
-    kept = np.vstack([np.ones(pairs, dtype=bool), rng.random((permutations, pairs)) >= 0.5])  # row 0: as observed
+    kept = np.vstack(
+        [np.ones(pairs, dtype=bool), rng.random((permutations, pairs)) >= 0.5]
+    )  # row 0: as observed
     kept = np.hstack([kept, kept])  # a flip swaps both scenes' b's: rows k and K + k
     labels = np.hstack([kept, ~kept]).astype(float)
     energy, p_value = energy_permutations(distances, labels)
@@ -737,22 +772,35 @@ def pairing_test(poses: np.ndarray, rng: np.random.Generator) -> tuple[float, fl
     spread = distances.mean()  # mean |Y - Y'|
     energy = 2.0 * to_all - among - spread
     observed = energy[0]
-    as_large = np.count_nonzero(energy >= observed - 1e-12 * abs(observed))  # the identity counts itself
+    as_large = np.count_nonzero(
+        energy >= observed - 1e-12 * abs(observed)
+    )  # the identity counts itself
     tightness = 1.0 - among[0] / spread if spread > 0 else 0.0
     return float(observed), float(as_large / len(pairings)), float(tightness)
 
 
-def paired_outcome(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator, alpha: float) -> Outcome:
+def paired_outcome(
+    first: TypePoses,
+    second: TypePoses,
+    same: bool,
+    together: np.ndarray,
+    rng: np.random.Generator,
+    alpha: float,
+) -> Outcome:
     """The scene-pairing test of a pair held by the few scenes ``together``."""
     n = len(together)
     chosen = np.floor(rng.random(n) * first.counts[together]).astype(int)  # one a per scene
     a_scenes, b_scenes = np.repeat(together, n), np.tile(together, n)
     poses = nearest_poses(first, second, a_scenes, b_scenes, same, rng, chosen=np.repeat(chosen, n))
     energy, p_value, tightness = pairing_test(poses.reshape(n, n, -1), rng)
-    return Outcome(p_value <= alpha and tightness >= MIN_PAIRED_TIGHTNESS, energy, p_value, n * n, n, tightness)
+    return Outcome(
+        p_value <= alpha and tightness >= MIN_PAIRED_TIGHTNESS, energy, p_value, n * n, n, tightness
+    )
 
 
-def framed(first: TypePoses, second: TypePoses, together: np.ndarray) -> tuple[TypePoses, TypePoses]:
+def framed(
+    first: TypePoses, second: TypePoses, together: np.ndarray
+) -> tuple[TypePoses, TypePoses]:
     """The two types with the frame first: the one with fewer objects in the scenes
     ``together`` (``first`` on a tie; module docstring)."""
     if second.counts[together].sum() < first.counts[together].sum():
@@ -760,7 +808,9 @@ def framed(first: TypePoses, second: TypePoses, together: np.ndarray) -> tuple[T
     return first, second
 
 
-def pair_poses(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+def pair_poses(
+    first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator
+) -> tuple[np.ndarray, np.ndarray]:
     """The within- and across-scene poses of the scene-pair test (module docstring) on
     the scenes ``together``, at most ``MAX_SCENES`` of them: (2K, 4) each, the pose of
     pair k's first scene in row k and of its second in row K + k."""
@@ -768,13 +818,19 @@ def pair_poses(first: TypePoses, second: TypePoses, same: bool, together: np.nda
     pairs = len(order) // 2
     ones, twos = order[:pairs], order[pairs : 2 * pairs]
     if same:  # one index for both scenes of a pair: each a's counterpart is left out in the other
-        index = np.floor(rng.random(pairs) * np.minimum(first.counts[ones], first.counts[twos])).astype(int)
+        index = np.floor(
+            rng.random(pairs) * np.minimum(first.counts[ones], first.counts[twos])
+        ).astype(int)
         chosen = np.concatenate([index, index])
     else:
-        chosen = np.floor(rng.random(2 * pairs) * first.counts[np.concatenate([ones, twos])]).astype(int)
+        chosen = np.floor(
+            rng.random(2 * pairs) * first.counts[np.concatenate([ones, twos])]
+        ).astype(int)
     a_scenes = np.concatenate([ones, twos])
     within = nearest_poses(first, second, a_scenes, a_scenes, same, rng, chosen=chosen)
-    across = nearest_poses(first, second, a_scenes, np.concatenate([twos, ones]), same, rng, chosen=chosen)
+    across = nearest_poses(
+        first, second, a_scenes, np.concatenate([twos, ones]), same, rng, chosen=chosen
+    )
     return within, across
 
 
@@ -787,9 +843,14 @@ def footprint_gaps(pose: np.ndarray, a_sizes: np.ndarray, b_sizes: np.ndarray) -
 
 
 def nearest_next_to(
-    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
+    first: TypePoses,
+    second: TypePoses,
+    a_scenes: np.ndarray,
+    b_scenes: np.ndarray,
+    chosen: np.ndarray,
+    same: bool,
     rng: np.random.Generator,
-) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+) -> tuple[np.ndarray, np.ndarray]:
     """For the a's ``first.poses[a_scenes, chosen]``: the pose of the nearest b of the
     scene ``b_scenes[k]`` in a's frame (n, 4), and whether it stands next to it (n,)
     (when ``same``, the a's ``counterparts`` are no candidates)."""
@@ -797,7 +858,10 @@ def nearest_next_to(
     left_out = counterparts(second, b_scenes, chosen, rng) if same else None
     index = nearest_indices(centres, second, b_scenes, left_out)
     pose = relative_poses(centres, second.poses[b_scenes, index][:, None])[:, 0]
-    next_to = footprint_gaps(pose, first.footprints[a_scenes, chosen], second.footprints[b_scenes, index]) <= NEXT_TO_DISTANCE
+    next_to = (
+        footprint_gaps(pose, first.footprints[a_scenes, chosen], second.footprints[b_scenes, index])
+        <= NEXT_TO_DISTANCE
+    )
     return pose, next_to
 
 
@@ -805,14 +869,21 @@ def at_pose(pose: np.ndarray, reference: np.ndarray) -> np.ndarray:
     """Whether relative poses (..., 4) stand within ``FIXED_OFFSET`` and ``FIXED_TURN`` of
     ``reference`` poses (broadcast against them)."""
     turn = np.arctan2(pose[..., 3], pose[..., 2]) - np.arctan2(reference[..., 3], reference[..., 2])
-    close = np.hypot(pose[..., 0] - reference[..., 0], pose[..., 1] - reference[..., 1]) <= FIXED_OFFSET
+    close = (
+        np.hypot(pose[..., 0] - reference[..., 0], pose[..., 1] - reference[..., 1]) <= FIXED_OFFSET
+    )
     return close & (np.abs(np.angle(np.exp(1j * turn))) <= FIXED_TURN)
 
 
 def share_at_one_pose(
-    first: TypePoses, second: TypePoses, a_scenes: np.ndarray, b_scenes: np.ndarray, chosen: np.ndarray, same: bool,
+    first: TypePoses,
+    second: TypePoses,
+    a_scenes: np.ndarray,
+    b_scenes: np.ndarray,
+    chosen: np.ndarray,
+    same: bool,
     rng: np.random.Generator,
-) -> float:  # fmt: skip
+) -> float:
     """The share of the a's ``first.poses[a_scenes, chosen]`` whose nearest b of the scene
     ``b_scenes[k]`` stands next to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of the
     median of those poses in a's frame (``nearest_next_to``)."""
@@ -820,7 +891,9 @@ def share_at_one_pose(
     return float(np.mean(at_pose(pose, np.median(pose, axis=0)) & next_to))
 
 
-def fixed_arrangement(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> bool:
+def fixed_arrangement(
+    first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator
+) -> bool:
     """Whether the pair is a fixed arrangement (module docstring) in the scenes
     ``together`` (at most ``MAX_SCENES`` of them, in a random cycle): the b nearest a
     random a stands next to it at one pose in at least ``FIXED_SHARE`` of them, and so
@@ -829,7 +902,10 @@ def fixed_arrangement(first: TypePoses, second: TypePoses, same: bool, together:
     chosen = np.floor(rng.random(len(scenes)) * first.counts[scenes]).astype(int)
     if share_at_one_pose(first, second, scenes, scenes, chosen, same, rng) < FIXED_SHARE:
         return False
-    return share_at_one_pose(first, second, scenes, np.roll(scenes, -1), chosen, same, rng) >= FIXED_SHARE
+    return (
+        share_at_one_pose(first, second, scenes, np.roll(scenes, -1), chosen, same, rng)
+        >= FIXED_SHARE
+    )
 
 
 def surrounds(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray) -> bool:
@@ -841,8 +917,13 @@ def surrounds(first: TypePoses, second: TypePoses, same: bool, together: np.ndar
 
 
 def share_at_some_pose(
-    first: TypePoses, second: TypePoses, scenes: np.ndarray, chosen: np.ndarray, same: bool, rng: np.random.Generator
-) -> float:  # fmt: skip
+    first: TypePoses,
+    second: TypePoses,
+    scenes: np.ndarray,
+    chosen: np.ndarray,
+    same: bool,
+    rng: np.random.Generator,
+) -> float:
     """The share of the a's ``first.poses[scenes, chosen]`` whose nearest b stands next
     to it and within ``FIXED_OFFSET`` and ``FIXED_TURN`` of where some b stands about the
     a of the next scene (``np.roll(scenes, -1)``, its a ``np.roll(chosen, -1)``), both in
@@ -857,7 +938,9 @@ def share_at_some_pose(
     return float(np.mean(matched & next_to))
 
 
-def surrounding_arrangement(first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator) -> bool:
+def surrounding_arrangement(
+    first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator
+) -> bool:
     """Whether a's b's stand about it at the same places from scene to scene, with too
     few scenes for the test (module docstring, "Chairs around a table"): fewer than
     ``PAIR_SCENES`` scenes, an a surrounded by two or more b's in most (``surrounds``),
@@ -870,7 +953,9 @@ def surrounding_arrangement(first: TypePoses, second: TypePoses, same: bool, tog
     return share_at_some_pose(first, second, scenes, chosen, same, rng) >= FIXED_SHARE
 
 
-def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+def permutation_outcome(
+    first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float
+) -> Outcome:
     """The permutation test of one pair (module docstring): on pairs of scenes, on
     halves of them when they are fewer than ``PAIR_SCENES``, by pairing scenes when
     fewer than ``MIN_SCENES``; a pair it does not find is related when it is a fixed
@@ -884,25 +969,35 @@ def permutation_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np
     if outcome.p_value <= alpha and len(together) >= PAIR_SCENES:
         strength, error = pair_strength(first, second, same, together, outcome.strength, rng)
         floor = MIN_LOCAL_TIGHTNESS if outcome.poses >= LOCAL_POSES else MIN_TIGHTNESS
-        outcome = replace(outcome, related=strength - STRENGTH_ERRORS * error >= floor, strength=strength)
+        outcome = replace(
+            outcome, related=strength - STRENGTH_ERRORS * error >= floor, strength=strength
+        )
     if not outcome.related and (
-        fixed_arrangement(first, second, same, together, rng) or surrounding_arrangement(first, second, same, together, rng)
+        fixed_arrangement(first, second, same, together, rng)
+        or surrounding_arrangement(first, second, same, together, rng)
     ):
         return replace(outcome, related=True, fixed=True)
     return outcome
 
 
 def pair_strength(
-    first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, tested: float, rng: np.random.Generator
-) -> tuple[float, float]:  # fmt: skip
+    first: TypePoses,
+    second: TypePoses,
+    same: bool,
+    together: np.ndarray,
+    tested: float,
+    rng: np.random.Generator,
+) -> tuple[float, float]:
     """The strength of a pair the test found at its level (module docstring,
     "Strength"): the tightness of ``STRENGTH_DRAWS`` draws of scene pairs and a's
     averaged (``tested``, the tightness of the tested draw, among them), in the frame of
     ``first`` and, for two types, in that of ``second``: the larger of the two; and the
     standard error of that mean over its draws."""
+
     def averaged(frame: TypePoses, other: TypePoses, known: list[float]) -> tuple[float, float]:
         draws = known + [
-            sample_tightness(*pair_poses(frame, other, same, together, rng)) for _ in range(STRENGTH_DRAWS - len(known))
+            sample_tightness(*pair_poses(frame, other, same, together, rng))
+            for _ in range(STRENGTH_DRAWS - len(known))
         ]
         return float(np.mean(draws)), float(np.std(draws, ddof=1) / math.sqrt(len(draws)))
 
@@ -911,7 +1006,12 @@ def pair_strength(
 
 
 def tested_outcome(
-    first: TypePoses, second: TypePoses, same: bool, together: np.ndarray, rng: np.random.Generator, alpha: float
+    first: TypePoses,
+    second: TypePoses,
+    same: bool,
+    together: np.ndarray,
+    rng: np.random.Generator,
+    alpha: float,
 ) -> Outcome:
     """The permutation test's verdict on the pair, ``first`` its frame, held by the
     scenes ``together``."""
@@ -928,16 +1028,27 @@ def tested_outcome(
         across = nearest_poses(first, second, shuffled, np.roll(shuffled, -1), same, rng)
         energy, p_value, strength = energy_test(within, across, PERMUTATIONS, rng)
     floor = MIN_LOCAL_TIGHTNESS if len(within) >= LOCAL_POSES else MIN_TIGHTNESS
-    return Outcome(p_value <= alpha and strength >= floor, energy, p_value, len(within), len(together), strength)
+    return Outcome(
+        p_value <= alpha and strength >= floor,
+        energy,
+        p_value,
+        len(within),
+        len(together),
+        strength,
+    )
 
 
-def all_positions(first: TypePoses, second: TypePoses, same: bool, scenes: np.ndarray) -> np.ndarray:
+def all_positions(
+    first: TypePoses, second: TypePoses, same: bool, scenes: np.ndarray
+) -> np.ndarray:
     """The (x, z) of every b in the frame of every a of the same scene, over ``scenes``
     (an object is not paired with itself) -> (n, 2)."""
     centres = first.poses[scenes]  # (S, Ka, 3)
     others = second.poses[scenes]  # (S, Kb, 3)
     ka, kb = centres.shape[1], others.shape[1]
-    relative = relative_poses(centres.reshape(-1, 3), np.repeat(others, ka, axis=0))[..., :2]  # (S*Ka, Kb, 2)
+    relative = relative_poses(centres.reshape(-1, 3), np.repeat(others, ka, axis=0))[
+        ..., :2
+    ]  # (S*Ka, Kb, 2)
     valid = (np.arange(ka)[None, :, None] < first.counts[scenes][:, None, None]) & (
         np.arange(kb)[None, None, :] < second.counts[scenes][:, None, None]
     )
@@ -957,7 +1068,9 @@ def nearest_neighbour_angles(points: np.ndarray, centres: np.ndarray) -> np.ndar
     first = points[pairs[:, 0]] - points[centres]
     second = points[pairs[:, 1]] - points[centres]
     lengths = np.linalg.norm(first, axis=1) * np.linalg.norm(second, axis=1)
-    cosine = np.divide(np.einsum("ij,ij->i", first, second), lengths, out=np.ones(len(centres)), where=lengths > 0)
+    cosine = np.divide(
+        np.einsum("ij,ij->i", first, second), lengths, out=np.ones(len(centres)), where=lengths > 0
+    )
     return np.arccos(np.clip(cosine, -1.0, 1.0))
 
 
@@ -969,7 +1082,9 @@ def angle_statistic(angles: np.ndarray) -> float:
     return float(np.sqrt(m) * max(np.max(steps - uniform), np.max(uniform - (steps - 1.0 / m))))
 
 
-def angle_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+def angle_outcome(
+    first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float
+) -> Outcome:
     """The angle test of one pair (module docstring); ``alpha`` is not used: the
     threshold 1.628 is the test's own."""
     together = holding_both(first, second, same)
@@ -982,7 +1097,9 @@ def angle_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.rando
     return Outcome(d >= ANGLE_THRESHOLD, d, float(kolmogorov(d)), len(points), len(together), d)
 
 
-def cooccurrence_outcome(first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float) -> Outcome:
+def cooccurrence_outcome(
+    first: TypePoses, second: TypePoses, same: bool, rng: np.random.Generator, alpha: float
+) -> Outcome:
     """Co-occurrence: the share of scenes holding both types."""
     together = holding_both(first, second, same)
     share = len(together) / len(first.counts)
@@ -1111,7 +1228,11 @@ class RelationsResult:
 
     def to_dict(self) -> dict:
         test = TESTS[self.test]
-        settings: dict = {"alpha": self.alpha, "permutations": PERMUTATIONS} if self.test == "permutation" else {}
+        settings: dict = (
+            {"alpha": self.alpha, "permutations": PERMUTATIONS}
+            if self.test == "permutation"
+            else {}
+        )
         if self.test == "angle":
             settings = {"threshold": ANGLE_THRESHOLD, "sample": ANGLE_SAMPLE}
         return {
@@ -1135,15 +1256,22 @@ class RelationsResult:
             header += ("in groups",)
         rows = [
             (
-                pair.a, pair.b, pair.verdict,
+                pair.a,
+                pair.b,
+                pair.verdict,
                 "-" if pair.statistic is None else f"{pair.statistic:.3f}",
                 "-" if pair.p_value is None else f"{pair.p_value:.3g}",
-                str(pair.pairs), str(pair.scenes),
-                *(["-" if pair.strength is None else f"{pair.strength:.3f}"] if test.strength else []),
+                str(pair.pairs),
+                str(pair.scenes),
+                *(
+                    ["-" if pair.strength is None else f"{pair.strength:.3f}"]
+                    if test.strength
+                    else []
+                ),
                 *([" / ".join(group or "-" for group in pair.groups)] if grouped else []),
             )
             for pair in self.pairs
-        ]  # fmt: skip
+        ]
         widths = [max(len(row[k]) for row in [header, *rows]) for k in range(len(header))]
         found = sum(pair.related for pair in self.pairs)
         lines = [
@@ -1152,8 +1280,10 @@ class RelationsResult:
         ]
         for k, row in enumerate([header, *rows]):
             cells = [
-                cell.ljust(width) if column < 3 or column == len(row) - 1 and grouped else cell.rjust(width)
-                for column, (cell, width) in enumerate(zip(row, widths))
+                cell.ljust(width)
+                if column < 3 or column == len(row) - 1 and grouped
+                else cell.rjust(width)
+                for column, (cell, width) in enumerate(zip(row, widths, strict=False))
             ]
             lines.append("  ".join(cells).rstrip())
             if k == 0:
@@ -1169,9 +1299,13 @@ def pair_stream(seed: int, *names: str) -> np.random.Generator:
 
 
 def composed_poses(
-    frame: TypePoses, middle: TypePoses, end: TypePoses, together: np.ndarray, rng: np.random.Generator,
+    frame: TypePoses,
+    middle: TypePoses,
+    end: TypePoses,
+    together: np.ndarray,
+    rng: np.random.Generator,
     grouped: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The within- and composed poses of the test of indirectness (module docstring) on
     the scenes ``together`` holding all three types, at most ``MAX_SCENES`` of them, in
     pairs of scenes as ``pair_poses`` gives them: per scene a random a, its nearest b,
@@ -1199,16 +1333,22 @@ def composed_poses(
     c_in_b = relative_poses(b, c[:, None])[:, 0]  # (2K, 4)
     swapped = np.roll(c_in_b, pairs, axis=0)  # the c of the pair's other scene, relative to its b
     turn = np.arctan2(swapped[:, 3], swapped[:, 2])
-    moved = np.column_stack([to_world_many(b[:, :2], b[:, 2], swapped[:, None, :2])[:, 0], b[:, 2] + turn])
+    moved = np.column_stack(
+        [to_world_many(b[:, :2], b[:, 2], swapped[:, None, :2])[:, 0], b[:, 2] + turn]
+    )
     other_c, other_b = np.roll(c, pairs, axis=0), np.roll(b, pairs, axis=0)
     along_axes = np.column_stack([b[:, :2] + other_c[:, :2] - other_b[:, :2], other_c[:, 2]])
     within = relative_poses(a, c[:, None])[:, 0]
-    return within, relative_poses(a, moved[:, None])[:, 0], relative_poses(a, along_axes[:, None])[:, 0]
+    return (
+        within,
+        relative_poses(a, moved[:, None])[:, 0],
+        relative_poses(a, along_axes[:, None])[:, 0],
+    )
 
 
 def triangle_scenes(
     poses: dict[str, TypePoses], a: str, c: str, b: str, kinds: dict[str, str] | None = None
-) -> tuple[TypePoses, TypePoses, TypePoses, np.ndarray, np.ndarray | None]:  # fmt: skip
+) -> tuple[TypePoses, TypePoses, TypePoses, np.ndarray, np.ndarray | None]:
     """The scenes a test of (a, c) through b looks at: (frame type, other type, b,
     the scenes holding all three, and per object of the frame type whether its group
     holds a b and a c, or None). The pair's frame is its type with fewer objects in
@@ -1219,15 +1359,25 @@ def triangle_scenes(
     together = np.flatnonzero((first.counts >= 1) & (second.counts >= 1) & (middle.counts >= 1))
     first, second = framed(first, second, together)
     grouped = None
-    if kinds is not None and kinds.get(a, "") != "" and kinds.get(a) == kinds.get(b) == kinds.get(c):
+    if (
+        kinds is not None
+        and kinds.get(a, "") != ""
+        and kinds.get(a) == kinds.get(b) == kinds.get(c)
+    ):
         grouped = fellows_held(first, middle, second)
         together = together[grouped[together].any(axis=1)]
     return first, second, middle, together, grouped
 
 
 def indirect_through(
-    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, alpha: float, kinds: dict[str, str] | None = None
-) -> bool | None:  # fmt: skip
+    poses: dict[str, TypePoses],
+    a: str,
+    c: str,
+    b: str,
+    seed: int,
+    alpha: float,
+    kinds: dict[str, str] | None = None,
+) -> bool | None:
     """Whether the pair (a, c) is indirect through b (module docstring): its poses within
     scenes not clearly tighter than the composition of b in a's frame and c in b's from
     two scenes, in b's frame or in the world's axes (``triangle_scenes`` picks the
@@ -1261,8 +1411,13 @@ def coordinate_spreads(values: np.ndarray) -> np.ndarray:
 
 
 def informative_directness(
-    poses: dict[str, TypePoses], a: str, c: str, b: str, seed: int, kinds: dict[str, str] | None = None
-) -> float:  # fmt: skip
+    poses: dict[str, TypePoses],
+    a: str,
+    c: str,
+    b: str,
+    seed: int,
+    kinds: dict[str, str] | None = None,
+) -> float:
     """How much tighter the pair (a, c) stands within scenes than composed through b,
     in the coordinates that hold its relation (module docstring, "Choosing the
     indirect pair"): 1 - the geometric mean, over the coordinates of a pose, of the
@@ -1282,10 +1437,19 @@ def informative_directness(
         if weight.sum() <= 0.0:
             values.append(0.0)
             continue
-        values.append(min(
-            1.0 - float(np.exp(weight @ np.log(spread / np.maximum(coordinate_spreads(composed), SCALE_FLOOR)) / weight.sum()))
-            for composed in (in_frame, along_axes)
-        ))  # fmt: skip
+        values.append(
+            min(
+                1.0
+                - float(
+                    np.exp(
+                        weight
+                        @ np.log(spread / np.maximum(coordinate_spreads(composed), SCALE_FLOOR))
+                        / weight.sum()
+                    )
+                )
+                for composed in (in_frame, along_axes)
+            )
+        )
     return float(np.mean(values))
 
 
@@ -1296,10 +1460,21 @@ def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float,
     medians over the scenes of that gap and that distance."""
     gaps, centres = [], []
     for scene in holding_both(first, second, same):
-        a, b = first.poses[scene, : first.counts[scene]], second.poses[scene, : second.counts[scene]]
-        a_sizes, b_sizes = first.footprints[scene, : first.counts[scene]], second.footprints[scene, : second.counts[scene]]
-        pose = relative_poses(np.repeat(a, len(b), axis=0), np.tile(b, (len(a), 1))[:, None])[:, 0]  # every a with every b
-        gap = np.round(footprint_gaps(pose, np.repeat(a_sizes, len(b), axis=0), np.tile(b_sizes, (len(a), 1))), 1)
+        a, b = (
+            first.poses[scene, : first.counts[scene]],
+            second.poses[scene, : second.counts[scene]],
+        )
+        a_sizes, b_sizes = (
+            first.footprints[scene, : first.counts[scene]],
+            second.footprints[scene, : second.counts[scene]],
+        )
+        pose = relative_poses(np.repeat(a, len(b), axis=0), np.tile(b, (len(a), 1))[:, None])[
+            :, 0
+        ]  # every a with every b
+        gap = np.round(
+            footprint_gaps(pose, np.repeat(a_sizes, len(b), axis=0), np.tile(b_sizes, (len(a), 1))),
+            1,
+        )
         centre = np.hypot(pose[:, 0], pose[:, 1])
         if same:  # an object is not its own partner
             gap[:: len(b) + 1] = np.inf
@@ -1310,7 +1485,9 @@ def typical_gap(first: TypePoses, second: TypePoses, same: bool) -> tuple[float,
 
 
 def resting_pairs(
-    scenes: Sequence[Scene], poses: dict[str, TypePoses], names: Sequence[dict[str, str]] | None = None
+    scenes: Sequence[Scene],
+    poses: dict[str, TypePoses],
+    names: Sequence[dict[str, str]] | None = None,
 ) -> set[tuple[str, str]]:
     """(upper type, lower type) for the types of which an object rests on one of the
     other (measured from the boxes, ``examples.stacking``) in at least half the scenes
@@ -1320,7 +1497,9 @@ def resting_pairs(
     for index, scene in enumerate(scenes):
         objects = scene.placed_objects()
         types = {o.id: o.type for o in objects} if names is None else names[index]
-        held.update({(types[upper], types[lower]) for upper, lower in infer_supports(objects).items()})
+        held.update(
+            {(types[upper], types[lower]) for upper, lower in infer_supports(objects).items()}
+        )
     return {
         (upper, lower)
         for (upper, lower), count in held.items()
@@ -1335,12 +1514,13 @@ def third_share(poses: dict[str, TypePoses], a: str, b: str, third: str) -> floa
 
 
 def prune_indirect(
-    pairs: Sequence[PairRelation], resting: set[tuple[str, str]] = frozenset(),
+    pairs: Sequence[PairRelation],
+    resting: set[tuple[str, str]] = frozenset(),
     through: Callable[[str, str, str], bool | None] | None = None,
     apart: Callable[[str, str], tuple[float, float]] | None = None,
     present: Callable[[str, str, str], float] | None = None,
     direct: Callable[[str, str, str], float] | None = None,
-) -> list[PairRelation]:  # fmt: skip
+) -> list[PairRelation]:
     """``pairs`` with the indirect pairs of every triangle of related pairs marked not
     related and ``pruned``: the pair of a third type with one that rests on another of
     the triangle (``resting``: (upper, lower) type pairs); else, given ``through(a, c,
@@ -1366,7 +1546,9 @@ def prune_indirect(
     def supported(u: str, v: str) -> bool:
         return (u, v) in resting or (v, u) in resting
 
-    def explains(u: str, v: str, third: str) -> bool:  # the third stands in enough of the pair's scenes
+    def explains(
+        u: str, v: str, third: str
+    ) -> bool:  # the third stands in enough of the pair's scenes
         return present is None or present(u, v, third) >= THIRD_SHARE
 
     indirect: set[tuple[str, str]] = set()
@@ -1375,12 +1557,17 @@ def prune_indirect(
             # or, unless w rests on one a (then it is that a's alone), if w is tighter to them
             # (one w between them) or two w's are tighter to each other (each a by its own w)
             if any(
-                explains(a, a, w) and (
+                explains(a, a, w)
+                and (
                     (a, w) in resting
-                    or ((w, a) not in resting and max(strength[key(a, w)], strength.get((w, w), -math.inf)) > strength[(a, a)])
+                    or (
+                        (w, a) not in resting
+                        and max(strength[key(a, w)], strength.get((w, w), -math.inf))
+                        > strength[(a, a)]
+                    )
                 )
                 for w in neighbours[a]
-            ):  # fmt: skip
+            ):
                 indirect.add((a, a))
             continue
         for w in neighbours[a] & neighbours[b]:
@@ -1389,13 +1576,22 @@ def prune_indirect(
             edges = [(a, b), key(a, w), key(b, w)]
             riders = [
                 key(third, upper)
-                for upper, lower, third in ((a, b, w), (b, a, w), (a, w, b), (w, a, b), (b, w, a), (w, b, a))
-                if (upper, lower) in resting and not supported(third, upper) and explains(third, upper, lower)
+                for upper, lower, third in (
+                    (a, b, w),
+                    (b, a, w),
+                    (a, w, b),
+                    (w, a, b),
+                    (b, w, a),
+                    (w, b, a),
+                )
+                if (upper, lower) in resting
+                and not supported(third, upper)
+                and explains(third, upper, lower)
             ]
             if riders:  # what rests on another relates to the third through it
                 indirect.update(riders)
                 continue
-            thirds = dict(zip(edges, (w, b, a)))
+            thirds = dict(zip(edges, (w, b, a), strict=False))
             edges = [edge for edge in edges if explains(*edge, thirds[edge])]
             if not edges:
                 continue
@@ -1405,18 +1601,36 @@ def prune_indirect(
                 if not supported(*weakest):
                     indirect.add(weakest)
             else:  # of the pairs found indirect, the least direct; of those about as direct, the farthest apart
-                found = [edge for edge, through_third in zip(edges, verdicts) if through_third and not supported(*edge)]
+                found = [
+                    edge
+                    for edge, through_third in zip(edges, verdicts, strict=False)
+                    if through_third and not supported(*edge)
+                ]
                 if found and direct and len(found) > 1:
                     directness = {edge: direct(*edge, thirds[edge]) for edge in found}
                     least = min(directness.values())
-                    found = [edge for edge in found if directness[edge] <= least + DIRECTNESS_MARGIN]
+                    found = [
+                        edge for edge in found if directness[edge] <= least + DIRECTNESS_MARGIN
+                    ]
                 if found:
-                    indirect.add(max(found, key=lambda edge: (*apart(*edge), -strength[edge]) if apart else -strength[edge]))
+                    indirect.add(
+                        max(
+                            found,
+                            key=lambda edge: (
+                                (*apart(*edge), -strength[edge]) if apart else -strength[edge]
+                            ),
+                        )
+                    )
     return [replace(p, related=False, pruned=True) if (p.a, p.b) in indirect else p for p in pairs]
 
 
 def find_relations(
-    scenes: Sequence[Scene], *, test: str = "permutation", seed: int = 0, alpha: float = ALPHA, prune: bool = True
+    scenes: Sequence[Scene],
+    *,
+    test: str = "permutation",
+    seed: int = 0,
+    alpha: float = ALPHA,
+    prune: bool = True,
 ) -> RelationsResult:
     """Which object type pairs of ``scenes`` are spatially related, by ``test`` (a name
     of ``TESTS``); ``prune`` removes indirect relations where the test allows it.
@@ -1429,10 +1643,16 @@ def find_relations(
         raise InputError(f"finding relations needs at least 2 example scenes, got {len(scenes)}")
     chosen = TESTS[test]
     roles = [object_roles(scene) for scene in scenes]
-    role_names = [{object_id: role.name for object_id, role in scene_roles.items()} for scene_roles in roles]
+    role_names = [
+        {object_id: role.name for object_id, role in scene_roles.items()} for scene_roles in roles
+    ]
     role_of = {role.name: role for scene_roles in roles for role in scene_roles.values()}
     poses = type_poses(scenes, role_names)
-    resting = resting_pairs(scenes, poses, role_names) if chosen.spares_resting or (prune and chosen.prunes) else set()
+    resting = (
+        resting_pairs(scenes, poses, role_names)
+        if chosen.spares_resting or (prune and chosen.prunes)
+        else set()
+    )
     # Paths are third types of triangles only: tested with the objects, never reported.
     paths = path_poses(scenes) if prune and chosen.tests_indirect else {}
     poses.update({name: points for name, points in paths.items() if name not in poses})
@@ -1450,18 +1670,44 @@ def find_relations(
             spared = chosen.spares_resting and ((a, b) in resting or (b, a) in resting)
             resting_related = spared and outcome.statistic is not None
             related = outcome.related or resting_related
-            results.append(PairRelation(
-                a, b, bool(related), outcome.statistic, outcome.p_value, outcome.poses, outcome.scenes,
-                outcome.strength, tested=outcome.statistic is not None, fixed=outcome.fixed and not resting_related,
-            ))  # fmt: skip
+            results.append(
+                PairRelation(
+                    a,
+                    b,
+                    bool(related),
+                    outcome.statistic,
+                    outcome.p_value,
+                    outcome.poses,
+                    outcome.scenes,
+                    outcome.strength,
+                    tested=outcome.statistic is not None,
+                    fixed=outcome.fixed and not resting_related,
+                )
+            )
     if not results:
-        raise InputError(f"no two objects stand in one scene in any of the {len(scenes)} example scenes")
+        raise InputError(
+            f"no two objects stand in one scene in any of the {len(scenes)} example scenes"
+        )
     if prune and chosen.prunes:
         kinds = {name: role.group for name, role in role_of.items()}
-        through = (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha, kinds)) if chosen.tests_indirect else None
-        apart = functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c)) if chosen.tests_indirect else None
-        direct = (lambda a, c, b: informative_directness(poses, a, c, b, seed, kinds)) if chosen.tests_indirect else None
-        results = prune_indirect(results, resting, through, apart, functools.partial(third_share, poses), direct)
+        through = (
+            (lambda a, c, b: indirect_through(poses, a, c, b, seed, alpha, kinds))
+            if chosen.tests_indirect
+            else None
+        )
+        apart = (
+            functools.cache(lambda a, c: typical_gap(poses[a], poses[c], a == c))
+            if chosen.tests_indirect
+            else None
+        )
+        direct = (
+            (lambda a, c, b: informative_directness(poses, a, c, b, seed, kinds))
+            if chosen.tests_indirect
+            else None
+        )
+        results = prune_indirect(
+            results, resting, through, apart, functools.partial(third_share, poses), direct
+        )
     results = [pair for pair in results if pair.a not in paths and pair.b not in paths]
     return RelationsResult(test, len(scenes), seed, alpha, tuple(by_type(results, role_of)))
 
@@ -1478,7 +1724,13 @@ def by_type(pairs: Sequence[PairRelation], role_of: dict[str, Role]) -> list[Pai
 
     def rank(option: tuple[PairRelation, tuple[str, str]]) -> tuple:
         pair = option[0]
-        return (pair.related, pair.pruned, pair.tested, -math.inf if pair.strength is None else pair.strength, pair.scenes)
+        return (
+            pair.related,
+            pair.pruned,
+            pair.tested,
+            -math.inf if pair.strength is None else pair.strength,
+            pair.scenes,
+        )
 
     return [
         replace(pair, a=a, b=b, groups=groups)

@@ -85,7 +85,9 @@ def fitted_files(tree: ParsedTree, texts: dict[str, str], output: Path) -> list[
         if target.resolve() == source:
             if texts[file.path] == source.read_text(encoding="utf-8"):
                 continue  # an unchanged include that is already where the output needs it
-            raise FitOutputError(f"{target}: would overwrite the input; write the fitted rules into another folder")
+            raise FitOutputError(
+                f"{target}: would overwrite the input; write the fitted rules into another folder"
+            )
         placed.append((target, texts[file.path]))
     return placed
 
@@ -130,7 +132,9 @@ def _edit_file(file: ast.RulesFile, fitted: dict, editor: _Editor) -> None:
     for production in file.productions:
         parameter = fitted.get(("alternative", production.name, site_of(production.location)))
         if parameter is not None:
-            for alternative, estimate in zip(production.alternatives, parameter.estimate):
+            for alternative, estimate in zip(
+                production.alternatives, parameter.estimate, strict=False
+            ):
                 weight = number(estimate, positive=True)
                 if alternative.weight is None:
                     at = editor.offset(alternative.location)
@@ -142,7 +146,9 @@ def _edit_file(file: ast.RulesFile, fitted: dict, editor: _Editor) -> None:
                 _edit_statement(production.name, statement, fitted, editor)
     for entry in file.entries:
         parameter = fitted.get(("style", entry.name, site_of(entry.location)))
-        for style, estimate in zip(entry.styles, parameter.estimate if parameter else ()):
+        for style, estimate in zip(
+            entry.styles, parameter.estimate if parameter else (), strict=False
+        ):
             weight = number(estimate, positive=True)
             if style.weight_location is not None:
                 editor.replace_number(style.weight_location, weight)
@@ -154,7 +160,9 @@ def _edit_statement(rule: str, statement: ast.Statement, fitted: dict, editor: _
     count = statement.count
     parameter = fitted.get(("count", rule, site_of(count.location))) if count is not None else None
     if parameter is not None:
-        weights = "{" + " ".join(number(value, positive=False) for value in parameter.estimate) + "}"
+        weights = (
+            "{" + " ".join(number(value, positive=False) for value in parameter.estimate) + "}"
+        )
         if count.weights_location is not None:
             start = editor.offset(count.weights_location)
             editor.replace(start, editor.text.index("}", start) + 1, weights)
@@ -163,4 +171,6 @@ def _edit_statement(rule: str, statement: ast.Statement, fitted: dict, editor: _
     if statement.probability is not None:
         parameter = fitted.get(("optional", rule, site_of(statement.probability_location)))
         if parameter is not None:
-            editor.replace_number(statement.probability_location, number(parameter.estimate[1], positive=False))
+            editor.replace_number(
+                statement.probability_location, number(parameter.estimate[1], positive=False)
+            )

@@ -38,7 +38,9 @@ def size_text(size: Sequence[float]) -> str:
 
 
 def probability_text(share: float) -> str:
-    return number(max(round(share, PROBABILITY_DECIMALS), 10.0**-PROBABILITY_DECIMALS), PROBABILITY_DECIMALS)
+    return number(
+        max(round(share, PROBABILITY_DECIMALS), 10.0**-PROBABILITY_DECIMALS), PROBABILITY_DECIMALS
+    )
 
 
 def _quoted(text: str) -> str:
@@ -62,7 +64,9 @@ def count_parts(distribution: Counter, total: int) -> tuple[str, str, str]:
         if low > 1:
             words.append(str(low))
     else:
-        words.append(f"{low}..{high} {{{' '.join(str(present.get(k, 0)) for k in range(low, high + 1))}}}")
+        words.append(
+            f"{low}..{high} {{{' '.join(str(present.get(k, 0)) for k in range(low, high + 1))}}}"
+        )
     if seen < total:
         words.append(probability_text(seen / total) + "?")
     detail = "" if low == high else ", ".join(f"{k}: {present[k]}" for k in sorted(present))
@@ -120,8 +124,10 @@ class RulesWriter:
         if ind.room is not None:
             lines += self.room_lines(ind.room, ind.room_source)
         else:
-            lines.append(f"{self.INDENT}extent {number(ind.extent[0], 2)} x {number(ind.extent[1], 2)}"
-                         f"    # the median extent of the {ind.scenes} examples")  # fmt: skip
+            lines.append(
+                f"{self.INDENT}extent {number(ind.extent[0], 2)} x {number(ind.extent[1], 2)}"
+                f"    # the median extent of the {ind.scenes} examples"
+            )
             lines.append(f"{self.INDENT}ground {identifier(ind.ground, set())}")
         lines += [
             f"{self.INDENT}start Scene",
@@ -138,11 +144,16 @@ class RulesWriter:
         rectangle = [(-hw, -hd), (hw, -hd), (hw, hd), (-hw, hd)]
         is_rectangle = len(room.corners) == 4 and all(
             math.isclose(x, rx, abs_tol=1e-6) and math.isclose(z, rz, abs_tol=1e-6)
-            for (x, z), (rx, rz) in zip(room.corners, rectangle)
+            for (x, z), (rx, rz) in zip(room.corners, rectangle, strict=False)
         )
-        shape = (f"{number(width)} x {number(depth)}" if is_rectangle
-                 else " ".join(f"({number(x)}, {number(z)})" for x, z in room.corners))  # fmt: skip
-        lines = [f"{self.INDENT}room {shape} {{    # the room of {source}, the example room nearest the median size"]
+        shape = (
+            f"{number(width)} x {number(depth)}"
+            if is_rectangle
+            else " ".join(f"({number(x)}, {number(z)})" for x, z in room.corners)
+        )
+        lines = [
+            f"{self.INDENT}room {shape} {{    # the room of {source}, the example room nearest the median size"
+        ]
         lines.append(f"{self.INDENT * 2}height {number(room.height)}")
         wall_number = {wall.id: k + 1 for k, wall in enumerate(room.walls)}
         for opening in room.openings:
@@ -150,17 +161,33 @@ class RulesWriter:
             if opening.kind == "door":
                 lines.append(f"{self.INDENT * 2}door {where} {number(opening.height)}")
             else:
-                lines.append(f"{self.INDENT * 2}window {where} {number(opening.sill)} {number(opening.height)}")
+                lines.append(
+                    f"{self.INDENT * 2}window {where} {number(opening.sill)} {number(opening.height)}"
+                )
         lines.append(f"{self.INDENT}}}")
         return lines
 
     def catalog_lines(self) -> list[str]:
         ind = self.induction
-        lines = [f"# -- catalog: the {len(ind.catalog)} types seen; sizes are medians (W x H x D, metres) " + "-" * 8, ""]
+        lines = [
+            f"# -- catalog: the {len(ind.catalog)} types seen; sizes are medians (W x H x D, metres) "
+            + "-" * 8,
+            "",
+        ]
         for entry in ind.catalog.values():
-            seen_as = f" (seen as {', '.join(entry.sources)})" if list(entry.sources) != [entry.name] else ""
-            borrowed = f"; noun, shape and colour from the shipped {entry.borrowed}" if entry.borrowed else ""
-            lines.append(f"# {entry.name}: {entry.objects} objects in {entry.scenes} of {ind.scenes} examples{seen_as}{borrowed}")
+            seen_as = (
+                f" (seen as {', '.join(entry.sources)})"
+                if list(entry.sources) != [entry.name]
+                else ""
+            )
+            borrowed = (
+                f"; noun, shape and colour from the shipped {entry.borrowed}"
+                if entry.borrowed
+                else ""
+            )
+            lines.append(
+                f"# {entry.name}: {entry.objects} objects in {entry.scenes} of {ind.scenes} examples{seen_as}{borrowed}"
+            )
             lines.append(f"object {entry.name} {{")
             lines.append(f"{self.INDENT}noun {_quoted(entry.noun)}")
             if entry.plural:
@@ -180,7 +207,13 @@ class RulesWriter:
                 if style.colour:
                     fields.append(f"colour {colour_text(style.colour)}")
                 body = "{ " + " ".join(fields) + " }" if fields else "{ }"
-                seen = "no style given" if style.source is None else f"{style.source!r}" if style.source != style.name else ""
+                seen = (
+                    "no style given"
+                    if style.source is None
+                    else f"{style.source!r}"
+                    if style.source != style.name
+                    else ""
+                )
                 note = f"{style.count} of {entry.objects}" + (f", {seen}" if seen else "")
                 lines.append(f"{self.INDENT}style {style.name} {style.count} {body}    # {note}")
             lines.append("}")
@@ -220,7 +253,10 @@ class RulesWriter:
         labels = member.placements[0].labels if member.placements else ()
         if member.placements:
             note += f"; {member.placements[0].weight} of {member.instances} in one cluster of poses"
-        text = f"{prefix}{member.type} {self.relation_words(labels, target)}".rstrip() + self.wall_words(member.wall)
+        text = (
+            f"{prefix}{member.type} {self.relation_words(labels, target)}".rstrip()
+            + self.wall_words(member.wall)
+        )
         return f"{text}    # {note}", largest
 
     def member_production(self, member: Member, depth: int) -> tuple[str, int]:
@@ -231,13 +267,18 @@ class RulesWriter:
         param = self.binding(member.parent, set())
         placed = member.placements or [Placement((), member.instances)]
         total = sum(p.weight for p in placed)
-        noun, parent_noun = self.induction.catalog[member.type].noun, self.induction.catalog[member.parent].noun
+        noun, parent_noun = (
+            self.induction.catalog[member.type].noun,
+            self.induction.catalog[member.parent].noun,
+        )
         lines: list[str] = []
         places = None
         if len(placed) > 1:
             places = _unique(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
-            lines += comment_lines(f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
-                                   f"{total} of them in {len(placed)} ways")  # fmt: skip
+            lines += comment_lines(
+                f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
+                f"{total} of them in {len(placed)} ways"
+            )
             head = f"{places}({param}) -> "
             for k, placement in enumerate(placed):
                 body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
@@ -251,13 +292,18 @@ class RulesWriter:
             self.depth = max(self.depth, depth + 1)
         own = _unique(camel(member.type), self.rule_names)
         bound = self.binding(member.type, {param})
-        body_lines = comment_lines(f"{own}: {with_article(noun)} by its {parent_noun}, and what stands by it")
+        body_lines = comment_lines(
+            f"{own}: {with_article(noun)} by its {parent_noun}, and what stands by it"
+        )
         body_lines.append(f"{own}({param}) -> {{")
         if places:
             body_lines.append(f"{self.INDENT}{places}({param}) as {bound}")
         else:
             words = self.relation_words(placed[0].labels, param)
-            body_lines.append(f"{self.INDENT}{member.type} as {bound} {words}".rstrip() + self.wall_words(member.wall))
+            body_lines.append(
+                f"{self.INDENT}{member.type} as {bound} {words}".rstrip()
+                + self.wall_words(member.wall)
+            )
         most = 1
         for child in member.children:
             statement, made = self.member_statement(child, bound, depth + 1)
@@ -274,8 +320,10 @@ class RulesWriter:
         name = _unique(f"{camel(member.type)}Alone", self.rule_names)
         bound = self.binding(member.type, set())
         noun = self.induction.catalog[member.type].noun
-        lines = comment_lines(f"{name}: {with_article(noun)} seen without {with_article(self.induction.catalog[member.parent].noun)}, "
-                              "and what stands by it")  # fmt: skip
+        lines = comment_lines(
+            f"{name}: {with_article(noun)} seen without {with_article(self.induction.catalog[member.parent].noun)}, "
+            "and what stands by it"
+        )
         lines += [f"{name} -> {{", f"{self.INDENT}{member.type} as {bound}{self.wall_words(wall)}"]
         body, most = self.members_body(member.children, bound)
         self.productions.append(lines + body)
@@ -295,25 +343,43 @@ class RulesWriter:
         taken: set[str] = set()
         bound = self.binding(group.anchor, taken)
         ind = self.induction
-        related = [p for p in ind.relations.pairs if p.related and p.a in group.types and p.b in group.types and p.a != p.b]
+        related = [
+            p
+            for p in ind.relations.pairs
+            if p.related and p.a in group.types and p.b in group.types and p.a != p.b
+        ]
         pairs = ", ".join(
             f"{p.a}-{p.b} (" + ("a fixed arrangement" if p.fixed else f"p {p.p_value:.3g}") + ")"
-            for p in related if p.p_value is not None
-        )  # fmt: skip
-        lines = comment_lines(f"{group.rule}: {with_article(ind.catalog[group.anchor].noun)} and what stands by it.")
+            for p in related
+            if p.p_value is not None
+        )
+        lines = comment_lines(
+            f"{group.rule}: {with_article(ind.catalog[group.anchor].noun)} and what stands by it."
+        )
         if pairs:
             lines += comment_lines(f"Related pairs ({ind.relations.test} test): {pairs}.")
-        supports = sorted((u, l) for u, l in ind.resting if u in group.types and l in group.types)
+        supports = sorted(
+            (upper, lower)
+            for upper, lower in ind.resting
+            if upper in group.types and lower in group.types
+        )
         if supports:
-            lines += comment_lines("Resting: " + ", ".join(
-                f"{u} on {l} in {ind.resting_counts[(u, l)][0]} of {ind.resting_counts[(u, l)][1]} scenes holding both"
-                for u, l in supports) + ".")  # fmt: skip
+            lines += comment_lines(
+                "Resting: "
+                + ", ".join(
+                    f"{upper} on {lower} in {ind.resting_counts[(upper, lower)][0]} of {ind.resting_counts[(upper, lower)][1]} scenes holding both"
+                    for upper, lower in supports
+                )
+                + "."
+            )
         lines.append(f"{group.rule} -> {{")
         wall_note = ""
         if group.wall:
             share = ind.walls[group.anchor]
             wall_note = f"    # {group.wall}: {share.held[group.wall]} of {share.objects} {self.noun_plural(group.anchor)}"
-        lines.append(f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}")
+        lines.append(
+            f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}"
+        )
         body, most = self.members_body(group.members, bound)
         return lines + body, most
 
@@ -327,13 +393,17 @@ class RulesWriter:
             block, per_group = self.group_lines(group)
             group_blocks.append(block)
             noun = ind.catalog[group.anchor].noun
-            start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{group.rule}    # {with_article(noun)} "
-                         f"in {seen} examples" + (f" ({detail})" if detail else ""))  # fmt: skip
+            start.append(
+                f"{self.INDENT}{(counts + ' ') if counts else ''}{group.rule}    # {with_article(noun)} "
+                f"in {seen} examples" + (f" ({detail})" if detail else "")
+            )
             most += max(group.per_scene) * per_group
         for item in ind.loose:
             counts, seen, detail = count_parts(item.per_scene, ind.scenes)
             if item.unsupported:
-                why = "resting on no " + " or ".join(ind.catalog[t].noun for t in item.without.split(" or "))
+                why = "resting on no " + " or ".join(
+                    ind.catalog[t].noun for t in item.without.split(" or ")
+                )
             elif item.without:
                 why = f"seen without {with_article(ind.catalog[item.without].noun)}"
             else:
@@ -346,11 +416,15 @@ class RulesWriter:
             if item.member is not None and item.member.children:
                 # Seen without its parent, it still brings what stands by it.
                 name, made = self.alone_production(item.member, item.wall)
-                start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{name}    # {why}: in {seen}{wall}")
+                start.append(
+                    f"{self.INDENT}{(counts + ' ') if counts else ''}{name}    # {why}: in {seen}{wall}"
+                )
                 most += max(item.per_scene) * made
                 continue
-            start.append(f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
-                         f"    # {why}: in {seen}{wall}")  # fmt: skip
+            start.append(
+                f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
+                f"    # {why}: in {seen}{wall}"
+            )
             most += max(item.per_scene)
         start += ["}", ""]
         body: list[str] = []

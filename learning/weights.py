@@ -71,7 +71,9 @@ class Parameter:
             "at": str(self.site),
             "identified": self.identified,
             "options": list(self.options),
-            "draws": [round(value, 6) if value != int(value) else int(value) for value in self.draws],
+            "draws": [
+                round(value, 6) if value != int(value) else int(value) for value in self.draws
+            ],
             "estimate": [round(value, 6) for value in self.estimate],
             "standard_error": [round(value, 6) for value in self.standard_error],
             "written": [round(value, 6) for value in self.written],
@@ -166,7 +168,9 @@ def fit_weights_em(
             break
     if ambiguous:
         expected = fixed + _expected_draws(ambiguous, np.log(theta))
-    return WeightFit(layout.parameters(expected, prior), len(candidates), prior, len(ambiguous), iterations)
+    return WeightFit(
+        layout.parameters(expected, prior), len(candidates), prior, len(ambiguous), iterations
+    )
 
 
 def _expected_draws(examples: list[np.ndarray], log_theta: np.ndarray) -> np.ndarray:
@@ -194,7 +198,9 @@ class _Layout:
             production = rules.productions[name]
             weights = [1.0 if a.weight is None else a.weight for a in production.alternatives]
             options = [str(index) for index in range(1, len(draws) + 1)]
-            slots.append(("alternative", name, site_of(production.location), options, weights, name))
+            slots.append(
+                ("alternative", name, site_of(production.location), options, weights, name)
+            )
         for site, draws in tally.counts.items():
             rule, statement = statements[site]
             weights = statement.count.weights or [1.0] * len(draws)
@@ -206,20 +212,30 @@ class _Layout:
         for type_name, draws in tally.styles.items():
             entry = rules.catalog[type_name]
             weights = [style.weight for style in entry.styles]
-            slots.append(("style", type_name, site_of(entry.location), list(draws), weights, type_name))
+            slots.append(
+                ("style", type_name, site_of(entry.location), list(draws), weights, type_name)
+            )
         slots.sort(key=lambda slot: (KINDS.index(slot[0]), slot[2]))
         self.slots = slots
         self.starts = np.cumsum([0] + [len(slot[3]) for slot in slots])
         self.columns = int(self.starts[-1])
         written = [np.asarray(slot[4], dtype=float) / sum(slot[4]) for slot in slots]
         self.written = np.concatenate(written) if written else np.zeros(0)
-        self.uniform = np.concatenate([np.full(len(s[3]), 1.0 / len(s[3])) for s in slots]) if slots else np.zeros(0)
+        self.uniform = (
+            np.concatenate([np.full(len(s[3]), 1.0 / len(s[3])) for s in slots])
+            if slots
+            else np.zeros(0)
+        )
 
     def vector(self, derivation: list[dict]) -> np.ndarray:
         """(C,) draws of each option in one derivation."""
         tally = choice_counts(self.rules, derivation)
-        tables = {"alternative": tally.alternatives, "count": tally.counts, "optional": tally.optional,
-                  "style": tally.styles}  # fmt: skip
+        tables = {
+            "alternative": tally.alternatives,
+            "count": tally.counts,
+            "optional": tally.optional,
+            "style": tally.styles,
+        }
         values = []
         for kind, _, _, _, _, key in self.slots:
             drawn = tables[kind][key]
@@ -233,13 +249,22 @@ class _Layout:
 
     def parameters(self, draws: np.ndarray, prior: float) -> tuple[Parameter, ...]:
         found = []
-        for (kind, name, site, options, _, _), start, end in zip(self.slots, self.starts[:-1], self.starts[1:]):
+        for (kind, name, site, options, _, _), start, end in zip(
+            self.slots, self.starts[:-1], self.starts[1:], strict=False
+        ):
             mean, error = posterior(draws[start:end], prior)
-            found.append(Parameter(
-                kind, name, site, tuple(options), tuple(float(d) for d in draws[start:end]),
-                tuple(float(v) for v in mean), tuple(float(v) for v in error),
-                tuple(float(v) for v in self.written[start:end]),
-            ))  # fmt: skip
+            found.append(
+                Parameter(
+                    kind,
+                    name,
+                    site,
+                    tuple(options),
+                    tuple(float(d) for d in draws[start:end]),
+                    tuple(float(v) for v in mean),
+                    tuple(float(v) for v in error),
+                    tuple(float(v) for v in self.written[start:end]),
+                )
+            )
         return tuple(found)
 
 

@@ -109,11 +109,20 @@ def cylinder(radius: float, bottom, top, colour, sections: int = 10) -> trimesh.
     return coloured(mesh, colour)
 
 
-def frustum(bottom_radius: float, top_radius: float, y0: float, y1: float, colour,
-            sections: int = 10, centre=(0.0, 0.0)) -> trimesh.Trimesh:
+def frustum(
+    bottom_radius: float,
+    top_radius: float,
+    y0: float,
+    y1: float,
+    colour,
+    sections: int = 10,
+    centre=(0.0, 0.0),
+) -> trimesh.Trimesh:
     """An upright truncated cone from height ``y0`` to ``y1`` around (x, z) ``centre``."""
     x, z = centre
-    mesh = trimesh.creation.cylinder(radius=bottom_radius, segment=[(x, y0, z), (x, y1, z)], sections=sections)
+    mesh = trimesh.creation.cylinder(
+        radius=bottom_radius, segment=[(x, y0, z), (x, y1, z)], sections=sections
+    )
     vertices = mesh.vertices.copy()
     top = np.isclose(vertices[:, 1], y1)
     vertices[top, 0] = x + (vertices[top, 0] - x) * (top_radius / bottom_radius)
@@ -129,7 +138,9 @@ def cone(radius: float, base, apex, colour, sections: int = 10) -> trimesh.Trime
     # trimesh builds cones along +Z from the origin: turn that axis onto ours, then move.
     transform = trimesh.geometry.align_vectors([0.0, 0.0, 1.0], axis / np.linalg.norm(axis))
     transform[:3, 3] = base
-    mesh = trimesh.creation.cone(radius=radius, height=float(np.linalg.norm(axis)), sections=sections, transform=transform)
+    mesh = trimesh.creation.cone(
+        radius=radius, height=float(np.linalg.norm(axis)), sections=sections, transform=transform
+    )
     return coloured(mesh, colour)
 
 
@@ -144,17 +155,27 @@ def ball(radius, centre, colour, subdivisions: int = 1) -> trimesh.Trimesh:
 def gable_roof(width: float, depth: float, eave_y: float, rise: float, colour) -> trimesh.Trimesh:
     """A triangular prism roof: ridge along x at ``eave_y + rise``, slopes to front and back."""
     half_w, half_d = width / 2.0, depth / 2.0
-    vertices = np.array([
-        [-half_w, eave_y, -half_d], [-half_w, eave_y, half_d], [-half_w, eave_y + rise, 0.0],
-        [half_w, eave_y, -half_d], [half_w, eave_y, half_d], [half_w, eave_y + rise, 0.0],
-    ])
-    faces = np.array([[0, 1, 2], [3, 5, 4], [1, 4, 5], [1, 5, 2], [0, 2, 5], [0, 5, 3], [0, 3, 4], [0, 4, 1]])
+    vertices = np.array(
+        [
+            [-half_w, eave_y, -half_d],
+            [-half_w, eave_y, half_d],
+            [-half_w, eave_y + rise, 0.0],
+            [half_w, eave_y, -half_d],
+            [half_w, eave_y, half_d],
+            [half_w, eave_y + rise, 0.0],
+        ]
+    )
+    faces = np.array(
+        [[0, 1, 2], [3, 5, 4], [1, 4, 5], [1, 5, 2], [0, 2, 5], [0, 5, 3], [0, 3, 4], [0, 4, 1]]
+    )
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     mesh.fix_normals()
     return coloured(mesh, colour)
 
 
-def legs(width: float, depth: float, height: float, thickness: float, colour) -> list[trimesh.Trimesh]:
+def legs(
+    width: float, depth: float, height: float, thickness: float, colour
+) -> list[trimesh.Trimesh]:
     """Four square legs standing at the corners of a ``width`` x ``depth`` footprint."""
     x = width / 2.0 - thickness / 2.0
     z = depth / 2.0 - thickness / 2.0
@@ -201,14 +222,30 @@ def fancy_table(size, colour) -> trimesh.Trimesh:
     top, apron = 0.04, 0.1
     leg_x, leg_z = w / 2 - 0.07, d / 2 - 0.07
     turned = [
-        frustum(0.035, 0.05, 0.0, h - top, shade(colour, 0.8), sections=8, centre=(sx * leg_x, sz * leg_z))
+        frustum(
+            0.035,
+            0.05,
+            0.0,
+            h - top,
+            shade(colour, 0.8),
+            sections=8,
+            centre=(sx * leg_x, sz * leg_z),
+        )
         for sx in (-1, 1)
         for sz in (-1, 1)
     ]
     return combine(
         slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
-        slab((-w / 2 + 0.05, h - top - apron, -d / 2 + 0.05), (w / 2 - 0.05, h - top, d / 2 - 0.05), shade(colour, 0.85)),
-        slab((-w * 0.2, h - top - apron * 0.85, d / 2 - 0.05), (w * 0.2, h - top - apron * 0.15, d / 2 - 0.04), shade(colour, 1.3)),
+        slab(
+            (-w / 2 + 0.05, h - top - apron, -d / 2 + 0.05),
+            (w / 2 - 0.05, h - top, d / 2 - 0.05),
+            shade(colour, 0.85),
+        ),
+        slab(
+            (-w * 0.2, h - top - apron * 0.85, d / 2 - 0.05),
+            (w * 0.2, h - top - apron * 0.15, d / 2 - 0.04),
+            shade(colour, 1.3),
+        ),
         turned,
     )
 
@@ -221,14 +258,25 @@ def desk(size, colour) -> trimesh.Trimesh:
     pedestal_w = min(0.4, w * 0.35)
     x0 = -w / 2
     drawers = [
-        slab((x0 + 0.03, y, d / 2 - 0.03), (x0 + pedestal_w - 0.03, y + (h - top) / 3 - 0.04, d / 2), shade(colour, 1.2))
+        slab(
+            (x0 + 0.03, y, d / 2 - 0.03),
+            (x0 + pedestal_w - 0.03, y + (h - top) / 3 - 0.04, d / 2),
+            shade(colour, 1.2),
+        )
         for y in np.linspace(0.04, (h - top) * 2 / 3, 3)
     ]
     return combine(
         slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
         slab((x0, 0.0, -d / 2), (x0 + pedestal_w, h - top, d / 2 - 0.03), shade(colour, 0.85)),
         drawers,
-        [block((0.05, h - top, 0.05), (w / 2 - 0.04, (h - top) / 2, sz * (d / 2 - 0.04)), shade(colour, 0.7)) for sz in (-1, 1)],
+        [
+            block(
+                (0.05, h - top, 0.05),
+                (w / 2 - 0.04, (h - top) / 2, sz * (d / 2 - 0.04)),
+                shade(colour, 0.7),
+            )
+            for sz in (-1, 1)
+        ],
     )
 
 
@@ -250,7 +298,13 @@ def nightstand(size, colour) -> trimesh.Trimesh:
     w, h, d = size
     fronts = []
     for y0, y1 in ((0.08, h * 0.5), (h * 0.52, h - 0.06)):
-        fronts.append(slab((-w / 2 + 0.03, y0, d / 2 - 0.01), (w / 2 - 0.03, y1 - 0.02, d / 2), shade(colour, 1.2)))
+        fronts.append(
+            slab(
+                (-w / 2 + 0.03, y0, d / 2 - 0.01),
+                (w / 2 - 0.03, y1 - 0.02, d / 2),
+                shade(colour, 1.2),
+            )
+        )
         fronts.append(block((0.04, 0.03, 0.02), (0.0, (y0 + y1) / 2, d / 2 + 0.005), IRON))
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h - 0.03, d / 2 - 0.01), colour),
@@ -266,7 +320,13 @@ def wardrobe(size, colour) -> trimesh.Trimesh:
     doors, handles = [], []
     for side in (-1, 1):
         inner, outer = side * 0.01, side * (w / 2 - 0.03)
-        doors.append(slab((min(inner, outer), 0.1, d / 2 - 0.02), (max(inner, outer), h - 0.08, d / 2), shade(colour, 1.15)))
+        doors.append(
+            slab(
+                (min(inner, outer), 0.1, d / 2 - 0.02),
+                (max(inner, outer), h - 0.08, d / 2),
+                shade(colour, 1.15),
+            )
+        )
         handles.append(block((0.02, 0.25, 0.03), (side * 0.07, h * 0.55, d / 2 + 0.01), IRON))
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h, d / 2 - 0.02), colour),
@@ -295,9 +355,15 @@ def bookshelf(size, colour) -> trimesh.Trimesh:
             break
         # A row of books covering most of the shelf, each a slightly different height.
         edges = np.linspace(-w / 2 + board, w / 2 - board - 0.1 * w, 6)
-        for index, (x0, x1) in enumerate(zip(edges[:-1], edges[1:])):
+        for index, (x0, x1) in enumerate(zip(edges[:-1], edges[1:], strict=False)):
             top = y + board + spacing * (0.6 + 0.06 * (index % 3))
-            parts.append(slab((x0 + 0.005, y + board, -d / 2 + board), (x1 - 0.005, top, d / 2 - 0.05), book_colours[(index + level) % 5]))
+            parts.append(
+                slab(
+                    (x0 + 0.005, y + board, -d / 2 + board),
+                    (x1 - 0.005, top, d / 2 - 0.05),
+                    book_colours[(index + level) % 5],
+                )
+            )
     return combine(parts)
 
 
@@ -310,9 +376,21 @@ def bed(size, colour) -> trimesh.Trimesh:
     return combine(
         slab((-w / 2, 0.0, -d / 2 + head), (w / 2, frame_top, d / 2), colour),
         slab((-w / 2, 0.0, -d / 2), (w / 2, h, -d / 2 + head), shade(colour, 0.85)),
-        slab((-w / 2 + 0.03, frame_top, -d / 2 + head), (w / 2 - 0.03, mattress_top, d / 2 - 0.03), LINEN),
-        slab((-w / 2 + 0.02, mattress_top, -d / 2 + head + 0.5), (w / 2 - 0.02, mattress_top + 0.04, d / 2 - 0.02), shade(GLASS, 1.1)),
-        slab((-w / 2 + 0.12, mattress_top, -d / 2 + head + 0.06), (w / 2 - 0.12, mattress_top + 0.12, -d / 2 + head + 0.4), PAGES),
+        slab(
+            (-w / 2 + 0.03, frame_top, -d / 2 + head),
+            (w / 2 - 0.03, mattress_top, d / 2 - 0.03),
+            LINEN,
+        ),
+        slab(
+            (-w / 2 + 0.02, mattress_top, -d / 2 + head + 0.5),
+            (w / 2 - 0.02, mattress_top + 0.04, d / 2 - 0.02),
+            shade(GLASS, 1.1),
+        ),
+        slab(
+            (-w / 2 + 0.12, mattress_top, -d / 2 + head + 0.06),
+            (w / 2 - 0.12, mattress_top + 0.12, -d / 2 + head + 0.4),
+            PAGES,
+        ),
     )
 
 
@@ -372,9 +450,15 @@ def laptop(size, colour) -> trimesh.Trimesh:
     base_t, lid_t = 0.1 * h, 0.012
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, base_t, d / 2), colour),
-        slab((-w * 0.42, base_t, -d * 0.3), (w * 0.42, base_t + 0.002, d * 0.1), shade(colour, 0.5)),
+        slab(
+            (-w * 0.42, base_t, -d * 0.3), (w * 0.42, base_t + 0.002, d * 0.1), shade(colour, 0.5)
+        ),
         slab((-w / 2, base_t, -d / 2), (w / 2, h, -d / 2 + lid_t), colour),
-        slab((-w * 0.45, base_t + 0.01, -d / 2 + lid_t), (w * 0.45, h - 0.01, -d / 2 + lid_t + 0.002), SCREEN),
+        slab(
+            (-w * 0.45, base_t + 0.01, -d / 2 + lid_t),
+            (w * 0.45, h - 0.01, -d / 2 + lid_t + 0.002),
+            SCREEN,
+        ),
     )
 
 
@@ -383,7 +467,11 @@ def _screen_slab(size, colour, border: float) -> trimesh.Trimesh:
     w, h, d = size
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h * 0.85, d / 2), colour),
-        slab((-w / 2 + border, h * 0.85, -d / 2 + border), (w / 2 - border, h, d / 2 - border), SCREEN),
+        slab(
+            (-w / 2 + border, h * 0.85, -d / 2 + border),
+            (w / 2 - border, h, d / 2 - border),
+            SCREEN,
+        ),
     )
 
 
@@ -413,7 +501,11 @@ def paper(size, colour) -> trimesh.Trimesh:
     """A sheet with a few printed lines."""
     w, h, d = size
     lines = [
-        slab((-w * 0.38, h * 0.8, z - 0.003), (w * (0.38 if index % 3 else 0.1), h, z + 0.003), (0.3, 0.3, 0.32))
+        slab(
+            (-w * 0.38, h * 0.8, z - 0.003),
+            (w * (0.38 if index % 3 else 0.1), h, z + 0.003),
+            (0.3, 0.3, 0.32),
+        )
         for index, z in enumerate(np.linspace(-d * 0.38, d * 0.3, 7))
     ]
     return combine(slab((-w / 2, 0.0, -d / 2), (w / 2, h * 0.8, d / 2), colour), lines)
@@ -428,7 +520,9 @@ def book(size, colour) -> trimesh.Trimesh:
         slab((-w / 2, 0.0, -d / 2), (w / 2, cover, d / 2), colour),
         slab((-w / 2, h - cover, -d / 2), (w / 2, h, d / 2), colour),
         slab((-w / 2, 0.0, -d / 2), (-w / 2 + 0.01, h, d / 2), shade(colour, 0.8)),
-        slab((-w / 2 + 0.01, cover, -d / 2 + 0.005), (w / 2 - 0.005, h - cover, d / 2 - 0.005), PAGES),
+        slab(
+            (-w / 2 + 0.01, cover, -d / 2 + 0.005), (w / 2 - 0.005, h - cover, d / 2 - 0.005), PAGES
+        ),
     )
 
 
@@ -457,7 +551,11 @@ def wine_box(size, colour) -> trimesh.Trimesh:
     ]
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, rim, d / 2), colour),
-        slab((-w / 2 - 0.005, rim * 0.45, -d / 2 - 0.005), (w / 2 + 0.005, rim * 0.55, d / 2 + 0.005), shade(colour, 0.7)),
+        slab(
+            (-w / 2 - 0.005, rim * 0.45, -d / 2 - 0.005),
+            (w / 2 + 0.005, rim * 0.55, d / 2 + 0.005),
+            shade(colour, 0.7),
+        ),
         necks,
     )
 
@@ -472,7 +570,9 @@ def crate(size, colour) -> trimesh.Trimesh:
         slab((-w / 2 - t, y - 0.04 * h, -d / 2 - t), (w / 2 + t, y + 0.04 * h, d / 2 + t), slat)
         for y in (0.15 * h, 0.85 * h)
     ]
-    lid = [slab((x - 0.04 * w, h, -d / 2), (x + 0.04 * w, h + t, d / 2), slat) for x in (-w / 3, w / 3)]
+    lid = [
+        slab((x - 0.04 * w, h, -d / 2), (x + 0.04 * w, h + t, d / 2), slat) for x in (-w / 3, w / 3)
+    ]
     return combine(slab((-w / 2, 0.0, -d / 2), (w / 2, h, d / 2), colour), bands, lid)
 
 
@@ -484,7 +584,12 @@ def flowerpot(size, colour) -> trimesh.Trimesh:
     leaves_r = (0.45 * w, (h - pot_h) / 2, 0.45 * d)
     leaves_y = pot_h + leaves_r[1]
     blossoms = [
-        ball(0.1 * w, (0.25 * w * math.cos(a), leaves_y + 0.5 * leaves_r[1], 0.25 * d * math.sin(a)), BLOSSOM, subdivisions=0)
+        ball(
+            0.1 * w,
+            (0.25 * w * math.cos(a), leaves_y + 0.5 * leaves_r[1], 0.25 * d * math.sin(a)),
+            BLOSSOM,
+            subdivisions=0,
+        )
         for a in (0.3, 2.4, 4.4)
     ]
     return combine(
@@ -503,7 +608,14 @@ def pot(size, colour) -> trimesh.Trimesh:
         frustum(0.8 * r, r, 0.0, 0.35 * h, colour, sections=12),
         frustum(r, 0.95 * r, 0.35 * h, 0.9 * h, colour, sections=12),
         cylinder(0.9 * r, (0.0, 0.9 * h, 0.0), (0.0, h, 0.0), (0.55, 0.3, 0.12), sections=12),
-        [block((w / 2 - r + 0.02, 0.04, 0.08), (side * (w / 2 - (w / 2 - r) / 2), 0.75 * h, 0.0), IRON) for side in (-1, 1)],
+        [
+            block(
+                (w / 2 - r + 0.02, 0.04, 0.08),
+                (side * (w / 2 - (w / 2 - r) / 2), 0.75 * h, 0.0),
+                IRON,
+            )
+            for side in (-1, 1)
+        ],
     )
 
 
@@ -512,7 +624,10 @@ def barrel(size, colour) -> trimesh.Trimesh:
     """A bulging wooden barrel with iron hoops."""
     w, h, d = size
     r = w / 2
-    hoops = [cylinder(0.98 * r, (0.0, y - 0.02, 0.0), (0.0, y + 0.02, 0.0), IRON, sections=10) for y in (0.15 * h, 0.85 * h)]
+    hoops = [
+        cylinder(0.98 * r, (0.0, y - 0.02, 0.0), (0.0, y + 0.02, 0.0), IRON, sections=10)
+        for y in (0.15 * h, 0.85 * h)
+    ]
     return combine(
         frustum(0.85 * r, 0.97 * r, 0.0, 0.5 * h, colour, sections=10),
         frustum(0.97 * r, 0.85 * r, 0.5 * h, h, colour, sections=10),
@@ -569,7 +684,9 @@ def _dwelling(size, colour, storeys: int, roof_colour) -> trimesh.Trimesh:
     parts = [
         slab((-w / 2 + 0.1, 0.0, -d / 2 + 0.1), (w / 2 - 0.1, wall_h, d / 2 - 0.1), colour),
         gable_roof(w, d, wall_h, h - wall_h, roof_colour),
-        slab((-0.45, 0.0, d / 2 - 0.12), (0.45, min(2.0, 0.85 * storey_h), d / 2 - 0.05), DARK_WOOD),
+        slab(
+            (-0.45, 0.0, d / 2 - 0.12), (0.45, min(2.0, 0.85 * storey_h), d / 2 - 0.05), DARK_WOOD
+        ),
     ]
     for storey in range(storeys):
         y = storey * storey_h + 0.45 * storey_h
@@ -596,7 +713,11 @@ def shed(size, colour) -> trimesh.Trimesh:
     return combine(
         slab((-w / 2 + 0.05, 0.0, -d / 2 + 0.05), (w / 2 - 0.05, wall_h, d / 2 - 0.05), colour),
         gable_roof(w, d, wall_h, h - wall_h, STRAW),
-        slab((-0.35 * w, 0.0, d / 2 - 0.06), (0.35 * w, 0.85 * wall_h, d / 2 - 0.02), shade(colour, 0.7)),
+        slab(
+            (-0.35 * w, 0.0, d / 2 - 0.06),
+            (0.35 * w, 0.85 * wall_h, d / 2 - 0.02),
+            shade(colour, 0.7),
+        ),
         slab((-0.01, 0.0, d / 2 - 0.05), (0.01, 0.85 * wall_h, d / 2), DARK_WOOD),
     )
 
@@ -610,13 +731,20 @@ def tower(size, colour) -> trimesh.Trimesh:
     front = r * math.cos(math.pi / 8)  # an octagon's flat side is at this distance
     octagons = combine(
         cylinder(r, (0.0, 0.0, 0.0), (0.0, body_h, 0.0), colour, sections=8),
-        cylinder(w / 2, (0.0, body_h - 0.4, 0.0), (0.0, body_h, 0.0), shade(colour, 0.85), sections=8),
+        cylinder(
+            w / 2, (0.0, body_h - 0.4, 0.0), (0.0, body_h, 0.0), shade(colour, 0.85), sections=8
+        ),
         cone(w / 2, (0.0, body_h, 0.0), (0.0, h, 0.0), ROOF, sections=8),
     )
     # trimesh puts an octagon's corner on +Z; turn it so a flat side faces forward.
     octagons.apply_transform(trimesh.transformations.rotation_matrix(math.pi / 8, [0, 1, 0]))
-    windows = [slab((-0.25, y, front - 0.1), (0.25, y + 0.8, front + 0.02), DARK_WOOD) for y in (0.45 * body_h, 0.7 * body_h)]
-    return combine(octagons, slab((-0.5, 0.0, front - 0.1), (0.5, 2.0, front + 0.02), DARK_WOOD), windows)
+    windows = [
+        slab((-0.25, y, front - 0.1), (0.25, y + 0.8, front + 0.02), DARK_WOOD)
+        for y in (0.45 * body_h, 0.7 * body_h)
+    ]
+    return combine(
+        octagons, slab((-0.5, 0.0, front - 0.1), (0.5, 2.0, front + 0.02), DARK_WOOD), windows
+    )
 
 
 @builder("windmill")
@@ -642,7 +770,13 @@ def windmill(size, colour) -> trimesh.Trimesh:
     # A strongly tapering body under a wooden cap, so it never passes for a tower.
     return combine(
         frustum(r, 0.6 * r, 0.0, body_h, colour, sections=8),
-        cone(0.72 * r, (0.0, body_h, 0.0), (0.0, body_h + 0.18 * h, 0.0), shade(DARK_WOOD, 1.3), sections=8),
+        cone(
+            0.72 * r,
+            (0.0, body_h, 0.0),
+            (0.0, body_h + 0.18 * h, 0.0),
+            shade(DARK_WOOD, 1.3),
+            sections=8,
+        ),
         slab((-0.5, 0.0, r * 0.85), (0.5, 2.0, r * 0.95 + 0.05), DARK_WOOD),
         cylinder(0.2, (0.0, hub[1], 0.0), hub + np.array([0.0, 0.0, 0.1]), IRON, sections=8),
         sails,
@@ -656,8 +790,16 @@ def forge(size, colour) -> trimesh.Trimesh:
     hearth_h = 0.35 * h
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, hearth_h, d / 2), colour),
-        slab((-0.3 * w, hearth_h * 0.35, d / 2 - 0.35 * d), (0.3 * w, hearth_h * 0.8, d / 2 + 0.005), COAL),
-        slab((-0.25 * w, hearth_h * 0.35, d / 2 - 0.3 * d), (0.25 * w, hearth_h * 0.5, d / 2 + 0.01), GLOW),
+        slab(
+            (-0.3 * w, hearth_h * 0.35, d / 2 - 0.35 * d),
+            (0.3 * w, hearth_h * 0.8, d / 2 + 0.005),
+            COAL,
+        ),
+        slab(
+            (-0.25 * w, hearth_h * 0.35, d / 2 - 0.3 * d),
+            (0.25 * w, hearth_h * 0.5, d / 2 + 0.01),
+            GLOW,
+        ),
         slab((-0.35 * w, hearth_h, -0.1 * d), (0.35 * w, 0.55 * h, d / 2), shade(colour, 0.85)),
         slab((-0.2 * w, hearth_h, -d / 2), (0.2 * w, h, -0.1 * d), shade(colour, 0.9)),
     )
@@ -670,7 +812,10 @@ def brazier(size, colour) -> trimesh.Trimesh:
     bowl_y = 0.6 * h
     leg_feet = [(0.4 * w * math.cos(a), 0.0, 0.4 * d * math.sin(a)) for a in (0.5, 2.6, 4.7)]
     return combine(
-        [cylinder(0.03 * w, foot, (foot[0] * 0.5, bowl_y, foot[2] * 0.5), colour, sections=4) for foot in leg_feet],
+        [
+            cylinder(0.03 * w, foot, (foot[0] * 0.5, bowl_y, foot[2] * 0.5), colour, sections=4)
+            for foot in leg_feet
+        ],
         frustum(0.25 * w, 0.5 * w, bowl_y, 0.9 * h, colour, sections=10),
         cylinder(0.45 * w, (0.0, 0.88 * h, 0.0), (0.0, h, 0.0), GLOW, sections=10),
     )
@@ -686,7 +831,13 @@ def anvil(size, colour) -> trimesh.Trimesh:
         slab((x0 + 0.1 * w, 0.0, -d / 2), (x0 + 0.6 * w, 0.3 * h, d / 2), colour),
         slab((x0 + 0.22 * w, 0.3 * h, -d / 4), (x0 + 0.48 * w, 0.7 * h, d / 4), colour),
         slab((x0, 0.7 * h, -d / 3), (x0 + face_w, h, d / 3), shade(colour, 1.3)),
-        cone(0.15 * h, (x0 + face_w, 0.85 * h, 0.0), (w / 2, 0.9 * h, 0.0), shade(colour, 1.3), sections=8),
+        cone(
+            0.15 * h,
+            (x0 + face_w, 0.85 * h, 0.0),
+            (w / 2, 0.9 * h, 0.0),
+            shade(colour, 1.3),
+            sections=8,
+        ),
     )
 
 
@@ -708,7 +859,10 @@ def sign(size, colour) -> trimesh.Trimesh:
     post = 0.08
     board_y0, board_y1 = 0.55 * h, h - 0.05
     return combine(
-        [slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, -d / 2 + post), shade(colour, 0.7)) for x in (-w / 2 + post / 2, w / 2 - post / 2)],
+        [
+            slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, -d / 2 + post), shade(colour, 0.7))
+            for x in (-w / 2 + post / 2, w / 2 - post / 2)
+        ],
         slab((-w / 2, board_y0, -d / 2 + post), (w / 2, board_y1, d / 2 - 0.02), colour),
         slab((-0.35 * w, board_y0 + 0.1, d / 2 - 0.02), (0.35 * w, board_y1 - 0.1, d / 2), LINEN),
     )
@@ -739,7 +893,10 @@ def clothes_line(size, colour) -> trimesh.Trimesh:
         for index, x in enumerate(np.linspace(-w / 2 + 0.8, w / 2 - 0.8, 4))
     ]
     return combine(
-        [slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, d / 2), colour) for x in (-w / 2 + post / 2, w / 2 - post / 2)],
+        [
+            slab((x - post / 2, 0.0, -d / 2), (x + post / 2, h, d / 2), colour)
+            for x in (-w / 2 + post / 2, w / 2 - post / 2)
+        ],
         slab((-w / 2, line_y - 0.01, -0.01), (w / 2, line_y + 0.01, 0.01), LINEN),
         laundry,
     )
@@ -750,7 +907,9 @@ def well(size, colour) -> trimesh.Trimesh:
     """A round stone well with dark water inside its rim."""
     w, h, d = size
     r = w / 2
-    rim = trimesh.creation.annulus(r_min=0.72 * r, r_max=r, segment=[(0.0, 0.75 * h, 0.0), (0.0, h, 0.0)], sections=12)
+    rim = trimesh.creation.annulus(
+        r_min=0.72 * r, r_max=r, segment=[(0.0, 0.75 * h, 0.0), (0.0, h, 0.0)], sections=12
+    )
     return combine(
         cylinder(r, (0.0, 0.0, 0.0), (0.0, 0.75 * h, 0.0), colour, sections=12),
         cylinder(0.72 * r, (0.0, 0.75 * h, 0.0), (0.0, 0.8 * h, 0.0), (0.1, 0.2, 0.3), sections=12),
@@ -779,10 +938,18 @@ def pine_tree(size, colour) -> trimesh.Trimesh:
     # (radius as a fraction of the half width, base and tip heights as fractions of h)
     shapes = ((1.0, 0.15, 0.6), (0.78, 0.38, 0.8), (0.55, 0.58, 1.0))
     tiers = [
-        cone(radius * w / 2, (0.0, base * h, 0.0), (0.0, tip * h, 0.0), shade(colour, 1.0 + 0.1 * index), sections=8)
+        cone(
+            radius * w / 2,
+            (0.0, base * h, 0.0),
+            (0.0, tip * h, 0.0),
+            shade(colour, 1.0 + 0.1 * index),
+            sections=8,
+        )
         for index, (radius, base, tip) in enumerate(shapes)
     ]
-    return combine(cylinder(0.08 * w, (0.0, 0.0, 0.0), (0.0, trunk_h + 0.05 * h, 0.0), BARK, sections=6), tiers)
+    return combine(
+        cylinder(0.08 * w, (0.0, 0.0, 0.0), (0.0, trunk_h + 0.05 * h, 0.0), BARK, sections=6), tiers
+    )
 
 
 @builder("oak_tree")
@@ -791,7 +958,11 @@ def oak_tree(size, colour) -> trimesh.Trimesh:
     w, h, d = size
     crown_y = 0.62 * h
     clusters = [
-        ball((0.3 * w, 0.22 * h, 0.3 * d), (0.2 * w * math.cos(a), crown_y, 0.2 * d * math.sin(a)), shade(colour, 0.9 + 0.05 * index))
+        ball(
+            (0.3 * w, 0.22 * h, 0.3 * d),
+            (0.2 * w * math.cos(a), crown_y, 0.2 * d * math.sin(a)),
+            shade(colour, 0.9 + 0.05 * index),
+        )
         for index, a in enumerate(np.arange(4) * math.pi / 2)
     ]
     top = ball((0.3 * w, 0.2 * h, 0.3 * d), (0.0, 0.8 * h, 0.0), shade(colour, 1.15))
@@ -816,7 +987,9 @@ def sheaf(size, colour) -> trimesh.Trimesh:
     r = w / 2
     return combine(
         frustum(0.8 * r, 0.45 * r, 0.0, 0.5 * h, colour, sections=10),
-        cylinder(0.48 * r, (0.0, 0.45 * h, 0.0), (0.0, 0.55 * h, 0.0), shade(colour, 0.6), sections=10),
+        cylinder(
+            0.48 * r, (0.0, 0.45 * h, 0.0), (0.0, 0.55 * h, 0.0), shade(colour, 0.6), sections=10
+        ),
         frustum(0.45 * r, r, 0.5 * h, 0.85 * h, colour, sections=10),
         frustum(r, 0.55 * r, 0.85 * h, h, shade(colour, 1.1), sections=10),
     )
@@ -829,17 +1002,30 @@ def grain_pallet(size, colour) -> trimesh.Trimesh:
     deck = 0.15 * h
     bundle_r = min(w / 6, d / 4)
     sheaves = [
-        frustum(bundle_r, 0.8 * bundle_r, deck, h, shade(colour, 0.95 + 0.05 * (i % 2)), sections=8, centre=(x, z))
+        frustum(
+            bundle_r,
+            0.8 * bundle_r,
+            deck,
+            h,
+            shade(colour, 0.95 + 0.05 * (i % 2)),
+            sections=8,
+            centre=(x, z),
+        )
         for i, (x, z) in enumerate((x, z) for x in (-w / 3, 0.0, w / 3) for z in (-d / 4, d / 4))
     ]
     return combine(
-        [slab((-w / 2, 0.0, z - 0.05), (w / 2, deck * 0.6, z + 0.05), DARK_WOOD) for z in (-0.4 * d, 0.0, 0.4 * d)],
+        [
+            slab((-w / 2, 0.0, z - 0.05), (w / 2, deck * 0.6, z + 0.05), DARK_WOOD)
+            for z in (-0.4 * d, 0.0, 0.4 * d)
+        ],
         slab((-w / 2, deck * 0.6, -d / 2), (w / 2, deck, d / 2), WOOD),
         sheaves,
     )
 
 
-def _wagon(size, colour, load: Callable[[float, float, float, float], list[trimesh.Trimesh]]) -> trimesh.Trimesh:
+def _wagon(
+    size, colour, load: Callable[[float, float, float, float], list[trimesh.Trimesh]]
+) -> trimesh.Trimesh:
     """A two-axle cart: plank bed with side boards, four wheels, a shaft at the front (+Z).
 
     ``load(width, depth, floor_y, top_y)`` returns what lies on the bed.
@@ -852,19 +1038,44 @@ def _wagon(size, colour, load: Callable[[float, float, float, float], list[trime
     floor_y = wheel_r + 0.05
     side_y = min(h, floor_y + 0.45)
     wheels = [
-        cylinder(wheel_r, (side * w / 2, wheel_r, z), (side * (w / 2 - 0.1), wheel_r, z), DARK_WOOD, sections=10)
+        cylinder(
+            wheel_r,
+            (side * w / 2, wheel_r, z),
+            (side * (w / 2 - 0.1), wheel_r, z),
+            DARK_WOOD,
+            sections=10,
+        )
         for side in (-1, 1)
         for z in (z_back + 0.2 * body_d, z_front - 0.2 * body_d)
     ]
     inner_w = w - 0.25
     boards = [
         slab((-inner_w / 2, floor_y - 0.08, z_back), (inner_w / 2, floor_y, z_front), colour),
-        slab((-inner_w / 2, floor_y, z_back), (-inner_w / 2 + 0.05, side_y, z_front), shade(colour, 0.85)),
-        slab((inner_w / 2 - 0.05, floor_y, z_back), (inner_w / 2, side_y, z_front), shade(colour, 0.85)),
-        slab((-inner_w / 2, floor_y, z_back), (inner_w / 2, side_y, z_back + 0.05), shade(colour, 0.85)),
-        slab((-inner_w / 2, floor_y, z_front - 0.05), (inner_w / 2, side_y, z_front), shade(colour, 0.85)),
+        slab(
+            (-inner_w / 2, floor_y, z_back),
+            (-inner_w / 2 + 0.05, side_y, z_front),
+            shade(colour, 0.85),
+        ),
+        slab(
+            (inner_w / 2 - 0.05, floor_y, z_back),
+            (inner_w / 2, side_y, z_front),
+            shade(colour, 0.85),
+        ),
+        slab(
+            (-inner_w / 2, floor_y, z_back),
+            (inner_w / 2, side_y, z_back + 0.05),
+            shade(colour, 0.85),
+        ),
+        slab(
+            (-inner_w / 2, floor_y, z_front - 0.05),
+            (inner_w / 2, side_y, z_front),
+            shade(colour, 0.85),
+        ),
     ]
-    shafts = [slab((x - 0.03, floor_y - 0.1, z_front), (x + 0.03, floor_y - 0.04, d / 2), DARK_WOOD) for x in (-0.3, 0.3)]
+    shafts = [
+        slab((x - 0.03, floor_y - 0.1, z_front), (x + 0.03, floor_y - 0.04, d / 2), DARK_WOOD)
+        for x in (-0.3, 0.3)
+    ]
     return combine(wheels, boards, shafts, load(inner_w - 0.1, body_d - 0.1, floor_y, h))
 
 
@@ -879,7 +1090,13 @@ def grain_wagon(size, colour) -> trimesh.Trimesh:
 
     def heap(width, depth, floor_y, top_y):
         z_centre = -size[2] / 2 + 0.05 + depth / 2
-        return [ball((width / 2, (top_y - floor_y) / 2, depth / 2), (0.0, (floor_y + top_y) / 2, z_centre), STRAW)]
+        return [
+            ball(
+                (width / 2, (top_y - floor_y) / 2, depth / 2),
+                (0.0, (floor_y + top_y) / 2, z_centre),
+                STRAW,
+            )
+        ]
 
     return _wagon(size, colour, heap)
 
@@ -892,12 +1109,28 @@ def crate_wagon(size, colour) -> trimesh.Trimesh:
         z_back = -size[2] / 2 + 0.05
         cell = (top_y - floor_y) / 2
         stack = [
-            block((0.9 * width / 2, cell, 0.9 * depth / 3), (x, floor_y + cell / 2, z_back + depth / 6 + i * depth / 3), shade(WOOD, 1.1 + 0.1 * ((i + int(x > 0)) % 2)))
+            block(
+                (0.9 * width / 2, cell, 0.9 * depth / 3),
+                (x, floor_y + cell / 2, z_back + depth / 6 + i * depth / 3),
+                shade(WOOD, 1.1 + 0.1 * ((i + int(x > 0)) % 2)),
+            )
             for i in range(3)
             for x in (-width / 4, width / 4)
         ]
-        stack.append(block((0.9 * width / 2, cell, 0.9 * depth / 3), (-width / 4, floor_y + 1.5 * cell, z_back + depth / 6), shade(WOOD, 1.25)))
-        stack.append(block((0.9 * width / 2, cell, 0.9 * depth / 3), (width / 4, floor_y + 1.5 * cell, z_back + depth / 2), shade(WOOD, 1.15)))
+        stack.append(
+            block(
+                (0.9 * width / 2, cell, 0.9 * depth / 3),
+                (-width / 4, floor_y + 1.5 * cell, z_back + depth / 6),
+                shade(WOOD, 1.25),
+            )
+        )
+        stack.append(
+            block(
+                (0.9 * width / 2, cell, 0.9 * depth / 3),
+                (width / 4, floor_y + 1.5 * cell, z_back + depth / 2),
+                shade(WOOD, 1.15),
+            )
+        )
         return stack
 
     return _wagon(size, colour, crates)
@@ -910,7 +1143,9 @@ def crate_wagon(size, colour) -> trimesh.Trimesh:
 
 def ring(inner: float, outer: float, start, end, colour, sections: int = 12) -> trimesh.Trimesh:
     """A flat ring (a washer) from point ``start`` to point ``end`` along its axis."""
-    mesh = trimesh.creation.annulus(r_min=inner, r_max=outer, segment=[start, end], sections=sections)
+    mesh = trimesh.creation.annulus(
+        r_min=inner, r_max=outer, segment=[start, end], sections=sections
+    )
     return coloured(mesh, colour)
 
 
@@ -930,13 +1165,28 @@ def _upholstered(size, colour, seats: int) -> trimesh.Trimesh:
     arm_w, back_d, cushion_t = min(0.18 * w, 0.2), 0.22 * d, 0.12 * h
     inner = np.linspace(-w / 2 + arm_w, w / 2 - arm_w, seats + 1)
     cushions = []
-    for x0, x1 in zip(inner[:-1], inner[1:]):
-        cushions.append(slab((x0 + 0.005, seat_y - cushion_t, -d / 2 + back_d), (x1 - 0.005, seat_y, d / 2 - 0.02), shade(colour, 1.12)))
-        cushions.append(slab((x0 + 0.01, seat_y, -d / 2 + back_d), (x1 - 0.01, 0.9 * h, -d / 2 + back_d + 0.15 * d), shade(colour, 1.05)))
+    for x0, x1 in zip(inner[:-1], inner[1:], strict=False):
+        cushions.append(
+            slab(
+                (x0 + 0.005, seat_y - cushion_t, -d / 2 + back_d),
+                (x1 - 0.005, seat_y, d / 2 - 0.02),
+                shade(colour, 1.12),
+            )
+        )
+        cushions.append(
+            slab(
+                (x0 + 0.01, seat_y, -d / 2 + back_d),
+                (x1 - 0.01, 0.9 * h, -d / 2 + back_d + 0.15 * d),
+                shade(colour, 1.05),
+            )
+        )
     return combine(
         legs(0.96 * w, 0.9 * d, leg_h, 0.05, DARK_WOOD),
         slab((-w / 2, leg_h, -d / 2), (w / 2, seat_y - cushion_t, d / 2), colour),
-        [slab((x0, leg_h, -d / 2), (x1, arm_h, d / 2), shade(colour, 0.92)) for x0, x1 in ((-w / 2, -w / 2 + arm_w), (w / 2 - arm_w, w / 2))],
+        [
+            slab((x0, leg_h, -d / 2), (x1, arm_h, d / 2), shade(colour, 0.92))
+            for x0, x1 in ((-w / 2, -w / 2 + arm_w), (w / 2 - arm_w, w / 2))
+        ],
         slab((-w / 2, leg_h, -d / 2), (w / 2, h, -d / 2 + back_d), shade(colour, 0.85)),
         cushions,
     )
@@ -963,8 +1213,14 @@ def coffee_table(size, colour) -> trimesh.Trimesh:
     return combine(
         slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), colour),
         legs(w, d, h - top, 0.05, shade(colour, 0.75)),
-        slab((-w / 2 + 0.03, shelf_y, -d / 2 + 0.03), (w / 2 - 0.03, shelf_y + 0.025, d / 2 - 0.03), shade(colour, 0.9)),
-        slab((-0.3 * w, shelf_y + 0.025, -0.25 * d), (-0.05 * w, shelf_y + 0.035, 0.15 * d), BLOSSOM),
+        slab(
+            (-w / 2 + 0.03, shelf_y, -d / 2 + 0.03),
+            (w / 2 - 0.03, shelf_y + 0.025, d / 2 - 0.03),
+            shade(colour, 0.9),
+        ),
+        slab(
+            (-0.3 * w, shelf_y + 0.025, -0.25 * d), (-0.05 * w, shelf_y + 0.035, 0.15 * d), BLOSSOM
+        ),
         slab((0.05 * w, shelf_y + 0.025, -0.1 * d), (0.28 * w, shelf_y + 0.04, 0.3 * d), GLASS),
     )
 
@@ -981,11 +1237,25 @@ def tv_stand(size, colour) -> trimesh.Trimesh:
         legs(0.96 * w, 0.9 * d, leg_h, 0.04, IRON),
         slab((-w / 2, leg_h, -d / 2), (w / 2, h - top, body_front), colour),
         slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), shade(colour, 0.8)),
-        [slab((x0, leg_h + 0.02, body_front), (x1, h - top - 0.02, d / 2), shade(colour, 1.15)) for x0, x1 in door],
-        [block((0.02, 0.12 * h, 0.02), (x, (leg_h + h - top) / 2, d / 2 - 0.01), IRON) for x in (-w / 6 - 0.04, w / 6 + 0.04)],
+        [
+            slab((x0, leg_h + 0.02, body_front), (x1, h - top - 0.02, d / 2), shade(colour, 1.15))
+            for x0, x1 in door
+        ],
+        [
+            block((0.02, 0.12 * h, 0.02), (x, (leg_h + h - top) / 2, d / 2 - 0.01), IRON)
+            for x in (-w / 6 - 0.04, w / 6 + 0.04)
+        ],
         # The open shelf: its shadowed inside, and a media box standing in it.
-        slab((-w / 6 + 0.01, leg_h + 0.02, body_front - 0.004), (w / 6 - 0.01, h - top - 0.02, body_front + 0.002), shade(colour, 0.4)),
-        slab((-w / 8, leg_h + 0.025, body_front - 0.004), (w / 8, leg_h + 0.025 + 0.25 * (h - top - leg_h), d / 2 - 0.004), COAL),
+        slab(
+            (-w / 6 + 0.01, leg_h + 0.02, body_front - 0.004),
+            (w / 6 - 0.01, h - top - 0.02, body_front + 0.002),
+            shade(colour, 0.4),
+        ),
+        slab(
+            (-w / 8, leg_h + 0.025, body_front - 0.004),
+            (w / 8, leg_h + 0.025 + 0.25 * (h - top - leg_h), d / 2 - 0.004),
+            COAL,
+        ),
         block((0.015, 0.01, 0.004), (w / 8 - 0.03, leg_h + 0.06, d / 2 - 0.003), LIGHT),
     )
 
@@ -997,11 +1267,23 @@ def tv(size, colour) -> trimesh.Trimesh:
     panel_t, bezel, panel_y = min(0.05, 0.3 * d), min(0.03, 0.05 * w), 0.14 * h
     return combine(
         slab((-0.22 * w, 0.0, -d / 2), (0.22 * w, 0.02 * h, d / 2), colour),
-        slab((-0.05 * w, 0.02 * h, -panel_t / 2 - 0.01), (0.05 * w, panel_y + 0.1 * h, -panel_t / 2 + 0.005), shade(colour, 1.2)),
+        slab(
+            (-0.05 * w, 0.02 * h, -panel_t / 2 - 0.01),
+            (0.05 * w, panel_y + 0.1 * h, -panel_t / 2 + 0.005),
+            shade(colour, 1.2),
+        ),
         slab((-w / 2, panel_y, -panel_t / 2), (w / 2, h, panel_t / 2), colour),
-        slab((-w / 2 + bezel, panel_y + bezel, panel_t / 2), (w / 2 - bezel, h - bezel, panel_t / 2 + 0.004), SCREEN),
+        slab(
+            (-w / 2 + bezel, panel_y + bezel, panel_t / 2),
+            (w / 2 - bezel, h - bezel, panel_t / 2 + 0.004),
+            SCREEN,
+        ),
         # A faint sheen across the glass, so the screen reads as one.
-        slab((-w / 2 + bezel, h - 0.35 * (h - panel_y), panel_t / 2 + 0.004), (-0.1 * w, h - bezel, panel_t / 2 + 0.005), shade(SCREEN, 1.6)),
+        slab(
+            (-w / 2 + bezel, h - 0.35 * (h - panel_y), panel_t / 2 + 0.004),
+            (-0.1 * w, h - bezel, panel_t / 2 + 0.005),
+            shade(SCREEN, 1.6),
+        ),
     )
 
 
@@ -1019,7 +1301,11 @@ def dining_table(size, colour) -> trimesh.Trimesh:
     ]
     return combine(
         slab((-w / 2, h - top, -d / 2), (w / 2, h - 0.004, d / 2), colour),
-        slab((-w / 2 + 0.06, h - top - apron, -d / 2 + 0.06), (w / 2 - 0.06, h - top, d / 2 - 0.06), shade(colour, 0.8)),
+        slab(
+            (-w / 2 + 0.06, h - top - apron, -d / 2 + 0.06),
+            (w / 2 - 0.06, h - top, d / 2 - 0.06),
+            shade(colour, 0.8),
+        ),
         legs(w - 0.08, d - 0.08, h - top, 0.07, shade(colour, 0.8)),
         slab((-0.42 * w, h - 0.004, -0.12 * d), (0.42 * w, h, 0.12 * d), shade(ROOF, 1.2)),
         plates,
@@ -1035,14 +1321,28 @@ def dresser(size, colour) -> trimesh.Trimesh:
     front = d / 2 - 0.035
     rows = np.linspace(plinth + 0.01, h - top - 0.01, 4)
     fronts, knobs = [], []
-    for row, (y0, y1) in enumerate(zip(rows[:-1], rows[1:])):
-        columns = ((-w / 2 + 0.02, -0.005), (0.005, w / 2 - 0.02)) if row == 2 else ((-w / 2 + 0.02, w / 2 - 0.02),)
+    for row, (y0, y1) in enumerate(zip(rows[:-1], rows[1:], strict=False)):
+        columns = (
+            ((-w / 2 + 0.02, -0.005), (0.005, w / 2 - 0.02))
+            if row == 2
+            else ((-w / 2 + 0.02, w / 2 - 0.02),)
+        )
         for x0, x1 in columns:
-            fronts.append(slab((x0, y0 + 0.008, front), (x1, y1 - 0.008, d / 2 - 0.02), shade(colour, 1.15)))
-            for x in ((x0 + x1) / 2,) if len(columns) == 2 else (x0 + 0.25 * (x1 - x0), x1 - 0.25 * (x1 - x0)):
+            fronts.append(
+                slab((x0, y0 + 0.008, front), (x1, y1 - 0.008, d / 2 - 0.02), shade(colour, 1.15))
+            )
+            for x in (
+                ((x0 + x1) / 2,)
+                if len(columns) == 2
+                else (x0 + 0.25 * (x1 - x0), x1 - 0.25 * (x1 - x0))
+            ):
                 knobs.append(block((0.03, 0.025, 0.02), (x, (y0 + y1) / 2, d / 2 - 0.01), IRON))
     return combine(
-        slab((-w / 2 + 0.02, 0.0, -d / 2 + 0.02), (w / 2 - 0.02, plinth, front - 0.02), shade(colour, 0.7)),
+        slab(
+            (-w / 2 + 0.02, 0.0, -d / 2 + 0.02),
+            (w / 2 - 0.02, plinth, front - 0.02),
+            shade(colour, 0.7),
+        ),
         slab((-w / 2, plinth, -d / 2), (w / 2, h - top, front), colour),
         slab((-w / 2, h - top, -d / 2), (w / 2, h, d / 2), shade(colour, 0.85)),
         fronts,
@@ -1059,27 +1359,64 @@ def piano(size, colour) -> trimesh.Trimesh:
     key_y = 0.58 * h  # the top of the white keys
     side = 0.05
     keys_x0, keys_x1 = -w / 2 + side, w / 2 - side
-    octaves = int(np.clip(round((keys_x1 - keys_x0) / 0.3), 1, 4))  # black keys drawn coarser than life
+    octaves = int(
+        np.clip(round((keys_x1 - keys_x0) / 0.3), 1, 4)
+    )  # black keys drawn coarser than life
     white = (keys_x1 - keys_x0) / (7 * octaves)
     black_keys = [
-        slab((x - 0.3 * white, key_y, case_front), (x + 0.3 * white, key_y + 0.02, case_front + 0.6 * (d / 2 - case_front)), COAL)
+        slab(
+            (x - 0.3 * white, key_y, case_front),
+            (x + 0.3 * white, key_y + 0.02, case_front + 0.6 * (d / 2 - case_front)),
+            COAL,
+        )
         for octave in range(octaves)
         for x in (keys_x0 + (7 * octave + i + 1) * white for i in (0, 1, 3, 4, 5))
     ]
     ends = []
     for x0 in (-w / 2, w / 2 - side):
-        ends.append(slab((x0, key_y - 0.12, case_front), (x0 + side, key_y + 0.06, d / 2), shade(colour, 0.9)))
-        ends.append(slab((x0 + 0.01, 0.0, d / 2 - 0.07), (x0 + side - 0.01, key_y - 0.12, d / 2 - 0.02), colour))
+        ends.append(
+            slab(
+                (x0, key_y - 0.12, case_front), (x0 + side, key_y + 0.06, d / 2), shade(colour, 0.9)
+            )
+        )
+        ends.append(
+            slab(
+                (x0 + 0.01, 0.0, d / 2 - 0.07),
+                (x0 + side - 0.01, key_y - 0.12, d / 2 - 0.02),
+                colour,
+            )
+        )
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h - 0.03, case_front), colour),
         slab((-w / 2, h - 0.03, -d / 2), (w / 2, h, case_front + 0.01), shade(colour, 1.25)),
         ends,
-        slab((keys_x0, key_y - 0.1, case_front), (keys_x1, key_y - 0.025, d / 2 - 0.01), shade(colour, 0.8)),
-        slab((keys_x0, key_y - 0.025, case_front), (keys_x1, key_y, d / 2 - 0.015), (0.95, 0.94, 0.88)),
+        slab(
+            (keys_x0, key_y - 0.1, case_front),
+            (keys_x1, key_y - 0.025, d / 2 - 0.01),
+            shade(colour, 0.8),
+        ),
+        slab(
+            (keys_x0, key_y - 0.025, case_front),
+            (keys_x1, key_y, d / 2 - 0.015),
+            (0.95, 0.94, 0.88),
+        ),
         black_keys,
-        slab((keys_x0, key_y, case_front), (keys_x1, key_y + 0.1, case_front + 0.025), shade(colour, 0.8)),
-        slab((-0.3 * w, key_y + 0.16, case_front), (0.3 * w, key_y + 0.34, case_front + 0.02), shade(colour, 1.3)),
-        [slab((x - 0.02, 0.03, case_front), (x + 0.02, 0.05, case_front + 0.12), (0.8, 0.65, 0.3)) for x in (-0.07, 0.0, 0.07)],
+        slab(
+            (keys_x0, key_y, case_front),
+            (keys_x1, key_y + 0.1, case_front + 0.025),
+            shade(colour, 0.8),
+        ),
+        slab(
+            (-0.3 * w, key_y + 0.16, case_front),
+            (0.3 * w, key_y + 0.34, case_front + 0.02),
+            shade(colour, 1.3),
+        ),
+        [
+            slab(
+                (x - 0.02, 0.03, case_front), (x + 0.02, 0.05, case_front + 0.12), (0.8, 0.65, 0.3)
+            )
+            for x in (-0.07, 0.0, 0.07)
+        ],
     )
 
 
@@ -1093,16 +1430,34 @@ def refrigerator(size, colour) -> trimesh.Trimesh:
     handle_x = w / 2 - 0.07
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h, body_front), colour),
-        slab((-w / 2 + 0.02, 0.0, body_front - 0.02), (w / 2 - 0.02, 0.03, body_front + 0.005), COAL),
+        slab(
+            (-w / 2 + 0.02, 0.0, body_front - 0.02), (w / 2 - 0.02, 0.03, body_front + 0.005), COAL
+        ),
         slab((-w / 2, 0.03, body_front), (w / 2, seam - 0.006, door_front), shade(colour, 1.05)),
-        slab((-w / 2, seam + 0.006, body_front), (w / 2, h - 0.005, door_front), shade(colour, 1.05)),
-        slab((-w / 2, seam - 0.006, body_front - 0.01), (w / 2, seam + 0.006, door_front - 0.005), shade(colour, 0.35)),
-        slab((handle_x - 0.015, seam - 0.3 * h * 0.75, door_front), (handle_x + 0.015, seam - 0.05, d / 2), CHROME),
-        slab((handle_x - 0.015, seam + 0.05, door_front), (handle_x + 0.015, seam + 0.3 * h, d / 2), CHROME),
+        slab(
+            (-w / 2, seam + 0.006, body_front), (w / 2, h - 0.005, door_front), shade(colour, 1.05)
+        ),
+        slab(
+            (-w / 2, seam - 0.006, body_front - 0.01),
+            (w / 2, seam + 0.006, door_front - 0.005),
+            shade(colour, 0.35),
+        ),
+        slab(
+            (handle_x - 0.015, seam - 0.3 * h * 0.75, door_front),
+            (handle_x + 0.015, seam - 0.05, d / 2),
+            CHROME,
+        ),
+        slab(
+            (handle_x - 0.015, seam + 0.05, door_front),
+            (handle_x + 0.015, seam + 0.3 * h, d / 2),
+            CHROME,
+        ),
     )
 
 
-def _base_cabinet(width: float, top_y: float, depth: float, colour, drawers: bool) -> list[trimesh.Trimesh]:
+def _base_cabinet(
+    width: float, top_y: float, depth: float, colour, drawers: bool
+) -> list[trimesh.Trimesh]:
     """A kitchen base cabinet ``top_y`` tall (under a worktop), ``depth`` deep, centred:
     a recessed dark plinth, then a column of door (under a drawer, if ``drawers``) about
     every 60 cm, fronts and handles on +Z, the front at ``depth / 2``."""
@@ -1116,14 +1471,32 @@ def _base_cabinet(width: float, top_y: float, depth: float, colour, drawers: boo
         slab((-w / 2, 0.0, -d / 2), (w / 2, plinth, body_front - 0.06), shade(colour, 0.35)),
         slab((-w / 2, plinth, -d / 2), (w / 2, top_y, body_front), colour),
     ]
-    for x0, x1 in zip(edges[:-1], edges[1:]):
+    for x0, x1 in zip(edges[:-1], edges[1:], strict=False):
         x0, x1 = x0 + 0.004, x1 - 0.004
-        parts.append(slab((x0, plinth + 0.004, body_front), (x1, drawer_y - 0.004, d / 2 - 0.02), shade(colour, 1.1)))
+        parts.append(
+            slab(
+                (x0, plinth + 0.004, body_front),
+                (x1, drawer_y - 0.004, d / 2 - 0.02),
+                shade(colour, 1.1),
+            )
+        )
         handle_x = x1 - 0.06 if columns > 1 and x0 < 0 else x0 + 0.06
         parts.append(block((0.02, 0.14, 0.02), (handle_x, drawer_y - 0.12, d / 2 - 0.01), CHROME))
         if drawers:
-            parts.append(slab((x0, drawer_y + 0.004, body_front), (x1, top_y - 0.004, d / 2 - 0.02), shade(colour, 1.1)))
-            parts.append(block((0.4 * (x1 - x0), 0.02, 0.02), ((x0 + x1) / 2, drawer_y + 0.08, d / 2 - 0.01), CHROME))
+            parts.append(
+                slab(
+                    (x0, drawer_y + 0.004, body_front),
+                    (x1, top_y - 0.004, d / 2 - 0.02),
+                    shade(colour, 1.1),
+                )
+            )
+            parts.append(
+                block(
+                    (0.4 * (x1 - x0), 0.02, 0.02),
+                    ((x0 + x1) / 2, drawer_y + 0.08, d / 2 - 0.01),
+                    CHROME,
+                )
+            )
     return parts
 
 
@@ -1160,12 +1533,22 @@ def sink_counter(size, colour) -> trimesh.Trimesh:
         slab((x0, top_y - worktop, z1), (x1, top_y, d / 2), WORKTOP),
         # The basin: a steel floor and four walls under the hole, a drain.
         slab((x0, floor_y, z0), (x1, floor_y + wall, z1), shade(steel, 0.85)),
-        [slab((x0, floor_y, za), (x1, top_y, zb), steel) for za, zb in ((z0, z0 + wall), (z1 - wall, z1))],
-        [slab((xa, floor_y, z0), (xb, top_y, z1), steel) for xa, xb in ((x0, x0 + wall), (x1 - wall, x1))],
-        cylinder(0.03, (0.0, floor_y + wall, bz), (0.0, floor_y + wall + 0.002, bz), COAL, sections=8),
+        [
+            slab((x0, floor_y, za), (x1, top_y, zb), steel)
+            for za, zb in ((z0, z0 + wall), (z1 - wall, z1))
+        ],
+        [
+            slab((xa, floor_y, z0), (xb, top_y, z1), steel)
+            for xa, xb in ((x0, x0 + wall), (x1 - wall, x1))
+        ],
+        cylinder(
+            0.03, (0.0, floor_y + wall, bz), (0.0, floor_y + wall + 0.002, bz), COAL, sections=8
+        ),
         # The tap: a pillar at the back, a spout reaching over the basin.
         cylinder(0.02, (0.0, top_y, tap_z), (0.0, h - 0.015, tap_z), CHROME, sections=8),
-        cylinder(0.015, (0.0, h - 0.015, tap_z - 0.01), (0.0, h - 0.015, z0 + 0.12), CHROME, sections=8),
+        cylinder(
+            0.015, (0.0, h - 0.015, tap_z - 0.01), (0.0, h - 0.015, z0 + 0.12), CHROME, sections=8
+        ),
         cylinder(0.015, (0.0, h - 0.05, z0 + 0.11), (0.0, h, z0 + 0.11), CHROME, sections=8),
     )
 
@@ -1192,9 +1575,21 @@ def stove(size, colour) -> trimesh.Trimesh:
         slab((-w / 2, 0.0, -d / 2), (w / 2, h - hob, front), colour),
         slab((-w / 2, strip_y, front), (w / 2, h - hob, front + 0.005), shade(colour, 0.85)),
         knobs,
-        slab((-w / 2 + 0.03, 0.08, front), (w / 2 - 0.03, strip_y - 0.02, front + 0.008), shade(colour, 1.05)),
-        slab((-w / 2 + 0.09, 0.2, front + 0.008), (w / 2 - 0.09, strip_y - 0.12, front + 0.01), (0.12, 0.12, 0.14)),
-        slab((-w / 2 + 0.07, strip_y - 0.09, front + 0.008), (w / 2 - 0.07, strip_y - 0.065, d / 2), CHROME),
+        slab(
+            (-w / 2 + 0.03, 0.08, front),
+            (w / 2 - 0.03, strip_y - 0.02, front + 0.008),
+            shade(colour, 1.05),
+        ),
+        slab(
+            (-w / 2 + 0.09, 0.2, front + 0.008),
+            (w / 2 - 0.09, strip_y - 0.12, front + 0.01),
+            (0.12, 0.12, 0.14),
+        ),
+        slab(
+            (-w / 2 + 0.07, strip_y - 0.09, front + 0.008),
+            (w / 2 - 0.07, strip_y - 0.065, d / 2),
+            CHROME,
+        ),
         slab((-w / 2, h - hob, -d / 2), (w / 2, h - 0.004, d / 2), COAL),
         rings,
     )
@@ -1215,7 +1610,10 @@ def bathtub(size, colour) -> trimesh.Trimesh:
         slab((x1, base, z0), (w / 2, h, z1), colour),
         slab((x0, base, z0), (x1, 0.65 * h, z1), WATER),
         cylinder(0.02, (x0, h - 0.08, 0.0), (x0 + 0.1, h - 0.08, 0.0), CHROME, sections=8),
-        [cylinder(0.02, (x0 - 0.005, h - 0.05, z), (x0 + 0.01, h - 0.05, z), CHROME, sections=8) for z in (-0.08, 0.08)],
+        [
+            cylinder(0.02, (x0 - 0.005, h - 0.05, z), (x0 + 0.01, h - 0.05, z), CHROME, sections=8)
+            for z in (-0.08, 0.08)
+        ],
     )
 
 
@@ -1237,11 +1635,37 @@ def toilet(size, colour) -> trimesh.Trimesh:
     lid.apply_translation((0.0, seat_y + 0.04 + lid_r_y, lid_z))
     return combine(
         slab((-w / 2, 0.42 * h, -d / 2), (w / 2, h, -d / 2 + cistern_d), colour),
-        cylinder(0.035, (0.0, h - 0.001, -d / 2 + cistern_d / 2), (0.0, h, -d / 2 + cistern_d / 2), CHROME, sections=8),
-        oval(frustum(0.55 * rx, 0.65 * rx, 0.0, 0.3 * h, colour, sections=12), ratio * 0.8, bowl_z - 0.03),
+        cylinder(
+            0.035,
+            (0.0, h - 0.001, -d / 2 + cistern_d / 2),
+            (0.0, h, -d / 2 + cistern_d / 2),
+            CHROME,
+            sections=8,
+        ),
+        oval(
+            frustum(0.55 * rx, 0.65 * rx, 0.0, 0.3 * h, colour, sections=12),
+            ratio * 0.8,
+            bowl_z - 0.03,
+        ),
         oval(frustum(0.65 * rx, rx, 0.3 * h, seat_y, colour, sections=12), ratio, bowl_z),
-        oval(cylinder(0.62 * rx, (0.0, seat_y - 0.01, 0.0), (0.0, seat_y + 0.003, 0.0), WATER, sections=12), ratio, bowl_z),
-        oval(ring(0.62 * rx, 0.98 * rx, (0.0, seat_y, 0.0), (0.0, seat_y + 0.03, 0.0), shade(colour, 0.97)), ratio, bowl_z),
+        oval(
+            cylinder(
+                0.62 * rx, (0.0, seat_y - 0.01, 0.0), (0.0, seat_y + 0.003, 0.0), WATER, sections=12
+            ),
+            ratio,
+            bowl_z,
+        ),
+        oval(
+            ring(
+                0.62 * rx,
+                0.98 * rx,
+                (0.0, seat_y, 0.0),
+                (0.0, seat_y + 0.03, 0.0),
+                shade(colour, 0.97),
+            ),
+            ratio,
+            bowl_z,
+        ),
         lid,
     )
 
@@ -1257,13 +1681,36 @@ def washbasin(size, colour) -> trimesh.Trimesh:
     ratio = d / w
     tap_z = -d / 2 + 0.06
     return combine(
-        frustum(0.18 * w, 0.12 * w, 0.0, basin_y + 0.02, colour, sections=10, centre=(0.0, -0.1 * d)),
+        frustum(
+            0.18 * w, 0.12 * w, 0.0, basin_y + 0.02, colour, sections=10, centre=(0.0, -0.1 * d)
+        ),
         oval(frustum(0.7 * rx, rx, basin_y, rim_y, colour, sections=14), ratio),
-        oval(cylinder(0.72 * rx, (0.0, rim_y, 0.0), (0.0, rim_y + 0.003, 0.0), shade(colour, 0.82), sections=14), ratio, 0.05 * d),
-        cylinder(0.02, (0.0, rim_y + 0.003, 0.05 * d), (0.0, rim_y + 0.005, 0.05 * d), COAL, sections=8),
+        oval(
+            cylinder(
+                0.72 * rx,
+                (0.0, rim_y, 0.0),
+                (0.0, rim_y + 0.003, 0.0),
+                shade(colour, 0.82),
+                sections=14,
+            ),
+            ratio,
+            0.05 * d,
+        ),
+        cylinder(
+            0.02, (0.0, rim_y + 0.003, 0.05 * d), (0.0, rim_y + 0.005, 0.05 * d), COAL, sections=8
+        ),
         cylinder(0.018, (0.0, rim_y, tap_z), (0.0, h - 0.015, tap_z), CHROME, sections=8),
-        cylinder(0.013, (0.0, h - 0.015, tap_z - 0.01), (0.0, h - 0.015, tap_z + 0.12), CHROME, sections=8),
-        [cylinder(0.02, (x, rim_y, tap_z), (x, rim_y + 0.04, tap_z), CHROME, sections=8) for x in (-0.1, 0.1)],
+        cylinder(
+            0.013,
+            (0.0, h - 0.015, tap_z - 0.01),
+            (0.0, h - 0.015, tap_z + 0.12),
+            CHROME,
+            sections=8,
+        ),
+        [
+            cylinder(0.02, (x, rim_y, tap_z), (x, rim_y + 0.04, tap_z), CHROME, sections=8)
+            for x in (-0.1, 0.1)
+        ],
     )
 
 
@@ -1278,13 +1725,41 @@ def washing_machine(size, colour) -> trimesh.Trimesh:
     r = 0.36 * min(w, h - panel)
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, h, front), colour),
-        slab((-w / 2 + 0.01, h - panel, front), (w / 2 - 0.01, h - 0.01, front + 0.008), shade(colour, 0.9)),
-        slab((-w / 2 + 0.03, h - panel + 0.02, front + 0.008), (-w / 2 + 0.2 * w + 0.03, h - 0.03, front + 0.012), shade(colour, 1.1)),
-        slab((-0.05 * w, h - panel + 0.04, front + 0.008), (0.12 * w, h - 0.04, front + 0.01), SCREEN),
-        cylinder(0.035, (0.3 * w, h - panel / 2, front + 0.008), (0.3 * w, h - panel / 2, d / 2), CHROME, sections=10),
-        ring(0.75 * r, r, (0.0, door_y, front), (0.0, door_y, d / 2), shade(CHROME, 0.9), sections=16),
-        cylinder(0.75 * r, (0.0, door_y, front), (0.0, door_y, d / 2 - 0.008), (0.16, 0.2, 0.26), sections=16),
-        slab((-w / 2 + 0.02, 0.0, front - 0.02), (w / 2 - 0.02, 0.05, front + 0.004), shade(colour, 0.8)),
+        slab(
+            (-w / 2 + 0.01, h - panel, front),
+            (w / 2 - 0.01, h - 0.01, front + 0.008),
+            shade(colour, 0.9),
+        ),
+        slab(
+            (-w / 2 + 0.03, h - panel + 0.02, front + 0.008),
+            (-w / 2 + 0.2 * w + 0.03, h - 0.03, front + 0.012),
+            shade(colour, 1.1),
+        ),
+        slab(
+            (-0.05 * w, h - panel + 0.04, front + 0.008), (0.12 * w, h - 0.04, front + 0.01), SCREEN
+        ),
+        cylinder(
+            0.035,
+            (0.3 * w, h - panel / 2, front + 0.008),
+            (0.3 * w, h - panel / 2, d / 2),
+            CHROME,
+            sections=10,
+        ),
+        ring(
+            0.75 * r, r, (0.0, door_y, front), (0.0, door_y, d / 2), shade(CHROME, 0.9), sections=16
+        ),
+        cylinder(
+            0.75 * r,
+            (0.0, door_y, front),
+            (0.0, door_y, d / 2 - 0.008),
+            (0.16, 0.2, 0.26),
+            sections=16,
+        ),
+        slab(
+            (-w / 2 + 0.02, 0.0, front - 0.02),
+            (w / 2 - 0.02, 0.05, front + 0.004),
+            shade(colour, 0.8),
+        ),
     )
 
 
@@ -1310,15 +1785,33 @@ def whiteboard(size, colour) -> trimesh.Trimesh:
     ]
     box_x, box_y = x0 + 0.55 * w, y0 + 0.15 * (y1 - y0)
     sketch = [  # a red box drawn on the right: two sides and top and bottom
-        slab((box_x, box_y, face), (box_x + 0.012, box_y + 0.25 * (y1 - y0), face + 0.001), (0.8, 0.2, 0.2)),
-        slab((box_x + 0.2 * w, box_y, face), (box_x + 0.2 * w + 0.012, box_y + 0.25 * (y1 - y0), face + 0.001), (0.8, 0.2, 0.2)),
+        slab(
+            (box_x, box_y, face),
+            (box_x + 0.012, box_y + 0.25 * (y1 - y0), face + 0.001),
+            (0.8, 0.2, 0.2),
+        ),
+        slab(
+            (box_x + 0.2 * w, box_y, face),
+            (box_x + 0.2 * w + 0.012, box_y + 0.25 * (y1 - y0), face + 0.001),
+            (0.8, 0.2, 0.2),
+        ),
         slab((box_x, box_y, face), (box_x + 0.2 * w, box_y + 0.012, face + 0.001), (0.8, 0.2, 0.2)),
-        slab((box_x, box_y + 0.25 * (y1 - y0) - 0.012, face), (box_x + 0.2 * w, box_y + 0.25 * (y1 - y0), face + 0.001), (0.8, 0.2, 0.2)),
+        slab(
+            (box_x, box_y + 0.25 * (y1 - y0) - 0.012, face),
+            (box_x + 0.2 * w, box_y + 0.25 * (y1 - y0), face + 0.001),
+            (0.8, 0.2, 0.2),
+        ),
     ]
     tray = min(0.06, d / 2 - face)
     parts = [
-        [slab((x - 0.02, 0.0, -d / 2), (x + 0.02, 0.04, d / 2), metal) for x in (-w / 2 + 0.02, w / 2 - 0.02)],
-        [slab((x - 0.02, 0.04, -half), (x + 0.02, h, half), metal) for x in (-w / 2 + 0.02, w / 2 - 0.02)],
+        [
+            slab((x - 0.02, 0.0, -d / 2), (x + 0.02, 0.04, d / 2), metal)
+            for x in (-w / 2 + 0.02, w / 2 - 0.02)
+        ],
+        [
+            slab((x - 0.02, 0.04, -half), (x + 0.02, h, half), metal)
+            for x in (-w / 2 + 0.02, w / 2 - 0.02)
+        ],
         slab((x0, y0, -half), (x1, y1, half), metal),
         slab((x0 + 0.025, y0 + 0.025, -face), (x1 - 0.025, y1 - 0.025, face), colour),
         lines,
@@ -1356,17 +1849,31 @@ def shower(size, colour) -> trimesh.Trimesh:
     head_z = riser_z + min(0.3, 0.4 * d)
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, tray - 0.008, d / 2), colour),
-        slab((-w / 2 + 0.04, tray - 0.008, -d / 2 + 0.04), (w / 2 - 0.04, tray, d / 2 - 0.04), shade(colour, 0.92)),
+        slab(
+            (-w / 2 + 0.04, tray - 0.008, -d / 2 + 0.04),
+            (w / 2 - 0.04, tray, d / 2 - 0.04),
+            shade(colour, 0.92),
+        ),
         cylinder(0.04, (0.0, tray, 0.0), (0.0, tray + 0.002, 0.0), IRON, sections=8),
         slab((door_x, tray, d / 2 - glass_t), (w / 2, glass_top, d / 2), SHOWER_GLASS),
         slab((w / 2 - glass_t, tray, -d / 2), (w / 2, glass_top, d / 2 - glass_t), SHOWER_GLASS),
         slab((door_x - 0.02, tray, d / 2 - glass_t), (door_x, glass_top, d / 2), CHROME),
         slab((door_x, glass_top - 0.02, d / 2 - glass_t), (w / 2, glass_top, d / 2), CHROME),
-        slab((w / 2 - glass_t, glass_top - 0.02, -d / 2), (w / 2, glass_top, d / 2 - glass_t), CHROME),
-        cylinder(0.012, (riser_x, 0.45 * h, riser_z), (riser_x, arm_y, riser_z), CHROME, sections=6),
+        slab(
+            (w / 2 - glass_t, glass_top - 0.02, -d / 2), (w / 2, glass_top, d / 2 - glass_t), CHROME
+        ),
+        cylinder(
+            0.012, (riser_x, 0.45 * h, riser_z), (riser_x, arm_y, riser_z), CHROME, sections=6
+        ),
         cylinder(0.012, (riser_x, arm_y, riser_z), (riser_x, arm_y, head_z), CHROME, sections=6),
-        frustum(0.03, 0.09, arm_y - 0.06, arm_y - 0.01, CHROME, sections=10, centre=(riser_x, head_z)),
-        slab((riser_x - 0.08, 0.5 * h - 0.04, -d / 2), (riser_x + 0.08, 0.5 * h + 0.04, -d / 2 + 0.05), CHROME),
+        frustum(
+            0.03, 0.09, arm_y - 0.06, arm_y - 0.01, CHROME, sections=10, centre=(riser_x, head_z)
+        ),
+        slab(
+            (riser_x - 0.08, 0.5 * h - 0.04, -d / 2),
+            (riser_x + 0.08, 0.5 * h + 0.04, -d / 2 + 0.05),
+            CHROME,
+        ),
     )
 
 
@@ -1378,14 +1885,22 @@ def towel_rail(size, colour) -> trimesh.Trimesh:
     posts = [w / 2 - 0.02, -w / 2 + 0.02]
     bars_y = (0.45 * h, 0.7 * h, h - 0.015)
     towels = []
-    for (y, x_half, towel_colour, drop) in ((h, 0.36 * w, (0.55, 0.72, 0.85), 0.45 * h), (0.7 * h, 0.28 * w, (0.9, 0.6, 0.5), 0.3 * h)):
+    for y, x_half, towel_colour, drop in (
+        (h, 0.36 * w, (0.55, 0.72, 0.85), 0.45 * h),
+        (0.7 * h, 0.28 * w, (0.9, 0.6, 0.5), 0.3 * h),
+    ):
         towels.append(slab((-x_half, y - drop, -0.035), (x_half, y - 0.005, -0.015), towel_colour))
         towels.append(slab((-x_half, y - drop, 0.015), (x_half, y - 0.005, 0.035), towel_colour))
-        towels.append(slab((-x_half, y - 0.03, -0.035), (x_half, y, 0.035), shade(towel_colour, 1.1)))
+        towels.append(
+            slab((-x_half, y - 0.03, -0.035), (x_half, y, 0.035), shade(towel_colour, 1.1))
+        )
     return combine(
         [slab((x - 0.02, 0.0, -d / 2), (x + 0.02, 0.03, d / 2), colour) for x in posts],
         [cylinder(0.015, (x, 0.0, 0.0), (x, h, 0.0), colour, sections=8) for x in posts],
-        [cylinder(0.012, (-w / 2 + 0.02, y, 0.0), (w / 2 - 0.02, y, 0.0), colour, sections=8) for y in bars_y],
+        [
+            cylinder(0.012, (-w / 2 + 0.02, y, 0.0), (w / 2 - 0.02, y, 0.0), colour, sections=8)
+            for y in bars_y
+        ],
         towels,
     )
 
@@ -1406,16 +1921,43 @@ def treadmill(size, colour) -> trimesh.Trimesh:
     rail, post_x = 0.1 * w, w / 2 - 0.04
     console_y, console_z = 0.8 * h, back + min(0.3, 0.16 * d)
     return combine(
-        slab((-w / 2 + rail / 2, 0.0, back + hood_d), (w / 2 - rail / 2, 0.7 * deck_y, d / 2), shade(colour, 0.8)),
-        slab((-w / 2 + rail, 0.7 * deck_y, back + hood_d), (w / 2 - rail, deck_y, d / 2 - 0.02), COAL),
-        [slab((x0, 0.0, back + hood_d), (x0 + rail, deck_y + 0.01, d / 2), shade(colour, 1.4)) for x0 in (-w / 2, w / 2 - rail)],
+        slab(
+            (-w / 2 + rail / 2, 0.0, back + hood_d),
+            (w / 2 - rail / 2, 0.7 * deck_y, d / 2),
+            shade(colour, 0.8),
+        ),
+        slab(
+            (-w / 2 + rail, 0.7 * deck_y, back + hood_d), (w / 2 - rail, deck_y, d / 2 - 0.02), COAL
+        ),
+        [
+            slab((x0, 0.0, back + hood_d), (x0 + rail, deck_y + 0.01, d / 2), shade(colour, 1.4))
+            for x0 in (-w / 2, w / 2 - rail)
+        ],
         slab((-w / 2, 0.0, back), (w / 2, hood_y, back + hood_d), colour),
-        [cylinder(0.03, (sx * post_x, hood_y, back + 0.6 * hood_d), (sx * post_x, console_y, back + 0.1), CHROME, sections=8)
-         for sx in (-1, 1)],
-        [cylinder(0.02, (sx * post_x, 0.72 * h, back + 0.12), (sx * post_x, 0.72 * h, back + 0.12 + 0.25 * d), CHROME, sections=6)
-         for sx in (-1, 1)],
+        [
+            cylinder(
+                0.03,
+                (sx * post_x, hood_y, back + 0.6 * hood_d),
+                (sx * post_x, console_y, back + 0.1),
+                CHROME,
+                sections=8,
+            )
+            for sx in (-1, 1)
+        ],
+        [
+            cylinder(
+                0.02,
+                (sx * post_x, 0.72 * h, back + 0.12),
+                (sx * post_x, 0.72 * h, back + 0.12 + 0.25 * d),
+                CHROME,
+                sections=6,
+            )
+            for sx in (-1, 1)
+        ],
         slab((-w / 2, console_y, back), (w / 2, h, console_z), colour),
-        slab((-0.25 * w, console_y + 0.03, console_z), (0.25 * w, h - 0.03, console_z + 0.01), SCREEN),
+        slab(
+            (-0.25 * w, console_y + 0.03, console_z), (0.25 * w, h - 0.03, console_z + 0.01), SCREEN
+        ),
     )
 
 
@@ -1432,17 +1974,44 @@ def exercise_bike(size, colour) -> trimesh.Trimesh:
     saddle_y, saddle_z = 0.66 * h, front - 0.3 * d
     crank_y = 0.25 * h
     return combine(
-        [slab((-w / 2, 0.0, z - 0.04), (w / 2, foot, z + 0.04), IRON) for z in (back + 0.05, front - 0.05)],
+        [
+            slab((-w / 2, 0.0, z - 0.04), (w / 2, foot, z + 0.04), IRON)
+            for z in (back + 0.05, front - 0.05)
+        ],
         slab((-0.04, foot, back + 0.05), (0.04, foot + 0.05, front - 0.05), colour),
-        cylinder(wheel_r, (-0.035, wheel_y, wheel_z), (0.035, wheel_y, wheel_z), shade(colour, 1.4), sections=14),
+        cylinder(
+            wheel_r,
+            (-0.035, wheel_y, wheel_z),
+            (0.035, wheel_y, wheel_z),
+            shade(colour, 1.4),
+            sections=14,
+        ),
         cylinder(0.035, (0.0, foot, wheel_z), (0.0, bar_y, bar_z), colour, sections=8),
-        cylinder(0.035, (0.0, foot, front - 0.2 * d), (0.0, saddle_y, saddle_z), colour, sections=8),
+        cylinder(
+            0.035, (0.0, foot, front - 0.2 * d), (0.0, saddle_y, saddle_z), colour, sections=8
+        ),
         cylinder(0.025, (0.0, crank_y, 0.0), (0.0, wheel_y, wheel_z), colour, sections=6),
         cylinder(0.08, (-0.03, crank_y, 0.0), (0.03, crank_y, 0.0), CHROME, sections=10),
-        [slab((sx * 0.12 - 0.05, crank_y - 0.02, -0.04), (sx * 0.12 + 0.05, crank_y + 0.02, 0.04), COAL) for sx in (-1, 1)],
+        [
+            slab(
+                (sx * 0.12 - 0.05, crank_y - 0.02, -0.04),
+                (sx * 0.12 + 0.05, crank_y + 0.02, 0.04),
+                COAL,
+            )
+            for sx in (-1, 1)
+        ],
         slab((-0.11, saddle_y, saddle_z - 0.14), (0.11, saddle_y + 0.06, saddle_z + 0.12), COAL),
         cylinder(0.02, (-0.4 * w, bar_y, bar_z), (0.4 * w, bar_y, bar_z), CHROME, sections=6),
-        [cylinder(0.02, (sx * 0.4 * w, bar_y, bar_z), (sx * 0.4 * w, bar_y, bar_z + 0.25 * d), COAL, sections=6) for sx in (-1, 1)],
+        [
+            cylinder(
+                0.02,
+                (sx * 0.4 * w, bar_y, bar_z),
+                (sx * 0.4 * w, bar_y, bar_z + 0.25 * d),
+                COAL,
+                sections=6,
+            )
+            for sx in (-1, 1)
+        ],
         slab((-0.13, bar_y + 0.04, back), (0.13, h, back + 0.1), SCREEN),
     )
 
@@ -1458,14 +2027,28 @@ def rowing_machine(size, colour) -> trimesh.Trimesh:
     rail_y = 0.45 * h
     feet_z = back + 2 * r
     return combine(
-        [slab((-w / 2, 0.0, z0), (w / 2, 0.05, z0 + 0.08), IRON) for z0 in (back + r - 0.04, front - 0.08)],
+        [
+            slab((-w / 2, 0.0, z0), (w / 2, 0.05, z0 + 0.08), IRON)
+            for z0 in (back + r - 0.04, front - 0.08)
+        ],
         cylinder(r, (-0.12, r, back + r), (0.12, r, back + r), colour, sections=14),
-        cylinder(0.6 * r, (-0.125, r, back + r), (0.125, r, back + r), shade(colour, 1.5), sections=14),
+        cylinder(
+            0.6 * r, (-0.125, r, back + r), (0.125, r, back + r), shade(colour, 1.5), sections=14
+        ),
         slab((-0.06, 0.05, back + r), (0.06, rail_y - 0.05, feet_z + 0.3), colour),
         slab((-0.05, rail_y - 0.05, feet_z), (0.05, rail_y, front - 0.02), CHROME),
         slab((-0.04, 0.05, front - 0.08), (0.04, rail_y - 0.05, front - 0.02), colour),
-        [slab((sx * 0.02, rail_y - 0.08, feet_z), (sx * 0.17, rail_y - 0.04, feet_z + 0.3), COAL) for sx in (-1, 1)],
-        cylinder(0.02, (-0.25 * w, 1.3 * r, feet_z + 0.05), (0.25 * w, 1.3 * r, feet_z + 0.05), COAL, sections=6),
+        [
+            slab((sx * 0.02, rail_y - 0.08, feet_z), (sx * 0.17, rail_y - 0.04, feet_z + 0.3), COAL)
+            for sx in (-1, 1)
+        ],
+        cylinder(
+            0.02,
+            (-0.25 * w, 1.3 * r, feet_z + 0.05),
+            (0.25 * w, 1.3 * r, feet_z + 0.05),
+            COAL,
+            sections=6,
+        ),
         slab((-0.15, rail_y, 0.05 * d - 0.15), (0.15, rail_y + 0.07, 0.05 * d + 0.15), COAL),
     )
 
@@ -1479,8 +2062,14 @@ def weight_bench(size, colour) -> trimesh.Trimesh:
     pad_y, pad_w = h - 0.08, min(0.3, 0.5 * w)
     split = front - 0.35 * d
     return combine(
-        [slab((-w / 2, 0.0, z - 0.04), (w / 2, 0.05, z + 0.04), IRON) for z in (back + 0.12, front - 0.12)],
-        [slab((-0.03, 0.05, z - 0.03), (0.03, pad_y - 0.05, z + 0.03), CHROME) for z in (back + 0.12, front - 0.12)],
+        [
+            slab((-w / 2, 0.0, z - 0.04), (w / 2, 0.05, z + 0.04), IRON)
+            for z in (back + 0.12, front - 0.12)
+        ],
+        [
+            slab((-0.03, 0.05, z - 0.03), (0.03, pad_y - 0.05, z + 0.03), CHROME)
+            for z in (back + 0.12, front - 0.12)
+        ],
         slab((-0.04, pad_y - 0.05, back + 0.08), (0.04, pad_y, front - 0.08), IRON),
         slab((-pad_w / 2, pad_y, back), (pad_w / 2, h, split - 0.015), colour),
         slab((-pad_w / 2, pad_y, split + 0.015), (pad_w / 2, h - 0.005, front), shade(colour, 1.2)),
@@ -1499,12 +2088,20 @@ def dumbbell_rack(size, colour) -> trimesh.Trimesh:
     for x, top in ((sx * (w / 2 - 0.02), y) for sx in (-1, 1) for y in (low_y, high_y)):
         z = d / 2 - 0.03 if top == low_y else -d / 2 + 0.03
         parts.append(slab((x - 0.02, 0.0, z - 0.02), (x + 0.02, top, z + 0.02), colour))
-    for y, z0, z1, middle in ((low_y, 0.0, d / 2 - 0.01, 0.22 * d), (high_y, -d / 2 + 0.01, 0.1 * d, -0.2 * d)):
-        parts += [slab((-w / 2, y - 0.03, z - 0.02), (w / 2, y, z + 0.02), colour) for z in (z0 + 0.03, z1 - 0.03)]
+    for y, z0, z1, middle in (
+        (low_y, 0.0, d / 2 - 0.01, 0.22 * d),
+        (high_y, -d / 2 + 0.01, 0.1 * d, -0.2 * d),
+    ):
+        parts += [
+            slab((-w / 2, y - 0.03, z - 0.02), (w / 2, y, z + 0.02), colour)
+            for z in (z0 + 0.03, z1 - 0.03)
+        ]
         for k in range(count):
             x = -w / 2 + 0.05 + (k + 0.5) * (w - 0.1) / count
             r = 0.04 + 0.005 * k
-            parts += [block((1.7 * r, 2 * r, 0.07), (x, y + r, middle + s * 0.11), COAL) for s in (-1, 1)]
+            parts += [
+                block((1.7 * r, 2 * r, 0.07), (x, y + r, middle + s * 0.11), COAL) for s in (-1, 1)
+            ]
             parts.append(block((0.03, 0.03, 0.16), (x, y + r, middle), CHROME))
     return combine(parts)
 
@@ -1516,8 +2113,14 @@ def exercise_mat(size, colour) -> trimesh.Trimesh:
     stripe = min(0.1, 0.06 * w)
     return combine(
         slab((-w / 2, 0.0, -d / 2), (w / 2, 0.8 * h, d / 2), colour),
-        [slab((sx * (w / 2 - 2 * stripe) - stripe / 3, 0.0, -d / 2 + 0.03), (sx * (w / 2 - 2 * stripe) + stripe / 3, h, d / 2 - 0.03),
-              shade(colour, 1.5)) for sx in (-1, 1)],
+        [
+            slab(
+                (sx * (w / 2 - 2 * stripe) - stripe / 3, 0.0, -d / 2 + 0.03),
+                (sx * (w / 2 - 2 * stripe) + stripe / 3, h, d / 2 - 0.03),
+                shade(colour, 1.5),
+            )
+            for sx in (-1, 1)
+        ],
     )
 
 
@@ -1539,9 +2142,13 @@ def check_registry(builders: Mapping[str, Builder], shapes: Mapping[str, Shape])
     unbuilt = sorted(set(shapes) - set(builders))
     problems = []
     if unregistered:
-        problems.append(f"builders with no entry in scenewright.core.shapes.SHAPES: {', '.join(unregistered)}")
+        problems.append(
+            f"builders with no entry in scenewright.core.shapes.SHAPES: {', '.join(unregistered)}"
+        )
     if unbuilt:
-        problems.append(f"shapes in scenewright.core.shapes.SHAPES with no builder: {', '.join(unbuilt)}")
+        problems.append(
+            f"shapes in scenewright.core.shapes.SHAPES with no builder: {', '.join(unbuilt)}"
+        )
     if problems:
         raise ShapeRegistryMismatch("; ".join(problems))
 

@@ -109,7 +109,9 @@ class Camera:
         if self.orthographic:
             homogeneous = np.column_stack([local[:, 0], local[:, 1], np.ones(len(local))])
         else:
-            homogeneous = np.column_stack([local[:, 0], local[:, 1], np.ones(len(local))]) / depth[:, None]
+            homogeneous = (
+                np.column_stack([local[:, 0], local[:, 1], np.ones(len(local))]) / depth[:, None]
+            )
             homogeneous[:, 2] = 1.0
         pixels = (self.intrinsics() @ homogeneous.T).T[:, :2]
         return pixels, depth
@@ -172,10 +174,16 @@ def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
     chunks = [_box_points(obj) for obj in scene.objects if obj.kind != "group"]
     chunks.extend(_ribbon_points(path) for path in scene.paths)
     if scene.room is not None:
-        chunks.append(_room_points(scene.room, [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer))
+        chunks.append(
+            _room_points(scene.room, [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer)
+        )
     if not chunks:  # nothing placed: frame the scene's extent
         w, d = scene.extent
-        chunks.append(np.array([[-w / 2, 0, -d / 2], [w / 2, 0, -d / 2], [w / 2, 0, d / 2], [-w / 2, 0, d / 2]]))
+        chunks.append(
+            np.array(
+                [[-w / 2, 0, -d / 2], [w / 2, 0, -d / 2], [w / 2, 0, d / 2], [-w / 2, 0, d / 2]]
+            )
+        )
     return np.vstack(chunks)
 
 
@@ -209,7 +217,9 @@ def _box_points(obj) -> np.ndarray:
     """The 8 corners (8, 3) of an object's box (turned by its yaw)."""
     corners = object_corners([obj])[0]
     bottom, top = obj.position[1], obj.position[1] + obj.size[1]
-    return np.vstack([np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]) for y in (bottom, top)])
+    return np.vstack(
+        [np.column_stack([corners[:, 0], np.full(4, y), corners[:, 1]]) for y in (bottom, top)]
+    )
 
 
 def _ribbon_points(path) -> np.ndarray:
@@ -219,7 +229,10 @@ def _ribbon_points(path) -> np.ndarray:
     half = path.width / 2.0
     corners = ((-half, -half), (half, -half), (half, half), (-half, half))
     return np.vstack(
-        [np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz]) for dx, dz in corners]
+        [
+            np.column_stack([points[:, 0] + dx, np.zeros(len(points)), points[:, 1] + dz])
+            for dx, dz in corners
+        ]
     )
 
 
@@ -229,9 +242,15 @@ def walls_in_view(room: Room, towards_viewer) -> list[Wall]:
     far walls, which stand behind the furniture and hide none of it. A viewer straight
     above sees every wall (only their tops, which hide no furniture)."""
     towards = np.asarray(towards_viewer, dtype=float)
-    if math.hypot(towards[0], towards[2]) <= 1e-6 * float(np.linalg.norm(towards)):  # straight above
+    if math.hypot(towards[0], towards[2]) <= 1e-6 * float(
+        np.linalg.norm(towards)
+    ):  # straight above
         return list(room.walls)
-    return [wall for wall in room.walls if wall.normal[0] * towards[0] + wall.normal[1] * towards[2] > 1e-9]
+    return [
+        wall
+        for wall in room.walls
+        if wall.normal[0] * towards[0] + wall.normal[1] * towards[2] > 1e-9
+    ]
 
 
 def room_azimuth(room: Room | None) -> float:
@@ -258,20 +277,29 @@ def _windows_seen(room: Room, azimuth: float) -> int:
     whose inner face turns towards it; the others are cut away)."""
     towards = view_direction(azimuth)
     return sum(
-        1 for window in room.windows
-        if room.part(window.wall).normal[0] * towards[0] + room.part(window.wall).normal[1] * towards[2] > 1e-9
-    )  # fmt: skip
+        1
+        for window in room.windows
+        if room.part(window.wall).normal[0] * towards[0]
+        + room.part(window.wall).normal[1] * towards[2]
+        > 1e-9
+    )
 
 
 def view_direction(azimuth: float = AZIMUTH, elevation: float = ELEVATION) -> np.ndarray:
     """Unit vector (3,) from the scene towards a perspective camera: south (+Z) turned
     towards east (+X) by ``azimuth``, raised by ``elevation``."""
     return np.array(
-        [math.cos(elevation) * math.sin(azimuth), math.sin(elevation), math.cos(elevation) * math.cos(azimuth)]
+        [
+            math.cos(elevation) * math.sin(azimuth),
+            math.sin(elevation),
+            math.cos(elevation) * math.cos(azimuth),
+        ]
     )
 
 
-def frame_scene(scene: Scene, view: str = "perspective", width: int = 640, height: int = 480) -> Camera:
+def frame_scene(
+    scene: Scene, view: str = "perspective", width: int = 640, height: int = 480
+) -> Camera:
     """The automatic camera for ``view`` that frames all of ``scene``'s objects and paths
     (and in a room, its floor and the walls the view shows).
 
@@ -292,8 +320,10 @@ def _checked(points: np.ndarray) -> np.ndarray:
     """``points`` when finite and within the coordinate limits, else ``InputError``."""
     reach = MAX_COORDINATE + MAX_SIZE
     if not np.isfinite(points).all() or np.abs(points).max() > reach:
-        raise InputError(f"the scene reaches beyond {reach:g} m from the origin or has coordinates that are "
-                         "not finite numbers (the limits: docs/limits.md)")
+        raise InputError(
+            f"the scene reaches beyond {reach:g} m from the origin or has coordinates that are "
+            "not finite numbers (the limits: docs/limits.md)"
+        )
     return points
 
 

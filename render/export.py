@@ -59,11 +59,15 @@ def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
     groups = {o.id: o for o in scene.objects if o.kind == "group"}
     world_of: dict[str, np.ndarray] = {}  # group id -> its node's world transform
 
-    def attach(node_name: str, entity_parent: str | None, world: np.ndarray, extras: dict, mesh=None) -> None:
+    def attach(
+        node_name: str, entity_parent: str | None, world: np.ndarray, extras: dict, mesh=None
+    ) -> None:
         parent = entity_parent if entity_parent in groups else None
         local = world if parent is None else np.linalg.inv(world_of[parent]) @ world
         if mesh is None or not len(mesh.faces):  # a group, or a degenerate path: node only
-            out.graph.update(node_name, frame_from=parent or out.graph.base_frame, matrix=local, metadata=extras)
+            out.graph.update(
+                node_name, frame_from=parent or out.graph.base_frame, matrix=local, metadata=extras
+            )
         else:
             out.add_geometry(
                 _flat_shaded(mesh),
@@ -83,7 +87,13 @@ def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
         elif obj.kind == "junction":
             attach(obj.id, obj.parent, object_transform(obj), _extras(obj), junction_mesh(obj))
     for scene_path in scene.paths:
-        attach(scene_path.id, scene_path.parent, np.eye(4), _path_extras(scene_path), path_mesh(scene_path))
+        attach(
+            scene_path.id,
+            scene_path.parent,
+            np.eye(4),
+            _path_extras(scene_path),
+            path_mesh(scene_path),
+        )
     if scene.room is not None:
         for node_name, world, extras, mesh in _room_parts(scene.room):
             attach(node_name, None, world, extras, mesh)

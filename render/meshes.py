@@ -64,17 +64,23 @@ def object_mesh(obj: SceneObject) -> trimesh.Trimesh:
     return shaped_mesh(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
 
 
-def shaped_mesh(shape: str | None, mesh_file: str | None, size: tuple, colour: tuple) -> trimesh.Trimesh:
+def shaped_mesh(
+    shape: str | None, mesh_file: str | None, size: tuple, colour: tuple
+) -> trimesh.Trimesh:
     """A mesh from a builder name or a user mesh file, fitted to ``size``: everything
     an object's look depends on, so callers can cache by these arguments."""
     if not all(math.isfinite(side) and 0 <= side <= MAX_SIZE for side in size):
-        raise InputError(f"object size {list(size)} is not within 0..{MAX_SIZE:g} m on each side "
-                         "(the limits: docs/limits.md)")
+        raise InputError(
+            f"object size {list(size)} is not within 0..{MAX_SIZE:g} m on each side "
+            "(the limits: docs/limits.md)"
+        )
     if mesh_file:
         mesh = _load_user_mesh(mesh_file).copy()
         mesh = coloured(mesh, colour) if not _has_colours(mesh) else mesh
     else:
-        build = BUILDERS.get(shape or DEFAULT_SHAPE, BUILDERS[DEFAULT_SHAPE])  # unknown shape: its box
+        build = BUILDERS.get(
+            shape or DEFAULT_SHAPE, BUILDERS[DEFAULT_SHAPE]
+        )  # unknown shape: its box
         mesh = build(size, colour)
     return fit_to_size(mesh, size)
 
@@ -109,8 +115,12 @@ def path_mesh(path: ScenePath) -> trimesh.Trimesh:
     starts, ends, direction, length = starts[keep], ends[keep], direction[keep], length[keep]
     normal = np.column_stack([-direction[:, 1], direction[:, 0]]) / length[:, None] * half
     # (segments, 4, 2): a + n, a - n, b - n, b + n, counter-clockwise seen from above (+Y).
-    quads = np.stack([starts + normal, starts - normal, ends - normal, ends + normal], axis=1).reshape(-1, 2)
-    quad_faces = (np.arange(len(starts))[:, None, None] * 4 + np.array([[0, 2, 1], [0, 3, 2]])).reshape(-1, 3)
+    quads = np.stack(
+        [starts + normal, starts - normal, ends - normal, ends + normal], axis=1
+    ).reshape(-1, 2)
+    quad_faces = (
+        np.arange(len(starts))[:, None, None] * 4 + np.array([[0, 2, 1], [0, 3, 2]])
+    ).reshape(-1, 3)
     centres = points[1:-1]
     if path.start is None and len(points):
         centres = np.vstack([centres, points[:1]])
@@ -205,7 +215,8 @@ def wall_mesh(room: Room, wall: Wall) -> trimesh.Trimesh:
         edge = u1
     piece(edge, length, 0.0, height)
     rows = np.array(
-        [p for p in pieces if p[5] - p[4] > 1e-9 and max(p[1] - p[0], p[3] - p[2]) > 1e-9], dtype=float
+        [p for p in pieces if p[5] - p[4] > 1e-9 and max(p[1] - p[0], p[3] - p[2]) > 1e-9],
+        dtype=float,
     ).reshape(-1, 6)
     mesh = _wall_pieces(wall, rows, t)
     colours = np.tile(np.append(WALL_COLOUR, 1.0) * 255, (len(mesh.faces), 1))
@@ -221,7 +232,14 @@ def wall_footprint(room: Room, wall: Wall) -> np.ndarray:
     end_out = wall.length + _mitre(wall, room.neighbours(wall.id)[1], at_end=True)
     end_out = max(end_out, start_out)  # a short wall between two reflex corners
     t = WALL_THICKNESS
-    return np.array([wall.to_world(0.0, 0.0), wall.to_world(wall.length, 0.0), wall.to_world(end_out, -t), wall.to_world(start_out, -t)])
+    return np.array(
+        [
+            wall.to_world(0.0, 0.0),
+            wall.to_world(wall.length, 0.0),
+            wall.to_world(end_out, -t),
+            wall.to_world(start_out, -t),
+        ]
+    )
 
 
 def wall_transform(wall: Wall) -> np.ndarray:
@@ -257,7 +275,9 @@ def door_mesh(width: float, height: float, sill: float = 0.0) -> trimesh.Trimesh
     panel_w = 0.7 * inner_w
     panel_h = (leaf_top - sill) * 0.36
     panels = [
-        slab((-panel_w / 2, y, -0.016), (panel_w / 2, y + panel_h, -0.009), shade(DOOR_COLOUR, 1.18))
+        slab(
+            (-panel_w / 2, y, -0.016), (panel_w / 2, y + panel_h, -0.009), shade(DOOR_COLOUR, 1.18)
+        )
         for y in (sill + 0.08 * (leaf_top - sill), sill + 0.54 * (leaf_top - sill))
     ]
     handle_x = w / 2 - f - min(0.08, 0.15 * inner_w)
@@ -266,7 +286,11 @@ def door_mesh(width: float, height: float, sill: float = 0.0) -> trimesh.Trimesh
         _frame(w, sill, top, f, t, FRAME_COLOUR),
         slab((-w / 2 + f, sill + 0.005, -0.055), (w / 2 - f, leaf_top, -0.015), DOOR_COLOUR),
         panels,
-        slab((handle_x - 0.07, handle_y - 0.012, -0.015), (handle_x + 0.01, handle_y + 0.012, 0.0), IRON),
+        slab(
+            (handle_x - 0.07, handle_y - 0.012, -0.015),
+            (handle_x + 0.01, handle_y + 0.012, 0.0),
+            IRON,
+        ),
     )
 
 
@@ -280,13 +304,23 @@ def window_mesh(width: float, height: float, sill: float) -> trimesh.Trimesh:
     middle_y = sill + 0.62 * height
     return combine(
         _frame(w, sill, top, f, t, FRAME_COLOUR),
-        slab((-w / 2 + f, sill + f, -t / 2 - 0.006), (w / 2 - f, top - f, -t / 2 + 0.006), GLASS_COLOUR),
+        slab(
+            (-w / 2 + f, sill + f, -t / 2 - 0.006),
+            (w / 2 - f, top - f, -t / 2 + 0.006),
+            GLASS_COLOUR,
+        ),
         slab((-bar / 2, sill + f, -t / 2 - 0.02), (bar / 2, top - f, -t / 2 + 0.02), FRAME_COLOUR),
-        slab((-w / 2 + f, middle_y - bar / 2, -t / 2 - 0.02), (w / 2 - f, middle_y + bar / 2, -t / 2 + 0.02), FRAME_COLOUR),
+        slab(
+            (-w / 2 + f, middle_y - bar / 2, -t / 2 - 0.02),
+            (w / 2 - f, middle_y + bar / 2, -t / 2 + 0.02),
+            FRAME_COLOUR,
+        ),
     )
 
 
-def _frame(width: float, bottom: float, top: float, f: float, t: float, colour) -> list[trimesh.Trimesh]:
+def _frame(
+    width: float, bottom: float, top: float, f: float, t: float, colour
+) -> list[trimesh.Trimesh]:
     """Jambs, head and (for a window, ``bottom`` above the floor) sill lining a hole
     ``width`` wide from ``bottom`` to ``top``, ``f`` wide, through the wall's thickness ``t``."""
     w = width
@@ -296,7 +330,9 @@ def _frame(width: float, bottom: float, top: float, f: float, t: float, colour) 
         slab((-w / 2 + f, top - f, -t), (w / 2 - f, top, 0.0), colour),
     ]
     if bottom > 0.0:
-        parts.append(slab((-w / 2 + f, bottom, -t), (w / 2 - f, bottom + f, 0.0), shade(colour, 0.92)))
+        parts.append(
+            slab((-w / 2 + f, bottom, -t), (w / 2 - f, bottom + f, 0.0), shade(colour, 0.92))
+        )
     return parts
 
 
@@ -310,7 +346,9 @@ def _mitre(wall: Wall, neighbour: Wall, *, at_end: bool) -> float:
     with s the distance from the corner in the wall's direction d (away from it at the end).
     """
     t = WALL_THICKNESS
-    d = np.array(wall.direction) * (1.0 if at_end else -1.0)  # pointing away from the wall, past the corner
+    d = np.array(wall.direction) * (
+        1.0 if at_end else -1.0
+    )  # pointing away from the wall, past the corner
     n, other = np.array(wall.normal), np.array(neighbour.normal)
     along = float(d @ other)
     if abs(along) < 1e-9:  # the walls run straight on: the outer faces meet end to end
@@ -327,8 +365,11 @@ def _wall_pieces(wall: Wall, rows: np.ndarray, t: float) -> trimesh.Trimesh:
     box = trimesh.creation.box(extents=(2.0, 2.0, 2.0))
     signs = box.vertices > 0  # (8, 3): which end of each axis a corner is at
     # A corner's u: the inner range for the +z (room) side, the outer range for -z.
-    u = np.where(signs[None, :, 2], np.where(signs[None, :, 0], rows[:, None, 1], rows[:, None, 0]),
-                 np.where(signs[None, :, 0], rows[:, None, 3], rows[:, None, 2]))  # (P, 8)
+    u = np.where(
+        signs[None, :, 2],
+        np.where(signs[None, :, 0], rows[:, None, 1], rows[:, None, 0]),
+        np.where(signs[None, :, 0], rows[:, None, 3], rows[:, None, 2]),
+    )  # (P, 8)
     v = np.where(signs[:, 2], 0.0, -t)[None, :]
     y = np.where(signs[None, :, 1], rows[:, None, 5], rows[:, None, 4])
     (sx, sz), (dx, dz), (nx, nz) = wall.start, wall.direction, wall.normal
@@ -360,7 +401,9 @@ def _triangulate(points: np.ndarray) -> np.ndarray:
             if turn(a, b, c) <= 1e-12:
                 continue  # a reflex or straight corner is no ear
             others = [points[o] for o in order if o not in (i, j, m)]
-            if any(turn(a, b, p) >= 0 and turn(b, c, p) >= 0 and turn(c, a, p) >= 0 for p in others):
+            if any(
+                turn(a, b, p) >= 0 and turn(b, c, p) >= 0 and turn(c, a, p) >= 0 for p in others
+            ):
                 continue  # another corner lies in it
             triangles.append((i, j, m))
             del order[k]
@@ -382,14 +425,18 @@ def _has_colours(mesh: trimesh.Trimesh) -> bool:
     return mesh.visual.kind in ("face", "vertex", "texture")
 
 
-def _flat_discs(centres: np.ndarray, radius: float, sections: int = 16) -> tuple[np.ndarray, np.ndarray]:
+def _flat_discs(
+    centres: np.ndarray, radius: float, sections: int = 16
+) -> tuple[np.ndarray, np.ndarray]:
     """(x, z) vertices (n * (1 + sections), 2) and triangles (n * sections, 3) of a disc
     of ``radius`` around each of ``centres`` (n, 2): its centre, then its rim counter-
     clockwise seen from above, each triangle (centre, next, this) facing up."""
     angles = np.linspace(0, 2 * np.pi, sections, endpoint=False)
     rim_x = centres[:, :1] + radius * np.cos(angles)  # (n, sections)
     rim_z = centres[:, 1:] + radius * np.sin(angles)
-    vertices = np.concatenate([centres[:, None, :], np.stack([rim_x, rim_z], axis=2)], axis=1).reshape(-1, 2)
+    vertices = np.concatenate(
+        [centres[:, None, :], np.stack([rim_x, rim_z], axis=2)], axis=1
+    ).reshape(-1, 2)
     around = np.arange(sections)
     one = np.column_stack([np.zeros(sections, dtype=int), 1 + (around + 1) % sections, 1 + around])
     faces = (np.arange(len(centres))[:, None, None] * (1 + sections) + one).reshape(-1, 3)

@@ -196,7 +196,9 @@ class Renderer:
         from OpenGL.GL import GL_FLOAT  # only now: the backend is chosen by load_pyrender
 
         side = shadow_map_size(self.width, self.height)
-        self._sun.shadow_texture = self._gl.Texture(width=side, height=side, source_channels="D", data_format=GL_FLOAT)
+        self._sun.shadow_texture = self._gl.Texture(
+            width=side, height=side, source_channels="D", data_format=GL_FLOAT
+        )
         # The GPU meshes of shared drawables (id -> (drawable, mesh); the drawable is held
         # so its id stays its own): a mesh used by consecutive scenes stays uploaded.
         self._shared_meshes: dict[int, tuple[_Drawable, Any]] = {}
@@ -213,13 +215,17 @@ class Renderer:
             self._renderer.delete()
             self._renderer = None
 
-    def render(self, scene: Scene, view: str = "perspective", *, camera: Camera | None = None) -> RenderResult:
+    def render(
+        self, scene: Scene, view: str = "perspective", *, camera: Camera | None = None
+    ) -> RenderResult:
         """Render ``scene`` from the automatic ``view`` ("perspective" or "top"), or from
         ``camera`` (of this renderer's size; ``camera.aimed_camera``, say) when given."""
         if self._renderer is None:
             raise RuntimeError("this Renderer has been closed")
         if camera is not None and (camera.width, camera.height) != (self.width, self.height):
-            raise ValueError(f"a {camera.width}x{camera.height} camera for a {self.width}x{self.height} renderer")
+            raise ValueError(
+                f"a {camera.width}x{camera.height} camera for a {self.width}x{self.height} renderer"
+            )
         gl = self._gl
         camera = camera or frame_scene(scene, view, self.width, self.height)
         entities = _entities(scene, camera)
@@ -291,18 +297,27 @@ class Renderer:
             key = id(entity.drawable)
             if key not in uploaded:
                 look = entity.drawable
-                uploaded[key] = self._shared_mesh(look) if entity.shared else _pyrender_mesh(gl, look)
+                uploaded[key] = (
+                    self._shared_mesh(look) if entity.shared else _pyrender_mesh(gl, look)
+                )
             entity.node = _posed_node(gl, uploaded[key], entity.pose, entity.id)
             world.add_node(entity.node)
 
         if camera.orthographic:
-            lens = gl.OrthographicCamera(camera.xmag, camera.ymag, znear=camera.znear, zfar=camera.zfar)
+            lens = gl.OrthographicCamera(
+                camera.xmag, camera.ymag, znear=camera.znear, zfar=camera.zfar
+            )
         else:
             lens = gl.PerspectiveCamera(
-                camera.yfov, aspectRatio=camera.width / camera.height, znear=camera.znear, zfar=camera.zfar
+                camera.yfov,
+                aspectRatio=camera.width / camera.height,
+                znear=camera.znear,
+                zfar=camera.zfar,
             )
         world.add(lens, pose=camera.pose)
-        world.add(self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION))
+        world.add(
+            self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
+        )
         return world, merged, occluders
 
     def _shared_mesh(self, drawable: _Drawable):
@@ -343,7 +358,9 @@ class Renderer:
             batches.append(np.flatnonzero(flat).tolist())
         for batch in batches:
             seg_map = _segmentation_map(entities, batch, occluders)
-            seg_colour, _ = self._renderer.render(world, flags=self._gl.RenderFlags.SEG, seg_node_map=seg_map)
+            seg_colour, _ = self._renderer.render(
+                world, flags=self._gl.RenderFlags.SEG, seg_node_map=seg_map
+            )
             pixels = np.bincount(_decode_index(seg_colour).ravel(), minlength=len(entities) + 1)
             counts[batch] = pixels[np.asarray(batch) + 1]
         return counts
@@ -382,7 +399,9 @@ def _entities(scene: Scene, camera: Camera) -> list[_Entity]:
         for opening in scene.room.openings:
             look = _opening_drawable(opening.kind, opening.width, opening.height, opening.sill)
             pose = opening_transform(scene.room, opening)
-            entities.append(_Entity(opening.id, look, pose, drawn=opening.wall in in_view, shared=True))
+            entities.append(
+                _Entity(opening.id, look, pose, drawn=opening.wall in in_view, shared=True)
+            )
     return [entity for entity in entities if len(entity.drawable.positions)]
 
 
@@ -413,7 +432,9 @@ def _merged(entities: list[_Entity]) -> _Drawable:
     )
 
 
-def save_render(result: RenderResult, directory: str | os.PathLike, *, stem: str = "preview") -> dict[str, Path]:
+def save_render(
+    result: RenderResult, directory: str | os.PathLike, *, stem: str = "preview"
+) -> dict[str, Path]:
     """Write a render's images and id map into ``directory``; return the paths by kind.
 
     File names and encodings are those of ``encode_render``.
@@ -465,7 +486,10 @@ def render_metadata(result: RenderResult) -> dict[str, Any]:
     return {
         "camera": result.camera,
         "objects": {
-            entity_id: {"bbox": result.boxes.get(entity_id), "visible": round(result.visible[entity_id], 4)}
+            entity_id: {
+                "bbox": result.boxes.get(entity_id),
+                "visible": round(result.visible[entity_id], 4),
+            }
             for entity_id in result.ids
         },
     }
@@ -554,7 +578,9 @@ def _pyrender_classes(gl) -> _Classes:
             pose = self._poses.get(node)
             if pose is None:
                 pose = super().get_pose(node)
-                pose.setflags(write=False)  # shared by every caller; pyrender copies before changing one
+                pose.setflags(
+                    write=False
+                )  # shared by every caller; pyrender copies before changing one
                 self._poses[node] = pose
             return pose
 
@@ -643,13 +669,22 @@ def _pyrender_classes(gl) -> _Classes:
         def _update_context(self, scene, flags):
             # What pyrender updates depends on the scene and the shadow flags only.
             shadows = flags & (
-                gl.RenderFlags.SHADOWS_DIRECTIONAL | gl.RenderFlags.SHADOWS_SPOT | gl.RenderFlags.SHADOWS_POINT
+                gl.RenderFlags.SHADOWS_DIRECTIONAL
+                | gl.RenderFlags.SHADOWS_SPOT
+                | gl.RenderFlags.SHADOWS_POINT
             )
             last = self._context_of
-            if isinstance(scene, FrameScene) and last and last[0] is scene and last[1:] == (scene.version, shadows):
+            if (
+                isinstance(scene, FrameScene)
+                and last
+                and last[0] is scene
+                and last[1:] == (scene.version, shadows)
+            ):
                 return
             super()._update_context(scene, flags)
-            self._context_of = (scene, scene.version, shadows) if isinstance(scene, FrameScene) else None
+            self._context_of = (
+                (scene, scene.version, shadows) if isinstance(scene, FrameScene) else None
+            )
 
         def _configure_shadow_mapping_viewport(self, light, flags):
             # pyrender sets the viewport to its default map size (2048) whatever the
@@ -663,17 +698,24 @@ def _pyrender_classes(gl) -> _Classes:
             if self._seg_fb is None:
                 colour, depth = GL.glGenRenderbuffers(2)
                 GL.glBindRenderbuffer(GL.GL_RENDERBUFFER, colour)
-                GL.glRenderbufferStorage(GL.GL_RENDERBUFFER, GL.GL_RGBA, self.viewport_width, self.viewport_height)
+                GL.glRenderbufferStorage(
+                    GL.GL_RENDERBUFFER, GL.GL_RGBA, self.viewport_width, self.viewport_height
+                )
                 GL.glBindRenderbuffer(GL.GL_RENDERBUFFER, depth)
                 GL.glRenderbufferStorage(
-                    GL.GL_RENDERBUFFER, GL.GL_DEPTH_COMPONENT24, self.viewport_width, self.viewport_height
+                    GL.GL_RENDERBUFFER,
+                    GL.GL_DEPTH_COMPONENT24,
+                    self.viewport_width,
+                    self.viewport_height,
                 )
                 self._seg_fb = GL.glGenFramebuffers(1)
                 GL.glBindFramebuffer(GL.GL_DRAW_FRAMEBUFFER, self._seg_fb)
                 GL.glFramebufferRenderbuffer(
                     GL.GL_DRAW_FRAMEBUFFER, GL.GL_COLOR_ATTACHMENT0, GL.GL_RENDERBUFFER, colour
                 )
-                GL.glFramebufferRenderbuffer(GL.GL_DRAW_FRAMEBUFFER, GL.GL_DEPTH_ATTACHMENT, GL.GL_RENDERBUFFER, depth)
+                GL.glFramebufferRenderbuffer(
+                    GL.GL_DRAW_FRAMEBUFFER, GL.GL_DEPTH_ATTACHMENT, GL.GL_RENDERBUFFER, depth
+                )
                 self._seg_buffers = (colour, depth)
             GL.glBindFramebuffer(GL.GL_DRAW_FRAMEBUFFER, self._seg_fb)
             GL.glViewport(0, 0, self.viewport_width, self.viewport_height)
@@ -709,7 +751,9 @@ def _shader_source(name: str, text: str) -> str:
     if name != "mesh.frag":
         return text
     if _PYRENDER_SHADOW_FILTER not in text:
-        raise GenerationError("pyrender's mesh.frag is not the one this renderer was written for (pyrender 0.1.45)")
+        raise GenerationError(
+            "pyrender's mesh.frag is not the one this renderer was written for (pyrender 0.1.45)"
+        )
     return text.replace(_PYRENDER_SHADOW_FILTER, _SHADOW_FILTER)
 
 
@@ -725,7 +769,9 @@ def _backend_error(error: Exception) -> GenerationError:
 
 
 @lru_cache(maxsize=1024)
-def _object_drawable(shape: str | None, mesh_file: str | None, size: tuple, colour: tuple) -> _Drawable:
+def _object_drawable(
+    shape: str | None, mesh_file: str | None, size: tuple, colour: tuple
+) -> _Drawable:
     """An object's look, built once per process: a dataset draws the same catalog
     entries thousands of times, and builders are pure functions of these arguments."""
     return _drawable(shaped_mesh(shape, mesh_file, size, colour))
@@ -762,9 +808,14 @@ def _pyrender_mesh(gl, drawable: _Drawable):
     """A pyrender mesh of one flat-shaded primitive on a matte, non-metal material
     (pyrender's ``from_trimesh`` drops colours when given a material, and otherwise
     picks a blended, metallic one)."""
-    material = gl.MetallicRoughnessMaterial(baseColorFactor=(1.0, 1.0, 1.0, 1.0), metallicFactor=0.0, roughnessFactor=0.9)
+    material = gl.MetallicRoughnessMaterial(
+        baseColorFactor=(1.0, 1.0, 1.0, 1.0), metallicFactor=0.0, roughnessFactor=0.9
+    )
     primitive = gl.Primitive(
-        positions=drawable.positions, normals=drawable.normals, color_0=drawable.colours, material=material
+        positions=drawable.positions,
+        normals=drawable.normals,
+        color_0=drawable.colours,
+        material=material,
     )
     mesh = gl.Mesh(primitives=[primitive])
     # pyrender 0.1.45 computes Mesh.bounds with ``np.infty``, which numpy 2 removed;
@@ -854,22 +905,30 @@ def _boxes(segmentation: np.ndarray, ids: list[str]) -> dict[str, list[int]]:
     }
 
 
-def _screen_extents(entities: list[_Entity], camera: Camera) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _screen_extents(
+    entities: list[_Entity], camera: Camera
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each entity's screen box (N, 4) clipped to the image (empty, x0 >= x1, when out
     of frame) and its nearest and farthest depth, from its bounding box's corners
     (projected all at once: a village has a hundred entities per frame)."""
     count = len(entities)
     if not count:
         return np.zeros((0, 4)), np.zeros(0), np.zeros(0)
-    local = np.stack([trimesh.bounds.corners(entity.drawable.bounds) for entity in entities])  # (N, 8, 3)
+    local = np.stack(
+        [trimesh.bounds.corners(entity.drawable.bounds) for entity in entities]
+    )  # (N, 8, 3)
     poses = np.stack([entity.pose for entity in entities])
     world = np.einsum("nij,nkj->nki", poses[:, :3, :3], local) + poses[:, None, :3, 3]
-    with np.errstate(divide="ignore", invalid="ignore"):  # corners behind the camera: replaced below
+    with np.errstate(
+        divide="ignore", invalid="ignore"
+    ):  # corners behind the camera: replaced below
         pixels, depth = camera.project(world.reshape(-1, 3))
     pixels, depth = pixels.reshape(count, 8, 2), depth.reshape(count, 8)
     near, far = depth.min(axis=1), depth.max(axis=1)
     limit = np.array([camera.width, camera.height], dtype=float)
-    boxes = np.column_stack([np.maximum(pixels.min(axis=1), 0.0), np.minimum(pixels.max(axis=1), limit)])
+    boxes = np.column_stack(
+        [np.maximum(pixels.min(axis=1), 0.0), np.minimum(pixels.max(axis=1), limit)]
+    )
     behind = near <= 0  # reaches behind the camera: it may cover anything
     boxes[behind] = [0.0, 0.0, *limit]
     near[behind] = -np.inf
@@ -890,7 +949,9 @@ def _overlaps(boxes: np.ndarray, margin: float = 1.0) -> np.ndarray:
     return ~apart & present[:, None] & present[None, :]
 
 
-def _disjoint_batches(indices: np.ndarray, boxes: np.ndarray, overlap: np.ndarray) -> list[list[int]]:
+def _disjoint_batches(
+    indices: np.ndarray, boxes: np.ndarray, overlap: np.ndarray
+) -> list[list[int]]:
     """Split ``indices`` into groups whose boxes do not overlap, greedily, largest box
     first (big boxes constrain most; placing them first needs fewer groups)."""
     area = (boxes[:, 2] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 1])
@@ -913,4 +974,6 @@ def _png(pixels: np.ndarray) -> bytes:
 
 
 def _ids_json(ids: list[str]) -> bytes:
-    return (json.dumps({str(k + 1): entity_id for k, entity_id in enumerate(ids)}, indent=1) + "\n").encode()
+    return (
+        json.dumps({str(k + 1): entity_id for k, entity_id in enumerate(ids)}, indent=1) + "\n"
+    ).encode()

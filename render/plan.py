@@ -71,7 +71,9 @@ def draw_plan(scene: Scene, path) -> Path:
     """Write the scene's top-down plan to ``path`` (PNG) and return the path."""
     width, depth = scene.extent
     unsatisfied = [relation for relation in scene.relations if not relation.satisfied]
-    involved = {relation.source for relation in unsatisfied} | {relation.target for relation in unsatisfied}
+    involved = {relation.source for relation in unsatisfied} | {
+        relation.target for relation in unsatisfied
+    }
     labels: list[Label] = []
     size = figure_inches(len(scene.objects) + len(scene.paths) + len(unsatisfied))
     # At the saved resolution from the start: the label boxes are measured as saved.
@@ -79,14 +81,24 @@ def draw_plan(scene: Scene, path) -> Path:
     axes.set_aspect("equal")
     # Data y is z; inverting the axis puts north (-Z) at the top of the picture.
     if scene.room is None:
-        axes.add_patch(Rectangle((-width / 2, -depth / 2), width, depth, fill=False, lw=1.5, ec="black"))
+        axes.add_patch(
+            Rectangle((-width / 2, -depth / 2), width, depth, fill=False, lw=1.5, ec="black")
+        )
     else:
         labels += _draw_room(axes, scene.room)
     points_per_metre = _points_per_metre(figure, axes, width, depth)
     for road in scene.paths:
         xs = [p[0] for p in road.points]
         zs = [p[1] for p in road.points]
-        axes.plot(xs, zs, color=road.colour, lw=road.width * points_per_metre, solid_capstyle="round", alpha=0.8, zorder=1)
+        axes.plot(
+            xs,
+            zs,
+            color=road.colour,
+            lw=road.width * points_per_metre,
+            solid_capstyle="round",
+            alpha=0.8,
+            zorder=1,
+        )
         axes.plot(xs, zs, "k.", ms=3, zorder=2)
         labels.append(Label(road.id, (xs[-1], zs[-1]), PATH, size=7, colour="saddlebrown"))
     centres = {}
@@ -96,10 +108,22 @@ def draw_plan(scene: Scene, path) -> Path:
             continue
         corners = object_corners([obj])[0]
         if obj.kind == "junction":
-            axes.add_patch(Polygon(corners, closed=True, fc="tan", ec="saddlebrown", lw=1, zorder=2))
+            axes.add_patch(
+                Polygon(corners, closed=True, fc="tan", ec="saddlebrown", lw=1, zorder=2)
+            )
             continue
         stacked = obj.position[1] > 1e-6
-        axes.add_patch(Polygon(corners, closed=True, fc=obj.colour, ec="black", lw=0.6, alpha=0.9, zorder=4 if stacked else 3))
+        axes.add_patch(
+            Polygon(
+                corners,
+                closed=True,
+                fc=obj.colour,
+                ec="black",
+                lw=0.6,
+                alpha=0.9,
+                zorder=4 if stacked else 3,
+            )
+        )
         reach = obj.size[2] / 2.0
         x, z = obj.position[0], obj.position[2]
         fx, fz = forward(obj.yaw)
@@ -115,12 +139,16 @@ def draw_plan(scene: Scene, path) -> Path:
         for opening in scene.room.openings:
             centres[opening.id] = opening.center
     for relation in unsatisfied:
-        target = relation.chosen if relation.target == ROOM_NODE and relation.chosen else relation.target
+        target = (
+            relation.chosen if relation.target == ROOM_NODE and relation.chosen else relation.target
+        )
         if relation.source not in centres or target not in centres:
             continue
         (sx, sz), (tx, tz) = centres[relation.source], centres[target]
         axes.plot([sx, tx], [sz, tz], color="red", lw=1.2, ls="--", zorder=7)
-        labels.append(Label(relation.label, ((sx + tx) / 2, (sz + tz) / 2), RELATION, size=6, colour="red"))
+        labels.append(
+            Label(relation.label, ((sx + tx) / 2, (sz + tz) / 2), RELATION, size=6, colour="red")
+        )
     margin = 0.05 * max(width, depth)
     if scene.room is not None:  # the walls and the openings' labels stand outside the extent
         margin = max(margin, WALL_THICKNESS + 0.5)
@@ -131,7 +159,10 @@ def draw_plan(scene: Scene, path) -> Path:
     left_out = len(labels) - place_labels(axes, labels)
     status = "ok" if scene.layout.ok else f"{len(scene.layout.problems)} problems"
     crowded = f"  ({left_out} of {len(labels)} labels left out: no room)" if left_out else ""
-    axes.set_title(f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}{crowded}", fontsize=9)
+    axes.set_title(
+        f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}{crowded}",
+        fontsize=9,
+    )
     target = Path(path)
     figure.savefig(target, dpi=DPI, bbox_inches="tight")
     plt.close(figure)
@@ -156,14 +187,26 @@ def place_labels(axes, labels: list[Label]) -> int:
     placed = 0
     for label in sorted(labels, key=lambda label: (label.rank, -label.weight)):
         text = axes.annotate(
-            label.text, label.anchor, xytext=(0, 0), textcoords="offset points", fontsize=label.size,
-            color=label.colour, ha="center", va="center", zorder=8 if label.rank == RELATION else 6,
+            label.text,
+            label.anchor,
+            xytext=(0, 0),
+            textcoords="offset points",
+            fontsize=label.size,
+            color=label.colour,
+            ha="center",
+            va="center",
+            zorder=8 if label.rank == RELATION else 6,
             path_effects=[HALO],  # readable over footprints, roads and dashed lines
-        )  # fmt: skip
+        )
         centred = text.get_window_extent(renderer)  # measured once, then moved
         for dx, dy in LABEL_OFFSETS:
             box = centred.translated(dx * points, dy * points)
-            fits = inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+            fits = (
+                inside.x0 <= box.x0
+                and box.x1 <= inside.x1
+                and inside.y0 <= box.y0
+                and box.y1 <= inside.y1
+            )
             if fits and not taken.overlaps(box):
                 text.xyann = (dx, dy)
                 taken.add(box)
@@ -189,7 +232,9 @@ class _BoxGrid:
                 yield i, j
 
     def overlaps(self, box) -> bool:
-        return any(box.overlaps(other) for cell in self._cells(box) for other in self.cells.get(cell, ()))
+        return any(
+            box.overlaps(other) for cell in self._cells(box) for other in self.cells.get(cell, ())
+        )
 
     def add(self, box) -> None:
         for cell in self._cells(box):
@@ -201,22 +246,37 @@ def _draw_room(axes, room: Room) -> list[Label]:
     openings' labels."""
     labels = []
     for wall in room.walls:
-        axes.add_patch(Polygon(wall_footprint(room, wall), closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2))
+        axes.add_patch(
+            Polygon(wall_footprint(room, wall), closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2)
+        )
     for opening in room.openings:
         wall = room.part(opening.wall)
         u0, u1 = opening.span
         thickness = WALL_THICKNESS
-        hole = [wall.to_world(u0, 0.0), wall.to_world(u1, 0.0), wall.to_world(u1, -thickness), wall.to_world(u0, -thickness)]
+        hole = [
+            wall.to_world(u0, 0.0),
+            wall.to_world(u1, 0.0),
+            wall.to_world(u1, -thickness),
+            wall.to_world(u0, -thickness),
+        ]
         if opening.kind == "window":
-            axes.add_patch(Polygon(hole, closed=True, fc="lightblue", ec="steelblue", lw=0.6, zorder=2.5))
+            axes.add_patch(
+                Polygon(hole, closed=True, fc="lightblue", ec="steelblue", lw=0.6, zorder=2.5)
+            )
             mid = [wall.to_world(u0, -thickness / 2.0), wall.to_world(u1, -thickness / 2.0)]
-            axes.plot([p[0] for p in mid], [p[1] for p in mid], color="steelblue", lw=0.6, zorder=2.6)
+            axes.plot(
+                [p[0] for p in mid], [p[1] for p in mid], color="steelblue", lw=0.6, zorder=2.6
+            )
         else:
             axes.add_patch(Polygon(hole, closed=True, fc="white", ec="none", zorder=2.5))
             # The leaf hinged at the opening's start, swung open into the room, and its arc.
-            arc = [wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
-                   for a in np.linspace(0.0, math.pi / 2.0, 16)]
-            axes.plot([p[0] for p in arc], [p[1] for p in arc], color="0.3", lw=0.6, ls=":", zorder=2.6)
+            arc = [
+                wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
+                for a in np.linspace(0.0, math.pi / 2.0, 16)
+            ]
+            axes.plot(
+                [p[0] for p in arc], [p[1] for p in arc], color="0.3", lw=0.6, ls=":", zorder=2.6
+            )
             leaf = [wall.to_world(u0, 0.0), wall.to_world(u0, opening.width)]
             axes.plot([p[0] for p in leaf], [p[1] for p in leaf], color="0.2", lw=1.2, zorder=2.6)
         x, z = wall.to_world(opening.offset, -thickness - 0.15)

@@ -78,20 +78,36 @@ class CameraRanges:
     tries: int = VIEW_TRIES
 
     def __post_init__(self) -> None:
-        for name, bounds in (("azimuth", None), ("elevation", ELEVATION_BOUNDS), ("distance", DISTANCE_BOUNDS)):
+        for name, bounds in (
+            ("azimuth", None),
+            ("elevation", ELEVATION_BOUNDS),
+            ("distance", DISTANCE_BOUNDS),
+        ):
             value = getattr(self, name)
             if value is not None:
                 object.__setattr__(self, name, checked_range(name, value, bounds))
-        if self.target is not None and (not isinstance(self.target, str) or not self.target.strip()):
+        if self.target is not None and (
+            not isinstance(self.target, str) or not self.target.strip()
+        ):
             raise InputError(f"the camera target must be an entity id or type, not {self.target!r}")
         if isinstance(self.min_visible, bool) or not 0.0 <= self.min_visible <= 1.0:
-            raise InputError(f"the target's visible fraction must be between 0 and 1, not {self.min_visible!r}")
-        if isinstance(self.tries, bool) or not isinstance(self.tries, int) or not 1 <= self.tries <= 100:
-            raise InputError(f"the tries per view must be a whole number from 1 to 100, not {self.tries!r}")
+            raise InputError(
+                f"the target's visible fraction must be between 0 and 1, not {self.min_visible!r}"
+            )
+        if (
+            isinstance(self.tries, bool)
+            or not isinstance(self.tries, int)
+            or not 1 <= self.tries <= 100
+        ):
+            raise InputError(
+                f"the tries per view must be a whole number from 1 to 100, not {self.tries!r}"
+            )
 
     def varies(self) -> bool:
         """Whether some range is wider than a point (so two draws may differ)."""
-        return any(r is not None and r[0] < r[1] for r in (self.azimuth, self.elevation, self.distance))
+        return any(
+            r is not None and r[0] < r[1] for r in (self.azimuth, self.elevation, self.distance)
+        )
 
     def draw(self, rng: np.random.Generator, default_azimuth: float) -> tuple[float, float, float]:
         """Azimuth and elevation (degrees) and distance (factor), each uniform in its
@@ -101,7 +117,9 @@ class CameraRanges:
         defaults = ((default_azimuth, default_azimuth), (math.degrees(ELEVATION),) * 2, (1.0, 1.0))
         ranges = (self.azimuth, self.elevation, self.distance)
         low_high = [given or default for given, default in zip(ranges, defaults, strict=True)]
-        azimuth, elevation, distance = (float(lo + k * (hi - lo)) for k, (lo, hi) in zip(u, low_high, strict=True))
+        azimuth, elevation, distance = (
+            float(lo + k * (hi - lo)) for k, (lo, hi) in zip(u, low_high, strict=True)
+        )
         return azimuth, elevation, distance
 
 
@@ -111,14 +129,18 @@ def checked_range(name: str, value, bounds: tuple[float, float] | None) -> tuple
     try:
         low, high = (float(v) for v in value)
     except (TypeError, ValueError):
-        raise InputError(f"the {name} range must be two numbers (low, high), not {value!r}") from None
+        raise InputError(
+            f"the {name} range must be two numbers (low, high), not {value!r}"
+        ) from None
     if not (math.isfinite(low) and math.isfinite(high)):
         raise InputError(f"the {name} range must be finite numbers, not {low:g}:{high:g}")
     if low > high:
         raise InputError(f"the {name} range {low:g}:{high:g} runs backwards; write LOW:HIGH")
     if bounds is None:
         if high - low > FULL_TURN:
-            raise InputError(f"the azimuth range {low:g}:{high:g} spans more than a full turn (360 degrees)")
+            raise InputError(
+                f"the azimuth range {low:g}:{high:g} spans more than a full turn (360 degrees)"
+            )
     elif low < bounds[0] or high > bounds[1]:
         given = f"{low:g}" if low == high else f"range {low:g}:{high:g}"
         raise InputError(f"the {name} {given} must lie within {bounds[0]:g}:{bounds[1]:g}")
@@ -131,7 +153,9 @@ def parse_range(text: str, name: str) -> tuple[float, float]:
     match = re.fullmatch(rf"\s*({_NUMBER})\s*(?::\s*({_NUMBER})\s*)?", text)
     if match is None:
         example = EXAMPLES.get(name, "20:60")
-        raise InputError(f"the {name} must be a number or a range LOW:HIGH such as {example}, not {ascii(text)[:40]}")
+        raise InputError(
+            f"the {name} must be a number or a range LOW:HIGH such as {example}, not {ascii(text)[:40]}"
+        )
     low = float(match[1])
     high = float(match[2]) if match[2] is not None else low
     bounds = {"elevation": ELEVATION_BOUNDS, "distance": DISTANCE_BOUNDS}.get(name)
@@ -146,9 +170,13 @@ def parse_camera(text: str) -> CameraRanges:
     for part in text.split(","):
         key, equals, value = (piece.strip() for piece in part.partition("="))
         if not equals or not key or not value:
-            raise InputError(f"--camera takes KEY=VALUE pairs separated by commas, not {ascii(part)[:40]}")
+            raise InputError(
+                f"--camera takes KEY=VALUE pairs separated by commas, not {ascii(part)[:40]}"
+            )
         if key not in CAMERA_KEYS:
-            raise InputError(f"unknown --camera key {ascii(key)[:40]}; choose from {', '.join(CAMERA_KEYS)}")
+            raise InputError(
+                f"unknown --camera key {ascii(key)[:40]}; choose from {', '.join(CAMERA_KEYS)}"
+            )
         if key in settings:
             raise InputError(f"--camera gives {key} twice")
         settings[key] = value if key == "target" else parse_range(value, key)
@@ -184,7 +212,12 @@ def target_visible(result: RenderResult, members: list[str]) -> float:
 
 
 def aimed_view(
-    renderer: Renderer, scene: Scene, ranges: CameraRanges, rng: np.random.Generator, *, require_target: bool = False
+    renderer: Renderer,
+    scene: Scene,
+    ranges: CameraRanges,
+    rng: np.random.Generator,
+    *,
+    require_target: bool = False,
 ) -> RenderResult:
     """The render of the first view drawn from ``ranges`` with ``rng`` that shows at
     least ``ranges.min_visible`` of its target, or after ``ranges.tries`` draws the one
@@ -194,17 +227,24 @@ def aimed_view(
     target = resolve_target(scene, ranges.target)
     if require_target and ranges.target is not None and target is None:
         known = ", ".join(sorted({*(o.id for o in scene.objects), *(p.id for p in scene.paths)}))
-        raise InputError(f"the scene has no entity or type {ranges.target!r} to aim the camera at; ids: {known}")
+        raise InputError(
+            f"the scene has no entity or type {ranges.target!r} to aim the camera at; ids: {known}"
+        )
     members = target_members(scene, target)
     default_azimuth = math.degrees(room_azimuth(scene.room))
     best: tuple[float, RenderResult, tuple[float, float, float]] | None = None
     tries = ranges.tries if ranges.varies() else 1
-    for attempt in range(1, tries + 1):
+    for attempt in range(1, tries + 1):  # noqa: B007 (the attempt kept is reported below)
         azimuth, elevation, distance = drawn = ranges.draw(rng, default_azimuth)
         camera = aimed_camera(
-            scene, renderer.width, renderer.height, azimuth=math.radians(azimuth),
-            elevation=math.radians(elevation), distance=distance, target=target,
-        )  # fmt: skip
+            scene,
+            renderer.width,
+            renderer.height,
+            azimuth=math.radians(azimuth),
+            elevation=math.radians(elevation),
+            distance=distance,
+            target=target,
+        )
         result = renderer.render(scene, camera=camera)
         visible = target_visible(result, members)
         if best is None or visible > best[0]:
@@ -216,7 +256,9 @@ def aimed_view(
     return result
 
 
-def aim_record(drawn: tuple[float, float, float], target: str | None, visible: float, tries: int) -> dict:
+def aim_record(
+    drawn: tuple[float, float, float], target: str | None, visible: float, tries: int
+) -> dict:
     """What a render records of how its camera was drawn (scene.json ``render.camera.aim``,
     a dataset row's ``camera``)."""
     azimuth, elevation, distance = drawn

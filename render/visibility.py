@@ -70,10 +70,14 @@ class Thresholds:
 
     def __post_init__(self) -> None:
         if isinstance(self.min_visible, bool) or not 0.0 <= self.min_visible <= 1.0:
-            raise InputError(f"the visible fraction threshold must be between 0 and 1, got {self.min_visible!r}")
+            raise InputError(
+                f"the visible fraction threshold must be between 0 and 1, got {self.min_visible!r}"
+            )
         size = self.min_size
         if size is not None and (isinstance(size, bool) or not isinstance(size, int) or size < 0):
-            raise InputError(f"the box size threshold must be a whole number of pixels >= 0, got {size!r}")
+            raise InputError(
+                f"the box size threshold must be a whole number of pixels >= 0, got {size!r}"
+            )
 
     def size_in(self, width: int, height: int) -> int:
         """The box size threshold for an image of ``width`` x ``height`` pixels."""
@@ -118,7 +122,9 @@ class PictureView:
     walls: frozenset[str] = frozenset()
 
     @classmethod
-    def from_render(cls, result: RenderResult, scene: Scene, thresholds: Thresholds | None = None) -> PictureView:
+    def from_render(
+        cls, result: RenderResult, scene: Scene, thresholds: Thresholds | None = None
+    ) -> PictureView:
         pixels = np.bincount(result.segmentation.ravel(), minlength=len(result.ids) + 1)
         entities = {
             entity_id: EntityInPicture(
@@ -136,7 +142,8 @@ class PictureView:
             ids=list(result.ids),
             entities=entities,
             centres=world_centres(scene),
-            flat=frozenset(p.id for p in scene.paths) | {o.id for o in scene.objects if o.kind == "junction"},
+            flat=frozenset(p.id for p in scene.paths)
+            | {o.id for o in scene.objects if o.kind == "junction"},
             thresholds=thresholds or Thresholds(),
             walls=frozenset(wall.id for wall in walls),
         )
@@ -162,7 +169,9 @@ class PictureView:
 
     def union_box(self, entity_ids) -> tuple[float, float, float, float] | None:
         """The box round the seen boxes of ``entity_ids`` (a group's members), or None."""
-        boxes = [self.entities[i].box for i in entity_ids if i in self.entities and self.entities[i].box]
+        boxes = [
+            self.entities[i].box for i in entity_ids if i in self.entities and self.entities[i].box
+        ]
         if not boxes:
             return None
         array = np.array(boxes, dtype=float)
@@ -202,7 +211,11 @@ class PictureView:
         flat_back = np.array([back[0], 0.0, back[2]])
         offset = a - b
         across = float(offset @ right)
-        towards = float(offset @ flat_back / np.linalg.norm(flat_back)) if np.linalg.norm(flat_back) > 1e-6 else 0.0
+        towards = (
+            float(offset @ flat_back / np.linalg.norm(flat_back))
+            if np.linalg.norm(flat_back) > 1e-6
+            else 0.0
+        )
         if abs(across) >= abs(towards):
             side = "right" if across > 0 else "left"
             agrees = (pixel_a[0] > pixel_b[0]) == (side == "right") and pixel_a[0] != pixel_b[0]

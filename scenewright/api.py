@@ -101,11 +101,10 @@ def build_scene(
     ``layout_seed`` (default ``seed``) names the layout's streams alone: the same graph
     laid out again, as a dataset's retry of a failed layout does (``core.seeds.retry_seed``).
     """
-    from scenewright.generator import expand
-    from scenewright.generator.layout import layout_scene
-
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed
+    from scenewright.generator import expand
+    from scenewright.generator.layout import layout_scene
 
     seed = check_seed(seed)
     layout_seed = seed if layout_seed is None else check_seed(layout_seed, "layout seed")
@@ -142,7 +141,9 @@ def describe(
     from scenewright.describer import describe as describe_stage
 
     check_choice("style", style, STYLES)
-    return describe_stage(scene, style=style, variant=variant, templates=templates or scene.templates, words=words)
+    return describe_stage(
+        scene, style=style, variant=variant, templates=templates or scene.templates, words=words
+    )
 
 
 def describe_scene(
@@ -156,7 +157,9 @@ def describe_scene(
     """``scene`` with its description (``describe``) and the time it took."""
     timings = dict(scene.timings)
     with timed(timings, "describe"):
-        description = describe(scene, style=style, variant=variant, templates=templates, words=words)
+        description = describe(
+            scene, style=style, variant=variant, templates=templates, words=words
+        )
     return replace(scene, description=description.to_dict(), timings=timings)
 
 
@@ -218,7 +221,9 @@ def render_scene(
 
     timings = dict(scene.timings)
     with timed(timings, "render"):
-        result = render_image(scene, *size, view=view, renderer=renderer, camera=camera, camera_view=camera_view)
+        result = render_image(
+            scene, *size, view=view, renderer=renderer, camera=camera, camera_view=camera_view
+        )
     return replace(scene, render=render_metadata(result), timings=timings), result
 
 
@@ -262,7 +267,9 @@ def generate(
     return describe_scene(scene, style=style, variant=variant, words=words)
 
 
-def rules_context(rules: Rules, path: str | os.PathLike[str] | None = None) -> tuple[str, LearnedContext] | None:
+def rules_context(
+    rules: Rules, path: str | os.PathLike[str] | None = None
+) -> tuple[str, LearnedContext] | None:
     """The learned context at ``path``, or else the one beside a rules file
     (``NAME.context.json`` beside ``NAME.rules``, as ``fit --what context`` writes it),
     with the file it came from; None when there is none. ``InputError`` for a file that
@@ -305,7 +312,11 @@ def timings_of(scene: Scene) -> dict[str, float]:
 def summary_line(scene: Scene) -> str:
     """One line for people: objects, relations satisfied, energy, time."""
     objects = len(scene.placed_objects())
-    stated = [r for r in scene.relations if r.label in RELATIONS and RELATIONS[r.label].family != "structural"]
+    stated = [
+        r
+        for r in scene.relations
+        if r.label in RELATIONS and RELATIONS[r.label].family != "structural"
+    ]
     satisfied = sum(r.satisfied for r in stated)
     seconds = sum(scene.timings.values())
     verdict = "ok" if scene.layout.ok else "LAYOUT FAILED"

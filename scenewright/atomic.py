@@ -74,10 +74,16 @@ def atomic_stream(path: str | os.PathLike[str], *, binary: bool = False) -> Iter
     target = Path(path)
     temporary = None
     try:
-        handle, temporary = tempfile.mkstemp(prefix=_partial_prefix(target.name), suffix=PARTIAL_SUFFIX, dir=target.parent)
+        handle, temporary = tempfile.mkstemp(
+            prefix=_partial_prefix(target.name), suffix=PARTIAL_SUFFIX, dir=target.parent
+        )
         # mkstemp makes the file private (0600); give it the mode open() would have.
         os.chmod(temporary, 0o666 & ~_UMASK)
-        with os.fdopen(handle, "wb") if binary else os.fdopen(handle, "w", encoding="utf-8") as stream:
+        with (
+            os.fdopen(handle, "wb")
+            if binary
+            else os.fdopen(handle, "w", encoding="utf-8") as stream
+        ):
             yield stream
         os.replace(temporary, target)
     except OSError as error:
@@ -130,22 +136,30 @@ def check_output_directory(directory: str | os.PathLike[str], replaces: Collecti
     final = Path(directory).resolve()
     here = Path.cwd().resolve()
     if final == here or final in here.parents:
-        reason = ("it is (or holds) the current directory, and the output replaces its directory as a whole; "
-                  "give the output a folder of its own")
+        reason = (
+            "it is (or holds) the current directory, and the output replaces its directory as a whole; "
+            "give the output a folder of its own"
+        )
         raise OutputError(directory, reason, directory=True)
     if not final.exists():
         return final
     if not final.is_dir():
         raise OutputError(directory, "it is a file, not a directory", directory=True)
     if os.path.ismount(final):
-        reason = ("it is a mount point, and the output replaces its directory as a whole by swapping in a new "
-                  "one beside it; write into a folder inside it")
+        reason = (
+            "it is a mount point, and the output replaces its directory as a whole by swapping in a new "
+            "one beside it; write into a folder inside it"
+        )
         raise OutputError(directory, reason, directory=True)
     foreign = sorted(entry.name for entry in _kept(final, replaces) if not _linkable(entry))
     if foreign:
-        listed = ", ".join(foreign[:3]) + (f" and {len(foreign) - 3} more" if len(foreign) > 3 else "")
-        reason = (f"it holds {listed}, which the output does not replace and which a new directory cannot take "
-                  "along (not a plain file); give the output a folder of its own")
+        listed = ", ".join(foreign[:3]) + (
+            f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
+        )
+        reason = (
+            f"it holds {listed}, which the output does not replace and which a new directory cannot take "
+            "along (not a plain file); give the output a folder of its own"
+        )
         raise OutputError(directory, reason, directory=True)
     return final
 
@@ -166,7 +180,11 @@ def staged_outputs(directory: str | os.PathLike[str], replaces: Collection[str])
         final.parent.mkdir(parents=True, exist_ok=True)
         remove_dead_partials(final)  # first: it may put back the directory a killed run set aside
         final.mkdir(exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=_partial_prefix(final.name), suffix=PARTIAL_SUFFIX, dir=final.parent))
+        stage = Path(
+            tempfile.mkdtemp(
+                prefix=_partial_prefix(final.name), suffix=PARTIAL_SUFFIX, dir=final.parent
+            )
+        )
         os.chmod(stage, 0o777 & ~_UMASK)
     except OSError as error:
         reason = f"cannot make a folder beside it in {final.parent} ({error.strerror or error})"
@@ -189,8 +207,9 @@ def staged_outputs(directory: str | os.PathLike[str], replaces: Collection[str])
         _remove(stage)
         if error.filename is not None and not _shown_path(error.filename, stage, directory):
             raise  # not a write of an output: some other file the block used
-        raise OutputError(_shown_path(error.filename, stage, directory) or directory,
-                          error.strerror or str(error)) from error
+        raise OutputError(
+            _shown_path(error.filename, stage, directory) or directory, error.strerror or str(error)
+        ) from error
     except BaseException:
         _remove(stage)
         raise
@@ -207,10 +226,16 @@ def remove_dead_partials(path: str | os.PathLike[str]) -> int:
             continue
         for entry in sorted(folder.iterdir()):
             match = _PARTIAL_NAME.match(entry.name)
-            if match is None or (wanted is not None and match["name"] != wanted) or _alive(int(match["pid"])):
+            if (
+                match is None
+                or (wanted is not None and match["name"] != wanted)
+                or _alive(int(match["pid"]))
+            ):
                 continue
             if match["tag"] == _ASIDE and not os.path.lexists(final):
-                os.rename(entry, final)  # killed between the two renames: the old directory comes back
+                os.rename(
+                    entry, final
+                )  # killed between the two renames: the old directory comes back
             else:
                 _remove(entry)
             count += 1
@@ -241,7 +266,10 @@ def _exchange(first: Path, second: Path) -> bool:
     renameat2 = _renameat2()
     if renameat2 is None:
         return False
-    if renameat2(_AT_FDCWD, os.fsencode(first), _AT_FDCWD, os.fsencode(second), _RENAME_EXCHANGE) == 0:
+    if (
+        renameat2(_AT_FDCWD, os.fsencode(first), _AT_FDCWD, os.fsencode(second), _RENAME_EXCHANGE)
+        == 0
+    ):
         return True
     code = ctypes.get_errno()
     if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
@@ -258,7 +286,13 @@ def _renameat2():
         function = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
         return None
-    function.argtypes = (ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint)
+    function.argtypes = (
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_uint,
+    )
     function.restype = ctypes.c_int
     return function
 
@@ -266,7 +300,9 @@ def _renameat2():
 def _kept(final: Path, replaces: Collection[str]) -> list[os.DirEntry]:
     """The entries of ``final`` a new directory must take along: not outputs, not partials."""
     with os.scandir(final) as entries:
-        return [e for e in entries if e.name not in replaces and not e.name.endswith(PARTIAL_SUFFIX)]
+        return [
+            e for e in entries if e.name not in replaces and not e.name.endswith(PARTIAL_SUFFIX)
+        ]
 
 
 def _linkable(entry: os.DirEntry) -> bool:

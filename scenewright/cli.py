@@ -59,7 +59,9 @@ def image_size(text: str) -> tuple[int, int]:
     """``WxH`` in pixels, e.g. ``640x480`` (ASCII digits only)."""
     match = re.fullmatch(r"([0-9]{1,9})[xX]([0-9]{1,9})", text)
     if match is None:
-        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 640x480, not {_clipped(text)}")
+        raise argparse.ArgumentTypeError(
+            f"expected WIDTHxHEIGHT such as 640x480, not {_clipped(text)}"
+        )
     size = (int(match[1]), int(match[2]))
     if not all(8 <= side <= 8192 for side in size):
         raise argparse.ArgumentTypeError(f"each side must be 8..8192 pixels, not {_clipped(text)}")
@@ -224,18 +226,27 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.atomic import check_output_directory
     from scenewright.generator import load_rules
 
-    check_output_directory(args.output, GENERATE_OUTPUTS)  # before any work: it is replaced as a whole
+    check_output_directory(
+        args.output, GENERATE_OUTPUTS
+    )  # before any work: it is replaced as a whole
     rules = load_rules(args.rules, allow=args.allow_outside)
     context = chosen_context(args, rules)
     scene = generate(
-        rules, args.seed, style=args.style, variant=args.variant, templates=args.templates, words=args.words,
+        rules,
+        args.seed,
+        style=args.style,
+        variant=args.variant,
+        templates=args.templates,
+        words=args.words,
         context=context[1] if context is not None else None,
-    )  # fmt: skip
+    )
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view, camera=args.camera)
     elif args.camera is not None:
-        raise InputError("--camera places the preview's camera; it needs the preview (leave out --no-render)")
+        raise InputError(
+            "--camera places the preview's camera; it needs the preview (leave out --no-render)"
+        )
     return write_scene_outputs(args, scene, images)
 
 
@@ -311,7 +322,12 @@ def run_layout(args: argparse.Namespace) -> int:
         context = read_context(args.context)
     with timed(timings, "layout"):
         layout = layout_scene(
-            graph, args.seed, pinned=pins.poses, pinned_paths=pins.paths, start=start, context=context
+            graph,
+            args.seed,
+            pinned=pins.poses,
+            pinned_paths=pins.paths,
+            start=start,
+            context=context,
         )
     scene = assemble_scene(graph, layout, rules=old.rules, seed=args.seed)
     scene.derivation = list(old.derivation)
@@ -341,7 +357,9 @@ def seconds_value(text: str) -> float:
 
 def scheduler_address(text: str) -> str:
     if not text.strip():
-        raise argparse.ArgumentTypeError("expected a scheduler address such as tcp://host:8786, not an empty string")
+        raise argparse.ArgumentTypeError(
+            "expected a scheduler address such as tcp://host:8786, not an empty string"
+        )
     return text.strip()
 
 
@@ -350,11 +368,20 @@ def dataset_cameras(args: argparse.Namespace):
     (the automatic camera); ``InputError`` for several views that could not differ."""
     from scenewright.render.views import MIN_TARGET_VISIBLE, VIEW_TRIES, CameraRanges
 
-    given = [args.azimuth, args.elevation, args.distance, args.target, args.target_visible, args.view_tries]
+    given = [
+        args.azimuth,
+        args.elevation,
+        args.distance,
+        args.target,
+        args.target_visible,
+        args.view_tries,
+    ]
     if args.views == 1 and all(value is None for value in given):
         return None
     if args.view != "perspective":
-        raise InputError("camera options (--views, --azimuth, ...) draw perspective cameras; leave out --view top")
+        raise InputError(
+            "camera options (--views, --azimuth, ...) draw perspective cameras; leave out --view top"
+        )
     ranges = CameraRanges(
         azimuth=args.azimuth,
         elevation=args.elevation,
@@ -385,12 +412,15 @@ def chosen_context(args: argparse.Namespace, rules):
 
 
 def run_dataset(args: argparse.Namespace) -> int:
-    from scenewright.dataset import available_cpus, dataset_spec, run_dataset as run
-    from scenewright.generator import load_rules
+    from scenewright.dataset import available_cpus, dataset_spec
+    from scenewright.dataset import run_dataset as run
     from scenewright.dataset_scene import with_picture_captions
+    from scenewright.generator import load_rules
 
     if not args.images and (args.depth or args.segmentation):
-        raise InputError("--depth and --segmentation are images: they cannot be made with --no-images")
+        raise InputError(
+            "--depth and --segmentation are images: they cannot be made with --no-images"
+        )
     cameras = dataset_cameras(args)
     rules = load_rules(args.rules)
     context = chosen_context(args, rules)
@@ -454,7 +484,9 @@ def run_validate(args: argparse.Namespace) -> int:
         if not Path(name).is_file() and name not in shipped:
             print(f"{name}: error: no such file (nor a shipped rule set: {', '.join(shipped)})")
             any_error = True
-        elif name.lower().endswith(".glb") or (name.endswith(".json") and is_handwritten_example(name)):
+        elif name.lower().endswith(".glb") or (
+            name.endswith(".json") and is_handwritten_example(name)
+        ):
             any_error |= not validate_example_file(name)
         elif name.endswith(".json"):
             any_error |= not validate_scene_file(name)
@@ -466,7 +498,10 @@ def run_validate(args: argparse.Namespace) -> int:
             warnings = len(diagnostics) - errors
             any_error |= errors > 0
             if not errors:
-                print(f"{name}: ok" + (f" ({warnings} warning{'s' * (warnings != 1)})" if warnings else ""))
+                print(
+                    f"{name}: ok"
+                    + (f" ({warnings} warning{'s' * (warnings != 1)})" if warnings else "")
+                )
     return 2 if any_error else 0
 
 
@@ -478,7 +513,10 @@ def validate_example_file(name: str) -> bool:
     try:
         example = load_example(name)
     except ExampleError as error:
-        print(f"{error.path}: error: " + (f"{error.where}: {error.reason}" if error.where else error.reason))
+        print(
+            f"{error.path}: error: "
+            + (f"{error.where}: {error.reason}" if error.where else error.reason)
+        )
         return False
     objects = len(example.objects())
     kind = {"glb": "GLB", "example.json": "hand-written"}.get(example.format, example.format)
@@ -516,7 +554,11 @@ def run_expand(args: argparse.Namespace) -> int:
     from scenewright.generator import expand, graph_to_dot, load_rules
 
     graph = expand(load_rules(args.rules, allow=args.allow_outside), args.seed)
-    text = graph_to_dot(graph) if args.format == "dot" else json.dumps(graph.to_dict(), indent=1) + "\n"
+    text = (
+        graph_to_dot(graph)
+        if args.format == "dot"
+        else json.dumps(graph.to_dict(), indent=1) + "\n"
+    )
     return emit(args, text)
 
 
@@ -524,7 +566,15 @@ def run_describe(args: argparse.Namespace) -> int:
     from scenewright.api import describe
 
     scene = read_scene(args.scene)
-    print(describe(scene, style=args.style, variant=args.variant, templates=args.templates, words=args.words).text)
+    print(
+        describe(
+            scene,
+            style=args.style,
+            variant=args.variant,
+            templates=args.templates,
+            words=args.words,
+        ).text
+    )
     return 0
 
 
@@ -559,28 +609,46 @@ def run_schema(args: argparse.Namespace) -> int:
 
 def run_fit(args: argparse.Namespace) -> int:
     from scenewright.atomic import write_atomic
-    from scenewright.learning.fit import fit_rule_set, parse_what
-
     from scenewright.examples.formats import example_paths
+    from scenewright.learning.fit import fit_rule_set, parse_what
 
     what = parse_what(args.what)
     examples = [(str(path), read_fit_example(path)) for path in example_paths(args.examples)]
     output = output_file(args.output, "fitted.rules")
     report = output_file(args.report, "fit.json") if args.report else None
     fit, context, written = fit_rule_set(
-        args.rules, examples, output, report=report, allow=args.allow_outside, prior=args.prior, write=write_atomic,
-        what=what, seed=args.seed, rounds=args.rounds, layouts=args.layouts,
-    )  # fmt: skip
+        args.rules,
+        examples,
+        output,
+        report=report,
+        allow=args.allow_outside,
+        prior=args.prior,
+        write=write_atomic,
+        what=what,
+        seed=args.seed,
+        rounds=args.rounds,
+        layouts=args.layouts,
+    )
     unidentified = fit.unidentified
     if "weights" in what:
-        say(args, f"fitted {len(fit.parameters)} parameters from {fit.examples} example"
-                  f"{'s' if fit.examples != 1 else ''}"
-                  + (f"; {len(unidentified)} no example drew kept their numbers: "
-                     + ", ".join(f"{p.kind} {p.name}" for p in unidentified) if unidentified else ""))
+        say(
+            args,
+            f"fitted {len(fit.parameters)} parameters from {fit.examples} example"
+            f"{'s' if fit.examples != 1 else ''}"
+            + (
+                f"; {len(unidentified)} no example drew kept their numbers: "
+                + ", ".join(f"{p.kind} {p.name}" for p in unidentified)
+                if unidentified
+                else ""
+            ),
+        )
     if context is not None:
-        say(args, f"fitted a context of {len(context.context.pairs)} pair kind"
-                  f"{'s' * (len(context.context.pairs) != 1)} from {len(examples)} examples "
-                  f"(divergence {context.divergence[0]:.3f} at the start, {context.divergence[context.kept]:.3f} kept)")
+        say(
+            args,
+            f"fitted a context of {len(context.context.pairs)} pair kind"
+            f"{'s' * (len(context.context.pairs) != 1)} from {len(examples)} examples "
+            f"(divergence {context.divergence[0]:.3f} at the start, {context.divergence[context.kept]:.3f} kept)",
+        )
     say(args, "wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -602,7 +670,9 @@ def run_relations(args: argparse.Namespace) -> int:
     from scenewright.learning.relations import find_relations
 
     examples = load_examples(args.examples)
-    result = find_relations([e.scene for e in examples], test=args.test, seed=args.seed, prune=args.prune)
+    result = find_relations(
+        [e.scene for e in examples], test=args.test, seed=args.seed, prune=args.prune
+    )
     sys.stdout.write(json.dumps(result.to_dict(), indent=1) + "\n" if args.json else result.table())
     return 0
 
@@ -617,39 +687,60 @@ def run_learn(args: argparse.Namespace) -> int:
     output = output_file(args.output, "induced.rules")
     report = output_file(args.report, "learn.json") if args.report else None
     learned = learn_rule_set(
-        examples, output, report=report, seed=args.seed, test=args.test, check=args.check, context=args.context,
-        rounds=args.rounds, layouts=args.layouts, write=write_atomic,
+        examples,
+        output,
+        report=report,
+        seed=args.seed,
+        test=args.test,
+        check=args.check,
+        context=args.context,
+        rounds=args.rounds,
+        layouts=args.layouts,
+        write=write_atomic,
         progress=lambda message: note_progress(args, message),
-    )  # fmt: skip
+    )
     induction = learned.induction
     related = sum(pair.related for pair in induction.relations.pairs)
-    say(args, f"induced {len(induction.catalog)} types, {len(induction.groups)} group"
-              f"{'s' * (len(induction.groups) != 1)} and {len(induction.written_pairs())} relations from "
-              f"{induction.scenes} examples ({related} related type pairs by the {induction.relations.test} test)")
+    say(
+        args,
+        f"induced {len(induction.catalog)} types, {len(induction.groups)} group"
+        f"{'s' * (len(induction.groups) != 1)} and {len(induction.written_pairs())} relations from "
+        f"{induction.scenes} examples ({related} related type pairs by the {induction.relations.test} test)",
+    )
     if learned.check is not None:
         say(args, learned.check.summary())
     context = learned.context
     if context is not None:
         left_out = "".join(
             f"; {len(names)} example{'s' * (len(names) != 1)} {why} left out ({', '.join(names)})"
-            for names, why in ((context.left_out, "no derivation of the induced rules makes"),
-                               (context.ambiguous, "the induced rules make in too many ways to search"))
+            for names, why in (
+                (context.left_out, "no derivation of the induced rules makes"),
+                (context.ambiguous, "the induced rules make in too many ways to search"),
+            )
             if names
-        )  # fmt: skip
+        )
         if context.unsearched:
-            left_out += (f"; {len(context.unsearched)} not searched (the searches before them spent the "
-                         f"{CONTEXT_REPLAYS} replays all share)")  # fmt: skip
+            left_out += (
+                f"; {len(context.unsearched)} not searched (the searches before them spent the "
+                f"{CONTEXT_REPLAYS} replays all share)"
+            )
         if context.fit is not None:
             pairs = context.fit.context.pairs
-            say(args, f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "
-                      f"examples (divergence {context.fit.divergence[0]:.3f} at the start, "
-                      f"{context.fit.divergence[context.fit.kept]:.3f} kept){left_out}")  # fmt: skip
+            say(
+                args,
+                f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "
+                f"examples (divergence {context.fit.divergence[0]:.3f} at the start, "
+                f"{context.fit.divergence[context.fit.kept]:.3f} kept){left_out}",
+            )
         else:
             say(args, f"no context learned: {context.why_not}{left_out}")
     sidecar = context_path(output)
     if sidecar not in learned.written and sidecar.exists():
-        say(args, f"note: {sidecar} beside the rules is not from this run; generate will use it (--no-context "
-                  "leaves it out)")  # fmt: skip
+        say(
+            args,
+            f"note: {sidecar} beside the rules is not from this run; generate will use it (--no-context "
+            "leaves it out)",
+        )
     say(args, "wrote " + ", ".join(str(path) for path in learned.written))
     return 0
 
@@ -659,7 +750,9 @@ def fraction(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number from 0 to 1, not {_clipped(text)}") from None
+        raise argparse.ArgumentTypeError(
+            f"expected a number from 0 to 1, not {_clipped(text)}"
+        ) from None
     if not 0.0 <= value <= 1.0:
         raise argparse.ArgumentTypeError(f"must be from 0 to 1, not {_clipped(text)}")
     return value
@@ -671,13 +764,18 @@ def run_match(args: argparse.Namespace) -> int:
 
     first, second = load_examples([args.first, args.second])
     matching = match_graphs(
-        structure_graph(first.scene), structure_graph(second.scene), threshold=args.threshold, type_prior=args.type_prior
+        structure_graph(first.scene),
+        structure_graph(second.scene),
+        threshold=args.threshold,
+        type_prior=args.type_prior,
     )
     if args.json:
         print(json.dumps({"a": first.path, "b": second.path, **matching.to_dict()}, indent=1))
         return 0
-    print(f"{first.name} -> {second.name}: {len(matching.pairs)} matched, {len(matching.withdrawn)} withdrawn, "
-          f"energy {matching.energy:.3f}")  # fmt: skip
+    print(
+        f"{first.name} -> {second.name}: {len(matching.pairs)} matched, {len(matching.withdrawn)} withdrawn, "
+        f"energy {matching.energy:.3f}"
+    )
     print("\n".join(matching.lines()))
     return 0
 
@@ -693,8 +791,11 @@ def run_augment(args: argparse.Namespace) -> int:
         target = output_file(args.output, "ag.dot" if args.format == "dot" else "ag.json")
         write_atomic(target, text)
         merged = sum(len(node.members) > 1 for node in graph.nodes)
-        say(args, f"wrote {target}: {len(graph.nodes)} nodes ({merged} merged from several examples), "
-                  f"{len(graph.to_dict()['edges'])} edges")  # fmt: skip
+        say(
+            args,
+            f"wrote {target}: {len(graph.nodes)} nodes ({merged} merged from several examples), "
+            f"{len(graph.to_dict()['edges'])} edges",
+        )
     else:
         sys.stdout.write(text)
     return 0
@@ -710,12 +811,20 @@ def run_vary(args: argparse.Namespace) -> int:
     examples = load_examples(args.examples)
     results = vary(examples, args.count, args.seed, max_operations=args.operations)
     index = write_variants(
-        results, examples, args.output, args.seed, render=args.render, size=args.size, view=args.view
+        results,
+        examples,
+        args.output,
+        args.seed,
+        render=args.render,
+        size=args.size,
+        view=args.view,
     )
     say(args, summary(index, args.output))
     if len(results) < args.count:
-        print(f"{PROG}: error: made {len(results)} distinct variants of the {args.count} asked for (files kept)",
-              file=sys.stderr)  # fmt: skip
+        print(
+            f"{PROG}: error: made {len(results)} distinct variants of the {args.count} asked for (files kept)",
+            file=sys.stderr,
+        )
         return 1
     return 0
 
@@ -736,10 +845,18 @@ def run_list(args: argparse.Namespace) -> int:
         rules = load_rules(name)
         width, depth = rules.params.extent
         catalog = {entry.name for entry in rules.catalog if entry.kind == "object"}
-        types = sorted(created_types(rules) & catalog)  # a room set's catalog is shared: it makes only some
+        types = sorted(
+            created_types(rules) & catalog
+        )  # a room set's catalog is shared: it makes only some
         walls = ", walls" if rules.params.walls else ""
-        print(f"{name}  ({width:g} x {depth:g} m{walls}; makes {len(types)} of its catalog's {len(catalog)} object types)")
-        print(textwrap.fill(", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "))
+        print(
+            f"{name}  ({width:g} x {depth:g} m{walls}; makes {len(types)} of its catalog's {len(catalog)} object types)"
+        )
+        print(
+            textwrap.fill(
+                ", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "
+            )
+        )
     return 0
 
 
@@ -767,7 +884,10 @@ def run_plans_build(args: argparse.Namespace) -> int:
     target = output_file(args.output, "model.json")
     write_atomic(target, model_json(model))
     counts = ", ".join(f"{entry['plans']} {name}" for name, entry in model["types"].items())
-    say(args, f"wrote {target}: {len(plans)} plans ({counts}), {len(model['categories'])} categories")
+    say(
+        args,
+        f"wrote {target}: {len(plans)} plans ({counts}), {len(model['categories'])} categories",
+    )
     return 0
 
 
@@ -777,7 +897,11 @@ def run_plans_graph(args: argparse.Namespace) -> int:
     from scenewright.completion.model import build_model, graph_dot, read_model, relation_graph
     from scenewright.completion.plan import load_plans
 
-    model = read_model(args.model) if args.model else build_model(load_plans(args.plans or shipped_plans_dir()))
+    model = (
+        read_model(args.model)
+        if args.model
+        else build_model(load_plans(args.plans or shipped_plans_dir()))
+    )
     graph = relation_graph(model, args.type)
     text = graph_dot(graph) if args.format == "dot" else json.dumps(graph, indent=1) + "\n"
     return emit(args, text)
@@ -799,7 +923,9 @@ def run_plans_draw(args: argparse.Namespace) -> int:
             raise InputError(f"no plan {missing[0]!r} in the plan set")
         plans = [by_id[name] for name in dict.fromkeys(wanted)]
     if len(plans) > MAX_PANELS:
-        raise InputError(f"{len(plans)} plans are more than one sheet holds ({MAX_PANELS}); name some with --only")
+        raise InputError(
+            f"{len(plans)} plans are more than one sheet holds ({MAX_PANELS}); name some with --only"
+        )
     target = output_file(args.output, "plans.png")
     with atomic_stream(target, binary=True) as stream, writing(target):
         draw_plans(plans, stream, masks=args.masks)
@@ -822,38 +948,69 @@ def run_complete(args: argparse.Namespace) -> int:
     """Complete an empty room from a few categories; write as generate does."""
     from scenewright.api import checked_templates, describe_scene, render_scene
     from scenewright.atomic import check_output_directory
-    from scenewright.completion.complete import complete, draw_explanation, parse_request, summary_of
+    from scenewright.completion.complete import (
+        complete,
+        draw_explanation,
+        parse_request,
+        summary_of,
+    )
     from scenewright.generator import indoor_catalog
 
-    check_output_directory(args.output, COMPLETE_OUTPUTS)  # before any work: it is replaced as a whole
+    check_output_directory(
+        args.output, COMPLETE_OUTPUTS
+    )  # before any work: it is replaced as a whole
     catalog = indoor_catalog()
     keep = None
     if args.scene is not None:
         from scenewright.completion.complete import existing_request, parse_categories
 
-        stated = [name for name, given in (("--room", args.room), ("--door", args.door), ("--window", args.window),
-                                           ("--with", args.categories)) if given]  # fmt: skip
+        stated = [
+            name
+            for name, given in (
+                ("--room", args.room),
+                ("--door", args.door),
+                ("--window", args.window),
+                ("--with", args.categories),
+            )
+            if given
+        ]
         if stated:
-            raise InputError(f"{stated[0]} describes an empty room; a scene.json brings its own (name what to add with --add)")
+            raise InputError(
+                f"{stated[0]} describes an empty room; a scene.json brings its own (name what to add with --add)"
+            )
         if not args.add:
-            raise InputError("completing a scene.json needs --add NAME[=N][,...]: what to add to it")
+            raise InputError(
+                "completing a scene.json needs --add NAME[=N][,...]: what to add to it"
+            )
         keep = read_scene(args.scene)
         request = existing_request(keep, parse_categories(args.add, catalog), catalog)
     else:
         if args.add:
-            raise InputError("--add adds to a scene.json (scenewright complete out/scene.json --add piano); "
-                             "for an empty room name its categories with --with")
+            raise InputError(
+                "--add adds to a scene.json (scenewright complete out/scene.json --add piano); "
+                "for an empty room name its categories with --with"
+            )
         if args.room is None or not args.categories:
-            raise InputError("an empty room needs --room and --with (or give a scene.json to complete)")
+            raise InputError(
+                "an empty room needs --room and --with (or give a scene.json to complete)"
+            )
         request = parse_request(args.room, args.door, args.window, args.categories, catalog)
     templates = checked_templates(args.templates)
     scene = complete(request, args.seed, plans=args.plans, catalog=catalog, keep=keep)
     say(args, summary_of(scene.completion))
     if keep is not None:
-        kept, new = len(keep.placed_objects()), len(scene.placed_objects()) - len(keep.placed_objects())
-        say(args, f"kept {kept} piece{'s' * (kept != 1)} where {'they' if kept != 1 else 'it'} stood; placed {new} new "
-                  f"(what --add asked for, and what the line above says the plans added)")
-    scene = describe_scene(scene, style=args.style, variant=args.variant, templates=templates, words=args.words)
+        kept, new = (
+            len(keep.placed_objects()),
+            len(scene.placed_objects()) - len(keep.placed_objects()),
+        )
+        say(
+            args,
+            f"kept {kept} piece{'s' * (kept != 1)} where {'they' if kept != 1 else 'it'} stood; placed {new} new "
+            f"(what --add asked for, and what the line above says the plans added)",
+        )
+    scene = describe_scene(
+        scene, style=args.style, variant=args.variant, templates=templates, words=args.words
+    )
     images = None
     if args.render:
         scene, images = render_scene(scene, size=args.size, view=args.view)
@@ -1138,8 +1295,12 @@ def common_options(suppress: bool) -> argparse.ArgumentParser:
     """--debug and --quiet, accepted before or after the subcommand."""
     default = argparse.SUPPRESS if suppress else False
     options = argparse.ArgumentParser(add_help=False)
-    options.add_argument("--debug", action="store_true", default=default, help="show tracebacks of errors")
-    options.add_argument("-q", "--quiet", action="store_true", default=default, help="print only errors")
+    options.add_argument(
+        "--debug", action="store_true", default=default, help="show tracebacks of errors"
+    )
+    options.add_argument(
+        "-q", "--quiet", action="store_true", default=default, help="print only errors"
+    )
     return options
 
 
@@ -1170,10 +1331,13 @@ def build_parser() -> CommandLineParser:
     def style_options(sub: argparse.ArgumentParser) -> None:
         sub.add_argument("--style", choices=STYLES, default="full", help="description style")
         sub.add_argument(
-            "--words", type=count_at_least(1), default=None, metavar="N",
+            "--words",
+            type=count_at_least(1),
+            default=None,
+            metavar="N",
             help="a word budget: the most detailed style (full, summary, short) whose text has at most N "
             "words (short when none has), instead of --style",
-        )  # fmt: skip
+        )
         sub.add_argument(
             "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
         )
@@ -1198,24 +1362,39 @@ def build_parser() -> CommandLineParser:
 
     def context_options(sub: argparse.ArgumentParser) -> None:
         sub.add_argument(
-            "--context", metavar="JSON",
+            "--context",
+            metavar="JSON",
             help="a learned context (scenewright fit --what context); by default NAME.context.json beside a "
             "NAME.rules file is used when it exists",
-        )  # fmt: skip
-        sub.add_argument("--no-context", action="store_true", help="ignore NAME.context.json beside the rules")
+        )
+        sub.add_argument(
+            "--no-context", action="store_true", help="ignore NAME.context.json beside the rules"
+        )
 
     def view_options(sub: argparse.ArgumentParser, size: str) -> None:
         sub.add_argument(
-            "--size", type=image_size, default=image_size(size), metavar="WxH", help=f"image size ({size})"
+            "--size",
+            type=image_size,
+            default=image_size(size),
+            metavar="WxH",
+            help=f"image size ({size})",
         )
         sub.add_argument("--view", choices=VIEWS, default="perspective", help="camera")
 
-    generate = command("generate", "generate one scene with its description, images and files", run_generate)
-    generate.add_argument("rules", help="shipped rule set name (see 'list') or path to a .rules file")
+    generate = command(
+        "generate", "generate one scene with its description, images and files", run_generate
+    )
+    generate.add_argument(
+        "rules", help="shipped rule set name (see 'list') or path to a .rules file"
+    )
     generate.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
-    generate.add_argument("-o", "--output", default="out", metavar="DIR", help="output directory (out)")
+    generate.add_argument(
+        "-o", "--output", default="out", metavar="DIR", help="output directory (out)"
+    )
     style_options(generate)
-    generate.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    generate.add_argument(
+        "--no-render", dest="render", action="store_false", help="skip the preview images"
+    )
     view_options(generate, "640x480")
     generate.add_argument(
         "--camera",
@@ -1228,7 +1407,9 @@ def build_parser() -> CommandLineParser:
     context_options(generate)
     allow_option(generate)
 
-    layout = command("layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout)
+    layout = command(
+        "layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout
+    )
     layout.add_argument("scene", metavar="SCENE_JSON")
     layout.add_argument(
         "--pin",
@@ -1238,23 +1419,34 @@ def build_parser() -> CommandLineParser:
         help="objects, groups, junctions or paths that keep their poses (repeatable)",
     )
     layout.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
-    layout.add_argument("--warm", action="store_true", help="start unpinned objects from their old poses")
     layout.add_argument(
-        "--context", metavar="JSON",
+        "--warm", action="store_true", help="start unpinned objects from their old poses"
+    )
+    layout.add_argument(
+        "--context",
+        metavar="JSON",
         help="a learned context to sample the layout with (scenewright fit --what context); none by default",
-    )  # fmt: skip
+    )
     layout.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     style_options(layout)
-    layout.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    layout.add_argument(
+        "--no-render", dest="render", action="store_false", help="skip the preview images"
+    )
     view_options(layout, "640x480")
 
-    dataset = command("dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset)
+    dataset = command(
+        "dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset
+    )
     dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
     dataset.add_argument(
         "-n", "--count", type=count_at_least(1), required=True, metavar="N", help="number of scenes"
     )
     dataset.add_argument(
-        "-o", "--output", required=True, metavar="DIR", help="dataset directory (resumed if it exists)"
+        "-o",
+        "--output",
+        required=True,
+        metavar="DIR",
+        help="dataset directory (resumed if it exists)",
     )
     dataset.add_argument("--seed", type=seed_value, default=0, help="base seed (0)")
     context_options(dataset)
@@ -1266,21 +1458,34 @@ def build_parser() -> CommandLineParser:
         "scene left to make; a larger K is lowered with a note; ignored with --scheduler)",
     )
     dataset.add_argument(
-        "--captions", type=count_at_least(1), default=1, metavar="K", help="short captions per scene (1)"
+        "--captions",
+        type=count_at_least(1),
+        default=1,
+        metavar="K",
+        help="short captions per scene (1)",
     )
     templates_option(dataset)
     view_options(dataset, "512x512")
     dataset.add_argument(
-        "--no-images", dest="images", action="store_false",
+        "--no-images",
+        dest="images",
+        action="store_false",
         help="no render: write each scene's scene.json and its description (texts/) only, for fast example corpora",
-    )  # fmt: skip
+    )
     dataset.add_argument(
-        "--text-words", type=count_at_least(1), default=None, metavar="N",
+        "--text-words",
+        type=count_at_least(1),
+        default=None,
+        metavar="N",
         help="the text column: the most detailed description (full, summary, short) of at most N words, "
         "for large scenes (default: the full description; scene.json keeps it either way)",
-    )  # fmt: skip
-    dataset.add_argument("--depth", action="store_true", help="also write depth/ (16-bit millimetres)")
-    dataset.add_argument("--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)")
+    )
+    dataset.add_argument(
+        "--depth", action="store_true", help="also write depth/ (16-bit millimetres)"
+    )
+    dataset.add_argument(
+        "--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)"
+    )
     dataset.add_argument(
         "--scheduler",
         type=scheduler_address,
@@ -1294,7 +1499,9 @@ def build_parser() -> CommandLineParser:
         help="with --scheduler: give up after S seconds without a dask worker, at the start or mid-run (60)",
     )
     dataset.add_argument(
-        "--include-failed", action="store_true", help="keep scenes whose layout failed, flagged ok=false"
+        "--include-failed",
+        action="store_true",
+        help="keep scenes whose layout failed, flagged ok=false",
     )
     dataset.add_argument(
         "--frame",
@@ -1338,29 +1545,40 @@ def build_parser() -> CommandLineParser:
         help="leave out annotations/instances.json (COCO instances of every image, from the segmentation)",
     )
     dataset.add_argument(
-        "--views", type=count_at_least(1), default=1, metavar="N",
+        "--views",
+        type=count_at_least(1),
+        default=1,
+        metavar="N",
         help="images per scene, each its own row, their cameras drawn from the ranges below (1)",
-    )  # fmt: skip
+    )
     for name, meaning in (
         ("azimuth", "in degrees from south towards east, e.g. 0:360 (the automatic view's)"),
         ("elevation", "in degrees above the horizon, within 0:89 (35)"),
         ("distance", "as a factor of the one that frames the target, within 0.1:10 (1)"),
     ):
         dataset.add_argument(
-            f"--{name}", type=camera_range(name), metavar="X|LOW:HIGH", help=f"the cameras' {name} {meaning}"
+            f"--{name}",
+            type=camera_range(name),
+            metavar="X|LOW:HIGH",
+            help=f"the cameras' {name} {meaning}",
         )
     dataset.add_argument(
-        "--target", metavar="ID|TYPE",
+        "--target",
+        metavar="ID|TYPE",
         help="aim the cameras at this entity (or the first of this type); a scene without it is framed whole",
-    )  # fmt: skip
+    )
     dataset.add_argument(
-        "--target-visible", type=fraction, metavar="F",
+        "--target-visible",
+        type=fraction,
+        metavar="F",
         help="draw a view again while its target shows less than this visible fraction (0.5)...",
-    )  # fmt: skip
+    )
     dataset.add_argument(
-        "--view-tries", type=count_at_least(1), metavar="K",
+        "--view-tries",
+        type=count_at_least(1),
+        metavar="K",
         help="...up to K draws in all, keeping the view that showed the most (8)",
-    )  # fmt: skip
+    )
     dataset.add_argument(
         "--retries",
         type=count_at_least(0),
@@ -1370,17 +1588,23 @@ def build_parser() -> CommandLineParser:
         f"objects ({DATASET_RETRIES}: with 30%% of layouts failing, 0.8%% of scenes still fail)",
     )
 
-    validate = command("validate", "check rules files (and scene.json files and example scenes)", run_validate)
+    validate = command(
+        "validate", "check rules files (and scene.json files and example scenes)", run_validate
+    )
     validate.add_argument(
-        "files", nargs="+", metavar="FILE",
+        "files",
+        nargs="+",
+        metavar="FILE",
         help=".rules files, shipped rule set names, scene .json files, or example scenes (hand-written .json, .glb)",
-    )  # fmt: skip
+    )
     allow_option(validate)
 
     expand = command("expand", "print the scene graph that the grammar expands to", run_expand)
     expand.add_argument("rules", help="shipped rule set name or path to a .rules file")
     expand.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
-    expand.add_argument("--format", choices=("json", "dot"), default="json", help="output format (json)")
+    expand.add_argument(
+        "--format", choices=("json", "dot"), default="json", help="output format (json)"
+    )
     expand.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
     allow_option(expand)
 
@@ -1391,7 +1615,10 @@ def build_parser() -> CommandLineParser:
     render = command("render", "render a scene.json offscreen", run_render)
     render.add_argument("scene", metavar="SCENE_JSON")
     render.add_argument(
-        "-o", "--output", default="preview.png", metavar="PNG",
+        "-o",
+        "--output",
+        default="preview.png",
+        metavar="PNG",
         help="colour image (preview.png), or a directory to write preview.png etc. into",
     )
     view_options(render, "640x480")
@@ -1399,175 +1626,372 @@ def build_parser() -> CommandLineParser:
     export = command("export", "export a scene.json as binary glTF", run_export)
     export.add_argument("scene", metavar="SCENE_JSON")
     export.add_argument(
-        "-o", "--output", default="scene.glb", metavar="GLB", help="output file (scene.glb), or a directory"
+        "-o",
+        "--output",
+        default="scene.glb",
+        metavar="GLB",
+        help="output file (scene.glb), or a directory",
     )
 
     fit = command("fit", "re-estimate a rule set's weights from example scenes", run_fit)
     fit.add_argument("rules", help="shipped rule set name or path to a .rules file")
     fit.add_argument(
-        "examples", nargs="+", metavar="EXAMPLE",
+        "examples",
+        nargs="+",
+        metavar="EXAMPLE",
         help="example scenes of the rule set (scene.json, the hand-written format, GLB, or a folder of them)",
-    )  # fmt: skip
-    fit.add_argument("-o", "--output", required=True, metavar="RULES", help="the fitted rules file to write")
-    fit.add_argument("--report", metavar="JSON", help="also write every parameter with its standard error here")
-    fit.add_argument(
-        "--prior", type=prior_value, default=0.5, metavar="A",
-        help="Dirichlet pseudo-draws per option (0.5: Jeffreys' prior; more pulls rarely drawn parameters "
-        "towards uniform)",
-    )  # fmt: skip
-    fit.add_argument(
-        "--what", default="weights", metavar="WHAT[,WHAT]",
-        help="what to fit: weights (the rules' numbers, the default), context (spatial priors learned from the "
-        "examples' layouts, written beside the rules as NAME.context.json), or weights,context",
-    )  # fmt: skip
-    fit.add_argument("--seed", type=seed_value, default=0, help="seed of the context fit's layouts (0)")
-    fit.add_argument(
-        "--rounds", type=count_at_least(0), default=2, metavar="N", help="context: rounds of iterative scaling (2)"
     )
     fit.add_argument(
-        "--layouts", type=count_at_least(1), default=40, metavar="N", help="context: scenes laid out per round (40)"
+        "-o", "--output", required=True, metavar="RULES", help="the fitted rules file to write"
+    )
+    fit.add_argument(
+        "--report", metavar="JSON", help="also write every parameter with its standard error here"
+    )
+    fit.add_argument(
+        "--prior",
+        type=prior_value,
+        default=0.5,
+        metavar="A",
+        help="Dirichlet pseudo-draws per option (0.5: Jeffreys' prior; more pulls rarely drawn parameters "
+        "towards uniform)",
+    )
+    fit.add_argument(
+        "--what",
+        default="weights",
+        metavar="WHAT[,WHAT]",
+        help="what to fit: weights (the rules' numbers, the default), context (spatial priors learned from the "
+        "examples' layouts, written beside the rules as NAME.context.json), or weights,context",
+    )
+    fit.add_argument(
+        "--seed", type=seed_value, default=0, help="seed of the context fit's layouts (0)"
+    )
+    fit.add_argument(
+        "--rounds",
+        type=count_at_least(0),
+        default=2,
+        metavar="N",
+        help="context: rounds of iterative scaling (2)",
+    )
+    fit.add_argument(
+        "--layouts",
+        type=count_at_least(1),
+        default=40,
+        metavar="N",
+        help="context: scenes laid out per round (40)",
     )
     allow_option(fit)
 
-    relations = command("relations", "find which object type pairs are spatially related in example scenes", run_relations)
+    relations = command(
+        "relations",
+        "find which object type pairs are spatially related in example scenes",
+        run_relations,
+    )
     relations.add_argument(
-        "examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)"
+        "examples",
+        nargs="+",
+        metavar="EXAMPLE",
+        help="example scenes (scene.json or its folder, .json, .glb)",
     )
     relations.add_argument("--json", action="store_true", help="print the result as JSON")
     relations.add_argument(
-        "--test", choices=("permutation", "angle", "cooccurrence"), default="permutation",
+        "--test",
+        choices=("permutation", "angle", "cooccurrence"),
+        default="permutation",
         help="permutation (default: within- vs across-scene poses), angle (complete spatial randomness by "
         "angles) or cooccurrence (a baseline)",
-    )  # fmt: skip
-    relations.add_argument("--seed", type=seed_value, default=0, help="seed of the tests' random draws (0)")
+    )
     relations.add_argument(
-        "--no-prune", dest="prune", action="store_false", help="keep indirect relations (a pair of a triangle that holds through the third type)"
+        "--seed", type=seed_value, default=0, help="seed of the tests' random draws (0)"
+    )
+    relations.add_argument(
+        "--no-prune",
+        dest="prune",
+        action="store_false",
+        help="keep indirect relations (a pair of a triangle that holds through the third type)",
     )
 
     learn = command("learn", "induce a rule set from example scenes alone", run_learn)
     learn.add_argument(
-        "examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)"
-    )
-    learn.add_argument("-o", "--output", required=True, metavar="RULES", help="the rules file to write")
-    learn.add_argument(
-        "--report", metavar="JSON", help="also write the pairs, catalog, groups, the check and the context's fit here"
-    )
-    learn.add_argument(
-        "--seed", type=seed_value, default=0, help="seed of the relation test, the check scenes and the context fit (0)"
+        "examples",
+        nargs="+",
+        metavar="EXAMPLE",
+        help="example scenes (scene.json or its folder, .json, .glb)",
     )
     learn.add_argument(
-        "--test", choices=("permutation", "angle", "cooccurrence"), default="permutation",
+        "-o", "--output", required=True, metavar="RULES", help="the rules file to write"
+    )
+    learn.add_argument(
+        "--report",
+        metavar="JSON",
+        help="also write the pairs, catalog, groups, the check and the context's fit here",
+    )
+    learn.add_argument(
+        "--seed",
+        type=seed_value,
+        default=0,
+        help="seed of the relation test, the check scenes and the context fit (0)",
+    )
+    learn.add_argument(
+        "--test",
+        choices=("permutation", "angle", "cooccurrence"),
+        default="permutation",
         help="which test finds the related type pairs (permutation; see 'relations --help')",
-    )  # fmt: skip
+    )
     learn.add_argument(
-        "--check", type=count_at_least(0), default=50, metavar="N",
+        "--check",
+        type=count_at_least(0),
+        default=50,
+        metavar="N",
         help="scenes to generate from the induced rules and compare with the examples (50; 0: none)",
-    )  # fmt: skip
+    )
     learn.add_argument(
-        "--no-context", dest="context", action="store_false",
+        "--no-context",
+        dest="context",
+        action="store_false",
         help="write no context: by default spatial priors are learned from the examples' layouts against the "
         "induced rules and written beside them as NAME.context.json, which generate uses",
-    )  # fmt: skip
-    learn.add_argument(
-        "--rounds", type=count_at_least(0), default=2, metavar="N", help="context: rounds of iterative scaling (2)"
     )
     learn.add_argument(
-        "--layouts", type=count_at_least(1), default=40, metavar="N", help="context: scenes laid out per round (40)"
+        "--rounds",
+        type=count_at_least(0),
+        default=2,
+        metavar="N",
+        help="context: rounds of iterative scaling (2)",
+    )
+    learn.add_argument(
+        "--layouts",
+        type=count_at_least(1),
+        default=40,
+        metavar="N",
+        help="context: scenes laid out per round (40)",
     )
 
-    plans = command("plans", "furnished floor plans: build their model, show a relation graph, evaluate, draw", None)
+    plans = command(
+        "plans",
+        "furnished floor plans: build their model, show a relation graph, evaluate, draw",
+        None,
+    )
     plan_actions = plans.add_subparsers(dest="plans_command", metavar="ACTION", required=True)
 
     def plan_action(name: str, summary: str, handler) -> CommandLineParser:
         action = plan_actions.add_parser(
-            name, help=summary, description=summary, epilog=EXAMPLES["plans"],
-            formatter_class=argparse.RawDescriptionHelpFormatter, parents=[common_options(suppress=True)],
-        )  # fmt: skip
+            name,
+            help=summary,
+            description=summary,
+            epilog=EXAMPLES["plans"],
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+            parents=[common_options(suppress=True)],
+        )
         action.set_defaults(handler=handler)
         return action
 
     def plan_set(action: argparse.ArgumentParser) -> None:
-        action.add_argument("plans", metavar="PLANS_DIR", nargs="?", help="a plan set (default: the shipped one)")
+        action.add_argument(
+            "plans", metavar="PLANS_DIR", nargs="?", help="a plan set (default: the shipped one)"
+        )
 
     build = plan_action("build", "check a plan set and write its model", run_plans_build)
-    build.add_argument("plans", metavar="PLANS_DIR", help="folder of plan files (the shipped set: completion/plans)")
-    build.add_argument("-o", "--output", required=True, metavar="FILE", help="model file (or a directory for model.json)")
+    build.add_argument(
+        "plans",
+        metavar="PLANS_DIR",
+        help="folder of plan files (the shipped set: completion/plans)",
+    )
+    build.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="FILE",
+        help="model file (or a directory for model.json)",
+    )
     graph = plan_action("graph", "print a room type's object relation graph", run_plans_graph)
-    graph.add_argument("--type", required=True, help="room type (bedroom, living_room, study, dining_room, ...)")
-    graph.add_argument("--format", choices=("dot", "json"), default="dot", help="output format (dot)")
+    graph.add_argument(
+        "--type", required=True, help="room type (bedroom, living_room, study, dining_room, ...)"
+    )
+    graph.add_argument(
+        "--format", choices=("dot", "json"), default="dot", help="output format (dot)"
+    )
     source = graph.add_mutually_exclusive_group()
     source.add_argument("--model", metavar="FILE", help="a model written by 'plans build'")
-    source.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
+    source.add_argument(
+        "--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)"
+    )
     graph.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
     evaluate = plan_action(
-        "evaluate", "leave-one-out: predictions for each held-out plan against baselines", run_plans_evaluate
+        "evaluate",
+        "leave-one-out: predictions for each held-out plan against baselines",
+        run_plans_evaluate,
     )
     plan_set(evaluate)
     evaluate.add_argument(
-        "--requested", type=int, choices=(1, 2), default=1,
+        "--requested",
+        type=int,
+        choices=(1, 2),
+        default=1,
         help="how many of each plan's categories (those taking the most floor) make the request (1)",
-    )  # fmt: skip
-    draw = plan_action("draw", "draw plans (and their layout masks) on one PNG sheet", run_plans_draw)
+    )
+    draw = plan_action(
+        "draw", "draw plans (and their layout masks) on one PNG sheet", run_plans_draw
+    )
     plan_set(draw)
-    draw.add_argument("--only", action="append", default=[], metavar="ID[,ID...]", help="the plans to draw (repeatable)")
+    draw.add_argument(
+        "--only",
+        action="append",
+        default=[],
+        metavar="ID[,ID...]",
+        help="the plans to draw (repeatable)",
+    )
     draw.add_argument("--masks", action="store_true", help="draw each plan's layout mask beside it")
-    draw.add_argument("-o", "--output", required=True, metavar="PNG", help="image file (or a directory for plans.png)")
+    draw.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="PNG",
+        help="image file (or a directory for plans.png)",
+    )
 
-    match = command("match", "match the objects of two example scenes by their role in the layout", run_match)
-    match.add_argument("first", metavar="A", help="example scene: scene.json (or its folder), hand-written .json, or .glb")
+    match = command(
+        "match", "match the objects of two example scenes by their role in the layout", run_match
+    )
+    match.add_argument(
+        "first",
+        metavar="A",
+        help="example scene: scene.json (or its folder), hand-written .json, or .glb",
+    )
     match.add_argument("second", metavar="B", help="the other example scene")
     match.add_argument("--json", action="store_true", help="print the matching as JSON")
     match.add_argument(
-        "--threshold", type=fraction, default=0.6, metavar="C", help="confidence below which a pair is withdrawn (0.6)"
+        "--threshold",
+        type=fraction,
+        default=0.6,
+        metavar="C",
+        help="confidence below which a pair is withdrawn (0.6)",
     )
     match.add_argument(
-        "--type-prior", type=fraction, default=0.0, metavar="P",
+        "--type-prior",
+        type=fraction,
+        default=0.0,
+        metavar="P",
         help="how much different type names lower a pair's box similarity (0: names ignored)",
     )
 
     augment = command("augment", "merge example scenes into one Augmented Graph", run_augment)
-    augment.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes (scene.json or its folder, .json, .glb)")
-    augment.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
-    augment.add_argument("--format", choices=("json", "dot"), default="json", help="output format (json)")
     augment.add_argument(
-        "--threshold", type=fraction, default=0.6, metavar="C", help="matching confidence to merge two objects (0.6)"
+        "examples",
+        nargs="+",
+        metavar="EXAMPLE",
+        help="example scenes (scene.json or its folder, .json, .glb)",
+    )
+    augment.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    augment.add_argument(
+        "--format", choices=("json", "dot"), default="json", help="output format (json)"
+    )
+    augment.add_argument(
+        "--threshold",
+        type=fraction,
+        default=0.6,
+        metavar="C",
+        help="matching confidence to merge two objects (0.6)",
     )
 
-    vary_command = command("vary", "make new scenes by reshuffling objects of example scenes", run_vary)
-    vary_command.add_argument("examples", nargs="+", metavar="EXAMPLE", help="example scenes, two or more (scene.json or its folder, .json, .glb)")
-    vary_command.add_argument("-n", "--count", type=count_at_least(1), default=10, metavar="N", help="variants to make (10)")
-    vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
-    vary_command.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
-    vary_command.add_argument(
-        "--operations", type=count_at_least(1), default=3, metavar="K", help="at most K operations per variant (3)"
+    vary_command = command(
+        "vary", "make new scenes by reshuffling objects of example scenes", run_vary
     )
-    vary_command.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    vary_command.add_argument(
+        "examples",
+        nargs="+",
+        metavar="EXAMPLE",
+        help="example scenes, two or more (scene.json or its folder, .json, .glb)",
+    )
+    vary_command.add_argument(
+        "-n",
+        "--count",
+        type=count_at_least(1),
+        default=10,
+        metavar="N",
+        help="variants to make (10)",
+    )
+    vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
+    vary_command.add_argument(
+        "-o", "--output", required=True, metavar="DIR", help="output directory"
+    )
+    vary_command.add_argument(
+        "--operations",
+        type=count_at_least(1),
+        default=3,
+        metavar="K",
+        help="at most K operations per variant (3)",
+    )
+    vary_command.add_argument(
+        "--no-render", dest="render", action="store_false", help="skip the preview images"
+    )
     view_options(vary_command, "640x480")
-    complete = command("complete", "furnish an empty room from a few objects, learned from floor plans", run_complete)
-    complete.add_argument("scene", nargs="?", metavar="SCENE_JSON",
-                          help="a furnished room (scene.json) to add to: what it holds stays where it is")
-    complete.add_argument("--add", action="append", default=[], metavar="NAME[=N][,...]",
-                          help="with SCENE_JSON: categories to add (repeatable)")
-    complete.add_argument("--room", metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ...")
-    complete.add_argument("--door", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:HEIGHT]",
-                          help="a door (repeatable)")
-    complete.add_argument("--window", action="append", default=[], metavar="WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]",
-                          help="a window (repeatable)")
-    complete.add_argument("--with", dest="categories", action="append", default=[], metavar="NAME[=N][,...]",
-                          help="categories the room must hold (repeatable)")
-    complete.add_argument("--explain", action="store_true",
-                          help="also write mask.png: the layout mask on the room, with the pieces laid out")
-    complete.add_argument("--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)")
+    complete = command(
+        "complete",
+        "furnish an empty room from a few objects, learned from floor plans",
+        run_complete,
+    )
+    complete.add_argument(
+        "scene",
+        nargs="?",
+        metavar="SCENE_JSON",
+        help="a furnished room (scene.json) to add to: what it holds stays where it is",
+    )
+    complete.add_argument(
+        "--add",
+        action="append",
+        default=[],
+        metavar="NAME[=N][,...]",
+        help="with SCENE_JSON: categories to add (repeatable)",
+    )
+    complete.add_argument(
+        "--room", metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ..."
+    )
+    complete.add_argument(
+        "--door",
+        action="append",
+        default=[],
+        metavar="WALL:OFFSET:WIDTH[:HEIGHT]",
+        help="a door (repeatable)",
+    )
+    complete.add_argument(
+        "--window",
+        action="append",
+        default=[],
+        metavar="WALL:OFFSET:WIDTH[:SILL[:HEIGHT]]",
+        help="a window (repeatable)",
+    )
+    complete.add_argument(
+        "--with",
+        dest="categories",
+        action="append",
+        default=[],
+        metavar="NAME[=N][,...]",
+        help="categories the room must hold (repeatable)",
+    )
+    complete.add_argument(
+        "--explain",
+        action="store_true",
+        help="also write mask.png: the layout mask on the room, with the pieces laid out",
+    )
+    complete.add_argument(
+        "--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)"
+    )
     complete.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
     complete.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     style_options(complete)
-    complete.add_argument("--no-render", dest="render", action="store_false", help="skip the preview images")
+    complete.add_argument(
+        "--no-render", dest="render", action="store_false", help="skip the preview images"
+    )
     view_options(complete, "640x480")
 
     command("schema", "print the scene.json JSON Schema", run_schema)
-    listing = command("list", "list the shipped rule sets and their object types, or the shapes", run_list)
+    listing = command(
+        "list", "list the shipped rule sets and their object types, or the shapes", run_list
+    )
     listing.add_argument(
-        "--shapes", action="store_true", help="list the procedural shapes and the side each one faces instead"
+        "--shapes",
+        action="store_true",
+        help="list the procedural shapes and the side each one faces instead",
     )
     return parser
 
@@ -1587,7 +2011,11 @@ def main(argv: list[str] | None = None) -> int:
         return error.exit_code
     except KeyboardInterrupt:
         words = sys.argv[1:] if argv is None else argv
-        command = args.command if args is not None else next((w for w in words if not w.startswith("-")), None)
+        command = (
+            args.command
+            if args is not None
+            else next((w for w in words if not w.startswith("-")), None)
+        )
         resumes = " (rerunning a dataset command resumes it)" if command == "dataset" else ""
         print(f"{PROG}: interrupted{resumes}", file=sys.stderr)
         return 130
@@ -1599,8 +2027,11 @@ def main(argv: list[str] | None = None) -> int:
     except MemoryError as error:
         if debug:
             traceback.print_exc()
-        print(f"{PROG}: error: out of memory while {activity(error)} (docs/limits.md lists the bounds on "
-              "input; this machine has less memory than the input needs)", file=sys.stderr)
+        print(
+            f"{PROG}: error: out of memory while {activity(error)} (docs/limits.md lists the bounds on "
+            "input; this machine has less memory than the input needs)",
+            file=sys.stderr,
+        )
         return 1
     except OSError as error:  # the system refused something (a device, a file): not a bug
         if debug:
@@ -1643,7 +2074,9 @@ def activity(error: BaseException) -> str:
     trace = error.__traceback__
     while trace is not None:
         module = trace.tb_frame.f_globals.get("__name__", "")
-        known = [prefix for prefix in ACTIVITIES if module == prefix or module.startswith(prefix + ".")]
+        known = [
+            prefix for prefix in ACTIVITIES if module == prefix or module.startswith(prefix + ".")
+        ]
         if known:
             doing = ACTIVITIES[max(known, key=len)]
         trace = trace.tb_next

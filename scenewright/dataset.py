@@ -78,7 +78,10 @@ LOCK_FILE = ".lock"
 #: What a worker imports; a fork server imports it once for all its workers
 #: (``worker_preload`` loads pyrender and builds the rules parser there too).
 WORKER_MODULES = [
-    "scenewright.generator.layout", "scenewright.describer", "scenewright.dataset_scene", "scenewright.worker_preload"
+    "scenewright.generator.layout",
+    "scenewright.describer",
+    "scenewright.dataset_scene",
+    "scenewright.worker_preload",
 ]
 #: When stderr is not a terminal (a log file, a batch job), progress is a plain line at
 #: most this often (seconds) and one at the end, not a bar redrawn after every scene.
@@ -90,9 +93,15 @@ IDLE_CHECK = 5.0
 #: retries existed retried nothing, one made before COCO output wrote none, one made
 #: before datasets without images had images), so such a dataset can be resumed with that value.
 SETTINGS_BEFORE = {
-    "retries": 0, "images": True, "coco": False, "views": 1, "camera": None, "text_words": None,
-    "context": None, "context_digest": None,
-}  # fmt: skip
+    "retries": 0,
+    "images": True,
+    "coco": False,
+    "views": 1,
+    "camera": None,
+    "text_words": None,
+    "context": None,
+    "context_digest": None,
+}
 
 
 def image_number(index: int, view: int, views: int) -> int:
@@ -209,7 +218,9 @@ def dataset_spec(
         templates = checked_templates(templates)
     if not settings.get("images", True):
         if settings.get("views", 1) > 1 or settings.get("camera") is not None:
-            raise InputError("--views and the camera options are for images: they cannot be used with --no-images")
+            raise InputError(
+                "--views and the camera options are for images: they cannot be used with --no-images"
+            )
         settings["coco"] = False  # no picture, nothing to annotate
     digest = file_digest(loaded.path)
     if context is not None:
@@ -310,7 +321,9 @@ class RunReport:
                 "size in stats.json)"
             )
         if self.beyond:
-            notes.append(f"{self.beyond} finished scenes with index {self.count} or above stay on disk, not listed")
+            notes.append(
+                f"{self.beyond} finished scenes with index {self.count} or above stay on disk, not listed"
+            )
         if failed_layouts:
             notes.append(f"most frequent layout problems: {counted(stats['problems'])}")
         if self.made:
@@ -349,10 +362,14 @@ def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterat
         root.mkdir(parents=True, exist_ok=True)
         settings_path = root / SETTINGS_FILE
         if not settings_path.exists() and any(entry.name != LOCK_FILE for entry in root.iterdir()):
-            raise InputError(f"{root} is not empty and holds no scenewright dataset; choose a new directory")
+            raise InputError(
+                f"{root} is not empty and holds no scenewright dataset; choose a new directory"
+            )
         lock = lock_directory(root)
     except OSError as error:
-        raise InputError(f"cannot write the dataset to {root}: {error.strerror or error}") from error
+        raise InputError(
+            f"cannot write the dataset to {root}: {error.strerror or error}"
+        ) from error
     try:
         try:
             if settings_path.exists():
@@ -362,7 +379,9 @@ def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterat
                 (root / sub).mkdir(exist_ok=True)
             remove_partials(root)
         except OSError as error:
-            raise InputError(f"cannot write the dataset to {root}: {error.strerror or error}") from error
+            raise InputError(
+                f"cannot write the dataset to {root}: {error.strerror or error}"
+            ) from error
         yield root
     finally:
         unlock_directory(lock)
@@ -379,7 +398,9 @@ def lock_directory(root: Path) -> int:
     except BlockingIOError:
         holder = os.pread(descriptor, 32, 0).decode("ascii", "replace").strip() or "unknown"
         os.close(descriptor)
-        raise InputError(f"{root} is in use by another scenewright dataset run (pid {holder})") from None
+        raise InputError(
+            f"{root} is in use by another scenewright dataset run (pid {holder})"
+        ) from None
     os.ftruncate(descriptor, 0)
     os.pwrite(descriptor, f"{os.getpid()}\n".encode(), 0)
     return descriptor
@@ -406,8 +427,12 @@ def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     keys = [key for key in dict.fromkeys([*current, *stored]) if key != "count"]
     differing = [key for key in keys if stored.get(key) != current.get(key)]
     if differing:
-        details = ", ".join(f"{key} {stored.get(key)!r} -> {current.get(key)!r}" for key in differing)
-        raise InputError(f"{root} holds a dataset made with other settings ({details}); use a new directory")
+        details = ", ".join(
+            f"{key} {stored.get(key)!r} -> {current.get(key)!r}" for key in differing
+        )
+        raise InputError(
+            f"{root} holds a dataset made with other settings ({details}); use a new directory"
+        )
 
 
 def finished_indices(root: Path) -> set[int]:
@@ -476,7 +501,10 @@ def interrupts_deferred() -> Iterator[None]:
     caller's thread) this does nothing, as it does when SIGINT's handler was installed
     by something other than Python (it could not be put back).
     """
-    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGINT) is None
+    ):
         yield  # not the main thread, or a handler Python did not install: leave it alone
         return
     caught: list[int] = []
@@ -517,7 +545,9 @@ def start_worker(lifeline, spec: DatasetSpec | None) -> None:
     SIGINT is also ignored here for a fork server that ``start_fork_server`` did not
     start (one an API caller's process started earlier)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    threading.Thread(target=exit_when_closed, args=(lifeline,), name="lifeline", daemon=True).start()
+    threading.Thread(
+        target=exit_when_closed, args=(lifeline,), name="lifeline", daemon=True
+    ).start()
     # The pool has a worker per core: a software OpenGL's own rasteriser threads would
     # only contend with the other workers (village 256x256, 2 workers: 320 -> 384
     # scenes/min, same images; docs/datasets.md). Set before the worker's renderer exists; a value the
@@ -566,7 +596,10 @@ class WorkerPool(cf.ProcessPoolExecutor):
             start_fork_server()
         self._lifeline_read, self._lifeline = context.Pipe(duplex=False)
         super().__init__(
-            max_workers=workers, mp_context=context, initializer=start_worker, initargs=(self._lifeline_read, warm_up)
+            max_workers=workers,
+            mp_context=context,
+            initializer=start_worker,
+            initargs=(self._lifeline_read, warm_up),
         )
         self.workers = workers
 
@@ -660,12 +693,16 @@ def run_dataset(
         made = failed_now = slots = 0
         if pending:
             note = progress_note if progress else None
-            with make_executor(workers, pending, scheduler, producer, spec, worker_timeout, note) as executor:
+            with make_executor(
+                workers, pending, scheduler, producer, spec, worker_timeout, note
+            ) as executor:
                 slots = executor.slots()
                 bar = progress_bar(pending, progress, skipped)
                 try:
                     todo = pending_indices(spec.count, done)
-                    for product in completed_products(executor, producer, spec, todo, window=4 * slots):
+                    for product in completed_products(
+                        executor, producer, spec, todo, window=4 * slots
+                    ):
                         store_product(root, product)
                         made += 1
                         failed_now += not product.ok
@@ -741,7 +778,14 @@ def progress_bar(total: int, enabled: bool, already: int, stream: TextIO | None 
     description = f"scenes ({already} already done)" if already else "scenes"
     if enabled and not stream.isatty():
         return ProgressLines(total, description, stream)
-    return tqdm(total=total, unit="scene", desc=description, disable=not enabled, dynamic_ncols=True, file=stream)
+    return tqdm(
+        total=total,
+        unit="scene",
+        desc=description,
+        disable=not enabled,
+        dynamic_ncols=True,
+        file=stream,
+    )
 
 
 class ProgressLines:
@@ -754,7 +798,13 @@ class ProgressLines:
     FORMAT = "{desc}: {n_fmt}/{total_fmt} ({percentage:.0f}%) [{elapsed}<{remaining}, {rate_fmt}{postfix}]"
 
     def __init__(
-        self, total: int, description: str, stream: TextIO, *, interval: float = LOG_INTERVAL, clock=time.monotonic
+        self,
+        total: int,
+        description: str,
+        stream: TextIO,
+        *,
+        interval: float = LOG_INTERVAL,
+        clock=time.monotonic,
     ):
         self.total, self.description, self.stream = total, description, stream
         self.interval, self.clock = interval, clock
@@ -780,7 +830,12 @@ class ProgressLines:
 
         self.printed, self.shown = self.clock(), self.count
         line = tqdm.format_meter(
-            self.count, self.total, self.printed - self.started, prefix=self.description, unit="scene",
-            postfix=self.postfix, bar_format=self.FORMAT,
-        )  # fmt: skip
+            self.count,
+            self.total,
+            self.printed - self.started,
+            prefix=self.description,
+            unit="scene",
+            postfix=self.postfix,
+            bar_format=self.FORMAT,
+        )
         print(line, file=self.stream, flush=True)

@@ -41,7 +41,9 @@ class ClusterExecutor(cf.Executor):
     """A dask client's executor that closes the client when it is shut down, and tells a
     lost scheduler or a cluster without workers from a scene's own error."""
 
-    def __init__(self, client, address: str, worker_timeout: float, restore_logs: Callable[[], None]) -> None:
+    def __init__(
+        self, client, address: str, worker_timeout: float, restore_logs: Callable[[], None]
+    ) -> None:
         self._client = client
         self._address = address
         self._worker_timeout = worker_timeout
@@ -133,7 +135,9 @@ def cluster_executor(
     try:
         from distributed import Client
     except ImportError as error:
-        raise InputError("--scheduler needs dask.distributed: pip install 'scenewright[dask]'") from error
+        raise InputError(
+            "--scheduler needs dask.distributed: pip install 'scenewright[dask]'"
+        ) from error
     check_address(address)
     restore_logs = quiet_dask_logs()
     try:
@@ -143,7 +147,9 @@ def cluster_executor(
         except (OSError, TimeoutError, asyncio.TimeoutError) as error:
             raise InputError(f"cannot reach the dask scheduler at {address}: {error}") from error
         if note is not None and not client.nthreads():
-            note(f"the dask scheduler at {address} has no workers yet; waiting up to {worker_timeout:g} s for one")
+            note(
+                f"the dask scheduler at {address} has no workers yet; waiting up to {worker_timeout:g} s for one"
+            )
         try:
             client.wait_for_workers(1, timeout=worker_timeout)
         except (TimeoutError, asyncio.TimeoutError):  # one class from Python 3.11 on
@@ -170,7 +176,9 @@ def check_address(address: str) -> None:
         scheme, location = parse_address(address)
         backend = get_backend(scheme)
         backend.get_connector()
-        if type(backend).get_address_host_port is not Backend.get_address_host_port:  # host:port schemes
+        if (
+            type(backend).get_address_host_port is not Backend.get_address_host_port
+        ):  # host:port schemes
             backend.get_address_host_port(location)
     except (ValueError, TypeError, ImportError) as error:
         raise InputError(

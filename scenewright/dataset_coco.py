@@ -51,7 +51,10 @@ def coco_categories(rules: Rules) -> list[dict]:
     kinds = {entry.name: entry.kind for entry in rules.catalog if entry.kind != "group"}
     if rules.params.room is not None:
         kinds.update({opening.kind: "opening" for opening in rules.params.room.openings})
-    return [{"id": k, "name": name, "supercategory": kinds[name]} for k, name in enumerate(sorted(kinds), start=1)]
+    return [
+        {"id": k, "name": name, "supercategory": kinds[name]}
+        for k, name in enumerate(sorted(kinds), start=1)
+    ]
 
 
 def view_annotations(result: RenderResult, scene: Scene) -> list[dict]:
@@ -73,18 +76,25 @@ def view_annotations(result: RenderResult, scene: Scene) -> list[dict]:
             continue
         rle = mask_utils.encode((by_column == index).view(np.uint8))
         x0, y0, x1, y1 = result.boxes[entity_id]
-        annotations.append({
-            "entity_id": entity_id,
-            "category": types[entity_id],
-            "bbox": [x0, y0, x1 - x0, y1 - y0],
-            "area": int(pixels[index]),
-            "segmentation": {"size": [int(n) for n in rle["size"]], "counts": rle["counts"].decode("ascii")},
-        })  # fmt: skip
+        annotations.append(
+            {
+                "entity_id": entity_id,
+                "category": types[entity_id],
+                "bbox": [x0, y0, x1 - x0, y1 - y0],
+                "area": int(pixels[index]),
+                "segmentation": {
+                    "size": [int(n) for n in rle["size"]],
+                    "counts": rle["counts"].decode("ascii"),
+                },
+            }
+        )
     return annotations
 
 
 @contextmanager
-def coco_writer(root: Path, spec: DatasetSpec, categories: list[dict]) -> Iterator[Callable[[dict], None]]:
+def coco_writer(
+    root: Path, spec: DatasetSpec, categories: list[dict]
+) -> Iterator[Callable[[dict], None]]:
     """Write ``root/annotations/instances.json`` (atomically) from the records passed to
     the function this yields, in index order; the file appears when the block ends
     without an error. Images are written as they come and annotations to a spool file
@@ -96,11 +106,17 @@ def coco_writer(root: Path, spec: DatasetSpec, categories: list[dict]) -> Iterat
     width, height = spec.size
     views = spec.views
     (root / COCO_DIR).mkdir(exist_ok=True)
-    with atomic_stream(root / COCO_FILE) as out, tempfile.TemporaryFile(
-        "w+", encoding="utf-8", dir=root / COCO_DIR
-    ) as spool:
-        info = {"description": f"scenewright dataset of the {spec.rules} rules", "version": __version__}
-        out.write(f'{{"info": {json.dumps(info, ensure_ascii=False)},\n"licenses": [],\n"categories": [\n')
+    with (
+        atomic_stream(root / COCO_FILE) as out,
+        tempfile.TemporaryFile("w+", encoding="utf-8", dir=root / COCO_DIR) as spool,
+    ):
+        info = {
+            "description": f"scenewright dataset of the {spec.rules} rules",
+            "version": __version__,
+        }
+        out.write(
+            f'{{"info": {json.dumps(info, ensure_ascii=False)},\n"licenses": [],\n"categories": [\n'
+        )
         out.write(",\n".join(json.dumps(category, ensure_ascii=False) for category in categories))
         out.write('\n],\n"images": [')
         written = {"images": 0, "annotations": 0}
@@ -108,12 +124,25 @@ def coco_writer(root: Path, spec: DatasetSpec, categories: list[dict]) -> Iterat
         def add(record: dict) -> None:
             rows = [record["row"], *record.get("views", [])] if record["row"] is not None else []
             if rows and "coco" not in record:
-                raise RuntimeError(f"the record of scene {record['index']} holds no COCO annotations")
-            for view, (row, annotations) in enumerate(zip(rows, record.get("coco", []), strict=True)):
+                raise RuntimeError(
+                    f"the record of scene {record['index']} holds no COCO annotations"
+                )
+            for view, (row, annotations) in enumerate(
+                zip(rows, record.get("coco", []), strict=True)
+            ):
                 image_id = image_number(record["index"], view, views) + 1
-                image = {"id": image_id, "file_name": row["file_name"], "width": width, "height": height,
-                         "scene_id": row["scene_id"], "view": view}  # fmt: skip
-                out.write(("\n" if not written["images"] else ",\n") + json.dumps(image, ensure_ascii=False))
+                image = {
+                    "id": image_id,
+                    "file_name": row["file_name"],
+                    "width": width,
+                    "height": height,
+                    "scene_id": row["scene_id"],
+                    "view": view,
+                }
+                out.write(
+                    ("\n" if not written["images"] else ",\n")
+                    + json.dumps(image, ensure_ascii=False)
+                )
                 written["images"] += 1
                 for annotation in annotations:
                     written["annotations"] += 1

@@ -34,18 +34,33 @@ def publish_questions(root: Path, spec: DatasetSpec) -> int | None:
 
     if not captions_options(spec).questions or not spec.images:
         return None
-    info = {"rules": spec.rules, "rules_digest": spec.rules_digest, "base_seed": spec.base_seed, "count": spec.count}
+    info = {
+        "rules": spec.rules,
+        "rules_digest": spec.rules_digest,
+        "base_seed": spec.base_seed,
+        "count": spec.count,
+    }
     written = 0
-    with open(root / METADATA_FILE, encoding="utf-8") as rows, atomic_stream(root / QUESTIONS_FILE) as out:
+    with (
+        open(root / METADATA_FILE, encoding="utf-8") as rows,
+        atomic_stream(root / QUESTIONS_FILE) as out,
+    ):
         out.write('{"info": ' + json.dumps(info, ensure_ascii=False) + ',\n "questions": [')
         for line in rows:
             row = json.loads(line)
             for question in row.get("questions", ()):
                 entry = {
-                    "image_index": image_number(int(row["scene_id"]), row.get("view", 0), spec.views), "image_filename": row["file_name"], "image": row["scene_id"],
-                    "question_index": written, "question_family": question["family"],
-                    "question": question["question"], "answer": question["answer"], "program": question["program"],
-                }  # fmt: skip
+                    "image_index": image_number(
+                        int(row["scene_id"]), row.get("view", 0), spec.views
+                    ),
+                    "image_filename": row["file_name"],
+                    "image": row["scene_id"],
+                    "question_index": written,
+                    "question_family": question["family"],
+                    "question": question["question"],
+                    "answer": question["answer"],
+                    "program": question["program"],
+                }
                 out.write((",\n  " if written else "\n  ") + json.dumps(entry, ensure_ascii=False))
                 written += 1
         out.write("\n]}\n")

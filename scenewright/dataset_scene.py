@@ -30,11 +30,18 @@ from dataclasses import dataclass, fields, replace
 from time import process_time
 from typing import TYPE_CHECKING
 
-from scenewright.api import build_scene, describe, render_scene, reproducible_json, timed, timings_of
-from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
+from scenewright.api import (
+    build_scene,
+    describe,
+    render_scene,
+    reproducible_json,
+    timed,
+    timings_of,
+)
 from scenewright.core.errors import InputError, ScenewrightError
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import retry_seed
+from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
 from scenewright.generator.rules_errors import ExpansionError
 
 if TYPE_CHECKING:
@@ -66,7 +73,9 @@ DEFAULT_CAPTIONS = PictureCaptions(rules="", rules_digest="", count=0)
 
 #: The caption settings' defaults by name, which a plain ``DatasetSpec`` stores none of.
 CAPTION_DEFAULTS = {
-    f.name: getattr(DEFAULT_CAPTIONS, f.name) for f in fields(PictureCaptions) if f.name not in DatasetSpec.__dataclass_fields__
+    f.name: getattr(DEFAULT_CAPTIONS, f.name)
+    for f in fields(PictureCaptions)
+    if f.name not in DatasetSpec.__dataclass_fields__
 }
 
 
@@ -81,7 +90,9 @@ def with_picture_captions(spec: DatasetSpec, **options) -> DatasetSpec:
     made = PictureCaptions(**settings)
     Thresholds(made.min_visible, made.min_size)
     if made.frame not in FRAMES:
-        raise InputError(f"unknown caption frame {made.frame!r}; expected one of: {', '.join(FRAMES)}")
+        raise InputError(
+            f"unknown caption frame {made.frame!r}; expected one of: {', '.join(FRAMES)}"
+        )
     defaults = all(getattr(made, name) == value for name, value in CAPTION_DEFAULTS.items())
     return spec if defaults and not isinstance(spec, PictureCaptions) else made
 
@@ -109,7 +120,9 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
         if context is not None and context.renderer is not None:
             context.renderer.close()
         renderer = Renderer(*spec.size) if spec.images else None
-        context = WorkerContext(spec.settings(), load_rules(spec.rules), renderer, spec_context(spec))
+        context = WorkerContext(
+            spec.settings(), load_rules(spec.rules), renderer, spec_context(spec)
+        )
         _per_thread.context = context
     return context
 
@@ -123,7 +136,9 @@ def spec_context(spec: DatasetSpec) -> LearnedContext | None:
     from scenewright.generator.layout.learned_term import read_context
 
     if file_digest(spec.context) != spec.context_digest:
-        raise InputError(f"{spec.context}: the learned context changed since this dataset was set up")
+        raise InputError(
+            f"{spec.context}: the learned context changed since this dataset was set up"
+        )
     return read_context(spec.context)
 
 
@@ -141,7 +156,9 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         return SceneProduct(index, seed, False, {}, None, {"error": stage_error(error)})
     if not scene.layout.ok and not spec.include_failed:
         failed = {f"failed/{stem}.json": reproducible_json(scene).encode()}
-        return SceneProduct(index, seed, False, failed, None, {**scene_stats(scene, [], cpu), **tried})
+        return SceneProduct(
+            index, seed, False, failed, None, {**scene_stats(scene, [], cpu), **tried}
+        )
 
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         full = describe(scene, style="full")
@@ -151,7 +168,9 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         return text_product(spec, index, seed, scene, text.text, tried, cpu)
     pictures, renders = [], []
     for view in range(spec.views):
-        scene, picture = view_picture(context, spec, scene, text, ViewName(stem, view, seed, tried), cpu)
+        scene, picture = view_picture(
+            context, spec, scene, text, ViewName(stem, view, seed, tried), cpu
+        )
         pictures.append(picture)
         renders.append(scene.render)
     scene = replace(scene, render=renders[0])  # scene.json holds the first view's render
@@ -162,7 +181,9 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     coco = [picture.annotations for picture in pictures] if spec.coco else None
     captions = [caption for picture in pictures for caption in picture.captions]
     stats = {**scene_stats(scene, [text.text, *captions], cpu), **tried}
-    return SceneProduct(index, seed, scene.layout.ok, files, rows[0], stats, views=rows[1:], coco=coco)
+    return SceneProduct(
+        index, seed, scene.layout.ok, files, rows[0], stats, views=rows[1:], coco=coco
+    )
 
 
 @dataclass(frozen=True)
@@ -192,7 +213,12 @@ class ViewPicture:
 
 
 def view_picture(
-    context: WorkerContext, spec: DatasetSpec, scene: Scene, text, name: ViewName, cpu: dict[str, float]
+    context: WorkerContext,
+    spec: DatasetSpec,
+    scene: Scene,
+    text,
+    name: ViewName,
+    cpu: dict[str, float],
 ) -> tuple[Scene, ViewPicture]:
     """Render view ``name.view`` of ``scene`` (``text``: the ``Description`` of the row's
     ``text`` column, the full one or the one within ``spec.text_words``), encode it,
@@ -208,7 +234,12 @@ def view_picture(
         camera = replace(camera, target=None)
     with timed(cpu, "render", process_time):
         scene, result = render_scene(
-            scene, size=spec.size, view=spec.view, renderer=context.renderer, camera=camera, camera_view=name.view
+            scene,
+            size=spec.size,
+            view=spec.view,
+            renderer=context.renderer,
+            camera=camera,
+            camera_view=name.view,
         )
     with timed(cpu, "encode", process_time):  # only the images asked for
         kinds = ["colour", *["depth"] * spec.depth, *["segmentation", "ids"] * spec.segmentation]
@@ -239,19 +270,40 @@ def view_picture(
 
 
 def text_product(
-    spec: DatasetSpec, index: int, seed: int, scene: Scene, text: str, tried: dict, cpu: dict[str, float]
+    spec: DatasetSpec,
+    index: int,
+    seed: int,
+    scene: Scene,
+    text: str,
+    tried: dict,
+    cpu: dict[str, float],
 ) -> SceneProduct:
     """Scene ``index`` of a dataset without images: its scene.json and its description
     (``text``: the full one, or within ``spec.text_words``), and a row naming both (no
     picture, so no captions)."""
     stem = scene_stem(index)
-    files = {f"scenes/{stem}.json": reproducible_json(scene).encode(), f"texts/{stem}.txt": (text + "\n").encode()}
-    row = {"scene_file_name": f"scenes/{stem}.json", "text_file_name": f"texts/{stem}.txt", "text": text, "scene_id": stem,
-           "seed": seed, **tried, "rules": spec.rules, "ok": scene.layout.ok}  # fmt: skip
-    return SceneProduct(index, seed, scene.layout.ok, files, row, {**scene_stats(scene, [text], cpu), **tried})
+    files = {
+        f"scenes/{stem}.json": reproducible_json(scene).encode(),
+        f"texts/{stem}.txt": (text + "\n").encode(),
+    }
+    row = {
+        "scene_file_name": f"scenes/{stem}.json",
+        "text_file_name": f"texts/{stem}.txt",
+        "text": text,
+        "scene_id": stem,
+        "seed": seed,
+        **tried,
+        "rules": spec.rules,
+        "ok": scene.layout.ok,
+    }
+    return SceneProduct(
+        index, seed, scene.layout.ok, files, row, {**scene_stats(scene, [text], cpu), **tried}
+    )
 
 
-def picture_captions(spec: DatasetSpec, scene: Scene, result, text, rules: Rules | None = None) -> tuple[dict, list[str]]:
+def picture_captions(
+    spec: DatasetSpec, scene: Scene, result, text, rules: Rules | None = None
+) -> tuple[dict, list[str]]:
     """The row's ``grounding`` and ``refexps`` columns (none when grounding is turned
     off), its ``questions`` column (none when questions are turned off) and its captions
     of the rendered picture ``result``, variants 0..K-1; ``text`` is the ``Description``
@@ -264,7 +316,9 @@ def picture_captions(spec: DatasetSpec, scene: Scene, result, text, rules: Rules
     from scenewright.render.visibility import PictureView, Thresholds
 
     options = captions_options(spec)
-    picture = PictureView.from_render(result, scene, Thresholds(options.min_visible, options.min_size))
+    picture = PictureView.from_render(
+        result, scene, Thresholds(options.min_visible, options.min_size)
+    )
     captions = [
         describe_view(scene, picture, frame=options.frame, variant=k, templates=scene.templates)
         for k in range(spec.captions)
@@ -274,7 +328,9 @@ def picture_captions(spec: DatasetSpec, scene: Scene, result, text, rules: Rules
     facts = PictureFacts.of(scene, picture) if options.grounding or options.questions else None
     if options.grounding:
         names = ["caption"] + [f"caption_{k}" for k in range(1, spec.captions)]
-        grounding = {column: grounding_records(c, picture) for column, c in zip(names, captions, strict=True)}
+        grounding = {
+            column: grounding_records(c, picture) for column, c in zip(names, captions, strict=True)
+        }
         grounding["text"] = grounding_records(text, picture)
         columns.update(grounding=grounding, refexps=referring_expressions(facts))
     if options.questions:
@@ -297,12 +353,19 @@ def laid_out_scene(context: WorkerContext, spec: DatasetSpec, seed: int) -> tupl
     for attempt in range(spec.retries + 1):
         layout_seed = retry_seed(seed, attempt)
         scene = build_scene(
-            context.rules, seed, templates=spec.templates, layout_seed=layout_seed, context=context.context
+            context.rules,
+            seed,
+            templates=spec.templates,
+            layout_seed=layout_seed,
+            context=context.context,
         )
         spent.update(scene.timings)
         if scene.layout.ok:
             break
-    return replace(scene, timings=dict(spent)), {"layout_seed": layout_seed, "attempts": attempt + 1}
+    return replace(scene, timings=dict(spent)), {
+        "layout_seed": layout_seed,
+        "attempts": attempt + 1,
+    }
 
 
 def stage_error(error: ScenewrightError) -> dict:

@@ -38,7 +38,9 @@ class StatsCollector:
         self.problems: Counter = Counter()
         self.errors: dict[str, Counter] = {}
         self.failed_layouts = 0
-        self.tries: list[tuple[int, int, bool]] = []  # (objects, layouts tried, ok) per laid-out scene
+        self.tries: list[
+            tuple[int, int, bool]
+        ] = []  # (objects, layouts tried, ok) per laid-out scene
         self.text_words: list[int] = []
         self.caption_words: list[int] = []
         self.stage_seconds: dict[str, list[float]] = {}
@@ -87,13 +89,16 @@ class StatsCollector:
             },
             "retries": retries_by_size(self.tries),
             "objects": dict(sorted(self.objects.items(), key=lambda item: (-item[1], item[0]))),
-            "relations": {label: {"total": total, "satisfied": held} for label, (total, held) in by_count},
+            "relations": {
+                label: {"total": total, "satisfied": held} for label, (total, held) in by_count
+            },
             "words": {
                 "text": distribution(self.text_words, bins=12),
                 "caption": distribution(self.caption_words, bins=12),
             },
             "seconds_per_stage": {
-                stage: distribution(values, digits=4) for stage, values in self.stage_seconds.items()
+                stage: distribution(values, digits=4)
+                for stage, values in self.stage_seconds.items()
             },
             "cpu_seconds_per_stage": {
                 stage: distribution(values, digits=4) for stage, values in self.stage_cpu.items()
@@ -142,14 +147,16 @@ def retries_by_size(tries: list[tuple[int, int, bool]]) -> dict:
     for k in np.unique(bins):
         inside = bins == k
         first = low + int(k) * width
-        by_objects.append({
-            "objects": f"{first}-{first + width - 1}" if width > 1 else str(first),
-            "scenes": int(inside.sum()),
-            "retried": int((attempts[inside] > 1).sum()),
-            "retries": int((attempts[inside] - 1).sum()),
-            "mean_layouts": round(float(attempts[inside].mean()), 3),
-            "failed_after_retries": int(failed[inside].sum()),
-        })  # fmt: skip
+        by_objects.append(
+            {
+                "objects": f"{first}-{first + width - 1}" if width > 1 else str(first),
+                "scenes": int(inside.sum()),
+                "retried": int((attempts[inside] > 1).sum()),
+                "retries": int((attempts[inside] - 1).sum()),
+                "mean_layouts": round(float(attempts[inside].mean()), 3),
+                "failed_after_retries": int(failed[inside].sum()),
+            }
+        )
     return {
         "scenes_retried": int((attempts > 1).sum()),
         "retries": int((attempts - 1).sum()),
@@ -174,7 +181,10 @@ def distribution(values: list[float], digits: int = 2, bins: int = 0) -> dict:
     }
     if bins:
         counts, edges = np.histogram(data, bins=bins)
-        summary["histogram"] = {"edges": [round(float(e), digits) for e in edges], "counts": counts.tolist()}
+        summary["histogram"] = {
+            "edges": [round(float(e), digits) for e in edges],
+            "counts": counts.tolist(),
+        }
     return summary
 
 
@@ -202,7 +212,12 @@ def stats_figure(stats: dict) -> bytes:
     )
 
     top_objects = list(stats["objects"].items())[:20]
-    bars(axes[0, 0], [name for name, _ in top_objects], [n for _, n in top_objects], "objects (top 20 types)")
+    bars(
+        axes[0, 0],
+        [name for name, _ in top_objects],
+        [n for _, n in top_objects],
+        "objects (top 20 types)",
+    )
     whole_counts(axes[0, 0].xaxis)
 
     labels = list(stats["relations"])
@@ -226,7 +241,12 @@ def stats_figure(stats: dict) -> bytes:
         lengths.legend()
 
     stages = stats["seconds_per_stage"]
-    bars(axes[1, 1], list(stages), [stages[s]["mean"] for s in stages], "mean seconds per scene and stage")
+    bars(
+        axes[1, 1],
+        list(stages),
+        [stages[s]["mean"] for s in stages],
+        "mean seconds per scene and stage",
+    )
 
     retries_figure(axes[0, 2], stats["retries"]["by_objects"])
     errors_figure(axes[1, 2], stats["errors"])
@@ -247,10 +267,17 @@ def retries_figure(axis, by_objects: list[dict]) -> None:
     """Scenes per size bin (light), those that needed a retry (dark) and those still
     failed after the last retry (red)."""
     names = [row["objects"] for row in by_objects]
-    bars(axis, names, [row["scenes"] for row in by_objects], "scenes by objects: retried (dark), failed (red)",
-         alpha=0.35)  # fmt: skip
+    bars(
+        axis,
+        names,
+        [row["scenes"] for row in by_objects],
+        "scenes by objects: retried (dark), failed (red)",
+        alpha=0.35,
+    )
     axis.barh(names, [row["retried"] for row in by_objects], color="tab:blue")
-    axis.barh(names, [row["failed_after_retries"] for row in by_objects], color="tab:red", height=0.4)
+    axis.barh(
+        names, [row["failed_after_retries"] for row in by_objects], color="tab:red", height=0.4
+    )
     axis.set_ylabel("objects per scene")
     whole_counts(axis.xaxis)
 
@@ -265,12 +292,23 @@ def whole_counts(axis) -> None:
 def errors_figure(axis, errors: dict[str, dict]) -> None:
     """The most frequent errors of scenes the rules could not make, as text."""
     axis.set_axis_off()
-    lines = [f"{n}x  {stage}: {message}" for stage, error in errors.items() for message, n in error["messages"].items()]
+    lines = [
+        f"{n}x  {stage}: {message}"
+        for stage, error in errors.items()
+        for message, n in error["messages"].items()
+    ]
     if not lines:
         return
     axis.set_title("scenes the rules could not make")
     # Wrapped to the panel's width (about 60 monospace characters at this size), each
     # error on at most three lines, so the text stays inside the figure.
     wrapped = [textwrap.wrap(line, 60, subsequent_indent="    ")[:3] for line in lines[:8]]
-    axis.text(0.0, 1.0, "\n".join(part for parts in wrapped for part in parts), va="top", fontsize=8,
-              family="monospace", transform=axis.transAxes)  # fmt: skip
+    axis.text(
+        0.0,
+        1.0,
+        "\n".join(part for parts in wrapped for part in parts),
+        va="top",
+        fontsize=8,
+        family="monospace",
+        transform=axis.transAxes,
+    )

@@ -21,7 +21,7 @@ from __future__ import annotations
 import difflib
 import json
 import math
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -49,7 +49,11 @@ class SceneSchemaError(InputError):
     def __init__(self, path: str, message: str, problems: list[Problem] | None = None):
         self.problems = problems or [(path, message)]
         more = len(self.problems) - 1
-        also = f" (and {more} more problem{'s' * (more != 1)}: 'scenewright validate' lists them)" if more else ""
+        also = (
+            f" (and {more} more problem{'s' * (more != 1)}: 'scenewright validate' lists them)"
+            if more
+            else ""
+        )
         super().__init__(f"scene.json {path}: {message}{also}")
         self.path = path
 
@@ -104,10 +108,14 @@ def _file_problems(data: dict[str, Any]) -> list[Problem]:
     problems: list[Problem] = []
     templates = data.get("templates")
     if templates is not None and not Path(templates).is_dir():
-        problems.append(("$.templates", f"the description templates folder {templates!r} does not exist"))
+        problems.append(
+            ("$.templates", f"the description templates folder {templates!r} does not exist")
+        )
     for index, obj in enumerate(data["objects"]):
         if obj.get("mesh") is not None and not Path(obj["mesh"]).is_file():
-            problems.append((f"$.objects[{index}].mesh", f"the mesh file {obj['mesh']!r} does not exist"))
+            problems.append(
+                (f"$.objects[{index}].mesh", f"the mesh file {obj['mesh']!r} does not exist")
+            )
     return problems
 
 
@@ -142,20 +150,29 @@ def _value_problems(data: Any) -> list[Problem]:
         parts, value = pending.pop()
         if len(parts) > MAX_JSON_DEPTH:
             problems.append((json_path(parts), f"nested deeper than {MAX_JSON_DEPTH} levels"))
-        elif isinstance(value, NotFinite) or (isinstance(value, float) and not math.isfinite(value)):
+        elif isinstance(value, NotFinite) or (
+            isinstance(value, float) and not math.isfinite(value)
+        ):
             shown = value.text if isinstance(value, NotFinite) else repr(value)
             problems.append((json_path(parts), f"{_clipped(shown)} is not a finite number"))
         elif isinstance(value, str):
             if (bad := forbidden_character(value)) is not None:
-                problems.append((json_path(parts), f"the text contains the character {bad}; text may not hold "
-                                 "control or bidirectional-control characters"))
+                problems.append(
+                    (
+                        json_path(parts),
+                        f"the text contains the character {bad}; text may not hold "
+                        "control or bidirectional-control characters",
+                    )
+                )
         elif isinstance(value, dict):
             for key, item in reversed(value.items()):
                 if (bad := forbidden_character(key)) is not None:
                     problems.append((json_path(parts), f"a key contains the character {bad}"))
                 pending.append((parts + (key,), item))
         elif isinstance(value, list):
-            pending.extend((parts + (index,), item) for index, item in reversed(list(enumerate(value))))
+            pending.extend(
+                (parts + (index,), item) for index, item in reversed(list(enumerate(value)))
+            )
     return problems
 
 
@@ -169,11 +186,18 @@ def _reference_problems(data: dict[str, Any]) -> list[Problem]:
         for index, entry in enumerate(data[section]):
             where = f"$.{section}[{index}]"
             if entry["id"] in entities:
-                problems.append((f"{where}.id", f"duplicate id {entry['id']!r} (also at {entities[entry['id']][0]}.id)"))
+                problems.append(
+                    (
+                        f"{where}.id",
+                        f"duplicate id {entry['id']!r} (also at {entities[entry['id']][0]}.id)",
+                    )
+                )
             else:
                 entities[entry["id"]] = (where, entry)
-    kinds = {entity_id: entry["kind"] if where.startswith("$.objects") else "path"
-             for entity_id, (where, entry) in entities.items()}
+    kinds = {
+        entity_id: entry["kind"] if where.startswith("$.objects") else "path"
+        for entity_id, (where, entry) in entities.items()
+    }
     for section in ("objects", "paths"):
         for index, entry in enumerate(data[section]):
             parent = entry.get("parent")
@@ -185,23 +209,39 @@ def _reference_problems(data: dict[str, Any]) -> list[Problem]:
             elif parent not in kinds:
                 problems.append((where, f"the parent {parent!r} is not an id of this scene"))
             elif kinds[parent] != "group":
-                problems.append((where, f"the parent {parent!r} is {_article(kinds[parent])}, not a group"))
+                problems.append(
+                    (where, f"the parent {parent!r} is {_article(kinds[parent])}, not a group")
+                )
     if not problems:
         problems += _nesting_problems(data, entities)
     for index, path in enumerate(data["paths"]):
         start = path.get("start")
         if start is not None and kinds.get(start) != "junction":
-            what = f"is {_article(kinds[start])}" if start in kinds else "is not an id of this scene"
-            problems.append((f"$.paths[{index}].start", f"the path starts at {start!r}, which {what}, not a junction"))
+            what = (
+                f"is {_article(kinds[start])}" if start in kinds else "is not an id of this scene"
+            )
+            problems.append(
+                (
+                    f"$.paths[{index}].start",
+                    f"the path starts at {start!r}, which {what}, not a junction",
+                )
+            )
     room_ids, room_problems = _room_parts(data.get("room"))
     problems += room_problems
     for index, relation in enumerate(data["relations"]):
         for end in ("source", "target"):
             if relation[end] not in kinds and relation[end] not in room_ids:
-                problems.append((f"$.relations[{index}].{end}", f"{relation[end]!r} is not an id of this scene"))
+                problems.append(
+                    (f"$.relations[{index}].{end}", f"{relation[end]!r} is not an id of this scene")
+                )
         if relation["label"] not in RELATIONS:
-            problems.append((f"$.relations[{index}].label", f"unknown relation label {relation['label']!r}"
-                             + _nearest(relation["label"], RELATIONS.names())))
+            problems.append(
+                (
+                    f"$.relations[{index}].label",
+                    f"unknown relation label {relation['label']!r}"
+                    + _nearest(relation["label"], RELATIONS.names()),
+                )
+            )
     return problems
 
 
@@ -214,12 +254,22 @@ def _room_parts(room: dict[str, Any] | None) -> tuple[set[str], list[Problem]]:
     walls = room["walls"]
     for index, wall in enumerate(walls):
         following = walls[(index + 1) % len(walls)]
-        if any(abs(a - b) > 1e-6 for a, b in zip(wall["to"], following["from"])):
-            problems.append((f"$.room.walls[{index}].to", f"wall {wall['id']!r} ends where the next wall does not start"))
+        if any(abs(a - b) > 1e-6 for a, b in zip(wall["to"], following["from"], strict=False)):
+            problems.append(
+                (
+                    f"$.room.walls[{index}].to",
+                    f"wall {wall['id']!r} ends where the next wall does not start",
+                )
+            )
     wall_ids = {wall["id"] for wall in walls}
     for index, opening in enumerate(room["openings"]):
         if opening["wall"] not in wall_ids:
-            problems.append((f"$.room.openings[{index}].wall", f"{opening['wall']!r} is not a wall of this room"))
+            problems.append(
+                (
+                    f"$.room.openings[{index}].wall",
+                    f"{opening['wall']!r} is not a wall of this room",
+                )
+            )
     if not problems:
         try:
             Room.from_dict(room)
@@ -233,13 +283,15 @@ def _nesting_problems(data: dict[str, Any], entities: dict[str, tuple[str, dict]
     """Groups whose parents lead round in a cycle or nest deeper than ``MAX_GROUP_DEPTH``."""
     problems: list[Problem] = []
     depth: dict[str, int] = {}  # id -> how many groups hold it
-    for entity_id, (where, entry) in entities.items():
+    for entity_id, (where, _entry) in entities.items():
         chain: list[str] = []
         current: str | None = entity_id
         while current is not None and current not in depth:
             if current in chain:
-                cycle = " -> ".join(chain[chain.index(current):] + [current])
-                problems.append((f"{where}.parent", f"its parents lead round in a cycle ({_clipped(cycle)})"))
+                cycle = " -> ".join(chain[chain.index(current) :] + [current])
+                problems.append(
+                    (f"{where}.parent", f"its parents lead round in a cycle ({_clipped(cycle)})")
+                )
                 break
             chain.append(current)
             current = entities[current][1].get("parent")
@@ -248,8 +300,13 @@ def _nesting_problems(data: dict[str, Any], entities: dict[str, tuple[str, dict]
             for step, member in enumerate(reversed(chain), start=1):
                 depth[member] = base + step
             if depth[entity_id] > MAX_GROUP_DEPTH:
-                problems.append((f"{where}.parent", f"it lies {depth[entity_id]} groups deep; groups may nest "
-                                 f"at most {MAX_GROUP_DEPTH} deep"))
+                problems.append(
+                    (
+                        f"{where}.parent",
+                        f"it lies {depth[entity_id]} groups deep; groups may nest "
+                        f"at most {MAX_GROUP_DEPTH} deep",
+                    )
+                )
             continue
         for member in chain:
             depth[member] = 0  # reported once: do not follow the cycle again
@@ -268,13 +325,13 @@ def _article(kind: str) -> str:
 # -- schema ----------------------------------------------------------------------
 
 
-@lru_cache(maxsize=None)
+@cache
 def packaged_schema_text(package: str, *path: str) -> str:
     """The text of a JSON Schema shipped as package data (``package``, then its path)."""
     return resources.files(package).joinpath(*path).read_text(encoding="utf-8")
 
 
-@lru_cache(maxsize=None)
+@cache
 def packaged_validator(package: str, *path: str) -> jsonschema.Draft202012Validator:
     """A checked draft 2020-12 validator of a JSON Schema shipped as package data."""
     schema = json.loads(packaged_schema_text(package, *path))

@@ -59,20 +59,103 @@ BESIDE = 0.05
 #   plant: the corner ("ne", "nw", "se", "sw") or None.
 BEDROOMS = (
     # room         bed                            tables             lamps              wardrobe          desk                          dresser           plant
-    ((3.6, 3.4), ("north", 0.0, "double"),   ("left", "right"),  ("left", "right"), ("south", 0.9),  None,                         None,             None),
-    ((3.4, 3.2), ("north", -0.4, "single"),  ("right",),         ("right",),        ("east", -0.8),  ("south", -0.6, 0.2, 0),      None,             None),
-    ((4.0, 3.6), ("west", 0.2, "double"),    ("left", "right"),  ("left",),         ("north", -1.0), None,                         ("east", 0.3),    "se"),
-    ((3.2, 3.0), ("east", 0.3, "single"),    ("left",),          ("left",),         ("west", -0.7),  None,                         None,             None),
-    ((4.4, 3.8), ("north", 0.5, "double"),   ("left", "right"),  ("left", "right"), ("west", 0.9),   ("south", 0.9, 0.25, -8),     ("east", -0.6),   "nw"),
-    ((3.8, 3.8), ("south", -0.2, "double"),  ("left", "right"),  ("right",),        None,            ("north", 0.8, 0.15, 5),      None,             None),
-    ((3.8, 3.4), ("north", -0.6, "single"),  ("right",),         (),                ("south", -0.8), ("east", -0.4, 0.3, 0),       None,             "ne"),
-    ((4.0, 3.8), ("east", -0.1, "double"),   ("left", "right"),  ("left", "right"), ("south", -1.0), None,                         ("west", -0.8),   None),
-    ((3.4, 3.4), ("west", -0.3, "single"),   (),                 (),                ("east", 0.9),   ("north", 0.4, 0.2, 10),      None,             "sw"),
-    ((4.2, 3.6), ("south", 0.4, "double"),   ("left", "right"),  ("left",),         None,            None,                         ("north", -0.9),  "ne"),
-)  # fmt: skip
+    (
+        (3.6, 3.4),
+        ("north", 0.0, "double"),
+        ("left", "right"),
+        ("left", "right"),
+        ("south", 0.9),
+        None,
+        None,
+        None,
+    ),
+    (
+        (3.4, 3.2),
+        ("north", -0.4, "single"),
+        ("right",),
+        ("right",),
+        ("east", -0.8),
+        ("south", -0.6, 0.2, 0),
+        None,
+        None,
+    ),
+    (
+        (4.0, 3.6),
+        ("west", 0.2, "double"),
+        ("left", "right"),
+        ("left",),
+        ("north", -1.0),
+        None,
+        ("east", 0.3),
+        "se",
+    ),
+    ((3.2, 3.0), ("east", 0.3, "single"), ("left",), ("left",), ("west", -0.7), None, None, None),
+    (
+        (4.4, 3.8),
+        ("north", 0.5, "double"),
+        ("left", "right"),
+        ("left", "right"),
+        ("west", 0.9),
+        ("south", 0.9, 0.25, -8),
+        ("east", -0.6),
+        "nw",
+    ),
+    (
+        (3.8, 3.8),
+        ("south", -0.2, "double"),
+        ("left", "right"),
+        ("right",),
+        None,
+        ("north", 0.8, 0.15, 5),
+        None,
+        None,
+    ),
+    (
+        (3.8, 3.4),
+        ("north", -0.6, "single"),
+        ("right",),
+        (),
+        ("south", -0.8),
+        ("east", -0.4, 0.3, 0),
+        None,
+        "ne",
+    ),
+    (
+        (4.0, 3.8),
+        ("east", -0.1, "double"),
+        ("left", "right"),
+        ("left", "right"),
+        ("south", -1.0),
+        None,
+        ("west", -0.8),
+        None,
+    ),
+    (
+        (3.4, 3.4),
+        ("west", -0.3, "single"),
+        (),
+        (),
+        ("east", 0.9),
+        ("north", 0.4, 0.2, 10),
+        None,
+        "sw",
+    ),
+    (
+        (4.2, 3.6),
+        ("south", 0.4, "double"),
+        ("left", "right"),
+        ("left",),
+        None,
+        None,
+        ("north", -0.9),
+        "ne",
+    ),
+)
 
 
-def against(room: tuple[float, float], wall: str, along: float, depth: float) -> tuple[float, float, float]:
+def against(
+    room: tuple[float, float], wall: str, along: float, depth: float
+) -> tuple[float, float, float]:
     """(x, z, yaw in radians) of an object of ``depth`` with its back flush on ``wall``,
     its centre ``along`` metres to its own left of the wall's middle."""
     yaw = math.radians(WALL_YAW[wall])
@@ -85,15 +168,26 @@ def example(index: int, row: tuple) -> dict:
     room, (bed_wall, bed_along, bed_style), tables, lamps, wardrobe, desk, dresser, plant = row
     objects: list[dict] = []
 
-    def put(object_id: str, kind: str, x: float, z: float, yaw: float, style: str | None = None, **more) -> None:
+    def put(
+        object_id: str, kind: str, x: float, z: float, yaw: float, style: str | None = None, **more
+    ) -> None:
         size = SIZES[(kind, style)]
-        record = {"id": object_id, "type": kind, **({"style": style} if style else {}), "size": list(size),
-                  "position": [rounded(x), 0, rounded(z)], "yaw": rounded(math.degrees(yaw)), **more}  # fmt: skip
+        record = {
+            "id": object_id,
+            "type": kind,
+            **({"style": style} if style else {}),
+            "size": list(size),
+            "position": [rounded(x), 0, rounded(z)],
+            "yaw": rounded(math.degrees(yaw)),
+            **more,
+        }
         if "parent" in more:  # resting on its parent: (x, z) only
             record["position"] = [rounded(x), rounded(z)]
         objects.append(record)
 
-    def on_wall(object_id: str, kind: str, wall: str, along: float, style: str | None = None) -> tuple[float, float, float]:
+    def on_wall(
+        object_id: str, kind: str, wall: str, along: float, style: str | None = None
+    ) -> tuple[float, float, float]:
         frame = against(room, wall, along, SIZES[(kind, style)][2])
         put(object_id, kind, *frame, style=style)
         return frame
@@ -103,7 +197,9 @@ def example(index: int, row: tuple) -> dict:
     table_w, _, table_d = SIZES[("nightstand", None)]
     for side in tables:
         sign = 1.0 if side == "left" else -1.0
-        x, z = to_world(bx, bz, byaw, sign * (bed_w / 2.0 + BESIDE + table_w / 2.0), -(bed_d - table_d) / 2.0)
+        x, z = to_world(
+            bx, bz, byaw, sign * (bed_w / 2.0 + BESIDE + table_w / 2.0), -(bed_d - table_d) / 2.0
+        )
         put(f"nightstand_{side}", "nightstand", x, z, byaw)
         if side in lamps:
             put(f"lamp_{side}", "table_lamp", x, z, byaw, parent=f"nightstand_{side}")
@@ -122,8 +218,11 @@ def example(index: int, row: tuple) -> dict:
         x = (room[0] / 2.0 - w / 2.0) * (1 if "e" in plant else -1)
         z = (room[1] / 2.0 - d / 2.0) * (1 if plant[0] == "s" else -1)
         put("plant", "plant", x, z, math.pi if plant[0] == "s" else 0.0)
-    return {"name": f"bedroom_{index:02d}", "room": {"width": room[0], "depth": room[1], "height": HEIGHT},
-            "objects": objects}  # fmt: skip
+    return {
+        "name": f"bedroom_{index:02d}",
+        "room": {"width": room[0], "depth": room[1], "height": HEIGHT},
+        "objects": objects,
+    }
 
 
 def main() -> None:

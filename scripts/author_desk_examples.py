@@ -68,27 +68,27 @@ WALL_YAW = {"north": 0.0, "east": -90.0, "south": 180.0, "west": 90.0}
 #   plant: the corner ("ne", "nw", "se", "sw") a plant stands in, or None.
 DESKS = (
     # wall     along  style    chair                          monitor lamp    books mug      bin    plant
-    ("north",  0.30, "oak",   ("front", 0.00, 0.15, 0),       0.00,  "left",  2,  "white",  True,  "se"),
-    ("north", -0.20, "oak",   ("front", 0.05, 0.25, -4),      0.02,  "left",  0,  None,     True,  None),
-    ("north",  0.50, "white", ("front", -0.05, 0.10, 3),      0.00,  "right", 1,  "blue",   False, "sw"),
-    ("north",  0.00, "oak",   ("aside", -6),                  -0.03, None,    3,  None,     True,  None),
-    ("north",  0.40, "oak",   ("front", 0.10, 0.20, 6),       0.00,  "left",  1,  "white",  True,  "se"),
-    ("north", -0.10, "white", ("front", 0.00, 0.05, 0),       0.04,  None,    0,  None,     True,  None),
-    ("north",  0.60, "oak",   ("corner", -1.1, 1.0, 135),     0.00,  "right", 2,  None,     False, None),
-    ("north",  0.20, "oak",   ("front", -0.08, 0.30, -2),     0.00,  "left",  0,  "white",  True,  "sw"),
-    ("east",   0.10, "oak",   ("front", 0.00, 0.15, 2),       0.00,  "left",  1,  None,     True,  "nw"),
-    ("east",  -0.30, "white", ("front", 0.06, 0.20, -5),      -0.02, "right", 0,  "blue",   True,  None),
-    ("east",   0.00, "oak",   None,                           0.00,  "left",  2,  None,     False, None),
-    ("east",  -0.05, "oak",   ("aside", 4),                   0.03,  None,    0,  "white",  True,  "sw"),
-    ("east",  -0.15, "oak",   ("front", -0.04, 0.10, 0),      0.00,  "left",  3,  None,     True,  None),
-    ("west",   0.20, "white", ("front", 0.02, 0.18, 3),       0.00,  "right", 1,  "white",  True,  "ne"),
-    ("west",  -0.25, "oak",   ("front", 0.00, 0.22, -3),      0.01,  "left",  0,  None,     False, None),
-    ("west",   0.00, "oak",   ("aside", 0),                   None,  "left",  2,  "blue",   True,  None),
-    ("west",   0.30, "oak",   ("front", 0.07, 0.12, 5),       0.00,  None,    0,  None,     True,  "se"),
-    ("south",  0.10, "oak",   ("front", 0.00, 0.15, -1),      0.00,  "right", 1,  "white",  True,  "nw"),
-    ("south", -0.35, "white", None,                           -0.04, "left",  0,  None,     True,  None),
-    ("south",  0.25, "oak",   ("front", -0.03, 0.28, 2),      0.00,  "left",  2,  None,     False, "ne"),
-)  # fmt: skip
+    ("north", 0.30, "oak", ("front", 0.00, 0.15, 0), 0.00, "left", 2, "white", True, "se"),
+    ("north", -0.20, "oak", ("front", 0.05, 0.25, -4), 0.02, "left", 0, None, True, None),
+    ("north", 0.50, "white", ("front", -0.05, 0.10, 3), 0.00, "right", 1, "blue", False, "sw"),
+    ("north", 0.00, "oak", ("aside", -6), -0.03, None, 3, None, True, None),
+    ("north", 0.40, "oak", ("front", 0.10, 0.20, 6), 0.00, "left", 1, "white", True, "se"),
+    ("north", -0.10, "white", ("front", 0.00, 0.05, 0), 0.04, None, 0, None, True, None),
+    ("north", 0.60, "oak", ("corner", -1.1, 1.0, 135), 0.00, "right", 2, None, False, None),
+    ("north", 0.20, "oak", ("front", -0.08, 0.30, -2), 0.00, "left", 0, "white", True, "sw"),
+    ("east", 0.10, "oak", ("front", 0.00, 0.15, 2), 0.00, "left", 1, None, True, "nw"),
+    ("east", -0.30, "white", ("front", 0.06, 0.20, -5), -0.02, "right", 0, "blue", True, None),
+    ("east", 0.00, "oak", None, 0.00, "left", 2, None, False, None),
+    ("east", -0.05, "oak", ("aside", 4), 0.03, None, 0, "white", True, "sw"),
+    ("east", -0.15, "oak", ("front", -0.04, 0.10, 0), 0.00, "left", 3, None, True, None),
+    ("west", 0.20, "white", ("front", 0.02, 0.18, 3), 0.00, "right", 1, "white", True, "ne"),
+    ("west", -0.25, "oak", ("front", 0.00, 0.22, -3), 0.01, "left", 0, None, False, None),
+    ("west", 0.00, "oak", ("aside", 0), None, "left", 2, "blue", True, None),
+    ("west", 0.30, "oak", ("front", 0.07, 0.12, 5), 0.00, None, 0, None, True, "se"),
+    ("south", 0.10, "oak", ("front", 0.00, 0.15, -1), 0.00, "right", 1, "white", True, "nw"),
+    ("south", -0.35, "white", None, -0.04, "left", 0, None, True, None),
+    ("south", 0.25, "oak", ("front", -0.03, 0.28, 2), 0.00, "left", 2, None, False, "ne"),
+)
 
 
 def desk_frame(wall: str, along: float, depth: float) -> tuple[float, float, float]:
@@ -111,8 +111,16 @@ def example(index: int, row: tuple) -> dict:
     width, height, depth = SIZES[("desk", style)]
     cx, cz, yaw = desk_frame(wall, along, depth)
     degrees = math.degrees(yaw)
-    objects = [{"id": "desk", "type": "desk", "style": style, "size": [width, height, depth],
-                "position": [rounded(cx), 0, rounded(cz)], "yaw": degrees}]  # fmt: skip
+    objects = [
+        {
+            "id": "desk",
+            "type": "desk",
+            "style": style,
+            "size": [width, height, depth],
+            "position": [rounded(cx), 0, rounded(cz)],
+            "yaw": degrees,
+        }
+    ]
 
     def at(lx: float, lz: float) -> list[float]:
         x, z = to_world(cx, cz, yaw, lx, lz)
@@ -120,24 +128,50 @@ def example(index: int, row: tuple) -> dict:
 
     def add(object_id: str, kind: str, position: list[float], turn: float, **more) -> None:
         size = SIZES[(kind, None)]
-        objects.append({"id": object_id, "type": kind, "size": list(size), "position": position,
-                        "yaw": rounded(degrees + turn), **more})  # fmt: skip
+        objects.append(
+            {
+                "id": object_id,
+                "type": kind,
+                "size": list(size),
+                "position": position,
+                "yaw": rounded(degrees + turn),
+                **more,
+            }
+        )
 
     chair_depth = SIZES[("office_chair", None)][2]
     if chair is not None and chair[0] == "front":
         _, sideways, gap, turn = chair
-        add("chair", "office_chair", at(sideways, depth / 2.0 + gap + chair_depth / 2.0), 180.0 + turn)
+        add(
+            "chair",
+            "office_chair",
+            at(sideways, depth / 2.0 + gap + chair_depth / 2.0),
+            180.0 + turn,
+        )
     elif chair is not None and chair[0] == "aside":
         add("chair", "office_chair", at(width / 2.0 + 0.4, 0.15), -90.0 + chair[1])
     elif chair is not None:
         _, x, z, chair_yaw = chair
-        objects.append({"id": "chair", "type": "office_chair", "size": list(SIZES[("office_chair", None)]),
-                        "position": [x, z], "yaw": chair_yaw})  # fmt: skip
+        objects.append(
+            {
+                "id": "chair",
+                "type": "office_chair",
+                "size": list(SIZES[("office_chair", None)]),
+                "position": [x, z],
+                "yaw": chair_yaw,
+            }
+        )
     if monitor is not None:
         add("monitor", "monitor", at(monitor, -depth / 2.0 + 0.12), 0.0, parent="desk")
     if lamp is not None:
         side = 1.0 if lamp == "left" else -1.0
-        add("lamp", "desk_lamp", at(side * (width / 2.0 - 0.14), -depth / 2.0 + 0.14), 0.0, parent="desk")
+        add(
+            "lamp",
+            "desk_lamp",
+            at(side * (width / 2.0 - 0.14), -depth / 2.0 + 0.14),
+            0.0,
+            parent="desk",
+        )
     below = "desk"
     for k in range(books):
         add(f"book_{k + 1}", "book", at(-(width / 2.0 - 0.22), 0.1), 4.0 * k - 3.0, parent=below)
@@ -152,7 +186,9 @@ def example(index: int, row: tuple) -> dict:
         x = (half_w - size[0] / 2.0) * (1 if "e" in plant else -1)
         z = (half_d - size[2] / 2.0) * (1 if plant[0] == "s" else -1)
         facing = 180.0 if plant[0] == "s" else 0.0  # its back to the north or south wall
-        objects.append({"id": "plant", "type": "plant", "size": list(size), "position": [x, z], "yaw": facing})
+        objects.append(
+            {"id": "plant", "type": "plant", "size": list(size), "position": [x, z], "yaw": facing}
+        )
     return {"name": f"desk_{index:02d}", "room": ROOM, "objects": objects}
 
 

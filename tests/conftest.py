@@ -8,8 +8,35 @@ fixes the draws; run with ``--hypothesis-seed=random``-style exploration by sett
 
 import os
 
+import pytest
 from hypothesis import settings
+from render_fixtures import renderer_or_skip
+
+from scenewright.completion import shipped_plans_dir
+from scenewright.completion.model import build_model
+from scenewright.completion.plan import load_plans
+from scenewright.generator import indoor_catalog
 
 settings.register_profile("fixed", derandomize=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile("explore" if os.environ.get("SCENEWRIGHT_EXPLORE") else "fixed")
+
+
+@pytest.fixture(scope="module")
+def model():
+    """The completion model learned from the shipped floor plans."""
+    return build_model(load_plans(shipped_plans_dir()))
+
+
+@pytest.fixture(scope="module")
+def catalog():
+    """The shipped indoor catalog."""
+    return indoor_catalog()
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    """A small offscreen renderer (160 x 120); the test skips where OpenGL is missing."""
+    renderer = renderer_or_skip(160, 120)
+    yield renderer
+    renderer.close()

@@ -45,12 +45,20 @@ def thing(
 
 def road(path_id: str, points, width: float = 3.0, start: str | None = None) -> ScenePath:
     return ScenePath(
-        id=path_id, type="road", noun="road", plural=None, parent=None,
-        points=[list(map(float, p)) for p in points], width=width, start=start,
-    )  # fmt: skip
+        id=path_id,
+        type="road",
+        noun="road",
+        plural=None,
+        parent=None,
+        points=[list(map(float, p)) for p in points],
+        width=width,
+        start=start,
+    )
 
 
-def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False, room: Room | None = None) -> Scene:
+def scene_of(
+    objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False, room: Room | None = None
+) -> Scene:
     """A scene of these objects and paths: outdoors, or in a bare rectangular room the
     size of the extent (``walls``), or in ``room`` (whose size is then the extent)."""
     if room is None and walls:
@@ -58,7 +66,13 @@ def scene_of(objects, paths=(), extent=(30.0, 20.0), *, walls: bool = False, roo
     if room is not None:
         extent = room.extent
     return Scene(
-        rules="test", seed=1, extent=list(extent), objects=list(objects), paths=list(paths), relations=[], room=room
+        rules="test",
+        seed=1,
+        extent=list(extent),
+        objects=list(objects),
+        paths=list(paths),
+        relations=[],
+        room=room,
     )
 
 
@@ -68,9 +82,22 @@ def market_scene() -> Scene:
         [
             thing("market_stand_1", (3, 0, 0), (4, 2, 2), kind="group", shape=None),
             thing("table_1", (2, 0, 0), (1.6, 0.8, 0.9), parent="market_stand_1"),
-            thing("sign_1", (4, 0, 0), (0.5, 2.0, 0.2), parent="market_stand_1", colour=(0.2, 0.2, 0.9)),
+            thing(
+                "sign_1",
+                (4, 0, 0),
+                (0.5, 2.0, 0.2),
+                parent="market_stand_1",
+                colour=(0.2, 0.2, 0.9),
+            ),
             thing("house_1", (-5, 0, -4), (4, 3, 5), yaw=0.5, colour=(0.9, 0.9, 0.8)),
-            thing("crossing_1", (0, 0, 4), (3, 0, 3), kind="junction", colour=(0.5, 0.4, 0.3), shape=None),
+            thing(
+                "crossing_1",
+                (0, 0, 4),
+                (3, 0, 3),
+                kind="junction",
+                colour=(0.5, 0.4, 0.3),
+                shape=None,
+            ),
         ],
         [road("road_1", [[0, 4], [8, 4], [12, 8]], start="crossing_1")],
     )
@@ -98,4 +125,6 @@ def run_without_opengl(code: str) -> subprocess.CompletedProcess:
     """Python ``code`` run in a fresh interpreter whose OpenGL platform cannot load
     (``PYOPENGL_PLATFORM`` names none), its output captured as text."""
     env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
-    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60
+    )

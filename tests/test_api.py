@@ -9,7 +9,14 @@ from pathlib import Path
 import pytest
 
 import scenewright
-from scenewright.api import build_scene, generate, render_scene, reproducible_json, summary_line, timings_of
+from scenewright.api import (
+    build_scene,
+    generate,
+    render_scene,
+    reproducible_json,
+    summary_line,
+    timings_of,
+)
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
@@ -61,7 +68,9 @@ def test_render_and_export_a_generated_scene(tmp_path):
     rendered, images = render_scene(scene, size=(64, 48))
     assert images.colour.shape == (48, 64, 3)
     assert rendered.render["camera"] and "render" in rendered.timings
-    assert reproducible_json(scene) == before and scene.render is None  # a new scene, the old one unchanged
+    assert (
+        reproducible_json(scene) == before and scene.render is None
+    )  # a new scene, the old one unchanged
     text = rendered.to_json()
     assert '"camera"' in text and Scene.from_json(text).to_json() == text
     assert scenewright.render_image(scene, 32, 24).colour.shape == (24, 32, 3)
@@ -95,10 +104,15 @@ def test_a_rule_set_describes_its_scenes_with_its_own_templates():
     # templates/inventory.j2 beside the rules replaces the package's overview sentence
     assert scene.description["text"].startswith("At this stall the scene offers ")
     again = Scene.from_json(reproducible_json(scene))
-    assert again.templates == scene.templates and scenewright.describe(again).text == scene.description["text"]
+    assert (
+        again.templates == scene.templates
+        and scenewright.describe(again).text == scene.description["text"]
+    )
     from scenewright.describer.templates import PACKAGE_TEMPLATES
 
-    assert scenewright.describe(scene, templates=PACKAGE_TEMPLATES).text.startswith("The scene consists of ")
+    assert scenewright.describe(scene, templates=PACKAGE_TEMPLATES).text.startswith(
+        "The scene consists of "
+    )
 
 
 def test_templates_given_to_generate_replace_the_rule_sets_own(tmp_path):

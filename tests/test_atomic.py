@@ -20,7 +20,13 @@ from pathlib import Path
 import pytest
 
 from scenewright import atomic
-from scenewright.atomic import OutputError, check_output_directory, remove_dead_partials, staged_outputs, write_atomic
+from scenewright.atomic import (
+    OutputError,
+    check_output_directory,
+    remove_dead_partials,
+    staged_outputs,
+    write_atomic,
+)
 from scenewright.cli import main
 
 OUTPUTS = ("a.txt", "b.txt", "c.txt")
@@ -125,7 +131,9 @@ def test_a_directory_holding_what_cannot_be_taken_along_is_refused(tmp_path, mak
 
 def test_the_current_directory_is_refused(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    with pytest.raises(OutputError, match=r"cannot write to \.: it is \(or holds\) the current directory"):
+    with pytest.raises(
+        OutputError, match=r"cannot write to \.: it is \(or holds\) the current directory"
+    ):
         check_output_directory(".", OUTPUTS)
     assert main(["generate", "desk", "--no-render", "-o", str(tmp_path.parent)]) == 2
     assert "it is (or holds) the current directory" in capsys.readouterr().err
@@ -177,7 +185,10 @@ def test_a_full_disk_while_generating_names_the_output_and_exits_2(tmp_path, mon
     fill_the_disk(monkeypatch)  # every output but the plan is written with write_atomic
     assert main(["generate", "desk", "--seed", "2", "--no-render", "-o", str(out)]) == 2
     err = capsys.readouterr().err
-    assert err == f"scenewright: error: cannot write {out / 'description.txt'}: No space left on device\n"
+    assert (
+        err
+        == f"scenewright: error: cannot write {out / 'description.txt'}: No space left on device\n"
+    )
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
     assert [p.name for p in tmp_path.iterdir()] == ["out"]
 
@@ -192,14 +203,22 @@ def test_a_full_disk_under_a_library_write_names_the_file(tmp_path, monkeypatch,
     monkeypatch.setattr(Figure, "savefig", full)
     out = tmp_path / "out"
     assert main(["generate", "desk", "--no-render", "-o", str(out)]) == 2
-    assert capsys.readouterr().err == f"scenewright: error: cannot write {out / 'plan.png'}: No space left on device\n"
+    assert (
+        capsys.readouterr().err
+        == f"scenewright: error: cannot write {out / 'plan.png'}: No space left on device\n"
+    )
 
 
 def test_export_to_a_full_disk_names_the_file(tmp_path, monkeypatch, capsys):
     assert main(["generate", "desk", "--no-render", "-o", str(tmp_path / "out"), "-q"]) == 0
     fill_the_disk(monkeypatch)
-    assert main(["export", str(tmp_path / "out" / "scene.json"), "-o", str(tmp_path / "x.glb")]) == 2
-    assert capsys.readouterr().err == f"scenewright: error: cannot write {tmp_path / 'x.glb'}: No space left on device\n"
+    assert (
+        main(["export", str(tmp_path / "out" / "scene.json"), "-o", str(tmp_path / "x.glb")]) == 2
+    )
+    assert (
+        capsys.readouterr().err
+        == f"scenewright: error: cannot write {tmp_path / 'x.glb'}: No space left on device\n"
+    )
 
 
 # -- generate under SIGKILL (item 7) ----------------------------------------------------
@@ -230,8 +249,22 @@ sys.exit(main(sys.argv[1:]))
 
 
 def generate(out: Path, seed: int, *extra: str, kill_after: float | None = None, env=None) -> None:
-    argv = [sys.executable, "-c", CHILD, "generate", "desk", "--seed", str(seed), "--no-render", "-o", str(out), "-q"]
-    child = subprocess.Popen([*argv, *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    argv = [
+        sys.executable,
+        "-c",
+        CHILD,
+        "generate",
+        "desk",
+        "--seed",
+        str(seed),
+        "--no-render",
+        "-o",
+        str(out),
+        "-q",
+    ]
+    child = subprocess.Popen(
+        [*argv, *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
     assert child.stdout.readline() == "ready\n"
     if kill_after is None:
         assert child.wait(timeout=120) == 0, child.stderr.read()
@@ -247,17 +280,27 @@ def which_run(out: Path, references: dict[str, Path]) -> str:
     """The reference run whose files ``out`` holds, every one, byte for byte (timings aside)."""
     if not out.is_dir():
         return "no directory"
-    names = sorted(p.name for p in out.iterdir() if p.name != "timings.json" and not p.name.endswith(".partial"))
+    names = sorted(
+        p.name
+        for p in out.iterdir()
+        if p.name != "timings.json" and not p.name.endswith(".partial")
+    )
     for label, reference in references.items():
         wanted = sorted(p.name for p in reference.iterdir() if p.name != "timings.json")
-        if names == wanted and all(filecmp.cmp(out / n, reference / n, shallow=False) for n in names):
+        if names == wanted and all(
+            filecmp.cmp(out / n, reference / n, shallow=False) for n in names
+        ):
             return label
     return f"a mixture: {names}"
 
 
 def partials(folder: Path) -> list[str]:
     found = [p for p in folder.iterdir() if p.name.endswith(".partial")]
-    found += [p for p in (folder / "out").iterdir() if p.name.endswith(".partial")] if (folder / "out").is_dir() else []
+    found += (
+        [p for p in (folder / "out").iterdir() if p.name.endswith(".partial")]
+        if (folder / "out").is_dir()
+        else []
+    )
     return sorted(p.name for p in found)
 
 

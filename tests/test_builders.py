@@ -2,7 +2,8 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scenewright.generator.rules import load_rules, shipped_rule_sets
 from scenewright.render.builders import BUILDERS
@@ -104,7 +105,9 @@ def test_wagon_shaft_points_forward():
 
 def test_desk_lamp_shade_hangs_over_the_front():
     w, h, d = LOOKS["desk_lamp"]
-    shade = face_centres(BUILDERS["desk_lamp"]((w, h, d), MAIN), lambda c: (c[:, 1] > 0.6 * h) & (c[:, 1] < 0.9 * h))
+    shade = face_centres(
+        BUILDERS["desk_lamp"]((w, h, d), MAIN), lambda c: (c[:, 1] > 0.6 * h) & (c[:, 1] < 0.9 * h)
+    )
     assert len(shade) and shade[:, 2].mean() > 0.1 * d
 
 
@@ -126,7 +129,9 @@ def test_weight_bench_pads_run_along_it_on_feet_across_it():
     assert np.abs(feet[:, 0]).max() > 0.4 * w
 
 
-@pytest.mark.parametrize("shape", ["house", "townhouse", "shed", "tower", "sign", "windmill", "wardrobe"])
+@pytest.mark.parametrize(
+    "shape", ["house", "townhouse", "shed", "tower", "sign", "windmill", "wardrobe"]
+)
 def test_detailed_face_looks_forward(shape):
     """Doors, sign boards and sails are on the front (+Z): the +Z half has more faces."""
     w, h, d = LOOKS[shape]
@@ -156,4 +161,6 @@ def test_builders_accept_any_size(shape, size):
     assert 0 < len(mesh.faces) < 500 and np.isfinite(mesh.vertices).all()
     fitted = fit_to_size(mesh, size)
     w, h, d = size
-    np.testing.assert_allclose(fitted.bounds, [[-w / 2, 0.0, -d / 2], [w / 2, h, d / 2]], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(
+        fitted.bounds, [[-w / 2, 0.0, -d / 2], [w / 2, h, d / 2]], rtol=1e-9, atol=1e-9
+    )

@@ -44,14 +44,47 @@ def scene_file(tmp_path) -> Path:
         seed=1,
         extent=[20.0, 20.0],
         objects=[
-            SceneObject("table_1", "table", "object", "table", None, None, None, [0.0, 0.0, 2.0], 0.0, [1.6, 0.8, 0.9], shape="box", order=1),
-            SceneObject("pot_1", "pot", "object", "pot", None, None, None, [0.0, 0.8, 2.0], 0.0, [0.4, 0.3, 0.4], shape="box", order=2),
+            SceneObject(
+                "table_1",
+                "table",
+                "object",
+                "table",
+                None,
+                None,
+                None,
+                [0.0, 0.0, 2.0],
+                0.0,
+                [1.6, 0.8, 0.9],
+                shape="box",
+                order=1,
+            ),
+            SceneObject(
+                "pot_1",
+                "pot",
+                "object",
+                "pot",
+                None,
+                None,
+                None,
+                [0.0, 0.8, 2.0],
+                0.0,
+                [0.4, 0.3, 0.4],
+                shape="box",
+                order=2,
+            ),
         ],
-        paths=[ScenePath("road_1", "road", "road", None, None, [[-10.0, 0.0], [10.0, 0.0]], 3.0, order=0)],
-        relations=[Relation("pot_1", "table_1", "OnTopOf", 0.0, True), Relation("table_1", "road_1", "NextTo", -0.01, True)],
+        paths=[
+            ScenePath(
+                "road_1", "road", "road", None, None, [[-10.0, 0.0], [10.0, 0.0]], 3.0, order=0
+            )
+        ],
+        relations=[
+            Relation("pot_1", "table_1", "OnTopOf", 0.0, True),
+            Relation("table_1", "road_1", "NextTo", -0.01, True),
+        ],
         layout=LayoutStats(energy=0.0, steps=10, acceptance=0.5, ok=True),
         version=__version__,
-    )  # fmt: skip
+    )
     path = tmp_path / "scene.json"
     path.write_text(scene.to_json(reproducible=True))
     return path
@@ -63,7 +96,10 @@ def scene_file(tmp_path) -> Path:
 def test_version_and_help_with_examples(capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(["--version"])
-    assert exit_info.value.code == 0 and capsys.readouterr().out.strip() == f"scenewright {__version__}"
+    assert (
+        exit_info.value.code == 0
+        and capsys.readouterr().out.strip() == f"scenewright {__version__}"
+    )
     for command in (
         "generate",
         "dataset",
@@ -92,7 +128,10 @@ def test_version_and_help_with_examples(capsys):
         (["generate", "village", "--style", "long"], "invalid choice: 'long'"),
         (["dataset", "village", "-o", "x"], "required: -n/--count"),
         (["dataset", "village", "-n", "0", "-o", "x"], "must be at least 1"),
-        (["dataset", "village", "-n", "4", "-o", "x", "--workers", "zero"], "expected a whole number"),
+        (
+            ["dataset", "village", "-n", "4", "-o", "x", "--workers", "zero"],
+            "expected a whole number",
+        ),
         (["validate"], "required: FILE"),
         (["render", "scene.json", "--view", "side"], "invalid choice: 'side'"),
     ],
@@ -105,7 +144,9 @@ def test_bad_options_exit_2_on_one_line(capsys, argv, fragment):
 
 def test_console_script_exit_codes_and_no_traceback(tmp_path):
     missing = subprocess.run(
-        [str(SCENEWRIGHT), "describe", str(tmp_path / "nowhere.json")], capture_output=True, text=True
+        [str(SCENEWRIGHT), "describe", str(tmp_path / "nowhere.json")],
+        capture_output=True,
+        text=True,
     )
     assert missing.returncode == 2
     assert_one_line_error(missing.stderr, "nowhere.json: cannot read: No such file")
@@ -158,8 +199,13 @@ def test_validate_example_scenes_as_learn_reads_them(capsys, scene_file, tmp_pat
     code, out, _ = run(capsys, "validate", *map(str, desks), str(broken), str(scene_file))
     assert code == 2
     lines = out.splitlines()
-    assert lines[0].startswith(f"{desks[0]}: ok (hand-written example: ") and "in a room)" in lines[0]
-    assert lines[2].startswith(f"{broken}: error: $.objects[0].position") and "outside the room" in lines[2]
+    assert (
+        lines[0].startswith(f"{desks[0]}: ok (hand-written example: ") and "in a room)" in lines[0]
+    )
+    assert (
+        lines[2].startswith(f"{broken}: error: $.objects[0].position")
+        and "outside the room" in lines[2]
+    )
     assert lines[3] == f"{scene_file}: ok"  # a scene.json is still checked against its schema
 
 
@@ -198,8 +244,12 @@ def test_list_and_schema(capsys):
     assert code == 0
     assert "village  (60 x 60 m;" in out and "windmill" in out and "desk  (" in out
     # A room set lists what it makes, not the whole shared indoor catalog.
-    bathroom = out[out.index("bathroom  ("): out.index("bedroom  (")]
-    assert "makes 7 of its catalog's 43 object types" in bathroom and "toilet" in bathroom and "piano" not in bathroom
+    bathroom = out[out.index("bathroom  (") : out.index("bedroom  (")]
+    assert (
+        "makes 7 of its catalog's 43 object types" in bathroom
+        and "toilet" in bathroom
+        and "piano" not in bathroom
+    )
     code, out, _ = run(capsys, "schema")
     assert code == 0 and "layout" in json.loads(out)["properties"]
 
@@ -230,7 +280,15 @@ def test_export_and_unwritable_output(capsys, scene_file, tmp_path):
 
 def test_render_writes_preview_and_ground_truth(capsys, scene_file, tmp_path):
     code, out, _ = run(
-        capsys, "render", str(scene_file), "-o", str(tmp_path / "top.png"), "--size", "64x48", "--view", "top"
+        capsys,
+        "render",
+        str(scene_file),
+        "-o",
+        str(tmp_path / "top.png"),
+        "--size",
+        "64x48",
+        "--view",
+        "top",
     )
     assert code == 0
     assert {p.name for p in tmp_path.glob("top*")} == {
@@ -276,7 +334,9 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
     for name in ("scene.json", "description.txt", "preview.png", "preview_seg.png", "scene.glb"):
         assert (outputs[0] / name).read_bytes() == (outputs[1] / name).read_bytes(), name
     scene = json.loads((outputs[0] / "scene.json").read_text())
-    assert scene["seed"] == 2 and scene["rules"] == "desk" and scene["render"]["camera"]["width"] == 64
+    assert (
+        scene["seed"] == 2 and scene["rules"] == "desk" and scene["render"]["camera"]["width"] == 64
+    )
     assert set(json.loads((outputs[0] / "timings.json").read_text())) >= {
         "expand",
         "layout",
@@ -288,7 +348,15 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
 def test_no_render_drops_stale_previews_and_quiet_prints_nothing(capsys, tmp_path):
     run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path))
     code, out, _ = run(
-        capsys, "generate", "desk", "--no-render", "--quiet", "-o", str(tmp_path), "--style", "short"
+        capsys,
+        "generate",
+        "desk",
+        "--no-render",
+        "--quiet",
+        "-o",
+        str(tmp_path),
+        "--style",
+        "short",
     )
     assert code == 0 and out == ""
     assert not list(tmp_path.glob("preview*")) and (tmp_path / "scene.glb").exists()
@@ -305,7 +373,9 @@ def quick_layout(monkeypatch):
     monkeypatch.setattr(
         layout,
         "layout_scene",
-        lambda graph, seed, **options: real(graph, seed, params=LayoutParams(steps=300, restarts=0), **options),
+        lambda graph, seed, **options: real(
+            graph, seed, params=LayoutParams(steps=300, restarts=0), **options
+        ),
     )
 
 
@@ -315,7 +385,9 @@ def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
     code, out, err = run(capsys, "generate", str(rules), "--no-render", "-o", str(tmp_path / "out"))
     assert code == 1
     assert "LAYOUT FAILED: 2 objects" in out
-    assert_one_line_error(err, "the layout did not satisfy every constraint", "box_2 is not north of box_1")
+    assert_one_line_error(
+        err, "the layout did not satisfy every constraint", "box_2 is not north of box_1"
+    )
     assert json.loads((tmp_path / "out" / "scene.json").read_text())["layout"]["ok"] is False
 
 
@@ -363,17 +435,24 @@ def test_validate_accepts_shipped_rule_set_names(capsys):
     assert code == 0 and out.splitlines() == ["desk: ok", "village: ok"]
     code, out, _ = run(capsys, "validate", "vilage")
     assert code == 2
-    assert out.strip() == f"vilage: error: no such file (nor a shipped rule set: {', '.join(shipped_rule_sets())})"
+    assert (
+        out.strip()
+        == f"vilage: error: no such file (nor a shipped rule set: {', '.join(shipped_rule_sets())})"
+    )
 
 
 STALL = Path(__file__).parent / "rules" / "stall" / "stall.rules"
 
 
 def test_describe_uses_the_rule_sets_templates_unless_given_others(capsys, tmp_path):
-    code, _, err = run(capsys, "generate", str(STALL), "--seed", "1", "--no-render", "-o", str(tmp_path / "out"))
+    code, _, err = run(
+        capsys, "generate", str(STALL), "--seed", "1", "--no-render", "-o", str(tmp_path / "out")
+    )
     assert code == 0, err
     scene_json = tmp_path / "out" / "scene.json"
-    assert json.loads(scene_json.read_text())["templates"] == str(STALL.parent.resolve() / "templates")
+    assert json.loads(scene_json.read_text())["templates"] == str(
+        STALL.parent.resolve() / "templates"
+    )
     code, out, _ = run(capsys, "describe", str(scene_json))
     assert code == 0 and out.startswith("At this stall the scene offers ")
     assert out.strip() == (tmp_path / "out" / "description.txt").read_text().strip()
@@ -382,7 +461,9 @@ def test_describe_uses_the_rule_sets_templates_unless_given_others(capsys, tmp_p
     (words / "inventory.j2").write_text("Here {{ owner }} {{ verb }} {{ items | join_list }}.")
     code, out, _ = run(capsys, "describe", str(scene_json), "--templates", str(words))
     assert code == 0 and out.startswith("Here the scene consists of ")
-    code, out, err = run(capsys, "describe", str(scene_json), "--templates", str(tmp_path / "nowhere"))
+    code, out, err = run(
+        capsys, "describe", str(scene_json), "--templates", str(tmp_path / "nowhere")
+    )
     assert code == 2 and out == ""
     assert_one_line_error(err, "description templates folder", "nowhere", "does not exist")
 
@@ -392,8 +473,18 @@ def test_generate_and_dataset_templates_option(capsys, tmp_path):
     words.mkdir()
     (words / "caption.j2").write_text("A small {{ setting }}.")
     out_dir = tmp_path / "out"
-    code, _, err = run(capsys, "generate", "desk", "--no-render", "--style", "short", "--templates", str(words),
-                       "-o", str(out_dir))  # fmt: skip
+    code, _, err = run(
+        capsys,
+        "generate",
+        "desk",
+        "--no-render",
+        "--style",
+        "short",
+        "--templates",
+        str(words),
+        "-o",
+        str(out_dir),
+    )
     assert code == 0, err
     caption = (out_dir / "description.txt").read_text()
     assert caption.startswith("A small desk.")
@@ -402,15 +493,26 @@ def test_generate_and_dataset_templates_option(capsys, tmp_path):
     assert code == 0 and out == caption
 
     (words / "caption.j2").write_text("A {% if %} desk.")  # a syntax error
-    for argv in (["generate", "desk", "-o", str(tmp_path / "again")], ["dataset", "desk", "-n", "1", "-o",
-                 str(tmp_path / "data")]):  # fmt: skip
+    for argv in (
+        ["generate", "desk", "-o", str(tmp_path / "again")],
+        ["dataset", "desk", "-n", "1", "-o", str(tmp_path / "data")],
+    ):
         code, out, err = run(capsys, *argv, "--templates", str(words))
         assert code == 2 and out == ""
         assert_one_line_error(err, f"description template {words.resolve() / 'caption.j2'}:1: ")
         assert not (tmp_path / "again").exists() and not (tmp_path / "data").exists()
 
     (words / "caption.j2").write_text("A {{ settting }}.")  # compiles, fails when rendered
-    code, out, err = run(capsys, "describe", str(out_dir / "scene.json"), "--style", "short",
-                         "--templates", str(words))  # fmt: skip
+    code, out, err = run(
+        capsys,
+        "describe",
+        str(out_dir / "scene.json"),
+        "--style",
+        "short",
+        "--templates",
+        str(words),
+    )
     assert code == 2 and out == ""
-    assert_one_line_error(err, f"description template {words.resolve() / 'caption.j2'}:1: 'settting' is undefined")
+    assert_one_line_error(
+        err, f"description template {words.resolve() / 'caption.j2'}:1: 'settting' is undefined"
+    )

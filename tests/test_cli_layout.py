@@ -44,7 +44,16 @@ def village(tmp_path_factory) -> Path:
 def test_layout_keeps_the_pinned_poses_exactly_and_moves_the_others(capsys, tmp_path, village):
     out = tmp_path / "out2"
     code, stdout, err = run(
-        capsys, "layout", village, "--pin", ",".join(PINNED), "--seed", "2", "--no-render", "-o", out
+        capsys,
+        "layout",
+        village,
+        "--pin",
+        ",".join(PINNED),
+        "--seed",
+        "2",
+        "--no-render",
+        "-o",
+        out,
     )
     before = json.loads(village.read_text())
     after = json.loads((out / "scene.json").read_text())
@@ -55,9 +64,15 @@ def test_layout_keeps_the_pinned_poses_exactly_and_moves_the_others(capsys, tmp_
     assert lines[0] == f"pinned: {', '.join(PINNED)}"
     assert lines[1].startswith(f"wrote {out}/: ")
     assert lines[2].startswith("ok: 30 objects, 2 paths, relations satisfied 30/30, energy ")
-    assert sorted(p.name for p in out.iterdir()) == sorted(set(GENERATE_OUTPUTS) - {
-        "preview.png", "preview_depth.png", "preview_seg.png", "preview_ids.json",
-    })  # fmt: skip
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        set(GENERATE_OUTPUTS)
+        - {
+            "preview.png",
+            "preview_depth.png",
+            "preview_seg.png",
+            "preview_ids.json",
+        }
+    )
     old, new = poses(before), poses(after)
     for object_id in PINNED:
         assert new[object_id] == old[object_id], object_id
@@ -78,8 +93,19 @@ def test_layout_keeps_the_pinned_poses_exactly_and_moves_the_others(capsys, tmp_
 def test_layout_is_reproducible_for_the_same_file_pins_and_seed(capsys, tmp_path, village):
     outputs = []
     for name in ("a", "b"):
-        code, _, err = run(capsys, "layout", village, "--pin", "tower_1", "--seed", "2", "--no-render", "-q",
-                           "-o", tmp_path / name)  # fmt: skip
+        code, _, err = run(
+            capsys,
+            "layout",
+            village,
+            "--pin",
+            "tower_1",
+            "--seed",
+            "2",
+            "--no-render",
+            "-q",
+            "-o",
+            tmp_path / name,
+        )
         assert code == 0, err
         outputs.append(tmp_path / name)
     for name in ("scene.json", "description.txt"):
@@ -88,8 +114,20 @@ def test_layout_is_reproducible_for_the_same_file_pins_and_seed(capsys, tmp_path
 
 def test_pinning_a_group_pins_its_members_and_a_road_its_junction(capsys, tmp_path, village):
     out = tmp_path / "out"
-    code, stdout, err = run(capsys, "layout", village, "--pin", "market_stand_1", "--pin", "road_1", "--seed", "3",
-                            "--no-render", "-o", out)  # fmt: skip
+    code, stdout, err = run(
+        capsys,
+        "layout",
+        village,
+        "--pin",
+        "market_stand_1",
+        "--pin",
+        "road_1",
+        "--seed",
+        "3",
+        "--no-render",
+        "-o",
+        out,
+    )
     assert code == 0, err
     assert stdout.splitlines()[0] == (
         "pinned: market_stand_1, road_1 (with intersection_1, table_1, sign_1, pot_of_stew_1)"
@@ -99,15 +137,25 @@ def test_pinning_a_group_pins_its_members_and_a_road_its_junction(capsys, tmp_pa
     old, new = poses(before), poses(after)
     for object_id in ("intersection_1", "table_1", "sign_1", "pot_of_stew_1"):
         assert new[object_id] == old[object_id], object_id
-    roads = {p["id"]: p["points"] for p in before["paths"]}, {p["id"]: p["points"] for p in after["paths"]}
+    roads = (
+        {p["id"]: p["points"] for p in before["paths"]},
+        {p["id"]: p["points"] for p in after["paths"]},
+    )
     assert roads[1]["road_1"] == roads[0]["road_1"]
-    assert roads[1]["road_2"] != roads[0]["road_2"] and roads[1]["road_2"][0] == roads[0]["road_2"][0]
+    assert (
+        roads[1]["road_2"] != roads[0]["road_2"] and roads[1]["road_2"][0] == roads[0]["road_2"][0]
+    )
 
 
 def test_warm_starts_from_the_old_poses(capsys, tmp_path, village):
-    code, _, err = run(capsys, "layout", village, "--pin", "tower_1", "--warm", "--no-render", "-q", "-o", tmp_path)
+    code, _, err = run(
+        capsys, "layout", village, "--pin", "tower_1", "--warm", "--no-render", "-q", "-o", tmp_path
+    )
     assert code == 0, err
-    old, new = poses(json.loads(village.read_text())), poses(json.loads((tmp_path / "scene.json").read_text()))
+    old, new = (
+        poses(json.loads(village.read_text())),
+        poses(json.loads((tmp_path / "scene.json").read_text())),
+    )
     assert new["tower_1"] == old["tower_1"]
     # started where they were: most things end near their old place
     near = [k for k in old if abs(new[k][0] - old[k][0]) + abs(new[k][2] - old[k][2]) < 3.0]
@@ -115,7 +163,9 @@ def test_warm_starts_from_the_old_poses(capsys, tmp_path, village):
 
 
 def test_layout_renders_like_generate(capsys, tmp_path, village):
-    code, _, err = run(capsys, "layout", village, "--pin", "tower_1", "--size", "64x48", "-q", "-o", tmp_path)
+    code, _, err = run(
+        capsys, "layout", village, "--pin", "tower_1", "--size", "64x48", "-q", "-o", tmp_path
+    )
     assert code == 0, err
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(GENERATE_OUTPUTS)
     assert json.loads((tmp_path / "scene.json").read_text())["render"]["camera"]["width"] == 64
@@ -126,7 +176,9 @@ def test_help_has_examples(capsys):
         main(["layout", "--help"])
     out = capsys.readouterr().out
     assert exit_info.value.code == 0
-    assert "examples:" in out and "scenewright layout out/scene.json --pin" in out and "--warm" in out
+    assert (
+        "examples:" in out and "scenewright layout out/scene.json --pin" in out and "--warm" in out
+    )
 
 
 @pytest.mark.parametrize(
@@ -166,8 +218,17 @@ def test_bad_scene_files_exit_2_on_one_line(capsys, tmp_path):
 
 def test_a_layout_that_is_not_ok_exits_1_with_its_problems(capsys, tmp_path):
     """Two boxes pinned on top of each other: the files are written, the exit code is 1."""
-    box = dict(type="box", kind="object", noun="box", plural=None, parent=None, style=None, yaw=0.0,
-               size=[1.0, 1.0, 1.0], shape="box")  # fmt: skip
+    box = dict(
+        type="box",
+        kind="object",
+        noun="box",
+        plural=None,
+        parent=None,
+        style=None,
+        yaw=0.0,
+        size=[1.0, 1.0, 1.0],
+        shape="box",
+    )
     scene = Scene(
         rules="test",
         seed=1,
@@ -184,10 +245,14 @@ def test_a_layout_that_is_not_ok_exits_1_with_its_problems(capsys, tmp_path):
     )
     path = tmp_path / "scene.json"
     path.write_text(scene.to_json(reproducible=True))
-    code, stdout, err = run(capsys, "layout", path, "--pin", "box_1,box_2", "--no-render", "-o", tmp_path / "out")
+    code, stdout, err = run(
+        capsys, "layout", path, "--pin", "box_1,box_2", "--no-render", "-o", tmp_path / "out"
+    )
     assert code == 1
     assert "LAYOUT FAILED: 3 objects" in stdout
-    assert_one_line_error(err, "the layout did not satisfy every constraint", "box_1 overlaps box_2")
+    assert_one_line_error(
+        err, "the layout did not satisfy every constraint", "box_1 overlaps box_2"
+    )
     after = json.loads((tmp_path / "out" / "scene.json").read_text())
     assert after["layout"]["ok"] is False
     assert poses(after)["box_2"] == (0.25, 0.0, 0.0, 0.0)

@@ -9,32 +9,27 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.cli import main
-from scenewright.completion import shipped_plans_dir
 from scenewright.completion import complete as completion_module
 from scenewright.completion.complete import (
-    MASKED, ROOM_FULL, build_graph, choose_contents, complete, fewer_pieces, parse_request, summary_of,
+    MASKED,
+    ROOM_FULL,
+    build_graph,
+    choose_contents,
+    complete,
+    fewer_pieces,
+    parse_request,
+    summary_of,
 )
-from scenewright.completion.model import build_model
-from scenewright.completion.plan import load_plans
 from scenewright.core.errors import InputError
-from scenewright.generator import indoor_catalog
 from scenewright.generator.layout.geometry import make_rect, rect_overlap
-
-
-@pytest.fixture(scope="module")
-def model():
-    return build_model(load_plans(shipped_plans_dir()))
-
-
-@pytest.fixture(scope="module")
-def catalog():
-    return indoor_catalog()
 
 
 def _swing_rect(room, door):
     points = room.swing_zone(door)
     xs, zs = [p[0] for p in points], [p[1] for p in points]
-    return make_rect((min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0)
+    return make_rect(
+        (min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2, max(xs) - min(xs), max(zs) - min(zs), 0.0
+    )
 
 
 def test_a_5x4_bedroom_with_a_bed_and_a_bookshelf_is_completed_and_laid_out(model, catalog):
@@ -65,17 +60,29 @@ def test_three_treadmills_in_a_living_room_sized_room_make_a_laid_out_gym(model,
     types = [o.type for o in scene.placed_objects()]
     assert types.count("treadmill") == 3 and len(set(types)) >= 2
     labels = {(r.source, r.label) for r in scene.relations}
-    assert ("treadmill_1", "AgainstWall") in labels  # its console to a wall, the others in a row beside it
+    assert (
+        "treadmill_1",
+        "AgainstWall",
+    ) in labels  # its console to a wall, the others in a row beside it
 
 
 def test_a_small_gym_keeps_its_machines_and_the_bench_stands_before_the_rack(model, catalog):
-    request = parse_request("3.6x3.4", ["S:0.5:0.8"], ["W:1.7:1.2"], ["weight_bench,dumbbell_rack,exercise_bike"],
-                            catalog)  # fmt: skip
+    request = parse_request(
+        "3.6x3.4",
+        ["S:0.5:0.8"],
+        ["W:1.7:1.2"],
+        ["weight_bench,dumbbell_rack,exercise_bike"],
+        catalog,
+    )
     scene = complete(request, 0, model=model, catalog=catalog)
     assert scene.completion["types"] == ["gym"]
     assert scene.layout.ok, scene.layout.problems
-    assert {"weight_bench", "dumbbell_rack", "exercise_bike"} <= {o.type for o in scene.placed_objects()}
-    assert ("weight_bench_1", "NextToFront", "dumbbell_rack_1") in {(r.source, r.label, r.target) for r in scene.relations}
+    assert {"weight_bench", "dumbbell_rack", "exercise_bike"} <= {
+        o.type for o in scene.placed_objects()
+    }
+    assert ("weight_bench_1", "NextToFront", "dumbbell_rack_1") in {
+        (r.source, r.label, r.target) for r in scene.relations
+    }
 
 
 def test_a_larger_room_gets_more_categories(model, catalog):
@@ -96,7 +103,9 @@ def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(mo
     assert [c["category"] for c in chosen][0] == "desk" and chosen[0]["requested"]
     assert all(0.0 < c["p"] <= 1.0 for c in chosen)
     assert sum(record["mask"]["references"].values()) == pytest.approx(1.0)
-    assert record["counts"] == {n: c for n, c in contents.counts.items() if n not in record["left_out"]}
+    assert record["counts"] == {
+        n: c for n, c in contents.counts.items() if n not in record["left_out"]
+    }
 
 
 @pytest.mark.parametrize(
@@ -122,11 +131,27 @@ def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, arg
 
 
 def test_the_same_request_and_seed_give_the_same_scene_json_and_explain_draws_the_mask(tmp_path):
-    argv = ["complete", "--room", "3.2x3", "--door", "S:0.6:0.8", "--window", "N:1.6:1.0", "--with", "desk",
-            "--seed", "5", "--no-render", "-q"]  # fmt: skip
+    argv = [
+        "complete",
+        "--room",
+        "3.2x3",
+        "--door",
+        "S:0.6:0.8",
+        "--window",
+        "N:1.6:1.0",
+        "--with",
+        "desk",
+        "--seed",
+        "5",
+        "--no-render",
+        "-q",
+    ]
     assert main([*argv, "--explain", "-o", str(tmp_path / "a")]) == 0
     assert main([*argv, "-o", str(tmp_path / "b")]) == 0
-    first, second = (tmp_path / "a" / "scene.json").read_bytes(), (tmp_path / "b" / "scene.json").read_bytes()
+    first, second = (
+        (tmp_path / "a" / "scene.json").read_bytes(),
+        (tmp_path / "b" / "scene.json").read_bytes(),
+    )
     assert first == second and b'"completion"' in first
     assert (tmp_path / "a" / "mask.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not (tmp_path / "b" / "mask.png").exists()
@@ -134,9 +159,12 @@ def test_the_same_request_and_seed_give_the_same_scene_json_and_explain_draws_th
 
 @settings(max_examples=40, deadline=None)
 @given(
-    width=st.floats(2.0, 9.0), depth=st.floats(2.0, 9.0), wall=st.sampled_from("NESW"),
-    where=st.floats(0.0, 1.0), sill=st.floats(0.3, 1.0),
-)  # fmt: skip
+    width=st.floats(2.0, 9.0),
+    depth=st.floats(2.0, 9.0),
+    wall=st.sampled_from("NESW"),
+    where=st.floats(0.0, 1.0),
+    sill=st.floats(0.3, 1.0),
+)
 def test_any_fitting_door_and_window_land_on_the_wall_named(width, depth, wall, where, sill):
     catalog = {"bed": None}
     length = width if wall in "NS" else depth
@@ -148,7 +176,9 @@ def test_any_fitting_door_and_window_land_on_the_wall_named(width, depth, wall, 
     assert door.offset == pytest.approx(offset) and door.width == pytest.approx(0.9)
     assert request.room.area == pytest.approx(width * depth)
     other = "N" if wall != "N" else "S"
-    windowed = parse_request(f"{width}x{depth}", [], [f"{other}:1.0:0.8:{sill}"], ["bed=2"], catalog)
+    windowed = parse_request(
+        f"{width}x{depth}", [], [f"{other}:1.0:0.8:{sill}"], ["bed=2"], catalog
+    )
     assert windowed.room.windows[0].sill == pytest.approx(sill) and windowed.requested == {"bed": 2}
 
 
@@ -173,8 +203,11 @@ def test_a_dining_table_starts_free_with_its_chairs_spread_round_it(model, catal
     table_rect = make_rect(pose.x, pose.z, table.size[0], table.size[2], pose.yaw)
     chairs = [n for n in graph.nodes("object") if n.type == "chair"]
     assert len(chairs) == 6
-    rects = [make_rect(poses[c.id].x, poses[c.id].z, c.size[0], c.size[2], poses[c.id].yaw) for c in chairs]
-    for chair, rect in zip(chairs, rects):
+    rects = [
+        make_rect(poses[c.id].x, poses[c.id].z, c.size[0], c.size[2], poses[c.id].yaw)
+        for c in chairs
+    ]
+    for chair, rect in zip(chairs, rects, strict=False):
         assert rect_distance(rect, table_rect) < 0.1, chair.id  # at the table
         assert request.room.footprint_excess([(rect.cx, rect.cz)]) == 0.0
     assert all(rect_overlap(a, b) < 1e-9 for i, a in enumerate(rects) for b in rects[i + 1 :])
@@ -204,25 +237,36 @@ def _contents(model, catalog, room, door, window, wanted):
 def test_the_weakest_added_piece_the_problems_name_goes_one_at_a_time(model, catalog):
     request, contents, graph = _contents(model, catalog, "5x4", "S:0.8:0.9", "N:2.5:1.4", "bed")
     assert contents.counts["nightstand"] == 2
-    problems = ["nightstand_2 cannot be reached from the door (no 0.6 m wide way)", "bed_1 overlaps wardrobe_1 by 3 %"]
+    problems = [
+        "nightstand_2 cannot be reached from the door (no 0.6 m wide way)",
+        "bed_1 overlaps wardrobe_1 by 3 %",
+    ]
     fewer = fewer_pieces(model, contents, request, graph, problems)
     # The bed is requested; of the named added pieces the wardrobe is tied to it less
     # than the night tables, and it is the only one of its kind: it goes whole.
-    changed = {name: (contents.counts[name], fewer.counts.get(name, 0))
-               for name in contents.counts if fewer.counts.get(name, 0) != contents.counts[name]}  # fmt: skip
+    changed = {
+        name: (contents.counts[name], fewer.counts.get(name, 0))
+        for name in contents.counts
+        if fewer.counts.get(name, 0) != contents.counts[name]
+    }
     assert changed == {"wardrobe": (1, 0)}
     again = fewer_pieces(model, fewer, request, graph, problems[:1])
     assert again.counts["nightstand"] == 1 and again.counts["bed"] == 1
 
 
 def test_a_desk_given_up_takes_its_added_chair_along_and_a_requested_one_never_goes(model, catalog):
-    request, contents, graph = _contents(model, catalog, "4x3.6", "S:3.2:0.85", "E:1.8:1.3", "bookshelf")
+    request, contents, graph = _contents(
+        model, catalog, "4x3.6", "S:3.2:0.85", "E:1.8:1.3", "bookshelf"
+    )
     assert contents.counts.get("desk") == 1 and contents.counts.get("office_chair")
     fewer = fewer_pieces(model, contents, request, graph, ["desk_1 overlaps bookshelf_1 by 5 %"])
     assert "desk" not in fewer.counts and "office_chair" not in fewer.counts
     assert fewer.counts["bookshelf"] == contents.counts["bookshelf"]
     only_requested = replace(contents, counts={"bookshelf": contents.counts["bookshelf"]})
-    assert fewer_pieces(model, only_requested, request, graph, ["bookshelf_1 overlaps x by 5 %"]) is None
+    assert (
+        fewer_pieces(model, only_requested, request, graph, ["bookshelf_1 overlaps x by 5 %"])
+        is None
+    )
 
 
 def test_a_crowded_room_is_ok_with_a_piece_fewer_and_says_which(model, catalog, monkeypatch):
@@ -244,7 +288,9 @@ def test_a_crowded_room_is_ok_with_a_piece_fewer_and_says_which(model, catalog, 
 
 
 def test_a_category_given_up_whole_is_left_out_with_why(model, catalog):
-    request = parse_request("3.2x3.4", ["E:2.2:0.9"], ["N:2:1.2"], ["bed"], catalog)  # too small for a wardrobe too
+    request = parse_request(
+        "3.2x3.4", ["E:2.2:0.9"], ["N:2:1.2"], ["bed"], catalog
+    )  # too small for a wardrobe too
     scene = complete(request, 0, model=model, catalog=catalog)
     assert scene.layout.ok, scene.layout.problems
     record = scene.completion
@@ -257,8 +303,23 @@ def test_a_category_given_up_whole_is_left_out_with_why(model, catalog):
 def furnished(tmp_path_factory):
     """A completed 4.5 x 4 m bedroom, as scene.json."""
     folder = tmp_path_factory.mktemp("furnished")
-    argv = ["complete", "--room", "4.5x4", "--door", "S:0.6:0.9", "--window", "N:2:1.2", "--with", "bed",
-            "--seed", "3", "--no-render", "-q", "-o", str(folder / "room")]  # fmt: skip
+    argv = [
+        "complete",
+        "--room",
+        "4.5x4",
+        "--door",
+        "S:0.6:0.9",
+        "--window",
+        "N:2:1.2",
+        "--with",
+        "bed",
+        "--seed",
+        "3",
+        "--no-render",
+        "-q",
+        "-o",
+        str(folder / "room"),
+    ]
     assert main(argv) == 0
     return folder / "room" / "scene.json"
 
@@ -267,16 +328,35 @@ def test_adding_to_a_furnished_room_keeps_every_piece_where_it_stood(furnished, 
     import json
 
     before = json.loads(furnished.read_text())
-    assert main(["complete", str(furnished), "--add", "floor_lamp", "--seed", "1", "--no-render", "-o",
-                 str(tmp_path / "more")]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "complete",
+                str(furnished),
+                "--add",
+                "floor_lamp",
+                "--seed",
+                "1",
+                "--no-render",
+                "-o",
+                str(tmp_path / "more"),
+            ]
+        )
+        == 0
+    )
     assert "kept" in capsys.readouterr().out
     after = json.loads((tmp_path / "more" / "scene.json").read_text())
     assert after["layout"]["ok"]
     placed = {o["id"]: o for o in after["objects"] if o["kind"] == "object"}
     for obj in (o for o in before["objects"] if o["kind"] == "object"):
-        assert placed[obj["id"]]["position"] == obj["position"] and placed[obj["id"]]["yaw"] == obj["yaw"]
+        assert (
+            placed[obj["id"]]["position"] == obj["position"]
+            and placed[obj["id"]]["yaw"] == obj["yaw"]
+        )
     kinds = [o["type"] for o in placed.values()]
-    assert kinds.count("floor_lamp") == [o["type"] for o in before["objects"]].count("floor_lamp") + 1
+    assert (
+        kinds.count("floor_lamp") == [o["type"] for o in before["objects"]].count("floor_lamp") + 1
+    )
 
 
 @pytest.mark.parametrize(
@@ -295,10 +375,40 @@ def test_bad_additions_exit_2_on_one_line(furnished, tmp_path, capsys, extra, fr
 
 
 def test_add_needs_a_scene_and_a_scene_needs_a_room(tmp_path, capsys):
-    assert main(["complete", "--room", "5x4", "--with", "bed", "--add", "piano", "-o", str(tmp_path / "x")]) == 2
+    assert (
+        main(
+            [
+                "complete",
+                "--room",
+                "5x4",
+                "--with",
+                "bed",
+                "--add",
+                "piano",
+                "-o",
+                str(tmp_path / "x"),
+            ]
+        )
+        == 2
+    )
     assert "--add adds to a scene.json" in capsys.readouterr().err
-    assert main(["-q", "generate", "village", "--seed", "1", "--no-render", "-o", str(tmp_path / "v")]) == 0
-    assert main(["complete", str(tmp_path / "v" / "scene.json"), "--add", "piano", "-o", str(tmp_path / "y")]) == 2
+    assert (
+        main(["-q", "generate", "village", "--seed", "1", "--no-render", "-o", str(tmp_path / "v")])
+        == 0
+    )
+    assert (
+        main(
+            [
+                "complete",
+                str(tmp_path / "v" / "scene.json"),
+                "--add",
+                "piano",
+                "-o",
+                str(tmp_path / "y"),
+            ]
+        )
+        == 2
+    )
     assert "only an indoor scene can be completed" in capsys.readouterr().err
 
 
@@ -313,7 +423,9 @@ def test_a_tries_restart_waits_its_own_patience(model, catalog):
     request = parse_request("3.7x5.2", ["N:2.61:0.91"], ["W:2.74:1.53"], ["bed"], set(catalog))
     contents = choose_contents(model, request)
     graph, _, start = completion_module._graph_and_start(model, contents, request.room, catalog)
-    mask = floor_mask(contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED])
+    mask = floor_mask(
+        contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED]
+    )
     params = completion_module.FIT_PARAMS
     assert params.restarts == 1 and params.restart_patience < params.patience
 

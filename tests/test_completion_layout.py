@@ -5,7 +5,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from scenewright.completion.evaluation import COMPARISONS, METRICS, _f1, soft_iou, leave_one_out, report, request_of
+from scenewright.completion.evaluation import (
+    COMPARISONS,
+    METRICS,
+    _f1,
+    leave_one_out,
+    report,
+    request_of,
+    soft_iou,
+)
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
 from scenewright.completion.selection import area_spreads, check_counts, choose_types
@@ -23,19 +31,29 @@ def _model(features: dict[str, tuple[list[float], int, float]]) -> dict:
     return {
         "categories": {"bed": {"floor_area": 3.0}},
         "types": {"t": {"mean_area": 12.0, "categories": {"bed": {"p": 1.0, "max_count": 1}}}},
-        "plans": [{"id": name, "type": "t", "feature": feature, "cluster": cluster, "mask": np.full((10, 10), value)}
-                  for name, (feature, cluster, value) in features.items()],  # fmt: skip
+        "plans": [
+            {
+                "id": name,
+                "type": "t",
+                "feature": feature,
+                "cluster": cluster,
+                "mask": np.full((10, 10), value),
+            }
+            for name, (feature, cluster, value) in features.items()
+        ],
     }
 
 
 def test_the_mask_is_the_inverse_distance_mean_of_the_largest_cluster_of_references():
     room = _room()
     target = room_feature(room, 3.0, 12.0)
-    model = _model({
-        "near": (list(target + [0.1, 0, 0, 0]), 0, 1.0),
-        "far": (list(target + [0.3, 0, 0, 0]), 0, 0.0),
-        "odd": (list(target + [0.05, 0, 0, 0]), 1, 0.5),  # nearest, but alone in its cluster
-    })  # fmt: skip
+    model = _model(
+        {
+            "near": (list(target + [0.1, 0, 0, 0]), 0, 1.0),
+            "far": (list(target + [0.3, 0, 0, 0]), 0, 0.0),
+            "odd": (list(target + [0.05, 0, 0, 0]), 1, 0.5),  # nearest, but alone in its cluster
+        }
+    )
     layout = amalgamated_mask(model, "t", room, {"bed": 1})
     assert layout.weights == pytest.approx({"near": 0.75, "far": 0.25})  # 1/0.1 : 1/0.3
     assert layout.mask == pytest.approx(np.full((10, 10), 0.75))
@@ -44,7 +62,9 @@ def test_the_mask_is_the_inverse_distance_mean_of_the_largest_cluster_of_referen
 
 
 def test_mask_at_reads_the_cell_under_a_room_point():
-    room = _room()  # door near the south-east corner: mirrored in x and z to bring it to the top left
+    room = (
+        _room()
+    )  # door near the south-east corner: mirrored in x and z to bring it to the top left
     model = _model({"only": (list(room_feature(room, 3.0, 12.0)), 0, 0.0)})
     layout = amalgamated_mask(model, "t", room, {"bed": 1})
     assert layout.frame.to_dict() == {"transpose": False, "flip_x": True, "flip_z": True}
@@ -58,8 +78,11 @@ def _type_model(plans: int = 10) -> dict:
     """Three types of ``plans`` plans each; no plan areas listed, so each spread is 0.2 x its mean."""
 
     def entry(area, **categories):
-        return {"mean_area": area, "plans": plans,
-                "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()}}  # fmt: skip
+        return {
+            "mean_area": area,
+            "plans": plans,
+            "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()},
+        }
 
     return {
         "categories": {"bed": {}, "desk": {}, "sofa": {}, "chair": {}},
@@ -75,10 +98,22 @@ def _type_model(plans: int = 10) -> dict:
     ("requested", "area", "types"),
     [
         ({"bed": 1}, 14.0, ("bedroom",)),
-        ({"desk": 1}, 13.0, ("study",)),  # bedroom and study fit the area alike; desks are in every study
-        ({"bed": 1, "desk": 1}, 26.0, ("bedroom", "study")),  # 14 + 12: a bedroom with a study corner
+        (
+            {"desk": 1},
+            13.0,
+            ("study",),
+        ),  # bedroom and study fit the area alike; desks are in every study
+        (
+            {"bed": 1, "desk": 1},
+            26.0,
+            ("bedroom", "study"),
+        ),  # 14 + 12: a bedroom with a study corner
         ({"sofa": 1, "bed": 1}, 34.0, ("living_room", "bedroom")),
-        ({"chair": 6}, 32.0, ("living_room", "study")),  # 4 + 2 chairs: the two types that hold the most
+        (
+            {"chair": 6},
+            32.0,
+            ("living_room", "study"),
+        ),  # 4 + 2 chairs: the two types that hold the most
     ],
 )
 def test_choose_types(requested, area, types):
@@ -91,7 +126,9 @@ def test_choose_types_weighs_area_against_evidence_and_extra_types():
     # room's 20 +- 4, and one study in two has no sofa: the living room.
     model["types"]["study"]["categories"]["sofa"] = {"p": 0.5, "max_count": 1}
     assert choose_types(model, {"sofa": 1}, 15.0).types == ("living_room",)
-    model["types"]["study"]["categories"]["sofa"]["p"] = 0.8  # most studies have one: the nearer study
+    model["types"]["study"]["categories"]["sofa"]["p"] = (
+        0.8  # most studies have one: the nearer study
+    )
     assert choose_types(model, {"sofa": 1}, 15.0).types == ("study",)
     # 21 m2 with a bed: too large for the bedroom's 14 +- 2.8 (2.5 spreads), yet a second
     # type costs log(1 + 30 plans): one bedroom is the likelier room.
@@ -107,17 +144,32 @@ def test_a_type_joins_a_room_only_when_the_plans_have_seen_it_with_the_request()
     bedroom, though its area would fit best; a study (bedrooms have desks) does."""
     model = _type_model()
     model["categories"]["treadmill"] = {}
-    model["types"]["gym"] = {"mean_area": 14.0, "plans": 10, "categories": {"treadmill": {"p": 1.0, "max_count": 3}}}
-    assert choose_types(model, {"bed": 1}, 28.0).types == ("bedroom", "study")  # not bedroom + gym (14 + 14)
-    assert choose_types(model, {"bed": 1, "treadmill": 1}, 28.0).types == ("bedroom", "gym")  # both asked for
-    model["types"]["gym"]["categories"]["chair"] = {"p": 0.9, "max_count": 1}  # the gym's own: living rooms have chairs
+    model["types"]["gym"] = {
+        "mean_area": 14.0,
+        "plans": 10,
+        "categories": {"treadmill": {"p": 1.0, "max_count": 3}},
+    }
+    assert choose_types(model, {"bed": 1}, 28.0).types == (
+        "bedroom",
+        "study",
+    )  # not bedroom + gym (14 + 14)
+    assert choose_types(model, {"bed": 1, "treadmill": 1}, 28.0).types == (
+        "bedroom",
+        "gym",
+    )  # both asked for
+    model["types"]["gym"]["categories"]["chair"] = {
+        "p": 0.9,
+        "max_count": 1,
+    }  # the gym's own: living rooms have chairs
     model["types"]["living_room"]["categories"]["bed"] = {"p": 0.1, "max_count": 1}  # ... and beds
     assert choose_types(model, {"bed": 1}, 28.0).types == ("bedroom", "gym")
 
 
 def test_area_spreads_come_from_the_plans_with_a_floor():
     model = _type_model()
-    model["plans"] = [{"type": "bedroom", "area": a} for a in (10.0, 14.0, 18.0, 14.0)] + [{"type": "study", "area": 12.0}]
+    model["plans"] = [{"type": "bedroom", "area": a} for a in (10.0, 14.0, 18.0, 14.0)] + [
+        {"type": "study", "area": 12.0}
+    ]
     spreads = area_spreads(model)
     assert spreads["bedroom"] == pytest.approx(np.std([10.0, 14.0, 18.0, 14.0]))
     assert spreads["study"] == pytest.approx(0.2 * 12.0)  # one plan: no spread of its own
@@ -138,14 +190,19 @@ def test_a_count_beyond_the_plans_most_costs_likelihood_rather_than_ruling_a_typ
     26 m2, which the hard bound ``sum N(o, s) >= n_o`` made the only answer."""
     model = _type_model()
     assert choose_types(model, {"desk": 3}, 13.0).types == ("study",)
-    assert choose_types(model, {"desk": 3}, 26.0).types == ("bedroom", "study")  # the area of both, and as many desks
+    assert choose_types(model, {"desk": 3}, 26.0).types == (
+        "bedroom",
+        "study",
+    )  # the area of both, and as many desks
     # The cost is per category asked for beyond the most: one more chair than the
     # living rooms held (5 > 4) still leaves a 20 m2 room a living room.
     assert choose_types(model, {"chair": 5}, 20.0).types == ("living_room",)
 
 
 def test_soft_iou_and_the_request():
-    assert soft_iou(np.array([1.0, 0.5, 0.0]), np.array([0.5, 0.5, 1.0])) == pytest.approx(1.0 / 2.5)
+    assert soft_iou(np.array([1.0, 0.5, 0.0]), np.array([0.5, 0.5, 1.0])) == pytest.approx(
+        1.0 / 2.5
+    )
     assert soft_iou(np.zeros(3), np.zeros(3)) == 1.0
 
 
@@ -171,29 +228,53 @@ def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
     counts = ("added_error", "added_error_baseline")  # numbers of categories, not shares
     assert all(0.0 <= table["all"][metric] <= 1.0 for metric in METRICS if metric not in counts)
     assert all(table["all"][metric] >= 0.0 for metric in counts)
-    assert table["all"]["type_baseline"] == 1.0  # a bed, a sofa, a desk, a dining table or a machine names its type
+    assert (
+        table["all"]["type_baseline"] == 1.0
+    )  # a bed, a sofa, a desk, a dining table or a machine names its type
     text = report(table, 1)
-    assert text.startswith("Leave-one-out over 15 plans, 1 requested category; each cell: ours / baseline.")
-    assert f"| all | 15 | {table['all']['type']:.3f} / {table['all']['type_baseline']:.3f} |" in text
+    assert text.startswith(
+        "Leave-one-out over 15 plans, 1 requested category; each cell: ours / baseline."
+    )
+    assert (
+        f"| all | 15 | {table['all']['type']:.3f} / {table['all']['type_baseline']:.3f} |" in text
+    )
     misses = table["all"]["misses"]  # the baseline misses none, so each is one of Equation 2's
     assert len(misses) == round((1.0 - table["all"]["type"]) * 15)
-    assert all(miss.split(" ")[0] in {plan.id for plan in some_plans} and ": Equation 2 " in miss for miss in misses)
-    assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(COMPARISONS) + len(misses)
+    assert all(
+        miss.split(" ")[0] in {plan.id for plan in some_plans} and ": Equation 2 " in miss
+        for miss in misses
+    )
+    assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(
+        COMPARISONS
+    ) + len(misses)
 
 
 def test_f1_and_the_report_say_which_side_is_better():
     assert _f1({"a", "b"}, {"b", "c"}) == pytest.approx(0.5)  # precision 1/2, recall 1/2
     assert _f1(set(), set()) == 1.0 and _f1({"a"}, {"b"}) == 0.0
-    row = {metric: 0.5 for metric in METRICS} | {"plans": 4, "type": 0.75, "added_error": 2.0, "added_error_baseline": 1.0}
+    row = {metric: 0.5 for metric in METRICS} | {
+        "plans": 4,
+        "type": 0.75,
+        "added_error": 2.0,
+        "added_error_baseline": 1.0,
+    }
     lines = report({"all": row}, 2).splitlines()
-    assert "- room type: Equation 2 0.750, baseline (the type whose plans have the request most often) 0.500: " \
-           "ours better by 0.250" in lines
-    assert any(line.startswith("- number added: error: Algorithm 1 2.000,") and line.endswith("the baseline better by 1.000")
-               for line in lines)  # fewer is better
+    assert (
+        "- room type: Equation 2 0.750, baseline (the type whose plans have the request most often) 0.500: "
+        "ours better by 0.250" in lines
+    )
+    assert any(
+        line.startswith("- number added: error: Algorithm 1 2.000,")
+        and line.endswith("the baseline better by 1.000")
+        for line in lines
+    )  # fewer is better
     assert any(line.startswith("- mask IoU:") and line.endswith(": equal") for line in lines)
     assert lines[-1] == "No room type missed by either side."
     row["misses"] = ["bedroom_09 (30.0 m2, bed): Equation 2 study + bedroom, baseline bedroom"]
-    assert report({"all": row}, 2).splitlines()[-2:] == ["Room types missed by either side:", "- " + row["misses"][0]]
+    assert report({"all": row}, 2).splitlines()[-2:] == [
+        "Room types missed by either side:",
+        "- " + row["misses"][0],
+    ]
 
 
 def test_every_shipped_plans_mask_frame_is_its_empty_rooms():
@@ -207,4 +288,6 @@ def test_every_shipped_plans_mask_frame_is_its_empty_rooms():
 
     plans = load_plans(shipped_plans_dir())
     assert len(plans) == 80
-    assert [p.id for p in plans if canonical_frame(p.room, floor_pieces(p)) != canonical_frame(p.room)] == []
+    assert [
+        p.id for p in plans if canonical_frame(p.room, floor_pieces(p)) != canonical_frame(p.room)
+    ] == []

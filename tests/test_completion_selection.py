@@ -17,11 +17,26 @@ def _model(weights: dict[tuple[str, str], float]) -> dict:
     like the room (occupancy 0.3 and 0.2), p3 is not."""
     floor = {"a": 2.0, "b": 1.0, "c": 0.5, "d": 0.25}
     return {
-        "categories": {name: {"purpose": None, "size": [1.0, 1.0], "floor_area": area} for name, area in floor.items()},
-        "types": {"t": {"pairs": [{"pair": list(pair), "weight": w} for pair, w in weights.items()]}},
+        "categories": {
+            name: {"purpose": None, "size": [1.0, 1.0], "floor_area": area}
+            for name, area in floor.items()
+        },
+        "types": {
+            "t": {"pairs": [{"pair": list(pair), "weight": w} for pair, w in weights.items()]}
+        },
         "plans": [
-            {"id": "p1", "type": "t", "feature": [0.5, 0.3, 0.8, 0.5], "counts": {"a": 1, "b": 1, "c": 1, "d": 1}},
-            {"id": "p2", "type": "t", "feature": [0.5, 0.2, 0.8, 0.5], "counts": {"a": 1, "b": 1, "c": 2}},
+            {
+                "id": "p1",
+                "type": "t",
+                "feature": [0.5, 0.3, 0.8, 0.5],
+                "counts": {"a": 1, "b": 1, "c": 1, "d": 1},
+            },
+            {
+                "id": "p2",
+                "type": "t",
+                "feature": [0.5, 0.2, 0.8, 0.5],
+                "counts": {"a": 1, "b": 1, "c": 2},
+            },
             {"id": "p3", "type": "t", "feature": [0.0, 0.9, 0.1, 0.1], "counts": {"d": 4}},
         ],
     }
@@ -78,9 +93,13 @@ def shipped_model():
 
 @pytest.mark.parametrize(
     ("room_type", "requested"),
-    [("bedroom", {"bed": 1, "bookshelf": 1}), ("living_room", {"sofa": 1}), ("study", {"desk": 1}),
-     ("dining_room", {"dining_table": 1})],
-)  # fmt: skip
+    [
+        ("bedroom", {"bed": 1, "bookshelf": 1}),
+        ("living_room", {"sofa": 1}),
+        ("study", {"desk": 1}),
+        ("dining_room", {"dining_table": 1}),
+    ],
+)
 def test_more_categories_are_added_to_larger_rooms(shipped_model, room_type, requested):
     added = []
     for width, depth in ((3.0, 3.0), (4.0, 3.5), (5.0, 4.0), (6.0, 5.0)):

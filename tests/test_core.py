@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from scenewright.api import build_scene
 from scenewright.core import frames
 from scenewright.core.errors import InputError
-from scenewright.core.relations import RELATIONS, RelationLabel, Relation, UnknownLabel
+from scenewright.core.relations import RELATIONS, Relation, RelationLabel, UnknownLabel
+from scenewright.core.scene import assemble_scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.core.seeds import MAX_SEED, check_seed, stage_stream, stream
 from scenewright.describer import describe
@@ -26,7 +27,6 @@ from scenewright.generator.layout.params import LayoutParams
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate, satisfied
 from scenewright.generator.layout.state import State
-from scenewright.core.scene import assemble_scene
 
 # -- frames ---------------------------------------------------------------------------
 
@@ -39,27 +39,41 @@ length = st.floats(0.01, 20, allow_nan=False)
 @given(coordinate, coordinate, angle, length, length, coordinate, coordinate)
 def test_scalar_and_vectorised_frames_agree(cx, cz, yaw, width, depth, px, pz):
     corners = frames.footprint_corners(cx, cz, yaw, width, depth)
-    many = frames.footprint_corners_many(np.array([[cx, cz]]), np.array([yaw]), np.array([[width, depth]]))
+    many = frames.footprint_corners_many(
+        np.array([[cx, cz]]), np.array([yaw]), np.array([[width, depth]])
+    )
     assert np.allclose(many[0], corners)
-    assert np.allclose(frames.footprint_reach_many(np.array([yaw]), np.array([[width, depth]]))[0],
-                       frames.footprint_reach(yaw, width, depth))
+    assert np.allclose(
+        frames.footprint_reach_many(np.array([yaw]), np.array([[width, depth]]))[0],
+        frames.footprint_reach(yaw, width, depth),
+    )
     local = frames.to_local(cx, cz, yaw, px, pz)
-    assert np.allclose(frames.to_local_many(np.array([[cx, cz]]), np.array([yaw]), np.array([[[px, pz]]]))[0, 0], local)
+    assert np.allclose(
+        frames.to_local_many(np.array([[cx, cz]]), np.array([yaw]), np.array([[[px, pz]]]))[0, 0],
+        local,
+    )
     assert np.allclose(frames.to_world(cx, cz, yaw, *local), (px, pz), atol=1e-9)
     assert np.allclose(frames.forward_many(np.array([yaw]))[0], frames.forward(yaw))
     # the reach is the half size of the corners' bounding box
     xs, zs = [c[0] for c in corners], [c[1] for c in corners]
-    assert np.allclose(frames.footprint_reach(yaw, width, depth), ((max(xs) - min(xs)) / 2, (max(zs) - min(zs)) / 2))
+    assert np.allclose(
+        frames.footprint_reach(yaw, width, depth),
+        ((max(xs) - min(xs)) / 2, (max(zs) - min(zs)) / 2),
+    )
 
 
 def test_the_convention_north_east_forward_left():
     assert np.allclose(frames.forward(0.0), (0.0, 1.0))  # yaw 0 faces south (+Z)
     assert np.allclose(frames.forward(math.pi / 2), (1.0, 0.0))  # a quarter turn faces east
     assert np.allclose(frames.left(0.0), (1.0, 0.0))  # its left is local +X
-    assert np.allclose(frames.to_world(1.0, 2.0, math.pi / 2, 0.0, 1.0), (2.0, 2.0))  # one metre ahead
+    assert np.allclose(
+        frames.to_world(1.0, 2.0, math.pi / 2, 0.0, 1.0), (2.0, 2.0)
+    )  # one metre ahead
     assert math.isclose(frames.yaw_of(*frames.forward(0.7)), 0.7)
     matrix = frames.transform_matrix(1.0, 0.5, 2.0, math.pi / 2)
-    assert np.allclose(matrix @ [0.0, 0.0, 1.0, 1.0], [2.0, 0.5, 2.0, 1.0])  # local +Z ahead, to the east
+    assert np.allclose(
+        matrix @ [0.0, 0.0, 1.0, 1.0], [2.0, 0.5, 2.0, 1.0]
+    )  # local +Z ahead, to the east
 
 
 # -- seeds ----------------------------------------------------------------------------
@@ -77,7 +91,9 @@ def test_every_stage_has_its_own_stream():
     }
     draws = {name: tuple(rng.integers(0, 2**62, size=8)) for name, rng in streams.items()}
     assert len(set(draws.values())) == len(draws), "two streams gave the same numbers"
-    assert tuple(stream(seed, "layout", 1).integers(0, 2**62, size=8)) == draws["layout 1"]  # and they are fixed
+    assert (
+        tuple(stream(seed, "layout", 1).integers(0, 2**62, size=8)) == draws["layout 1"]
+    )  # and they are fixed
 
 
 def test_the_pipeline_draws_from_those_streams(monkeypatch):
@@ -131,11 +147,27 @@ def test_variant_choices_use_the_describer_stream():
 
 def test_cli_refuses_a_negative_seed():
     result = subprocess.run(
-        [sys.executable, "-m", "scenewright.cli", "generate", "village", "--seed", "-1", "-o", "unused"],
-        capture_output=True, text=True, check=False,
+        [
+            sys.executable,
+            "-m",
+            "scenewright.cli",
+            "generate",
+            "village",
+            "--seed",
+            "-1",
+            "-o",
+            "unused",
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert result.returncode == 2
-    assert result.stderr.count("\n") == 1 and "--seed" in result.stderr and "Traceback" not in result.stderr
+    assert (
+        result.stderr.count("\n") == 1
+        and "--seed" in result.stderr
+        and "Traceback" not in result.stderr
+    )
 
 
 # -- the relation registry --------------------------------------------------------------
@@ -143,11 +175,25 @@ def test_cli_refuses_a_negative_seed():
 
 def test_every_label_of_table_1_is_registered_with_its_implicit_form():
     names = RELATIONS.names()
-    assert {"NextTo", "NextToChooseDirection", "OnTopOfFrontEdge", "IsPartOfMiddle", "FacingAwayFrom"} <= names
+    assert {
+        "NextTo",
+        "NextToChooseDirection",
+        "OnTopOfFrontEdge",
+        "IsPartOfMiddle",
+        "FacingAwayFrom",
+    } <= names
     assert "ImplicitNextToLeft" in names and "ImplicitPathConnectedTo" not in names
     implicit = RELATIONS["ImplicitOnTopOf"]
-    assert implicit.implicit and not implicit.described and implicit.support and implicit.base == "OnTopOf"
-    assert RELATIONS["PathConnectedTo"].family == "structural" and not RELATIONS["PathConnectedTo"].described
+    assert (
+        implicit.implicit
+        and not implicit.described
+        and implicit.support
+        and implicit.base == "OnTopOf"
+    )
+    assert (
+        RELATIONS["PathConnectedTo"].family == "structural"
+        and not RELATIONS["PathConnectedTo"].described
+    )
 
 
 def test_an_unregistered_label_fails_at_once():
@@ -171,9 +217,14 @@ def test_an_incomplete_or_duplicate_label_is_refused():
 
 
 NORTH_EAST = RelationLabel(
-    "NextToNorthEast", "next_to", "north-east of", ("is north-east of",),
-    directions={"northeast": (math.sqrt(0.5), -math.sqrt(0.5))}, frame="world", place=True,
-)  # fmt: skip
+    "NextToNorthEast",
+    "next_to",
+    "north-east of",
+    ("is north-east of",),
+    directions={"northeast": (math.sqrt(0.5), -math.sqrt(0.5))},
+    frame="world",
+    place=True,
+)
 
 
 def _two_crates(label: str, a_at: tuple[float, float]):
@@ -216,7 +267,9 @@ def test_path_connections_are_relations_of_the_scene():
     scene = build_scene("village", 7)
     connected = [r for r in scene.relations if r.label == "PathConnectedTo"]
     assert connected and all(r.satisfied for r in connected)
-    assert {(p.id, p.start) for p in scene.paths if p.start} == {(r.source, r.target) for r in connected}
+    assert {(p.id, p.start) for p in scene.paths if p.start} == {
+        (r.source, r.target) for r in connected
+    }
     # every edge of the graph is one relation of the scene, in the same order
     graph = expand(load_rules("village"), 7)
     assert [(e.source, e.target, e.label) for e in graph.edges()] == [
@@ -267,7 +320,11 @@ def test_stages_import_only_the_core(folder):
         pending = [tree]
         while pending:
             node = pending.pop()
-            if isinstance(node, ast.If) and isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING":
+            if (
+                isinstance(node, ast.If)
+                and isinstance(node.test, ast.Name)
+                and node.test.id == "TYPE_CHECKING"
+            ):
                 pending.extend(node.orelse)
                 continue
             yield node
@@ -287,4 +344,6 @@ def test_stages_import_only_the_core(folder):
                     package = parts[1] if len(parts) > 1 else "scenewright"
                     if package != folder:
                         found.add((path.name, package))
-    assert {(module, package) for module, package in found if package not in ALLOWED_IMPORTS[folder]} == set()
+    assert {
+        (module, package) for module, package in found if package not in ALLOWED_IMPORTS[folder]
+    } == set()

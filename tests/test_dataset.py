@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from scenewright.core.errors import InputError
 from scenewright.dataset import (
     METADATA_FILE,
     RECORDS_DIR,
@@ -30,7 +31,6 @@ from scenewright.dataset import (
     scene_seed,
     scene_stem,
 )
-from scenewright.core.errors import InputError
 
 TESTS = Path(__file__).parent
 
@@ -43,7 +43,11 @@ def fake_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     seed = scene_seed(spec.base_seed, index)
     ok = index % 7 != 3
     stem = scene_stem(index)
-    stats = {"objects": {"table": 1 + seed % 3}, "relations": {"NextTo": [2, 1 + ok]}, "problems": []}
+    stats = {
+        "objects": {"table": 1 + seed % 3},
+        "relations": {"NextTo": [2, 1 + ok]},
+        "problems": [],
+    }
     if not ok:
         stats["problems"] = [f"sign_{index} is not next to table_1 (distance {seed % 10} m)"]
         if not spec.include_failed:
@@ -54,7 +58,11 @@ def fake_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     buffer = io.BytesIO()
     Image.fromarray(pixels).save(buffer, format="PNG")
     captions = [f"scene {index} caption {k}" for k in range(spec.captions)]
-    row = {"file_name": f"images/{stem}.png", "caption": captions[0], "text": f"The scene {index} in full."}
+    row = {
+        "file_name": f"images/{stem}.png",
+        "caption": captions[0],
+        "text": f"The scene {index} in full.",
+    }
     row.update({f"caption_{k}": c for k, c in enumerate(captions[1:], start=1)})
     row.update(scene_id=stem, seed=seed, rules=spec.rules, ok=ok)
     stats["words"] = {"text": 5, "captions": [len(c.split()) for c in captions]}
@@ -85,7 +93,9 @@ def failing_scene(spec: DatasetSpec, index: int) -> SceneProduct:
 def spec_of(count: int = 8, **settings) -> DatasetSpec:
     """A spec for ``fake_scene``, which makes no COCO annotations (nor has real rules to take
     categories from)."""
-    return DatasetSpec(rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), coco=False, **settings)
+    return DatasetSpec(
+        rules="fake", rules_digest="0" * 8, count=count, size=(16, 12), coco=False, **settings
+    )
 
 
 def dataset_bytes(root: Path) -> dict[str, bytes]:
@@ -109,7 +119,9 @@ def test_scene_seed_is_derived_from_base_and_index_only():
 
 
 def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
-    report = run_dataset(spec_of(8, captions=3), tmp_path, workers=1, producer=fake_scene, progress=False)
+    report = run_dataset(
+        spec_of(8, captions=3), tmp_path, workers=1, producer=fake_scene, progress=False
+    )
     rows = metadata_rows(tmp_path)
     assert [r["scene_id"] for r in rows] == [
         "000000",
@@ -122,7 +134,9 @@ def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
     ]
     assert all((tmp_path / r["file_name"]).is_file() for r in rows)
     assert rows[0]["caption_2"] == "scene 0 caption 2" and rows[0]["seed"] == scene_seed(0, 0)
-    assert not (tmp_path / "images/000003.png").exists() and (tmp_path / "failed/000003.json").exists()
+    assert (
+        not (tmp_path / "images/000003.png").exists() and (tmp_path / "failed/000003.json").exists()
+    )
     assert (report.count, report.made, report.written, report.failed) == (8, 8, 7, 1)
     stats = json.loads((tmp_path / "stats.json").read_text())
     assert (stats["scenes"], stats["failed"]) == (8, 1)
@@ -132,7 +146,9 @@ def test_imagefolder_layout_ordered_metadata_and_failures_left_out(tmp_path):
 
 
 def test_include_failed_writes_failed_scenes_flagged(tmp_path):
-    run_dataset(spec_of(8, include_failed=True), tmp_path, workers=1, producer=fake_scene, progress=False)
+    run_dataset(
+        spec_of(8, include_failed=True), tmp_path, workers=1, producer=fake_scene, progress=False
+    )
     rows = metadata_rows(tmp_path)
     assert len(rows) == 8
     assert [r["scene_id"] for r in rows if not r["ok"]] == ["000003"]
@@ -146,7 +162,9 @@ def test_same_bytes_for_one_and_two_workers(tmp_path):
 
 def test_rerun_skips_finished_scenes_and_count_may_grow(tmp_path):
     run_dataset(spec_of(4), tmp_path / "grown", workers=1, producer=fake_scene, progress=False)
-    report = run_dataset(spec_of(9), tmp_path / "grown", workers=1, producer=fake_scene, progress=False)
+    report = run_dataset(
+        spec_of(9), tmp_path / "grown", workers=1, producer=fake_scene, progress=False
+    )
     assert (report.skipped, report.made) == (4, 5)
     run_dataset(spec_of(9), tmp_path / "direct", workers=1, producer=fake_scene, progress=False)
     assert dataset_bytes(tmp_path / "grown") == dataset_bytes(tmp_path / "direct")
@@ -189,17 +207,26 @@ def test_unreachable_scheduler_is_bad_input(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
     monkeypatch.setattr("scenewright.dataset_cluster.CONNECT_TIMEOUT", 1.0)
     with pytest.raises(InputError, match="cannot reach the dask scheduler"):
-        run_dataset(spec_of(2), tmp_path, scheduler="tcp://127.0.0.1:9", producer=fake_scene, progress=False)
+        run_dataset(
+            spec_of(2), tmp_path, scheduler="tcp://127.0.0.1:9", producer=fake_scene, progress=False
+        )
 
 
 def test_huggingface_imagefolder_reads_it(tmp_path):
     datasets = pytest.importorskip("datasets")
-    run_dataset(spec_of(8, captions=2), tmp_path / "hf", workers=1, producer=fake_scene, progress=False)
+    run_dataset(
+        spec_of(8, captions=2), tmp_path / "hf", workers=1, producer=fake_scene, progress=False
+    )
     loaded = datasets.load_dataset(
-        "imagefolder", data_dir=str(tmp_path / "hf"), split="train", cache_dir=str(tmp_path / "cache")
+        "imagefolder",
+        data_dir=str(tmp_path / "hf"),
+        split="train",
+        cache_dir=str(tmp_path / "cache"),
     )
     assert loaded.num_rows == 7
-    assert {"image", "caption", "caption_1", "text", "scene_id", "seed", "ok"} <= set(loaded.column_names)
+    assert {"image", "caption", "caption_1", "text", "scene_id", "seed", "ok"} <= set(
+        loaded.column_names
+    )
     assert loaded[0]["image"].size == (16, 12)
     assert loaded[0]["caption_1"] == "scene 0 caption 1"
 
@@ -207,14 +234,18 @@ def test_huggingface_imagefolder_reads_it(tmp_path):
 def test_refuses_other_settings_and_foreign_directories(tmp_path):
     run_dataset(spec_of(4), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
     with pytest.raises(InputError, match="other settings .*base_seed 0 -> 1"):
-        run_dataset(spec_of(4, base_seed=1), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
+        run_dataset(
+            spec_of(4, base_seed=1), tmp_path / "d", workers=1, producer=fake_scene, progress=False
+        )
     (tmp_path / "other").mkdir()
     (tmp_path / "other" / "notes.txt").write_text("mine")
     with pytest.raises(InputError, match="not empty"):
         run_dataset(spec_of(4), tmp_path / "other", workers=1, producer=fake_scene, progress=False)
     (tmp_path / "file").write_text("")
     with pytest.raises(InputError, match="cannot write the dataset"):
-        run_dataset(spec_of(4), tmp_path / "file" / "sub", workers=1, producer=fake_scene, progress=False)
+        run_dataset(
+            spec_of(4), tmp_path / "file" / "sub", workers=1, producer=fake_scene, progress=False
+        )
 
 
 def test_a_worker_error_stops_the_run_and_keeps_finished_scenes(tmp_path):
@@ -232,7 +263,9 @@ def test_every_layout_failing_is_reported_and_the_command_exits_1(tmp_path, monk
 
     real = scenewright.dataset.run_dataset
     monkeypatch.setattr(
-        scenewright.dataset, "run_dataset", lambda *a, **k: real(*a, **{**k, "producer": failing_scene})
+        scenewright.dataset,
+        "run_dataset",
+        lambda *a, **k: real(*a, **{**k, "producer": failing_scene}),
     )
     assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1"]) == 1
     captured = capsys.readouterr()
@@ -272,7 +305,10 @@ def test_progress_in_a_log_is_a_plain_line_per_interval(tmp_path, capsys):
     now[0] = 95.0
     progress.update(5)  # the run ends between two lines: close says where it ended
     progress.close()
-    assert log.getvalue().splitlines()[-1] == "scenes: 95/100 (95%) [01:35<00:05,  1.00scene/s, failed=9]"
+    assert (
+        log.getvalue().splitlines()[-1]
+        == "scenes: 95/100 (95%) [01:35<00:05,  1.00scene/s, failed=9]"
+    )
 
 
 def test_progress_on_a_terminal_is_a_bar_and_silent_when_disabled():

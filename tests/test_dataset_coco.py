@@ -9,11 +9,11 @@ import shutil
 import numpy as np
 import pytest
 from PIL import Image
+from test_dataset import dataset_bytes
 
 from scenewright.api import load_rules
 from scenewright.dataset import METADATA_FILE, RECORDS_DIR, dataset_spec, run_dataset
 from scenewright.dataset_coco import COCO_FILE, coco_categories
-from test_dataset import dataset_bytes
 
 pycocotools_coco = pytest.importorskip("pycocotools.coco")
 
@@ -46,7 +46,9 @@ def test_pycocotools_reads_every_mask_back_as_the_segmentation(bedroom):
         assert (image["file_name"], image["width"], image["height"]) == (row["file_name"], 64, 64)
         segmentation = np.asarray(Image.open(bedroom / row["segmentation_file_name"]))
         ids_file = bedroom / "segmentation" / f"{row['scene_id']}_ids.json"
-        index_of = {entity: int(index) for index, entity in json.loads(ids_file.read_text()).items()}
+        index_of = {
+            entity: int(index) for index, entity in json.loads(ids_file.read_text()).items()
+        }
         scene = json.loads((bedroom / "scenes" / f"{row['scene_id']}.json").read_text())
         types = {o["id"]: o["type"] for o in scene["objects"]}
         types |= {opening["id"]: opening["kind"] for opening in scene["room"]["openings"]}
@@ -60,7 +62,12 @@ def test_pycocotools_reads_every_mask_back_as_the_segmentation(bedroom):
             assert np.array_equal(coco.annToMask(annotation), expected.astype(np.uint8))
             rows_hit, columns_hit = np.nonzero(expected)
             x0, y0 = columns_hit.min(), rows_hit.min()
-            assert annotation["bbox"] == [x0, y0, columns_hit.max() + 1 - x0, rows_hit.max() + 1 - y0]
+            assert annotation["bbox"] == [
+                x0,
+                y0,
+                columns_hit.max() + 1 - x0,
+                rows_hit.max() + 1 - y0,
+            ]
             assert annotation["area"] == expected.sum() and annotation["iscrowd"] == 0
             assert names[annotation["category_id"]] == types[annotation["entity_id"]]
             seen_categories.add(names[annotation["category_id"]])
@@ -71,10 +78,14 @@ def test_categories_are_the_catalog_types_sorted_with_stable_ids(bedroom):
     categories = json.loads((bedroom / COCO_FILE).read_text())["categories"]
     assert categories == coco_categories(load_rules("bedroom"))
     names = [category["name"] for category in categories]
-    assert names == sorted(names) and [category["id"] for category in categories] == list(range(1, len(names) + 1))
+    assert names == sorted(names) and [category["id"] for category in categories] == list(
+        range(1, len(names) + 1)
+    )
     assert {"bed", "nightstand", "door", "window"} <= set(names) and "Bedroom" not in names
     # desk.rules has walls without openings: no door or window category
-    assert not {"door", "window"} & {category["name"] for category in coco_categories(load_rules("desk"))}
+    assert not {"door", "window"} & {
+        category["name"] for category in coco_categories(load_rules("desk"))
+    }
     annotation_ids = [a["id"] for a in json.loads((bedroom / COCO_FILE).read_text())["annotations"]]
     assert annotation_ids == list(range(1, len(annotation_ids) + 1))
 
@@ -83,7 +94,11 @@ def test_resumed_and_grown_datasets_write_the_same_file(bedroom, tmp_path):
     # Interrupted after scene 0 and 2 were stored, before the file was written.
     resumed = tmp_path / "resumed"
     shutil.copytree(bedroom, resumed)
-    for stale in (resumed / COCO_FILE, resumed / METADATA_FILE, resumed / RECORDS_DIR / "000001.json"):
+    for stale in (
+        resumed / COCO_FILE,
+        resumed / METADATA_FILE,
+        resumed / RECORDS_DIR / "000001.json",
+    ):
         stale.unlink()
     report = run_dataset(bedroom_spec(3), resumed, workers=1, progress=False)
     assert (report.made, report.skipped) == (1, 2)

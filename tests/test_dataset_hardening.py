@@ -19,6 +19,8 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from render_fixtures import run_without_opengl
+from test_dataset import dataset_bytes, fake_scene, metadata_rows, spec_of
 
 import scenewright.dataset
 from scenewright.cli import main
@@ -33,8 +35,6 @@ from scenewright.dataset import (
     available_cpus,
     run_dataset,
 )
-from render_fixtures import run_without_opengl
-from test_dataset import dataset_bytes, fake_scene, metadata_rows, spec_of
 
 TESTS = Path(__file__).parent
 INTERRUPTED = "scenewright: interrupted (rerunning a dataset command resumes it)"
@@ -145,7 +145,18 @@ def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards
     items, each a scan of the records), and the count it stored refused any smaller -n."""
     root = tmp_path / "huge"
     job = subprocess.Popen(
-        cli_command("dataset", "desk", "-n", "1000000000000", "-o", str(root), "--size", "32x32", "--workers", "1"),
+        cli_command(
+            "dataset",
+            "desk",
+            "-n",
+            "1000000000000",
+            "-o",
+            str(root),
+            "--size",
+            "32x32",
+            "--workers",
+            "1",
+        ),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         start_new_session=True,
@@ -166,15 +177,33 @@ def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards
     made = records(root)
 
     rerun = subprocess.run(
-        [sys.executable, "-m", "scenewright.cli", "dataset", "desk", "-n", "1", "-o", str(root), "--size", "32x32"],
+        [
+            sys.executable,
+            "-m",
+            "scenewright.cli",
+            "dataset",
+            "desk",
+            "-n",
+            "1",
+            "-o",
+            str(root),
+            "--size",
+            "32x32",
+        ],
         capture_output=True,
         text=True,
         timeout=120,
     )
     assert rerun.returncode == 0, rerun.stderr
-    assert "1 scene in metadata.jsonl" in rerun.stdout and "ran 0 now, 1 were already done" in rerun.stdout
+    assert (
+        "1 scene in metadata.jsonl" in rerun.stdout
+        and "ran 0 now, 1 were already done" in rerun.stdout
+    )
     if made > 1:
-        assert f"{made - 1} finished scenes with index 1 or above stay on disk, not listed" in rerun.stdout
+        assert (
+            f"{made - 1} finished scenes with index 1 or above stay on disk, not listed"
+            in rerun.stdout
+        )
     assert len(metadata_rows(root)) == 1
 
 
@@ -184,13 +213,31 @@ def test_a_missing_opengl_backend_in_the_workers_is_one_line_not_a_dead_pool(tmp
     ("a worker process died") with the initializer's traceback."""
     env = dict(os.environ, PYOPENGL_PLATFORM="no-such-platform")
     done = subprocess.run(
-        [sys.executable, "-m", "scenewright.cli", "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"),
-         "--size", "32x32", "--workers", "2"],
-        env=env, capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "scenewright.cli",
+            "dataset",
+            "desk",
+            "-n",
+            "2",
+            "-o",
+            str(tmp_path / "d"),
+            "--size",
+            "32x32",
+            "--workers",
+            "2",
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 1 and "Traceback" not in done.stderr, done.stderr
     last = done.stderr.strip().splitlines()[-1]
-    assert last.startswith("scenewright: error: offscreen OpenGL backend PYOPENGL_PLATFORM='no-such-platform'")
+    assert last.startswith(
+        "scenewright: error: offscreen OpenGL backend PYOPENGL_PLATFORM='no-such-platform'"
+    )
     assert "died" not in done.stderr
 
 
@@ -214,12 +261,21 @@ def test_shrinking_lists_only_scenes_below_n_and_growing_back_makes_nothing(tmp_
     run_dataset(spec_of(9), grown, workers=1, producer=fake_scene, progress=False)
     shrunk = run_dataset(spec_of(5), grown, workers=1, producer=fake_scene, progress=False)
     assert (shrunk.made, shrunk.skipped, shrunk.beyond) == (0, 5, 4)
-    assert [row["scene_id"] for row in metadata_rows(grown)] == ["000000", "000001", "000002", "000004"]
+    assert [row["scene_id"] for row in metadata_rows(grown)] == [
+        "000000",
+        "000001",
+        "000002",
+        "000004",
+    ]
     stats = json.loads((grown / "stats.json").read_text())
     assert (stats["scenes"], stats["written"], stats["failed"]) == (5, 4, 1)
-    assert (grown / "images/000008.png").is_file() and (grown / RECORDS_DIR / "000008.json").is_file()
+    assert (grown / "images/000008.png").is_file() and (
+        grown / RECORDS_DIR / "000008.json"
+    ).is_file()
     run_dataset(spec_of(5), tmp_path / "direct5", workers=1, producer=fake_scene, progress=False)
-    assert (grown / METADATA_FILE).read_bytes() == (tmp_path / "direct5" / METADATA_FILE).read_bytes()
+    assert (grown / METADATA_FILE).read_bytes() == (
+        tmp_path / "direct5" / METADATA_FILE
+    ).read_bytes()
 
     again = run_dataset(spec_of(9), grown, workers=1, producer=fake_scene, progress=False)
     assert (again.made, again.skipped, again.beyond) == (0, 9, 0)
@@ -232,7 +288,10 @@ def test_a_shrunk_dataset_loads_only_its_listed_scenes(tmp_path):
     run_dataset(spec_of(9), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
     run_dataset(spec_of(5), tmp_path / "d", workers=1, producer=fake_scene, progress=False)
     loaded = datasets.load_dataset(
-        "imagefolder", data_dir=str(tmp_path / "d"), split="train", cache_dir=str(tmp_path / "cache")
+        "imagefolder",
+        data_dir=str(tmp_path / "d"),
+        split="train",
+        cache_dir=str(tmp_path / "cache"),
     )
     assert loaded["scene_id"] == ["000000", "000001", "000002", "000004"]
 
@@ -242,7 +301,9 @@ def test_a_shrunk_dataset_loads_only_its_listed_scenes(tmp_path):
 
 def assert_nothing_outlives_a_killed_main(job: subprocess.Popen, root: Path, scenes: int) -> None:
     try:
-        wait_for(lambda: records(root) >= scenes or job.poll() is not None, 90, "the run to get going")
+        wait_for(
+            lambda: records(root) >= scenes or job.poll() is not None, 90, "the run to get going"
+        )
         assert job.poll() is None
         assert len(group_members(job.pid)) >= 4  # this process, fork server, tracker, workers
         os.kill(job.pid, signal.SIGKILL)  # the main process only, as `kill -9 PID` does
@@ -292,7 +353,9 @@ def test_a_directory_in_use_is_refused_and_its_temporary_files_are_left_alone(tm
         lock.write("4242\n")
         lock.flush()
         in_flight.write_bytes(b"half a PNG")
-        with pytest.raises(InputError, match=r"is in use by another scenewright dataset run \(pid 4242\)"):
+        with pytest.raises(
+            InputError, match=r"is in use by another scenewright dataset run \(pid 4242\)"
+        ):
             run_dataset(spec_of(8), tmp_path, workers=1, producer=fake_scene, progress=False)
         assert in_flight.read_bytes() == b"half a PNG"
         assert main(["dataset", "desk", "-n", "2", "-o", str(tmp_path)]) == 2
@@ -316,8 +379,12 @@ def test_a_second_run_during_the_first_exits_2_and_the_first_finishes(tmp_path):
         start_new_session=True,
     )
     try:
-        wait_for(lambda: records(root) >= 2 or first.poll() is not None, 60, "the first run to get going")
-        with pytest.raises(InputError, match=rf"in use by another scenewright dataset run \(pid {first.pid}\)"):
+        wait_for(
+            lambda: records(root) >= 2 or first.poll() is not None, 60, "the first run to get going"
+        )
+        with pytest.raises(
+            InputError, match=rf"in use by another scenewright dataset run \(pid {first.pid}\)"
+        ):
             run_dataset(spec_of(30), root, workers=1, producer=fake_scene, progress=False)
         _, err = first.communicate(timeout=60)
     finally:
@@ -335,10 +402,15 @@ def test_workers_are_capped_at_the_cpus_and_the_pending_scenes(tmp_path):
     cpus = available_cpus()
     report = run_dataset(spec_of(12), tmp_path, workers=1000, producer=pid_scene, progress=False)
     assert report.workers == min(cpus, 12)
-    pids = {json.loads(p.read_text())["stats"]["pid"] for p in (tmp_path / RECORDS_DIR).glob("*.json")}
+    pids = {
+        json.loads(p.read_text())["stats"]["pid"] for p in (tmp_path / RECORDS_DIR).glob("*.json")
+    }
     assert 1 <= len(pids) <= min(cpus, 12)
     (tmp_path / RECORDS_DIR / "000005.json").unlink()
-    assert run_dataset(spec_of(12), tmp_path, workers=1000, producer=pid_scene, progress=False).workers == 1
+    assert (
+        run_dataset(spec_of(12), tmp_path, workers=1000, producer=pid_scene, progress=False).workers
+        == 1
+    )
 
 
 def test_too_many_workers_is_a_note_not_an_error(tmp_path, monkeypatch, capsys):
@@ -353,9 +425,15 @@ def test_too_many_workers_is_a_note_not_an_error(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(scenewright.dataset, "run_dataset", fake_run)
     monkeypatch.setattr(scenewright.dataset, "available_cpus", lambda: 1)
     # --no-coco: fake_scene makes no COCO annotations
-    assert main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1000", "--no-coco"]) == 0
+    assert (
+        main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1000", "--no-coco"])
+        == 0
+    )
     err = capsys.readouterr().err.splitlines()
-    assert err[0] == "scenewright: note: --workers 1000 is more than the CPUs this process may use (1); using 1"
+    assert (
+        err[0]
+        == "scenewright: note: --workers 1000 is more than the CPUs this process may use (1); using 1"
+    )
     assert used["workers"] == 1
 
 
@@ -374,7 +452,19 @@ def test_ctrl_c_at_any_moment_prints_one_line_and_leaves_no_process(tmp_path, de
     importing the pipeline (the first seconds) it printed its own traceback; a worker
     did too."""
     job = subprocess.Popen(
-        cli_command("dataset", "desk", "-n", "40", "-o", str(tmp_path), "--size", "32x32", "--workers", "2", "-q"),
+        cli_command(
+            "dataset",
+            "desk",
+            "-n",
+            "40",
+            "-o",
+            str(tmp_path),
+            "--size",
+            "32x32",
+            "--workers",
+            "2",
+            "-q",
+        ),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         start_new_session=True,
@@ -407,7 +497,9 @@ def test_a_malformed_scheduler_address_is_one_line_at_once(tmp_path, address):
     )
     lines = result.stderr.splitlines()
     assert result.returncode == 2 and len(lines) == 1, result.stderr
-    assert lines[0].startswith(f"scenewright: error: --scheduler {address!r} is not a dask scheduler address ")
+    assert lines[0].startswith(
+        f"scenewright: error: --scheduler {address!r} is not a dask scheduler address "
+    )
     assert time.monotonic() - started < 15  # closing a half-made client used to wait 20 s
 
 
@@ -416,10 +508,23 @@ def test_a_scheduler_without_workers_is_reported_after_the_timeout(tmp_path, cap
     with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
         with pytest.raises(InputError, match=r"has no workers \(waited 0.5 s\).*--worker-timeout"):
             run_dataset(
-                spec_of(2), tmp_path / "api", scheduler=cluster.scheduler_address, worker_timeout=0.5,
-                producer=fake_scene, progress=False,
-            )  # fmt: skip
-        argv = ["dataset", "desk", "-n", "2", "-o", str(tmp_path / "cli"), "--worker-timeout", "0.5"]
+                spec_of(2),
+                tmp_path / "api",
+                scheduler=cluster.scheduler_address,
+                worker_timeout=0.5,
+                producer=fake_scene,
+                progress=False,
+            )
+        argv = [
+            "dataset",
+            "desk",
+            "-n",
+            "2",
+            "-o",
+            str(tmp_path / "cli"),
+            "--worker-timeout",
+            "0.5",
+        ]
         assert main([*argv, "--scheduler", cluster.scheduler_address]) == 2
     address = cluster.scheduler_address
     assert capsys.readouterr().err.splitlines() == [

@@ -18,7 +18,6 @@ import time
 from pathlib import Path
 
 import pytest
-
 from test_dataset_hardening import cli_command, group_members, records, wait_for
 
 pytestmark = pytest.mark.slow
@@ -40,7 +39,11 @@ def scheduler(tmp_path):
         start_new_session=True,
     )
     try:
-        wait_for(lambda: scheduler_file.exists() and scheduler_file.stat().st_size > 0, 60, "the scheduler")
+        wait_for(
+            lambda: scheduler_file.exists() and scheduler_file.stat().st_size > 0,
+            60,
+            "the scheduler",
+        )
         yield process, json.loads(scheduler_file.read_text())["address"]
     finally:
         if group_members(process.pid):
@@ -63,22 +66,39 @@ def kill_group(process: subprocess.Popen) -> None:
     process.wait()
 
 
-def run_until_scenes_then(root: Path, address: str, scenes: int, action) -> subprocess.CompletedProcess:
+def run_until_scenes_then(
+    root: Path, address: str, scenes: int, action
+) -> subprocess.CompletedProcess:
     """Run a desk dataset on the cluster until ``scenes`` are stored, do ``action``, and
     return how the command ended (it must end within a minute)."""
     job = subprocess.Popen(
         cli_command(
-            "dataset", "desk", "-n", "500", "-o", str(root), "--size", "32x32", "--scheduler", address,
-            "--worker-timeout", "1", "-q",
+            "dataset",
+            "desk",
+            "-n",
+            "500",
+            "-o",
+            str(root),
+            "--size",
+            "32x32",
+            "--scheduler",
+            address,
+            "--worker-timeout",
+            "1",
+            "-q",
             before="scenewright.dataset.IDLE_CHECK = 0.5",
         ),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,
-    )  # fmt: skip
+    )
     try:
-        wait_for(lambda: records(root) >= scenes or job.poll() is not None, 120, "scenes from the cluster")
+        wait_for(
+            lambda: records(root) >= scenes or job.poll() is not None,
+            120,
+            "scenes from the cluster",
+        )
         assert job.poll() is None, job.stderr.read()
         action()
         out, err = job.communicate(timeout=60)

@@ -6,11 +6,11 @@ from __future__ import annotations
 import json
 
 import pytest
+from test_dataset import dataset_bytes
 
 from scenewright.api import generate, render_image
 from scenewright.cli import main
 from scenewright.dataset import METADATA_FILE, dataset_spec, run_dataset, scene_seed
-from test_dataset import dataset_bytes
 
 
 @pytest.fixture(scope="module")
@@ -38,7 +38,9 @@ def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
     assert [r["seed"] for r in rows] == [scene_seed(0, i) for i in range(4)]
     for row in rows:
         assert row["rules"] == "desk" and row["ok"] is True
-        assert row["text"].startswith("The scene consists of") and row["caption"] != row["caption_1"]
+        assert (
+            row["text"].startswith("The scene consists of") and row["caption"] != row["caption_1"]
+        )
         for column in ("file_name", "depth_file_name", "segmentation_file_name"):
             assert (one_worker / row[column]).is_file()
         scene = json.loads((one_worker / "scenes" / f"{row['scene_id']}.json").read_text())
@@ -54,7 +56,9 @@ def test_loads_as_imagefolder_with_ground_truth_columns(one_worker, tmp_path):
         "imagefolder", data_dir=str(one_worker), split="train", cache_dir=str(tmp_path)
     )
     assert loaded.num_rows == 4
-    assert {"image", "depth", "segmentation", "caption", "caption_1", "text"} <= set(loaded.column_names)
+    assert {"image", "depth", "segmentation", "caption", "caption_1", "text"} <= set(
+        loaded.column_names
+    )
     assert loaded[0]["image"].size == (64, 64) and loaded[0]["depth"].size == (64, 64)
 
 
@@ -74,7 +78,9 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
     ]
     assert main([*argv, "--segmentation"]) == 0
     out = capsys.readouterr().out
-    assert "4 scenes in metadata.jsonl; 0 of 4 layouts failed" in out and "4 were already done" in out
+    assert (
+        "4 scenes in metadata.jsonl; 0 of 4 layouts failed" in out and "4 were already done" in out
+    )
     assert main([*argv]) == 2
     assert "other settings (segmentation True -> False)" in capsys.readouterr().err
     bad = tmp_path / "bad.rules"
@@ -91,5 +97,10 @@ def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=2, processes=True, dashboard_address=None
     ) as cluster:
-        assert main([*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]) == 0
+        assert (
+            main(
+                [*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]
+            )
+            == 0
+        )
     assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)

@@ -14,7 +14,13 @@ from hypothesis import strategies as st
 
 from scenewright.atomic import remove_partials, write_atomic
 from scenewright.cli import image_size
-from scenewright.dataset import METADATA_FILE, RECORDS_DIR, finished_indices, publish_metadata, scene_stem
+from scenewright.dataset import (
+    METADATA_FILE,
+    RECORDS_DIR,
+    finished_indices,
+    publish_metadata,
+    scene_stem,
+)
 
 
 @settings(max_examples=40, deadline=None)
@@ -33,7 +39,9 @@ def test_atomic_write_leaves_the_last_payload_and_no_temporary(payloads):
 @settings(max_examples=40, deadline=None)
 @given(
     count=st.integers(1, 12),
-    states=st.lists(st.sampled_from(["done", "torn", "missing", "failed"]), min_size=12, max_size=12),
+    states=st.lists(
+        st.sampled_from(["done", "torn", "missing", "failed"]), min_size=12, max_size=12
+    ),
     order=st.permutations(range(12)),
 )
 def test_only_whole_records_count_and_metadata_follows_the_index(count, states, order):
@@ -44,7 +52,12 @@ def test_only_whole_records_count_and_metadata_follows_the_index(count, states, 
         failed = states[index] == "failed"
         stats = {"objects": {"table": 1}}
         return json.dumps(
-            {"index": index, "ok": not failed, "row": None if failed else {"i": index}, "stats": stats}
+            {
+                "index": index,
+                "ok": not failed,
+                "row": None if failed else {"i": index},
+                "stats": stats,
+            }
         )
 
     with tempfile.TemporaryDirectory() as directory:
@@ -64,8 +77,14 @@ def test_only_whole_records_count_and_metadata_follows_the_index(count, states, 
                 write_atomic(root / RECORDS_DIR / f"{scene_stem(index)}.json", record_of(index))
         collector = publish_metadata(root, 12)
         lines = (root / METADATA_FILE).read_text().splitlines()
-        assert [json.loads(line)["i"] for line in lines] == [i for i in range(12) if states[i] != "failed"]
-        assert (collector.scenes, collector.written, collector.objects["table"]) == (12, len(lines), 12)
+        assert [json.loads(line)["i"] for line in lines] == [
+            i for i in range(12) if states[i] != "failed"
+        ]
+        assert (collector.scenes, collector.written, collector.objects["table"]) == (
+            12,
+            len(lines),
+            12,
+        )
 
 
 @given(width=st.integers(8, 8192), height=st.integers(8, 8192))
@@ -74,7 +93,9 @@ def test_size_option_round_trips(width, height):
     assert image_size(f"{width}X{height}") == (width, height)
 
 
-@pytest.mark.parametrize("text", ["640", "x480", "640x", "0x480", "640x99999", "-640x480", "6.4x480", "axb"])
+@pytest.mark.parametrize(
+    "text", ["640", "x480", "640x", "0x480", "640x99999", "-640x480", "6.4x480", "axb"]
+)
 def test_size_option_refuses(text):
     with pytest.raises(argparse.ArgumentTypeError):
         image_size(text)

@@ -13,13 +13,18 @@ from pathlib import Path
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from test_dataset import dataset_bytes, spec_of
 
 from scenewright.api import build_scene, load_rules, render_image
 from scenewright.cli import main
 from scenewright.core.seeds import MAX_SEED, retry_seed
-from scenewright.dataset import METADATA_FILE, check_same_settings, dataset_spec, run_dataset, scene_seed
+from scenewright.dataset import (
+    METADATA_FILE,
+    check_same_settings,
+    dataset_spec,
+    scene_seed,
+)
 from scenewright.dataset_stats import error_kind, retries_by_size
-from test_dataset import dataset_bytes, spec_of
 
 CRAMPED = """\
 # One crate fits the yard, two never do; a pile recurses past max_depth.
@@ -62,7 +67,19 @@ def outcomes(rules: Path) -> dict[int, str]:
 
 
 def command(rules: Path, root: Path, *extra: str) -> list[str]:
-    return ["dataset", str(rules), "-n", str(SCENES), "-o", str(root), "--size", "16x16", "--retries", "1", *extra]
+    return [
+        "dataset",
+        str(rules),
+        "-n",
+        str(SCENES),
+        "-o",
+        str(root),
+        "--size",
+        "16x16",
+        "--retries",
+        "1",
+        *extra,
+    ]
 
 
 @pytest.fixture(scope="module")
@@ -102,7 +119,9 @@ def test_a_failing_layout_is_retried_with_the_same_objects(cramped):
     scene, tried = laid_out_scene(context, spec, failing)
     assert tried == {"layout_seed": retry_seed(failing, 1), "attempts": 2} and not scene.layout.ok
     first = build_scene(cramped, failing)
-    assert [(o.id, o.type, o.size) for o in scene.objects] == [(o.id, o.type, o.size) for o in first.objects]
+    assert [(o.id, o.type, o.size) for o in scene.objects] == [
+        (o.id, o.type, o.size) for o in first.objects
+    ]
     assert scene.seed == failing  # the scene's own seed: expansion, words and camera
     assert scene.timings["layout"] > first.timings["layout"]  # the two layouts add up
 
@@ -138,22 +157,42 @@ def test_the_command_reports_retries_by_size_errors_with_locations_and_exits_1(m
             assert records[index]["stats"]["error"]["stage"] == "expansion"
 
     stats = json.loads((root / "stats.json").read_text())
-    assert stats["failed_layouts"] == counts["fails"] and stats["failed"] == counts["fails"] + counts["error"]
+    assert (
+        stats["failed_layouts"] == counts["fails"]
+        and stats["failed"] == counts["fails"] + counts["error"]
+    )
     assert stats["errors"] == {
         "expansion": {"scenes": counts["error"], "messages": {expected_error: counts["error"]}}
     }
     # Two crates always overlap in the yard; pushing them apart may also push one out.
     assert stats["problems"]["crate overlaps crate by # %"] == counts["fails"]
-    assert set(stats["problems"]) <= {"crate overlaps crate by # %", "crate is outside the scene by # m"}
+    assert set(stats["problems"]) <= {
+        "crate overlaps crate by # %",
+        "crate is outside the scene by # m",
+    }
     assert stats["retries"]["by_objects"] == [
-        {"objects": "1", "scenes": counts["ok"], "retried": 0, "retries": 0, "mean_layouts": 1.0,
-         "failed_after_retries": 0},
-        {"objects": "2", "scenes": counts["fails"], "retried": counts["fails"], "retries": counts["fails"],
-         "mean_layouts": 2.0, "failed_after_retries": counts["fails"]},
-    ]  # fmt: skip
+        {
+            "objects": "1",
+            "scenes": counts["ok"],
+            "retried": 0,
+            "retries": 0,
+            "mean_layouts": 1.0,
+            "failed_after_retries": 0,
+        },
+        {
+            "objects": "2",
+            "scenes": counts["fails"],
+            "retried": counts["fails"],
+            "retries": counts["fails"],
+            "mean_layouts": 2.0,
+            "failed_after_retries": counts["fails"],
+        },
+    ]
 
 
-def test_two_workers_and_a_rerun_give_the_same_bytes_and_other_retries_are_refused(made, cramped, tmp_path, capsys):
+def test_two_workers_and_a_rerun_give_the_same_bytes_and_other_retries_are_refused(
+    made, cramped, tmp_path, capsys
+):
     root = made[0]
     assert main(command(cramped, tmp_path / "two", "--workers", "2", "-q")) == 1
     assert dataset_bytes(tmp_path / "two") == dataset_bytes(root)
@@ -176,7 +215,11 @@ def test_a_dataset_made_before_retries_resumes_with_retries_0(tmp_path):
 def test_retries_by_size_bins_whole_numbers_of_objects():
     tries = [(10, 1, True), (12, 2, True), (17, 4, False), (40, 3, True), (41, 1, True)]
     summary = retries_by_size(tries)
-    assert (summary["scenes_retried"], summary["retries"], summary["failed_after_retries"]) == (3, 6, 1)
+    assert (summary["scenes_retried"], summary["retries"], summary["failed_after_retries"]) == (
+        3,
+        6,
+        1,
+    )
     bins = summary["by_objects"]
     assert [b["objects"] for b in bins] == ["10-13", "14-17", "38-41"]  # width ceil(32 / 8) = 4
     assert [b["scenes"] for b in bins] == [2, 1, 2] and [b["retries"] for b in bins] == [1, 3, 2]
@@ -187,5 +230,11 @@ def test_retries_by_size_bins_whole_numbers_of_objects():
 
 def test_error_kind_drops_the_chain_and_keeps_the_location():
     message = "/data/r1_b_depth_small.rules:9:31: expansion deeper than max_depth 3 (expanding Row -> Row)"
-    assert error_kind(message) == "/data/r1_b_depth_small.rules:9:31: expansion deeper than max_depth 3"
-    assert error_kind("r.rules:2:5: more than max_nodes 10 nodes") == "r.rules:2:5: more than max_nodes 10 nodes"
+    assert (
+        error_kind(message)
+        == "/data/r1_b_depth_small.rules:9:31: expansion deeper than max_depth 3"
+    )
+    assert (
+        error_kind("r.rules:2:5: more than max_nodes 10 nodes")
+        == "r.rules:2:5: more than max_nodes 10 nodes"
+    )

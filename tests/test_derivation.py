@@ -58,25 +58,92 @@ def stalls(tmp_path):
 #: sign was put up, next to the fourth table. ``Market`` (one alternative) and ``2 table``
 #: (no range) draw nothing and leave no record.
 SEED_3 = [
-    {"kind": "count", "rule": "Market", "at": [15, 5], "file": "stalls.rules", "low": 1, "high": 3, "value": 2,
-     "nodes": ["stall_1", "table_3", "sack_1", "stall_2", "table_4", "pot_1"]},
-    {"kind": "alternative", "rule": "Stall", "at": [18, 1], "file": "stalls.rules", "options": 2, "value": 0,
-     "nodes": ["stall_1", "table_3", "sack_1"]},
-    {"kind": "alternative", "rule": "Goods", "at": [1, 1], "file": "goods.rules", "options": 2, "value": 1,
-     "nodes": ["sack_1"]},
-    {"kind": "count", "rule": "Goods", "at": [2, 19], "file": "goods.rules", "low": 0, "high": 2, "value": 1,
-     "nodes": ["sack_1"]},
-    {"kind": "alternative", "rule": "Stall", "at": [18, 1], "file": "stalls.rules", "options": 2, "value": 0,
-     "nodes": ["stall_2", "table_4", "pot_1"]},
-    {"kind": "alternative", "rule": "Goods", "at": [1, 1], "file": "goods.rules", "options": 2, "value": 0,
-     "nodes": ["pot_1"]},
-    {"kind": "style", "rule": "Goods", "at": [4, 1], "file": "stalls.rules", "options": 2, "type": "pot",
-     "value": 1, "nodes": ["pot_1"]},
-    {"kind": "optional", "rule": "Market", "at": [16, 5], "file": "stalls.rules", "probability": 0.5,
-     "value": True, "nodes": ["sign_1"]},
-    {"kind": "some", "rule": "Market", "at": [16, 22], "file": "stalls.rules", "options": 4, "type": "table",
-     "value": 3, "nodes": ["table_4"]},
-]  # fmt: skip
+    {
+        "kind": "count",
+        "rule": "Market",
+        "at": [15, 5],
+        "file": "stalls.rules",
+        "low": 1,
+        "high": 3,
+        "value": 2,
+        "nodes": ["stall_1", "table_3", "sack_1", "stall_2", "table_4", "pot_1"],
+    },
+    {
+        "kind": "alternative",
+        "rule": "Stall",
+        "at": [18, 1],
+        "file": "stalls.rules",
+        "options": 2,
+        "value": 0,
+        "nodes": ["stall_1", "table_3", "sack_1"],
+    },
+    {
+        "kind": "alternative",
+        "rule": "Goods",
+        "at": [1, 1],
+        "file": "goods.rules",
+        "options": 2,
+        "value": 1,
+        "nodes": ["sack_1"],
+    },
+    {
+        "kind": "count",
+        "rule": "Goods",
+        "at": [2, 19],
+        "file": "goods.rules",
+        "low": 0,
+        "high": 2,
+        "value": 1,
+        "nodes": ["sack_1"],
+    },
+    {
+        "kind": "alternative",
+        "rule": "Stall",
+        "at": [18, 1],
+        "file": "stalls.rules",
+        "options": 2,
+        "value": 0,
+        "nodes": ["stall_2", "table_4", "pot_1"],
+    },
+    {
+        "kind": "alternative",
+        "rule": "Goods",
+        "at": [1, 1],
+        "file": "goods.rules",
+        "options": 2,
+        "value": 0,
+        "nodes": ["pot_1"],
+    },
+    {
+        "kind": "style",
+        "rule": "Goods",
+        "at": [4, 1],
+        "file": "stalls.rules",
+        "options": 2,
+        "type": "pot",
+        "value": 1,
+        "nodes": ["pot_1"],
+    },
+    {
+        "kind": "optional",
+        "rule": "Market",
+        "at": [16, 5],
+        "file": "stalls.rules",
+        "probability": 0.5,
+        "value": True,
+        "nodes": ["sign_1"],
+    },
+    {
+        "kind": "some",
+        "rule": "Market",
+        "at": [16, 22],
+        "file": "stalls.rules",
+        "options": 4,
+        "type": "table",
+        "value": 3,
+        "nodes": ["table_4"],
+    },
+]
 
 
 class Replay(np.random.Generator):
@@ -119,7 +186,16 @@ def replay(rules, derivation):
 def test_the_trace_records_every_draw_with_its_kind_value_and_nodes(stalls):
     graph = expand(stalls, 3)
     assert [n.id for n in graph.nodes()] == [
-        "table_1", "table_2", "stall_1", "table_3", "sack_1", "stall_2", "table_4", "pot_1", "sign_1"]
+        "table_1",
+        "table_2",
+        "stall_1",
+        "table_3",
+        "sack_1",
+        "stall_2",
+        "table_4",
+        "pot_1",
+        "sign_1",
+    ]
     assert graph.derivation == SEED_3
     # what the records say is what the graph holds
     assert graph.node("pot_1").style == "small"
@@ -131,8 +207,14 @@ def test_skipped_options_and_empty_draws_made_no_nodes(stalls):
         graph = expand(stalls, seed)
         for record in graph.derivation:
             if record["kind"] == "optional":
-                assert [graph.node(n).type for n in record["nodes"]] == (["sign"] if record["value"] else [])
-            if record["kind"] == "alternative" and record["rule"] == "Stall" and record["value"] == 1:
+                assert [graph.node(n).type for n in record["nodes"]] == (
+                    ["sign"] if record["value"] else []
+                )
+            if (
+                record["kind"] == "alternative"
+                and record["rule"] == "Stall"
+                and record["value"] == 1
+            ):
                 assert record["nodes"] == []
             if record["kind"] == "count" and record["rule"] == "Goods":
                 assert [graph.node(n).type for n in record["nodes"]] == ["sack"] * record["value"]
@@ -155,7 +237,15 @@ def test_the_recorded_values_decide_the_graph(stalls):
     skipped = copy.deepcopy(SEED_3[:-2]) + [{**SEED_3[-2], "value": False, "nodes": []}]
     graph = replay(stalls, skipped)
     assert [n.id for n in graph.nodes()] == [
-        "table_1", "table_2", "stall_1", "table_3", "sack_1", "stall_2", "table_4", "pot_1"]
+        "table_1",
+        "table_2",
+        "stall_1",
+        "table_3",
+        "sack_1",
+        "stall_2",
+        "table_4",
+        "pot_1",
+    ]
     assert graph.derivation == skipped
 
 
@@ -178,7 +268,10 @@ def test_shipped_rule_sets_trace_nodes_that_exist_and_one_style_per_styled_node(
                 (node,) = record["nodes"]
                 assert graph.node(node).type == record["type"]
                 if record["kind"] == "style":
-                    assert graph.node(node).style == rules.catalog[record["type"]].styles[record["value"]].name
+                    assert (
+                        graph.node(node).style
+                        == rules.catalog[record["type"]].styles[record["value"]].name
+                    )
         if seed < 5:
             assert replay(rules, graph.derivation).to_dict() == graph.to_dict()
 
@@ -195,7 +288,10 @@ def test_choice_counts_tally_every_parameter_of_the_rules(stalls):
     counts = choice_counts(stalls, SEED_3)
     assert counts == ChoiceCounts(
         alternatives={"Stall": [2, 0], "Goods": [1, 1]},
-        counts={Site("stalls.rules", 15, 5): {1: 0, 2: 1, 3: 0}, Site("goods.rules", 2, 19): {0: 0, 1: 1, 2: 0}},
+        counts={
+            Site("stalls.rules", 15, 5): {1: 0, 2: 1, 3: 0},
+            Site("goods.rules", 2, 19): {0: 0, 1: 1, 2: 0},
+        },
         optional={Site("stalls.rules", 16, 5): {False: 0, True: 1}},
         styles={"pot": {"big": 0, "small": 1}},
     )
@@ -209,11 +305,16 @@ def test_choice_counts_add_up_over_derivations(stalls):
     counts = choice_counts(stalls, *traces)
     records = [record for trace in traces for record in trace]
     assert sum(counts.alternatives["Stall"]) == sum(r["rule"] == "Stall" for r in records)
-    assert counts.styles["pot"]["small"] == sum(r["kind"] == "style" and r["value"] == 1 for r in records)
+    assert counts.styles["pot"]["small"] == sum(
+        r["kind"] == "style" and r["value"] == 1 for r in records
+    )
     assert sum(counts.optional[Site("stalls.rules", 16, 5)].values()) == 200
     assert counts.counts[Site("stalls.rules", 15, 5)] == {
-        value: sum(r["kind"] == "count" and r["rule"] == "Market" and r["value"] == value for r in records)
-        for value in (1, 2, 3)}
+        value: sum(
+            r["kind"] == "count" and r["rule"] == "Market" and r["value"] == value for r in records
+        )
+        for value in (1, 2, 3)
+    }
 
 
 def test_choice_counts_refuse_a_trace_of_other_rules(stalls):

@@ -16,6 +16,12 @@ from dataclasses import replace
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from test_describer_e2e import (
+    check_room_text,
+    check_true_and_complete,
+    split_sentences,
+    ungrammatical,
+)
 
 from scenewright.core.poses import Pose
 from scenewright.core.relations import RELATIONS
@@ -29,8 +35,6 @@ from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import layout_scene
 from scenewright.generator.layout.measure import measure_layout
 
-from test_describer_e2e import check_room_text, check_true_and_complete, split_sentences, ungrammatical
-
 WARDROBE, DESK, BED = (1.2, 2.0, 0.6), (1.2, 0.75, 0.6), (1.6, 0.9, 2.1)
 BOOKSHELF, LAMP, CHAIR, PLANT = (0.9, 1.8, 0.32), (0.3, 1.5, 0.3), (0.45, 0.9, 0.5), (0.4, 1.1, 0.4)
 
@@ -38,12 +42,16 @@ BOOKSHELF, LAMP, CHAIR, PLANT = (0.9, 1.8, 0.32), (0.3, 1.5, 0.3), (0.45, 0.9, 0
 # -- scenes by hand ---------------------------------------------------------------------
 
 
-def against(room: Room, wall_id: str, size, *, at: str | float = "middle", gap: float = 0.0) -> Pose:
+def against(
+    room: Room, wall_id: str, size, *, at: str | float = "middle", gap: float = 0.0
+) -> Pose:
     """The pose with the object's back ``gap`` from a wall, facing into the room:
     ``at`` its "start" or "end" (flush into that corner), "middle", or a distance along it."""
     wall = room.part(wall_id)
     width, _, depth = size
-    u = {"start": width / 2.0, "end": wall.length - width / 2.0, "middle": wall.length / 2.0}.get(at, at)
+    u = {"start": width / 2.0, "end": wall.length - width / 2.0, "middle": wall.length / 2.0}.get(
+        at, at
+    )
     x, z = wall.to_world(u, depth / 2.0 + gap)
     return Pose(x, 0.0, z, wall.facing_yaw)
 
@@ -56,14 +64,19 @@ def under(room: Room, window_id: str, size) -> Pose:
 def beside(room: Room, window_id: str, size) -> Pose:
     """Against the window's wall, 10 cm past its end."""
     window = room.part(window_id)
-    return against(room, window.wall, size, at=window.offset + window.width / 2.0 + 0.1 + size[0] / 2.0)
+    return against(
+        room, window.wall, size, at=window.offset + window.width / 2.0 + 0.1 + size[0] / 2.0
+    )
 
 
 def furnished(room: Room, things: dict, relations: list, *, seed: int = 3) -> Scene:
     """A room with objects at the poses given (name -> (size, pose)) and the relations
     (source, label, target) measured there by the layout's own code."""
     graph = SceneGraph(SceneParams(name="bedroom", extent=room.extent, room=room))
-    ids = {name: graph.add_node(CatalogEntry(name, "object", name, size=size)) for name, (size, _) in things.items()}
+    ids = {
+        name: graph.add_node(CatalogEntry(name, "object", name, size=size))
+        for name, (size, _) in things.items()
+    }
     for source, label, target in relations:
         graph.add_relation(ids[source], ids.get(target, target), label)
     poses = {ids[name]: pose for name, (_, pose) in things.items()}
@@ -72,7 +85,9 @@ def furnished(room: Room, things: dict, relations: list, *, seed: int = 3) -> Sc
 
 #: 5 x 4, a door in the south wall 55 cm from the south-east corner, a window in the north wall.
 RECTANGLE = (
-    Room.rectangle(5, 4).with_opening("door", "south", 1.0, 0.9).with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
+    Room.rectangle(5, 4)
+    .with_opening("door", "south", 1.0, 0.9)
+    .with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
 )
 
 
@@ -90,7 +105,10 @@ def bedroom() -> Scene:
         "bookshelf": (BOOKSHELF, against(room, "wall_1", BOOKSHELF, at="end")),
         "bed": (BED, against(room, "wall_2", BED, at="end")),
         "lamp": (LAMP, beside(room, "window_1", LAMP)),
-        "chair": (CHAIR, Pose(chair_x, 0.0, desk.z + (DESK[2] + CHAIR[2]) / 2.0 + 0.1, desk.yaw + math.pi)),
+        "chair": (
+            CHAIR,
+            Pose(chair_x, 0.0, desk.z + (DESK[2] + CHAIR[2]) / 2.0 + 0.1, desk.yaw + math.pi),
+        ),
     }
     relations = [
         ("wardrobe", "AgainstWall", ROOM_NODE),
@@ -173,7 +191,9 @@ def all_sentences(scene: Scene) -> list[str]:
 
 def test_a_rectangular_room_in_words():
     scene = bedroom()
-    assert all(r.satisfied for r in scene.relations), [r for r in scene.relations if not r.satisfied]
+    assert all(r.satisfied for r in scene.relations), [
+        r for r in scene.relations if not r.satisfied
+    ]
     assert split_sentences(describe(scene).text) == [
         "The scene consists of a wardrobe, a desk, a bookshelf, a bed, a lamp and a chair.",
         "The room has a door in the south wall and a window in the north wall.",
@@ -191,7 +211,9 @@ def test_the_corner_by_the_door_is_the_one_the_door_is_near():
     door = room.part("door_1")
     south_east = room.part("wall_2").end
     wall = room.part(door.wall)
-    near_end = wall.to_world(door.offset - door.width / 2.0, 0.0)  # the door's edge nearest the south-east
+    near_end = wall.to_world(
+        door.offset - door.width / 2.0, 0.0
+    )  # the door's edge nearest the south-east
     assert math.dist(near_end, south_east) <= DOOR_NEAR_CORNER
     names = world_of(bedroom()).room.names
     assert names["wall_2|wall_3"] == "the corner by the door"
@@ -231,8 +253,12 @@ def test_a_room_without_doors_or_windows_says_only_its_shape():
         "The scene consists of a wardrobe. The room is L-shaped. The wardrobe stands against the west wall."
     )
     rectangle = Room.rectangle(4, 4)
-    scene = furnished(rectangle, {"wardrobe": (WARDROBE, against(rectangle, "wall_1", WARDROBE))}, [])
-    assert describe(scene).text == "The scene consists of a wardrobe."  # a bare box: nothing to say about it
+    scene = furnished(
+        rectangle, {"wardrobe": (WARDROBE, against(rectangle, "wall_1", WARDROBE))}, []
+    )
+    assert (
+        describe(scene).text == "The scene consists of a wardrobe."
+    )  # a bare box: nothing to say about it
 
 
 def test_names_in_rooms_with_many_alike():
@@ -266,23 +292,38 @@ def test_room_parts_are_never_in_the_inventory_and_never_it():
     assert not re.search(r"\b(wall|window|door|corner|room)s?\b", inventory)
     assert {fact[0] for fact in description.facts}.isdisjoint(room_ids)
     caption = describe(scene, style="short").text
-    assert caption.startswith("A bedroom with a wardrobe, a desk, a bookshelf, a bed, a lamp and a chair.")
+    assert caption.startswith(
+        "A bedroom with a wardrobe, a desk, a bookshelf, a bed, a lamp and a chair."
+    )
 
 
 def test_the_caption_places_the_most_prominent_furniture():
     # The bed is the biggest thing with a wall relation; the wardrobe's is told first.
-    assert split_sentences(describe(bedroom(), style="short").text)[1] == "The bed stands in the corner by the door."
-    assert split_sentences(describe(l_shaped(), style="short").text)[1] == "The bed stands in the corner by the door."
-    captions = {split_sentences(describe(bedroom(), style="short", variant=k).text)[1] for k in range(1, 12)}
+    assert (
+        split_sentences(describe(bedroom(), style="short").text)[1]
+        == "The bed stands in the corner by the door."
+    )
+    assert (
+        split_sentences(describe(l_shaped(), style="short").text)[1]
+        == "The bed stands in the corner by the door."
+    )
+    captions = {
+        split_sentences(describe(bedroom(), style="short", variant=k).text)[1] for k in range(1, 12)
+    }
     assert len(captions) > 1 and all(re.search(r"\b(wall|window|corner)\b", c) for c in captions)
 
 
 def test_a_relation_to_a_door_or_window_of_another_family():
     scene = bedroom()
     room = scene.room
-    chair = against(room, "wall_3", CHAIR, at=3.5)  # in the south wall, west of the door, facing north
-    scene = furnished(room, {"chair": (CHAIR, chair), "desk": (DESK, under(room, "window_1", DESK))},
-                      [("chair", "FacingTowards", "window_1"), ("desk", "UnderWindow", "window_1")])  # fmt: skip
+    chair = against(
+        room, "wall_3", CHAIR, at=3.5
+    )  # in the south wall, west of the door, facing north
+    scene = furnished(
+        room,
+        {"chair": (CHAIR, chair), "desk": (DESK, under(room, "window_1", DESK))},
+        [("chair", "FacingTowards", "window_1"), ("desk", "UnderWindow", "window_1")],
+    )
     assert scene.relations[0].satisfied
     assert "The chair faces the window. The desk is under the window." in describe(scene).text
     check_true_and_complete(scene)
@@ -312,17 +353,23 @@ def test_relations_that_do_not_hold_and_implicit_ones_are_not_stated():
         "bed": (BED, against(room, "wall_2", BED, at="end")),
         "desk": (DESK, under(room, "window_1", DESK)),
     }
-    scene = furnished(room, things, [
-        ("wardrobe", "AgainstWall", ROOM_NODE),
-        ("bed", "ImplicitInCorner", ROOM_NODE),
-        ("desk", "ImplicitUnderWindow", "window_1"),
-        ("bed", "UnderWindow", ROOM_NODE),  # far from the window
-    ])  # fmt: skip
+    scene = furnished(
+        room,
+        things,
+        [
+            ("wardrobe", "AgainstWall", ROOM_NODE),
+            ("bed", "ImplicitInCorner", ROOM_NODE),
+            ("desk", "ImplicitUnderWindow", "window_1"),
+            ("bed", "UnderWindow", ROOM_NODE),  # far from the window
+        ],
+    )
     verdicts = {(r.source, r.label): r.satisfied for r in scene.relations}
     assert verdicts == {
-        ("wardrobe_1", "AgainstWall"): False, ("bed_1", "ImplicitInCorner"): True,
-        ("desk_1", "ImplicitUnderWindow"): True, ("bed_1", "UnderWindow"): False,
-    }  # fmt: skip
+        ("wardrobe_1", "AgainstWall"): False,
+        ("bed_1", "ImplicitInCorner"): True,
+        ("desk_1", "ImplicitUnderWindow"): True,
+        ("bed_1", "UnderWindow"): False,
+    }
     description = describe(scene)
     assert description.facts == []
     assert description.text == (
@@ -426,7 +473,9 @@ ROOMS = [
     Room.polygon(L_CORNERS),
     Room.polygon([(0, 0), (5, 0), (5, 4), (2, 4), (2, 2), (0, 2)]),
     Room.polygon([(0, 0), (2, 0), (2, 2), (5, 2), (5, 5), (0, 5)]),
-    Room.polygon([(0, 0), (1.5, 0), (1.5, 2), (3.5, 2), (3.5, 0), (5, 0), (5, 4), (0, 4)]),  # three north walls
+    Room.polygon(
+        [(0, 0), (1.5, 0), (1.5, 2), (3.5, 2), (3.5, 0), (5, 0), (5, 4), (0, 4)]
+    ),  # three north walls
     Room.polygon([(0, 1), (1, 0), (4, 0), (5, 1), (5, 4), (0, 4)]),  # diagonal walls
 ]
 PLACEMENTS = ["AgainstWall", "InCorner", "UnderWindow", "BesideWindow"]
@@ -469,7 +518,11 @@ def furnished_rooms(draw):
 @given(furnished_rooms())
 def test_any_furnished_room_is_described_truly(scene):
     stated = set(describe(scene).facts)
-    described = {(r.source, r.label, r.target) for r in scene.relations if r.satisfied and RELATIONS[r.label].described}
+    described = {
+        (r.source, r.label, r.target)
+        for r in scene.relations
+        if r.satisfied and RELATIONS[r.label].described
+    }
     assert stated <= described
     for variant in (0, 1):
         check_room_text(scene, describe(scene, variant=variant))

@@ -37,21 +37,27 @@ from scenewright.describer.plan import introduced_by, plan_document
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.describer.world import world_of
 from scenewright.generator import expand, load_rules
-from scenewright.generator.rules import shipped_rule_sets
 from scenewright.generator.layout import layout_scene
 from scenewright.generator.layout.geometry import make_rect, polyline_rects_distance
 from scenewright.generator.layout.measure import measure_layout
 from scenewright.generator.layout.pinning import scene_layout
 from scenewright.generator.layout.relation_terms import WALL_TOLERANCE
+from scenewright.generator.rules import shipped_rule_sets
 
 GOLDEN = Path(__file__).parent / "golden" / "descriptions"
 
 #: Unit vectors (x, z) of the directions a next-to label may name; north is -Z, east +X.
 COMPASS = {"north": (0.0, -1.0), "east": (1.0, 0.0), "south": (0.0, 1.0), "west": (-1.0, 0.0)}
 FIXED_DIRECTION = {
-    "NextToNorth": "north", "NextToEast": "east", "NextToSouth": "south", "NextToWest": "west",
-    "NextToLeft": "left", "NextToRight": "right", "NextToFront": "front", "NextToBehind": "behind",
-}  # fmt: skip
+    "NextToNorth": "north",
+    "NextToEast": "east",
+    "NextToSouth": "south",
+    "NextToWest": "west",
+    "NextToLeft": "left",
+    "NextToRight": "right",
+    "NextToFront": "front",
+    "NextToBehind": "behind",
+}
 #: The layout promises 45 degrees; the test allows some slack for its own centre-to-centre reading.
 MAX_DIRECTION_ERROR = math.radians(60)
 
@@ -83,7 +89,9 @@ def ungrammatical(sentences: list[str]) -> list[str]:
     return failed
 
 
-def direction_of(scene: Scene, label: str, chosen: str | None, target_id: str) -> tuple[float, float] | None:
+def direction_of(
+    scene: Scene, label: str, chosen: str | None, target_id: str
+) -> tuple[float, float] | None:
     """The world (x, z) unit vector a next-to label's words name, None when they name none."""
     word = FIXED_DIRECTION.get(label) or (chosen if label.startswith("NextToChoose") else None)
     if word is None:
@@ -93,7 +101,12 @@ def direction_of(scene: Scene, label: str, chosen: str | None, target_id: str) -
     # B's own sides: yaw turns forward (local +Z) towards +X; left is local +X.
     yaw = scene.object(target_id).yaw
     forward, left = (math.sin(yaw), math.cos(yaw)), (math.cos(yaw), -math.sin(yaw))
-    sides = {"front": forward, "left": left, "behind": (-forward[0], -forward[1]), "right": (-left[0], -left[1])}
+    sides = {
+        "front": forward,
+        "left": left,
+        "behind": (-forward[0], -forward[1]),
+        "right": (-left[0], -left[1]),
+    }
     return sides[word]
 
 
@@ -105,22 +118,32 @@ def check_true_and_complete(scene: Scene) -> list[str]:
     for fact in description.facts:
         assert fact in holds or fact in starts, f"seed {scene.seed}: stated but not true: {fact}"
         relation = holds.get(fact)
-        direction = relation and direction_of(scene, relation.label, relation.chosen, relation.target)
+        direction = relation and direction_of(
+            scene, relation.label, relation.chosen, relation.target
+        )
         if direction:
             source, target = scene.object(fact[0]).position, scene.object(fact[2]).position
             dx, dz = source[0] - target[0], source[2] - target[2]
             cosine = (dx * direction[0] + dz * direction[1]) / max(math.hypot(dx, dz), 1e-9)
-            assert math.acos(max(-1.0, min(1.0, cosine))) < MAX_DIRECTION_ERROR, f"seed {scene.seed}: {fact}"
+            assert math.acos(max(-1.0, min(1.0, cosine))) < MAX_DIRECTION_ERROR, (
+                f"seed {scene.seed}: {fact}"
+            )
     world = world_of(scene)
-    introduced = [i for s in plan_document(scene, world) for m in s.messages for i in introduced_by(m)]
-    assert sorted(introduced) == sorted(world.entities), f"seed {scene.seed}: not every entity is mentioned"
+    introduced = [
+        i for s in plan_document(scene, world) for m in s.messages for i in introduced_by(m)
+    ]
+    assert sorted(introduced) == sorted(world.entities), (
+        f"seed {scene.seed}: not every entity is mentioned"
+    )
     descriptions = [description] + [describe(scene, variant=k) for k in (1, 2)]
     descriptions.append(describe(scene, style="short"))
     summaries = [describe(scene, style="summary"), describe(scene, style="summary", variant=1)]
     for summary in summaries:
         check_claims(scene, summary)
         for fact in summary.facts:
-            assert fact in holds or fact in starts, f"seed {scene.seed}: summary states but not true: {fact}"
+            assert fact in holds or fact in starts, (
+                f"seed {scene.seed}: summary states but not true: {fact}"
+            )
     descriptions += summaries
     for told in descriptions:
         check_ordinals(scene, told)
@@ -132,7 +155,9 @@ def check_true_and_complete(scene: Scene) -> list[str]:
     for sentence in found:
         words = sentence.lower().rstrip(".").split()
         assert sentence[0].isupper() and sentence.endswith(".") and "  " not in sentence, sentence
-        assert all(a != b for a, b in zip(words, words[1:])), f"seed {scene.seed}: word repeated: {sentence}"
+        assert all(a != b for a, b in zip(words, words[1:], strict=False)), (
+            f"seed {scene.seed}: word repeated: {sentence}"
+        )
     return found
 
 
@@ -140,9 +165,15 @@ def check_true_and_complete(scene: Scene) -> list[str]:
 
 #: The fixed label a chosen side or direction is measured by.
 CHOSEN_LABEL = {
-    "left": "NextToLeft", "right": "NextToRight", "front": "NextToFront", "behind": "NextToBehind",
-    "north": "NextToNorth", "east": "NextToEast", "south": "NextToSouth", "west": "NextToWest",
-}  # fmt: skip
+    "left": "NextToLeft",
+    "right": "NextToRight",
+    "front": "NextToFront",
+    "behind": "NextToBehind",
+    "north": "NextToNorth",
+    "east": "NextToEast",
+    "south": "NextToSouth",
+    "west": "NextToWest",
+}
 
 
 def number_words(count: int) -> str:
@@ -164,7 +195,9 @@ def quantifier_holds(word: str, count: int, total: int, *, exact: bool) -> bool:
     return False
 
 
-def measured_many(scene: Scene, triples: list[tuple[str, str, str]]) -> dict[tuple[str, str, str], bool]:
+def measured_many(
+    scene: Scene, triples: list[tuple[str, str, str]]
+) -> dict[tuple[str, str, str], bool]:
     """Each (source, label, target) measured at the scene's poses by the layout's own code, in one pass."""
     if not triples:
         return {}
@@ -187,12 +220,17 @@ def check_claims(scene: Scene, description: Description) -> None:
     for sentence in description.sentences:
         for claim in sentence.claims:
             first = things[claim.members[0]]
-            cohort = [t.id for t in things.values() if t.noun == first.noun and t.parent == first.parent]
+            cohort = [
+                t.id for t in things.values() if t.noun == first.noun and t.parent == first.parent
+            ]
             assert sorted(cohort) == sorted(claim.members), sentence.text
             size = f"{number_words(len(cohort))} {plural_of(first.noun, first.plural)}"
-            said = f"all {size}" if claim.quantifier == "all" else f"{claim.quantifier} of the {size}"
+            said = (
+                f"all {size}" if claim.quantifier == "all" else f"{claim.quantifier} of the {size}"
+            )
             assert said in sentence.text.lower(), f"{said!r} not in {sentence.text!r}"
             if claim.kind == "has":
+
                 def holds(group, items=claim.items):
                     nouns = [m.noun for m in members_of.get(group, [])]
                     return all(nouns.count(noun) == number for noun, number in items)
@@ -202,12 +240,20 @@ def check_claims(scene: Scene, description: Description) -> None:
                     f"seed {scene.seed}: {count} of {len(cohort)}: {sentence.text!r}"
                 )
                 continue
-            label = CHOSEN_LABEL.get(claim.chosen, claim.label) if claim.label.startswith("NextToChoose") else claim.label
+            label = (
+                CHOSEN_LABEL.get(claim.chosen, claim.label)
+                if claim.label.startswith("NextToChoose")
+                else claim.label
+            )
             pairs: dict[str, list[tuple[str, str, str]]] = {}
             for member in cohort:
                 if claim.kind == "is":
                     sources = [member]
-                    targets = [t.id for t in things.values() if t.noun == claim.target_noun and t.id != member]
+                    targets = [
+                        t.id
+                        for t in things.values()
+                        if t.noun == claim.target_noun and t.id != member
+                    ]
                 else:
                     inside = members_of.get(member, [])
                     sources = [t.id for t in inside if t.noun == claim.subject_noun]
@@ -225,10 +271,27 @@ def check_claims(scene: Scene, description: Description) -> None:
 # -- ordinals: a reader meets "the first" before "the second" ---------------------------------
 
 ORDINAL_WORDS = [
-    "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth",
-    "eleventh", "twelfth", "thirteenth", "fourteenth", "fifteenth", "sixteenth", "seventeenth",
-    "eighteenth", "nineteenth", "twentieth",
-]  # fmt: skip
+    "first",
+    "second",
+    "third",
+    "fourth",
+    "fifth",
+    "sixth",
+    "seventh",
+    "eighth",
+    "ninth",
+    "tenth",
+    "eleventh",
+    "twelfth",
+    "thirteenth",
+    "fourteenth",
+    "fifteenth",
+    "sixteenth",
+    "seventeenth",
+    "eighteenth",
+    "nineteenth",
+    "twentieth",
+]
 INDEFINITE = ("a ", "an ", "another ")
 
 
@@ -251,18 +314,25 @@ def check_ordinals(scene: Scene, description: Description) -> None:
     things = {o.id: o for o in [*scene.objects, *scene.paths]}
     parent = {i: (t.parent if t.parent in things else None) for i, t in things.items()}
     nested = {
-        t.noun for t in things.values()
+        t.noun
+        for t in things.values()
         if any(things[a].noun == t.noun for a in ancestors(t.id, parent))
-    }  # fmt: skip
-    named: list[tuple[str, ...]] = []  # a thing named on its own, or a set's new members, in reading order
+    }
+    named: list[
+        tuple[str, ...]
+    ] = []  # a thing named on its own, or a set's new members, in reading order
     singled: list[str] = []  # things named on their own, in reading order
     told: dict[str, int] = {}
-    for mention in reading_order(description, lambda i: (things[i].noun, parent[i]) if i in things else i):
-        words = description.text[mention.start:mention.end]
+    for mention in reading_order(
+        description, lambda i: (things[i].noun, parent[i]) if i in things else i
+    ):
+        words = description.text[mention.start : mention.end]
         if words.lower().startswith(INDEFINITE) or not set(mention.entities) <= set(things):
             continue  # a door or a window: named by its place in the room, never by an ordinal
         if len(mention.entities) > 1:
-            if names_a_set(words, len(mention.entities)) and not inside_another(mention, description):
+            if names_a_set(words, len(mention.entities)) and not inside_another(
+                mention, description
+            ):
                 new = tuple(i for i in mention.entities if not any(i in before for before in named))
                 named += [new] if new else []
             continue
@@ -270,20 +340,32 @@ def check_ordinals(scene: Scene, description: Description) -> None:
         noun = things[entity].noun
 
         def covered(i: str, noun=noun, entity=entity) -> bool:
-            return i != entity and is_kind_of(things[i].noun, noun) and (noun in nested or parent[i] == parent[entity])
+            return (
+                i != entity
+                and is_kind_of(things[i].noun, noun)
+                and (noun in nested or parent[i] == parent[entity])
+            )
 
         at = next((k for k, before in enumerate(named) if entity in before), len(named))
         match = re.match(r"[Tt]he (\w+) ", words)
         if match and match.group(1) in ORDINAL_WORDS:
             k = ORDINAL_WORDS.index(match.group(1)) + 1
-            assert words[match.end():].startswith(noun), words
+            assert words[match.end() :].startswith(noun), words
             before = sum(covered(i) for earlier in named[:at] for i in earlier)
-            within = sum(covered(i) for i in dict.fromkeys(singled) if at < len(named) and i in named[at])
+            within = sum(
+                covered(i) for i in dict.fromkeys(singled) if at < len(named) and i in named[at]
+            )
             expected = told.setdefault(entity, before + within + 1)
-            assert k == expected, f"seed {scene.seed}: {words!r} is the {expected}th named: {description.text}"
+            assert k == expected, (
+                f"seed {scene.seed}: {words!r} is the {expected}th named: {description.text}"
+            )
         elif words.lower().startswith(f"the other {noun}"):
-            unnamed = [i for i in things if covered(i) and not any(i in earlier for earlier in named)]
-            assert not unnamed, f"seed {scene.seed}: {words!r} before {unnamed} were named: {description.text}"
+            unnamed = [
+                i for i in things if covered(i) and not any(i in earlier for earlier in named)
+            ]
+            assert not unnamed, (
+                f"seed {scene.seed}: {words!r} before {unnamed} were named: {description.text}"
+            )
         singled.append(entity)
         named += [] if at < len(named) else [(entity,)]
 
@@ -298,10 +380,14 @@ def reading_order(description: Description, cohort_of) -> list:
         here = [m for m in description.mentions if offset <= m.start < end]
         place = {id(m): float(k) for k, m in enumerate(here)}
         for k, mention in enumerate(here):
-            words = description.text[mention.start:mention.end].lower()
-            if len(mention.entities) > 1 and " other " in f" {words}" and names_a_set(words, len(mention.entities)):
+            words = description.text[mention.start : mention.end].lower()
+            if (
+                len(mention.entities) > 1
+                and " other " in f" {words}"
+                and names_a_set(words, len(mention.entities))
+            ):
                 cohort = {cohort_of(i) for i in mention.entities}
-                for later in here[k + 1:]:
+                for later in here[k + 1 :]:
                     if len(later.entities) == 1 and cohort_of(later.entities[0]) in cohort:
                         place[id(later)] = k - 0.5
         found += sorted(here, key=lambda m: place[id(m)])
@@ -322,7 +408,9 @@ def names_a_set(words: str, size: int) -> bool:
 def inside_another(mention, description: Description) -> bool:
     """Whether a mention is part of a larger one ("the five homes" in "most of the five homes")."""
     return any(
-        other.start <= mention.start and mention.end <= other.end and (other.start, other.end) != (mention.start, mention.end)
+        other.start <= mention.start
+        and mention.end <= other.end
+        and (other.start, other.end) != (mention.start, mention.end)
         for other in description.mentions
     )
 
@@ -340,14 +428,21 @@ def ancestors(entity_id: str, parent: dict) -> list[str]:
 #: Unit vectors (x, z) of the eight compass words (north is -Z, east +X).
 COMPASS8 = {
     **COMPASS,
-    "north-east": (math.sqrt(0.5), -math.sqrt(0.5)), "south-east": (math.sqrt(0.5), math.sqrt(0.5)),
-    "south-west": (-math.sqrt(0.5), math.sqrt(0.5)), "north-west": (-math.sqrt(0.5), -math.sqrt(0.5)),
-}  # fmt: skip
+    "north-east": (math.sqrt(0.5), -math.sqrt(0.5)),
+    "south-east": (math.sqrt(0.5), math.sqrt(0.5)),
+    "south-west": (-math.sqrt(0.5), math.sqrt(0.5)),
+    "north-west": (-math.sqrt(0.5), -math.sqrt(0.5)),
+}
 ORDINALS = {"first": 0, "second": 1, "third": 2, "fourth": 3, "fifth": 4, "sixth": 5}
 COUNTS = {"a": 1, "an": 1, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6}
 ROOM_WORDS = {"wall", "walls", "window", "windows", "door", "doors", "corner", "corners"}
 #: What a wall label's words name, by its placement (the reader's own table).
-NAMED_BY_PLACEMENT = {"against": "wall", "corner": "corner", "under_window": "window", "beside_window": "window"}
+NAMED_BY_PLACEMENT = {
+    "against": "wall",
+    "corner": "corner",
+    "under_window": "window",
+    "beside_window": "window",
+}
 
 
 @dataclass
@@ -400,7 +495,7 @@ class RoomReader:
     # -- "the north wall", "the longer north wall", "one of the north walls"
 
     def wall(self, words: list[str], i: int) -> Phrase | None:
-        ahead = words[i:i + 5]
+        ahead = words[i : i + 5]
         if ahead[:3] == ["one", "of", "the"] and len(ahead) == 5 and ahead[4] == "walls":
             return Phrase("wall", [w.id for w in self.room.walls if w.side == ahead[3]], i, i + 5)
         if ahead[:1] != ["the"]:
@@ -435,10 +530,15 @@ class RoomReader:
                 break
         else:
             return None
-        kind, modifier, after = words[j], words[i + 1:j], words[j + 1:]
+        kind, modifier, after = words[j], words[i + 1 : j], words[j + 1 :]
         alike = [o for o in self.room.openings if o.kind == kind]
         if modifier and modifier[0] in ORDINALS:  # "the second window from the west in W"
-            if after[:2] != ["from", "the"] or after[2:3] == [] or after[2] not in COMPASS8 or after[3:4] != ["in"]:
+            if (
+                after[:2] != ["from", "the"]
+                or after[2:3] == []
+                or after[2] not in COMPASS8
+                or after[3:4] != ["in"]
+            ):
                 return None
             wall = self.wall(words, j + 5)
             if wall is None or len(wall.parts) != 1:
@@ -455,30 +555,42 @@ class RoomReader:
             if not modifier:
                 return Phrase(kind, [o.id for o in on_wall], i, wall.end)
             direction = direction_of_adjective(modifier[0])
-            parts = extreme(on_wall, lambda o: dot(o.center, COMPASS8[direction])) if direction and on_wall else []
+            parts = (
+                extreme(on_wall, lambda o: dot(o.center, COMPASS8[direction]))
+                if direction and on_wall
+                else []
+            )
             return Phrase(kind, parts, i, wall.end)
         if not modifier:  # "the window"
             return Phrase(kind, [o.id for o in alike], i, j + 1)
         if modifier[0] in COMPASS8:  # "the north window"
-            return Phrase(kind, [o.id for o in alike if self.room.part(o.wall).side == modifier[0]], i, j + 1)
+            return Phrase(
+                kind, [o.id for o in alike if self.room.part(o.wall).side == modifier[0]], i, j + 1
+            )
         return None
 
     # -- "the corner by the door", "the north-east corner", "the north-east corner of W"
 
     def corner(self, words: list[str], i: int) -> Phrase | None:
-        if words[i:i + 3] == ["the", "corner", "by"]:
+        if words[i : i + 3] == ["the", "corner", "by"]:
             door = self.opening(words, i + 3)
             if door is None or door.kind != "door" or len(door.parts) != 1:
                 return Phrase("corner", [], i, door.end if door else i + 3)
             opening = self.room.part(door.parts[0])
             near = [
-                key for key, (point, _) in self.corners.items()
+                key
+                for key, (point, _) in self.corners.items()
                 if opening_distance(self.room, opening, point) <= DOOR_NEAR_CORNER
-            ]  # fmt: skip
+            ]
             return Phrase("corner", near, i, door.end)
-        if words[i] == "the" and words[i + 1:i + 2] and words[i + 1] in COMPASS8 and words[i + 2:i + 3] == ["corner"]:
+        if (
+            words[i] == "the"
+            and words[i + 1 : i + 2]
+            and words[i + 1] in COMPASS8
+            and words[i + 2 : i + 3] == ["corner"]
+        ):
             named = [key for key, (_, side) in self.corners.items() if side == words[i + 1]]
-            wall = self.wall(words, i + 4) if words[i + 3:i + 4] == ["of"] else None
+            wall = self.wall(words, i + 4) if words[i + 3 : i + 4] == ["of"] else None
             if wall is None:
                 return Phrase("corner", named, i, i + 3)
             named = [key for key in named if len(wall.parts) == 1 and wall.parts[0] in key]
@@ -491,7 +603,7 @@ def midpoint(wall) -> tuple[float, float]:
 
 
 def direction_of_adjective(word: str) -> str | None:
-    """"western" or "westernmost" -> "west"."""
+    """ "western" or "westernmost" -> "west"."""
     for direction in COMPASS8:
         if word in (direction + "ern", direction + "ernmost"):
             return direction
@@ -557,23 +669,35 @@ def check_room_text(scene: Scene, description: Description) -> None:
             continue
         phrases = reader.phrases(words)
         covered = {k for phrase in phrases for k in range(phrase.start, phrase.end)}
-        loose = [w for k, w in enumerate(words) if w in ROOM_WORDS and k not in covered and w not in object_words]
-        assert not loose, f"seed {scene.seed}: {loose} read as no part of the room: {sentence.text!r}"
+        loose = [
+            w
+            for k, w in enumerate(words)
+            if w in ROOM_WORDS and k not in covered and w not in object_words
+        ]
+        assert not loose, (
+            f"seed {scene.seed}: {loose} read as no part of the room: {sentence.text!r}"
+        )
         for phrase in phrases:
-            assert len(phrase.parts) == 1, f"seed {scene.seed}: names {phrase.parts}: {sentence.text!r}"
+            assert len(phrase.parts) == 1, (
+                f"seed {scene.seed}: names {phrase.parts}: {sentence.text!r}"
+            )
         for source, label, target in sentence.facts:
             if target != ROOM_NODE and target not in parts:
                 continue
             spec = RELATIONS[label]
             kind = NAMED_BY_PLACEMENT[spec.wall] if spec.family == "wall" else parts[target]
-            named = [p.parts[0] for p in phrases if p.kind == kind or {p.kind, kind} == {"window", "door"}]
+            named = [
+                p.parts[0]
+                for p in phrases
+                if p.kind == kind or {p.kind, kind} == {"window", "door"}
+            ]
             assert any(holds_against(scene, source, label, kind, part) for part in named), (
                 f"seed {scene.seed}: {(source, label, target)} does not hold of what {sentence.text!r} names"
             )
 
 
 def check_room_sentence(reader: RoomReader, text: str) -> None:
-    """"The L-shaped room has a door in the south wall and two windows in the north wall.":
+    """ "The L-shaped room has a door in the south wall and two windows in the north wall.":
     the shape is the room's, and each wall holds as many doors and windows as it says,
     all of them told."""
     match = re.fullmatch(r"The (L-shaped )?room (?:has (.+)|is (L-shaped))\.", text)
@@ -587,12 +711,16 @@ def check_room_sentence(reader: RoomReader, text: str) -> None:
         number, noun, preposition, *rest = item.split(" ")
         kind = noun.removesuffix("s")
         wall = reader.wall(rest, 0)
-        assert preposition == "in" and wall is not None and wall.end == len(rest) and wall.parts, item
+        assert preposition == "in" and wall is not None and wall.end == len(rest) and wall.parts, (
+            item
+        )
         found = [len([o for o in reader.room.openings_on(w) if o.kind == kind]) for w in wall.parts]
         # "one of the north walls" need only be true of one of them
         assert found == [COUNTS[number]] or (len(found) > 1 and COUNTS[number] in found), item
         counted[kind] += COUNTS[number]
-    assert counted == {k: len([o for o in reader.room.openings if o.kind == k]) for k in counted}, text
+    assert counted == {k: len([o for o in reader.room.openings if o.kind == k]) for k in counted}, (
+        text
+    )
 
 
 def laid_out(rules_name: str, seed: int) -> Scene:
@@ -605,14 +733,18 @@ def check_rule_set(rules_name: str, seeds: range) -> None:
     assert ungrammatical(sentences) == []
 
 
-@pytest.mark.parametrize(("rules_name", "seeds"), [("village", range(2)), ("desk", range(20)), ("bedroom", range(20))])
+@pytest.mark.parametrize(
+    ("rules_name", "seeds"), [("village", range(2)), ("desk", range(20)), ("bedroom", range(20))]
+)
 def test_shipped_rule_sets_are_described_truly(rules_name, seeds):
     check_rule_set(rules_name, seeds)
 
 
 #: Every other shipped rule set (the rooms: study, kitchen, ...) gets a few seeds, so each
 #: room the package ships is read back true and parsed.
-OTHER_RULE_SETS = [name for name in shipped_rule_sets() if name not in ("village", "desk", "bedroom")]
+OTHER_RULE_SETS = [
+    name for name in shipped_rule_sets() if name not in ("village", "desk", "bedroom")
+]
 
 
 @pytest.mark.parametrize("rules_name", OTHER_RULE_SETS)
@@ -621,7 +753,9 @@ def test_other_shipped_rule_sets_are_described_truly(rules_name):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not os.environ.get("SCENEWRIGHT_SLOW"), reason="long sweep: set SCENEWRIGHT_SLOW=1")
+@pytest.mark.skipif(
+    not os.environ.get("SCENEWRIGHT_SLOW"), reason="long sweep: set SCENEWRIGHT_SLOW=1"
+)
 @pytest.mark.parametrize("rules_name", ["village", "desk", "bedroom"])
 def test_shipped_rule_sets_over_many_seeds(rules_name):
     check_rule_set(rules_name, range(200))
@@ -634,6 +768,6 @@ def test_golden_descriptions_are_grammatical():
 
 
 def test_the_grammar_check_can_fail():
-    assert ungrammatical(["The sign is besides of the table.", "The sign is next to the table."]) == [
-        "The sign is besides of the table."
-    ]
+    assert ungrammatical(
+        ["The sign is besides of the table.", "The sign is next to the table."]
+    ) == ["The sign is besides of the table."]

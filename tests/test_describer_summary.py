@@ -9,13 +9,12 @@ import dataclasses
 from pathlib import Path
 
 import pytest
+from test_describer_e2e import check_claims, check_true_and_complete, ungrammatical
+from test_describer_wording import laid_out_file
 
 from scenewright.cli import main
 from scenewright.core.errors import InputError
 from scenewright.describer import describe
-
-from test_describer_e2e import check_claims, check_true_and_complete, ungrammatical
-from test_describer_wording import laid_out_file
 
 HAMLET = Path(__file__).parent / "rules" / "hamlet.rules"
 
@@ -60,11 +59,12 @@ def lie(description, sentence_index: int, quantifier: str, text: str):
         ("Most of the five homes have a bush.", "all", "All five homes have a bush."),
         ("One of the five homes has a house.", "some", "Some of the five homes have a house."),
         (
-            "In most of the five homes, the flowerpot is in front of the cottage.", "all",
+            "In most of the five homes, the flowerpot is in front of the cottage.",
+            "all",
             "In all five homes, the flowerpot is in front of the cottage.",
         ),
     ],
-)  # fmt: skip
+)
 def test_the_checker_catches_a_count_that_does_not_hold(hamlet, said, quantifier, lied):
     summary = describe(hamlet, style="summary")
     check_claims(hamlet, summary)
@@ -97,19 +97,26 @@ def test_the_describe_command_takes_a_word_budget(hamlet, tmp_path, capsys):
 
 def test_a_large_scenes_picture_is_captioned_by_concrete_things(hamlet, monkeypatch):
     from render_fixtures import renderer_or_skip
+
     from scenewright.describer import view
     from scenewright.render.visibility import PictureView, Thresholds
 
     renderer = renderer_or_skip(160, 120)
     try:
-        picture = PictureView.from_render(renderer.render(hamlet), hamlet, Thresholds(min_visible=0.0, min_size=1))
+        picture = PictureView.from_render(
+            renderer.render(hamlet), hamlet, Thresholds(min_visible=0.0, min_size=1)
+        )
     finally:
         renderer.close()
     assert "five homes" in view.describe_view(hamlet, picture).text  # a small scene: its groups
-    monkeypatch.setattr(view, "LARGE_SCENE", 10)  # the hamlet (over 10 objects) is a large scene now
+    monkeypatch.setattr(
+        view, "LARGE_SCENE", 10
+    )  # the hamlet (over 10 objects) is a large scene now
     caption = view.describe_view(hamlet, picture)
     first = caption.sentences[0].text
-    assert "home" not in caption.text and "four cottages, a house and four street lamps" in first, first
+    assert "home" not in caption.text and "four cottages, a house and four street lamps" in first, (
+        first
+    )
     # Each home is named by the thing its garden stands around, and only what is named is related.
     named = {i for m in caption.mentions for i in m.ids}
     assert {o.parent for o in hamlet.objects if o.id in named and o.type == "house"} == {

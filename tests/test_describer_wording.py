@@ -18,14 +18,13 @@ fifth); hand-made scenes with the same relations check the fix.
 from pathlib import Path
 
 import pytest
+from test_describer import SceneBuilder
+from test_describer_e2e import check_ordinals, check_true_and_complete, ungrammatical
 
 from scenewright.core.scene import assemble_scene
 from scenewright.describer import describe
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
-
-from test_describer import SceneBuilder
-from test_describer_e2e import check_ordinals, check_true_and_complete, ungrammatical
 
 HALL = Path(__file__).parent / "rules" / "hall.rules"
 
@@ -43,8 +42,14 @@ def hall():
 def test_nested_groups_of_one_type_are_counted_across_the_scene(hall):
     text = describe(hall).text
     assert " at the row of desks" not in text and "row of desks on its own" not in text
-    assert "The first row of desks consists of two rows of desks. The third row of desks is south of the fourth row of desks." in text
-    assert "The second row of desks consists of two rows of desks. The fifth row of desks is south of the sixth row of desks." in text
+    assert (
+        "The first row of desks consists of two rows of desks. The third row of desks is south of the fourth row of desks."
+        in text
+    )
+    assert (
+        "The second row of desks consists of two rows of desks. The fifth row of desks is south of the sixth row of desks."
+        in text
+    )
 
 
 def test_the_rest_of_a_cohort_named_in_the_sentence_is_the_other_ones(hall):
@@ -58,7 +63,10 @@ def test_ordinals_of_a_noun_count_its_kinds_too(hall):
     # "desk" covers white desks: the plain desk named after the first white desk is the second desk.
     text = describe(hall).text
     # Before: "... the first white desk. The first desk is to the left of this white desk.", two counts of desks.
-    assert "This chair is behind the first white desk. The second desk is to the left of this white desk." in text
+    assert (
+        "This chair is behind the first white desk. The second desk is to the left of this white desk."
+        in text
+    )
     assert "The second white desk is to the left of the second desk." in text
 
 
@@ -120,7 +128,12 @@ def test_the_one_left_after_sets_is_the_other_one():
     b = SceneBuilder()
     table = b.add("dining_table")
     chairs = [b.add("dining_chair") for _ in range(5)]
-    for chair, side, facing in zip(chairs, ["Front"] * 2 + ["Behind"] * 2, ["Opposite"] * 2 + ["SameDirection"] * 2):
+    for chair, side, facing in zip(
+        chairs,
+        ["Front"] * 2 + ["Behind"] * 2,
+        ["Opposite"] * 2 + ["SameDirection"] * 2,
+        strict=False,
+    ):
         b.relate(chair, f"NextTo{side}", table)
         b.relate(chair, f"Facing{facing}", table)
     b.relate(chairs[4], "NextToRight", table)
@@ -131,7 +144,10 @@ def test_the_one_left_after_sets_is_the_other_one():
         "Two other dining chairs are behind it and face the same way as it. "
         "The other dining chair is to the right of it and faces it."
     ) in text
-    assert ungrammatical([s.text for scene in (campsite, dining) for s in told_and_checked(scene)]) == []
+    assert (
+        ungrammatical([s.text for scene in (campsite, dining) for s in told_and_checked(scene)])
+        == []
+    )
 
 
 def test_an_ordinal_counts_after_the_members_of_a_set():

@@ -21,9 +21,29 @@ DESK_ROOM = {
     "name": "study",
     "room": {"corners": [[0, 0], [4, 0], [4, 3], [0, 3]], "height": 2.5},
     "objects": [
-        {"id": "desk", "type": "writing_desk", "style": "oak", "size": [1.2, 0.75, 0.6], "position": [2, 0, 0.4], "yaw": 0},
-        {"id": "chair", "type": "stool", "size": [0.45, 0.9, 0.45], "position": [2, 0, 1.1], "yaw": 180},
-        {"id": "lamp", "type": "lamp", "size": [0.2, 0.4, 0.2], "position": [2.3, 0.5], "yaw": 90, "parent": "desk"},
+        {
+            "id": "desk",
+            "type": "writing_desk",
+            "style": "oak",
+            "size": [1.2, 0.75, 0.6],
+            "position": [2, 0, 0.4],
+            "yaw": 0,
+        },
+        {
+            "id": "chair",
+            "type": "stool",
+            "size": [0.45, 0.9, 0.45],
+            "position": [2, 0, 1.1],
+            "yaw": 180,
+        },
+        {
+            "id": "lamp",
+            "type": "lamp",
+            "size": [0.2, 0.4, 0.2],
+            "position": [2.3, 0.5],
+            "yaw": 90,
+            "parent": "desk",
+        },
         {"id": "book", "type": "book", "size": [0.2, 0.05, 0.3], "position": [1.7, 0.75, 0.4]},
     ],
 }
@@ -42,7 +62,9 @@ def test_handwritten_example_reads_into_a_scene(tmp_path):
     # The room's corners are centred on the origin and the objects moved with them.
     assert example.scene.extent == [4.0, 3.0]
     assert objects["desk"].position == pytest.approx([0.0, 0.0, -1.1])
-    assert objects["chair"].yaw == pytest.approx(math.pi)  # degrees in the file, radians in the Scene
+    assert objects["chair"].yaw == pytest.approx(
+        math.pi
+    )  # degrees in the file, radians in the Scene
     # A two-number position stands on its parent's top.
     assert objects["lamp"].position == pytest.approx([0.3, 0.75, -1.0])
     assert objects["desk"].style == "oak" and objects["desk"].noun == "writing desk"
@@ -58,23 +80,48 @@ def test_a_type_of_the_shipped_catalog_looks_as_the_catalog_has_it(tmp_path):
     objects = [
         {"id": "p", "type": "plant", "size": [0.4, 1.0, 0.4], "position": [1, 1]},
         {"id": "tv", "type": "tv_stand", "size": [1.6, 0.5, 0.4], "position": [2, 1]},
-        {"id": "w", "type": "wardrobe", "style": "white", "size": [1.2, 2.0, 0.6], "position": [0.8, 2.5]},
-        {"id": "x", "type": "wardrobe", "style": "polka", "size": [1.2, 2.0, 0.6], "position": [2.5, 2.5]},
+        {
+            "id": "w",
+            "type": "wardrobe",
+            "style": "white",
+            "size": [1.2, 2.0, 0.6],
+            "position": [0.8, 2.5],
+        },
+        {
+            "id": "x",
+            "type": "wardrobe",
+            "style": "polka",
+            "size": [1.2, 2.0, 0.6],
+            "position": [2.5, 2.5],
+        },
     ]
     room = dict(DESK_ROOM, objects=objects)
     placed = {o.id: o for o in load_example(write(tmp_path, "r.json", room)).objects()}
-    assert (placed["p"].noun, placed["p"].shape) == ("plant", catalog["plant"].shape) != ("plant", None)
+    assert (
+        (placed["p"].noun, placed["p"].shape)
+        == ("plant", catalog["plant"].shape)
+        != ("plant", None)
+    )
     assert placed["p"].colour == pytest.approx(list(catalog["plant"].colour))
     assert placed["tv"].noun == "TV stand"
     white = next(s for s in catalog["wardrobe"].styles if s.name == "white")
-    assert placed["w"].noun == white.noun and placed["w"].colour == pytest.approx(list(white.colour))
-    assert placed["x"].noun == "wardrobe" and placed["x"].style == "polka"  # a style the catalog lacks: the entry's looks
+    assert placed["w"].noun == white.noun and placed["w"].colour == pytest.approx(
+        list(white.colour)
+    )
+    assert (
+        placed["x"].noun == "wardrobe" and placed["x"].style == "polka"
+    )  # a style the catalog lacks: the entry's looks
     # A type the catalog does not have keeps the reader's own looks (as the study above).
-    assert load_example(write(tmp_path, "s.json", DESK_ROOM)).scene.objects[0].colour == type_colour("writing_desk")
+    assert load_example(write(tmp_path, "s.json", DESK_ROOM)).scene.objects[
+        0
+    ].colour == type_colour("writing_desk")
 
 
 def test_extent_example_and_names_made_unique(tmp_path):
-    data = {"extent": [6, 5], "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}
+    data = {
+        "extent": [6, 5],
+        "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}],
+    }
     first = write(tmp_path, "a.json", data)
     (tmp_path / "b").mkdir()
     second = write(tmp_path / "b", "a.json", data)
@@ -84,7 +131,10 @@ def test_extent_example_and_names_made_unique(tmp_path):
 
 
 def test_a_folder_of_examples_stands_for_its_files_in_name_order(tmp_path):
-    data = {"extent": [6, 5], "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}
+    data = {
+        "extent": [6, 5],
+        "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}],
+    }
     folder = tmp_path / "set"
     folder.mkdir()
     for name in ("b.json", "a.json"):
@@ -113,17 +163,32 @@ def test_a_folder_of_examples_stands_for_its_files_in_name_order(tmp_path):
     ("change", "fragments"),
     [
         (lambda d: d["objects"][1].pop("size"), ["$.objects[1]", "'size' is a required property"]),
-        (lambda d: d["objects"][2].update(size=[1, -1, 1]), ["$.objects[2].size[1] (object 'lamp')"]),
-        (lambda d: d["objects"][3].update(id="desk"), ["$.objects[3].id", "'desk' is used by an earlier object"]),
+        (
+            lambda d: d["objects"][2].update(size=[1, -1, 1]),
+            ["$.objects[2].size[1] (object 'lamp')"],
+        ),
+        (
+            lambda d: d["objects"][3].update(id="desk"),
+            ["$.objects[3].id", "'desk' is used by an earlier object"],
+        ),
         (lambda d: d["objects"][2].update(parent="shelf"), ["$.objects[2].parent", "'shelf'"]),
-        (lambda d: (d["objects"][0].update(parent="lamp")), ["stands on itself"]),
+        (lambda d: d["objects"][0].update(parent="lamp"), ["stands on itself"]),
         (lambda d: d["room"].update(corners=[[0, 0], [1, 1], [0, 1], [1, 0]]), ["$.room", "cross"]),
         (lambda d: d.pop("room"), ["$: needs exactly one of", "extent", "room"]),
         (lambda d: d["objects"][0].update(colour="red"), ["$.objects[0]", "colour"]),
         # Places every later stage trusts: inside the room, and touching the parent given.
-        (lambda d: d["objects"][1].update(position=[30, 0, 1]), ["$.objects[1].position (object 'chair')", "outside the room"]),
-        (lambda d: d["objects"][2].update(position=[2.3, 0, 0.5]), ["$.objects[2].position (object 'lamp')", "top is at height 0.75", "base is at 0"]),
-        (lambda d: d["objects"][2].update(position=[3.5, 0.75, 2.5]), ["stands on 'desk'", "not over the footprint"]),
+        (
+            lambda d: d["objects"][1].update(position=[30, 0, 1]),
+            ["$.objects[1].position (object 'chair')", "outside the room"],
+        ),
+        (
+            lambda d: d["objects"][2].update(position=[2.3, 0, 0.5]),
+            ["$.objects[2].position (object 'lamp')", "top is at height 0.75", "base is at 0"],
+        ),
+        (
+            lambda d: d["objects"][2].update(position=[3.5, 0.75, 2.5]),
+            ["stands on 'desk'", "not over the footprint"],
+        ),
     ],
 )
 def test_bad_handwritten_files_name_the_place(tmp_path, change, fragments):
@@ -192,10 +257,17 @@ def test_scene_json_keeps_the_grammar_relations(tmp_path):
 
 @pytest.mark.parametrize(
     ("name", "expected"),
-    [("desk.oak.001", ("desk", "oak")), ("desk.001", ("desk", None)), ("desk", ("desk", None)),
-     ("desk_3", ("desk", None)), ("office chair.black", ("office_chair", "black")),
-     ("Dining Chair.002", ("dining_chair", None)), ("Wall.001", ("wall", None)), ("Desk.Oak", ("desk", "oak"))],
-)  # fmt: skip
+    [
+        ("desk.oak.001", ("desk", "oak")),
+        ("desk.001", ("desk", None)),
+        ("desk", ("desk", None)),
+        ("desk_3", ("desk", None)),
+        ("office chair.black", ("office_chair", "black")),
+        ("Dining Chair.002", ("dining_chair", None)),
+        ("Wall.001", ("wall", None)),
+        ("Desk.Oak", ("desk", "oak")),
+    ],
+)
 def test_node_names(name, expected):
     assert parse_node_name(name) == expected
 
@@ -242,7 +314,9 @@ def test_blender_style_glb(tmp_path):
     assert desk_object.size == pytest.approx([1.4, 0.76, 0.7])
     assert desk_object.position == pytest.approx([1.0, 0.0, 0.5], abs=1e-6)
     assert desk_object.yaw == pytest.approx(math.pi / 2)
-    assert lamp_object.size == pytest.approx([0.2, 0.4, 0.2]) and lamp_object.yaw == pytest.approx(math.radians(30))
+    assert lamp_object.size == pytest.approx([0.2, 0.4, 0.2]) and lamp_object.yaw == pytest.approx(
+        math.radians(30)
+    )
     assert example.supports() == {"lamp.002": "desk.oak.001"}
     assert example.scene.room is not None and example.scene.extent == pytest.approx([6.0, 4.0])
 
@@ -253,9 +327,14 @@ def test_blender_default_names_and_unnamed_nodes(tmp_path):
     side = trimesh.creation.box([0.1, 2.5, 4.2])
     path = blender_style_glb(
         tmp_path,
-        [("Dining Table", box, pose(0, 0.4, 0, 0)), ("Wall", wall, pose(0, 1.25, -2.05, 0)), ("Wall.001", wall, pose(0, 1.25, 2.05, 0)),
-         ("Wall.002", side, pose(2.05, 1.25, 0, 0)), ("Wall.003", side, pose(-2.05, 1.25, 0, 0))],
-    )  # fmt: skip
+        [
+            ("Dining Table", box, pose(0, 0.4, 0, 0)),
+            ("Wall", wall, pose(0, 1.25, -2.05, 0)),
+            ("Wall.001", wall, pose(0, 1.25, 2.05, 0)),
+            ("Wall.002", side, pose(2.05, 1.25, 0, 0)),
+            ("Wall.003", side, pose(-2.05, 1.25, 0, 0)),
+        ],
+    )
     example = load_example(path)
     assert [(o.id, o.type) for o in example.objects()] == [("Dining_Table", "dining_table")]
     assert example.scene.room is not None and example.scene.extent == pytest.approx([4.0, 4.0])
@@ -267,7 +346,9 @@ def test_blender_default_names_and_unnamed_nodes(tmp_path):
     chunk = json.loads(document[20 : 20 + length])
     for node in chunk["nodes"]:
         node.pop("name", None)
-    text = json.dumps(chunk, separators=(",", ":")).encode().ljust(length)  # shorter: the name is gone
+    text = (
+        json.dumps(chunk, separators=(",", ":")).encode().ljust(length)
+    )  # shorter: the name is gone
     (tmp_path / "unnamed.glb").write_bytes(document[:20] + text + document[20 + length :])
     with pytest.raises(ExampleError, match="unnamed.glb: node 0: has no name"):
         load_example(tmp_path / "unnamed.glb")
@@ -284,12 +365,17 @@ def test_tilted_node_is_refused(tmp_path):
 @given(
     st.lists(
         st.tuples(
-            st.floats(-2.0, 2.0), st.floats(-2.0, 2.0), st.floats(-math.pi + 0.01, math.pi),
-            st.floats(0.1, 2.0), st.floats(0.1, 2.0), st.floats(0.1, 2.0),
+            st.floats(-2.0, 2.0),
+            st.floats(-2.0, 2.0),
+            st.floats(-math.pi + 0.01, math.pi),
+            st.floats(0.1, 2.0),
+            st.floats(0.1, 2.0),
+            st.floats(0.1, 2.0),
         ),
-        min_size=1, max_size=5,
+        min_size=1,
+        max_size=5,
     )
-)  # fmt: skip
+)
 def test_glb_round_trip_of_our_own_export(tmp_path_factory, boxes):
     records = [
         ObjectRecord(f"box_{k}", "crate", (w, h, d), (x, 0.0, z), yaw, "pine" if k % 2 else None)
@@ -300,8 +386,10 @@ def test_glb_round_trip_of_our_own_export(tmp_path_factory, boxes):
     export_glb(scene, path)
     again = load_example(path).objects()
     assert [o.id for o in again] == [o.id for o in scene.objects]
-    offset = np.mean([o.position for o in again], axis=0) - np.mean([o.position for o in scene.objects], axis=0)
-    for before, after in zip(scene.objects, again):
+    offset = np.mean([o.position for o in again], axis=0) - np.mean(
+        [o.position for o in scene.objects], axis=0
+    )
+    for before, after in zip(scene.objects, again, strict=False):
         assert (after.type, after.style) == (before.type, before.style)
         assert after.size == pytest.approx(before.size, abs=1e-5)
         # The file's frame is re-centred on the objects' bounds: every object moves alike.
@@ -313,10 +401,16 @@ def test_glb_round_trip_of_our_own_export(tmp_path_factory, boxes):
 def test_stacking_rules():
     records = [
         ObjectRecord("rug", "rug", (2.0, 0.01, 2.0), (0.0, 0.0, 0.0), 0.0),
-        ObjectRecord("table", "table", (1.0, 0.7, 1.0), (0.0, 0.0, 0.0), 0.0),  # on the floor, over the rug
+        ObjectRecord(
+            "table", "table", (1.0, 0.7, 1.0), (0.0, 0.0, 0.0), 0.0
+        ),  # on the floor, over the rug
         ObjectRecord("box", "box", (0.3, 0.3, 0.3), (0.4, 0.7, 0.0), 0.0),
-        ObjectRecord("cup", "cup", (0.1, 0.1, 0.1), (0.4, 1.0, 0.0), 0.0),  # on the box, not the table
-        ObjectRecord("ball", "ball", (0.1, 0.1, 0.1), (0.9, 0.7, 0.0), 0.0),  # past the table's edge: floats
+        ObjectRecord(
+            "cup", "cup", (0.1, 0.1, 0.1), (0.4, 1.0, 0.0), 0.0
+        ),  # on the box, not the table
+        ObjectRecord(
+            "ball", "ball", (0.1, 0.1, 0.1), (0.9, 0.7, 0.0), 0.0
+        ),  # past the table's edge: floats
     ]
     scene = example_scene(records, name="s", source="s", extent=(4.0, 4.0), room=None)
     assert infer_supports(scene.objects) == {"box": "table", "cup": "box"}

@@ -8,6 +8,9 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from scipy import stats
+
+from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_KINDS
 from scenewright.generator import (
     ExpansionError,
@@ -17,8 +20,6 @@ from scenewright.generator import (
     load_rules,
     shipped_rule_sets,
 )
-from scenewright.core.relations import RELATIONS
-from scipy import stats
 
 RULES = Path(__file__).parent / "rules"
 
@@ -67,14 +68,19 @@ def test_market_fixture_structure():
     crossing, *_ = graph.nodes("junction")
     roads = graph.nodes("path")
     assert 2 <= len(roads) <= 3
-    assert all(("PathConnectedTo", crossing.id) in {(e.label, e.target) for e in graph.edges() if e.source == r.id}
-               for r in roads)
+    assert all(
+        ("PathConnectedTo", crossing.id)
+        in {(e.label, e.target) for e in graph.edges() if e.source == r.id}
+        for r in roads
+    )
     stands = [n for n in graph.nodes() if n.type == "market_stand"]
     assert len(stands) == 2
     assert all((s.id, "NextTo", "road_1") in edges(graph) for s in stands)
     for stand in stands:
         members = graph.children(stand.id)
-        assert members[0].type == "table" and all(m.rule in ("MarketStand", "Goods") for m in members)
+        assert members[0].type == "table" and all(
+            m.rule in ("MarketStand", "Goods") for m in members
+        )
 
 
 def test_weighted_alternatives_follow_their_weights(tmp_path):
@@ -108,19 +114,31 @@ def test_repetition_ranges_are_uniform_and_inclusive(tmp_path):
     sizes = group_sizes(graph)
     assert set(sizes) == {2, 3, 4}
     assert stats.chisquare([sizes[2], sizes[3], sizes[4]]).pvalue > ALPHA
-    assert types(expand(rules_from(tmp_path, "S -> { 3 a; 0 b; 1..1 c }"), 0)) == ["a", "a", "a", "c"]
+    assert types(expand(rules_from(tmp_path, "S -> { 3 a; 0 b; 1..1 c }"), 0)) == [
+        "a",
+        "a",
+        "a",
+        "c",
+    ]
 
 
 def test_weighted_counts_follow_their_weights_and_a_zero_weight_never_comes(tmp_path):
     rules = rules_from(tmp_path, "S -> { 800 P }\nP -> { g { 1..4 {0 1 3 0.5} a } }")
     sizes = group_sizes(expand(rules, 5))
     assert set(sizes) == {2, 3, 4}
-    assert stats.chisquare([sizes[2], sizes[3], sizes[4]], [800 / 4.5, 800 * 3 / 4.5, 800 * 0.5 / 4.5]).pvalue > ALPHA
+    assert (
+        stats.chisquare(
+            [sizes[2], sizes[3], sizes[4]], [800 / 4.5, 800 * 3 / 4.5, 800 * 0.5 / 4.5]
+        ).pvalue
+        > ALPHA
+    )
 
 
 def test_styles_are_drawn_by_weight(tmp_path):
-    rules = rules_from(tmp_path, 'object d { noun "d" style x 4 { noun "ex" } style y { size 2 x 2 x 2 } }\n'
-                                 "S -> { 1000 d }")
+    rules = rules_from(
+        tmp_path,
+        'object d { noun "d" style x 4 { noun "ex" } style y { size 2 x 2 x 2 } }\nS -> { 1000 d }',
+    )
     nodes = expand(rules, 4).nodes()
     counts = Counter(node.style for node in nodes)
     assert stats.chisquare([counts["x"], counts["y"]], [800, 200]).pvalue > ALPHA
@@ -129,17 +147,24 @@ def test_styles_are_drawn_by_weight(tmp_path):
 
 
 def test_references_some_each_ordinal_and_bound_names(tmp_path):
-    rules = rules_from(tmp_path, "S -> {\n 3 a as as_\n b as first NextTo a #2\n"
-                                 " c NextTo each a FacingTowards first\n b NextTo some a\n each a NextTo first }")
+    rules = rules_from(
+        tmp_path,
+        "S -> {\n 3 a as as_\n b as first NextTo a #2\n"
+        " c NextTo each a FacingTowards first\n b NextTo some a\n each a NextTo first }",
+    )
     found = set(edges(expand(rules, 1)))
     some_target = next(target for source, _, target in found if source == "b_2")
     assert some_target in {"a_1", "a_2", "a_3"}
     assert found == {
         ("b_1", "NextTo", "a_2"),
-        ("c_1", "NextTo", "a_1"), ("c_1", "NextTo", "a_2"), ("c_1", "NextTo", "a_3"),
+        ("c_1", "NextTo", "a_1"),
+        ("c_1", "NextTo", "a_2"),
+        ("c_1", "NextTo", "a_3"),
         ("c_1", "FacingTowards", "b_1"),
         ("b_2", "NextTo", some_target),
-        ("a_1", "NextTo", "b_1"), ("a_2", "NextTo", "b_1"), ("a_3", "NextTo", "b_1"),
+        ("a_1", "NextTo", "b_1"),
+        ("a_2", "NextTo", "b_1"),
+        ("a_3", "NextTo", "b_1"),
     }
 
 
@@ -151,33 +176,58 @@ def test_some_draws_independently_for_each_subject_and_never_the_subject_itself(
 
 
 def test_a_name_bound_by_a_skipped_statement_means_no_nodes(tmp_path):
-    rules = rules_from(tmp_path, "S -> { 0? a as x; 0 b as y; c NextTo x NextTo y; P(x) }\nP(z) -> { c OnTopOf z }")
+    rules = rules_from(
+        tmp_path, "S -> { 0? a as x; 0 b as y; c NextTo x NextTo y; P(x) }\nP(z) -> { c OnTopOf z }"
+    )
     graph = expand(rules, 0)
     assert types(graph) == ["c", "c"] and edges(graph) == []
 
 
 def test_parameters_receive_the_arguments_by_position(tmp_path):
-    rules = rules_from(tmp_path, "S -> { a as x; b as y; P(y, x) }\nP(first, second) -> { c OnTopOf first NextTo second }")
+    rules = rules_from(
+        tmp_path,
+        "S -> { a as x; b as y; P(y, x) }\nP(first, second) -> { c OnTopOf first NextTo second }",
+    )
     assert edges(expand(rules, 0)) == [("c_1", "OnTopOf", "b_1"), ("c_1", "NextTo", "a_1")]
 
 
 def test_groups_nest_their_block_and_calls_inherit_the_enclosing_group(tmp_path):
-    rules = rules_from(tmp_path, "S -> { 2 g as outer { a; P; g { c } } ; b }\nP -> { b NextTo some a }")
+    rules = rules_from(
+        tmp_path, "S -> { 2 g as outer { a; P; g { c } } ; b }\nP -> { b NextTo some a }"
+    )
     graph = expand(rules, 0)
     parents = {node.id: node.parent for node in graph.nodes()}
-    assert parents == {"g_1": None, "a_1": "g_1", "b_1": "g_1", "g_2": "g_1", "c_1": "g_2",
-                       "g_3": None, "a_2": "g_3", "b_2": "g_3", "g_4": "g_3", "c_2": "g_4", "b_3": None}
+    assert parents == {
+        "g_1": None,
+        "a_1": "g_1",
+        "b_1": "g_1",
+        "g_2": "g_1",
+        "c_1": "g_2",
+        "g_3": None,
+        "a_2": "g_3",
+        "b_2": "g_3",
+        "g_4": "g_3",
+        "c_2": "g_4",
+        "b_3": None,
+    }
     assert graph.node("b_1").rule == "P" and graph.node("a_1").rule == "S"
 
 
 def test_a_group_binding_means_that_group_inside_its_block_and_every_group_after_it(tmp_path):
     rules = rules_from(tmp_path, "S -> { 2 g as outer { a NextTo outer }; b NextTo outer }")
     assert edges(expand(rules, 0)) == [
-        ("a_1", "NextTo", "g_1"), ("a_2", "NextTo", "g_2"), ("b_1", "NextTo", "g_1"), ("b_1", "NextTo", "g_2")]
+        ("a_1", "NextTo", "g_1"),
+        ("a_2", "NextTo", "g_2"),
+        ("b_1", "NextTo", "g_1"),
+        ("b_1", "NextTo", "g_2"),
+    ]
 
 
 def test_a_call_statement_labels_and_binds_the_head_of_the_alternative(tmp_path):
-    rules = rules_from(tmp_path, "S -> { a as x; P as p NextTo x; c OnTopOf p }\nP -> { 0 c; Q; b }\nQ -> { g { a } }")
+    rules = rules_from(
+        tmp_path,
+        "S -> { a as x; P as p NextTo x; c OnTopOf p }\nP -> { 0 c; Q; b }\nQ -> { g { a } }",
+    )
     graph = expand(rules, 0)
     # P's first node is Q's head, the group g_1 (a call's head counts as its node)
     assert edges(graph) == [("g_1", "NextTo", "a_1"), ("c_1", "OnTopOf", "g_1")]
@@ -186,19 +236,25 @@ def test_a_call_statement_labels_and_binds_the_head_of_the_alternative(tmp_path)
 def test_recursion_past_max_depth_names_the_rule_chain(tmp_path):
     path = tmp_path / "deep.rules"
     # Almost always recursing (1000:1): statically it can stop, but with this seed it does not.
-    path.write_text('scene s { start S max_depth 12 }\nobject a { noun "a" }\n'
-                    "S -> { Roads }\nRoads -> { Road }\nRoad -> 1000: { a; Road } | 1: { a }\n")
+    path.write_text(
+        'scene s { start S max_depth 12 }\nobject a { noun "a" }\n'
+        "S -> { Roads }\nRoads -> { Road }\nRoad -> 1000: { a; Road } | 1: { a }\n"
+    )
     with pytest.raises(ExpansionError) as caught:
         expand(load_rules(path), 0)
     message = str(caught.value)
-    assert message.startswith(f"{path}:5:20: error: expansion deeper than max_depth 12 "
-                              "(expanding S -> Roads -> Road -> Road -> ... -> Road -> Road)\n")
+    assert message.startswith(
+        f"{path}:5:20: error: expansion deeper than max_depth 12 "
+        "(expanding S -> Roads -> Road -> Road -> ... -> Road -> Road)\n"
+    )
     assert message.splitlines()[1:] == ["    Road -> 1000: { a; Road } | 1: { a }", " " * 23 + "^"]
 
 
 def test_more_nodes_than_max_nodes_is_an_error_not_a_hang(tmp_path):
     path = tmp_path / "big.rules"
-    path.write_text('scene s { start S max_nodes 50 }\nobject a { noun "a" }\nS -> { 40 a; P }\nP -> { 20 a }')
+    path.write_text(
+        'scene s { start S max_nodes 50 }\nobject a { noun "a" }\nS -> { 40 a; P }\nP -> { 20 a }'
+    )
     with pytest.raises(ExpansionError, match=r"more than max_nodes 50 nodes \(expanding S -> P\)"):
         expand(load_rules(path), 0)
 
@@ -210,9 +266,14 @@ def test_unbounded_fanout_without_nodes_stops(tmp_path):
 
 
 def test_missing_references_are_located_errors(tmp_path):
-    with pytest.raises(ExpansionError, match=r"t\.rules:7:17: error: 'some b' finds no b in the scene at this point \(expanding S\)"):
+    with pytest.raises(
+        ExpansionError,
+        match=r"t\.rules:7:17: error: 'some b' finds no b in the scene at this point \(expanding S\)",
+    ):
         expand(rules_from(tmp_path, "S -> { a NextTo some b }"), 0)
-    with pytest.raises(ExpansionError, match=r"'a #3' refers to a number 3, but only 2 exist at this point"):
+    with pytest.raises(
+        ExpansionError, match=r"'a #3' refers to a number 3, but only 2 exist at this point"
+    ):
         expand(rules_from(tmp_path, "S -> { 2 a; b NextTo a #3 }"), 0)
 
 
@@ -225,8 +286,12 @@ def test_shipped_rule_sets_expand():
 
 
 def test_dot_export_nests_groups_as_clusters_and_labels_edges(tmp_path):
-    rules = rules_from(tmp_path, "S -> { a as x; g { b ImplicitNextTo x; P } }\nP -> { g { c OnTopOf some a } }")
-    assert graph_to_dot(expand(rules, 0)) == """\
+    rules = rules_from(
+        tmp_path, "S -> { a as x; g { b ImplicitNextTo x; P } }\nP -> { g { c OnTopOf some a } }"
+    )
+    assert (
+        graph_to_dot(expand(rules, 0))
+        == """\
 digraph "s" {
   node [fontname=Helvetica];
   "a_1" [label="a_1\\na", shape=box, tooltip="rule: S"];
@@ -244,6 +309,7 @@ digraph "s" {
   "c_1" -> "a_1" [label="OnTopOf"];
 }
 """
+    )
 
 
 @functools.cache
@@ -252,17 +318,24 @@ def loaded(name: str):
 
 
 @settings(max_examples=60, deadline=None)
-@given(seed=st.integers(0, 2**63 - 1), name=st.sampled_from(["village", "desk", "bedroom", str(RULES / "market.rules")]))
+@given(
+    seed=st.integers(0, 2**63 - 1),
+    name=st.sampled_from(["village", "desk", "bedroom", str(RULES / "market.rules")]),
+)
 def test_any_seed_gives_a_well_formed_graph(seed, name):
     rules = loaded(name)
     graph = expand(rules, seed)
     room_nodes = [node for node in graph.nodes() if node.kind in ROOM_KINDS]
     nodes = {node.id: node for node in graph.nodes() if node.kind not in ROOM_KINDS}
     assert 0 < len(nodes) <= rules.max_nodes
-    assert [node.order for node in nodes.values()] == list(range(len(room_nodes), len(room_nodes) + len(nodes)))
+    assert [node.order for node in nodes.values()] == list(
+        range(len(room_nodes), len(room_nodes) + len(nodes))
+    )
     for node in nodes.values():
         assert node.parent is None or nodes[node.parent].kind == "group"
-        assert node.parent is None or nodes[node.parent].order < node.order  # a group precedes its members
+        assert (
+            node.parent is None or nodes[node.parent].order < node.order
+        )  # a group precedes its members
         assert node.rule in rules.productions
         entry = rules.catalog[node.type]
         assert node.style in [None] + [style.name for style in entry.styles]
@@ -275,8 +348,10 @@ def test_any_seed_gives_a_well_formed_graph(seed, name):
 # -- random rule sets: whatever loads, expands or fails with a located ExpansionError --
 
 TYPES = ("a", "b", "g", "r", "j")
-FUZZ_CATALOG = ('scene s { start P0 max_depth 5 max_nodes 300 }\nobject a { noun "a" }\nobject b { noun "b" }\n'
-                'group g { noun "g" }\npath r { noun "r" }\njunction j { noun "j" }\n')
+FUZZ_CATALOG = (
+    'scene s { start P0 max_depth 5 max_nodes 300 }\nobject a { noun "a" }\nobject b { noun "b" }\n'
+    'group g { noun "g" }\npath r { noun "r" }\njunction j { noun "j" }\n'
+)
 LABEL_CHOICES = ("NextTo", "OnTopOf", "FacingTowards", "ImplicitNextTo")
 
 
@@ -287,7 +362,9 @@ def random_rules(draw) -> str:
     arities = [0] + [draw(st.integers(0, 2)) for _ in range(count - 1)]
 
     def reference(names: list[str]) -> str:
-        kind = draw(st.sampled_from(["name", "some", "each", "nth"] if names else ["some", "each", "nth"]))
+        kind = draw(
+            st.sampled_from(["name", "some", "each", "nth"] if names else ["some", "each", "nth"])
+        )
         if kind == "name":
             return draw(st.sampled_from(names))
         if kind == "nth":
@@ -313,8 +390,10 @@ def random_rules(draw) -> str:
             binding = ""
             if draw(st.booleans()):
                 binding = f" as n{len(names)}"
-            relations = "".join(f" {draw(st.sampled_from(LABEL_CHOICES))} {reference(names)}"
-                                for _ in range(draw(st.integers(0, 2))))
+            relations = "".join(
+                f" {draw(st.sampled_from(LABEL_CHOICES))} {reference(names)}"
+                for _ in range(draw(st.integers(0, 2)))
+            )
             lines.append(prefix + subject + binding + relations + block)
             if binding:
                 names.append(binding.split()[-1])
@@ -324,12 +403,16 @@ def random_rules(draw) -> str:
     for index, arity in enumerate(arities):
         params = [f"p{i}" for i in range(arity)]
         head = f"P{index}" + (f"({', '.join(params)})" if params else "")
-        alternatives = " | ".join("{ " + statements(list(params), 0) + " }" for _ in range(draw(st.integers(1, 2))))
+        alternatives = " | ".join(
+            "{ " + statements(list(params), 0) + " }" for _ in range(draw(st.integers(1, 2)))
+        )
         productions.append(f"{head} -> {alternatives}")
     return FUZZ_CATALOG + "\n".join(productions) + "\n"
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
 @given(text=random_rules(), seed=st.integers(0, 1000))
 def test_random_rule_sets_expand_or_fail_with_expansion_error(tmp_path, text, seed):
     path = tmp_path / "random.rules"

@@ -30,12 +30,25 @@ def loaded(glb_path):
 
 def test_one_named_node_per_entity(loaded):
     names = set(loaded.graph.nodes) - {loaded.graph.base_frame}
-    assert names == {"market_stand_1", "table_1", "sign_1", "house_1", "crossing_1", "road_1", GROUND_NODE}
+    assert names == {
+        "market_stand_1",
+        "table_1",
+        "sign_1",
+        "house_1",
+        "crossing_1",
+        "road_1",
+        GROUND_NODE,
+    }
 
 
 def test_nodes_carry_their_scene_data_in_extras(glb_path):
     nodes = {node["name"]: node for node in _gltf_json(glb_path)["nodes"]}
-    assert nodes["house_1"]["extras"] == {"id": "house_1", "type": "house", "kind": "object", "noun": "house"}
+    assert nodes["house_1"]["extras"] == {
+        "id": "house_1",
+        "type": "house",
+        "kind": "object",
+        "noun": "house",
+    }
     assert nodes["market_stand_1"]["extras"]["kind"] == "group"
     assert nodes["road_1"]["extras"]["kind"] == "path"
     assert "mesh" not in nodes["market_stand_1"]  # a group is only a parent

@@ -14,15 +14,15 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from test_cli import assert_one_line_error, run
+
 from scenewright.cli import main
 from scenewright.generator import load_rules
 from scenewright.generator.expand import expand, expand_with
 from scenewright.generator.rules import parse_rules_tree
-from scenewright.learning.rewrite import rewrite_rules
 from scenewright.learning.derivations import derivations_of, signature
+from scenewright.learning.rewrite import rewrite_rules
 from scenewright.learning.weights import fit_weights, fit_weights_em, posterior
-
-from test_cli import assert_one_line_error, run
 
 TRUTH = """\
 # a test grammar with every kind of parameter
@@ -41,7 +41,9 @@ Pile -> 0.7: { stack { 1..3 {1 2 1} crate; 0.3? barrel } }
 """
 
 #: The lines of Pile's two alternatives.
-FIRST, SECOND = (TRUTH.splitlines().index(line) + 1 for line in TRUTH.splitlines() if "{ stack {" in line)
+FIRST, SECOND = (
+    TRUTH.splitlines().index(line) + 1 for line in TRUTH.splitlines() if "{ stack {" in line
+)
 
 #: The truth's parameters: counts and optionals by their line, the others by name.
 TRUE = {
@@ -56,7 +58,11 @@ TRUE = {
 def flattened(text: str) -> str:
     """The same rules with every number it may fit set to a flat guess."""
     text = re.sub(r"\b0\.[37]: ", "1: ", text)
-    text = text.replace("1..3 {1 2 1}", "1..3").replace("0.3?", "0.5?").replace("style red 3", "style red")
+    text = (
+        text.replace("1..3 {1 2 1}", "1..3")
+        .replace("0.3?", "0.5?")
+        .replace("style red 3", "style red")
+    )
     return text
 
 
@@ -71,7 +77,9 @@ def derivations(rules, seeds) -> list[list[dict]]:
 
 
 def key(parameter):
-    return parameter.kind, (parameter.site.line if parameter.kind in ("count", "optional") else parameter.name)
+    return parameter.kind, (
+        parameter.site.line if parameter.kind in ("count", "optional") else parameter.name
+    )
 
 
 def test_posterior_is_the_dirichlet_mean_and_deviation():
@@ -84,15 +92,21 @@ def test_posterior_is_the_dirichlet_mean_and_deviation():
 def test_fit_recovers_known_weights_from_flattened_rules(tmp_path):
     truth = load_rules(write(tmp_path, "truth.rules", TRUTH))
     flat = load_rules(write(tmp_path, "flat.rules", flattened(TRUTH)))
-    fit = fit_weights(flat, derivations(truth, range(600)))  # traces of the truth, counted against the flat file
+    fit = fit_weights(
+        flat, derivations(truth, range(600))
+    )  # traces of the truth, counted against the flat file
     found = {key(parameter): parameter for parameter in fit.parameters}
     assert set(found) == set(TRUE)
     for name, truth_values in TRUE.items():
         parameter = found[name]
         assert parameter.identified
-        for estimate, error, true_value in zip(parameter.estimate, parameter.standard_error, truth_values):
+        for estimate, error, true_value in zip(
+            parameter.estimate, parameter.standard_error, truth_values, strict=False
+        ):
             assert abs(estimate - true_value) <= max(3 * error, 0.03), (name, parameter)
-    assert found[("optional", FIRST)].written == pytest.approx((0.5, 0.5))  # what the flat file said
+    assert found[("optional", FIRST)].written == pytest.approx(
+        (0.5, 0.5)
+    )  # what the flat file said
 
 
 def test_rewritten_rules_change_only_numbers_and_load_with_the_fitted_values(tmp_path):
@@ -112,7 +126,9 @@ def test_rewritten_rules_change_only_numbers_and_load_with_the_fitted_values(tmp
     fitted = load_rules(write(tmp_path, "fitted.rules", text))
     found = {key(parameter): parameter for parameter in fit.parameters}
     pile = fitted.productions["Pile"]
-    assert [a.weight for a in pile.alternatives] == pytest.approx(found[("alternative", "Pile")].estimate, abs=5e-4)
+    assert [a.weight for a in pile.alternatives] == pytest.approx(
+        found[("alternative", "Pile")].estimate, abs=5e-4
+    )
     counts = pile.alternatives[0].statements[0].block[0].count
     assert np.asarray(counts.weights) == pytest.approx(found[("count", FIRST)].estimate, abs=5e-4)
     assert [s.weight for s in fitted.catalog["crate"].styles] == pytest.approx(
@@ -120,31 +136,42 @@ def test_rewritten_rules_change_only_numbers_and_load_with_the_fitted_values(tmp
     )
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
 @given(seeds=st.lists(st.integers(0, 10**6), min_size=1, max_size=12, unique=True))
 def test_any_fit_rewrites_into_rules_that_load_and_refit_to_the_same_numbers(tmp_path, seeds):
     path = write(tmp_path, "flat.rules", flattened(TRUTH))
     flat = load_rules(path)
     fit = fit_weights(flat, derivations(flat, seeds))
-    fitted_path = write(tmp_path, "fitted.rules", rewrite_rules(parse_rules_tree(path), fit)[str(path)])
+    fitted_path = write(
+        tmp_path, "fitted.rules", rewrite_rules(parse_rules_tree(path), fit)[str(path)]
+    )
     # The examples were drawn from the flat file; their columns moved where weights were
     # written in before a number on the same line, and they must still be counted.
     refit = fit_weights(load_rules(fitted_path), derivations(flat, seeds))
     assert [p.draws for p in refit.parameters] == [p.draws for p in fit.parameters]
-    for before, after in zip(fit.parameters, refit.parameters):
+    for before, after in zip(fit.parameters, refit.parameters, strict=False):
         assert after.written == pytest.approx(before.estimate, abs=2e-3)
 
 
 def test_a_parameter_no_example_drew_is_unidentified_and_keeps_its_number(tmp_path):
-    text = TRUTH.replace("S -> { 4 Pile }", "S -> { 4 Pile; 0? Rare }") + "Rare -> 5: { barrel } | 1: { crate }\n"
+    text = (
+        TRUTH.replace("S -> { 4 Pile }", "S -> { 4 Pile; 0? Rare }")
+        + "Rare -> 5: { barrel } | 1: { crate }\n"
+    )
     path = write(tmp_path, "rare.rules", text)
     rules = load_rules(path)
     fit = fit_weights(rules, derivations(rules, range(30)))
     assert [(p.kind, p.name) for p in fit.unidentified] == [("alternative", "Rare")]
     rewritten = rewrite_rules(parse_rules_tree(path), fit)[str(path)]
     assert "Rare -> 5: { barrel } | 1: { crate }" in rewritten
-    assert "0.016? Rare" in rewritten  # never taken in 30 draws: (0 + 0.5) / (30 + 1) under the prior
-    assert fit.to_dict()["unidentified"] == [f"alternative Rare at rare.rules:{len(TRUTH.splitlines()) + 1}:1"]
+    assert (
+        "0.016? Rare" in rewritten
+    )  # never taken in 30 draws: (0 + 0.5) / (30 + 1) under the prior
+    assert fit.to_dict()["unidentified"] == [
+        f"alternative Rare at rare.rules:{len(TRUTH.splitlines()) + 1}:1"
+    ]
 
 
 def test_a_trace_of_other_rules_is_refused(tmp_path):
@@ -167,7 +194,11 @@ A -> 0.5: { crate } | 0.3: { barrel } | 0.2: { crate; barrel }
 
 def without_some(derivation: list[dict]) -> list[dict]:
     """A derivation less its ``some`` draws, which the search does not enumerate."""
-    return [{k: v for k, v in record.items() if k != "nodes"} for record in derivation if record["kind"] != "some"]
+    return [
+        {k: v for k, v in record.items() if k != "nodes"}
+        for record in derivation
+        if record["kind"] != "some"
+    ]
 
 
 @pytest.mark.parametrize("name", ["desk", "bedroom", "study"])
@@ -185,7 +216,11 @@ def replay(rules, derivation):
     """The graph a derivation makes (its ``some`` draws answered with the first node)."""
     from scenewright.learning.derivations import _Scripted
 
-    script = [int(record["value"]) - record.get("low", 0) for record in derivation if record["kind"] != "some"]
+    script = [
+        int(record["value"]) - record.get("low", 0)
+        for record in derivation
+        if record["kind"] != "some"
+    ]
     return expand_with(rules, _Scripted(script))
 
 
@@ -193,12 +228,20 @@ def test_a_scene_no_derivation_makes_has_none(tmp_path):
     rules = load_rules(write(tmp_path, "amb.rules", AMBIGUOUS))
     assert derivations_of(rules, expand(load_rules("desk"), 0)) == []  # other types
     four_crates = AMBIGUOUS.replace("S -> { 1..3 {1 2 1} A }", "S -> { 4 crate }")
-    assert derivations_of(rules, expand(load_rules(write(tmp_path, "four.rules", four_crates)), 0)) == []
+    assert (
+        derivations_of(rules, expand(load_rules(write(tmp_path, "four.rules", four_crates)), 0))
+        == []
+    )
 
 
 def test_em_recovers_weights_from_examples_without_derivations(tmp_path):
     truth = load_rules(write(tmp_path, "amb.rules", AMBIGUOUS))
-    flat_text = AMBIGUOUS.replace(" {1 2 1}", "").replace("0.5:", "1:").replace("0.3:", "1:").replace("0.2:", "1:")
+    flat_text = (
+        AMBIGUOUS.replace(" {1 2 1}", "")
+        .replace("0.5:", "1:")
+        .replace("0.3:", "1:")
+        .replace("0.2:", "1:")
+    )
     rules = load_rules(write(tmp_path, "flat.rules", flat_text))
     graphs = [expand(truth, seed) for seed in range(150)]
     candidates = [derivations_of(rules, graph) for graph in graphs]
@@ -209,9 +252,13 @@ def test_em_recovers_weights_from_examples_without_derivations(tmp_path):
     for fitted in em.parameters:
         assert fitted.written == pytest.approx([1 / 3] * 3)  # it started flat
         # Its standard errors leave out which derivation made each example: a wider band.
-        for estimate, error, value in zip(fitted.estimate, fitted.standard_error, true[fitted.kind]):
+        for estimate, error, value in zip(
+            fitted.estimate, fitted.standard_error, true[fitted.kind], strict=False
+        ):
             assert abs(estimate - value) <= max(3 * error, 0.07)
-        assert np.abs(np.subtract(fitted.estimate, true[fitted.kind])).sum() < 0.15  # flat: 0.33 away
+        assert (
+            np.abs(np.subtract(fitted.estimate, true[fitted.kind])).sum() < 0.15
+        )  # flat: 0.33 away
 
 
 def test_em_with_one_derivation_per_example_is_the_closed_form(tmp_path):
@@ -219,7 +266,9 @@ def test_em_with_one_derivation_per_example_is_the_closed_form(tmp_path):
     derivations = [expand(rules, seed).derivation for seed in range(40)]
     em = fit_weights_em(rules, [[d] for d in derivations])
     assert em.iterations == 0
-    assert [p.estimate for p in em.parameters] == [p.estimate for p in fit_weights(rules, derivations).parameters]
+    assert [p.estimate for p in em.parameters] == [
+        p.estimate for p in fit_weights(rules, derivations).parameters
+    ]
 
 
 #: A room whose alternatives differ only in where things stand: which side of the bed a
@@ -238,10 +287,21 @@ Side(b) -> 0.8: { nightstand as n NextToLeft b FacingSameDirection b; 0.7? lamp 
 
 def handwritten(scene) -> dict:
     """The hand-written example of a generated scene: boxes, poses and styles only."""
-    objects = [{"id": o.id, "type": o.type, "size": list(o.size), "position": list(o.position),
-                "yaw": float(np.degrees(o.yaw)), **({"style": o.style} if o.style else {})}
-               for o in scene.placed_objects()]  # fmt: skip
-    return {"room": {"corners": [list(c) for c in scene.room.corners], "height": 2.6}, "objects": objects}
+    objects = [
+        {
+            "id": o.id,
+            "type": o.type,
+            "size": list(o.size),
+            "position": list(o.position),
+            "yaw": float(np.degrees(o.yaw)),
+            **({"style": o.style} if o.style else {}),
+        }
+        for o in scene.placed_objects()
+    ]
+    return {
+        "room": {"corners": [list(c) for c in scene.room.corners], "height": 2.6},
+        "objects": objects,
+    }
 
 
 def test_examples_read_from_geometry_fit_like_their_derivations(tmp_path):
@@ -250,13 +310,28 @@ def test_examples_read_from_geometry_fit_like_their_derivations(tmp_path):
     from scenewright.learning.fit import example_candidates
 
     truth = write(tmp_path, "truth.rules", ROOM)
-    flat = load_rules(write(tmp_path, "flat.rules", ROOM.replace("0.8:", "1:").replace("0.2:", "1:").replace("0.6?", "0.5?").replace("0.7?", "0.5?")))
-    scenes = [scene for scene in (build_scene(str(truth), seed) for seed in range(40)) if scene.layout.ok]
+    flat = load_rules(
+        write(
+            tmp_path,
+            "flat.rules",
+            ROOM.replace("0.8:", "1:")
+            .replace("0.2:", "1:")
+            .replace("0.6?", "0.5?")
+            .replace("0.7?", "0.5?"),
+        )
+    )
+    scenes = [
+        scene for scene in (build_scene(str(truth), seed) for seed in range(40)) if scene.layout.ok
+    ]
     assert len(scenes) >= 36
     measured, traced = [], []
     for index, scene in enumerate(scenes):
-        example = load_example(write(tmp_path, f"{index}.json", json.dumps(handwritten(scene)))).scene
-        assert example.relations == [r for r in example.relations if r.label == "OnTopOf"]  # geometry alone
+        example = load_example(
+            write(tmp_path, f"{index}.json", json.dumps(handwritten(scene)))
+        ).scene
+        assert example.relations == [
+            r for r in example.relations if r.label == "OnTopOf"
+        ]  # geometry alone
         found = example_candidates(flat, f"{index}.json", example)
         assert len(found) == 1  # the side the nightstand stands on decides
         measured.append(found)
@@ -276,14 +351,31 @@ def test_fit_command_reads_a_folder_of_hand_written_examples(capsys, tmp_path):
     for seed in range(6):
         write(folder, f"room_{seed}.json", json.dumps(handwritten(build_scene(str(truth), seed))))
     report = tmp_path / "fit.json"
-    code, stdout, err = run(capsys, "fit", str(truth), str(folder), "-o", str(tmp_path / "f.rules"), "--report", str(report))
+    code, stdout, err = run(
+        capsys,
+        "fit",
+        str(truth),
+        str(folder),
+        "-o",
+        str(tmp_path / "f.rules"),
+        "--report",
+        str(report),
+    )
     assert code == 0, err
     assert "from 6 examples" in stdout
     assert json.loads(report.read_text())["examples"] == 6
-    (folder / "room_0.json").write_text(json.dumps({"extent": [4, 4], "objects": [
-        {"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]}))  # fmt: skip
+    (folder / "room_0.json").write_text(
+        json.dumps(
+            {
+                "extent": [4, 4],
+                "objects": [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}],
+            }
+        )
+    )
     code, _, err = run(capsys, "fit", str(truth), str(folder), "-o", str(tmp_path / "g.rules"))
-    assert code == 2 and "room_0.json: no derivation of truth.rules makes a scene like this one" in err
+    assert (
+        code == 2 and "room_0.json: no derivation of truth.rules makes a scene like this one" in err
+    )
     assert "its types: table" in err and not (tmp_path / "g.rules").exists()
 
 
@@ -295,15 +387,33 @@ def study_examples(tmp_path_factory) -> list[str]:
     folder = tmp_path_factory.mktemp("examples")
     paths = []
     for seed in (1, 2, 3):
-        assert main(["-q", "generate", "study", "--seed", str(seed), "-o", str(folder / str(seed)), "--no-render"]) == 0
+        assert (
+            main(
+                [
+                    "-q",
+                    "generate",
+                    "study",
+                    "--seed",
+                    str(seed),
+                    "-o",
+                    str(folder / str(seed)),
+                    "--no-render",
+                ]
+            )
+            == 0
+        )
         paths.append(str(folder / str(seed) / "scene.json"))
     return paths
 
 
-def test_fit_command_writes_the_rules_their_includes_and_the_report(capsys, tmp_path, study_examples):
+def test_fit_command_writes_the_rules_their_includes_and_the_report(
+    capsys, tmp_path, study_examples
+):
     out = tmp_path / "fitted" / "study.rules"
     report = tmp_path / "fitted" / "fit.json"
-    code, stdout, _ = run(capsys, "fit", "study", *study_examples, "-o", str(out), "--report", str(report))
+    code, stdout, _ = run(
+        capsys, "fit", "study", *study_examples, "-o", str(out), "--report", str(report)
+    )
     assert code == 0, stdout
     assert "fitted 21 parameters from 3 examples" in stdout
     assert (out.parent / "catalog" / "indoor.rules").is_file()  # the include, beside it
@@ -311,8 +421,17 @@ def test_fit_command_writes_the_rules_their_includes_and_the_report(capsys, tmp_
     document = json.loads(report.read_text())
     assert document["examples"] == 3 and document["prior"] == 0.5
     parameter = document["parameters"][0]
-    assert set(parameter) == {"kind", "name", "at", "identified", "options", "draws", "estimate",
-                              "standard_error", "written"}  # fmt: skip
+    assert set(parameter) == {
+        "kind",
+        "name",
+        "at",
+        "identified",
+        "options",
+        "draws",
+        "estimate",
+        "standard_error",
+        "written",
+    }
     assert sum(document["parameters"][0]["draws"]) == 3  # Workplace is drawn once a scene
     assert "style bed at indoor.rules:12:1" in document["unidentified"]
 
@@ -324,12 +443,22 @@ def test_fit_command_fits_examples_that_keep_no_derivation(capsys, tmp_path, stu
         scene["derivation"] = []
         bare.append(str(write(tmp_path, f"{index}.json", json.dumps(scene))))
     report = tmp_path / "fit.json"
-    code, stdout, _ = run(capsys, "fit", "study", *bare, "-o", str(tmp_path / "out" / "f.rules"), "--report",
-                          str(report))  # fmt: skip
+    code, stdout, _ = run(
+        capsys,
+        "fit",
+        "study",
+        *bare,
+        "-o",
+        str(tmp_path / "out" / "f.rules"),
+        "--report",
+        str(report),
+    )
     assert code == 0, stdout
     document = json.loads(report.read_text())
     assert document["examples"] == 3
-    assert document["ambiguous_examples"] == 2 and document["em_iterations"] > 1  # seeds 1 and 2: two derivations
+    assert (
+        document["ambiguous_examples"] == 2 and document["em_iterations"] > 1
+    )  # seeds 1 and 2: two derivations
     workplace = document["parameters"][0]
     assert workplace["name"] == "Workplace" and sum(workplace["draws"]) == pytest.approx(3)
 
@@ -347,13 +476,17 @@ def test_fit_command_bad_inputs_are_one_line_errors(capsys, tmp_path, study_exam
     write(tmp_path, "bare.json", json.dumps(bare))
     code, _, err = run(capsys, "fit", "study", str(tmp_path / "bare.json"), "-o", out)
     assert code == 2
-    assert_one_line_error(err, "bare.json: no derivation of study.rules makes a scene like this one")
+    assert_one_line_error(
+        err, "bare.json: no derivation of study.rules makes a scene like this one"
+    )
     code, _, err = run(capsys, "fit", "study", study_examples[0], "-o", out, "--prior", "0")
     assert code == 2 and "must be above 0" in err
     assert not Path(out).exists()
     own = write(tmp_path, "mine.rules", TRUTH)
     truth_scene = tmp_path / "truth"
-    assert main(["-q", "generate", str(own), "--seed", "1", "-o", str(truth_scene), "--no-render"]) in (0, 1)
+    assert main(
+        ["-q", "generate", str(own), "--seed", "1", "-o", str(truth_scene), "--no-render"]
+    ) in (0, 1)
     code, _, err = run(capsys, "fit", str(own), str(truth_scene / "scene.json"), "-o", str(own))
     assert code == 2
     assert_one_line_error(err, "would overwrite the input")

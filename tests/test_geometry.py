@@ -4,8 +4,10 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from scenewright.core.scene import SceneObject, object_corners
 from scenewright.generator.layout.geometry import (
     capsule_rect_penetration,
     corners,
@@ -21,7 +23,6 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     turn_angle,
 )
-from scenewright.core.scene import SceneObject, object_corners
 
 coordinate = st.floats(-10, 10, allow_nan=False)
 extent = st.floats(0.1, 4, allow_nan=False)
@@ -39,14 +40,16 @@ def moved(rect_args, turn, dx, dz):
 def boundary_samples(rect, count=60):
     points = corners(rect) + corners(rect)[:1]
     samples = []
-    for (ax, az), (bx, bz) in zip(points, points[1:]):
+    for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
         for t in np.linspace(0.0, 1.0, count):
             samples.append((ax + t * (bx - ax), az + t * (bz - az)))
     return np.array(samples)
 
 
 def test_corners_match_the_scene_convention():
-    obj = SceneObject("a", "t", "object", "a", None, None, None, [1.0, 0.0, 2.0], 0.7, [2.0, 1.0, 1.0])
+    obj = SceneObject(
+        "a", "t", "object", "a", None, None, None, [1.0, 0.0, 2.0], 0.7, [2.0, 1.0, 1.0]
+    )
     mine = sorted(corners(make_rect(1.0, 2.0, 2.0, 1.0, 0.7)))
     theirs = sorted(map(tuple, object_corners([obj])[0]))
     assert np.allclose(mine, theirs)
@@ -160,10 +163,15 @@ def test_segments_and_turns():
 
 
 @settings(max_examples=40)
-@given(st.lists(st.tuples(coordinate, coordinate), min_size=2, max_size=5), st.lists(rects, min_size=1, max_size=4))
+@given(
+    st.lists(st.tuples(coordinate, coordinate), min_size=2, max_size=5),
+    st.lists(rects, min_size=1, max_size=4),
+)
 def test_polyline_to_several_rects_is_the_exhaustive_minimum(points, rect_args):
     shapes = [make_rect(*args) for args in rect_args]
     exhaustive = min(
-        segment_rect_distance(*points[i], *points[i + 1], rect) for rect in shapes for i in range(len(points) - 1)
+        segment_rect_distance(*points[i], *points[i + 1], rect)
+        for rect in shapes
+        for i in range(len(points) - 1)
     )
     assert polyline_rects_distance([list(p) for p in points], shapes) == exhaustive

@@ -4,16 +4,16 @@ import re
 
 import pytest
 from hypothesis import given, settings
+from test_describe_room import two_windows
+from test_describer import SceneBuilder, market_scene, random_scenes
 
 from scenewright.core.errors import InputError
 from scenewright.describer import TemplateError, describe
 from scenewright.describer.world import world_of
-from test_describe_room import two_windows
-from test_describer import SceneBuilder, market_scene, random_scenes
 
 
 def spans(description) -> list[tuple[str, tuple[str, ...]]]:
-    return [(description.text[m.start:m.end], m.entities) for m in description.mentions]
+    return [(description.text[m.start : m.end], m.entities) for m in description.mentions]
 
 
 def names_its_entities(phrase: str, entities: tuple[str, ...], world) -> bool:
@@ -41,17 +41,21 @@ def test_repeated_nouns_in_one_sentence_are_told_apart():
     told = spans(description)
     assert ("three roads", tuple(roads)) in told
     sentence = next(s for s in description.sentences if s.text.startswith("The well"))
-    by_text = {sentence.text[m.start:m.end]: m.entities for m in sentence.mentions}
+    by_text = {sentence.text[m.start : m.end]: m.entities for m in sentence.mentions}
     assert by_text["the first road"] == (roads[0],)
     assert by_text["the second road"] == (roads[2],)  # the second road the text names
 
 
 def test_an_identical_phrase_twice_is_two_mentions_of_two_things():
     description = describe(market_scene())
-    tables = [(m, description.text[m.start:m.end]) for m in description.mentions if m.entities[0].startswith("table")]
+    tables = [
+        (m, description.text[m.start : m.end])
+        for m in description.mentions
+        if m.entities[0].startswith("table")
+    ]
     assert [phrase for _, phrase in tables].count("a table") == 3
     assert len({m.entities for m, phrase in tables if phrase == "a table"}) == 3
-    for m, phrase in tables:
+    for _m, phrase in tables:
         # "this table" right after "a table" is the same table.
         assert phrase in ("a table", "this table")
     firsts = [m.entities for m, phrase in tables if phrase == "a table"]
@@ -68,7 +72,7 @@ def test_groups_are_grounded_to_their_members_at_any_depth():
     description = describe(b.scene())
     world = world_of(b.scene())
     farm_mention = next(m for m in description.mentions if m.entities == (farm,))
-    assert description.text[farm_mention.start:farm_mention.end] == "a farmstead"
+    assert description.text[farm_mention.start : farm_mention.end] == "a farmstead"
     assert set(farm_mention.ids) == {*hens, barn}
     assert world.grounded_ids((yard,)) == tuple(hens)
     caption = describe(b.scene(), style="short")
@@ -84,10 +88,19 @@ def test_a_placed_name_holds_the_mention_of_its_group():
     b.relate(lamp, "NextTo", signs[1])
     description = describe(b.scene())
     told = spans(description)
-    assert ("the first sign of this market stand", (signs[1],)) in told  # the first one the text names
-    outer = next(m for m in description.mentions if m.entities == (signs[1],) and m.end - m.start > 20)
-    inner = next(m for m in description.mentions if m.entities == (stands[1],) and outer.start < m.start < outer.end)
-    assert description.text[inner.start:inner.end] == "this market stand"
+    assert (
+        "the first sign of this market stand",
+        (signs[1],),
+    ) in told  # the first one the text names
+    outer = next(
+        m for m in description.mentions if m.entities == (signs[1],) and m.end - m.start > 20
+    )
+    inner = next(
+        m
+        for m in description.mentions
+        if m.entities == (stands[1],) and outer.start < m.start < outer.end
+    )
+    assert description.text[inner.start : inner.end] == "this market stand"
     assert inner.end == outer.end
     assert description.mentions.index(outer) < description.mentions.index(inner)  # outer first
 
@@ -112,16 +125,20 @@ def test_the_article_a_template_adds_is_part_of_the_mention():
 
 
 def test_a_template_may_move_and_repeat_phrases(tmp_path):
-    (tmp_path / "statement.j2").write_text("{{ predicates | join_list }}, so says {{ subject }} ({{ subject }}).")
+    (tmp_path / "statement.j2").write_text(
+        "{{ predicates | join_list }}, so says {{ subject }} ({{ subject }})."
+    )
     b = SceneBuilder()
     well, road, _ = b.add("well"), b.road(), b.add("barrel")  # three items: no folded-in relation
     b.relate(well, "NextTo", road)
     description = describe(b.scene(), templates=tmp_path)
     sentence = description.sentences[-1]
     assert sentence.text == "Is next to the road, so says the well (the well)."
-    assert [(sentence.text[m.start:m.end], m.entities) for m in sentence.mentions] == [
-        ("the road", (road,)), ("the well", (well,)), ("the well", (well,)),
-    ]  # fmt: skip
+    assert [(sentence.text[m.start : m.end], m.entities) for m in sentence.mentions] == [
+        ("the road", (road,)),
+        ("the well", (well,)),
+        ("the well", (well,)),
+    ]
 
 
 def test_a_template_that_cuts_a_phrase_apart_is_an_error(tmp_path):
@@ -148,7 +165,7 @@ def test_every_mention_names_what_it_links_to(drawn):
     for style in ("full", "short"):
         description = describe(scene, style=style, variant=variant)
         for m in description.mentions:
-            phrase = description.text[m.start:m.end]
+            phrase = description.text[m.start : m.end]
             assert phrase == phrase.strip() and phrase, (description.text, m)
             assert names_its_entities(phrase, m.entities, world), (phrase, m.entities)
             assert m.ids == world.grounded_ids(m.entities)

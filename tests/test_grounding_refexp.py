@@ -3,13 +3,19 @@
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from scenewright.render.visibility import PictureView
 from test_describer_e2e import is_kind_of  # the reader's own kind test: an armchair is a chair
-from test_visibility import hidden_tiny_and_row, renderer  # noqa: F401  (the module's renderer fixture)
+from test_visibility import hidden_tiny_and_row
+
 from scenewright.describer.refexp import (
-    DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, ProgramError, Seen, execute, referring_expressions,
-)  # fmt: skip
+    DEPTH_MARGIN,
+    SIDE_MARGIN,
+    PictureFacts,
+    ProgramError,
+    Seen,
+    execute,
+    referring_expressions,
+)
+from scenewright.render.visibility import PictureView
 
 
 def facts(*objects) -> PictureFacts:
@@ -23,10 +29,13 @@ def expressions(picture: PictureFacts) -> dict[str, str]:
 def test_each_form_picks_out_its_object():
     picture = facts(
         ("tent_1", "tent", 100, 10.0),
-        ("sign_1", "sign", 40, 12.0), ("sign_2", "sign", 160, 12.2),
-        ("chair_1", "chair", 10, 20.0), ("chair_2", "chair", 30, 8.0), ("chair_3", "chair", 200, 15.0),
+        ("sign_1", "sign", 40, 12.0),
+        ("sign_2", "sign", 160, 12.2),
+        ("chair_1", "chair", 10, 20.0),
+        ("chair_2", "chair", 30, 8.0),
+        ("chair_3", "chair", 200, 15.0),
         ("chair_4", "chair", 201, 30.0),
-    )  # fmt: skip
+    )
     found = expressions(picture)
     assert found["tent_1"] == "the tent"
     assert found["sign_1"] == "the sign to the left of the tent"
@@ -40,7 +49,9 @@ def test_each_form_picks_out_its_object():
 
 
 def test_an_object_nothing_sets_apart_gets_no_expression():
-    picture = facts(("cup_1", "cup", 50, 3.0), ("cup_2", "cup", 50 + SIDE_MARGIN / 2, 3.0 + DEPTH_MARGIN / 2))
+    picture = facts(
+        ("cup_1", "cup", 50, 3.0), ("cup_2", "cup", 50 + SIDE_MARGIN / 2, 3.0 + DEPTH_MARGIN / 2)
+    )
     assert referring_expressions(picture) == []
 
 
@@ -48,24 +59,34 @@ def test_a_noun_with_a_kind_in_the_picture_names_nothing():
     # A music room's picture (dataset row 0 of a user's music_room.rules) gave "the chair"
     # for the chair and "the armchair" for the plain armchair beside a green armchair.
     picture = facts(
-        ("chair_1", "chair", 20, 3.0), ("armchair_1", "green armchair", 60, 4.0),
-        ("armchair_2", "armchair", 100, 5.0), ("piano_1", "piano", 140, 6.0),
-    )  # fmt: skip
+        ("chair_1", "chair", 20, 3.0),
+        ("armchair_1", "green armchair", 60, 4.0),
+        ("armchair_2", "armchair", 100, 5.0),
+        ("piano_1", "piano", 140, 6.0),
+    )
     found = expressions(picture)
     assert "chair_1" not in found and "armchair_2" not in found
     assert found["armchair_1"] == "the green armchair" and found["piano_1"] == "the piano"
     # Nor is such a noun an anchor: "the lamp to the right of the chair" would ask a
     # reader which chair. Without the armchair it is said.
-    lamps = [("chair_1", "chair", 50, 3.0), ("lamp_1", "lamp", 100, 5.0), ("lamp_2", "lamp", 10, 5.0)]
+    lamps = [
+        ("chair_1", "chair", 50, 3.0),
+        ("lamp_1", "lamp", 100, 5.0),
+        ("lamp_2", "lamp", 10, 5.0),
+    ]
     assert expressions(facts(*lamps))["lamp_1"] == "the lamp to the right of the chair"
     beside_an_armchair = expressions(facts(*lamps, ("armchair_1", "armchair", 200, 3.0)))
     assert beside_an_armchair == {
-        "armchair_1": "the armchair", "lamp_1": "the second lamp from the left", "lamp_2": "the first lamp from the left",
+        "armchair_1": "the armchair",
+        "lamp_1": "the second lamp from the left",
+        "lamp_2": "the first lamp from the left",
     }
 
 
 def test_programs_run_to_their_object_and_fail_loudly_otherwise():
-    picture = facts(("tent_1", "tent", 100, 10.0), ("sign_1", "sign", 40, 12.0), ("sign_2", "sign", 160, 12.2))
+    picture = facts(
+        ("tent_1", "tent", 100, 10.0), ("sign_1", "sign", 40, 12.0), ("sign_2", "sign", 160, 12.2)
+    )
     for expression in referring_expressions(picture):
         assert execute(expression["program"], picture) == expression["id"]
     the_sign = [
@@ -84,9 +105,20 @@ NOUNS = ["tent", "sign", "chair", "armchair", "green armchair"]
 
 
 @settings(max_examples=80, deadline=None)
-@given(st.lists(st.tuples(st.sampled_from(NOUNS), st.integers(0, 60), st.integers(0, 20)), min_size=1, max_size=9))
+@given(
+    st.lists(
+        st.tuples(st.sampled_from(NOUNS), st.integers(0, 60), st.integers(0, 20)),
+        min_size=1,
+        max_size=9,
+    )
+)
 def test_every_expression_is_true_and_unique_by_an_independent_count(drawn):
-    picture = facts(*[(f"{noun}_{k}", noun, float(across), depth / 2) for k, (noun, across, depth) in enumerate(drawn)])
+    picture = facts(
+        *[
+            (f"{noun}_{k}", noun, float(across), depth / 2)
+            for k, (noun, across, depth) in enumerate(drawn)
+        ]
+    )
     seen = list(picture.objects.values())
     for expression in referring_expressions(picture):
         me = picture.objects[expression["id"]]
@@ -96,7 +128,10 @@ def test_every_expression_is_true_and_unique_by_an_independent_count(drawn):
         if expression["text"] == f"the {me.noun}":
             assert alike == [me]
         elif "of the" in expression["text"]:  # "the sign to the left of the tent"
-            anchor_noun, side = expression["text"].split(" of the ")[1], words[words.index("to") + 2]
+            anchor_noun, side = (
+                expression["text"].split(" of the ")[1],
+                words[words.index("to") + 2],
+            )
             anchors = [o for o in seen if is_kind_of(o.noun, anchor_noun)]
             assert len(anchors) == 1
             sign = -1 if side == "left" else 1
@@ -107,8 +142,15 @@ def test_every_expression_is_true_and_unique_by_an_independent_count(drawn):
             ordered = sorted(alike, key=lambda o: o.across if side == "left" else -o.across)
             place = ordered.index(me) + 1
             assert expression["program"][-1]["value_inputs"] == [side, str(place)]
-            assert sum(1 for o in alike if (o.across < me.across if side == "left" else o.across > me.across)) == place - 1
-            neighbours = ordered[max(place - 2, 0):place - 1] + ordered[place:place + 1]
+            assert (
+                sum(
+                    1
+                    for o in alike
+                    if (o.across < me.across if side == "left" else o.across > me.across)
+                )
+                == place - 1
+            )
+            neighbours = ordered[max(place - 2, 0) : place - 1] + ordered[place : place + 1]
             assert all(abs(o.across - me.across) >= SIDE_MARGIN for o in neighbours)
         else:
             which = words[1]

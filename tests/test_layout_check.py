@@ -51,7 +51,9 @@ def test_unsatisfied_terms_name_the_terms_not_the_graph_edges():
     wrong = [problem.relations[t] for t in unsatisfied_terms(energy, relations)]
     assert ("pot_1", "OnTopOfMiddle") in [(term.source, term.label) for term in wrong]
     held = [r for r in relations if r.satisfied]
-    assert all((term.source, term.label) not in [(r.source, r.label) for r in held] for term in wrong)
+    assert all(
+        (term.source, term.label) not in [(r.source, r.label) for r in held] for term in wrong
+    )
 
 
 def test_the_chain_focuses_on_the_relations_that_do_not_hold(monkeypatch):
@@ -63,5 +65,7 @@ def test_the_chain_focuses_on_the_relations_that_do_not_hold(monkeypatch):
     energy.accept()
     focused = []
     monkeypatch.setattr(mover, "focus", lambda terms, boxes: focused.append(list(terms)))
-    sampler.anneal(energy, mover, LayoutParams(min_steps=0, check_every=1), stage_stream(2, "layout", 9), 1)
+    sampler.anneal(
+        energy, mover, LayoutParams(min_steps=0, check_every=1), stage_stream(2, "layout", 9), 1
+    )
     assert [problem.relations[t].source for t in focused[0]] == ["pot_1"]

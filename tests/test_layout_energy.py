@@ -2,7 +2,8 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.energy import Energy
@@ -13,7 +14,9 @@ from scenewright.generator.layout.synthetic import village_graph
 
 def placed(seed: int, size: int = 24, params: LayoutParams | None = None):
     rng = np.random.default_rng(seed)
-    energy, mover = start_chain(compile_problem(village_graph(size, seed)), params or LayoutParams(), rng)
+    energy, mover = start_chain(
+        compile_problem(village_graph(size, seed)), params or LayoutParams(), rng
+    )
     return energy, mover, rng
 
 
@@ -62,7 +65,9 @@ def test_full_mode_matches_incremental_mode_step_for_step():
 
 
 def test_full_mode_lays_out_a_village_too():
-    result = layout_scene(village_graph(12, 4), seed=4, params=LayoutParams(incremental=False, restarts=1))
+    result = layout_scene(
+        village_graph(12, 4), seed=4, params=LayoutParams(incremental=False, restarts=1)
+    )
     assert result.ok, result.problems
 
 
@@ -81,7 +86,9 @@ def test_a_kept_update_reproposed_after_others_is_the_one_computed_anew(seed):
     fresh_side, _, _ = placed(seed)
     mover.rng = np.random.default_rng(seed + 100)
     for _ in range(25):
-        proposals = [p for p in (mover.propose(kept_side.relation) for _ in range(4)) if p is not None]
+        proposals = [
+            p for p in (mover.propose(kept_side.relation) for _ in range(4)) if p is not None
+        ]
         if not proposals:
             continue
         delta = kept_side.propose(*proposals[0])

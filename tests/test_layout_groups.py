@@ -18,8 +18,8 @@ from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
 from scenewright.generator.layout.decompose import (
     decomposes,
-    frame_streams,
     frame_extent,
+    frame_streams,
     framed_groups,
     group_scenes,
     lay_out_frames,
@@ -90,9 +90,11 @@ def test_a_group_scene_holds_the_group_and_only_the_relations_inside_it():
     own = scenes[1]
     assert [n.id for n in own.nodes()] == ["farm_2", "house_2", "shed_2", "cart_2", "barrel_2"]
     assert [(e.source, e.label, e.target) for e in own.edges()] == [
-        ("shed_2", "NextToChooseSide", "house_2"), ("shed_2", "FacingSameDirection", "house_2"),
-        ("cart_2", "NextToFront", "shed_2"), ("barrel_2", "OnTopOf", "cart_2"),
-    ]  # fmt: skip
+        ("shed_2", "NextToChooseSide", "house_2"),
+        ("shed_2", "FacingSameDirection", "house_2"),
+        ("cart_2", "NextToFront", "shed_2"),
+        ("barrel_2", "OnTopOf", "cart_2"),
+    ]
     assert own.params.extent == (frame_extent(problem, problem.group_members[1]),) * 2
     assert len(scenes) == 3 and all(len(scene.nodes()) == 5 for scene in scenes)
 
@@ -100,7 +102,9 @@ def test_a_group_scene_holds_the_group_and_only_the_relations_inside_it():
 def frames_of(graph: SceneGraph, seed: int, workers: int = 1):
     problem = compile_problem(graph)
     params = LayoutParams(workers=workers)
-    return problem, lay_out_frames(graph, problem, params, frame_streams(stage_stream(seed, "layout", 0), problem))
+    return problem, lay_out_frames(
+        graph, problem, params, frame_streams(stage_stream(seed, "layout", 0), problem)
+    )
 
 
 def test_frames_are_ok_and_the_same_for_any_number_of_workers():
@@ -117,7 +121,12 @@ def test_rigid_placement_keeps_each_group_as_laid_out_in_its_frame():
     state = State(problem)
     energy = Energy(problem, state, LayoutParams())
     rng = stage_stream(4, "layout", 0)
-    place_initial(energy, Mover(problem, state, rng, LayoutParams(), rigid_groups=list(frames.poses)), rng, frames=frames.poses)
+    place_initial(
+        energy,
+        Mover(problem, state, rng, LayoutParams(), rigid_groups=list(frames.poses)),
+        rng,
+        frames=frames.poses,
+    )
     for group, frame in frames.poses.items():
         first, *rest = problem.group_members[group]
         turn = state.yaw[first] - frame[first][2]
@@ -144,7 +153,9 @@ def test_decomposition_can_be_turned_off():
     problem = compile_problem(graph)
     assert decomposes(problem, Pins.none(problem))
     plain = layout_scene(graph, 2, params=LayoutParams(decompose=False, restarts=0))
-    one = run_chain(problem, LayoutParams(decompose=False, restarts=0), stage_stream(2, "layout", 0))
+    one = run_chain(
+        problem, LayoutParams(decompose=False, restarts=0), stage_stream(2, "layout", 0)
+    )
     assert plain.steps == one.steps
 
 
@@ -157,7 +168,9 @@ def failed_run():
     graph = hamlet(12, side=60.0)
     problem = compile_problem(graph)
     run = run_chain(
-        problem, LayoutParams(steps=1, steps_per_box=0, min_steps=0, initial_candidates=1), stage_stream(0, "layout", 0)
+        problem,
+        LayoutParams(steps=1, steps_per_box=0, min_steps=0, initial_candidates=1),
+        stage_stream(0, "layout", 0),
     )
     return problem, run
 
@@ -166,7 +179,7 @@ def test_troubled_items_are_whole_groups_holding_both_ends_of_what_fails():
     problem, run = failed_run()
     again = troubled_items(problem, run)
     assert again and not run.ok
-    for (_, _, _, index), relation in zip(problem.edges, run.relations):
+    for (_, _, _, index), relation in zip(problem.edges, run.relations, strict=False):
         if index is not None and not relation.satisfied:
             term = problem.relations[index]
             assert set(term.a.members + term.b.members) <= again
@@ -194,7 +207,10 @@ def test_decomposed_layouts_repeat_exactly(farms, seed):
     graph = hamlet(farms)
     problem = compile_problem(graph)
     _, frames = frames_of(graph, seed)
-    runs = [run_decomposed_chain(problem, LayoutParams(), stage_stream(seed, "layout", 0), frames) for _ in range(2)]
+    runs = [
+        run_decomposed_chain(problem, LayoutParams(), stage_stream(seed, "layout", 0), frames)
+        for _ in range(2)
+    ]
     first, second = (run.energy.state for run in runs)
     assert (first.x, first.z, first.yaw) == (second.x, second.z, second.yaw)
     assert np.array_equal(np.array(first.points), np.array(second.points))

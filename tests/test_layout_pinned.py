@@ -127,7 +127,10 @@ def test_the_mover_never_proposes_a_pinned_box_or_path():
 
 
 def test_a_road_comes_to_the_pinned_things_that_must_be_next_to_it():
-    far = {"table_1": Pose(8.0, 0.0, 8.0, 0.3), "sign_1": Pose(8.0 + 0.8 * math.cos(0.3) + 0.6, 0.0, 7.5, 0.3)}
+    far = {
+        "table_1": Pose(8.0, 0.0, 8.0, 0.3),
+        "sign_1": Pose(8.0 + 0.8 * math.cos(0.3) + 0.6, 0.0, 7.5, 0.3),
+    }
     for seed in (1, 2):
         result = layout_scene(market(), seed, params=FAST, pinned=far)
         assert result.poses["table_1"] == far["table_1"] and result.poses["sign_1"] == far["sign_1"]
@@ -136,7 +139,9 @@ def test_a_road_comes_to_the_pinned_things_that_must_be_next_to_it():
 
 
 def test_something_on_a_pinned_table_stays_on_top_and_may_move():
-    results = [layout_scene(market(), seed, params=FAST, pinned={"table_1": TABLE_POSE}) for seed in (1, 2)]
+    results = [
+        layout_scene(market(), seed, params=FAST, pinned={"table_1": TABLE_POSE}) for seed in (1, 2)
+    ]
     for result in results:
         assert result.poses["table_1"] == TABLE_POSE
         pot = result.poses["pot_1"]
@@ -157,7 +162,11 @@ def test_a_pinned_junction_keeps_its_roads_starting_there():
 def test_pinned_paths_keep_every_point_and_the_others_avoid_them():
     points = [[CROSSING_POSE.x, CROSSING_POSE.z], [5.0, 0.75], [9.0, 2.0]]
     result = layout_scene(
-        market(), 6, params=FAST, pinned={"crossing_1": CROSSING_POSE}, pinned_paths={"road_1": points}
+        market(),
+        6,
+        params=FAST,
+        pinned={"crossing_1": CROSSING_POSE},
+        pinned_paths={"road_1": points},
     )
     assert result.paths["road_1"].tolist() == points
     assert result.ok, result.problems  # road_2 leaves the crossing at least 60 degrees from road_1
@@ -187,7 +196,9 @@ def test_a_warm_start_begins_at_the_given_poses(village):
     for path_id, points in paths.items():
         assert result.paths[path_id].tolist() == points
     # and a short chain from there moves things (the start is not pinned)
-    moved = layout_scene(graph, 1, params=LayoutParams(steps=200, restarts=0, min_steps=400), start=start)
+    moved = layout_scene(
+        graph, 1, params=LayoutParams(steps=200, restarts=0, min_steps=400), start=start
+    )
     assert any(moved.poses[k] != poses[k] for k in poses)
 
 
@@ -216,15 +227,24 @@ def one_line(error: pytest.ExceptionInfo) -> str:
         ({"pinned": {"tabel_1": TABLE_POSE}}, ["tabel_1", "did you mean 'table_1'"]),
         ({"start": {"nowhere_3": TABLE_POSE}}, ["start", "nowhere_3"]),
         ({"pinned_paths": {"road_9": [[0, 0], [1, 1], [2, 2]]}}, ["road_9"]),
-        ({"pinned": {"market_stand_1": TABLE_POSE}}, ["market_stand_1 is a group", "table_1, sign_1, pot_1"]),
+        (
+            {"pinned": {"market_stand_1": TABLE_POSE}},
+            ["market_stand_1 is a group", "table_1, sign_1, pot_1"],
+        ),
         ({"pinned": {"road_1": TABLE_POSE}}, ["road_1 is a path", "pinned_paths"]),
         ({"pinned": {"pot_1": TABLE_POSE}}, ["pot_1 rests on table_1", "pin table_1 too"]),
-        ({"pinned_paths": {"road_1": [[0, 0], [1, 1], [2, 2]]}}, ["starts at crossing_1", "pin crossing_1 too"]),
+        (
+            {"pinned_paths": {"road_1": [[0, 0], [1, 1], [2, 2]]}},
+            ["starts at crossing_1", "pin crossing_1 too"],
+        ),
         ({"pinned_paths": {"road_2": [[0, 0], [1, 1]]}}, ["road_2", "expected 3 control points"]),
         ({"pinned": {"table_1": (1.0, 0.0, 2.0, 0.0)}}, ["table_1", "expected a Pose"]),
         ({"pinned": {"table_1": Pose(math.nan, 0.0, 0.0)}}, ["table_1", "finite"]),
         (
-            {"pinned": {"crossing_1": CROSSING_POSE}, "pinned_paths": {"road_1": [[5, 5], [6, 6], [7, 7]]}},
+            {
+                "pinned": {"crossing_1": CROSSING_POSE},
+                "pinned_paths": {"road_1": [[5, 5], [6, 6], [7, 7]]},
+            },
             ["road_1 starts at (5, 5)", "crossing_1 is pinned at (-1.25, 0.75)"],
         ),
     ],
@@ -261,7 +281,9 @@ def test_measuring_a_generated_scene_reproduces_its_verdicts(village):
     assert [(r.source, r.target, r.label, r.satisfied, r.chosen) for r in measured.relations] == [
         (r.source, r.target, r.label, r.satisfied, r.chosen) for r in scene.relations
     ]
-    assert [r.value for r in measured.relations] == pytest.approx([r.value for r in scene.relations])
+    assert [r.value for r in measured.relations] == pytest.approx(
+        [r.value for r in scene.relations]
+    )
     assert measured.energy == pytest.approx(scene.layout.energy)
     assert set(measured.parts) == set(scene.layout.parts)
     # group poses (as a scene lists them) are accepted and ignored

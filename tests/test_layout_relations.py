@@ -4,6 +4,7 @@ import math
 
 import pytest
 
+from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import Energy
@@ -11,7 +12,6 @@ from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import assess, satisfied
 from scenewright.generator.layout.state import State
-from scenewright.core.scene_graph import SceneGraph, SceneParams
 
 BOX = CatalogEntry("box", "object", "box", size=(1.0, 1.0, 1.0))
 TABLE = CatalogEntry("table", "object", "table", size=(2.0, 1.0, 1.0))
@@ -51,7 +51,12 @@ def test_next_to_is_within_two_metres():
 
 @pytest.mark.parametrize(
     "label, position",
-    [("NextToNorth", (0.0, -2.0)), ("NextToSouth", (0.0, 2.0)), ("NextToEast", (2.0, 0.0)), ("NextToWest", (-2.0, 0.0))],
+    [
+        ("NextToNorth", (0.0, -2.0)),
+        ("NextToSouth", (0.0, 2.0)),
+        ("NextToEast", (2.0, 0.0)),
+        ("NextToWest", (-2.0, 0.0)),
+    ],
 )
 def test_compass_directions(label, position):
     energy, holds, _ = measure(label, (*position, 0.0))
@@ -62,7 +67,12 @@ def test_compass_directions(label, position):
 
 @pytest.mark.parametrize(
     "label, local",
-    [("NextToLeft", (2.0, 0.0)), ("NextToRight", (-2.0, 0.0)), ("NextToFront", (0.0, 2.0)), ("NextToBehind", (0.0, -2.0))],
+    [
+        ("NextToLeft", (2.0, 0.0)),
+        ("NextToRight", (-2.0, 0.0)),
+        ("NextToFront", (0.0, 2.0)),
+        ("NextToBehind", (0.0, -2.0)),
+    ],
 )
 def test_directions_of_b_follow_its_yaw(label, local):
     # B turned to face east: its forward is +X, its left (local +X) is world -Z.
@@ -126,10 +136,14 @@ def test_middle_and_edges():
     _, middle, _ = measure("OnTopOfMiddle", (0.05, 0.0, 0.0), a_entry=CUP, b_entry=TABLE)
     _, aside, _ = measure("OnTopOfMiddle", (0.5, 0.0, 0.0), a_entry=CUP, b_entry=TABLE)
     assert middle and not aside
-    _, edge, _ = measure("OnTopOfEdge", (-0.9, 0.1, 0.0), a_entry=CUP, b_entry=TABLE)  # left side flush
+    _, edge, _ = measure(
+        "OnTopOfEdge", (-0.9, 0.1, 0.0), a_entry=CUP, b_entry=TABLE
+    )  # left side flush
     _, inner, _ = measure("OnTopOfEdge", (0.3, 0.0, 0.0), a_entry=CUP, b_entry=TABLE)
     assert edge and not inner
-    _, front, _ = measure("OnTopOfFrontEdge", (0.2, 0.4, 0.0), a_entry=CUP, b_entry=TABLE)  # forward is +Z
+    _, front, _ = measure(
+        "OnTopOfFrontEdge", (0.2, 0.4, 0.0), a_entry=CUP, b_entry=TABLE
+    )  # forward is +Z
     _, back, _ = measure("OnTopOfFrontEdge", (0.2, -0.4, 0.0), a_entry=CUP, b_entry=TABLE)
     assert front and not back
 

@@ -16,14 +16,19 @@ import math
 import numpy as np
 import pytest
 
-from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
-from scenewright.generator.layout.geometry import Rect, corners, point_rect_distance, rect_distance, rect_overlap
 from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.geometry import (
+    Rect,
+    corners,
+    point_rect_distance,
+    rect_distance,
+    rect_overlap,
+)
 from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
@@ -33,7 +38,9 @@ from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 
 PARAMS = LayoutParams()
-BOARD = CatalogEntry("whiteboard", "object", "whiteboard", size=(2.4, 2.0, 0.5), clearance=(("front", 0.8),))
+BOARD = CatalogEntry(
+    "whiteboard", "object", "whiteboard", size=(2.4, 2.0, 0.5), clearance=(("front", 0.8),)
+)
 DESK = CatalogEntry("student_desk", "object", "desk", size=(0.7, 0.72, 0.5), access=("back",))
 TEACHER = CatalogEntry("teacher_desk", "object", "teacher's desk", size=(1.4, 0.76, 0.7))
 CHAIR = CatalogEntry("chair", "object", "chair", size=(0.45, 0.9, 0.5))
@@ -76,11 +83,18 @@ def test_the_initial_placement_builds_a_row_whose_relations_all_hold(seed):
     problem = compile_problem(graph)
     energy, _ = start_chain(problem, PARAMS, np.random.default_rng(seed))
     inside = [
-        term for term in problem.relations
-        if term.a.kind == "object" and term.b.kind == "object" and problem.ids[term.b.index] != "whiteboard_1"
-    ]  # fmt: skip
+        term
+        for term in problem.relations
+        if term.a.kind == "object"
+        and term.b.kind == "object"
+        and problem.ids[term.b.index] != "whiteboard_1"
+    ]
     assert len(inside) == 3 * 2 + 4 * 2  # NextToLeft and AlignedWith per later desk, two per chair
-    broken = [f"{t.source} {t.label} {t.target}" for t in inside if not satisfied(t, evaluate(t, energy.state, PARAMS), PARAMS)]
+    broken = [
+        f"{t.source} {t.label} {t.target}"
+        for t in inside
+        if not satisfied(t, evaluate(t, energy.state, PARAMS), PARAMS)
+    ]
     assert not broken
     for desk in desks:  # every desk took its heading from the board before its place
         assert holds(problem, energy.state, desk, "FacingOpposite") == [True]
@@ -150,10 +164,14 @@ def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
     # Its chair would stand there: the space, and room for the chair (its shorter side) before it.
     assert mover.kept_free(ends[teacher], target, 0.0, 1.0) == pytest.approx(0.8 + 0.45)
     assert mover.kept_free(ends[teacher], target, 1.0, 0.0) == 0.0  # no space kept to the side
-    assert mover.kept_free(ends[alone], target, 0.0, 1.0) == 0.0  # nothing of its own: it may stand there
+    assert (
+        mover.kept_free(ends[alone], target, 0.0, 1.0) == 0.0
+    )  # nothing of its own: it may stand there
     # The data-driven placement in front of the board leaves the space for the chair.
     for _ in range(20):
-        proposal = mover.place_for_relation(next(t for t in problem.relations if t.source == teacher))
+        proposal = mover.place_for_relation(
+            next(t for t in problem.relations if t.source == teacher)
+        )
         box = index[teacher]
         back = proposal[box][1] - problem.half_depth[box]
         assert back - (state.z[index[board]] + problem.half_depth[index[board]]) >= 0.8 + 0.45
@@ -180,16 +198,22 @@ def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
         assert mover.kept_free(ends[chair], target, 0.0, -1.0) == pytest.approx(way)
         assert mover.kept_free(ends[chair], target, 1.0, 0.0) == 0.0
         assert mover.kept_free(ends[mat], target, 0.0, -1.0) == 0.0
-        wide = graph.add_node(CatalogEntry("desk", "object", "desk", size=(1.2, 0.75, 0.6), access=("back",)))
+        wide = graph.add_node(
+            CatalogEntry("desk", "object", "desk", size=(1.2, 0.75, 0.6), access=("back",))
+        )
         graph.add_relation(graph.add_node(CHAIR), wide, "NextToBehind")
-        problem_wide, _, mover_wide, ends_wide, target_wide = placed_beside(graph, graph.nodes()[-1].id)
+        problem_wide, _, mover_wide, ends_wide, target_wide = placed_beside(
+            graph, graph.nodes()[-1].id
+        )
         # A chair at a 1.2 m desk leaves its ends free: no way kept behind it.
         assert mover_wide.kept_free(ends_wide[graph.nodes()[-1].id], target_wide, 0.0, -1.0) == 0.0
         if door:  # every placement behind the desk leaves the way
             term = next(t for t in problem.relations if t.source == chair)
             for _ in range(20):
                 proposal = mover.place_for_relation(term)
-                gap = (state.z[target.index] - problem.half_depth[target.index]) - (proposal[ends[chair].index][1] + problem.half_depth[ends[chair].index])
+                gap = (state.z[target.index] - problem.half_depth[target.index]) - (
+                    proposal[ends[chair].index][1] + problem.half_depth[ends[chair].index]
+                )
                 assert gap >= way
 
 
@@ -207,11 +231,18 @@ def test_rect_distance_of_square_rectangles_matches_the_corner_walk():
     for _ in range(2000):
         yaw_a = float(rng.choice([0.0, math.pi / 2, math.pi, 0.4]))
         yaw_b = yaw_a + float(rng.choice([0.0, math.pi / 2, math.pi, -math.pi / 2]))
-        a = Rect(*rng.uniform(-2, 2, 2), *rng.uniform(0.1, 1.0, 2), math.cos(yaw_a), math.sin(yaw_a))
-        b = Rect(*rng.uniform(-2, 2, 2), *rng.uniform(0.1, 1.0, 2), math.cos(yaw_b), math.sin(yaw_b))
+        a = Rect(
+            *rng.uniform(-2, 2, 2), *rng.uniform(0.1, 1.0, 2), math.cos(yaw_a), math.sin(yaw_a)
+        )
+        b = Rect(
+            *rng.uniform(-2, 2, 2), *rng.uniform(0.1, 1.0, 2), math.cos(yaw_b), math.sin(yaw_b)
+        )
         walk = 0.0  # the general way: separating axes, then the nearest corner of either
         if rect_overlap(a, b) < 0.0:
-            walk = min([point_rect_distance(x, z, b) for x, z in corners(a)] + [point_rect_distance(x, z, a) for x, z in corners(b)])
+            walk = min(
+                [point_rect_distance(x, z, b) for x, z in corners(a)]
+                + [point_rect_distance(x, z, a) for x, z in corners(b)]
+            )
             apart += 1
         assert rect_distance(a, b) == pytest.approx(walk, abs=1e-12)
     assert 500 < apart < 2000  # both cases were met
@@ -233,7 +264,7 @@ def test_a_row_across_the_wall_is_pushed_off_it_with_the_row_it_hangs_on():
     problem = compile_problem(graph)
     state = State(problem)
     index = {box_id: box for box, box_id in enumerate(problem.ids)}
-    for (_, desks), z in zip(rows, (2.4, 3.4)):  # the room runs from z -3.5 to 3.5
+    for (_, desks), z in zip(rows, (2.4, 3.4), strict=False):  # the room runs from z -3.5 to 3.5
         for k, desk in enumerate(desks):
             state.set_pose(index[desk], 1.0 - 0.8 * k, z, 0.0)
     energy = Energy(problem, state, PARAMS)
@@ -246,7 +277,10 @@ def test_a_row_across_the_wall_is_pushed_off_it_with_the_row_it_hangs_on():
     _push_off_walls(energy, mover, group, anchors)
     assert max(energy.room.wall_excess(b) for b in range(problem.n_boxes)) == 0.0
     assert energy.total < before
-    shifts = {(round(state.x[b] - poses[b][0], 9), round(state.z[b] - poses[b][1], 9)) for b in range(problem.n_boxes)}
+    shifts = {
+        (round(state.x[b] - poses[b][0], 9), round(state.z[b] - poses[b][1], 9))
+        for b in range(problem.n_boxes)
+    }
     assert len(shifts) == 1 and next(iter(shifts))[1] < 0.0  # all together, north
 
 
@@ -258,12 +292,18 @@ def test_faces_as_asked_only_when_the_heading_is_already_the_one_asked_for():
     state = State(problem)
     mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
     index = {box_id: box for box, box_id in enumerate(problem.ids)}
-    opposite = next(t for t in problem.relations if t.source == desks[0] and t.label == "FacingOpposite")
-    same = next(t for t in problem.relations if t.label == "FacingSameDirection")  # the chair and its desk
+    opposite = next(
+        t for t in problem.relations if t.source == desks[0] and t.label == "FacingOpposite"
+    )
+    same = next(
+        t for t in problem.relations if t.label == "FacingSameDirection"
+    )  # the chair and its desk
     state.set_pose(index["whiteboard_1"], 0.0, -3.0, 0.0)
     state.set_pose(index[desks[0]], 0.0, 0.0, -math.pi)
     assert mover.faces_as_asked(opposite)
-    state.set_pose(index[desks[0]], 0.0, 0.0, math.pi)  # the same heading, the other end of the range
+    state.set_pose(
+        index[desks[0]], 0.0, 0.0, math.pi
+    )  # the same heading, the other end of the range
     assert mover.faces_as_asked(opposite)
     state.set_pose(index[desks[0]], 0.0, 0.0, math.pi / 2.0)
     assert not mover.faces_as_asked(opposite)
@@ -284,11 +324,15 @@ def test_best_of_skips_reachability_only_for_candidates_that_cannot_win():
     evaluated = []
     for k, (energy, mover) in enumerate(chains):
         original = energy.room._access_changes
-        energy.room._access_changes = lambda boxes, k=k, original=original: evaluated.append(k) or original(boxes)
+        energy.room._access_changes = lambda boxes, k=k, original=original: (
+            evaluated.append(k) or original(boxes)
+        )
         mover.rng = np.random.default_rng(9)
         for _ in range(12):
             _best_of(energy, lambda energy=energy, mover=mover: mover.propose(energy.relation), 8)
     (first, _), (second, _) = chains
-    assert [first.state.pose(b) for b in range(problem.n_boxes)] == [second.state.pose(b) for b in range(problem.n_boxes)]
+    assert [first.state.pose(b) for b in range(problem.n_boxes)] == [
+        second.state.pose(b) for b in range(problem.n_boxes)
+    ]
     assert first.total == second.total
     assert evaluated.count(0) < evaluated.count(1)  # some candidates were ruled out without it

@@ -7,12 +7,12 @@ import pytest
 from PIL import Image
 
 from scenewright.core.errors import InputError
+from scenewright.core.scene import assemble_scene
+from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene
-from scenewright.render.plan import draw_plan
 from scenewright.generator.layout.synthetic import village_graph
-from scenewright.core.scene_graph import SceneGraph, SceneParams
-from scenewright.core.scene import assemble_scene
+from scenewright.render.plan import draw_plan
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9))
 SIGN = CatalogEntry("sign", "object", "sign", size=(0.6, 1.6, 0.2))
@@ -68,8 +68,11 @@ def test_contradictory_relations_are_reported_not_hidden_and_drawn_red(tmp_path)
     graph.add_relation(b, a, "NextToSouth")
     result = layout_scene(graph, seed=0, params=LayoutParams(steps=300, restarts=0))
     assert not result.ok
-    assert any(p.startswith("chair_1 is not north of table_1") or p.startswith("chair_1 is not south of table_1")
-               for p in result.problems)
+    assert any(
+        p.startswith("chair_1 is not north of table_1")
+        or p.startswith("chair_1 is not south of table_1")
+        for p in result.problems
+    )
     assert sum(not r.satisfied for r in result.relations) >= 1
     image = draw_plan(assemble_scene(graph, result, rules="test", seed=0), tmp_path / "plan.png")
     pixels = np.asarray(Image.open(image).convert("RGB")).astype(int)
@@ -122,4 +125,6 @@ def test_impossible_scenes_say_why():
     hollow.add_relation(chair, stand, "NextTo")
     result = layout_scene(hollow, seed=0, params=FAST)
     assert not result.ok
-    assert result.problems == ["chair_1 NextTo market_stand_1: a group with nothing in it cannot be placed"]
+    assert result.problems == [
+        "chair_1 NextTo market_stand_1: a group with nothing in it cannot be placed"
+    ]

@@ -19,8 +19,18 @@ import pytest
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
 from scenewright.generator.layout.geometry import (
-    _local_overlap, capsule_rect_penetration, corners, make_rect, nearest_on_segment, point_rect_distance,
-    polyline_rect_penetration, polyline_rects_distance, rect_distance, rect_overlap, segment_rect_distance, to_local,
+    _local_overlap,
+    capsule_rect_penetration,
+    corners,
+    make_rect,
+    nearest_on_segment,
+    point_rect_distance,
+    polyline_rect_penetration,
+    polyline_rects_distance,
+    rect_distance,
+    rect_overlap,
+    segment_rect_distance,
+    to_local,
 )
 from scenewright.generator.layout.moves import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
@@ -32,13 +42,21 @@ from scenewright.generator.layout.synthetic import village_graph
 
 
 def test_uniform_draws_what_generator_uniform_draws_and_leaves_the_stream_alike():
-    ours, numpys, ranges = np.random.default_rng(5), np.random.default_rng(5), np.random.default_rng(6)
+    ours, numpys, ranges = (
+        np.random.default_rng(5),
+        np.random.default_rng(5),
+        np.random.default_rng(6),
+    )
     edges = [0.0, -0.0, 5e-324, 1e-300, 0.05, 0.8, 1.0, math.pi, 1e300]
     for k in range(20_000):
         if k % 3 == 0:
-            low, high = sorted((float(ranges.choice(edges)) * ranges.choice([-1, 1]), float(ranges.choice(edges))))
+            low, high = sorted(
+                (float(ranges.choice(edges)) * ranges.choice([-1, 1]), float(ranges.choice(edges)))
+            )
         else:
-            low, high = sorted(float(v) for v in ranges.normal(0.0, 10.0 ** int(ranges.integers(-4, 5)), 2))
+            low, high = sorted(
+                float(v) for v in ranges.normal(0.0, 10.0 ** int(ranges.integers(-4, 5)), 2)
+            )
         if math.copysign(1.0, high - low) < 0.0:  # 0.0 to -0.0: refused (the test below)
             continue
         if k % 5 == 0:  # other draws between, as the moves make them
@@ -77,7 +95,7 @@ def test_grid_move_leaves_the_cells_as_remove_then_insert_does():
         moved.insert(box, x, z, radius)
         plain.insert(box, x, z, radius)
         where[box] = (x, z, radius)
-    for step in range(400):
+    for _step in range(400):
         box = rng.randrange(40)
         x, z, radius = where[box]
         before = moved.filing(box)
@@ -92,14 +110,20 @@ def test_grid_move_leaves_the_cells_as_remove_then_insert_does():
         else:
             where[box] = new
         assert moved.keys[box] == plain.keys[box] and moved.large == plain.large
-        assert all(moved.cells[key] == plain.cells[key] for key in plain.keys[box])  # same order too
+        assert all(
+            moved.cells[key] == plain.cells[key] for key in plain.keys[box]
+        )  # same order too
     assert moved.cells == plain.cells and moved.keys == plain.keys
     # Neighbours in the same order as well: the energy sums over them in that order.
-    assert [list(moved.near_box(b)) for b in range(40)] == [list(plain.near_box(b)) for b in range(40)]
+    assert [list(moved.near_box(b)) for b in range(40)] == [
+        list(plain.near_box(b)) for b in range(40)
+    ]
 
 
 def chain(seed: int, size: int):
-    return start_chain(compile_problem(village_graph(size, seed)), LayoutParams(), np.random.default_rng(seed))
+    return start_chain(
+        compile_problem(village_graph(size, seed)), LayoutParams(), np.random.default_rng(seed)
+    )
 
 
 def random_walk(energy: Energy, mover, steps: int, reject_every: int):
@@ -121,9 +145,14 @@ def test_the_path_index_finds_every_path_a_box_may_touch_as_the_energy_moves():
     for step in random_walk(energy, mover, 300, reject_every=3):
         if step % 25 == 0:
             for box in range(problem.n_boxes):
-                every = [path for path in range(problem.n_paths) if energy.may_touch_path(box, path)]
+                every = [
+                    path for path in range(problem.n_paths) if energy.may_touch_path(box, path)
+                ]
                 assert energy.paths_near(box) == every
-            hit = [{path for path, hits in enumerate(energy.path_hits) if box in hits} for box in range(problem.n_boxes)]
+            hit = [
+                {path for path, hits in enumerate(energy.path_hits) if box in hits}
+                for box in range(problem.n_boxes)
+            ]
             assert energy.hit_paths == hit
     parts = energy.full()
     assert energy.parts["paths"] == pytest.approx(parts["paths"], abs=1e-9)
@@ -154,7 +183,11 @@ def test_the_overlap_report_skips_no_pair_that_overlaps():
     problem, state, rng = energy.problem, energy.state, random.Random(2)
     for box in range(0, problem.n_boxes, 3):  # onto another box, partly
         other = rng.randrange(problem.n_boxes)
-        pose = (state.x[other] + rng.uniform(-2.0, 2.0), state.z[other] + rng.uniform(-2.0, 2.0), rng.uniform(-3.0, 3.0))
+        pose = (
+            state.x[other] + rng.uniform(-2.0, 2.0),
+            state.z[other] + rng.uniform(-2.0, 2.0),
+            rng.uniform(-3.0, 3.0),
+        )
         energy.propose({box: pose}, {})
         energy.accept()
     every = []
@@ -162,8 +195,14 @@ def test_the_overlap_report_skips_no_pair_that_overlaps():
         for other in range(box + 1, problem.n_boxes):
             depth = energy.pair_depth(box, other)
             if depth > OVERLAP_TOLERANCE:
-                every.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
-    reported = [line for line in _overlaps(energy) if not any(path_id in line for path_id in problem.path_ids)]
+                every.append(
+                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %"
+                )
+    reported = [
+        line
+        for line in _overlaps(energy)
+        if not any(path_id in line for path_id in problem.path_ids)
+    ]
     assert every and reported == every
 
 
@@ -191,7 +230,13 @@ def test_polyline_rects_distance_is_the_sorted_search_to_the_last_bit():
         if rng.random() < 0.1:
             points.append(list(points[-1]))  # a segment of length 0
         rects = [
-            make_rect(rng.uniform(-25, 25), rng.uniform(-25, 25), rng.uniform(0.1, 8), rng.uniform(0.1, 8), rng.uniform(-4, 4))
+            make_rect(
+                rng.uniform(-25, 25),
+                rng.uniform(-25, 25),
+                rng.uniform(0.1, 8),
+                rng.uniform(0.1, 8),
+                rng.uniform(-4, 4),
+            )
             for _ in range(rng.randint(0, 5))
         ]
         assert polyline_rects_distance(points, rects) == sorting_every_bound(points, rects)
@@ -201,13 +246,24 @@ def test_rect_distance_is_the_least_corner_distance_to_the_last_bit():
     rng = random.Random(9)
     for _ in range(5000):
         a, b = (
-            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.uniform(-4, 4))
+            make_rect(
+                rng.uniform(-6, 6),
+                rng.uniform(-6, 6),
+                rng.uniform(0.1, 5),
+                rng.uniform(0.1, 5),
+                rng.uniform(-4, 4),
+            )
             for _ in range(2)
         )
         expected = min(
-            [point_rect_distance(px, pz, b) for px, pz in corners(a)] + [point_rect_distance(px, pz, a) for px, pz in corners(b)]
+            [point_rect_distance(px, pz, b) for px, pz in corners(a)]
+            + [point_rect_distance(px, pz, a) for px, pz in corners(b)]
         )
-        if rect_overlap(a, b) < 0.0 and abs(a.c * b.s - a.s * b.c) > 1e-6 and abs(a.c * b.c + a.s * b.s) > 1e-6:
+        if (
+            rect_overlap(a, b) < 0.0
+            and abs(a.c * b.s - a.s * b.c) > 1e-6
+            and abs(a.c * b.c + a.s * b.s) > 1e-6
+        ):
             assert rect_distance(a, b) == expected
 
 
@@ -232,7 +288,13 @@ def step_by_step_distance(ax, az, bx, bz, hw, hd):
 def test_segment_to_box_distances_are_the_step_by_step_ones_to_the_last_bit():
     rng = random.Random(10)
     for _ in range(5000):
-        rect = make_rect(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.1, 6), rng.uniform(0.1, 6), rng.uniform(-4, 4))
+        rect = make_rect(
+            rng.uniform(-5, 5),
+            rng.uniform(-5, 5),
+            rng.uniform(0.1, 6),
+            rng.uniform(0.1, 6),
+            rng.uniform(-4, 4),
+        )
         ax, az = rng.uniform(-9, 9), rng.uniform(-9, 9)
         bx, bz = (ax, az) if rng.random() < 0.05 else (rng.uniform(-9, 9), rng.uniform(-9, 9))
         (lax, laz), (lbx, lbz) = to_local(rect, ax, az), to_local(rect, bx, bz)
@@ -250,20 +312,35 @@ def test_polyline_rect_penetration_skips_no_segment_that_reaches_the_rectangle()
     rng = random.Random(11)
     for case in range(6000):
         offset = 0.0 if case % 2 else 1.0e4
-        rect = make_rect(offset + rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0.1, 6), rng.uniform(0.1, 6), rng.uniform(-4, 4))
+        rect = make_rect(
+            offset + rng.uniform(-5, 5),
+            rng.uniform(-5, 5),
+            rng.uniform(0.1, 6),
+            rng.uniform(0.1, 6),
+            rng.uniform(-4, 4),
+        )
         radius = rng.uniform(0.05, 3.0)
         if case % 3:
-            points = [[offset + rng.uniform(-15, 15), rng.uniform(-15, 15)] for _ in range(rng.randint(2, 6))]
+            points = [
+                [offset + rng.uniform(-15, 15), rng.uniform(-15, 15)]
+                for _ in range(rng.randint(2, 6))
+            ]
         else:
             (cx, cz), (px, pz) = (rect.cx, rect.cz), corners(rect)[rng.randrange(4)]
             circumradius = math.hypot(rect.hw, rect.hd)
             ux, uz = (px - cx) / circumradius, (pz - cz) / circumradius
-            hair = rng.choice([0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, 1e-6, 1e-3]) * (1.0 + offset)
+            hair = rng.choice([0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, 1e-6, 1e-3]) * (
+                1.0 + offset
+            )
             reach = circumradius + radius + hair
             mx, mz, half = cx + ux * reach, cz + uz * reach, rng.uniform(0.0, 4.0)
             points = [[mx - uz * half, mz + ux * half], [mx + uz * half, mz - ux * half]]
         every_segment = max(
-            [0.0] + [capsule_rect_penetration(*points[i], *points[i + 1], radius, rect) for i in range(len(points) - 1)]
+            [0.0]
+            + [
+                capsule_rect_penetration(*points[i], *points[i + 1], radius, rect)
+                for i in range(len(points) - 1)
+            ]
         )
         assert polyline_rect_penetration(points, radius, rect) == every_segment
 
@@ -272,7 +349,13 @@ def test_rect_overlap_is_its_form_by_field_names_to_the_last_bit():
     rng = random.Random(12)
     for _ in range(5000):
         a, b = (
-            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.choice([0.0, rng.uniform(-4, 4)]))
+            make_rect(
+                rng.uniform(-6, 6),
+                rng.uniform(-6, 6),
+                rng.uniform(0.1, 5),
+                rng.uniform(0.1, 5),
+                rng.choice([0.0, rng.uniform(-4, 4)]),
+            )
             for _ in range(2)
         )
         dx, dz = b.cx - a.cx, b.cz - a.cz
@@ -290,7 +373,13 @@ def test_rect_distance_between_square_rectangles_is_its_form_by_field_names_to_t
     rng = random.Random(13)
     for _ in range(5000):
         a, b = (
-            make_rect(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0.1, 5), rng.uniform(0.1, 5), rng.randrange(4) * math.pi / 2)
+            make_rect(
+                rng.uniform(-6, 6),
+                rng.uniform(-6, 6),
+                rng.uniform(0.1, 5),
+                rng.uniform(0.1, 5),
+                rng.randrange(4) * math.pi / 2,
+            )
             for _ in range(2)
         )
         k2 = a.c * b.s - a.s * b.c

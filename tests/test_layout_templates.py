@@ -58,7 +58,9 @@ def peaked_context(graph) -> LearnedContext:
     """Per pair kind of the dining graph: weight HIGH on its side's band and on TURN_BIN,
     LOW elsewhere (outside the grid too)."""
     problem = compile_problem(graph)
-    kinds = sorted({kind for _, _, kind in related_pairs(problem, [graph.node(i).type for i in problem.ids])})
+    kinds = sorted(
+        {kind for _, _, kind in related_pairs(problem, [graph.node(i).type for i in problem.ids])}
+    )
     pairs = []
     for kind in kinds:
         position = np.full(BINS * BINS + 1, LOW)
@@ -72,7 +74,9 @@ def peaked_context(graph) -> LearnedContext:
 def peaked_problem(seed: int):
     graph = expand(load_rules(DINING), seed)
     problem = compile_problem(graph)
-    problem.learned = compile_learned(peaked_context(graph), problem, [graph.node(i).type for i in problem.ids])
+    problem.learned = compile_learned(
+        peaked_context(graph), problem, [graph.node(i).type for i in problem.ids]
+    )
     return problem
 
 
@@ -82,8 +86,12 @@ def landed(problem, energy) -> list[tuple[bool, bool]]:
     for source, target, table in problem.learned.pairs:
         x, z, turn = relative_pose(energy.state.pose(source), energy.state.pose(target))
         cell = table.cell(x, z)
-        out.append((cell < BINS * BINS and bool(band_cells(BANDS[side_of(table.kind)])[cell]),
-                    table.yaw_bin(turn) == TURN_BIN))  # fmt: skip
+        out.append(
+            (
+                cell < BINS * BINS and bool(band_cells(BANDS[side_of(table.kind)])[cell]),
+                table.yaw_bin(turn) == TURN_BIN,
+            )
+        )
     return out
 
 
@@ -122,7 +130,9 @@ def test_template_init_places_sources_in_the_high_share_cells():
         hits = []
         for seed in range(6):
             problem = peaked_problem(seed)
-            energy, _ = start_chain(problem, LayoutParams(template_init=on), np.random.default_rng(seed))
+            energy, _ = start_chain(
+                problem, LayoutParams(template_init=on), np.random.default_rng(seed)
+            )
             hits += landed(problem, energy)
         rates[on] = (np.mean([h[0] for h in hits]), np.mean([h[1] for h in hits]))
     assert rates[True][0] >= 0.8 and rates[True][1] >= 0.8
@@ -134,7 +144,10 @@ def test_template_init_is_deterministic():
     context = peaked_context(graph)
     params = LayoutParams(template_init=True)
     first = layout_scene(graph, 3, params=params, context=context)
-    assert replace(layout_scene(graph, 3, params=params, context=context), seconds=first.seconds) == first
+    assert (
+        replace(layout_scene(graph, 3, params=params, context=context), seconds=first.seconds)
+        == first
+    )
 
 
 @pytest.mark.parametrize("rules", [DINING, ROOT / "grammar_rules" / "bedroom.rules"])

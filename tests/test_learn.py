@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_cli import assert_one_line_error, run
 
 from scenewright.api import build_scene
 from scenewright.cli import EXAMPLES
@@ -19,8 +20,6 @@ from scenewright.generator import check_rules, load_rules
 from scenewright.learning.density_peaks import density_peaks
 from scenewright.learning.induce import identifier, induce
 from scenewright.learning.learn import learn_rule_set
-
-from test_cli import assert_one_line_error, run
 
 DESKS = sorted((Path(__file__).parents[1] / "examples" / "sets" / "desks").glob("desk_*.json"))
 PLANTED = np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]])
@@ -84,18 +83,24 @@ def test_density_peaks_dissolve_clusters_too_small_to_be_templates():
 def desk_induction():
     """The rules induced from 40 scenes of the shipped desk rule set (layout, no render)."""
     scenes = [build_scene("desk", seed) for seed in range(40)]
-    examples = [Example(f"desk-{k}", f"desk-{k}", "scene.json", scene) for k, scene in enumerate(scenes)]
+    examples = [
+        Example(f"desk-{k}", f"desk-{k}", "scene.json", scene) for k, scene in enumerate(scenes)
+    ]
     return induce(examples, name="desk_learned", seed=0)
 
 
-def test_rules_learned_from_desk_scenes_validate_and_hold_its_main_relations(desk_induction, tmp_path):
+def test_rules_learned_from_desk_scenes_validate_and_hold_its_main_relations(
+    desk_induction, tmp_path
+):
     path = tmp_path / "desk_learned.rules"
     path.write_text(desk_induction.text())
     assert [d for d in check_rules(path) if d.is_error] == []
     written = desk_induction.written_pairs()
 
     def labels(parent, child):
-        return [placement.labels for placement in written[tuple(sorted((parent, child)))].placements]
+        return [
+            placement.labels for placement in written[tuple(sorted((parent, child)))].placements
+        ]
 
     # desk.rules: chair NextToFront t FacingTowards t; computer OnTopOfMiddle t;
     # lamp OnTopOfEdge t; paper OnTopOfFrontEdge t; phone and books OnTopOf t.
@@ -125,17 +130,46 @@ def free_example(index: int) -> dict:
     turn = math.radians(yaw)
 
     def at(lx, lz):
-        return [round(x + lx * math.cos(turn) + lz * math.sin(turn), 4), round(z - lx * math.sin(turn) + lz * math.cos(turn), 4)]
+        return [
+            round(x + lx * math.cos(turn) + lz * math.sin(turn), 4),
+            round(z - lx * math.sin(turn) + lz * math.cos(turn), 4),
+        ]
 
     objects = [
-        {"id": "d", "type": "Writing-Desk", "style": "Oak" if index % 3 else "pine", "size": [1.3, 0.76, 0.65],
-         "position": [x, z], "yaw": yaw},
-        {"id": "s", "type": "stool.v2", "size": [0.4, 0.5, 0.4], "position": at(0.02 * (index % 3), 0.72), "yaw": yaw + 180},
-        {"id": "k", "type": "Kettle", "size": [0.2, 0.25, 0.15], "position": at(0.3, 0.05 * (index % 2)), "yaw": yaw,
-         "parent": "d"},
-    ]  # fmt: skip
+        {
+            "id": "d",
+            "type": "Writing-Desk",
+            "style": "Oak" if index % 3 else "pine",
+            "size": [1.3, 0.76, 0.65],
+            "position": [x, z],
+            "yaw": yaw,
+        },
+        {
+            "id": "s",
+            "type": "stool.v2",
+            "size": [0.4, 0.5, 0.4],
+            "position": at(0.02 * (index % 3), 0.72),
+            "yaw": yaw + 180,
+        },
+        {
+            "id": "k",
+            "type": "Kettle",
+            "size": [0.2, 0.25, 0.15],
+            "position": at(0.3, 0.05 * (index % 2)),
+            "yaw": yaw,
+            "parent": "d",
+        },
+    ]
     if index % 4 == 0:
-        objects.append({"id": "r", "type": "rock_42", "size": [0.5, 0.4, 0.5], "position": [2.5, -2.0], "yaw": 0})
+        objects.append(
+            {
+                "id": "r",
+                "type": "rock_42",
+                "size": [0.5, 0.4, 0.5],
+                "position": [2.5, -2.0],
+                "yaw": 0,
+            }
+        )
     return {"extent": [7, 6], "objects": objects}
 
 
@@ -148,10 +182,15 @@ def test_hand_written_examples_with_free_type_names(tmp_path):
     induction = induce(load_examples(paths), name="free", seed=0)
     assert set(induction.catalog) == {"writing_desk", "stool_v2", "kettle", "rock_42"}
     assert induction.catalog["writing_desk"].sources == ("Writing-Desk",)
-    assert induction.catalog["writing_desk"].noun == "Writing-Desk"  # the type name, as the importer made it
+    assert (
+        induction.catalog["writing_desk"].noun == "Writing-Desk"
+    )  # the type name, as the importer made it
     assert {s.name for s in induction.catalog["writing_desk"].styles} == {"oak", "pine"}
     written = induction.written_pairs()
-    assert written[("stool_v2", "writing_desk")].placements[0].labels == ("NextToFront", "FacingTowards")
+    assert written[("stool_v2", "writing_desk")].placements[0].labels == (
+        "NextToFront",
+        "FacingTowards",
+    )
     assert written[("kettle", "writing_desk")].placements[0].labels[0] == "OnTopOf"
     assert [item.type for item in induction.loose] == ["rock_42"]  # in 4 of 14, related to nothing
     text = induction.text()
@@ -171,26 +210,55 @@ def test_identifiers_of_free_names():
     assert identifier("wall", taken, frozenset({"wall"})) == "wall_2"
 
 
-def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_seed(tmp_path, capsys):
+def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_seed(
+    tmp_path, capsys
+):
     assert len(DESKS) == 20
     outputs = []
-    for run_number in range(2):
-        rules, report = tmp_path / "desks.rules", tmp_path / "learn.json"  # the second run writes over the first
-        code, out, err = run(capsys, "learn", *map(str, DESKS), "-o", str(rules), "--report", str(report), "--check", "4",
-                             "--no-context")  # fmt: skip
+    for _run_number in range(2):
+        rules, report = (
+            tmp_path / "desks.rules",
+            tmp_path / "learn.json",
+        )  # the second run writes over the first
+        code, out, err = run(
+            capsys,
+            "learn",
+            *map(str, DESKS),
+            "-o",
+            str(rules),
+            "--report",
+            str(report),
+            "--check",
+            "4",
+            "--no-context",
+        )
         assert code == 0, err
         assert "wrote" in out and "4 scenes generated" in out
         outputs.append((rules.read_bytes(), report.read_bytes()))
     assert outputs[0] == outputs[1]
-    assert not (tmp_path / "desks.context.json").exists() and "context" not in out  # --no-context: none learned
+    assert (
+        not (tmp_path / "desks.context.json").exists() and "context" not in out
+    )  # --no-context: none learned
     text = outputs[0][0].decode()
-    assert "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk }" in text
+    assert (
+        "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk }"
+        in text
+    )
     assert "0.5? plant InCorner some wall" in text
     document = json.loads(outputs[0][1])
     pair = next(p for p in document["pairs"] if (p["a"], p["b"]) == ("desk", "monitor"))
-    assert pair["related"] and pair["p_value"] <= 0.01 and pair["labels"][0]["labels"][0] == "OnTopOfEdge"
+    assert (
+        pair["related"]
+        and pair["p_value"] <= 0.01
+        and pair["labels"][0]["labels"][0] == "OnTopOfEdge"
+    )
     assert sum(c["size"] for c in pair["clusters"]) + pair["outliers"] == 19
-    assert {entry["type"] for entry in document["catalog"]} >= {"desk", "monitor", "mug", "waste_bin"}
+    assert {entry["type"] for entry in document["catalog"]} >= {
+        "desk",
+        "monitor",
+        "mug",
+        "waste_bin",
+    }
     assert document["groups"][0]["anchor"] == "desk"
     assert document["check"]["scenes"] == 4 and len(document["check"]["types"]) == 8
 
@@ -213,14 +281,27 @@ def test_learn_help_has_an_example(capsys):
         (["{one}", "{one}", "--test", "nope"], "--test"),
     ],
 )
-def test_learn_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path, capsys, arguments, fragment):
+def test_learn_refuses_bad_input_in_one_line_and_writes_nothing(
+    tmp_path, capsys, arguments, fragment
+):
     one = tmp_path / "one.json"
     one.write_text(json.dumps(free_example(1)))
     (tmp_path / "broken.json").write_text("{not json")
-    names = {"one": str(one), "missing": str(tmp_path / "missing.json"), "broken": str(tmp_path / "broken.json")}
+    names = {
+        "one": str(one),
+        "missing": str(tmp_path / "missing.json"),
+        "broken": str(tmp_path / "broken.json"),
+    }
     out_dir = tmp_path / "out"
-    code, _, err = run(capsys, "learn", *[a.format(**names) for a in arguments], "-o", str(out_dir / "x.rules"),
-                       "--report", str(out_dir / "x.json"))  # fmt: skip
+    code, _, err = run(
+        capsys,
+        "learn",
+        *[a.format(**names) for a in arguments],
+        "-o",
+        str(out_dir / "x.rules"),
+        "--report",
+        str(out_dir / "x.json"),
+    )
     assert code == 2
     assert_one_line_error(err, fragment)
     assert not (out_dir / "x.rules").exists() and not (out_dir / "x.json").exists()
@@ -237,7 +318,9 @@ def test_learn_refuses_an_output_it_cannot_write(tmp_path, capsys):
 def test_learn_rule_set_writes_nothing_when_the_examples_cannot_be_learned(tmp_path):
     written = []
     with pytest.raises(Exception, match="at least 2"):
-        learn_rule_set(load_examples(DESKS[:1]), tmp_path / "x.rules", write=lambda p, t: written.append(p))
+        learn_rule_set(
+            load_examples(DESKS[:1]), tmp_path / "x.rules", write=lambda p, t: written.append(p)
+        )
     assert written == [] and not (tmp_path / "x.rules").exists()
 
 
@@ -247,28 +330,59 @@ def test_a_type_resting_on_two_types_hangs_off_each(tmp_path):
     paths = []
     for index in range(12):
         objects = [
-            {"id": "d", "type": "desk", "size": [1.2, 0.75, 0.6], "position": [-1.0 + 0.1 * (index % 3), 0.5], "yaw": 0},
-            {"id": "s", "type": "bookshelf", "size": [0.9, 1.0, 0.32], "position": [1.5, -1.0 + 0.2 * (index % 4)],
-             "yaw": -90},
-            {"id": "b1", "type": "book", "size": [0.17, 0.03, 0.24], "position": [-1.2 + 0.1 * (index % 3), 0.5],
-             "parent": "d"},
-        ]  # fmt: skip
+            {
+                "id": "d",
+                "type": "desk",
+                "size": [1.2, 0.75, 0.6],
+                "position": [-1.0 + 0.1 * (index % 3), 0.5],
+                "yaw": 0,
+            },
+            {
+                "id": "s",
+                "type": "bookshelf",
+                "size": [0.9, 1.0, 0.32],
+                "position": [1.5, -1.0 + 0.2 * (index % 4)],
+                "yaw": -90,
+            },
+            {
+                "id": "b1",
+                "type": "book",
+                "size": [0.17, 0.03, 0.24],
+                "position": [-1.2 + 0.1 * (index % 3), 0.5],
+                "parent": "d",
+            },
+        ]
         if index % 2:
-            objects.append({"id": "b2", "type": "book", "size": [0.17, 0.03, 0.24],
-                            "position": [1.5, -1.2 + 0.2 * (index % 4)], "yaw": -90, "parent": "s"})  # fmt: skip
+            objects.append(
+                {
+                    "id": "b2",
+                    "type": "book",
+                    "size": [0.17, 0.03, 0.24],
+                    "position": [1.5, -1.2 + 0.2 * (index % 4)],
+                    "yaw": -90,
+                    "parent": "s",
+                }
+            )
         path = tmp_path / f"ex{index:02d}.json"
         path.write_text(json.dumps({"extent": [5, 4], "objects": objects}))
         paths.append(path)
     induction = induce(load_examples(paths), name="books", seed=0)
-    members = {group.anchor: [(m.type, m.carried, dict(m.per_parent)) for m in group.members] for group in induction.groups}
-    assert members == {"bookshelf": [("book", True, {0: 6, 1: 6})], "desk": [("book", True, {1: 12})]}
+    members = {
+        group.anchor: [(m.type, m.carried, dict(m.per_parent)) for m in group.members]
+        for group in induction.groups
+    }
+    assert members == {
+        "bookshelf": [("book", True, {0: 6, 1: 6})],
+        "desk": [("book", True, {1: 12})],
+    }
     text = induction.text()
     # (the shelf is 0.32 deep, the book 0.24: its front is within 5 cm of the shelf's front edge)
-    assert "0.5? book OnTopOfFrontEdge the_bookshelf" in text and "    book OnTopOf the_desk" in text
+    assert (
+        "0.5? book OnTopOfFrontEdge the_bookshelf" in text and "    book OnTopOf the_desk" in text
+    )
     rules_path = tmp_path / "books.rules"
     rules_path.write_text(text)
     assert [d for d in check_rules(rules_path) if d.is_error] == []
-
 
 
 def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
@@ -283,10 +397,17 @@ def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
     from scenewright.learning.induce import _anchor
 
     graph = nx.Graph([("rug", "reading_chair"), ("rug", "floor_lamp")])
-    catalog = {"rug": SimpleNamespace(size=(1.4, 0.01, 1.0)), "reading_chair": SimpleNamespace(size=(0.85, 1.0, 0.85)),
-               "floor_lamp": SimpleNamespace(size=(0.35, 1.6, 0.35))}  # fmt: skip
+    catalog = {
+        "rug": SimpleNamespace(size=(1.4, 0.01, 1.0)),
+        "reading_chair": SimpleNamespace(size=(0.85, 1.0, 0.85)),
+        "floor_lamp": SimpleNamespace(size=(0.35, 1.6, 0.35)),
+    }
     everywhere = np.ones(10, dtype=int)
-    counts = {"reading_chair": everywhere, "floor_lamp": everywhere, "rug": (np.arange(10) < 6).astype(int)}
+    counts = {
+        "reading_chair": everywhere,
+        "floor_lamp": everywhere,
+        "rug": (np.arange(10) < 6).astype(int),
+    }
     assert _anchor(set(graph), graph, catalog, counts) == "reading_chair"
     # With the rug in every corner, it is the anchor again (most related, largest).
     assert _anchor(set(graph), graph, catalog, {**counts, "rug": everywhere}) == "rug"
@@ -305,30 +426,87 @@ def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
         width, depth = draw.choice([(3.6, 3.0), (4.0, 3.4), (4.4, 3.6)])
         wall = draw.choice(["north", "south", "east", "west"])
         along = draw.uniform(-0.45, 0.45)  # the side table and lamp stay inside the room
-        x, z, yaw = {"north": (along * width / 2, -depth / 2 + 0.5, 0), "south": (along * width / 2, depth / 2 - 0.5, 180),
-                     "east": (width / 2 - 0.5, along * depth / 2, 270), "west": (-width / 2 + 0.5, along * depth / 2, 90)}[wall]  # fmt: skip
+        x, z, yaw = {
+            "north": (along * width / 2, -depth / 2 + 0.5, 0),
+            "south": (along * width / 2, depth / 2 - 0.5, 180),
+            "east": (width / 2 - 0.5, along * depth / 2, 270),
+            "west": (-width / 2 + 0.5, along * depth / 2, 90),
+        }[wall]
         turn = math.radians(yaw)
 
-        def by(left: float, front: float) -> list[float]:  # a point left/front of the chair, in its frame
-            return [round(x + left * math.cos(turn) + front * math.sin(turn), 3), round(z - left * math.sin(turn) + front * math.cos(turn), 3)]
+        def by(left: float, front: float, x=x, z=z, turn=turn) -> list[float]:
+            """A point left/front of the chair, in its frame."""
+            return [
+                round(x + left * math.cos(turn) + front * math.sin(turn), 3),
+                round(z - left * math.sin(turn) + front * math.cos(turn), 3),
+            ]
 
         side = draw.choice([-1, 1])
         objects = [
-            {"id": "chair", "type": "reading_chair", "size": [0.85, 1.0, 0.85], "position": by(0, 0), "yaw": yaw},
-            {"id": "lamp", "type": "floor_lamp", "size": [0.35, 1.6, 0.35],
-             "position": by(side * (0.775 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)), "yaw": yaw},
-            {"id": "table", "type": "side_table", "size": [0.45, 0.55, 0.45],
-             "position": by(-side * (0.725 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)), "yaw": yaw},
-        ]  # fmt: skip
+            {
+                "id": "chair",
+                "type": "reading_chair",
+                "size": [0.85, 1.0, 0.85],
+                "position": by(0, 0),
+                "yaw": yaw,
+            },
+            {
+                "id": "lamp",
+                "type": "floor_lamp",
+                "size": [0.35, 1.6, 0.35],
+                "position": by(side * (0.775 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)),
+                "yaw": yaw,
+            },
+            {
+                "id": "table",
+                "type": "side_table",
+                "size": [0.45, 0.55, 0.45],
+                "position": by(-side * (0.725 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)),
+                "yaw": yaw,
+            },
+        ]
         if draw.random() < 0.7:
-            objects.append({"id": "cup", "type": "teacup", "size": [0.1, 0.1, 0.1], "position": objects[2]["position"], "parent": "table"})
+            objects.append(
+                {
+                    "id": "cup",
+                    "type": "teacup",
+                    "size": [0.1, 0.1, 0.1],
+                    "position": objects[2]["position"],
+                    "parent": "table",
+                }
+            )
         if draw.random() < rugs:
-            objects.append({"id": "rug", "type": "rug", "size": [1.4, 0.01, 1.0], "position": by(0, 1.025), "yaw": yaw})
-        opposite = {"north": ("south", 180), "south": ("north", 0), "east": ("west", 90), "west": ("east", 270)}[wall]
+            objects.append(
+                {
+                    "id": "rug",
+                    "type": "rug",
+                    "size": [1.4, 0.01, 1.0],
+                    "position": by(0, 1.025),
+                    "yaw": yaw,
+                }
+            )
+        opposite = {
+            "north": ("south", 180),
+            "south": ("north", 0),
+            "east": ("west", 90),
+            "west": ("east", 270),
+        }[wall]
         offset = draw.uniform(-0.6, 0.6)
-        shelf = {"north": [offset * width / 2, -depth / 2 + 0.18], "south": [offset * width / 2, depth / 2 - 0.18],
-                 "east": [width / 2 - 0.18, offset * depth / 2], "west": [-width / 2 + 0.18, offset * depth / 2]}[opposite[0]]  # fmt: skip
-        objects.append({"id": "shelf", "type": "bookshelf", "size": [1.0, 1.8, 0.35], "position": [round(v, 3) for v in shelf], "yaw": opposite[1]})
+        shelf = {
+            "north": [offset * width / 2, -depth / 2 + 0.18],
+            "south": [offset * width / 2, depth / 2 - 0.18],
+            "east": [width / 2 - 0.18, offset * depth / 2],
+            "west": [-width / 2 + 0.18, offset * depth / 2],
+        }[opposite[0]]
+        objects.append(
+            {
+                "id": "shelf",
+                "type": "bookshelf",
+                "size": [1.0, 1.8, 0.35],
+                "position": [round(v, 3) for v in shelf],
+                "yaw": opposite[1],
+            }
+        )
         path = folder / f"nook{index:02d}.json"
         path.write_text(json.dumps({"room": {"width": width, "depth": depth}, "objects": objects}))
         paths.append(path)
@@ -343,7 +521,7 @@ def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path)
     # derivation of the learned rules.
     induction = induce(load_examples(reading_corners(tmp_path, rugs=0.8)), name="corners", seed=0)
     text = induction.text()
-    alone = text[text.index("SideTableAlone -> {"):]
+    alone = text[text.index("SideTableAlone -> {") :]
     alone = alone[: alone.index("}")]
     assert "? SideTableAlone" in text and "teacup OnTopOf" in alone and "bookshelf" in alone
     rules_path = tmp_path / "corners.rules"
@@ -359,11 +537,18 @@ def test_a_thing_in_only_some_examples_does_not_take_over_a_pair_it_cannot_carry
     assert sum("rug" in path.read_text() for path in paths) == 9
     text = induce(load_examples(paths), name="corners", seed=0).text()
     assert "SideTableAlone" not in text and "the_rug" not in text.split("# SideTable", 1)[1], text
-    assert "side_table NextToLeft the_reading_chair" in text and "side_table NextToRight the_reading_chair" in text
+    assert (
+        "side_table NextToLeft the_reading_chair" in text
+        and "side_table NextToRight the_reading_chair" in text
+    )
 
 
-@pytest.mark.parametrize(("turned", "gaps"), [(True, (0.02, 0.09)), (False, (0.02, 0.09)), (True, (-0.07, -0.02))])
-def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(tmp_path, turned, gaps):
+@pytest.mark.parametrize(
+    ("turned", "gaps"), [(True, (0.02, 0.09)), (False, (0.02, 0.09)), (True, (-0.07, -0.02))]
+)
+def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(
+    tmp_path, turned, gaps
+):
     # Ten rooms, a floor lamp in some corner 2 to 9 cm off both walls, turned towards the
     # room as a person would set it down (or square to the walls): its turn means nothing
     # for a round lamp, and the gap is the few centimetres a hand leaves. Or set down as
@@ -373,13 +558,32 @@ def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(tmp
     for index in range(10):
         width, depth = float(draw.choice([3.6, 4.0, 4.4])), float(draw.choice([3.2, 3.6]))
         sx, sz = draw.choice([-1, 1], size=2)
-        yaw = math.degrees(math.atan2(-sx, -sz)) if turned else float(draw.choice([0, 90, 180, 270]))
-        reach = 0.2 * (abs(math.cos(math.radians(yaw))) + abs(math.sin(math.radians(yaw))))  # the square's, turned
-        lamp = [float(sx * (width / 2 - reach - draw.uniform(*gaps))), float(sz * (depth / 2 - reach - draw.uniform(*gaps)))]
+        yaw = (
+            math.degrees(math.atan2(-sx, -sz)) if turned else float(draw.choice([0, 90, 180, 270]))
+        )
+        reach = 0.2 * (
+            abs(math.cos(math.radians(yaw))) + abs(math.sin(math.radians(yaw)))
+        )  # the square's, turned
+        lamp = [
+            float(sx * (width / 2 - reach - draw.uniform(*gaps))),
+            float(sz * (depth / 2 - reach - draw.uniform(*gaps))),
+        ]
         objects = [
-            {"id": "table", "type": "table", "size": [1.2, 0.75, 0.8], "position": [0.0, 0.0], "yaw": 0},
-            {"id": "lamp", "type": "floor_lamp", "size": [0.4, 1.6, 0.4], "position": lamp, "yaw": round(yaw, 1)},
-        ]  # fmt: skip
+            {
+                "id": "table",
+                "type": "table",
+                "size": [1.2, 0.75, 0.8],
+                "position": [0.0, 0.0],
+                "yaw": 0,
+            },
+            {
+                "id": "lamp",
+                "type": "floor_lamp",
+                "size": [0.4, 1.6, 0.4],
+                "position": lamp,
+                "yaw": round(yaw, 1),
+            },
+        ]
         path = tmp_path / f"room{index}.json"
         path.write_text(json.dumps({"room": {"width": width, "depth": depth}, "objects": objects}))
         paths.append(path)

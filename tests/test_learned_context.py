@@ -39,10 +39,14 @@ def random_context(graph, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)) -> Learn
     types = [graph.node(i).type for i in problem.ids]
     rng = np.random.default_rng(seed)
     kinds = sorted({kind for _, _, kind in related_pairs(problem, types)})
-    return LearnedContext(tuple(
-        PairContext(*kind, bounds, rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1)
-        for kind in kinds
-    ))  # fmt: skip
+    return LearnedContext(
+        tuple(
+            PairContext(
+                *kind, bounds, rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1
+            )
+            for kind in kinds
+        )
+    )
 
 
 def learned_problem(rules, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)):
@@ -77,7 +81,9 @@ def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
         grid_sides |= sides & _grid_sides(energy)
         assert delta == pytest.approx(sum(after.values()) - sum(before.values()), abs=1e-9)
         assert energy.learned_delta == pytest.approx(after["learned"] - before["learned"], abs=1e-9)
-        assert energy.soft_delta - energy.learned_delta == pytest.approx(soft_after - soft_before, abs=1e-9)
+        assert energy.soft_delta - energy.learned_delta == pytest.approx(
+            soft_after - soft_before, abs=1e-9
+        )
         if drawn and drawn[2] is None:  # an exchange of two interchangeable chairs
             assert drawn[1] == 0.0
             swaps += 1
@@ -102,15 +108,19 @@ def _soft_relations(energy) -> float:
     those of pairs whose source stands on the pair's grid."""
     learned, pose = energy.problem.learned, energy.state.pose
     return sum(
-        energy.relation_energy(t) for t, pair in learned.tempered.items()
+        energy.relation_energy(t)
+        for t, pair in learned.tempered.items()
         if learned.on_grid(pair, pose(learned.pairs[pair][0]), pose(learned.pairs[pair][1]))
-    )  # fmt: skip
+    )
 
 
 def _grid_sides(energy) -> set[bool]:
     """Whether each learned pair's source stands on its grid, as a set."""
     learned, pose = energy.problem.learned, energy.state.pose
-    return {learned.on_grid(k, pose(source), pose(target)) for k, (source, target, _) in enumerate(learned.pairs)}
+    return {
+        learned.on_grid(k, pose(source), pose(target))
+        for k, (source, target, _) in enumerate(learned.pairs)
+    }
 
 
 def test_an_off_grid_pair_anneals_its_relations_and_an_on_grid_one_samples_them():
@@ -121,7 +131,10 @@ def test_an_off_grid_pair_anneals_its_relations_and_an_on_grid_one_samples_them(
         terms = [t for t, k in learned.tempered.items() if k == pair]
         tx, tz, tyaw = state.pose(target)
         start = state.pose(source)
-        for first, second, on_grid in ((0.0, 0.2, True), (3.0, 3.5, False)):  # beside the table, or metres off
+        for first, second, on_grid in (
+            (0.0, 0.2, True),
+            (3.0, 3.5, False),
+        ):  # beside the table, or metres off
             for lx in (first, second):
                 x, z = to_world(tx, tz, tyaw, lx, 0.8)
                 energy.propose({source: (x, z, state.yaw[source])}, {})
@@ -130,7 +143,9 @@ def test_an_off_grid_pair_anneals_its_relations_and_an_on_grid_one_samples_them(
             assert learned.on_grid(pair, state.pose(source), state.pose(target)) is on_grid
             relations = sum(energy.relation_energy(t) - energy.relation[t] for t in terms)
             if on_grid:  # sampled with the learned part
-                assert energy.soft_delta == pytest.approx(energy.learned_delta + relations, abs=1e-12)
+                assert energy.soft_delta == pytest.approx(
+                    energy.learned_delta + relations, abs=1e-12
+                )
             else:  # annealed with the rest: the further off, the more broken its NextTo
                 assert relations > 0.1 and energy.soft_delta == energy.learned_delta
             energy.reject()
@@ -171,7 +186,9 @@ def test_interchangeable_boxes_swap_with_what_rests_on_them_and_a_swap_undoes_it
 def test_a_share_of_learned_moves_are_swaps_and_they_are_not_counted_as_redraws():
     problem = learned_problem("bedroom", 2)
     energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))
-    moves = LearnedMoves(problem.learned, problem, energy.state, np.random.default_rng(1), mover.movable_box, 2)
+    moves = LearnedMoves(
+        problem.learned, problem, energy.state, np.random.default_rng(1), mover.movable_box, 2
+    )
     kinds = [moves.propose() for _ in range(400)]
     swaps = [drawn for drawn in kinds if drawn[2] is None]
     assert 0.15 < len(swaps) / len(kinds) < 0.35  # SWAP_SHARE of the learned moves
@@ -183,10 +200,17 @@ def test_a_learned_target_carries_its_sources_in_half_its_ordinary_moves():
     ids = problem.ids
     energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(4))
     state = energy.state
-    moves = LearnedMoves(problem.learned, problem, state, np.random.default_rng(6), mover.movable_box, 2)
+    moves = LearnedMoves(
+        problem.learned, problem, state, np.random.default_rng(6), mover.movable_box, 2
+    )
     bed = ids.index("bed_1")
     followers = {ids[box] for box in moves.followers[bed]}
-    assert {"nightstand_1", "nightstand_2", "lamp_1", "lamp_2"} <= followers and "bed_1" not in followers
+    assert {
+        "nightstand_1",
+        "nightstand_2",
+        "lamp_1",
+        "lamp_2",
+    } <= followers and "bed_1" not in followers
     x, z, yaw = state.pose(bed)
     turned = {bed: (x + 0.3, z - 0.2, yaw + 0.5)}
     carried = 0
@@ -227,17 +251,31 @@ def test_iterative_scaling_matches_the_observed_shares_on_a_known_model():
         weights_y = scaling_step(weights_y, observed_y, generated_y)
     generated_p, generated_y = model()
     assert start > 0.1
-    assert total_variation(generated_p, observed_p) < 1e-4 and total_variation(generated_y, observed_y) < 1e-4
+    assert (
+        total_variation(generated_p, observed_p) < 1e-4
+        and total_variation(generated_y, observed_y) < 1e-4
+    )
     assert weights_p.min() == 0.0  # normalised to start at 0
 
 
 def dining_examples(count: int, seed: int = 0) -> list[tuple[str, dict]]:
     """``count`` dining scenes, the chairs' layouts jittered around one arrangement."""
     template = build_scene(load_rules(DINING), 0).to_dict()
-    side = {r["source"]: r["label"] for r in template["relations"] if r["label"].startswith("NextTo")}
-    places = {"NextToFront": [(-0.4, 0.8), (0.4, 0.8)], "NextToBehind": [(-0.4, -0.8), (0.4, -0.8)],
-              "NextToLeft": [(1.15, 0.0)], "NextToRight": [(-1.15, 0.0)]}  # fmt: skip
-    yaws = {"NextToFront": math.pi, "NextToBehind": 0.0, "NextToLeft": -math.pi / 2, "NextToRight": math.pi / 2}
+    side = {
+        r["source"]: r["label"] for r in template["relations"] if r["label"].startswith("NextTo")
+    }
+    places = {
+        "NextToFront": [(-0.4, 0.8), (0.4, 0.8)],
+        "NextToBehind": [(-0.4, -0.8), (0.4, -0.8)],
+        "NextToLeft": [(1.15, 0.0)],
+        "NextToRight": [(-1.15, 0.0)],
+    }
+    yaws = {
+        "NextToFront": math.pi,
+        "NextToBehind": 0.0,
+        "NextToLeft": -math.pi / 2,
+        "NextToRight": math.pi / 2,
+    }
     rng = np.random.default_rng(seed)
     examples = []
     for k in range(count):
@@ -273,8 +311,18 @@ def test_fit_context_is_deterministic_and_learns_every_pair_kind():
 
 def test_a_context_of_other_types_leaves_the_layout_unchanged():
     graph = expand(load_rules(DINING), 2)
-    other = LearnedContext((PairContext("lamp", "desk", ("OnTopOf",), (-1, -1, 1, 1), np.zeros(BINS * BINS + 1),
-                                        np.zeros(YAW_BINS)),))  # fmt: skip
+    other = LearnedContext(
+        (
+            PairContext(
+                "lamp",
+                "desk",
+                ("OnTopOf",),
+                (-1, -1, 1, 1),
+                np.zeros(BINS * BINS + 1),
+                np.zeros(YAW_BINS),
+            ),
+        )
+    )
     plain = layout_scene(graph, 2)
     assert replace(layout_scene(graph, 2, context=other), seconds=plain.seconds) == plain
 
@@ -288,11 +336,17 @@ def test_tempered_sampling_spreads_where_annealing_collapses():
     for tempered in (True, False):
         chairs = []
         for seed in range(8):
-            result = layout_scene(graph, seed, context=context, params=replace(LayoutParams(), tempered=tempered,
-                                                                               restarts=0))  # fmt: skip
+            result = layout_scene(
+                graph,
+                seed,
+                context=context,
+                params=replace(LayoutParams(), tempered=tempered, restarts=0),
+            )
             assert "learned" in result.parts
             chair, table = result.poses["chair_5"], result.poses["table_1"]
-            chairs.append(relative_pose((chair.x, chair.z, chair.yaw), (table.x, table.z, table.yaw))[:2])
+            chairs.append(
+                relative_pose((chair.x, chair.z, chair.yaw), (table.x, table.z, table.yaw))[:2]
+            )
         spread[tempered] = float(np.linalg.norm(np.std(chairs, axis=0)))
     assert spread[True] > spread[False]
 
@@ -309,28 +363,91 @@ def write_examples(folder: Path, examples) -> list[str]:
 def test_fit_what_context_round_trip(tmp_path, capsys):
     paths = write_examples(tmp_path, dining_examples(5))
     out = tmp_path / "out" / "fitted.rules"
-    code = main(["fit", str(DINING), *paths, "-o", str(out), "--what", "weights,context", "--rounds", "1",
-                 "--layouts", "3", "--report", str(tmp_path / "fit.json")])  # fmt: skip
+    code = main(
+        [
+            "fit",
+            str(DINING),
+            *paths,
+            "-o",
+            str(out),
+            "--what",
+            "weights,context",
+            "--rounds",
+            "1",
+            "--layouts",
+            "3",
+            "--report",
+            str(tmp_path / "fit.json"),
+        ]
+    )
     assert code == 0, capsys.readouterr().err
     sidecar = tmp_path / "out" / "fitted.context.json"
     document = json.loads(sidecar.read_text())
     assert document["format"] == "scenewright-context" and len(document["pairs"]) == 4
     assert json.loads((tmp_path / "fit.json").read_text())["context"]["file"] == str(sidecar)
     first = sidecar.read_bytes()
-    assert main(["fit", str(DINING), *paths, "-o", str(out), "--what", "context", "--rounds", "1",
-                 "--layouts", "3"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "fit",
+                str(DINING),
+                *paths,
+                "-o",
+                str(out),
+                "--what",
+                "context",
+                "--rounds",
+                "1",
+                "--layouts",
+                "3",
+            ]
+        )
+        == 0
+    )
     assert sidecar.read_bytes() == first  # deterministic
     assert out.read_text() == DINING.read_text()  # context only: the numbers as they were
     # generate picks the context up beside the rules; --no-context leaves it out.
     capsys.readouterr()
-    assert main(["generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g1")]) == 0
+    assert (
+        main(["generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g1")]) == 0
+    )
     assert "context: " in capsys.readouterr().out
     scene = json.loads((tmp_path / "g1" / "scene.json").read_text())
     assert "learned" in scene["layout"]["parts"]
-    assert main(["generate", str(out), "--seed", "1", "--no-render", "--no-context", "-o", str(tmp_path / "g2")]) == 0
-    assert "learned" not in json.loads((tmp_path / "g2" / "scene.json").read_text())["layout"]["parts"]
-    assert main(["generate", str(DINING), "--seed", "1", "--no-render", "--context", str(sidecar),
-                 "-o", str(tmp_path / "g3")]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "generate",
+                str(out),
+                "--seed",
+                "1",
+                "--no-render",
+                "--no-context",
+                "-o",
+                str(tmp_path / "g2"),
+            ]
+        )
+        == 0
+    )
+    assert (
+        "learned" not in json.loads((tmp_path / "g2" / "scene.json").read_text())["layout"]["parts"]
+    )
+    assert (
+        main(
+            [
+                "generate",
+                str(DINING),
+                "--seed",
+                "1",
+                "--no-render",
+                "--context",
+                str(sidecar),
+                "-o",
+                str(tmp_path / "g3"),
+            ]
+        )
+        == 0
+    )
     given, beside = (json.loads((tmp_path / g / "scene.json").read_text()) for g in ("g3", "g1"))
     assert given["rules"] != beside["rules"]  # the file's path
     assert {**given, "rules": None} == {**beside, "rules": None}
@@ -353,11 +470,37 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     assert "no related pair" in _one_line_error(capsys)
     assert not out.exists() and not (tmp_path / "o" / "fitted.context.json").exists()
     bad = tmp_path / "bad.context.json"
-    for text, words in [("{", "not JSON"), ('{"format": "x"}', "not a context file"),
-                        (json.dumps({"format": "scenewright-context", "version": 1, "bins": BINS,
-                                     "yaw_bins": YAW_BINS, "pairs": [{"source": "chair"}]}), "target")]:  # fmt: skip
+    for text, words in [
+        ("{", "not JSON"),
+        ('{"format": "x"}', "not a context file"),
+        (
+            json.dumps(
+                {
+                    "format": "scenewright-context",
+                    "version": 1,
+                    "bins": BINS,
+                    "yaw_bins": YAW_BINS,
+                    "pairs": [{"source": "chair"}],
+                }
+            ),
+            "target",
+        ),
+    ]:
         bad.write_text(text)
-        assert main(["generate", str(DINING), "--no-render", "--context", str(bad), "-o", str(tmp_path / "g")]) == 2
+        assert (
+            main(
+                [
+                    "generate",
+                    str(DINING),
+                    "--no-render",
+                    "--context",
+                    str(bad),
+                    "-o",
+                    str(tmp_path / "g"),
+                ]
+            )
+            == 2
+        )
         assert words in _one_line_error(capsys)
         assert not (tmp_path / "g").exists()
     # A broken sidecar beside the rules is refused too.
@@ -366,8 +509,21 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     (tmp_path / "mine.context.json").write_text("[]")
     assert main(["generate", str(rules), "--no-render", "-o", str(tmp_path / "g")]) == 2
     assert "mine.context.json" in _one_line_error(capsys)
-    assert main(["generate", str(rules), "--no-render", "--no-context", "--context", str(bad), "-o",
-                 str(tmp_path / "g")]) == 2  # fmt: skip
+    assert (
+        main(
+            [
+                "generate",
+                str(rules),
+                "--no-render",
+                "--no-context",
+                "--context",
+                str(bad),
+                "-o",
+                str(tmp_path / "g"),
+            ]
+        )
+        == 2
+    )
     _one_line_error(capsys)
 
 
@@ -375,7 +531,9 @@ def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_
     rules = tmp_path / "dining.rules"
     rules.write_text(DINING.read_text())
     sidecar = tmp_path / "dining.context.json"
-    sidecar.write_text(fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json())
+    sidecar.write_text(
+        fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json()
+    )
     common = [str(rules), "-n", "3", "--no-images", "--workers", "1", "-q"]
     assert main(["dataset", *common, "-o", str(tmp_path / "with")]) == 0, capsys.readouterr().err
     assert main(["dataset", *common, "--no-context", "-o", str(tmp_path / "without")]) == 0
@@ -383,11 +541,17 @@ def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_
     assert settings["context"] == str(sidecar.resolve()) and len(settings["context_digest"]) == 64
     assert json.loads((tmp_path / "without" / "dataset.json").read_text())["context"] is None
     with_scene, without_scene = (
-        json.loads((tmp_path / name / "scenes" / "000000.json").read_text()) for name in ("with", "without")
+        json.loads((tmp_path / name / "scenes" / "000000.json").read_text())
+        for name in ("with", "without")
     )
-    assert "learned" in with_scene["layout"]["parts"] and "learned" not in without_scene["layout"]["parts"]
+    assert (
+        "learned" in with_scene["layout"]["parts"]
+        and "learned" not in without_scene["layout"]["parts"]
+    )
     again = api_scene_with_context(rules, sidecar, settings)
-    assert with_scene["objects"] == again["objects"]  # the same layout as build_scene with the context gives
+    assert (
+        with_scene["objects"] == again["objects"]
+    )  # the same layout as build_scene with the context gives
     # A rerun with another context (or none) is refused, and nothing is added.
     sidecar.write_text(random_context(expand(load_rules(DINING), 0), seed=5).to_json())
     capsys.readouterr()
@@ -395,7 +559,19 @@ def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_
     assert "context_digest" in _one_line_error(capsys)
     assert main(["dataset", *common, "--no-context", "-o", str(tmp_path / "with")]) == 2
     _one_line_error(capsys)
-    assert main(["dataset", *common, "--context", str(tmp_path / "missing.json"), "-o", str(tmp_path / "x")]) == 2
+    assert (
+        main(
+            [
+                "dataset",
+                *common,
+                "--context",
+                str(tmp_path / "missing.json"),
+                "-o",
+                str(tmp_path / "x"),
+            ]
+        )
+        == 2
+    )
     _one_line_error(capsys)
     assert not (tmp_path / "x").exists()
 
@@ -416,7 +592,9 @@ def test_the_wait_for_learned_moves_ends_for_a_pair_whose_draws_are_always_refus
 
     problem = learned_problem(DINING, 1)
     energy, mover = start_chain(problem, LayoutParams(), np.random.default_rng(2))
-    learned = LearnedMoves(problem.learned, problem, energy.state, np.random.default_rng(3), mover.movable_box, 2)
+    learned = LearnedMoves(
+        problem.learned, problem, energy.state, np.random.default_rng(3), mover.movable_box, 2
+    )
     accepted_pair = learned.pairs[0]
     drawn = []
     while not learned.mixed():
@@ -429,22 +607,52 @@ def test_the_wait_for_learned_moves_ends_for_a_pair_whose_draws_are_always_refus
         assert len(drawn) <= TRIES_PER_SWEEP * 2 * len(learned.pairs)
     refused = [pair for pair in learned.pairs if pair != accepted_pair]
     assert all(drawn.count(pair) == TRIES_PER_SWEEP * 2 for pair in refused)
-    assert drawn.count(accepted_pair) == 2  # lagging pairs are drawn first, and it caught up at once
+    assert (
+        drawn.count(accepted_pair) == 2
+    )  # lagging pairs are drawn first, and it caught up at once
 
 
 def test_layout_lays_a_scene_out_again_with_a_context(tmp_path, capsys):
     sidecar = tmp_path / "dining.context.json"
-    sidecar.write_text(fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json())
-    assert main(["generate", str(DINING), "--seed", "2", "--no-render", "-q", "-o", str(tmp_path / "g")]) == 0
+    sidecar.write_text(
+        fit_context(dining_examples(8), seed=0, rounds=0, layouts=2).context.to_json()
+    )
+    assert (
+        main(
+            ["generate", str(DINING), "--seed", "2", "--no-render", "-q", "-o", str(tmp_path / "g")]
+        )
+        == 0
+    )
     scene = str(tmp_path / "g" / "scene.json")
     runs = {}
-    for name, extra in (("a", ["--context", str(sidecar)]), ("b", ["--context", str(sidecar)]), ("c", [])):
-        code = main(["layout", scene, "--pin", "table_1", "--no-render", "-q", *extra, "-o", str(tmp_path / name)])
+    for name, extra in (
+        ("a", ["--context", str(sidecar)]),
+        ("b", ["--context", str(sidecar)]),
+        ("c", []),
+    ):
+        code = main(
+            [
+                "layout",
+                scene,
+                "--pin",
+                "table_1",
+                "--no-render",
+                "-q",
+                *extra,
+                "-o",
+                str(tmp_path / name),
+            ]
+        )
         assert code == 0, capsys.readouterr().err
         runs[name] = json.loads((tmp_path / name / "scene.json").read_text())
-    assert "learned" in runs["a"]["layout"]["parts"] and "learned" not in runs["c"]["layout"]["parts"]
+    assert (
+        "learned" in runs["a"]["layout"]["parts"] and "learned" not in runs["c"]["layout"]["parts"]
+    )
     assert runs["a"] == runs["b"]
-    assert main(["layout", scene, "--context", str(tmp_path / "none.json"), "-o", str(tmp_path / "d")]) == 2
+    assert (
+        main(["layout", scene, "--context", str(tmp_path / "none.json"), "-o", str(tmp_path / "d")])
+        == 2
+    )
     _one_line_error(capsys)
     assert not (tmp_path / "d").exists()
 
@@ -458,7 +666,9 @@ def test_the_api_takes_a_context_by_the_path_of_its_file(tmp_path):
     sidecar.write_text(random_context(expand(loaded, 0), seed=5).to_json())
     by_path = reproducible_json(build_scene(loaded, 1, context=sidecar))
     assert by_path == reproducible_json(build_scene(loaded, 1, context=str(sidecar)))
-    assert by_path == reproducible_json(build_scene(loaded, 1, context=rules_context(loaded, sidecar)[1]))
+    assert by_path == reproducible_json(
+        build_scene(loaded, 1, context=rules_context(loaded, sidecar)[1])
+    )
     assert by_path != reproducible_json(build_scene(loaded, 1))  # the context moved something
     with pytest.raises(InputError, match="missing.json: cannot read"):
         build_scene(loaded, 1, context=tmp_path / "missing.json")

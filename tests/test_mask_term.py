@@ -7,7 +7,9 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_room_terms import BED, CRATE, WARDROBE, bedroom, check_moves, graph_of, random_room_scene
 
 from scenewright.completion.features import CanonicalFrame
 from scenewright.completion.layout_mask import LayoutMask, floor_mask, mask_at
@@ -20,8 +22,6 @@ from scenewright.generator.layout.mask_term import compile_mask
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.sampler import Relocator, start_chain
 
-from test_room_terms import BED, CRATE, WARDROBE, bedroom, check_moves, graph_of, random_room_scene
-
 
 def half_mask(boxes=("crate_1",)) -> FloorMask:
     """Over the 5 x 4 bedroom: 1 on its west half (x < 0), 0 on its east half."""
@@ -31,17 +31,28 @@ def half_mask(boxes=("crate_1",)) -> FloorMask:
 
 
 def measured(graph, poses, mask=None, params=None):
-    return measure_layout(graph, {k: Pose(x, 0.0, z, math.radians(yaw)) for k, (x, z, yaw) in poses.items()}, {},
-                          params=params, mask=mask)  # fmt: skip
+    return measure_layout(
+        graph,
+        {k: Pose(x, 0.0, z, math.radians(yaw)) for k, (x, z, yaw) in poses.items()},
+        {},
+        params=params,
+        mask=mask,
+    )
 
 
 def test_a_box_costs_the_weight_times_the_share_of_its_footprint_off_the_mask():
     graph = graph_of(bedroom(), ("crate", CRATE), ("bed", BED))
     poses = {"crate_1": (-1.0, 0.0, 0.0), "bed_1": (1.2, 0.0, 0.0)}
-    assert measured(graph, poses, half_mask()).parts[MASK_PART] == 0.0  # on the mask; the bed is not listed
+    assert (
+        measured(graph, poses, half_mask()).parts[MASK_PART] == 0.0
+    )  # on the mask; the bed is not listed
     poses["crate_1"] = (1.0, -1.0, 0.0)
     assert measured(graph, poses, half_mask()).parts[MASK_PART] == pytest.approx(1.0)  # off it
-    poses["crate_1"] = (0.0, -1.0, 90.0)  # across the line: samples at x -0.2, -0.1 on the mask, 0, 0.1, 0.2 off
+    poses["crate_1"] = (
+        0.0,
+        -1.0,
+        90.0,
+    )  # across the line: samples at x -0.2, -0.1 on the mask, 0, 0.1, 0.2 off
     straddling = measured(graph, poses, half_mask(), LayoutParams(mask_weight=2.0)).parts[MASK_PART]
     assert straddling == pytest.approx(2.0 * (1.0 - 2.0 / 5.0))
 
@@ -59,10 +70,20 @@ def test_without_a_mask_the_layout_has_no_mask_part_and_is_unchanged():
 
 def test_the_verdict_never_reads_the_mask():
     graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("crate", CRATE))
-    for crate in ((-1.5, -1.0, 0.0), (1.5, 0.5, 0.0)):  # in the wardrobe's free space, then clear of it
+    for crate in (
+        (-1.5, -1.0, 0.0),
+        (1.5, 0.5, 0.0),
+    ):  # in the wardrobe's free space, then clear of it
         poses = {"wardrobe_1": (-1.5, -1.7, 0.0), "crate_1": crate}
-        plain, masked = measured(graph, poses), measured(graph, poses, half_mask(("crate_1", "wardrobe_1")))
-        assert (masked.ok, masked.problems, masked.relations) == (plain.ok, plain.problems, plain.relations)
+        plain, masked = (
+            measured(graph, poses),
+            measured(graph, poses, half_mask(("crate_1", "wardrobe_1"))),
+        )
+        assert (masked.ok, masked.problems, masked.relations) == (
+            plain.ok,
+            plain.problems,
+            plain.relations,
+        )
         assert {k: v for k, v in masked.parts.items() if k != MASK_PART} == plain.parts
 
 
@@ -73,7 +94,9 @@ def test_a_mask_pulls_its_box_to_where_it_is_high():
     assert max(plain) > 0.0  # against any wall: some seeds put it on the east half
     for seed in range(4):
         result = layout_scene(graph, seed, mask=half_mask())
-        assert result.ok and result.parts[MASK_PART] == 0.0 and result.poses["crate_1"].x < -0.25  # wholly west
+        assert (
+            result.ok and result.parts[MASK_PART] == 0.0 and result.poses["crate_1"].x < -0.25
+        )  # wholly west
 
 
 @settings(max_examples=9, deadline=None)
@@ -110,17 +133,29 @@ def test_a_bad_mask_is_refused_on_one_line():
 
 
 @settings(max_examples=12, deadline=None)
-@given(transpose=st.booleans(), flip_x=st.booleans(), flip_z=st.booleans(), seed=st.integers(0, 1000))
-def test_the_floor_mask_reads_what_mask_at_reads_at_every_room_point(transpose, flip_x, flip_z, seed):
+@given(
+    transpose=st.booleans(), flip_x=st.booleans(), flip_z=st.booleans(), seed=st.integers(0, 1000)
+)
+def test_the_floor_mask_reads_what_mask_at_reads_at_every_room_point(
+    transpose, flip_x, flip_z, seed
+):
     rng = np.random.default_rng(seed)
-    room = Room.rectangle(3.0, 4.2) if transpose else Room.rectangle(4.6, 3.4)  # deeper than wide: transposed
-    layout = LayoutMask(rng.random((10, 10)), CanonicalFrame(transpose, flip_x, flip_z), np.zeros(4), {})
+    room = (
+        Room.rectangle(3.0, 4.2) if transpose else Room.rectangle(4.6, 3.4)
+    )  # deeper than wide: transposed
+    layout = LayoutMask(
+        rng.random((10, 10)), CanonicalFrame(transpose, flip_x, flip_z), np.zeros(4), {}
+    )
     floor = floor_mask(layout, room, ())
     compiled = compile_mask(floor, []).grids[0]
     width, depth = room.extent
     points = (rng.random((200, 2)) - 0.5) * np.array([width, depth]) * 0.999
-    cells = [compiled.rows[min(int((z - compiled.z0) / compiled.cell_z), 9)][min(int((x - compiled.x0) / compiled.cell_x), 9)]
-             for x, z in points]  # fmt: skip
+    cells = [
+        compiled.rows[min(int((z - compiled.z0) / compiled.cell_z), 9)][
+            min(int((x - compiled.x0) / compiled.cell_x), 9)
+        ]
+        for x, z in points
+    ]
     assert cells == mask_at(layout, room, points).tolist()
 
 
@@ -131,22 +166,40 @@ def test_incremental_deltas_with_several_weighted_confining_masks_equal_full_rec
         middle = (min(xs) + max(xs)) / 2.0
         west, east = [b for b in ids if rng.random() < 0.5], [b for b in ids if rng.random() < 0.5]
         return [  # two halves reading 0 beyond themselves; a box may be listed by both and by a confining one
-            FloorMask(rng.random((10, 10)), (min(xs), min(zs), middle, max(zs)), tuple(west), outside=0.0),
-            FloorMask(rng.random((4, 6)), (middle, min(zs), max(xs), max(zs)), tuple(east), outside=0.0, weight=2.5),
-            FloorMask(np.ones((1, 1)), (min(xs), min(zs), middle, max(zs)), tuple(east), outside=0.0, weight=3.0,
-                      confine=True),
-        ]  # fmt: skip
+            FloorMask(
+                rng.random((10, 10)), (min(xs), min(zs), middle, max(zs)), tuple(west), outside=0.0
+            ),
+            FloorMask(
+                rng.random((4, 6)),
+                (middle, min(zs), max(xs), max(zs)),
+                tuple(east),
+                outside=0.0,
+                weight=2.5,
+            ),
+            FloorMask(
+                np.ones((1, 1)),
+                (min(xs), min(zs), middle, max(zs)),
+                tuple(east),
+                outside=0.0,
+                weight=3.0,
+                confine=True,
+            ),
+        ]
 
     check_mask_deltas(seed, halves)
 
 
 def test_a_mask_with_an_outside_value_costs_what_lies_beyond_it_and_confining_makes_it_a_problem():
     graph = graph_of(bedroom(), ("crate", CRATE))
-    west_half = FloorMask(np.ones((1, 1)), (-2.5, -2.0, 0.0, 2.0), ("crate_1",), outside=0.0, weight=2.0)
+    west_half = FloorMask(
+        np.ones((1, 1)), (-2.5, -2.0, 0.0, 2.0), ("crate_1",), outside=0.0, weight=2.0
+    )
     edge = replace_mask(west_half, outside=None)
     east = {"crate_1": (1.0, 0.0, 0.0)}
     assert measured(graph, east, edge).parts[MASK_PART] == 0.0  # the nearest edge cell reads 1
-    assert measured(graph, east, west_half).parts[MASK_PART] == pytest.approx(2.0)  # wholly beyond: the weight
+    assert measured(graph, east, west_half).parts[MASK_PART] == pytest.approx(
+        2.0
+    )  # wholly beyond: the weight
     assert measured(graph, east, west_half).ok  # a preference only
     confined = measured(graph, east, replace_mask(west_half, confine=True))
     assert not confined.ok and confined.problems == ["crate_1 stands outside its part of the room"]
@@ -157,7 +210,13 @@ def test_bad_mask_weights_and_outside_values_are_refused():
     with pytest.raises(InputError, match="outside value"):
         compile_mask(FloorMask(np.ones((2, 2)), (0, 0, 1, 1), (), outside=2.0), [])
     with pytest.raises(InputError, match="weight"):
-        compile_mask([FloorMask(np.ones((2, 2)), (0, 0, 1, 1), ()), FloorMask(np.ones((2, 2)), (0, 0, 1, 1), (), weight=0.0)], [])
+        compile_mask(
+            [
+                FloorMask(np.ones((2, 2)), (0, 0, 1, 1), ()),
+                FloorMask(np.ones((2, 2)), (0, 0, 1, 1), (), weight=0.0),
+            ],
+            [],
+        )
 
 
 def replace_mask(mask, **changes):

@@ -17,12 +17,12 @@ from scenewright.variation import structure_graph
 from scenewright.variation.matching import (
     EdgeTable,
     Problem,
+    discretise,
+    edge_similarity,
     exhaustive_solution,
     interchangeable,
     layout_problem,
     match_graphs,
-    discretise,
-    edge_similarity,
     solve,
     spectral_solution,
 )
@@ -54,7 +54,9 @@ BEDROOM = [
 def test_a_scene_matches_itself_with_full_confidence():
     graph = structure_graph(scene_of(BEDROOM))
     matching = match_graphs(graph, graph)
-    assert matching.mapping() == {i: i for i in ["bed", "left_stand", "right_stand", "desk", "chair", "wardrobe", "dresser"]}
+    assert matching.mapping() == {
+        i: i for i in ["bed", "left_stand", "right_stand", "desk", "chair", "wardrobe", "dresser"]
+    }
     assert all(p.confidence == pytest.approx(1.0) for p in matching.pairs)
     assert matching.unmatched_a == [] and matching.withdrawn == []
 
@@ -78,17 +80,21 @@ def test_disguised_copy_matches_each_object_to_its_original(seed):
 def test_different_names_same_role():
     # A desk in one study and a dresser in the other, each with a chair in front and a
     # cabinet touching its right side: roles, not names, are matched.
-    first = scene_of([
-        box("d", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
-        box("c", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
-        box("k", "cabinet", -0.95, 0.0, 0.0, (0.5, 0.7, 0.6)),
-    ])  # fmt: skip
-    second = scene_of([
-        box("x", "stool", 1.0, 1.8, 90.0, (0.45, 0.8, 0.45)),  # far, unrelated
-        box("y", "drawers", 0.0, -0.9, 0.0, (0.4, 0.8, 0.5)),
-        box("z", "dresser", 0.85, -0.9, 0.0, (1.2, 0.8, 0.6)),
-        box("w", "seat", 0.85, -0.2, 180.0, (0.5, 0.9, 0.5)),
-    ])  # fmt: skip
+    first = scene_of(
+        [
+            box("d", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+            box("c", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+            box("k", "cabinet", -0.95, 0.0, 0.0, (0.5, 0.7, 0.6)),
+        ]
+    )
+    second = scene_of(
+        [
+            box("x", "stool", 1.0, 1.8, 90.0, (0.45, 0.8, 0.45)),  # far, unrelated
+            box("y", "drawers", 0.0, -0.9, 0.0, (0.4, 0.8, 0.5)),
+            box("z", "dresser", 0.85, -0.9, 0.0, (1.2, 0.8, 0.6)),
+            box("w", "seat", 0.85, -0.2, 180.0, (0.5, 0.9, 0.5)),
+        ]
+    )
     matching = match_graphs(structure_graph(first), structure_graph(second))
     assert matching.mapping() == {"d": "z", "c": "w", "k": "y"}
 
@@ -103,9 +109,21 @@ def test_matching_does_not_depend_on_object_order():
 
 
 def test_type_prior_breaks_a_tie_between_identical_boxes():
-    first = scene_of([box("a", "plant", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("b", "bin", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
-    second = scene_of([box("p", "bin", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)), box("q", "plant", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4))])
-    assert match_graphs(structure_graph(first), structure_graph(second), type_prior=0.5).mapping() == {"a": "q", "b": "p"}
+    first = scene_of(
+        [
+            box("a", "plant", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)),
+            box("b", "bin", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4)),
+        ]
+    )
+    second = scene_of(
+        [
+            box("p", "bin", -2.0, 0.0, 0.0, (0.4, 1.0, 0.4)),
+            box("q", "plant", 2.0, 0.0, 0.0, (0.4, 1.0, 0.4)),
+        ]
+    )
+    assert match_graphs(
+        structure_graph(first), structure_graph(second), type_prior=0.5
+    ).mapping() == {"a": "q", "b": "p"}
 
 
 def test_identical_boxes_with_the_same_relations_are_interchangeable():
@@ -113,17 +131,30 @@ def test_identical_boxes_with_the_same_relations_are_interchangeable():
     # same box alone too: the lone stools and the bin cannot be told apart; the stool at
     # the table can, and so can the table.
     stool = (0.4, 0.5, 0.4)
-    graph = structure_graph(scene_of([
-        box("s1", "stool", -3.0, -3.0, 0.0, stool), box("s2", "stool", 3.0, 3.0, 90.0, stool),
-        box("bin", "bin", -3.0, 3.0, 0.0, stool), box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8)),
-        box("s3", "stool", 0.0, 0.62, 0.0, stool),
-    ]))  # fmt: skip
+    graph = structure_graph(
+        scene_of(
+            [
+                box("s1", "stool", -3.0, -3.0, 0.0, stool),
+                box("s2", "stool", 3.0, 3.0, 90.0, stool),
+                box("bin", "bin", -3.0, 3.0, 0.0, stool),
+                box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8)),
+                box("s3", "stool", 0.0, 0.62, 0.0, stool),
+            ]
+        )
+    )
     group = interchangeable(graph)
     assert group["s1"] == group["s2"] == group["bin"]
     assert len({group["s1"], group["s3"], group["table"]}) == 3
     # Put beside the table, s2's relations tell it from s1.
-    beside = structure_graph(scene_of([box("s1", "stool", -3.0, -3.0, 0.0, stool), box("s2", "stool", 0.9, 0.0, 0.0, stool),
-                                       box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8))]))  # fmt: skip
+    beside = structure_graph(
+        scene_of(
+            [
+                box("s1", "stool", -3.0, -3.0, 0.0, stool),
+                box("s2", "stool", 0.9, 0.0, 0.0, stool),
+                box("table", "table", 0.0, 0.0, 0.0, (1.2, 0.75, 0.8)),
+            ]
+        )
+    )
     assert interchangeable(beside)["s1"] != interchangeable(beside)["s2"]
 
 
@@ -133,7 +164,9 @@ def test_place_breaks_a_tie_between_identical_boxes_alone(reverse):
     # little: nothing but their places tells them apart (without the tie-break, one of
     # the two orders came out swapped).
     stool = (0.4, 0.5, 0.4)
-    first = scene_of([box("a", "stool", -2.0, 1.0, 0.0, stool), box("b", "stool", 2.0, -1.0, 0.0, stool)])
+    first = scene_of(
+        [box("a", "stool", -2.0, 1.0, 0.0, stool), box("b", "stool", 2.0, -1.0, 0.0, stool)]
+    )
     others = [box("p", "stool", 2.1, -1.0, 0.0, stool), box("q", "stool", -2.0, 0.9, 0.0, stool)]
     second = scene_of(others[::-1] if reverse else others)
     matching = match_graphs(structure_graph(first), structure_graph(second))
@@ -142,14 +175,24 @@ def test_place_breaks_a_tie_between_identical_boxes_alone(reverse):
 
 
 random_scenes = st.lists(
-    st.tuples(st.floats(-2.5, 2.5), st.floats(-2.5, 2.5), st.sampled_from([0.0, 90.0, 180.0, -90.0]),
-              st.floats(0.3, 1.5), st.floats(0.3, 1.5)),
-    min_size=2, max_size=6,
-)  # fmt: skip
+    st.tuples(
+        st.floats(-2.5, 2.5),
+        st.floats(-2.5, 2.5),
+        st.sampled_from([0.0, 90.0, 180.0, -90.0]),
+        st.floats(0.3, 1.5),
+        st.floats(0.3, 1.5),
+    ),
+    min_size=2,
+    max_size=6,
+)
 
 
 def graph_of_tuples(boxes):
-    return structure_graph(scene_of([box(f"o{k}", "t", x, z, yaw, (w, 0.8, d)) for k, (x, z, yaw, w, d) in enumerate(boxes)]))
+    return structure_graph(
+        scene_of(
+            [box(f"o{k}", "t", x, z, yaw, (w, 0.8, d)) for k, (x, z, yaw, w, d) in enumerate(boxes)]
+        )
+    )
 
 
 @settings(max_examples=25, deadline=None)
@@ -188,11 +231,15 @@ def test_spectral_solution_alone_reaches_the_optimum_on_a_disguised_copy(seed):
 
 @settings(max_examples=20, deadline=None)
 @given(random_scenes, random_scenes)
-def test_unlifted_relaxation_takes_the_better_sign_and_spectral_the_better_relaxation(first, second):
+def test_unlifted_relaxation_takes_the_better_sign_and_spectral_the_better_relaxation(
+    first, second
+):
     problem, _, _ = layout_problem(graph_of_tuples(first), graph_of_tuples(second))
     affinity = problem.affinity()
     relaxed = spectral_solution(affinity, problem.size, lifted=False)
-    assert np.allclose(relaxed.sum(axis=0), relaxed.sum(axis=0)[0]) and np.allclose(relaxed.sum(axis=1), relaxed.sum(axis=1)[0])
+    assert np.allclose(relaxed.sum(axis=0), relaxed.sum(axis=0)[0]) and np.allclose(
+        relaxed.sum(axis=1), relaxed.sum(axis=1)[0]
+    )
     assert problem.energy(discretise(relaxed)) >= problem.energy(discretise(-relaxed)) - 1e-9
     # The spectral solution alone is the better of the two relaxations' assignments.
     lifted = discretise(spectral_solution(affinity, problem.size))
@@ -233,7 +280,11 @@ NO_EDGES = EdgeTable.from_rows([])
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.tuples(st.integers(1, 6), st.integers(1, 6)).flatmap(lambda shape: arrays(float, shape, elements=st.floats(0.01, 1.0))))
+@given(
+    st.tuples(st.integers(1, 6), st.integers(1, 6)).flatmap(
+        lambda shape: arrays(float, shape, elements=st.floats(0.01, 1.0))
+    )
+)
 def test_without_edges_the_spectral_solution_is_the_best_linear_assignment(unary):
     # The object similarities enter the relaxation as a linear term (lifted with a
     # homogeneous coordinate), so with no edges the relaxed solution is the unary
@@ -241,7 +292,9 @@ def test_without_edges_the_spectral_solution_is_the_best_linear_assignment(unary
     # On W's diagonal they would only count x_ik^2, and the relaxation could miss it.
     problem = Problem(unary, NO_EDGES, NO_EDGES, np.zeros((0, 0)))
     rows, columns = linear_sum_assignment(-unary)
-    assert problem.energy(solve(problem, refined=False)) == pytest.approx(unary[rows, columns].sum())
+    assert problem.energy(solve(problem, refined=False)) == pytest.approx(
+        unary[rows, columns].sum()
+    )
 
 
 @pytest.mark.parametrize("gaps", [(0.04, 0.06), (0.03, 0.07), (0.62, 0.66)])
@@ -250,10 +303,14 @@ def test_a_small_move_across_a_threshold_keeps_most_of_the_edge_score(gaps):
     # close pair), and either side of near (0.64 m, the desk's half diagonal): as
     # relations they differ, as graded memberships they nearly agree.
     def table(gap):
-        graph = structure_graph(scene_of([
-            box("d", "desk", 0.0, 0.0, 0.0, (1.1, 0.75, 0.7)),
-            box("k", "cabinet", -0.8 - gap, 0.0, 0.0, (0.5, 0.7, 0.7)),
-        ]))  # fmt: skip
+        graph = structure_graph(
+            scene_of(
+                [
+                    box("d", "desk", 0.0, 0.0, 0.0, (1.1, 0.75, 0.7)),
+                    box("k", "cabinet", -0.8 - gap, 0.0, 0.0, (0.5, 0.7, 0.7)),
+                ]
+            )
+        )
         return EdgeTable.of(graph, graph.layout_nodes())
 
     first, second = table(gaps[0]), table(gaps[1])

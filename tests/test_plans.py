@@ -27,12 +27,24 @@ def _room(width=4.0, depth=3.5) -> dict:
 def _plan(*pieces: dict, **extra) -> dict:
     """A bedroom: a double bed with its head on the north wall, plus ``pieces``."""
     bed = {"id": "bed_1", "category": "bed", "center": [0.0, -0.7], "size": [1.6, 2.1], "yaw": 0.0}
-    return {"id": "test_plan", "type": "bedroom", "room": _room(), "furniture": [bed, *pieces], **extra}
+    return {
+        "id": "test_plan",
+        "type": "bedroom",
+        "room": _room(),
+        "furniture": [bed, *pieces],
+        **extra,
+    }
 
 
 def _piece(category, x, z, w, d, yaw=0.0, piece_id=None, **extra) -> dict:
-    return {"id": piece_id or f"{category}_1", "category": category, "center": [x, z], "size": [w, d], "yaw": yaw,
-            **extra}  # fmt: skip
+    return {
+        "id": piece_id or f"{category}_1",
+        "category": category,
+        "center": [x, z],
+        "size": [w, d],
+        "yaw": yaw,
+        **extra,
+    }
 
 
 def _error(data) -> str:
@@ -46,7 +58,9 @@ def _error(data) -> str:
 def test_a_sound_plan_loads_and_round_trips():
     lamp_table = _piece("nightstand", -1.1, -1.55, 0.5, 0.4)
     lamp = _piece("lamp", -1.1, -1.55, 0.25, 0.25, on="nightstand_1")
-    plan = plan_from_dict(_plan(lamp_table, lamp, free_areas=[{"center": [1.5, 0.0], "size": [0.6, 0.6]}]))
+    plan = plan_from_dict(
+        _plan(lamp_table, lamp, free_areas=[{"center": [1.5, 0.0], "size": [0.6, 0.6]}])
+    )
     assert [piece.category for piece in plan.furniture] == ["bed", "nightstand", "lamp"]
     assert plan.room.area == pytest.approx(14.0)
     assert plan_from_dict(plan.to_dict()).to_dict() == plan.to_dict()
@@ -57,11 +71,22 @@ def test_a_sound_plan_loads_and_round_trips():
     [
         (lambda p: p.pop("furniture"), "p.json: $: 'furniture' is a required property"),
         (lambda p: p["furniture"][0].update(size=[1.6]), "p.json: $.furniture[0].size: "),
-        (lambda p: p["furniture"][0].update(yaw="south"), "p.json: $.furniture[0].yaw: 'south' is not of type"),
-        (lambda p: p.update(colour="red"), "p.json: $: Additional properties are not allowed ('colour'"),
-        (lambda p: p["room"]["openings"][0].update(kind="hatch"), "p.json: $.room.openings[0].kind: 'hatch'"),
-        (lambda p: p["furniture"][0].update(category="bedd"),
-         "p.json: $.furniture[0].category: 'bedd' is not an indoor catalog entry; did you mean 'bed'?"),
+        (
+            lambda p: p["furniture"][0].update(yaw="south"),
+            "p.json: $.furniture[0].yaw: 'south' is not of type",
+        ),
+        (
+            lambda p: p.update(colour="red"),
+            "p.json: $: Additional properties are not allowed ('colour'",
+        ),
+        (
+            lambda p: p["room"]["openings"][0].update(kind="hatch"),
+            "p.json: $.room.openings[0].kind: 'hatch'",
+        ),
+        (
+            lambda p: p["furniture"][0].update(category="bedd"),
+            "p.json: $.furniture[0].category: 'bedd' is not an indoor catalog entry; did you mean 'bed'?",
+        ),
     ],
 )
 def test_schema_and_category_errors_name_the_file_and_json_path(change, expected):
@@ -74,29 +99,48 @@ def test_ids_must_be_unique_and_on_must_name_another_piece():
     twice = _plan(_piece("nightstand", -1.1, -1.55, 0.5, 0.4, piece_id="bed_1"))
     assert _error(twice) == "p.json: $.furniture[1].id: the id 'bed_1' is used twice"
     floating = _plan(_piece("lamp", -1.1, -1.55, 0.25, 0.25, on="shelf_9"))
-    assert _error(floating) == "p.json: $.furniture[1].on: 'shelf_9' is not another piece of this plan"
+    assert (
+        _error(floating) == "p.json: $.furniture[1].on: 'shelf_9' is not another piece of this plan"
+    )
 
 
 def test_a_room_that_does_not_build_is_located_at_the_room():
     data = _plan()
-    data["room"]["walls"] = data["room"]["walls"][:2] + [dict(data["room"]["walls"][2], **{"from": [2.0, -1.75]})]
+    data["room"]["walls"] = data["room"]["walls"][:2] + [
+        dict(data["room"]["walls"][2], **{"from": [2.0, -1.75]})
+    ]
     assert _error(data).startswith("p.json: $.room: ")
 
 
 @pytest.mark.parametrize(
     ("piece", "expected"),
     [
-        (_piece("dresser", 1.9, 0.0, 1.0, 0.5, yaw=-math.pi / 2), "dresser_1 crosses the walls by 0.15 m"),
+        (
+            _piece("dresser", 1.9, 0.0, 1.0, 0.5, yaw=-math.pi / 2),
+            "dresser_1 crosses the walls by 0.15 m",
+        ),
         (_piece("nightstand", 0.8, -1.55, 0.5, 0.4), "nightstand_1 overlaps bed_1 by 0.25 m"),
         (_piece("plant", 1.35, 1.35, 0.4, 0.4), "plant_1 stands in door_1's swing"),
-        (_piece("wardrobe", 1.7, -0.7, 1.2, 0.6, yaw=-math.pi / 2),  # facing the bed, 0.6 m from it
-         "bed_1 stands in the 0.8 m clearance in front of wardrobe_1"),
-        (_piece("bookshelf", -1.83, 0.5, 0.9, 0.32, yaw=-math.pi / 2),  # facing the west wall
-         "the 0.5 m clearance in front of bookshelf_1 runs into a wall"),
+        (
+            _piece(
+                "wardrobe", 1.7, -0.7, 1.2, 0.6, yaw=-math.pi / 2
+            ),  # facing the bed, 0.6 m from it
+            "bed_1 stands in the 0.8 m clearance in front of wardrobe_1",
+        ),
+        (
+            _piece("bookshelf", -1.83, 0.5, 0.9, 0.32, yaw=-math.pi / 2),  # facing the west wall
+            "the 0.5 m clearance in front of bookshelf_1 runs into a wall",
+        ),
         (_piece("bookshelf", 1.35, -1.59, 0.9, 0.32), "bookshelf_1 stands in front of window_1"),
         # A weight bench keeps 0.5 m free either side (its left is its own +X).
-        (_piece("weight_bench", 1.2, 0.0, 0.6, 1.3), "bed_1 stands in the 0.5 m clearance to the right of weight_bench_1"),
-        (_piece("weight_bench", 1.5, 0.0, 0.6, 1.3), "the 0.5 m clearance to the left of weight_bench_1 runs into a wall"),
+        (
+            _piece("weight_bench", 1.2, 0.0, 0.6, 1.3),
+            "bed_1 stands in the 0.5 m clearance to the right of weight_bench_1",
+        ),
+        (
+            _piece("weight_bench", 1.5, 0.0, 0.6, 1.3),
+            "the 0.5 m clearance to the left of weight_bench_1 runs into a wall",
+        ),
     ],
 )
 def test_drawing_problems_are_located_at_the_piece(piece, expected):
@@ -108,7 +152,10 @@ def test_drawing_problems_are_located_at_the_piece(piece, expected):
     ("area", "expected"),
     [
         ({"center": [0.0, 0.0], "size": [0.6, 0.6]}, "the free area is not free: bed_1 is in it"),
-        ({"center": [1.4, 1.3], "size": [0.6, 0.6]}, "the free area is not free: door_1's swing is in it"),
+        (
+            {"center": [1.4, 1.3], "size": [0.6, 0.6]},
+            "the free area is not free: door_1's swing is in it",
+        ),
         ({"center": [1.9, 0.0], "size": [0.6, 0.6]}, "the free area crosses the walls"),
     ],
 )
@@ -123,7 +170,9 @@ def test_flat_things_lie_under_others_and_seats_stand_in_a_desk_clearance():
     plan = plan_from_dict(_plan(rug, desk, chair))
     assert len(plan.furniture) == 4
     stool = dict(chair, id="armchair_1", category="armchair")
-    assert "armchair_1 stands in the 0.7 m clearance in front of desk_1" in _error(_plan(rug, desk, stool))
+    assert "armchair_1 stands in the 0.7 m clearance in front of desk_1" in _error(
+        _plan(rug, desk, stool)
+    )
 
 
 def test_overlap_depth_is_the_separating_axis_overlap():
@@ -139,13 +188,17 @@ _box = st.tuples(st.floats(-3, 3), st.floats(-3, 3), st.floats(0.1, 2.5), st.flo
 
 @settings(max_examples=200, deadline=None)
 @given(first=_box, second=_box, turn=st.floats(-math.pi, math.pi))
-def test_overlap_depth_of_boxes_is_their_least_axis_overlap_however_both_are_turned(first, second, turn):
+def test_overlap_depth_of_boxes_is_their_least_axis_overlap_however_both_are_turned(
+    first, second, turn
+):
     from scenewright.core.frames import footprint_corners
 
     def corners(box, yaw=0.0):
         x, z, w, d = box
         c, s = math.cos(yaw), math.sin(yaw)
-        return [(px * c + pz * s, -px * s + pz * c) for px, pz in footprint_corners(x, z, 0.0, w, d)]
+        return [
+            (px * c + pz * s, -px * s + pz * c) for px, pz in footprint_corners(x, z, 0.0, w, d)
+        ]
 
     (x0, z0, w0, d0), (x1, z1, w1, d1) = first, second
     along_x = min(x0 + w0 / 2, x1 + w1 / 2) - max(x0 - w0 / 2, x1 - w1 / 2)
@@ -154,7 +207,9 @@ def test_overlap_depth_of_boxes_is_their_least_axis_overlap_however_both_are_tur
     assert overlap_depth(corners(first), corners(second)) == pytest.approx(expected, abs=1e-9)
     turned = overlap_depth(corners(first, turn), corners(second, turn))
     assert turned == pytest.approx(expected, abs=1e-6)
-    assert overlap_depth(corners(second, turn), corners(first, turn)) == pytest.approx(turned, abs=1e-12)
+    assert overlap_depth(corners(second, turn), corners(first, turn)) == pytest.approx(
+        turned, abs=1e-12
+    )
 
 
 def test_files_and_folders_give_one_line_errors(tmp_path):
@@ -199,10 +254,14 @@ def shipped():
 
 
 def test_every_shipped_plan_loads_and_sits_in_its_type_folder(shipped):
-    for plan in shipped:  # load_plans ran every check: schema, catalog, walls, overlaps, swings, clearances
+    for plan in (
+        shipped
+    ):  # load_plans ran every check: schema, catalog, walls, overlaps, swings, clearances
         path = plan.source.replace("\\", "/")
         assert path.endswith(f"/plans/{plan.type}/{plan.id}.json"), path
-    counts = {room_type: sum(plan.type == room_type for plan in shipped) for room_type in SHIPPED_TYPES}
+    counts = {
+        room_type: sum(plan.type == room_type for plan in shipped) for room_type in SHIPPED_TYPES
+    }
     assert set(plan.type for plan in shipped) == set(SHIPPED_TYPES)
     assert min(counts.values()) >= 15, counts
 
@@ -211,7 +270,10 @@ def test_shipped_plans_are_real_rooms(shipped):
     for plan in shipped:
         width, depth = sorted(plan.room.extent)
         if plan.type == "gym":  # home gyms, and studio and club rooms up to 8 x 5.5 m
-            assert 3.0 <= width <= 5.5 and depth <= 8.0 and 9.0 <= plan.room.area <= 40.0, (plan.id, plan.room.extent)
+            assert 3.0 <= width <= 5.5 and depth <= 8.0 and 9.0 <= plan.room.area <= 40.0, (
+                plan.id,
+                plan.room.extent,
+            )
         else:
             assert 2.8 <= width and depth <= 6.0 and width <= 5.0, (plan.id, plan.room.extent)
         assert len(plan.room.doors) == 1 and plan.room.windows, plan.id
@@ -219,10 +281,17 @@ def test_shipped_plans_are_real_rooms(shipped):
         if plan.type == "gym":
             assert GYM_EQUIPMENT & set(categories), plan.id
             continue
-        essential = {"bedroom": "bed", "living_room": "sofa", "study": "desk", "dining_room": "dining_table"}
+        essential = {
+            "bedroom": "bed",
+            "living_room": "sofa",
+            "study": "desk",
+            "dining_room": "dining_table",
+        }
         assert essential[plan.type] in categories, plan.id
     doors = {(plan.type, plan.room.part(plan.room.doors[0].wall).side) for plan in shipped}
-    assert all(sum(t == room_type for t, _ in doors) == 4 for room_type in SHIPPED_TYPES), "doors on every wall"
+    assert all(sum(t == room_type for t, _ in doors) == 4 for room_type in SHIPPED_TYPES), (
+        "doors on every wall"
+    )
 
 
 def test_seats_are_at_what_they_serve(shipped):
@@ -234,7 +303,10 @@ def test_seats_are_at_what_they_serve(shipped):
         for piece in plan.furniture:
             if piece.category == "desk":
                 zone = front_zone(piece, 0.7)
-                assert any(overlap_depth(zone, seat.corners) > 0.1 for seat in seats), (plan.id, piece.id)
+                assert any(overlap_depth(zone, seat.corners) > 0.1 for seat in seats), (
+                    plan.id,
+                    piece.id,
+                )
             if piece.category == "dining_table":
                 around = [seat for seat in seats if _gap(piece, seat) < 0.1]
                 assert len(around) >= 4, (plan.id, len(around))
@@ -242,11 +314,23 @@ def test_seats_are_at_what_they_serve(shipped):
 
 #: Shipped plans that still hem a piece in (no 0.6 m wide way from the door to it). The
 #: list may only shrink: a plan fixed must leave it, and no other plan may join it.
-HEMMED_IN = frozenset({
-    "living_room_03", "living_room_06", "living_room_08", "living_room_09", "living_room_11", "living_room_12",
-    "living_room_14", "living_room_15", "study_02", "dining_room_01", "dining_room_02",
-    "dining_room_05", "dining_room_16",
-})  # fmt: skip
+HEMMED_IN = frozenset(
+    {
+        "living_room_03",
+        "living_room_06",
+        "living_room_08",
+        "living_room_09",
+        "living_room_11",
+        "living_room_12",
+        "living_room_14",
+        "living_room_15",
+        "study_02",
+        "dining_room_01",
+        "dining_room_02",
+        "dining_room_05",
+        "dining_room_16",
+    }
+)
 
 
 def test_a_walkable_way_reaches_every_piece_used_in_the_shipped_plans(shipped):
@@ -284,7 +368,9 @@ def test_the_walkable_way_is_the_layouts_and_seats_are_pulled_out():
     study.door("S", 2.4, 0.8)
     study.window("N", 1.5, 1.2)
     desk = study.against("N", "desk", 1.5, (1.2, 0.6))
-    study.before(desk, "office_chair", (0.6, 0.6), 0.05)  # its chair hides the desk's front from the way
+    study.before(
+        desk, "office_chair", (0.6, 0.6), 0.05
+    )  # its chair hides the desk's front from the way
     assert unreachable(study.plan(), catalog) == []
 
 
@@ -315,7 +401,9 @@ def test_the_shipped_files_are_what_the_designs_draw(shipped):
     along=st.floats(0.2, 0.8),
     size=st.tuples(st.floats(0.3, 2.0), st.floats(0.3, 1.0)),
 )
-def test_a_piece_drawn_against_a_wall_has_its_back_on_it_and_faces_in(width, depth, wall, along, size):
+def test_a_piece_drawn_against_a_wall_has_its_back_on_it_and_faces_in(
+    width, depth, wall, along, size
+):
     design = Design("p", "bedroom", "", width, depth)
     length = width if wall in "NS" else depth
     at = size[0] / 2 + along * (length - size[0])

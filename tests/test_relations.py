@@ -10,6 +10,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_cli import assert_one_line_error, run
+
 from scenewright.cli import EXAMPLES, main
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.dataset import check_same_settings, dataset_spec
@@ -26,36 +28,70 @@ from scenewright.learning.relations import (
     prune_indirect,
 )
 
-from test_cli import assert_one_line_error, run
-
 SIZES = {
-    "table": (1.2, 0.75, 0.7), "chair": (0.5, 0.9, 0.5), "plant": (0.4, 1.0, 0.4), "cup": (0.1, 0.1, 0.1),
+    "table": (1.2, 0.75, 0.7),
+    "chair": (0.5, 0.9, 0.5),
+    "plant": (0.4, 1.0, 0.4),
+    "cup": (0.1, 0.1, 0.1),
     "shelf": (2.4, 1.0, 0.4),
-}  # fmt: skip
+}
 
 
-def scene_of(placed: list[tuple[str, float, float, float]], name: str = "s", heights: dict | None = None) -> Scene:
+def scene_of(
+    placed: list[tuple[str, float, float, float]], name: str = "s", heights: dict | None = None
+) -> Scene:
     """A scene of objects (type, x, z, yaw) on a 10 x 10 m ground."""
     objects = [
         SceneObject(
-            id=f"{kind}{k}", type=kind, kind="object", noun=kind, plural=None, parent=None, style=None,
-            position=[x, (heights or {}).get(kind, 0.0), z], yaw=yaw, size=list(SIZES.get(kind, (0.5, 0.5, 0.5))),
+            id=f"{kind}{k}",
+            type=kind,
+            kind="object",
+            noun=kind,
+            plural=None,
+            parent=None,
+            style=None,
+            position=[x, (heights or {}).get(kind, 0.0), z],
+            yaw=yaw,
+            size=list(SIZES.get(kind, (0.5, 0.5, 0.5))),
             order=k,
         )
         for k, (kind, x, z, yaw) in enumerate(placed)
-    ]  # fmt: skip
-    return Scene(rules="test", seed=0, extent=[10.0, 10.0], objects=objects, paths=[], relations=[], name=name)
+    ]
+    return Scene(
+        rules="test",
+        seed=0,
+        extent=[10.0, 10.0],
+        objects=objects,
+        paths=[],
+        relations=[],
+        name=name,
+    )
 
 
 def uniform_pose(rng: np.random.Generator) -> tuple[float, float, float]:
-    return float(rng.uniform(-4, 4)), float(rng.uniform(-4, 4)), float(rng.uniform(-math.pi, math.pi))
+    return (
+        float(rng.uniform(-4, 4)),
+        float(rng.uniform(-4, 4)),
+        float(rng.uniform(-math.pi, math.pi)),
+    )
 
 
-def offset(pose: tuple[float, float, float], left: float, forward: float, turn: float, rng, jitter: float = 0.05):
+def offset(
+    pose: tuple[float, float, float],
+    left: float,
+    forward: float,
+    turn: float,
+    rng,
+    jitter: float = 0.05,
+):
     """The pose ``left``/``forward`` metres from ``pose`` in its frame, turned by ``turn``, jittered."""
     x, z, yaw = pose
     lx, lz = left + rng.normal(0, jitter), forward + rng.normal(0, jitter)
-    return x + lx * math.cos(yaw) + lz * math.sin(yaw), z - lx * math.sin(yaw) + lz * math.cos(yaw), yaw + turn + rng.normal(0, jitter)
+    return (
+        x + lx * math.cos(yaw) + lz * math.sin(yaw),
+        z - lx * math.sin(yaw) + lz * math.cos(yaw),
+        yaw + turn + rng.normal(0, jitter),
+    )
 
 
 def independent_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
@@ -63,8 +99,11 @@ def independent_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
     and independently of every other."""
     scenes = []
     for index in range(count):
-        placed = [(kind, *uniform_pose(rng)) for kind, low, high in (("table", 1, 3), ("chair", 1, 3), ("plant", 2, 3))
-                  for _ in range(rng.integers(low, high + 1))]  # fmt: skip
+        placed = [
+            (kind, *uniform_pose(rng))
+            for kind, low, high in (("table", 1, 3), ("chair", 1, 3), ("plant", 2, 3))
+            for _ in range(rng.integers(low, high + 1))
+        ]
         scenes.append(scene_of(placed, f"s{index}"))
     return scenes
 
@@ -80,11 +119,19 @@ def test_permutation_test_holds_its_level_on_independent_objects():
     for dataset in range(40):
         result = find_relations(independent_scenes(rng, 60), seed=dataset, prune=False)
         assert {(p.a, p.b) for p in result.pairs} == {
-            ("chair", "chair"), ("chair", "plant"), ("chair", "table"), ("plant", "plant"), ("plant", "table"),
+            ("chair", "chair"),
+            ("chair", "plant"),
+            ("chair", "table"),
+            ("plant", "plant"),
+            ("plant", "table"),
             ("table", "table"),
-        }  # fmt: skip
-        p_values += [p.p_value for p in result.pairs if (p.a, p.b) in {("chair", "table"), ("plant", "plant"),
-                                                                       ("chair", "plant"), ("table", "table")}]  # fmt: skip
+        }
+        p_values += [
+            p.p_value
+            for p in result.pairs
+            if (p.a, p.b)
+            in {("chair", "table"), ("plant", "plant"), ("chair", "plant"), ("table", "table")}
+        ]
     p_values = np.array(p_values)
     assert len(p_values) == 160
     assert np.count_nonzero(p_values <= 0.01) <= 6
@@ -92,7 +139,9 @@ def test_permutation_test_holds_its_level_on_independent_objects():
     assert 0.4 <= np.median(p_values) <= 0.6
 
 
-def table_and_chair(rng: np.random.Generator, forward: float = 0.9) -> list[tuple[str, float, float, float]]:
+def table_and_chair(
+    rng: np.random.Generator, forward: float = 0.9
+) -> list[tuple[str, float, float, float]]:
     """A table anywhere and a chair ``forward`` metres in front of it, turned to face it."""
     table = uniform_pose(rng)
     return [("table", *table), ("chair", *offset(table, 0.0, forward, math.pi, rng))]
@@ -100,7 +149,10 @@ def table_and_chair(rng: np.random.Generator, forward: float = 0.9) -> list[tupl
 
 def planted_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
     """A chair 0.9 m in front of each table, turned to face it; a plant anywhere."""
-    return [scene_of([*table_and_chair(rng), ("plant", *uniform_pose(rng))], f"s{index}") for index in range(count)]
+    return [
+        scene_of([*table_and_chair(rng), ("plant", *uniform_pose(rng))], f"s{index}")
+        for index in range(count)
+    ]
 
 
 def test_a_planted_relation_is_found_and_the_independent_pairs_are_not():
@@ -126,14 +178,18 @@ def test_a_relation_of_one_of_several_objects_is_tested_in_the_frame_of_the_type
     assert found.related and found.p_value == pytest.approx(1 / 200) and found.strength > 0.6
 
 
-def shared_relation_scenes(rng: np.random.Generator, count: int, share: float, forward: float = 0.0) -> list[Scene]:
+def shared_relation_scenes(
+    rng: np.random.Generator, count: int, share: float, forward: float = 0.0
+) -> list[Scene]:
     """The chair stands 0.9 m left or right of the table (``forward`` m in front of it)
     in a share of the scenes, anywhere in the others."""
     scenes = []
     for index in range(count):
         table = uniform_pose(rng)
         side = 0.9 if rng.random() < 0.5 else -0.9
-        chair = offset(table, side, forward, 0.0, rng) if rng.random() < share else uniform_pose(rng)
+        chair = (
+            offset(table, side, forward, 0.0, rng) if rng.random() < share else uniform_pose(rng)
+        )
         scenes.append(scene_of([("table", *table), ("chair", *chair)], f"s{index}"))
     return scenes
 
@@ -146,9 +202,10 @@ def test_the_nearest_neighbour_tightness_of_a_relation_in_a_share_of_the_scenes(
     rng = np.random.default_rng(int(share * 10))
     strengths = []
     for dataset in range(4):
-        found = {(p.a, p.b): p for p in find_relations(shared_relation_scenes(rng, 200, share), seed=dataset).pairs}[
-            ("chair", "table")
-        ]
+        found = {
+            (p.a, p.b): p
+            for p in find_relations(shared_relation_scenes(rng, 200, share), seed=dataset).pairs
+        }[("chair", "table")]
         assert found.pairs == 200 and found.p_value <= 0.01
         assert found.related == (found.strength >= MIN_LOCAL_TIGHTNESS)
         strengths.append(found.strength)
@@ -161,9 +218,12 @@ def test_pairs_of_scenes_find_a_relation_in_a_fifth_of_the_scenes():
     # halves of the scenes (100 against 100, the test before) it was 9.
     rng = np.random.default_rng(77)
     p_values = [
-        {(p.a, p.b): p for p in find_relations(shared_relation_scenes(rng, 200, 0.2), seed=d, prune=False).pairs}[
-            ("chair", "table")
-        ].p_value
+        {
+            (p.a, p.b): p
+            for p in find_relations(
+                shared_relation_scenes(rng, 200, 0.2), seed=d, prune=False
+            ).pairs
+        }[("chair", "table")].p_value
         for d in range(20)
     ]
     assert np.count_nonzero(np.array(p_values) <= 0.01) >= 16
@@ -178,7 +238,15 @@ def test_few_scenes_are_tested_by_pairing_scenes_and_hold_the_level():
     for dataset in range(60):
         result = find_relations(independent_scenes(rng, 7), seed=dataset, prune=False)
         tested = {(p.a, p.b): p for p in result.pairs}
-        p_values += [tested[pair].p_value for pair in (("chair", "table"), ("plant", "plant"), ("chair", "plant"), ("plant", "table"))]
+        p_values += [
+            tested[pair].p_value
+            for pair in (
+                ("chair", "table"),
+                ("plant", "plant"),
+                ("chair", "plant"),
+                ("plant", "table"),
+            )
+        ]
     p_values = np.array(p_values)
     assert np.count_nonzero(p_values <= 0.01) <= 8
     assert 24 <= np.count_nonzero(p_values <= 0.2) <= 72
@@ -213,10 +281,20 @@ def circle_scenes(points: int) -> list[Scene]:
     it, at ``points`` evenly spaced angles: the chairs' relative positions make a
     regular polygon."""
     return [
-        scene_of([("table", 0.0, 0.0, 0.0), ("chair", 2 * math.cos(2 * math.pi * k / points),
-                                              2 * math.sin(2 * math.pi * k / points), 0.0)], f"s{k}")
+        scene_of(
+            [
+                ("table", 0.0, 0.0, 0.0),
+                (
+                    "chair",
+                    2 * math.cos(2 * math.pi * k / points),
+                    2 * math.sin(2 * math.pi * k / points),
+                    0.0,
+                ),
+            ],
+            f"s{k}",
+        )
         for k in range(points)
-    ]  # fmt: skip
+    ]
 
 
 def test_angle_test_on_a_regular_polygon():
@@ -234,19 +312,35 @@ def test_angle_statistic_and_angles_by_hand():
     assert angle_statistic(np.full(4, math.pi / 2)) == pytest.approx(1.0)  # sup 0.5, sqrt(4) * 0.5
     assert angle_statistic(np.array([0.0, math.pi])) == pytest.approx(math.sqrt(2) * 0.5)
     # A right angle, a straight line, and a point that coincides with its neighbour.
-    points = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.1], [5.0, 5.0], [4.0, 5.0], [6.1, 5.0], [9.0, 0.0], [9.0, 0.0], [9.0, 2.0]])
+    points = np.array(
+        [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 1.1],
+            [5.0, 5.0],
+            [4.0, 5.0],
+            [6.1, 5.0],
+            [9.0, 0.0],
+            [9.0, 0.0],
+            [9.0, 2.0],
+        ]
+    )
     angles = nearest_neighbour_angles(points, np.array([0, 3, 6]))
     assert angles == pytest.approx([math.pi / 2, math.pi, 0.0])
 
 
 def test_angle_test_finds_no_pattern_in_uniform_points():
     rng = np.random.default_rng(3)
-    scenes = [scene_of([("table", 0.0, 0.0, 0.0), ("chair", *uniform_pose(rng))]) for _ in range(400)]
+    scenes = [
+        scene_of([("table", 0.0, 0.0, 0.0), ("chair", *uniform_pose(rng))]) for _ in range(400)
+    ]
     (pair,) = find_relations(scenes, test="angle", seed=2).pairs
     assert not pair.related and pair.p_value > 0.01
 
 
-def chain_scenes(rng: np.random.Generator, count: int, cup_height: float | None = None) -> list[Scene]:
+def chain_scenes(
+    rng: np.random.Generator, count: int, cup_height: float | None = None
+) -> list[Scene]:
     """A table, a chair in front of it, a plant to the chair's left: table-plant holds
     only through the chair. With ``cup_height``, a cup stands on the table too."""
     scenes = []
@@ -268,7 +362,9 @@ def test_the_indirect_pair_of_a_planted_chain_is_pruned():
     # through the chair.
     scenes = chain_scenes(np.random.default_rng(8), 80)
     kept = {(p.a, p.b): p for p in find_relations(scenes, seed=0, prune=False).pairs}
-    assert all(kept[pair].related for pair in [("chair", "table"), ("chair", "plant"), ("plant", "table")])
+    assert all(
+        kept[pair].related for pair in [("chair", "table"), ("chair", "plant"), ("plant", "table")]
+    )
     pruned = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}
     assert pruned[("chair", "table")].related and pruned[("chair", "plant")].related
     assert not pruned[("plant", "table")].related and pruned[("plant", "table")].pruned
@@ -286,7 +382,11 @@ def distracted_scenes(rng: np.random.Generator, count: int) -> list[Scene]:
         chair = offset(table, 0.4, 0.9, math.pi, rng, jitter=0.3)
         plant = offset(table, 1.2, 1.4, 0.0, rng, jitter=0.05)
         strays = [("plant", *uniform_pose(rng)) for _ in range(4)]
-        scenes.append(scene_of([("table", *table), ("chair", *chair), ("plant", *plant), *strays], f"s{index}"))
+        scenes.append(
+            scene_of(
+                [("table", *table), ("chair", *chair), ("plant", *plant), *strays], f"s{index}"
+            )
+        )
     return scenes
 
 
@@ -321,10 +421,22 @@ def test_a_pair_resting_in_most_scenes_is_related_below_the_tightness_floor():
     for index in range(200):
         shelf = (float(rng.uniform(-2, 2)), -4.5, 0.0)
         on_shelf = rng.random() < 0.7
-        cups = [offset(shelf, rng.uniform(-1.1, 1.1), rng.uniform(-0.1, 0.1), rng.uniform(-math.pi, math.pi), rng)
-                if on_shelf else uniform_pose(rng) for _ in range(2)]  # fmt: skip
+        cups = [
+            offset(
+                shelf,
+                rng.uniform(-1.1, 1.1),
+                rng.uniform(-0.1, 0.1),
+                rng.uniform(-math.pi, math.pi),
+                rng,
+            )
+            if on_shelf
+            else uniform_pose(rng)
+            for _ in range(2)
+        ]
         placed = [("shelf", *shelf), *(("cup", *cup) for cup in cups)]
-        scenes.append(scene_of(placed, f"s{index}", heights={"cup": SIZES["shelf"][1]} if on_shelf else None))
+        scenes.append(
+            scene_of(placed, f"s{index}", heights={"cup": SIZES["shelf"][1]} if on_shelf else None)
+        )
     found = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}[("cup", "shelf")]
     assert found.p_value <= 0.01 and found.strength < MIN_LOCAL_TIGHTNESS and found.related
 
@@ -337,8 +449,18 @@ def test_a_pair_resting_in_a_few_scenes_is_related_whatever_the_p_value():
     scenes = []
     for index in range(12):
         table = (float(rng.uniform(-3, 3)), -4.6, float(rng.choice([0.0, math.pi / 2, math.pi])))
-        cup = offset(table, rng.uniform(-0.5, 0.5), rng.uniform(-0.3, 0.3), rng.uniform(-math.pi, math.pi), rng)
-        scenes.append(scene_of([("table", *table), ("cup", *cup)], f"s{index}", heights={"cup": SIZES["table"][1]}))
+        cup = offset(
+            table,
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.3, 0.3),
+            rng.uniform(-math.pi, math.pi),
+            rng,
+        )
+        scenes.append(
+            scene_of(
+                [("table", *table), ("cup", *cup)], f"s{index}", heights={"cup": SIZES["table"][1]}
+            )
+        )
     found = {(p.a, p.b): p for p in find_relations(scenes, seed=0).pairs}[("cup", "table")]
     assert found.related and found.scenes == 12 and found.p_value > 0.01
 
@@ -348,9 +470,21 @@ def pair(a: str, b: str, strength: float, related: bool = True) -> PairRelation:
 
 
 def test_pruning_by_strength_and_by_resting():
-    pairs = [pair("a", "b", 0.9), pair("a", "c", 0.3), pair("b", "c", 0.8), pair("c", "d", 0.1), pair("b", "d", 0.2, related=False)]
+    pairs = [
+        pair("a", "b", 0.9),
+        pair("a", "c", 0.3),
+        pair("b", "c", 0.8),
+        pair("c", "d", 0.1),
+        pair("b", "d", 0.2, related=False),
+    ]
     verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs)}
-    assert verdicts == {("a", "b"): True, ("a", "c"): False, ("b", "c"): True, ("c", "d"): True, ("b", "d"): False}
+    assert verdicts == {
+        ("a", "b"): True,
+        ("a", "c"): False,
+        ("b", "c"): True,
+        ("c", "d"): True,
+        ("b", "d"): False,
+    }
     # With c resting on a, its pair with b is the indirect one, however strong, and the
     # resting pair itself stays even when it is the weakest.
     verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs, {("c", "a")})}
@@ -386,7 +520,10 @@ def test_a_pair_is_not_pruned_through_a_type_missing_from_many_of_its_scenes():
     # stands in fewer than THIRD_SHARE of the pair's scenes.
     pairs = [pair("a", "b", 0.5), pair("a", "c", 0.9), pair("b", "c", 0.8)]
     share = {("a", "b", "c"): 0.5, ("a", "c", "b"): 1.0, ("b", "c", "a"): 1.0}
-    verdicts = {(p.a, p.b): p.related for p in prune_indirect(pairs, present=lambda u, v, w: share[(u, v, w)])}
+    verdicts = {
+        (p.a, p.b): p.related
+        for p in prune_indirect(pairs, present=lambda u, v, w: share[(u, v, w)])
+    }
     assert verdicts == {("a", "b"): True, ("a", "c"): True, ("b", "c"): False}
     assert not {(p.a, p.b): p.related for p in prune_indirect(pairs)}[("a", "b")]
 
@@ -401,7 +538,12 @@ def board_desk_chair_scenes(seed: int, count: int = 60) -> list[Scene]:
         board = float(rng.uniform(-3, 3))
         desk = (board + rng.normal(0, 0.4), float(rng.uniform(-3.2, -2.4)))
         chair = (desk[0] + rng.normal(0, 0.25), desk[1] - 0.7 + rng.normal(0, 0.03))
-        scenes.append(scene_of([("board", board, -4.7, 0.0), ("desk", *desk, 0.0), ("chair", *chair, 0.0)], f"s{index}"))
+        scenes.append(
+            scene_of(
+                [("board", board, -4.7, 0.0), ("desk", *desk, 0.0), ("chair", *chair, 0.0)],
+                f"s{index}",
+            )
+        )
     return scenes
 
 
@@ -426,32 +568,55 @@ def test_coordinate_spreads_are_the_mean_absolute_difference_of_two_rows(rows):
     assert np.allclose(coordinate_spreads(values), brute, atol=1e-9)
 
 
-@pytest.mark.parametrize(("strength", "error", "related"), [(0.40, 0.01, True), (0.40, 0.05, False), (0.30, 0.0, False)])
-def test_a_strength_clears_the_floor_only_when_its_draws_pin_it_down(monkeypatch, strength, error, related):
+@pytest.mark.parametrize(
+    ("strength", "error", "related"), [(0.40, 0.01, True), (0.40, 0.05, False), (0.30, 0.0, False)]
+)
+def test_a_strength_clears_the_floor_only_when_its_draws_pin_it_down(
+    monkeypatch, strength, error, related
+):
     # Two plants competing for a room's corners came out at a mean strength of 0.366
     # over eight draws that ran from far below the 0.35 floor to far above it (standard
     # error 0.12, where related pairs have 0.01 or less): such a mean clears nothing.
     from scenewright.learning import relations
 
     monkeypatch.setattr(relations, "pair_strength", lambda *args: (strength, error))
-    verdict = {(p.a, p.b): p for p in find_relations(planted_scenes(np.random.default_rng(5), 60), seed=1).pairs}
+    verdict = {
+        (p.a, p.b): p
+        for p in find_relations(planted_scenes(np.random.default_rng(5), 60), seed=1).pairs
+    }
     assert verdict[("chair", "table")].related is related
     assert verdict[("chair", "table")].strength == strength
 
 
 def test_cooccurrence_is_the_share_of_scenes_holding_both():
-    scenes = [scene_of([("table", 0, 0, 0), ("chair", 1, 1, 0)])] * 3 + [scene_of([("table", 0, 0, 0), ("plant", 1, 1, 0)])] * 2
+    scenes = [scene_of([("table", 0, 0, 0), ("chair", 1, 1, 0)])] * 3 + [
+        scene_of([("table", 0, 0, 0), ("plant", 1, 1, 0)])
+    ] * 2
     verdicts = {(p.a, p.b): p for p in find_relations(scenes, test="cooccurrence").pairs}
-    assert verdicts[("chair", "table")].statistic == pytest.approx(0.6) and verdicts[("chair", "table")].related
-    assert verdicts[("plant", "table")].statistic == pytest.approx(0.4) and not verdicts[("plant", "table")].related
+    assert (
+        verdicts[("chair", "table")].statistic == pytest.approx(0.6)
+        and verdicts[("chair", "table")].related
+    )
+    assert (
+        verdicts[("plant", "table")].statistic == pytest.approx(0.4)
+        and not verdicts[("plant", "table")].related
+    )
 
 
 def write_examples(folder, scenes: list[Scene]) -> list[str]:
     """The scenes as hand-written example files (yaw in degrees)."""
     paths = []
     for k, scene in enumerate(scenes):
-        objects = [{"id": o.id, "type": o.type, "size": o.size, "position": [o.position[0], o.position[2]],
-                    "yaw": math.degrees(o.yaw)} for o in scene.placed_objects()]  # fmt: skip
+        objects = [
+            {
+                "id": o.id,
+                "type": o.type,
+                "size": o.size,
+                "position": [o.position[0], o.position[2]],
+                "yaw": math.degrees(o.yaw),
+            }
+            for o in scene.placed_objects()
+        ]
         path = folder / f"room{k:02d}.json"
         path.write_text(json.dumps({"extent": [10, 10], "objects": objects}))
         paths.append(str(path))
@@ -469,7 +634,9 @@ def test_command_prints_a_table_or_json(tmp_path, capsys):
     assert row[:3] == ["chair", "table", "yes"] and row[4] == "0.005" and row[5:7] == ["40", "40"]
     code, out, _ = run(capsys, "relations", *paths, "--json", "--seed", "3")
     document = json.loads(out)
-    assert document["test"] == "permutation" and document["examples"] == 40 and document["seed"] == 3
+    assert (
+        document["test"] == "permutation" and document["examples"] == 40 and document["seed"] == 3
+    )
     chair_table = next(p for p in document["pairs"] if (p["a"], p["b"]) == ("chair", "table"))
     assert set(chair_table) >= {"a", "b", "related", "statistic", "p_value", "pairs", "scenes"}
     assert chair_table["related"] is True
@@ -510,8 +677,16 @@ def pinned_scenes(rng: np.random.Generator, count: int, share: float, left: floa
     scenes = []
     for index in range(count):
         sink = (float(rng.normal(0.0, 0.02)), -4.0 + float(rng.normal(0.0, 0.02)), 0.0)
-        counter = offset(sink, left, 0.0, 0.0, rng, jitter=0.02) if rng.random() < share else uniform_pose(rng)
-        scenes.append(scene_of([("sink", *sink), ("counter", *counter), ("plant", *uniform_pose(rng))], f"s{index}"))
+        counter = (
+            offset(sink, left, 0.0, 0.0, rng, jitter=0.02)
+            if rng.random() < share
+            else uniform_pose(rng)
+        )
+        scenes.append(
+            scene_of(
+                [("sink", *sink), ("counter", *counter), ("plant", *uniform_pose(rng))], f"s{index}"
+            )
+        )
     return scenes
 
 
@@ -523,12 +698,16 @@ def test_a_pair_the_room_fixes_side_by_side_is_related_as_a_fixed_arrangement():
     verdicts = {(p.a, p.b): p for p in result.pairs}
     pair = verdicts[("counter", "sink")]
     assert pair.related and pair.fixed and pair.verdict == "fixed"
-    assert pair.p_value > 0.01 or pair.strength < MIN_LOCAL_TIGHTNESS  # the test alone does not relate them
+    assert (
+        pair.p_value > 0.01 or pair.strength < MIN_LOCAL_TIGHTNESS
+    )  # the test alone does not relate them
     assert pair.to_dict()["fixed"] is True
     assert not verdicts[("counter", "plant")].related and not verdicts[("counter", "plant")].fixed
 
 
-@pytest.mark.parametrize(("share", "left", "related"), [(0.9, 0.9, True), (0.5, 0.9, False), (1.0, 4.5, False)])
+@pytest.mark.parametrize(
+    ("share", "left", "related"), [(0.9, 0.9, True), (0.5, 0.9, False), (1.0, 4.5, False)]
+)
 def test_a_fixed_arrangement_needs_most_scenes_and_the_two_next_to_each_other(share, left, related):
     # In half the scenes only (three in four are asked), or 4.5 m apart (a 3.5 m gap,
     # more than the 2 m of NextTo), the fixed places are the room's doing as far as the
@@ -547,8 +726,16 @@ def test_no_pair_placed_independently_is_a_fixed_arrangement(count, seed, anchor
     rng = np.random.default_rng(seed)
     scenes = []
     for index in range(count):
-        placed = [(kind, float(rng.uniform(-2, 2)), float(rng.uniform(-2, 2)), float(rng.uniform(-math.pi, math.pi)))
-                  for kind, most in (("table", 2), ("chair", 6), ("plant", 2)) for _ in range(rng.integers(1, most + 1))]  # fmt: skip
+        placed = [
+            (
+                kind,
+                float(rng.uniform(-2, 2)),
+                float(rng.uniform(-2, 2)),
+                float(rng.uniform(-math.pi, math.pi)),
+            )
+            for kind, most in (("table", 2), ("chair", 6), ("plant", 2))
+            for _ in range(rng.integers(1, most + 1))
+        ]
         if anchor:
             placed[0] = ("table", 0.0, -1.5, 0.0)
         scenes.append(scene_of(placed, f"s{index}"))
@@ -559,14 +746,33 @@ def dining_rooms(rng: np.random.Generator, count: int, around: bool) -> list[Sce
     """A table in the middle of the room (0.15 m of jitter, its long side along x or z)
     with four to six chairs: at its seats, facing it, when ``around``, else anywhere in
     the room; a sideboard against a wall."""
-    seats = [(-0.4, 0.75, math.pi), (0.4, 0.75, math.pi), (-0.4, -0.75, 0.0), (0.4, -0.75, 0.0),
-             (1.15, 0.0, -math.pi / 2), (-1.15, 0.0, math.pi / 2)]  # fmt: skip
+    seats = [
+        (-0.4, 0.75, math.pi),
+        (0.4, 0.75, math.pi),
+        (-0.4, -0.75, 0.0),
+        (0.4, -0.75, 0.0),
+        (1.15, 0.0, -math.pi / 2),
+        (-1.15, 0.0, math.pi / 2),
+    ]
     scenes = []
     for index in range(count):
-        table = (float(rng.normal(0, 0.15)), float(rng.normal(0, 0.15)), float(rng.choice([0.0, math.pi / 2])))
+        table = (
+            float(rng.normal(0, 0.15)),
+            float(rng.normal(0, 0.15)),
+            float(rng.choice([0.0, math.pi / 2])),
+        )
         placed = [("table", *table)]
         for left, forward, turn in seats[: int(rng.integers(4, 7))]:
-            placed.append(("chair", *(offset(table, left, forward, turn, rng, jitter=0.04) if around else uniform_pose(rng))))
+            placed.append(
+                (
+                    "chair",
+                    *(
+                        offset(table, left, forward, turn, rng, jitter=0.04)
+                        if around
+                        else uniform_pose(rng)
+                    ),
+                )
+            )
         placed.append(("sideboard", float(rng.uniform(-1, 1)), -4.7, 0.0))
         scenes.append(scene_of(placed, f"s{index}"))
     return scenes
@@ -579,11 +785,15 @@ def test_chairs_around_a_table_the_room_centres_are_related_from_a_dozen_rooms(s
     # chair is any of the seats, so no one pose describes it. The chairs still stand at
     # the same places about the table from room to room.
     rng = np.random.default_rng(seed)
-    verdicts = {(p.a, p.b): p for p in find_relations(dining_rooms(rng, 12, around=True), seed=seed).pairs}
+    verdicts = {
+        (p.a, p.b): p for p in find_relations(dining_rooms(rng, 12, around=True), seed=seed).pairs
+    }
     assert verdicts[("chair", "table")].related and verdicts[("chair", "table")].fixed
     assert not verdicts[("chair", "sideboard")].related
     # Chairs anywhere: the same counts and tables, nothing at the same places.
-    verdicts = {(p.a, p.b): p for p in find_relations(dining_rooms(rng, 12, around=False), seed=seed).pairs}
+    verdicts = {
+        (p.a, p.b): p for p in find_relations(dining_rooms(rng, 12, around=False), seed=seed).pairs
+    }
     assert not verdicts[("chair", "table")].related
 
 
@@ -591,7 +801,10 @@ def test_chairs_around_a_table_the_room_centres_are_related_from_a_dozen_rooms(s
 @given(count=st.integers(5, 60), seed=st.integers(0, 2**16), left=st.floats(0.6, 2.4))
 def test_a_counter_fixed_beside_a_fixed_sink_is_always_related(count, seed, left):
     # However many scenes (from five) and however far apart within NextTo's 2 m gap.
-    pair = {(p.a, p.b): p for p in find_relations(pinned_scenes(np.random.default_rng(seed), count, 1.0, left)).pairs}
+    pair = {
+        (p.a, p.b): p
+        for p in find_relations(pinned_scenes(np.random.default_rng(seed), count, 1.0, left)).pairs
+    }
     assert pair[("counter", "sink")].related
 
 
@@ -605,16 +818,39 @@ def test_a_dataset_without_images_writes_scene_json_and_text(tmp_path, capsys):
         assert set(product.files) == {f"scenes/{stem}.json", f"texts/{stem}.txt"}
         text = product.files[f"texts/{stem}.txt"].decode()
         assert text.strip() == product.row["text"] and text.startswith("The scene")
-        assert product.row["scene_file_name"] == f"scenes/{stem}.json" and "caption" not in product.row
+        assert (
+            product.row["scene_file_name"] == f"scenes/{stem}.json" and "caption" not in product.row
+        )
         scene = json.loads(product.files[f"scenes/{stem}.json"])
         assert scene["render"] is None and scene["description"]["text"] == product.row["text"]
         (tmp_path / f"{stem}.json").write_bytes(product.files[f"scenes/{stem}.json"])
-    code, out, _ = run(capsys, "relations", *sorted(str(p) for p in tmp_path.glob("*.json")), "--test", "cooccurrence")
+    code, out, _ = run(
+        capsys,
+        "relations",
+        *sorted(str(p) for p in tmp_path.glob("*.json")),
+        "--test",
+        "cooccurrence",
+    )
     assert code == 0 and "chair     table     yes" in out
-    code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--depth")
+    code, _, err = run(
+        capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--depth"
+    )
     assert code == 2 and not (tmp_path / "d").exists()
     assert_one_line_error(err, "--no-images")
-    code, _, err = run(capsys, "dataset", "desk", "-n", "2", "-o", str(tmp_path / "d"), "--no-images", "--views", "2", "--azimuth", "0:90")
+    code, _, err = run(
+        capsys,
+        "dataset",
+        "desk",
+        "-n",
+        "2",
+        "-o",
+        str(tmp_path / "d"),
+        "--no-images",
+        "--views",
+        "2",
+        "--azimuth",
+        "0:90",
+    )
     assert code == 2 and not (tmp_path / "d").exists()
     assert_one_line_error(err, "--no-images")
     assert spec.coco is False  # no picture, nothing to annotate
@@ -645,9 +881,18 @@ def test_the_benchmark_tells_a_relation_the_room_pins_from_one_the_poses_show():
     for index in range(60):
         table = uniform_pose(rng)
         counter = (1.0 + rng.uniform(0.0, 0.4), -4.0, 0.0)
-        placed = [("table", *table), ("chair", *offset(table, 0.0, 0.9, math.pi, rng)), ("sink", 0.0, -4.0, 0.0), ("counter", *counter)]
+        placed = [
+            ("table", *table),
+            ("chair", *offset(table, 0.0, 0.9, math.pi, rng)),
+            ("sink", 0.0, -4.0, 0.0),
+            ("counter", *counter),
+        ]
         scene = scene_of(placed, f"s{index}")
-        links = [Relation("chair1", "table0", "NextToFront"), Relation("counter3", "sink2", "NextToLeft"), Relation("sink2", "room", "UnderWindow")]
+        links = [
+            Relation("chair1", "table0", "NextToFront"),
+            Relation("counter3", "sink2", "NextToLeft"),
+            Relation("sink2", "room", "UnderWindow"),
+        ]
         scenes.append(Scene(**{**scene.__dict__, "relations": links}))
     assert dict(true_pairs(scenes)) == {("chair", "table"): 60, ("counter", "sink"): 60}
     verdicts = oracle_verdicts(scenes, seed=0)

@@ -8,7 +8,15 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from PIL import Image
-from render_fixtures import market_scene, or_skip_without_opengl, renderer_or_skip, road, run_without_opengl, scene_of, thing
+from render_fixtures import (
+    market_scene,
+    or_skip_without_opengl,
+    renderer_or_skip,
+    road,
+    run_without_opengl,
+    scene_of,
+    thing,
+)
 
 from scenewright.api import build_scene
 from scenewright.core.errors import InputError
@@ -29,7 +37,7 @@ def market(renderer):
 
 
 def pixel_of(result, point) -> tuple[int, int]:
-    (u, v), = Camera.from_dict(result.camera).project([point])[0]
+    ((u, v),) = Camera.from_dict(result.camera).project([point])[0]
     return int(math.floor(u)), int(math.floor(v))
 
 
@@ -61,7 +69,9 @@ def test_closing_one_renderer_leaves_the_others_working(renderer):
 
 
 def test_a_box_appears_at_its_projected_centre(renderer):
-    scene = scene_of([thing("crate_1", (2.0, 0.0, -1.0), (1.0, 1.0, 1.0)), thing("barrel_1", (-6.0, 0.0, 5.0))])
+    scene = scene_of(
+        [thing("crate_1", (2.0, 0.0, -1.0), (1.0, 1.0, 1.0)), thing("barrel_1", (-6.0, 0.0, 5.0))]
+    )
     for view in ("perspective", "top"):
         result = renderer.render(scene, view)
         u, v = pixel_of(result, [2.0, 0.5, -1.0])
@@ -73,7 +83,9 @@ def test_depth_matches_the_camera_and_grows_away_from_it(renderer):
     top = renderer.render(scene, "top")
     camera = Camera.from_dict(top.camera)
     u, v = pixel_of(top, [0.0, 4.0, 0.0])
-    assert top.depth[v, u] == pytest.approx(camera.pose[1, 3] - 4.0, abs=0.01)  # roof seen from above
+    assert top.depth[v, u] == pytest.approx(
+        camera.pose[1, 3] - 4.0, abs=0.01
+    )  # roof seen from above
 
     side = renderer.render(scene, "perspective")
     assert np.all(side.depth >= 0) and side.depth.dtype == np.float32
@@ -105,7 +117,10 @@ def test_visible_fraction_drops_behind_an_occluder(renderer):
     towards_camera = camera.pose[:3, 3] / np.linalg.norm(camera.pose[:3, 3])
     wall_at = towards_camera * 3.0
     scene = scene_of(
-        [thing("target_1", (0, 0, 0), (1, 1, 1)), thing("wall_1", (wall_at[0], 0, wall_at[2]), (0.8, 1.5, 0.8))]
+        [
+            thing("target_1", (0, 0, 0), (1, 1, 1)),
+            thing("wall_1", (wall_at[0], 0, wall_at[2]), (0.8, 1.5, 0.8)),
+        ]
     )
     result = renderer.render(scene)
     assert result.visible["wall_1"] == pytest.approx(1.0)
@@ -116,12 +131,16 @@ def test_a_room_shows_its_far_walls_as_backdrop_not_entities(renderer):
     things = [thing("rug_1", (0, 0, 0), (4.6, 0.02, 3.6))]  # covers the floor, hides no wall
     room = scene_of(things, extent=(5.0, 4.0), walls=True)  # a plain room: no door, no window
     side = renderer.render(room)
-    assert side.ids == ["rug_1"] and side.visible["rug_1"] == pytest.approx(1.0)  # walls hide nothing
+    assert side.ids == ["rug_1"] and side.visible["rug_1"] == pytest.approx(
+        1.0
+    )  # walls hide nothing
     camera = Camera.from_dict(side.camera)
     inner_faces = {"north": [-1.0, 1.0, -2.0], "west": [-2.5, 1.0, -1.0]}
     for wall, point in inner_faces.items():
         (u, v), depth = pixel_of(side, point), camera.project([point])[1][0]
-        assert side.segmentation[v, u] == 0 and side.depth[v, u] == pytest.approx(depth, abs=0.05), wall
+        assert side.segmentation[v, u] == 0 and side.depth[v, u] == pytest.approx(
+            depth, abs=0.05
+        ), wall
     # The near walls (south, east) would stand between the camera and the room: the
     # camera sees past where they would be.
     for point in ([0.0, 1.0, 2.05], [2.55, 1.0, 0.0]):
@@ -131,7 +150,12 @@ def test_a_room_shows_its_far_walls_as_backdrop_not_entities(renderer):
 
     top = renderer.render(room, "top")
     camera = Camera.from_dict(top.camera)
-    for point in ([0.0, 2.6, -2.06], [2.56, 2.6, 0.0], [0.0, 2.6, 2.06], [-2.56, 2.6, 0.0]):  # every wall's top
+    for point in (
+        [0.0, 2.6, -2.06],
+        [2.56, 2.6, 0.0],
+        [0.0, 2.6, 2.06],
+        [-2.56, 2.6, 0.0],
+    ):  # every wall's top
         u, v = pixel_of(top, point)
         assert top.depth[v, u] == pytest.approx(camera.pose[1, 3] - 2.6, abs=0.01), point
         assert top.segmentation[v, u] == 0
@@ -151,14 +175,21 @@ def test_renders_a_scene_with_only_paths(renderer):
 
 def test_saved_images_round_trip(market, tmp_path):
     files = save_render(market, tmp_path, stem="view")
-    assert {p.name for p in files.values()} == {"view.png", "view_depth.png", "view_seg.png", "view_ids.json"}
+    assert {p.name for p in files.values()} == {
+        "view.png",
+        "view_depth.png",
+        "view_seg.png",
+        "view_ids.json",
+    }
     assert np.array_equal(np.asarray(Image.open(files["colour"]).convert("RGB")), market.colour)
     depth = np.asarray(Image.open(files["depth"]))
     assert depth.dtype == np.uint16
     assert np.array_equal(depth, np.round(market.depth * 1000).astype(np.uint16))
     assert np.array_equal(np.asarray(Image.open(files["segmentation"])), market.segmentation)
     assert json.loads(files["ids"].read_text()) == {str(k + 1): i for k, i in enumerate(market.ids)}
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(p.name for p in files.values())  # no temp files
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        p.name for p in files.values()
+    )  # no temp files
     encoded = encode_render(market, stem="view")
     assert all(files[kind].read_bytes() == data for kind, (_, data) in encoded.items())
 
@@ -181,7 +212,9 @@ def test_missing_backend_is_a_clear_one_line_error():
     lines = done.stdout.strip().splitlines()
     assert done.returncode == 0, done.stderr
     assert len(lines) == 1 and "Traceback" not in done.stderr
-    assert "PYOPENGL_PLATFORM='no-such-platform'" in lines[0] and "apt-get install libegl1" in lines[0]
+    assert (
+        "PYOPENGL_PLATFORM='no-such-platform'" in lines[0] and "apt-get install libegl1" in lines[0]
+    )
 
 
 def test_unknown_view_is_an_input_error(renderer):
@@ -203,9 +236,16 @@ def test_a_degenerate_path_is_not_drawn(renderer):
 
 def test_visible_fractions_equal_a_brute_force_count(renderer):
     # Boxes in a row towards the camera hide one another in part; one road runs under them.
-    row = [thing(f"crate_{k}", (1.2 * k, 0, 1.2 * k), (1.0, 1.0 + 0.3 * k, 1.0)) for k in range(1, 6)]
-    scene = scene_of(row + [thing("crossing_1", (-4, 0, 4), (3, 0, 3), kind="junction", shape=None)],
-                     [road("road_1", [[-4, 4], [4, -4]], start="crossing_1"), road("road_2", [[-4, 4], [-8, 8]])])
+    row = [
+        thing(f"crate_{k}", (1.2 * k, 0, 1.2 * k), (1.0, 1.0 + 0.3 * k, 1.0)) for k in range(1, 6)
+    ]
+    scene = scene_of(
+        row + [thing("crossing_1", (-4, 0, 4), (3, 0, 3), kind="junction", shape=None)],
+        [
+            road("road_1", [[-4, 4], [4, -4]], start="crossing_1"),
+            road("road_2", [[-4, 4], [-8, 8]]),
+        ],
+    )
     result = renderer.render(scene)
 
     from scenewright.render.offscreen import _decode_index, _entities, _index_colour, _show_merged
@@ -237,7 +277,9 @@ def test_the_merged_colour_pass_draws_what_one_node_per_entity_draws(renderer, m
     entities = _entities(scene, camera)
     world, merged, _ = renderer._build(scene, camera, entities)
     _show_merged(merged, entities, False)
-    per_node, _ = renderer._renderer.render(world, flags=renderer._gl.RenderFlags.SHADOWS_DIRECTIONAL)
+    per_node, _ = renderer._renderer.render(
+        world, flags=renderer._gl.RenderFlags.SHADOWS_DIRECTIONAL
+    )
     differs = np.abs(per_node[..., :3].astype(int) - merged_colour.astype(int)).max(axis=2) > 8
     assert differs.mean() < 0.005
     assert len(np.unique(merged_colour.reshape(-1, 3), axis=0)) > 50  # a picture, not a blank
@@ -245,8 +287,11 @@ def test_the_merged_colour_pass_draws_what_one_node_per_entity_draws(renderer, m
 
 placements = st.lists(
     st.tuples(
-        st.floats(-12, 12), st.floats(-8, 8),  # x, z
-        st.floats(0.3, 4), st.floats(0.3, 6), st.floats(0.3, 4),  # w, h, d
+        st.floats(-12, 12),
+        st.floats(-8, 8),  # x, z
+        st.floats(0.3, 4),
+        st.floats(0.3, 6),
+        st.floats(0.3, 4),  # w, h, d
         st.floats(0, 2 * math.pi),  # yaw
     ),
     min_size=1,
@@ -254,10 +299,15 @@ placements = st.lists(
 )
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
 @given(placements, st.sampled_from(["perspective", "top"]))
 def test_ground_truth_is_consistent_for_any_small_scene(renderer, placed, view):
-    objects = [thing(f"crate_{k}", (x, 0, z), (w, h, d), yaw=yaw) for k, (x, z, w, h, d, yaw) in enumerate(placed, 1)]
+    objects = [
+        thing(f"crate_{k}", (x, 0, z), (w, h, d), yaw=yaw)
+        for k, (x, z, w, h, d, yaw) in enumerate(placed, 1)
+    ]
     result = renderer.render(scene_of(objects, [road("road_1", [[-10, 9], [10, 9]])]), view)
     assert result.ids == [o.id for o in objects] + ["road_1"]
     assert set(np.unique(result.segmentation).tolist()) <= set(range(len(result.ids) + 1))
@@ -270,7 +320,9 @@ def test_ground_truth_is_consistent_for_any_small_scene(renderer, placed, view):
         else:
             assert entity_id not in result.boxes and result.visible[entity_id] == 0.0
     # The automatic camera frames everything: every object's centre lands in the image.
-    pixels, _ = Camera.from_dict(result.camera).project([[o.position[0], o.size[1] / 2, o.position[2]] for o in objects])
+    pixels, _ = Camera.from_dict(result.camera).project(
+        [[o.position[0], o.size[1] / 2, o.position[2]] for o in objects]
+    )
     assert np.all((pixels >= 0) & (pixels < [160, 120]))
 
 
@@ -294,7 +346,9 @@ def test_shadows_fall_with_a_smaller_shadow_map_too(size):
     scene = build_scene("village", 3)
     colours = {}
     for shadows in (True, False):
-        with or_skip_without_opengl(lambda: Renderer(*size, shadows=shadows)) as renderer:
+        with or_skip_without_opengl(
+            lambda shadows=shadows: Renderer(*size, shadows=shadows)
+        ) as renderer:
             colours[shadows] = renderer.render(scene).colour.astype(int).sum(axis=-1)
     darker = colours[True] < colours[False] - 30
     assert darker.mean() > 0.005  # shadows beside the buildings and trees

@@ -9,10 +9,19 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from render_fixtures import market_scene
 
-from scenewright.render.camera import FILL, Camera, frame_scene, perspective_camera, scene_points, top_down_camera
+from scenewright.render.camera import (
+    FILL,
+    Camera,
+    frame_scene,
+    perspective_camera,
+    scene_points,
+    top_down_camera,
+)
 
 coordinates = st.floats(-50, 50, allow_nan=False)
-point_clouds = arrays(np.float64, st.tuples(st.integers(1, 30), st.just(3)), elements=coordinates).map(
+point_clouds = arrays(
+    np.float64, st.tuples(st.integers(1, 30), st.just(3)), elements=coordinates
+).map(
     lambda p: p * [1.0, 0.2, 1.0] + [0.0, 10.0, 0.0]  # heights 0..20 m, like a scene's
 )
 

@@ -7,9 +7,9 @@ import pytest
 from render_fixtures import scene_of, thing
 
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, WALL_THICKNESS
+from scenewright.core.scene import ScenePath
 from scenewright.core.shapes import SHAPES
 from scenewright.render.builders import BUILDERS, CHROME, SCREEN, SHOWER_GLASS, shade
-from scenewright.core.scene import ScenePath
 from scenewright.render.meshes import fit_to_size, junction_mesh, object_mesh, path_mesh, room_walls
 
 
@@ -38,11 +38,17 @@ def test_a_path_is_a_ribbon_of_its_width_facing_up_with_round_joints(start):
     discs = 2 + (start is None)  # one at each inner point, one at a start no junction covers
     assert len(mesh.faces) == 2 * 2 + 16 * discs
     assert np.ptp(mesh.vertices[:, 1]) == 0 and mesh.vertices[0, 1] > 0
-    winding = np.cross(*(mesh.vertices[mesh.faces[:, k]] - mesh.vertices[mesh.faces[:, 0]] for k in (1, 2)))
-    assert np.all(winding[:, 1] > 0) and np.array_equal(mesh.face_normals, np.tile([0.0, 1.0, 0.0], (len(mesh.faces), 1)))
+    winding = np.cross(
+        *(mesh.vertices[mesh.faces[:, k]] - mesh.vertices[mesh.faces[:, 0]] for k in (1, 2))
+    )
+    assert np.all(winding[:, 1] > 0) and np.array_equal(
+        mesh.face_normals, np.tile([0.0, 1.0, 0.0], (len(mesh.faces), 1))
+    )
     # Quads of the width along each segment, discs of the width at the joints.
     assert np.allclose(mesh.bounds[:, [0, 2]], [[-1.0 if start is None else 0.0, -1.0], [5.0, 3.0]])
-    assert mesh.area == pytest.approx(2.0 * 4.0 + 2.0 * 3.0 + discs * 16 / 2 * np.sin(2 * np.pi / 16))
+    assert mesh.area == pytest.approx(
+        2.0 * 4.0 + 2.0 * 3.0 + discs * 16 / 2 * np.sin(2 * np.pi / 16)
+    )
 
 
 def test_a_room_has_walls_on_the_sides_a_viewer_sees_from_inside():
@@ -52,17 +58,30 @@ def test_a_room_has_walls_on_the_sides_a_viewer_sees_from_inside():
     # North (z = -2) and west (x = -2.5) walls, behind their inner faces, as tall as the room.
     assert np.allclose(from_south_east.bounds, [[-2.5 - t, 0.0, -2.0 - t], [2.5 + t, h, 2.0 + t]])
     inside = from_south_east.vertices[:, [0, 2]]
-    assert not np.any((np.abs(inside[:, 0]) < 2.5 - 1e-9) & (np.abs(inside[:, 1]) < 2.0 - 1e-9))  # floor clear
-    assert inside[:, 0].max() == pytest.approx(2.5 + t) and inside[:, 1].max() == pytest.approx(2.0 + t)
-    near = (inside[:, 0] > 2.5 - 1e-9) & (inside[:, 1] > -2.0 + 1e-9)  # the east wall's line, south of the corner
+    assert not np.any(
+        (np.abs(inside[:, 0]) < 2.5 - 1e-9) & (np.abs(inside[:, 1]) < 2.0 - 1e-9)
+    )  # floor clear
+    assert inside[:, 0].max() == pytest.approx(2.5 + t) and inside[:, 1].max() == pytest.approx(
+        2.0 + t
+    )
+    near = (inside[:, 0] > 2.5 - 1e-9) & (
+        inside[:, 1] > -2.0 + 1e-9
+    )  # the east wall's line, south of the corner
     assert not near.any(), "the east wall is a near wall from the south-east"
     from_north_west = room_walls(room, towards_viewer=[-0.5, 0.6, -0.6])
     assert np.allclose(from_north_west.bounds, [[-2.5 - t, 0.0, -2.0 - t], [2.5 + t, h, 2.0 + t]])
     seen = from_north_west.vertices[:, [0, 2]]
-    assert not np.any((seen[:, 0] < -2.5 + 1e-9) & (seen[:, 1] < 2.0 - 1e-9)), "the west wall is a near wall"
-    assert not np.any((seen[:, 1] < -2.0 + 1e-9) & (seen[:, 0] < 2.5 - 1e-9)), "so is the north wall"
+    assert not np.any((seen[:, 0] < -2.5 + 1e-9) & (seen[:, 1] < 2.0 - 1e-9)), (
+        "the west wall is a near wall"
+    )
+    assert not np.any((seen[:, 1] < -2.0 + 1e-9) & (seen[:, 0] < 2.5 - 1e-9)), (
+        "so is the north wall"
+    )
     # Straight above sees every wall (their tops); outdoors there are none.
-    assert np.isclose(room_walls(room, towards_viewer=[0.0, 1.0, 0.0]).volume, ((5 + 2 * t) * (4 + 2 * t) - 20) * h)
+    assert np.isclose(
+        room_walls(room, towards_viewer=[0.0, 1.0, 0.0]).volume,
+        ((5 + 2 * t) * (4 + 2 * t) - 20) * h,
+    )
     assert room_walls(scene_of([], extent=(5.0, 4.0)), towards_viewer=[0.5, 0.6, 0.6]) is None
 
 
@@ -72,14 +91,28 @@ def test_a_room_has_walls_on_the_sides_a_viewer_sees_from_inside():
 MAIN = (0.5, 0.1, 0.9)
 #: Sizes (w, h, d) a catalog would give them.
 ROOM_SHAPES = {
-    "armchair": (0.85, 0.9, 0.85), "bathtub": (1.7, 0.55, 0.75), "coffee_table": (1.1, 0.45, 0.6),
-    "dining_table": (1.6, 0.75, 0.9), "dresser": (1.0, 0.85, 0.45), "floor_lamp": (0.4, 1.7, 0.4),
-    "kitchen_counter": (1.2, 0.9, 0.6), "piano": (1.5, 1.25, 0.6), "refrigerator": (0.7, 1.8, 0.7),
-    "shower": (0.9, 2.1, 0.9), "sink_counter": (1.2, 1.05, 0.6), "sofa": (2.0, 0.85, 0.9),
-    "stove": (0.6, 0.9, 0.6), "teacher_desk": (1.4, 0.76, 0.7), "toilet": (0.4, 0.8, 0.7),
-    "towel_rail": (0.6, 0.95, 0.3), "tv": (1.2, 0.75, 0.25), "tv_stand": (1.6, 0.5, 0.42),
-    "washbasin": (0.55, 0.9, 0.45), "washing_machine": (0.6, 0.85, 0.6), "whiteboard": (1.8, 1.9, 0.5),
-}  # fmt: skip
+    "armchair": (0.85, 0.9, 0.85),
+    "bathtub": (1.7, 0.55, 0.75),
+    "coffee_table": (1.1, 0.45, 0.6),
+    "dining_table": (1.6, 0.75, 0.9),
+    "dresser": (1.0, 0.85, 0.45),
+    "floor_lamp": (0.4, 1.7, 0.4),
+    "kitchen_counter": (1.2, 0.9, 0.6),
+    "piano": (1.5, 1.25, 0.6),
+    "refrigerator": (0.7, 1.8, 0.7),
+    "shower": (0.9, 2.1, 0.9),
+    "sink_counter": (1.2, 1.05, 0.6),
+    "sofa": (2.0, 0.85, 0.9),
+    "stove": (0.6, 0.9, 0.6),
+    "teacher_desk": (1.4, 0.76, 0.7),
+    "toilet": (0.4, 0.8, 0.7),
+    "towel_rail": (0.6, 0.95, 0.3),
+    "tv": (1.2, 0.75, 0.25),
+    "tv_stand": (1.6, 0.5, 0.42),
+    "washbasin": (0.55, 0.9, 0.45),
+    "washing_machine": (0.6, 0.85, 0.6),
+    "whiteboard": (1.8, 1.9, 0.5),
+}
 
 
 def built(shape: str):
@@ -99,7 +132,9 @@ def test_room_shapes_are_registered_small_and_fill_their_size(shape):
     mesh = built(shape)
     assert 0 < len(mesh.faces) < 500 and len(np.unique(mesh.visual.face_colors, axis=0)) >= 2
     extents = mesh.bounds[1] - mesh.bounds[0]
-    assert np.all(np.abs(extents / size - 1.0) < 0.1), extents  # built at its size: the fit barely scales
+    assert np.all(np.abs(extents / size - 1.0) < 0.1), (
+        extents
+    )  # built at its size: the fit barely scales
     assert abs(mesh.bounds[0][1]) < 1e-9  # stands on the floor
     assert np.all(np.abs((mesh.bounds[0] + mesh.bounds[1])[[0, 2]] / 2) <= 0.05 * size[[0, 2]])
     fitted = fit_to_size(mesh, size)
@@ -120,14 +155,20 @@ def test_room_shapes_are_registered_small_and_fill_their_size(shape):
         ("whiteboard", (0.15, 0.3, 0.75), "front"),  # blue marker
         ("kitchen_counter", CHROME, "front"),  # handles
         ("washbasin", CHROME, "back"),  # the tap
-        ("shower", CHROME, "back"),  # the riser, head and mixer ... and the screen's frame, on the front
+        (
+            "shower",
+            CHROME,
+            "back",
+        ),  # the riser, head and mixer ... and the screen's frame, on the front
     ],
 )
 def test_what_a_shape_shows_on_its_front_is_there(shape, part, where):
     w, h, d = ROOM_SHAPES[shape]
     centres = centres_of_colour(built(shape), part)
     assert len(centres)
-    if shape == "shower":  # the riser and head (cylinders, not the frame's flat slabs) stand at the back
+    if (
+        shape == "shower"
+    ):  # the riser and head (cylinders, not the frame's flat slabs) stand at the back
         centres = centres[np.abs(centres[:, 0] + 0.1 * w) < 0.02]
     assert np.all(centres[:, 2] > 0.0) if where == "front" else np.all(centres[:, 2] < 0.0), centres
 

@@ -7,8 +7,8 @@ shadow filter); and the one shadow filter changes only the edges of shadows."""
 from __future__ import annotations
 
 import pytest
-
 from render_fixtures import or_skip_without_opengl
+
 from scenewright.api import build_scene
 from scenewright.render import offscreen
 
@@ -23,11 +23,19 @@ def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
         patch.setattr(offscreen, "shadow_map_size", lambda width, height: offscreen.MAX_SHADOW_MAP)
         patch.setattr(offscreen, "_shader_source", lambda name, text: text)
         if plain:
-            patch.setattr(offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene))
-            patch.setattr(offscreen, "_posed_node", lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh))
+            patch.setattr(
+                offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene)
+            )
+            patch.setattr(
+                offscreen,
+                "_posed_node",
+                lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh),
+            )
         with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
             chosen = offscreen._pyrender_classes(renderer._gl).renderer
-            assert (type(renderer._renderer._renderer) is chosen) and (chosen.__module__ == "pyrender.renderer") == plain
+            assert (type(renderer._renderer._renderer) is chosen) and (
+                chosen.__module__ == "pyrender.renderer"
+            ) == plain
             return [renderer.render(scene, view) for view in VIEWS]
 
 
@@ -36,11 +44,16 @@ def test_same_pixels_as_pyrenders_own_classes(monkeypatch, rules, seed):
     scene = build_scene(rules, seed)
     expected = renders(scene, plain=True, monkeypatch=monkeypatch)
     got = renders(scene, plain=False, monkeypatch=monkeypatch)
-    for view, want, have in zip(VIEWS, expected, got):
+    for view, want, have in zip(VIEWS, expected, got, strict=False):
         for name in ("colour", "depth", "segmentation"):
             a, b = getattr(want, name), getattr(have, name)
             assert (a.dtype, a.shape, a.tobytes()) == (b.dtype, b.shape, b.tobytes()), (view, name)
-        assert (have.ids, have.boxes, have.visible, have.camera) == (want.ids, want.boxes, want.visible, want.camera)
+        assert (have.ids, have.boxes, have.visible, have.camera) == (
+            want.ids,
+            want.boxes,
+            want.visible,
+            want.camera,
+        )
         assert len(have.ids) > 3 and have.boxes  # something to see
 
 
@@ -52,7 +65,9 @@ def test_one_shadow_lookup_changes_only_the_edges_of_shadows():
 
     text = (Path(pyrender.__file__).parent / "shaders" / "mesh.frag").read_text()
     assert offscreen._PYRENDER_SHADOW_FILTER in text  # the pinned pyrender's filter
-    assert offscreen._shader_source("mesh.frag", text).count("texture2DShadowLerp(") == 2  # defined, used once
+    assert (
+        offscreen._shader_source("mesh.frag", text).count("texture2DShadowLerp(") == 2
+    )  # defined, used once
     with pytest.raises(offscreen.GenerationError, match="mesh.frag"):
         offscreen._shader_source("mesh.frag", text.replace("result/9.0", "result/4.0"))
 
@@ -68,4 +83,8 @@ def test_one_shadow_lookup_changes_only_the_edges_of_shadows():
         offscreen._pyrender_classes.cache_clear()
     changed = np.abs(colours[True] - colours[False]).max(axis=-1)
     # Soft edges a little sharper: a few levels on a few percent of the pixels.
-    assert 0 < (changed > 0).mean() < 0.1 and np.median(changed[changed > 0]) <= 8 and (changed > 20).mean() < 0.01
+    assert (
+        0 < (changed > 0).mean() < 0.1
+        and np.median(changed[changed > 0]) <= 8
+        and (changed > 20).mean() < 0.01
+    )

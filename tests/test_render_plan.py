@@ -11,10 +11,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from PIL import Image
-
 from render_fixtures import road, scene_of, thing
+
 from scenewright.core.relations import Relation
-from scenewright.render.plan import BASE_INCHES, DPI, RELATION, Label, draw_plan, figure_inches, place_labels
+from scenewright.render.plan import (
+    BASE_INCHES,
+    DPI,
+    RELATION,
+    Label,
+    draw_plan,
+    figure_inches,
+    place_labels,
+)
 
 TYPES = ("house", "shed", "crate", "lamp", "bush", "bench")
 
@@ -41,20 +49,30 @@ def town(count: int = 300, seed: int = 0, *, broken: int = 12):
         objects.append(thing(f"{kind}_{k + 1}", (x, 0, z), size, yaw=float(rng.uniform(0, 6.28))))
     roads = [road(f"road_{k}", [[-60, -45 + 30 * k], [60, -45 + 30 * k]]) for k in range(4)]
     scene = scene_of(objects, roads, extent=(120.0, 120.0))
-    pairs = list(zip(objects[:-1], objects[1:]))
+    pairs = list(zip(objects[:-1], objects[1:], strict=False))
     broken_at = set(rng.choice(len(pairs), size=broken, replace=False).tolist())
     scene.relations = [
-        Relation(a.id, b.id, "NextTo", value=-1.0 if k in broken_at else 0.0, satisfied=k not in broken_at)
+        Relation(
+            a.id,
+            b.id,
+            "NextTo",
+            value=-1.0 if k in broken_at else 0.0,
+            satisfied=k not in broken_at,
+        )
         for k, (a, b) in enumerate(pairs)
     ]
     scene.layout.ok = broken == 0
-    scene.layout.problems = [f"{a.id} is not next to {b.id}" for k, (a, b) in enumerate(pairs) if k in broken_at]
+    scene.layout.problems = [
+        f"{a.id} is not next to {b.id}" for k, (a, b) in enumerate(pairs) if k in broken_at
+    ]
     return scene
 
 
 def drawn_texts(axes):
     renderer = axes.figure.canvas.get_renderer()
-    return [(text.get_text(), text.get_color(), text.get_window_extent(renderer)) for text in axes.texts]
+    return [
+        (text.get_text(), text.get_color(), text.get_window_extent(renderer)) for text in axes.texts
+    ]
 
 
 def test_a_300_object_plan_names_most_objects_without_one_label_over_another(tmp_path, monkeypatch):
@@ -117,7 +135,12 @@ def test_placed_labels_never_overlap_and_stay_inside(anchors):
     inside = axes.get_window_extent(figure.canvas.get_renderer())
     assert placed == len(texts)
     for _, _, box in texts:
-        assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+        assert (
+            inside.x0 <= box.x0
+            and box.x1 <= inside.x1
+            and inside.y0 <= box.y0
+            and box.y1 <= inside.y1
+        )
     for (_, _, one), (_, _, other) in itertools.combinations(texts, 2):
         assert not one.overlaps(other)
     plt.close(figure)

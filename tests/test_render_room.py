@@ -28,7 +28,11 @@ ROOT = Path(__file__).resolve().parent.parent
 T = WALL_THICKNESS
 
 #: A 5 x 4 m room with a door in the south wall and a window in the north wall.
-RECTANGLE = Room.rectangle(5, 4).with_opening("door", "south", 1.0, 0.9).with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
+RECTANGLE = (
+    Room.rectangle(5, 4)
+    .with_opening("door", "south", 1.0, 0.9)
+    .with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
+)
 #: An L-shaped room (6 x 5 m less a 3 x 2 m notch at the south-east): a door in the
 #: notch's south-facing wall, a window in the north wall, a second door at the west
 #: wall's end (reaching its corner) and a window in the notch's east-facing wall.
@@ -45,7 +49,10 @@ ROOMS = {"rectangle": RECTANGLE, "L-shaped": L_SHAPED}
 def ray_hits(mesh: trimesh.Trimesh, origins, directions) -> np.ndarray:
     """(R,) whether each ray (origins and directions (R, 3)) meets ``mesh``, by the
     Moller-Trumbore test against every triangle at once (the meshes here are small)."""
-    origins, directions = np.atleast_2d(origins).astype(float), np.atleast_2d(directions).astype(float)
+    origins, directions = (
+        np.atleast_2d(origins).astype(float),
+        np.atleast_2d(directions).astype(float),
+    )
     a, b, c = (mesh.triangles[:, k][None] for k in range(3))  # (1, T, 3)
     e1, e2 = b - a, c - a
     p = np.cross(directions[:, None], e2)
@@ -80,15 +87,25 @@ def test_walls_have_holes_where_their_openings_are(name):
     for wall in room.walls:
         mesh = wall_mesh(room, wall)
         u, v = np.array([wall.to_wall(x, z) for x, z in mesh.vertices[:, [0, 2]]]).T
-        assert v.min() == pytest.approx(-T) and v.max() == pytest.approx(0.0)  # behind the inner face
+        assert v.min() == pytest.approx(-T) and v.max() == pytest.approx(
+            0.0
+        )  # behind the inner face
         assert mesh.bounds[0][1] == 0.0 and mesh.bounds[1][1] == pytest.approx(wall.height)
         openings = room.openings_on(wall.id)
         solid = [(wall.length * f, y) for f in (0.02, 0.5, 0.98) for y in (0.1, 1.3, 2.5)]
-        solid = [(s, y) for s, y in solid if not any(abs(s - o.offset) < o.width / 2 + 0.05 for o in openings)]
+        solid = [
+            (s, y)
+            for s, y in solid
+            if not any(abs(s - o.offset) < o.width / 2 + 0.05 for o in openings)
+        ]
         hole, around = [], []
         for o in openings:
             u0, u1 = o.offset - o.width / 2, o.offset + o.width / 2
-            hole += [(o.offset, (o.sill + o.top) / 2), (u0 + 0.02, o.sill + 0.02), (u1 - 0.02, o.top - 0.02)]
+            hole += [
+                (o.offset, (o.sill + o.top) / 2),
+                (u0 + 0.02, o.sill + 0.02),
+                (u1 - 0.02, o.top - 0.02),
+            ]
             around += [(u0 - 0.05, 1.0), (u1 + 0.05, 1.0), (o.offset, o.top + 0.05)]
             if o.sill > 0.05:
                 around.append((o.offset, o.sill - 0.05))
@@ -106,14 +123,18 @@ def test_walls_close_every_corner_without_overlapping(name):
     walls = trimesh.util.concatenate([wall_mesh(plain, wall) for wall in plain.walls])
     # An orthogonal room's walls fill its outline grown by the thickness: the perimeter
     # times the thickness, plus a square of it at each convex corner, less one at each reflex one.
-    turns = [plain.convex_corner(plain.walls[k - 1], plain.walls[k]) for k in range(len(plain.walls))]
+    turns = [
+        plain.convex_corner(plain.walls[k - 1], plain.walls[k]) for k in range(len(plain.walls))
+    ]
     convex = sum(turns)
     perimeter = sum(w.length for w in plain.walls)
     ring = perimeter * T + (convex - (len(turns) - convex)) * T * T
     assert walls.volume == pytest.approx(ring * plain.height, rel=1e-9)
     # With the openings cut (one reaches a corner): exactly their holes less, no piece overlapping another.
     cut = trimesh.util.concatenate([wall_mesh(room, wall) for wall in room.walls])
-    assert cut.volume == pytest.approx(walls.volume - sum(o.width * o.height * T for o in room.openings), rel=1e-9)
+    assert cut.volume == pytest.approx(
+        walls.volume - sum(o.width * o.height * T for o in room.openings), rel=1e-9
+    )
     # Looking straight down at each corner's outer square, on either side of the mitre: wall.
     down = np.array([0.0, -1.0, 0.0])
     for k, second in enumerate(plain.walls):
@@ -134,7 +155,9 @@ def test_the_floor_is_the_room_polygon():
     top = floor.area_faces[floor.face_normals[:, 1] > 0.99].sum()
     assert top == pytest.approx(L_SHAPED.area)  # 6 x 5 less the 3 x 2 notch
     down = np.array([[0.0, -1.0, 0.0]] * 2)
-    assert not ray_hits(floor, [[2.0, 1.0, 1.5], [1.0, 1.0, 2.0]], down).any()  # the notch: no floor
+    assert not ray_hits(
+        floor, [[2.0, 1.0, 1.5], [1.0, 1.0, 2.0]], down
+    ).any()  # the notch: no floor
     assert ray_hits(floor, [[-2.0, 1.0, 1.5], [2.0, 1.0, -1.5]], down).all()
 
 
@@ -148,10 +171,16 @@ def test_doors_and_windows_fill_their_holes_and_stay_out_of_the_room(name):
         u, v = np.array([wall.to_wall(x, z) for x, z in mesh.vertices[:, [0, 2]]]).T
         assert u.min() == pytest.approx(opening.offset - opening.width / 2)
         assert u.max() == pytest.approx(opening.offset + opening.width / 2)
-        assert v.min() == pytest.approx(-T) and v.max() <= 1e-9  # within the wall: never in the swing zone
-        assert mesh.bounds[0][1] == pytest.approx(opening.sill) and mesh.bounds[1][1] == pytest.approx(opening.top)
+        assert (
+            v.min() == pytest.approx(-T) and v.max() <= 1e-9
+        )  # within the wall: never in the swing zone
+        assert mesh.bounds[0][1] == pytest.approx(opening.sill) and mesh.bounds[1][
+            1
+        ] == pytest.approx(opening.top)
         # A ray through the middle meets the door leaf or the window pane.
-        assert ray_hits(mesh, *through(wall, [(opening.offset, (opening.sill + opening.top) / 2)])).all()
+        assert ray_hits(
+            mesh, *through(wall, [(opening.offset, (opening.sill + opening.top) / 2)])
+        ).all()
 
 
 # -- cameras ------------------------------------------------------------------------------
@@ -163,12 +192,16 @@ def looks_from(camera: Camera) -> np.ndarray:
     return back / np.linalg.norm(back)
 
 
-@pytest.mark.parametrize("side, outward", [("south", (0, 1)), ("north", (0, -1)), ("east", (1, 0)), ("west", (-1, 0))])
+@pytest.mark.parametrize(
+    "side, outward", [("south", (0, 1)), ("north", (0, -1)), ("east", (1, 0)), ("west", (-1, 0))]
+)
 def test_the_perspective_camera_looks_in_through_the_door_wall(side, outward):
     room = Room.rectangle(5, 4).with_opening("door", side, 1.0, 0.9)
     camera = frame_scene(scene_of([], room=room), "perspective", 96, 96)
     towards = looks_from(camera)
-    assert towards @ np.array(outward) == pytest.approx(math.cos(AZIMUTH))  # from the door's side...
+    assert towards @ np.array(outward) == pytest.approx(
+        math.cos(AZIMUTH)
+    )  # from the door's side...
     turn = outward[0] * towards[1] - outward[1] * towards[0]
     assert turn < 0  # ... turned to the right, as the south-east view is turned from the south
     drawn = {wall.id for wall in walls_in_view(room, camera.pose[:3, 2])}
@@ -189,9 +222,9 @@ def test_a_room_with_a_south_door_is_seen_from_the_south_and_its_windows_face_th
 def test_without_a_door_the_camera_faces_the_window_and_without_either_it_looks_from_the_south_east():
     windowed = Room.rectangle(5, 4).with_opening("window", "north", 2.5, 1.0, 1.0, 1.0)
     assert room_azimuth(windowed) == pytest.approx(AZIMUTH)  # from the south, across the room
-    assert room_azimuth(Room.rectangle(5, 4).with_opening("window", "east", 2.0, 1.0, 1.0, 1.0)) == pytest.approx(
-        AZIMUTH - math.pi / 2
-    )
+    assert room_azimuth(
+        Room.rectangle(5, 4).with_opening("window", "east", 2.0, 1.0, 1.0, 1.0)
+    ) == pytest.approx(AZIMUTH - math.pi / 2)
     assert room_azimuth(Room.rectangle(5, 4)) == room_azimuth(None) == AZIMUTH
 
 
@@ -199,7 +232,9 @@ def test_without_a_door_the_camera_faces_the_window_and_without_either_it_looks_
 def test_the_top_view_of_a_room_is_north_up_and_shows_every_wall(name):
     room = ROOMS[name]
     camera = frame_scene(scene_of([], room=room), "top", 96, 96)
-    north, south, east, west = camera.project([[0, 0, -2.0], [0, 0, 2.0], [2.0, 0, 0], [-2.0, 0, 0]])[0]
+    north, south, east, west = camera.project(
+        [[0, 0, -2.0], [0, 0, 2.0], [2.0, 0, 0], [-2.0, 0, 0]]
+    )[0]
     assert north[1] < south[1] and east[0] > west[0] and north[0] == pytest.approx(south[0])
     assert len(walls_in_view(room, camera.pose[:3, 2])) == len(room.walls)
     outer = [[x + dx, 2.6, z + dz] for x, z in room.corners for dx in (-T, T) for dz in (-T, T)]
@@ -237,11 +272,11 @@ def test_doors_and_windows_are_entities_with_ids_boxes_and_visible_fractions(ren
     camera = Camera.from_dict(result.camera)
     for index, opening in ((3, RECTANGLE.windows[0]), (4, two_door_room().room.doors[1])):
         x, z = opening.center
-        (u, v), = camera.project([[x, (opening.sill + opening.top) / 2, z]])[0]
+        ((u, v),) = camera.project([[x, (opening.sill + opening.top) / 2, z]])[0]
         assert result.segmentation[int(v), int(u)] == index, opening.id
     # The wall around the window is backdrop.
     x, z = RECTANGLE.part("wall_1").to_world(0.4, 0.0)
-    (u, v), = camera.project([[x, 1.0, z]])[0]
+    ((u, v),) = camera.project([[x, 1.0, z]])[0]
     assert result.segmentation[int(v), int(u)] == 0
 
 
@@ -250,7 +285,9 @@ def test_furniture_in_front_of_a_door_hides_part_of_it(renderer):
     door = scene.room.doors[1]
     camera = frame_scene(scene, "perspective", 96, 96)
     towards = camera.pose[:3, 3] - np.array([door.center[0], 1.0, door.center[1]])
-    x, _, z = np.array([door.center[0], 0.0, door.center[1]]) + towards / np.linalg.norm(towards) * 1.2
+    x, _, z = (
+        np.array([door.center[0], 0.0, door.center[1]]) + towards / np.linalg.norm(towards) * 1.2
+    )
     scene.objects.append(thing("wardrobe_1", (x, 0.0, z), (0.5, 1.4, 0.5)))
     result = renderer.render(scene)
     assert 0.0 < result.visible["door_2"] < 0.9
@@ -281,7 +318,14 @@ def test_the_glb_has_named_wall_door_and_window_nodes(tmp_path):
     data = glb_bytes(scene)
     loaded = trimesh.load(io.BytesIO(data), file_type="glb")
     names = set(loaded.graph.nodes_geometry)
-    assert names == {"crate_1", *(w.id for w in L_SHAPED.walls), "door_1", "door_2", "window_1", "window_2"}
+    assert names == {
+        "crate_1",
+        *(w.id for w in L_SHAPED.walls),
+        "door_1",
+        "door_2",
+        "window_1",
+        "window_2",
+    }
     length = int.from_bytes(data[12:16], "little")
     nodes = {node["name"]: node for node in json.loads(data[20 : 20 + length])["nodes"]}
     assert nodes["door_1"]["extras"] == {"id": "door_1", "kind": "door", "wall": "wall_3"}
@@ -294,7 +338,9 @@ def test_the_glb_has_named_wall_door_and_window_nodes(tmp_path):
         mesh.apply_transform(world)
         assert np.allclose(mesh.bounds, wall_mesh(L_SHAPED, wall).bounds, atol=1e-6)
         for opening in L_SHAPED.openings_on(wall.id):
-            assert not ray_hits(mesh, *through(wall, [(opening.offset, (opening.sill + opening.top) / 2)])).any()
+            assert not ray_hits(
+                mesh, *through(wall, [(opening.offset, (opening.sill + opening.top) / 2)])
+            ).any()
         world_door, _ = loaded.graph["door_1"]
         assert np.allclose(world_door, opening_transform(L_SHAPED, L_SHAPED.part("door_1")))
     path = tmp_path / "room.glb"
@@ -310,8 +356,11 @@ def _validate_if_possible(path: Path) -> None:
         return
     done = subprocess.run(
         [node, str(ROOT / "tests" / "validate_gltf.js"), str(path)],
-        env=dict(os.environ, NODE_PATH=str(modules)), capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+        env=dict(os.environ, NODE_PATH=str(modules)),
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     issues = json.loads(done.stdout)["issues"]
     assert issues["numErrors"] == 0 and issues["numWarnings"] == 0, issues["messages"]

@@ -10,7 +10,8 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import example, given, settings, strategies as st
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
@@ -45,25 +46,38 @@ CRATE = dict(size=(0.5, 1.0, 0.5), access=())
 def bedroom() -> Room:
     """5 x 4 centred on the origin: a 0.9 m door in the south wall at x = 1.5 (its swing
     x 1.05..1.95, z 1.1..2.0), a window in the north wall."""
-    return Room.rectangle(5, 4).with_opening("door", "south", 1.0, 0.9).with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
+    return (
+        Room.rectangle(5, 4)
+        .with_opening("door", "south", 1.0, 0.9)
+        .with_opening("window", "north", 2.5, 1.4, 1.2, 0.9)
+    )
 
 
 def rotated(angle: float = math.radians(30.0)) -> Room:
     """The 5 x 4 rectangle turned by ``angle``, with a door in its south wall (wall_3)."""
     c, s = math.cos(angle), math.sin(angle)
-    corners_ = [(x * c - z * s, x * s + z * c) for x, z in ((-2.5, -2.0), (2.5, -2.0), (2.5, 2.0), (-2.5, 2.0))]
+    corners_ = [
+        (x * c - z * s, x * s + z * c)
+        for x, z in ((-2.5, -2.0), (2.5, -2.0), (2.5, 2.0), (-2.5, 2.0))
+    ]
     return Room.polygon(corners_).with_opening("door", "wall_3", 1.0, 0.9)
 
 
 def l_shaped() -> Room:
     """6 x 5 less a 3 x 2 notch; centred, its corners are (-3, -2.5), (3, -2.5), (3, 0.5),
     (0, 0.5) (the reflex corner), (0, 2.5), (-3, 2.5). A door at x = -2 in the north wall."""
-    return Room.polygon([(0, 0), (6, 0), (6, 3), (3, 3), (3, 5), (0, 5)]).with_opening("door", "wall_1", 1.0, 0.9)
+    return Room.polygon([(0, 0), (6, 0), (6, 3), (3, 3), (3, 5), (0, 5)]).with_opening(
+        "door", "wall_1", 1.0, 0.9
+    )
 
 
 def graph_of(room: Room | None, *objects, square: bool = True) -> SceneGraph:
     """A graph with one object per (name, fields) pair; ids are name_1, name_2, ..."""
-    params = SceneParams(extent=room.extent, room=room, square=square) if room else SceneParams(extent=(20.0, 20.0))
+    params = (
+        SceneParams(extent=room.extent, room=room, square=square)
+        if room
+        else SceneParams(extent=(20.0, 20.0))
+    )
     graph = SceneGraph(params)
     for name, fields in objects:
         graph.add_node(CatalogEntry(name, "object", name, **fields))
@@ -84,7 +98,9 @@ def energy_at(graph: SceneGraph, poses: dict) -> Energy:
 
 def measured(graph: SceneGraph, poses: dict):
     """``measure_layout`` of the objects at {id: (x, z, yaw in degrees)}."""
-    return measure_layout(graph, {k: Pose(x, 0.0, z, math.radians(yaw)) for k, (x, z, yaw) in poses.items()}, {})
+    return measure_layout(
+        graph, {k: Pose(x, 0.0, z, math.radians(yaw)) for k, (x, z, yaw) in poses.items()}, {}
+    )
 
 
 def assert_cached_parts_true(energy: Energy) -> None:
@@ -101,7 +117,9 @@ def test_a_box_on_the_floor_costs_nothing_and_one_through_a_wall_is_reported():
     inside = energy_at(graph, {"desk_1": (0.0, -1.7, 0.0)})
     assert inside.parts["walls"] == 0.0 and inside.parts["extent"] == 0.0
     through = measured(graph, {"desk_1": (0.0, -1.9, 0.0)})  # back 0.2 m into the north wall
-    assert through.parts["walls"] > 0.0 and through.parts["extent"] == 0.0  # the walls replace the extent
+    assert (
+        through.parts["walls"] > 0.0 and through.parts["extent"] == 0.0
+    )  # the walls replace the extent
     assert through.problems == ["desk_1 crosses the wall"] and not through.ok
 
 
@@ -125,16 +143,22 @@ def test_in_an_l_shaped_room_a_box_may_not_cross_the_inner_corner():
     energy = energy_at(graph, {"crate_1": (-0.05, 0.45, 45.0)})
     assert all(l_shaped().contains(x, z) for x, z in corners(energy.state.rects[0]))
     assert energy.room.wall_excess(0) == pytest.approx(0.3 / math.sqrt(2.0), abs=1e-3)
-    assert measured(graph, {"crate_1": (-0.05, 0.45, 45.0)}).problems == ["crate_1 crosses the wall"]
+    assert measured(graph, {"crate_1": (-0.05, 0.45, 45.0)}).problems == [
+        "crate_1 crosses the wall"
+    ]
     clear = energy_at(graph, {"crate_1": (-1.0, 0.0, 45.0)})
     assert clear.parts["walls"] == 0.0
 
 
 @settings(max_examples=40, deadline=None)
 @given(
-    x=st.floats(-3.5, 3.5), z=st.floats(-3.0, 3.0), yaw=st.floats(-math.pi, math.pi),
-    width=st.floats(0.1, 2.0), depth=st.floats(0.1, 2.0), shape=st.sampled_from(["rectangle", "l", "rotated"]),
-)  # fmt: skip
+    x=st.floats(-3.5, 3.5),
+    z=st.floats(-3.0, 3.0),
+    yaw=st.floats(-math.pi, math.pi),
+    width=st.floats(0.1, 2.0),
+    depth=st.floats(0.1, 2.0),
+    shape=st.sampled_from(["rectangle", "l", "rotated"]),
+)
 def test_the_energy_measures_wall_crossing_as_the_room_does(x, z, yaw, width, depth, shape):
     room = {"rectangle": bedroom, "l": l_shaped, "rotated": rotated}[shape]()
     rect = make_rect(x, z, width, depth, yaw)
@@ -146,9 +170,10 @@ def test_the_energy_measures_wall_crossing_as_the_room_does(x, z, yaw, width, de
 
 def test_square_costs_nothing_on_the_axes_and_grows_with_the_angle_off_them():
     graph = graph_of(bedroom(), ("crate", CRATE))
-    assert [energy_at(graph, {"crate_1": (0.0, 0.0, yaw)}).parts["square"] for yaw in (0.0, 90.0, -180.0)] == [
-        pytest.approx(0.0, abs=1e-12)
-    ] * 3
+    assert [
+        energy_at(graph, {"crate_1": (0.0, 0.0, yaw)}).parts["square"]
+        for yaw in (0.0, 90.0, -180.0)
+    ] == [pytest.approx(0.0, abs=1e-12)] * 3
     fifteen = energy_at(graph, {"crate_1": (0.0, 0.0, 15.0)}).parts["square"]
     thirty = energy_at(graph, {"crate_1": (0.0, 0.0, -60.0)}).parts["square"]
     most = energy_at(graph, {"crate_1": (0.0, 0.0, 45.0)}).parts["square"]
@@ -159,8 +184,12 @@ def test_square_costs_nothing_on_the_axes_and_grows_with_the_angle_off_them():
 def test_square_follows_a_rotated_room_and_can_be_switched_off():
     # Turned by 30 degrees, the walls run at yaws 60 and -30 (mod 90).
     graph = graph_of(rotated(math.radians(30.0)), ("crate", CRATE))
-    assert energy_at(graph, {"crate_1": (0.0, 0.0, -30.0)}).parts["square"] == pytest.approx(0.0, abs=1e-12)
-    assert energy_at(graph, {"crate_1": (0.0, 0.0, 60.0)}).parts["square"] == pytest.approx(0.0, abs=1e-12)
+    assert energy_at(graph, {"crate_1": (0.0, 0.0, -30.0)}).parts["square"] == pytest.approx(
+        0.0, abs=1e-12
+    )
+    assert energy_at(graph, {"crate_1": (0.0, 0.0, 60.0)}).parts["square"] == pytest.approx(
+        0.0, abs=1e-12
+    )
     assert energy_at(graph, {"crate_1": (0.0, 0.0, 0.0)}).parts["square"] > 2.0
     loose = graph_of(bedroom(), ("crate", CRATE), square=False)
     assert energy_at(loose, {"crate_1": (0.0, 0.0, 30.0)}).parts["square"] == 0.0
@@ -173,7 +202,10 @@ def wardrobe_and(other: str, fields: dict, at: tuple, *, relation: str | None = 
     graph = graph_of(bedroom(), ("wardrobe", WARDROBE), (other, fields))
     if relation:
         graph.add_relation(f"{other}_1", "wardrobe_1", relation)
-    return graph, {"wardrobe_1": (-1.5, -1.7, 0.0), f"{other}_1": at}  # against the north wall, facing south
+    return graph, {
+        "wardrobe_1": (-1.5, -1.7, 0.0),
+        f"{other}_1": at,
+    }  # against the north wall, facing south
 
 
 def test_a_box_in_the_space_kept_free_in_front_is_charged_and_reported():
@@ -200,14 +232,18 @@ def test_turned_furniture_keeps_its_space_on_its_own_side():
     east_of_it = measured(graph, {"wardrobe_1": west, "crate_1": (-1.4, 0.0, 0.0)})
     assert east_of_it.problems == ["crate_1 stands in the space kept free in front of wardrobe_1"]
     north_of_it = measured(graph, {"wardrobe_1": west, "crate_1": (-2.2, -0.9, 0.0)})
-    assert north_of_it.problems == ["crate_1 stands in the space kept free to the left of wardrobe_1"]
+    assert north_of_it.problems == [
+        "crate_1 stands in the space kept free to the left of wardrobe_1"
+    ]
     south_of_it = measured(graph, {"wardrobe_1": west, "crate_1": (-2.2, 0.9, 0.0)})
     assert south_of_it.parts["clearance"] == 0.0 and south_of_it.ok
 
 
 def test_a_space_kept_free_against_a_wall_is_charged():
     graph = graph_of(bedroom(), ("wardrobe", dict(WARDROBE, access=())))
-    facing_wall = measured(graph, {"wardrobe_1": (-1.5, -1.4, 180.0)})  # doors 0.3 m from the north wall
+    facing_wall = measured(
+        graph, {"wardrobe_1": (-1.5, -1.4, 180.0)}
+    )  # doors 0.3 m from the north wall
     assert facing_wall.parts["clearance"] > 0.0
     assert facing_wall.problems == ["the space kept free in front of wardrobe_1 runs into the wall"]
     assert measured(graph, {"wardrobe_1": (-1.5, -1.7, 0.0)}).parts["clearance"] == 0.0
@@ -221,7 +257,9 @@ def test_the_door_swing_is_kept_free_of_tall_boxes_only():
     blocking = measured(graph, {"bed_1": (1.5, 0.8, 0.0), "rug_1": (-1.0, 0.0, 0.0)})
     assert blocking.parts["door_swing"] > 0.0 and not blocking.ok
     assert "bed_1 stands in the swing of door_1" in blocking.problems
-    beside = measured(graph, {"bed_1": (0.1, 0.8, 0.0), "rug_1": (1.5, 1.5, 0.0)})  # the rug lies in the swing
+    beside = measured(
+        graph, {"bed_1": (0.1, 0.8, 0.0), "rug_1": (1.5, 1.5, 0.0)}
+    )  # the rug lies in the swing
     assert beside.parts["door_swing"] == 0.0 and beside.ok, beside.problems
 
 
@@ -232,7 +270,10 @@ def test_a_door_in_a_rotated_room_swings_into_the_room():
     graph = graph_of(room, ("crate", CRATE))
     x, z = wall.to_world(door.offset, 0.45)
     yaw = math.degrees(wall.facing_yaw)
-    assert "crate_1 stands in the swing of door_1" in measured(graph, {"crate_1": (x, z, yaw)}).problems
+    assert (
+        "crate_1 stands in the swing of door_1"
+        in measured(graph, {"crate_1": (x, z, yaw)}).problems
+    )
     x, z = wall.to_world(door.offset + 1.2, 0.45)
     assert measured(graph, {"crate_1": (x, z, yaw)}).parts["door_swing"] == 0.0
 
@@ -248,7 +289,9 @@ def test_a_tall_box_before_a_window_pays_and_the_layout_stays_ok():
     assert before.parts["windows"] > 0.0 and before.ok, before.problems  # soft: no rule is broken
     beside = measured(graph, {"wardrobe_1": (-1.6, -1.7, 0.0), "desk_1": (0.0, -1.7, 0.0)})
     assert beside.parts["windows"] == 0.0
-    away = measured(graph, {"wardrobe_1": (0.0, -1.0, 0.0), "desk_1": (-1.8, -1.7, 0.0)})  # 0.7 m off the wall
+    away = measured(
+        graph, {"wardrobe_1": (0.0, -1.0, 0.0), "desk_1": (-1.8, -1.7, 0.0)}
+    )  # 0.7 m off the wall
     assert away.parts["windows"] == 0.0
 
 
@@ -272,7 +315,11 @@ def sized_barrier(gap: float, thickness: float = 0.5):
     width = 2.5 - gap / 2.0
     sideboard = dict(size=(width, 1.0, thickness), access=())
     graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("left", sideboard), ("right", sideboard))
-    poses = {"wardrobe_1": (1.0, -1.7, 0.0), "left_1": (-2.5 + width / 2.0, 0.0, 0.0), "right_1": (2.5 - width / 2.0, 0.0, 0.0)}
+    poses = {
+        "wardrobe_1": (1.0, -1.7, 0.0),
+        "left_1": (-2.5 + width / 2.0, 0.0, 0.0),
+        "right_1": (2.5 - width / 2.0, 0.0, 0.0),
+    }
     return graph, poses
 
 
@@ -311,7 +358,9 @@ def test_an_object_boxed_in_behind_others_is_unreachable():
 def test_access_sides_count_only_the_sides_named():
     desk = dict(DESK, clearance=())
     graph = graph_of(bedroom(), ("desk", desk))
-    facing_wall = measured(graph, {"desk_1": (0.0, -1.5, 180.0)})  # its front 0.2 m from the north wall
+    facing_wall = measured(
+        graph, {"desk_1": (0.0, -1.5, 180.0)}
+    )  # its front 0.2 m from the north wall
     assert facing_wall.problems == ["desk_1 cannot be reached from the door (no 0.6 m wide way)"]
     assert measured(graph, {"desk_1": (0.0, -1.7, 0.0)}).ok
     anywhere = graph_of(bedroom(), ("desk", dict(desk, access=("any",))))
@@ -320,21 +369,30 @@ def test_access_sides_count_only_the_sides_named():
 
 def test_what_nobody_needs_to_reach_and_rooms_without_doors_cost_nothing():
     closed = graph_of(Room.rectangle(5, 4), ("wardrobe", WARDROBE), ("left", CRATE))
-    assert measured(closed, {"wardrobe_1": (0.0, -1.7, 0.0), "left_1": (0.0, -1.0, 0.0)}).parts["access"] == 0.0
+    assert (
+        measured(closed, {"wardrobe_1": (0.0, -1.7, 0.0), "left_1": (0.0, -1.0, 0.0)}).parts[
+            "access"
+        ]
+        == 0.0
+    )
     crate = graph_of(bedroom(), ("crate", CRATE), ("left", dict(size=(5.0, 1.0, 0.5), access=())))
     walled_off = measured(crate, {"crate_1": (0.0, -1.5, 0.0), "left_1": (0.0, 0.0, 0.0)})
     assert walled_off.parts["access"] == 0.0
 
 
 def test_a_blocked_door_leaves_everything_unreachable():
-    graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("crate", dict(size=(1.6, 1.0, 1.0), access=())))
+    graph = graph_of(
+        bedroom(), ("wardrobe", WARDROBE), ("crate", dict(size=(1.6, 1.0, 1.0), access=()))
+    )
     result = measured(graph, {"wardrobe_1": (-1.5, -1.7, 0.0), "crate_1": (1.5, 1.5, 0.0)})
     assert "crate_1 stands in the swing of door_1" in result.problems
     assert "wardrobe_1 cannot be reached from the door (no 0.6 m wide way)" in result.problems
 
 
 def test_reachability_in_an_l_shaped_room_goes_round_the_corner():
-    graph = graph_of(l_shaped(), ("wardrobe", WARDROBE), ("crate", dict(size=(3.0, 1.0, 0.5), access=())))
+    graph = graph_of(
+        l_shaped(), ("wardrobe", WARDROBE), ("crate", dict(size=(3.0, 1.0, 0.5), access=()))
+    )
     # The wardrobe in the far leg (south-west), facing north; the door is in the north wall.
     open_way = measured(graph, {"wardrobe_1": (-1.5, 2.2, 180.0), "crate_1": (1.5, -1.0, 0.0)})
     assert open_way.parts["access"] == 0.0, open_way.problems
@@ -362,10 +420,16 @@ def brute_cells(grid: AccessGrid, rect: Rect, inside) -> int:
 
 @settings(max_examples=40, deadline=None)
 @given(
-    x=st.floats(-2.2, 2.2), z=st.floats(-1.7, 1.7), width=st.floats(0.2, 2.0), depth=st.floats(0.2, 1.5),
-    turn=st.integers(0, 3), side=st.sampled_from(["front", "back", "left", "right"]),
-)  # fmt: skip
-@example(x=0.0, z=0.28125, width=1.0, depth=0.95, turn=0, side="front")  # cell centres on the boundaries
+    x=st.floats(-2.2, 2.2),
+    z=st.floats(-1.7, 1.7),
+    width=st.floats(0.2, 2.0),
+    depth=st.floats(0.2, 1.5),
+    turn=st.integers(0, 3),
+    side=st.sampled_from(["front", "back", "left", "right"]),
+)
+@example(
+    x=0.0, z=0.28125, width=1.0, depth=0.95, turn=0, side="front"
+)  # cell centres on the boundaries
 @example(x=0.0, z=0.375, width=1.0, depth=0.75, turn=0, side="front")
 @example(x=0.0, z=0.0, width=1.0, depth=1.5, turn=0, side="front")
 def test_rasters_cover_the_cells_near_the_footprint(x, z, width, depth, turn, side):
@@ -378,13 +442,19 @@ def test_rasters_cover_the_cells_near_the_footprint(x, z, width, depth, turn, si
         def inside(lx, lz):
             d2 = np.maximum(np.abs(lx) - hw, 0.0) ** 2 + np.maximum(np.abs(lz) - hd, 0.0) ** 2
             return d2 < r * r if strict else d2 <= r * r
+
         return inside
 
     def band(slack):
         def inside(lx, lz):
             if side in ("front", "back"):
-                return (np.abs(lx) <= hw + slack) & (np.abs(lz - (hd if side == "front" else -hd)) <= near + slack)
-            return (np.abs(lz) <= hd + slack) & (np.abs(lx - (hw if side == "left" else -hw)) <= near + slack)
+                return (np.abs(lx) <= hw + slack) & (
+                    np.abs(lz - (hd if side == "front" else -hd)) <= near + slack
+                )
+            return (np.abs(lz) <= hd + slack) & (
+                np.abs(lx - (hw if side == "left" else -hw)) <= near + slack
+            )
+
         return inside
 
     # A cell centre exactly on a boundary (x = 0, width 1 on a 0.1 m grid) may fall
@@ -397,11 +467,21 @@ def test_rasters_cover_the_cells_near_the_footprint(x, z, width, depth, turn, si
         bits = raster.bits & on_grid
         assert bits & inner == inner and bits & ~outer == 0
 
-    between(grid.obstacle(rect), brute_cells(grid, rect, within(CORRIDOR_HALF - hair, True)),
-            brute_cells(grid, rect, within(CORRIDOR_HALF + hair, True)))
-    between(grid.access(rect, ("any",)), brute_cells(grid, rect, within(near - hair, False)),
-            brute_cells(grid, rect, within(near + hair, False)))
-    between(grid.access(rect, (side,)), brute_cells(grid, rect, band(-hair)), brute_cells(grid, rect, band(hair)))
+    between(
+        grid.obstacle(rect),
+        brute_cells(grid, rect, within(CORRIDOR_HALF - hair, True)),
+        brute_cells(grid, rect, within(CORRIDOR_HALF + hair, True)),
+    )
+    between(
+        grid.access(rect, ("any",)),
+        brute_cells(grid, rect, within(near - hair, False)),
+        brute_cells(grid, rect, within(near + hair, False)),
+    )
+    between(
+        grid.access(rect, (side,)),
+        brute_cells(grid, rect, band(-hair)),
+        brute_cells(grid, rect, band(hair)),
+    )
 
 
 @settings(max_examples=30, deadline=None)
@@ -411,7 +491,13 @@ def test_growing_from_the_doors_finds_what_labelling_finds(seed):
     grid = AccessGrid(bedroom())
     taken = 0
     for _ in range(int(rng.integers(1, 12))):
-        rect = make_rect(rng.uniform(-2.5, 2.5), rng.uniform(-2, 2), rng.uniform(0.2, 2.0), rng.uniform(0.2, 1.5), rng.choice([0.0, math.pi / 2, rng.uniform(-3, 3)]))
+        rect = make_rect(
+            rng.uniform(-2.5, 2.5),
+            rng.uniform(-2, 2),
+            rng.uniform(0.2, 2.0),
+            rng.uniform(0.2, 1.5),
+            rng.choice([0.0, math.pi / 2, rng.uniform(-3, 3)]),
+        )
         taken |= grid.obstacle(rect).bits
     free = grid.static & ~taken
     assert grid.flood(grid.seeds & free, free) == grid.label(free)
@@ -426,12 +512,24 @@ def test_a_window_whose_ring_is_one_arc_cuts_no_way(seed):
     grid = AccessGrid(l_shaped())
     taken = 0
     for _ in range(int(rng.integers(2, 10))):  # (some near the door, whose cells a window may hold)
-        rect = make_rect(rng.uniform(-3, 3), rng.uniform(-2.5, 2.5), rng.uniform(0.2, 1.5), rng.uniform(0.2, 1.5), 0.0)
+        rect = make_rect(
+            rng.uniform(-3, 3),
+            rng.uniform(-2.5, 2.5),
+            rng.uniform(0.2, 1.5),
+            rng.uniform(0.2, 1.5),
+            0.0,
+        )
         taken |= grid.obstacle(rect).bits
     free = grid.static & ~taken
     reach = grid.label(free)
     for _ in range(10):
-        rect = make_rect(rng.uniform(-3, 3), rng.uniform(-2.5, 2.5), rng.uniform(0.2, 1.5), rng.uniform(0.2, 1.5), 0.0)
+        rect = make_rect(
+            rng.uniform(-3, 3),
+            rng.uniform(-2.5, 2.5),
+            rng.uniform(0.2, 1.5),
+            rng.uniform(0.2, 1.5),
+            0.0,
+        )
         window = grid.window(rect, CORRIDOR_HALF)
         if window[0] == window[1] or window[2] == window[3]:
             continue
@@ -448,7 +546,14 @@ def random_room_scene(seed: int) -> SceneGraph:
     wall and next-to relations."""
     rng = np.random.default_rng(seed)
     room = [bedroom, l_shaped, rotated][seed % 3]()
-    kinds = [("wardrobe", WARDROBE), ("desk", DESK), ("bed", BED), ("crate", CRATE), ("chair", CHAIR), ("rug", RUG)]
+    kinds = [
+        ("wardrobe", WARDROBE),
+        ("desk", DESK),
+        ("bed", BED),
+        ("crate", CRATE),
+        ("chair", CHAIR),
+        ("rug", RUG),
+    ]
     graph = graph_of(room)
     ids = []
     for _ in range(int(rng.integers(4, 8))):
@@ -460,7 +565,9 @@ def random_room_scene(seed: int) -> SceneGraph:
     return graph
 
 
-def check_moves(energy: Energy, mover, rng: np.random.Generator, moves: int, relocator=None, parts=ROOM_PARTS) -> None:
+def check_moves(
+    energy: Energy, mover, rng: np.random.Generator, moves: int, relocator=None, parts=ROOM_PARTS
+) -> None:
     """Random moves, each delta against full recomputation (in all and for each of ``parts``)."""
     for _ in range(moves):
         if relocator is not None and rng.random() < 0.3:
@@ -561,8 +668,12 @@ def test_deferred_access_gives_the_same_delta_and_the_same_decisions():
         energy.reject()
         calls = []
         original = energy.room._access_changes
-        energy.room._access_changes = lambda boxes: calls.append(boxes) or original(boxes)
-        decided = metropolis(energy, proposal, temperature, np.random.default_rng(seed).random, True)
+        energy.room._access_changes = lambda boxes, calls=calls, original=original: (
+            calls.append(boxes) or original(boxes)
+        )
+        decided = metropolis(
+            energy, proposal, temperature, np.random.default_rng(seed).random, True
+        )
         energy.room._access_changes = original
         skipped += not calls and any(problem.height[b] > 0.05 for b in proposal[0])
         assert decided == expected
@@ -592,8 +703,15 @@ def test_full_recomputation_mode_gives_the_same_room_deltas():
 
 def test_troubled_boxes_include_those_breaking_room_terms():
     graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("chair", CHAIR), ("bed", BED))
-    energy = energy_at(graph, {"wardrobe_1": (-1.5, -1.7, 0.0), "chair_1": (-1.5, -1.0, 0.0), "bed_1": (1.5, 0.8, 0.0)})
-    assert energy.troubled_boxes() == [0, 1, 2]  # the wardrobe owns the space the chair takes; the bed blocks the door
+    energy = energy_at(
+        graph,
+        {"wardrobe_1": (-1.5, -1.7, 0.0), "chair_1": (-1.5, -1.0, 0.0), "bed_1": (1.5, 0.8, 0.0)},
+    )
+    assert energy.troubled_boxes() == [
+        0,
+        1,
+        2,
+    ]  # the wardrobe owns the space the chair takes; the bed blocks the door
     graph, poses = sized_barrier(0.5)
     energy = energy_at(graph, poses)
     assert energy.troubled_boxes() == [0, 1, 2]  # out of reach, and the two hemming it in
@@ -603,7 +721,9 @@ def test_troubled_boxes_include_those_breaking_room_terms():
 
 
 def test_a_laid_out_room_keeps_its_door_and_spaces_free_and_measures_the_same():
-    graph = graph_of(bedroom(), ("wardrobe", WARDROBE), ("desk", DESK), ("chair", CHAIR), ("bed", BED))
+    graph = graph_of(
+        bedroom(), ("wardrobe", WARDROBE), ("desk", DESK), ("chair", CHAIR), ("bed", BED)
+    )
     graph.add_relation("wardrobe_1", "room", "AgainstWall")
     graph.add_relation("desk_1", "room", "UnderWindow")
     graph.add_relation("chair_1", "desk_1", "NextToFront")
@@ -612,11 +732,18 @@ def test_a_laid_out_room_keeps_its_door_and_spaces_free_and_measures_the_same():
     assert result.ok, result.problems
     assert all(result.parts[part] < 0.5 for part in ("walls", "clearance", "door_swing", "access"))
     again = measure_layout(graph, result.poses, {})
-    assert again.ok and again.problems == [] and again.parts == pytest.approx(result.parts, abs=1e-9)
+    assert (
+        again.ok and again.problems == [] and again.parts == pytest.approx(result.parts, abs=1e-9)
+    )
 
 
 def test_a_bed_whose_free_side_is_taken_moves_with_what_stands_by_it():
-    graph = graph_of(bedroom(), ("bed", dict(BED, clearance=(("left", 0.5),))), ("nightstand", CRATE), ("rug", RUG))
+    graph = graph_of(
+        bedroom(),
+        ("bed", dict(BED, clearance=(("left", 0.5),))),
+        ("nightstand", CRATE),
+        ("rug", RUG),
+    )
     graph.add_relation("bed_1", "room", "InCorner")
     graph.add_relation("nightstand_1", "bed_1", "NextToRight")
     graph.add_relation("rug_1", "bed_1", "NextToFront")
@@ -635,7 +762,9 @@ def test_a_bed_whose_free_side_is_taken_moves_with_what_stands_by_it():
         boxes, paths = relocator.propose([0])
         assert set(boxes) == {0, 1, 2} and paths == {}
         for satellite in (1, 2):  # where it was relative to the bed
-            assert in_bed_frame(boxes, satellite) == pytest.approx(in_bed_frame(before, satellite), abs=1e-9)
+            assert in_bed_frame(boxes, satellite) == pytest.approx(
+                in_bed_frame(before, satellite), abs=1e-9
+            )
 
 
 def test_outdoors_the_room_parts_are_zero_and_build_nothing():
@@ -646,4 +775,6 @@ def test_outdoors_the_room_parts_are_zero_and_build_nothing():
     assert all(energy.full()[part] == 0.0 for part in ROOM_PARTS)
     result = layout_scene(graph, 3, params=LayoutParams(restarts=0))
     assert all(result.parts[part] == 0.0 for part in ROOM_PARTS)
-    assert result.energy == pytest.approx(sum(v for k, v in result.parts.items() if k not in ROOM_PARTS), abs=0.0)
+    assert result.energy == pytest.approx(
+        sum(v for k, v in result.parts.items() if k not in ROOM_PARTS), abs=0.0
+    )

@@ -14,6 +14,8 @@ import trimesh
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+
+from scenewright.core.errors import InputError
 from scenewright.generator import (
     RulesError,
     check_rules,
@@ -22,15 +24,13 @@ from scenewright.generator import (
     rules_parser,
 )
 
-from scenewright.core.errors import InputError
-
 RULES = Path(__file__).parent / "rules"
 
 HEADER = 'scene s { start S }\nobject table { noun "table" }\n# the lines under test:\n'
 
 GOLDEN = {
     "label": (
-        "S -> {\n    table as t\n    sign NextTwo t\n}\nobject sign { noun \"sign\" }",
+        'S -> {\n    table as t\n    sign NextTwo t\n}\nobject sign { noun "sign" }',
         """\
 label.rules:6:10: error: unknown relation label 'NextTwo'; did you mean 'NextTo'?
     sign NextTwo t
@@ -140,8 +140,10 @@ unknown_field.rules:4:29: error: unknown catalog field 'color'; did you mean 'co
                                 ^""",
     ),
     "fields": (
-        ('object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
-        '  style a 0 { segments 3 } style a { } }\nS -> { chair; table }'),
+        (
+            'object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2\n'
+            "  style a 0 { segments 3 } style a { } }\nS -> { chair; table }"
+        ),
         """\
 fields.rules:4:29: error: duplicate field 'noun'
     object chair { noun "chair" noun "seat" size 1 x 0 x 1 colour #12345 width 2
@@ -176,8 +178,10 @@ duplicates.rules:6:1: error: duplicate production for 'S' (first at duplicates.r
     ^""",
     ),
     "references": (
-        ("S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }\n"
-        "P(x) -> { table OnTopOf x }"),
+        (
+            "S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }\n"
+            "P(x) -> { table OnTopOf x }"
+        ),
         """\
 references.rules:4:20: error: 'P' takes 1 parameter (references.rules:5:1), but 2 are given
     S -> { table as t; P(t, t); table NextTo tabel; table NextTo table; table NextTo table #0 }
@@ -193,8 +197,10 @@ references.rules:4:82: error: '#0': ordinals count from #1
                                                                                      ^""",
     ),
     "path_connection": (
-        ('path road { noun "road" }\njunction crossing { noun "crossing" }\n'
-        "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }"),
+        (
+            'path road { noun "road" }\njunction crossing { noun "crossing" }\n'
+            "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }"
+        ),
         """\
 path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction, but 'table' is an object
     S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
@@ -214,9 +220,11 @@ block_on_object.rules:4:25: error: unknown type or name 'tabel'; did you mean 't
                             ^""",
     ),
     "bad_values": (
-        ('object lamp { noun "  " segments 2.5 mesh "lamp.png" }\n'
-         'path road { noun "road" segments 0 max_length -3 }\nobject chair { size 1 x 1 x 1 }\n'
-         "S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }\nP -> { }"),
+        (
+            'object lamp { noun "  " segments 2.5 mesh "lamp.png" }\n'
+            'path road { noun "road" segments 0 max_length -3 }\nobject chair { size 1 x 1 x 1 }\n'
+            "S -> { lamp; road; chair; 3000 table; each table { table }; P { table } }\nP -> { }"
+        ),
         """\
 bad_values.rules:4:20: error: 'noun' must not be empty
     object lamp { noun "  " segments 2.5 mesh "lamp.png" }
@@ -523,8 +531,9 @@ def test_a_missing_brace_names_the_entry_of_every_kind(in_tmp, kind):
     Path("entry.rules").write_text(HEADER + f'{kind} thing {{ noun "thing"\nS -> {{ table }}\n')
     (diagnostic,) = check_rules("entry.rules")
     assert (diagnostic.location.line, diagnostic.location.column) == (4, len(f"{kind} thing {{"))
-    assert diagnostic.message == (f"the block of {kind} 'thing' opened here is never closed (missing '}}' before "
-                                  "line 5)")
+    assert diagnostic.message == (
+        f"the block of {kind} 'thing' opened here is never closed (missing '}}' before line 5)"
+    )
 
 
 def test_balanced_braces_are_not_reported_missing(in_tmp):
@@ -542,8 +551,11 @@ def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
     error = caught.value
     assert isinstance(error, InputError) and error.exit_code == 2
     assert [d.message.split(";")[0] for d in error.diagnostics] == [
-        "unknown type or name 'tabel'", "unknown type or name 'sign'", "unknown relation label 'NextTwo'",
-        "unbound name 't'"]
+        "unknown type or name 'tabel'",
+        "unknown type or name 'sign'",
+        "unknown relation label 'NextTwo'",
+        "unbound name 't'",
+    ]
     assert "warning" not in str(error)
     Path("warn.rules").write_text(HEADER + "S -> { table }\nUnused -> { table }\n")
     assert [w.severity for w in load_rules("warn.rules").warnings] == ["warning"]
@@ -552,26 +564,38 @@ def test_load_rules_raises_every_error_and_keeps_warnings_apart(in_tmp):
 @pytest.mark.parametrize(
     ("statements", "warned"),
     [
-        ("0.6? table\n0..2 cup OnTopOf some table", True),  # in four scenes of ten there is no table
+        (
+            "0.6? table\n0..2 cup OnTopOf some table",
+            True,
+        ),  # in four scenes of ten there is no table
         ("0..1 table\ncup OnTopOf table #1", True),
         ("table\n0.6? table\ncup OnTopOf some table", False),  # one table is certain
         ("0.6? table\ncup NextTo each table", False),  # each of none is none
     ],
 )
-def test_a_reference_to_a_type_every_maker_of_which_may_make_none_is_warned(in_tmp, statements, warned):
-    Path("maybe.rules").write_text(HEADER + 'object cup { noun "cup" }\nS -> {\n' + statements + "\n}\n")
+def test_a_reference_to_a_type_every_maker_of_which_may_make_none_is_warned(
+    in_tmp, statements, warned
+):
+    Path("maybe.rules").write_text(
+        HEADER + 'object cup { noun "cup" }\nS -> {\n' + statements + "\n}\n"
+    )
     diagnostics = check_rules("maybe.rules")
     assert all(d.severity == "warning" for d in diagnostics)
     messages = [d.message for d in diagnostics if "may find none" in d.message]
     assert bool(messages) is warned, diagnostics
     if warned:
-        assert messages[0].endswith("where a scene has none its expansion stops here; refer to it only where one is certain")
+        assert messages[0].endswith(
+            "where a scene has none its expansion stops here; refer to it only where one is certain"
+        )
 
 
 def test_scene_settings_and_a_second_scene_block(in_tmp):
-    Path("scenes.rules").write_text("scene s { start S max_depth 0 max_nodes 2.5 start T }\nscene t { start S }\n"
-                                    "S(x) -> { }\n")
-    assert format_diagnostics(check_rules("scenes.rules")) == """\
+    Path("scenes.rules").write_text(
+        "scene s { start S max_depth 0 max_nodes 2.5 start T }\nscene t { start S }\nS(x) -> { }\n"
+    )
+    assert (
+        format_diagnostics(check_rules("scenes.rules"))
+        == """\
 scenes.rules:1:17: error: start symbol 'S' takes parameters; it must take none
     scene s { start S max_depth 0 max_nodes 2.5 start T }
                     ^
@@ -587,41 +611,57 @@ scenes.rules:1:45: error: duplicate scene setting 'start'
 scenes.rules:2:1: error: a second scene block (the first is at scenes.rules:1:1)
     scene t { start S }
     ^"""
+    )
 
 
 def test_scene_block_without_start(in_tmp):
-    Path("nostart.rules").write_text('scene s { extent 0 x 3 }\nobject table { noun "table" }\nS -> { table }\n')
-    assert format_diagnostics(check_rules("nostart.rules")) == """\
+    Path("nostart.rules").write_text(
+        'scene s { extent 0 x 3 }\nobject table { noun "table" }\nS -> { table }\n'
+    )
+    assert (
+        format_diagnostics(check_rules("nostart.rules"))
+        == """\
 nostart.rules:1:1: error: the scene block has no start symbol (add: start NONTERMINAL)
     scene s { extent 0 x 3 }
     ^
 nostart.rules:1:18: error: the extent must be positive
     scene s { extent 0 x 3 }
                      ^"""
+    )
 
 
 def test_missing_scene_block(in_tmp):
     Path("noscene.rules").write_text("S -> { }\n")
     assert format_diagnostics(check_rules("noscene.rules")) == (
         "noscene.rules:1:1: error: no scene block; add one, e.g. scene village { extent 40 x 40  start Village }\n"
-        "    S -> { }\n    ^")
+        "    S -> { }\n    ^"
+    )
 
 
 def test_undefined_start_symbol(in_tmp):
     Path("start.rules").write_text("scene s { start Villag }\nVillage -> { }\n")
-    assert check_rules("start.rules")[0].message == "start symbol 'Villag' has no production; did you mean 'Village'?"
+    assert (
+        check_rules("start.rules")[0].message
+        == "start symbol 'Villag' has no production; did you mean 'Village'?"
+    )
 
 
 def test_mesh_files_are_found_relative_to_the_rules_file(in_tmp):
     (in_tmp / "sub" / "models").mkdir(parents=True)
     trimesh.creation.box().export(in_tmp / "sub" / "models" / "chair.glb")
-    text = HEADER + 'object chair { noun "chair" mesh "models/chair.glb" }\n' \
-                    'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench; table }\n'
+    text = (
+        HEADER + 'object chair { noun "chair" mesh "models/chair.glb" }\n'
+        'object bench { noun "bench" mesh "models/bench.glb" }\nS -> { chair; bench; table }\n'
+    )
     Path("sub/mesh.rules").write_text(text)
     (diagnostic,) = check_rules("sub/mesh.rules")
-    assert diagnostic.message == f"mesh file 'models/bench.glb' not found (looked in {in_tmp / 'sub'})"
+    assert (
+        diagnostic.message == f"mesh file 'models/bench.glb' not found (looked in {in_tmp / 'sub'})"
+    )
     Path("sub/mesh.rules").write_text(text.replace("bench.glb", "chair.glb"))
-    assert load_rules("sub/mesh.rules").catalog["chair"].mesh == str(in_tmp / "sub" / "models" / "chair.glb")
+    assert load_rules("sub/mesh.rules").catalog["chair"].mesh == str(
+        in_tmp / "sub" / "models" / "chair.glb"
+    )
 
 
 def test_templates_folder_is_found_relative_to_the_file_of_the_scene_block(in_tmp):
@@ -647,13 +687,20 @@ def test_include_cycle_and_missing_include(in_tmp):
     Path("lib/b.rules").write_text('include "../a.rules"\n')
     assert format_diagnostics(check_rules("a.rules")) == (
         "lib/b.rules:1:9: error: include cycle: a.rules -> lib/b.rules -> a.rules\n"
-        '    include "../a.rules"\n            ^')
+        '    include "../a.rules"\n            ^'
+    )
     Path("c.rules").write_text('include "nope.rules"\n')
-    assert check_rules("c.rules")[0].message == "cannot read included file 'nope.rules': No such file or directory"
+    assert (
+        check_rules("c.rules")[0].message
+        == "cannot read included file 'nope.rules': No such file or directory"
+    )
 
 
 def test_unknown_rule_set_name(in_tmp):
-    with pytest.raises(RulesError, match=r"no rules file 'vilage' \(and no shipped rule set of that name: .*village"):
+    with pytest.raises(
+        RulesError,
+        match=r"no rules file 'vilage' \(and no shipped rule set of that name: .*village",
+    ):
         load_rules("vilage")
     Path("campsite.rules").write_text("")
     with pytest.raises(RulesError, match=r"did you mean 'campsite.rules'\?"):
@@ -686,11 +733,30 @@ def assert_loads_or_fails_cleanly(tmp_path, text: str) -> None:
 
 #: Text made of the language's own pieces (so the parser gets deep) mixed with any
 #: characters at all (\r, form feeds, Unicode line separators, ...).
-PIECES = list(string.ascii_letters + string.digits + " \n\t{}()|;:#.?,-\"_") + [
-    "->", "..", "object", "group", "scene", "start", "include", "some", "each", "as", "NextTo", "noun", "size",
-    " x ", "#1", "#8b5a2b", "\n|", '"a.rules"']
+PIECES = list(string.ascii_letters + string.digits + ' \n\t{}()|;:#.?,-"_') + [
+    "->",
+    "..",
+    "object",
+    "group",
+    "scene",
+    "start",
+    "include",
+    "some",
+    "each",
+    "as",
+    "NextTo",
+    "noun",
+    "size",
+    " x ",
+    "#1",
+    "#8b5a2b",
+    "\n|",
+    '"a.rules"',
+]
 rules_like_text = st.lists(st.sampled_from(PIECES) | st.text(max_size=2), max_size=60).map("".join)
-fuzz_settings = settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+fuzz_settings = settings(
+    max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
 
 
 @fuzz_settings
@@ -700,9 +766,17 @@ def test_arbitrary_text_never_raises_anything_else(tmp_path, text):
 
 
 @fuzz_settings
-@given(edits=st.lists(st.tuples(st.sampled_from(["delete", "duplicate", "swap"]),
-                                st.integers(0, len(TOKENS) - 1), st.integers(0, len(TOKENS) - 1)),
-                      min_size=1, max_size=4))
+@given(
+    edits=st.lists(
+        st.tuples(
+            st.sampled_from(["delete", "duplicate", "swap"]),
+            st.integers(0, len(TOKENS) - 1),
+            st.integers(0, len(TOKENS) - 1),
+        ),
+        min_size=1,
+        max_size=4,
+    )
+)
 def test_mutated_valid_file_never_raises_anything_else(tmp_path, edits):
     tokens = list(TOKENS)
     for action, i, j in edits:
@@ -718,7 +792,9 @@ def test_mutated_valid_file_never_raises_anything_else(tmp_path, edits):
 
 def test_a_file_that_is_not_utf8_text_is_a_rules_error(in_tmp):
     Path("latin1.rules").write_bytes("scene s { start S }\n# caf\xe9\n".encode("latin-1"))
-    with pytest.raises(RulesError, match=r"^latin1\.rules:1:1: error: cannot read 'latin1\.rules': not UTF-8 text$"):
+    with pytest.raises(
+        RulesError, match=r"^latin1\.rules:1:1: error: cannot read 'latin1\.rules': not UTF-8 text$"
+    ):
         load_rules("latin1.rules")
 
 
@@ -749,29 +825,44 @@ def test_every_example_of_the_explainer_stops_at_its_end_in_its_own_place():
     for name, context in rules_parser._CONTEXTS.items():
         for example in context.examples:
             stop = rules_parser._example_stop(example)
-            assert stop is not None and rules_parser._error_offset(stop, example) == len(example), (name, example)
+            assert stop is not None and rules_parser._error_offset(stop, example) == len(example), (
+                name,
+                example,
+            )
             assert rules_parser._context(stop) is context, (name, example)
 
 
 def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
     terminals = {terminal.name for terminal in rules_parser.lalr_parser().terminals}
-    assert {sample.split()[0] for sample in rules_parser._FIELDS} == set(rules_parser._keywords(terminals, "_field"))
+    assert {sample.split()[0] for sample in rules_parser._FIELDS} == set(
+        rules_parser._keywords(terminals, "_field")
+    )
     assert {sample.split()[0] for sample in rules_parser._SETTINGS} == set(
-        rules_parser._keywords(terminals, "_setting"))
+        rules_parser._keywords(terminals, "_setting")
+    )
 
 
-@pytest.mark.parametrize("text", [EVERY_CONSTRUCT, (RULES / "market.rules").read_text()], ids=["every", "market"])
+@pytest.mark.parametrize(
+    "text", [EVERY_CONSTRUCT, (RULES / "market.rules").read_text()], ids=["every", "market"]
+)
 def test_every_place_where_a_word_may_come_is_in_the_table(text):
     """Wherever a valid file may be cut short before a token, the explainer knows the
     place, unless only punctuation, a value or one keyword may come next (said alone)."""
     parser = rules_parser.lalr_parser()
     for token in parser.parse_interactive(text).iter_parse():
-        prefix = text[:token.start_pos]
+        prefix = text[: token.start_pos]
         try:
             parser.parse(prefix)
         except (UnexpectedToken, UnexpectedCharacters) as stop:
             accepts = stop.interactive_parser.accepts()
-            words = [name for name in accepts if name in ("NAME", "CAMEL")
-                     or (name != "$END" and (rules_parser._literal(name) or "").isidentifier())]
+            words = [
+                name
+                for name in accepts
+                if name in ("NAME", "CAMEL")
+                or (name != "$END" and (rules_parser._literal(name) or "").isidentifier())
+            ]
             if words and len(accepts) > 1:
-                assert rules_parser._context(stop) is not rules_parser._ANYWHERE, (prefix[-40:], sorted(accepts))
+                assert rules_parser._context(stop) is not rules_parser._ANYWHERE, (
+                    prefix[-40:],
+                    sorted(accepts),
+                )

@@ -3,7 +3,7 @@
 from pathlib import Path
 
 import pytest
-from scenewright.core.room import ROOM_KINDS
+
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.rules import check_rules, load_rules
@@ -32,32 +32,53 @@ def test_catalog_entry_fields_and_styles():
     ).entries
     fields = {f.name: f.value for f in entry.fields}
     assert (entry.kind, entry.name) == ("object", "crate")
-    assert fields == {"noun": "crate", "plural": "crates", "size": (1.0, 2.5, 3.0), "shape": "box",
-                      "mesh": "m.glb", "colour": "#A0b0c0"}
+    assert fields == {
+        "noun": "crate",
+        "plural": "crates",
+        "size": (1.0, 2.5, 3.0),
+        "shape": "box",
+        "mesh": "m.glb",
+        "colour": "#A0b0c0",
+    }
     assert [(s.name, s.weight) for s in entry.styles] == [("big", 2.0), ("small", None)]
 
 
 def test_path_fields_and_scene_block():
-    parsed = parse('path road { noun "road" width 3 max_length 30 segments 3 }\n'
-                   "scene village { extent 60 x 40; ground grass\n walls\n start Village max_depth 5 max_nodes 9\n"
-                   ' templates "words" }')
+    parsed = parse(
+        'path road { noun "road" width 3 max_length 30 segments 3 }\n'
+        "scene village { extent 60 x 40; ground grass\n walls\n start Village max_depth 5 max_nodes 9\n"
+        ' templates "words" }'
+    )
     assert {f.name: f.value for f in parsed.entries[0].fields} == {
-        "noun": "road", "width": 3.0, "max_length": 30.0, "segments": 3.0}
+        "noun": "road",
+        "width": 3.0,
+        "max_length": 30.0,
+        "segments": 3.0,
+    }
     (scene,) = parsed.scenes
     assert scene.name == "village"
     assert [(s.name, s.value) for s in scene.settings] == [
-        ("extent", (60.0, 40.0)), ("ground", "grass"), ("walls", True), ("start", "Village"),
-        ("max_depth", 5.0), ("max_nodes", 9.0), ("templates", "words")]
+        ("extent", (60.0, 40.0)),
+        ("ground", "grass"),
+        ("walls", True),
+        ("start", "Village"),
+        ("max_depth", 5.0),
+        ("max_nodes", 9.0),
+        ("templates", "words"),
+    ]
 
 
 def test_statement_with_count_probability_binding_relations_and_block():
-    statement = only_statement("2..4 0.5? market_stand as s NextTo road #1 FacingTowards some well { table }")
+    statement = only_statement(
+        "2..4 0.5? market_stand as s NextTo road #1 FacingTowards some well { table }"
+    )
     assert statement.count.low == 2 and statement.count.high == 4
     assert statement.probability == 0.5
     assert statement.subject == ast.Reference("name", "market_stand", statement.subject.location)
     assert statement.binding == "s"
-    assert [(r.label, r.target.kind, r.target.name, r.target.index) for r in statement.relations] == [
-        ("NextTo", "nth", "road", 1), ("FacingTowards", "some", "well", 0)]
+    assert [
+        (r.label, r.target.kind, r.target.name, r.target.index) for r in statement.relations
+    ] == [("NextTo", "nth", "road", 1), ("FacingTowards", "some", "well", 0)]
     assert [s.subject.name for s in statement.block] == ["table"]
 
 
@@ -96,12 +117,16 @@ def test_locations_are_one_based_line_and_column():
 
 def test_keywords_are_only_keywords_where_they_may_stand():
     # `shape` and `start` are field/setting words, yet fine as type names elsewhere.
-    parsed = parse('object shape { noun "shape" }\nobject start { noun "x" }\nP -> { shape NextTo s; start }')
+    parsed = parse(
+        'object shape { noun "shape" }\nobject start { noun "x" }\nP -> { shape NextTo s; start }'
+    )
     assert [e.name for e in parsed.entries] == ["shape", "start"]
 
 
 def test_hash_is_a_comment_unless_a_colour_or_ordinal_is_expected():
-    parsed = parse('#abcdef is a comment\nobject a { noun "a" colour #123456 } # #1 too\nP -> { a #2 NextTo b #10 }')
+    parsed = parse(
+        '#abcdef is a comment\nobject a { noun "a" colour #123456 } # #1 too\nP -> { a #2 NextTo b #10 }'
+    )
     assert parsed.entries[0].fields[1].value == "#123456"
     statement = parsed.productions[0].alternatives[0].statements[0]
     assert (statement.subject.index, statement.relations[0].target.index) == (2, 10)
@@ -112,7 +137,9 @@ def test_includes_are_followed_relative_to_the_including_file(tmp_path):
     (tmp_path / "lib" / "things.rules").write_text('include "more.rules"\nobject a { noun "a" }\n')
     (tmp_path / "lib" / "more.rules").write_text('object b { noun "b" }\n')
     main = tmp_path / "main.rules"
-    main.write_text('include "lib/things.rules"\ninclude "lib/more.rules"\nscene s { start S }\nS -> { a; b }\n')
+    main.write_text(
+        'include "lib/things.rules"\ninclude "lib/more.rules"\nscene s { start S }\nS -> { a; b }\n'
+    )
     tree = parse_tree(main, "main.rules")
     assert not tree.diagnostics
     # each file once, included files before the file that includes them
@@ -149,7 +176,9 @@ def test_the_language_reference_examples_load_and_expand(tmp_path):
 
 def test_windows_line_ends_parse_and_positions_count_lines_at_newlines(tmp_path):
     path = tmp_path / "crlf.rules"
-    path.write_bytes(b'scene s { start S }\r\nobject a { noun "a" }\r\n\r\nS -> { a as x\r\n  a NextTwo x }\r\n')
+    path.write_bytes(
+        b'scene s { start S }\r\nobject a { noun "a" }\r\n\r\nS -> { a as x\r\n  a NextTwo x }\r\n'
+    )
     (diagnostic,) = check_rules(path)
     assert (diagnostic.location.line, diagnostic.location.column) == (5, 5)
     assert diagnostic.source_line == "  a NextTwo x }"

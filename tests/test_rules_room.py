@@ -4,10 +4,10 @@ wall relations, and the errors a rules author meets there, each at its place."""
 import math
 
 import pytest
-from scenewright.generator import check_rules, format_diagnostics, load_rules
-from scenewright.generator.expand import expand
 
 from scenewright.core.room import ROOM_NODE
+from scenewright.generator import check_rules, format_diagnostics, load_rules
+from scenewright.generator.expand import expand
 
 ROOM = """\
 scene s {
@@ -29,13 +29,21 @@ def diagnostics(tmp_path, text: str) -> str:
 
 
 def test_a_room_block_builds_walls_doors_and_windows(tmp_path):
-    (tmp_path / "room.rules").write_text(ROOM + "S -> { wardrobe AgainstWall some wall; plant UnderWindow window #1 }\n")
+    (tmp_path / "room.rules").write_text(
+        ROOM + "S -> { wardrobe AgainstWall some wall; plant UnderWindow window #1 }\n"
+    )
     rules = load_rules(tmp_path / "room.rules")
     room = rules.params.room
     assert [wall.side for wall in room.walls] == ["north", "east", "south", "west"]
     assert rules.params.extent == (5.0, 4.0) and all(wall.height == 2.7 for wall in room.walls)
     door, window = room.openings
-    assert (door.id, door.kind, door.wall, door.width, door.sill) == ("door_1", "door", "wall_3", 0.9, 0.0)
+    assert (door.id, door.kind, door.wall, door.width, door.sill) == (
+        "door_1",
+        "door",
+        "wall_3",
+        0.9,
+        0.0,
+    )
     assert door.center == (1.5, 2.0)  # 1 m along the south wall from its east end
     assert (window.wall, window.sill, window.height, window.width) == ("wall_1", 0.9, 1.2, 1.4)
     wardrobe = rules.catalog["wardrobe"]
@@ -45,10 +53,15 @@ def test_a_room_block_builds_walls_doors_and_windows(tmp_path):
 
 
 def test_some_wall_targets_the_room_and_an_ordinal_names_one(tmp_path):
-    (tmp_path / "room.rules").write_text(ROOM + "S -> { wardrobe AgainstWall some wall; plant UnderWindow window #1 }\n")
+    (tmp_path / "room.rules").write_text(
+        ROOM + "S -> { wardrobe AgainstWall some wall; plant UnderWindow window #1 }\n"
+    )
     graph = expand(load_rules(tmp_path / "room.rules"), 3)
     edges = {(edge.source, edge.label): edge.target for edge in graph.edges()}
-    assert edges == {("wardrobe_1", "AgainstWall"): ROOM_NODE, ("plant_1", "UnderWindow"): "window_1"}
+    assert edges == {
+        ("wardrobe_1", "AgainstWall"): ROOM_NODE,
+        ("plant_1", "UnderWindow"): "window_1",
+    }
     kinds = [node.kind for node in graph.nodes()]
     assert kinds[:7] == ["room", "wall", "wall", "wall", "wall", "door", "window"]
     assert graph.derivation == []  # the layout picks the wall: expansion draws nothing
@@ -76,12 +89,18 @@ S -> { desk AgainstWall wall #4 }
     room = rules.params.room
     assert len(room.walls) == 6 and rules.params.extent == (6.0, 5.0)
     assert room.corners[0] == (-3.0, -2.5)  # moved so the bounding box is centred
-    assert room.openings[0].wall == "wall_4" and not rules.params.square and not rules.params.line_of_sight
+    assert (
+        room.openings[0].wall == "wall_4"
+        and not rules.params.square
+        and not rules.params.line_of_sight
+    )
     assert math.isclose(room.area, 6 * 3 + 3 * 2)
 
 
 def test_walls_is_still_a_bare_rectangular_room(tmp_path):
-    (tmp_path / "room.rules").write_text('scene s { extent 4 x 3\n walls\n start S }\nobject a { noun "a" }\nS -> { a }\n')
+    (tmp_path / "room.rules").write_text(
+        'scene s { extent 4 x 3\n walls\n start S }\nobject a { noun "a" }\nS -> { a }\n'
+    )
     room = load_rules(tmp_path / "room.rules").params.room
     assert room.extent == (4.0, 3.0) and room.openings == ()
 
@@ -89,12 +108,36 @@ def test_walls_is_still_a_bare_rectangular_room(tmp_path):
 @pytest.mark.parametrize(
     ("body", "where", "message"),
     [
-        ("room 5 x 4 { door east 2 4.5 }", "2:18", "the door (4.5 m wide) is wider than wall 2 (the east wall) (4 m)"),
-        ("room 5 x 4 { door south 4.8 0.9 }", "2:18", "runs past the end of wall 3 (the south wall)"),
-        ("room 5 x 4 { window up 2 1 1 1 }", "2:25", "the room has no wall 'up'; name a wall by its side"),
-        ("room 5 x 4 { window 7 2 1 1 1 }", "2:25", "or its number (1 to 4, in the order of the corners)"),
-        ("room 5 x 4 { window north 2 1 1.5 1.5 }", "2:18", "the window's top (3 m) is above the wall (2.6 m)"),
-        ("room 5 x 4 { door south 1 0.9; door south 1.5 0.9 }", "2:36", "the door overlaps door 1 on wall 3"),
+        (
+            "room 5 x 4 { door east 2 4.5 }",
+            "2:18",
+            "the door (4.5 m wide) is wider than wall 2 (the east wall) (4 m)",
+        ),
+        (
+            "room 5 x 4 { door south 4.8 0.9 }",
+            "2:18",
+            "runs past the end of wall 3 (the south wall)",
+        ),
+        (
+            "room 5 x 4 { window up 2 1 1 1 }",
+            "2:25",
+            "the room has no wall 'up'; name a wall by its side",
+        ),
+        (
+            "room 5 x 4 { window 7 2 1 1 1 }",
+            "2:25",
+            "or its number (1 to 4, in the order of the corners)",
+        ),
+        (
+            "room 5 x 4 { window north 2 1 1.5 1.5 }",
+            "2:18",
+            "the window's top (3 m) is above the wall (2.6 m)",
+        ),
+        (
+            "room 5 x 4 { door south 1 0.9; door south 1.5 0.9 }",
+            "2:36",
+            "the door overlaps door 1 on wall 3",
+        ),
         ("room (0, 0) (4, 4) (4, 0) (0, 4)", "2:5", "walls 1 and 3 cross"),
         ("room (0, 0) (4, 0)", "2:5", "a room needs at least 3 corners"),
         ("room 5 x 4 { height 0 }", "2:25", "wall height 0 is not a positive number"),
@@ -111,13 +154,23 @@ def test_bad_rooms_are_reported_where_they_are_written(tmp_path, body, where, me
 @pytest.mark.parametrize(
     ("statements", "where", "message"),
     [
-        ("wardrobe UnderWindow some wall", "12:29", "UnderWindow stands by a window: write 'some window'"),
+        (
+            "wardrobe UnderWindow some wall",
+            "12:29",
+            "UnderWindow stands by a window: write 'some window'",
+        ),
         ("wardrobe AgainstWall each wall", "12:29", "AgainstWall stands by a wall"),
         ("wardrobe UnderWindow window #2", "12:29", "'window #2': the room has 1 window"),
-        ("wardrobe; wall", "12:18", "the room's walls come from its room block and cannot be created"),
+        (
+            "wardrobe; wall",
+            "12:18",
+            "the room's walls come from its room block and cannot be created",
+        ),
     ],
 )
-def test_bad_wall_relations_are_reported_where_they_are_written(tmp_path, statements, where, message):
+def test_bad_wall_relations_are_reported_where_they_are_written(
+    tmp_path, statements, where, message
+):
     printed = diagnostics(tmp_path, ROOM + f"\nS -> {{ {statements} }}\n")
     assert f"room.rules:{where}: error: " in printed and message in printed, printed
 
@@ -141,7 +194,10 @@ def test_a_catalog_entry_may_not_take_a_room_part_name(tmp_path):
         ("clearance front 1 clearance front 2", "a second clearance front"),
         ("clearance front 0", "a clearance must be more than 0"),
         ("access front none", "'access any' and 'access none' stand alone"),
-        ("access frnt", "access 'frnt' is not one of any, none, front, back, left, right; did you mean 'front'?"),
+        (
+            "access frnt",
+            "access 'frnt' is not one of any, none, front, back, left, right; did you mean 'front'?",
+        ),
     ],
 )
 def test_bad_clearance_and_access_fields(tmp_path, fields, message):

@@ -2,13 +2,11 @@
 
 import pytest
 
-from scenewright.core.relations import UnknownLabel
-
-from scenewright.generator.catalog import CatalogEntry, Style
 from scenewright.core.poses import LayoutResult, Pose
-from scenewright.core.relations import Relation
-from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.core.relations import Relation, UnknownLabel
 from scenewright.core.scene import Scene, assemble_scene
+from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.generator.catalog import CatalogEntry, Style
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9), shape="box")
 COMPUTER = CatalogEntry(
@@ -16,7 +14,10 @@ COMPUTER = CatalogEntry(
     "object",
     "computer",
     size=(0.5, 0.4, 0.3),
-    styles=(Style("laptop", 0.6, noun="laptop", size=(0.35, 0.02, 0.25)), Style("tablet", 0.4, noun="tablet")),
+    styles=(
+        Style("laptop", 0.6, noun="laptop", size=(0.35, 0.02, 0.25)),
+        Style("tablet", 0.4, noun="tablet"),
+    ),
 )
 STAND = CatalogEntry("market_stand", "group", "market stand")
 ROAD = CatalogEntry("road", "path", "road", width=3.0)
@@ -49,12 +50,22 @@ def test_members_of_a_group():
     assert [n.id for n in graph.children("market_stand_1")] == ["table_1", "computer_1"]
     crate = graph.add_node(STAND, parent="market_stand_1")
     graph.add_node(TABLE, parent=crate)
-    assert [n.id for n in graph.children("market_stand_1")] == ["table_1", "computer_1", "market_stand_2"]
+    assert [n.id for n in graph.children("market_stand_1")] == [
+        "table_1",
+        "computer_1",
+        "market_stand_2",
+    ]
     assert [n.id for n in graph.descendants("market_stand_1")] == [
-        "table_1", "computer_1", "market_stand_2", "table_2"]
+        "table_1",
+        "computer_1",
+        "market_stand_2",
+        "table_2",
+    ]
     assert {parent: [n.id for n in members] for parent, members in graph.by_parent().items()} == {
-        None: ["market_stand_1", "road_1"], "market_stand_1": ["table_1", "computer_1", "market_stand_2"],
-        "market_stand_2": ["table_2"]}
+        None: ["market_stand_1", "road_1"],
+        "market_stand_1": ["table_1", "computer_1", "market_stand_2"],
+        "market_stand_2": ["table_2"],
+    }
     assert graph.children("road_1") == []
 
 
@@ -82,8 +93,17 @@ def test_templates_folder_travels_from_params_to_scene_and_back():
     graph = SceneGraph(params=SceneParams(templates="/rules/stall/templates"))
     graph.add_node(TABLE)
     assert SceneGraph.from_dict(graph.to_dict()).params == graph.params
-    layout = LayoutResult(poses={"table_1": Pose(0.0, 0.0, 0.0, 0.0)}, paths={}, relations=[], energy=0.0,
-                          parts={}, steps=1, acceptance=1.0, seconds=0.0, ok=True)  # fmt: skip
+    layout = LayoutResult(
+        poses={"table_1": Pose(0.0, 0.0, 0.0, 0.0)},
+        paths={},
+        relations=[],
+        energy=0.0,
+        parts={},
+        steps=1,
+        acceptance=1.0,
+        seconds=0.0,
+        ok=True,
+    )
     scene = assemble_scene(graph, layout, rules="test", seed=0)
     assert scene.templates == "/rules/stall/templates"
     assert Scene.from_json(scene.to_json()).templates == "/rules/stall/templates"
@@ -99,7 +119,12 @@ def test_scene_json_round_trip_and_group_box():
             Relation("computer_1", "table_1", "OnTopOfMiddle", 0.0, True),
             Relation("market_stand_1", "road_1", "NextTo", -0.01, True),
         ],
-        energy=0.01, parts={"relations": 0.01}, steps=10, acceptance=0.5, seconds=0.1, ok=True,
+        energy=0.01,
+        parts={"relations": 0.01},
+        steps=10,
+        acceptance=0.5,
+        seconds=0.1,
+        ok=True,
     )
     scene = assemble_scene(graph, layout, rules="test", seed=3)
     stand = scene.object("market_stand_1")

@@ -42,12 +42,74 @@ def scene_dict() -> dict:
         seed=1,
         extent=[20.0, 20.0],
         objects=[
-            SceneObject("stall_1", "stall", "group", "stall", None, None, None, [0.0, 0.0, 2.0], 0.0, [2.0, 1.6, 1.0], order=0),
-            SceneObject("table_1", "table", "object", "table", None, "stall_1", None, [0.0, 0.0, 2.0], 0.0, [1.6, 0.8, 0.9], shape="table", order=1),
-            SceneObject("sign_1", "sign", "object", "sign", None, "stall_1", None, [1.2, 0.0, 2.0], 0.0, [0.6, 1.6, 0.15], shape="sign", order=2),
-            SceneObject("crossing_1", "crossing", "junction", "crossing", None, None, None, [-6.0, 0.0, 0.0], 0.0, [3.0, 0.0, 3.0], order=3),
+            SceneObject(
+                "stall_1",
+                "stall",
+                "group",
+                "stall",
+                None,
+                None,
+                None,
+                [0.0, 0.0, 2.0],
+                0.0,
+                [2.0, 1.6, 1.0],
+                order=0,
+            ),
+            SceneObject(
+                "table_1",
+                "table",
+                "object",
+                "table",
+                None,
+                "stall_1",
+                None,
+                [0.0, 0.0, 2.0],
+                0.0,
+                [1.6, 0.8, 0.9],
+                shape="table",
+                order=1,
+            ),
+            SceneObject(
+                "sign_1",
+                "sign",
+                "object",
+                "sign",
+                None,
+                "stall_1",
+                None,
+                [1.2, 0.0, 2.0],
+                0.0,
+                [0.6, 1.6, 0.15],
+                shape="sign",
+                order=2,
+            ),
+            SceneObject(
+                "crossing_1",
+                "crossing",
+                "junction",
+                "crossing",
+                None,
+                None,
+                None,
+                [-6.0, 0.0, 0.0],
+                0.0,
+                [3.0, 0.0, 3.0],
+                order=3,
+            ),
         ],
-        paths=[ScenePath("road_1", "road", "road", None, None, [[-6.0, 0.0], [0.0, 0.0], [4.0, 0.0], [8.0, 0.0]], 3.0, start="crossing_1", order=4)],
+        paths=[
+            ScenePath(
+                "road_1",
+                "road",
+                "road",
+                None,
+                None,
+                [[-6.0, 0.0], [0.0, 0.0], [4.0, 0.0], [8.0, 0.0]],
+                3.0,
+                start="crossing_1",
+                order=4,
+            )
+        ],
         relations=[
             Relation("sign_1", "table_1", "NextToChooseSide", -0.01, True, "left"),
             Relation("table_1", "road_1", "NextTo", 0.0, True),
@@ -55,7 +117,7 @@ def scene_dict() -> dict:
         ],
         layout=LayoutStats(energy=0.0, steps=10, acceptance=0.5, ok=True),
         version=__version__,
-    )  # fmt: skip
+    )
     return json.loads(scene.to_json(reproducible=True))
 
 
@@ -76,13 +138,22 @@ def test_the_base_scene_is_valid(tmp_path, capsys):
 
 @pytest.mark.parametrize("text", ["NaN", "Infinity", "-Infinity", "1e999", "-1e400"])
 def test_non_finite_numbers_are_refused_at_their_json_path(tmp_path, capsys, text):
-    raw = json.dumps(scene_dict()).replace('"position": [1.2, 0.0, 2.0]', f'"position": [{text}, 0.0, 2.0]', 1)
+    raw = json.dumps(scene_dict()).replace(
+        '"position": [1.2, 0.0, 2.0]', f'"position": [{text}, 0.0, 2.0]', 1
+    )
     assert text in raw
     path = write(tmp_path, raw)
     code, out, err = run(capsys, "validate", str(path))
     assert code == 2 and err == ""
-    assert out == f"{path}: error: scene.json $.objects[2].position[0]: {text} is not a finite number\n"
-    for command in (["describe"], ["export", "-o", str(tmp_path / "x.glb")], ["render", "-o", str(tmp_path / "x.png")]):
+    assert (
+        out
+        == f"{path}: error: scene.json $.objects[2].position[0]: {text} is not a finite number\n"
+    )
+    for command in (
+        ["describe"],
+        ["export", "-o", str(tmp_path / "x.glb")],
+        ["render", "-o", str(tmp_path / "x.png")],
+    ):
         code, out, err = run(capsys, *command[:1], str(path), *command[1:])
         assert code == 2 and out == ""
         assert_one_line_error(err, "$.objects[2].position[0]", "not a finite number")
@@ -100,9 +171,21 @@ def test_non_finite_floats_from_python_are_refused_too():
 @pytest.mark.parametrize(
     "break_it, path, words",
     [
-        (lambda d: d["objects"][1].update(position=[1e300, 0.0, 0.0]), "$.objects[1].position[0]", "maximum of 100000"),
-        (lambda d: d["paths"][0]["points"][1].__setitem__(1, -2e5), "$.paths[0].points[1][1]", "minimum of -100000"),
-        (lambda d: d["objects"][1].update(size=[1e6, 1.0, 1.0]), "$.objects[1].size[0]", "maximum of 1000"),
+        (
+            lambda d: d["objects"][1].update(position=[1e300, 0.0, 0.0]),
+            "$.objects[1].position[0]",
+            "maximum of 100000",
+        ),
+        (
+            lambda d: d["paths"][0]["points"][1].__setitem__(1, -2e5),
+            "$.paths[0].points[1][1]",
+            "minimum of -100000",
+        ),
+        (
+            lambda d: d["objects"][1].update(size=[1e6, 1.0, 1.0]),
+            "$.objects[1].size[0]",
+            "maximum of 1000",
+        ),
         (lambda d: d.update(extent=[1e9, 10.0]), "$.extent[0]", "maximum of 10000"),
         (lambda d: d.update(extent=[0.0, 10.0]), "$.extent[0]", "less than the minimum of 0.001"),
         (lambda d: d["paths"][0].update(width=5000.0), "$.paths[0].width", "maximum of 1000"),
@@ -131,7 +214,9 @@ def test_the_schema_carries_the_limits_of_core_limits():
     assert definitions["vec3"]["items"]["maximum"] == limits.MAX_COORDINATE
     assert definitions["pair"]["items"]["minimum"] == -limits.MAX_COORDINATE
     assert properties["extent"]["items"]["maximum"] == limits.MAX_EXTENT
-    assert definitions["object"]["then"]["properties"]["size"]["items"]["maximum"] == limits.MAX_SIZE
+    assert (
+        definitions["object"]["then"]["properties"]["size"]["items"]["maximum"] == limits.MAX_SIZE
+    )
     assert definitions["path"]["properties"]["width"]["maximum"] == limits.MAX_SIZE
     assert definitions["path"]["properties"]["max_length"]["maximum"] == limits.MAX_PATH_LENGTH
     assert definitions["path"]["properties"]["segments"]["maximum"] == limits.MAX_SEGMENTS
@@ -143,7 +228,15 @@ def test_huge_coordinates_no_longer_crash_the_renderer(tmp_path, capsys):
     data = scene_dict()
     for obj in data["objects"]:
         obj["position"][0] = 1e300
-    code, out, err = run(capsys, "render", str(write(tmp_path, data)), "-o", str(tmp_path / "x.png"), "--size", "32x32")
+    code, out, err = run(
+        capsys,
+        "render",
+        str(write(tmp_path, data)),
+        "-o",
+        str(tmp_path / "x.png"),
+        "--size",
+        "32x32",
+    )
     assert code == 2
     assert_one_line_error(err, "position[0]", "greater than the maximum of 100000")
 
@@ -155,7 +248,15 @@ def test_a_scene_at_the_coordinate_limit_renders(tmp_path, capsys):
         obj["position"][0] += limits.MAX_COORDINATE - 10.0
     for point in data["paths"][0]["points"]:
         point[0] += limits.MAX_COORDINATE - 10.0
-    code, out, err = run(capsys, "render", str(write(tmp_path, data)), "-o", str(tmp_path / "far.png"), "--size", "32x32")
+    code, out, err = run(
+        capsys,
+        "render",
+        str(write(tmp_path, data)),
+        "-o",
+        str(tmp_path / "far.png"),
+        "--size",
+        "32x32",
+    )
     assert (code, err) == (0, "")
     assert (tmp_path / "far.png").stat().st_size > 0
 
@@ -164,7 +265,9 @@ def test_exported_glb_of_a_checked_scene_passes_khronos_validator(tmp_path, caps
     """Before: a NaN position was exported (exit 0) to a GLB the validator rejects."""
     from test_export import test_khronos_validator_reports_no_errors
 
-    code, _, _ = run(capsys, "export", str(write(tmp_path, scene_dict())), "-o", str(tmp_path / "ok.glb"))
+    code, _, _ = run(
+        capsys, "export", str(write(tmp_path, scene_dict())), "-o", str(tmp_path / "ok.glb")
+    )
     assert code == 0
     test_khronos_validator_reports_no_errors(tmp_path / "ok.glb")
 
@@ -187,7 +290,9 @@ def test_a_key_with_a_control_character_is_shown_escaped():
     data = scene_dict()
     data["timings"] = {"a\u202eb": 1.0}
     problems = scene_problems(data)
-    assert problems == [("$.timings", "a key contains the character U+202E (right-to-left override)")]
+    assert problems == [
+        ("$.timings", "a key contains the character U+202E (right-to-left override)")
+    ]
 
 
 # -- nesting (item 10) ------------------------------------------------------------------
@@ -196,7 +301,11 @@ def test_a_key_with_a_control_character_is_shown_escaped():
 def test_deeply_nested_json_is_bad_input_and_validate_goes_on(tmp_path, capsys):
     """Before: a RecursionError (exit 1, "rerun with --debug"), and validate stopped."""
     deep = write(tmp_path, "[" * 100_000 + "]" * 100_000, "deep.json")
-    medium = write(tmp_path, json.dumps({**scene_dict(), "timings": json.loads("[" * 500 + "]" * 500)}), "medium.json")
+    medium = write(
+        tmp_path,
+        json.dumps({**scene_dict(), "timings": json.loads("[" * 500 + "]" * 500)}),
+        "medium.json",
+    )
     good = write(tmp_path, scene_dict(), "good.json")
     code, out, err = run(capsys, "validate", str(deep), str(medium), str(good))
     assert code == 2 and err == ""
@@ -243,7 +352,11 @@ def test_every_broken_reference_is_one_line_with_its_path(tmp_path, capsys):
     ]
     code, out, err = run(capsys, "describe", str(path))
     assert code == 2
-    assert_one_line_error(err, "$.objects[4].id: duplicate id", "(and 5 more problems: 'scenewright validate' lists them)")
+    assert_one_line_error(
+        err,
+        "$.objects[4].id: duplicate id",
+        "(and 5 more problems: 'scenewright validate' lists them)",
+    )
 
 
 def test_a_path_must_start_at_a_junction_of_the_scene():
@@ -257,16 +370,27 @@ def test_a_path_must_start_at_a_junction_of_the_scene():
 def test_parent_cycles_and_groups_nested_too_deep_are_refused():
     data = scene_dict()
     group = dict(data["objects"][0])
-    data["objects"] += [{**group, "id": "a_1", "parent": "b_1"}, {**group, "id": "b_1", "parent": "a_1"}]
-    assert scene_problems(data) == [("$.objects[4].parent", "its parents lead round in a cycle (a_1 -> b_1 -> a_1)")]
+    data["objects"] += [
+        {**group, "id": "a_1", "parent": "b_1"},
+        {**group, "id": "b_1", "parent": "a_1"},
+    ]
+    assert scene_problems(data) == [
+        ("$.objects[4].parent", "its parents lead round in a cycle (a_1 -> b_1 -> a_1)")
+    ]
 
     data = scene_dict()
-    chain = [{**group, "id": f"g_{i}", "parent": f"g_{i - 1}" if i else None} for i in range(limits.MAX_GROUP_DEPTH + 2)]
+    chain = [
+        {**group, "id": f"g_{i}", "parent": f"g_{i - 1}" if i else None}
+        for i in range(limits.MAX_GROUP_DEPTH + 2)
+    ]
     data["objects"] += chain
     deepest = len(data["objects"]) - 1
     assert scene_problems(data) == [
-        (f"$.objects[{deepest}].parent", f"it lies {limits.MAX_GROUP_DEPTH + 1} groups deep; groups may nest at most "
-         f"{limits.MAX_GROUP_DEPTH} deep")
+        (
+            f"$.objects[{deepest}].parent",
+            f"it lies {limits.MAX_GROUP_DEPTH + 1} groups deep; groups may nest at most "
+            f"{limits.MAX_GROUP_DEPTH} deep",
+        )
     ]
     data["objects"].pop()
     assert scene_problems(data) == []
@@ -303,10 +427,16 @@ def test_export_and_render_into_a_directory(tmp_path, capsys, slash):
     assert out == f"wrote {target / 'scene.glb'}\n"
     assert (target / "scene.glb").read_bytes()[:4] == b"glTF"
     renderer_or_skip(32, 32).close()
-    code, out, err = run(capsys, "render", str(path), "-o", str(target) + ("/" if slash else ""), "--size", "32x32")
+    code, out, err = run(
+        capsys, "render", str(path), "-o", str(target) + ("/" if slash else ""), "--size", "32x32"
+    )
     assert (code, err) == (0, "")
     assert sorted(p.name for p in target.iterdir()) == [
-        "preview.png", "preview_depth.png", "preview_ids.json", "preview_seg.png", "scene.glb"
+        "preview.png",
+        "preview_depth.png",
+        "preview_ids.json",
+        "preview_seg.png",
+        "scene.glb",
     ]
     assert not (tmp_path / "exports.png").exists()
 
@@ -338,4 +468,6 @@ def test_a_mesh_file_that_is_not_a_mesh_is_bad_input(tmp_path, capsys):
     data["objects"][1]["mesh"] = str(tmp_path / "gone.obj")
     code, out, err = run(capsys, "validate", str(write(tmp_path, data)))
     assert code == 2
-    assert out.strip().endswith(f"scene.json $.objects[1].mesh: the mesh file '{tmp_path / 'gone.obj'}' does not exist")
+    assert out.strip().endswith(
+        f"scene.json $.objects[1].mesh: the mesh file '{tmp_path / 'gone.obj'}' does not exist"
+    )

@@ -8,15 +8,20 @@ import pytest
 from render_fixtures import market_scene, renderer_or_skip
 
 from scenewright.core.errors import InputError
-from scenewright.render.offscreen import render_metadata
 from scenewright.core.scene import Relation
+from scenewright.render.offscreen import render_metadata
 from scenewright.schema_check import SceneSchemaError, load_schema, validate_scene_dict
 
 
 def scene_dict() -> dict:
     scene = market_scene()
     scene.relations = [Relation("sign_1", "table_1", "NextToRight", -0.01, True, None)]
-    scene.description = {"text": "A table.", "facts": [["sign_1", "NextToRight", "table_1"]], "style": "full", "variant": 0}
+    scene.description = {
+        "text": "A table.",
+        "facts": [["sign_1", "NextToRight", "table_1"]],
+        "style": "full",
+        "variant": 0,
+    }
     return json.loads(scene.to_json())
 
 
@@ -27,7 +32,9 @@ def test_schema_is_valid_draft_2020_12_and_documents_every_key():
     assert scene_keys <= set(schema["properties"])
     for name in ("object", "path", "relation", "layout"):
         part = schema["$defs"][name]
-        assert all("description" in spec or "$ref" in spec for spec in part["properties"].values()), name
+        assert all(
+            "description" in spec or "$ref" in spec for spec in part["properties"].values()
+        ), name
 
 
 def test_a_scene_validates_as_written_and_reproducibly():

@@ -74,14 +74,21 @@ def test_check_registry_names_what_differs():
 @pytest.mark.parametrize(
     "change, message",
     [
-        ("del shapes.SHAPES['well']", "builders with no entry in scenewright.core.shapes.SHAPES: well"),
+        (
+            "del shapes.SHAPES['well']",
+            "builders with no entry in scenewright.core.shapes.SHAPES: well",
+        ),
         ("shapes.SHAPES['crate_stack'] = shapes.SHAPES['box']", "with no builder: crate_stack"),
     ],
 )
 def test_the_renderer_refuses_to_import_when_the_registry_differs(change, message):
     """A fresh interpreter, so the real module's import-time check runs on the changed registry."""
-    program = f"import scenewright.core.shapes as shapes\n{change}\nimport scenewright.render.builders\n"
-    result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, timeout=120)
+    program = (
+        f"import scenewright.core.shapes as shapes\n{change}\nimport scenewright.render.builders\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", program], capture_output=True, text=True, timeout=120
+    )
     assert result.returncode != 0
     assert "ShapeRegistryMismatch" in result.stderr and message in result.stderr
 
@@ -137,8 +144,14 @@ def test_unknown_shape_warns_with_did_you_mean(tmp_path, capsys):
     rules = rules_with(tmp_path, "shape wardrob")
     (diagnostic,) = check_rules(rules)
     assert diagnostic.severity == "warning"
-    assert (diagnostic.location.line, diagnostic.location.column) == (2, LOOK_COLUMN + len("shape "))
-    assert diagnostic.message == "unknown shape 'wardrob', drawn as a plain box; did you mean 'wardrobe'?"
+    assert (diagnostic.location.line, diagnostic.location.column) == (
+        2,
+        LOOK_COLUMN + len("shape "),
+    )
+    assert (
+        diagnostic.message
+        == "unknown shape 'wardrob', drawn as a plain box; did you mean 'wardrobe'?"
+    )
     code, out, _ = run(capsys, "validate", str(rules))
     assert code == 0
     first, line, caret, verdict = out.splitlines()
@@ -178,8 +191,10 @@ def make_garbage_glb(path: Path) -> str:
 def make_cut_short_glb(path: Path) -> str:
     whole = trimesh.creation.box().export(file_type="glb")
     path.write_bytes(whole[: len(whole) // 2])
-    return (f"is not a valid .glb file (its header gives {len(whole)} bytes "
-            f"but the file has only {len(whole) // 2}: cut short)")
+    return (
+        f"is not a valid .glb file (its header gives {len(whole)} bytes "
+        f"but the file has only {len(whole) // 2}: cut short)"
+    )
 
 
 def make_empty_obj(path: Path) -> str:
@@ -209,12 +224,16 @@ def make_huge(path: Path) -> str:
 
 
 def make_gltf_with_missing_buffer(path: Path) -> str:
-    path.write_text('{"asset": {"version": "2.0"}, "buffers": [{"uri": "crate.bin", "byteLength": 8}]}')
+    path.write_text(
+        '{"asset": {"version": "2.0"}, "buffers": [{"uri": "crate.bin", "byteLength": 8}]}'
+    )
     return "refers to 'crate.bin', which does not exist"
 
 
 def make_gltf_reaching_outside(path: Path) -> str:
-    path.write_text('{"asset": {"version": "2.0"}, "buffers": [{"uri": "../secret.bin", "byteLength": 8}]}')
+    path.write_text(
+        '{"asset": {"version": "2.0"}, "buffers": [{"uri": "../secret.bin", "byteLength": 8}]}'
+    )
     return "refers to '../secret.bin', outside its folder"
 
 
@@ -248,7 +267,9 @@ def test_good_meshes_load_and_are_fitted(tmp_path):
     for name in ("crate.glb", "crate.obj", "crate.gltf"):
         assert check_rules(rules_with(tmp_path, f'mesh "models/{name}"')) == []
         assert len(load_mesh_file(tmp_path / "models" / name).faces) == 12
-    mesh = shaped_mesh(None, str(tmp_path / "models" / "crate.glb"), (0.5, 0.5, 0.5), (0.2, 0.3, 0.4))
+    mesh = shaped_mesh(
+        None, str(tmp_path / "models" / "crate.glb"), (0.5, 0.5, 0.5), (0.2, 0.3, 0.4)
+    )
     np.testing.assert_allclose(mesh.bounds, [[-0.25, 0.0, -0.25], [0.25, 0.5, 0.25]])
 
 
@@ -257,8 +278,10 @@ def test_validate_and_generate_exit_2_on_a_corrupt_glb(tmp_path, capsys):
     reason = make_garbage_glb(tmp_path / "models" / "crate.glb")
     rules = rules_with(tmp_path, 'mesh "models/crate.glb"')
     located = f"{rules}:2:{LOOK_COLUMN + 5}: error: mesh file 'models/crate.glb' {reason}"
-    excerpt = ['    object crate { noun "crate" mesh "models/crate.glb" }',
-               "    " + " " * len('object crate { noun "crate" mesh ') + "^"]
+    excerpt = [
+        '    object crate { noun "crate" mesh "models/crate.glb" }',
+        "    " + " " * len('object crate { noun "crate" mesh ') + "^",
+    ]
 
     code, out, _ = run(capsys, "validate", str(rules))
     assert code == 2 and out.splitlines() == [located, *excerpt]
@@ -277,7 +300,9 @@ def test_the_renderer_meets_a_mesh_spoilt_after_validation(tmp_path):
     with pytest.raises(MeshFileError) as raised:
         shaped_mesh(None, str(mesh_file), (1.0, 1.0, 1.0), (0.5, 0.5, 0.5))
     assert isinstance(raised.value, InputError) and raised.value.exit_code == 2
-    assert str(raised.value) == f"mesh file '{mesh_file}' " + make_garbage_glb(tmp_path / "again.glb")
+    assert str(raised.value) == f"mesh file '{mesh_file}' " + make_garbage_glb(
+        tmp_path / "again.glb"
+    )
 
 
 def test_a_file_of_another_type_is_refused_before_it_is_read(tmp_path):
@@ -294,10 +319,14 @@ def test_list_shapes_prints_the_registry_aligned(capsys):
     code, out, _ = run(capsys, "list", "--shapes")
     assert code == 0
     header, *rows = out.splitlines()
-    assert header.split()[0] == "shape" and "front (local +Z" in header and header.endswith("used from")
+    assert (
+        header.split()[0] == "shape"
+        and "front (local +Z" in header
+        and header.endswith("used from")
+    )
     assert [row.split()[0] for row in rows] == list(SHAPES)
     front_at, used_at = header.index("front"), header.index("used from")
-    for row, shape in zip(rows, SHAPES.values()):
+    for row, shape in zip(rows, SHAPES.values(), strict=False):
         assert row[front_at:].startswith(shape.front) and row[used_at:] == shape.used_from
 
 

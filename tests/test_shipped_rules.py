@@ -7,12 +7,12 @@ from functools import cache
 
 import pytest
 
+from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_KINDS
+from scenewright.core.scene_graph import SceneGraph
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.expand import expand
-from scenewright.core.relations import RELATIONS
 from scenewright.generator.rules import Rules, check_rules, load_rules, shipped_rule_sets
-from scenewright.core.scene_graph import SceneGraph
 
 ROOMS = ("bedroom", "living_room", "kitchen", "study", "classroom", "bathroom")
 SHIPPED = ("village", "desk", *ROOMS)
@@ -64,7 +64,10 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
     def production(name: str) -> tuple[int, int]:
         if name not in memo:
             memo[name] = (0, 10**9)  # a recursive rule set would show as unbounded
-            bounds = [block(alternative.statements) for alternative in rules.productions[name].alternatives]
+            bounds = [
+                block(alternative.statements)
+                for alternative in rules.productions[name].alternatives
+            ]
             memo[name] = (min(lo for lo, _ in bounds), max(hi for _, hi in bounds))
         return memo[name]
 
@@ -80,7 +83,9 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
                 each = (own + inner[0], own + inner[1])
             else:  # a reference to existing nodes adds edges only
                 each = (0, 0)
-            times_low, times_high = (statement.count.low, statement.count.high) if statement.count else (1, 1)
+            times_low, times_high = (
+                (statement.count.low, statement.count.high) if statement.count else (1, 1)
+            )
             if statement.probability is not None and statement.probability < 1:
                 times_low = 0
             low += int(times_low) * each[0]
@@ -94,8 +99,16 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
 
 @pytest.mark.parametrize(
     "name, bounds",
-    [("village", (25, 40)), ("desk", (1, 8)), ("bedroom", (3, 16)), ("living_room", (4, 14)), ("kitchen", (7, 12)),
-     ("study", (3, 13)), ("classroom", (15, 29)), ("bathroom", (3, 6))],
+    [
+        ("village", (25, 40)),
+        ("desk", (1, 8)),
+        ("bedroom", (3, 16)),
+        ("living_room", (4, 14)),
+        ("kitchen", (7, 12)),
+        ("study", (3, 13)),
+        ("classroom", (15, 29)),
+        ("bathroom", (3, 6)),
+    ],
 )
 def test_object_budget_holds_for_every_seed(name, bounds):
     rules = load_rules(name)
@@ -136,7 +149,9 @@ def test_village_roads_meet_at_an_intersection_or_a_single_road_crosses():
         junctions = [n.id for n in graph.nodes("junction")]
         if junctions:
             assert len(junctions) == 1 and 2 <= len(roads) <= 4
-            connected = {e.source for e in graph.edges("PathConnectedTo") if e.target == junctions[0]}
+            connected = {
+                e.source for e in graph.edges("PathConnectedTo") if e.target == junctions[0]
+            }
             assert connected == set(roads)
         else:
             assert len(roads) == 1
@@ -161,16 +176,24 @@ def test_every_market_stand_is_a_table_with_a_sign_and_goods_on_it_by_a_road():
             types = Counter(member.type for member in members)
             assert types["table"] == 1 and types["sign"] == 1
             table = next(m.id for m in members if m.type == "table")
-            supported = {e.source for e in graph.edges() if e.target == table and RELATIONS[e.label].support}
+            supported = {
+                e.source for e in graph.edges() if e.target == table and RELATIONS[e.label].support
+            }
             goods = {m.id for m in members if m.type not in ("table", "sign", "chair", "barrel")}
             assert goods and goods == supported
-            assert any(e.target in roads and e.label == "NextTo" for e in graph.edges() if e.source == stand.id)
+            assert any(
+                e.target in roads and e.label == "NextTo"
+                for e in graph.edges()
+                if e.source == stand.id
+            )
     assert stands > 0
 
 
 def test_blacksmith_lines_up_forge_brazier_and_anvil_with_a_hammer_on_it():
     for graph in expansions("village")[:200]:
-        labels = {(graph.node(e.source).type, e.label, graph.node(e.target).type) for e in graph.edges()}
+        labels = {
+            (graph.node(e.source).type, e.label, graph.node(e.target).type) for e in graph.edges()
+        }
         if any(n.type == "blacksmith" for n in graph.nodes("group")):
             assert ("brazier", "NextToFront", "forge") in labels
             assert ("anvil", "NextToFront", "brazier") in labels
@@ -198,7 +221,9 @@ def test_desk_relevancies_and_computer_styles_follow_the_rules():
     assert share["table"] == 1.0
     assert share["chair"] == pytest.approx(0.9, abs=0.04)
     assert share["paper"] == pytest.approx(0.25, abs=0.04)
-    assert styles["laptop"] / (styles["laptop"] + styles["tablet"]) == pytest.approx(2 / 3, abs=0.05)
+    assert styles["laptop"] / (styles["laptop"] + styles["tablet"]) == pytest.approx(
+        2 / 3, abs=0.05
+    )
 
 
 def test_indoor_sets_are_rooms_with_walls():
@@ -219,11 +244,20 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
     for graph in expansions("bedroom")[:300]:
         assert [n.type for n in objects(graph)].count("bed") == 1
         for node in objects(graph):
-            out = {(e.label, graph.node(e.target).type) for e in graph.edges() if e.source == node.id}
+            out = {
+                (e.label, graph.node(e.target).type) for e in graph.edges() if e.source == node.id
+            }
             if node.type == "nightstand":
-                assert out & {("NextToLeft", "bed"), ("NextToRight", "bed"), ("NextToChooseSide", "bed")}
+                assert out & {
+                    ("NextToLeft", "bed"),
+                    ("NextToRight", "bed"),
+                    ("NextToChooseSide", "bed"),
+                }
             if node.type == "lamp":
-                assert any(RELATIONS[label].support and target in ("nightstand", "desk") for label, target in out)
+                assert any(
+                    RELATIONS[label].support and target in ("nightstand", "desk")
+                    for label, target in out
+                )
 
 
 # -- the vocabulary ------------------------------------------------------------------
@@ -232,7 +266,13 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
 def test_every_label_family_is_used_by_the_shipped_sets():
     used = {edge.label for name in SHIPPED for graph in expansions(name) for edge in graph.edges()}
     families = {
-        "NextTo*": [label for label in used if RELATIONS[label].family == "next_to" and not RELATIONS[label].implicit and not RELATIONS[label].chooses],
+        "NextTo*": [
+            label
+            for label in used
+            if RELATIONS[label].family == "next_to"
+            and not RELATIONS[label].implicit
+            and not RELATIONS[label].chooses
+        ],
         "OnTopOf*": [label for label in used if label.startswith("OnTopOf")],
         "IsPartOf*": [label for label in used if label.startswith("IsPartOf")],
         "Facing*": [label for label in used if RELATIONS[label].family == "facing"],

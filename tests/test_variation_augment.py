@@ -60,4 +60,6 @@ def test_augmented_graph_is_deterministic_and_printable():
     first, second = augment(examples()), augment(examples())
     assert json.dumps(first.to_dict()) == json.dumps(second.to_dict())
     dot = first.to_dot()
-    assert dot.startswith("digraph augmented {") and dot.count("->") == len(first.to_dict()["edges"])
+    assert dot.startswith("digraph augmented {") and dot.count("->") == len(
+        first.to_dict()["edges"]
+    )

@@ -23,24 +23,35 @@ def box(object_id, kind, x, z, yaw_degrees, size, y=0.0):
 
 
 def example(name, records):
-    return Example(name, f"{name}.json", "example.json", example_scene(records, name=name, source=name, extent=(7.0, 7.0), room=None))
+    return Example(
+        name,
+        f"{name}.json",
+        "example.json",
+        example_scene(records, name=name, source=name, extent=(7.0, 7.0), room=None),
+    )
 
 
 # Two studies: a desk with a chair in front; the first has a lamp on the desk and a
 # shelf, the second a bigger table with two books and a cabinet touching its left side.
-FIRST = example("first", [
-    box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
-    box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
-    box("lamp", "lamp", 0.4, -0.1, 0.0, (0.2, 0.4, 0.2), y=0.75),
-    box("shelf", "shelf", -2.5, -2.0, 0.0, (0.9, 1.8, 0.35)),
-])  # fmt: skip
-SECOND = example("second", [
-    box("table", "table", 0.5, 0.5, 0.0, (1.6, 0.74, 0.8)),
-    box("seat", "stool", 0.5, 1.35, 180.0, (0.5, 0.85, 0.5)),
-    box("book_a", "book", 0.0, 0.4, 0.0, (0.2, 0.05, 0.3), y=0.74),
-    box("book_b", "book", 0.9, 0.6, 90.0, (0.2, 0.05, 0.3), y=0.74),
-    box("cabinet", "cabinet", 1.6, 0.5, 0.0, (0.6, 0.7, 0.6)),
-])  # fmt: skip
+FIRST = example(
+    "first",
+    [
+        box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+        box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+        box("lamp", "lamp", 0.4, -0.1, 0.0, (0.2, 0.4, 0.2), y=0.75),
+        box("shelf", "shelf", -2.5, -2.0, 0.0, (0.9, 1.8, 0.35)),
+    ],
+)
+SECOND = example(
+    "second",
+    [
+        box("table", "table", 0.5, 0.5, 0.0, (1.6, 0.74, 0.8)),
+        box("seat", "stool", 0.5, 1.35, 180.0, (0.5, 0.85, 0.5)),
+        box("book_a", "book", 0.0, 0.4, 0.0, (0.2, 0.05, 0.3), y=0.74),
+        box("book_b", "book", 0.9, 0.6, 90.0, (0.2, 0.05, 0.3), y=0.74),
+        box("cabinet", "cabinet", 1.6, 0.5, 0.0, (0.6, 0.7, 0.6)),
+    ],
+)
 
 
 @pytest.fixture(scope="module")
@@ -61,7 +72,9 @@ def test_replace_anchors_on_the_face_towards_the_chair(graph):
     # The desk's front (towards the chair, +Z) stays where it was; the table grows backwards.
     assert new.position[2] + new.size[2] / 2 == pytest.approx(0.0 + 0.35)
     assert new.position[0] == pytest.approx(0.0)
-    assert change.compatibility == pytest.approx(math.exp(1 - (1 + 0.2 / 3.0) * (1 + 0.01 / 1.49) * (1 + 0.1 / 1.5)))
+    assert change.compatibility == pytest.approx(
+        math.exp(1 - (1 + 0.2 / 3.0) * (1 + 0.01 / 1.49) * (1 + 0.1 / 1.5))
+    )
     # The lamp rides along onto the table's top, its place scaled.
     lamp = next(obj for obj, _ in change.added if obj.type == "lamp")
     assert lamp.position[1] == pytest.approx(0.74)
@@ -85,8 +98,12 @@ def test_transfer_onto_a_top_and_refused_where_nothing_can_stand(graph):
     change = transfer_items(variant, graph, "desk", (1, "table"))
     assert change.removed == ["lamp"]
     books = [obj for obj, _ in change.added]
-    assert [b.type for b in books] == ["book", "book"] and all(b.position[1] == pytest.approx(0.75) for b in books)
-    assert len({b.id for b in books}) == 2 and len(set(change.record["items"])) == 2  # two books, two ids
+    assert [b.type for b in books] == ["book", "book"] and all(
+        b.position[1] == pytest.approx(0.75) for b in books
+    )
+    assert (
+        len({b.id for b in books}) == 2 and len(set(change.record["items"])) == 2
+    )  # two books, two ids
     assert all(r.target == "desk" for r in change.relations)
     # A top 2.1 m up, or one narrower than a book, cannot carry them.
     tall = example("tall", [box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 2.1, 0.7))])
@@ -105,31 +122,46 @@ def test_applied_change_pins_everything_untouched(graph):
         after = done.objects()[object_id]
         assert after.position == before[object_id].position and after.yaw == before[object_id].yaw
     assert done.origin["table_1"] == (1, "table") and "desk" not in done.objects()
-    assert done.operations[0]["operation"] == "replace" and done.compatibility == pytest.approx(change.compatibility)
+    assert done.operations[0]["operation"] == "replace" and done.compatibility == pytest.approx(
+        change.compatibility
+    )
 
 
 def test_regrown_object_returns_to_its_place():
     # The first study without its shelf, and with it: growing the shelf back into the
     # first from the second puts it where it was.
-    full = example("full", [
-        box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
-        box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
-        box("shelf", "shelf", -1.2, 0.0, 0.0, (0.9, 1.8, 0.35)),
-    ])  # fmt: skip
-    cut = example("cut", [r for r in [
-        box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
-        box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
-    ]])  # fmt: skip
+    full = example(
+        "full",
+        [
+            box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+            box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+            box("shelf", "shelf", -1.2, 0.0, 0.0, (0.9, 1.8, 0.35)),
+        ],
+    )
+    cut = example(
+        "cut",
+        [
+            r
+            for r in [
+                box("desk", "desk", 0.0, 0.0, 0.0, (1.4, 0.75, 0.7)),
+                box("chair", "chair", 0.0, 0.8, 180.0, (0.5, 0.9, 0.5)),
+            ]
+        ],
+    )
     graph = augment([cut, full])
     node = graph.node_of[(1, "shelf")]
     variant = start_variant(0, cut)
-    done = apply_change(variant, graph, grow_node(variant, graph, node, (1, "shelf")), np.random.default_rng(1))
+    done = apply_change(
+        variant, graph, grow_node(variant, graph, node, (1, "shelf")), np.random.default_rng(1)
+    )
     shelf = done.objects()["shelf_1"]
     assert math.hypot(shelf.position[0] + 1.2, shelf.position[2]) <= 0.2
     assert abs(math.remainder(shelf.yaw, 2 * math.pi)) <= math.radians(15)
 
 
-@pytest.mark.parametrize("rules, seed, object_id", [("living_room", 2, "bookshelf_1"), ("kitchen", 1, "dining_table_1")])
+@pytest.mark.parametrize(
+    "rules, seed, object_id", [("living_room", 2, "bookshelf_1"), ("kitchen", 1, "dining_table_1")]
+)
 def test_regrown_object_among_alike_ones_returns_to_its_place(rules, seed, object_id):
     # Two identical bookshelves with the same relations; a table among alike chairs.
     # With the object deleted, the cut room matches the full one as well with the alike
@@ -139,15 +171,26 @@ def test_regrown_object_among_alike_ones_returns_to_its_place(rules, seed, objec
     scene = build_scene(rules, seed)
     graph = structure_graph(scene)
     gone = {object_id, *(graph.ids[j] for j in graph.carried(graph.index(object_id)))}
-    cut = replace(scene, objects=[o for o in scene.objects if o.id not in gone],
-                  relations=[r for r in scene.relations if r.source not in gone and r.target not in gone])  # fmt: skip
-    examples = [Example("cut", "cut", "scene.json", cut), Example("full", "full", "scene.json", scene)]
+    cut = replace(
+        scene,
+        objects=[o for o in scene.objects if o.id not in gone],
+        relations=[r for r in scene.relations if r.source not in gone and r.target not in gone],
+    )
+    examples = [
+        Example("cut", "cut", "scene.json", cut),
+        Example("full", "full", "scene.json", scene),
+    ]
     ag = augment(examples)
     variant = start_variant(0, examples[0])
     change = grow_node(variant, ag, ag.node_of[(1, object_id)], (1, object_id))
     done = apply_change(variant, ag, change, np.random.default_rng(seed))
     grown, original = done.objects()[change.added[0][0].id], scene.object(object_id)
-    assert math.hypot(grown.position[0] - original.position[0], grown.position[2] - original.position[2]) <= 0.2
+    assert (
+        math.hypot(
+            grown.position[0] - original.position[0], grown.position[2] - original.position[2]
+        )
+        <= 0.2
+    )
     assert abs(math.remainder(grown.yaw - original.yaw, 2 * math.pi)) <= math.radians(15)
 
 
@@ -184,10 +227,14 @@ def test_low_compatibility_operations_are_not_applied():
 def test_vary_is_deterministic():
     first = vary([FIRST, SECOND], 3, seed=7, attempts=6)
     second = vary([FIRST, SECOND], 3, seed=7, attempts=6)
-    assert first and [r.scene.to_json(reproducible=True) for r in first] == [r.scene.to_json(reproducible=True) for r in second]
+    assert first and [r.scene.to_json(reproducible=True) for r in first] == [
+        r.scene.to_json(reproducible=True) for r in second
+    ]
     assert [r.synthesis() for r in first] == [r.synthesis() for r in second]
     assert all(r.scene.layout.ok for r in first)
-    assert [r.compatibility for r in first] == sorted((r.compatibility for r in first), reverse=True)
+    assert [r.compatibility for r in first] == sorted(
+        (r.compatibility for r in first), reverse=True
+    )
 
 
 def test_a_change_no_layout_holds_is_not_laid_out_again(monkeypatch):
@@ -198,10 +245,14 @@ def test_a_change_no_layout_holds_is_not_laid_out_again(monkeypatch):
     laid: list[str] = []
 
     def failing(graph, seed, *, pinned=None, pinned_paths=None, start=None, **options):
-        laid.append(repr(sorted({**pinned, **start}.items())) + repr(sorted(map(repr, graph.edges()))))
+        laid.append(
+            repr(sorted({**pinned, **start}.items())) + repr(sorted(map(repr, graph.edges())))
+        )
         return SimpleNamespace(ok=False)
 
     monkeypatch.setattr(layout, "layout_scene", failing)
-    monkeypatch.setattr(layout, "measure_layout", lambda graph, poses, paths: SimpleNamespace(ok=False))
+    monkeypatch.setattr(
+        layout, "measure_layout", lambda graph, poses, paths: SimpleNamespace(ok=False)
+    )
     assert vary([FIRST, SECOND], 3, seed=7, attempts=8) == []
     assert len(laid) > 2 and len(set(laid)) == len(laid)

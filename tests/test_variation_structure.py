@@ -14,7 +14,9 @@ from scenewright.variation.structure import wrap
 
 
 def graph_of(*records):
-    return structure_graph(example_scene(list(records), name="t", source="t", extent=(10.0, 10.0), room=None))
+    return structure_graph(
+        example_scene(list(records), name="t", source="t", extent=(10.0, 10.0), room=None)
+    )
 
 
 def box(object_id, x, z, yaw_degrees=0.0, size=(1.0, 1.0, 1.0), y=0.0, kind=None):
@@ -31,13 +33,19 @@ def test_vertical_contact_left_and_right_have_opposite_contact_angles():
     left = box("left", 1.05, -0.75, size=(0.5, 0.5, 0.5))
     right = box("right", -1.05, -0.75, size=(0.5, 0.5, 0.5))
     graph = graph_of(bed, left, right)
-    assert {"V", "A"} <= relations(graph, "bed", "left") and "C" not in relations(graph, "bed", "left")
+    assert {"V", "A"} <= relations(graph, "bed", "left") and "C" not in relations(
+        graph, "bed", "left"
+    )
     on_left = graph.edges[(graph.index("bed"), graph.index("left"))].contact_angles
     on_right = graph.edges[(graph.index("bed"), graph.index("right"))].contact_angles
-    assert on_left == pytest.approx((math.pi / 2, math.pi / 2)) and on_right == pytest.approx((-math.pi / 2, -math.pi / 2))
+    assert on_left == pytest.approx((math.pi / 2, math.pi / 2)) and on_right == pytest.approx(
+        (-math.pi / 2, -math.pi / 2)
+    )
     # Seen from the nightstand, the normal points back at the bed: turned by pi.
     back = graph.edges[(graph.index("left"), graph.index("bed"))].contact_angles
-    assert [wrap(b - a) for a, b in zip(reversed(on_left), back)] == pytest.approx([math.pi, math.pi])
+    assert [wrap(b - a) for a, b in zip(reversed(on_left), back, strict=False)] == pytest.approx(
+        [math.pi, math.pi]
+    )
     # The two nightstands are 1.6 m apart, far for their 0.35 m half diagonals.
     assert relations(graph, "left", "right") == set()
 
@@ -52,7 +60,9 @@ def test_facing_is_directed():
     assert edge.gap == pytest.approx(0.8 - 0.35 - 0.25)
     assert abs(edge.facing_angle) == pytest.approx(math.pi)
     turned = graph_of(desk, box("chair", 0.0, 0.8, 0.0, size=(0.5, 0.9, 0.5)))  # back to the desk
-    assert "F" not in relations(turned, "chair", "desk") and "F" in relations(turned, "desk", "chair")
+    assert "F" not in relations(turned, "chair", "desk") and "F" in relations(
+        turned, "desk", "chair"
+    )
 
 
 def test_alignment_needs_parallel_flush_sides():
@@ -60,9 +70,13 @@ def test_alignment_needs_parallel_flush_sides():
     flush = box("b", 1.3, 0.0, size=(1.0, 2.0, 0.6))
     assert "A" in relations(graph_of(first, flush), "a", "b")
     assert "A" not in relations(graph_of(first, box("b", 1.3, 0.2, size=(1.0, 2.0, 0.6))), "a", "b")
-    assert "A" not in relations(graph_of(first, box("b", 1.3, 0.0, 20.0, size=(1.0, 2.0, 0.6))), "a", "b")
+    assert "A" not in relations(
+        graph_of(first, box("b", 1.3, 0.0, 20.0, size=(1.0, 2.0, 0.6))), "a", "b"
+    )
     # Turned by 90 degrees but flush still counts: the boxes are parallel.
-    assert "A" in relations(graph_of(first, box("b", 1.3, 0.0, 90.0, size=(0.6, 2.0, 1.0))), "a", "b")
+    assert "A" in relations(
+        graph_of(first, box("b", 1.3, 0.0, 90.0, size=(0.6, 2.0, 1.0))), "a", "b"
+    )
 
 
 def test_close_records_the_gap_and_far_objects_have_no_edge():
@@ -89,12 +103,21 @@ def test_supported_objects_leave_the_layout_subgraph():
 @settings(max_examples=30, deadline=None)
 @given(
     st.lists(
-        st.tuples(st.floats(-3, 3), st.floats(-3, 3), st.floats(-180, 180), st.floats(0.2, 2.0), st.floats(0.2, 2.0)),
-        min_size=2, max_size=6,
+        st.tuples(
+            st.floats(-3, 3),
+            st.floats(-3, 3),
+            st.floats(-180, 180),
+            st.floats(0.2, 2.0),
+            st.floats(0.2, 2.0),
+        ),
+        min_size=2,
+        max_size=6,
     )
-)  # fmt: skip
+)
 def test_every_edge_is_stored_both_ways_consistently(boxes):
-    records = [box(f"o{k}", x, z, yaw, size=(w, 1.0, d)) for k, (x, z, yaw, w, d) in enumerate(boxes)]
+    records = [
+        box(f"o{k}", x, z, yaw, size=(w, 1.0, d)) for k, (x, z, yaw, w, d) in enumerate(boxes)
+    ]
     graph = graph_of(*records)
     for (i, j), edge in graph.edges.items():
         back = graph.edges[(j, i)]
@@ -102,7 +125,7 @@ def test_every_edge_is_stored_both_ways_consistently(boxes):
         assert wrap(back.facing_angle + edge.facing_angle) == pytest.approx(0.0, abs=1e-9)
         assert edge.relations - {"F"} == back.relations - {"F"}
         if edge.gap > 1e-6:  # separated: one separating axis, seen from either side
-            for a, b in zip(reversed(edge.contact_angles), back.contact_angles):
+            for a, b in zip(reversed(edge.contact_angles), back.contact_angles, strict=False):
                 assert abs(wrap(b - a - math.pi)) == pytest.approx(0.0, abs=1e-6)
 
 
@@ -116,12 +139,18 @@ def test_graded_memberships_fall_off_smoothly_around_each_threshold():
 
     def grades(gap):
         graph = graph_of(box("a", 0.0, 0.0), box("b", 1.0 + gap, 0.0))  # 1 m cubes side by side
-        return dict(zip("VAFC", graph.edges[(0, 1)].grades)), relations(graph, "a", "b")
+        return dict(zip("VAFC", graph.edges[(0, 1)].grades, strict=False)), relations(
+            graph, "a", "b"
+        )
 
     touching, crisp = grades(0.0)
     assert touching["V"] == 1.0 and touching["C"] == 0.0 and crisp == {"V", "A"}
     at_threshold, crisp = grades(CONTACT - 1e-9)
-    assert at_threshold["V"] == pytest.approx(0.5) and at_threshold["C"] == pytest.approx(0.5) and "V" in crisp
+    assert (
+        at_threshold["V"] == pytest.approx(0.5)
+        and at_threshold["C"] == pytest.approx(0.5)
+        and "V" in crisp
+    )
 
 
 def test_a_pair_just_beyond_near_is_in_the_fringe_not_an_edge():
@@ -129,7 +158,7 @@ def test_a_pair_just_beyond_near_is_in_the_fringe_not_an_edge():
     # relation holds, but near's fall-off still gives a graded membership.
     graph = graph_of(box("a", 0.0, 0.0), box("b", 1.72, 0.0))
     assert relations(graph, "a", "b") == set() and (0, 1) not in graph.edges
-    grades = dict(zip("VAFC", graph.fringe[(0, 1)].grades))
+    grades = dict(zip("VAFC", graph.fringe[(0, 1)].grades, strict=False))
     assert 0.0 < grades["C"] < 0.5 and grades["V"] == 0.0
     far = graph_of(box("a", 0.0, 0.0), box("b", 3.0, 0.0))
     assert far.edges == {} and far.fringe == {}

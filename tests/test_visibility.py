@@ -6,18 +6,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from render_fixtures import scene_of, thing
 
-from render_fixtures import renderer_or_skip, scene_of, thing
 from scenewright.core.errors import InputError
 from scenewright.render.camera import frame_scene
 from scenewright.render.visibility import PictureView, Thresholds, world_centres
-
-
-@pytest.fixture(scope="module")
-def renderer():
-    renderer = renderer_or_skip(160, 120)
-    yield renderer
-    renderer.close()
 
 
 def hidden_tiny_and_row():
@@ -48,7 +41,9 @@ def test_visible_fraction_and_box_come_from_the_render(picture):
     for entity_id in result.ids:
         assert view.entities[entity_id].visible == result.visible[entity_id]
         assert view.box(entity_id) == result.boxes.get(entity_id)
-        assert view.entities[entity_id].pixels == int((result.segmentation == result.ids.index(entity_id) + 1).sum())
+        assert view.entities[entity_id].pixels == int(
+            (result.segmentation == result.ids.index(entity_id) + 1).sum()
+        )
 
 
 def test_only_what_is_visible_enough_is_seen(picture):
@@ -65,6 +60,7 @@ def test_the_default_box_size_follows_small_images():
     assert Thresholds().size_in(512, 384) == 16 and Thresholds().size_in(64, 64) == 4
     assert Thresholds(min_size=30).size_in(64, 64) == 30
 
+
 def test_thresholds_are_settable(picture):
     scene, result, _ = picture
     lenient = PictureView.from_render(result, scene, Thresholds(min_visible=0.0, min_size=1))
@@ -73,7 +69,9 @@ def test_thresholds_are_settable(picture):
     assert not any(strict.seen(i) for i in result.ids)
 
 
-@pytest.mark.parametrize(("settings_", "word"), [({"min_visible": 1.5}, "between 0 and 1"), ({"min_size": -1}, ">= 0")])
+@pytest.mark.parametrize(
+    ("settings_", "word"), [({"min_visible": 1.5}, "between 0 and 1"), ({"min_size": -1}, ">= 0")]
+)
 def test_bad_thresholds_are_refused(settings_, word):
     with pytest.raises(InputError, match=word):
         Thresholds(**settings_)
@@ -89,7 +87,9 @@ def test_something_between_two_things_in_the_picture(picture):
 
 def test_picture_sides_agree_with_the_projection(picture):
     scene, _, view = picture
-    (u1, _), (u2, _) = view.camera.project(np.stack([view.centres["post_1"], view.centres["post_2"]]))[0]
+    (u1, _), (u2, _) = view.camera.project(
+        np.stack([view.centres["post_1"], view.centres["post_2"]])
+    )[0]
     assert view.picture_side("post_1", "post_2") == ("left" if u1 < u2 else "right")
     assert view.picture_side("post_2", "post_1") == ("right" if u1 < u2 else "left")
     # The cube is straight behind the crate as the camera looks.
@@ -99,7 +99,9 @@ def test_picture_sides_agree_with_the_projection(picture):
 
 @settings(max_examples=60, deadline=None)
 @given(
-    st.lists(st.tuples(st.floats(-10, 10), st.floats(-10, 10)), min_size=2, max_size=2, unique=True),
+    st.lists(
+        st.tuples(st.floats(-10, 10), st.floats(-10, 10)), min_size=2, max_size=2, unique=True
+    ),
     st.sampled_from(["perspective", "top"]),
 )
 def test_a_picture_side_is_what_the_projection_shows(places, view_name):
@@ -108,7 +110,9 @@ def test_a_picture_side_is_what_the_projection_shows(places, view_name):
         return
     scene = scene_of([thing("box_1", (ax, 0, az)), thing("box_2", (bx, 0, bz))])
     camera = frame_scene(scene, view_name, 160, 120)
-    view = PictureView(camera, np.zeros((120, 160), dtype=np.int32), [], {}, world_centres(scene), frozenset())
+    view = PictureView(
+        camera, np.zeros((120, 160), dtype=np.int32), [], {}, world_centres(scene), frozenset()
+    )
     side = view.picture_side("box_1", "box_2")
     (pa, pb), (da, db) = camera.project(np.stack([view.centres["box_1"], view.centres["box_2"]]))
     if side == "left":

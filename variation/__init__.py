@@ -14,4 +14,11 @@ from .augmented import AugmentedGraph, augment
 from .matching import Matching, match_graphs
 from .structure import StructureGraph, structure_graph
 
-__all__ = ["AugmentedGraph", "Matching", "StructureGraph", "augment", "match_graphs", "structure_graph"]
+__all__ = [
+    "AugmentedGraph",
+    "Matching",
+    "StructureGraph",
+    "augment",
+    "match_graphs",
+    "structure_graph",
+]

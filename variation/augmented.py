@@ -100,23 +100,39 @@ class AugmentedGraph:
 
     def to_dict(self) -> dict:
         """Plain data: examples, nodes with members, edges (each node pair once) with relations."""
+
         def member(m: Member) -> dict:
             graph = self.graphs[m[0]]
             k = graph.index(m[1])
-            return {"example": self.examples[m[0]].name, "object": m[1], "type": graph.types[k],
-                    "style": graph.styles[k], "size": [round(float(v), 4) for v in graph.sizes[k]]}  # fmt: skip
+            return {
+                "example": self.examples[m[0]].name,
+                "object": m[1],
+                "type": graph.types[k],
+                "style": graph.styles[k],
+                "size": [round(float(v), 4) for v in graph.sizes[k]],
+            }
 
         return {
-            "examples": [{"name": e.name, "path": e.path, "format": e.format} for e in self.examples],
-            "nodes": [{"id": n.id, "supported_by": n.supporter, "members": [member(m) for m in n.members]}
-                      for n in self.nodes],  # fmt: skip
+            "examples": [
+                {"name": e.name, "path": e.path, "format": e.format} for e in self.examples
+            ],
+            "nodes": [
+                {"id": n.id, "supported_by": n.supporter, "members": [member(m) for m in n.members]}
+                for n in self.nodes
+            ],
             "edges": [
-                {"a": a, "b": b, "relations": _ordered(self.edges[(a, b)] | _mirrored(self.edges.get((b, a), set()))),
-                 "pairs": [[self.examples[e].name, x, y] for e, x, y in self.sources[(a, b)]]}
+                {
+                    "a": a,
+                    "b": b,
+                    "relations": _ordered(
+                        self.edges[(a, b)] | _mirrored(self.edges.get((b, a), set()))
+                    ),
+                    "pairs": [[self.examples[e].name, x, y] for e, x, y in self.sources[(a, b)]],
+                }
                 for (a, b) in sorted(self.edges, key=lambda k: (int(k[0][1:]), int(k[1][1:])))
                 if int(a[1:]) < int(b[1:])
             ],
-        }  # fmt: skip
+        }
 
     def to_dot(self) -> str:
         """Graphviz text: layout nodes as boxes, supported ones as ellipses, edges labelled with relation codes."""
@@ -127,7 +143,9 @@ class AugmentedGraph:
             shape = "ellipse" if node.supported else "box"
             lines.append(f'  {node.id} [shape={shape}, label="{label}"];')
         for item in self.to_dict()["edges"]:
-            lines.append(f'  {item["a"]} -> {item["b"]} [dir=none, label="{"".join(item["relations"])}"];')
+            lines.append(
+                f'  {item["a"]} -> {item["b"]} [dir=none, label="{"".join(item["relations"])}"];'
+            )
         lines.append("}")
         return "\n".join(lines) + "\n"
 
@@ -141,7 +159,9 @@ def _ordered(relations: set[str]) -> list[str]:
     return sorted(relations, key=lambda code: (RELATION_CODES.index(code.upper()), code.islower()))
 
 
-def augment(examples: list[Example], *, threshold: float = CONFIDENCE, lam: float = LAMBDA) -> AugmentedGraph:
+def augment(
+    examples: list[Example], *, threshold: float = CONFIDENCE, lam: float = LAMBDA
+) -> AugmentedGraph:
     """The Augmented Graph of ``examples`` (see the module docstring)."""
     graphs = [structure_graph(e.scene) for e in examples]
     ag = AugmentedGraph(examples, graphs)
@@ -180,7 +200,9 @@ def _first_pair(graphs: list[StructureGraph], threshold: float, lam: float) -> i
 
 def _add_supported(ag: AugmentedGraph) -> None:
     """Each supported object a node of its own, resting on its supporter's node (supporters first)."""
-    pending = [(e, g.ids[i]) for e, g in enumerate(ag.graphs) for i in range(len(g)) if i in g.supporter]
+    pending = [
+        (e, g.ids[i]) for e, g in enumerate(ag.graphs) for i in range(len(g)) if i in g.supporter
+    ]
     while pending:
         for member in list(pending):
             graph = ag.graphs[member[0]]
@@ -218,14 +240,12 @@ def _match_to_ag(ag: AugmentedGraph, k: int, threshold: float, lam: float) -> di
     problem = Problem(unary, first, table_b, pairwise, lam, place)
     assignment = solve(problem)
     _, kept = withdraw(problem, assignment, threshold)
-    return {
-        graph.ids[nodes_b[assignment[p]]]: nodes[p].id
-        for p in range(len(nodes))
-        if kept[p]
-    }
+    return {graph.ids[nodes_b[assignment[p]]]: nodes[p].id for p in range(len(nodes)) if kept[p]}
 
 
-def _max_table(rows: list[tuple[EdgeTable, np.ndarray]], second: EdgeTable) -> tuple[EdgeTable, np.ndarray]:
+def _max_table(
+    rows: list[tuple[EdgeTable, np.ndarray]], second: EdgeTable
+) -> tuple[EdgeTable, np.ndarray]:
     """The AG's edge table (one row per node pair, relations united) and each row's
     similarity to ``second``'s edges: the largest of its member edges'."""
     keys: dict[tuple[int, int], int] = {}

@@ -102,7 +102,15 @@ class EdgeTable:
         layout relation, the fringe's included."""
         where = {node: position for position, node in enumerate(nodes)}
         rows = [
-            (where[i], where[j], *edge.grades, edge.facing_angle, *edge.contact_angles, edge.gap, edge.scale)
+            (
+                where[i],
+                where[j],
+                *edge.grades,
+                edge.facing_angle,
+                *edge.contact_angles,
+                edge.gap,
+                edge.scale,
+            )
             for (i, j), edge in sorted({**graph.edges, **graph.fringe}.items())
             if i in where and j in where and max(edge.grades) > 0.0
         ]
@@ -113,13 +121,26 @@ class EdgeTable:
         """From rows (source, target, 4 grades, facing, 2 contact angles, gap, scale)."""
         table = np.array(rows, dtype=float).reshape(-1, 11)
         return cls(
-            table[:, 0].astype(int), table[:, 1].astype(int), table[:, 2:6], table[:, 6],
-            table[:, 7:9], table[:, 9], table[:, 10],
-        )  # fmt: skip
+            table[:, 0].astype(int),
+            table[:, 1].astype(int),
+            table[:, 2:6],
+            table[:, 6],
+            table[:, 7:9],
+            table[:, 9],
+            table[:, 10],
+        )
 
     def row(self, r: int) -> list:
         """Edge r as a row of ``from_rows``."""
-        return [self.source[r], self.target[r], *self.grades[r], self.facing[r], *self.contact[r], self.gap[r], self.scale[r]]
+        return [
+            self.source[r],
+            self.target[r],
+            *self.grades[r],
+            self.facing[r],
+            *self.contact[r],
+            self.gap[r],
+            self.scale[r],
+        ]
 
     def __len__(self) -> int:
         return len(self.source)
@@ -154,9 +175,11 @@ def edge_similarity(first: EdgeTable, second: EdgeTable) -> np.ndarray:
     scale = (first.scale[:, None] + second.scale[None, :]) / 2.0
     close = np.abs(first.gap[:, None] - second.gap[None, :]) / np.maximum(scale, 1e-9)
     return (
-        shared[..., _A] + shared[..., _V] * direction + shared[..., _F] * np.exp(-facing / math.pi)
+        shared[..., _A]
+        + shared[..., _V] * direction
+        + shared[..., _F] * np.exp(-facing / math.pi)
         + shared[..., _C] * np.exp(-close) * direction
-    )  # fmt: skip
+    )
 
 
 def box_similarity(sizes: np.ndarray, other: np.ndarray, sigma: float = UNARY_SIGMA) -> np.ndarray:
@@ -210,7 +233,9 @@ class Problem:
         rows = np.concatenate([diagonal, a])
         columns = np.concatenate([diagonal, b])
         values = np.concatenate([self.linear.ravel(), self.lam / 2.0 * self.pairwise[e1, e2]])
-        matrix = sparse.coo_matrix((values, (rows, columns)), shape=(size * size, size * size)).tocsr()
+        matrix = sparse.coo_matrix(
+            (values, (rows, columns)), shape=(size * size, size * size)
+        ).tocsr()
         return ((matrix + matrix.T) / 2.0).tocsr()
 
     def energy(self, assignment: np.ndarray) -> float:
@@ -253,14 +278,23 @@ def spectral_solution(affinity: sparse.spmatrix, size: int, *, lifted: bool = Tr
             # + 2 * grand mean.
             matrix = np.reshape(vector, (size, size))
             grand = matrix.mean()
-            return (matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + 2.0 * grand).ravel()
+            return (
+                matrix
+                - matrix.mean(axis=1, keepdims=True)
+                - matrix.mean(axis=0, keepdims=True)
+                + 2.0 * grand
+            ).ravel()
 
-        vector = _leading(lambda v: centre(affinity @ centre(np.ravel(v))), centre, count).reshape(size, size)
+        vector = _leading(lambda v: centre(affinity @ centre(np.ravel(v))), centre, count).reshape(
+            size, size
+        )
         total = vector[:, -1].sum()
         vector = vector / total if abs(total) > 1e-12 else vector
         # The common row sum can be tiny beside the rest, and then its sign says little:
         # of the eigenvector and its negative, the one whose assignment scores higher.
-        return max((vector, -vector), key=lambda relaxed: _score(affinity, _indicator(discretise(relaxed))))
+        return max(
+            (vector, -vector), key=lambda relaxed: _score(affinity, _indicator(discretise(relaxed)))
+        )
     unary = np.asarray(affinity.diagonal()).ravel()
     pairwise = affinity - sparse.diags(unary)
 
@@ -270,14 +304,21 @@ def spectral_solution(affinity: sparse.spmatrix, size: int, *, lifted: bool = Tr
         # sums: the direction (1/N, ..., 1/N, 1) (squared length 2) and the doubly
         # centred matrices, which are orthogonal to it.
         matrix, homogeneous = np.reshape(vector[:count], (size, size)), vector[count]
-        centred = matrix - matrix.mean(axis=1, keepdims=True) - matrix.mean(axis=0, keepdims=True) + matrix.mean()
+        centred = (
+            matrix
+            - matrix.mean(axis=1, keepdims=True)
+            - matrix.mean(axis=0, keepdims=True)
+            + matrix.mean()
+        )
         along = (matrix.sum() / size + homogeneous) / 2.0
         return np.append(centred.ravel() + along / size, along)
 
     def apply(vector: np.ndarray) -> np.ndarray:
         projected = project(np.ravel(vector))
         assignment, homogeneous = projected[:count], projected[count]
-        lifted = np.append(pairwise @ assignment + homogeneous / 2.0 * unary, unary @ assignment / 2.0)
+        lifted = np.append(
+            pairwise @ assignment + homogeneous / 2.0 * unary, unary @ assignment / 2.0
+        )
         return project(lifted)
 
     vector = _leading(apply, project, count + 1)
@@ -372,7 +413,9 @@ def interchangeable(graph: StructureGraph) -> dict[str, int]:
     groups = UnionFind(range(len(nodes)))
     for p in range(len(nodes)):
         for q in range(p + 1, len(nodes)):
-            if groups[p] == groups[q] or not np.array_equal(graph.sizes[nodes[p]], graph.sizes[nodes[q]]):
+            if groups[p] == groups[q] or not np.array_equal(
+                graph.sizes[nodes[p]], graph.sizes[nodes[q]]
+            ):
                 continue
             swapped = identity.copy()
             swapped[[p, q]] = [q, p]
@@ -412,10 +455,14 @@ class Matching:
         """The matching for people: one line per pair, then what was left out."""
         width = max([len(p.a) for p in self.pairs + self.withdrawn] + [1])
         other = max([len(p.b) for p in self.pairs + self.withdrawn] + [1])
-        shown = [f"  {p.a:<{width}}  ->  {p.b:<{other}}  confidence {p.confidence:.2f}, boxes {p.object_similarity:.2f}"
-                 for p in self.pairs]  # fmt: skip
-        shown += [f"  {p.a:<{width}}  ?>  {p.b:<{other}}  confidence {p.confidence:.2f} < {self.threshold:g}: withdrawn"
-                  for p in self.withdrawn]  # fmt: skip
+        shown = [
+            f"  {p.a:<{width}}  ->  {p.b:<{other}}  confidence {p.confidence:.2f}, boxes {p.object_similarity:.2f}"
+            for p in self.pairs
+        ]
+        shown += [
+            f"  {p.a:<{width}}  ?>  {p.b:<{other}}  confidence {p.confidence:.2f} < {self.threshold:g}: withdrawn"
+            for p in self.withdrawn
+        ]
         for side, ids in (("first", self.unmatched_a), ("second", self.unmatched_b)):
             if ids:
                 shown.append(f"  unmatched in the {side}: {', '.join(ids)}")
@@ -433,8 +480,12 @@ class Matching:
 
 
 def _pair_dict(pair: Correspondence) -> dict:
-    return {"a": pair.a, "b": pair.b, "confidence": round(pair.confidence, 4),
-            "object_similarity": round(pair.object_similarity, 4)}  # fmt: skip
+    return {
+        "a": pair.a,
+        "b": pair.b,
+        "confidence": round(pair.confidence, 4),
+        "object_similarity": round(pair.object_similarity, 4),
+    }
 
 
 def layout_problem(
@@ -444,11 +495,17 @@ def layout_problem(
     nodes_a, nodes_b = first.layout_nodes(), second.layout_nodes()
     unary = box_similarity(first.sizes[nodes_a], second.sizes[nodes_b])
     if type_prior:
-        same = np.array([[first.types[i] == second.types[k] for k in nodes_b] for i in nodes_a], dtype=float)
+        same = np.array(
+            [[first.types[i] == second.types[k] for k in nodes_b] for i in nodes_a], dtype=float
+        )
         unary = unary * (1.0 - type_prior * (1.0 - same.reshape(unary.shape)))
     table_a, table_b = EdgeTable.of(first, nodes_a), EdgeTable.of(second, nodes_b)
     place = place_similarity(first.places[nodes_a], second.places[nodes_b])
-    return Problem(unary, table_a, table_b, edge_similarity(table_a, table_b), lam, place), nodes_a, nodes_b
+    return (
+        Problem(unary, table_a, table_b, edge_similarity(table_a, table_b), lam, place),
+        nodes_a,
+        nodes_b,
+    )
 
 
 def solve(problem: Problem, *, refined: bool = True) -> np.ndarray:
@@ -493,7 +550,9 @@ def exchange(problem: Problem, assignment: np.ndarray, passes: int = 10) -> np.n
     return current
 
 
-def confidences(problem: Problem, assignment: np.ndarray, kept: np.ndarray | None = None) -> np.ndarray:
+def confidences(
+    problem: Problem, assignment: np.ndarray, kept: np.ndarray | None = None
+) -> np.ndarray:
     """(m,) each first-graph node's confidence under ``assignment`` (0 for a dummy match),
     counting only edges between kept pairs (``kept`` (m,), all pairs matched to an object
     when not given): what an object's withdrawn or unmatched neighbours do is no evidence
@@ -517,7 +576,9 @@ def confidences(problem: Problem, assignment: np.ndarray, kept: np.ndarray | Non
     return result
 
 
-def withdraw(problem: Problem, assignment: np.ndarray, threshold: float) -> tuple[np.ndarray, np.ndarray]:
+def withdraw(
+    problem: Problem, assignment: np.ndarray, threshold: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(m,) confidences and (m,) which pairs are kept (confidence at least ``threshold``).
     A pair below half the threshold is taken as objects without a counterpart (on a
     disguised copy, the removed object paired with the added one); the others'
@@ -549,13 +610,20 @@ def match_graphs(
         k = int(assignment[i])
         if k >= n:
             continue
-        pair = Correspondence(first.ids[nodes_a[i]], second.ids[nodes_b[k]], float(confidence[i]), float(problem.unary[i, k]))
+        pair = Correspondence(
+            first.ids[nodes_a[i]],
+            second.ids[nodes_b[k]],
+            float(confidence[i]),
+            float(problem.unary[i, k]),
+        )
         (kept if keep[i] else withdrawn).append(pair)
     matched_a, matched_b = {p.a for p in kept}, {p.b for p in kept}
     return Matching(
-        pairs=kept, withdrawn=withdrawn,
+        pairs=kept,
+        withdrawn=withdrawn,
         unmatched_a=[first.ids[i] for i in nodes_a if first.ids[i] not in matched_a],
         unmatched_b=[second.ids[k] for k in nodes_b if second.ids[k] not in matched_b],
         energy=problem.energy(assignment) if problem.size else 0.0,
-        seconds=time.process_time() - started, threshold=threshold,
-    )  # fmt: skip
+        seconds=time.process_time() - started,
+        threshold=threshold,
+    )

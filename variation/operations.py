@@ -123,8 +123,13 @@ def _similarity(first: SceneObject, second: SceneObject) -> float:
 
 
 def _moved_items(
-    variant: Variant, ag: AugmentedGraph, items: list[tuple[SceneObject, Member]], old: SceneObject, new: SceneObject,
-    new_id: str, taken: set[str],
+    variant: Variant,
+    ag: AugmentedGraph,
+    items: list[tuple[SceneObject, Member]],
+    old: SceneObject,
+    new: SceneObject,
+    new_id: str,
+    taken: set[str],
 ) -> tuple[list[tuple[SceneObject, Member]], list[Relation]]:
     """Items resting on ``old`` (objects of any scene, with their origins) placed on
     ``new`` (id ``new_id``) at the same place relative to the top, scaled, with new ids."""
@@ -134,32 +139,63 @@ def _moved_items(
         ids[item.id] = variant.fresh_id(item.type, taken)
         taken.add(ids[item.id])
     for item, origin in items:
-        lx, lz = to_local(old.position[0], old.position[2], old.yaw, item.position[0], item.position[2])
+        lx, lz = to_local(
+            old.position[0], old.position[2], old.yaw, item.position[0], item.position[2]
+        )
         sx, sz = new.size[0] / max(old.size[0], 1e-9), new.size[2] / max(old.size[2], 1e-9)
-        lx = float(np.clip(lx * sx, -(new.size[0] - item.size[0]) / 2.0, (new.size[0] - item.size[0]) / 2.0))
-        lz = float(np.clip(lz * sz, -(new.size[2] - item.size[2]) / 2.0, (new.size[2] - item.size[2]) / 2.0))
+        lx = float(
+            np.clip(
+                lx * sx, -(new.size[0] - item.size[0]) / 2.0, (new.size[0] - item.size[0]) / 2.0
+            )
+        )
+        lz = float(
+            np.clip(
+                lz * sz, -(new.size[2] - item.size[2]) / 2.0, (new.size[2] - item.size[2]) / 2.0
+            )
+        )
         x, z = to_world(new.position[0], new.position[2], new.yaw, lx, lz)
         height = item.position[1] - top_of(old) + top_of(new)
-        placed.append((replace(item, id=ids[item.id], position=[x, height, z], yaw=item.yaw - old.yaw + new.yaw,
-                               parent=None), origin))  # fmt: skip
+        placed.append(
+            (
+                replace(
+                    item,
+                    id=ids[item.id],
+                    position=[x, height, z],
+                    yaw=item.yaw - old.yaw + new.yaw,
+                    parent=None,
+                ),
+                origin,
+            )
+        )
     supports = {item.id: below for item, _ in items for below in [_supporter_in(items, item, old)]}
     for item, _ in items:
         below = supports[item.id]
-        relations.append(Relation(ids[item.id], new_id if below == old.id else ids[below], SUPPORT_LABEL, 0.0, True))
+        relations.append(
+            Relation(
+                ids[item.id], new_id if below == old.id else ids[below], SUPPORT_LABEL, 0.0, True
+            )
+        )
     return placed, relations
 
 
-def _supporter_in(items: list[tuple[SceneObject, Member]], item: SceneObject, base: SceneObject) -> str:
+def _supporter_in(
+    items: list[tuple[SceneObject, Member]], item: SceneObject, base: SceneObject
+) -> str:
     """What ``item`` rests on among ``items`` (or ``base``): one whose top is at its base
     and whose footprint holds its centre. Height alone is not enough: a lamp beside a
     laptop on a desk stands 2 cm below the laptop's top, on the desk."""
 
     def holds(other: SceneObject) -> bool:
-        lx, lz = to_local(other.position[0], other.position[2], other.yaw, item.position[0], item.position[2])
+        lx, lz = to_local(
+            other.position[0], other.position[2], other.yaw, item.position[0], item.position[2]
+        )
         return abs(lx) <= other.size[0] / 2.0 and abs(lz) <= other.size[2] / 2.0
 
-    below = [other for other, _ in items
-             if other.id != item.id and abs(top_of(other) - item.position[1]) < 0.03 and holds(other)]  # fmt: skip
+    below = [
+        other
+        for other, _ in items
+        if other.id != item.id and abs(top_of(other) - item.position[1]) < 0.03 and holds(other)
+    ]
     return below[0].id if below else base.id
 
 
@@ -174,22 +210,46 @@ def replace_object(variant: Variant, ag: AugmentedGraph, object_id: str, member:
         lx = direction[0] * (old.size[0] - source.size[0]) / 2.0
         lz = direction[1] * (old.size[2] - source.size[2]) / 2.0
     x, z = to_world(old.position[0], old.position[2], old.yaw, lx, lz)
-    new = replace(source, id=new_id, position=[x, old.position[1], z], yaw=old.yaw, parent=old.parent, order=old.order)
+    new = replace(
+        source,
+        id=new_id,
+        position=[x, old.position[1], z],
+        yaw=old.yaw,
+        parent=old.parent,
+        order=old.order,
+    )
     carried = carried_by(variant.scene, object_id)
     items = [(variant.objects()[i], variant.origin[i]) for i in carried]
     placed, relations = _moved_items(variant, ag, items, old, new, new_id, {new_id})
-    relations += [_retarget(r, object_id, new_id) for r in variant.scene.relations if object_id in (r.source, r.target)
-                  and r.source not in carried]  # fmt: skip
+    relations += [
+        _retarget(r, object_id, new_id)
+        for r in variant.scene.relations
+        if object_id in (r.source, r.target) and r.source not in carried
+    ]
     return Change(
-        "replace", _similarity(old, source), [object_id, *carried], [(new, member), *placed], relations,
-        {"operation": "replace", "object": object_id, "by": new_id,
-         "from": {"example": ag.examples[member[0]].name, "object": member[1]}},
-    )  # fmt: skip
+        "replace",
+        _similarity(old, source),
+        [object_id, *carried],
+        [(new, member), *placed],
+        relations,
+        {
+            "operation": "replace",
+            "object": object_id,
+            "by": new_id,
+            "from": {"example": ag.examples[member[0]].name, "object": member[1]},
+        },
+    )
 
 
 def _retarget(relation: Relation, old: str, new: str) -> Relation:
-    return Relation(new if relation.source == old else relation.source, new if relation.target == old else relation.target,
-                    relation.label, 0.0, True, relation.chosen)  # fmt: skip
+    return Relation(
+        new if relation.source == old else relation.source,
+        new if relation.target == old else relation.target,
+        relation.label,
+        0.0,
+        True,
+        relation.chosen,
+    )
 
 
 def _anchor_direction(variant: Variant, object_id: str) -> tuple[float, float] | None:
@@ -202,7 +262,9 @@ def _anchor_direction(variant: Variant, object_id: str) -> tuple[float, float] |
         for j in graph.neighbours(i, set(graph.layout_nodes())):
             if code in graph.relation_set(i, j):
                 other = graph.centres[j]
-                lx, lz = to_local(obj.position[0], obj.position[2], obj.yaw, float(other[0]), float(other[1]))
+                lx, lz = to_local(
+                    obj.position[0], obj.position[2], obj.yaw, float(other[0]), float(other[1])
+                )
                 if abs(lx) / max(obj.size[0], 1e-9) >= abs(lz) / max(obj.size[2], 1e-9):
                     return (math.copysign(1.0, lx), 0.0)
                 return (0.0, math.copysign(1.0, lz))
@@ -231,7 +293,9 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
     # The largest neighbour is the surest anchor (of four alike chairs, the counterpart
     # may be another one than in the example).
     near, there = max(anchors, key=lambda pair: pair[0].size[0] * pair[0].size[2])
-    lx, lz = to_local(near.position[0], near.position[2], near.yaw, source.position[0], source.position[2])
+    lx, lz = to_local(
+        near.position[0], near.position[2], near.yaw, source.position[0], source.position[2]
+    )
     # Keep the gap to the neighbour's face when the neighbours differ in size.
     if abs(lx) > near.size[0] / 2.0:
         lx += math.copysign(1.0, lx) * (there.size[0] - near.size[0]) / 2.0
@@ -239,8 +303,14 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
         lz += math.copysign(1.0, lz) * (there.size[2] - near.size[2]) / 2.0
     x, z = to_world(there.position[0], there.position[2], there.yaw, lx, lz)
     new_id = variant.fresh_id(source.type)
-    new = replace(source, id=new_id, position=[x, 0.0, z], yaw=source.yaw - near.yaw + there.yaw, parent=None,
-                  order=max((o.order for o in variant.scene.objects), default=0) + 1)  # fmt: skip
+    new = replace(
+        source,
+        id=new_id,
+        position=[x, 0.0, z],
+        yaw=source.yaw - near.yaw + there.yaw,
+        parent=None,
+        order=max((o.order for o in variant.scene.objects), default=0) + 1,
+    )
     carried = carried_by(example, member[1])
     items = [(example.object(c), (member[0], c)) for c in carried]
     placed, relations = _moved_items(variant, ag, items, source, new, new_id, {new_id})
@@ -248,20 +318,35 @@ def grow_node(variant: Variant, ag: AugmentedGraph, node_id: str, member: Member
     if not any(r.source == new_id and r.target == there.id for r in relations):
         relations.append(Relation(new_id, there.id, "NextTo", 0.0, True))
     return Change(
-        "grow", 1.0, [], [(new, member), *placed], relations,
-        {"operation": "grow", "node": node_id, "object": new_id, "next_to": there.id,
-         "from": {"example": ag.examples[member[0]].name, "object": member[1]}},
-    )  # fmt: skip
+        "grow",
+        1.0,
+        [],
+        [(new, member), *placed],
+        relations,
+        {
+            "operation": "grow",
+            "node": node_id,
+            "object": new_id,
+            "next_to": there.id,
+            "from": {"example": ag.examples[member[0]].name, "object": member[1]},
+        },
+    )
 
 
-def _brought_relations(variant: Variant, ag: AugmentedGraph, member: Member, new_id: str) -> list[Relation]:
+def _brought_relations(
+    variant: Variant, ag: AugmentedGraph, member: Member, new_id: str
+) -> list[Relation]:
     """The grown object's relations in its example whose other end has a counterpart in
     the variant (or is the room, when the variant has one), and a plain NextTo to the
     neighbour it was placed by so the layout keeps it there."""
     example = ag.examples[member[0]].scene
     brought = []
     for relation in example.relations:
-        if relation.source != member[1] or relation.label not in RELATIONS or RELATIONS[relation.label].support:
+        if (
+            relation.source != member[1]
+            or relation.label not in RELATIONS
+            or RELATIONS[relation.label].support
+        ):
             continue
         if RELATIONS[relation.label].family == "wall":
             if variant.scene.room is not None:
@@ -287,8 +372,12 @@ def grow_compatibility(variant: Variant, ag: AugmentedGraph, member: Member, new
         if present is None or present == new_id:
             continue
         there, near = variant.objects()[present], example.object(graph.ids[j])
-        before = math.hypot(source.position[0] - near.position[0], source.position[2] - near.position[2])
-        after = math.hypot(grown.position[0] - there.position[0], grown.position[2] - there.position[2])
+        before = math.hypot(
+            source.position[0] - near.position[0], source.position[2] - near.position[2]
+        )
+        after = math.hypot(
+            grown.position[0] - there.position[0], grown.position[2] - there.position[2]
+        )
         terms.append(math.exp(-abs(before - after) / diagonal))
     return float(np.mean(terms)) if terms else 0.0
 
@@ -300,7 +389,9 @@ def can_carry(obj: SceneObject, items: list[SceneObject]) -> bool:
     return all(item.size[0] <= obj.size[0] and item.size[2] <= obj.size[2] for item in items)
 
 
-def transfer_items(variant: Variant, ag: AugmentedGraph, object_id: str, member: Member) -> Change | None:
+def transfer_items(
+    variant: Variant, ag: AugmentedGraph, object_id: str, member: Member
+) -> Change | None:
     """Put what ``member`` carries in its example on ``object_id`` in place of what it
     carries now; None when its top cannot carry them."""
     target = variant.objects()[object_id]
@@ -312,7 +403,15 @@ def transfer_items(variant: Variant, ag: AugmentedGraph, object_id: str, member:
         return None
     placed, relations = _moved_items(variant, ag, items, source, target, object_id, set())
     return Change(
-        "transfer", _similarity(target, source), carried_by(variant.scene, object_id), placed, relations,
-        {"operation": "transfer", "onto": object_id, "items": [p.id for p, _ in placed],
-         "from": {"example": ag.examples[member[0]].name, "object": member[1]}},
-    )  # fmt: skip
+        "transfer",
+        _similarity(target, source),
+        carried_by(variant.scene, object_id),
+        placed,
+        relations,
+        {
+            "operation": "transfer",
+            "onto": object_id,
+            "items": [p.id for p, _ in placed],
+            "from": {"example": ag.examples[member[0]].name, "object": member[1]},
+        },
+    )

@@ -28,7 +28,11 @@ def perturbed_copy(
     objects = scene.placed_objects()
     supports = scene_supports(scene)
     standing = [o.id for o in objects if o.id not in supports]
-    removed = set(rng.choice(standing, size=min(remove, len(standing)), replace=False).tolist()) if remove else set()
+    removed = (
+        set(rng.choice(standing, size=min(remove, len(standing)), replace=False).tolist())
+        if remove
+        else set()
+    )
     changed = True
     while changed:  # what stands on a removed object goes too
         grown = removed | {upper for upper, lower in supports.items() if lower in removed}
@@ -50,9 +54,16 @@ def perturbed_copy(
     for obj in kept:
         dx, dz = offset(obj.id)
         copies.append(
-            replace(obj, id=truth[obj.id], type=names[obj.type], noun=names[obj.type], shape=None, parent=None,
-                    position=[obj.position[0] + dx, obj.position[1], obj.position[2] + dz])
-        )  # fmt: skip
+            replace(
+                obj,
+                id=truth[obj.id],
+                type=names[obj.type],
+                noun=names[obj.type],
+                shape=None,
+                parent=None,
+                position=[obj.position[0] + dx, obj.position[1], obj.position[2] + dz],
+            )
+        )
     for k in range(add):
         extra = _free_box(copies, scene.extent, rng, f"added_{k}")
         if extra is not None:
@@ -67,15 +78,29 @@ def perturbed_copy(
     return replace(scene, objects=copies, paths=[], relations=relations, derivation=[]), truth
 
 
-def _free_box(objects: list[SceneObject], extent, rng: np.random.Generator, object_id: str) -> SceneObject | None:
+def _free_box(
+    objects: list[SceneObject], extent, rng: np.random.Generator, object_id: str
+) -> SceneObject | None:
     """A box of random size on floor no other object's footprint touches, or None."""
     boxes = object_corners(objects)
     for _ in range(200):
         width, height, depth = rng.uniform(0.3, 1.2, size=3)
-        x, z = rng.uniform(-extent[0] / 2 + width, extent[0] / 2 - width), rng.uniform(-extent[1] / 2 + depth, extent[1] / 2 - depth)
-        candidate = SceneObject(object_id, "added", "object", "added", None, None, None, [float(x), 0.0, float(z)],
-                                float(rng.choice([0.0, math.pi / 2, math.pi, -math.pi / 2])),
-                                [float(width), float(height), float(depth)])  # fmt: skip
+        x, z = (
+            rng.uniform(-extent[0] / 2 + width, extent[0] / 2 - width),
+            rng.uniform(-extent[1] / 2 + depth, extent[1] / 2 - depth),
+        )
+        candidate = SceneObject(
+            object_id,
+            "added",
+            "object",
+            "added",
+            None,
+            None,
+            None,
+            [float(x), 0.0, float(z)],
+            float(rng.choice([0.0, math.pi / 2, math.pi, -math.pi / 2])),
+            [float(width), float(height), float(depth)],
+        )
         corners = object_corners([candidate])[0]
         if not any(_overlap(corners, other) for other in boxes):
             return candidate

@@ -96,8 +96,15 @@ class Edge:
     gap: float
     facing_angle: float  # B's yaw minus A's, wrapped
     contact_angles: tuple[float, float]  # from A's and from B's forward to the normal A -> B
-    scale: float  # the pair's mean footprint half diagonal (metres): the length unit of similarities
-    grades: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # memberships of GRADED_CODES in [0, 1]
+    scale: (
+        float  # the pair's mean footprint half diagonal (metres): the length unit of similarities
+    )
+    grades: tuple[float, float, float, float] = (
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    )  # memberships of GRADED_CODES in [0, 1]
 
 
 @dataclass
@@ -163,17 +170,27 @@ class StructureGraph:
         """Plain data: objects and each edge once (A before B in object order)."""
         return {
             "objects": [
-                {"id": self.ids[i], "type": self.types[i], "style": self.styles[i],
-                 "supported_by": self.ids[self.supporter[i]] if i in self.supporter else None}
+                {
+                    "id": self.ids[i],
+                    "type": self.types[i],
+                    "style": self.styles[i],
+                    "supported_by": self.ids[self.supporter[i]] if i in self.supporter else None,
+                }
                 for i in range(len(self))
             ],
             "edges": [
-                {"a": self.ids[i], "b": self.ids[j], "relations": sorted(e.relations, key=_code_order),
-                 "gap": round(e.gap, 4), "facing_angle": round(e.facing_angle, 4),
-                 "contact_angles": [round(a, 4) for a in e.contact_angles]}
-                for (i, j), e in sorted(self.edges.items()) if i < j
+                {
+                    "a": self.ids[i],
+                    "b": self.ids[j],
+                    "relations": sorted(e.relations, key=_code_order),
+                    "gap": round(e.gap, 4),
+                    "facing_angle": round(e.facing_angle, 4),
+                    "contact_angles": [round(a, 4) for a in e.contact_angles],
+                }
+                for (i, j), e in sorted(self.edges.items())
+                if i < j
             ],
-        }  # fmt: skip
+        }
 
 
 def _code_order(code: str) -> int:
@@ -186,13 +203,19 @@ def structure_graph(scene: Scene) -> StructureGraph:
     index = {o.id: k for k, o in enumerate(objects)}
     supporter = {index[a]: index[b] for a, b in scene_supports(scene).items()}
     graph = StructureGraph(
-        ids=[o.id for o in objects], types=[o.type for o in objects], styles=[o.style for o in objects],
-        centres=np.array([[o.position[0], o.position[2]] for o in objects], dtype=float).reshape(-1, 2),
+        ids=[o.id for o in objects],
+        types=[o.type for o in objects],
+        styles=[o.style for o in objects],
+        centres=np.array([[o.position[0], o.position[2]] for o in objects], dtype=float).reshape(
+            -1, 2
+        ),
         bottoms=np.array([o.position[1] for o in objects], dtype=float),
         sizes=np.array([o.size for o in objects], dtype=float).reshape(-1, 3),
-        yaws=np.array([o.yaw for o in objects], dtype=float), supporter=supporter, name=scene.name,
+        yaws=np.array([o.yaw for o in objects], dtype=float),
+        supporter=supporter,
+        name=scene.name,
         extent=(float(scene.extent[0]), float(scene.extent[1])),
-    )  # fmt: skip
+    )
     measure_edges(graph)
     return graph
 
@@ -210,9 +233,15 @@ def measure_edges(graph: StructureGraph) -> None:
             # a large scene): one of i's axes is within 45 degrees of the line between the
             # centres, and along it the separation is at least distance / sqrt(2) minus the
             # two radii.
-            lower_gap = float(np.hypot(*(graph.centres[i] - graph.centres[j]))) / math.sqrt(2.0) - radii[i] - radii[j]
+            lower_gap = (
+                float(np.hypot(*(graph.centres[i] - graph.centres[j]))) / math.sqrt(2.0)
+                - radii[i]
+                - radii[j]
+            )
             supported = graph.supporter.get(i) == j or graph.supporter.get(j) == i
-            if not supported and lower_gap > (1.0 + NEAR_BAND) * NEAR_FACTOR * max(radii[i], radii[j]):
+            if not supported and lower_gap > (1.0 + NEAR_BAND) * NEAR_FACTOR * max(
+                radii[i], radii[j]
+            ):
                 continue
             forward, backward = measure_pair(graph, i, j), measure_pair(graph, j, i)
             if forward.relations or backward.relations:  # F may hold one way only
@@ -237,11 +266,13 @@ def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge:
     if graph.supporter.get(i) == j:
         relations.add("s")
     gap, normal, facing_angle, contact_angles, scale = _measures(graph, i, j)
-    limit = NEAR_FACTOR * float(np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]).max()) / 2.0
-    floor_pair = i not in graph.supporter and j not in graph.supporter
-    heights_overlap = min(graph.bottoms[i] + graph.sizes[i, 1], graph.bottoms[j] + graph.sizes[j, 1]) > max(
-        graph.bottoms[i], graph.bottoms[j]
+    limit = (
+        NEAR_FACTOR * float(np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]).max()) / 2.0
     )
+    floor_pair = i not in graph.supporter and j not in graph.supporter
+    heights_overlap = min(
+        graph.bottoms[i] + graph.sizes[i, 1], graph.bottoms[j] + graph.sizes[j, 1]
+    ) > max(graph.bottoms[i], graph.bottoms[j])
     turn, offset = _alignment(graph, i, j)
     off_axis = abs(_signed_angle(graph.forwards[i], normal))
     if gap <= limit and floor_pair:
@@ -265,11 +296,16 @@ def measure_pair(graph: StructureGraph, i: int, j: int) -> Edge:
     return Edge(frozenset(relations), gap, facing_angle, contact_angles, scale, grades)
 
 
-def _measures(graph: StructureGraph, i: int, j: int) -> tuple[float, np.ndarray, float, tuple[float, float], float]:
+def _measures(
+    graph: StructureGraph, i: int, j: int
+) -> tuple[float, np.ndarray, float, tuple[float, float], float]:
     """Gap, the separating normal i -> j, facing angle (j's yaw minus i's), contact
     angles (from i's and j's forwards to the normal) and the pair's mean half diagonal."""
     gap, normal = separation(graph, i, j)
-    contact_angles = (_signed_angle(graph.forwards[i], normal), _signed_angle(graph.forwards[j], normal))
+    contact_angles = (
+        _signed_angle(graph.forwards[i], normal),
+        _signed_angle(graph.forwards[j], normal),
+    )
     facing_angle = wrap(float(graph.yaws[j] - graph.yaws[i]))
     half_diagonals = np.hypot(graph.sizes[[i, j], 0], graph.sizes[[i, j], 2]) / 2.0
     return gap, normal, facing_angle, contact_angles, float(half_diagonals.mean())
@@ -285,14 +321,22 @@ def separation(graph: StructureGraph, i: int, j: int) -> tuple[float, np.ndarray
         for axis in _axes(yaw):
             pi, pj = corners_i @ axis, corners_j @ axis
             forward_gap, backward_gap = pj.min() - pi.max(), pi.min() - pj.max()
-            gap, normal = (forward_gap, axis) if forward_gap >= backward_gap else (backward_gap, -axis)
+            gap, normal = (
+                (forward_gap, axis) if forward_gap >= backward_gap else (backward_gap, -axis)
+            )
             if gap > best_gap + 1e-12:
                 best_gap, best_normal = gap, normal
     return float(best_gap), best_normal
 
 
 def _corners(graph: StructureGraph, i: int) -> list[tuple[float, float]]:
-    return footprint_corners(graph.centres[i, 0], graph.centres[i, 1], graph.yaws[i], graph.sizes[i, 0], graph.sizes[i, 2])
+    return footprint_corners(
+        graph.centres[i, 0],
+        graph.centres[i, 1],
+        graph.yaws[i],
+        graph.sizes[i, 0],
+        graph.sizes[i, 2],
+    )
 
 
 def _signed_angle(a: np.ndarray, b: np.ndarray) -> float:

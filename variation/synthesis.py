@@ -67,9 +67,14 @@ class Result:
     def synthesis(self) -> dict:
         """scene.json's ``synthesis`` record."""
         return {
-            "base": self.base, "compatibility": round(self.compatibility, 6), "operations": self.operations,
-            "sources": {object_id: {"example": name, "object": source} for object_id, (name, source) in self.origin.items()},
-        }  # fmt: skip
+            "base": self.base,
+            "compatibility": round(self.compatibility, 6),
+            "operations": self.operations,
+            "sources": {
+                object_id: {"example": name, "object": source}
+                for object_id, (name, source) in self.origin.items()
+            },
+        }
 
 
 def start_variant(example_index: int, example: Example) -> Variant:
@@ -86,7 +91,9 @@ def proposals(variant: Variant, ag: AugmentedGraph) -> list[tuple]:
         for member in node.members:
             if member == variant.origin[object_id]:
                 continue
-            if not node.supported and _looks(_source(ag, member)) != _looks(obj):  # not a swap for an identical one
+            if not node.supported and _looks(_source(ag, member)) != _looks(
+                obj
+            ):  # not a swap for an identical one
                 found.append(("replace", object_id, member))
             if carried_by(ag.examples[member[0]].scene, member[1]):
                 found.append(("transfer", object_id, member))
@@ -104,7 +111,9 @@ def _looks(obj) -> tuple:
     return obj.type, obj.style, tuple(round(v, 3) for v in obj.size)
 
 
-def propose(variant: Variant, ag: AugmentedGraph, kind: str, argument: str, member) -> Change | None:
+def propose(
+    variant: Variant, ag: AugmentedGraph, kind: str, argument: str, member
+) -> Change | None:
     if kind == "replace":
         return replace_object(variant, ag, argument, member)
     if kind == "grow":
@@ -117,14 +126,24 @@ def layout_key(variant: Variant, change: Change) -> tuple:
     relations and the change's (exact reprs, so equal keys mean the same problem)."""
     scene = variant.scene
     return (
-        repr(scene.room), tuple(scene.extent), tuple(map(repr, scene.objects)), tuple(map(repr, scene.paths)),
-        tuple(map(repr, scene.relations)), tuple(change.removed), tuple(repr(obj) for obj, _ in change.added),
+        repr(scene.room),
+        tuple(scene.extent),
+        tuple(map(repr, scene.objects)),
+        tuple(map(repr, scene.paths)),
+        tuple(map(repr, scene.relations)),
+        tuple(change.removed),
+        tuple(repr(obj) for obj, _ in change.added),
         tuple(map(repr, change.relations)),
-    )  # fmt: skip
+    )
 
 
 def apply_change(
-    variant: Variant, ag: AugmentedGraph, change: Change, rng: np.random.Generator, *, unplaceable: set | None = None,
+    variant: Variant,
+    ag: AugmentedGraph,
+    change: Change,
+    rng: np.random.Generator,
+    *,
+    unplaceable: set | None = None,
 ) -> Variant | None:
     """The variant with ``change`` applied and laid out (untouched objects pinned), or
     None when its layout is not ok or a grown object's compatibility is too low. A
@@ -134,8 +153,12 @@ def apply_change(
 
     removed = set(change.removed)
     added = {obj.id for obj, _ in change.added}
-    objects = [o for o in variant.scene.objects if o.id not in removed] + [obj for obj, _ in change.added]
-    relations = [r for r in variant.scene.relations if r.source not in removed and r.target not in removed]
+    objects = [o for o in variant.scene.objects if o.id not in removed] + [
+        obj for obj, _ in change.added
+    ]
+    relations = [
+        r for r in variant.scene.relations if r.source not in removed and r.target not in removed
+    ]
     seen = {(r.source, r.target, r.label) for r in relations}
     relations += [r for r in change.relations if (r.source, r.target, r.label) not in seen]
     scene = replace(variant.scene, objects=objects, relations=relations)
@@ -166,7 +189,11 @@ def apply_change(
 
 
 def vary_one(
-    variant: Variant, ag: AugmentedGraph, rng: np.random.Generator, max_operations: int, unplaceable: set | None = None,
+    variant: Variant,
+    ag: AugmentedGraph,
+    rng: np.random.Generator,
+    max_operations: int,
+    unplaceable: set | None = None,
 ) -> Variant:
     """Up to ``max_operations`` operations on ``variant`` (see the module docstring);
     changes in ``unplaceable`` (``layout_key``s whose layout failed) are passed over
@@ -200,15 +227,29 @@ def vary_one(
 def signature(variant: Variant) -> tuple:
     """What makes two variants look the same: the same kinds of object (type, style,
     size to 1 cm) at the same places (5 cm, 0.1 rad), wherever they came from."""
-    return tuple(sorted(
-        (o.type, o.style or "", *(round(v / 0.01) for v in o.size), round(o.position[0] / 0.05),
-         round(o.position[1] / 0.05), round(o.position[2] / 0.05), round(o.yaw / 0.1) % 63)
-        for o in variant.scene.placed_objects()
-    ))  # fmt: skip
+    return tuple(
+        sorted(
+            (
+                o.type,
+                o.style or "",
+                *(round(v / 0.01) for v in o.size),
+                round(o.position[0] / 0.05),
+                round(o.position[1] / 0.05),
+                round(o.position[2] / 0.05),
+                round(o.yaw / 0.1) % 63,
+            )
+            for o in variant.scene.placed_objects()
+        )
+    )
 
 
 def vary(
-    examples: list[Example], count: int, seed: int, *, max_operations: int = 3, ag: AugmentedGraph | None = None,
+    examples: list[Example],
+    count: int,
+    seed: int,
+    *,
+    max_operations: int = 3,
+    ag: AugmentedGraph | None = None,
     attempts: int | None = None,
 ) -> list[Result]:
     """Up to ``count`` distinct variants of ``examples``, best K first. ``InputError``
@@ -227,11 +268,22 @@ def vary(
             break
         base = attempt % len(examples)
         rng = stream(seed, "variation", attempt)
-        variant = vary_one(start_variant(base, examples[base]), ag, rng, max_operations, unplaceable)
+        variant = vary_one(
+            start_variant(base, examples[base]), ag, rng, max_operations, unplaceable
+        )
         key = signature(variant)
         if not variant.operations or key in seen:
             continue
         seen.add(key)
         origin = {k: (examples[e].name, o) for k, (e, o) in variant.origin.items()}
-        made.append(Result(variant.scene, variant.compatibility, variant.operations, origin, examples[base].name, attempt))
+        made.append(
+            Result(
+                variant.scene,
+                variant.compatibility,
+                variant.operations,
+                origin,
+                examples[base].name,
+                attempt,
+            )
+        )
     return sorted(made, key=lambda r: (-r.compatibility, r.attempt))

@@ -32,7 +32,9 @@ def fingerprint(scene) -> tuple:
     graph = structure_graph(scene)
     types = tuple(sorted(Counter(graph.types).items()))
     relations = frozenset(
-        (graph.types[i], graph.types[j], frozenset(edge.relations)) for (i, j), edge in graph.edges.items() if edge.relations
+        (graph.types[i], graph.types[j], frozenset(edge.relations))
+        for (i, j), edge in graph.edges.items()
+        if edge.relations
     )
     return types, relations
 
@@ -43,8 +45,14 @@ def is_new(result: Result, examples: list[Example]) -> bool:
 
 
 def write_variants(
-    results: list[Result], examples: list[Example], directory: str | os.PathLike[str], seed: int, *, render: bool = False,
-    size: tuple[int, int] = (640, 480), view: str = "perspective",
+    results: list[Result],
+    examples: list[Example],
+    directory: str | os.PathLike[str],
+    seed: int,
+    *,
+    render: bool = False,
+    size: tuple[int, int] = (640, 480),
+    view: str = "perspective",
 ) -> dict:
     """Write the variants and index.json; return the index."""
     from scenewright.api import describe_scene, export, render_scene, reproducible_json
@@ -52,7 +60,11 @@ def write_variants(
     from scenewright.render.offscreen import save_render
     from scenewright.render.plan import draw_plan
 
-    index = {"seed": seed, "examples": [{"name": e.name, "path": e.path} for e in examples], "variants": []}
+    index = {
+        "seed": seed,
+        "examples": [{"name": e.name, "path": e.path} for e in examples],
+        "variants": [],
+    }
     with staged_outputs(directory, FOLDERS) as stage:
         for rank, result in enumerate(results, start=1):
             folder = stage / f"variant_{rank:03d}"
@@ -66,13 +78,21 @@ def write_variants(
                 draw_plan(scene, folder / "plan.png")
             data = json.loads(reproducible_json(scene))
             data["synthesis"] = result.synthesis()
-            write_atomic(folder / "scene.json", json.dumps(data, indent=1, ensure_ascii=False) + "\n")
+            write_atomic(
+                folder / "scene.json", json.dumps(data, indent=1, ensure_ascii=False) + "\n"
+            )
             write_atomic(folder / "description.txt", scene.description["text"] + "\n")
-            index["variants"].append({
-                "folder": folder.name, "base": result.base, "compatibility": round(result.compatibility, 6),
-                "operations": [op["operation"] for op in result.operations], "ok": scene.layout.ok,
-                "objects": len(scene.placed_objects()), "new": is_new(result, examples),
-            })  # fmt: skip
+            index["variants"].append(
+                {
+                    "folder": folder.name,
+                    "base": result.base,
+                    "compatibility": round(result.compatibility, 6),
+                    "operations": [op["operation"] for op in result.operations],
+                    "ok": scene.layout.ok,
+                    "objects": len(scene.placed_objects()),
+                    "new": is_new(result, examples),
+                }
+            )
         write_atomic(stage / "index.json", json.dumps(index, indent=1) + "\n")
     return index
 
@@ -81,5 +101,9 @@ def summary(index: dict, directory: str | os.PathLike[str]) -> str:
     variants = index["variants"]
     ok = sum(v["ok"] for v in variants)
     new = sum(v["new"] for v in variants)
-    best = f", K from {variants[-1]['compatibility']:.2f} to {variants[0]['compatibility']:.2f}" if variants else ""
+    best = (
+        f", K from {variants[-1]['compatibility']:.2f} to {variants[0]['compatibility']:.2f}"
+        if variants
+        else ""
+    )
     return f"wrote {Path(directory)}/: {len(variants)} variants ({ok} ok, {new} new){best}; index.json lists them"

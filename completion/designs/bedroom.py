@@ -4,10 +4,30 @@ armchair to read in or a television at the foot of the bed."""
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    ARMCHAIR, BEDSIDE_LAMP, BOOKSHELF, CHAIR, DESK, DESK_LAMP, DOUBLE_BED, DRESSER, FLOOR_LAMP, KING_BED,
-    LONG_DRESSER, NARROW_WARDROBE, NIGHT_TABLE, OFFICE_CHAIR, PLANT, RUG, SINGLE_BED, SMALL_DESK, SMALL_NIGHT_TABLE,
-    SMALL_TV_STAND, SMALL_TV, WARDROBE, WIDE_WARDROBE,
-)  # fmt: skip
+    ARMCHAIR,
+    BEDSIDE_LAMP,
+    BOOKSHELF,
+    CHAIR,
+    DESK,
+    DESK_LAMP,
+    DOUBLE_BED,
+    DRESSER,
+    FLOOR_LAMP,
+    KING_BED,
+    LONG_DRESSER,
+    NARROW_WARDROBE,
+    NIGHT_TABLE,
+    OFFICE_CHAIR,
+    PLANT,
+    RUG,
+    SINGLE_BED,
+    SMALL_DESK,
+    SMALL_NIGHT_TABLE,
+    SMALL_TV,
+    SMALL_TV_STAND,
+    WARDROBE,
+    WIDE_WARDROBE,
+)
 
 
 def _night_tables(d: Design, bed: str, size=NIGHT_TABLE, lamps: bool = True) -> None:
@@ -17,8 +37,13 @@ def _night_tables(d: Design, bed: str, size=NIGHT_TABLE, lamps: bool = True) -> 
 
 
 def double_by_the_window():
-    d = Design("bedroom_01", "bedroom", "Double bed under the north window, wardrobe by the door, dresser opposite",
-               4.0, 3.6)  # fmt: skip
+    d = Design(
+        "bedroom_01",
+        "bedroom",
+        "Double bed under the north window, wardrobe by the door, dresser opposite",
+        4.0,
+        3.6,
+    )
     d.door("S", 3.45)
     d.window("N", 2.0, 1.4)
     bed = d.against("N", "bed", 2.0, DOUBLE_BED)
@@ -30,8 +55,13 @@ def double_by_the_window():
 
 
 def small_single():
-    d = Design("bedroom_02", "bedroom", "Small single room: bed in the north-west corner, desk under the window",
-               2.8, 3.0)  # fmt: skip
+    d = Design(
+        "bedroom_02",
+        "bedroom",
+        "Small single room: bed in the north-west corner, desk under the window",
+        2.8,
+        3.0,
+    )
     d.door("E", 2.45, 0.8)
     d.window("N", 2.1, 1.0)
     bed = d.against("N", "bed", 0.5, SINGLE_BED)
@@ -44,8 +74,13 @@ def small_single():
 
 
 def king_with_tv():
-    d = Design("bedroom_03", "bedroom", "King-size bed against the west wall facing a television, wardrobe and dresser",
-               5.0, 4.2)  # fmt: skip
+    d = Design(
+        "bedroom_03",
+        "bedroom",
+        "King-size bed against the west wall facing a television, wardrobe and dresser",
+        5.0,
+        4.2,
+    )
     d.door("N", 4.4)
     d.window("S", 2.5, 1.8)
     bed = d.against("W", "bed", 2.2, KING_BED)
@@ -61,8 +96,13 @@ def king_with_tv():
 
 
 def teen_room_with_desk():
-    d = Design("bedroom_04", "bedroom", "Single bed in the corner, desk under the east window, bookshelf and wardrobe",
-               3.2, 3.4)  # fmt: skip
+    d = Design(
+        "bedroom_04",
+        "bedroom",
+        "Single bed in the corner, desk under the east window, bookshelf and wardrobe",
+        3.2,
+        3.4,
+    )
     d.door("W", 2.8, 0.8)
     d.window("E", 1.2, 1.2)
     bed = d.against("S", "bed", 2.7, SINGLE_BED)
@@ -76,8 +116,13 @@ def teen_room_with_desk():
 
 
 def double_east_wall():
-    d = Design("bedroom_05", "bedroom", "Double bed on the east wall, wardrobe on the window-less west wall",
-               3.8, 3.4)  # fmt: skip
+    d = Design(
+        "bedroom_05",
+        "bedroom",
+        "Double bed on the east wall, wardrobe on the window-less west wall",
+        3.8,
+        3.4,
+    )
     d.door("N", 0.6)
     d.window("S", 2.4, 1.2)
     bed = d.against("E", "bed", 1.6, DOUBLE_BED)
@@ -88,8 +133,13 @@ def double_east_wall():
 
 
 def reading_corner():
-    d = Design("bedroom_06", "bedroom", "Double bed, an armchair with a floor lamp and a bookshelf for reading",
-               4.4, 3.8)  # fmt: skip
+    d = Design(
+        "bedroom_06",
+        "bedroom",
+        "Double bed, an armchair with a floor lamp and a bookshelf for reading",
+        4.4,
+        3.8,
+    )
     d.door("E", 3.2)
     d.window("W", 1.6, 1.4)
     d.window("N", 3.0, 1.0)
@@ -104,8 +154,13 @@ def reading_corner():
 
 
 def long_narrow():
-    d = Design("bedroom_07", "bedroom", "Long narrow room: bed across the far end, wardrobes along the entrance wall",
-               2.9, 4.6)  # fmt: skip
+    d = Design(
+        "bedroom_07",
+        "bedroom",
+        "Long narrow room: bed across the far end, wardrobes along the entrance wall",
+        2.9,
+        4.6,
+    )
     d.door("S", 2.35, 0.8)
     d.window("N", 1.45, 1.2)
     bed = d.against("W", "bed", 1.3, DOUBLE_BED)
@@ -116,8 +171,13 @@ def long_narrow():
 
 
 def guest_twin():
-    d = Design("bedroom_08", "bedroom", "Twin guest room: two single beds with a shared night table",
-               3.8, 4.0)  # fmt: skip
+    d = Design(
+        "bedroom_08",
+        "bedroom",
+        "Twin guest room: two single beds with a shared night table",
+        3.8,
+        4.0,
+    )
     d.door("S", 0.6)
     d.window("N", 1.9, 1.2)
     table = d.against("E", "nightstand", 2.0, NIGHT_TABLE)
@@ -130,8 +190,13 @@ def guest_twin():
 
 
 def master_suite():
-    d = Design("bedroom_09", "bedroom", "Large master bedroom: king bed, dresser with a television, reading chairs",
-               6.0, 5.0)  # fmt: skip
+    d = Design(
+        "bedroom_09",
+        "bedroom",
+        "Large master bedroom: king bed, dresser with a television, reading chairs",
+        6.0,
+        5.0,
+    )
     d.door("S", 5.4)
     d.window("N", 1.6, 1.6)
     d.window("W", 2.8, 1.4)
@@ -150,8 +215,13 @@ def master_suite():
 
 
 def study_bedroom():
-    d = Design("bedroom_10", "bedroom", "Bedroom with a study corner: desk under the east window, shelves beside it",
-               4.2, 3.6)  # fmt: skip
+    d = Design(
+        "bedroom_10",
+        "bedroom",
+        "Bedroom with a study corner: desk under the east window, shelves beside it",
+        4.2,
+        3.6,
+    )
     d.door("W", 3.05)
     d.window("E", 1.4, 1.2)
     bed = d.against("N", "bed", 1.45, DOUBLE_BED)
@@ -165,8 +235,13 @@ def study_bedroom():
 
 
 def compact_double():
-    d = Design("bedroom_11", "bedroom", "Compact double: bed centred on the window wall, wardrobe facing its foot",
-               3.6, 3.4)  # fmt: skip
+    d = Design(
+        "bedroom_11",
+        "bedroom",
+        "Compact double: bed centred on the window wall, wardrobe facing its foot",
+        3.6,
+        3.4,
+    )
     d.door("E", 2.9, 0.8)
     d.window("W", 1.4, 1.0)
     bed = d.against("W", "bed", 1.55, DOUBLE_BED)
@@ -176,8 +251,13 @@ def compact_double():
 
 
 def kids_room():
-    d = Design("bedroom_12", "bedroom", "Child's room: single bed, small desk, bookshelf and a play rug",
-               3.4, 3.2)  # fmt: skip
+    d = Design(
+        "bedroom_12",
+        "bedroom",
+        "Child's room: single bed, small desk, bookshelf and a play rug",
+        3.4,
+        3.2,
+    )
     d.door("N", 2.9, 0.8)
     d.window("W", 1.3, 1.2)
     bed = d.against("E", "bed", 2.45, SINGLE_BED)
@@ -191,8 +271,13 @@ def kids_room():
 
 
 def double_door_west():
-    d = Design("bedroom_13", "bedroom", "Double bed facing the window, wardrobe and dresser on the door wall",
-               4.6, 3.8)  # fmt: skip
+    d = Design(
+        "bedroom_13",
+        "bedroom",
+        "Double bed facing the window, wardrobe and dresser on the door wall",
+        4.6,
+        3.8,
+    )
     d.door("W", 0.6)
     d.window("E", 1.9, 1.6)
     bed = d.against("N", "bed", 2.6, DOUBLE_BED)
@@ -205,8 +290,13 @@ def double_door_west():
 
 
 def loft_style():
-    d = Design("bedroom_14", "bedroom", "Wide room with a king bed on the east wall and a desk on the north window",
-               5.2, 4.0)  # fmt: skip
+    d = Design(
+        "bedroom_14",
+        "bedroom",
+        "Wide room with a king bed on the east wall and a desk on the north window",
+        5.2,
+        4.0,
+    )
     d.door("S", 0.7)
     d.window("N", 1.6, 1.4)
     d.window("E", 0.6, 0.8)
@@ -222,8 +312,13 @@ def loft_style():
 
 
 def attic_single():
-    d = Design("bedroom_15", "bedroom", "Narrow single room: bed in the far corner, dresser and wardrobe on the long walls",
-               2.8, 3.6)  # fmt: skip
+    d = Design(
+        "bedroom_15",
+        "bedroom",
+        "Narrow single room: bed in the far corner, dresser and wardrobe on the long walls",
+        2.8,
+        3.6,
+    )
     d.door("S", 0.5, 0.8)
     d.window("N", 1.4, 0.9)
     bed = d.against("N", "bed", 2.3, SINGLE_BED)
@@ -234,8 +329,13 @@ def attic_single():
 
 
 def double_with_bookshelves():
-    d = Design("bedroom_16", "bedroom", "Double bed between two windows, bookshelves and a wardrobe opposite",
-               4.0, 4.0)  # fmt: skip
+    d = Design(
+        "bedroom_16",
+        "bedroom",
+        "Double bed between two windows, bookshelves and a wardrobe opposite",
+        4.0,
+        4.0,
+    )
     d.door("E", 3.45)
     d.window("N", 0.6, 0.8)
     d.window("N", 3.4, 0.8)
@@ -249,7 +349,20 @@ def double_with_bookshelves():
 
 
 DESIGNS = (
-    double_by_the_window, small_single, king_with_tv, teen_room_with_desk, double_east_wall, reading_corner,
-    long_narrow, guest_twin, master_suite, study_bedroom, compact_double, kids_room, double_door_west, loft_style,
-    attic_single, double_with_bookshelves,
-)  # fmt: skip
+    double_by_the_window,
+    small_single,
+    king_with_tv,
+    teen_room_with_desk,
+    double_east_wall,
+    reading_corner,
+    long_narrow,
+    guest_twin,
+    master_suite,
+    study_bedroom,
+    compact_double,
+    kids_room,
+    double_door_west,
+    loft_style,
+    attic_single,
+    double_with_bookshelves,
+)

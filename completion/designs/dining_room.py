@@ -4,14 +4,35 @@ under the table, plants; a kitchen-diner adds its counter and refrigerator."""
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    ARMCHAIR, BOOKSHELF, DRESSER, EIGHT_SEAT_TABLE, FLOOR_LAMP, FOUR_SEAT_TABLE, LARGE_PLANT, LARGE_RUG, LONG_DRESSER,
-    PIANO, PIANO_BENCH, PLANT, REFRIGERATOR, RUG, SIDEBOARD, SIX_SEAT_TABLE, SQUARE_TABLE, WIDE_BOOKSHELF,
-)  # fmt: skip
+    ARMCHAIR,
+    BOOKSHELF,
+    DRESSER,
+    EIGHT_SEAT_TABLE,
+    FLOOR_LAMP,
+    FOUR_SEAT_TABLE,
+    LARGE_PLANT,
+    LARGE_RUG,
+    LONG_DRESSER,
+    PIANO,
+    PIANO_BENCH,
+    PLANT,
+    REFRIGERATOR,
+    RUG,
+    SIDEBOARD,
+    SIX_SEAT_TABLE,
+    SQUARE_TABLE,
+    WIDE_BOOKSHELF,
+)
 
 
 def four_seat_window():
-    d = Design("dining_room_01", "dining_room", "Four-seat table under a pendant, sideboard under the window",
-               3.4, 3.6)  # fmt: skip
+    d = Design(
+        "dining_room_01",
+        "dining_room",
+        "Four-seat table under a pendant, sideboard under the window",
+        3.4,
+        3.6,
+    )
     d.door("S", 0.55, 0.8)
     d.window("N", 1.7, 1.4)
     table = d.place("dining_table", 1.7, 1.9, FOUR_SEAT_TABLE, "south")
@@ -22,8 +43,13 @@ def four_seat_window():
 
 
 def six_seat_classic():
-    d = Design("dining_room_02", "dining_room", "Six seats round a long table, sideboard and display cabinet",
-               4.6, 3.8)  # fmt: skip
+    d = Design(
+        "dining_room_02",
+        "dining_room",
+        "Six seats round a long table, sideboard and display cabinet",
+        4.6,
+        3.8,
+    )
     d.door("W", 3.3)
     d.window("E", 1.9, 1.6)
     table = d.place("dining_table", 2.3, 1.9, SIX_SEAT_TABLE, "south")
@@ -36,8 +62,13 @@ def six_seat_classic():
 
 
 def banquet_room():
-    d = Design("dining_room_03", "dining_room", "Formal dining room: eight seats, two sideboards, plants in the corners",
-               6.0, 4.6)  # fmt: skip
+    d = Design(
+        "dining_room_03",
+        "dining_room",
+        "Formal dining room: eight seats, two sideboards, plants in the corners",
+        6.0,
+        4.6,
+    )
     d.door("S", 5.3)
     d.window("N", 2.0, 1.6)
     d.window("N", 4.0, 1.6)
@@ -53,8 +84,13 @@ def banquet_room():
 
 
 def kitchen_diner():
-    d = Design("dining_room_04", "dining_room", "Kitchen-diner: counter and refrigerator on the north wall, table for four",
-               4.0, 4.2)  # fmt: skip
+    d = Design(
+        "dining_room_04",
+        "dining_room",
+        "Kitchen-diner: counter and refrigerator on the north wall, table for four",
+        4.0,
+        4.2,
+    )
     d.door("S", 3.45)
     d.window("W", 2.4, 1.4)
     d.against("N", "kitchen_counter", 1.6, (2.4, 0.6))
@@ -65,8 +101,13 @@ def kitchen_diner():
 
 
 def square_table_nook():
-    d = Design("dining_room_05", "dining_room", "Small dining room: square table for four, cabinet on the side wall",
-               3.0, 3.2)  # fmt: skip
+    d = Design(
+        "dining_room_05",
+        "dining_room",
+        "Small dining room: square table for four, cabinet on the side wall",
+        3.0,
+        3.2,
+    )
     d.door("E", 2.7, 0.8)
     d.window("N", 1.5, 1.2)
     table = d.place("dining_table", 1.45, 1.6, SQUARE_TABLE, "south")
@@ -76,8 +117,13 @@ def square_table_nook():
 
 
 def long_table_long_room():
-    d = Design("dining_room_06", "dining_room", "Long room: six-seat table along it, sideboard on the long wall",
-               3.4, 5.2)  # fmt: skip
+    d = Design(
+        "dining_room_06",
+        "dining_room",
+        "Long room: six-seat table along it, sideboard on the long wall",
+        3.4,
+        5.2,
+    )
     d.door("N", 2.85, 0.8)
     d.window("S", 1.7, 1.6)
     table = d.place("dining_table", 1.75, 2.7, SIX_SEAT_TABLE, "east")
@@ -89,8 +135,13 @@ def long_table_long_room():
 
 
 def family_dining():
-    d = Design("dining_room_07", "dining_room", "Family dining room: six seats, a dresser, an armchair by the window",
-               4.8, 4.2)  # fmt: skip
+    d = Design(
+        "dining_room_07",
+        "dining_room",
+        "Family dining room: six seats, a dresser, an armchair by the window",
+        4.8,
+        4.2,
+    )
     d.door("N", 0.6)
     d.window("E", 2.1, 1.8)
     table = d.place("dining_table", 2.2, 2.3, SIX_SEAT_TABLE, "south")
@@ -103,8 +154,13 @@ def family_dining():
 
 
 def dining_with_piano():
-    d = Design("dining_room_08", "dining_room", "Dining room with a piano: table for six, the piano on the south wall",
-               5.0, 4.4)  # fmt: skip
+    d = Design(
+        "dining_room_08",
+        "dining_room",
+        "Dining room with a piano: table for six, the piano on the south wall",
+        5.0,
+        4.4,
+    )
     d.door("E", 3.8)
     d.window("N", 2.2, 2.0)
     table = d.place("dining_table", 2.8, 2.2, SIX_SEAT_TABLE, "south")
@@ -117,8 +173,13 @@ def dining_with_piano():
 
 
 def round_the_corner():
-    d = Design("dining_room_09", "dining_room", "Table for four turned across the room, cabinets either side of the door",
-               3.8, 3.4)  # fmt: skip
+    d = Design(
+        "dining_room_09",
+        "dining_room",
+        "Table for four turned across the room, cabinets either side of the door",
+        3.8,
+        3.4,
+    )
     d.door("E", 1.7)
     d.window("W", 1.7, 1.4)
     table = d.place("dining_table", 1.85, 1.7, FOUR_SEAT_TABLE, "east")
@@ -129,8 +190,13 @@ def round_the_corner():
 
 
 def open_plan_dining():
-    d = Design("dining_room_10", "dining_room", "Open dining area: six seats, a sideboard, a floor lamp and a plant",
-               5.2, 4.0)  # fmt: skip
+    d = Design(
+        "dining_room_10",
+        "dining_room",
+        "Open dining area: six seats, a sideboard, a floor lamp and a plant",
+        5.2,
+        4.0,
+    )
     d.door("W", 0.6)
     d.window("S", 2.6, 2.4)
     table = d.place("dining_table", 2.9, 1.95, SIX_SEAT_TABLE, "south")
@@ -144,8 +210,13 @@ def open_plan_dining():
 
 
 def breakfast_room():
-    d = Design("dining_room_11", "dining_room", "Breakfast room: square table for four, refrigerator in the corner",
-               3.2, 3.0)  # fmt: skip
+    d = Design(
+        "dining_room_11",
+        "dining_room",
+        "Breakfast room: square table for four, refrigerator in the corner",
+        3.2,
+        3.0,
+    )
     d.door("S", 2.6, 0.8)
     d.window("W", 1.3, 1.2)
     table = d.place("dining_table", 1.6, 1.2, SQUARE_TABLE, "south")
@@ -155,8 +226,13 @@ def breakfast_room():
 
 
 def eight_in_a_square_room():
-    d = Design("dining_room_12", "dining_room", "Square room: eight seats, sideboard and display cabinet facing",
-               5.0, 5.0)  # fmt: skip
+    d = Design(
+        "dining_room_12",
+        "dining_room",
+        "Square room: eight seats, sideboard and display cabinet facing",
+        5.0,
+        5.0,
+    )
     d.door("S", 0.6)
     d.window("E", 2.5, 2.0)
     table = d.place("dining_table", 2.5, 2.4, EIGHT_SEAT_TABLE, "south")
@@ -169,8 +245,13 @@ def eight_in_a_square_room():
 
 
 def cottage_dining():
-    d = Design("dining_room_13", "dining_room", "Cottage dining room: table for four, dresser and shelves on one wall",
-               3.6, 3.8)  # fmt: skip
+    d = Design(
+        "dining_room_13",
+        "dining_room",
+        "Cottage dining room: table for four, dresser and shelves on one wall",
+        3.6,
+        3.8,
+    )
     d.door("N", 3.0, 0.8)
     d.window("S", 1.8, 1.2)
     table = d.place("dining_table", 1.8, 2.0, FOUR_SEAT_TABLE, "east")
@@ -181,8 +262,13 @@ def cottage_dining():
 
 
 def dining_by_the_garden():
-    d = Design("dining_room_14", "dining_room", "Dining room on the garden side: six seats facing the windows",
-               4.4, 4.0)  # fmt: skip
+    d = Design(
+        "dining_room_14",
+        "dining_room",
+        "Dining room on the garden side: six seats facing the windows",
+        4.4,
+        4.0,
+    )
     d.door("N", 3.9)
     d.window("S", 1.3, 1.4)
     d.window("S", 3.1, 1.4)
@@ -194,8 +280,13 @@ def dining_by_the_garden():
 
 
 def dining_with_counter():
-    d = Design("dining_room_15", "dining_room", "Dining room with a serving counter and refrigerator along one wall",
-               4.6, 4.4)  # fmt: skip
+    d = Design(
+        "dining_room_15",
+        "dining_room",
+        "Dining room with a serving counter and refrigerator along one wall",
+        4.6,
+        4.4,
+    )
     d.door("W", 3.8)
     d.window("N", 2.3, 1.6)
     d.against("E", "kitchen_counter", 2.2, (1.8, 0.6))
@@ -206,8 +297,13 @@ def dining_with_counter():
 
 
 def compact_six():
-    d = Design("dining_room_16", "dining_room", "Compact six-seat dining room, sideboard on the end wall",
-               3.8, 4.0)  # fmt: skip
+    d = Design(
+        "dining_room_16",
+        "dining_room",
+        "Compact six-seat dining room, sideboard on the end wall",
+        3.8,
+        4.0,
+    )
     d.door("S", 3.3, 0.8)
     d.window("W", 2.0, 1.4)
     table = d.place("dining_table", 1.9, 2.0, (1.6, 0.9), "east")
@@ -218,7 +314,20 @@ def compact_six():
 
 
 DESIGNS = (
-    four_seat_window, six_seat_classic, banquet_room, kitchen_diner, square_table_nook, long_table_long_room,
-    family_dining, dining_with_piano, round_the_corner, open_plan_dining, breakfast_room, eight_in_a_square_room,
-    cottage_dining, dining_by_the_garden, dining_with_counter, compact_six,
-)  # fmt: skip
+    four_seat_window,
+    six_seat_classic,
+    banquet_room,
+    kitchen_diner,
+    square_table_nook,
+    long_table_long_room,
+    family_dining,
+    dining_with_piano,
+    round_the_corner,
+    open_plan_dining,
+    breakfast_room,
+    eight_in_a_square_room,
+    cottage_dining,
+    dining_by_the_garden,
+    dining_with_counter,
+    compact_six,
+)

@@ -7,18 +7,30 @@ half a metre either side for the arms and the dumbbells; mats lie where one stre
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    DUMBBELL_RACK, EXERCISE_BIKE, EXERCISE_MAT, PLANT, ROWING_MACHINE, SMALL_TV, SMALL_TV_STAND, TREADMILL,
-    WEIGHT_BENCH, television,
-)  # fmt: skip
+    DUMBBELL_RACK,
+    EXERCISE_BIKE,
+    EXERCISE_MAT,
+    PLANT,
+    ROWING_MACHINE,
+    SMALL_TV,
+    SMALL_TV_STAND,
+    TREADMILL,
+    WEIGHT_BENCH,
+    television,
+)
 
 #: A tall machine facing a window keeps this far (metres) from its wall, clear of the glass.
 BY_THE_WINDOW = 0.4
 
 
-
 def spare_room():
-    d = Design("gym_01", "gym", "Spare-room gym: a treadmill facing the window, a mat before the dumbbell rack",
-               3.4, 3.0)  # fmt: skip
+    d = Design(
+        "gym_01",
+        "gym",
+        "Spare-room gym: a treadmill facing the window, a mat before the dumbbell rack",
+        3.4,
+        3.0,
+    )
     d.door("S", 2.8, 0.8)
     d.window("W", 0.9, 1.0)
     d.against("W", "treadmill", 0.9, TREADMILL, gap=BY_THE_WINDOW)
@@ -29,8 +41,13 @@ def spare_room():
 
 
 def bike_and_rower():
-    d = Design("gym_02", "gym", "Bike facing the window, a rower along the west wall, a rack and a mat",
-               4.0, 3.2)  # fmt: skip
+    d = Design(
+        "gym_02",
+        "gym",
+        "Bike facing the window, a rower along the west wall, a rack and a mat",
+        4.0,
+        3.2,
+    )
     d.door("E", 2.7, 0.8)
     d.window("N", 2.0, 1.6)
     d.against("N", "exercise_bike", 1.2, EXERCISE_BIKE, gap=BY_THE_WINDOW)
@@ -41,8 +58,13 @@ def bike_and_rower():
 
 
 def garage_gym():
-    d = Design("gym_03", "gym", "Garage-size gym: two treadmills facing the television, a rack and a bench",
-               5.0, 4.0)  # fmt: skip
+    d = Design(
+        "gym_03",
+        "gym",
+        "Garage-size gym: two treadmills facing the television, a rack and a bench",
+        5.0,
+        4.0,
+    )
     d.door("S", 4.5)
     d.window("W", 2.0, 1.4)
     television(d, "E", 1.6, SMALL_TV_STAND, SMALL_TV)
@@ -56,8 +78,13 @@ def garage_gym():
 
 
 def narrow_cardio_row():
-    d = Design("gym_04", "gym", "Narrow gym: a bike facing the window, a treadmill, a rower along the west wall",
-               3.0, 5.2)  # fmt: skip
+    d = Design(
+        "gym_04",
+        "gym",
+        "Narrow gym: a bike facing the window, a treadmill, a rower along the west wall",
+        3.0,
+        5.2,
+    )
     d.door("N", 2.5, 0.8)
     d.window("E", 2.8, 1.6)
     d.against("E", "exercise_bike", 2.8, EXERCISE_BIKE, gap=BY_THE_WINDOW)
@@ -69,8 +96,13 @@ def narrow_cardio_row():
 
 
 def cardio_studio():
-    d = Design("gym_05", "gym", "Studio: four treadmills and four bikes facing the windows, free weights behind",
-               8.0, 5.0)  # fmt: skip
+    d = Design(
+        "gym_05",
+        "gym",
+        "Studio: four treadmills and four bikes facing the windows, free weights behind",
+        8.0,
+        5.0,
+    )
     d.door("S", 7.3, 1.0)
     d.window("N", 2.5, 2.0)
     d.window("N", 5.5, 2.0)
@@ -88,8 +120,13 @@ def cardio_studio():
 
 
 def tv_home_gym():
-    d = Design("gym_06", "gym", "Home gym: a treadmill facing the television, a bench across from the rack",
-               4.5, 4.0)  # fmt: skip
+    d = Design(
+        "gym_06",
+        "gym",
+        "Home gym: a treadmill facing the television, a bench across from the rack",
+        4.5,
+        4.0,
+    )
     d.door("W", 3.4)
     d.window("E", 2.0, 1.4)
     television(d, "S", 2.5, SMALL_TV_STAND, SMALL_TV)
@@ -102,8 +139,9 @@ def tv_home_gym():
 
 
 def rowing_room():
-    d = Design("gym_07", "gym", "Two rowers side by side under the window, a rack and a mat",
-               4.2, 3.6)  # fmt: skip
+    d = Design(
+        "gym_07", "gym", "Two rowers side by side under the window, a rack and a mat", 4.2, 3.6
+    )
     d.door("S", 3.6, 0.8)
     d.window("N", 1.5, 2.0)
     d.against("N", "rowing_machine", 1.0, ROWING_MACHINE)
@@ -114,8 +152,13 @@ def rowing_room():
 
 
 def strength_corner():
-    d = Design("gym_08", "gym", "Weight bench before two dumbbell racks, a treadmill facing the window, a bike",
-               4.8, 4.2)  # fmt: skip
+    d = Design(
+        "gym_08",
+        "gym",
+        "Weight bench before two dumbbell racks, a treadmill facing the window, a bike",
+        4.8,
+        4.2,
+    )
     d.door("N", 4.2)
     d.window("W", 2.1, 1.6)
     d.against("W", "treadmill", 2.1, TREADMILL, gap=BY_THE_WINDOW)
@@ -129,8 +172,13 @@ def strength_corner():
 
 
 def box_room():
-    d = Design("gym_09", "gym", "Box room: an exercise bike facing the window, a mat and a small rack",
-               3.0, 3.0)  # fmt: skip
+    d = Design(
+        "gym_09",
+        "gym",
+        "Box room: an exercise bike facing the window, a mat and a small rack",
+        3.0,
+        3.0,
+    )
     d.door("E", 2.5, 0.8)
     d.window("N", 1.5, 1.2)
     d.against("N", "exercise_bike", 1.5, EXERCISE_BIKE, gap=BY_THE_WINDOW)
@@ -140,8 +188,13 @@ def box_room():
 
 
 def club_room():
-    d = Design("gym_10", "gym", "Club room: three treadmills facing the television, two bikes, a rower, free weights",
-               7.0, 5.5)  # fmt: skip
+    d = Design(
+        "gym_10",
+        "gym",
+        "Club room: three treadmills facing the television, two bikes, a rower, free weights",
+        7.0,
+        5.5,
+    )
     d.door("W", 4.8, 1.0)
     d.window("S", 2.0, 2.0)
     d.window("S", 5.0, 2.0)
@@ -160,8 +213,13 @@ def club_room():
 
 
 def long_attic():
-    d = Design("gym_11", "gym", "Long room: a rower by the door, a bike facing the window, rack and bench at the end",
-               5.6, 3.4)  # fmt: skip
+    d = Design(
+        "gym_11",
+        "gym",
+        "Long room: a rower by the door, a bike facing the window, rack and bench at the end",
+        5.6,
+        3.4,
+    )
     d.door("S", 0.6, 0.8)
     d.window("N", 2.8, 1.4)
     d.against("N", "rowing_machine", 1.0, ROWING_MACHINE)
@@ -173,8 +231,13 @@ def long_attic():
 
 
 def family_gym():
-    d = Design("gym_12", "gym", "Family gym: a treadmill, a bike and a rower in a row facing the television",
-               5.4, 4.4)  # fmt: skip
+    d = Design(
+        "gym_12",
+        "gym",
+        "Family gym: a treadmill, a bike and a rower in a row facing the television",
+        5.4,
+        4.4,
+    )
     d.door("E", 3.8)
     d.window("S", 2.7, 1.8)
     television(d, "N", 2.7)
@@ -188,8 +251,13 @@ def family_gym():
 
 
 def compact_weights():
-    d = Design("gym_13", "gym", "Compact weights room: a bench before the rack, a bike against the east wall",
-               3.6, 3.4)  # fmt: skip
+    d = Design(
+        "gym_13",
+        "gym",
+        "Compact weights room: a bench before the rack, a bike against the east wall",
+        3.6,
+        3.4,
+    )
     d.door("S", 3.1, 0.8)
     d.window("W", 1.7, 1.2)
     d.against("N", "dumbbell_rack", 1.8, DUMBBELL_RACK)
@@ -200,8 +268,13 @@ def compact_weights():
 
 
 def basement():
-    d = Design("gym_14", "gym", "Basement gym: two treadmills under the high window, a wall of weights, a bench",
-               6.0, 4.5)  # fmt: skip
+    d = Design(
+        "gym_14",
+        "gym",
+        "Basement gym: two treadmills under the high window, a wall of weights, a bench",
+        6.0,
+        4.5,
+    )
     d.door("N", 5.4)
     d.window("N", 2.0, 1.2, sill=1.7, height=0.5)
     d.against("N", "treadmill", 1.5, TREADMILL, gap=0.1)
@@ -215,8 +288,13 @@ def basement():
 
 
 def cycling_studio():
-    d = Design("gym_15", "gym", "Cycling studio: eight bikes in two rows facing the instructor's bike",
-               6.5, 5.0)  # fmt: skip
+    d = Design(
+        "gym_15",
+        "gym",
+        "Cycling studio: eight bikes in two rows facing the instructor's bike",
+        6.5,
+        5.0,
+    )
     d.door("S", 5.9, 1.0)
     d.window("W", 2.5, 2.0)
     d.window("E", 2.5, 2.0)
@@ -230,8 +308,13 @@ def cycling_studio():
 
 
 def stretching_room():
-    d = Design("gym_16", "gym", "Stretching and weights room: three mats facing the television, a rack and a bench",
-               5.0, 4.0)  # fmt: skip
+    d = Design(
+        "gym_16",
+        "gym",
+        "Stretching and weights room: three mats facing the television, a rack and a bench",
+        5.0,
+        4.0,
+    )
     d.door("W", 0.6)
     d.window("E", 2.0, 1.6)
     d.against("N", "dumbbell_rack", 2.8, DUMBBELL_RACK)
@@ -243,7 +326,20 @@ def stretching_room():
 
 
 DESIGNS = (
-    spare_room, bike_and_rower, garage_gym, narrow_cardio_row, cardio_studio, tv_home_gym, rowing_room,
-    strength_corner, box_room, club_room, long_attic, family_gym, compact_weights, basement, cycling_studio,
+    spare_room,
+    bike_and_rower,
+    garage_gym,
+    narrow_cardio_row,
+    cardio_studio,
+    tv_home_gym,
+    rowing_room,
+    strength_corner,
+    box_room,
+    club_room,
+    long_attic,
+    family_gym,
+    compact_weights,
+    basement,
+    cycling_studio,
     stretching_room,
-)  # fmt: skip
+)

@@ -4,10 +4,24 @@ shelves, lamps, plants and sometimes a piano on the walls left free."""
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    ARMCHAIR, BOOKSHELF, COFFEE_TABLE, FLOOR_LAMP, LARGE_PLANT, LARGE_RUG, LOVESEAT, PIANO, PIANO_BENCH, PLANT,
-    RUG, SMALL_COFFEE_TABLE, SMALL_TV, SMALL_TV_STAND, SOFA, WIDE_BOOKSHELF, television,
-)  # fmt: skip
-
+    ARMCHAIR,
+    BOOKSHELF,
+    COFFEE_TABLE,
+    FLOOR_LAMP,
+    LARGE_PLANT,
+    LARGE_RUG,
+    LOVESEAT,
+    PIANO,
+    PIANO_BENCH,
+    PLANT,
+    RUG,
+    SMALL_COFFEE_TABLE,
+    SMALL_TV,
+    SMALL_TV_STAND,
+    SOFA,
+    WIDE_BOOKSHELF,
+    television,
+)
 
 
 def _sofa_group(d: Design, sofa: str, table=COFFEE_TABLE) -> str:
@@ -16,8 +30,13 @@ def _sofa_group(d: Design, sofa: str, table=COFFEE_TABLE) -> str:
 
 
 def east_west_classic():
-    d = Design("living_room_01", "living_room", "Sofa on the east wall facing the television on the west wall",
-               5.0, 4.0)  # fmt: skip
+    d = Design(
+        "living_room_01",
+        "living_room",
+        "Sofa on the east wall facing the television on the west wall",
+        5.0,
+        4.0,
+    )
     d.door("S", 0.6)
     d.window("N", 2.5, 1.8)
     television(d, "W", 2.0)
@@ -32,8 +51,13 @@ def east_west_classic():
 
 
 def small_flat():
-    d = Design("living_room_02", "living_room", "Small flat: two-seat sofa facing a small television, one armchair",
-               3.4, 3.8)  # fmt: skip
+    d = Design(
+        "living_room_02",
+        "living_room",
+        "Small flat: two-seat sofa facing a small television, one armchair",
+        3.4,
+        3.8,
+    )
     d.door("E", 3.25, 0.8)
     d.window("W", 1.9, 1.4)
     television(d, "N", 1.7, SMALL_TV_STAND, SMALL_TV)
@@ -45,8 +69,13 @@ def small_flat():
 
 
 def long_room_with_piano():
-    d = Design("living_room_03", "living_room", "Long living room: sitting group at one end, piano at the other",
-               6.0, 4.0)  # fmt: skip
+    d = Design(
+        "living_room_03",
+        "living_room",
+        "Long living room: sitting group at one end, piano at the other",
+        6.0,
+        4.0,
+    )
     d.door("N", 5.3)
     d.window("S", 1.8, 2.0)
     d.window("W", 2.0, 1.2)
@@ -63,8 +92,13 @@ def long_room_with_piano():
 
 
 def corner_window():
-    d = Design("living_room_04", "living_room", "Square room: sofa with its back to the room's centre line",
-               4.5, 4.5)  # fmt: skip
+    d = Design(
+        "living_room_04",
+        "living_room",
+        "Square room: sofa with its back to the room's centre line",
+        4.5,
+        4.5,
+    )
     d.door("W", 3.9)
     d.window("N", 2.25, 2.0)
     d.window("E", 1.5, 1.2)
@@ -80,8 +114,13 @@ def corner_window():
 
 
 def two_sofas():
-    d = Design("living_room_05", "living_room", "Conversation room: two sofas facing across a coffee table",
-               5.0, 4.4)  # fmt: skip
+    d = Design(
+        "living_room_05",
+        "living_room",
+        "Conversation room: two sofas facing across a coffee table",
+        5.0,
+        4.4,
+    )
     d.door("S", 4.4)
     d.window("N", 2.5, 2.2)
     d.against("W", "sofa", 2.1, SOFA)
@@ -96,8 +135,13 @@ def two_sofas():
 
 
 def tv_on_the_long_wall():
-    d = Design("living_room_06", "living_room", "Television on the long north wall, sofa and armchairs facing it",
-               5.6, 3.8)  # fmt: skip
+    d = Design(
+        "living_room_06",
+        "living_room",
+        "Television on the long north wall, sofa and armchairs facing it",
+        5.6,
+        3.8,
+    )
     d.door("W", 3.2)
     d.window("S", 2.8, 2.4)
     television(d, "N", 2.8)
@@ -113,8 +157,13 @@ def tv_on_the_long_wall():
 
 
 def reading_room():
-    d = Design("living_room_07", "living_room", "Quiet sitting room without a television: books, armchairs, a sofa",
-               4.2, 3.6)  # fmt: skip
+    d = Design(
+        "living_room_07",
+        "living_room",
+        "Quiet sitting room without a television: books, armchairs, a sofa",
+        4.2,
+        3.6,
+    )
     d.door("E", 0.6)
     d.window("S", 2.1, 1.6)
     d.against("N", "bookshelf", 1.1, WIDE_BOOKSHELF)
@@ -128,8 +177,13 @@ def reading_room():
 
 
 def open_door_north():
-    d = Design("living_room_08", "living_room", "Sofa on the south wall under no window, television opposite",
-               4.8, 4.2)  # fmt: skip
+    d = Design(
+        "living_room_08",
+        "living_room",
+        "Sofa on the south wall under no window, television opposite",
+        4.8,
+        4.2,
+    )
     d.door("N", 0.6)
     d.window("E", 2.1, 1.8)
     television(d, "N", 2.8)
@@ -144,8 +198,13 @@ def open_door_north():
 
 
 def large_family_room():
-    d = Design("living_room_09", "living_room", "Large family room: sofa and loveseat round a television, a piano",
-               6.0, 5.0)  # fmt: skip
+    d = Design(
+        "living_room_09",
+        "living_room",
+        "Large family room: sofa and loveseat round a television, a piano",
+        6.0,
+        5.0,
+    )
     d.door("S", 5.4)
     d.window("N", 3.0, 2.4)
     d.window("W", 2.5, 1.6)
@@ -165,8 +224,13 @@ def large_family_room():
 
 
 def narrow_living():
-    d = Design("living_room_10", "living_room", "Narrow room: sofa along the long wall, television opposite it",
-               3.6, 5.0)  # fmt: skip
+    d = Design(
+        "living_room_10",
+        "living_room",
+        "Narrow room: sofa along the long wall, television opposite it",
+        3.6,
+        5.0,
+    )
     d.door("S", 3.0, 0.8)
     d.window("N", 1.8, 1.6)
     television(d, "W", 2.5)
@@ -180,8 +244,13 @@ def narrow_living():
 
 
 def lounge_with_corner_seats():
-    d = Design("living_room_11", "living_room", "Sofa and two armchairs in a U round the coffee table",
-               4.6, 4.0)  # fmt: skip
+    d = Design(
+        "living_room_11",
+        "living_room",
+        "Sofa and two armchairs in a U round the coffee table",
+        4.6,
+        4.0,
+    )
     d.door("W", 0.6)
     d.window("E", 2.0, 1.6)
     television(d, "N", 2.6, SMALL_TV_STAND, SMALL_TV)
@@ -195,8 +264,13 @@ def lounge_with_corner_seats():
 
 
 def bay_window_room():
-    d = Design("living_room_12", "living_room", "Armchairs in the window, sofa facing the television on the side wall",
-               5.2, 4.2)  # fmt: skip
+    d = Design(
+        "living_room_12",
+        "living_room",
+        "Armchairs in the window, sofa facing the television on the side wall",
+        5.2,
+        4.2,
+    )
     d.door("N", 4.6)
     d.window("S", 2.0, 2.2)
     d.against("S", "armchair", 1.4, ARMCHAIR, gap=0.1)
@@ -211,8 +285,13 @@ def bay_window_room():
 
 
 def studio_sitting():
-    d = Design("living_room_13", "living_room", "Small sitting room: loveseat and armchair, television in the corner",
-               3.6, 3.4)  # fmt: skip
+    d = Design(
+        "living_room_13",
+        "living_room",
+        "Small sitting room: loveseat and armchair, television in the corner",
+        3.6,
+        3.4,
+    )
     d.door("N", 0.55, 0.8)
     d.window("S", 1.8, 1.2)
     television(d, "E", 1.7, SMALL_TV_STAND, SMALL_TV)
@@ -223,8 +302,13 @@ def studio_sitting():
 
 
 def music_room():
-    d = Design("living_room_14", "living_room", "Living room for music, no television: piano on the inner wall, sofa facing the window",
-               4.8, 4.4)  # fmt: skip
+    d = Design(
+        "living_room_14",
+        "living_room",
+        "Living room for music, no television: piano on the inner wall, sofa facing the window",
+        4.8,
+        4.4,
+    )
     d.door("W", 3.8)
     d.window("N", 2.4, 2.0)
     piano = d.against("E", "piano", 2.0, PIANO)
@@ -237,8 +321,13 @@ def music_room():
 
 
 def tv_wall_between_windows():
-    d = Design("living_room_15", "living_room", "Windows north and south, so the television is on the blind west wall",
-               5.4, 4.6)  # fmt: skip
+    d = Design(
+        "living_room_15",
+        "living_room",
+        "Windows north and south, so the television is on the blind west wall",
+        5.4,
+        4.6,
+    )
     d.door("E", 4.0)
     d.window("N", 2.7, 1.6)
     d.window("S", 2.0, 1.6)
@@ -254,8 +343,13 @@ def tv_wall_between_windows():
 
 
 def den():
-    d = Design("living_room_16", "living_room", "Den: deep sofa, television, a wall of books and a reading lamp",
-               4.0, 3.6)  # fmt: skip
+    d = Design(
+        "living_room_16",
+        "living_room",
+        "Den: deep sofa, television, a wall of books and a reading lamp",
+        4.0,
+        3.6,
+    )
     d.door("S", 0.55, 0.8)
     d.window("E", 1.8, 1.2)
     television(d, "W", 1.6, SMALL_TV_STAND, SMALL_TV)
@@ -268,7 +362,20 @@ def den():
 
 
 DESIGNS = (
-    east_west_classic, small_flat, long_room_with_piano, corner_window, two_sofas, tv_on_the_long_wall, reading_room,
-    open_door_north, large_family_room, narrow_living, lounge_with_corner_seats, bay_window_room, studio_sitting,
-    music_room, tv_wall_between_windows, den,
-)  # fmt: skip
+    east_west_classic,
+    small_flat,
+    long_room_with_piano,
+    corner_window,
+    two_sofas,
+    tv_on_the_long_wall,
+    reading_room,
+    open_door_north,
+    large_family_room,
+    narrow_living,
+    lounge_with_corner_seats,
+    bay_window_room,
+    studio_sitting,
+    music_room,
+    tv_wall_between_windows,
+    den,
+)

@@ -5,12 +5,29 @@ armchair, a sofa or a whiteboard."""
 
 from scenewright.completion.authoring import Design
 from scenewright.completion.designs import (
-    ARMCHAIR, BOOKSHELF, CHAIR, DESK, DESK_LAMP, FILING_CABINET, FLOOR_LAMP, LAPTOP, LARGE_DESK, LOVESEAT,
-    OFFICE_CHAIR, PLANT, RUG, SMALL_COFFEE_TABLE, SMALL_DESK, WHITEBOARD, WIDE_BOOKSHELF,
-)  # fmt: skip
+    ARMCHAIR,
+    BOOKSHELF,
+    CHAIR,
+    DESK,
+    DESK_LAMP,
+    FILING_CABINET,
+    FLOOR_LAMP,
+    LAPTOP,
+    LARGE_DESK,
+    LOVESEAT,
+    OFFICE_CHAIR,
+    PLANT,
+    RUG,
+    SMALL_COFFEE_TABLE,
+    SMALL_DESK,
+    WHITEBOARD,
+    WIDE_BOOKSHELF,
+)
 
 
-def _workplace(d: Design, wall: str, at: float, desk=DESK, lamp: bool = True, laptop: bool = False) -> str:
+def _workplace(
+    d: Design, wall: str, at: float, desk=DESK, lamp: bool = True, laptop: bool = False
+) -> str:
     """A desk against ``wall`` with its office chair before it (and a lamp, a laptop)."""
     desk_id = d.against(wall, "desk", at, desk)
     d.before(desk_id, "office_chair", OFFICE_CHAIR, 0.05)
@@ -22,8 +39,13 @@ def _workplace(d: Design, wall: str, at: float, desk=DESK, lamp: bool = True, la
 
 
 def home_office_window():
-    d = Design("study_01", "study", "Home office: desk under the north window, shelves on the side wall",
-               3.0, 3.2)  # fmt: skip
+    d = Design(
+        "study_01",
+        "study",
+        "Home office: desk under the north window, shelves on the side wall",
+        3.0,
+        3.2,
+    )
     d.door("S", 2.45, 0.8)
     d.window("N", 1.4, 1.4)
     _workplace(d, "N", 1.4, laptop=True)
@@ -34,8 +56,13 @@ def home_office_window():
 
 
 def library_study():
-    d = Design("study_02", "study", "Library study: wall of shelves, large desk facing into the room",
-               4.4, 3.8)  # fmt: skip
+    d = Design(
+        "study_02",
+        "study",
+        "Library study: wall of shelves, large desk facing into the room",
+        4.4,
+        3.8,
+    )
     d.door("S", 0.6)
     d.window("E", 1.6, 1.4)
     for at in (0.7, 1.95, 3.2):
@@ -51,8 +78,13 @@ def library_study():
 
 
 def corner_desk_office():
-    d = Design("study_03", "study", "Small office: desk beside the east window, filing cabinets, visitor's chair",
-               3.2, 3.6)  # fmt: skip
+    d = Design(
+        "study_03",
+        "study",
+        "Small office: desk beside the east window, filing cabinets, visitor's chair",
+        3.2,
+        3.6,
+    )
     d.door("W", 3.0, 0.8)
     d.window("E", 1.2, 1.2)
     _workplace(d, "E", 1.3, laptop=True)
@@ -64,8 +96,13 @@ def corner_desk_office():
 
 
 def writer_room():
-    d = Design("study_04", "study", "Writer's room: desk under the window, a reading armchair by the shelves",
-               3.8, 3.4)  # fmt: skip
+    d = Design(
+        "study_04",
+        "study",
+        "Writer's room: desk under the window, a reading armchair by the shelves",
+        3.8,
+        3.4,
+    )
     d.door("E", 2.9)
     d.window("W", 1.5, 1.2)
     _workplace(d, "W", 1.5)
@@ -79,8 +116,13 @@ def writer_room():
 
 
 def two_person_office():
-    d = Design("study_05", "study", "Shared office: two desks along the window wall, shared filing and shelves",
-               4.8, 3.6)  # fmt: skip
+    d = Design(
+        "study_05",
+        "study",
+        "Shared office: two desks along the window wall, shared filing and shelves",
+        4.8,
+        3.6,
+    )
     d.door("S", 4.2)
     d.window("N", 1.3, 1.4)
     d.window("N", 3.5, 1.4)
@@ -94,8 +136,13 @@ def two_person_office():
 
 
 def managers_office():
-    d = Design("study_06", "study", "Manager's office: desk facing the door, visitors' chairs, a whiteboard",
-               5.0, 4.2)  # fmt: skip
+    d = Design(
+        "study_06",
+        "study",
+        "Manager's office: desk facing the door, visitors' chairs, a whiteboard",
+        5.0,
+        4.2,
+    )
     d.door("S", 0.6)
     d.window("N", 2.6, 2.0)
     desk = d.place("desk", 2.6, 1.45, LARGE_DESK, "south")
@@ -113,8 +160,13 @@ def managers_office():
 
 
 def study_with_sofa():
-    d = Design("study_07", "study", "Study with a sofa for reading: desk by the window, sofa facing the shelves",
-               4.6, 4.0)  # fmt: skip
+    d = Design(
+        "study_07",
+        "study",
+        "Study with a sofa for reading: desk by the window, sofa facing the shelves",
+        4.6,
+        4.0,
+    )
     d.door("N", 4.0)
     d.window("W", 1.3, 1.4)
     _workplace(d, "W", 1.3)
@@ -127,8 +179,9 @@ def study_with_sofa():
 
 
 def tiny_box_room():
-    d = Design("study_08", "study", "Box room office: small desk under the window, one shelf",
-               2.8, 3.0)  # fmt: skip
+    d = Design(
+        "study_08", "study", "Box room office: small desk under the window, one shelf", 2.8, 3.0
+    )
     d.door("S", 0.5, 0.8)
     d.window("N", 1.4, 1.0)
     _workplace(d, "N", 1.4, SMALL_DESK, laptop=True, lamp=False)
@@ -137,8 +190,13 @@ def tiny_box_room():
 
 
 def architect_office():
-    d = Design("study_09", "study", "Drawing office: two large desks facing the long window wall, plan cabinets",
-               5.6, 4.0)  # fmt: skip
+    d = Design(
+        "study_09",
+        "study",
+        "Drawing office: two large desks facing the long window wall, plan cabinets",
+        5.6,
+        4.0,
+    )
     d.door("W", 3.4)
     d.window("E", 2.0, 2.4)
     d.window("N", 2.8, 1.6)
@@ -153,8 +211,13 @@ def architect_office():
 
 
 def student_study():
-    d = Design("study_10", "study", "Student's study: desk on the side wall, the window to its left, shelves above",
-               3.4, 3.0)  # fmt: skip
+    d = Design(
+        "study_10",
+        "study",
+        "Student's study: desk on the side wall, the window to its left, shelves above",
+        3.4,
+        3.0,
+    )
     d.door("N", 2.9, 0.8)
     d.window("W", 1.5, 1.2)
     _workplace(d, "S", 1.0, laptop=True)
@@ -164,8 +227,13 @@ def student_study():
 
 
 def consulting_room():
-    d = Design("study_11", "study", "Consulting room: desk with two visitors' chairs, shelves, a plant",
-               4.0, 4.0)  # fmt: skip
+    d = Design(
+        "study_11",
+        "study",
+        "Consulting room: desk with two visitors' chairs, shelves, a plant",
+        4.0,
+        4.0,
+    )
     d.door("E", 3.45)
     d.window("W", 2.0, 1.6)
     desk = d.place("desk", 1.45, 2.0, DESK, "east")
@@ -180,8 +248,13 @@ def consulting_room():
 
 
 def long_study():
-    d = Design("study_12", "study", "Long study: desk at the window end, shelves down one long wall",
-               2.9, 4.8)  # fmt: skip
+    d = Design(
+        "study_12",
+        "study",
+        "Long study: desk at the window end, shelves down one long wall",
+        2.9,
+        4.8,
+    )
     d.door("S", 2.35, 0.8)
     d.window("N", 1.45, 1.2)
     _workplace(d, "N", 1.45)
@@ -192,8 +265,13 @@ def long_study():
 
 
 def home_office_with_guest_sofa():
-    d = Design("study_13", "study", "Home office that doubles as a sitting room: desk at the window, sofa opposite",
-               4.2, 4.2)  # fmt: skip
+    d = Design(
+        "study_13",
+        "study",
+        "Home office that doubles as a sitting room: desk at the window, sofa opposite",
+        4.2,
+        4.2,
+    )
     d.door("W", 3.6)
     d.window("N", 2.1, 1.6)
     _workplace(d, "N", 2.1, LARGE_DESK, laptop=True)
@@ -205,8 +283,13 @@ def home_office_with_guest_sofa():
 
 
 def team_room():
-    d = Design("study_14", "study", "Team room: four desks in two facing pairs, whiteboard on the end wall",
-               6.0, 4.6)  # fmt: skip
+    d = Design(
+        "study_14",
+        "study",
+        "Team room: four desks in two facing pairs, whiteboard on the end wall",
+        6.0,
+        4.6,
+    )
     d.door("S", 5.4)
     d.window("N", 3.0, 3.0)
     for x in (2.2, 3.6):  # desks back to back, each chair facing its desk
@@ -222,8 +305,13 @@ def team_room():
 
 
 def attic_study():
-    d = Design("study_15", "study", "Attic study: desk under the gable window, low shelves, a reading chair",
-               3.6, 3.2)  # fmt: skip
+    d = Design(
+        "study_15",
+        "study",
+        "Attic study: desk under the gable window, low shelves, a reading chair",
+        3.6,
+        3.2,
+    )
     d.door("S", 0.55, 0.8)
     d.window("E", 1.6, 1.0)
     _workplace(d, "E", 1.6)
@@ -234,8 +322,13 @@ def attic_study():
 
 
 def desk_facing_window_side():
-    d = Design("study_16", "study", "Study with the desk side-on to the south window, filing cabinet and shelves on the other walls",
-               3.6, 3.8)  # fmt: skip
+    d = Design(
+        "study_16",
+        "study",
+        "Study with the desk side-on to the south window, filing cabinet and shelves on the other walls",
+        3.6,
+        3.8,
+    )
     d.door("N", 0.55, 0.8)
     d.window("S", 1.8, 1.4)
     _workplace(d, "E", 2.6, laptop=True)
@@ -246,7 +339,20 @@ def desk_facing_window_side():
 
 
 DESIGNS = (
-    home_office_window, library_study, corner_desk_office, writer_room, two_person_office, managers_office,
-    study_with_sofa, tiny_box_room, architect_office, student_study, consulting_room, long_study,
-    home_office_with_guest_sofa, team_room, attic_study, desk_facing_window_side,
-)  # fmt: skip
+    home_office_window,
+    library_study,
+    corner_desk_office,
+    writer_room,
+    two_person_office,
+    managers_office,
+    study_with_sofa,
+    tiny_box_room,
+    architect_office,
+    student_study,
+    consulting_room,
+    long_study,
+    home_office_with_guest_sofa,
+    team_room,
+    attic_study,
+    desk_facing_window_side,
+)

@@ -27,8 +27,8 @@ on a layout that already exists (an imported scene) without sampling.
 from __future__ import annotations
 
 import time
-from dataclasses import replace
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -36,7 +36,13 @@ from scenewright.core.poses import LayoutResult, Pose
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
-from .decompose import decomposes, frame_streams, lay_out_frames, large_scene_params, run_decomposed_chain
+from .decompose import (
+    decomposes,
+    frame_streams,
+    large_scene_params,
+    lay_out_frames,
+    run_decomposed_chain,
+)
 from .learned_term import LearnedContext, compile_learned
 from .mask_term import FloorMask, compile_mask
 from .measure import measure_layout
@@ -46,7 +52,15 @@ from .problem import compile_problem
 from .repair import repair_pins
 from .sampler import Run, run_chain
 
-__all__ = ["FloorMask", "LayoutParams", "LearnedContext", "LayoutResult", "Pose", "layout_scene", "measure_layout"]
+__all__ = [
+    "FloorMask",
+    "LayoutParams",
+    "LearnedContext",
+    "LayoutResult",
+    "Pose",
+    "layout_scene",
+    "measure_layout",
+]
 
 
 def layout_scene(
@@ -100,7 +114,9 @@ def layout_scene(
     if mask is not None:
         problem.mask = compile_mask(mask, problem.ids)
     if context is not None:
-        learned = compile_learned(context, problem, [graph.node(box_id).type for box_id in problem.ids])
+        learned = compile_learned(
+            context, problem, [graph.node(box_id).type for box_id in problem.ids]
+        )
         problem.learned = learned if learned.pairs else None
     pins = compile_pins(problem, pinned, pinned_paths, start)
     best: Run | None = None
@@ -111,7 +127,9 @@ def layout_scene(
     repairs = problem.room is None and not (pins.start_poses or pins.start_points)
     if params.decompose and decomposes(problem, pins):
         params = large_scene_params(params)
-        frames = lay_out_frames(graph, problem, params, frame_streams(_chain_stream(seed, 0), problem))
+        frames = lay_out_frames(
+            graph, problem, params, frame_streams(_chain_stream(seed, 0), problem)
+        )
         total_steps += frames.steps
     for attempt in range(1 + params.restarts):
         rng = _chain_stream(seed, attempt)
@@ -124,7 +142,9 @@ def layout_scene(
             chain_params = replace(chain_params, patience=params.repair_patience)
         if frames is not None:  # the groups' frames do not depend on the rest: computed once
             run = run_decomposed_chain(problem, params, rng, frames)
-        elif best is not None and attempt < params.restarts and repairs:  # keep what was fine, redo the rest
+        elif (
+            best is not None and attempt < params.restarts and repairs
+        ):  # keep what was fine, redo the rest
             run = run_chain(problem, chain_params, rng, repair_pins(problem, best, pins))
         else:
             run = run_chain(problem, chain_params, rng, pins)
@@ -139,7 +159,10 @@ def layout_scene(
         box_id: Pose(state.x[box], state.y[box], state.z[box], state.yaw[box])
         for box, box_id in enumerate(problem.ids)
     }
-    paths = {path_id: np.array(state.points[p], dtype=float) for p, path_id in enumerate(problem.path_ids)}
+    paths = {
+        path_id: np.array(state.points[p], dtype=float)
+        for p, path_id in enumerate(problem.path_ids)
+    }
     parts = energy.full()  # exact, free of the rounding the running sums gather
     return LayoutResult(
         poses=poses,
@@ -158,7 +181,11 @@ def layout_scene(
 def _chain_stream(seed: SeedLike, attempt: int) -> np.random.Generator:
     """Chain ``attempt``'s stream: the layout's child stream ``attempt`` of an int seed, or
     a child spawned from a Generator."""
-    return seed.spawn(1)[0] if isinstance(seed, np.random.Generator) else stage_stream(seed, "layout", attempt)
+    return (
+        seed.spawn(1)[0]
+        if isinstance(seed, np.random.Generator)
+        else stage_stream(seed, "layout", attempt)
+    )
 
 
 def _rank(run: Run) -> tuple:

@@ -148,23 +148,32 @@ def group_scenes(graph: SceneGraph, problem: Problem, groups: list[int]) -> list
             own[position].add_edge(source, target, **data)
     return [
         SceneGraph(params=replace(graph.params, extent=(side, side)), graph=members)
-        for members, side in zip(own, (frame_extent(problem, problem.group_members[g]) for g in groups))
+        for members, side in zip(
+            own, (frame_extent(problem, problem.group_members[g]) for g in groups), strict=False
+        )
     ]
 
 
-def lay_out_frames(graph: SceneGraph, problem: Problem, params: LayoutParams, rngs: list[np.random.Generator]) -> Frames:
+def lay_out_frames(
+    graph: SceneGraph, problem: Problem, params: LayoutParams, rngs: list[np.random.Generator]
+) -> Frames:
     """Phase 1: every framed group laid out alone, group k on ``rngs[k]``; in
     ``params.workers`` processes when more than one (same results either way)."""
     groups = framed_groups(problem)
-    tasks = [(scene, params, rng) for scene, rng in zip(group_scenes(graph, problem, groups), rngs)]
+    tasks = [
+        (scene, params, rng)
+        for scene, rng in zip(group_scenes(graph, problem, groups), rngs, strict=False)
+    ]
     if params.workers > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(max_workers=params.workers) as pool:
-            results = list(pool.map(_frame, tasks, chunksize=max(1, len(tasks) // (4 * params.workers))))
+            results = list(
+                pool.map(_frame, tasks, chunksize=max(1, len(tasks) // (4 * params.workers)))
+            )
     else:
         results = [_frame(task) for task in tasks]
     index = {box_id: box for box, box_id in enumerate(problem.ids)}
     frames = Frames({}, {}, 0)
-    for g, (poses, ok, steps) in zip(groups, results):
+    for g, (poses, ok, steps) in zip(groups, results, strict=False):
         frames.poses[g] = {index[box_id]: pose for box_id, pose in poses.items()}
         frames.ok[g] = ok
         frames.steps += steps
@@ -193,22 +202,34 @@ def _frame(task: tuple[SceneGraph, LayoutParams, np.random.Generator]) -> tuple[
     ground = [b for b in range(sub.n_boxes) if sub.support[b] < 0]
     cx = sum(state.x[b] for b in ground) / len(ground)
     cz = sum(state.z[b] for b in ground) / len(ground)
-    poses = {box_id: (state.x[b] - cx, state.z[b] - cz, state.yaw[b]) for b, box_id in enumerate(sub.ids)}
+    poses = {
+        box_id: (state.x[b] - cx, state.z[b] - cz, state.yaw[b]) for b, box_id in enumerate(sub.ids)
+    }
     return poses, best.ok, steps
 
 
-def run_decomposed_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, frames: Frames) -> Run:
+def run_decomposed_chain(
+    problem: Problem, params: LayoutParams, rng: np.random.Generator, frames: Frames
+) -> Run:
     """Phases 2 and 3 on one stream: the framed groups placed and annealed as rigid
     footprints, then a short joint refinement of everything."""
     state = State(problem)
     energy = Energy(problem, state, params)
     rigid = Mover(problem, state, rng, params, rigid_groups=list(frames.poses))
     place_initial(energy, rigid, rng, frames=frames.poses)
-    placed = anneal(energy, rigid, params, rng, max(params.steps, RIGID_STEPS_PER_UNIT * len(problem.units)))
+    placed = anneal(
+        energy, rigid, params, rng, max(params.steps, RIGID_STEPS_PER_UNIT * len(problem.units))
+    )
     joint = Mover(problem, state, rng, params)
-    refined = anneal(energy, joint, params, rng, max(params.min_steps, REFINE_STEPS_PER_BOX * problem.n_boxes))
+    refined = anneal(
+        energy, joint, params, rng, max(params.min_steps, REFINE_STEPS_PER_BOX * problem.n_boxes)
+    )
     return Run(
-        energy, refined.relations, refined.problems, placed.steps + refined.steps, placed.accepted + refined.accepted
+        energy,
+        refined.relations,
+        refined.problems,
+        placed.steps + refined.steps,
+        placed.accepted + refined.accepted,
     )
 
 
@@ -216,4 +237,3 @@ def frame_streams(root: np.random.Generator, problem: Problem) -> list[np.random
     """One independent stream per framed group, children of ``root`` (spawned, so no
     number of ``root``'s own is drawn)."""
     return root.spawn(len(framed_groups(problem)))
-

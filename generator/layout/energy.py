@@ -128,11 +128,17 @@ class Energy:
         # With many paths, the paths filed by those bounds in cells like the boxes', so a
         # box finds the few it may touch from the cells it is filed under.
         self.path_grid = Grid(self.grid.cell) if problem.n_paths >= PATH_GRID_MIN else None
-        self.hit_paths: list[set[int]] = [set() for _ in range(problem.n_boxes)]  # set by ``_install``
+        self.hit_paths: list[set[int]] = [
+            set() for _ in range(problem.n_boxes)
+        ]  # set by ``_install``
         for path in range(problem.n_paths):
             self._file_path(path)
         #: The room's terms (walls, square, clearance, door swing, access); None outdoors.
-        self.room = RoomTerms(problem, state, params, self.active, self.grid) if problem.room is not None else None
+        self.room = (
+            RoomTerms(problem, state, params, self.active, self.grid)
+            if problem.room is not None
+            else None
+        )
         #: The part names this energy has: ``PARTS``, and ``MASK_PART`` with a mask.
         self.part_names = PARTS + ((MASK_PART,) if problem.mask is not None else ())
         self.part_names += (LEARNED_PART,) if problem.learned is not None else ()
@@ -149,7 +155,9 @@ class Energy:
         """Whether the relation counts yet: both ends placeable and all their boxes placed."""
         if self.live[term_index]:
             return True
-        live = self.placeable[term_index] and all(self.active[box] for box in self.term_boxes[term_index])
+        live = self.placeable[term_index] and all(
+            self.active[box] for box in self.term_boxes[term_index]
+        )
         self.live[term_index] = live  # placed boxes stay placed: once live, always live
         return live
 
@@ -183,13 +191,15 @@ class Energy:
         problem, state = self.problem, self.state
         if problem.support[first] == second or problem.support[second] == first:
             return 0.0
-        planar = rect_overlap(state.rects[first], state.rects[second])  # its penetration when positive
+        planar = rect_overlap(
+            state.rects[first], state.rects[second]
+        )  # its penetration when positive
         if not planar > 0.0:
             return 0.0
         if problem.support[first] >= 0 or problem.support[second] >= 0:
-            vertical = min(state.y[first] + problem.height[first], state.y[second] + problem.height[second]) - max(
-                state.y[first], state.y[second]
-            )
+            vertical = min(
+                state.y[first] + problem.height[first], state.y[second] + problem.height[second]
+            ) - max(state.y[first], state.y[second])
             if vertical <= 1e-9:
                 return 0.0
             planar = min(planar, vertical)
@@ -243,7 +253,9 @@ class Energy:
         if not self.may_touch_path(box, path):
             return 0.0
         width = problem.path_width[path]
-        depth = polyline_rect_penetration(self.state.points[path], width / 2.0, self.state.rects[box])
+        depth = polyline_rect_penetration(
+            self.state.points[path], width / 2.0, self.state.rects[box]
+        )
         return depth / (problem.size[box] + width)
 
     def path_energy(self, box: int, path: int) -> float:
@@ -270,7 +282,9 @@ class Energy:
         return sum(max(abs(x) - half_x, abs(z) - half_z, 0.0) for x, z in self.state.points[path])
 
     def path_extent_energy(self, path: int) -> float:
-        return self.params.collision_intensity * self.path_excess(path) / self.problem.path_width[path]
+        return (
+            self.params.collision_intensity * self.path_excess(path) / self.problem.path_width[path]
+        )
 
     def path_shape_energy(self, path: int) -> float:
         points, params = self.state.points[path], self.params
@@ -288,13 +302,15 @@ class Energy:
         if len(headings) < 2:
             return []
         headings.sort()
-        gaps = [b - a for a, b in zip(headings, headings[1:])]
+        gaps = [b - a for a, b in zip(headings, headings[1:], strict=False)]
         gaps.append(2.0 * math.pi - (headings[-1] - headings[0]))
         return gaps
 
     def junction_energy(self, junction: int) -> float:
         params = self.params
-        return -sum(greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction))
+        return -sum(
+            greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction)
+        )
 
     def mask_energy(self, box: int) -> float:
         """The ``mask`` part's term of a box: 0 unless the mask is for it and it is placed."""
@@ -313,7 +329,11 @@ class Energy:
     def troubled_boxes(self) -> list[int]:
         """Boxes that currently overlap something or stick out of the extent, and in a
         room those in breach of a room term (``RoomTerms.troubled``)."""
-        found = {box for box in range(self.problem.n_boxes) if self.pairs[box] or self.box_extent[box] > 0.0}
+        found = {
+            box
+            for box in range(self.problem.n_boxes)
+            if self.pairs[box] or self.box_extent[box] > 0.0
+        }
         for hits in self.path_hits:
             found.update(hits)
         if self.room is not None:
@@ -326,8 +346,11 @@ class Energy:
         mask = self.problem.mask
         if mask is None:
             return []
-        return [box for box in range(self.problem.n_boxes)
-                if mask.listed[box] and self.active[box] and mask.strays(box, self.state.rects[box])]  # fmt: skip
+        return [
+            box
+            for box in range(self.problem.n_boxes)
+            if mask.listed[box] and self.active[box] and mask.strays(box, self.state.rects[box])
+        ]
 
     # -- the whole energy -------------------------------------------------------------
 
@@ -347,7 +370,9 @@ class Energy:
             "box_extent": [self.box_extent_energy(b) for b in range(problem.n_boxes)],
             "path_extent": [self.path_extent_energy(p) for p in range(problem.n_paths)],
             "mask": [self.mask_energy(b) for b in range(problem.n_boxes)],
-            "learned": [self.learned_energy(k) for k in range(len(problem.learned.pairs))] if problem.learned else [],
+            "learned": [self.learned_energy(k) for k in range(len(problem.learned.pairs))]
+            if problem.learned
+            else [],
         }
         collisions = paths = 0.0
         for box in range(problem.n_boxes):
@@ -383,7 +408,11 @@ class Energy:
 
     def _install(self, fresh: dict) -> None:
         """Make freshly computed terms the cache."""
-        self.relation, self.pairs, self.path_hits = fresh["relation"], fresh["pairs"], fresh["path_hits"]
+        self.relation, self.pairs, self.path_hits = (
+            fresh["relation"],
+            fresh["pairs"],
+            fresh["path_hits"],
+        )
         self.measures: dict[int, Measure] = {}  # kept relation measures (``measure``)
         # Per box, the paths whose hits hold it (the reverse of ``path_hits``).
         self.hit_paths = [set() for _ in range(self.problem.n_boxes)]
@@ -409,7 +438,13 @@ class Energy:
         self.accept()
 
     def propose(
-        self, boxes: dict, paths: dict, *, entering: bool = False, defer_access: bool = False, known: Kept | None = None
+        self,
+        boxes: dict,
+        paths: dict,
+        *,
+        entering: bool = False,
+        defer_access: bool = False,
+        known: Kept | None = None,
     ) -> float:
         """Apply new box poses {box: (x, z, yaw)} and path points {path: points}; return the energy change.
 
@@ -425,14 +460,23 @@ class Energy:
         saved_boxes = [(box, (xs[box], zs[box], yaws[box])) for box in boxes]  # ``State.pose``
         saved_paths = [(path, state.points[path]) for path in paths]
         filings = {}
-        active, size, set_pose, spans, keys = self.active, problem.size, state.set_pose, grid.spans, grid.keys
+        active, size, set_pose, spans, keys = (
+            self.active,
+            problem.size,
+            state.set_pose,
+            grid.spans,
+            grid.keys,
+        )
         for box, (x, z, yaw) in boxes.items():
             set_pose(box, x, z, yaw)
             if active[box]:
                 if entering:
                     grid.insert(box, x, z, size[box] / 2.0)
                 else:
-                    filings[box] = (spans[box], keys[box])  # ``Grid.filing``: an active box is filed
+                    filings[box] = (
+                        spans[box],
+                        keys[box],
+                    )  # ``Grid.filing``: an active box is filed
                     grid.move(box, x, z, size[box] / 2.0)
         for path, points in paths.items():
             state.points[path] = points
@@ -452,19 +496,30 @@ class Energy:
                     {t: fresh["relation"][t] for t in self.tempered}, dict(saved_boxes)
                 )
             return sum(fresh["parts"].values()) - self.total
-        changes = self._changes(list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access)
+        changes = self._changes(
+            list(boxes), list(paths), _translated_together(saved_boxes, boxes), defer_access
+        )
         self._pending = Pending(saved_boxes, saved_paths, changes, filings)
         if self.problem.learned is not None:
             self.learned_delta = changes.delta[LEARNED_PART]
-            self.soft_delta = self.learned_delta + self._soft_relations(changes.relation, dict(saved_boxes))
+            self.soft_delta = self.learned_delta + self._soft_relations(
+                changes.relation, dict(saved_boxes)
+            )
         return sum(changes.delta.values())
 
-    def _soft_relations(self, new_relation: dict[int, float], saved: dict[int, tuple[float, float, float]]) -> float:
+    def _soft_relations(
+        self, new_relation: dict[int, float], saved: dict[int, tuple[float, float, float]]
+    ) -> float:
         """The change in the tempered relation terms among ``new_relation`` (term -> new
         value) that is sampled with the learned part: a term counts while its pair's
         source stands on the pair's grid (``CompiledLearned.on_grid``), before the move
         at the ``saved`` poses of the moved boxes, after it at the state's."""
-        learned, tempered, pose, relation = self.problem.learned, self.tempered, self.state.pose, self.relation
+        learned, tempered, pose, relation = (
+            self.problem.learned,
+            self.tempered,
+            self.state.pose,
+            self.relation,
+        )
 
         def before(box: int) -> tuple[float, float, float]:
             return saved[box] if box in saved else pose(box)
@@ -488,7 +543,9 @@ class Energy:
                 change -= relation[t]
         return change
 
-    def _changes(self, boxes: list[int], paths: list[int], together: bool, defer_access: bool = False) -> Changes:
+    def _changes(
+        self, boxes: list[int], paths: list[int], together: bool, defer_access: bool = False
+    ) -> Changes:
         """New values of every term touching the moved boxes and paths, and the part deltas.
 
         When the boxes moved ``together`` (one shared translation, no turn), terms and
@@ -507,13 +564,21 @@ class Energy:
         for path in paths:
             terms.update(problem.terms_of_path[path])
         new_relation, new_measures = {}, {}
-        relations, term_boxes, relation, state, params = problem.relations, self.term_boxes, self.relation, self.state, self.params
+        relations, term_boxes, relation, state, params = (
+            problem.relations,
+            self.term_boxes,
+            self.relation,
+            self.state,
+            self.params,
+        )
         live = self.live
         change = 0.0
         for term in sorted(terms):
             if together and not relations[term].reads_fixed_geometry and term_boxes[term] <= moved:
                 continue
-            if live[term] or self.relation_active(term):  # ``relation_energy``, its measure kept for ``accept``
+            if live[term] or self.relation_active(
+                term
+            ):  # ``relation_energy``, its measure kept for ``accept``
                 measure = new_measures[term] = evaluate(relations[term], state, params)
                 value = measure.energy
             else:
@@ -523,7 +588,12 @@ class Energy:
         delta["relations"] = change
 
         new_pairs: dict[tuple[int, int], float] = {}
-        pairs, near_box, pair_depth, penalty = self.pairs, self.grid.near_box, self.pair_depth, self.penalty
+        pairs, near_box, pair_depth, penalty = (
+            self.pairs,
+            self.grid.near_box,
+            self.pair_depth,
+            self.penalty,
+        )
         change = 0.0
         for box in boxes:
             if not active[box]:
@@ -549,7 +619,12 @@ class Energy:
 
         new_hits: dict[tuple[int, int], float] = {}
         path_bounds, path_hits, collides, xs, zs, size = (
-            self.path_bounds, self.path_hits, self.collides_with_paths, self.state.x, self.state.z, problem.size
+            self.path_bounds,
+            self.path_hits,
+            self.collides_with_paths,
+            self.state.x,
+            self.state.z,
+            problem.size,
         )
         change = 0.0
         path_width, points, rects = problem.path_width, self.state.points, self.state.rects
@@ -564,7 +639,9 @@ class Energy:
                     if x + radius < x0 or x - radius > x1 or z + radius < z0 or z - radius > z1:
                         continue  # cannot touch it (``may_touch_path``, inlined: this runs every step)
                     width = path_width[path]  # ``path_energy``, its test just made
-                    depth = polyline_rect_penetration(points[path], width / 2.0, rects[box]) / (size[box] + width)
+                    depth = polyline_rect_penetration(points[path], width / 2.0, rects[box]) / (
+                        size[box] + width
+                    )
                     if depth > 0.0:
                         value = penalty(depth)
                         if value > 0.0:
@@ -590,7 +667,9 @@ class Energy:
         new_junction = {}
         junctions = self.junction
         if paths:
-            touched = {problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (moved & junctions.keys())
+            touched = {problem.path_start[p] for p in paths if problem.path_start[p] >= 0} | (
+                moved & junctions.keys()
+            )
         else:  # the moved boxes that are junctions (most moves: none), no set made
             touched = [box for box in boxes if box in junctions] if junctions else ()
         if touched:
@@ -602,9 +681,14 @@ class Energy:
         new_box_extent = {}
         box_extent = self.box_extent
         change = 0.0
-        outdoors, intensity = self.room is None, self.params.collision_intensity  # ``box_extent_energy``:
+        outdoors, intensity = (
+            self.room is None,
+            self.params.collision_intensity,
+        )  # ``box_extent_energy``:
         for box in boxes:
-            value = intensity * self.box_excess(box) / size[box] if active[box] and outdoors else 0.0
+            value = (
+                intensity * self.box_excess(box) / size[box] if active[box] and outdoors else 0.0
+            )
             new_box_extent[box] = value
             change += value - box_extent[box]
         new_path_extent = {}
@@ -632,9 +716,21 @@ class Energy:
                 new_learned[pair] = self.learned_energy(pair)
                 delta[LEARNED_PART] += new_learned[pair] - self.learned[pair]
         return Changes(
-            delta, new_relation, moved, new_pairs, moved_paths, new_hits,
-            new_shape, new_junction, new_box_extent, new_path_extent, room, new_mask, new_learned, new_measures,
-        )  # fmt: skip
+            delta,
+            new_relation,
+            moved,
+            new_pairs,
+            moved_paths,
+            new_hits,
+            new_shape,
+            new_junction,
+            new_box_extent,
+            new_path_extent,
+            room,
+            new_mask,
+            new_learned,
+            new_measures,
+        )
 
     def kept(self, delta: float) -> Kept | None:
         """The pending proposal's computed update (its energy change ``delta`` as its caller
@@ -644,7 +740,11 @@ class Energy:
         update = self._pending.update
         if self.room is not None:
             return None
-        learned = (self.learned_delta, self.soft_delta) if self.problem.learned is not None else (0.0, 0.0)
+        learned = (
+            (self.learned_delta, self.soft_delta)
+            if self.problem.learned is not None
+            else (0.0, 0.0)
+        )
         return Kept(update, delta, *learned)
 
     def repropose(self, proposal: tuple[dict, dict], kept: Kept | None) -> float:
@@ -661,7 +761,11 @@ class Energy:
     def access_floor(self) -> float:
         """How far the pending proposal's deferred ``access`` part can lower the energy at
         most (0 when nothing was deferred): all of the access part there is now."""
-        room = self._pending.update.room if self._pending is not None and not isinstance(self._pending.update, dict) else None
+        room = (
+            self._pending.update.room
+            if self._pending is not None and not isinstance(self._pending.update, dict)
+            else None
+        )
         return self.room.access_total() if room is not None and room.deferred else 0.0
 
     def complete(self) -> float:

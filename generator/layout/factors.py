@@ -57,6 +57,8 @@ def angle_between(vx: float, vz: float, wx: float, wz: float) -> float:
     return math.acos(max(-1.0, min(1.0, dot)))
 
 
-def pointing_same_direction(vx: float, vz: float, wx: float, wz: float, sigma2: float = DEFAULT_SIGMA2) -> float:
+def pointing_same_direction(
+    vx: float, vz: float, wx: float, wz: float, sigma2: float = DEFAULT_SIGMA2
+) -> float:
     """log factor that two unit vectors (x, z) point the same way: equals(angle, 0)."""
     return equals(angle_between(vx, vz, wx, wz), 0.0, sigma2)

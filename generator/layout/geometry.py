@@ -132,19 +132,27 @@ def _corners_to(a: Rect, b: Rect, best: float) -> float:
     bx, bz, bw, bd, bc, bs = b
     hypot = math.hypot
     for px, pz in (
-        (cx - ux - vx, cz - uz - vz), (cx + ux - vx, cz + uz - vz),
-        (cx + ux + vx, cz + uz + vz), (cx - ux + vx, cz - uz + vz),
-    ):  # fmt: skip
+        (cx - ux - vx, cz - uz - vz),
+        (cx + ux - vx, cz + uz - vz),
+        (cx + ux + vx, cz + uz + vz),
+        (cx - ux + vx, cz - uz + vz),
+    ):
         dx, dz = px - bx, pz - bz  # as ``point_rect_distance``
         ex = abs(dx * bc - dz * bs) - bw
         ez = abs(dx * bs + dz * bc) - bd
-        distance = 0.0 if ex <= 0.0 and ez <= 0.0 else hypot(ex if ex > 0.0 else 0.0, ez if ez > 0.0 else 0.0)
+        distance = (
+            0.0
+            if ex <= 0.0 and ez <= 0.0
+            else hypot(ex if ex > 0.0 else 0.0, ez if ez > 0.0 else 0.0)
+        )
         if distance < best:
             best = distance
     return best
 
 
-def nearest_on_segment(px: float, pz: float, ax: float, az: float, bx: float, bz: float) -> tuple[float, float, float]:
+def nearest_on_segment(
+    px: float, pz: float, ax: float, az: float, bx: float, bz: float
+) -> tuple[float, float, float]:
     """(distance, x, z) of the point of segment a-b nearest to p."""
     ex, ez = bx - ax, bz - az
     length2 = ex * ex + ez * ez
@@ -207,7 +215,9 @@ def _local_distance(ax: float, az: float, bx: float, bz: float, hw: float, hd: f
     return best
 
 
-def _segment_in(rect: Rect, ax: float, az: float, bx: float, bz: float) -> tuple[float, float, float, float]:
+def _segment_in(
+    rect: Rect, ax: float, az: float, bx: float, bz: float
+) -> tuple[float, float, float, float]:
     """Both ends of a segment in the rectangle's frame (``to_local`` of each, in one call)."""
     cx, cz, _, _, c, s = rect
     dx, dz, ex, ez = ax - cx, az - cz, bx - cx, bz - cz
@@ -222,7 +232,9 @@ def segment_rect_distance(ax: float, az: float, bx: float, bz: float, rect: Rect
     return _local_distance(lax, laz, lbx, lbz, rect.hw, rect.hd)
 
 
-def capsule_rect_penetration(ax: float, az: float, bx: float, bz: float, radius: float, rect: Rect) -> float:
+def capsule_rect_penetration(
+    ax: float, az: float, bx: float, bz: float, radius: float, rect: Rect
+) -> float:
     """How deep a rectangle reaches into a segment buffered by ``radius`` (0 if clear).
 
     Outside the segment it is ``radius`` minus the gap; once the rectangle crosses the
@@ -256,9 +268,17 @@ def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     scale = abs(cx) + abs(cz) + clear
     for index in range(len(points) - 1):
         (ax, az), (bx, bz) = points[index], points[index + 1]
-        if (ax < x0 and bx < x0) or (ax > x1 and bx > x1) or (az < z0 and bz < z0) or (az > z1 and bz > z1):
+        if (
+            (ax < x0 and bx < x0)
+            or (ax > x1 and bx > x1)
+            or (az < z0 and bz < z0)
+            or (az > z1 and bz > z1)
+        ):
             continue
-        ex, ez = bx - ax, bz - az  # the centre's nearest point on the segment (``nearest_on_segment``)
+        ex, ez = (
+            bx - ax,
+            bz - az,
+        )  # the centre's nearest point on the segment (``nearest_on_segment``)
         length2 = ex * ex + ez * ez
         t = ((cx - ax) * ex + (cz - az) * ez) / length2 if length2 > 0.0 else 0.0
         t = 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
@@ -294,7 +314,9 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
         for ax, az, ex, ez, length2 in segments:  # ``nearest_on_segment``'s distance, inlined
             if length2 > 0.0:
                 t = ((px - ax) * ex + (pz - az) * ez) / length2
-                if t < 0.0:  # as max(0, min(1, t)); a t of -0.0 kept as it is moves the point no less
+                if (
+                    t < 0.0
+                ):  # as max(0, min(1, t)); a t of -0.0 kept as it is moves the point no less
                     t = 0.0
                 elif t > 1.0:
                     t = 1.0
@@ -312,7 +334,13 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     count = len(segments)
     k, i = divmod(first, count)
     best = min(math.inf, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
-    for bound, position in sorted([(bound, position) for position, bound in enumerate(bounds) if bound < best and position != first]):
+    for bound, position in sorted(
+        [
+            (bound, position)
+            for position, bound in enumerate(bounds)
+            if bound < best and position != first
+        ]
+    ):
         if bound >= best:
             break
         k, i = divmod(position, count)
@@ -341,7 +369,9 @@ def segment_distance(p: tuple, q: tuple, r: tuple, t: tuple) -> float:
 def polyline_distance(first: list, second: list) -> float:
     """Minimum distance between two polylines' centre lines."""
     return min(
-        segment_distance(tuple(first[i]), tuple(first[i + 1]), tuple(second[j]), tuple(second[j + 1]))
+        segment_distance(
+            tuple(first[i]), tuple(first[i + 1]), tuple(second[j]), tuple(second[j + 1])
+        )
         for i in range(len(first) - 1)
         for j in range(len(second) - 1)
     )
@@ -349,7 +379,9 @@ def polyline_distance(first: list, second: list) -> float:
 
 def polyline_length(points: list) -> float:
     """Total length of a polyline."""
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+    return sum(
+        math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:], strict=False)
+    )
 
 
 def polyline_turns(points: list) -> list[float]:

@@ -112,14 +112,24 @@ def place_initial(
     _lay_paths(energy, rng, pins, held)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
         _best_of(
-            energy, lambda term=term: mover.pull(problem.relations[term]), energy.params.path_candidates, held
+            energy,
+            lambda term=term: mover.pull(problem.relations[term]),
+            energy.params.path_candidates,
+            held,
         )
     for unit in _placing_order(energy):
         kind, index = unit
         if kind == "group":
             _place_group(energy, mover, rng, index, frames.get(index))
         elif not energy.active[index]:  # not pinned or started
-            _place_box(energy, mover, rng, index, (), _borrowed_anchor(energy, Endpoint("object", index, (index,))))
+            _place_box(
+                energy,
+                mover,
+                rng,
+                index,
+                (),
+                _borrowed_anchor(energy, Endpoint("object", index, (index,))),
+            )
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
@@ -192,7 +202,9 @@ def _wall_order(energy: Energy) -> dict[tuple[str, int], tuple[int, float]]:
     order = {}
     for unit in problem.units:
         kind, index = unit
-        placements = [t.spec.wall for t in _outgoing(energy, kind, index) if t.spec.family == "wall"]
+        placements = [
+            t.spec.wall for t in _outgoing(energy, kind, index) if t.spec.family == "wall"
+        ]
         if kind == "object" and placements:
             spots = 1 if any(p != "against" for p in placements) else 0
             order[unit] = (spots, 4.0 * problem.half_width[index] * problem.half_depth[index])
@@ -206,7 +218,9 @@ def _park(energy: Energy) -> None:
     problem, state = energy.problem, energy.state
     if problem.room is None or not problem.line_of_sight:
         return
-    tall = sorted({box for term in problem.relations for box in term.sight if not energy.active[box]})
+    tall = sorted(
+        {box for term in problem.relations for box in term.sight if not energy.active[box]}
+    )
     far = 10.0 * (max(problem.extent) + max(problem.size, default=1.0))  # well clear of the room
     for k, box in enumerate(tall):
         dx, dz = far + 2.0 * k * max(problem.size) - state.x[box], far - state.z[box]
@@ -283,7 +297,12 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
         _spread_junctions(energy, rng, junctions)
     else:
         for junction in junctions:
-            state.set_pose(junction, uniform(rng, -0.15, 0.15) * 2 * half_x, uniform(rng, -0.15, 0.15) * 2 * half_z, 0.0)
+            state.set_pose(
+                junction,
+                uniform(rng, -0.15, 0.15) * 2 * half_x,
+                uniform(rng, -0.15, 0.15) * 2 * half_z,
+                0.0,
+            )
     energy.activate(junctions)
     for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
@@ -298,11 +317,20 @@ def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) 
     spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
     for path in free:
         heading = uniform(rng, 0.0, 2.0 * math.pi)
-        laid = [p for other in range(problem.n_paths) if other not in free or other < path for p in state.points[other]]
-        candidates = [
-            (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z) for _ in range(8)
+        laid = [
+            p
+            for other in range(problem.n_paths)
+            if other not in free or other < path
+            for p in state.points[other]
         ]
-        middle = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0))
+        candidates = [
+            (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z)
+            for _ in range(8)
+        ]
+        middle = max(
+            candidates,
+            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0),
+        )
         back = _room(middle, heading + math.pi, half_x, half_z)
         ahead = _room(middle, heading, half_x, half_z)
         length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
@@ -320,15 +348,23 @@ def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[
     placed: list[tuple[float, float]] = []
     for junction in junctions:
         candidates = [
-            (uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width, uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth)
+            (
+                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width,
+                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth,
+            )
             for _ in range(SPREAD_CANDIDATES)
         ]
-        x, z = max(candidates, key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0))
+        x, z = max(
+            candidates,
+            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0),
+        )
         placed.append((x, z))
         state.set_pose(junction, x, z, 0.0)
 
 
-def _free_headings(energy: Energy, pins: Pins, junction: int, paths: list[int], base: float) -> list[float]:
+def _free_headings(
+    energy: Energy, pins: Pins, junction: int, paths: list[int], base: float
+) -> list[float]:
     """Headings for the roads of a junction, by position in ``paths``: evenly spread from
     ``base``; when some roads are given, spread from the first given one's heading, each
     given road taking the free slot nearest its own heading and the others the rest in
@@ -377,7 +413,9 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
     count = energy.params.path_candidates
     for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
         paths = problem.paths_of_junction.get(junction, [])
-        given = {path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None}
+        given = {
+            path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None
+        }
         placed = energy.active[junction]
         if not placed and given:  # where a given road starts
             first = next(iter(given.values()))[0]
@@ -424,7 +462,10 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
 
         def crossing(path=path) -> tuple[dict, dict]:
             heading = uniform(rng, 0.0, 2.0 * math.pi)
-            middle = (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z)
+            middle = (
+                uniform(rng, -spread, spread) * 2 * half_x,
+                uniform(rng, -spread, spread) * 2 * half_z,
+            )
             back = _room(middle, heading + math.pi, half_x, half_z)
             ahead = _room(middle, heading, half_x, half_z)
             length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
@@ -453,12 +494,16 @@ def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
         energy.accept()
 
 
-def _set_path(energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float) -> None:
+def _set_path(
+    energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float
+) -> None:
     energy.propose({}, {path: _path_points(energy.problem, rng, path, start, heading, room)})
     energy.accept()
 
 
-def _path_points(problem, rng: np.random.Generator, path: int, start, heading: float, room: float) -> list[list[float]]:
+def _path_points(
+    problem, rng: np.random.Generator, path: int, start, heading: float, room: float
+) -> list[list[float]]:
     """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
     segments = problem.path_segments[path]
@@ -521,9 +566,10 @@ def _place_box(
     walls = [t for t in positional if t.spec.family == "wall"]
     facing = [t for t in outgoing if t.spec.family == "facing"]
     incoming = [
-        t for t in problem.incoming.get(("object", box), [])
+        t
+        for t in problem.incoming.get(("object", box), [])
         if t.spec.family == "next_to" and t.a.kind != "path" and _placed(energy, t.a)
-    ]  # fmt: skip
+    ]
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
 
     def draw():
@@ -538,7 +584,9 @@ def _place_box(
             return mover.place_for_relation(anchor_term), {}
         if placed_mates:
             mate = placed_mates[draw_index(rng, len(placed_mates))]
-            near = RelationTerm("", "", "NextTo", RELATIONS["NextTo"], own, Endpoint("object", mate, (mate,)))
+            near = RelationTerm(
+                "", "", "NextTo", RELATIONS["NextTo"], own, Endpoint("object", mate, (mate,))
+            )
             return mover.place_for_relation(near), {}
         return _anywhere(energy, rng, box), {}
 
@@ -558,19 +606,25 @@ def _place_box(
     first = draw()[0]
     for item, pose in first.items():
         state.set_pose(item, *pose)
-    if mates and energy.problem.room is not None:  # judged among its mates: it enters once, at its best pose
+    if (
+        mates and energy.problem.room is not None
+    ):  # judged among its mates: it enters once, at its best pose
         _best_among_mates(energy, draw, energy.params.initial_candidates, mates, box)
         energy.activate([box])
     else:
         energy.activate([box])
         _best_of(energy, draw, energy.params.initial_candidates)
     for term in facing:
-        if problem.room is not None and mover.faces_as_asked(term):  # its heading came first and the place kept it
+        if problem.room is not None and mover.faces_as_asked(
+            term
+        ):  # its heading came first and the place kept it
             continue
         _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
 
 
-def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...], newcomer: int) -> None:
+def _best_among_mates(
+    energy: Energy, draw, count: int, mates: tuple[int, ...], newcomer: int
+) -> None:
     """``_best_of`` for a member of a group being put together, judged by the group
     alone: the relations among its placed members and their overlaps with each other.
     The member (``newcomer``) is not in the energy yet: the best pose is set in the
@@ -586,9 +640,10 @@ def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...], 
     placed = [m for m in mates if energy.active[m] or m == newcomer]
     inside = set(placed)
     terms = [
-        problem.relations[t] for t in sorted({t for m in placed for t in problem.terms_of_box[m]})
+        problem.relations[t]
+        for t in sorted({t for m in placed for t in problem.terms_of_box[m]})
         if energy.placeable[t] and energy.term_boxes[t] <= inside
-    ]  # fmt: skip
+    ]
     ground = [m for m in placed if problem.support[m] < 0]
 
     def score() -> float:
@@ -617,7 +672,9 @@ def _best_among_mates(energy: Energy, draw, count: int, mates: tuple[int, ...], 
             state.set_pose(item, *pose)
 
 
-def _floor_spot(energy: Energy, rng: np.random.Generator, reach_x: float, reach_z: float) -> tuple[float, float]:
+def _floor_spot(
+    energy: Energy, rng: np.random.Generator, reach_x: float, reach_z: float
+) -> tuple[float, float]:
     """A random (x, z) at least (reach_x, reach_z) inside the extent, and in a room that
     is not a rectangle on its floor when one of FLOOR_TRIES draws is."""
     problem = energy.problem
@@ -639,7 +696,13 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
     yaw = wrap(math.pi / 2.0 * int(rng.integers(4)))
     x, z = _floor_spot(energy, rng, reach, reach)
     turn = wrap(yaw - state.yaw[box])
-    return rigid(state, problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
+    return rigid(
+        state,
+        problem.carried(box),
+        (state.x[box], state.z[box]),
+        turn,
+        (x - state.x[box], z - state.z[box]),
+    )
 
 
 def _place_group(
@@ -650,7 +713,9 @@ def _place_group(
     # Members already in (pinned or warm-started) stay where they are: the others are
     # placed around them, and the group is not moved as a whole.
     given = not mover.group_whole[group] or any(energy.active[box] for box in members)
-    anchors = [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)] if not given else []
+    anchors = (
+        [t for t in _outgoing(energy, "group", group) if _placed(energy, t.b)] if not given else []
+    )
     if not anchors and not given:
         borrowed = _borrowed_anchor(energy, Endpoint("group", group, members))
         anchors = [borrowed] if borrowed else []
@@ -660,16 +725,24 @@ def _place_group(
     for position, box in enumerate(order):
         if energy.active[box]:
             continue
-        anchor = replace(anchors[0], a=Endpoint("object", box, (box,))) if anchors and position == 0 else None
+        anchor = (
+            replace(anchors[0], a=Endpoint("object", box, (box,)))
+            if anchors and position == 0
+            else None
+        )
         _place_box(energy, mover, rng, box, members, anchor)
     if given:
         return
     # Facing relations to things outside the group turn the group as a whole; the
     # group is then only shifted into place, so they keep holding.
     outside_facing = [
-        t for box in members for t in _outgoing(energy, "object", box)
-        if t.spec.family == "facing" and not set(t.b.members) <= set(members) and _placed(energy, t.b)
-    ]  # fmt: skip
+        t
+        for box in members
+        for t in _outgoing(energy, "object", box)
+        if t.spec.family == "facing"
+        and not set(t.b.members) <= set(members)
+        and _placed(energy, t.b)
+    ]
     for term in outside_facing:
         if problem.room is not None and mover.faces_as_asked(term):
             continue
@@ -713,18 +786,33 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
         if other in chain or not mover.group_whole[other]:
             continue
         chain.append(other)
-        todo.extend(t.b.index for t in _outgoing(energy, "group", other) if t.b.kind == "group" and _placed(energy, t.b))
+        todo.extend(
+            t.b.index
+            for t in _outgoing(energy, "group", other)
+            if t.b.kind == "group" and _placed(energy, t.b)
+        )
     boxes = sorted({box for member in chain for box in mover.group_boxes[member]})
     # Away from the walls it crosses: those whose line a corner of its footprints is beyond.
-    points = [point for box in problem.group_members[group] for point in corners(energy.state.rects[box])]
+    points = [
+        point for box in problem.group_members[group] for point in corners(energy.state.rects[box])
+    ]
     lines = room.walls_geometry.lines
-    directions = sorted({(nx, nz) for nx, nz, offset in lines if any(nx * x + nz * z < offset for x, z in points)})
+    directions = sorted(
+        {(nx, nz) for nx, nz, offset in lines if any(nx * x + nz * z < offset for x, z in points)}
+    )
     shift = excess + PUSH_MARGIN
-    candidates = iter([(rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {}) for nx, nz in directions])
+    candidates = iter(
+        [
+            (rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {})
+            for nx, nz in directions
+        ]
+    )
     _best_of(energy, lambda: next(candidates), len(directions))
 
 
-def _group_anywhere(energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool) -> dict:
+def _group_anywhere(
+    energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool
+) -> dict:
     """A group shifted rigidly to a random spot where its footprint lies within the
     extent (a room: on the floor), turned by a random quarter turn when ``turn``."""
     problem, state = energy.problem, energy.state
@@ -733,14 +821,25 @@ def _group_anywhere(energy: Energy, mover: Mover, rng: np.random.Generator, whol
     boxes = mover.moving_boxes(whole)
     turned = rigid(state, boxes, (x, z), quarter, (0.0, 0.0))
     with state.trying(turned):  # how far the turned footprint reaches from its centre
-        reach_x = max(abs(state.x[b] - x) + footprint_reach(problem, state, b, 1.0, 0.0) for b in whole.members)
-        reach_z = max(abs(state.z[b] - z) + footprint_reach(problem, state, b, 0.0, 1.0) for b in whole.members)
+        reach_x = max(
+            abs(state.x[b] - x) + footprint_reach(problem, state, b, 1.0, 0.0)
+            for b in whole.members
+        )
+        reach_z = max(
+            abs(state.z[b] - z) + footprint_reach(problem, state, b, 0.0, 1.0)
+            for b in whole.members
+        )
     nx, nz = _floor_spot(energy, rng, reach_x, reach_z)
     return rigid(state, boxes, (x, z), quarter, (nx - x, nz - z))
 
 
 def _place_frame(
-    energy: Energy, mover: Mover, rng: np.random.Generator, group: int, frame: Mapping, anchors: list[RelationTerm]
+    energy: Energy,
+    mover: Mover,
+    rng: np.random.Generator,
+    group: int,
+    frame: Mapping,
+    anchors: list[RelationTerm],
 ) -> None:
     """Bring a group laid out in its own frame in as one rigid footprint: its members at
     their frame poses, the whole put by one of its anchors (then by all of them in turn,

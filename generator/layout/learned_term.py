@@ -161,19 +161,23 @@ class LearnedContext:
         """A context from its JSON document; ``InputError`` (one line, naming ``where``
         and the field) for anything a fit would not have written."""
         if not isinstance(document, dict) or document.get("format") != FORMAT:
-            raise InputError(f"{where}: not a context file (no \"format\": \"{FORMAT}\")")
+            raise InputError(f'{where}: not a context file (no "format": "{FORMAT}")')
         if document.get("version") != VERSION:
-            raise InputError(f"{where}: context version {document.get('version')!r}; this scenewright reads {VERSION}")
+            raise InputError(
+                f"{where}: context version {document.get('version')!r}; this scenewright reads {VERSION}"
+            )
         if document.get("bins") != BINS or document.get("yaw_bins") != YAW_BINS:
             raise InputError(f"{where}: bins must be {BINS} and yaw_bins {YAW_BINS}")
         pairs = document.get("pairs")
         if not isinstance(pairs, list):
-            raise InputError(f"{where}: \"pairs\" must be a list")
+            raise InputError(f'{where}: "pairs" must be a list')
         parsed, seen = [], set()
         for k, entry in enumerate(pairs):
             pair = _parse_pair(entry, f"{where}: pairs[{k}]")
             if pair.kind in seen:
-                raise InputError(f"{where}: pairs[{k}]: {pair_kind_name(*pair.kind)} is given twice")
+                raise InputError(
+                    f"{where}: pairs[{k}]: {pair_kind_name(*pair.kind)} is given twice"
+                )
             seen.add(pair.kind)
             parsed.append(pair)
         fit = document.get("fit")
@@ -187,31 +191,50 @@ def _parse_pair(entry: object, where: str) -> PairContext:
     for field in ("source", "target"):
         value = entry.get(field)
         if not isinstance(value, str) or not value:
-            raise InputError(f"{where}: \"{field}\" must be a type name")
+            raise InputError(f'{where}: "{field}" must be a type name')
         names.append(value)
     labels = entry.get("labels")
-    if not isinstance(labels, list) or not labels or not all(isinstance(v, str) and v for v in labels):
-        raise InputError(f"{where}: \"labels\" must be a non-empty list of relation labels")
+    if (
+        not isinstance(labels, list)
+        or not labels
+        or not all(isinstance(v, str) and v for v in labels)
+    ):
+        raise InputError(f'{where}: "labels" must be a non-empty list of relation labels')
     if labels != sorted(set(labels)):
-        raise InputError(f"{where}: \"labels\" must be sorted and without repeats")
+        raise InputError(f'{where}: "labels" must be sorted and without repeats')
     bounds = _numbers(entry.get("bounds"), 4, where, "bounds")
     if not (bounds[2] > bounds[0] and bounds[3] > bounds[1]):
-        raise InputError(f"{where}: \"bounds\" [x0, z0, x1, z1] must have x1 > x0 and z1 > z0")
+        raise InputError(f'{where}: "bounds" [x0, z0, x1, z1] must have x1 > x0 and z1 > z0')
     position = _numbers(entry.get("position"), BINS * BINS + 1, where, "position")
     yaw = _numbers(entry.get("yaw"), YAW_BINS, where, "yaw")
     examples = entry.get("examples", 0)
     if isinstance(examples, bool) or not isinstance(examples, int) or examples < 0:
-        raise InputError(f"{where}: \"examples\" must be a whole number >= 0")
-    return PairContext(names[0], names[1], tuple(labels), tuple(bounds), np.array(position), np.array(yaw), examples)
+        raise InputError(f'{where}: "examples" must be a whole number >= 0')
+    return PairContext(
+        names[0],
+        names[1],
+        tuple(labels),
+        tuple(bounds),
+        np.array(position),
+        np.array(yaw),
+        examples,
+    )
 
 
 def _numbers(value: object, count: int, where: str, field: str) -> list[float]:
     if not isinstance(value, list) or len(value) != count:
-        raise InputError(f"{where}: \"{field}\" must be a list of {count} numbers")
+        raise InputError(f'{where}: "{field}" must be a list of {count} numbers')
     numbers = []
     for v in value:
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or abs(v) > MAX_WEIGHT:
-            raise InputError(f"{where}: \"{field}\" must hold finite numbers of size at most {MAX_WEIGHT:g}")
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float))
+            or not math.isfinite(v)
+            or abs(v) > MAX_WEIGHT
+        ):
+            raise InputError(
+                f'{where}: "{field}" must hold finite numbers of size at most {MAX_WEIGHT:g}'
+            )
         numbers.append(float(v))
     return numbers
 
@@ -235,7 +258,9 @@ def read_context(path: str) -> LearnedContext:
     return LearnedContext.from_dict(document, str(path))
 
 
-def related_pairs(problem, types: Sequence[str]) -> list[tuple[int, int, tuple[str, str, tuple[str, ...]]]]:
+def related_pairs(
+    problem, types: Sequence[str]
+) -> list[tuple[int, int, tuple[str, str, tuple[str, ...]]]]:
     """Every related pair of a problem: (source box, target box, kind), in the order of
     their first edge. ``types`` (n_boxes,) is each box's type."""
     labels: dict[tuple[int, int], set[str]] = {}
@@ -245,7 +270,9 @@ def related_pairs(problem, types: Sequence[str]) -> list[tuple[int, int, tuple[s
     return [(a, b, (types[a], types[b], tuple(sorted(names)))) for (a, b), names in labels.items()]
 
 
-def relative_pose(source: tuple[float, float, float], target: tuple[float, float, float]) -> tuple[float, float, float]:
+def relative_pose(
+    source: tuple[float, float, float], target: tuple[float, float, float]
+) -> tuple[float, float, float]:
     """(x, z, turn) of a source pose (x, z, yaw) in a target's frame."""
     x, z = to_local(target[0], target[1], target[2], source[0], source[1])
     return x, z, wrap(source[2] - target[2])
@@ -269,7 +296,9 @@ class CompiledLearned:
         source, target, table = self.pairs[pair]
         return table.energy(relative_pose(state.pose(source), state.pose(target)))
 
-    def on_grid(self, pair: int, source: tuple[float, float, float], target: tuple[float, float, float]) -> bool:
+    def on_grid(
+        self, pair: int, source: tuple[float, float, float], target: tuple[float, float, float]
+    ) -> bool:
         """Whether the pair's source stands on its kind's grid (not in the outside bin)
         relative to the target, at the given poses (x, z, yaw). There the learned
         weights say where it stands and its relation terms are sampled with them; off
@@ -292,16 +321,24 @@ def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> C
         pairs_of_box[target].append(k)
     joined = {(source, target): k for k, (source, target, _) in enumerate(pairs)}
     tempered = {
-        t: joined[term.a.index, term.b.index] for t, term in enumerate(problem.relations)
-        if term.a.kind == "object" and term.b.kind == "object" and (term.a.index, term.b.index) in joined
-    }  # fmt: skip
+        t: joined[term.a.index, term.b.index]
+        for t, term in enumerate(problem.relations)
+        if term.a.kind == "object"
+        and term.b.kind == "object"
+        and (term.a.index, term.b.index) in joined
+    }
     sources = {source for source, _, _ in pairs}
     return CompiledLearned(
-        tuple(pairs), tuple(tuple(p) for p in pairs_of_box), tempered, interchangeable(problem, types, sources)
+        tuple(pairs),
+        tuple(tuple(p) for p in pairs_of_box),
+        tempered,
+        interchangeable(problem, types, sources),
     )
 
 
-def interchangeable(problem, types: Sequence[str], sources: set[int]) -> tuple[tuple[int, int], ...]:
+def interchangeable(
+    problem, types: Sequence[str], sources: set[int]
+) -> tuple[tuple[int, int], ...]:
     """Pairs (a, b), a < b, of boxes of one type and size resting on the same thing (the
     ground, or one box), at least one of them a learned pair's source: pieces the rules
     tell apart only by their relations (the two nightstands of a bed, one to its left
@@ -310,7 +347,11 @@ def interchangeable(problem, types: Sequence[str], sources: set[int]) -> tuple[t
     found = []
     for a in range(problem.n_boxes):
         for b in range(a + 1, problem.n_boxes):
-            if (a in sources or b in sources) and types[a] == types[b] and _same_footing(problem, a, b):
+            if (
+                (a in sources or b in sources)
+                and types[a] == types[b]
+                and _same_footing(problem, a, b)
+            ):
                 found.append((a, b))
     return tuple(found)
 
@@ -318,10 +359,12 @@ def interchangeable(problem, types: Sequence[str], sources: set[int]) -> tuple[t
 def _same_footing(problem, a: int, b: int) -> bool:
     """Whether boxes a and b are objects of one footprint and height on the same support."""
     return (
-        not problem.is_junction[a] and not problem.is_junction[b] and problem.support[a] == problem.support[b]
+        not problem.is_junction[a]
+        and not problem.is_junction[b]
+        and problem.support[a] == problem.support[b]
         and (problem.half_width[a], problem.half_depth[a], problem.height[a])
         == (problem.half_width[b], problem.half_depth[b], problem.height[b])
-    )  # fmt: skip
+    )
 
 
 def cumulative_shares(table: PairContext) -> tuple[np.ndarray, np.ndarray]:
@@ -333,7 +376,12 @@ def cumulative_shares(table: PairContext) -> tuple[np.ndarray, np.ndarray]:
 
 
 def draw_source(
-    problem, state, rng: np.random.Generator, source: int, target: int, table: PairContext,
+    problem,
+    state,
+    rng: np.random.Generator,
+    source: int,
+    target: int,
+    table: PairContext,
     cumulative: tuple[np.ndarray, np.ndarray],
 ) -> dict[int, tuple[float, float, float]]:
     """A pose for a pair's source drawn from its kind's learned distribution, relative to
@@ -360,9 +408,21 @@ class LearnedMoves:
     """Proposals drawn from the learned pairs' own distributions (see the module docstring)."""
 
     def __init__(
-        self, learned: CompiledLearned, problem, state, rng: np.random.Generator, movable: Sequence[bool], sweeps: int
+        self,
+        learned: CompiledLearned,
+        problem,
+        state,
+        rng: np.random.Generator,
+        movable: Sequence[bool],
+        sweeps: int,
     ):
-        self.learned, self.problem, self.state, self.rng, self.sweeps = learned, problem, state, rng, sweeps
+        self.learned, self.problem, self.state, self.rng, self.sweeps = (
+            learned,
+            problem,
+            state,
+            rng,
+            sweeps,
+        )
         # Only pairs whose source a move may place by itself (free, not in a rigid group).
         self.pairs = [k for k, (source, _, _) in enumerate(learned.pairs) if movable[source]]
         self.swaps = [(a, b) for a, b in learned.swaps if movable[a] and movable[b]]
@@ -391,7 +451,9 @@ class LearnedMoves:
             followers[target] = found
         return followers
 
-    def carry(self, boxes: dict[int, tuple[float, float, float]]) -> dict[int, tuple[float, float, float]]:
+    def carry(
+        self, boxes: dict[int, tuple[float, float, float]]
+    ) -> dict[int, tuple[float, float, float]]:
         """An ordinary proposal's new poses; a share CARRY_SHARE of the time with every
         moved learned target's followers (``followers``) moved rigidly along with it,
         where the proposal does not move them itself. The learned part holds a source
@@ -426,7 +488,9 @@ class LearnedMoves:
         a 20 cm cell all but never meets) is where that energy wants it, and waiting
         for its draws to be accepted only spends the step budget."""
         cap = TRIES_PER_SWEEP * self.sweeps
-        return all(self.redrawn[pair] >= self.sweeps or self.tried[pair] >= cap for pair in self.pairs)
+        return all(
+            self.redrawn[pair] >= self.sweeps or self.tried[pair] >= cap for pair in self.pairs
+        )
 
     def propose(self) -> tuple[dict, float, int | None] | None:
         """A new pose for one pair's source (with what rests on it), the Hastings
@@ -444,7 +508,11 @@ class LearnedMoves:
         # drawn: the burn-in then ends after a few tries per pair, not when the unluckiest
         # of a uniform draw's pairs has caught up.
         cap = TRIES_PER_SWEEP * self.sweeps
-        lagging = [pair for pair in self.pairs if self.redrawn[pair] < self.sweeps and self.tried[pair] < cap]
+        lagging = [
+            pair
+            for pair in self.pairs
+            if self.redrawn[pair] < self.sweeps and self.tried[pair] < cap
+        ]
         choices = lagging or self.pairs
         pair = choices[int(rng.integers(len(choices)))]
         self.tried[pair] += 1
@@ -464,6 +532,8 @@ class LearnedMoves:
         pose_a, pose_b = state.pose(a), state.pose(b)
         boxes = {}
         for box, (x, z, yaw), (nx, nz, nyaw) in ((a, pose_a, pose_b), (b, pose_b, pose_a)):
-            boxes.update(rigid(state, problem.carried(box), (x, z), wrap(nyaw - yaw), (nx - x, nz - z)))
+            boxes.update(
+                rigid(state, problem.carried(box), (x, z), wrap(nyaw - yaw), (nx - x, nz - z))
+            )
             boxes[box] = (nx, nz, nyaw)
         return boxes

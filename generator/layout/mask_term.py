@@ -129,7 +129,10 @@ class CompiledMask:
 
     def strays(self, box: int, rect: Rect) -> bool:
         """Whether the footprint's centre lies beyond a confining grid of the box."""
-        return any(self.grids[index].confine and not self.grids[index].holds(rect) for index in self.grids_of[box])
+        return any(
+            self.grids[index].confine and not self.grids[index].holds(rect)
+            for index in self.grids_of[box]
+        )
 
 
 def compile_mask(mask, ids: list[str]) -> CompiledMask:
@@ -149,7 +152,9 @@ def compile_mask(mask, ids: list[str]) -> CompiledMask:
                 raise InputError(f"mask: {box_id!r} is not an object of the scene graph")
             if number not in grids_of[index[box_id]]:
                 grids_of[index[box_id]].append(number)
-    return CompiledMask(tuple(grids), tuple(map(tuple, grids_of)), tuple(bool(found) for found in grids_of))
+    return CompiledMask(
+        tuple(grids), tuple(map(tuple, grids_of)), tuple(bool(found) for found in grids_of)
+    )
 
 
 def _compile_grid(mask: FloorMask) -> CompiledGrid:
@@ -169,6 +174,12 @@ def _compile_grid(mask: FloorMask) -> CompiledGrid:
         raise InputError(f"mask: the weight {mask.weight!r} must be a positive number")
     rows, cols = values.shape
     return CompiledGrid(
-        tuple(tuple(float(v) for v in row) for row in values), x0, z0, (x1 - x0) / cols, (z1 - z0) / rows,
-        None if outside is None else float(outside), weight, bool(mask.confine),
-    )  # fmt: skip
+        tuple(tuple(float(v) for v in row) for row in values),
+        x0,
+        z0,
+        (x1 - x0) / cols,
+        (z1 - z0) / rows,
+        None if outside is None else float(outside),
+        weight,
+        bool(mask.confine),
+    )

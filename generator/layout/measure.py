@@ -53,7 +53,11 @@ def measure_layout(
     box_ids, path_ids = set(problem.ids), set(problem.path_ids)
     for entry_id in poses:
         if entry_id not in box_ids and entry_id not in groups:
-            what = "a path (give its points in paths)" if entry_id in path_ids else "not in the scene graph"
+            what = (
+                "a path (give its points in paths)"
+                if entry_id in path_ids
+                else "not in the scene graph"
+            )
             raise InputError(f"poses: {entry_id!r} is {what}")
     for entry_id in paths:
         if entry_id not in path_ids:
@@ -75,8 +79,14 @@ def measure_layout(
     relations, problems = assess(energy)
     parts = energy.full()
     return LayoutResult(
-        poses={box_id: Pose(state.x[b], state.y[b], state.z[b], state.yaw[b]) for b, box_id in enumerate(problem.ids)},
-        paths={path_id: np.array(state.points[p], dtype=float) for p, path_id in enumerate(problem.path_ids)},
+        poses={
+            box_id: Pose(state.x[b], state.y[b], state.z[b], state.yaw[b])
+            for b, box_id in enumerate(problem.ids)
+        },
+        paths={
+            path_id: np.array(state.points[p], dtype=float)
+            for p, path_id in enumerate(problem.path_ids)
+        },
         relations=relations,
         energy=float(sum(parts.values())),
         parts=parts,

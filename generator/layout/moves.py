@@ -67,18 +67,33 @@ import numpy as np
 from scenewright.core.frames import to_local, to_world
 from scenewright.core.room import Wall
 
+from .geometry import nearest_on_polyline
 from .params import LayoutParams
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm
-from .geometry import nearest_on_polyline
+from .relation_terms import (
+    BESIDE_DISTANCE,
+    HEADING_FACINGS,
+    WINDOW_PLACEMENTS,
+    anchor,
+    centre,
+    evaluate,
+    satisfied,
+    source_point,
+)
 from .room_terms import CORRIDOR_HALF, FLAT_HEIGHT, access_grid
-from .relation_terms import BESIDE_DISTANCE, HEADING_FACINGS, WINDOW_PLACEMENTS, anchor, centre, evaluate, satisfied, source_point
 from .state import State
 
 #: Relative frequencies of the move types.
 MOVE_WEIGHTS = {
-    "jitter": 0.27, "rotate": 0.12, "group": 0.12, "cluster": 0.06, "relation": 0.28, "path": 0.10, "junction": 0.05,
-}  # fmt: skip
+    "jitter": 0.27,
+    "rotate": 0.12,
+    "group": 0.12,
+    "cluster": 0.06,
+    "relation": 0.28,
+    "path": 0.10,
+    "junction": 0.05,
+}
 
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
@@ -133,16 +148,28 @@ def wrap(angle: float) -> float:
     return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
 
 
-def rigid(state: State, boxes: list[int], pivot: tuple[float, float], turn: float, shift: tuple[float, float]) -> dict:
+def rigid(
+    state: State,
+    boxes: list[int],
+    pivot: tuple[float, float],
+    turn: float,
+    shift: tuple[float, float],
+) -> dict:
     """New poses of ``boxes`` turned by ``turn`` about ``pivot`` then shifted."""
     if turn == 0.0:  # exact translation, so the energy can see that nothing turned
-        return {box: (state.x[box] + shift[0], state.z[box] + shift[1], state.yaw[box]) for box in boxes}
+        return {
+            box: (state.x[box] + shift[0], state.z[box] + shift[1], state.yaw[box]) for box in boxes
+        }
     c, s = math.cos(turn), math.sin(turn)
     px, pz = pivot
     moved = {}
     for box in boxes:
         rx, rz = state.x[box] - px, state.z[box] - pz
-        moved[box] = (px + rx * c + rz * s + shift[0], pz - rx * s + rz * c + shift[1], wrap(state.yaw[box] + turn))
+        moved[box] = (
+            px + rx * c + rz * s + shift[0],
+            pz - rx * s + rz * c + shift[1],
+            wrap(state.yaw[box] + turn),
+        )
     return moved
 
 
@@ -159,7 +186,9 @@ def carried_by(problem: Problem, boxes) -> list[int]:
 def reach(problem: Problem, state: State, box: int, wx: float, wz: float) -> float:
     """How far a box's footprint reaches from its centre along the unit direction (wx, wz)."""
     c, s = state.c[box], state.s[box]
-    return problem.half_width[box] * abs(c * wx - s * wz) + problem.half_depth[box] * abs(s * wx + c * wz)
+    return problem.half_width[box] * abs(c * wx - s * wz) + problem.half_depth[box] * abs(
+        s * wx + c * wz
+    )
 
 
 def end_reach(problem: Problem, state: State, end: Endpoint, wx: float, wz: float) -> float:
@@ -168,7 +197,8 @@ def end_reach(problem: Problem, state: State, end: Endpoint, wx: float, wz: floa
         return reach(problem, state, end.index, wx, wz)
     cx, cz = centre(end, state)
     return max(
-        (state.x[b] - cx) * wx + (state.z[b] - cz) * wz + reach(problem, state, b, wx, wz) for b in end.members
+        (state.x[b] - cx) * wx + (state.z[b] - cz) * wz + reach(problem, state, b, wx, wz)
+        for b in end.members
     )
 
 
@@ -214,12 +244,17 @@ class Mover:
         held_in_group = {box for group in rigid_groups for box in problem.group_members[group]}
         # Whether a move may place this box by itself: a free (unpinned) non-junction object.
         self.movable_box = [
-            not problem.is_junction[b] and not pins.box[b] and b not in held_in_group for b in range(problem.n_boxes)
+            not problem.is_junction[b] and not pins.box[b] and b not in held_in_group
+            for b in range(problem.n_boxes)
         ]
         self.boxes = [b for b in range(problem.n_boxes) if self.movable_box[b]]
-        self.junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b] and not pins.box[b]]
+        self.junctions = [
+            b for b in range(problem.n_boxes) if problem.is_junction[b] and not pins.box[b]
+        ]
         self.paths = [p for p in range(problem.n_paths) if not pins.path[p]]
-        carried = [carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))]
+        carried = [
+            carried_by(problem, problem.group_members[g]) for g in range(len(problem.group_ids))
+        ]
         # A group moves as a whole only when nothing in it is pinned or rests on a pinned box;
         # random rigid moves carry its free boxes only.
         self.group_whole = [not any(pins.fixed(b) for b in boxes) for boxes in carried]
@@ -227,21 +262,34 @@ class Mover:
         rigid = set(rigid_groups)
         self.rigid_group_of = {box: g for g in rigid for box in problem.group_members[g]}
         self.groups = [
-            g for g, members in enumerate(problem.group_members)
+            g
+            for g, members in enumerate(problem.group_members)
             if members and self.group_boxes[g] and (g in rigid or not set(members) <= held_in_group)
-        ]  # fmt: skip
+        ]
         self.top_group_of = {box: g for g in problem.top_groups for box in problem.group_members[g]}
         # NextTo* from something pins hold to a free path or junction: pulled (``pull``).
         self.pullable = {
-            t for t, term in enumerate(problem.relations)
-            if term.placeable and term.spec.family == "next_to" and self._held(term.a) and self._pulls(term.b)
-        }  # fmt: skip
+            t
+            for t, term in enumerate(problem.relations)
+            if term.placeable
+            and term.spec.family == "next_to"
+            and self._held(term.a)
+            and self._pulls(term.b)
+        }
         self.relations = [  # relations a move can act on
-            t for t, term in enumerate(problem.relations)
-            if term.placeable and (self._movable(term.a) or self._movable(term.b) or t in self.pullable)
-        ]  # fmt: skip
-        self._relation_positions = np.array(self.relations, dtype=np.intp)  # for ``relation_move``'s weights
-        self.clusters = [c for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem)) if c]
+            t
+            for t, term in enumerate(problem.relations)
+            if term.placeable
+            and (self._movable(term.a) or self._movable(term.b) or t in self.pullable)
+        ]
+        self._relation_positions = np.array(
+            self.relations, dtype=np.intp
+        )  # for ``relation_move``'s weights
+        self.clusters = [
+            c
+            for c in ([b for b in boxes if not pins.fixed(b)] for boxes in _clusters(problem))
+            if c
+        ]
         self.cluster_of = {box: cluster for cluster in self.clusters for box in cluster}
         # Per box, the boxes its relation partners are, and those placed by a relation to it
         # (``kept_free``).
@@ -259,15 +307,22 @@ class Mover:
         grid = access_grid(problem.room) if problem.room is not None else None
         scored = grid is not None and grid.has_doors
         self.blocks_way = [
-            scored and problem.support[b] < 0 and not problem.is_junction[b] and problem.height[b] > FLAT_HEIGHT
+            scored
+            and problem.support[b] < 0
+            and not problem.is_junction[b]
+            and problem.height[b] > FLAT_HEIGHT
             for b in range(problem.n_boxes)
-        ]  # fmt: skip
+        ]
         #: Two half corridors and a cell of the grid, so the way survives its rounding.
         self.way_width = 2.0 * CORRIDOR_HALF + grid.cell if grid is not None else 0.0
         # Free boxes with a wall relation (rooms only): their jitter may slide along the wall.
         self.wall_terms: dict[int, list[RelationTerm]] = {}
         for term in problem.relations:
-            if term.spec.family == "wall" and self.movable_box[term.a.index] and problem.support[term.a.index] < 0:
+            if (
+                term.spec.family == "wall"
+                and self.movable_box[term.a.index]
+                and problem.support[term.a.index] < 0
+            ):
                 self.wall_terms.setdefault(term.a.index, []).append(term)
         # Quarter turns in a room are square to its longest wall (0 when the walls run
         # north-south and east-west, so those rooms snap as to the world's axes).
@@ -279,10 +334,14 @@ class Mover:
         self.focus_boxes: list[int] = []
         self.focus_groups: list[int] = []  # rigid groups holding a troubled box
         available = {
-            "jitter": bool(self.boxes), "rotate": bool(self.boxes), "group": bool(self.groups),
+            "jitter": bool(self.boxes),
+            "rotate": bool(self.boxes),
+            "group": bool(self.groups),
             "cluster": bool(self.clusters),
-            "relation": bool(self.relations), "path": bool(self.paths), "junction": bool(self.junctions),
-        }  # fmt: skip
+            "relation": bool(self.relations),
+            "path": bool(self.paths),
+            "junction": bool(self.junctions),
+        }
         self.kinds = [kind for kind in MOVE_WEIGHTS if available[kind]]
         weights = np.array([MOVE_WEIGHTS[kind] for kind in self.kinds])
         self.cumulative = list(np.cumsum(weights / weights.sum())) if self.kinds else []
@@ -305,14 +364,20 @@ class Mover:
         """Whether ``pull`` may move this end: a free path or a free junction."""
         if end.kind == "path":
             return not self.pins.path[end.index]
-        return end.kind == "object" and self.problem.is_junction[end.index] and not self.pins.box[end.index]
+        return (
+            end.kind == "object"
+            and self.problem.is_junction[end.index]
+            and not self.pins.box[end.index]
+        )
 
     def focus(self, unsatisfied: list[int], troubled: list[int]) -> None:
         """Steer later proposals to these relations (indices) and boxes (overlapping, outside)."""
         position = {term: k for k, term in enumerate(self.relations)}
         self.focus_positions = [position[t] for t in unsatisfied if t in position]
         self.focus_boxes = [box for box in troubled if self.movable_box[box]]
-        self.focus_groups = sorted({self.rigid_group_of[box] for box in troubled if box in self.rigid_group_of})
+        self.focus_groups = sorted(
+            {self.rigid_group_of[box] for box in troubled if box in self.rigid_group_of}
+        )
 
     def propose(self, relation_energy: list[float]) -> tuple[dict, dict] | None:
         """One random proposal; ``relation_energy`` steers the data-driven moves."""
@@ -320,7 +385,7 @@ class Mover:
             return None
         draw = self.rng.random()
         kind = self.kinds[-1]
-        for candidate, edge in zip(self.kinds, self.cumulative):
+        for candidate, edge in zip(self.kinds, self.cumulative, strict=False):
             if draw < edge:
                 kind = candidate
                 break
@@ -332,7 +397,9 @@ class Mover:
             return self.rotate(self.boxes[draw_index(self.rng, len(self.boxes))])
         if kind == "group":
             if self.focus_groups and self.rng.random() < 0.5:
-                return self.relocate_group(self.focus_groups[draw_index(self.rng, len(self.focus_groups))])
+                return self.relocate_group(
+                    self.focus_groups[draw_index(self.rng, len(self.focus_groups))]
+                )
             return self.move_group(self.groups[draw_index(self.rng, len(self.groups))])
         if kind == "cluster":
             return self.move_cluster(self.clusters[draw_index(self.rng, len(self.clusters))])
@@ -358,11 +425,15 @@ class Mover:
         state, rng = self.state, self.rng
         if self.problem.walls or rng.random() < 0.3:
             base = self.square_base
-            target = base + HALF_PI * (round((state.yaw[box] - base) / HALF_PI) + int(rng.integers(-1, 2)))
+            target = base + HALF_PI * (
+                round((state.yaw[box] - base) / HALF_PI) + int(rng.integers(-1, 2))
+            )
             turn = target - state.yaw[box]
         else:
             turn = rng.normal(0.0, _log_uniform(rng, 0.02, 0.8))
-        return rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0)), {}
+        return rigid(
+            state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0)
+        ), {}
 
     def move_group(self, group: int) -> tuple[dict, dict]:
         state, rng = self.state, self.rng
@@ -371,7 +442,11 @@ class Mover:
         sigma = _log_uniform(rng, 0.05, 3.0)
         turn = 0.0
         if rng.random() < 0.3:
-            turn = HALF_PI * (1 if rng.random() < 0.5 else -1) if self.problem.walls else rng.normal(0.0, 0.3)
+            turn = (
+                HALF_PI * (1 if rng.random() < 0.5 else -1)
+                if self.problem.walls
+                else rng.normal(0.0, 0.3)
+            )
         shift = (rng.normal(0.0, sigma), rng.normal(0.0, sigma))
         return rigid(state, self.group_boxes[group], pivot, turn, shift), {}
 
@@ -404,7 +479,10 @@ class Mover:
         new = [list(p) for p in points]
         if rng.random() < 0.5 or index == 0:
             sigma = _log_uniform(rng, 0.05, 2.0)
-            new[index] = [points[index][0] + rng.normal(0.0, sigma), points[index][1] + rng.normal(0.0, sigma)]
+            new[index] = [
+                points[index][0] + rng.normal(0.0, sigma),
+                points[index][1] + rng.normal(0.0, sigma),
+            ]
         else:  # bend the tail from this point on about the previous one
             turn = rng.normal(0.0, 0.15)
             c, s = math.cos(turn), math.sin(turn)
@@ -448,13 +526,26 @@ class Mover:
         turnable = term.b.kind == "object" and b_movable and term.spec.names_target_side
         if turnable and self.rng.random() < REVERSE_SHARE:
             boxes = self.turn_target_for(term)
-        elif b_movable and term.spec.family == "next_to" and (not a_movable or self.rng.random() < REVERSE_SHARE):
+        elif (
+            b_movable
+            and term.spec.family == "next_to"
+            and (not a_movable or self.rng.random() < REVERSE_SHARE)
+        ):
             boxes = self.place_target_for(term)
-        elif term.spec.family == "alignment" and b_movable and (not a_movable or self.rng.random() < REVERSE_SHARE):
+        elif (
+            term.spec.family == "alignment"
+            and b_movable
+            and (not a_movable or self.rng.random() < REVERSE_SHARE)
+        ):
             boxes = self.place_aligned(term.b.index, term.a.index)  # symmetric: line B up with A
         elif a_movable and len(self._placing_terms(term.a)) > 1:
             boxes = self.place_for_all(term.a)
-        elif a_movable and term.spec.family == "wall" and term.a.index in self.cluster_of and self.rng.random() < CARRY_SHARE:
+        elif (
+            a_movable
+            and term.spec.family == "wall"
+            and term.a.index in self.cluster_of
+            and self.rng.random() < CARRY_SHARE
+        ):
             boxes = self.carry_to_wall(term)
         elif a_movable:
             boxes = self.place_for_relation(term)
@@ -475,7 +566,9 @@ class Mover:
             points = state.points[path]
             _, nx, nz, segment = nearest_on_polyline(points, ax, az)
             dx, dz = self._away(nx - ax, nz - az)
-            distance = end_reach(problem, state, term.a, dx, dz) + problem.path_width[path] / 2.0 + gap
+            distance = (
+                end_reach(problem, state, term.a, dx, dz) + problem.path_width[path] / 2.0 + gap
+            )
             tx, tz = ax + dx * distance, az + dz * distance
             first = 1 if problem.path_start[path] >= 0 else 0
             candidates = [k for k in (segment, segment + 1) if k >= first]
@@ -486,7 +579,11 @@ class Mover:
         junction = term.b.index
         jx, jz = state.x[junction], state.z[junction]
         dx, dz = self._away(jx - ax, jz - az)
-        distance = end_reach(problem, state, term.a, dx, dz) + reach(problem, state, junction, -dx, -dz) + gap
+        distance = (
+            end_reach(problem, state, term.a, dx, dz)
+            + reach(problem, state, junction, -dx, -dz)
+            + gap
+        )
         return self._shift_junction(junction, ax + dx * distance - jx, az + dz * distance - jz)
 
     def _away(self, dx: float, dz: float) -> tuple[float, float]:
@@ -546,7 +643,11 @@ class Mover:
                 if snapped:
                     proposal = {**proposal, **snapped}
             return proposal
-        lines = [t for t in self._placing_terms(term.a) if t.spec.family == "alignment" and t.b.kind == "object"]
+        lines = [
+            t
+            for t in self._placing_terms(term.a)
+            if t.spec.family == "alignment" and t.b.kind == "object"
+        ]
         if lines and term.spec.family != "alignment" and self.rng.random() < 0.5:
             line = lines[draw_index(self.rng, len(lines))]
             with self.state.trying(proposal):
@@ -564,7 +665,11 @@ class Mover:
         if family == "next_to":
             return self._place_next_to(term, keep_heading)
         if family == "facing":
-            if term.a.kind == "object" and term.a.index in self.top_group_of and self.rng.random() < 0.5:
+            if (
+                term.a.kind == "object"
+                and term.a.index in self.top_group_of
+                and self.rng.random() < 0.5
+            ):
                 if self.group_whole[self.top_group_of[term.a.index]]:
                     return self.turn_group_to_face(term)
             return self.turn_to_face(term)
@@ -611,7 +716,9 @@ class Mover:
             wx, wz = self._wanted_direction(term, c, s)
             offset = end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz)
             # Slide sideways along B's side a little, so several things beside B can fit.
-            slide = uniform(rng, -LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
+            slide = uniform(rng, -LATERAL_SHARE, LATERAL_SHARE) * end_reach(
+                problem, state, b, -wz, wx
+            )
             bx, bz = bx - wz * slide, bz + wx * slide
         boxes = self.moving_boxes(a)
         pivot = (ax, az)
@@ -635,8 +742,19 @@ class Mover:
             a_reach = problem.path_width[a.index] / 2.0
         else:
             a_reach = end_reach(problem, state, a, -wx, -wz)
-        distance = a_reach + end_reach(problem, state, b, wx, wz) + self.kept_free(a, b, wx, wz) + uniform(self.rng, *GAP_RANGE)
-        return rigid(state, self.moving_boxes(b), (bx, bz), 0.0, (ax - wx * distance - bx, az - wz * distance - bz))
+        distance = (
+            a_reach
+            + end_reach(problem, state, b, wx, wz)
+            + self.kept_free(a, b, wx, wz)
+            + uniform(self.rng, *GAP_RANGE)
+        )
+        return rigid(
+            state,
+            self.moving_boxes(b),
+            (bx, bz),
+            0.0,
+            (ax - wx * distance - bx, az - wz * distance - bz),
+        )
 
     def kept_free(self, a: Endpoint, end: Endpoint, wx: float, wz: float) -> float:
         """How far (metres) a NextTo* placement of ``a`` beside ``end`` in the unit
@@ -662,16 +780,24 @@ class Mover:
             side = "front" if lz > 0.0 else "back"
         else:
             side = "left" if lx > 0.0 else "right"
-        way = self.way_width if self.problem.access[box] == (side,) and self._bars(a, box, side, wx, wz) else 0.0
+        way = (
+            self.way_width
+            if self.problem.access[box] == (side,) and self._bars(a, box, side, wx, wz)
+            else 0.0
+        )
         strangers = self.followers[a.index] - self.partners[box]
         if not self.problem.clearance[box] or not strangers:
             return way
-        kept = max((metres for named, metres in self.problem.clearance[box] if named == side), default=0.0)
+        kept = max(
+            (metres for named, metres in self.problem.clearance[box] if named == side), default=0.0
+        )
         if kept == 0.0:
             return way
         # Room for those placed by A between it and the space: the deepest of them, by its
         # shorter side (they stand on A's side towards B or not: the tries decide).
-        between = max(2.0 * min(self.problem.half_width[f], self.problem.half_depth[f]) for f in strangers)
+        between = max(
+            2.0 * min(self.problem.half_width[f], self.problem.half_depth[f]) for f in strangers
+        )
         return max(way, kept + between)
 
     def _bars(self, a: Endpoint, box: int, side: str, wx: float, wz: float) -> bool:
@@ -684,7 +810,9 @@ class Mover:
             return False
         problem = self.problem
         across = 2.0 * end_reach(problem, self.state, a, -wz, wx)
-        length = 2.0 * (problem.half_width[box] if side in ("front", "back") else problem.half_depth[box])
+        length = 2.0 * (
+            problem.half_width[box] if side in ("front", "back") else problem.half_depth[box]
+        )
         return across + 2.0 * CORRIDOR_HALF >= length
 
     def turn_target_for(self, term: RelationTerm) -> dict:
@@ -695,9 +823,14 @@ class Mover:
         ax, az = centre(term.a, state)
         heading = math.atan2(ax - state.x[box], az - state.z[box])  # B's yaw if A were in front
         # A side at local (lx, lz) points along (dx, dz) when B's yaw is heading - atan2(lx, lz).
-        turns = [wrap(heading - math.atan2(lx, lz) - state.yaw[box]) for lx, lz in term.spec.directions.values()]
+        turns = [
+            wrap(heading - math.atan2(lx, lz) - state.yaw[box])
+            for lx, lz in term.spec.directions.values()
+        ]
         turn = min(turns, key=abs)
-        return rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0))
+        return rigid(
+            state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (0.0, 0.0)
+        )
 
     def _heading(self, end: Endpoint) -> float:
         """Yaw of an object, or of a group's first member (the group's front)."""
@@ -732,16 +865,24 @@ class Mover:
             return None
         box = term.a.index
         pivot = (self.state.x[box], self.state.z[box])
-        return rigid(self.state, self.problem.carried(box), pivot, self._facing_turn(term), (0.0, 0.0))
+        return rigid(
+            self.state, self.problem.carried(box), pivot, self._facing_turn(term), (0.0, 0.0)
+        )
 
     def faces_as_asked(self, term: RelationTerm) -> bool:
         """Whether A (an object) already has the heading a facing relation that asks for
         a heading only (same, opposite or square to B's) wants, to FACED (radians): then
         a turn to face would leave it where it is, and the constructive placement makes
         no such proposal. False for the other facing relations."""
-        if term.spec.facing not in HEADING_FACINGS or term.a.kind != "object" or term.b.kind not in ("object", "group"):
+        if (
+            term.spec.facing not in HEADING_FACINGS
+            or term.a.kind != "object"
+            or term.b.kind not in ("object", "group")
+        ):
             return False
-        b_yaw = self.state.yaw[term.b.index] if term.b.kind == "object" else 0.0  # a group faces the world's forward
+        b_yaw = (
+            self.state.yaw[term.b.index] if term.b.kind == "object" else 0.0
+        )  # a group faces the world's forward
         off = wrap(self.state.yaw[term.a.index] - b_yaw)
         wanted = {"same": 0.0, "opposite": math.pi, "orthogonal": HALF_PI}[term.spec.facing]
         return abs(abs(off) - wanted) < FACED
@@ -773,7 +914,11 @@ class Mover:
         quarter = int(rng.integers(4)) if rng.random() < 0.3 else 0
         yaw = wrap(state.yaw[b] + quarter * HALF_PI)
         # A's half extents along B's axes once turned to ``yaw``.
-        ex, ez = (problem.half_width[a], problem.half_depth[a]) if quarter % 2 == 0 else (problem.half_depth[a], problem.half_width[a])
+        ex, ez = (
+            (problem.half_width[a], problem.half_depth[a])
+            if quarter % 2 == 0
+            else (problem.half_depth[a], problem.half_width[a])
+        )
         room_x = max(problem.half_width[b] - ex, 0.0)
         room_z = max(problem.half_depth[b] - ez, 0.0)
         placement = term.spec.placement
@@ -788,8 +933,13 @@ class Mover:
         else:
             lx, lz = uniform(rng, -room_x, room_x), uniform(rng, -room_z, room_z)
         x, z = to_world(state.x[b], state.z[b], state.yaw[b], lx, lz)
-        return rigid(state, problem.carried(a), (state.x[a], state.z[a]), wrap(yaw - state.yaw[a]), (x - state.x[a], z - state.z[a]))
-
+        return rigid(
+            state,
+            problem.carried(a),
+            (state.x[a], state.z[a]),
+            wrap(yaw - state.yaw[a]),
+            (x - state.x[a], z - state.z[a]),
+        )
 
     # -- rooms ---------------------------------------------------------------------------
 
@@ -799,7 +949,11 @@ class Mover:
         flush; unchanged when the box is not against that wall now."""
         term = self.wall_terms[box][0]
         measure = evaluate(term, self.state, self.params)
-        if math.isinf(measure.energy) or abs(measure.distance) > SLIDE_GAP or measure.angle > SLIDE_ANGLE:
+        if (
+            math.isinf(measure.energy)
+            or abs(measure.distance) > SLIDE_GAP
+            or measure.angle > SLIDE_ANGLE
+        ):
             return shift  # not against it (or no window for a window label)
         room = self.problem.room
         part = room.part(measure.chosen or term.target)
@@ -813,7 +967,13 @@ class Mover:
         with what rests on it carried along rigidly."""
         state = self.state
         turn = wrap(yaw - state.yaw[box])
-        moved = rigid(state, self.problem.carried(box), (state.x[box], state.z[box]), turn, (x - state.x[box], z - state.z[box]))
+        moved = rigid(
+            state,
+            self.problem.carried(box),
+            (state.x[box], state.z[box]),
+            turn,
+            (x - state.x[box], z - state.z[box]),
+        )
         moved[box] = (x, z, yaw)
         return moved
 
@@ -843,7 +1003,7 @@ class Mover:
             return self._pose_box(box, *best)
         total = sum(weight for *_, weight in spots)
         draw = rng.random() * total
-        for wall, low, high, weight in spots:
+        for wall, low, high, weight in spots:  # noqa: B007 (the drawn spot is used below)
             draw -= weight
             if draw < 0.0:
                 break
@@ -869,14 +1029,22 @@ class Mover:
         in_place = set(problem.carried(box))
         for index in problem.terms_of_box[box]:
             tie = problem.relations[index]
-            if tie.a.kind != "object" or tie.b.kind != "object" or box not in (tie.a.index, tie.b.index):
+            if (
+                tie.a.kind != "object"
+                or tie.b.kind != "object"
+                or box not in (tie.a.index, tie.b.index)
+            ):
                 continue
             other = tie.b.index if tie.a.index == box else tie.a.index
-            if other in self.cluster_of[box] and satisfied(tie, evaluate(tie, state, self.params), self.params):
+            if other in self.cluster_of[box] and satisfied(
+                tie, evaluate(tie, state, self.params), self.params
+            ):
                 in_place.update(b for b in problem.carried(other) if b in self.cluster_of[box])
         x, z, yaw = placed[box]
         pivot = (state.x[box], state.z[box])
-        moved = rigid(state, sorted(in_place), pivot, wrap(yaw - state.yaw[box]), (x - pivot[0], z - pivot[1]))
+        moved = rigid(
+            state, sorted(in_place), pivot, wrap(yaw - state.yaw[box]), (x - pivot[0], z - pivot[1])
+        )
         moved[box] = (x, z, yaw)
         return moved
 
@@ -909,12 +1077,20 @@ class Mover:
             length = wall.length
             if placement == "against":
                 room_left = length - 2.0 * hw
-                spot = (wall, hw, length - hw, room_left) if room_left > 0.0 else (wall, length / 2.0, length / 2.0, 0.0)
+                spot = (
+                    (wall, hw, length - hw, room_left)
+                    if room_left > 0.0
+                    else (wall, length / 2.0, length / 2.0, 0.0)
+                )
                 (fitting if room_left > 0.0 else rest).append(spot)
                 continue
             before, after = room.neighbours(wall.id)
             for other, at_start in ((before, True), (after, False)):
-                if not (room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)):
+                if not (
+                    room.convex_corner(before, wall)
+                    if at_start
+                    else room.convex_corner(wall, after)
+                ):
                     continue
                 u = self._corner_u(box, wall, other)
                 if u is None:
@@ -926,7 +1102,11 @@ class Mover:
             wall = room.part(window.wall)
             if placement == "under_window":
                 u = window.offset
-                fits = top <= window.sill and hw <= u <= wall.length - hw and self._clear_at(box, wall, u)
+                fits = (
+                    top <= window.sill
+                    and hw <= u <= wall.length - hw
+                    and self._clear_at(box, wall, u)
+                )
                 (fitting if fits else rest).append((wall, u, u, 1.0))
                 continue
             gap = uniform(self.rng, *BESIDE_GAP)
@@ -946,7 +1126,9 @@ class Mover:
         yaw = wall.facing_yaw
         c, s = math.cos(yaw), math.sin(yaw)
         nx, nz = other.normal
-        reach_other = problem.half_width[box] * abs(c * nx - s * nz) + problem.half_depth[box] * abs(s * nx + c * nz)
+        reach_other = problem.half_width[box] * abs(c * nx - s * nz) + problem.half_depth[
+            box
+        ] * abs(s * nx + c * nz)
         tx, tz = wall.direction
         rate = tx * nx + tz * nz  # how fast the distance from ``other`` changes along ``wall``
         if abs(rate) < 1e-9:
@@ -957,7 +1139,9 @@ class Mover:
     def _clear_at(self, box: int, wall: Wall, u: float) -> bool:
         """``_clear_of_openings`` for the box with its back flush to ``wall`` at ``u``."""
         x, z = wall.to_world(u, self.problem.half_depth[box])
-        return self._clear_of_openings(box, x, z, math.cos(wall.facing_yaw), math.sin(wall.facing_yaw))
+        return self._clear_of_openings(
+            box, x, z, math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
+        )
 
     def _clear_of_openings(self, box: int, x: float, z: float, c: float, s: float) -> bool:
         """Whether the box at (x, z) turned by (c, s) keeps out of every door's swing and
@@ -1050,13 +1234,21 @@ class Mover:
                 wall = room.walls[int(rng.choice(len(lengths), p=lengths / lengths.sum()))]
             low, high = 0.0, wall.length
         if term.spec.directions:
-            wx, wz = self._wanted_direction(term, wall.normal[1], wall.normal[0])  # the wall faces into the room
+            wx, wz = self._wanted_direction(
+                term, wall.normal[1], wall.normal[0]
+            )  # the wall faces into the room
         else:
             wx, wz = wall.normal
         px, pz = wall.to_world(uniform(rng, low, high), 0.0)
         ax, az = centre(term.a, state)
         distance = end_reach(problem, state, term.a, -wx, -wz) + uniform(rng, *GAP_RANGE)
-        return rigid(state, self.moving_boxes(term.a), (ax, az), 0.0, (px + wx * distance - ax, pz + wz * distance - az))
+        return rigid(
+            state,
+            self.moving_boxes(term.a),
+            (ax, az),
+            0.0,
+            (px + wx * distance - ax, pz + wz * distance - az),
+        )
 
 
 def _clusters(problem: Problem) -> list[list[int]]:

@@ -121,7 +121,9 @@ def compile_pins(
         if path_id not in path_index:
             _refuse(problem, "pinned_paths", path_id, path_index)
         path = path_index[path_id]
-        pins.points[path] = check_points("pinned_paths", path_id, points, problem.path_segments[path] + 1)
+        pins.points[path] = check_points(
+            "pinned_paths", path_id, points, problem.path_segments[path] + 1
+        )
     for entry_id, value in (start or {}).items():
         if entry_id in box_index:
             box = box_index[entry_id]
@@ -162,7 +164,9 @@ def compile_pins(
                 f"{problem.ids[junction]} is pinned at ({pose.x:g}, {pose.z:g})"
             )
     for box in range(problem.n_boxes):
-        pins.anchored[box] = not pins.box[box] and any(pins.box[below] for below in problem.beneath(box))
+        pins.anchored[box] = not pins.box[box] and any(
+            pins.box[below] for below in problem.beneath(box)
+        )
     return pins
 
 
@@ -185,7 +189,9 @@ def check_pose(what: str, entry_id: str, pose: object) -> Pose:
     if not isinstance(pose, Pose):
         raise InputError(f"{what}: {entry_id}: expected a Pose, got {type(pose).__name__}")
     values = (pose.x, pose.y, pose.z, pose.yaw)
-    if not all(isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) for v in values):
+    if not all(
+        isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) for v in values
+    ):
         raise InputError(f"{what}: {entry_id}: the pose must be finite numbers, got {pose}")
     return pose
 
@@ -197,9 +203,13 @@ def check_points(what: str, path_id: str, points: object, count: int | None) -> 
     except (TypeError, ValueError):
         raise InputError(f"{what}: {path_id}: expected control points [[x, z], ...]") from None
     if array.ndim != 2 or array.shape[1] != 2 or len(array) < 2:
-        raise InputError(f"{what}: {path_id}: expected control points [[x, z], ...], got shape {array.shape}")
+        raise InputError(
+            f"{what}: {path_id}: expected control points [[x, z], ...], got shape {array.shape}"
+        )
     if count is not None and len(array) != count:
-        raise InputError(f"{what}: {path_id}: expected {count} control points (its segments + 1), got {len(array)}")
+        raise InputError(
+            f"{what}: {path_id}: expected {count} control points (its segments + 1), got {len(array)}"
+        )
     if not np.isfinite(array).all():
         raise InputError(f"{what}: {path_id}: control points must be finite numbers")
     return [[float(x), float(z)] for x, z in array]
@@ -228,7 +238,9 @@ class ScenePins:
     added: list[str]  # pinned because a named id needs them (members, supports, junctions)
 
 
-def pins_from_scene(scene, problem: Problem, ids: Iterable[str], *, what: str = "--pin") -> ScenePins:
+def pins_from_scene(
+    scene, problem: Problem, ids: Iterable[str], *, what: str = "--pin"
+) -> ScenePins:
     """Pin these ids of a laid-out Scene at their current poses (``problem`` is its graph's).
 
     An object or junction pins itself, a path its control points and the junction it

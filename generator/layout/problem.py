@@ -120,9 +120,15 @@ class Problem:
     paths_of_junction: dict[int, list[int]] = field(default_factory=dict)
     top_groups: list[int] = field(default_factory=list)  # groups not inside another group
     free_boxes: list[int] = field(default_factory=list)  # ground boxes in no group, no junctions
-    units: list[tuple[str, int]] = field(default_factory=list)  # ("group", g) / ("object", box): top groups and free boxes, creation order
-    outgoing: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of A
-    incoming: dict[tuple[str, int], list[RelationTerm]] = field(default_factory=dict)  # by (kind, index) of B
+    units: list[tuple[str, int]] = field(
+        default_factory=list
+    )  # ("group", g) / ("object", box): top groups and free boxes, creation order
+    outgoing: dict[tuple[str, int], list[RelationTerm]] = field(
+        default_factory=dict
+    )  # by (kind, index) of A
+    incoming: dict[tuple[str, int], list[RelationTerm]] = field(
+        default_factory=dict
+    )  # by (kind, index) of B
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
     mask: object | None = None
@@ -235,7 +241,9 @@ def compile_problem(graph: SceneGraph) -> Problem:
         _refuse_room_misuse(edge, spec, a, b, room)
         if spec.support:
             if a.kind != "object" or b.kind != "object":
-                raise InputError(f"{edge.source} {edge.label} {edge.target}: only objects can rest on objects")
+                raise InputError(
+                    f"{edge.source} {edge.label} {edge.target}: only objects can rest on objects"
+                )
             if support[a.index] == -1:
                 support[a.index] = b.index
         edges.append((edge.source, edge.target, edge.label, len(relations)))
@@ -250,15 +258,30 @@ def compile_problem(graph: SceneGraph) -> Problem:
         relations = _with_sight(relations, support, dependents, is_junction, height)
 
     problem = Problem(
-        ids=ids, is_junction=is_junction, half_width=half_width, half_depth=half_depth,
-        height=height, size=size, support=support, dependents=dependents,
-        group_ids=group_ids, group_members=[tuple(m) for m in group_members],
-        path_ids=path_ids, path_width=path_width, path_max_length=path_max_length,
-        path_segments=path_segments, path_start=path_start, relations=relations, edges=edges,
+        ids=ids,
+        is_junction=is_junction,
+        half_width=half_width,
+        half_depth=half_depth,
+        height=height,
+        size=size,
+        support=support,
+        dependents=dependents,
+        group_ids=group_ids,
+        group_members=[tuple(m) for m in group_members],
+        path_ids=path_ids,
+        path_width=path_width,
+        path_max_length=path_max_length,
+        path_segments=path_segments,
+        path_start=path_start,
+        relations=relations,
+        edges=edges,
         extent=(float(graph.params.extent[0]), float(graph.params.extent[1])),
-        room=room, square=graph.params.square, line_of_sight=graph.params.line_of_sight,
-        clearance=clearance, access=access,
-    )  # fmt: skip
+        room=room,
+        square=graph.params.square,
+        line_of_sight=graph.params.line_of_sight,
+        clearance=clearance,
+        access=access,
+    )
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]
     for term_index, term in enumerate(relations):
@@ -279,9 +302,10 @@ def compile_problem(graph: SceneGraph) -> Problem:
             problem.paths_of_junction.setdefault(junction, []).append(path)
     problem.top_groups = [g for g, gid in enumerate(group_ids) if parent_of[gid] not in group_index]
     problem.free_boxes = [
-        box for box, box_id in enumerate(ids)
+        box
+        for box, box_id in enumerate(ids)
         if parent_of[box_id] is None and support[box] == -1 and not is_junction[box]
-    ]  # fmt: skip
+    ]
     for node in graph.nodes():
         if node.id in group_index and group_index[node.id] in problem.top_groups:
             problem.units.append(("group", group_index[node.id]))
@@ -294,9 +318,10 @@ def _with_sight(relations, support, dependents, is_junction, height) -> list[Rel
     """The relations, each one that needs a clear view between two objects given the
     tall ground boxes that may block it (``RelationTerm.sight``)."""
     tall = [
-        box for box in range(len(support))
+        box
+        for box in range(len(support))
         if support[box] == -1 and not is_junction[box] and height[box] >= SIGHT_HEIGHT
-    ]  # fmt: skip
+    ]
     if not tall:
         return relations
 
@@ -323,13 +348,17 @@ def _with_sight(relations, support, dependents, is_junction, height) -> list[Rel
     return out
 
 
-def _refuse_room_misuse(edge, spec: RelationLabel, a: Endpoint, b: Endpoint, room: Room | None) -> None:
+def _refuse_room_misuse(
+    edge, spec: RelationLabel, a: Endpoint, b: Endpoint, room: Room | None
+) -> None:
     """Wall labels stand an object against a room's wall or window; AlignedWith lines up
     two objects; and a room's parts are fixed, so they cannot be placed."""
     where = f"{edge.source} {edge.label} {edge.target}"
     if spec.family == "wall":
         if a.kind != "object":
-            raise InputError(f"{where}: only an object can stand against a wall ({edge.source} is a {a.kind})")
+            raise InputError(
+                f"{where}: only an object can stand against a wall ({edge.source} is a {a.kind})"
+            )
         door = b.kind == "opening" and room.openings[b.index].kind == "door"
         if b.kind not in ROOM_ENDS or door:
             raise InputError(f"{where}: the target must be a wall, a window or the room")
@@ -338,7 +367,9 @@ def _refuse_room_misuse(edge, spec: RelationLabel, a: Endpoint, b: Endpoint, roo
     elif spec.family == "alignment" and (a.kind != "object" or b.kind != "object"):
         raise InputError(f"{where}: only two objects can be lined up")
     elif a.kind in ROOM_ENDS:
-        raise InputError(f"{where}: {edge.source} is part of the room and cannot be placed; write the relation from the object")
+        raise InputError(
+            f"{where}: {edge.source} is part of the room and cannot be placed; write the relation from the object"
+        )
 
 
 def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, int]:
@@ -356,6 +387,8 @@ def _refuse_support_cycles(support: list[int], ids: list[str]) -> None:
         below = support[start]
         while below >= 0:
             if below in seen:
-                raise InputError(f"{ids[start]} rests on itself through a cycle of OnTopOf relations")
+                raise InputError(
+                    f"{ids[start]} rests on itself through a cycle of OnTopOf relations"
+                )
             seen.add(below)
             below = support[below]

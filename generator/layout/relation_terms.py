@@ -41,7 +41,13 @@ from scenewright.core.relations import FAMILIES
 from scenewright.core.room import Opening, Room, Wall
 
 from .factors import angle_between, equals, less, pointing_same_direction, range_
-from .geometry import nearest_on_polyline, polyline_distance, polyline_rects_distance, rect_distance, to_local
+from .geometry import (
+    nearest_on_polyline,
+    polyline_distance,
+    polyline_rects_distance,
+    rect_distance,
+    to_local,
+)
 from .params import LayoutParams
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .state import State
@@ -102,7 +108,14 @@ def centre(end: Endpoint, state: State) -> tuple[float, float]:
         return _room_part_centre(end, problem.room)
     x0 = z0 = math.inf
     x1 = z1 = -math.inf
-    half_width, half_depth, cs, ss, xs, zs = problem.half_width, problem.half_depth, state.c, state.s, state.x, state.z
+    half_width, half_depth, cs, ss, xs, zs = (
+        problem.half_width,
+        problem.half_depth,
+        state.c,
+        state.s,
+        state.x,
+        state.z,
+    )
     for box in end.members:  # (plain comparisons: this runs for every group term, every step)
         c, s = abs(cs[box]), abs(ss[box])
         ex = half_width[box] * c + half_depth[box] * s
@@ -127,7 +140,9 @@ def source_point(end: Endpoint, state: State) -> tuple[float, float]:
     return centre(end, state)
 
 
-def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[float, float, float, float]:
+def anchor(
+    end: Endpoint, state: State, towards: tuple[float, float]
+) -> tuple[float, float, float, float]:
     """(x, z, cos yaw, sin yaw) of B as seen from a point: its centre and its axes.
 
     For a path: the nearest point on it and its tangent as forward.
@@ -137,7 +152,10 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
     if end.kind == "group":
         x, z = centre(end, state)
         return x, z, 1.0, 0.0
-    if end.kind in ("wall", "opening"):  # the nearest point of the wall, its inner normal as forward
+    if end.kind in (
+        "wall",
+        "opening",
+    ):  # the nearest point of the wall, its inner normal as forward
         wall = _wall_of(end, state.problem.room)
         u, _ = wall.to_wall(*towards)
         if end.kind == "opening":
@@ -150,7 +168,10 @@ def anchor(end: Endpoint, state: State, towards: tuple[float, float]) -> tuple[f
         return 0.0, 0.0, 1.0, 0.0
     points = state.points[end.index]
     _, x, z, segment = nearest_on_polyline(points, towards[0], towards[1])
-    tx, tz = points[segment + 1][0] - points[segment][0], points[segment + 1][1] - points[segment][1]
+    tx, tz = (
+        points[segment + 1][0] - points[segment][0],
+        points[segment + 1][1] - points[segment][1],
+    )
     length = math.hypot(tx, tz) or 1.0
     return x, z, tz / length, tx / length  # forward (sin, cos) = tangent
 
@@ -173,7 +194,9 @@ def distance_between(a: Endpoint, b: Endpoint, state: State) -> float:
     if a.kind == "path":
         a, b = b, a
     if b.kind == "path":
-        gap = polyline_rects_distance(state.points[b.index], [state.rects[box] for box in a.members])
+        gap = polyline_rects_distance(
+            state.points[b.index], [state.rects[box] for box in a.members]
+        )
         return max(0.0, gap - problem.path_width[b.index] / 2.0)
     if len(a.members) == 1 and len(b.members) == 1:
         return box_distance(a.members[0], b.members[0], state)
@@ -250,7 +273,11 @@ def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
         segments = [room.opening_ends(room.openings[b.index])]
     if a.kind == "path":
         return min(
-            max(0.0, polyline_distance(state.points[a.index], [list(p), list(q)]) - state.problem.path_width[a.index] / 2.0)
+            max(
+                0.0,
+                polyline_distance(state.points[a.index], [list(p), list(q)])
+                - state.problem.path_width[a.index] / 2.0,
+            )
             for p, q in segments
         )
     rects = [state.rects[box] for box in a.members]
@@ -299,7 +326,11 @@ def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
 
 def _next_to_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
     near = measure.distance <= params.next_to_distance + EPSILON
-    return near and not measure.blocked and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+    return (
+        near
+        and not measure.blocked
+        and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+    )
 
 
 def _next_to_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
@@ -423,7 +454,12 @@ def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
         return Measure(energy - within, height_gap=height_gap, inside=inside)
     if placement == "middle":
         offset = math.hypot(lx, lz)
-        return Measure(energy - equals(offset, 0.0, params.sigma2), height_gap=height_gap, inside=inside, offset=offset)
+        return Measure(
+            energy - equals(offset, 0.0, params.sigma2),
+            height_gap=height_gap,
+            inside=inside,
+            offset=offset,
+        )
     # A's half extents along B's axes, then the gaps between A's sides and B's edges.
     k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
     k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
@@ -452,7 +488,11 @@ def _support_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -
 
 
 def _support_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    if term.spec.placement == "anywhere" or measure.height_gap > HEIGHT_TOLERANCE or not measure.inside:
+    if (
+        term.spec.placement == "anywhere"
+        or measure.height_gap > HEIGHT_TOLERANCE
+        or not measure.inside
+    ):
         return f"{term.source} is not on top of {term.target}"
     return f"{term.source} is not {term.spec.phrase} {term.target} ({measure.offset:.2f} m off)"
 
@@ -511,10 +551,14 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
         side = math.inf
         before, after = room.neighbours(wall.id)
         for other, at_start in ((before, True), (after, False)):
-            if not (room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)):
+            if not (
+                room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)
+            ):
                 continue
             _, v_other = other.to_wall(x, z)
-            reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(s * other.normal[0] + c * other.normal[1])
+            reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(
+                s * other.normal[0] + c * other.normal[1]
+            )
             side = min(side, abs(v_other - reach_other))
         offset += side
     elif placement == "under_window":
@@ -522,9 +566,15 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
         fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
     elif placement == "beside_window":
         low, high = window.span
-        along = max(low - (u + reach_u), (u - reach_u) - high)  # < 0: overlaps the window along the wall
+        along = max(
+            low - (u + reach_u), (u - reach_u) - high
+        )  # < 0: overlaps the window along the wall
         offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
-    energy = -equals(gap, 0.0, WALL_SIGMA2) - equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)
+    energy = (
+        -equals(gap, 0.0, WALL_SIGMA2)
+        - equals(angle, 0.0, WALL_ANGLE_SIGMA2)
+        - equals(offset, 0.0, WALL_SIGMA2)
+    )
     if not fits:
         energy += 1.0  # cannot hold whatever the pose: a constant, so the rest still lays out
     return Measure(energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits)
@@ -535,7 +585,8 @@ def _wall_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> b
         measure.inside
         and abs(measure.distance) <= WALL_TOLERANCE + EPSILON
         and measure.angle <= WALL_ANGLE_TOLERANCE + EPSILON
-        and measure.offset <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
+        and measure.offset
+        <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
     )
 
 

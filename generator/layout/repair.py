@@ -45,7 +45,7 @@ def item_boxes(problem: Problem) -> list[tuple[int, ...]]:
 def troubled_items(problem: Problem, run: Run) -> set[int]:
     """The boxes of every troubled item of a finished chain (module docstring)."""
     troubled = set(run.energy.troubled_boxes())
-    for (_, _, _, index), relation in zip(problem.edges, run.relations):
+    for (_, _, _, index), relation in zip(problem.edges, run.relations, strict=False):
         if index is not None and not relation.satisfied:
             term = problem.relations[index]
             troubled.update(term.a.members + term.b.members)
@@ -64,6 +64,8 @@ def repair_pins(problem: Problem, run: Run, pins: Pins) -> Pins:
         if box not in again and not pins.box[box]
     }
     start_points = {
-        path: [list(point) for point in state.points[path]] for path in range(problem.n_paths) if not pins.path[path]
+        path: [list(point) for point in state.points[path]]
+        for path in range(problem.n_paths)
+        if not pins.path[path]
     }
     return replace(pins, start_poses=start_poses, start_points=start_points)

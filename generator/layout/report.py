@@ -52,7 +52,9 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
         term = problem.relations[index]
         if not term.placeable:
             results.append(Relation(source, target, label, 0.0, False))
-            problems.append(f"{source} {label} {target}: a group with nothing in it cannot be placed")
+            problems.append(
+                f"{source} {label} {target}: a group with nothing in it cannot be placed"
+            )
             continue
         measure = energy.measure(index)
         holds = satisfied(term, measure, params)
@@ -64,7 +66,9 @@ def assess(energy: Energy) -> tuple[list[Relation], list[str]]:
     problems.extend(_path_shapes(energy))
     if energy.room is not None:
         problems.extend(energy.room.problems())
-    problems.extend(f"{problem.ids[box]} stands outside its part of the room" for box in energy.strays())
+    problems.extend(
+        f"{problem.ids[box]} stands outside its part of the room" for box in energy.strays()
+    )
     return results, problems
 
 
@@ -72,7 +76,11 @@ def unsatisfied_terms(energy: Energy, relations: list[Relation]) -> list[int]:
     """The relation terms (indices into ``problem.relations``) of the verdicts in
     ``relations`` (``assess``'s, in graph order, structural edges included) that do not hold."""
     edges = energy.problem.edges
-    return [index for (_, _, _, index), relation in zip(edges, relations) if index is not None and not relation.satisfied]
+    return [
+        index
+        for (_, _, _, index), relation in zip(edges, relations, strict=False)
+        if index is not None and not relation.satisfied
+    ]
 
 
 def _overlaps(energy: Energy) -> list[str]:
@@ -88,12 +96,16 @@ def _overlaps(energy: Energy) -> list[str]:
                 continue
             depth = energy.pair_depth(box, other)
             if depth > OVERLAP_TOLERANCE:
-                found.append(f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %")
+                found.append(
+                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %"
+                )
         if energy.collides_with_paths[box]:
             for path in energy.paths_near(box):
                 depth = energy.path_depth(box, path)
                 if depth > OVERLAP_TOLERANCE:
-                    found.append(f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} %")
+                    found.append(
+                        f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} %"
+                    )
     return found
 
 
@@ -118,12 +130,18 @@ def _path_shapes(energy: Energy) -> list[str]:
         points = state.points[path]
         length = polyline_length(points)
         if length > problem.path_max_length[path] + EPSILON:
-            found.append(f"{problem.path_ids[path]} is {length:.1f} m long (at most {problem.path_max_length[path]:.0f} m)")
+            found.append(
+                f"{problem.path_ids[path]} is {length:.1f} m long (at most {problem.path_max_length[path]:.0f} m)"
+            )
         turns = polyline_turns(points)
         if turns and max(turns) > params.gamma + EPSILON:
-            found.append(f"{problem.path_ids[path]} turns by {math.degrees(max(turns)):.0f}° (at most {math.degrees(params.gamma):.0f}°)")
+            found.append(
+                f"{problem.path_ids[path]} turns by {math.degrees(max(turns)):.0f}° (at most {math.degrees(params.gamma):.0f}°)"
+            )
     for junction in problem.paths_of_junction:
         angles = energy.junction_angles(junction)
         if angles and min(angles) < params.gamma - EPSILON:
-            found.append(f"paths leave {problem.ids[junction]} only {math.degrees(min(angles)):.0f}° apart (at least {math.degrees(params.gamma):.0f}°)")
+            found.append(
+                f"paths leave {problem.ids[junction]} only {math.degrees(min(angles)):.0f}° apart (at least {math.degrees(params.gamma):.0f}°)"
+            )
     return found

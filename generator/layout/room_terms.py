@@ -100,7 +100,12 @@ ROOM_TOLERANCE = 0.01
 
 #: The sides a clearance zone or an access side may name, and how the report says them.
 SIDES = ("front", "back", "left", "right")
-SIDE_WORDS = {"front": "in front of", "back": "behind", "left": "to the left of", "right": "to the right of"}
+SIDE_WORDS = {
+    "front": "in front of",
+    "back": "behind",
+    "left": "to the left of",
+    "right": "to the right of",
+}
 
 #: Depths are clipped below 1 so the log penalty stays finite (as ``energy.MAX_DEPTH``).
 MAX_DEPTH = 0.99
@@ -167,7 +172,9 @@ def view_rect(room: Room, window) -> Rect:
     wall = room.part(window.wall)
     cx, cz = wall.to_world(window.offset, WINDOW_VIEW_DEPTH / 2.0)
     nx, nz = wall.normal
-    return Rect(cx, cz, window.width / 2.0, WINDOW_VIEW_DEPTH / 2.0, nz, nx)  # forward (s, c) = normal
+    return Rect(
+        cx, cz, window.width / 2.0, WINDOW_VIEW_DEPTH / 2.0, nz, nx
+    )  # forward (s, c) = normal
 
 
 class KeptZone(NamedTuple):
@@ -223,13 +230,20 @@ class Walls:
         #: into the room. In a convex room a footprint whose corners all have it >= 0
         #: stands on the floor (no room corner can be inside it): most of the time, so
         #: the general test is skipped.
-        self.lines = [(w.normal[0], w.normal[1], w.normal[0] * w.start[0] + w.normal[1] * w.start[1]) for w in room.walls]
-        self.convex = all(room.convex_corner(room.walls[k], room.walls[(k + 1) % n]) for k in range(n))
+        self.lines = [
+            (w.normal[0], w.normal[1], w.normal[0] * w.start[0] + w.normal[1] * w.start[1])
+            for w in room.walls
+        ]
+        self.convex = all(
+            room.convex_corner(room.walls[k], room.walls[(k + 1) % n]) for k in range(n)
+        )
         #: For a room that is a rectangle square to the axes, its bounds (x0, z0, x1, z1):
         #: a footprint's bounds within them (FLUSH aside) is all the convex test asks.
         xs, zs = [p[0] for p in room.corners], [p[1] for p in room.corners]
         square = n == 4 and all(abs(w.normal[0]) in (0.0, 1.0) for w in room.walls)
-        self.box = (min(xs) - FLUSH, min(zs) - FLUSH, max(xs) + FLUSH, max(zs) + FLUSH) if square else None
+        self.box = (
+            (min(xs) - FLUSH, min(zs) - FLUSH, max(xs) + FLUSH, max(zs) + FLUSH) if square else None
+        )
 
     def excess(self, rect: Rect) -> float:
         """How far (metres) a footprint crosses the walls (``Room.footprint_excess``),
@@ -240,7 +254,9 @@ class Walls:
             if room_x0 <= x0 and x1 <= room_x1 and room_z0 <= z0 and z1 <= room_z1:
                 return 0.0
         points = corners(rect)
-        if self.convex and all(nx * x + nz * z >= offset - FLUSH for x, z in points for nx, nz, offset in self.lines):
+        if self.convex and all(
+            nx * x + nz * z >= offset - FLUSH for x, z in points for nx, nz, offset in self.lines
+        ):
             return 0.0
         return self.room.footprint_excess(points)
 
@@ -279,7 +295,9 @@ class AccessGrid:
         self.cols = max(1, math.ceil(width / self.cell))
         self.rows = max(1, math.ceil(depth / self.cell))
         self.pad = math.ceil((CORRIDOR_HALF + self.cell) / self.cell) + 1
-        self.stride = 8 * ((self.cols + 2 * self.pad + 7) // 8)  # whole bytes per row: packbits gives planes directly
+        self.stride = 8 * (
+            (self.cols + 2 * self.pad + 7) // 8
+        )  # whole bytes per row: packbits gives planes directly
         self.shape = (self.rows + 2 * self.pad, self.stride)
         self.plane_bytes = self.shape[0] * self.stride // 8
         # Cell centres, per column (x) and per row (z).
@@ -300,7 +318,11 @@ class AccessGrid:
         self.seeds = self.plane(seeds)
         self.seed_cells = np.flatnonzero(seeds)
         rows, cols = np.nonzero(seeds)
-        self.seed_box = (int(rows.min()), int(rows.max()), int(cols.min()), int(cols.max())) if rows.size else None
+        self.seed_box = (
+            (int(rows.min()), int(rows.max()), int(cols.min()), int(cols.max()))
+            if rows.size
+            else None
+        )
         self.has_doors = bool(doors)
         self._templates: dict[tuple, tuple] = {}  # (shape, f, g) -> ``_template``
 
@@ -320,14 +342,21 @@ class AccessGrid:
         i0, i1, k0, k1 = window
         stride = self.stride
         row = ((1 << (k1 - k0)) - 1) << k0
-        repeat = ((1 << (stride * (i1 - i0))) - 1) // ((1 << stride) - 1)  # bit j * stride for each row j
+        repeat = ((1 << (stride * (i1 - i0))) - 1) // (
+            (1 << stride) - 1
+        )  # bit j * stride for each row j
         return (row * repeat) << (i0 * stride)
 
     def widen(self, window: tuple[int, int, int, int], grow: int) -> tuple[int, int, int, int]:
         """A window grown by ``grow`` cells each way, kept on the floor's grid."""
         i0, i1, k0, k1 = window
         pad = self.pad
-        return max(i0 - grow, pad), min(i1 + grow, pad + self.rows), max(k0 - grow, pad), min(k1 + grow, pad + self.cols)
+        return (
+            max(i0 - grow, pad),
+            min(i1 + grow, pad + self.rows),
+            max(k0 - grow, pad),
+            min(k1 + grow, pad + self.cols),
+        )
 
     def keeps_a_door(self, reach: int, window: tuple[int, int, int, int]) -> bool:
         """Whether the window holds no door cell, or a reachable door cell lies on the
@@ -365,9 +394,13 @@ class AccessGrid:
         i0, i1, k0, k1 = window
         full = np.zeros((i1 - i0, self.stride), dtype=bool)
         full[:, k0:k1] = mask
-        return int.from_bytes(np.packbits(full, axis=1, bitorder="little").tobytes(), "little") << (i0 * self.stride)
+        return int.from_bytes(np.packbits(full, axis=1, bitorder="little").tobytes(), "little") << (
+            i0 * self.stride
+        )
 
-    def _local(self, rect: Rect, window: tuple[int, int, int, int]) -> tuple[np.ndarray, np.ndarray]:
+    def _local(
+        self, rect: Rect, window: tuple[int, int, int, int]
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Window cell centres in the footprint's frame: (along its left, along its
         forward), each (i1 - i0, k1 - k0)."""
         i0, i1, k0, k1 = window
@@ -383,14 +416,20 @@ class AccessGrid:
         square = _square_extents(rect)
         if square is not None:
             hx, hz = square
-            return self._placed(("obstacle", hx, hz), rect, lambda f, g: self._rounded(f, g, hx, hz, CORRIDOR_HALF, True))
+            return self._placed(
+                ("obstacle", hx, hz),
+                rect,
+                lambda f, g: self._rounded(f, g, hx, hz, CORRIDOR_HALF, True),
+            )
         window = self.window(rect, CORRIDOR_HALF)
         if window[0] == window[1] or window[2] == window[3]:
             return Raster(window, 0)
         lx, lz = self._local(rect, window)
         ex = np.maximum(np.abs(lx) - rect.hw, 0.0)
         ez = np.maximum(np.abs(lz) - rect.hd, 0.0)
-        return Raster(window, self._mask_plane(ex * ex + ez * ez < CORRIDOR_HALF * CORRIDOR_HALF, window))
+        return Raster(
+            window, self._mask_plane(ex * ex + ez * ez < CORRIDOR_HALF * CORRIDOR_HALF, window)
+        )
 
     def access(self, rect: Rect, sides: tuple[str, ...]) -> Raster:
         """The cells a person may stand on to use a box: for ("any",) the centres within
@@ -402,7 +441,9 @@ class AccessGrid:
         if square is not None:
             if "any" in sides:
                 hx, hz = square
-                return self._placed(("any", hx, hz), rect, lambda f, g: self._rounded(f, g, hx, hz, reach, False))
+                return self._placed(
+                    ("any", hx, hz), rect, lambda f, g: self._rounded(f, g, hx, hz, reach, False)
+                )
             bands = self._side_bands(rect, sides, reach)
             return self._placed(("bands", *bands), rect, lambda f, g: self._bands(f, g, bands))
         window = self.window(rect, reach)
@@ -418,9 +459,13 @@ class AccessGrid:
             mask = np.zeros(lx.shape, dtype=bool)
             for side in sides:
                 if side in ("front", "back"):
-                    mask |= (np.abs(lx) <= hw) & (np.abs(lz - (hd if side == "front" else -hd)) <= reach)
+                    mask |= (np.abs(lx) <= hw) & (
+                        np.abs(lz - (hd if side == "front" else -hd)) <= reach
+                    )
                 elif side in ("left", "right"):
-                    mask |= (np.abs(lz) <= hd) & (np.abs(lx - (hw if side == "left" else -hw)) <= reach)
+                    mask |= (np.abs(lz) <= hd) & (
+                        np.abs(lx - (hw if side == "left" else -hw)) <= reach
+                    )
         return Raster(window, self._mask_plane(mask, window))
 
     # Footprints square to the axes (nearly all, in a room) are rasterised from templates.
@@ -447,8 +492,12 @@ class AccessGrid:
         pad, rows, cols = self.pad, self.rows, self.cols
         a, b = a + pad, b + pad  # padded cell (i, k) is offset (i - b, k - a)
         i0, i1, k0, k1 = b + n0, b + n1, a + m0, a + m1
-        window = (min(max(i0, pad), pad + rows), min(max(i1, pad), pad + rows),
-                  min(max(k0, pad), pad + cols), min(max(k1, pad), pad + cols))  # fmt: skip
+        window = (
+            min(max(i0, pad), pad + rows),
+            min(max(i1, pad), pad + rows),
+            min(max(k0, pad), pad + cols),
+            min(max(k1, pad), pad + cols),
+        )
         if plane is not None and i0 >= 0 and i1 <= self.shape[0] and k0 >= 0 and k1 <= self.stride:
             return Raster(window, plane << (i0 * self.stride + k0))
         bits = 0
@@ -474,13 +523,18 @@ class AccessGrid:
             plane |= ((1 << (high - low + 1)) - 1) << ((n - n0) * self.stride + low - m0)
         return n0, n1, m0, m1, plane, spans
 
-    def _rounded(self, f: int, g: int, hx: float, hz: float, r: float, strict: bool) -> list[tuple[int, int, int]]:
+    def _rounded(
+        self, f: int, g: int, hx: float, hz: float, r: float, strict: bool
+    ) -> list[tuple[int, int, int]]:
         """Spans (n, m_low, m_high) of the cells within r (closer than r if ``strict``)
         of a rectangle of half extents hx, hz (metres) centred at fraction (f, g) of cell
         (0, 0), whose centre is half a cell past its corner."""
         cell = self.cell
         hx, hz, r = hx / cell, hz / cell, r / cell
-        fx, fz = f / QUANTUM - 0.5, g / QUANTUM - 0.5  # offset m's centre is m - fx from the shape's
+        fx, fz = (
+            f / QUANTUM - 0.5,
+            g / QUANTUM - 0.5,
+        )  # offset m's centre is m - fx from the shape's
         spans = []
         for n in range(math.floor(fz - hz - r), math.ceil(fz + hz + r) + 1):
             ez = max(abs(n - fz) - hz, 0.0)
@@ -488,7 +542,11 @@ class AccessGrid:
             if rest < 0.0 or (strict and rest == 0.0):
                 continue
             half = hx + math.sqrt(rest)
-            low, high = (math.floor(fx - half) + 1, math.ceil(fx + half) - 1) if strict else (math.ceil(fx - half), math.floor(fx + half))
+            low, high = (
+                (math.floor(fx - half) + 1, math.ceil(fx + half) - 1)
+                if strict
+                else (math.ceil(fx - half), math.floor(fx + half))
+            )
             if low <= high:
                 spans.append((n, low, high))
         return spans
@@ -520,7 +578,9 @@ class AccessGrid:
         return spans
 
     @staticmethod
-    def _side_bands(rect: Rect, sides: tuple[str, ...], reach: float) -> tuple[tuple[float, float, float, float], ...]:
+    def _side_bands(
+        rect: Rect, sides: tuple[str, ...], reach: float
+    ) -> tuple[tuple[float, float, float, float], ...]:
         """The bands (ox, oz, hx, hz) in front of the named sides of a footprint square to
         the axes (offsets from its centre), each as long as its side and ``reach`` either
         way of it. Quarter turns leave sines and cosines a rounding error off 0 and 1:
@@ -532,10 +592,18 @@ class AccessGrid:
         for side in sides:
             if side in ("front", "back"):
                 sign = 1.0 if side == "front" else -1.0
-                bands.append((sign * s * hd, sign * c * hd, reach, hw) if forward_x else (sign * s * hd, sign * c * hd, hw, reach))
+                bands.append(
+                    (sign * s * hd, sign * c * hd, reach, hw)
+                    if forward_x
+                    else (sign * s * hd, sign * c * hd, hw, reach)
+                )
             elif side in ("left", "right"):
                 sign = 1.0 if side == "left" else -1.0
-                bands.append((sign * c * hw, -sign * s * hw, hd, reach) if forward_x else (sign * c * hw, -sign * s * hw, reach, hd))
+                bands.append(
+                    (sign * c * hw, -sign * s * hw, hd, reach)
+                    if forward_x
+                    else (sign * c * hw, -sign * s * hw, reach, hd)
+                )
         return tuple(bands)
 
     # -- reachability ---------------------------------------------------------------------
@@ -543,7 +611,9 @@ class AccessGrid:
     def label(self, free: int) -> int:
         """The reachable floor from scratch: the free cells connected (4-neighbours) to a
         door's seed cells (``scipy.ndimage.label``)."""
-        labels = np.empty(self.shape, dtype=np.int32)  # (not kept: a grid is shared between layouts)
+        labels = np.empty(
+            self.shape, dtype=np.int32
+        )  # (not kept: a grid is shared between layouts)
         ndimage.label(self.array(free), FOUR_NEIGHBOURS, output=labels)
         found = set(labels.ravel()[self.seed_cells].tolist()) - {0}
         if not found:
@@ -584,14 +654,16 @@ class AccessGrid:
         cells = format((reach >> (r0 * stride)) & ((1 << size) - 1), f"0{size}b")[::-1]
         bottom = (height + 1) * stride
         ring = (
-            cells[c0:c1 + 1]  # top row, left to right
-            + cells[stride + c1:bottom:stride]  # right column, top to bottom
-            + cells[bottom + c0:bottom + c1 + 1][::-1]  # bottom row, right to left
-            + cells[stride + c0:bottom:stride][::-1]  # left column, bottom to top
+            cells[c0 : c1 + 1]  # top row, left to right
+            + cells[stride + c1 : bottom : stride]  # right column, top to bottom
+            + cells[bottom + c0 : bottom + c1 + 1][::-1]  # bottom row, right to left
+            + cells[stride + c0 : bottom : stride][::-1]  # left column, bottom to top
         )
         return (ring[-1] + ring).count("01") <= 1  # arcs start where a 0 is followed by a 1
 
-    def distance(self, target: int, window: tuple[int, int, int, int], guess: int | None = None) -> int:
+    def distance(
+        self, target: int, window: tuple[int, int, int, int], guess: int | None = None
+    ) -> int:
         """Cells between a window and the nearest cell of ``target`` (a non-empty plane),
         counted on both axes at once (Chebyshev): the fewest cells the window must grow
         by to take one in. ``guess``: the answer last time, tried first (two tests when
@@ -600,7 +672,12 @@ class AccessGrid:
         i0, i1, k0, k1 = window
 
         def holds(grow: int) -> bool:
-            wider = (max(i0 - grow, 0), min(i1 + grow, rows), max(k0 - grow, 0), min(k1 + grow, cols))
+            wider = (
+                max(i0 - grow, 0),
+                min(i1 + grow, rows),
+                max(k0 - grow, 0),
+                min(k1 + grow, cols),
+            )
             return bool(target & self.window_plane(wider))
 
         if guess is not None and holds(guess) and (guess == 0 or not holds(guess - 1)):
@@ -660,15 +737,25 @@ class RoomChanges(NamedTuple):
     zones: set[int]  # zones whose owner moved: all their hits are replaced
     hits: dict[tuple[int, int], float]  # (zone, box): new clearance overlaps
     zone_wall: dict[int, float]  # by zone
-    access: AccessChanges | None  # None: reachability unchanged (or not yet evaluated: ``deferred``)
+    access: (
+        AccessChanges | None
+    )  # None: reachability unchanged (or not yet evaluated: ``deferred``)
     deferred: bool = False  # reachability left for ``access_changes`` (``RoomTerms.changes``)
 
 
 class RoomTerms:
     """The room's energy terms for one problem: static geometry and cached values."""
 
-    def __init__(self, problem: Problem, state: State, params: LayoutParams, active: list[bool], grid: Grid):
-        self.problem, self.state, self.params, self.active, self.grid = problem, state, params, active, grid
+    def __init__(
+        self, problem: Problem, state: State, params: LayoutParams, active: list[bool], grid: Grid
+    ):
+        self.problem, self.state, self.params, self.active, self.grid = (
+            problem,
+            state,
+            params,
+            active,
+            grid,
+        )
         room = problem.room
         self.room = room
         self.walls_geometry = Walls(room)
@@ -681,12 +768,16 @@ class RoomTerms:
         self.obstacles = [b for b in range(n) if self.obstacle[b]]
         #: Boxes someone must reach, and the sides they use ((("any",) for any side).
         self.needs_access = [ground[b] and bool(problem.access[b]) for b in range(n)]
-        self.access_boxes = [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
+        self.access_boxes = (
+            [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
+        )
         self.swings = [(door.id, swing_rect(room, door)) for door in room.doors]
         #: Zones kept free of tall boxes (``kept_zone``): each door's swing, and each
         #: window's view with the lowest top that blocks it.
         self.swing_zones = [kept_zone(rect) for _, rect in self.swings]
-        self.views = [(kept_zone(view_rect(room, w)), w.sill + WINDOW_VIEW_MARGIN) for w in room.windows]
+        self.views = [
+            (kept_zone(view_rect(room, w)), w.sill + WINDOW_VIEW_MARGIN) for w in room.windows
+        ]
         # Clearance zones: (owner, side, metres) each; per box the zones it owns.
         self.zones: list[tuple[int, str, float]] = []
         self.zones_of: list[list[int]] = [[] for _ in range(n)]
@@ -700,7 +791,11 @@ class RoomTerms:
         self.zone_reach = max((m for _, _, m in self.zones), default=0.0)
         #: Each zone's diagonal, the normaliser of depths into it.
         self.zone_sizes = [
-            math.hypot(2.0 * (problem.half_width[o] if side in ("front", "back") else problem.half_depth[o]), m)
+            math.hypot(
+                2.0
+                * (problem.half_width[o] if side in ("front", "back") else problem.half_depth[o]),
+                m,
+            )
             for o, side, m in self.zones
         ]
         # Who may stand in a box's zones anyway: its relation partners (a chair pulled up
@@ -775,7 +870,9 @@ class RoomTerms:
     def intrudes(self, zone: int, box: int) -> bool:
         """Whether ``box`` counts when it stands in ``zone``: a tall ground box, placed,
         neither the owner nor a partner of it nor under it."""
-        return self.obstacle[box] and self.active[box] and box not in self.exempt[self.zones[zone][0]]
+        return (
+            self.obstacle[box] and self.active[box] and box not in self.exempt[self.zones[zone][0]]
+        )
 
     def zone_depth(self, zone: int, rect: Rect, box: int) -> float:
         """Planar depth (metres) of a box in a zone at ``rect``."""
@@ -802,12 +899,16 @@ class RoomTerms:
 
     def obstacle_cells(self, box: int) -> Raster:
         """The cells the box takes from the free floor at its current pose."""
-        return self._memoised(self._obstacle_memo, box, lambda rect: self.access_grid.obstacle(rect))
+        return self._memoised(
+            self._obstacle_memo, box, lambda rect: self.access_grid.obstacle(rect)
+        )
 
     def access_cells(self, box: int) -> Raster:
         """The cells a person may use the box from at its current pose."""
         sides = self.problem.access[box]
-        return self._memoised(self._access_memo, box, lambda rect: self.access_grid.access(rect, sides))
+        return self._memoised(
+            self._access_memo, box, lambda rect: self.access_grid.access(rect, sides)
+        )
 
     def _memoised(self, memo: dict, box: int, make) -> Raster:
         """A raster of the box at its current pose, made by ``make(rect)`` unless it is
@@ -834,7 +935,9 @@ class RoomTerms:
         hit = reach & self.access_cells(box).bits
         return (hit & -hit).bit_length() - 1 if hit else None
 
-    def _evaluate_access(self, reach: int, known: AccessState, moved: set[int], same: bool) -> AccessState:
+    def _evaluate_access(
+        self, reach: int, known: AccessState, moved: set[int], same: bool
+    ) -> AccessState:
         """Every placed access box's witness and energy on the reachable floor ``reach``.
         ``known``: the witnesses and values before, still good for a box that has not
         ``moved`` if its witness is in ``reach`` (and, unreachable, if ``reach`` is the
@@ -914,9 +1017,13 @@ class RoomTerms:
         if obstacles:
             self.evaluated += 1
             reach, taken = self._reach_after(obstacles)
-            return AccessChanges(self._evaluate_access(reach, self.access, moved, reach == self.access.reach), taken)
+            return AccessChanges(
+                self._evaluate_access(reach, self.access, moved, reach == self.access.reach), taken
+            )
         if any(self.needs_access[b] for b in boxes):
-            return AccessChanges(self._evaluate_access(self.access.reach, self.access, moved, True), {})
+            return AccessChanges(
+                self._evaluate_access(self.access.reach, self.access, moved, True), {}
+            )
         return None
 
     # -- caches ---------------------------------------------------------------------------
@@ -944,7 +1051,10 @@ class RoomTerms:
                     if value > 0.0:
                         zone_hits[zone][other] = hits_of[other][zone] = value
         access = AccessState(0, {}, {}, {})
-        taken = [self.obstacle_cells(b).bits if self.obstacle[b] and self.active[b] else 0 for b in range(n)]
+        taken = [
+            self.obstacle_cells(b).bits if self.obstacle[b] and self.active[b] else 0
+            for b in range(n)
+        ]
         if self.access_boxes:
             used = 0
             for bits in taken:
@@ -960,14 +1070,31 @@ class RoomTerms:
             "access": sum(access.values.values()),
         }
         return {
-            "walls": walls, "square": square, "swing": swing, "view": view, "zone_hits": zone_hits, "hits_of": hits_of,
-            "zone_wall": zone_wall, "taken": taken, "access": access, "parts": parts,
-        }  # fmt: skip
+            "walls": walls,
+            "square": square,
+            "swing": swing,
+            "view": view,
+            "zone_hits": zone_hits,
+            "hits_of": hits_of,
+            "zone_wall": zone_wall,
+            "taken": taken,
+            "access": access,
+            "parts": parts,
+        }
 
     def install(self, fresh: dict) -> None:
         """Make freshly computed values the cache."""
-        self.walls, self.square, self.swing, self.view = fresh["walls"], fresh["square"], fresh["swing"], fresh["view"]
-        self.zone_hits, self.hits_of, self.zone_wall = fresh["zone_hits"], fresh["hits_of"], fresh["zone_wall"]
+        self.walls, self.square, self.swing, self.view = (
+            fresh["walls"],
+            fresh["square"],
+            fresh["swing"],
+            fresh["view"],
+        )
+        self.zone_hits, self.hits_of, self.zone_wall = (
+            fresh["zone_hits"],
+            fresh["hits_of"],
+            fresh["zone_wall"],
+        )
         self.taken, self.access = fresh["taken"], fresh["access"]
 
     def changes(self, boxes: list[int], defer_access: bool = False) -> RoomChanges:
@@ -1029,14 +1156,21 @@ class RoomTerms:
             delta["clearance"] = clearance
 
         if defer_access and self.access_boxes:
-            return RoomChanges(delta, moved, walls, square, swing, view, zones, hits, zone_wall, None, True)
-        return self.access_changes(RoomChanges(delta, moved, walls, square, swing, view, zones, hits, zone_wall, None), boxes)
+            return RoomChanges(
+                delta, moved, walls, square, swing, view, zones, hits, zone_wall, None, True
+            )
+        return self.access_changes(
+            RoomChanges(delta, moved, walls, square, swing, view, zones, hits, zone_wall, None),
+            boxes,
+        )
 
     def access_changes(self, changes: RoomChanges, boxes: list[int]) -> RoomChanges:
         """``changes`` with the access part evaluated (the state still at the proposal)."""
         access = self._access_changes(boxes) if self.access_boxes else None
         if access is not None:
-            changes.delta["access"] = sum(access.state.values.values()) - sum(self.access.values.values())
+            changes.delta["access"] = sum(access.state.values.values()) - sum(
+                self.access.values.values()
+            )
         return changes._replace(access=access, deferred=False)
 
     def access_total(self) -> float:
@@ -1083,7 +1217,9 @@ class RoomTerms:
         rule leaves nowhere else, and 60 bedrooms took four times as long): across a wall, in
         a door's swing, in a kept-free zone or owning one that is taken or crosses a
         wall, out of reach, or hemming in a box out of reach."""
-        found = {b for b in range(self.problem.n_boxes) if self.walls[b] > 0.0 or self.swing[b] > 0.0}
+        found = {
+            b for b in range(self.problem.n_boxes) if self.walls[b] > 0.0 or self.swing[b] > 0.0
+        }
         for zone, hits in enumerate(self.zone_hits):
             found.update(hits)
             if hits or self.zone_wall[zone] > 0.0:
@@ -1103,9 +1239,10 @@ class RoomTerms:
         stride = grid.stride
         near = pocket | pocket << 1 | pocket >> 1 | pocket << stride | pocket >> stride
         return [
-            other for other in self.obstacles
+            other
+            for other in self.obstacles
             if other != box and self.active[other] and self.obstacle_cells(other).bits & near
-        ]  # fmt: skip
+        ]
 
     def problems(self) -> list[str]:
         """The room's problems in words (ROOM_TOLERANCE of slack on every distance)."""
@@ -1124,7 +1261,10 @@ class RoomTerms:
             rect = self.zone(zone)
             words = f"the space kept free {SIDE_WORDS[side]} {ids[owner]}"
             for other in range(problem.n_boxes):
-                if self.intrudes(zone, other) and self.zone_depth(zone, rect, other) > ROOM_TOLERANCE:
+                if (
+                    self.intrudes(zone, other)
+                    and self.zone_depth(zone, rect, other) > ROOM_TOLERANCE
+                ):
                     found.append(f"{ids[other]} stands in {words}")
             if self.walls_geometry.excess(rect) > ROOM_TOLERANCE:
                 found.append(f"{words} runs into the wall")
@@ -1157,7 +1297,11 @@ def _segments_distance(gx: np.ndarray, gz: np.ndarray, segments: list) -> np.nda
     for (ax, az), (bx, bz) in segments:
         ex, ez = bx - ax, bz - az
         length2 = ex * ex + ez * ez
-        t = np.zeros(gx.shape) if length2 == 0.0 else np.clip(((gx - ax) * ex + (gz - az) * ez) / length2, 0.0, 1.0)
+        t = (
+            np.zeros(gx.shape)
+            if length2 == 0.0
+            else np.clip(((gx - ax) * ex + (gz - az) * ez) / length2, 0.0, 1.0)
+        )
         best = np.minimum(best, np.hypot(gx - ax - t * ex, gz - az - t * ez))
     return best
 

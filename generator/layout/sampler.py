@@ -104,13 +104,19 @@ def start_chain(
     return energy, mover
 
 
-def run_chain(problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None) -> Run:
+def run_chain(
+    problem: Problem, params: LayoutParams, rng: np.random.Generator, pins: Pins | None = None
+) -> Run:
     """Place, then anneal until the stop rule holds or the step budget is spent."""
     energy, mover = start_chain(problem, params, rng, pins)
-    return anneal(energy, mover, params, rng, max(params.steps, params.steps_per_box * problem.n_boxes))
+    return anneal(
+        energy, mover, params, rng, max(params.steps, params.steps_per_box * problem.n_boxes)
+    )
 
 
-def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Generator, budget: int) -> Run:
+def anneal(
+    energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Generator, budget: int
+) -> Run:
     """Anneal the placed state with ``mover``'s proposals for at most ``budget`` steps,
     under the stop rule (ok and at most ``target_energy``) and the patience rule (which
     grows with the budget as the budget grows past ``params.steps``)."""
@@ -118,7 +124,9 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     relocator = Relocator(problem, energy.state, mover) if problem.room is not None else None
     learned = None
     if problem.learned is not None:
-        learned = LearnedMoves(problem.learned, problem, energy.state, rng, mover.movable_box, params.learned_sweeps)
+        learned = LearnedMoves(
+            problem.learned, problem, energy.state, rng, mover.movable_box, params.learned_sweeps
+        )
     relations, problems = assess(energy)
     accepted = steps = 0
     fewest, since = len(problems), 0  # stagnation: steps since the problem count last fell
@@ -129,7 +137,11 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
     # decided the step (``metropolis``).
     defer = energy.room is not None and params.incremental
     for step in range(budget):
-        if step >= params.min_steps and step % params.check_every == 0 and (learned is None or learned.mixed()):
+        if (
+            step >= params.min_steps
+            and step % params.check_every == 0
+            and (learned is None or learned.mixed())
+        ):
             relations, problems = assess(energy)
             if not problems and energy.total <= params.target_energy:
                 break
@@ -140,7 +152,14 @@ def anneal(energy: Energy, mover: Mover, params: LayoutParams, rng: np.random.Ge
                 break
         steps = step + 1
         if learned is not None:
-            if learned_step(energy, mover, relocator, learned, params, params.temperature_start * math.exp(cooling * step)):
+            if learned_step(
+                energy,
+                mover,
+                relocator,
+                learned,
+                params,
+                params.temperature_start * math.exp(cooling * step),
+            ):
                 accepted += 1
             continue
         proposal = ordinary_proposal(energy, mover, relocator, uniform)
@@ -192,7 +211,11 @@ def ordinary_proposal(energy: Energy, mover: Mover, relocator: Relocator | None,
 
 
 def learned_step(
-    energy: Energy, mover: Mover, relocator: Relocator | None, learned: LearnedMoves, params: LayoutParams,
+    energy: Energy,
+    mover: Mover,
+    relocator: Relocator | None,
+    learned: LearnedMoves,
+    params: LayoutParams,
     temperature: float,
 ) -> bool:
     """One step of a chain with a learned context (module docstring); True when accepted."""
@@ -261,7 +284,9 @@ class Relocator:
         and for its satellites; None when it has no relation that places it."""
         problem, state, mover = self.problem, self.state, self.mover
         box = troubled[draw_index(mover.rng, len(troubled))]
-        placing = [t for t in problem.outgoing.get(("object", box), []) if t.spec.family != "facing"]
+        placing = [
+            t for t in problem.outgoing.get(("object", box), []) if t.spec.family != "facing"
+        ]
         if not placing:
             return None
         end = Endpoint("object", box, (box,))

@@ -35,12 +35,19 @@ class Grid:
         self.cell = cell
         self.cells: dict[tuple[int, int], list[int]] = {}
         self.keys: dict[int, list[tuple[int, int]]] = {}
-        self.large: dict[int, tuple[int, int, int, int]] = {}  # box -> its cell range i0, i1, k0, k1
+        self.large: dict[
+            int, tuple[int, int, int, int]
+        ] = {}  # box -> its cell range i0, i1, k0, k1
         self.spans: dict[int, tuple[int, int, int, int]] = {}  # every filed box's cell range
 
     def _range(self, x0: float, z0: float, x1: float, z1: float) -> tuple[int, int, int, int]:
         cell = self.cell
-        return math.floor(x0 / cell), math.floor(x1 / cell), math.floor(z0 / cell), math.floor(z1 / cell)
+        return (
+            math.floor(x0 / cell),
+            math.floor(x1 / cell),
+            math.floor(z0 / cell),
+            math.floor(z1 / cell),
+        )
 
     @staticmethod
     def _count(span: tuple[int, int, int, int]) -> int:
@@ -53,7 +60,11 @@ class Grid:
 
     def _large_meeting(self, span: tuple[int, int, int, int]) -> list[int]:
         i0, i1, k0, k1 = span
-        return [box for box, (a0, a1, b0, b1) in self.large.items() if a0 <= i1 and i0 <= a1 and b0 <= k1 and k0 <= b1]
+        return [
+            box
+            for box, (a0, a1, b0, b1) in self.large.items()
+            if a0 <= i1 and i0 <= a1 and b0 <= k1 and k0 <= b1
+        ]
 
     def insert(self, box: int, x: float, z: float, radius: float) -> None:
         self.insert_area(box, x - radius, z - radius, x + radius, z + radius)
@@ -62,7 +73,9 @@ class Grid:
         """File an item under the cells meeting the axis-aligned area (a path's bounds)."""
         self._file(item, self._range(x0, z0, x1, z1), None)
 
-    def _file(self, item: int, span: tuple[int, int, int, int], keys: list[tuple[int, int]] | None) -> None:
+    def _file(
+        self, item: int, span: tuple[int, int, int, int], keys: list[tuple[int, int]] | None
+    ) -> None:
         """File ``item`` under ``span``'s cells, whose keys (in ``_cells_in`` order) may be given."""
         self.spans[item] = span
         if self._count(span) > self.MAX_SPAN:
@@ -141,7 +154,9 @@ class Grid:
             found.update(self._large_meeting(self._span_of(self.keys[box])))
         return found
 
-    def in_cells_of(self, filing: tuple[tuple[int, int, int, int], list[tuple[int, int]]]) -> set[int]:
+    def in_cells_of(
+        self, filing: tuple[tuple[int, int, int, int], list[tuple[int, int]]]
+    ) -> set[int]:
         """Items registered in the cells of a ``filing`` of another grid of the same cell
         size (the cells a box of it is filed under): the same as ``in_area`` of the area
         that filing was made for, without working out its cells again."""
@@ -193,9 +208,13 @@ class State:
         self.c = [1.0] * n
         self.s = [0.0] * n
         # Each box's footprint at its current pose, rebuilt by set_pose: the geometry reads it every step.
-        self.rects = [Rect(0.0, 0.0, problem.half_width[b], problem.half_depth[b], 1.0, 0.0) for b in range(n)]
+        self.rects = [
+            Rect(0.0, 0.0, problem.half_width[b], problem.half_depth[b], 1.0, 0.0) for b in range(n)
+        ]
         # Heights never change: each box rests on the top of its support's stack.
-        self.y = [sum((problem.height[below] for below in problem.beneath(box)), 0.0) for box in range(n)]
+        self.y = [
+            sum((problem.height[below] for below in problem.beneath(box)), 0.0) for box in range(n)
+        ]
         self.points: list[list[list[float]]] = [
             [[0.0, 0.0] for _ in range(segments + 1)] for segments in problem.path_segments
         ]
@@ -208,7 +227,9 @@ class State:
             self.yaw[box], self.c[box], self.s[box] = yaw, c, s
         self.x[box], self.z[box] = x, z
         rect = self.rects[box]
-        self.rects[box] = _new_rect(Rect, (x, z, rect.hw, rect.hd, c, s))  # Rect(...) without its Python-level __new__
+        self.rects[box] = _new_rect(
+            Rect, (x, z, rect.hw, rect.hd, c, s)
+        )  # Rect(...) without its Python-level __new__
 
     def pose(self, box: int) -> tuple[float, float, float]:
         return self.x[box], self.z[box], self.yaw[box]

@@ -12,8 +12,9 @@ import math
 
 import numpy as np
 
-from ..catalog import CatalogEntry
 from scenewright.core.scene_graph import SceneGraph, SceneParams
+
+from ..catalog import CatalogEntry
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9))
 SIGN = CatalogEntry("sign", "object", "sign", size=(0.6, 1.6, 0.2))

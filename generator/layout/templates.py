@@ -32,7 +32,9 @@ from .learned_term import cumulative_shares, draw_source
 from .problem import RelationTerm
 
 
-def template_draw(energy: Energy, rng: np.random.Generator, box: int) -> Callable[[], tuple[dict, dict]] | None:
+def template_draw(
+    energy: Energy, rng: np.random.Generator, box: int
+) -> Callable[[], tuple[dict, dict]] | None:
     """A candidate drawer for ``box`` from its learned templates (``(box poses, {})`` per
     call, as ``initial._place_box``'s own drawer returns), or None when it has none:
     no context, ``template_init`` off, or no learned pair with ``box`` as its source and
@@ -40,8 +42,11 @@ def template_draw(energy: Energy, rng: np.random.Generator, box: int) -> Callabl
     problem, state = energy.problem, energy.state
     if problem.learned is None or not energy.params.template_init:
         return None
-    pairs = [(source, target, table) for source, target, table in problem.learned.pairs
-             if source == box and energy.active[target]]  # fmt: skip
+    pairs = [
+        (source, target, table)
+        for source, target, table in problem.learned.pairs
+        if source == box and energy.active[target]
+    ]
     if not pairs:
         return None
     shares = {id(table): cumulative_shares(table) for _, _, table in pairs}
