@@ -7,7 +7,7 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup demo test bench clean
+.PHONY: setup demo test lint bench clean
 
 setup: $(STAMP)
 
@@ -17,6 +17,9 @@ $(STAMP): pyproject.toml scripts/setup.sh
 
 demo: setup
 	$(VENV)/bin/scenewright generate village --seed 7 -o out/
+
+lint: setup
+	bash scripts/lint.sh
 
 test: setup
 	$(PY) -m pytest
