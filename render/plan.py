@@ -23,19 +23,19 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
+# A Figure of its own, not pyplot: pyplot's figure manager and backend machinery cost a
+# noticeable part of a command's start-up and are not needed to save a PNG.
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon, Rectangle
+from matplotlib.patheffects import withStroke
 
-import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
-import numpy as np  # noqa: E402
-from matplotlib.patches import Polygon, Rectangle  # noqa: E402
-from matplotlib.patheffects import withStroke  # noqa: E402
-
-from scenewright.core.frames import forward  # noqa: E402
-from scenewright.core.room import ROOM_NODE, WALL_THICKNESS, Room  # noqa: E402
-from scenewright.core.scene import Scene, object_corners  # noqa: E402
-from scenewright.render.meshes import wall_footprint  # noqa: E402
+from scenewright.core.frames import forward
+from scenewright.core.room import ROOM_NODE, WALL_THICKNESS, Room
+from scenewright.core.scene import Scene, object_corners
+from scenewright.render.meshes import wall_footprint
 
 #: Pixels per inch of the saved image.
 DPI = 110
@@ -77,7 +77,9 @@ def draw_plan(scene: Scene, path) -> Path:
     labels: list[Label] = []
     size = figure_inches(len(scene.objects) + len(scene.paths) + len(unsatisfied))
     # At the saved resolution from the start: the label boxes are measured as saved.
-    figure, axes = plt.subplots(figsize=(size, size * depth / width + 0.6), dpi=DPI)
+    figure = Figure(figsize=(size, size * depth / width + 0.6), dpi=DPI)
+    FigureCanvasAgg(figure)  # label sizes are measured with the Agg renderer
+    axes = figure.subplots()
     axes.set_aspect("equal")
     # Data y is z; inverting the axis puts north (-Z) at the top of the picture.
     if scene.room is None:
@@ -165,7 +167,6 @@ def draw_plan(scene: Scene, path) -> Path:
     )
     target = Path(path)
     figure.savefig(target, dpi=DPI, bbox_inches="tight")
-    plt.close(figure)
     return target
 
 
