@@ -2,17 +2,17 @@
 mask's energy part buys.
 
     .venv/bin/python benchmarks/bench_complete.py                  # both parts below
-    .venv/bin/python benchmarks/bench_complete.py --table          # the docs' six requests, seeds 0..9
+    .venv/bin/python benchmarks/bench_complete.py --table          # six fixed requests, seeds 0..9
     .venv/bin/python benchmarks/bench_complete.py --random 50      # 50 random rooms, seed 0 each
     .venv/bin/python benchmarks/bench_complete.py --without-mask-term   # the mask chooses the starts only
     .venv/bin/python benchmarks/bench_complete.py --composite 20   # 20 large two-type requests, split and not
 
-``--table`` runs the requests of docs/completion.md's table (room, door, window,
-requested categories) for layout seeds 0..9 and prints per request: ok, layout CPU
-seconds per scene (median), and the *mask cover* on seeds 0..4: the mean, over the
-laid-out floor pieces (those not standing on another, flat ones aside), of the layout
-mask read at 5 x 5 points of each footprint (``layout_mask.mask_at``); and the same
-over the large pieces the mask term is for (``complete.MASKED``).
+``--table`` runs the six requests of the completion table in docs/notes/measurements.md
+(room, door, window, requested categories) for layout seeds 0..9 and prints per request:
+ok, layout CPU seconds per scene (median), and the *mask cover* on seeds 0..4: the mean,
+over the laid-out floor pieces (those not standing on another, flat ones aside), of the
+layout mask read at 5 x 5 points of each footprint (``layout_mask.mask_at``); and the
+same over the large pieces the mask term is for (``complete.MASKED``).
 
 ``--random N`` draws N rooms from a fixed stream (sides 3.0-6.5 x 3.0-5.5 m, a door on
 one wall and a window on another, one of the four home types' main piece requested,

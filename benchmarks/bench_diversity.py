@@ -1,6 +1,6 @@
 """Diversity: does sampling with learned context terms keep the examples' spread?
 
-The dining-table comparison of Hammoud et al. (Entropy 2014, section 5.2): one table
+The dining-table comparison of Dema and Sari-Sarraf (Entropy 2014, section 5.2): one table
 and six chairs in one arrangement, jittered into ``--examples`` example scenes (each
 chair's offset by a Gaussian of ``--jitter`` metres per axis, its turn by one of 0.1 rad,
 the table's place and turn too; seeded). ``fit_context`` learns the context from them,

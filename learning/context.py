@@ -2,8 +2,8 @@
 
 ``fit_context(examples, seed)`` measures, in every example scene, the related pairs
 (``learned_term.related_pairs``: objects joined by relation edges of the rules) and per
-pair kind builds the two histograms of the maximum-entropy framework of Hammoud et
-al. (Entropy 2014): where the source stands in the target's frame (BINS x BINS cells
+pair kind builds the two histograms of the maximum-entropy framework of Dema and
+Sari-Sarraf (Entropy 2014): where the source stands in the target's frame (BINS x BINS cells
 over the examples' range grown by ``PAD`` on each side, plus one bin for outside) and
 its yaw relative to the target's (YAW_BINS bins).
 

@@ -49,7 +49,7 @@ similarity plus lambda times its matched edges' similarities, over 1 + lambda ti
 the mean of the two objects' own edge scores (what each gets matched to a copy of
 itself). The paper keeps a match whose confidence exceeds gamma = 0.8 and withdraws
 the rest; its confidence is the leading eigenvalue, which has no fixed scale, so we
-use this per-pair share, with its own threshold (``CONFIDENCE``, 0.6; docs/variation.md
+use this per-pair share, with its own threshold (``CONFIDENCE``, 0.6; docs/notes/design.md
 gives the measurements behind it). A pair below half the threshold is taken as
 objects without a counterpart (``withdraw``), as is an object left to a dummy, and the
 others' shares are counted without their edges to them: an object that gained a neighbour the other scene does not

@@ -2,8 +2,8 @@
 
 A *context* (``LearnedContext``, written by ``scenewright fit --what context`` as
 ``NAME.context.json``) holds, per related pair *kind* ``(source type, target type,
-labels)``, the maximum-entropy weights of the contextual constraints of Hammoud et
-al., "A Relevancy, Hierarchical and Contextual Maximum Entropy Framework for a
+labels)``, the maximum-entropy weights of the contextual constraints of Dema and
+Sari-Sarraf, "A Relevancy, Hierarchical and Contextual Maximum Entropy Framework for a
 Data-Driven 3D Scene Generation" (Entropy 2014): one weight per bin of a 2-D histogram
 of where the source stands in the target's frame, and one per bin of a histogram of
 the source's yaw relative to the target's. A related pair is two objects joined by one

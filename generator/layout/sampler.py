@@ -33,7 +33,7 @@ what the context models: a proposal is accepted with probability
 ``soft`` is that plus the change in the relation terms of the learned pairs whose
 source stands on the pair's grid (``Energy.soft_delta``), which the learned part stands
 in for: the examples, not the rules' hand-set factors, say where a learned pair's
-source stands (in Hammoud et al.'s model the learned histograms and the hard
+source stands (in Dema and Sari-Sarraf's model the learned histograms and the hard
 intersection constraint are the whole energy); off the grid the learned part has one
 weight for anywhere, and the relation terms are annealed with the rest. The rest
 (collisions, extent, paths, the room's terms, the other relations) is annealed as
