@@ -76,10 +76,16 @@ def drawn_texts(axes):
 
 
 def test_a_300_object_plan_names_most_objects_without_one_label_over_another(tmp_path, monkeypatch):
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     kept = {}
-    monkeypatch.setattr(plt, "close", lambda figure: kept.setdefault("figure", figure))
+    save = Figure.savefig
+
+    def keep_and_save(figure, *args, **kwargs):
+        kept["figure"] = figure
+        return save(figure, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", keep_and_save)
     scene = town()
     image = draw_plan(scene, tmp_path / "plan.png")
     axes = kept["figure"].axes[0]
