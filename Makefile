@@ -1,13 +1,15 @@
 # Two entry points, both of which set everything up first on a fresh machine:
 #   make demo   - venv, packages, GL libraries; then generate the village scene into out/
-#   make test   - the same set-up; then the whole test suite
+#   make test   - the same set-up; then the whole test suite, on every core
+# For contributors: make lint (the gate alone), make test-fast (the suite without the
+# tests marked slow: kill and resume runs, every shipped rule set end to end).
 # `.ci/run` calls `make test`.
 
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup demo test lint bench clean
+.PHONY: setup demo test test-fast lint bench clean
 
 setup: $(STAMP)
 
@@ -21,8 +23,13 @@ demo: setup
 lint: setup
 	bash scripts/lint.sh
 
+# Tests run on every core (pytest-xdist); each test draws from its own fixed seeds, so
+# the outcome is the same as a serial run's.
 test: setup
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto --dist worksteal
+
+test-fast: setup
+	$(PY) -m pytest -n auto --dist worksteal -m "not slow"
 
 bench: setup
 	for script in benchmarks/bench_*.py; do $(PY) $$script || exit 1; done

@@ -315,6 +315,7 @@ def references(tmp_path_factory) -> dict[str, Path]:
     return {"seed 1": folder / "ref1", "seed 2": folder / "ref2"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("exchange", [True, False], ids=["rename-exchange", "rename-aside"])
 def test_generate_is_all_or_nothing_under_sigkill(tmp_path, references, exchange):
     """Before: 8 of 22 kills left a .scenewright-*.partial that no later run removed, and

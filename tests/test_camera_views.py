@@ -243,6 +243,7 @@ def views_spec():
     return dataset_spec("desk", 2, size=(48, 48), views=2, camera=ranges)
 
 
+@pytest.mark.slow
 def test_several_views_per_scene_are_rows_of_their_own_whatever_the_workers(tmp_path):
     run_dataset(views_spec(), tmp_path / "one", workers=1, progress=False)
     rows = [

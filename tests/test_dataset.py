@@ -170,6 +170,7 @@ def test_rerun_skips_finished_scenes_and_count_may_grow(tmp_path):
     assert dataset_bytes(tmp_path / "grown") == dataset_bytes(tmp_path / "direct")
 
 
+@pytest.mark.slow
 def test_resume_after_kill_minus_nine(tmp_path):
     """Kill a running job (and its workers) with SIGKILL mid-run; the rerun completes it
     with no gaps, duplicates, leftovers or corrupt files, byte-identical to a clean run."""

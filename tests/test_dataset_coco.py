@@ -90,6 +90,7 @@ def test_categories_are_the_catalog_types_sorted_with_stable_ids(bedroom):
     assert annotation_ids == list(range(1, len(annotation_ids) + 1))
 
 
+@pytest.mark.slow
 def test_resumed_and_grown_datasets_write_the_same_file(bedroom, tmp_path):
     # Interrupted after scene 0 and 2 were stored, before the file was written.
     resumed = tmp_path / "resumed"

@@ -140,6 +140,7 @@ def test_rerun_reads_each_record_once_to_start_and_once_to_publish(tmp_path, mon
     assert len(reads) == 60 and max(reads.values()) == 2
 
 
+@pytest.mark.slow
 def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards(tmp_path):
     """`dataset desk -n 1000000000000` used to print nothing and never start (a list of N
     items, each a scan of the records), and the count it stored refused any smaller -n."""
@@ -207,6 +208,7 @@ def test_an_absurd_count_starts_at_once_and_a_smaller_one_is_accepted_afterwards
     assert len(metadata_rows(root)) == 1
 
 
+@pytest.mark.slow
 def test_a_missing_opengl_backend_in_the_workers_is_one_line_not_a_dead_pool(tmp_path):
     """The workers start their renderer before their first scene; when it cannot start,
     the error comes back through that scene as one line, instead of breaking the pool
@@ -316,6 +318,7 @@ def assert_nothing_outlives_a_killed_main(job: subprocess.Popen, root: Path, sce
         job.wait()
 
 
+@pytest.mark.slow
 def test_kill_minus_nine_of_the_main_process_ends_its_workers_and_fork_server(tmp_path):
     root = tmp_path / "killed"
     job = subprocess.Popen(
@@ -330,6 +333,7 @@ def test_kill_minus_nine_of_the_main_process_ends_its_workers_and_fork_server(tm
     assert report.skipped >= 3 and len(metadata_rows(root)) == 17  # resumes as before
 
 
+@pytest.mark.slow
 def test_kill_minus_nine_of_the_command_ends_its_rendering_workers(tmp_path):
     root = tmp_path / "desk"
     job = subprocess.Popen(
@@ -369,6 +373,7 @@ def test_a_directory_in_use_is_refused_and_its_temporary_files_are_left_alone(tm
     assert (tmp_path / LOCK_FILE).read_text() == ""  # emptied when the run ends
 
 
+@pytest.mark.slow
 def test_a_second_run_during_the_first_exits_2_and_the_first_finishes(tmp_path):
     root = tmp_path / "shared"
     first = subprocess.Popen(
@@ -446,6 +451,7 @@ def test_a_worker_that_dies_is_reported_as_such(tmp_path):
 # -- 13. Ctrl-C at any moment: one line, exit 130 ----------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("delay", [0.0, 0.5, 1.0, 2.5])
 def test_ctrl_c_at_any_moment_prints_one_line_and_leaves_no_process(tmp_path, delay):
     """Ctrl-C on a terminal signals the whole process group. While the fork server was

@@ -90,6 +90,7 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
     assert not (tmp_path / "x").exists()
 
 
+@pytest.mark.slow
 def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     distributed = pytest.importorskip("distributed")
     argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]

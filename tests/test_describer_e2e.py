@@ -736,6 +736,7 @@ def check_rule_set(rules_name: str, seeds: range) -> None:
 @pytest.mark.parametrize(
     ("rules_name", "seeds"), [("village", range(2)), ("desk", range(20)), ("bedroom", range(20))]
 )
+@pytest.mark.slow
 def test_shipped_rule_sets_are_described_truly(rules_name, seeds):
     check_rule_set(rules_name, seeds)
 
@@ -747,6 +748,7 @@ OTHER_RULE_SETS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rules_name", OTHER_RULE_SETS)
 def test_other_shipped_rule_sets_are_described_truly(rules_name):
     check_rule_set(rules_name, range(2))

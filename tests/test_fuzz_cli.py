@@ -229,6 +229,7 @@ def plausible(document, value) -> st.SearchStrategy:
 @settings(
     max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
+@pytest.mark.slow
 @given(data=st.data())
 def test_hostile_scene_json(scene_document, data):
     document = scene_document
@@ -261,6 +262,7 @@ def test_hostile_scene_json(scene_document, data):
             assert (Path(folder) / "scene.glb").read_bytes()[:4] == b"glTF"
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(text=rules_texts())
 def test_hostile_rules_files(text):

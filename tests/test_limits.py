@@ -102,6 +102,7 @@ def test_every_object_a_billion_metres_is_refused_at_once(tmp_path):
     )
 
 
+@pytest.mark.slow
 def test_a_huge_field_in_a_scene_json_is_refused_at_once(tmp_path):
     rules = rules_file(
         tmp_path,
@@ -127,6 +128,7 @@ def test_a_huge_field_in_a_scene_json_is_refused_at_once(tmp_path):
         )
 
 
+@pytest.mark.slow
 def test_work_at_the_limits_runs_in_bounded_memory_and_time(tmp_path):
     """Twenty 1 km fields and a road of up to 20 km in a 10 km extent, among 20 cm boxes.
 
@@ -150,6 +152,7 @@ def test_work_at_the_limits_runs_in_bounded_memory_and_time(tmp_path):
     assert len(scene["paths"][0]["points"]) == limits.MAX_SEGMENTS + 1
 
 
+@pytest.mark.slow
 def test_the_deepest_nesting_the_limits_allow_is_generated(tmp_path):
     """max_depth 64 calls, each nesting groups 6 blocks deep: 384 nested groups."""
     depth, nesting = limits.MAX_DEPTH, limits.MAX_BLOCK_NESTING

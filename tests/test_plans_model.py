@@ -307,6 +307,7 @@ def test_plans_draw_writes_one_png_sheet(tmp_path, capsys):
     assert not (tmp_path / "other.png").exists()
 
 
+@pytest.mark.slow
 def test_the_model_file_is_the_same_whatever_the_hash_seed(tmp_path):
     """Sets of category names change order with PYTHONHASHSEED; the model must not."""
     import os

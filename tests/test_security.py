@@ -304,6 +304,7 @@ def test_a_fifo_named_as_the_rules_file_or_a_template_does_not_hang(layout):
     assert done.returncode == 2 and "caption.j2: it is not a regular file" in done.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not Path("/dev/zero").exists(), reason="needs /dev/zero")
 def test_dev_zero_is_never_read(layout):
     (layout / "set" / "zero.rules").symlink_to("/dev/zero")

@@ -6,6 +6,7 @@ import re
 from collections import Counter
 from functools import cache
 
+import pytest
 from test_shipped_rules import object_bounds
 
 from scenewright.generator.expand import expand
@@ -43,6 +44,7 @@ def test_object_budget_holds_and_the_notes_say_it():
     assert noted == bounds
 
 
+@pytest.mark.slow
 def test_towns_have_road_networks_homes_a_market_parks_and_lamps():
     for graph in towns():
         junctions = graph.nodes("junction")
