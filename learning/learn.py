@@ -54,7 +54,9 @@ from .context import (
     measured_example_layout,
 )
 from .derivations import AmbiguousExample, BudgetSpent, ReplayBudget, measured_derivation_graphs
-from .induce import Induction, Member, edge_instances, induce, renamed_scenes
+from .induce import edge_instances, induce, renamed_scenes
+from .induction import Induction, Member
+from .rules_text import rules_text
 
 #: Scenes generated from the induced rules to compare with the examples.
 CHECK_SCENES = 50
@@ -311,7 +313,7 @@ def learn_rule_set(
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
-    text = induction.text()
+    text = rules_text(induction)
     with tempfile.TemporaryDirectory(prefix="scenewright-learn-") as folder:
         trial = Path(folder) / f"{name}.rules"
         trial.write_text(text, encoding="utf-8")
