@@ -44,6 +44,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from scenewright.completion.plan_model import PlanModel
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph
@@ -116,7 +117,7 @@ def region_boxes(
     return out
 
 
-def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
+def _graph_and_start(model: PlanModel, contents: Contents, room: Room, catalog):
     """The scene graph of ``contents``, the categories left out with why, and the
     starting poses; a rug the starting poses find no free floor for is left out."""
     graph, dropped = build_graph(model, contents, room, catalog)
@@ -145,7 +146,7 @@ def _graph_and_start(model: dict, contents: Contents, room: Room, catalog):
 
 
 def fewer_pieces(
-    model: dict, contents: Contents, request: Request, graph: SceneGraph, problems
+    model: PlanModel, contents: Contents, request: Request, graph: SceneGraph, problems
 ) -> Contents | None:
     """``contents`` with one added piece fewer after a layout with ``problems`` (its
     report's lines): of the added categories whose pieces the problems name (all added
@@ -186,7 +187,7 @@ def fewer_pieces(
 
 
 def completion_record(
-    contents: Contents, dropped, model: dict, masked=(), given_up=None, by_region=()
+    contents: Contents, dropped, model: PlanModel, masked=(), given_up=None, by_region=()
 ) -> dict:
     """What scene.json's ``completion`` holds: the types, per type the categories
     Algorithm 1 chose (requested or added, with their count, P(category | type) and the
@@ -199,8 +200,8 @@ def completion_record(
     and ``virtual_walls``; its ``mask`` is the first region's."""
     types = {}
     for room_type, exploration in contents.explorations.items():
-        entry = model["types"][room_type]
-        weights = {tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"]}
+        entry = model.types[room_type]
+        weights = {tuple(pair.pair): pair.weight for pair in entry.pairs}
         requested = [n for n, owner in contents.owners.items() if owner == room_type]
         types[room_type] = {
             "categories": [
@@ -208,7 +209,7 @@ def completion_record(
                     "category": name,
                     "count": count,
                     "requested": name in requested,
-                    "p": entry["categories"].get(name, {}).get("p", 0.0),
+                    "p": entry.probability(name),
                     "weight_to_requested": sum(
                         weights.get((min(name, r), max(name, r)), 0.0)
                         for r in requested
@@ -268,7 +269,7 @@ def complete(
     seed: int,
     *,
     plans=None,
-    model: dict | None = None,
+    model: PlanModel | None = None,
     catalog=None,
     mask_term: bool = True,
     split: bool = True,

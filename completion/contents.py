@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from scenewright.completion.plan_model import PlanModel
+
 from .request import Request
 
 
@@ -28,7 +30,7 @@ class Contents:
     regions: tuple = ()
 
 
-def choose_contents(model: dict, request: Request, *, split: bool = True) -> Contents:
+def choose_contents(model: PlanModel, request: Request, *, split: bool = True) -> Contents:
     """Equation 2, then Algorithm 1 per type, then Equation 4. One type, or a room
     that is not split (``split`` False, or not a rectangle): the room's area is shared
     among the types by their mean areas, and the mask is the first (largest) type's
@@ -47,7 +49,7 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
     check_counts(model, request.requested)
     regions = split_room(model, room, choice.types) if split else ()
     region_of = {region.room_type: k for k, region in enumerate(regions)}
-    total = sum(model["types"][t]["mean_area"] for t in choice.types)
+    total = sum(model.types[t].mean_area for t in choice.types)
     explorations = {}
     counts: dict[str, int] = dict(sorted(request.requested.items()))
     for room_type in choice.types:
@@ -56,10 +58,10 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
         }
         if regions:
             part = regions[region_of[room_type]].room
-            share, parts = part.area, room_parts(part, model["types"][room_type]["mean_area"])
+            share, parts = part.area, room_parts(part, model.types[room_type].mean_area)
         else:
-            share = room.area * model["types"][room_type]["mean_area"] / total
-            parts = room_parts(room, model["types"][room_type]["mean_area"])
+            share = room.area * model.types[room_type].mean_area / total
+            parts = room_parts(room, model.types[room_type].mean_area)
         exploration = explore_categories(model, room_type, owned, share, parts)
         explorations[room_type] = exploration
         for name, n in exploration.counts.items():
@@ -83,7 +85,7 @@ def choose_contents(model: dict, request: Request, *, split: bool = True) -> Con
 
 
 def category_owners(
-    model: dict, types, requested_owners: dict, explorations: dict, counts
+    model: PlanModel, types, requested_owners: dict, explorations: dict, counts
 ) -> dict[str, str]:
     """Category -> the type (region) it belongs to: a requested one its Equation 2
     owner (``requested_owners``); an added one the type, of those whose Algorithm 1
@@ -98,7 +100,7 @@ def category_owners(
         owners[name] = max(
             choosers,
             key=lambda t: (
-                model["types"][t]["categories"].get(name, {}).get("p", 0.0),
+                model.types[t].probability(name),
                 -list(types).index(t),
             ),
         )

@@ -9,6 +9,7 @@ its strongest partner in the type's relation graph (the weight ``W`` of the plan
 
 from __future__ import annotations
 
+from scenewright.completion.plan_model import PlanModel
 from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 
@@ -84,7 +85,7 @@ CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 
 
 def build_graph(
-    model: dict, contents: Contents, room: Room, catalog, leave_out=()
+    model: PlanModel, contents: Contents, room: Room, catalog, leave_out=()
 ) -> tuple[SceneGraph, dict[str, str]]:
     """The scene graph of the room holding ``contents.counts`` but the categories in
     ``leave_out`` (``catalog``: the indoor catalog's entries by name), and the categories
@@ -131,13 +132,13 @@ def build_graph(
     return graph, dropped
 
 
-def relation_weights(model: dict, types) -> dict[tuple[str, str], float]:
+def relation_weights(model: PlanModel, types) -> dict[tuple[str, str], float]:
     """Pair (sorted) -> the strongest weight W any of the types gives it."""
     weights: dict[tuple[str, str], float] = {}
     for room_type in types:
-        for pair in model["types"][room_type]["pairs"]:
-            key = tuple(pair["pair"])
-            weights[key] = max(weights.get(key, 0.0), pair["weight"])
+        for pair in model.types[room_type].pairs:
+            key = tuple(pair.pair)
+            weights[key] = max(weights.get(key, 0.0), pair.weight)
     return weights
 
 

@@ -883,10 +883,10 @@ def run_plans_build(args: argparse.Namespace) -> int:
     model = build_model(plans)
     target = output_file(args.output, "model.json")
     write_atomic(target, model_json(model))
-    counts = ", ".join(f"{entry['plans']} {name}" for name, entry in model["types"].items())
+    counts = ", ".join(f"{entry.plans} {name}" for name, entry in model.types.items())
     say(
         args,
-        f"wrote {target}: {len(plans)} plans ({counts}), {len(model['categories'])} categories",
+        f"wrote {target}: {len(plans)} plans ({counts}), {len(model.categories)} categories",
     )
     return 0
 

@@ -68,7 +68,7 @@ def test_the_split_shares_the_room_by_the_types_mean_areas_and_tiles_it(model):
     regions = split_room(model, room, types)
     assert sorted(r.room_type for r in regions) == sorted(types)
     lengths = {r.room_type: r.bounds[2] - r.bounds[0] for r in regions}
-    means = {t: model["types"][t]["mean_area"] for t in types}
+    means = {t: model.types[t].mean_area for t in types}
     assert lengths["living_room"] / lengths["bedroom"] == pytest.approx(
         means["living_room"] / means["bedroom"]
     )
