@@ -8,9 +8,9 @@ n_o``, ``N`` the most of ``o`` in one plan of ``s``); here that bound is soft (b
 The paper then takes the set whose mean room areas add up closest to the room's area,
 ``|theta_r - sum theta_s| / theta_r``, and approximates that search greedily; with a
 handful of types the exact answer is cheap. Our reading of "close": home rooms' mean
-areas lie near one another (15 to 20 square metres on the shipped plans) while each
-type's rooms spread by about 5, so the nearest mean alone made every living room under
-16 square metres with a sofa a study. Each set is scored as a likelihood instead:
+areas lie near one another while each type's rooms spread widely, so the nearest mean
+alone made small living rooms with a sofa studies (design notes, docs/notes/design.md,
+"Room completion"). Each set is scored as a likelihood instead:
 
     log N(theta_r; sum mu_s, sum sigma_s^2)  +  sum_o log max_s P(o | s)
       -  b log(1 + n_S)  -  (|S| - 1) log(1 + n)
@@ -30,9 +30,8 @@ no more of a thing than the designers drew.) A type joins a set of several only 
 it has a requested category or the plans have seen it with one (``_joins``): the plans
 of some type have both a category of its own (one it has more often than any other
 type) and a requested category. A room splits only when no single type's rooms come
-near its area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
-three spreads above the bedrooms' mean; a 5.5 x 5.7 m one becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
-most often.
+near its area. Each requested category belongs to the type of the set that has it most
+often.
 
 **Categories.** Start from every category of the type's relation graph (and the ones the user asked
 for), then repeatedly remove the non-requested category with the weakest mean edge

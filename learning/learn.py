@@ -62,9 +62,10 @@ from .rules_text import rules_text
 CHECK_SCENES = 50
 #: Replays the derivation searches of all the examples share when ``learn`` fits a
 #: context (``derivations.ReplayBudget``): five examples' worth of
-#: ``derivations.MAX_REPLAYS``, about a minute here. The shipped example sets take
-#: 1,709 (10 bedrooms) and 5,689 (20 desks); rules that leave every example ambiguous
-#: (chairs that could be any table's) would otherwise take 20,000 replays an example.
+#: ``derivations.MAX_REPLAYS``, well above what the shipped example sets take (design
+#: notes, docs/notes/design.md, "Learning a rule set"); rules that leave every example
+#: ambiguous (chairs that could be any table's) would otherwise take 20,000 replays an
+#: example.
 CONTEXT_REPLAYS = 100_000
 
 

@@ -20,8 +20,9 @@ from scenewright.core.errors import GenerationError
 
 #: pyrender's fragment shader softens each shadow lookup over a 3x3 grid of bilinear
 #: lookups: 36 shadow-map reads on every pixel of every colour pass, which a software
-#: OpenGL pays in full (a third of a 256x256 village frame). One bilinear lookup, 4
-#: reads, draws the same shadows with edges about one texel soft instead of three.
+#: OpenGL pays in full (design notes, docs/notes/design.md, "Offscreen rendering"). One
+#: bilinear lookup, 4 reads, draws the same shadows with edges about one texel soft
+#: instead of three.
 PYRENDER_SHADOW_FILTER = """    float result = 0.0;
     for(int x=-1; x<=1; x++){
         for(int y=-1; y<=1; y++){
@@ -155,9 +156,8 @@ def pyrender_classes(gl) -> PyrenderClasses:
     class Program(ShaderProgram):
         """pyrender's shader program, with our shadow filter (``shader_source``) and its
         uniforms' locations asked of OpenGL once per compiled program instead of at
-        every ``set_uniform`` (a frame sets some 2000; the location was a tenth of a
-        frame's CPU time). ``set_uniform`` is pyrender's otherwise, down to ignoring a
-        name the program lacks or a value of no known type."""
+        every ``set_uniform`` (a frame sets some 2000). ``set_uniform`` is pyrender's
+        otherwise, down to ignoring a name the program lacks or a value of no known type."""
 
         _locations: dict | None = None
 

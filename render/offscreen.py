@@ -326,8 +326,8 @@ def shadow_map_size(width: int, height: int) -> int:
     power of two that gives about one texel per image pixel (the map spans the drawn
     ground, ``GROUND_MARGIN`` times the scene, which the image about fills), at most
     ``MAX_SHADOW_MAP``. A 256x256 dataset image gets 1024 rather than pyrender's 2048,
-    whose rasterizing costs a software OpenGL a tenth of the frame and adds nothing
-    seen at that size."""
+    whose rasterizing a software OpenGL pays for and which adds nothing seen at that
+    size."""
     needed = GROUND_MARGIN * max(width, height)
     return int(min(MAX_SHADOW_MAP, 2 ** math.ceil(math.log2(max(needed, 1.0)))))
 
@@ -512,8 +512,8 @@ def _pyrender_mesh(gl, drawable: _Drawable):
 def _posed_node(gl, mesh, pose: np.ndarray, name: str):
     """A pyrender node of ``mesh`` at ``pose`` (4, 4), the very node ``Scene.add`` makes.
 
-    pyrender turns a node's matrix into a quaternion and back (through trimesh, a few
-    hundred microseconds a node), and draws with the matrix that comes back; that part
+    pyrender turns a node's matrix into a quaternion and back (through trimesh, slowly),
+    and draws with the matrix that comes back; that part
     depends on the rotation only, and entities share a few rotations (most villages'
     objects stand square), so it is computed once per rotation (``_node_rotation``)."""
     quaternion, scale, rotation_scale = _node_rotation(gl, pose[:3, :3].tobytes())
