@@ -1,5 +1,5 @@
 """The poses the relation tests compare. Each role's objects per scene (``TypePoses``:
-centres, yaws, sizes, groups; a path as points along it), the roles themselves
+poses, footprints and holding groups; a path as points along it), the roles themselves
 (``Role``: a type and the kind of group holding it), and the pose of the nearest
 partner in an object's frame: (x, z) along its left and forward and the relative yaw as
 (cos, sin), a point of R^4. Every random draw of a pair comes from ``pair_stream``.

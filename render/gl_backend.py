@@ -64,9 +64,6 @@ def keep_display_on_delete(renderer) -> None:
     platform.delete_context = delete_context
 
 
-# -- OpenGL backend ------------------------------------------------------------------
-
-
 def load_pyrender():
     """Import pyrender with an offscreen platform chosen, or say what to install."""
     if "PYOPENGL_PLATFORM" not in os.environ:
