@@ -46,18 +46,13 @@ import time
 import numpy as np
 
 from scenewright.completion import shipped_plans_dir
-from scenewright.completion.complete import (
-    MASKED,
-    category_owners,
-    choose_contents,
-    complete,
-    parse_request,
-    recorded_mask_values,
-    region_boxes,
-)
+from scenewright.completion.complete import MASKED, complete, region_boxes
+from scenewright.completion.contents import category_owners, choose_contents
+from scenewright.completion.explanation import recorded_mask_values
 from scenewright.completion.model import build_model
 from scenewright.completion.plan import load_plans
 from scenewright.completion.regions import footprint_share, split_room
+from scenewright.completion.request import parse_request
 from scenewright.generator import indoor_catalog
 from scenewright.generator import layout as layout_module
 

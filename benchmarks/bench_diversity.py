@@ -74,7 +74,7 @@ from scenewright.learning.context import (  # noqa: E402
     shares,
 )
 from scenewright.learning.derivations import measured_derivation_graphs  # noqa: E402
-from scenewright.learning.induce import renamed_scenes  # noqa: E402
+from scenewright.learning.induce import renamed_scenes
 
 RULES = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
 

@@ -73,7 +73,7 @@ def main() -> None:
             model,
             plan.type,
             plan.room,
-            {n: c for n, c in counts.items() if n in model["categories"]},
+            {n: c for n, c in counts.items() if n in model.categories},
         )
         alike = {other: soft_iou(truth[other], truth[plan.id]) for other in others}
         nearest = sorted(others, key=lambda other: -alike[other])[:10]
@@ -98,7 +98,7 @@ def main() -> None:
         )
 
     model = build_model(plans)
-    feature = {entry["id"]: np.asarray(entry["feature"]) for entry in model["plans"]}
+    feature = {entry.id: np.asarray(entry.feature) for entry in model.plans}
     openings = {
         plan.id: (sides(plan.room, plan.room.doors), sides(plan.room, plan.room.windows))
         for plan in plans

@@ -154,14 +154,9 @@ def oracle_verdicts(
     are tighter (tightness > 0)."""
     import numpy as np
 
-    from scenewright.learning.relations import (
-        ALPHA,
-        PAIR_SCENES,
-        PERMUTATIONS,
-        flip_test,
-        pair_stream,
-        relative_poses,
-    )
+    from scenewright.learning.relation_poses import pair_stream, relative_poses
+    from scenewright.learning.relation_statistics import flip_test
+    from scenewright.learning.relation_thresholds import ALPHA, PAIR_SCENES, PERMUTATIONS
 
     verdicts = {}
     for (a, b), per_scene in linked_objects(scenes).items():
@@ -219,7 +214,8 @@ def evaluate(
 ) -> dict[str, tuple[float, float]]:
     """Print how each test fares on the scenes ``paths``; return per test its precision
     and recall."""
-    from scenewright.learning.relations import TESTS, find_relations
+    from scenewright.learning.relation_tests import TESTS
+    from scenewright.learning.relations import find_relations
 
     started = time.process_time()
     examples = load_examples(paths)
@@ -386,9 +382,9 @@ def main() -> None:
     )
     args = parser.parse_args()
     if args.floor is not None:
-        from scenewright.learning import relations
+        from scenewright.learning import relation_tests
 
-        relations.MIN_LOCAL_TIGHTNESS = args.floor
+        relation_tests.MIN_LOCAL_TIGHTNESS = args.floor
     if args.jitter:
         jitter_sweep(args.scenes, args.seed)
         return

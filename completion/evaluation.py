@@ -35,6 +35,7 @@ import numpy as np
 from scenewright.completion.features import canonical_frame, occupancy_mask, room_parts
 from scenewright.completion.layout_mask import amalgamated_mask
 from scenewright.completion.model import build_model, floor_pieces
+from scenewright.completion.plan_model import PlanModel
 from scenewright.completion.selection import choose_types, explore_categories
 from scenewright.core.errors import InputError
 
@@ -87,60 +88,54 @@ COMPARISONS = (
 METRICS = tuple(dict.fromkeys(key for comparison in COMPARISONS for key in comparison[1:3]))
 
 
-def request_of(plan, model: dict, size: int) -> dict[str, int]:
+def request_of(plan, model: PlanModel, size: int) -> dict[str, int]:
     """The ``size`` categories of ``plan`` taking the most floor (all of its pieces of each), with their counts."""
     counts = Counter(piece.category for piece in plan.furniture)
     area = {
-        name: model["categories"][name]["floor_area"] * counts[name]
+        name: model.categories[name].floor_area * counts[name]
         for name in counts
-        if name in model["categories"]
+        if name in model.categories
     }
     chosen = sorted(area, key=lambda name: (-area[name], name))[:size]
     return {name: counts[name] for name in chosen}
 
 
-def evaluate_plan(plan, model: dict, requested_size: int) -> dict:
+def evaluate_plan(plan, model: PlanModel, requested_size: int) -> dict:
     """The metrics (``METRICS``) for one held-out ``plan`` under a model built without
     it, and ``miss``: when Equation 2 or the baseline gets its type wrong, a line saying
     what each answered (else None)."""
     requested = request_of(plan, model, requested_size)
-    entry = model["types"][plan.type]
+    entry = model.types[plan.type]
     truth = {piece.category for piece in plan.furniture} - set(requested)
     try:
         predicted = choose_types(model, requested, plan.room.area).types
     except InputError:  # no other plan has a requested category
         predicted = ()
     baseline_type = max(
-        sorted(model["types"]),
-        key=lambda t: float(
-            np.prod([model["types"][t]["categories"].get(n, {}).get("p", 0.0) for n in requested])
-        ),
+        sorted(model.types),
+        key=lambda t: float(np.prod([model.types[t].probability(n) for n in requested])),
     )
-    parts = room_parts(plan.room, entry["mean_area"])
+    parts = room_parts(plan.room, entry.mean_area)
     explored = explore_categories(model, plan.type, requested, plan.room.area, parts)
     added = set(explored.categories) - set(requested)
-    together = {tuple(pair["pair"]): pair["cooccurrence"] for pair in entry["pairs"]}
-    candidates = sorted(name for name in entry["categories"] if name not in requested)
+    together = {tuple(pair.pair): pair.cooccurrence for pair in entry.pairs}
+    candidates = sorted(name for name in entry.categories if name not in requested)
     score = {
         name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in requested)
         for name in candidates
     }
     baseline_added = set(sorted(candidates, key=lambda name: (-score[name], name))[: len(added)])
     usual = np.mean(
-        [len(set(p["counts"]) - set(requested)) for p in model["plans"] if p["type"] == plan.type]
+        [len(set(p.counts) - set(requested)) for p in model.plans if p.type == plan.type]
     )
-    common = {name for name, seen in entry["categories"].items() if seen["p"] >= 0.5} - set(
-        requested
-    )
+    common = {name for name, seen in entry.categories.items() if seen.p >= 0.5} - set(requested)
     floor = floor_pieces(plan)
     true_mask = occupancy_mask(plan.room, floor, canonical_frame(plan.room))
     counts = Counter(piece.category for piece in plan.furniture)
     layout = amalgamated_mask(
-        model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model["categories"]}
+        model, plan.type, plan.room, {n: c for n, c in counts.items() if n in model.categories}
     )
-    mean_mask = np.mean(
-        [np.asarray(p["mask"]) for p in model["plans"] if p["type"] == plan.type], axis=0
-    )
+    mean_mask = np.mean([np.asarray(p.mask) for p in model.plans if p.type == plan.type], axis=0)
     return {
         "type": float(predicted == (plan.type,)),
         "type_baseline": float(baseline_type == plan.type),
@@ -171,7 +166,7 @@ def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
     rows: dict[str, list[dict[str, float]]] = {}
     for plan in plans:
         model = build_model([other for other in plans if other.id != plan.id])
-        if plan.type in model["types"]:
+        if plan.type in model.types:
             rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
     table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
     table["all"] = _means([row for found in rows.values() for row in found])

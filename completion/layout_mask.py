@@ -28,6 +28,7 @@ from scenewright.completion.features import (
     room_centre,
     room_feature,
 )
+from scenewright.completion.plan_model import PlanEntry, PlanModel
 from scenewright.completion.selection import K
 
 if TYPE_CHECKING:
@@ -52,30 +53,30 @@ class LayoutMask:
 
 
 def amalgamated_mask(
-    model: dict, room_type: str, room, counts: dict[str, int], k: int = K
+    model: PlanModel, room_type: str, room, counts: dict[str, int], k: int = K
 ) -> LayoutMask:
     """The layout mask of ``room`` holding ``counts`` (category -> number) of ``room_type``."""
-    entry = model["types"][room_type]
-    floor = sum(model["categories"][name]["floor_area"] * n for name, n in counts.items())
-    feature = room_feature(room, floor, entry["mean_area"])
-    plans = [plan for plan in model["plans"] if plan["type"] == room_type]
+    entry = model.types[room_type]
+    floor = sum(model.categories[name].floor_area * n for name, n in counts.items())
+    feature = room_feature(room, floor, entry.mean_area)
+    plans = [plan for plan in model.plans if plan.type == room_type]
     distance = {
-        plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"]) - feature)) for plan in plans
+        plan.id: float(np.linalg.norm(np.asarray(plan.feature) - feature)) for plan in plans
     }
-    nearest = sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
-    by_cluster: dict[int, list[dict]] = {}
+    nearest = sorted(plans, key=lambda plan: (distance[plan.id], plan.id))[:k]
+    by_cluster: dict[int, list[PlanEntry]] = {}
     for plan in nearest:  # nearest first, so each group's first member is its nearest
-        by_cluster.setdefault(plan.get("cluster", 0), []).append(plan)
+        by_cluster.setdefault(plan.cluster, []).append(plan)
     group = max(by_cluster.values(), key=lambda members: (len(members), -nearest.index(members[0])))
-    if distance[group[0]["id"]] <= SAME:
-        weights = {plan["id"]: float(distance[plan["id"]] <= SAME) for plan in group}
+    if distance[group[0].id] <= SAME:
+        weights = {plan.id: float(distance[plan.id] <= SAME) for plan in group}
         total = sum(weights.values())
         weights = {name: value / total for name, value in weights.items()}
     else:
-        inverse = {plan["id"]: 1.0 / distance[plan["id"]] for plan in group}
+        inverse = {plan.id: 1.0 / distance[plan.id] for plan in group}
         total = sum(inverse.values())
         weights = {name: value / total for name, value in inverse.items()}
-    mask = sum(weights[plan["id"]] * np.asarray(plan["mask"]) for plan in group)
+    mask = sum(weights[plan.id] * np.asarray(plan.mask) for plan in group)
     return LayoutMask(np.asarray(mask), canonical_frame(room), feature, weights)
 
 

@@ -1,7 +1,7 @@
 """The plan model: what a set of plans teaches about each room type (paper Sections 4.2, 5.1).
 
-``build_model(plans)`` returns a plain, JSON-ready dict (``MODEL_FORMAT``), the same for
-the same plans whatever their order on disk:
+``build_model(plans)`` returns a ``plan_model.PlanModel`` (written as the JSON object
+of ``MODEL_FORMAT``), the same for the same plans whatever their order on disk:
 
 - ``categories``: per category its functional purpose (``activity``), the mean short
   and long side of its footprint ``f_obj`` and its mean floor area ``theta_c`` (0 for
@@ -42,11 +42,10 @@ from scenewright.completion.activity import activity_prior, purpose
 from scenewright.completion.features import MASK_SIZE, canonical_frame, occupancy_mask, room_feature
 from scenewright.completion.plan import rounded
 from scenewright.completion.plan_checks import FLAT_HEIGHT, is_flat
+from scenewright.completion.plan_model import MODEL_FORMAT, MODEL_VERSION, PlanModel
 from scenewright.core.errors import InputError
 from scenewright.generator import indoor_catalog
 
-MODEL_FORMAT = "scenewright-plan-model"
-MODEL_VERSION = 1
 #: Metres of size difference at which a free area's fit for a category falls to 1/e.
 FIT_SCALE = 0.5
 #: The share of nearest neighbours scikit-learn's bandwidth estimate looks at (its default).
@@ -61,8 +60,8 @@ def floor_pieces(plan, catalog=None) -> list:
     return [piece for piece in plan.furniture if piece.on is None and not is_flat(piece, catalog)]
 
 
-def build_model(plans) -> dict:
-    """The plan model of ``plans`` (``plan.Plan``; at least one) as a JSON-ready dict."""
+def build_model(plans) -> PlanModel:
+    """The plan model of ``plans`` (``plan.Plan``; at least one)."""
     plans = sorted(plans, key=lambda plan: plan.id)
     if not plans:
         raise InputError("a plan model needs at least one plan")
@@ -124,29 +123,29 @@ def build_model(plans) -> dict:
         "types": model_types,
         "plans": model_plans,
     }
-    return rounded(model, DECIMALS)
+    return PlanModel.from_dict(rounded(model, DECIMALS))
 
 
-def model_json(model: dict) -> str:
+def model_json(model: PlanModel) -> str:
     """The model's file text: sorted keys, each number list of a mask row on one line."""
-    return json.dumps(model, indent=1, sort_keys=True) + "\n"
+    return json.dumps(model.to_dict(), indent=1, sort_keys=True) + "\n"
 
 
-def relation_graph(model: dict, room_type: str) -> dict:
+def relation_graph(model: PlanModel, room_type: str) -> dict:
     """A type's object relation graph: the edges with ``W_s > 0`` and the categories
     they join (isolated ones removed, as in the paper)."""
-    if room_type not in model["types"]:
+    if room_type not in model.types:
         raise InputError(
-            f"the plans have no type {room_type!r} (they have {', '.join(sorted(model['types']))})"
+            f"the plans have no type {room_type!r} (they have {', '.join(sorted(model.types))})"
         )
-    entry = model["types"][room_type]
-    edges = [dict(pair) for pair in entry["pairs"] if pair["weight"] > 0.0]
+    entry = model.types[room_type]
+    edges = [pair.to_dict() for pair in entry.pairs if pair.weight > 0.0]
     names = sorted({name for edge in edges for name in edge["pair"]})
     nodes = [
         {
             "category": name,
-            "p": entry["categories"][name]["p"],
-            "purpose": model["categories"][name]["purpose"],
+            "p": entry.categories[name].p,
+            "purpose": model.categories[name].purpose,
         }
         for name in names
     ]
@@ -171,7 +170,7 @@ def graph_dot(graph: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def read_model(path: str) -> dict:
+def read_model(path: str) -> PlanModel:
     """A model file written by ``scenewright plans build``; ``InputError`` if it is not one."""
     from scenewright.core.files import UnusableFile, read_regular_file
 
@@ -199,7 +198,10 @@ def read_model(path: str) -> dict:
             isinstance(entry.get(k), list) for k in ("pairs", "clusters")
         ):
             raise InputError(f"{path}: $.types.{name}: not a type entry of a plan model")
-    return data
+    try:
+        return PlanModel.from_dict(data)
+    except (KeyError, TypeError, AttributeError) as error:
+        raise InputError(f"{path}: not a plan model of version {MODEL_VERSION}: {error}") from None
 
 
 # -- the pieces ---------------------------------------------------------------------------

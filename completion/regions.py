@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scenewright.completion.plan_model import PlanModel
 from scenewright.core.room import Room, RoomError
 
 #: The width of the door a region without one is given in its virtual wall (metres).
@@ -157,7 +158,7 @@ def sub_room(room: Room, bounds, door_side=None) -> tuple[Room, bool]:
     return sub.with_opening("door", wall.id, wall.length / 2.0, width), True
 
 
-def split_room(model: dict, room: Room, types) -> tuple[Region, ...]:
+def split_room(model: PlanModel, room: Room, types) -> tuple[Region, ...]:
     """The regions of a room of ``types`` (see the module docstring); () for one type or
     a room that is not a rectangle."""
     from scenewright.completion.features import room_parts
@@ -165,7 +166,7 @@ def split_room(model: dict, room: Room, types) -> tuple[Region, ...]:
 
     if len(types) < 2 or not is_rectangle(room):
         return ()
-    means = [model["types"][t]["mean_area"] for t in types]
+    means = [model.types[t].mean_area for t in types]
     width, depth = room.extent
     long_side = max(width, depth)
     lengths = [long_side * mean / sum(means) for mean in means]
@@ -175,15 +176,12 @@ def split_room(model: dict, room: Room, types) -> tuple[Region, ...]:
         regions = _regions_in_order(room, types, lengths, order)
         distance = 0.0
         for region in regions:
-            mean_area = model["types"][region.room_type]["mean_area"]
+            mean_area = model.types[region.room_type].mean_area
             parts = room_parts(region.room, mean_area)
             plans = nearest_plans(model, region.room_type, parts)
             distance += float(
                 np.mean(
-                    [
-                        np.linalg.norm(np.asarray(p["feature"])[list(ROOM_PARTS)] - parts)
-                        for p in plans
-                    ]
+                    [np.linalg.norm(np.asarray(p.feature)[list(ROOM_PARTS)] - parts) for p in plans]
                 )
             )
         window = _window_distance(room, regions[order.index(largest)])

@@ -8,9 +8,9 @@ n_o``, ``N`` the most of ``o`` in one plan of ``s``); here that bound is soft (b
 The paper then takes the set whose mean room areas add up closest to the room's area,
 ``|theta_r - sum theta_s| / theta_r``, and approximates that search greedily; with a
 handful of types the exact answer is cheap. Our reading of "close": home rooms' mean
-areas lie near one another (15 to 20 square metres on the shipped plans) while each
-type's rooms spread by about 5, so the nearest mean alone made every living room under
-16 square metres with a sofa a study. Each set is scored as a likelihood instead:
+areas lie near one another while each type's rooms spread widely, so the nearest mean
+alone made small living rooms with a sofa studies (design notes, docs/notes/design.md,
+"Room completion"). Each set is scored as a likelihood instead:
 
     log N(theta_r; sum mu_s, sum sigma_s^2)  +  sum_o log max_s P(o | s)
       -  b log(1 + n_S)  -  (|S| - 1) log(1 + n)
@@ -30,9 +30,8 @@ no more of a thing than the designers drew.) A type joins a set of several only 
 it has a requested category or the plans have seen it with one (``_joins``): the plans
 of some type have both a category of its own (one it has more often than any other
 type) and a requested category. A room splits only when no single type's rooms come
-near its area (on the shipped plans a room with a bed stays one bedroom up to 30 square metres,
-three spreads above the bedrooms' mean; a 5.5 x 5.7 m one becomes a bedroom with a study). Each requested category belongs to the type of the set that has it
-most often.
+near its area. Each requested category belongs to the type of the set that has it most
+often.
 
 **Categories.** Start from every category of the type's relation graph (and the ones the user asked
 for), then repeatedly remove the non-requested category with the weakest mean edge
@@ -67,6 +66,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from scenewright.completion.plan_model import PlanEntry, PlanModel
 from scenewright.core.errors import InputError
 
 #: The paper's constants: how many similar plans the cost compares with, and the weight of relations.
@@ -88,15 +88,15 @@ class TypeChoice:
     area_error: float
 
 
-def choose_types(model: dict, requested: dict[str, int], room_area: float) -> TypeChoice:
+def choose_types(model: PlanModel, requested: dict[str, int], room_area: float) -> TypeChoice:
     """The set of room types for a room of ``room_area`` square metres holding
     ``requested`` (category -> count); ``InputError`` when no plan has one of them."""
-    types = sorted(model["types"])
+    types = sorted(model.types)
     for name in sorted(requested):
         if not any(_p(model, t, name) > 0.0 for t in types):
             raise InputError(f"no plan of any type has a {name!r} (the plans know {_known(model)})")
     spreads = area_spreads(model)
-    extra_type = math.log(1 + sum(entry.get("plans", 0) for entry in model["types"].values()))
+    extra_type = math.log(1 + sum(entry.plans for entry in model.types.values()))
     joins = {t for t in types if _joins(model, t, requested)}
     candidates = []  # the set of the types that have a requested category has each of them
     for mask in range(1, 2 ** len(types)):
@@ -105,13 +105,13 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
             continue
         holds = [max(_p(model, t, name) for t in chosen) for name in requested]
         if all(p > 0.0 for p in holds):
-            mean = sum(model["types"][t]["mean_area"] for t in chosen)
+            mean = sum(model.types[t].mean_area for t in chosen)
             variance = sum(spreads[t] ** 2 for t in chosen)
             log_area = -0.5 * (room_area - mean) ** 2 / variance - 0.5 * math.log(
                 2 * math.pi * variance
             )
             log_holds = sum(math.log(p) for p in holds)
-            unseen = math.log(1 + sum(model["types"][t].get("plans", 0) for t in chosen))
+            unseen = math.log(1 + sum(model.types[t].plans for t in chosen))
             beyond = sum(
                 1 for name, count in requested.items() if _most(model, chosen, name) < count
             )
@@ -120,7 +120,7 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
                 (-round(score, 9), len(chosen), chosen, abs(room_area - mean) / room_area)
             )
     _, _, chosen, error = min(candidates)
-    ordered = tuple(sorted(chosen, key=lambda t: (-model["types"][t]["mean_area"], t)))
+    ordered = tuple(sorted(chosen, key=lambda t: (-model.types[t].mean_area, t)))
     owners = {
         name: max(ordered, key=lambda t: (_p(model, t, name), -ordered.index(t)))
         for name in sorted(requested)
@@ -128,35 +128,35 @@ def choose_types(model: dict, requested: dict[str, int], room_area: float) -> Ty
     return TypeChoice(ordered, owners, error)
 
 
-def area_spreads(model: dict) -> dict[str, float]:
+def area_spreads(model: PlanModel) -> dict[str, float]:
     """Each type's spread of room areas in square metres: the standard deviation of its
     plans' areas, at least ``MIN_AREA_SPREAD`` of its mean (a type drawn from one or two
     plans says little about how its rooms vary)."""
-    areas: dict[str, list[float]] = {t: [] for t in model["types"]}
-    for plan in model.get("plans", ()):
-        areas.setdefault(plan["type"], []).append(plan["area"])
+    areas: dict[str, list[float]] = {t: [] for t in model.types}
+    for plan in model.plans:
+        areas.setdefault(plan.type, []).append(plan.area)
     return {
         t: max(
             float(np.std(areas[t])) if len(areas[t]) > 1 else 0.0,
-            MIN_AREA_SPREAD * entry["mean_area"],
+            MIN_AREA_SPREAD * entry.mean_area,
         )
-        for t, entry in model["types"].items()
+        for t, entry in model.types.items()
     }
 
 
-def own_categories(model: dict) -> dict[str, set[str]]:
+def own_categories(model: PlanModel) -> dict[str, set[str]]:
     """Per type, the categories it has more often than every other type (the largest
     P(category | type); ties to the first type by name): a bed is a bedroom's, a sofa
     and a television a living room's, a treadmill a gym's."""
-    owned: dict[str, set[str]] = {t: set() for t in model["types"]}
-    for name in sorted(model["categories"]):
-        best = max(sorted(model["types"]), key=lambda t: _p(model, t, name))
+    owned: dict[str, set[str]] = {t: set() for t in model.types}
+    for name in sorted(model.categories):
+        best = max(sorted(model.types), key=lambda t: _p(model, t, name))
         if _p(model, best, name) > 0.0:
             owned[best].add(name)
     return owned
 
 
-def _joins(model: dict, room_type: str, requested) -> bool:
+def _joins(model: PlanModel, room_type: str, requested) -> bool:
     """Whether ``room_type`` may be one of several types of a room asked for ``requested``:
     it has a requested category, or the plans of some type have both one of its own
     categories (``own_categories``) and a requested one (bedrooms have desks, so a study
@@ -167,31 +167,31 @@ def _joins(model: dict, room_type: str, requested) -> bool:
     return any(
         any(_p(model, other, name) > 0.0 for name in own)
         and any(_p(model, other, name) > 0.0 for name in requested)
-        for other in model["types"]
+        for other in model.types
     )
 
 
-def _p(model: dict, room_type: str, name: str) -> float:
-    return model["types"][room_type]["categories"].get(name, {}).get("p", 0.0)
+def _p(model: PlanModel, room_type: str, name: str) -> float:
+    return model.types[room_type].probability(name)
 
 
-def _most(model: dict, chosen, name: str) -> int:
+def _most(model: PlanModel, chosen, name: str) -> int:
     """``sum N(o, s)`` over the ``chosen`` types: the most of ``name`` their plans hold, one plan of each."""
-    return sum(model["types"][t]["categories"].get(name, {}).get("max_count", 0) for t in chosen)
+    return sum(model.types[t].most(name) for t in chosen)
 
 
-def check_counts(model: dict, requested: dict[str, int]) -> None:
+def check_counts(model: PlanModel, requested: dict[str, int]) -> None:
     """``InputError`` for a count beyond what the plans of every type hold together (one
     plan of each): Equation 2 only charges a set for holding fewer than asked, but a
     room is not laid out with more of a thing than any designer drew."""
     for name, count in sorted(requested.items()):
-        most = _most(model, sorted(model["types"]), name)
+        most = _most(model, sorted(model.types), name)
         if most < count:
             raise InputError(f"the plans hold at most {most} of {name!r} together, not {count}")
 
 
-def _known(model: dict) -> str:
-    names = sorted(model["categories"])
+def _known(model: PlanModel) -> str:
+    names = sorted(model.categories)
     return ", ".join(names[:12]) + (", ..." if len(names) > 12 else "")
 
 
@@ -208,20 +208,20 @@ class Exploration:
     steps: tuple[dict, ...] = field(default=())
 
 
-def nearest_plans(model: dict, room_type: str, room_parts, k: int = K) -> list[dict]:
+def nearest_plans(model: PlanModel, room_type: str, room_parts, k: int = K) -> list[PlanEntry]:
     """The ``k`` plans of ``room_type`` whose room-only feature parts are nearest to
     ``room_parts`` (angle / pi, aspect, relative size); ties by plan id."""
-    plans = [plan for plan in model["plans"] if plan["type"] == room_type]
+    plans = [plan for plan in model.plans if plan.type == room_type]
     target = np.asarray(room_parts, dtype=float)
     distance = {
-        plan["id"]: float(np.linalg.norm(np.asarray(plan["feature"])[list(ROOM_PARTS)] - target))
+        plan.id: float(np.linalg.norm(np.asarray(plan.feature)[list(ROOM_PARTS)] - target))
         for plan in plans
     }
-    return sorted(plans, key=lambda plan: (distance[plan["id"]], plan["id"]))[:k]
+    return sorted(plans, key=lambda plan: (distance[plan.id], plan.id))[:k]
 
 
 def explore_categories(
-    model: dict,
+    model: PlanModel,
     room_type: str,
     requested: dict[str, int],
     room_area: float,
@@ -232,19 +232,17 @@ def explore_categories(
 ) -> Exploration:
     """Algorithm 1 for a room of ``room_area`` square metres whose room-only feature
     parts are ``room_parts``, with ``requested`` categories and counts."""
-    if room_type not in model["types"]:
+    if room_type not in model.types:
         raise InputError(f"the plans have no type {room_type!r}")
-    entry = model["types"][room_type]
-    unknown = sorted(name for name in requested if name not in model["categories"])
+    entry = model.types[room_type]
+    unknown = sorted(name for name in requested if name not in model.categories)
     if unknown:
         raise InputError(f"no plan has a {unknown[0]!r}")
-    weights = {
-        tuple(pair["pair"]): pair["weight"] for pair in entry["pairs"] if pair["weight"] > 0.0
-    }
+    weights = {tuple(pair.pair): pair.weight for pair in entry.pairs if pair.weight > 0.0}
     references = nearest_plans(model, room_type, room_parts, k)
-    occupancies = np.array([plan["feature"][1] for plan in references])
+    occupancies = np.array([plan.feature[1] for plan in references])
     typical = {
-        **_typical_counts(model["plans"], room_type),
+        **_typical_counts(model.plans, room_type),
         **_typical_counts(references, room_type),
     }
     names = sorted({name for pair in weights for name in pair} | set(requested))
@@ -257,10 +255,7 @@ def explore_categories(
     # and a float sum's last bit with its order, which could flip a tie between two costs.
     def cost(chosen: set[str]) -> float:
         names = sorted(chosen)
-        ratio = (
-            sum(model["categories"][name]["floor_area"] * counts[name] for name in names)
-            / room_area
-        )
+        ratio = sum(model.categories[name].floor_area * counts[name] for name in names) / room_area
         related = sum(weight(a, b) for i, a in enumerate(names) for b in names[i + 1 :])
         return float(np.mean(np.abs(ratio - occupancies))) - omega * related
 
@@ -295,17 +290,17 @@ def explore_categories(
         ordered,
         {name: counts[name] for name in ordered},
         best_cost,
-        tuple(plan["id"] for plan in references),
+        tuple(plan.id for plan in references),
         tuple(steps),
     )
 
 
-def _typical_counts(plans: list[dict], room_type: str) -> dict[str, int]:
+def _typical_counts(plans: list[PlanEntry], room_type: str) -> dict[str, int]:
     """Per category, the mean number of it in those of ``plans`` of the type that have
     one, rounded (at least 1)."""
     totals: dict[str, list[int]] = {}
     for plan in plans:
-        if plan["type"] == room_type:
-            for name, count in plan["counts"].items():
+        if plan.type == room_type:
+            for name, count in plan.counts.items():
                 totals.setdefault(name, []).append(count)
     return {name: max(1, int(round(float(np.mean(values))))) for name, values in totals.items()}

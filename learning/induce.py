@@ -1,8 +1,9 @@
 """A rule set induced from example scenes alone: what ``scenewright learn`` writes.
 
 ``induce(examples, seed=..., test=...)`` reads the examples' objects and returns an
-``Induction``: the catalog, the groups and the loose objects, each with the numbers it
-rests on; ``Induction.text()`` is the rules file and ``to_dict()`` the report.
+``Induction`` (``learning.induction``): the catalog, the groups and the loose objects,
+each with the numbers it rests on; ``rules_text.rules_text(induction)`` is the rules
+file and ``Induction.to_dict()`` the report.
 
 1. **Catalog.** Every type seen (its name made a rules identifier: lower case,
    ``_`` for anything else) with its median size (W x H x D), its styles weighted by how
@@ -16,7 +17,7 @@ rests on; ``Induction.text()`` is the rules file and ``to_dict()`` the report.
    file (a rule set reads no file outside its folder).
 2. **Relations.** The type pairs ``learning.relations`` finds related (by the chosen
    test, indirect relations pruned), and the pairs of which one type rests on the other
-   in at least half the scenes holding both (``relations.resting_pairs``: support
+   in at least half the scenes holding both (``relation_pruning.resting_pairs``: support
    measured from the boxes), which are written even when the test has too few scenes.
    Pairs of one type (two books) are reported, not written.
 3. **Groups.** Connected components of the graph of those pairs. The *anchor* is the
@@ -56,10 +57,9 @@ rests on; ``Induction.text()`` is the rules file and ``to_dict()`` the report.
 from __future__ import annotations
 
 import math
-import re
 from collections import Counter, defaultdict
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import networkx as nx
 import numpy as np
@@ -72,15 +72,28 @@ from scenewright.examples import Example, scene_supports
 from scenewright.examples.model import default_looks
 
 from .density_peaks import density_peaks
+from .induction import (
+    Cluster,
+    Group,
+    Induction,
+    Loose,
+    Member,
+    Placement,
+    StyleStats,
+    TypeEntry,
+    WallShare,
+)
 from .pose_labels import (
-    CATEGORIES,
     RESTING_CATEGORIES,
     STANDING_CATEGORIES,
     most_specific,
     pair_holds,
     wall_holds,
 )
-from .relations import RelationsResult, find_relations, resting_pairs, type_poses
+from .relation_poses import type_poses
+from .relation_pruning import resting_pairs
+from .relations import find_relations
+from .rule_names import camel, identifier, unique_name
 
 #: A style's median size is written when it differs from its type's by more than this share.
 STYLE_SIZE_TOLERANCE = 0.05
@@ -94,111 +107,8 @@ TURN_METRES = 0.5
 RESTING_METRES = 100.0
 #: A resting child's turn is written when it holds for at least this share of a placement's objects.
 TURN_SHARE = 0.8
-#: A wall label is written for a type when it holds for at least this share of its objects:
-#: more than half, since a label written is drawn independently of where the rest stands
-#: (a sofa against a wall in 61 % of living rooms, always put there, left no room for the
-#: TV stand that stood within 2 m in front of it when it was not).
-WALL_SHARE = 0.75
 #: Names a type may not have in a room scene (its parts), nor anywhere (``room``).
 RESERVED_TYPES = frozenset({"wall", "door", "window", "room"})
-
-_NOT_NAME = re.compile(r"[^a-z0-9_]+")
-
-
-# -- names --------------------------------------------------------------------------
-
-
-def identifier(raw: str, taken: set[str], reserved: frozenset[str] = frozenset()) -> str:
-    """``raw`` as a rules identifier (``[a-z_][a-z0-9_]*``) not in ``taken`` or
-    ``reserved``; added to ``taken``."""
-    base = _NOT_NAME.sub("_", raw.strip().lower()).strip("_") or "thing"
-    if base[0].isdigit():
-        base = "n_" + base
-    name, k = base, 1
-    while name in taken or name in reserved:
-        k += 1
-        name = f"{base}_{k}"
-    taken.add(name)
-    return name
-
-
-def camel(name: str) -> str:
-    """``writing_desk`` -> ``WritingDesk`` (a nonterminal)."""
-    words = [w for w in name.split("_") if w]
-    text = "".join(w[:1].upper() + w[1:] for w in words) or "Thing"
-    return text if text[0].isalpha() else "N" + text
-
-
-def _unique(name: str, taken: set[str]) -> str:
-    candidate, k = name, 1
-    while candidate in taken:
-        k += 1
-        candidate = f"{name}{k}"
-    taken.add(candidate)
-    return candidate
-
-
-def colour_text(colour: Sequence[float]) -> str:
-    """``#rrggbb`` of a colour in [0, 1]."""
-    return "#" + "".join(f"{min(255, max(0, round(float(v) * 255))):02x}" for v in colour)
-
-
-# -- the catalog ----------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class StyleStats:
-    """One style of a type: how many objects had it, and its looks where they differ
-    from the type's (None where they do not)."""
-
-    name: str
-    source: str | None  # the style as the examples name it (None: no style given)
-    count: int
-    size: tuple[float, float, float] | None = None
-    noun: str | None = None
-    shape: str | None = None
-    colour: tuple[float, ...] | None = None
-
-
-@dataclass(frozen=True)
-class TypeEntry:
-    """One type of the induced catalog (see the module docstring)."""
-
-    name: str
-    sources: tuple[str, ...]
-    objects: int
-    scenes: int
-    size: tuple[float, float, float]
-    noun: str
-    plural: str | None
-    shape: str | None
-    colour: tuple[float, ...]
-    styles: tuple[StyleStats, ...]
-    borrowed: str | None = None
-
-    def to_dict(self) -> dict:
-        return {
-            "type": self.name,
-            "seen_as": list(self.sources),
-            "objects": self.objects,
-            "scenes": self.scenes,
-            "size": [round(v, 4) for v in self.size],
-            "noun": self.noun,
-            "plural": self.plural,
-            "shape": self.shape,
-            "colour": colour_text(self.colour),
-            "looks_from": self.borrowed or "examples",
-            "styles": [
-                {
-                    "style": s.name,
-                    "seen_as": s.source,
-                    "objects": s.count,
-                    "weight": s.count,
-                    **({"size": [round(v, 4) for v in s.size]} if s.size else {}),
-                }
-                for s in self.styles
-            ],
-        }
 
 
 def _median_size(objects: Sequence[SceneObject]) -> tuple[float, float, float]:
@@ -441,38 +351,6 @@ def pose_features(poses: np.ndarray, resting: np.ndarray) -> np.ndarray:
     )
 
 
-# -- placements -----------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Cluster:
-    """One cluster of relative poses: its size, its centre pose (x, z, turn in
-    degrees), whether it rests on the parent, and the labels that hold there (empty
-    when no label of the vocabulary does)."""
-
-    size: int
-    centre: tuple[float, float, float]
-    resting: bool
-    labels: tuple[str, ...]
-
-    def to_dict(self) -> dict:
-        return {
-            "size": self.size,
-            "centre": [round(v, 3) for v in self.centre],
-            "rests_on_parent": self.resting,
-            "labels": list(self.labels),
-        }
-
-
-@dataclass(frozen=True)
-class Placement:
-    """One way a child stands by its parent: the labels written and how many objects
-    (the clusters' members) stood that way."""
-
-    labels: tuple[str, ...]
-    weight: int
-
-
 def written_labels(category_labels: dict[str, str | None], resting: bool) -> tuple[str, ...]:
     """The labels of one cluster as written: placement, then facing (the turn of a
     resting child written ``Implicit``), then alignment."""
@@ -541,222 +419,6 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
     placements.sort(key=lambda placement: (-placement.weight, placement.labels))
     return placements, clusters, len(peaks.outliers)
-
-
-# -- the model of the induced rules --------------------------------------------------------
-
-
-@dataclass
-class Member:
-    """A child type placed relative to its parent type in a group (a tree edge)."""
-
-    type: str
-    parent: str
-    instances: int
-    per_parent: Counter
-    placements: list[Placement]
-    clusters: list[Cluster]
-    outliers: int
-    wall: str | None
-    children: list[Member] = field(default_factory=list)
-    #: It rests on its parent (only the objects resting on one are its members).
-    carried: bool = False
-
-    @property
-    def parents(self) -> int:
-        return sum(self.per_parent.values())
-
-    def to_dict(self) -> dict:
-        return {
-            "type": self.type,
-            "parent": self.parent,
-            "objects": self.instances,
-            "parent_objects": self.parents,
-            "children_per_parent": {str(k): v for k, v in sorted(self.per_parent.items())},
-            "placements": [
-                {"labels": list(p.labels), "objects": p.weight} for p in self.placements
-            ],
-            "clusters": [c.to_dict() for c in self.clusters],
-            "outliers": self.outliers,
-            "wall": self.wall,
-            "rests_on_parent": self.carried,
-            "children": [child.to_dict() for child in self.children],
-        }
-
-
-@dataclass
-class Group:
-    """A connected component of related types: a production named ``rule``."""
-
-    rule: str
-    anchor: str
-    per_scene: Counter
-    wall: str | None
-    members: list[Member]
-    types: list[str]
-    unwritten: list[tuple[str, str]]
-
-    def to_dict(self) -> dict:
-        return {
-            "rule": self.rule,
-            "anchor": self.anchor,
-            "types": self.types,
-            "anchors_per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
-            "wall": self.wall,
-            "members": [member.to_dict() for member in self.members],
-            "related_but_placed_through_the_tree": [list(pair) for pair in self.unwritten],
-        }
-
-
-@dataclass
-class Loose:
-    """A type made at the top level, counted per scene: related to no other type, a
-    child seen in scenes without its parent type (``without``), or objects of a type
-    that usually rests on others resting on none of them (``unsupported``)."""
-
-    type: str
-    per_scene: Counter
-    wall: str | None
-    without: str | None = None
-    #: ``without`` names what it usually rests on (it was seen resting on none of them).
-    unsupported: bool = False
-    #: For a child seen without its parent: the group member it is elsewhere, whose own
-    #: members it brings (``rules_text``).
-    member: Member | None = field(default=None, repr=False, compare=False)
-
-    def to_dict(self) -> dict:
-        return {
-            "type": self.type,
-            "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
-            "wall": self.wall,
-            "seen_without": None if self.unsupported else self.without,
-            "seen_resting_on_none_of": self.without.split(" or ") if self.unsupported else None,
-        }
-
-
-@dataclass
-class WallShare:
-    """How many standing objects of a type were measured against walls, and per label
-    how many it held for."""
-
-    objects: int = 0
-    held: Counter = field(default_factory=Counter)
-
-    def label(self) -> str | None:
-        for label in CATEGORIES["wall"]:
-            if self.objects and self.held[label] >= WALL_SHARE * self.objects:
-                return label
-        return None
-
-
-@dataclass
-class Induction:
-    """Everything ``learn`` induced from the examples (module docstring)."""
-
-    name: str
-    examples: list[str]
-    seed: int
-    relations: RelationsResult
-    resting: set[tuple[str, str]]
-    resting_counts: dict[tuple[str, str], tuple[int, int]]
-    routes: dict[tuple[str, str], tuple[str, str] | None]
-    catalog: dict[str, TypeEntry]
-    groups: list[Group]
-    loose: list[Loose]
-    walls: dict[str, WallShare]
-    room: Room | None
-    room_source: str | None
-    extent: tuple[float, float]
-    ground: str
-    scenes: int
-
-    def text(self) -> str:
-        """The rules file (``rules_text``)."""
-        from .rules_text import RulesWriter
-
-        return RulesWriter(self).text()
-
-    def written_pairs(self) -> dict[tuple[str, str], Member]:
-        """(a, b) in name order -> the member that writes the relation of that pair."""
-        found = {}
-
-        def visit(member: Member) -> None:
-            found[tuple(sorted((member.parent, member.type)))] = member
-            for child in member.children:
-                visit(child)
-
-        for group in self.groups:
-            for member in group.members:
-                visit(member)
-        return found
-
-    def pairs_report(self) -> list[dict]:
-        written = self.written_pairs()
-        rows = []
-        for pair in self.relations.pairs:
-            key = (pair.a, pair.b)
-            member = written.get(key)
-            supported = [
-                (u, v) for u, v in ((pair.a, pair.b), (pair.b, pair.a)) if (u, v) in self.resting
-            ]
-            row = {
-                **pair.to_dict(),
-                "support": [
-                    {
-                        "upper": u,
-                        "lower": v,
-                        "scenes": self.resting_counts[(u, v)][0],
-                        "scenes_holding_both": self.resting_counts[(u, v)][1],
-                    }
-                    for u, v in supported
-                ],
-                "written": member is not None,
-            }
-            if member is not None:
-                row["parent"], row["child"] = member.parent, member.type
-                row["labels"] = [
-                    {"labels": list(p.labels), "objects": p.weight} for p in member.placements
-                ]
-                row["clusters"] = [c.to_dict() for c in member.clusters]
-                row["outliers"] = member.outliers
-            elif pair.a == pair.b and pair.related:
-                row["why_not_written"] = "two objects of one type: not written as a relation"
-            elif pair.related and self.routes.get(key) is None:
-                row["why_not_written"] = "both rest on one thing, which places them"
-            elif pair.related and self.routes[key] != key:
-                first, second = self.routes[key]
-                row["why_not_written"] = (
-                    f"written between {first} and {second}: what rests on a thing is placed by it"
-                )
-            elif pair.related:
-                row["why_not_written"] = "its types are placed through other members of their group"
-            rows.append(row)
-        return rows
-
-    def to_dict(self) -> dict:
-        return {
-            "rules": self.name,
-            "examples": self.examples,
-            "seed": self.seed,
-            "relations": {
-                key: value for key, value in self.relations.to_dict().items() if key != "pairs"
-            },
-            "pairs": self.pairs_report(),
-            "catalog": [entry.to_dict() for entry in self.catalog.values()],
-            "groups": [group.to_dict() for group in self.groups],
-            "loose": [item.to_dict() for item in self.loose],
-            "walls": {
-                name: {
-                    "objects": share.objects,
-                    **{label: share.held[label] for label in CATEGORIES["wall"]},
-                    "written": share.label(),
-                }
-                for name, share in sorted(self.walls.items())
-            },
-            "room": self.room.to_dict() if self.room else None,
-            "room_from": self.room_source,
-            "extent": [round(v, 3) for v in self.extent],
-        }
 
 
 # -- inducing -------------------------------------------------------------------------
@@ -1012,7 +674,7 @@ def induce(
             pending += current.children
         groups.append(
             Group(
-                _unique(camel(anchor), rule_names),
+                unique_name(camel(anchor), rule_names),
                 anchor,
                 count_per_scene(anchor),
                 walls.get(anchor, WallShare()).label(),

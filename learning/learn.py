@@ -54,15 +54,18 @@ from .context import (
     measured_example_layout,
 )
 from .derivations import AmbiguousExample, BudgetSpent, ReplayBudget, measured_derivation_graphs
-from .induce import Induction, Member, edge_instances, induce, renamed_scenes
+from .induce import edge_instances, induce, renamed_scenes
+from .induction import Induction, Member
+from .rules_text import rules_text
 
 #: Scenes generated from the induced rules to compare with the examples.
 CHECK_SCENES = 50
 #: Replays the derivation searches of all the examples share when ``learn`` fits a
 #: context (``derivations.ReplayBudget``): five examples' worth of
-#: ``derivations.MAX_REPLAYS``, about a minute here. The shipped example sets take
-#: 1,709 (10 bedrooms) and 5,689 (20 desks); rules that leave every example ambiguous
-#: (chairs that could be any table's) would otherwise take 20,000 replays an example.
+#: ``derivations.MAX_REPLAYS``, well above what the shipped example sets take (design
+#: notes, docs/notes/design.md, "Learning a rule set"); rules that leave every example
+#: ambiguous (chairs that could be any table's) would otherwise take 20,000 replays an
+#: example.
 CONTEXT_REPLAYS = 100_000
 
 
@@ -311,7 +314,7 @@ def learn_rule_set(
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
-    text = induction.text()
+    text = rules_text(induction)
     with tempfile.TemporaryDirectory(prefix="scenewright-learn-") as folder:
         trial = Path(folder) / f"{name}.rules"
         trial.write_text(text, encoding="utf-8")

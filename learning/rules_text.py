@@ -21,7 +21,8 @@ from collections.abc import Sequence
 from scenewright.core.room import Room
 from scenewright.describer.english import plural_of, with_article
 
-from .induce import Group, Induction, Member, Placement, _unique, camel, colour_text, identifier
+from .induction import Group, Induction, Member, Placement
+from .rule_names import camel, colour_text, identifier, unique_name
 
 #: Probabilities are written with two decimals, never as 0.
 PROBABILITY_DECIMALS = 2
@@ -76,6 +77,11 @@ def count_parts(distribution: Counter, total: int) -> tuple[str, str, str]:
 def comment_lines(text: str, width: int = 100) -> list[str]:
     """``text`` as ``#`` comment lines of at most ``width`` characters."""
     return ["# " + line for line in textwrap.wrap(text, width - 2, break_on_hyphens=False)]
+
+
+def rules_text(induction: Induction) -> str:
+    """The rules file of ``induction``."""
+    return RulesWriter(induction).text()
 
 
 class RulesWriter:
@@ -274,7 +280,7 @@ class RulesWriter:
         lines: list[str] = []
         places = None
         if len(placed) > 1:
-            places = _unique(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
+            places = unique_name(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
             lines += comment_lines(
                 f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
                 f"{total} of them in {len(placed)} ways"
@@ -290,7 +296,7 @@ class RulesWriter:
                 self.productions.append(lines)
                 return places, 1
             self.depth = max(self.depth, depth + 1)
-        own = _unique(camel(member.type), self.rule_names)
+        own = unique_name(camel(member.type), self.rule_names)
         bound = self.binding(member.type, {param})
         body_lines = comment_lines(
             f"{own}: {with_article(noun)} by its {parent_noun}, and what stands by it"
@@ -317,7 +323,7 @@ class RulesWriter:
         """Write the production of ``member``'s type made without its parent (objects
         seen without one) with its own members by it; returns its name and the most
         objects it makes."""
-        name = _unique(f"{camel(member.type)}Alone", self.rule_names)
+        name = unique_name(f"{camel(member.type)}Alone", self.rule_names)
         bound = self.binding(member.type, set())
         noun = self.induction.catalog[member.type].noun
         lines = comment_lines(

@@ -35,8 +35,9 @@ from scenewright.core.room import WALL_THICKNESS, Opening, Room, Wall
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 from scenewright.core.shapes import DEFAULT_SHAPE, load_mesh_file
 
-from .builders import BUILDERS, IRON, WOOD, block, coloured, combine, shade, slab
+from .builders import BUILDERS
 from .camera import walls_in_view
+from .mesh_parts import IRON, WOOD, block, coloured, combine, shade, slab
 
 #: Roads sit this far above the ground so they do not z-fight with it.
 PATH_LIFT = 0.02

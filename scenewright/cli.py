@@ -883,10 +883,10 @@ def run_plans_build(args: argparse.Namespace) -> int:
     model = build_model(plans)
     target = output_file(args.output, "model.json")
     write_atomic(target, model_json(model))
-    counts = ", ".join(f"{entry['plans']} {name}" for name, entry in model["types"].items())
+    counts = ", ".join(f"{entry.plans} {name}" for name, entry in model.types.items())
     say(
         args,
-        f"wrote {target}: {len(plans)} plans ({counts}), {len(model['categories'])} categories",
+        f"wrote {target}: {len(plans)} plans ({counts}), {len(model.categories)} categories",
     )
     return 0
 
@@ -948,12 +948,9 @@ def run_complete(args: argparse.Namespace) -> int:
     """Complete an empty room from a few categories; write as generate does."""
     from scenewright.api import checked_templates, describe_scene, render_scene
     from scenewright.atomic import check_output_directory
-    from scenewright.completion.complete import (
-        complete,
-        draw_explanation,
-        parse_request,
-        summary_of,
-    )
+    from scenewright.completion.complete import complete
+    from scenewright.completion.explanation import draw_explanation, summary_of
+    from scenewright.completion.request import parse_request
     from scenewright.generator import indoor_catalog
 
     check_output_directory(
@@ -962,7 +959,7 @@ def run_complete(args: argparse.Namespace) -> int:
     catalog = indoor_catalog()
     keep = None
     if args.scene is not None:
-        from scenewright.completion.complete import existing_request, parse_categories
+        from scenewright.completion.request import existing_request, parse_categories
 
         stated = [
             name
@@ -2065,6 +2062,11 @@ ACTIVITIES = {
     "scenewright.completion": "reading the plans",
     "scenewright.completion.model": "building the plan model",
     "scenewright.completion.complete": "completing the room",
+    "scenewright.completion.request": "completing the room",
+    "scenewright.completion.contents": "completing the room",
+    "scenewright.completion.furnishing": "completing the room",
+    "scenewright.completion.starting_poses": "completing the room",
+    "scenewright.completion.explanation": "completing the room",
 }
 
 

@@ -10,16 +10,11 @@ from hypothesis import strategies as st
 
 from scenewright.cli import main
 from scenewright.completion import complete as completion_module
-from scenewright.completion.complete import (
-    MASKED,
-    ROOM_FULL,
-    build_graph,
-    choose_contents,
-    complete,
-    fewer_pieces,
-    parse_request,
-    summary_of,
-)
+from scenewright.completion.complete import MASKED, ROOM_FULL, complete, fewer_pieces
+from scenewright.completion.contents import choose_contents
+from scenewright.completion.explanation import summary_of
+from scenewright.completion.furnishing import build_graph
+from scenewright.completion.request import parse_request
 from scenewright.core.errors import InputError
 from scenewright.generator.layout.geometry import make_rect, rect_overlap
 
@@ -191,7 +186,8 @@ def test_an_l_shaped_study_without_a_window_keeps_its_laptop_on_the_desk(model, 
 
 
 def test_a_dining_table_starts_free_with_its_chairs_spread_round_it(model, catalog):
-    from scenewright.completion.complete import build_graph, starting_poses
+    from scenewright.completion.furnishing import build_graph
+    from scenewright.completion.starting_poses import starting_poses
     from scenewright.generator.layout.geometry import rect_distance
 
     request = parse_request("4.5x4", ["W:1:0.9"], ["N:2.2:1.4"], ["dining_table"], catalog)

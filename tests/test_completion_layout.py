@@ -16,6 +16,13 @@ from scenewright.completion.evaluation import (
 )
 from scenewright.completion.features import room_feature
 from scenewright.completion.layout_mask import amalgamated_mask, mask_at
+from scenewright.completion.plan_model import (
+    CategoryStats,
+    PlanEntry,
+    PlanModel,
+    RoomTypeModel,
+    TypeCategory,
+)
 from scenewright.completion.selection import area_spreads, check_counts, choose_types
 from scenewright.core.errors import InputError
 from scenewright.core.room import Room
@@ -26,22 +33,26 @@ def _room(width=4.0, depth=3.0) -> Room:
     return room.with_opening("window", "wall_1", width / 2, 1.2, 1.2, 0.9)
 
 
-def _model(features: dict[str, tuple[list[float], int, float]]) -> dict:
+def _plan_entry(name: str, room_type: str, **fields) -> PlanEntry:
+    """A plan of the model with the fields a test reads, the others empty."""
+    empty = {"area": 0.0, "counts": {}, "exist": {}, "frame": {}, "feature": [], "mask": []}
+    return PlanEntry(name, room_type, **{**empty, **fields})
+
+
+def _category(floor_area: float = 0.0) -> CategoryStats:
+    return CategoryStats("stay", [1.0, 1.0], floor_area)
+
+
+def _model(features: dict[str, tuple[list[float], int, float]]) -> PlanModel:
     """Plans of type t: id -> (feature, cluster, the value their whole mask holds)."""
-    return {
-        "categories": {"bed": {"floor_area": 3.0}},
-        "types": {"t": {"mean_area": 12.0, "categories": {"bed": {"p": 1.0, "max_count": 1}}}},
-        "plans": [
-            {
-                "id": name,
-                "type": "t",
-                "feature": feature,
-                "cluster": cluster,
-                "mask": np.full((10, 10), value),
-            }
+    return PlanModel(
+        categories={"bed": _category(3.0)},
+        types={"t": RoomTypeModel(0, 12.0, {"bed": TypeCategory(1.0, 1)})},
+        plans=[
+            _plan_entry(name, "t", feature=feature, cluster=cluster, mask=np.full((10, 10), value))
             for name, (feature, cluster, value) in features.items()
         ],
-    }
+    )
 
 
 def test_the_mask_is_the_inverse_distance_mean_of_the_largest_cluster_of_references():
@@ -74,24 +85,22 @@ def test_mask_at_reads_the_cell_under_a_room_point():
     assert mask_at(layout, room, [(1.9, 1.4), (-1.9, 1.4), (1.9, -1.4)]).tolist() == [1.0, 0.0, 0.0]
 
 
-def _type_model(plans: int = 10) -> dict:
+def _type_model(plans: int = 10) -> PlanModel:
     """Three types of ``plans`` plans each; no plan areas listed, so each spread is 0.2 x its mean."""
 
     def entry(area, **categories):
-        return {
-            "mean_area": area,
-            "plans": plans,
-            "categories": {n: {"p": p, "max_count": c} for n, (p, c) in categories.items()},
-        }
+        return RoomTypeModel(
+            plans, area, {n: TypeCategory(p, c) for n, (p, c) in categories.items()}
+        )
 
-    return {
-        "categories": {"bed": {}, "desk": {}, "sofa": {}, "chair": {}},
-        "types": {
+    return PlanModel(
+        categories={name: _category() for name in ("bed", "desk", "sofa", "chair")},
+        types={
             "bedroom": entry(14.0, bed=(1.0, 1), desk=(0.3, 1), chair=(0.1, 1)),
             "study": entry(12.0, desk=(1.0, 2), chair=(0.5, 2)),
             "living_room": entry(20.0, sofa=(1.0, 1), chair=(0.2, 4)),
         },
-    }
+    )
 
 
 @pytest.mark.parametrize(
@@ -124,11 +133,9 @@ def test_choose_types_weighs_area_against_evidence_and_extra_types():
     model = _type_model()
     # 15 m2 with a sofa: as many spreads from the study's 12 +- 2.4 as from the living
     # room's 20 +- 4, and one study in two has no sofa: the living room.
-    model["types"]["study"]["categories"]["sofa"] = {"p": 0.5, "max_count": 1}
+    model.types["study"].categories["sofa"] = TypeCategory(0.5, 1)
     assert choose_types(model, {"sofa": 1}, 15.0).types == ("living_room",)
-    model["types"]["study"]["categories"]["sofa"]["p"] = (
-        0.8  # most studies have one: the nearer study
-    )
+    model.types["study"].categories["sofa"].p = 0.8  # most studies have one: the nearer study
     assert choose_types(model, {"sofa": 1}, 15.0).types == ("study",)
     # 21 m2 with a bed: too large for the bedroom's 14 +- 2.8 (2.5 spreads), yet a second
     # type costs log(1 + 30 plans): one bedroom is the likelier room.
@@ -143,12 +150,8 @@ def test_a_type_joins_a_room_only_when_the_plans_have_seen_it_with_the_request()
     """A gym (its own categories never in a room with a bed) does not join a large
     bedroom, though its area would fit best; a study (bedrooms have desks) does."""
     model = _type_model()
-    model["categories"]["treadmill"] = {}
-    model["types"]["gym"] = {
-        "mean_area": 14.0,
-        "plans": 10,
-        "categories": {"treadmill": {"p": 1.0, "max_count": 3}},
-    }
+    model.categories["treadmill"] = _category()
+    model.types["gym"] = RoomTypeModel(10, 14.0, {"treadmill": TypeCategory(1.0, 3)})
     assert choose_types(model, {"bed": 1}, 28.0).types == (
         "bedroom",
         "study",
@@ -157,19 +160,18 @@ def test_a_type_joins_a_room_only_when_the_plans_have_seen_it_with_the_request()
         "bedroom",
         "gym",
     )  # both asked for
-    model["types"]["gym"]["categories"]["chair"] = {
-        "p": 0.9,
-        "max_count": 1,
-    }  # the gym's own: living rooms have chairs
-    model["types"]["living_room"]["categories"]["bed"] = {"p": 0.1, "max_count": 1}  # ... and beds
+    model.types["gym"].categories["chair"] = TypeCategory(
+        0.9, 1
+    )  # the gym's own: living rooms have chairs
+    model.types["living_room"].categories["bed"] = TypeCategory(0.1, 1)  # ... and beds
     assert choose_types(model, {"bed": 1}, 28.0).types == ("bedroom", "gym")
 
 
 def test_area_spreads_come_from_the_plans_with_a_floor():
     model = _type_model()
-    model["plans"] = [{"type": "bedroom", "area": a} for a in (10.0, 14.0, 18.0, 14.0)] + [
-        {"type": "study", "area": 12.0}
-    ]
+    model.plans = [
+        _plan_entry(f"b{k}", "bedroom", area=a) for k, a in enumerate((10.0, 14.0, 18.0, 14.0))
+    ] + [_plan_entry("s", "study", area=12.0)]
     spreads = area_spreads(model)
     assert spreads["bedroom"] == pytest.approx(np.std([10.0, 14.0, 18.0, 14.0]))
     assert spreads["study"] == pytest.approx(0.2 * 12.0)  # one plan: no spread of its own

@@ -9,17 +9,13 @@ import hashlib
 import numpy as np
 import pytest
 
-from scenewright.completion.complete import (
-    CORNER_ITEMS,
-    build_graph,
-    choose_contents,
-    complete,
-    parse_request,
-    region_boxes,
-)
+from scenewright.completion.complete import complete, region_boxes
+from scenewright.completion.contents import choose_contents
 from scenewright.completion.features import canonical_frame
+from scenewright.completion.furnishing import CORNER_ITEMS, build_graph
 from scenewright.completion.layout_mask import RegionMasks, amalgamated_mask
 from scenewright.completion.regions import is_rectangle, split_room, strips, sub_room, virtual_walls
+from scenewright.completion.request import parse_request
 from scenewright.core.room import Room
 
 #: sha256 of the reproducible scene.json of the 5 x 4 bedroom below, seed 1, from the
@@ -72,7 +68,7 @@ def test_the_split_shares_the_room_by_the_types_mean_areas_and_tiles_it(model):
     regions = split_room(model, room, types)
     assert sorted(r.room_type for r in regions) == sorted(types)
     lengths = {r.room_type: r.bounds[2] - r.bounds[0] for r in regions}
-    means = {t: model["types"][t]["mean_area"] for t in types}
+    means = {t: model.types[t].mean_area for t in types}
     assert lengths["living_room"] / lengths["bedroom"] == pytest.approx(
         means["living_room"] / means["bedroom"]
     )

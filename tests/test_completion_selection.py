@@ -7,39 +7,37 @@ import json
 import pytest
 
 from scenewright.completion.features import room_parts
+from scenewright.completion.plan_model import (
+    CategoryPair,
+    CategoryStats,
+    PlanEntry,
+    PlanModel,
+    RoomTypeModel,
+)
 from scenewright.completion.selection import explore_categories, nearest_plans
 from scenewright.core.errors import InputError
 from scenewright.core.room import Room
 
 
-def _model(weights: dict[tuple[str, str], float]) -> dict:
+def _plan_entry(name: str, feature: list[float], counts: dict[str, int]) -> PlanEntry:
+    """A plan of type t with the fields Algorithm 1 reads, the others empty."""
+    return PlanEntry(name, "t", 0.0, counts, {}, {}, feature, [])
+
+
+def _model(weights: dict[tuple[str, str], float]) -> PlanModel:
     """Four categories a (2 m^2 of floor), b (1), c (0.5), d (0.25); plans p1 and p2 are
     like the room (occupancy 0.3 and 0.2), p3 is not."""
     floor = {"a": 2.0, "b": 1.0, "c": 0.5, "d": 0.25}
-    return {
-        "categories": {
-            name: {"purpose": None, "size": [1.0, 1.0], "floor_area": area}
-            for name, area in floor.items()
-        },
-        "types": {
-            "t": {"pairs": [{"pair": list(pair), "weight": w} for pair, w in weights.items()]}
-        },
-        "plans": [
-            {
-                "id": "p1",
-                "type": "t",
-                "feature": [0.5, 0.3, 0.8, 0.5],
-                "counts": {"a": 1, "b": 1, "c": 1, "d": 1},
-            },
-            {
-                "id": "p2",
-                "type": "t",
-                "feature": [0.5, 0.2, 0.8, 0.5],
-                "counts": {"a": 1, "b": 1, "c": 2},
-            },
-            {"id": "p3", "type": "t", "feature": [0.0, 0.9, 0.1, 0.1], "counts": {"d": 4}},
+    pairs = [CategoryPair(list(pair), w, None, w) for pair, w in weights.items()]
+    return PlanModel(
+        categories={name: CategoryStats("stay", [1.0, 1.0], area) for name, area in floor.items()},
+        types={"t": RoomTypeModel(3, 10.0, {}, pairs)},
+        plans=[
+            _plan_entry("p1", [0.5, 0.3, 0.8, 0.5], {"a": 1, "b": 1, "c": 1, "d": 1}),
+            _plan_entry("p2", [0.5, 0.2, 0.8, 0.5], {"a": 1, "b": 1, "c": 2}),
+            _plan_entry("p3", [0.0, 0.9, 0.1, 0.1], {"d": 4}),
         ],
-    }
+    )
 
 
 def test_worked_example():
@@ -78,17 +76,18 @@ def test_requested_categories_stay_and_count_as_asked():
 
 def test_nearest_plans_use_the_room_only_parts_of_the_feature():
     model = _model({})
-    assert [p["id"] for p in nearest_plans(model, "t", (0.0, 0.1, 0.1), k=1)] == ["p3"]
-    assert [p["id"] for p in nearest_plans(model, "t", (0.5, 0.8, 0.5))] == ["p1", "p2", "p3"]
+    assert [p.id for p in nearest_plans(model, "t", (0.0, 0.1, 0.1), k=1)] == ["p3"]
+    assert [p.id for p in nearest_plans(model, "t", (0.5, 0.8, 0.5))] == ["p1", "p2", "p3"]
 
 
 @pytest.fixture(scope="module")
 def shipped_model():
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.model import build_model
+    from scenewright.completion.model import build_model, model_json
     from scenewright.completion.plan import load_plans
 
-    return json.loads(json.dumps(build_model(load_plans(shipped_plans_dir()))))
+    # As a model file gives it: read back from its JSON.
+    return PlanModel.from_dict(json.loads(model_json(build_model(load_plans(shipped_plans_dir())))))
 
 
 @pytest.mark.parametrize(
@@ -105,7 +104,7 @@ def test_more_categories_are_added_to_larger_rooms(shipped_model, room_type, req
     for width, depth in ((3.0, 3.0), (4.0, 3.5), (5.0, 4.0), (6.0, 5.0)):
         room = Room.rectangle(width, depth).with_opening("door", "wall_3", width - 0.8, 0.9)
         room = room.with_opening("window", "wall_1", width / 2, 1.4, 1.2, 0.9)
-        parts = room_parts(room, shipped_model["types"][room_type]["mean_area"])
+        parts = room_parts(room, shipped_model.types[room_type].mean_area)
         result = explore_categories(shipped_model, room_type, requested, room.area, parts)
         assert set(requested) <= set(result.categories)
         added.append(len(result.categories) - len(requested))

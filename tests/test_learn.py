@@ -18,8 +18,10 @@ from scenewright.cli import EXAMPLES
 from scenewright.examples import Example, load_examples
 from scenewright.generator import check_rules, load_rules
 from scenewright.learning.density_peaks import density_peaks
-from scenewright.learning.induce import identifier, induce
+from scenewright.learning.induce import induce
 from scenewright.learning.learn import learn_rule_set
+from scenewright.learning.rule_names import identifier
+from scenewright.learning.rules_text import rules_text
 
 DESKS = sorted((Path(__file__).parents[1] / "examples" / "sets" / "desks").glob("desk_*.json"))
 PLANTED = np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]])
@@ -93,7 +95,7 @@ def test_rules_learned_from_desk_scenes_validate_and_hold_its_main_relations(
     desk_induction, tmp_path
 ):
     path = tmp_path / "desk_learned.rules"
-    path.write_text(desk_induction.text())
+    path.write_text(rules_text(desk_induction))
     assert [d for d in check_rules(path) if d.is_error] == []
     written = desk_induction.written_pairs()
 
@@ -193,7 +195,7 @@ def test_hand_written_examples_with_free_type_names(tmp_path):
     )
     assert written[("kettle", "writing_desk")].placements[0].labels[0] == "OnTopOf"
     assert [item.type for item in induction.loose] == ["rock_42"]  # in 4 of 14, related to nothing
-    text = induction.text()
+    text = rules_text(induction)
     assert "object writing_desk {" in text and "0.29? rock_42" in text and "extent 7 x 6" in text
     rules_path = tmp_path / "free.rules"
     rules_path.write_text(text)
@@ -375,7 +377,7 @@ def test_a_type_resting_on_two_types_hangs_off_each(tmp_path):
         "bookshelf": [("book", True, {0: 6, 1: 6})],
         "desk": [("book", True, {1: 12})],
     }
-    text = induction.text()
+    text = rules_text(induction)
     # (the shelf is 0.32 deep, the book 0.24: its front is within 5 cm of the shelf's front edge)
     assert (
         "0.5? book OnTopOfFrontEdge the_bookshelf" in text and "    book OnTopOf the_desk" in text
@@ -520,7 +522,7 @@ def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path)
     # level, keep their teacups and the bookshelf across the room, so every corner has a
     # derivation of the learned rules.
     induction = induce(load_examples(reading_corners(tmp_path, rugs=0.8)), name="corners", seed=0)
-    text = induction.text()
+    text = rules_text(induction)
     alone = text[text.index("SideTableAlone -> {") :]
     alone = alone[: alone.index("}")]
     assert "? SideTableAlone" in text and "teacup OnTopOf" in alone and "bookshelf" in alone
@@ -535,7 +537,7 @@ def test_a_thing_in_only_some_examples_does_not_take_over_a_pair_it_cannot_carry
     # stands beside the chair: it is learned beside the chair, not off the rug.
     paths = reading_corners(tmp_path)
     assert sum("rug" in path.read_text() for path in paths) == 9
-    text = induce(load_examples(paths), name="corners", seed=0).text()
+    text = rules_text(induce(load_examples(paths), name="corners", seed=0))
     assert "SideTableAlone" not in text and "the_rug" not in text.split("# SideTable", 1)[1], text
     assert (
         "side_table NextToLeft the_reading_chair" in text
@@ -587,5 +589,5 @@ def test_a_round_thing_set_down_in_a_corner_by_hand_is_learned_in_the_corner(
         path = tmp_path / f"room{index}.json"
         path.write_text(json.dumps({"room": {"width": width, "depth": depth}, "objects": objects}))
         paths.append(path)
-    text = induce(load_examples(paths), name="corners", seed=0).text()
+    text = rules_text(induce(load_examples(paths), name="corners", seed=0))
     assert "floor_lamp InCorner some wall" in text, text

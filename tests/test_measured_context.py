@@ -326,10 +326,11 @@ def bedroom_rules_and_scenes(tmp_path: Path):
     the induced type names."""
     from scenewright.examples import load_examples
     from scenewright.learning.induce import induce, renamed_scenes
+    from scenewright.learning.rules_text import rules_text
 
     examples = load_examples([str(BEDROOMS)])
     rules_file = tmp_path / "bedrooms.rules"
-    rules_file.write_text(induce(examples, name="bedrooms", seed=0).text())
+    rules_file.write_text(rules_text(induce(examples, name="bedrooms", seed=0)))
     scenes, _ = renamed_scenes(examples)
     return load_rules(rules_file), [example.name for example in examples], scenes
 

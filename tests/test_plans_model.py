@@ -72,9 +72,9 @@ def tiny_model(tiny):
 
 def test_category_statistics_of_a_type(tiny_model):
     model = tiny_model
-    bedroom = model["types"]["bedroom"]
-    assert bedroom["plans"] == 2 and bedroom["mean_area"] == 12.0
-    p = {name: entry["p"] for name, entry in bedroom["categories"].items()}
+    bedroom = model.types["bedroom"]
+    assert bedroom.plans == 2 and bedroom.mean_area == 12.0
+    p = {name: entry.p for name, entry in bedroom.categories.items()}
     # the piano is no plan's, but b_bed's free area fits it: exp(-((0.6-0.6)^2 + (1.6-1.5)^2) / 0.5^2) / 2
     assert p == {
         "bed": 1.0,
@@ -85,15 +85,19 @@ def test_category_statistics_of_a_type(tiny_model):
         "piano": round(math.exp(-0.01 / 0.25) / 2, 6),
     }
     assert all(
-        entry["max_count"] == (0 if name == "piano" else 1)
-        for name, entry in bedroom["categories"].items()
+        entry.max_count == (0 if name == "piano" else 1)
+        for name, entry in bedroom.categories.items()
     )
-    assert model["categories"]["bed"] == {"purpose": "stay", "size": [1.4, 2.0], "floor_area": 2.8}
-    assert model["categories"]["desk"]["size"] == [0.6, 1.1]  # the mean of 1.0 x 0.6 and 1.2 x 0.6
+    assert model.categories["bed"].to_dict() == {
+        "purpose": "stay",
+        "size": [1.4, 2.0],
+        "floor_area": 2.8,
+    }
+    assert model.categories["desk"].size == [0.6, 1.1]  # the mean of 1.0 x 0.6 and 1.2 x 0.6
 
 
 def test_cooccurrence_is_weighted_by_the_activity_prior(tiny_model):
-    pairs = {tuple(p["pair"]): p for p in tiny_model["types"]["bedroom"]["pairs"]}
+    pairs = {tuple(p.pair): p.to_dict() for p in tiny_model.types["bedroom"].pairs}
     assert pairs[("bed", "wardrobe")] == {
         "pair": ["bed", "wardrobe"],
         "cooccurrence": 1.0,
@@ -146,16 +150,16 @@ def test_touch_and_visual_areas_come_from_use_poses(tiny):
 
 
 def test_room_feature_and_mask(tiny_model):
-    entry = next(plan for plan in tiny_model["plans"] if plan["id"] == "a_bed")
+    entry = next(plan for plan in tiny_model.plans if plan.id == "a_bed")
     occupancy = (2.8 + 0.2 + 0.72) / 12.0
-    assert entry["feature"] == pytest.approx(
+    assert entry.feature == pytest.approx(
         [1.0, occupancy, 0.75, 0.5], abs=1e-6
     )  # door opposite the window
-    mask = np.array(entry["mask"])
+    mask = np.array(entry.mask)
     assert mask.shape == (10, 10) and mask.sum() / 100 == pytest.approx(occupancy, abs=0.01)
     # Door and window on the centre line x = 0: the furniture's barycentre (x -0.1) decides
     # x, flipped to the right; the door is on the south wall, flipped to the top.
-    assert entry["frame"] == {"transpose": False, "flip_x": True, "flip_z": True}
+    assert entry.frame == {"transpose": False, "flip_x": True, "flip_z": True}
     assert (
         mask[9, 5:8].min() == 1.0 and mask[0, 5:8].max() == 0.0
     )  # the bed (x -1.3..0.1) at the bottom
@@ -374,11 +378,11 @@ def test_an_l_shaped_room_without_a_window_builds_a_model():
         ("desk", 0.0, -1.7, (1.2, 0.6), SOUTH),
         ("office_chair", 0.0, -1.05, (0.5, 0.5), NORTH),
     )
-    entry = build_model([plan])["plans"][0]
+    entry = build_model([plan]).plans[0]
     assert (
-        entry["frame"]["transpose"] is False and entry["feature"][0] == 0.5
+        entry.frame["transpose"] is False and entry.feature[0] == 0.5
     )  # no window: the middle angle
-    mask = np.array(entry["mask"])
+    mask = np.array(entry.mask)
     assert mask.sum() > 0 and mask.shape == (10, 10)
 
 

@@ -16,17 +16,12 @@ from scenewright.cli import EXAMPLES, main
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.dataset import check_same_settings, dataset_spec
 from scenewright.dataset_scene import produce_scene
-from scenewright.learning.relations import (
-    ANGLE_THRESHOLD,
-    MIN_LOCAL_TIGHTNESS,
-    TESTS,
-    PairRelation,
-    angle_statistic,
-    coordinate_spreads,
-    find_relations,
-    nearest_neighbour_angles,
-    prune_indirect,
-)
+from scenewright.learning.relation_pruning import coordinate_spreads, prune_indirect
+from scenewright.learning.relation_results import PairRelation
+from scenewright.learning.relation_statistics import angle_statistic, nearest_neighbour_angles
+from scenewright.learning.relation_tests import TESTS
+from scenewright.learning.relation_thresholds import ANGLE_THRESHOLD, MIN_LOCAL_TIGHTNESS
+from scenewright.learning.relations import find_relations
 
 SIZES = {
     "table": (1.2, 0.75, 0.7),
@@ -577,9 +572,9 @@ def test_a_strength_clears_the_floor_only_when_its_draws_pin_it_down(
     # Two plants competing for a room's corners came out at a mean strength of 0.366
     # over eight draws that ran from far below the 0.35 floor to far above it (standard
     # error 0.12, where related pairs have 0.01 or less): such a mean clears nothing.
-    from scenewright.learning import relations
+    from scenewright.learning import relation_tests
 
-    monkeypatch.setattr(relations, "pair_strength", lambda *args: (strength, error))
+    monkeypatch.setattr(relation_tests, "pair_strength", lambda *args: (strength, error))
     verdict = {
         (p.a, p.b): p
         for p in find_relations(planted_scenes(np.random.default_rng(5), 60), seed=1).pairs

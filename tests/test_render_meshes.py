@@ -9,7 +9,8 @@ from render_fixtures import scene_of, thing
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, WALL_THICKNESS
 from scenewright.core.scene import ScenePath
 from scenewright.core.shapes import SHAPES
-from scenewright.render.builders import BUILDERS, CHROME, SCREEN, SHOWER_GLASS, shade
+from scenewright.render.builders import BUILDERS
+from scenewright.render.mesh_parts import CHROME, SCREEN, SHOWER_GLASS, shade
 from scenewright.render.meshes import fit_to_size, junction_mesh, object_mesh, path_mesh, room_walls
 
 

@@ -1,4 +1,4 @@
-"""The renderer's cheaper passes (``offscreen._pyrender_classes``, ``_posed_node``)
+"""The renderer's cheaper passes (``gl_backend.pyrender_classes``, ``offscreen._posed_node``)
 draw exactly what pyrender's own Renderer, Scene and nodes draw: every array and
 value of a RenderResult byte for byte, outdoors and in a room, from both views (with
 pyrender's own shadow map size, the one size its shadow pass draws right, and its own
@@ -10,7 +10,8 @@ import pytest
 from render_fixtures import or_skip_without_opengl
 
 from scenewright.api import build_scene
-from scenewright.render import offscreen
+from scenewright.core.errors import GenerationError
+from scenewright.render import gl_backend, offscreen
 
 SIZE = (256, 256)  # the dataset's image size
 VIEWS = ("perspective", "top")
@@ -21,10 +22,12 @@ def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
     ``Scene.add``'s nodes if ``plain``, else through the renderer's own."""
     with monkeypatch.context() as patch:
         patch.setattr(offscreen, "shadow_map_size", lambda width, height: offscreen.MAX_SHADOW_MAP)
-        patch.setattr(offscreen, "_shader_source", lambda name, text: text)
+        patch.setattr(gl_backend, "shader_source", lambda name, text: text)
         if plain:
             patch.setattr(
-                offscreen, "_pyrender_classes", lambda gl: offscreen._Classes(gl.Renderer, gl.Scene)
+                offscreen,
+                "pyrender_classes",
+                lambda gl: gl_backend.PyrenderClasses(gl.Renderer, gl.Scene),
             )
             patch.setattr(
                 offscreen,
@@ -32,7 +35,7 @@ def renders(scene, *, plain: bool, monkeypatch) -> list[offscreen.RenderResult]:
                 lambda gl, mesh, pose, name: gl.Node(name=name, matrix=pose, mesh=mesh),
             )
         with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
-            chosen = offscreen._pyrender_classes(renderer._gl).renderer
+            chosen = offscreen.pyrender_classes(renderer._gl).renderer
             assert (type(renderer._renderer._renderer) is chosen) and (
                 chosen.__module__ == "pyrender.renderer"
             ) == plain
@@ -64,23 +67,23 @@ def test_one_shadow_lookup_changes_only_the_edges_of_shadows():
     import pyrender
 
     text = (Path(pyrender.__file__).parent / "shaders" / "mesh.frag").read_text()
-    assert offscreen._PYRENDER_SHADOW_FILTER in text  # the pinned pyrender's filter
+    assert gl_backend.PYRENDER_SHADOW_FILTER in text  # the pinned pyrender's filter
     assert (
-        offscreen._shader_source("mesh.frag", text).count("texture2DShadowLerp(") == 2
+        gl_backend.shader_source("mesh.frag", text).count("texture2DShadowLerp(") == 2
     )  # defined, used once
-    with pytest.raises(offscreen.GenerationError, match="mesh.frag"):
-        offscreen._shader_source("mesh.frag", text.replace("result/9.0", "result/4.0"))
+    with pytest.raises(GenerationError, match="mesh.frag"):
+        gl_backend.shader_source("mesh.frag", text.replace("result/9.0", "result/4.0"))
 
     scene = build_scene("village", 3)
     colours = {}
     for ours in (True, False):
         with pytest.MonkeyPatch.context() as patch:
             if not ours:
-                patch.setattr(offscreen, "_shader_source", lambda name, text: text)
-            offscreen._pyrender_classes.cache_clear()
+                patch.setattr(gl_backend, "shader_source", lambda name, text: text)
+            gl_backend.pyrender_classes.cache_clear()
             with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
                 colours[ours] = renderer.render(scene).colour.astype(int)
-        offscreen._pyrender_classes.cache_clear()
+        gl_backend.pyrender_classes.cache_clear()
     changed = np.abs(colours[True] - colours[False]).max(axis=-1)
     # Soft edges a little sharper: a few levels on a few percent of the pixels.
     assert (

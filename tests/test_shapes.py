@@ -23,7 +23,8 @@ from scenewright.cli import main
 from scenewright.core.errors import InputError
 from scenewright.core.shapes import MAX_MESH_BYTES, SHAPES, MeshFileError, load_mesh_file
 from scenewright.generator import check_rules, load_rules, shipped_rule_sets
-from scenewright.render.builders import BUILDERS, ShapeRegistryMismatch, check_registry, shade
+from scenewright.render.builders import BUILDERS, ShapeRegistryMismatch, check_registry
+from scenewright.render.mesh_parts import shade
 from scenewright.render.meshes import shaped_mesh
 
 DOCS = Path(__file__).parents[1] / "docs" / "rules-language.md"

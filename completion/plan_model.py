@@ -1,0 +1,190 @@
+"""The plan model as the completion reads it: ``PlanModel`` and its parts, one field per
+statistic, and the JSON object of the model file they are written as and read from
+(``to_dict``, ``from_dict``). ``model.build_model`` makes one from a set of plans; the
+fields and what each statistic means are described there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+MODEL_FORMAT = "scenewright-plan-model"
+MODEL_VERSION = 1
+
+
+@dataclass
+class CategoryStats:
+    """One category over all the plans: its functional purpose (``activity.purpose``),
+    the mean short and long side of its footprint ``f_obj``, and its mean floor area
+    ``theta_c`` (0 for things that stand on others or lie flat)."""
+
+    purpose: str
+    size: list[float]
+    floor_area: float
+
+    def to_dict(self) -> dict:
+        return {"purpose": self.purpose, "size": self.size, "floor_area": self.floor_area}
+
+
+@dataclass
+class TypeCategory:
+    """One category in one room type: ``P(o | s)`` and the most instances in one plan
+    ``N(o, s)``."""
+
+    p: float
+    max_count: int
+
+    def to_dict(self) -> dict:
+        return {"p": self.p, "max_count": self.max_count}
+
+
+@dataclass
+class CategoryPair:
+    """Two categories of one type that co-occur: ``P(o_i, o_j | s)`` (Equation 1), why
+    the activity prior joins them (None: it does not) and the edge weight ``W_s``."""
+
+    pair: list[str]
+    cooccurrence: float
+    activity: str | None
+    weight: float
+
+    def to_dict(self) -> dict:
+        return {
+            "pair": self.pair,
+            "cooccurrence": self.cooccurrence,
+            "activity": self.activity,
+            "weight": self.weight,
+        }
+
+
+@dataclass
+class MaskCluster:
+    """One cluster of a type's layout masks: its plans' ids and their mean mask."""
+
+    plans: list[str]
+    mask: list[list[float]]
+
+    def to_dict(self) -> dict:
+        return {"plans": self.plans, "mask": self.mask}
+
+
+@dataclass
+class RoomTypeModel:
+    """What the plans of one room type teach: how many there are, the mean room area
+    ``theta_s``, per category its ``TypeCategory``, the co-occurring pairs and the
+    layout-mask clusters."""
+
+    plans: int
+    mean_area: float
+    categories: dict[str, TypeCategory]
+    pairs: list[CategoryPair] = field(default_factory=list)
+    clusters: list[MaskCluster] = field(default_factory=list)
+
+    def probability(self, category: str) -> float:
+        """``P(o | s)`` of ``category`` (0 for one no plan of the type has)."""
+        stats = self.categories.get(category)
+        return stats.p if stats is not None else 0.0
+
+    def most(self, category: str) -> int:
+        """``N(o, s)``: the most instances of ``category`` in one plan of the type."""
+        stats = self.categories.get(category)
+        return stats.max_count if stats is not None else 0
+
+    def to_dict(self) -> dict:
+        return {
+            "plans": self.plans,
+            "mean_area": self.mean_area,
+            "categories": {name: entry.to_dict() for name, entry in self.categories.items()},
+            "pairs": [pair.to_dict() for pair in self.pairs],
+            "clusters": [cluster.to_dict() for cluster in self.clusters],
+        }
+
+
+@dataclass
+class PlanEntry:
+    """One plan as the model keeps it: its id, type, room area, category counts,
+    ``exist(o, r)`` where above 0, canonical frame (``features.CanonicalFrame`` as a
+    dict), room feature ``f_r``, layout mask and the number of its mask cluster."""
+
+    id: str
+    type: str
+    area: float
+    counts: dict[str, int]
+    exist: dict[str, float]
+    frame: dict[str, bool]
+    feature: list[float]
+    mask: list[list[float]]
+    cluster: int = 0
+
+    def to_dict(self) -> dict:
+        return {
+            "id": self.id,
+            "type": self.type,
+            "area": self.area,
+            "counts": self.counts,
+            "exist": self.exist,
+            "frame": self.frame,
+            "feature": self.feature,
+            "mask": self.mask,
+            "cluster": self.cluster,
+        }
+
+
+@dataclass
+class ActivityPair:
+    """Two categories with A(o_i, o_j) = 1 and why (``activity.activity_prior``)."""
+
+    pair: list[str]
+    why: str
+
+    def to_dict(self) -> dict:
+        return {"pair": self.pair, "why": self.why}
+
+
+@dataclass
+class PlanModel:
+    """The plan model: the categories over all plans, the activity pairs, per room type
+    its ``RoomTypeModel`` and every plan's ``PlanEntry``."""
+
+    categories: dict[str, CategoryStats]
+    types: dict[str, RoomTypeModel]
+    activity: list[ActivityPair] = field(default_factory=list)
+    plans: list[PlanEntry] = field(default_factory=list)
+
+    def type_plans(self, room_type: str) -> list[PlanEntry]:
+        """The plans of ``room_type``, in the model's order."""
+        return [plan for plan in self.plans if plan.type == room_type]
+
+    def to_dict(self) -> dict:
+        """The model file's JSON object."""
+        return {
+            "format": MODEL_FORMAT,
+            "version": MODEL_VERSION,
+            "categories": {name: entry.to_dict() for name, entry in self.categories.items()},
+            "activity": [pair.to_dict() for pair in self.activity],
+            "types": {name: entry.to_dict() for name, entry in self.types.items()},
+            "plans": [plan.to_dict() for plan in self.plans],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> PlanModel:
+        """The model of a model file's JSON object (``format`` and ``version`` checked by
+        the caller); ``KeyError`` or ``TypeError`` where a part is missing or malformed."""
+        return cls(
+            categories={name: CategoryStats(**entry) for name, entry in data["categories"].items()},
+            types={
+                name: RoomTypeModel(
+                    plans=entry["plans"],
+                    mean_area=entry["mean_area"],
+                    categories={
+                        category: TypeCategory(**stats)
+                        for category, stats in entry["categories"].items()
+                    },
+                    pairs=[CategoryPair(**pair) for pair in entry["pairs"]],
+                    clusters=[MaskCluster(**cluster) for cluster in entry["clusters"]],
+                )
+                for name, entry in data["types"].items()
+            },
+            activity=[ActivityPair(**pair) for pair in data["activity"]],
+            plans=[PlanEntry(**plan) for plan in data["plans"]],
+        )

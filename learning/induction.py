@@ -1,0 +1,326 @@
+"""The records of an induction: what ``induce`` found in the examples and
+``rules_text`` writes as a rule set. ``Induction`` holds the catalog (``TypeEntry``, its
+styles ``StyleStats``), the groups (``Group``, their tree of ``Member``s, each with its
+pose ``Cluster``s and written ``Placement``s), the loose types (``Loose``) and how often
+each type stood against a wall (``WallShare``); ``Induction.to_dict()`` is the report
+``scenewright learn`` writes beside the rules.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+from scenewright.core.room import Room
+
+from .pose_labels import (
+    CATEGORIES,
+)
+from .relation_results import RelationsResult
+from .rule_names import colour_text
+
+#: A wall label is written for a type when it holds for at least this share of its objects:
+#: more than half, since a label written is drawn independently of where the rest stands
+#: (a sofa against a wall in 61 % of living rooms, always put there, left no room for the
+#: TV stand that stood within 2 m in front of it when it was not).
+WALL_SHARE = 0.75
+
+
+# -- the catalog ----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class StyleStats:
+    """One style of a type: how many objects had it, and its looks where they differ
+    from the type's (None where they do not)."""
+
+    name: str
+    source: str | None  # the style as the examples name it (None: no style given)
+    count: int
+    size: tuple[float, float, float] | None = None
+    noun: str | None = None
+    shape: str | None = None
+    colour: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class TypeEntry:
+    """One type of the induced catalog (``induce``'s module docstring, step 1)."""
+
+    name: str
+    sources: tuple[str, ...]
+    objects: int
+    scenes: int
+    size: tuple[float, float, float]
+    noun: str
+    plural: str | None
+    shape: str | None
+    colour: tuple[float, ...]
+    styles: tuple[StyleStats, ...]
+    borrowed: str | None = None
+
+    def to_dict(self) -> dict:
+        return {
+            "type": self.name,
+            "seen_as": list(self.sources),
+            "objects": self.objects,
+            "scenes": self.scenes,
+            "size": [round(v, 4) for v in self.size],
+            "noun": self.noun,
+            "plural": self.plural,
+            "shape": self.shape,
+            "colour": colour_text(self.colour),
+            "looks_from": self.borrowed or "examples",
+            "styles": [
+                {
+                    "style": s.name,
+                    "seen_as": s.source,
+                    "objects": s.count,
+                    "weight": s.count,
+                    **({"size": [round(v, 4) for v in s.size]} if s.size else {}),
+                }
+                for s in self.styles
+            ],
+        }
+
+
+# -- placements -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Cluster:
+    """One cluster of relative poses: its size, its centre pose (x, z, turn in
+    degrees), whether it rests on the parent, and the labels that hold there (empty
+    when no label of the vocabulary does)."""
+
+    size: int
+    centre: tuple[float, float, float]
+    resting: bool
+    labels: tuple[str, ...]
+
+    def to_dict(self) -> dict:
+        return {
+            "size": self.size,
+            "centre": [round(v, 3) for v in self.centre],
+            "rests_on_parent": self.resting,
+            "labels": list(self.labels),
+        }
+
+
+@dataclass(frozen=True)
+class Placement:
+    """One way a child stands by its parent: the labels written and how many objects
+    (the clusters' members) stood that way."""
+
+    labels: tuple[str, ...]
+    weight: int
+
+
+# -- the model of the induced rules --------------------------------------------------------
+
+
+@dataclass
+class Member:
+    """A child type placed relative to its parent type in a group (a tree edge)."""
+
+    type: str
+    parent: str
+    instances: int
+    per_parent: Counter
+    placements: list[Placement]
+    clusters: list[Cluster]
+    outliers: int
+    wall: str | None
+    children: list[Member] = field(default_factory=list)
+    #: It rests on its parent (only the objects resting on one are its members).
+    carried: bool = False
+
+    @property
+    def parents(self) -> int:
+        return sum(self.per_parent.values())
+
+    def to_dict(self) -> dict:
+        return {
+            "type": self.type,
+            "parent": self.parent,
+            "objects": self.instances,
+            "parent_objects": self.parents,
+            "children_per_parent": {str(k): v for k, v in sorted(self.per_parent.items())},
+            "placements": [
+                {"labels": list(p.labels), "objects": p.weight} for p in self.placements
+            ],
+            "clusters": [c.to_dict() for c in self.clusters],
+            "outliers": self.outliers,
+            "wall": self.wall,
+            "rests_on_parent": self.carried,
+            "children": [child.to_dict() for child in self.children],
+        }
+
+
+@dataclass
+class Group:
+    """A connected component of related types: a production named ``rule``."""
+
+    rule: str
+    anchor: str
+    per_scene: Counter
+    wall: str | None
+    members: list[Member]
+    types: list[str]
+    unwritten: list[tuple[str, str]]
+
+    def to_dict(self) -> dict:
+        return {
+            "rule": self.rule,
+            "anchor": self.anchor,
+            "types": self.types,
+            "anchors_per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
+            "wall": self.wall,
+            "members": [member.to_dict() for member in self.members],
+            "related_but_placed_through_the_tree": [list(pair) for pair in self.unwritten],
+        }
+
+
+@dataclass
+class Loose:
+    """A type made at the top level, counted per scene: related to no other type, a
+    child seen in scenes without its parent type (``without``), or objects of a type
+    that usually rests on others resting on none of them (``unsupported``)."""
+
+    type: str
+    per_scene: Counter
+    wall: str | None
+    without: str | None = None
+    #: ``without`` names what it usually rests on (it was seen resting on none of them).
+    unsupported: bool = False
+    #: For a child seen without its parent: the group member it is elsewhere, whose own
+    #: members it brings (``rules_text``).
+    member: Member | None = field(default=None, repr=False, compare=False)
+
+    def to_dict(self) -> dict:
+        return {
+            "type": self.type,
+            "per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
+            "wall": self.wall,
+            "seen_without": None if self.unsupported else self.without,
+            "seen_resting_on_none_of": self.without.split(" or ") if self.unsupported else None,
+        }
+
+
+@dataclass
+class WallShare:
+    """How many standing objects of a type were measured against walls, and per label
+    how many it held for."""
+
+    objects: int = 0
+    held: Counter = field(default_factory=Counter)
+
+    def label(self) -> str | None:
+        for label in CATEGORIES["wall"]:
+            if self.objects and self.held[label] >= WALL_SHARE * self.objects:
+                return label
+        return None
+
+
+@dataclass
+class Induction:
+    """Everything ``learn`` induced from the examples (``induce``'s module docstring)."""
+
+    name: str
+    examples: list[str]
+    seed: int
+    relations: RelationsResult
+    resting: set[tuple[str, str]]
+    resting_counts: dict[tuple[str, str], tuple[int, int]]
+    routes: dict[tuple[str, str], tuple[str, str] | None]
+    catalog: dict[str, TypeEntry]
+    groups: list[Group]
+    loose: list[Loose]
+    walls: dict[str, WallShare]
+    room: Room | None
+    room_source: str | None
+    extent: tuple[float, float]
+    ground: str
+    scenes: int
+
+    def written_pairs(self) -> dict[tuple[str, str], Member]:
+        """(a, b) in name order -> the member that writes the relation of that pair."""
+        found = {}
+
+        def visit(member: Member) -> None:
+            found[tuple(sorted((member.parent, member.type)))] = member
+            for child in member.children:
+                visit(child)
+
+        for group in self.groups:
+            for member in group.members:
+                visit(member)
+        return found
+
+    def pairs_report(self) -> list[dict]:
+        written = self.written_pairs()
+        rows = []
+        for pair in self.relations.pairs:
+            key = (pair.a, pair.b)
+            member = written.get(key)
+            supported = [
+                (u, v) for u, v in ((pair.a, pair.b), (pair.b, pair.a)) if (u, v) in self.resting
+            ]
+            row = {
+                **pair.to_dict(),
+                "support": [
+                    {
+                        "upper": u,
+                        "lower": v,
+                        "scenes": self.resting_counts[(u, v)][0],
+                        "scenes_holding_both": self.resting_counts[(u, v)][1],
+                    }
+                    for u, v in supported
+                ],
+                "written": member is not None,
+            }
+            if member is not None:
+                row["parent"], row["child"] = member.parent, member.type
+                row["labels"] = [
+                    {"labels": list(p.labels), "objects": p.weight} for p in member.placements
+                ]
+                row["clusters"] = [c.to_dict() for c in member.clusters]
+                row["outliers"] = member.outliers
+            elif pair.a == pair.b and pair.related:
+                row["why_not_written"] = "two objects of one type: not written as a relation"
+            elif pair.related and self.routes.get(key) is None:
+                row["why_not_written"] = "both rest on one thing, which places them"
+            elif pair.related and self.routes[key] != key:
+                first, second = self.routes[key]
+                row["why_not_written"] = (
+                    f"written between {first} and {second}: what rests on a thing is placed by it"
+                )
+            elif pair.related:
+                row["why_not_written"] = "its types are placed through other members of their group"
+            rows.append(row)
+        return rows
+
+    def to_dict(self) -> dict:
+        return {
+            "rules": self.name,
+            "examples": self.examples,
+            "seed": self.seed,
+            "relations": {
+                key: value for key, value in self.relations.to_dict().items() if key != "pairs"
+            },
+            "pairs": self.pairs_report(),
+            "catalog": [entry.to_dict() for entry in self.catalog.values()],
+            "groups": [group.to_dict() for group in self.groups],
+            "loose": [item.to_dict() for item in self.loose],
+            "walls": {
+                name: {
+                    "objects": share.objects,
+                    **{label: share.held[label] for label in CATEGORIES["wall"]},
+                    "written": share.label(),
+                }
+                for name, share in sorted(self.walls.items())
+            },
+            "room": self.room.to_dict() if self.room else None,
+            "room_from": self.room_source,
+            "extent": [round(v, 3) for v in self.extent],
+        }
