@@ -20,15 +20,13 @@ scenewright`` and ``scenewright --help`` stay fast and never start OpenGL.
 from __future__ import annotations
 
 import os
-import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS
+from scenewright.core.timing import timed
 
 if TYPE_CHECKING:
     from scenewright.core.scene import Scene
@@ -57,17 +55,6 @@ def load_rules(source: str | os.PathLike[str] | Rules) -> Rules:
     if isinstance(source, (str, os.PathLike)):
         return load(source)
     return source
-
-
-@contextmanager
-def timed(timings: dict[str, float], stage: str, clock=time.perf_counter) -> Iterator[None]:
-    """Add the wall time of the ``with`` block to ``timings[stage]`` (or its time by
-    another ``clock``, such as ``time.process_time`` for CPU time)."""
-    start = clock()
-    try:
-        yield
-    finally:
-        timings[stage] = timings.get(stage, 0.0) + clock() - start
 
 
 def rules_label(rules: Rules) -> str:

@@ -191,7 +191,11 @@ def read_scene_data(path: str, *, check_files: bool = False) -> dict:
     the files it names must exist too); ``SceneFileError`` if bad."""
     from scenewright.core.files import UnusableFile, read_regular_file
     from scenewright.core.limits import MAX_SCENE_JSON_BYTES
-    from scenewright.schema_check import SceneSchemaError, parse_scene_json, validate_scene_dict
+    from scenewright.core.schema_check import (
+        SceneSchemaError,
+        parse_scene_json,
+        validate_scene_dict,
+    )
 
     try:
         text = read_regular_file(path, MAX_SCENE_JSON_BYTES, "a scene.json").decode("utf-8")
@@ -223,7 +227,7 @@ def read_scene(path: str):
 
 def run_generate(args: argparse.Namespace) -> int:
     from scenewright.api import generate, render_scene
-    from scenewright.atomic import check_output_directory
+    from scenewright.core.atomic import check_output_directory
     from scenewright.generator import load_rules
 
     check_output_directory(
@@ -257,8 +261,9 @@ def write_scene_outputs(
     not at all) and report the layout's verdict: exit 0 when ok, 1 when not. ``extra``
     (file name -> function writing it to a path) adds files; ``outputs`` names every
     file the command may write (stale ones not written this time are removed)."""
-    from scenewright.api import export, reproducible_json, summary_line, timed, timings_of
-    from scenewright.atomic import staged_outputs, write_atomic, writing
+    from scenewright.api import export, reproducible_json, summary_line, timings_of
+    from scenewright.core.atomic import staged_outputs, write_atomic, writing
+    from scenewright.core.timing import timed
     from scenewright.render.offscreen import save_render
     from scenewright.render.plan import draw_plan
 
@@ -291,9 +296,10 @@ def write_scene_outputs(
 
 def run_layout(args: argparse.Namespace) -> int:
     """Lay a scene.json out again, keeping the pinned ids where they are; write as generate does."""
-    from scenewright.api import checked_templates, describe_scene, render_scene, timed
-    from scenewright.atomic import check_output_directory
+    from scenewright.api import checked_templates, describe_scene, render_scene
+    from scenewright.core.atomic import check_output_directory
     from scenewright.core.scene import assemble_scene
+    from scenewright.core.timing import timed
     from scenewright.generator.layout import layout_scene
     from scenewright.generator.layout.pinning import pins_from_scene, scene_layout
     from scenewright.generator.layout.problem import compile_problem
@@ -540,7 +546,7 @@ def validate_scene_file(name: str) -> bool:
 
 def emit(args: argparse.Namespace, text: str) -> int:
     """Write ``text`` to ``--output`` (atomically) or, without one, to stdout; exit code 0."""
-    from scenewright.atomic import write_atomic
+    from scenewright.core.atomic import write_atomic
 
     if args.output:
         write_atomic(args.output, text)
@@ -601,14 +607,14 @@ def run_export(args: argparse.Namespace) -> int:
 
 
 def run_schema(args: argparse.Namespace) -> int:
-    from scenewright.schema_check import load_schema
+    from scenewright.core.schema_check import load_schema
 
     print(json.dumps(load_schema(), indent=2, ensure_ascii=False))
     return 0
 
 
 def run_fit(args: argparse.Namespace) -> int:
-    from scenewright.atomic import write_atomic
+    from scenewright.core.atomic import write_atomic
     from scenewright.examples.formats import example_paths
     from scenewright.learning.fit import fit_rule_set, parse_what
 
@@ -678,7 +684,7 @@ def run_relations(args: argparse.Namespace) -> int:
 
 
 def run_learn(args: argparse.Namespace) -> int:
-    from scenewright.atomic import write_atomic
+    from scenewright.core.atomic import write_atomic
     from scenewright.examples import load_examples
     from scenewright.learning.context import context_path
     from scenewright.learning.learn import CONTEXT_REPLAYS, learn_rule_set
@@ -781,7 +787,7 @@ def run_match(args: argparse.Namespace) -> int:
 
 
 def run_augment(args: argparse.Namespace) -> int:
-    from scenewright.atomic import write_atomic
+    from scenewright.core.atomic import write_atomic
     from scenewright.examples import load_examples
     from scenewright.variation import augment
 
@@ -802,7 +808,7 @@ def run_augment(args: argparse.Namespace) -> int:
 
 
 def run_vary(args: argparse.Namespace) -> int:
-    from scenewright.atomic import check_output_directory
+    from scenewright.core.atomic import check_output_directory
     from scenewright.examples import load_examples
     from scenewright.variation.synthesis import vary
     from scenewright.variation.write import FOLDERS, summary, write_variants
@@ -875,9 +881,9 @@ def created_types(rules) -> set[str]:
 
 def run_plans_build(args: argparse.Namespace) -> int:
     """Read a plan set, build its model and write it (atomically)."""
-    from scenewright.atomic import write_atomic
     from scenewright.completion.model import build_model, model_json
     from scenewright.completion.plan import load_plans
+    from scenewright.core.atomic import write_atomic
 
     plans = load_plans(args.plans)
     model = build_model(plans)
@@ -909,10 +915,10 @@ def run_plans_graph(args: argparse.Namespace) -> int:
 
 def run_plans_draw(args: argparse.Namespace) -> int:
     """Draw plans of a set (all, or the ids named) on one sheet."""
-    from scenewright.atomic import atomic_stream, writing
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.drawing import MAX_PANELS, draw_plans
     from scenewright.completion.plan import load_plans
+    from scenewright.core.atomic import atomic_stream, writing
 
     plans = load_plans(args.plans or shipped_plans_dir())
     if args.only:
@@ -947,13 +953,13 @@ def run_plans_evaluate(args: argparse.Namespace) -> int:
 def run_complete(args: argparse.Namespace) -> int:
     """Complete an empty room from a few categories; write as generate does."""
     from scenewright.api import checked_templates, describe_scene, render_scene
-    from scenewright.atomic import check_output_directory
     from scenewright.completion.complete import (
         complete,
         draw_explanation,
         parse_request,
         summary_of,
     )
+    from scenewright.core.atomic import check_output_directory
     from scenewright.generator import indoor_catalog
 
     check_output_directory(
@@ -2060,7 +2066,7 @@ ACTIVITIES = {
     "scenewright.render": "building meshes",
     "scenewright.render.offscreen": "rendering",
     "scenewright.render.plan": "drawing the plan",
-    "scenewright.schema_check": "reading the scene.json",
+    "scenewright.core.schema_check": "reading the scene.json",
     "scenewright.dataset": "making the dataset",
     "scenewright.completion": "reading the plans",
     "scenewright.completion.model": "building the plan model",

@@ -60,7 +60,7 @@ from typing import TYPE_CHECKING, TextIO
 import numpy as np
 
 from scenewright.api import DATASET_RETRIES
-from scenewright.atomic import atomic_stream, remove_partials, write_atomic
+from scenewright.core.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.core.errors import GenerationError, InputError, ScenewrightError
 from scenewright.dataset_coco import coco_sink
 from scenewright.dataset_stats import StatsCollector, write_stats

@@ -31,8 +31,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from scenewright import __version__
-from scenewright.atomic import atomic_stream
+from scenewright.core import VERSION
+from scenewright.core.atomic import atomic_stream
 
 if TYPE_CHECKING:
     from scenewright.core.scene import Scene
@@ -112,7 +112,7 @@ def coco_writer(
     ):
         info = {
             "description": f"scenewright dataset of the {spec.rules} rules",
-            "version": __version__,
+            "version": VERSION,
         }
         out.write(
             f'{{"info": {json.dumps(info, ensure_ascii=False)},\n"licenses": [],\n"categories": [\n'

@@ -20,7 +20,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from scenewright.atomic import atomic_stream
+from scenewright.core.atomic import atomic_stream
 from scenewright.dataset import METADATA_FILE, DatasetSpec, image_number
 
 QUESTIONS_FILE = "questions.json"

@@ -2,7 +2,7 @@
 and an index.
 
 ``write_variants(results, examples, directory, seed, render=...)`` fills ``directory``
-(replaced as a whole, ``scenewright.atomic.staged_outputs``: all folders appear
+(replaced as a whole, ``scenewright.core.atomic.staged_outputs``: all folders appear
 together or not at all) with ``variant_001/``, ``variant_002/``, ... in rank order (best
 K first), each holding scene.json (with a ``synthesis`` record: the base example, the
 operations with their compatibilities, K, and each object's source example and id),
@@ -56,7 +56,7 @@ def write_variants(
 ) -> dict:
     """Write the variants and index.json; return the index."""
     from scenewright.api import describe_scene, export, render_scene, reproducible_json
-    from scenewright.atomic import staged_outputs, write_atomic, writing
+    from scenewright.core.atomic import staged_outputs, write_atomic, writing
     from scenewright.render.offscreen import save_render
     from scenewright.render.plan import draw_plan
 
