@@ -254,6 +254,73 @@ def generate(
     return describe_scene(scene, style=style, variant=variant, words=words)
 
 
+class SceneGraphError(InputError):
+    """A scene (read from a scene.json) whose graph cannot be laid out again."""
+
+
+def layout_again(
+    scene: Scene,
+    seed: int,
+    *,
+    pin: list[str] | tuple[str, ...] = (),
+    warm: bool = False,
+    context: LearnedContext | str | os.PathLike[str] | None = None,
+    templates: str | os.PathLike[str] | None = None,
+    style: str = "full",
+    variant: int = 0,
+    words: int | None = None,
+) -> tuple[Scene, list[str]]:
+    """``scene`` laid out again with the layout seed ``seed`` and described, keeping the
+    ids in ``pin`` exactly where they stand (a group pins its members, a path its
+    control points and first junction, an object what stands on it); with ``warm`` the
+    rest starts from its poses in ``scene``. ``context``: as in ``build_scene``;
+    ``templates``, ``style``, ``variant``, ``words``: as in ``generate``. Returns the new
+    scene (its rules and derivation those of ``scene``, its seed ``seed``) and the ids
+    pinned along with those named. ``SceneGraphError`` when the scene's graph cannot be
+    laid out."""
+    from scenewright.core.scene import assemble_scene
+    from scenewright.core.seeds import check_seed
+    from scenewright.generator.layout import layout_scene
+    from scenewright.generator.layout.pinning import pins_from_scene, scene_layout
+    from scenewright.generator.layout.problem import compile_problem
+
+    seed = check_seed(seed, "layout seed")
+    templates = checked_templates(templates)
+    try:
+        graph = scene.graph()
+        problem = compile_problem(graph)
+    except InputError as error:
+        raise SceneGraphError(str(error)) from error
+    except (KeyError, ValueError, TypeError) as error:
+        raise SceneGraphError(f"not a valid scene graph: {error}") from error
+    pins = pins_from_scene(scene, problem, list(pin))
+    start = None
+    if warm:
+        poses, points = scene_layout(scene)
+        start = {**poses, **points}
+    if isinstance(context, (str, os.PathLike)):
+        from scenewright.generator.layout.learned_term import read_context
+
+        context = read_context(os.fspath(context))
+    timings: dict[str, float] = {}
+    with timed(timings, "layout"):
+        layout = layout_scene(
+            graph,
+            seed,
+            pinned=pins.poses,
+            pinned_paths=pins.paths,
+            start=start,
+            context=context,
+        )
+    laid_out = assemble_scene(graph, layout, rules=scene.rules, seed=seed)
+    laid_out.derivation = list(scene.derivation)
+    if templates is not None:
+        laid_out.templates = templates
+    laid_out.timings.update(timings)
+    described = describe_scene(laid_out, style=style, variant=variant, words=words)
+    return described, list(pins.added)
+
+
 def rules_context(
     rules: Rules, path: str | os.PathLike[str] | None = None
 ) -> tuple[str, LearnedContext] | None:

@@ -318,7 +318,7 @@ Clash -> {
 
 
 def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
-    from scenewright.cli import GENERATE_OUTPUTS
+    from scenewright.scene_folder import SCENE_FILES
 
     outputs = []
     for name in ("first", "second"):
@@ -327,7 +327,7 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
         )
         assert code == 0, err
         outputs.append(tmp_path / name)
-    assert sorted(p.name for p in outputs[0].iterdir()) == sorted(GENERATE_OUTPUTS)
+    assert sorted(p.name for p in outputs[0].iterdir()) == sorted(SCENE_FILES)
     lines = out.splitlines()
     assert lines[0].startswith(f"wrote {tmp_path / 'second'}/: ") and lines[1].startswith("ok: ")
     assert "relations satisfied" in lines[1] and "energy" in lines[1]

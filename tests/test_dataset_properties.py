@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scenewright.cli import image_size
+from scenewright.cli.options import image_size
 from scenewright.core.atomic import remove_partials, write_atomic
 from scenewright.dataset import (
     METADATA_FILE,
