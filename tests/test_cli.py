@@ -392,14 +392,14 @@ def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
 
 
 def test_a_failing_stage_leaves_no_partial_outputs(capsys, tmp_path, monkeypatch):
-    from scenewright import api
+    from scenewright import scene_folder
     from scenewright.core.errors import GenerationError
 
     def broken_export(scene, path):
         Path(path).write_bytes(b"half a file")
         raise GenerationError("the exporter broke")
 
-    monkeypatch.setattr(api, "export", broken_export)
+    monkeypatch.setattr(scene_folder, "export", broken_export)
     code, _, err = run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path / "out"))
     assert code == 1
     assert_one_line_error(err, "the exporter broke")

@@ -14,13 +14,8 @@ from hypothesis import strategies as st
 
 from scenewright.cli.options import image_size
 from scenewright.core.atomic import remove_partials, write_atomic
-from scenewright.dataset import (
-    METADATA_FILE,
-    RECORDS_DIR,
-    finished_indices,
-    publish_metadata,
-    scene_stem,
-)
+from scenewright.dataset.run import finished_indices, publish_metadata
+from scenewright.dataset.spec import METADATA_FILE, RECORDS_DIR, scene_stem
 
 
 @settings(max_examples=40, deadline=None)

@@ -15,8 +15,9 @@ from test_cli import assert_one_line_error, run
 from scenewright.cli import main
 from scenewright.cli.learning import HELP
 from scenewright.core.scene import Scene, SceneObject
-from scenewright.dataset import check_same_settings, dataset_spec
-from scenewright.dataset_scene import produce_scene
+from scenewright.dataset.produce import produce_scene
+from scenewright.dataset.run import check_same_settings
+from scenewright.dataset.spec import dataset_spec
 from scenewright.learning.relations import (
     ANGLE_THRESHOLD,
     MIN_LOCAL_TIGHTNESS,

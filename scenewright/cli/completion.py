@@ -78,7 +78,7 @@ drawn on the room with the laid-out pieces over it. See docs/completion.md.""",
 
 
 def add_commands(commands) -> None:
-    """plans, complete."""
+    """Add the commands plans, complete to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     plans = command(

@@ -66,7 +66,7 @@ exit codes:
 
 
 def add_commands(commands) -> None:
-    """dataset."""
+    """Add the command dataset to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     dataset = command(
@@ -260,9 +260,10 @@ def dataset_cameras(args: argparse.Namespace):
 
 
 def run_dataset(args: argparse.Namespace) -> int:
-    from scenewright.dataset import available_cpus, dataset_spec
-    from scenewright.dataset import run_dataset as run
-    from scenewright.dataset_scene import with_picture_captions
+    from scenewright.dataset.produce import with_picture_captions
+    from scenewright.dataset.run import available_cpus
+    from scenewright.dataset.run import run_dataset as run
+    from scenewright.dataset.spec import dataset_spec
     from scenewright.generator import load_rules
 
     if not args.images and (args.depth or args.segmentation):

@@ -75,7 +75,7 @@ made (those made are written). See docs/variation.md.""",
 
 
 def add_commands(commands) -> None:
-    """validate, match, augment, vary."""
+    """Add the commands validate, match, augment, vary to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     validate = command(

@@ -36,7 +36,7 @@ footprint convention: what its front (local +Z) shows and where a person uses it
 
 
 def add_commands(commands) -> None:
-    """expand, schema, list."""
+    """Add the commands expand, schema, list to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     expand = command("expand", "print the scene graph that the grammar expands to", run_expand)

@@ -107,7 +107,7 @@ give the same files. See docs/learning.md.""",
 
 
 def add_commands(commands) -> None:
-    """fit, relations, learn."""
+    """Add the commands fit, relations, learn to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     fit = command("fit", "re-estimate a rule set's weights from example scenes", run_fit)

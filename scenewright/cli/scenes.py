@@ -81,7 +81,7 @@ When GLB is an existing directory or ends in '/', the file is scene.glb inside i
 
 
 def add_commands(commands) -> None:
-    """generate, layout, describe, render, export."""
+    """Add the commands generate, layout, describe, render, export to ``commands`` (argparse's subparsers)."""
     command = partial(add_command, commands, HELP)
 
     generate = command(
