@@ -1,7 +1,9 @@
 """The pipeline in one call: rules -> scene graph -> layout -> Scene -> text -> images.
 
 ``generate`` is what the README shows and what the CLI and the dataset job build on;
-the smaller functions here are its steps. Stages return values; the steps here join
+the smaller functions here are its steps. ``layout_again`` lays a scene out anew around
+pinned objects and ``complete_room`` furnishes a room from a plan set, each described;
+``scene_folder.write_scene`` writes any of them as ``scenewright generate`` does. Stages return values; the steps here join
 them into a new Scene (``dataclasses.replace``), never change the one they were given,
 and add their wall time to the new scene's ``timings`` (seconds, keys ``expand``,
 ``layout``, ``describe``, ``render``, ``export``).
@@ -29,10 +31,13 @@ from scenewright.core.relations import RELATIONS
 from scenewright.core.timing import timed
 
 if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from scenewright.completion.complete import Request
     from scenewright.core.scene import Scene
     from scenewright.describer import Description
     from scenewright.generator.layout.learned_term import LearnedContext
-    from scenewright.generator.rules import Rules
+    from scenewright.generator.rules import CatalogEntry, Rules
     from scenewright.render.offscreen import Renderer, RenderResult
     from scenewright.render.views import CameraRanges
 
@@ -252,6 +257,29 @@ def generate(
     check_choice("style", style, STYLES)
     scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)
     return describe_scene(scene, style=style, variant=variant, words=words)
+
+
+def complete_room(
+    request: Request,
+    seed: int,
+    *,
+    plans: str | os.PathLike[str] | None = None,
+    catalog: Mapping[str, CatalogEntry] | None = None,
+    keep: Scene | None = None,
+    templates: str | os.PathLike[str] | None = None,
+    style: str = "full",
+    variant: int = 0,
+    words: int | None = None,
+) -> Scene:
+    """A room furnished from a plan set (``completion.complete``: ``request``, ``seed``,
+    ``plans``, ``catalog``, ``keep``) and described (``templates``, ``style``,
+    ``variant``, ``words``: as in ``describe``); ``scene.completion`` records what was
+    chosen and why."""
+    from scenewright.completion.complete import complete
+
+    templates = checked_templates(templates)
+    scene = complete(request, seed, plans=plans, catalog=catalog, keep=keep)
+    return describe_scene(scene, style=style, variant=variant, templates=templates, words=words)
 
 
 class SceneGraphError(InputError):

@@ -297,13 +297,8 @@ def run_plans_evaluate(args: argparse.Namespace) -> int:
 
 def run_complete(args: argparse.Namespace) -> int:
     """Complete an empty room from a few categories; write as generate does."""
-    from scenewright.api import checked_templates, describe_scene
-    from scenewright.completion.complete import (
-        complete,
-        draw_explanation,
-        parse_request,
-        summary_of,
-    )
+    from scenewright.api import complete_room
+    from scenewright.completion.complete import draw_explanation, parse_request, summary_of
     from scenewright.generator import indoor_catalog
     from scenewright.scene_folder import check_scene_folder, write_scene
 
@@ -344,8 +339,17 @@ def run_complete(args: argparse.Namespace) -> int:
                 "an empty room needs --room and --with (or give a scene.json to complete)"
             )
         request = parse_request(args.room, args.door, args.window, args.categories, catalog)
-    templates = checked_templates(args.templates)
-    scene = complete(request, args.seed, plans=args.plans, catalog=catalog, keep=keep)
+    scene = complete_room(
+        request,
+        args.seed,
+        plans=args.plans,
+        catalog=catalog,
+        keep=keep,
+        templates=args.templates,
+        style=args.style,
+        variant=args.variant,
+        words=args.words,
+    )
     say(args, summary_of(scene.completion))
     if keep is not None:
         kept, new = (
@@ -357,9 +361,6 @@ def run_complete(args: argparse.Namespace) -> int:
             f"kept {kept} piece{'s' * (kept != 1)} where {'they' if kept != 1 else 'it'} stood; placed {new} new "
             f"(what --add asked for, and what the line above says the plans added)",
         )
-    scene = describe_scene(
-        scene, style=args.style, variant=args.variant, templates=templates, words=args.words
-    )
     written = write_scene(
         scene,
         args.output,
