@@ -90,9 +90,7 @@ def write_scene(
     names every file the folder may hold (those not written this time are removed).
     """
     if camera is not None and not render:
-        raise InputError(
-            "--camera places the preview's camera; it needs the preview (leave out --no-render)"
-        )
+        raise InputError("a camera places the preview's camera; it needs the preview (render)")
     scene, images = _rendered(scene, render, size, view, camera)
     with staged_outputs(directory, outputs) as stage:
         scene = write_scene_files(scene, stage, images, extra=extra(scene) if extra else None)

@@ -63,7 +63,7 @@ def cli_command(*argv: str, before: str = "") -> list[str]:
         # its children with SIGINT ignored, and Python then leaves it ignored.
         "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
-        "import scenewright.cli, scenewright.dataset\n"
+        "import scenewright.cli, scenewright.dataset.run\n"
         f"{before}\n"
         "print('ready', flush=True)\n"
         "sys.exit(scenewright.cli.main(sys.argv[1:]))\n"

@@ -6,6 +6,8 @@ from __future__ import annotations
 import argparse
 from functools import partial
 
+from scenewright.core.errors import InputError
+
 from .common import (
     SceneFileError,
     chosen_context,
@@ -169,6 +171,10 @@ def run_generate(args: argparse.Namespace) -> int:
     from scenewright.scene_folder import check_scene_folder, write_scene
 
     check_scene_folder(args.output)  # before any work: it is replaced as a whole
+    if args.camera is not None and not args.render:
+        raise InputError(
+            "--camera places the preview's camera; it needs the preview (leave out --no-render)"
+        )
     rules = load_rules(args.rules, allow=args.allow_outside)
     context = chosen_context(args, rules)
     scene = generate(
