@@ -14,7 +14,7 @@ import pytest
 from test_cli import assert_one_line_error, run
 
 from scenewright.api import build_scene
-from scenewright.cli.learning import HELP
+from scenewright.cli.learning_commands import HELP
 from scenewright.examples import Example, load_examples
 from scenewright.generator import check_rules, load_rules
 from scenewright.learning.density_peaks import density_peaks

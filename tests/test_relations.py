@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from test_cli import assert_one_line_error, run
 
 from scenewright.cli import main
-from scenewright.cli.learning import HELP
+from scenewright.cli.learning_commands import HELP
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.dataset.produce import produce_scene
 from scenewright.dataset.run import check_same_settings

@@ -3,11 +3,12 @@
 Each subcommand is a small function ``run_<name>(args) -> exit code``: it parses, makes
 one call into the library (``scenewright.api``, ``scenewright.scene_folder``, the
 stages) and reports. The commands come in families, each module with its commands'
-parsers and help: ``scenes`` (generate, layout, describe, render, export),
-``datasets`` (dataset), ``learning`` (fit, relations, learn), ``examples`` (validate,
-match, augment, vary), ``completion`` (complete, plans), ``info`` (expand, schema,
-list); ``options`` holds what their parsers share, ``common`` what they share at run
-time. Parsing and error reporting live here once.
+parsers and help: ``scene_commands`` (generate, layout, describe, render, export),
+``dataset_commands`` (dataset), ``learning_commands`` (fit, relations, learn),
+``example_commands`` (validate, match, augment, vary), ``completion_commands``
+(complete, plans), ``info_commands`` (expand, schema, list); ``options`` holds what
+their parsers share, ``common`` what they share at run time. Parsing and error
+reporting live here once.
 
 Exit codes: 0 done; 1 generation failed (e.g. a layout that could not satisfy every
 relation: its files are still written, marked ``ok: false``); 2 bad input (options,
@@ -27,12 +28,26 @@ import traceback
 from scenewright.core import VERSION
 from scenewright.core.errors import ScenewrightError
 
-from . import completion, datasets, examples, info, learning, scenes
+from . import (
+    completion_commands,
+    dataset_commands,
+    example_commands,
+    info_commands,
+    learning_commands,
+    scene_commands,
+)
 from .common import PROG
 from .options import CommandLineParser, common_options
 
 #: The command families, in the order ``--help`` lists their commands.
-FAMILIES = (scenes, datasets, examples, info, learning, completion)
+FAMILIES = (
+    scene_commands,
+    dataset_commands,
+    example_commands,
+    info_commands,
+    learning_commands,
+    completion_commands,
+)
 
 
 def build_parser() -> CommandLineParser:
