@@ -1,7 +1,7 @@
 """COCO annotation cost: CPU milliseconds to annotate one rendered image.
 
 A dataset worker computes, per image, every entity's box, pixel area and run-length
-encoded mask from the segmentation (``dataset_coco.view_annotations``). This renders a
+encoded mask from the segmentation (``coco.view_annotations``). This renders a
 few scenes of each rule set at the given size and times that step alone (CPU time,
 ``time.process_time``, the mean of several repeats), beside the render of the same frame.
 
@@ -15,7 +15,7 @@ import argparse
 import time
 
 from scenewright.api import generate, render_scene
-from scenewright.dataset_coco import view_annotations
+from scenewright.dataset.coco import view_annotations
 from scenewright.render.offscreen import Renderer
 
 

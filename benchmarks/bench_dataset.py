@@ -33,7 +33,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from scenewright.dataset import dataset_spec, run_dataset
+from scenewright.dataset.run import run_dataset
+from scenewright.dataset.spec import dataset_spec
 
 STAGES = ("layout", "describe", "render", "encode")
 

@@ -36,7 +36,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_relations import generated_scenes  # noqa: E402  (the shared scene cache)
 
-from scenewright.api import load_rules  # noqa: E402
+from scenewright.api import build_scene, load_rules  # noqa: E402
 from scenewright.core.relations import RELATIONS  # noqa: E402
 from scenewright.examples import load_examples  # noqa: E402
 from scenewright.learning.learn import Check, compare, learn_rule_set  # noqa: E402
@@ -75,7 +75,12 @@ def learn_from(examples, check: int, seed: int):
     with tempfile.TemporaryDirectory() as folder:
         started = time.process_time()
         learned = learn_rule_set(
-            examples, Path(folder) / "learned.rules", seed=seed, check=0, write=lambda p, t: None
+            examples,
+            Path(folder) / "learned.rules",
+            seed=seed,
+            check=0,
+            write=lambda p, t: None,
+            build_scene=build_scene,
         )
         seconds = time.process_time() - started
         rules = Path(folder) / "learned.rules"
@@ -85,7 +90,9 @@ def learn_from(examples, check: int, seed: int):
 
         renamed, _ = renamed_scenes(examples)
         result = (
-            compare(learned.induction, renamed, load_rules(rules), check, seed) if check else None
+            compare(learned.induction, renamed, load_rules(rules), check, seed, build_scene)
+            if check
+            else None
         )
     return learned, result, seconds, scenes
 
@@ -114,7 +121,9 @@ def evaluate(name: str, count: int, check: int, seed: int, cache: Path, workers:
             f"    {pair[0]}-{pair[1]}: grammar {'+'.join(sorted(truth.get(pair, ()))) or '-'}; learned {learned_labels}"
         )
     if result is not None:
-        floor = compare(induction, [e.scene for e in examples], load_rules(name), check, seed + 1)
+        floor = compare(
+            induction, [e.scene for e in examples], load_rules(name), check, seed + 1, build_scene
+        )
         print(f"  learned rules vs examples: {check_line(result)}")
         print(f"  {name}.rules  vs examples: {check_line(floor)}")
 

@@ -28,9 +28,9 @@ import numpy as np
 from scenewright.api import build_scene
 from scenewright.examples import Example
 from scenewright.variation import augment, structure_graph
+from scenewright.variation.index import is_new
 from scenewright.variation.operations import grow_node
 from scenewright.variation.synthesis import Variant, apply_change, signature, start_variant, vary
-from scenewright.variation.write import is_new
 
 
 def as_example(scene, name: str) -> Example:

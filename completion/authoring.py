@@ -245,8 +245,8 @@ def plan_json(data: dict) -> str:
 def write_plan_set(folder: Path) -> list[str]:
     """Write every design's plan to ``folder/<type>/<id>.json``; return the problems of
     the designs that do not pass the checks (those are not written)."""
-    from scenewright.atomic import write_atomic
     from scenewright.completion.plan import PlanError
+    from scenewright.core.atomic import write_atomic
 
     problems = []
     for design in designs():

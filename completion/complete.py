@@ -286,13 +286,13 @@ def complete(
     (its pieces stand where they stand, whatever part a split would give them)."""
     import time
 
-    from scenewright.api import timed
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.layout_mask import floor_mask, region_floor_masks
     from scenewright.completion.model import build_model
     from scenewright.completion.plan import load_plans
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed
+    from scenewright.core.timing import timed
     from scenewright.generator import indoor_catalog
     from scenewright.generator.layout import layout_scene
 

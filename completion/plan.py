@@ -32,7 +32,7 @@ from scenewright.core.errors import InputError
 from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.frames import footprint_corners
 from scenewright.core.room import Room, RoomError
-from scenewright.schema_check import json_path, load_schema
+from scenewright.core.schema_check import json_path, load_schema
 
 SCHEMA_FILE = "plan.schema.json"
 #: A plan is a room's worth of furniture: a larger file is not one.

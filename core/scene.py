@@ -6,7 +6,7 @@ relation (``PathConnectedTo`` included) with its layout verdict, the layout's
 statistics, and (once made) the description and render metadata. ``assemble_scene``
 builds one from a scene graph and a layout result; ``Scene.to_json`` /
 ``Scene.from_json`` are the scene.json contract documented by
-``scenewright/schema/scene.schema.json``. A Scene is data: the stages that describe,
+``core/schema/scene.schema.json``. A Scene is data: the stages that describe,
 render or export it take it as an argument and return their results as values.
 """
 

@@ -21,7 +21,7 @@ from jsonschema.exceptions import best_match
 
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
 from scenewright.core.scene import Scene
-from scenewright.schema_check import packaged_schema_text, packaged_validator
+from scenewright.core.schema_check import packaged_schema_text, packaged_validator
 
 from .model import ExampleError, ObjectRecord, example_scene
 from .stacking import over_footprint, touches_top

@@ -12,7 +12,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
-from scenewright import __version__
+from scenewright.core import VERSION
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import Room
@@ -175,7 +175,7 @@ def example_scene(
         room=room,
         ground="floor" if room else "grass",
         name=name,
-        version=__version__,
+        version=VERSION,
     )
 
 

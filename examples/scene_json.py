@@ -8,7 +8,7 @@ from dataclasses import replace
 
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.scene import Scene
-from scenewright.schema_check import SceneSchemaError, validate_scene_dict
+from scenewright.core.schema_check import SceneSchemaError, validate_scene_dict
 
 from .handwritten import parse_json
 from .model import SUPPORT_LABEL, ExampleError

@@ -157,13 +157,21 @@ class Check:
         return text
 
 
-def compare(
-    induction: Induction, examples: Sequence[Scene], rules: Rules, count: int, seed: int
-) -> Check:
-    """Generate ``count`` scenes from ``rules`` and compare them with ``examples``
-    (the examples' scenes with the induced type names)."""
-    from scenewright.api import build_scene
+#: Makes the scene of a rule set for a seed, laid out, without text or images (the
+#: application's ``build_scene``): what the check generates.
+SceneBuilder = Callable[[Rules, int], Scene]
 
+
+def compare(
+    induction: Induction,
+    examples: Sequence[Scene],
+    rules: Rules,
+    count: int,
+    seed: int,
+    build_scene: SceneBuilder,
+) -> Check:
+    """Generate ``count`` scenes from ``rules`` with ``build_scene`` and compare them with
+    ``examples`` (the examples' scenes with the induced type names)."""
     generated = [build_scene(rules, check_seed_of(seed, k)) for k in range(count)]
     types = []
     for type_name in induction.catalog:
@@ -305,12 +313,13 @@ def learn_rule_set(
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
     write: Callable[[Path, str], object],
+    build_scene: SceneBuilder,
     progress: Callable[[str], object] = lambda message: None,
 ) -> Learned:
     """Induce a rule set from ``examples``, check it (module docstring) and write it to
     ``output``, with ``context`` its context beside it (``context_path``; ``rounds`` and
     ``layouts`` are the context fit's) and the report to ``report``; ``write(path, text)``
-    writes one file whole; ``progress`` hears which stage is under way."""
+    writes one file whole; ``build_scene(rules, seed)`` makes a check scene; ``progress`` hears which stage is under way."""
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
@@ -327,7 +336,7 @@ def learn_rule_set(
         scenes, _ = renamed_scenes(examples)
         if check > 0:
             progress(f"checking the induced rules on {check} generated scenes")
-        result = compare(induction, scenes, rules, check, seed) if check > 0 else None
+        result = compare(induction, scenes, rules, check, seed, build_scene) if check > 0 else None
         names = [example.name for example in examples]
         fitted = None
         if context:

@@ -20,7 +20,7 @@ import numpy as np
 import trimesh
 from trimesh.exchange.gltf import export_glb as trimesh_glb
 
-from scenewright.atomic import write_atomic
+from scenewright.core.atomic import write_atomic
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 

@@ -34,7 +34,7 @@ import numpy as np
 import trimesh
 from PIL import Image
 
-from scenewright.atomic import write_atomic
+from scenewright.core.atomic import write_atomic
 from scenewright.core.errors import GenerationError
 from scenewright.core.room import Opening
 from scenewright.core.scene import Scene

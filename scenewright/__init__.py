@@ -3,12 +3,22 @@
 The pipeline (README.md, "How it works"): a rules file is parsed into a grammar
 (``scenewright.generator``), expanded into a scene graph, laid out by MCMC
 (``scenewright.generator.layout``), then described (``scenewright.describer``),
-rendered and exported (``scenewright.render``).
+rendered and exported (``scenewright.render``); ``write_scene`` writes a scene's folder
+as ``scenewright generate`` does.
 """
 
 from scenewright.core import VERSION as __version__
 
-__all__ = ["Scene", "__version__", "describe", "export", "generate", "load_rules", "render_image"]
+__all__ = [
+    "Scene",
+    "__version__",
+    "describe",
+    "export",
+    "generate",
+    "load_rules",
+    "render_image",
+    "write_scene",
+]
 
 #: The public names and the modules they come from. They are imported on first use, so
 #: that ``scenewright --help`` (and a Ctrl-C during start-up) does not wait for numpy
@@ -20,6 +30,7 @@ _PUBLIC = {
     "generate": "scenewright.api",
     "load_rules": "scenewright.api",
     "render_image": "scenewright.api",
+    "write_scene": "scenewright.scene_folder",
 }
 
 

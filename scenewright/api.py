@@ -1,7 +1,9 @@
 """The pipeline in one call: rules -> scene graph -> layout -> Scene -> text -> images.
 
 ``generate`` is what the README shows and what the CLI and the dataset job build on;
-the smaller functions here are its steps. Stages return values; the steps here join
+the smaller functions here are its steps. ``layout_again`` lays a scene out anew around
+pinned objects and ``complete_room`` furnishes a room from a plan set, each described;
+``scene_folder.write_scene`` writes any of them as ``scenewright generate`` does. Stages return values; the steps here join
 them into a new Scene (``dataclasses.replace``), never change the one they were given,
 and add their wall time to the new scene's ``timings`` (seconds, keys ``expand``,
 ``layout``, ``describe``, ``render``, ``export``).
@@ -20,21 +22,22 @@ scenewright`` and ``scenewright --help`` stay fast and never start OpenGL.
 from __future__ import annotations
 
 import os
-import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS
+from scenewright.core.timing import timed
 
 if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from scenewright.completion.complete import Request
     from scenewright.core.scene import Scene
     from scenewright.describer import Description
     from scenewright.generator.layout.learned_term import LearnedContext
-    from scenewright.generator.rules import Rules
+    from scenewright.generator.rules import CatalogEntry, Rules
     from scenewright.render.offscreen import Renderer, RenderResult
     from scenewright.render.views import CameraRanges
 
@@ -57,17 +60,6 @@ def load_rules(source: str | os.PathLike[str] | Rules) -> Rules:
     if isinstance(source, (str, os.PathLike)):
         return load(source)
     return source
-
-
-@contextmanager
-def timed(timings: dict[str, float], stage: str, clock=time.perf_counter) -> Iterator[None]:
-    """Add the wall time of the ``with`` block to ``timings[stage]`` (or its time by
-    another ``clock``, such as ``time.process_time`` for CPU time)."""
-    start = clock()
-    try:
-        yield
-    finally:
-        timings[stage] = timings.get(stage, 0.0) + clock() - start
 
 
 def rules_label(rules: Rules) -> str:
@@ -265,6 +257,96 @@ def generate(
     check_choice("style", style, STYLES)
     scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)
     return describe_scene(scene, style=style, variant=variant, words=words)
+
+
+def complete_room(
+    request: Request,
+    seed: int,
+    *,
+    plans: str | os.PathLike[str] | None = None,
+    catalog: Mapping[str, CatalogEntry] | None = None,
+    keep: Scene | None = None,
+    templates: str | os.PathLike[str] | None = None,
+    style: str = "full",
+    variant: int = 0,
+    words: int | None = None,
+) -> Scene:
+    """A room furnished from a plan set (``completion.complete``: ``request``, ``seed``,
+    ``plans``, ``catalog``, ``keep``) and described (``templates``, ``style``,
+    ``variant``, ``words``: as in ``describe``); ``scene.completion`` records what was
+    chosen and why."""
+    from scenewright.completion.complete import complete
+
+    templates = checked_templates(templates)
+    scene = complete(request, seed, plans=plans, catalog=catalog, keep=keep)
+    return describe_scene(scene, style=style, variant=variant, templates=templates, words=words)
+
+
+class SceneGraphError(InputError):
+    """A scene (read from a scene.json) whose graph cannot be laid out again."""
+
+
+def layout_again(
+    scene: Scene,
+    seed: int,
+    *,
+    pin: list[str] | tuple[str, ...] = (),
+    warm: bool = False,
+    context: LearnedContext | str | os.PathLike[str] | None = None,
+    templates: str | os.PathLike[str] | None = None,
+    style: str = "full",
+    variant: int = 0,
+    words: int | None = None,
+) -> tuple[Scene, list[str]]:
+    """``scene`` laid out again with the layout seed ``seed`` and described, keeping the
+    ids in ``pin`` exactly where they stand (a group pins its members, a path its
+    control points and first junction, an object what stands on it); with ``warm`` the
+    rest starts from its poses in ``scene``. ``context``: as in ``build_scene``;
+    ``templates``, ``style``, ``variant``, ``words``: as in ``generate``. Returns the new
+    scene (its rules and derivation those of ``scene``, its seed ``seed``) and the ids
+    pinned along with those named. ``SceneGraphError`` when the scene's graph cannot be
+    laid out."""
+    from scenewright.core.scene import assemble_scene
+    from scenewright.core.seeds import check_seed
+    from scenewright.generator.layout import layout_scene
+    from scenewright.generator.layout.pinning import pins_from_scene, scene_layout
+    from scenewright.generator.layout.problem import compile_problem
+
+    seed = check_seed(seed, "layout seed")
+    templates = checked_templates(templates)
+    try:
+        graph = scene.graph()
+        problem = compile_problem(graph)
+    except InputError as error:
+        raise SceneGraphError(str(error)) from error
+    except (KeyError, ValueError, TypeError) as error:
+        raise SceneGraphError(f"not a valid scene graph: {error}") from error
+    pins = pins_from_scene(scene, problem, list(pin))
+    start = None
+    if warm:
+        poses, points = scene_layout(scene)
+        start = {**poses, **points}
+    if isinstance(context, (str, os.PathLike)):
+        from scenewright.generator.layout.learned_term import read_context
+
+        context = read_context(os.fspath(context))
+    timings: dict[str, float] = {}
+    with timed(timings, "layout"):
+        layout = layout_scene(
+            graph,
+            seed,
+            pinned=pins.poses,
+            pinned_paths=pins.paths,
+            start=start,
+            context=context,
+        )
+    laid_out = assemble_scene(graph, layout, rules=scene.rules, seed=seed)
+    laid_out.derivation = list(scene.derivation)
+    if templates is not None:
+        laid_out.templates = templates
+    laid_out.timings.update(timings)
+    described = describe_scene(laid_out, style=style, variant=variant, words=words)
+    return described, list(pins.added)
 
 
 def rules_context(

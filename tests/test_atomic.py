@@ -19,15 +19,15 @@ from pathlib import Path
 
 import pytest
 
-from scenewright import atomic
-from scenewright.atomic import (
+from scenewright.cli import main
+from scenewright.core import atomic
+from scenewright.core.atomic import (
     OutputError,
     check_output_directory,
     remove_dead_partials,
     staged_outputs,
     write_atomic,
 )
-from scenewright.cli import main
 
 OUTPUTS = ("a.txt", "b.txt", "c.txt")
 
@@ -228,7 +228,7 @@ def test_export_to_a_full_disk_names_the_file(tmp_path, monkeypatch, capsys):
 CHILD = """
 import os, shutil, sys, time
 import scenewright.api, scenewright.generator, scenewright.render.export, scenewright.render.plan
-from scenewright import atomic
+from scenewright.core import atomic
 from scenewright.cli import main
 
 def slowed(function):

@@ -19,7 +19,8 @@ from test_dataset import dataset_bytes
 from scenewright.cli import main
 from scenewright.core.errors import InputError
 from scenewright.core.seeds import stream
-from scenewright.dataset import METADATA_FILE, dataset_spec, run_dataset
+from scenewright.dataset.run import run_dataset
+from scenewright.dataset.spec import METADATA_FILE, dataset_spec
 from scenewright.render.camera import FILL, aimed_camera, entity_points, frame_scene, scene_points
 from scenewright.render.views import (
     CameraRanges,
@@ -260,7 +261,9 @@ def test_several_views_per_scene_are_rows_of_their_own_whatever_the_workers(tmp_
     coco = json.loads((tmp_path / "one" / "annotations" / "instances.json").read_text())
     assert [image["id"] for image in coco["images"]] == [1, 2, 3, 4]
     schema = json.loads(
-        resources.files("scenewright").joinpath("schema/metadata_row.schema.json").read_text()
+        resources.files("scenewright.dataset")
+        .joinpath("schema/metadata_row.schema.json")
+        .read_text()
     )
     for row in rows:
         jsonschema.validate(row, schema)

@@ -318,7 +318,7 @@ Clash -> {
 
 
 def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
-    from scenewright.cli import GENERATE_OUTPUTS
+    from scenewright.scene_folder import SCENE_FILES
 
     outputs = []
     for name in ("first", "second"):
@@ -327,7 +327,7 @@ def test_generate_writes_every_file_reproducibly(capsys, tmp_path):
         )
         assert code == 0, err
         outputs.append(tmp_path / name)
-    assert sorted(p.name for p in outputs[0].iterdir()) == sorted(GENERATE_OUTPUTS)
+    assert sorted(p.name for p in outputs[0].iterdir()) == sorted(SCENE_FILES)
     lines = out.splitlines()
     assert lines[0].startswith(f"wrote {tmp_path / 'second'}/: ") and lines[1].startswith("ok: ")
     assert "relations satisfied" in lines[1] and "energy" in lines[1]
@@ -392,14 +392,14 @@ def test_failed_layout_keeps_files_and_exits_1(capsys, tmp_path, quick_layout):
 
 
 def test_a_failing_stage_leaves_no_partial_outputs(capsys, tmp_path, monkeypatch):
-    from scenewright import api
+    from scenewright import scene_folder
     from scenewright.core.errors import GenerationError
 
     def broken_export(scene, path):
         Path(path).write_bytes(b"half a file")
         raise GenerationError("the exporter broke")
 
-    monkeypatch.setattr(api, "export", broken_export)
+    monkeypatch.setattr(scene_folder, "export", broken_export)
     code, _, err = run(capsys, "generate", "desk", "--size", "32x32", "-o", str(tmp_path / "out"))
     assert code == 1
     assert_one_line_error(err, "the exporter broke")

@@ -8,8 +8,9 @@ from pathlib import Path
 import pytest
 
 from scenewright import __version__
-from scenewright.cli import GENERATE_OUTPUTS, main
+from scenewright.cli import main
 from scenewright.core.scene import LayoutStats, Relation, Scene, SceneObject
+from scenewright.scene_folder import SCENE_FILES
 
 PINNED = ("tower_1", "house_1", "street_lamp_2")
 
@@ -65,7 +66,7 @@ def test_layout_keeps_the_pinned_poses_exactly_and_moves_the_others(capsys, tmp_
     assert lines[1].startswith(f"wrote {out}/: ")
     assert lines[2].startswith("ok: 30 objects, 2 paths, relations satisfied 30/30, energy ")
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        set(GENERATE_OUTPUTS)
+        set(SCENE_FILES)
         - {
             "preview.png",
             "preview_depth.png",
@@ -167,7 +168,7 @@ def test_layout_renders_like_generate(capsys, tmp_path, village):
         capsys, "layout", village, "--pin", "tower_1", "--size", "64x48", "-q", "-o", tmp_path
     )
     assert code == 0, err
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(GENERATE_OUTPUTS)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(SCENE_FILES)
     assert json.loads((tmp_path / "scene.json").read_text())["render"]["camera"]["width"] == 64
 
 

@@ -20,14 +20,12 @@ import pytest
 from PIL import Image
 
 from scenewright.core.errors import InputError
-from scenewright.dataset import (
+from scenewright.dataset.run import ProgressLines, progress_bar, run_dataset
+from scenewright.dataset.spec import (
     METADATA_FILE,
     RECORDS_DIR,
     DatasetSpec,
-    ProgressLines,
     SceneProduct,
-    progress_bar,
-    run_dataset,
     scene_seed,
     scene_stem,
 )
@@ -178,7 +176,7 @@ def test_resume_after_kill_minus_nine(tmp_path):
     script = (
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "from test_dataset import fake_scene, spec_of\n"
-        "from scenewright.dataset import run_dataset\n"
+        "from scenewright.dataset.run import run_dataset\n"
         f"run_dataset(spec_of(12), {str(killed)!r}, workers=2, producer=fake_scene, progress=False)\n"
     )
     env = {**os.environ, "FAKE_SCENE_DELAY": "0.15"}
@@ -206,7 +204,7 @@ def test_resume_after_kill_minus_nine(tmp_path):
 
 def test_unreachable_scheduler_is_bad_input(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
-    monkeypatch.setattr("scenewright.dataset_cluster.CONNECT_TIMEOUT", 1.0)
+    monkeypatch.setattr("scenewright.dataset.cluster.CONNECT_TIMEOUT", 1.0)
     with pytest.raises(InputError, match="cannot reach the dask scheduler"):
         run_dataset(
             spec_of(2), tmp_path, scheduler="tcp://127.0.0.1:9", producer=fake_scene, progress=False
@@ -259,12 +257,12 @@ def test_a_worker_error_stops_the_run_and_keeps_finished_scenes(tmp_path):
 
 
 def test_every_layout_failing_is_reported_and_the_command_exits_1(tmp_path, monkeypatch, capsys):
-    import scenewright.dataset
+    import scenewright.dataset.run
     from scenewright.cli import main
 
-    real = scenewright.dataset.run_dataset
+    real = scenewright.dataset.run.run_dataset
     monkeypatch.setattr(
-        scenewright.dataset,
+        scenewright.dataset.run,
         "run_dataset",
         lambda *a, **k: real(*a, **{**k, "producer": failing_scene}),
     )

@@ -12,8 +12,9 @@ from PIL import Image
 from test_dataset import dataset_bytes
 
 from scenewright.api import load_rules
-from scenewright.dataset import METADATA_FILE, RECORDS_DIR, dataset_spec, run_dataset
-from scenewright.dataset_coco import COCO_FILE, coco_categories
+from scenewright.dataset.coco import COCO_FILE, coco_categories
+from scenewright.dataset.run import run_dataset
+from scenewright.dataset.spec import METADATA_FILE, RECORDS_DIR, dataset_spec
 
 pycocotools_coco = pytest.importorskip("pycocotools.coco")
 

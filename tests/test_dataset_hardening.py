@@ -22,18 +22,17 @@ import pytest
 from render_fixtures import run_without_opengl
 from test_dataset import dataset_bytes, fake_scene, metadata_rows, spec_of
 
-import scenewright.dataset
+import scenewright.dataset.run
 from scenewright.cli import main
 from scenewright.core.errors import GenerationError, InputError
-from scenewright.dataset import (
+from scenewright.dataset.run import available_cpus, run_dataset
+from scenewright.dataset.spec import (
     LOCK_FILE,
     METADATA_FILE,
     RECORDS_DIR,
     SETTINGS_FILE,
     DatasetSpec,
     SceneProduct,
-    available_cpus,
-    run_dataset,
 )
 
 TESTS = Path(__file__).parent
@@ -64,7 +63,7 @@ def cli_command(*argv: str, before: str = "") -> list[str]:
         # its children with SIGINT ignored, and Python then leaves it ignored.
         "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
-        "import scenewright.cli, scenewright.dataset\n"
+        "import scenewright.cli, scenewright.dataset.run\n"
         f"{before}\n"
         "print('ready', flush=True)\n"
         "sys.exit(scenewright.cli.main(sys.argv[1:]))\n"
@@ -80,7 +79,7 @@ def fake_job(directory: Path, count: int, workers: int = 2) -> list[str]:
         "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "from test_dataset import fake_scene, spec_of\n"
-        "from scenewright.dataset import run_dataset\n"
+        "from scenewright.dataset.run import run_dataset\n"
         "if __name__ == '__main__':\n"
         f"    run_dataset(spec_of({count}), {str(directory)!r}, workers={workers}, producer=fake_scene,\n"
         "                progress=False)\n"
@@ -128,13 +127,13 @@ def test_rerun_reads_each_record_once_to_start_and_once_to_publish(tmp_path, mon
     rerun of 2000 finished scenes took 100 s)."""
     run_dataset(spec_of(60), tmp_path, workers=1, producer=fake_scene, progress=False)
     reads: Counter = Counter()
-    real = scenewright.dataset.read_record
+    real = scenewright.dataset.run.read_record
 
     def counted(path: Path):
         reads[path.name] += 1
         return real(path)
 
-    monkeypatch.setattr(scenewright.dataset, "read_record", counted)
+    monkeypatch.setattr(scenewright.dataset.run, "read_record", counted)
     report = run_dataset(spec_of(60), tmp_path, workers=1, producer=fake_scene, progress=False)
     assert (report.made, report.skipped) == (0, 60)
     assert len(reads) == 60 and max(reads.values()) == 2
@@ -248,14 +247,14 @@ def test_the_fork_servers_preload_survives_a_missing_opengl_backend():
     any error but ImportError: a backend that cannot load must leave the import whole,
     for the worker to report (the test above), with the parser built all the same."""
     code = (
-        "import scenewright.worker_preload\n"
+        "import scenewright.dataset.worker_preload\n"
         "from scenewright.generator.rules_parser import _build_parser\n"
         "print(_build_parser.cache_info().currsize)\n"
     )
     done = run_without_opengl(code)
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
     assert done.stdout.strip() == "1"
-    assert "scenewright.worker_preload" in scenewright.dataset.WORKER_MODULES
+    assert "scenewright.dataset.worker_preload" in scenewright.dataset.run.WORKER_MODULES
 
 
 def test_shrinking_lists_only_scenes_below_n_and_growing_back_makes_nothing(tmp_path):
@@ -419,7 +418,7 @@ def test_workers_are_capped_at_the_cpus_and_the_pending_scenes(tmp_path):
 
 
 def test_too_many_workers_is_a_note_not_an_error(tmp_path, monkeypatch, capsys):
-    real = scenewright.dataset.run_dataset
+    real = scenewright.dataset.run.run_dataset
     used = {}
 
     def fake_run(*args, **kwargs):
@@ -427,8 +426,8 @@ def test_too_many_workers_is_a_note_not_an_error(tmp_path, monkeypatch, capsys):
         used["workers"] = report.workers
         return report
 
-    monkeypatch.setattr(scenewright.dataset, "run_dataset", fake_run)
-    monkeypatch.setattr(scenewright.dataset, "available_cpus", lambda: 1)
+    monkeypatch.setattr(scenewright.dataset.run, "run_dataset", fake_run)
+    monkeypatch.setattr(scenewright.dataset.run, "available_cpus", lambda: 1)
     # --no-coco: fake_scene makes no COCO annotations
     assert (
         main(["dataset", "desk", "-n", "3", "-o", str(tmp_path), "--workers", "1000", "--no-coco"])

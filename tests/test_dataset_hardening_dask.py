@@ -86,7 +86,7 @@ def run_until_scenes_then(
             "--worker-timeout",
             "1",
             "-q",
-            before="scenewright.dataset.IDLE_CHECK = 0.5",
+            before="scenewright.dataset.run.IDLE_CHECK = 0.5",
         ),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

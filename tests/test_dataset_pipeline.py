@@ -10,7 +10,8 @@ from test_dataset import dataset_bytes
 
 from scenewright.api import generate, render_image
 from scenewright.cli import main
-from scenewright.dataset import METADATA_FILE, dataset_spec, run_dataset, scene_seed
+from scenewright.dataset.run import run_dataset
+from scenewright.dataset.spec import METADATA_FILE, dataset_spec, scene_seed
 
 
 @pytest.fixture(scope="module")

@@ -12,15 +12,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scenewright.atomic import remove_partials, write_atomic
-from scenewright.cli import image_size
-from scenewright.dataset import (
-    METADATA_FILE,
-    RECORDS_DIR,
-    finished_indices,
-    publish_metadata,
-    scene_stem,
-)
+from scenewright.cli.options import image_size
+from scenewright.core.atomic import remove_partials, write_atomic
+from scenewright.dataset.run import finished_indices, publish_metadata
+from scenewright.dataset.spec import METADATA_FILE, RECORDS_DIR, scene_stem
 
 
 @settings(max_examples=40, deadline=None)
@@ -102,7 +97,7 @@ def test_size_option_refuses(text):
 
 
 def test_atomic_write_gives_the_mode_open_would(tmp_path):
-    from scenewright.atomic import write_atomic
+    from scenewright.core.atomic import write_atomic
 
     target = write_atomic(tmp_path / "a.txt", "x")
     plain = tmp_path / "b.txt"

@@ -18,13 +18,9 @@ from test_dataset import dataset_bytes, spec_of
 from scenewright.api import build_scene, load_rules, render_image
 from scenewright.cli import main
 from scenewright.core.seeds import MAX_SEED, retry_seed
-from scenewright.dataset import (
-    METADATA_FILE,
-    check_same_settings,
-    dataset_spec,
-    scene_seed,
-)
-from scenewright.dataset_stats import error_kind, retries_by_size
+from scenewright.dataset.run import check_same_settings
+from scenewright.dataset.spec import METADATA_FILE, dataset_spec, scene_seed
+from scenewright.dataset.stats import error_kind, retries_by_size
 
 CRAMPED = """\
 # One crate fits the yard, two never do; a pile recurses past max_depth.
@@ -109,7 +105,7 @@ def test_retry_seeds_are_valid_seeds_for_any_scene_seed(seed, attempt):
 
 
 def test_a_failing_layout_is_retried_with_the_same_objects(cramped):
-    from scenewright.dataset_scene import laid_out_scene, worker_context
+    from scenewright.dataset.produce import laid_out_scene, worker_context
 
     kinds = outcomes(cramped)
     assert set(kinds.values()) == {"ok", "fails", "error"}, "the rule set should give every outcome"

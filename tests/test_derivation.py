@@ -11,9 +11,9 @@ from scenewright.api import build_scene
 from scenewright.cli import main
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph
+from scenewright.core.schema_check import SceneSchemaError, validate_scene_dict
 from scenewright.generator import expand, load_rules, shipped_rule_sets
 from scenewright.generator.derivation import ChoiceCounts, Site, choice_counts
-from scenewright.schema_check import SceneSchemaError, validate_scene_dict
 
 STALLS = """\
 scene stalls { extent 20 x 20 start Market }

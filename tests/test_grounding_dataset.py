@@ -12,8 +12,8 @@ from render_fixtures import or_skip_without_opengl
 
 from scenewright.cli import main
 from scenewright.core.errors import InputError
-from scenewright.dataset import dataset_spec
-from scenewright.dataset_scene import PictureCaptions, produce_scene, with_picture_captions
+from scenewright.dataset.produce import PictureCaptions, produce_scene, with_picture_captions
+from scenewright.dataset.spec import dataset_spec
 
 
 def produced(spec, index):
@@ -140,7 +140,9 @@ def test_the_command_refuses_a_bad_threshold_in_one_line(tmp_path, capsys):
 
 def test_rows_follow_the_shipped_row_schema(products):
     schema = json.loads(
-        resources.files("scenewright").joinpath("schema/metadata_row.schema.json").read_text()
+        resources.files("scenewright.dataset")
+        .joinpath("schema/metadata_row.schema.json")
+        .read_text()
     )
     jsonschema.Draft202012Validator.check_schema(schema)
     for product in products:

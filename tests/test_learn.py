@@ -14,7 +14,7 @@ import pytest
 from test_cli import assert_one_line_error, run
 
 from scenewright.api import build_scene
-from scenewright.cli import EXAMPLES
+from scenewright.cli.learning_commands import HELP
 from scenewright.examples import Example, load_examples
 from scenewright.generator import check_rules, load_rules
 from scenewright.learning.density_peaks import density_peaks
@@ -266,7 +266,7 @@ def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_s
 
 
 def test_learn_help_has_an_example(capsys):
-    assert "scenewright learn examples/sets/desks/*.json -o desks.rules" in EXAMPLES["learn"]
+    assert "scenewright learn examples/sets/desks/*.json -o desks.rules" in HELP["learn"]
     with pytest.raises(SystemExit):
         run(capsys, "learn", "--help")
     assert "scenewright learn" in capsys.readouterr().out
@@ -321,7 +321,10 @@ def test_learn_rule_set_writes_nothing_when_the_examples_cannot_be_learned(tmp_p
     written = []
     with pytest.raises(Exception, match="at least 2"):
         learn_rule_set(
-            load_examples(DESKS[:1]), tmp_path / "x.rules", write=lambda p, t: written.append(p)
+            load_examples(DESKS[:1]),
+            tmp_path / "x.rules",
+            write=lambda p, t: written.append(p),
+            build_scene=build_scene,
         )
     assert written == [] and not (tmp_path / "x.rules").exists()
 

@@ -579,7 +579,7 @@ def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_
 def api_scene_with_context(rules: Path, sidecar: Path, settings: dict) -> dict:
     """Scene 0 of a dataset with ``settings`` made by the Python API with the context."""
     from scenewright.api import reproducible_json, rules_context
-    from scenewright.dataset import scene_seed
+    from scenewright.dataset.spec import scene_seed
 
     loaded = load_rules(rules)
     seed = scene_seed(settings["base_seed"], 0)

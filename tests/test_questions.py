@@ -16,9 +16,9 @@ from test_describer_e2e import ungrammatical
 
 from scenewright.api import build_scene, load_rules
 from scenewright.cli import main
-from scenewright.dataset import dataset_spec, scene_seed
-from scenewright.dataset_questions import publish_questions
-from scenewright.dataset_scene import produce_scene, with_picture_captions
+from scenewright.dataset.produce import produce_scene, with_picture_captions
+from scenewright.dataset.questions import publish_questions
+from scenewright.dataset.spec import dataset_spec, scene_seed
 from scenewright.describer.colours import colour_word
 from scenewright.describer.programs import (
     DEPTH_MARGIN,
@@ -351,7 +351,9 @@ def test_questions_parse_with_link_grammar(rendered):
 
 def test_rows_carry_questions_that_follow_the_row_schema():
     schema = json.loads(
-        resources.files("scenewright").joinpath("schema/metadata_row.schema.json").read_text()
+        resources.files("scenewright.dataset")
+        .joinpath("schema/metadata_row.schema.json")
+        .read_text()
     )
     spec = dataset_spec("desk", 1, size=(64, 64))
     row = or_skip_without_opengl(lambda: produce_scene(spec, 0)).row

@@ -12,10 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_cli import assert_one_line_error, run
 
-from scenewright.cli import EXAMPLES, main
+from scenewright.cli import main
+from scenewright.cli.learning_commands import HELP
 from scenewright.core.scene import Scene, SceneObject
-from scenewright.dataset import check_same_settings, dataset_spec
-from scenewright.dataset_scene import produce_scene
+from scenewright.dataset.produce import produce_scene
+from scenewright.dataset.run import check_same_settings
+from scenewright.dataset.spec import dataset_spec
 from scenewright.learning.relation_pruning import coordinate_spreads, prune_indirect
 from scenewright.learning.relation_results import PairRelation
 from scenewright.learning.relation_statistics import angle_statistic, nearest_neighbour_angles
@@ -654,7 +656,7 @@ def test_command_refuses_bad_input_in_one_line(tmp_path, capsys):
     code, _, err = run(capsys, "relations", *paths, "--seed", "-1")
     assert code == 2
     assert_one_line_error(err, "--seed")
-    assert "scenewright relations" in EXAMPLES["relations"]
+    assert "scenewright relations" in HELP["relations"]
 
 
 def test_command_offers_every_test_of_the_registry(capsys):

@@ -20,7 +20,7 @@ from test_cli import run
 from scenewright import __version__
 from scenewright.core import limits
 from scenewright.core.scene import LayoutStats, Relation, Scene, SceneObject, ScenePath
-from scenewright.schema_check import (
+from scenewright.core.schema_check import (
     SceneSchemaError,
     load_schema,
     parse_scene_json,

@@ -9,8 +9,8 @@ from render_fixtures import market_scene, renderer_or_skip
 
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Relation
+from scenewright.core.schema_check import SceneSchemaError, load_schema, validate_scene_dict
 from scenewright.render.offscreen import render_metadata
-from scenewright.schema_check import SceneSchemaError, load_schema, validate_scene_dict
 
 
 def scene_dict() -> dict:

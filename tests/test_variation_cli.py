@@ -144,6 +144,7 @@ def test_vary_writes_ranked_variant_folders(capsys, tmp_path, rooms):
             "plan.png",
             "scene.glb",
             "scene.json",
+            "timings.json",
         ]
         scene = json.loads((folder / "scene.json").read_text())
         assert scene["synthesis"]["operations"] and set(scene["synthesis"]["sources"]) == {

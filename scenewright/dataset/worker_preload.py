@@ -1,8 +1,8 @@
 """What a dataset's fork server loads once, before it forks a worker.
 
-Every pool worker is forked from the fork server (``dataset.WorkerPool``), so whatever
+Every pool worker is forked from the fork server (``run.WorkerPool``), so whatever
 the server has imported or built, each worker has at no cost. Besides the pipeline
-(``dataset.WORKER_MODULES``), the server loads here what every worker would otherwise
+(``run.WORKER_MODULES``), the server loads here what every worker would otherwise
 redo for itself before its first scene: trimesh and pyrender with its offscreen OpenGL
 platform chosen (imports of about 1 s, no OpenGL context: contexts are never inherited,
 each worker creates its own) and the rules language's LALR parser (its tables, built

@@ -9,7 +9,7 @@ above 1) gets one context per thread. ``produce_scene`` turns a scene index into
 dataset directory; the parent process does (``dataset.store_product``).
 
 A scene has ``spec.views`` pictures (``view_picture``), each with its own row, files,
-captions and COCO annotations (``dataset_coco``): from the automatic camera, or from
+captions and COCO annotations (``coco``): from the automatic camera, or from
 one drawn from ``spec.camera`` with the scene's camera stream of that view
 (``render.views``). The layout and the full text are made once per scene.
 
@@ -41,7 +41,13 @@ from scenewright.api import (
 from scenewright.core.errors import InputError, ScenewrightError
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import retry_seed
-from scenewright.dataset import DatasetSpec, SceneProduct, scene_seed, scene_stem
+from scenewright.dataset.spec import (
+    DatasetSpec,
+    SceneProduct,
+    file_digest,
+    scene_seed,
+    scene_stem,
+)
 from scenewright.generator.rules_errors import ExpansionError
 
 if TYPE_CHECKING:
@@ -132,7 +138,6 @@ def spec_context(spec: DatasetSpec) -> LearnedContext | None:
     its file changed since the dataset was set up (its digest differs)."""
     if spec.context is None:
         return None
-    from scenewright.dataset import file_digest
     from scenewright.generator.layout.learned_term import read_context
 
     if file_digest(spec.context) != spec.context_digest:
@@ -225,7 +230,7 @@ def view_picture(
     caption it; return the scene with that view's render and the view's picture. The
     camera is the automatic one, or drawn from ``spec.camera`` with the scene's camera
     stream of the view (a target the scene lacks: the whole scene)."""
-    from scenewright.dataset_coco import view_annotations
+    from scenewright.dataset.coco import view_annotations
     from scenewright.render.offscreen import encode_render
     from scenewright.render.views import camera_column, resolve_target
 

@@ -4,7 +4,7 @@
 ``concurrent.futures.Executor`` over it (dask's own ``ClientExecutor``), so the dataset
 loop is the same code for a local process pool and for a cluster. Every worker needs
 scenewright installed (``pip install 'scenewright[dask]'``); each keeps its rules and
-renderer per thread (``dataset_scene.worker_context``), and returns encoded
+renderer per thread (``produce.worker_context``), and returns encoded
 files to this process, which alone writes the dataset directory.
 
 Each way a cluster can fail ends in one line: an address that is not one or a scheduler

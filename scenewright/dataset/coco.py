@@ -31,12 +31,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from scenewright import __version__
-from scenewright.atomic import atomic_stream
+from scenewright.core import VERSION
+from scenewright.core.atomic import atomic_stream
+from scenewright.dataset.spec import DatasetSpec, image_number
 
 if TYPE_CHECKING:
     from scenewright.core.scene import Scene
-    from scenewright.dataset import DatasetSpec
     from scenewright.generator.rules import Rules
     from scenewright.render.offscreen import RenderResult
 
@@ -100,8 +100,6 @@ def coco_writer(
     without an error. Images are written as they come and annotations to a spool file
     (unnamed, so a killed run leaves nothing), copied in after them: neither list is
     held in memory."""
-    from scenewright.dataset import image_number  # dataset imports this module
-
     ids = {category["name"]: category["id"] for category in categories}
     width, height = spec.size
     views = spec.views
@@ -112,7 +110,7 @@ def coco_writer(
     ):
         info = {
             "description": f"scenewright dataset of the {spec.rules} rules",
-            "version": __version__,
+            "version": VERSION,
         }
         out.write(
             f'{{"info": {json.dumps(info, ensure_ascii=False)},\n"licenses": [],\n"categories": [\n'

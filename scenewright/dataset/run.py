@@ -1,4 +1,4 @@
-"""Datasets: N scenes from one rule set, written in the Hugging Face ``imagefolder`` layout.
+"""A dataset run: N scenes from one rule set, written in the Hugging Face ``imagefolder`` layout.
 
 Seeds. Scene ``i`` of a dataset with base seed ``b`` uses the seed
 ``SeedSequence([b, i]).generate_state(1)[0]`` (``scene_seed``): it depends on nothing
@@ -16,15 +16,15 @@ On disk (``DIR``)::
     depth/, segmentation/  optional ground truth (16-bit PNGs)
     failed/000003.json     scene.json of a scene whose every layout failed (not in metadata)
     stats.json, stats.png  counts, frequencies, caption lengths, time per stage
-    questions.json         every row's questions, CLEVR's layout (``dataset_questions``)
-    annotations/instances.json  COCO instances of every image (``dataset_coco``)
+    questions.json         every row's questions, CLEVR's layout (``questions``)
+    annotations/instances.json  COCO instances of every image (``coco``)
     .records/000000.json   one record per finished scene: the commit marker for resume
     .lock                  locked (flock) by the run using the directory, which writes its
                            pid there while it runs
 
 A scene whose layout fails is laid out again, up to ``DatasetSpec.retries`` times, with
 the layout seeds ``core.seeds.retry_seed(seed, k)`` and the same scene graph, so the
-dataset keeps the rule set's mix of scene sizes (``dataset_scene.laid_out_scene``).
+dataset keeps the rule set's mix of scene sizes (``produce.laid_out_scene``).
 
 Every file is written atomically; a scene counts as done only once its record exists,
 and the record is written after the scene's files. A run that is killed therefore
@@ -34,7 +34,7 @@ from the records at the end. Start-up reads the records folder once and walks th
 indices still to make lazily, so it costs the same whatever N is.
 
 Work runs on a process pool (one machine, ``WorkerPool``) or on a dask.distributed
-cluster (several, ``dataset_cluster``); workers compute and encode, and only this
+cluster (several, ``cluster``); workers compute and encode, and only this
 process writes to ``DIR``, so a cluster's workers need no shared filesystem.
 """
 
@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import fcntl
-import hashlib
 import json
 import multiprocessing
 import os
@@ -53,35 +52,35 @@ import time
 from collections.abc import Callable, Iterator
 from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager, nullcontext
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
-import numpy as np
-
-from scenewright.api import DATASET_RETRIES
-from scenewright.atomic import atomic_stream, remove_partials, write_atomic
+from scenewright.core.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.core.errors import GenerationError, InputError, ScenewrightError
-from scenewright.dataset_coco import coco_sink
-from scenewright.dataset_stats import StatsCollector, write_stats
+from scenewright.dataset.coco import coco_sink
+from scenewright.dataset.spec import (
+    LOCK_FILE,
+    METADATA_FILE,
+    RECORDS_DIR,
+    SETTINGS_FILE,
+    DatasetSpec,
+    Producer,
+    SceneProduct,
+    scene_stem,
+)
+from scenewright.dataset.stats import StatsCollector, write_stats
 
 if TYPE_CHECKING:
-    from scenewright.render.views import CameraRanges
+    pass
 
-#: The settings that must not change when a run is resumed into the same directory.
-SETTINGS_FILE = "dataset.json"
-RECORDS_DIR = ".records"
-METADATA_FILE = "metadata.jsonl"
-#: Locked (``flock``) by the run using the directory, so a second run is refused; the
-#: kernel releases the lock when that run ends in any way, ``kill -9`` included.
-LOCK_FILE = ".lock"
 #: What a worker imports; a fork server imports it once for all its workers
 #: (``worker_preload`` loads pyrender and builds the rules parser there too).
 WORKER_MODULES = [
     "scenewright.generator.layout",
     "scenewright.describer",
-    "scenewright.dataset_scene",
-    "scenewright.worker_preload",
+    "scenewright.dataset.produce",
+    "scenewright.dataset.worker_preload",
 ]
 #: When stderr is not a terminal (a log file, a batch job), progress is a plain line at
 #: most this often (seconds) and one at the end, not a bar redrawn after every scene.
@@ -104,17 +103,6 @@ SETTINGS_BEFORE = {
 }
 
 
-def image_number(index: int, view: int, views: int) -> int:
-    """Image ``view`` of scene ``index`` counted over the dataset's images (0-based), with
-    ``views`` images a scene: unchanged when the dataset grows or shrinks."""
-    return index * views + view
-
-
-def scene_seed(base_seed: int, index: int) -> int:
-    """The seed of scene ``index`` in a dataset with ``base_seed`` (a 32-bit integer)."""
-    return int(np.random.SeedSequence([base_seed, index]).generate_state(1)[0])
-
-
 def available_cpus() -> int:
     """The CPUs this process may run on (its affinity, not the machine's count): the
     default and the most local worker processes a run starts."""
@@ -131,150 +119,6 @@ def pool_size(requested: int | None, pending: int) -> int:
     pipeline and OpenGL context) and at most one per pending scene."""
     cpus = available_cpus()
     return max(1, min(requested or cpus, cpus, pending))
-
-
-def scene_stem(index: int) -> str:
-    return f"{index:06d}"
-
-
-@dataclass(frozen=True)
-class DatasetSpec:
-    """What to make. Everything here except ``count`` is fixed for a dataset directory.
-
-    ``count`` (N) is how many scenes, indices 0..N-1, metadata.jsonl and the statistics
-    cover; a rerun may raise it (more scenes are made) or lower it (scenes at N and
-    above stay on disk but are no longer listed).
-
-    ``rules`` is how the user named the rule set (shipped name or path) and
-    ``rules_digest`` a hash of its text, so a resumed run cannot silently mix rule
-    versions. ``captions`` is the number of short captions per scene (variants 0..K-1).
-    ``retries`` is how many more times a failed layout is tried, with the layout seeds
-    ``core.seeds.retry_seed(seed, 1..retries)``, the scene's graph unchanged.
-    ``templates`` is the absolute path of a description templates folder that replaces
-    the rule set's own, or None. ``coco``: write ``annotations/instances.json``
-    (``dataset_coco``). ``views``: images per scene, each its own row; ``camera``: the
-    ranges their cameras are drawn from (``render.views``), None for the automatic one.
-    ``text_words``: the ``text`` column is the most detailed description (full, summary,
-    short) of at most this many words (``describe(words=...)``), None: the full one;
-    scene.json keeps the full description either way. ``context``: the absolute path of
-    the learned context every layout samples with (``scenewright fit --what context``),
-    None for none; ``context_digest`` a hash of its text, so a resumed run cannot mix
-    contexts.
-    """
-
-    rules: str
-    rules_digest: str
-    count: int
-    base_seed: int = 0
-    captions: int = 1
-    templates: str | None = None
-    size: tuple[int, int] = (512, 512)
-    view: str = "perspective"
-    depth: bool = False
-    segmentation: bool = False
-    include_failed: bool = False
-    retries: int = DATASET_RETRIES
-    #: False: no render, no images and no picture captions; a scene is its scene.json
-    #: and its description (``texts/STEM.txt``), for fast example corpora.
-    images: bool = True
-    coco: bool = True
-    views: int = 1
-    camera: CameraRanges | None = None
-    text_words: int | None = None
-    context: str | None = None
-    context_digest: str | None = None
-
-    def settings(self) -> dict:
-        """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads
-        them back)."""
-        data = json.loads(json.dumps(asdict(self)))
-        del data["count"]
-        return data
-
-
-def dataset_spec(
-    rules,
-    count: int,
-    *,
-    templates: str | os.PathLike[str] | None = None,
-    context: str | os.PathLike[str] | None = None,
-    **settings,
-) -> DatasetSpec:
-    """The spec for ``count`` scenes of a rule set (name, path or loaded Rules).
-
-    Loads (and so checks) the rules and the description templates the scenes will use
-    (``templates``, else the rule set's own), names the rules as scene.json does, and
-    hashes their text. ``context`` is a learned context file to lay every scene out
-    with (read, so checked, and hashed; ``api.rules_context`` finds the one beside the
-    rules). ``settings`` are the other ``DatasetSpec`` fields; without images there is
-    no COCO file, and several views or camera ranges are an ``InputError``.
-    """
-    from scenewright.api import checked_templates, load_rules, rules_context, rules_label
-
-    loaded = load_rules(rules)
-    if templates is None:
-        checked_templates(loaded.params.templates)  # a broken one stops the run before any work
-    else:
-        templates = checked_templates(templates)
-    if not settings.get("images", True):
-        if settings.get("views", 1) > 1 or settings.get("camera") is not None:
-            raise InputError(
-                "--views and the camera options are for images: they cannot be used with --no-images"
-            )
-        settings["coco"] = False  # no picture, nothing to annotate
-    digest = file_digest(loaded.path)
-    if context is not None:
-        path, _ = rules_context(loaded, context)  # an InputError for a file that is not a context
-        settings.update(context=str(Path(path).resolve()), context_digest=file_digest(path))
-    return DatasetSpec(
-        rules=rules_label(loaded), rules_digest=digest, count=count, templates=templates, **settings
-    )
-
-
-def file_digest(path: str | os.PathLike[str]) -> str:
-    """The SHA-256 of a file's bytes, in hex."""
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
-@dataclass
-class SceneProduct:
-    """What a worker returns for one scene: files to write and the scene's record.
-
-    ``files`` maps paths relative to the dataset directory to their bytes. ``row`` is
-    the scene's metadata.jsonl row, or None when the scene is left out (failed layout
-    without ``include_failed``). ``stats`` feeds stats.json (see ``dataset_stats``).
-    ``views``: the rows of the scene's further views (1, 2, ...), after ``row``, that of
-    view 0. ``coco``: the COCO annotations of each row's image (``dataset_coco``), or
-    None without COCO output.
-    """
-
-    index: int
-    seed: int
-    ok: bool
-    files: dict[str, bytes]
-    row: dict | None
-    stats: dict = field(default_factory=dict)
-    views: list[dict] = field(default_factory=list)
-    coco: list[list[dict]] | None = None
-
-    def record(self) -> dict:
-        record = {
-            "index": self.index,
-            "seed": self.seed,
-            "ok": self.ok,
-            "files": sorted(self.files),
-            "row": self.row,
-            "stats": self.stats,
-        }
-        if self.views:
-            record["views"] = self.views
-        if self.coco is not None:
-            record["coco"] = self.coco
-        return record
-
-
-#: Computes one scene in a worker process: ``produce(spec, index) -> SceneProduct``.
-Producer = Callable[[DatasetSpec, int], SceneProduct]
 
 
 @dataclass
@@ -420,7 +264,7 @@ def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     setting; a ``count`` that datasets made before it could change is ignored). A
     setting missing on either side has its default: its ``SETTINGS_BEFORE`` value, or
     for the caption settings, which are stored only when not the defaults, those."""
-    from scenewright.dataset_scene import CAPTION_DEFAULTS
+    from scenewright.dataset.produce import CAPTION_DEFAULTS
 
     defaults = {**CAPTION_DEFAULTS, **SETTINGS_BEFORE}
     stored, current = {**defaults, **stored}, {**defaults, **spec.settings()}
@@ -474,7 +318,7 @@ def store_product(root: Path, product: SceneProduct) -> None:
 def publish_metadata(root: Path, count: int, coco=None) -> StatsCollector:
     """Rebuild metadata.jsonl from the records, in index order, one record at a time
     (a scene's rows: its views in order); return the records' statistics. Every record
-    must exist (the run has finished). ``coco``: a ``dataset_coco.coco_writer`` to pass
+    must exist (the run has finished). ``coco``: a ``coco.coco_writer`` to pass
     every record to as well, or None."""
     collector = StatsCollector()
     with atomic_stream(root / METADATA_FILE) as metadata, coco or nullcontext(None) as add_coco:
@@ -554,7 +398,7 @@ def start_worker(lifeline, spec: DatasetSpec | None) -> None:
     # user gave is kept.
     os.environ.setdefault("LP_NUM_THREADS", "0")
     if spec is not None:
-        from scenewright.dataset_scene import worker_context
+        from scenewright.dataset.produce import worker_context
 
         try:
             worker_context(spec)
@@ -647,16 +491,16 @@ def make_executor(
 ):
     """Where the scenes are computed: a ``WorkerPool`` of ``pool_size(workers, pending)``
     processes, or with a dask.distributed ``scheduler`` address a
-    ``dataset_cluster.ClusterExecutor`` (which tells ``note`` when it waits for a
+    ``cluster.ClusterExecutor`` (which tells ``note`` when it waits for a
     worker). Both are ``concurrent.futures`` executors that also offer ``slots()``
     (scenes made at once), ``check()`` (raise when no progress is possible) and
     ``failure(future)`` (the error a finished future stands for)."""
     if scheduler:
-        from scenewright.dataset_cluster import WORKER_TIMEOUT, cluster_executor
+        from scenewright.dataset.cluster import WORKER_TIMEOUT, cluster_executor
 
         timeout = WORKER_TIMEOUT if worker_timeout is None else worker_timeout
         return cluster_executor(scheduler, timeout, note)
-    from scenewright.dataset_scene import produce_scene
+    from scenewright.dataset.produce import produce_scene
 
     return WorkerPool(pool_size(workers, pending), spec if producer is produce_scene else None)
 
@@ -677,12 +521,12 @@ def run_dataset(
     process may use, and no more than the scenes left to make); with a dask
     ``scheduler`` address the cluster's workers are used instead, and
     ``worker_timeout`` is how long (seconds) the cluster may have no workers before the
-    run gives up (``dataset_cluster.WORKER_TIMEOUT`` by default). ``producer`` computes
-    one scene in a worker (default: the real pipeline, ``dataset_scene.produce_scene``);
+    run gives up (``cluster.WORKER_TIMEOUT`` by default). ``producer`` computes
+    one scene in a worker (default: the real pipeline, ``produce.produce_scene``);
     tests inject a cheap one. Holds the directory's lock throughout.
     """
-    from scenewright.dataset_questions import publish_questions
-    from scenewright.dataset_scene import produce_scene
+    from scenewright.dataset.produce import produce_scene
+    from scenewright.dataset.questions import publish_questions
 
     producer = producer or produce_scene
     with open_dataset(spec, directory) as root:

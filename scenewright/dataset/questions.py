@@ -20,8 +20,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from scenewright.atomic import atomic_stream
-from scenewright.dataset import METADATA_FILE, DatasetSpec, image_number
+from scenewright.core.atomic import atomic_stream
+from scenewright.dataset.spec import METADATA_FILE, DatasetSpec, image_number
 
 QUESTIONS_FILE = "questions.json"
 
@@ -30,7 +30,7 @@ def publish_questions(root: Path, spec: DatasetSpec) -> int | None:
     """Write ``QUESTIONS_FILE`` from ``root``'s metadata.jsonl; return how many questions
     it holds (None, and nothing written, when ``spec`` turns questions or images off).
     An image's ``image_index`` counts images: scene i's view v is ``i * views + v``."""
-    from scenewright.dataset_scene import captions_options
+    from scenewright.dataset.produce import captions_options
 
     if not captions_options(spec).questions or not spec.images:
         return None

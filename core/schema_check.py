@@ -1,6 +1,6 @@
 """Check a scene.json document: its numbers and text, the shipped JSON Schema, its references.
 
-The schema (``scenewright/schema/scene.schema.json``, package data) documents every
+The schema (``core/schema/scene.schema.json``, package data) documents every
 key ``Scene.to_dict()`` writes, with the bounds of ``scenewright.core.limits`` on
 coordinates, sizes, extents and counts; tools reading scene.json can use it too.
 ``parse_scene_json`` reads the text, keeping NaN, Infinity and numbers too large for a
@@ -340,11 +340,11 @@ def packaged_validator(package: str, *path: str) -> jsonschema.Draft202012Valida
 
 
 def _schema_text() -> str:
-    return packaged_schema_text("scenewright", "schema", SCHEMA_FILE)
+    return packaged_schema_text("scenewright.core", "schema", SCHEMA_FILE)
 
 
 def _validator() -> jsonschema.Draft202012Validator:
-    return packaged_validator("scenewright", "schema", SCHEMA_FILE)
+    return packaged_validator("scenewright.core", "schema", SCHEMA_FILE)
 
 
 def _one_line(message: str, limit: int = 200) -> str:

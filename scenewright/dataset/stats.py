@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from scenewright.atomic import write_atomic
+from scenewright.core.atomic import write_atomic
 
 STATS_JSON = "stats.json"
 STATS_PNG = "stats.png"

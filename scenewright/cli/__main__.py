@@ -1,0 +1,7 @@
+"""``python -m scenewright.cli``: the ``scenewright`` command."""
+
+import sys
+
+from scenewright.cli import main
+
+sys.exit(main())
