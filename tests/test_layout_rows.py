@@ -32,8 +32,8 @@ from scenewright.generator.layout.geometry import (
 from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
+from scenewright.generator.layout.reachability import CORRIDOR_HALF, access_grid
 from scenewright.generator.layout.relation_terms import evaluate, satisfied
-from scenewright.generator.layout.room_terms import CORRIDOR_HALF, access_grid
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 

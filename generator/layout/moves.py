@@ -71,6 +71,7 @@ from .geometry import nearest_on_polyline
 from .params import LayoutParams
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm
+from .reachability import CORRIDOR_HALF, access_grid
 from .relation_terms import (
     BESIDE_DISTANCE,
     HEADING_FACINGS,
@@ -81,7 +82,7 @@ from .relation_terms import (
     satisfied,
     source_point,
 )
-from .room_terms import CORRIDOR_HALF, FLAT_HEIGHT, access_grid
+from .room_terms import FLAT_HEIGHT
 from .state import State
 
 #: Relative frequencies of the move types.
