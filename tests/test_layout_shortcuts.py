@@ -32,7 +32,7 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     to_local,
 )
-from scenewright.generator.layout.moves import draw_index, uniform
+from scenewright.generator.layout.motion import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps, assess

@@ -15,7 +15,7 @@ count as placed; pinned and started paths get their given points. Then each new
 junction with its roads (taking the evenly spread headings given roads leave free), and
 each new free road, is the best of ``path_candidates`` random ones by the energy plus
 how far pinned things that must be next to a road are from it, and such roads are
-pulled towards those things (``Mover.pull``). The rest is placed around them as above.
+pulled towards those things (``Placer.pull``). The rest is placed around them as above.
 A group holding any given box is not placed again as a whole (its given boxes stay
 where they were put). Without pins or a start, nothing here draws a different number.
 
@@ -52,13 +52,15 @@ import numpy as np
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
+from .families import LAYOUT_FAMILIES
 from .geometry import corners
-from .moves import Mover, draw_index, rigid, uniform, wrap
-from .moves import reach as footprint_reach
+from .motion import draw_index, rigid, uniform, wrap
+from .motion import reach as footprint_reach
 from .pinning import Pins
-from .problem import ROOM_ENDS, Endpoint, RelationTerm
-from .relation_terms import HEADING_FACINGS, centre, evaluate
+from .placement import Placer
+from .relation_terms import centre, evaluate
 from .templates import not_templated, template_draw
+from .terms import ROOM_ENDS, Endpoint, RelationTerm
 
 #: Paths stay this far (metres) inside the extent when first laid out.
 PATH_MARGIN = 1.0
@@ -86,7 +88,7 @@ PUSH_MARGIN = 0.05
 
 def place_initial(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     pins: Pins | None = None,
     frames: Mapping[int, Mapping[int, tuple[float, float, float]]] | None = None,
@@ -202,11 +204,13 @@ def _wall_order(energy: Energy) -> dict[tuple[str, int], tuple[int, float]]:
     order = {}
     for unit in problem.units:
         kind, index = unit
-        placements = [
-            t.spec.wall for t in _outgoing(energy, kind, index) if t.spec.family == "wall"
+        ranks = [
+            rank(t)
+            for t in _outgoing(energy, kind, index)
+            if (rank := LAYOUT_FAMILIES[t.spec.family].placing_rank) is not None
         ]
-        if kind == "object" and placements:
-            spots = 1 if any(p != "against" for p in placements) else 0
+        if kind == "object" and ranks:
+            spots = max(ranks)
             order[unit] = (spots, 4.0 * problem.half_width[index] * problem.half_depth[index])
     return order
 
@@ -264,14 +268,18 @@ def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
         if incoming.a.kind == "path":
             continue
         for term in problem.outgoing[(incoming.a.kind, incoming.a.index)]:
-            if term is not incoming and term.spec.family == "next_to" and _placed(energy, term.b):
+            if (
+                term is not incoming
+                and LAYOUT_FAMILIES[term.spec.family].anchors_target
+                and _placed(energy, term.b)
+            ):
                 return replace(term, a=end, label="NextTo", spec=RELATIONS["NextTo"], sight=())
     return None
 
 
-def _held_terms(energy: Energy, mover: Mover, pins: Pins):
+def _held_terms(energy: Energy, mover: Placer, pins: Pins):
     """A score of how far roads and junctions are from the pinned things that must be next
-    to them (None when there are none): the NextTo* terms ``Mover.pull`` mends, measured
+    to them (None when there are none): the NextTo* terms ``Placer.pull`` mends, measured
     from the pinned boxes of their source alone, since the rest of a group is not placed
     yet while roads are laid."""
     terms = []
@@ -548,7 +556,7 @@ def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
 
 def _place_box(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     box: int,
     mates: tuple[int, ...],
@@ -562,13 +570,14 @@ def _place_box(
     own = Endpoint("object", box, (box,))
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
-    positional = [t for t in outgoing if t.spec.family != "facing"]
-    walls = [t for t in positional if t.spec.family == "wall"]
-    facing = [t for t in outgoing if t.spec.family == "facing"]
+    positional = [t for t in outgoing if LAYOUT_FAMILIES[t.spec.family].places]
+    turning = [t for t in outgoing if not LAYOUT_FAMILIES[t.spec.family].places]
     incoming = [
         t
         for t in problem.incoming.get(("object", box), [])
-        if t.spec.family == "next_to" and t.a.kind != "path" and _placed(energy, t.a)
+        if LAYOUT_FAMILIES[t.spec.family].anchors_target
+        and t.a.kind != "path"
+        and _placed(energy, t.a)
     ]
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
 
@@ -578,8 +587,11 @@ def _place_box(
         if positional or incoming:
             pick = draw_index(rng, len(positional) + len(incoming))
             if pick < len(positional):
-                return mover.place_by(positional[pick], walls), {}
-            return mover.place_target_for(incoming[pick - len(positional)]), {}
+                return mover.place_by(positional[pick]), {}
+            target_term = incoming[pick - len(positional)]
+            place_target = LAYOUT_FAMILIES[target_term.spec.family].place_target
+            assert place_target is not None  # a family that anchors its target places it
+            return place_target(mover, target_term), {}
         if anchor_term is not None:
             return mover.place_for_relation(anchor_term), {}
         if placed_mates:
@@ -592,15 +604,15 @@ def _place_box(
 
     template = template_draw(energy, rng, box)
     if template is not None:  # a learned pair's source: its template gives place and turn
-        draw, facing = template, not_templated(energy, facing)
+        draw, turning = template, not_templated(energy, turning)
     # In a room, a heading its facing relations fix whatever the place (same, opposite or
     # square to B's) is taken before the place: NextTo* placements keep A's heading and
     # AlignedWith keeps its way round, so a desk placed left of a desk already facing the
     # board stays left of it once turned (turned after, about its own centre, it would
     # not). Outdoors it sped the village up but lengthened the town's tail (docs/layout.md).
-    for term in facing:
-        if problem.room is not None and term.spec.facing in HEADING_FACINGS and not support:
-            turned = mover.turn_to_face(term)
+    for term in turning:
+        if problem.room is not None and _heading_only(term) and not support:
+            turned = _turn(mover, term)
             for item, pose in (turned or {}).items():
                 state.set_pose(item, *pose)
     first = draw()[0]
@@ -614,12 +626,33 @@ def _place_box(
     else:
         energy.activate([box])
         _best_of(energy, draw, energy.params.initial_candidates)
-    for term in facing:
-        if problem.room is not None and mover.faces_as_asked(
-            term
+    for term in turning:
+        if problem.room is not None and _turned(
+            mover, term
         ):  # its heading came first and the place kept it
             continue
-        _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
+        _best_of(energy, lambda term=term: (_turn(mover, term), {}), 2)
+
+
+def _turn(mover: Placer, term: RelationTerm, *, whole_group: bool = False) -> dict | None:
+    """A (or the top-level group holding it) turned as a relation that only turns A asks
+    (its family's ``turn`` or ``turn_group``)."""
+    family = LAYOUT_FAMILIES[term.spec.family]
+    turn = family.turn_group if whole_group else family.turn
+    assert turn is not None  # a family that does not place A turns it
+    return turn(mover, term)
+
+
+def _heading_only(term: RelationTerm) -> bool:
+    """Whether a turning relation fixes A's heading whatever its place."""
+    heading_only = LAYOUT_FAMILIES[term.spec.family].heading_only
+    return heading_only is not None and heading_only(term)
+
+
+def _turned(mover: Placer, term: RelationTerm) -> bool:
+    """Whether A already has the heading a turning relation asks for."""
+    turned = LAYOUT_FAMILIES[term.spec.family].turned
+    return turned is not None and turned(mover, term)
 
 
 def _best_among_mates(
@@ -706,7 +739,11 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
 
 
 def _place_group(
-    energy: Energy, mover: Mover, rng: np.random.Generator, group: int, frame: Mapping | None = None
+    energy: Energy,
+    mover: Placer,
+    rng: np.random.Generator,
+    group: int,
+    frame: Mapping | None = None,
 ) -> None:
     problem = energy.problem
     members = problem.group_members[group]
@@ -739,14 +776,14 @@ def _place_group(
         t
         for box in members
         for t in _outgoing(energy, "object", box)
-        if t.spec.family == "facing"
+        if not LAYOUT_FAMILIES[t.spec.family].places
         and not set(t.b.members) <= set(members)
         and _placed(energy, t.b)
     ]
     for term in outside_facing:
-        if problem.room is not None and mover.faces_as_asked(term):
+        if problem.room is not None and _turned(mover, term):
             continue
-        _best_of(energy, lambda term=term: (mover.turn_group_to_face(term), {}), 1)
+        _best_of(energy, lambda term=term: (_turn(mover, term, whole_group=True), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
         in_turn = itertools.cycle(anchors)
         keep = bool(outside_facing)
@@ -765,7 +802,7 @@ def _place_group(
         )
 
 
-def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[RelationTerm]) -> None:
+def _push_off_walls(energy: Energy, mover: Placer, group: int, anchors: list[RelationTerm]) -> None:
     """In a room, when a group placed by its relations to other groups still crosses a
     wall (the third row of desks south of a first row put in the middle of the room),
     shift it with the groups it hangs on (through their relations to groups, in turn)
@@ -811,7 +848,7 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
 
 
 def _group_anywhere(
-    energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool
+    energy: Energy, mover: Placer, rng: np.random.Generator, whole: Endpoint, turn: bool
 ) -> dict:
     """A group shifted rigidly to a random spot where its footprint lies within the
     extent (a room: on the floor), turned by a random quarter turn when ``turn``."""
@@ -835,7 +872,7 @@ def _group_anywhere(
 
 def _place_frame(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     group: int,
     frame: Mapping,

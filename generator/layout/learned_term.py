@@ -61,7 +61,7 @@ import numpy as np
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local, to_world
 
-from .moves import rigid, wrap
+from .motion import rigid, wrap
 
 #: Bins per axis of the 2-D position histogram, and bins of the relative-yaw histogram
 #: (the paper's 32-bin histograms).

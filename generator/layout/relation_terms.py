@@ -23,7 +23,7 @@ leaves the geometry open:
   from B", it is scored as A's forward pointing from B to A (FacingTowards mirrored).
 
 Rooms add the ``wall`` and ``alignment`` families (``_wall``, ``_alignment``) and line
-of sight: a relation whose term lists ``sight`` boxes (``problem.needs_sight``: in
+of sight: a relation whose term lists ``sight`` boxes (``problem.needs_sight``, as the family says: in
 front of, behind, facing towards or away, between two objects) is blocked when the
 segment between A's and B's centres crosses the footprint of one of those tall boxes.
 A blocked relation does not hold whatever its other measures say; its energy gains
@@ -49,8 +49,8 @@ from .geometry import (
     to_local,
 )
 from .params import LayoutParams
-from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .state import State
+from .terms import ROOM_ENDS, Endpoint, RelationTerm
 
 #: Thresholds of ``satisfied`` (documented in ``report``).
 DIRECTION_TOLERANCE = math.radians(45.0)

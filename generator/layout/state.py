@@ -8,9 +8,12 @@ a box rests on the ground or on its support, and supports carry what rests on th
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .geometry import Rect
-from .problem import Problem
+
+if TYPE_CHECKING:  # the problem's compiler reads the families, which read the state
+    from .problem import Problem
 
 _new_rect = tuple.__new__
 

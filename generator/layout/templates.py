@@ -29,7 +29,7 @@ import numpy as np
 
 from .energy import Energy
 from .learned_term import cumulative_shares, draw_source
-from .problem import RelationTerm
+from .terms import RelationTerm
 
 
 def template_draw(

@@ -1,0 +1,34 @@
+"""What each relation family does in the layout, one module per family, in one table.
+
+A relation label's family (``scenewright.core.relations``) says which geometry it asks
+for. Its energy, measures and complaint are ``relation_terms.FAMILY_TERMS``; everything
+else the layout does by family is the family's ``LayoutFamily`` entry here: how the
+problem's compiler checks its ends, how a placement puts A where it holds (and B, for a
+data-driven move of the target), what a placement by another relation snaps onto, how
+the initial placement orders and anchors items by it. The compiler, the placement
+(``placement.Placer``), the moves and the initial placement look the entry up instead
+of asking for a family by name, so a new family is a module here and a line in
+``LAYOUT_FAMILIES``.
+"""
+
+from __future__ import annotations
+
+from scenewright.core.relations import FAMILIES
+
+from . import alignment, facing, next_to, support, wall
+from .entry import LayoutFamily
+
+#: One entry per geometric family of the relation registry, in ``FAMILY_TERMS``' order
+#: (the order ``Placer.place_by`` tries snapping families in). ``structural`` relations
+#: become path starts when the problem is compiled and are never placed.
+LAYOUT_FAMILIES: dict[str, LayoutFamily] = {
+    "next_to": next_to.FAMILY,
+    "facing": facing.FAMILY,
+    "support": support.FAMILY,
+    "wall": wall.FAMILY,
+    "alignment": alignment.FAMILY,
+}
+
+_missing = set(FAMILIES) - set(LAYOUT_FAMILIES) - {"structural"}
+if _missing:  # a registry family the layout cannot place: refuse at start-up
+    raise ImportError(f"the layout places no relation family {', '.join(sorted(_missing))}")
