@@ -88,7 +88,7 @@ SIDE_WORDS = {
     "right": "to the right of",
 }
 
-#: Depths are clipped below 1 so the log penalty stays finite (as ``energy.MAX_DEPTH``).
+#: Depths are clipped below 1 so the log penalty stays finite (as ``single_terms.MAX_DEPTH``).
 MAX_DEPTH = 0.99
 
 
