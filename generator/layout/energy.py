@@ -44,7 +44,7 @@ them one item at a time through the same machinery.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from .geometry import polyline_rect_penetration
 from .params import LayoutParams
@@ -214,7 +214,7 @@ class Energy(SingleTerms):
     def _fresh(self) -> dict:
         """Every cached term recomputed from scratch, with the parts they sum to."""
         problem = self.problem
-        fresh = {
+        fresh: dict[str, Any] = {
             "relation": [self.relation_energy(t) for t in range(len(problem.relations))],
             "pairs": [{} for _ in range(problem.n_boxes)],
             "path_hits": [{} for _ in range(problem.n_paths)],
@@ -373,6 +373,7 @@ class Energy(SingleTerms):
             self.state.pose,
             self.relation,
         )
+        assert learned is not None  # soft terms exist with a context only
 
         def before(box: int) -> tuple[float, float, float]:
             return saved[box] if box in saved else pose(box)
@@ -590,6 +591,7 @@ class Energy(SingleTerms):
         took it), to be put back by ``repropose`` after it is rejected and others are
         tried; None when it holds a room's part (its access part may have been deferred
         and completed, which ``repropose`` would not redo the same way)."""
+        assert self._pending is not None  # called on a pending proposal
         update = self._pending.update
         if self.room is not None:
             return None
@@ -619,7 +621,10 @@ class Energy(SingleTerms):
             if self._pending is not None and not isinstance(self._pending.update, dict)
             else None
         )
-        return self.room.access_total() if room is not None and room.deferred else 0.0
+        if room is None or not room.deferred:
+            return 0.0
+        assert self.room is not None  # a room's changes come from the room's terms
+        return self.room.access_total()
 
     def complete(self) -> float:
         """The pending proposal's whole energy change, its deferred ``access`` part added
@@ -633,8 +638,10 @@ class Energy(SingleTerms):
         """The pending proposal's update, with its deferred ``access`` part evaluated
         (at most once) when ``propose`` left it out."""
         pending = self._pending
+        assert pending is not None  # called on a pending proposal
         changes = pending.update
         if not isinstance(changes, dict) and changes.room is not None and changes.room.deferred:
+            assert self.room is not None  # a room's changes come from the room's terms
             room = self.room.access_changes(changes.room, [box for box, _ in pending.saved_boxes])
             changes.delta["access"] = room.delta["access"]
             changes = changes._replace(room=room)
@@ -649,6 +656,7 @@ class Energy(SingleTerms):
         """Keep the proposed move: store its term values."""
         self._add_deferred_access()  # a deferred access part is evaluated before it is kept
         pending, self._pending = self._pending, None
+        assert pending is not None  # called on a pending proposal
         if isinstance(pending.update, dict):
             self._install(pending.update)
             return
@@ -691,6 +699,7 @@ class Energy(SingleTerms):
         for path, value in changes.path_extent.items():
             self.path_extent[path] = value
         if changes.room is not None:
+            assert self.room is not None  # a room's changes come from the room's terms
             self.room.accept(changes.room)
         for box, value in changes.mask.items():
             self.mask[box] = value
@@ -703,6 +712,7 @@ class Energy(SingleTerms):
     def reject(self) -> None:
         """Undo the proposed move."""
         pending, self._pending = self._pending, None
+        assert pending is not None  # called on a pending proposal
         state, grid, problem = self.state, self.grid, self.problem
         filings = pending.filings
         for box, (x, z, yaw) in pending.saved_boxes:

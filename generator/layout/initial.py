@@ -591,7 +591,7 @@ def _push_off_walls(energy: Energy, mover: Placer, group: int, anchors: list[Rel
         {(nx, nz) for nx, nz, offset in lines if any(nx * x + nz * z < offset for x, z in points)}
     )
     shift = excess + PUSH_MARGIN
-    candidates = iter(
+    candidates: Iterator[tuple[dict, dict]] = iter(
         [
             (rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {})
             for nx, nz in directions
@@ -641,7 +641,7 @@ def _place_frame(
         state.set_pose(box, *frame[box])
     whole = Endpoint("group", group, members)
 
-    def draw() -> tuple[dict, dict]:
+    def draw() -> tuple[dict | None, dict]:
         if anchors:
             return mover.place_for_relation(anchors[draw_index(rng, len(anchors))]), {}
         half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
@@ -650,7 +650,9 @@ def _place_frame(
         shift = (uniform(rng, -half_x, half_x) - x, uniform(rng, -half_z, half_z) - z)
         return rigid(state, list(members), (x, z), turn, shift), {}
 
-    for box, pose in draw()[0].items():
+    first = draw()[0]
+    assert first is not None  # the group's first pose, by an anchor or anywhere
+    for box, pose in first.items():
         state.set_pose(box, *pose)
     energy.activate(list(members))
     if not anchors:  # else the group is placed by its anchors once more, as every group is

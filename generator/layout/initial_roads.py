@@ -169,9 +169,11 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
     count = energy.params.path_candidates
     for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
         paths = problem.paths_of_junction.get(junction, [])
-        given = {
-            path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None
-        }
+        given: dict[int, list[list[float]]] = {}
+        for path in paths:
+            preset = pins.preset_points(path)
+            if preset is not None:
+                given[path] = preset
         placed = energy.active[junction]
         if not placed and given:  # where a given road starts
             first = next(iter(given.values()))[0]
@@ -207,9 +209,9 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
         _take_best(energy, fan, count, held)
     free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
     for path in free:
-        given = pins.preset_points(path)
-        if given is not None:
-            energy.propose({}, {path: [list(p) for p in given]})
+        preset = pins.preset_points(path)
+        if preset is not None:
+            energy.propose({}, {path: [list(p) for p in preset]})
             energy.accept()
     spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
     for path in free:

@@ -214,7 +214,7 @@ def _parse_pair(entry: object, where: str) -> PairContext:
         names[0],
         names[1],
         tuple(labels),
-        tuple(bounds),
+        (bounds[0], bounds[1], bounds[2], bounds[3]),
         np.array(position),
         np.array(yaw),
         examples,

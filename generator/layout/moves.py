@@ -56,7 +56,7 @@ from .params import LayoutParams
 from .pinning import Pins
 from .placement import Placer
 from .problem import Problem
-from .relation_terms import centre, evaluate
+from .relation_terms import centre, evaluate, opening_wall
 from .state import State
 from .terms import Endpoint, RelationTerm
 
@@ -307,6 +307,7 @@ class Mover(Placer):
         family = LAYOUT_FAMILIES[term.spec.family]
         a_movable, b_movable = self._movable(term.a), self._movable(term.b)
         turnable = term.b.kind == "object" and b_movable and term.spec.names_target_side
+        boxes: dict | None
         if turnable and self.rng.random() < REVERSE_SHARE:
             boxes = self.turn_target_for(term)
         elif (
@@ -361,9 +362,9 @@ class Mover(Placer):
             or measure.angle > SLIDE_ANGLE
         ):
             return shift  # not against it (or no window for a window label)
-        room = self.problem.room
+        room = self.problem.indoors()
         part = room.part(measure.chosen or term.target)
-        wall = part if isinstance(part, Wall) else room.part(part.wall)
+        wall = part if isinstance(part, Wall) else opening_wall(room, part)
         tx, tz = wall.direction
         along = shift[0] * tx + shift[1] * tz
         return along * tx, along * tz

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel
@@ -28,6 +29,10 @@ from scenewright.core.scene_graph import SceneGraph
 from .families import LAYOUT_FAMILIES
 from .families.entry import room_is_fixed
 from .terms import Endpoint, RelationTerm
+
+if TYPE_CHECKING:  # made after the problem, from it and a mask or a context
+    from .learned_term import CompiledLearned
+    from .mask_term import CompiledMask
 
 #: Line of sight: a ground box at least this tall (metres) blocks the view between two
 #: objects (a seated person's eye height: a desk or a sofa does not, a wardrobe does).
@@ -88,15 +93,20 @@ class Problem:
     )  # by (kind, index) of B
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
-    mask: object | None = None
+    mask: CompiledMask | None = None
     #: The learned pairs the energy's ``learned`` part reads (``learned_term.CompiledLearned``);
     #: None (no such part) unless ``layout_scene`` is given a context.
-    learned: object | None = None
+    learned: CompiledLearned | None = None
 
     @property
     def walls(self) -> bool:
         """Whether the scene is a room bounded by walls."""
         return self.room is not None
+
+    def indoors(self) -> Room:
+        """The room, where only a room has what is asked for (walls, openings)."""
+        assert self.room is not None, "a room's part asked for outdoors"
+        return self.room
 
     @property
     def n_boxes(self) -> int:
@@ -125,9 +135,18 @@ class Problem:
 
 def compile_problem(graph: SceneGraph) -> Problem:
     """Index a scene graph's nodes and relations; refuse relations that cannot be laid out."""
-    ids, is_junction, half_width, half_depth, height, size = [], [], [], [], [], []
-    clearance, access = [], []
-    path_ids, path_width, path_max_length, path_segments = [], [], [], []
+    ids: list[str] = []
+    is_junction: list[bool] = []
+    half_width: list[float] = []
+    half_depth: list[float] = []
+    height: list[float] = []
+    size: list[float] = []
+    clearance: list[tuple[tuple[str, float], ...]] = []
+    access: list[tuple[str, ...]] = []
+    path_ids: list[str] = []
+    path_width: list[float] = []
+    path_max_length: list[float] = []
+    path_segments: list[int] = []
     group_ids: list[str] = []
     box_index: dict[str, int] = {}
     path_index: dict[str, int] = {}

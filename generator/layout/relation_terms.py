@@ -105,7 +105,7 @@ def centre(end: Endpoint, state: State) -> tuple[float, float]:
         return state.x[end.index], state.z[end.index]
     problem = state.problem
     if end.kind in ROOM_ENDS:
-        return _room_part_centre(end, problem.room)
+        return _room_part_centre(end, problem.indoors())
     x0 = z0 = math.inf
     x1 = z1 = -math.inf
     half_width, half_depth, cs, ss, xs, zs = (
@@ -156,10 +156,11 @@ def anchor(
         "wall",
         "opening",
     ):  # the nearest point of the wall, its inner normal as forward
-        wall = _wall_of(end, state.problem.room)
+        room = state.problem.indoors()
+        wall = _wall_of(end, room)
         u, _ = wall.to_wall(*towards)
         if end.kind == "opening":
-            opening = state.problem.room.openings[end.index]
+            opening = room.openings[end.index]
             low, high = opening.span
             u = min(max(u, low), high)
         x, z = wall.to_world(min(max(u, 0.0), wall.length), 0.0)
@@ -239,7 +240,7 @@ def _forward(end: Endpoint, state: State) -> tuple[float, float]:
     if end.kind == "object":
         return state.s[end.index], state.c[end.index]
     if end.kind in ("wall", "opening"):
-        return _wall_of(end, state.problem.room).normal  # a wall "faces" into the room
+        return _wall_of(end, state.problem.indoors()).normal  # a wall "faces" into the room
     return 0.0, 1.0  # groups and paths have no yaw of their own: the world's forward
 
 
@@ -250,7 +251,14 @@ def _wall_of(end: Endpoint, room: Room) -> Wall:
     """The wall an endpoint is (a wall) or is in (an opening)."""
     if end.kind == "wall":
         return room.walls[end.index]
-    return room.part(room.openings[end.index].wall)
+    return opening_wall(room, room.openings[end.index])
+
+
+def opening_wall(room: Room, opening: Opening) -> Wall:
+    """The wall a door or window is in."""
+    wall = room.part(opening.wall)
+    assert isinstance(wall, Wall)  # the room checked it names one of its walls
+    return wall
 
 
 def _room_part_centre(end: Endpoint, room: Room) -> tuple[float, float]:
@@ -264,7 +272,7 @@ def _room_part_centre(end: Endpoint, room: Room) -> tuple[float, float]:
 def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
     """Distance from an endpoint's boxes (or path) to a wall, an opening's stretch of its
     wall, or (the room) the nearest wall."""
-    room = state.problem.room
+    room = state.problem.indoors()
     if b.kind == "room":
         segments = [(w.start, w.end) for w in room.walls]
     elif b.kind == "wall":
@@ -503,8 +511,9 @@ def _support_complaint(term: RelationTerm, measure: Measure, params: LayoutParam
 def _wall(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     """A's back against a wall (or in a corner, under or beside a window): the best of
     the candidates when B is the room, which is then recorded as ``chosen``."""
-    room = state.problem.room
+    room = state.problem.indoors()
     placement, b = term.spec.wall, term.b
+    assert placement is not None  # every wall label names its placement
     if b.kind == "room":
         candidates = list(room.windows) if placement in WINDOW_PLACEMENTS else list(room.walls)
     elif b.kind == "wall":
@@ -531,9 +540,12 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
     centre, beside one the overlap with it or the gap beyond ``BESIDE_DISTANCE``;
     ``inside``: a box under a window is lower than its sill.
     """
-    problem, room = state.problem, state.problem.room
-    window = target if isinstance(target, Opening) else None
-    wall = room.part(window.wall) if window else target
+    problem, room = state.problem, state.problem.indoors()
+    window: Opening | None
+    if isinstance(target, Opening):
+        window, wall = target, opening_wall(room, target)
+    else:
+        window, wall = None, target
     x, z, c, s = state.x[box], state.z[box], state.c[box], state.s[box]
     hw, hd = problem.half_width[box], problem.half_depth[box]
     nx, nz = wall.normal
@@ -562,9 +574,11 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
             side = min(side, abs(v_other - reach_other))
         offset += side
     elif placement == "under_window":
+        assert window is not None  # a window label measures against windows only
         offset += abs(u - window.offset)
         fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
     elif placement == "beside_window":
+        assert window is not None
         low, high = window.span
         along = max(
             low - (u + reach_u), (u - reach_u) - high

@@ -38,13 +38,14 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from scenewright.core.room import Room
+from scenewright.core.room import Opening, Room
 
 from .factors import equals
 from .geometry import Rect, corners, rect_penetration
 from .params import LayoutParams
 from .problem import Problem
 from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds
+from .relation_terms import opening_wall
 from .state import Grid, State
 
 #: The parts a room adds to the energy, in the order ``energy.PARTS`` lists them.
@@ -112,7 +113,7 @@ def square_off(yaw: float, axes: tuple[float, ...]) -> float:
 def wall_axes(room: Room) -> tuple[float, ...]:
     """The yaws (mod 90 degrees, in [0, pi/2)) a box can have square to some wall: a
     box whose forward (sin yaw, cos yaw) runs along or across a wall."""
-    axes = []
+    axes: list[float] = []
     for wall in room.walls:
         tx, tz = wall.direction
         axis = math.atan2(tx, tz) % (math.pi / 2.0)
@@ -137,20 +138,20 @@ def zone_rect(rect: Rect, side: str, metres: float) -> Rect:
     return Rect(cx + lx * c + lz * s, cz - lx * s + lz * c, zw, zd, c, s)
 
 
-def swing_rect(room: Room, door) -> Rect:
+def swing_rect(room: Room, door: Opening) -> Rect:
     """A door's swing zone (``Room.swing_zone``) as a footprint: centred in front of the
     door, its forward along the wall's inner normal."""
     points = room.swing_zone(door)
     cx = sum(p[0] for p in points) / 4.0
     cz = sum(p[1] for p in points) / 4.0
-    nx, nz = room.part(door.wall).normal
+    nx, nz = opening_wall(room, door).normal
     return Rect(cx, cz, door.width / 2.0, door.width / 2.0, nz, nx)  # forward (s, c) = normal
 
 
-def view_rect(room: Room, window) -> Rect:
+def view_rect(room: Room, window: Opening) -> Rect:
     """A window's view (WINDOW_VIEW_DEPTH deep, as wide as the window) as a footprint:
     its forward along the wall's inner normal."""
-    wall = room.part(window.wall)
+    wall = opening_wall(room, window)
     cx, cz = wall.to_world(window.offset, WINDOW_VIEW_DEPTH / 2.0)
     nx, nz = wall.normal
     return Rect(
@@ -267,7 +268,7 @@ class RoomTerms:
             active,
             grid,
         )
-        room = problem.room
+        room = problem.indoors()
         self.room = room
         self.walls_geometry = Walls(room)
         self.axes = wall_axes(room)

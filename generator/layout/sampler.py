@@ -223,7 +223,8 @@ def learned_step(
 ) -> bool:
     """One step of a chain with a learned context (module docstring); True when accepted."""
     uniform = mover.rng.random
-    proposal, correction = None, 0.0
+    proposal: tuple[dict, dict] | None = None
+    correction = 0.0
     pair = None
     if learned.pairs and uniform() < params.learned_share:
         drawn = learned.propose()

@@ -180,7 +180,9 @@ class SingleTerms:
 
     def learned_energy(self, pair: int) -> float:
         """A learned pair's term: 0 until both its boxes are placed."""
-        source, target, _ = self.problem.learned.pairs[pair]
+        learned = self.problem.learned
+        assert learned is not None  # the part exists with a context only
+        source, target, _ = learned.pairs[pair]
         if not (self.active[source] and self.active[target]):
             return 0.0
-        return self.problem.learned.value(pair, self.state)
+        return learned.value(pair, self.state)

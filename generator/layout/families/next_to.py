@@ -21,7 +21,7 @@ from scenewright.core.relations import RelationLabel
 
 from ..motion import draw_index, end_reach, rigid, uniform, wrap
 from ..reachability import CORRIDOR_HALF
-from ..relation_terms import anchor, centre, source_point
+from ..relation_terms import anchor, centre, opening_wall, source_point
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 from .entry import LayoutFamily
 
@@ -174,10 +174,10 @@ def _place_by_room_part(placer: Placer, term: RelationTerm) -> dict:
     small gap from the wall, at a random place along it (along the opening's
     stretch), on the side the label names (into the room by default)."""
     problem, state, rng = placer.problem, placer.state, placer.rng
-    room, b = problem.room, term.b
+    room, b = problem.indoors(), term.b
     if b.kind == "opening":
         opening = room.openings[b.index]
-        wall = room.part(opening.wall)
+        wall = opening_wall(room, opening)
         low, high = opening.span
     else:
         if b.kind == "wall":

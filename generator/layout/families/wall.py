@@ -21,7 +21,13 @@ from scenewright.core.relations import Relation, RelationLabel
 from scenewright.core.room import Room, Wall
 
 from ..motion import rigid, uniform, wrap
-from ..relation_terms import BESIDE_DISTANCE, WINDOW_PLACEMENTS, evaluate, satisfied
+from ..relation_terms import (
+    BESIDE_DISTANCE,
+    WINDOW_PLACEMENTS,
+    evaluate,
+    opening_wall,
+    satisfied,
+)
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 from .entry import LayoutFamily, where
 
@@ -72,6 +78,7 @@ def place_at_wall(placer: Placer, term: RelationTerm, *, snap: bool = False) -> 
             distance = math.hypot(x - state.x[box], z - state.z[box])
             if distance < best_distance - 1e-12:
                 best, best_distance = (x, z, wall.facing_yaw), distance
+        assert best is not None  # a spot is nearer than infinitely far
         return placer.pose_box(box, *best)
     total = sum(weight for *_, weight in spots)
     draw = rng.random() * total
@@ -131,7 +138,7 @@ def _wall_spots(placer: Placer, term: RelationTerm) -> list[tuple[Wall, float, f
     and single places in a door's swing (or, for furniture taller than its sill, in
     front of a window), are left out unless nothing else is left."""
     problem, state = placer.problem, placer.state
-    room, box, b = problem.room, term.a.index, term.b
+    room, box, b = problem.indoors(), term.a.index, term.b
     hw = problem.half_width[box]
     placement = term.spec.wall
     if placement in WINDOW_PLACEMENTS:
@@ -144,7 +151,7 @@ def _wall_spots(placer: Placer, term: RelationTerm) -> list[tuple[Wall, float, f
         elif b.kind == "wall":
             walls = [room.walls[b.index]]
         else:
-            walls = [room.part(room.openings[b.index].wall)]
+            walls = [opening_wall(room, room.openings[b.index])]
     fitting: list[tuple[Wall, float, float, float]] = []
     rest: list[tuple[Wall, float, float, float]] = []
     for wall in walls:
@@ -171,7 +178,7 @@ def _wall_spots(placer: Placer, term: RelationTerm) -> list[tuple[Wall, float, f
             (fitting if fits else rest).append((wall, u, u, 1.0))
     top = state.y[box] + problem.height[box]
     for window in openings:
-        wall = room.part(window.wall)
+        wall = opening_wall(room, window)
         if placement == "under_window":
             u = window.offset
             fits = (
@@ -221,13 +228,13 @@ def _clear_at(placer: Placer, box: int, wall: Wall, u: float) -> bool:
 def _clear_of_openings(placer: Placer, box: int, x: float, z: float, c: float, s: float) -> bool:
     """Whether the box at (x, z) turned by (c, s) keeps out of every door's swing and
     does not stand in front of a window lower than its top."""
-    problem, room = placer.problem, placer.problem.room
+    problem, room = placer.problem, placer.problem.indoors()
     hw, hd = problem.half_width[box], problem.half_depth[box]
     top = placer.state.y[box] + problem.height[box]
     for opening in room.openings:
         if opening.kind == "window" and top <= opening.sill:
             continue
-        wall = room.part(opening.wall)
+        wall = opening_wall(room, opening)
         tx, tz = wall.direction
         nx, nz = wall.normal
         reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
@@ -254,7 +261,7 @@ def check_ends(
         raise InputError(
             f"{where(edge)}: only an object can stand against a wall ({edge.source} is a {a.kind})"
         )
-    door = b.kind == "opening" and room.openings[b.index].kind == "door"
+    door = b.kind == "opening" and room is not None and room.openings[b.index].kind == "door"
     if b.kind not in ROOM_ENDS or door:
         raise InputError(f"{where(edge)}: the target must be a wall, a window or the room")
     if spec.wall in ("under_window", "beside_window") and b.kind == "wall":
