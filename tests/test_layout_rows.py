@@ -22,7 +22,7 @@ from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import Energy
-from scenewright.generator.layout.families import alignment, facing, next_to
+from scenewright.generator.layout.families import alignment, evaluate, facing, next_to, satisfied
 from scenewright.generator.layout.geometry import (
     Rect,
     corners,
@@ -34,7 +34,6 @@ from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.reachability import CORRIDOR_HALF, access_grid
-from scenewright.generator.layout.relation_terms import evaluate, satisfied
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 

@@ -19,10 +19,10 @@ from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
+from scenewright.generator.layout.families import evaluate, satisfied
 from scenewright.generator.layout.families.wall import carry_to_wall
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import SIGHT_HEIGHT, compile_problem
-from scenewright.generator.layout.relation_terms import evaluate, satisfied
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 

@@ -2,7 +2,7 @@
 
 Parts (all >= 0, 0 when everything holds):
 
-- ``relations`` (v_r): one term per relation edge (``relation_terms.evaluate``).
+- ``relations`` (v_r): one term per relation edge (``families.evaluate``).
 - ``collisions`` (v_c): per overlapping pair of boxes, -c log(1 - depth), depth being the
   minimum separating translation over the pair's summed footprint diagonals. Boxes on
   the ground collide in plan; when one of them is stacked, the vertical overlap counts
@@ -46,10 +46,11 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+from .families import evaluate
 from .geometry import polyline_rect_penetration
 from .params import LayoutParams
 from .problem import Problem
-from .relation_terms import Measure, evaluate
+from .relation_terms import Measure
 from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
 from .single_terms import SingleTerms
 from .state import Grid, State

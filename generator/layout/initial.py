@@ -52,14 +52,14 @@ import numpy as np
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
-from .families import LAYOUT_FAMILIES
+from .families import LAYOUT_FAMILIES, evaluate
 from .geometry import corners
 from .initial_roads import lay_paths
 from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach
 from .pinning import Pins
 from .placement import Placer
-from .relation_terms import centre, evaluate
+from .relation_terms import centre
 from .templates import not_templated, template_draw
 from .terms import ROOM_ENDS, Endpoint, RelationTerm
 

@@ -50,13 +50,13 @@ import numpy as np
 
 from scenewright.core.room import Wall
 
-from .families import LAYOUT_FAMILIES
+from .families import LAYOUT_FAMILIES, evaluate
 from .motion import HALF_PI, draw_index, log_uniform, rigid, wrap
 from .params import LayoutParams
 from .pinning import Pins
 from .placement import Placer
 from .problem import Problem
-from .relation_terms import centre, evaluate, opening_wall
+from .relation_terms import centre, opening_wall
 from .state import State
 from .terms import Endpoint, RelationTerm
 

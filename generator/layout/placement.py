@@ -22,7 +22,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from .families import LAYOUT_FAMILIES
+from .families import LAYOUT_FAMILIES, evaluate, satisfied
 from .families.next_to import GAP_RANGE
 from .geometry import nearest_on_polyline
 from .motion import carried_by, draw_index, end_reach, reach, rigid, uniform, wrap
@@ -30,7 +30,7 @@ from .params import LayoutParams
 from .pinning import Pins
 from .problem import Problem
 from .reachability import CORRIDOR_HALF, access_grid
-from .relation_terms import HEADING_FACINGS, centre, evaluate
+from .relation_terms import HEADING_FACINGS, centre
 from .room_terms import FLAT_HEIGHT
 from .state import State
 from .terms import Endpoint, RelationTerm
@@ -212,6 +212,10 @@ class Placer:
         ``keep_heading``: a NextTo* placement only shifts A (never turns it to face a road).
         """
         return LAYOUT_FAMILIES[term.spec.family].place(self, term, keep_heading)
+
+    def holds(self, term: RelationTerm) -> bool:
+        """Whether a relation holds at the current state."""
+        return satisfied(term, evaluate(term, self.state, self.params), self.params)
 
     def moving_boxes(self, end: Endpoint) -> list[int]:
         if end.kind == "group":

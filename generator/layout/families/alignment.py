@@ -17,7 +17,19 @@ from scenewright.core.frames import to_local, to_world
 from scenewright.core.relations import Relation, RelationLabel
 from scenewright.core.room import Room
 
+from ..factors import angle_between, equals
+from ..geometry import to_local as in_rect_frame
 from ..motion import uniform, wrap
+from ..params import LayoutParams
+from ..relation_terms import (
+    ALIGN_TOLERANCE,
+    EPSILON,
+    WALL_ANGLE_SIGMA2,
+    WALL_SIGMA2,
+    WALL_TOLERANCE,
+    Measure,
+)
+from ..state import State
 from ..terms import Endpoint, RelationTerm
 from .entry import LayoutFamily, where
 
@@ -115,4 +127,46 @@ def check_ends(
         raise InputError(f"{where(edge)}: only two objects can be lined up")
 
 
-FAMILY = LayoutFamily(place=place, place_target=place_target, snap=snap, check_ends=check_ends)
+# -- its energy, its threshold and its complaint ------------------------------------
+
+
+def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    """A parallel to B (facing the same or the opposite way) with one of its faces in
+    the plane of B's face on the same side: ``angle`` off parallel, ``offset`` the gap
+    between the nearest pair of flush faces."""
+    problem = state.problem
+    a, b = term.a.index, term.b.index
+    angle = angle_between(state.s[a], state.c[a], state.s[b], state.c[b])
+    angle = min(angle, math.pi - angle)
+    rect_b = state.rects[b]
+    lx, lz = in_rect_frame(rect_b, state.x[a], state.z[a])
+    k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
+    k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
+    ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
+    ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
+    hw, hd = rect_b.hw, rect_b.hd
+    offset = min(abs(lz + ez - hd), abs(lz - ez + hd), abs(lx + ex - hw), abs(lx - ex + hw))
+    energy = -equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)
+    return Measure(energy, angle=angle, offset=offset)
+
+
+def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return measure.angle <= ALIGN_TOLERANCE + EPSILON and measure.offset <= WALL_TOLERANCE + EPSILON
+
+
+def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    return (
+        f"{term.source} is not {term.spec.phrase} {term.target} "
+        f"({math.degrees(measure.angle):.0f}° off parallel, faces {measure.offset:.2f} m apart)"
+    )
+
+
+FAMILY = LayoutFamily(
+    measure=measure,
+    holds=holds,
+    complaint=complaint,
+    place=place,
+    place_target=place_target,
+    snap=snap,
+    check_ends=check_ends,
+)

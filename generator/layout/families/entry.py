@@ -10,6 +10,9 @@ from scenewright.core.errors import InputError
 from scenewright.core.relations import Relation, RelationLabel
 from scenewright.core.room import Room
 
+from ..params import LayoutParams
+from ..relation_terms import Measure
+from ..state import State
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 
 if TYPE_CHECKING:  # the placer dispatches on the table; an entry only calls it back
@@ -48,8 +51,14 @@ def room_is_fixed(
 
 @dataclass(frozen=True)
 class LayoutFamily:
-    """The layout's side of one relation family, beyond its energy."""
+    """The layout's side of one relation family."""
 
+    #: Table 1: the relation's energy (>= 0) and the geometric measures its threshold reads.
+    measure: Callable[[RelationTerm, State, LayoutParams], Measure]
+    #: Whether the relation holds, by those measures (the thresholds of ``report``).
+    holds: Callable[[RelationTerm, Measure, LayoutParams], bool]
+    #: What is wrong with a relation that does not hold, in words.
+    complaint: Callable[[RelationTerm, Measure, LayoutParams], str]
     #: A (with all it carries) placed where the relation holds, or None; the flag asks a
     #: placement beside a road to keep A's heading (``keep_heading``).
     place: Callable[[Placer, RelationTerm, bool], Poses]

@@ -13,8 +13,22 @@ from typing import TYPE_CHECKING
 
 from scenewright.core.relations import RelationLabel
 
+from ..factors import angle_between, equals, pointing_same_direction
 from ..motion import HALF_PI, rigid, wrap
-from ..relation_terms import HEADING_FACINGS, anchor, centre
+from ..params import LayoutParams
+from ..relation_terms import (
+    EPSILON,
+    FACING_TOLERANCE,
+    HEADING_FACINGS,
+    Measure,
+    anchor,
+    blocked_complaint,
+    centre,
+    forward,
+    sight_blocked,
+    unit,
+)
+from ..state import State
 from ..terms import Endpoint, RelationTerm
 from .entry import LayoutFamily
 
@@ -112,7 +126,47 @@ def needs_sight(spec: RelationLabel) -> bool:
     return spec.facing in ("towards", "away")
 
 
+# -- its energy, its threshold and its complaint ------------------------------------
+
+
+def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    fx, fz = forward(term.a, state)
+    how = term.spec.facing
+    if how in ("towards", "away"):
+        ax, az = centre(term.a, state)
+        bx, bz, _, _ = anchor(term.b, state, (ax, az))
+        dx, dz = unit(bx - ax, bz - az) if how == "towards" else unit(ax - bx, az - bz)
+        angle = angle_between(dx, dz, fx, fz)
+        energy = -pointing_same_direction(dx, dz, fx, fz, params.sigma2)
+        if term.sight:
+            penalty, blocker = sight_blocked(term, state)
+            return Measure(energy + penalty, angle=angle, blocker=blocker)
+        return Measure(energy, angle=angle)
+    gx, gz = forward(term.b, state)
+    angle = angle_between(fx, fz, gx, gz)
+    if how == "opposite":
+        angle = math.pi - angle
+        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
+    if how == "same":
+        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
+    off = abs(angle - math.pi / 2.0)  # orthogonal
+    return Measure(-equals(angle, math.pi / 2.0, params.sigma2), angle=off)
+
+
+def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return measure.angle <= FACING_TOLERANCE + EPSILON and not measure.blocked
+
+
+def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    if measure.blocked:
+        return blocked_complaint(term, measure)
+    return f"{term.source} is not {term.spec.phrase} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+
+
 FAMILY = LayoutFamily(
+    measure=measure,
+    holds=holds,
+    complaint=complaint,
     place=place,
     places=False,
     turn=turn_to_face,

@@ -19,9 +19,24 @@ import numpy as np
 
 from scenewright.core.relations import RelationLabel
 
+from ..factors import angle_between, equals, less
 from ..motion import draw_index, end_reach, rigid, uniform, wrap
+from ..params import LayoutParams
 from ..reachability import CORRIDOR_HALF
-from ..relation_terms import anchor, centre, opening_wall, source_point
+from ..relation_terms import (
+    DIRECTION_TOLERANCE,
+    EPSILON,
+    Measure,
+    anchor,
+    blocked_complaint,
+    centre,
+    distance_between,
+    opening_wall,
+    sight_blocked,
+    source_point,
+    unit,
+)
+from ..state import State
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 from .entry import LayoutFamily
 
@@ -212,7 +227,53 @@ def needs_sight(spec: RelationLabel) -> bool:
     return False
 
 
+# -- its energy, its threshold and its complaint ------------------------------------
+
+
+def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    distance = distance_between(term.a, term.b, state)
+    energy = -less(distance, params.next_to_distance, params.h)
+    spec = term.spec
+    if not spec.directions:
+        return Measure(energy, distance)
+    blocker = None
+    if term.sight:
+        penalty, blocker = sight_blocked(term, state)
+        energy += penalty
+    ax, az = source_point(term.a, state)
+    bx, bz, c, s = anchor(term.b, state, (ax, az))
+    dx, dz = unit(ax - bx, az - bz)
+    chosen, best = None, math.inf
+    for word, (wx, wz) in spec.direction_vectors(c, s).items():
+        angle = angle_between(dx, dz, wx, wz)
+        if angle < best - 1e-12:
+            chosen, best = word, angle
+    energy -= equals(best, 0.0, params.sigma2)
+    return Measure(energy, distance, best, chosen if spec.chooses else None, blocker=blocker)
+
+
+def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    near = measure.distance <= params.next_to_distance + EPSILON
+    return (
+        near
+        and not measure.blocked
+        and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+    )
+
+
+def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    words = term.spec.phrase
+    if measure.blocked:
+        return blocked_complaint(term, measure)
+    if measure.distance > params.next_to_distance:
+        return f"{term.source} is not {words} {term.target} (distance {measure.distance:.1f} m)"
+    return f"{term.source} is not {words} {term.target} ({math.degrees(measure.angle):.0f}° off)"
+
+
 FAMILY = LayoutFamily(
+    measure=measure,
+    holds=holds,
+    complaint=complaint,
     place=place,
     place_target=place_target,
     anchors_target=True,

@@ -18,16 +18,24 @@ from typing import TYPE_CHECKING
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import Relation, RelationLabel
-from scenewright.core.room import Room, Wall
+from scenewright.core.room import Opening, Room, Wall
 
+from ..factors import angle_between, equals
 from ..motion import rigid, uniform, wrap
+from ..params import LayoutParams
 from ..relation_terms import (
     BESIDE_DISTANCE,
+    EPSILON,
+    MIDDLE_TOLERANCE,
+    WALL_ANGLE_SIGMA2,
+    WALL_ANGLE_TOLERANCE,
+    WALL_SIGMA2,
+    WALL_TOLERANCE,
     WINDOW_PLACEMENTS,
-    evaluate,
+    Measure,
     opening_wall,
-    satisfied,
 )
+from ..state import State
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 from .entry import LayoutFamily, where
 
@@ -116,9 +124,7 @@ def carry_to_wall(placer: Placer, term: RelationTerm) -> dict | None:
         ):
             continue
         other = tie.b.index if tie.a.index == box else tie.a.index
-        if other in placer.cluster_of[box] and satisfied(
-            tie, evaluate(tie, state, placer.params), placer.params
-        ):
+        if other in placer.cluster_of[box] and placer.holds(tie):
             in_place.update(b for b in problem.carried(other) if b in placer.cluster_of[box])
     x, z, yaw = placed[box]
     pivot = (state.x[box], state.z[box])
@@ -268,7 +274,121 @@ def check_ends(
         raise InputError(f"{where(edge)}: the target must be a window or the room, not a wall")
 
 
+# -- its energy, its threshold and its complaint ------------------------------------
+
+
+def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
+    """A's back against a wall (or in a corner, under or beside a window): the best of
+    the candidates when B is the room, which is then recorded as ``chosen``."""
+    room = state.problem.indoors()
+    placement, b = term.spec.wall, term.b
+    assert placement is not None  # every wall label names its placement
+    if b.kind == "room":
+        candidates = list(room.windows) if placement in WINDOW_PLACEMENTS else list(room.walls)
+    elif b.kind == "wall":
+        candidates = [room.walls[b.index]]
+    else:
+        candidates = [room.openings[b.index]]
+    best = None
+    for target in candidates:
+        measure = _against(term.a.index, target, placement, state)
+        if best is None or measure.energy < best.energy - 1e-12:
+            best = measure
+    if best is None:  # a room without the window the label needs
+        return Measure(math.inf, offset=math.inf, inside=False)
+    return best if b.kind == "room" else best._replace(chosen=None)
+
+
+def _against(box: int, target: Wall | Opening, placement: str, state: State) -> Measure:
+    """The wall measures of box ``box`` against one wall or window (see ``_wall``).
+
+    ``distance``: the gap between the wall and the box's nearest corner (its back, once
+    parallel); ``angle``: the box's forward off the wall's inner normal; ``offset``: how
+    far the box runs past the ends of its wall, plus, in a corner, the gap between its
+    side and the neighbouring wall, under a window the distance off the window's
+    centre, beside one the overlap with it or the gap beyond ``BESIDE_DISTANCE``;
+    ``inside``: a box under a window is lower than its sill.
+    """
+    problem, room = state.problem, state.problem.indoors()
+    window: Opening | None
+    if isinstance(target, Opening):
+        window, wall = target, opening_wall(room, target)
+    else:
+        window, wall = None, target
+    x, z, c, s = state.x[box], state.z[box], state.c[box], state.s[box]
+    hw, hd = problem.half_width[box], problem.half_depth[box]
+    nx, nz = wall.normal
+    tx, tz = wall.direction
+    # The box's reach along the wall's axes (its footprint's half extents there).
+    reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
+    reach_v = hw * abs(c * nx - s * nz) + hd * abs(s * nx + c * nz)
+    u, v = wall.to_wall(x, z)
+    gap = v - reach_v
+    angle = angle_between(s, c, nx, nz)
+    overhang = max(reach_u - u, u + reach_u - wall.length, 0.0)
+    offset = overhang
+    fits = True
+    if placement == "corner":
+        side = math.inf
+        before, after = room.neighbours(wall.id)
+        for other, at_start in ((before, True), (after, False)):
+            if not (
+                room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)
+            ):
+                continue
+            _, v_other = other.to_wall(x, z)
+            reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(
+                s * other.normal[0] + c * other.normal[1]
+            )
+            side = min(side, abs(v_other - reach_other))
+        offset += side
+    elif placement == "under_window":
+        assert window is not None  # a window label measures against windows only
+        offset += abs(u - window.offset)
+        fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
+    elif placement == "beside_window":
+        assert window is not None
+        low, high = window.span
+        along = max(
+            low - (u + reach_u), (u - reach_u) - high
+        )  # < 0: overlaps the window along the wall
+        offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
+    energy = (
+        -equals(gap, 0.0, WALL_SIGMA2)
+        - equals(angle, 0.0, WALL_ANGLE_SIGMA2)
+        - equals(offset, 0.0, WALL_SIGMA2)
+    )
+    if not fits:
+        energy += 1.0  # cannot hold whatever the pose: a constant, so the rest still lays out
+    return Measure(energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits)
+
+
+def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
+    return (
+        measure.inside
+        and abs(measure.distance) <= WALL_TOLERANCE + EPSILON
+        and measure.angle <= WALL_ANGLE_TOLERANCE + EPSILON
+        and measure.offset
+        <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
+    )
+
+
+def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
+    target = measure.chosen or term.target
+    words = f"{term.source} is not {term.spec.phrase} {target}"
+    if math.isinf(measure.energy):
+        return f"{words} (the room has no window)"
+    if not measure.inside:
+        return f"{words} (it is taller than the window's sill)"
+    if abs(measure.distance) > WALL_TOLERANCE or measure.angle > WALL_ANGLE_TOLERANCE:
+        return f"{words} (its back is {measure.distance:.2f} m from the wall, {math.degrees(measure.angle):.0f}° off)"
+    return f"{words} ({measure.offset:.2f} m off)"
+
+
 FAMILY = LayoutFamily(
+    measure=measure,
+    holds=holds,
+    complaint=complaint,
     place=place,
     stands_against_wall=True,
     placing_rank=placing_rank,
