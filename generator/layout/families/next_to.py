@@ -50,12 +50,10 @@ GAP_RANGE = (0.05, 0.8)
 LATERAL_SHARE = 0.5
 
 
-def place(placer: Placer, term: RelationTerm, keep_heading: bool) -> dict:
-    """A beside B as the label wants (``place_next_to``)."""
-    return place_next_to(placer, term, keep_heading)
-
-
-def place_next_to(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dict:
+def place(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dict:
+    """A beside B as the label wants: beside a road at a random point along it (turned to
+    face it most of the time, unless ``keep_heading``), beside a room's part, or on the
+    side of B the label names, slid a little along that side."""
     problem, state, rng = placer.problem, placer.state, placer.rng
     a, b = term.a, term.b
     if b.kind in ROOM_ENDS:
