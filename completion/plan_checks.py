@@ -13,7 +13,7 @@ Distances below ``TOLERANCE`` (5 mm) are drawing slack, not problems.
 ``unreachable`` finds the pieces no way at least 0.6 m wide from a door reaches. It is
 not yet one of the rules a plan must pass: 13 of the 80 shipped plans still hem a piece
 in (a test holds that list, so it can only shrink). The walkable way is the layout's
-own test (``generator.layout.room_terms``): the free floor is the floor at least 0.3 m from the walls and from every floor piece taller than
+own test (``generator.layout.reachability``): the free floor is the floor at least 0.3 m from the walls and from every floor piece taller than
 a rug, the way in is the free floor connected to a door, and a piece whose catalog entry
 names sides it is used from (``access``) is reached when the way comes within 0.4 m of
 them. A piece used from a seat (a desk, a dining table: a seat within that 0.4 m) is
@@ -158,7 +158,7 @@ def unreachable(plan, catalog) -> list:
     none in a room without a door."""
     from scenewright.completion.activity import SEATS
     from scenewright.generator.layout.geometry import make_rect, rect_distance
-    from scenewright.generator.layout.room_terms import CORRIDOR_HALF, access_grid
+    from scenewright.generator.layout.reachability import CORRIDOR_HALF, access_grid
     from scenewright.generator.layout.room_terms import FLAT_HEIGHT as WALKED_OVER
 
     grid = access_grid(plan.room)

@@ -3,7 +3,7 @@
 A learned relation is written with a label of the registry (``core.relations``), and
 the label is chosen by where it *holds*: ``generator.layout.measure_layout`` puts
 objects at given poses and reports, for every relation edge, whether the layout's
-satisfaction threshold is met (``relation_terms.satisfied``: "in front of" within 45
+satisfaction threshold is met (``families.satisfied`` of the layout: "in front of" within 45
 degrees and 2 m, "facing" within 30 degrees, "on the edge" within 5 cm, ...). Nothing
 here restates those thresholds.
 

@@ -23,9 +23,9 @@ from scenewright.describer.variation import Choices
 from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import layout_scene
+from scenewright.generator.layout.families import evaluate, satisfied
 from scenewright.generator.layout.params import LayoutParams
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.relation_terms import evaluate, satisfied
 from scenewright.generator.layout.state import State
 
 # -- frames ---------------------------------------------------------------------------
@@ -290,9 +290,9 @@ def test_the_scene_gives_back_its_graph_whole():
 
 def test_the_layout_scores_every_family_of_the_registry():
     from scenewright.core.relations import FAMILIES
-    from scenewright.generator.layout.relation_terms import FAMILY_TERMS
+    from scenewright.generator.layout.families import LAYOUT_FAMILIES
 
-    assert set(FAMILIES) - {"structural"} == set(FAMILY_TERMS)
+    assert set(FAMILIES) - {"structural"} == set(LAYOUT_FAMILIES)
 
 
 # -- the package structure ----------------------------------------------------------------

@@ -8,8 +8,8 @@ from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.families import evaluate
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import assess, satisfied
 from scenewright.generator.layout.state import State
 

@@ -3,8 +3,8 @@
 A row is a group of desks side by side (NextToLeft), lined up (AlignedWith), each facing
 away from a board on the wall (FacingOpposite), with a chair behind each. Covered: the
 constructive placement builds the row as a row (every relation inside it holds right
-after it, whatever spot the row gets), ``Mover.snap_aligned`` mends a desk a few
-centimetres out of line where it stands, ``Mover.kept_free`` leaves a board's free
+after it, whatever spot the row gets), ``alignment.snap_aligned`` mends a desk a few
+centimetres out of line where it stands, ``next_to.kept_free`` leaves a board's free
 space in front of it when what stands by a desk may not stand there and a way to a
 desk's only used side, ``_push_off_walls`` shifts rows off a wall, a room's clusters
 are not tied by heading-only facing relations, and ``rect_distance``'s shortcut for
@@ -22,6 +22,7 @@ from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.families import alignment, evaluate, facing, next_to, satisfied
 from scenewright.generator.layout.geometry import (
     Rect,
     corners,
@@ -32,8 +33,7 @@ from scenewright.generator.layout.geometry import (
 from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.relation_terms import evaluate, satisfied
-from scenewright.generator.layout.room_terms import CORRIDOR_HALF, access_grid
+from scenewright.generator.layout.reachability import CORRIDOR_HALF, access_grid
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 
@@ -119,7 +119,7 @@ def test_snap_aligned_lines_a_desk_up_where_it_stands_and_keeps_it_beside():
     assert holds(problem, state, second, "AlignedWith") == [False]  # 7 cm out of line
     before = state.pose(a)
     mover = Mover(problem, state, np.random.default_rng(0), PARAMS)
-    proposal = mover.snap_aligned(a, b)
+    proposal = alignment.snap_aligned(mover, a, b)
     with state.trying(proposal):
         assert holds(problem, state, second, "AlignedWith") == [True]
         assert holds(problem, state, second, "NextToLeft") == [True]
@@ -130,7 +130,7 @@ def test_snap_aligned_lines_a_desk_up_where_it_stands_and_keeps_it_beside():
 def test_snap_aligned_falls_back_to_a_new_place_when_a_lies_across_b():
     problem, state, a, b, second = placed_pair(offset=0.0, tilt=0.0)
     state.set_pose(a, 0.05, 0.0, math.pi + 0.3)  # on top of B: no single shift makes a face flush
-    proposal = Mover(problem, state, np.random.default_rng(0), PARAMS).snap_aligned(a, b)
+    proposal = alignment.snap_aligned(Mover(problem, state, np.random.default_rng(0), PARAMS), a, b)
     with state.trying(proposal):
         assert holds(problem, state, second, "AlignedWith") == [True]
 
@@ -162,10 +162,12 @@ def test_kept_free_only_when_what_stands_by_a_may_not_stand_in_the_space():
     assert target.index == index[board]
     # The board faces +z (yaw 0): its front is +z, where the kept space is.
     # Its chair would stand there: the space, and room for the chair (its shorter side) before it.
-    assert mover.kept_free(ends[teacher], target, 0.0, 1.0) == pytest.approx(0.8 + 0.45)
-    assert mover.kept_free(ends[teacher], target, 1.0, 0.0) == 0.0  # no space kept to the side
+    assert next_to.kept_free(mover, ends[teacher], target, 0.0, 1.0) == pytest.approx(0.8 + 0.45)
     assert (
-        mover.kept_free(ends[alone], target, 0.0, 1.0) == 0.0
+        next_to.kept_free(mover, ends[teacher], target, 1.0, 0.0) == 0.0
+    )  # no space kept to the side
+    assert (
+        next_to.kept_free(mover, ends[alone], target, 0.0, 1.0) == 0.0
     )  # nothing of its own: it may stand there
     # The data-driven placement in front of the board leaves the space for the chair.
     for _ in range(20):
@@ -195,9 +197,9 @@ def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
         problem, state, mover, ends, target = placed_beside(graph, chair, mat)
         # The desk faces +z (yaw 0): its back is -z.
         way = 2 * CORRIDOR_HALF + access_grid(room).cell if door else 0.0
-        assert mover.kept_free(ends[chair], target, 0.0, -1.0) == pytest.approx(way)
-        assert mover.kept_free(ends[chair], target, 1.0, 0.0) == 0.0
-        assert mover.kept_free(ends[mat], target, 0.0, -1.0) == 0.0
+        assert next_to.kept_free(mover, ends[chair], target, 0.0, -1.0) == pytest.approx(way)
+        assert next_to.kept_free(mover, ends[chair], target, 1.0, 0.0) == 0.0
+        assert next_to.kept_free(mover, ends[mat], target, 0.0, -1.0) == 0.0
         wide = graph.add_node(
             CatalogEntry("desk", "object", "desk", size=(1.2, 0.75, 0.6), access=("back",))
         )
@@ -206,7 +208,10 @@ def test_kept_free_leaves_a_way_to_the_only_side_a_box_is_used_from():
             graph, graph.nodes()[-1].id
         )
         # A chair at a 1.2 m desk leaves its ends free: no way kept behind it.
-        assert mover_wide.kept_free(ends_wide[graph.nodes()[-1].id], target_wide, 0.0, -1.0) == 0.0
+        assert (
+            next_to.kept_free(mover_wide, ends_wide[graph.nodes()[-1].id], target_wide, 0.0, -1.0)
+            == 0.0
+        )
         if door:  # every placement behind the desk leaves the way
             term = next(t for t in problem.relations if t.source == chair)
             for _ in range(20):
@@ -300,17 +305,17 @@ def test_faces_as_asked_only_when_the_heading_is_already_the_one_asked_for():
     )  # the chair and its desk
     state.set_pose(index["whiteboard_1"], 0.0, -3.0, 0.0)
     state.set_pose(index[desks[0]], 0.0, 0.0, -math.pi)
-    assert mover.faces_as_asked(opposite)
+    assert facing.faces_as_asked(mover, opposite)
     state.set_pose(
         index[desks[0]], 0.0, 0.0, math.pi
     )  # the same heading, the other end of the range
-    assert mover.faces_as_asked(opposite)
+    assert facing.faces_as_asked(mover, opposite)
     state.set_pose(index[desks[0]], 0.0, 0.0, math.pi / 2.0)
-    assert not mover.faces_as_asked(opposite)
+    assert not facing.faces_as_asked(mover, opposite)
     state.set_pose(same.a.index, 0.0, 1.0, math.pi / 2.0 + 1e-6)
-    assert not mover.faces_as_asked(same)
+    assert not facing.faces_as_asked(mover, same)
     state.set_pose(same.a.index, 0.0, 1.0, math.pi / 2.0)
-    assert mover.faces_as_asked(same)
+    assert facing.faces_as_asked(mover, same)
 
 
 def test_best_of_skips_reachability_only_for_candidates_that_cannot_win():

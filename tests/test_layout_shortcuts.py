@@ -18,6 +18,7 @@ import pytest
 
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
+from scenewright.generator.layout.families import evaluate
 from scenewright.generator.layout.geometry import (
     _local_overlap,
     capsule_rect_penetration,
@@ -32,9 +33,8 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     to_local,
 )
-from scenewright.generator.layout.moves import draw_index, uniform
+from scenewright.generator.layout.motion import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
-from scenewright.generator.layout.relation_terms import evaluate
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps, assess
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import Grid

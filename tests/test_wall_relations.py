@@ -19,9 +19,10 @@ from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
+from scenewright.generator.layout.families import evaluate, satisfied
+from scenewright.generator.layout.families.wall import carry_to_wall
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import SIGHT_HEIGHT, compile_problem
-from scenewright.generator.layout.relation_terms import evaluate, satisfied
 from scenewright.generator.layout.sampler import start_chain
 from scenewright.generator.layout.state import State
 
@@ -618,7 +619,7 @@ def test_a_wall_move_carries_what_is_in_place_beside_it():
             state.set_pose(box, pose.x, pose.z, pose.yaw)
         state.y[3] = 0.55
         mover = Mover(problem, state, np.random.default_rng(seed), PARAMS)
-        moved = mover.carry_to_wall(problem.relations[0])
+        moved = carry_to_wall(mover, problem.relations[0])
         assert set(moved) == {0, 1, 3}  # the right nightstand is not in place: it stays
         for box, pose in moved.items():
             state.set_pose(box, *pose)

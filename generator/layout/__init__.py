@@ -154,6 +154,7 @@ def layout_scene(
             best = run
         if best.ok:
             break
+    assert best is not None  # one chain at least ran
     state, energy = best.energy.state, best.energy
     poses = {
         box_id: Pose(state.x[box], state.y[box], state.z[box], state.yaw[box])

@@ -143,9 +143,9 @@ def group_scenes(graph: SceneGraph, problem: Problem, groups: list[int]) -> list
         if node_id in group_of:
             own[group_of[node_id]].add_node(node_id, **data)
     for source, target, data in whole.edges(data=True):
-        position = group_of.get(source)
-        if position is not None and group_of.get(target) == position:
-            own[position].add_edge(source, target, **data)
+        shared = group_of.get(source)
+        if shared is not None and group_of.get(target) == shared:
+            own[shared].add_edge(source, target, **data)
     return [
         SceneGraph(params=replace(graph.params, extent=(side, side)), graph=members)
         for members, side in zip(
@@ -198,6 +198,7 @@ def _frame(task: tuple[SceneGraph, LayoutParams, np.random.Generator]) -> tuple[
             best = run
         if best.ok:
             break
+    assert best is not None  # one chain at least ran
     state = best.energy.state
     ground = [b for b in range(sub.n_boxes) if sub.support[b] < 0]
     cx = sum(state.x[b] for b in ground) / len(ground)

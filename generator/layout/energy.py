@@ -2,7 +2,7 @@
 
 Parts (all >= 0, 0 when everything holds):
 
-- ``relations`` (v_r): one term per relation edge (``relation_terms.evaluate``).
+- ``relations`` (v_r): one term per relation edge (``families.evaluate``).
 - ``collisions`` (v_c): per overlapping pair of boxes, -c log(1 - depth), depth being the
   minimum separating translation over the pair's summed footprint diagonals. Boxes on
   the ground collide in plan; when one of them is stacked, the vertical overlap counts
@@ -44,16 +44,15 @@ them one item at a time through the same machinery.
 
 from __future__ import annotations
 
-import math
-from collections.abc import Iterable
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-from .factors import greater, less
-from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_overlap
+from .families import evaluate
+from .geometry import polyline_rect_penetration
 from .params import LayoutParams
 from .problem import Problem
-from .relation_terms import Measure, evaluate
+from .relation_terms import Measure
 from .room_terms import ROOM_PARTS, RoomChanges, RoomTerms
+from .single_terms import SingleTerms
 from .state import Grid, State
 
 PARTS = ("relations", "collisions", "paths", "path_shape", "extent") + ROOM_PARTS
@@ -62,8 +61,6 @@ MASK_PART = "mask"
 #: The part a learned context adds (last), present only when there is one.
 LEARNED_PART = "learned"
 
-#: Depths are clipped below 1 so the log penalty stays finite.
-MAX_DEPTH = 0.99
 #: Scenes with at least this many paths file them in a grid (``Energy.path_grid``); with
 #: fewer, testing each path's bounds is cheaper than keeping the grid up to date.
 PATH_GRID_MIN = 16
@@ -106,7 +103,7 @@ class Kept(NamedTuple):
     soft_delta: float
 
 
-class Energy:
+class Energy(SingleTerms):
     """Cached energy terms of a state, with propose / accept / reject."""
 
     def __init__(self, problem: Problem, state: State, params: LayoutParams):
@@ -183,149 +180,6 @@ class Energy:
             self.measures[term_index] = measure
         return measure
 
-    def penalty(self, depth: float) -> float:
-        return -self.params.collision_intensity * math.log1p(-min(depth, MAX_DEPTH))
-
-    def pair_depth(self, first: int, second: int) -> float:
-        """Normalised penetration depth of two boxes (0 when apart or stacked)."""
-        problem, state = self.problem, self.state
-        if problem.support[first] == second or problem.support[second] == first:
-            return 0.0
-        planar = rect_overlap(
-            state.rects[first], state.rects[second]
-        )  # its penetration when positive
-        if not planar > 0.0:
-            return 0.0
-        if problem.support[first] >= 0 or problem.support[second] >= 0:
-            vertical = min(
-                state.y[first] + problem.height[first], state.y[second] + problem.height[second]
-            ) - max(state.y[first], state.y[second])
-            if vertical <= 1e-9:
-                return 0.0
-            planar = min(planar, vertical)
-        return planar / (problem.size[first] + problem.size[second])
-
-    def pair_energy(self, first: int, second: int) -> float:
-        depth = self.pair_depth(first, second)
-        return self.penalty(depth) if depth > 0.0 else 0.0
-
-    def _path_bounds(self, path: int) -> tuple[float, float, float, float]:
-        points, reach = self.state.points[path], self.problem.path_width[path] / 2.0
-        xs = [p[0] for p in points]
-        zs = [p[1] for p in points]
-        return min(xs) - reach, max(xs) + reach, min(zs) - reach, max(zs) + reach
-
-    def may_touch_path(self, box: int, path: int) -> bool:
-        """False when the box's bounding circle misses the path's grown bounding box."""
-        x0, x1, z0, z1 = self.path_bounds[path]
-        x, z, radius = self.state.x[box], self.state.z[box], self.problem.size[box] / 2.0
-        return x + radius >= x0 and x - radius <= x1 and z + radius >= z0 and z - radius <= z1
-
-    def paths_near(self, box: int) -> list[int]:
-        """The paths the box may touch (``may_touch_path``), in order."""
-        return [path for path in self._paths_to_test(box) if self.may_touch_path(box, path)]
-
-    def _paths_to_test(self, box: int) -> Iterable[int]:
-        """In order, every path the box may touch (``may_touch_path``) or is caching a hit
-        with (``hit_paths``), and perhaps a few more: those ``path_grid`` files in the
-        cells the box's bounding circle's square meets, or every path without the grid."""
-        if self.path_grid is None:
-            return range(self.problem.n_paths)
-        filing = self.grid.filing(box) if self.active[box] else None
-        if filing is not None:  # filed at its current pose: the same cells
-            near = self.path_grid.in_cells_of(filing)
-        else:
-            x, z, radius = self.state.x[box], self.state.z[box], self.problem.size[box] / 2.0
-            near = self.path_grid.in_area(x - radius, z - radius, x + radius, z + radius)
-        near.update(self.hit_paths[box])
-        return sorted(near)
-
-    def _file_path(self, path: int) -> None:
-        """(Re)file a path in ``path_grid`` under its current ``path_bounds``."""
-        if self.path_grid is not None:
-            x0, x1, z0, z1 = self.path_bounds[path]
-            self.path_grid.remove(path)
-            self.path_grid.insert_area(path, x0, z0, x1, z1)
-
-    def path_depth(self, box: int, path: int) -> float:
-        """Normalised depth of a ground box into a path's buffered polyline."""
-        problem = self.problem
-        if not self.may_touch_path(box, path):
-            return 0.0
-        width = problem.path_width[path]
-        depth = polyline_rect_penetration(
-            self.state.points[path], width / 2.0, self.state.rects[box]
-        )
-        return depth / (problem.size[box] + width)
-
-    def path_energy(self, box: int, path: int) -> float:
-        depth = self.path_depth(box, path)
-        return self.penalty(depth) if depth > 0.0 else 0.0
-
-    def box_excess(self, box: int) -> float:
-        """How far (metres) the box's footprint reaches beyond the scene extent."""
-        problem, state = self.problem, self.state
-        half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
-        hw, hd, c, s = problem.half_width[box], problem.half_depth[box], state.c[box], state.s[box]
-        reach_x = hw * abs(c) + hd * abs(s)
-        reach_z = hw * abs(s) + hd * abs(c)
-        return max(abs(state.x[box]) + reach_x - half_x, abs(state.z[box]) + reach_z - half_z, 0.0)
-
-    def box_extent_energy(self, box: int) -> float:
-        if not self.active[box] or self.room is not None:  # in a room: the walls term instead
-            return 0.0
-        return self.params.collision_intensity * self.box_excess(box) / self.problem.size[box]
-
-    def path_excess(self, path: int) -> float:
-        """Summed distance (metres) by which a path's control points leave the extent."""
-        half_x, half_z = self.problem.extent[0] / 2.0, self.problem.extent[1] / 2.0
-        return sum(max(abs(x) - half_x, abs(z) - half_z, 0.0) for x, z in self.state.points[path])
-
-    def path_extent_energy(self, path: int) -> float:
-        return (
-            self.params.collision_intensity * self.path_excess(path) / self.problem.path_width[path]
-        )
-
-    def path_shape_energy(self, path: int) -> float:
-        points, params = self.state.points[path], self.params
-        energy = -less(polyline_length(points), self.problem.path_max_length[path], params.h)
-        for turn in polyline_turns(points):
-            energy -= less(turn, params.gamma, params.h)
-        return energy
-
-    def junction_angles(self, junction: int) -> list[float]:
-        """Angles between neighbouring outgoing paths of a junction (radians)."""
-        headings = []
-        for path in self.problem.paths_of_junction[junction]:
-            first, second = self.state.points[path][0], self.state.points[path][1]
-            headings.append(math.atan2(second[1] - first[1], second[0] - first[0]))
-        if len(headings) < 2:
-            return []
-        headings.sort()
-        gaps = [b - a for a, b in zip(headings, headings[1:], strict=False)]
-        gaps.append(2.0 * math.pi - (headings[-1] - headings[0]))
-        return gaps
-
-    def junction_energy(self, junction: int) -> float:
-        params = self.params
-        return -sum(
-            greater(angle, params.gamma, params.h) for angle in self.junction_angles(junction)
-        )
-
-    def mask_energy(self, box: int) -> float:
-        """The ``mask`` part's term of a box: 0 unless the mask is for it and it is placed."""
-        mask = self.problem.mask
-        if mask is None or not mask.listed[box] or not self.active[box]:
-            return 0.0
-        return self.params.mask_weight * mask.cost(box, self.state.rects[box])
-
-    def learned_energy(self, pair: int) -> float:
-        """A learned pair's term: 0 until both its boxes are placed."""
-        source, target, _ = self.problem.learned.pairs[pair]
-        if not (self.active[source] and self.active[target]):
-            return 0.0
-        return self.problem.learned.value(pair, self.state)
-
     def troubled_boxes(self) -> list[int]:
         """Boxes that currently overlap something or stick out of the extent, and in a
         room those in breach of a room term (``RoomTerms.troubled``)."""
@@ -361,7 +215,7 @@ class Energy:
     def _fresh(self) -> dict:
         """Every cached term recomputed from scratch, with the parts they sum to."""
         problem = self.problem
-        fresh = {
+        fresh: dict[str, Any] = {
             "relation": [self.relation_energy(t) for t in range(len(problem.relations))],
             "pairs": [{} for _ in range(problem.n_boxes)],
             "path_hits": [{} for _ in range(problem.n_paths)],
@@ -520,6 +374,7 @@ class Energy:
             self.state.pose,
             self.relation,
         )
+        assert learned is not None  # soft terms exist with a context only
 
         def before(box: int) -> tuple[float, float, float]:
             return saved[box] if box in saved else pose(box)
@@ -737,6 +592,7 @@ class Energy:
         took it), to be put back by ``repropose`` after it is rejected and others are
         tried; None when it holds a room's part (its access part may have been deferred
         and completed, which ``repropose`` would not redo the same way)."""
+        assert self._pending is not None  # called on a pending proposal
         update = self._pending.update
         if self.room is not None:
             return None
@@ -766,7 +622,10 @@ class Energy:
             if self._pending is not None and not isinstance(self._pending.update, dict)
             else None
         )
-        return self.room.access_total() if room is not None and room.deferred else 0.0
+        if room is None or not room.deferred:
+            return 0.0
+        assert self.room is not None  # a room's changes come from the room's terms
+        return self.room.access_total()
 
     def complete(self) -> float:
         """The pending proposal's whole energy change, its deferred ``access`` part added
@@ -780,8 +639,10 @@ class Energy:
         """The pending proposal's update, with its deferred ``access`` part evaluated
         (at most once) when ``propose`` left it out."""
         pending = self._pending
+        assert pending is not None  # called on a pending proposal
         changes = pending.update
         if not isinstance(changes, dict) and changes.room is not None and changes.room.deferred:
+            assert self.room is not None  # a room's changes come from the room's terms
             room = self.room.access_changes(changes.room, [box for box, _ in pending.saved_boxes])
             changes.delta["access"] = room.delta["access"]
             changes = changes._replace(room=room)
@@ -796,6 +657,7 @@ class Energy:
         """Keep the proposed move: store its term values."""
         self._add_deferred_access()  # a deferred access part is evaluated before it is kept
         pending, self._pending = self._pending, None
+        assert pending is not None  # called on a pending proposal
         if isinstance(pending.update, dict):
             self._install(pending.update)
             return
@@ -838,6 +700,7 @@ class Energy:
         for path, value in changes.path_extent.items():
             self.path_extent[path] = value
         if changes.room is not None:
+            assert self.room is not None  # a room's changes come from the room's terms
             self.room.accept(changes.room)
         for box, value in changes.mask.items():
             self.mask[box] = value
@@ -850,6 +713,7 @@ class Energy:
     def reject(self) -> None:
         """Undo the proposed move."""
         pending, self._pending = self._pending, None
+        assert pending is not None  # called on a pending proposal
         state, grid, problem = self.state, self.grid, self.problem
         filings = pending.filings
         for box, (x, z, yaw) in pending.saved_boxes:

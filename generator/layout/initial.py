@@ -1,7 +1,7 @@
 """The constructive initial placement the sampler starts from.
 
-Paths first (roads leave their junction at evenly spread headings, free roads cross
-the scene), then the top-level items (groups and free objects) one at a time, each
+Paths first (``initial_roads``: roads leave their junction at evenly spread headings,
+free roads cross the scene), then the top-level items (groups and free objects) one at a time, each
 after the items its relations point to and the most constrained first: a group's members are placed from their
 relations to each other (the first member where the group's own relation wants the
 group, e.g. beside its road), stacked things on their supports, unrelated members
@@ -15,7 +15,7 @@ count as placed; pinned and started paths get their given points. Then each new
 junction with its roads (taking the evenly spread headings given roads leave free), and
 each new free road, is the best of ``path_candidates`` random ones by the energy plus
 how far pinned things that must be next to a road are from it, and such roads are
-pulled towards those things (``Mover.pull``). The rest is placed around them as above.
+pulled towards those things (``Placer.pull``). The rest is placed around them as above.
 A group holding any given box is not placed again as a whole (its given boxes stay
 where they were put). Without pins or a start, nothing here draws a different number.
 
@@ -52,31 +52,17 @@ import numpy as np
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
+from .families import LAYOUT_FAMILIES, evaluate
 from .geometry import corners
-from .moves import Mover, draw_index, rigid, uniform, wrap
-from .moves import reach as footprint_reach
+from .initial_roads import lay_paths
+from .motion import draw_index, rigid, uniform, wrap
+from .motion import reach as footprint_reach
 from .pinning import Pins
-from .problem import ROOM_ENDS, Endpoint, RelationTerm
-from .relation_terms import HEADING_FACINGS, centre, evaluate
+from .placement import Placer
+from .relation_terms import centre
 from .templates import not_templated, template_draw
+from .terms import ROOM_ENDS, Endpoint, RelationTerm
 
-#: Paths stay this far (metres) inside the extent when first laid out.
-PATH_MARGIN = 1.0
-#: New paths take this share of their maximum length (room permitting): long roads give
-#: the items placed along them room, and the length term stays near 0 below the maximum.
-PATH_LENGTH_SHARE = 0.95
-#: Where free paths cross the scene: within this share of the extent from its centre.
-LONE_PATH_SPREAD = 0.2
-FREE_PATH_SPREAD = 0.4
-#: Spread (radians) of the heading change at each control point of a new path.
-PATH_WIGGLE = 0.15
-#: Around pinned or started things, candidate junctions lie within this share of the
-#: extent from its centre (without them: 0.15).
-JUNCTION_SPREAD = 0.25
-#: Several junctions lie within this share of the extent from its centre, each the
-#: farthest from the others of this many candidate points.
-JUNCTIONS_SPREAD = 0.3
-SPREAD_CANDIDATES = 8
 #: Tries for a random spot on the floor of a room that is not a rectangle.
 FLOOR_TRIES = 20
 #: How much further (metres) than it crosses a wall a group is pushed off it
@@ -86,7 +72,7 @@ PUSH_MARGIN = 0.05
 
 def place_initial(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     pins: Pins | None = None,
     frames: Mapping[int, Mapping[int, tuple[float, float, float]]] | None = None,
@@ -109,7 +95,7 @@ def place_initial(
         energy.activate(sorted(preset))
     _park(energy)
     held = _held_terms(energy, mover, pins)
-    _lay_paths(energy, rng, pins, held)
+    lay_paths(energy, rng, pins, held)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
         _best_of(
             energy,
@@ -202,11 +188,13 @@ def _wall_order(energy: Energy) -> dict[tuple[str, int], tuple[int, float]]:
     order = {}
     for unit in problem.units:
         kind, index = unit
-        placements = [
-            t.spec.wall for t in _outgoing(energy, kind, index) if t.spec.family == "wall"
+        ranks = [
+            rank(t)
+            for t in _outgoing(energy, kind, index)
+            if (rank := LAYOUT_FAMILIES[t.spec.family].placing_rank) is not None
         ]
-        if kind == "object" and placements:
-            spots = 1 if any(p != "against" for p in placements) else 0
+        if kind == "object" and ranks:
+            spots = max(ranks)
             order[unit] = (spots, 4.0 * problem.half_width[index] * problem.half_depth[index])
     return order
 
@@ -264,14 +252,18 @@ def _borrowed_anchor(energy: Energy, end: Endpoint) -> RelationTerm | None:
         if incoming.a.kind == "path":
             continue
         for term in problem.outgoing[(incoming.a.kind, incoming.a.index)]:
-            if term is not incoming and term.spec.family == "next_to" and _placed(energy, term.b):
+            if (
+                term is not incoming
+                and LAYOUT_FAMILIES[term.spec.family].anchors_target
+                and _placed(energy, term.b)
+            ):
                 return replace(term, a=end, label="NextTo", spec=RELATIONS["NextTo"], sight=())
     return None
 
 
-def _held_terms(energy: Energy, mover: Mover, pins: Pins):
+def _held_terms(energy: Energy, mover: Placer, pins: Pins):
     """A score of how far roads and junctions are from the pinned things that must be next
-    to them (None when there are none): the NextTo* terms ``Mover.pull`` mends, measured
+    to them (None when there are none): the NextTo* terms ``Placer.pull`` mends, measured
     from the pinned boxes of their source alone, since the rest of a group is not placed
     yet while roads are laid."""
     terms = []
@@ -284,237 +276,6 @@ def _held_terms(energy: Energy, mover: Mover, pins: Pins):
         return None
     state, params = energy.state, energy.params
     return lambda: sum(evaluate(term, state, params).energy for term in terms)
-
-
-def _lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
-    if pins.preset:
-        _lay_paths_around(energy, rng, pins, held)
-        return
-    problem, state = energy.problem, energy.state
-    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
-    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
-    if len(junctions) > 1:
-        _spread_junctions(energy, rng, junctions)
-    else:
-        for junction in junctions:
-            state.set_pose(
-                junction,
-                uniform(rng, -0.15, 0.15) * 2 * half_x,
-                uniform(rng, -0.15, 0.15) * 2 * half_z,
-                0.0,
-            )
-    energy.activate(junctions)
-    for junction in junctions:
-        paths = problem.paths_of_junction.get(junction, [])
-        base = uniform(rng, 0.0, 2.0 * math.pi)
-        for k, path in enumerate(paths):
-            heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
-            start = (state.x[junction], state.z[junction])
-            _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
-    # A lone road crosses near the middle; several spread out, each through the candidate
-    # point farthest from the roads laid so far.
-    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
-    for path in free:
-        heading = uniform(rng, 0.0, 2.0 * math.pi)
-        laid = [
-            p
-            for other in range(problem.n_paths)
-            if other not in free or other < path
-            for p in state.points[other]
-        ]
-        candidates = [
-            (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z)
-            for _ in range(8)
-        ]
-        middle = max(
-            candidates,
-            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0),
-        )
-        back = _room(middle, heading + math.pi, half_x, half_z)
-        ahead = _room(middle, heading, half_x, half_z)
-        length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
-        behind = min(back, length / 2.0)
-        start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
-        _set_path(energy, rng, path, start, heading, length)
-
-
-def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[int]) -> None:
-    """Several junctions (road networks) spread over the scene: each at the candidate
-    point (of ``SPREAD_CANDIDATES`` within ``JUNCTIONS_SPREAD`` of the extent from its
-    centre) farthest from the junctions placed before it, so the networks' roads give
-    the items beside them room instead of crossing each other in the middle."""
-    state, (width, depth) = energy.state, energy.problem.extent
-    placed: list[tuple[float, float]] = []
-    for junction in junctions:
-        candidates = [
-            (
-                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width,
-                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth,
-            )
-            for _ in range(SPREAD_CANDIDATES)
-        ]
-        x, z = max(
-            candidates,
-            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0),
-        )
-        placed.append((x, z))
-        state.set_pose(junction, x, z, 0.0)
-
-
-def _free_headings(
-    energy: Energy, pins: Pins, junction: int, paths: list[int], base: float
-) -> list[float]:
-    """Headings for the roads of a junction, by position in ``paths``: evenly spread from
-    ``base``; when some roads are given, spread from the first given one's heading, each
-    given road taking the free slot nearest its own heading and the others the rest in
-    order."""
-    count = len(paths)
-    given = {path: pins.preset_points(path) for path in paths}
-    given = {path: points for path, points in given.items() if points is not None}
-    if not given:
-        return [base + 2.0 * math.pi * k / count for k in range(count)]
-    state = energy.state
-    start = (state.x[junction], state.z[junction])
-
-    def heading(points) -> float:
-        return math.atan2(points[1][1] - start[1], points[1][0] - start[0])
-
-    base = heading(next(iter(given.values())))
-    slots = [base + 2.0 * math.pi * k / count for k in range(count)]
-    for points in given.values():
-        own = heading(points)
-        nearest = min(range(len(slots)), key=lambda k: abs(wrap(slots[k] - own)))
-        slots.pop(nearest)
-    free_slots = iter(slots)
-    return [0.0 if path in given else next(free_slots) for path in paths]
-
-
-def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
-    """How far one can go from ``start`` along ``heading`` and stay PATH_MARGIN inside."""
-    dx, dz = math.cos(heading), math.sin(heading)
-    limits = []
-    for position, direction, half in ((start[0], dx, half_x), (start[1], dz, half_z)):
-        if abs(direction) > 1e-9:
-            bound = (half - PATH_MARGIN) if direction > 0 else -(half - PATH_MARGIN)
-            limits.append((bound - position) / direction)
-    return max(min(limits), 0.0)
-
-
-def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
-    """Paths when some boxes or paths are given (pinned or started): given paths at their
-    points; each junction's other roads (and the junction, unless it is given) as the best
-    of ``path_candidates`` fans, and each other free road as the best of as many
-    crossings, by the energy (which already holds the given boxes) plus ``held`` (how far
-    the pinned things that must be next to a road are from it): so new roads avoid
-    pinned things and pass by those that must be next to them."""
-    problem, state = energy.problem, energy.state
-    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
-    count = energy.params.path_candidates
-    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
-        paths = problem.paths_of_junction.get(junction, [])
-        given = {
-            path: pins.preset_points(path) for path in paths if pins.preset_points(path) is not None
-        }
-        placed = energy.active[junction]
-        if not placed and given:  # where a given road starts
-            first = next(iter(given.values()))[0]
-            state.set_pose(junction, first[0], first[1], 0.0)
-            placed = True
-        if not energy.active[junction]:
-            energy.activate([junction])
-        for path, points in given.items():
-            points = [list(p) for p in points]
-            if not pins.path[path]:  # a started road begins at its junction
-                points[0] = [state.x[junction], state.z[junction]]
-            energy.propose({}, {path: points})
-            energy.accept()
-        if len(given) == len(paths) and placed:
-            continue
-
-        def fan(junction=junction, paths=paths, placed=placed) -> tuple[dict, dict]:
-            if placed:
-                x, z, boxes = state.x[junction], state.z[junction], {}
-            else:
-                x = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_x
-                z = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_z
-                boxes = {junction: (x, z, 0.0)}
-            slots = _free_headings(energy, pins, junction, paths, uniform(rng, 0.0, 2.0 * math.pi))
-            laid = {}
-            for k, path in enumerate(paths):
-                if pins.preset_points(path) is None:
-                    heading = slots[k] + rng.normal(0.0, 0.1)
-                    room = _room((x, z), heading, half_x, half_z)
-                    laid[path] = _path_points(problem, rng, path, (x, z), heading, room)
-            return boxes, laid
-
-        _take_best(energy, fan, count, held)
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
-    for path in free:
-        given = pins.preset_points(path)
-        if given is not None:
-            energy.propose({}, {path: [list(p) for p in given]})
-            energy.accept()
-    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
-    for path in free:
-        if pins.preset_points(path) is not None:
-            continue
-
-        def crossing(path=path) -> tuple[dict, dict]:
-            heading = uniform(rng, 0.0, 2.0 * math.pi)
-            middle = (
-                uniform(rng, -spread, spread) * 2 * half_x,
-                uniform(rng, -spread, spread) * 2 * half_z,
-            )
-            back = _room(middle, heading + math.pi, half_x, half_z)
-            ahead = _room(middle, heading, half_x, half_z)
-            length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
-            behind = min(back, length / 2.0)
-            start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
-            return {}, {path: _path_points(problem, rng, path, start, heading, length)}
-
-        _take_best(energy, crossing, count, held)
-
-
-def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
-    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy (plus
-    ``extra()``, if given), even when it is worse than the state now (a placeholder)."""
-    best, best_delta = None, math.inf
-    for _ in range(count):
-        proposal = draw()
-        delta = energy.propose(*proposal)
-        kept = energy.kept(delta)
-        if extra is not None:
-            delta += extra()
-        energy.reject()
-        if delta < best_delta:
-            best, best_delta, best_kept = proposal, delta, kept
-    if best is not None:
-        energy.repropose(best, best_kept)
-        energy.accept()
-
-
-def _set_path(
-    energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float
-) -> None:
-    energy.propose({}, {path: _path_points(energy.problem, rng, path, start, heading, room)})
-    energy.accept()
-
-
-def _path_points(
-    problem, rng: np.random.Generator, path: int, start, heading: float, room: float
-) -> list[list[float]]:
-    """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
-    half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
-    segments = problem.path_segments[path]
-    step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
-    points = [[float(start[0]), float(start[1])]]
-    for _ in range(segments):
-        heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
-        x = points[-1][0] + math.cos(heading) * step
-        z = points[-1][1] + math.sin(heading) * step
-        points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
-    return points
 
 
 def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
@@ -548,7 +309,7 @@ def _best_of(energy: Energy, draw, count: int, extra=None) -> None:
 
 def _place_box(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     box: int,
     mates: tuple[int, ...],
@@ -562,13 +323,14 @@ def _place_box(
     own = Endpoint("object", box, (box,))
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
-    positional = [t for t in outgoing if t.spec.family != "facing"]
-    walls = [t for t in positional if t.spec.family == "wall"]
-    facing = [t for t in outgoing if t.spec.family == "facing"]
+    positional = [t for t in outgoing if LAYOUT_FAMILIES[t.spec.family].places]
+    turning = [t for t in outgoing if not LAYOUT_FAMILIES[t.spec.family].places]
     incoming = [
         t
         for t in problem.incoming.get(("object", box), [])
-        if t.spec.family == "next_to" and t.a.kind != "path" and _placed(energy, t.a)
+        if LAYOUT_FAMILIES[t.spec.family].anchors_target
+        and t.a.kind != "path"
+        and _placed(energy, t.a)
     ]
     placed_mates = [m for m in mates if energy.active[m] and problem.support[m] == -1]
 
@@ -578,8 +340,11 @@ def _place_box(
         if positional or incoming:
             pick = draw_index(rng, len(positional) + len(incoming))
             if pick < len(positional):
-                return mover.place_by(positional[pick], walls), {}
-            return mover.place_target_for(incoming[pick - len(positional)]), {}
+                return mover.place_by(positional[pick]), {}
+            target_term = incoming[pick - len(positional)]
+            place_target = LAYOUT_FAMILIES[target_term.spec.family].place_target
+            assert place_target is not None  # a family that anchors its target places it
+            return place_target(mover, target_term), {}
         if anchor_term is not None:
             return mover.place_for_relation(anchor_term), {}
         if placed_mates:
@@ -592,15 +357,15 @@ def _place_box(
 
     template = template_draw(energy, rng, box)
     if template is not None:  # a learned pair's source: its template gives place and turn
-        draw, facing = template, not_templated(energy, facing)
+        draw, turning = template, not_templated(energy, turning)
     # In a room, a heading its facing relations fix whatever the place (same, opposite or
     # square to B's) is taken before the place: NextTo* placements keep A's heading and
     # AlignedWith keeps its way round, so a desk placed left of a desk already facing the
     # board stays left of it once turned (turned after, about its own centre, it would
     # not). Outdoors it sped the village up but lengthened the town's tail (docs/layout.md).
-    for term in facing:
-        if problem.room is not None and term.spec.facing in HEADING_FACINGS and not support:
-            turned = mover.turn_to_face(term)
+    for term in turning:
+        if problem.room is not None and _heading_only(term) and not support:
+            turned = _turn(mover, term)
             for item, pose in (turned or {}).items():
                 state.set_pose(item, *pose)
     first = draw()[0]
@@ -614,12 +379,33 @@ def _place_box(
     else:
         energy.activate([box])
         _best_of(energy, draw, energy.params.initial_candidates)
-    for term in facing:
-        if problem.room is not None and mover.faces_as_asked(
-            term
+    for term in turning:
+        if problem.room is not None and _turned(
+            mover, term
         ):  # its heading came first and the place kept it
             continue
-        _best_of(energy, lambda term=term: (mover.turn_to_face(term), {}), 2)
+        _best_of(energy, lambda term=term: (_turn(mover, term), {}), 2)
+
+
+def _turn(mover: Placer, term: RelationTerm, *, whole_group: bool = False) -> dict | None:
+    """A (or the top-level group holding it) turned as a relation that only turns A asks
+    (its family's ``turn`` or ``turn_group``)."""
+    family = LAYOUT_FAMILIES[term.spec.family]
+    turn = family.turn_group if whole_group else family.turn
+    assert turn is not None  # a family that does not place A turns it
+    return turn(mover, term)
+
+
+def _heading_only(term: RelationTerm) -> bool:
+    """Whether a turning relation fixes A's heading whatever its place."""
+    heading_only = LAYOUT_FAMILIES[term.spec.family].heading_only
+    return heading_only is not None and heading_only(term)
+
+
+def _turned(mover: Placer, term: RelationTerm) -> bool:
+    """Whether A already has the heading a turning relation asks for."""
+    turned = LAYOUT_FAMILIES[term.spec.family].turned
+    return turned is not None and turned(mover, term)
 
 
 def _best_among_mates(
@@ -706,7 +492,11 @@ def _anywhere(energy: Energy, rng: np.random.Generator, box: int) -> dict:
 
 
 def _place_group(
-    energy: Energy, mover: Mover, rng: np.random.Generator, group: int, frame: Mapping | None = None
+    energy: Energy,
+    mover: Placer,
+    rng: np.random.Generator,
+    group: int,
+    frame: Mapping | None = None,
 ) -> None:
     problem = energy.problem
     members = problem.group_members[group]
@@ -739,14 +529,14 @@ def _place_group(
         t
         for box in members
         for t in _outgoing(energy, "object", box)
-        if t.spec.family == "facing"
+        if not LAYOUT_FAMILIES[t.spec.family].places
         and not set(t.b.members) <= set(members)
         and _placed(energy, t.b)
     ]
     for term in outside_facing:
-        if problem.room is not None and mover.faces_as_asked(term):
+        if problem.room is not None and _turned(mover, term):
             continue
-        _best_of(energy, lambda term=term: (mover.turn_group_to_face(term), {}), 1)
+        _best_of(energy, lambda term=term: (_turn(mover, term, whole_group=True), {}), 1)
     if anchors:  # the group as a whole, by each of its relations in turn
         in_turn = itertools.cycle(anchors)
         keep = bool(outside_facing)
@@ -765,7 +555,7 @@ def _place_group(
         )
 
 
-def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[RelationTerm]) -> None:
+def _push_off_walls(energy: Energy, mover: Placer, group: int, anchors: list[RelationTerm]) -> None:
     """In a room, when a group placed by its relations to other groups still crosses a
     wall (the third row of desks south of a first row put in the middle of the room),
     shift it with the groups it hangs on (through their relations to groups, in turn)
@@ -801,7 +591,7 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
         {(nx, nz) for nx, nz, offset in lines if any(nx * x + nz * z < offset for x, z in points)}
     )
     shift = excess + PUSH_MARGIN
-    candidates = iter(
+    candidates: Iterator[tuple[dict, dict]] = iter(
         [
             (rigid(energy.state, boxes, (0.0, 0.0), 0.0, (nx * shift, nz * shift)), {})
             for nx, nz in directions
@@ -811,7 +601,7 @@ def _push_off_walls(energy: Energy, mover: Mover, group: int, anchors: list[Rela
 
 
 def _group_anywhere(
-    energy: Energy, mover: Mover, rng: np.random.Generator, whole: Endpoint, turn: bool
+    energy: Energy, mover: Placer, rng: np.random.Generator, whole: Endpoint, turn: bool
 ) -> dict:
     """A group shifted rigidly to a random spot where its footprint lies within the
     extent (a room: on the floor), turned by a random quarter turn when ``turn``."""
@@ -835,7 +625,7 @@ def _group_anywhere(
 
 def _place_frame(
     energy: Energy,
-    mover: Mover,
+    mover: Placer,
     rng: np.random.Generator,
     group: int,
     frame: Mapping,
@@ -851,7 +641,7 @@ def _place_frame(
         state.set_pose(box, *frame[box])
     whole = Endpoint("group", group, members)
 
-    def draw() -> tuple[dict, dict]:
+    def draw() -> tuple[dict | None, dict]:
         if anchors:
             return mover.place_for_relation(anchors[draw_index(rng, len(anchors))]), {}
         half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
@@ -860,7 +650,9 @@ def _place_frame(
         shift = (uniform(rng, -half_x, half_x) - x, uniform(rng, -half_z, half_z) - z)
         return rigid(state, list(members), (x, z), turn, shift), {}
 
-    for box, pose in draw()[0].items():
+    first = draw()[0]
+    assert first is not None  # the group's first pose, by an anchor or anywhere
+    for box, pose in first.items():
         state.set_pose(box, *pose)
     energy.activate(list(members))
     if not anchors:  # else the group is placed by its anchors once more, as every group is

@@ -61,7 +61,7 @@ import numpy as np
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local, to_world
 
-from .moves import rigid, wrap
+from .motion import rigid, wrap
 
 #: Bins per axis of the 2-D position histogram, and bins of the relative-yaw histogram
 #: (the paper's 32-bin histograms).
@@ -214,7 +214,7 @@ def _parse_pair(entry: object, where: str) -> PairContext:
         names[0],
         names[1],
         tuple(labels),
-        tuple(bounds),
+        (bounds[0], bounds[1], bounds[2], bounds[3]),
         np.array(position),
         np.array(yaw),
         examples,

@@ -19,7 +19,7 @@ Rules (also in docs/layout.md):
   group as a whole (data-driven) are refused for a group that holds a pinned or anchored
   box; its free members still move on their own. A junction with a pinned path never
   moves (it is pinned). Free roads and junctions are brought to the pinned things that
-  must be next to them (the initial placement's candidate fans, and ``Mover.pull``).
+  must be next to them (the initial placement's candidate fans, and ``Placer.pull``).
 - ``start`` gives poses (and path points) every chain starts from instead of the
   constructive placement; those boxes may move. Boxes and paths ``start`` leaves out are
   placed constructively around the given ones. A start pose's y is not used: heights

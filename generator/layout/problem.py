@@ -19,70 +19,32 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from typing import TYPE_CHECKING
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.core.room import ROOM_KINDS, ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
 
+from .families import LAYOUT_FAMILIES
+from .families.entry import room_is_fixed
+from .terms import Endpoint, RelationTerm
+
+if TYPE_CHECKING:  # made after the problem, from it and a mask or a context
+    from .learned_term import CompiledLearned
+    from .mask_term import CompiledMask
+
 #: Line of sight: a ground box at least this tall (metres) blocks the view between two
 #: objects (a seated person's eye height: a desk or a sofa does not, a wardrobe does).
 SIGHT_HEIGHT = 1.2
 
-#: Endpoint kinds that stand for a room's parts (fixed: they have no boxes).
-ROOM_ENDS = ("wall", "opening", "room")
-
-
-@dataclass(frozen=True)
-class Endpoint:
-    """One end of a relation: a box (``object``), a group of boxes, or a path."""
-
-    kind: str  # "object", "group", "path", or a room's "wall", "opening" or "room"
-    index: int  # box, path or group index; a wall's or opening's index in the room (0 for "room")
-    members: tuple[int, ...]  # the boxes whose poses it depends on (empty for paths and room parts)
-
-
-@dataclass(frozen=True)
-class RelationTerm:
-    """One relation edge, ready to score: ``a`` -label-> ``b``."""
-
-    source: str
-    target: str
-    label: str  # as written (may be Implicit*)
-    spec: RelationLabel  # the registry's record: the geometry it asks for
-    a: Endpoint
-    b: Endpoint
-    #: Line of sight: the tall ground boxes that may stand between A and B (empty when
-    #: the relation does not need a clear view, outdoors, or with line of sight off).
-    sight: tuple[int, ...] = ()
-
-    @cached_property
-    def reads_fixed_geometry(self) -> bool:
-        """Whether the term reads geometry that does not move with its own boxes: a path,
-        a room's wall, window or door, or (``sight``) tall boxes that may stand between
-        its ends. A shared translation of its boxes can change such a term, so the
-        energy re-evaluates it after one (``Energy._changes``)."""
-        return bool(self.sight) or self.a.kind in _FIXED_ENDS or self.b.kind in _FIXED_ENDS
-
-    @property
-    def placeable(self) -> bool:
-        """False when an end is a group with nothing in it: there is nothing to place."""
-        return all(end.kind != "group" or end.members for end in (self.a, self.b))
-
-
-_FIXED_ENDS = ("path",) + ROOM_ENDS
-
 
 def needs_sight(spec: RelationLabel) -> bool:
-    """Whether a label needs a clear view from A to B: a next-to label whose directions
-    are all on B's own front or back ("in front of", "behind"), or facing towards or
-    away from B."""
-    if spec.family == "facing":
-        return spec.facing in ("towards", "away")
-    if spec.family == "next_to" and spec.frame == "target" and spec.directions:
-        return all(abs(lz) > abs(lx) for lx, lz in spec.directions.values())
-    return False
+    """Whether a label needs a clear view from A to B (its family says: a next-to label
+    whose directions are all on B's own front or back, "in front of" or "behind", or
+    facing towards or away from B)."""
+    family = LAYOUT_FAMILIES.get(spec.family)
+    return family is not None and family.needs_sight(spec)
 
 
 @dataclass
@@ -131,15 +93,20 @@ class Problem:
     )  # by (kind, index) of B
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
-    mask: object | None = None
+    mask: CompiledMask | None = None
     #: The learned pairs the energy's ``learned`` part reads (``learned_term.CompiledLearned``);
     #: None (no such part) unless ``layout_scene`` is given a context.
-    learned: object | None = None
+    learned: CompiledLearned | None = None
 
     @property
     def walls(self) -> bool:
         """Whether the scene is a room bounded by walls."""
         return self.room is not None
+
+    def indoors(self) -> Room:
+        """The room, where only a room has what is asked for (walls, openings)."""
+        assert self.room is not None, "a room's part asked for outdoors"
+        return self.room
 
     @property
     def n_boxes(self) -> int:
@@ -168,9 +135,18 @@ class Problem:
 
 def compile_problem(graph: SceneGraph) -> Problem:
     """Index a scene graph's nodes and relations; refuse relations that cannot be laid out."""
-    ids, is_junction, half_width, half_depth, height, size = [], [], [], [], [], []
-    clearance, access = [], []
-    path_ids, path_width, path_max_length, path_segments = [], [], [], []
+    ids: list[str] = []
+    is_junction: list[bool] = []
+    half_width: list[float] = []
+    half_depth: list[float] = []
+    height: list[float] = []
+    size: list[float] = []
+    clearance: list[tuple[tuple[str, float], ...]] = []
+    access: list[tuple[str, ...]] = []
+    path_ids: list[str] = []
+    path_width: list[float] = []
+    path_max_length: list[float] = []
+    path_segments: list[int] = []
     group_ids: list[str] = []
     box_index: dict[str, int] = {}
     path_index: dict[str, int] = {}
@@ -351,25 +327,11 @@ def _with_sight(relations, support, dependents, is_junction, height) -> list[Rel
 def _refuse_room_misuse(
     edge, spec: RelationLabel, a: Endpoint, b: Endpoint, room: Room | None
 ) -> None:
-    """Wall labels stand an object against a room's wall or window; AlignedWith lines up
-    two objects; and a room's parts are fixed, so they cannot be placed."""
-    where = f"{edge.source} {edge.label} {edge.target}"
-    if spec.family == "wall":
-        if a.kind != "object":
-            raise InputError(
-                f"{where}: only an object can stand against a wall ({edge.source} is a {a.kind})"
-            )
-        door = b.kind == "opening" and room.openings[b.index].kind == "door"
-        if b.kind not in ROOM_ENDS or door:
-            raise InputError(f"{where}: the target must be a wall, a window or the room")
-        if spec.wall in ("under_window", "beside_window") and b.kind == "wall":
-            raise InputError(f"{where}: the target must be a window or the room, not a wall")
-    elif spec.family == "alignment" and (a.kind != "object" or b.kind != "object"):
-        raise InputError(f"{where}: only two objects can be lined up")
-    elif a.kind in ROOM_ENDS:
-        raise InputError(
-            f"{where}: {edge.source} is part of the room and cannot be placed; write the relation from the object"
-        )
+    """Each family checks its ends (wall labels stand an object against a room's wall or
+    window; AlignedWith lines up two objects); and a room's parts are fixed, so they
+    cannot be placed."""
+    LAYOUT_FAMILIES[spec.family].check_ends(edge, spec, a, b, room)
+    room_is_fixed(edge, spec, a, b, room)
 
 
 def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, int]:

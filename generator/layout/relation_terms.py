@@ -1,9 +1,12 @@
-"""Table 1 of the paper: the energy of one relation edge, and its geometric measures.
+"""Table 1 of the paper: the geometry every relation family's energy reads, and its thresholds.
 
-``evaluate(term, state, params)`` returns a ``Measure``: the energy (minus the log
-factor, >= 0) and the quantities the satisfaction thresholds look at (distance, angle
-off the wanted direction, and so on). Readings of the table, where it is garbled or
-leaves the geometry open:
+Each family's energy, threshold and complaint is its module in ``families``;
+``families.evaluate(term, state, params)`` returns a ``Measure``: the energy (minus the
+log factor, >= 0) and the quantities the satisfaction thresholds look at (distance,
+angle off the wanted direction, and so on). Here are what they share: the ``Measure``,
+the thresholds (documented in ``report``), the ends' centres, anchors and forwards, the
+distance between two ends, and line of sight. Readings of the table, where it is
+garbled or leaves the geometry open:
 
 - distanceBetween is the minimum distance between collision boxes: footprint distance
   combined with the vertical gap; to a group, the nearest of its members (the union of
@@ -22,8 +25,8 @@ leaves the geometry open:
   cannot tell back-to-back from face-to-face. Since the describer says "A faces away
   from B", it is scored as A's forward pointing from B to A (FacingTowards mirrored).
 
-Rooms add the ``wall`` and ``alignment`` families (``_wall``, ``_alignment``) and line
-of sight: a relation whose term lists ``sight`` boxes (``problem.needs_sight``: in
+Rooms add the ``wall`` and ``alignment`` families (``families.wall``,
+``families.alignment``) and line of sight: a relation whose term lists ``sight`` boxes (``problem.needs_sight``, as the family says: in
 front of, behind, facing towards or away, between two objects) is blocked when the
 segment between A's and B's centres crosses the footprint of one of those tall boxes.
 A blocked relation does not hold whatever its other measures say; its energy gains
@@ -34,23 +37,18 @@ clear each blocking box, so the sampler is pushed out of it by the shortest way.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import NamedTuple
 
-from scenewright.core.relations import FAMILIES
 from scenewright.core.room import Opening, Room, Wall
 
-from .factors import angle_between, equals, less, pointing_same_direction, range_
 from .geometry import (
     nearest_on_polyline,
     polyline_distance,
     polyline_rects_distance,
     rect_distance,
-    to_local,
 )
-from .params import LayoutParams
-from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .state import State
+from .terms import ROOM_ENDS, Endpoint, RelationTerm
 
 #: Thresholds of ``satisfied`` (documented in ``report``).
 DIRECTION_TOLERANCE = math.radians(45.0)
@@ -105,7 +103,7 @@ def centre(end: Endpoint, state: State) -> tuple[float, float]:
         return state.x[end.index], state.z[end.index]
     problem = state.problem
     if end.kind in ROOM_ENDS:
-        return _room_part_centre(end, problem.room)
+        return _room_part_centre(end, problem.indoors())
     x0 = z0 = math.inf
     x1 = z1 = -math.inf
     half_width, half_depth, cs, ss, xs, zs = (
@@ -156,10 +154,11 @@ def anchor(
         "wall",
         "opening",
     ):  # the nearest point of the wall, its inner normal as forward
-        wall = _wall_of(end, state.problem.room)
+        room = state.problem.indoors()
+        wall = _wall_of(end, room)
         u, _ = wall.to_wall(*towards)
         if end.kind == "opening":
-            opening = state.problem.room.openings[end.index]
+            opening = room.openings[end.index]
             low, high = opening.span
             u = min(max(u, low), high)
         x, z = wall.to_world(min(max(u, 0.0), wall.length), 0.0)
@@ -230,16 +229,16 @@ def box_distance(first: int, second: int, state: State) -> float:
     return math.hypot(planar, vertical) if vertical > 0.0 else planar
 
 
-def _unit(dx: float, dz: float) -> tuple[float, float]:
+def unit(dx: float, dz: float) -> tuple[float, float]:
     length = math.hypot(dx, dz)
     return (dx / length, dz / length) if length > 1e-12 else (0.0, 0.0)
 
 
-def _forward(end: Endpoint, state: State) -> tuple[float, float]:
+def forward(end: Endpoint, state: State) -> tuple[float, float]:
     if end.kind == "object":
         return state.s[end.index], state.c[end.index]
     if end.kind in ("wall", "opening"):
-        return _wall_of(end, state.problem.room).normal  # a wall "faces" into the room
+        return _wall_of(end, state.problem.indoors()).normal  # a wall "faces" into the room
     return 0.0, 1.0  # groups and paths have no yaw of their own: the world's forward
 
 
@@ -250,7 +249,14 @@ def _wall_of(end: Endpoint, room: Room) -> Wall:
     """The wall an endpoint is (a wall) or is in (an opening)."""
     if end.kind == "wall":
         return room.walls[end.index]
-    return room.part(room.openings[end.index].wall)
+    return opening_wall(room, room.openings[end.index])
+
+
+def opening_wall(room: Room, opening: Opening) -> Wall:
+    """The wall a door or window is in."""
+    wall = room.part(opening.wall)
+    assert isinstance(wall, Wall)  # the room checked it names one of its walls
+    return wall
 
 
 def _room_part_centre(end: Endpoint, room: Room) -> tuple[float, float]:
@@ -264,7 +270,7 @@ def _room_part_centre(end: Endpoint, room: Room) -> tuple[float, float]:
 def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
     """Distance from an endpoint's boxes (or path) to a wall, an opening's stretch of its
     wall, or (the room) the nearest wall."""
-    room = state.problem.room
+    room = state.problem.indoors()
     if b.kind == "room":
         segments = [(w.start, w.end) for w in room.walls]
     elif b.kind == "wall":
@@ -284,103 +290,9 @@ def _distance_to_room_part(a: Endpoint, b: Endpoint, state: State) -> float:
     return min(polyline_rects_distance([list(p), list(q)], rects) for p, q in segments)
 
 
-def evaluate(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    """The energy (>= 0) of one relation edge and its geometric measures."""
-    return FAMILY_TERMS[term.spec.family].evaluate(term, state, params)
-
-
-def satisfied(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    """Whether the relation holds geometrically (the thresholds of ``report``)."""
-    return FAMILY_TERMS[term.spec.family].satisfied(term, measure, params)
-
-
-def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    """What is wrong with a relation that does not hold, in words."""
-    return FAMILY_TERMS[term.spec.family].complaint(term, measure, params)
-
-
-# -- next to -----------------------------------------------------------------------
-
-
-def _next_to(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    distance = distance_between(term.a, term.b, state)
-    energy = -less(distance, params.next_to_distance, params.h)
-    spec = term.spec
-    if not spec.directions:
-        return Measure(energy, distance)
-    blocker = None
-    if term.sight:
-        penalty, blocker = sight_blocked(term, state)
-        energy += penalty
-    ax, az = source_point(term.a, state)
-    bx, bz, c, s = anchor(term.b, state, (ax, az))
-    dx, dz = _unit(ax - bx, az - bz)
-    chosen, best = None, math.inf
-    for word, (wx, wz) in spec.direction_vectors(c, s).items():
-        angle = angle_between(dx, dz, wx, wz)
-        if angle < best - 1e-12:
-            chosen, best = word, angle
-    energy -= equals(best, 0.0, params.sigma2)
-    return Measure(energy, distance, best, chosen if spec.chooses else None, blocker=blocker)
-
-
-def _next_to_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    near = measure.distance <= params.next_to_distance + EPSILON
-    return (
-        near
-        and not measure.blocked
-        and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
-    )
-
-
-def _next_to_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    words = term.spec.phrase
-    if measure.blocked:
-        return _blocked_complaint(term, measure)
-    if measure.distance > params.next_to_distance:
-        return f"{term.source} is not {words} {term.target} (distance {measure.distance:.1f} m)"
-    return f"{term.source} is not {words} {term.target} ({math.degrees(measure.angle):.0f}° off)"
-
-
-# -- facing ------------------------------------------------------------------------
-
 #: Facing relations that ask only for A's heading relative to B's, wherever A stands:
 #: their energy reads the two yaws alone.
 HEADING_FACINGS = ("same", "opposite", "orthogonal")
-
-
-def _facing(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    fx, fz = _forward(term.a, state)
-    how = term.spec.facing
-    if how in ("towards", "away"):
-        ax, az = centre(term.a, state)
-        bx, bz, _, _ = anchor(term.b, state, (ax, az))
-        dx, dz = _unit(bx - ax, bz - az) if how == "towards" else _unit(ax - bx, az - bz)
-        angle = angle_between(dx, dz, fx, fz)
-        energy = -pointing_same_direction(dx, dz, fx, fz, params.sigma2)
-        if term.sight:
-            penalty, blocker = sight_blocked(term, state)
-            return Measure(energy + penalty, angle=angle, blocker=blocker)
-        return Measure(energy, angle=angle)
-    gx, gz = _forward(term.b, state)
-    angle = angle_between(fx, fz, gx, gz)
-    if how == "opposite":
-        angle = math.pi - angle
-        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
-    if how == "same":
-        return Measure(-equals(angle, 0.0, params.sigma2), angle=angle)
-    off = abs(angle - math.pi / 2.0)  # orthogonal
-    return Measure(-equals(angle, math.pi / 2.0, params.sigma2), angle=off)
-
-
-def _facing_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    return measure.angle <= FACING_TOLERANCE + EPSILON and not measure.blocked
-
-
-def _facing_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    if measure.blocked:
-        return _blocked_complaint(term, measure)
-    return f"{term.source} is not {term.spec.phrase} {term.target} ({math.degrees(measure.angle):.0f}° off)"
 
 
 # -- line of sight -------------------------------------------------------------------
@@ -431,230 +343,5 @@ def sight_blocked(term: RelationTerm, state: State) -> tuple[float, str | None]:
     return SIGHT_PENALTY + total, problem.ids[worst]
 
 
-def _blocked_complaint(term: RelationTerm, measure: Measure) -> str:
+def blocked_complaint(term: RelationTerm, measure: Measure) -> str:
     return f"{term.source} is not {term.spec.phrase} {term.target} (the line of sight runs through {measure.blocker})"
-
-
-# -- support -----------------------------------------------------------------------
-
-
-def _support(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    problem = state.problem
-    a, b = term.a.index, term.b.index
-    top = state.y[b] + problem.height[b]
-    height_gap = abs(state.y[a] - top)
-    energy = -equals(state.y[a], top, params.sigma2)
-    rect_b = state.rects[b]
-    lx, lz = to_local(rect_b, state.x[a], state.z[a])
-    hw, hd = rect_b.hw, rect_b.hd
-    inside = abs(lx) <= hw and abs(lz) <= hd
-    within = range_(lx, -hw, hw, params.h) + range_(lz, -hd, hd, params.h)
-    placement = term.spec.placement
-    if placement == "anywhere":
-        return Measure(energy - within, height_gap=height_gap, inside=inside)
-    if placement == "middle":
-        offset = math.hypot(lx, lz)
-        return Measure(
-            energy - equals(offset, 0.0, params.sigma2),
-            height_gap=height_gap,
-            inside=inside,
-            offset=offset,
-        )
-    # A's half extents along B's axes, then the gaps between A's sides and B's edges.
-    k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
-    k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
-    ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
-    ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
-    front = abs(hd - lz - ez)
-    if placement == "front_edge":
-        offset = front
-    else:
-        offset = min(front, abs(hd + lz - ez), abs(hw - lx - ex), abs(hw + lx - ex))
-    # Only a centre off the top is penalised here: a soft pull towards the middle would
-    # fight the pull towards the edge.
-    overhang = math.hypot(max(abs(lx) - hw, 0.0), max(abs(lz) - hd, 0.0))
-    energy -= equals(offset, 0.0, params.sigma2) + equals(overhang, 0.0, params.sigma2)
-    return Measure(energy, height_gap=height_gap, inside=inside, offset=offset)
-
-
-def _support_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    on_top = measure.height_gap <= HEIGHT_TOLERANCE and measure.inside
-    placement = term.spec.placement
-    if placement == "middle":
-        return on_top and measure.offset <= MIDDLE_TOLERANCE + EPSILON
-    if placement in ("edge", "front_edge"):
-        return on_top and measure.offset <= EDGE_TOLERANCE + EPSILON
-    return on_top
-
-
-def _support_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    if (
-        term.spec.placement == "anywhere"
-        or measure.height_gap > HEIGHT_TOLERANCE
-        or not measure.inside
-    ):
-        return f"{term.source} is not on top of {term.target}"
-    return f"{term.source} is not {term.spec.phrase} {term.target} ({measure.offset:.2f} m off)"
-
-
-# -- walls -------------------------------------------------------------------------
-
-
-def _wall(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    """A's back against a wall (or in a corner, under or beside a window): the best of
-    the candidates when B is the room, which is then recorded as ``chosen``."""
-    room = state.problem.room
-    placement, b = term.spec.wall, term.b
-    if b.kind == "room":
-        candidates = list(room.windows) if placement in WINDOW_PLACEMENTS else list(room.walls)
-    elif b.kind == "wall":
-        candidates = [room.walls[b.index]]
-    else:
-        candidates = [room.openings[b.index]]
-    best = None
-    for target in candidates:
-        measure = _against(term.a.index, target, placement, state)
-        if best is None or measure.energy < best.energy - 1e-12:
-            best = measure
-    if best is None:  # a room without the window the label needs
-        return Measure(math.inf, offset=math.inf, inside=False)
-    return best if b.kind == "room" else best._replace(chosen=None)
-
-
-def _against(box: int, target: Wall | Opening, placement: str, state: State) -> Measure:
-    """The wall measures of box ``box`` against one wall or window (see ``_wall``).
-
-    ``distance``: the gap between the wall and the box's nearest corner (its back, once
-    parallel); ``angle``: the box's forward off the wall's inner normal; ``offset``: how
-    far the box runs past the ends of its wall, plus, in a corner, the gap between its
-    side and the neighbouring wall, under a window the distance off the window's
-    centre, beside one the overlap with it or the gap beyond ``BESIDE_DISTANCE``;
-    ``inside``: a box under a window is lower than its sill.
-    """
-    problem, room = state.problem, state.problem.room
-    window = target if isinstance(target, Opening) else None
-    wall = room.part(window.wall) if window else target
-    x, z, c, s = state.x[box], state.z[box], state.c[box], state.s[box]
-    hw, hd = problem.half_width[box], problem.half_depth[box]
-    nx, nz = wall.normal
-    tx, tz = wall.direction
-    # The box's reach along the wall's axes (its footprint's half extents there).
-    reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
-    reach_v = hw * abs(c * nx - s * nz) + hd * abs(s * nx + c * nz)
-    u, v = wall.to_wall(x, z)
-    gap = v - reach_v
-    angle = angle_between(s, c, nx, nz)
-    overhang = max(reach_u - u, u + reach_u - wall.length, 0.0)
-    offset = overhang
-    fits = True
-    if placement == "corner":
-        side = math.inf
-        before, after = room.neighbours(wall.id)
-        for other, at_start in ((before, True), (after, False)):
-            if not (
-                room.convex_corner(before, wall) if at_start else room.convex_corner(wall, after)
-            ):
-                continue
-            _, v_other = other.to_wall(x, z)
-            reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(
-                s * other.normal[0] + c * other.normal[1]
-            )
-            side = min(side, abs(v_other - reach_other))
-        offset += side
-    elif placement == "under_window":
-        offset += abs(u - window.offset)
-        fits = state.y[box] + problem.height[box] <= window.sill + EPSILON
-    elif placement == "beside_window":
-        low, high = window.span
-        along = max(
-            low - (u + reach_u), (u - reach_u) - high
-        )  # < 0: overlaps the window along the wall
-        offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
-    energy = (
-        -equals(gap, 0.0, WALL_SIGMA2)
-        - equals(angle, 0.0, WALL_ANGLE_SIGMA2)
-        - equals(offset, 0.0, WALL_SIGMA2)
-    )
-    if not fits:
-        energy += 1.0  # cannot hold whatever the pose: a constant, so the rest still lays out
-    return Measure(energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits)
-
-
-def _wall_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    return (
-        measure.inside
-        and abs(measure.distance) <= WALL_TOLERANCE + EPSILON
-        and measure.angle <= WALL_ANGLE_TOLERANCE + EPSILON
-        and measure.offset
-        <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
-    )
-
-
-def _wall_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    target = measure.chosen or term.target
-    words = f"{term.source} is not {term.spec.phrase} {target}"
-    if math.isinf(measure.energy):
-        return f"{words} (the room has no window)"
-    if not measure.inside:
-        return f"{words} (it is taller than the window's sill)"
-    if abs(measure.distance) > WALL_TOLERANCE or measure.angle > WALL_ANGLE_TOLERANCE:
-        return f"{words} (its back is {measure.distance:.2f} m from the wall, {math.degrees(measure.angle):.0f}° off)"
-    return f"{words} ({measure.offset:.2f} m off)"
-
-
-# -- alignment -----------------------------------------------------------------------
-
-
-def _alignment(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
-    """A parallel to B (facing the same or the opposite way) with one of its faces in
-    the plane of B's face on the same side: ``angle`` off parallel, ``offset`` the gap
-    between the nearest pair of flush faces."""
-    problem = state.problem
-    a, b = term.a.index, term.b.index
-    angle = angle_between(state.s[a], state.c[a], state.s[b], state.c[b])
-    angle = min(angle, math.pi - angle)
-    rect_b = state.rects[b]
-    lx, lz = to_local(rect_b, state.x[a], state.z[a])
-    k1 = abs(state.c[a] * state.c[b] + state.s[a] * state.s[b])
-    k2 = abs(state.c[a] * state.s[b] - state.s[a] * state.c[b])
-    ex = problem.half_width[a] * k1 + problem.half_depth[a] * k2
-    ez = problem.half_width[a] * k2 + problem.half_depth[a] * k1
-    hw, hd = rect_b.hw, rect_b.hd
-    offset = min(abs(lz + ez - hd), abs(lz - ez + hd), abs(lx + ex - hw), abs(lx - ex + hw))
-    energy = -equals(angle, 0.0, WALL_ANGLE_SIGMA2) - equals(offset, 0.0, WALL_SIGMA2)
-    return Measure(energy, angle=angle, offset=offset)
-
-
-def _alignment_holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    return measure.angle <= ALIGN_TOLERANCE + EPSILON and measure.offset <= WALL_TOLERANCE + EPSILON
-
-
-def _alignment_complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str:
-    return (
-        f"{term.source} is not {term.spec.phrase} {term.target} "
-        f"({math.degrees(measure.angle):.0f}° off parallel, faces {measure.offset:.2f} m apart)"
-    )
-
-
-class FamilyTerm(NamedTuple):
-    """The layout's side of a relation family: its energy and measures, the threshold
-    that decides whether it holds, and the words for when it does not."""
-
-    evaluate: Callable[[RelationTerm, State, LayoutParams], Measure]
-    satisfied: Callable[[RelationTerm, Measure, LayoutParams], bool]
-    complaint: Callable[[RelationTerm, Measure, LayoutParams], str]
-
-
-#: One entry per geometric family of the relation registry. (``structural`` relations
-#: become path starts when the problem is compiled and are never scored.)
-FAMILY_TERMS: dict[str, FamilyTerm] = {
-    "next_to": FamilyTerm(_next_to, _next_to_holds, _next_to_complaint),
-    "facing": FamilyTerm(_facing, _facing_holds, _facing_complaint),
-    "support": FamilyTerm(_support, _support_holds, _support_complaint),
-    "wall": FamilyTerm(_wall, _wall_holds, _wall_complaint),
-    "alignment": FamilyTerm(_alignment, _alignment_holds, _alignment_complaint),
-}
-
-_missing = set(FAMILIES) - set(FAMILY_TERMS) - {"structural"}
-if _missing:  # a registry family the layout cannot score: refuse at start-up
-    raise ImportError(f"the layout implements no relation family {', '.join(sorted(_missing))}")

@@ -30,8 +30,9 @@ import math
 from scenewright.core.relations import Relation
 
 from .energy import Energy
+from .families import complaint, satisfied
 from .geometry import polyline_length, polyline_turns
-from .relation_terms import EPSILON, complaint, satisfied
+from .relation_terms import EPSILON
 
 OVERLAP_TOLERANCE = 0.01
 EXTENT_TOLERANCE = 0.001

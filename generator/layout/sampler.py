@@ -63,14 +63,17 @@ import numpy as np
 from scenewright.core.relations import Relation
 
 from .energy import Energy
+from .families import LAYOUT_FAMILIES
 from .initial import place_initial
 from .learned_term import LearnedMoves
-from .moves import Mover, draw_index, rigid, wrap
+from .motion import draw_index, rigid, wrap
+from .moves import Mover
 from .params import LayoutParams
 from .pinning import Pins
-from .problem import Endpoint, Problem
+from .problem import Problem
 from .report import assess, unsatisfied_terms
 from .state import State
+from .terms import Endpoint
 
 #: In a room, the share of steps that are ``Relocator`` moves (when some box is troubled).
 RELOCATE_SHARE = 0.05
@@ -220,7 +223,8 @@ def learned_step(
 ) -> bool:
     """One step of a chain with a learned context (module docstring); True when accepted."""
     uniform = mover.rng.random
-    proposal, correction = None, 0.0
+    proposal: tuple[dict, dict] | None = None
+    correction = 0.0
     pair = None
     if learned.pairs and uniform() < params.learned_share:
         drawn = learned.propose()
@@ -285,7 +289,9 @@ class Relocator:
         problem, state, mover = self.problem, self.state, self.mover
         box = troubled[draw_index(mover.rng, len(troubled))]
         placing = [
-            t for t in problem.outgoing.get(("object", box), []) if t.spec.family != "facing"
+            t
+            for t in problem.outgoing.get(("object", box), [])
+            if LAYOUT_FAMILIES[t.spec.family].places
         ]
         if not placing:
             return None

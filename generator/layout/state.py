@@ -8,9 +8,12 @@ a box rests on the ground or on its support, and supports carry what rests on th
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .geometry import Rect
-from .problem import Problem
+
+if TYPE_CHECKING:  # the problem's compiler reads the families, which read the state
+    from .problem import Problem
 
 _new_rect = tuple.__new__
 
@@ -136,11 +139,11 @@ class Grid:
             keys = [(i, k) for i in range(i0, i1 + 1) for k in range(k0, k1 + 1)]
         self.keys[box] = keys
         for key in keys:
-            boxes = cells.get(key)
-            if boxes is None:
+            filed = cells.get(key)
+            if filed is None:
                 cells[key] = [box]
             else:
-                boxes.append(box)
+                filed.append(box)
 
     def near_box(self, box: int) -> set[int]:
         """Boxes sharing a cell with ``box`` (itself included)."""
@@ -247,6 +250,7 @@ class Trying:
     __slots__ = ("state", "poses", "saved")
 
     def __init__(self, state: State, poses: dict[int, tuple[float, float, float]]):
+        self.saved: list[tuple[int, tuple[float, float, float]]]
         self.state, self.poses, self.saved = state, poses, []
 
     def __enter__(self) -> None:

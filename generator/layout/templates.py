@@ -29,7 +29,7 @@ import numpy as np
 
 from .energy import Energy
 from .learned_term import cumulative_shares, draw_source
-from .problem import RelationTerm
+from .terms import RelationTerm
 
 
 def template_draw(
@@ -62,5 +62,6 @@ def not_templated(energy: Energy, facing: Sequence[RelationTerm]) -> list[Relati
     """The facing relations of a template-drawn box that are left to turn it: those not
     of its learned pairs (the template drew its turn relative to those targets)."""
     problem = energy.problem
+    assert problem.learned is not None  # a template is drawn from a context only
     stood_in = {id(problem.relations[index]) for index in problem.learned.tempered}
     return [term for term in facing if id(term) not in stood_in]

@@ -1,0 +1,275 @@
+"""The roads and junctions of the constructive initial placement, laid before any box.
+
+Roads leave their junction at evenly spread headings (several junctions spread over
+the scene, each farthest from the others), free roads cross the scene near its middle
+(several: each through the candidate point farthest from the roads laid so far), each
+new road as long as its maximum allows, wiggling a little at each control point.
+
+Around pinned or started boxes and paths (``pinning.Pins``), given roads keep their
+points; each junction's other roads (and the junction, unless it is given), and each
+other free road, are the best of ``path_candidates`` random ones by the energy (which
+already holds the given boxes) plus ``held``: how far the pinned things that must be
+next to a road are from it. So new roads avoid pinned things and pass by those that
+must be next to them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .energy import Energy
+from .motion import uniform, wrap
+from .pinning import Pins
+
+#: Paths stay this far (metres) inside the extent when first laid out.
+PATH_MARGIN = 1.0
+#: New paths take this share of their maximum length (room permitting): long roads give
+#: the items placed along them room, and the length term stays near 0 below the maximum.
+PATH_LENGTH_SHARE = 0.95
+#: Where free paths cross the scene: within this share of the extent from its centre.
+LONE_PATH_SPREAD = 0.2
+FREE_PATH_SPREAD = 0.4
+#: Spread (radians) of the heading change at each control point of a new path.
+PATH_WIGGLE = 0.15
+#: Around pinned or started things, candidate junctions lie within this share of the
+#: extent from its centre (without them: 0.15).
+JUNCTION_SPREAD = 0.25
+#: Several junctions lie within this share of the extent from its centre, each the
+#: farthest from the others of this many candidate points.
+JUNCTIONS_SPREAD = 0.3
+SPREAD_CANDIDATES = 8
+
+
+def lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+    if pins.preset:
+        _lay_paths_around(energy, rng, pins, held)
+        return
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+    if len(junctions) > 1:
+        _spread_junctions(energy, rng, junctions)
+    else:
+        for junction in junctions:
+            state.set_pose(
+                junction,
+                uniform(rng, -0.15, 0.15) * 2 * half_x,
+                uniform(rng, -0.15, 0.15) * 2 * half_z,
+                0.0,
+            )
+    energy.activate(junctions)
+    for junction in junctions:
+        paths = problem.paths_of_junction.get(junction, [])
+        base = uniform(rng, 0.0, 2.0 * math.pi)
+        for k, path in enumerate(paths):
+            heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
+            start = (state.x[junction], state.z[junction])
+            _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
+    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    # A lone road crosses near the middle; several spread out, each through the candidate
+    # point farthest from the roads laid so far.
+    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
+    for path in free:
+        heading = uniform(rng, 0.0, 2.0 * math.pi)
+        laid = [
+            p
+            for other in range(problem.n_paths)
+            if other not in free or other < path
+            for p in state.points[other]
+        ]
+        candidates = [
+            (uniform(rng, -spread, spread) * 2 * half_x, uniform(rng, -spread, spread) * 2 * half_z)
+            for _ in range(8)
+        ]
+        middle = max(
+            candidates,
+            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in laid), default=0.0),
+        )
+        back = _room(middle, heading + math.pi, half_x, half_z)
+        ahead = _room(middle, heading, half_x, half_z)
+        length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
+        behind = min(back, length / 2.0)
+        start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+        _set_path(energy, rng, path, start, heading, length)
+
+
+def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[int]) -> None:
+    """Several junctions (road networks) spread over the scene: each at the candidate
+    point (of ``SPREAD_CANDIDATES`` within ``JUNCTIONS_SPREAD`` of the extent from its
+    centre) farthest from the junctions placed before it, so the networks' roads give
+    the items beside them room instead of crossing each other in the middle."""
+    state, (width, depth) = energy.state, energy.problem.extent
+    placed: list[tuple[float, float]] = []
+    for junction in junctions:
+        candidates = [
+            (
+                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * width,
+                uniform(rng, -JUNCTIONS_SPREAD, JUNCTIONS_SPREAD) * depth,
+            )
+            for _ in range(SPREAD_CANDIDATES)
+        ]
+        x, z = max(
+            candidates,
+            key=lambda c: min((math.hypot(c[0] - p[0], c[1] - p[1]) for p in placed), default=0.0),
+        )
+        placed.append((x, z))
+        state.set_pose(junction, x, z, 0.0)
+
+
+def _free_headings(
+    energy: Energy, pins: Pins, junction: int, paths: list[int], base: float
+) -> list[float]:
+    """Headings for the roads of a junction, by position in ``paths``: evenly spread from
+    ``base``; when some roads are given, spread from the first given one's heading, each
+    given road taking the free slot nearest its own heading and the others the rest in
+    order."""
+    count = len(paths)
+    given = {path: pins.preset_points(path) for path in paths}
+    given = {path: points for path, points in given.items() if points is not None}
+    if not given:
+        return [base + 2.0 * math.pi * k / count for k in range(count)]
+    state = energy.state
+    start = (state.x[junction], state.z[junction])
+
+    def heading(points) -> float:
+        return math.atan2(points[1][1] - start[1], points[1][0] - start[0])
+
+    base = heading(next(iter(given.values())))
+    slots = [base + 2.0 * math.pi * k / count for k in range(count)]
+    for points in given.values():
+        own = heading(points)
+        nearest = min(range(len(slots)), key=lambda k: abs(wrap(slots[k] - own)))
+        slots.pop(nearest)
+    free_slots = iter(slots)
+    return [0.0 if path in given else next(free_slots) for path in paths]
+
+
+def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
+    """How far one can go from ``start`` along ``heading`` and stay PATH_MARGIN inside."""
+    dx, dz = math.cos(heading), math.sin(heading)
+    limits = []
+    for position, direction, half in ((start[0], dx, half_x), (start[1], dz, half_z)):
+        if abs(direction) > 1e-9:
+            bound = (half - PATH_MARGIN) if direction > 0 else -(half - PATH_MARGIN)
+            limits.append((bound - position) / direction)
+    return max(min(limits), 0.0)
+
+
+def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+    """Paths when some boxes or paths are given (pinned or started): given paths at their
+    points; each junction's other roads (and the junction, unless it is given) as the best
+    of ``path_candidates`` fans, and each other free road as the best of as many
+    crossings, by the energy (which already holds the given boxes) plus ``held`` (how far
+    the pinned things that must be next to a road are from it): so new roads avoid
+    pinned things and pass by those that must be next to them."""
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    count = energy.params.path_candidates
+    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
+        paths = problem.paths_of_junction.get(junction, [])
+        given: dict[int, list[list[float]]] = {}
+        for path in paths:
+            preset = pins.preset_points(path)
+            if preset is not None:
+                given[path] = preset
+        placed = energy.active[junction]
+        if not placed and given:  # where a given road starts
+            first = next(iter(given.values()))[0]
+            state.set_pose(junction, first[0], first[1], 0.0)
+            placed = True
+        if not energy.active[junction]:
+            energy.activate([junction])
+        for path, points in given.items():
+            points = [list(p) for p in points]
+            if not pins.path[path]:  # a started road begins at its junction
+                points[0] = [state.x[junction], state.z[junction]]
+            energy.propose({}, {path: points})
+            energy.accept()
+        if len(given) == len(paths) and placed:
+            continue
+
+        def fan(junction=junction, paths=paths, placed=placed) -> tuple[dict, dict]:
+            if placed:
+                x, z, boxes = state.x[junction], state.z[junction], {}
+            else:
+                x = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_x
+                z = uniform(rng, -JUNCTION_SPREAD, JUNCTION_SPREAD) * 2 * half_z
+                boxes = {junction: (x, z, 0.0)}
+            slots = _free_headings(energy, pins, junction, paths, uniform(rng, 0.0, 2.0 * math.pi))
+            laid = {}
+            for k, path in enumerate(paths):
+                if pins.preset_points(path) is None:
+                    heading = slots[k] + rng.normal(0.0, 0.1)
+                    room = _room((x, z), heading, half_x, half_z)
+                    laid[path] = _path_points(problem, rng, path, (x, z), heading, room)
+            return boxes, laid
+
+        _take_best(energy, fan, count, held)
+    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    for path in free:
+        preset = pins.preset_points(path)
+        if preset is not None:
+            energy.propose({}, {path: [list(p) for p in preset]})
+            energy.accept()
+    spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
+    for path in free:
+        if pins.preset_points(path) is not None:
+            continue
+
+        def crossing(path=path) -> tuple[dict, dict]:
+            heading = uniform(rng, 0.0, 2.0 * math.pi)
+            middle = (
+                uniform(rng, -spread, spread) * 2 * half_x,
+                uniform(rng, -spread, spread) * 2 * half_z,
+            )
+            back = _room(middle, heading + math.pi, half_x, half_z)
+            ahead = _room(middle, heading, half_x, half_z)
+            length = min(PATH_LENGTH_SHARE * problem.path_max_length[path], back + ahead)
+            behind = min(back, length / 2.0)
+            start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+            return {}, {path: _path_points(problem, rng, path, start, heading, length)}
+
+        _take_best(energy, crossing, count, held)
+
+
+def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
+    """Try ``count`` proposals from ``draw()`` and keep the one of lowest energy (plus
+    ``extra()``, if given), even when it is worse than the state now (a placeholder)."""
+    best, best_delta = None, math.inf
+    for _ in range(count):
+        proposal = draw()
+        delta = energy.propose(*proposal)
+        kept = energy.kept(delta)
+        if extra is not None:
+            delta += extra()
+        energy.reject()
+        if delta < best_delta:
+            best, best_delta, best_kept = proposal, delta, kept
+    if best is not None:
+        energy.repropose(best, best_kept)
+        energy.accept()
+
+
+def _set_path(
+    energy: Energy, rng: np.random.Generator, path: int, start, heading: float, room: float
+) -> None:
+    energy.propose({}, {path: _path_points(energy.problem, rng, path, start, heading, room)})
+    energy.accept()
+
+
+def _path_points(
+    problem, rng: np.random.Generator, path: int, start, heading: float, room: float
+) -> list[list[float]]:
+    """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
+    half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
+    segments = problem.path_segments[path]
+    step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
+    points = [[float(start[0]), float(start[1])]]
+    for _ in range(segments):
+        heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+        x = points[-1][0] + math.cos(heading) * step
+        z = points[-1][1] + math.sin(heading) * step
+        points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
+    return points
