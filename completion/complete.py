@@ -53,6 +53,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from scenewright.core.errors import InputError
+from scenewright.core.geometry import corners, make_rect, rect_overlap, wrap_angle
 from scenewright.core.limits import MAX_EXTENT
 from scenewright.core.poses import Pose
 from scenewright.core.room import ROOM_NODE, Room, RoomError
@@ -610,7 +611,6 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     piece goes to the window's middle. What flanks a piece along its wall (night tables
     ``NextToLeft``/``NextToRight`` of the bed) is placed with it, one unit."""
     from scenewright.completion.layout_mask import mask_values
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     wall_of = {
         r.source: r.label
@@ -692,7 +692,6 @@ def _start_tables(
     and clear of the rest, and its chairs spread evenly along the sides they sit at,
     facing it."""
     from scenewright.completion.layout_mask import mask_values
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     sources = {r.source for r in graph.edges()}
     for table in graph.nodes("object"):
@@ -754,7 +753,6 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
     ``swings`` and the ``placed`` pieces' footprints and clearances (but its own
     piece's: a chair stands in the space kept free before its desk)."""
     from scenewright.completion.activity import SEATS
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     facing = {(r.source, r.target) for r in graph.edges("FacingTowards")}
     for relation in graph.edges("NextToFront"):
@@ -776,9 +774,7 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
         ):
             continue
         placed[node.id] = rect
-        poses[node.id] = Pose(
-            float(x), 0.0, float(z), float(math.atan2(math.sin(yaw), math.cos(yaw)))
-        )
+        poses[node.id] = Pose(float(x), 0.0, float(z), float(wrap_angle(yaw)))
 
 
 def _against(wall, u: float, depth: float) -> Pose:
@@ -801,7 +797,6 @@ def _wall_places(room: Room, width: float, under_window: bool):
 
 
 def _bounding_rect(points):
-    from scenewright.generator.layout.geometry import make_rect
 
     xs, zs = [p[0] for p in points], [p[1] for p in points]
     return make_rect(

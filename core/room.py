@@ -27,6 +27,8 @@ import math
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from scenewright.core.geometry import left_normal, point_segment_distance
+
 #: Scene-graph node kinds of a room and its parts, and the id of the node that stands for the room.
 ROOM_KINDS = ("room", "wall", "door", "window")
 ROOM_NODE = "room"
@@ -180,10 +182,10 @@ class Room:
         walls = []
         for k in range(n):
             (x0, z0), (x1, z1) = points[k], points[(k + 1) % n]
-            length = math.hypot(x1 - x0, z1 - z0)
-            tx, tz = (x1 - x0) / length, (z1 - z0) / length
+            left = left_normal(x0, z0, x1, z1)
+            assert left is not None  # walls shorter than 5 cm were refused above
             # Counter-clockwise in (x, z) (positive shoelace area): the inside is on the left.
-            normal = (-tz + 0.0, tx + 0.0) if area > 0 else (tz + 0.0, -tx + 0.0)  # + 0.0: no -0.0
+            normal = left if area > 0 else (-left[0] + 0.0, -left[1] + 0.0)  # + 0.0: no -0.0
             walls.append(Wall(f"wall_{k + 1}", (x0, z0), (x1, z1), float(height), normal))
         return cls(tuple(walls))
 
@@ -320,7 +322,7 @@ class Room:
 
     def boundary_distance(self, x: float, z: float) -> float:
         """Distance from (x, z) to the nearest wall face."""
-        return min(_segment_distance(x, z, wall.start, wall.end) for wall in self.walls)
+        return min(point_segment_distance(x, z, *wall.start, *wall.end) for wall in self.walls)
 
     def footprint_excess(self, corners: list[tuple[float, float]]) -> float:
         """How far (metres) a convex footprint (its corners, in order) crosses the walls:
@@ -435,13 +437,6 @@ def _signed_area(points: list[tuple[float, float]]) -> float:
         points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
         for k in range(n)
     )
-
-
-def _segment_distance(x: float, z: float, a: tuple[float, float], b: tuple[float, float]) -> float:
-    dx, dz = b[0] - a[0], b[1] - a[1]
-    length2 = dx * dx + dz * dz
-    t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((x - a[0]) * dx + (z - a[1]) * dz) / length2))
-    return math.hypot(x - a[0] - t * dx, z - a[1] - t * dz)
 
 
 def _depth_in_convex(

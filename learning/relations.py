@@ -360,6 +360,7 @@ from scipy.special import kolmogorov
 
 from scenewright.core.errors import InputError
 from scenewright.core.frames import footprint_reach_many, to_local_many, to_world_many
+from scenewright.core.geometry import wrap_angles
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import check_seed, stream
 from scenewright.examples.stacking import infer_supports
@@ -872,7 +873,7 @@ def at_pose(pose: np.ndarray, reference: np.ndarray) -> np.ndarray:
     close = (
         np.hypot(pose[..., 0] - reference[..., 0], pose[..., 1] - reference[..., 1]) <= FIXED_OFFSET
     )
-    return close & (np.abs(np.angle(np.exp(1j * turn))) <= FIXED_TURN)
+    return close & (np.abs(wrap_angles(turn)) <= FIXED_TURN)
 
 
 def share_at_one_pose(

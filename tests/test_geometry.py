@@ -7,8 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scenewright.core.scene import SceneObject, object_corners
-from scenewright.generator.layout.geometry import (
+from scenewright.core.geometry import (
     capsule_rect_penetration,
     corners,
     make_rect,
@@ -23,6 +22,7 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     turn_angle,
 )
+from scenewright.core.scene import SceneObject, object_corners
 
 coordinate = st.floats(-10, 10, allow_nan=False)
 extent = st.floats(0.1, 4, allow_nan=False)

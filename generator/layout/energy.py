@@ -48,8 +48,14 @@ import math
 from collections.abc import Iterable
 from typing import NamedTuple
 
+from scenewright.core.geometry import (
+    polyline_length,
+    polyline_rect_penetration,
+    polyline_turns,
+    rect_overlap,
+)
+
 from .factors import greater, less
-from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_overlap
 from .params import LayoutParams
 from .problem import Problem
 from .relation_terms import Measure, evaluate

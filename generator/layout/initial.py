@@ -49,10 +49,10 @@ from dataclasses import replace
 
 import numpy as np
 
+from scenewright.core.geometry import corners
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
-from .geometry import corners
 from .moves import Mover, draw_index, rigid, uniform, wrap
 from .moves import reach as footprint_reach
 from .pinning import Pins

@@ -65,9 +65,9 @@ from collections.abc import Iterable
 import numpy as np
 
 from scenewright.core.frames import to_local, to_world
+from scenewright.core.geometry import nearest_on_polyline
 from scenewright.core.room import Wall
 
-from .geometry import nearest_on_polyline
 from .params import LayoutParams
 from .pinning import Pins
 from .problem import ROOM_ENDS, Endpoint, Problem, RelationTerm

@@ -37,17 +37,17 @@ import math
 from collections.abc import Callable
 from typing import NamedTuple
 
-from scenewright.core.relations import FAMILIES
-from scenewright.core.room import Opening, Room, Wall
-
-from .factors import angle_between, equals, less, pointing_same_direction, range_
-from .geometry import (
+from scenewright.core.geometry import (
     nearest_on_polyline,
     polyline_distance,
     polyline_rects_distance,
     rect_distance,
     to_local,
 )
+from scenewright.core.relations import FAMILIES
+from scenewright.core.room import Opening, Room, Wall
+
+from .factors import angle_between, equals, less, pointing_same_direction, range_
 from .params import LayoutParams
 from .problem import ROOM_ENDS, Endpoint, RelationTerm
 from .state import State

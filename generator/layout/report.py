@@ -27,10 +27,10 @@ from __future__ import annotations
 
 import math
 
+from scenewright.core.geometry import polyline_length, polyline_turns
 from scenewright.core.relations import Relation
 
 from .energy import Energy
-from .geometry import polyline_length, polyline_turns
 from .relation_terms import EPSILON, complaint, satisfied
 
 OVERLAP_TOLERANCE = 0.01

@@ -46,10 +46,10 @@ from typing import NamedTuple
 import numpy as np
 from scipy import ndimage
 
+from scenewright.core.geometry import Rect, corners, rect_penetration
 from scenewright.core.room import Room
 
 from .factors import equals
-from .geometry import Rect, corners, rect_penetration
 from .params import LayoutParams
 from .problem import Problem
 from .state import Grid, State

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 
-from .geometry import Rect
+from scenewright.core.geometry import Rect
+
 from .problem import Problem
 
 _new_rect = tuple.__new__
