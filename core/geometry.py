@@ -19,6 +19,7 @@ other shape, which is what the corner-to-box distances compute.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -329,7 +330,7 @@ def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     return best
 
 
-def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
+def polyline_rects_distance(points: Sequence[Sequence[float]], rects: list[Rect]) -> float:
     """Minimum distance between a polyline's centre line and the nearest of some filled rectangles.
 
     A rectangle's centre distance to a segment minus its circumradius bounds their exact
@@ -370,7 +371,7 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     # of them would visit, without sorting all.
     count = len(segments)
     k, i = divmod(first, count)
-    best = min(math.inf, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
+    best = min(math.inf, _segment_rect_distance_at(points, i, rects[k]))
     for bound, position in sorted(
         [
             (bound, position)
@@ -381,8 +382,14 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
         if bound >= best:
             break
         k, i = divmod(position, count)
-        best = min(best, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
+        best = min(best, _segment_rect_distance_at(points, i, rects[k]))
     return best
+
+
+def _segment_rect_distance_at(points: Sequence[Sequence[float]], i: int, rect: Rect) -> float:
+    """``segment_rect_distance`` of segment i of a polyline (points i and i + 1)."""
+    (ax, az), (bx, bz) = points[i], points[i + 1]
+    return segment_rect_distance(ax, az, bx, bz, rect)
 
 
 def _cross(ox: float, oz: float, ax: float, az: float, bx: float, bz: float) -> float:

@@ -24,6 +24,7 @@ fits", chosen by the layout and recorded as the relation's ``chosen``.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -138,10 +139,10 @@ class Room:
 
     walls: tuple[Wall, ...]
     openings: tuple[Opening, ...] = ()
-    _by_id: dict = field(default_factory=dict, compare=False, repr=False)
+    _by_id: dict[str, Wall | Opening] = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
-        by_id = {wall.id: wall for wall in self.walls}
+        by_id: dict[str, Wall | Opening] = {wall.id: wall for wall in self.walls}
         by_id.update({opening.id: opening for opening in self.openings})
         object.__setattr__(self, "_by_id", by_id)
 
@@ -250,8 +251,9 @@ class Room:
     def wall(self, name: str) -> Wall | None:
         """A wall by id (``wall_2``), number (``2``) or, for a side only one wall is on,
         compass side (``north``)."""
-        if name in self._by_id and isinstance(self._by_id[name], Wall):
-            return self._by_id[name]
+        found = self._by_id.get(name)
+        if isinstance(found, Wall):
+            return found
         if name.isdigit() and 1 <= int(name) <= len(self.walls):
             return self.walls[int(name) - 1]
         on_side = [wall for wall in self.walls if wall.side == name]
@@ -260,6 +262,10 @@ class Room:
     def part(self, part_id: str) -> Wall | Opening:
         """The wall or opening with this id."""
         return self._by_id[part_id]
+
+    def wall_of(self, opening: Opening) -> Wall:
+        """The wall an opening is in."""
+        return self.walls[self._wall_index[opening.wall]]
 
     def openings_on(self, wall_id: str) -> list[Opening]:
         return [o for o in self.openings if o.wall == wall_id]
@@ -339,13 +345,13 @@ class Room:
 
     def opening_ends(self, opening: Opening) -> tuple[tuple[float, float], tuple[float, float]]:
         """The two ends (x, z) of the stretch of wall an opening fills."""
-        wall, (u0, u1) = self.part(opening.wall), opening.span
+        wall, (u0, u1) = self.wall_of(opening), opening.span
         return wall.to_world(u0, 0.0), wall.to_world(u1, 0.0)
 
     def swing_zone(self, door: Opening) -> list[tuple[float, float]]:
         """The door's swing zone: corners (x, z) of the ``width`` x ``width`` square in
         front of it, inside the room."""
-        wall = self.part(door.wall)
+        wall = self.wall_of(door)
         u0, u1 = door.span
         return [
             wall.to_world(u0, 0.0),
@@ -414,7 +420,7 @@ class Room:
                     float(raw["width"]),
                     float(raw["height"]),
                     float(raw.get("sill", 0.0)),
-                    tuple(float(v) for v in raw["center"]),
+                    (float(raw["center"][0]), float(raw["center"][1])),
                 )
             )
         return cls(walls, tuple(openings))
@@ -431,7 +437,7 @@ def _wall_words(wall: Wall) -> str:
     return f"{wall.id.replace('_', ' ')} (the {wall.side} wall)"
 
 
-def _signed_area(points: list[tuple[float, float]]) -> float:
+def _signed_area(points: Sequence[tuple[float, float]]) -> float:
     n = len(points)
     return 0.5 * sum(
         points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]

@@ -226,7 +226,7 @@ class Scene:
             {
                 "params": SceneParams(
                     name=self.name,
-                    extent=tuple(self.extent),
+                    extent=(self.extent[0], self.extent[1]),
                     ground=self.ground,
                     room=self.room,
                     templates=self.templates,
@@ -250,6 +250,9 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
     for node in graph.nodes():
         if node.kind == "path":
+            # expansion gives every path node its width, length and segments
+            assert node.width is not None and node.max_length is not None
+            assert node.segments is not None
             paths.append(
                 ScenePath(
                     id=node.id,
@@ -283,7 +286,7 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     objects.sort(key=lambda o: o.order)
 
     relations = [
-        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen)
+        Relation(r.source, r.target, r.label, _measured(r.value), bool(r.satisfied), r.chosen)
         for r in layout.relations
     ]
     stats = LayoutStats(
@@ -337,6 +340,12 @@ def _union_box(members: list[SceneObject]) -> tuple[list[float], list[float]]:
         float(top - bottom),
         float(hi[1] - lo[1]),
     ]
+
+
+def _measured(value: float | None) -> float:
+    """A laid-out relation's value: the layout measures every relation it returns."""
+    assert value is not None
+    return float(value)
 
 
 def _object_of(

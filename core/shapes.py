@@ -464,8 +464,8 @@ def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
         raise MeshFileError(path, str(problem)) from None
     if not data:
         raise MeshFileError(path, "is empty")
-    if suffix == ".glb" and (problem := _glb_header_problem(data)):
-        raise MeshFileError(path, f"is not a valid .glb file ({problem})")
+    if suffix == ".glb" and (header_problem := _glb_header_problem(data)):
+        raise MeshFileError(path, f"is not a valid .glb file ({header_problem})")
     referred = _ReferredFiles(path.parent, MAX_MESH_BYTES - len(data))
     try:
         mesh = trimesh.load_mesh(io.BytesIO(data), file_type=suffix.lstrip("."), resolver=referred)
