@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from scenewright.core.relations import RELATIONS, Relation
-from scenewright.core.scene import Scene
+from scenewright.core.scene import Fact, Scene
 
 from .lexicon import is_described, is_symmetric, place_phrases, relation_wordings
 from .summary import (
@@ -49,8 +49,6 @@ MAX_CLAUSES = 2
 #: The most phrases one subject joins; more are told in a second sentence with "also".
 #: Long lists are hard to read (and beyond what link-grammar parses).
 MAX_CONJUNCTS = 4
-
-Fact = tuple[str, str, str]
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 from jinja2.sandbox import SandboxedEnvironment
 
+from scenewright.core.scene import Fact
+
 from .english import (
     counted,
     join_list,
@@ -27,7 +29,6 @@ from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
 from .plan import (
     Clause,
-    Fact,
     Introduction,
     Inventory,
     Item,

@@ -264,7 +264,7 @@ def write_scene_outputs(
 
     directory = args.output.rstrip("/") or "/"
     with staged_outputs(args.output, outputs) as stage:
-        write_atomic(stage / "description.txt", scene.description["text"] + "\n")
+        write_atomic(stage / "description.txt", scene.description.text + "\n")
         for name, write in (extra or {}).items():
             with writing(stage / name):
                 write(stage / name)

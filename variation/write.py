@@ -81,7 +81,7 @@ def write_variants(
             write_atomic(
                 folder / "scene.json", json.dumps(data, indent=1, ensure_ascii=False) + "\n"
             )
-            write_atomic(folder / "description.txt", scene.description["text"] + "\n")
+            write_atomic(folder / "description.txt", scene.description.text + "\n")
             index["variants"].append(
                 {
                     "folder": folder.name,
