@@ -13,6 +13,6 @@ it with programs that answer them (both run by ``programs``). See docs/describer
 """
 
 from .description import STYLES, Description, describe
-from .templates import TemplateError
+from .errors import TemplateError
 
 __all__ = ["Description", "STYLES", "TemplateError", "describe"]

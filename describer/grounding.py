@@ -28,6 +28,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from .errors import TemplateError
+
 #: Opens a marked phrase (followed by its index character).
 OPEN = "\ue000"
 #: Closes the innermost open marked phrase.
@@ -122,8 +124,6 @@ def split_leading_marks(text: str) -> tuple[str, str]:
 
 
 def _broken(marked: str) -> Exception:
-    from .templates import TemplateError  # templates reads the marks too (``with_article``)
-
     return TemplateError(
         "a description template cut a named phrase apart or wrote the describer's private marks "
         f"(U+E000, U+E001) itself: {unmarked(marked)[:200]!r}"

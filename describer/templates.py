@@ -31,11 +31,11 @@ import jinja2
 from jinja2.loaders import split_template_path
 from jinja2.sandbox import SandboxedEnvironment
 
-from scenewright.core.errors import InputError
 from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.limits import forbidden_character
 
 from .english import join_list, with_article
+from .errors import TemplateError
 from .grounding import split_leading_marks
 
 PACKAGE_TEMPLATES = Path(__file__).parent / "templates"
@@ -48,10 +48,6 @@ MAX_TEMPLATE_RESULT = 100_000
 
 #: The ``range`` steps the rendering under way may still take.
 _steps_left: ContextVar[list[int]] = ContextVar("template_steps_left")
-
-
-class TemplateError(InputError):
-    """A description template is missing or does not render."""
 
 
 def template_environment(user_templates: str | Path | None = None) -> SandboxedEnvironment:
