@@ -52,11 +52,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from scenewright.core.errors import InputError
+from scenewright.core.errors import InputError, RoomError
 from scenewright.core.geometry import corners, make_rect, rect_overlap, wrap_angle
 from scenewright.core.limits import MAX_EXTENT
 from scenewright.core.poses import Pose
-from scenewright.core.room import ROOM_NODE, Room, RoomError
+from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.layout.params import LayoutParams
 

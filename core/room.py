@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from scenewright.core.errors import RoomError
 from scenewright.core.geometry import left_normal, point_segment_distance
 
 #: Scene-graph node kinds of a room and its parts, and the id of the node that stands for the room.
@@ -51,10 +52,6 @@ _COMPASS8 = (
     ("west", (-1.0, 0.0)),
     ("north-west", (-math.sqrt(0.5), -math.sqrt(0.5))),
 )
-
-
-class RoomError(ValueError):
-    """A room that cannot be built: the message says what is wrong, in the user's words."""
 
 
 def compass_word(dx: float, dz: float) -> str:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .errors import InputError
+from .errors import MeshFileError
 from .files import UnusableFile, read_regular_file
 
 if TYPE_CHECKING:
@@ -433,15 +433,6 @@ SHAPES: dict[str, Shape] = {
 MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
 #: The most a mesh file may hold, the files it refers to included (256 MiB).
 MAX_MESH_BYTES = 256 * 1024 * 1024
-
-
-class MeshFileError(InputError):
-    """A mesh file that cannot be used; ``reason`` completes "mesh file 'F' ..."."""
-
-    def __init__(self, path: str | os.PathLike[str], reason: str):
-        self.path = str(path)
-        self.reason = reason
-        super().__init__(f"mesh file '{self.path}' {reason}")
 
 
 def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:

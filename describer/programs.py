@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .colours import colour_word
+from .errors import ProgramError
 from .world import world_of
 
 if TYPE_CHECKING:
@@ -51,11 +52,6 @@ SIDE_MARGIN = 4.0
 DEPTH_MARGIN = 0.5
 
 Program = list[dict]
-
-
-class ProgramError(ValueError):
-    """A step that cannot give what it must (``unique`` of none or several, an order
-    that is not clear, a colour with no clear name)."""
 
 
 @dataclass(frozen=True)

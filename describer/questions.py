@@ -59,12 +59,12 @@ from scenewright.core.seeds import SeedLike, stage_stream
 
 from .colours import COLOUR_TERMS
 from .english import plural_of, sentence_case, with_article
+from .errors import ProgramError
 from .programs import (
     MARGINS,
     RELATE_SIDES,
     PictureFacts,
     Program,
-    ProgramError,
     answer_text,
     execute,
     step,

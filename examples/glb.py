@@ -31,7 +31,8 @@ import struct
 
 import numpy as np
 
-from scenewright.core.room import Room, RoomError
+from scenewright.core.errors import RoomError
+from scenewright.core.room import Room
 from scenewright.core.scene import Scene
 
 from .model import ExampleError, ObjectRecord, example_scene

@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenewright.core.errors import MeshFileError, RoomError
 from scenewright.core.limits import (
     MAX_DEPTH,
     MAX_EXTENT,
@@ -32,8 +33,8 @@ from scenewright.core.limits import (
     forbidden_character,
 )
 from scenewright.core.relations import RELATIONS
-from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
-from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, MeshFileError, load_mesh_file
+from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
+from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, load_mesh_file
 
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation

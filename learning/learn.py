@@ -48,12 +48,12 @@ from .context import (
     LAYOUTS,
     ROUNDS,
     ContextFit,
-    NoRelatedPairs,
     context_path,
     fit_example_layouts,
     measured_example_layout,
 )
-from .derivations import AmbiguousExample, BudgetSpent, ReplayBudget, measured_derivation_graphs
+from .derivations import ReplayBudget, measured_derivation_graphs
+from .errors import AmbiguousExample, BudgetSpent, InducedRulesError, NoRelatedPairs
 from .induce import Induction, Member, edge_instances, induce, renamed_scenes
 
 #: Scenes generated from the induced rules to compare with the examples.
@@ -64,10 +64,6 @@ CHECK_SCENES = 50
 #: 1,709 (10 bedrooms) and 5,689 (20 desks); rules that leave every example ambiguous
 #: (chairs that could be any table's) would otherwise take 20,000 replays an example.
 CONTEXT_REPLAYS = 100_000
-
-
-class InducedRulesError(RuntimeError):
-    """The induced text did not pass the static checks: a fault of ``induce``, not of the input."""
 
 
 def check_seed_of(seed: int, index: int) -> int:
