@@ -32,9 +32,10 @@ class GenerationError(ScenewrightError):
     exit_code = 1
 
 
-class RoomError(InputError):
+class RoomError(InputError, ValueError):
     """A room that cannot be built (``core.room``): the message says what is wrong, in
-    the user's words."""
+    the user's words. Also a ``ValueError``: a bad argument to ``Room``'s builders, as
+    code that builds rooms catches it."""
 
 
 class MeshFileError(InputError):
