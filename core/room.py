@@ -260,9 +260,13 @@ class Room:
         """The wall or opening with this id."""
         return self._by_id[part_id]
 
+    def wall_by_id(self, wall_id: str) -> Wall:
+        """The wall with this id (``wall_2``)."""
+        return self.walls[self._wall_index[wall_id]]
+
     def wall_of(self, opening: Opening) -> Wall:
         """The wall an opening is in."""
-        return self.walls[self._wall_index[opening.wall]]
+        return self.wall_by_id(opening.wall)
 
     def openings_on(self, wall_id: str) -> list[Opening]:
         return [o for o in self.openings if o.wall == wall_id]

@@ -263,7 +263,9 @@ def _concrete_items(scene: Scene, world: World, items: tuple[Item, ...]) -> tupl
             )
             noun = world[chosen].noun
             if noun in by_noun:
-                concrete[by_noun[noun]] = concrete[by_noun[noun]] + (chosen,)
+                counted = concrete[by_noun[noun]]
+                assert not isinstance(counted, Network)  # by_noun indexes counted entities only
+                concrete[by_noun[noun]] = counted + (chosen,)
             else:
                 by_noun[noun] = len(concrete)
                 concrete.append((chosen,))
@@ -290,7 +292,9 @@ def _caption_items(section: Section, world: World) -> tuple[Item, ...]:
                 continue
             noun = world[item[0]].noun
             if noun in by_noun:
-                items[by_noun[noun]] = items[by_noun[noun]] + item
+                counted = items[by_noun[noun]]
+                assert not isinstance(counted, Network)  # by_noun indexes counted entities only
+                items[by_noun[noun]] = counted + item
             else:
                 by_noun[noun] = len(items)
                 items.append(item)

@@ -151,7 +151,7 @@ class RoomView:
 
     def wall_phrase(self, wall_id: str) -> str:
         """A wall's name, or, for one nothing sets apart, "one of the north walls" (still true)."""
-        return self.names[wall_id] or f"one of the {self.room.part(wall_id).side} walls"
+        return self.names[wall_id] or f"one of the {self.room.wall_by_id(wall_id).side} walls"
 
     def place(self, relation: Relation) -> str | None:
         """The part of the room the relation's words name (a wall, door, window or corner
@@ -167,9 +167,11 @@ class RoomView:
         if part is None:
             return None
         spec = RELATIONS[relation.label]
+        place: str | None
         if spec.family != "wall":
             place = part.id
         else:
+            assert spec.wall is not None  # every wall label names how it is placed
             place = _PLACE_FINDERS[PLACEMENT_NAMES[spec.wall]](self, part, relation.source)
         return place if place is not None and self.names.get(place) is not None else None
 
@@ -193,7 +195,9 @@ class RoomView:
         for corner in self.corners.values():
             if wall.id not in (corner.before, corner.after):
                 continue
-            other = self.room.part(corner.after if corner.before == wall.id else corner.before)
+            other = self.room.wall_by_id(
+                corner.after if corner.before == wall.id else corner.before
+            )
             gap = abs(min(other.to_wall(x, z)[1] for x, z in footprint))
             if gap < best_gap - 1e-9:
                 best, best_gap = corner.id, gap
@@ -227,8 +231,8 @@ class RoomView:
         alike = [o for o in self.room.openings if o.kind == kind]
         if len(alike) == 1:
             return f"the {kind}"
-        wall = self.room.part(opening.wall)
-        if [o for o in alike if self.room.part(o.wall).side == wall.side] == [opening]:
+        wall = self.room.wall_of(opening)
+        if [o for o in alike if self.room.wall_of(o).side == wall.side] == [opening]:
             return f"the {wall.side} {kind}"
         wall_name = self.names[wall.id]
         if wall_name is None:
