@@ -2,12 +2,13 @@
 
 Everything is in the ground plane (x, z). An angle is wrapped to the direction it
 points, atan2's principal value (``wrap_angle``); a caller that needs a half-open range
-folds the end it excludes itself, from that value. A footprint ``Rect`` is (cx, cz, hw, hd, c, s):
-its centre, half width along the object's local +X (its left), half depth along local
-+Z (its forward), and the cosine and sine of its yaw. Yaw turns forward (+Z) towards
-+X, so the local axes in world coordinates are left u = (c, -s) and forward v = (s, c)
-(the convention of ``scenewright.core.frames``, whose vectorised forms the tests
-compare with these).
+folds the end it excludes itself, from that value.
+
+A footprint ``Rect`` is (cx, cz, hw, hd, c, s): its centre, half width along the
+object's local +X (its left), half depth along local +Z (its forward), and the cosine
+and sine of its yaw. Yaw turns forward (+Z) towards +X, so the local axes in world
+coordinates are left u = (c, -s) and forward v = (s, c) (the convention of
+``scenewright.core.frames``, whose vectorised forms the tests compare with these).
 
 The functions are scalar pure Python: the sampler evaluates a handful of small shapes
 per step, where this beats numpy by an order of magnitude. All are exact for convex
