@@ -39,6 +39,7 @@ import math
 from dataclasses import dataclass
 
 from scenewright.core.frames import footprint_corners
+from scenewright.core.geometry import point_segment_distance
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import ROOM_NODE, Opening, Room, Wall, compass_word
 from scenewright.core.scene import SceneObject
@@ -323,6 +324,4 @@ def _turned(vector: tuple[float, float], quarter: int) -> str:
 def _distance_to_opening(point: tuple[float, float], opening: Opening, room: Room) -> float:
     """Distance from a point on the floor to the stretch of wall an opening fills."""
     (ax, az), (bx, bz) = room.opening_ends(opening)
-    dx, dz = bx - ax, bz - az
-    t = max(0.0, min(1.0, ((point[0] - ax) * dx + (point[1] - az) * dz) / (dx * dx + dz * dz)))
-    return math.hypot(point[0] - ax - t * dx, point[1] - az - t * dz)
+    return point_segment_distance(point[0], point[1], ax, az, bx, bz)
