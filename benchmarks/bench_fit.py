@@ -40,7 +40,8 @@ import numpy as np
 
 from scenewright.generator import expand, load_rules
 from scenewright.generator.rules import parse_rules_tree, shipped_rule_sets
-from scenewright.learning.derivations import AmbiguousExample, derivations_of
+from scenewright.learning.derivations import derivations_of
+from scenewright.learning.errors import AmbiguousExample
 from scenewright.learning.rewrite import fitted_files, rewrite_rules
 from scenewright.learning.weights import Parameter, WeightFit, fit_weights, fit_weights_em
 

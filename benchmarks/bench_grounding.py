@@ -38,7 +38,8 @@ from pathlib import Path
 from scenewright.api import build_scene, describe, load_rules
 from scenewright.dataset.produce import PictureCaptions, picture_captions
 from scenewright.dataset.spec import scene_seed
-from scenewright.describer.programs import PictureFacts, ProgramError, answer_text, execute
+from scenewright.describer.errors import ProgramError
+from scenewright.describer.programs import PictureFacts, answer_text, execute
 from scenewright.describer.questions import picture_questions, vocabulary_of
 from scenewright.describer.view import describe_view
 from scenewright.describer.world import world_of

@@ -26,6 +26,7 @@ from pathlib import Path
 
 from scenewright.completion.plan import rounded
 from scenewright.core.frames import to_world
+from scenewright.core.geometry import wrap_angle
 from scenewright.core.room import Room
 
 #: A wall by its compass letter: its index in a rectangle's walls (north, east, south, west).
@@ -40,7 +41,7 @@ TYPES = ("bedroom", "living_room", "study", "dining_room", "gym")
 
 def _wrapped(yaw: float) -> float:
     """The yaw in (-pi, pi], rounded so written plans read cleanly."""
-    yaw = math.atan2(math.sin(yaw), math.cos(yaw))
+    yaw = wrap_angle(yaw)
     return round(math.pi if yaw <= -math.pi + 1e-9 else yaw, 6)
 
 

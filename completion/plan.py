@@ -28,10 +28,10 @@ import jsonschema
 import referencing
 from jsonschema.exceptions import best_match
 
-from scenewright.core.errors import InputError
+from scenewright.core.errors import InputError, RoomError
 from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.frames import footprint_corners
-from scenewright.core.room import Room, RoomError
+from scenewright.core.room import Room
 from scenewright.core.schema_check import json_path, load_schema
 
 SCHEMA_FILE = "plan.schema.json"

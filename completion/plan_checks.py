@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 
 from scenewright.core.frames import to_local, to_world
+from scenewright.core.geometry import left_normal, make_rect, rect_distance
 
 #: Metres of overlap or overhang taken as drawing slack.
 TOLERANCE = 0.005
@@ -157,7 +158,6 @@ def unreachable(plan, catalog) -> list:
     that no 0.6 m wide way from a door reaches, in furniture order (module docstring);
     none in a room without a door."""
     from scenewright.completion.activity import SEATS
-    from scenewright.generator.layout.geometry import make_rect, rect_distance
     from scenewright.generator.layout.reachability import CORRIDOR_HALF, access_grid
     from scenewright.generator.layout.room_terms import FLAT_HEIGHT as WALKED_OVER
 
@@ -221,11 +221,10 @@ def overlap_depth(first: list[tuple[float, float]], second: list[tuple[float, fl
     for polygon in (first, second):
         n = len(polygon)
         for k in range(n):
-            (x0, z0), (x1, z1) = polygon[k], polygon[(k + 1) % n]
-            length = math.hypot(x1 - x0, z1 - z0)
-            if length == 0.0:
+            normal = left_normal(*polygon[k], *polygon[(k + 1) % n])
+            if normal is None:
                 continue
-            ax, az = (z0 - z1) / length, (x1 - x0) / length
+            ax, az = normal
             a = [x * ax + z * az for x, z in first]
             b = [x * ax + z * az for x, z in second]
             overlap = min(max(a), max(b)) - max(min(a), min(b))

@@ -36,7 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from scenewright.completion.plan_model import PlanModel
-from scenewright.core.room import Room, RoomError
+from scenewright.core.errors import RoomError
+from scenewright.core.room import Room
 
 #: The width of the door a region without one is given in its virtual wall (metres).
 VIRTUAL_DOOR = 0.9

@@ -11,9 +11,9 @@ import math
 import re
 from dataclasses import dataclass
 
-from scenewright.core.errors import InputError
+from scenewright.core.errors import InputError, RoomError
 from scenewright.core.limits import MAX_EXTENT
-from scenewright.core.room import Room, RoomError
+from scenewright.core.room import Room
 
 #: Wall letters a door or window may name, besides the words and numbers ``Room.wall`` takes.
 WALL_LETTERS = {"N": "north", "E": "east", "S": "south", "W": "west"}

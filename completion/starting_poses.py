@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from scenewright.core.geometry import corners, make_rect, rect_overlap, wrap_angle
 from scenewright.core.poses import Pose
 from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
@@ -44,7 +45,6 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     piece goes to the window's middle. What flanks a piece along its wall (night tables
     ``NextToLeft``/``NextToRight`` of the bed) is placed with it, one unit."""
     from scenewright.completion.layout_mask import mask_values
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     wall_of = {
         r.source: r.label
@@ -126,7 +126,6 @@ def _start_tables(
     and clear of the rest, and its chairs spread evenly along the sides they sit at,
     facing it."""
     from scenewright.completion.layout_mask import mask_values
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     sources = {r.source for r in graph.edges()}
     for table in graph.nodes("object"):
@@ -188,7 +187,6 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
     ``swings`` and the ``placed`` pieces' footprints and clearances (but its own
     piece's: a chair stands in the space kept free before its desk)."""
     from scenewright.completion.activity import SEATS
-    from scenewright.generator.layout.geometry import corners, make_rect, rect_overlap
 
     facing = {(r.source, r.target) for r in graph.edges("FacingTowards")}
     for relation in graph.edges("NextToFront"):
@@ -210,9 +208,7 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
         ):
             continue
         placed[node.id] = rect
-        poses[node.id] = Pose(
-            float(x), 0.0, float(z), float(math.atan2(math.sin(yaw), math.cos(yaw)))
-        )
+        poses[node.id] = Pose(float(x), 0.0, float(z), float(wrap_angle(yaw)))
 
 
 def _against(wall, u: float, depth: float) -> Pose:
@@ -235,7 +231,6 @@ def _wall_places(room: Room, width: float, under_window: bool):
 
 
 def _bounding_rect(points):
-    from scenewright.generator.layout.geometry import make_rect
 
     xs, zs = [p[0] for p in points], [p[1] for p in points]
     return make_rect(

@@ -24,8 +24,12 @@ fits", chosen by the layout and recorded as the relation's ``chosen``.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+
+from scenewright.core.errors import RoomError
+from scenewright.core.geometry import left_normal, point_segment_distance
 
 #: Scene-graph node kinds of a room and its parts, and the id of the node that stands for the room.
 ROOM_KINDS = ("room", "wall", "door", "window")
@@ -48,10 +52,6 @@ _COMPASS8 = (
     ("west", (-1.0, 0.0)),
     ("north-west", (-math.sqrt(0.5), -math.sqrt(0.5))),
 )
-
-
-class RoomError(ValueError):
-    """A room that cannot be built: the message says what is wrong, in the user's words."""
 
 
 def compass_word(dx: float, dz: float) -> str:
@@ -136,10 +136,10 @@ class Room:
 
     walls: tuple[Wall, ...]
     openings: tuple[Opening, ...] = ()
-    _by_id: dict = field(default_factory=dict, compare=False, repr=False)
+    _by_id: dict[str, Wall | Opening] = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
-        by_id = {wall.id: wall for wall in self.walls}
+        by_id: dict[str, Wall | Opening] = {wall.id: wall for wall in self.walls}
         by_id.update({opening.id: opening for opening in self.openings})
         object.__setattr__(self, "_by_id", by_id)
 
@@ -180,10 +180,10 @@ class Room:
         walls = []
         for k in range(n):
             (x0, z0), (x1, z1) = points[k], points[(k + 1) % n]
-            length = math.hypot(x1 - x0, z1 - z0)
-            tx, tz = (x1 - x0) / length, (z1 - z0) / length
+            left = left_normal(x0, z0, x1, z1)
+            assert left is not None  # walls shorter than 5 cm were refused above
             # Counter-clockwise in (x, z) (positive shoelace area): the inside is on the left.
-            normal = (-tz + 0.0, tx + 0.0) if area > 0 else (tz + 0.0, -tx + 0.0)  # + 0.0: no -0.0
+            normal = left if area > 0 else (-left[0] + 0.0, -left[1] + 0.0)  # + 0.0: no -0.0
             walls.append(Wall(f"wall_{k + 1}", (x0, z0), (x1, z1), float(height), normal))
         return cls(tuple(walls))
 
@@ -248,8 +248,9 @@ class Room:
     def wall(self, name: str) -> Wall | None:
         """A wall by id (``wall_2``), number (``2``) or, for a side only one wall is on,
         compass side (``north``)."""
-        if name in self._by_id and isinstance(self._by_id[name], Wall):
-            return self._by_id[name]
+        found = self._by_id.get(name)
+        if isinstance(found, Wall):
+            return found
         if name.isdigit() and 1 <= int(name) <= len(self.walls):
             return self.walls[int(name) - 1]
         on_side = [wall for wall in self.walls if wall.side == name]
@@ -258,6 +259,14 @@ class Room:
     def part(self, part_id: str) -> Wall | Opening:
         """The wall or opening with this id."""
         return self._by_id[part_id]
+
+    def wall_by_id(self, wall_id: str) -> Wall:
+        """The wall with this id (``wall_2``)."""
+        return self.walls[self._wall_index[wall_id]]
+
+    def wall_of(self, opening: Opening) -> Wall:
+        """The wall an opening is in."""
+        return self.wall_by_id(opening.wall)
 
     def openings_on(self, wall_id: str) -> list[Opening]:
         return [o for o in self.openings if o.wall == wall_id]
@@ -320,7 +329,7 @@ class Room:
 
     def boundary_distance(self, x: float, z: float) -> float:
         """Distance from (x, z) to the nearest wall face."""
-        return min(_segment_distance(x, z, wall.start, wall.end) for wall in self.walls)
+        return min(point_segment_distance(x, z, *wall.start, *wall.end) for wall in self.walls)
 
     def footprint_excess(self, corners: list[tuple[float, float]]) -> float:
         """How far (metres) a convex footprint (its corners, in order) crosses the walls:
@@ -337,13 +346,13 @@ class Room:
 
     def opening_ends(self, opening: Opening) -> tuple[tuple[float, float], tuple[float, float]]:
         """The two ends (x, z) of the stretch of wall an opening fills."""
-        wall, (u0, u1) = self.part(opening.wall), opening.span
+        wall, (u0, u1) = self.wall_of(opening), opening.span
         return wall.to_world(u0, 0.0), wall.to_world(u1, 0.0)
 
     def swing_zone(self, door: Opening) -> list[tuple[float, float]]:
         """The door's swing zone: corners (x, z) of the ``width`` x ``width`` square in
         front of it, inside the room."""
-        wall = self.part(door.wall)
+        wall = self.wall_of(door)
         u0, u1 = door.span
         return [
             wall.to_world(u0, 0.0),
@@ -412,7 +421,7 @@ class Room:
                     float(raw["width"]),
                     float(raw["height"]),
                     float(raw.get("sill", 0.0)),
-                    tuple(float(v) for v in raw["center"]),
+                    (float(raw["center"][0]), float(raw["center"][1])),
                 )
             )
         return cls(walls, tuple(openings))
@@ -429,19 +438,12 @@ def _wall_words(wall: Wall) -> str:
     return f"{wall.id.replace('_', ' ')} (the {wall.side} wall)"
 
 
-def _signed_area(points: list[tuple[float, float]]) -> float:
+def _signed_area(points: Sequence[tuple[float, float]]) -> float:
     n = len(points)
     return 0.5 * sum(
         points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
         for k in range(n)
     )
-
-
-def _segment_distance(x: float, z: float, a: tuple[float, float], b: tuple[float, float]) -> float:
-    dx, dz = b[0] - a[0], b[1] - a[1]
-    length2 = dx * dx + dz * dz
-    t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((x - a[0]) * dx + (z - a[1]) * dz) / length2))
-    return math.hypot(x - a[0] - t * dx, z - a[1] - t * dz)
 
 
 def _depth_in_convex(

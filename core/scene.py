@@ -80,6 +80,41 @@ class ScenePath:
     segments: int = 3  # straight pieces of its polyline
 
 
+#: One relation a description states: (subject id, label, object id).
+Fact = tuple[str, str, str]
+
+
+@dataclass
+class SceneDescription:
+    """scene.json's ``description``: the text, every relation it states, and the style
+    and paraphrase variant that made it. The describer makes one (its ``Description``
+    adds the text sentence by sentence and the phrases that name things)."""
+
+    text: str
+    facts: list[Fact] = field(default_factory=list)
+    style: str = "full"
+    variant: int = 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON-ready form stored in scene.json's ``description``."""
+        return {
+            "text": self.text,
+            "facts": [list(fact) for fact in self.facts],
+            "style": self.style,
+            "variant": self.variant,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> SceneDescription:
+        """The record ``to_dict`` gave (only ``text`` is required)."""
+        return cls(
+            text=data["text"],
+            facts=[(subject, label, target) for subject, label, target in data.get("facts", [])],
+            style=data.get("style", "full"),
+            variant=int(data.get("variant", 0)),
+        )
+
+
 @dataclass
 class LayoutStats:
     energy: float = 0.0
@@ -114,7 +149,7 @@ class Scene:
     line_of_sight: bool = True
     #: Every random choice of the grammar expansion, in order (see ``generator.derivation``).
     derivation: list[dict[str, Any]] = field(default_factory=list)
-    description: dict[str, Any] | None = None
+    description: SceneDescription | None = None
     render: dict[str, Any] | None = None
     #: How ``scenewright complete`` chose the room's contents (``completion.complete``);
     #: None (and absent from scene.json) for a scene made from rules.
@@ -204,7 +239,9 @@ class Scene:
             square=bool(data.get("square", True)),
             line_of_sight=bool(data.get("line_of_sight", True)),
             derivation=list(data.get("derivation", [])),
-            description=data.get("description"),
+            description=SceneDescription.from_dict(data["description"])
+            if data.get("description") is not None
+            else None,
             render=data.get("render"),
             completion=data.get("completion"),
             timings=dict(data.get("timings", {})),
@@ -226,7 +263,7 @@ class Scene:
             {
                 "params": SceneParams(
                     name=self.name,
-                    extent=tuple(self.extent),
+                    extent=(self.extent[0], self.extent[1]),
                     ground=self.ground,
                     room=self.room,
                     templates=self.templates,
@@ -250,6 +287,9 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
     for node in graph.nodes():
         if node.kind == "path":
+            # expansion gives every path node its width, length and segments
+            assert node.width is not None and node.max_length is not None
+            assert node.segments is not None
             paths.append(
                 ScenePath(
                     id=node.id,
@@ -283,7 +323,7 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
     objects.sort(key=lambda o: o.order)
 
     relations = [
-        Relation(r.source, r.target, r.label, float(r.value), bool(r.satisfied), r.chosen)
+        Relation(r.source, r.target, r.label, _measured(r.value), bool(r.satisfied), r.chosen)
         for r in layout.relations
     ]
     stats = LayoutStats(
@@ -337,6 +377,12 @@ def _union_box(members: list[SceneObject]) -> tuple[list[float], list[float]]:
         float(top - bottom),
         float(hi[1] - lo[1]),
     ]
+
+
+def _measured(value: float | None) -> float:
+    """A laid-out relation's value: the layout measures every relation it returns."""
+    assert value is not None
+    return float(value)
 
 
 def _object_of(

@@ -13,9 +13,9 @@ chosen, so later stages never need the catalog itself.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import asdict, dataclass, field, fields
-from typing import Protocol
+from typing import Any, Protocol
 
 import networkx as nx
 
@@ -28,29 +28,48 @@ ROOM_COLOUR = (0.86, 0.84, 0.8)
 Vec3 = tuple[float, float, float]
 
 
-class NodeLooks(Protocol):
-    """What a node copies from its catalog entry once a style is applied."""
+def _vec3(values: Iterable[float]) -> Vec3:
+    """Three numbers as a tuple of floats."""
+    x, y, z = (float(v) for v in values)
+    return x, y, z
 
-    noun: str
-    plural: str | None
-    size: Vec3
-    shape: str | None
-    mesh: str | None
-    colour: Vec3
-    clearance: tuple[tuple[str, float], ...]
-    access: tuple[str, ...]
+
+class NodeLooks(Protocol):
+    """What a node copies from its catalog entry once a style is applied (read only)."""
+
+    @property
+    def noun(self) -> str: ...
+    @property
+    def plural(self) -> str | None: ...
+    @property
+    def size(self) -> Vec3: ...
+    @property
+    def shape(self) -> str | None: ...
+    @property
+    def mesh(self) -> str | None: ...
+    @property
+    def colour(self) -> Vec3: ...
+    @property
+    def clearance(self) -> tuple[tuple[str, float], ...]: ...
+    @property
+    def access(self) -> tuple[str, ...]: ...
 
 
 class CatalogLike(NodeLooks, Protocol):
     """A catalog entry as the graph reads it (the rules loader's ``CatalogEntry``)."""
 
-    name: str
-    kind: str
-    width: float
-    max_length: float
-    segments: int
+    @property
+    def name(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def width(self) -> float: ...
+    @property
+    def max_length(self) -> float: ...
+    @property
+    def segments(self) -> int: ...
 
-    def with_style(self, style) -> NodeLooks: ...
+    def with_style(self, style: Any) -> NodeLooks: ...
 
 
 @dataclass(frozen=True)
@@ -239,12 +258,12 @@ class SceneGraph:
             kind=entry.kind,
             noun=looks.noun,
             plural=looks.plural,
-            size=tuple(float(v) for v in looks.size)
+            size=_vec3(looks.size)
             if has_box
             else (float(entry.width) if is_path else 0.0, 0.0, 0.0),
             shape=looks.shape if has_box else None,
             mesh=looks.mesh if has_box else None,
-            colour=tuple(float(v) for v in looks.colour),
+            colour=_vec3(looks.colour),
             style=style.name if style else None,
             parent=parent,
             rule=rule,

@@ -58,7 +58,7 @@ def check_seed(seed: object, what: str = "seed") -> int:
     return int(seed)
 
 
-def stream(seed: int, stage: str, index: int = 0) -> np.random.Generator:
+def stream(seed: int | np.integer, stage: str, index: int = 0) -> np.random.Generator:
     """The Generator of ``stage`` (child ``index``) of the scene with ``seed``."""
     key = (STAGE_KEYS[stage],) if stage == "expansion" else (STAGE_KEYS[stage], index)
     return np.random.Generator(

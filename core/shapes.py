@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .errors import InputError
+from .errors import MeshFileError
 from .files import UnusableFile, read_regular_file
 
 if TYPE_CHECKING:
@@ -435,15 +435,6 @@ MESH_SUFFIXES = (".glb", ".gltf", ".obj", ".ply", ".stl")
 MAX_MESH_BYTES = 256 * 1024 * 1024
 
 
-class MeshFileError(InputError):
-    """A mesh file that cannot be used; ``reason`` completes "mesh file 'F' ..."."""
-
-    def __init__(self, path: str | os.PathLike[str], reason: str):
-        self.path = str(path)
-        self.reason = reason
-        super().__init__(f"mesh file '{self.path}' {reason}")
-
-
 def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
     """The triangles of a .glb, .gltf, .obj, .ply or .stl file, all its parts in one mesh.
 
@@ -464,8 +455,8 @@ def load_mesh_file(path: str | os.PathLike[str]) -> trimesh.Trimesh:
         raise MeshFileError(path, str(problem)) from None
     if not data:
         raise MeshFileError(path, "is empty")
-    if suffix == ".glb" and (problem := _glb_header_problem(data)):
-        raise MeshFileError(path, f"is not a valid .glb file ({problem})")
+    if suffix == ".glb" and (header_problem := _glb_header_problem(data)):
+        raise MeshFileError(path, f"is not a valid .glb file ({header_problem})")
     referred = _ReferredFiles(path.parent, MAX_MESH_BYTES - len(data))
     try:
         mesh = trimesh.load_mesh(io.BytesIO(data), file_type=suffix.lstrip("."), resolver=referred)

@@ -10,15 +10,13 @@ import re
 from dataclasses import dataclass, field
 from numbers import Integral
 from pathlib import Path
-from typing import Any
 
 from scenewright.core.errors import InputError
-from scenewright.core.scene import Scene
+from scenewright.core.scene import Scene, SceneDescription
 
 from .english import singular_of
 from .grounding import Mention
 from .plan import (
-    Fact,
     Introduction,
     Inventory,
     Item,
@@ -43,30 +41,22 @@ MAX_REORDERINGS = 3
 
 
 @dataclass
-class Description:
+class Description(SceneDescription):
     """A scene's description: the text and every (subject id, label, object id) it states.
 
     ``sentences`` has the same text sentence by sentence, each with the facts it states
-    (what a truth check reads); scene.json stores only text and facts. ``mentions``: every
-    phrase that names something, as a character span into ``text`` with the entities it
-    names and their objects (``grounding``), in the order the phrases start.
+    (what a truth check reads); scene.json stores only text and facts (``record``).
+    ``mentions``: every phrase that names something, as a character span into ``text``
+    with the entities it names and their objects (``grounding``), in the order the
+    phrases start.
     """
 
-    text: str
-    facts: list[Fact] = field(default_factory=list)
-    style: str = "full"
-    variant: int = 0
     sentences: list[Sentence] = field(default_factory=list)
     mentions: list[Mention] = field(default_factory=list)
 
-    def to_dict(self) -> dict[str, Any]:
-        """The JSON-ready form stored in scene.json's ``description``."""
-        return {
-            "text": self.text,
-            "facts": [list(fact) for fact in self.facts],
-            "style": self.style,
-            "variant": self.variant,
-        }
+    def record(self) -> SceneDescription:
+        """What a scene keeps of it (scene.json's ``description``)."""
+        return SceneDescription(self.text, list(self.facts), self.style, self.variant)
 
 
 def describe(
@@ -273,7 +263,9 @@ def _concrete_items(scene: Scene, world: World, items: tuple[Item, ...]) -> tupl
             )
             noun = world[chosen].noun
             if noun in by_noun:
-                concrete[by_noun[noun]] = concrete[by_noun[noun]] + (chosen,)
+                counted = concrete[by_noun[noun]]
+                assert not isinstance(counted, Network)  # by_noun indexes counted entities only
+                concrete[by_noun[noun]] = counted + (chosen,)
             else:
                 by_noun[noun] = len(concrete)
                 concrete.append((chosen,))
@@ -300,7 +292,9 @@ def _caption_items(section: Section, world: World) -> tuple[Item, ...]:
                 continue
             noun = world[item[0]].noun
             if noun in by_noun:
-                items[by_noun[noun]] = items[by_noun[noun]] + item
+                counted = items[by_noun[noun]]
+                assert not isinstance(counted, Network)  # by_noun indexes counted entities only
+                items[by_noun[noun]] = counted + item
             else:
                 by_noun[noun] = len(items)
                 items.append(item)

@@ -119,7 +119,9 @@ def unmarked(text: str) -> str:
 def split_leading_marks(text: str) -> tuple[str, str]:
     """The opening marks ``text`` starts with, and the rest: a word put in front of the
     rest ("a" in "a desk") then falls inside the phrases that start there."""
-    leading = _LEADING_OPENS.match(text).end()
+    opens = _LEADING_OPENS.match(text)
+    assert opens is not None  # the pattern matches the empty string too
+    leading = opens.end()
     return text[:leading], text[leading:]
 
 

@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from scenewright.core.relations import RELATIONS, Relation
-from scenewright.core.scene import Scene
+from scenewright.core.scene import Fact, Scene
 
 from .lexicon import is_described, is_symmetric, place_phrases, relation_wordings
 from .summary import (
@@ -49,8 +49,6 @@ MAX_CLAUSES = 2
 #: The most phrases one subject joins; more are told in a second sentence with "also".
 #: Long lists are hard to read (and beyond what link-grammar parses).
 MAX_CONJUNCTS = 4
-
-Fact = tuple[str, str, str]
 
 
 @dataclass(frozen=True)
@@ -147,7 +145,9 @@ def facts_of(message: Message) -> list[Fact]:
             for path in item.paths
         ]
         if message.link is not None:
-            facts += _clause_facts(message.items[0], message.link)
+            first = message.items[0]
+            assert not isinstance(first, Network)  # a link follows counted entities
+            facts += _clause_facts(first, message.link)
         return facts
     if isinstance(message, Introduction):
         subjects = tuple(s for unit in message.subjects for s in unit)
@@ -204,7 +204,8 @@ def plan_document(
         extra: list[Message] = list(counts)
         for cohort in cohorts:
             if world[cohort[0]].parent == owner:
-                extra += compositions(cohort, world) + patterns(cohort, stated, world)
+                extra += compositions(cohort, world)
+                extra += patterns(cohort, stated, world)
         sections.append(Section(owner, section.messages + tuple(extra)))
     return sections
 
@@ -320,8 +321,9 @@ def _inventory_items(ground: list[Entity], networks: dict[str, str]) -> tuple[It
         elif networks.get(member.id) in paths_at:
             continue  # told with its junction
         elif member.noun in by_noun:
-            index = by_noun[member.noun]
-            items[index] = items[index] + (member.id,)
+            counted = items[by_noun[member.noun]]
+            assert not isinstance(counted, Network)  # by_noun indexes counted entities only
+            items[by_noun[member.noun]] = counted + (member.id,)
         else:
             by_noun[member.noun] = len(items)
             items.append((member.id,))
@@ -343,8 +345,9 @@ def _link(items: tuple[Item, ...], pool: list[Relation]) -> tuple[tuple[Item, ..
             if not place_phrases(relation.label, relation.chosen):
                 continue  # only a place phrase can follow a noun: "a sign to the right of a table"
             shared = [_find(pool, s, relation.label, relation.chosen, target[0]) for s in subjects]
-            if all(shared):
-                for found in shared:
+            found_all = [found for found in shared if found is not None]
+            if len(found_all) == len(shared):
+                for found in found_all:
                     pool.remove(found)
                 return (subjects, target), Clause(relation.label, relation.chosen, target)
     return items, None
@@ -403,9 +406,15 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
     one against that wall by name stand in one sentence. At most ``MAX_CLAUSES``
     clauses go in one sentence.
     """
+
+    def named_target(relation: Relation) -> str:
+        target = world.target_of(relation)
+        assert target is not None  # the planner tells only relations whose object it can name
+        return target
+
     by_target: dict[tuple[tuple[str, ...], str], list[Relation]] = {}
     for relation in relations:
-        target = world.target_of(relation)
+        target = named_target(relation)
         words = relation_wordings(relation.label, relation.chosen, world.place_kind(target))
         by_target.setdefault((words, target), []).append(relation)
     shared_by: dict[tuple[str, ...], dict[tuple[str, ...], list[Relation]]] = {}
@@ -423,7 +432,7 @@ def aggregate(relations: list[Relation], world: World) -> list[Statement]:
                 Clause(
                     found[0].label,
                     found[0].chosen,
-                    tuple(dict.fromkeys(world.target_of(r) for r in found)),
+                    tuple(dict.fromkeys(named_target(r) for r in found)),
                 )
                 for found in shared
             )

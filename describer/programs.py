@@ -32,12 +32,14 @@ digits, a word.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .colours import colour_word
+from .errors import ProgramError
 from .world import world_of
 
 if TYPE_CHECKING:
@@ -51,11 +53,6 @@ SIDE_MARGIN = 4.0
 DEPTH_MARGIN = 0.5
 
 Program = list[dict]
-
-
-class ProgramError(ValueError):
-    """A step that cannot give what it must (``unique`` of none or several, an order
-    that is not clear, a colour with no clear name)."""
 
 
 @dataclass(frozen=True)
@@ -75,7 +72,7 @@ class PictureFacts:
     enough (what programs see), and ``glimpsed``, those it shows some of but not enough
     (programs never see them; a question about them would be unclear to a person)."""
 
-    def __init__(self, objects: list[Seen], glimpsed: list[Seen] = ()) -> None:
+    def __init__(self, objects: Sequence[Seen], glimpsed: Sequence[Seen] = ()) -> None:
         self.objects = {o.id: o for o in objects}
         self.glimpsed = {o.id: o for o in glimpsed}
 
@@ -92,9 +89,12 @@ class PictureFacts:
         if not drawn:
             return cls([])
         _, depths = picture.camera.project(np.stack([picture.centres[i] for i in drawn]))
-        seen, glimpsed = [], []
+        seen: list[Seen] = []
+        glimpsed: list[Seen] = []
         for entity_id, depth in zip(drawn, depths, strict=True):
-            x0, _, x1, _ = picture.entities[entity_id].box
+            box = picture.entities[entity_id].box
+            assert box is not None  # drawn: only entities with a box
+            x0, _, x1, _ = box
             colour = colour_word(scene.object(entity_id).colour)
             fact = Seen(entity_id, world[entity_id].noun, (x0 + x1) / 2.0, float(depth), colour)
             (seen if picture.seen(entity_id) else glimpsed).append(fact)
@@ -227,8 +227,9 @@ def _query_colour(facts: PictureFacts, _values: list[str], found: str) -> str:
     return colour
 
 
-#: Every function a program may call, by name.
-FUNCTIONS = {
+#: Every function a program may call, by name (each takes the facts, the step's value
+#: inputs and the results of its inputs).
+FUNCTIONS: dict[str, Callable[..., Any]] = {
     "scene": _scene,
     "filter_noun": _filter_noun,
     "unique": _unique,

@@ -53,18 +53,18 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import partial
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, overload
 
 from scenewright.core.seeds import SeedLike, stage_stream
 
 from .colours import COLOUR_TERMS
 from .english import plural_of, sentence_case, with_article
+from .errors import ProgramError
 from .programs import (
     MARGINS,
     RELATE_SIDES,
     PictureFacts,
     Program,
-    ProgramError,
     answer_text,
     execute,
     step,
@@ -181,9 +181,8 @@ def picture_questions(
     rng = stage_stream(seed, "questions", view)
     asked = []
     for family in FAMILIES.values():
-        candidates = family.candidates(asking)
-        if not isinstance(candidates, Sequence):
-            candidates = list(candidates)
+        found = family.candidates(asking)
+        candidates: Sequence[Candidate] = found if isinstance(found, Sequence) else list(found)
         if family.yes_no:
             chosen = _yes_and_no(candidates, facts, rng)
         else:
@@ -209,7 +208,9 @@ def _answer(candidate: Candidate, facts: PictureFacts) -> str | None:
         return None
 
 
-def _yes_and_no(candidates: list[Candidate], facts: PictureFacts, rng: np.random.Generator) -> list:
+def _yes_and_no(
+    candidates: Sequence[Candidate], facts: PictureFacts, rng: np.random.Generator
+) -> list:
     """As many (answer, candidate) with "yes" as with "no", up to ``QUESTIONS_PER_FAMILY``
     // 2 of each, in random order: CLEVR's rejection sampling, over the candidates in a
     random order (so each is a uniform draw among the candidates of its answer), stopping
@@ -228,7 +229,7 @@ def _yes_and_no(candidates: list[Candidate], facts: PictureFacts, rng: np.random
 
 
 def _different_answers(
-    candidates: list[Candidate],
+    candidates: Sequence[Candidate],
     facts: PictureFacts,
     rng: np.random.Generator,
     *,
@@ -309,7 +310,7 @@ def _compared(first: str, second: str, comparison: str) -> Program:
     ]
 
 
-class _CountComparisons(Sequence):
+class _CountComparisons(Sequence[Candidate]):
     """The compare-count candidates: each comparison of each ordered pair of clear nouns,
     one of them seen, in that order; each made when read, since a picture of n such
     nouns has 3 n (n - 1) of them (some 2700 in a village) and the family reads a few."""
@@ -329,7 +330,13 @@ class _CountComparisons(Sequence):
     def __len__(self) -> int:
         return len(self.COMPARISONS) * len(self.pairs)
 
-    def __getitem__(self, index: int) -> Candidate:
+    @overload
+    def __getitem__(self, index: int) -> Candidate: ...
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[Candidate]: ...
+    def __getitem__(self, index: int | slice) -> Candidate | Sequence[Candidate]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
         if not 0 <= index < len(self):
             raise IndexError(index)
         first, second = self.pairs[index // len(self.COMPARISONS)]

@@ -8,9 +8,13 @@ mentions it makes (``grounding``: which characters name which entities).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from jinja2.sandbox import SandboxedEnvironment
+
+from scenewright.core.scene import Fact
 
 from .english import (
     counted,
@@ -27,7 +31,6 @@ from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
 from .plan import (
     Clause,
-    Fact,
     Introduction,
     Inventory,
     Item,
@@ -194,6 +197,8 @@ class Realiser:
     def _room(self, outline: RoomOutline) -> str:
         """ "The room has a door in the south wall and two windows in the north wall."."""
         room = self.discourse.room()
+        room_view = self.world.room
+        assert room_view is not None  # an outline is planned for a room only
         self.discourse.mark_subject(())
         openings = []
         for kind, wall, ids in self.choices.shuffled(outline.openings):
@@ -204,7 +209,7 @@ class Realiser:
                 self.environment,
                 "opening.j2",
                 openings=what,
-                wall=self.world.room.wall_phrase(wall),
+                wall=room_view.wall_phrase(wall),
             )
             openings.append(phrase)
         return render(
@@ -353,7 +358,7 @@ class Realiser:
 
 
 #: How each kind of planned message becomes a sentence.
-_REALISERS = {
+_REALISERS: dict[type, Callable[[Realiser, Any], str]] = {
     Inventory: Realiser._inventory,
     RoomOutline: Realiser._room,
     Introduction: Realiser._introduction,

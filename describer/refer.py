@@ -112,13 +112,12 @@ class Discourse:
     def name_place(self, place_id: str) -> str:
         """A part of the room by the name that sets it apart (``rooms``)."""
         self._note((place_id,), ROOM_PART, plural=False)
-        name = self.world.room.name(place_id)
+        room = self.world.room
+        assert room is not None  # a place is a part of the room
+        name = room.name(place_id)
+        assert name is not None  # only a part that has a name is a place (``RoomView.place``)
         # A door or a window is drawn, so its name is grounded; a wall or a corner is not.
-        return (
-            self.marks.mark(name, (place_id,))
-            if self.world.room.kind(place_id) in SEEN_PARTS
-            else name
-        )
+        return self.marks.mark(name, (place_id,)) if room.kind(place_id) in SEEN_PARTS else name
 
     def note_place(self, place_ids: tuple[str, ...]) -> None:
         """Record parts of the room named by other means (the room sentence's "two windows")."""

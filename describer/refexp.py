@@ -32,7 +32,8 @@ from __future__ import annotations
 from collections import Counter
 
 from .english import ordinal_word
-from .programs import DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, ProgramError, Seen, execute, step
+from .errors import ProgramError
+from .programs import DEPTH_MARGIN, SIDE_MARGIN, PictureFacts, Seen, execute, step
 from .world import is_kind_of
 
 __all__ = [

@@ -39,6 +39,7 @@ import math
 from dataclasses import dataclass
 
 from scenewright.core.frames import footprint_corners
+from scenewright.core.geometry import point_segment_distance
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import ROOM_NODE, Opening, Room, Wall, compass_word
 from scenewright.core.scene import SceneObject
@@ -151,7 +152,7 @@ class RoomView:
 
     def wall_phrase(self, wall_id: str) -> str:
         """A wall's name, or, for one nothing sets apart, "one of the north walls" (still true)."""
-        return self.names[wall_id] or f"one of the {self.room.part(wall_id).side} walls"
+        return self.names[wall_id] or f"one of the {self.room.wall_by_id(wall_id).side} walls"
 
     def place(self, relation: Relation) -> str | None:
         """The part of the room the relation's words name (a wall, door, window or corner
@@ -167,9 +168,11 @@ class RoomView:
         if part is None:
             return None
         spec = RELATIONS[relation.label]
+        place: str | None
         if spec.family != "wall":
             place = part.id
         else:
+            assert spec.wall is not None  # every wall label names how it is placed
             place = _PLACE_FINDERS[PLACEMENT_NAMES[spec.wall]](self, part, relation.source)
         return place if place is not None and self.names.get(place) is not None else None
 
@@ -193,7 +196,9 @@ class RoomView:
         for corner in self.corners.values():
             if wall.id not in (corner.before, corner.after):
                 continue
-            other = self.room.part(corner.after if corner.before == wall.id else corner.before)
+            other = self.room.wall_by_id(
+                corner.after if corner.before == wall.id else corner.before
+            )
             gap = abs(min(other.to_wall(x, z)[1] for x, z in footprint))
             if gap < best_gap - 1e-9:
                 best, best_gap = corner.id, gap
@@ -227,8 +232,8 @@ class RoomView:
         alike = [o for o in self.room.openings if o.kind == kind]
         if len(alike) == 1:
             return f"the {kind}"
-        wall = self.room.part(opening.wall)
-        if [o for o in alike if self.room.part(o.wall).side == wall.side] == [opening]:
+        wall = self.room.wall_of(opening)
+        if [o for o in alike if self.room.wall_of(o).side == wall.side] == [opening]:
             return f"the {wall.side} {kind}"
         wall_name = self.names[wall.id]
         if wall_name is None:
@@ -319,6 +324,4 @@ def _turned(vector: tuple[float, float], quarter: int) -> str:
 def _distance_to_opening(point: tuple[float, float], opening: Opening, room: Room) -> float:
     """Distance from a point on the floor to the stretch of wall an opening fills."""
     (ax, az), (bx, bz) = room.opening_ends(opening)
-    dx, dz = bx - ax, bz - az
-    t = max(0.0, min(1.0, ((point[0] - ax) * dx + (point[1] - az) * dz) / (dx * dx + dz * dz)))
-    return math.hypot(point[0] - ax - t * dx, point[1] - az - t * dz)
+    return point_segment_distance(point[0], point[1], ax, az, bx, bz)

@@ -161,6 +161,7 @@ def compositions(cohort: tuple[str, ...], world: World) -> list[Composition]:
     messages = []
     for holders, items in ranked[:MAX_COMPOSITIONS]:
         word = quantifier(len(holders), len(cohort), exact=True)
+        assert word is not None  # an exact count of one or more has its word
         messages.append(Composition(Claim("has", word, cohort, holders, tuple(items))))
     return messages
 
@@ -230,13 +231,15 @@ def quantified(relations: list[Relation], world: World) -> tuple[list[Quantified
         words = relation_wordings(relation.label, relation.chosen)
         key = (world.cohort(relation.source), words, world[relation.target].noun)
         found.setdefault(key, []).append(relation)
-    messages, told = [], set()
+    messages: list[Quantified] = []
+    told: set[int] = set()
     for (cohort, _, target_noun), group in found.items():
         holders = tuple(m for m in cohort if any(r.source == m for r in group))
         targets = tuple(dict.fromkeys(r.target for r in group))
         if len(holders) < 2 or len(targets) < 2:
             continue
         word = quantifier(len(holders), len(cohort), exact=False)
+        assert word is not None  # two holders or more have their word
         claim = Claim(
             "is",
             word,

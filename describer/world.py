@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 from scenewright.core.errors import InputError
 from scenewright.core.relations import Relation
-from scenewright.core.scene import Scene
+from scenewright.core.scene import Scene, SceneObject, ScenePath
 
 from .english import plural_of
 from .grounding import holds_marks
@@ -158,12 +158,13 @@ class World:
 
 def world_of(scene: Scene) -> World:
     """The describable entities of a scene, in derivation order."""
+    raw: list[tuple[int, int, int, SceneObject | ScenePath]]
     raw = [(o.order, 0, i, o) for i, o in enumerate(scene.objects)]
     raw += [(p.order, 1, i, p) for i, p in enumerate(scene.paths)]
     raw.sort(key=lambda item: item[:3])
     object_ids = {o.id for o in scene.objects}
     entities: dict[str, Entity] = {}
-    for _, is_path, _, thing in raw:
+    for _, _, _, thing in raw:
         if holds_marks(thing.noun) or holds_marks(thing.plural or ""):
             raise InputError(
                 f"{thing.id}: its noun holds a private-use character (U+E000, U+E001 or "
@@ -171,7 +172,7 @@ def world_of(scene: Scene) -> World:
             )
         entities[thing.id] = Entity(
             id=thing.id,
-            kind="path" if is_path else thing.kind,
+            kind=thing.kind if isinstance(thing, SceneObject) else "path",
             noun=thing.noun,
             plural=plural_of(thing.noun, thing.plural),
             # A parent the scene does not hold cannot be named: treat the entity as top-level.

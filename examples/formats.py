@@ -18,6 +18,7 @@ import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.limits import MAX_SCENE_JSON_BYTES
@@ -39,7 +40,7 @@ class ExampleFormat:
 
     name: str
     recognises: Callable[[bytes], bool]
-    read: Callable[[str, object, str], Scene]
+    read: Callable[[str, Any, str], Scene]  # the content: bytes if ``binary``, else str
     binary: bool = False
 
 

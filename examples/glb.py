@@ -31,7 +31,8 @@ import struct
 
 import numpy as np
 
-from scenewright.core.room import Room, RoomError
+from scenewright.core.errors import RoomError
+from scenewright.core.room import Room
 from scenewright.core.scene import Scene
 
 from .model import ExampleError, ObjectRecord, example_scene
@@ -67,6 +68,7 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
         raise ExampleError(
             path, "", f"not a readable GLB file ({type(error).__name__}: {error})"
         ) from None
+    assert isinstance(loaded, trimesh.Scene)  # force="scene" gives one
     records: list[ObjectRecord] = []
     walls: list[np.ndarray] = []
     floors: list[np.ndarray] = []
@@ -137,10 +139,11 @@ def _record(
     x, y, z = (transform @ base)[:3]
     yaw = math.atan2(rotation[0, 2], rotation[2, 2])
     object_id = _NAME.sub("_", object_id) or "object"
+    width, height, depth = (float(v) for v in np.maximum(size, 1e-3))
     return ObjectRecord(
         object_id,
         kind,
-        tuple(float(v) for v in np.maximum(size, 1e-3)),
+        (width, height, depth),
         (float(x), float(y), float(z)),
         yaw,
         style,
@@ -162,15 +165,15 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
     if floors:
         points = np.concatenate(floors)[:, [0, 2]]
         return None, points.min(axis=0), points.max(axis=0)
-    points = []
+    corners: list[tuple[float, float]] = []
     for r in records:
         reach = math.hypot(r.size[0], r.size[2]) / 2.0
-        points += [
+        corners += [
             (r.position[0] - reach, r.position[2] - reach),
             (r.position[0] + reach, r.position[2] + reach),
         ]
-    points = np.array(points)
-    return None, points.min(axis=0) - MARGIN, points.max(axis=0) + MARGIN
+    reached = np.array(corners)
+    return None, reached.min(axis=0) - MARGIN, reached.max(axis=0) + MARGIN
 
 
 def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
@@ -185,7 +188,8 @@ def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
         document = json.loads(data[20 : 20 + length])
     except ValueError as error:
         raise ExampleError(path, "", f"the GLB's JSON chunk is not JSON: {error}") from None
-    order, found = {}, {}
+    order: dict[str, int] = {}
+    found: dict[str, dict[str, str]] = {}
     for index, node in enumerate(document.get("nodes", []) if isinstance(document, dict) else []):
         if isinstance(node, dict) and isinstance(node.get("name"), str):
             order.setdefault(node["name"], index)

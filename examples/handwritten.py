@@ -19,7 +19,8 @@ from typing import Any
 import jsonschema
 from jsonschema.exceptions import best_match
 
-from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
+from scenewright.core.errors import RoomError
+from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.core.scene import Scene
 from scenewright.core.schema_check import packaged_schema_text, packaged_validator
 

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from scenewright.core import VERSION
 from scenewright.core.errors import InputError
+from scenewright.core.geometry import wrap_angle
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import Room
 from scenewright.core.scene import LayoutStats, Scene, SceneObject
@@ -181,5 +182,5 @@ def example_scene(
 
 def _wrapped(yaw: float) -> float:
     """``yaw`` in (-pi, pi]."""
-    wrapped = math.atan2(math.sin(yaw), math.cos(yaw))
+    wrapped = wrap_angle(yaw)
     return math.pi if wrapped == -math.pi else wrapped

@@ -24,10 +24,16 @@ CONTACT = 0.03
 class Boxed(Protocol):
     """A box: a SceneObject, or a record read from an example file."""
 
-    id: str
-    position: Sequence[float]  # base centre (x, y, z)
-    size: Sequence[float]  # width, height, depth
-    yaw: float
+    @property
+    def id(self) -> str: ...
+    @property
+    def position(self) -> Sequence[float]:  # base centre (x, y, z)
+        ...
+    @property
+    def size(self) -> Sequence[float]:  # width, height, depth
+        ...
+    @property
+    def yaw(self) -> float: ...
 
 
 def touches_top(upper: Boxed, lower: Boxed) -> bool:

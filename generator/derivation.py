@@ -65,9 +65,10 @@ its second alternative, whose ``2..3 road`` drew 2::
 from __future__ import annotations
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import PurePath
-from typing import NamedTuple
+from typing import NamedTuple, NoReturn
 
 from .catalog import SourceLocation
 from .rules import Rules
@@ -173,6 +174,7 @@ def _parameters(rules: Rules) -> ChoiceCounts:
                     drawn = range(int(count.low), int(count.high) + 1)
                     tally.counts[site_of(count.location)] = dict.fromkeys(drawn, 0)
                 if statement.probability is not None:
+                    assert statement.probability_location is not None  # the parser sets both
                     tally.optional[site_of(statement.probability_location)] = {False: 0, True: 0}
     for entry in rules.catalog:
         if len(entry.styles) > 1:
@@ -185,25 +187,31 @@ def _count(tally: ChoiceCounts, rules: Rules, record: dict) -> None:
     root = _file_name(str(rules.path))
     if kind == "alternative":
         options = tally.alternatives.get(record["rule"])
-        _check(options is not None and _is_whole(value) and 0 <= value < len(options), record)
+        if options is None or not (_is_whole(value) and 0 <= value < len(options)):
+            _refuse(record)
         options[value] += 1
     elif kind == "count":
-        counts = tally.counts.get(_site_in(tally.counts, record, root))
-        _check(counts is not None and _is_whole(value) and value in counts, record)
+        site = _site_in(tally.counts, record, root)
+        counts = tally.counts.get(site) if site is not None else None
+        if counts is None or not (_is_whole(value) and value in counts):
+            _refuse(record)
         counts[value] += 1
     elif kind == "optional":
-        taken = tally.optional.get(_site_in(tally.optional, record, root))
-        _check(taken is not None and isinstance(value, bool), record)
+        site = _site_in(tally.optional, record, root)
+        taken = tally.optional.get(site) if site is not None else None
+        if taken is None or not isinstance(value, bool):
+            _refuse(record)
         taken[value] += 1
     elif kind == "style":
         styles = tally.styles.get(record["type"])
-        _check(styles is not None and _is_whole(value) and 0 <= value < len(styles), record)
+        if styles is None or not (_is_whole(value) and 0 <= value < len(styles)):
+            _refuse(record)
         styles[rules.catalog[record["type"]].styles[value].name] += 1
-    else:
-        _check(kind == "some", record)
+    elif kind != "some":
+        _refuse(record)
 
 
-def _site_in(sites: dict[Site, object], record: dict, root: str) -> Site | None:
+def _site_in(sites: Mapping[Site, object], record: dict, root: str) -> Site | None:
     """The parameter site of ``sites`` that a count or optional record was drawn at: its
     own site, or else the only one on its line. A scene made before the rule set's
     numbers were edited (by ``scenewright fit``, say) has the old columns: an edit of
@@ -231,12 +239,12 @@ def _is_whole(value: object) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def _check(fits: bool, record: dict) -> None:
-    if not fits:
-        what = record.get("kind", "?")
-        of = record.get("type") or record.get("rule", "?")
-        site = _record_site(record)
-        at = f" at {site}" if site else ""
-        raise ValueError(
-            f"it draws {what} {of!r}{at} (value {record.get('value')!r}), which these rules do not have"
-        )
+def _refuse(record: dict) -> NoReturn:
+    """Refuse a record of a draw that these rules do not have."""
+    what = record.get("kind", "?")
+    of = record.get("type") or record.get("rule", "?")
+    site = _record_site(record)
+    at = f" at {site}" if site else ""
+    raise ValueError(
+        f"it draws {what} {of!r}{at} (value {record.get('value')!r}), which these rules do not have"
+    )

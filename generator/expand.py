@@ -92,8 +92,8 @@ class RandomDraws(Draws):
     def count(self, low: int, high: int, weights: tuple[float, ...] | None) -> int:
         if weights is None:
             return int(self.rng.integers(low, high + 1))
-        weights = np.asarray(weights, dtype=float)
-        return low + int(self.rng.choice(len(weights), p=weights / weights.sum()))
+        shares = np.asarray(weights, dtype=float)
+        return low + int(self.rng.choice(len(shares), p=shares / shares.sum()))
 
     def pick(self, probabilities: np.ndarray) -> int:
         return int(self.rng.choice(len(probabilities), p=probabilities))
@@ -320,10 +320,27 @@ class _Expansion:
         location: SourceLocation | None,
         value: int | bool,
         nodes: list[str] | None = None,
-        **details: int | float | str | None,
+        *,
+        options: int | None = None,
+        low: int | None = None,
+        high: int | None = None,
+        probability: float | None = None,
+        type: str | None = None,
     ) -> dict:
-        """Append a record of a draw to the derivation; its nodes may be filled in later."""
-        record = choice(kind, self.chain[-1], location, value, nodes, **details)
+        """Append a record of a draw to the derivation (``choice``'s details); its nodes
+        may be filled in later."""
+        record = choice(
+            kind,
+            self.chain[-1],
+            location,
+            value,
+            nodes,
+            options=options,
+            low=low,
+            high=high,
+            probability=probability,
+            type=type,
+        )
         self.graph.derivation.append(record)
         return record
 

@@ -164,22 +164,22 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         for entry in file.entries:
             catalog.add(_catalog_entry(entry, tree.paths[file.path].parent))
     scene = next(scene for file in tree.files for scene in file.scenes)
-    settings = {setting.name: setting.value for setting in scene.settings}
+    settings = {setting.name: setting for setting in scene.settings}
     templates = next((setting for setting in scene.settings if setting.name == "templates"), None)
     room = None
     if "room" in settings:
-        room, _ = build_room(settings["room"])  # checked already: it builds
-    elif settings.get("walls"):
-        room = Room.rectangle(*settings.get("extent", SceneParams.extent))
+        room, _ = build_room(settings["room"].room())  # checked already: it builds
+    elif "walls" in settings and settings["walls"].value:
+        room = Room.rectangle(*_extent(settings))
     params = SceneParams(
         name=scene.name,
-        extent=room.extent if room else tuple(settings.get("extent", SceneParams.extent)),
-        ground=settings.get("ground", SceneParams.ground),
+        extent=room.extent if room else _extent(settings),
+        ground=settings["ground"].text() if "ground" in settings else SceneParams.ground,
         room=room,
-        square=settings.get("square", "on") == "on",
-        line_of_sight=settings.get("line_of_sight", "on") == "on",
+        square=_switch(settings, "square"),
+        line_of_sight=_switch(settings, "line_of_sight"),
         # like a mesh, the folder is written relative to the file that names it
-        templates=_beside(tree.paths[templates.location.file].parent, templates.value)
+        templates=_beside(tree.paths[templates.location.file].parent, templates.text())
         if templates
         else None,
     )
@@ -190,12 +190,29 @@ def _build(tree: ParsedTree, warnings: tuple[Diagnostic, ...]) -> Rules:
         catalog=catalog,
         params=params,
         productions=productions,
-        start=settings["start"],
-        max_depth=int(settings.get("max_depth", DEFAULT_MAX_DEPTH)),
-        max_nodes=int(settings.get("max_nodes", DEFAULT_MAX_NODES)),
+        start=settings["start"].text(),
+        max_depth=int(settings["max_depth"].number())
+        if "max_depth" in settings
+        else DEFAULT_MAX_DEPTH,
+        max_nodes=int(settings["max_nodes"].number())
+        if "max_nodes" in settings
+        else DEFAULT_MAX_NODES,
         warnings=warnings,
         sources=tree.sources,
     )
+
+
+def _extent(settings: dict[str, ast.Setting]) -> tuple[float, float]:
+    """The scene block's ``extent`` (width, depth), or the default."""
+    if "extent" not in settings:
+        return SceneParams.extent
+    width, depth = settings["extent"].numbers()
+    return width, depth
+
+
+def _switch(settings: dict[str, ast.Setting], name: str) -> bool:
+    """Whether an on/off setting of the scene block is on (it is unless written off)."""
+    return name not in settings or settings[name].text() == "on"
 
 
 def _beside(folder: Path, relative: str) -> str:
@@ -205,7 +222,8 @@ def _beside(folder: Path, relative: str) -> str:
 
 def _hex_colour(text: str) -> tuple[float, float, float]:
     """``#8b5a2b`` -> RGB in [0, 1], the values as written (no gamma conversion)."""
-    return tuple(int(text[i : i + 2], 16) / 255.0 for i in (1, 3, 5))
+    red, green, blue = (int(text[i : i + 2], 16) / 255.0 for i in (1, 3, 5))
+    return red, green, blue
 
 
 def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
@@ -213,15 +231,15 @@ def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
     looks: dict = {}
     for setting in fields:
         if setting.name == "colour":
-            looks["colour"] = _hex_colour(setting.value)
+            looks["colour"] = _hex_colour(setting.text())
         elif setting.name == "mesh":
-            looks["mesh"] = _beside(folder, setting.value)
+            looks["mesh"] = _beside(folder, setting.text())
         elif setting.name == "segments":
-            looks["segments"] = int(setting.value)
+            looks["segments"] = int(setting.number())
         elif setting.name == "clearance":
             looks["clearance"] = (*looks.get("clearance", ()), setting.value)
         elif setting.name == "access":
-            looks["access"] = () if setting.value == ("none",) else setting.value
+            looks["access"] = () if setting.words() == ("none",) else setting.words()
         else:
             looks[setting.name] = setting.value
     return looks

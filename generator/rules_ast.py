@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import TypeGuard
 
 from .catalog import SourceLocation
 
@@ -25,9 +26,44 @@ class Setting:
     """
 
     name: str
-    value: object
+    value: SettingValue
     location: SourceLocation
     value_location: SourceLocation
+
+    # The grammar fixes each setting's form by its name; these read the value in that
+    # form, for code that has already looked at the name.
+
+    def number(self) -> float:
+        """The value of a one-number setting (``width``, ``max_depth``, ...)."""
+        assert isinstance(self.value, float), self
+        return self.value
+
+    def text(self) -> str:
+        """The value of a one-word or quoted-string setting (``noun``, ``colour``, ...)."""
+        assert isinstance(self.value, str), self
+        return self.value
+
+    def numbers(self) -> tuple[float, ...]:
+        """The value of a setting of several numbers (``size``, ``extent``)."""
+        assert isinstance(self.value, tuple) and _all_numbers(self.value), self
+        return self.value
+
+    def words(self) -> tuple[str, ...]:
+        """The value of a setting of several words (``access``)."""
+        assert isinstance(self.value, tuple) and _all_words(self.value), self
+        return self.value
+
+    def word_and_number(self) -> tuple[str, float]:
+        """The value of a setting of a word and a number (``clearance front 0.8``)."""
+        assert isinstance(self.value, tuple) and len(self.value) == 2, self
+        word, number = self.value
+        assert isinstance(word, str) and isinstance(number, float), self
+        return word, number
+
+    def room(self) -> RoomDecl:
+        """The value of the ``room`` setting."""
+        assert isinstance(self.value, RoomDecl), self
+        return self.value
 
 
 @dataclass(frozen=True)
@@ -52,6 +88,18 @@ class RoomDecl:
     openings: tuple[OpeningDecl, ...]
     location: SourceLocation
     height_location: SourceLocation | None = None
+
+
+#: What a setting's value can be (``Setting``).
+SettingValue = float | str | bool | tuple[float | str, ...] | RoomDecl
+
+
+def _all_numbers(values: tuple[float | str, ...]) -> TypeGuard[tuple[float, ...]]:
+    return all(isinstance(v, float) for v in values)
+
+
+def _all_words(values: tuple[float | str, ...]) -> TypeGuard[tuple[str, ...]]:
+    return all(isinstance(v, str) for v in values)
 
 
 @dataclass(frozen=True)

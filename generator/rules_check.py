@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from scenewright.core.errors import MeshFileError, RoomError
 from scenewright.core.limits import (
     MAX_DEPTH,
     MAX_EXTENT,
@@ -32,8 +33,8 @@ from scenewright.core.limits import (
     forbidden_character,
 )
 from scenewright.core.relations import RELATIONS
-from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room, RoomError
-from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, MeshFileError, load_mesh_file
+from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
+from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, load_mesh_file
 
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation
@@ -63,6 +64,7 @@ def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocati
                 ]
             room = Room.rectangle(*decl.size, height)
         else:
+            assert decl.corners is not None  # a room block has a size or corners
             if any(abs(v) > MAX_EXTENT for corner in decl.corners for v in corner):
                 return None, [
                     (decl.location, f"a room corner lies further than {MAX_EXTENT:g} m out")
@@ -80,12 +82,12 @@ def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocati
     problems = []
     for opening in decl.openings:
         numbers = opening.numbers
+        opening_height: float | None
         if opening.kind == "door":
             offset, width, *rest = numbers
-            arguments = dict(offset=offset, width=width, height=rest[0] if rest else None)
+            opening_height, sill = (rest[0] if rest else None), 0.0
         else:
-            offset, width, sill, high = numbers
-            arguments = dict(offset=offset, width=width, height=high, sill=sill)
+            offset, width, sill, opening_height = numbers
         if room.wall(opening.wall) is None:
             problems.append(
                 (
@@ -97,7 +99,14 @@ def build_room(decl: ast.RoomDecl) -> tuple[Room | None, list[tuple[SourceLocati
             )
             continue
         try:
-            room = room.with_opening(opening.kind, opening.wall, **arguments)
+            room = room.with_opening(
+                opening.kind,
+                opening.wall,
+                offset=offset,
+                width=width,
+                height=opening_height,
+                sill=sill,
+            )
         except RoomError as problem:
             problems.append((opening.location, str(problem)))
     return (None if problems else room), problems
@@ -232,16 +241,18 @@ class _Checker:
             if style.name in seen:
                 self.error(style.location, f"duplicate style '{style.name}' of '{entry.name}'")
             seen[style.name] = style
-            if style.weight is not None and style.weight <= 0:
-                self.error(
-                    style.weight_location,
-                    f"style weight must be positive, not {_number(style.weight)}",
-                )
-            elif style.weight is not None and style.weight > MAX_WEIGHT:
-                self.error(
-                    style.weight_location,
-                    _too_large("a style weight", style.weight, MAX_WEIGHT, ""),
-                )
+            if style.weight is not None:
+                assert style.weight_location is not None  # the parser sets both
+                if style.weight <= 0:
+                    self.error(
+                        style.weight_location,
+                        f"style weight must be positive, not {_number(style.weight)}",
+                    )
+                elif style.weight > MAX_WEIGHT:
+                    self.error(
+                        style.weight_location,
+                        _too_large("a style weight", style.weight, MAX_WEIGHT, ""),
+                    )
             self.check_fields(style.fields, entry.kind, style=True)
 
     def check_fields(
@@ -273,44 +284,52 @@ class _Checker:
                     setting.location,
                     f"'{name}' applies to paths only, not to {_with_article(kind)}",
                 )
-            if name == "size" and any(v <= 0 for v in value):
+            if name == "size" and any(v <= 0 for v in setting.numbers()):
                 self.error(at, "sizes must be positive")
-            elif name == "size" and min(value) < MIN_LENGTH:
-                self.error(at, _too_small("each side of a size", min(value)))
-            elif name == "size" and max(value) > MAX_SIZE:
-                self.error(at, _too_large("each side of a size", max(value), MAX_SIZE, " m"))
-            elif name in ("width", "max_length") and value <= 0:
-                self.error(at, f"'{name}' must be positive, not {_number(value)}")
-            elif name in ("width", "max_length") and value < MIN_LENGTH:
-                self.error(at, _too_small(f"'{name}'", value))
-            elif name == "segments" and (value < 1 or not _is_whole(value)):
+            elif name == "size" and min(setting.numbers()) < MIN_LENGTH:
+                self.error(at, _too_small("each side of a size", min(setting.numbers())))
+            elif name == "size" and max(setting.numbers()) > MAX_SIZE:
                 self.error(
-                    at, f"'segments' must be a whole number of at least 1, not {_number(value)}"
+                    at, _too_large("each side of a size", max(setting.numbers()), MAX_SIZE, " m")
                 )
-            elif name in UPPER_LIMITS and value > UPPER_LIMITS[name]:
+            elif name in ("width", "max_length") and setting.number() <= 0:
+                self.error(at, f"'{name}' must be positive, not {_number(setting.number())}")
+            elif name in ("width", "max_length") and setting.number() < MIN_LENGTH:
+                self.error(at, _too_small(f"'{name}'", setting.number()))
+            elif name == "segments" and (setting.number() < 1 or not _is_whole(setting.number())):
+                self.error(
+                    at,
+                    "'segments' must be a whole number of at least 1, "
+                    f"not {_number(setting.number())}",
+                )
+            elif name in UPPER_LIMITS and setting.number() > UPPER_LIMITS[name]:
                 self.error(
                     at,
                     _too_large(
-                        f"'{name}'", value, UPPER_LIMITS[name], "" if name == "segments" else " m"
+                        f"'{name}'",
+                        setting.number(),
+                        UPPER_LIMITS[name],
+                        "" if name == "segments" else " m",
                     ),
                 )
-            elif name == "colour" and not _is_hex_colour(value):
+            elif name == "colour" and not _is_hex_colour(setting.text()):
                 self.error(at, f"colour '{value}' is not of the form #rrggbb")
             elif name == "mesh":
-                self.check_mesh(value, setting)
+                self.check_mesh(setting.text(), setting)
             elif name == "shape":
-                self.check_shape(value, setting)
-            elif name in ("noun", "plural") and not value.strip():
+                self.check_shape(setting.text(), setting)
+            elif name in ("noun", "plural") and not setting.text().strip():
                 self.error(at, f"'{name}' must not be empty")
-            elif name in ("noun", "plural") and len(value) > MAX_NOUN_CHARS:
+            elif name in ("noun", "plural") and len(setting.text()) > MAX_NOUN_CHARS:
                 self.error(
                     at,
-                    f"'{name}' is {len(value)} characters long; it may have at most {MAX_NOUN_CHARS}",
+                    f"'{name}' is {len(setting.text())} characters long; "
+                    f"it may have at most {MAX_NOUN_CHARS}",
                 )
         return seen
 
     def check_clearance(self, setting: ast.Setting, kind: str, sides: set[str]) -> None:
-        side, metres = setting.value
+        side, metres = setting.word_and_number()
         if kind != "object":
             self.error(
                 setting.location,
@@ -333,7 +352,7 @@ class _Checker:
         sides.add(side)
 
     def check_access(self, setting: ast.Setting, kind: str) -> None:
-        words = setting.value
+        words = setting.words()
         if kind != "object":
             self.error(
                 setting.location, f"'access' applies to objects only, not to {_with_article(kind)}"
@@ -421,27 +440,36 @@ class _Checker:
             value, at = setting.value, setting.value_location
             if isinstance(value, str) and self.check_text(setting.name, value, at):
                 continue
-            if setting.name == "extent" and any(v <= 0 for v in value):
+            if setting.name == "extent" and any(v <= 0 for v in setting.numbers()):
                 self.error(at, "the extent must be positive")
-            elif setting.name == "extent" and min(value) < MIN_LENGTH:
-                self.error(at, _too_small("each side of the extent", min(value)))
-            elif setting.name == "extent" and max(value) > MAX_EXTENT:
-                self.error(at, _too_large("each side of the extent", max(value), MAX_EXTENT, " m"))
-            elif setting.name in ("max_depth", "max_nodes") and (value < 1 or not _is_whole(value)):
+            elif setting.name == "extent" and min(setting.numbers()) < MIN_LENGTH:
+                self.error(at, _too_small("each side of the extent", min(setting.numbers())))
+            elif setting.name == "extent" and max(setting.numbers()) > MAX_EXTENT:
                 self.error(
                     at,
-                    f"'{setting.name}' must be a whole number of at least 1, not {_number(value)}",
+                    _too_large("each side of the extent", max(setting.numbers()), MAX_EXTENT, " m"),
                 )
-            elif setting.name in UPPER_LIMITS and value > UPPER_LIMITS[setting.name]:
+            elif setting.name in ("max_depth", "max_nodes") and (
+                setting.number() < 1 or not _is_whole(setting.number())
+            ):
                 self.error(
-                    at, _too_large(f"'{setting.name}'", value, UPPER_LIMITS[setting.name], "")
+                    at,
+                    f"'{setting.name}' must be a whole number of at least 1, "
+                    f"not {_number(setting.number())}",
+                )
+            elif setting.name in UPPER_LIMITS and setting.number() > UPPER_LIMITS[setting.name]:
+                self.error(
+                    at,
+                    _too_large(
+                        f"'{setting.name}'", setting.number(), UPPER_LIMITS[setting.name], ""
+                    ),
                 )
             elif setting.name == "templates":
-                self.check_templates(value, setting)
+                self.check_templates(setting.text(), setting)
             elif setting.name in ("square", "line_of_sight") and value not in ("on", "off"):
                 self.error(at, f"'{setting.name}' is 'on' or 'off', not '{value}'")
             elif setting.name == "room":
-                self.check_room(value, settings)
+                self.check_room(setting.room(), settings)
         if "room" in settings:
             for other in ("extent", "walls"):
                 if other in settings:
@@ -454,16 +482,16 @@ class _Checker:
         max_nodes = settings.get("max_nodes")
         if (
             max_nodes is not None
-            and _is_whole(max_nodes.value)
-            and 1 <= max_nodes.value <= MAX_NODES
+            and _is_whole(max_nodes.number())
+            and 1 <= max_nodes.number() <= MAX_NODES
         ):
-            self.max_nodes = int(max_nodes.value)
+            self.max_nodes = int(max_nodes.number())
         if "start" not in settings:
             self.error(
                 scene.location, "the scene block has no start symbol (add: start NONTERMINAL)"
             )
             return None
-        return settings["start"].value, settings["start"].value_location
+        return settings["start"].text(), settings["start"].value_location
 
     def check_room(self, decl: ast.RoomDecl, settings: dict[str, ast.Setting]) -> None:
         self.room, problems = build_room(decl)
@@ -572,12 +600,14 @@ class _Checker:
         subject = statement.subject
         self.check_count(statement.count)
         if statement.probability is not None and not 0 <= statement.probability <= 1:
+            assert statement.probability_location is not None  # the parser sets both
             self.error(
                 statement.probability_location,
                 f"probability must be between 0 and 1, not {_number(statement.probability)}",
             )
         created_kind = self.check_subject(subject, scope)
         if statement.binding and statement.binding in self.kinds:
+            assert statement.binding_location is not None  # the parser sets both
             self.error(
                 statement.binding_location,
                 f"'{statement.binding}' is a type; bind the nodes to another name",
@@ -604,7 +634,7 @@ class _Checker:
             if family == "wall":
                 self.check_wall_relation(relation)
         if statement.block is not None:
-            self.check_group_block(statement, created_kind, scope)
+            self.check_group_block(statement, statement.block, created_kind, scope)
 
     def check_wall_relation(self, relation: ast.Relation) -> None:
         """A wall label needs a room, and a wall (or, by a window, a window) as its target."""
@@ -633,9 +663,14 @@ class _Checker:
                 )
 
     def check_group_block(
-        self, statement: ast.Statement, created_kind: str | None, scope: dict[str, str | None]
+        self,
+        statement: ast.Statement,
+        block: tuple[ast.Statement, ...],
+        created_kind: str | None,
+        scope: dict[str, str | None],
     ) -> None:
-        """A block nests its nodes in the group its statement creates: only a new group takes one."""
+        """A block (``block``, the statement's) nests its nodes in the group its statement
+        creates: only a new group takes one."""
         subject = statement.subject
         unknown_name = (
             isinstance(subject, ast.Reference)
@@ -646,12 +681,13 @@ class _Checker:
         if created_kind != "group" and not unknown_name:  # an unknown name is reported already
             what = (
                 f"'{subject.name}' is {_with_article(created_kind)}"
-                if created_kind
+                if created_kind and isinstance(subject, ast.Reference)  # a call creates no kind
                 else _subject_words(subject)
             )
+            assert statement.block_location is not None  # the parser sets it with the block
             self.error(statement.block_location, f"a block nests nodes in a new group, but {what}")
         inner = dict(scope) | ({statement.binding: "group"} if statement.binding else {})
-        self.check_block(statement.block, inner)
+        self.check_block(block, inner)
 
     def check_count(self, count: ast.Count | None) -> None:
         if count is None:
@@ -675,24 +711,27 @@ class _Checker:
                 f"count {_number(count.high)} exceeds max_nodes {self.max_nodes} ({raise_it})",
             )
         elif count.weights is not None:
-            self.check_count_weights(count)
+            assert count.weights_location is not None  # the parser sets both
+            self.check_count_weights(count, count.weights, count.weights_location)
 
-    def check_count_weights(self, count: ast.Count) -> None:
-        """``LOW..HIGH {W ...}``: one weight per count, none negative, not all zero."""
+    def check_count_weights(
+        self, count: ast.Count, weights: tuple[float, ...], where: SourceLocation
+    ) -> None:
+        """``LOW..HIGH {W ...}`` (``weights`` written at ``where``): one weight per count,
+        none negative, not all zero."""
         wanted = int(count.high - count.low) + 1
-        where = count.weights_location
-        if len(count.weights) != wanted:
+        if len(weights) != wanted:
             self.error(
                 where,
                 f"range {_number(count.low)}..{_number(count.high)} has {wanted} counts but "
-                f"{len(count.weights)} weight{'s' if len(count.weights) != 1 else ''}",
+                f"{len(weights)} weight{'s' if len(weights) != 1 else ''}",
             )
-        elif any(weight < 0 for weight in count.weights):
-            negative = next(weight for weight in count.weights if weight < 0)
+        elif any(weight < 0 for weight in weights):
+            negative = next(weight for weight in weights if weight < 0)
             self.error(where, f"count weights may not be negative, not {_number(negative)}")
-        elif any(weight > MAX_WEIGHT for weight in count.weights):
-            self.error(where, _too_large("a count weight", max(count.weights), MAX_WEIGHT, ""))
-        elif not any(count.weights):
+        elif any(weight > MAX_WEIGHT for weight in weights):
+            self.error(where, _too_large("a count weight", max(weights), MAX_WEIGHT, ""))
+        elif not any(weights):
             self.error(where, "count weights are all 0: at least one count must be possible")
 
     def check_path_connection(
@@ -704,6 +743,7 @@ class _Checker:
             (target, self.reference_kind(target, scope), "junction"),
         ):
             if kind is not None and kind != wanted:
+                assert isinstance(reference, ast.Reference)  # a call's kind is not known
                 self.error(
                     reference.location,
                     f"PathConnectedTo connects a path to a junction, "

@@ -25,7 +25,7 @@ from importlib import resources
 from pathlib import Path
 
 from lark import Lark, Token, Transformer, Tree, v_args
-from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 
 from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.limits import MAX_BLOCK_NESTING, MAX_NODES
@@ -44,6 +44,10 @@ from .rules_errors import (
     is_rules_file_name,
     snake_case,
 )
+
+#: The two errors lark's LALR parser stops with: a token it cannot take, a character
+#: no token starts with.
+ParseStop = UnexpectedToken | UnexpectedCharacters
 
 #: Catalog fields and scene settings: the grammar's rules of these names each become an
 #: ``ast.Setting`` (the ``start`` setting's rule is ``start_symbol``).
@@ -426,7 +430,7 @@ def _ordinal(token: Token) -> int:
     return int(digits) if len(digits) <= len(str(MAX_NODES)) else MAX_NODES + 1
 
 
-def _not_rules(error: UnexpectedInput, text: str, file: str) -> Diagnostic:
+def _not_rules(error: ParseStop, text: str, file: str) -> Diagnostic:
     """A syntax error in a file whose text must not be shown: where, and nothing of what."""
     offset = _error_offset(error, text)
     line = text.count("\n", 0, offset) + 1
@@ -520,6 +524,7 @@ def _parse_into(
     real = path.resolve()
     for index, (seen, _) in enumerate(include_stack):
         if seen == real:
+            assert include_location is not None  # only an included file closes a cycle
             chain = " -> ".join([name for _, name in include_stack[index:]] + [display])
             tree.diagnostics.append(
                 tree.sources.diagnostic(include_location, f"include cycle: {chain}")
@@ -884,12 +889,11 @@ _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:-[A-Za-z0-9_]+)*")
 _WORD_BEFORE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*$")
 
 
-def _syntax_diagnostic(
-    error: UnexpectedInput, text: str, file: str, sources: SourceTexts
-) -> Diagnostic:
+def _syntax_diagnostic(error: ParseStop, text: str, file: str, sources: SourceTexts) -> Diagnostic:
     unclosed = _unclosed_block(error, text)
     if unclosed is not None:
         brace, message = unclosed
+        assert brace.line is not None and brace.column is not None  # lexed from the text
         return sources.diagnostic(SourceLocation(file, brace.line, brace.column), message)
     offset, message = _explain(error, text)
     line = text.count("\n", 0, offset) + 1
@@ -903,9 +907,10 @@ def _literal(terminal: str) -> str | None:
     return pattern.value if pattern.type == "str" else None
 
 
-def _error_offset(error: UnexpectedInput, text: str) -> int:
+def _error_offset(error: ParseStop, text: str) -> int:
     """Where in ``text`` the parser stopped (its length: at the end of the file)."""
     if isinstance(error, UnexpectedCharacters):
+        assert error.pos_in_stream is not None  # the lexer stops at a place in the text
         return error.pos_in_stream
     if error.token.type == "$END":
         return len(text)
@@ -915,7 +920,7 @@ def _error_offset(error: UnexpectedInput, text: str) -> int:
 # -- 1. a '{' never closed ----------------------------------------------------------
 
 
-def _unclosed_block(error: UnexpectedInput, text: str) -> tuple[Token, str] | None:
+def _unclosed_block(error: ParseStop, text: str) -> tuple[Token, str] | None:
     """The '{' that the error shows is never closed, and the message saying so; None if
     the text has a '}' for every '{', or no '}' lets the parser read past the error."""
     braces = [match.group() for match in _BRACES.finditer(text)]
@@ -1020,7 +1025,7 @@ class _StateKey(int):
     top-level block, say); with the state alone it stands for its place at every depth."""
 
     @classmethod
-    def of(cls, error: UnexpectedInput) -> _StateKey | None:
+    def of(cls, error: ParseStop) -> _StateKey | None:
         if isinstance(error.state, _StateKey):
             return error.state
         position = getattr(error.state, "position", None)
@@ -1028,7 +1033,7 @@ class _StateKey(int):
 
 
 @functools.cache
-def _example_stop(example: str) -> UnexpectedInput | None:
+def _example_stop(example: str) -> ParseStop | None:
     """The error with which the parser stops at the end of an example (None if it parses)."""
     try:
         lalr_parser().parse(example)
@@ -1038,14 +1043,16 @@ def _example_stop(example: str) -> UnexpectedInput | None:
     return None
 
 
-def _parse_example(example: str) -> None:
-    """``match_examples``'s parse function: raises the example's (cached) error."""
+def _parse_example(example: str) -> Tree:
+    """``match_examples``'s parse function: raises the example's (cached) error (every
+    example has one; one that parsed would be parsed again for its tree)."""
     error = _example_stop(example)
     if error is not None:
         raise error.with_traceback(None)
+    return lalr_parser().parse(example)
 
 
-def _context(stop: UnexpectedInput) -> _Context:
+def _context(stop: ParseStop) -> _Context:
     """The ``_CONTEXTS`` entry with an example that stops where ``stop`` does."""
     stop.state = _StateKey.of(stop)
     if stop.state is None:
@@ -1056,7 +1063,7 @@ def _context(stop: UnexpectedInput) -> _Context:
     return _CONTEXTS[name] if name else _ANYWHERE
 
 
-def _place(error: UnexpectedInput, text: str, offset: int) -> tuple[_Context, frozenset[str]]:
+def _place(error: ParseStop, text: str, offset: int) -> tuple[_Context, frozenset[str]]:
     """Where the parser was before the unexpected input at ``offset``, and what it takes there."""
     prefix = text[:offset]
     try:
@@ -1075,7 +1082,7 @@ def _place(error: UnexpectedInput, text: str, offset: int) -> tuple[_Context, fr
 # -- 3. what was expected, in words ---------------------------------------------------
 
 
-def _explain(error: UnexpectedInput, text: str) -> tuple[int, str]:
+def _explain(error: ParseStop, text: str) -> tuple[int, str]:
     """Where a syntax error is (an offset in ``text``) and what it is, in one sentence."""
     offset = _word_start(text, _error_offset(error, text))
     context, accepts = _place(error, text, offset)
@@ -1086,8 +1093,8 @@ def _explain(error: UnexpectedInput, text: str) -> tuple[int, str]:
         unexpected = "unexpected end of file"
     elif error.token.type == "_NL":
         unexpected = "unexpected end of line"
-    elif word := _WORD.match(text, offset):
-        word = word.group()
+    elif match := _WORD.match(text, offset):
+        word = match.group()
         hint = _case_mix_up(context, word, accepts, text[offset + len(word) :])
         unexpected = (
             f"unknown {context.unknown} '{word}'"

@@ -63,6 +63,7 @@ from scenewright.generator.layout.learned_term import (
 from scenewright.generator.layout.problem import compile_problem
 
 from .derivations import closest_derivation, measured_relations
+from .errors import NoRelatedPairs
 
 #: Blur of the histograms, in bins (standard deviation of the Gaussian): SMOOTH for the
 #: starting weights, UPDATE_SMOOTH for the comparisons iterative scaling makes (a few
@@ -87,10 +88,6 @@ LAYOUTS = 40
 MIN_EXAMPLES = 2
 
 Kind = tuple[str, str, tuple[str, ...]]
-
-
-class NoRelatedPairs(InputError):
-    """The examples hold no pair kind in MIN_EXAMPLES of them: there is no context to learn."""
 
 
 @dataclass

@@ -63,18 +63,12 @@ from scenewright.generator.layout import measure_layout
 from scenewright.generator.rules import Rules
 from scenewright.generator.rules_errors import ExpansionError
 
+from .errors import AmbiguousExample, BudgetSpent
+
 #: A relation statement of a signature: (subject type, label, target type or room kind).
 Statement = tuple[str, str, str]
 #: Replays one example may take before the search gives up.
 MAX_REPLAYS = 20_000
-
-
-class AmbiguousExample(InputError):
-    """An example with more possible derivations than the search may try."""
-
-
-class BudgetSpent(AmbiguousExample):
-    """The replays shared by several searches (``ReplayBudget``) ran out during this one."""
 
 
 @dataclass

@@ -29,6 +29,7 @@ from scenewright.core.errors import InputError
 from scenewright.core.room import ROOM_KINDS
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph
+from scenewright.examples import ExampleError
 from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.rules import Rules, parse_rules_tree
@@ -38,13 +39,13 @@ from .context import (
     ROUNDS,
     ContextFit,
     ExampleLayout,
-    NoRelatedPairs,
     context_path,
     example_layout,
     fit_example_layouts,
     measured_example_layout,
 )
 from .derivations import derivations_of, measured_derivation_graphs
+from .errors import NoRelatedPairs
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
@@ -63,10 +64,6 @@ def parse_what(text: str) -> frozenset[str]:
     return frozenset(chosen)
 
 
-class ExampleError(InputError):
-    """An example scene that cannot be learned from, named with its file."""
-
-
 def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[list[dict]]:
     """The derivations an example scene may have come from: the one it keeps, or else
     every derivation of ``rules`` that makes a scene like it (``derivations_of``; for
@@ -79,15 +76,17 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
         try:
             choice_counts(rules, derivation or [])
         except ValueError as error:
-            raise ExampleError(f"{path}: not a scene of {rules.name}.rules ({error})") from None
+            raise ExampleError(path, "", f"not a scene of {rules.name}.rules ({error})") from None
         return [derivation or []]
     graph = Scene.from_dict(scene).graph()
     found = derivations_of(rules, graph, path)
     if not found:
         types = sorted({node.type for node in graph.nodes() if node.kind not in ROOM_KINDS})
         raise ExampleError(
-            f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
-            f"(same objects, groups and relations; its types: {', '.join(types)})"
+            path,
+            "",
+            f"no derivation of {rules.name}.rules makes a scene like this one "
+            f"(same objects, groups and relations; its types: {', '.join(types)})",
         )
     return found
 
@@ -99,8 +98,10 @@ def measured_candidates(rules: Rules, path: str, scene: Scene) -> list[SceneGrap
     if not found:
         types = sorted({o.type for o in scene.placed_objects()})
         raise ExampleError(
-            f"{path}: no derivation of {rules.name}.rules makes a scene like this one "
-            f"(same objects, styles and what rests on what; its types: {', '.join(types)})"
+            path,
+            "",
+            f"no derivation of {rules.name}.rules makes a scene like this one "
+            f"(same objects, styles and what rests on what; its types: {', '.join(types)})",
         )
     return found
 

@@ -66,6 +66,7 @@ import numpy as np
 
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local
+from scenewright.core.geometry import wrap_angle
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.examples import Example, scene_supports
@@ -273,10 +274,6 @@ def _supporters(object_id: str, supports: dict[str, str]) -> list[str]:
     return chain
 
 
-def _turn(angle: float) -> float:
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
 def edge_instances(
     scenes: Sequence[Scene],
     supports: Sequence[dict[str, str]],
@@ -320,7 +317,7 @@ def edge_instances(
             x, z = to_local(
                 host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2]
             )
-            poses.append((x, z, _turn(obj.yaw - host.yaw)))
+            poses.append((x, z, wrap_angle(obj.yaw - host.yaw)))
             resting.append(rests)
             parent_sizes.append(host.size)
             child_sizes.append(obj.size)

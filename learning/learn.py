@@ -48,12 +48,12 @@ from .context import (
     LAYOUTS,
     ROUNDS,
     ContextFit,
-    NoRelatedPairs,
     context_path,
     fit_example_layouts,
     measured_example_layout,
 )
-from .derivations import AmbiguousExample, BudgetSpent, ReplayBudget, measured_derivation_graphs
+from .derivations import ReplayBudget, measured_derivation_graphs
+from .errors import AmbiguousExample, BudgetSpent, InducedRulesError, NoRelatedPairs
 from .induce import edge_instances, induce, renamed_scenes
 from .induction import Induction, Member
 from .rules_text import rules_text
@@ -67,10 +67,6 @@ CHECK_SCENES = 50
 #: ambiguous (chairs that could be any table's) would otherwise take 20,000 replays an
 #: example.
 CONTEXT_REPLAYS = 100_000
-
-
-class InducedRulesError(RuntimeError):
-    """The induced text did not pass the static checks: a fault of ``induce``, not of the input."""
 
 
 def check_seed_of(seed: int, index: int) -> int:

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from scenewright.core.geometry import wrap_angles
+
 from .relation_poses import TypePoses, counterparts, footprint_gaps, nearest_indices, relative_poses
 from .relation_thresholds import (
     FIXED_OFFSET,
@@ -50,7 +52,7 @@ def at_pose(pose: np.ndarray, reference: np.ndarray) -> np.ndarray:
     close = (
         np.hypot(pose[..., 0] - reference[..., 0], pose[..., 1] - reference[..., 1]) <= FIXED_OFFSET
     )
-    return close & (np.abs(np.angle(np.exp(1j * turn))) <= FIXED_TURN)
+    return close & (np.abs(wrap_angles(turn)) <= FIXED_TURN)
 
 
 def share_at_one_pose(

@@ -18,12 +18,12 @@ import os
 import re
 from pathlib import Path
 
-from scenewright.core.errors import InputError
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.derivation import all_statements, site_of
 from scenewright.generator.rules_parser import ParsedTree
 
+from .errors import FitOutputError
 from .weights import WeightFit
 
 _NUMBER = re.compile(r"-?[0-9]+(?:\.[0-9]+)?")
@@ -31,10 +31,6 @@ _RANGE = re.compile(r"[0-9]+\s*\.\.\s*[0-9]+")
 _STYLE_NAME = re.compile(r"style\s+[a-z_][a-z0-9_]*")
 #: Digits written for a fitted probability: finer than any standard error of a fit.
 DIGITS = 3
-
-
-class FitOutputError(InputError):
-    """The fitted rule set cannot be written where it was asked for."""
 
 
 def number(value: float, *, positive: bool) -> str:

@@ -152,7 +152,7 @@ def describe_scene(
         description = describe(
             scene, style=style, variant=variant, templates=templates, words=words
         )
-    return replace(scene, description=description.to_dict(), timings=timings)
+    return replace(scene, description=description.record(), timings=timings)
 
 
 def render_image(

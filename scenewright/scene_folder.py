@@ -114,7 +114,7 @@ def write_scene_files(
     from scenewright.render.plan import draw_plan
 
     timings = dict(scene.timings)
-    write_atomic(folder / "description.txt", scene.description["text"] + "\n")
+    write_atomic(folder / "description.txt", scene.description.text + "\n")
     for name, write in (extra or {}).items():
         with writing(folder / name):
             write(folder / name)

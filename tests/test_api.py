@@ -36,8 +36,8 @@ def test_readme_python_example_runs(tmp_path, monkeypatch, capsys):
 def test_generate_fills_description_and_timings():
     scene = generate("village", seed=3, style="short", variant=1)
     assert isinstance(scene, Scene) and scene.placed_objects()
-    assert scene.description["style"] == "short" and scene.description["variant"] == 1
-    assert scene.description["text"] == scenewright.describe(scene, style="short", variant=1).text
+    assert scene.description.style == "short" and scene.description.variant == 1
+    assert scene.description.text == scenewright.describe(scene, style="short", variant=1).text
     assert set(scene.timings) == {"expand", "layout", "describe"}
     assert scene.render is None
     assert summary_line(scene).startswith("ok: " if scene.layout.ok else "LAYOUT FAILED: ")
@@ -102,11 +102,11 @@ def test_a_rule_set_describes_its_scenes_with_its_own_templates():
     scene = generate(STALL, seed=1)
     assert scene.templates == str(STALL.parent.resolve() / "templates")
     # templates/inventory.j2 beside the rules replaces the package's overview sentence
-    assert scene.description["text"].startswith("At this stall the scene offers ")
+    assert scene.description.text.startswith("At this stall the scene offers ")
     again = Scene.from_json(reproducible_json(scene))
     assert (
         again.templates == scene.templates
-        and scenewright.describe(again).text == scene.description["text"]
+        and scenewright.describe(again).text == scene.description.text
     )
     from scenewright.describer.templates import PACKAGE_TEMPLATES
 
@@ -119,7 +119,7 @@ def test_templates_given_to_generate_replace_the_rule_sets_own(tmp_path):
     (tmp_path / "caption.j2").write_text("A tiny {{ setting }} with {{ items | join_list }}.")
     scene = generate(STALL, seed=1, style="short", templates=tmp_path)
     assert scene.templates == str(tmp_path.resolve())
-    assert scene.description["text"].startswith("A tiny stall with ")
+    assert scene.description.text.startswith("A tiny stall with ")
     # the rule set's inventory.j2 is not read: the package's stands in for it
     assert scenewright.describe(scene).text.startswith("The scene consists of ")
     with pytest.raises(InputError, match="templates folder .* does not exist"):

@@ -16,7 +16,7 @@ from scenewright.completion.explanation import summary_of
 from scenewright.completion.furnishing import build_graph
 from scenewright.completion.request import parse_request
 from scenewright.core.errors import InputError
-from scenewright.generator.layout.geometry import make_rect, rect_overlap
+from scenewright.core.geometry import make_rect, rect_overlap
 
 
 def _swing_rect(room, door):
@@ -188,7 +188,7 @@ def test_an_l_shaped_study_without_a_window_keeps_its_laptop_on_the_desk(model, 
 def test_a_dining_table_starts_free_with_its_chairs_spread_round_it(model, catalog):
     from scenewright.completion.furnishing import build_graph
     from scenewright.completion.starting_poses import starting_poses
-    from scenewright.generator.layout.geometry import rect_distance
+    from scenewright.core.geometry import rect_distance
 
     request = parse_request("4.5x4", ["W:1:0.9"], ["N:2.2:1.4"], ["dining_table"], catalog)
     contents = choose_contents(model, request)

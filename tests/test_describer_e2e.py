@@ -27,6 +27,7 @@ from pathlib import Path
 import inflect
 import pytest
 
+from scenewright.core.geometry import make_rect, polyline_rects_distance
 from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_NODE, Room, compass_word
 from scenewright.core.scene import Scene, assemble_scene
@@ -38,7 +39,6 @@ from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.describer.world import world_of
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
-from scenewright.generator.layout.geometry import make_rect, polyline_rects_distance
 from scenewright.generator.layout.measure import measure_layout
 from scenewright.generator.layout.pinning import scene_layout
 from scenewright.generator.layout.relation_terms import WALL_TOLERANCE

@@ -1,4 +1,5 @@
-"""Footprint geometry: SAT penetration, exact distances, buffered paths."""
+"""Planar geometry: angle wrapping, segments, edge normals, SAT penetration, exact
+distances, buffered paths."""
 
 import math
 
@@ -7,12 +8,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scenewright.core.scene import SceneObject, object_corners
-from scenewright.generator.layout.geometry import (
+from scenewright.core.geometry import (
     capsule_rect_penetration,
     corners,
+    left_normal,
     make_rect,
     nearest_on_polyline,
+    nearest_on_segment,
+    point_segment_distance,
     polyline_length,
     polyline_rect_penetration,
     polyline_rects_distance,
@@ -22,7 +25,10 @@ from scenewright.generator.layout.geometry import (
     segment_distance,
     segment_rect_distance,
     turn_angle,
+    wrap_angle,
+    wrap_angles,
 )
+from scenewright.core.scene import SceneObject, object_corners
 
 coordinate = st.floats(-10, 10, allow_nan=False)
 extent = st.floats(0.1, 4, allow_nan=False)
@@ -175,3 +181,30 @@ def test_polyline_to_several_rects_is_the_exhaustive_minimum(points, rect_args):
         for i in range(len(points) - 1)
     )
     assert polyline_rects_distance([list(p) for p in points], shapes) == exhaustive
+
+
+@given(st.floats(-50, 50, allow_nan=False))
+def test_a_wrapped_angle_points_the_same_way_within_one_turn(value):
+    wrapped = wrap_angle(value)
+    assert -math.pi <= wrapped <= math.pi
+    assert math.cos(wrapped) == pytest.approx(math.cos(value), abs=1e-9)
+    assert math.sin(wrapped) == pytest.approx(math.sin(value), abs=1e-9)
+    assert wrap_angles(np.array([value]))[0] == pytest.approx(wrapped, abs=1e-9)
+
+
+def test_wrapping_keeps_both_ends_as_atan2_gives_them():
+    assert wrap_angle(math.pi) == math.pi
+    assert wrap_angle(-math.pi) == -math.pi
+
+
+@given(coordinate, coordinate, coordinate, coordinate, coordinate, coordinate)
+def test_point_segment_distance_is_the_distance_to_its_nearest_point(px, pz, ax, az, bx, bz):
+    expected = nearest_on_segment(px, pz, ax, az, bx, bz)[0]
+    assert point_segment_distance(px, pz, ax, az, bx, bz) == pytest.approx(expected, abs=1e-9)
+
+
+def test_left_normal_turns_a_quarter_counter_clockwise_without_negative_zeros():
+    assert left_normal(0.0, 0.0, 2.0, 0.0) == (0.0, 1.0)
+    assert math.copysign(1.0, left_normal(0.0, 0.0, 2.0, 0.0)[0]) == 1.0
+    assert left_normal(0.0, 0.0, 0.0, 3.0) == (-1.0, 0.0)
+    assert left_normal(1.0, 1.0, 1.0, 1.0) is None

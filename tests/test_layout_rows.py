@@ -16,6 +16,13 @@ import math
 import numpy as np
 import pytest
 
+from scenewright.core.geometry import (
+    Rect,
+    corners,
+    point_rect_distance,
+    rect_distance,
+    rect_overlap,
+)
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator import expand, load_rules
@@ -23,13 +30,6 @@ from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams
 from scenewright.generator.layout.energy import Energy
 from scenewright.generator.layout.families import alignment, evaluate, facing, next_to, satisfied
-from scenewright.generator.layout.geometry import (
-    Rect,
-    corners,
-    point_rect_distance,
-    rect_distance,
-    rect_overlap,
-)
 from scenewright.generator.layout.initial import _best_of, _push_off_walls
 from scenewright.generator.layout.moves import Mover
 from scenewright.generator.layout.problem import compile_problem

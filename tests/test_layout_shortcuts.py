@@ -16,10 +16,7 @@ import random
 import numpy as np
 import pytest
 
-from scenewright.generator.layout import LayoutParams
-from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
-from scenewright.generator.layout.families import evaluate
-from scenewright.generator.layout.geometry import (
+from scenewright.core.geometry import (
     _local_overlap,
     capsule_rect_penetration,
     corners,
@@ -33,6 +30,9 @@ from scenewright.generator.layout.geometry import (
     segment_rect_distance,
     to_local,
 )
+from scenewright.generator.layout import LayoutParams
+from scenewright.generator.layout.energy import PATH_GRID_MIN, Energy
+from scenewright.generator.layout.families import evaluate
 from scenewright.generator.layout.motion import draw_index, uniform
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.report import OVERLAP_TOLERANCE, _overlaps, assess

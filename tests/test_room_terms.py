@@ -13,6 +13,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from scenewright.core.geometry import Rect, corners, make_rect
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
@@ -20,7 +21,6 @@ from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene, measure_layout
 from scenewright.generator.layout.energy import Energy
-from scenewright.generator.layout.geometry import Rect, corners, make_rect
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.reachability import CORRIDOR_HALF, QUANTUM, AccessGrid
 from scenewright.generator.layout.room_terms import ACCESS_BASE, ROOM_PARTS, SQUARE_SIGMA2, Walls

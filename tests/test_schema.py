@@ -8,7 +8,7 @@ import pytest
 from render_fixtures import market_scene, renderer_or_skip
 
 from scenewright.core.errors import InputError
-from scenewright.core.scene import Relation
+from scenewright.core.scene import Relation, SceneDescription
 from scenewright.core.schema_check import SceneSchemaError, load_schema, validate_scene_dict
 from scenewright.render.offscreen import render_metadata
 
@@ -16,12 +16,9 @@ from scenewright.render.offscreen import render_metadata
 def scene_dict() -> dict:
     scene = market_scene()
     scene.relations = [Relation("sign_1", "table_1", "NextToRight", -0.01, True, None)]
-    scene.description = {
-        "text": "A table.",
-        "facts": [["sign_1", "NextToRight", "table_1"]],
-        "style": "full",
-        "variant": 0,
-    }
+    scene.description = SceneDescription(
+        "A table.", [("sign_1", "NextToRight", "table_1")], "full", 0
+    )
     return json.loads(scene.to_json())
 
 

@@ -20,8 +20,8 @@ import pytest
 import trimesh
 
 from scenewright.cli import main
-from scenewright.core.errors import InputError
-from scenewright.core.shapes import MAX_MESH_BYTES, SHAPES, MeshFileError, load_mesh_file
+from scenewright.core.errors import InputError, MeshFileError
+from scenewright.core.shapes import MAX_MESH_BYTES, SHAPES, load_mesh_file
 from scenewright.generator import check_rules, load_rules, shipped_rule_sets
 from scenewright.render.builders import BUILDERS, ShapeRegistryMismatch, check_registry
 from scenewright.render.mesh_parts import shade

@@ -68,6 +68,8 @@ from scipy import sparse
 from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import LinearOperator, eigsh
 
+from scenewright.core.geometry import wrap_angles
+
 from .structure import GRADED_CODES, StructureGraph
 
 LAMBDA = 0.5
@@ -161,7 +163,7 @@ def _both(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def _angle_gap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """|a - b| wrapped into [0, pi]."""
-    return np.abs(np.angle(np.exp(1j * (a - b))))
+    return np.abs(wrap_angles(a - b))
 
 
 def edge_similarity(first: EdgeTable, second: EdgeTable) -> np.ndarray:

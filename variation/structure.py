@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from scenewright.core.frames import footprint_corners
+from scenewright.core.geometry import wrap_angle
 from scenewright.core.scene import Scene
 from scenewright.examples import scene_supports
 
@@ -83,7 +84,7 @@ GRADED_CODES = ("V", "A", "F", "C")
 
 def wrap(angle: float) -> float:
     """``angle`` in (-pi, pi]."""
-    wrapped = math.atan2(math.sin(angle), math.cos(angle))
+    wrapped = wrap_angle(angle)
     return math.pi if wrapped == -math.pi else wrapped
 
 

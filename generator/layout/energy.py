@@ -46,8 +46,9 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+from scenewright.core.geometry import polyline_rect_penetration
+
 from .families import evaluate
-from .geometry import polyline_rect_penetration
 from .params import LayoutParams
 from .problem import Problem
 from .relation_terms import Measure

@@ -49,11 +49,11 @@ from dataclasses import replace
 
 import numpy as np
 
+from scenewright.core.geometry import corners
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
 from .families import LAYOUT_FAMILIES, evaluate
-from .geometry import corners
 from .initial_roads import lay_paths
 from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach

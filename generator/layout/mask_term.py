@@ -42,8 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from scenewright.core.errors import InputError
-
-from .geometry import Rect
+from scenewright.core.geometry import Rect
 
 #: Sample points per side of a footprint (SAMPLES x SAMPLES in all).
 SAMPLES = 5

@@ -22,9 +22,10 @@ from collections.abc import Iterable
 
 import numpy as np
 
+from scenewright.core.geometry import nearest_on_polyline
+
 from .families import LAYOUT_FAMILIES, evaluate, satisfied
 from .families.next_to import GAP_RANGE
-from .geometry import nearest_on_polyline
 from .motion import carried_by, draw_index, end_reach, reach, rigid, uniform, wrap
 from .params import LayoutParams
 from .pinning import Pins

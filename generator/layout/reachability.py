@@ -20,9 +20,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy import ndimage
 
+from scenewright.core.geometry import Rect
 from scenewright.core.room import Room
-
-from .geometry import Rect
 
 #: ``scipy.ndimage.label``'s structure: cells connect through their sides only.
 FOUR_NEIGHBOURS = ndimage.generate_binary_structure(2, 1)

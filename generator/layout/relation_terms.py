@@ -39,14 +39,14 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from scenewright.core.room import Opening, Room, Wall
-
-from .geometry import (
+from scenewright.core.geometry import (
     nearest_on_polyline,
     polyline_distance,
     polyline_rects_distance,
     rect_distance,
 )
+from scenewright.core.room import Opening, Room, Wall
+
 from .state import State
 from .terms import ROOM_ENDS, Endpoint, RelationTerm
 

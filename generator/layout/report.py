@@ -27,11 +27,11 @@ from __future__ import annotations
 
 import math
 
+from scenewright.core.geometry import polyline_length, polyline_turns
 from scenewright.core.relations import Relation
 
 from .energy import Energy
 from .families import complaint, satisfied
-from .geometry import polyline_length, polyline_turns
 from .relation_terms import EPSILON
 
 OVERLAP_TOLERANCE = 0.01

@@ -38,10 +38,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from scenewright.core.geometry import Rect, corners, rect_penetration
 from scenewright.core.room import Opening, Room
 
 from .factors import equals
-from .geometry import Rect, corners, rect_penetration
 from .params import LayoutParams
 from .problem import Problem
 from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds

@@ -12,8 +12,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+from scenewright.core.geometry import (
+    polyline_length,
+    polyline_rect_penetration,
+    polyline_turns,
+    rect_overlap,
+)
+
 from .factors import greater, less
-from .geometry import polyline_length, polyline_rect_penetration, polyline_turns, rect_overlap
 from .params import LayoutParams
 from .problem import Problem
 from .room_terms import RoomTerms

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from .geometry import Rect
+from scenewright.core.geometry import Rect
 
 if TYPE_CHECKING:  # the problem's compiler reads the families, which read the state
     from .problem import Problem

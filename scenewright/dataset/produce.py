@@ -168,7 +168,7 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
         full = describe(scene, style="full")
         text = full if spec.text_words is None else describe(scene, words=spec.text_words)
-    scene = replace(scene, description=full.to_dict())
+    scene = replace(scene, description=full.record())
     if not spec.images:
         return text_product(spec, index, seed, scene, text.text, tried, cpu)
     pictures, renders = [], []

@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING
 
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local, to_world
+from scenewright.core.geometry import to_local as in_rect_frame
 from scenewright.core.relations import Relation, RelationLabel
 from scenewright.core.room import Room
 
 from ..factors import angle_between, equals
-from ..geometry import to_local as in_rect_frame
 from ..motion import uniform, wrap
 from ..params import LayoutParams
 from ..relation_terms import (

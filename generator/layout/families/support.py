@@ -7,9 +7,9 @@ import math
 from typing import TYPE_CHECKING
 
 from scenewright.core.frames import to_world
+from scenewright.core.geometry import to_local
 
 from ..factors import equals, range_
-from ..geometry import to_local
 from ..motion import HALF_PI, rigid, uniform, wrap
 from ..params import LayoutParams
 from ..relation_terms import EDGE_TOLERANCE, EPSILON, HEIGHT_TOLERANCE, MIDDLE_TOLERANCE, Measure

@@ -1,11 +1,14 @@
-"""Planar geometry of collision footprints: rotated rectangles, segments, polylines.
+"""Planar geometry every stage shares: angles, segments, polygons, rotated rectangles, polylines.
 
-Everything is in the ground plane (x, z). A footprint ``Rect`` is (cx, cz, hw, hd, c, s):
-its centre, half width along the object's local +X (its left), half depth along local
-+Z (its forward), and the cosine and sine of its yaw. Yaw turns forward (+Z) towards
-+X, so the local axes in world coordinates are left u = (c, -s) and forward v = (s, c)
-(the convention of ``scenewright.core.frames``, whose vectorised forms the tests
-compare with these).
+Everything is in the ground plane (x, z). An angle is wrapped to the direction it
+points, atan2's principal value (``wrap_angle``); a caller that needs a half-open range
+folds the end it excludes itself, from that value.
+
+A footprint ``Rect`` is (cx, cz, hw, hd, c, s): its centre, half width along the
+object's local +X (its left), half depth along local +Z (its forward), and the cosine
+and sine of its yaw. Yaw turns forward (+Z) towards +X, so the local axes in world
+coordinates are left u = (c, -s) and forward v = (s, c) (the convention of
+``scenewright.core.frames``, whose vectorised forms the tests compare with these).
 
 The functions are scalar pure Python: the sampler evaluates a handful of small shapes
 per step, where this beats numpy by an order of magnitude. All are exact for convex
@@ -17,9 +20,45 @@ other shape, which is what the corner-to-box distances compute.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
+import numpy as np
+
 from scenewright.core.frames import corners_of
+
+
+def wrap_angle(angle: float) -> float:
+    """``angle`` turned by whole turns into [-pi, pi]: atan2's principal value of the
+    direction it points. Both ends occur (-pi where the sine rounds to a negative
+    value too small to move atan2 off -pi, as at -pi itself)."""
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def wrap_angles(angles: np.ndarray) -> np.ndarray:
+    """``wrap_angle`` of every element, as the argument of the unit complex number at
+    each angle."""
+    return np.angle(np.exp(1j * angles))
+
+
+def point_segment_distance(
+    px: float, pz: float, ax: float, az: float, bx: float, bz: float
+) -> float:
+    """Distance from point p to segment a-b (to a itself when a and b coincide)."""
+    ex, ez = bx - ax, bz - az
+    length2 = ex * ex + ez * ez
+    t = 0.0 if length2 == 0.0 else max(0.0, min(1.0, ((px - ax) * ex + (pz - az) * ez) / length2))
+    return math.hypot(px - ax - t * ex, pz - az - t * ez)
+
+
+def left_normal(ax: float, az: float, bx: float, bz: float) -> tuple[float, float] | None:
+    """The unit normal on the left of the way from a to b (its direction turned a
+    quarter counter-clockwise in (x, z)), without negative zeros; None when a and b
+    coincide."""
+    length = math.hypot(bx - ax, bz - az)
+    if length == 0.0:
+        return None
+    return -((bz - az) / length) + 0.0, (bx - ax) / length + 0.0
 
 
 class Rect(NamedTuple):
@@ -204,7 +243,7 @@ def _local_distance(ax: float, az: float, bx: float, bz: float, hw: float, hd: f
     length2 = ex * ex + ez * ez
     hypot = math.hypot
     for px, pz in ((hw, hd), (-hw, hd), (hw, -hd), (-hw, -hd)):
-        if length2 <= 0.0:  # ``_point_segment_distance``, written out: paths test boxes every step
+        if length2 <= 0.0:  # ``point_segment_distance``, written out: paths test boxes every step
             t = 0.0
         else:
             t = ((px - ax) * ex + (pz - az) * ez) / length2
@@ -292,7 +331,7 @@ def polyline_rect_penetration(points: list, radius: float, rect: Rect) -> float:
     return best
 
 
-def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
+def polyline_rects_distance(points: Sequence[Sequence[float]], rects: list[Rect]) -> float:
     """Minimum distance between a polyline's centre line and the nearest of some filled rectangles.
 
     A rectangle's centre distance to a segment minus its circumradius bounds their exact
@@ -333,7 +372,7 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
     # of them would visit, without sorting all.
     count = len(segments)
     k, i = divmod(first, count)
-    best = min(math.inf, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
+    best = min(math.inf, _segment_rect_distance_at(points, i, rects[k]))
     for bound, position in sorted(
         [
             (bound, position)
@@ -344,8 +383,14 @@ def polyline_rects_distance(points: list, rects: list[Rect]) -> float:
         if bound >= best:
             break
         k, i = divmod(position, count)
-        best = min(best, segment_rect_distance(*points[i], *points[i + 1], rects[k]))
+        best = min(best, _segment_rect_distance_at(points, i, rects[k]))
     return best
+
+
+def _segment_rect_distance_at(points: Sequence[Sequence[float]], i: int, rect: Rect) -> float:
+    """``segment_rect_distance`` of segment i of a polyline (points i and i + 1)."""
+    (ax, az), (bx, bz) = points[i], points[i + 1]
+    return segment_rect_distance(ax, az, bx, bz, rect)
 
 
 def _cross(ox: float, oz: float, ax: float, az: float, bx: float, bz: float) -> float:
