@@ -49,8 +49,8 @@ from scenewright.completion import shipped_plans_dir
 from scenewright.completion.complete import MASKED, complete, region_boxes
 from scenewright.completion.contents import category_owners, choose_contents
 from scenewright.completion.explanation import recorded_mask_values
-from scenewright.completion.model import build_model
-from scenewright.completion.plan import load_plans
+from scenewright.completion.floor_plan import load_plans
+from scenewright.completion.model_builder import build_model
 from scenewright.completion.regions import footprint_share, split_room
 from scenewright.completion.request import parse_request
 from scenewright.generator import indoor_catalog

@@ -35,9 +35,9 @@ from scipy.stats import spearmanr
 from scenewright.completion import shipped_plans_dir
 from scenewright.completion.evaluation import soft_iou
 from scenewright.completion.features import canonical_frame, occupancy_mask, room_centre
+from scenewright.completion.floor_plan import load_plans
 from scenewright.completion.layout_mask import amalgamated_mask
-from scenewright.completion.model import build_model, floor_pieces
-from scenewright.completion.plan import load_plans
+from scenewright.completion.model_builder import build_model, floor_pieces
 
 PARTS = ("angle", "occupancy", "aspect", "relative size")
 

@@ -29,7 +29,7 @@ against the source of the other scene's edge, on random pairs of scenes): the pa
 (tightness > 0), and not shown when fewer than 20 scenes link it. Recall is printed
 against all true pairs and against the shown ones; precision always against all of
 them: the oracle only says which misses no test of poses could avoid at this many
-scenes. Then each test of ``learning.relations`` (the
+scenes. Then each test of ``learning.relation_finding`` (the
 permutation test, the angle test, co-occurrence) is run on the cached scene.json files
 as ``scenewright relations`` reads them, and its precision and recall against the
 truth are printed with the pairs it missed (with their p-value and strength, or
@@ -214,8 +214,8 @@ def evaluate(
 ) -> dict[str, tuple[float, float]]:
     """Print how each test fares on the scenes ``paths``; return per test its precision
     and recall."""
+    from scenewright.learning.relation_finding import find_relations
     from scenewright.learning.relation_tests import TESTS
-    from scenewright.learning.relations import find_relations
 
     started = time.process_time()
     examples = load_examples(paths)
@@ -305,7 +305,7 @@ def jitter_sweep(count: int, seed: int) -> None:
     import numpy as np
 
     from scenewright.core.scene import SceneObject
-    from scenewright.learning.relations import find_relations
+    from scenewright.learning.relation_finding import find_relations
 
     def scene(placed):
         objects = [

@@ -24,7 +24,7 @@ import re
 import sys
 from pathlib import Path
 
-from scenewright.completion.plan import rounded
+from scenewright.completion.floor_plan import rounded
 from scenewright.core.frames import to_world
 from scenewright.core.geometry import wrap_angle
 from scenewright.core.room import Room
@@ -216,7 +216,7 @@ class Design:
 
     def plan(self):
         """The checked ``Plan`` this design draws (``PlanError`` names what is wrong)."""
-        from scenewright.completion.plan import plan_from_dict
+        from scenewright.completion.floor_plan import plan_from_dict
 
         return plan_from_dict(self.to_dict(), f"design {self.id}")
 
@@ -246,7 +246,7 @@ def plan_json(data: dict) -> str:
 def write_plan_set(folder: Path) -> list[str]:
     """Write every design's plan to ``folder/<type>/<id>.json``; return the problems of
     the designs that do not pass the checks (those are not written)."""
-    from scenewright.completion.plan import PlanError
+    from scenewright.completion.floor_plan import PlanError
     from scenewright.core.atomic import write_atomic
 
     problems = []

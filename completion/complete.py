@@ -287,9 +287,9 @@ def complete(
     import time
 
     from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.floor_plan import load_plans
     from scenewright.completion.layout_mask import floor_mask, region_floor_masks
-    from scenewright.completion.model import build_model
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.model_builder import build_model
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed
     from scenewright.core.timing import timed

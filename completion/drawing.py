@@ -22,7 +22,7 @@ from matplotlib.patches import Polygon, Rectangle  # noqa: E402
 
 from scenewright.completion.activity import FETCH, STAY, purpose  # noqa: E402
 from scenewright.completion.features import canonical_frame, occupancy_mask  # noqa: E402
-from scenewright.completion.model import floor_pieces  # noqa: E402
+from scenewright.completion.model_builder import floor_pieces  # noqa: E402
 from scenewright.completion.plan_checks import is_flat  # noqa: E402
 from scenewright.generator import indoor_catalog  # noqa: E402
 

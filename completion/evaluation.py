@@ -34,7 +34,7 @@ import numpy as np
 
 from scenewright.completion.features import canonical_frame, occupancy_mask, room_parts
 from scenewright.completion.layout_mask import amalgamated_mask
-from scenewright.completion.model import build_model, floor_pieces
+from scenewright.completion.model_builder import build_model, floor_pieces
 from scenewright.completion.plan_model import PlanModel
 from scenewright.completion.selection import choose_types, explore_categories
 from scenewright.core.errors import InputError

@@ -10,7 +10,7 @@ another stage drew, and no two streams coincide:
     camera view k        (3, k)      sampled camera of view k
     layout retry k       (4, k)      the layout seed of a dataset's retry k (``retry_seed``)
     questions of view k  (5, k)      which questions are asked of picture k (``describer.questions``)
-    relations test k     (6, k)      the tests of type pair k (``learning.relations``)
+    relations test k     (6, k)      the tests of type pair k (``learning.relation_finding``)
     learn check k        (7, k)      scene k made from induced rules (``learning.learn``)
     context layout k     (8, k)      layout k of a context fit's iterative scaling (``learning.context``)
     stage ``name``       (STAGE_KEYS[name], k) for later stages

@@ -14,9 +14,7 @@ from pathlib import Path
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene, SceneDescription
 
-from .english import singular_of
-from .grounding import Mention
-from .plan import (
+from .content_plan import (
     Introduction,
     Inventory,
     Item,
@@ -26,9 +24,11 @@ from .plan import (
     introduced_by,
     plan_document,
 )
+from .english import singular_of
+from .grounding import Mention
+from .paraphrase import Choices
 from .realise import Realiser, Sentence
 from .templates import template_environment
-from .variation import Choices
 from .world import World, world_of
 
 STYLES = ("full", "summary", "short")

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from scenewright.core.relations import RELATIONS
 
-from .variation import Choices
+from .paraphrase import Choices
 
 
 def is_described(label: str) -> bool:

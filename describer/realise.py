@@ -16,6 +16,18 @@ from jinja2.sandbox import SandboxedEnvironment
 
 from scenewright.core.scene import Fact
 
+from .content_plan import (
+    Clause,
+    Introduction,
+    Inventory,
+    Item,
+    Message,
+    Network,
+    RoomOutline,
+    Section,
+    Statement,
+    facts_of,
+)
 from .english import (
     counted,
     join_list,
@@ -29,22 +41,10 @@ from .english import (
 )
 from .grounding import Mention
 from .lexicon import Lexicon, place_phrases
-from .plan import (
-    Clause,
-    Introduction,
-    Inventory,
-    Item,
-    Message,
-    Network,
-    RoomOutline,
-    Section,
-    Statement,
-    facts_of,
-)
+from .paraphrase import Choices
 from .refer import SCENE, Discourse
 from .summary import Claim, Composition, Pattern, Quantified
 from .templates import render
-from .variation import Choices
 from .world import World
 
 #: The label whose sides are the picture's when the realiser tells picture sides.

@@ -21,8 +21,8 @@ several (names made unique); a bad file raises ``ExampleError``, an ``InputError
 whose one line names the file and where in it the problem is.
 """
 
+from .example import scene_supports
 from .formats import FORMATS, Example, ExampleError, load_example, load_examples
-from .model import scene_supports
 from .stacking import infer_supports
 
 __all__ = [

@@ -24,9 +24,9 @@ from scenewright.core.files import UnusableFile, read_regular_file
 from scenewright.core.limits import MAX_SCENE_JSON_BYTES
 from scenewright.core.scene import Scene
 
+from .example import Example, ExampleError
 from .glb import read_glb
 from .handwritten import read_handwritten
-from .model import Example, ExampleError
 from .scene_json import read_scene_json
 
 #: The largest example file read (a GLB with its meshes, or JSON).

@@ -35,7 +35,7 @@ from scenewright.core.errors import RoomError
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene
 
-from .model import ExampleError, ObjectRecord, example_scene
+from .example import ExampleError, ObjectRecord, example_scene
 
 #: Room parts by node type (without extras) and by extras kind (scenewright's export).
 ROOM_TYPES = ("wall", "floor", "ground", "ceiling")

@@ -24,7 +24,7 @@ from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.core.scene import Scene
 from scenewright.core.schema_check import packaged_schema_text, packaged_validator
 
-from .model import ExampleError, ObjectRecord, example_scene
+from .example import ExampleError, ObjectRecord, example_scene
 from .stacking import over_footprint, touches_top
 
 SCHEMA_FILE = "example.schema.json"

@@ -10,8 +10,8 @@ from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.scene import Scene
 from scenewright.core.schema_check import SceneSchemaError, validate_scene_dict
 
+from .example import SUPPORT_LABEL, ExampleError
 from .handwritten import parse_json
-from .model import SUPPORT_LABEL, ExampleError
 from .stacking import infer_supports
 
 

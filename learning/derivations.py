@@ -56,7 +56,7 @@ from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import ROOM_KINDS, ROOM_NODE
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
-from scenewright.examples.model import scene_supports
+from scenewright.examples.example import scene_supports
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.expand import Draws, expand_with
 from scenewright.generator.layout import measure_layout

@@ -15,7 +15,7 @@ file and ``Induction.to_dict()`` the report.
    shipped indoor catalog takes that entry's noun, plural, shape and colour
    (``borrowed``). Every type is declared in the output, so it is one self-contained
    file (a rule set reads no file outside its folder).
-2. **Relations.** The type pairs ``learning.relations`` finds related (by the chosen
+2. **Relations.** The type pairs ``learning.relation_finding`` finds related (by the chosen
    test, indirect relations pruned), and the pairs of which one type rests on the other
    in at least half the scenes holding both (``relation_pruning.resting_pairs``: support
    measured from the boxes), which are written even when the test has too few scenes.
@@ -70,7 +70,7 @@ from scenewright.core.geometry import wrap_angle
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.examples import Example, scene_supports
-from scenewright.examples.model import default_looks
+from scenewright.examples.example import default_looks
 
 from .density_peaks import density_peaks
 from .induction import (
@@ -91,9 +91,9 @@ from .pose_labels import (
     pair_holds,
     wall_holds,
 )
+from .relation_finding import find_relations
 from .relation_poses import type_poses
 from .relation_pruning import resting_pairs
-from .relations import find_relations
 from .rule_names import camel, identifier, unique_name
 
 #: A style's median size is written when it differs from its type's by more than this share.

@@ -116,7 +116,7 @@ class RulesWriter:
         shown = ", ".join(ind.examples[:3]) + (", ..." if len(ind.examples) > 3 else "")
         return [
             f"# {ind.name}.rules - induced by `scenewright learn` from {ind.scenes} example scenes ({shown}),",
-            f"# seed {ind.seed}. Related type pairs: the {ind.relations.test} test (learning/relations.py), and",
+            f"# seed {ind.seed}. Related type pairs: the {ind.relations.test} test (learning/relation_finding.py), and",
             "# what rests on what, measured from the boxes. Where each object stands by its parent:",
             "# density-peak clusters of its relative poses, labelled by the relations that hold at each",
             "# cluster's centre (the layout's own measures). 'k of n' says how many examples, or parent",

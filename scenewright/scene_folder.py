@@ -111,7 +111,7 @@ def write_scene_files(
     or None for no preview; ``records``: keys added to scene.json. Returns the scene
     with the time its export took."""
     from scenewright.render.offscreen import save_render
-    from scenewright.render.plan import draw_plan
+    from scenewright.render.plan_image import draw_plan
 
     timings = dict(scene.timings)
     write_atomic(folder / "description.txt", scene.description.text + "\n")

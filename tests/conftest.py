@@ -13,8 +13,8 @@ from hypothesis import settings
 from render_fixtures import renderer_or_skip
 
 from scenewright.completion import shipped_plans_dir
-from scenewright.completion.model import build_model
-from scenewright.completion.plan import load_plans
+from scenewright.completion.floor_plan import load_plans
+from scenewright.completion.model_builder import build_model
 from scenewright.generator import indoor_catalog
 
 settings.register_profile("fixed", derandomize=True)

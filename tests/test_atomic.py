@@ -227,7 +227,7 @@ def test_export_to_a_full_disk_names_the_file(tmp_path, monkeypatch, capsys):
 #: in the middle of publishing too; it says "ready" once its imports are done.
 CHILD = """
 import os, shutil, sys, time
-import scenewright.api, scenewright.generator, scenewright.render.export, scenewright.render.plan
+import scenewright.api, scenewright.generator, scenewright.render.export, scenewright.render.plan_image
 from scenewright.core import atomic
 from scenewright.cli import main
 

@@ -211,14 +211,14 @@ def test_soft_iou_and_the_request():
 @pytest.fixture(scope="module")
 def some_plans():
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
 
     plans = load_plans(shipped_plans_dir())
     return [plan for plan in plans if plan.id.endswith(("_01", "_02", "_09"))]
 
 
 def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
-    from scenewright.completion.model import build_model
+    from scenewright.completion.model_builder import build_model
 
     model = build_model(some_plans)
     bedroom = next(plan for plan in some_plans if plan.id == "bedroom_09")
@@ -285,8 +285,8 @@ def test_every_shipped_plans_mask_frame_is_its_empty_rooms():
     furniture must never be what decides a shipped plan's frame (doors and windows do)."""
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.features import canonical_frame
-    from scenewright.completion.model import floor_pieces
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
+    from scenewright.completion.model_builder import floor_pieces
 
     plans = load_plans(shipped_plans_dir())
     assert len(plans) == 80

@@ -174,8 +174,8 @@ def test_a_seeded_composite_room_lays_each_types_pieces_out_in_its_region(model,
 
 def test_a_room_of_one_type_is_exactly_what_it_was(catalog):
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.model import build_model
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
+    from scenewright.completion.model_builder import build_model
 
     model = build_model([plan for plan in load_plans(shipped_plans_dir()) if plan.type != "gym"])
     request = request_of(catalog, "5x4", "S:0.8:0.9", "N:2.5:1.4", "bed,bookshelf")

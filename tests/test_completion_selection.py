@@ -83,8 +83,8 @@ def test_nearest_plans_use_the_room_only_parts_of_the_feature():
 @pytest.fixture(scope="module")
 def shipped_model():
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.model import build_model, model_json
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
+    from scenewright.completion.model_builder import build_model, model_json
 
     # As a model file gives it: read back from its JSON.
     return PlanModel.from_dict(json.loads(model_json(build_model(load_plans(shipped_plans_dir())))))

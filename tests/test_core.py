@@ -19,7 +19,7 @@ from scenewright.core.scene import assemble_scene
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.core.seeds import MAX_SEED, check_seed, stage_stream, stream
 from scenewright.describer import describe
-from scenewright.describer.variation import Choices
+from scenewright.describer.paraphrase import Choices
 from scenewright.generator import expand, load_rules
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import layout_scene
@@ -108,7 +108,7 @@ def test_the_pipeline_draws_from_those_streams(monkeypatch):
         return original(seed, stage, index)
 
     monkeypatch.setattr(seeds, "stream", spy)
-    monkeypatch.setattr("scenewright.describer.variation.stream", spy)
+    monkeypatch.setattr("scenewright.describer.paraphrase.stream", spy)
     scene = build_scene("desk", 4)
     describe(scene, variant=2)
     assert asked[0] == ("expansion", 0)

@@ -12,8 +12,8 @@ from scenewright.core.errors import InputError
 from scenewright.core.relations import COMPASS, RELATIONS, SIDES
 from scenewright.core.scene import Relation, Scene, SceneObject, ScenePath
 from scenewright.describer import Description, TemplateError, describe
+from scenewright.describer.content_plan import introduced_by, plan_document, stated_relations
 from scenewright.describer.lexicon import relation_wordings
-from scenewright.describer.plan import introduced_by, plan_document, stated_relations
 from scenewright.describer.world import world_of
 
 DESCRIBED_LABELS = sorted(label.name for label in RELATIONS if label.described)

@@ -33,8 +33,8 @@ from scenewright.core.room import ROOM_NODE, Room, compass_word
 from scenewright.core.scene import Scene, assemble_scene
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.describer import Description, describe
+from scenewright.describer.content_plan import introduced_by, plan_document
 from scenewright.describer.english import plural_of
-from scenewright.describer.plan import introduced_by, plan_document
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.describer.world import world_of
 from scenewright.generator import expand, load_rules

@@ -13,8 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.examples import ExampleError, infer_supports, load_example, load_examples
+from scenewright.examples.example import ObjectRecord, example_scene
 from scenewright.examples.glb import parse_node_name
-from scenewright.examples.model import ObjectRecord, example_scene
 from scenewright.render.export import export_glb
 
 DESK_ROOM = {
@@ -73,7 +73,7 @@ def test_handwritten_example_reads_into_a_scene(tmp_path):
 
 
 def test_a_type_of_the_shipped_catalog_looks_as_the_catalog_has_it(tmp_path):
-    from scenewright.examples.model import type_colour
+    from scenewright.examples.example import type_colour
     from scenewright.generator import indoor_catalog
 
     catalog = indoor_catalog()

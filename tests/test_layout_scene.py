@@ -12,7 +12,7 @@ from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.generator.catalog import CatalogEntry
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.synthetic import village_graph
-from scenewright.render.plan import draw_plan
+from scenewright.render.plan_image import draw_plan
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9))
 SIGN = CatalogEntry("sign", "object", "sign", size=(0.6, 1.6, 0.2))

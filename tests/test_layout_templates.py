@@ -1,4 +1,4 @@
-"""Template initialisation (``generator.layout.templates``): the constructive placement of
+"""Template initialisation (``generator.layout.pose_templates``): the constructive placement of
 a learned pair's source drawn from the pair's learned template."""
 
 from __future__ import annotations
@@ -20,9 +20,9 @@ from scenewright.generator.layout.learned_term import (
     related_pairs,
     relative_pose,
 )
+from scenewright.generator.layout.pose_templates import template_draw
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.sampler import start_chain
-from scenewright.generator.layout.templates import template_draw
 
 ROOT = Path(__file__).resolve().parents[1]
 DINING = ROOT / "examples" / "sets" / "dining" / "dining.rules"

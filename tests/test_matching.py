@@ -12,7 +12,7 @@ from hypothesis.extra.numpy import arrays
 from scipy.optimize import linear_sum_assignment
 
 from scenewright.api import build_scene
-from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.examples.example import ObjectRecord, example_scene
 from scenewright.variation import structure_graph
 from scenewright.variation.matching import (
     EdgeTable,

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.completion.authoring import Design
-from scenewright.completion.plan import PlanError, load_plans, plan_from_dict, read_plan
+from scenewright.completion.floor_plan import PlanError, load_plans, plan_from_dict, read_plan
 from scenewright.completion.plan_checks import overlap_depth
 from scenewright.core.frames import forward
 from scenewright.core.room import Room

@@ -13,8 +13,8 @@ from hypothesis import strategies as st
 from scenewright.cli import main
 from scenewright.completion.activity import activity_prior, interactions
 from scenewright.completion.features import canonical_frame, door_window_angle, occupancy_mask
-from scenewright.completion.model import build_model, model_json, relation_graph
-from scenewright.completion.plan import Furniture, Plan, plan_from_dict
+from scenewright.completion.floor_plan import Furniture, Plan, plan_from_dict
+from scenewright.completion.model_builder import build_model, model_json, relation_graph
 from scenewright.core.room import Room
 
 SOUTH, EAST, NORTH, WEST = 0.0, math.pi / 2, math.pi, -math.pi / 2
@@ -389,6 +389,6 @@ def test_an_l_shaped_room_without_a_window_builds_a_model():
 @pytest.fixture(scope="module")
 def shipped_plans():
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
 
     return load_plans(shipped_plans_dir())

@@ -8,10 +8,10 @@ import numpy as np
 from test_relations import offset, shared_relation_scenes, uniform_pose
 
 from scenewright.core.scene import Scene, SceneObject, ScenePath
+from scenewright.learning.relation_finding import by_type, find_relations
 from scenewright.learning.relation_poses import Role, object_roles, type_poses
 from scenewright.learning.relation_pruning import indirect_through, prune_indirect, typical_gap
 from scenewright.learning.relation_results import PairRelation
-from scenewright.learning.relations import by_type, find_relations
 
 SIZES = {"house": (4.0, 4.0, 4.0), "oak": (2.0, 6.0, 2.0), "lamp": (0.3, 2.5, 0.3)}
 

@@ -18,12 +18,12 @@ from scenewright.core.scene import Scene, SceneObject
 from scenewright.dataset.produce import produce_scene
 from scenewright.dataset.run import check_same_settings
 from scenewright.dataset.spec import dataset_spec
+from scenewright.learning.relation_finding import find_relations
 from scenewright.learning.relation_pruning import coordinate_spreads, prune_indirect
 from scenewright.learning.relation_results import PairRelation
 from scenewright.learning.relation_statistics import angle_statistic, nearest_neighbour_angles
 from scenewright.learning.relation_tests import TESTS
 from scenewright.learning.relation_thresholds import ANGLE_THRESHOLD, MIN_LOCAL_TIGHTNESS
-from scenewright.learning.relations import find_relations
 
 SIZES = {
     "table": (1.2, 0.75, 0.7),

@@ -14,7 +14,7 @@ from PIL import Image
 from render_fixtures import road, scene_of, thing
 
 from scenewright.core.relations import Relation
-from scenewright.render.plan import (
+from scenewright.render.plan_image import (
     BASE_INCHES,
     DPI,
     RELATION,

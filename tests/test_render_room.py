@@ -22,7 +22,7 @@ from scenewright.core.room import WALL_THICKNESS, Room
 from scenewright.render.camera import AZIMUTH, Camera, frame_scene, room_azimuth, walls_in_view
 from scenewright.render.export import glb_bytes
 from scenewright.render.meshes import floor_mesh, opening_mesh, opening_transform, wall_mesh
-from scenewright.render.plan import draw_plan
+from scenewright.render.plan_image import draw_plan
 
 ROOT = Path(__file__).resolve().parent.parent
 T = WALL_THICKNESS

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from scenewright.examples import Example
-from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.examples.example import ObjectRecord, example_scene
 from scenewright.variation import augment
 from scenewright.variation.perturb import perturbed_copy
 

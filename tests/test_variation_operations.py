@@ -12,7 +12,7 @@ import pytest
 from scenewright.api import build_scene
 from scenewright.core.frames import to_local
 from scenewright.examples import Example
-from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.examples.example import ObjectRecord, example_scene
 from scenewright.variation import augment, structure_graph
 from scenewright.variation.operations import grow_node, replace_object, transfer_items
 from scenewright.variation.synthesis import apply_change, start_variant, vary

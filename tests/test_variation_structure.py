@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scenewright.examples.model import ObjectRecord, example_scene
+from scenewright.examples.example import ObjectRecord, example_scene
 from scenewright.variation import structure_graph
 from scenewright.variation.structure import wrap
 

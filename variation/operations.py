@@ -38,7 +38,7 @@ from scenewright.core.frames import to_local, to_world
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.examples import scene_supports
-from scenewright.examples.model import SUPPORT_LABEL
+from scenewright.examples.example import SUPPORT_LABEL
 
 from .augmented import AugmentedGraph, Member
 from .matching import box_similarity

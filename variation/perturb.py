@@ -18,7 +18,7 @@ import numpy as np
 from scenewright.core.relations import Relation
 from scenewright.core.scene import Scene, SceneObject, object_corners
 from scenewright.examples import scene_supports
-from scenewright.examples.model import SUPPORT_LABEL
+from scenewright.examples.example import SUPPORT_LABEL
 
 
 def perturbed_copy(

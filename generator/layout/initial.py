@@ -59,8 +59,8 @@ from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach
 from .pinning import Pins
 from .placement import Placer
+from .pose_templates import not_templated, template_draw
 from .relation_terms import centre
-from .templates import not_templated, template_draw
 from .terms import ROOM_ENDS, Endpoint, RelationTerm
 
 #: Tries for a random spot on the floor of a room that is not a rectangle.

@@ -226,8 +226,8 @@ def add_commands(commands) -> None:
 
 def run_plans_build(args: argparse.Namespace) -> int:
     """Read a plan set, build its model and write it (atomically)."""
-    from scenewright.completion.model import build_model, model_json
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
+    from scenewright.completion.model_builder import build_model, model_json
     from scenewright.core.atomic import write_atomic
 
     plans = load_plans(args.plans)
@@ -245,8 +245,13 @@ def run_plans_build(args: argparse.Namespace) -> int:
 def run_plans_graph(args: argparse.Namespace) -> int:
     """Print (or write) one room type's object relation graph."""
     from scenewright.completion import shipped_plans_dir
-    from scenewright.completion.model import build_model, graph_dot, read_model, relation_graph
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
+    from scenewright.completion.model_builder import (
+        build_model,
+        graph_dot,
+        read_model,
+        relation_graph,
+    )
 
     model = (
         read_model(args.model)
@@ -262,7 +267,7 @@ def run_plans_draw(args: argparse.Namespace) -> int:
     """Draw plans of a set (all, or the ids named) on one sheet."""
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.drawing import MAX_PANELS, draw_plans
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
     from scenewright.core.atomic import atomic_stream, writing
 
     plans = load_plans(args.plans or shipped_plans_dir())
@@ -288,7 +293,7 @@ def run_plans_evaluate(args: argparse.Namespace) -> int:
     """Leave-one-out over a plan set: the model's predictions against simple baselines."""
     from scenewright.completion import shipped_plans_dir
     from scenewright.completion.evaluation import leave_one_out, report
-    from scenewright.completion.plan import load_plans
+    from scenewright.completion.floor_plan import load_plans
 
     table = leave_one_out(load_plans(args.plans or shipped_plans_dir()), args.requested)
     sys.stdout.write(report(table, args.requested))

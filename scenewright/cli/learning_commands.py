@@ -304,7 +304,7 @@ def read_fit_example(path: str | os.PathLike):
 
 def run_relations(args: argparse.Namespace) -> int:
     from scenewright.examples import load_examples
-    from scenewright.learning.relations import find_relations
+    from scenewright.learning.relation_finding import find_relations
 
     examples = load_examples(args.examples)
     result = find_relations(

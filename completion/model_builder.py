@@ -40,7 +40,7 @@ import numpy as np
 
 from scenewright.completion.activity import activity_prior, purpose
 from scenewright.completion.features import MASK_SIZE, canonical_frame, occupancy_mask, room_feature
-from scenewright.completion.plan import rounded
+from scenewright.completion.floor_plan import rounded
 from scenewright.completion.plan_checks import FLAT_HEIGHT, is_flat
 from scenewright.completion.plan_model import MODEL_FORMAT, MODEL_VERSION, PlanModel
 from scenewright.core.errors import InputError
