@@ -23,9 +23,10 @@ demo: setup
 lint: setup
 	bash scripts/lint.sh
 
-# Tests run on every core (pytest-xdist); each test draws from its own fixed seeds, so
-# the outcome is the same as a serial run's.
+# The gate first, then the tests on every core (pytest-xdist); each test draws from its
+# own fixed seeds, so the outcome is the same as a serial run's.
 test: setup
+	bash scripts/lint.sh
 	$(PY) -m pytest -n auto --dist worksteal
 
 test-fast: setup

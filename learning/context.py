@@ -40,7 +40,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
 from scipy.ndimage import gaussian_filter, gaussian_filter1d
@@ -395,11 +394,3 @@ def fit_example_layouts(
         layouts,
         skipped,
     )
-
-
-def context_path(rules_output: str | Path) -> Path:
-    """Where the context of a fitted rules file goes: ``NAME.context.json`` beside
-    ``NAME.rules`` (or beside ``NAME`` when the name has no ``.rules``)."""
-    path = Path(rules_output)
-    stem = path.name[: -len(".rules")] if path.name.endswith(".rules") else path.name
-    return path.with_name(stem + ".context.json")

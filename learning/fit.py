@@ -32,6 +32,7 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.examples import ExampleError
 from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
+from scenewright.generator.layout.learned_term import context_path
 from scenewright.generator.rules import Rules, parse_rules_tree
 
 from .context import (
@@ -39,7 +40,6 @@ from .context import (
     ROUNDS,
     ContextFit,
     ExampleLayout,
-    context_path,
     example_layout,
     fit_example_layouts,
     measured_example_layout,

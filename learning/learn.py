@@ -42,13 +42,13 @@ from scenewright.core.scene import Scene
 from scenewright.core.seeds import check_seed, stream
 from scenewright.examples import Example, scene_supports
 from scenewright.generator import check_rules, load_rules
+from scenewright.generator.layout.learned_term import context_path
 from scenewright.generator.rules import Rules
 
 from .context import (
     LAYOUTS,
     ROUNDS,
     ContextFit,
-    context_path,
     fit_example_layouts,
     measured_example_layout,
 )

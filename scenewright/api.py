@@ -356,8 +356,7 @@ def rules_context(
     (``NAME.context.json`` beside ``NAME.rules``, as ``fit --what context`` writes it),
     with the file it came from; None when there is none. ``InputError`` for a file that
     is not a context."""
-    from scenewright.generator.layout.learned_term import read_context
-    from scenewright.learning.context import context_path
+    from scenewright.generator.layout.learned_term import context_path, read_context
 
     if path is None:
         beside = context_path(rules.path)

@@ -55,6 +55,7 @@ import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -237,6 +238,14 @@ def _numbers(value: object, count: int, where: str, field: str) -> list[float]:
             )
         numbers.append(float(v))
     return numbers
+
+
+def context_path(rules_output: str | Path) -> Path:
+    """Where the context of a fitted rules file goes: ``NAME.context.json`` beside
+    ``NAME.rules`` (or beside ``NAME`` when the name has no ``.rules``)."""
+    path = Path(rules_output)
+    stem = path.name[: -len(".rules")] if path.name.endswith(".rules") else path.name
+    return path.with_name(stem + ".context.json")
 
 
 def read_context(path: str) -> LearnedContext:

@@ -18,13 +18,14 @@ import weakref
 from typing import NamedTuple
 
 import numpy as np
-from scipy import ndimage
 
 from scenewright.core.geometry import Rect
 from scenewright.core.room import Room
 
-#: ``scipy.ndimage.label``'s structure: cells connect through their sides only.
-FOUR_NEIGHBOURS = ndimage.generate_binary_structure(2, 1)
+#: ``scipy.ndimage.label``'s structure: cells connect through their sides only (its
+#: ``generate_binary_structure(2, 1)``, written out so that importing the layout does
+#: not import scipy.ndimage, which outdoor scenes never use).
+FOUR_NEIGHBOURS = np.array([[False, True, False], [True, True, True], [False, True, False]])
 
 #: Half the narrowest way a person walks (metres): corridors are at least 0.6 m wide.
 CORRIDOR_HALF = 0.3
@@ -412,6 +413,8 @@ class AccessGrid:
     def label(self, free: int) -> int:
         """The reachable floor from scratch: the free cells connected (4-neighbours) to a
         door's seed cells (``scipy.ndimage.label``)."""
+        from scipy import ndimage
+
         labels = np.empty(
             self.shape, dtype=np.int32
         )  # (not kept: a grid is shared between layouts)

@@ -318,7 +318,7 @@ def run_learn(args: argparse.Namespace) -> int:
     from scenewright.api import build_scene
     from scenewright.core.atomic import write_atomic
     from scenewright.examples import load_examples
-    from scenewright.learning.context import context_path
+    from scenewright.generator.layout.learned_term import context_path
     from scenewright.learning.learn import CONTEXT_REPLAYS, learn_rule_set
 
     examples = load_examples(args.examples)
