@@ -39,7 +39,8 @@ from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, load_mesh_file
 from . import rules_ast as ast
 from .catalog import STYLE_FIELDS, SourceLocation
 from .rules_errors import WARNING, Diagnostic, SourceTexts, case_mix_up, did_you_mean
-from .rules_parser import ParsedTree, ReadScope
+from .rules_includes import ParsedTree
+from .rules_scope import ReadScope
 
 #: The sides a clearance or access may name, and the words access also takes.
 SIDE_WORDS = ("front", "back", "left", "right")
