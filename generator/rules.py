@@ -28,7 +28,9 @@ from scenewright.core.scene_graph import SceneParams
 
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
-from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, build_room, check_tree
+from .rules_check import check_tree
+from .rules_check_scene import build_room
+from .rules_check_values import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES
 from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
 from .rules_includes import ParsedTree, parse_tree
 
