@@ -9,7 +9,7 @@ on ``Rules.warnings``. ``check_rules`` returns every diagnostic instead of raisi
 
 A rule set reads files (includes, meshes, its templates folder) only inside the folder
 of the rules file named here; ``allow`` names more folders or files it may read, as
-does the ``SCENEWRIGHT_ALLOW_OUTSIDE`` environment variable (``rules_parser.ReadScope``,
+does the ``SCENEWRIGHT_ALLOW_OUTSIDE`` environment variable (``rules_scope.ReadScope``,
 docs/security.md).
 """
 
@@ -28,9 +28,11 @@ from scenewright.core.scene_graph import SceneParams
 
 from . import rules_ast as ast
 from .catalog import Catalog, CatalogEntry, SourceLocation, Style
-from .rules_check import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES, build_room, check_tree
+from .rules_check import check_tree
+from .rules_check_scene import build_room
+from .rules_check_values import DEFAULT_MAX_DEPTH, DEFAULT_MAX_NODES
 from .rules_errors import RULES_SUFFIX, Diagnostic, RulesError, SourceTexts
-from .rules_parser import ParsedTree, parse_tree
+from .rules_includes import ParsedTree, parse_tree
 
 _SHIPPED_PACKAGE = "scenewright.grammar_rules"
 

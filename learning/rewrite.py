@@ -21,7 +21,7 @@ from pathlib import Path
 from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.derivation import all_statements, site_of
-from scenewright.generator.rules_parser import ParsedTree
+from scenewright.generator.rules_includes import ParsedTree
 
 from .errors import FitOutputError
 from .weights import WeightFit

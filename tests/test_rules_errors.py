@@ -21,7 +21,9 @@ from scenewright.generator import (
     check_rules,
     format_diagnostics,
     load_rules,
-    rules_parser,
+    rules_lark,
+    rules_syntax_errors,
+    rules_syntax_places,
 )
 
 RULES = Path(__file__).parent / "rules"
@@ -822,23 +824,23 @@ T -> { ; a
 
 
 def test_every_example_of_the_explainer_stops_at_its_end_in_its_own_place():
-    for name, context in rules_parser._CONTEXTS.items():
+    for name, context in rules_syntax_places._CONTEXTS.items():
         for example in context.examples:
-            stop = rules_parser._example_stop(example)
-            assert stop is not None and rules_parser._error_offset(stop, example) == len(example), (
+            stop = rules_syntax_places._example_stop(example)
+            assert stop is not None and rules_lark.error_offset(stop, example) == len(example), (
                 name,
                 example,
             )
-            assert rules_parser._context(stop) is context, (name, example)
+            assert rules_syntax_places._context(stop) is context, (name, example)
 
 
 def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
-    terminals = {terminal.name for terminal in rules_parser.lalr_parser().terminals}
-    assert {sample.split()[0] for sample in rules_parser._FIELDS} == set(
-        rules_parser._keywords(terminals, "_field")
+    terminals = {terminal.name for terminal in rules_lark.lalr_parser().terminals}
+    assert {sample.split()[0] for sample in rules_syntax_places._FIELDS} == set(
+        rules_syntax_errors._keywords(terminals, "_field")
     )
-    assert {sample.split()[0] for sample in rules_parser._SETTINGS} == set(
-        rules_parser._keywords(terminals, "_setting")
+    assert {sample.split()[0] for sample in rules_syntax_places._SETTINGS} == set(
+        rules_syntax_errors._keywords(terminals, "_setting")
     )
 
 
@@ -848,7 +850,7 @@ def test_the_examples_stop_after_every_field_and_setting_of_the_grammar():
 def test_every_place_where_a_word_may_come_is_in_the_table(text):
     """Wherever a valid file may be cut short before a token, the explainer knows the
     place, unless only punctuation, a value or one keyword may come next (said alone)."""
-    parser = rules_parser.lalr_parser()
+    parser = rules_lark.lalr_parser()
     for token in parser.parse_interactive(text).iter_parse():
         prefix = text[: token.start_pos]
         try:
@@ -859,10 +861,10 @@ def test_every_place_where_a_word_may_come_is_in_the_table(text):
                 name
                 for name in accepts
                 if name in ("NAME", "CAMEL")
-                or (name != "$END" and (rules_parser._literal(name) or "").isidentifier())
+                or (name != "$END" and (rules_lark.terminal_literal(name) or "").isidentifier())
             ]
             if words and len(accepts) > 1:
-                assert rules_parser._context(stop) is not rules_parser._ANYWHERE, (
+                assert rules_syntax_places._context(stop) is not rules_syntax_places._ANYWHERE, (
                     prefix[-40:],
                     sorted(accepts),
                 )

@@ -8,7 +8,8 @@ from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.rules import check_rules, load_rules
 from scenewright.generator.rules_errors import Diagnostic
-from scenewright.generator.rules_parser import parse_text, parse_tree
+from scenewright.generator.rules_includes import parse_tree
+from scenewright.generator.rules_parser import parse_text
 
 RULES = Path(__file__).parent / "rules"
 
@@ -188,14 +189,14 @@ def test_the_parser_can_be_built_from_several_threads_at_once():
     """Dask runs tasks in threads: the first rules load of each must not race."""
     import threading
 
-    from scenewright.generator import rules_parser
+    from scenewright.generator import rules_lark
 
-    rules_parser._build_parser.cache_clear()
+    rules_lark._build_parser.cache_clear()
     failures: list[BaseException] = []
 
     def load() -> None:
         try:
-            rules_parser.lalr_parser()
+            rules_lark.lalr_parser()
         except BaseException as error:  # noqa: BLE001 - any failure is the finding
             failures.append(error)
 

@@ -24,9 +24,9 @@ from scenewright.core.scene import Scene, SceneObject
 from scenewright.describer import TemplateError
 from scenewright.describer.english import plural_of
 from scenewright.generator import check_rules, load_rules
-from scenewright.generator.rules_check import MAX_NOUN_CHARS
+from scenewright.generator.rules_check_catalog import MAX_NOUN_CHARS
 from scenewright.generator.rules_errors import RulesError
-from scenewright.generator.rules_parser import ALLOW_VARIABLE
+from scenewright.generator.rules_scope import ALLOW_VARIABLE
 
 SECRET = "hunter2-secret-line"
 HEADER = 'scene s { start S }\nobject t { noun "t" }\nS -> { t }\n'

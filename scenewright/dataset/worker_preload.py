@@ -15,7 +15,7 @@ die of it, since it only catches ``ImportError`` while it preloads.
 
 from __future__ import annotations
 
-from scenewright.generator.rules_parser import lalr_parser
+from scenewright.generator.rules_lark import lalr_parser
 from scenewright.render import offscreen
 
 lalr_parser()
