@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+import types
 from functools import lru_cache
 
 
@@ -21,18 +22,31 @@ def _import_inflect():
     when the module is imported: about 2 s here, most of a ``generate`` run's start-up
     (jaraco/inflect#212). We call inflect only with the types it declares, so it is
     imported while ``typechecked`` is the identity, which typeguard itself does under
-    ``python -O``.
+    ``python -O``. Where typeguard is not imported yet, inflect meets a stand-in that
+    holds only that identity (the one name inflect imports from it): importing typeguard
+    itself pulls in unittest.mock and asyncio, a noticeable part of the start-up.
     """
     if "inflect" in sys.modules:
         return sys.modules["inflect"]
-    import typeguard
 
-    original = typeguard.typechecked
-    typeguard.typechecked = lambda function=None, **_: function if function else (lambda f: f)
+    def identity(function=None, **_):
+        return function if function else (lambda f: f)
+
+    real = sys.modules.get("typeguard")
+    if real is None:
+        stand_in = types.ModuleType("typeguard")
+        stand_in.typechecked = identity
+        sys.modules["typeguard"] = stand_in
+        try:
+            return importlib.import_module("inflect")
+        finally:
+            del sys.modules["typeguard"]
+    original = real.typechecked
+    real.typechecked = identity
     try:
         return importlib.import_module("inflect")
     finally:
-        typeguard.typechecked = original
+        real.typechecked = original
 
 
 _ENGINE = _import_inflect().engine()

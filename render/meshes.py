@@ -69,7 +69,15 @@ def shaped_mesh(
     shape: str | None, mesh_file: str | None, size: tuple, colour: tuple
 ) -> trimesh.Trimesh:
     """A mesh from a builder name or a user mesh file, fitted to ``size``: everything
-    an object's look depends on, so callers can cache by these arguments."""
+    an object's look depends on, so callers can cache by these arguments. A copy of
+    the one built per process: the preview and the GLB of a scene build its looks once."""
+    return _built_mesh(shape, mesh_file, size, colour).copy()
+
+
+@lru_cache(maxsize=1024)
+def _built_mesh(
+    shape: str | None, mesh_file: str | None, size: tuple, colour: tuple
+) -> trimesh.Trimesh:
     if not all(math.isfinite(side) and 0 <= side <= MAX_SIZE for side in size):
         raise InputError(
             f"object size {list(size)} is not within 0..{MAX_SIZE:g} m on each side "
