@@ -11,6 +11,7 @@ promise that must hold even where the lint tools are not installed.
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -30,6 +31,7 @@ def package_folders() -> dict[str, Path]:
     return {name: ROOT / folder for name, folder in mapping.items()}
 
 
+@functools.cache
 def library_modules() -> dict[str, Path]:
     """Every library module by its import name (``scenewright.generator.expand``)."""
     modules: dict[str, Path] = {}
