@@ -35,7 +35,10 @@ fi
 
 python3 -m venv .venv
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q -e '.[test]'
+# setuptools tells at every editable install, as a warning, that a folder named like the
+# package may shadow it on imports: here the folder scenewright/ is that package, by
+# design (pyproject's package-dir), so the notice is not shown.
+PYTHONWARNINGS="ignore:Editable installation" .venv/bin/python -m pip install -q -e '.[test]'
 # Khronos' glTF validator (a node package) checks exported GLB files in the tests.
 if command -v npm >/dev/null; then
   npm install -s --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null \
