@@ -79,6 +79,11 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
             raise ExampleError(path, "", f"not a scene of {rules.name}.rules ({error})") from None
         return [derivation or []]
     graph = Scene.from_dict(scene).graph()
+    check_styles(
+        rules,
+        path,
+        ((n.id, n.type, n.style) for n in graph.nodes() if n.kind not in ROOM_KINDS),
+    )
     found = derivations_of(rules, graph, path)
     if not found:
         types = sorted({node.type for node in graph.nodes() if node.kind not in ROOM_KINDS})
@@ -91,9 +96,29 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
     return found
 
 
+def check_styles(rules: Rules, path: str, objects: Iterable[tuple[str, str, str | None]]) -> None:
+    """``ExampleError`` naming the file, the object, its type and its style when an
+    example object (id, type, style) has a style its type does not have in ``rules``. An
+    object without a style is of its type in a style not known, which any derivation
+    may have drawn (``derivations.objects_fit``)."""
+    for object_id, type_name, style in objects:
+        if style is None or type_name not in rules.catalog:
+            continue
+        styles = [s.name for s in rules.catalog[type_name].styles]
+        if style not in styles:
+            has = f"its styles there: {', '.join(styles)}" if styles else "it has no styles there"
+            raise ExampleError(
+                path,
+                "",
+                f"object {object_id!r} is a {type_name} in style {style!r}, which {type_name} "
+                f"in {rules.name}.rules does not have ({has}; leave the style out if it is not known)",
+            )
+
+
 def measured_candidates(rules: Rules, path: str, scene: Scene) -> list[SceneGraph]:
     """The scene graphs of the derivations that make an example read from geometry alone
     (``measured_derivation_graphs``); ``ExampleError`` when none does."""
+    check_styles(rules, path, ((o.id, o.type, o.style) for o in scene.placed_objects()))
     found = measured_derivation_graphs(rules, scene, path)
     if not found:
         types = sorted({o.type for o in scene.placed_objects()})
