@@ -70,7 +70,10 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
     an example read from geometry alone, a ``Scene``, ``measured_candidates``).
     ``ExampleError`` if its derivation is not of these rules, or none makes it."""
     if isinstance(scene, Scene):
-        return [graph.derivation for graph in measured_candidates(rules, path, scene)]
+        return unknown_styles_undrawn(
+            [graph.derivation for graph in measured_candidates(rules, path, scene)],
+            {o.type for o in scene.placed_objects() if o.style is None},
+        )
     derivation = scene.get("derivation")
     if derivation or not scene.get("objects"):
         try:
@@ -93,7 +96,24 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
             f"no derivation of {rules.name}.rules makes a scene like this one "
             f"(same objects, groups and relations; its types: {', '.join(types)})",
         )
-    return found
+    return unknown_styles_undrawn(
+        found, {n.type for n in graph.nodes() if n.kind not in ROOM_KINDS and n.style is None}
+    )
+
+
+def unknown_styles_undrawn(candidates: list[list[dict]], types: set[str]) -> list[list[dict]]:
+    """The candidate derivations with the style draws of ``types`` (those of which the
+    example leaves some object's style out) taken out, and those then alike made one:
+    an example that does not say the style tells nothing about its weights, which
+    then keep their number when no example says it (unidentified), rather than
+    being pulled to uniform by the prior through every style's derivation."""
+    if not types:
+        return candidates
+    kept: dict[str, list[dict]] = {}
+    for derivation in candidates:
+        drawn = [r for r in derivation if not (r["kind"] == "style" and r.get("type") in types)]
+        kept.setdefault(json.dumps(drawn, sort_keys=True), drawn)
+    return list(kept.values())
 
 
 def check_styles(rules: Rules, path: str, objects: Iterable[tuple[str, str, str | None]]) -> None:
@@ -144,7 +164,8 @@ def example_candidates_and_layout(
         ) if with_layout else None
     graphs = measured_candidates(rules, path, scene)
     layout = measured_example_layout(path, scene, graphs) if with_layout else None
-    return [graph.derivation for graph in graphs], layout
+    unstyled = {o.type for o in scene.placed_objects() if o.style is None}
+    return unknown_styles_undrawn([graph.derivation for graph in graphs], unstyled), layout
 
 
 def fit_rule_set(

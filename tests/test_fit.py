@@ -415,11 +415,11 @@ def test_fit_takes_an_example_without_a_style_as_of_a_style_not_known(capsys, tm
     parameters = {p["name"]: p for p in json.loads(report.read_text())["parameters"]}
     side = next(p for name, p in parameters.items() if name == "Side")
     assert side["draws"] != [0, 0]  # the sides are still read from the geometry
-    # Each nightstand's style is unknown: every derivation with either style makes the
-    # example, so EM learns nothing about the style and leaves it where it started,
-    # rather than at either end.
+    # No example says a nightstand's style: the style is unidentified and keeps its
+    # written 3:1, rather than being pulled anywhere by the derivations of every style.
     style = parameters["nightstand"]
-    assert style["estimate"] == pytest.approx([0.5, 0.5], abs=1e-6)
+    assert not style["identified"] and style["draws"] == [0, 0]
+    assert "style oak 3 {" in (tmp_path / "f.rules").read_text()
 
 
 def test_fit_names_the_file_type_and_style_the_rules_do_not_have(capsys, tmp_path):
