@@ -6,13 +6,18 @@ Three kinds, each drawn from a seeded stream so a set is a fixed function of
 
 - ``reading``: a reading corner. An armchair against a wall facing into the room, a
   floor lamp to its left in ``LEFT_SHARE`` of the examples (rounded) and to its right in
-  the others, a side table on the lamp's other side, 0 to 2 books on it, a bookshelf
-  against another wall.
-- ``music``: a piano against a wall with its bench in front, an armchair with a floor
-  lamp on either side, a music stand.
-- ``dining``: a table in the middle with four chairs round it, a sideboard against a
-  wall with a table lamp at its left end in ``LEFT_SHARE`` of the examples and its right
-  end in the others, a plant in a corner.
+  the others, a side table on the lamp's other side, 0 to 2 books stacked on it, a
+  bookshelf against another wall, a footstool in front of the armchair and a plant in a
+  free corner in about half.
+- ``music``: a piano against a wall with its bench in front (a vase on it in about
+  half), an armchair against the opposite wall with a floor lamp on either side, a
+  music stand, a footstool and a plant in about half.
+- ``dining``: a table in the middle with four chairs round it (a bowl on it in about
+  half), a sideboard against a wall with a table lamp at its left end in ``LEFT_SHARE``
+  of the examples and its right end in the others, a plant in a corner.
+
+Each main piece comes in two or three styles of its own size (a tall, a low or a
+narrow bookshelf; a club, wing or lounge armchair), drawn per example.
 
 Positions are jittered by a few centimetres and degrees, as a hand would place them.
 ``truth(kind, examples)`` gives the shares a learner should reproduce, measured the
@@ -46,13 +51,13 @@ SIDE_PAIRS = {
 
 
 def _against(
-    room: tuple[float, float], wall: str, along: float, size
+    room: tuple[float, float], wall: str, along: float, size, gap: float = 0.0
 ) -> tuple[float, float, float]:
-    """(x, z, yaw degrees) of an object of ``size`` (w, h, d) flush with ``wall``,
-    ``along`` metres from the wall's middle to the object's left."""
+    """(x, z, yaw degrees) of an object of ``size`` (w, h, d) ``gap`` metres from
+    ``wall`` (flush by default), ``along`` metres from the wall's middle to its left."""
     yaw = math.radians(WALL_YAW[wall])
     reach = {"north": room[1], "south": room[1], "east": room[0], "west": room[0]}[wall] / 2.0
-    x, z = to_world(0.0, 0.0, yaw, along, -(reach - size[2] / 2.0))
+    x, z = to_world(0.0, 0.0, yaw, along, -(reach - size[2] / 2.0 - gap))
     return x, z, WALL_YAW[wall]
 
 
@@ -76,6 +81,51 @@ def _beside(host: dict, size, side: float, gap: float, forward: float = 0.0) -> 
     )
 
 
+#: Styles a type comes in, with their sizes (W x H x D), as real furniture does.
+ARMCHAIRS = {"club": (0.85, 0.95, 0.85), "wing": (0.75, 1.0, 0.8), "lounge": (0.95, 0.9, 0.9)}
+SIDE_TABLES = {"small": (0.45, 0.55, 0.45), "large": (0.5, 0.6, 0.5)}
+SHELVES = {"tall": (0.9, 1.8, 0.35), "low": (0.9, 1.0, 0.35), "narrow": (0.6, 1.8, 0.3)}
+PIANOS = {"upright": (1.5, 1.25, 0.6), "console": (1.4, 1.1, 0.55)}
+DINING_TABLES = {"six": (1.6, 0.75, 0.9), "four": (1.4, 0.75, 0.8)}
+SIDEBOARDS = {"long": (1.6, 0.85, 0.45), "short": (1.2, 0.8, 0.45)}
+
+
+def _styled(
+    sizes: dict[str, tuple[float, float, float]], rng: np.random.Generator
+) -> tuple[str, tuple[float, float, float]]:
+    style = sorted(sizes)[int(rng.integers(len(sizes)))]
+    return style, sizes[style]
+
+
+def _maybe_footstool(objects: list[dict], rng: np.random.Generator) -> None:
+    """A footstool in front of the armchair, in about half the rooms."""
+    if rng.random() >= 0.5:
+        return
+    chair = next(o for o in objects if o["type"] == "armchair")
+    forward = chair["size"][2] / 2 + float(rng.uniform(0.25, 0.4)) + 0.2
+    x, z = to_world(
+        chair["position"][0], chair["position"][1], math.radians(chair["yaw"]), 0.0, forward
+    )
+    objects.append(_obj("footstool", "footstool", (0.5, 0.4, 0.4), x, z, chair["yaw"]))
+
+
+def _maybe_plant(objects: list[dict], room: tuple[float, float], rng: np.random.Generator) -> None:
+    """A plant in the first corner clear of the room's standing objects, in about half
+    the rooms."""
+    if rng.random() >= 0.5:
+        return
+    for sx, sz in ((1, 1), (-1, 1), (1, -1), (-1, -1)):
+        x, z = sx * (room[0] / 2 - 0.25), sz * (room[1] / 2 - 0.25)
+        if all(
+            math.hypot(x - o["position"][0], z - o["position"][-1])
+            > math.hypot(o["size"][0], o["size"][2]) / 2 + 0.35
+            for o in objects
+            if "parent" not in o
+        ):
+            objects.append(_obj("plant", "plant", (0.4, 1.0, 0.4), x, z, 0.0))
+            return
+
+
 def _sides(n: int, rng: np.random.Generator) -> list[float]:
     left = round(LEFT_SHARE * n)
     sides = [1.0] * left + [-1.0] * (n - left)
@@ -89,15 +139,23 @@ def reading(n: int, rng: np.random.Generator) -> list[dict]:
     for index, side in enumerate(_sides(n, rng)):
         room = (round(float(rng.uniform(3.2, 4.2)), 2), round(float(rng.uniform(3.0, 3.8)), 2))
         wall = walls[int(rng.integers(4))]
-        chair_size = (0.85, 0.95, 0.85)
-        x, z, yaw = _against(room, wall, float(rng.uniform(-0.4, 0.4)), chair_size)
-        chair = _obj("armchair", "armchair", chair_size, x, z, yaw + float(rng.normal(0, 3)))
+        chair_style, chair_size = _styled(ARMCHAIRS, rng)
+        x, z, yaw = _against(room, wall, float(rng.uniform(-0.4, 0.4)), chair_size, 0.04)
+        chair = _obj(
+            "armchair",
+            "armchair",
+            chair_size,
+            x,
+            z,
+            yaw + float(rng.uniform(-2, 2)),
+            style=chair_style,
+        )
         lamp_size = (0.35, 1.6, 0.35)
         lx, lz = _beside(chair, lamp_size, side, float(rng.uniform(0.08, 0.2)), -0.15)
         lamp = _obj("lamp", "floor_lamp", lamp_size, lx, lz, chair["yaw"])
-        table_size = (0.45, 0.55, 0.45)
+        table_style, table_size = _styled(SIDE_TABLES, rng)
         tx, tz = _beside(chair, table_size, -side, float(rng.uniform(0.05, 0.15)))
-        table = _obj("table", "side_table", table_size, tx, tz, chair["yaw"])
+        table = _obj("table", "side_table", table_size, tx, tz, chair["yaw"], style=table_style)
         objects = [chair, lamp, table]
         for b in range(int(rng.integers(0, 3))):
             objects.append(
@@ -110,9 +168,11 @@ def reading(n: int, rng: np.random.Generator) -> list[dict]:
                 }
             )
         other = walls[(walls.index(wall) + int(rng.integers(1, 4))) % 4]
-        shelf_size = (0.9, 1.8, 0.35)
+        shelf_style, shelf_size = _styled(SHELVES, rng)
         sx, sz, syaw = _against(room, other, float(rng.uniform(-0.3, 0.3)), shelf_size)
-        objects.append(_obj("shelf", "bookshelf", shelf_size, sx, sz, syaw))
+        objects.append(_obj("shelf", "bookshelf", shelf_size, sx, sz, syaw, style=shelf_style))
+        _maybe_footstool(objects, rng)
+        _maybe_plant(objects, room, rng)
         rooms.append(
             {
                 "name": f"reading_{index + 1:02d}",
@@ -129,9 +189,9 @@ def music(n: int, rng: np.random.Generator) -> list[dict]:
     for index, side in enumerate(_sides(n, rng)):
         room = (round(float(rng.uniform(3.8, 4.8)), 2), round(float(rng.uniform(3.4, 4.2)), 2))
         wall = walls[int(rng.integers(4))]
-        piano_size = (1.5, 1.25, 0.6)
+        piano_style, piano_size = _styled(PIANOS, rng)
         x, z, yaw = _against(room, wall, float(rng.uniform(-0.5, 0.5)), piano_size)
-        piano = _obj("piano", "piano", piano_size, x, z, yaw)
+        piano = _obj("piano", "piano", piano_size, x, z, yaw, style=piano_style)
         bench_size = (0.8, 0.5, 0.35)
         bx, bz = to_world(
             x,
@@ -142,22 +202,44 @@ def music(n: int, rng: np.random.Generator) -> list[dict]:
         )
         bench = _obj("bench", "piano_bench", bench_size, bx, bz, yaw + 180.0)
         other = walls[(walls.index(wall) + 2) % 4]
-        chair_size = (0.85, 0.95, 0.85)
-        cx, cz, cyaw = _against(room, other, float(rng.uniform(-0.6, 0.6)), chair_size)
-        chair = _obj("armchair", "armchair", chair_size, cx, cz, cyaw + float(rng.normal(0, 3)))
+        chair_style, chair_size = _styled(ARMCHAIRS, rng)
+        cx, cz, cyaw = _against(room, other, float(rng.uniform(-0.6, 0.6)), chair_size, 0.04)
+        chair = _obj(
+            "armchair",
+            "armchair",
+            chair_size,
+            cx,
+            cz,
+            cyaw + float(rng.uniform(-2, 2)),
+            style=chair_style,
+        )
         lamp_size = (0.35, 1.6, 0.35)
         lx, lz = _beside(chair, lamp_size, side, float(rng.uniform(0.08, 0.2)), -0.15)
         lamp = _obj("lamp", "floor_lamp", lamp_size, lx, lz, chair["yaw"])
         stand_size = (0.5, 1.2, 0.4)
-        sx, sz = to_world(x, z, math.radians(yaw), piano_size[0] / 2 + 0.5, 0.9)
+        sx, sz = to_world(x, z, math.radians(yaw), -piano_size[0] / 2, 1.25)
         stand = _obj(
             "stand", "music_stand", stand_size, sx, sz, yaw + 180.0 + float(rng.normal(0, 10))
         )
+        objects = [piano, bench, chair, lamp, stand]
+        if rng.random() < 0.5:  # a vase on the piano in some rooms
+            vx, vz = to_world(x, z, math.radians(yaw), float(rng.uniform(-0.5, 0.5)), 0.0)
+            objects.append(
+                {
+                    "id": "vase",
+                    "type": "vase",
+                    "size": [0.15, 0.3, 0.15],
+                    "position": [round(vx, 3) + 0.0, round(vz, 3) + 0.0],
+                    "parent": "piano",
+                }
+            )
+        _maybe_footstool(objects, rng)
+        _maybe_plant(objects, room, rng)
         rooms.append(
             {
                 "name": f"music_{index + 1:02d}",
                 "room": {"width": room[0], "depth": room[1], "height": 2.6},
-                "objects": [piano, bench, chair, lamp, stand],
+                "objects": objects,
             }
         )
     return rooms
@@ -169,13 +251,13 @@ def dining(n: int, rng: np.random.Generator) -> list[dict]:
     corners = ((1, 1), (1, -1), (-1, 1), (-1, -1))
     for index, side in enumerate(_sides(n, rng)):
         room = (round(float(rng.uniform(4.0, 5.0)), 2), round(float(rng.uniform(3.6, 4.4)), 2))
-        table_size = (1.6, 0.75, 0.9)
+        table_style, table_size = _styled(DINING_TABLES, rng)
         tx, tz = float(rng.normal(0, 0.1)), float(rng.normal(0, 0.1))
         tyaw = float(rng.choice([0.0, 90.0]))
-        table = _obj("table", "dining_table", table_size, tx, tz, tyaw)
+        table = _obj("table", "dining_table", table_size, tx, tz, tyaw, style=table_style)
         objects = [table]
         chair_size = (0.45, 0.9, 0.5)
-        for c, (lx, lz) in enumerate(((-0.4, 0.75), (0.4, 0.75), (-0.4, -0.75), (0.4, -0.75))):
+        for c, (lx, lz) in enumerate(((-0.4, 0.8), (0.4, 0.8), (-0.4, -0.8), (0.4, -0.8))):
             cx, cz = to_world(
                 tx,
                 tz,
@@ -186,16 +268,16 @@ def dining(n: int, rng: np.random.Generator) -> list[dict]:
             facing = tyaw + (180.0 if lz > 0 else 0.0) + float(rng.normal(0, 4))
             objects.append(_obj(f"chair{c + 1}", "dining_chair", chair_size, cx, cz, facing))
         wall = walls[int(rng.integers(4))]
-        board_size = (1.6, 0.85, 0.45)
+        board_style, board_size = _styled(SIDEBOARDS, rng)
         bx, bz, byaw = _against(room, wall, float(rng.uniform(-0.3, 0.3)), board_size)
-        board = _obj("board", "sideboard", board_size, bx, bz, byaw)
+        board = _obj("board", "sideboard", board_size, bx, bz, byaw, style=board_style)
         objects.append(board)
         lx, lz = to_world(
             bx,
             bz,
             math.radians(byaw),
             side * (board_size[0] / 2 - 0.2),
-            float(rng.normal(-0.05, 0.02)),
+            float(rng.uniform(-0.06, 0.0)),
         )
         objects.append(
             {
@@ -217,6 +299,16 @@ def dining(n: int, rng: np.random.Generator) -> list[dict]:
                 0.0,
             )
         )
+        if rng.random() < 0.5:  # a bowl on the table in some rooms
+            objects.append(
+                {
+                    "id": "bowl",
+                    "type": "bowl",
+                    "size": [0.3, 0.12, 0.3],
+                    "position": [round(tx, 3) + 0.0, round(tz, 3) + 0.0],
+                    "parent": "table",
+                }
+            )
         rooms.append(
             {
                 "name": f"dining_{index + 1:02d}",
