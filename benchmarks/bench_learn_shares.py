@@ -123,7 +123,8 @@ def main() -> None:
                     parts.append("divergence {:.3f} -> {:.3f}".format(*found["divergence"]))
                 print(f"{kind:8s} n={n:2d} seed={seed}: " + "; ".join(parts), flush=True)
     print(
-        f"worst: share off by {worst_share:.2f} (target 0.15); layouts ok {worst_ok:.0%} (target 95%)"
+        f"worst: side or written wall share off by {worst_share:.2f} (target 0.15); wall share "
+        f"of types with no wall label off by {worst_free:.2f}; layouts ok {worst_ok:.0%} (target 95%)"
     )
 
 
