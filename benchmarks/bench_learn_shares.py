@@ -26,7 +26,14 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from example_sets import KINDS, SIDE_PAIRS, side_shares, write_set  # noqa: E402
+from example_sets import (  # noqa: E402
+    KINDS,
+    OPPOSED,
+    SIDE_PAIRS,
+    same_side_share,
+    side_shares,
+    write_set,
+)
 
 from scenewright.api import build_scene, load_rules  # noqa: E402
 from scenewright.examples import load_examples, scene_supports  # noqa: E402
@@ -72,6 +79,11 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
         scenes, _ = renamed_scenes(examples)
     pairs = SIDE_PAIRS[kind]
     sides = (side_shares(scenes, pairs), side_shares(generated, pairs))
+    if kind in OPPOSED:
+        parent, first, second = OPPOSED[kind]
+        key = f"{first} and {second} on one side of {parent}"
+        sides[0][key] = same_side_share(scenes, parent, first, second)
+        sides[1][key] = same_side_share(generated, parent, first, second)
     walls = (wall_shares(scenes), wall_shares(generated))
     written = {t for t, share in learned.induction.walls.items() if share.label()}
     found = {

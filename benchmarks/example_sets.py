@@ -359,6 +359,30 @@ def side_shares(scenes, pairs) -> dict[str, float | None]:
     return found
 
 
+#: (parent type, child type, other child type) whose sides the examples always oppose.
+OPPOSED = {"reading": ("armchair", "floor_lamp", "side_table")}
+
+
+def same_side_share(scenes, parent: str, first: str, second: str) -> float | None:
+    """The share of scenes holding one of each in which ``first`` and ``second`` stand on
+    the same side of the ``parent`` object (the first of its type)."""
+    same = total = 0
+    for scene in scenes:
+        objects = scene.placed_objects()
+        host = next((o for o in objects if o.type == parent), None)
+        sides = {}
+        for obj in objects:
+            if host is not None and obj.type in (first, second):
+                x, _ = to_local(
+                    host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2]
+                )
+                sides[obj.type] = x > 0
+        if len(sides) == 2:
+            total += 1
+            same += sides[first] == sides[second]
+    return same / total if total else None
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("kind", choices=KINDS)
