@@ -3,6 +3,7 @@
     .venv/bin/python benchmarks/bench_variation.py                 # both, default sizes
     .venv/bin/python benchmarks/bench_variation.py --only regrow --seeds 6
     .venv/bin/python benchmarks/bench_variation.py --only vary --count 40
+    .venv/bin/python benchmarks/bench_variation.py --only sets --count 20 --set-seeds 1 1000
 
 Regrow: in generated scenes, each standing object that has a neighbour is deleted (with
 what it carries); the Augmented Graph of the cut scene and the full one is built, and
@@ -12,7 +13,10 @@ how often it lands within 0.2 m and 15 degrees of where it was.
 Vary: three generated scenes of a rule set (seeds 1, 2, 3) as examples, ``vary`` asked
 for N variants. Reported: variants made, layouts ok, overlap problems, distinct, new
 (type multiset or relation set unlike every example's), operations used, CPU seconds.
-Prints figures only; nothing is asserted.
+Sets (``--only sets``): ``vary`` on example folders, the shipped desks and bedrooms and
+the learning benchmark's reading corners, music rooms and dining rooms
+(``example_sets.py``). Reported: the share of variants laid out ok, the share new, the
+operations of each kind. Prints figures only; nothing is asserted.
 """
 
 from __future__ import annotations
@@ -100,6 +104,43 @@ def variants(rule_sets: list[str], count: int) -> None:
         )
 
 
+def example_sets(count: int, seeds: list[int]) -> None:
+    """``vary`` on example folders: the shipped desks and bedrooms, and the learning
+    benchmark's own reading corners, music rooms and dining rooms (nine each, written
+    with each of ``seeds``, varied with that seed)."""
+    import sys
+    import tempfile
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from example_sets import KINDS, write_set
+
+    from scenewright.examples import load_examples
+
+    root = Path(__file__).resolve().parents[1] / "examples" / "sets"
+    print(f"{count} variants of each example set:")
+    for seed in seeds:
+        with tempfile.TemporaryDirectory() as folder:
+            sets = [("desks", sorted((root / "desks").glob("*.json")))]
+            sets.append(("bedrooms", sorted((root / "bedrooms").glob("*.json"))))
+            sets += [(kind, write_set(kind, 9, seed, Path(folder) / kind)) for kind in KINDS]
+            for name, paths in sets:
+                examples = load_examples(paths)
+                started = time.process_time()
+                results = vary(examples, count, seed)
+                seconds = time.process_time() - started
+                ok = sum(r.scene.layout.ok for r in results)
+                new = sum(is_new(r, examples) for r in results)
+                operations = Counter(op["operation"] for r in results for op in r.operations)
+                print(
+                    f"  seed {seed} {name:9s} made {len(results)}: ok {ok / max(len(results), 1):.0%}, "
+                    f"new {new / max(len(results), 1):.0%}; operations "
+                    f"{', '.join(f'{operations[k]} {k}' for k in ('replace', 'grow', 'transfer'))}; "
+                    f"{seconds:.1f} CPU s",
+                    flush=True,
+                )
+
+
 OPTIONS = (
     ("--seeds", int, 4, "scenes per rule set for regrow (4)"),
     ("--count", int, 40, "variants asked for (40)"),
@@ -118,9 +159,15 @@ def main() -> None:
     )
     for flag, kind, default, words in OPTIONS:
         parser.add_argument(flag, type=kind, default=default, help=words)
-    parser.add_argument("--only", choices=("regrow", "vary"))
+    parser.add_argument("--only", choices=("regrow", "vary", "sets"))
+    parser.add_argument(
+        "--set-seeds", type=int, nargs="+", default=[1, 1000], help="seeds of --only sets (1 1000)"
+    )
     args = parser.parse_args()
     rule_sets = args.rules.split(",")
+    if args.only == "sets":
+        example_sets(args.count, args.set_seeds)
+        return
     if args.only != "vary":
         regrow(rule_sets, args.seeds)
     if args.only != "regrow":

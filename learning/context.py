@@ -30,10 +30,13 @@ lambda += eta (generated - observed) with eta = 1, on 32-bin histograms whose sh
 tenths; on a 1024-cell grid the shares are thousandths and that step would not move.
 
 Each round's *divergence* is the mean over pair kinds of the total variation distance
-between observed and generated shares (position and yaw averaged). The weights kept
-are those of the round with the smallest divergence (after the last update one more
-round is laid out to measure it), so the figure reported is the one measured for the
-weights written.
+between observed and generated shares (position and yaw averaged). A round whose
+divergence is not below the best so far made the fit worse: the next weights are taken
+from the best round's instead, with half the step (a backtracking line search on the
+step length, so a step that overshoots is not built on). The weights kept are those of
+the round with the smallest divergence (after the last update one more round is laid
+out to measure it), so the figure reported is the one measured for the weights
+written, and it is never above the first round's.
 """
 
 from __future__ import annotations
@@ -348,7 +351,9 @@ def fit_example_layouts(
         )
 
     divergence: list[float] = []
-    best: tuple[float, int, dict[Kind, PairContext]] | None = None
+    # (divergence, round, weights, generated shares per kind) of the best round so far
+    best: tuple[float, int, dict[Kind, PairContext], dict] | None = None
+    rate = RATE
     graphs = [example.graph for example in laid]
     for round_index in range(rounds + 1):
         context = LearnedContext(tuple(tables[kind] for kind in kinds))
@@ -361,24 +366,31 @@ def fit_example_layouts(
             for kind, pose in graph_pair_poses(graph, poses):
                 if kind in generated_poses:
                     generated_poses[kind].append(pose)
-        distances, updated = [], {}
-        for kind in kinds:
-            table = tables[kind]
-            generated = shares(*counts(table, generated_poses[kind]), UPDATE_SMOOTH)
-            target = observed[kind]
-            distances.append(share_distance(generated, target))
-            updated[kind] = PairContext(
-                *kind,
-                table.bounds,
-                scaling_step(table.position, target[0], generated[0]),
-                scaling_step(table.yaw, target[1], generated[1]),
-                table.examples,
-            )
-        divergence.append(float(np.mean(distances)))
+        generated = {
+            kind: shares(*counts(tables[kind], generated_poses[kind]), UPDATE_SMOOTH)
+            for kind in kinds
+        }
+        divergence.append(
+            float(np.mean([share_distance(generated[kind], observed[kind]) for kind in kinds]))
+        )
         if best is None or divergence[-1] < best[0]:
-            best = (divergence[-1], round_index, dict(tables))
-        tables = updated
-    _, kept, chosen = best
+            best = (divergence[-1], round_index, dict(tables), generated)
+        else:
+            # The step made the fit worse: go back to the best weights and take half of
+            # the step from there (a backtracking line search on the step length).
+            rate /= 2.0
+        _, _, base, measured = best
+        tables = {
+            kind: PairContext(
+                *kind,
+                base[kind].bounds,
+                scaling_step(base[kind].position, observed[kind][0], measured[kind][0], rate),
+                scaling_step(base[kind].yaw, observed[kind][1], measured[kind][1], rate),
+                base[kind].examples,
+            )
+            for kind in kinds
+        }
+    _, kept, chosen, _ = best
     record = {
         "seed": seed,
         "rounds": rounds,

@@ -33,9 +33,20 @@ does by eye:
 - a point far from every denser point (delta_i >= separation) that is not dense enough
   to be a centre is an *outlier*; so is a point whose nearest denser point is one
   (it hangs off the outlier, not off a cluster);
-- a cluster smaller than ``min_size`` (``MIN_CLUSTER`` points, or ``MIN_CLUSTER_SHARE``
-  of all points when that is more) is dissolved: its points are outliers too. Two
-  outliers next to each other make no template.
+- a cluster is split where it has a *gap*: its points fall into groups no two points
+  of which, one from each, are closer than ``gap`` (single linkage), and each group is
+  a cluster of its own, centred on its densest point. ``gap`` is ``SEPARATION`` times
+  the median over the points of the distance to a point's k-th nearest other point
+  (k = min_size - 1, at least 1), and at least ``min_separation``: a spread-out
+  cluster has no gap that wide, but two modes with few points do, where the cutoff
+  raised for few points (above) has joined them (six lamps on an armchair's left and
+  three on its right, 1.4 m apart);
+- a cluster smaller than ``min_size`` is dissolved: its points are outliers too. By
+  default ``min_size`` is ``MIN_CLUSTER`` points, or ``MIN_CLUSTER_SHARE`` of all points
+  when that is more, but never more than ``MIN_MODE_SHARE`` of all points (rounded up):
+  with few points a mode of one or two (a lamp on the right in 1 of 3 examples) is a
+  cluster, since leaving it out would move the shares by more than that. Two outliers
+  next to each other among many points make no template.
 
 Outliers carry the label -1.
 """
@@ -46,6 +57,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial.distance import pdist, squareform
 
 #: The share of the points a point has as neighbours within d_c (the paper's 1-2 %).
@@ -57,6 +70,8 @@ SEPARATION = 2.0
 #: The fewest points of a cluster, absolutely and as a share of all points.
 MIN_CLUSTER = 3
 MIN_CLUSTER_SHARE = 0.05
+#: ... but a cluster holding at least this share of all points is always kept.
+MIN_MODE_SHARE = 0.15
 #: Two clusters are one when the density between them stays above this share of the
 #: lower peak (``_merge_across_saddles``).
 SADDLE_SHARE = 0.5
@@ -91,6 +106,22 @@ class DensityPeaks:
         return np.flatnonzero(self.labels == cluster)
 
 
+def default_min_size(n: int) -> int:
+    """The fewest points of a cluster among ``n`` (module docstring)."""
+    largest = max(MIN_CLUSTER, math.ceil(MIN_CLUSTER_SHARE * n))
+    return max(1, min(largest, math.ceil(MIN_MODE_SHARE * n - 1e-9)))
+
+
+def gap_distance(distances: np.ndarray, min_size: int, least: float) -> float:
+    """The width of a gap that splits a cluster (module docstring)."""
+    n = len(distances)
+    if n < 2:
+        return max(least, 1e-12)
+    k = min(max(1, min_size - 1), n - 1)
+    kth = np.sort(distances, axis=1)[:, k]  # column 0 is the point itself
+    return max(SEPARATION * float(np.median(kth)), least, 1e-12)
+
+
 def cutoff_distance(distances: np.ndarray, scale: float = 0.0) -> float:
     """d_c for the (n, n) ``distances`` (module docstring); ``scale`` is its floor."""
     n = len(distances)
@@ -111,13 +142,13 @@ def density_peaks(
     """Cluster ``points`` (n, D) by density peaks (module docstring). ``scale``: the
     least cutoff (distances below it are one place); ``min_separation``: the least
     distance of a centre from any denser point; ``min_size``: the fewest points of a
-    cluster (default: ``MIN_CLUSTER`` or ``MIN_CLUSTER_SHARE`` of n)."""
+    cluster (default: ``default_min_size(n)``)."""
     points = np.asarray(points, dtype=float)
     if points.ndim != 2:
         raise ValueError(f"points must be (n, D), got shape {points.shape}")
     n = len(points)
     if min_size is None:
-        min_size = max(MIN_CLUSTER, math.ceil(MIN_CLUSTER_SHARE * n))
+        min_size = default_min_size(n)
     if n == 0:
         empty = np.zeros(0)
         return DensityPeaks(
@@ -141,7 +172,7 @@ def density_peaks(
     centres: list[int] = []
     for point in order:
         if delta[point] >= separation or nearest_denser[point] < 0:
-            if rho[point] >= 1:  # a density peak standing apart: a centre
+            if rho[point] >= min(1, min_size - 1):  # a density peak standing apart: a centre
                 labels[point] = len(centres)
                 centres.append(int(point))
             # else: far from every denser point and alone: an outlier (-1)
@@ -149,6 +180,8 @@ def density_peaks(
             labels[point] = labels[nearest_denser[point]]  # -1 when that one is an outlier
 
     labels, centres = _merge_across_saddles(labels, centres, distances < cutoff, smooth)
+    gap = gap_distance(distances, min_size, max(min_separation, scale))
+    labels, centres = _split_at_gaps(labels, centres, distances, gap, order)
     sizes = np.bincount(labels[labels >= 0], minlength=len(centres))
     kept = [c for c in range(len(centres)) if sizes[c] >= min_size]
     renumber = np.full(len(centres) + 1, -1)
@@ -196,3 +229,28 @@ def _merge_across_saddles(
     for c in range(len(centres)):
         renumber[c] = roots.index(root(c))
     return renumber[labels], [centres[r] for r in roots]
+
+
+def _split_at_gaps(
+    labels: np.ndarray, centres: list[int], distances: np.ndarray, gap: float, order: np.ndarray
+) -> tuple[np.ndarray, list[int]]:
+    """Each cluster split into its single-linkage groups at ``gap`` (module docstring);
+    a group's centre is its densest point (first in ``order``). Clusters are numbered
+    by their centres' density, densest first, as before."""
+    rank = np.empty(len(order), dtype=int)
+    rank[order] = np.arange(len(order))
+    groups: list[np.ndarray] = []
+    for cluster in range(len(centres)):
+        members = np.flatnonzero(labels == cluster)
+        linked = csr_matrix(distances[np.ix_(members, members)] < gap)
+        count, parts = connected_components(linked, directed=False)
+        groups.extend(members[parts == part] for part in range(count))
+    if len(groups) == len(centres):
+        return labels, centres
+    heads = [int(group[np.argmin(rank[group])]) for group in groups]
+    new_labels = np.full(len(labels), -1)
+    new_centres: list[int] = []
+    for number_, index in enumerate(sorted(range(len(groups)), key=lambda g: rank[heads[g]])):
+        new_labels[groups[index]] = number_
+        new_centres.append(heads[index])
+    return new_labels, new_centres

@@ -96,21 +96,52 @@ class Signature:
     relations: Counter | None  # None: not compared (an example measured from geometry)
 
     def within(self, other: Signature) -> bool:
-        """Whether this scene could still grow into ``other``: an expansion only adds
-        objects and relations, so none of its multisets may exceed ``other``'s."""
-        pairs = [(self.objects, other.objects), (self.parents, other.parents)]
+        """Whether this scene could still grow into ``other`` (an example's): an expansion
+        only adds objects and relations, so none of its multisets may exceed ``other``'s.
+        An example object without a style stands for its type in any style
+        (``objects_fit``)."""
+        pairs = [(self.parents, other.parents)]
         if self.relations is not None and other.relations is not None:
             pairs.append((self.relations, other.relations))
-        return all(mine <= theirs for mine, theirs in pairs)  # Counter inclusion
+        return objects_fit(self.objects, other.objects, exact=False) and all(
+            mine <= theirs for mine, theirs in pairs
+        )  # Counter inclusion
 
     def like(self, other: Signature) -> bool:
-        """The same signature (relations compared only when both have them)."""
+        """The same signature as ``other`` (an example's; relations compared only when
+        both have them, a style the example leaves out matching any)."""
         both = self.relations is not None and other.relations is not None
         return (
-            self.objects == other.objects
+            objects_fit(self.objects, other.objects, exact=True)
             and self.parents == other.parents
             and (not both or self.relations == other.relations)
         )
+
+
+def objects_fit(made: Counter, example: Counter, *, exact: bool) -> bool:
+    """Whether the (type, style) multiset ``made`` (an expansion's) fits within
+    ``example``'s (with ``exact``, is it), where an example object of style None (the
+    example gave none) stands for an object of its type in any style: the styles the
+    example names are matched first, the objects left over take its unstyled ones."""
+    if all(style is not None for _, style in example) or not made:
+        return made == example if exact else made <= example
+    free: Counter = Counter()
+    for (type_name, style), count in example.items():
+        if style is None:
+            free[type_name] += count
+    for (type_name, style), count in made.items():
+        named = 0 if style is None else example.get((type_name, style), 0)
+        free[type_name] -= max(0, count - named)
+        if free[type_name] < 0:
+            return False
+    if not exact:
+        return True
+    types: Counter = Counter()
+    for (type_name, _), count in example.items():
+        types[type_name] += count
+    for (type_name, _), count in made.items():
+        types[type_name] -= count
+    return not any(types.values())
 
 
 def resting_signature(graph: SceneGraph) -> Signature:
@@ -363,15 +394,21 @@ def _assignment(graph: SceneGraph, example: Scene) -> tuple[dict[str, str], floa
     times how far each misses."""
     objects = example.placed_objects()
     nodes = [node for node in graph.nodes() if node.kind == "object"]
+    # A type of which the example leaves some style out is one block, whatever the styles.
+    unstyled = {obj.type for obj in objects if obj.style is None}
+
+    def block(type_name: str, style: str | None) -> tuple[str, str | None]:
+        return (type_name, None if type_name in unstyled else style)
+
     blocks: dict[tuple[str, str | None], tuple[list[str], list[str]]] = {}
     for node in nodes:
-        blocks.setdefault((node.type, node.style), ([], []))[0].append(node.id)
+        blocks.setdefault(block(node.type, node.style), ([], []))[0].append(node.id)
     for obj in objects:
-        if (obj.type, obj.style) not in blocks:
+        if block(obj.type, obj.style) not in blocks:
             raise InputError(
                 f"the derivation has no {obj.type} (style {obj.style}) for example object {obj.id!r}"
             )
-        blocks[(obj.type, obj.style)][1].append(obj.id)
+        blocks[block(obj.type, obj.style)][1].append(obj.id)
     for (type_name, _), (block_nodes, block_objects) in blocks.items():
         if len(block_nodes) != len(block_objects):
             raise InputError(

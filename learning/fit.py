@@ -70,7 +70,10 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
     an example read from geometry alone, a ``Scene``, ``measured_candidates``).
     ``ExampleError`` if its derivation is not of these rules, or none makes it."""
     if isinstance(scene, Scene):
-        return [graph.derivation for graph in measured_candidates(rules, path, scene)]
+        return unknown_styles_undrawn(
+            [graph.derivation for graph in measured_candidates(rules, path, scene)],
+            {o.type for o in scene.placed_objects() if o.style is None},
+        )
     derivation = scene.get("derivation")
     if derivation or not scene.get("objects"):
         try:
@@ -79,6 +82,11 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
             raise ExampleError(path, "", f"not a scene of {rules.name}.rules ({error})") from None
         return [derivation or []]
     graph = Scene.from_dict(scene).graph()
+    check_styles(
+        rules,
+        path,
+        ((n.id, n.type, n.style) for n in graph.nodes() if n.kind not in ROOM_KINDS),
+    )
     found = derivations_of(rules, graph, path)
     if not found:
         types = sorted({node.type for node in graph.nodes() if node.kind not in ROOM_KINDS})
@@ -88,12 +96,49 @@ def example_candidates(rules: Rules, path: str, scene: dict | Scene) -> list[lis
             f"no derivation of {rules.name}.rules makes a scene like this one "
             f"(same objects, groups and relations; its types: {', '.join(types)})",
         )
-    return found
+    return unknown_styles_undrawn(
+        found, {n.type for n in graph.nodes() if n.kind not in ROOM_KINDS and n.style is None}
+    )
+
+
+def unknown_styles_undrawn(candidates: list[list[dict]], types: set[str]) -> list[list[dict]]:
+    """The candidate derivations with the style draws of ``types`` (those of which the
+    example leaves some object's style out) taken out, and those then alike made one:
+    an example that does not say the style tells nothing about its weights, which
+    then keep their number when no example says it (unidentified), rather than
+    being pulled to uniform by the prior through every style's derivation."""
+    if not types:
+        return candidates
+    kept: dict[str, list[dict]] = {}
+    for derivation in candidates:
+        drawn = [r for r in derivation if not (r["kind"] == "style" and r.get("type") in types)]
+        kept.setdefault(json.dumps(drawn, sort_keys=True), drawn)
+    return list(kept.values())
+
+
+def check_styles(rules: Rules, path: str, objects: Iterable[tuple[str, str, str | None]]) -> None:
+    """``ExampleError`` naming the file, the object, its type and its style when an
+    example object (id, type, style) has a style its type does not have in ``rules``. An
+    object without a style is of its type in a style not known, which any derivation
+    may have drawn (``derivations.objects_fit``)."""
+    for object_id, type_name, style in objects:
+        if style is None or type_name not in rules.catalog:
+            continue
+        styles = [s.name for s in rules.catalog[type_name].styles]
+        if style not in styles:
+            has = f"its styles there: {', '.join(styles)}" if styles else "it has no styles there"
+            raise ExampleError(
+                path,
+                "",
+                f"object {object_id!r} is a {type_name} in style {style!r}, which {type_name} "
+                f"in {rules.name}.rules does not have ({has}; leave the style out if it is not known)",
+            )
 
 
 def measured_candidates(rules: Rules, path: str, scene: Scene) -> list[SceneGraph]:
     """The scene graphs of the derivations that make an example read from geometry alone
     (``measured_derivation_graphs``); ``ExampleError`` when none does."""
+    check_styles(rules, path, ((o.id, o.type, o.style) for o in scene.placed_objects()))
     found = measured_derivation_graphs(rules, scene, path)
     if not found:
         types = sorted({o.type for o in scene.placed_objects()})
@@ -119,7 +164,8 @@ def example_candidates_and_layout(
         ) if with_layout else None
     graphs = measured_candidates(rules, path, scene)
     layout = measured_example_layout(path, scene, graphs) if with_layout else None
-    return [graph.derivation for graph in graphs], layout
+    unstyled = {o.type for o in scene.placed_objects() if o.style is None}
+    return unknown_styles_undrawn([graph.derivation for graph in graphs], unstyled), layout
 
 
 def fit_rule_set(

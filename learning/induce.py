@@ -85,10 +85,13 @@ from .induction import (
     WallShare,
 )
 from .pose_labels import (
+    CATEGORIES,
     RESTING_CATEGORIES,
+    SQUARE_ASPECT,
     STANDING_CATEGORIES,
     most_specific,
     pair_holds,
+    support_room,
     wall_holds,
 )
 from .relation_finding import find_relations
@@ -333,16 +336,27 @@ def edge_instances(
     )
 
 
-def pose_features(poses: np.ndarray, resting: np.ndarray) -> np.ndarray:
+def pose_features(
+    poses: np.ndarray, resting: np.ndarray, child_sizes: np.ndarray | None = None
+) -> np.ndarray:
     """(n, 5) points to cluster: x, z, TURN_METRES * (cos, sin) of the turn, and
-    RESTING_METRES for a resting pose."""
+    RESTING_METRES for a resting pose. The turn of a child whose footprint is square
+    within ``SQUARE_ASPECT`` (a floor lamp, a plant; ``child_sizes`` (n, 3)) counts
+    nothing: a person turns such a thing any way, so its turn tells no modes apart
+    (a lamp at either end of a sideboard, turned with the room, would otherwise make
+    four modes of two)."""
     turn = poses[:, 2]
+    weight = np.full(len(poses), TURN_METRES)
+    if child_sizes is not None and len(child_sizes):
+        width, depth = child_sizes[:, 0], child_sizes[:, 2]
+        square = np.maximum(width, depth) <= SQUARE_ASPECT * np.minimum(width, depth)
+        weight[square] = 0.0
     return np.column_stack(
         [
             poses[:, 0],
             poses[:, 1],
-            TURN_METRES * np.cos(turn),
-            TURN_METRES * np.sin(turn),
+            weight * np.cos(turn),
+            weight * np.sin(turn),
             RESTING_METRES * resting,
         ]
     )
@@ -369,7 +383,7 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
     cluster's centre); otherwise the layout turns it freely."""
     if len(instances.poses) == 0:
         return [], [], 0
-    features = pose_features(instances.poses, instances.resting)
+    features = pose_features(instances.poses, instances.resting, instances.child_sizes)
     peaks = density_peaks(features, scale=POSE_SCALE, min_separation=POSE_SEPARATION)
     holds: dict[bool, dict[str, np.ndarray]] = {}
     index_in: dict[bool, np.ndarray] = {}
@@ -377,6 +391,7 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         chosen, holds[rests] = instances.holds(rests)
         index_in[rests] = np.full(len(instances.poses), -1)
         index_in[rests][chosen] = np.arange(len(chosen))
+    room = _room_on_top(instances)
     clusters: list[Cluster] = []
     merged: dict[
         tuple[bool, tuple[str, ...]], list[int]
@@ -387,7 +402,9 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         local = index_in[rests]
         categories = RESTING_CATEGORIES if rests else STANDING_CATEGORIES
         chosen = {
-            c: most_specific(c, holds[rests], int(local[centre]), local[members])
+            c: most_specific(
+                c, holds[rests], int(local[centre]), local[members], allowed=room.__getitem__
+            )
             for c in categories
         }
         x, z, turn = instances.poses[centre]
@@ -399,6 +416,10 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
                 written_labels(chosen, rests),
             )
         )
+        if rests and chosen.get("support") is None:
+            chosen["support"] = CATEGORIES["support"][
+                -1
+            ]  # no label with room holds: anywhere on top
         if chosen.get("support") or chosen.get("near") or chosen.get("facing"):
             key = written_labels({c: label for c, label in chosen.items() if c != "turn"}, rests)
             merged.setdefault((rests, key), []).append(number_)
@@ -416,6 +437,26 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
     placements.sort(key=lambda placement: (-placement.weight, placement.labels))
     return placements, clusters, len(peaks.outliers)
+
+
+def _room_on_top(instances: EdgeInstances) -> defaultdict[str, bool]:
+    """Per label: False for a support label under which as many children as one parent
+    object held at most do not fit on it side by side (``pose_labels.support_room``, at
+    the median sizes of the resting poses); True for every other. Several books stacked
+    in the middle of a side table each hold "in the middle"; written so, the layout
+    must put them side by side in the middle, where two do not fit."""
+    resting = np.flatnonzero(instances.resting)
+    most = max((count for count, parents in instances.per_parent.items() if parents), default=0)
+    room: defaultdict[str, bool] = defaultdict(lambda: True)
+    if len(resting) and most > 1:
+        room.update(
+            support_room(
+                np.median(instances.parent_sizes[resting], axis=0),
+                np.median(instances.child_sizes[resting], axis=0),
+                most,
+            )
+        )
+    return room
 
 
 # -- inducing -------------------------------------------------------------------------

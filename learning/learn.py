@@ -11,7 +11,8 @@ the ``learn`` stream k of ``seed``) and compares them with the examples:
   types, and the share of child objects for which one of the written placement labels
   holds relative to its parent (measured as the induction measured the examples), in
   both;
-- how many of the generated layouts are ok.
+- how many of the generated layouts are ok, and, where fewer than ``CHECK_OK_SHARE``
+  are, a warning naming the statement the layouts that were not ok broke most often.
 
 With ``context`` it also learns a context from the same examples against the induced
 rules (``learned_context``: each example related as one of its best derivations of
@@ -33,11 +34,12 @@ import os
 import tempfile
 from collections import Counter
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
+from scenewright.core.relations import RELATIONS
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import check_seed, stream
 from scenewright.examples import Example, scene_supports
@@ -60,6 +62,8 @@ from .rules_text import rules_text
 
 #: Scenes generated from the induced rules to compare with the examples.
 CHECK_SCENES = 50
+#: Below this share of the check's layouts ok, ``learn`` warns on its first line.
+CHECK_OK_SHARE = 0.95
 #: Replays the derivation searches of all the examples share when ``learn`` fits a
 #: context (``derivations.ReplayBudget``): five examples' worth of
 #: ``derivations.MAX_REPLAYS``, well above what the shipped example sets take (design
@@ -118,6 +122,26 @@ class Check:
     layouts_ok: int
     types: list[dict]
     pairs: list[dict]
+    #: Per statement of the rules (child type, label, what it is related to), in how many
+    #: of the layouts that were not ok it was broken: most first.
+    faults: list[dict] = field(default_factory=list)
+
+    def warning(self) -> str | None:
+        """A line saying that fewer than ``CHECK_OK_SHARE`` of the check's layouts were
+        ok, naming the statement broken in most of the others; None when enough were."""
+        if self.scenes == 0 or self.layouts_ok >= CHECK_OK_SHARE * self.scenes:
+            return None
+        text = (
+            f"warning: only {self.layouts_ok} of {self.scenes} scenes of the learned rules laid "
+            f"out ok (under {CHECK_OK_SHARE:.0%})"
+        )
+        if self.faults:
+            worst = self.faults[0]
+            text += (
+                f"; the rule most at fault: {worst['statement']} (broken in {worst['layouts']} of "
+                f"the {self.scenes - self.layouts_ok} that were not ok)"
+            )
+        return text
 
     @property
     def mean_total_variation(self) -> float:
@@ -130,6 +154,8 @@ class Check:
             "mean_total_variation": round(self.mean_total_variation, 4),
             "types": self.types,
             "pairs": self.pairs,
+            "faults": self.faults,
+            "warning": self.warning(),
         }
 
     def summary(self) -> str:
@@ -200,7 +226,30 @@ def compare(
                 "generated_label_holds": None if made_held is None else round(made_held, 4),
             }
         )
-    return Check(count, sum(scene.layout.ok for scene in generated), types, pairs)
+    return Check(
+        count, sum(scene.layout.ok for scene in generated), types, pairs, layout_faults(generated)
+    )
+
+
+def layout_faults(scenes: Sequence[Scene]) -> list[dict]:
+    """Per statement (``child LABEL parent`` by type, a wall label by ``wall``): in how
+    many of ``scenes`` whose layout was not ok it was broken, most first."""
+    broken: Counter = Counter()
+    for scene in scenes:
+        if scene.layout.ok:
+            continue
+        types = {o.id: o.type for o in scene.placed_objects()}
+        broken.update(
+            {
+                f"{types[r.source]} {r.label} {types.get(r.target, 'wall' if RELATIONS[r.label].wall else r.target)}"
+                for r in scene.relations
+                if r.satisfied is False and r.source in types
+            }
+        )
+    return [
+        {"statement": statement, "layouts": count}
+        for statement, count in sorted(broken.items(), key=lambda item: (-item[1], item[0]))
+    ]
 
 
 @dataclass(frozen=True)
@@ -284,6 +333,43 @@ def learned_context(
     return InducedContext(fit, None, len(laid), left_out, ambiguous, unsearched)
 
 
+def resting_as_written(scene: Scene, induction: Induction) -> Scene:
+    """``scene`` (an example, with the induced type names) with what rests on what as the
+    induced rules can make it, for the context's derivation search: an object resting
+    on one its type is not written to rest on (a book on a book, where the rules put
+    books on the side table) rests instead on the first thing below it that it is
+    written to rest on, or, when there is none (a footstool on a rug, where the rules
+    stand footstools by the armchair), on the floor. Poses stay as they are."""
+    written = {
+        (member.type, member.parent)
+        for member in induction.written_pairs().values()
+        if member.carried
+        or any(p.labels and RELATIONS[p.labels[0]].support for p in member.placements)
+    }
+    types = {o.id: o.type for o in scene.placed_objects()}
+    below = {r.source: r.target for r in scene.relations if RELATIONS[r.label].support}
+    relations, changed = [], False
+    for relation in scene.relations:
+        kept = (
+            not RELATIONS[relation.label].support
+            or relation.source not in types
+            or (types[relation.source], types.get(relation.target)) in written
+        )
+        if kept:
+            relations.append(relation)
+            continue
+        changed = True
+        mover, target, seen = types[relation.source], below.get(relation.target), set()
+        while (
+            target is not None and target not in seen and (mover, types.get(target)) not in written
+        ):
+            seen.add(target)
+            target = below.get(target)
+        if target is not None and (mover, types.get(target)) in written:
+            relations.append(replace(relation, target=target))
+    return replace(scene, relations=relations) if changed else scene
+
+
 @dataclass(frozen=True)
 class Learned:
     """What ``learn_rule_set`` made: the induction, its rules text, the check (None
@@ -338,7 +424,13 @@ def learn_rule_set(
         if context:
             progress(f"fitting a context: searching the derivations of {len(scenes)} examples")
             fitted = learned_context(
-                rules, names, scenes, seed=seed, rounds=rounds, layouts=layouts, progress=progress
+                rules,
+                names,
+                [resting_as_written(scene, induction) for scene in scenes],
+                seed=seed,
+                rounds=rounds,
+                layouts=layouts,
+                progress=progress,
             )
     written = []
     write(output, text)

@@ -31,7 +31,7 @@ Categories, most specific first:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -120,6 +120,36 @@ def pair_holds(
     return holds
 
 
+#: Points per side of the grid of poses on a parent's top that ``support_room`` tries.
+ROOM_GRID = 9
+
+
+def support_room(
+    parent_size: Sequence[float], child_size: Sequence[float], count: int
+) -> dict[str, bool]:
+    """Per support label: whether ``count`` children of ``child_size`` fit on one parent
+    of ``parent_size`` side by side, each where the label holds (``pair_holds``) and no
+    two overlapping. Tried on a ``ROOM_GRID`` x ``ROOM_GRID`` grid of poses over the
+    parent's top (the child turned as the parent), packed greedily row by row from the
+    back left: "in the middle" of a side table holds one book, not two."""
+    width, _, depth = (float(v) for v in parent_size)
+    xs = np.linspace(-width / 2.0, width / 2.0, ROOM_GRID)
+    zs = np.linspace(-depth / 2.0, depth / 2.0, ROOM_GRID)
+    poses = np.array([(x, z, 0.0) for z in zs for x in xs])
+    holds = pair_holds(parent_size, child_size, poses, True)
+    child_w, child_d = float(child_size[0]), float(child_size[2])
+    found = {}
+    for label in CATEGORIES["support"]:
+        placed: list[tuple[float, float]] = []
+        for (x, z, _), held in zip(poses, holds[label], strict=True):
+            if held and all(
+                abs(x - px) >= child_w - 1e-9 or abs(z - pz) >= child_d - 1e-9 for px, pz in placed
+            ):
+                placed.append((float(x), float(z)))
+        found[label] = len(placed) >= count
+    return found
+
+
 #: A person placing things by hand leaves a few centimetres to a wall, and turns a round
 #: thing (a floor lamp, a plant) any way, its box's corners then a little into the walls:
 #: before the wall labels are measured, a standing object within HAND_GAP (metres,
@@ -203,10 +233,14 @@ def most_specific(
     centre: int,
     members: np.ndarray,
     share: float = MAJORITY,
+    allowed: Callable[[str], bool] = lambda label: True,
 ) -> str | None:
     """The first label of ``category`` that holds at point ``centre`` and for at least
-    ``share`` of ``members`` (indices into the (n,) arrays of ``holds``), or None."""
+    ``share`` of ``members`` (indices into the (n,) arrays of ``holds``), of those
+    ``allowed``, or None."""
     for label in CATEGORIES[category]:
+        if not allowed(label):
+            continue
         if label in holds and holds[label][centre] and holds[label][members].mean() >= share:
             return label
     return None

@@ -379,6 +379,67 @@ def test_fit_command_reads_a_folder_of_hand_written_examples(capsys, tmp_path):
     assert "its types: table" in err and not (tmp_path / "g.rules").exists()
 
 
+#: ROOM with a styled nightstand: examples that leave the style out must still fit.
+STYLED_ROOM = ROOM.replace(
+    'object nightstand { noun "nightstand"  size 0.45 x 0.55 x 0.4 }',
+    'object nightstand { noun "nightstand"  size 0.45 x 0.55 x 0.4\n'
+    "    style oak 3 { colour #886644 }\n    style white { colour #eeeeee } }",
+)
+
+
+def test_fit_takes_an_example_without_a_style_as_of_a_style_not_known(capsys, tmp_path):
+    from scenewright.api import build_scene
+
+    truth = write(tmp_path, "truth.rules", STYLED_ROOM)
+    folder = tmp_path / "mine"
+    folder.mkdir()
+    styled = 0
+    for seed in range(6):
+        document = handwritten(build_scene(str(truth), seed))
+        for obj in document["objects"]:
+            styled += obj.pop("style", None) is not None  # the user wrote no style
+        write(folder, f"room_{seed}.json", json.dumps(document))
+    assert styled >= 4
+    report = tmp_path / "fit.json"
+    code, stdout, err = run(
+        capsys,
+        "fit",
+        str(truth),
+        str(folder),
+        "-o",
+        str(tmp_path / "f.rules"),
+        "--report",
+        str(report),
+    )
+    assert code == 0, err
+    parameters = {p["name"]: p for p in json.loads(report.read_text())["parameters"]}
+    side = next(p for name, p in parameters.items() if name == "Side")
+    assert side["draws"] != [0, 0]  # the sides are still read from the geometry
+    # No example says a nightstand's style: the style is unidentified and keeps its
+    # written 3:1, rather than being pulled anywhere by the derivations of every style.
+    style = parameters["nightstand"]
+    assert not style["identified"] and style["draws"] == [0, 0]
+    assert "style oak 3 {" in (tmp_path / "f.rules").read_text()
+
+
+def test_fit_names_the_file_type_and_style_the_rules_do_not_have(capsys, tmp_path):
+    from scenewright.api import build_scene
+
+    truth = write(tmp_path, "truth.rules", STYLED_ROOM)
+    scene = next(s for s in (build_scene(str(truth), seed) for seed in range(10)) if s.layout.ok)
+    document = handwritten(scene)
+    stand = next(o for o in document["objects"] if o["type"] == "nightstand")
+    stand["style"] = "walnut"
+    write(tmp_path, "odd.json", json.dumps(document))
+    code, _, err = run(
+        capsys, "fit", str(truth), str(tmp_path / "odd.json"), "-o", str(tmp_path / "f.rules")
+    )
+    assert_one_line_error(err)
+    assert code == 2
+    assert "odd.json" in err and "nightstand" in err and "'walnut'" in err and "oak, white" in err
+    assert not (tmp_path / "f.rules").exists()
+
+
 # -- the command line -------------------------------------------------------------------
 
 
@@ -473,6 +534,7 @@ def test_fit_command_bad_inputs_are_one_line_errors(capsys, tmp_path, study_exam
     for thing in bare["objects"]:
         if thing["type"] == "desk":
             thing["type"] = "bed"  # a catalog type the study never makes
+            thing["style"] = None  # (a desk's style is none of a bed's: its own error)
     write(tmp_path, "bare.json", json.dumps(bare))
     code, _, err = run(capsys, "fit", "study", str(tmp_path / "bare.json"), "-o", out)
     assert code == 2

@@ -199,7 +199,9 @@ def test_learn_writes_a_context_beside_the_rules_it_induces(tmp_path, capsys):
     }
     report = json.loads((tmp_path / "learn.json").read_text())["context"]
     assert report["file"] == str(sidecar) and report["examples"] == 10 and report["left_out"] == []
-    assert "NightstandAtBed(the_bed) -> 8:" in out.read_text()
+    # The three round a single bed's head are a mode of their own that neither side label
+    # holds for: reported, not written.
+    assert "NightstandAtBed(the_bed) -> 6:" in out.read_text()
     code, stdout, _ = run(
         capsys, "generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g")
     )

@@ -72,8 +72,9 @@ def test_replace_anchors_on_the_face_towards_the_chair(graph):
     # The desk's front (towards the chair, +Z) stays where it was; the table grows backwards.
     assert new.position[2] + new.size[2] / 2 == pytest.approx(0.0 + 0.35)
     assert new.position[0] == pytest.approx(0.0)
+    # The paper's scale: the ratio term over the scene's diagonal (a 7 x 7 m extent).
     assert change.compatibility == pytest.approx(
-        math.exp(1 - (1 + 0.2 / 3.0) * (1 + 0.01 / 1.49) * (1 + 0.1 / 1.5))
+        math.exp((1 - (1 + 0.2 / 3.0) * (1 + 0.01 / 1.49) * (1 + 0.1 / 1.5)) / math.hypot(7, 7))
     )
     # The lamp rides along onto the table's top, its place scaled.
     lamp = next(obj for obj, _ in change.added if obj.type == "lamp")
@@ -256,3 +257,74 @@ def test_a_change_no_layout_holds_is_not_laid_out_again(monkeypatch):
     )
     assert vary([FIRST, SECOND], 3, seed=7, attempts=8) == []
     assert len(laid) > 2 and len(set(laid)) == len(laid)
+
+
+def room_example(name: str, objects: list[dict]) -> Example:
+    import json
+    import tempfile
+    from pathlib import Path
+
+    from scenewright.examples import load_example
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"{name}.json"
+        path.write_text(
+            json.dumps({"room": {"width": 4.0, "depth": 3.5, "height": 2.6}, "objects": objects})
+        )
+        return load_example(path)
+
+
+@pytest.mark.parametrize(
+    "first, second",
+    [
+        ((0.45, 0.9, 0.5), (0.6, 1.1, 0.6)),  # a chair and an office chair
+        ((0.8, 2.0, 0.35), (0.8, 1.0, 0.35)),  # a tall and a low bookshelf
+        ((1.6, 0.55, 2.1), (1.0, 0.5, 2.0)),  # a double and a single bed
+    ],
+)
+def test_like_pieces_are_compatible_enough_to_replace_each_other_in_a_room(first, second):
+    from scenewright.variation.operations import _similarity
+    from scenewright.variation.synthesis import KEEP
+
+    scene = room_example(
+        "r", [{"id": "t", "type": "table", "size": [1, 0.7, 1], "position": [0, 0]}]
+    ).scene
+    one = SimpleNamespace(size=first)
+    other = SimpleNamespace(size=second)
+    assert _similarity(one, other, scene) > KEEP
+    bed, chair = SimpleNamespace(size=(1.6, 0.55, 2.1)), SimpleNamespace(size=(0.45, 0.9, 0.5))
+    assert _similarity(bed, chair, scene) < KEEP  # unlike pieces are still refused
+
+
+def test_an_object_grown_from_a_corner_of_a_hand_written_room_brings_its_corner():
+    from scenewright.variation.operations import measured_walls
+
+    example = room_example(
+        "corner",
+        [
+            {
+                "id": "chair",
+                "type": "armchair",
+                "size": [0.85, 0.95, 0.85],
+                "position": [-1.575, -1.325],
+                "yaw": 0,
+            },
+            {
+                "id": "lamp",
+                "type": "floor_lamp",
+                "size": [0.35, 1.6, 0.35],
+                "position": [-0.9, -1.575],
+                "yaw": 0,
+            },
+            {
+                "id": "table",
+                "type": "side_table",
+                "size": [0.45, 0.55, 0.45],
+                "position": [0.5, 0.3],
+                "yaw": 0,
+            },
+        ],
+    ).scene
+    assert measured_walls(example, "chair") == ["InCorner"]
+    assert measured_walls(example, "lamp") == ["AgainstWall"]
+    assert measured_walls(example, "table") == []

@@ -3,8 +3,8 @@
 ``scenewright.scene_folder.write_variants`` writes each variant as a scene folder
 (``variant_001/``, ``variant_002/``, ... in rank order, best first) and index.json,
 built here: per variant its K, operations, layout verdict and whether it is new (its
-type multiset or its relation set differs from every example's). ``summary`` is the
-line the command prints.
+multiset of (type, style) or its relation set differs from every example's). ``summary`` is the
+line the command prints, with how many operations of each kind the variants took.
 """
 
 from __future__ import annotations
@@ -18,14 +18,19 @@ from scenewright.examples import Example
 from .structure import structure_graph
 from .synthesis import Result
 
+#: The operations, in the order the summary counts them.
+OPERATION_KINDS = ("replace", "grow", "transfer")
 #: The names the output directory is made of (replaced as a whole).
 FOLDERS = frozenset([f"variant_{k:03d}" for k in range(1, 10000)] + ["index.json"])
 
 
 def fingerprint(scene) -> tuple:
-    """(type multiset, relation set) of a scene: what makes a variant new."""
+    """((type, style) multiset, relation set) of a scene: what makes a variant new. The
+    style counts, so a tall bookshelf put for a low one (a replacement) makes a new
+    room, as it looks one."""
     graph = structure_graph(scene)
-    types = tuple(sorted(Counter(graph.types).items()))
+    kinds = Counter(zip(graph.types, (style or "" for style in graph.styles), strict=True))
+    types = tuple(sorted(kinds.items()))
     relations = frozenset(
         (graph.types[i], graph.types[j], frozenset(edge.relations))
         for (i, j), edge in graph.edges.items()
@@ -70,4 +75,9 @@ def summary(index: dict, directory: str | os.PathLike[str]) -> str:
         if variants
         else ""
     )
-    return f"wrote {Path(directory)}/: {len(variants)} variants ({ok} ok, {new} new){best}; index.json lists them"
+    used = Counter(op for v in variants for op in v["operations"])
+    mix = ", ".join(f"{used[kind]} {kind}" for kind in OPERATION_KINDS)
+    return (
+        f"wrote {Path(directory)}/: {len(variants)} variants ({ok} ok, {new} new){best}; "
+        f"operations: {mix}; index.json lists them"
+    )

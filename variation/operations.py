@@ -8,20 +8,23 @@ operation proposes new or moved objects (``Change``) with the paper's compatibil
   example). w takes u's facing and is anchored on the face u shares with its
   strongest neighbour (touching, then aligned, then facing, then close; against a
   wall, its back), not on u's centre. What u carried moves onto w, its placement on
-  the top scaled. zeta_r = the object similarity of u and w (``box_similarity``:
-  dimensionless, as in matching; the paper divides by the scene's diagonal, a length).
+  the top scaled. zeta_r = the object similarity of u and w (``box_similarity``) at
+  the paper's scale: sigma = the variant's scene diagonal in metres (the matching
+  itself keeps sigma = 1, where only the ranking of pairs counts).
 - ``grow``: a node absent from the variant joins it next to a present neighbour: a
   member w of the node is placed at its pose relative to its largest neighbour m in
   its own example that has a counterpart in the variant, taken to m's counterpart in the variant (the gap to the neighbour's face
   kept when the two neighbours differ in size), with what w carries. zeta_g is the
   mean over w's neighbours that have a counterpart of exp(-|d - d'| / diagonal), d the
   centre distance in w's example and d' in the variant (the paper sums the signed
-  differences; a mean of absolute ones stays in [0, 1]).
+  differences; a mean of absolute ones stays in [0, 1]). w brings its wall relations:
+  those its example states, or, for an example read from geometry alone (which states
+  none), the most specific of InCorner and AgainstWall that holds where w stood.
 - ``transfer``: what another member w of a supporter u's node carries in its example
   replaces what u carries, each item at the same place relative to the top (scaled to
   u's top). Refused when u's top cannot carry them: below ``MIN_CARRY_HEIGHT`` or above
   ``MAX_CARRY_HEIGHT``, or an item larger than the top. zeta_t = the object similarity
-  of u and w.
+  of u and w, at the scale of zeta_r.
 
 Applying a change is the caller's (``synthesis``): it lays the variant out with every
 untouched object pinned.
@@ -35,10 +38,15 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from scenewright.core.frames import to_local, to_world
+from scenewright.core.poses import Pose
 from scenewright.core.relations import RELATIONS, Relation
+from scenewright.core.room import ROOM_NODE
 from scenewright.core.scene import Scene, SceneObject
+from scenewright.core.scene_graph import SceneGraph, SceneParams
 from scenewright.examples import scene_supports
 from scenewright.examples.example import SUPPORT_LABEL
+from scenewright.generator.catalog import CatalogEntry
+from scenewright.generator.layout import measure_layout
 
 from .augmented import AugmentedGraph, Member
 from .matching import box_similarity
@@ -118,8 +126,22 @@ def _source_object(ag: AugmentedGraph, member: Member) -> SceneObject:
     return ag.examples[member[0]].scene.object(member[1])
 
 
-def _similarity(first: SceneObject, second: SceneObject) -> float:
-    return float(box_similarity(np.array([first.size]), np.array([second.size]))[0, 0])
+def scene_diagonal(scene: Scene) -> float:
+    """The diagonal (metres) of the scene's box: its extent, and a room's height."""
+    height = scene.room.height if scene.room is not None else 0.0
+    return math.sqrt(scene.extent[0] ** 2 + scene.extent[1] ** 2 + height**2)
+
+
+def _similarity(first: SceneObject, second: SceneObject, scene: Scene) -> float:
+    """The compatibility of putting one box for the other: the matching's object
+    similarity with the paper's scale, sigma = the scene's diagonal in metres. With
+    sigma 1 (the matching's, where only the ranking counts) a chair and an office
+    chair scored 0.71 and a double and a single bed 0.76, under ``KEEP``, so like
+    pieces were never put for each other; at a room's diagonal (about 5 m) they score
+    about 0.93 while a bed for a chair stays under it."""
+    return float(
+        box_similarity(np.array([first.size]), np.array([second.size]), scene_diagonal(scene))[0, 0]
+    )
 
 
 def _moved_items(
@@ -228,7 +250,7 @@ def replace_object(variant: Variant, ag: AugmentedGraph, object_id: str, member:
     ]
     return Change(
         "replace",
-        _similarity(old, source),
+        _similarity(old, source, variant.scene),
         [object_id, *carried],
         [(new, member), *placed],
         relations,
@@ -341,6 +363,17 @@ def _brought_relations(
     neighbour it was placed by so the layout keeps it there."""
     example = ag.examples[member[0]].scene
     brought = []
+    stated = any(
+        r.source == member[1] and r.label in RELATIONS and RELATIONS[r.label].family == "wall"
+        for r in example.relations
+    )
+    if not stated and variant.scene.room is not None and example.room is not None:
+        # An example read from geometry states no wall relations: measure them, so an
+        # armchair grown from a corner goes to a corner, not mid-room by its neighbour.
+        brought += [
+            Relation(new_id, "room", label, 0.0, True)
+            for label in measured_walls(example, member[1])
+        ]
     for relation in example.relations:
         if (
             relation.source != member[1]
@@ -404,7 +437,7 @@ def transfer_items(
     placed, relations = _moved_items(variant, ag, items, source, target, object_id, set())
     return Change(
         "transfer",
-        _similarity(target, source),
+        _similarity(target, source, variant.scene),
         carried_by(variant.scene, object_id),
         placed,
         relations,
@@ -415,3 +448,28 @@ def transfer_items(
             "from": {"example": ag.examples[member[0]].name, "object": member[1]},
         },
     )
+
+
+#: The wall labels a grown object may bring, most specific first: only the first that
+#: holds is brought (a thing in a corner is against a wall too).
+WALL_LABELS = ("InCorner", "AgainstWall")
+
+
+def measured_walls(example: Scene, object_id: str) -> list[str]:
+    """The most specific of ``WALL_LABELS`` that holds for ``object_id`` standing where
+    it stands in ``example`` (a room scene), measured by the layout's own predicates;
+    [] for none, or for an object resting on another."""
+    if example.room is None or object_id in scene_supports(example):
+        return []
+    obj = example.object(object_id)
+    graph = SceneGraph(
+        params=SceneParams(extent=tuple(example.extent), ground="floor", room=example.room)
+    )
+    node = graph.add_node(
+        CatalogEntry(obj.type, "object", obj.noun or obj.type, size=tuple(obj.size))
+    )
+    for label in WALL_LABELS:
+        graph.add_relation(node, ROOM_NODE, label)
+    pose = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+    held = {r.label for r in measure_layout(graph, {node: pose}, {}).relations if r.satisfied}
+    return next(([label] for label in WALL_LABELS if label in held), [])

@@ -339,6 +339,9 @@ def run_learn(args: argparse.Namespace) -> int:
         progress=lambda message: note_progress(args, message),
     )
     induction = learned.induction
+    warning = learned.check.warning() if learned.check is not None else None
+    if warning:  # first, where it is seen; not silenced by --quiet
+        print(warning, flush=True, file=sys.stderr if args.quiet else sys.stdout)
     related = sum(pair.related for pair in induction.relations.pairs)
     say(
         args,
