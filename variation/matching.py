@@ -363,6 +363,7 @@ def refine(affinity: sparse.spmatrix, relaxed: np.ndarray, iterations: int = 50)
         if np.abs(rate * step).max() < 1e-9:
             break
         current = current + rate * step
+    assert best is not None  # the first step's assignment always beats -inf
     return best
 
 
@@ -397,6 +398,7 @@ def exhaustive_solution(problem: Problem) -> tuple[np.ndarray, float]:
         energy = problem.energy(assignment)
         if energy > best_energy:
             best, best_energy = assignment, energy
+    assert best is not None  # a problem has at least one order, and its energy beats -inf
     return best, best_energy
 
 
@@ -607,7 +609,8 @@ def match_graphs(
     assignment = solve(problem)
     confidence, keep = withdraw(problem, assignment, threshold)
     m, n = problem.unary.shape
-    kept, withdrawn = [], []
+    kept: list[Correspondence] = []
+    withdrawn: list[Correspondence] = []
     for i in range(m):
         k = int(assignment[i])
         if k >= n:

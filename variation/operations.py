@@ -119,7 +119,7 @@ def carried_by(scene: Scene, object_id: str) -> list[str]:
         found += above
         frontier += above
     order = {o.id: k for k, o in enumerate(scene.objects)}
-    return sorted(found, key=order.get)
+    return sorted(found, key=order.__getitem__)
 
 
 def _source_object(ag: AugmentedGraph, member: Member) -> SceneObject:
@@ -463,13 +463,23 @@ def measured_walls(example: Scene, object_id: str) -> list[str]:
         return []
     obj = example.object(object_id)
     graph = SceneGraph(
-        params=SceneParams(extent=tuple(example.extent), ground="floor", room=example.room)
+        params=SceneParams(
+            extent=(float(example.extent[0]), float(example.extent[1])),
+            ground="floor",
+            room=example.room,
+        )
     )
     node = graph.add_node(
-        CatalogEntry(obj.type, "object", obj.noun or obj.type, size=tuple(obj.size))
+        CatalogEntry(
+            obj.type,
+            "object",
+            obj.noun or obj.type,
+            size=(float(obj.size[0]), float(obj.size[1]), float(obj.size[2])),
+        )
     )
     for label in WALL_LABELS:
         graph.add_relation(node, ROOM_NODE, label)
-    pose = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+    x, y, z = (float(v) for v in obj.position)
+    pose = Pose(x, y, z, float(obj.yaw))
     held = {r.label for r in measure_layout(graph, {node: pose}, {}).relations if r.satisfied}
     return next(([label] for label in WALL_LABELS if label in held), [])
