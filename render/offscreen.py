@@ -271,7 +271,7 @@ class Renderer:
             )
         world.add(lens, pose=camera.pose)
         world.add(
-            self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
+            self._sun, pose=sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
         )
         return world, merged, occluders
 
@@ -541,8 +541,9 @@ def _node_rotation(gl, rotation: bytes) -> tuple[np.ndarray, np.ndarray, np.ndar
     return arrays
 
 
-def _sun_pose(direction: np.ndarray) -> np.ndarray:
-    """A light pose whose local -Z points along ``direction`` (3,), where the light travels."""
+def sun_pose(direction: np.ndarray) -> np.ndarray:
+    """A light pose whose local -Z points along ``direction`` (3,), where the light travels
+    (as pyrender's and glTF's directional lights shine)."""
     back = -direction / np.linalg.norm(direction)
     right = np.cross([0.0, 1.0, 0.0], back)
     right /= np.linalg.norm(right)

@@ -219,11 +219,21 @@ def render_scene(
     return replace(scene, render=render_metadata(result), timings=timings), result
 
 
-def export(scene: Scene, path: str | os.PathLike[str]) -> Path:
-    """Write the scene as a binary glTF file (one named node per object)."""
+def export(
+    scene: Scene,
+    path: str | os.PathLike[str],
+    *,
+    ground: bool = True,
+    camera: bool = True,
+    light: bool = True,
+    cutaway: bool = False,
+) -> Path:
+    """Write the scene as a binary glTF file (one named node per object, materials,
+    normals; with its ground or floor, the preview's camera and sun unless told
+    otherwise; ``cutaway`` leaves out the walls the preview cuts away)."""
     from scenewright.render.export import export_glb
 
-    export_glb(scene, path)
+    export_glb(scene, path, ground=ground, camera=camera, light=light, cutaway=cutaway)
     return Path(path)
 
 

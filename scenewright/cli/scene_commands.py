@@ -77,7 +77,13 @@ existing directory or ends in '/', the files are preview.png etc. inside it.""",
 examples:
   scenewright export out/scene.json -o out/scene.glb
   scenewright export out/scene.json -o exports/
+  scenewright export out/scene.json -o game.glb --cutaway --no-camera --no-light
 
+The GLB has a PBR material per colour and normals, so a viewer (Blender, Godot,
+three.js) shows the preview's colours lit; what rests on something is its child node.
+It holds the ground (a room's floor), the preview's camera and its sun unless
+--no-ground, --no-camera, --no-light leave them out; in a room, walls the preview cuts
+away are marked "cutaway": true in their extras, and --cutaway leaves them out.
 When GLB is an existing directory or ends in '/', the file is scene.glb inside it.""",
 }
 
@@ -162,6 +168,20 @@ def add_commands(commands) -> None:
         default="scene.glb",
         metavar="GLB",
         help="output file (scene.glb), or a directory",
+    )
+    export.add_argument(
+        "--no-ground", dest="ground", action="store_false", help="leave out the ground / floor"
+    )
+    export.add_argument(
+        "--no-camera", dest="camera", action="store_false", help="leave out the preview's camera"
+    )
+    export.add_argument(
+        "--no-light", dest="light", action="store_false", help="leave out the sun light"
+    )
+    export.add_argument(
+        "--cutaway",
+        action="store_true",
+        help="leave out the walls (and their doors and windows) the preview cuts away",
     )
 
 
@@ -255,6 +275,13 @@ def run_export(args: argparse.Namespace) -> int:
 
     scene = read_scene(args.scene)
     target = output_file(args.output, "scene.glb")
-    export(scene, target)
+    export(
+        scene,
+        target,
+        ground=args.ground,
+        camera=args.camera,
+        light=args.light,
+        cutaway=args.cutaway,
+    )
     say(args, f"wrote {target}")
     return 0
