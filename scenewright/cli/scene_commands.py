@@ -70,9 +70,13 @@ examples:
   scenewright render out/scene.json -o out/preview.png
   scenewright render out/scene.json -o top.png --view top --size 1024x1024
 
-writes the colour image and, beside it, STEM_depth.png (16-bit millimetres),
-STEM_seg.png (16-bit instance ids) and STEM_ids.json (id -> object). When PNG is an
-existing directory or ends in '/', the files are preview.png etc. inside it.""",
+writes the colour image and, beside it, STEM_depth.png (16-bit, in the unit that
+STEM_depth.json gives: millimetres unless the scene is deeper than 65.5 m),
+STEM_depth.npy (float32 metres), STEM_seg.png (16-bit instance ids), STEM_ids.json
+(id -> object), STEM_3d.json (K, the extrinsics in the OpenCV and OpenGL conventions,
+each object's pose and 3D box in the camera frame) and, with --normals,
+STEM_normals.png. When PNG is an existing directory or ends in '/', the files are
+preview.png etc. inside it.""",
     "export": """\
 examples:
   scenewright export out/scene.json -o out/scene.glb
@@ -159,6 +163,11 @@ def add_commands(commands) -> None:
         help="colour image (preview.png), or a directory to write preview.png etc. into",
     )
     view_options(render, "640x480")
+    render.add_argument(
+        "--normals",
+        action="store_true",
+        help="also write STEM_normals.png (surface normals in the camera frame)",
+    )
 
     export = command("export", "export a scene.json as binary glTF", run_export)
     export.add_argument("scene", metavar="SCENE_JSON")
@@ -264,7 +273,7 @@ def run_render(args: argparse.Namespace) -> int:
 
     scene = read_scene(args.scene)
     target = output_file(args.output, "preview.png")
-    result = render_image(scene, *args.size, view=args.view)
+    result = render_image(scene, *args.size, view=args.view, normals=args.normals)
     written = save_render(result, target.parent, stem=target.stem)
     say(args, "wrote " + ", ".join(str(p) for p in written.values()))
     return 0
