@@ -244,10 +244,13 @@ def export(
 ) -> Path:
     """Write the scene as a binary glTF file (one named node per object, materials,
     normals; with its ground or floor, the preview's camera and sun unless told
-    otherwise; ``cutaway`` leaves out the walls the preview cuts away)."""
+    otherwise; ``cutaway`` leaves out the walls the preview cuts away), or, for a path
+    ending in .usda, .usdc or .usd, as a USD stage of the same content."""
     from scenewright.render.export import export_glb
+    from scenewright.render.usd_export import USD_SUFFIXES, export_usd
 
-    export_glb(scene, path, ground=ground, camera=camera, light=light, cutaway=cutaway)
+    write = export_usd if Path(path).suffix.lower() in USD_SUFFIXES else export_glb
+    write(scene, path, ground=ground, camera=camera, light=light, cutaway=cutaway)
     return Path(path)
 
 

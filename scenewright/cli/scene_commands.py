@@ -82,6 +82,10 @@ examples:
   scenewright export out/scene.json -o out/scene.glb
   scenewright export out/scene.json -o exports/
   scenewright export out/scene.json -o game.glb --cutaway --no-camera --no-light
+  scenewright export out/scene.json -o out/scene.usda
+
+A name ending in .usda (text), .usdc or .usd (binary) writes a USD stage of the same
+content: Y up, metres, UsdPreviewSurface materials.
 
 The GLB has a PBR material per colour and normals, so a viewer (Blender, Godot,
 three.js) shows the preview's colours lit; what rests on something is its child node.
@@ -169,14 +173,14 @@ def add_commands(commands) -> None:
         help="also write STEM_normals.png (surface normals in the camera frame)",
     )
 
-    export = command("export", "export a scene.json as binary glTF", run_export)
+    export = command("export", "export a scene.json as binary glTF or USD", run_export)
     export.add_argument("scene", metavar="SCENE_JSON")
     export.add_argument(
         "-o",
         "--output",
         default="scene.glb",
         metavar="GLB",
-        help="output file (scene.glb), or a directory",
+        help="output file (scene.glb; .usda/.usdc/.usd for USD), or a directory",
     )
     export.add_argument(
         "--no-ground", dest="ground", action="store_false", help="leave out the ground / floor"
