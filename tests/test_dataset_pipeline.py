@@ -4,7 +4,9 @@ worker processes, or on a local dask cluster), kept small: a few desk scenes at 
 from __future__ import annotations
 
 import json
+from importlib import resources
 
+import jsonschema
 import numpy as np
 import pytest
 from PIL import Image
@@ -49,6 +51,11 @@ def test_two_workers_write_the_same_bytes(one_worker, tmp_path):
 def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
     rows = [json.loads(line) for line in (one_worker / METADATA_FILE).read_text().splitlines()]
     assert [r["seed"] for r in rows] == [scene_seed(0, i) for i in range(4)]
+    schema = json.loads(
+        resources.files("scenewright.dataset")
+        .joinpath("schema/metadata_row.schema.json")
+        .read_text()
+    )
     for row in rows:
         assert row["rules"] == "desk" and row["ok"] is True
         assert (
@@ -68,6 +75,7 @@ def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
         assert np.abs(png * row["depth_scale"] - metres).max() <= row["depth_scale"] / 2 + 1e-4
         assert np.array(row["camera"]["K"]).shape == (3, 3)
         assert {"world_to_camera_opencv", "world_to_camera_opengl"} <= set(row["camera"])
+        jsonschema.validate(row, schema)
         tables = [entry for entry in row["objects_3d"] if entry["id"].startswith("table")]
         assert len(tables) == 1 and len(tables[0]["corners"]) == 8
         scene = json.loads((one_worker / "scenes" / f"{row['scene_id']}.json").read_text())
