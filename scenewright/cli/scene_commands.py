@@ -35,8 +35,10 @@ examples:
   scenewright generate market.rules --templates my_words/ -o market/
 
 writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
-preview.png (+ preview_depth.png, preview_seg.png, preview_ids.json), scene.glb and
-plan.png (a top-down debug plan). All files appear together or not at all. When the
+preview.png (+ preview_depth.png/.npy/.json, preview_seg.png, preview_ids.json,
+preview_3d.json: see 'scenewright render --help'), scene.glb (with the ground, the
+preview's camera and its sun: see 'scenewright export --help') and plan.png (a
+top-down debug plan). All files appear together or not at all. When the
 layout could not satisfy every relation the files are still written (scene.json says
 "ok": false) and the exit code is 1.""",
     "layout": """\
