@@ -34,7 +34,6 @@ from scenewright.core.room import WALL_THICKNESS
 from scenewright.core.scene import Scene
 
 from .camera import Camera
-from .meshes import object_transform, opening_transform
 
 #: OpenGL camera axes -> OpenCV's.
 GL_TO_CV = np.diag([1.0, -1.0, -1.0, 1.0])
@@ -97,6 +96,11 @@ def entity_boxes(scene: Scene, camera: Camera, visible: dict[str, float]) -> lis
 
 def _bodies(scene: Scene) -> dict[str, tuple[str, np.ndarray, list[float]]]:
     """Entity id -> (kind, local-to-world matrix, size) for everything with a body."""
+    # Here, not at the top: render.views, which the dataset command's parent process
+    # imports, needs only camera_matrices, and meshes brings trimesh, whose import
+    # swallows a Ctrl-C that arrives during it.
+    from .meshes import object_transform, opening_transform
+
     bodies = {
         obj.id: (obj.kind, object_transform(obj), list(obj.size))
         for obj in scene.objects
