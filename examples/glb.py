@@ -14,7 +14,7 @@ Size is the mesh's bounds in the node's own frame times the node's scale, positi
 base centre of those bounds taken to the world, yaw the node's rotation about +Y (glTF
 is Y-up; Blender's exporter turns its Z-up into Y-up). A node tilted more than
 ``MAX_TILT_DEGREES`` off upright is refused. Nodes of type ``wall``, ``floor``,
-``ground`` or ``ceiling`` (or extras kind wall, door, window, path, ground) are the
+``ground`` or ``ceiling`` (or extras kind wall, door, window, path, ground, floor) are the
 room, not objects: walls make the room a rectangle (their inner bounding box), a floor
 or ground gives the extent; otherwise the extent is the bounding box of the circles
 round the objects' footprints (half their diagonal, so any turn stays inside) with
@@ -39,7 +39,7 @@ from .example import ExampleError, ObjectRecord, example_scene
 
 #: Room parts by node type (without extras) and by extras kind (scenewright's export).
 ROOM_TYPES = ("wall", "floor", "ground", "ceiling")
-ROOM_KINDS = ("wall", "door", "window", "path", "ground", "junction", "group")
+ROOM_KINDS = ("wall", "door", "window", "path", "ground", "floor", "junction", "group")
 MAX_TILT_DEGREES = 5.0
 #: Free floor (metres) around the objects when nothing gives the extent.
 MARGIN = 0.5
@@ -72,11 +72,10 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
     records: list[ObjectRecord] = []
     walls: list[np.ndarray] = []
     floors: list[np.ndarray] = []
-    for node in sorted(loaded.graph.nodes_geometry, key=lambda n: (order.get(n, len(order)), n)):
-        transform, geometry_name = loaded.graph[node]
-        mesh = loaded.geometry[geometry_name]
-        if not hasattr(mesh, "bounds") or mesh.bounds is None:
-            continue
+    for node, (transform, mesh) in sorted(
+        _node_meshes(loaded, order).items(),
+        key=lambda item: (order.get(item[0], len(order)), item[0]),
+    ):
         if node not in order:  # trimesh names an unnamed node by its index
             raise ExampleError(
                 path,
@@ -116,6 +115,38 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
     ]
     extent = (float(hi[0] - lo[0]), float(hi[1] - lo[1]))
     return example_scene(records, name=name, source=path, extent=extent, room=room)
+
+
+def _node_meshes(loaded, order: dict[str, int]) -> dict:
+    """Each mesh node's world transform and mesh. trimesh splits a mesh of several
+    primitives (one per material: scenewright's export, Blender's with several
+    materials) into unnamed child nodes of the named one; their meshes, in the named
+    node's frame, are joined back into it."""
+    import trimesh
+
+    parts: dict[str, list] = {}
+    world: dict[str, np.ndarray] = {}
+    parents = loaded.graph.transforms.parents
+    for node in loaded.graph.nodes_geometry:
+        transform, geometry_name = loaded.graph[node]
+        mesh = loaded.geometry[geometry_name]
+        if not hasattr(mesh, "bounds") or mesh.bounds is None:
+            continue
+        owner = node
+        if node not in order and parents.get(node) in order:
+            owner = parents[node]
+            if owner not in world:
+                world[owner] = np.asarray(loaded.graph[owner][0])
+            local = np.linalg.inv(world[owner]) @ np.asarray(transform)
+            mesh = mesh.copy()
+            mesh.apply_transform(local)
+        else:
+            world[owner] = np.asarray(transform)
+        parts.setdefault(owner, []).append(mesh)
+    return {
+        node: (world[node], meshes[0] if len(meshes) == 1 else trimesh.util.concatenate(meshes))
+        for node, meshes in parts.items()
+    }
 
 
 def _record(

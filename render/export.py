@@ -1,133 +1,261 @@
-"""Export a laid-out scene as a binary glTF (GLB) file, written atomically.
+"""Export a laid-out scene as a binary glTF (GLB) file, written atomically, that looks
+in any viewer (Blender, Godot, three.js) as the preview does.
 
-One named node per object, junction and path (node name = its id; id, type, kind and
-noun in the node's ``extras``), groups as parent nodes of their members so a 3D tool
-shows the scene's hierarchy, and optionally the ground (a room's floor). A room adds
-one node per wall (``wall_1``, ...: every wall, with its doors' and windows' holes cut;
-extras id, kind "wall" and side) and per door and window (``door_1``, ``window_1``, ...;
-extras id, kind "door" or "window" and the wall it is in). Node transforms carry the
-poses, meshes stay in their local frame, so a tool can move an object as a whole.
-Colours are per-vertex on unshared vertices (flat shaded, one colour per face). A scene
-with nothing to draw (no objects, or only groups) is a valid GLB with no meshes.
+Nodes:
+
+- one per object, junction and path (node name = its id; id, type, kind and noun in the
+  node's ``extras``). What rests on something (a support relation: ``on``, ...) is that
+  thing's child, so moving a desk in a 3D tool moves the lamp on it; the rest are
+  children of their group (a parent node with no mesh), or at the top. A node whose
+  parent is not its group records the group in ``extras["group"]``, and one resting on
+  another records it in ``extras["on"]``;
+- a room adds one node per wall (``wall_1``, ...: openings cut; extras id, kind "wall",
+  side, and ``cutaway`` true for the walls the preview leaves out because they face
+  away from its camera) and per door and window (extras id, kind, the wall it is in,
+  ``cutaway`` as its wall); ``cutaway=True`` leaves those walls and openings out;
+- ``ground``: the room's floor (node ``floor``, extras kind "floor") or the outdoor
+  ground (node ``ground``, kind "ground"), as large as the preview draws it;
+- ``camera``: the preview's camera (scene.json's ``render.camera`` when the scene was
+  rendered, else the automatic perspective view), node ``camera``;
+- ``light``: the preview's sun as a KHR_lights_punctual directional light, node ``sun``.
+
+Node transforms carry the poses (translation and rotation), meshes stay in their local
+frame, so a tool moves an object as a whole. Each mesh has one PBR material per colour
+(shared across the file) and per-vertex normals, flat as the preview shades. Paths and
+junctions are lifted as the preview lifts them, so crossing ribbons do not z-fight, and
+a ribbon is one layer of triangles (``render.ribbon``). A scene with nothing to draw is
+a valid GLB with no meshes.
 """
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
-import trimesh
-from trimesh.exchange.gltf import export_glb as trimesh_glb
 
+from scenewright.core import VERSION
 from scenewright.core.atomic import write_atomic
+from scenewright.core.relations import RELATIONS
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 
+from .camera import Camera, frame_scene, walls_in_view
+from .gltf_file import Node, glb
 from .meshes import (
     ground_mesh,
     junction_mesh,
-    object_mesh,
     object_transform,
     opening_mesh,
     opening_transform,
-    path_mesh,
+    shaped_mesh,
     wall_mesh,
     wall_transform,
 )
+from .offscreen import GROUND_MARGIN, PATH_STEP, ROOM_LIGHT_DIRECTION, SUN_DIRECTION, sun_pose
+from .ribbon import ribbon_mesh
 
-#: Name of the ground's node when the ground is exported.
+#: Name of the ground's node outdoors, and of a room's floor's.
 GROUND_NODE = "ground"
+FLOOR_NODE = "floor"
+CAMERA_NODE = "camera"
+SUN_NODE = "sun"
+#: The preview's default size, for the camera of a scene that was never rendered.
+DEFAULT_CAMERA_SIZE = (640, 480)
+#: The sun's illuminance (lux): Blender takes it as its sun strength (W/m²), where
+#: 3 lights the preview's colours about as the preview does with its ambient light.
+SUN_LUX = 3.0
 
 
-def export_glb(scene: Scene, path: str | os.PathLike, *, ground: bool = False) -> Path:
-    """Write ``scene`` to ``path`` as GLB and return the path."""
-    data = glb_bytes(scene, ground=ground)
+def export_glb(
+    scene: Scene,
+    path: str | os.PathLike,
+    *,
+    ground: bool = True,
+    camera: bool = True,
+    light: bool = True,
+    cutaway: bool = False,
+) -> Path:
+    """Write ``scene`` to ``path`` as GLB and return the path (options as ``glb_bytes``)."""
+    data = glb_bytes(scene, ground=ground, camera=camera, light=light, cutaway=cutaway)
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     return write_atomic(target, data)
 
 
-def glb_bytes(scene: Scene, *, ground: bool = False) -> bytes:
-    """The GLB encoding of ``scene`` (see the module docstring for its structure)."""
-    return _without_empty_bin(trimesh_glb(build_trimesh_scene(scene, ground=ground)))
+def glb_bytes(
+    scene: Scene,
+    *,
+    ground: bool = True,
+    camera: bool = True,
+    light: bool = True,
+    cutaway: bool = False,
+) -> bytes:
+    """The GLB encoding of ``scene`` (module docstring): with the ground (or floor), the
+    preview's camera and its sun unless told otherwise; ``cutaway`` leaves out the walls
+    the preview cuts away."""
+    return glb(
+        scene_nodes(scene, ground=ground, camera=camera, light=light, cutaway=cutaway),
+        f"scenewright {VERSION}",
+    )
 
 
-def build_trimesh_scene(scene: Scene, *, ground: bool = False) -> trimesh.Scene:
-    """The scene as a ``trimesh.Scene`` with one named node per entity."""
-    out = trimesh.Scene()
-    groups = {o.id: o for o in scene.objects if o.kind == "group"}
-    world_of: dict[str, np.ndarray] = {}  # group id -> its node's world transform
+def preview_camera(scene: Scene) -> Camera:
+    """The camera of the scene's preview: the one recorded in scene.json's ``render``,
+    else the automatic perspective view at the default size."""
+    if scene.render and scene.render.get("camera"):
+        return Camera.from_dict(scene.render["camera"])
+    return frame_scene(scene, "perspective", *DEFAULT_CAMERA_SIZE)
 
-    def attach(
-        node_name: str, entity_parent: str | None, world: np.ndarray, extras: dict, mesh=None
-    ) -> None:
-        parent = entity_parent if entity_parent in groups else None
-        local = world if parent is None else np.linalg.inv(world_of[parent]) @ world
-        if mesh is None or not len(mesh.faces):  # a group, or a degenerate path: node only
-            out.graph.update(
-                node_name, frame_from=parent or out.graph.base_frame, matrix=local, metadata=extras
-            )
-        else:
-            out.add_geometry(
-                _flat_shaded(mesh),
-                node_name=node_name,
-                geom_name=node_name,
-                parent_node_name=parent,
-                transform=local,
-                metadata=extras,
-            )
 
-    for group in _parents_first(list(groups.values()), groups):
-        world_of[group.id] = _translation(group.position)
-        attach(group.id, group.parent, world_of[group.id], _extras(group))
+def scene_nodes(
+    scene: Scene,
+    *,
+    ground: bool = True,
+    camera: bool = True,
+    light: bool = True,
+    cutaway: bool = False,
+) -> list[Node]:
+    """The top-level node trees of the scene's file (module docstring)."""
+    view = preview_camera(scene)
+    by_id = {obj.id: obj for obj in scene.objects}
+    support = _supports(scene, by_id)
+    nodes: dict[str, Node] = {}
+    world: dict[str, np.ndarray] = {}
+    order: list[str] = []
     for obj in scene.objects:
-        if obj.kind == "object":
-            attach(obj.id, obj.parent, object_transform(obj), _extras(obj), object_mesh(obj))
+        if obj.kind == "group":
+            world[obj.id] = _translation(obj.position)
+            mesh = None
         elif obj.kind == "junction":
-            attach(obj.id, obj.parent, object_transform(obj), _extras(obj), junction_mesh(obj))
-    for scene_path in scene.paths:
-        attach(
-            scene_path.id,
-            scene_path.parent,
-            np.eye(4),
-            _path_extras(scene_path),
-            path_mesh(scene_path),
-        )
+            world[obj.id] = object_transform(obj)
+            mesh = junction_mesh(obj)
+            mesh.apply_translation([0.0, PATH_STEP * len(scene.paths), 0.0])  # above every path
+        elif obj.kind == "object":
+            world[obj.id] = object_transform(obj)
+            mesh = shaped_mesh(obj.shape, obj.mesh, tuple(obj.size), tuple(obj.colour))
+        else:
+            continue
+        nodes[obj.id] = Node(obj.id, world[obj.id], _extras(obj, support), mesh)
+        order.append(obj.id)
+    for step, scene_path in enumerate(scene.paths):
+        world[scene_path.id] = np.eye(4)
+        mesh = ribbon_mesh(scene_path, lift=PATH_STEP * step)
+        nodes[scene_path.id] = Node(scene_path.id, np.eye(4), _path_extras(scene_path), mesh)
+        order.append(scene_path.id)
+
+    roots: list[Node] = []
+    for entity_id in order:
+        parent = support.get(entity_id) or _group_of(entity_id, by_id, scene)
+        if parent is not None and parent in nodes:
+            nodes[entity_id].matrix = np.linalg.inv(world[parent]) @ world[entity_id]
+            nodes[parent].children.append(nodes[entity_id])
+        else:
+            roots.append(nodes[entity_id])
     if scene.room is not None:
-        for node_name, world, extras, mesh in _room_parts(scene.room):
-            attach(node_name, None, world, extras, mesh)
+        roots += _room_nodes(scene.room, view, cutaway)
     if ground:
-        attach(GROUND_NODE, None, np.eye(4), {"kind": "ground"}, ground_mesh(scene))
-    return out
+        name, kind = (FLOOR_NODE, "floor") if scene.room is not None else (GROUND_NODE, "ground")
+        roots.append(
+            Node(name, np.eye(4), {"kind": kind}, ground_mesh(scene, margin=GROUND_MARGIN))
+        )
+    if camera:
+        roots.append(Node(CAMERA_NODE, view.pose, {"kind": "camera"}, camera=_gltf_camera(view)))
+    if light:
+        direction = SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION
+        sun = {"name": SUN_NODE, "type": "directional", "color": [1.0, 1.0, 1.0]}
+        sun["intensity"] = SUN_LUX
+        roots.append(Node(SUN_NODE, sun_pose(direction), {"kind": "light"}, light=sun))
+    return roots
 
 
-def _room_parts(room: Room):
-    """(node name, world transform, extras, mesh in its local frame) for each wall, door
-    and window of ``room``, in that order."""
+def _supports(scene: Scene, by_id: dict[str, SceneObject]) -> dict[str, str]:
+    """Object id -> the object it rests on (its first support relation), leaving out any
+    that would close a loop (a hand-edited scene.json may hold one)."""
+    support: dict[str, str] = {}
+    for relation in scene.relations:
+        label = relation.label
+        if label not in RELATIONS or not RELATIONS[label].support:
+            continue
+        source, target = by_id.get(relation.source), by_id.get(relation.target)
+        if source is None or target is None or source.id in support:
+            continue
+        if source.kind != "object" or target.kind != "object":
+            continue
+        below: str | None = target.id
+        while below is not None and below != source.id:
+            below = support.get(below)
+        if below is None:
+            support[source.id] = target.id
+    return support
+
+
+def _group_of(entity_id: str, by_id: dict[str, SceneObject], scene: Scene) -> str | None:
+    if entity_id in by_id:
+        parent = by_id[entity_id].parent
+    else:
+        parent = scene.path(entity_id).parent
+    return parent if parent in by_id and by_id[parent].kind == "group" else None
+
+
+def _room_nodes(room: Room, view: Camera, cutaway: bool) -> list[Node]:
+    """A node per wall, door and window of ``room`` (module docstring)."""
+    kept = {wall.id for wall in walls_in_view(room, view.pose[:3, 2])}
+    nodes = []
     for wall in room.walls:
+        if cutaway and wall.id not in kept:
+            continue
         world = wall_transform(wall)
         mesh = wall_mesh(room, wall)  # built in world coordinates: bring it into the wall's frame
         mesh.apply_transform(np.linalg.inv(world))
-        yield wall.id, world, {"id": wall.id, "kind": "wall", "side": wall.side}, mesh
+        extras = {"id": wall.id, "kind": "wall", "side": wall.side, "cutaway": wall.id not in kept}
+        nodes.append(Node(wall.id, world, extras, mesh))
     for opening in room.openings:
-        extras = {"id": opening.id, "kind": opening.kind, "wall": opening.wall}
-        yield opening.id, opening_transform(room, opening), extras, opening_mesh(opening)
+        if cutaway and opening.wall not in kept:
+            continue
+        extras = {
+            "id": opening.id,
+            "kind": opening.kind,
+            "wall": opening.wall,
+            "cutaway": opening.wall not in kept,
+        }
+        nodes.append(
+            Node(opening.id, opening_transform(room, opening), extras, opening_mesh(opening))
+        )
+    return nodes
 
 
-def _without_empty_bin(glb: bytes) -> bytes:
-    """``glb`` without a trailing BIN chunk of no bytes (what a scene without meshes
-    gets), which the glTF specification says to leave out."""
-    end_of_json = 20 + int.from_bytes(glb[12:16], "little")  # 12-byte header, then the JSON chunk
-    if glb[end_of_json:] != (0).to_bytes(4, "little") + b"BIN\x00":
-        return glb
-    return glb[:8] + end_of_json.to_bytes(4, "little") + glb[12:end_of_json]
+def _gltf_camera(view: Camera) -> dict[str, Any]:
+    if view.orthographic:
+        return {
+            "type": "orthographic",
+            "orthographic": {
+                "xmag": float(view.xmag),
+                "ymag": float(view.ymag),
+                "znear": float(view.znear),
+                "zfar": float(view.zfar),
+            },
+        }
+    return {
+        "type": "perspective",
+        "perspective": {
+            "yfov": float(view.yfov),
+            "aspectRatio": view.width / view.height,
+            "znear": float(view.znear),
+            "zfar": float(view.zfar),
+        },
+    }
 
 
-def _extras(obj: SceneObject) -> dict:
-    extras = {"id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun}
+def _extras(obj: SceneObject, support: dict[str, str]) -> dict:
+    extras: dict[str, Any] = {"id": obj.id, "type": obj.type, "kind": obj.kind, "noun": obj.noun}
     if obj.style is not None:
         extras["style"] = obj.style
+    if obj.id in support:
+        extras["on"] = support[obj.id]
+        if obj.parent is not None:
+            extras["group"] = obj.parent
     return extras
 
 
@@ -135,27 +263,7 @@ def _path_extras(scene_path: ScenePath) -> dict:
     return {"id": scene_path.id, "type": scene_path.type, "kind": "path", "noun": scene_path.noun}
 
 
-def _parents_first(groups: list[SceneObject], by_id: dict[str, SceneObject]) -> list[SceneObject]:
-    """Groups ordered so every group comes after the group that contains it."""
-
-    def depth(group: SceneObject) -> int:
-        steps, parent = 0, group.parent
-        while parent in by_id:
-            steps, parent = steps + 1, by_id[parent].parent
-        return steps
-
-    return sorted(groups, key=depth)  # stable: scene order within one depth
-
-
 def _translation(position) -> np.ndarray:
     matrix = np.eye(4)
     matrix[:3, 3] = position
     return matrix
-
-
-def _flat_shaded(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
-    """A copy whose faces own their vertices, so per-face colours survive as glTF's
-    per-vertex COLOR_0 and normals stay flat."""
-    flat = mesh.copy()
-    flat.unmerge_vertices()
-    return flat

@@ -41,6 +41,7 @@ from scenewright.core.scene import Scene
 
 from .camera import Camera, frame_scene, walls_in_view
 from .gl_backend import backend_error, keep_display_on_delete, load_pyrender, pyrender_classes
+from .ground_truth import GL_TO_CV, camera_matrices, entity_boxes
 from .meshes import (
     ground_mesh,
     junction_mesh,
@@ -100,6 +101,10 @@ class RenderResult:
     boxes: dict[str, list[int]]
     visible: dict[str, float]
     camera: dict[str, Any]
+    #: H x W x 3 uint8 surface normals (``encode_render``'s ``normals``), when asked for.
+    normals: np.ndarray | None = None
+    #: The camera as matrices and each entity's 3D box (``render.ground_truth``).
+    ground_truth: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -171,10 +176,16 @@ class Renderer:
             self._renderer = None
 
     def render(
-        self, scene: Scene, view: str = "perspective", *, camera: Camera | None = None
+        self,
+        scene: Scene,
+        view: str = "perspective",
+        *,
+        camera: Camera | None = None,
+        normals: bool = False,
     ) -> RenderResult:
         """Render ``scene`` from the automatic ``view`` ("perspective" or "top"), or from
-        ``camera`` (of this renderer's size; ``camera.aimed_camera``, say) when given."""
+        ``camera`` (of this renderer's size; ``camera.aimed_camera``, say) when given;
+        ``normals``: also draw the surface normals image (one more pass)."""
         if self._renderer is None:
             raise RuntimeError("this Renderer has been closed")
         if camera is not None and (camera.width, camera.height) != (self.width, self.height):
@@ -191,6 +202,7 @@ class Renderer:
         colour, depth = self._renderer.render(world, flags=flags)
         if camera.orthographic:
             depth = _orthographic_depth(depth, camera)
+        normal_image = self._normals(world, scene, entities, camera, depth) if normals else None
 
         _show_merged(merged, entities, False)
         seg_map = _segmentation_map(entities, range(len(entities)), occluders)
@@ -212,7 +224,41 @@ class Renderer:
             boxes=_boxes(segmentation, ids),
             visible=visible,
             camera=camera.to_dict(),
+            normals=normal_image,
+            ground_truth={
+                "camera": camera_matrices(camera),
+                "objects": entity_boxes(scene, camera, visible),
+            },
         )
+
+    def _normals(
+        self, world, scene: Scene, entities: list[_Entity], camera: Camera, depth: np.ndarray
+    ) -> np.ndarray:
+        """The surface normals image (``encode_render``): every surface drawn (the
+        entities, the ground, the walls in view) in one mesh whose colours are its faces'
+        normals in the OpenCV camera frame, drawn unlit; sky pixels 0."""
+        parts = [entity for entity in entities if entity.drawn]
+        backdrop = [_drawable(ground_mesh(scene, margin=GROUND_MARGIN))]
+        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
+        if walls is not None:
+            backdrop.append(_drawable(walls))
+        surfaces = _merged(parts + [_Entity("", look, np.eye(4)) for look in backdrop])
+        turn = (GL_TO_CV @ camera.extrinsics())[:3, :3]
+        encoded = np.clip((surfaces.normals @ turn.T + 1.0) / 2.0, 0.0, 1.0)
+        look = _Drawable(surfaces.positions, surfaces.normals, encoded, surfaces.bounds)
+        shown = {id(node.mesh): node.mesh.is_visible for node in world.mesh_nodes}
+        for node in world.mesh_nodes:
+            node.mesh.is_visible = False
+        node = world.add(_pyrender_mesh(self._gl, look))
+        try:
+            image, _ = self._renderer.render(world, flags=self._gl.RenderFlags.FLAT)
+        finally:
+            world.remove_node(node)
+            for other in world.mesh_nodes:
+                other.mesh.is_visible = shown.get(id(other.mesh), True)
+        image = np.ascontiguousarray(image[..., :3])
+        image[depth <= 0] = 0
+        return image
 
     # -- scene building -------------------------------------------------------------
     #
@@ -271,7 +317,7 @@ class Renderer:
             )
         world.add(lens, pose=camera.pose)
         world.add(
-            self._sun, pose=_sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
+            self._sun, pose=sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
         )
         return world, merged, occluders
 
@@ -402,8 +448,20 @@ def save_render(
     return paths
 
 
-#: What ``encode_render`` can encode, in the order it returns them.
-RENDER_KINDS = ("colour", "depth", "segmentation", "ids")
+#: What ``encode_render`` can encode, in the order it returns them (``normals`` only
+#: for a render that made them, ``Renderer.render(normals=True)``).
+RENDER_KINDS = (
+    "colour",
+    "depth",
+    "depth_metres",
+    "depth_scale",
+    "segmentation",
+    "ids",
+    "normals",
+    "ground_truth",
+)
+#: The 16-bit depth PNG's unit: millimetres while the farthest depth fits.
+DEPTH_UNIT = 0.001
 
 
 def encode_render(
@@ -413,10 +471,16 @@ def encode_render(
     elsewhere than a folder (an archive, a dataset shard); only the ``kinds`` asked for
     are encoded (PNG encoding is a good part of the cost of a small image).
 
-    ``colour``: ``{stem}.png`` (RGB). ``depth``: ``{stem}_depth.png``, 16-bit
-    millimetres (0 = sky; clipped at 65.535 m). ``segmentation``: ``{stem}_seg.png``,
-    16-bit entity indices (0 = background). ``ids``: ``{stem}_ids.json`` mapping each
-    index to its entity id.
+    ``colour``: ``{stem}.png`` (RGB). ``depth``: ``{stem}_depth.png``, 16-bit, in units
+    of ``depth_unit(result.depth)`` metres (millimetres unless the farthest depth is over
+    65.535 m; 0 = sky), never clipped. ``depth_metres``: ``{stem}_depth.npy``, the depth
+    buffer itself, float32 metres (numpy's ``.npy``). ``depth_scale``:
+    ``{stem}_depth.json``, ``{"metres_per_unit": ...}`` of the PNG. ``segmentation``:
+    ``{stem}_seg.png``, 16-bit entity indices (0 = background). ``ids``:
+    ``{stem}_ids.json`` mapping each index to its entity id. ``normals``:
+    ``{stem}_normals.png``, RGB, each surface's normal in the OpenCV camera frame as
+    ``(n + 1) / 2 * 255`` (0, 0, 0 = sky). ``ground_truth``: ``{stem}_3d.json``, the
+    camera as matrices and each entity's pose and 3D box (``render.ground_truth``).
     """
     asked = set(kinds)
     if "segmentation" in asked and len(result.ids) > 65535:
@@ -426,13 +490,35 @@ def encode_render(
         if kind == "colour":
             files[kind] = (f"{stem}.png", _png(result.colour))
         elif kind == "depth":
-            millimetres = np.clip(np.round(result.depth * 1000.0), 0, 65535).astype(np.uint16)
-            files[kind] = (f"{stem}_depth.png", _png(millimetres))
+            units = np.round(result.depth * (1000.0 / _depth_millimetres(result.depth)))
+            files[kind] = (f"{stem}_depth.png", _png(np.clip(units, 0, 65535).astype(np.uint16)))
+        elif kind == "depth_metres":
+            files[kind] = (f"{stem}_depth.npy", _npy(result.depth.astype(np.float32)))
+        elif kind == "depth_scale":
+            scale = {"metres_per_unit": depth_unit(result.depth), "sky": 0}
+            files[kind] = (f"{stem}_depth.json", (json.dumps(scale) + "\n").encode())
         elif kind == "segmentation":
             files[kind] = (f"{stem}_seg.png", _png(result.segmentation.astype(np.uint16)))
-        else:
+        elif kind == "ids":
             files[kind] = (f"{stem}_ids.json", _ids_json(result.ids))
+        elif kind == "normals" and result.normals is not None:
+            files[kind] = (f"{stem}_normals.png", _png(result.normals))
+        elif kind == "ground_truth" and result.ground_truth is not None:
+            text = json.dumps(result.ground_truth, indent=1) + "\n"
+            files[kind] = (f"{stem}_3d.json", text.encode())
     return files
+
+
+def depth_unit(depth: np.ndarray) -> float:
+    """Metres per unit of the 16-bit depth PNG: ``DEPTH_UNIT`` (a millimetre) while the
+    farthest depth fits 65 535 of them, else the smallest whole number of millimetres
+    that fits it, so no pixel is clipped."""
+    return round(_depth_millimetres(depth) * DEPTH_UNIT, 6)
+
+
+def _depth_millimetres(depth: np.ndarray) -> int:
+    farthest = float(depth.max()) if depth.size else 0.0
+    return max(1, math.ceil(farthest / (65535 * DEPTH_UNIT) - 1e-9))
 
 
 def render_metadata(result: RenderResult) -> dict[str, Any]:
@@ -541,8 +627,9 @@ def _node_rotation(gl, rotation: bytes) -> tuple[np.ndarray, np.ndarray, np.ndar
     return arrays
 
 
-def _sun_pose(direction: np.ndarray) -> np.ndarray:
-    """A light pose whose local -Z points along ``direction`` (3,), where the light travels."""
+def sun_pose(direction: np.ndarray) -> np.ndarray:
+    """A light pose whose local -Z points along ``direction`` (3,), where the light travels
+    (as pyrender's and glTF's directional lights shine)."""
     back = -direction / np.linalg.norm(direction)
     right = np.cross([0.0, 1.0, 0.0], back)
     right /= np.linalg.norm(right)
@@ -655,6 +742,12 @@ def _disjoint_batches(
 def _png(pixels: np.ndarray) -> bytes:
     buffer = io.BytesIO()
     Image.fromarray(pixels).save(buffer, format="PNG")
+    return buffer.getvalue()
+
+
+def _npy(array: np.ndarray) -> bytes:
+    buffer = io.BytesIO()
+    np.save(buffer, array, allow_pickle=False)
     return buffer.getvalue()
 
 

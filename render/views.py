@@ -41,6 +41,7 @@ from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
 from .camera import ELEVATION, Camera, aimed_camera, entity_family, room_azimuth
+from .ground_truth import camera_matrices
 
 if TYPE_CHECKING:
     from .offscreen import Renderer, RenderResult
@@ -218,12 +219,13 @@ def aimed_view(
     rng: np.random.Generator,
     *,
     require_target: bool = False,
+    normals: bool = False,
 ) -> RenderResult:
     """The render of the first view drawn from ``ranges`` with ``rng`` that shows at
     least ``ranges.min_visible`` of its target, or after ``ranges.tries`` draws the one
     that showed the most (the first of equals); one draw when no range varies. Its
     ``camera`` entry gets ``aim`` (``aim_record``). With ``require_target`` a target the
-    scene lacks is an ``InputError``."""
+    scene lacks is an ``InputError``. ``normals``: as ``Renderer.render``."""
     target = resolve_target(scene, ranges.target)
     if require_target and ranges.target is not None and target is None:
         known = ", ".join(sorted({*(o.id for o in scene.objects), *(p.id for p in scene.paths)}))
@@ -245,7 +247,7 @@ def aimed_view(
             distance=distance,
             target=target,
         )
-        result = renderer.render(scene, camera=camera)
+        result = renderer.render(scene, camera=camera, normals=normals)
         visible = target_visible(result, members)
         if best is None or visible > best[0]:
             best = (visible, result, drawn)
@@ -274,7 +276,11 @@ def aim_record(
 
 def camera_column(camera: dict) -> dict:
     """A dataset row's ``camera`` value of a render's camera entry: the intrinsics and
-    extrinsics (``Camera.opencv``) and, for a drawn camera, its ``aim`` values."""
-    column = Camera.from_dict(camera).opencv()
+    extrinsics (``Camera.opencv``), K and the extrinsics in the OpenCV and OpenGL
+    conventions (``ground_truth.camera_matrices``) and, for a drawn camera, its ``aim``
+    values."""
+    lens = Camera.from_dict(camera)
+    column = lens.opencv()
+    column.update(camera_matrices(lens))
     column.update(camera.get("aim", {}))
     return column

@@ -164,9 +164,11 @@ def render_image(
     *,
     camera: CameraRanges | None = None,
     camera_view: int = 0,
+    normals: bool = False,
 ) -> RenderResult:
-    """Render ``scene`` offscreen: colour, depth, segmentation and per-object metadata
-    (``RenderResult.metadata`` is what scene.json stores under ``render``).
+    """Render ``scene`` offscreen: colour, depth, segmentation, per-object metadata
+    (``RenderResult.metadata`` is what scene.json stores under ``render``) and 3D ground
+    truth (``RenderResult.ground_truth``); ``normals``: the surface normals image too.
 
     Pass a ``renderer`` to reuse one OpenGL context over many scenes (the image then has
     the renderer's size); otherwise one is made for this call and closed after it.
@@ -181,21 +183,26 @@ def render_image(
     if camera is not None and view != "perspective":
         raise InputError("a drawn camera (--camera) is a perspective one; leave out --view top")
     if renderer is not None:
-        return _render_with(renderer, scene, view, camera, camera_view)
+        return _render_with(renderer, scene, view, camera, camera_view, normals)
     with Renderer(width, height) as own:
-        return _render_with(own, scene, view, camera, camera_view)
+        return _render_with(own, scene, view, camera, camera_view, normals)
 
 
 def _render_with(
-    renderer: Renderer, scene: Scene, view: str, camera: CameraRanges | None, camera_view: int
+    renderer: Renderer,
+    scene: Scene,
+    view: str,
+    camera: CameraRanges | None,
+    camera_view: int,
+    normals: bool,
 ) -> RenderResult:
     if camera is None:
-        return renderer.render(scene, view=view)
+        return renderer.render(scene, view=view, normals=normals)
     from scenewright.core.seeds import stream
     from scenewright.render.views import aimed_view
 
     rng = stream(scene.seed, "camera", camera_view)
-    return aimed_view(renderer, scene, camera, rng, require_target=True)
+    return aimed_view(renderer, scene, camera, rng, require_target=True, normals=normals)
 
 
 def render_scene(
@@ -206,24 +213,44 @@ def render_scene(
     renderer: Renderer | None = None,
     camera: CameraRanges | None = None,
     camera_view: int = 0,
+    normals: bool = False,
 ) -> tuple[Scene, RenderResult]:
     """``scene`` with its render metadata and the time it took, and the images
-    (``camera``, ``camera_view``: as ``render_image``)."""
+    (``camera``, ``camera_view``, ``normals``: as ``render_image``)."""
     from scenewright.render.offscreen import render_metadata
 
     timings = dict(scene.timings)
     with timed(timings, "render"):
         result = render_image(
-            scene, *size, view=view, renderer=renderer, camera=camera, camera_view=camera_view
+            scene,
+            *size,
+            view=view,
+            renderer=renderer,
+            camera=camera,
+            camera_view=camera_view,
+            normals=normals,
         )
     return replace(scene, render=render_metadata(result), timings=timings), result
 
 
-def export(scene: Scene, path: str | os.PathLike[str]) -> Path:
-    """Write the scene as a binary glTF file (one named node per object)."""
+def export(
+    scene: Scene,
+    path: str | os.PathLike[str],
+    *,
+    ground: bool = True,
+    camera: bool = True,
+    light: bool = True,
+    cutaway: bool = False,
+) -> Path:
+    """Write the scene as a binary glTF file (one named node per object, materials,
+    normals; with its ground or floor, the preview's camera and sun unless told
+    otherwise; ``cutaway`` leaves out the walls the preview cuts away), or, for a path
+    ending in .usda, .usdc or .usd, as a USD stage of the same content."""
     from scenewright.render.export import export_glb
+    from scenewright.render.usd_export import USD_SUFFIXES, export_usd
 
-    export_glb(scene, path)
+    write = export_usd if Path(path).suffix.lower() in USD_SUFFIXES else export_glb
+    write(scene, path, ground=ground, camera=camera, light=light, cutaway=cutaway)
     return Path(path)
 
 

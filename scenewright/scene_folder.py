@@ -42,8 +42,11 @@ SCENE_FILES = (
     "description.txt",
     "preview.png",
     "preview_depth.png",
+    "preview_depth.npy",
+    "preview_depth.json",
     "preview_seg.png",
     "preview_ids.json",
+    "preview_3d.json",
     "scene.glb",
     "plan.png",
 )

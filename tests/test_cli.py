@@ -289,17 +289,27 @@ def test_render_writes_preview_and_ground_truth(capsys, scene_file, tmp_path):
         "64x48",
         "--view",
         "top",
+        "--normals",
     )
     assert code == 0
     assert {p.name for p in tmp_path.glob("top*")} == {
         "top.png",
         "top_depth.png",
+        "top_depth.npy",
+        "top_depth.json",
         "top_seg.png",
         "top_ids.json",
+        "top_normals.png",
+        "top_3d.json",
     }
     from PIL import Image
 
     assert Image.open(tmp_path / "top.png").size == (64, 48)
+    truth = json.loads((tmp_path / "top_3d.json").read_text())
+    assert truth["camera"]["model"] == "orthographic" and len(truth["camera"]["K"]) == 3
+    assert {entry["id"] for entry in truth["objects"]} <= set(
+        json.loads((tmp_path / "top_ids.json").read_text()).values()
+    )
 
 
 # -- generate -----------------------------------------------------------------------------

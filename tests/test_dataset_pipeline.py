@@ -4,8 +4,12 @@ worker processes, or on a local dask cluster), kept small: a few desk scenes at 
 from __future__ import annotations
 
 import json
+from importlib import resources
 
+import jsonschema
+import numpy as np
 import pytest
+from PIL import Image
 from test_dataset import dataset_bytes
 
 from scenewright.api import generate, render_image
@@ -23,27 +27,57 @@ def one_worker(tmp_path_factory):
     """
     render_image(generate("desk", seed=1), 32, 32)
     root = tmp_path_factory.mktemp("desk") / "one"
-    spec = dataset_spec("desk", 4, captions=2, size=(64, 64), depth=True, segmentation=True)
+    spec = dataset_spec(
+        "desk",
+        4,
+        captions=2,
+        size=(64, 64),
+        depth=True,
+        segmentation=True,
+        normals=True,
+        boxes_3d=True,
+    )
     run_dataset(spec, root, workers=1, progress=False)  # the API: any error shows in full
     return root
 
 
 def test_two_workers_write_the_same_bytes(one_worker, tmp_path):
     argv = ["dataset", "desk", "-n", "4", "-o", str(tmp_path), "--size", "64x64", "--captions", "2"]
-    assert main([*argv, "--workers", "2", "--depth", "--segmentation", "--quiet"]) == 0
+    options = ["--depth", "--segmentation", "--normals", "--boxes-3d", "--quiet"]
+    assert main([*argv, "--workers", "2", *options]) == 0
     assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)
 
 
 def test_rows_carry_captions_seeds_and_ground_truth(one_worker):
     rows = [json.loads(line) for line in (one_worker / METADATA_FILE).read_text().splitlines()]
     assert [r["seed"] for r in rows] == [scene_seed(0, i) for i in range(4)]
+    schema = json.loads(
+        resources.files("scenewright.dataset")
+        .joinpath("schema/metadata_row.schema.json")
+        .read_text()
+    )
     for row in rows:
         assert row["rules"] == "desk" and row["ok"] is True
         assert (
             row["text"].startswith("The scene consists of") and row["caption"] != row["caption_1"]
         )
-        for column in ("file_name", "depth_file_name", "segmentation_file_name"):
+        for column in (
+            "file_name",
+            "depth_file_name",
+            "depth_metres_path",
+            "segmentation_file_name",
+            "normals_file_name",
+        ):
             assert (one_worker / row[column]).is_file()
+        metres = np.load(one_worker / row["depth_metres_path"])
+        png = np.asarray(Image.open(one_worker / row["depth_file_name"]))
+        assert metres.dtype == np.float32 and metres.shape == (64, 64)
+        assert np.abs(png * row["depth_scale"] - metres).max() <= row["depth_scale"] / 2 + 1e-4
+        assert np.array(row["camera"]["K"]).shape == (3, 3)
+        assert {"world_to_camera_opencv", "world_to_camera_opengl"} <= set(row["camera"])
+        jsonschema.validate(row, schema)
+        tables = [entry for entry in row["objects_3d"] if entry["id"].startswith("table")]
+        assert len(tables) == 1 and len(tables[0]["corners"]) == 8
         scene = json.loads((one_worker / "scenes" / f"{row['scene_id']}.json").read_text())
         assert scene["seed"] == row["seed"] and scene["description"]["text"] == row["text"]
     stats = json.loads((one_worker / "stats.json").read_text())
@@ -76,6 +110,8 @@ def test_dataset_command_reports_and_bad_rules_exit_2(capsys, one_worker, tmp_pa
         "--captions",
         "2",
         "--depth",
+        "--normals",
+        "--boxes-3d",
     ]
     assert main([*argv, "--segmentation"]) == 0
     out = capsys.readouterr().out
@@ -99,10 +135,6 @@ def test_dask_workers_render_the_same_bytes_as_the_pool(one_worker, tmp_path):
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=2, processes=True, dashboard_address=None
     ) as cluster:
-        assert (
-            main(
-                [*argv, "--scheduler", cluster.scheduler_address, "--depth", "--segmentation", "-q"]
-            )
-            == 0
-        )
+        options = ["--depth", "--segmentation", "--normals", "--boxes-3d", "-q"]
+        assert main([*argv, "--scheduler", cluster.scheduler_address, *options]) == 0
     assert dataset_bytes(tmp_path) == dataset_bytes(one_worker)

@@ -178,9 +178,14 @@ def test_saved_images_round_trip(market, tmp_path):
     assert {p.name for p in files.values()} == {
         "view.png",
         "view_depth.png",
+        "view_depth.npy",
+        "view_depth.json",
         "view_seg.png",
         "view_ids.json",
+        "view_3d.json",
     }
+    assert np.array_equal(np.load(files["depth_metres"]), market.depth)
+    assert json.loads(files["depth_scale"].read_text()) == {"metres_per_unit": 0.001, "sky": 0}
     assert np.array_equal(np.asarray(Image.open(files["colour"]).convert("RGB")), market.colour)
     depth = np.asarray(Image.open(files["depth"]))
     assert depth.dtype == np.uint16

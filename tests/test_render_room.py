@@ -20,7 +20,7 @@ from render_fixtures import renderer_or_skip, scene_of, thing
 
 from scenewright.core.room import WALL_THICKNESS, Room
 from scenewright.render.camera import AZIMUTH, Camera, frame_scene, room_azimuth, walls_in_view
-from scenewright.render.export import glb_bytes
+from scenewright.render.export import glb_bytes, preview_camera
 from scenewright.render.meshes import floor_mesh, opening_mesh, opening_transform, wall_mesh
 from scenewright.render.plan_image import draw_plan
 
@@ -317,9 +317,11 @@ def test_the_glb_has_named_wall_door_and_window_nodes(tmp_path):
     scene = scene_of([thing("crate_1", (-1.0, 0.0, -1.0))], room=L_SHAPED)
     data = glb_bytes(scene)
     loaded = trimesh.load(io.BytesIO(data), file_type="glb")
-    names = set(loaded.graph.nodes_geometry)
+    document = json.loads(_json_chunk(data))
+    names = {node["name"] for node in document["nodes"] if "mesh" in node}
     assert names == {
         "crate_1",
+        "floor",
         *(w.id for w in L_SHAPED.walls),
         "door_1",
         "door_2",
@@ -328,14 +330,37 @@ def test_the_glb_has_named_wall_door_and_window_nodes(tmp_path):
     }
     length = int.from_bytes(data[12:16], "little")
     nodes = {node["name"]: node for node in json.loads(data[20 : 20 + length])["nodes"]}
-    assert nodes["door_1"]["extras"] == {"id": "door_1", "kind": "door", "wall": "wall_3"}
-    assert nodes["window_2"]["extras"] == {"id": "window_2", "kind": "window", "wall": "wall_4"}
-    assert nodes["wall_1"]["extras"] == {"id": "wall_1", "kind": "wall", "side": "north"}
+    # The preview looks in through door_1's wall, which it cuts away.
+    cut = {w.id for w in L_SHAPED.walls} - {
+        w.id for w in walls_in_view(L_SHAPED, preview_camera(scene).pose[:3, 2])
+    }
+    assert "wall_3" in cut and "wall_1" not in cut
+    assert nodes["door_1"]["extras"] == {
+        "id": "door_1",
+        "kind": "door",
+        "wall": "wall_3",
+        "cutaway": True,
+    }
+    assert nodes["window_2"]["extras"] == {
+        "id": "window_2",
+        "kind": "window",
+        "wall": "wall_4",
+        "cutaway": "wall_4" in cut,
+    }
+    assert nodes["wall_1"]["extras"] == {
+        "id": "wall_1",
+        "kind": "wall",
+        "side": "north",
+        "cutaway": False,
+    }
+    assert nodes["floor"]["extras"] == {"kind": "floor"}
+    kept = json.loads(_json_chunk(glb_bytes(scene, cutaway=True)))["nodes"]
+    assert {node["name"] for node in kept} == set(nodes) - cut - {
+        o.id for o in L_SHAPED.openings if o.wall in cut
+    }
     # In the world, each wall is where it was built, its openings cut.
     for wall in L_SHAPED.walls:
-        world, geometry = loaded.graph[wall.id]
-        mesh = loaded.geometry[geometry].copy()
-        mesh.apply_transform(world)
+        mesh = _world_mesh(loaded, wall.id)
         assert np.allclose(mesh.bounds, wall_mesh(L_SHAPED, wall).bounds, atol=1e-6)
         for opening in L_SHAPED.openings_on(wall.id):
             assert not ray_hits(
@@ -346,6 +371,21 @@ def test_the_glb_has_named_wall_door_and_window_nodes(tmp_path):
     path = tmp_path / "room.glb"
     path.write_bytes(data)
     _validate_if_possible(path)
+
+
+def _world_mesh(loaded: trimesh.Scene, name: str) -> trimesh.Trimesh:
+    """Node ``name``'s mesh in world coordinates, its primitives (trimesh loads each
+    material's as a child node) joined."""
+    parts = []
+    for node in loaded.graph.nodes_geometry:
+        if node == name or loaded.graph.transforms.parents.get(node) == name:
+            world, geometry = loaded.graph[node]
+            parts.append(loaded.geometry[geometry].copy().apply_transform(world))
+    return trimesh.util.concatenate(parts)
+
+
+def _json_chunk(data: bytes) -> bytes:
+    return data[20 : 20 + int.from_bytes(data[12:16], "little")]
 
 
 def _validate_if_possible(path: Path) -> None:

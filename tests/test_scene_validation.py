@@ -408,6 +408,10 @@ def test_an_empty_scene_describes_exports_and_renders(tmp_path, capsys):
     assert (code, err) == (0, "")
     glb = (tmp_path / "empty.glb").read_bytes()
     assert glb[:4] == b"glTF" and int.from_bytes(glb[8:12], "little") == len(glb)
+    bare = tmp_path / "bare.glb"
+    assert run(capsys, "export", str(path), "-o", str(bare), "--no-ground")[0] == 0
+    glb = bare.read_bytes()  # a camera and a light, nothing to draw
+    assert glb[:4] == b"glTF" and int.from_bytes(glb[8:12], "little") == len(glb)
     assert b"BIN\x00" not in glb  # no empty binary chunk
     from test_export import test_khronos_validator_reports_no_errors
 
@@ -433,6 +437,9 @@ def test_export_and_render_into_a_directory(tmp_path, capsys, slash):
     assert (code, err) == (0, "")
     assert sorted(p.name for p in target.iterdir()) == [
         "preview.png",
+        "preview_3d.json",
+        "preview_depth.json",
+        "preview_depth.npy",
         "preview_depth.png",
         "preview_ids.json",
         "preview_seg.png",

@@ -116,7 +116,20 @@ def add_commands(commands) -> None:
         "for large scenes (default: the full description; scene.json keeps it either way)",
     )
     dataset.add_argument(
-        "--depth", action="store_true", help="also write depth/ (16-bit millimetres)"
+        "--depth",
+        action="store_true",
+        help="also write depth/: a 16-bit PNG (its unit in the row's depth_scale) and float32 "
+        "metres (.npy) per image",
+    )
+    dataset.add_argument(
+        "--normals",
+        action="store_true",
+        help="also write normals/ (surface normals in the camera frame, RGB)",
+    )
+    dataset.add_argument(
+        "--boxes-3d",
+        action="store_true",
+        help="add the objects_3d column: each object's pose and 3D box in the camera frame",
     )
     dataset.add_argument(
         "--segmentation", action="store_true", help="also write segmentation/ (16-bit ids)"
@@ -266,9 +279,10 @@ def run_dataset(args: argparse.Namespace) -> int:
     from scenewright.dataset.spec import dataset_spec
     from scenewright.generator import load_rules
 
-    if not args.images and (args.depth or args.segmentation):
+    if not args.images and (args.depth or args.segmentation or args.normals or args.boxes_3d):
         raise InputError(
-            "--depth and --segmentation are images: they cannot be made with --no-images"
+            "--depth, --segmentation, --normals and --boxes-3d are of images: "
+            "they cannot be made with --no-images"
         )
     cameras = dataset_cameras(args)
     rules = load_rules(args.rules)
@@ -284,6 +298,8 @@ def run_dataset(args: argparse.Namespace) -> int:
         view=args.view,
         depth=args.depth,
         segmentation=args.segmentation,
+        normals=args.normals,
+        boxes_3d=args.boxes_3d,
         include_failed=args.include_failed,
         retries=args.retries,
         images=args.images,

@@ -35,8 +35,10 @@ examples:
   scenewright generate market.rules --templates my_words/ -o market/
 
 writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
-preview.png (+ preview_depth.png, preview_seg.png, preview_ids.json), scene.glb and
-plan.png (a top-down debug plan). All files appear together or not at all. When the
+preview.png (+ preview_depth.png/.npy/.json, preview_seg.png, preview_ids.json,
+preview_3d.json: see 'scenewright render --help'), scene.glb (with the ground, the
+preview's camera and its sun: see 'scenewright export --help') and plan.png (a
+top-down debug plan). All files appear together or not at all. When the
 layout could not satisfy every relation the files are still written (scene.json says
 "ok": false) and the exit code is 1.""",
     "layout": """\
@@ -70,14 +72,28 @@ examples:
   scenewright render out/scene.json -o out/preview.png
   scenewright render out/scene.json -o top.png --view top --size 1024x1024
 
-writes the colour image and, beside it, STEM_depth.png (16-bit millimetres),
-STEM_seg.png (16-bit instance ids) and STEM_ids.json (id -> object). When PNG is an
-existing directory or ends in '/', the files are preview.png etc. inside it.""",
+writes the colour image and, beside it, STEM_depth.png (16-bit, in the unit that
+STEM_depth.json gives: millimetres unless the scene is deeper than 65.5 m),
+STEM_depth.npy (float32 metres), STEM_seg.png (16-bit instance ids), STEM_ids.json
+(id -> object), STEM_3d.json (K, the extrinsics in the OpenCV and OpenGL conventions,
+each object's pose and 3D box in the camera frame) and, with --normals,
+STEM_normals.png. When PNG is an existing directory or ends in '/', the files are
+preview.png etc. inside it.""",
     "export": """\
 examples:
   scenewright export out/scene.json -o out/scene.glb
   scenewright export out/scene.json -o exports/
+  scenewright export out/scene.json -o game.glb --cutaway --no-camera --no-light
+  scenewright export out/scene.json -o out/scene.usda
 
+A name ending in .usda (text), .usdc or .usd (binary) writes a USD stage of the same
+content: Y up, metres, UsdPreviewSurface materials.
+
+The GLB has a PBR material per colour and normals, so a viewer (Blender, Godot,
+three.js) shows the preview's colours lit; what rests on something is its child node.
+It holds the ground (a room's floor), the preview's camera and its sun unless
+--no-ground, --no-camera, --no-light leave them out; in a room, walls the preview cuts
+away are marked "cutaway": true in their extras, and --cutaway leaves them out.
 When GLB is an existing directory or ends in '/', the file is scene.glb inside it.""",
 }
 
@@ -153,15 +169,34 @@ def add_commands(commands) -> None:
         help="colour image (preview.png), or a directory to write preview.png etc. into",
     )
     view_options(render, "640x480")
+    render.add_argument(
+        "--normals",
+        action="store_true",
+        help="also write STEM_normals.png (surface normals in the camera frame)",
+    )
 
-    export = command("export", "export a scene.json as binary glTF", run_export)
+    export = command("export", "export a scene.json as binary glTF or USD", run_export)
     export.add_argument("scene", metavar="SCENE_JSON")
     export.add_argument(
         "-o",
         "--output",
         default="scene.glb",
         metavar="GLB",
-        help="output file (scene.glb), or a directory",
+        help="output file (scene.glb; .usda/.usdc/.usd for USD), or a directory",
+    )
+    export.add_argument(
+        "--no-ground", dest="ground", action="store_false", help="leave out the ground / floor"
+    )
+    export.add_argument(
+        "--no-camera", dest="camera", action="store_false", help="leave out the preview's camera"
+    )
+    export.add_argument(
+        "--no-light", dest="light", action="store_false", help="leave out the sun light"
+    )
+    export.add_argument(
+        "--cutaway",
+        action="store_true",
+        help="leave out the walls (and their doors and windows) the preview cuts away",
     )
 
 
@@ -244,7 +279,7 @@ def run_render(args: argparse.Namespace) -> int:
 
     scene = read_scene(args.scene)
     target = output_file(args.output, "preview.png")
-    result = render_image(scene, *args.size, view=args.view)
+    result = render_image(scene, *args.size, view=args.view, normals=args.normals)
     written = save_render(result, target.parent, stem=target.stem)
     say(args, "wrote " + ", ".join(str(p) for p in written.values()))
     return 0
@@ -255,6 +290,13 @@ def run_export(args: argparse.Namespace) -> int:
 
     scene = read_scene(args.scene)
     target = output_file(args.output, "scene.glb")
-    export(scene, target)
+    export(
+        scene,
+        target,
+        ground=args.ground,
+        camera=args.camera,
+        light=args.light,
+        cutaway=args.cutaway,
+    )
     say(args, f"wrote {target}")
     return 0

@@ -231,7 +231,7 @@ def view_picture(
     camera is the automatic one, or drawn from ``spec.camera`` with the scene's camera
     stream of the view (a target the scene lacks: the whole scene)."""
     from scenewright.dataset.coco import view_annotations
-    from scenewright.render.offscreen import encode_render
+    from scenewright.render.offscreen import depth_unit, encode_render
     from scenewright.render.views import camera_column, resolve_target
 
     camera = spec.camera
@@ -245,9 +245,11 @@ def view_picture(
             renderer=context.renderer,
             camera=camera,
             camera_view=name.view,
+            normals=spec.normals,
         )
     with timed(cpu, "encode", process_time):  # only the images asked for
-        kinds = ["colour", *["depth"] * spec.depth, *["segmentation", "ids"] * spec.segmentation]
+        kinds = ["colour", *["depth", "depth_metres"] * spec.depth]
+        kinds += [*["segmentation", "ids"] * spec.segmentation, *["normals"] * spec.normals]
         images = {kind: data for kind, (_, data) in encode_render(result, kinds=kinds).items()}
         annotations = view_annotations(result, scene) if spec.coco else []
     with timed(cpu, "describe", process_time), timed(scene.timings, "describe"):
@@ -258,7 +260,13 @@ def view_picture(
     row: dict = {"file_name": f"images/{image}.png"}
     if spec.depth:
         files[f"depth/{image}.png"] = images["depth"]
+        files[f"depth/{image}.npy"] = images["depth_metres"]
         row["depth_file_name"] = f"depth/{image}.png"
+        row["depth_metres_path"] = f"depth/{image}.npy"
+        row["depth_scale"] = depth_unit(result.depth)
+    if spec.normals:
+        files[f"normals/{image}.png"] = images["normals"]
+        row["normals_file_name"] = f"normals/{image}.png"
     if spec.segmentation:
         files[f"segmentation/{image}.png"] = images["segmentation"]
         files[f"segmentation/{image}_ids.json"] = images["ids"]
@@ -270,6 +278,8 @@ def view_picture(
         row["view"] = name.view
     row.update(seed=name.seed, **name.tried, rules=spec.rules, ok=scene.layout.ok)
     row["camera"] = camera_column(result.camera)
+    if spec.boxes_3d and result.ground_truth is not None:
+        row["objects_3d"] = result.ground_truth["objects"]
     row.update(grounded)
     return scene, ViewPicture(files, row, captions, annotations)
 

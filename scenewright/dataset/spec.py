@@ -69,7 +69,10 @@ class DatasetSpec:
     scene.json keeps the full description either way. ``context``: the absolute path of
     the learned context every layout samples with (``scenewright fit --what context``),
     None for none; ``context_digest`` a hash of its text, so a resumed run cannot mix
-    contexts.
+    contexts. ``depth``: each image's depth as a 16-bit PNG (its unit in the row's
+    ``depth_scale``) and as float32 metres (``.npy``); ``normals``: a surface normals
+    image per view; ``boxes_3d``: the row's ``objects_3d`` column (each entity's pose
+    and 3D box in the camera frame, ``render.ground_truth``).
     """
 
     rules: str
@@ -93,13 +96,23 @@ class DatasetSpec:
     text_words: int | None = None
     context: str | None = None
     context_digest: str | None = None
+    normals: bool = False
+    boxes_3d: bool = False
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads
-        them back)."""
+        them back). The ground truth options added later (``normals``, ``boxes_3d``) are
+        stored only when on, so a dataset made before them resumes as it was."""
         data = json.loads(json.dumps(asdict(self)))
         del data["count"]
+        for name in LATER_OPTIONS:
+            if not data[name]:
+                del data[name]
         return data
+
+
+#: Options stored in ``dataset.json`` only when on (``DatasetSpec.settings``).
+LATER_OPTIONS = ("normals", "boxes_3d")
 
 
 def dataset_spec(
