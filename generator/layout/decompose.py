@@ -72,7 +72,8 @@ FRAME_MIN_SIDE = 10.0
 #: on, and place each item as the best of at least this many candidates: assessing 200
 #: boxes costs as much as hundreds of steps, and a group's footprint, placed once with all
 #: its members, is rarely moved out of a poor spot. With the small scenes' 25, 50 and 8
-#: the town (seeds 0..19) took a median 2.20 s of CPU but p90 11.0 s and had one failure.
+#: the town's slowest layouts took several times its median, and some failed (the
+#: figures: docs/notes/measurements.md).
 LARGE_CHECK_EVERY = 200
 LARGE_MIN_STEPS = 200
 LARGE_CANDIDATES = 16

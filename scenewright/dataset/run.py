@@ -393,9 +393,9 @@ def start_worker(lifeline, spec: DatasetSpec | None) -> None:
         target=exit_when_closed, args=(lifeline,), name="lifeline", daemon=True
     ).start()
     # The pool has a worker per core: a software OpenGL's own rasteriser threads would
-    # only contend with the other workers (village 256x256, 2 workers: 320 -> 384
-    # scenes/min, same images; docs/datasets.md). Set before the worker's renderer exists; a value the
-    # user gave is kept.
+    # only contend with the other workers (same images, more scenes a minute: the
+    # figures are in docs/notes/measurements.md). Set before the worker's renderer
+    # exists; a value the user gave is kept.
     os.environ.setdefault("LP_NUM_THREADS", "0")
     if spec is not None:
         from scenewright.dataset.produce import worker_context
