@@ -40,7 +40,7 @@ furniture is tied to walls that a group's own frame does not have.
 from __future__ import annotations
 
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import networkx as nx
 import numpy as np
@@ -49,6 +49,7 @@ from scenewright.core.scene_graph import SceneGraph
 
 from .energy import Energy
 from .initial import place_initial
+from .lots import shortage
 from .moves import Mover
 from .params import LayoutParams
 from .pinning import Pins
@@ -91,6 +92,7 @@ class Frames:
     poses: dict[int, Frame]  # by group index of the scene's problem
     ok: dict[int, bool]  # whether the group's own layout was ok
     steps: int
+    nouns: dict[str, tuple[str, str]] = field(default_factory=dict)  # type -> noun, plural
 
 
 def framed_groups(problem: Problem) -> list[int]:
@@ -173,6 +175,8 @@ def lay_out_frames(
         results = [_frame(task) for task in tasks]
     index = {box_id: box for box, box_id in enumerate(problem.ids)}
     frames = Frames({}, {}, 0)
+    for node in graph.nodes():
+        frames.nouns.setdefault(node.type, (node.noun, node.plural or node.noun + "s"))
     for g, (poses, ok, steps) in zip(groups, results, strict=False):
         frames.poses[g] = {index[box_id]: pose for box_id, pose in poses.items()}
         frames.ok[g] = ok
@@ -217,7 +221,7 @@ def run_decomposed_chain(
     state = State(problem)
     energy = Energy(problem, state, params)
     rigid = Mover(problem, state, rng, params, rigid_groups=list(frames.poses))
-    place_initial(energy, rigid, rng, frames=frames.poses)
+    plan = place_initial(energy, rigid, rng, frames=frames.poses, lots=True)
     placed = anneal(
         energy, rigid, params, rng, max(params.steps, RIGID_STEPS_PER_UNIT * len(problem.units))
     )
@@ -225,10 +229,16 @@ def run_decomposed_chain(
     refined = anneal(
         energy, joint, params, rng, max(params.min_steps, REFINE_STEPS_PER_BOX * problem.n_boxes)
     )
+    problems = list(refined.problems)
+    missing = (
+        shortage(plan, frames.nouns, problem.path_ids) if plan is not None and problems else None
+    )
+    if missing:  # what the rule set asked for too much of, before what went wrong
+        problems.insert(0, missing)
     return Run(
         energy,
         refined.relations,
-        refined.problems,
+        problems,
         placed.steps + refined.steps,
         placed.accepted + refined.accepted,
     )

@@ -19,6 +19,8 @@ import math
 
 import numpy as np
 
+from scenewright.core.geometry import point_segment_distance
+
 from .energy import Energy
 from .motion import uniform, wrap
 from .pinning import Pins
@@ -42,9 +44,16 @@ JUNCTIONS_SPREAD = 0.3
 SPREAD_CANDIDATES = 8
 
 
-def lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+def lay_paths(
+    energy: Energy, rng: np.random.Generator, pins: Pins, held=None, fit: bool = False
+) -> None:
+    """Lay out every junction and path. ``fit`` (a large outdoor scene): several
+    road networks are fitted to the scene and to each other (``_fit_networks``)."""
     if pins.preset:
         _lay_paths_around(energy, rng, pins, held)
+        return
+    if fit and any(energy.problem.is_junction):
+        _fit_networks(energy, rng)
         return
     problem, state = energy.problem, energy.state
     half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
@@ -273,3 +282,142 @@ def _path_points(
         z = points[-1][1] + math.sin(heading) * step
         points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
     return points
+
+
+#: Fitted road networks (``_fit_networks``): candidate networks drawn per junction; the
+#: distance (metres) a junction keeps from the roads of other networks (room for the lots
+#: of both), the distance at which a road ends when it meets another network's road, and
+#: the shortest a road is cut to (a share of its maximum).
+NETWORK_CANDIDATES = 24
+NETWORK_SPREAD = 0.35
+JUNCTION_CLEARANCE = 30.0
+ROAD_CLEARANCE = 6.0
+SHORTEST_ROAD = 0.3
+#: Arc-length step (metres) at which a new road is tested against the roads laid.
+CLEARANCE_STEP = 1.0
+
+
+def _fit_networks(energy: Energy, rng: np.random.Generator) -> None:
+    """Road networks that fit the scene and each other, one junction after another.
+
+    Each junction is the best of ``NETWORK_CANDIDATES`` drawn networks: a spot within
+    ``NETWORK_SPREAD`` of the extent from its centre, at least ``JUNCTION_CLEARANCE``
+    from the roads laid so far, and its roads at evenly spread headings from a drawn
+    base, each as long as its maximum allows (``PATH_LENGTH_SHARE``) but ending where it
+    would leave the scene or meet another network's road (``ROAD_CLEARANCE`` short of
+    it); the best gives the most road (frontage for the lots beside it). Free roads then cross
+    the scene as without fitting, cut the same way."""
+    problem, state = energy.problem, energy.state
+    width, depth = problem.extent
+    half_x, half_z = width / 2.0, depth / 2.0
+    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+    laid: list[list[list[float]]] = []
+    for junction in junctions:
+        paths = problem.paths_of_junction.get(junction, [])
+        best = None
+        for _ in range(NETWORK_CANDIDATES):
+            x = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * width
+            z = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * depth
+            base = uniform(rng, 0.0, 2.0 * math.pi)
+            clearance = min((_distance_to((x, z), road) for road in laid), default=math.inf)
+            roads = {}
+            for k, path in enumerate(paths):
+                heading = base + 2.0 * math.pi * k / max(len(paths), 1)
+                turns = [
+                    float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                    for _ in range(problem.path_segments[path])
+                ]
+                roads[path] = _fitted_road(problem, path, (x, z), heading, turns, laid)
+            length = sum(_length(points) for points in roads.values())
+            score = length - (0.0 if clearance >= JUNCTION_CLEARANCE else 1e3 - clearance)
+            if best is None or score > best[0]:
+                best = (score, x, z, roads)
+        assert best is not None
+        _, x, z, roads = best
+        state.set_pose(junction, x, z, 0.0)
+        energy.activate([junction])
+        for path, points in roads.items():
+            energy.propose({}, {path: points})
+            energy.accept()
+            laid.append(points)
+    for path in (p for p in range(problem.n_paths) if problem.path_start[p] < 0):
+        chosen: list | None = None
+        for _ in range(SPREAD_CANDIDATES):
+            heading = uniform(rng, 0.0, 2.0 * math.pi)
+            middle = (
+                uniform(rng, -FREE_PATH_SPREAD, FREE_PATH_SPREAD) * width,
+                uniform(rng, -FREE_PATH_SPREAD, FREE_PATH_SPREAD) * depth,
+            )
+            back = _room(middle, heading + math.pi, half_x, half_z)
+            behind = min(back, PATH_LENGTH_SHARE * problem.path_max_length[path] / 2.0)
+            start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+            turns = [
+                float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                for _ in range(problem.path_segments[path])
+            ]
+            points = _fitted_road(problem, path, start, heading, turns, laid)
+            if chosen is None or _length(points) > _length(chosen):
+                chosen = points
+        assert chosen is not None
+        energy.propose({}, {path: chosen})
+        energy.accept()
+        laid.append(chosen)
+
+
+def _fitted_road(problem, path: int, start, heading: float, turns: list[float], laid) -> list:
+    """A road from ``start`` along ``heading`` turning by ``turns`` at its control points,
+    as long as its maximum allows but cut where it would leave the scene or come within
+    ``ROAD_CLEARANCE`` of a road in ``laid``; never shorter than ``SHORTEST_ROAD`` of
+    its maximum."""
+    half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
+    full = PATH_LENGTH_SHARE * problem.path_max_length[path]
+    segments = len(turns)
+
+    def points_for(length: float) -> list[list[float]]:
+        step, angle = length / segments, heading
+        points = [[float(start[0]), float(start[1])]]
+        for turn in turns:
+            angle += turn
+            points.append(
+                [points[-1][0] + math.cos(angle) * step, points[-1][1] + math.sin(angle) * step]
+            )
+        return points
+
+    points = points_for(full)
+    # How far along it stays inside and clear of the other roads.
+    free, walked = full, 0.0
+    for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
+        segment = math.hypot(bx - ax, bz - az)
+        steps = max(1, int(segment / CLEARANCE_STEP))
+        stop = None
+        for k in range(1, steps + 1):
+            t = k / steps
+            px, pz = ax + t * (bx - ax), az + t * (bz - az)
+            if (
+                abs(px) > half_x
+                or abs(pz) > half_z
+                or any(_distance_to((px, pz), road) < ROAD_CLEARANCE for road in laid)
+            ):
+                stop = walked + (k - 1) / steps * segment
+                break
+        if stop is not None:
+            free = stop
+            break
+        walked += segment
+    length = max(free, SHORTEST_ROAD * full)
+    points = points_for(length)
+    return [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+
+
+def _distance_to(point, road) -> float:
+    px, pz = point
+    return min(
+        point_segment_distance(px, pz, ax, az, bx, bz)
+        for (ax, az), (bx, bz) in zip(road, road[1:], strict=False)
+    )
+
+
+def _length(points) -> float:
+    return sum(
+        math.hypot(bx - ax, bz - az) for (ax, az), (bx, bz) in zip(points, points[1:], strict=False)
+    )
