@@ -55,7 +55,7 @@ from scenewright.core.relations import RELATIONS
 from .energy import Energy
 from .families import LAYOUT_FAMILIES, evaluate
 from .initial_roads import lay_paths
-from .lots import LotPlan, frontage_items, plan_lots
+from .lots import LOT_SPACING, LotPlan, frontage_items, plan_lots
 from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach
 from .pinning import Pins
@@ -101,7 +101,13 @@ def place_initial(
         energy.activate(sorted(preset))
     _park(energy)
     held = _held_terms(energy, mover, pins)
-    lay_paths(energy, rng, pins, held, fit=lots)
+    items = frontage_items(energy, frames) if lots else []
+    need: dict[int, float] | None = None
+    if lots:
+        need = {}
+        for item in items:
+            need[item.path] = need.get(item.path, 0.0) + item.width + LOT_SPACING
+    lay_paths(energy, rng, pins, held, fit=need)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
         _best_of(
             energy,
@@ -111,7 +117,7 @@ def place_initial(
         )
     plan = None
     if lots:
-        plan = plan_lots(energy, frontage_items(energy, frames))
+        plan = plan_lots(energy, items)
         for poses in plan.poses.values():
             for box, (x, z, yaw) in poses.items():
                 energy.state.set_pose(box, x, z, yaw)

@@ -31,7 +31,13 @@ from dataclasses import dataclass, field
 
 import networkx as nx
 
-from scenewright.core.geometry import Rect, corners, polyline_rect_penetration, rect_overlap
+from scenewright.core.geometry import (
+    Rect,
+    corners,
+    polyline_rect_penetration,
+    rect_overlap,
+    rect_penetration,
+)
 from scenewright.core.scene_graph import SceneGraph
 
 from .energy import Energy
@@ -387,3 +393,88 @@ def shortage(
             f"its sides give {plan.sides[path]:.0f} m ({left} found no room)"
         )
     return "; ".join(lines)
+
+
+#: ``settle``: pairs of ground boxes overlapping by more than this (metres) are pushed
+#: apart, by as much plus ``SETTLE_MARGIN``, if the energy rises by at most
+#: ``SETTLE_RISE``; at most ``SETTLE_PASSES`` sweeps.
+SETTLE_DEPTH = 0.005
+SETTLE_MARGIN = 0.01
+SETTLE_RISE = 0.5
+SETTLE_PASSES = 3
+
+
+def settle(energy: Energy) -> bool:
+    """Push apart the boxes a finished layout leaves slightly overlapping.
+
+    The verdict allows an overlap of 1 % of the two footprints' diagonals (8 cm for a
+    house and its shed), which the annealing leaves where a relation pulls two boxes
+    together. Each such pair found (through a grid of cells) is separated by moving the
+    box with the smaller footprint, with what rests on it, straight away from the other
+    by the overlap's depth; the move is kept when it costs the energy little (a few
+    centimetres do not break a NextTo, nor turn a direction). Returns whether anything
+    moved."""
+    problem, state = energy.problem, energy.state
+    ground = [
+        b
+        for b in range(problem.n_boxes)
+        if problem.support[b] < 0 and not problem.is_junction[b] and energy.active[b]
+    ]
+    moved = False
+    for _ in range(SETTLE_PASSES):
+        cells: dict[tuple[int, int], list[int]] = {}
+        for box in ground:
+            rect = state.rects[box]
+            reach = math.hypot(rect.hw, rect.hd)
+            for i in range(
+                math.floor((rect.cx - reach) / GRID_CELL),
+                math.floor((rect.cx + reach) / GRID_CELL) + 1,
+            ):
+                for j in range(
+                    math.floor((rect.cz - reach) / GRID_CELL),
+                    math.floor((rect.cz + reach) / GRID_CELL) + 1,
+                ):
+                    cells.setdefault((i, j), []).append(box)
+        pairs = sorted(
+            {
+                (a, b)
+                for members in cells.values()
+                for k, a in enumerate(members)
+                for b in members[k + 1 :]
+                if rect_penetration(state.rects[a], state.rects[b]) > SETTLE_DEPTH
+            }
+        )
+        if not pairs:
+            break
+        for a, b in pairs:
+            depth = rect_penetration(state.rects[a], state.rects[b])
+            if depth <= SETTLE_DEPTH:
+                continue
+            small, big = (a, b) if problem.size[a] <= problem.size[b] else (b, a)
+            dx, dz = state.x[small] - state.x[big], state.z[small] - state.z[big]
+            length = math.hypot(dx, dz) or 1.0
+            shift = depth + SETTLE_MARGIN
+            for box, other in ((small, big), (big, small)):
+                if not _free(problem, box):
+                    continue
+                sign = 1.0 if box == small else -1.0
+                step = (sign * dx / length * shift, sign * dz / length * shift)
+                poses = {
+                    item: (state.x[item] + step[0], state.z[item] + step[1], state.yaw[item])
+                    for item in problem.carried(box)
+                }
+                delta = energy.propose(poses, {})
+                if (
+                    delta <= SETTLE_RISE
+                    and rect_penetration(state.rects[box], state.rects[other]) < depth
+                ):
+                    energy.accept()
+                    moved = True
+                    break
+                energy.reject()
+    return moved
+
+
+def _free(problem, box: int) -> bool:
+    """Whether ``settle`` may move a box: a ground object (junctions stay)."""
+    return not problem.is_junction[box] and problem.support[box] < 0
