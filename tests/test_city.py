@@ -77,3 +77,11 @@ def test_too_little_frontage_is_said_road_by_road_in_metres(tmp_path):
     assert re.search(
         r"\d+ houses need \d+ m of road frontage beside road_\d; its sides give \d+ m", first
     )
+
+
+def test_the_layout_is_the_same_whatever_the_number_of_workers():
+    graph = expand(load_rules(USER_TOWN), 1000)
+    one = layout_scene(graph, 1000, params=LayoutParams(workers=1))
+    two = layout_scene(graph, 1000, params=LayoutParams(workers=2))
+    assert one.poses == two.poses
+    assert all((one.paths[path] == two.paths[path]).all() for path in one.paths)

@@ -37,6 +37,7 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
 from .decompose import (
+    MIN_BOXES,
     decomposes,
     frame_streams,
     large_scene_params,
@@ -114,6 +115,8 @@ def layout_scene(
     problem = compile_problem(graph)
     if (
         params.decompose
+        and problem.room is None
+        and problem.n_boxes >= MIN_BOXES
         and mask is None
         and context is None
         and not (pinned or pinned_paths or start)

@@ -397,11 +397,12 @@ def shortage(
 
 #: ``settle``: pairs of ground boxes overlapping by more than this (metres) are pushed
 #: apart, by as much plus ``SETTLE_MARGIN``, if the energy rises by at most
-#: ``SETTLE_RISE``; at most ``SETTLE_PASSES`` sweeps.
+#: ``SETTLE_RISE``; at most ``SETTLE_PASSES`` sweeps (a box wedged between two that
+#: was moved once is left, and the other of a later pair moved instead).
 SETTLE_DEPTH = 0.005
 SETTLE_MARGIN = 0.01
 SETTLE_RISE = 0.5
-SETTLE_PASSES = 3
+SETTLE_PASSES = 5
 
 
 def settle(energy: Energy) -> bool:
@@ -420,7 +421,7 @@ def settle(energy: Energy) -> bool:
         for b in range(problem.n_boxes)
         if problem.support[b] < 0 and not problem.is_junction[b] and energy.active[b]
     ]
-    moved = False
+    moved, shifted = False, set()
     for _ in range(SETTLE_PASSES):
         cells: dict[tuple[int, int], list[int]] = {}
         for box in ground:
@@ -451,28 +452,45 @@ def settle(energy: Energy) -> bool:
             if depth <= SETTLE_DEPTH:
                 continue
             small, big = (a, b) if problem.size[a] <= problem.size[b] else (b, a)
-            dx, dz = state.x[small] - state.x[big], state.z[small] - state.z[big]
-            length = math.hypot(dx, dz) or 1.0
-            shift = depth + SETTLE_MARGIN
+            if small in shifted:  # wedged between two: move the other, not back again
+                small, big = big, small
             for box, other in ((small, big), (big, small)):
-                if not _free(problem, box):
-                    continue
-                sign = 1.0 if box == small else -1.0
-                step = (sign * dx / length * shift, sign * dz / length * shift)
-                poses = {
-                    item: (state.x[item] + step[0], state.z[item] + step[1], state.yaw[item])
-                    for item in problem.carried(box)
-                }
-                delta = energy.propose(poses, {})
-                if (
-                    delta <= SETTLE_RISE
-                    and rect_penetration(state.rects[box], state.rects[other]) < depth
-                ):
-                    energy.accept()
+                if _separate(energy, box, other, depth):
+                    shifted.add(box)
                     moved = True
                     break
-                energy.reject()
     return moved
+
+
+def _separate(energy: Energy, box: int, other: int, depth: float) -> bool:
+    """Move ``box`` (with what rests on it) out of ``other`` by ``depth`` and a margin:
+    straight away from it, else along one of ``other``'s sides' normals, the one most
+    in that direction first; the first move that leaves at most ``SETTLE_DEPTH`` of
+    overlap and raises the energy by at most ``SETTLE_RISE`` is kept."""
+    problem, state = energy.problem, energy.state
+    if not _free(problem, box):
+        return False
+    dx, dz = state.x[box] - state.x[other], state.z[box] - state.z[other]
+    length = math.hypot(dx, dz) or 1.0
+    away = (dx / length, dz / length)
+    rect = state.rects[other]
+    axes = [(rect.c, -rect.s), (-rect.c, rect.s), (rect.s, rect.c), (-rect.s, -rect.c)]
+    axes.sort(key=lambda axis: -(axis[0] * away[0] + axis[1] * away[1]))
+    shift = depth + SETTLE_MARGIN
+    for ux, uz in [away, *axes[:2]]:
+        poses = {
+            item: (state.x[item] + ux * shift, state.z[item] + uz * shift, state.yaw[item])
+            for item in problem.carried(box)
+        }
+        delta = energy.propose(poses, {})
+        if (
+            delta <= SETTLE_RISE
+            and rect_penetration(state.rects[box], state.rects[other]) <= SETTLE_DEPTH
+        ):
+            energy.accept()
+            return True
+        energy.reject()
+    return False
 
 
 def _free(problem, box: int) -> bool:
