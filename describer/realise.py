@@ -52,7 +52,7 @@ PICTURE_SIDE_LABEL = "NextToChooseSide"
 
 #: Road networks alike (paths of the same nouns at junctions of one noun) are told as
 #: one list item from this many on ("thirty-six streets meeting four at each of nine
-#: crossroads"); fewer are each their own ("four roads meeting at an intersection, three
+#: intersections"); fewer are each their own ("four roads meeting at an intersection, three
 #: more roads meeting at another intersection").
 NETWORKS_COUNTED = 3
 
@@ -196,8 +196,8 @@ class Realiser:
     def _networks_counted(self, items: tuple[Item, ...]) -> list[Item | _Networks]:
         """``items`` with the road networks alike (as many paths of the same nouns at
         junctions of one noun) told as one when there are at least ``NETWORKS_COUNTED``
-        of them, at the first one's place: a city's nine crossroads are "thirty-six
-        streets meeting four at each of nine crossroads", not nine list items."""
+        of them, at the first one's place: a city's nine intersections are "thirty-six
+        streets meeting four at each of nine intersections", not nine list items."""
         alike: dict[tuple, list[Network]] = {}
         for item in items:
             if isinstance(item, Network):
