@@ -50,6 +50,19 @@ from .world import World
 #: The label whose sides are the picture's when the realiser tells picture sides.
 PICTURE_SIDE_LABEL = "NextToChooseSide"
 
+#: Road networks alike (paths of the same nouns at junctions of one noun) are told as
+#: one list item from this many on ("thirty-six streets meeting four at each of nine
+#: intersections"); fewer are each their own ("four roads meeting at an intersection, three
+#: more roads meeting at another intersection").
+NETWORKS_COUNTED = 3
+
+
+@dataclass(frozen=True)
+class _Networks:
+    """Road networks alike, told as one list item (``Realiser._networks_counted``)."""
+
+    networks: tuple[Network, ...]
+
 
 @dataclass(frozen=True)
 class Sentence:
@@ -136,7 +149,9 @@ class Realiser:
         self.discourse.start_sentence()
         if setting_ids:
             setting = self.discourse.marks.mark(setting, setting_ids)
-        phrases = [self._item(item) for item in self.choices.shuffled(items)]
+        phrases = [
+            self._item(item) for item in self.choices.shuffled(self._networks_counted(items))
+        ]
         text = render(
             self.environment,
             "caption.j2",
@@ -174,10 +189,46 @@ class Realiser:
                 )
             ]
         else:
-            items = [self._item(item) for item in self.choices.shuffled(inventory.items)]
+            merged = self._networks_counted(inventory.items)
+            items = [self._item(item) for item in self.choices.shuffled(merged)]
         return render(self.environment, "inventory.j2", owner=owner, verb=verb, items=items)
 
-    def _item(self, item: Item) -> str:
+    def _networks_counted(self, items: tuple[Item, ...]) -> list[Item | _Networks]:
+        """``items`` with the road networks alike (as many paths of the same nouns at
+        junctions of one noun) told as one when there are at least ``NETWORKS_COUNTED``
+        of them, at the first one's place: a city's nine intersections are "thirty-six
+        streets meeting four at each of nine intersections", not nine list items."""
+        alike: dict[tuple, list[Network]] = {}
+        for item in items:
+            if isinstance(item, Network):
+                alike.setdefault(self._network_kind(item), []).append(item)
+        merged: list[Item | _Networks] = []
+        for item in items:
+            if not isinstance(item, Network):
+                merged.append(item)
+                continue
+            networks = alike[self._network_kind(item)]
+            if len(networks) < NETWORKS_COUNTED:
+                merged.append(item)
+            elif networks[0] is item:
+                merged.append(_Networks(tuple(networks)))
+        return merged
+
+    def _network_kind(self, network: Network) -> tuple:
+        return (
+            self.world[network.junction].noun,
+            tuple(sorted(self.world[path].noun for path in network.paths)),
+        )
+
+    def _item(self, item: Item | _Networks) -> str:
+        if isinstance(item, _Networks):
+            streets = tuple(path for network in item.networks for path in network.paths)
+            junctions = tuple(network.junction for network in item.networks)
+            each = len(item.networks[0].paths)
+            return (
+                f"{self.discourse.introduce(streets)} meeting {number_word(each)} at each of "
+                f"{self.discourse.introduce(junctions)}"
+            )
         if isinstance(item, Network):
             by_noun: dict[str, tuple[str, ...]] = {}
             for path in item.paths:

@@ -29,9 +29,9 @@ def test_town_is_shipped_and_validates():
 def test_object_budget_holds_and_the_notes_say_it():
     rules = load_rules("town")
     bounds = object_bounds(rules)
-    assert bounds[rules.start] == (163, 287)
+    assert bounds[rules.start] == (243, 419)
     counts = [len(graph.nodes("object")) for graph in towns()]
-    assert 163 <= min(counts) and max(counts) <= 287 and len(set(counts)) > 10
+    assert 243 <= min(counts) and max(counts) <= 419 and len(set(counts)) > 10
     lines = rules.path.read_text().splitlines()
     noted = {}
     for name, production in rules.productions.items():
@@ -54,7 +54,7 @@ def test_towns_have_road_networks_homes_a_market_parks_and_lamps():
             assert 3 <= len(roads) <= 4
         paths = {node.id for node in graph.nodes("path")}
         groups = Counter(node.type for node in graph.nodes("group"))
-        assert 32 <= groups["home"] <= 38 and groups["market"] == 1 and groups["park"] == 2
+        assert 52 <= groups["home"] <= 60 and groups["market"] == 1 and groups["park"] == 2
         beside_roads = {e.source for e in graph.edges("NextTo") if e.target in paths}
         for group in graph.nodes("group"):
             if group.type in ("home", "market", "park"):

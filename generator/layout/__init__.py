@@ -37,6 +37,7 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import SeedLike, stage_stream
 
 from .decompose import (
+    MIN_BOXES,
     decomposes,
     frame_streams,
     large_scene_params,
@@ -44,6 +45,7 @@ from .decompose import (
     run_decomposed_chain,
 )
 from .learned_term import LearnedContext, compile_learned
+from .lots import wrap_clusters
 from .mask_term import FloorMask, compile_mask
 from .measure import measure_layout
 from .params import LayoutParams
@@ -111,6 +113,21 @@ def layout_scene(
     params = params or LayoutParams()
     started = time.perf_counter()
     problem = compile_problem(graph)
+    if (
+        params.decompose
+        and problem.room is None
+        and problem.n_boxes >= MIN_BOXES
+        and mask is None
+        and context is None
+        and not (pinned or pinned_paths or start)
+    ):
+        # Loose objects tied by relations (a house and its garden) laid out as groups when
+        # that makes the scene one the group decomposition lays out (``lots``).
+        wrapped = wrap_clusters(graph)
+        if wrapped is not graph:
+            grouped = compile_problem(wrapped)
+            if decomposes(grouped, compile_pins(grouped, None, None, None)):
+                graph, problem = wrapped, grouped
     if mask is not None:
         problem.mask = compile_mask(mask, problem.ids)
     if context is not None:

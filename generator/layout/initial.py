@@ -55,6 +55,7 @@ from scenewright.core.relations import RELATIONS
 from .energy import Energy
 from .families import LAYOUT_FAMILIES, evaluate
 from .initial_roads import lay_paths
+from .lots import LOT_SPACING, LotPlan, frontage_items, plan_lots
 from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach
 from .pinning import Pins
@@ -76,13 +77,18 @@ def place_initial(
     rng: np.random.Generator,
     pins: Pins | None = None,
     frames: Mapping[int, Mapping[int, tuple[float, float, float]]] | None = None,
-) -> None:
+    lots: bool = False,
+) -> LotPlan | None:
     """Lay out paths, junctions and all boxes; leaves every box active in ``energy``.
 
     Pinned and started boxes go first, at their poses; then paths (pinned and started
     ones at their points), then everything else around them. A group in ``frames``
     (group -> {box: (x, z, yaw)} about the group's centre, its own layout) keeps its
     members' poses relative to each other and is placed as one rigid footprint.
+
+    With ``lots`` (a large outdoor scene, ``decompose``) the roads of several junctions
+    are spread to avoid each other and the items that stand beside a road are given
+    lots along it first (``lots.plan_lots``); the plan is returned (else None).
     """
     frames = frames or {}
     problem, state = energy.problem, energy.state
@@ -95,7 +101,13 @@ def place_initial(
         energy.activate(sorted(preset))
     _park(energy)
     held = _held_terms(energy, mover, pins)
-    lay_paths(energy, rng, pins, held)
+    items = frontage_items(energy, frames) if lots else []
+    need: dict[int, float] | None = None
+    if lots:
+        need = {}
+        for item in items:
+            need[item.path] = need.get(item.path, 0.0) + item.width + LOT_SPACING
+    lay_paths(energy, rng, pins, held, fit=need)
     for term in sorted(mover.pullable):  # roads and junctions pinned things must be next to
         _best_of(
             energy,
@@ -103,6 +115,13 @@ def place_initial(
             energy.params.path_candidates,
             held,
         )
+    plan = None
+    if lots:
+        plan = plan_lots(energy, items)
+        for poses in plan.poses.values():
+            for box, (x, z, yaw) in poses.items():
+                energy.state.set_pose(box, x, z, yaw)
+            energy.activate(sorted(poses))
     for unit in _placing_order(energy):
         kind, index = unit
         if kind == "group":
@@ -119,6 +138,7 @@ def place_initial(
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
+    return plan
 
 
 def _placing_order(energy: Energy) -> Iterator[tuple[str, int]]:

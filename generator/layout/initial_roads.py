@@ -16,8 +16,11 @@ must be next to them.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
+
+from scenewright.core.geometry import point_segment_distance
 
 from .energy import Energy
 from .motion import uniform, wrap
@@ -42,9 +45,21 @@ JUNCTIONS_SPREAD = 0.3
 SPREAD_CANDIDATES = 8
 
 
-def lay_paths(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
+def lay_paths(
+    energy: Energy,
+    rng: np.random.Generator,
+    pins: Pins,
+    held=None,
+    fit: Mapping[int, float] | None = None,
+) -> None:
+    """Lay out every junction and path. ``fit`` (a large outdoor scene: per path, the
+    metres of frontage the items beside it need): the road networks are fitted to the
+    scene, to each other and to that need (``_fit_networks``)."""
     if pins.preset:
         _lay_paths_around(energy, rng, pins, held)
+        return
+    if fit is not None and any(energy.problem.is_junction):
+        _fit_networks(energy, rng, fit)
         return
     problem, state = energy.problem, energy.state
     half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
@@ -273,3 +288,207 @@ def _path_points(
         z = points[-1][1] + math.sin(heading) * step
         points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
     return points
+
+
+#: Fitted road networks (``_fit_networks``): whole plans tried, candidate networks drawn
+#: per junction in each; the
+#: distance (metres) a junction keeps from the roads of other networks (room for the lots
+#: of both), the distance at which a road ends when it meets another network's road, and
+#: the shortest a road is cut to (a share of its maximum).
+NETWORK_CANDIDATES = 24
+NETWORK_TRIES = 4
+NETWORK_SPREAD = 0.35
+JUNCTION_CLEARANCE = 30.0
+ROAD_CLEARANCE = 6.0
+SHORTEST_ROAD = 0.3
+#: Metres of each side of a road lost for lots at each of its ends (where it meets its
+#: junction's other roads, or another network's road).
+CORNER_LOSS = 6.0
+#: Arc-length step (metres) at which a new road is tested against the roads laid.
+CLEARANCE_STEP = 1.0
+
+
+def _fit_networks(energy: Energy, rng: np.random.Generator, need: Mapping[int, float]) -> None:
+    """Road networks that fit the scene and each other: the best of ``NETWORK_TRIES``
+    plans (``_network_plan``) by the frontage met, then the road laid."""
+    problem, state = energy.problem, energy.state
+    best = None
+    for _ in range(NETWORK_TRIES):
+        plan = _network_plan(problem, rng, need)
+        if best is None or plan[0] > best[0]:
+            best = plan
+    assert best is not None
+    _, junctions, roads = best
+    for junction, (x, z) in junctions.items():
+        state.set_pose(junction, x, z, 0.0)
+    energy.activate(list(junctions))
+    for path in range(problem.n_paths):
+        energy.propose({}, {path: roads[path]})
+        energy.accept()
+
+
+def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) -> tuple:
+    """One plan of the road networks, one junction after another: (its score, junction
+    spots, path points).
+
+    Each junction is the best of ``NETWORK_CANDIDATES`` drawn networks: a spot within
+    ``NETWORK_SPREAD`` of the extent from its centre, at least ``JUNCTION_CLEARANCE``
+    from the roads laid so far, and its roads at evenly spread headings from a drawn
+    base, each as long as its maximum allows (``PATH_LENGTH_SHARE``) but ending where it
+    would leave the scene or meet another network's road (``ROAD_CLEARANCE`` short of
+    it); the best gives the most of the frontage its roads' items need (``need``: each
+    road's two sides, less ``CORNER_LOSS`` at each end, count up to its need), then the
+    most road. Free roads then cross the scene, cut the same way. The plan's score is
+    the frontage met over all roads, then their length."""
+    width, depth = problem.extent
+    half_x, half_z = width / 2.0, depth / 2.0
+    laid = _Segments()
+    spots: dict[int, tuple[float, float]] = {}
+    laid_roads: dict[int, list] = {}
+    total = 0.0
+    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
+        paths = problem.paths_of_junction.get(junction, [])
+        best = None
+        for _ in range(NETWORK_CANDIDATES):
+            x = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * width
+            z = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * depth
+            base = uniform(rng, 0.0, 2.0 * math.pi)
+            clearance = laid.distance((x, z), JUNCTION_CLEARANCE)
+            roads = {}
+            for k, path in enumerate(paths):
+                heading = base + 2.0 * math.pi * k / max(len(paths), 1)
+                # The first segment leaves at its slot's heading, so the roads of a
+                # junction stay as far apart as they are spread.
+                turns = [0.0] + [
+                    float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                    for _ in range(problem.path_segments[path] - 1)
+                ]
+                roads[path] = _fitted_road(problem, path, (x, z), heading, turns, laid)
+            score = _frontage_score(roads, need)
+            if clearance < JUNCTION_CLEARANCE:
+                score -= 1e4 - clearance
+            if best is None or score > best[0]:
+                best = (score, x, z, roads)
+        assert best is not None
+        score, x, z, roads = best
+        total += score
+        spots[junction] = (x, z)
+        for path, points in roads.items():
+            laid.add(points)
+            laid_roads[path] = points
+    for path in (p for p in range(problem.n_paths) if problem.path_start[p] < 0):
+        chosen: list | None = None
+        for _ in range(SPREAD_CANDIDATES):
+            heading = uniform(rng, 0.0, 2.0 * math.pi)
+            middle = (
+                uniform(rng, -FREE_PATH_SPREAD, FREE_PATH_SPREAD) * width,
+                uniform(rng, -FREE_PATH_SPREAD, FREE_PATH_SPREAD) * depth,
+            )
+            back = _room(middle, heading + math.pi, half_x, half_z)
+            behind = min(back, PATH_LENGTH_SHARE * problem.path_max_length[path] / 2.0)
+            start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
+            turns = [0.0] + [
+                float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                for _ in range(problem.path_segments[path] - 1)
+            ]
+            points = _fitted_road(problem, path, start, heading, turns, laid)
+            if chosen is None or _length(points) > _length(chosen):
+                chosen = points
+        assert chosen is not None
+        total += _frontage_score({path: chosen}, need)
+        laid.add(chosen)
+        laid_roads[path] = chosen
+    return total, spots, laid_roads
+
+
+def _frontage_score(roads: Mapping[int, list], need: Mapping[int, float]) -> float:
+    """How much of their items' need the roads' sides meet (weighted), plus their length."""
+    met = sum(
+        min(2.0 * max(_length(points) - 2.0 * CORNER_LOSS, 0.0), need.get(path, 0.0))
+        for path, points in roads.items()
+    )
+    return 10.0 * met + sum(_length(points) for points in roads.values())
+
+
+def _fitted_road(problem, path: int, start, heading: float, turns: list[float], laid) -> list:
+    """A road from ``start`` along ``heading`` turning by ``turns`` at its control points,
+    as long as its maximum allows but cut where it would leave the scene or come within
+    ``ROAD_CLEARANCE`` of a road in ``laid``; never shorter than ``SHORTEST_ROAD`` of
+    its maximum."""
+    half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
+    full = PATH_LENGTH_SHARE * problem.path_max_length[path]
+    segments = len(turns)
+
+    def points_for(length: float) -> list[list[float]]:
+        step, angle = length / segments, heading
+        points = [[float(start[0]), float(start[1])]]
+        for turn in turns:
+            angle += turn
+            points.append(
+                [points[-1][0] + math.cos(angle) * step, points[-1][1] + math.sin(angle) * step]
+            )
+        return points
+
+    points = points_for(full)
+    # How far along it stays inside and clear of the other roads.
+    free, walked = full, 0.0
+    for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
+        segment = math.hypot(bx - ax, bz - az)
+        steps = max(1, int(segment / CLEARANCE_STEP))
+        stop = None
+        for k in range(1, steps + 1):
+            t = k / steps
+            px, pz = ax + t * (bx - ax), az + t * (bz - az)
+            if (
+                abs(px) > half_x
+                or abs(pz) > half_z
+                or laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+            ):
+                stop = walked + (k - 1) / steps * segment
+                break
+        if stop is not None:
+            free = stop
+            break
+        walked += segment
+    length = max(free, SHORTEST_ROAD * full)
+    points = points_for(length)
+    return [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+
+
+class _Segments:
+    """The segments of the roads laid so far, in a grid of cells, for distance tests."""
+
+    CELL = 25.0
+
+    def __init__(self) -> None:
+        self.cells: dict[tuple[int, int], list[tuple[float, float, float, float]]] = {}
+
+    def add(self, points) -> None:
+        for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
+            segment = (ax, az, bx, bz)
+            for i in range(
+                math.floor(min(ax, bx) / self.CELL), math.floor(max(ax, bx) / self.CELL) + 1
+            ):
+                for j in range(
+                    math.floor(min(az, bz) / self.CELL), math.floor(max(az, bz) / self.CELL) + 1
+                ):
+                    self.cells.setdefault((i, j), []).append(segment)
+
+    def distance(self, point, within: float) -> float:
+        """The distance from ``point`` to the nearest segment, exact when under ``within``
+        (else some value of at least ``within``)."""
+        px, pz = point
+        reach = math.ceil(within / self.CELL)
+        ci, cj = math.floor(px / self.CELL), math.floor(pz / self.CELL)
+        best = math.inf
+        for i in range(ci - reach, ci + reach + 1):
+            for j in range(cj - reach, cj + reach + 1):
+                for ax, az, bx, bz in self.cells.get((i, j), ()):
+                    best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
+        return best
+
+
+def _length(points) -> float:
+    return sum(
+        math.hypot(bx - ax, bz - az) for (ax, az), (bx, bz) in zip(points, points[1:], strict=False)
+    )

@@ -32,6 +32,7 @@ examples:
   scenewright generate village --seed 7 -o out/
   scenewright generate my_town.rules --seed 3 --style short --size 1024x768 -o town/
   scenewright generate desk --no-render -o desk/
+  scenewright generate city --seed 1 --words 800 -o city/   # 1,100-2,200 objects, a summary text
   scenewright generate market.rules --templates my_words/ -o market/
 
 writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
