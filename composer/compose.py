@@ -19,7 +19,7 @@ from scenewright.core.errors import InputError
 from scenewright.generator.catalog import CatalogEntry
 
 from .parse import Issue, Place, Request, Statement, parse
-from .plan import rules_text
+from .plan import FIRST_CORNER, corner_starts, rules_text
 from .vocabulary import vocabulary
 
 #: Layouts tried before the best one is kept.
@@ -81,7 +81,9 @@ def plan(text: str, entries: Mapping[str, CatalogEntry]) -> tuple[Request, str]:
     if not text.strip():
         raise InputError("nothing to compose: the text is empty")
     request = parse(text, vocabulary(entries))
-    return request, rules_text(request, entries)
+    rules = rules_text(request, entries)
+    request.starts = corner_starts(request, entries, request.planned_size)
+    return request, rules
 
 
 def lay_out(
@@ -111,10 +113,15 @@ def lay_out(
     # k-th thing made, in the order the production makes them.
     made = [n.id for n in graph.nodes() if n.kind == "object"]
     ids = {e.id: made[k] for k, e in enumerate(request.entities)}
+    from scenewright.core.poses import Pose
+
+    start = {ids[eid]: Pose(x, 0.0, z, yaw) for eid, (x, z, yaw) in request.starts.items()}
     best = None
     for attempt in range(ATTEMPTS):
         with timed(timings, "layout"):
-            layout = layout_scene(graph, retry_seed(seed, attempt) if attempt else seed)
+            layout = layout_scene(
+                graph, retry_seed(seed, attempt) if attempt else seed, start=start or None
+            )
         scene = assemble_scene(graph, layout, rules=label, seed=seed)
         failed = _unsatisfied(scene, request, ids)
         score = (len(failed), not scene.layout.ok)
@@ -139,11 +146,14 @@ def _unsatisfied(scene, request: Request, ids: Mapping[str, str]) -> list[Statem
         source = ids[s.source]
         if isinstance(s.target, Place):
             ok = any(v for (a, label, _), v in verdicts.items() if a == source and label == s.label)
-            if ok and s.target.corner is not None:
+            corner = s.target.corner
+            if s.target.by_door:
+                corner = FIRST_CORNER[request.door_walls[0]]
+            if ok and corner is not None:
                 obj = next(o for o in scene.objects if o.id == source)
                 x, z = obj.position[0], obj.position[2]
                 want = {"north": z < 0, "south": z > 0, "east": x > 0, "west": x < 0}
-                ok = all(want[side] for side in s.target.corner)
+                ok = all(want[side] for side in corner)
         else:
             ok = verdicts.get((source, s.label, ids[s.target]), False)
         if not ok:

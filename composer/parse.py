@@ -75,6 +75,7 @@ class Place:
     kind: str  # "wall", "window", "corner"
     number: int | None = None  # wall or window number; None: the layout chooses
     corner: tuple[str, str] | None = None  # a named corner ("north", "west")
+    by_door: bool = False  # "the corner by the door"
 
 
 @dataclass(frozen=True)
@@ -103,6 +104,9 @@ class Request:
     room: str = "room"
     size: tuple[float, float] | None = None
     size_factor: float = 1.0
+    planned_size: tuple[float, float] = (0.0, 0.0)  # the room's sides as planned
+    door_walls: list[str] = field(default_factory=list)  # as planned
+    starts: dict[str, tuple[float, float, float]] = field(default_factory=dict)  # x, z, yaw
     doors: list[str] = field(default_factory=list)  # one wall side per door
     windows: list[str] = field(default_factory=list)  # one wall side per window
     absent: dict[str, tuple[int, int]] = field(default_factory=dict)
@@ -360,6 +364,9 @@ class _Reader:
         if low in ("wall", "walls"):
             return "place", Place("wall"), 1
         if low in ("corner", "corners"):
+            by = [t.low for t in toks[j + 1 : j + 4]]
+            if by[:1] in (["by"], ["near"]) and by[1:] == ["the", "door"]:
+                return "place", Place("corner", by_door=True), 4
             return "place", Place("corner"), 1
         if low in ("door", "doors", "doorway", "window", "windows"):
             kind = "door" if low.startswith("door") else "window"

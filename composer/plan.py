@@ -23,6 +23,18 @@ START = "Compose"
 #: Openings (metres): a door's width; a window's width, sill and height.
 DOOR_WIDTH = 0.9
 WINDOW = (1.4, 0.9, 1.3)
+#: The walls' height (the rules language's default), and how far from its wall's first
+#: corner a door is put when the text names "the corner by the door" (its opening then
+#: ends within the describer's reach of that corner).
+WALL_HEIGHT = 2.6
+DOOR_BY_CORNER = 1.3
+#: Each wall's first corner (walls run clockwise seen from above, north up).
+FIRST_CORNER = {
+    "north": ("north", "west"),
+    "east": ("east", "north"),
+    "south": ("south", "east"),
+    "west": ("west", "south"),
+}
 #: A room with no size of its own is this many times the floor its things cover (plus
 #: a margin for walking), and no smaller than MIN_SIDE on a side.
 FLOOR_PER_FOOTPRINT = 3.2
@@ -72,7 +84,7 @@ def entry_text(name: str, entry: CatalogEntry, style: str | None, colour: str | 
     fields = [head]
     fields += [f"clearance {side} {_number(depth)}" for side, depth in entry.clearance]
     if tuple(entry.access) != ("any",):
-        fields.append("access " + " ".join(entry.access))
+        fields.append("access " + (" ".join(entry.access) or "none"))
     styles: list[Style] = [s for s in entry.styles if style is None or s.name == style]
     for s in styles:
         weight = _number(s.weight) if style is None else "1"
@@ -104,7 +116,15 @@ def room_size(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[fl
     return round(width, 1), round(depth, 1)
 
 
-def _openings(request: Request, size: tuple[float, float]) -> list[str]:
+def _size(entries: Mapping[str, CatalogEntry], e) -> tuple[float, float, float]:
+    """A thing's size in its style."""
+    style = next((s for s in entries[e.type].styles if s.name == e.style), None)
+    return style.size if style is not None and style.size is not None else entries[e.type].size
+
+
+def _openings(
+    request: Request, size: tuple[float, float], entries: Mapping[str, CatalogEntry]
+) -> list[str]:
     """The door and window lines: on the walls the text named, else a door on the wall
     with the fewest things against it and, where a window is named, a window on the
     north wall; several on one wall are spread evenly along it."""
@@ -121,7 +141,18 @@ def _openings(request: Request, size: tuple[float, float]) -> list[str]:
         windows = [""]
     free = min(("south", "west", "east", "north"), key=lambda side: (against[side], 0))
     doors = [d or free for d in doors]
+    request.door_walls = doors
     windows = [w or ("north" if free != "north" else "east") for w in windows]
+    by_door = any(isinstance(s.target, Place) and s.target.by_door for s in request.statements)
+    under = max(
+        (
+            _size(entries, e)[1]
+            for e in request.entities
+            for s in request.statements
+            if s.source == e.id and s.label == "UnderWindow"
+        ),
+        default=0.0,
+    )
     by_wall: dict[str, list[str]] = {side: [] for side in _SIDES}
     for side in doors:
         by_wall[side].append("door")
@@ -136,17 +167,24 @@ def _openings(request: Request, size: tuple[float, float]) -> list[str]:
         share = 0.5 if against[side] else 1.0
         for k, kind in enumerate(kinds):
             offset = _number(max(0.9, length * share * (k + 1) / (len(kinds) + 1)))
+            if kind == "door" and k == 0 and side == doors[0] and by_door:
+                offset = _number(DOOR_BY_CORNER)
             if kind == "door":
                 lines.append(f"door {side} {offset} {_number(DOOR_WIDTH)}")
             else:
                 w, sill, h = WINDOW
+                # A thing asked to stand under a window must fit under its sill.
+                sill = max(sill, under + 0.05)
+                h = min(h, WALL_HEIGHT - 0.1 - sill)
                 lines.append(f"window {side} {offset} {_number(w)} {_number(sill)} {_number(h)}")
     return lines
 
 
-def _target(target: str | Place, windows: int) -> str:
+def _target(target: str | Place, windows: int, door_wall: str) -> str:
     if not isinstance(target, Place):
         return target
+    if target.by_door:
+        return f"wall #{WALL_NUMBER[door_wall]}"
     if target.kind == "window":
         return (
             f"window #{target.number}"
@@ -196,7 +234,8 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
             by_type[e.type] = by_type.get(e.type, 0) + 1
             keys[key] = e.type if by_type[e.type] == 1 else f"{e.type}_{by_type[e.type]}"
     size = room_size(request, entries)
-    openings = _openings(request, size)
+    request.planned_size = size
+    openings = _openings(request, size, entries)
     windows = sum(1 for line in openings if line.startswith("window"))
     out = ["# Composed from English; edit it as any rule set (docs/rules-language.md).", ""]
     out.append(f"scene {request.room} {{")
@@ -221,7 +260,7 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
         for s in statements_all:
             if s.source != e.id:
                 continue
-            target = _target(s.target, windows)
+            target = _target(s.target, windows, request.door_walls[0])
             if isinstance(s.target, Place) or s.target in made:
                 parts += [s.label, target]
             else:
@@ -236,5 +275,32 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
     return "\n".join(out) + "\n"
 
 
-def wall_number(side: str) -> int:
-    return WALL_NUMBER[side]
+#: The yaw that turns a thing's back to each wall (its front, local +Z, into the room).
+_BACK_TO = {"north": 0.0, "east": -math.pi / 2, "south": math.pi, "west": math.pi / 2}
+
+
+def corner_starts(
+    request: Request, entries: Mapping[str, CatalogEntry], size: tuple[float, float]
+) -> dict[str, tuple[float, float, float]]:
+    """Where a thing asked for in a named corner starts the layout (x, z, yaw): in that
+    corner, back to the corner's first-named wall. ``InCorner`` names a wall and lets
+    either of its corners do; the start makes the named one the one the layout keeps."""
+    out = {}
+    for s in request.statements:
+        if not isinstance(s.target, Place) or (s.target.corner is None and not s.target.by_door):
+            continue
+        e = next(e for e in request.entities if e.id == s.source)
+        w, _, d = entries[e.type].size
+        style = next((x for x in entries[e.type].styles if x.name == e.style), None)
+        if style is not None and style.size is not None:
+            w, _, d = style.size
+        back, side = s.target.corner or FIRST_CORNER[request.door_walls[0]]
+        if back in ("east", "west"):
+            w, d = d, w
+        sign = {"north": -1.0, "south": 1.0, "west": -1.0, "east": 1.0}
+        x_side = back if back in ("east", "west") else side
+        z_side = back if back in ("north", "south") else side
+        x = sign[x_side] * (size[0] / 2 - w / 2 - 0.01)
+        z = sign[z_side] * (size[1] / 2 - d / 2 - 0.01)
+        out[e.id] = (x, z, _BACK_TO[back])
+    return out

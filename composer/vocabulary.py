@@ -194,7 +194,7 @@ def _entry_nouns(entry: CatalogEntry) -> dict[str, NounSense]:
     # A style without a noun of its own is what the plain noun names (the describer
     # says "a wardrobe" for the oak one); the plain noun means any style when every
     # style renames the thing ("bed": double, single or king-size).
-    plain = [s.name for s in entry.styles if s.noun is None]
+    plain = [s.name for s in entry.styles if s.noun is None or s.noun == entry.noun]
     add(entry.noun, entry.plural, plain[0] if len(plain) == 1 else None, exact=False)
     for style in entry.styles:
         if style.noun is not None:
