@@ -115,12 +115,26 @@ def lay_out(
     ids = {e.id: made[k] for k, e in enumerate(request.entities)}
     from scenewright.core.poses import Pose
 
-    start = {ids[eid]: Pose(x, 0.0, z, yaw) for eid, (x, z, yaw) in request.starts.items()}
+    def held(k: int) -> dict[str, Pose]:
+        return {
+            ids[eid]: Pose(poses[k][0], 0.0, poses[k][1], poses[k][2])
+            for eid, poses in request.starts.items()
+        }
+
     best = None
     for attempt in range(ATTEMPTS):
         with timed(timings, "layout"):
+            # A thing asked for in a named corner is held there for the first layouts,
+            # back to one wall of the corner and then the other (InCorner holds in
+            # any corner, and the chain would wander between them); the last layout
+            # only starts it there.
+            hold = attempt < ATTEMPTS - 1
+            poses = held(attempt if hold else 0) or None
             layout = layout_scene(
-                graph, retry_seed(seed, attempt) if attempt else seed, start=start or None
+                graph,
+                retry_seed(seed, attempt) if attempt else seed,
+                pinned=poses if hold else None,
+                start=None if hold else poses,
             )
         scene = assemble_scene(graph, layout, rules=label, seed=seed)
         failed = _unsatisfied(scene, request, ids)

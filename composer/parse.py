@@ -106,7 +106,7 @@ class Request:
     size_factor: float = 1.0
     planned_size: tuple[float, float] = (0.0, 0.0)  # the room's sides as planned
     door_walls: list[str] = field(default_factory=list)  # as planned
-    starts: dict[str, tuple[float, float, float]] = field(default_factory=dict)  # x, z, yaw
+    starts: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)  # x, z, yaw
     doors: list[str] = field(default_factory=list)  # one wall side per door
     windows: list[str] = field(default_factory=list)  # one wall side per window
     absent: dict[str, tuple[int, int]] = field(default_factory=dict)
@@ -292,7 +292,8 @@ class _Reader:
                 return "room", (rest[0], dims, 1.0), j + n + rest[1] - i
             return "size", dims, j + n - i
         room = self._room_word(toks, j)
-        if room is not None:
+        thing = self.match(toks, j, self.vocab.nouns)
+        if room is not None and (thing is None or thing[1] < room[1]):  # "an office chair"
             return "room", (room[0], None, room[2]), j + room[1] - i
         # A thing.
         colour = None

@@ -165,6 +165,8 @@ def _openings(
         # Things asked to stand against a wall with openings take its middle: the
         # openings then keep to its west or north half.
         share = 0.5 if against[side] else 1.0
+        if length * share / (len(kinds) + 1) < WINDOW[0] + 0.2:  # too close: use it all
+            share = 1.0
         for k, kind in enumerate(kinds):
             offset = _number(max(0.9, length * share * (k + 1) / (len(kinds) + 1)))
             if kind == "door" and k == 0 and side == doors[0] and by_door:
@@ -183,8 +185,8 @@ def _openings(
 def _target(target: str | Place, windows: int, door_wall: str) -> str:
     if not isinstance(target, Place):
         return target
-    if target.by_door:
-        return f"wall #{WALL_NUMBER[door_wall]}"
+    if target.by_door or target.corner is not None:  # held in its corner (corner_starts)
+        return "some wall"
     if target.kind == "window":
         return (
             f"window #{target.number}"
@@ -281,26 +283,29 @@ _BACK_TO = {"north": 0.0, "east": -math.pi / 2, "south": math.pi, "west": math.p
 
 def corner_starts(
     request: Request, entries: Mapping[str, CatalogEntry], size: tuple[float, float]
-) -> dict[str, tuple[float, float, float]]:
-    """Where a thing asked for in a named corner starts the layout (x, z, yaw): in that
-    corner, back to the corner's first-named wall. ``InCorner`` names a wall and lets
-    either of its corners do; the start makes the named one the one the layout keeps."""
+) -> dict[str, list[tuple[float, float, float]]]:
+    """Where a thing asked for in a named corner may stand (x, z, yaw): in that corner,
+    back to one of its two walls (the first-named wall's first). Its relation is
+    ``InCorner`` to whichever wall the layout takes, which either corner of any wall
+    satisfies; the layout is held to these poses in turn so that the named corner is
+    the one it keeps (``compose.lay_out``)."""
     out = {}
     for s in request.statements:
         if not isinstance(s.target, Place) or (s.target.corner is None and not s.target.by_door):
             continue
         e = next(e for e in request.entities if e.id == s.source)
-        w, _, d = entries[e.type].size
-        style = next((x for x in entries[e.type].styles if x.name == e.style), None)
-        if style is not None and style.size is not None:
-            w, _, d = style.size
-        back, side = s.target.corner or FIRST_CORNER[request.door_walls[0]]
-        if back in ("east", "west"):
-            w, d = d, w
+        first, second = s.target.corner or FIRST_CORNER[request.door_walls[0]]
         sign = {"north": -1.0, "south": 1.0, "west": -1.0, "east": 1.0}
-        x_side = back if back in ("east", "west") else side
-        z_side = back if back in ("north", "south") else side
-        x = sign[x_side] * (size[0] / 2 - w / 2 - 0.01)
-        z = sign[z_side] * (size[1] / 2 - d / 2 - 0.01)
-        out[e.id] = (x, z, _BACK_TO[back])
+        poses = []
+        for back in (first, second):
+            w, _, d = _size(entries, e)
+            if back in ("east", "west"):
+                w, d = d, w
+            other = second if back == first else first
+            x_side = back if back in ("east", "west") else other
+            z_side = back if back in ("north", "south") else other
+            x = sign[x_side] * (size[0] / 2 - w / 2 - 0.01)
+            z = sign[z_side] * (size[1] / 2 - d / 2 - 0.01)
+            poses.append((x, z, _BACK_TO[back]))
+        out[e.id] = poses
     return out
