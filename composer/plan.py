@@ -16,7 +16,6 @@ from scenewright.describer.colours import COLOUR_TERMS
 from scenewright.generator.catalog import CatalogEntry, Style
 
 from .parse import Place, Request, Statement
-from .vocabulary import WALL_NUMBER
 
 #: The production every composed rule set starts from.
 START = "Compose"
@@ -182,7 +181,7 @@ def _openings(
     return lines
 
 
-def _target(target: str | Place, windows: int, door_wall: str) -> str:
+def _target(target: str | Place, windows: int) -> str:
     if not isinstance(target, Place):
         return target
     if target.by_door or target.corner is not None:  # held in its corner (corner_starts)
@@ -262,7 +261,7 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
         for s in statements_all:
             if s.source != e.id:
                 continue
-            target = _target(s.target, windows, request.door_walls[0])
+            target = _target(s.target, windows)
             if isinstance(s.target, Place) or s.target in made:
                 parts += [s.label, target]
             else:
