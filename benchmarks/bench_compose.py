@@ -22,12 +22,14 @@ composing language (docs/compose.md). Usage:
 from __future__ import annotations
 
 import argparse
+import math
 import time
 from collections import Counter
 
 from scenewright.api import build_scene, compose, describe
 from scenewright.composer.compose import plan
 from scenewright.core.relations import RELATIONS
+from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator import load_rules
 from scenewright.generator.layout.measure import measure_layout
 from scenewright.generator.layout.pinning import scene_layout
@@ -41,10 +43,14 @@ def _corner(scene, obj) -> str:
     """The corner a thing stands in: "by the door" when a door is close (as the
     describer says it), else by its quarter of the room."""
     x, z = obj.position[0], obj.position[2]
+    xs = [w.start[0] for w in scene.room.walls]
+    zs = [w.start[1] for w in scene.room.walls]
+    corner = (max(xs) if x > 0 else min(xs), max(zs) if z > 0 else min(zs))
     for opening in scene.room.openings:
         if opening.kind == "door":
             cx, cz = opening.center
-            if ((cx - x) ** 2 + (cz - z) ** 2) ** 0.5 < 1.0 + opening.width / 2 + 0.6:
+            edge = math.hypot(cx - corner[0], cz - corner[1]) - opening.width / 2
+            if edge <= DOOR_NEAR_CORNER:
                 return "by the door"
     return ("north" if z < 0 else "south") + "-" + ("west" if x < 0 else "east")
 

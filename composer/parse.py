@@ -282,6 +282,8 @@ class _Reader:
                 return "opening", (value[0], count or 1), j + n - i
             if kind == "place" and ordinal is not None and value.kind == "window":
                 value = Place("window", ordinal)
+            if kind == "place" and det in ("each", "every", "all") and value == Place("wall"):
+                value = Place("wall", 0)  # one against each wall: see _apply
             return kind, value, j + n - i
         # A room.
         size = self._size_at(toks, j)
@@ -552,6 +554,16 @@ class _Reader:
                 label = "InCorner"
             else:
                 return self._unused(toks, start, end, "no such relation to a room part")
+            if place == Place("wall", 0):  # "a bookshelf against each wall": one a wall
+                first = self.entity(subjects[0])
+                sense = NounSense(first.type, first.style, False)
+                subjects = subjects + [
+                    self.create(sense, first.colour, [toks[start]])
+                    for _ in range(len(WALL_NUMBER) - len(subjects))
+                ]
+                for s, number in zip(subjects, sorted(WALL_NUMBER.values())):
+                    add(s, label, Place("wall", number))
+                return
             for s in subjects:
                 add(s, label, place)
             return

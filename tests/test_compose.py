@@ -193,3 +193,18 @@ def test_strict_refuses_an_unknown_word_and_writes_nothing(tmp_path):
     assert run.returncode == 2
     assert "1:3-8: unknown word 'kitchn'; did you mean 'kitchen'?" in run.stderr
     assert "Traceback" not in run.stderr and not out.exists()
+
+
+def test_one_against_each_wall():
+    request, _ = _plan("a room with a bookshelf against each wall")
+    walls = sorted(s.target.number for s in request.statements if isinstance(s.target, Place))
+    assert _types(request) == ["bookshelf"] * 4 and walls == [1, 2, 3, 4]
+
+
+def test_a_named_corner_is_where_the_layout_puts_it():
+    from scenewright.api import compose
+
+    scene, report = compose("a bathroom with a bathtub in the south-east corner and a toilet", 4)
+    tub = next(o for o in scene.objects if o.type == "bathtub")
+    assert tub.position[0] > 0 and tub.position[2] > 0 and not report.unsatisfied
+    assert "The bathtub stands in the south-east corner." in scene.description.text
