@@ -561,7 +561,7 @@ class _Reader:
                     self.create(sense, first.colour, [toks[start]])
                     for _ in range(len(WALL_NUMBER) - len(subjects))
                 ]
-                for s, number in zip(subjects, sorted(WALL_NUMBER.values())):
+                for s, number in zip(subjects, sorted(WALL_NUMBER.values()), strict=False):
                     add(s, label, Place("wall", number))
                 return
             for s in subjects:
