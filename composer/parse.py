@@ -46,6 +46,7 @@ _SIDES_OF = (
     "flanked by",
 )
 _AROUND = ("around", "round", "surrounding", "about")
+_CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
 
 @dataclass
@@ -236,6 +237,8 @@ class _Reader:
             return None
         if low in ("it", "them"):
             return "it", low, 1
+        if low == "each" and j + 1 < len(toks) and toks[j + 1].low == "other":
+            return "each other", subject, 2
         if low in (
             "the",
             "this",
@@ -282,8 +285,8 @@ class _Reader:
                 return "opening", (value[0], count or 1), j + n - i
             if kind == "place" and ordinal is not None and value.kind == "window":
                 value = Place("window", ordinal)
-            if kind == "place" and det in ("each", "every", "all") and value == Place("wall"):
-                value = Place("wall", 0)  # one against each wall: see _apply
+            if kind == "place" and det in ("each", "every", "all") and value.number is None:
+                value = Place(value.kind, 0)  # one against each wall, in each corner: _apply
             return kind, value, j + n - i
         # A room.
         size = self._size_at(toks, j)
@@ -381,6 +384,8 @@ class _Reader:
     def relation_at(self, toks: list[Token], i: int):
         """(kind, value, tokens taken): a registry relation phrase, a phrase of our own
         ("on each side of", "around", "along"), or None."""
+        if [t.low for t in toks[i : i + 3]] == ["side", "by", "side"]:
+            return "side by side", None, 3
         for phrase in _SIDES_OF:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
@@ -436,6 +441,19 @@ class _Reader:
                     pending = (kind, labels or (), i, who)
                     for w in toks[i : i + n]:
                         w.used = True
+                    if kind == "side by side":  # next to each other, lined up
+                        pending = None
+                        if len(who) < 2:
+                            self._unused(toks, i, i + n, "side by side needs two things")
+                        for a, b in zip(who[1:], who, strict=False):
+                            self.req.statements.append(
+                                Statement(a, "NextTo", b, toks[i].start, toks[i + n - 1].end)
+                            )
+                            self.req.statements.append(
+                                Statement(
+                                    a, "ImplicitAlignedWith", b, toks[i].start, toks[i + n - 1].end
+                                )
+                            )
                     i += n
                     joined = False
                     continue
@@ -446,14 +464,18 @@ class _Reader:
             kind, value, n = np
             span = toks[i : i + n]
             if kind == "it":
-                value = self._pronoun(subject.all() if pending else [])
+                value = self._pronoun(pending[3] if pending else [])
                 kind = "things" if value else "none"
+            if kind == "each other" and (pending is None or len(pending[3]) < 2):
+                kind = "none"
             if kind == "none":
                 i += 1
                 continue
             for w in span:
                 w.used = True
             if kind == "room":
+                if pending is not None and pending[0] == "in":  # "a piano in the living room"
+                    pending = None
                 word, dims, factor = value
                 name = ROOMS[word][0]
                 if name != "room" or self.req.room == "room":
@@ -496,9 +518,7 @@ class _Reader:
             joined = False
             i += n
         if pending is not None:
-            for w in toks[pending[2] :]:
-                if w.used and w.low not in FUNCTION_WORDS:
-                    w.note = "a relation without its object"
+            self._unused(toks, pending[2], len(toks), "a relation without its object")
 
     def _pronoun(self, subject: list[str]) -> list[str]:
         for eid in reversed(self.mentions):
@@ -554,7 +574,7 @@ class _Reader:
                 label = "InCorner"
             else:
                 return self._unused(toks, start, end, "no such relation to a room part")
-            if place == Place("wall", 0):  # "a bookshelf against each wall": one a wall
+            if place.number == 0:  # "against each wall", "in every corner": one each
                 first = self.entity(subjects[0])
                 sense = NounSense(first.type, first.style, False)
                 subjects = subjects + [
@@ -562,10 +582,22 @@ class _Reader:
                     for _ in range(len(WALL_NUMBER) - len(subjects))
                 ]
                 for s, number in zip(subjects, sorted(WALL_NUMBER.values()), strict=False):
-                    add(s, label, Place("wall", number))
+                    corner = _CORNERS[number - 1] if place.kind == "corner" else None
+                    add(s, label, Place(place.kind, number, corner))
                 return
             for s in subjects:
                 add(s, label, place)
+            return
+        if kind == "each other":  # "two armchairs facing each other": each the next
+            object_labels = [x for x in labels if not x.endswith("Window")]
+            label = object_labels[0] if object_labels else ""
+            if not label or how != "rel":
+                return self._unused(toks, start, end, "no such relation among them")
+            for a, b in zip(subjects, subjects[1:] + subjects[:1], strict=True):
+                if a != b and not (
+                    label != "FacingTowards" and len(subjects) == 2 and a == subjects[1]
+                ):
+                    add(a, label, b)
             return
         if kind != "things":
             return self._unused(toks, start, end, "a relation without its object")

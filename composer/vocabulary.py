@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from scenewright.core.relations import RELATIONS, SIDES
 from scenewright.describer.colours import COLOUR_TERMS
-from scenewright.describer.lexicon import PLACE_WORDINGS, relation_wordings
+from scenewright.describer.lexicon import relation_wordings
 from scenewright.generator.catalog import CatalogEntry
 
 #: Everyday words for catalog nouns (lower case, singular): word -> catalog noun.
@@ -56,6 +56,13 @@ SYNONYMS: dict[str, str] = {
     "board": "whiteboard",
     "chalkboard": "blackboard",
     "table": "dining table",
+    "queen bed": "double bed",
+    "queen-size bed": "double bed",
+    "king bed": "king-size bed",
+    "twin bed": "single bed",
+    "three-seater sofa": "sofa",
+    "three-seater": "sofa",
+    "loveseat": "two-seater sofa",
     "kitchen table": "dining table",
     "sofa table": "coffee table",
     "stool": "chair",
@@ -240,8 +247,6 @@ def _relation_phrases() -> dict[str, RelationSense]:
         if not spec.described:
             continue
         wordings = list(relation_wordings(name))
-        if spec.wall == "corner":
-            wordings += [w + " the" for w in PLACE_WORDINGS["corner"]]
         for wording in wordings:
             verb, _, rest = wording.partition(" ")
             forms = [(wording, False, False)]
@@ -284,6 +289,9 @@ def vocabulary(entries: Mapping[str, CatalogEntry]) -> Vocabulary:
         sense = nouns.get(noun.lower())
         if sense is not None and word not in nouns:
             nouns[word] = sense
+            for style in objects[sense.type].styles if not sense.exact else ():
+                # "a small table": the style's name before the everyday word
+                nouns.setdefault(f"{style.name} {word}", NounSense(sense.type, style.name, False))
             nouns.setdefault(_plural(word), NounSense(sense.type, sense.style, True, sense.exact))
     return Vocabulary(nouns, relation_phrases(), objects)
 

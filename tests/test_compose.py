@@ -208,3 +208,27 @@ def test_a_named_corner_is_where_the_layout_puts_it():
     tub = next(o for o in scene.objects if o.type == "bathtub")
     assert tub.position[0] > 0 and tub.position[2] > 0 and not report.unsatisfied
     assert "The bathtub stands in the south-east corner." in scene.description.text
+
+
+def test_everyday_phrases_each_other_side_by_side_every_corner_and_a_room_after_in():
+    request, _ = _plan(
+        "A living room with two armchairs facing each other, two treadmills side by side, "
+        "a plant in every corner and a piano in the living room near the window."
+    )
+    ids = {e.id: e.type for e in request.entities}
+    said = [
+        (ids[s.source], s.label, s.target if isinstance(s.target, Place) else ids[s.target])
+        for s in request.statements
+    ]
+    assert said.count(("armchair", "FacingTowards", "armchair")) == 2
+    assert ("treadmill", "NextTo", "treadmill") in said
+    corners = {s.target.corner for s in request.statements if s.label == "InCorner"}
+    assert len(corners) == 4 and _types(request).count("plant") == 4
+    assert ("piano", "BesideWindow", Place("window")) in said
+    assert not request.issues and request.room == "living_room"
+
+
+def test_a_relation_left_without_its_object_is_reported():
+    request, _ = _plan("a desk facing the window and a chair next to")
+    words = {i.text for i in request.issues}
+    assert {"facing", "window", "next"} <= words
