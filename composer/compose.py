@@ -10,6 +10,7 @@ one is kept and the statements it could not satisfy are reported as conflicting.
 from __future__ import annotations
 
 import os
+import re
 import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -39,6 +40,9 @@ class Report:
     unused: list[Issue]
     statements: list[Statement]
     unsatisfied: list[Statement] = field(default_factory=list)
+    #: Spans of the statements (or, where a thing has none, the noun phrases) about the
+    #: things the layout's problems name, when the layout is not ok.
+    crowded: list[tuple[int, int]] = field(default_factory=list)
     rules: str = ""
 
     def position(self, offset: int) -> tuple[int, int]:
@@ -73,6 +77,9 @@ class Report:
             )
             tail = f" (it shares things with {clash})" if clash else ""
             out.append(f"{self.where(s.start, s.end)}: could not lay out '{said}'{tail}")
+        if self.crowded:
+            spans = "; ".join(f"{self.where(a, b)} '{self.text[a:b]}'" for a, b in self.crowded)
+            out.append(f"these could not be laid out together (see the layout's problems): {spans}")
         return out
 
 
@@ -94,7 +101,8 @@ def lay_out(
     label: str = RULES_LABEL,
     allow: tuple[str, ...] = (),
 ):
-    """Load, expand and lay out a composed rule set; returns (scene, unsatisfied statements)."""
+    """Load, expand and lay out a composed rule set: (scene, the statements it left
+    unsatisfied, the spans about the things its problems name)."""
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed, retry_seed
     from scenewright.core.timing import timed
@@ -146,7 +154,28 @@ def lay_out(
     assert best is not None
     scene, failed, _ = best
     scene.timings.update(timings)
-    return scene, failed
+    return scene, failed, _crowded(scene, request, ids)
+
+
+def _crowded(scene, request: Request, ids: Mapping[str, str]) -> list[tuple[int, int]]:
+    """The text's spans about the things the layout's problems name (none when ok)."""
+    if scene.layout.ok:
+        return []
+    said = " ".join(scene.layout.problems)
+    named = {eid for eid, node in ids.items() if re.search(rf"\b{re.escape(node)}\b", said)}
+    spans: list[tuple[int, int]] = []
+    for e in request.entities:
+        if e.id not in named:
+            continue
+        own = [
+            (st.start, st.end)
+            for st in request.statements
+            if st.source == e.id and not st.label.startswith("Implicit")
+        ]
+        for span in own or [(e.start, e.end)]:
+            if span not in spans:
+                spans.append(span)
+    return sorted(spans)
 
 
 def _unsatisfied(scene, request: Request, ids: Mapping[str, str]) -> list[Statement]:

@@ -291,11 +291,12 @@ def compose(
         entries.update(own.catalog.entries)
         allow = (str(Path(own.path).parent),)
     request, rules = plan(text, entries)
-    scene, unsatisfied = lay_out(
+    scene, unsatisfied, crowded = lay_out(
         rules, request, seed, label=rules_label or RULES_LABEL, allow=allow
     )
     report = report_of(text, request, rules)
     report.unsatisfied = unsatisfied
+    report.crowded = crowded
     return describe_scene(scene, style=style, variant=variant, words=words), report
 
 
