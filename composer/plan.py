@@ -164,10 +164,12 @@ def _openings(
         # Things asked to stand against a wall with openings take its middle: the
         # openings then keep to its west or north half.
         share = 0.5 if against[side] else 1.0
-        if length * share / (len(kinds) + 1) < WINDOW[0] + 0.2:  # too close: use it all
+        if len(kinds) > 1 and length * share / (len(kinds) + 1) < WINDOW[0] + 0.2:  # too close
             share = 1.0
         for k, kind in enumerate(kinds):
             offset = _number(max(0.9, length * share * (k + 1) / (len(kinds) + 1)))
+            if share < 1.0 and len(kinds) == 1:  # alone on a wall wanted by others: aside
+                offset = _number(WINDOW[0] / 2 + 0.35)
             if kind == "door" and k == 0 and side == doors[0] and by_door:
                 offset = _number(DOOR_BY_CORNER)
             if kind == "door":
