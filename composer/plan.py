@@ -152,6 +152,11 @@ def _openings(
         ),
         default=0.0,
     )
+    named = {
+        frozenset(s.target.corner)
+        for s in request.statements
+        if isinstance(s.target, Place) and s.target.corner is not None
+    }
     by_wall: dict[str, list[str]] = {side: [] for side in _SIDES}
     for side in doors:
         by_wall[side].append("door")
@@ -170,6 +175,9 @@ def _openings(
             offset = _number(max(0.9, length * share * (k + 1) / (len(kinds) + 1)))
             if share < 1.0 and len(kinds) == 1:  # alone on a wall wanted by others: aside
                 offset = _number(WINDOW[0] / 2 + 0.35)
+            if frozenset(FIRST_CORNER[side]) in named and share < 1.0:
+                # a corner named for something else is at this end: use the other end
+                offset = _number(length - float(offset))
             if kind == "door" and k == 0 and side == doors[0] and by_door:
                 offset = _number(DOOR_BY_CORNER)
             if kind == "door":
