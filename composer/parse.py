@@ -180,7 +180,8 @@ class _Reader:
             if sense.exact and sense.style is not None and e.style not in (None, sense.style):
                 continue
             out.append(e.id)
-        return out
+        # "the bookshelf" is the plain one before "the low bookshelf"
+        return sorted(out, key=lambda eid: self.entity(eid).style != sense.style)
 
     def refer(
         self,

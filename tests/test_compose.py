@@ -232,3 +232,13 @@ def test_a_relation_left_without_its_object_is_reported():
     request, _ = _plan("a desk facing the window and a chair next to")
     words = {i.text for i in request.issues}
     assert {"facing", "window", "next"} <= words
+
+
+def test_the_plain_noun_names_the_plain_style_before_another():
+    request, _ = _plan(
+        "The scene consists of a low bookshelf and a bookshelf. "
+        "The bookshelf is to the right of the low bookshelf."
+    )
+    styles = {e.id: e.style for e in request.entities}
+    [said] = request.statements
+    assert (styles[said.source], said.label, styles[said.target]) == ("tall", "NextToRight", "low")
