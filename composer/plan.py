@@ -168,14 +168,18 @@ def _openings(
         length = size[0] if side in ("north", "south") else size[1]
         # Things asked to stand against a wall with openings take its middle: the
         # openings then keep to its west or north half.
-        share = 0.5 if against[side] else 1.0
+        ends = [
+            frozenset(FIRST_CORNER[w]) in named
+            for w in (side, _SIDES[(_SIDES.index(side) + 1) % 4])
+        ]
+        share = 0.5 if against[side] and not all(ends) else 1.0
         if len(kinds) > 1 and length * share / (len(kinds) + 1) < WINDOW[0] + 0.2:  # too close
             share = 1.0
         for k, kind in enumerate(kinds):
             offset = _number(max(0.9, length * share * (k + 1) / (len(kinds) + 1)))
             if share < 1.0 and len(kinds) == 1:  # alone on a wall wanted by others: aside
                 offset = _number(WINDOW[0] / 2 + 0.35)
-            if frozenset(FIRST_CORNER[side]) in named and share < 1.0:
+            if ends[0] and share < 1.0:
                 # a corner named for something else is at this end: use the other end
                 offset = _number(length - float(offset))
             if kind == "door" and k == 0 and side == doors[0] and by_door:
