@@ -60,13 +60,19 @@ def _signatures(scene, relations) -> Counter:
     A's corner): what a description can say of it."""
     objects = {o.id: o for o in scene.objects}
     out: Counter = Counter()
+
+    def kind(o) -> tuple[str, str | None]:
+        # a composed rule set names a type's second look TYPE_2 (docs/compose.md)
+        stem, _, number = o.type.rpartition("_")
+        return (stem if number.isdigit() and stem else o.type, o.style)
+
     for source, label, target, chosen in relations:
         if label.startswith("Implicit") or source not in objects:
             continue
         if RELATIONS[label].chooses and chosen:  # said as the direction chosen
             label = "NextTo" + chosen.capitalize()
         a = objects[source]
-        what_a = (a.type, a.style)
+        what_a = kind(a)
         if label in ("AgainstWall",):
             b = target if target.startswith("wall_") else (chosen or "")
             out[(what_a, label, b)] += 1
@@ -76,7 +82,7 @@ def _signatures(scene, relations) -> Counter:
             out[(what_a, label, "window")] += 1
         elif target in objects:
             b = objects[target]
-            out[(what_a, label, (b.type, b.style))] += 1
+            out[(what_a, label, kind(b))] += 1
     return out
 
 
