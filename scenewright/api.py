@@ -268,6 +268,7 @@ def compose(
     style: str = "full",
     variant: int = 0,
     words: int | None = None,
+    templates: str | os.PathLike[str] | None = None,
     rules_label: str | None = None,
 ) -> tuple[Scene, ComposeReport]:
     """A scene from English (docs/compose.md): the things ``text`` names, with the
@@ -277,13 +278,15 @@ def compose(
     named besides the shipped indoor catalog's. Returns the Scene and a report: the
     character spans used, every word or phrase not used (``report.messages()``), the
     rule set written (``report.rules``) and the statements the layout could not satisfy
-    (``report.conflicts()``). ``rules_label``: how scene.json names the rule set
+    (``report.conflicts()``). ``style``, ``variant``, ``words``, ``templates``: as in
+    ``generate``. ``rules_label``: how scene.json names the rule set
     (``"composed"``, or the file the rule set is kept in).
     """
     from scenewright.composer.compose import RULES_LABEL, lay_out, plan, report_of
     from scenewright.generator.rules import indoor_catalog
 
     check_choice("style", style, STYLES)
+    templates = checked_templates(templates)  # before any work
     entries = dict(indoor_catalog())
     allow: tuple[str, ...] = ()
     if catalog is not None:
@@ -297,6 +300,8 @@ def compose(
     report = report_of(text, request, rules)
     report.unsatisfied = unsatisfied
     report.crowded = crowded
+    if templates is not None:
+        scene.templates = templates
     return describe_scene(scene, style=style, variant=variant, words=words), report
 
 

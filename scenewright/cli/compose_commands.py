@@ -89,6 +89,7 @@ def run_compose(args: argparse.Namespace) -> int:
         style=args.style,
         variant=args.variant,
         words=args.words,
+        templates=args.templates,
         rules_label=label,
     )
     for line in report.messages():
