@@ -12,6 +12,7 @@ from scenewright.core import VERSION as __version__
 __all__ = [
     "Scene",
     "__version__",
+    "compose",
     "describe",
     "export",
     "generate",
@@ -25,6 +26,7 @@ __all__ = [
 #: and networkx.
 _PUBLIC = {
     "Scene": "scenewright.core.scene",
+    "compose": "scenewright.api",
     "describe": "scenewright.api",
     "export": "scenewright.api",
     "generate": "scenewright.api",

@@ -34,6 +34,7 @@ if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from scenewright.completion.complete import Request
+    from scenewright.composer.compose import Report as ComposeReport
     from scenewright.core.scene import Scene
     from scenewright.describer import Description
     from scenewright.generator.layout.learned_term import LearnedContext
@@ -284,6 +285,51 @@ def generate(
     check_choice("style", style, STYLES)
     scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)
     return describe_scene(scene, style=style, variant=variant, words=words)
+
+
+def compose(
+    text: str,
+    seed: int = 0,
+    *,
+    catalog: str | os.PathLike[str] | Rules | None = None,
+    style: str = "full",
+    variant: int = 0,
+    words: int | None = None,
+    templates: str | os.PathLike[str] | None = None,
+    rules_label: str | None = None,
+) -> tuple[Scene, ComposeReport]:
+    """A scene from English (docs/compose.md): the things ``text`` names, with the
+    relations it states, in the room it describes, laid out with ``seed`` and described.
+
+    ``catalog``: a rule set (shipped name, path or Rules) whose object types may be
+    named besides the shipped indoor catalog's. Returns the Scene and a report: the
+    character spans used, every word or phrase not used (``report.messages()``), the
+    rule set written (``report.rules``) and the statements the layout could not satisfy
+    (``report.conflicts()``). ``style``, ``variant``, ``words``, ``templates``: as in
+    ``generate``. ``rules_label``: how scene.json names the rule set
+    (``"composed"``, or the file the rule set is kept in).
+    """
+    from scenewright.composer.compose import RULES_LABEL, lay_out, plan, report_of
+    from scenewright.generator.rules import indoor_catalog
+
+    check_choice("style", style, STYLES)
+    templates = checked_templates(templates)  # before any work
+    entries = dict(indoor_catalog())
+    allow: tuple[str, ...] = ()
+    if catalog is not None:
+        own = load_rules(catalog)
+        entries.update(own.catalog.entries)
+        allow = (str(Path(own.path).parent),)
+    request, rules = plan(text, entries)
+    scene, unsatisfied, crowded = lay_out(
+        rules, request, seed, label=rules_label or RULES_LABEL, allow=allow
+    )
+    report = report_of(text, request, rules)
+    report.unsatisfied = unsatisfied
+    report.crowded = crowded
+    if templates is not None:
+        scene.templates = templates
+    return describe_scene(scene, style=style, variant=variant, words=words), report
 
 
 def complete_room(

@@ -30,6 +30,7 @@ from scenewright.core.errors import ScenewrightError
 
 from . import (
     completion_commands,
+    compose_commands,
     dataset_commands,
     example_commands,
     info_commands,
@@ -47,6 +48,7 @@ FAMILIES = (
     info_commands,
     learning_commands,
     completion_commands,
+    compose_commands,
 )
 
 

@@ -1,0 +1,1 @@
+"""Composing: English in, a scene out (docs/compose.md)."""

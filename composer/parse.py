@@ -1,0 +1,679 @@
+"""Controlled English -> a request: the things a text asks for, their relations, the room.
+
+The text is read left to right, a sentence at a time, in chunks: a noun phrase
+(determiner or count, ordinal, colour, then a catalog noun: "two nightstands", "the
+first nightstand", "a black sofa", "it"), a relation phrase (a registry wording, with
+its verb "is to the left of", plural "stand against", or bare after a noun "against"),
+a room part ("the north wall", "the window", "the north-west corner"), a room ("a
+large kitchen", "a 4 by 3 metre room"), an opening ("a door in the south wall"), or a
+negation ("no rug"). A relation applies to the subject before it (the last noun
+phrase, or every coordinated one when its verb is plural: "the bed and the dresser
+stand against ...") and takes the next noun phrase or room part as its object.
+
+Every word is either used or reported (``Issue``), with its character span.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from scenewright.describer.colours import COLOUR_TERMS
+
+from .vocabulary import (
+    COMPASS_WORDS,
+    FUNCTION_WORDS,
+    NUMBERS,
+    ORDINALS,
+    ROOM_SIZES,
+    ROOMS,
+    WALL_NUMBER,
+    NounSense,
+    Vocabulary,
+)
+
+_TOKEN = re.compile(r"\d+(?:\.\d+)?|[A-Za-z][A-Za-z'’-]*|[.,;:!?]")
+_LONGEST = 8
+_SIDES_OF = (
+    "on each side of",
+    "each side of",
+    "on either side of",
+    "either side of",
+    "on both sides of",
+    "both sides of",
+    "at each side of",
+    "flanking",
+    "flanked by",
+)
+_AROUND = ("around", "round", "surrounding", "about")
+_CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
+
+
+@dataclass
+class Token:
+    text: str
+    start: int
+    end: int
+    low: str
+    used: bool = False
+    note: str = ""  # why a known word went unused
+
+
+@dataclass
+class Entity:
+    id: str
+    type: str
+    style: str | None
+    colour: str | None
+    start: int
+    end: int
+
+
+@dataclass(frozen=True)
+class Place:
+    """A room part as a relation's object: a wall, window or corner, by number or any."""
+
+    kind: str  # "wall", "window", "corner"
+    number: int | None = None  # wall or window number; None: the layout chooses
+    corner: tuple[str, str] | None = None  # a named corner ("north", "west")
+    by_door: bool = False  # "the corner by the door"
+
+
+@dataclass(frozen=True)
+class Statement:
+    source: str
+    label: str
+    target: str | Place
+    start: int
+    end: int
+
+
+@dataclass
+class Issue:
+    start: int
+    end: int
+    text: str
+    message: str
+
+
+@dataclass
+class Request:
+    """What a text asks for (see the module docstring)."""
+
+    entities: list[Entity] = field(default_factory=list)
+    statements: list[Statement] = field(default_factory=list)
+    room: str = "room"
+    size: tuple[float, float] | None = None
+    size_factor: float = 1.0
+    planned_size: tuple[float, float] = (0.0, 0.0)  # the room's sides as planned
+    door_walls: list[str] = field(default_factory=list)  # as planned
+    starts: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)  # x, z, yaw
+    doors: list[str] = field(default_factory=list)  # one wall side per door
+    windows: list[str] = field(default_factory=list)  # one wall side per window
+    absent: dict[str, tuple[int, int]] = field(default_factory=dict)
+    issues: list[Issue] = field(default_factory=list)
+    used: list[tuple[int, int]] = field(default_factory=list)
+
+
+def tokenize(text: str) -> list[Token]:
+    return [
+        Token(m.group(), m.start(), m.end(), m.group().lower().replace("’", "'"))
+        for m in _TOKEN.finditer(text)
+    ]
+
+
+def _sentences(tokens: list[Token]) -> list[list[Token]]:
+    out: list[list[Token]] = [[]]
+    for t in tokens:
+        if t.low in ".;!?":
+            t.used = True
+            out.append([])
+        else:
+            out[-1].append(t)
+    return [s for s in out if s]
+
+
+@dataclass
+class _Subject:
+    groups: list[list[str]] = field(default_factory=list)  # coordinated noun phrases
+
+    def last(self) -> list[str]:
+        return self.groups[-1] if self.groups else []
+
+    def all(self) -> list[str]:
+        return [e for g in self.groups for e in g]
+
+
+class _Reader:
+    def __init__(self, vocab: Vocabulary, request: Request) -> None:
+        self.vocab = vocab
+        self.req = request
+        self.mentions: list[str] = []
+        self.ordinal_used: dict[str, set[str]] = {}
+
+    # -- phrase matching -----------------------------------------------------------
+
+    def match(self, toks: list[Token], i: int, table) -> tuple[str, int] | None:
+        """The longest phrase of ``table`` starting at token i: (phrase, tokens taken)."""
+        for n in range(min(_LONGEST, len(toks) - i), 0, -1):
+            phrase = " ".join(t.low for t in toks[i : i + n])
+            if phrase in table:
+                return phrase, n
+        return None
+
+    # -- entities ------------------------------------------------------------------
+
+    def create(self, sense: NounSense, colour: str | None, toks: list[Token]) -> str:
+        n = len(self.req.entities) + 1
+        entity = Entity(f"e{n}", sense.type, sense.style, colour, toks[0].start, toks[-1].end)
+        self.req.entities.append(entity)
+        return entity.id
+
+    def entity(self, eid: str) -> Entity:
+        return self.req.entities[int(eid[1:]) - 1]
+
+    def matching(self, sense: NounSense) -> list[str]:
+        out = []
+        for e in self.req.entities:
+            if e.type != sense.type:
+                continue
+            if sense.exact and sense.style is not None and e.style not in (None, sense.style):
+                continue
+            out.append(e.id)
+        # "the bookshelf" is the plain one before "the low bookshelf"
+        return sorted(out, key=lambda eid: self.entity(eid).style != sense.style)
+
+    def refer(
+        self,
+        sense: NounSense,
+        det: str,
+        ordinal: int | None,
+        count: int | None,
+        colour: str | None,
+        toks: list[Token],
+    ) -> list[str]:
+        found = self.matching(sense)
+        if ordinal is not None:
+            while len(found) < ordinal:
+                found.append(self.create(sense, colour, toks))
+            chosen = [found[ordinal - 1]]
+            self.ordinal_used.setdefault(sense.type, set()).add(chosen[0])
+        elif det == "other":
+            named = self.ordinal_used.setdefault(sense.type, set())
+            rest = [e for e in found if e not in named] or found[-1:]
+            chosen = rest[:1] if rest else [self.create(sense, colour, toks)]
+            named.add(chosen[0])
+        elif sense.plural or det in ("both", "each", "every", "all"):
+            want = count or (2 if det == "both" else max(len(found), 2 if sense.plural else 1))
+            while len(found) < want:
+                found.append(self.create(sense, colour, toks))
+            chosen = found if count is None else found[:want]
+        else:
+            chosen = found[:1] or [self.create(sense, colour, toks)]
+        for eid in chosen:
+            e = self.entity(eid)
+            if sense.exact and sense.style is not None and e.style is None:
+                e.style = sense.style
+        return chosen
+
+    # -- noun phrases --------------------------------------------------------------
+
+    def noun_phrase(self, toks: list[Token], i: int, subject: list[str]):
+        """(kind, value, tokens taken) for the noun phrase at i, or None. kind is
+        "things" (entity ids), "place" (a Place), "opening" (door/window sides), "room",
+        "size", "absent" or "it"."""
+        j = i
+        det = ""
+        count: int | None = None
+        ordinal: int | None = None
+        m = self.match(toks, j, NUMBERS)
+        low = toks[j].low
+        if low in ("no", "without"):
+            k = j + 1
+            if k < len(toks) and toks[k].low in ("a", "an", "any"):
+                k += 1
+            hit = self.match(toks, k, self.vocab.nouns) if k < len(toks) else None
+            if hit:
+                return "absent", self.vocab.nouns[hit[0]].type, k + hit[1] - i
+            return None
+        if low in ("it", "them"):
+            return "it", low, 1
+        if low == "each" and j + 1 < len(toks) and toks[j + 1].low == "other":
+            return "each other", subject, 2
+        if low in (
+            "the",
+            "this",
+            "that",
+            "these",
+            "those",
+            "both",
+            "each",
+            "every",
+            "all",
+            "another",
+            "other",
+        ):
+            det = low
+            j += 1
+            if low in ("both", "all") and j < len(toks) and toks[j].low == "the":
+                j += 1
+            if j < len(toks) and toks[j].low == "other":
+                det, j = "other", j + 1
+        elif toks[j].low.replace(".", "", 1).isdigit() and not self._size_at(toks, j):
+            det, count, j = "a", int(float(toks[j].low)), j + 1
+        elif m:
+            det, count, j = "a", NUMBERS[m[0]], j + m[1]
+        if j < len(toks) and det in ("the", "these", "those", "") and self.match(toks, j, NUMBERS):
+            m2 = self.match(toks, j, NUMBERS)
+            assert m2 is not None
+            count, j = NUMBERS[m2[0]], j + m2[1]
+        if det == "another" and j < len(toks) and toks[j].low == "more":
+            j += 1
+        if j < len(toks) and toks[j].low == "more":
+            j += 1
+        if j < len(toks) and toks[j].low in ORDINALS:
+            ordinal, j = ORDINALS[toks[j].low], j + 1
+            det = det or "the"
+        if j >= len(toks):
+            return None
+        # A room part or an opening.
+        place = self._place(toks, j)
+        if place is not None:
+            kind, value, n = place
+            if kind == "opening" and det in ("the", "this", "that") and ordinal is None:
+                return "place", Place(value[0], None), j + n - i
+            if kind == "opening":
+                return "opening", (value[0], count or 1), j + n - i
+            if kind == "place" and ordinal is not None and value.kind == "window":
+                value = Place("window", ordinal)
+            if kind == "place" and det in ("each", "every", "all") and value.number is None:
+                value = Place(value.kind, 0)  # one against each wall, in each corner: _apply
+            return kind, value, j + n - i
+        # A room.
+        size = self._size_at(toks, j)
+        if size is not None:
+            dims, n = size
+            rest = self._room_word(toks, j + n)
+            if rest is not None:
+                return "room", (rest[0], dims, 1.0), j + n + rest[1] - i
+            return "size", dims, j + n - i
+        room = self._room_word(toks, j)
+        thing = self.match(toks, j, self.vocab.nouns)
+        if room is not None and (thing is None or thing[1] < room[1]):  # "an office chair"
+            return "room", (room[0], None, room[2]), j + room[1] - i
+        # A thing.
+        colour = None
+        hit = self.match(toks, j, self.vocab.nouns)
+        if hit is None and toks[j].low in COLOUR_TERMS:
+            colour = toks[j].low
+            hit = self.match(toks, j + 1, self.vocab.nouns) if j + 1 < len(toks) else None
+            if hit is not None:
+                j += 1
+        if hit is None:
+            return None
+        sense = self.vocab.nouns[hit[0]]
+        taken = toks[i : j + hit[1]]
+        if det in ("", "a", "another") and ordinal is None:
+            n = count if count is not None else (2 if sense.plural else 1)
+            ids = [self.create(sense, colour, taken) for _ in range(n)]
+        else:
+            ids = self.refer(sense, det, ordinal, count, colour, taken)
+        return "things", ids, j + hit[1] - i
+
+    def _size_at(self, toks: list[Token], j: int):
+        """ "4 by 3 metre", "4x3 m", "4 m by 3 m": ((w, d), tokens taken) or None."""
+        units = ("m", "metre", "metres", "meter", "meters")
+        k = j
+        if k >= len(toks) or not toks[k].low.replace(".", "", 1).isdigit():
+            return None
+        w = float(toks[k].low)
+        k += 1
+        if k < len(toks) and toks[k].low in units:
+            k += 1
+        if (
+            k + 1 < len(toks)
+            and toks[k].low in ("by", "x")
+            and toks[k + 1].low.replace(".", "", 1).isdigit()
+        ):
+            d = float(toks[k + 1].low)
+            k += 2
+            if k < len(toks) and toks[k].low in units:
+                k += 1
+            return (w, d), k - j
+        return None
+
+    def _room_word(self, toks: list[Token], j: int):
+        factor = 1.0
+        k = j
+        if k < len(toks) and toks[k].low in ROOM_SIZES:
+            factor = ROOM_SIZES[toks[k].low]
+            k += 1
+        hit = self.match(toks, k, ROOMS) if k < len(toks) else None
+        if hit is None:
+            return None
+        return hit[0], k + hit[1] - j, factor
+
+    def _place(self, toks: list[Token], j: int):
+        low = toks[j].low
+        nxt = toks[j + 1].low if j + 1 < len(toks) else ""
+        if low in COMPASS_WORDS and nxt in ("wall", "side"):
+            return "place", Place("wall", WALL_NUMBER[low]), 2
+        parts = low.split("-")
+        if len(parts) == 2 and all(p in COMPASS_WORDS for p in parts) and nxt == "corner":
+            return "place", Place("corner", WALL_NUMBER[parts[0]], (parts[0], parts[1])), 2
+        if (
+            low in COMPASS_WORDS
+            and nxt in COMPASS_WORDS
+            and j + 2 < len(toks)
+            and toks[j + 2].low == "corner"
+        ):
+            return "place", Place("corner", WALL_NUMBER[low], (low, nxt)), 3
+        if low in ("wall", "walls"):
+            return "place", Place("wall"), 1
+        if low in ("corner", "corners"):
+            by = [t.low for t in toks[j + 1 : j + 4]]
+            if by[:1] in (["by"], ["near"]) and by[1:] == ["the", "door"]:
+                return "place", Place("corner", by_door=True), 4
+            return "place", Place("corner"), 1
+        if low in ("door", "doors", "doorway", "window", "windows"):
+            kind = "door" if low.startswith("door") else "window"
+            return "opening", (kind,), 1
+        return None
+
+    # -- sentences -----------------------------------------------------------------
+
+    def relation_at(self, toks: list[Token], i: int):
+        """(kind, value, tokens taken): a registry relation phrase, a phrase of our own
+        ("on each side of", "around", "along"), or None."""
+        if [t.low for t in toks[i : i + 3]] == ["side", "by", "side"]:
+            return "side by side", None, 3
+        for phrase in _SIDES_OF:
+            words = phrase.split()
+            if [t.low for t in toks[i : i + len(words)]] == words:
+                return "sides", None, len(words)
+        k = i
+        if toks[k].low in ("is", "are", "stands", "stand", "sits", "sit") and k + 1 < len(toks):
+            k += 1
+        if toks[k].low in _AROUND:
+            return "around", None, k + 1 - i
+        if toks[k].low == "along":
+            return "rel", ("AgainstWall",), k + 1 - i
+        if toks[k].low in ("near", "by") or (
+            toks[k].low == "close" and k + 1 < len(toks) and toks[k + 1].low == "to"
+        ):
+            n = 2 if toks[k].low == "close" else 1
+            return "rel", ("NextTo", "BesideWindow", "AgainstWall"), k + n - i
+        if toks[k].low in ("facing", "faces", "face"):
+            hit = self.match(toks, i, self.vocab.relations)
+            if hit is None or hit[1] <= k - i + 1:
+                return "rel", ("FacingTowards",), k + 1 - i
+        hit = self.match(toks, i, self.vocab.relations)
+        if hit is not None:
+            return "rel", self.vocab.relations[hit[0]].labels, hit[1]
+        if toks[k].low in ("in", "on", "at", "into") and k + 1 < len(toks):
+            # "in the north-west corner", "on the north wall", "in a corner"
+            return "in", None, k + 1 - i
+        return None
+
+    def sentence(self, toks: list[Token]) -> None:
+        subject = _Subject()
+        pending: tuple[str, tuple[str, ...], int, list[str]] | None = None
+        joined = False  # the last word was "and" or a comma
+        i = 0
+        while i < len(toks):
+            t = toks[i]
+            if t.low in ("and", ",", "with", "plus", "also", "while"):
+                t.used = True
+                joined = t.low in ("and", ",")
+                if t.low == "with" and pending is None:
+                    subject = _Subject()
+                i += 1
+                continue
+            rel = self.relation_at(toks, i) if pending is None or pending[0] == "in" else None
+            if rel is not None and (subject.all() or self.mentions):
+                kind, labels, n = rel
+                plural = any(w.low in ("are", "stand", "face", "sit") for w in toks[i : i + n])
+                if kind == "in" and pending is not None:
+                    rel = None
+                else:
+                    if not subject.all() and self.mentions:
+                        subject.groups = [[self.mentions[-1]]]
+                    who = subject.all() if plural else subject.last()
+                    pending = (kind, labels or (), i, who)
+                    for w in toks[i : i + n]:
+                        w.used = True
+                    if kind == "side by side":  # next to each other, lined up
+                        pending = None
+                        if len(who) < 2:
+                            self._unused(toks, i, i + n, "side by side needs two things")
+                        for a, b in zip(who[1:], who, strict=False):
+                            self.req.statements.append(
+                                Statement(a, "NextTo", b, toks[i].start, toks[i + n - 1].end)
+                            )
+                            self.req.statements.append(
+                                Statement(
+                                    a, "ImplicitAlignedWith", b, toks[i].start, toks[i + n - 1].end
+                                )
+                            )
+                    i += n
+                    joined = False
+                    continue
+            np = self.noun_phrase(toks, i, subject.all())
+            if np is None:
+                i += 1
+                continue
+            kind, value, n = np
+            span = toks[i : i + n]
+            if kind == "it":
+                value = self._pronoun(pending[3] if pending else [])
+                kind = "things" if value else "none"
+            if kind == "each other" and (pending is None or len(pending[3]) < 2):
+                kind = "none"
+            if kind == "none":
+                i += 1
+                continue
+            for w in span:
+                w.used = True
+            if kind == "room":
+                if pending is not None and pending[0] == "in":  # "a piano in the living room"
+                    pending = None
+                word, dims, factor = value
+                name = ROOMS[word][0]
+                if name != "room" or self.req.room == "room":
+                    self.req.room = name
+                if dims is not None:
+                    self.req.size = dims
+                self.req.size_factor = factor
+                subject = _Subject()
+            elif kind == "size":
+                self.req.size = value
+            elif kind == "absent":
+                self.req.absent[value] = (span[0].start, span[-1].end)
+            elif kind == "opening":
+                side, count = value
+                wall = self._opening_wall(toks, i + n)
+                where = wall[0] if wall else ""
+                for _ in range(count):
+                    (self.req.doors if side == "door" else self.req.windows).append(where)
+                if wall:
+                    for w in toks[i + n : i + n + wall[1]]:
+                        w.used = True
+                    n += wall[1]
+            elif pending is not None:
+                self._apply(pending, value, kind, toks, i + n)
+                subject_ids = pending[3]
+                pending = None
+                if kind == "things":
+                    self.mentions.extend(value)
+                # "and faces it" continues with the same subject
+                subject = _Subject([subject_ids]) if subject_ids else subject
+            elif kind == "things":
+                if joined and subject.groups:
+                    subject.groups.append(value)
+                else:
+                    subject = _Subject([value])
+                self.mentions.extend(value)
+            else:  # a room part standing alone ("the window")
+                for w in span:
+                    w.used = False
+            joined = False
+            i += n
+        if pending is not None:
+            self._unused(toks, pending[2], len(toks), "a relation without its object")
+
+    def _pronoun(self, subject: list[str]) -> list[str]:
+        for eid in reversed(self.mentions):
+            if eid not in subject:
+                return [eid]
+        return []
+
+    def _opening_wall(self, toks: list[Token], k: int):
+        """ "in the south wall", "on the north side": (side, tokens taken) or None."""
+        j = k
+        if j < len(toks) and toks[j].low in ("in", "on", "at", "along"):
+            j += 1
+            if j < len(toks) and toks[j].low == "the":
+                j += 1
+            if j < len(toks) and toks[j].low in COMPASS_WORDS:
+                side = toks[j].low
+                j += 1
+                if j < len(toks) and toks[j].low in ("wall", "side"):
+                    j += 1
+                return side, j - k
+        return None
+
+    def _apply(self, pending, value, kind: str, toks: list[Token], end: int) -> None:
+        how, labels, start, subjects = pending
+        span_end = toks[end - 1].end
+        span_start = toks[start].start
+        if subjects:
+            first = self.entity(subjects[0])
+            span_start = min(span_start, first.start)
+
+        def add(src: str, label: str, target: str | Place) -> None:
+            self.req.statements.append(Statement(src, label, target, span_start, span_end))
+
+        if kind == "place":
+            place: Place = value
+            if how == "in" and place.kind == "wall":
+                label = "AgainstWall"
+            elif (
+                how == "in"
+                and place.kind == "corner"
+                or "InCorner" in labels
+                and place.kind == "corner"
+            ):
+                label = "InCorner"
+            elif place.kind == "window":
+                wall_labels = [x for x in labels if x in ("UnderWindow", "BesideWindow")]
+                if not wall_labels:
+                    return self._unused(toks, start, end, "no such relation to a window")
+                label = wall_labels[0]
+            elif place.kind == "wall" and "AgainstWall" in labels:
+                label = "AgainstWall"
+            elif place.kind == "corner":
+                label = "InCorner"
+            else:
+                return self._unused(toks, start, end, "no such relation to a room part")
+            if place.number == 0:  # "against each wall", "in every corner": one each
+                first = self.entity(subjects[0])
+                sense = NounSense(first.type, first.style, False)
+                subjects = subjects + [
+                    self.create(sense, first.colour, [toks[start]])
+                    for _ in range(len(WALL_NUMBER) - len(subjects))
+                ]
+                for s, number in zip(subjects, sorted(WALL_NUMBER.values()), strict=False):
+                    corner = _CORNERS[number - 1] if place.kind == "corner" else None
+                    add(s, label, Place(place.kind, number, corner))
+                return
+            for s in subjects:
+                add(s, label, place)
+            return
+        if kind == "each other":  # "two armchairs facing each other": each the next
+            object_labels = [x for x in labels if not x.endswith("Window")]
+            label = object_labels[0] if object_labels else ""
+            if not label or how != "rel":
+                return self._unused(toks, start, end, "no such relation among them")
+            for a, b in zip(subjects, subjects[1:] + subjects[:1], strict=True):
+                if a != b and not (
+                    label != "FacingTowards" and len(subjects) == 2 and a == subjects[1]
+                ):
+                    add(a, label, b)
+            return
+        if kind != "things":
+            return self._unused(toks, start, end, "a relation without its object")
+        targets: list[str] = value
+        if how == "in":
+            return self._unused(toks, start, end, "no relation says 'in' of furniture")
+        if how == "sides":
+            subs = list(subjects)
+            if len(subs) == 1:
+                e = self.entity(subs[0])
+                sense = NounSense(e.type, e.style, False)
+                subs.append(self.create(sense, e.colour, [toks[start]]))
+            for k, s in enumerate(subs):
+                add(s, ("NextToLeft", "NextToRight")[k % 2], targets[0])
+                add(s, "ImplicitAlignedWith", targets[0])
+            return
+        if how == "around":
+            sides = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
+            for k, s in enumerate(subjects):
+                add(s, sides[k % 4], targets[0])
+                add(s, "FacingTowards", targets[0])
+            return
+        object_labels = [
+            x for x in labels if not x.endswith("Window") and x not in ("AgainstWall", "InCorner")
+        ]
+        if not object_labels:
+            return self._unused(toks, start, end, "this relation takes a wall, window or corner")
+        from scenewright.core.relations import RELATIONS
+
+        label = min(object_labels, key=lambda x: (len(RELATIONS[x].directions), x))
+        for s in subjects:
+            for t in targets:
+                if s != t:
+                    add(s, label, t)
+
+    def _unused(self, toks: list[Token], start: int, end: int, why: str) -> None:
+        for w in toks[start:end]:
+            if w.low not in FUNCTION_WORDS:
+                w.used = False
+                w.note = why
+
+
+def parse(text: str, vocab: Vocabulary) -> Request:
+    """Read ``text`` into a Request; every word it could not use is in ``issues``."""
+    request = Request()
+    tokens = tokenize(text)
+    reader = _Reader(vocab, request)
+    for sentence in _sentences(tokens):
+        reader.sentence(sentence)
+    for t in tokens:
+        if t.used:
+            request.used.append((t.start, t.end))
+            continue
+        if t.low in FUNCTION_WORDS or t.low in ".,;:!?":
+            continue
+        if t.note:
+            request.issues.append(
+                Issue(t.start, t.end, t.text, f"unused word '{t.text}': {t.note}")
+            )
+        elif t.low in vocab.known_words:
+            request.issues.append(
+                Issue(t.start, t.end, t.text, f"unused word '{t.text}': not understood here")
+            )
+        else:
+            near = vocab.suggest(t.low)
+            hint = f"; did you mean '{near}'?" if near else ""
+            request.issues.append(Issue(t.start, t.end, t.text, f"unknown word '{t.text}'{hint}"))
+    for type_, (start, end) in request.absent.items():
+        if any(e.type == type_ for e in request.entities):
+            request.issues.append(
+                Issue(
+                    start,
+                    end,
+                    text[start:end],
+                    f"'{text[start:end]}' contradicts a {type_.replace('_', ' ')} asked for",
+                )
+            )
+    return request

@@ -1,0 +1,302 @@
+"""The words composing understands: object nouns from a catalog, relation phrases from
+the relation registry, room words, counts, and the nearest known word for one it does not.
+
+Nothing here is a fixed list of furniture: the object nouns are the catalog's nouns,
+plurals (given, or made by inflection), style nouns ("double bed") and style names
+before the noun ("oak wardrobe"); the relation phrases are the registry's wordings
+(``describer.lexicon.relation_wordings``), so a label registered with new wordings is
+understood at once. ``SYNONYMS`` maps the words people use for a catalog noun
+("fridge") to it; a synonym whose noun the catalog lacks is simply not offered.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from scenewright.core.relations import RELATIONS, SIDES
+from scenewright.describer.colours import COLOUR_TERMS
+from scenewright.describer.lexicon import relation_wordings
+from scenewright.generator.catalog import CatalogEntry
+
+#: Everyday words for catalog nouns (lower case, singular): word -> catalog noun.
+SYNONYMS: dict[str, str] = {
+    "fridge": "refrigerator",
+    "couch": "sofa",
+    "settee": "sofa",
+    "bookcase": "bookshelf",
+    "night stand": "nightstand",
+    "bedside table": "nightstand",
+    "bedside cabinet": "nightstand",
+    "closet": "wardrobe",
+    "carpet": "rug",
+    "mat": "rug",
+    "tv": "television",
+    "telly": "television",
+    "television stand": "TV stand",
+    "tv unit": "TV stand",
+    "basin": "washbasin",
+    "bath": "bathtub",
+    "tub": "bathtub",
+    "cooker": "stove",
+    "oven": "stove",
+    "worktop": "counter",
+    "kitchen counter": "counter",
+    "kitchen sink": "sink",
+    "houseplant": "plant",
+    "potted plant": "plant",
+    "computer": "laptop",
+    "table lamp": "lamp",
+    "bedside lamp": "lamp",
+    "chest of drawers": "dresser",
+    "drawers": "dresser",
+    "board": "whiteboard",
+    "chalkboard": "blackboard",
+    "table": "dining table",
+    "queen bed": "double bed",
+    "queen-size bed": "double bed",
+    "king bed": "king-size bed",
+    "twin bed": "single bed",
+    "three-seater sofa": "sofa",
+    "three-seater": "sofa",
+    "loveseat": "two-seater sofa",
+    "kitchen table": "dining table",
+    "sofa table": "coffee table",
+    "stool": "chair",
+    "dining chair": "chair",
+    "desk chair": "office chair",
+    "bike": "exercise bike",
+    "rower": "rowing machine",
+    "loo": "toilet",
+    "washer": "washing machine",
+}
+
+#: Room kinds: word -> (scene name, default size W x D in metres).
+ROOMS: dict[str, tuple[str, tuple[float, float]]] = {
+    "bedroom": ("bedroom", (4.6, 4.0)),
+    "kitchen": ("kitchen", (5.5, 4.8)),
+    "living room": ("living_room", (5.6, 4.8)),
+    "lounge": ("living_room", (5.6, 4.8)),
+    "sitting room": ("living_room", (5.6, 4.8)),
+    "bathroom": ("bathroom", (3.2, 2.8)),
+    "study": ("study", (4.0, 3.6)),
+    "office": ("office", (4.0, 3.6)),
+    "classroom": ("classroom", (8.0, 7.0)),
+    "dining room": ("dining_room", (5.0, 4.2)),
+    "gym": ("gym", (6.0, 5.0)),
+    "home gym": ("gym", (6.0, 5.0)),
+    "room": ("room", (0.0, 0.0)),
+    "scene": ("room", (0.0, 0.0)),
+}
+
+#: Size words before a room word: factor on its default sides.
+ROOM_SIZES: dict[str, float] = {
+    "tiny": 0.7,
+    "small": 0.82,
+    "little": 0.82,
+    "cosy": 0.85,
+    "cozy": 0.85,
+    "compact": 0.85,
+    "medium": 1.0,
+    "large": 1.2,
+    "big": 1.2,
+    "spacious": 1.25,
+    "huge": 1.4,
+}
+
+NUMBERS: dict[str, int] = {
+    "a": 1,
+    "an": 1,
+    "one": 1,
+    "single": 1,
+    "two": 2,
+    "three": 3,
+    "four": 4,
+    "five": 5,
+    "six": 6,
+    "seven": 7,
+    "eight": 8,
+    "nine": 9,
+    "ten": 10,
+    "eleven": 11,
+    "twelve": 12,
+    "a couple of": 2,
+    "a pair of": 2,
+    "a few": 3,
+    "several": 3,
+    "some": 2,
+    "a couple": 2,
+    "couple of": 2,
+    "pair of": 2,
+}
+
+ORDINALS: dict[str, int] = {
+    "first": 1,
+    "second": 2,
+    "third": 3,
+    "fourth": 4,
+    "fifth": 5,
+    "sixth": 6,
+    "seventh": 7,
+    "eighth": 8,
+    "ninth": 9,
+    "tenth": 10,
+    "1st": 1,
+    "2nd": 2,
+    "3rd": 3,
+    "4th": 4,
+}
+
+COMPASS_WORDS = ("north", "east", "south", "west")
+#: A rectangle's walls by number (docs/rules-language.md, Rooms).
+WALL_NUMBER = {"north": 1, "east": 2, "south": 3, "west": 4}
+
+#: Words that join or frame phrases; used wherever they stand, never reported.
+FUNCTION_WORDS = frozenset(
+    "and with , ; : is are be there here has have had contains containing contain consists "
+    "consist of includes including include featuring features also plus then it its "
+    "that which where this these those please i we want would like need needs make "
+    "create give me put place set up an a the in on at to by for as should must "
+    "let there's i'd want's both all each every another more other same".split()
+)
+
+
+@dataclass(frozen=True)
+class NounSense:
+    """What an object noun phrase names: a catalog type, a style of it (or any), plural or not."""
+
+    type: str
+    style: str | None
+    plural: bool
+    exact: bool = True  # False: a plain noun, whose style is only the default for a new thing
+
+
+@dataclass(frozen=True)
+class RelationSense:
+    """A relation phrase: the labels it may mean (by what its object names), and its number."""
+
+    labels: tuple[str, ...]
+    plural: bool
+    bare: bool  # a place phrase without its verb ("against the wall" after a noun)
+
+
+def _plural(word: str) -> str:
+    import inflect
+
+    return str(inflect.engine().plural_noun(word))
+
+
+def _entry_nouns(entry: CatalogEntry) -> dict[str, NounSense]:
+    out: dict[str, NounSense] = {}
+
+    def add(noun: str, plural: str | None, style: str | None, exact: bool = True) -> None:
+        key = noun.lower()
+        out.setdefault(key, NounSense(entry.name, style, False, exact))
+        many = (plural or _plural(noun)).lower()
+        out.setdefault(many, NounSense(entry.name, style, True, exact))
+
+    # A style without a noun of its own is what the plain noun names (the describer
+    # says "a wardrobe" for the oak one); the plain noun means any style when every
+    # style renames the thing ("bed": double, single or king-size).
+    plain = [s.name for s in entry.styles if s.noun is None or s.noun == entry.noun]
+    add(entry.noun, entry.plural, plain[0] if len(plain) == 1 else None, exact=False)
+    for style in entry.styles:
+        if style.noun is not None:
+            add(style.noun, style.plural, style.name)
+        add(f"{style.name} {entry.noun}", None, style.name)
+    return out
+
+
+@dataclass(frozen=True)
+class Vocabulary:
+    """Phrase tables for one catalog (see the module docstring)."""
+
+    nouns: Mapping[str, NounSense]
+    relations: Mapping[str, RelationSense]
+    entries: Mapping[str, CatalogEntry]
+
+    @functools.cached_property
+    def known_words(self) -> tuple[str, ...]:
+        words: set[str] = set(FUNCTION_WORDS) | set(NUMBERS) | set(ORDINALS)
+        for table in (self.nouns, self.relations, ROOMS, ROOM_SIZES, COLOUR_TERMS):
+            for phrase in table:
+                words.update(re.findall(r"[a-z'-]+", phrase.lower()))
+        words.update(COMPASS_WORDS)
+        words.update(
+            "wall walls window windows door doors corner corners side sides middle centre "
+            "center either around along no without facing metre metres meter meters m by x "
+            "against under near next beside between opposite".split()
+        )
+        return tuple(sorted(w for w in words if len(w) > 1))
+
+    def suggest(self, word: str) -> str | None:
+        """The nearest known word to an unknown one, or None when none is near."""
+        near = difflib.get_close_matches(word.lower(), self.known_words, n=1, cutoff=0.75)
+        return near[0] if near else None
+
+
+def _relation_phrases() -> dict[str, RelationSense]:
+    """Each described label's wordings as phrases: "is to the left of" (singular),
+    "are to the left of" (plural), "to the left of" (after a noun, no verb)."""
+    found: dict[tuple[str, bool, bool], list[str]] = {}
+    for name in sorted(RELATIONS.names()):
+        spec = RELATIONS[name]
+        if not spec.described:
+            continue
+        wordings = list(relation_wordings(name))
+        for wording in wordings:
+            verb, _, rest = wording.partition(" ")
+            forms = [(wording, False, False)]
+            if verb == "is":
+                forms.append(("are " + rest, True, False))
+                forms.append((rest, False, True))
+            elif verb.endswith("s"):
+                stem = (
+                    verb[:-2]
+                    if verb.endswith("es") and verb[:-2].endswith(("ss", "sh"))
+                    else verb[:-1]
+                )
+                forms.append((f"{stem} {rest}", True, False))
+                if verb == "stands":
+                    forms.append((rest, False, True))
+            for phrase, plural, bare in forms:
+                found.setdefault((phrase, plural, bare), []).append(name)
+    out: dict[str, RelationSense] = {}
+    for (phrase, plural, bare), labels in sorted(found.items()):
+        if phrase in out:  # "against" from both "stands against" and "is against"
+            labels = sorted(set(labels) | set(out[phrase].labels))
+        out[phrase] = RelationSense(tuple(labels), plural, bare)
+    return out
+
+
+@functools.cache
+def relation_phrases() -> Mapping[str, RelationSense]:
+    return _relation_phrases()
+
+
+def vocabulary(entries: Mapping[str, CatalogEntry]) -> Vocabulary:
+    """The vocabulary of a catalog (object entries only: groups, paths and junctions
+    are not composed)."""
+    nouns: dict[str, NounSense] = {}
+    objects = {name: e for name, e in sorted(entries.items()) if e.kind == "object"}
+    for entry in objects.values():
+        for phrase, sense in _entry_nouns(entry).items():
+            nouns.setdefault(phrase, sense)
+    for word, noun in SYNONYMS.items():
+        sense = nouns.get(noun.lower())
+        if sense is not None and word not in nouns:
+            nouns[word] = sense
+            for style in objects[sense.type].styles if not sense.exact else ():
+                # "a small table": the style's name before the everyday word
+                nouns.setdefault(f"{style.name} {word}", NounSense(sense.type, style.name, False))
+            nouns.setdefault(_plural(word), NounSense(sense.type, sense.style, True, sense.exact))
+    return Vocabulary(nouns, relation_phrases(), objects)
+
+
+def side_label(side: str) -> str:
+    """The next-to label for one of B's own sides ("left" -> ``NextToLeft``)."""
+    assert side in SIDES
+    return "NextTo" + side.capitalize()

@@ -1,0 +1,244 @@
+"""Composing a scene from English: the reader, the rule set it writes, the command."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from scenewright.composer.compose import plan, report_of
+from scenewright.composer.parse import Place
+from scenewright.composer.vocabulary import relation_phrases, vocabulary
+from scenewright.core.relations import RELATIONS, RelationLabel
+from scenewright.generator.rules import indoor_catalog
+
+DONE_WHEN = (
+    "a bedroom with a double bed against the north wall, a nightstand on each side of "
+    "the bed, a wardrobe and a desk under the window"
+)
+
+
+def _plan(text):
+    return plan(text, indoor_catalog())
+
+
+def _types(request):
+    return sorted(e.type for e in request.entities)
+
+
+def test_the_bedroom_request_reads_into_things_and_relations():
+    request, rules = _plan(DONE_WHEN)
+    assert request.room == "bedroom"
+    assert _types(request) == ["bed", "desk", "nightstand", "nightstand", "wardrobe"]
+    bed = next(e for e in request.entities if e.type == "bed")
+    assert bed.style == "double"
+    said = {(s.source, s.label, s.target) for s in request.statements}
+    assert (bed.id, "AgainstWall", Place("wall", 1)) in said
+    nightstands = [e.id for e in request.entities if e.type == "nightstand"]
+    assert {(n, lab) for n, lab, t in said if t == bed.id and lab.startswith("NextTo")} == {
+        (nightstands[0], "NextToLeft"),
+        (nightstands[1], "NextToRight"),
+    }
+    desk = next(e for e in request.entities if e.type == "desk")
+    assert (desk.id, "UnderWindow", Place("window")) in said
+    assert not request.issues
+    assert "bed as e1 AgainstWall wall #1" in rules and "window north" in rules
+
+
+def test_an_unknown_word_is_reported_with_its_span_and_the_nearest_word():
+    text = "a kitchn with a fridge"
+    request, _ = _plan(text)
+    report = report_of(text, request, "")
+    assert report.messages() == ["1:3-8: unknown word 'kitchn'; did you mean 'kitchen'?"]
+    assert _types(request) == ["refrigerator"]
+
+
+def test_the_describer_s_own_sentences_read_back():
+    text = (
+        "The scene consists of a single bed, two nightstands, a wide wardrobe and a chair. "
+        "The room has a door in the south wall and two windows in the north wall. "
+        "A lamp is on top of the first nightstand. Another lamp is on top of the other "
+        "nightstand. The single bed and the wide wardrobe stand against the east wall. "
+        "The chair is in front of the single bed and faces it. "
+        "The first nightstand is to the left of the single bed."
+    )
+    request, _ = _plan(text)
+    assert not request.issues
+    assert request.doors == ["south"] and request.windows == ["north", "north"]
+    ids = {e.id: (e.type, e.style) for e in request.entities}
+    said = [(ids[s.source][0], s.label, s.target) for s in request.statements]
+    lamps = [s for s in request.statements if ids[s.source][0] == "lamp"]
+    assert len({s.target for s in lamps}) == 2  # "the first" and "the other" nightstand
+    assert said.count(("bed", "AgainstWall", Place("wall", 2))) == 1
+    assert ("wardrobe", "AgainstWall", Place("wall", 2)) in said
+    chair = [s for s in request.statements if ids[s.source][0] == "chair"]
+    assert [s.label for s in chair] == ["NextToFront", "FacingTowards"]
+    assert all(ids[s.target][0] == "bed" for s in chair)  # "it" is the bed
+
+
+def test_people_s_phrases_counts_sizes_and_absence():
+    request, _ = _plan(
+        "a 4 by 3 metre kitchen with a few chairs around the table, several books and no rug"
+    )
+    assert request.size == (4.0, 3.0) and request.room == "kitchen"
+    assert _types(request).count("chair") == 3 and _types(request).count("book") == 3
+    table = next(e.id for e in request.entities if e.type == "dining_table")
+    around = [s for s in request.statements if s.target == table]
+    assert {s.label for s in around} >= {"NextToFront", "NextToBehind", "FacingTowards"}
+    assert "rug" in request.absent and not request.issues
+
+
+def test_a_contradicted_absence_is_reported():
+    request, _ = _plan("a room with a rug and no rug")
+    assert any("contradicts" in i.message for i in request.issues)
+
+
+def test_a_label_registered_with_new_words_is_understood_without_the_parser():
+    label = RelationLabel(
+        name="NextToFlush",
+        family="next_to",
+        phrase="flush with",
+        wordings=("is snug against",),
+    )
+    relation_phrases.cache_clear()
+    try:
+        with RELATIONS.extended(label):
+            relation_phrases.cache_clear()
+            request, _ = plan("a desk is snug against the bed", indoor_catalog())
+            assert [s.label for s in request.statements] == ["NextToFlush"]
+    finally:
+        relation_phrases.cache_clear()
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.text(alphabet="abcdefghijklmnopqrstuvwxyz ,.'-0123456789", max_size=80))
+def test_every_word_is_used_or_reported(text):
+    if not text.strip():
+        return
+    request, _ = _plan(text)
+    vocab_words = set(vocabulary(indoor_catalog()).known_words)
+    spans = request.used + [(i.start, i.end) for i in request.issues]
+    from scenewright.composer.parse import tokenize
+    from scenewright.composer.vocabulary import FUNCTION_WORDS
+
+    for token in tokenize(text):
+        if token.low in FUNCTION_WORDS or token.low in ".,;:!?":
+            continue
+        assert any(s <= token.start and token.end <= e for s, e in spans), (token.text, vocab_words)
+
+
+def test_the_same_text_and_seed_give_the_same_rules():
+    assert _plan(DONE_WHEN)[1] == _plan(DONE_WHEN)[1]
+
+
+@pytest.mark.slow
+def test_compose_command_writes_the_scene_and_restates_the_facts(tmp_path):
+    out = tmp_path / "out"
+    rules = tmp_path / "bedroom.rules"
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "scenewright.cli",
+            "compose",
+            DONE_WHEN,
+            "-o",
+            str(out),
+            "--no-render",
+            "--seed",
+            "1",
+            "--rules-out",
+            str(rules),
+        ],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    text = (out / "description.txt").read_text()
+    for fact in (
+        "The double bed stands against the north wall.",
+        "to the left of the double bed",
+        "to the right of the double bed",
+        "The desk is under the window.",
+        "a wardrobe",
+    ):
+        assert fact in text
+    again = subprocess.run(
+        [sys.executable, "-m", "scenewright.cli", "validate", str(rules)],
+        capture_output=True,
+        text=True,
+    )
+    assert again.returncode == 0, again.stdout + again.stderr
+
+
+def test_strict_refuses_an_unknown_word_and_writes_nothing(tmp_path):
+    out = tmp_path / "out"
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "scenewright.cli",
+            "compose",
+            "a kitchn with a fridge",
+            "--strict",
+            "-o",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 2
+    assert "1:3-8: unknown word 'kitchn'; did you mean 'kitchen'?" in run.stderr
+    assert "Traceback" not in run.stderr and not out.exists()
+
+
+def test_one_against_each_wall():
+    request, _ = _plan("a room with a bookshelf against each wall")
+    walls = sorted(s.target.number for s in request.statements if isinstance(s.target, Place))
+    assert _types(request) == ["bookshelf"] * 4 and walls == [1, 2, 3, 4]
+
+
+def test_a_named_corner_is_where_the_layout_puts_it():
+    from scenewright.api import compose
+
+    scene, report = compose("a bathroom with a bathtub in the south-east corner and a toilet", 4)
+    tub = next(o for o in scene.objects if o.type == "bathtub")
+    assert tub.position[0] > 0 and tub.position[2] > 0 and not report.unsatisfied
+    assert "The bathtub stands in the south-east corner." in scene.description.text
+
+
+def test_everyday_phrases_each_other_side_by_side_every_corner_and_a_room_after_in():
+    request, _ = _plan(
+        "A living room with two armchairs facing each other, two treadmills side by side, "
+        "a plant in every corner and a piano in the living room near the window."
+    )
+    ids = {e.id: e.type for e in request.entities}
+    said = [
+        (ids[s.source], s.label, s.target if isinstance(s.target, Place) else ids[s.target])
+        for s in request.statements
+    ]
+    assert said.count(("armchair", "FacingTowards", "armchair")) == 2
+    assert ("treadmill", "NextTo", "treadmill") in said
+    corners = {s.target.corner for s in request.statements if s.label == "InCorner"}
+    assert len(corners) == 4 and _types(request).count("plant") == 4
+    assert ("piano", "BesideWindow", Place("window")) in said
+    assert not request.issues and request.room == "living_room"
+
+
+def test_a_relation_left_without_its_object_is_reported():
+    request, _ = _plan("a desk facing the window and a chair next to")
+    words = {i.text for i in request.issues}
+    assert {"facing", "window", "next"} <= words
+
+
+def test_the_plain_noun_names_the_plain_style_before_another():
+    request, _ = _plan(
+        "The scene consists of a low bookshelf and a bookshelf. "
+        "The bookshelf is to the right of the low bookshelf."
+    )
+    styles = {e.id: e.style for e in request.entities}
+    [said] = request.statements
+    assert (styles[said.source], said.label, styles[said.target]) == ("tall", "NextToRight", "low")
