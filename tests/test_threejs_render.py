@@ -66,6 +66,8 @@ def test_threejs_shows_the_preview_colours_lit(threejs):
         ours = picture[region].astype(float).mean(axis=0)
         theirs = preview.colour[region].astype(float).mean(axis=0)
         assert 25 < ours.mean() < 250, entity_id
+        # no black faces: the sides turned away from the sun are lit by the sky
+        assert (picture[region].max(axis=1) > 20).mean() > 0.98, entity_id
         assert np.abs(ours / ours.sum() - theirs / theirs.sum()).max() < 0.06, (
             entity_id,
             ours,
