@@ -44,4 +44,10 @@ if command -v npm >/dev/null; then
   npm install -s --prefix .tools gltf-validator@2.0.0-dev.3.10 >/dev/null \
     || echo "setup: warning: could not install gltf-validator; GLB validation tests will skip (fail under CI)" >&2
 fi
+# three.js (a node package) renders exported GLB files in headless Chromium in the tests
+# (scripts/threejs_render.py); those tests skip without it or without chromium.
+if command -v npm >/dev/null; then
+  npm install -s --prefix .tools-three three@0.187.0 >/dev/null \
+    || echo "setup: warning: could not install three; three.js render tests will skip" >&2
+fi
 echo "setup: ready (.venv)"
