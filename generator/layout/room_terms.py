@@ -43,7 +43,7 @@ from scenewright.core.room import Opening, Room
 
 from .factors import equals
 from .params import LayoutParams
-from .problem import Problem
+from .problem import FLAT_HEIGHT, Problem
 from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds
 from .relation_terms import opening_wall
 from .state import Grid, State
@@ -51,9 +51,6 @@ from .state import Grid, State
 #: The parts a room adds to the energy, in the order ``energy.PARTS`` lists them.
 ROOM_PARTS = ("walls", "square", "clearance", "door_swing", "windows", "access")
 
-#: Boxes at most this tall (metres; rugs, mats) are walked over: they block no corridor,
-#: no door swing and no clearance zone.
-FLAT_HEIGHT = 0.05
 
 #: The square term's Gaussian width (radians^2): off^2 / (2 * 0.05) costs 0.69 at 15
 #: degrees off the walls, 2.7 at 30 and 6.2 at 45 (the most a yaw can be off).
@@ -279,7 +276,17 @@ class RoomTerms:
         self.obstacle = [ground[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
         self.obstacles = [b for b in range(n) if self.obstacle[b]]
         #: Boxes someone must reach, and the sides they use ((("any",) for any side).
-        self.needs_access = [ground[b] and bool(problem.access[b]) for b in range(n)]
+        #: A table a seat stands at is used by the person on that seat: reaching the
+        #: seat (which needs reaching itself) reaches the table, so the way to the
+        #: table's side does not push the seat off it.
+        seated = {
+            t.b.index
+            for t in problem.relations
+            if t.spec.seat and t.a.kind == "object" and t.b.kind == "object"
+        }
+        self.needs_access = [
+            ground[b] and bool(problem.access[b]) and b not in seated for b in range(n)
+        ]
         self.access_boxes = (
             [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
         )
