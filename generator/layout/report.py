@@ -13,7 +13,7 @@ are geometric truths, not energy levels):
 - Facing*: within 30 degrees of the wanted direction (90 degrees for Orthogonal).
 
 The layout is ``ok`` when every relation is satisfied, no two boxes and no box and path
-run into each other by more than 2 cm (``OVERLAP_TOLERANCE``, the penetration depth in
+run into each other by more than 1 cm (``OVERLAP_TOLERANCE``, the penetration depth in
 metres whatever the sizes: a lamp post 5 cm into a basin is as wrong as a chair 5 cm
 into a desk; a floor covering under furniture is no overlap), every box and path
 control point lies inside the scene extent (1 mm tolerance), every path is within its
@@ -37,7 +37,7 @@ from .families import complaint, satisfied
 from .relation_terms import EPSILON
 
 #: How far (metres) two boxes, or a box and a path, may run into each other.
-OVERLAP_TOLERANCE = 0.02
+OVERLAP_TOLERANCE = 0.01
 EXTENT_TOLERANCE = 0.001
 
 
