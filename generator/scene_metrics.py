@@ -24,7 +24,7 @@ from their definitions, on the scene's boxes:
 
 Navigability and opening clearance are room measures: outdoors they are None. Where
 our reading differs from the paper's (it samples meshes; we measure the boxes the
-layout placed, and its robot is ours, a person 0.6 m wide) is said in docs/evaluate.md.
+layout placed, and its robot is ours, a person 0.6 m wide) is said in docs/cli.md (evaluate).
 """
 
 from __future__ import annotations

@@ -245,3 +245,22 @@ def test_evaluate_refuses_a_missing_file_in_one_line(tmp_path, capsys):
     assert main(["evaluate", str(tmp_path / "none.json")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "cannot read" in err
+
+
+def test_validate_warns_of_an_example_whose_objects_run_into_each_other(tmp_path, capsys):
+    from pathlib import Path
+
+    source = Path(__file__).parent.parent / "examples" / "sets" / "desks" / "desk_01.json"
+    data = json.loads(source.read_text())
+    chair = next(o for o in data["objects"] if o["id"] == "chair")
+    chair["position"] = [0.3, -0.85]  # its back 0.25 m into the desk's front
+    path = tmp_path / "desk.json"
+    path.write_text(json.dumps(data))
+    assert main(["validate", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert (
+        "warning: chair runs 25 cm into desk" in out or "warning: desk runs 25 cm into chair" in out
+    )
+    assert "1 warning)" in out
+    assert main(["validate", str(source)]) == 0
+    assert "warning" not in capsys.readouterr().out
