@@ -6,6 +6,8 @@ import json
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scenewright.cli import main
 from scenewright.core.poses import Pose
@@ -264,3 +266,22 @@ def test_validate_warns_of_an_example_whose_objects_run_into_each_other(tmp_path
     assert "1 warning)" in out
     assert main(["validate", str(source)]) == 0
     assert "warning" not in capsys.readouterr().out
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    gap=st.floats(-0.3, 0.3),
+    width=st.floats(0.2, 3.0),
+    turn=st.sampled_from([0.0, math.pi / 2, math.pi, -math.pi / 2]),
+)
+def test_a_collision_is_a_depth_in_centimetres_whatever_the_sizes(gap, width, turn):
+    """Two square-to-each-other boxes side by side: they collide exactly when one runs
+    more than 1 cm into the other, and the depth is that overlap, however large."""
+    first = obj("box_1", 0.0, 0.0, (width, 1.0, width), yaw=turn)
+    second = obj("box_2", width / 2.0 + 0.25 + gap, 0.0, (0.5, 1.0, 0.5))
+    metrics = evaluate_scene(scene_of([first, second], Room.rectangle(12, 12)))
+    overlap = -gap
+    if overlap > 0.01 + 1e-9:
+        assert metrics.collisions and metrics.collisions[0][2] == pytest.approx(overlap)
+    elif overlap < 0.01 - 1e-9:
+        assert metrics.collisions == []
