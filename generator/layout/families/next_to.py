@@ -55,8 +55,8 @@ GAP_RANGE = (0.05, 0.8)
 SEAT_GAP_RANGE = (0.05, 0.3)
 
 #: The variance (m², rad²) of the pull of a label with a reach back within it, and of a
-#: seat's turn to square: 5 cm beyond the reach costs 1.25, 10 degrees off about 1.
-REACH_SIGMA2 = 0.001
+#: seat's turn to square: 2 cm beyond the reach costs 1, 10 degrees off about 1.
+REACH_SIGMA2 = 0.0002
 SEAT_SIGMA2 = 0.015
 
 #: How far (as a share of B's half side) a data-driven NextTo proposal may slide A along B.
