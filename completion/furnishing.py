@@ -168,7 +168,7 @@ def _relations_of(
         return [(label, holders[index % len(holders)])]
     if name == "nightstand" and made.get("bed"):
         bed = made["bed"][index // 2 % len(made["bed"])]
-        side = "NextToLeft" if index % 2 == 0 else "NextToRight"
+        side = "BesideLeft" if index % 2 == 0 else "BesideRight"
         return [(side, bed), ("ImplicitAlignedWith", bed), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
@@ -231,7 +231,7 @@ def _seat_relations(name: str, index: int, made: dict) -> list[tuple[str, str]]:
             taken = len(made.get("office_chair", [])) if name == "chair" else 0
             if index + taken < len(tables):
                 desk = tables[index + taken]
-                return [("NextToFront", desk), ("FacingTowards", desk)]
+                return [("SeatedAt", desk)]
             continue
         table = tables[index % len(tables)]
         side, facing = TABLE_SIDES[index // len(tables) % len(TABLE_SIDES)]

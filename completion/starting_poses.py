@@ -43,7 +43,7 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
     covers most of the layout ``mask`` and whose footprint and clearance are clear of the
     door swings, the room's outline and the pieces already placed. Under a window a
     piece goes to the window's middle. What flanks a piece along its wall (night tables
-    ``NextToLeft``/``NextToRight`` of the bed) is placed with it, one unit."""
+    ``BesideLeft``/``BesideRight`` of the bed) is placed with it, one unit."""
     from scenewright.completion.layout_mask import mask_values
 
     wall_of = {
@@ -55,9 +55,9 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
         str, list[tuple[str, float]]
     ] = {}  # piece -> (flanking piece, side: -1 left, +1 right)
     for relation in graph.edges():
-        if relation.label in ("NextToLeft", "NextToRight") and relation.target in wall_of:
+        if relation.label in ("BesideLeft", "BesideRight") and relation.target in wall_of:
             flanks.setdefault(relation.target, []).append(
-                (relation.source, -1.0 if relation.label == "NextToLeft" else 1.0)
+                (relation.source, -1.0 if relation.label == "BesideLeft" else 1.0)
             )
     # Pieces under a window first: they have one place each; then the largest first.
     nodes = sorted(
@@ -188,8 +188,9 @@ def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, sw
     piece's: a chair stands in the space kept free before its desk)."""
     from scenewright.completion.activity import SEATS
 
-    facing = {(r.source, r.target) for r in graph.edges("FacingTowards")}
-    for relation in graph.edges("NextToFront"):
+    seated = graph.edges("SeatedAt")  # a seat at its desk: in front of it, facing it
+    facing = {(r.source, r.target) for r in [*graph.edges("FacingTowards"), *seated]}
+    for relation in [*graph.edges("NextToFront"), *seated]:
         anchor = poses.get(relation.target)
         if anchor is None or relation.source in poses:
             continue

@@ -18,6 +18,9 @@ everything the stages need to know about it, so no stage routes on label spellin
   wall with one side against the next; ``under_window`` / ``beside_window``: against a
   window's wall, under it or next to it). B is a wall or a window, or the room (the
   layout then chooses the wall or window that fits and records it as ``chosen``).
+  ``reach``: the largest gap (metres) between A and B at which the label holds; None
+  for the layout's general next-to distance (2 m, the paper's). ``seat``: A is a seat
+  used at B's side (a chair at a desk): it also faces B, square to that side.
 - ``alignment``: A parallel to B with one face flush (no parameters).
 - ``phrase``: how the layout report names it ("north of"); ``wordings``: the verb
   phrases the describer may use (canonical first); ``place``: the wording says where A
@@ -101,6 +104,8 @@ class RelationLabel:
     placement: str | None = None  # support labels
     facing: str | None = None  # facing labels
     wall: str | None = None  # wall labels: against, corner, under_window, beside_window
+    reach: float | None = None  # next_to labels: the gap they hold within (None: the layout's)
+    seat: bool = False  # next_to labels: A is a seat at B's side, facing it squarely
     place: bool = False
     symmetric: bool = False
     part_of: bool = False  # a support label worded as belonging ("is part of")
@@ -141,7 +146,7 @@ class RelationLabel:
     def wordings_for(self, chosen: str | None = None) -> tuple[str, ...]:
         """The verb phrases that state this label (canonical first); a label that chooses
         its direction is worded by the direction chosen, or as plain "next to"."""
-        if self.chooses:
+        if self.chooses and not self.seat:
             return DIRECTION_WORDINGS.get(chosen or "", _NEXT_TO_WORDINGS)
         return self.wordings
 
@@ -249,6 +254,12 @@ def _check_complete(label: RelationLabel) -> None:
         problems.append(f"wall placement {label.wall!r} is not one of {', '.join(WALL_PLACEMENTS)}")
     if label.family != "structural" and not label.chooses and not label.wordings:
         problems.append("it has no wording")
+    if label.seat and not label.wordings:
+        problems.append("a seat label is worded by its own wording, and it has none")
+    if (label.reach is not None or label.seat) and label.family != "next_to":
+        problems.append("reach and seat are next_to parameters")
+    if label.seat and (label.frame != "target" or label.reach is None):
+        problems.append("a seat label names sides of B and a reach")
     for name, (x, z) in label.directions.items():
         if abs(math.hypot(x, z) - 1.0) > 1e-9:
             problems.append(f"direction {name!r} is not a unit vector")
@@ -285,6 +296,52 @@ def _support(
         name, "support", phrase, wordings, placement=placement, part_of=part_of, place=not part_of
     )
 
+
+#: The gap (metres) within which a seat stands at the side it is used from: a chair's
+#: front edge 5-35 cm from a desk's, as a person sitting at it pulls it up.
+SEAT_REACH = 0.35
+
+#: The gap (metres) within which paired furniture stands beside its partner: a
+#: nightstand by the bed's head, a floor lamp by an armchair.
+BESIDE_REACH = 0.15
+
+#: How far (radians) a seat may turn off square to the side it is used from.
+SEAT_SQUARE_TOLERANCE = math.radians(10.0)
+
+#: Labels beyond Table 1 for furniture used together: a seat at its table's side,
+#: paired furniture close beside its partner.
+FURNITURE_LABELS: tuple[RelationLabel, ...] = (
+    _next_to(
+        "SeatedAt", "at", ("is at", "is drawn up to"), ("front",), reach=SEAT_REACH, seat=True
+    ),
+    _next_to(
+        "SeatedAtBack",
+        "at the back of",
+        ("is at the back of",),
+        ("behind",),
+        reach=SEAT_REACH,
+        seat=True,
+    ),
+    _next_to(
+        "SeatedAround",
+        "at",
+        ("is at",),
+        tuple(SIDES),
+        reach=SEAT_REACH,
+        seat=True,
+    ),
+    _next_to("Beside", "beside", (), ("left", "right"), reach=BESIDE_REACH),
+    _next_to(
+        "BesideLeft", "to the left of", DIRECTION_WORDINGS["left"], ("left",), reach=BESIDE_REACH
+    ),
+    _next_to(
+        "BesideRight",
+        "to the right of",
+        DIRECTION_WORDINGS["right"],
+        ("right",),
+        reach=BESIDE_REACH,
+    ),
+)
 
 #: The vocabulary of Table 1.
 TABLE_1: tuple[RelationLabel, ...] = (
@@ -423,4 +480,4 @@ TABLE_1: tuple[RelationLabel, ...] = (
 )
 
 #: The registry every stage reads.
-RELATIONS = Registry(TABLE_1)
+RELATIONS = Registry(TABLE_1 + FURNITURE_LABELS)

@@ -203,7 +203,7 @@ def test_an_unregistered_label_fails_at_once():
     with pytest.raises(UnknownLabel, match="unknown relation label 'NextToo'"):
         graph.add_relation(a, b, "NextToo")
     with pytest.raises(UnknownLabel):
-        RELATIONS["Beside"]
+        RELATIONS["Alongside"]
 
 
 def test_an_incomplete_or_duplicate_label_is_refused():

@@ -200,5 +200,5 @@ def test_assess_names_the_failures_in_words():
     energy = Energy(problem, state, PARAMS)
     energy.activate([0, 1])
     _, problems = assess(energy)
-    # 0.7 m of overlap over the two footprint diagonals (2 x 1.41 m)
-    assert problems == ["box_2 is not north of box_1 (90° off)", "box_1 overlaps box_2 by 25 %"]
+    # 0.7 m of overlap, in centimetres whatever the boxes' sizes
+    assert problems == ["box_2 is not north of box_1 (90° off)", "box_1 overlaps box_2 by 70 cm"]

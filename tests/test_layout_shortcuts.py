@@ -193,10 +193,10 @@ def test_the_overlap_report_skips_no_pair_that_overlaps():
     every = []
     for box in range(problem.n_boxes):
         for other in range(box + 1, problem.n_boxes):
-            depth = energy.pair_depth(box, other)
+            depth = energy.pair_penetration(box, other)
             if depth > OVERLAP_TOLERANCE:
                 every.append(
-                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %"
+                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} cm"
                 )
     reported = [
         line

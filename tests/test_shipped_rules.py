@@ -248,11 +248,7 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
                 (e.label, graph.node(e.target).type) for e in graph.edges() if e.source == node.id
             }
             if node.type == "nightstand":
-                assert out & {
-                    ("NextToLeft", "bed"),
-                    ("NextToRight", "bed"),
-                    ("NextToChooseSide", "bed"),
-                }
+                assert out & {("BesideLeft", "bed"), ("BesideRight", "bed"), ("Beside", "bed")}
             if node.type == "lamp":
                 assert any(
                     RELATIONS[label].support and target in ("nightstand", "desk")
@@ -261,6 +257,22 @@ def test_bedroom_nightstands_flank_the_bed_and_lamps_stand_on_furniture():
 
 
 # -- the vocabulary ------------------------------------------------------------------
+
+
+def test_seats_are_seated_at_their_tables_in_every_shipped_room():
+    """A chair or stool at a desk or table stands by a seat label (within reach, facing
+    it), never by the 2 m NextTo*; the kitchen seats its chairs round the table."""
+    seats = {"chair", "office_chair"}
+    tables = {"desk", "dining_table", "student_desk", "teacher_desk", "table"}
+    seen = set()
+    for name in ("desk", *ROOMS):
+        for graph in expansions(name)[:50]:
+            for edge in graph.edges():
+                source, target = graph.node(edge.source), graph.node(edge.target)
+                if source.type in seats and target.type in tables:
+                    assert RELATIONS[edge.label].seat, (name, edge)
+                    seen.add(edge.label)
+    assert seen == {"SeatedAt", "SeatedAtBack", "SeatedAround"}
 
 
 def test_every_label_family_is_used_by_the_shipped_sets():

@@ -29,10 +29,9 @@ from .families.next_to import GAP_RANGE
 from .motion import carried_by, draw_index, end_reach, reach, rigid, uniform, wrap
 from .params import LayoutParams
 from .pinning import Pins
-from .problem import Problem
+from .problem import FLAT_HEIGHT, Problem
 from .reachability import CORRIDOR_HALF, access_grid
 from .relation_terms import HEADING_FACINGS, centre
-from .room_terms import FLAT_HEIGHT
 from .state import State
 from .terms import Endpoint, RelationTerm
 

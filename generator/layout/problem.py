@@ -47,6 +47,12 @@ def needs_sight(spec: RelationLabel) -> bool:
     return family is not None and family.needs_sight(spec)
 
 
+#: Boxes on the ground at most this tall (metres; rugs, mats) are floor coverings, a
+#: layer of their own: furniture stands on them (they collide only with each other),
+#: and they block no corridor, door swing, clearance zone or window.
+FLAT_HEIGHT = 0.05
+
+
 @dataclass
 class Problem:
     """Static data of one layout problem (nothing here changes while sampling)."""
@@ -78,6 +84,8 @@ class Problem:
     clearance: list[tuple[tuple[str, float], ...]]  # per box: free floor to keep, by side
     access: list[tuple[str, ...]]  # per box: the sides a person uses it from
     terms_of_box: list[list[int]] = field(default_factory=list)
+    #: Per box, whether it is a floor covering (``FLAT_HEIGHT``): the layer under furniture.
+    covering: list[bool] = field(default_factory=list)
     terms_of_path: list[list[int]] = field(default_factory=list)
     paths_of_junction: dict[int, list[int]] = field(default_factory=dict)
     top_groups: list[int] = field(default_factory=list)  # groups not inside another group
@@ -260,6 +268,10 @@ def compile_problem(graph: SceneGraph) -> Problem:
     )
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]
+    problem.covering = [
+        support[b] == -1 and not is_junction[b] and height[b] <= FLAT_HEIGHT
+        for b in range(len(ids))
+    ]
     for term_index, term in enumerate(relations):
         for end in (term.a, term.b):
             for box in end.members:

@@ -13,7 +13,9 @@ are geometric truths, not energy levels):
 - Facing*: within 30 degrees of the wanted direction (90 degrees for Orthogonal).
 
 The layout is ``ok`` when every relation is satisfied, no two boxes and no box and path
-overlap by more than 1 % (depth over summed size, as in the energy), every box and path
+run into each other by more than 1 cm (``OVERLAP_TOLERANCE``, the penetration depth in
+metres whatever the sizes: a lamp post 5 cm into a basin is as wrong as a chair 5 cm
+into a desk; a floor covering under furniture is no overlap), every box and path
 control point lies inside the scene extent (1 mm tolerance), every path is within its
 maximum length with turns of at most gamma, and paths leave a junction at least gamma
 apart. In a room the walls replace the extent for boxes, and a layout is not ok either
@@ -34,6 +36,7 @@ from .energy import Energy
 from .families import complaint, satisfied
 from .relation_terms import EPSILON
 
+#: How far (metres) two boxes, or a box and a path, may run into each other.
 OVERLAP_TOLERANCE = 0.01
 EXTENT_TOLERANCE = 0.001
 
@@ -95,17 +98,17 @@ def _overlaps(energy: Energy) -> list[str]:
             dx, dz, apart = xs[other] - x, zs[other] - z, (size[box] + size[other]) / 2.0
             if dx * dx + dz * dz > apart * apart:
                 continue
-            depth = energy.pair_depth(box, other)
+            depth = energy.pair_penetration(box, other)
             if depth > OVERLAP_TOLERANCE:
                 found.append(
-                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} %"
+                    f"{problem.ids[box]} overlaps {problem.ids[other]} by {100 * depth:.0f} cm"
                 )
         if energy.collides_with_paths[box]:
             for path in energy.paths_near(box):
-                depth = energy.path_depth(box, path)
+                depth = energy.path_penetration(box, path)
                 if depth > OVERLAP_TOLERANCE:
                     found.append(
-                        f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} %"
+                        f"{problem.ids[box]} overlaps {problem.path_ids[path]} by {100 * depth:.0f} cm"
                     )
     return found
 

@@ -14,8 +14,9 @@ Six parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
 - ``door_swing``: per door and ground box standing in its swing, the collision penalty.
 - ``windows``: per window and ground box standing in front of it (``view_rect``) whose
   top rises more than WINDOW_VIEW_MARGIN above the sill, the collision penalty: a
-  wardrobe or a piano is not put against a window when another place will do. Soft: it
-  is no problem of the layout's verdict, since a rule may leave the box nowhere else.
+  wardrobe or a piano is not put against a window when another place will do. The
+  verdict reports such a box unless a wall relation of its own names the window's wall
+  or the window (``_asked_views``): a rule may leave the box nowhere else.
 - ``access``: per box that needs reaching (``problem.access`` not empty) and cannot be
   reached on foot from a door, ACCESS_BASE + ACCESS_SLOPE * its distance (metres, in
   whole cells) to the floor that can. Global: any obstacle that moves can open or close
@@ -43,7 +44,7 @@ from scenewright.core.room import Opening, Room
 
 from .factors import equals
 from .params import LayoutParams
-from .problem import Problem
+from .problem import FLAT_HEIGHT, Problem
 from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds
 from .relation_terms import opening_wall
 from .state import Grid, State
@@ -51,9 +52,6 @@ from .state import Grid, State
 #: The parts a room adds to the energy, in the order ``energy.PARTS`` lists them.
 ROOM_PARTS = ("walls", "square", "clearance", "door_swing", "windows", "access")
 
-#: Boxes at most this tall (metres; rugs, mats) are walked over: they block no corridor,
-#: no door swing and no clearance zone.
-FLAT_HEIGHT = 0.05
 
 #: The square term's Gaussian width (radians^2): off^2 / (2 * 0.05) costs 0.69 at 15
 #: degrees off the walls, 2.7 at 30 and 6.2 at 45 (the most a yaw can be off).
@@ -279,7 +277,17 @@ class RoomTerms:
         self.obstacle = [ground[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
         self.obstacles = [b for b in range(n) if self.obstacle[b]]
         #: Boxes someone must reach, and the sides they use ((("any",) for any side).
-        self.needs_access = [ground[b] and bool(problem.access[b]) for b in range(n)]
+        #: A table a seat stands at is used by the person on that seat: reaching the
+        #: seat (which needs reaching itself) reaches the table, so the way to the
+        #: table's side does not push the seat off it.
+        seated = {
+            t.b.index
+            for t in problem.relations
+            if t.spec.seat and t.a.kind == "object" and t.b.kind == "object"
+        }
+        self.needs_access = [
+            ground[b] and bool(problem.access[b]) and b not in seated for b in range(n)
+        ]
         self.access_boxes = (
             [b for b in range(n) if self.needs_access[b]] if self.access_grid.has_doors else []
         )
@@ -290,6 +298,9 @@ class RoomTerms:
         self.views = [
             (kept_zone(view_rect(room, w)), w.sill + WINDOW_VIEW_MARGIN) for w in room.windows
         ]
+        #: (box, window index) pairs the rules put there: a wall relation naming the
+        #: window's wall or the window itself. Only there may a tall box stand before it.
+        self.asked_views = _asked_views(problem, room)
         # Clearance zones: (owner, side, metres) each; per box the zones it owns.
         self.zones: list[tuple[int, str, float]] = []
         self.zones_of: list[list[int]] = [[] for _ in range(n)]
@@ -780,7 +791,33 @@ class RoomTerms:
                     found.append(f"{ids[other]} stands in {words}")
             if self.walls_geometry.excess(rect) > ROOM_TOLERANCE:
                 found.append(f"{words} runs into the wall")
+        for window, (view, lowest) in enumerate(self.views):
+            for box in self.obstacles:
+                if (
+                    self.active[box]
+                    and (box, window) not in self.asked_views
+                    and self.state.y[box] + problem.height[box] > lowest
+                    and rect_penetration(view.rect, self.state.rects[box]) > ROOM_TOLERANCE
+                ):
+                    found.append(f"{ids[box]} stands before {self.room.windows[window].id}")
         width = 2.0 * CORRIDOR_HALF
         for box in self.unreachable():
             found.append(f"{ids[box]} cannot be reached from the door (no {width:.1f} m wide way)")
         return found
+
+
+def _asked_views(problem: Problem, room: Room) -> set[tuple[int, int]]:
+    """The (box, window index) pairs whose box a wall relation puts on the window's own
+    wall or at the window (``AgainstWall wall #2`` on a wall that is mostly window):
+    the rules ask for it there, so standing before the window is no problem."""
+    windows = room.windows
+    asked = set()
+    for term in problem.relations:
+        if term.spec.family != "wall" or term.a.kind != "object":
+            continue
+        for k, window in enumerate(windows):
+            if (term.b.kind == "wall" and room.walls[term.b.index].id == window.wall) or (
+                term.b.kind == "opening" and room.openings[term.b.index].id == window.id
+            ):
+                asked.add((term.a.index, k))
+    return asked

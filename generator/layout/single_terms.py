@@ -53,8 +53,19 @@ class SingleTerms:
 
     def pair_depth(self, first: int, second: int) -> float:
         """Normalised penetration depth of two boxes (0 when apart or stacked)."""
+        return self.pair_penetration(first, second) / (
+            self.problem.size[first] + self.problem.size[second]
+        )
+
+    def pair_penetration(self, first: int, second: int) -> float:
+        """How far (metres) two boxes run into each other: the planar penetration, or
+        the vertical overlap where it is smaller and one is stacked; 0 when apart, when
+        one rests on the other, or when exactly one is a floor covering (furniture
+        stands on a rug)."""
         problem, state = self.problem, self.state
         if problem.support[first] == second or problem.support[second] == first:
+            return 0.0
+        if problem.covering and problem.covering[first] != problem.covering[second]:
             return 0.0
         planar = rect_overlap(
             state.rects[first], state.rects[second]
@@ -68,7 +79,7 @@ class SingleTerms:
             if vertical <= 1e-9:
                 return 0.0
             planar = min(planar, vertical)
-        return planar / (problem.size[first] + problem.size[second])
+        return planar
 
     def pair_energy(self, first: int, second: int) -> float:
         depth = self.pair_depth(first, second)
@@ -114,14 +125,17 @@ class SingleTerms:
 
     def path_depth(self, box: int, path: int) -> float:
         """Normalised depth of a ground box into a path's buffered polyline."""
-        problem = self.problem
+        return self.path_penetration(box, path) / (
+            self.problem.size[box] + self.problem.path_width[path]
+        )
+
+    def path_penetration(self, box: int, path: int) -> float:
+        """How far (metres) a ground box reaches into a path's buffered polyline."""
         if not self.may_touch_path(box, path):
             return 0.0
-        width = problem.path_width[path]
-        depth = polyline_rect_penetration(
-            self.state.points[path], width / 2.0, self.state.rects[box]
+        return polyline_rect_penetration(
+            self.state.points[path], self.problem.path_width[path] / 2.0, self.state.rects[box]
         )
-        return depth / (problem.size[box] + width)
 
     def path_energy(self, box: int, path: int) -> float:
         depth = self.path_depth(box, path)

@@ -5,7 +5,8 @@ one call into the library (``scenewright.api``, ``scenewright.scene_folder``, th
 stages) and reports. The commands come in families, each module with its commands'
 parsers and help: ``scene_commands`` (generate, layout, describe, render, export),
 ``dataset_commands`` (dataset), ``learning_commands`` (fit, relations, learn),
-``example_commands`` (validate, match, augment, vary), ``completion_commands``
+``example_commands`` (validate, match, augment, vary), ``evaluation_commands``
+(evaluate), ``completion_commands``
 (complete, plans), ``info_commands`` (expand, schema, list); ``options`` holds what
 their parsers share, ``common`` what they share at run time. Parsing and error
 reporting live here once.
@@ -32,6 +33,7 @@ from . import (
     completion_commands,
     compose_commands,
     dataset_commands,
+    evaluation_commands,
     example_commands,
     info_commands,
     learning_commands,
@@ -45,6 +47,7 @@ FAMILIES = (
     scene_commands,
     dataset_commands,
     example_commands,
+    evaluation_commands,
     info_commands,
     learning_commands,
     completion_commands,

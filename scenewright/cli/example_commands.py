@@ -214,8 +214,32 @@ def validate_example_file(name: str) -> bool:
     objects = len(example.objects())
     kind = {"glb": "GLB", "example.json": "hand-written"}.get(example.format, example.format)
     room = "a room" if example.scene.room is not None else "open ground"
-    print(f"{name}: ok ({kind} example: {objects} object{'s' * (objects != 1)} in {room})")
+    warnings = overlap_warnings(name, example.scene)
+    noted = f", {len(warnings)} warning{'s' * (len(warnings) != 1)}" if warnings else ""
+    for line in warnings:
+        print(line)
+    print(f"{name}: ok ({kind} example: {objects} object{'s' * (objects != 1)} in {room}{noted})")
     return True
+
+
+def overlap_warnings(name: str, scene) -> list[str]:
+    """A warning per pair of objects that run into each other, and per object through a
+    wall or out of the scene, by more than the layout's tolerance (1 cm, as its ``ok``):
+    a model learns from an example what a layout may do."""
+    from scenewright.generator.layout.report import OVERLAP_TOLERANCE
+    from scenewright.generator.scene_metrics import evaluate_scene
+
+    metrics = evaluate_scene(scene, name, OVERLAP_TOLERANCE)
+    lines = [
+        f"{name}: warning: {a} runs {100 * depth:.0f} cm into {b}"
+        for a, b, depth in metrics.collisions
+    ]
+    where = "through the wall" if scene.room is not None else "out of the scene"
+    lines += [
+        f"{name}: warning: {ident} stands {100 * excess:.0f} cm {where}"
+        for ident, excess in metrics.out_of_bounds
+    ]
+    return lines
 
 
 def validate_scene_file(name: str) -> bool:

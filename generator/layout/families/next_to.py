@@ -1,5 +1,9 @@
 """NextTo*: A beside B, at a small gap, on the side the label names.
 
+A label with a ``reach`` (``Beside*``: paired furniture; ``Seated*``: a seat at its
+table) holds within that gap rather than the layout's general 2 m, and is placed within
+it; a seat label also turns A to face B squarely (``seat_off``).
+
 A is placed beside B (at a random point along a road B, turned to face the road most of
 the time; beside a wall, window or the room on the side named, into the room by
 default), or, in a data-driven move, B is shifted next to A instead. Beside an object
@@ -17,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from scenewright.core.relations import RelationLabel
+from scenewright.core.relations import SEAT_SQUARE_TOLERANCE, RelationLabel
 
 from ..factors import angle_between, equals, less
 from ..motion import draw_index, end_reach, rigid, uniform, wrap
@@ -46,6 +50,15 @@ if TYPE_CHECKING:
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
 
+#: Gaps (metres) a seat's placement leaves between it and its table: within its reach,
+#: not touching (a chair pushed fully in would stand in the table's box).
+SEAT_GAP_RANGE = (0.05, 0.3)
+
+#: The variance (m², rad²) of the pull of a label with a reach back within it, and of a
+#: seat's turn to square: 2 cm beyond the reach costs 1, 10 degrees off about 1.
+REACH_SIGMA2 = 0.0002
+SEAT_SIGMA2 = 0.015
+
 #: How far (as a share of B's half side) a data-driven NextTo proposal may slide A along B.
 LATERAL_SHARE = 0.5
 
@@ -59,7 +72,7 @@ def place(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dic
     if b.kind in ROOM_ENDS:
         return _place_by_room_part(placer, term)
     ax, az = centre(a, state)
-    gap = uniform(rng, *GAP_RANGE)
+    gap = uniform(rng, *gap_range(term.spec))
     turn = 0.0
     if b.kind == "path":
         points = state.points[b.index]
@@ -79,10 +92,14 @@ def place(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dic
     else:
         bx, bz, c, s = anchor(b, state, (ax, az))
         wx, wz = placer.wanted_direction(term, c, s)
-        offset = end_reach(problem, state, b, wx, wz) + kept_free(placer, a, b, wx, wz)
+        offset = end_reach(problem, state, b, wx, wz)
+        if not term.spec.seat:  # a seat is its table's partner: it stands in the kept space
+            offset += kept_free(placer, a, b, wx, wz)
         # Slide sideways along B's side a little, so several things beside B can fit.
         slide = uniform(rng, -LATERAL_SHARE, LATERAL_SHARE) * end_reach(problem, state, b, -wz, wx)
         bx, bz = bx - wz * slide, bz + wx * slide
+        if term.spec.seat and not keep_heading:  # the seat faces its table squarely
+            turn = wrap(math.atan2(-wx, -wz) - placer.heading(a))
     boxes = placer.moving_boxes(a)
     pivot = (ax, az)
     if turn:  # measure A's reach and centre as they will be once turned
@@ -109,8 +126,8 @@ def place_target(placer: Placer, term: RelationTerm) -> dict:
     distance = (
         a_reach
         + end_reach(problem, state, b, wx, wz)
-        + kept_free(placer, a, b, wx, wz)
-        + uniform(placer.rng, *GAP_RANGE)
+        + (0.0 if term.spec.seat else kept_free(placer, a, b, wx, wz))
+        + uniform(placer.rng, *gap_range(term.spec))
     )
     return rigid(
         state,
@@ -119,6 +136,15 @@ def place_target(placer: Placer, term: RelationTerm) -> dict:
         0.0,
         (ax - wx * distance - bx, az - wz * distance - bz),
     )
+
+
+def gap_range(spec: RelationLabel) -> tuple[float, float]:
+    """The gaps (metres) a placement by ``spec`` draws from: within its reach."""
+    if spec.seat:
+        return SEAT_GAP_RANGE
+    if spec.reach is not None:
+        return (min(GAP_RANGE[0], spec.reach / 4.0), spec.reach * 0.8)
+    return GAP_RANGE
 
 
 def kept_free(placer: Placer, a: Endpoint, end: Endpoint, wx: float, wz: float) -> float:
@@ -228,10 +254,27 @@ def needs_sight(spec: RelationLabel) -> bool:
 # -- its energy, its threshold and its complaint ------------------------------------
 
 
+def reach(spec: RelationLabel, params: LayoutParams) -> float:
+    """The largest gap (metres) at which a label holds: its own, or the general one."""
+    return params.next_to_distance if spec.reach is None else spec.reach
+
+
+def seat_off(term: RelationTerm, state: State, wx: float, wz: float) -> float:
+    """How far (radians) a seat A is turned off facing squarely the side of B that lies
+    in the world direction (wx, wz) from B (it should face -(wx, wz))."""
+    if term.a.kind != "object":
+        return 0.0
+    box = term.a.index
+    return angle_between(state.s[box], state.c[box], -wx, -wz)
+
+
 def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     distance = distance_between(term.a, term.b, state)
-    energy = -less(distance, params.next_to_distance, params.h)
     spec = term.spec
+    if spec.reach is None:
+        energy = -less(distance, params.next_to_distance, params.h)
+    else:  # a hinge: free within the reach, a steep pull back beyond it
+        energy = -equals(max(distance - spec.reach, 0.0), 0.0, REACH_SIGMA2)
     if not spec.directions:
         return Measure(energy, distance)
     blocker = None
@@ -241,21 +284,28 @@ def measure(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     ax, az = source_point(term.a, state)
     bx, bz, c, s = anchor(term.b, state, (ax, az))
     dx, dz = unit(ax - bx, az - bz)
-    chosen, best = None, math.inf
+    chosen, best, side = None, math.inf, (0.0, 0.0)
     for word, (wx, wz) in spec.direction_vectors(c, s).items():
         angle = angle_between(dx, dz, wx, wz)
         if angle < best - 1e-12:
-            chosen, best = word, angle
+            chosen, best, side = word, angle, (wx, wz)
     energy -= equals(best, 0.0, params.sigma2)
-    return Measure(energy, distance, best, chosen if spec.chooses else None, blocker=blocker)
+    off = 0.0
+    if spec.seat:
+        off = seat_off(term, state, *side)
+        energy -= equals(off, 0.0, SEAT_SIGMA2)
+    return Measure(
+        energy, distance, best, chosen if spec.chooses else None, blocker=blocker, offset=off
+    )
 
 
 def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
-    near = measure.distance <= params.next_to_distance + EPSILON
+    near = measure.distance <= reach(term.spec, params) + EPSILON
     return (
         near
         and not measure.blocked
         and (not term.spec.directions or measure.angle <= DIRECTION_TOLERANCE + EPSILON)
+        and measure.offset <= SEAT_SQUARE_TOLERANCE + EPSILON
     )
 
 
@@ -263,8 +313,14 @@ def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str
     words = term.spec.phrase
     if measure.blocked:
         return blocked_complaint(term, measure)
-    if measure.distance > params.next_to_distance:
-        return f"{term.source} is not {words} {term.target} (distance {measure.distance:.1f} m)"
+    if measure.distance > reach(term.spec, params) + EPSILON:
+        shown = f"{measure.distance:.1f}" if term.spec.reach is None else f"{measure.distance:.2f}"
+        return f"{term.source} is not {words} {term.target} (distance {shown} m)"
+    if measure.offset > SEAT_SQUARE_TOLERANCE + EPSILON:
+        return (
+            f"{term.source} is not {words} {term.target} "
+            f"(turned {math.degrees(measure.offset):.0f}° off facing it)"
+        )
     return f"{term.source} is not {words} {term.target} ({math.degrees(measure.angle):.0f}° off)"
 
 
