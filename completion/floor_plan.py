@@ -29,7 +29,7 @@ import referencing
 from jsonschema.exceptions import best_match
 
 from scenewright.core.errors import InputError, RoomError
-from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.files import UnusableFile, load_json, read_regular_file
 from scenewright.core.frames import footprint_corners
 from scenewright.core.room import Room
 from scenewright.core.schema_check import json_path, load_schema
@@ -138,7 +138,7 @@ def read_plan(path: str | Path) -> Plan:
     except UnicodeDecodeError:
         raise PlanError(source, "", "not UTF-8 text") from None
     try:
-        data = json.loads(text, parse_constant=_refuse_constant)
+        data = load_json(text, parse_constant=_refuse_constant)
     except ValueError as error:
         raise PlanError(source, "", f"not JSON: {error}") from None
     return plan_from_dict(data, source)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from scenewright.core import VERSION
 from scenewright.core.errors import InputError
 from scenewright.core.geometry import wrap_angle
+from scenewright.core.limits import forbidden_character
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import Room
 from scenewright.core.scene import LayoutStats, Scene, SceneObject
@@ -138,7 +139,14 @@ def example_scene(
     parents: Mapping[str, str] | None = None,
 ) -> Scene:
     """The Scene of the objects a file lists; ``parents`` (id -> id it stands on) as
-    the file gave them, the other supports measured from the boxes."""
+    the file gave them, the other supports measured from the boxes. ``ExampleError`` for
+    a name, id, type or style a scene.json may not carry (a control, line-separator or
+    bidirectional-control character): every scene made from the example would carry it."""
+    _check_text(source, "name", name)
+    for k, r in enumerate(records):
+        for field, value in (("id", r.id), ("type", r.type), ("style", r.style)):
+            if value is not None:
+                _check_text(source, f"object {k + 1} ({field})", value)
     objects = [
         SceneObject(
             id=r.id,
@@ -184,3 +192,14 @@ def _wrapped(yaw: float) -> float:
     """``yaw`` in (-pi, pi]."""
     wrapped = wrap_angle(yaw)
     return math.pi if wrapped == -math.pi else wrapped
+
+
+def _check_text(source: str, where: str, text: str) -> None:
+    bad = forbidden_character(text)
+    if bad is not None:
+        raise ExampleError(
+            source,
+            where,
+            f"holds the character {bad}, which a scene.json may not carry (no control, "
+            "line-separator or bidirectional-control characters)",
+        )

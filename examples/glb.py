@@ -24,10 +24,8 @@ round the objects' footprints (half their diagonal, so any turn stays inside) wi
 from __future__ import annotations
 
 import io
-import json
 import math
 import re
-import struct
 
 import numpy as np
 
@@ -36,6 +34,7 @@ from scenewright.core.room import Room
 from scenewright.core.scene import Scene
 
 from .example import ExampleError, ObjectRecord, example_scene
+from .glb_check import checked_glb
 
 #: Room parts by node type (without extras) and by extras kind (scenewright's export).
 ROOM_TYPES = ("wall", "floor", "ground", "ceiling")
@@ -178,20 +177,12 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
 
 def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
     """Node name -> its place in the file, and -> its glTF ``extras`` (trimesh keeps
-    neither), from the JSON chunk."""
-    if len(data) < 20 or data[:4] != b"glTF":
-        raise ExampleError(path, "", "not a GLB file (it does not start with 'glTF')")
-    length, kind = struct.unpack("<I4s", data[12:20])
-    if kind != b"JSON" or 20 + length > len(data):
-        raise ExampleError(path, "", "not a GLB file (no JSON chunk after the header)")
-    try:
-        document = json.loads(data[20 : 20 + length])
-    except ValueError as error:
-        raise ExampleError(path, "", f"the GLB's JSON chunk is not JSON: {error}") from None
+    neither), from the JSON chunk, once the file has passed ``checked_glb``."""
+    document = checked_glb(path, data)
     order: dict[str, int] = {}
     found: dict[str, dict[str, str]] = {}
-    for index, node in enumerate(document.get("nodes", []) if isinstance(document, dict) else []):
-        if isinstance(node, dict) and isinstance(node.get("name"), str):
+    for index, node in enumerate(document.get("nodes", [])):
+        if isinstance(node.get("name"), str):
             order.setdefault(node["name"], index)
             if isinstance(node.get("extras"), dict):
                 found[node["name"]] = {

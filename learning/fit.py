@@ -131,6 +131,7 @@ def fit_rule_set(
     allow: Iterable[str | os.PathLike] = (),
     prior: float = PRIOR,
     write: Callable[[Path, str], object],
+    commit: Callable[[], object] = lambda: None,
     what: frozenset[str] = frozenset({"weights"}),
     seed: int = 0,
     rounds: int = ROUNDS,
@@ -139,7 +140,9 @@ def fit_rule_set(
     """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
     (file name, Scene) for examples read from geometry alone) and
     write the fitted rules to ``output`` (with its included files beside it) and the
-    report to ``report``. ``write(path, text)`` writes one file atomically.
+    report to ``report``. ``write(path, text)`` writes (or stages) one file whole;
+    ``commit()`` puts the staged files in place before the fitted rules are loaded as a
+    check (``core.atomic.staged_files``: a check that fails takes them back out).
 
     ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds`` and ``layouts`` are the
     context fit's (``context.fit_context``).
@@ -173,10 +176,11 @@ def fit_rule_set(
         fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
     if context is not None:
-        placed.append((context_path(output), context.context.to_json()))
+        fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
+        placed.append((context_path(output), context.context.for_rules(fitted_text).to_json()))
     for path, text in placed:
-        path.parent.mkdir(parents=True, exist_ok=True)
         write(path, text)
+    commit()  # the files go in place together, so the check below reads them there
     load_rules(
         output, allow=allow
     )  # the fitted file must load: only numbers changed, within their ranges
