@@ -218,10 +218,15 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
 
 def load_plans(folder: str | Path) -> list[Plan]:
     """Every plan under ``folder`` (``*.json``, recursively, sorted by path); plan ids
-    must be unique in the set. ``PlanError`` for the first bad file."""
+    must be unique in the set. ``PlanError`` for the first bad file, and for a file
+    whose links lead outside the folder (``ReadScope``: nothing outside is read unless
+    the user allows it with ``SCENEWRIGHT_ALLOW_OUTSIDE``)."""
+    from scenewright.generator.rules_parser import ReadScope
+
     root = Path(folder)
     if not root.is_dir():
         raise PlanError(str(root), "", "not a folder of plans")
+    scope = ReadScope.of_folder(root)  # a plan set reads its own folder, as a rule set does
     files = sorted(path for path in root.rglob("*.json") if path.is_file())
     if not files:
         raise PlanError(str(root), "", "holds no plan files (*.json)")
@@ -229,6 +234,9 @@ def load_plans(folder: str | Path) -> list[Plan]:
         raise PlanError(str(root), "", f"holds {len(files)} plan files, more than {MAX_PLANS}")
     plans, first_seen = [], {}
     for path in files:
+        why = scope.outside(path, "plan set")
+        if why is not None:
+            raise PlanError(str(path), "", f"not read: it {why}")
         plan = read_plan(path)
         if plan.id in first_seen:
             raise PlanError(

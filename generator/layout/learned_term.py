@@ -240,7 +240,7 @@ def _parse_pair(entry: object, where: str) -> PairContext:
     if unknown:
         raise InputError(
             f'{where}: "labels": {_clipped(unknown[0])} is not a relation label '
-            "(scenewright list relations names them)"
+            "(docs/rules-language.md lists them)"
         )
     if labels != sorted(set(labels)):
         raise InputError(f'{where}: "labels" must be sorted and without repeats')

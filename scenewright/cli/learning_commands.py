@@ -17,6 +17,9 @@ from .common import (
     say,
 )
 from .options import (
+    MAX_CHECK_SCENES,
+    MAX_LAYOUTS,
+    MAX_ROUNDS,
     add_command,
     allow_option,
     count_at_least,
@@ -144,14 +147,14 @@ def add_commands(commands) -> None:
     )
     fit.add_argument(
         "--rounds",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_ROUNDS),
         default=2,
         metavar="N",
         help="context: rounds of iterative scaling (2)",
     )
     fit.add_argument(
         "--layouts",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_LAYOUTS),
         default=40,
         metavar="N",
         help="context: scenes laid out per round (40)",
@@ -216,7 +219,7 @@ def add_commands(commands) -> None:
     )
     learn.add_argument(
         "--check",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_CHECK_SCENES),
         default=50,
         metavar="N",
         help="scenes to generate from the induced rules and compare with the examples (50; 0: none)",
@@ -230,14 +233,14 @@ def add_commands(commands) -> None:
     )
     learn.add_argument(
         "--rounds",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_ROUNDS),
         default=2,
         metavar="N",
         help="context: rounds of iterative scaling (2)",
     )
     learn.add_argument(
         "--layouts",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_LAYOUTS),
         default=40,
         metavar="N",
         help="context: scenes laid out per round (40)",
