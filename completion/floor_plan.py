@@ -32,7 +32,7 @@ from scenewright.core.errors import InputError, RoomError
 from scenewright.core.files import UnusableFile, load_json, read_regular_file
 from scenewright.core.frames import footprint_corners
 from scenewright.core.room import Room
-from scenewright.core.schema_check import json_path, load_schema
+from scenewright.core.schema_check import json_path, load_schema, schema_message
 
 SCHEMA_FILE = "plan.schema.json"
 #: A plan is a room's worth of furniture: a larger file is not one.
@@ -151,9 +151,7 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
 
     error = best_match(_validator().iter_errors(data))
     if error is not None:
-        raise PlanError(
-            source, json_path(error.absolute_path), " ".join(error.message.split())[:200]
-        )
+        raise PlanError(source, json_path(error.absolute_path), schema_message(error))
     try:
         room = Room.from_dict(data["room"])
     except RoomError as problem:

@@ -23,7 +23,11 @@ from scenewright.core.errors import RoomError
 from scenewright.core.files import load_json
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.core.scene import Scene
-from scenewright.core.schema_check import packaged_schema_text, packaged_validator
+from scenewright.core.schema_check import (
+    packaged_schema_text,
+    packaged_validator,
+    schema_message,
+)
 
 from .example import ExampleError, ObjectRecord, example_scene
 from .stacking import over_footprint, touches_top
@@ -153,7 +157,8 @@ def _where(data: Any, parts: list) -> str:
     if len(parts) >= 2 and parts[0] == "objects" and isinstance(parts[1], int):
         raw = data["objects"][parts[1]]
         if isinstance(raw, dict) and isinstance(raw.get("id"), str):
-            text += f" (object {raw['id']!r})"
+            shown = repr(raw["id"])
+            text += f" (object {shown if len(shown) <= 40 else shown[:36] + '...' + shown[0]})"
     return text
 
 
@@ -166,7 +171,7 @@ def _message(error: jsonschema.ValidationError) -> str:
     )
     if choices and all(choices):
         return "needs exactly one of " + " or ".join("/".join(map(repr, keys)) for keys in choices)
-    return " ".join(error.message.split())[:200]
+    return schema_message(error)
 
 
 def _stands_on_itself(object_id: str, parents: dict[str, str]) -> bool:
