@@ -84,7 +84,9 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
             )
         meta = extras.get(node, {})
         kind, style = parse_node_name(node)
-        kind, style = meta.get("type", kind), meta.get("style", style)
+        if "type" in meta or "style" in meta:  # scenewright's export: names as they were, checked
+            kind = _NAME.sub("_", meta.get("type", kind).lower()) or "object"
+            style = _NAME.sub("_", meta["style"].lower()) if meta.get("style") else style
         corners = trimesh.transform_points(trimesh.bounds.corners(mesh.bounds), transform)
         if meta.get("kind") in ROOM_KINDS or (not meta and kind in ROOM_TYPES):
             (walls if kind == "wall" or meta.get("kind") == "wall" else floors).append(corners)
@@ -157,6 +159,12 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
         lo = np.min([b[0] for b in boxes], axis=0) + thickness
         hi = np.max([b[1] for b in boxes], axis=0) - thickness
         height = max(float(c[:, 1].max()) for c in walls)
+        if not np.all(hi > lo):
+            raise ExampleError(
+                path,
+                "walls",
+                "enclose no floor (their inner box is empty): a room needs a wall on each side",
+            )
         try:
             return Room.rectangle(float(hi[0] - lo[0]), float(hi[1] - lo[1]), height), lo, hi
         except RoomError as error:

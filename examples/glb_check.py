@@ -57,6 +57,8 @@ def checked_glb(path: str, data: bytes) -> dict[str, Any]:
     _check_accessors(path, document)
     _check_meshes(path, document, binary)
     _check_nodes(path, document)
+    if "scenes" in document:
+        _need(path, '"scenes"', bool(document["scenes"]), "is empty: the file shows nothing")
     for k, scene in enumerate(document.get("scenes", [])):
         where = f"scenes[{k}]"
         _need(path, where, isinstance(scene, dict), "must be an object")
@@ -248,6 +250,12 @@ def _check_meshes(path: str, document: dict, binary: bytes) -> None:
             _need(path, f"{where}.attributes", isinstance(attributes, dict), "must be an object")
             for name, value in attributes.items():
                 _index(path, f"{where}.attributes.{name}", value, len(accessors), "accessor")
+            _need(
+                path,
+                f"{where}.attributes",
+                "POSITION" in attributes,
+                "has no POSITION (the vertices that give the object its size)",
+            )
             vertices = None
             if "POSITION" in attributes:
                 positions = _values(document, binary, attributes["POSITION"])
@@ -314,12 +322,33 @@ def _check_nodes(path: str, document: dict) -> None:
                     _text(path, f"{where}.extras.{_shown(key)}", value)
         for key, count, bound in (
             ("translation", 3, MAX_COORDINATE),
-            ("rotation", 4, 1.0 + 1e-6),
+            ("rotation", 4, 1.0 + 0.01),
             ("scale", 3, MAX_SCALE),
             ("matrix", 16, MAX_COORDINATE),
         ):
             if key in node:
                 _numbers(path, f"{where}.{key}", node[key], count, bound)
+    names: dict[str, int] = {}
+    for k, node in enumerate(nodes):
+        name = node.get("name")
+        if isinstance(name, str) and name:
+            _need(
+                path,
+                f"nodes[{k}].name",
+                name not in names,
+                f"{_shown(name)} also names node {names.get(name)}; a node's name is the object's id, "
+                "so each must be unique",
+            )
+            names[name] = k
+        rotation = node.get("rotation")
+        if rotation is not None:
+            norm = math.sqrt(sum(v * v for v in rotation))
+            _need(
+                path,
+                f"nodes[{k}].rotation",
+                abs(norm - 1.0) <= 0.01,
+                f"is not a unit quaternion (its length is {norm:g})",
+            )
     rooted: set[int] = set()  # nodes whose walk up ends at a root
     for k in range(len(nodes)):  # one parent each: a cycle is a walk up that comes back
         seen, current = {k}, k

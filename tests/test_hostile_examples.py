@@ -123,6 +123,13 @@ HOSTILE_GLB = [
     (lambda d: d["accessors"][1].update(componentType=5122), "unsigned whole numbers"),
     (lambda d: d["bufferViews"][0].update(byteLength=10**12), "beyond its buffer"),
     (lambda d: d.update(nodes={}), '"nodes": must be a list'),
+    (lambda d: d["nodes"][1].update(name="desk.001"), "also names node 0"),
+    (lambda d: d["meshes"][0]["primitives"][0].update(attributes={}), "has no POSITION"),
+    (lambda d: d["nodes"][0].update(rotation=[0, 0, 0, 0]), "not a unit quaternion"),
+    (lambda d: d.update(scenes=[]), '"scenes": is empty'),
+    (lambda d: d["nodes"][0].update(translation=[99999, 0, 0]), "each side must lie between"),
+    (lambda d: d["nodes"][0].update(scale=[1e5, 1, 1]), "each side may be at most 1000 m"),
+    (lambda d: d["nodes"][1].update(name="wall.001"), "enclose no floor"),
 ]
 
 
