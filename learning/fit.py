@@ -45,7 +45,7 @@ from .context import (
     measured_example_layout,
 )
 from .derivations import derivations_of, measured_derivation_graphs
-from .errors import NoRelatedPairs
+from .errors import FitOutputError, NoRelatedPairs
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
@@ -175,6 +175,7 @@ def fit_rule_set(
     if "weights" not in what:
         fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
+    _check_named_files_reach(rules, tree, output)
     if context is not None:
         fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
         placed.append((context_path(output), context.context.for_rules(fitted_text).to_json()))
@@ -192,3 +193,27 @@ def fit_rule_set(
         write(report, json.dumps(document, indent=2) + "\n")
         written.append(report)
     return fit, context, written
+
+
+def _check_named_files_reach(rules: Rules, tree, output: Path) -> None:
+    """Refuse, before anything is written, fitted rules that would not find the mesh
+    files and templates folder the rule set names: they are named relative to the rule
+    set's files, so copies written into another folder look for them there."""
+    root_folder = tree.paths[tree.files[-1].path].resolve().parent
+    target_folder = output.parent.resolve()
+    if target_folder == root_folder:
+        return
+    named = [entry.mesh for entry in rules.catalog]
+    named += [style.mesh for entry in rules.catalog for style in entry.styles]
+    named.append(rules.params.templates)
+    for path in sorted({p for p in named if p is not None}):
+        source = Path(path).resolve()
+        if not source.is_relative_to(root_folder):
+            continue  # outside the rule set's folder: an allowed path, named as it is
+        relative = source.relative_to(root_folder)
+        if not (target_folder / relative).exists():
+            raise FitOutputError(
+                f"{output}: the rule set names {relative}, which the fitted rules would look for "
+                f"as {target_folder / relative}; write the fitted rules into the rule set's folder "
+                f"({root_folder}) or copy {relative} beside them first"
+            )

@@ -260,3 +260,65 @@ def test_a_link_loop_in_the_allowed_paths_is_one_line(tmp_path, capsys, monkeypa
         capsys, "generate", str(tmp_path / "d.rules"), "--no-render", "-o", str(tmp_path / "o")
     )
     assert "loop of symbolic links" in line
+
+
+CAMP = """\
+scene camp { extent 20 x 20  start S }
+object tent { noun "tent" size 2 x 1.5 x 2 mesh "models/tent.obj" }
+object fire { noun "fire pit" size 1 x 0.3 x 1 }
+S -> { 1..3 tent; fire }
+"""
+
+
+def test_fit_into_another_folder_of_a_rule_set_with_meshes(tmp_path, capsys):
+    camp = tmp_path / "camp"
+    (camp / "models").mkdir(parents=True)
+    (camp / "models" / "tent.obj").write_text(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n"
+    )
+    (camp / "camp.rules").write_text(CAMP)
+    examples = []
+    for seed in (1, 2):
+        out = tmp_path / f"ex{seed}"
+        assert (
+            main(
+                [
+                    "generate",
+                    str(camp / "camp.rules"),
+                    "--seed",
+                    str(seed),
+                    "--no-render",
+                    "-q",
+                    "-o",
+                    str(out),
+                ]
+            )
+            == 0
+        )
+        examples.append(str(out))
+    line = refused(
+        capsys,
+        "fit",
+        str(camp / "camp.rules"),
+        *examples,
+        "-o",
+        str(tmp_path / "other" / "f.rules"),
+    )
+    assert "names models/tent.obj" in line and "copy models/tent.obj" in line
+    assert list((tmp_path / "other").iterdir()) == []  # the folder checked writable, no file
+    # beside the rule set, or with the mesh copied, it works; the report goes with the set
+    shutil.copytree(camp / "models", tmp_path / "other" / "models")
+    argv = [
+        "fit",
+        str(camp / "camp.rules"),
+        *examples,
+        "-q",
+        "-o",
+        str(tmp_path / "other" / "f.rules"),
+    ]
+    assert main([*argv, "--report", str(tmp_path / "other" / "fit.json")]) == 0
+    assert sorted(p.name for p in (tmp_path / "other").iterdir()) == [
+        "f.rules",
+        "fit.json",
+        "models",
+    ]
