@@ -205,7 +205,7 @@ def test_a_resumed_dataset_redoes_a_missing_or_cut_file(tmp_path, capsys):
     [
         (["vary", "a.json", "b.json", "-n", "1000000000", "-o", "v"], "at most 10000"),
         (["vary", "a.json", "b.json", "--operations", "5000", "-o", "v"], "at most 100"),
-        (["dataset", "desk", "-n", "10000000000", "-o", "d"], "at most 100000000"),
+        (["dataset", "desk", "-n", "10000000000000", "-o", "d"], "at most 1000000000000"),
         (["dataset", "desk", "-n", "2", "--captions", "100000", "-o", "d"], "at most 100,"),
         (["dataset", "desk", "-n", "2", "--views", "1000", "-o", "d"], "at most 100,"),
         (["learn", "x", "--check", "10000000", "-o", "l.rules"], "at most 10000"),

@@ -36,7 +36,9 @@ def image_size(text: str) -> tuple[int, int]:
 
 
 #: The bounds of the count options (docs/limits.md).
-MAX_DATASET_SCENES = 100_000_000
+MAX_DATASET_SCENES = (
+    1_000_000_000_000  # far more than can be made: a run starts at once whatever N (datasets.md)
+)
 MAX_WORKERS = 1024
 MAX_CAPTIONS = 100
 MAX_VIEWS = 100
