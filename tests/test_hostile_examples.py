@@ -388,3 +388,69 @@ def test_fuzz_the_example_reader(tmp_path, edits):
         load_example(tmp_path / "f.json")
     except ExampleError:
         pass
+
+
+def _supports_all_pairs(objects):
+    """The supports by testing every pair: what the grid must find."""
+    from scenewright.examples.stacking import rests_on
+
+    supports = {}
+    for upper in objects:
+        below = [lower for lower in objects if rests_on(upper, lower)]
+        if below:
+            nearest = min(
+                below,
+                key=lambda lower: (
+                    abs(upper.position[1] - lower.position[1] - lower.size[1]),
+                    lower.id,
+                ),
+            )
+            supports[upper.id] = nearest.id
+    return supports
+
+
+@FUZZ
+@given(
+    st.lists(
+        st.tuples(
+            st.floats(-5, 5),
+            st.sampled_from([0.0, 0.5, 0.75, 0.76, 1.0, 1.5]),
+            st.floats(-5, 5),
+            st.floats(0.05, 40),
+            st.sampled_from([0.25, 0.5, 0.75]),
+            st.floats(0.05, 4),
+            st.floats(-math.pi, math.pi),
+        ),
+        max_size=40,
+    )
+)
+def test_supports_through_the_grid_are_those_of_all_pairs(boxes):
+    from types import SimpleNamespace
+
+    objects = [
+        SimpleNamespace(id=f"o{k}", position=[x, y, z], size=[w, h, d], yaw=yaw)
+        for k, (x, y, z, w, h, d, yaw) in enumerate(boxes)
+    ]
+    from scenewright.examples.stacking import infer_supports
+
+    assert infer_supports(objects) == _supports_all_pairs(objects)
+
+
+def test_supports_of_ten_thousand_objects_are_found_quickly():
+    from types import SimpleNamespace
+
+    from scenewright.examples.stacking import infer_supports
+
+    objects = []
+    for k in range(5000):
+        x, z = 1.5 * (k % 70), 1.5 * (k // 70)
+        objects.append(
+            SimpleNamespace(id=f"t{k}", position=[x, 0.0, z], size=[1, 0.75, 1], yaw=0.0)
+        )
+        objects.append(
+            SimpleNamespace(id=f"b{k}", position=[x, 0.75, z], size=[0.3, 0.2, 0.3], yaw=0.0)
+        )
+    start = time.perf_counter()
+    supports = infer_supports(objects)
+    assert len(supports) == 5000 and supports["b7"] == "t7"
+    assert time.perf_counter() - start < 10
