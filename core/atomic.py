@@ -272,10 +272,13 @@ class StagedFiles:
             target, staged = next(iter(self._pending.items()))
             old = None
             try:
-                if target.is_file() and not target.is_symlink():
+                if os.path.lexists(target):  # kept under a second name, to put back on failure
                     old = target.parent / f"{_partial_prefix(target.name)}old{PARTIAL_SUFFIX}"
                     _remove(old)
-                    os.link(target, old)
+                    try:
+                        os.link(target, old, follow_symlinks=False)
+                    except OSError:  # a filesystem without hard links: a copy will do
+                        shutil.copy2(target, old, follow_symlinks=False)
                 os.replace(staged, target)
             except OSError as error:
                 if old is not None:

@@ -322,3 +322,15 @@ def test_fit_into_another_folder_of_a_rule_set_with_meshes(tmp_path, capsys):
         "fit.json",
         "models",
     ]
+
+
+def test_a_failed_set_puts_back_a_link_it_replaced(tmp_path):
+    (tmp_path / "real.txt").write_text("real")
+    (tmp_path / "a.txt").symlink_to("real.txt")
+    with pytest.raises(ValueError):
+        with staged_files() as staged:
+            staged.write(tmp_path / "a.txt", "new a")
+            staged.commit()
+            raise ValueError("the check failed")
+    assert (tmp_path / "a.txt").is_symlink() and (tmp_path / "a.txt").read_text() == "real"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt", "real.txt"]
