@@ -109,7 +109,7 @@ def add_commands(commands) -> None:
         type=count_at_least(1, MAX_CAPTIONS),
         default=1,
         metavar="K",
-        help="short captions per scene (1)",
+        help="short captions per scene (1; at most 100)",
     )
     templates_option(dataset)
     view_options(dataset, "512x512")
@@ -196,7 +196,7 @@ def add_commands(commands) -> None:
         type=count_at_least(1, MAX_VIEWS),
         default=1,
         metavar="N",
-        help="images per scene, each its own row, their cameras drawn from the ranges below (1)",
+        help="images per scene, each its own row, their cameras drawn from the ranges below (1; at most 100)",
     )
     for name, meaning in (
         ("azimuth", "in degrees from south towards east, e.g. 0:360 (the automatic view's)"),

@@ -150,7 +150,7 @@ def add_commands(commands) -> None:
         type=count_at_least(1, MAX_VARIANTS),
         default=10,
         metavar="N",
-        help="variants to make (10)",
+        help="variants to make (10; at most 10000)",
     )
     vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
     vary_command.add_argument(
