@@ -30,6 +30,7 @@ from scenewright.core.room import ROOM_KINDS
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.examples import ExampleError
+from scenewright.examples.formats import example_file
 from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.rules import Rules, parse_rules_tree
@@ -178,7 +179,10 @@ def fit_rule_set(
     _check_named_files_reach(rules, tree, output)
     if context is not None:
         fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
-        placed.append((context_path(output), context.context.for_rules(fitted_text).to_json()))
+        files = [example_file(path).read_bytes() for path, _ in examples]
+        placed.append(
+            (context_path(output), context.context.for_rules(fitted_text, files).to_json())
+        )
     for path, text in placed:
         write(path, text)
     commit()  # the files go in place together, so the check below reads them there

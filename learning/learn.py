@@ -345,7 +345,8 @@ def learn_rule_set(
     written.append(output)
     sidecar = context_path(output)
     if fitted is not None and fitted.fit is not None:
-        write(sidecar, fitted.fit.context.for_rules(text).to_json())
+        files = [Path(example.path).read_bytes() for example in examples]
+        write(sidecar, fitted.fit.context.for_rules(text, files).to_json())
         written.append(sidecar)
     if report is not None:
         document = {

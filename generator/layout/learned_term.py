@@ -153,15 +153,28 @@ class LearnedContext:
     #: The sha256 of the rules file the context was fitted to (``rules_digest``); None
     #: for a context made without rules (by hand, or through the Python API).
     rules_digest: str | None = None
+    #: The sha256 of the example files it was fitted to, one after another (a record for
+    #: people and tools: which examples made it); None when not known.
+    examples_digest: str | None = None
 
-    def for_rules(self, text: str) -> LearnedContext:
-        """This context, recorded as fitted to the rules file of ``text``."""
-        return replace(self, rules_digest=rules_digest(text.encode("utf-8")))
+    def for_rules(self, text: str, examples: Sequence[bytes] = ()) -> LearnedContext:
+        """This context, recorded as fitted to the rules file of ``text`` and to the
+        example files of the bytes ``examples`` (in the order they were given)."""
+        digest = hashlib.sha256()
+        for data in examples:
+            digest.update(hashlib.sha256(data).digest())
+        return replace(
+            self,
+            rules_digest=rules_digest(text.encode("utf-8")),
+            examples_digest=digest.hexdigest() if examples else None,
+        )
 
     def to_dict(self) -> dict:
         document = {"format": FORMAT, "version": VERSION, "bins": BINS, "yaw_bins": YAW_BINS}
         if self.rules_digest is not None:
             document["rules_digest"] = self.rules_digest
+        if self.examples_digest is not None:
+            document["examples_digest"] = self.examples_digest
         document["pairs"] = [pair.to_dict() for pair in self.pairs]
         if self.fit is not None:
             document["fit"] = self.fit
@@ -212,12 +225,15 @@ class LearnedContext:
             seen.add(pair.kind)
             parsed.append(pair)
         fit = document.get("fit")
-        digest = document.get("rules_digest")
-        if digest is not None and (
-            not isinstance(digest, str) or re.fullmatch("[0-9a-f]{64}", digest) is None
-        ):
-            raise InputError(f'{where}: "rules_digest" must be 64 hexadecimal digits (a sha256)')
-        return cls(tuple(parsed), fit if isinstance(fit, dict) else None, digest)
+        digests = []
+        for key in ("rules_digest", "examples_digest"):
+            digest = document.get(key)
+            if digest is not None and (
+                not isinstance(digest, str) or re.fullmatch("[0-9a-f]{64}", digest) is None
+            ):
+                raise InputError(f'{where}: "{key}" must be 64 hexadecimal digits (a sha256)')
+            digests.append(digest)
+        return cls(tuple(parsed), fit if isinstance(fit, dict) else None, *digests)
 
 
 def _parse_pair(entry: object, where: str) -> PairContext:
