@@ -454,3 +454,26 @@ def test_supports_of_ten_thousand_objects_are_found_quickly():
     supports = infer_supports(objects)
     assert len(supports) == 5000 and supports["b7"] == "t7"
     assert time.perf_counter() - start < 10
+
+
+def test_the_structure_graph_of_a_tall_stack_is_quick(tmp_path):
+    """Only a support relates objects off the floor, so a stack of 1500 is measured pair
+    by supporting pair, not all pairs of its one spot."""
+    from scenewright.variation.structure import structure_graph
+
+    objects = [{"id": "o0", "type": "crate", "size": [1, 0.1, 1], "position": [0, 0]}]
+    objects += [
+        {
+            "id": f"o{k}",
+            "type": "crate",
+            "size": [1, 0.1, 1],
+            "position": [0, 0],
+            "parent": f"o{k - 1}",
+        }
+        for k in range(1, 1500)
+    ]
+    (tmp_path / "stack.json").write_text(handwritten(objects))
+    scene = load_example(tmp_path / "stack.json").scene
+    start = time.perf_counter()
+    graph = structure_graph(scene)
+    assert len(graph.edges) == 2 * 1499 and time.perf_counter() - start < 30
