@@ -37,7 +37,7 @@ from example_sets import (  # noqa: E402
 
 from scenewright.api import build_scene, load_rules  # noqa: E402
 from scenewright.examples import load_examples, scene_supports  # noqa: E402
-from scenewright.learning.context import context_path  # noqa: E402
+from scenewright.generator.layout.learned_term import context_path  # noqa: E402
 from scenewright.learning.induce import _walls, renamed_scenes  # noqa: E402
 from scenewright.learning.learn import check_seed_of, learn_rule_set  # noqa: E402
 

@@ -29,10 +29,10 @@ import referencing
 from jsonschema.exceptions import best_match
 
 from scenewright.core.errors import InputError, RoomError
-from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.files import UnusableFile, load_json, read_regular_file
 from scenewright.core.frames import footprint_corners
 from scenewright.core.room import Room
-from scenewright.core.schema_check import json_path, load_schema
+from scenewright.core.schema_check import json_path, load_schema, schema_message
 
 SCHEMA_FILE = "plan.schema.json"
 #: A plan is a room's worth of furniture: a larger file is not one.
@@ -138,7 +138,7 @@ def read_plan(path: str | Path) -> Plan:
     except UnicodeDecodeError:
         raise PlanError(source, "", "not UTF-8 text") from None
     try:
-        data = json.loads(text, parse_constant=_refuse_constant)
+        data = load_json(text, parse_constant=_refuse_constant)
     except ValueError as error:
         raise PlanError(source, "", f"not JSON: {error}") from None
     return plan_from_dict(data, source)
@@ -151,9 +151,7 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
 
     error = best_match(_validator().iter_errors(data))
     if error is not None:
-        raise PlanError(
-            source, json_path(error.absolute_path), " ".join(error.message.split())[:200]
-        )
+        raise PlanError(source, json_path(error.absolute_path), schema_message(error))
     try:
         room = Room.from_dict(data["room"])
     except RoomError as problem:
@@ -218,10 +216,15 @@ def plan_from_dict(data: Any, source: str = "<plan>") -> Plan:
 
 def load_plans(folder: str | Path) -> list[Plan]:
     """Every plan under ``folder`` (``*.json``, recursively, sorted by path); plan ids
-    must be unique in the set. ``PlanError`` for the first bad file."""
+    must be unique in the set. ``PlanError`` for the first bad file, and for a file
+    whose links lead outside the folder (``ReadScope``: nothing outside is read unless
+    the user allows it with ``SCENEWRIGHT_ALLOW_OUTSIDE``)."""
+    from scenewright.generator.rules_scope import ReadScope
+
     root = Path(folder)
     if not root.is_dir():
         raise PlanError(str(root), "", "not a folder of plans")
+    scope = ReadScope.of_folder(root)  # a plan set reads its own folder, as a rule set does
     files = sorted(path for path in root.rglob("*.json") if path.is_file())
     if not files:
         raise PlanError(str(root), "", "holds no plan files (*.json)")
@@ -229,6 +232,9 @@ def load_plans(folder: str | Path) -> list[Plan]:
         raise PlanError(str(root), "", f"holds {len(files)} plan files, more than {MAX_PLANS}")
     plans, first_seen = [], {}
     for path in files:
+        why = scope.outside(path, "plan set")
+        if why is not None:
+            raise PlanError(str(path), "", f"not read: it {why}")
         plan = read_plan(path)
         if plan.id in first_seen:
             raise PlanError(

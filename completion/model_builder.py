@@ -172,10 +172,10 @@ def graph_dot(graph: dict) -> str:
 
 def read_model(path: str) -> PlanModel:
     """A model file written by ``scenewright plans build``; ``InputError`` if it is not one."""
-    from scenewright.core.files import UnusableFile, read_regular_file
+    from scenewright.core.files import UnusableFile, load_json, read_regular_file
 
     try:
-        data = json.loads(read_regular_file(path, 64 * 1024 * 1024, "a plan model").decode("utf-8"))
+        data = load_json(read_regular_file(path, 64 * 1024 * 1024, "a plan model").decode("utf-8"))
     except UnusableFile as problem:
         raise InputError(f"{path}: cannot read: it {problem}") from None
     except OSError as error:

@@ -22,6 +22,12 @@ DEFAULT_SILL = 0.9
 DEFAULT_WINDOW_HEIGHT = 1.2
 #: The most of one category a request may ask for.
 MAX_COUNT = 20
+#: The largest room ``complete`` furnishes, each side of its bounding box in metres, and
+#: the most corners: the starting poses search the floor on a 0.1 m grid and every
+#: candidate is tested against every wall, so the work grows with the area times the
+#: corners (a 100 m x 100 m hall is already a million grid points).
+MAX_ROOM_SIDE = 100.0
+MAX_ROOM_CORNERS = 64
 
 
 @dataclass(frozen=True)
@@ -39,24 +45,57 @@ def parse_room(text: str) -> Room:
     try:
         if size:
             width, depth = (_number(part, "room side") for part in size.groups())
-            if not (0.5 <= width <= MAX_EXTENT and 0.5 <= depth <= MAX_EXTENT):
+            if not (0.5 <= width <= MAX_ROOM_SIDE and 0.5 <= depth <= MAX_ROOM_SIDE):
                 raise InputError(
-                    f"room {spec!r}: each side must lie between 0.5 and {MAX_EXTENT:g} m"
+                    f"room {_clipped(spec)}: each side must lie between 0.5 and {MAX_ROOM_SIDE:g} m "
+                    "(the room complete furnishes; docs/limits.md)"
                 )
             return Room.rectangle(width, depth)
         corners = []
-        for point in spec.replace(";", " ").split():
+        points = spec.replace(";", " ").split()
+        if len(points) > MAX_ROOM_CORNERS:
+            raise InputError(
+                f"room: {len(points)} corners; a room complete furnishes may have at most "
+                f"{MAX_ROOM_CORNERS} (docs/limits.md)"
+            )
+        for point in points:
             parts = point.strip("()").split(",")
             if len(parts) != 2:
                 raise InputError(
-                    f"room {spec!r}: give W x D (5x4) or corners x,z x,z x,z ... ({point!r} is neither)"
+                    f"room {_clipped(spec)}: give W x D (5x4) or corners x,z x,z x,z ... ({_clipped(point)} is neither)"
                 )
             corners.append(tuple(_number(part, "room corner") for part in parts))
         if any(abs(v) > MAX_EXTENT for corner in corners for v in corner):
-            raise InputError(f"room {spec!r}: a corner lies further than {MAX_EXTENT:g} m out")
-        return Room.polygon(corners)
+            raise InputError(
+                f"room {_clipped(spec)}: a corner lies further than {MAX_EXTENT:g} m out"
+            )
+        room = Room.polygon(corners)
     except RoomError as problem:
-        raise InputError(f"room {spec!r}: {problem}") from None
+        raise InputError(f"room {_clipped(spec)}: {problem}") from None
+    check_room_size(room, f"room {_clipped(spec)}")
+    return room
+
+
+def check_room_size(room: Room, where: str) -> None:
+    """Refuse a room larger than ``complete`` furnishes (``MAX_ROOM_SIDE``, ``MAX_ROOM_CORNERS``)."""
+    xs, zs = [c[0] for c in room.corners], [c[1] for c in room.corners]
+    sides = (max(xs) - min(xs), max(zs) - min(zs))
+    if max(sides) > MAX_ROOM_SIDE:
+        raise InputError(
+            f"{where}: the room is {sides[0]:g} x {sides[1]:g} m; a room complete furnishes may be at "
+            f"most {MAX_ROOM_SIDE:g} m each way (docs/limits.md)"
+        )
+    if len(room.corners) > MAX_ROOM_CORNERS:
+        raise InputError(
+            f"{where}: the room has {len(room.corners)} corners; a room complete furnishes may have at "
+            f"most {MAX_ROOM_CORNERS} (docs/limits.md)"
+        )
+
+
+def _clipped(text: str) -> str:
+    """``text`` quoted and shortened to 60 characters: an error never repeats a long argument."""
+    shown = repr(text)
+    return shown if len(shown) <= 60 else shown[:56] + "...'"
 
 
 def add_opening(room: Room, kind: str, text: str) -> Room:
@@ -162,4 +201,5 @@ def existing_request(scene, added: dict[str, int], known) -> Request:
         requested[obj.type] = requested.get(obj.type, 0) + 1
     for name, count in added.items():
         requested[name] = requested.get(name, 0) + count
+    check_room_size(scene.room, "the scene's room")
     return Request(scene.room, requested)

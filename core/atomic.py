@@ -18,7 +18,14 @@ Temporary names are hidden, end in ``.partial`` and carry the id of the process 
 made them (``.NAME.PID-XXXXXXXX.partial``). ``staged_outputs`` first removes the
 partials beside and inside its directory whose process is no longer running;
 ``remove_partials`` removes every partial under a directory (a dataset directory, which
-one run owns). A write that fails (a full disk, a read-only folder) raises
+one run owns).
+
+``staged_files`` publishes files in different places (a rules file, its context, a
+report) as a set: each is written beside its target under a partial name, and only when
+every one is written are they renamed into place, one after another; when a rename (or
+a check the caller runs after them) fails, the files already replaced are put back.
+``scratch_directory`` is a private working folder (in the temporary folder) that is
+removed on every exit; one a killed run left is removed by the next. A write that fails (a full disk, a read-only folder) raises
 ``OutputError`` naming the path (``writing`` names it for a library's writes). Files are not fsynced: this guards against a killed
 process, not against losing power.
 """
@@ -213,6 +220,137 @@ def staged_outputs(directory: str | os.PathLike[str], replaces: Collection[str])
     except BaseException:
         _remove(stage)
         raise
+
+
+class StagedFiles:
+    """The files of one ``staged_files`` block: ``write`` stages one, ``commit`` puts
+    every staged one in place (see ``staged_files``)."""
+
+    def __init__(self) -> None:
+        self._pending: dict[Path, Path] = {}  # target -> its staged partial
+        self._replaced: list[tuple[Path, Path | None]] = []  # target -> its old copy, or None
+        self._made: list[Path] = []  # folders made for targets, deepest last
+
+    def write(self, path: str | os.PathLike[str], data: bytes | str) -> Path:
+        """Stage ``data`` (text is UTF-8) for ``path``; ``path`` is not touched yet."""
+        target = Path(path)
+        if target.is_dir():
+            raise OutputError(target, "it is a directory")
+        missing = [p for p in (target.parent, *target.parent.parents) if not p.exists()]
+        for folder in reversed(missing):
+            try:
+                folder.mkdir()
+            except OSError as error:
+                raise OutputError(folder, error.strerror or str(error), directory=True) from error
+            self._made.append(folder)
+        remove_dead_partials(target)
+        try:
+            handle, partial = tempfile.mkstemp(
+                prefix=_partial_prefix(target.name), suffix=PARTIAL_SUFFIX, dir=target.parent
+            )
+        except OSError as error:
+            raise OutputError(target, error.strerror or str(error)) from error
+        staged = Path(partial)
+        previous = self._pending.pop(target, None)
+        if previous is not None:
+            previous.unlink(missing_ok=True)
+        self._pending[target] = staged
+        try:
+            os.chmod(staged, 0o666 & ~_UMASK)
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(data.encode("utf-8") if isinstance(data, str) else data)
+        except OSError as error:
+            raise OutputError(target, error.strerror or str(error)) from error
+        return target
+
+    def commit(self) -> None:
+        """Put every staged file in place; on a failure, put back the ones replaced."""
+        for target in self._pending:
+            if target.is_dir():  # made meanwhile
+                raise OutputError(target, "it is a directory")
+        while self._pending:
+            target, staged = next(iter(self._pending.items()))
+            old = None
+            try:
+                if os.path.lexists(target):  # kept under a second name, to put back on failure
+                    old = target.parent / f"{_partial_prefix(target.name)}old{PARTIAL_SUFFIX}"
+                    _remove(old)
+                    try:
+                        os.link(target, old, follow_symlinks=False)
+                    except OSError:  # a filesystem without hard links: a copy will do
+                        shutil.copy2(target, old, follow_symlinks=False)
+                os.replace(staged, target)
+            except OSError as error:
+                if old is not None:
+                    old.unlink(missing_ok=True)
+                raise OutputError(target, error.strerror or str(error)) from error
+            del self._pending[target]
+            self._replaced.append((target, old))
+
+    def roll_back(self) -> None:
+        """Remove what is staged, put back the files replaced, remove the folders made."""
+        for staged in self._pending.values():
+            staged.unlink(missing_ok=True)
+        self._pending.clear()
+        for target, old in reversed(self._replaced):
+            try:
+                if old is not None:
+                    os.replace(old, target)
+                else:
+                    target.unlink(missing_ok=True)
+            except OSError:
+                pass  # best effort: the error that led here is the one to report
+        self._replaced.clear()
+        for folder in reversed(self._made):
+            try:
+                folder.rmdir()
+            except OSError:
+                pass  # something else was put there meanwhile: keep it
+        self._made.clear()
+
+    def finish(self) -> None:
+        """Drop the old copies of the replaced files."""
+        for _, old in self._replaced:
+            if old is not None:
+                old.unlink(missing_ok=True)
+        self._replaced.clear()
+
+
+@contextmanager
+def staged_files() -> Iterator[StagedFiles]:
+    """A set of files written together or not at all: write each with the block's
+    ``write(path, data)``; when the block ends without an error they are put in place
+    (``commit``, which the block may also call itself, to check the files in place);
+    when the block or a rename fails, every file is as it was before the block. A kill
+    leaves partials beside the targets, which the next write of the same names removes
+    (a kill during the renames, which take no time to speak of, can leave part of the
+    set replaced)."""
+    staged = StagedFiles()
+    try:
+        yield staged
+        staged.commit()
+    except BaseException:
+        staged.roll_back()
+        raise
+    staged.finish()
+
+
+@contextmanager
+def scratch_directory(name: str) -> Iterator[Path]:
+    """A private folder in the temporary folder, removed when the block ends however it
+    ends; the folders of this ``name`` that a killed process left are removed first."""
+    base = Path(tempfile.gettempdir())
+    for entry in base.glob(f".scenewright-{name}.*{PARTIAL_SUFFIX}"):
+        match = _PARTIAL_NAME.match(entry.name)
+        if match is not None and not _alive(int(match["pid"])):
+            _remove(entry)
+    folder = Path(
+        tempfile.mkdtemp(prefix=_partial_prefix(f"scenewright-{name}"), suffix=PARTIAL_SUFFIX)
+    )
+    try:
+        yield folder
+    finally:
+        _remove(folder)
 
 
 def remove_dead_partials(path: str | os.PathLike[str]) -> int:

@@ -5,13 +5,22 @@ read. It opens the file without blocking (a named pipe cannot stall it), checks 
 opened file that it is a regular file (not a directory, pipe or device such as
 /dev/zero) of at most a given size, and reads no more than that. A file that fails a
 check raises ``UnusableFile``, whose text completes the sentence "file 'F' ...".
+
+``load_json`` is how every JSON file a user hands in is parsed: NaN and Infinity are
+refused, and so is a document nested more than ``MAX_JSON_DEPTH`` deep (the parser's
+own limit is Python's stack, and every reader after it walks the document), each as a
+``ValueError`` whose text says what is wrong.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import stat
+from typing import Any
+
+from scenewright.core.limits import MAX_JSON_DEPTH
 
 
 class UnusableFile(OSError):
@@ -51,3 +60,35 @@ def read_regular_file(path: str | os.PathLike[str], limit: int, holder: str) -> 
 def _mebibytes(count: int) -> str:
     """``count`` bytes in MiB, rounded up to a tenth, so a file just over a limit reads as over it."""
     return f"{math.ceil(count * 10 / 2**20) / 10:g} MiB"
+
+
+class JSONTooDeep(ValueError):
+    """A JSON document nested more than ``MAX_JSON_DEPTH`` deep."""
+
+    def __init__(self) -> None:
+        super().__init__(f"nested deeper than {MAX_JSON_DEPTH} levels")
+
+
+def load_json(text: str | bytes, **options: Any) -> Any:
+    """The JSON document of ``text``; ``json.JSONDecodeError`` for text that is not JSON,
+    ``JSONTooDeep`` for a document nested too deep, ``ValueError`` for NaN or Infinity
+    (unless ``options`` give a ``parse_constant`` of their own)."""
+    options.setdefault("parse_constant", _refuse_constant)
+    try:
+        document = json.loads(text, **options)
+    except RecursionError:
+        raise JSONTooDeep() from None
+    pending = [(document, 0)]  # depth-first without recursion
+    while pending:
+        value, depth = pending.pop()
+        if isinstance(value, (dict, list)):
+            if depth >= MAX_JSON_DEPTH:  # the container of nesting level MAX_JSON_DEPTH + 1
+                raise JSONTooDeep()
+            pending.extend(
+                (item, depth + 1) for item in (value.values() if isinstance(value, dict) else value)
+            )
+    return document
+
+
+def _refuse_constant(constant: str) -> Any:
+    raise ValueError(f"{constant} is not a finite number")

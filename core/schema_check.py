@@ -97,7 +97,7 @@ def scene_problems(data: Any, *, check_files: bool = False) -> list[Problem]:
         return problems
     error = best_match(_validator().iter_errors(data))
     if error is not None:
-        return [(json_path(error.absolute_path), _one_line(error.message))]
+        return [(json_path(error.absolute_path), schema_message(error))]
     problems = _reference_problems(data) + (_file_problems(data) if check_files else [])
     return problems[:MAX_PROBLEMS]
 
@@ -345,6 +345,16 @@ def _schema_text() -> str:
 
 def _validator() -> jsonschema.Draft202012Validator:
     return packaged_validator("scenewright.core", "schema", SCHEMA_FILE)
+
+
+def schema_message(error: jsonschema.ValidationError, limit: int = 300) -> str:
+    """A schema error's message on one line, the value it quotes shortened to 60
+    characters first, so what is wrong with the value (which follows it) is never cut off."""
+    message = error.message
+    shown = repr(error.instance)
+    if len(shown) > 60 and shown in message:
+        message = message.replace(shown, shown[:56] + "...", 1)
+    return _one_line(message, limit)
 
 
 def _one_line(message: str, limit: int = 200) -> str:

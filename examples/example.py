@@ -15,6 +15,14 @@ from dataclasses import dataclass
 from scenewright.core import VERSION
 from scenewright.core.errors import InputError
 from scenewright.core.geometry import wrap_angle
+from scenewright.core.limits import (
+    MAX_COORDINATE,
+    MAX_EXTENT,
+    MAX_NODES,
+    MAX_SIZE,
+    MIN_LENGTH,
+    forbidden_character,
+)
 from scenewright.core.relations import RELATIONS, Relation
 from scenewright.core.room import Room
 from scenewright.core.scene import LayoutStats, Scene, SceneObject
@@ -138,7 +146,26 @@ def example_scene(
     parents: Mapping[str, str] | None = None,
 ) -> Scene:
     """The Scene of the objects a file lists; ``parents`` (id -> id it stands on) as
-    the file gave them, the other supports measured from the boxes."""
+    the file gave them, the other supports measured from the boxes. ``ExampleError`` for
+    a name, id, type or style a scene.json may not carry (a control, line-separator or
+    bidirectional-control character): every scene made from the example would carry it."""
+    _check_text(source, "name", name)
+    if len(records) > MAX_NODES:
+        raise ExampleError(
+            source, "", f"{len(records)} objects; an example may have at most {MAX_NODES}"
+        )
+    for k, r in enumerate(records):
+        for field, value in (("id", r.id), ("type", r.type), ("style", r.style)):
+            if value is not None:
+                _check_text(source, f"object {k + 1} ({field})", value)
+        _check_box(source, k, r)
+    if not all(MIN_LENGTH <= side <= MAX_EXTENT for side in extent):
+        raise ExampleError(
+            source,
+            "",
+            f"its extent is {extent[0]:g} x {extent[1]:g} m; each side must lie between "
+            f"{MIN_LENGTH:g} and {MAX_EXTENT:g} m (docs/limits.md)",
+        )
     objects = [
         SceneObject(
             id=r.id,
@@ -184,3 +211,33 @@ def _wrapped(yaw: float) -> float:
     """``yaw`` in (-pi, pi]."""
     wrapped = wrap_angle(yaw)
     return math.pi if wrapped == -math.pi else wrapped
+
+
+def _check_box(source: str, index: int, record: ObjectRecord) -> None:
+    """Refuse an object a scene.json could not hold: a side beyond ``MAX_SIZE``, a base
+    centre beyond ``MAX_COORDINATE``, or a number that is not finite."""
+    where = f"object {index + 1} ({record.id[:40]!r})"
+    if not all(math.isfinite(v) and 0.0 < v <= MAX_SIZE for v in record.size):
+        sides = " x ".join(f"{v:g}" for v in record.size)
+        raise ExampleError(
+            source, where, f"is {sides} m; each side may be at most {MAX_SIZE:g} m (docs/limits.md)"
+        )
+    if not all(math.isfinite(v) and abs(v) <= MAX_COORDINATE for v in record.position):
+        raise ExampleError(
+            source,
+            where,
+            f"stands further than {MAX_COORDINATE:g} m from the origin (docs/limits.md)",
+        )
+    if not math.isfinite(record.yaw):
+        raise ExampleError(source, where, "has a turn that is not a finite number")
+
+
+def _check_text(source: str, where: str, text: str) -> None:
+    bad = forbidden_character(text)
+    if bad is not None:
+        raise ExampleError(
+            source,
+            where,
+            f"holds the character {bad}, which a scene.json may not carry (no control, "
+            "line-separator or bidirectional-control characters)",
+        )

@@ -1,8 +1,9 @@
 """Which reader reads a file (``FORMATS``, a registry), and loading one or more examples.
 
 A file is read whole (a regular file of at most ``MAX_EXAMPLE_BYTES``) and its format
-found from its content: ``glTF`` magic bytes for GLB, a JSON object with ``rules`` for
-a scenewright scene.json, any other JSON for the hand-written format. A folder holding
+found from its content: ``glTF`` magic bytes for GLB, a JSON object with the keys
+``format`` and ``rules`` for a scenewright scene.json, any other JSON for the
+hand-written format. A folder holding
 a ``scene.json`` (what ``scenewright generate`` writes) stands for that file; any other
 folder for the examples in it (``folder_examples``: its ``.json`` and ``.glb`` files
 and its sub-folders holding a scene.json, in name order), so a set of examples can be
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from scenewright.core.files import UnusableFile, read_regular_file
+from scenewright.core.files import UnusableFile, load_json, read_regular_file
 from scenewright.core.limits import MAX_SCENE_JSON_BYTES
 from scenewright.core.scene import Scene
 
@@ -44,10 +45,27 @@ class ExampleFormat:
     binary: bool = False
 
 
+def _json_object(data: bytes) -> dict | None:
+    """The JSON object ``data`` holds, or None when it holds none (not UTF-8, not JSON,
+    nested too deep, or another kind of value): the readers then say why."""
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8) :]
+    if not data.lstrip().startswith(b"{"):
+        return None
+    try:
+        # NaN is kept here (as None) so a scene.json holding one is still told a scene.json,
+        # whose own check then names where it is.
+        document = load_json(data.decode("utf-8"), parse_constant=lambda constant: None)
+    except (UnicodeDecodeError, ValueError):
+        return None
+    return document if isinstance(document, dict) else None
+
+
 def _is_scene_json(data: bytes) -> bool:
-    # A scene.json is written by scenewright with "format" and "rules" near the top.
-    head = data.lstrip()[:4096]
-    return head.startswith(b"{") and b'"rules"' in data and b'"format"' in data
+    # A scene.json is a JSON object with the "format" and "rules" keys scenewright writes
+    # (told by its structure, not by the words appearing somewhere in the text).
+    document = _json_object(data)
+    return document is not None and "rules" in document and "format" in document
 
 
 #: Tried in order; the first that recognises a file reads it.
@@ -156,12 +174,8 @@ def is_handwritten_example(path: str | os.PathLike[str]) -> bool:
     scene.json: it lists ``objects`` and names no ``rules`` (every scene.json does; the
     hand-written format has no such key). False when it cannot be read."""
     data = _example_bytes(path)
-    return (
-        data is not None
-        and not _is_scene_json(data)
-        and b'"objects"' in data
-        and b'"rules"' not in data
-    )
+    document = _json_object(data) if data is not None else None
+    return document is not None and "objects" in document and "rules" not in document
 
 
 def is_scene_json_file(path: str | os.PathLike[str]) -> bool:

@@ -24,10 +24,8 @@ round the objects' footprints (half their diagonal, so any turn stays inside) wi
 from __future__ import annotations
 
 import io
-import json
 import math
 import re
-import struct
 
 import numpy as np
 
@@ -36,6 +34,7 @@ from scenewright.core.room import Room
 from scenewright.core.scene import Scene
 
 from .example import ExampleError, ObjectRecord, example_scene
+from .glb_check import checked_glb
 
 #: Room parts by node type (without extras) and by extras kind (scenewright's export).
 ROOM_TYPES = ("wall", "floor", "ground", "ceiling")
@@ -84,7 +83,9 @@ def read_glb(path: str, data: bytes, name: str) -> Scene:
             )
         meta = extras.get(node, {})
         kind, style = parse_node_name(node)
-        kind, style = meta.get("type", kind), meta.get("style", style)
+        if "type" in meta or "style" in meta:  # scenewright's export: names as they were, checked
+            kind = _NAME.sub("_", meta.get("type", kind).lower()) or "object"
+            style = _NAME.sub("_", meta["style"].lower()) if meta.get("style") else style
         corners = trimesh.transform_points(trimesh.bounds.corners(mesh.bounds), transform)
         if meta.get("kind") in ROOM_KINDS or (not meta and kind in ROOM_TYPES):
             (walls if kind == "wall" or meta.get("kind") == "wall" else floors).append(corners)
@@ -189,6 +190,12 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
         lo = np.min([b[0] for b in boxes], axis=0) + thickness
         hi = np.max([b[1] for b in boxes], axis=0) - thickness
         height = max(float(c[:, 1].max()) for c in walls)
+        if not np.all(hi > lo):
+            raise ExampleError(
+                path,
+                "walls",
+                "enclose no floor (their inner box is empty): a room needs a wall on each side",
+            )
         try:
             return Room.rectangle(float(hi[0] - lo[0]), float(hi[1] - lo[1]), height), lo, hi
         except RoomError as error:
@@ -209,20 +216,12 @@ def _floor(path: str, records, walls, floors) -> tuple[Room | None, np.ndarray, 
 
 def _nodes(path: str, data: bytes) -> tuple[dict[str, int], dict[str, dict]]:
     """Node name -> its place in the file, and -> its glTF ``extras`` (trimesh keeps
-    neither), from the JSON chunk."""
-    if len(data) < 20 or data[:4] != b"glTF":
-        raise ExampleError(path, "", "not a GLB file (it does not start with 'glTF')")
-    length, kind = struct.unpack("<I4s", data[12:20])
-    if kind != b"JSON" or 20 + length > len(data):
-        raise ExampleError(path, "", "not a GLB file (no JSON chunk after the header)")
-    try:
-        document = json.loads(data[20 : 20 + length])
-    except ValueError as error:
-        raise ExampleError(path, "", f"the GLB's JSON chunk is not JSON: {error}") from None
+    neither), from the JSON chunk, once the file has passed ``checked_glb``."""
+    document = checked_glb(path, data)
     order: dict[str, int] = {}
     found: dict[str, dict[str, str]] = {}
-    for index, node in enumerate(document.get("nodes", []) if isinstance(document, dict) else []):
-        if isinstance(node, dict) and isinstance(node.get("name"), str):
+    for index, node in enumerate(document.get("nodes", [])):
+        if isinstance(node.get("name"), str):
             order.setdefault(node["name"], index)
             if isinstance(node.get("extras"), dict):
                 found[node["name"]] = {

@@ -20,9 +20,14 @@ import jsonschema
 from jsonschema.exceptions import best_match
 
 from scenewright.core.errors import RoomError
+from scenewright.core.files import load_json
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.core.scene import Scene
-from scenewright.core.schema_check import packaged_schema_text, packaged_validator
+from scenewright.core.schema_check import (
+    packaged_schema_text,
+    packaged_validator,
+    schema_message,
+)
 
 from .example import ExampleError, ObjectRecord, example_scene
 from .stacking import over_footprint, touches_top
@@ -81,8 +86,9 @@ def read_handwritten(path: str, text: str, name: str) -> Scene:
         )
         for raw in raw_objects
     ]
+    records_by_id = {record.id: record for record in records}
     for index, record in enumerate(records):
-        _check_place(path, index, record, records, parents, room, extent)
+        _check_place(path, index, record, records_by_id, parents, room, extent)
     return example_scene(
         records, name=data.get("name", name), source=path, extent=extent, room=room, parents=parents
     )
@@ -92,7 +98,7 @@ def _check_place(
     path: str,
     index: int,
     record: ObjectRecord,
-    records: list[ObjectRecord],
+    records: dict[str, ObjectRecord],
     parents: dict[str, str],
     room: Room | None,
     extent: tuple[float, float],
@@ -114,7 +120,7 @@ def _check_place(
     parent = parents.get(record.id)
     if parent is None:
         return
-    below = next(r for r in records if r.id == parent)
+    below = records[parent]
     if not touches_top(record, below):
         top = below.position[1] + below.size[1]
         raise ExampleError(
@@ -135,16 +141,13 @@ def parse_json(path: str, text: str) -> Any:
     """The JSON document of ``text``; ``ExampleError`` at ``file:line:col`` if it is not
     JSON, or holds NaN or Infinity."""
 
-    def refuse(constant: str):
-        raise ValueError(f"{constant} is not a finite number")
-
     try:
-        return json.loads(text, parse_constant=refuse)
+        return load_json(text)
     except json.JSONDecodeError as error:
         raise ExampleError(
             f"{path}:{error.lineno}:{error.colno}", "", f"not JSON: {error.msg}"
         ) from None
-    except (ValueError, RecursionError) as error:
+    except ValueError as error:
         raise ExampleError(path, "", f"not usable JSON: {error}") from None
 
 
@@ -154,7 +157,8 @@ def _where(data: Any, parts: list) -> str:
     if len(parts) >= 2 and parts[0] == "objects" and isinstance(parts[1], int):
         raw = data["objects"][parts[1]]
         if isinstance(raw, dict) and isinstance(raw.get("id"), str):
-            text += f" (object {raw['id']!r})"
+            shown = repr(raw["id"])
+            text += f" (object {shown if len(shown) <= 40 else shown[:36] + '...' + shown[0]})"
     return text
 
 
@@ -167,7 +171,7 @@ def _message(error: jsonschema.ValidationError) -> str:
     )
     if choices and all(choices):
         return "needs exactly one of " + " or ".join("/".join(map(repr, keys)) for keys in choices)
-    return " ".join(error.message.split())[:200]
+    return schema_message(error)
 
 
 def _stands_on_itself(object_id: str, parents: dict[str, str]) -> bool:
@@ -212,12 +216,20 @@ def _position(
 
 
 def _base_height(raw: dict, by_id: dict[str, dict]) -> float:
-    parent = raw.get("parent")
-    if parent is None:
-        return 0.0
-    below = by_id[parent]
-    bottom = below["position"][1] if len(below["position"]) == 3 else _base_height(below, by_id)
-    return float(bottom) + float(below["size"][1])
+    """The height of the top ``raw`` stands on: down the chain of parents to one with a
+    3-number position or to the floor (a loop, not a recursion: a stack may be
+    thousands of objects high)."""
+    chain = []
+    current = raw
+    while current.get("parent") is not None:
+        current = by_id[current["parent"]]
+        chain.append(current)
+        if len(current["position"]) == 3:
+            break
+    height = float(chain[-1]["position"][1]) if chain and len(chain[-1]["position"]) == 3 else 0.0
+    for below in reversed(chain):
+        height += float(below["size"][1])
+    return height
 
 
 def _schema_text() -> str:

@@ -11,6 +11,7 @@ structure graph's support relation.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Protocol
 
@@ -57,10 +58,35 @@ def rests_on(upper: Boxed, lower: Boxed) -> bool:
 
 
 def infer_supports(objects: Sequence[SceneObject]) -> dict[str, str]:
-    """Object id -> the id of the object it rests on, for every object that rests on one."""
+    """Object id -> the id of the object it rests on, for every object that rests on one.
+
+    Each upper is tested against the objects whose footprint can reach its base centre
+    (a grid of ``_CELL`` metre cells holding each object in the cells its footprint's
+    circle covers; one that covers more than ``_MAX_CELLS`` is tried for every upper),
+    so the work follows the number of objects, not its square."""
+    grid: dict[tuple[int, int], list[int]] = {}
+    everywhere: list[int] = []
+    for k, lower in enumerate(objects):
+        reach = math.hypot(lower.size[0], lower.size[2]) / 2.0 + 1e-6
+        x, z = lower.position[0], lower.position[2]
+        x0, x1 = math.floor((x - reach) / _CELL), math.floor((x + reach) / _CELL)
+        z0, z1 = math.floor((z - reach) / _CELL), math.floor((z + reach) / _CELL)
+        if (x1 - x0 + 1) * (z1 - z0 + 1) > _MAX_CELLS:
+            everywhere.append(k)
+            continue
+        for i in range(x0, x1 + 1):
+            for j in range(z0, z1 + 1):
+                grid.setdefault((i, j), []).append(k)
     supports: dict[str, str] = {}
     for upper in objects:
-        below = [lower for lower in objects if rests_on(upper, lower)]
+        if upper.position[1] <= CONTACT:
+            continue  # on the floor: carried by nothing
+        cell = (math.floor(upper.position[0] / _CELL), math.floor(upper.position[2] / _CELL))
+        below = [
+            objects[k]
+            for k in sorted({*grid.get(cell, ()), *everywhere})
+            if rests_on(upper, objects[k])
+        ]
         if below:
             nearest = min(
                 below,
@@ -71,3 +97,9 @@ def infer_supports(objects: Sequence[SceneObject]) -> dict[str, str]:
             )
             supports[upper.id] = nearest.id
     return supports
+
+
+#: The side of a cell of ``infer_supports``' grid, in metres (about a piece of furniture).
+_CELL = 1.0
+#: The most cells an object is filed in; a larger one (a 1 km field) is tried everywhere.
+_MAX_CELLS = 1024

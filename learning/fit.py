@@ -30,6 +30,7 @@ from scenewright.core.room import ROOM_KINDS
 from scenewright.core.scene import Scene
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.examples import ExampleError
+from scenewright.examples.formats import example_file
 from scenewright.generator import load_rules
 from scenewright.generator.derivation import choice_counts
 from scenewright.generator.layout.learned_term import context_path
@@ -45,7 +46,7 @@ from .context import (
     measured_example_layout,
 )
 from .derivations import derivations_of, measured_derivation_graphs
-from .errors import NoRelatedPairs
+from .errors import FitOutputError, NoRelatedPairs
 from .rewrite import fitted_files, rewrite_rules
 from .weights import PRIOR, WeightFit, fit_weights_em
 
@@ -177,6 +178,7 @@ def fit_rule_set(
     allow: Iterable[str | os.PathLike] = (),
     prior: float = PRIOR,
     write: Callable[[Path, str], object],
+    commit: Callable[[], object] = lambda: None,
     what: frozenset[str] = frozenset({"weights"}),
     seed: int = 0,
     rounds: int = ROUNDS,
@@ -185,7 +187,9 @@ def fit_rule_set(
     """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
     (file name, Scene) for examples read from geometry alone) and
     write the fitted rules to ``output`` (with its included files beside it) and the
-    report to ``report``. ``write(path, text)`` writes one file atomically.
+    report to ``report``. ``write(path, text)`` writes (or stages) one file whole;
+    ``commit()`` puts the staged files in place before the fitted rules are loaded as a
+    check (``core.atomic.staged_files``: a check that fails takes them back out).
 
     ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds`` and ``layouts`` are the
     context fit's (``context.fit_context``).
@@ -218,11 +222,16 @@ def fit_rule_set(
     if "weights" not in what:
         fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
+    _check_named_files_reach(rules, tree, output)
     if context is not None:
-        placed.append((context_path(output), context.context.to_json()))
+        fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
+        files = [example_file(path).read_bytes() for path, _ in examples]
+        placed.append(
+            (context_path(output), context.context.for_rules(fitted_text, files).to_json())
+        )
     for path, text in placed:
-        path.parent.mkdir(parents=True, exist_ok=True)
         write(path, text)
+    commit()  # the files go in place together, so the check below reads them there
     load_rules(
         output, allow=allow
     )  # the fitted file must load: only numbers changed, within their ranges
@@ -234,3 +243,27 @@ def fit_rule_set(
         write(report, json.dumps(document, indent=2) + "\n")
         written.append(report)
     return fit, context, written
+
+
+def _check_named_files_reach(rules: Rules, tree, output: Path) -> None:
+    """Refuse, before anything is written, fitted rules that would not find the mesh
+    files and templates folder the rule set names: they are named relative to the rule
+    set's files, so copies written into another folder look for them there."""
+    root_folder = tree.paths[tree.files[-1].path].resolve().parent
+    target_folder = output.parent.resolve()
+    if target_folder == root_folder:
+        return
+    named = [entry.mesh for entry in rules.catalog]
+    named += [style.mesh for entry in rules.catalog for style in entry.styles]
+    named.append(rules.params.templates)
+    for path in sorted({p for p in named if p is not None}):
+        source = Path(path).resolve()
+        if not source.is_relative_to(root_folder):
+            continue  # outside the rule set's folder: an allowed path, named as it is
+        relative = source.relative_to(root_folder)
+        if not (target_folder / relative).exists():
+            raise FitOutputError(
+                f"{output}: the rule set names {relative}, which the fitted rules would look for "
+                f"as {target_folder / relative}; write the fitted rules into the rule set's folder "
+                f"({root_folder}) or copy {relative} beside them first"
+            )

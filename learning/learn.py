@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
@@ -39,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from scenewright.core.atomic import scratch_directory
 from scenewright.core.relations import RELATIONS
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import check_seed, stream
@@ -406,8 +406,8 @@ def learn_rule_set(
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
     text = rules_text(induction)
-    with tempfile.TemporaryDirectory(prefix="scenewright-learn-") as folder:
-        trial = Path(folder) / f"{name}.rules"
+    with scratch_directory("learn") as folder:
+        trial = folder / f"{name}.rules"
         trial.write_text(text, encoding="utf-8")
         errors = [d for d in check_rules(trial) if d.is_error]
         if errors:
@@ -437,7 +437,8 @@ def learn_rule_set(
     written.append(output)
     sidecar = context_path(output)
     if fitted is not None and fitted.fit is not None:
-        write(sidecar, fitted.fit.context.to_json())
+        files = [Path(example.path).read_bytes() for example in examples]
+        write(sidecar, fitted.fit.context.for_rules(text, files).to_json())
         written.append(sidecar)
     if report is not None:
         document = {

@@ -101,11 +101,13 @@ def build_scene(
 
     seed = check_seed(seed)
     layout_seed = seed if layout_seed is None else check_seed(layout_seed, "layout seed")
+    loaded = load_rules(rules)
     if isinstance(context, (str, os.PathLike)):
         from scenewright.generator.layout.learned_term import read_context
 
-        context = read_context(os.fspath(context))
-    loaded = load_rules(rules)
+        where = os.fspath(context)
+        context = read_context(where)
+        context.check_rules(loaded.path, where)
     timings: dict[str, float] = {}
     with timed(timings, "expand"):
         graph = expand(loaded, seed)
@@ -402,7 +404,10 @@ def layout_again(
     if isinstance(context, (str, os.PathLike)):
         from scenewright.generator.layout.learned_term import read_context
 
-        context = read_context(os.fspath(context))
+        where = os.fspath(context)
+        context = read_context(where)
+        rules_file = shipped_rules_file(scene.rules) or scene.rules
+        context.check_rules(rules_file if Path(rules_file).is_file() else None, where)
     timings: dict[str, float] = {}
     with timed(timings, "layout"):
         layout = layout_scene(
@@ -436,7 +441,20 @@ def rules_context(
         if rules_label(rules) == rules.name or not beside.is_file():
             return None
         path = beside
-    return str(path), read_context(str(path))
+    context = read_context(str(path))
+    context.check_rules(rules.path, str(path))
+    return str(path), context
+
+
+def shipped_rules_file(name: str) -> str | None:
+    """The file of the shipped rule set ``name``, or None when no rule set has that name."""
+    from importlib.resources import files
+
+    from scenewright.generator import shipped_rule_sets
+
+    if name not in shipped_rule_sets():
+        return None
+    return str(files("scenewright.grammar_rules").joinpath(f"{name}.rules"))
 
 
 def checked_templates(templates: str | os.PathLike[str] | None) -> str | None:

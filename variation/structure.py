@@ -228,8 +228,12 @@ def measure_edges(graph: StructureGraph) -> None:
     graph.fringe.clear()
     n = len(graph)
     radii = np.hypot(graph.sizes[:, 0], graph.sizes[:, 2]) / 2.0
+    on_floor = [k not in graph.supporter for k in range(n)]
     for i in range(n):
         for j in range(i + 1, n):
+            supported = graph.supporter.get(i) == j or graph.supporter.get(j) == i
+            if not supported and not (on_floor[i] and on_floor[j]):
+                continue  # only a support relates a pair off the floor (measure_pair)
             # Skip pairs surely farther apart than the end of near's fall-off (most pairs of
             # a large scene): one of i's axes is within 45 degrees of the line between the
             # centres, and along it the separation is at least distance / sqrt(2) minus the
@@ -239,7 +243,6 @@ def measure_edges(graph: StructureGraph) -> None:
                 - radii[i]
                 - radii[j]
             )
-            supported = graph.supporter.get(i) == j or graph.supporter.get(j) == i
             if not supported and lower_gap > (1.0 + NEAR_BAND) * NEAR_FACTOR * max(
                 radii[i], radii[j]
             ):

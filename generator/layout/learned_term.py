@@ -51,16 +51,20 @@ of the kind on the same side) back to where its relations hold.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
+import os
+import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local, to_world
+from scenewright.core.relations import RELATIONS
 
 from .motion import rigid, wrap
 
@@ -146,13 +150,52 @@ class LearnedContext:
 
     pairs: tuple[PairContext, ...]
     fit: dict | None = None
+    #: The sha256 of the rules file the context was fitted to (``rules_digest``); None
+    #: for a context made without rules (by hand, or through the Python API).
+    rules_digest: str | None = None
+    #: The sha256 of the example files it was fitted to, one after another (a record for
+    #: people and tools: which examples made it); None when not known.
+    examples_digest: str | None = None
+
+    def for_rules(self, text: str, examples: Sequence[bytes] = ()) -> LearnedContext:
+        """This context, recorded as fitted to the rules file of ``text`` and to the
+        example files of the bytes ``examples`` (in the order they were given)."""
+        digest = hashlib.sha256()
+        for data in examples:
+            digest.update(hashlib.sha256(data).digest())
+        return replace(
+            self,
+            rules_digest=rules_digest(text.encode("utf-8")),
+            examples_digest=digest.hexdigest() if examples else None,
+        )
 
     def to_dict(self) -> dict:
         document = {"format": FORMAT, "version": VERSION, "bins": BINS, "yaw_bins": YAW_BINS}
+        if self.rules_digest is not None:
+            document["rules_digest"] = self.rules_digest
+        if self.examples_digest is not None:
+            document["examples_digest"] = self.examples_digest
         document["pairs"] = [pair.to_dict() for pair in self.pairs]
         if self.fit is not None:
             document["fit"] = self.fit
         return document
+
+    def check_rules(self, rules_path: str | os.PathLike[str] | None, where: str) -> None:
+        """Refuse (``InputError``) a context fitted to another rules file than the one at
+        ``rules_path``: its layouts would follow rules no longer in use. A context that
+        records no digest, or rules that are no file (shipped by name), are not checked."""
+        if self.rules_digest is None or rules_path is None:
+            return
+        try:
+            data = Path(rules_path).read_bytes()
+        except OSError:
+            return  # the rules' own loading reports a file that cannot be read
+        if rules_digest(data) != self.rules_digest:
+            raise InputError(
+                f"{where}: the context was fitted to another version of {rules_path}; fit it again "
+                "('scenewright fit RULES EXAMPLES --what context' or 'scenewright learn'), or leave it "
+                "out (--no-context)"
+            )
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), indent=1) + "\n"
@@ -182,7 +225,15 @@ class LearnedContext:
             seen.add(pair.kind)
             parsed.append(pair)
         fit = document.get("fit")
-        return cls(tuple(parsed), fit if isinstance(fit, dict) else None)
+        digests = []
+        for key in ("rules_digest", "examples_digest"):
+            digest = document.get(key)
+            if digest is not None and (
+                not isinstance(digest, str) or re.fullmatch("[0-9a-f]{64}", digest) is None
+            ):
+                raise InputError(f'{where}: "{key}" must be 64 hexadecimal digits (a sha256)')
+            digests.append(digest)
+        return cls(tuple(parsed), fit if isinstance(fit, dict) else None, *digests)
 
 
 def _parse_pair(entry: object, where: str) -> PairContext:
@@ -201,6 +252,12 @@ def _parse_pair(entry: object, where: str) -> PairContext:
         or not all(isinstance(v, str) and v for v in labels)
     ):
         raise InputError(f'{where}: "labels" must be a non-empty list of relation labels')
+    unknown = [label for label in labels if label not in RELATIONS]
+    if unknown:
+        raise InputError(
+            f'{where}: "labels": {_clipped(unknown[0])} is not a relation label '
+            "(docs/rules-language.md lists them)"
+        )
     if labels != sorted(set(labels)):
         raise InputError(f'{where}: "labels" must be sorted and without repeats')
     bounds = _numbers(entry.get("bounds"), 4, where, "bounds")
@@ -220,6 +277,12 @@ def _parse_pair(entry: object, where: str) -> PairContext:
         np.array(yaw),
         examples,
     )
+
+
+def _clipped(text: str) -> str:
+    """``text`` quoted, shortened to 40 characters: a message never repeats a long input."""
+    shown = repr(text)
+    return shown if len(shown) <= 40 else shown[:37] + "..."
 
 
 def _numbers(value: object, count: int, where: str, field: str) -> list[float]:
@@ -248,14 +311,19 @@ def context_path(rules_output: str | Path) -> Path:
     return path.with_name(stem + ".context.json")
 
 
+def rules_digest(data: bytes) -> str:
+    """The digest a context records of its rules file's bytes."""
+    return hashlib.sha256(data).hexdigest()
+
+
 def read_context(path: str) -> LearnedContext:
     """The context a file holds; ``InputError`` naming the file when it cannot be read or is not one."""
-    from scenewright.core.files import UnusableFile, read_regular_file
+    from scenewright.core.files import UnusableFile, load_json, read_regular_file
     from scenewright.core.limits import MAX_SCENE_JSON_BYTES
 
     try:
         text = read_regular_file(path, MAX_SCENE_JSON_BYTES, "a context file").decode("utf-8")
-        document = json.loads(text)
+        document = load_json(text)
     except UnusableFile as problem:
         raise InputError(f"{path}: cannot read: it {problem}") from None
     except OSError as error:

@@ -22,6 +22,7 @@ unless ``--debug`` is given; running out of memory says so, and in which stage.
 from __future__ import annotations
 
 import argparse
+import errno
 import os
 import sys
 import traceback
@@ -73,7 +74,46 @@ def build_parser() -> CommandLineParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; return the exit code (the console script exits with it)."""
+    """Run the command line; return the exit code (the console script exits with it).
+    An error line never repeats a long argument in full (``shortened``)."""
+    words = list(sys.argv[1:] if argv is None else argv)
+    stderr = sys.stderr
+    sys.stderr = _Shortening(stderr, words)
+    try:
+        return _main(argv)
+    finally:
+        sys.stderr = stderr
+
+
+#: Arguments longer than this are shown shortened in error lines.
+LONG_ARGUMENT = 80
+
+
+def shortened(text: str, words: list[str]) -> str:
+    """``text`` with each argument of ``words`` longer than ``LONG_ARGUMENT`` characters
+    shown as its first 40 and how long it is, so the cause of an error stays readable."""
+    for word in sorted({w for w in words if len(w) > LONG_ARGUMENT}, key=len, reverse=True):
+        for shown in (repr(word), ascii(word), word):
+            if shown in text:
+                text = text.replace(shown, f"{shown[:40]}... ({len(word)} characters)")
+    return text
+
+
+class _Shortening:
+    """stderr, with the long arguments of the command line shortened in what is written."""
+
+    def __init__(self, stream, words: list[str]):
+        self._stream, self._words = stream, words
+
+    def write(self, text: str) -> int:
+        self._stream.write(shortened(text, self._words))
+        return len(text)
+
+    def __getattr__(self, name: str):
+        return getattr(self._stream, name)
+
+
+def _main(argv: list[str] | None) -> int:
     debug = "--debug" in (sys.argv[1:] if argv is None else argv)
     args = None
     try:
@@ -114,7 +154,7 @@ def main(argv: list[str] | None = None) -> int:
             traceback.print_exc()
         where = f"{error.filename}: " if error.filename is not None else ""
         print(f"{PROG}: error: {where}{error.strerror or error}", file=sys.stderr)
-        return 1
+        return 2 if error.errno == errno.ENAMETOOLONG else 1  # a name the user gave
     except Exception as error:  # a bug, not the user's fault: say so in one line
         if debug:
             traceback.print_exc()

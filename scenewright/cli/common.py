@@ -74,6 +74,8 @@ def read_scene_data(path: str, *, check_files: bool = False) -> dict:
 
     try:
         text = read_regular_file(path, MAX_SCENE_JSON_BYTES, "a scene.json").decode("utf-8")
+        if not text.strip():
+            raise SceneFileError(path, "the file is empty (or only blank): there is no JSON in it")
         data = parse_scene_json(text)
         validate_scene_dict(data, check_files=check_files)
     except UnusableFile as problem:

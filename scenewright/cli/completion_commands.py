@@ -183,7 +183,9 @@ def add_commands(commands) -> None:
         help="with SCENE_JSON: categories to add (repeatable)",
     )
     complete.add_argument(
-        "--room", metavar="WxD|CORNERS", help="room size (5x4) or corners x,z x,z ..."
+        "--room",
+        metavar="WxD|CORNERS",
+        help="room size (5x4) or corners x,z x,z ... (at most 100 m a side, 64 corners)",
     )
     complete.add_argument(
         "--door",

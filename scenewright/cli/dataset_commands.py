@@ -16,6 +16,13 @@ from .common import (
     say,
 )
 from .options import (
+    MAX_CAPTIONS,
+    MAX_DATASET_SCENES,
+    MAX_RETRIES,
+    MAX_VIEW_TRIES,
+    MAX_VIEWS,
+    MAX_WORDS,
+    MAX_WORKERS,
     add_command,
     camera_range,
     context_options,
@@ -74,7 +81,12 @@ def add_commands(commands) -> None:
     )
     dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
     dataset.add_argument(
-        "-n", "--count", type=count_at_least(1), required=True, metavar="N", help="number of scenes"
+        "-n",
+        "--count",
+        type=count_at_least(1, MAX_DATASET_SCENES),
+        required=True,
+        metavar="N",
+        help="number of scenes",
     )
     dataset.add_argument(
         "-o",
@@ -87,17 +99,17 @@ def add_commands(commands) -> None:
     context_options(dataset)
     dataset.add_argument(
         "--workers",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_WORKERS),
         metavar="K",
         help="worker processes (default and maximum: one per CPU this process may use, and at most one per "
         "scene left to make; a larger K is lowered with a note; ignored with --scheduler)",
     )
     dataset.add_argument(
         "--captions",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_CAPTIONS),
         default=1,
         metavar="K",
-        help="short captions per scene (1)",
+        help="short captions per scene (1; at most 100)",
     )
     templates_option(dataset)
     view_options(dataset, "512x512")
@@ -109,7 +121,7 @@ def add_commands(commands) -> None:
     )
     dataset.add_argument(
         "--text-words",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_WORDS),
         default=None,
         metavar="N",
         help="the text column: the most detailed description (full, summary, short) of at most N words, "
@@ -194,10 +206,10 @@ def add_commands(commands) -> None:
     )
     dataset.add_argument(
         "--views",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_VIEWS),
         default=1,
         metavar="N",
-        help="images per scene, each its own row, their cameras drawn from the ranges below (1)",
+        help="images per scene, each its own row, their cameras drawn from the ranges below (1; at most 100)",
     )
     for name, meaning in (
         ("azimuth", "in degrees from south towards east, e.g. 0:360 (the automatic view's)"),
@@ -223,13 +235,13 @@ def add_commands(commands) -> None:
     )
     dataset.add_argument(
         "--view-tries",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_VIEW_TRIES),
         metavar="K",
         help="...up to K draws in all, keeping the view that showed the most (8)",
     )
     dataset.add_argument(
         "--retries",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_RETRIES),
         default=DATASET_RETRIES,
         metavar="K",
         help=f"lay a scene whose layout failed out again up to K times, with derived layout seeds and the same "

@@ -18,6 +18,8 @@ from .common import (
     say,
 )
 from .options import (
+    MAX_OPERATIONS,
+    MAX_VARIANTS,
     add_command,
     allow_option,
     count_at_least,
@@ -145,10 +147,10 @@ def add_commands(commands) -> None:
     vary_command.add_argument(
         "-n",
         "--count",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_VARIANTS),
         default=10,
         metavar="N",
-        help="variants to make (10)",
+        help="variants to make (10; at most 10000)",
     )
     vary_command.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
     vary_command.add_argument(
@@ -156,7 +158,7 @@ def add_commands(commands) -> None:
     )
     vary_command.add_argument(
         "--operations",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_OPERATIONS),
         default=3,
         metavar="K",
         help="at most K operations per variant (3)",

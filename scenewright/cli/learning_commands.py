@@ -17,6 +17,9 @@ from .common import (
     say,
 )
 from .options import (
+    MAX_CHECK_SCENES,
+    MAX_LAYOUTS,
+    MAX_ROUNDS,
     add_command,
     allow_option,
     count_at_least,
@@ -144,14 +147,14 @@ def add_commands(commands) -> None:
     )
     fit.add_argument(
         "--rounds",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_ROUNDS),
         default=2,
         metavar="N",
         help="context: rounds of iterative scaling (2)",
     )
     fit.add_argument(
         "--layouts",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_LAYOUTS),
         default=40,
         metavar="N",
         help="context: scenes laid out per round (40)",
@@ -216,7 +219,7 @@ def add_commands(commands) -> None:
     )
     learn.add_argument(
         "--check",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_CHECK_SCENES),
         default=50,
         metavar="N",
         help="scenes to generate from the induced rules and compare with the examples (50; 0: none)",
@@ -230,14 +233,14 @@ def add_commands(commands) -> None:
     )
     learn.add_argument(
         "--rounds",
-        type=count_at_least(0),
+        type=count_at_least(0, MAX_ROUNDS),
         default=2,
         metavar="N",
         help="context: rounds of iterative scaling (2)",
     )
     learn.add_argument(
         "--layouts",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_LAYOUTS),
         default=40,
         metavar="N",
         help="context: scenes laid out per round (40)",
@@ -245,7 +248,7 @@ def add_commands(commands) -> None:
 
 
 def run_fit(args: argparse.Namespace) -> int:
-    from scenewright.core.atomic import write_atomic
+    from scenewright.core.atomic import staged_files
     from scenewright.examples.formats import example_paths
     from scenewright.learning.fit import fit_rule_set, parse_what
 
@@ -253,19 +256,21 @@ def run_fit(args: argparse.Namespace) -> int:
     examples = [(str(path), read_fit_example(path)) for path in example_paths(args.examples)]
     output = output_file(args.output, "fitted.rules")
     report = output_file(args.report, "fit.json") if args.report else None
-    fit, context, written = fit_rule_set(
-        args.rules,
-        examples,
-        output,
-        report=report,
-        allow=args.allow_outside,
-        prior=args.prior,
-        write=write_atomic,
-        what=what,
-        seed=args.seed,
-        rounds=args.rounds,
-        layouts=args.layouts,
-    )
+    with staged_files() as staged:  # the rules, their includes, context and report: all or none
+        fit, context, written = fit_rule_set(
+            args.rules,
+            examples,
+            output,
+            report=report,
+            allow=args.allow_outside,
+            prior=args.prior,
+            write=staged.write,
+            commit=staged.commit,
+            what=what,
+            seed=args.seed,
+            rounds=args.rounds,
+            layouts=args.layouts,
+        )
     unidentified = fit.unidentified
     if "weights" in what:
         say(
@@ -316,7 +321,7 @@ def run_relations(args: argparse.Namespace) -> int:
 
 def run_learn(args: argparse.Namespace) -> int:
     from scenewright.api import build_scene
-    from scenewright.core.atomic import write_atomic
+    from scenewright.core.atomic import staged_files
     from scenewright.examples import load_examples
     from scenewright.generator.layout.learned_term import context_path
     from scenewright.learning.learn import CONTEXT_REPLAYS, learn_rule_set
@@ -324,20 +329,23 @@ def run_learn(args: argparse.Namespace) -> int:
     examples = load_examples(args.examples)
     output = output_file(args.output, "induced.rules")
     report = output_file(args.report, "learn.json") if args.report else None
-    learned = learn_rule_set(
-        examples,
-        output,
-        report=report,
-        seed=args.seed,
-        test=args.test,
-        check=args.check,
-        context=args.context,
-        rounds=args.rounds,
-        layouts=args.layouts,
-        write=write_atomic,
-        build_scene=build_scene,
-        progress=lambda message: note_progress(args, message),
-    )
+    sidecar = context_path(output)
+    stale = sidecar.is_file()
+    with staged_files() as staged:  # the rules, context and report: all or none
+        learned = learn_rule_set(
+            examples,
+            output,
+            report=report,
+            seed=args.seed,
+            test=args.test,
+            check=args.check,
+            context=args.context,
+            rounds=args.rounds,
+            layouts=args.layouts,
+            write=staged.write,
+            build_scene=build_scene,
+            progress=lambda message: note_progress(args, message),
+        )
     induction = learned.induction
     warning = learned.check.warning() if learned.check is not None else None
     if warning:  # first, where it is seen; not silenced by --quiet
@@ -376,12 +384,11 @@ def run_learn(args: argparse.Namespace) -> int:
             )
         else:
             say(args, f"no context learned: {context.why_not}{left_out}")
-    sidecar = context_path(output)
-    if sidecar not in learned.written and sidecar.exists():
+    if sidecar not in learned.written and stale:
         say(
             args,
-            f"note: {sidecar} beside the rules is not from this run; generate will use it (--no-context "
-            "leaves it out)",
+            f"note: {sidecar} beside the rules is not from this run; generate refuses it when it "
+            "records other rules, and uses it otherwise (--no-context leaves it out)",
         )
     say(args, "wrote " + ", ".join(str(path) for path in learned.written))
     return 0

@@ -35,6 +35,24 @@ def image_size(text: str) -> tuple[int, int]:
     return size
 
 
+#: The bounds of the count options (docs/limits.md).
+MAX_DATASET_SCENES = (
+    1_000_000_000_000  # far more than can be made: a run starts at once whatever N (datasets.md)
+)
+MAX_WORKERS = 1024
+MAX_CAPTIONS = 100
+MAX_VIEWS = 100
+MAX_VIEW_TRIES = 1000
+MAX_RETRIES = 100
+MAX_WORDS = 10_000
+MAX_VARIANT = 1000
+MAX_VARIANTS = 10_000
+MAX_OPERATIONS = 100
+MAX_ROUNDS = 100
+MAX_LAYOUTS = 10_000
+MAX_CHECK_SCENES = 10_000
+
+
 def whole_number(text: str) -> int:
     """An optionally negative whole number in ASCII digits (``int`` would also take
     full-width digits, underscores and spaces)."""
@@ -49,11 +67,18 @@ def _clipped(text: str, limit: int = 40) -> str:
     return shown if len(shown) <= limit else shown[: limit - 4] + "...'"
 
 
-def count_at_least(minimum: int) -> Callable[[str], int]:
+def count_at_least(minimum: int, maximum: int) -> Callable[[str], int]:
+    """A whole number from ``minimum`` to ``maximum``: every count sizes work, so each has
+    a bound (docs/limits.md), named in the error."""
+
     def parse(text: str) -> int:
         value = whole_number(text)
         if value < minimum:
             raise argparse.ArgumentTypeError(f"must be at least {minimum}, not {value}")
+        if value > maximum:
+            raise argparse.ArgumentTypeError(
+                f"must be at most {maximum}, not {value} (the bounds: docs/limits.md)"
+            )
         return value
 
     parse.__name__ = "number"
@@ -171,14 +196,17 @@ def style_options(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--style", choices=STYLES, default="full", help="description style")
     sub.add_argument(
         "--words",
-        type=count_at_least(1),
+        type=count_at_least(1, MAX_WORDS),
         default=None,
         metavar="N",
         help="a word budget: the most detailed style (full, summary, short) whose text has at most N "
         "words (short when none has), instead of --style",
     )
     sub.add_argument(
-        "--variant", type=count_at_least(0), default=0, help="paraphrase variant (0 canonical)"
+        "--variant",
+        type=count_at_least(0, MAX_VARIANT),
+        default=0,
+        help="paraphrase variant (0 canonical)",
     )
     templates_option(sub)
 

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import fcntl
+import hashlib
 import json
 import multiprocessing
 import os
@@ -58,6 +59,7 @@ from typing import TYPE_CHECKING, TextIO
 
 from scenewright.core.atomic import atomic_stream, remove_partials, write_atomic
 from scenewright.core.errors import GenerationError, InputError, ScenewrightError
+from scenewright.core.files import load_json
 from scenewright.dataset.coco import coco_sink
 from scenewright.dataset.spec import (
     LOCK_FILE,
@@ -217,7 +219,7 @@ def open_dataset(spec: DatasetSpec, directory: str | os.PathLike[str]) -> Iterat
     try:
         try:
             if settings_path.exists():
-                check_same_settings(spec, json.loads(settings_path.read_text()), root)
+                check_same_settings(spec, read_settings(settings_path), root)
             write_atomic(settings_path, json.dumps(spec.settings(), indent=1) + "\n")
             for sub in ("images" if spec.images else "texts", "scenes", RECORDS_DIR):
                 (root / sub).mkdir(exist_ok=True)
@@ -259,6 +261,26 @@ def unlock_directory(descriptor: int) -> None:
         os.close(descriptor)
 
 
+def read_settings(path: Path) -> dict:
+    """The settings a dataset folder's ``dataset.json`` holds; ``InputError`` naming the
+    file when it is not a JSON object of at most 1 MiB (it is a few hundred bytes)."""
+    from scenewright.core.files import UnusableFile, read_regular_file
+
+    try:
+        document = load_json(read_regular_file(path, 2**20, "a dataset.json").decode("utf-8"))
+    except UnusableFile as problem:
+        raise InputError(f"{path}: cannot read: it {problem}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text; it is not a dataset's settings") from None
+    except ValueError as error:
+        raise InputError(f"{path}: not JSON ({error}); it is not a dataset's settings") from None
+    if not isinstance(document, dict):
+        raise InputError(
+            f"{path}: not a dataset's settings (a JSON object), but a JSON {type(document).__name__}"
+        )
+    return document
+
+
 def check_same_settings(spec: DatasetSpec, stored: dict, root: Path) -> None:
     """Refuse a rerun whose settings differ from the stored ones (``count`` is not a
     setting; a ``count`` that datasets made before it could change is ignored). A
@@ -287,9 +309,40 @@ def finished_indices(root: Path) -> set[int]:
         for entry in entries:
             stem, _, suffix = entry.name.partition(".")
             if suffix == "json" and stem.isdigit() and scene_stem(int(stem)) == stem:
-                if read_record(Path(entry.path)) is not None:
+                record = read_record(Path(entry.path))
+                if record is not None and intact(root, record):
                     done.add(int(stem))
     return done
+
+
+#: The record's key giving each of the scene's files its digest (relative path -> the
+#: sha256 of its bytes); ``files`` lists the names.
+FILES_KEY = "digests"
+
+
+def intact(root: Path, record: dict) -> bool:
+    """Whether every file a scene's record lists is there, with the bytes it was written
+    with where the record has their digest (a record written before digests were kept
+    has none); a scene that fails is made again."""
+    names = record.get("files", [])
+    digests = record.get(FILES_KEY, {})
+    if not isinstance(names, list) or not isinstance(digests, dict):
+        return False
+    for relative in names:
+        if (
+            not isinstance(relative, str)
+            or ".." in Path(relative).parts
+            or Path(relative).is_absolute()
+        ):
+            return False  # a record never names a file outside the dataset
+        try:
+            data = (root / relative).read_bytes()
+        except OSError:
+            return False
+        digest = digests.get(relative)
+        if digest is not None and hashlib.sha256(data).hexdigest() != digest:
+            return False
+    return True
 
 
 def pending_indices(count: int, done: set[int]) -> Iterator[int]:
@@ -300,18 +353,24 @@ def pending_indices(count: int, done: set[int]) -> Iterator[int]:
 
 def read_record(path: Path) -> dict | None:
     try:
-        return json.loads(path.read_text())
+        record = load_json(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
+    return record if isinstance(record, dict) else None
 
 
 def store_product(root: Path, product: SceneProduct) -> None:
-    """Write a scene's files, then its record (the marker that the scene is done)."""
+    """Write a scene's files, then its record (the marker that the scene is done), which
+    lists each file with its digest (``FILES_KEY``) so a resumed run can tell a file
+    that went missing or was cut short (``intact``)."""
+    digests = {}
     for relative, payload in sorted(product.files.items()):
         target = root / relative
         target.parent.mkdir(parents=True, exist_ok=True)
-        write_atomic(target, payload)
-    record = json.dumps(product.record(), ensure_ascii=False) + "\n"
+        data = payload.encode("utf-8") if isinstance(payload, str) else payload
+        write_atomic(target, data)
+        digests[str(relative)] = hashlib.sha256(data).hexdigest()
+    record = json.dumps({**product.record(), FILES_KEY: digests}, ensure_ascii=False) + "\n"
     write_atomic(root / RECORDS_DIR / f"{scene_stem(product.index)}.json", record)
 
 
