@@ -628,7 +628,12 @@ class _Reader:
             return self._unused(toks, start, end, "this relation takes a wall, window or corner")
         from scenewright.core.relations import RELATIONS
 
-        label = min(object_labels, key=lambda x: (len(RELATIONS[x].directions), x))
+        # Of labels worded alike ("to the right of": NextToRight, BesideRight), the one
+        # with the layout's own reach: the words promise no more than that.
+        label = min(
+            object_labels,
+            key=lambda x: (len(RELATIONS[x].directions), RELATIONS[x].reach is not None, x),
+        )
         for s in subjects:
             for t in targets:
                 if s != t:

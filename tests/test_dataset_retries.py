@@ -161,9 +161,9 @@ def test_the_command_reports_retries_by_size_errors_with_locations_and_exits_1(m
         "expansion": {"scenes": counts["error"], "messages": {expected_error: counts["error"]}}
     }
     # Two crates always overlap in the yard; pushing them apart may also push one out.
-    assert stats["problems"]["crate overlaps crate by # %"] == counts["fails"]
+    assert stats["problems"]["crate overlaps crate by # cm"] == counts["fails"]
     assert set(stats["problems"]) <= {
-        "crate overlaps crate by # %",
+        "crate overlaps crate by # cm",
         "crate is outside the scene by # m",
     }
     assert stats["retries"]["by_objects"] == [

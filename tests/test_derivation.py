@@ -160,7 +160,10 @@ class Replay(np.random.Generator):
         return record
 
     def choice(self, options, p=None):
-        record = self.next("alternative", "style")
+        record = self.next("alternative", "style", "count")
+        if record["kind"] == "count":  # a weighted count (``2..4 {1 1 2}``) draws its index
+            assert options == record["high"] - record["low"] + 1 and len(p) == options
+            return record["value"] - record["low"]
         assert record["options"] == options and len(p) == options
         return record["value"]
 

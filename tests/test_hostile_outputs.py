@@ -334,3 +334,19 @@ def test_a_failed_set_puts_back_a_link_it_replaced(tmp_path):
             raise ValueError("the check failed")
     assert (tmp_path / "a.txt").is_symlink() and (tmp_path / "a.txt").read_text() == "real"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt", "real.txt"]
+
+
+def test_a_huge_argument_is_shortened_in_the_error_but_a_long_path_is_kept(tmp_path, capsys):
+    """An error line does not repeat a pasted 100,000-character argument, and still names
+    a file by its whole path, however deep it lies."""
+    from scenewright.cli import main
+
+    huge = "x" * 100_000
+    assert main(["describe", huge]) == 2
+    line = capsys.readouterr().err.strip()
+    assert len(line) < 500 and "(100000 characters)" in line
+    deep = tmp_path.joinpath(*["folder"] * 20)
+    deep.mkdir(parents=True)
+    missing = deep / "scene.json"
+    assert main(["describe", str(missing)]) == 2
+    assert str(missing) in capsys.readouterr().err

@@ -85,17 +85,18 @@ def main(argv: list[str] | None = None) -> int:
         sys.stderr = stderr
 
 
-#: Arguments longer than this are shown shortened in error lines.
-LONG_ARGUMENT = 80
+#: Arguments longer than this are shown shortened in error lines: far longer than the
+#: paths users name (the location of an error is kept whole), short of a pasted file.
+LONG_ARGUMENT = 1000
 
 
 def shortened(text: str, words: list[str]) -> str:
     """``text`` with each argument of ``words`` longer than ``LONG_ARGUMENT`` characters
-    shown as its first 40 and how long it is, so the cause of an error stays readable."""
+    shown as its first 60 and how long it is, so the cause of an error stays readable."""
     for word in sorted({w for w in words if len(w) > LONG_ARGUMENT}, key=len, reverse=True):
         for shown in (repr(word), ascii(word), word):
             if shown in text:
-                text = text.replace(shown, f"{shown[:40]}... ({len(word)} characters)")
+                text = text.replace(shown, f"{shown[:60]}... ({len(word)} characters)")
     return text
 
 
