@@ -66,8 +66,7 @@ def test_layout_keeps_the_pinned_poses_exactly_and_moves_the_others(capsys, tmp_
     assert lines[1].startswith(f"wrote {out}/: ")
     assert lines[2].startswith("ok: 30 objects, 2 paths, relations satisfied 30/30, energy ")
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        set(SCENE_FILES)
-        - {name for name in SCENE_FILES if name.startswith("preview")}
+        set(SCENE_FILES) - {name for name in SCENE_FILES if name.startswith("preview")}
     )
     old, new = poses(before), poses(after)
     for object_id in PINNED:
