@@ -8,6 +8,7 @@
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
+CLIENTS := $(VENV)/.clients
 
 .PHONY: setup demo test test-fast lint bench clean
 
@@ -17,6 +18,11 @@ $(STAMP): pyproject.toml scripts/setup.sh
 	bash scripts/setup.sh
 	touch $(STAMP)
 
+# Blender and Chromium, which the tests open exported files in (not needed by demo).
+$(CLIENTS): scripts/setup_clients.sh | $(STAMP)
+	bash scripts/setup_clients.sh
+	touch $(CLIENTS)
+
 demo: setup
 	$(VENV)/bin/scenewright generate village --seed 7 -o out/
 
@@ -25,7 +31,7 @@ lint: setup
 
 # The gate first, then the tests on every core (pytest-xdist); each test draws from its
 # own fixed seeds, so the outcome is the same as a serial run's.
-test: setup
+test: setup $(CLIENTS)
 	bash scripts/lint.sh
 	$(PY) -m pytest -n auto --dist worksteal
 

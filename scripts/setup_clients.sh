@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The tools users open our files in, for the tests that open them there (make test runs
+# this after scripts/setup.sh): Debian's Blender (with python3-numpy, which its glTF
+# importer needs) and Chromium (three.js renders a GLB in it). Each is installed when
+# missing and we may; without them their tests skip. About 170 MB of packages on a
+# machine that has neither; make demo does not need them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+missing=()
+command -v blender >/dev/null || missing+=(blender)
+dpkg -s python3-numpy >/dev/null 2>&1 || missing+=(python3-numpy)
+command -v chromium >/dev/null || missing+=(chromium)
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+  echo "setup: installing ${missing[*]} for the tests that open exported files in them"
+  { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null; } \
+    || echo "setup: warning: could not install ${missing[*]}; their tests will skip" >&2
+else
+  echo "setup: warning: missing ${missing[*]}; the tests that open exported files in them will skip" >&2
+fi
