@@ -5,7 +5,7 @@ are too short for what must stand beside them says by how many metres."""
 import re
 from pathlib import Path
 
-from test_shipped_rules import object_bounds
+from test_shipped_rules import noted_bounds, object_bounds
 
 from scenewright.generator.expand import expand
 from scenewright.generator.layout import LayoutParams, layout_scene
@@ -31,16 +31,7 @@ def test_city_is_shipped_validates_and_its_notes_say_its_budget():
     rules = load_rules("city")
     bounds = object_bounds(rules)
     assert bounds[rules.start] == (1103, 2225)
-    lines = rules.path.read_text().splitlines()
-    noted = {}
-    for name, production in rules.productions.items():
-        line = production.location.line - 2
-        while line >= 0 and lines[line].startswith("#"):
-            found = re.search(r"\[(\d+)\.\.(\d+)\]", lines[line])
-            if found:
-                noted[name] = (int(found.group(1)), int(found.group(2)))
-            line -= 1
-    assert noted == bounds
+    assert noted_bounds(rules) == bounds
     counts = [len(expand(rules, seed).nodes("object")) for seed in range(3)]
     assert all(1103 <= count <= 2225 for count in counts)
 

@@ -52,6 +52,22 @@ def test_every_node_is_a_catalog_type_and_every_edge_a_known_label(name):
 # -- object budgets -------------------------------------------------------------------
 
 
+def noted_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
+    """The object counts "[LOW..HIGH]" the comment above each production of ``rules``
+    states, by production: what the rule set's author wrote, to hold against
+    ``object_bounds``."""
+    lines = rules.path.read_text().splitlines()
+    noted = {}
+    for name, production in rules.productions.items():
+        line = production.location.line - 2
+        while line >= 0 and lines[line].startswith("#"):
+            found = re.search(r"\[(\d+)\.\.(\d+)\]", lines[line])
+            if found:
+                noted[name] = (int(found.group(1)), int(found.group(2)))
+            line -= 1
+    return noted
+
+
 def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
     """For every production, the fewest and most objects an expansion of it can create.
 

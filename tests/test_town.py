@@ -2,12 +2,11 @@
 truly, and its scenes are the town its comments promise (road networks, homes with
 gardens beside roads, a market, parks, street lamps)."""
 
-import re
 from collections import Counter
 from functools import cache
 
 import pytest
-from test_shipped_rules import object_bounds
+from test_shipped_rules import noted_bounds, object_bounds
 
 from scenewright.generator.expand import expand
 from scenewright.generator.rules import check_rules, load_rules, shipped_rule_sets
@@ -32,16 +31,7 @@ def test_object_budget_holds_and_the_notes_say_it():
     assert bounds[rules.start] == (243, 419)
     counts = [len(graph.nodes("object")) for graph in towns()]
     assert 243 <= min(counts) and max(counts) <= 419 and len(set(counts)) > 10
-    lines = rules.path.read_text().splitlines()
-    noted = {}
-    for name, production in rules.productions.items():
-        line = production.location.line - 2
-        while line >= 0 and lines[line].startswith("#"):
-            found = re.search(r"\[(\d+)\.\.(\d+)\]", lines[line])
-            if found:
-                noted[name] = (int(found.group(1)), int(found.group(2)))
-            line -= 1
-    assert noted == bounds
+    assert noted_bounds(rules) == bounds
 
 
 @pytest.mark.slow
