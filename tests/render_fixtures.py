@@ -128,3 +128,16 @@ def run_without_opengl(code: str) -> subprocess.CompletedProcess:
     return subprocess.run(
         [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60
     )
+
+
+def preview_and_glb(scene: Scene, path, width: int, height: int):
+    """The preview of ``scene`` at ``width`` x ``height`` (skipping without OpenGL) and
+    its GLB written to ``path`` with the preview's camera, for the tests that open the
+    file in another program and compare what it shows with the preview."""
+    from scenewright.render.export import export_glb
+
+    renderer = renderer_or_skip(width, height)
+    preview = renderer.render(scene)
+    renderer.close()
+    scene.render = {"camera": preview.camera}  # the GLB's camera is the preview's
+    return preview, export_glb(scene, path)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PIL import Image
-from render_fixtures import market_scene, renderer_or_skip, thing
+from render_fixtures import market_scene, preview_and_glb, thing
 
 from scenewright.core.relations import Relation
 from scenewright.render.export import export_glb
@@ -36,13 +36,8 @@ def blender(tmp_path_factory):
     executable = shutil.which("blender")
     if executable is None:
         pytest.skip("Blender is not installed (apt-get install blender python3-numpy)")
-    renderer = renderer_or_skip(WIDTH, HEIGHT)  # the preview to compare with
-    scene = _scene()
-    preview = renderer.render(scene)
-    renderer.close()
-    scene.render = {"camera": preview.camera}  # the GLB's camera is the preview's
     folder = tmp_path_factory.mktemp("blender")
-    glb = export_glb(scene, folder / "market.glb")
+    preview, glb = preview_and_glb(_scene(), folder / "market.glb", WIDTH, HEIGHT)
     image = folder / "market.png"
     done = subprocess.run(
         [executable, "-b", "--factory-startup", "--python", str(PROBE), "--", str(glb), str(image)]

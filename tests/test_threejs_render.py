@@ -12,9 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PIL import Image
-from render_fixtures import market_scene, renderer_or_skip
-
-from scenewright.render.export import export_glb
+from render_fixtures import market_scene, preview_and_glb
 
 SCRIPT = Path(__file__).resolve().parent.parent / "scripts" / "threejs_render.py"
 WIDTH, HEIGHT = 160, 120
@@ -34,13 +32,8 @@ def threejs(tmp_path_factory):
         pytest.skip("Chromium is not installed (apt-get install chromium)")
     if _script().default_three() is None:
         pytest.skip("three.js is not installed (npm install --prefix .tools-three three)")
-    renderer = renderer_or_skip(WIDTH, HEIGHT)  # the preview to compare with
-    scene = market_scene()
-    preview = renderer.render(scene)
-    renderer.close()
-    scene.render = {"camera": preview.camera}  # the GLB's camera is the preview's
     folder = tmp_path_factory.mktemp("threejs")
-    glb = export_glb(scene, folder / "market.glb")
+    preview, glb = preview_and_glb(market_scene(), folder / "market.glb", WIDTH, HEIGHT)
     image = folder / "market.png"
     done = subprocess.run(
         [sys.executable, str(SCRIPT), str(glb), str(image), str(WIDTH), str(HEIGHT)],
