@@ -128,13 +128,19 @@ def fail(message: str) -> NoReturn:
     sys.exit(2)
 
 
+def document(glb: Path) -> dict:
+    """The GLB's JSON chunk."""
+    data = glb.read_bytes()
+    if data[:4] != b"glTF" or len(data) < 20:
+        raise ValueError(f"not a GLB file: {glb}")
+    length = int.from_bytes(data[12:16], "little")
+    return json.loads(data[20 : 20 + length])
+
+
 def background(glb: Path) -> str:
     """The preview's background as a GDScript colour: light grey round a room (whose file
     has a floor node), sky outdoors; the preview writes sRGB, as Godot's Color takes it."""
-    data = glb.read_bytes()
-    length = int.from_bytes(data[12:16], "little")
-    document = json.loads(data[20 : 20 + length])
-    names = {node.get("name") for node in document.get("nodes", [])}
+    names = {node.get("name") for node in document(glb).get("nodes", [])}
     return "0.9, 0.9, 0.9" if "floor" in names else "0.62, 0.77, 0.92"
 
 
