@@ -22,6 +22,7 @@ on stderr when the file, ``godot3`` or ``xvfb-run`` is missing or Godot fails.""
 
 import argparse
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -134,7 +135,10 @@ def document(glb: Path) -> dict:
     if data[:4] != b"glTF" or len(data) < 20:
         raise ValueError(f"not a GLB file: {glb}")
     length = int.from_bytes(data[12:16], "little")
-    return json.loads(data[20 : 20 + length])
+    try:
+        return json.loads(data[20 : 20 + length])
+    except ValueError:
+        raise ValueError(f"not a GLB file: {glb} (its JSON chunk does not read)") from None
 
 
 def background(glb: Path) -> str:
@@ -161,7 +165,9 @@ def render(glb: Path, out: Path, width: int, height: int, timeout: float = 300.0
             RENDER.replace("__BACK__", back).replace("__OUT__", str(image))
         )
         # Godot writes its settings and caches under HOME; keep them in the throwaway folder.
-        env = {"HOME": str(project / "home"), "PATH": "/usr/bin:/bin"}
+        home = str(project / "home")
+        env = dict(os.environ, HOME=home, XDG_CONFIG_HOME=home, XDG_DATA_HOME=home)
+        env["XDG_CACHE_HOME"] = home
         xvfb = ["xvfb-run", "-a", "-s", f"-screen 0 {max(width, 640)}x{max(height, 480)}x24"]
         imported = subprocess.run(
             [*xvfb, "godot3", "--path", str(project), "--editor", "--quit"],
