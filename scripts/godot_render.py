@@ -11,13 +11,15 @@ runs under ``xvfb-run`` (Mesa's software OpenGL on a machine without a GPU), wit
 GLES3 renderer.
 
 The colours, normals, camera and sun are the file's: Godot's importer turns the
-KHR_lights_punctual sun into a DirectionalLight. Its energy is divided by pi: Godot 3.2's importer
-copies the glTF intensity (lux) into the light's energy, and a Godot energy of 1 already
-lights a face turned to the light with its full colour. The sun casts shadows. As in
-``scripts/blender_render.py`` and ``scripts/threejs_render.py`` the script adds only what
-surrounds the scene: an environment of the preview's background colour (sky outdoors,
-light grey round a room) whose ambient light lights the faces turned away from the sun. It prints what Godot made of the file as one JSON line after ``PROBE`` (each node's
-path and class), which ``tests/test_godot_import.py`` reads. Exit status 2 with one line
+KHR_lights_punctual sun into a DirectionalLight. Its energy is divided by pi: Godot
+3.2's importer copies the glTF intensity (lux) into the light's energy, and a Godot
+energy of 1 already lights a face turned to the light with its full colour. The sun
+casts shadows. As in ``scripts/blender_render.py`` and ``scripts/threejs_render.py`` the
+script adds only what surrounds the scene: an environment of the preview's background
+colour (sky outdoors, light grey round a room) whose ambient light lights the faces
+turned away from the sun. It prints what Godot made of the file as one JSON line after
+``PROBE`` (each node's path and class, how many directional lights), which
+``tests/test_godot_import.py`` reads. Exit status 2 with one line
 on stderr when the file, ``godot3`` or ``xvfb-run`` is missing or Godot fails."""
 
 import argparse
