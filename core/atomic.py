@@ -35,6 +35,7 @@ from __future__ import annotations
 import ctypes
 import errno
 import functools
+import json
 import os
 import re
 import shutil
@@ -53,6 +54,8 @@ PARTIAL_SUFFIX = ".partial"
 _PARTIAL_NAME = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)-(?P<tag>[^.]*)\.partial$")
 #: The tag of an old directory renamed aside where names cannot be exchanged.
 _ASIDE = "aside"
+#: The name in ``.NAME.PID-journal.partial``: the renames a process's staged set is making.
+_JOURNAL = "staged-set"
 _AT_FDCWD = -100
 _RENAME_EXCHANGE = 2
 
@@ -230,6 +233,7 @@ class StagedFiles:
         self._pending: dict[Path, Path] = {}  # target -> its staged partial
         self._replaced: list[tuple[Path, Path | None]] = []  # target -> its old copy, or None
         self._made: list[Path] = []  # folders made for targets, deepest last
+        self._journal: Path | None = None  # the renames under way (``commit``)
 
     def write(self, path: str | os.PathLike[str], data: bytes | str) -> Path:
         """Stage ``data`` (text is UTF-8) for ``path``; ``path`` is not touched yet."""
@@ -243,6 +247,7 @@ class StagedFiles:
             except OSError as error:
                 raise OutputError(folder, error.strerror or str(error), directory=True) from error
             self._made.append(folder)
+        finish_killed_sets(target.parent)  # before its staged files count as dead partials
         remove_dead_partials(target)
         try:
             handle, partial = tempfile.mkstemp(
@@ -268,6 +273,15 @@ class StagedFiles:
         for target in self._pending:
             if target.is_dir():  # made meanwhile
                 raise OutputError(target, "it is a directory")
+        if not self._pending:
+            return
+        # Every file is staged whole: a run killed during the renames leaves this journal,
+        # and the next staged write into its folder finishes them (``finish_killed_sets``).
+        self._journal = _journal_path(next(iter(self._pending)).parent)
+        write_atomic(
+            self._journal,
+            json.dumps([[os.fspath(s), os.fspath(t)] for t, s in self._pending.items()]),
+        )
         while self._pending:
             target, staged = next(iter(self._pending.items()))
             old = None
@@ -286,9 +300,12 @@ class StagedFiles:
                 raise OutputError(target, error.strerror or str(error)) from error
             del self._pending[target]
             self._replaced.append((target, old))
+        self._journal.unlink(missing_ok=True)
 
     def roll_back(self) -> None:
         """Remove what is staged, put back the files replaced, remove the folders made."""
+        if self._journal is not None:
+            self._journal.unlink(missing_ok=True)
         for staged in self._pending.values():
             staged.unlink(missing_ok=True)
         self._pending.clear()
@@ -322,9 +339,10 @@ def staged_files() -> Iterator[StagedFiles]:
     ``write(path, data)``; when the block ends without an error they are put in place
     (``commit``, which the block may also call itself, to check the files in place);
     when the block or a rename fails, every file is as it was before the block. A kill
-    leaves partials beside the targets, which the next write of the same names removes
-    (a kill during the renames, which take no time to speak of, can leave part of the
-    set replaced)."""
+    before the renames leaves partials beside the targets, which the next write of the
+    same names removes: the old set stays. A kill during the renames leaves a journal of
+    them, and the next staged write into the first file's folder finishes them: the new
+    set is put in place whole."""
     staged = StagedFiles()
     try:
         yield staged
@@ -351,6 +369,38 @@ def scratch_directory(name: str) -> Iterator[Path]:
         yield folder
     finally:
         _remove(folder)
+
+
+def finish_killed_sets(folder: str | os.PathLike[str]) -> int:
+    """Finish the renames of the staged sets whose process was killed while making them
+    in ``folder`` (their journals): each file still staged goes to its target. Return how
+    many were put in place."""
+    count = 0
+    directory = Path(folder)
+    if not directory.is_dir():
+        return 0
+    for entry in sorted(directory.glob(f".{_JOURNAL}.*-journal{PARTIAL_SUFFIX}")):
+        match = _PARTIAL_NAME.match(entry.name)
+        if match is None or _alive(int(match["pid"])):
+            continue
+        try:
+            pairs = json.loads(entry.read_text())
+        except (OSError, ValueError):
+            pairs = []  # cut short while written: no rename had begun
+        for staged, target in pairs:
+            if os.path.lexists(staged):
+                try:
+                    os.replace(staged, target)
+                    count += 1
+                except OSError:
+                    pass  # left as a partial, which the next write removes
+            remove_dead_partials(target)  # the old copies kept to put back on a failure
+        entry.unlink(missing_ok=True)
+    return count
+
+
+def _journal_path(folder: Path) -> Path:
+    return folder / f".{_JOURNAL}.{os.getpid()}-journal{PARTIAL_SUFFIX}"
 
 
 def remove_dead_partials(path: str | os.PathLike[str]) -> int:

@@ -350,3 +350,44 @@ def test_a_huge_argument_is_shortened_in_the_error_but_a_long_path_is_kept(tmp_p
     missing = deep / "scene.json"
     assert main(["describe", str(missing)]) == 2
     assert str(missing) in capsys.readouterr().err
+
+
+KILLED_DURING_RENAMES = """
+import os, sys
+from scenewright.core import atomic
+
+replace, done = os.replace, []
+
+
+def replace_then_die(source, target):
+    replace(source, target)
+    if not str(target).endswith("-journal.partial"):  # a file of the set, not the journal
+        done.append(target)
+    if len(done) == 1:
+        os._exit(9)  # as a kill -9 after the set's first rename
+
+
+atomic.os.replace = replace_then_die
+with atomic.staged_files() as staged:
+    for name in ("a.rules", "a.context.json", "a.report.json"):
+        staged.write(os.path.join(sys.argv[1], name), "new " + name)
+"""
+
+
+def test_a_set_killed_during_its_renames_is_finished_by_the_next_staged_write(tmp_path):
+    """Between the first and the last rename of a staged set the old and the new files
+    stand side by side; the journal the renames leave lets the next run finish them."""
+    names = ("a.rules", "a.context.json", "a.report.json")
+    for name in names:
+        (tmp_path / name).write_text("old " + name)
+    done = subprocess.run([sys.executable, "-c", KILLED_DURING_RENAMES, str(tmp_path)])
+    assert done.returncode == 9
+    texts = {name: (tmp_path / name).read_text() for name in names}
+    assert texts == {"a.rules": "new a.rules", **{n: "old " + n for n in names[1:]}}
+    assert any(p.name.endswith("-journal.partial") for p in tmp_path.iterdir())
+    with staged_files() as staged:  # the next run writes its own file into the folder
+        staged.write(tmp_path / "other.txt", "next run")
+    assert {name: (tmp_path / name).read_text() for name in names} == {
+        name: "new " + name for name in names
+    }
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([*names, "other.txt"])
