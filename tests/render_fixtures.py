@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from scenewright.core.errors import GenerationError
@@ -141,3 +142,26 @@ def preview_and_glb(scene: Scene, path, width: int, height: int):
     renderer.close()
     scene.render = {"camera": preview.camera}  # the GLB's camera is the preview's
     return preview, export_glb(scene, path)
+
+
+def assert_preview_hues(picture, preview, tolerance: float = 0.06) -> None:
+    """In each object's region of ``preview`` (30 pixels or more, at least four of
+    them), ``picture``'s mean colour has the preview's hue (each of red, green and blue
+    the same share within ``tolerance``), is neither black nor blown out, and has no
+    black face (98 % of its pixels lit)."""
+    compared = 0
+    for k, entity_id in enumerate(preview.ids, start=1):
+        region = preview.segmentation == k
+        if region.sum() < 30:
+            continue
+        ours = picture[region].astype(float).mean(axis=0)
+        theirs = preview.colour[region].astype(float).mean(axis=0)
+        assert 25 < ours.mean() < 250, entity_id
+        assert (picture[region].max(axis=1) > 20).mean() > 0.98, entity_id
+        assert np.abs(ours / ours.sum() - theirs / theirs.sum()).max() < tolerance, (
+            entity_id,
+            ours,
+            theirs,
+        )
+        compared += 1
+    assert compared >= 4

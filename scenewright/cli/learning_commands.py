@@ -145,20 +145,7 @@ def add_commands(commands) -> None:
     fit.add_argument(
         "--seed", type=seed_value, default=0, help="seed of the context fit's layouts (0)"
     )
-    fit.add_argument(
-        "--rounds",
-        type=count_at_least(0, MAX_ROUNDS),
-        default=2,
-        metavar="N",
-        help="context: rounds of iterative scaling (2)",
-    )
-    fit.add_argument(
-        "--layouts",
-        type=count_at_least(1, MAX_LAYOUTS),
-        default=40,
-        metavar="N",
-        help="context: scenes laid out per round (40)",
-    )
+    context_fit_options(fit)
     allow_option(fit)
 
     relations = command(
@@ -231,14 +218,19 @@ def add_commands(commands) -> None:
         help="write no context: by default spatial priors are learned from the examples' layouts against the "
         "induced rules and written beside them as NAME.context.json, which generate uses",
     )
-    learn.add_argument(
+    context_fit_options(learn)
+
+
+def context_fit_options(parser: argparse.ArgumentParser) -> None:
+    """The options of a context's iterative scaling, which fit and learn share."""
+    parser.add_argument(
         "--rounds",
         type=count_at_least(0, MAX_ROUNDS),
         default=2,
         metavar="N",
         help="context: rounds of iterative scaling (2)",
     )
-    learn.add_argument(
+    parser.add_argument(
         "--layouts",
         type=count_at_least(1, MAX_LAYOUTS),
         default=40,
