@@ -14,7 +14,7 @@ CLIENTS := $(VENV)/.clients
 
 setup: $(STAMP)
 
-$(STAMP): pyproject.toml scripts/setup.sh
+$(STAMP): pyproject.toml scripts/setup.sh scripts/apt.sh
 	bash scripts/setup.sh
 	touch $(STAMP)
 

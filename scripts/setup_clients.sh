@@ -17,10 +17,7 @@ command -v xvfb-run >/dev/null || missing+=(xvfb)
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
-if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-  echo "setup: installing ${missing[*]} for the tests that open exported files in them"
-  { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null; } \
-    || echo "setup: warning: could not install ${missing[*]}; their tests will skip" >&2
-else
-  echo "setup: warning: missing ${missing[*]}; the tests that open exported files in them will skip" >&2
-fi
+# shellcheck source=scripts/apt.sh
+. scripts/apt.sh
+apt_install_or_warn "for the tests that open exported files in them" \
+  "the tests that open exported files in them will skip" "${missing[@]}"
