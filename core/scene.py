@@ -20,6 +20,7 @@ import numpy as np
 
 from . import VERSION
 from .frames import footprint_corners_many
+from .house import House
 from .poses import LayoutResult
 from .relations import Relation
 from .room import ROOM_KINDS, Room
@@ -139,6 +140,9 @@ class Scene:
     layout: LayoutStats = field(default_factory=LayoutStats)
     #: The walls, doors and windows of an indoor scene (``core.room``); None outdoors.
     room: Room | None = None
+    #: The floor plan of a house of several rooms (``core.house``); None for one room or
+    #: open ground. Its rooms' furniture is in ``objects``, ids ``ROOM/OBJECT``.
+    house: House | None = None
     ground: str = "grass"
     name: str = "scene"
     #: The folder of description templates the rule set brings (absolute path), which
@@ -208,13 +212,18 @@ class Scene:
         """The fields as plain data (``_plain``; floats rounded to ``digits`` when given),
         the room as its own dict, an absent ``completion`` left out, and the format's
         version: scene.json's content, in one pass over the scene."""
-        room = self.room.to_dict() if self.room is not None else None
+        own = {
+            "room": self.room.to_dict() if self.room is not None else None,
+            "house": self.house.to_dict() if self.house is not None else None,
+        }
         data = {
-            f.name: _plain(room if f.name == "room" else getattr(self, f.name), digits)
+            f.name: _plain(own[f.name] if f.name in own else getattr(self, f.name), digits)
             for f in fields(self)
         }
         if data["completion"] is None:
             del data["completion"]
+        if data["house"] is None:
+            del data["house"]
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
@@ -233,6 +242,7 @@ class Scene:
             relations=[build(Relation, r) for r in data.get("relations", [])],
             layout=build(LayoutStats, data.get("layout", {})),
             room=SceneParams.from_dict(data).room,
+            house=House.from_dict(data["house"]) if data.get("house") else None,
             ground=data.get("ground", "grass"),
             name=data.get("name", "scene"),
             templates=data.get("templates"),

@@ -42,6 +42,8 @@ STAGE_KEYS: dict[str, int] = {
     "relations": 6,
     "learn": 7,
     "context": 8,
+    "plan": 9,
+    "room": 10,
 }
 
 #: The largest seed accepted: seeds are stored in scene.json and file names as plain

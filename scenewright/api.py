@@ -151,6 +151,12 @@ def describe_scene(
 ) -> Scene:
     """``scene`` with its description (``describe``) and the time it took."""
     timings = dict(scene.timings)
+    if scene.house is not None:
+        from scenewright.house.describe import describe_house
+
+        with timed(timings, "describe"):
+            record = describe_house(scene, style=style, variant=variant)
+        return replace(scene, description=record, timings=timings)
     with timed(timings, "describe"):
         description = describe(
             scene, style=style, variant=variant, templates=templates, words=words
@@ -285,8 +291,50 @@ def generate(
     one it is given (``rules_context`` finds the one beside a rules file).
     """
     check_choice("style", style, STYLES)
+    if is_house_plan(rules):
+        return generate_house(rules, seed, style=style, variant=variant)  # type: ignore[arg-type]
     scene = build_scene(rules, seed, templates=checked_templates(templates), context=context)
     return describe_scene(scene, style=style, variant=variant, words=words)
+
+
+def is_house_plan(source: object) -> bool:
+    """Whether ``source`` names a house: a plan file (``plan NAME { ... }``, shipped or a
+    path) or a given floor plan (``.json``)."""
+    if not isinstance(source, (str, os.PathLike)):
+        return False
+    from scenewright.house import is_plan_file
+    from scenewright.house.given_plan import is_given_plan
+
+    return is_given_plan(source) or is_plan_file(source)
+
+
+def generate_house(
+    plan: str | os.PathLike[str],
+    seed: int = 0,
+    *,
+    style: str = "full",
+    variant: int = 0,
+    workers: int = 1,
+) -> Scene:
+    """A house of several rooms: the floor plan ``plan`` (a plan file's name or path, or a
+    given plan as ``.json``) drawn with ``seed``, each room furnished by its room type's
+    rule set (``workers`` processes lay rooms out side by side, with the same result), then
+    described. ``scene.house`` holds the plan; objects are named ``ROOM/OBJECT``."""
+    from scenewright.house import house_scene_from
+    from scenewright.house.describe import describe_house
+
+    check_choice("style", style, STYLES)
+    label = os.fspath(plan)
+    from scenewright.house import shipped_plans
+
+    if label not in shipped_plans():
+        label = str(Path(label).resolve())
+    timings: dict[str, float] = {}
+    with timed(timings, "layout"):
+        scene = house_scene_from(plan, seed, workers=workers, label=label)
+    with timed(timings, "describe"):
+        description = describe_house(scene, style=style, variant=variant)
+    return replace(scene, description=description, timings=timings)
 
 
 def compose(

@@ -34,6 +34,8 @@ examples:
   scenewright generate desk --no-render -o desk/
   scenewright generate city --seed 1 --words 800 -o city/   # 1,100-2,200 objects, a summary text
   scenewright generate market.rules --templates my_words/ -o market/
+  scenewright generate apartment --seed 3 -o flat/        # a house: a floor plan, each room furnished
+  scenewright generate my_plan.json -o mine/              # furnish a floor plan of your own
 
 writes scene.json (reproducible: no wall-clock times), timings.json, description.txt,
 preview.png (+ preview_depth.png/.npy/.json, preview_seg.png, preview_ids.json,
@@ -107,7 +109,9 @@ def add_commands(commands) -> None:
         "generate", "generate one scene with its description, images and files", run_generate
     )
     generate.add_argument(
-        "rules", help="shipped rule set name (see 'list') or path to a .rules file"
+        "rules",
+        help="shipped rule set or house plan name (see 'list'), a path to a .rules file, "
+        "or a floor plan as .json (a house whose rooms are furnished)",
     )
     generate.add_argument("--seed", type=seed_value, default=0, help="random seed (0)")
     generate.add_argument(
@@ -128,6 +132,13 @@ def add_commands(commands) -> None:
     )
     context_options(generate)
     allow_option(generate)
+    generate.add_argument(
+        "--workers",
+        type=int,
+        default=1,
+        metavar="N",
+        help="a house: lay out its rooms in N processes (the same scene whatever N; default 1)",
+    )
 
     layout = command(
         "layout", "lay a scene.json out again, keeping pinned objects where they are", run_layout
@@ -202,7 +213,7 @@ def add_commands(commands) -> None:
 
 
 def run_generate(args: argparse.Namespace) -> int:
-    from scenewright.api import generate
+    from scenewright.api import generate, generate_house, is_house_plan
     from scenewright.generator import load_rules
     from scenewright.scene_folder import check_scene_folder, write_scene
 
@@ -211,6 +222,19 @@ def run_generate(args: argparse.Namespace) -> int:
         raise InputError(
             "--camera places the preview's camera; it needs the preview (leave out --no-render)"
         )
+    if is_house_plan(args.rules):
+        scene = generate_house(
+            args.rules, args.seed, style=args.style, variant=args.variant, workers=args.workers
+        )
+        written = write_scene(
+            scene,
+            args.output,
+            render=args.render,
+            size=args.size,
+            view=args.view,
+            camera=args.camera,
+        )
+        return report_scene(args, written)
     rules = load_rules(args.rules, allow=args.allow_outside)
     context = chosen_context(args, rules)
     scene = generate(

@@ -1,0 +1,52 @@
+"""Houses: several rooms joined by doors, from a plan in the rules language or a given floor plan.
+
+``house_scene_from`` is the stage's entry: a plan file (``plan NAME { ... }``, read by
+``plan_language``) is drawn into room outlines (``floor_plan``), or a given plan
+(``given_plan``) supplies them; ``walls`` builds the house (walls, doors, windows, each
+room's own room); ``furnish`` lays each room out with its room type's rule set; and
+``assemble`` joins them into one scene. ``describe`` writes its text.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import TYPE_CHECKING
+
+from scenewright.core.seeds import check_seed, stream
+
+from .plan_language import is_plan_file, read_plan, shipped_plans
+
+if TYPE_CHECKING:
+    from scenewright.core.house import House
+    from scenewright.core.scene import Scene
+
+__all__ = ["house_of", "house_scene_from", "is_plan_file", "read_plan", "shipped_plans"]
+
+
+def house_of(source: str | os.PathLike[str], seed: int) -> House:
+    """The floor plan (no furniture) that ``seed`` draws from a plan file, or a given plan as it is."""
+    from .floor_plan import generate_outlines
+    from .given_plan import is_given_plan, read_given_plan
+    from .walls import build_house
+
+    if is_given_plan(source):
+        outlines = read_given_plan(source)
+    else:
+        outlines = generate_outlines(read_plan(source), seed)
+    return build_house(outlines, stream(seed, "plan", 1))
+
+
+def house_scene_from(
+    source: str | os.PathLike[str], seed: int, *, workers: int = 1, label: str | None = None
+) -> Scene:
+    """A furnished house scene (no text yet) from a plan file or a given plan."""
+    from pathlib import Path
+
+    from .assemble import house_scene
+    from .furnish import furnish
+
+    seed = check_seed(seed)
+    house = house_of(source, seed)
+    rooms = furnish(house, seed, workers=workers)
+    name = Path(os.fspath(source)).name.removesuffix(".rules").removesuffix(".json")
+    return house_scene(house, rooms, rules=label or os.fspath(source), seed=seed, name=name)
