@@ -55,6 +55,22 @@ def _corner(scene, obj) -> str:
     return ("north" if z < 0 else "south") + "-" + ("west" if x < 0 else "east")
 
 
+def _said_as(label: str, chosen: str | None) -> str:
+    """The label whose words the text uses for ``label``: a label that chooses its
+    direction is said in the words of the direction chosen, which are those of one fixed
+    label ("is just to the left of": BesideLeft, "is north of": NextToNorth); a seat is
+    said in its own words ("The chairs are at the table.")."""
+    spec = RELATIONS[label]
+    if not (spec.chooses and chosen) or spec.seat:
+        return label
+    words = spec.wordings_for(chosen)
+    return next(
+        other.name
+        for other in RELATIONS
+        if other.described and not other.chooses and other.wordings == words
+    )
+
+
 def _signatures(scene, relations) -> Counter:
     """Each relation as (A's type and style, label, B's type and style, or B's wall, or
     A's corner): what a description can say of it."""
@@ -69,8 +85,7 @@ def _signatures(scene, relations) -> Counter:
     for source, label, target, chosen in relations:
         if label.startswith("Implicit") or source not in objects:
             continue
-        if RELATIONS[label].chooses and chosen:  # said as the direction chosen
-            label = "NextTo" + chosen.capitalize()
+        label = _said_as(label, chosen)
         a = objects[source]
         what_a = kind(a)
         if label in ("AgainstWall",):

@@ -8,8 +8,8 @@ For each prompt (seed 1000 + its line number among the prompts):
 - relations held: every relation composing made of the prompt's words, measured again on
   the composed layout (``measure_layout``) rather than taken from the report;
 - contradictions: relations the composed scene's description states that contradict a
-  relation of the prompt (another wall than the one named, left for right, front for
-  behind, north for south, east for west);
+  relation of the prompt (another wall than the one named, left for right, close beside
+  or not, front for behind, north for south, east for west);
 - reported: every word of the prompt is either used or reported unused (no word is
   dropped silently).
 
@@ -30,16 +30,18 @@ from scenewright.generator.layout.pinning import scene_layout
 
 DEFAULT = Path(__file__).parent / "data" / "compose_prompts.tsv"
 _OPPOSITE = {
-    "NextToLeft": "NextToRight",
-    "NextToRight": "NextToLeft",
-    "NextToFront": "NextToBehind",
-    "NextToBehind": "NextToFront",
-    "NextToNorth": "NextToSouth",
-    "NextToSouth": "NextToNorth",
-    "NextToEast": "NextToWest",
-    "NextToWest": "NextToEast",
-    "FacingTowards": "FacingAwayFrom",
-    "FacingAwayFrom": "FacingTowards",
+    "NextToLeft": {"NextToRight", "BesideRight"},
+    "NextToRight": {"NextToLeft", "BesideLeft"},
+    "BesideLeft": {"NextToRight", "BesideRight"},
+    "BesideRight": {"NextToLeft", "BesideLeft"},
+    "NextToFront": {"NextToBehind"},
+    "NextToBehind": {"NextToFront"},
+    "NextToNorth": {"NextToSouth"},
+    "NextToSouth": {"NextToNorth"},
+    "NextToEast": {"NextToWest"},
+    "NextToWest": {"NextToEast"},
+    "FacingTowards": {"FacingAwayFrom"},
+    "FacingAwayFrom": {"FacingTowards"},
 }
 
 
@@ -51,7 +53,7 @@ def _contradictions(scene, facts) -> int:
         for r in asked:
             if r.source != source:
                 continue
-            if _OPPOSITE.get(r.label) == label and r.target == target:
+            if label in _OPPOSITE.get(r.label, ()) and r.target == target:
                 count += 1
             elif (
                 r.label == label == "AgainstWall"

@@ -15,9 +15,11 @@ Every word is either used or reported (``Issue``), with its character span.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 
+from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.describer.colours import COLOUR_TERMS
 
 from .vocabulary import (
@@ -43,7 +45,6 @@ _SIDES_OF = (
     "both sides of",
     "at each side of",
     "flanking",
-    "flanked by",
 )
 _AROUND = ("around", "round", "surrounding", "about")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
@@ -391,6 +392,8 @@ class _Reader:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides", None, len(words)
+        if [t.low for t in toks[i : i + 2]] == ["flanked", "by"]:  # the passive
+            return "flanked", None, 2
         k = i
         if toks[k].low in ("is", "are", "stands", "stand", "sits", "sit") and k + 1 < len(toks):
             k += 1
@@ -605,15 +608,18 @@ class _Reader:
         targets: list[str] = value
         if how == "in":
             return self._unused(toks, start, end, "no relation says 'in' of furniture")
-        if how == "sides":
-            subs = list(subjects)
+        if how in ("sides", "flanked"):
+            # paired furniture close on each side (a nightstand by the bed's head): the
+            # close labels, which make the 2 m "to the left of" true as well
+            subs, middle = (targets, subjects[0]) if how == "flanked" else (subjects, targets[0])
+            subs = list(subs)
             if len(subs) == 1:
                 e = self.entity(subs[0])
                 sense = NounSense(e.type, e.style, False)
                 subs.append(self.create(sense, e.colour, [toks[start]]))
             for k, s in enumerate(subs):
-                add(s, ("NextToLeft", "NextToRight")[k % 2], targets[0])
-                add(s, "ImplicitAlignedWith", targets[0])
+                add(s, ("BesideLeft", "BesideRight")[k % 2], middle)
+                add(s, "ImplicitAlignedWith", middle)
             return
         if how == "around":
             sides = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
@@ -626,14 +632,12 @@ class _Reader:
         ]
         if not object_labels:
             return self._unused(toks, start, end, "this relation takes a wall, window or corner")
-        from scenewright.core.relations import RELATIONS
-
-        # Of labels worded alike ("to the right of": NextToRight, BesideRight), the one
-        # with the layout's own reach: the words promise no more than that.
-        label = min(
-            object_labels,
-            key=lambda x: (len(RELATIONS[x].directions), RELATIONS[x].reach is not None, x),
-        )
+        # The shipped labels' words name one label each (a label that chooses its
+        # direction is worded by a label of its own, "is just to the left of":
+        # BesideLeft). Should a registered label share words with another, the
+        # narrowest is taken (one direction, then the shortest reach): it makes the
+        # broader one true as well, so the scene holds whichever the words meant.
+        label = min(object_labels, key=lambda x: (_breadth(RELATIONS[x]), x))
         for s in subjects:
             for t in targets:
                 if s != t:
@@ -644,6 +648,11 @@ class _Reader:
             if w.low not in FUNCTION_WORDS:
                 w.used = False
                 w.note = why
+
+
+def _breadth(spec: RelationLabel) -> tuple[int, float]:
+    """How much a relation label allows: its directions, then its reach (metres)."""
+    return len(spec.directions), math.inf if spec.reach is None else spec.reach
 
 
 def parse(text: str, vocab: Vocabulary) -> Request:

@@ -246,6 +246,11 @@ def _relation_phrases() -> dict[str, RelationSense]:
         spec = RELATIONS[name]
         if not spec.described:
             continue
+        # A label that chooses its direction is stated in the words of the direction
+        # chosen, which belong to a label of their own ("is just to the left of":
+        # BesideLeft), or as plain "next to" (NextTo's): it has no phrase of its own.
+        if spec.chooses and not spec.seat:
+            continue
         wordings = list(relation_wordings(name))
         for wording in wordings:
             verb, _, rest = wording.partition(" ")
@@ -266,9 +271,10 @@ def _relation_phrases() -> dict[str, RelationSense]:
                 found.setdefault((phrase, plural, bare), []).append(name)
     out: dict[str, RelationSense] = {}
     for (phrase, plural, bare), labels in sorted(found.items()):
-        if phrase in out:  # "against" from both "stands against" and "is against"
-            labels = sorted(set(labels) | set(out[phrase].labels))
-        out[phrase] = RelationSense(tuple(labels), plural, bare)
+        if phrase in out:  # "beside" after a noun: NextTo's "is beside" or BesideWindow's
+            labels = labels + list(out[phrase].labels)
+        # "against" comes from both "stands against" and "is against": one label once
+        out[phrase] = RelationSense(tuple(sorted(set(labels))), plural, bare)
     return out
 
 

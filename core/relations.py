@@ -21,6 +21,9 @@ everything the stages need to know about it, so no stage routes on label spellin
   ``reach``: the largest gap (metres) between A and B at which the label holds; None
   for the layout's general next-to distance (2 m, the paper's). ``seat``: A is a seat
   used at B's side (a chair at a desk): it also faces B, square to that side.
+  ``direction_wordings``: the words of each direction a label that chooses may take
+  (default ``DIRECTION_WORDINGS``; the close ``Beside`` says "just to the left of", its
+  own words, so a reader can tell it from the 2 m ``NextToChooseSide``).
 - ``alignment``: A parallel to B with one face flush (no parameters).
 - ``phrase``: how the layout report names it ("north of"); ``wordings``: the verb
   phrases the describer may use (canonical first); ``place``: the wording says where A
@@ -74,6 +77,14 @@ DIRECTION_WORDINGS: dict[str, tuple[str, ...]] = {
     "behind": ("is behind",),
 }
 
+#: How the describer words the sides of a close label (``Beside*``, within
+#: ``BESIDE_REACH``): "just to the left of" says both the side and that A is close, and
+#: no other label shares these words, so composing reads them back as that label.
+CLOSE_DIRECTION_WORDINGS: dict[str, tuple[str, ...]] = {
+    "left": ("is just to the left of", "is immediately to the left of"),
+    "right": ("is just to the right of", "is immediately to the right of"),
+}
+
 #: How the layout report names each direction ("north of").
 DIRECTION_PHRASES: dict[str, str] = {
     **{d: f"{d} of" for d in COMPASS},
@@ -106,6 +117,8 @@ class RelationLabel:
     wall: str | None = None  # wall labels: against, corner, under_window, beside_window
     reach: float | None = None  # next_to labels: the gap they hold within (None: the layout's)
     seat: bool = False  # next_to labels: A is a seat at B's side, facing it squarely
+    # next_to labels that choose: the words for each direction (None: DIRECTION_WORDINGS)
+    direction_wordings: Mapping[str, tuple[str, ...]] | None = None
     place: bool = False
     symmetric: bool = False
     part_of: bool = False  # a support label worded as belonging ("is part of")
@@ -145,10 +158,16 @@ class RelationLabel:
 
     def wordings_for(self, chosen: str | None = None) -> tuple[str, ...]:
         """The verb phrases that state this label (canonical first); a label that chooses
-        its direction is worded by the direction chosen, or as plain "next to"."""
+        its direction is worded by the direction chosen (in ``direction_wordings``), or
+        as plain "next to", which every next-to label implies."""
         if self.chooses and not self.seat:
-            return DIRECTION_WORDINGS.get(chosen or "", _NEXT_TO_WORDINGS)
+            return self.side_wordings.get(chosen or "", _NEXT_TO_WORDINGS)
         return self.wordings
+
+    @property
+    def side_wordings(self) -> Mapping[str, tuple[str, ...]]:
+        """The words for each direction this label may choose."""
+        return DIRECTION_WORDINGS if self.direction_wordings is None else self.direction_wordings
 
 
 @dataclass(frozen=True)
@@ -263,7 +282,7 @@ def _check_complete(label: RelationLabel) -> None:
     for name, (x, z) in label.directions.items():
         if abs(math.hypot(x, z) - 1.0) > 1e-9:
             problems.append(f"direction {name!r} is not a unit vector")
-        if label.chooses and name not in DIRECTION_WORDINGS:
+        if label.chooses and not label.seat and name not in label.side_wordings:
             problems.append(f"direction {name!r} has no wording")
     if problems:
         raise ValueError(f"relation label {label.name!r} is incomplete: " + "; ".join(problems))
@@ -312,7 +331,12 @@ SEAT_SQUARE_TOLERANCE = math.radians(10.0)
 #: paired furniture close beside its partner.
 FURNITURE_LABELS: tuple[RelationLabel, ...] = (
     _next_to(
-        "SeatedAt", "at", ("is at", "is drawn up to"), ("front",), reach=SEAT_REACH, seat=True
+        "SeatedAt",
+        "at",
+        ("is pulled up to", "is drawn up to"),
+        ("front",),
+        reach=SEAT_REACH,
+        seat=True,
     ),
     _next_to(
         "SeatedAtBack",
@@ -330,14 +354,25 @@ FURNITURE_LABELS: tuple[RelationLabel, ...] = (
         reach=SEAT_REACH,
         seat=True,
     ),
-    _next_to("Beside", "beside", (), ("left", "right"), reach=BESIDE_REACH),
     _next_to(
-        "BesideLeft", "to the left of", DIRECTION_WORDINGS["left"], ("left",), reach=BESIDE_REACH
+        "Beside",
+        "beside",
+        (),
+        ("left", "right"),
+        reach=BESIDE_REACH,
+        direction_wordings=CLOSE_DIRECTION_WORDINGS,
+    ),
+    _next_to(
+        "BesideLeft",
+        "to the left of",
+        CLOSE_DIRECTION_WORDINGS["left"],
+        ("left",),
+        reach=BESIDE_REACH,
     ),
     _next_to(
         "BesideRight",
         "to the right of",
-        DIRECTION_WORDINGS["right"],
+        CLOSE_DIRECTION_WORDINGS["right"],
         ("right",),
         reach=BESIDE_REACH,
     ),

@@ -13,6 +13,7 @@ another stage drew, and no two streams coincide:
     relations test k     (6, k)      the tests of type pair k (``learning.relation_finding``)
     learn check k        (7, k)      scene k made from induced rules (``learning.learn``)
     context layout k     (8, k)      layout k of a context fit's iterative scaling (``learning.context``)
+    prompt               (9, 0)      which prompt a dataset scene composes (``dataset --prompts``)
     stage ``name``       (STAGE_KEYS[name], k) for later stages
 
 Public functions take ``seed: int | numpy.random.Generator | None``, as numpy and
@@ -42,8 +43,9 @@ STAGE_KEYS: dict[str, int] = {
     "relations": 6,
     "learn": 7,
     "context": 8,
-    "plan": 9,
-    "room": 10,
+    "prompt": 9,
+    "plan": 10,
+    "room": 11,
 }
 
 #: The largest seed accepted: seeds are stored in scene.json and file names as plain

@@ -38,9 +38,10 @@ def test_the_bedroom_request_reads_into_things_and_relations():
     said = {(s.source, s.label, s.target) for s in request.statements}
     assert (bed.id, "AgainstWall", Place("wall", 1)) in said
     nightstands = [e.id for e in request.entities if e.type == "nightstand"]
-    assert {(n, lab) for n, lab, t in said if t == bed.id and lab.startswith("NextTo")} == {
-        (nightstands[0], "NextToLeft"),
-        (nightstands[1], "NextToRight"),
+    # "on each side of": close beside it (which makes "to the left of" true as well)
+    assert {(n, lab) for n, lab, t in said if t == bed.id and lab.startswith("Beside")} == {
+        (nightstands[0], "BesideLeft"),
+        (nightstands[1], "BesideRight"),
     }
     desk = next(e for e in request.entities if e.type == "desk")
     assert (desk.id, "UnderWindow", Place("window")) in said
@@ -94,6 +95,44 @@ def test_people_s_phrases_counts_sizes_and_absence():
 def test_a_contradicted_absence_is_reported():
     request, _ = _plan("a room with a rug and no rug")
     assert any("contradicts" in i.message for i in request.issues)
+
+
+def test_flanked_by_puts_what_follows_on_each_side_of_the_subject():
+    request, _ = _plan("a bed flanked by two nightstands")
+    assert _types(request) == ["bed", "nightstand", "nightstand"]
+    ids = {e.id: e.type for e in request.entities}
+    said = {(ids[s.source], s.label, ids[s.target]) for s in request.statements}
+    assert ("nightstand", "BesideLeft", "bed") in said
+    assert ("nightstand", "BesideRight", "bed") in said
+    assert not request.issues
+
+
+@pytest.mark.parametrize(
+    ("sentence", "label"),
+    [
+        ("The nightstand is just to the left of the bed.", "BesideLeft"),
+        ("The nightstand is immediately to the right of the bed.", "BesideRight"),
+        ("The nightstand is to the left of the bed.", "NextToLeft"),
+        ("The chair is pulled up to the desk.", "SeatedAt"),
+        ("The chair is drawn up to the desk.", "SeatedAt"),
+        ("The chair is at the back of the desk.", "SeatedAtBack"),
+        ("The chairs are at the dining table.", "SeatedAround"),
+        ("The chair is next to the desk.", "NextTo"),
+    ],
+)
+def test_each_wording_reads_as_the_one_label_the_describer_words_so(sentence, label):
+    request, _ = _plan(sentence)
+    assert {s.label for s in request.statements} == {label}
+    assert not request.issues
+
+
+def test_every_phrase_names_one_label_for_each_kind_of_object():
+    """No two labels share words for the same kind of object (a thing, a wall, a
+    window), so a description reads back as the labels it was made from."""
+    for phrase, sense in relation_phrases().items():
+        for_things = [x for x in sense.labels if RELATIONS[x].family != "wall"]
+        for_windows = [x for x in sense.labels if x.endswith("Window")]
+        assert len(for_things) <= 1 and len(for_windows) <= 1, (phrase, sense.labels)
 
 
 def test_a_label_registered_with_new_words_is_understood_without_the_parser():
@@ -242,3 +281,36 @@ def test_the_plain_noun_names_the_plain_style_before_another():
     styles = {e.id: e.style for e in request.entities}
     [said] = request.statements
     assert (styles[said.source], said.label, styles[said.target]) == ("tall", "NextToRight", "low")
+
+
+@pytest.mark.parametrize("rules_name", ["bedroom", "kitchen", "study"])
+def test_close_furniture_described_reads_back_close(rules_name):
+    """A nightstand just to the left of the bed, chairs at the table, a chair pulled up
+    to the desk: composed from the describer's text, each stands so again, measured
+    anew from the composed poses."""
+    from collections import Counter
+
+    from scenewright.api import build_scene, compose, describe
+    from scenewright.generator import load_rules
+    from scenewright.generator.layout.measure import measure_layout
+    from scenewright.generator.layout.pinning import scene_layout
+
+    close = {"BesideLeft", "BesideRight", "SeatedAt", "SeatedAtBack", "SeatedAround"}
+    rules = load_rules(rules_name)
+    source = build_scene(rules, 1000)
+    description = describe(source, style="full")
+    kind = {o.id: o.type for o in source.objects}
+    stated = Counter(
+        (kind[a], label, kind[b]) for a, label, b in description.facts if label in close
+    )
+    assert stated, description.text
+    composed, report = compose(description.text, 1000, catalog=rules)
+    assert not report.unused
+    measured = measure_layout(composed.graph(), *scene_layout(composed))
+    kind = {o.id: o.type for o in composed.objects}
+    held = Counter(
+        (kind[r.source], r.label, kind[r.target])
+        for r in measured.relations
+        if r.satisfied and r.label in close
+    )
+    assert not stated - held, (description.text, stated - held)

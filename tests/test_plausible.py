@@ -99,8 +99,18 @@ def test_every_label_has_its_documented_reach():
         assert RELATIONS[name].reach == 0.15
     for name in ("SeatedAt", "SeatedAtBack", "SeatedAround"):
         assert RELATIONS[name].reach == 0.35 and RELATIONS[name].seat
+
+
+def test_the_close_labels_have_words_of_their_own():
+    """ "just to the left of" says the nightstand is close; "to the left of" (within
+    2 m) stays NextToLeft's, so text read back gives the label it was made from."""
     assert RELATIONS["SeatedAround"].wordings_for("left") == ("is at",)
-    assert RELATIONS["Beside"].wordings_for("left") == ("is to the left of",)
+    assert RELATIONS["SeatedAt"].wordings[0] == "is pulled up to"
+    assert RELATIONS["Beside"].wordings_for("left") == RELATIONS["BesideLeft"].wordings
+    assert RELATIONS["BesideLeft"].wordings[0] == "is just to the left of"
+    assert RELATIONS["BesideRight"].wordings[0] == "is just to the right of"
+    assert RELATIONS["Beside"].wordings_for(None) == RELATIONS["NextTo"].wordings
+    assert not set(RELATIONS["BesideLeft"].wordings) & set(RELATIONS["NextToLeft"].wordings)
 
 
 @pytest.mark.parametrize("seed", [1, 2])

@@ -45,6 +45,7 @@ examples:
   scenewright dataset my_town.rules -n 500 -o data/town --retries 6 --include-failed
   scenewright dataset bedroom -n 500 -o data/bedroom --no-images
   scenewright dataset fitted/dining.rules -n 1000 -o data/dining   # with fitted/dining.context.json
+  scenewright dataset --prompts rooms.txt -n 500 -o data/requests --no-images
 
 Scene i uses the seed SeedSequence([SEED, i]).generate_state(1)[0], so the output is the
 same bytes whatever the number of workers. Rerunning the same command resumes an
@@ -79,7 +80,18 @@ def add_commands(commands) -> None:
     dataset = command(
         "dataset", "generate N scenes as a Hugging Face imagefolder dataset", run_dataset
     )
-    dataset.add_argument("rules", help="shipped rule set name or path to a .rules file")
+    dataset.add_argument(
+        "rules",
+        nargs="?",
+        help="shipped rule set name or path to a .rules file (with --prompts: optional, the rule set "
+        "whose catalog the prompts may name besides the shipped indoor one)",
+    )
+    dataset.add_argument(
+        "--prompts",
+        metavar="FILE",
+        help="compose each scene from one request in English drawn from FILE (one a line, # a comment) "
+        "with the scene's seed, as `compose` does; the rows record the prompt and its used and unused spans",
+    )
     dataset.add_argument(
         "-n",
         "--count",
@@ -297,11 +309,19 @@ def run_dataset(args: argparse.Namespace) -> int:
             "they cannot be made with --no-images"
         )
     cameras = dataset_cameras(args)
-    rules = load_rules(args.rules)
-    context = chosen_context(args, rules)
+    if args.rules is None and args.prompts is None:
+        raise InputError("give a rule set, or --prompts FILE to compose the scenes from")
+    rules = load_rules(args.rules) if args.rules is not None else None
+    if args.prompts is not None and (args.context is not None or args.no_context):
+        raise InputError(
+            "--context and --no-context are for a rule set's scenes; "
+            "scenes composed from --prompts are laid out without a learned context"
+        )
+    context = chosen_context(args, rules) if args.prompts is None else None
     spec = dataset_spec(
         rules,
         args.count,
+        prompts=args.prompts,
         context=context[0] if context is not None else None,
         base_seed=args.seed,
         captions=args.captions,

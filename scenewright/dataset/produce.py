@@ -26,12 +26,13 @@ from __future__ import annotations
 
 import threading
 from collections import Counter
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 from time import process_time
 from typing import TYPE_CHECKING
 
 from scenewright.api import (
     build_scene,
+    compose,
     describe,
     render_scene,
     reproducible_json,
@@ -40,11 +41,12 @@ from scenewright.api import (
 )
 from scenewright.core.errors import InputError, ScenewrightError
 from scenewright.core.scene import Scene
-from scenewright.core.seeds import retry_seed
+from scenewright.core.seeds import retry_seed, stream
 from scenewright.dataset.spec import (
     DatasetSpec,
     SceneProduct,
     file_digest,
+    read_prompts,
     scene_seed,
     scene_stem,
 )
@@ -108,9 +110,10 @@ class WorkerContext:
     """What a worker builds once and reuses for every scene it makes."""
 
     settings: dict
-    rules: Rules
+    rules: Rules | None  # None: scenes composed from prompts with the indoor catalog alone
     renderer: Renderer | None  # None for a dataset without images
     context: LearnedContext | None = None  # the learned context layouts sample with
+    prompts: tuple[str, ...] = ()  # a prompts dataset's requests
 
 
 _per_thread = threading.local()
@@ -127,7 +130,11 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
             context.renderer.close()
         renderer = Renderer(*spec.size) if spec.images else None
         context = WorkerContext(
-            spec.settings(), load_rules(spec.rules), renderer, spec_context(spec)
+            spec.settings(),
+            load_rules(spec.rules) if spec.rules else None,
+            renderer,
+            spec_context(spec),
+            spec_prompts(spec),
         )
         _per_thread.context = context
     return context
@@ -147,6 +154,16 @@ def spec_context(spec: DatasetSpec) -> LearnedContext | None:
     return read_context(spec.context)
 
 
+def spec_prompts(spec: DatasetSpec) -> tuple[str, ...]:
+    """The prompts ``spec`` names, read once per worker (none without); an
+    ``InputError`` when their file changed since the dataset was set up."""
+    if spec.prompts is None:
+        return ()
+    if file_digest(spec.prompts) != spec.prompts_digest:
+        raise InputError(f"{spec.prompts}: the prompts changed since this dataset was set up")
+    return read_prompts(spec.prompts)
+
+
 def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     """Make scene ``index`` of ``spec``: its files (images of each view, scene.json) and
     its record."""
@@ -154,9 +171,13 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
     seed = scene_seed(spec.base_seed, index)
     stem = scene_stem(index)
     cpu: dict[str, float] = {}  # CPU seconds per stage (scene.timings are wall clock)
+    recorded: dict = {}  # what the rows record beyond the layout's tries
     try:
         with timed(cpu, "layout", process_time):
-            scene, tried = laid_out_scene(context, spec, seed)
+            if context.prompts:
+                scene, tried, recorded = composed_scene(context, spec, seed)
+            else:
+                scene, tried = laid_out_scene(context, spec, seed)
     except ScenewrightError as error:  # the rules fail for this seed (an expansion past its bounds)
         return SceneProduct(index, seed, False, {}, None, {"error": stage_error(error)})
     if not scene.layout.ok and not spec.include_failed:
@@ -170,11 +191,11 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         text = full if spec.text_words is None else describe(scene, words=spec.text_words)
     scene = replace(scene, description=full.record())
     if not spec.images:
-        return text_product(spec, index, seed, scene, text.text, tried, cpu)
+        return text_product(spec, index, seed, scene, text.text, tried, cpu, recorded)
     pictures, renders = [], []
     for view in range(spec.views):
         scene, picture = view_picture(
-            context, spec, scene, text, ViewName(stem, view, seed, tried), cpu
+            context, spec, scene, text, ViewName(stem, view, seed, tried, recorded), cpu
         )
         pictures.append(picture)
         renders.append(scene.render)
@@ -200,6 +221,7 @@ class ViewName:
     view: int
     seed: int
     tried: dict
+    recorded: dict = field(default_factory=dict)  # the prompt columns of a prompts dataset
 
     def image_stem(self, views: int) -> str:
         """The stem of the view's images: the scene's with one view per scene, else
@@ -276,7 +298,8 @@ def view_picture(
     row["scene_id"] = name.stem
     if spec.camera is not None:
         row["view"] = name.view
-    row.update(seed=name.seed, **name.tried, rules=spec.rules, ok=scene.layout.ok)
+    row.update(seed=name.seed, **name.tried, rules=row_rules(spec), ok=scene.layout.ok)
+    row.update(name.recorded)
     row["camera"] = camera_column(result.camera)
     if spec.boxes_3d and result.ground_truth is not None:
         row["objects_3d"] = result.ground_truth["objects"]
@@ -292,10 +315,11 @@ def text_product(
     text: str,
     tried: dict,
     cpu: dict[str, float],
+    recorded: dict | None = None,
 ) -> SceneProduct:
     """Scene ``index`` of a dataset without images: its scene.json and its description
     (``text``: the full one, or within ``spec.text_words``), and a row naming both (no
-    picture, so no captions)."""
+    picture, so no captions); ``recorded``: further columns (a prompt's)."""
     stem = scene_stem(index)
     files = {
         f"scenes/{stem}.json": reproducible_json(scene).encode(),
@@ -308,8 +332,9 @@ def text_product(
         "scene_id": stem,
         "seed": seed,
         **tried,
-        "rules": spec.rules,
+        "rules": row_rules(spec),
         "ok": scene.layout.ok,
+        **(recorded or {}),
     }
     return SceneProduct(
         index, seed, scene.layout.ok, files, row, {**scene_stats(scene, [text], cpu), **tried}
@@ -381,6 +406,53 @@ def laid_out_scene(context: WorkerContext, spec: DatasetSpec, seed: int) -> tupl
         "layout_seed": layout_seed,
         "attempts": attempt + 1,
     }
+
+
+def composed_scene(
+    context: WorkerContext, spec: DatasetSpec, seed: int
+) -> tuple[Scene, dict, dict]:
+    """The scene of ``seed`` in a prompts dataset: one prompt drawn with the scene's
+    ``prompt`` stream, composed (``api.compose``, with the rule set's catalog) with the
+    scene's seed and, while its layout is not ok, with ``retry_seed(seed, 1..retries)``
+    (each compose lays out up to ``composer.compose.ATTEMPTS`` times). Returns the scene,
+    its ``layout_seed`` and ``attempts`` (composes tried), and the prompt's columns:
+    ``prompt``, ``prompt_index`` (its place among the file's prompts, from 0),
+    ``prompt_used`` (the character spans used, [start, end)) and ``prompt_unused`` (each
+    word or phrase not used: its span, text and message)."""
+    index = int(stream(seed, "prompt").integers(len(context.prompts)))
+    prompt = context.prompts[index]
+    spent: Counter = Counter()
+    for attempt in range(spec.retries + 1):
+        layout_seed = retry_seed(seed, attempt)
+        scene, report = compose(
+            prompt,
+            layout_seed,
+            catalog=context.rules,
+            templates=spec.templates,
+            rules_label=row_rules(spec),
+        )
+        spent.update(scene.timings)
+        if scene.layout.ok:
+            break
+    columns = {
+        "prompt": prompt,
+        "prompt_index": index,
+        "prompt_used": [list(span) for span in report.used],
+        "prompt_unused": [
+            {"start": i.start, "end": i.end, "text": i.text, "message": i.message}
+            for i in report.unused
+        ],
+    }
+    tried = {"layout_seed": layout_seed, "attempts": attempt + 1}
+    return replace(scene, timings=dict(spent)), tried, columns
+
+
+def row_rules(spec: DatasetSpec) -> str:
+    """The row's ``rules`` column: the rule set, or ``composed`` for a prompts dataset
+    (as its scene.json says; the rule set whose catalog it may name is in dataset.json)."""
+    from scenewright.composer.compose import RULES_LABEL
+
+    return RULES_LABEL if spec.prompts is not None else spec.rules
 
 
 def stage_error(error: ScenewrightError) -> dict:

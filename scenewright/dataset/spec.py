@@ -72,7 +72,11 @@ class DatasetSpec:
     contexts. ``depth``: each image's depth as a 16-bit PNG (its unit in the row's
     ``depth_scale``) and as float32 metres (``.npy``); ``normals``: a surface normals
     image per view; ``boxes_3d``: the row's ``objects_3d`` column (each entity's pose
-    and 3D box in the camera frame, ``render.ground_truth``).
+    and 3D box in the camera frame, ``render.ground_truth``). ``prompts``: the absolute
+    path of a prompts file (one request in English a line): each scene composes one of
+    them, drawn with the scene's ``prompt`` stream (``composer``), and ``rules`` is then
+    the rule set whose catalog the prompts may name besides the shipped indoor one
+    (``""`` for none); ``prompts_digest`` a hash of the file's text.
     """
 
     rules: str
@@ -98,6 +102,8 @@ class DatasetSpec:
     context_digest: str | None = None
     normals: bool = False
     boxes_3d: bool = False
+    prompts: str | None = None
+    prompts_digest: str | None = None
 
     def settings(self) -> dict:
         """The fixed part, as stored in ``dataset.json`` (tuples as lists, as JSON reads
@@ -112,7 +118,11 @@ class DatasetSpec:
 
 
 #: Options stored in ``dataset.json`` only when on (``DatasetSpec.settings``).
-LATER_OPTIONS = ("normals", "boxes_3d")
+LATER_OPTIONS = ("normals", "boxes_3d", "prompts", "prompts_digest")
+
+#: The most prompts a prompts file may hold, and the longest prompt (characters).
+MAX_PROMPTS = 100_000
+MAX_PROMPT_CHARS = 2_000
 
 
 def dataset_spec(
@@ -121,30 +131,53 @@ def dataset_spec(
     *,
     templates: str | os.PathLike[str] | None = None,
     context: str | os.PathLike[str] | None = None,
+    prompts: str | os.PathLike[str] | None = None,
     **settings,
 ) -> DatasetSpec:
-    """The spec for ``count`` scenes of a rule set (name, path or loaded Rules).
+    """The spec for ``count`` scenes of a rule set (name, path or loaded Rules), or of
+    the requests in a ``prompts`` file (``rules`` then the rule set whose catalog they
+    may name, or None for the shipped indoor catalog alone).
 
     Loads (and so checks) the rules and the description templates the scenes will use
     (``templates``, else the rule set's own), names the rules as scene.json does, and
     hashes their text. ``context`` is a learned context file to lay every scene out
     with (read, so checked, and hashed; ``api.rules_context`` finds the one beside the
-    rules). ``settings`` are the other ``DatasetSpec`` fields; without images there is
-    no COCO file, and several views or camera ranges are an ``InputError``.
+    rules). ``prompts`` is read (``read_prompts``) and hashed. ``settings`` are the
+    other ``DatasetSpec`` fields; without images there is no COCO file, and several
+    views or camera ranges are an ``InputError``.
     """
     from scenewright.api import checked_templates, load_rules, rules_context, rules_label
 
-    loaded = load_rules(rules)
-    if templates is None:
-        checked_templates(loaded.params.templates)  # a broken one stops the run before any work
-    else:
-        templates = checked_templates(templates)
     if not settings.get("images", True):
         if settings.get("views", 1) > 1 or settings.get("camera") is not None:
             raise InputError(
                 "--views and the camera options are for images: they cannot be used with --no-images"
             )
         settings["coco"] = False  # no picture, nothing to annotate
+    if prompts is not None:
+        if context is not None:
+            raise InputError(
+                "--context is for a rule set's scenes; scenes composed from prompts are laid out without one"
+            )
+        read_prompts(prompts)
+        # each composed scene names its own types (a second look is TYPE_2): no one
+        # list of COCO categories covers them
+        settings.update(
+            prompts=str(Path(prompts).resolve()), prompts_digest=file_digest(prompts), coco=False
+        )
+        if rules is None:
+            return DatasetSpec(
+                rules="",
+                rules_digest="",
+                count=count,
+                templates=checked_templates(templates),
+                **settings,
+            )
+    loaded = load_rules(rules)
+    if templates is None:
+        checked_templates(loaded.params.templates)  # a broken one stops the run before any work
+    else:
+        templates = checked_templates(templates)
     digest = file_digest(loaded.path)
     if context is not None:
         path, _ = rules_context(loaded, context)  # an InputError for a file that is not a context
@@ -152,6 +185,32 @@ def dataset_spec(
     return DatasetSpec(
         rules=rules_label(loaded), rules_digest=digest, count=count, templates=templates, **settings
     )
+
+
+def read_prompts(path: str | os.PathLike[str]) -> tuple[str, ...]:
+    """The prompts of a prompts file: its lines that are not blank and do not start with
+    ``#``, stripped. An ``InputError`` for a file that cannot be read as UTF-8, that
+    holds no prompt, more than ``MAX_PROMPTS`` or one longer than ``MAX_PROMPT_CHARS``."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        reason = getattr(error, "strerror", None) or "not UTF-8 text"
+        raise InputError(f"{path}: cannot read the prompts: {reason}") from None
+    prompts = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        if len(line) > MAX_PROMPT_CHARS:
+            raise InputError(
+                f"{path}:{number}: a prompt of {len(line)} characters; at most {MAX_PROMPT_CHARS}"
+            )
+        prompts.append(line)
+        if len(prompts) > MAX_PROMPTS:
+            raise InputError(f"{path}: more than {MAX_PROMPTS} prompts")
+    if not prompts:
+        raise InputError(f"{path}: no prompt in it (one request a line; # starts a comment)")
+    return tuple(prompts)
 
 
 def file_digest(path: str | os.PathLike[str]) -> str:
