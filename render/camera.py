@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 
 from scenewright.core.errors import InputError
-from scenewright.core.house import House
+from scenewright.core.house import House, room_of
 from scenewright.core.limits import MAX_COORDINATE, MAX_SIZE
 from scenewright.core.room import WALL_THICKNESS, Room, Wall
 from scenewright.core.scene import Scene, object_corners
@@ -196,7 +196,14 @@ def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
 
 def entity_points(scene: Scene, entity_id: str) -> np.ndarray:
     """World points (N, 3) of one entity's extent: an object's or junction's box, a
-    path's ribbon, a group's members (at any depth). ``KeyError`` for an unknown id."""
+    path's ribbon, a group's members (at any depth), a house's room (its floor and its
+    objects). ``KeyError`` for an unknown id."""
+    if house_room(scene, entity_id):
+        outline = scene.house.room(entity_id).outline  # type: ignore[union-attr]
+        floor = np.array([[x, 0.0, z] for x, z in outline], dtype=float)
+        inside = entity_family(scene, entity_id)
+        boxes = [_box_points(o) for o in scene.objects if o.kind != "group" and o.id in inside]
+        return np.vstack([floor, *boxes])
     scene.entity(entity_id)  # raises KeyError for an id the scene lacks
     inside = entity_family(scene, entity_id)
     chunks = [_box_points(o) for o in scene.objects if o.kind != "group" and o.id in inside]
@@ -208,7 +215,9 @@ def entity_points(scene: Scene, entity_id: str) -> np.ndarray:
 
 def entity_family(scene: Scene, entity_id: str) -> set[str]:
     """The ids of ``entity_id`` and of the objects, groups, junctions and paths within it
-    at any depth (a group's members, their members, ...)."""
+    at any depth (a group's members, their members, ...); of a house's room, its objects."""
+    if house_room(scene, entity_id):
+        return {o.id for o in scene.objects if room_of(o.id) == entity_id}
     owners = {**{o.id: o.parent for o in scene.objects}, **{p.id: p.parent for p in scene.paths}}
     family = set()
     for item_id in owners:
@@ -218,6 +227,11 @@ def entity_family(scene: Scene, entity_id: str) -> set[str]:
         if owner == entity_id:
             family.add(item_id)
     return family
+
+
+def house_room(scene: Scene, name: str) -> bool:
+    """Whether ``name`` is the id of a room of the scene's house."""
+    return scene.house is not None and any(room.id == name for room in scene.house.rooms)
 
 
 def _box_points(obj) -> np.ndarray:

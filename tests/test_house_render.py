@@ -259,3 +259,21 @@ def test_the_preview_draws_walls_and_has_the_doors_as_entities(scene):
         assert result.segmentation[int(v), int(u)] == 0  # walls are backdrop
     # straight down, every door is under its wall's lintel
     assert all(top.visible[door.id] == 0.0 for door in house.doors if not door.open)
+
+
+def test_a_view_can_aim_at_a_room_by_its_id_or_type(scene):
+    from scenewright.render.camera import aimed_camera, entity_family
+    from scenewright.render.views import resolve_target, target_members
+
+    house = scene.house
+    bedroom = next(room for room in house.rooms if room.type == "bedroom")
+    assert resolve_target(scene, "bedroom") == bedroom.id
+    assert resolve_target(scene, bedroom.id) == bedroom.id
+    assert entity_family(scene, bedroom.id) == {f"{bedroom.id}/crate_1"}
+    assert target_members(scene, bedroom.id) == [f"{bedroom.id}/crate_1"]
+    camera = aimed_camera(scene, 320, 240, azimuth=0.6, elevation=0.6, target=bedroom.id)
+    xs = [x for x, _z in bedroom.outline]
+    zs = [z for _x, z in bedroom.outline]
+    middle = [(min(xs) + max(xs)) / 2, 0.25, (min(zs) + max(zs)) / 2]
+    (u, v), _depth = (array[0] for array in camera.project([middle]))
+    assert abs(u - 160) < 40 and abs(v - 120) < 40  # the room is in the middle of the picture
