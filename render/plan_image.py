@@ -173,8 +173,13 @@ def draw_plan(scene: Scene, path) -> Path:
     margin = 0.05 * max(width, depth)
     if scene.room is not None or scene.house is not None:  # walls and openings' labels
         margin = max(margin, WALL_THICKNESS + 0.5)
-    axes.set_xlim(-width / 2 - margin, width / 2 + margin)
-    axes.set_ylim(depth / 2 + margin, -depth / 2 - margin)
+    # A house lies where its footprint is (a given plan need not be centred).
+    x0, z0 = -width / 2, -depth / 2
+    if scene.house is not None:
+        x0 = min(x for x, _z in scene.house.footprint)
+        z0 = min(z for _x, z in scene.house.footprint)
+    axes.set_xlim(x0 - margin, x0 + width + margin)
+    axes.set_ylim(z0 + depth + margin, z0 - margin)
     axes.set_xlabel("x (east) [m]")
     axes.set_ylabel("z (south) [m]")
     left_out = len(labels) - place_labels(axes, labels)

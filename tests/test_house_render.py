@@ -277,3 +277,32 @@ def test_a_view_can_aim_at_a_room_by_its_id_or_type(scene):
     middle = [(min(xs) + max(xs)) / 2, 0.25, (min(zs) + max(zs)) / 2]
     (u, v), _depth = (array[0] for array in camera.project([middle]))
     assert abs(u - 160) < 40 and abs(v - 120) < 40  # the room is in the middle of the picture
+
+
+def test_the_plan_of_a_given_plan_off_the_origin_frames_its_footprint(tmp_path, monkeypatch):
+    plan = tmp_path / "given.json"
+    plan.write_text(
+        json.dumps(
+            {
+                "rooms": [
+                    {"id": "hall", "type": "hall", "polygon": [[0, 0], [2, 0], [2, 6], [0, 6]]},
+                    {"id": "bed", "type": "bedroom", "polygon": [[2, 0], [6, 0], [6, 6], [2, 6]]},
+                ]
+            }
+        )
+    )
+    house = house_of(plan, 1)
+    rooms = [scene_of([], room=room.room) for room in house.rooms]
+    given = house_scene(house, rooms, rules="given", seed=1, name="given")
+    limits: list = []
+    real = plan_image.place_labels
+
+    def recording(axes, labels):
+        limits.extend([axes.get_xlim(), axes.get_ylim()])
+        return real(axes, labels)
+
+    monkeypatch.setattr(plan_image, "place_labels", recording)
+    plan_image.draw_plan(given, tmp_path / "plan.png")
+    (x0, x1), (z1, z0) = limits  # z: north (-Z) at the top
+    assert x0 < 0.0 < 6.0 < x1 and z0 < 0.0 < 6.0 < z1
+    assert x1 - x0 < 8.0  # framed on the footprint, not on the origin
