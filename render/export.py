@@ -269,9 +269,10 @@ def _house_nodes(
         else:
             top.append(root)
     shown = wall_heights(house, towards)
+    holes = wall_openings(house)
     for index, wall in enumerate(house.walls):
         height = shown[index] if cutaway else wall.height
-        mesh = house_wall_mesh(house, index, height, wall_openings(house)[index])
+        mesh = house_wall_mesh(house, index, height, holes[index])
         (sx, sz), (ex, ez) = wall.start, wall.end
         world = transform_matrix(
             (sx + ex) / 2.0, 0.0, (sz + ez) / 2.0, math.atan2(-(ez - sz), ex - sx)
