@@ -3,9 +3,10 @@
 - Walls: ``house.walls``, each once (a wall two rooms share is one wall), named
   ``wall_1``, ``wall_2``, ... in that order (``wall_name``), drawn on its centre line,
   its thickness either side, with a hole for each door and window in it
-  (``wall_openings``). Where it meets a wall at an angle it reaches on by half a
-  thickness (``wall_reach``), so corners and T-junctions close; where a wall runs
-  straight on, the two meet end to end.
+  (``wall_openings``). Where walls meet, each is drawn to fill the junction once
+  (``wall_reach``): a corner is covered by one of its walls, a T-junction's stem stops
+  at the face of the wall running through, and walls running straight on meet end to
+  end.
 - The cut-away (``wall_heights``): a view from straight above draws every wall to its
   full height (only the tops show, hiding nothing). Any other view draws the outside
   walls whose inner face turns towards the viewer (the far walls, behind the rooms, as
@@ -84,25 +85,41 @@ def inward_normal(house: House, start, end, room_id: str) -> tuple[float, float]
 
 
 def wall_reach(house: House, index: int) -> tuple[float, float]:
-    """How far past its start and its end (m) wall ``index`` is drawn: half a thickness
-    where another wall meets that end at an angle and none runs straight on from it, so
-    corners close; else 0."""
+    """How far past its start and its end (m) wall ``index`` is drawn, so that walls
+    meeting at a point fill it once, with no two faces in one place (a renderer that
+    traces rays shades coincident faces as dark speckles): 0 where a wall runs straight
+    on from it (the two meet end to end); at a T-junction, -half a thickness for the
+    stem (it stops at the face of the wall running through); at a corner, +half a
+    thickness for the first of the walls meeting there (it covers the corner) and
+    -half for the others."""
     wall = house.walls[index]
     direction = _direction(wall)
+    half = wall.thickness / 2.0
     reach = []
     for point in (wall.start, wall.end):
         meeting = [
-            other
+            k
             for k, other in enumerate(house.walls)
             if k != index
             and (math.dist(other.start, point) < _NEAR or math.dist(other.end, point) < _NEAR)
         ]
-        straight_on = any(
-            abs(direction[0] * d[1] - direction[1] * d[0]) < 1e-6
-            for d in (_direction(other) for other in meeting)
-        )
-        reach.append(wall.thickness / 2.0 if meeting and not straight_on else 0.0)
+        if not meeting or any(_parallel(direction, house.walls[k]) for k in meeting):
+            reach.append(0.0)  # a free end, or the wall runs straight on
+        elif any(
+            _parallel(_direction(house.walls[j]), house.walls[k])
+            for j in meeting
+            for k in meeting
+            if j < k
+        ):
+            reach.append(-half)  # a stem: another wall runs through here
+        else:
+            reach.append(half if index < min(meeting) else -half)  # a corner
     return reach[0], reach[1]
+
+
+def _parallel(direction: tuple[float, float], wall: HouseWall) -> bool:
+    other = _direction(wall)
+    return abs(direction[0] * other[1] - direction[1] * other[0]) < 1e-6
 
 
 def wall_openings(house: House) -> list[list[tuple[HouseOpening, float]]]:
