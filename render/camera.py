@@ -10,6 +10,9 @@ in the image. Two views:
   ``AZIMUTH`` to the right, as the south-east view is turned from the south), so that
   wall is cut away and the far walls, with their windows, face the camera; a room with
   windows but no door is seen from opposite its first window.
+  A house (``scene.house``) is seen from the south-east as a scene is, but from
+  ``HOUSE_ELEVATION``, steeply, over walls cut low (``render.house_view``): a
+  cut-away of the whole floor.
 - ``top``: an orthographic view straight down with north (-Z) at the top of the image
   and east (+X) to the right.
 
@@ -40,9 +43,12 @@ from typing import Any
 import numpy as np
 
 from scenewright.core.errors import InputError
+from scenewright.core.house import House, room_of
 from scenewright.core.limits import MAX_COORDINATE, MAX_SIZE
 from scenewright.core.room import WALL_THICKNESS, Room, Wall
 from scenewright.core.scene import Scene, object_corners
+
+from .house_view import HOUSE_ELEVATION, wall_heights
 
 VIEWS = ("perspective", "top")
 
@@ -173,10 +179,11 @@ def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
     # A group's box is the union of its members, framed through them.
     chunks = [_box_points(obj) for obj in scene.objects if obj.kind != "group"]
     chunks.extend(_ribbon_points(path) for path in scene.paths)
+    towards = [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer
     if scene.room is not None:
-        chunks.append(
-            _room_points(scene.room, [0.0, 1.0, 0.0] if towards_viewer is None else towards_viewer)
-        )
+        chunks.append(_room_points(scene.room, towards))
+    if scene.house is not None:
+        chunks.append(_house_points(scene.house, towards))
     if not chunks:  # nothing placed: frame the scene's extent
         w, d = scene.extent
         chunks.append(
@@ -189,7 +196,14 @@ def scene_points(scene: Scene, towards_viewer=None) -> np.ndarray:
 
 def entity_points(scene: Scene, entity_id: str) -> np.ndarray:
     """World points (N, 3) of one entity's extent: an object's or junction's box, a
-    path's ribbon, a group's members (at any depth). ``KeyError`` for an unknown id."""
+    path's ribbon, a group's members (at any depth), a house's room (its floor and its
+    objects). ``KeyError`` for an unknown id."""
+    if house_room(scene, entity_id):
+        outline = scene.house.room(entity_id).outline  # type: ignore[union-attr]
+        floor = np.array([[x, 0.0, z] for x, z in outline], dtype=float)
+        inside = entity_family(scene, entity_id)
+        boxes = [_box_points(o) for o in scene.objects if o.kind != "group" and o.id in inside]
+        return np.vstack([floor, *boxes])
     scene.entity(entity_id)  # raises KeyError for an id the scene lacks
     inside = entity_family(scene, entity_id)
     chunks = [_box_points(o) for o in scene.objects if o.kind != "group" and o.id in inside]
@@ -201,7 +215,9 @@ def entity_points(scene: Scene, entity_id: str) -> np.ndarray:
 
 def entity_family(scene: Scene, entity_id: str) -> set[str]:
     """The ids of ``entity_id`` and of the objects, groups, junctions and paths within it
-    at any depth (a group's members, their members, ...)."""
+    at any depth (a group's members, their members, ...); of a house's room, its objects."""
+    if house_room(scene, entity_id):
+        return {o.id for o in scene.objects if room_of(o.id) == entity_id}
     owners = {**{o.id: o.parent for o in scene.objects}, **{p.id: p.parent for p in scene.paths}}
     family = set()
     for item_id in owners:
@@ -211,6 +227,11 @@ def entity_family(scene: Scene, entity_id: str) -> set[str]:
         if owner == entity_id:
             family.add(item_id)
     return family
+
+
+def house_room(scene: Scene, name: str) -> bool:
+    """Whether ``name`` is the id of a room of the scene's house."""
+    return scene.house is not None and any(room.id == name for room in scene.house.rooms)
 
 
 def _box_points(obj) -> np.ndarray:
@@ -309,10 +330,13 @@ def frame_scene(
     if view not in VIEWS:
         raise InputError(f"unknown view {view!r}; choose one of: {', '.join(VIEWS)}")
     azimuth = room_azimuth(scene.room)
-    towards = view_direction(azimuth) if view == "perspective" else np.array([0.0, 1.0, 0.0])
+    elevation = ELEVATION if scene.house is None else HOUSE_ELEVATION
+    towards = (
+        view_direction(azimuth, elevation) if view == "perspective" else np.array([0.0, 1.0, 0.0])
+    )
     points = _checked(scene_points(scene, towards))
     if view == "perspective":
-        return perspective_camera(points, width, height, azimuth=azimuth)
+        return perspective_camera(points, width, height, azimuth=azimuth, elevation=elevation)
     return top_down_camera(points, width, height)
 
 
@@ -445,6 +469,21 @@ def _room_points(room: Room, towards_viewer) -> np.ndarray:
         for x, z in (wall.start, wall.end)
         for dx in (-t, t)
         for dz in (-t, t)
+    ]
+    return np.vstack([floor, np.array(tops, dtype=float).reshape(-1, 3)])
+
+
+def _house_points(house: House, towards_viewer) -> np.ndarray:
+    """(M, 3) points a house adds to the framing: its footprint's corners, and a square
+    of a wall's thickness round the top of each end of every wall, at the height the
+    view draws it (``house_view.wall_heights``)."""
+    floor = np.array([[x, 0.0, z] for x, z in house.footprint], dtype=float).reshape(-1, 3)
+    tops = [
+        [x + dx, height, z + dz]
+        for wall, height in zip(house.walls, wall_heights(house, towards_viewer), strict=True)
+        for x, z in (wall.start, wall.end)
+        for dx in (-wall.thickness, wall.thickness)
+        for dz in (-wall.thickness, wall.thickness)
     ]
     return np.vstack([floor, np.array(tops, dtype=float).reshape(-1, 3)])
 

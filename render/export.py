@@ -13,6 +13,15 @@ Nodes:
   side, and ``cutaway`` true for the walls the preview leaves out because they face
   away from its camera) and per door and window (extras id, kind, the wall it is in,
   ``cutaway`` as its wall); ``cutaway=True`` leaves those walls and openings out;
+- a house (``scene.house``) has one node per room at the top (named by its room id,
+  placed at the room's offset; extras id, kind "room", type, name) holding that room's
+  objects (their ids ``bedroom_2/bed_1``), its walls, its doors and windows and its
+  floor (``bedroom_2/floor``). Each wall of the house is one node (``wall_1``, ... in
+  ``house.walls`` order, on its centre line; extras id, kind "wall", rooms, cutaway),
+  under the first room it borders, so a wall two rooms share is there once; each door
+  or window (the house's ids, ``door_3``; extras id, kind, rooms, open, wall, cutaway)
+  is under its first room. ``cutaway`` marks what the preview cuts low
+  (``render.house_view``); ``cutaway=True`` exports the walls and openings as cut;
 - ``ground``: the room's floor (node ``floor``, extras kind "floor") or the outdoor
   ground (node ``ground``, kind "ground"), as large as the preview draws it;
 - ``camera``: the preview's camera (scene.json's ``render.camera`` when the scene was
@@ -29,6 +38,7 @@ a valid GLB with no meshes.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -37,12 +47,24 @@ import numpy as np
 
 from scenewright.core import VERSION
 from scenewright.core.atomic import write_atomic
+from scenewright.core.frames import transform_matrix
+from scenewright.core.house import House, in_room, room_of
 from scenewright.core.relations import RELATIONS
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject, ScenePath
 
 from .camera import Camera, frame_scene, walls_in_view
 from .gltf_file import Node, glb
+from .house_meshes import house_opening_mesh, house_wall_mesh, room_floor
+from .house_view import (
+    opening_height,
+    opening_pose,
+    opening_wall,
+    wall_heights,
+    wall_name,
+    wall_openings,
+    wall_owner,
+)
 from .meshes import (
     ground_mesh,
     junction_mesh,
@@ -155,7 +177,9 @@ def scene_nodes(
             roots.append(nodes[entity_id])
     if scene.room is not None:
         roots += _room_nodes(scene.room, view, cutaway)
-    if ground:
+    if scene.house is not None:
+        roots = _house_nodes(scene.house, roots, view, cutaway=cutaway, ground=ground)
+    elif ground:
         name, kind = (FLOOR_NODE, "floor") if scene.room is not None else (GROUND_NODE, "ground")
         roots.append(
             Node(name, np.eye(4), {"kind": kind}, ground_mesh(scene, margin=GROUND_MARGIN))
@@ -163,7 +187,8 @@ def scene_nodes(
     if camera:
         roots.append(Node(CAMERA_NODE, view.pose, {"kind": "camera"}, camera=_gltf_camera(view)))
     if light:
-        direction = SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION
+        indoors = scene.room is not None or scene.house is not None
+        direction = ROOM_LIGHT_DIRECTION if indoors else SUN_DIRECTION
         sun = {"name": SUN_NODE, "type": "directional", "color": [1.0, 1.0, 1.0]}
         sun["intensity"] = SUN_LUX
         roots.append(Node(SUN_NODE, sun_pose(direction), {"kind": "light"}, light=sun))
@@ -224,6 +249,75 @@ def _room_nodes(room: Room, view: Camera, cutaway: bool) -> list[Node]:
             Node(opening.id, opening_transform(room, opening), extras, opening_mesh(opening))
         )
     return nodes
+
+
+def _house_nodes(
+    house: House, roots: list[Node], view: Camera, *, cutaway: bool, ground: bool
+) -> list[Node]:
+    """A node per room of ``house`` (module docstring) holding the top-level ``roots``
+    of its objects, its walls, openings and floor; the roots of no room stay on top."""
+    towards = view.pose[:3, 2]
+    rooms: dict[str, Node] = {}
+    for room in house.rooms:
+        extras = {"id": room.id, "kind": "room", "type": room.type, "name": room.name}
+        rooms[room.id] = Node(room.id, _translation([room.offset[0], 0.0, room.offset[1]]), extras)
+    top: list[Node] = []
+    for root in roots:
+        owner = room_of(root.name)
+        if owner in rooms:
+            _adopt(rooms[owner], root, root.matrix)
+        else:
+            top.append(root)
+    shown = wall_heights(house, towards)
+    holes = wall_openings(house)
+    for index, wall in enumerate(house.walls):
+        height = shown[index] if cutaway else wall.height
+        mesh = house_wall_mesh(house, index, height, holes[index])
+        (sx, sz), (ex, ez) = wall.start, wall.end
+        world = transform_matrix(
+            (sx + ex) / 2.0, 0.0, (sz + ez) / 2.0, math.atan2(-(ez - sz), ex - sx)
+        )
+        mesh.apply_transform(np.linalg.inv(world))  # built in world coordinates
+        name = wall_name(index)
+        extras = {
+            "id": name,
+            "kind": "wall",
+            "rooms": [room for room in wall.rooms if room is not None],
+            "outside": wall.outside,
+            "cutaway": shown[index] < wall.height,
+        }
+        _adopt(rooms[wall_owner(wall)], Node(name, world, extras, mesh), world)
+    for opening in house.openings:
+        height = opening_height(house, opening, towards)
+        if cutaway and opening.sill >= height:
+            continue  # its wall is cut below it
+        extras = {
+            "id": opening.id,
+            "kind": opening.kind,
+            "rooms": list(opening.rooms),
+            "open": opening.open,
+            "cutaway": height < opening.sill + opening.height,
+        }
+        index = opening_wall(house, opening)
+        if index is not None:
+            extras["wall"] = wall_name(index)
+        mesh = house_opening_mesh(opening, height if cutaway else None)
+        world = opening_pose(house, opening)
+        _adopt(rooms[opening.rooms[0]], Node(opening.id, world, extras, mesh), world)
+    if ground:
+        for room in house.rooms:
+            extras = {"kind": "floor", "room": room.id}
+            floor = Node(
+                in_room(room.id, FLOOR_NODE), np.eye(4), extras, room_floor(house, room.id)
+            )
+            _adopt(rooms[room.id], floor, np.eye(4))
+    return list(rooms.values()) + top
+
+
+def _adopt(parent: Node, child: Node, world: np.ndarray) -> None:
+    """Make ``child`` (at ``world``) a child of ``parent`` (a top-level node)."""
+    child.matrix = np.linalg.inv(parent.matrix) @ world
+    parent.children.append(child)
 
 
 def _gltf_camera(view: Camera) -> dict[str, Any]:

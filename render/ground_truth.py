@@ -15,7 +15,8 @@ Conventions (``docs/render.md``, "3D ground truth"):
 (metres, Y up) into those frames; ``camera_to_world_opengl`` is the camera's pose (its
 node in the GLB).
 
-Per entity (objects, junctions, doors and windows: the entities with a body in
+Per entity (objects, junctions, doors and windows, a house's as a room's: the
+entities with a body in
 ``RenderResult.ids``; paths have no box of their own and are left out): ``rotation``
 (3x3) and ``translation`` (3) take the entity's local frame (base centre origin, +Y up,
 as ``meshes.object_transform``) into the OpenCV camera frame; ``size`` [w, h, d] along
@@ -114,6 +115,17 @@ def _bodies(scene: Scene) -> dict[str, tuple[str, np.ndarray, list[float]]]:
             base[1, 3], base[2, 3] = opening.sill, -WALL_THICKNESS / 2.0
             size = [opening.width, opening.height, WALL_THICKNESS]
             bodies[opening.id] = (opening.kind, opening_transform(scene.room, opening) @ base, size)
+    if scene.house is not None:
+        from .house_view import opening_pose, opening_wall
+
+        for house_opening in scene.house.openings:
+            index = opening_wall(scene.house, house_opening)
+            thickness = scene.house.walls[index].thickness if index is not None else WALL_THICKNESS
+            base = np.eye(4)
+            base[1, 3], base[2, 3] = house_opening.sill, -thickness / 2.0
+            size = [house_opening.width, house_opening.height, thickness]
+            pose = opening_pose(scene.house, house_opening) @ base
+            bodies[house_opening.id] = (house_opening.kind, pose, size)
     return bodies
 
 

@@ -165,7 +165,13 @@ def ground_mesh(scene: Scene, margin: float = 1.5) -> trimesh.Trimesh:
 def floor_mesh(room: Room) -> trimesh.Trimesh:
     """A slab ``FLOOR_THICKNESS`` thick whose top (y = 0) is exactly the room's polygon,
     any simple polygon (an L-shaped room's floor is L-shaped)."""
-    corners = np.asarray(room.corners, dtype=float)  # (n, 2): x, z
+    return polygon_floor(room.corners)
+
+
+def polygon_floor(points) -> trimesh.Trimesh:
+    """A floor slab ``FLOOR_THICKNESS`` thick whose top (y = 0) is the simple polygon
+    ``points`` (x, z)."""
+    corners = np.asarray(points, dtype=float)  # (n, 2): x, z
     triangles = _triangulate(corners)
     # trimesh extrudes a 2D triangulation along +Z; map its (X, Y, Z) to world (X, Z - t, Y).
     slab_mesh = trimesh.creation.extrude_triangulation(corners, triangles, FLOOR_THICKNESS)

@@ -14,6 +14,13 @@ background: sky, ground, floor, walls). Every door and window of a room is an en
 in every view, but one in a wall the view cuts away (``camera.walls_in_view``) is not
 drawn: it has no pixels, so no box, and a visible fraction of 0.
 
+A house (``scene.house``) is drawn as its rooms' floors and its walls as backdrop
+(``render.house_meshes``; walls cut down as ``render.house_view`` says), and its doors
+and windows as entities under the house's own ids (``door_3``, ``window_2``: an interior
+door is one entity, not one per room), cut down as their walls are; a window whose wall
+is cut below its sill is not drawn. Its objects are entities under their house ids
+(``bedroom_2/bed_1``).
+
 Which OpenGL backend draws, and with which pyrender classes, is ``render.gl_backend``'s
 to choose.
 """
@@ -36,20 +43,21 @@ from PIL import Image
 
 from scenewright.core.atomic import write_atomic
 from scenewright.core.errors import GenerationError
+from scenewright.core.house import HouseOpening
 from scenewright.core.room import Opening
 from scenewright.core.scene import Scene
 
 from .camera import Camera, frame_scene, walls_in_view
 from .gl_backend import backend_error, keep_display_on_delete, load_pyrender, pyrender_classes
 from .ground_truth import GL_TO_CV, camera_matrices, entity_boxes
+from .house_meshes import house_opening_mesh, scene_ground, scene_walls
+from .house_view import opening_height, opening_pose
 from .meshes import (
-    ground_mesh,
     junction_mesh,
     object_transform,
     opening_mesh,
     opening_transform,
     path_mesh,
-    room_walls,
     shaped_mesh,
 )
 
@@ -238,8 +246,8 @@ class Renderer:
         entities, the ground, the walls in view) in one mesh whose colours are its faces'
         normals in the OpenCV camera frame, drawn unlit; sky pixels 0."""
         parts = [entity for entity in entities if entity.drawn]
-        backdrop = [_drawable(ground_mesh(scene, margin=GROUND_MARGIN))]
-        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
+        backdrop = [_drawable(scene_ground(scene, margin=GROUND_MARGIN))]
+        walls = scene_walls(scene, towards_viewer=camera.pose[:3, 2])
         if walls is not None:
             backdrop.append(_drawable(walls))
         surfaces = _merged(parts + [_Entity("", look, np.eye(4)) for look in backdrop])
@@ -281,12 +289,13 @@ class Renderer:
         lintel over its door, seen from above), so the segmentation passes draw them
         too, as background. Sets each drawn entity's ``node``."""
         gl = self._gl
-        background = SKY if scene.room is None else INDOOR_BACKGROUND
-        ambient = AMBIENT if scene.room is None else ROOM_AMBIENT
+        indoors = scene.room is not None or scene.house is not None
+        background = INDOOR_BACKGROUND if indoors else SKY
+        ambient = ROOM_AMBIENT if indoors else AMBIENT
         world = self._classes.scene(bg_color=(*background, 1.0), ambient_light=ambient)
-        world.add(_pyrender_mesh(gl, _drawable(ground_mesh(scene, margin=GROUND_MARGIN))))
+        world.add(_pyrender_mesh(gl, _drawable(scene_ground(scene, margin=GROUND_MARGIN))))
         occluders = []
-        walls = room_walls(scene, towards_viewer=camera.pose[:3, 2])
+        walls = scene_walls(scene, towards_viewer=camera.pose[:3, 2])
         if walls is not None:
             occluders.append(world.add(_pyrender_mesh(gl, _drawable(walls))))
         drawn = [entity for entity in entities if entity.drawn]
@@ -316,9 +325,7 @@ class Renderer:
                 zfar=camera.zfar,
             )
         world.add(lens, pose=camera.pose)
-        world.add(
-            self._sun, pose=sun_pose(SUN_DIRECTION if scene.room is None else ROOM_LIGHT_DIRECTION)
-        )
+        world.add(self._sun, pose=sun_pose(ROOM_LIGHT_DIRECTION if indoors else SUN_DIRECTION))
         return world, merged, occluders
 
     def _shared_mesh(self, drawable: _Drawable):
@@ -403,7 +410,17 @@ def _entities(scene: Scene, camera: Camera) -> list[_Entity]:
             entities.append(
                 _Entity(opening.id, look, pose, drawn=opening.wall in in_view, shared=True)
             )
-    return [entity for entity in entities if len(entity.drawable.positions)]
+    entities = [entity for entity in entities if len(entity.drawable.positions)]
+    if scene.house is not None:
+        towards = camera.pose[:3, 2]
+        for opening in scene.house.openings:
+            height = opening_height(scene.house, opening, towards)
+            # A window whose wall is cut below its sill is an entity still, not drawn.
+            drawn = opening.sill < height - 1e-9
+            look = _house_opening_drawable(opening, height if drawn else None)
+            pose = opening_pose(scene.house, opening)
+            entities.append(_Entity(opening.id, look, pose, drawn=drawn, shared=True))
+    return entities
 
 
 def _show_merged(merged, entities: list[_Entity], shown: bool) -> None:
@@ -546,6 +563,13 @@ def _object_drawable(
     """An object's look, built once per process: a dataset draws the same catalog
     entries thousands of times, and builders are pure functions of these arguments."""
     return _drawable(shaped_mesh(shape, mesh_file, size, colour))
+
+
+@lru_cache(maxsize=256)
+def _house_opening_drawable(opening: HouseOpening, height: float | None) -> _Drawable:
+    """A house's door or window in its frame, cut down to ``height`` (None: whole),
+    built once per process."""
+    return _drawable(house_opening_mesh(opening, height))
 
 
 @lru_cache(maxsize=256)

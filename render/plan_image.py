@@ -9,6 +9,12 @@ tick from its centre towards its forward side; ids as labels; and a red dashed l
 between the two ends of each relation the layout did not satisfy (a wall, door or
 window at its inner face's middle; "the room" at the wall the layout chose).
 
+A house (``scene.house``) is drawn as its walls, each once at its true thickness on its
+centre line (``render.house_view``), its doors (an open doorway a gap alone) and windows
+under the house's ids (``door_3``), each room's name written in the room ("second
+bedroom", ``room_labels``, placed before any other label), and its objects' footprints
+labelled with their ids within their room (``bed_1``).
+
 Labels never cover one another (``place_labels``): each goes at its anchor or just
 beside it, wherever it first finds room, in order of importance (the unsatisfied
 relations, then paths, then the objects those relations name, then the other objects,
@@ -33,8 +39,10 @@ from matplotlib.patches import Polygon, Rectangle
 from matplotlib.patheffects import withStroke
 
 from scenewright.core.frames import forward
+from scenewright.core.house import ID_SEPARATOR, House, in_room
 from scenewright.core.room import ROOM_NODE, WALL_THICKNESS, Room
 from scenewright.core.scene import Scene, object_corners
+from scenewright.render.house_view import inward_normal, wall_openings, wall_reach
 from scenewright.render.meshes import wall_footprint
 
 #: Pixels per inch of the saved image.
@@ -51,7 +59,7 @@ LABEL_OFFSETS = ((0, 0), (0, 7), (0, -7), (14, 0), (-14, 0), (10, 7), (-10, 7), 
 #: A thin light outline around every label's letters.
 HALO = withStroke(linewidth=1.5, foreground="white", alpha=0.8)
 #: Label ranks: lower goes first (see the module docstring).
-RELATION, PATH, INVOLVED, OBJECT = range(4)
+ROOM_NAME, RELATION, PATH, INVOLVED, OBJECT = range(5)
 
 
 @dataclass
@@ -82,7 +90,9 @@ def draw_plan(scene: Scene, path) -> Path:
     axes = figure.subplots()
     axes.set_aspect("equal")
     # Data y is z; inverting the axis puts north (-Z) at the top of the picture.
-    if scene.room is None:
+    if scene.house is not None:
+        labels += _draw_house(axes, scene.house)
+    elif scene.room is None:
         axes.add_patch(
             Rectangle((-width / 2, -depth / 2), width, depth, fill=False, lw=1.5, ec="black")
         )
@@ -131,7 +141,9 @@ def draw_plan(scene: Scene, path) -> Path:
         fx, fz = forward(obj.yaw)
         axes.plot([x, x + fx * reach], [z, z + fz * reach], color="black", lw=0.8, zorder=5)
         rank = INVOLVED if obj.id in involved else OBJECT
-        labels.append(Label(obj.id, (x, z), rank, weight=obj.size[0] * obj.size[2]))
+        # In a house the room's name is written in it: an object goes by its own id there.
+        text = obj.id.partition(ID_SEPARATOR)[2] if scene.house is not None else obj.id
+        labels.append(Label(text or obj.id, (x, z), rank, weight=obj.size[0] * obj.size[2]))
     for road in scene.paths:
         mid = road.points[len(road.points) // 2]
         centres[road.id] = (mid[0], mid[1])
@@ -140,6 +152,13 @@ def draw_plan(scene: Scene, path) -> Path:
             centres[wall.id] = wall.to_world(wall.length / 2.0, 0.0)
         for opening in scene.room.openings:
             centres[opening.id] = opening.center
+    if scene.house is not None:  # a room's walls and openings, as its relations name them
+        for house_room in scene.house.rooms:
+            for wall in house_room.room.walls:
+                point = wall.to_world(wall.length / 2.0, 0.0)
+                centres[in_room(house_room.id, wall.id)] = house_room.to_house(*point)
+            for opening in house_room.room.openings:
+                centres[in_room(house_room.id, opening.id)] = house_room.to_house(*opening.center)
     for relation in unsatisfied:
         target = (
             relation.chosen if relation.target == ROOM_NODE and relation.chosen else relation.target
@@ -152,10 +171,15 @@ def draw_plan(scene: Scene, path) -> Path:
             Label(relation.label, ((sx + tx) / 2, (sz + tz) / 2), RELATION, size=6, colour="red")
         )
     margin = 0.05 * max(width, depth)
-    if scene.room is not None:  # the walls and the openings' labels stand outside the extent
+    if scene.room is not None or scene.house is not None:  # walls and openings' labels
         margin = max(margin, WALL_THICKNESS + 0.5)
-    axes.set_xlim(-width / 2 - margin, width / 2 + margin)
-    axes.set_ylim(depth / 2 + margin, -depth / 2 - margin)
+    # A house lies where its footprint is (a given plan need not be centred).
+    x0, z0 = -width / 2, -depth / 2
+    if scene.house is not None:
+        x0 = min(x for x, _z in scene.house.footprint)
+        z0 = min(z for _x, z in scene.house.footprint)
+    axes.set_xlim(x0 - margin, x0 + width + margin)
+    axes.set_ylim(z0 + depth + margin, z0 - margin)
     axes.set_xlabel("x (east) [m]")
     axes.set_ylabel("z (south) [m]")
     left_out = len(labels) - place_labels(axes, labels)
@@ -283,6 +307,102 @@ def _draw_room(axes, room: Room) -> list[Label]:
         x, z = wall.to_world(opening.offset, -thickness - 0.15)
         labels.append(Label(opening.id, (x, z), PATH, colour="0.2"))
     return labels
+
+
+def _draw_house(axes, house: House) -> list[Label]:
+    """A house's walls (each once, its true thickness on its centre line), doors (a gap,
+    the leaf swung open into the door's first room and its arc; an open doorway a gap
+    alone) and windows; returns the room names' and the openings' labels."""
+    labels = room_labels(house)
+    holes = wall_openings(house)
+    for index, wall in enumerate(house.walls):
+        (sx, sz), (ex, ez) = wall.start, wall.end
+        length = max(wall.length, 1e-12)
+        dx, dz = (ex - sx) / length, (ez - sz) / length
+        nx, nz = -dz * wall.thickness / 2.0, dx * wall.thickness / 2.0
+        before, after = wall_reach(house, index)
+        a = (sx - dx * before, sz - dz * before)
+        b = (ex + dx * after, ez + dz * after)
+        corners = [
+            (a[0] + nx, a[1] + nz),
+            (b[0] + nx, b[1] + nz),
+            (b[0] - nx, b[1] - nz),
+            (a[0] - nx, a[1] - nz),
+        ]
+        axes.add_patch(Polygon(corners, closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2))
+        for opening, _u in holes[index]:
+            _draw_house_opening(axes, house, opening, wall.thickness)
+            labels.append(Label(opening.id, opening.center, PATH, colour="0.2"))
+    return labels
+
+
+def _draw_house_opening(axes, house: House, opening, thickness: float) -> None:
+    (cx, cz), (dx, dz), w = opening.center, opening.direction, opening.width
+    end = (cx + dx, cz + dz)
+    nx, nz = inward_normal(house, opening.center, end, opening.rooms[0])
+
+    def at(u: float, v: float) -> tuple[float, float]:  # along the wall, into the first room
+        return cx + u * dx + v * nx, cz + u * dz + v * nz
+
+    half = thickness / 2.0
+    hole = [at(-w / 2, half), at(w / 2, half), at(w / 2, -half), at(-w / 2, -half)]
+    if opening.kind == "window":
+        axes.add_patch(
+            Polygon(hole, closed=True, fc="lightblue", ec="steelblue", lw=0.6, zorder=2.5)
+        )
+        mid = [at(-w / 2, 0.0), at(w / 2, 0.0)]
+        axes.plot([p[0] for p in mid], [p[1] for p in mid], color="steelblue", lw=0.6, zorder=2.6)
+        return
+    axes.add_patch(Polygon(hole, closed=True, fc="white", ec="none", zorder=2.5))
+    if opening.open:
+        return
+    arc = [
+        at(-w / 2 + w * math.cos(angle), half + w * math.sin(angle))
+        for angle in np.linspace(0.0, math.pi / 2.0, 16)
+    ]
+    axes.plot([p[0] for p in arc], [p[1] for p in arc], color="0.3", lw=0.6, ls=":", zorder=2.6)
+    leaf = [at(-w / 2, half), at(-w / 2, half + w)]
+    axes.plot([p[0] for p in leaf], [p[1] for p in leaf], color="0.2", lw=1.2, zorder=2.6)
+
+
+def room_labels(house: House) -> list[Label]:
+    """Each room's name ("second bedroom"), written at the point of its floor farthest
+    from its walls (the middle of a rectangle; inside an L-shaped room's wider arm)."""
+    return [
+        Label(room.name, _inner_point(room.outline), ROOM_NAME, size=9, colour="navy")
+        for room in house.rooms
+    ]
+
+
+def _inner_point(outline) -> tuple[float, float]:
+    """The point of a grid over ``outline`` (x, z) inside it and farthest from its edges."""
+    points = np.asarray(outline, dtype=float)
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    steps = np.linspace(0.0, 1.0, 23)[1:-1]
+    grid = np.array(
+        [(lo[0] + a * (hi[0] - lo[0]), lo[1] + b * (hi[1] - lo[1])) for a in steps for b in steps]
+    )
+    starts, ends = points, np.roll(points, -1, axis=0)
+    edge = ends - starts
+    along = np.clip(
+        np.einsum("gek,ek->ge", grid[:, None, :] - starts[None], edge)
+        / np.maximum(np.einsum("ek,ek->e", edge, edge), 1e-12),
+        0.0,
+        1.0,
+    )
+    nearest = starts[None] + along[..., None] * edge[None]
+    distance = np.linalg.norm(grid[:, None, :] - nearest, axis=2).min(axis=1)
+    z0, z1 = starts[:, 1], ends[:, 1]
+    crossing = (z0[None] > grid[:, 1:2]) != (z1[None] > grid[:, 1:2])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x_cross = (
+            starts[None, :, 0] + (grid[:, 1:2] - z0[None]) * edge[None, :, 0] / edge[None, :, 1]
+        )
+    inside = (crossing & (grid[:, :1] < x_cross)).sum(axis=1) % 2 == 1
+    if not inside.any():
+        return float(points[:, 0].mean()), float(points[:, 1].mean())
+    best = int(np.argmax(np.where(inside, distance, -1.0)))
+    return float(grid[best, 0]), float(grid[best, 1])
 
 
 def _points_per_metre(figure, axes, width: float, depth: float) -> float:

@@ -8,7 +8,9 @@ names, poses, what rests on what, the ground, the camera and the sun), in USD's 
 - ``/World`` (the default prim), stage metadata ``metersPerUnit = 1`` and
   ``upAxis = "Y"``; every entity an ``Xform`` at its node's place in the tree, with its
   ``xformOp:transform`` (relative to its parent) and the GLB node's extras as
-  ``customData`` (id, type, kind, noun, on, group, cutaway, ...);
+  ``customData`` (id, type, kind, noun, on, group, cutaway, a house's rooms as a
+  string array, ...); a house's rooms are ``Xform`` s holding their walls, doors and
+  windows, floor and objects, as in the GLB;
 - its mesh as ``Mesh`` children ``Geom0``, ``Geom1``, ... (one per colour), flat shaded:
   ``normals`` per face corner (``faceVarying``), ``subdivisionScheme = "none"``;
 - materials under ``/World/Looks``, one ``UsdPreviewSurface`` per colour (diffuse
@@ -94,7 +96,7 @@ class _StageWriter:
         self.materials: dict[tuple[int, ...], Any] = {}
 
     def node(self, node: Node, parent) -> None:
-        from pxr import Gf, UsdGeom
+        from pxr import Gf, UsdGeom, Vt
 
         path = parent.AppendChild(_identifier(node.name))
         if node.camera is not None:
@@ -113,6 +115,8 @@ class _StageWriter:
         usd_prim = prim.GetPrim()
         usd_prim.SetCustomDataByKey("name", node.name)
         for key, value in node.extras.items():
+            if isinstance(value, list):  # a house's wall or door: its rooms' ids
+                value = Vt.StringArray([str(item) for item in value])
             usd_prim.SetCustomDataByKey(key, value)
         if node.mesh is not None and len(node.mesh.faces):
             self.meshes(node, path)

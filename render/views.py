@@ -15,8 +15,9 @@ the values drawn, the target, how much of it showed and the tries it took.
 - ``distance``: a factor of the distance that just frames the target (1: the target
   fills 90 % of the image's height or width; 2: twice as far), 0.1 to 10. Default 1.
 - ``target``: an entity id (``table_1``, a group ``market_stand_1``, a path) or a type
-  (``table``: its first instance in the scene); the camera looks at the centre of its
-  box. None: the whole scene (its objects, paths and, in a room, the floor and the walls
+  (``table``: its first instance in the scene), or in a house a room's id or type
+  (``bedroom_2``, ``kitchen``: its floor and objects); the camera looks at the centre
+  of its box. None: the whole scene (its objects, paths and, in a room, the floor and the walls
   in view). A scene without it is framed whole (``require_target`` makes that an error).
 
 How much of the target shows: the mean visible fraction (``RenderResult.visible``:
@@ -40,7 +41,7 @@ import numpy as np
 from scenewright.core.errors import InputError
 from scenewright.core.scene import Scene
 
-from .camera import ELEVATION, Camera, aimed_camera, entity_family, room_azimuth
+from .camera import ELEVATION, Camera, aimed_camera, entity_family, house_room, room_azimuth
 from .ground_truth import camera_matrices
 
 if TYPE_CHECKING:
@@ -186,14 +187,18 @@ def parse_camera(text: str) -> CameraRanges:
 
 def resolve_target(scene: Scene, name: str | None) -> str | None:
     """The id of the entity ``name`` stands for: itself when an object, group, junction
-    or path has that id, else the first entity of that type; None for the whole scene
-    (no name, or nothing in the scene by that name)."""
+    or path (or a house's room) has that id, else the first entity of that type, else
+    in a house the first room of that type (``bedroom``); None for the whole scene (no
+    name, or nothing in the scene by that name)."""
     if name is None:
         return None
     entities = [*scene.objects, *scene.paths]
-    if any(e.id == name for e in entities):
+    if any(e.id == name for e in entities) or house_room(scene, name):
         return name
-    return next((e.id for e in entities if e.type == name), None)
+    found = next((e.id for e in entities if e.type == name), None)
+    if found is None and scene.house is not None:
+        found = next((room.id for room in scene.house.rooms if room.type == name), None)
+    return found
 
 
 def target_members(scene: Scene, target: str | None) -> list[str]:
