@@ -49,7 +49,9 @@ def describe_house(scene: Scene, *, style: str = "full", variant: int = 0) -> Sc
             (in_room(house_room.id, a), label, in_room(house_room.id, b))
             for a, label, b in text.facts
         )
-    return SceneDescription("\n\n".join(paragraphs), facts, style, variant)
+    # one line: scene.json's text holds no line breaks (the overview and each room still
+    # start sentences of their own)
+    return SceneDescription(" ".join(paragraphs), facts, style, variant)
 
 
 def overview_sentences(house: House) -> list[str]:

@@ -55,7 +55,7 @@ WINDOW_RUN = 3
 #: A room's area may leave its range by this share either way (the rooms must fill the footprint).
 AREA_SLACK = 0.2
 #: Rooms that are not for walking through: bounding box at most this elongated, at least this full.
-MAX_ASPECT = 2.6
+MAX_ASPECT = 2.2
 MIN_FILL = 0.7
 #: The probability that a region holding the hub is cut into strips with the hub in the middle.
 STRIP_CHANCE = 0.85

@@ -8,8 +8,10 @@ on nothing but the seed and its place in the plan, and the rooms may be laid out
 any order or in parallel (``workers``) with the same result.
 
 A room is tried up to ``ROOM_TRIES`` times (a fresh layout seed each time, as a
-dataset's retry does) until its layout is ok and a person can walk between all its
-doors (``door_paths``); the best try is kept otherwise and its problems say why.
+dataset's retry does, and a fresh expansion every ``LAYOUTS_PER_GRAPH`` tries, since
+the first one may hold more than the room takes) until its layout is ok and a person
+can walk between all its doors (``door_paths``); the best try is kept otherwise and
+its problems say why.
 """
 
 from __future__ import annotations
@@ -28,8 +30,11 @@ from scenewright.core.seeds import MAX_SEED, retry_seed, stream
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
 
-#: Layouts tried per room before its best is kept.
-ROOM_TRIES = 4
+#: Layouts tried per room before its best is kept, and how many of them lay out one
+#: expansion before the room's rule set is expanded again (retry streams from REEXPAND on).
+ROOM_TRIES = 6
+LAYOUTS_PER_GRAPH = 2
+REEXPAND = 100
 #: Half the narrowest way a person walks between a room's doors (m), the grid it is found on,
 #: and the height below which a thing is stepped over (a rug).
 WAY_HALF = 0.3
@@ -63,9 +68,11 @@ def furnish_room(room: HouseRoom, seed: int) -> Scene:
         rules,
         params=replace(rules.params, room=room.room, extent=room.room.extent, name=room.type),
     )
-    graph = expand(rules, seed)
     best: Scene | None = None
     for attempt in range(ROOM_TRIES):
+        if attempt % LAYOUTS_PER_GRAPH == 0:
+            # after a graph's layouts fail, a fresh expansion: it may ask less of the room
+            graph = expand(rules, retry_seed(seed, REEXPAND + attempt) if attempt else seed)
         layout = layout_scene(graph, retry_seed(seed, attempt))
         scene = assemble_scene(graph, layout, rules=room.rules, seed=seed)
         blocked = door_paths(scene)

@@ -33,10 +33,10 @@ CIRCULATION = ("hall", "corridor", "landing", "passage")
 MAX_ROOMS = 60
 MAX_SIDE = 200.0
 #: A room's area range when the plan gives none: this share of its rule set's own room.
-DEFAULT_AREA_SHARE = (0.7, 1.1)
+DEFAULT_AREA_SHARE = (0.85, 1.15)
 #: Its narrowest width when the plan gives none: this share of its rule set's room's
 #: narrower side, or 0.8 of the side of a square of its least area, whichever is less.
-DEFAULT_WIDTH_SHARE = 0.55
+DEFAULT_WIDTH_SHARE = 0.7
 
 
 @dataclass(frozen=True)

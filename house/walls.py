@@ -10,8 +10,8 @@ rooms share the stretch of outline between them (the walls' centre lines):
   in the longest outside wall of its room, a south-facing one when there is a tie), near
   one end of it or in its middle as the plan's stream draws, clear of the corners and of
   other openings; an open doorway is as wide as the wall allows up to ``OPEN_WIDTH``;
-- windows: a room that wants one gets one in each of its longest outside walls (two in
-  a room with ``WINDOW_PER_METRES`` of outside wall or more), shaped like the window of
+- windows: a room that wants one gets one in its longest outside wall (a second in the
+  next longest in a room of ``TWO_WINDOWS_AREA`` with ``WINDOW_PER_METRES`` of outside wall), shaped like the window of
   its rule set's own room;
 - rooms: each outline moved in by half a wall's thickness is the room's ``Room`` (inner
   faces), in its own frame, with the openings that belong to it.
@@ -41,11 +41,13 @@ Point = tuple[float, float]
 #: Widths (m): a door between rooms, the front door, the widest open doorway.
 DOOR_WIDTH = 0.9
 FRONT_DOOR_WIDTH = 1.0
-OPEN_WIDTH = 1.6
+OPEN_WIDTH = 1.2
 #: Free wall kept between an opening and a corner, and between two openings (m).
 CORNER_MARGIN = 0.2
-#: A room with this much outside wall or more gets two windows.
+#: A room with this much outside wall and this much floor or more gets two windows
+#: (every window takes wall that furniture would stand against).
 WINDOW_PER_METRES = 7.0
+TWO_WINDOWS_AREA = 22.0
 #: The window of a room whose rule set's room has none: width, height, sill.
 DEFAULT_WINDOW = (1.2, 1.3, 0.9)
 _EPS = 1e-6
@@ -86,8 +88,9 @@ def build_house(
     walls = _walls(rooms, pieces, outlines.height, thickness)
     openings: list[HouseOpening] = []
     taken: dict[int, list[tuple[float, float]]] = {}  # piece index -> occupied (u0, u1)
+    swings: list[tuple[float, float, float, float]] = []  # boxes kept free by doors placed
     for planned in outlines.doors:
-        openings.append(_door(planned, rooms, pieces, taken, rng, len(openings)))
+        openings.append(_door(planned, rooms, pieces, taken, swings, rng, len(openings)))
     if outlines.windows is None:
         openings.extend(_windows(rooms, pieces, taken))
     else:
@@ -182,7 +185,7 @@ def _walls(rooms, pieces: list[_Piece], height: float, thickness: float) -> list
 # -- doors and windows -------------------------------------------------------------------------
 
 
-def _door(planned: PlannedDoor, rooms, pieces, taken, rng, number: int) -> HouseOpening:
+def _door(planned: PlannedDoor, rooms, pieces, taken, swings, rng, number: int) -> HouseOpening:
     ids = [_room_index(rooms, r) for r in planned.rooms]
     front = len(ids) == 1
     other = None if front else ids[1]
@@ -222,7 +225,16 @@ def _door(planned: PlannedDoor, rooms, pieces, taken, rng, number: int) -> House
                 f"a door for {words}: the wall they share is only {piece.length:.2f} m"
             )
         width = min(width, room_for)
-        u = _place(piece.length, width, taken.get(n, []), rng, front=front)
+        sides = [(piece, _inward(rooms[piece.room]))]
+        if piece.other is not None:
+            sides.append((piece, -_inward(rooms[piece.room])))
+
+        def clear(u: float) -> bool:
+            boxes = [_swing_box(p, u, width, inward) for p, inward in sides]
+            return not any(_boxes_meet(a, b) for a in boxes for b in swings)
+
+        u = _place(piece.length, width, taken.get(n, []), rng, front=front, clear=clear)
+        swings.extend(_swing_box(piece, u, width, inward) for _p, inward in sides)
     taken.setdefault(n, []).append((u - width / 2, u + width / 2))
     _mirror_taken(pieces, n, u, width, taken)
     return HouseOpening(
@@ -238,20 +250,47 @@ def _door(planned: PlannedDoor, rooms, pieces, taken, rng, number: int) -> House
     )
 
 
-def _place(length: float, width: float, occupied, rng, *, front: bool) -> float:
+def _place(length: float, width: float, occupied, rng, *, front: bool, clear) -> float:
     """Where along a wall ``length`` long an opening ``width`` wide goes: near its start,
-    in its middle or near its end (drawn), clear of what is there."""
+    in its middle or near its end (drawn), clear of the openings in the wall and of the
+    swings of the doors placed (``clear``); else anywhere along it that is."""
     lo = CORNER_MARGIN + width / 2
     hi = length - CORNER_MARGIN - width / 2
     options = [(lo + hi) / 2] if front else [lo, (lo + hi) / 2, hi]
     order = [options[k] for k in rng.permutation(len(options))]
-    for u in order:
-        if all(
+    order += [float(u) for u in np.linspace(lo, hi, 9) if float(u) not in order]
+
+    def free(u: float) -> bool:
+        return all(
             u + width / 2 + CORNER_MARGIN <= a or u - width / 2 - CORNER_MARGIN >= b
             for a, b in occupied
-        ):
+        )
+
+    for u in order:
+        if free(u) and clear(u):
             return u
-    return order[0]
+    return next((u for u in order if free(u)), order[0])
+
+
+def _inward(room: PlannedRoom) -> float:
+    """+1 when the room lies on the left of its outline's edges, -1 when on the right."""
+    return 1.0 if _signed_area(room.outline) > 0 else -1.0
+
+
+def _swing_box(piece: _Piece, u: float, width: float, inward: float):
+    """The box (x0, z0, x1, z1) a door ``width`` wide at ``u`` keeps free on one side."""
+    tx, tz = piece.direction
+    nx, nz = -tz * inward, tx * inward
+    a = piece.at(u - width / 2)
+    b = piece.at(u + width / 2)
+    c = (b[0] + nx * width, b[1] + nz * width)
+    d = (a[0] + nx * width, a[1] + nz * width)
+    xs, zs = [p[0] for p in (a, b, c, d)], [p[1] for p in (a, b, c, d)]
+    return min(xs), min(zs), max(xs), max(zs)
+
+
+def _boxes_meet(a, b) -> bool:
+    return a[0] < b[2] - 1e-6 and b[0] < a[2] - 1e-6 and a[1] < b[3] - 1e-6 and b[1] < a[3] - 1e-6
 
 
 def _mirror_taken(pieces, n: int, u: float, width: float, taken) -> None:
@@ -280,7 +319,8 @@ def _windows(rooms: list[PlannedRoom], pieces: list[_Piece], taken) -> list[Hous
             key=lambda item: (-round(item[1].length, 3), item[0]),
         )
         total = sum(p.length for _n, p in outside)
-        wanted = 2 if total >= WINDOW_PER_METRES else 1
+        area = abs(_signed_area(room.outline))
+        wanted = 2 if total >= WINDOW_PER_METRES and area >= TWO_WINDOWS_AREA else 1
         width, height, sill = room.window or DEFAULT_WINDOW
         made = 0
         for n, piece in outside:
