@@ -53,7 +53,8 @@ def house_scene(house: House, rooms: list[Scene], *, rules: str, seed: int, name
             replace(
                 house_room,
                 seed=scene.seed,
-                layout=asdict(scene.layout),
+                # wall-clock seconds stay out: scene.json is the same from run to run
+                layout={k: v for k, v in asdict(scene.layout).items() if k != "seconds"},
                 derivation=tuple(scene.derivation),
             )
         )

@@ -6,7 +6,8 @@ architecture and of ProcTHOR-like house generators), drawn at random and checked
 1. Draw the plan's rooms (optional ones with their probability, counts in their range)
    and an area for each in its range; draw the footprint's size in its ranges so the
    rooms fill it (a footprint given by corners is as it is); rasterise the footprint,
-   less its courtyards, on a ``CELL`` grid.
+   less its courtyards, on a ``CELL`` grid; then stretch or shrink the rooms' areas
+   within their ranges until they fill it (``_fill``).
 2. Slice: a set of rooms on a region is split in two groups, and the region cut
    across its longer side where the cell count matches the groups' areas, until each
    room has a region of its own. A region that holds the plan's hub (the room type the
@@ -57,6 +58,10 @@ AREA_SLACK = 0.2
 #: Rooms that are not for walking through: bounding box at most this elongated, at least this full.
 MAX_ASPECT = 2.2
 MIN_FILL = 0.7
+#: A cut this many lines or fewer from a step in the region's outline is moved onto the
+#: step with this probability.
+SNAP_LINES = 3
+SNAP_CHANCE = 0.7
 #: The probability that a region holding the hub is cut into strips with the hub in the middle.
 STRIP_CHANCE = 0.85
 
@@ -80,9 +85,7 @@ def generate_outlines(spec: PlanSpec, seed: int) -> Outlines:
         if attempt % DRAWS == 0:  # new rooms and footprint now and then: some draws cannot work
             rooms = _draw_rooms(spec, rng)
             mask, origin = _footprint(spec, rooms, rng)
-            scale = int(mask.sum()) / sum(room.target for room in rooms)
-            for room in rooms:
-                room.target *= scale
+            _fill(rooms, int(mask.sum()))
             hub = _hub(spec, rooms)
         labels = _slice(mask, list(range(len(rooms))), rooms, hub, rng)
         if labels is None:
@@ -121,6 +124,23 @@ def _draw_rooms(spec: PlanSpec, rng: np.random.Generator) -> list[_Room]:
     if not rooms:
         rooms.append(_Room(spec.rooms[0], 0, spec.rooms[0].area[0] / (CELL * CELL)))
     return rooms
+
+
+def _fill(rooms: list[_Room], cells: int) -> None:
+    """Make the rooms' targets add up to the footprint's ``cells``: first within their
+    area ranges (each moved towards its range's end in proportion to the room left
+    there), then, if the ranges cannot, all scaled alike (the checks then judge)."""
+    gap = cells - sum(room.target for room in rooms)
+    ends = [(room.spec.area[1] if gap > 0 else room.spec.area[0]) / (CELL * CELL) for room in rooms]
+    room_left = [end - room.target for room, end in zip(rooms, ends, strict=False)]
+    total_left = sum(room_left)
+    if total_left and gap / total_left > 0:
+        share = min(1.0, gap / total_left)
+        for room, left in zip(rooms, room_left, strict=False):
+            room.target += share * left
+    scale = cells / sum(room.target for room in rooms)
+    for room in rooms:
+        room.target *= scale
 
 
 def _footprint(spec: PlanSpec, rooms: list[_Room], rng) -> tuple[np.ndarray, tuple[float, float]]:
@@ -245,12 +265,20 @@ def _cut(mask: np.ndarray, axis: int, weights: list[float], rng) -> list[np.ndar
     first, last = int(lines[0]), int(lines[-1])
     cumulative = np.cumsum(counts[first : last + 1])
     total = float(cumulative[-1])
+    lines_of = mask if axis == 0 else mask.T
+    # the lines after which the region's cross-section changes: where its outline steps
+    features = [k for k in range(first, last) if not np.array_equal(lines_of[k], lines_of[k + 1])]
     pieces, start = [], first
     share = 0.0
     for k, weight in enumerate(weights[:-1]):
         share += weight / sum(weights)
         end = first + int(np.argmin(np.abs(cumulative - share * total)))
-        if rng.random() < 0.25:
+        near = [f for f in features if abs(f - end) <= SNAP_LINES]
+        if near and rng.random() < SNAP_CHANCE:
+            # cut along a corner of the footprint (a courtyard's edge, an L's inner
+            # corner): the pieces then keep their width where the outline steps
+            end = min(near, key=lambda f: (abs(f - end), f))
+        elif rng.random() < 0.25:
             end += int(rng.choice((-1, 1)))
         end = min(max(end, start), last - (len(weights) - 2 - k) - 1)
         if end < start:

@@ -36,11 +36,11 @@ from typing import Any
 
 from scenewright.core.errors import InputError
 from scenewright.core.limits import MAX_SCENE_JSON_BYTES as MAX_INPUT_BYTES
-from scenewright.generator import load_rules, shipped_rule_sets
+from scenewright.generator import load_rules
 from scenewright.generator.rules_errors import RulesError, did_you_mean
 
 from .outline import Outlines, PlannedDoor, PlannedRoom, PlannedWindow
-from .plan_language import CIRCULATION, MAX_ROOMS, MAX_SIDE, _uses_windows, shipped_plans
+from .plan_language import CIRCULATION, MAX_ROOMS, MAX_SIDE, _uses_windows, room_rule_sets
 
 #: The shortest shared wall a door is put in when the plan gives no doors (m).
 DOOR_WALL = 1.3
@@ -99,7 +99,7 @@ def read_given_plan(source: str | os.PathLike[str]) -> Outlines:
 
 
 def _rooms(raw_rooms: list, path: Path, where: str) -> list[PlannedRoom]:
-    known = [name for name in shipped_rule_sets() if name not in shipped_plans()]
+    known = list(room_rule_sets())
     rooms: list[PlannedRoom] = []
     counts: dict[str, int] = {}
     types = [r.get("type") if isinstance(r, dict) else None for r in raw_rooms]

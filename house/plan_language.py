@@ -121,6 +121,12 @@ def shipped_plans() -> tuple[str, ...]:
     return tuple(sorted(names))
 
 
+@cache
+def room_rule_sets() -> tuple[str, ...]:
+    """The shipped rule sets whose scene is a room: the room types a plan may name."""
+    return tuple(name for name in shipped_rule_sets() if load_rules(name).params.room is not None)
+
+
 def read_plan(source: str | os.PathLike) -> PlanSpec:
     """Parse and check a plan file; ``RulesError`` (every located mistake) when it is wrong."""
     path = _plan_path(source)
@@ -280,7 +286,7 @@ class _Reader:
         location = SourceLocation(self.file, 1, 1)
         if footprint_tree is None:
             self.error(Token("NAME", "", line=1, column=1), "the plan has no 'footprint'")
-        if not rooms:
+        if not declared:
             self.error(tree, "the plan has no rooms ('room TYPE ...')")
         spec = PlanSpec(
             name=self.path.name.removesuffix(".rules"),
@@ -403,7 +409,7 @@ class _Reader:
     def rules_of(self, room_type: str, token: Token, option: Tree | None):
         """The rule set that furnishes ``room_type``: (source, its room, whether it uses windows)."""
         if option is None:
-            known = [name for name in shipped_rule_sets() if name not in shipped_plans()]
+            known = list(room_rule_sets())
             if room_type not in known:
                 self.error(
                     token,
