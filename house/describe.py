@@ -19,8 +19,9 @@ import re
 from collections import Counter
 
 from scenewright.core.house import House, in_room
-from scenewright.core.scene import Scene, SceneDescription
+from scenewright.core.scene import Scene
 from scenewright.describer import describe
+from scenewright.describer.description import Description
 from scenewright.describer.english import join_list, number_word, plural_of, sentence_case
 
 from .assemble import room_scene
@@ -30,12 +31,12 @@ from .assemble import room_scene
 _SELF = re.compile(r"(^|(?<=\. ))The (scene|room) (?=(consists of|is made up of|has|is empty))")
 
 
-def describe_house(scene: Scene, *, style: str = "full", variant: int = 0) -> SceneDescription:
+def describe_house(scene: Scene, *, style: str = "full", variant: int = 0) -> Description:
     house = scene.house
     assert house is not None
     overview = overview_sentences(house)
     if style == "short":
-        return SceneDescription(overview[0], [], style, variant)
+        return Description(overview[0], [], style, variant)
     paragraphs = [" ".join(overview)]
     facts: list[tuple[str, str, str]] = []
     for house_room in house.rooms:
@@ -51,7 +52,7 @@ def describe_house(scene: Scene, *, style: str = "full", variant: int = 0) -> Sc
         )
     # one line: scene.json's text holds no line breaks (the overview and each room still
     # start sentences of their own)
-    return SceneDescription(" ".join(paragraphs), facts, style, variant)
+    return Description(" ".join(paragraphs), facts, style, variant)
 
 
 def overview_sentences(house: House) -> list[str]:

@@ -29,12 +29,16 @@ from scenewright.core.scene import Scene, assemble_scene
 from scenewright.core.seeds import MAX_SEED, retry_seed, stream
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
+from scenewright.generator.layout.params import LayoutParams
 
 #: Layouts tried per room before its best is kept, and how many of them lay out one
 #: expansion before the room's rule set is expanded again (retry streams from REEXPAND on).
-ROOM_TRIES = 6
-LAYOUTS_PER_GRAPH = 2
+ROOM_TRIES = 8
+LAYOUTS_PER_GRAPH = 1
 REEXPAND = 100
+#: One try's layout: fewer restarts than a room scene's own (a try that fails costs
+#: less; the next try's fresh expansion does more for a room that is hard to furnish).
+ROOM_LAYOUT = LayoutParams(restarts=1)
 #: Half the narrowest way a person walks between a room's doors (m), the grid it is found on,
 #: and the height below which a thing is stepped over (a rug).
 WAY_HALF = 0.3
@@ -73,7 +77,7 @@ def furnish_room(room: HouseRoom, seed: int) -> Scene:
         if attempt % LAYOUTS_PER_GRAPH == 0:
             # after a graph's layouts fail, a fresh expansion: it may ask less of the room
             graph = expand(rules, retry_seed(seed, REEXPAND + attempt) if attempt else seed)
-        layout = layout_scene(graph, retry_seed(seed, attempt))
+        layout = layout_scene(graph, retry_seed(seed, attempt), params=ROOM_LAYOUT)
         scene = assemble_scene(graph, layout, rules=room.rules, seed=seed)
         blocked = door_paths(scene)
         if blocked:

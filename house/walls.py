@@ -233,7 +233,10 @@ def _door(planned: PlannedDoor, rooms, pieces, taken, swings, rng, number: int) 
             boxes = [_swing_box(p, u, width, inward) for p, inward in sides]
             return not any(_boxes_meet(a, b) for a in boxes for b in swings)
 
-        u = _place(piece.length, width, taken.get(n, []), rng, front=front, clear=clear)
+        # the front door and open doorways go mid-wall (furniture runs into the corners
+        # either side: a kitchen's counters); a door between rooms near a corner as often
+        middle = front or planned.open
+        u = _place(piece.length, width, taken.get(n, []), rng, front=middle, clear=clear)
         swings.extend(_swing_box(piece, u, width, inward) for _p, inward in sides)
     taken.setdefault(n, []).append((u - width / 2, u + width / 2))
     _mirror_taken(pieces, n, u, width, taken)

@@ -136,6 +136,10 @@ def describe(
     from scenewright.describer import describe as describe_stage
 
     check_choice("style", style, STYLES)
+    if scene.house is not None:  # a house: an overview, then each room as rooms are described
+        from scenewright.house.describe import describe_house
+
+        return describe_house(scene, style=style if words is None else "full", variant=variant)
     return describe_stage(
         scene, style=style, variant=variant, templates=templates or scene.templates, words=words
     )
@@ -151,12 +155,6 @@ def describe_scene(
 ) -> Scene:
     """``scene`` with its description (``describe``) and the time it took."""
     timings = dict(scene.timings)
-    if scene.house is not None:
-        from scenewright.house.describe import describe_house
-
-        with timed(timings, "describe"):
-            record = describe_house(scene, style=style, variant=variant)
-        return replace(scene, description=record, timings=timings)
     with timed(timings, "describe"):
         description = describe(
             scene, style=style, variant=variant, templates=templates, words=words
@@ -324,17 +322,32 @@ def generate_house(
     from scenewright.house.describe import describe_house
 
     check_choice("style", style, STYLES)
-    label = os.fspath(plan)
-    from scenewright.house import shipped_plans
-
-    if label not in shipped_plans():
-        label = str(Path(label).resolve())
     timings: dict[str, float] = {}
     with timed(timings, "layout"):
-        scene = house_scene_from(plan, seed, workers=workers, label=label)
+        scene = house_scene_from(plan, seed, workers=workers, label=plan_label(plan))
     with timed(timings, "describe"):
         description = describe_house(scene, style=style, variant=variant)
-    return replace(scene, description=description, timings=timings)
+    return replace(scene, description=description.record(), timings=timings)
+
+
+def plan_label(plan: str | os.PathLike[str]) -> str:
+    """How scene.json names a house's plan: the shipped plan's name, or the file's path."""
+    from scenewright.house import shipped_plans
+
+    label = os.fspath(plan)
+    return label if label in shipped_plans() else str(Path(label).resolve())
+
+
+def plan_file(plan: str | os.PathLike[str]) -> Path:
+    """The file a house plan is read from (a shipped plan's, or the path given)."""
+    from importlib.resources import files
+
+    from scenewright.house import shipped_plans
+
+    label = os.fspath(plan)
+    if label in shipped_plans():
+        return Path(str(files("scenewright.grammar_rules").joinpath(f"{label}.rules")))
+    return Path(label)
 
 
 def compose(

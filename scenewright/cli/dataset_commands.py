@@ -297,6 +297,7 @@ def dataset_cameras(args: argparse.Namespace):
 
 
 def run_dataset(args: argparse.Namespace) -> int:
+    from scenewright.api import is_house_plan
     from scenewright.dataset.produce import with_picture_captions
     from scenewright.dataset.run import available_cpus
     from scenewright.dataset.run import run_dataset as run
@@ -311,15 +312,18 @@ def run_dataset(args: argparse.Namespace) -> int:
     cameras = dataset_cameras(args)
     if args.rules is None and args.prompts is None:
         raise InputError("give a rule set, or --prompts FILE to compose the scenes from")
-    rules = load_rules(args.rules) if args.rules is not None else None
+    house = args.rules is not None and is_house_plan(args.rules)
+    rules = load_rules(args.rules) if args.rules is not None and not house else None
+    if house and (args.context is not None or args.prompts is not None):
+        raise InputError("--context and --prompts are for a rule set's scenes, not a house plan's")
     if args.prompts is not None and (args.context is not None or args.no_context):
         raise InputError(
             "--context and --no-context are for a rule set's scenes; "
             "scenes composed from --prompts are laid out without a learned context"
         )
-    context = chosen_context(args, rules) if args.prompts is None else None
+    context = chosen_context(args, rules) if args.prompts is None and not house else None
     spec = dataset_spec(
-        rules,
+        args.rules if house else rules,
         args.count,
         prompts=args.prompts,
         context=context[0] if context is not None else None,

@@ -51,6 +51,7 @@ from scenewright.dataset.spec import (
     scene_stem,
 )
 from scenewright.generator.rules_errors import ExpansionError
+from scenewright.house import house_scene_from
 
 if TYPE_CHECKING:
     from scenewright.generator.layout.learned_term import LearnedContext
@@ -114,6 +115,7 @@ class WorkerContext:
     renderer: Renderer | None  # None for a dataset without images
     context: LearnedContext | None = None  # the learned context layouts sample with
     prompts: tuple[str, ...] = ()  # a prompts dataset's requests
+    house: bool = False  # the scenes are houses of a plan (spec.rules names it)
 
 
 _per_thread = threading.local()
@@ -123,18 +125,20 @@ def worker_context(spec: DatasetSpec) -> WorkerContext:
     """This thread's rules and renderer for ``spec``, made on first use."""
     context: WorkerContext | None = getattr(_per_thread, "context", None)
     if context is None or context.settings != spec.settings():
-        from scenewright.api import load_rules
+        from scenewright.api import is_house_plan, load_rules
         from scenewright.render.offscreen import Renderer
 
         if context is not None and context.renderer is not None:
             context.renderer.close()
         renderer = Renderer(*spec.size) if spec.images else None
+        house = bool(spec.rules) and is_house_plan(spec.rules)
         context = WorkerContext(
             spec.settings(),
-            load_rules(spec.rules) if spec.rules else None,
+            load_rules(spec.rules) if spec.rules and not house else None,
             renderer,
             spec_context(spec),
             spec_prompts(spec),
+            house,
         )
         _per_thread.context = context
     return context
@@ -176,6 +180,9 @@ def produce_scene(spec: DatasetSpec, index: int) -> SceneProduct:
         with timed(cpu, "layout", process_time):
             if context.prompts:
                 scene, tried, recorded = composed_scene(context, spec, seed)
+            elif context.house:  # each room retries its own layout (house.furnish)
+                scene = house_scene_from(spec.rules, seed, label=spec.rules)
+                tried = {"layout_seed": seed, "attempts": 1}
             else:
                 scene, tried = laid_out_scene(context, spec, seed)
     except ScenewrightError as error:  # the rules fail for this seed (an expansion past its bounds)
@@ -355,6 +362,10 @@ def picture_captions(
     from scenewright.describer.view import describe_view, grounding_records
     from scenewright.render.visibility import PictureView, Thresholds
 
+    if scene.house is not None:
+        # a house's picture shows its whole floor from above: its overview is true of it
+        # (the rooms' furniture is told in the text column, room by room)
+        return {}, [describe(scene, style="short").text] * spec.captions
     options = captions_options(spec)
     picture = PictureView.from_render(
         result, scene, Thresholds(options.min_visible, options.min_size)

@@ -146,7 +146,15 @@ def dataset_spec(
     other ``DatasetSpec`` fields; without images there is no COCO file, and several
     views or camera ranges are an ``InputError``.
     """
-    from scenewright.api import checked_templates, load_rules, rules_context, rules_label
+    from scenewright.api import (
+        checked_templates,
+        is_house_plan,
+        load_rules,
+        plan_file,
+        plan_label,
+        rules_context,
+        rules_label,
+    )
 
     if not settings.get("images", True):
         if settings.get("views", 1) > 1 or settings.get("camera") is not None:
@@ -173,6 +181,21 @@ def dataset_spec(
                 templates=checked_templates(templates),
                 **settings,
             )
+    if is_house_plan(rules):
+        if templates is not None or context is not None:
+            raise InputError(
+                "--templates and --context are for a rule set's scenes; "
+                "a house's rooms are described and laid out by their own rule sets"
+            )
+        # rooms of several rule sets: no one catalog gives the COCO categories
+        settings["coco"] = False
+        return DatasetSpec(
+            rules=plan_label(rules),
+            rules_digest=file_digest(plan_file(rules)),
+            count=count,
+            templates=None,
+            **settings,
+        )
     loaded = load_rules(rules)
     if templates is None:
         checked_templates(loaded.params.templates)  # a broken one stops the run before any work
