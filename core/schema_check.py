@@ -32,6 +32,7 @@ from jsonschema.exceptions import best_match
 from scenewright.core.errors import InputError, RoomError
 from scenewright.core.limits import MAX_GROUP_DEPTH, MAX_JSON_DEPTH, forbidden_character
 from scenewright.core.relations import RELATIONS
+from scenewright.core.house import in_room
 from scenewright.core.room import ROOM_NODE, Room
 
 SCHEMA_FILE = "scene.schema.json"
@@ -228,6 +229,14 @@ def _reference_problems(data: dict[str, Any]) -> list[Problem]:
             )
     room_ids, room_problems = _room_parts(data.get("room"))
     problems += room_problems
+    house = data.get("house")
+    if isinstance(house, dict):  # a house's rooms' parts, named ROOM/PART (core.house)
+        for index, house_room in enumerate(house.get("rooms", [])):
+            parts, part_problems = _room_parts(house_room.get("room"))
+            problems += [
+                (f"$.house.rooms[{index}]" + where[1:], what) for where, what in part_problems
+            ]
+            room_ids |= {in_room(str(house_room.get("id")), part) for part in parts}
     for index, relation in enumerate(data["relations"]):
         for end in ("source", "target"):
             if relation[end] not in kinds and relation[end] not in room_ids:

@@ -450,6 +450,8 @@ def layout_again(
 
     seed = check_seed(seed, "layout seed")
     templates = checked_templates(templates)
+    if scene.house is not None:
+        return _house_layout_again(scene, seed, pin, warm=warm, style=style, variant=variant)
     try:
         graph = scene.graph()
         problem = compile_problem(graph)
@@ -486,6 +488,37 @@ def layout_again(
     laid_out.timings.update(timings)
     described = describe_scene(laid_out, style=style, variant=variant, words=words)
     return described, list(pins.added)
+
+
+def _house_layout_again(
+    scene: Scene, seed: int, pin, *, warm: bool, style: str, variant: int
+) -> tuple[Scene, list[str]]:
+    """``layout_again`` for a house: each room laid out again on its own (room k with the
+    seed the house furnishes room k with, ``house.furnish.room_seed``), keeping the pinned
+    ids of that room (``ROOM/OBJECT``); the plan stays as it is."""
+    from scenewright.core.house import in_room, room_of
+    from scenewright.house.assemble import house_scene, room_scene
+    from scenewright.house.furnish import room_seed
+
+    house = scene.house
+    assert house is not None
+    room_ids = [room.id for room in house.rooms]
+    for name in pin:
+        if room_of(name) not in room_ids:
+            raise SceneGraphError(
+                f"--pin {name}: a house's objects are named ROOM/OBJECT "
+                f"(rooms: {', '.join(room_ids)})"
+            )
+    rooms, added = [], []
+    for k, house_room in enumerate(house.rooms):
+        local = room_scene(scene, house_room.id)
+        prefix = house_room.id + "/"
+        pins = [name.removeprefix(prefix) for name in pin if room_of(name) == house_room.id]
+        again, more = layout_again(local, room_seed(seed, k), pin=pins, warm=warm)
+        rooms.append(again)
+        added += [in_room(house_room.id, name) for name in more]
+    laid_out = house_scene(house, rooms, rules=scene.rules, seed=seed, name=scene.name)
+    return describe_scene(laid_out, style=style, variant=variant), added
 
 
 def rules_context(

@@ -274,3 +274,76 @@ def _overlap(a, b) -> float:
             return 0.0
     u = sorted(((p[0] - ax) * tx + (p[1] - az) * tz) for p in (b.start, b.end))
     return max(0.0, min(length, u[1]) - max(0.0, u[0]))
+
+
+# -- the other commands on houses ---------------------------------------------------------------
+
+
+@pytest.fixture
+def house_folder(small_plan, tmp_path):
+    out = tmp_path / "house"
+    assert main(["generate", str(small_plan), "--seed", "3", "--no-render", "-o", str(out)]) == 0
+    return out
+
+
+def test_evaluate_measures_a_house_room_by_room(house_folder, capsys):
+    assert main(["evaluate", str(house_folder / "scene.json"), "--json"]) == 0
+    measured = json.loads(capsys.readouterr().out)
+    house = json.loads((house_folder / "scene.json").read_text())["house"]
+    names = [scene["scene"] for scene in measured["scenes"]]
+    assert names == [f"{house_folder / 'scene.json'} {room['id']}" for room in house["rooms"]]
+    assert measured["summary"]["collision_rate"] == 0.0
+
+
+def test_layout_keeps_a_pinned_object_of_a_house_and_moves_the_rest(house_folder, tmp_path, capsys):
+    before = json.loads((house_folder / "scene.json").read_text())
+    pinned = next(o["id"] for o in before["objects"] if o["kind"] == "object")
+    out = tmp_path / "again"
+    code = main(
+        [
+            "layout",
+            str(house_folder / "scene.json"),
+            "--pin",
+            pinned,
+            "--seed",
+            "9",
+            "--no-render",
+            "-o",
+            str(out),
+        ]
+    )
+    assert code in (0, 1)
+    after = json.loads((out / "scene.json").read_text())
+    poses = {o["id"]: (o["position"], o["yaw"]) for o in after["objects"]}
+    first = {o["id"]: (o["position"], o["yaw"]) for o in before["objects"]}
+    assert poses[pinned] == first[pinned]
+    assert any(poses[i] != first[i] for i in first if i != pinned)
+    assert after["house"]["rooms"] == [
+        {**room, "seed": a["seed"], "layout": a["layout"], "derivation": a["derivation"]}
+        for room, a in zip(before["house"]["rooms"], after["house"]["rooms"], strict=True)
+    ]
+    capsys.readouterr()
+    assert (
+        main(
+            [
+                "layout",
+                str(house_folder / "scene.json"),
+                "--pin",
+                "bed_1",
+                "-o",
+                str(tmp_path / "x"),
+            ]
+        )
+        == 2
+    )
+    assert "named ROOM/OBJECT" in capsys.readouterr().err
+
+
+def test_a_dataset_of_houses(small_plan, tmp_path):
+    out = tmp_path / "data"
+    code = main(
+        ["dataset", str(small_plan), "-n", "2", "--no-images", "--workers", "1", "-o", str(out)]
+    )
+    assert code in (0, 1)
+    rows = [json.loads(line) for line in (out / "metadata.jsonl").read_text().splitlines()]
+    assert rows and all(row["text"].startswith("The flat has") for row in rows)

@@ -20,7 +20,8 @@ examples:
 
 Per scene: the share of objects in a collision and out of bounds (beyond --tolerance
 metres), the share of the free floor in its largest connected part (rooms), and the
-doors and windows blocked (rooms); then the same over all scenes. Any scene.json:
+doors and windows blocked (rooms); then the same over all scenes. A house is measured
+room by room (one row per room, named "PATH ROOM"). Any scene.json:
 generated, laid out again, completed, varied or converted from an example.""",
 }
 
@@ -47,6 +48,16 @@ def add_commands(commands) -> None:
     evaluate.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
 
 
+def _rooms_of(path: str, scene):
+    """The scenes to measure in a scene.json: the scene, or each room of a house (named
+    ``PATH ROOM``): a house is measured room by room, as SceneEval measures rooms."""
+    if scene.house is None:
+        return [(path, scene)]
+    from scenewright.house.assemble import room_scene
+
+    return [(f"{path} {room.id}", room_scene(scene, room.id)) for room in scene.house.rooms]
+
+
 def _tolerance(text: str) -> float:
     try:
         value = float(text)
@@ -62,7 +73,11 @@ def run_evaluate(args: argparse.Namespace) -> int:
 
     tolerance = TOLERANCE if args.tolerance is None else args.tolerance
     scenes = [(path, read_scene(path)) for path in args.scenes]  # all read before any output
-    results = [evaluate_scene(scene, path, tolerance) for path, scene in scenes]
+    results = [
+        evaluate_scene(room, name, tolerance)
+        for path, scene in scenes
+        for name, room in _rooms_of(path, scene)
+    ]
     summary = summarise(results)
     if args.json:
         text = json.dumps(
