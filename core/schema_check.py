@@ -30,9 +30,9 @@ import jsonschema
 from jsonschema.exceptions import best_match
 
 from scenewright.core.errors import InputError, RoomError
+from scenewright.core.house import in_room
 from scenewright.core.limits import MAX_GROUP_DEPTH, MAX_JSON_DEPTH, forbidden_character
 from scenewright.core.relations import RELATIONS
-from scenewright.core.house import in_room
 from scenewright.core.room import ROOM_NODE, Room
 
 SCHEMA_FILE = "scene.schema.json"
