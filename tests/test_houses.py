@@ -347,3 +347,44 @@ def test_a_dataset_of_houses(small_plan, tmp_path):
     assert code in (0, 1)
     rows = [json.loads(line) for line in (out / "metadata.jsonl").read_text().splitlines()]
     assert rows and all(row["text"].startswith("The flat has") for row in rows)
+
+
+def test_complete_adds_to_one_room_of_a_house_and_keeps_the_rest(house_folder, tmp_path, capsys):
+    before = json.loads((house_folder / "scene.json").read_text())
+    room = before["house"]["rooms"][0]["id"]
+    out = tmp_path / "completed"
+    code = main(
+        [
+            "complete",
+            str(house_folder / "scene.json"),
+            "--in",
+            room,
+            "--add",
+            "plant",
+            "--no-render",
+            "-o",
+            str(out),
+        ]
+    )
+    assert code in (0, 1)
+    after = json.loads((out / "scene.json").read_text())
+    poses = {o["id"]: o["position"] for o in after["objects"]}
+    for obj in before["objects"]:
+        assert poses[obj["id"]] == obj["position"]
+    added = set(poses) - {o["id"] for o in before["objects"]}
+    assert added and all(name.startswith(room + "/") for name in added)
+    capsys.readouterr()
+    assert (
+        main(
+            [
+                "complete",
+                str(house_folder / "scene.json"),
+                "--add",
+                "plant",
+                "-o",
+                str(tmp_path / "x"),
+            ]
+        )
+        == 2
+    )
+    assert "is a house: --in names which room to complete" in capsys.readouterr().err

@@ -56,6 +56,7 @@ examples:
   scenewright complete --room 6x5 --door W:1:0.9 --with dining_table --with chair=6 --no-render -o dining/
   scenewright complete --room "0,0 6,0 6,3 3,3 3,5 0,5" --door 1:1:0.9 --with desk -o office/
   scenewright complete bedroom/scene.json --add piano -o bedroom2/   # what is there stays put
+  scenewright complete flat/scene.json --in living_room_1 --add piano -o flat2/   # one room of a house
 
 completes an empty room from the categories asked for (--with NAME[=COUNT], names of
 the indoor catalog, repeatable), from a set of furnished floor plans (--plans, default
@@ -181,6 +182,12 @@ def add_commands(commands) -> None:
         default=[],
         metavar="NAME[=N][,...]",
         help="with SCENE_JSON: categories to add (repeatable)",
+    )
+    complete.add_argument(
+        "--in",
+        dest="in_room",
+        metavar="ROOM",
+        help="with a house's SCENE_JSON: the room to add to (bedroom_2); the rest stays as it is",
     )
     complete.add_argument(
         "--room",
@@ -312,7 +319,7 @@ def run_complete(args: argparse.Namespace) -> int:
 
     check_scene_folder(args.output, COMPLETE_FILES)  # before any work: it is replaced as a whole
     catalog = indoor_catalog()
-    keep = None
+    keep = house = None
     if args.scene is not None:
         from scenewright.completion.request import existing_request, parse_categories
 
@@ -335,6 +342,7 @@ def run_complete(args: argparse.Namespace) -> int:
                 "completing a scene.json needs --add NAME[=N][,...]: what to add to it"
             )
         keep = read_scene(args.scene)
+        house, keep = _room_to_complete(keep, args)
         request = existing_request(keep, parse_categories(args.add, catalog), catalog)
     else:
         if args.add:
@@ -346,6 +354,8 @@ def run_complete(args: argparse.Namespace) -> int:
             raise InputError(
                 "an empty room needs --room and --with (or give a scene.json to complete)"
             )
+        if args.in_room is not None:
+            raise InputError("--in names a room of a house: give the house's scene.json")
         request = parse_request(args.room, args.door, args.window, args.categories, catalog)
     scene = complete_room(
         request,
@@ -369,6 +379,8 @@ def run_complete(args: argparse.Namespace) -> int:
             f"kept {kept} piece{'s' * (kept != 1)} where {'they' if kept != 1 else 'it'} stood; placed {new} new "
             f"(what --add asked for, and what the line above says the plans added)",
         )
+    if house is not None:
+        scene = _house_with(house, args.in_room, scene, args)
     written = write_scene(
         scene,
         args.output,
@@ -383,3 +395,37 @@ def run_complete(args: argparse.Namespace) -> int:
         outputs=COMPLETE_FILES,
     )
     return report_scene(args, written)
+
+
+def _room_to_complete(scene, args):
+    """(the house, the room of it --in names) for a house's scene.json; (None, the scene)
+    for a room's."""
+    if scene.house is None:
+        if args.in_room is not None:
+            raise InputError(f"--in {args.in_room}: {args.scene} is a room, not a house")
+        return None, scene
+    from scenewright.house.assemble import room_scene
+
+    rooms = [room.id for room in scene.house.rooms]
+    if args.in_room not in rooms:
+        what = "which room to complete" if args.in_room is None else f"no room {args.in_room!r}"
+        raise InputError(f"{args.scene} is a house: --in names {what} (rooms: {', '.join(rooms)})")
+    if args.explain:
+        raise InputError("--explain draws one room's mask; it is not made for a house")
+    return scene, room_scene(scene, args.in_room)
+
+
+def _house_with(house, room_id: str, completed, args):
+    """The house with room ``room_id`` replaced by its ``completed`` scene, described."""
+    from dataclasses import replace
+
+    from scenewright.api import describe_scene
+    from scenewright.house.assemble import house_scene, room_scene
+
+    rooms = [
+        completed if room.id == room_id else room_scene(house, room.id)
+        for room in house.house.rooms
+    ]
+    joined = house_scene(house.house, rooms, rules=house.rules, seed=house.seed, name=house.name)
+    joined = replace(joined, completion=completed.completion)
+    return describe_scene(joined, style=args.style, variant=args.variant)
