@@ -377,7 +377,13 @@ def pin_existing(graph: SceneGraph, scene) -> tuple[SceneGraph, dict[str, Pose]]
     }
     kept = replace(graph, graph=graph.graph.copy())
     kept.graph.remove_edges_from(
-        [(a, b, k) for a, b, k in kept.graph.edges(keys=True) if a in fixed and b in fixed]
+        [
+            (a, b, k)
+            for a, b, k, label in kept.graph.edges(keys=True, data="label")
+            # a kept piece stays where it stands: not on a support that is new (a lamp the
+            # room had on the floor is not lifted onto a nightstand the completion adds)
+            if a in fixed and (b in fixed or (a in pinned and _rests_on(label, RELATIONS)))
+        ]
     )
     # The scene's own relations among what it holds: a chair's "in front of the desk"
     # also lets it stand in the desk's clearance; what rests on what keeps it on top.
@@ -386,6 +392,11 @@ def pin_existing(graph: SceneGraph, scene) -> tuple[SceneGraph, dict[str, Pose]]
         if source is not None and target in fixed and relation.label in RELATIONS:
             kept.add_relation(source, target, relation.label)
     return kept, pinned
+
+
+def _rests_on(label: str, relations) -> bool:
+    """Whether a relation label rests its source on its target (OnTopOf and the like)."""
+    return label in relations and relations[label].support
 
 
 def _id_order(object_id: str) -> tuple[str, int]:

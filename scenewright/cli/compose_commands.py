@@ -18,13 +18,15 @@ examples:
   scenewright compose "a 4 by 3 metre study with a desk under the window and a bookshelf against the east wall" --seed 2
   scenewright compose "a kitchen with a fridge, a sink under the window and a table with four chairs around it" --rules-out kitchen.rules
   scenewright compose "a small room with a piano" --catalog my_music.rules --strict
+  scenewright compose "a bedroom with a double bed against the north wall" --complete -o full/
 
 writes what generate writes (scene.json, description.txt, preview.png, scene.glb,
 plan.png). Words or phrases it could not use are listed as LINE:COL-COL: message, with
 the nearest known word; --strict makes that an error (exit 2, nothing written). A
 statement the layout could not satisfy is named with the statements it shares things
 with, and the exit code is 1 (the files are kept). --rules-out keeps the rule set it
-composed, to edit and generate from like any other.""",
+composed, to edit and generate from like any other. --complete adds, around what the
+text asked for (kept where it stands), what a room of that kind usually holds.""",
 }
 
 
@@ -49,6 +51,12 @@ def add_commands(commands) -> None:
         "--catalog",
         metavar="RULES",
         help="a rule set (shipped name or .rules file) whose object types may be named too",
+    )
+    compose.add_argument(
+        "--complete",
+        action="store_true",
+        help="then add what a room of that kind usually holds besides (the completion model, "
+        "docs/completion.md); what the text asked for stays where it is",
     )
     style_options(compose)
     compose.add_argument(
@@ -94,6 +102,8 @@ def run_compose(args: argparse.Namespace) -> int:
     )
     for line in report.messages():
         print(line, file=sys.stderr)
+    if args.complete:
+        scene = completed(scene, args)
     written = write_scene(scene, args.output, render=args.render, size=args.size, view=args.view)
     if args.rules_out:
         write_rules(report.rules, args.rules_out)
@@ -102,3 +112,32 @@ def run_compose(args: argparse.Namespace) -> int:
         print(f"{PROG}: {line}", file=sys.stderr)
     code = report_scene(args, written)
     return code if not report.unsatisfied else max(code, 1)
+
+
+def completed(scene, args: argparse.Namespace):
+    """The composed room with what the completion model adds to a room of its kind, the
+    composed pieces kept where they stand (``complete SCENE_JSON``'s way), described."""
+    from scenewright.api import complete_room
+    from scenewright.completion.explanation import summary_of
+    from scenewright.completion.request import existing_request
+    from scenewright.generator import indoor_catalog
+
+    if scene.room is None:
+        raise InputError(
+            "--complete adds what a room usually holds: the text must ask for a room "
+            "(a bedroom, a kitchen, a 4 by 3 metre room, ...)"
+        )
+    catalog = indoor_catalog()
+    request = existing_request(scene, {}, catalog)
+    result = complete_room(
+        request,
+        args.seed,
+        catalog=catalog,
+        keep=scene,
+        templates=args.templates,
+        style=args.style,
+        variant=args.variant,
+        words=args.words,
+    )
+    say(args, summary_of(result.completion))
+    return result
