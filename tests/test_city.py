@@ -17,7 +17,9 @@ from scenewright.generator.layout.lots import CLUSTER_TYPE, wrap_clusters
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.rules import check_rules, load_rules, shipped_rule_sets
 
-USER_TOWN = Path(__file__).resolve().parent.parent / "benchmarks" / "town_rules" / "user_town.rules"
+TOWN_RULES = Path(__file__).resolve().parent.parent / "benchmarks" / "town_rules"
+USER_TOWN = TOWN_RULES / "user_town.rules"
+CROSSROADS_TOWN = TOWN_RULES / "crossroads_town.rules"
 
 SHORT_ROADS = """
 scene short { extent 120 x 120 ground grass start T max_depth 8 max_nodes 400 }
@@ -67,13 +69,27 @@ def test_loose_houses_and_gardens_are_grouped_for_the_layout_only():
     assert all(n.type != CLUSTER_TYPE for n in graph.nodes())
 
 
-@pytest.mark.parametrize("seed", [1003, 1079])  # 1079: a road drawn by 21 houses
-def test_a_town_written_from_the_docs_lays_out_ok_with_houses_beside_their_roads(seed):
-    graph = expand(load_rules(USER_TOWN), seed)
+@pytest.mark.parametrize(
+    "rules, seed, homes",
+    [
+        (USER_TOWN, 1003, 70),
+        (USER_TOWN, 1079, 70),  # a road drawn by 21 houses
+        (CROSSROADS_TOWN, 1001, 52),  # roads drawn by 11 homes and lamps, a lane by 11 cottages
+    ],
+)
+def test_a_town_written_from_the_docs_lays_out_ok_with_houses_beside_their_roads(
+    rules, seed, homes
+):
+    assert [str(d) for d in check_rules(str(rules)) if d.is_error] == []
+    graph = expand(load_rules(rules), seed)
     result = layout_scene(graph, seed)
     assert result.ok, result.problems[:3]
-    beside = [r for r in result.relations if r.label == "NextTo" and r.target.startswith("road_")]
-    assert len(beside) >= 70 and all(r.satisfied for r in beside)
+    beside = [
+        r
+        for r in result.relations
+        if r.label == "NextTo" and r.target.startswith(("road_", "lane_"))
+    ]
+    assert len(beside) >= homes and all(r.satisfied for r in beside)
 
 
 def test_items_whose_road_some_road_drew_take_another_road_when_theirs_is_full(tmp_path):
