@@ -266,7 +266,8 @@ class Scene:
 
     def graph(self) -> SceneGraph:
         """The scene relationship graph this scene was laid out from (every node, every
-        relation, the scene parameters, the derivation)."""
+        relation, the scene parameters, the derivation); a relation to ``some road``
+        names the road the layout gave it, and is no longer marked as drawn."""
         nodes = [_node_of(o) for o in self.objects] + [_node_of_path(p) for p in self.paths]
         nodes.sort(key=lambda n: n["order"])
         return SceneGraph.from_dict(

@@ -3,7 +3,10 @@
 A ``SceneGraph`` wraps a networkx ``MultiDiGraph``. Each node is one instance of a
 catalog type (object, group, path or junction) with a stable id such as
 ``market_stand_2`` (type name and a 1-based counter per type, in creation order). Each
-edge is one relation label of the registry (``core.relations``) pointing from A to B. Every node
+edge is one relation label of the registry (``core.relations``) pointing from A to B; an edge
+whose target a ``some TYPE`` drew also has ``some=True`` (the layout may give a relation
+to ``some road`` another road of the type, ``layout.lots``; scene.json records the road
+it used). Every node
 records the production that made it (its derivation) and its parent group, so the
 describer can follow the derivation and a group's extent can be taken from its members.
 
@@ -284,8 +287,9 @@ class SceneGraph:
         # node creation most of the cost of grammar expansion.
         self.graph.add_node(node.id, **{name: getattr(node, name) for name in _NODE_FIELDS})
 
-    def add_relation(self, source: str, target: str, label: str) -> None:
-        """Add the edge ``source`` -label-> ``target`` (both must exist, the label registered)."""
+    def add_relation(self, source: str, target: str, label: str, some: bool = False) -> None:
+        """Add the edge ``source`` -label-> ``target`` (both must exist, the label
+        registered); ``some``: the target was drawn by ``some TYPE`` (module docstring)."""
         if label not in RELATIONS:
             raise UnknownLabel(label)
         for node_id in (source, target):
@@ -293,7 +297,10 @@ class SceneGraph:
                 raise KeyError(f"unknown node {node_id!r}")
         if source == target:
             raise ValueError(f"relation {label} from {source!r} to itself")
-        self.graph.add_edge(source, target, label=label)
+        if some:
+            self.graph.add_edge(source, target, label=label, some=True)
+        else:
+            self.graph.add_edge(source, target, label=label)
 
     # -- reading ------------------------------------------------------------------
 

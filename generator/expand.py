@@ -187,7 +187,9 @@ class _Expansion:
             for subject in subjects:
                 for relation in statement.relations:
                     for target in self.targets(relation, scope, subject):
-                        self.graph.add_relation(subject, target, relation.label)
+                        self.graph.add_relation(
+                            subject, target, relation.label, some=relation.target.kind == "some"
+                        )
             if statement.block is not None:
                 for group in subjects:
                     inner = dict(scope)

@@ -223,6 +223,8 @@ def run_decomposed_chain(
 ) -> Run:
     """Phases 2 and 3 on one stream: the framed groups placed and annealed as rigid
     footprints, then a short joint refinement of everything."""
+    if problem.free_paths:  # the lots may give relations to "some road" another road
+        problem = problem.with_own_relations()
     state = State(problem)
     energy = Energy(problem, state, params)
     # The roads are fitted to the scene and the lots planned along them: they stay put.

@@ -88,7 +88,10 @@ def place_initial(
 
     With ``lots`` (a large outdoor scene, ``decompose``) the roads of several junctions
     are spread to avoid each other and the items that stand beside a road are given
-    lots along it first (``lots.plan_lots``); the plan is returned (else None).
+    lots along it first (``lots.plan_lots``); the plan is returned (else None). An item
+    the plan gives another road (its road drawn by ``some road``) has its relations to
+    the road pointed at that one (``Problem.retarget``: ``energy.problem`` must be the
+    chain's own, ``Problem.with_own_relations``).
     """
     frames = frames or {}
     problem, state = energy.problem, energy.state
@@ -118,6 +121,10 @@ def place_initial(
     plan = None
     if lots:
         plan = plan_lots(energy, items)
+        for item in plan.moved:  # given another road of its type (``lots``): it is its own
+            for term in item.terms:
+                problem.retarget(term, item.path)
+            mover.forget_placing()
         for poses in plan.poses.values():
             for box, (x, z, yaw) in poses.items():
                 energy.state.set_pose(box, x, z, yaw)

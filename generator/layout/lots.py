@@ -13,10 +13,21 @@ where the item would touch another road, a lot already given, a junction or the
 scene's edge, and the packing then tries a metre further on. The MCMC then refines
 the whole layout from there.
 
-When a road's items do not fit along it, the items left over are placed the ordinary
-way, and if the layout ends up not ``ok`` its report says, road by road, how many
-metres of frontage were missing (``shortage``): "14 houses, 2 street lamps need 150 m
-of road frontage beside road_7; its sides give 56 m (3 found no room)".
+``some road`` draws each item's road at random, so one road may be asked for more
+frontage than it has while others have room. An item whose road relations were all
+drawn that way (``Problem.free_paths``) and that found no lot on its road then takes
+one on another road of the same type, after every item has been given its own road's
+lots: the road with the most side left first, in creation order, so the same scene
+always gets the same roads. Its relations are then pointed at that road
+(``Problem.retarget``), and the layout's verdict (scene.json's relations) names it. A
+scene where every item found a lot on its own road is laid out exactly as before.
+
+When items do not fit, those left over are placed the ordinary way, and if the layout
+ends up not ``ok`` its report says how many metres of frontage were missing
+(``shortage``), road by road, or over all the roads of the type for items drawn by
+``some road``: "14 houses, 2 street lamps need 150 m of road frontage beside road_7;
+its sides give 56 m (3 found no room)", "40 houses need 341 m of road frontage beside
+road_1, road_2 and road_3; their sides give 171 m (27 found no room)".
 
 Items that relations tie together but that the rule set did not put in a group (a house
 and its garden written as loose objects) are put in a group of their own for the
@@ -76,6 +87,10 @@ class LotItem:
     # item's near edge on z = 0, its left end on x = 0), and its width along the road.
     local: dict[int, tuple[float, float, float]] = field(default_factory=dict)
     width: float = 0.0
+    # Its relation terms to ``path``, and the roads it may take instead when all of them
+    # were drawn by ``some TYPE`` (``Problem.free_paths``; else empty).
+    terms: list[int] = field(default_factory=list)
+    roads: tuple[int, ...] = ()
 
 
 @dataclass
@@ -86,6 +101,7 @@ class LotPlan:
     left: list[LotItem]
     items: list[LotItem]
     sides: list[float]  # per road, metres of road side it gives (both sides)
+    moved: list[LotItem] = field(default_factory=list)  # items given another road (``path``)
 
 
 def wrap_clusters(graph: SceneGraph) -> SceneGraph:
@@ -187,6 +203,15 @@ def frontage_items(
         if name is None:
             name = _type_of(problem.group_ids[index])
         item = LotItem((kind, index), boxes, anchor, bound, path, name)
+        ends = set(sources)
+        item.terms = [
+            t
+            for t in problem.terms_of_path[path]
+            if (problem.relations[t].a.kind, problem.relations[t].a.index) in ends
+            and problem.relations[t].b.kind == "path"
+        ]
+        if all(t in problem.free_paths for t in item.terms):
+            item.roads = problem.free_paths[item.terms[0]]
         _shape(energy, item, frames.get(index) if kind == "group" else None)
         items.append(item)
     return items
@@ -328,43 +353,59 @@ def plan_lots(energy: Energy, items: list[LotItem]) -> LotPlan:
                     return False
         return True
 
-    def place(item: LotItem, side: int, s: float) -> dict[int, tuple[float, float, float]]:
-        """The item's poses on a lot from arc length ``s`` on ``side`` of its road."""
-        px, pz, tx, tz = roads[item.path].at(s + item.width / 2.0)
+    def place(
+        item: LotItem, side: int, s: float, path: int
+    ) -> dict[int, tuple[float, float, float]]:
+        """The item's poses on a lot from arc length ``s`` on ``side`` of ``path``."""
+        px, pz, tx, tz = roads[path].at(s + item.width / 2.0)
         if side < 0:  # the item's frame runs the other way along the road
             tx, tz = -tx, -tz
         # The turn that takes the frame's x axis along the road (and z away from it).
         turn = math.atan2(-tz, tx)
         c, s_ = math.cos(turn), math.sin(turn)
-        offset = problem.path_width[item.path] / 2.0 + ROAD_GAP
+        offset = problem.path_width[path] / 2.0 + ROAD_GAP
         placed = {}
         for box, (lx, lz, yaw) in item.local.items():
             u, v = lx - item.width / 2.0, lz + offset
             placed[box] = (px + u * c + v * s_, pz - u * s_ + v * c, wrap(yaw + turn))
         return placed
 
-    for item in items:
-        road = roads[item.path]
-        done = False
-        sides = sorted((1, -1), key=lambda side: (cursor[(item.path, side)], -side))
+    def give(item: LotItem, path: int) -> bool:
+        """The next free lot along ``path`` for ``item``, on the side with the most room
+        left first; whether one was found."""
+        sides = sorted((1, -1), key=lambda side: (cursor[(path, side)], -side))
         for side in sides:
-            s = cursor[(item.path, side)]
-            while s + item.width <= road.length:
-                placed = place(item, side, s)
+            s = cursor[(path, side)]
+            while s + item.width <= roads[path].length:
+                placed = place(item, side, s, path)
                 rects = [_rect(problem, b, placed[b]) for b in item.boxes if problem.support[b] < 0]
                 if clear(rects):
                     for rect in rects:
                         taken.add(rect)
                     poses[item.unit] = placed
-                    cursor[(item.path, side)] = s + item.width + LOT_SPACING
-                    done = True
-                    break
+                    cursor[(path, side)] = s + item.width + LOT_SPACING
+                    return True
                 s += LOT_STEP
-            if done:
-                break
-        if not done:
+        return False
+
+    for item in items:
+        if not give(item, item.path):
             left.append(item)
-    return LotPlan(poses, left, items, [2.0 * road.length for road in roads])
+    # Items whose roads ``some road`` drew, left without a lot on theirs: each on the
+    # other road of its type with the most side left, the next if none is found there.
+    moved = []
+    for item in list(left):
+        others = [p for p in item.roads if p != item.path]
+        others.sort(
+            key=lambda p: (-sum(roads[p].length - cursor[(p, side)] for side in (1, -1)), p)
+        )
+        for path in others:
+            if give(item, path):
+                item.path = path
+                left.remove(item)
+                moved.append(item)
+                break
+    return LotPlan(poses, left, items, [2.0 * road.length for road in roads], moved)
 
 
 def shortage(
@@ -372,13 +413,15 @@ def shortage(
 ) -> str | None:
     """The report's line when some items got no lot: for each road with items left
     over, how many metres of frontage its items need (by type, ``nouns``: type -> noun
-    and plural) against what its two sides give; None when every item got one."""
+    and plural) against what its two sides give; for items whose road ``some road``
+    drew (which found no room on any road of the type), the same over all those roads.
+    None when every item got one."""
     if not plan.left:
         return None
-    short_roads = sorted({item.path for item in plan.left})
+    short = sorted({item.roads or (item.path,) for item in plan.left})
     lines = []
-    for path in short_roads:
-        beside = [item for item in plan.items if item.path == path]
+    for roads in short:
+        beside = [item for item in plan.items if item.path in roads]
         counts: dict[str, list[LotItem]] = {}
         for item in beside:
             counts.setdefault(item.name, []).append(item)
@@ -387,12 +430,23 @@ def shortage(
             f"{len(items)} {nouns.get(name, (name, name))[len(items) > 1]}"
             for name, items in sorted(counts.items(), key=lambda kv: -len(kv[1]))
         )
-        left = sum(1 for item in plan.left if item.path == path)
+        left = sum(1 for item in plan.left if (item.roads or (item.path,)) == roads)
+        given = sum(plan.sides[path] for path in roads)
+        where = (
+            f"beside {path_ids[roads[0]]}; its sides give"
+            if len(roads) == 1
+            else f"beside {_listed([path_ids[path] for path in roads])}; their sides give"
+        )
         lines.append(
-            f"{named} need {need:.0f} m of road frontage beside {path_ids[path]}; "
-            f"its sides give {plan.sides[path]:.0f} m ({left} found no room)"
+            f"{named} need {need:.0f} m of road frontage {where} {given:.0f} m "
+            f"({left} found no room)"
         )
     return "; ".join(lines)
+
+
+def _listed(names: list[str]) -> str:
+    """``a, b and c``."""
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 #: ``settle``: pairs of ground boxes overlapping by more than this (metres) are pushed

@@ -124,6 +124,10 @@ class Placer:
             ):
                 self.wall_terms.setdefault(term.a.index, []).append(term)
 
+    def forget_placing(self) -> None:
+        """Drop what ``_placing_terms`` kept, after ``Problem.retarget`` changed relations."""
+        self._placing.clear()
+
     def _movable(self, end: Endpoint) -> bool:
         """Whether a move may place this end: a free non-junction object, or a group with
         members none of which is pinned or rests on a pinned box."""

@@ -99,6 +99,10 @@ class Problem:
     incoming: dict[tuple[str, int], list[RelationTerm]] = field(
         default_factory=dict
     )  # by (kind, index) of B
+    #: Per relation term to a path whose target ``some TYPE`` drew (``SceneGraph``: the
+    #: edge's ``some``), every path of that type, in path order: the lots may give the
+    #: relation another of them (``lots.plan_lots``, ``retarget``).
+    free_paths: dict[int, tuple[int, ...]] = field(default_factory=dict)
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
     mask: CompiledMask | None = None
@@ -133,6 +137,43 @@ class Problem:
             below = self.support[below]
         return found
 
+    def with_own_relations(self) -> Problem:
+        """A copy whose relations (and the lists that index them) ``retarget`` may change
+        without changing this problem's: one chain's choice of roads is its own."""
+        return replace(
+            self,
+            relations=list(self.relations),
+            edges=list(self.edges),
+            terms_of_path=[list(terms) for terms in self.terms_of_path],
+            outgoing={key: list(terms) for key, terms in self.outgoing.items()},
+            incoming={key: list(terms) for key, terms in self.incoming.items()},
+        )
+
+    def retarget(self, term_index: int, path: int) -> None:
+        """Point relation ``term_index`` (B a path, one of ``free_paths[term_index]``) at
+        ``path`` instead; its edge then names that path (the layout's verdict and
+        scene.json say which road was used). Only before the relation's boxes are placed:
+        the energy's caches of it are empty then."""
+        old = self.relations[term_index]
+        assert old.b.kind == "path" and path in self.free_paths.get(term_index, ())
+        if old.b.index == path:
+            return
+        new = replace(old, target=self.path_ids[path], b=Endpoint("path", path, ()))
+        self.relations[term_index] = new
+        position = next(k for k, edge in enumerate(self.edges) if edge[3] == term_index)
+        source, _, label, _ = self.edges[position]
+        self.edges[position] = (source, new.target, label, term_index)
+        self.terms_of_path[old.b.index].remove(term_index)
+        self.terms_of_path[path] = sorted(self.terms_of_path[path] + [term_index])
+        mine = self.outgoing[(old.a.kind, old.a.index)]
+        mine[mine.index(old)] = new
+        for end in (old.b.index, path):  # in term order, as compiled
+            self.incoming[("path", end)] = [
+                self.relations[t]
+                for t in self.terms_of_path[end]
+                if self.relations[t].b == Endpoint("path", end, ())
+            ]
+
     def carried(self, box: int) -> list[int]:
         """The box and everything resting on it, transitively (they move together)."""
         found = [box]
@@ -155,6 +196,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
     path_width: list[float] = []
     path_max_length: list[float] = []
     path_segments: list[int] = []
+    path_types: list[str] = []
     group_ids: list[str] = []
     box_index: dict[str, int] = {}
     path_index: dict[str, int] = {}
@@ -179,6 +221,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
             path_width.append(float(node.width or 3.0))
             path_max_length.append(float(node.max_length or 30.0))
             path_segments.append(max(int(node.segments or 1), 1))
+            path_types.append(node.type)
         elif node.kind in ROOM_KINDS:
             continue  # fixed: the room's parts are endpoints, not boxes
         else:
@@ -214,7 +257,9 @@ def compile_problem(graph: SceneGraph) -> Problem:
     path_start = [-1] * len(path_ids)
     relations: list[RelationTerm] = []
     edges: list[tuple[str, str, str, int | None]] = []
-    for edge in graph.edges():
+    free_paths: dict[int, tuple[int, ...]] = {}
+    drawn = (data.get("some", False) for _, _, data in graph.graph.edges(data=True))
+    for edge, some in zip(graph.edges(), drawn, strict=True):
         spec = RELATIONS[edge.label]
         if spec.family == "structural":
             path, junction = _path_connection(edge, path_index, box_index)
@@ -230,6 +275,10 @@ def compile_problem(graph: SceneGraph) -> Problem:
                 )
             if support[a.index] == -1:
                 support[a.index] = b.index
+        if some and b.kind == "path":
+            free_paths[len(relations)] = tuple(
+                p for p, kind in enumerate(path_types) if kind == path_types[b.index]
+            )
         edges.append((edge.source, edge.target, edge.label, len(relations)))
         relations.append(RelationTerm(edge.source, edge.target, edge.label, spec, a, b))
 
@@ -265,6 +314,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
         line_of_sight=graph.params.line_of_sight,
         clearance=clearance,
         access=access,
+        free_paths=free_paths,
     )
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]
