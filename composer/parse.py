@@ -622,6 +622,11 @@ class _Reader:
                 add(s, "ImplicitAlignedWith", middle)
             return
         if how == "around":
+            if all(_is_seat(self.entity(sub).type) for sub in subjects):
+                # chairs round a table: seated at whichever side each fits, facing it
+                for sub in subjects:
+                    add(sub, "SeatedAround", targets[0])
+                return
             sides = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
             for k, s in enumerate(subjects):
                 add(s, sides[k % 4], targets[0])
@@ -648,6 +653,14 @@ class _Reader:
             if w.low not in FUNCTION_WORDS:
                 w.used = False
                 w.note = why
+
+
+#: Words in a type's name that make it a seat: "chairs around the table" are seated at it.
+SEAT_WORDS = ("chair", "stool", "bench", "seat")
+
+
+def _is_seat(type_name: str) -> bool:
+    return any(word in type_name for word in SEAT_WORDS) and type_name != "armchair"
 
 
 def _breadth(spec: RelationLabel) -> tuple[int, float]:
