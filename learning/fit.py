@@ -223,7 +223,7 @@ def fit_rule_set(
         fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
     _check_named_files_reach(rules, tree, output)
-    if context is not None:
+    if context is not None and not context.rules_alone_better:
         fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
         files = [example_file(path).read_bytes() for path, _ in examples]
         placed.append(
@@ -239,7 +239,8 @@ def fit_rule_set(
     if report is not None:
         document = {"rules": os.fspath(rules_source), "output": os.fspath(output), **fit.to_dict()}
         if context is not None:
-            document["context"] = {"file": os.fspath(context_path(output)), **context.context.fit}
+            written_to = None if context.rules_alone_better else os.fspath(context_path(output))
+            document["context"] = {"file": written_to, **context.context.fit}
         write(report, json.dumps(document, indent=2) + "\n")
         written.append(report)
     return fit, context, written

@@ -330,6 +330,9 @@ def learned_context(
         fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
     except NoRelatedPairs as error:
         return InducedContext(None, str(error), len(laid), left_out, ambiguous, unsearched)
+    if fit.rules_alone_better:  # a context that makes scenes worse is not written
+        why = f"the rules alone come as near the examples held out ({fit.held_out_summary()})"
+        return InducedContext(None, why, len(laid), left_out, ambiguous, unsearched)
     return InducedContext(fit, None, len(laid), left_out, ambiguous, unsearched)
 
 

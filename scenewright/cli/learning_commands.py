@@ -277,12 +277,20 @@ def run_fit(args: argparse.Namespace) -> int:
             ),
         )
     if context is not None:
-        say(
-            args,
-            f"fitted a context of {len(context.context.pairs)} pair kind"
+        held = context.held_out_summary()
+        fitted = (
+            f"a context of {len(context.context.pairs)} pair kind"
             f"{'s' * (len(context.context.pairs) != 1)} from {len(examples)} examples "
-            f"(divergence {context.divergence[0]:.3f} at the start, {context.divergence[context.kept]:.3f} kept)",
+            f"(divergence {context.divergence[0]:.3f} at the start, "
+            f"{context.divergence[context.kept]:.3f} kept{'; ' + held if held else ''})"
         )
+        if context.rules_alone_better:
+            say(
+                args,
+                f"no context written: the rules alone come as near the examples held out; {fitted}",
+            )
+        else:
+            say(args, f"fitted {fitted}")
     say(args, "wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -372,7 +380,9 @@ def run_learn(args: argparse.Namespace) -> int:
                 args,
                 f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "
                 f"examples (divergence {context.fit.divergence[0]:.3f} at the start, "
-                f"{context.fit.divergence[context.fit.kept]:.3f} kept){left_out}",
+                f"{context.fit.divergence[context.fit.kept]:.3f} kept"
+                + (f"; {context.fit.held_out_summary()}" if context.fit.held_out_summary() else "")
+                + f"){left_out}",
             )
         else:
             say(args, f"no context learned: {context.why_not}{left_out}")
