@@ -463,9 +463,7 @@ def fit_example_layouts(
     if balance and len(offsets) >= MIN_EXAMPLES:
         balance_observed = balance_shares(offsets)
         start = -np.log(balance_observed)
-        balance_table = BalanceContext(
-            np.minimum(start - start.min(), BALANCE_CAP), len(offsets)
-        )
+        balance_table = BalanceContext(np.minimum(start - start.min(), BALANCE_CAP), len(offsets))
     graphs = [example.graph for example in laid]
     held_shares: dict[Kind, tuple[np.ndarray, np.ndarray]] = {}
     if held:
