@@ -37,6 +37,16 @@ step length, so a step that overshoots is not built on). The weights kept are th
 the round with the smallest divergence (after the last update one more round is laid
 out to measure it), so the figure reported is the one measured for the weights
 written, and it is never above the first round's.
+
+With HOLDOUT_FROM examples or more, HOLDOUT of them are held out (``held_out_split``):
+the weights are fitted to the rest, each round's scenes are also compared with the
+held-out examples, and the round kept is the one nearest them; the rules alone (no
+context) are laid out and compared too, and ``ContextFit.rules_alone_better`` says when
+the context would make scenes worse than none (``fit`` and ``learn`` then write none).
+
+The visual-balance term (``learned_term.BalanceContext``): one histogram per scene of
+the balance offset (``graph_balance``), fitted like a pair kind's with starting weights
+capped at BALANCE_CAP, and one more term of every divergence.
 """
 
 from __future__ import annotations
