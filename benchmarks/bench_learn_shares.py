@@ -121,16 +121,16 @@ def main() -> None:
     parser.add_argument("--check", type=int, default=100)
     parser.add_argument("--context", action="store_true", help="also fit the context")
     parser.add_argument(
-        "--no-balance", action="store_true", help="fit the context without its visual-balance term"
+        "--balance", action="store_true", help="fit the context with its visual-balance term"
     )
     args = parser.parse_args()
-    if args.no_balance:
+    if args.balance:
         import functools
 
         import scenewright.learning.learn as learn_module
 
         learn_module.fit_example_layouts = functools.partial(  # type: ignore[assignment]
-            learn_module.fit_example_layouts, balance=False
+            learn_module.fit_example_layouts, balance=True
         )
     worst_share, worst_free, worst_ok = 0.0, 0.0, 1.0
     for kind in args.kinds:

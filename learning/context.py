@@ -382,7 +382,7 @@ def fit_context(
     layouts: int = LAYOUTS,
     params: LayoutParams | None = None,
     holdout: float = HOLDOUT,
-    balance: bool = True,
+    balance: bool = False,
 ) -> ContextFit:
     """Fit a context to example scene.json documents ((name, document) pairs); see the
     module docstring. ``NoRelatedPairs`` (an ``InputError``) when no pair kind is held by
@@ -418,7 +418,7 @@ def fit_example_layouts(
     layouts: int = LAYOUTS,
     params: LayoutParams | None = None,
     holdout: float = HOLDOUT,
-    balance: bool = True,
+    balance: bool = False,
 ) -> ContextFit:
     """Fit a context to examples' layouts (``example_layout``, ``measured_example_layout``);
     see the module docstring. With the held-out check (``held_out_split``: ``holdout``

@@ -183,6 +183,7 @@ def fit_rule_set(
     seed: int = 0,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
 ) -> tuple[WeightFit, ContextFit | None, list[Path]]:
     """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
     (file name, Scene) for examples read from geometry alone) and
@@ -191,8 +192,8 @@ def fit_rule_set(
     ``commit()`` puts the staged files in place before the fitted rules are loaded as a
     check (``core.atomic.staged_files``: a check that fails takes them back out).
 
-    ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds`` and ``layouts`` are the
-    context fit's (``context.fit_context``).
+    ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds``, ``layouts`` and
+    ``balance`` are the context fit's (``context.fit_context``).
 
     Returns the weights' fit (with ``weights`` left out: the fit that changes nothing),
     the context's fit (None without ``context``) and the files written. Raises
@@ -210,7 +211,9 @@ def fit_rule_set(
     context = None
     if "context" in what:
         try:
-            context = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+            context = fit_example_layouts(
+                laid, seed=seed, rounds=rounds, layouts=layouts, balance=balance
+            )
         except NoRelatedPairs as error:
             if any(isinstance(scene, Scene) for _, scene in examples):
                 raise NoRelatedPairs(

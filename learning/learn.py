@@ -290,6 +290,7 @@ def learned_context(
     seed: int,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
     replays: int = CONTEXT_REPLAYS,
     progress: Callable[[str], object] = lambda message: None,
 ) -> InducedContext:
@@ -327,7 +328,7 @@ def learned_context(
         why = "the induced rules make the examples in too many ways to search for one of them"
         return InducedContext(None, why, 0, left_out, ambiguous, unsearched)
     try:
-        fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+        fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts, balance=balance)
     except NoRelatedPairs as error:
         return InducedContext(None, str(error), len(laid), left_out, ambiguous, unsearched)
     if fit.rules_alone_better:  # a context that makes scenes worse is not written
@@ -397,6 +398,7 @@ def learn_rule_set(
     context: bool = True,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
     write: Callable[[Path, str], object],
     build_scene: SceneBuilder,
     progress: Callable[[str], object] = lambda message: None,
@@ -433,6 +435,7 @@ def learn_rule_set(
                 seed=seed,
                 rounds=rounds,
                 layouts=layouts,
+                balance=balance,
                 progress=progress,
             )
     written = []

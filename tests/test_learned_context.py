@@ -334,8 +334,12 @@ def test_a_share_of_eight_examples_or_more_is_held_out_the_same_way_each_time():
 
 
 def test_the_round_kept_is_the_one_nearest_the_held_out_examples():
-    fit = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4)
-    assert len(fit.held) == 2 and len(fit.held_out) == len(fit.divergence) == 3
+    fit = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4, balance=True)
+    assert (
+        fit.context.balance is not None
+        and len(fit.held) == 2
+        and len(fit.held_out) == len(fit.divergence) == 3
+    )
     assert fit.held_out[fit.kept] == min(fit.held_out)
     assert fit.kept == fit.held_out.index(min(fit.held_out))  # the first of equals
     record = fit.context.fit["held_out"]
@@ -746,7 +750,7 @@ def test_a_fitted_balance_term_is_written_read_back_and_learned_from_off_centre_
     for _, document in examples[:6]:  # most examples put the dining group off centre
         for o in document["objects"]:
             o["position"] = [o["position"][0] + 1.0, *o["position"][1:]]
-    fit = fit_context(examples, seed=0, rounds=0, layouts=2, holdout=0.0)
+    fit = fit_context(examples, seed=0, rounds=0, layouts=2, holdout=0.0, balance=True)
     table = fit.context.balance
     assert table is not None and table.examples == 8
     offsets = [
@@ -761,6 +765,22 @@ def test_a_fitted_balance_term_is_written_read_back_and_learned_from_off_centre_
     assert max(offsets[:6]) > min(offsets[:6]) and min(offsets[:6]) > max(offsets[6:])
     again = LearnedContext.from_dict(json.loads(fit.context.to_json()))
     assert np.allclose(again.balance.weights, table.weights, atol=1e-6)
-    assert fit_context(examples, seed=0, rounds=0, layouts=2, balance=False).context.balance is None
+    assert fit_context(examples, seed=0, rounds=0, layouts=2).context.balance is None  # opt-in
     with pytest.raises(InputError, match='balance: "weights" must be 16 numbers'):
         LearnedContext.from_dict({**fit.context.to_dict(), "balance": {"weights": [1, 2]}})
+
+
+def test_fit_balance_writes_the_balance_term_and_generate_lays_out_with_it(tmp_path, capsys):
+    paths = write_examples(tmp_path, dining_examples(4))
+    out = tmp_path / "out" / "fitted.rules"
+    argv = ["fit", str(DINING), *paths, "-o", str(out), "--what", "context"]
+    assert main([*argv, "--rounds", "0", "--layouts", "2", "--balance"]) == 0
+    document = json.loads((tmp_path / "out" / "fitted.context.json").read_text())
+    assert len(document["balance"]["weights"]) == BALANCE_BINS
+    assert document["balance"]["examples"] == 4
+    capsys.readouterr()
+    assert (
+        main(["generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g")]) == 0
+    )
+    scene = json.loads((tmp_path / "g" / "scene.json").read_text())
+    assert "learned" in scene["layout"]["parts"]

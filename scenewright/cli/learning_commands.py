@@ -237,6 +237,11 @@ def context_fit_options(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help="context: scenes laid out per round (40)",
     )
+    parser.add_argument(
+        "--balance",
+        action="store_true",
+        help="context: also fit the visual-balance term (off: it slows layouts, docs/learning.md)",
+    )
 
 
 def run_fit(args: argparse.Namespace) -> int:
@@ -262,6 +267,7 @@ def run_fit(args: argparse.Namespace) -> int:
             seed=args.seed,
             rounds=args.rounds,
             layouts=args.layouts,
+            balance=args.balance,
         )
     unidentified = fit.unidentified
     if "weights" in what:
@@ -342,6 +348,7 @@ def run_learn(args: argparse.Namespace) -> int:
             context=args.context,
             rounds=args.rounds,
             layouts=args.layouts,
+            balance=args.balance,
             write=staged.write,
             build_scene=build_scene,
             progress=lambda message: note_progress(args, message),
