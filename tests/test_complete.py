@@ -88,6 +88,23 @@ def test_a_larger_room_gets_more_categories(model, catalog):
     assert added("3x3") < added("4x3.5") < added("5x4")
 
 
+def test_the_default_steps_are_the_baselines_and_the_papers_are_an_option(model, catalog):
+    request = parse_request("5x4", ["S:0.8:0.9"], ["N:2.5:1.4"], ["bed,bookshelf"], catalog)
+    default, paper = (
+        choose_contents(model, request),
+        choose_contents(model, replace(request, **PAPER)),
+    )
+    bedrooms = [plan.id for plan in model.plans if plan.type == "bedroom"]
+    # The type's mean mask: every bedroom plan weighs the same.
+    assert sorted(default.mask.weights) == sorted(bedrooms)
+    assert len(set(default.mask.weights.values())) == 1
+    assert len(paper.mask.weights) < len(bedrooms)  # Equation 4: the nearest plans' cluster
+    # Co-occurrence adds fewer categories here than Algorithm 1, all of them among its own.
+    added = {name for name in default.counts if name not in request.requested}
+    assert added and added < set(paper.counts)
+    assert default.explorations["bedroom"].cost == 0.0 and paper.explorations["bedroom"].steps
+
+
 def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(model, catalog):
     request = parse_request("4x3.6", ["S:3.2:0.85"], ["E:1.8:1.3"], ["desk"], catalog)
     contents = choose_contents(model, request)
@@ -115,6 +132,8 @@ def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(mo
         (["--room", "5x4", "--with", "tredmill"], "did you mean 'treadmill'"),
         (["--room", "5x4", "--with", "bathtub"], "no plan of any type has a 'bathtub'"),
         (["--room", "5x4", "--with", "chair=20"], "at most"),
+        (["--room", "5x4", "--with", "bed", "--categories", "greedy"], "invalid choice: 'greedy'"),
+        (["--room", "5x4", "--with", "bed", "--mask", "median"], "invalid choice: 'median'"),
     ],
 )
 def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, argv, fragment):
