@@ -784,3 +784,22 @@ def test_fit_balance_writes_the_balance_term_and_generate_lays_out_with_it(tmp_p
     )
     scene = json.loads((tmp_path / "g" / "scene.json").read_text())
     assert "learned" in scene["layout"]["parts"]
+
+
+def test_fit_writes_no_context_the_rules_alone_beat_and_says_so(tmp_path, capsys, monkeypatch):
+    paths = write_examples(tmp_path, dining_examples(8))
+    out = tmp_path / "out" / "fitted.rules"
+    argv = ["fit", str(DINING), *paths, "-o", str(out), "--what", "context"]
+    monkeypatch.setattr(ContextFit, "rules_alone_better", property(lambda self: True))
+    capsys.readouterr()
+    assert (
+        main([*argv, "--rounds", "0", "--layouts", "2", "--report", str(tmp_path / "r.json")]) == 0
+    )
+    said = capsys.readouterr().out
+    assert said.startswith(
+        "no context written: the rules alone come as near the examples held out; a context of"
+    )
+    assert "held out 2: divergence from them" in said
+    assert not (tmp_path / "out" / "fitted.context.json").exists()
+    report = json.loads((tmp_path / "r.json").read_text())["context"]
+    assert report["file"] is None and len(report["held_out"]["examples"]) == 2
