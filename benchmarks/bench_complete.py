@@ -40,12 +40,13 @@ Prints figures only; nothing is asserted. One process, one core.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import statistics
 import time
 
 import numpy as np
 
-from scenewright.completion import shipped_plans_dir
+from scenewright.completion import CATEGORY_METHODS, MASK_METHODS, shipped_plans_dir
 from scenewright.completion.complete import MASKED, complete, region_boxes
 from scenewright.completion.contents import category_owners, choose_contents
 from scenewright.completion.explanation import recorded_mask_values
@@ -119,6 +120,8 @@ class LayoutClock:
 
 
 CLOCK: LayoutClock | None = None
+#: ``--categories`` and ``--mask``: the steps every request is completed with (None: the default).
+METHODS: dict[str, str] = {}
 
 
 def run(request, seed, model, catalog, mask_term, split=True):
@@ -127,6 +130,7 @@ def run(request, seed, model, catalog, mask_term, split=True):
     CLOCK = CLOCK or LayoutClock()
     before = CLOCK.seconds
     started = time.process_time()
+    request = dataclasses.replace(request, **METHODS)
     scene = complete(request, seed, model=model, catalog=catalog, mask_term=mask_term, split=split)
     return scene, time.process_time() - started, CLOCK.seconds - before
 
@@ -320,7 +324,16 @@ def main() -> None:
         metavar="N",
         help="N large two-type rooms only, split by virtual walls and not",
     )
+    parser.add_argument(
+        "--categories",
+        choices=CATEGORY_METHODS,
+        help=f"how the categories are chosen (default {CATEGORY_METHODS[0]})",
+    )
+    parser.add_argument(
+        "--mask", choices=MASK_METHODS, help=f"how the mask is chosen (default {MASK_METHODS[0]})"
+    )
     args = parser.parse_args()
+    METHODS.update({k: getattr(args, k) for k in ("categories", "mask") if getattr(args, k)})
     model = build_model(load_plans(shipped_plans_dir()))
     catalog = indoor_catalog()
     mask_term = not args.without_mask_term

@@ -208,6 +208,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
+    parser.add_argument("--balance", action="store_true", help="fit the visual-balance term too")
     parser.add_argument("--examples", type=int, default=30)
     parser.add_argument("--scenes", type=int, default=60)
     parser.add_argument("--jitter", type=float, default=0.08, help="metres per axis (0.08)")
@@ -263,7 +264,13 @@ def main() -> int:
         print(f"context: {args.context}, {len(context.pairs)} pair kinds; {len(laid)} examples")
     else:
         start = time.process_time()
-        fitted = fit_example_layouts(laid, seed=args.seed, rounds=args.rounds, layouts=args.layouts)
+        fitted = fit_example_layouts(
+            laid,
+            seed=args.seed,
+            rounds=args.rounds,
+            layouts=args.layouts,
+            balance=args.balance,
+        )
         context = fitted.context
         print(
             f"fit: {len(laid)} examples, {len(context.pairs)} pair kinds, "

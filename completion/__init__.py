@@ -33,6 +33,13 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
+#: How ``complete`` chooses the categories beyond the request (``selection.choose_categories``)
+#: and the layout mask (``layout_mask.choose_mask``); the first of each is the default. The
+#: leave-one-out measured neither paper step better than its baseline by more than its
+#: spread (docs/completion.md, "How well it predicts"), so the baselines are the defaults.
+CATEGORY_METHODS = ("co-occurrence", "algorithm1")
+MASK_METHODS = ("mean", "equation4")
+
 
 def shipped_plans_dir() -> Path:
     """The folder of the plan set shipped with the package (one sub-folder per room type)."""

@@ -31,16 +31,21 @@ class Contents:
 
 
 def choose_contents(model: PlanModel, request: Request, *, split: bool = True) -> Contents:
-    """Equation 2, then Algorithm 1 per type, then Equation 4. One type, or a room
+    """Equation 2, then per type the categories (``request.categories``: co-occurrence
+    at the type's usual number, or Algorithm 1), then the layout mask
+    (``request.mask``: the type's mean mask, or Equation 4). One type, or a room
     that is not split (``split`` False, or not a rectangle): the room's area is shared
     among the types by their mean areas, and the mask is the first (largest) type's
     over the whole room. Several types in a rectangle: the room is split by virtual
     walls (``regions.split_room``) and each type's categories and mask are those of
     its own region, as a room of its own."""
     from scenewright.completion.features import room_parts
-    from scenewright.completion.layout_mask import RegionMasks, amalgamated_mask
+    from scenewright.completion.layout_mask import RegionMasks, choose_mask
     from scenewright.completion.regions import split_room
-    from scenewright.completion.selection import check_counts, choose_types, explore_categories
+    from scenewright.completion.selection import check_counts, choose_categories, choose_types
+
+    explore_categories = choose_categories(request.categories)
+    amalgamated_mask = choose_mask(request.mask)
 
     room = request.room
     choice = choose_types(

@@ -23,7 +23,12 @@ request, and compare what the model says with what the designer drew:
   the empty room's door-aware frame; soft IoU ``sum(min) / sum(max)``. Baseline: the
   type's mean mask over the other plans.
 
-Every figure is the mean over plans (and per type); ``report`` sets ours beside each baseline.
+Every figure is the mean over plans (and per type); ``report`` sets ours beside each
+baseline, with the leave-one-out spread of the difference (``spread``: the standard error
+of the mean per-plan difference): a step beats its baseline only by more than that.
+A third answer for the categories (F1 only) is ``complete``'s default,
+``selection.usual_categories``: co-occurrence at the usual number of categories of
+the K plans most like the room (compared on F1 and on the number's error).
 """
 
 from __future__ import annotations
@@ -36,7 +41,7 @@ from scenewright.completion.features import canonical_frame, occupancy_mask, roo
 from scenewright.completion.layout_mask import amalgamated_mask
 from scenewright.completion.model_builder import build_model, floor_pieces
 from scenewright.completion.plan_model import PlanModel
-from scenewright.completion.selection import choose_types, explore_categories
+from scenewright.completion.selection import choose_types, explore_categories, usual_categories
 from scenewright.core.errors import InputError
 
 #: Each measure: its name, the key of ours and of the baseline's figure, what each is,
@@ -68,6 +73,14 @@ COMPARISONS = (
     ),
     ("F1", "f1", "f1_baseline", "Algorithm 1", "co-occurrence, as many categories", True),
     (
+        "F1, co-occurrence at the nearest plans' usual number",
+        "f1",
+        "f1_cooccurrence",
+        "Algorithm 1",
+        "co-occurrence, the nearest plans' usual number (complete's default)",
+        True,
+    ),
+    (
         "F1, usual categories",
         "f1",
         "f1_usual",
@@ -81,6 +94,14 @@ COMPARISONS = (
         "added_error_baseline",
         "Algorithm 1",
         "the type's usual number",
+        False,
+    ),
+    (
+        "number added: error, usual number of the nearest plans",
+        "added_error",
+        "added_error_cooccurrence",
+        "Algorithm 1",
+        "the usual number of the K plans most like the room (complete's default)",
         False,
     ),
     ("mask IoU", "mask_iou", "mask_iou_baseline", "Equation 4", "the type's mean mask", True),
@@ -125,6 +146,8 @@ def evaluate_plan(plan, model: PlanModel, requested_size: int) -> dict:
         for name in candidates
     }
     baseline_added = set(sorted(candidates, key=lambda name: (-score[name], name))[: len(added)])
+    usual_set = usual_categories(model, plan.type, requested, plan.room.area, parts)
+    cooccurrence_added = set(usual_set.categories) - set(requested)
     usual = np.mean(
         [len(set(p.counts) - set(requested)) for p in model.plans if p.type == plan.type]
     )
@@ -146,8 +169,10 @@ def evaluate_plan(plan, model: PlanModel, requested_size: int) -> dict:
         "recall_baseline": _share(baseline_added & truth, truth),
         "f1_baseline": _f1(baseline_added, truth),
         "f1_usual": _f1(common, truth),
+        "f1_cooccurrence": _f1(cooccurrence_added, truth),
         "added_error": float(abs(len(added) - len(truth))),
         "added_error_baseline": float(abs(int(round(float(usual))) - len(truth))),
+        "added_error_cooccurrence": float(abs(len(cooccurrence_added) - len(truth))),
         "mask_iou": soft_iou(layout.mask, true_mask),
         "mask_iou_baseline": soft_iou(mean_mask, true_mask),
         "miss": None
@@ -169,11 +194,26 @@ def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
         if plan.type in model.types:
             rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
     table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
-    table["all"] = _means([row for found in rows.values() for row in found])
+    everything = [row for found in rows.values() for row in found]
+    table["all"] = _means(everything)
+    table["all"]["spread"] = {
+        f"{ours}-{base}": spread([row[ours] - row[base] for row in everything])
+        for _, ours, base, *_ in COMPARISONS
+    }
     table["all"]["misses"] = [
         row["miss"] for found in rows.values() for row in found if row["miss"]
     ]
     return table
+
+
+def spread(differences) -> float:
+    """The leave-one-out spread of a mean difference: the standard error of the mean of
+    the per-plan differences (their standard deviation over the square root of their
+    number; 0 for fewer than two)."""
+    values = np.asarray(differences, dtype=float)
+    if len(values) < 2:
+        return 0.0
+    return round(float(values.std(ddof=1) / np.sqrt(len(values))), 3)
 
 
 def _means(rows: list[dict[str, float]]) -> dict[str, float]:
@@ -200,11 +240,16 @@ def report(table: dict[str, dict], requested_size: int) -> str:
     for name, ours, base, what, baseline, more_is_better in COMPARISONS:
         a, b = table["all"][ours], table["all"][base]
         better = (a > b) == more_is_better
+        margin = table["all"].get("spread", {}).get(f"{ours}-{base}", 0.0)
         verdict = (
             "equal"
             if a == b
             else f"{'ours' if better else 'the baseline'} better by {abs(a - b):.3f}"
         )
+        if a != b:
+            verdict += f" (spread {margin:.3f}: " + (
+                "beyond it)" if abs(a - b) > margin else "within it)"
+            )
         lines.append(f"- {name}: {what} {a:.3f}, baseline ({baseline}) {b:.3f}: {verdict}")
     misses = table["all"].get("misses", ())
     lines += [

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from scenewright.completion import MASK_METHODS
 from scenewright.completion.features import (
     CanonicalFrame,
     canonical_frame,
@@ -78,6 +79,32 @@ def amalgamated_mask(
         weights = {name: value / total for name, value in inverse.items()}
     mask = sum(weights[plan.id] * np.asarray(plan.mask) for plan in group)
     return LayoutMask(np.asarray(mask), canonical_frame(room), feature, weights)
+
+
+def mean_mask(
+    model: PlanModel, room_type: str, room, counts: dict[str, int], k: int = K
+) -> LayoutMask:
+    """The type's mean mask, ``complete``'s default (``--mask mean``): every plan of the
+    type weighs the same, whatever the room (``counts`` and ``k`` only make the feature
+    it records). The leave-one-out measured Equation 4 no better than this
+    (docs/completion.md, "How well it predicts")."""
+    entry = model.types[room_type]
+    floor = sum(model.categories[name].floor_area * n for name, n in counts.items())
+    feature = room_feature(room, floor, entry.mean_area)
+    plans = sorted((plan for plan in model.plans if plan.type == room_type), key=lambda p: p.id)
+    weights = {plan.id: 1.0 / len(plans) for plan in plans}
+    mask = np.mean([np.asarray(plan.mask) for plan in plans], axis=0)
+    return LayoutMask(np.asarray(mask), canonical_frame(room), feature, weights)
+
+
+def choose_mask(method: str):
+    """The mask step named ``method`` (``MASK_METHODS``): ``mean_mask`` for ``mean``,
+    Equation 4 (``amalgamated_mask``) for ``equation4``."""
+    if method not in MASK_METHODS:
+        from scenewright.core.errors import InputError
+
+        raise InputError(f"mask method {method!r}: choose one of {', '.join(MASK_METHODS)}")
+    return mean_mask if method == "mean" else amalgamated_mask
 
 
 def mask_at(layout: LayoutMask, room, points) -> np.ndarray:

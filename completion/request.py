@@ -32,10 +32,15 @@ MAX_ROOM_CORNERS = 64
 
 @dataclass(frozen=True)
 class Request:
-    """What the user asked for: the empty ``room`` and ``requested`` category -> count."""
+    """What the user asked for: the empty ``room`` and ``requested`` category -> count,
+    and how the categories and the layout mask are chosen (``categories``, ``mask``: one
+    of ``scenewright.completion.CATEGORY_METHODS`` and ``MASK_METHODS``; the defaults
+    are the baselines the leave-one-out measured as good as the paper's steps)."""
 
     room: Room
     requested: dict[str, int]
+    categories: str = "co-occurrence"
+    mask: str = "mean"
 
 
 def parse_room(text: str) -> Room:

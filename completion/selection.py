@@ -66,6 +66,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from scenewright.completion import CATEGORY_METHODS
 from scenewright.completion.plan_model import PlanEntry, PlanModel
 from scenewright.core.errors import InputError
 
@@ -304,3 +305,54 @@ def _typical_counts(plans: list[PlanEntry], room_type: str) -> dict[str, int]:
             for name, count in plan.counts.items():
                 totals.setdefault(name, []).append(count)
     return {name: max(1, int(round(float(np.mean(values))))) for name, values in totals.items()}
+
+
+def usual_categories(
+    model: PlanModel,
+    room_type: str,
+    requested: dict[str, int],
+    room_area: float,
+    room_parts,
+    *,
+    k: int = K,
+) -> Exploration:
+    """The co-occurrence step, ``complete``'s default (``--categories co-occurrence``):
+    as many categories beyond the request as the ``k`` plans of the type most like the
+    room (``nearest_plans``, Algorithm 1's reference plans) hold on average, rounded;
+    those most often seen with the requested ones (the sum of ``P(o, o_req | s)``; ties:
+    the more common ``P(o | s)``, then the name), each as many times as Algorithm 1
+    would count it. The leave-one-out measured Algorithm 1 no better than this
+    (docs/completion.md, "How well it predicts"). ``room_area`` is unused: the room
+    enters through ``room_parts`` (its relative size among them)."""
+    if room_type not in model.types:
+        raise InputError(f"the plans have no type {room_type!r}")
+    unknown = sorted(name for name in requested if name not in model.categories)
+    if unknown:
+        raise InputError(f"no plan has a {unknown[0]!r}")
+    entry = model.types[room_type]
+    references = nearest_plans(model, room_type, room_parts, k)
+    usual = int(round(float(np.mean([len(set(p.counts) - set(requested)) for p in references]))))
+    together = {tuple(pair.pair): pair.cooccurrence for pair in entry.pairs}
+    candidates = sorted(name for name in entry.categories if name not in requested)
+    score = {
+        name: sum(together.get((min(name, r), max(name, r)), 0.0) for r in sorted(requested))
+        for name in candidates
+    }
+    added = sorted(candidates, key=lambda name: (-score[name], -entry.probability(name), name))
+    typical = {
+        **_typical_counts(model.plans, room_type),
+        **_typical_counts(references, room_type),
+    }
+    ordered = tuple(sorted(requested)) + tuple(added[:usual])
+    counts = {name: requested.get(name, typical.get(name, 1)) for name in ordered}
+    return Exploration(ordered, counts, 0.0, tuple(plan.id for plan in references))
+
+
+def choose_categories(method: str):
+    """The category step named ``method`` (``CATEGORY_METHODS``): ``usual_categories``
+    for ``co-occurrence``, Algorithm 1 (``explore_categories``) for ``algorithm1``."""
+    if method not in CATEGORY_METHODS:
+        raise InputError(
+            f"categories method {method!r}: choose one of {', '.join(CATEGORY_METHODS)}"
+        )
+    return usual_categories if method == "co-occurrence" else explore_categories

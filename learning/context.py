@@ -37,12 +37,22 @@ step length, so a step that overshoots is not built on). The weights kept are th
 the round with the smallest divergence (after the last update one more round is laid
 out to measure it), so the figure reported is the one measured for the weights
 written, and it is never above the first round's.
+
+With HOLDOUT_FROM examples or more, HOLDOUT of them are held out (``held_out_split``):
+the weights are fitted to the rest, each round's scenes are also compared with the
+held-out examples, and the round kept is the one nearest them; the rules alone (no
+context) are laid out and compared too, and ``ContextFit.rules_alone_better`` says when
+the context would make scenes worse than none (``fit`` and ``learn`` then write none).
+
+The visual-balance term (``learned_term.BalanceContext``): one histogram per scene of
+the balance offset (``graph_balance``), fitted like a pair kind's with starting weights
+capped at BALANCE_CAP, and one more term of every divergence.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.ndimage import gaussian_filter, gaussian_filter1d
@@ -54,10 +64,14 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.core.seeds import stream
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.learned_term import (
+    BALANCE_BINS,
     BINS,
     YAW_BINS,
+    BalanceContext,
     LearnedContext,
     PairContext,
+    balance_boxes,
+    balance_offset,
     pair_kind_name,
     related_pairs,
     relative_pose,
@@ -88,8 +102,24 @@ ROUNDS = 2
 LAYOUTS = 40
 #: Fewest examples holding a pair kind for it to get a histogram (one scene shows no spread).
 MIN_EXAMPLES = 2
+#: The held-out check: with at least HOLDOUT_FROM examples, this share of them (rounded,
+#: at least 2) is held out, the weights are fitted to the rest, and the round kept is the
+#: one whose scenes come nearest the held-out examples; the rules alone are measured too.
+HOLDOUT = 0.25
+HOLDOUT_FROM = 8
+#: The child of the context stage's stream that draws the examples held out: beyond
+#: any round's layouts (round * layouts + k).
+HOLDOUT_STREAM = 2**32
 
 Kind = tuple[str, str, tuple[str, ...]]
+#: The key of the visual-balance histogram among the generated shares.
+BALANCE = "balance"
+#: Blur of the balance histogram, in bins, and the largest weight a balance bin starts
+#: with: the offset is one number for the whole scene, so a bin no example showed, at
+#: -log(FLOOR), would hold every piece of a scene still at temperature 1; capped, it is
+#: e^BALANCE_CAP times less likely than the examples' own offsets, and the rounds move it.
+BALANCE_SMOOTH = 2.0
+BALANCE_CAP = 2.0
 
 
 @dataclass
@@ -100,6 +130,8 @@ class ExampleLayout:
     graph: SceneGraph
     poses: list[tuple[Kind, tuple[float, float, float]]]
     area: float
+    #: The example's balance offset (``learned_term.balance_offset``; None: no floor piece).
+    balance: float | None = None
 
 
 def graph_pair_poses(
@@ -121,6 +153,22 @@ def graph_pair_poses(
     return found
 
 
+def graph_balance(
+    graph: SceneGraph, poses: dict[str, tuple[float, float, float]], extent=None
+) -> float | None:
+    """The balance offset of ``graph``'s floor pieces at ``poses`` (id -> (x, z, yaw)) in
+    a scene of ``extent`` (default: the graph's); None when no floor piece has a pose."""
+    problem = compile_problem(graph)
+    boxes, areas = balance_boxes(problem)
+    keep = [k for k, box in enumerate(boxes) if problem.ids[box] in poses]
+    if not keep:
+        return None
+    ids = [problem.ids[boxes[k]] for k in keep]
+    xs = np.array([poses[i][0] for i in ids])
+    zs = np.array([poses[i][1] for i in ids])
+    return balance_offset(tuple(extent or problem.extent), xs, zs, areas[keep])
+
+
 def _floor_area(extent) -> float:
     return float(np.prod(extent or [1.0, 1.0]))
 
@@ -138,7 +186,12 @@ def example_layout(name: str, document: dict) -> ExampleLayout:
     poses = {
         o.id: (float(o.position[0]), float(o.position[2]), float(o.yaw)) for o in scene.objects
     }
-    return ExampleLayout(graph, graph_pair_poses(graph, poses), _floor_area(document.get("extent")))
+    return ExampleLayout(
+        graph,
+        graph_pair_poses(graph, poses),
+        _floor_area(document.get("extent")),
+        graph_balance(graph, poses, document.get("extent")),
+    )
 
 
 def measured_example_layout(
@@ -186,7 +239,10 @@ def measured_example_layout(
         (node_of[a], node_of[b]) for (a, _, b), verdict in verdicts.items() if not verdict.satisfied
     )
     return ExampleLayout(
-        derivation, graph_pair_poses(derivation, poses, broken), _floor_area(scene.extent)
+        derivation,
+        graph_pair_poses(derivation, poses, broken),
+        _floor_area(scene.extent),
+        graph_balance(derivation, poses, scene.extent),
     )
 
 
@@ -244,6 +300,15 @@ def shares(
     return _floored(blurred), _floored(turns)
 
 
+def balance_shares(offsets: Sequence[float]) -> np.ndarray:
+    """Shares of balance offsets in BALANCE_BINS bins, blurred by BALANCE_SMOOTH bins
+    (the edges reflect) and floored (module docstring)."""
+    raw = np.zeros(BALANCE_BINS)
+    for offset in offsets:
+        raw[BalanceContext.bin(offset)] += 1.0
+    return _floored(gaussian_filter1d(raw, BALANCE_SMOOTH, mode="reflect"))
+
+
 def _floored(values: np.ndarray) -> np.ndarray:
     total = values.sum()
     values = values / total if total > 0.0 else np.full(len(values), 1.0 / len(values))
@@ -286,6 +351,27 @@ class ContextFit:
     kept: int
     layouts: int
     skipped: list[str]
+    #: The held-out check (``held_out_split``): the examples held out (indices), per round
+    #: the divergence from them, and that of the rules alone (no context); empty and None
+    #: without a check (fewer than HOLDOUT_FROM examples, or ``holdout`` 0).
+    held: tuple[int, ...] = ()
+    held_out: list[float] = field(default_factory=list)
+    rules_alone: float | None = None
+
+    @property
+    def rules_alone_better(self) -> bool:
+        """Whether the rules alone came nearer the held-out examples than the round kept
+        (then the context would make scenes worse, and is not written)."""
+        return self.rules_alone is not None and self.rules_alone <= self.held_out[self.kept]
+
+    def held_out_summary(self) -> str:
+        """The held-out check in words (empty without one)."""
+        if self.rules_alone is None:
+            return ""
+        return (
+            f"held out {len(self.held)}: divergence from them {self.held_out[self.kept]:.3f} "
+            f"with the context, {self.rules_alone:.3f} with the rules alone"
+        )
 
 
 def fit_context(
@@ -295,12 +381,33 @@ def fit_context(
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
     params: LayoutParams | None = None,
+    holdout: float = HOLDOUT,
+    balance: bool = False,
 ) -> ContextFit:
     """Fit a context to example scene.json documents ((name, document) pairs); see the
     module docstring. ``NoRelatedPairs`` (an ``InputError``) when no pair kind is held by
     MIN_EXAMPLES examples."""
     laid = [example_layout(name, document) for name, document in examples]
-    return fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts, params=params)
+    return fit_example_layouts(
+        laid,
+        seed=seed,
+        rounds=rounds,
+        layouts=layouts,
+        params=params,
+        holdout=holdout,
+        balance=balance,
+    )
+
+
+def held_out_split(count: int, seed: int, share: float = HOLDOUT) -> tuple[int, ...]:
+    """The indices of the examples held out of a fit to ``count`` examples: none below
+    HOLDOUT_FROM examples (or with ``share`` 0), else ``share`` of them (rounded, at
+    least 2), drawn from ``core.seeds.stream(seed, "context", HOLDOUT_STREAM)``, sorted."""
+    if share <= 0.0 or count < HOLDOUT_FROM:
+        return ()
+    size = max(2, int(round(share * count)))
+    order = stream(seed, "context", HOLDOUT_STREAM).permutation(count)
+    return tuple(sorted(int(k) for k in order[:size]))
 
 
 def fit_example_layouts(
@@ -310,10 +417,20 @@ def fit_example_layouts(
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
     params: LayoutParams | None = None,
+    holdout: float = HOLDOUT,
+    balance: bool = False,
 ) -> ContextFit:
     """Fit a context to examples' layouts (``example_layout``, ``measured_example_layout``);
-    see the module docstring. ``NoRelatedPairs`` (an ``InputError``) when no pair kind is
-    held by MIN_EXAMPLES examples."""
+    see the module docstring. With the held-out check (``held_out_split``: ``holdout``
+    of the examples, from HOLDOUT_FROM of them) the weights are fitted to the rest and
+    the round kept is the one nearest the held-out examples. With ``balance`` (and
+    MIN_EXAMPLES examples with a floor piece) the visual-balance term is fitted too, as
+    one more histogram. ``NoRelatedPairs`` (an
+    ``InputError``) when no pair kind is held by MIN_EXAMPLES examples (of those fitted to)."""
+    held = held_out_split(len(laid), seed, holdout)
+    if held:
+        check = [laid[k] for k in held]
+        laid = [example for k, example in enumerate(laid) if k not in held]
     observed_poses: dict[Kind, list[tuple]] = {}
     extents: dict[Kind, float] = {}  # the largest scene area a kind is seen in (m^2)
     holding: dict[Kind, int] = {}  # examples holding the kind
@@ -350,36 +467,95 @@ def fit_example_layouts(
             *kind, bounds, position - position.min(), yaw - yaw.min(), len(poses)
         )
 
-    divergence: list[float] = []
-    # (divergence, round, weights, generated shares per kind) of the best round so far
-    best: tuple[float, int, dict[Kind, PairContext], dict] | None = None
-    rate = RATE
+    offsets = [example.balance for example in laid if example.balance is not None]
+    balance_table: BalanceContext | None = None
+    balance_observed = None
+    if balance and len(offsets) >= MIN_EXAMPLES:
+        balance_observed = balance_shares(offsets)
+        start = -np.log(balance_observed)
+        balance_table = BalanceContext(np.minimum(start - start.min(), BALANCE_CAP), len(offsets))
     graphs = [example.graph for example in laid]
-    for round_index in range(rounds + 1):
-        context = LearnedContext(tuple(tables[kind] for kind in kinds))
+    held_shares: dict[Kind, tuple[np.ndarray, np.ndarray]] = {}
+    if held:
+        held_poses: dict[Kind, list[tuple]] = {}
+        for example in check:
+            for kind, pose in example.poses:
+                if kind in tables:
+                    held_poses.setdefault(kind, []).append(pose)
+        held_shares = {
+            kind: shares(*counts(tables[kind], poses), UPDATE_SMOOTH)
+            for kind, poses in sorted(held_poses.items())
+        }
+        held_offsets = [example.balance for example in check if example.balance is not None]
+        held_balance = (
+            balance_shares(held_offsets) if balance_table is not None and held_offsets else None
+        )
+
+    def held_divergence(generated: dict) -> float:
+        found = [share_distance(generated[kind], held_shares[kind]) for kind in held_shares]
+        if held_balance is not None:
+            found.append(total_variation(generated[BALANCE], held_balance))
+        return float(np.mean(found))
+
+    def fitted_divergence(generated: dict) -> float:
+        found = [share_distance(generated[kind], observed[kind]) for kind in kinds]
+        if balance_observed is not None:
+            found.append(total_variation(generated[BALANCE], balance_observed))
+        return float(np.mean(found))
+
+    def generate(context: LearnedContext | None, index: int) -> dict:
+        """Shares of the pair kinds in ``layouts`` scenes laid out with ``context``."""
         generated_poses: dict[Kind, list[tuple]] = {kind: [] for kind in kinds}
+        generated_offsets = []
         for k in range(layouts):
             graph = graphs[k % len(graphs)]
-            rng = stream(seed, "context", round_index * layouts + k)
+            rng = stream(seed, "context", index * layouts + k)
             result = layout_scene(graph, rng, params=params, context=context)
             poses = {box_id: (pose.x, pose.z, pose.yaw) for box_id, pose in result.poses.items()}
             for kind, pose in graph_pair_poses(graph, poses):
                 if kind in generated_poses:
                     generated_poses[kind].append(pose)
-        generated = {
+            if balance_table is not None:
+                offset = graph_balance(graph, poses)
+                if offset is not None:
+                    generated_offsets.append(offset)
+        found: dict = {
             kind: shares(*counts(tables[kind], generated_poses[kind]), UPDATE_SMOOTH)
             for kind in kinds
         }
-        divergence.append(
-            float(np.mean([share_distance(generated[kind], observed[kind]) for kind in kinds]))
-        )
+        if balance_table is not None:
+            found[BALANCE] = balance_shares(generated_offsets)
+        return found
+
+    rules_alone = held_divergence(generate(None, rounds + 1)) if held_shares else None
+    divergence: list[float] = []
+    held_out: list[float] = []
+    # (divergence, round, weights, generated shares per kind, balance) of the best round so far
+    # (by the fitted examples' divergence: the line search's), and the round nearest the
+    # held-out examples
+    best: tuple[float, int, dict[Kind, PairContext], dict, BalanceContext | None] | None = None
+    nearest: tuple[float, int, dict[Kind, PairContext], BalanceContext | None] | None = None
+    rate = RATE
+    for round_index in range(rounds + 1):
+        context = LearnedContext(tuple(tables[kind] for kind in kinds), balance=balance_table)
+        generated = generate(context, round_index)
+        divergence.append(fitted_divergence(generated))
+        if held_shares:
+            held_out.append(held_divergence(generated))
+            if nearest is None or held_out[-1] < nearest[0]:
+                nearest = (held_out[-1], round_index, dict(tables), balance_table)
         if best is None or divergence[-1] < best[0]:
-            best = (divergence[-1], round_index, dict(tables), generated)
+            best = (divergence[-1], round_index, dict(tables), generated, balance_table)
         else:
             # The step made the fit worse: go back to the best weights and take half of
             # the step from there (a backtracking line search on the step length).
             rate /= 2.0
-        _, _, base, measured = best
+        _, _, base, measured, base_balance = best
+        if base_balance is not None and balance_observed is not None:
+            balance_table = BalanceContext(
+                scaling_step(base_balance.weights, balance_observed, measured[BALANCE], rate),
+                base_balance.examples,
+            )
         tables = {
             kind: PairContext(
                 *kind,
@@ -390,7 +566,7 @@ def fit_example_layouts(
             )
             for kind in kinds
         }
-    _, kept, chosen, _ = best
+    _, kept, chosen, _, chosen_balance = best
     record = {
         "seed": seed,
         "rounds": rounds,
@@ -399,10 +575,21 @@ def fit_example_layouts(
         "divergence": [round(d, 6) for d in divergence],
         "skipped": skipped,
     }
+    if nearest is not None:
+        _, kept, chosen, chosen_balance = nearest
+        record["kept_round"] = kept
+        record["held_out"] = {
+            "examples": list(held),
+            "divergence": [round(d, 6) for d in held_out],
+            "rules_alone": round(float(rules_alone or 0.0), 6),
+        }
     return ContextFit(
-        LearnedContext(tuple(chosen[kind] for kind in kinds), record),
+        LearnedContext(tuple(chosen[kind] for kind in kinds), record, balance=chosen_balance),
         divergence,
         kept,
         layouts,
         skipped,
+        held,
+        held_out,
+        rules_alone,
     )

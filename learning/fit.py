@@ -183,6 +183,7 @@ def fit_rule_set(
     seed: int = 0,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
 ) -> tuple[WeightFit, ContextFit | None, list[Path]]:
     """Fit ``rules_source`` to ``examples`` ((file name, scene.json document) pairs, or
     (file name, Scene) for examples read from geometry alone) and
@@ -191,8 +192,8 @@ def fit_rule_set(
     ``commit()`` puts the staged files in place before the fitted rules are loaded as a
     check (``core.atomic.staged_files``: a check that fails takes them back out).
 
-    ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds`` and ``layouts`` are the
-    context fit's (``context.fit_context``).
+    ``what``: the subset of ``WHAT`` to fit; ``seed``, ``rounds``, ``layouts`` and
+    ``balance`` are the context fit's (``context.fit_context``).
 
     Returns the weights' fit (with ``weights`` left out: the fit that changes nothing),
     the context's fit (None without ``context``) and the files written. Raises
@@ -210,7 +211,9 @@ def fit_rule_set(
     context = None
     if "context" in what:
         try:
-            context = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+            context = fit_example_layouts(
+                laid, seed=seed, rounds=rounds, layouts=layouts, balance=balance
+            )
         except NoRelatedPairs as error:
             if any(isinstance(scene, Scene) for _, scene in examples):
                 raise NoRelatedPairs(
@@ -223,7 +226,7 @@ def fit_rule_set(
         fit = WeightFit((), fit.examples, prior)
     placed = fitted_files(tree, rewrite_rules(tree, fit), output)
     _check_named_files_reach(rules, tree, output)
-    if context is not None:
+    if context is not None and not context.rules_alone_better:
         fitted_text = dict(placed).get(output) or output.read_text(encoding="utf-8")
         files = [example_file(path).read_bytes() for path, _ in examples]
         placed.append(
@@ -239,7 +242,8 @@ def fit_rule_set(
     if report is not None:
         document = {"rules": os.fspath(rules_source), "output": os.fspath(output), **fit.to_dict()}
         if context is not None:
-            document["context"] = {"file": os.fspath(context_path(output)), **context.context.fit}
+            written_to = None if context.rules_alone_better else os.fspath(context_path(output))
+            document["context"] = {"file": written_to, **context.context.fit}
         write(report, json.dumps(document, indent=2) + "\n")
         written.append(report)
     return fit, context, written

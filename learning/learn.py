@@ -290,6 +290,7 @@ def learned_context(
     seed: int,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
     replays: int = CONTEXT_REPLAYS,
     progress: Callable[[str], object] = lambda message: None,
 ) -> InducedContext:
@@ -327,9 +328,12 @@ def learned_context(
         why = "the induced rules make the examples in too many ways to search for one of them"
         return InducedContext(None, why, 0, left_out, ambiguous, unsearched)
     try:
-        fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts)
+        fit = fit_example_layouts(laid, seed=seed, rounds=rounds, layouts=layouts, balance=balance)
     except NoRelatedPairs as error:
         return InducedContext(None, str(error), len(laid), left_out, ambiguous, unsearched)
+    if fit.rules_alone_better:  # a context that makes scenes worse is not written
+        why = f"the rules alone come as near the examples held out ({fit.held_out_summary()})"
+        return InducedContext(None, why, len(laid), left_out, ambiguous, unsearched)
     return InducedContext(fit, None, len(laid), left_out, ambiguous, unsearched)
 
 
@@ -394,6 +398,7 @@ def learn_rule_set(
     context: bool = True,
     rounds: int = ROUNDS,
     layouts: int = LAYOUTS,
+    balance: bool = False,
     write: Callable[[Path, str], object],
     build_scene: SceneBuilder,
     progress: Callable[[str], object] = lambda message: None,
@@ -430,6 +435,7 @@ def learn_rule_set(
                 seed=seed,
                 rounds=rounds,
                 layouts=layouts,
+                balance=balance,
                 progress=progress,
             )
     written = []

@@ -88,6 +88,23 @@ def test_a_larger_room_gets_more_categories(model, catalog):
     assert added("3x3") < added("4x3.5") < added("5x4")
 
 
+def test_the_default_steps_are_the_baselines_and_the_papers_are_an_option(model, catalog):
+    request = parse_request("5x4", ["S:0.8:0.9"], ["N:2.5:1.4"], ["bed,bookshelf"], catalog)
+    default, paper = (
+        choose_contents(model, request),
+        choose_contents(model, replace(request, **PAPER)),
+    )
+    bedrooms = [plan.id for plan in model.plans if plan.type == "bedroom"]
+    # The type's mean mask: every bedroom plan weighs the same.
+    assert sorted(default.mask.weights) == sorted(bedrooms)
+    assert len(set(default.mask.weights.values())) == 1
+    assert len(paper.mask.weights) < len(bedrooms)  # Equation 4: the nearest plans' cluster
+    # Co-occurrence adds fewer categories here than Algorithm 1, all of them among its own.
+    added = {name for name in default.counts if name not in request.requested}
+    assert added and added < set(paper.counts)
+    assert default.explorations["bedroom"].cost == 0.0 and paper.explorations["bedroom"].steps
+
+
 def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(model, catalog):
     request = parse_request("4x3.6", ["S:3.2:0.85"], ["E:1.8:1.3"], ["desk"], catalog)
     contents = choose_contents(model, request)
@@ -115,6 +132,8 @@ def test_the_record_lists_every_category_with_its_scores_and_the_mask_weights(mo
         (["--room", "5x4", "--with", "tredmill"], "did you mean 'treadmill'"),
         (["--room", "5x4", "--with", "bathtub"], "no plan of any type has a 'bathtub'"),
         (["--room", "5x4", "--with", "chair=20"], "at most"),
+        (["--room", "5x4", "--with", "bed", "--categories", "greedy"], "invalid choice: 'greedy'"),
+        (["--room", "5x4", "--with", "bed", "--mask", "median"], "invalid choice: 'median'"),
     ],
 )
 def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, argv, fragment):
@@ -218,6 +237,10 @@ def test_polygon_rooms_are_read_as_corners(catalog):
 
 # -- a room too full to lay out gives up its weakest added pieces (fewer_pieces) --
 
+#: The paper's steps (Algorithm 1, Equation 4), which fill a room fuller than the
+#: defaults do: the rooms below are crowded with them.
+PAPER = {"categories": "algorithm1", "mask": "equation4"}
+
 #: A 3.1 x 4.3 m room asked for a sofa: the study it becomes holds two bookshelves,
 #: and with both no layout seed 0 tries leaves the door's swing free.
 CROWDED = ("4.8x4.9", "S:3.01:0.85", "N:1.67:1.34", "desk,filing_cabinet")
@@ -267,7 +290,7 @@ def test_a_desk_given_up_takes_its_added_chair_along_and_a_requested_one_never_g
 
 def test_a_crowded_room_is_ok_with_a_piece_fewer_and_says_which(model, catalog, monkeypatch):
     room, door, window, wanted = CROWDED
-    request = parse_request(room, [door], [window], [wanted], catalog)
+    request = replace(parse_request(room, [door], [window], [wanted], catalog), **PAPER)
     scene = complete(request, 0, model=model, catalog=catalog)
     assert scene.layout.ok, scene.layout.problems
     record = scene.completion
@@ -284,8 +307,8 @@ def test_a_crowded_room_is_ok_with_a_piece_fewer_and_says_which(model, catalog, 
 
 
 def test_a_category_given_up_whole_is_left_out_with_why(model, catalog):
-    request = parse_request(
-        "3.2x3.4", ["E:2.2:0.9"], ["N:2:1.2"], ["bed"], catalog
+    request = replace(
+        parse_request("3.2x3.4", ["E:2.2:0.9"], ["N:2:1.2"], ["bed"], catalog), **PAPER
     )  # too small for a wardrobe too
     scene = complete(request, 0, model=model, catalog=catalog)
     assert scene.layout.ok, scene.layout.problems
@@ -415,7 +438,7 @@ def test_a_tries_restart_waits_its_own_patience(model, catalog):
     from scenewright.generator.layout import layout_scene
 
     request = parse_request("3.7x5.2", ["N:2.61:0.91"], ["W:2.74:1.53"], ["bed"], set(catalog))
-    contents = choose_contents(model, request)
+    contents = choose_contents(model, replace(request, **PAPER))
     graph, _, start = completion_module._graph_and_start(model, contents, request.room, catalog)
     mask = floor_mask(
         contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED]

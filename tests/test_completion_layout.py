@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from scenewright.completion import shipped_plans_dir
 from scenewright.completion.evaluation import (
     COMPARISONS,
     METRICS,
@@ -13,9 +14,12 @@ from scenewright.completion.evaluation import (
     report,
     request_of,
     soft_iou,
+    spread,
 )
 from scenewright.completion.features import room_feature
-from scenewright.completion.layout_mask import amalgamated_mask, mask_at
+from scenewright.completion.floor_plan import load_plans
+from scenewright.completion.layout_mask import amalgamated_mask, choose_mask, mask_at, mean_mask
+from scenewright.completion.model_builder import build_model
 from scenewright.completion.plan_model import (
     CategoryStats,
     PlanEntry,
@@ -227,7 +231,8 @@ def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
     table = leave_one_out(some_plans, 1)
     assert sorted(table) == ["all", "bedroom", "dining_room", "gym", "living_room", "study"]
     assert table["all"]["plans"] == 15 and all(table[t]["plans"] == 3 for t in table if t != "all")
-    counts = ("added_error", "added_error_baseline")  # numbers of categories, not shares
+    # numbers of categories, not shares
+    counts = ("added_error", "added_error_baseline", "added_error_cooccurrence")
     assert all(0.0 <= table["all"][metric] <= 1.0 for metric in METRICS if metric not in counts)
     assert all(table["all"][metric] >= 0.0 for metric in counts)
     assert (
@@ -246,6 +251,9 @@ def test_leave_one_out_on_part_of_the_shipped_set(some_plans):
         miss.split(" ")[0] in {plan.id for plan in some_plans} and ": Equation 2 " in miss
         for miss in misses
     )
+    spreads = table["all"]["spread"]
+    assert sorted(spreads) == sorted(f"{ours}-{base}" for _, ours, base, *_ in COMPARISONS)
+    assert all(value >= 0.0 for value in spreads.values())
     assert len([line for line in text.splitlines() if line.startswith("- ")]) == len(
         COMPARISONS
     ) + len(misses)
@@ -263,11 +271,11 @@ def test_f1_and_the_report_say_which_side_is_better():
     lines = report({"all": row}, 2).splitlines()
     assert (
         "- room type: Equation 2 0.750, baseline (the type whose plans have the request most often) 0.500: "
-        "ours better by 0.250" in lines
+        "ours better by 0.250 (spread 0.000: beyond it)" in lines
     )
     assert any(
         line.startswith("- number added: error: Algorithm 1 2.000,")
-        and line.endswith("the baseline better by 1.000")
+        and line.endswith("the baseline better by 1.000 (spread 0.000: beyond it)")
         for line in lines
     )  # fewer is better
     assert any(line.startswith("- mask IoU:") and line.endswith(": equal") for line in lines)
@@ -293,3 +301,37 @@ def test_every_shipped_plans_mask_frame_is_its_empty_rooms():
     assert [
         p.id for p in plans if canonical_frame(p.room, floor_pieces(p)) != canonical_frame(p.room)
     ] == []
+
+
+def test_the_mean_mask_weighs_every_plan_of_the_type_alike_whatever_the_room():
+    plans = load_plans(shipped_plans_dir())
+    model = build_model(plans)
+    small, large = Room.rectangle(3.0, 3.0), Room.rectangle(6.0, 5.0)
+    first = mean_mask(model, "study", small, {"desk": 1})
+    second = mean_mask(model, "study", large, {"desk": 1, "bookshelf": 2})
+    studies = [plan for plan in model.plans if plan.type == "study"]
+    expected = np.mean([np.asarray(plan.mask) for plan in studies], axis=0)
+    assert np.allclose(first.mask, expected) and np.allclose(second.mask, expected)
+    assert first.weights == {plan.id: pytest.approx(1 / len(studies)) for plan in studies}
+    assert choose_mask("mean") is mean_mask and choose_mask("equation4") is amalgamated_mask
+    with pytest.raises(InputError, match="choose one of mean, equation4"):
+        choose_mask("median")
+
+
+def test_the_spread_is_the_standard_error_of_the_per_plan_differences():
+    # differences 1, -1, 1, -1: standard deviation sqrt(4 / 3), over sqrt(4)
+    assert spread([1.0, -1.0, 1.0, -1.0]) == pytest.approx(0.577, abs=1e-3)
+    assert spread([0.3, 0.3, 0.3]) == 0.0 and spread([2.0]) == 0.0
+    row = {metric: 0.5 for metric in METRICS} | {"plans": 4, "f1": 0.6}
+    row["spread"] = {"f1-f1_baseline": 0.2, "f1-f1_usual": 0.05}
+    lines = report({"all": row}, 1).splitlines()
+    assert any(
+        line.startswith("- F1: ")
+        and line.endswith("ours better by 0.100 (spread 0.200: within it)")
+        for line in lines
+    )
+    assert any(
+        line.startswith("- F1, usual categories:")
+        and line.endswith("ours better by 0.100 (spread 0.050: beyond it)")
+        for line in lines
+    )

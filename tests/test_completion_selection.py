@@ -13,8 +13,14 @@ from scenewright.completion.plan_model import (
     PlanEntry,
     PlanModel,
     RoomTypeModel,
+    TypeCategory,
 )
-from scenewright.completion.selection import explore_categories, nearest_plans
+from scenewright.completion.selection import (
+    choose_categories,
+    explore_categories,
+    nearest_plans,
+    usual_categories,
+)
 from scenewright.core.errors import InputError
 from scenewright.core.room import Room
 
@@ -118,3 +124,39 @@ def test_three_treadmills_make_a_gym_and_gyms_join_no_home_room(shipped_model):
     for asked in ("bed", "sofa", "desk", "dining_table"):
         for area in (25.0, 35.0, 45.0, 60.0):
             assert "gym" not in choose_types(shipped_model, {asked: 1}, area).types, (asked, area)
+
+
+# -- the co-occurrence step, complete's default (usual_categories) --
+
+
+def test_cooccurrence_adds_the_nearest_plans_usual_number_most_seen_with_the_request():
+    """By hand, K = 2: the references are p1 and p2, which hold 3 and 2 categories beyond
+    a (2.5, rounded to even: 2). Seen with a: b 0.9, c 0.5, d 0.1 (the co-occurrence, not
+    W: d's W is the largest), so b and c are added; c counts twice (1 and 2 in p1, p2)."""
+    model = _model({("a", "b"): 0.9, ("a", "c"): 0.5, ("a", "d"): 0.1})
+    model.types["t"].categories.update(
+        {
+            name: TypeCategory(p, 4)
+            for name, p in {"a": 2 / 3, "b": 2 / 3, "c": 2 / 3, "d": 2 / 3}.items()
+        }
+    )
+    model.types["t"].pairs[2] = CategoryPair(["a", "d"], 0.1, "touch", 5.0)  # W does not decide
+    result = usual_categories(model, "t", {"a": 1}, 10.0, (0.5, 0.8, 0.5), k=2)
+    assert result.categories == ("a", "b", "c")
+    assert result.counts == {"a": 1, "b": 1, "c": 2}
+    assert result.references == ("p1", "p2")
+    # A room like p3 (whose plan holds one category) gets the number p3 and the nearer
+    # of the others hold: K = 1 there is p3 alone, one category beyond the request.
+    assert usual_categories(model, "t", {"a": 1}, 10.0, (0.0, 0.1, 0.1), k=1).categories == (
+        "a",
+        "b",
+    )
+    with pytest.raises(InputError, match="no plan has a 'piano'"):
+        usual_categories(model, "t", {"piano": 1}, 10.0, (0.5, 0.8, 0.5))
+
+
+def test_the_category_step_is_chosen_by_name():
+    assert choose_categories("co-occurrence") is usual_categories
+    assert choose_categories("algorithm1") is explore_categories
+    with pytest.raises(InputError, match="choose one of co-occurrence, algorithm1"):
+        choose_categories("greedy")

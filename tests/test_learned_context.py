@@ -13,55 +13,71 @@ import pytest
 
 from scenewright.api import build_scene
 from scenewright.cli import main
+from scenewright.core.errors import InputError
 from scenewright.core.frames import to_world
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import LayoutParams, layout_scene
 from scenewright.generator.layout.learned_term import (
+    BALANCE_BINS,
     BINS,
     YAW_BINS,
+    BalanceContext,
     LearnedContext,
     LearnedMoves,
     PairContext,
+    balance_offset,
     compile_learned,
     related_pairs,
     relative_pose,
 )
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.sampler import start_chain
-from scenewright.learning.context import fit_context, scaling_step, total_variation
+from scenewright.learning.context import (
+    ContextFit,
+    example_layout,
+    fit_context,
+    held_out_split,
+    scaling_step,
+    total_variation,
+)
 
 DINING = Path(__file__).resolve().parents[1] / "examples" / "sets" / "dining" / "dining.rules"
 
 
-def random_context(graph, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)) -> LearnedContext:
-    """Random weights for every pair kind of a graph, over a grid around the target."""
+def random_context(
+    graph, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2), balance: bool = False
+) -> LearnedContext:
+    """Random weights for every pair kind of a graph, over a grid around the target
+    (and, with ``balance``, for the visual-balance term)."""
     problem = compile_problem(graph)
     types = [graph.node(i).type for i in problem.ids]
     rng = np.random.default_rng(seed)
     kinds = sorted({kind for _, _, kind in related_pairs(problem, types)})
-    return LearnedContext(
-        tuple(
-            PairContext(
-                *kind, bounds, rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1
-            )
-            for kind in kinds
+    pairs = tuple(
+        PairContext(
+            *kind, bounds, rng.uniform(0, 5, BINS * BINS + 1), rng.uniform(0, 3, YAW_BINS), 1
         )
+        for kind in kinds
     )
+    table = BalanceContext(rng.uniform(0, 4, BALANCE_BINS), 1) if balance else None
+    return LearnedContext(pairs, balance=table)
 
 
-def learned_problem(rules, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2)):
+def learned_problem(rules, seed: int = 0, bounds=(-1.5, -1.2, 1.5, 1.2), balance: bool = False):
     graph = expand(load_rules(rules), seed)
     problem = compile_problem(graph)
     types = [graph.node(i).type for i in problem.ids]
-    problem.learned = compile_learned(random_context(graph, seed, bounds), problem, types)
+    context = random_context(graph, seed, bounds, balance)
+    problem.learned = compile_learned(context, problem, types)
     return problem
 
 
 # A grid that holds the chairs at the table's sides but not the one at either end
 # (1.15 m out), so that pairs stand both on and off their grids.
-@pytest.mark.parametrize("incremental", [True, False])
-def test_learned_deltas_match_the_full_energy_on_random_moves(incremental):
-    problem = learned_problem(DINING, 1, (-0.9, -1.2, 0.9, 1.2))
+@pytest.mark.parametrize("incremental, balance", [(True, False), (False, False), (True, True)])
+def test_learned_deltas_match_the_full_energy_on_random_moves(incremental, balance):
+    problem = learned_problem(DINING, 1, (-0.9, -1.2, 0.9, 1.2), balance)
+    assert (problem.learned.balance is not None) == balance
     assert len(problem.learned.pairs) == 6 and problem.learned.tempered and problem.learned.swaps
     params = LayoutParams(incremental=incremental)
     rng = np.random.default_rng(5)
@@ -309,6 +325,49 @@ def test_fit_context_is_deterministic_and_learns_every_pair_kind():
     assert front.position[-1] > front.position[:-1].max() - 1e-9 or front.position[-1] > 10.0
 
 
+def test_a_share_of_eight_examples_or_more_is_held_out_the_same_way_each_time():
+    assert held_out_split(7, 0) == () and held_out_split(12, 0, share=0.0) == ()
+    eight = held_out_split(8, 0)
+    assert len(eight) == 2 and eight == held_out_split(8, 0) and list(eight) == sorted(eight)
+    assert len(held_out_split(12, 5)) == 3 and all(0 <= k < 12 for k in held_out_split(12, 5))
+    assert {held_out_split(20, seed) for seed in range(4)} != {held_out_split(20, 0)}
+
+
+def test_the_round_kept_is_the_one_nearest_the_held_out_examples():
+    fit = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4, balance=True)
+    assert (
+        fit.context.balance is not None
+        and len(fit.held) == 2
+        and len(fit.held_out) == len(fit.divergence) == 3
+    )
+    assert fit.held_out[fit.kept] == min(fit.held_out)
+    assert fit.kept == fit.held_out.index(min(fit.held_out))  # the first of equals
+    record = fit.context.fit["held_out"]
+    assert record["examples"] == list(fit.held) and record["divergence"][fit.kept] == round(
+        fit.held_out[fit.kept], 6
+    )
+    assert fit.rules_alone is not None and record["rules_alone"] == round(fit.rules_alone, 6)
+    # The jittered chairs: the rules alone put them anywhere their tolerances allow.
+    assert fit.rules_alone > fit.held_out[fit.kept] and not fit.rules_alone_better
+    # Without the check every example is fitted and the kept round is the fitted ones' best.
+    plain = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4, holdout=0.0)
+    assert plain.held == () and plain.rules_alone is None and plain.held_out_summary() == ""
+    assert plain.divergence[plain.kept] == min(plain.divergence)
+
+
+def test_a_context_the_rules_alone_beat_on_the_held_out_examples_says_so():
+    def fit(rules_alone):
+        return ContextFit(
+            LearnedContext(()), [0.2, 0.1], 1, 4, [], (0, 3), [0.3, 0.25], rules_alone
+        )
+
+    assert fit(0.25).rules_alone_better and fit(0.1).rules_alone_better
+    assert not fit(0.26).rules_alone_better and not fit(None).rules_alone_better
+    assert fit(0.4).held_out_summary() == (
+        "held out 2: divergence from them 0.250 with the context, 0.400 with the rules alone"
+    )
+
+
 def test_a_context_of_other_types_leaves_the_layout_unchanged():
     graph = expand(load_rules(DINING), 2)
     other = LearnedContext(
@@ -331,7 +390,8 @@ def test_tempered_sampling_spreads_where_annealing_collapses():
     """Where the chair at the table's left end stands in the table's frame."""
     graph = expand(load_rules(DINING), 0)
     examples = dining_examples(12)
-    context = fit_context(examples, seed=0, rounds=0, layouts=2).context
+    # The pair terms alone: the balance term holds the whole group (docs/learning.md).
+    context = fit_context(examples, seed=0, rounds=0, layouts=2, holdout=0.0, balance=False).context
     spread = {}
     for tempered in (True, False):
         chairs = []
@@ -672,3 +732,74 @@ def test_the_api_takes_a_context_by_the_path_of_its_file(tmp_path):
     assert by_path != reproducible_json(build_scene(loaded, 1))  # the context moved something
     with pytest.raises(InputError, match="missing.json: cannot read"):
         build_scene(loaded, 1, context=tmp_path / "missing.json")
+
+
+def test_the_balance_offset_is_the_area_weighted_centre_over_half_the_diagonal():
+    # a 4 x 3 room (half diagonal 2.5); 3 m^2 at (1, 0) and 1 m^2 at (-1, 0): centre (0.5, 0)
+    assert balance_offset((4.0, 3.0), np.array([1.0, -1.0]), np.zeros(2), np.array([3.0, 1.0])) == (
+        pytest.approx(0.2)
+    )
+    assert balance_offset((4.0, 3.0), np.array([1.0]), np.array([1.0]), np.array([0.0])) == 0.0
+    assert BalanceContext.bin(0.2) == int(0.2 * BALANCE_BINS) and BalanceContext.bin(3.0) == (
+        BALANCE_BINS - 1
+    )
+
+
+def test_a_fitted_balance_term_is_written_read_back_and_learned_from_off_centre_rooms():
+    examples = dining_examples(8)
+    for _, document in examples[:6]:  # most examples put the dining group off centre
+        for o in document["objects"]:
+            o["position"] = [o["position"][0] + 1.0, *o["position"][1:]]
+    fit = fit_context(examples, seed=0, rounds=0, layouts=2, holdout=0.0, balance=True)
+    table = fit.context.balance
+    assert table is not None and table.examples == 8
+    offsets = [
+        layout.balance for layout in (example_layout(name, document) for name, document in examples)
+    ]
+    assert all(o is not None for o in offsets)
+    # The weights are -log of the blurred shares: the offsets the examples show cost
+    # least, and the bins none comes near cost most.
+    shown = {BalanceContext.bin(o) for o in offsets}
+    cheapest = min(table.weights[b] for b in shown)
+    assert cheapest == 0.0 and max(table.weights[b] for b in shown) < table.weights.max()
+    assert max(offsets[:6]) > min(offsets[:6]) and min(offsets[:6]) > max(offsets[6:])
+    again = LearnedContext.from_dict(json.loads(fit.context.to_json()))
+    assert np.allclose(again.balance.weights, table.weights, atol=1e-6)
+    assert fit_context(examples, seed=0, rounds=0, layouts=2).context.balance is None  # opt-in
+    with pytest.raises(InputError, match='balance: "weights" must be 16 numbers'):
+        LearnedContext.from_dict({**fit.context.to_dict(), "balance": {"weights": [1, 2]}})
+
+
+def test_fit_balance_writes_the_balance_term_and_generate_lays_out_with_it(tmp_path, capsys):
+    paths = write_examples(tmp_path, dining_examples(4))
+    out = tmp_path / "out" / "fitted.rules"
+    argv = ["fit", str(DINING), *paths, "-o", str(out), "--what", "context"]
+    assert main([*argv, "--rounds", "0", "--layouts", "2", "--balance"]) == 0
+    document = json.loads((tmp_path / "out" / "fitted.context.json").read_text())
+    assert len(document["balance"]["weights"]) == BALANCE_BINS
+    assert document["balance"]["examples"] == 4
+    capsys.readouterr()
+    assert (
+        main(["generate", str(out), "--seed", "1", "--no-render", "-o", str(tmp_path / "g")]) == 0
+    )
+    scene = json.loads((tmp_path / "g" / "scene.json").read_text())
+    assert "learned" in scene["layout"]["parts"]
+
+
+def test_fit_writes_no_context_the_rules_alone_beat_and_says_so(tmp_path, capsys, monkeypatch):
+    paths = write_examples(tmp_path, dining_examples(8))
+    out = tmp_path / "out" / "fitted.rules"
+    argv = ["fit", str(DINING), *paths, "-o", str(out), "--what", "context"]
+    monkeypatch.setattr(ContextFit, "rules_alone_better", property(lambda self: True))
+    capsys.readouterr()
+    assert (
+        main([*argv, "--rounds", "0", "--layouts", "2", "--report", str(tmp_path / "r.json")]) == 0
+    )
+    said = capsys.readouterr().out
+    assert said.startswith(
+        "no context written: the rules alone come as near the examples held out; a context of"
+    )
+    assert "held out 2: divergence from them" in said
+    assert not (tmp_path / "out" / "fitted.context.json").exists()
+    report = json.loads((tmp_path / "r.json").read_text())["context"]
+    assert report["file"] is None and len(report["held_out"]["examples"]) == 2

@@ -226,6 +226,7 @@ class Energy(SingleTerms):
             "path_extent": [self.path_extent_energy(p) for p in range(problem.n_paths)],
             "mask": [self.mask_energy(b) for b in range(problem.n_boxes)],
             "learned": [self.learned_energy(k) for k in range(len(problem.learned.pairs))]
+            + ([self.balance_energy()] if problem.learned.balance is not None else [])
             if problem.learned
             else [],
         }
@@ -571,6 +572,11 @@ class Energy(SingleTerms):
                     continue  # a shared translation keeps the relative pose
                 new_learned[pair] = self.learned_energy(pair)
                 delta[LEARNED_PART] += new_learned[pair] - self.learned[pair]
+            balance = problem.learned.balance
+            if balance is not None and boxes:
+                index = len(learned_pairs)  # the balance term's value follows the pairs'
+                new_learned[index] = self.balance_energy()
+                delta[LEARNED_PART] += new_learned[index] - self.learned[index]
         return Changes(
             delta,
             new_relation,

@@ -91,6 +91,61 @@ SWAP_SHARE = 0.25
 CARRY_SHARE = 0.5
 
 
+#: Bins of the visual-balance histogram over the balance offset in [0, 1] (the last bin
+#: also holds anything beyond 1).
+BALANCE_BINS = 16
+
+
+@dataclass(frozen=True)
+class BalanceContext:
+    """The visual-balance term of Dema and Sari-Sarraf: one weight per bin of the
+    *balance offset*, the distance of the floor pieces' centre of mass (each piece's
+    footprint centre weighted by its footprint area) from the room's centre, over half
+    the room's diagonal (``balance_offset``); ``examples`` the examples it was fitted to."""
+
+    weights: np.ndarray
+    examples: int = 0
+
+    @staticmethod
+    def bin(offset: float) -> int:
+        return min(max(int(offset * BALANCE_BINS), 0), BALANCE_BINS - 1)
+
+    def energy(self, offset: float) -> float:
+        return float(self.weights[self.bin(offset)])
+
+    def to_dict(self) -> dict:
+        return {
+            "examples": self.examples,
+            "weights": [round(float(v), 6) for v in self.weights],
+        }
+
+
+def balance_boxes(problem) -> tuple[np.ndarray, np.ndarray]:
+    """The boxes the balance counts (objects standing on the floor, floor coverings
+    left out) and their footprint areas."""
+    boxes = [
+        b
+        for b in range(problem.n_boxes)
+        if not problem.is_junction[b]
+        and problem.support[b] == -1
+        and not (problem.covering and problem.covering[b])
+    ]
+    areas = [4.0 * problem.half_width[b] * problem.half_depth[b] for b in boxes]
+    return np.array(boxes, dtype=int), np.array(areas, dtype=float)
+
+
+def balance_offset(extent, xs, zs, areas) -> float:
+    """How far the area-weighted centre of footprints at (xs, zs) lies from the centre
+    of the scene's extent (its origin), over half the extent's diagonal; 0 for none."""
+    total = float(np.sum(areas))
+    if total <= 0.0:
+        return 0.0
+    cx = float(np.dot(areas, xs)) / total
+    cz = float(np.dot(areas, zs)) / total
+    width, depth = extent
+    return math.hypot(cx, cz) / (0.5 * math.hypot(width, depth))
+
+
 def pair_kind_name(source: str, target: str, labels: Sequence[str]) -> str:
     """How reports and errors name a pair kind: ``chair -FacingTowards+NextToFront-> table``."""
     return f"{source} -{'+'.join(labels)}-> {target}"
@@ -156,6 +211,8 @@ class LearnedContext:
     #: The sha256 of the example files it was fitted to, one after another (a record for
     #: people and tools: which examples made it); None when not known.
     examples_digest: str | None = None
+    #: The visual-balance term (None: the context has none).
+    balance: BalanceContext | None = None
 
     def for_rules(self, text: str, examples: Sequence[bytes] = ()) -> LearnedContext:
         """This context, recorded as fitted to the rules file of ``text`` and to the
@@ -176,6 +233,8 @@ class LearnedContext:
         if self.examples_digest is not None:
             document["examples_digest"] = self.examples_digest
         document["pairs"] = [pair.to_dict() for pair in self.pairs]
+        if self.balance is not None:
+            document["balance"] = self.balance.to_dict()
         if self.fit is not None:
             document["fit"] = self.fit
         return document
@@ -233,7 +292,37 @@ class LearnedContext:
             ):
                 raise InputError(f'{where}: "{key}" must be 64 hexadecimal digits (a sha256)')
             digests.append(digest)
-        return cls(tuple(parsed), fit if isinstance(fit, dict) else None, *digests)
+        balance = _parse_balance(document.get("balance"), f"{where}: balance")
+        return cls(
+            tuple(parsed),
+            fit if isinstance(fit, dict) else None,
+            rules_digest=digests[0],
+            examples_digest=digests[1],
+            balance=balance,
+        )
+
+
+def _parse_balance(entry: object, where: str) -> BalanceContext | None:
+    if entry is None:
+        return None
+    if not isinstance(entry, dict):
+        raise InputError(f"{where}: must be an object")
+    weights = entry.get("weights")
+    if (
+        not isinstance(weights, list)
+        or len(weights) != BALANCE_BINS
+        or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and abs(v) <= MAX_WEIGHT
+            for v in weights
+        )
+    ):
+        raise InputError(
+            f'{where}: "weights" must be {BALANCE_BINS} numbers of at most {MAX_WEIGHT:g} in size'
+        )
+    examples = entry.get("examples", 0)
+    if not isinstance(examples, int) or isinstance(examples, bool) or examples < 0:
+        raise InputError(f'{where}: "examples" must be a whole number from 0')
+    return BalanceContext(np.array(weights, dtype=float), examples)
 
 
 def _parse_pair(entry: object, where: str) -> PairContext:
@@ -367,6 +456,26 @@ class CompiledLearned:
     pairs_of_box: tuple[tuple[int, ...], ...]
     tempered: dict[int, int]
     swaps: tuple[tuple[int, int], ...] = ()
+    #: The visual-balance term: its weights, the boxes it counts and their areas (None:
+    #: the context has none, or the problem no floor piece). The energy keeps its value
+    #: after the pairs' (``Energy.learned``, index ``len(pairs)``).
+    balance: tuple[BalanceContext, np.ndarray, np.ndarray] | None = None
+
+    def balance_value(self, problem, state, active) -> float:
+        """The balance term at ``state``, over the placed (``active``) boxes it counts."""
+        assert self.balance is not None
+        table, boxes, areas = self.balance
+        placed = np.array([active[b] for b in boxes], dtype=bool)
+        if not placed.any():
+            return 0.0
+        chosen = boxes[placed]
+        offset = balance_offset(
+            problem.extent,
+            np.asarray(state.x)[chosen],
+            np.asarray(state.z)[chosen],
+            areas[placed],
+        )
+        return table.energy(offset)
 
     def value(self, pair: int, state) -> float:
         """The pair's learned energy at the state's poses."""
@@ -405,11 +514,16 @@ def compile_learned(context: LearnedContext, problem, types: Sequence[str]) -> C
         and (term.a.index, term.b.index) in joined
     }
     sources = {source for source, _, _ in pairs}
+    balance = None
+    if context.balance is not None:
+        boxes, areas = balance_boxes(problem)
+        balance = (context.balance, boxes, areas) if len(boxes) else None
     return CompiledLearned(
         tuple(pairs),
         tuple(tuple(p) for p in pairs_of_box),
         tempered,
         interchangeable(problem, types, sources),
+        balance,
     )
 
 

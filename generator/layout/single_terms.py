@@ -198,6 +198,12 @@ class SingleTerms:
             return 0.0
         return self.params.mask_weight * mask.cost(box, self.state.rects[box])
 
+    def balance_energy(self) -> float:
+        """The learned visual-balance term over the placed floor pieces."""
+        learned = self.problem.learned
+        assert learned is not None and learned.balance is not None
+        return learned.balance_value(self.problem, self.state, self.active)
+
     def learned_energy(self, pair: int) -> float:
         """A learned pair's term: 0 until both its boxes are placed."""
         learned = self.problem.learned

@@ -6,8 +6,10 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from dataclasses import replace
 from functools import partial
 
+from scenewright.completion import CATEGORY_METHODS, MASK_METHODS
 from scenewright.core.errors import InputError
 from scenewright.scene_folder import COMPLETE_FILES
 
@@ -224,6 +226,22 @@ def add_commands(commands) -> None:
     complete.add_argument(
         "--plans", metavar="PLANS_DIR", help="a plan set (default: the shipped one)"
     )
+    complete.add_argument(
+        "--categories",
+        dest="category_method",
+        choices=CATEGORY_METHODS,
+        default=CATEGORY_METHODS[0],
+        help="how the added categories are chosen: co-occurrence with the request at the "
+        "type's usual number (default), or the paper's Algorithm 1",
+    )
+    complete.add_argument(
+        "--mask",
+        dest="mask_method",
+        choices=MASK_METHODS,
+        default=MASK_METHODS[0],
+        help="where the large pieces are pulled: the type's mean layout mask (default), or "
+        "the paper's Equation 4 (the masks of the plans most like the room)",
+    )
     complete.add_argument("--seed", type=seed_value, default=0, help="layout seed (0)")
     complete.add_argument("-o", "--output", required=True, metavar="DIR", help="output directory")
     style_options(complete)
@@ -357,6 +375,7 @@ def run_complete(args: argparse.Namespace) -> int:
         if args.in_room is not None:
             raise InputError("--in names a room of a house: give the house's scene.json")
         request = parse_request(args.room, args.door, args.window, args.categories, catalog)
+    request = replace(request, categories=args.category_method, mask=args.mask_method)
     scene = complete_room(
         request,
         args.seed,

@@ -237,6 +237,11 @@ def context_fit_options(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help="context: scenes laid out per round (40)",
     )
+    parser.add_argument(
+        "--balance",
+        action="store_true",
+        help="context: also fit the visual-balance term (off: it slows layouts, docs/learning.md)",
+    )
 
 
 def run_fit(args: argparse.Namespace) -> int:
@@ -262,6 +267,7 @@ def run_fit(args: argparse.Namespace) -> int:
             seed=args.seed,
             rounds=args.rounds,
             layouts=args.layouts,
+            balance=args.balance,
         )
     unidentified = fit.unidentified
     if "weights" in what:
@@ -277,12 +283,20 @@ def run_fit(args: argparse.Namespace) -> int:
             ),
         )
     if context is not None:
-        say(
-            args,
-            f"fitted a context of {len(context.context.pairs)} pair kind"
+        held = context.held_out_summary()
+        fitted = (
+            f"a context of {len(context.context.pairs)} pair kind"
             f"{'s' * (len(context.context.pairs) != 1)} from {len(examples)} examples "
-            f"(divergence {context.divergence[0]:.3f} at the start, {context.divergence[context.kept]:.3f} kept)",
+            f"(divergence {context.divergence[0]:.3f} at the start, "
+            f"{context.divergence[context.kept]:.3f} kept{'; ' + held if held else ''})"
         )
+        if context.rules_alone_better:
+            say(
+                args,
+                f"no context written: the rules alone come as near the examples held out; {fitted}",
+            )
+        else:
+            say(args, f"fitted {fitted}")
     say(args, "wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -334,6 +348,7 @@ def run_learn(args: argparse.Namespace) -> int:
             context=args.context,
             rounds=args.rounds,
             layouts=args.layouts,
+            balance=args.balance,
             write=staged.write,
             build_scene=build_scene,
             progress=lambda message: note_progress(args, message),
@@ -372,7 +387,9 @@ def run_learn(args: argparse.Namespace) -> int:
                 args,
                 f"fitted a context of {len(pairs)} pair kind{'s' * (len(pairs) != 1)} from {context.used} "
                 f"examples (divergence {context.fit.divergence[0]:.3f} at the start, "
-                f"{context.fit.divergence[context.fit.kept]:.3f} kept){left_out}",
+                f"{context.fit.divergence[context.fit.kept]:.3f} kept"
+                + (f"; {context.fit.held_out_summary()}" if context.fit.held_out_summary() else "")
+                + f"){left_out}",
             )
         else:
             say(args, f"no context learned: {context.why_not}{left_out}")
