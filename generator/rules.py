@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
@@ -65,13 +66,28 @@ INDOOR_CATALOG_READER = "bedroom"
 
 
 def shipped_rule_sets() -> list[str]:
-    """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``)."""
+    """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``): the
+    files with a ``scene`` block, not the house plans beside them (``plan NAME { ... }``,
+    which ``scenewright.house`` reads)."""
+    return list(_shipped_scenes())
+
+
+@functools.cache
+def _shipped_scenes() -> tuple[str, ...]:
     folder = resources.files(_SHIPPED_PACKAGE)
-    return sorted(
-        item.name[: -len(RULES_SUFFIX)]
-        for item in folder.iterdir()
-        if item.name.endswith(RULES_SUFFIX)
+    return tuple(
+        sorted(
+            item.name[: -len(RULES_SUFFIX)]
+            for item in folder.iterdir()
+            if item.name.endswith(RULES_SUFFIX) and not _is_plan(item.read_text(encoding="utf-8"))
+        )
     )
+
+
+def _is_plan(text: str) -> bool:
+    """Whether a rules text is a house plan: its first word outside comments is ``plan``."""
+    found = re.search(r"[A-Za-z_]+", re.sub(r"#[^\n]*", "", text))
+    return found is not None and found.group(0) == "plan"
 
 
 @functools.cache
