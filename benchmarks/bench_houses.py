@@ -199,6 +199,9 @@ def report(name: str, results: list[dict]) -> dict[int, list[float]]:
         problems.update(r["problems"])
     if problems:
         print("  problems: " + "; ".join(f"{k} x{v}" for k, v in problems.most_common(6)))
+    good = [r["seed"] for r in results if r["ok"]]
+    if good:
+        print(f"  ok: seeds {', '.join(map(str, good[:8]))}{' ...' if len(good) > 8 else ''}")
     failed = [r["seed"] for r in results if not r["ok"]]
     if failed:
         print(
