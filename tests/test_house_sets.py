@@ -54,3 +54,12 @@ def test_makes_a_good_house_at_a_fixed_seed(name, tmp_path, capsys):
     assert text.startswith(f"The {noun} has ")
     assert "The front door opens into the " in text
     assert len(text.split("\n\n")) == len(ids) + 1  # the overview, then a paragraph per room
+
+
+def test_list_shows_the_house_plans_with_their_rooms(capsys):
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    assert "apartment  (house plan, flat: 5..7 rooms)" in out
+    assert "office_floor  (house plan, office floor: 10..20 rooms)" in out
+    dungeon = out[out.index("dungeon  (house plan") :].splitlines()[1]
+    assert dungeon.split(", ") == ["    guard_room", "corridor", "barracks", "treasury", "library"]
