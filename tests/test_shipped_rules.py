@@ -127,7 +127,7 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
         ("office", (2, 12)),
         ("meeting_room", (5, 11)),
         ("treasury", (1, 9)),
-        ("barracks", (2, 14)),
+        ("barracks", (2, 12)),
         ("library", (3, 15)),
         ("guard_room", (2, 9)),
     ],
