@@ -63,6 +63,12 @@ SHAPES: dict[str, Shape] = {
             "the open seat; back rest at -Z",
             "sits on it facing +Z",
         ),
+        Shape(
+            "banner",
+            "a cloth with a pale stripe hanging from a crossbar on a pole",
+            "the cloth's face",
+            "seen from the front (+Z); its back (-Z) to a wall",
+        ),
         Shape("barrel", "a bulging wooden barrel with two iron hoops", _ROUND, _ANY_SIDE),
         Shape(
             "bathtub",
@@ -75,6 +81,12 @@ SHAPES: dict[str, Shape] = {
             "frame, mattress, blanket and pillow, a headboard at one end",
             "the foot end; headboard and pillow at -Z",
             "lies head at the back (-Z), feet to +Z",
+        ),
+        Shape(
+            "bench",
+            "a plank seat on two trestle legs",
+            "none (the same from the back)",
+            "either long side (+Z or -Z)",
         ),
         Shape(
             "book",
@@ -97,12 +109,24 @@ SHAPES: dict[str, Shape] = {
             "none (handle across, from -X to +X)",
             _ANY_SIDE,
         ),
+        Shape(
+            "bunk",
+            "a low wooden bed frame with a straw mattress and a rolled blanket",
+            "the foot end, with the blanket; the head at -Z",
+            "lies head at the back (-Z), feet to +Z",
+        ),
         Shape("bush", "three overlapping leafy lumps", _ROUND, _ANY_SIDE),
         Shape(
             "chair",
             "a seat on four legs with a back rest",
             "the open seat; back rest at -Z",
             "sits on it facing +Z",
+        ),
+        Shape(
+            "chest",
+            "a wooden chest with a darker lid, iron bands and a lock plate",
+            "the lock plate; the lid opens towards it",
+            "opened from the front (+Z)",
         ),
         Shape(
             "clothes_line",
@@ -321,6 +345,7 @@ SHAPES: dict[str, Shape] = {
             "the open seats; back rest at -Z",
             "sits on it facing +Z",
         ),
+        Shape("stool", "a round seat on three splayed legs", _ROUND, _ANY_SIDE),
         Shape(
             "stove",
             "a cooker: oven door and knobs under a black hob with four rings",
@@ -343,6 +368,12 @@ SHAPES: dict[str, Shape] = {
             "a toilet: cistern, an oval bowl with an open seat, the lid up",
             "the bowl; cistern and lid at the back (-Z)",
             "sits on it facing +Z",
+        ),
+        Shape(
+            "torch_stand",
+            "an iron pole on four splayed feet holding a burning torch",
+            _ROUND,
+            _ANY_SIDE,
         ),
         Shape(
             "towel_rail",
@@ -398,6 +429,12 @@ SHAPES: dict[str, Shape] = {
             "a front-loading washing machine: round door, control panel",
             "the round door and the control panel",
             "loaded from the front (+Z)",
+        ),
+        Shape(
+            "weapon_rack",
+            "two posts and two rails holding a row of blades",
+            "the blades",
+            "taken from at the front (+Z); its back (-Z) to a wall",
         ),
         Shape(
             "weight_bench",

@@ -66,19 +66,26 @@ INDOOR_CATALOG_READER = "bedroom"
 
 
 def shipped_rule_sets() -> list[str]:
-    """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``);
-    the shipped house plans (files whose block is a ``plan``, read by ``scenewright.house``)
-    are not among them."""
+    """Names of the rule sets shipped with the package, sorted (``["bedroom", ...]``): the
+    files with a ``scene`` block, not the house plans beside them (``plan NAME { ... }``,
+    which ``scenewright.house`` reads)."""
+    return list(_shipped_scenes())
+
+
+@functools.cache
+def _shipped_scenes() -> tuple[str, ...]:
     folder = resources.files(_SHIPPED_PACKAGE)
-    return sorted(
-        item.name[: -len(RULES_SUFFIX)]
-        for item in folder.iterdir()
-        if item.name.endswith(RULES_SUFFIX) and not _is_plan_text(item.read_text(encoding="utf-8"))
+    return tuple(
+        sorted(
+            item.name[: -len(RULES_SUFFIX)]
+            for item in folder.iterdir()
+            if item.name.endswith(RULES_SUFFIX) and not _is_plan(item.read_text(encoding="utf-8"))
+        )
     )
 
 
-def _is_plan_text(text: str) -> bool:
-    """Whether a rules text's first word (comments aside) is ``plan``."""
+def _is_plan(text: str) -> bool:
+    """Whether a rules text is a house plan: its first word outside comments is ``plan``."""
     found = re.search(r"[A-Za-z_]+", re.sub(r"#[^\n]*", "", text))
     return found is not None and found.group(0) == "plan"
 

@@ -14,7 +14,7 @@ detail never grows with the size: parts it repeats along a length (a field's cro
 number at most ``MAX_REPEATS`` (``repeats``), so a 1 km field costs what a 30 m one does.
 
 The builders live by where they appear (``builders_furniture``, ``builders_village``,
-``builders_home``, ``builders_kitchen_bath``, ``builders_gym``), built from the colours
+``builders_home``, ``builders_kitchen_bath``, ``builders_gym``, ``builders_keep``), built from the colours
 and solids of ``mesh_parts``; this module gathers them into ``BUILDERS``. Every builder
 stays well under 500 triangles.
 """
@@ -28,6 +28,7 @@ from scenewright.core.shapes import SHAPES, Shape
 from .builders_furniture import FURNITURE, desk
 from .builders_gym import GYM
 from .builders_home import HOME
+from .builders_keep import KEEP
 from .builders_kitchen_bath import KITCHEN_BATH
 from .builders_village import VILLAGE
 from .mesh_parts import Builder
@@ -39,6 +40,7 @@ BUILDERS: dict[str, Builder] = {
     **HOME,
     **KITCHEN_BATH,
     **GYM,
+    **KEEP,
     # A teacher's desk is a writing desk; its own name lets a classroom say which desk it is.
     "teacher_desk": desk,
 }

@@ -166,8 +166,11 @@ BAD_RULES = "scene village {\n  extent 10 x 10\n  start Village\n}\nVillage -> t
 def test_validate_shipped_rules_ok(capsys):
     code, out, _ = run(capsys, "validate", *(str(p) for p in Path("grammar_rules").glob("*.rules")))
     assert code == 0
+    # the house plans beside the rule sets are validated as plans
+    from scenewright.house import shipped_plans
+
     assert sorted(out.splitlines()) == [
-        f"grammar_rules/{n}.rules: ok" for n in sorted(shipped_rule_sets())
+        f"grammar_rules/{n}.rules: ok" for n in sorted([*shipped_rule_sets(), *shipped_plans()])
     ]
 
 

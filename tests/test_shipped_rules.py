@@ -124,6 +124,12 @@ def object_bounds(rules: Rules) -> dict[str, tuple[int, int]]:
         ("study", (3, 13)),
         ("classroom", (15, 29)),
         ("bathroom", (3, 6)),
+        ("office", (2, 12)),
+        ("meeting_room", (5, 11)),
+        ("treasury", (1, 9)),
+        ("barracks", (2, 12)),
+        ("library", (3, 15)),
+        ("guard_room", (2, 9)),
     ],
 )
 def test_object_budget_holds_for_every_seed(name, bounds):

@@ -172,6 +172,7 @@ def add_commands(commands) -> None:
 def run_validate(args: argparse.Namespace) -> int:
     from scenewright.examples.formats import is_handwritten_example
     from scenewright.generator import check_rules, shipped_rule_sets
+    from scenewright.house import is_plan_file
 
     shipped = shipped_rule_sets()
     any_error = False
@@ -185,6 +186,8 @@ def run_validate(args: argparse.Namespace) -> int:
             any_error |= not validate_example_file(name)
         elif name.endswith(".json"):
             any_error |= not validate_scene_file(name)
+        elif is_plan_file(name):
+            any_error |= not validate_plan_file(name)
         else:
             diagnostics = check_rules(name, allow=args.allow_outside)
             for diagnostic in diagnostics:
@@ -198,6 +201,22 @@ def run_validate(args: argparse.Namespace) -> int:
                     + (f" ({warnings} warning{'s' * (warnings != 1)})" if warnings else "")
                 )
     return 2 if any_error else 0
+
+
+def validate_plan_file(name: str) -> bool:
+    """Print ``NAME: ok`` or the located mistakes of a house plan (``plan NAME { ... }``);
+    return whether it is ok."""
+    from scenewright.generator.rules_errors import RulesError
+    from scenewright.house import read_plan
+
+    try:
+        read_plan(name)
+    except RulesError as error:
+        for diagnostic in error.diagnostics:
+            print(diagnostic)
+        return False
+    print(f"{name}: ok")
+    return True
 
 
 def validate_example_file(name: str) -> bool:

@@ -106,6 +106,21 @@ def run_list(args: argparse.Namespace) -> int:
                 ", ".join(types), width=88, initial_indent="    ", subsequent_indent="    "
             )
         )
+    from scenewright.house import read_plan, shipped_plans
+
+    for name in shipped_plans():
+        plan = read_plan(name)
+        always = sum(room.count[0] for room in plan.rooms if room.probability >= 1.0)
+        most = sum(room.count[1] for room in plan.rooms)
+        print(f"{name}  (house plan, {plan.noun}: {always}..{most} rooms)")
+        print(
+            textwrap.fill(
+                ", ".join(room.type for room in plan.rooms),
+                width=88,
+                initial_indent="    ",
+                subsequent_indent="    ",
+            )
+        )
     return 0
 
 
