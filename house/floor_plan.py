@@ -47,7 +47,7 @@ from .plan_language import CIRCULATION, PlanSpec, RoomSpec
 CELL = 0.5
 #: Slicings tried before a plan is given up, and how many of them share one draw of the
 #: rooms and the footprint.
-ATTEMPTS = 600
+ATTEMPTS = 1500
 DRAWS = 150
 #: The shortest shared wall a door needs, and the shortest outside wall for a window or
 #: the front door (cells).
@@ -56,7 +56,7 @@ WINDOW_RUN = 3
 #: A room's area may leave its range by this share either way (the rooms must fill the footprint).
 AREA_SLACK = 0.2
 #: Rooms that are not for walking through: bounding box at most this elongated, at least this full.
-MAX_ASPECT = 2.2
+MAX_ASPECT = 2.5
 MIN_FILL = 0.7
 #: A cut this many lines or fewer from a step in the region's outline is moved onto the
 #: step with this probability.

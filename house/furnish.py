@@ -33,7 +33,7 @@ from scenewright.generator.layout.params import LayoutParams
 
 #: Layouts tried per room before its best is kept, and how many of them lay out one
 #: expansion before the room's rule set is expanded again (retry streams from REEXPAND on).
-ROOM_TRIES = 8
+ROOM_TRIES = 12
 LAYOUTS_PER_GRAPH = 1
 REEXPAND = 100
 #: One try's layout: fewer restarts than a room scene's own (a try that fails costs
