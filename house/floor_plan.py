@@ -43,6 +43,9 @@ from scenewright.core.seeds import stream
 from .outline import Outlines, PlannedDoor, PlannedRoom
 from .plan_language import CIRCULATION, PlanSpec, RoomSpec
 
+#: Grid cells times tries a plan may cost at most (a 15 x 11 m footprint gets every one
+#: of ``ATTEMPTS`` tries, a 200 x 200 m one ``DRAWS``).
+WORK = 3_000_000
 #: The grid step of generated plans (m): walls lie on its lines.
 CELL = 0.5
 #: Slicings tried before a plan is given up, and how many of them share one draw of the
@@ -81,10 +84,15 @@ def generate_outlines(spec: PlanSpec, seed: int) -> Outlines:
     """A floor plan for ``spec``: room outlines and doors (walls and windows come later)."""
     rng = stream(seed, "plan")
     failures: Counter[str] = Counter()
+    attempts = ATTEMPTS
     for attempt in range(ATTEMPTS):
+        if attempt >= attempts:
+            break
         if attempt % DRAWS == 0:  # new rooms and footprint now and then: some draws cannot work
             rooms = _draw_rooms(spec, rng)
             mask, origin = _footprint(spec, rooms, rng)
+            # a big footprint costs more a try: fewer tries, so no plan takes minutes
+            attempts = min(ATTEMPTS, max(DRAWS, WORK // max(int(mask.size), 1)))
             _fill(rooms, int(mask.sum()))
             hub = _hub(spec, rooms)
         labels = _slice(mask, list(range(len(rooms))), rooms, hub, rng)
@@ -99,7 +107,7 @@ def generate_outlines(spec: PlanSpec, seed: int) -> Outlines:
         failures[why] += 1
     worst, times = failures.most_common(1)[0]
     raise PlanError(
-        f"{spec.path.name}: no floor plan found in {ATTEMPTS} tries "
+        f"{spec.path.name}: no floor plan found in {attempts} tries "
         f"({times} failed because {worst}); give the footprint more room or the rooms "
         f"wider area ranges"
     )
@@ -341,36 +349,44 @@ def _slab(mask: np.ndarray, axis: int, start: int, end: int) -> np.ndarray:
 def _problem(
     labels: np.ndarray, mask: np.ndarray, rooms: list[_Room], spec: PlanSpec
 ) -> str | None:
-    """Why this slicing is no floor plan, or None when every room is a good room."""
+    """Why this slicing is no floor plan, or None when every room is a good room. Each
+    room is checked in the window of its bounding box (one cell more all round), the
+    cheap checks first."""
+    boxes = ndimage.find_objects(labels + 1)  # room k is label k + 1; outside (-1) is 0
+    rows_all, columns_all = labels.shape
     for k, room in enumerate(rooms):
-        cells = labels == k
+        words = room.spec.type.replace("_", " ")
+        box = boxes[k] if k < len(boxes) else None
+        if box is None:
+            return f"a {words} got no floor"
+        r0, r1 = max(box[0].start - 1, 0), min(box[0].stop + 1, rows_all)
+        c0, c1 = max(box[1].start - 1, 0), min(box[1].stop + 1, columns_all)
+        window, window_mask = labels[r0:r1, c0:c1], mask[r0:r1, c0:c1]
+        cells = window == k
         count = int(cells.sum())
         area = count * CELL * CELL
-        words = room.spec.type.replace("_", " ")
-        if count == 0:
-            return f"a {words} got no floor"
+        lo, hi = room.spec.area
+        if room.spec.type in CIRCULATION:  # as long as the rooms along it need
+            hi = max(hi, lo) * 2.0
+        if not lo * (1 - AREA_SLACK) <= area <= hi * (1 + AREA_SLACK):
+            return f"a {words} came out {area:g} m², outside {lo:g}..{hi:g} m²"
+        h = box[0].stop - box[0].start
+        w = box[1].stop - box[1].start
+        if room.spec.type not in CIRCULATION and (
+            max(h, w) > MAX_ASPECT * min(h, w) or count < MIN_FILL * h * w
+        ):
+            return f"a {words} came out too long and thin"
         if (
             ndimage.label(cells)[1] != 1
             or not np.array_equal(ndimage.binary_fill_holes(cells), cells)
             or _pinched(cells)
         ):
             return f"a {words} came out in pieces or round a hole"
-        lo, hi = room.spec.area
-        if room.spec.type in CIRCULATION:  # as long as the rooms along it need
-            hi = max(hi, lo) * 2.0
-        if not lo * (1 - AREA_SLACK) <= area <= hi * (1 + AREA_SLACK):
-            return f"a {words} came out {area:g} m², outside {lo:g}..{hi:g} m²"
         side = max(1, math.ceil(room.spec.width / CELL - 1e-9))
         square = np.ones((side, side), dtype=bool)
         if not np.array_equal(ndimage.binary_opening(cells, structure=square), cells):
             return f"a {words} came out narrower than {room.spec.width:g} m"
-        if room.spec.type not in CIRCULATION:
-            rows, columns = np.nonzero(cells)
-            h = rows.max() - rows.min() + 1
-            w = columns.max() - columns.min() + 1
-            if max(h, w) > MAX_ASPECT * min(h, w) or count < MIN_FILL * h * w:
-                return f"a {words} came out too long and thin"
-        if room.spec.wants_window and _longest_outside(labels, mask, k) < WINDOW_RUN:
+        if room.spec.wants_window and _longest_outside(window, window_mask, k) < WINDOW_RUN:
             return f"a {words} has no outside wall for its window"
     return None
 
