@@ -37,7 +37,7 @@ PLAN = """plan apartment {
     room living_room
     room kitchen
     room bathroom
-    room bedroom 1..2
+    room bedroom 2
     connect hall bedroom bathroom living_room
     open kitchen living_room
 }
