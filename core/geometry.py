@@ -442,3 +442,45 @@ def turn_angle(a: tuple, b: tuple, c: tuple) -> float:
     if norms <= 0.0:
         return 0.0
     return math.acos(max(-1.0, min(1.0, (ux * vx + uz * vz) / norms)))
+
+
+# -- polygons and grids of points -------------------------------------------------------
+
+
+def signed_area(points: Sequence[Sequence[float]]) -> float:
+    """The shoelace area of a polygon's corners (x, z): positive counter-clockwise in (x, z)."""
+    n = len(points)
+    return 0.5 * sum(
+        points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
+        for k in range(n)
+    )
+
+
+def points_in_polygon(
+    corners: Sequence[Sequence[float]], gx: np.ndarray, gz: np.ndarray
+) -> np.ndarray:
+    """Even-odd test of every point (gx, gz) against the polygon ``corners``, at once."""
+    inside = np.zeros(gx.shape, dtype=bool)
+    n = len(corners)
+    for k in range(n):
+        (x0, z0), (x1, z1) = corners[k], corners[(k + 1) % n]
+        if z0 == z1:
+            continue
+        crosses = (z0 > gz) != (z1 > gz)
+        inside ^= crosses & (gx < x0 + (gz - z0) * (x1 - x0) / (z1 - z0))
+    return inside
+
+
+def points_segments_distance(gx: np.ndarray, gz: np.ndarray, segments) -> np.ndarray:
+    """Distance from every point (gx, gz) to the nearest of some segments (inf if none)."""
+    best = np.full(gx.shape, np.inf)
+    for (ax, az), (bx, bz) in segments:
+        ex, ez = bx - ax, bz - az
+        length2 = ex * ex + ez * ez
+        t = (
+            np.zeros(gx.shape)
+            if length2 == 0.0
+            else np.clip(((gx - ax) * ex + (gz - az) * ez) / length2, 0.0, 1.0)
+        )
+        best = np.minimum(best, np.hypot(gx - ax - t * ex, gz - az - t * ez))
+    return best

@@ -24,12 +24,11 @@ fits", chosen by the layout and recorded as the relation's ``chosen``.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
 from scenewright.core.errors import RoomError
-from scenewright.core.geometry import left_normal, point_segment_distance
+from scenewright.core.geometry import left_normal, point_segment_distance, signed_area
 
 #: Scene-graph node kinds of a room and its parts, and the id of the node that stands for the room.
 ROOM_KINDS = ("room", "wall", "door", "window")
@@ -172,7 +171,7 @@ class Room:
                     f"wall {k + 1} is shorter than 5 cm (corners {k + 1} and {(k + 1) % n + 1} coincide)"
                 )
         _refuse_self_crossing(points)
-        area = _signed_area(points)
+        area = signed_area(points)
         if abs(area) < 0.25:
             raise RoomError("the room's floor is smaller than 0.25 square metres")
         if height <= 0.0 or not math.isfinite(height):
@@ -301,7 +300,7 @@ class Room:
 
     @property
     def area(self) -> float:
-        return abs(_signed_area(self.corners))
+        return abs(signed_area(self.corners))
 
     @property
     def height(self) -> float:
@@ -339,7 +338,7 @@ class Room:
         for x, z in corners:
             if not self.contains(x, z):
                 excess = max(excess, self.boundary_distance(x, z))
-        clockwise = _signed_area(corners) < 0
+        clockwise = signed_area(corners) < 0
         for wx, wz in self.corners:  # a room corner poking into the footprint (L-shaped rooms)
             excess = max(excess, _depth_in_convex(wx, wz, corners, clockwise))
         return excess
@@ -436,14 +435,6 @@ def _names(room: Room) -> str:
 
 def _wall_words(wall: Wall) -> str:
     return f"{wall.id.replace('_', ' ')} (the {wall.side} wall)"
-
-
-def _signed_area(points: Sequence[tuple[float, float]]) -> float:
-    n = len(points)
-    return 0.5 * sum(
-        points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
-        for k in range(n)
-    )
 
 
 def _depth_in_convex(

@@ -38,6 +38,7 @@ import numpy as np
 from scipy import ndimage
 
 from scenewright.core.errors import InputError
+from scenewright.core.geometry import points_in_polygon
 from scenewright.core.seeds import stream
 
 from .outline import Outlines, PlannedDoor, PlannedRoom
@@ -170,26 +171,13 @@ def _footprint(spec: PlanSpec, rooms: list[_Room], rng) -> tuple[np.ndarray, tup
     centres_x = x0 + (np.arange(columns) + 0.5) * CELL
     centres_z = z0 + (np.arange(rows) + 0.5) * CELL
     grid_x, grid_z = np.meshgrid(centres_x, centres_z)
-    mask = _inside(grid_x, grid_z, spec.corners)
+    mask = points_in_polygon(spec.corners, grid_x, grid_z)
     for courtyard in spec.courtyards:
-        mask &= ~_inside(grid_x, grid_z, courtyard)
+        mask &= ~points_in_polygon(courtyard, grid_x, grid_z)
     # centre the house on the origin
     cx, cz = (min(xs) + max(xs)) / 2.0, (min(zs) + max(zs)) / 2.0
     cx, cz = round(cx / CELL) * CELL, round(cz / CELL) * CELL
     return mask, (x0 - cx, z0 - cz)
-
-
-def _inside(x: np.ndarray, z: np.ndarray, polygon) -> np.ndarray:
-    """Even-odd point-in-polygon for arrays of points."""
-    inside = np.zeros(x.shape, dtype=bool)
-    n = len(polygon)
-    for k in range(n):
-        (xa, za), (xb, zb) = polygon[k], polygon[(k + 1) % n]
-        crosses = (za > z) != (zb > z)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            at = xa + (z - za) * (xb - xa) / (zb - za)
-        inside ^= crosses & (x < at)
-    return inside
 
 
 def _hub(spec: PlanSpec, rooms: list[_Room]) -> int | None:

@@ -23,8 +23,8 @@ from dataclasses import replace
 import numpy as np
 from scipy import ndimage
 
+from scenewright.core.geometry import points_in_polygon, points_segments_distance
 from scenewright.core.house import House, HouseRoom
-from scenewright.core.room import Room
 from scenewright.core.scene import Scene, assemble_scene
 from scenewright.core.seeds import MAX_SEED, retry_seed, stream
 from scenewright.generator import expand, load_rules
@@ -105,9 +105,10 @@ def door_paths(scene: Scene) -> str | None:
         np.arange(min(xs) + WAY_CELL / 2, max(xs), WAY_CELL),
         np.arange(min(zs) + WAY_CELL / 2, max(zs), WAY_CELL),
     )
-    free = _inside(room, gx, gz)
-    for wall in room.walls:
-        free &= _wall_distance(wall, gx, gz) >= WAY_HALF - 1e-9
+    free = points_in_polygon(room.corners, gx, gz)
+    free &= (
+        points_segments_distance(gx, gz, [(w.start, w.end) for w in room.walls]) >= WAY_HALF - 1e-9
+    )
     for obj in scene.placed_objects():
         if obj.position[1] > 0.01 or obj.size[1] < STEP_OVER:
             continue  # on something else, or flat enough to walk over
@@ -123,7 +124,7 @@ def door_paths(scene: Scene) -> str | None:
     reached: list[set[int]] = []
     for door in doors:
         (ax, az), (bx, bz) = room.opening_ends(door)
-        near = _segment_distance(gx, gz, (ax, az), (bx, bz)) <= WAY_HALF + 2 * WAY_CELL
+        near = points_segments_distance(gx, gz, [((ax, az), (bx, bz))]) <= WAY_HALF + 2 * WAY_CELL
         found = set(np.unique(labels[near & free]).tolist()) - {0}
         if not found:
             return f"{door.id}: no free way leads from it into the room"
@@ -132,29 +133,3 @@ def door_paths(scene: Scene) -> str | None:
     if not common:
         return "its doors are not joined by a free way 0.6 m wide"
     return None
-
-
-def _inside(room: Room, gx: np.ndarray, gz: np.ndarray) -> np.ndarray:
-    inside = np.zeros(gx.shape, dtype=bool)
-    corners = room.corners
-    n = len(corners)
-    for k in range(n):
-        (xa, za), (xb, zb) = corners[k], corners[(k + 1) % n]
-        crosses = (za > gz) != (zb > gz)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            at = xa + (gz - za) * (xb - xa) / (zb - za)
-        inside ^= crosses & (gx < at)
-    return inside
-
-
-def _wall_distance(wall, gx, gz) -> np.ndarray:
-    return _segment_distance(gx, gz, wall.start, wall.end)
-
-
-def _segment_distance(gx, gz, a, b) -> np.ndarray:
-    ax, az = a
-    bx, bz = b
-    dx, dz = bx - ax, bz - az
-    length2 = dx * dx + dz * dz
-    t = np.clip(((gx - ax) * dx + (gz - az) * dz) / length2, 0.0, 1.0) if length2 > 0 else 0.0
-    return np.hypot(gx - (ax + t * dx), gz - (az + t * dz))

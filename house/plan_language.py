@@ -20,6 +20,7 @@ from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from scenewright.core.errors import RoomError
+from scenewright.core.geometry import signed_area
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.generator import load_rules, shipped_rule_sets
 from scenewright.generator.catalog import SourceLocation
@@ -464,7 +465,9 @@ class _Reader:
         if spec.size is not None:
             biggest = spec.size[0][1] * spec.size[1][1]
         else:
-            biggest = abs(_area(spec.corners)) - sum(abs(_area(c)) for c in spec.courtyards)
+            biggest = abs(signed_area(spec.corners)) - sum(
+                abs(signed_area(c)) for c in spec.courtyards
+            )
         least = 0.0
         for room in spec.rooms:
             if room.area[0] > biggest:
@@ -496,11 +499,3 @@ def _uses_windows(rules) -> bool:
 
 def _string(token) -> str:
     return str(token)[1:-1]
-
-
-def _area(points) -> float:
-    return 0.5 * sum(
-        points[k][0] * points[(k + 1) % len(points)][1]
-        - points[(k + 1) % len(points)][0] * points[k][1]
-        for k in range(len(points))
-    )

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from scenewright.core.errors import InputError, RoomError
+from scenewright.core.geometry import signed_area
 from scenewright.core.house import (
     HOUSE_WALL_THICKNESS,
     House,
@@ -174,7 +175,7 @@ def _walls(rooms, pieces: list[_Piece], height: float, thickness: float) -> list
     for piece in pieces:
         if piece.other is not None and piece.other < piece.room:
             continue  # the other room's piece is the same wall
-        left_is_room = _signed_area(rooms[piece.room].outline) > 0
+        left_is_room = signed_area(rooms[piece.room].outline) > 0
         mine = rooms[piece.room].id
         theirs = rooms[piece.other].id if piece.other is not None else None
         sides = (mine, theirs) if left_is_room else (theirs, mine)
@@ -211,11 +212,11 @@ def _door(planned: PlannedDoor, rooms, pieces, taken, swings, rng, number: int) 
             )
         width = planned.width or width
     else:
-        outward = _outward(rooms[ids[0]])
+        inward = _inward(rooms[ids[0]])
 
         def preference(item):
             n, p = item
-            facing_south = front and _normal_of(p, outward)[1] > 0.9
+            facing_south = front and _outward_normal(p, inward)[1] > 0.9
             return (p.length >= width + 2 * CORNER_MARGIN, facing_south, round(p.length, 3), -n)
 
         n, piece = max(candidates, key=preference)
@@ -277,7 +278,7 @@ def _place(length: float, width: float, occupied, rng, *, front: bool, clear) ->
 
 def _inward(room: PlannedRoom) -> float:
     """+1 when the room lies on the left of its outline's edges, -1 when on the right."""
-    return 1.0 if _signed_area(room.outline) > 0 else -1.0
+    return 1.0 if signed_area(room.outline) > 0 else -1.0
 
 
 def _swing_box(piece: _Piece, u: float, width: float, inward: float):
@@ -322,7 +323,7 @@ def _windows(rooms: list[PlannedRoom], pieces: list[_Piece], taken) -> list[Hous
             key=lambda item: (-round(item[1].length, 3), item[0]),
         )
         total = sum(p.length for _n, p in outside)
-        area = abs(_signed_area(room.outline))
+        area = abs(signed_area(room.outline))
         wanted = 2 if total >= WINDOW_PER_METRES and area >= TWO_WINDOWS_AREA else 1
         width, height, sill = room.window or DEFAULT_WINDOW
         made = 0
@@ -435,7 +436,7 @@ def inset(outline, distance: float) -> list[Point]:
     """The polygon ``outline`` moved ``distance`` inwards, corners mitred."""
     points = list(outline)
     n = len(points)
-    sign = 1.0 if _signed_area(points) > 0 else -1.0
+    sign = 1.0 if signed_area(points) > 0 else -1.0
     lines = []
     for k in range(n):
         a, b = points[k], points[(k + 1) % n]
@@ -476,21 +477,10 @@ def _direction_at(pieces, k: int, other, point: Point) -> Point:
     return piece.direction
 
 
-def _outward(room: PlannedRoom) -> float:
-    return 1.0 if _signed_area(room.outline) > 0 else -1.0
-
-
-def _normal_of(piece: _Piece, outward: float) -> Point:
+def _outward_normal(piece: _Piece, inward: float) -> Point:
+    """The unit normal (x, z) of a piece pointing out of the room (``inward`` as ``_inward``)."""
     tx, tz = piece.direction
-    return tz * outward, -tx * outward
-
-
-def _signed_area(points) -> float:
-    n = len(points)
-    return 0.5 * sum(
-        points[k][0] * points[(k + 1) % n][1] - points[(k + 1) % n][0] * points[k][1]
-        for k in range(n)
-    )
+    return tz * inward, -tx * inward
 
 
 def _cross(a: Point, tx: float, tz: float, p: Point) -> float:

@@ -19,7 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from scenewright.core.geometry import Rect
+from scenewright.core.geometry import Rect, points_in_polygon, points_segments_distance
 from scenewright.core.room import Room
 
 #: ``scipy.ndimage.label``'s structure: cells connect through their sides only (its
@@ -108,15 +108,15 @@ class AccessGrid:
         gx, gz = np.meshgrid(self.xc, self.zc)
         inside = np.zeros(self.shape, dtype=bool)  # the floor's cells, padding left out
         floor = (slice(self.pad, self.pad + self.rows), slice(self.pad, self.pad + self.cols))
-        inside[floor] = _contains(room, gx[floor], gz[floor])
+        inside[floor] = points_in_polygon(room.corners, gx[floor], gz[floor])
         solid, doors = _wall_segments(room)
         # Floor a person's centre can be on, boxes aside: inside, 0.3 m from solid wall
         # (a doorway is no wall: the way in runs through it).
-        static = inside & (_segments_distance(gx, gz, solid) >= CORRIDOR_HALF)
+        static = inside & (points_segments_distance(gx, gz, solid) >= CORRIDOR_HALF)
         #: The static free floor, and the cells that count as "at a door": free floor
         #: within CORRIDOR_HALF + one cell of an opening.
         self.static = self.plane(static)
-        seeds = static & (_segments_distance(gx, gz, doors) <= CORRIDOR_HALF + self.cell)
+        seeds = static & (points_segments_distance(gx, gz, doors) <= CORRIDOR_HALF + self.cell)
         self.seeds = self.plane(seeds)
         self.seed_cells = np.flatnonzero(seeds)
         rows, cols = np.nonzero(seeds)
@@ -525,32 +525,3 @@ def _wall_segments(room: Room) -> tuple[list, list]:
         if u < wall.length:
             solid.append((wall.to_world(u, 0.0), wall.to_world(wall.length, 0.0)))
     return solid, doors
-
-
-def _segments_distance(gx: np.ndarray, gz: np.ndarray, segments: list) -> np.ndarray:
-    """Distance from every point (gx, gz) to the nearest of some segments (inf if none)."""
-    best = np.full(gx.shape, np.inf)
-    for (ax, az), (bx, bz) in segments:
-        ex, ez = bx - ax, bz - az
-        length2 = ex * ex + ez * ez
-        t = (
-            np.zeros(gx.shape)
-            if length2 == 0.0
-            else np.clip(((gx - ax) * ex + (gz - az) * ez) / length2, 0.0, 1.0)
-        )
-        best = np.minimum(best, np.hypot(gx - ax - t * ex, gz - az - t * ez))
-    return best
-
-
-def _contains(room: Room, gx: np.ndarray, gz: np.ndarray) -> np.ndarray:
-    """``Room.contains`` for every point (gx, gz) at once."""
-    inside = np.zeros(gx.shape, dtype=bool)
-    points = room.corners
-    n = len(points)
-    for k in range(n):
-        (x0, z0), (x1, z1) = points[k], points[(k + 1) % n]
-        if z0 == z1:
-            continue
-        crosses = (z0 > gz) != (z1 > gz)
-        inside ^= crosses & (gx < x0 + (gz - z0) * (x1 - x0) / (z1 - z0))
-    return inside
