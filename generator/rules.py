@@ -79,12 +79,13 @@ def _shipped_scenes() -> tuple[str, ...]:
         sorted(
             item.name[: -len(RULES_SUFFIX)]
             for item in folder.iterdir()
-            if item.name.endswith(RULES_SUFFIX) and not _is_plan(item.read_text(encoding="utf-8"))
+            if item.name.endswith(RULES_SUFFIX)
+            and not is_plan_text(item.read_text(encoding="utf-8"))
         )
     )
 
 
-def _is_plan(text: str) -> bool:
+def is_plan_text(text: str) -> bool:
     """Whether a rules text is a house plan: its first word outside comments is ``plan``."""
     found = re.search(r"[A-Za-z_]+", re.sub(r"#[^\n]*", "", text))
     return found is not None and found.group(0) == "plan"

@@ -11,7 +11,6 @@ a ``PlanSpec``; every mistake is a located ``Diagnostic`` as the rules' own are
 from __future__ import annotations
 
 import os
-import re
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
@@ -24,6 +23,7 @@ from scenewright.core.geometry import signed_area
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.generator import load_rules, shipped_rule_sets
 from scenewright.generator.catalog import SourceLocation
+from scenewright.generator.rules import is_plan_text
 from scenewright.generator.rules_errors import Diagnostic, RulesError, did_you_mean
 
 #: Room types that are for walking through: a plan's corridors and halls get the
@@ -92,7 +92,7 @@ class PlanSpec:
 
 def is_plan_file(source: str | os.PathLike) -> bool:
     """Whether a rules file (a path, or a shipped name) holds a ``plan`` block."""
-    path = _plan_path(source)
+    path = plan_path(source)
     if path is None:
         return False
     try:
@@ -100,13 +100,7 @@ def is_plan_file(source: str | os.PathLike) -> bool:
             text = handle.read(65536)
     except OSError:
         return False
-    return first_word(text) == "plan"
-
-
-def first_word(text: str) -> str:
-    """The first word of a rules text that is not in a comment."""
-    found = re.search(r"[A-Za-z_]+", re.sub(r"#[^\n]*", "", text))
-    return found.group(0) if found else ""
+    return is_plan_text(text)
 
 
 @cache
@@ -117,7 +111,7 @@ def shipped_plans() -> tuple[str, ...]:
     folder = resources.files("scenewright.grammar_rules")
     names = []
     for item in folder.iterdir():
-        if item.name.endswith(".rules") and first_word(item.read_text(encoding="utf-8")) == "plan":
+        if item.name.endswith(".rules") and is_plan_text(item.read_text(encoding="utf-8")):
             names.append(item.name.removesuffix(".rules"))
     return tuple(sorted(names))
 
@@ -130,7 +124,7 @@ def room_rule_sets() -> tuple[str, ...]:
 
 def read_plan(source: str | os.PathLike) -> PlanSpec:
     """Parse and check a plan file; ``RulesError`` (every located mistake) when it is wrong."""
-    path = _plan_path(source)
+    path = plan_path(source)
     if path is None:
         raise RulesError(
             [Diagnostic(SourceLocation(os.fspath(source), 1, 1), "no plan file of that name")]
@@ -160,7 +154,8 @@ def _parser() -> Lark:
     return Lark(grammar, parser="lalr", propagate_positions=True)
 
 
-def _plan_path(source: str | os.PathLike) -> Path | None:
+def plan_path(source: str | os.PathLike) -> Path | None:
+    """The file a shipped name (``apartment``) or a path names, or None when there is none."""
     text = os.fspath(source)
     if isinstance(source, str) and "/" not in text and not text.endswith(".rules"):
         from importlib import resources

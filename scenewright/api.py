@@ -340,14 +340,9 @@ def plan_label(plan: str | os.PathLike[str]) -> str:
 
 def plan_file(plan: str | os.PathLike[str]) -> Path:
     """The file a house plan is read from (a shipped plan's, or the path given)."""
-    from importlib.resources import files
+    from scenewright.house.plan_language import plan_path
 
-    from scenewright.house import shipped_plans
-
-    label = os.fspath(plan)
-    if label in shipped_plans():
-        return Path(str(files("scenewright.grammar_rules").joinpath(f"{label}.rules")))
-    return Path(label)
+    return plan_path(plan) or Path(os.fspath(plan))
 
 
 def compose(
