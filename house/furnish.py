@@ -30,6 +30,7 @@ from scenewright.core.seeds import MAX_SEED, retry_seed, stream
 from scenewright.generator import expand, load_rules
 from scenewright.generator.layout import layout_scene
 from scenewright.generator.layout.params import LayoutParams
+from scenewright.generator.rules import Rules
 
 #: Layouts tried per room before its best is kept, and how many of them lay out one
 #: expansion before the room's rule set is expanded again (retry streams from REEXPAND on).
@@ -57,17 +58,25 @@ def furnish(house: House, seed: int, *, workers: int = 1) -> list[Scene]:
     if workers > 1 and len(jobs) > 1:
         with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
             return list(pool.map(_furnish_job, jobs))
-    return [furnish_room(room, room_seed_) for room, room_seed_ in jobs]
+    loaded: dict[str, Rules] = {}  # rooms of one type share their rule set, read once
+    scenes = []
+    for room, room_seed_ in jobs:
+        if room.rules not in loaded:
+            loaded[room.rules] = load_rules(room.rules)
+        scenes.append(furnish_room(room, room_seed_, loaded[room.rules]))
+    return scenes
 
 
 def _furnish_job(job: tuple[HouseRoom, int]) -> Scene:
     return furnish_room(*job)
 
 
-def furnish_room(room: HouseRoom, seed: int) -> Scene:
-    """The room laid out with its rule set: the first of ``ROOM_TRIES`` tries that is ok
-    with every door reachable from every other, or else the try with the fewest problems."""
-    rules = load_rules(room.rules)
+def furnish_room(room: HouseRoom, seed: int, rules: Rules | None = None) -> Scene:
+    """The room laid out with its rule set (``rules``, read from ``room.rules`` when not
+    given): the first of ``ROOM_TRIES`` tries that is ok with every door reachable from
+    every other, or else the try with the fewest problems."""
+    if rules is None:
+        rules = load_rules(room.rules)
     rules = replace(
         rules,
         params=replace(rules.params, room=room.room, extent=room.room.extent, name=room.type),
