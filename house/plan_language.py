@@ -11,7 +11,7 @@ a ``PlanSpec``; every mistake is a located ``Diagnostic`` as the rules' own are
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields, is_dataclass
 from functools import cache
 from pathlib import Path
 
@@ -22,6 +22,7 @@ from scenewright.core.errors import RoomError
 from scenewright.core.geometry import signed_area
 from scenewright.core.room import DEFAULT_WALL_HEIGHT, Room
 from scenewright.generator import load_rules, shipped_rule_sets
+from scenewright.generator import rules_ast as ast
 from scenewright.generator.catalog import SourceLocation
 from scenewright.generator.rules import is_plan_text
 from scenewright.generator.rules_errors import Diagnostic, RulesError, did_you_mean
@@ -488,8 +489,23 @@ class _Reader:
 
 def _uses_windows(rules) -> bool:
     """Whether a rule set's productions name a window (``some window``, ``window #1``)."""
-    # A production's repr lists every reference it makes as Reference(kind=..., name=...).
-    return "name='window'" in repr(list(rules.productions.values()))
+    return any(
+        reference.name == "window"
+        for production in rules.productions.values()
+        for reference in _references(production)
+    )
+
+
+def _references(item):
+    """Every ``Reference`` in a rules AST node, however deep."""
+    if isinstance(item, ast.Reference):
+        yield item
+    elif is_dataclass(item):
+        for attribute in fields(item):
+            yield from _references(getattr(item, attribute.name))
+    elif isinstance(item, (list, tuple)):
+        for part in item:
+            yield from _references(part)
 
 
 def _string(token) -> str:
