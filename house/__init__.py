@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING
 
-from scenewright.core.seeds import check_seed, stream
+from scenewright.core.seeds import check_seed, retry_seed, stream
 
 from .plan_language import is_plan_file, read_plan, shipped_plans
 
@@ -21,6 +21,15 @@ if TYPE_CHECKING:
     from scenewright.core.scene import Scene
 
 __all__ = ["house_of", "house_scene_from", "is_plan_file", "read_plan", "shipped_plans"]
+
+
+#: Floor plans a generated house draws before its best is kept. A room that none of its
+#: rule set's tries furnishes (a 3 m bedroom whose doors leave no wall long enough for
+#: the bed) is seldom a problem of its rule set but of the cut the plan drew, so the
+#: whole plan is drawn again (from the seed's ``retry`` children, as a dataset retries a
+#: layout); a given plan has only its one floor plan.
+PLAN_TRIES = 3
+PLAN_RETRY = 200
 
 
 def house_of(source: str | os.PathLike[str], seed: int) -> House:
@@ -39,14 +48,28 @@ def house_of(source: str | os.PathLike[str], seed: int) -> House:
 def house_scene_from(
     source: str | os.PathLike[str], seed: int, *, workers: int = 1, label: str | None = None
 ) -> Scene:
-    """A furnished house scene (no text yet) from a plan file or a given plan."""
+    """A furnished house scene (no text yet) from a plan file or a given plan: the first of
+    ``PLAN_TRIES`` floor plans whose every room is furnished ok, or else the one with the
+    most rooms ok."""
     from pathlib import Path
 
     from .assemble import house_scene
     from .furnish import furnish
+    from .given_plan import is_given_plan
 
     seed = check_seed(seed)
-    house = house_of(source, seed)
-    rooms = furnish(house, seed, workers=workers)
     name = Path(os.fspath(source)).name.removesuffix(".rules").removesuffix(".json")
-    return house_scene(house, rooms, rules=label or os.fspath(source), seed=seed, name=name)
+    best: Scene | None = None
+    best_ok = -1
+    for attempt in range(1 if is_given_plan(source) else PLAN_TRIES):
+        drawn = retry_seed(seed, PLAN_RETRY + attempt) if attempt else seed
+        house = house_of(source, drawn)
+        rooms = furnish(house, drawn, workers=workers)
+        scene = house_scene(house, rooms, rules=label or os.fspath(source), seed=seed, name=name)
+        rooms_ok = sum(room.layout.ok for room in rooms)
+        if rooms_ok == len(rooms):
+            return scene
+        if rooms_ok > best_ok:
+            best, best_ok = scene, rooms_ok
+    assert best is not None
+    return best

@@ -172,6 +172,59 @@ def test_a_house_is_the_same_whatever_the_number_of_workers(small_plan):
     assert one.to_json(reproducible=True) == two.to_json(reproducible=True)
 
 
+def _failing_first_plans(monkeypatch, failing):
+    """Make the first ``failing`` floor plans furnished come back with their first room not
+    ok (as a room no try of its rule set furnishes does); returns the houses furnished."""
+    import scenewright.house.furnish as furnishing
+
+    real = furnishing.furnish
+    furnished = []
+
+    def furnish(house, seed, *, workers=1):
+        rooms = real(house, seed, workers=workers)
+        furnished.append(house)
+        if len(furnished) <= failing:
+            rooms[0].layout.ok = False
+        return rooms
+
+    monkeypatch.setattr(furnishing, "furnish", furnish)
+    return furnished
+
+
+def _outlines(house):
+    return [room.outline for room in house.rooms]
+
+
+def test_a_plan_whose_room_cannot_be_furnished_is_drawn_again(small_plan, monkeypatch):
+    furnished = _failing_first_plans(monkeypatch, failing=1)
+    scene = house_scene_from(small_plan, 3)
+    assert len(furnished) == 2
+    assert _outlines(furnished[1]) != _outlines(furnished[0])  # a new floor plan
+    assert _outlines(scene.house) == _outlines(furnished[1])
+    assert scene.layout.ok and scene.seed == 3
+    furnished.clear()
+    again = house_scene_from(small_plan, 3)  # the same seed draws the same plans again
+    assert again.to_json(reproducible=True) == scene.to_json(reproducible=True)
+
+
+def test_when_no_plan_furnishes_the_best_is_kept_and_says_why(small_plan, monkeypatch):
+    from scenewright.house import PLAN_TRIES
+
+    furnished = _failing_first_plans(monkeypatch, failing=PLAN_TRIES)
+    scene = house_scene_from(small_plan, 3)
+    assert len(furnished) == PLAN_TRIES
+    assert not scene.layout.ok
+    assert _outlines(scene.house) == _outlines(furnished[0])  # the first of equals
+
+
+def test_a_given_plan_is_not_drawn_again(tmp_path, monkeypatch):
+    path = tmp_path / "mine.json"
+    path.write_text(json.dumps(GIVEN))
+    furnished = _failing_first_plans(monkeypatch, failing=1)
+    scene = house_scene_from(path, 0)
+    assert len(furnished) == 1 and not scene.layout.ok
+
+
 def test_scene_json_keeps_the_house_and_gives_each_room_back(small_plan):
     scene = house_scene_from(small_plan, 3)
     again = Scene.from_json(scene.to_json())
