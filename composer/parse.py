@@ -28,6 +28,7 @@ from .vocabulary import (
     NUMBERS,
     ORDINALS,
     ROOM_SIZES,
+    ROOM_TYPES,
     ROOMS,
     WALL_NUMBER,
     NounSense,
@@ -46,6 +47,9 @@ _SIDES_OF = (
     "at each side of",
     "flanking",
 )
+#: The same without "of": the sides of the thing named before ("a bed with a nightstand
+#: on either side").
+_SIDES = ("on each side", "on either side", "on both sides", "at each side", "at either side")
 _AROUND = ("around", "round", "surrounding", "about")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
@@ -151,6 +155,9 @@ class _Reader:
         self.req = request
         self.mentions: list[str] = []
         self.ordinal_used: dict[str, set[str]] = {}
+        #: Whether the last noun phrase read was "each N" / "every N": a relation to it
+        #: then makes one subject per N ("a lamp on each nightstand").
+        self.each = False
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -314,6 +321,7 @@ class _Reader:
             return None
         sense = self.vocab.nouns[hit[0]]
         taken = toks[i : j + hit[1]]
+        self.each = det in ("each", "every") and ordinal is None
         if det in ("", "a", "another") and ordinal is None:
             n = count if count is not None else (2 if sense.plural else 1)
             ids = [self.create(sense, colour, taken) for _ in range(n)]
@@ -392,6 +400,10 @@ class _Reader:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides", None, len(words)
+        for phrase in _SIDES:
+            words = phrase.split()
+            if [t.low for t in toks[i : i + len(words)]] == words:
+                return "sides of it", None, len(words)
         if [t.low for t in toks[i : i + 2]] == ["flanked", "by"]:  # the passive
             return "flanked", None, 2
         k = i
@@ -399,6 +411,8 @@ class _Reader:
             k += 1
         if toks[k].low in _AROUND:
             return "around", None, k + 1 - i
+        if toks[k].low in ("between", "in-between"):
+            return "between", None, k + 1 - i
         if toks[k].low == "along":
             return "rel", ("AgainstWall",), k + 1 - i
         if toks[k].low in ("near", "by") or (
@@ -445,6 +459,14 @@ class _Reader:
                     pending = (kind, labels or (), i, who)
                     for w in toks[i : i + n]:
                         w.used = True
+                    if kind == "sides of it":  # "a nightstand on either side": of the bed
+                        pending = ("sides", (), i, who)
+                        target = self._pronoun(who)
+                        if target:
+                            self._apply(pending, target, "things", toks, i + n)
+                        else:
+                            self._unused(toks, i, i + n, "a relation without its object")
+                        pending = None
                     if kind == "side by side":  # next to each other, lined up
                         pending = None
                         if len(who) < 2:
@@ -468,8 +490,21 @@ class _Reader:
             kind, value, n = np
             span = toks[i : i + n]
             if kind == "it":
-                value = self._pronoun(pending[3] if pending else [])
+                value = self._pronoun(pending[3] if pending else [], plural=value == "them")
                 kind = "things" if value else "none"
+            if (
+                kind == "things"
+                and pending is not None
+                and pending[0] == "between"
+                and len(value) == 1
+                and i + n + 1 < len(toks)
+                and toks[i + n].low == "and"
+            ):  # "between the bed and the wardrobe": the second thing too
+                second = self.noun_phrase(toks, i + n + 1, pending[3])
+                if second is not None and second[0] == "things":
+                    value = value + second[1]
+                    n += 1 + second[2]
+                    span = toks[i : i + n]
             if kind == "each other" and (pending is None or len(pending[3]) < 2):
                 kind = "none"
             if kind == "none":
@@ -503,7 +538,7 @@ class _Reader:
                         w.used = True
                     n += wall[1]
             elif pending is not None:
-                self._apply(pending, value, kind, toks, i + n)
+                self._apply(pending, value, kind, toks, i + n, each=self.each)
                 subject_ids = pending[3]
                 pending = None
                 if kind == "things":
@@ -524,11 +559,17 @@ class _Reader:
         if pending is not None:
             self._unused(toks, pending[2], len(toks), "a relation without its object")
 
-    def _pronoun(self, subject: list[str]) -> list[str]:
+    def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
+        """What "it" refers to: the last thing named, other than the subject; "them":
+        that thing and the things of its type named just before it."""
+        found: list[str] = []
         for eid in reversed(self.mentions):
-            if eid not in subject:
-                return [eid]
-        return []
+            if eid in subject or eid in found:
+                continue
+            if found and (not plural or self.entity(eid).type != self.entity(found[0]).type):
+                break
+            found.append(eid)
+        return found[::-1]
 
     def _opening_wall(self, toks: list[Token], k: int):
         """ "in the south wall", "on the north side": (side, tokens taken) or None."""
@@ -545,7 +586,9 @@ class _Reader:
                 return side, j - k
         return None
 
-    def _apply(self, pending, value, kind: str, toks: list[Token], end: int) -> None:
+    def _apply(
+        self, pending, value, kind: str, toks: list[Token], end: int, each: bool = False
+    ) -> None:
         how, labels, start, subjects = pending
         span_end = toks[end - 1].end
         span_start = toks[start].start
@@ -558,8 +601,8 @@ class _Reader:
 
         if kind == "place":
             place: Place = value
-            if how == "in" and place.kind == "wall":
-                label = "AgainstWall"
+            if (how == "in" or "OnTopOf" in labels) and place.kind == "wall":
+                label = "AgainstWall"  # "on the west wall": against it
             elif (
                 how == "in"
                 and place.kind == "corner"
@@ -621,6 +664,14 @@ class _Reader:
                 add(s, ("BesideLeft", "BesideRight")[k % 2], middle)
                 add(s, "ImplicitAlignedWith", middle)
             return
+        if how == "between":
+            # "a bed between two nightstands", "a coffee table between the sofas": one
+            # to its left and one to its right (within 2 m, NextTo's reach)
+            if len(targets) != 2 or len(subjects) != 1:
+                return self._unused(toks, start, end, "'between' takes two things")
+            add(targets[0], "NextToLeft", subjects[0])
+            add(targets[1], "NextToRight", subjects[0])
+            return
         if how == "around":
             if all(_is_seat(self.entity(sub).type) for sub in subjects):
                 # chairs round a table: seated at whichever side each fits, facing it
@@ -643,6 +694,17 @@ class _Reader:
         # narrowest is taken (one direction, then the shortest reach): it makes the
         # broader one true as well, so the scene holds whichever the words meant.
         label = min(object_labels, key=lambda x: (_breadth(RELATIONS[x]), x))
+        if each and len(targets) > 1 and 0 < len(subjects) <= len(targets):
+            # "a lamp on each nightstand": one lamp per nightstand
+            first = self.entity(subjects[0])
+            sense = NounSense(first.type, first.style, False)
+            subjects = subjects + [
+                self.create(sense, first.colour, [toks[start]])
+                for _ in range(len(targets) - len(subjects))
+            ]
+            for s, t in zip(subjects, targets, strict=True):
+                add(s, label, t)
+            return
         for s in subjects:
             for t in targets:
                 if s != t:
@@ -675,6 +737,10 @@ def parse(text: str, vocab: Vocabulary) -> Request:
     reader = _Reader(vocab, request)
     for sentence in _sentences(tokens):
         reader.sentence(sentence)
+    for entity in request.entities:  # a "sink" in a bathroom is its washbasin
+        swap = ROOM_TYPES.get(request.room, {}).get(entity.type)
+        if swap is not None and swap in vocab.entries:
+            entity.type, entity.style = swap, None
     for t in tokens:
         if t.used:
             request.used.append((t.start, t.end))

@@ -249,7 +249,7 @@ def test_list_and_schema(capsys):
     # A room set lists what it makes, not the whole shared indoor catalog.
     bathroom = out[out.index("bathroom  (") : out.index("bedroom  (")]
     assert (
-        "makes 7 of its catalog's 43 object types" in bathroom
+        "makes 7 of its catalog's 46 object types" in bathroom
         and "toilet" in bathroom
         and "piano" not in bathroom
     )

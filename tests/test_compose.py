@@ -107,6 +107,77 @@ def test_flanked_by_puts_what_follows_on_each_side_of_the_subject():
     assert not request.issues
 
 
+def _said(request):
+    """The statements between things, as (source, label, target) ids, and the types."""
+    ids = {e.id: e.type for e in request.entities}
+    return ids, [(s.source, s.label, s.target) for s in request.statements]
+
+
+def test_each_after_a_relation_makes_one_subject_per_thing():
+    request, _ = _plan("a bed between two nightstands and a lamp on each nightstand")
+    assert _types(request) == ["bed", "lamp", "lamp", "nightstand", "nightstand"]
+    ids, said = _said(request)
+    lamps_on = sorted(t for s, lab, t in said if ids[s] == "lamp" and lab == "OnTopOf")
+    assert lamps_on == sorted(e for e, kind in ids.items() if kind == "nightstand")
+    assert not request.issues
+
+
+def test_between_puts_one_thing_on_each_side():
+    for text in (
+        "a bed between two nightstands",
+        "a desk between the bookshelf and the wardrobe",
+        "two sofas facing each other and a coffee table between them",
+    ):
+        request, _ = _plan(text)
+        ids, said = _said(request)
+        middle = next(e for e, kind in ids.items() if kind in ("bed", "desk", "coffee_table"))
+        sides = sorted(lab for s, lab, t in said if t == middle)
+        assert sides == ["NextToLeft", "NextToRight"], text
+        assert len(ids) == 3 and not request.issues, text
+
+
+def test_between_one_thing_is_reported():
+    request, _ = _plan("a desk between the bookshelf")
+    assert [i.message.split(":")[-1].strip() for i in request.issues][:1] == [
+        "'between' takes two things"
+    ]
+
+
+def test_on_either_side_without_of_means_the_thing_named_before():
+    request, _ = _plan("a bedroom with a bed with a nightstand on either side")
+    ids, said = _said(request)
+    assert sorted(lab for s, lab, t in said if ids.get(t) == "bed") == [
+        "BesideLeft",
+        "BesideRight",
+        "ImplicitAlignedWith",
+        "ImplicitAlignedWith",
+    ]
+    assert _types(request) == ["bed", "nightstand", "nightstand"] and not request.issues
+
+
+@pytest.mark.parametrize(
+    ("text", "types"),
+    [
+        ("a bathroom with a shower, a toilet and a sink", ["shower", "toilet", "washbasin"]),
+        ("a kitchen with a sink", ["sink_counter"]),
+        ("a classroom with four desks", ["student_desk"] * 4),
+        ("an office with a swivel chair and a writing desk", ["desk", "office_chair"]),
+        ("a lounge with an end table and a cupboard", ["cabinet", "side_table"]),
+        ("a music room with a piano and a bench", ["piano", "piano_bench"]),
+        ("a laundry room with a washer", ["washing_machine"]),
+    ],
+)
+def test_everyday_words_for_things_and_rooms(text, types):
+    request, _ = _plan(text)
+    assert _types(request) == types
+    assert not request.issues
+
+
+def test_on_a_wall_is_against_it():
+    request, _ = _plan("a bookcase on the west wall")
+    assert [(s.label, s.target) for s in request.statements] == [("AgainstWall", Place("wall", 4))]
+
+
 @pytest.mark.parametrize(
     ("sentence", "label"),
     [
