@@ -15,8 +15,10 @@ all, weighted by how many parent objects stood so.
 the members of those of them of which every P object had exactly one (``Member.single``),
 and so on down. So the waste bin placed by a filing cabinet, placed by the desk, is
 tested against the cabinet's side of the desk and against the desk's other members.
-Of those, a member with at least two placements and at most one object per parent
-object (a lamp by each armchair, not books on a shelf). Each is read per P object (its
+Of those, a member with at least two placements, each with a label that says where it
+stands (``NextTo...``, ``OnTopOf...``: a placement that only says which way a plant
+faces has no side), and at most one object per parent object (a lamp by each armchair,
+not books on a shelf). Each is read per P object (its
 placement where it is, ``Member.chosen``, followed down through ``Member.objects``).
 
 **The test.** For two such members, the P objects holding one of each, each in a
@@ -58,6 +60,7 @@ import networkx as nx
 import numpy as np
 
 from .induction import Group, Joint, Member, SideTest
+from .pose_labels import CATEGORIES
 from .relation_poses import pair_stream
 
 #: The level of the test: the share of independent pairs it couples by chance.
@@ -106,8 +109,18 @@ def association(
     return seen, (1 + at_least) / (PERMUTATIONS + 1)
 
 
+#: The labels that say where a thing stands by its parent (not only which way it faces).
+PLACES = frozenset(CATEGORIES["near"] + CATEGORIES["support"])
+
+
 def _eligible(member: Member) -> bool:
-    return len(member.placements) >= 2 and max(member.per_parent, default=0) <= 1
+    """At least two placements, each saying where it stands, and at most one object by
+    each parent object."""
+    return (
+        len(member.placements) >= 2
+        and all(PLACES & set(placement.labels) for placement in member.placements)
+        and max(member.per_parent, default=0) <= 1
+    )
 
 
 Path = tuple[Member, ...]

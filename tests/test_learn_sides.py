@@ -1,7 +1,7 @@
 """Sides chosen together (``learning.sides_together``): two things by one armchair whose
 sides the examples chose together are learned as one choice over both, and made so
 (also when one of them is placed by the other); sides the examples chose apart stay
-apart; the test of association itself."""
+apart; a placement that says no side is not coupled; the test of association itself."""
 
 from __future__ import annotations
 
@@ -18,8 +18,9 @@ from scenewright.core.frames import to_local, to_world
 from scenewright.examples import load_examples
 from scenewright.generator.expand import expand
 from scenewright.learning.induce import induce
+from scenewright.learning.induction import Group, Member, Placement
 from scenewright.learning.rules_text import rules_text
-from scenewright.learning.sides_together import ALPHA, association
+from scenewright.learning.sides_together import ALPHA, association, sides_together
 
 CHAIR = (0.85, 0.95, 0.85)
 LAMP = (0.35, 1.6, 0.35)
@@ -209,3 +210,64 @@ def test_the_association_test_couples_a_table_beyond_chance_only():
     assert statistic < 1e-9 and p_value == 1.0
     # One side only: nothing to tell.
     assert association(np.zeros(5, dtype=int), np.array([0, 1, 0, 1, 1]), rng) == (0.0, 1.0)
+
+
+def member(type_name: str, labels: list[tuple[str, ...]], sides: list[int | None]) -> Member:
+    """A member by the armchair of each of ``len(sides)`` scenes: its placement index
+    there (-1: in none of them; None: not there)."""
+    chosen = {(k, "chair"): side for k, side in enumerate(sides) if side is not None}
+    return Member(
+        type_name,
+        "armchair",
+        len(chosen),
+        Counter({1: len(chosen), 0: len(sides) - len(chosen)}),
+        [Placement(label, 1) for label in labels],
+        [],
+        0,
+        None,
+        chosen=chosen,
+        objects={host: (host[0], type_name) for host in chosen},
+    )
+
+
+def test_a_joint_keeps_each_member_s_shares_and_leaves_out_what_says_no_side():
+    sides = [("NextToLeft",), ("NextToRight",)]
+    # The table opposite the lamp in 12 corners; two more have no table, one a lamp in no
+    # placement (too far for any label).
+    lamp = member("floor_lamp", sides, [0] * 8 + [1] * 4 + [0, 1, -1])
+    table = member("side_table", sides, [1] * 8 + [0] * 4 + [None, None, 1])
+    # A plant whose placements say only which way it faces: no side to couple.
+    plant = member("plant", [("FacingTowards",), ("FacingAwayFrom",)], [0] * 8 + [1] * 7)
+    group = Group("Armchair", "armchair", Counter({1: 15}), None, [lamp, table, plant], [], [])
+    sides_together(group, seed=0)
+    (test,) = group.side_tests
+    assert test.first[0] == "floor_lamp" and test.second[0] == "side_table"
+    assert test.parents == 12 and test.coupled
+    (joint,) = group.joints
+    assert joint.types == ("floor_lamp", "side_table") and joint.tops == (lamp, table)
+    assert (joint.parents, joint.complete, joint.missing) == (15, 12, 2)
+    # The corners without a table count in the way their lamp fits; the lamp in no
+    # placement is a way of its own (drawn on its own), so the lamp's shares are kept.
+    assert dict(joint.ways) == {(0, 1): 9.0, (1, 0): 5.0, (-1, 1): 1.0}
+
+
+def test_a_member_in_no_placement_is_drawn_on_its_own_beside_the_others(tmp_path):
+    # One corner's lamp stands across the room, by no label of the armchair: that corner
+    # is a way of its own, in which the lamp takes one of its placements as drawn alone.
+    paths = corners(tmp_path / "corners", OPPOSED)
+    document = json.loads(paths[0].read_text())
+    chair, lamp = document["objects"][:2]
+    lamp["position"] = [-1.7 if chair["position"][0] > 0 else 1.7, 0.0]
+    paths[0].write_text(json.dumps(document))
+    induction = induce(load_examples(paths), name="corners", seed=0)
+    (joint,) = induction.groups[0].joints
+    assert (joint.parents, joint.complete, joint.missing) == (18, 17, 0)
+    assert sorted(count for _, count in joint.ways) == [1.0, 6.0, 11.0]
+    text = rules_text(induction)
+    alone = text[text.index("| 1: {    # 1 of 18; the floor lamp in no placement") :]
+    assert "FloorLampAtArmchair(the_armchair)" in alone.split("}")[0], text
+    (tmp_path / "corners.rules").write_text(text)
+    drawn = drawn_sides(load_rules(tmp_path / "corners.rules"))
+    # The examples' two ways, and now and then (the lamp drawn alone) both on the right.
+    both_right = (("floor_lamp", "NextToRight"), ("side_table", "NextToRight"))
+    assert len(drawn) == 3 and 0 < drawn[both_right] < 15
