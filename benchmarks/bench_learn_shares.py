@@ -6,11 +6,13 @@ the check's layouts and the context's divergence, on example sets nobody tuned o
     .venv/bin/python benchmarks/bench_learn_shares.py --kinds reading --sizes 3 9 30
 
 For each kind of ``example_sets`` (reading corners, music rooms, dining rooms with a
-sideboard), each size and seed: write the examples (hand-written format), learn a rule
+sideboard, studies), each size and seed: write the examples (hand-written format), learn a rule
 set from them as ``scenewright learn`` does (``learn_rule_set``; with ``--context`` its
 context too), make ``--check`` scenes from it as ``generate`` would (with the context
 when one was learned), and print, for each measured pair, the share of the child on its parent's left in the
-examples and in the generated scenes; per type the share of objects against a wall
+examples and in the generated scenes; for two children of one parent (``SAME_SIDE``: the
+reading corner's lamp and side table, the study's filing cabinet, waste bin and plant),
+the share of scenes with both on one side of it; per type the share of objects against a wall
 (``AgainstWall`` or ``InCorner``) in both (marked ``free`` for a type the rules give no
 wall label, whose wall the layout chooses); the share of check layouts ok; and,
 when a context was learned, its divergence at the start and kept, and with eight
@@ -30,8 +32,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from example_sets import (  # noqa: E402
-    KINDS,
-    OPPOSED,
+    ALL_KINDS,
+    SAME_SIDE,
     SIDE_PAIRS,
     same_side_share,
     side_shares,
@@ -82,8 +84,7 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
         scenes, _ = renamed_scenes(examples)
     pairs = SIDE_PAIRS[kind]
     sides = (side_shares(scenes, pairs), side_shares(generated, pairs))
-    if kind in OPPOSED:
-        parent, first, second = OPPOSED[kind]
+    for parent, first, second in SAME_SIDE.get(kind, ()):
         key = f"{first} and {second} on one side of {parent}"
         sides[0][key] = same_side_share(scenes, parent, first, second)
         sides[1][key] = same_side_share(generated, parent, first, second)
@@ -115,7 +116,7 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS))
+    parser.add_argument("--kinds", nargs="+", choices=ALL_KINDS, default=list(ALL_KINDS))
     parser.add_argument("--sizes", nargs="+", type=int, default=[3, 9, 30])
     parser.add_argument("--seeds", nargs="+", type=int, default=[1, 2])
     parser.add_argument("--check", type=int, default=100)

@@ -40,7 +40,9 @@ file and ``Induction.to_dict()`` the report.
    placement label, one facing label, AlignedWith (measured with each object's own size and its
    parent's). Clusters with the same labels are
    one alternative; several alternatives become a production of weighted alternatives
-   (weights: the objects of each).
+   (weights: the objects of each). Members whose placements the examples chose together
+   (a lamp on the armchair's left whenever the side table is on its right) are found by
+   ``sides_together`` once the group's tree is built, and drawn together.
 5. **Counts.** How many children each parent object had (``0.85? 1..3 {6 4 1}``: with
    85 % of the parents, one to three, weighted as seen); how many anchors each scene
    had; types related to no other type, and children seen in scenes without their
@@ -98,6 +100,7 @@ from .relation_finding import find_relations
 from .relation_poses import type_poses
 from .relation_pruning import resting_pairs
 from .rule_names import camel, identifier, unique_name
+from .sides_together import sides_together
 
 #: A style's median size is written when it differs from its type's by more than this share.
 STYLE_SIZE_TOLERANCE = 0.05
@@ -251,6 +254,9 @@ class EdgeInstances:
     orphans: np.ndarray
     parent_sizes: np.ndarray  # (n, 3) each pose's parent's size
     child_sizes: np.ndarray  # (n, 3) each pose's child's size
+    #: Each pose's parent object and child object: (scene index, its id).
+    hosts: tuple[tuple[int, str], ...] = ()
+    children: tuple[tuple[int, str], ...] = ()
 
     def holds(self, rests: bool) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """The indices (m,) of the poses that rest on their parent (or stand, when not
@@ -288,7 +294,7 @@ def edge_instances(
     """Every ``child`` object of ``scenes`` in the frame of its ``parent`` object (the
     one it rests on, else the nearest; with ``resting_only`` only the children resting
     on a parent object), and the children per parent object."""
-    poses, resting, parent_sizes, child_sizes = [], [], [], []
+    poses, resting, parent_sizes, child_sizes, hosts, ids = [], [], [], [], [], []
     per_parent: Counter = Counter()
     orphans = np.zeros(len(scenes), dtype=int)
     for index, (scene, support) in enumerate(zip(scenes, supports, strict=False)):
@@ -324,6 +330,8 @@ def edge_instances(
             resting.append(rests)
             parent_sizes.append(host.size)
             child_sizes.append(obj.size)
+            hosts.append((index, host.id))
+            ids.append((index, obj.id))
             counts[host.id] += 1
         per_parent.update(counts.values())
     return EdgeInstances(
@@ -333,6 +341,8 @@ def edge_instances(
         orphans,
         np.array(parent_sizes, dtype=float).reshape(-1, 3),
         np.array(child_sizes, dtype=float).reshape(-1, 3),
+        tuple(hosts),
+        tuple(ids),
     )
 
 
@@ -374,15 +384,19 @@ def written_labels(category_labels: dict[str, str | None], resting: bool) -> tup
     return tuple(found)
 
 
-def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Cluster], int]:
-    """The placements of one tree edge, its clusters, and how many poses were outliers.
+def placements_of(
+    instances: EdgeInstances,
+) -> tuple[list[Placement], list[Cluster], int, np.ndarray]:
+    """The placements of one tree edge, its clusters, how many poses were outliers, and
+    each pose's placement (an index into the placements; -1: an outlier, or in a
+    cluster no placement was written for).
 
     Clusters whose labels differ only in the turn of a resting child (the laptop
     turned like the desk, or across it) are one placement: a turn is written for it
     only when one holds for at least ``TURN_SHARE`` of its objects (and at the largest
     cluster's centre); otherwise the layout turns it freely."""
     if len(instances.poses) == 0:
-        return [], [], 0
+        return [], [], 0, np.zeros(0, dtype=int)
     features = pose_features(instances.poses, instances.resting, instances.child_sizes)
     peaks = density_peaks(features, scale=POSE_SCALE, min_separation=POSE_SEPARATION)
     holds: dict[bool, dict[str, np.ndarray]] = {}
@@ -424,6 +438,7 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
             key = written_labels({c: label for c, label in chosen.items() if c != "turn"}, rests)
             merged.setdefault((rests, key), []).append(number_)
     placements = []
+    members_of = []
     for (rests, key), numbers in merged.items():
         labels = key
         if rests:
@@ -435,8 +450,14 @@ def placements_of(instances: EdgeInstances) -> tuple[list[Placement], list[Clust
             )
             labels = written_labels({"support": key[0], "turn": turn}, rests)
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
-    placements.sort(key=lambda placement: (-placement.weight, placement.labels))
-    return placements, clusters, len(peaks.outliers)
+        members_of.append(np.concatenate([peaks.members(k) for k in numbers]))
+    order = sorted(
+        range(len(placements)), key=lambda k: (-placements[k].weight, placements[k].labels)
+    )
+    assigned = np.full(len(instances.poses), -1)
+    for rank, k in enumerate(order):
+        assigned[members_of[k]] = rank
+    return [placements[k] for k in order], clusters, len(peaks.outliers), assigned
 
 
 def _room_on_top(instances: EdgeInstances) -> defaultdict[str, bool]:
@@ -656,7 +677,11 @@ def induce(
 
     def member(parent: str, child: str, carried: bool, depth: int = 0) -> Member:
         instances = edge_instances(scenes, supports, parent, child, resting_only=carried)
-        placements, clusters, outliers = placements_of(instances)
+        placements, clusters, outliers, assigned = placements_of(instances)
+        per_host = Counter(instances.hosts)
+        alone = [k for k, host in enumerate(instances.hosts) if per_host[host] == 1]
+        chosen = {instances.hosts[k]: int(assigned[k]) for k in alone}
+        objects = {instances.hosts[k]: instances.children[k] for k in alone}
         orphans = None
         if not carried and instances.orphans.any():
             orphans = Loose(
@@ -685,6 +710,8 @@ def induce(
             None if carried else walls.get(child, WallShare()).label(),
             below,
             carried,
+            chosen=chosen,
+            objects=objects,
         )
         if orphans is not None:
             orphans.member = made
@@ -721,6 +748,7 @@ def induce(
                 unwritten,
             )
         )
+        sides_together(groups[-1], seed)
     for upper, below in sorted(lowers.items()):
         unsupported = Counter(
             sum(

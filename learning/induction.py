@@ -116,6 +116,85 @@ class Placement:
     weight: int
 
 
+@dataclass(frozen=True)
+class SideTest:
+    """Two members below one parent (``sides_together``) tested for placements chosen
+    together: over the ``parents`` objects of that parent type holding one of each,
+    placed, whether the placement of one tells the other's (the test's ``statistic``
+    and ``p_value``). Each member is named by its type and what places it."""
+
+    first: tuple[str, str]  # (type, placed by)
+    second: tuple[str, str]
+    parents: int
+    statistic: float
+    p_value: float
+    coupled: bool
+
+    def to_dict(self) -> dict:
+        return {
+            "types": [self.first[0], self.second[0]],
+            "placed_by": [self.first[1], self.second[1]],
+            "parent_objects": self.parents,
+            "statistic": round(self.statistic, 4),
+            "p_value": round(self.p_value, 4),
+            "together": self.coupled,
+        }
+
+
+@dataclass
+class Joint:
+    """Members below one parent type (``root``) whose placements are drawn together:
+    ``members`` (in the order of the tree) and ``ways``, each a placement index per
+    member (into its ``placements``) with its weight, the ``root`` objects that stood
+    that way (``sides_together``: those missing a member shared among the ways they
+    fit), most first; ``tops``: the root's own members that are members of the joint
+    or stand above one (a filing cabinet whose waste bin is); ``parents``: the root
+    objects counted, ``complete`` of them holding one of each, placed, and ``missing``
+    of them missing some member (shared among the ways they fit; the rest hold a member
+    in no placement); ``p_value``: the largest p of the coupled pairs that join it."""
+
+    root: str
+    members: tuple[Member, ...]
+    tops: tuple[Member, ...]
+    ways: tuple[tuple[tuple[int, ...], float], ...]
+    parents: int
+    complete: int
+    missing: int
+    p_value: float
+
+    @property
+    def types(self) -> tuple[str, ...]:
+        return tuple(member.type for member in self.members)
+
+    def to_dict(self) -> dict:
+        return {
+            "types": list(self.types),
+            "placed_by": [member.parent for member in self.members],
+            "parent_objects": self.parents,
+            "holding_each": self.complete,
+            "missing_some": self.missing,
+            "p_value": round(self.p_value, 4),
+            "ways": [
+                {
+                    "placements": [
+                        list(member.placements[k].labels)
+                        for member, k in zip(self.members, way, strict=True)
+                    ],
+                    "parent_objects": round(count, 3),
+                }
+                for way, count in self.ways
+            ],
+        }
+
+
+def sides_report(tests: list[SideTest], joints: list[Joint]) -> dict:
+    """The report of the side tests below one parent and of the joints placed there."""
+    return {
+        "tests": [test.to_dict() for test in tests],
+        "together": [joint.to_dict() for joint in joints],
+    }
+
+
 # -- the model of the induced rules --------------------------------------------------------
 
 
@@ -134,6 +213,21 @@ class Member:
     children: list[Member] = field(default_factory=list)
     #: It rests on its parent (only the objects resting on one are its members).
     carried: bool = False
+    #: The side tests of the members below it and the joints placed by it.
+    side_tests: list[SideTest] = field(default_factory=list)
+    joints: list[Joint] = field(default_factory=list)
+    #: (scene index, parent object id) -> the placement index of its one object of this
+    #: type there (-1: in no placement), and that object's (scene index, id); parent
+    #: objects with several are left out.
+    chosen: dict[tuple[int, str], int] = field(default_factory=dict, repr=False, compare=False)
+    objects: dict[tuple[int, str], tuple[int, str]] = field(
+        default_factory=dict, repr=False, compare=False
+    )
+
+    @property
+    def single(self) -> bool:
+        """Exactly one object by every parent object."""
+        return set(self.per_parent) == {1}
 
     @property
     def parents(self) -> int:
@@ -154,6 +248,7 @@ class Member:
             "wall": self.wall,
             "rests_on_parent": self.carried,
             "children": [child.to_dict() for child in self.children],
+            "children_sides": sides_report(self.side_tests, self.joints),
         }
 
 
@@ -168,6 +263,9 @@ class Group:
     members: list[Member]
     types: list[str]
     unwritten: list[tuple[str, str]]
+    #: The side tests of the members below the anchor and the joints placed by it.
+    side_tests: list[SideTest] = field(default_factory=list)
+    joints: list[Joint] = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return {
@@ -177,6 +275,7 @@ class Group:
             "anchors_per_scene": {str(k): v for k, v in sorted(self.per_scene.items())},
             "wall": self.wall,
             "members": [member.to_dict() for member in self.members],
+            "members_sides": sides_report(self.side_tests, self.joints),
             "related_but_placed_through_the_tree": [list(pair) for pair in self.unwritten],
         }
 

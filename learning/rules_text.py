@@ -6,8 +6,11 @@ and examples it rests on), the start production ``Scene`` (each group's producti
 each loose type with its count per scene), each group's production (its anchor bound
 as ``the_ANCHOR``, then a statement per member relative to it), and the productions of
 members with several placements (``ChairAtDesk(the_desk) -> 14: {...} | 3: {...}``) or
-with members of their own. Every number carries a comment saying what it was read
-from ("with 12 of 20 desks (1: 5, 2: 5, 3: 2)"). Numbers are written as the grammar
+with members of their own, and of members placed together (``sides_together``:
+``FloorLampAndSideTableAtArmchair(the_armchair) -> 6: {...} | 3: {...}``, each
+alternative a way the examples placed them all, with what stands by them). Every
+number carries a comment saying what it was read from ("with 12 of 20 desks (1: 5,
+2: 5, 3: 2)"). Numbers are written as the grammar
 reads them: decimals without exponents, probabilities with two decimals and never 0.
 """
 
@@ -21,8 +24,14 @@ from collections.abc import Sequence
 from scenewright.core.room import Room
 from scenewright.describer.english import plural_of, with_article
 
-from .induction import Group, Induction, Member, Placement
+from .induction import Group, Induction, Joint, Member, Placement
 from .rule_names import camel, colour_text, identifier, unique_name
+
+
+def _holds(member: Member, chosen) -> bool:
+    """Whether a member below ``member`` (at any depth) is in ``chosen`` (``id``s)."""
+    return any(id(child) in chosen or _holds(child, chosen) for child in member.children)
+
 
 #: Probabilities are written with two decimals, never as 0.
 PROBABILITY_DECIMALS = 2
@@ -95,8 +104,9 @@ class RulesWriter:
         self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
         self.depth = 1
         self.types = set(induction.catalog)
-        #: Member productions written, by member: written once, called wherever needed.
-        self.written: dict[int, tuple[str, int]] = {}
+        #: Member productions written, by member: written once, called wherever needed;
+        #: so are the productions of members placed together, by joint.
+        self.written: dict[object, tuple[str, int]] = {}
 
     # -- names --
 
@@ -238,13 +248,224 @@ class RulesWriter:
         entry = self.induction.catalog[type_name]
         return plural_of(entry.noun, entry.plural)
 
+    def member_note(self, member: Member) -> str:
+        """How many parent objects had ``member``'s objects ("with 7 of 9 side tables
+        (1: 4, 2: 3)")."""
+        _, seen, detail = count_parts(member.per_parent, member.parents)
+        return f"with {seen} {self.noun_plural(member.parent)}" + (f" ({detail})" if detail else "")
+
+    def statements(
+        self,
+        members: Sequence[Member],
+        joints: Sequence[Joint],
+        target: str,
+        depth: int,
+        fixed: dict[int, int] | None = None,
+        taken: set[str] | None = None,
+        noted: bool = True,
+    ) -> tuple[list[str], int]:
+        """The statements (indented) making ``members`` by one parent object bound to
+        ``target``, those of a joint in one call where its first member stands; and the
+        most objects they make. Inside an alternative of a joint: ``fixed``, the
+        placement of each of its members (by ``id``), whose members (and the members
+        above them) are written here with their placements; ``taken``, the names bound
+        in the alternative; ``noted``: with comments."""
+        fixed = fixed or {}
+        taken = set() if taken is None else taken
+        lines, most = [], 0
+        first_of = {id(joint.tops[0]): joint for joint in joints}
+        in_joint = {id(m) for joint in joints for m in joint.tops}
+        for member in members:
+            if id(member) in fixed or _holds(member, fixed):
+                body, made = self.placed_lines(member, fixed, target, taken, depth, noted)
+                lines += [self.INDENT + line for line in body]
+            elif id(member) in first_of:
+                statement, made = self.joint_statement(first_of[id(member)], target, depth)
+                lines.append(self.INDENT + statement)
+            elif id(member) in in_joint:
+                continue  # made by its joint's call
+            else:
+                statement, made = self.member_statement(member, target, depth)
+                lines.append(self.INDENT + (statement if noted else statement.split("    #")[0]))
+            most += made
+        return lines, most
+
+    def joint_statement(self, joint: Joint, target: str, depth: int) -> tuple[str, int]:
+        """The call of the production placing the members of ``joint`` together (written
+        once), and the most objects it makes."""
+        self.depth = max(self.depth, depth)
+        if id(joint) not in self.written:
+            self.written[id(joint)] = self.joint_production(joint, depth + 1)
+        name, most = self.written[id(joint)]
+        notes = "; ".join(
+            f"{self.noun_plural(m.type)} {self.member_note(m)}" for m in joint.members
+        )
+        return f"{name}({target})    # {notes}; placed together", most
+
+    def joint_production(self, joint: Joint, depth: int) -> tuple[str, int]:
+        """Write the production of weighted alternatives placing the members of
+        ``joint`` as the examples placed them together, with what stands by them;
+        returns its name and the most objects one call makes."""
+        self.depth = max(self.depth, depth + 1)
+        root = joint.root
+        param = self.binding(root, set())
+        nouns = [self.induction.catalog[m.type].noun for m in joint.members]
+        name = unique_name(
+            "And".join(camel(m.type) for m in joint.members) + f"At{camel(root)}",
+            self.rule_names,
+        )
+        listed = ", ".join(with_article(n) for n in nouns[:-1]) + f" and {with_article(nouns[-1])}"
+        lines = comment_lines(
+            f"{name}: where {listed} stand by {with_article(self.induction.catalog[root].noun)} "
+            f"(each by what it is placed by), placed together as the examples placed them: "
+            f"{joint.complete} {self.noun_plural(root)} with one of each, in {len(joint.ways)} "
+            f"ways (where one stands tells where the other does: p {joint.p_value:.2g})"
+            + (
+                f"; {unplaced} more with one in no placement"
+                if (unplaced := joint.parents - joint.complete - joint.missing)
+                else ""
+            )
+            + (
+                f"; {joint.missing} more missing some, counted in the ways they fit"
+                if joint.missing
+                else ""
+            )
+        )
+        head = f"{name}({param}) -> "
+        most = 0
+        for k, (way, count) in enumerate(joint.ways):
+            lead = head if k == 0 else self.INDENT + "| "
+            weight = number(count, 2)
+            own = [
+                self.induction.catalog[m.type].noun
+                for m, index in zip(joint.members, way, strict=True)
+                if index < 0
+            ]
+            drawn = (
+                f"; the {' and the '.join(own)} in no placement: drawn on its own" if own else ""
+            )
+            lines.append(f"{lead}{weight}: {{    # {weight} of {joint.parents}{drawn}")
+            fixed = {id(m): index for m, index in zip(joint.members, way, strict=True)}
+            body, made = self.statements(
+                joint.tops, [], param, depth + 1, fixed, {param}, noted=k == 0
+            )
+            lines += [self.INDENT + line for line in body]
+            lines.append(self.INDENT + "}")
+            most = max(most, made)
+        lines.append("")
+        self.productions.append(lines)
+        return name, most
+
+    def placed_lines(
+        self,
+        member: Member,
+        fixed: dict[int, int],
+        param: str,
+        taken: set[str],
+        depth: int,
+        noted: bool,
+    ) -> tuple[list[str], int]:
+        """The lines (not indented) making ``member``'s object (at most one) by the
+        parent bound to ``param``, in its placement in ``fixed`` (else drawn as its own),
+        with what stands by it, members of the joint among them in theirs; and the most
+        objects they make. ``noted``: with the member's comment."""
+        counts, _, _ = count_parts(member.per_parent, member.parents)
+        prefix = (counts + " ") if counts else ""
+        index = fixed.get(id(member))
+        note = f"    # {self.member_note(member)}" if noted else ""
+        wall = self.wall_words(member.wall)
+        if index == -1 and not _holds(member, fixed):  # in no placement: drawn on its own
+            statement, made = self.member_statement(member, param, depth)
+            return [statement if noted else statement.split("    #")[0]], made
+        if index is None or index < 0:  # above members of the joint: one, placed as drawn
+            bound = self.binding(member.type, taken)
+            if len(member.placements) > 1:
+                places = self.placement_production(member)
+                first = f"{places}({param}) as {bound}"
+            else:
+                labels = member.placements[0].labels if member.placements else ()
+                words = self.relation_words(labels, param)
+                first = f"{member.type} as {bound} {words}".rstrip() + wall
+        else:
+            labels = member.placements[index].labels
+            words = self.relation_words(labels, param)
+            if not member.children:
+                return [f"{prefix}{member.type} {words}".rstrip() + wall + note], 1
+            if prefix:  # made or not as drawn: a production of its own for this placement
+                return self.optional_placed(member, index, param, depth, prefix, note)
+            bound = self.binding(member.type, taken)
+            first = f"{member.type} as {bound} {words}".rstrip() + wall
+        body, most = self.statements(
+            member.children, member.joints, bound, depth + 1, fixed, taken, noted
+        )
+        return [first + note] + [line[len(self.INDENT) :] for line in body], 1 + most
+
+    def optional_placed(
+        self, member: Member, index: int, param: str, depth: int, prefix: str, note: str
+    ) -> tuple[list[str], int]:
+        """The call making ``member`` (optional, with members of its own, none of them
+        in the joint) in its placement ``index``, its production written once."""
+        key = (id(member), index)
+        labels = member.placements[index].labels
+        if key not in self.written:
+            own = unique_name(f"{camel(member.type)}{labels[0] if labels else ''}", self.rule_names)
+            bound = self.binding(member.type, {param})
+            noun = self.induction.catalog[member.type].noun
+            body_lines = comment_lines(
+                f"{own}: {with_article(noun)} {labels[0] if labels else 'by'} its "
+                f"{self.induction.catalog[member.parent].noun}, and what stands by it"
+            )
+            body_lines.append(f"{own}({param}) -> {{")
+            body_lines.append(
+                f"{self.INDENT}{member.type} as {bound} {self.relation_words(labels, param)}".rstrip()
+                + self.wall_words(member.wall)
+            )
+            body, most = self.members_body(member.children, bound, member.joints, depth + 1)
+            self.productions.append(body_lines + body)
+            self.written[key] = (own, most)
+        own, most = self.written[key]
+        return [f"{prefix}{own}({param}){note}"], most
+
+    def placement_lines(self, member: Member) -> tuple[str, list[str]]:
+        """The name and lines of the production of ``member``'s placements (two or
+        more), weighted alternatives taking its parent."""
+        param = self.binding(member.parent, set())
+        placed = member.placements
+        total = sum(p.weight for p in placed)
+        noun, parent_noun = (
+            self.induction.catalog[member.type].noun,
+            self.induction.catalog[member.parent].noun,
+        )
+        places = unique_name(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
+        lines = comment_lines(
+            f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
+            f"{total} of them in {len(placed)} ways"
+        )
+        head = f"{places}({param}) -> "
+        for k, placement in enumerate(placed):
+            body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
+            body += self.wall_words(member.wall) + " }"
+            lead = head if k == 0 else " " * (len(head) - 2) + "| "
+            lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
+        lines.append("")
+        return places, lines
+
+    def placement_production(self, member: Member) -> str:
+        """The production of ``member``'s placements, written once."""
+        key = ("places", id(member))
+        if key not in self.written:
+            places, lines = self.placement_lines(member)
+            self.productions.append(lines)
+            self.written[key] = (places, 1)
+        return self.written[key][0]
+
     def member_statement(self, member: Member, target: str, depth: int) -> tuple[str, int]:
         """The statement that makes ``member``'s objects by one parent object bound to
         ``target``, and the most objects it can make."""
         self.depth = max(self.depth, depth)
         counts, seen, detail = count_parts(member.per_parent, member.parents)
         prefix = (counts + " ") if counts else ""
-        note = f"with {seen} {self.noun_plural(member.parent)}" + (f" ({detail})" if detail else "")
+        note = self.member_note(member)
         if member.outliers:
             note += f", {member.outliers} outlier{'s' * (member.outliers != 1)} left out"
         unplaced = sum(c.size for c in member.clusters if not c.labels)
@@ -272,7 +493,6 @@ class RulesWriter:
         self.depth = max(self.depth, depth)
         param = self.binding(member.parent, set())
         placed = member.placements or [Placement((), member.instances)]
-        total = sum(p.weight for p in placed)
         noun, parent_noun = (
             self.induction.catalog[member.type].noun,
             self.induction.catalog[member.parent].noun,
@@ -280,18 +500,8 @@ class RulesWriter:
         lines: list[str] = []
         places = None
         if len(placed) > 1:
-            places = unique_name(f"{camel(member.type)}At{camel(member.parent)}", self.rule_names)
-            lines += comment_lines(
-                f"{places}: how {with_article(noun)} stands by its {parent_noun}: "
-                f"{total} of them in {len(placed)} ways"
-            )
-            head = f"{places}({param}) -> "
-            for k, placement in enumerate(placed):
-                body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
-                body += self.wall_words(member.wall) + " }"
-                lead = head if k == 0 else " " * (len(head) - 2) + "| "
-                lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
-            lines.append("")
+            places, lines = self.placement_lines(member)
+            self.written[("places", id(member))] = (places, 1)
             if not member.children:
                 self.productions.append(lines)
                 return places, 1
@@ -310,14 +520,10 @@ class RulesWriter:
                 f"{self.INDENT}{member.type} as {bound} {words}".rstrip()
                 + self.wall_words(member.wall)
             )
-        most = 1
-        for child in member.children:
-            statement, made = self.member_statement(child, bound, depth + 1)
-            body_lines.append(self.INDENT + statement)
-            most += made
-        body_lines += ["}", ""]
+        body, made = self.statements(member.children, member.joints, bound, depth + 1)
+        body_lines += body + ["}", ""]
         self.productions.append(lines + body_lines)
-        return own, most
+        return own, 1 + made
 
     def alone_production(self, member: Member, wall: str | None) -> tuple[str, int]:
         """Write the production of ``member``'s type made without its parent (objects
@@ -331,19 +537,18 @@ class RulesWriter:
             "and what stands by it"
         )
         lines += [f"{name} -> {{", f"{self.INDENT}{member.type} as {bound}{self.wall_words(wall)}"]
-        body, most = self.members_body(member.children, bound)
+        body, most = self.members_body(member.children, bound, member.joints)
         self.productions.append(lines + body)
         return name, most
 
-    def members_body(self, members: Sequence[Member], bound: str) -> tuple[list[str], int]:
-        """The statements making ``members`` by the object bound to ``bound``, closing a
-        production's body; and the most objects the body makes with that object."""
-        lines, most = [], 1
-        for member in members:
-            statement, made = self.member_statement(member, bound, 2)
-            lines.append(self.INDENT + statement)
-            most += made
-        return lines + ["}", ""], most
+    def members_body(
+        self, members: Sequence[Member], bound: str, joints: Sequence[Joint], depth: int = 2
+    ) -> tuple[list[str], int]:
+        """The statements making ``members`` by the object bound to ``bound`` (``joints``:
+        those placed together), closing a production's body; and the most objects the
+        body makes with that object."""
+        lines, most = self.statements(members, joints, bound, depth)
+        return lines + ["}", ""], 1 + most
 
     def group_lines(self, group: Group) -> tuple[list[str], int]:
         taken: set[str] = set()
@@ -386,7 +591,7 @@ class RulesWriter:
         lines.append(
             f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}"
         )
-        body, most = self.members_body(group.members, bound)
+        body, most = self.members_body(group.members, bound, group.joints)
         return lines + body, most
 
     def text(self) -> str:
