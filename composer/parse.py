@@ -155,6 +155,12 @@ class _Reader:
         self.req = request
         self.mentions: list[str] = []
         self.ordinal_used: dict[str, set[str]] = {}
+        #: Per type, the things in the order the text first names each on its own (as
+        #: the describer counts its ordinals: after "the first bookshelf" and "the low
+        #: bookshelf", "the third bookshelf" is the one not named yet), and the things
+        #: named in a set ("two of the bookshelves"), which "the other" is not.
+        self.ranks: dict[str, list[str]] = {}
+        self.in_sets: set[str] = set()
         #: Whether the last noun phrase read was "each N" / "every N": a relation to it
         #: then makes one subject per N ("a lamp on each nightstand").
         self.each = False
@@ -201,16 +207,32 @@ class _Reader:
         toks: list[Token],
     ) -> list[str]:
         found = self.matching(sense)
+        ranked = self.ranks.setdefault(sense.type, [])
         if ordinal is not None:
-            while len(found) < ordinal:
-                found.append(self.create(sense, colour, toks))
-            chosen = [found[ordinal - 1]]
+            # a style's noun counts its own ("the second low bookshelf"), the plain noun
+            # every one of the type ("the third bookshelf", low ones included)
+            counted = [e for e in ranked if e in found]
+            unranked = [e for e in found if e not in ranked]
+            while len(counted) < ordinal:
+                more = unranked.pop(0) if unranked else self.create(sense, colour, toks)
+                ranked.append(more)
+                counted.append(more)
+            chosen = [counted[ordinal - 1]]
             self.ordinal_used.setdefault(sense.type, set()).add(chosen[0])
         elif det == "other":
             named = self.ordinal_used.setdefault(sense.type, set())
-            rest = [e for e in found if e not in named] or found[-1:]
+            rest = [e for e in found if e not in named and e not in self.in_sets]
+            rest = rest or [e for e in found if e not in named] or found[-1:]
             chosen = rest[:1] if rest else [self.create(sense, colour, toks)]
             named.add(chosen[0])
+        elif det == "of" and count is not None:
+            # "two of the bookshelves": those named on their own first, then the rest
+            order = [e for e in ranked if e in found] + [e for e in found if e not in ranked]
+            while len(order) < count:
+                order.append(self.create(sense, colour, toks))
+            chosen = order[:count]
+            self.in_sets.update(chosen)
+            ranked.extend(e for e in chosen if e not in ranked)  # the set takes the next places
         elif sense.plural or det in ("both", "each", "every", "all"):
             want = count or (2 if det == "both" else max(len(found), 2 if sense.plural else 1))
             while len(found) < want:
@@ -218,6 +240,8 @@ class _Reader:
             chosen = found if count is None else found[:want]
         else:
             chosen = found[:1] or [self.create(sense, colour, toks)]
+        if len(chosen) == 1 and chosen[0] not in ranked:
+            ranked.append(chosen[0])
         for eid in chosen:
             e = self.entity(eid)
             if sense.exact and sense.style is not None and e.style is None:
@@ -271,6 +295,13 @@ class _Reader:
             det, count, j = "a", int(float(toks[j].low)), j + 1
         elif m:
             det, count, j = "a", NUMBERS[m[0]], j + m[1]
+        if (
+            count is not None
+            and j + 1 < len(toks)
+            and toks[j].low == "of"
+            and toks[j + 1].low in ("the", "these", "those")
+        ):  # "two of the bookshelves"
+            det, j = "of", j + 2
         if j < len(toks) and det in ("the", "these", "those", "") and self.match(toks, j, NUMBERS):
             m2 = self.match(toks, j, NUMBERS)
             assert m2 is not None

@@ -173,6 +173,41 @@ def test_everyday_words_for_things_and_rooms(text, types):
     assert not request.issues
 
 
+def test_ordinals_count_as_the_describer_names_things():
+    # the first low bookshelf, named on its own second, is the second bookshelf named:
+    # the third is the tall one not named yet; a style's noun counts its own
+    text = (
+        "a room with two bookshelves and two low bookshelves. A book is on top of the first "
+        "bookshelf. Another book is on top of the first low bookshelf. The third bookshelf "
+        "is to the left of the first bookshelf."
+    )
+    request, _ = _plan(text)
+    ids = {e.id: (e.type, e.style) for e in request.entities}
+    tall, low = (
+        [e for e, (kind, style) in ids.items() if kind == "bookshelf" and style == s]
+        for s in ("tall", "low")
+    )
+    said = [(s.source, s.label, s.target) for s in request.statements]
+    on = [t for src, lab, t in said if lab == "OnTopOf"]
+    assert on == [tall[0], low[0]]
+    assert (tall[1], "NextToLeft", tall[0]) in said
+
+
+def test_some_of_the_things_then_the_other():
+    text = (
+        "a room with three bookshelves. A book is on top of the first bookshelf. Two of the "
+        "bookshelves stand against the north wall. The other bookshelf is to the left of the "
+        "second bookshelf."
+    )
+    request, _ = _plan(text)
+    shelves = [e.id for e in request.entities if e.type == "bookshelf"]
+    said = [(s.source, s.label, s.target) for s in request.statements]
+    against = [src for src, lab, t in said if lab == "AgainstWall"]
+    assert against == shelves[:2]
+    assert (shelves[2], "NextToLeft", shelves[1]) in said
+    assert not request.issues
+
+
 def test_on_a_wall_is_against_it():
     request, _ = _plan("a bookcase on the west wall")
     assert [(s.label, s.target) for s in request.statements] == [("AgainstWall", Place("wall", 4))]
