@@ -76,7 +76,7 @@ syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative
     "syntax_in_entry": (
         'object chair { noun "chair" 3 }\nS -> { chair }',
         """\
-syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access), 'style' or '}'
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access, network), 'style' or '}'
     object chair { noun "chair" 3 }
                                 ^""",
     ),
@@ -210,6 +210,20 @@ path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction
 path_connection.rules:6:95: error: PathConnectedTo connects a path to a junction, but 'road' is a path
     S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
                                                                                                   ^""",
+    ),
+    "network": (
+        (
+            'path road { noun "road" network grid }\n'
+            'junction crossing { noun "crossing" network gird }\n'
+            "S -> { table; crossing as c; road PathConnectedTo c }"
+        ),
+        """\
+network.rules:4:25: error: 'network' applies to junctions only, not to a path
+    path road { noun "road" network grid }
+                            ^
+network.rules:5:45: error: network 'gird' is not one of organic, grid; did you mean 'grid'?
+    junction crossing { noun "crossing" network gird }
+                                                ^""",
     ),
     "block_on_object": (
         "S -> { table { table }; tabel { table } }",

@@ -78,8 +78,13 @@ def lay_paths(
     for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
         base = uniform(rng, 0.0, 2.0 * math.pi)
+        if problem.grid[junction]:  # a grid: square to the scene, at right angles
+            base = 0.5 * math.pi * int(rng.integers(4))
         for k, path in enumerate(paths):
-            heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
+            if problem.grid[junction]:
+                heading = _grid_heading(base, k)
+            else:
+                heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
             start = (state.x[junction], state.z[junction])
             _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
     free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
@@ -141,9 +146,14 @@ def _free_headings(
     given road taking the free slot nearest its own heading and the others the rest in
     order."""
     count = len(paths)
+    grid = energy.problem.grid[junction]
     given = {path: pins.preset_points(path) for path in paths}
     given = {path: points for path, points in given.items() if points is not None}
+    if grid:
+        base = 0.5 * math.pi * round(base / (0.5 * math.pi))
     if not given:
+        if grid:
+            return [_grid_heading(base, k) for k in range(count)]
         return [base + 2.0 * math.pi * k / count for k in range(count)]
     state = energy.state
     start = (state.x[junction], state.z[junction])
@@ -152,13 +162,24 @@ def _free_headings(
         return math.atan2(points[1][1] - start[1], points[1][0] - start[0])
 
     base = heading(next(iter(given.values())))
-    slots = [base + 2.0 * math.pi * k / count for k in range(count)]
+    if grid:
+        slots = [_grid_heading(base, k) for k in range(count)]
+    else:
+        slots = [base + 2.0 * math.pi * k / count for k in range(count)]
     for points in given.values():
         own = heading(points)
         nearest = min(range(len(slots)), key=lambda k: abs(wrap(slots[k] - own)))
         slots.pop(nearest)
     free_slots = iter(slots)
     return [0.0 if path in given else next(free_slots) for path in paths]
+
+
+def _grid_heading(base: float, k: int) -> float:
+    """The heading of a grid junction's k-th road: the four right angles from ``base``
+    first, then (a fifth road and more) the diagonals between them."""
+    if k < 4:
+        return base + 0.5 * math.pi * k
+    return base + 0.25 * math.pi + 0.5 * math.pi * (k - 4)
 
 
 def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
@@ -216,7 +237,9 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             laid = {}
             for k, path in enumerate(paths):
                 if pins.preset_points(path) is None:
-                    heading = slots[k] + rng.normal(0.0, 0.1)
+                    heading = slots[k]
+                    if not problem.grid[junction]:
+                        heading += rng.normal(0.0, 0.1)
                     room = _room((x, z), heading, half_x, half_z)
                     laid[path] = _path_points(problem, rng, path, (x, z), heading, room)
             return boxes, laid
@@ -277,13 +300,15 @@ def _set_path(
 def _path_points(
     problem, rng: np.random.Generator, path: int, start, heading: float, room: float
 ) -> list[list[float]]:
-    """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
+    """Control points of a new path from ``start`` along ``heading`` (wiggling a little,
+    unless it is a grid's)."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
     segments = problem.path_segments[path]
     step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
     points = [[float(start[0]), float(start[1])]]
     for _ in range(segments):
-        heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+        if not problem.path_grid[path]:  # a grid's roads run straight
+            heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
         x = points[-1][0] + math.cos(heading) * step
         z = points[-1][1] + math.sin(heading) * step
         points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
@@ -301,6 +326,8 @@ NETWORK_SPREAD = 0.35
 JUNCTION_CLEARANCE = 30.0
 ROAD_CLEARANCE = 6.0
 SHORTEST_ROAD = 0.3
+#: A plan's grids are turned by at most this much (radians) from the scene's axes.
+GRID_TILT = math.radians(10.0)
 #: Metres of each side of a road lost for lots at each of its ends (where it meets its
 #: junction's other roads, or another network's road).
 CORNER_LOSS = 6.0
@@ -346,23 +373,37 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
     spots: dict[int, tuple[float, float]] = {}
     laid_roads: dict[int, list] = {}
     total = 0.0
-    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
+    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+    # The grids of a plan share one orientation (within GRID_TILT of the scene's axes),
+    # so that their roads run parallel or square to each other.
+    grid_base = (
+        uniform(rng, -GRID_TILT, GRID_TILT) if any(problem.grid[j] for j in junctions) else 0.0
+    )
+    for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
+        grid = problem.grid[junction]
         best = None
         for _ in range(NETWORK_CANDIDATES):
             x = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * width
             z = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * depth
-            base = uniform(rng, 0.0, 2.0 * math.pi)
+            if grid:  # which of the four square headings the first road takes
+                base = grid_base + 0.5 * math.pi * int(rng.integers(4))
+            else:
+                base = uniform(rng, 0.0, 2.0 * math.pi)
             clearance = laid.distance((x, z), JUNCTION_CLEARANCE)
             roads = {}
             for k, path in enumerate(paths):
-                heading = base + 2.0 * math.pi * k / max(len(paths), 1)
-                # The first segment leaves at its slot's heading, so the roads of a
-                # junction stay as far apart as they are spread.
-                turns = [0.0] + [
-                    float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
-                    for _ in range(problem.path_segments[path] - 1)
-                ]
+                if grid:  # straight, at right angles
+                    heading = _grid_heading(base, k)
+                    turns = [0.0] * problem.path_segments[path]
+                else:
+                    heading = base + 2.0 * math.pi * k / max(len(paths), 1)
+                    # The first segment leaves at its slot's heading, so the roads of a
+                    # junction stay as far apart as they are spread.
+                    turns = [0.0] + [
+                        float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                        for _ in range(problem.path_segments[path] - 1)
+                    ]
                 roads[path] = _fitted_road(problem, path, (x, z), heading, turns, laid)
             score = _frontage_score(roads, need)
             if clearance < JUNCTION_CLEARANCE:

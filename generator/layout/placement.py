@@ -143,13 +143,15 @@ class Placer:
         return end.kind == "group" and bool(end.members) and not self.group_whole[end.index]
 
     def _pulls(self, end: Endpoint) -> bool:
-        """Whether ``pull`` may move this end: a free path or a free junction."""
+        """Whether ``pull`` may move this end: a free path or a free junction (not a
+        grid's: it stays straight and square)."""
         if end.kind == "path":
-            return not self.pins.path[end.index]
+            return not self.pins.path[end.index] and not self.problem.path_grid[end.index]
         return (
             end.kind == "object"
             and self.problem.is_junction[end.index]
             and not self.pins.box[end.index]
+            and not self.problem.grid[end.index]
         )
 
     def _placing_terms(self, end: Endpoint) -> list[RelationTerm]:

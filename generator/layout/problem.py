@@ -103,6 +103,11 @@ class Problem:
     #: edge's ``some``), every path of that type, in path order: the lots may give the
     #: relation another of them (``lots.plan_lots``, ``retarget``).
     free_paths: dict[int, tuple[int, ...]] = field(default_factory=dict)
+    #: Per box: a junction that starts a grid (``network grid``); per path: whether it
+    #: belongs to a grid (it starts at a grid's junction). A grid's roads are laid
+    #: straight and square, and stay where they are laid.
+    grid: list[bool] = field(default_factory=list)
+    path_grid: list[bool] = field(default_factory=list)
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
     mask: CompiledMask | None = None
@@ -192,6 +197,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
     size: list[float] = []
     clearance: list[tuple[tuple[str, float], ...]] = []
     access: list[tuple[str, ...]] = []
+    grid: list[bool] = []
     path_ids: list[str] = []
     path_width: list[float] = []
     path_max_length: list[float] = []
@@ -215,6 +221,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
             size.append(math.hypot(width, depth))
             clearance.append(node.clearance)
             access.append(node.access)
+            grid.append(node.network == "grid")
         elif node.kind == "path":
             path_index[node.id] = len(path_ids)
             path_ids.append(node.id)
@@ -315,6 +322,8 @@ def compile_problem(graph: SceneGraph) -> Problem:
         clearance=clearance,
         access=access,
         free_paths=free_paths,
+        grid=grid,
+        path_grid=[start >= 0 and grid[start] for start in path_start],
     )
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]

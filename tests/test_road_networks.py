@@ -1,0 +1,107 @@
+"""Road networks a rule set chooses: a grid's roads run straight and square (small scenes
+and the fitted networks of a town), and its junction's network survives scene.json."""
+
+import math
+
+import numpy as np
+import pytest
+
+from scenewright.core.scene import Scene, assemble_scene
+from scenewright.generator.expand import expand
+from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.rules import load_rules
+
+SMALL_GRID = """
+scene g { extent 80 x 80 ground grass start T }
+path road { noun "road" width 3 max_length 30 segments 3 }
+junction crossing { noun "crossing" size 4 x 0.05 x 4 network grid }
+object house { noun "house" size 6 x 5 x 5 shape house }
+T -> { crossing as x; 4 road PathConnectedTo x; 6 house NextTo some road }
+"""
+
+# Two grid junctions and 40 homes of two objects each: large enough for lots along the
+# roads and fitted networks (group decomposition).
+TOWN_GRID = """
+scene t { extent 160 x 160 ground grass start T max_nodes 400 }
+path road { noun "road" width 3 max_length 60 segments 3 }
+junction crossing { noun "crossing" size 4 x 0.05 x 4 network grid }
+group home { noun "home" }
+object house { noun "house" size 6 x 5 x 5 shape house }
+object bush { noun "bush" plural "bushes" size 1.6 x 1.2 x 1.6 shape bush }
+T -> { crossing as a; 4 road PathConnectedTo a; crossing as b; 3 road PathConnectedTo b
+       40 Home NextTo some road }
+Home -> { home { house as h; bush NextToChooseSide h } }
+"""
+
+
+def _headings(points) -> list[float]:
+    points = np.asarray(points, dtype=float)
+    steps = np.diff(points, axis=0)
+    return [math.atan2(dz, dx) for dx, dz in steps]
+
+
+def _square(angle: float, tolerance: float = 1e-6) -> bool:
+    """Whether an angle is a whole number of right angles."""
+    quarter = angle / (math.pi / 2)
+    return abs(quarter - round(quarter)) < tolerance
+
+
+@pytest.fixture
+def rules_file(tmp_path):
+    def write(text: str, name: str = "roads.rules"):
+        path = tmp_path / name
+        path.write_text(text)
+        return load_rules(path)
+
+    return write
+
+
+def test_a_grid_junctions_roads_leave_at_right_angles_and_run_straight(rules_file):
+    rules = rules_file(SMALL_GRID)
+    graph = expand(rules, 3)
+    result = layout_scene(graph, 3, params=LayoutParams(restarts=0))
+    junction = result.poses["crossing_1"]
+    firsts = []
+    for road in (f"road_{k}" for k in range(1, 5)):
+        points = result.paths[road]
+        assert np.allclose(points[0], (junction.x, junction.z))
+        headings = _headings(points)
+        assert all(abs(h - headings[0]) < 1e-9 for h in headings)  # straight
+        firsts.append(headings[0])
+    firsts.sort()
+    gaps = [b - a for a, b in zip(firsts, firsts[1:], strict=False)]
+    assert all(abs(gap - math.pi / 2) < 1e-9 for gap in gaps)
+
+
+def test_the_fitted_grids_of_a_town_are_square_to_each_other(rules_file):
+    rules = rules_file(TOWN_GRID)
+    graph = expand(rules, 1)
+    result = layout_scene(graph, 1, params=LayoutParams(restarts=0))
+    assert result.ok, result.problems[:3]
+    headings = [h for road in result.paths.values() for h in _headings(road)]
+    assert len(headings) == 7 * 3
+    # every segment of every road runs parallel or square to the first road
+    assert all(_square(h - headings[0]) for h in headings)
+    for junction, roads in (("crossing_1", range(1, 5)), ("crossing_2", range(5, 8))):
+        pose = result.poses[junction]
+        for road in roads:
+            assert np.allclose(result.paths[f"road_{road}"][0], (pose.x, pose.z))
+
+
+def test_a_grid_junction_keeps_its_network_in_scene_json(rules_file):
+    rules = rules_file(SMALL_GRID)
+    graph = expand(rules, 3)
+    assert graph.node("crossing_1").network == "grid"
+    assert graph.node("road_1").network is None
+    assert "network" in graph.to_dict()["nodes"][0]  # the junction, the first node
+    scene = assemble_scene(graph, layout_scene(graph, 3), rules="g", seed=3)
+    data = scene.to_dict()
+    assert [o.get("network") for o in data["objects"] if o["kind"] == "junction"] == ["grid"]
+    assert all("network" not in o for o in data["objects"] if o["kind"] != "junction")
+    again = Scene.from_json(scene.to_json()).graph()
+    assert again.node("crossing_1").network == "grid"
+
+
+def test_an_organic_networks_graph_and_scene_json_say_nothing_of_networks():
+    graph = expand(load_rules("village"), 1000)
+    assert all("network" not in node for node in graph.to_dict()["nodes"])
