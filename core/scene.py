@@ -75,7 +75,7 @@ class ScenePath:
     parent: str | None
     points: list[list[float]]
     width: float
-    start: str | None = None  # the junction it starts at, if any
+    start: str | None = None  # the junction it starts at, or the path it branches from
     colour: list[float] = field(default_factory=lambda: [0.55, 0.45, 0.3])
     rule: str | None = None
     order: int = 0

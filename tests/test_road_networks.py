@@ -105,3 +105,88 @@ def test_a_grid_junction_keeps_its_network_in_scene_json(rules_file):
 def test_an_organic_networks_graph_and_scene_json_say_nothing_of_networks():
     graph = expand(load_rules("village"), 1000)
     assert all("network" not in node for node in graph.to_dict()["nodes"])
+
+
+BRANCHES = """
+scene b { extent 90 x 90 ground grass start T }
+path road { noun "road" width 3 max_length 40 segments 3 }
+path lane { noun "lane" width 2.5 max_length 25 segments 2 }
+junction crossing { noun "crossing" size 4 x 0.05 x 4 NETWORK }
+object house { noun "house" size 6 x 5 x 5 shape house }
+T -> { crossing as x; road as r PathConnectedTo x; 2 road PathConnectedTo x
+       2 lane PathConnectedTo r; 5 house NextTo some road; 3 house NextTo some lane }
+"""
+
+
+def _on(point, polyline) -> float:
+    """How far a point is from a polyline (metres)."""
+    from scenewright.core.geometry import nearest_on_polyline
+
+    return nearest_on_polyline([list(p) for p in polyline], float(point[0]), float(point[1]))[0]
+
+
+def _leaving_angle(parent, branch) -> float:
+    from scenewright.generator.layout.branches import branch_angle
+
+    return branch_angle([list(p) for p in parent], [list(p) for p in branch])
+
+
+@pytest.mark.parametrize("network", ["", "network grid"])
+def test_a_branch_starts_on_its_road_and_leaves_it_square_or_nearly(rules_file, network):
+    rules = rules_file(BRANCHES.replace("NETWORK", network))
+    graph = expand(rules, 1000)
+    result = layout_scene(graph, 1000, params=LayoutParams(restarts=0))
+    assert result.ok, result.problems[:3]
+    road = result.paths["road_1"]
+    for lane in ("lane_1", "lane_2"):
+        points = result.paths[lane]
+        assert _on(points[0], road) < 1e-6  # annealed with the road, still on it
+        assert _on(points[0], road[:1]) > 5.0  # along it, not at the junction
+        angle = _leaving_angle(road, points)
+        if network:
+            assert abs(angle - math.pi / 2) < 1e-9
+        else:
+            assert angle >= math.radians(60)
+    scene = assemble_scene(graph, result, rules="b", seed=1000)
+    assert scene.path("lane_1").start == "road_1"
+
+
+def test_moving_a_road_carries_its_branches_along(rules_file):
+    from scenewright.generator.layout.energy import Energy
+    from scenewright.generator.layout.problem import compile_problem
+    from scenewright.generator.layout.state import State
+
+    problem = compile_problem(expand(rules_file(BRANCHES.replace("NETWORK", "")), 1000))
+    energy = Energy(problem, State(problem), LayoutParams())
+    road = [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0], [30.0, 0.0]]
+    energy.propose({}, {0: road})
+    energy.accept()
+    lanes = problem.branches_of[0]
+    for lane, x in zip(lanes, (15.0, 25.0), strict=True):
+        energy.propose({}, {lane: [[x, 0.0], [x, 10.0], [x, 20.0]]})
+        energy.accept()
+    moved = [[0.0, 0.0], [10.0, 5.0], [20.0, 6.0], [30.0, 12.0]]
+    energy.propose({}, {0: moved})
+    energy.accept()
+    # each lane's start is where it was along its segment of the road, the rest as it was
+    assert energy.state.points[lanes[0]] == [[15.0, 5.5], [15.0, 10.0], [15.0, 20.0]]
+    assert energy.state.points[lanes[1]] == [[25.0, 9.0], [25.0, 10.0], [25.0, 20.0]]
+    energy.propose({}, {0: road})
+    energy.reject()  # and back with the road when the move is rejected
+    assert energy.state.points[lanes[0]][0] == [15.0, 5.5]
+
+
+def test_branches_that_start_on_each_other_are_refused(rules_file):
+    from scenewright.core.errors import InputError
+    from scenewright.generator.layout.problem import compile_problem
+
+    rules = rules_file(
+        BRANCHES.replace("NETWORK", "").replace(
+            "2 lane PathConnectedTo r;",
+            "lane as a; lane as b PathConnectedTo a; a PathConnectedTo b;",
+        )
+    )
+    with pytest.raises(
+        InputError, match=r"in a circle: lane_1 -> lane_2 -> lane_1|lane_2 -> lane_1 -> lane_2"
+    ):
+        compile_problem(expand(rules, 1))

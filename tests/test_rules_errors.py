@@ -201,15 +201,15 @@ references.rules:4:82: error: '#0': ordinals count from #1
     "path_connection": (
         (
             'path road { noun "road" }\njunction crossing { noun "crossing" }\n'
-            "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }"
+            "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }"
         ),
         """\
-path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction, but 'table' is an object
-    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
+path_connection.rules:6:52: error: PathConnectedTo starts a path at a junction or on another path, but 'table' is an object
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }
                                                        ^
-path_connection.rules:6:95: error: PathConnectedTo connects a path to a junction, but 'road' is a path
-    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
-                                                                                                  ^""",
+path_connection.rules:6:119: error: PathConnectedTo starts a path at a junction or on another path, but 'table' is an object
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }
+                                                                                                                          ^""",
     ),
     "network": (
         (

@@ -22,6 +22,7 @@ import numpy as np
 
 from scenewright.core.geometry import point_segment_distance
 
+from .branches import along, stations
 from .energy import Energy
 from .motion import uniform, wrap
 from .pinning import Pins
@@ -36,6 +37,8 @@ LONE_PATH_SPREAD = 0.2
 FREE_PATH_SPREAD = 0.4
 #: Spread (radians) of the heading change at each control point of a new path.
 PATH_WIGGLE = 0.15
+#: Spread (radians) of an organic branch's heading about square to its road.
+BRANCH_TURN = 0.15
 #: Around pinned or started things, candidate junctions lie within this share of the
 #: extent from its centre (without them: 0.15).
 JUNCTION_SPREAD = 0.25
@@ -87,7 +90,7 @@ def lay_paths(
                 heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
             start = (state.x[junction], state.z[junction])
             _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    free = _free_roads(problem)
     # A lone road crosses near the middle; several spread out, each through the candidate
     # point farthest from the roads laid so far.
     spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
@@ -113,6 +116,9 @@ def lay_paths(
         behind = min(back, length / 2.0)
         start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
         _set_path(energy, rng, path, start, heading, length)
+    for path in problem.path_order:  # branches, each after the road it branches from
+        if problem.path_parent[path] >= 0:
+            _set_branch(energy, rng, path)
 
 
 def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[int]) -> None:
@@ -193,6 +199,43 @@ def _room(start: tuple[float, float], heading: float, half_x: float, half_z: flo
     return max(min(limits), 0.0)
 
 
+def _free_roads(problem) -> list[int]:
+    """The paths that start neither at a junction nor on another path."""
+    return [
+        path
+        for path in range(problem.n_paths)
+        if problem.path_start[path] < 0 and problem.path_parent[path] < 0
+    ]
+
+
+def _branch_start(problem, points: list, path: int) -> tuple[tuple[float, float], float, bool]:
+    """Where branch ``path`` leaves its road (laid as ``points``), its heading (square
+    to the road, to its station's side: ``branches.stations``) and whether it is alone
+    at its station (so it may take the other side instead)."""
+    siblings = problem.branches_of[problem.path_parent[path]]
+    grid = problem.path_grid[path]
+    k = siblings.index(path)
+    s, side = stations(_length(points), len(siblings), grid)[k]
+    x, z, along_heading = along(points, s)
+    alone = not grid or (k % 2 == 0 and k == len(siblings) - 1)
+    return (x, z), along_heading + side * 0.5 * math.pi, alone
+
+
+def _set_branch(energy: Energy, rng: np.random.Generator, path: int) -> None:
+    """Lay a branch from its station on its road as laid now (an organic one turned a
+    little from square, to whichever side leaves it more room when it is alone there)."""
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    start, heading, alone = _branch_start(problem, state.points[problem.path_parent[path]], path)
+    if not problem.path_grid[path]:
+        heading += float(np.clip(rng.normal(0.0, BRANCH_TURN), -0.35, 0.35))
+    if alone and _room(start, heading + math.pi, half_x, half_z) > _room(
+        start, heading, half_x, half_z
+    ):
+        heading += math.pi
+    _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
+
+
 def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
     """Paths when some boxes or paths are given (pinned or started): given paths at their
     points; each junction's other roads (and the junction, unless it is given) as the best
@@ -245,7 +288,7 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             return boxes, laid
 
         _take_best(energy, fan, count, held)
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    free = _free_roads(problem)
     for path in free:
         preset = pins.preset_points(path)
         if preset is not None:
@@ -270,6 +313,15 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             return {}, {path: _path_points(problem, rng, path, start, heading, length)}
 
         _take_best(energy, crossing, count, held)
+    for path in problem.path_order:  # branches: given ones as they are, the others laid
+        if problem.path_parent[path] < 0:
+            continue
+        preset = pins.preset_points(path)
+        if preset is not None:
+            energy.propose({}, {path: [list(p) for p in preset]})
+            energy.accept()
+        else:
+            _set_branch(energy, rng, path)
 
 
 def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
@@ -349,7 +401,7 @@ def _fit_networks(energy: Energy, rng: np.random.Generator, need: Mapping[int, f
     for junction, (x, z) in junctions.items():
         state.set_pose(junction, x, z, 0.0)
     energy.activate(list(junctions))
-    for path in range(problem.n_paths):
+    for path in problem.path_order:  # a road before its branches
         energy.propose({}, {path: roads[path]})
         energy.accept()
 
@@ -405,6 +457,7 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
                         for _ in range(problem.path_segments[path] - 1)
                     ]
                 roads[path] = _fitted_road(problem, path, (x, z), heading, turns, laid)
+            roads.update(_fitted_branches(problem, rng, roads, laid))
             score = _frontage_score(roads, need)
             if clearance < JUNCTION_CLEARANCE:
                 score -= 1e4 - clearance
@@ -415,9 +468,9 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
         total += score
         spots[junction] = (x, z)
         for path, points in roads.items():
-            laid.add(points)
+            laid.add(points, path)
             laid_roads[path] = points
-    for path in (p for p in range(problem.n_paths) if problem.path_start[p] < 0):
+    for path in _free_roads(problem):
         chosen: list | None = None
         for _ in range(SPREAD_CANDIDATES):
             heading = uniform(rng, 0.0, 2.0 * math.pi)
@@ -437,9 +490,55 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
                 chosen = points
         assert chosen is not None
         total += _frontage_score({path: chosen}, need)
-        laid.add(chosen)
+        laid.add(chosen, path)
         laid_roads[path] = chosen
+    free = {path: laid_roads[path] for path in _free_roads(problem)}
+    branches = _fitted_branches(problem, rng, free, laid)  # of the free roads
+    total += _frontage_score(branches, need)
+    for path, points in branches.items():
+        laid.add(points, path)
+        laid_roads[path] = points
     return total, spots, laid_roads
+
+
+def _fitted_branches(
+    problem, rng: np.random.Generator, roads: Mapping[int, list], laid: _Segments
+) -> dict[int, list]:
+    """The branches of ``roads`` (and theirs), each from its station on its road
+    (``branches.stations``), square to it (an organic one turned a little, and to the
+    side that leaves it longer when it is alone at its station), cut like any fitted
+    road where it would leave the scene or come near a road of ``laid``, of ``roads`` or
+    a branch laid before it (its own road excepted)."""
+    if not problem.branches_of or not any(path in problem.branches_of for path in roads):
+        return {}
+    own = _Segments()
+    for path, points in roads.items():
+        own.add(points, path)
+    made: dict[int, list] = {}
+    for path in problem.path_order:
+        parent = problem.path_parent[path]
+        if parent < 0 or (parent not in roads and parent not in made):
+            continue
+        points = roads[parent] if parent in roads else made[parent]
+        start, heading, alone = _branch_start(problem, points, path)
+        grid = problem.path_grid[path]
+        if grid:
+            turns = [0.0] * problem.path_segments[path]
+        else:
+            heading += float(np.clip(rng.normal(0.0, BRANCH_TURN), -0.35, 0.35))
+            turns = [0.0] + [
+                float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                for _ in range(problem.path_segments[path] - 1)
+            ]
+        near = _Near((laid, own), parent)
+        branch = _fitted_road(problem, path, start, heading, turns, near)
+        if alone:
+            other = _fitted_road(problem, path, start, heading + math.pi, turns, near)
+            if _length(other) > _length(branch):
+                branch = other
+        made[path] = branch
+        own.add(branch, path)
+    return made
 
 
 def _frontage_score(roads: Mapping[int, list], need: Mapping[int, float]) -> float:
@@ -502,11 +601,12 @@ class _Segments:
     CELL = 25.0
 
     def __init__(self) -> None:
-        self.cells: dict[tuple[int, int], list[tuple[float, float, float, float]]] = {}
+        self.cells: dict[tuple[int, int], list[tuple[float, float, float, float, int]]] = {}
 
-    def add(self, points) -> None:
+    def add(self, points, owner: int = -1) -> None:
+        """Add a road's segments (``owner``: its path, for ``distance``'s ``ignore``)."""
         for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
-            segment = (ax, az, bx, bz)
+            segment = (ax, az, bx, bz, owner)
             for i in range(
                 math.floor(min(ax, bx) / self.CELL), math.floor(max(ax, bx) / self.CELL) + 1
             ):
@@ -515,18 +615,29 @@ class _Segments:
                 ):
                     self.cells.setdefault((i, j), []).append(segment)
 
-    def distance(self, point, within: float) -> float:
-        """The distance from ``point`` to the nearest segment, exact when under ``within``
-        (else some value of at least ``within``)."""
+    def distance(self, point, within: float, ignore: int = -2) -> float:
+        """The distance from ``point`` to the nearest segment (not of path ``ignore``),
+        exact when under ``within`` (else some value of at least ``within``)."""
         px, pz = point
         reach = math.ceil(within / self.CELL)
         ci, cj = math.floor(px / self.CELL), math.floor(pz / self.CELL)
         best = math.inf
         for i in range(ci - reach, ci + reach + 1):
             for j in range(cj - reach, cj + reach + 1):
-                for ax, az, bx, bz in self.cells.get((i, j), ()):
-                    best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
+                for ax, az, bx, bz, owner in self.cells.get((i, j), ()):
+                    if owner != ignore:
+                        best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
         return best
+
+
+class _Near:
+    """The nearest of several ``_Segments``, leaving out one road (a branch's own)."""
+
+    def __init__(self, sets: tuple[_Segments, ...], ignore: int) -> None:
+        self.sets, self.ignore = sets, ignore
+
+    def distance(self, point, within: float) -> float:
+        return min(found.distance(point, within, self.ignore) for found in self.sets)
 
 
 def _length(points) -> float:

@@ -270,7 +270,8 @@ class Mover(Placer):
     def move_path(self, path: int) -> tuple[dict, dict] | None:
         problem, state, rng = self.problem, self.state, self.rng
         points = state.points[path]
-        first = 1 if problem.path_start[path] >= 0 else 0
+        # A road's start stays at its junction, or on the road it branches from.
+        first = 1 if problem.path_start[path] >= 0 or problem.path_parent[path] >= 0 else 0
         if first >= len(points):
             return None
         index = int(rng.integers(first, len(points)))

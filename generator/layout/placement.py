@@ -274,7 +274,7 @@ class Placer:
                 end_reach(problem, state, term.a, dx, dz) + problem.path_width[path] / 2.0 + gap
             )
             tx, tz = ax + dx * distance, az + dz * distance
-            first = 1 if problem.path_start[path] >= 0 else 0
+            first = 1 if problem.path_start[path] >= 0 or problem.path_parent[path] >= 0 else 0
             candidates = [k for k in (segment, segment + 1) if k >= first]
             k = min(candidates, key=lambda k: math.hypot(points[k][0] - tx, points[k][1] - tz))
             new = [list(p) for p in points]
