@@ -190,3 +190,46 @@ def test_branches_that_start_on_each_other_are_refused(rules_file):
         InputError, match=r"in a circle: lane_1 -> lane_2 -> lane_1|lane_2 -> lane_1 -> lane_2"
     ):
         compile_problem(expand(rules, 1))
+
+
+# One road of up to 150 m from a crossing in 80 x 80 m, and 40 homes that must stand
+# beside it: a straight road meets the scene's edge long before its maximum.
+CRAMPED = """
+scene bend { extent 80 x 80 ground grass start T max_nodes 400 }
+path road { noun "road" width 3 max_length 150 segments 4 }
+junction crossing { noun "crossing" size 4 x 0.05 x 4 }
+group home { noun "home" }
+object house { noun "house" size 6 x 5 x 5 shape house }
+object bush { noun "bush" plural "bushes" size 1.6 x 1.2 x 1.6 shape bush }
+T -> { crossing as x; road PathConnectedTo x; 40 Home NextTo road #1 }
+Home -> { home { house as h; bush NextToChooseSide h } }
+"""
+
+
+def _frontage_line(problems) -> tuple[int, int]:
+    import re
+
+    found = re.match(
+        r"40 homes need \d+ m .* its sides give (\d+) m \((\d+) found no room\)", problems[0]
+    )
+    assert found, problems[0]
+    return int(found.group(1)), int(found.group(2))
+
+
+def test_a_road_short_of_frontage_bends_into_free_space_within_its_length(rules_file, monkeypatch):
+    from scenewright.generator.layout import initial
+
+    graph = expand(rules_file(CRAMPED), 3)
+    longer = layout_scene(graph, 3, params=LayoutParams(restarts=0))
+    monkeypatch.setattr(initial, "lengthen", lambda energy, paths: {})
+    straight = layout_scene(graph, 3, params=LayoutParams(restarts=0))
+    given, left = _frontage_line(longer.problems)
+    given_before, left_before = _frontage_line(straight.problems)
+    assert given > given_before and left < left_before
+    road = np.asarray(longer.paths["road_1"])
+    length = float(np.sum(np.hypot(*np.diff(road, axis=0).T)))
+    assert 2 * length == pytest.approx(given, abs=1.0) and length <= 150
+    assert np.allclose(road[0], straight.paths["road_1"][0])  # from the same junction
+    assert np.all(np.abs(road) <= 40)
+    turns = np.abs(np.remainder(np.diff(_headings(road)) + math.pi, 2 * math.pi) - math.pi)
+    assert turns.max() > 0.1 and turns.max() < math.radians(60)  # bent, within gamma

@@ -501,6 +501,87 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
     return total, spots, laid_roads
 
 
+#: ``lengthen``: a road short of frontage may grow to this share of its ``max_length``
+#: (the length term is about 0.1 there), bending at its control points after the first
+#: by one of ``BENDS`` (radians, under gamma) at one point, or at each of them alike.
+LONGEST_SHARE = 0.99
+BENDS = (0.0, -0.4, 0.4, -0.8, 0.8)
+#: ... drawn as long as these shares of that length (then cut where there is no room).
+GROW_SHARES = (1.0, 0.85, 0.7)
+
+
+def lengthen(energy: Energy, paths: list[int]) -> dict[int, list]:
+    """Roads of ``paths`` that are short of frontage made longer where there is room:
+    each (that has no branches) the longest of its candidates, if it beats it by a
+    metre: the road as laid, grown to ``LONGEST_SHARE`` of its maximum, with its first
+    segment's heading kept (so it leaves its junction or road as before) and its free
+    end bent into free space (``BENDS``; a grid's roads run on straight), each drawn at
+    ``GROW_SHARES`` of that length, cut like a fitted road where it would leave the
+    scene or come near another road. Returns the
+    points each changed road had before."""
+    problem, state = energy.problem, energy.state
+    changed: dict[int, list] = {}
+    for path in paths:
+        if path in problem.branches_of or problem.path_segments[path] < 1:
+            continue
+        points = state.points[path]
+        length = _length(points)
+        full = LONGEST_SHARE * problem.path_max_length[path]
+        if full < length + 1.0:
+            continue
+        laid, beside = _Segments(), _Segments()
+        start_at = problem.path_start[path]
+        parent = problem.path_parent[path]
+        for other in range(problem.n_paths):
+            if other == path or other == parent:
+                continue
+            same_start = (start_at >= 0 and problem.path_start[other] == start_at) or (
+                parent >= 0 and problem.path_parent[other] == parent
+            )
+            (beside if same_start else laid).add(state.points[other], other)
+        # the roads leaving where it does are tested once it is as far out as it was
+        beside_from = min(_length(points[:2]), ROAD_CLEARANCE + problem.path_width[path])
+        heading = math.atan2(points[1][1] - points[0][1], points[1][0] - points[0][0])
+        segments = problem.path_segments[path]
+        shapes: list[list[float]] = [[0.0] * segments]
+        if not problem.path_grid[path]:
+            own = [0.0] + [
+                _signed_turn(points[k - 1], points[k], points[k + 1]) for k in range(1, segments)
+            ]
+            shapes = [own]
+            for bend in BENDS[1:]:
+                shapes.append([0.0] + [bend] * (segments - 1))
+                for k in range(1, segments):
+                    shapes.append([0.0] + [bend if j == k else 0.0 for j in range(1, segments)])
+        best, best_length = None, length + 1.0
+        for turns in shapes:
+            for share in GROW_SHARES:  # shorter pieces bend sooner, before an edge
+                road = _fitted_road(
+                    problem,
+                    path,
+                    points[0],
+                    heading,
+                    turns,
+                    laid,
+                    max(share * full, length),
+                    beside,
+                    beside_from,
+                )
+                if _length(road) > best_length:
+                    best, best_length = road, _length(road)
+        if best is not None:
+            changed[path] = [list(p) for p in points]
+            energy.propose({}, {path: best})
+            energy.accept()
+    return changed
+
+
+def _signed_turn(a, b, c) -> float:
+    """The turn (radians, left positive) at b between a-b and b-c."""
+    first = math.atan2(b[1] - a[1], b[0] - a[0])
+    return wrap(math.atan2(c[1] - b[1], c[0] - b[0]) - first)
+
+
 def _fitted_branches(
     problem, rng: np.random.Generator, roads: Mapping[int, list], laid: _Segments
 ) -> dict[int, list]:
@@ -550,13 +631,25 @@ def _frontage_score(roads: Mapping[int, list], need: Mapping[int, float]) -> flo
     return 10.0 * met + sum(_length(points) for points in roads.values())
 
 
-def _fitted_road(problem, path: int, start, heading: float, turns: list[float], laid) -> list:
+def _fitted_road(
+    problem,
+    path: int,
+    start,
+    heading: float,
+    turns: list[float],
+    laid,
+    full: float | None = None,
+    beside=None,
+    beside_from: float = 0.0,
+) -> list:
     """A road from ``start`` along ``heading`` turning by ``turns`` at its control points,
-    as long as its maximum allows but cut where it would leave the scene or come within
-    ``ROAD_CLEARANCE`` of a road in ``laid``; never shorter than ``SHORTEST_ROAD`` of
-    its maximum."""
+    ``full`` long (default: as long as its maximum allows, ``PATH_LENGTH_SHARE``) but
+    cut where it would leave the scene or come within ``ROAD_CLEARANCE`` of a road in
+    ``laid`` (or, from ``beside_from`` metres along it on, in ``beside``: the roads
+    that start where it does); never shorter than ``SHORTEST_ROAD`` of its maximum."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
-    full = PATH_LENGTH_SHARE * problem.path_max_length[path]
+    if full is None:
+        full = PATH_LENGTH_SHARE * problem.path_max_length[path]
     segments = len(turns)
 
     def points_for(length: float) -> list[list[float]]:
@@ -583,6 +676,11 @@ def _fitted_road(problem, path: int, start, heading: float, turns: list[float], 
                 abs(px) > half_x
                 or abs(pz) > half_z
                 or laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                or (
+                    beside is not None
+                    and walked + t * segment >= beside_from
+                    and beside.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                )
             ):
                 stop = walked + (k - 1) / steps * segment
                 break
@@ -590,8 +688,8 @@ def _fitted_road(problem, path: int, start, heading: float, turns: list[float], 
             free = stop
             break
         walked += segment
-    length = max(free, SHORTEST_ROAD * full)
-    points = points_for(length)
+    length = max(free, SHORTEST_ROAD * (PATH_LENGTH_SHARE * problem.path_max_length[path]))
+    points = points_for(min(length, full))
     return [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
 
 
