@@ -385,6 +385,10 @@ GRID_TILT = math.radians(10.0)
 CORNER_LOSS = 6.0
 #: Arc-length step (metres) at which a new road is tested against the roads laid.
 CLEARANCE_STEP = 1.0
+#: A road cut short of another network's road runs on to meet it (``_meet``) when that
+#: road is at most this far (metres) straight ahead and crossed at this angle or more.
+MEET_REACH = 2.0 * ROAD_CLEARANCE
+MEET_ANGLE = math.radians(45.0)
 
 
 def _fit_networks(energy: Energy, rng: np.random.Generator, need: Mapping[int, float]) -> None:
@@ -664,7 +668,7 @@ def _fitted_road(
 
     points = points_for(full)
     # How far along it stays inside and clear of the other roads.
-    free, walked = full, 0.0
+    free, walked, met = full, 0.0, False
     for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
         segment = math.hypot(bx - ax, bz - az)
         steps = max(1, int(segment / CLEARANCE_STEP))
@@ -683,14 +687,41 @@ def _fitted_road(
                 )
             ):
                 stop = walked + (k - 1) / steps * segment
+                met = (
+                    abs(px) <= half_x
+                    and abs(pz) <= half_z
+                    and (laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE)
+                )
                 break
         if stop is not None:
             free = stop
             break
         walked += segment
-    length = max(free, SHORTEST_ROAD * (PATH_LENGTH_SHARE * problem.path_max_length[path]))
+    shortest = SHORTEST_ROAD * (PATH_LENGTH_SHARE * problem.path_max_length[path])
+    length = max(free, shortest)
     points = points_for(min(length, full))
-    return [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+    points = [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+    if met and free >= shortest:  # it stopped short of another road: it meets that road
+        _meet(points, laid, LONGEST_SHARE * problem.path_max_length[path] - _length(points))
+    return points
+
+
+def _meet(points: list, laid, spare: float) -> None:
+    """Run a road cut short of another road on to it (a T junction): its last point
+    moved on along its last segment to where that meets a road of ``laid``, if it does
+    within ``MEET_REACH`` and ``spare`` metres, at ``MEET_ANGLE`` or more."""
+    (ax, az), (bx, bz) = points[-2], points[-1]
+    length = math.hypot(bx - ax, bz - az)
+    if length <= 0.0:
+        return
+    ux, uz = (bx - ax) / length, (bz - az) / length
+    hit = laid.ray((bx, bz), (ux, uz), min(MEET_REACH, spare))
+    if hit is None:
+        return
+    distance, (vx, vz) = hit
+    if abs(ux * vx + uz * vz) > math.cos(MEET_ANGLE):
+        return
+    points[-1] = [bx + ux * distance, bz + uz * distance]
 
 
 class _Segments:
@@ -727,6 +758,34 @@ class _Segments:
                         best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
         return best
 
+    def ray(self, origin, direction, reach: float, ignore: int = -2):
+        """(distance, unit direction of the segment) of the first segment (not of path
+        ``ignore``) crossed going ``reach`` metres from ``origin`` along ``direction``;
+        None if there is none."""
+        ox, oz = origin
+        dx, dz = direction
+        ex, ez = ox + dx * reach, oz + dz * reach
+        best = None
+        for i in range(
+            math.floor(min(ox, ex) / self.CELL), math.floor(max(ox, ex) / self.CELL) + 1
+        ):
+            for j in range(
+                math.floor(min(oz, ez) / self.CELL), math.floor(max(oz, ez) / self.CELL) + 1
+            ):
+                for ax, az, bx, bz, owner in self.cells.get((i, j), ()):
+                    if owner == ignore:
+                        continue
+                    sx, sz = bx - ax, bz - az
+                    cross = dx * sz - dz * sx
+                    if abs(cross) < 1e-12:
+                        continue
+                    t = ((ax - ox) * sz - (az - oz) * sx) / cross  # along the ray
+                    u = ((ax - ox) * dz - (az - oz) * dx) / cross  # along the segment
+                    if 0.0 <= t <= reach and 0.0 <= u <= 1.0 and (best is None or t < best[0]):
+                        length = math.hypot(sx, sz)
+                        best = (t, (sx / length, sz / length))
+        return best
+
 
 class _Near:
     """The nearest of several ``_Segments``, leaving out one road (a branch's own)."""
@@ -736,6 +795,10 @@ class _Near:
 
     def distance(self, point, within: float) -> float:
         return min(found.distance(point, within, self.ignore) for found in self.sets)
+
+    def ray(self, origin, direction, reach: float):
+        hits = [found.ray(origin, direction, reach, self.ignore) for found in self.sets]
+        return min((hit for hit in hits if hit is not None), default=None)
 
 
 def _length(points) -> float:
