@@ -1,14 +1,25 @@
 """Road networks a rule set chooses: a grid's roads run straight and square (small scenes
-and the fitted networks of a town), and its junction's network survives scene.json."""
+and the fitted networks of a town) and its junction's network survives scene.json;
+roads that branch from roads start on them and stay there; a road short of frontage
+grows and bends within its maximum; the towns written from the docs with a grid and
+with branches lay out as they promise."""
 
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from scenewright.core.errors import InputError
+from scenewright.core.geometry import nearest_on_polyline
 from scenewright.core.scene import Scene, assemble_scene
 from scenewright.generator.expand import expand
-from scenewright.generator.layout import LayoutParams, layout_scene
+from scenewright.generator.layout import LayoutParams, initial, layout_scene
+from scenewright.generator.layout.branches import branch_angle
+from scenewright.generator.layout.energy import Energy
+from scenewright.generator.layout.problem import compile_problem
+from scenewright.generator.layout.state import State
 from scenewright.generator.rules import load_rules
 
 SMALL_GRID = """
@@ -120,14 +131,10 @@ T -> { crossing as x; road as r PathConnectedTo x; 2 road PathConnectedTo x
 
 def _on(point, polyline) -> float:
     """How far a point is from a polyline (metres)."""
-    from scenewright.core.geometry import nearest_on_polyline
-
     return nearest_on_polyline([list(p) for p in polyline], float(point[0]), float(point[1]))[0]
 
 
 def _leaving_angle(parent, branch) -> float:
-    from scenewright.generator.layout.branches import branch_angle
-
     return branch_angle([list(p) for p in parent], [list(p) for p in branch])
 
 
@@ -152,9 +159,6 @@ def test_a_branch_starts_on_its_road_and_leaves_it_square_or_nearly(rules_file, 
 
 
 def test_moving_a_road_carries_its_branches_along(rules_file):
-    from scenewright.generator.layout.energy import Energy
-    from scenewright.generator.layout.problem import compile_problem
-    from scenewright.generator.layout.state import State
 
     problem = compile_problem(expand(rules_file(BRANCHES.replace("NETWORK", "")), 1000))
     energy = Energy(problem, State(problem), LayoutParams())
@@ -177,8 +181,6 @@ def test_moving_a_road_carries_its_branches_along(rules_file):
 
 
 def test_branches_that_start_on_each_other_are_refused(rules_file):
-    from scenewright.core.errors import InputError
-    from scenewright.generator.layout.problem import compile_problem
 
     rules = rules_file(
         BRANCHES.replace("NETWORK", "").replace(
@@ -207,8 +209,6 @@ Home -> { home { house as h; bush NextToChooseSide h } }
 
 
 def _frontage_line(problems) -> tuple[int, int]:
-    import re
-
     found = re.match(
         r"40 homes need \d+ m .* its sides give (\d+) m \((\d+) found no room\)", problems[0]
     )
@@ -217,7 +217,6 @@ def _frontage_line(problems) -> tuple[int, int]:
 
 
 def test_a_road_short_of_frontage_bends_into_free_space_within_its_length(rules_file, monkeypatch):
-    from scenewright.generator.layout import initial
 
     graph = expand(rules_file(CRAMPED), 3)
     longer = layout_scene(graph, 3, params=LayoutParams(restarts=0))
@@ -233,3 +232,34 @@ def test_a_road_short_of_frontage_bends_into_free_space_within_its_length(rules_
     assert np.all(np.abs(road) <= 40)
     turns = np.abs(np.remainder(np.diff(_headings(road)) + math.pi, 2 * math.pi) - math.pi)
     assert turns.max() > 0.1 and turns.max() < math.radians(60)  # bent, within gamma
+
+
+TOWN_RULES = Path(__file__).resolve().parent.parent / "benchmarks" / "town_rules"
+
+
+def test_a_grid_town_written_from_the_docs_has_square_blocks_and_square_side_streets():
+    graph = expand(load_rules(TOWN_RULES / "grid_town.rules"), 1000)
+    result = layout_scene(graph, 1000)
+    assert result.ok, result.problems[:3]
+    headings = [h for road in result.paths.values() for h in _headings(road)]
+    assert all(_square(h - headings[0]) for h in headings)
+    starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
+    streets = [path for path in result.paths if path.startswith("street_")]
+    assert len(streets) >= 7
+    for street in streets:
+        avenue = result.paths[starts[street]]
+        assert _on(result.paths[street][0], avenue) < 1e-6
+        assert abs(_leaving_angle(avenue, result.paths[street]) - math.pi / 2) < 1e-9
+
+
+def test_a_branching_town_written_from_the_docs_lays_out_with_lanes_on_their_roads():
+    graph = expand(load_rules(TOWN_RULES / "branch_town.rules"), 1000)
+    result = layout_scene(graph, 1000)
+    assert result.ok, result.problems[:3]
+    starts = {e.source: e.target for e in graph.edges("PathConnectedTo")}
+    lanes = [path for path in result.paths if "lane_" in path]
+    assert len(lanes) >= 11  # two or three a road, and the farm lane
+    for lane in lanes:
+        parent = result.paths[starts[lane]]
+        assert _on(result.paths[lane][0], parent) < 1e-6
+        assert _leaving_angle(parent, result.paths[lane]) >= math.radians(60)
