@@ -526,7 +526,7 @@ def lengthen(energy: Energy, paths: list[int]) -> dict[int, list]:
     problem, state = energy.problem, energy.state
     changed: dict[int, list] = {}
     for path in paths:
-        if path in problem.branches_of or problem.path_segments[path] < 1:
+        if path in problem.branches_of:
             continue
         points = state.points[path]
         length = _length(points)
@@ -537,13 +537,16 @@ def lengthen(energy: Energy, paths: list[int]) -> dict[int, list]:
         start_at = problem.path_start[path]
         parent = problem.path_parent[path]
         for other in range(problem.n_paths):
-            if other == path or other == parent:
+            if other == path:
                 continue
-            same_start = (start_at >= 0 and problem.path_start[other] == start_at) or (
-                parent >= 0 and problem.path_parent[other] == parent
+            same_start = (
+                (start_at >= 0 and problem.path_start[other] == start_at)
+                or (parent >= 0 and problem.path_parent[other] == parent)
+                or other == parent
             )
             (beside if same_start else laid).add(state.points[other], other)
-        # the roads leaving where it does are tested once it is as far out as it was
+        # the roads leaving where it does (and the road it branches from) are tested once
+        # it is as far out as it was
         beside_from = min(_length(points[:2]), ROAD_CLEARANCE + problem.path_width[path])
         heading = math.atan2(points[1][1] - points[0][1], points[1][0] - points[0][0])
         segments = problem.path_segments[path]
