@@ -178,6 +178,13 @@ def test_moving_a_road_carries_its_branches_along(rules_file):
     energy.propose({}, {0: road})
     energy.reject()  # and back with the road when the move is rejected
     assert energy.state.points[lanes[0]][0] == [15.0, 5.5]
+    # the incremental change (the lanes' angles to the road included) is the full one
+    full = Energy(problem, State(problem), LayoutParams(incremental=False))
+    for path in problem.path_order:
+        full.propose({}, {path: energy.state.points[path]})
+        full.accept()
+    bent = [[0.0, 0.0], [10.0, -4.0], [20.0, 3.0], [30.0, 0.0]]
+    assert energy.propose({}, {0: bent}) == pytest.approx(full.propose({}, {0: bent}))
 
 
 def test_branches_that_start_on_each_other_are_refused(rules_file):
