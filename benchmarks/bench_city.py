@@ -5,11 +5,14 @@ objects.
     .venv/bin/python benchmarks/bench_city.py --town-seeds 100 --city-seeds 10
     .venv/bin/python benchmarks/bench_city.py --plot docs/images/layout-scaling.png
 
-Prints, for the shipped ``town`` and for two denser towns written from the docs alone,
+Prints, for the shipped ``town`` and for four towns written from the docs alone,
 ``benchmarks/town_rules/user_town.rules`` (70 loose houses with their gardens, two
 crossroads with seven roads of up to 90 m) and ``crossroads_town.rules`` (52 to 68
 homes as groups and 6 to 12 cottages, three crossroads with ten roads of up to 50 m,
-two lanes, a square), on seeds 1000..: the share of ``ok``
+two lanes, a square), ``grid_town.rules`` (two ``network grid`` crossroads, seven
+avenues with side streets branching square off them, 54 to 66 homes) and
+``branch_town.rules`` (two organic crossroads, five roads with lanes branching off
+them, 50 to 62 homes), on seeds 1000..: the share of ``ok``
 layouts, how many pairs of boxes overlap by more than 1 cm, and the median and 90th
 percentile of layout CPU seconds (``time.process_time``: one core, not inflated by
 other work on the machine); then the same for the shipped ``city`` (1,100 to 2,200
@@ -36,6 +39,8 @@ TOWNS = (
     "town",
     str(HERE / "town_rules" / "user_town.rules"),
     str(HERE / "town_rules" / "crossroads_town.rules"),
+    str(HERE / "town_rules" / "grid_town.rules"),
+    str(HERE / "town_rules" / "branch_town.rules"),
 )
 
 #: The issue's targets: towns of about 300 objects, cities of 1,000 to 3,000.
@@ -134,6 +139,8 @@ def plot(points: list, path: str, sizes: list[int]) -> None:
         ("town", "o"),
         ("user_town", "s"),
         ("crossroads_town", "D"),
+        ("grid_town", "P"),
+        ("branch_town", "v"),
         ("city", "^"),
         ("synthetic", "x"),
     ):

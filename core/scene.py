@@ -60,6 +60,8 @@ class SceneObject:
     #: Free floor kept beside it and the sides it is used from (``SceneNode``).
     clearance: list[list] = field(default_factory=list)
     access: list[str] = field(default_factory=list)
+    #: Junctions only: "grid" for a grid's junction; None (left out of scene.json) else.
+    network: str | None = None
 
 
 @dataclass
@@ -73,7 +75,7 @@ class ScenePath:
     parent: str | None
     points: list[list[float]]
     width: float
-    start: str | None = None  # the junction it starts at, if any
+    start: str | None = None  # the junction it starts at, or the path it branches from
     colour: list[float] = field(default_factory=lambda: [0.55, 0.45, 0.3])
     rule: str | None = None
     order: int = 0
@@ -224,6 +226,9 @@ class Scene:
             del data["completion"]
         if data["house"] is None:
             del data["house"]
+        for obj in data["objects"]:  # a grid's junction only says its network
+            if obj["network"] is None:
+                del obj["network"]
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
@@ -417,6 +422,7 @@ def _object_of(
         order=node.order,
         clearance=[[side, float(metres)] for side, metres in node.clearance],
         access=list(node.access),
+        network=node.network,
     )
 
 
@@ -437,6 +443,7 @@ def _node_of(obj: SceneObject) -> dict[str, Any]:
         "order": obj.order,
         "clearance": obj.clearance,
         "access": obj.access,
+        "network": obj.network,
     }
 
 

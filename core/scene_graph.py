@@ -37,6 +37,20 @@ def _vec3(values: Iterable[float]) -> Vec3:
     return x, y, z
 
 
+def _network(entry: CatalogLike) -> str | None:
+    """A node's ``network``: "grid" for a junction that starts a grid, else None."""
+    return entry.network if entry.kind == "junction" and entry.network != "organic" else None
+
+
+def _node_dict(node: SceneNode) -> dict:
+    """A node as plain data; ``network`` only where it is set (a grid's junction), so the
+    graphs of rule sets that name no network read as before."""
+    data = asdict(node)
+    if data["network"] is None:
+        del data["network"]
+    return data
+
+
 class NodeLooks(Protocol):
     """What a node copies from its catalog entry once a style is applied (read only)."""
 
@@ -71,6 +85,8 @@ class CatalogLike(NodeLooks, Protocol):
     def max_length(self) -> float: ...
     @property
     def segments(self) -> int: ...
+    @property
+    def network(self) -> str: ...
 
     def with_style(self, style: Any) -> NodeLooks: ...
 
@@ -160,6 +176,9 @@ class SceneNode:
     #: The sides a person uses it from ("front", "back", "left", "right"), ("any",) for
     #: any side, () for an object nobody needs to reach (a plant, a rug).
     access: tuple[str, ...] = ("any",)
+    #: Junctions only: "grid" when the junction starts a grid of roads (square blocks);
+    #: None for the default, an organic network (``catalog.NETWORKS``).
+    network: str | None = None
 
 
 #: The attribute names a node is stored under in the networkx graph.
@@ -278,6 +297,7 @@ class SceneGraph:
             if has_box
             else (),
             access=tuple(looks.access) if has_box else (),
+            network=_network(entry),
         )
         self._store(node)
         return node_id
@@ -357,7 +377,7 @@ class SceneGraph:
         """A JSON-ready dict: parameters, nodes (creation order), edges and the derivation."""
         return {
             "params": self.params.to_dict(),
-            "nodes": [asdict(n) for n in self.nodes()],
+            "nodes": [_node_dict(n) for n in self.nodes()],
             "edges": [
                 {"source": e.source, "target": e.target, "label": e.label} for e in self.edges()
             ],

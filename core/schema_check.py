@@ -10,7 +10,7 @@ each run only when the one before found nothing: every number finite, no text wi
 control or bidirectional-control characters, nesting at most ``MAX_JSON_DEPTH`` deep;
 then the schema (its most relevant error); then the references: ids unique, parents
 that are other groups of the scene (no cycles, at most ``MAX_GROUP_DEPTH`` deep), paths
-starting at junctions, relations between ids of the scene with registered labels.
+starting at junctions or on other paths, relations between ids of the scene with registered labels.
 ``validate_scene_dict`` raises ``SceneSchemaError`` (an ``InputError``) naming the
 JSON path of the first problem, e.g. ``$.objects[2].position``; with ``check_files``
 (for ``validate``) the folders and files a scene names must exist too.
@@ -217,14 +217,16 @@ def _reference_problems(data: dict[str, Any]) -> list[Problem]:
         problems += _nesting_problems(data, entities)
     for index, path in enumerate(data["paths"]):
         start = path.get("start")
-        if start is not None and kinds.get(start) != "junction":
+        if start is not None and start == path["id"]:
+            problems.append((f"$.paths[{index}].start", f"the path starts on itself ({start!r})"))
+        elif start is not None and kinds.get(start) not in ("junction", "path"):
             what = (
                 f"is {_article(kinds[start])}" if start in kinds else "is not an id of this scene"
             )
             problems.append(
                 (
                     f"$.paths[{index}].start",
-                    f"the path starts at {start!r}, which {what}, not a junction",
+                    f"the path starts at {start!r}, which {what}, not a junction or a path",
                 )
             )
     room_ids, room_problems = _room_parts(data.get("room"))

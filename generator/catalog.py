@@ -14,6 +14,10 @@ from dataclasses import dataclass, field, fields, replace
 #: abstract, its extent is the union of its members; ``path``: a polyline with a width;
 #: ``junction``: where paths start (an intersection).
 KINDS = ("object", "group", "path", "junction")
+#: The kinds of road network a junction may start (``network``): ``organic`` (roads at
+#: evenly spread headings, bending gently; the default) or ``grid`` (straight roads at
+#: right angles, branches square to their roads).
+NETWORKS = ("organic", "grid")
 
 Vec3 = tuple[float, float, float]
 
@@ -59,7 +63,7 @@ class CatalogEntry:
     ``mesh`` is instead a user mesh file (absolute path) fitted to ``size``.
     ``colour`` is sRGB in [0, 1] (the hex value over 255, as written). Paths use
     ``width`` and ``max_length`` (the paper's l_A) and ``segments`` (how many straight
-    pieces the polyline has).
+    pieces the polyline has); junctions ``network`` (one of ``NETWORKS``).
     """
 
     name: str
@@ -77,6 +81,7 @@ class CatalogEntry:
     #: Free floor kept beside it, by side, and the sides it is used from (``SceneNode``).
     clearance: tuple[tuple[str, float], ...] = ()
     access: tuple[str, ...] = ("any",)
+    network: str = "organic"
     location: SourceLocation | None = None
 
     def with_style(self, style: Style | None) -> CatalogEntry:

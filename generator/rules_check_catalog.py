@@ -2,7 +2,7 @@
 
 Each field's value is checked against its kind of entry and its bounds: sizes, path
 widths and segments, colours, nouns of at most ``MAX_NOUN_CHARS``, clearances and
-access sides of objects, mesh files that must load and lie in the rule set's
+access sides of objects, a junction's kind of road network, mesh files that must load and lie in the rule set's
 ``ReadScope``, and shape names the renderer must know (a warning).
 """
 
@@ -13,7 +13,7 @@ from scenewright.core.limits import MAX_SIZE, MAX_WEIGHT, MIN_LENGTH
 from scenewright.core.shapes import MESH_SUFFIXES, SHAPES, load_mesh_file
 
 from . import rules_ast as ast
-from .catalog import STYLE_FIELDS
+from .catalog import NETWORKS, STYLE_FIELDS
 from .rules_check_state import CheckState
 from .rules_check_values import (
     UPPER_LIMITS,
@@ -81,6 +81,9 @@ class CatalogChecks(CheckState):
             seen[name] = setting
             if name == "access":
                 self.check_access(setting, kind)
+                continue
+            if name == "network":
+                self.check_network(setting, kind)
                 continue
             if isinstance(value, str) and self.check_text(name, value, at):
                 continue
@@ -180,6 +183,20 @@ class CatalogChecks(CheckState):
             self.error(setting.value_location, "'access any' and 'access none' stand alone")
         elif len(set(words)) < len(words):
             self.error(setting.value_location, "a side is named twice")
+
+    def check_network(self, setting: ast.Setting, kind: str) -> None:
+        """``network grid`` or ``network organic``, on a junction only."""
+        if kind != "junction":
+            self.error(
+                setting.location,
+                f"'network' applies to junctions only, not to {with_article(kind)}",
+            )
+        elif setting.text() not in NETWORKS:
+            self.error(
+                setting.value_location,
+                f"network '{setting.text()}' is not one of {', '.join(NETWORKS)}"
+                + did_you_mean(setting.text(), NETWORKS),
+            )
 
     def check_mesh(self, file: str, setting: ast.Setting) -> None:
         folder = self.folder_of(setting)

@@ -2,7 +2,7 @@
 
 Relation labels, types, names in scope, calls and their arguments, counts,
 probabilities and weights, blocks on groups only, wall relations in a room only,
-PathConnectedTo from a path to a junction, and - as a warning - a ``some T`` that may
+PathConnectedTo from a path to a junction or a path, and - as a warning - a ``some T`` that may
 find none because every statement making a T may make none.
 """
 
@@ -214,16 +214,17 @@ class ProductionChecks(CheckState):
     def check_path_connection(
         self, subject: ast.Reference | ast.Call, target: ast.Reference, scope: dict[str, str | None]
     ) -> None:
-        """``PathConnectedTo`` starts a path at a junction: check kinds where known."""
+        """``PathConnectedTo`` starts a path at a junction, or on another path (a branch):
+        check kinds where known."""
         for reference, kind, wanted in (
-            (subject, self.subject_kind(subject, scope), "path"),
-            (target, self.reference_kind(target, scope), "junction"),
+            (subject, self.subject_kind(subject, scope), ("path",)),
+            (target, self.reference_kind(target, scope), ("junction", "path")),
         ):
-            if kind is not None and kind != wanted:
+            if kind is not None and kind not in wanted:
                 assert isinstance(reference, ast.Reference)  # a call's kind is not known
                 self.error(
                     reference.location,
-                    f"PathConnectedTo connects a path to a junction, "
+                    "PathConnectedTo starts a path at a junction or on another path, "
                     f"but '{reference.name}' is {with_article(kind)}",
                 )
 

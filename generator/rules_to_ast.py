@@ -29,6 +29,7 @@ ENTRY_FIELDS = (
     "segments",
     "clearance",
     "access",
+    "network",
 )
 SCENE_SETTINGS = (
     "extent",

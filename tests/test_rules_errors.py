@@ -76,7 +76,7 @@ syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative
     "syntax_in_entry": (
         'object chair { noun "chair" 3 }\nS -> { chair }',
         """\
-syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access), 'style' or '}'
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access, network), 'style' or '}'
     object chair { noun "chair" 3 }
                                 ^""",
     ),
@@ -201,15 +201,29 @@ references.rules:4:82: error: '#0': ordinals count from #1
     "path_connection": (
         (
             'path road { noun "road" }\njunction crossing { noun "crossing" }\n'
-            "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }"
+            "S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }"
         ),
         """\
-path_connection.rules:6:52: error: PathConnectedTo connects a path to a junction, but 'table' is an object
-    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
+path_connection.rules:6:52: error: PathConnectedTo starts a path at a junction or on another path, but 'table' is an object
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }
                                                        ^
-path_connection.rules:6:95: error: PathConnectedTo connects a path to a junction, but 'road' is a path
-    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; r PathConnectedTo some road }
-                                                                                                  ^""",
+path_connection.rules:6:119: error: PathConnectedTo starts a path at a junction or on another path, but 'table' is an object
+    S -> { crossing as c; road as r PathConnectedTo c; table PathConnectedTo c; road PathConnectedTo r; r PathConnectedTo some table }
+                                                                                                                          ^""",
+    ),
+    "network": (
+        (
+            'path road { noun "road" network grid }\n'
+            'junction crossing { noun "crossing" network gird }\n'
+            "S -> { table; crossing as c; road PathConnectedTo c }"
+        ),
+        """\
+network.rules:4:25: error: 'network' applies to junctions only, not to a path
+    path road { noun "road" network grid }
+                            ^
+network.rules:5:45: error: network 'gird' is not one of organic, grid; did you mean 'grid'?
+    junction crossing { noun "crossing" network gird }
+                                                ^""",
     ),
     "block_on_object": (
         "S -> { table { table }; tabel { table } }",

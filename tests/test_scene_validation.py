@@ -359,12 +359,23 @@ def test_every_broken_reference_is_one_line_with_its_path(tmp_path, capsys):
     )
 
 
-def test_a_path_must_start_at_a_junction_of_the_scene():
+def test_a_path_must_start_at_a_junction_or_on_another_path_of_the_scene():
     data = scene_dict()
     data["paths"][0]["start"] = "table_1"
     assert scene_problems(data) == [
-        ("$.paths[0].start", "the path starts at 'table_1', which is an object, not a junction")
+        (
+            "$.paths[0].start",
+            "the path starts at 'table_1', which is an object, not a junction or a path",
+        )
     ]
+    data["paths"][0]["start"] = data["paths"][0]["id"]
+    assert scene_problems(data) == [
+        ("$.paths[0].start", f"the path starts on itself ({data['paths'][0]['id']!r})")
+    ]
+    branch = {**data["paths"][0], "id": "lane_1", "start": data["paths"][0]["id"]}
+    data["paths"][0]["start"] = None
+    data["paths"].append(branch)  # a branch starts on its road
+    assert scene_problems(data) == []
 
 
 def test_parent_cycles_and_groups_nested_too_deep_are_refused():

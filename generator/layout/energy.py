@@ -11,8 +11,8 @@ Parts (all >= 0, 0 when everything holds):
 - ``paths`` (v_p): per ground box and path, the same penalty for the box's depth into
   the path's buffered polyline, over the box's diagonal plus the path's width.
 - ``path_shape`` (v_q): per path less(total length, max length) and less(turn, gamma) at
-  each inner control point; per junction greater(angle, gamma) between neighbouring
-  outgoing paths.
+  each inner control point, and for a branch greater(its angle to its road, gamma);
+  per junction greater(angle, gamma) between neighbouring outgoing paths.
 - ``extent``: c times how far a box's corners (relative to its diagonal) or a path's
   control points (relative to its width) stick out of the scene extent. In a room the
   boxes' share is replaced by ``walls``.
@@ -48,6 +48,7 @@ from typing import Any, NamedTuple
 
 from scenewright.core.geometry import polyline_rect_penetration
 
+from .branches import attach
 from .families import evaluate
 from .params import LayoutParams
 from .problem import Problem
@@ -312,6 +313,8 @@ class Energy(SingleTerms):
         ``repropose``), is taken instead of being computed again.
         """
         state, grid, problem = self.state, self.grid, self.problem
+        if paths and problem.branches_of:  # a road's branches move along with it
+            paths = attach(problem, state, paths)
         xs, zs, yaws = state.x, state.z, state.yaw
         saved_boxes = [(box, (xs[box], zs[box], yaws[box])) for box in boxes]  # ``State.pose``
         saved_paths = [(path, state.points[path]) for path in paths]

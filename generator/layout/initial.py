@@ -54,8 +54,8 @@ from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
 from .families import LAYOUT_FAMILIES, evaluate
-from .initial_roads import lay_paths
-from .lots import LOT_SPACING, LotPlan, frontage_items, plan_lots
+from .initial_roads import lay_paths, lengthen
+from .lots import LOT_SPACING, LotItem, LotPlan, frontage_items, plan_lots
 from .motion import draw_index, rigid, uniform, wrap
 from .motion import reach as footprint_reach
 from .pinning import Pins
@@ -121,6 +121,8 @@ def place_initial(
     plan = None
     if lots:
         plan = plan_lots(energy, items)
+        if plan.left:  # short of frontage: longer roads, where there is room
+            plan = _with_longer_roads(energy, items, plan)
         for item in plan.moved:  # given another road of its type (``lots``): it is its own
             for term in item.terms:
                 problem.retarget(term, item.path)
@@ -145,6 +147,29 @@ def place_initial(
     for box in range(problem.n_boxes):  # stacked boxes outside any group, and the rest
         if not energy.active[box]:
             _place_box(energy, mover, rng, box, ())
+    return plan
+
+
+def _with_longer_roads(energy: Energy, items: list[LotItem], plan: LotPlan) -> LotPlan:
+    """The lots again after the roads that items found no room beside (theirs, or every
+    road of the type ``some road`` may give them) are made longer where there is room
+    (``initial_roads.lengthen``); kept if fewer items are left without a lot, else the
+    roads are put back and ``plan`` stands."""
+    short = sorted({path for item in plan.left for path in (item.roads or (item.path,))})
+    before = lengthen(energy, short)
+    if not before:
+        return plan
+    drawn = {id(item): item.path for item in items}
+    for item in plan.moved:  # the plan's moves are undone: each item starts on its own road
+        item.path = energy.problem.relations[item.terms[0]].b.index
+    again = plan_lots(energy, items)
+    if len(again.left) < len(plan.left):
+        return again
+    for item in items:
+        item.path = drawn[id(item)]
+    for path, points in before.items():
+        energy.propose({}, {path: points})
+        energy.accept()
     return plan
 
 

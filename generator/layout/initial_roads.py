@@ -22,6 +22,7 @@ import numpy as np
 
 from scenewright.core.geometry import point_segment_distance
 
+from .branches import along, stations
 from .energy import Energy
 from .motion import uniform, wrap
 from .pinning import Pins
@@ -36,6 +37,8 @@ LONE_PATH_SPREAD = 0.2
 FREE_PATH_SPREAD = 0.4
 #: Spread (radians) of the heading change at each control point of a new path.
 PATH_WIGGLE = 0.15
+#: Spread (radians) of an organic branch's heading about square to its road.
+BRANCH_TURN = 0.15
 #: Around pinned or started things, candidate junctions lie within this share of the
 #: extent from its centre (without them: 0.15).
 JUNCTION_SPREAD = 0.25
@@ -78,11 +81,16 @@ def lay_paths(
     for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
         base = uniform(rng, 0.0, 2.0 * math.pi)
+        if problem.grid[junction]:  # a grid: square to the scene, at right angles
+            base = 0.5 * math.pi * int(rng.integers(4))
         for k, path in enumerate(paths):
-            heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
+            if problem.grid[junction]:
+                heading = _grid_heading(base, k)
+            else:
+                heading = base + 2.0 * math.pi * k / len(paths) + rng.normal(0.0, 0.1)
             start = (state.x[junction], state.z[junction])
             _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    free = _free_roads(problem)
     # A lone road crosses near the middle; several spread out, each through the candidate
     # point farthest from the roads laid so far.
     spread = FREE_PATH_SPREAD if len(free) > 1 else LONE_PATH_SPREAD
@@ -108,6 +116,9 @@ def lay_paths(
         behind = min(back, length / 2.0)
         start = (middle[0] - math.cos(heading) * behind, middle[1] - math.sin(heading) * behind)
         _set_path(energy, rng, path, start, heading, length)
+    for path in problem.path_order:  # branches, each after the road it branches from
+        if problem.path_parent[path] >= 0:
+            _set_branch(energy, rng, path)
 
 
 def _spread_junctions(energy: Energy, rng: np.random.Generator, junctions: list[int]) -> None:
@@ -141,9 +152,14 @@ def _free_headings(
     given road taking the free slot nearest its own heading and the others the rest in
     order."""
     count = len(paths)
+    grid = energy.problem.grid[junction]
     given = {path: pins.preset_points(path) for path in paths}
     given = {path: points for path, points in given.items() if points is not None}
+    if grid:
+        base = 0.5 * math.pi * round(base / (0.5 * math.pi))
     if not given:
+        if grid:
+            return [_grid_heading(base, k) for k in range(count)]
         return [base + 2.0 * math.pi * k / count for k in range(count)]
     state = energy.state
     start = (state.x[junction], state.z[junction])
@@ -152,13 +168,24 @@ def _free_headings(
         return math.atan2(points[1][1] - start[1], points[1][0] - start[0])
 
     base = heading(next(iter(given.values())))
-    slots = [base + 2.0 * math.pi * k / count for k in range(count)]
+    if grid:
+        slots = [_grid_heading(base, k) for k in range(count)]
+    else:
+        slots = [base + 2.0 * math.pi * k / count for k in range(count)]
     for points in given.values():
         own = heading(points)
         nearest = min(range(len(slots)), key=lambda k: abs(wrap(slots[k] - own)))
         slots.pop(nearest)
     free_slots = iter(slots)
     return [0.0 if path in given else next(free_slots) for path in paths]
+
+
+def _grid_heading(base: float, k: int) -> float:
+    """The heading of a grid junction's k-th road: the four right angles from ``base``
+    first, then (a fifth road and more) the diagonals between them."""
+    if k < 4:
+        return base + 0.5 * math.pi * k
+    return base + 0.25 * math.pi + 0.5 * math.pi * (k - 4)
 
 
 def _room(start: tuple[float, float], heading: float, half_x: float, half_z: float) -> float:
@@ -170,6 +197,43 @@ def _room(start: tuple[float, float], heading: float, half_x: float, half_z: flo
             bound = (half - PATH_MARGIN) if direction > 0 else -(half - PATH_MARGIN)
             limits.append((bound - position) / direction)
     return max(min(limits), 0.0)
+
+
+def _free_roads(problem) -> list[int]:
+    """The paths that start neither at a junction nor on another path."""
+    return [
+        path
+        for path in range(problem.n_paths)
+        if problem.path_start[path] < 0 and problem.path_parent[path] < 0
+    ]
+
+
+def _branch_start(problem, points: list, path: int) -> tuple[tuple[float, float], float, bool]:
+    """Where branch ``path`` leaves its road (laid as ``points``), its heading (square
+    to the road, to its station's side: ``branches.stations``) and whether it is alone
+    at its station (so it may take the other side instead)."""
+    siblings = problem.branches_of[problem.path_parent[path]]
+    grid = problem.path_grid[path]
+    k = siblings.index(path)
+    s, side = stations(_length(points), len(siblings), grid)[k]
+    x, z, along_heading = along(points, s)
+    alone = not grid or (k % 2 == 0 and k == len(siblings) - 1)
+    return (x, z), along_heading + side * 0.5 * math.pi, alone
+
+
+def _set_branch(energy: Energy, rng: np.random.Generator, path: int) -> None:
+    """Lay a branch from its station on its road as laid now (an organic one turned a
+    little from square, to whichever side leaves it more room when it is alone there)."""
+    problem, state = energy.problem, energy.state
+    half_x, half_z = problem.extent[0] / 2.0, problem.extent[1] / 2.0
+    start, heading, alone = _branch_start(problem, state.points[problem.path_parent[path]], path)
+    if not problem.path_grid[path]:
+        heading += float(np.clip(rng.normal(0.0, BRANCH_TURN), -0.35, 0.35))
+    if alone and _room(start, heading + math.pi, half_x, half_z) > _room(
+        start, heading, half_x, half_z
+    ):
+        heading += math.pi
+    _set_path(energy, rng, path, start, heading, _room(start, heading, half_x, half_z))
 
 
 def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held=None) -> None:
@@ -216,13 +280,15 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             laid = {}
             for k, path in enumerate(paths):
                 if pins.preset_points(path) is None:
-                    heading = slots[k] + rng.normal(0.0, 0.1)
+                    heading = slots[k]
+                    if not problem.grid[junction]:
+                        heading += rng.normal(0.0, 0.1)
                     room = _room((x, z), heading, half_x, half_z)
                     laid[path] = _path_points(problem, rng, path, (x, z), heading, room)
             return boxes, laid
 
         _take_best(energy, fan, count, held)
-    free = [path for path in range(problem.n_paths) if problem.path_start[path] < 0]
+    free = _free_roads(problem)
     for path in free:
         preset = pins.preset_points(path)
         if preset is not None:
@@ -247,6 +313,15 @@ def _lay_paths_around(energy: Energy, rng: np.random.Generator, pins: Pins, held
             return {}, {path: _path_points(problem, rng, path, start, heading, length)}
 
         _take_best(energy, crossing, count, held)
+    for path in problem.path_order:  # branches: given ones as they are, the others laid
+        if problem.path_parent[path] < 0:
+            continue
+        preset = pins.preset_points(path)
+        if preset is not None:
+            energy.propose({}, {path: [list(p) for p in preset]})
+            energy.accept()
+        else:
+            _set_branch(energy, rng, path)
 
 
 def _take_best(energy: Energy, draw, count: int, extra=None) -> None:
@@ -277,13 +352,15 @@ def _set_path(
 def _path_points(
     problem, rng: np.random.Generator, path: int, start, heading: float, room: float
 ) -> list[list[float]]:
-    """Control points of a new path from ``start`` along ``heading`` (wiggling a little)."""
+    """Control points of a new path from ``start`` along ``heading`` (wiggling a little,
+    unless it is a grid's)."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
     segments = problem.path_segments[path]
     step = min(PATH_LENGTH_SHARE * problem.path_max_length[path], room) / segments
     points = [[float(start[0]), float(start[1])]]
     for _ in range(segments):
-        heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+        if not problem.path_grid[path]:  # a grid's roads run straight
+            heading += float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
         x = points[-1][0] + math.cos(heading) * step
         z = points[-1][1] + math.sin(heading) * step
         points.append([min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)])
@@ -301,11 +378,17 @@ NETWORK_SPREAD = 0.35
 JUNCTION_CLEARANCE = 30.0
 ROAD_CLEARANCE = 6.0
 SHORTEST_ROAD = 0.3
+#: A plan's grids are turned by at most this much (radians) from the scene's axes.
+GRID_TILT = math.radians(10.0)
 #: Metres of each side of a road lost for lots at each of its ends (where it meets its
 #: junction's other roads, or another network's road).
 CORNER_LOSS = 6.0
 #: Arc-length step (metres) at which a new road is tested against the roads laid.
 CLEARANCE_STEP = 1.0
+#: A road cut short of another network's road runs on to meet it (``_meet``) when that
+#: road is at most this far (metres) straight ahead and crossed at this angle or more.
+MEET_REACH = 2.0 * ROAD_CLEARANCE
+MEET_ANGLE = math.radians(45.0)
 
 
 def _fit_networks(energy: Energy, rng: np.random.Generator, need: Mapping[int, float]) -> None:
@@ -322,7 +405,7 @@ def _fit_networks(energy: Energy, rng: np.random.Generator, need: Mapping[int, f
     for junction, (x, z) in junctions.items():
         state.set_pose(junction, x, z, 0.0)
     energy.activate(list(junctions))
-    for path in range(problem.n_paths):
+    for path in problem.path_order:  # a road before its branches
         energy.propose({}, {path: roads[path]})
         energy.accept()
 
@@ -346,24 +429,39 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
     spots: dict[int, tuple[float, float]] = {}
     laid_roads: dict[int, list] = {}
     total = 0.0
-    for junction in [b for b in range(problem.n_boxes) if problem.is_junction[b]]:
+    junctions = [b for b in range(problem.n_boxes) if problem.is_junction[b]]
+    # The grids of a plan share one orientation (within GRID_TILT of the scene's axes),
+    # so that their roads run parallel or square to each other.
+    grid_base = (
+        uniform(rng, -GRID_TILT, GRID_TILT) if any(problem.grid[j] for j in junctions) else 0.0
+    )
+    for junction in junctions:
         paths = problem.paths_of_junction.get(junction, [])
+        grid = problem.grid[junction]
         best = None
         for _ in range(NETWORK_CANDIDATES):
             x = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * width
             z = uniform(rng, -NETWORK_SPREAD, NETWORK_SPREAD) * depth
-            base = uniform(rng, 0.0, 2.0 * math.pi)
+            if grid:  # which of the four square headings the first road takes
+                base = grid_base + 0.5 * math.pi * int(rng.integers(4))
+            else:
+                base = uniform(rng, 0.0, 2.0 * math.pi)
             clearance = laid.distance((x, z), JUNCTION_CLEARANCE)
             roads = {}
             for k, path in enumerate(paths):
-                heading = base + 2.0 * math.pi * k / max(len(paths), 1)
-                # The first segment leaves at its slot's heading, so the roads of a
-                # junction stay as far apart as they are spread.
-                turns = [0.0] + [
-                    float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
-                    for _ in range(problem.path_segments[path] - 1)
-                ]
+                if grid:  # straight, at right angles
+                    heading = _grid_heading(base, k)
+                    turns = [0.0] * problem.path_segments[path]
+                else:
+                    heading = base + 2.0 * math.pi * k / max(len(paths), 1)
+                    # The first segment leaves at its slot's heading, so the roads of a
+                    # junction stay as far apart as they are spread.
+                    turns = [0.0] + [
+                        float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                        for _ in range(problem.path_segments[path] - 1)
+                    ]
                 roads[path] = _fitted_road(problem, path, (x, z), heading, turns, laid)
+            roads.update(_fitted_branches(problem, rng, roads, laid))
             score = _frontage_score(roads, need)
             if clearance < JUNCTION_CLEARANCE:
                 score -= 1e4 - clearance
@@ -374,9 +472,9 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
         total += score
         spots[junction] = (x, z)
         for path, points in roads.items():
-            laid.add(points)
+            laid.add(points, path)
             laid_roads[path] = points
-    for path in (p for p in range(problem.n_paths) if problem.path_start[p] < 0):
+    for path in _free_roads(problem):
         chosen: list | None = None
         for _ in range(SPREAD_CANDIDATES):
             heading = uniform(rng, 0.0, 2.0 * math.pi)
@@ -396,9 +494,139 @@ def _network_plan(problem, rng: np.random.Generator, need: Mapping[int, float]) 
                 chosen = points
         assert chosen is not None
         total += _frontage_score({path: chosen}, need)
-        laid.add(chosen)
+        laid.add(chosen, path)
         laid_roads[path] = chosen
+    free = {path: laid_roads[path] for path in _free_roads(problem)}
+    branches = _fitted_branches(problem, rng, free, laid)  # of the free roads
+    total += _frontage_score(branches, need)
+    for path, points in branches.items():
+        laid.add(points, path)
+        laid_roads[path] = points
     return total, spots, laid_roads
+
+
+#: ``lengthen``: a road short of frontage may grow to this share of its ``max_length``
+#: (the length term is about 0.1 there), bending at its control points after the first
+#: by one of ``BENDS`` (radians, under gamma) at one point, or at each of them alike.
+LONGEST_SHARE = 0.99
+BENDS = (0.0, -0.4, 0.4, -0.8, 0.8)
+#: ... drawn as long as these shares of that length (then cut where there is no room).
+GROW_SHARES = (1.0, 0.85, 0.7)
+
+
+def lengthen(energy: Energy, paths: list[int]) -> dict[int, list]:
+    """Roads of ``paths`` that are short of frontage made longer where there is room:
+    each (that has no branches) the longest of its candidates, if it beats it by a
+    metre: the road as laid, grown to ``LONGEST_SHARE`` of its maximum, with its first
+    segment's heading kept (so it leaves its junction or road as before) and its free
+    end bent into free space (``BENDS``; a grid's roads run on straight), each drawn at
+    ``GROW_SHARES`` of that length, cut like a fitted road where it would leave the
+    scene or come near another road. Returns the
+    points each changed road had before."""
+    problem, state = energy.problem, energy.state
+    changed: dict[int, list] = {}
+    for path in paths:
+        if path in problem.branches_of:
+            continue
+        points = state.points[path]
+        length = _length(points)
+        full = LONGEST_SHARE * problem.path_max_length[path]
+        if full < length + 1.0:
+            continue
+        laid, beside = _Segments(), _Segments()
+        start_at = problem.path_start[path]
+        parent = problem.path_parent[path]
+        for other in range(problem.n_paths):
+            if other == path:
+                continue
+            same_start = (
+                (start_at >= 0 and problem.path_start[other] == start_at)
+                or (parent >= 0 and problem.path_parent[other] == parent)
+                or other == parent
+            )
+            (beside if same_start else laid).add(state.points[other], other)
+        # the roads leaving where it does (and the road it branches from) are tested once
+        # it is as far out as it was
+        beside_from = min(_length(points[:2]), ROAD_CLEARANCE + problem.path_width[path])
+        heading = math.atan2(points[1][1] - points[0][1], points[1][0] - points[0][0])
+        segments = problem.path_segments[path]
+        shapes: list[list[float]] = [[0.0] * segments]
+        if not problem.path_grid[path]:
+            own = [0.0] + [
+                _signed_turn(points[k - 1], points[k], points[k + 1]) for k in range(1, segments)
+            ]
+            shapes = [own]
+            for bend in BENDS[1:]:
+                shapes.append([0.0] + [bend] * (segments - 1))
+                for k in range(1, segments):
+                    shapes.append([0.0] + [bend if j == k else 0.0 for j in range(1, segments)])
+        best, best_length = None, length + 1.0
+        for turns in shapes:
+            for share in GROW_SHARES:  # shorter pieces bend sooner, before an edge
+                road = _fitted_road(
+                    problem,
+                    path,
+                    points[0],
+                    heading,
+                    turns,
+                    laid,
+                    max(share * full, length),
+                    beside,
+                    beside_from,
+                )
+                if _length(road) > best_length:
+                    best, best_length = road, _length(road)
+        if best is not None:
+            changed[path] = [list(p) for p in points]
+            energy.propose({}, {path: best})
+            energy.accept()
+    return changed
+
+
+def _signed_turn(a, b, c) -> float:
+    """The turn (radians, left positive) at b between a-b and b-c."""
+    first = math.atan2(b[1] - a[1], b[0] - a[0])
+    return wrap(math.atan2(c[1] - b[1], c[0] - b[0]) - first)
+
+
+def _fitted_branches(
+    problem, rng: np.random.Generator, roads: Mapping[int, list], laid: _Segments
+) -> dict[int, list]:
+    """The branches of ``roads`` (and theirs), each from its station on its road
+    (``branches.stations``), square to it (an organic one turned a little, and to the
+    side that leaves it longer when it is alone at its station), cut like any fitted
+    road where it would leave the scene or come near a road of ``laid``, of ``roads`` or
+    a branch laid before it (its own road excepted)."""
+    if not problem.branches_of or not any(path in problem.branches_of for path in roads):
+        return {}
+    own = _Segments()
+    for path, points in roads.items():
+        own.add(points, path)
+    made: dict[int, list] = {}
+    for path in problem.path_order:
+        parent = problem.path_parent[path]
+        if parent < 0 or (parent not in roads and parent not in made):
+            continue
+        points = roads[parent] if parent in roads else made[parent]
+        start, heading, alone = _branch_start(problem, points, path)
+        grid = problem.path_grid[path]
+        if grid:
+            turns = [0.0] * problem.path_segments[path]
+        else:
+            heading += float(np.clip(rng.normal(0.0, BRANCH_TURN), -0.35, 0.35))
+            turns = [0.0] + [
+                float(np.clip(rng.normal(0.0, PATH_WIGGLE), -0.4, 0.4))
+                for _ in range(problem.path_segments[path] - 1)
+            ]
+        near = _Near((laid, own), parent)
+        branch = _fitted_road(problem, path, start, heading, turns, near)
+        if alone:
+            other = _fitted_road(problem, path, start, heading + math.pi, turns, near)
+            if _length(other) > _length(branch):
+                branch = other
+        made[path] = branch
+        own.add(branch, path)
+    return made
 
 
 def _frontage_score(roads: Mapping[int, list], need: Mapping[int, float]) -> float:
@@ -410,13 +638,25 @@ def _frontage_score(roads: Mapping[int, list], need: Mapping[int, float]) -> flo
     return 10.0 * met + sum(_length(points) for points in roads.values())
 
 
-def _fitted_road(problem, path: int, start, heading: float, turns: list[float], laid) -> list:
+def _fitted_road(
+    problem,
+    path: int,
+    start,
+    heading: float,
+    turns: list[float],
+    laid,
+    full: float | None = None,
+    beside=None,
+    beside_from: float = 0.0,
+) -> list:
     """A road from ``start`` along ``heading`` turning by ``turns`` at its control points,
-    as long as its maximum allows but cut where it would leave the scene or come within
-    ``ROAD_CLEARANCE`` of a road in ``laid``; never shorter than ``SHORTEST_ROAD`` of
-    its maximum."""
+    ``full`` long (default: as long as its maximum allows, ``PATH_LENGTH_SHARE``) but
+    cut where it would leave the scene or come within ``ROAD_CLEARANCE`` of a road in
+    ``laid`` (or, from ``beside_from`` metres along it on, in ``beside``: the roads
+    that start where it does); never shorter than ``SHORTEST_ROAD`` of its maximum."""
     half_x, half_z = problem.extent[0] / 2.0 - PATH_MARGIN, problem.extent[1] / 2.0 - PATH_MARGIN
-    full = PATH_LENGTH_SHARE * problem.path_max_length[path]
+    if full is None:
+        full = PATH_LENGTH_SHARE * problem.path_max_length[path]
     segments = len(turns)
 
     def points_for(length: float) -> list[list[float]]:
@@ -431,7 +671,7 @@ def _fitted_road(problem, path: int, start, heading: float, turns: list[float], 
 
     points = points_for(full)
     # How far along it stays inside and clear of the other roads.
-    free, walked = full, 0.0
+    free, walked, met = full, 0.0, False
     for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
         segment = math.hypot(bx - ax, bz - az)
         steps = max(1, int(segment / CLEARANCE_STEP))
@@ -443,16 +683,48 @@ def _fitted_road(problem, path: int, start, heading: float, turns: list[float], 
                 abs(px) > half_x
                 or abs(pz) > half_z
                 or laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                or (
+                    beside is not None
+                    and walked + t * segment >= beside_from
+                    and beside.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                )
             ):
                 stop = walked + (k - 1) / steps * segment
+                met = (
+                    abs(px) <= half_x
+                    and abs(pz) <= half_z
+                    and (laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE)
+                )
                 break
         if stop is not None:
             free = stop
             break
         walked += segment
-    length = max(free, SHORTEST_ROAD * full)
-    points = points_for(length)
-    return [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+    shortest = SHORTEST_ROAD * (PATH_LENGTH_SHARE * problem.path_max_length[path])
+    length = max(free, shortest)
+    points = points_for(min(length, full))
+    points = [[min(max(x, -half_x), half_x), min(max(z, -half_z), half_z)] for x, z in points]
+    if met and free >= shortest:  # it stopped short of another road: it meets that road
+        _meet(points, laid, LONGEST_SHARE * problem.path_max_length[path] - _length(points))
+    return points
+
+
+def _meet(points: list, laid, spare: float) -> None:
+    """Run a road cut short of another road on to it (a T junction): its last point
+    moved on along its last segment to where that meets a road of ``laid``, if it does
+    within ``MEET_REACH`` and ``spare`` metres, at ``MEET_ANGLE`` or more."""
+    (ax, az), (bx, bz) = points[-2], points[-1]
+    length = math.hypot(bx - ax, bz - az)
+    if length <= 0.0:
+        return
+    ux, uz = (bx - ax) / length, (bz - az) / length
+    hit = laid.ray((bx, bz), (ux, uz), min(MEET_REACH, spare))
+    if hit is None:
+        return
+    distance, (vx, vz) = hit
+    if abs(ux * vx + uz * vz) > math.cos(MEET_ANGLE):
+        return
+    points[-1] = [bx + ux * distance, bz + uz * distance]
 
 
 class _Segments:
@@ -461,11 +733,12 @@ class _Segments:
     CELL = 25.0
 
     def __init__(self) -> None:
-        self.cells: dict[tuple[int, int], list[tuple[float, float, float, float]]] = {}
+        self.cells: dict[tuple[int, int], list[tuple[float, float, float, float, int]]] = {}
 
-    def add(self, points) -> None:
+    def add(self, points, owner: int = -1) -> None:
+        """Add a road's segments (``owner``: its path, for ``distance``'s ``ignore``)."""
         for (ax, az), (bx, bz) in zip(points, points[1:], strict=False):
-            segment = (ax, az, bx, bz)
+            segment = (ax, az, bx, bz, owner)
             for i in range(
                 math.floor(min(ax, bx) / self.CELL), math.floor(max(ax, bx) / self.CELL) + 1
             ):
@@ -474,18 +747,61 @@ class _Segments:
                 ):
                     self.cells.setdefault((i, j), []).append(segment)
 
-    def distance(self, point, within: float) -> float:
-        """The distance from ``point`` to the nearest segment, exact when under ``within``
-        (else some value of at least ``within``)."""
+    def distance(self, point, within: float, ignore: int = -2) -> float:
+        """The distance from ``point`` to the nearest segment (not of path ``ignore``),
+        exact when under ``within`` (else some value of at least ``within``)."""
         px, pz = point
         reach = math.ceil(within / self.CELL)
         ci, cj = math.floor(px / self.CELL), math.floor(pz / self.CELL)
         best = math.inf
         for i in range(ci - reach, ci + reach + 1):
             for j in range(cj - reach, cj + reach + 1):
-                for ax, az, bx, bz in self.cells.get((i, j), ()):
-                    best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
+                for ax, az, bx, bz, owner in self.cells.get((i, j), ()):
+                    if owner != ignore:
+                        best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
         return best
+
+    def ray(self, origin, direction, reach: float, ignore: int = -2):
+        """(distance, unit direction of the segment) of the first segment (not of path
+        ``ignore``) crossed going ``reach`` metres from ``origin`` along ``direction``;
+        None if there is none."""
+        ox, oz = origin
+        dx, dz = direction
+        ex, ez = ox + dx * reach, oz + dz * reach
+        best = None
+        for i in range(
+            math.floor(min(ox, ex) / self.CELL), math.floor(max(ox, ex) / self.CELL) + 1
+        ):
+            for j in range(
+                math.floor(min(oz, ez) / self.CELL), math.floor(max(oz, ez) / self.CELL) + 1
+            ):
+                for ax, az, bx, bz, owner in self.cells.get((i, j), ()):
+                    if owner == ignore:
+                        continue
+                    sx, sz = bx - ax, bz - az
+                    cross = dx * sz - dz * sx
+                    if abs(cross) < 1e-12:
+                        continue
+                    t = ((ax - ox) * sz - (az - oz) * sx) / cross  # along the ray
+                    u = ((ax - ox) * dz - (az - oz) * dx) / cross  # along the segment
+                    if 0.0 <= t <= reach and 0.0 <= u <= 1.0 and (best is None or t < best[0]):
+                        length = math.hypot(sx, sz)
+                        best = (t, (sx / length, sz / length))
+        return best
+
+
+class _Near:
+    """The nearest of several ``_Segments``, leaving out one road (a branch's own)."""
+
+    def __init__(self, sets: tuple[_Segments, ...], ignore: int) -> None:
+        self.sets, self.ignore = sets, ignore
+
+    def distance(self, point, within: float) -> float:
+        return min(found.distance(point, within, self.ignore) for found in self.sets)
+
+    def ray(self, origin, direction, reach: float):
+        hits = [found.ray(origin, direction, reach, self.ignore) for found in self.sets]
+        return min((hit for hit in hits if hit is not None), default=None)
 
 
 def _length(points) -> float:

@@ -109,10 +109,15 @@ class Mover(Placer):
         super().__init__(problem, state, rng, params, pins, rigid_groups)
         pins = self.pins
         self.boxes = [b for b in range(problem.n_boxes) if self.movable_box[b]]
+        # A grid's junctions and roads stay where they are laid (straight and square).
         self.junctions = [
-            b for b in range(problem.n_boxes) if problem.is_junction[b] and not pins.box[b]
+            b
+            for b in range(problem.n_boxes)
+            if problem.is_junction[b] and not pins.box[b] and not problem.grid[b]
         ]
-        self.paths = [p for p in range(problem.n_paths) if not pins.path[p]]
+        self.paths = [
+            p for p in range(problem.n_paths) if not pins.path[p] and not problem.path_grid[p]
+        ]
         rigid = set(rigid_groups)
         self.rigid_group_of = {box: g for g in rigid for box in problem.group_members[g]}
         self.groups = [
@@ -265,7 +270,8 @@ class Mover(Placer):
     def move_path(self, path: int) -> tuple[dict, dict] | None:
         problem, state, rng = self.problem, self.state, self.rng
         points = state.points[path]
-        first = 1 if problem.path_start[path] >= 0 else 0
+        # A road's start stays at its junction, or on the road it branches from.
+        first = 1 if problem.path_start[path] >= 0 or problem.path_parent[path] >= 0 else 0
         if first >= len(points):
             return None
         index = int(rng.integers(first, len(points)))

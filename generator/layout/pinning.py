@@ -147,8 +147,15 @@ def compile_pins(
                     f"pinned: {problem.ids[box]} rests on {problem.ids[below]}, which is not pinned; "
                     f"pin {problem.ids[below]} too (a pinned object cannot stay put on a support that moves)"
                 )
-    for path, points in pins.points.items():
+    for path in pins.points:
         pins.path[path] = True
+    for path, points in pins.points.items():
+        parent = problem.path_parent[path]
+        if parent >= 0 and not pins.path[parent]:
+            raise InputError(
+                f"pinned_paths: {problem.path_ids[path]} branches from {problem.path_ids[parent]}, "
+                f"which is not pinned; pin {problem.path_ids[parent]} too"
+            )
         junction = problem.path_start[path]
         if junction < 0:
             continue
@@ -235,7 +242,7 @@ class ScenePins:
 
     poses: dict[str, Pose]
     paths: dict[str, list[list[float]]]
-    added: list[str]  # pinned because a named id needs them (members, supports, junctions)
+    added: list[str]  # pinned because a named id needs them (members, supports, junctions, roads)
 
 
 def pins_from_scene(
@@ -244,7 +251,7 @@ def pins_from_scene(
     """Pin these ids of a laid-out Scene at their current poses (``problem`` is its graph's).
 
     An object or junction pins itself, a path its control points and the junction it
-    starts at, a group every object in it; any object pinned brings the objects beneath
+    starts at (a branch also the road it starts on, and so on), a group every object in it; any object pinned brings the objects beneath
     it (they must stay for it to stay). Unknown ids are an ``InputError``.
     """
     poses, points = scene_layout(scene)
@@ -262,9 +269,11 @@ def pins_from_scene(
             boxes.append(box_index[entry_id])
         elif entry_id in path_index:
             path = path_index[entry_id]
-            paths.append(path)
-            if problem.path_start[path] >= 0:
-                boxes.append(problem.path_start[path])
+            while path >= 0:  # a branch brings the road it starts on, and so on
+                paths.append(path)
+                if problem.path_start[path] >= 0:
+                    boxes.append(problem.path_start[path])
+                path = problem.path_parent[path]
         elif entry_id in group_index:
             boxes.extend(problem.group_members[group_index[entry_id]])
         else:
@@ -285,5 +294,6 @@ def pins_from_scene(
     return ScenePins(
         poses={problem.ids[b]: poses[problem.ids[b]] for b in chosen_boxes},
         paths={problem.path_ids[p]: points[problem.path_ids[p]] for p in chosen_paths},
-        added=[problem.ids[b] for b in chosen_boxes if problem.ids[b] not in named],
+        added=[problem.ids[b] for b in chosen_boxes if problem.ids[b] not in named]
+        + [problem.path_ids[p] for p in chosen_paths if problem.path_ids[p] not in named],
     )

@@ -143,13 +143,15 @@ class Placer:
         return end.kind == "group" and bool(end.members) and not self.group_whole[end.index]
 
     def _pulls(self, end: Endpoint) -> bool:
-        """Whether ``pull`` may move this end: a free path or a free junction."""
+        """Whether ``pull`` may move this end: a free path or a free junction (not a
+        grid's: it stays straight and square)."""
         if end.kind == "path":
-            return not self.pins.path[end.index]
+            return not self.pins.path[end.index] and not self.problem.path_grid[end.index]
         return (
             end.kind == "object"
             and self.problem.is_junction[end.index]
             and not self.pins.box[end.index]
+            and not self.problem.grid[end.index]
         )
 
     def _placing_terms(self, end: Endpoint) -> list[RelationTerm]:
@@ -272,7 +274,7 @@ class Placer:
                 end_reach(problem, state, term.a, dx, dz) + problem.path_width[path] / 2.0 + gap
             )
             tx, tz = ax + dx * distance, az + dz * distance
-            first = 1 if problem.path_start[path] >= 0 else 0
+            first = 1 if problem.path_start[path] >= 0 or problem.path_parent[path] >= 0 else 0
             candidates = [k for k in (segment, segment + 1) if k >= first]
             k = min(candidates, key=lambda k: math.hypot(points[k][0] - tx, points[k][1] - tz))
             new = [list(p) for p in points]

@@ -103,6 +103,18 @@ class Problem:
     #: edge's ``some``), every path of that type, in path order: the lots may give the
     #: relation another of them (``lots.plan_lots``, ``retarget``).
     free_paths: dict[int, tuple[int, ...]] = field(default_factory=dict)
+    #: Per path, the path it branches from (``road PathConnectedTo other_road``: it
+    #: starts at a point along that one, a T junction), -1 if none; per path, its
+    #: branches; and the paths in an order where each comes after the one it branches
+    #: from (the order they are laid in).
+    path_parent: list[int] = field(default_factory=list)
+    branches_of: dict[int, list[int]] = field(default_factory=dict)
+    path_order: list[int] = field(default_factory=list)
+    #: Per box: a junction that starts a grid (``network grid``); per path: whether it
+    #: belongs to a grid (it starts at a grid's junction, or branches from a grid's
+    #: road). A grid's roads are laid straight and square, and stay where they are laid.
+    grid: list[bool] = field(default_factory=list)
+    path_grid: list[bool] = field(default_factory=list)
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
     mask: CompiledMask | None = None
@@ -192,6 +204,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
     size: list[float] = []
     clearance: list[tuple[tuple[str, float], ...]] = []
     access: list[tuple[str, ...]] = []
+    grid: list[bool] = []
     path_ids: list[str] = []
     path_width: list[float] = []
     path_max_length: list[float] = []
@@ -215,6 +228,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
             size.append(math.hypot(width, depth))
             clearance.append(node.clearance)
             access.append(node.access)
+            grid.append(node.network == "grid")
         elif node.kind == "path":
             path_index[node.id] = len(path_ids)
             path_ids.append(node.id)
@@ -255,6 +269,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
 
     support = [-1] * len(ids)
     path_start = [-1] * len(path_ids)
+    path_parent = [-1] * len(path_ids)
     relations: list[RelationTerm] = []
     edges: list[tuple[str, str, str, int | None]] = []
     free_paths: dict[int, tuple[int, ...]] = {}
@@ -262,8 +277,13 @@ def compile_problem(graph: SceneGraph) -> Problem:
     for edge, some in zip(graph.edges(), drawn, strict=True):
         spec = RELATIONS[edge.label]
         if spec.family == "structural":
-            path, junction = _path_connection(edge, path_index, box_index)
-            path_start[path] = junction
+            path, start = _path_connection(edge, path_index, box_index)
+            if start[0] == "path" or path_parent[path] >= 0:
+                _refuse_second_start(edge, path, path_start, path_parent, path_ids, ids)
+            if start[0] == "path":
+                path_parent[path] = start[1]
+            else:
+                path_start[path] = start[1]
             edges.append((edge.source, edge.target, edge.label, None))
             continue
         a, b = endpoint(edge.source), endpoint(edge.target)
@@ -315,7 +335,20 @@ def compile_problem(graph: SceneGraph) -> Problem:
         clearance=clearance,
         access=access,
         free_paths=free_paths,
+        grid=grid,
+        path_parent=path_parent,
+        path_order=_branch_order(path_parent, path_ids),
     )
+    for path in problem.path_order:  # a branch belongs to its road's network
+        parent = path_parent[path]
+        if parent >= 0:
+            problem.branches_of.setdefault(parent, []).append(path)
+    problem.path_grid = [False] * len(path_ids)
+    for path in problem.path_order:
+        junction, parent = path_start[path], path_parent[path]
+        problem.path_grid[path] = (junction >= 0 and grid[junction]) or (
+            parent >= 0 and problem.path_grid[parent]
+        )
     problem.terms_of_box = [[] for _ in ids]
     problem.terms_of_path = [[] for _ in path_ids]
     problem.covering = [
@@ -396,13 +429,55 @@ def _refuse_room_misuse(
     room_is_fixed(edge, spec, a, b, room)
 
 
-def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, int]:
-    """(path, junction box) of a PathConnectedTo edge, written either way round."""
+def _path_connection(edge, path_index: dict, box_index: dict) -> tuple[int, tuple[str, int]]:
+    """(path, where it starts) of a PathConnectedTo edge: ("junction", box) for a path
+    and a junction written either way round, ("path", parent) for a path that branches
+    from another (the source branches from the target)."""
+    if edge.source in path_index and edge.target in path_index:
+        return path_index[edge.source], ("path", path_index[edge.target])
     if edge.source in path_index and edge.target in box_index:
-        return path_index[edge.source], box_index[edge.target]
+        return path_index[edge.source], ("junction", box_index[edge.target])
     if edge.target in path_index and edge.source in box_index:
-        return path_index[edge.target], box_index[edge.source]
-    raise InputError(f"{edge.source} PathConnectedTo {edge.target}: needs a path and a junction")
+        return path_index[edge.target], ("junction", box_index[edge.source])
+    raise InputError(
+        f"{edge.source} PathConnectedTo {edge.target}: needs a path and a junction, or two paths"
+    )
+
+
+def _refuse_second_start(edge, path, path_start, path_parent, path_ids, ids) -> None:
+    """A branch starts on one road only, and not at a junction too."""
+    if path_parent[path] >= 0:
+        where = path_ids[path_parent[path]]
+    elif path_start[path] >= 0:
+        where = ids[path_start[path]]
+    else:
+        return
+    raise InputError(
+        f"{edge.source} PathConnectedTo {edge.target}: {path_ids[path]} already starts at "
+        f"{where}; a path starts at one junction or branches from one path"
+    )
+
+
+def _branch_order(path_parent: list[int], path_ids: list[str]) -> list[int]:
+    """The paths, each after the one it branches from (else in path order); a cycle of
+    branches is refused."""
+    order: list[int] = []
+    placed = [False] * len(path_parent)
+    for path in range(len(path_parent)):
+        chain: list[int] = []
+        seen: set[int] = set()
+        while path >= 0 and not placed[path]:
+            if path in seen:
+                cycle = [*chain[chain.index(path) :], path]
+                names = " -> ".join(path_ids[p] for p in cycle)
+                raise InputError(f"paths branch from each other in a circle: {names}")
+            seen.add(path)
+            chain.append(path)
+            path = path_parent[path]
+        for link in reversed(chain):
+            placed[link] = True
+            order.append(link)
+    return order
 
 
 def _refuse_support_cycles(support: list[int], ids: list[str]) -> None:

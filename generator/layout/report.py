@@ -32,6 +32,7 @@ import math
 from scenewright.core.geometry import polyline_length, polyline_turns
 from scenewright.core.relations import Relation
 
+from .branches import branch_angle
 from .energy import Energy
 from .families import complaint, satisfied
 from .relation_terms import EPSILON
@@ -142,6 +143,15 @@ def _path_shapes(energy: Energy) -> list[str]:
             found.append(
                 f"{problem.path_ids[path]} turns by {math.degrees(max(turns)):.0f}° (at most {math.degrees(params.gamma):.0f}°)"
             )
+    for path in range(problem.n_paths):
+        parent = problem.path_parent[path]
+        if parent >= 0:
+            angle = branch_angle(state.points[parent], state.points[path])
+            if angle < params.gamma - EPSILON:
+                found.append(
+                    f"{problem.path_ids[path]} leaves {problem.path_ids[parent]} at only "
+                    f"{math.degrees(angle):.0f}° (at least {math.degrees(params.gamma):.0f}°)"
+                )
     for junction in problem.paths_of_junction:
         angles = energy.junction_angles(junction)
         if angles and min(angles) < params.gamma - EPSILON:

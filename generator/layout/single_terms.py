@@ -19,6 +19,7 @@ from scenewright.core.geometry import (
     rect_overlap,
 )
 
+from .branches import branch_angle
 from .factors import greater, less
 from .params import LayoutParams
 from .problem import Problem
@@ -170,6 +171,10 @@ class SingleTerms:
         energy = -less(polyline_length(points), self.problem.path_max_length[path], params.h)
         for turn in polyline_turns(points):
             energy -= less(turn, params.gamma, params.h)
+        parent = self.problem.path_parent[path]
+        if parent >= 0:  # a branch leaves its road at least gamma from it
+            angle = branch_angle(self.state.points[parent], points)
+            energy -= greater(angle, params.gamma, params.h)
         return energy
 
     def junction_angles(self, junction: int) -> list[float]:
