@@ -11,9 +11,9 @@ that text (with the rule set's catalog, seed the same), then
   poses (``measure_layout``), not as the compose report says;
 - CPU seconds per text for reading and planning (no layout).
 
-The outdoor rule sets (town, village) and the classroom are not composed: roads,
-junctions and groups ("the first row of desks consists of ...") are not part of the
-composing language (docs/compose.md). Usage:
+The sets are every shipped room rule set (groups included: the classroom's rows of
+desks). The outdoor rule sets (village, town, city) are not composed: roads and
+junctions are not part of the composing language (docs/compose.md). Usage:
 
     python benchmarks/bench_compose.py                    # seeds 1000-1099
     python benchmarks/bench_compose.py --seeds 1000:1020 --sets bedroom,kitchen
@@ -33,9 +33,25 @@ from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator import load_rules
 from scenewright.generator.layout.measure import measure_layout
 from scenewright.generator.layout.pinning import scene_layout
-from scenewright.generator.rules import indoor_catalog
+from scenewright.generator.rules import created_types, indoor_catalog
 
-ROOM_SETS = ("bathroom", "bedroom", "desk", "kitchen", "living_room", "study")
+ROOM_SETS = (
+    "bathroom",
+    "bedroom",
+    "desk",
+    "kitchen",
+    "living_room",
+    "study",
+    "classroom",
+    "library",
+    "hall",
+    "corridor",
+    "office",
+    "meeting_room",
+    "treasury",
+    "barracks",
+    "guard_room",
+)
 _WALL_LABELS = ("AgainstWall", "InCorner", "UnderWindow", "BesideWindow")
 
 
@@ -145,7 +161,7 @@ def main() -> None:
                 ],
             )
             started = time.process_time()
-            plan(text, entries)
+            plan(text, entries, created_types(rules))
             cpu.append(time.process_time() - started)
             composed, report = compose(text, seed, catalog=rules)
             held = _held(composed)

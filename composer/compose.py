@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 import re
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -83,11 +83,14 @@ class Report:
         return out
 
 
-def plan(text: str, entries: Mapping[str, CatalogEntry]) -> tuple[Request, str]:
-    """The request read from ``text`` and the rule set that makes it."""
+def plan(
+    text: str, entries: Mapping[str, CatalogEntry], prefer: Iterable[str] = ()
+) -> tuple[Request, str]:
+    """The request read from ``text`` and the rule set that makes it (``prefer``: the
+    types that name a noun several types share, ``vocabulary``)."""
     if not text.strip():
         raise InputError("nothing to compose: the text is empty")
-    request = parse(text, vocabulary(entries))
+    request = parse(text, vocabulary(entries, prefer))
     rules = rules_text(request, entries)
     request.starts = corner_starts(request, entries, request.planned_size)
     return request, rules
@@ -117,10 +120,10 @@ def lay_out(
     timings: dict[str, float] = {}
     with timed(timings, "expand"):
         graph = expand(loaded, seed)
-    # The expansion names the things by type and number; the statement's e<k> is the
-    # k-th thing made, in the order the production makes them.
-    made = [n.id for n in graph.nodes() if n.kind == "object"]
-    ids = {e.id: made[k] for k, e in enumerate(request.entities)}
+    # The expansion names the things by type and number; the k-th thing (object or group)
+    # it makes is the k-th of the production's order (``request.made``).
+    made = [n.id for n in graph.nodes() if n.kind in ("object", "group")]
+    ids = dict(zip(request.made, made, strict=True))
     from scenewright.core.poses import Pose
 
     def held(k: int) -> dict[str, Pose]:

@@ -72,6 +72,14 @@ class Entity:
     colour: str | None
     start: int
     end: int
+    #: The group it is a member of ("the first row of desks consists of four desks").
+    parent: str | None = None
+    #: Whether it is a group itself.
+    group: bool = False
+
+
+#: ``_Reader.matching``'s "wherever it is": no group named for it.
+_ANYWHERE = "*"
 
 
 @dataclass(frozen=True)
@@ -111,6 +119,7 @@ class Request:
     size: tuple[float, float] | None = None
     size_factor: float = 1.0
     planned_size: tuple[float, float] = (0.0, 0.0)  # the room's sides as planned
+    made: list[str] = field(default_factory=list)  # entity ids in the order the rules make them
     door_walls: list[str] = field(default_factory=list)  # as planned
     starts: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)  # x, z, yaw
     doors: list[str] = field(default_factory=list)  # one wall side per door
@@ -159,8 +168,12 @@ class _Reader:
         #: the describer counts its ordinals: after "the first bookshelf" and "the low
         #: bookshelf", "the third bookshelf" is the one not named yet), and the things
         #: named in a set ("two of the bookshelves"), which "the other" is not.
-        self.ranks: dict[str, list[str]] = {}
+        self.ranks: dict[tuple[str, str | None], list[str]] = {}
         self.in_sets: set[str] = set()
+        #: The group whose members a "consists of" sentence is naming, and the group the
+        #: text is about since (its paragraph): "the first desk" there is one of its own.
+        self.members_of: str | None = None
+        self.focus: str | None = None
         #: Whether the last noun phrase read was "each N" / "every N": a relation to it
         #: then makes one subject per N ("a lamp on each nightstand").
         self.each = False
@@ -179,14 +192,26 @@ class _Reader:
 
     def create(self, sense: NounSense, colour: str | None, toks: list[Token]) -> str:
         n = len(self.req.entities) + 1
-        entity = Entity(f"e{n}", sense.type, sense.style, colour, toks[0].start, toks[-1].end)
+        entity = Entity(
+            f"e{n}",
+            sense.type,
+            sense.style,
+            colour,
+            toks[0].start,
+            toks[-1].end,
+            parent=self.members_of,
+            group=sense.type in self.vocab.groups,
+        )
         self.req.entities.append(entity)
         return entity.id
 
     def entity(self, eid: str) -> Entity:
         return self.req.entities[int(eid[1:]) - 1]
 
-    def matching(self, sense: NounSense) -> list[str]:
+    def matching(self, sense: NounSense, parent: str | None = _ANYWHERE) -> list[str]:
+        """The things the noun may name: those of ``parent`` (a group, or None for the
+        top level) when given; else the focus group's own if it has any, else the top
+        level's if there are any, else all."""
         out = []
         for e in self.req.entities:
             if e.type != sense.type:
@@ -194,6 +219,14 @@ class _Reader:
             if sense.exact and sense.style is not None and e.style not in (None, sense.style):
                 continue
             out.append(e.id)
+        if parent != _ANYWHERE:
+            out = [e for e in out if self.entity(e).parent == parent]
+        else:
+            for owner in (self.focus, None):
+                own = [e for e in out if self.entity(e).parent == owner]
+                if own:
+                    out = own
+                    break
         # "the bookshelf" is the plain one before "the low bookshelf"
         return sorted(out, key=lambda eid: self.entity(eid).style != sense.style)
 
@@ -205,9 +238,11 @@ class _Reader:
         count: int | None,
         colour: str | None,
         toks: list[Token],
+        scope: str | None = _ANYWHERE,
     ) -> list[str]:
-        found = self.matching(sense)
-        ranked = self.ranks.setdefault(sense.type, [])
+        found = self.matching(sense, scope)
+        owners = {self.entity(e).parent for e in found}
+        ranked = self.ranks.setdefault((sense.type, owners.pop() if len(owners) == 1 else None), [])
         if ordinal is not None:
             # a style's noun counts its own ("the second low bookshelf"), the plain noun
             # every one of the type ("the third bookshelf", low ones included)
@@ -356,9 +391,34 @@ class _Reader:
         if det in ("", "a", "another") and ordinal is None:
             n = count if count is not None else (2 if sense.plural else 1)
             ids = [self.create(sense, colour, taken) for _ in range(n)]
-        else:
-            ids = self.refer(sense, det, ordinal, count, colour, taken)
-        return "things", ids, j + hit[1] - i
+            return "things", ids, j + hit[1] - i
+        scope, extra = self._owner_after(toks, j + hit[1], subject)
+        ids = self.refer(sense, det, ordinal, count, colour, taken, scope)
+        return "things", ids, j + hit[1] + extra - i
+
+    def _owner_after(self, toks: list[Token], k: int, subject: list[str]):
+        """Where a definite phrase's thing belongs, said after it: "of the first row of
+        desks" (that group's), "on its own" (the top level's); (the group, or None for
+        the top level, or _ANYWHERE when nothing is said; tokens taken)."""
+        words = [t.low for t in toks[k : k + 3]]
+        if words in (["on", "its", "own"], ["on", "their", "own"]):
+            for t in toks[k : k + 3]:
+                t.used = True
+            return None, 3
+        if not words or words[0] not in ("of", "at") or k + 1 >= len(toks):
+            return _ANYWHERE, 0
+        j = k + 1
+        while j < len(toks) and (toks[j].low in ("the", "this", "that") or toks[j].low in ORDINALS):
+            j += 1
+        hit = self.match(toks, j, self.vocab.nouns) if j < len(toks) else None
+        if hit is None or self.vocab.nouns[hit[0]].type not in self.vocab.groups:
+            return _ANYWHERE, 0
+        owner = self.noun_phrase(toks, k + 1, subject)
+        if owner is None or owner[0] != "things" or len(owner[1]) != 1:
+            return _ANYWHERE, 0
+        for t in toks[k : k + 1 + owner[2]]:
+            t.used = True
+        return owner[1][0], 1 + owner[2]
 
     def _size_at(self, toks: list[Token], j: int):
         """ "4 by 3 metre", "4x3 m", "4 m by 3 m": ((w, d), tokens taken) or None."""
@@ -467,9 +527,23 @@ class _Reader:
         subject = _Subject()
         pending: tuple[str, tuple[str, ...], int, list[str]] | None = None
         joined = False  # the last word was "and" or a comma
+        self.members_of = None
         i = 0
         while i < len(toks):
             t = toks[i]
+            owner = subject.last()
+            if (
+                t.low in ("consists", "consist")
+                and i + 1 < len(toks)
+                and toks[i + 1].low == "of"
+                and len(owner) == 1
+                and self.entity(owner[0]).group
+            ):  # "the first row of desks consists of four desks and four chairs"
+                self.members_of = self.focus = owner[0]
+                t.used = toks[i + 1].used = True
+                subject, pending, joined = _Subject(), None, False
+                i += 2
+                continue
             if t.low in ("and", ",", "with", "plus", "also", "while"):
                 t.used = True
                 joined = t.low in ("and", ",")

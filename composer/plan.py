@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from scenewright.describer.colours import COLOUR_TERMS
 from scenewright.generator.catalog import CatalogEntry, Style
 
-from .parse import Place, Request, Statement
+from .parse import Issue, Place, Request, Statement
 
 #: The production every composed rule set starts from.
 START = "Compose"
@@ -76,6 +76,9 @@ def _looks(
 def entry_text(name: str, entry: CatalogEntry, style: str | None, colour: str | None) -> str:
     """One catalog entry: the catalog's, keeping only the style asked for (all of them
     when none was), its colour replaced by a colour word's when one was asked for."""
+    if entry.kind == "group":
+        plural = f" plural {_quote(entry.plural)}" if entry.plural else ""
+        return f"group {name} {{ noun {_quote(entry.noun)}{plural} }}"
     rgb = COLOUR_TERMS[colour] if colour else None
     head = _looks(
         entry.noun, entry.plural, entry.size, entry.shape, entry.mesh, rgb or entry.colour
@@ -102,6 +105,8 @@ def room_size(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[fl
     base = next((size for name, size in ROOMS.values() if name == request.room), (0.0, 0.0))
     footprint = 0.0
     for e in request.entities:
+        if e.group:
+            continue  # its members count
         w, _, d = entries[e.type].size
         style = next((s for s in entries[e.type].styles if s.name == e.style), None)
         if style is not None and style.size is not None:
@@ -266,28 +271,86 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
     for (type_, style, colour), name in keys.items():
         out.append(entry_text(name, entries[type_], style, colour))
     out.append("")
-    made: set[str] = set()
     statements = [f"{START} -> {{"]
-    later = []
-    statements_all = request.statements + _implicit(request, entries)
-    for e in request.entities:
-        parts = [keys[(e.type, e.style, e.colour)], "as", e.id]
-        for s in statements_all:
-            if s.source != e.id:
-                continue
-            target = _target(s.target, windows)
-            if isinstance(s.target, Place) or s.target in made:
-                parts += [s.label, target]
-            else:
-                later.append(f"    {e.id} {s.label} {target}")
-        made.add(e.id)
-        statements.append("    " + " ".join(parts))
-    statements += later
+    statements += _production_body(
+        request, keys, request.statements + _implicit(request, entries), windows
+    )
     statements.append("}")
     if len(statements) == 2:  # nothing asked for: an empty room
         statements = [f"{START} -> {{ }}"]
     out += statements
     return "\n".join(out) + "\n"
+
+
+def _production_body(
+    request: Request,
+    keys: Mapping[tuple[str, str | None, str | None], str],
+    statements: list[Statement],
+    windows: int,
+) -> list[str]:
+    """The start production's lines: the things at the top level first, then each group
+    with its members in its block, each thing with its relations to what is made before
+    it, the rest after the things of their block. A group's block sees the top level's
+    things made before it, not another group's members: a relation between members of
+    two groups cannot be written, and is left out. ``request.made`` gets the order the
+    production makes the things in."""
+    top = [e for e in request.entities if e.parent is None and not e.group]
+    groups = [e for e in request.entities if e.parent is None and e.group]
+    members = {g.id: [e for e in request.entities if e.parent == g.id] for g in groups}
+    order = [e.id for e in top]
+    for g in groups:
+        order += [g.id] + [m.id for m in members[g.id]]
+    request.made = order
+    rank = {eid: k for k, eid in enumerate(order)}
+    parent = {e.id: e.parent for e in request.entities}
+
+    def block_of(s: Statement) -> str | None | bool:
+        """The block a statement is written in (a group's id, None for the top level),
+        or False when no block sees both its things."""
+        a = parent[s.source]
+        b = parent[s.target] if isinstance(s.target, str) else a
+        if a == b:
+            return a
+        inner, outer = (a, s.target) if b is None else (b, s.source)
+        if a is not None and b is not None:
+            return False  # members of two groups
+        return inner if rank[outer] < rank[inner] else False
+
+    inline: dict[str, list[str]] = {}
+    later: dict[str | None, list[str]] = {}
+    for st in statements:
+        block = block_of(st)
+        if block is False:
+            if not st.label.startswith("Implicit"):
+                request.issues.append(
+                    Issue(
+                        st.start,
+                        st.end,
+                        "",
+                        "a relation between things of two groups is not composed",
+                    )
+                )
+            continue
+        target = _target(st.target, windows)
+        before = isinstance(st.target, Place) or rank[st.target] < rank[st.source]
+        if before and parent[st.source] == block:
+            inline.setdefault(st.source, []).extend([st.label, target])
+        else:
+            later.setdefault(block, []).append(f"{st.source} {st.label} {target}")
+
+    def line(e, indent: str) -> str:
+        return indent + " ".join(
+            [keys[(e.type, e.style, e.colour)], "as", e.id, *inline.get(e.id, [])]
+        )
+
+    lines = [line(e, "    ") for e in top]
+    for g in groups:
+        lines.append(line(g, "    ") + " {")
+        lines += [line(m, "        ") for m in members[g.id]]
+        lines += ["        " + text for text in later.get(g.id, [])]
+        lines.append("    }")
+    lines += ["    " + text for text in later.get(None, [])]
+    return lines
 
 
 #: The yaw that turns a thing's back to each wall (its front, local +Z, into the room).

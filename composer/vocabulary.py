@@ -14,7 +14,7 @@ from __future__ import annotations
 import difflib
 import functools
 import re
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from scenewright.core.relations import RELATIONS, SIDES
@@ -238,7 +238,7 @@ FUNCTION_WORDS = frozenset(
     "consist of includes including include featuring features also plus then it its "
     "that which where this these those please i we want would like need needs make "
     "create give me put place set up an a the in on at to by for as should must "
-    "let there's i'd want's both all each every another more other same".split()
+    "let there's i'd want's both all each every another more other same empty bare".split()
 )
 
 
@@ -295,6 +295,8 @@ class Vocabulary:
     nouns: Mapping[str, NounSense]
     relations: Mapping[str, RelationSense]
     entries: Mapping[str, CatalogEntry]
+    #: Group types ("row of desks"): things that consist of other things.
+    groups: frozenset[str] = frozenset()
 
     @functools.cached_property
     def known_words(self) -> tuple[str, ...]:
@@ -361,12 +363,16 @@ def relation_phrases() -> Mapping[str, RelationSense]:
     return _relation_phrases()
 
 
-def vocabulary(entries: Mapping[str, CatalogEntry]) -> Vocabulary:
-    """The vocabulary of a catalog (object entries only: groups, paths and junctions
-    are not composed)."""
+def vocabulary(entries: Mapping[str, CatalogEntry], prefer: Iterable[str] = ()) -> Vocabulary:
+    """The vocabulary of a catalog (objects and groups: paths and junctions are not
+    composed). Where two types share a noun, one of ``prefer`` (the types a rule set
+    given as the catalog makes: a classroom's "desk" is its pupils' desk) names it."""
     nouns: dict[str, NounSense] = {}
     objects = {name: e for name, e in sorted(entries.items()) if e.kind == "object"}
-    for entry in objects.values():
+    groups = {name: e for name, e in sorted(entries.items()) if e.kind == "group"}
+    first = set(prefer)
+    ordered = sorted([*objects.values(), *groups.values()], key=lambda e: e.name not in first)
+    for entry in ordered:
         for phrase, sense in _entry_nouns(entry).items():
             nouns.setdefault(phrase, sense)
     for word, noun in SYNONYMS.items():
@@ -377,7 +383,7 @@ def vocabulary(entries: Mapping[str, CatalogEntry]) -> Vocabulary:
                 # "a small table": the style's name before the everyday word
                 nouns.setdefault(f"{style.name} {word}", NounSense(sense.type, style.name, False))
             nouns.setdefault(_plural(word), NounSense(sense.type, sense.style, True, sense.exact))
-    return Vocabulary(nouns, relation_phrases(), objects)
+    return Vocabulary(nouns, relation_phrases(), objects | groups, frozenset(groups))
 
 
 def side_label(side: str) -> str:

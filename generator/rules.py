@@ -100,6 +100,17 @@ def indoor_catalog() -> Mapping[str, CatalogEntry]:
     return MappingProxyType(dict(load_rules(INDOOR_CATALOG_READER).catalog.entries))
 
 
+def created_types(rules: Rules) -> set[str]:
+    """The names the subjects of ``rules``' statements give (types and groups made, and
+    names bound before): of a shared catalog, what this rule set makes."""
+    return {
+        statement.subject.name
+        for production in rules.productions.values()
+        for statement in ast.production_statements(production)
+        if isinstance(statement.subject, ast.Reference)
+    }
+
+
 def load_rules(source: str | os.PathLike, *, allow: Iterable[str | os.PathLike] = ()) -> Rules:
     """Parse and check a rule set (shipped name or path); raise ``RulesError`` on errors.
 

@@ -374,11 +374,15 @@ def compose(
     templates = checked_templates(templates)  # before any work
     entries = dict(indoor_catalog())
     allow: tuple[str, ...] = ()
+    prefer: set[str] = set()
     if catalog is not None:
+        from scenewright.generator.rules import created_types
+
         own = load_rules(catalog)
         entries.update(own.catalog.entries)
         allow = (str(Path(own.path).parent),)
-    request, rules = plan(text, entries)
+        prefer = created_types(own)
+    request, rules = plan(text, entries, prefer)
     scene, unsatisfied, crowded = lay_out(
         rules, request, seed, label=rules_label or RULES_LABEL, allow=allow
     )

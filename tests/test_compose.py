@@ -208,6 +208,47 @@ def test_some_of_the_things_then_the_other():
     assert not request.issues
 
 
+ROWS = (
+    "The scene consists of a whiteboard and two rows of desks. The whiteboard stands "
+    "against the north wall. The first row of desks is south of the second row of desks. "
+    "The first row of desks consists of two desks and two chairs. The two desks face the "
+    "opposite way to the whiteboard. The first chair of the first row of desks is at the "
+    "back of the first desk. The second desk is to the left of the first desk. The second "
+    "row of desks consists of two desks. The second desk is to the left of the first desk."
+)
+
+
+def test_a_group_consists_of_its_members_and_ordinals_count_within_it(tmp_path):
+    from scenewright.generator import load_rules
+
+    entries = {**indoor_catalog(), **load_rules("classroom").catalog.entries}
+    request, rules = plan(ROWS, entries, {"row", "student_desk"})
+    assert not request.issues
+    rows = [e.id for e in request.entities if e.group]
+    assert [e.type for e in request.entities if e.group] == ["row", "row"]
+    desks = {
+        g: [e.id for e in request.entities if e.parent == g and e.type == "student_desk"]
+        for g in rows
+    }
+    assert all(len(v) == 2 for v in desks.values())
+    said = {(s.source, s.label, s.target) for s in request.statements}
+    assert (rows[0], "NextToSouth", rows[1]) in said
+    for g in rows:  # "the second desk ... the first desk" of the paragraph's own row
+        assert (desks[g][1], "NextToLeft", desks[g][0]) in said
+    chair = next(e.id for e in request.entities if e.type == "chair" and e.parent == rows[0])
+    assert (chair, "SeatedAtBack", desks[rows[0]][0]) in said
+    # the members are written in their group's block, and the rule set loads
+    assert "row as e2 {" in rules and "        student_desk as" in rules
+    path = tmp_path / "rows.rules"
+    path.write_text(rules)
+    assert load_rules(path).catalog["row"].kind == "group"
+
+
+def test_the_empty_room_sentence_reads_whole():
+    request, _ = _plan("The room has a door in the south wall. The room is empty.")
+    assert not request.issues and not request.entities
+
+
 def test_on_a_wall_is_against_it():
     request, _ = _plan("a bookcase on the west wall")
     assert [(s.label, s.target) for s in request.statements] == [("AgainstWall", Place("wall", 4))]

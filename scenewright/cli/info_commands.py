@@ -82,6 +82,7 @@ def run_list(args: argparse.Namespace) -> int:
     from scenewright.api import load_rules
     from scenewright.core.shapes import SHAPES
     from scenewright.generator import shipped_rule_sets
+    from scenewright.generator.rules import created_types
 
     if args.shapes:
         rows = [("shape", "front (local +Z; its left is +X)", "used from")]
@@ -122,16 +123,3 @@ def run_list(args: argparse.Namespace) -> int:
             )
         )
     return 0
-
-
-def created_types(rules) -> set[str]:
-    """The names the subjects of ``rules``' statements give (types and groups made, and
-    names bound before)."""
-    from scenewright.generator import rules_ast as ast
-
-    return {
-        statement.subject.name
-        for production in rules.productions.values()
-        for statement in ast.production_statements(production)
-        if isinstance(statement.subject, ast.Reference)
-    }
