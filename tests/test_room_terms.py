@@ -324,7 +324,9 @@ def sized_barrier(gap: float, thickness: float = 0.5):
 def test_a_way_narrower_than_a_corridor_leaves_what_is_behind_it_unreachable():
     graph, poses = sized_barrier(0.5)
     result = measured(graph, poses)
-    assert result.problems == ["wardrobe_1 cannot be reached from the door (no 0.6 m wide way)"]
+    # The wardrobe is out of reach, and the room's far half is cut off from the door.
+    assert result.problems[0] == "wardrobe_1 cannot be reached from the door (no 0.6 m wide way)"
+    assert len(result.problems) == 2 and "cut off from the rest" in result.problems[1]
     assert result.parts["access"] >= ACCESS_BASE
     graph, poses = sized_barrier(0.8)
     result = measured(graph, poses)
@@ -376,6 +378,12 @@ def test_what_nobody_needs_to_reach_and_rooms_without_doors_cost_nothing():
     crate = graph_of(bedroom(), ("crate", CRATE), ("left", dict(size=(5.0, 1.0, 0.5), access=())))
     walled_off = measured(crate, {"crate_1": (0.0, -1.5, 0.0), "left_1": (0.0, 0.0, 0.0)})
     assert walled_off.parts["access"] == 0.0
+    # The crate needs no reaching, but the north half of the room, cut off from the door,
+    # is floor lost to whoever comes in (SceneEval's navigability): the verdict says so.
+    assert not any("cannot be reached" in p for p in walled_off.problems)
+    assert len(walled_off.problems) == 1 and "cut off from the rest" in walled_off.problems[0]
+    along = measured(crate, {"crate_1": (-2.25, 1.75, 0.0), "left_1": (0.0, -1.75, 0.0)})
+    assert not any("cut off" in p for p in along.problems), along.problems
 
 
 def test_a_blocked_door_leaves_everything_unreachable():

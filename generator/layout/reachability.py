@@ -540,6 +540,7 @@ class FloorVerdict(NamedTuple):
     cut_doors: list[int]  # doors (``room.doors`` indices) with no door cell on that part
     cut_cells: int  # free cells off that part
     free_cells: int
+    main: int  # the plane of that part
 
 
 def floor_verdict(grid: AccessGrid, free: int) -> FloorVerdict:
@@ -552,14 +553,14 @@ def floor_verdict(grid: AccessGrid, free: int) -> FloorVerdict:
 
     labels = np.zeros(grid.shape, dtype=np.int32)
     if not ndimage.label(grid.array(free), FOUR_NEIGHBOURS, output=labels):
-        return FloorVerdict(1.0, list(range(len(grid.door_seeds))), 0, 0)
+        return FloorVerdict(1.0, list(range(len(grid.door_seeds))), 0, 0, 0)
     sizes = np.bincount(labels.ravel())
     sizes[0] = 0
     largest = int(np.argmax(sizes))
     total, kept = int(sizes.sum()), int(sizes[largest])
     main = grid.plane(labels == largest)
     cut = [door for door, seeds in enumerate(grid.door_seeds) if not seeds & main]
-    return FloorVerdict(kept / total, cut, total - kept, total)
+    return FloorVerdict(kept / total, cut, total - kept, total, main)
 
 
 #: One grid per room, shared by every chain and layout of it (its templates with it).
