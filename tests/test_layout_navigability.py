@@ -5,8 +5,8 @@ doorway reaches no cell of the free floor's largest part, and scores navigabilit
 the share of the free floor in that part. A layout the layout calls ok must pass both:
 no door off the main floor, and at least ``NAVIGABLE_SHARE`` of the floor in one piece.
 Hand-placed layouts where the floor is cut in two (everything to reach still reachable,
-so the layout used to call them ok), a room of two doors, and generated rooms that
-were ok with a door evaluate calls blocked.
+so the layout used to call them ok), a room of two doors, a chair on a rug, and
+generated rooms that were ok with a door evaluate calls blocked.
 """
 
 import math
@@ -101,6 +101,21 @@ def test_two_doors_each_into_a_part_of_its_own_is_a_problem_and_costs():
     result, metrics = laid_out(graph, poses)
     assert result.ok and result.parts["access"] == 0.0, result.problems
     assert not metrics.blocked_doors
+
+
+def test_a_chair_on_a_rug_in_the_door_swing_blocks_the_door():
+    # SceneEval counts every tall box within 1 cm of the floor: a chair on a rug too.
+    graph = graph_of(
+        barracks(),
+        ("rug", dict(size=(2.0, 0.01, 1.4), access=())),
+        ("chair", dict(size=(0.45, 0.9, 0.5))),
+    )
+    graph.add_relation("chair_1", "rug_1", "OnTopOf")
+    result, metrics = laid_out(graph, {"rug_1": (-1.75, 1.4, 0.0), "chair_1": (-1.75, 1.6, 0.0)})
+    assert metrics.blocked_doors == ["door_1"]
+    assert result.problems == ["chair_1 stands in the swing of door_1"]
+    result, metrics = laid_out(graph, {"rug_1": (1.0, 0.0, 0.0), "chair_1": (1.0, 0.2, 0.0)})
+    assert result.ok and not metrics.blocked_doors, result.problems
 
 
 @pytest.mark.parametrize(

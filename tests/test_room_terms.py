@@ -606,6 +606,25 @@ def test_incremental_room_terms_equal_full_recomputation_on_random_moves(seed):
     check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover))
 
 
+@settings(max_examples=6, deadline=None)
+@given(seed=st.integers(0, 10_000))
+def test_incremental_room_terms_with_two_doors_and_a_chair_on_a_rug_equal_full(seed):
+    # The second door is reached from the first like a box; the chair on the rug is an
+    # obstacle that moves whenever the rug does.
+    room = bedroom().with_opening("door", "west", 2.0, 0.9)
+    graph = graph_of(
+        room, ("wardrobe", WARDROBE), ("bed", BED), ("crate", CRATE), ("rug", RUG), ("chair", CHAIR)
+    )
+    graph.add_relation("chair_1", "rug_1", "OnTopOf")
+    graph.add_relation("wardrobe_1", "room", "AgainstWall")
+    problem = compile_problem(graph)
+    rng = np.random.default_rng(seed)
+    energy, mover = start_chain(problem, LayoutParams(), rng)
+    assert energy.room.far_doors == [1] and energy.room.obstacle[problem.ids.index("chair_1")]
+    assert_cached_parts_true(energy)
+    check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover))
+
+
 def test_the_reachable_floor_after_every_move_of_a_classroom_is_the_labelled_one():
     """The incremental reachable floor (kept from the last one, windows taken out, or
     left whole where the moved boxes land on none of it) is, cell for cell, the free

@@ -301,8 +301,14 @@ class RoomTerms:
         self.far_doors = [d for d in range(1, len(room.doors)) if self.access_grid.door_seeds[d]]
         n = problem.n_boxes
         ground = [problem.support[b] == -1 and not problem.is_junction[b] for b in range(n)]
-        #: Tall ground boxes: they block corridors, door swings and clearance zones.
-        self.obstacle = [ground[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
+        #: Tall boxes on the floor or on a floor covering (a chair on a rug): they block
+        #: corridors, door swings and clearance zones, as SceneEval counts every tall box
+        #: within 1 cm of the floor.
+        standing = [
+            not problem.is_junction[b] and all(problem.covering[s] for s in problem.beneath(b))
+            for b in range(n)
+        ]
+        self.obstacle = [standing[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
         self.obstacles = [b for b in range(n) if self.obstacle[b]]
         #: Boxes someone must reach, and the sides they use ((("any",) for any side).
         #: A table a seat stands at is used by the person on that seat: reaching the
