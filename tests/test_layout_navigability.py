@@ -103,6 +103,17 @@ def test_two_doors_each_into_a_part_of_its_own_is_a_problem_and_costs():
     assert not metrics.blocked_doors
 
 
+def test_a_room_without_a_door_keeps_its_floor_in_one_piece_too():
+    # Evaluate scores navigability in a room without a door all the same: a sideboard
+    # across a 3 x 3 m room, 0.65 m from the east wall, leaves a strip nobody gets to.
+    graph = graph_of(Room.rectangle(3.0, 3.0), ("sideboard", dict(size=(0.5, 1.0, 3.0), access=())))
+    result, metrics = laid_out(graph, {"sideboard_1": (0.6, 0.0, 0.0)})
+    assert metrics.navigability < NAVIGABLE_SHARE
+    assert len(result.problems) == 1 and "is cut off from the rest" in result.problems[0]
+    result, metrics = laid_out(graph, {"sideboard_1": (1.25, 0.0, 0.0)})  # against the wall
+    assert result.ok and metrics.navigability == 1.0, result.problems
+
+
 def test_a_chair_on_a_rug_in_the_door_swing_blocks_the_door():
     # SceneEval counts every tall box within 1 cm of the floor: a chair on a rug too.
     graph = graph_of(

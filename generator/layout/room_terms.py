@@ -45,7 +45,14 @@ from scenewright.core.room import Opening, Room
 from .factors import equals
 from .params import LayoutParams
 from .problem import FLAT_HEIGHT, Problem
-from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds, floor_verdict
+from .reachability import (
+    CORRIDOR_HALF,
+    FloorVerdict,
+    Raster,
+    access_grid,
+    bounds,
+    floor_verdict,
+)
 from .relation_terms import opening_wall
 from .state import Grid, State
 
@@ -76,9 +83,9 @@ ACCESS_SLOPE = 3.0
 #: The verdict's least share of the free floor in its largest part (SceneEval's
 #: navigability, ``reachability.floor_verdict``): less is a problem, and the boxes
 #: round the floor cut off are troubled (``RoomTerms.troubled``). No energy scores the
-#: share: the chain runs on until a check finds the floor whole enough, which costs the
-#: rooms that never cut their floor nothing (an energy per square metre cut off, tried
-#: at 0.5 to 8 per m², took 9-14 % more steps in bedrooms and was not needed).
+#: share: the chain runs on until a check finds the floor whole enough, which leaves the
+#: rooms that never cut their floor as they were (an energy per square metre cut off
+#: cost bedrooms steps and was not needed: docs/notes/design.md, "The floor in one piece").
 NAVIGABLE_SHARE = 0.99
 
 #: Slack (metres) of the verdicts in ``problems``: crossing a wall, standing in a door's
@@ -793,17 +800,25 @@ class RoomTerms:
         for box in self.unreachable():
             found.add(box)
             found.update(self.blockers(box))
-        if self.scored:
-            found.update(self.cut_blockers())
+        found.update(self.cut_blockers())
         return found
+
+    def floor(self) -> tuple[int, FloorVerdict]:
+        """The free floor now (a plane: the static floor less every placed obstacle's
+        cells, in a room with doors or without) and its verdict (``floor_verdict``)."""
+        used = 0
+        for box in self.obstacles:
+            if self.active[box]:
+                used |= self.obstacle_cells(box).bits
+        free = self.access_grid.static & ~used
+        return free, floor_verdict(self.access_grid, free)
 
     def cut_blockers(self) -> list[int]:
         """When the floor fails the verdict (a door off its largest part, or less than
         NAVIGABLE_SHARE of it there), the obstacles taking cells next to the free floor
         off that part (the pockets and the parts of the room cut off); else none."""
         grid = self.access_grid
-        free = self.free()
-        verdict = floor_verdict(grid, free)
+        free, verdict = self.floor()
         if not verdict.cut_doors and verdict.navigability >= NAVIGABLE_SHARE:
             return []
         cut = free & ~verdict.main
@@ -866,23 +881,22 @@ class RoomTerms:
         width = 2.0 * CORRIDOR_HALF
         for box in self.unreachable():
             found.append(f"{ids[box]} cannot be reached from the door (no {width:.1f} m wide way)")
-        if self.scored:
-            # SceneEval's own test (``floor_verdict``), so that a layout called ok here
-            # passes its navigability (NAVIGABLE_SHARE) and its door clearance.
-            grid = self.access_grid
-            verdict = floor_verdict(grid, self.free())
-            for door in verdict.cut_doors:
-                found.append(
-                    f"{self.room.doors[door].id} opens onto floor cut off from the rest of"
-                    f" the room (no {width:.1f} m wide way)"
-                )
-            if verdict.navigability < NAVIGABLE_SHARE:
-                area = verdict.cut_cells * grid.cell * grid.cell
-                share = 100.0 * (1.0 - verdict.navigability)
-                found.append(
-                    f"{area:.1f} m² of the free floor ({share:.0f} %) is cut off from the rest"
-                    f" of the room (no {width:.1f} m wide way)"
-                )
+        # SceneEval's own test (``floor_verdict``), so that a layout called ok here passes
+        # its navigability (NAVIGABLE_SHARE) and its door clearance; in a room without a
+        # door too, whose navigability it measures all the same.
+        cell = self.access_grid.cell
+        _, verdict = self.floor()
+        for door in verdict.cut_doors:
+            found.append(
+                f"{self.room.doors[door].id} opens onto floor cut off from the rest of"
+                f" the room (no {width:.1f} m wide way)"
+            )
+        if verdict.navigability < NAVIGABLE_SHARE:
+            share = 100.0 * (1.0 - verdict.navigability)
+            found.append(
+                f"{verdict.cut_cells * cell * cell:.1f} m² of the free floor ({share:.0f} %) is"
+                f" cut off from the rest of the room (no {width:.1f} m wide way)"
+            )
         return found
 
 
