@@ -150,20 +150,26 @@ class AccessGrid:
         )
 
     def rooted(self) -> AccessGrid:
-        """This grid with the first door's cells alone as the way in (itself in a room of
-        one door or none): the floor reachable from them is then one piece, and every
-        other door must be reached from it like a box, so that two doors each leading
-        into a part of the room of its own do not pass for a room one can cross. The
-        copy shares the rasters' templates with this grid."""
+        """This grid with the first door's cells alone as the way in (the first door that
+        has door cells; itself in a room of one door or none): the floor reachable from
+        them is then one piece, and every other door must be reached from it like a box,
+        so that two doors each leading into a part of the room of its own do not pass for
+        a room one can cross. The copy shares the rasters' templates with this grid."""
         if self._rooted is None:
-            if len(self.door_seeds) <= 1:
+            if len(self.door_seeds) <= 1 or not self.seeds:
                 self._rooted = self
             else:
                 rooted = copy.copy(self)
-                rooted._set_seeds(self.array(self.door_seeds[0]))
+                rooted._set_seeds(self.array(self.door_seeds[self.root]))
                 rooted._rooted = rooted
                 self._rooted = rooted
         return self._rooted
+
+    @property
+    def root(self) -> int:
+        """The door the reachable floor of ``rooted`` grows from: the first with door
+        cells (0 when none has)."""
+        return next((d for d, seeds in enumerate(self.door_seeds) if seeds), 0)
 
     # -- planes and arrays -------------------------------------------------------------------
 

@@ -304,8 +304,12 @@ class RoomTerms:
         #: reached), whether or not some box needs reaching, since every door must lead
         #: onto the floor the first one does.
         self.scored = self.access_grid.has_doors
-        #: The doors after the first with door cells: each must be reached from the first.
-        self.far_doors = [d for d in range(1, len(room.doors)) if self.access_grid.door_seeds[d]]
+        #: The doors with door cells other than the one the reachable floor grows from:
+        #: each must be reached from it.
+        cells = self.access_grid
+        self.far_doors = [
+            d for d, seeds in enumerate(cells.door_seeds) if seeds and d != cells.root
+        ]
         n = problem.n_boxes
         ground = [problem.support[b] == -1 and not problem.is_junction[b] for b in range(n)]
         #: Tall boxes on the floor or on a floor covering (a chair on a rug): they block
