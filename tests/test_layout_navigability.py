@@ -10,6 +10,7 @@ generated rooms that were ok with a door evaluate calls blocked.
 """
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -140,4 +141,13 @@ def test_a_room_the_layout_calls_ok_passes_sceneeval(rules, seed):
     metrics = evaluate_scene(scene)
     assert scene.layout.ok, scene.layout.problems
     assert not metrics.blocked_doors
+    assert metrics.navigability >= NAVIGABLE_SHARE
+
+
+@pytest.mark.parametrize("seed", [1000, 1001, 1002])
+def test_a_waiting_room_of_two_doors_written_from_the_docs_passes_sceneeval(seed):
+    scene = build_scene(Path(__file__).parent / "rules" / "waiting_room.rules", seed)
+    metrics = evaluate_scene(scene)
+    assert scene.layout.ok, scene.layout.problems
+    assert metrics.doors == 2 and not metrics.blocked_doors
     assert metrics.navigability >= NAVIGABLE_SHARE
