@@ -3,12 +3,14 @@
 Reachability is decided on an occupancy grid of about ACCESS_CELL metres (``AccessGrid``):
 free floor is the room's floor minus every tall ground box, both grown by CORRIDOR_HALF
 (so a way is at least 2 * CORRIDOR_HALF = 0.6 m wide); the reachable floor is the part
-of the free floor connected (4-neighbours) to a door's opening. A box is reachable when
-a reachable cell lies within CORRIDOR_HALF + one cell of its access sides (in front of
-a named side; anywhere round it for ("any",)).
+of the free floor connected (4-neighbours) to a door's opening (to the first door's, on
+the ``rooted`` grid the layout uses). A box is reachable when a reachable cell lies
+within CORRIDOR_HALF + one cell of its access sides (in front of a named side; anywhere
+round it for ("any",)). ``floor_verdict`` judges the free floor as SceneEval does: the
+share in its largest part, and the doors off that part.
 
-The grid holds no energy: the room's ``access`` term (``room_terms``) and the plan
-checks ask it which cells a shape covers and how the free floor connects.
+The grid holds no energy: the room's ``access`` term (``room_terms``), the plan checks
+and ``scene_metrics`` ask it which cells a shape covers and how the free floor connects.
 """
 
 from __future__ import annotations

@@ -19,11 +19,15 @@ Six parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
   or the window (``_asked_views``): a rule may leave the box nowhere else.
 - ``access``: per box that needs reaching (``problem.access`` not empty) and cannot be
   reached on foot from a door, ACCESS_BASE + ACCESS_SLOPE * its distance (metres, in
-  whole cells) to the floor that can. Global: any obstacle that moves can open or close
-  a way. 0 in a room without a door (nothing is reached from nowhere).
+  whole cells) to the floor that can; the same per door after the first that cannot be
+  reached from it. Global: any obstacle that moves can open or close a way. 0 in a room
+  without a door (nothing is reached from nowhere).
 
 Reachability is decided on the room's occupancy grid (``reachability.AccessGrid``):
-the reachable floor is the free floor connected to a door's opening.
+the reachable floor is the free floor connected to the first door's opening
+(``AccessGrid.rooted``). The verdict also judges the floor as SceneEval does
+(``reachability.floor_verdict``): a door off the free floor's largest part, or less than
+NAVIGABLE_SHARE of the free floor on it, is a problem.
 
 Incremental evaluation (``RoomTerms.changes``) re-evaluates only the moved boxes' own
 terms and the clearance zones they own or stand in. Access keeps the reachable floor
