@@ -29,16 +29,13 @@ layout placed, and its robot is ours, a person 0.6 m wide) is said in docs/cli.m
 
 from __future__ import annotations
 
-from collections import deque
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from scenewright.core.geometry import Rect, corners, make_rect, rect_penetration
 from scenewright.core.scene import Scene, SceneObject
 
 from .layout.problem import FLAT_HEIGHT
-from .layout.reachability import CORRIDOR_HALF, access_grid
+from .layout.reachability import access_grid, floor_verdict
 from .layout.room_terms import WINDOW_VIEW_MARGIN, swing_rect, view_rect
 
 #: Depth (metres) two boxes, or a box and a wall, may run into each other unseen.
@@ -158,22 +155,16 @@ def _room_measures(
     used = 0
     for obj in tall:
         used |= grid.obstacle(_footprint(obj)).bits
-    free = grid.array(grid.static & ~used)
-    parts, largest, total = _parts(free)
-    result.navigability = float((parts == largest).sum()) / total if total else 1.0
-    gx, gz = np.meshgrid(grid.xc, grid.zc)
+    # The free floor's largest part, and the doors whose doorway (a person's centre within
+    # reach of the opening) reaches none of it: a door into a pocket furniture walls off.
+    verdict = floor_verdict(grid, grid.static & ~used)
+    result.navigability = verdict.navigability
     result.doors, result.windows = len(room.doors), len(room.windows)
-    for door in room.doors:
+    for k, door in enumerate(room.doors):
         swing = swing_rect(room, door)
-        if any(rect_penetration(swing, _footprint(o)) > tolerance for o in tall):
-            result.blocked_doors.append(door.id)
-            continue
-        # The doorway's free cells (a person's centre within reach of the opening) must
-        # lie on the main floor: a door into a pocket that furniture walls off is blocked.
-        wall = room.wall_of(door)
-        (x0, z0), (x1, z1) = wall.to_world(door.span[0], 0.0), wall.to_world(door.span[1], 0.0)
-        near = _segment_distance(gx, gz, x0, z0, x1, z1) <= CORRIDOR_HALF + grid.cell
-        if total == 0 or not np.any(near & (parts == largest)):
+        if k in verdict.cut_doors or any(
+            rect_penetration(swing, _footprint(o)) > tolerance for o in tall
+        ):
             result.blocked_doors.append(door.id)
     for window in room.windows:
         view = view_rect(room, window)
@@ -184,39 +175,6 @@ def _room_measures(
             ):
                 result.blocked_windows.append((window.id, obj.id))
                 break
-
-
-def _segment_distance(
-    gx: np.ndarray, gz: np.ndarray, x0: float, z0: float, x1: float, z1: float
-) -> np.ndarray:
-    dx, dz = x1 - x0, z1 - z0
-    length2 = dx * dx + dz * dz or 1.0
-    t = np.clip(((gx - x0) * dx + (gz - z0) * dz) / length2, 0.0, 1.0)
-    return np.hypot(gx - (x0 + t * dx), gz - (z0 + t * dz))
-
-
-def _parts(free: np.ndarray) -> tuple[np.ndarray, int, int]:
-    """The 4-connected parts of the True cells: a label per cell (0 for none), the
-    label of the largest part, and the number of True cells."""
-    parts = np.zeros(free.shape, dtype=np.int32)
-    rows, cols = free.shape
-    largest, best, label = 0, 0, 0
-    for start in zip(*np.nonzero(free), strict=True):
-        if parts[start]:
-            continue
-        label += 1
-        parts[start] = label
-        queue, size = deque([start]), 0
-        while queue:
-            i, k = queue.popleft()
-            size += 1
-            for ni, nk in ((i + 1, k), (i - 1, k), (i, k + 1), (i, k - 1)):
-                if 0 <= ni < rows and 0 <= nk < cols and free[ni, nk] and not parts[ni, nk]:
-                    parts[ni, nk] = label
-                    queue.append((ni, nk))
-        if size > best:
-            largest, best = label, size
-    return parts, largest, int(free.sum())
 
 
 @dataclass

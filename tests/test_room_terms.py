@@ -324,7 +324,9 @@ def sized_barrier(gap: float, thickness: float = 0.5):
 def test_a_way_narrower_than_a_corridor_leaves_what_is_behind_it_unreachable():
     graph, poses = sized_barrier(0.5)
     result = measured(graph, poses)
-    assert result.problems == ["wardrobe_1 cannot be reached from the door (no 0.6 m wide way)"]
+    # The wardrobe is out of reach, and the room's far half is cut off from the door.
+    assert result.problems[0] == "wardrobe_1 cannot be reached from the door (no 0.6 m wide way)"
+    assert len(result.problems) == 2 and "cut off from the rest" in result.problems[1]
     assert result.parts["access"] >= ACCESS_BASE
     graph, poses = sized_barrier(0.8)
     result = measured(graph, poses)
@@ -376,6 +378,12 @@ def test_what_nobody_needs_to_reach_and_rooms_without_doors_cost_nothing():
     crate = graph_of(bedroom(), ("crate", CRATE), ("left", dict(size=(5.0, 1.0, 0.5), access=())))
     walled_off = measured(crate, {"crate_1": (0.0, -1.5, 0.0), "left_1": (0.0, 0.0, 0.0)})
     assert walled_off.parts["access"] == 0.0
+    # The crate needs no reaching, but the north half of the room, cut off from the door,
+    # is floor lost to whoever comes in (SceneEval's navigability): the verdict says so.
+    assert not any("cannot be reached" in p for p in walled_off.problems)
+    assert len(walled_off.problems) == 1 and "cut off from the rest" in walled_off.problems[0]
+    along = measured(crate, {"crate_1": (-2.25, 1.75, 0.0), "left_1": (0.0, -1.75, 0.0)})
+    assert not any("cut off" in p for p in along.problems), along.problems
 
 
 def test_a_blocked_door_leaves_everything_unreachable():
@@ -594,6 +602,25 @@ def test_incremental_room_terms_equal_full_recomputation_on_random_moves(seed):
     problem = compile_problem(random_room_scene(seed))
     rng = np.random.default_rng(seed)
     energy, mover = start_chain(problem, LayoutParams(), rng)
+    assert_cached_parts_true(energy)
+    check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover))
+
+
+@settings(max_examples=6, deadline=None)
+@given(seed=st.integers(0, 10_000))
+def test_incremental_room_terms_with_two_doors_and_a_chair_on_a_rug_equal_full(seed):
+    # The second door is reached from the first like a box; the chair on the rug is an
+    # obstacle that moves whenever the rug does.
+    room = bedroom().with_opening("door", "west", 2.0, 0.9)
+    graph = graph_of(
+        room, ("wardrobe", WARDROBE), ("bed", BED), ("crate", CRATE), ("rug", RUG), ("chair", CHAIR)
+    )
+    graph.add_relation("chair_1", "rug_1", "OnTopOf")
+    graph.add_relation("wardrobe_1", "room", "AgainstWall")
+    problem = compile_problem(graph)
+    rng = np.random.default_rng(seed)
+    energy, mover = start_chain(problem, LayoutParams(), rng)
+    assert energy.room.far_doors == [1] and energy.room.obstacle[problem.ids.index("chair_1")]
     assert_cached_parts_true(energy)
     check_moves(energy, mover, rng, 30, Relocator(problem, energy.state, mover))
 

@@ -3,16 +3,19 @@
 Reachability is decided on an occupancy grid of about ACCESS_CELL metres (``AccessGrid``):
 free floor is the room's floor minus every tall ground box, both grown by CORRIDOR_HALF
 (so a way is at least 2 * CORRIDOR_HALF = 0.6 m wide); the reachable floor is the part
-of the free floor connected (4-neighbours) to a door's opening. A box is reachable when
-a reachable cell lies within CORRIDOR_HALF + one cell of its access sides (in front of
-a named side; anywhere round it for ("any",)).
+of the free floor connected (4-neighbours) to a door's opening (to the first door's, on
+the ``rooted`` grid the layout uses). A box is reachable when a reachable cell lies
+within CORRIDOR_HALF + one cell of its access sides (in front of a named side; anywhere
+round it for ("any",)). ``floor_verdict`` judges the free floor as SceneEval does: the
+share in its largest part, and the doors off that part.
 
-The grid holds no energy: the room's ``access`` term (``room_terms``) and the plan
-checks ask it which cells a shape covers and how the free floor connects.
+The grid holds no energy: the room's ``access`` term (``room_terms``), the plan checks
+and ``scene_metrics`` ask it which cells a shape covers and how the free floor connects.
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import weakref
 from typing import NamedTuple
@@ -116,7 +119,29 @@ class AccessGrid:
         #: The static free floor, and the cells that count as "at a door": free floor
         #: within CORRIDOR_HALF + one cell of an opening.
         self.static = self.plane(static)
-        seeds = static & (points_segments_distance(gx, gz, doors) <= CORRIDOR_HALF + self.cell)
+        reach = CORRIDOR_HALF + self.cell
+        self._set_seeds(static & (points_segments_distance(gx, gz, doors) <= reach))
+        #: Per door of the room (``room.doors`` order), its own door cells: a plane, and
+        #: the window (cell range) holding them (empty for a door with none).
+        self.door_seeds: list[int] = []
+        self.door_windows: list[tuple[int, int, int, int]] = []
+        for door in room.doors:
+            wall = room.wall_of(door)
+            segment = (wall.to_world(door.span[0], 0.0), wall.to_world(door.span[1], 0.0))
+            mask = static & (points_segments_distance(gx, gz, [segment]) <= reach)
+            self.door_seeds.append(self.plane(mask))
+            rows, cols = np.nonzero(mask)
+            self.door_windows.append(
+                (int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1)
+                if rows.size
+                else (0, 0, 0, 0)
+            )
+        self.has_doors = bool(doors)
+        self._templates: dict[tuple, tuple] = {}  # (shape, f, g) -> ``_template``
+        self._rooted: AccessGrid | None = None
+
+    def _set_seeds(self, seeds: np.ndarray) -> None:
+        """Make the True cells of ``seeds`` the door cells the reachable floor grows from."""
         self.seeds = self.plane(seeds)
         self.seed_cells = np.flatnonzero(seeds)
         rows, cols = np.nonzero(seeds)
@@ -125,8 +150,28 @@ class AccessGrid:
             if rows.size
             else None
         )
-        self.has_doors = bool(doors)
-        self._templates: dict[tuple, tuple] = {}  # (shape, f, g) -> ``_template``
+
+    def rooted(self) -> AccessGrid:
+        """This grid with the first door's cells alone as the way in (the first door that
+        has door cells; itself in a room of one door or none): the floor reachable from
+        them is then one piece, and every other door must be reached from it like a box,
+        so that two doors each leading into a part of the room of its own do not pass for
+        a room one can cross. The copy shares the rasters' templates with this grid."""
+        if self._rooted is None:
+            if len(self.door_seeds) <= 1 or not self.seeds:
+                self._rooted = self
+            else:
+                rooted = copy.copy(self)
+                rooted._set_seeds(self.array(self.door_seeds[self.root]))
+                rooted._rooted = rooted
+                self._rooted = rooted
+        return self._rooted
+
+    @property
+    def root(self) -> int:
+        """The door the reachable floor of ``rooted`` grows from: the first with door
+        cells (0 when none has)."""
+        return next((d for d, seeds in enumerate(self.door_seeds) if seeds), 0)
 
     # -- planes and arrays -------------------------------------------------------------------
 
@@ -494,6 +539,36 @@ class AccessGrid:
             else:
                 low = middle
         return high
+
+
+class FloorVerdict(NamedTuple):
+    """How whole a room's free floor is (``floor_verdict``)."""
+
+    navigability: float  # share of the free cells in the largest part (1 with none free)
+    cut_doors: list[int]  # doors (``room.doors`` indices) with no door cell on that part
+    cut_cells: int  # free cells off that part
+    free_cells: int
+    main: int  # the plane of that part
+
+
+def floor_verdict(grid: AccessGrid, free: int) -> FloorVerdict:
+    """The free floor ``free`` (a plane of ``grid``) in SceneEval's terms: the share of it
+    in its largest 4-connected part (the first in row order among equal ones), and the
+    doors whose door cells (``AccessGrid.door_seeds``) all lie off that part, a door
+    into a pocket cut off from the rest. ``scene_metrics`` scores a scene by it, and the
+    layout's verdict (``room_terms``) reports by it, so the two cannot disagree."""
+    from scipy import ndimage
+
+    labels = np.zeros(grid.shape, dtype=np.int32)
+    if not ndimage.label(grid.array(free), FOUR_NEIGHBOURS, output=labels):
+        return FloorVerdict(1.0, list(range(len(grid.door_seeds))), 0, 0, 0)
+    sizes = np.bincount(labels.ravel())
+    sizes[0] = 0
+    largest = int(np.argmax(sizes))
+    total, kept = int(sizes.sum()), int(sizes[largest])
+    main = grid.plane(labels == largest)
+    cut = [door for door, seeds in enumerate(grid.door_seeds) if not seeds & main]
+    return FloorVerdict(kept / total, cut, total - kept, total, main)
 
 
 #: One grid per room, shared by every chain and layout of it (its templates with it).

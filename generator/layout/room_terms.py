@@ -19,11 +19,15 @@ Six parts, all 0 outdoors (``problem.room`` None: ``energy.py`` then builds no
   or the window (``_asked_views``): a rule may leave the box nowhere else.
 - ``access``: per box that needs reaching (``problem.access`` not empty) and cannot be
   reached on foot from a door, ACCESS_BASE + ACCESS_SLOPE * its distance (metres, in
-  whole cells) to the floor that can. Global: any obstacle that moves can open or close
-  a way. 0 in a room without a door (nothing is reached from nowhere).
+  whole cells) to the floor that can; the same per door after the first that cannot be
+  reached from it. Global: any obstacle that moves can open or close a way. 0 in a room
+  without a door (nothing is reached from nowhere).
 
 Reachability is decided on the room's occupancy grid (``reachability.AccessGrid``):
-the reachable floor is the free floor connected to a door's opening.
+the reachable floor is the free floor connected to the first door's opening
+(``AccessGrid.rooted``). The verdict also judges the floor as SceneEval does
+(``reachability.floor_verdict``): a door off the free floor's largest part, or less than
+NAVIGABLE_SHARE of the free floor on it, is a problem.
 
 Incremental evaluation (``RoomTerms.changes``) re-evaluates only the moved boxes' own
 terms and the clearance zones they own or stand in. Access keeps the reachable floor
@@ -45,7 +49,14 @@ from scenewright.core.room import Opening, Room
 from .factors import equals
 from .params import LayoutParams
 from .problem import FLAT_HEIGHT, Problem
-from .reachability import CORRIDOR_HALF, Raster, access_grid, bounds
+from .reachability import (
+    CORRIDOR_HALF,
+    FloorVerdict,
+    Raster,
+    access_grid,
+    bounds,
+    floor_verdict,
+)
 from .relation_terms import opening_wall
 from .state import Grid, State
 
@@ -73,6 +84,13 @@ CUT_TEST_GROWTH = (0, 3, 8, 16, 32)
 #: that bring it nearer the way in are favoured.
 ACCESS_BASE = 3.0
 ACCESS_SLOPE = 3.0
+#: The verdict's least share of the free floor in its largest part (SceneEval's
+#: navigability, ``reachability.floor_verdict``): less is a problem, and the boxes
+#: round the floor cut off are troubled (``RoomTerms.troubled``). No energy scores the
+#: share: the chain runs on until a check finds the floor whole enough, which leaves the
+#: rooms that never cut their floor as they were (an energy per square metre cut off
+#: cost bedrooms steps and was not needed: docs/notes/design.md, "The floor in one piece").
+NAVIGABLE_SHARE = 0.99
 
 #: Slack (metres) of the verdicts in ``problems``: crossing a wall, standing in a door's
 #: swing or in a kept-free zone by at most 1 cm still counts as clear.
@@ -217,15 +235,29 @@ class Walls:
 
 
 class AccessState(NamedTuple):
-    """Reachability as the energy knows it: ``reach``, the plane of the reachable floor;
-    per placed box that needs reaching a ``witness`` (a bit of ``reach`` among its access
-    cells, None when it is unreachable) and its energy (``values``); per unreachable box
-    its distance to the reachable floor in cells (``apart``)."""
+    """Reachability as the energy knows it: ``reach``, the plane of the floor reachable
+    from the first door; per placed box that needs reaching a ``witness`` (a bit of
+    ``reach`` among its access cells, None when it is unreachable) and its energy
+    (``values``); per unreachable box its distance to the reachable floor in cells
+    (``apart``); per other door its energy (``doors``: ACCESS_BASE and the slope, as for
+    a box, when none of its door cells is reached) and, unreached, its distance
+    (``door_apart``)."""
 
     reach: int
     witness: dict[int, int | None]
     values: dict[int, float]
     apart: dict[int, int]
+    doors: dict[int, float]
+    door_apart: dict[int, int]
+
+    @property
+    def total(self) -> float:
+        """The access part: every box's and every door's energy."""
+        return sum(self.values.values()) + sum(self.doors.values())
+
+
+#: Reachability before anything is evaluated.
+NO_ACCESS = AccessState(0, {}, {}, {}, {}, {})
 
 
 class AccessChanges(NamedTuple):
@@ -270,11 +302,28 @@ class RoomTerms:
         self.room = room
         self.walls_geometry = Walls(room)
         self.axes = wall_axes(room)
-        self.access_grid = access_grid(room)
+        #: Reached from the first door: the floor it reaches is one piece (``rooted``).
+        self.access_grid = access_grid(room).rooted()
+        #: Whether reachability is scored: in a room with a door (from nowhere nothing is
+        #: reached), whether or not some box needs reaching, since every door must lead
+        #: onto the floor the first one does.
+        self.scored = self.access_grid.has_doors
+        #: The doors with door cells other than the one the reachable floor grows from:
+        #: each must be reached from it.
+        cells = self.access_grid
+        self.far_doors = [
+            d for d, seeds in enumerate(cells.door_seeds) if seeds and d != cells.root
+        ]
         n = problem.n_boxes
         ground = [problem.support[b] == -1 and not problem.is_junction[b] for b in range(n)]
-        #: Tall ground boxes: they block corridors, door swings and clearance zones.
-        self.obstacle = [ground[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
+        #: Tall boxes on the floor or on a floor covering (a chair on a rug): they block
+        #: corridors, door swings and clearance zones, as SceneEval counts every tall box
+        #: within 1 cm of the floor.
+        standing = [
+            not problem.is_junction[b] and all(problem.covering[s] for s in problem.beneath(b))
+            for b in range(n)
+        ]
+        self.obstacle = [standing[b] and problem.height[b] > FLAT_HEIGHT for b in range(n)]
         self.obstacles = [b for b in range(n) if self.obstacle[b]]
         #: Boxes someone must reach, and the sides they use ((("any",) for any side).
         #: A table a seat stands at is used by the person on that seat: reaching the
@@ -461,10 +510,10 @@ class RoomTerms:
     def _evaluate_access(
         self, reach: int, known: AccessState, moved: set[int], same: bool
     ) -> AccessState:
-        """Every placed access box's witness and energy on the reachable floor ``reach``.
-        ``known``: the witnesses and values before, still good for a box that has not
-        ``moved`` if its witness is in ``reach`` (and, unreachable, if ``reach`` is the
-        ``same`` as before)."""
+        """Every placed access box's witness and energy on the reachable floor ``reach``,
+        and every other door's. ``known``: the witnesses and values before, still good
+        for a box that has not ``moved`` if its witness is in ``reach`` (and, unreachable,
+        if ``reach`` is the ``same`` as before); an unreached door's distance likewise."""
         old_witness, old_values = known.witness, known.values
         witness: dict[int, int | None] = {}
         values: dict[int, float] = {}
@@ -485,14 +534,25 @@ class RoomTerms:
             values[box] = 0.0
             if cell is None:
                 unreachable.append(box)
-        if unreachable:
-            grid = self.access_grid
-            target = reach or grid.seeds or grid.static  # nothing reachable: how far from a door
-            for box in unreachable:
-                cells = grid.distance(target, self.access_cells(box).window, known.apart.get(box))
-                apart[box] = cells
-                values[box] = ACCESS_BASE + ACCESS_SLOPE * cells * grid.cell
-        return AccessState(reach, witness, values, apart)
+        grid = self.access_grid
+        target = reach or grid.seeds or grid.static  # nothing reachable: how far from a door
+        for box in unreachable:
+            cells = grid.distance(target, self.access_cells(box).window, known.apart.get(box))
+            apart[box] = cells
+            values[box] = ACCESS_BASE + ACCESS_SLOPE * cells * grid.cell
+        doors: dict[int, float] = {}
+        door_apart: dict[int, int] = {}
+        for door in self.far_doors:
+            if reach & grid.door_seeds[door]:
+                doors[door] = 0.0
+                continue
+            if same and door in known.door_apart:
+                cells = known.door_apart[door]
+            else:
+                cells = grid.distance(target, grid.door_windows[door], known.door_apart.get(door))
+            door_apart[door] = cells
+            doors[door] = ACCESS_BASE + ACCESS_SLOPE * cells * grid.cell
+        return AccessState(reach, witness, values, apart, doors, door_apart)
 
     def _reach_after(self, moved: list[int]) -> tuple[int, dict[int, int]]:
         """The reachable floor with the moved obstacles at their new poses, computed from
@@ -573,12 +633,12 @@ class RoomTerms:
                     value = self.zone_hit_energy(zone, rect, other)
                     if value > 0.0:
                         zone_hits[zone][other] = hits_of[other][zone] = value
-        access = AccessState(0, {}, {}, {})
+        access = NO_ACCESS
         taken = [
             self.obstacle_cells(b).bits if self.obstacle[b] and self.active[b] else 0
             for b in range(n)
         ]
-        if self.access_boxes:
+        if self.scored:
             used = 0
             for bits in taken:
                 used |= bits
@@ -590,7 +650,7 @@ class RoomTerms:
             "clearance": sum(sum(h.values()) for h in zone_hits) + sum(zone_wall),
             "door_swing": sum(swing),
             "windows": sum(view),
-            "access": sum(access.values.values()),
+            "access": access.total,
         }
         return {
             "walls": walls,
@@ -678,7 +738,7 @@ class RoomTerms:
                                 clearance += value
             delta["clearance"] = clearance
 
-        if defer_access and self.access_boxes:
+        if defer_access and self.scored:
             return RoomChanges(
                 delta, moved, walls, square, swing, view, zones, hits, zone_wall, None, True
             )
@@ -689,16 +749,14 @@ class RoomTerms:
 
     def access_changes(self, changes: RoomChanges, boxes: list[int]) -> RoomChanges:
         """``changes`` with the access part evaluated (the state still at the proposal)."""
-        access = self._access_changes(boxes) if self.access_boxes else None
+        access = self._access_changes(boxes) if self.scored else None
         if access is not None:
-            changes.delta["access"] = sum(access.state.values.values()) - sum(
-                self.access.values.values()
-            )
+            changes.delta["access"] = access.state.total - self.access.total
         return changes._replace(access=access, deferred=False)
 
     def access_total(self) -> float:
         """The access part now, as the deltas reckon it: how far it can fall at most."""
-        return sum(self.access.values.values())
+        return self.access.total
 
     def accept(self, changes: RoomChanges) -> None:
         """Keep a proposal's values."""
@@ -750,7 +808,35 @@ class RoomTerms:
         for box in self.unreachable():
             found.add(box)
             found.update(self.blockers(box))
+        found.update(self.cut_blockers())
         return found
+
+    def floor(self) -> tuple[int, FloorVerdict]:
+        """The free floor now (a plane: the static floor less every placed obstacle's
+        cells, in a room with doors or without) and its verdict (``floor_verdict``)."""
+        used = 0
+        for box in self.obstacles:
+            if self.active[box]:
+                used |= self.obstacle_cells(box).bits
+        free = self.access_grid.static & ~used
+        return free, floor_verdict(self.access_grid, free)
+
+    def cut_blockers(self) -> list[int]:
+        """When the floor fails the verdict (a door off its largest part, or less than
+        NAVIGABLE_SHARE of it there), the obstacles taking cells next to the free floor
+        off that part (the pockets and the parts of the room cut off); else none."""
+        grid = self.access_grid
+        free, verdict = self.floor()
+        if not verdict.cut_doors and verdict.navigability >= NAVIGABLE_SHARE:
+            return []
+        cut = free & ~verdict.main
+        stride = grid.stride
+        near = cut | cut << 1 | cut >> 1 | cut << stride | cut >> stride
+        return [
+            other
+            for other in self.obstacles
+            if self.active[other] and self.obstacle_cells(other).bits & near
+        ]
 
     def blockers(self, box: int) -> list[int]:
         """The obstacles that hem in an unreachable box: those taking cells next to the
@@ -803,6 +889,22 @@ class RoomTerms:
         width = 2.0 * CORRIDOR_HALF
         for box in self.unreachable():
             found.append(f"{ids[box]} cannot be reached from the door (no {width:.1f} m wide way)")
+        # SceneEval's own test (``floor_verdict``), so that a layout called ok here passes
+        # its navigability (NAVIGABLE_SHARE) and its door clearance; in a room without a
+        # door too, whose navigability it measures all the same.
+        cell = self.access_grid.cell
+        _, verdict = self.floor()
+        for door in verdict.cut_doors:
+            found.append(
+                f"{self.room.doors[door].id} opens onto floor cut off from the rest of"
+                f" the room (no {width:.1f} m wide way)"
+            )
+        if verdict.navigability < NAVIGABLE_SHARE:
+            share = 100.0 * (1.0 - verdict.navigability)
+            found.append(
+                f"{verdict.cut_cells * cell * cell:.1f} m² of the free floor ({share:.0f} %) is"
+                f" cut off from the rest of the room (no {width:.1f} m wide way)"
+            )
         return found
 
 
