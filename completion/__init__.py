@@ -11,6 +11,7 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 | ``features`` | a plan's room feature and its 10 x 10 occupancy mask in the door-aware canonical frame |
 | ``model`` | the plan model built from plans: per type P(category), co-occurrence times the activity prior, masks and clusters |
 | ``plan_model`` | the plan model's records (``PlanModel``, per type ``RoomTypeModel``, per plan ``PlanEntry``) and its JSON |
+| ``accessories`` | what stands on or at what in the plans, and where (relative poses) |
 | ``selection`` | what a room should hold: its type(s) (Equation 2) and categories (Algorithm 1) |
 | ``layout_mask`` | where things should go: the mask amalgamated from the most similar plans (Equation 4) |
 | ``regions`` | a room of several types split by virtual walls into one region per type |
