@@ -8,9 +8,11 @@ import math
 import pytest
 from test_plans_model import NORTH, SOUTH, _plan, _room
 
+from scenewright.completion.accessories import assign, slot_pose, slot_relations
 from scenewright.completion.floor_plan import Furniture, plan_from_dict
 from scenewright.completion.model_builder import build_model, model_json
 from scenewright.completion.plan_model import PlanModel
+from scenewright.core.poses import Pose
 
 
 def _tiny():
@@ -62,6 +64,49 @@ def test_a_pair_the_plans_show_keeps_its_side_offset_and_yaw(tiny_model):
     lamp = accessories["lamp"]
     assert lamp.on and lamp.anchors[0].anchor == "nightstand"
     assert lamp.anchors[0].slots[0].side == "middle"
+
+
+def test_learned_poses_place_and_relate_the_pieces_as_the_plans_had_them(tiny_model, catalog):
+    counts = {"bed": 1, "nightstand": 1, "lamp": 1, "desk": 1, "office_chair": 1}
+    placed = assign(tiny_model, counts, catalog)
+    night, lamp, chair = placed["nightstand", 0], placed["lamp", 0], placed["office_chair", 0]
+    assert (night.anchor, night.slot.side, lamp.anchor, chair.anchor) == (
+        "bed",
+        "left",
+        "nightstand",
+        "desk",
+    )
+    assert slot_relations(night, "nightstand", tiny_model, True) == [
+        ("BesideLeft", None),
+        ("ImplicitAlignedWith", None),
+        ("ImplicitAgainstWall", "room"),
+    ]
+    assert slot_relations(chair, "office_chair", tiny_model, True) == [("SeatedAt", None)]
+    assert slot_relations(lamp, "lamp", tiny_model, False) == [
+        ("OnTopOfMiddle", None),
+        ("ImplicitFacingSameDirection", None),
+    ]
+    # The start reproduces the plans' offset beside a bed of their size, however it stands.
+    bed = Pose(2.0, 0.0, -1.0, math.pi / 2)
+    pose = slot_pose(night, bed, (1.4, 2.0), (0.5, 0.4))
+    lx = (pose.x - bed.x) * math.cos(bed.yaw) - (pose.z - bed.z) * math.sin(bed.yaw)
+    lz = (pose.x - bed.x) * math.sin(bed.yaw) + (pose.z - bed.z) * math.cos(bed.yaw)
+    assert (lx, lz) == pytest.approx((1.0, -0.8)) and pose.yaw == pytest.approx(bed.yaw)
+
+
+def test_pairs_the_plans_do_not_show_fall_back(tiny_model, model, catalog):
+    # No desk: the office chair has no place at anything (the room's other rules place it).
+    assert assign(tiny_model, {"bed": 1, "office_chair": 1}, catalog) == {}
+    # Two night tables, one place the plans show by one bed: the second has none.
+    placed = assign(tiny_model, {"bed": 1, "nightstand": 2}, catalog)
+    assert list(placed) == [("nightstand", 0)]
+    # A lamp with no night table stands on the smallest other surface the plans show
+    # something on that it fits on, as it stands on a night table: in the middle.
+    placed = assign(model, {"bed": 1, "lamp": 1, "dresser": 1, "desk": 1}, catalog)
+    surfaces = sorted(("dresser", "desk"), key=lambda n: catalog[n].size[0] * catalog[n].size[2])
+    assert placed["lamp", 0].anchor == surfaces[0] and placed["lamp", 0].slot.side == "middle"
+    # Nothing to stand on: none.
+    assert ("lamp", 0) not in assign(model, {"bed": 1, "lamp": 1}, catalog)
 
 
 def test_the_shipped_plans_teach_the_usual_accessories(model):
