@@ -21,7 +21,8 @@ anchor (on top: at an edge of its top, within ``FLUSH``; beside: parallel, the b
 line within ``FLUSH``).
 
 ``assign`` chooses each accessory's anchor and slot in a room (falling back, for what
-stands on others, to the smallest other surface it fits on). ``slot_relations`` turns
+stands on others, to the smallest other surface it fits on that the plans show
+carrying something as large). ``slot_relations`` turns
 a slot into the registry's labels (``core.relations``): on top, ``OnTopOfMiddle`` /
 ``OnTopOfEdge`` / ``OnTopOfFrontEdge`` / ``OnTopOf`` by where the pieces stood; beside,
 a piece one stays at that faced the anchor squarely within a seat's reach is seated at
@@ -258,16 +259,17 @@ def stands_on(model: PlanModel, category: str) -> bool:
     return entry is not None and entry.on
 
 
-def surfaces(model: PlanModel) -> list[str]:
-    """The categories the plans show something standing on, in name order."""
-    return sorted(
-        {
-            anchor.anchor
-            for entry in model.accessories.values()
-            if entry.on
-            for anchor in entry.anchors
-        }
-    )
+def surfaces(model: PlanModel) -> dict[str, float]:
+    """The categories the plans show something standing on, in name order, each with
+    the largest footprint area (square metres, from the mean sides) of what stood on it."""
+    carried: dict[str, float] = {}
+    for name, entry in model.accessories.items():
+        if not entry.on:
+            continue
+        short, long = model.categories[name].size
+        for anchor in entry.anchors:
+            carried[anchor.anchor] = max(carried.get(anchor.anchor, 0.0), short * long)
+    return dict(sorted(carried.items()))
 
 
 def assign(model: PlanModel, counts: dict[str, int], catalog) -> dict[tuple[str, int], Placement]:
@@ -279,9 +281,10 @@ def assign(model: PlanModel, counts: dict[str, int], catalog) -> dict[tuple[str,
     there + 1, so both sides of a bed before a second on one), up to the most the plans
     show at one anchor and at each side of it; a side's places are shared by every
     category (a desk's chair takes the place before it). What stands on others and finds
-    no place goes on another surface present that it fits on (the smallest first), in
-    the slot it takes most often, one a surface; with none left, anywhere on the first
-    support it fits on (``overflow``). Floor pieces with no place have none: they stand
+    no place goes on another surface present that it fits on and that the plans show
+    carrying something as large (``surfaces``: a lamp on a desk, which carries laptops,
+    but not a television), the smallest first, in the slot it takes most often, one a
+    surface; with none left, anywhere on the first support it fits on (``overflow``). Floor pieces with no place have none: they stand
     by the room's other rules. A category that stands on others with nothing in the
     room it fits on is absent from the answer."""
     pairs = []
@@ -331,12 +334,14 @@ def assign(model: PlanModel, counts: dict[str, int], catalog) -> dict[tuple[str,
         if not left or not entry.on:
             continue
         learned = {anchor.anchor for anchor in entry.anchors}
+        width, _, depth = catalog[name].size
         others = sorted(
             (
                 surface
-                for surface in surfaces(model)
+                for surface, largest in surfaces(model).items()
                 if counts.get(surface)
                 and surface not in learned
+                and width * depth <= largest + 1e-9
                 and _fits_on(catalog, name, surface)
             ),
             key=lambda surface: (catalog[surface].size[0] * catalog[surface].size[2], surface),

@@ -105,8 +105,11 @@ def test_pairs_the_plans_do_not_show_fall_back(tiny_model, model, catalog):
     placed = assign(model, {"bed": 1, "lamp": 1, "dresser": 1, "desk": 1}, catalog)
     surfaces = sorted(("dresser", "desk"), key=lambda n: catalog[n].size[0] * catalog[n].size[2])
     assert placed["lamp", 0].anchor == surfaces[0] and placed["lamp", 0].slot.side == "middle"
-    # Nothing to stand on: none.
+    # Nothing to stand on: none; nor on a desk for a television, larger than anything
+    # the plans stand on a desk (it fits on its top).
     assert ("lamp", 0) not in assign(model, {"bed": 1, "lamp": 1}, catalog)
+    assert catalog["tv"].size[0] <= catalog["desk"].size[0]
+    assert ("tv", 0) not in assign(model, {"bed": 1, "tv": 1, "desk": 1}, catalog)
 
 
 def test_the_shipped_plans_teach_the_usual_accessories(model):
