@@ -262,7 +262,7 @@ def region_figures(scene, model, request) -> tuple[list[bool], list[float]] | No
             model, contents.types, contents.owners, contents.explorations, contents.counts
         )
         types = {o.id: o.type for o in scene.placed_objects()}
-        relations = [(r.source, r.target) for r in scene.relations]
+        relations = [(r.source, r.target, r.label) for r in scene.relations]
         boxes = region_boxes(
             types, relations, {name: index[t] for name, t in owners.items()}, len(regions)
         )

@@ -11,14 +11,15 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 | ``features`` | a plan's room feature and its 10 x 10 occupancy mask in the door-aware canonical frame |
 | ``model`` | the plan model built from plans: per type P(category), co-occurrence times the activity prior, masks and clusters |
 | ``plan_model`` | the plan model's records (``PlanModel``, per type ``RoomTypeModel``, per plan ``PlanEntry``) and its JSON |
+| ``accessories`` | what stands on or at what in the plans, and where (relative poses); each accessory's anchor, relations and start in a room |
 | ``selection`` | what a room should hold: its type(s) (Equation 2) and categories (Algorithm 1) |
 | ``layout_mask`` | where things should go: the mask amalgamated from the most similar plans (Equation 4) |
 | ``regions`` | a room of several types split by virtual walls into one region per type |
 | ``complete`` | a request (an empty room, a few categories) -> a furnished, laid-out scene (``scenewright complete``) |
 | ``request`` | the request: the room, its doors and windows, the categories asked for |
 | ``contents`` | what the room holds: its type(s), their categories and the layout mask |
-| ``furnishing`` | the scene graph of the room's pieces with the relations a room's rules would state |
-| ``starting_poses`` | where the layout starts: the large pieces along the walls, on the mask |
+| ``furnishing`` | the scene graph of the room's pieces with the relations a room's rules would state, accessories' from the plans |
+| ``starting_poses`` | where the layout starts: the large pieces along the walls, on the mask, accessories by them |
 | ``explanation`` | a completed room's summary line and its layout mask drawn for people |
 | ``evaluation`` | leave-one-out over a plan set, against simple baselines |
 | ``drawing`` | plans (and their layout masks) drawn on one PNG sheet |

@@ -51,21 +51,14 @@ from scenewright.core.scene_graph import SceneGraph
 from scenewright.generator.layout.params import LayoutParams
 
 from .contents import Contents, choose_contents
-from .furnishing import (
-    AGAINST_WALL,
-    CENTRE_PIECES,
-    SEAT_TARGETS,
-    SUPPORTS,
-    build_graph,
-    relation_weights,
-)
+from .furnishing import AGAINST_WALL, CENTRE_PIECES, build_graph, relation_weights
 from .request import Request
 from .starting_poses import FLAT, starting_poses
 
 #: The large furniture the layout mask is for in the layout's energy: what stands
 #: against a wall and the free-standing tables (the pieces whose starting poses the mask
-#: chooses). Their accessories (night tables, chairs, lamps) follow them by relations,
-#: as the paper places accessories after their large furniture.
+#: chooses). Their accessories (night tables, chairs, lamps) follow them by the poses
+#: learned from the plans, as the paper places accessories after their large furniture.
 MASKED = AGAINST_WALL | CENTRE_PIECES
 #: Layouts tried with one added piece fewer each (``fewer_pieces``) while the layout is
 #: not ok: a room the selection filled past what can be laid out gives up its weakest pieces.
@@ -90,14 +83,17 @@ def region_boxes(
 ) -> list[list[str]]:
     """Per region (``count`` of them) the ids of the floor pieces that belong there,
     from the pieces' categories (``types``: id -> category), the ``relations`` (source,
-    target) between them and the region of each category (``owners``). A large piece
+    target, label) between them and the region of each category (``owners``). A large piece
     (``MASKED``) belongs to its category's region; any other follows the piece its first
     relation to another piece names, up to a large one (a night table stays by its bed,
     a chair at its table, wherever their categories' types would put them); one with no
-    such relation goes by its own category. Pieces that stand on others belong nowhere:
-    they go with their support."""
+    such relation goes by its own category. Pieces that stand on others (a support
+    relation) belong nowhere: they go with their support."""
+    from scenewright.core.relations import RELATIONS
+
     anchor: dict[str, str] = {}
-    for source, target in relations:
+    carried = {source for source, _, label in relations if RELATIONS[label].support}
+    for source, target, _ in relations:
         if (
             source in types
             and target in types
@@ -106,8 +102,8 @@ def region_boxes(
         ):
             anchor[source] = target
     out: list[list[str]] = [[] for _ in range(count)]
-    for box, category in types.items():
-        if category in SUPPORTS:
+    for box in types:
+        if box in carried:
             continue
         root, seen = box, {box}
         while types[root] not in MASKED and root in anchor and anchor[root] not in seen:
@@ -120,18 +116,21 @@ def region_boxes(
 def _graph_and_start(model: PlanModel, contents: Contents, room: Room, catalog):
     """The scene graph of ``contents``, the categories left out with why, and the
     starting poses; a rug the starting poses find no free floor for is left out."""
-    graph, dropped = build_graph(model, contents, room, catalog)
-    start = starting_poses(graph, room, contents.mask)
+    from scenewright.core.relations import RELATIONS
+
+    graph, dropped, placements = build_graph(model, contents, room, catalog)
+    start = starting_poses(graph, room, contents.mask, placements)
+    carried = {r.source for r in graph.edges() if RELATIONS[r.label].support}
     unplaced = sorted(
         {
             n.type
             for n in graph.nodes("object")
-            if n.size[1] <= FLAT and n.type not in SUPPORTS and n.id not in start
+            if n.size[1] <= FLAT and n.id not in carried and n.id not in start
         }
     )
     if unplaced:
         before = graph
-        graph, dropped = build_graph(model, contents, room, catalog, leave_out=unplaced)
+        graph, dropped, placements = build_graph(model, contents, room, catalog, leave_out=unplaced)
         kept = {n.id for n in graph.nodes("object")}
         gone = {n.id for n in before.nodes("object")} - kept
         # A piece with no starting pose took no place another's start depends on: when
@@ -141,7 +140,7 @@ def _graph_and_start(model: PlanModel, contents: Contents, room: Room, catalog):
         ] == graph.edges():
             start = {box: pose for box, pose in start.items() if box in kept}
         else:
-            start = starting_poses(graph, room, contents.mask)
+            start = starting_poses(graph, room, contents.mask, placements)
     return graph, dropped, start
 
 
@@ -178,11 +177,16 @@ def fewer_pieces(
     counts[weakest] -= 1
     if not counts[weakest]:
         del counts[weakest]
-        # A seat added for the piece just left out goes with it (what stood on it
-        # ``build_graph`` leaves out by itself).
-        for seat, targets in SEAT_TARGETS.items():
-            if seat in added and weakest in targets and not any(counts.get(t) for t in targets):
-                counts.pop(seat, None)
+        # What was added to stand at the piece just left out goes with it when nothing
+        # it stood at in the plans is left (a desk's chair; what stood on it
+        # ``build_graph`` puts elsewhere or leaves out by itself).
+        for name in added:
+            entry = model.accessories.get(name)
+            if entry is None or entry.on or name not in counts:
+                continue
+            anchors = {anchor.anchor for anchor in entry.anchors}
+            if weakest in anchors and not any(counts.get(a) for a in anchors):
+                del counts[name]
     return replace(contents, counts=counts)
 
 
@@ -311,7 +315,7 @@ def complete(
         if contents.regions:
             by_region = region_boxes(
                 {n.id: n.type for n in graph.nodes("object")},
-                [(r.source, r.target) for r in graph.edges()],
+                [(r.source, r.target, r.label) for r in graph.edges()],
                 contents.mask.owners,
                 len(contents.regions),
             )

@@ -1,32 +1,28 @@
 """The scene graph of a completed room (step 3 of ``complete``): a ``SceneGraph`` of the
-indoor catalog's entries with the relations a room's rules would state. Big pieces
-stand against a wall, night tables either side of the bed, a desk under the window with
-its chair before it, chairs round a table, small things on their supports; in a gym
-treadmills and bikes in a row against a wall (console to it), a weight bench before the
-dumbbell rack, a mat before the television or the rack. What a piece stands beside is
-its strongest partner in the type's relation graph (the weight ``W`` of the plan model).
+indoor catalog's entries with the relations a room's rules would state. What stands on
+or at a piece (a lamp on a night table, night tables by the bed, chairs at a desk or
+round a table) goes where the plans put it: its anchor and its side of it, and the
+relations, come from the poses learned from the plans (``accessories``). Big pieces
+stand against a wall, a desk under the window; in a gym treadmills and bikes in a row
+against a wall (console to it), a weight bench before the dumbbell rack, a mat before
+the television or the rack. What a piece stands beside is its strongest partner in the
+type's relation graph (the weight ``W`` of the plan model).
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from scenewright.completion.plan_model import PlanModel
+from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 
+from .accessories import Placement, assign, slot_relations, stands_on
 from .contents import Contents
 
-#: What stands on what: a category that stands on another, with the supports it takes in
-#: order of preference and the relation it uses. One with none of its supports in the
-#: room is left out (and recorded as such).
-SUPPORTS = {
-    "lamp": (("nightstand", "dresser", "desk"), "OnTopOf"),
-    "desk_lamp": (("desk",), "OnTopOfEdge"),
-    "laptop": (("desk", "dining_table"), "OnTopOfMiddle"),
-    "tv": (("tv_stand", "dresser"), "OnTopOfMiddle"),
-    "book": (("bookshelf", "desk", "nightstand"), "OnTopOf"),
-}
-#: Categories that stand with their back to a wall. The rest stand by a partner (a chair
-#: at its desk or table, an armchair by the coffee table) or in a corner.
+#: Categories that stand with their back to a wall (when they have no place at another
+#: piece). The rest stand by a partner (an armchair by the coffee table) or in a corner.
 AGAINST_WALL = frozenset(
     {
         "bed",
@@ -63,17 +59,6 @@ FLAT_BEFORE = {
 #: Free-standing pieces that stand before a piece against a wall (beyond its clearance):
 #: a weight bench before the dumbbell rack.
 STANDS_BEFORE = {"weight_bench": ("dumbbell_rack",)}
-#: Seats and what they are pulled up to, in order of preference.
-SEAT_TARGETS = {"office_chair": ("desk", "dining_table"), "chair": ("dining_table", "desk")}
-#: The sides of a table its chairs take in turn, each with how a chair there faces the
-#: table: turned to its centre at the ends, square to it along the long sides (where two
-#: chairs side by side cannot both point at the centre).
-TABLE_SIDES = (
-    ("NextToFront", "FacingOpposite"),
-    ("NextToBehind", "FacingSameDirection"),
-    ("NextToLeft", "FacingTowards"),
-    ("NextToRight", "FacingTowards"),
-)
 #: What others gather round: it stands free, the relations are theirs.
 CENTRE_PIECES = frozenset({"dining_table", "coffee_table"})
 #: Why a category the selection chose is not in the room.
@@ -86,30 +71,28 @@ CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 
 def build_graph(
     model: PlanModel, contents: Contents, room: Room, catalog, leave_out=()
-) -> tuple[SceneGraph, dict[str, str]]:
+) -> tuple[SceneGraph, dict[str, str], dict[str, Placement]]:
     """The scene graph of the room holding ``contents.counts`` but the categories in
-    ``leave_out`` (``catalog``: the indoor catalog's entries by name), and the categories
-    left out with why (also a lamp or a television with nothing in the room to stand on).
-    Relations: see the module docstring, step 3."""
+    ``leave_out`` (``catalog``: the indoor catalog's entries by name), the categories
+    left out with why (also a lamp or a television added with nothing in the room to
+    stand on), and each accessory's ``accessories.Placement`` by node id (its anchor a node id
+    too). Relations: see the module docstring, step 3."""
     params = SceneParams(name=contents.types[0], extent=room.extent, ground="floor", room=room)
     graph = SceneGraph(params=params)
     weights = relation_weights(model, contents.types)
     counts = {name: n for name, n in contents.counts.items() if name not in leave_out}
     dropped = {name: NO_FLOOR for name in leave_out}
-    supports = {}  # what stands on something -> the support categories present that it fits on
+    placements = assign(model, counts, catalog)
     for name in list(counts):
-        if name in SUPPORTS:
-            supports[name] = [
-                s
-                for s in SUPPORTS[name][0]
-                if counts.get(s) and _fits_on(catalog[name], catalog[s])
-            ]
-            if not supports[name]:
-                dropped[name] = NOTHING_TO_STAND_ON
-                del counts[name]
+        # A requested one stays, on the floor by the room's other rules (a kept lamp).
+        if stands_on(model, name) and (name, 0) not in placements and name not in contents.owners:
+            dropped[name] = NOTHING_TO_STAND_ON
+            del counts[name]
+    placements = assign(model, counts, catalog)
     # Floor pieces first (anchors before what relates to them), then what stands on them.
     order = sorted(
-        counts, key=lambda n: (n in SUPPORTS, n not in AGAINST_WALL, n in SEAT_TARGETS, n)
+        counts,
+        key=lambda n: (stands_on(model, n), n not in AGAINST_WALL, (n, 0) in placements, n),
     )
     made: dict[str, list[str]] = {}
     for name in order:
@@ -123,13 +106,35 @@ def build_graph(
         if contents.regions
         and not contents.regions[contents.mask.owners[name]].has_room_corner(room)
     }
-    for name in order:
-        for index, node in enumerate(made[name]):
-            for label, target in _relations_of(
-                name, index, made, weights, windows, supports, name in cornerless
-            ):
-                graph.add_relation(node, target, label)
-    return graph, dropped
+    followers = {name for name in counts if name in model.accessories}
+    by_node: dict[str, Placement] = {}
+    at_wall: set[str] = set()  # the pieces that stand against a wall
+    # The pieces with no place of their own first, so an accessory knows whether its
+    # anchor stands against a wall.
+    for anchored in (False, True):
+        for name in order:
+            for index, node in enumerate(made[name]):
+                placement = placements.get((name, index))
+                if (placement is not None) != anchored:
+                    continue
+                if placement is None:
+                    relations = _relations_of(
+                        name, index, made, weights, windows, followers, name in cornerless
+                    )
+                else:
+                    anchor = made[placement.anchor][placement.anchor_index]
+                    by_node[node] = replace(placement, anchor=anchor)
+                    relations = [
+                        (label, anchor if target is None else target)
+                        for label, target in slot_relations(
+                            placement, name, model, anchor in at_wall
+                        )
+                    ]
+                for label, target in relations:
+                    graph.add_relation(node, target, label)
+                    if target == ROOM_NODE and RELATIONS[label].family == "wall":
+                        at_wall.add(node)
+    return graph, dropped, by_node
 
 
 def relation_weights(model: PlanModel, types) -> dict[tuple[str, str], float]:
@@ -142,34 +147,20 @@ def relation_weights(model: PlanModel, types) -> dict[tuple[str, str], float]:
     return weights
 
 
-def _fits_on(item, support) -> bool:
-    """Whether ``item``'s footprint fits on ``support``'s top (a television wider than a
-    dresser would hang off it)."""
-    return item.size[0] <= support.size[0] + 1e-9 and item.size[2] <= support.size[2] + 1e-9
-
-
 def _relations_of(
     name: str,
     index: int,
     made: dict,
     weights: dict,
     windows: bool,
-    supports: dict,
+    followers: set,
     cornerless: bool = False,
 ) -> list[tuple[str, str]]:
-    """The relations (label, target) of the ``index``-th piece of category ``name``;
-    ``windows``: whether the first desk has a window to stand under; ``supports``: per
-    category that stands on another, the support categories it fits on; ``cornerless``:
-    whether the piece's part of the room has no corner of the room (a corner piece
-    stands against a wall there instead)."""
-    if name in SUPPORTS:
-        label = SUPPORTS[name][1]
-        holders = [node for support in supports[name] for node in made[support]]
-        return [(label, holders[index % len(holders)])]
-    if name == "nightstand" and made.get("bed"):
-        bed = made["bed"][index // 2 % len(made["bed"])]
-        side = "BesideLeft" if index % 2 == 0 else "BesideRight"
-        return [(side, bed), ("ImplicitAlignedWith", bed), ("ImplicitAgainstWall", ROOM_NODE)]
+    """The relations (label, target) of the ``index``-th piece of category ``name``,
+    which has no place on or at another (``accessories.assign``); ``windows``: whether
+    the first desk has a window to stand under; ``followers``: the accessory categories,
+    which no piece stands beside; ``cornerless``: whether the piece's part of the room
+    has no corner of the room (a corner piece stands against a wall there instead)."""
     if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
     if name in ROWS:
@@ -188,24 +179,20 @@ def _relations_of(
     if name == "coffee_table" and made.get("sofa"):
         sofa = made["sofa"][0]
         return [("NextToFront", sofa), ("ImplicitAlignedWith", sofa)]
-    if name in SEAT_TARGETS:
-        seat = _seat_relations(name, index, made)
-        if seat:
-            return seat
     if name in AGAINST_WALL:
         return [("AgainstWall", ROOM_NODE)]
     if name in CENTRE_PIECES:
         return []
     if name in FLAT_BEFORE:
         anchor = next((made[n][0] for n in FLAT_BEFORE[name] if made.get(n)), None)
-        anchor = anchor or _strongest_partner(name, made, weights)
+        anchor = anchor or _strongest_partner(name, made, weights, followers)
         return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
     before = next(
         (made[n][index % len(made[n])] for n in STANDS_BEFORE.get(name, ()) if made.get(n)), None
     )
     if before is not None:
         return [("NextToFront", before)]
-    partner = _strongest_partner(name, made, weights)
+    partner = _strongest_partner(name, made, weights, followers)
     if name == "armchair" and made.get("coffee_table"):
         return [
             ("NextToChooseSide", made["coffee_table"][0]),
@@ -220,31 +207,12 @@ def _relations_of(
     return [("NextToChooseSide", partner)]
 
 
-def _seat_relations(name: str, index: int, made: dict) -> list[tuple[str, str]]:
-    """A seat pulled up to its desk or table: the first office chair (or, without one,
-    chair) at each desk, chairs round a dining table side by side in turn."""
-    for target in SEAT_TARGETS[name]:
-        tables = made.get(target, [])
-        if not tables:
-            continue
-        if target == "desk":
-            taken = len(made.get("office_chair", [])) if name == "chair" else 0
-            if index + taken < len(tables):
-                desk = tables[index + taken]
-                return [("SeatedAt", desk)]
-            continue
-        table = tables[index % len(tables)]
-        side, facing = TABLE_SIDES[index // len(tables) % len(TABLE_SIDES)]
-        return [(side, table), (facing, table)]
-    return []
-
-
-def _strongest_partner(name: str, made: dict, weights: dict) -> str | None:
+def _strongest_partner(name: str, made: dict, weights: dict, followers: set) -> str | None:
     """The first piece of the floor category most strongly related to ``name`` (W > 0),
-    seats and rugs aside (one stands beside furniture, not beside a chair)."""
+    accessories and rugs aside (one stands beside furniture, not beside a chair)."""
     best, best_weight = None, 0.0
     for other in sorted(made):
-        if other == name or other in SUPPORTS or other in SEAT_TARGETS or other in FLAT_BEFORE:
+        if other == name or other in followers or other in FLAT_BEFORE:
             continue
         weight = weights.get((min(name, other), max(name, other)), 0.0)
         if weight > best_weight:

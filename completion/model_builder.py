@@ -13,7 +13,8 @@ of ``MODEL_FORMAT``), the same for the same plans whatever their order on disk:
   ``P(o_i, o_j | s)`` (Equation 1) and the edge weight ``W_s = P(o_i, o_j | s) *
   A(o_i, o_j)``; the layout-mask clusters;
 - per plan: its type, room area, category counts, canonical frame, room feature
-  ``f_r`` and 10 x 10 layout mask, and its cluster.
+  ``f_r`` and 10 x 10 layout mask, and its cluster;
+- ``accessories``: what stands on or at what, and where (``accessories.learn_accessories``).
 
 ``exist(o, r)`` is 1 when plan ``r`` has a piece of category ``o``. Otherwise it comes
 from the plan's free areas: the paper writes it as ``||f_obj^o - f_obj^area||^2``, a
@@ -38,6 +39,7 @@ from collections import Counter
 
 import numpy as np
 
+from scenewright.completion.accessories import learn_accessories
 from scenewright.completion.activity import activity_prior, purpose
 from scenewright.completion.features import MASK_SIZE, canonical_frame, occupancy_mask, room_feature
 from scenewright.completion.floor_plan import rounded
@@ -122,6 +124,7 @@ def build_model(plans) -> PlanModel:
         "activity": [{"pair": list(pair), "why": why} for pair, why in prior.items()],
         "types": model_types,
         "plans": model_plans,
+        "accessories": learn_accessories(plans, catalog),
     }
     return PlanModel.from_dict(rounded(model, DECIMALS))
 
@@ -188,7 +191,13 @@ def read_model(path: str) -> PlanModel:
         raise InputError(
             f"{path}: plan model version {data.get('version')!r}; this scenewright reads {MODEL_VERSION}"
         )
-    for key, kind in (("categories", dict), ("activity", list), ("types", dict), ("plans", list)):
+    for key, kind in (
+        ("categories", dict),
+        ("activity", list),
+        ("types", dict),
+        ("plans", list),
+        ("accessories", dict),
+    ):
         if not isinstance(data.get(key), kind):
             raise InputError(
                 f"{path}: $.{key}: missing or not a JSON {'object' if kind is dict else 'array'}"

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 MODEL_FORMAT = "scenewright-plan-model"
-MODEL_VERSION = 1
+MODEL_VERSION = 2
 
 
 @dataclass
@@ -142,14 +142,102 @@ class ActivityPair:
 
 
 @dataclass
+class AccessorySlot:
+    """One side of an anchor an accessory stood at in the plans (``accessories``):
+    ``side`` (``middle`` of its top, or its ``left``, ``right``, ``front``, ``behind``),
+    the pieces seen there, the most at that side of one anchor in one plan, their mean
+    centre ``offset`` (left, forward) in the anchor's frame (metres), their circular
+    mean ``yaw`` relative to the anchor's (radians), the mean ``gap`` between the
+    footprints (0 on top) and the share ``flush`` with the anchor (on top: at an edge
+    of its top; beside: parallel with the backs in line)."""
+
+    side: str
+    pieces: int
+    most: int
+    offset: list[float]
+    yaw: float
+    gap: float
+    flush: float
+
+    def to_dict(self) -> dict:
+        return {
+            "side": self.side,
+            "pieces": self.pieces,
+            "most": self.most,
+            "offset": self.offset,
+            "yaw": self.yaw,
+            "gap": self.gap,
+            "flush": self.flush,
+        }
+
+
+@dataclass
+class AccessoryAnchor:
+    """An anchor category an accessory stood on or at: the pieces seen, the most at one
+    anchor in one plan, and the slots, most pieces first."""
+
+    anchor: str
+    pieces: int
+    most: int
+    slots: list[AccessorySlot]
+
+    def to_dict(self) -> dict:
+        return {
+            "anchor": self.anchor,
+            "pieces": self.pieces,
+            "most": self.most,
+            "slots": [slot.to_dict() for slot in self.slots],
+        }
+
+
+@dataclass
+class AccessoryCategory:
+    """A category most of whose pieces stood on or at a larger piece: its pieces over
+    all plans, the share with an anchor, whether it stands ``on`` its anchors (else
+    beside them) and its anchor categories, most pieces first."""
+
+    pieces: int
+    anchored: float
+    on: bool
+    anchors: list[AccessoryAnchor]
+
+    def to_dict(self) -> dict:
+        return {
+            "pieces": self.pieces,
+            "anchored": self.anchored,
+            "on": self.on,
+            "anchors": [anchor.to_dict() for anchor in self.anchors],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> AccessoryCategory:
+        return cls(
+            pieces=data["pieces"],
+            anchored=data["anchored"],
+            on=data["on"],
+            anchors=[
+                AccessoryAnchor(
+                    anchor=entry["anchor"],
+                    pieces=entry["pieces"],
+                    most=entry["most"],
+                    slots=[AccessorySlot(**slot) for slot in entry["slots"]],
+                )
+                for entry in data["anchors"]
+            ],
+        )
+
+
+@dataclass
 class PlanModel:
     """The plan model: the categories over all plans, the activity pairs, per room type
-    its ``RoomTypeModel`` and every plan's ``PlanEntry``."""
+    its ``RoomTypeModel``, every plan's ``PlanEntry`` and what stands on or at what
+    (``accessories``: per accessory category its ``AccessoryCategory``)."""
 
     categories: dict[str, CategoryStats]
     types: dict[str, RoomTypeModel]
     activity: list[ActivityPair] = field(default_factory=list)
     plans: list[PlanEntry] = field(default_factory=list)
+    accessories: dict[str, AccessoryCategory] = field(default_factory=dict)
 
     def type_plans(self, room_type: str) -> list[PlanEntry]:
         """The plans of ``room_type``, in the model's order."""
@@ -164,6 +252,7 @@ class PlanModel:
             "activity": [pair.to_dict() for pair in self.activity],
             "types": {name: entry.to_dict() for name, entry in self.types.items()},
             "plans": [plan.to_dict() for plan in self.plans],
+            "accessories": {name: entry.to_dict() for name, entry in self.accessories.items()},
         }
 
     @classmethod
@@ -187,4 +276,8 @@ class PlanModel:
             },
             activity=[ActivityPair(**pair) for pair in data["activity"]],
             plans=[PlanEntry(**plan) for plan in data["plans"]],
+            accessories={
+                name: AccessoryCategory.from_dict(entry)
+                for name, entry in data["accessories"].items()
+            },
         )

@@ -1,9 +1,11 @@
 """Where a completed room's layout starts (step 4 of ``complete``): the pieces that stand
 against a wall go, largest first, to the place along the walls whose footprint covers
 the most of the layout mask, clear of the door swings and of what is already placed;
-tables stand free with their chairs round them, flat pieces before what they lie
-before. The mask is in the room's door-aware canonical frame; ``layout_mask.mask_at``
-reads it at room positions. Nothing here draws a random number.
+tables stand free with room for their chairs round them; accessories (what stands on or
+at a piece) where the plans put them by their started anchors
+(``accessories.slot_pose``), flat pieces before what they lie before. The mask is in
+the room's door-aware canonical frame; ``layout_mask.mask_at`` reads it at room
+positions. Nothing here draws a random number.
 """
 
 from __future__ import annotations
@@ -17,33 +19,33 @@ from scenewright.core.poses import Pose
 from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
 
-from .furnishing import CENTRE_PIECES, SEAT_TARGETS
+from .accessories import Placement, slot_pose
+from .furnishing import CENTRE_PIECES
 
 #: Starting poses: the step along a wall between candidate places (metres), the samples
 #: per side of a footprint read from the mask, the gap kept to a wall.
 WALL_STEP = 0.1
 FOOTPRINT_SAMPLES = 5
 WALL_GAP = 0.02
-#: Per table side, the table-local (left, forward) directions along it and out of it.
-SIDE_DIRECTIONS = {
-    "NextToFront": ((1.0, 0.0), (0.0, 1.0)),
-    "NextToBehind": ((1.0, 0.0), (0.0, -1.0)),
-    "NextToLeft": ((0.0, 1.0), (1.0, 0.0)),
-    "NextToRight": ((0.0, 1.0), (-1.0, 0.0)),
-}
 #: Pieces at most this tall (metres) lie flat: a rug. The selection counts no floor for
 #: them (plans lay rugs under furniture) but the layout keeps every piece apart, so one
 #: the starting poses find no free floor for is left out rather than failing the layout.
 FLAT = 0.02
 
 
-def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
+def starting_poses(
+    graph: SceneGraph, room: Room, mask, placements: dict[str, Placement] | None = None
+) -> dict[str, Pose]:
     """Poses for the pieces that stand against a wall (``AgainstWall``, ``UnderWindow``
     to the room), those under a window first, then the largest first: each at the place along the walls whose footprint
     covers most of the layout ``mask`` and whose footprint and clearance are clear of the
     door swings, the room's outline and the pieces already placed. Under a window a
     piece goes to the window's middle. What flanks a piece along its wall (night tables
-    ``BesideLeft``/``BesideRight`` of the bed) is placed with it, one unit."""
+    ``BesideLeft``/``BesideRight`` of the bed) is placed with it, one unit. Then the
+    free-standing tables, the accessories (``placements``: node id -> its
+    ``accessories.Placement``, the anchor a node id) by their started anchors, and
+    what stands in front of a started piece."""
+    placements = placements or {}
     from scenewright.completion.layout_mask import mask_values
 
     wall_of = {
@@ -113,32 +115,32 @@ def starting_poses(graph: SceneGraph, room: Room, mask) -> dict[str, Pose]:
             # The piece's local left is the wall's -u when it faces into the room.
             offset = (width + other.size[0]) / 2.0 + WALL_GAP
             poses[other.id] = _against(wall, middle - side * offset, other.size[2])
-    _start_tables(graph, room, mask, poses, placed, swings)
+    _start_tables(graph, room, mask, poses, placed, swings, placements)
+    _start_accessories(graph, room, poses, placed, swings, placements)
     _start_in_front(graph, room, poses, placed, swings)
     return poses
 
 
 def _start_tables(
-    graph: SceneGraph, room: Room, mask, poses: dict, placed: dict, swings: list
+    graph: SceneGraph,
+    room: Room,
+    mask,
+    poses: dict,
+    placed: dict,
+    swings: list,
+    placements: dict[str, Placement],
 ) -> None:
     """Start a free-standing table (``CENTRE_PIECES`` with no relation of its own) where
-    it and a ring of its chairs' depth round it cover most of the mask, inside the room
-    and clear of the rest, and its chairs spread evenly along the sides they sit at,
-    facing it."""
+    it and a ring as deep as what stands at it (its chairs) cover most of the mask,
+    inside the room and clear of the rest."""
     from scenewright.completion.layout_mask import mask_values
 
     sources = {r.source for r in graph.edges()}
     for table in graph.nodes("object"):
         if table.type not in CENTRE_PIECES or table.id in sources or table.id in poses:
             continue
-        seats = [
-            (r.source, r.label)
-            for r in graph.edges()
-            if r.target == table.id
-            and r.label in SIDE_DIRECTIONS
-            and graph.node(r.source).type in SEAT_TARGETS
-        ]
-        ring = max((graph.node(seat).size[2] for seat, _ in seats), default=0.3) + 2 * WALL_GAP
+        seats = [box for box, at in placements.items() if at.anchor == table.id and not at.on]
+        ring = max((graph.node(seat).size[2] for seat in seats), default=0.3) + 2 * WALL_GAP
         width, _, depth = table.size
         xs, zs = (np.array([c[i] for c in room.corners]) for i in (0, 1))
         grid = [
@@ -152,7 +154,6 @@ def _start_tables(
         # Both turns at every grid point, best mask value first (ties in grid order): the
         # first that fits is the best place, found without testing the whole grid.
         order = np.lexsort((np.arange(2 * len(grid)), -np.concatenate([scores, scores])))
-        best = None
         for k in order:
             (x, z), yaw = grid[k % len(grid)], (0.0, math.pi / 2.0)[k // len(grid)]
             rect = make_rect(x, z, width + 2 * ring, depth + 2 * ring, yaw)
@@ -160,24 +161,49 @@ def _start_tables(
                 continue
             if any(rect_overlap(rect, other) > 1e-6 for other in swings + list(placed.values())):
                 continue
-            best = (rect, float(x), float(z), yaw)
+            placed[table.id] = rect
+            poses[table.id] = Pose(float(x), 0.0, float(z), yaw)
             break
-        if best is None:
-            continue
-        rect, x, z, yaw = best
-        placed[table.id] = rect
-        poses[table.id] = Pose(x, 0.0, z, yaw)
-        c, s = math.cos(yaw), math.sin(yaw)
-        for label, (along, out) in SIDE_DIRECTIONS.items():
-            here = [seat for seat, side in seats if side == label]
-            span = width if out[1] else depth  # chairs at the front or back spread along the width
-            for k, seat in enumerate(here):
-                chair = graph.node(seat)
-                shift = ((k + 0.5) / len(here) - 0.5) * span
-                reach = (depth if out[1] else width) / 2.0 + chair.size[2] / 2.0 + WALL_GAP
-                lx, lz = along[0] * shift + out[0] * reach, along[1] * shift + out[1] * reach
-                wx, wz = x + lx * c + lz * s, z - lx * s + lz * c  # local (left, forward) -> world
-                poses[seat] = Pose(float(wx), 0.0, float(wz), float(math.atan2(x - wx, z - wz)))
+
+
+def _start_accessories(
+    graph: SceneGraph,
+    room: Room,
+    poses: dict,
+    placed: dict,
+    swings: list,
+    placements: dict[str, Placement],
+) -> None:
+    """Start each accessory not yet started whose anchor is at its slot
+    (``accessories.slot_pose``): on its top, or beside it where the footprint is
+    inside the room and clear of the door ``swings`` and the ``placed`` pieces (but its
+    anchor's: a chair stands in the space kept free before its desk, or in the ring
+    kept round its table). An anchor started here starts what stands on or at it."""
+    waiting = [box for box in placements if box not in poses]
+    while waiting:
+        started = False
+        for box in list(waiting):
+            at = placements[box]
+            anchor = poses.get(at.anchor)
+            if anchor is None:
+                continue
+            waiting.remove(box)
+            node, target = graph.node(box), graph.node(at.anchor)
+            pose = slot_pose(
+                at, anchor, (target.size[0], target.size[2]), (node.size[0], node.size[2])
+            )
+            if not at.on:
+                rect = make_rect(pose.x, pose.z, node.size[0], node.size[2], pose.yaw)
+                others = swings + [other for key, other in placed.items() if key != at.anchor]
+                if room.footprint_excess(corners(rect)) > 1e-6 or any(
+                    rect_overlap(rect, other) > 1e-6 for other in others
+                ):
+                    continue
+                placed[box] = rect
+            poses[box] = pose
+            started = True
+        if not started:
+            break
 
 
 def _start_in_front(graph: SceneGraph, room: Room, poses: dict, placed: dict, swings: list) -> None:

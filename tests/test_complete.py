@@ -211,8 +211,8 @@ def test_a_dining_table_starts_free_with_its_chairs_spread_round_it(model, catal
 
     request = parse_request("4.5x4", ["W:1:0.9"], ["N:2.2:1.4"], ["dining_table"], catalog)
     contents = choose_contents(model, request)
-    graph, _ = build_graph(model, contents, request.room, catalog)
-    poses = starting_poses(graph, request.room, contents.mask)
+    graph, _, placements = build_graph(model, contents, request.room, catalog)
+    poses = starting_poses(graph, request.room, contents.mask, placements)
     table = graph.node("dining_table_1")
     pose = poses[table.id]
     table_rect = make_rect(pose.x, pose.z, table.size[0], table.size[2], pose.yaw)
@@ -249,7 +249,7 @@ CROWDED = ("4.8x4.9", "S:3.01:0.85", "N:1.67:1.34", "desk,filing_cabinet")
 def _contents(model, catalog, room, door, window, wanted):
     request = parse_request(room, [door], [window], [wanted], catalog)
     contents = choose_contents(model, request)
-    graph, _ = build_graph(model, contents, request.room, catalog)
+    graph, _, _ = build_graph(model, contents, request.room, catalog)
     return request, contents, graph
 
 

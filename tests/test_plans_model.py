@@ -345,11 +345,12 @@ def test_a_damaged_model_file_is_refused_in_one_line(tmp_path, capsys):
         json.dumps(
             {
                 "format": "scenewright-plan-model",
-                "version": 1,
+                "version": 2,
                 "categories": {},
                 "activity": [],
                 "types": {"bedroom": {"pairs": "?"}},
                 "plans": [],
+                "accessories": {},
             }
         )
     )
