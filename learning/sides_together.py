@@ -35,8 +35,11 @@ the seed alone. A pair is tested below the lowest parent both are read from.
 
 This is Fisher's exact test done by sampling: nine armchairs with the lamp on the left
 of six and the side table always on the other side give p = 1 / C(9, 3) = 1/84 = 0.012;
-with three, the smallest p any table can reach is 1/3, so three examples never couple
-(the side of each is then drawn on its own, as before).
+with three, the smallest p any table can reach is 1/3. Where no relabelling of the
+pair's parent objects could reach ``ALPHA`` (the share of relabellings as extreme as the
+most extreme one is above it: three examples, five split three to two, six split three
+to three), the test cannot tell and the examples are all there is: a pair whose table
+shows any association (G > 0) is coupled, so their ways are the examples' own.
 
 **Joints.** Coupled pairs are joined into connected sets, each placed by the lowest
 parent type all its members are read from. A set's ways are the combinations of
@@ -53,6 +56,7 @@ so that each member's placements keep their shares: whether a member is there at
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Sequence
 
@@ -107,6 +111,41 @@ def association(
         table = np.bincount(row, minlength=size).reshape(-1, cols)
         at_least += _g_of(table, n) >= seen - 1e-9
     return seen, (1 + at_least) / (PERMUTATIONS + 1)
+
+
+#: Tables with at most this many relabellings are searched whole for the smallest
+#: p-value they allow (more always allow one below ALPHA).
+SEARCHED = 400
+
+
+def _smallest_p(first: np.ndarray, second: np.ndarray) -> float:
+    """The smallest p-value any relabelling of ``second`` against ``first`` can reach: the
+    share of relabellings as extreme as the most extreme one (its mirror images count:
+    three to three always opposite gives 2/20, not 1/20)."""
+    counts = Counter(second.tolist())
+    arrangements = math.factorial(len(second))
+    for count in counts.values():
+        arrangements //= math.factorial(count)
+    if arrangements > SEARCHED:
+        return 0.0
+    statistics = [
+        g_statistic(first, np.array(labels, dtype=int)) for labels in _relabellings(counts)
+    ]
+    top = max(statistics)
+    return sum(g >= top - 1e-9 for g in statistics) / len(statistics)
+
+
+def _relabellings(counts: Counter) -> list[tuple[int, ...]]:
+    """Every distinct sequence of the labels with these counts."""
+    if not +counts:
+        return [()]
+    out = []
+    for label in sorted(counts):
+        if counts[label]:
+            rest = counts.copy()
+            rest[label] -= 1
+            out += [(label, *tail) for tail in _relabellings(rest)]
+    return out
 
 
 #: The labels that say where a thing stands by its parent (not only which way it faces).
@@ -192,12 +231,15 @@ def sides_together(group: Group, seed: int) -> None:
                 )
                 x, y = first[-1], second[-1]
                 rng = pair_stream(seed, "sides", root, x.parent, x.type, y.parent, y.type)
-                statistic, p_value = association(
-                    np.array([a_map[h] for h in hosts], dtype=int),
-                    np.array([b_map[h] for h in hosts], dtype=int),
-                    rng,
+                # Too few parent objects for any table to reach ALPHA (three examples:
+                # p >= 1/3): what the examples did together is all there is to go by,
+                # so any association they show is kept rather than drawn apart.
+                first_labels = np.array([a_map[h] for h in hosts], dtype=int)
+                second_labels = np.array([b_map[h] for h in hosts], dtype=int)
+                statistic, p_value = association(first_labels, second_labels, rng)
+                coupled = p_value <= ALPHA or (
+                    statistic > 1e-9 and _smallest_p(first_labels, second_labels) > ALPHA
                 )
-                coupled = p_value <= ALPHA
                 owner.side_tests.append(
                     SideTest(
                         (x.type, x.parent),

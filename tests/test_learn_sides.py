@@ -271,3 +271,22 @@ def test_a_member_in_no_placement_is_drawn_on_its_own_beside_the_others(tmp_path
     # The examples' two ways, and now and then (the lamp drawn alone) both on the right.
     both_right = (("floor_lamp", "NextToRight"), ("side_table", "NextToRight"))
     assert len(drawn) == 3 and 0 < drawn[both_right] < 15
+
+
+def test_too_few_examples_to_test_keep_their_own_ways(tmp_path):
+    # Six corners, the lamp on the left of three and the table always opposite: the
+    # most extreme table of six split three to three and its mirror image are 2 of the
+    # 20 relabellings, p = 0.1, so the test cannot couple; the examples' own ways are
+    # kept rather than drawn apart.
+    lamp_sides = [1, 1, 1, -1, -1, -1]
+    induction, text, rules = learned(
+        tmp_path, [-side for side in lamp_sides], lamp_sides=lamp_sides
+    )
+    (group,) = induction.groups
+    (test,) = group.side_tests
+    assert test.parents == 6 and test.p_value > ALPHA and test.coupled
+    assert len(group.joints) == 1
+    assert set(drawn_sides(rules, seeds=100)) == {
+        (("floor_lamp", "NextToLeft"), ("side_table", "NextToRight")),
+        (("floor_lamp", "NextToRight"), ("side_table", "NextToLeft")),
+    }
