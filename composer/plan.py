@@ -13,6 +13,7 @@ import math
 from collections.abc import Mapping
 
 from scenewright.describer.colours import COLOUR_TERMS
+from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator.catalog import CatalogEntry, Style
 
 from .parse import Issue, Place, Request, Statement
@@ -117,6 +118,17 @@ def room_size(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[fl
     f = request.size_factor
     width = max(base[0] * f, side * 1.08, MIN_SIDE)
     depth = max(base[1] * f, side * 0.93, MIN_SIDE)
+    # A corner named on the door's wall ("a plant in the south-east corner", the door in
+    # the south wall) stays a corner of its own, not "the corner by the door": the wall
+    # leaves more than the describer's reach between the door and each of its ends.
+    corners = [s.target.corner for s in request.statements if isinstance(s.target, Place)]
+    need = DOOR_WIDTH + 2 * (DOOR_NEAR_CORNER + 0.3)
+    for wall in request.doors:
+        if any(corner is not None and wall in corner for corner in corners):
+            if wall in ("north", "south"):
+                width = max(width, need)
+            else:
+                depth = max(depth, need)
     return round(width, 1), round(depth, 1)
 
 

@@ -461,3 +461,14 @@ def test_close_furniture_described_reads_back_close(rules_name):
         if r.satisfied and r.label in close
     )
     assert not stated - held, (description.text, stated - held)
+
+
+def test_corners_named_on_the_door_s_wall_stay_clear_of_the_door():
+    # two plants in the corners of the door's wall: the wall is long enough that neither
+    # is "the corner by the door", as the describer would then say
+    request, _ = _plan(
+        "The room has a door in the south wall. The first plant stands in the south-east "
+        "corner. The other plant stands in the south-west corner."
+    )
+    assert request.planned_size[0] >= 0.9 + 2 * 1.0
+    assert not request.issues
