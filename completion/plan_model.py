@@ -6,7 +6,7 @@ fields and what each statistic means are described there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 MODEL_FORMAT = "scenewright-plan-model"
 MODEL_VERSION = 2
@@ -160,15 +160,7 @@ class AccessorySlot:
     flush: float
 
     def to_dict(self) -> dict:
-        return {
-            "side": self.side,
-            "pieces": self.pieces,
-            "most": self.most,
-            "offset": self.offset,
-            "yaw": self.yaw,
-            "gap": self.gap,
-            "flush": self.flush,
-        }
+        return asdict(self)  # fields in order, nested slots and anchors as dicts
 
 
 @dataclass
@@ -182,12 +174,7 @@ class AccessoryAnchor:
     slots: list[AccessorySlot]
 
     def to_dict(self) -> dict:
-        return {
-            "anchor": self.anchor,
-            "pieces": self.pieces,
-            "most": self.most,
-            "slots": [slot.to_dict() for slot in self.slots],
-        }
+        return asdict(self)  # fields in order, nested slots and anchors as dicts
 
 
 @dataclass
@@ -202,12 +189,7 @@ class AccessoryCategory:
     anchors: list[AccessoryAnchor]
 
     def to_dict(self) -> dict:
-        return {
-            "pieces": self.pieces,
-            "anchored": self.anchored,
-            "on": self.on,
-            "anchors": [anchor.to_dict() for anchor in self.anchors],
-        }
+        return asdict(self)  # fields in order, nested slots and anchors as dicts
 
     @classmethod
     def from_dict(cls, data: dict) -> AccessoryCategory:
