@@ -140,7 +140,7 @@ def read_plan(source: str | os.PathLike) -> PlanSpec:
     except UnexpectedInput as error:
         raise RulesError([_syntax_diagnostic(error, display, lines)]) from None
     reader = _Reader(display, path, lines)
-    spec = reader.plan(tree.children[0])
+    spec = reader.plan(_tree(tree.children[0]))
     if reader.diagnostics:
         raise RulesError(reader.diagnostics)
     return spec
@@ -261,7 +261,7 @@ class _Reader:
             elif kind == "courtyard":
                 courtyards.append(self.corners(statement, "courtyard"))
             elif kind == "height":
-                height = float(statement.children[0])
+                height = float(_token(statement.children[0]))
                 if not 2.0 <= height <= 10.0:
                     self.error(statement, f"a wall height of {height:g} m: give 2 to 10 m")
             elif kind == "room":
@@ -311,7 +311,10 @@ class _Reader:
         return None, self.corners(tree, "footprint")
 
     def corners(self, tree: Tree, what: str) -> tuple[tuple[float, float], ...]:
-        points = tuple((float(c.children[0]), float(c.children[1])) for c in tree.children)
+        points = tuple(
+            (float(_token(c.children[0])), float(_token(c.children[1])))
+            for c in map(_tree, tree.children)
+        )
         if len(points) < 3:
             self.error(tree, f"a {what} needs at least three corners")
             return points
@@ -325,7 +328,7 @@ class _Reader:
         return points
 
     def range(self, tree: Tree, what: str, low: float, high: float) -> tuple[float, float]:
-        values = [float(v) for v in tree.children]
+        values = [float(_token(v)) for v in tree.children]
         lo, hi = values[0], values[-1]
         if lo > hi:
             self.error(tree, f"the {what} range {lo:g}..{hi:g} runs backwards")
@@ -337,16 +340,16 @@ class _Reader:
         children = list(tree.children)
         probability = 1.0
         if isinstance(children[0], Token) and children[0].type == "PROBABILITY":
-            probability = float(children.pop(0)[:-1] or 0)
+            probability = float(_token(children.pop(0))[:-1] or 0)
             if not 0.0 < probability <= 1.0:
                 self.error(tree, f"a probability of {probability:g}: give more than 0, at most 1")
-        type_token = children.pop(0)
+        type_token = _token(children.pop(0))
         room_type = str(type_token)
         count = (1, 1)
         options: dict[str, Tree] = {}
         for child in children:
             if isinstance(child, Tree) and child.data == "count":
-                values = [int(v) for v in child.children]
+                values = [int(_token(v)) for v in child.children]
                 count = (values[0], values[-1])
                 if count[0] > count[1]:
                     self.error(child, f"the count {count[0]}..{count[1]} runs backwards")
@@ -372,7 +375,7 @@ class _Reader:
             )
         )
         width = (
-            float(options["width"].children[0])
+            float(_token(options["width"].children[0]))
             if "width" in options
             else round(max(1.0, min(own_width * DEFAULT_WIDTH_SHARE, 0.8 * area[0] ** 0.5)), 1)
         )
@@ -418,7 +421,7 @@ class _Reader:
             source = room_type
             where: Tree | Token = token
         else:
-            value = option.children[0]
+            value = _token(option.children[0])
             where = option
             if value.type == "STRING":
                 source = str((self.path.parent / _string(value)).resolve())
@@ -510,3 +513,15 @@ def _references(item):
 
 def _string(token) -> str:
     return str(token)[1:-1]
+
+
+def _token(node: Tree | Token) -> Token:
+    """A child the grammar makes a token (a number, a name, a string)."""
+    assert isinstance(node, Token), node
+    return node
+
+
+def _tree(node: Tree | Token) -> Tree:
+    """A child the grammar makes a rule's tree."""
+    assert isinstance(node, Tree), node
+    return node

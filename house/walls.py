@@ -203,10 +203,11 @@ def _door(planned: PlannedDoor, rooms, pieces, taken, swings, rng, number: int) 
         width = OPEN_WIDTH
     else:
         width = planned.width or (FRONT_DOOR_WIDTH if front else DOOR_WIDTH)
-    if planned.center is not None:
-        n, piece = min(candidates, key=lambda item: _distance_to(item[1], planned.center))
-        u = _project(piece, planned.center)
-        if _distance_to(piece, planned.center) > 0.05:
+    center = planned.center
+    if center is not None:
+        n, piece = min(candidates, key=lambda item: _distance_to(item[1], center))
+        u = _project(piece, center)
+        if _distance_to(piece, center) > 0.05:
             raise HouseError(
                 f"the door of {words} at {planned.center} is not on a wall between them"
             )
