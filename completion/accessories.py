@@ -38,7 +38,9 @@ from __future__ import annotations
 
 import math
 from collections import Counter, defaultdict
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -47,6 +49,9 @@ from scenewright.core.frames import to_local, to_world
 from scenewright.core.geometry import make_rect, rect_distance, wrap_angle
 from scenewright.core.poses import Pose
 from scenewright.core.relations import BESIDE_REACH, SEAT_REACH
+
+if TYPE_CHECKING:
+    from scenewright.completion.floor_plan import Furniture
 
 #: Metres between two footprints within which a piece stands at another.
 ACCESSORY_GAP = 0.3
@@ -96,7 +101,9 @@ SQUARE = math.radians(15.0)
 # -- learning -----------------------------------------------------------------------------
 
 
-def anchor_of(piece, pieces, catalog) -> tuple[object, bool] | None:
+def anchor_of(
+    piece: Furniture, pieces: Sequence[Furniture], catalog
+) -> tuple[Furniture, bool] | None:
     """``piece``'s anchor among ``pieces`` (one plan's) and whether it stands on it, or
     None (module docstring)."""
     from scenewright.completion.plan_checks import is_flat
@@ -119,7 +126,7 @@ def anchor_of(piece, pieces, catalog) -> tuple[object, bool] | None:
     return (best[1], False) if best is not None else None
 
 
-def relative_pose(piece, anchor, on: bool) -> dict:
+def relative_pose(piece: Furniture, anchor: Furniture, on: bool) -> dict:
     """Where ``piece`` stands relative to ``anchor``: its slot's side, its centre's
     offset (left, forward) in the anchor's frame, its relative yaw, the gap between
     the footprints and whether it is flush with the anchor (module docstring)."""
@@ -191,7 +198,7 @@ def learn_accessories(plans, catalog) -> dict:
         by_anchor: dict[str, list] = defaultdict(list)
         for anchor, _, pose, key in kept:
             by_anchor[anchor].append((pose, key))
-        anchors = [
+        anchors: list[dict[str, Any]] = [
             {
                 "anchor": anchor,
                 "pieces": len(found),
@@ -318,9 +325,9 @@ def assign(model: PlanModel, counts: dict[str, int], catalog) -> dict[tuple[str,
                     average = slot.pieces / (
                         2 * slot_taken[name, anchor.anchor, index, slot.side] + 1
                     )
-                    key = (pair_taken[name, anchor.anchor, index], -average, index, order)
-                    if best is None or key < best[0]:
-                        best = (key, index, slot)
+                    rank = (pair_taken[name, anchor.anchor, index], -average, index, order)
+                    if best is None or rank < best[0]:
+                        best = (rank, index, slot)
             if best is None:
                 break
             _, index, slot = best

@@ -195,7 +195,7 @@ class Design:
 
     def free(self, x: float, z: float, w: float, d: float, *suits: str) -> None:
         """Free floor centred at plan (x, z), ``w`` east-west by ``d`` north-south."""
-        area = {"center": self._centred(x, z), "size": [float(w), float(d)]}
+        area: dict[str, list] = {"center": self._centred(x, z), "size": [float(w), float(d)]}
         if suits:
             area["suits"] = list(suits)
         self.free_areas.append(area)

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -54,6 +55,9 @@ from .contents import Contents, choose_contents
 from .furnishing import AGAINST_WALL, CENTRE_PIECES, build_graph, relation_weights
 from .request import Request
 from .starting_poses import FLAT, starting_poses
+
+if TYPE_CHECKING:
+    from scenewright.generator.layout.mask_term import FloorMask
 
 #: The large furniture the layout mask is for in the layout's energy: what stands
 #: against a wall and the free-standing tables (the pieces whose starting poses the mask
@@ -202,7 +206,7 @@ def completion_record(
     split by virtual walls also has ``regions`` (per region its type, rectangle, whether
     its door is virtual, its layout mask and the pieces that belong there, ``by_region``)
     and ``virtual_walls``; its ``mask`` is the first region's."""
-    types = {}
+    types: dict[str, dict[str, Any]] = {}
     for room_type, exploration in contents.explorations.items():
         entry = model.types[room_type]
         weights = {tuple(pair.pair): pair.weight for pair in entry.pairs}
@@ -225,7 +229,7 @@ def completion_record(
             "cost": exploration.cost,
             "references": list(exploration.references),
         }
-    record = {
+    record: dict[str, Any] = {
         "types": list(contents.types),
         "owners": dict(sorted(contents.owners.items())),
         "selection": types,
@@ -234,22 +238,26 @@ def completion_record(
         "given_up": dict(sorted((given_up or {}).items())),
     }
     if not contents.regions:
-        record["mask"] = _mask_record(contents.types[0], contents.mask, masked)
+        record["mask"] = _mask_record(contents.types[0], contents.room_mask(), masked)
         return record
     from scenewright.completion.regions import virtual_walls
 
     regions = []
-    for k, (region, layout) in enumerate(zip(contents.regions, contents.mask.masks, strict=False)):
+    for k, (region, layout) in enumerate(
+        zip(contents.regions, contents.region_masks().masks, strict=False)
+    ):
         pieces = list(by_region[k]) if by_region else []
-        entry = {
+        described: dict[str, Any] = {
             **region.to_dict(),
             **_mask_record(region.room_type, layout, [b for b in pieces if b in masked]),
         }
-        entry["pieces"] = pieces
-        entry["categories"] = sorted(
-            name for name, k_ in contents.mask.owners.items() if k_ == k and name not in dropped
+        described["pieces"] = pieces
+        described["categories"] = sorted(
+            name
+            for name, k_ in contents.region_masks().owners.items()
+            if k_ == k and name not in dropped
         )
-        regions.append(entry)
+        regions.append(described)
     record["mask"] = {
         key: regions[0][key] for key in ("type", "frame", "references", "cells", "boxes", "bounds")
     }
@@ -312,17 +320,22 @@ def complete(
         with timed(timings, "complete"):
             graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
         masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
+        mask: FloorMask | list[FloorMask] | None
         if contents.regions:
             by_region = region_boxes(
                 {n.id: n.type for n in graph.nodes("object")},
                 [(r.source, r.target, r.label) for r in graph.edges()],
-                contents.mask.owners,
+                contents.region_masks().owners,
                 len(contents.regions),
             )
-            mask = region_floor_masks(contents.mask, by_region, set(masked)) if mask_term else None
+            mask = (
+                region_floor_masks(contents.region_masks(), by_region, set(masked))
+                if mask_term
+                else None
+            )
         else:
             by_region = []
-            mask = floor_mask(contents.mask, request.room, masked) if masked else None
+            mask = floor_mask(contents.room_mask(), request.room, masked) if masked else None
         pinned = None
         if keep is not None:
             graph, pinned = pin_existing(graph, keep)
@@ -354,6 +367,7 @@ def complete(
     for name in given_up:
         if name not in contents.counts:
             dropped.setdefault(name, ROOM_FULL)
+    assert layout is not None  # the loop lays out at least once
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
     scene.completion = completion_record(contents, dropped, model, masked, given_up, by_region)
     scene.timings.update(timings)
@@ -375,7 +389,8 @@ def pin_existing(graph: SceneGraph, scene) -> tuple[SceneGraph, dict[str, Pose]]
     node_of: dict[str, str] = {}
     for obj in sorted(scene.placed_objects(), key=lambda o: _id_order(o.id)):
         node_of[obj.id] = nodes[obj.type].pop(0)
-        pinned[node_of[obj.id]] = Pose(*(float(v) for v in obj.position), float(obj.yaw))
+        x, y, z = (float(v) for v in obj.position)
+        pinned[node_of[obj.id]] = Pose(x, y, z, float(obj.yaw))
     fixed = set(pinned) | {
         n.id for n in graph.nodes() if n.kind in ("room", "wall", "door", "window")
     }

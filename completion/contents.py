@@ -9,10 +9,14 @@ virtual walls (``regions``): each type's categories and mask come from its own r
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, cast
 
 from scenewright.completion.plan_model import PlanModel
 
 from .request import Request
+
+if TYPE_CHECKING:  # for the annotation only: choose_contents imports it when it runs
+    from .layout_mask import LayoutMask, RegionMasks
 
 
 @dataclass(frozen=True)
@@ -26,8 +30,18 @@ class Contents:
     owners: dict[str, str]
     explorations: dict
     counts: dict[str, int]
-    mask: object
+    mask: LayoutMask | RegionMasks
     regions: tuple = ()
+
+    def region_masks(self) -> RegionMasks:
+        """The masks of a room split by virtual walls (``regions`` not empty)."""
+        assert self.regions, "a room of one region has a single LayoutMask"
+        return cast("RegionMasks", self.mask)
+
+    def room_mask(self) -> LayoutMask:
+        """The mask of a room of one region (``regions`` empty)."""
+        assert not self.regions, "a room split by virtual walls has RegionMasks"
+        return cast("LayoutMask", self.mask)
 
 
 def choose_contents(model: PlanModel, request: Request, *, split: bool = True) -> Contents:

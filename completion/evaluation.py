@@ -34,6 +34,7 @@ the K plans most like the room (compared on F1 and on the number's error).
 from __future__ import annotations
 
 from collections import Counter
+from typing import Any
 
 import numpy as np
 
@@ -193,7 +194,9 @@ def leave_one_out(plans, requested_size: int = 1) -> dict[str, dict]:
         model = build_model([other for other in plans if other.id != plan.id])
         if plan.type in model.types:
             rows.setdefault(plan.type, []).append(evaluate_plan(plan, model, requested_size))
-    table = {room_type: _means(found) for room_type, found in sorted(rows.items())}
+    table: dict[str, dict[str, Any]] = {
+        room_type: _means(found) for room_type, found in sorted(rows.items())
+    }
     everything = [row for found in rows.values() for row in found]
     table["all"] = _means(everything)
     table["all"]["spread"] = {

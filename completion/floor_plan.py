@@ -93,7 +93,7 @@ class FreeArea:
     suits: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
-        data = {"center": list(self.center), "size": list(self.size)}
+        data: dict[str, list] = {"center": list(self.center), "size": list(self.size)}
         if self.suits:
             data["suits"] = list(self.suits)
         return data
@@ -230,7 +230,8 @@ def load_plans(folder: str | Path) -> list[Plan]:
         raise PlanError(str(root), "", "holds no plan files (*.json)")
     if len(files) > MAX_PLANS:
         raise PlanError(str(root), "", f"holds {len(files)} plan files, more than {MAX_PLANS}")
-    plans, first_seen = [], {}
+    plans: list = []
+    first_seen: dict = {}
     for path in files:
         why = scope.outside(path, "plan set")
         if why is not None:

@@ -99,12 +99,12 @@ def build_graph(
         made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
     windows = bool(room.windows)
     if contents.regions and "desk" in counts:  # a desk goes under a window of its own region
-        windows = bool(contents.regions[contents.mask.owners["desk"]].room.windows)
+        windows = bool(contents.regions[contents.region_masks().owners["desk"]].room.windows)
     cornerless = {  # categories whose region is a strip between virtual walls: no room corner in it
         name
         for name in counts
         if contents.regions
-        and not contents.regions[contents.mask.owners[name]].has_room_corner(room)
+        and not contents.regions[contents.region_masks().owners[name]].has_room_corner(room)
     }
     followers = {name for name in counts if name in model.accessories}
     by_node: dict[str, Placement] = {}
@@ -142,7 +142,7 @@ def relation_weights(model: PlanModel, types) -> dict[tuple[str, str], float]:
     weights: dict[tuple[str, str], float] = {}
     for room_type in types:
         for pair in model.types[room_type].pairs:
-            key = tuple(pair.pair)
+            key = (pair.pair[0], pair.pair[1])
             weights[key] = max(weights.get(key, 0.0), pair.weight)
     return weights
 

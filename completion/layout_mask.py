@@ -168,7 +168,7 @@ def mask_values(mask, room, category: str, points) -> np.ndarray:
 
 def region_floor_masks(
     masks: RegionMasks, boxes_by_region, large, *, region_weight: float = REGION_WEIGHT
-) -> list:
+) -> list[FloorMask]:
     """The layout energy's masks for a composite room, per region: its layout mask over
     its rectangle for the region's ``large`` pieces (ids), reading 0 beyond it; and for
     every piece of the region a mask of 1 over the rectangle and 0 beyond it, weighing

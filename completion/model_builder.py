@@ -284,7 +284,7 @@ def _pairs(known: list[str], exists: list[dict], prior: dict) -> list[dict]:
 def _clusters(entries: list[dict]) -> list[dict]:
     """MeanShift clusters of the entries' masks (module docstring); sets each entry's ``cluster``."""
     from sklearn.cluster import MeanShift, estimate_bandwidth
-    from threadpoolctl import threadpool_limits
+    from threadpoolctl import threadpool_limits  # type: ignore[import-untyped]
 
     masks = np.array([np.ravel(entry["mask"]) for entry in entries])
     labels = np.zeros(len(entries), dtype=int)

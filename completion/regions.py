@@ -189,6 +189,7 @@ def split_room(model: PlanModel, room: Room, types) -> tuple[Region, ...]:
         key = (round(distance, 9), round(window, 9), order)
         if best is None or key < best[0]:
             best = (key, regions)
+    assert best is not None  # there is at least one order
     return best[1]
 
 
@@ -210,7 +211,8 @@ def _regions_in_order(room: Room, types, lengths, order) -> tuple[Region, ...]:
             # Walls of a rectangle: 0 north, 1 east, 2 south, 3 west.
             side = (1 if towards > k else 3) if along_x else (2 if towards > k else 0)
             sub, virtual = sub_room(room, box, side)
-        regions.append(Region(types[order[k]], tuple(float(v) for v in box), sub, virtual))
+        x0, z0, x1, z1 = (float(v) for v in box)
+        regions.append(Region(types[order[k]], (x0, z0, x1, z1), sub, virtual))
     return tuple(regions)
 
 

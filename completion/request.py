@@ -126,15 +126,13 @@ def add_opening(room: Room, kind: str, text: str) -> Room:
         )
     numbers = [_number(part, f"{kind} {text!r}") for part in parts[1:]]
     offset, width = numbers[0], numbers[1]
-    if kind == "door":
-        arguments = dict(height=numbers[2] if len(numbers) > 2 else None)
+    if kind == "door":  # a door stands on the floor; its height defaults to the room's
+        height, sill = (numbers[2] if len(numbers) > 2 else None), 0.0
     else:
         sill = numbers[2] if len(numbers) > 2 else DEFAULT_SILL
-        arguments = dict(
-            sill=sill, height=numbers[3] if len(numbers) > 3 else DEFAULT_WINDOW_HEIGHT
-        )
+        height = numbers[3] if len(numbers) > 3 else DEFAULT_WINDOW_HEIGHT
     try:
-        return room.with_opening(kind, wall.id, offset, width, **arguments)
+        return room.with_opening(kind, wall.id, offset, width, height=height, sill=sill)
     except RoomError as problem:
         raise InputError(f"{kind} {text!r}: {problem}") from None
 

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 bin=.venv/bin
 
 # The packages mypy checks; each one listed here has zero errors.
-TYPED=(core generator describer examples variation house)
+TYPED=(core generator describer examples variation house completion)
 
 echo "lint: ruff check"
 "$bin/ruff" check --quiet .
