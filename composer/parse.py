@@ -22,6 +22,16 @@ from dataclasses import dataclass, field
 from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.describer.colours import COLOUR_TERMS
 
+from .everyday import (
+    JOINERS,
+    ROOM_MIDDLE_NOTE,
+    adjective_noun,
+    everyday_place,
+    everyday_relation,
+    phrase_at,
+    room_middle_at,
+    settle_opposite,
+)
 from .vocabulary import (
     COMPASS_WORDS,
     FUNCTION_WORDS,
@@ -51,6 +61,8 @@ _SIDES_OF = (
 #: on either side").
 _SIDES = ("on each side", "on either side", "on both sides", "at each side", "at either side")
 _AROUND = ("around", "round", "surrounding", "about")
+#: A relation phrase's first word when it has its verb ("is against"), not bare.
+_VERBS = ("is", "are", "stands", "stand", "sits", "sit", "faces", "face")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
 
@@ -90,6 +102,9 @@ class Place:
     number: int | None = None  # wall or window number; None: the layout chooses
     corner: tuple[str, str] | None = None  # a named corner ("north", "west")
     by_door: bool = False  # "the corner by the door"
+    #: "opposite the window": the wall across the room from the window's ("window") or
+    #: the door's ("door"); its number is settled once the text is read (``parse``).
+    opposite: str | None = None
 
 
 @dataclass(frozen=True)
@@ -177,6 +192,14 @@ class _Reader:
         #: Whether the last noun phrase read was "each N" / "every N": a relation to it
         #: then makes one subject per N ("a lamp on each nightstand").
         self.each = False
+        #: The thing a "with" phrase hangs on ("a nightstand ... with a lamp on it"):
+        #: what "it" names there, before the last thing named.
+        self.with_head: list[str] = []
+        #: The things the last relation put something on ("a TV on a stand"), while a
+        #: place phrase may follow them without "and": "a TV on a stand against the
+        #: north wall" puts the stand against it. And what rests on what, so far.
+        self.support: list[str] = []
+        self.resting: dict[str, str] = {}
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -383,6 +406,10 @@ class _Reader:
             hit = self.match(toks, j + 1, self.vocab.nouns) if j + 1 < len(toks) else None
             if hit is not None:
                 j += 1
+        if hit is None and j > i:
+            hit = adjective_noun(self, toks, j)
+            if hit is not None:
+                j += 1
         if hit is None:
             return None
         sense = self.vocab.nouns[hit[0]]
@@ -500,6 +527,9 @@ class _Reader:
         k = i
         if toks[k].low in ("is", "are", "stands", "stand", "sits", "sit") and k + 1 < len(toks):
             k += 1
+        everyday = everyday_relation(self, toks, k)
+        if everyday is not None:
+            return "rel", everyday[0], k + everyday[1] - i
         if toks[k].low in _AROUND:
             return "around", None, k + 1 - i
         if toks[k].low in ("between", "in-between"):
@@ -528,6 +558,7 @@ class _Reader:
         pending: tuple[str, tuple[str, ...], int, list[str]] | None = None
         joined = False  # the last word was "and" or a comma
         self.members_of = None
+        self.with_head, self.support = [], []
         i = 0
         while i < len(toks):
             t = toks[i]
@@ -544,11 +575,28 @@ class _Reader:
                 subject, pending, joined = _Subject(), None, False
                 i += 2
                 continue
+            n = phrase_at(toks, i, JOINERS)  # "as well as": "and"
+            if n:
+                for w in toks[i : i + n]:
+                    w.used = True
+                joined, self.support = True, []
+                i += n
+                continue
+            n = room_middle_at(toks, i) if pending is None else 0
+            if n:  # "in the middle of the room": reported, never a relation to the room
+                self._unused(toks, i, i + n, ROOM_MIDDLE_NOTE)
+                i += n
+                continue
             if t.low in ("and", ",", "with", "plus", "also", "while"):
                 t.used = True
                 joined = t.low in ("and", ",")
                 if t.low == "with" and pending is None:
+                    # "a nightstand next to the bed with a lamp on it": it is the nightstand
+                    self.with_head = subject.last()
                     subject = _Subject()
+                if t.low == ",":
+                    self.with_head = []
+                self.support = []
                 i += 1
                 continue
             rel = self.relation_at(toks, i) if pending is None or pending[0] == "in" else None
@@ -561,6 +609,10 @@ class _Reader:
                     if not subject.all() and self.mentions:
                         subject.groups = [[self.mentions[-1]]]
                     who = subject.all() if plural else subject.last()
+                    if self.support and toks[i].low not in _VERBS:
+                        # "a TV on a stand against the wall": the stand (see _apply)
+                        who = who + [s for s in self.support if s not in who]
+                    self.support = []
                     pending = (kind, labels or (), i, who)
                     for w in toks[i : i + n]:
                         w.used = True
@@ -596,6 +648,10 @@ class _Reader:
             span = toks[i : i + n]
             if kind == "it":
                 value = self._pronoun(pending[3] if pending else [], plural=value == "them")
+                if value and pending is not None and pending[0] == "between" and len(value) < 2:
+                    # "two armchairs across from the sofa and a table between them"
+                    earlier = [e for e in reversed(self.mentions) if e not in pending[3] + value]
+                    value = earlier[:1] + value
                 kind = "things" if value else "none"
             if (
                 kind == "things"
@@ -616,7 +672,8 @@ class _Reader:
                 i += 1
                 continue
             for w in span:
-                w.used = True
+                w.used = w.used or not w.note  # a word reported in the phrase stays so
+            self.support = []
             if kind == "room":
                 if pending is not None and pending[0] == "in":  # "a piano in the living room"
                     pending = None
@@ -645,6 +702,9 @@ class _Reader:
             elif pending is not None:
                 self._apply(pending, value, kind, toks, i + n, each=self.each)
                 subject_ids = pending[3]
+                if kind == "things" and any(x.startswith("OnTopOf") for x in pending[1]):
+                    self.support = list(value)
+                    self.resting.update((s, value[0]) for s in subject_ids)
                 pending = None
                 if kind == "things":
                     self.mentions.extend(value)
@@ -667,6 +727,9 @@ class _Reader:
     def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
         """What "it" refers to: the last thing named, other than the subject; "them":
         that thing and the things of its type named just before it."""
+        head = [e for e in self.with_head if e not in subject]
+        if head and not plural:
+            return head[-1:]
         found: list[str] = []
         for eid in reversed(self.mentions):
             if eid in subject or eid in found:
@@ -706,6 +769,12 @@ class _Reader:
 
         if kind == "place":
             place: Place = value
+            if len(subjects) > 1:  # "a TV on a stand against the wall": the stand only
+                subjects = [s for s in subjects if self.resting.get(s) not in subjects]
+            everyday = everyday_place(self, how, labels, place, toks, start, end)
+            if everyday is None:
+                return None
+            labels, place = everyday
             if (how == "in" or "OnTopOf" in labels) and place.kind == "wall":
                 label = "AgainstWall"  # "on the west wall": against it
             elif (
@@ -842,6 +911,7 @@ def parse(text: str, vocab: Vocabulary) -> Request:
     reader = _Reader(vocab, request)
     for sentence in _sentences(tokens):
         reader.sentence(sentence)
+    settle_opposite(request)
     for entity in request.entities:  # a "sink" in a bathroom is its washbasin
         swap = ROOM_TYPES.get(request.room, {}).get(entity.type)
         if swap is not None and swap in vocab.entries:

@@ -1,0 +1,236 @@
+"""Everyday room-request wordings that the describer never writes, mapped onto what
+the relation registry can say, or reported as not understood where it cannot.
+
+People asking for a room write "a dresser opposite the bed", "a rug at the foot of
+the bed", "a desk in front of the window", "a wardrobe next to the door", "a coffee
+table in the middle of the room", "a wooden table", "as well as". Each table here
+either names the registry wording a phrase means (its labels are then looked up in
+the registry's phrases, so a phrase never means a label the registry lacks), or says
+why a phrase cannot be composed, so that it is reported rather than dropped or faked.
+The parser (``parse``) calls these at fixed points, passing its reader (``reader``:
+its vocabulary, request and phrase matching) where a phrase depends on what was read.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Sequence
+from dataclasses import replace
+from typing import Any, Protocol
+
+from scenewright.core.relations import RELATIONS
+
+from .vocabulary import FUNCTION_WORDS, ORDINALS, WALL_NUMBER
+
+
+class _Word(Protocol):
+    low: str
+
+
+#: Phrases that join two noun phrases as "and" does.
+JOINERS: tuple[str, ...] = ("as well as", "along with", "together with", "and also")
+
+#: Relation phrases of everyday English -> the registry wording they mean. "opposite
+#: the bed" is "faces the bed" (across the room from it, turned towards it); "at the
+#: foot of the bed" is "is in front of" it (a bed's front is its foot).
+EVERYDAY_WORDINGS: dict[str, str] = {
+    "opposite": "faces",
+    "opposite to": "faces",
+    "opposite of": "faces",
+    "across from": "faces",
+    "across the room from": "faces",
+    "at the foot of": "is in front of",
+    "at the bottom of": "is in front of",
+}
+
+#: "at the end of X": the registry wording by X's type (a bed's end is its foot); for
+#: any other type, next to it (at the end of a row of counters).
+END_OF: tuple[str, ...] = ("at the end of", "at the far end of")
+END_OF_WORDINGS: dict[str, str] = {"bed": "is in front of"}
+END_OF_DEFAULT = "is next to"
+
+#: Things asked to stand "in the middle of the room": no registry relation places a
+#: thing at the room's centre, so these are reported, not composed.
+ROOM_MIDDLE: tuple[str, ...] = tuple(
+    f"{at} the {middle}{tail}"
+    for at in ("in", "at")
+    for middle in ("middle", "centre", "center")
+    for tail in (" of the room", " of the floor", "")
+) + ("centrally", "in the room's centre", "in the room's center", "in the room's middle")
+ROOM_MIDDLE_NOTE = "no relation places a thing in the middle of the room"
+
+#: A relation to a window in words of a relation to a thing: "in front of the window"
+#: is under it (against its wall, across it), "next to the window" beside it.
+WINDOW_LABELS: dict[str, str] = {
+    "NextToFront": "UnderWindow",
+    "NextTo": "BesideWindow",
+}
+
+#: Labels whose words ("next to", "beside", "near", "by") put a thing in the corner by
+#: the door when their object is the door: the room's door is then drawn beside that
+#: corner, so the thing stands next to the door.
+BY_DOOR_LABELS = frozenset({"NextTo", "BesideWindow"})
+BY_DOOR_NOTE = "only one thing can stand in the corner by the door"
+DOOR_NOTE = "no relation places a thing relative to a door other than next to it"
+
+#: A support relation ("in the middle of") with a wall as its object: against it.
+ALONG_WALL_NOTE = "where along the wall is not held; it stands against the wall"
+
+
+def phrase_at(toks: Sequence[_Word], i: int, phrases: Sequence[str]) -> int:
+    """How many tokens the longest of ``phrases`` at token i takes (0: none)."""
+    best = 0
+    for phrase in phrases:
+        words = phrase.split()
+        if len(words) > best and [t.low for t in toks[i : i + len(words)]] == words:
+            best = len(words)
+    return best
+
+
+def room_middle_at(toks: Sequence[_Word], i: int) -> int:
+    """How many tokens "in the middle of the room" (or "in the middle" alone, not
+    followed by "of": "in the middle of the table" is a registry wording) takes at i."""
+    n = phrase_at(toks, i, ROOM_MIDDLE)
+    if n and i + n < len(toks) and toks[i + n].low == "of":
+        return 0
+    return n
+
+
+def everyday_wording(toks: Sequence[_Word], i: int) -> tuple[str, int] | None:
+    """The registry wording an everyday relation phrase at token i means, with the
+    tokens it takes, or None."""
+    n = phrase_at(toks, i, tuple(EVERYDAY_WORDINGS))
+    if n:
+        return EVERYDAY_WORDINGS[" ".join(t.low for t in toks[i : i + n])], n
+    return None
+
+
+def end_of_wording(type_name: str | None) -> str:
+    """The wording "at the end of" a thing of this type means."""
+    return END_OF_WORDINGS.get(type_name or "", END_OF_DEFAULT)
+
+
+def window_label(labels: Sequence[str], registered: Collection[str]) -> str | None:
+    """The window label meant by a relation to a thing said of a window, or None."""
+    for label in labels:
+        meant = WINDOW_LABELS.get(label)
+        if meant is not None and meant in registered:
+            return meant
+    return None
+
+
+def style_note(word: str, noun: str, styles: Sequence[str]) -> str:
+    """Why an adjective before a catalog noun went unused."""
+    if styles:
+        return f"the catalog has no {word} {noun} (its styles: {', '.join(styles)})"
+    return f"the catalog has no {word} {noun} (it has one look)"
+
+
+# -- called by the parser ---------------------------------------------------------------
+# ``reader`` is parse's ``_Reader`` (not imported: it imports this module): ``vocab``,
+# ``req``, ``match`` and ``_unused``; ``toks`` its tokens (``low``, ``text``, ``used``,
+# ``note``); places are parse's ``Place``, copied with ``dataclasses.replace``.
+
+
+def everyday_relation(reader: Any, toks: Sequence[Any], k: int):
+    """An everyday relation phrase at token k ("opposite", "at the foot of", "at the
+    end of"): (the labels of the registry wording it means, tokens taken), or None."""
+    found = everyday_wording(toks, k)
+    if found is None:
+        n = phrase_at(toks, k, END_OF)
+        if not n:
+            return None
+        j = k + n  # the thing's type decides: a bed's end is its foot
+        while j < len(toks) and toks[j].low in ("the", "a", "an", "this", "that", "its"):
+            j += 1
+        hit = reader.match(toks, j, reader.vocab.nouns) if j < len(toks) else None
+        found = (end_of_wording(reader.vocab.nouns[hit[0]].type if hit else None), n)
+    wording, n = found
+    sense = reader.vocab.relations.get(wording)
+    return None if sense is None else (sense.labels, n)
+
+
+def everyday_place(
+    reader: Any, how: str, labels: tuple[str, ...], place: Any, toks, start: int, end: int
+):
+    """A relation to a thing said of a room part, as everyday English says it: "in
+    front of the window" (under it), "next to the window" (beside it), "next to the
+    door" (in the corner by it), "opposite the window" (against the wall across the
+    room from it), "in the middle of the north wall" (against it). (labels, place) to
+    go on with, or None once reported."""
+    if place.kind in ("window", "door") and {"opposite", "across"} & {
+        t.low for t in toks[start:end]
+    }:
+        return ("AgainstWall",), replace(place, kind="wall", number=None, opposite=place.kind)
+    if place.kind == "window" and not any(x.endswith("Window") for x in labels):
+        meant = window_label(labels, RELATIONS.names())
+        return ((meant,), place) if meant else (labels, place)
+    if place.kind == "door":
+        if how != "rel" or not BY_DOOR_LABELS & set(labels):
+            reader._unused(toks, start, end, DOOR_NOTE)
+            return None
+        if any(getattr(s.target, "by_door", False) for s in reader.req.statements):
+            reader._unused(toks, start, end, BY_DOOR_NOTE)
+            return None
+        return ("InCorner",), replace(place, kind="corner", number=None, by_door=True)
+    if place.kind == "wall" and any(x.startswith("OnTopOf") and x != "OnTopOf" for x in labels):
+        # "in the middle of the north wall": against it; which part of it is not held
+        for t in toks[start:end]:
+            if t.low in ("middle", "centre", "center", "edge", "front"):
+                t.used, t.note = False, ALONG_WALL_NOTE
+        return ("AgainstWall",), place
+    return labels, place
+
+
+def adjective_noun(reader: Any, toks: Sequence[Any], j: int) -> tuple[str, int] | None:
+    """ "a wooden table", "a round table": a word the catalog has no style of, before a
+    catalog noun, after a determiner or count. The noun's hit (the word is reported
+    with the styles the catalog does have), or None when no noun follows."""
+    word = toks[j]
+    vocab = reader.vocab
+    if (
+        j + 1 >= len(toks)
+        or not word.low.isalpha()
+        or word.low in FUNCTION_WORDS
+        or word.low in ORDINALS
+        or word.low in vocab.nouns
+        or reader.match(toks, j, vocab.relations) is not None
+    ):
+        return None
+    hit = reader.match(toks, j + 1, vocab.nouns)
+    if hit is None:
+        return None
+    entry = vocab.entries[vocab.nouns[hit[0]].type]
+    word.used = False
+    word.note = style_note(word.text, entry.noun, [s.name for s in entry.styles])
+    return hit
+
+
+def settle_opposite(request: Any) -> None:
+    """The wall across the room from a window or door a thing is asked to stand opposite:
+    the first one the text puts on a wall, or the wall the plan would give it, which is
+    then named so that the plan cannot move it (a door in the south wall, a window in
+    the north one, or the east one when the door is in the north wall)."""
+    wanted = {getattr(s.target, "opposite", None) for s in request.statements} - {None}
+    if not wanted:
+        return
+    if "door" in wanted:
+        request.doors = [d or "south" for d in request.doors] or ["south"]
+    if "window" in wanted:
+        default = "east" if "north" in request.doors else "north"
+        request.windows = [w or default for w in request.windows] or [default]
+    sides = {
+        "window": request.windows[0] if request.windows else "",
+        "door": request.doors[0] if request.doors else "",
+    }
+    across = {"north": "south", "south": "north", "east": "west", "west": "east"}
+    request.statements = [
+        replace(
+            s,
+            target=replace(
+                s.target, number=WALL_NUMBER[across[sides[s.target.opposite]]], opposite=None
+            ),
+        )
+        if getattr(s.target, "opposite", None)
+        else s
+        for s in request.statements
+    ]
