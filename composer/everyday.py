@@ -19,7 +19,7 @@ from typing import Any, Protocol
 
 from scenewright.core.relations import RELATIONS
 
-from .vocabulary import FUNCTION_WORDS, ORDINALS, WALL_NUMBER
+from .vocabulary import FUNCTION_WORDS, ORDINALS, WALL_NUMBER, NounSense
 
 
 class _Word(Protocol):
@@ -64,6 +64,31 @@ WINDOW_LABELS: dict[str, str] = {
     "NextToFront": "UnderWindow",
     "NextTo": "BesideWindow",
 }
+
+#: A relation phrase's first word when it has its verb ("is against"), not bare.
+VERBS = ("is", "are", "stands", "stand", "sits", "sit", "faces", "face")
+
+#: Words that deny what follows. Before a relation ("the desk is not under the
+#: window") the relation is reported, never composed; before "want", "need" and the
+#: like and a thing ("I don't want a TV") the thing is asked to be absent, as "no TV".
+NEGATIONS = (
+    "not",
+    "never",
+    "isn't",
+    "aren't",
+    "doesn't",
+    "don't",
+    "didn't",
+    "shouldn't",
+    "mustn't",
+    "won't",
+    "can't",
+    "cannot",
+)
+NEGATED_NOTE = "a relation said not to hold is not composed"
+DENY_VERBS = ("want", "need", "have", "include", "like", "put", "add", "use", "place")
+#: Words before a room size that say it is rough: "about 4 by 3 metres".
+APPROX = ("about", "around", "roughly", "approximately", "approx", "circa", "some")
 
 #: Labels whose words ("next to", "beside", "near", "by") put a thing in the corner by
 #: the door when their object is the door: the room's door is then drawn beside that
@@ -149,21 +174,65 @@ def everyday_relation(reader: Any, toks: Sequence[Any], k: int):
     return None if sense is None else (sense.labels, n)
 
 
+def denied_at(reader: Any, toks: Sequence[Any], i: int) -> tuple[str, int] | None:
+    """ "don't want a TV", "do not need a rug" at token i: (the type asked to be absent,
+    tokens taken), or None."""
+    j = i + 1 if toks[i].low in ("do", "does", "did") else i
+    if j >= len(toks) or toks[j].low not in NEGATIONS:
+        return None
+    j += 1
+    if j >= len(toks) or toks[j].low not in DENY_VERBS:
+        return None
+    j += 1
+    if j < len(toks) and toks[j].low in ("a", "an", "any", "the"):
+        j += 1
+    hit = reader.match(toks, j, reader.vocab.nouns) if j < len(toks) else None
+    if hit is None:
+        return None
+    return reader.vocab.nouns[hit[0]].type, j + hit[1] - i
+
+
+def negation_at(toks: Sequence[Any], i: int) -> int:
+    """How many tokens a negation takes at i ("not", "isn't", "do not"; 0: none)."""
+    if toks[i].low in NEGATIONS:
+        return 1
+    if toks[i].low in ("do", "does", "did") and i + 1 < len(toks) and toks[i + 1].low == "not":
+        return 2
+    return 0
+
+
 def everyday_place(
-    reader: Any, how: str, labels: tuple[str, ...], place: Any, toks, start: int, end: int
+    reader: Any,
+    how: str,
+    labels: tuple[str, ...],
+    place: Any,
+    subjects: list[str],
+    toks,
+    span: tuple[int, int],
 ):
     """A relation to a thing said of a room part, as everyday English says it: "in
-    front of the window" (under it), "next to the window" (beside it), "next to the
-    door" (in the corner by it), "opposite the window" (against the wall across the
-    room from it), "in the middle of the north wall" (against it). (labels, place) to
-    go on with, or None once reported."""
+    front of the window" (under it), "next to the window" (beside it), "a bookshelf on
+    either side of the window" (one beside it on each side), "next to the door" (in the
+    corner by it), "opposite the window" (against the wall across the room from it),
+    "in the middle of the north wall" (against it). (labels, place, subjects) to go on
+    with, or None once reported."""
+    start, end = span
     if place.kind in ("window", "door") and {"opposite", "across"} & {
         t.low for t in toks[start:end]
     }:
-        return ("AgainstWall",), replace(place, kind="wall", number=None, opposite=place.kind)
+        wall = replace(place, kind="wall", number=None, opposite=place.kind)
+        return ("AgainstWall",), wall, subjects
+    if place.kind == "window" and how in ("sides", "flanked") and len(subjects) <= 2:
+        # two things beside one window cannot both be on one side of it (each is
+        # within reach of the window): one stands on each side
+        if len(subjects) == 1:
+            first = reader.entity(subjects[0])
+            sense = NounSense(first.type, first.style, False)
+            subjects = subjects + [reader.create(sense, first.colour, [toks[start]])]
+        return ("BesideWindow",), place, subjects
     if place.kind == "window" and not any(x.endswith("Window") for x in labels):
         meant = window_label(labels, RELATIONS.names())
-        return ((meant,), place) if meant else (labels, place)
+        return ((meant,) if meant else labels), place, subjects
     if place.kind == "door":
         if how != "rel" or not BY_DOOR_LABELS & set(labels):
             reader._unused(toks, start, end, DOOR_NOTE)
@@ -171,14 +240,14 @@ def everyday_place(
         if any(getattr(s.target, "by_door", False) for s in reader.req.statements):
             reader._unused(toks, start, end, BY_DOOR_NOTE)
             return None
-        return ("InCorner",), replace(place, kind="corner", number=None, by_door=True)
+        return ("InCorner",), replace(place, kind="corner", number=None, by_door=True), subjects
     if place.kind == "wall" and any(x.startswith("OnTopOf") and x != "OnTopOf" for x in labels):
         # "in the middle of the north wall": against it; which part of it is not held
         for t in toks[start:end]:
             if t.low in ("middle", "centre", "center", "edge", "front"):
                 t.used, t.note = False, ALONG_WALL_NOTE
-        return ("AgainstWall",), place
-    return labels, place
+        return ("AgainstWall",), place, subjects
+    return labels, place, subjects
 
 
 def adjective_noun(reader: Any, toks: Sequence[Any], j: int) -> tuple[str, int] | None:
@@ -234,3 +303,51 @@ def settle_opposite(request: Any) -> None:
         else s
         for s in request.statements
     ]
+
+
+def everyday_step(reader: Any, toks: Sequence[Any], i: int, free: bool) -> tuple[str, int]:
+    """An everyday phrase at token i that the parser reads before its own phrases, with
+    the tokens it takes: "and" ("as well as"), "size" ("about" before a room size),
+    "negation" ("not", "don't want a TV": the thing then absent), "which" (right after
+    a relation's object: the clause is about that object), "middle" ("in the middle of
+    the room", reported; only where no relation waits for its object: ``free``), or
+    ("", 0). Marks the words it takes used, or reports them."""
+    t = toks[i]
+    n = phrase_at(toks, i, JOINERS)
+    if n:
+        what = "and"
+    elif t.low in APPROX and reader._size_at(toks, i + 1):
+        what, n = "size", 1
+    elif negation_at(toks, i):
+        what, n = "negation", negation_at(toks, i)
+        denied = denied_at(reader, toks, i)
+        if denied is None:  # reported with the relation it denies, or on its own
+            for w in toks[i : i + n]:
+                w.note = NEGATED_NOTE
+            return what, n
+        n = denied[1]
+        reader.req.absent[denied[0]] = (t.start, toks[i + n - 1].end)
+    elif (
+        t.low in ("which", "that", "who")
+        and i == reader.object_end
+        and i + 1 < len(toks)
+        and (toks[i + 1].low in VERBS or negation_at(toks, i + 1))
+    ):
+        what, n = "which", 1
+    elif free and room_middle_at(toks, i):
+        n = room_middle_at(toks, i)
+        reader._unused(toks, i, i + n, ROOM_MIDDLE_NOTE)
+        return "middle", n
+    else:
+        return "", 0
+    for w in toks[i : i + n]:
+        w.used = True
+    return what, n
+
+
+def between_pair(reader: Any, subjects: list[str], named: list[str]) -> list[str]:
+    """The two things "between" means when its object names fewer: "a coffee table in
+    between" (the last two things named before it), "two armchairs across from the sofa
+    and a table between them" (the armchair, and the sofa named before it)."""
+    earlier = dict.fromkeys(e for e in reversed(reader.mentions) if e not in subjects + named)
+    return list(earlier)[: 2 - len(named)][::-1] + named

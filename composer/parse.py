@@ -23,13 +23,13 @@ from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.describer.colours import COLOUR_TERMS
 
 from .everyday import (
-    JOINERS,
-    ROOM_MIDDLE_NOTE,
+    NEGATED_NOTE,
+    VERBS,
     adjective_noun,
+    between_pair,
     everyday_place,
     everyday_relation,
-    phrase_at,
-    room_middle_at,
+    everyday_step,
     settle_opposite,
 )
 from .vocabulary import (
@@ -61,8 +61,6 @@ _SIDES_OF = (
 #: on either side").
 _SIDES = ("on each side", "on either side", "on both sides", "at each side", "at either side")
 _AROUND = ("around", "round", "surrounding", "about")
-#: A relation phrase's first word when it has its verb ("is against"), not bare.
-_VERBS = ("is", "are", "stands", "stand", "sits", "sit", "faces", "face")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
 
@@ -200,6 +198,8 @@ class _Reader:
         #: north wall" puts the stand against it. And what rests on what, so far.
         self.support: list[str] = []
         self.resting: dict[str, str] = {}
+        #: Where the last relation's object ended, and the thing it named.
+        self.object_end, self.last_object = -1, ""
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -559,6 +559,8 @@ class _Reader:
         joined = False  # the last word was "and" or a comma
         self.members_of = None
         self.with_head, self.support = [], []
+        negated: int | None = None  # where a negation stands before the next relation
+        self.object_end = -1
         i = 0
         while i < len(toks):
             t = toks[i]
@@ -575,16 +577,12 @@ class _Reader:
                 subject, pending, joined = _Subject(), None, False
                 i += 2
                 continue
-            n = phrase_at(toks, i, JOINERS)  # "as well as": "and"
-            if n:
-                for w in toks[i : i + n]:
-                    w.used = True
-                joined, self.support = True, []
-                i += n
-                continue
-            n = room_middle_at(toks, i) if pending is None else 0
-            if n:  # "in the middle of the room": reported, never a relation to the room
-                self._unused(toks, i, i + n, ROOM_MIDDLE_NOTE)
+            what, n = everyday_step(self, toks, i, pending is None)
+            if what:  # "as well as", "about 4 by 3 m", "not", "which is", "in the middle"
+                joined = joined or what == "and"
+                self.support = [] if what == "and" else self.support
+                negated = i if what == "negation" else negated
+                subject = _Subject([[self.last_object]]) if what == "which" else subject
                 i += n
                 continue
             if t.low in ("and", ",", "with", "plus", "also", "while"):
@@ -609,13 +607,23 @@ class _Reader:
                     if not subject.all() and self.mentions:
                         subject.groups = [[self.mentions[-1]]]
                     who = subject.all() if plural else subject.last()
-                    if self.support and toks[i].low not in _VERBS:
+                    if self.support and toks[i].low not in VERBS:
                         # "a TV on a stand against the wall": the stand (see _apply)
                         who = who + [s for s in self.support if s not in who]
                     self.support = []
                     pending = (kind, labels or (), i, who)
+                    if negated is not None:  # reported from the negation on
+                        kind, pending, negated = "negated", ("negated", (), negated, who), None
                     for w in toks[i : i + n]:
                         w.used = True
+                    if kind == "between" and [w.low for w in toks[i + n : i + n + 1]] in (
+                        [],
+                        [","],
+                        ["and"],
+                    ):
+                        # "in between" alone: between the two things named before it
+                        self._apply(pending, between_pair(self, who, []), "things", toks, i + n)
+                        pending = None
                     if kind == "sides of it":  # "a nightstand on either side": of the bed
                         pending = ("sides", (), i, who)
                         target = self._pronoun(who)
@@ -649,9 +657,7 @@ class _Reader:
             if kind == "it":
                 value = self._pronoun(pending[3] if pending else [], plural=value == "them")
                 if value and pending is not None and pending[0] == "between" and len(value) < 2:
-                    # "two armchairs across from the sofa and a table between them"
-                    earlier = [e for e in reversed(self.mentions) if e not in pending[3] + value]
-                    value = earlier[:1] + value
+                    value = between_pair(self, pending[3], value)  # "a table between them"
                 kind = "things" if value else "none"
             if (
                 kind == "things"
@@ -702,6 +708,8 @@ class _Reader:
             elif pending is not None:
                 self._apply(pending, value, kind, toks, i + n, each=self.each)
                 subject_ids = pending[3]
+                if kind == "things":  # "which" right after it is about it
+                    self.object_end, self.last_object = i + n, value[-1]
                 if kind == "things" and any(x.startswith("OnTopOf") for x in pending[1]):
                     self.support = list(value)
                     self.resting.update((s, value[0]) for s in subject_ids)
@@ -711,6 +719,7 @@ class _Reader:
                 # "and faces it" continues with the same subject
                 subject = _Subject([subject_ids]) if subject_ids else subject
             elif kind == "things":
+                negated = None  # a new thing: the negation before it is not about it
                 if joined and subject.groups:
                     subject.groups.append(value)
                 else:
@@ -758,6 +767,8 @@ class _Reader:
         self, pending, value, kind: str, toks: list[Token], end: int, each: bool = False
     ) -> None:
         how, labels, start, subjects = pending
+        if how == "negated":  # "the desk is not under the window"
+            return self._unused(toks, start, end, NEGATED_NOTE)
         span_end = toks[end - 1].end
         span_start = toks[start].start
         if subjects:
@@ -771,10 +782,10 @@ class _Reader:
             place: Place = value
             if len(subjects) > 1:  # "a TV on a stand against the wall": the stand only
                 subjects = [s for s in subjects if self.resting.get(s) not in subjects]
-            everyday = everyday_place(self, how, labels, place, toks, start, end)
+            everyday = everyday_place(self, how, labels, place, subjects, toks, (start, end))
             if everyday is None:
                 return None
-            labels, place = everyday
+            labels, place, subjects = everyday
             if (how == "in" or "OnTopOf" in labels) and place.kind == "wall":
                 label = "AgainstWall"  # "on the west wall": against it
             elif (
@@ -868,6 +879,8 @@ class _Reader:
         # narrowest is taken (one direction, then the shortest reach): it makes the
         # broader one true as well, so the scene holds whichever the words meant.
         label = min(object_labels, key=lambda x: (_breadth(RELATIONS[x]), x))
+        if label.startswith("OnTopOf") and len(subjects) == len(targets) > 1:
+            each = True  # "two lamps on the side tables": one on each
         if each and len(targets) > 1 and 0 < len(subjects) <= len(targets):
             # "a lamp on each nightstand": one lamp per nightstand
             first = self.entity(subjects[0])

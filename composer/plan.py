@@ -119,9 +119,9 @@ def room_size(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[fl
     width = max(base[0] * f, side * 1.08, MIN_SIDE)
     depth = max(base[1] * f, side * 0.93, MIN_SIDE)
     # A thing beside a window needs the window's wall longer than the two side by side.
-    beside = _beside_window(request, entries)
-    if beside:
-        width = max(width, WINDOW[0] + beside + 0.6)
+    beside, count = _beside_window(request, entries)
+    if beside:  # one on each side of it, where there are two
+        width = max(width, WINDOW[0] + min(count, 2) * (beside + 0.3) + 0.3)
     # A corner named on the door's wall ("a plant in the south-east corner", the door in
     # the south wall) stays a corner of its own, not "the corner by the door": the wall
     # leaves more than the describer's reach between the door and each of its ends.
@@ -173,7 +173,7 @@ def _openings(
         ),
         default=0.0,
     )
-    beside = _beside_window(request, entries)
+    beside, count = _beside_window(request, entries)
     named = {
         frozenset(s.target.corner)
         for s in request.statements
@@ -215,6 +215,7 @@ def _openings(
                 h = min(h, WALL_HEIGHT - 0.1 - sill)
                 if (
                     beside
+                    and count == 1
                     and len(kinds) == 1
                     and max(float(offset), length - float(offset)) - w / 2 < beside + 0.15
                 ):
@@ -225,17 +226,15 @@ def _openings(
     return lines
 
 
-def _beside_window(request: Request, entries: Mapping[str, CatalogEntry]) -> float:
-    """The widest thing asked to stand beside a window (0: none)."""
-    return max(
-        (
-            max(_size(entries, e)[0], _size(entries, e)[2])
-            for e in request.entities
-            for s in request.statements
-            if s.source == e.id and s.label == "BesideWindow"
-        ),
-        default=0.0,
-    )
+def _beside_window(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[float, int]:
+    """The widest thing asked to stand beside a window (0: none), and how many are."""
+    widths = [
+        max(_size(entries, e)[0], _size(entries, e)[2])
+        for e in request.entities
+        for s in request.statements
+        if s.source == e.id and s.label == "BesideWindow"
+    ]
+    return max(widths, default=0.0), len(widths)
 
 
 def _target(target: str | Place, windows: int) -> str:

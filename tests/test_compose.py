@@ -636,3 +636,61 @@ def test_a_thing_by_the_window_and_the_window_leave_each_other_room():
     assert not report.unsatisfied and "window in the north wall" in text
     assert "The sofa stands against the south wall." in text
     assert "The wardrobe stands in the corner by the door." in text
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "the desk is not under the window",
+        "a bed that is not against the wall",
+        "the sofa isn't facing the TV",
+        "a desk, and the desk should never be under the window",
+    ],
+)
+def test_a_denied_relation_is_reported_never_composed(text):
+    request, _ = _plan(text)
+    assert not [s for s in request.statements if not s.label.startswith("Implicit")]
+    assert any("said not to hold" in i.message for i in request.issues)
+
+
+def test_i_don_t_want_a_thing_asks_for_none():
+    request, _ = _plan("a living room with a sofa. I don't want a TV, and we do not need a rug")
+    assert set(request.absent) == {"tv", "rug"} and _types(request) == ["sofa"]
+    assert not request.issues
+
+
+def test_which_after_an_object_is_about_that_object():
+    text = "the sofa is against the north wall, facing the TV which is on the south wall"
+    request, _ = _plan(text)
+    assert _facts(request) == {
+        ("sofa", "AgainstWall", Place("wall", 1)),
+        ("sofa", "FacingTowards", "tv"),
+        ("tv", "AgainstWall", Place("wall", 3)),
+    }
+
+
+def test_in_between_alone_is_between_the_two_things_named_before():
+    request, _ = _plan("a sofa facing the tv with a coffee table in between")
+    assert {
+        ("sofa", "NextToLeft", "coffee_table"),
+        ("tv", "NextToRight", "coffee_table"),
+    } <= _facts(request)
+
+
+def test_two_things_on_two_supports_are_one_on_each():
+    request, _ = _plan("There are two lamps on the side tables.")
+    on = [(s.source, s.target) for s in request.statements if s.label == "OnTopOf"]
+    assert len(on) == 2 and len({t for _, t in on}) == 2
+
+
+def test_a_thing_on_either_side_of_the_window_lays_out_one_on_each_side():
+    from scenewright.api import compose
+
+    scene, report = compose("a study with a bookshelf on either side of the window and a desk", 0)
+    assert [o.type for o in scene.objects].count("bookshelf") == 2 and not report.unsatisfied
+    assert "Both bookshelves are beside the window." in scene.description.text
+
+
+def test_a_rough_room_size_reads_whole():
+    request, _ = _plan("a small bedroom, about 3 by 3 meters, with a bed")
+    assert request.size == (3.0, 3.0) and not request.issues
