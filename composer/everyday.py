@@ -59,9 +59,11 @@ ROOM_MIDDLE: tuple[str, ...] = tuple(
 ROOM_MIDDLE_NOTE = "no relation places a thing in the middle of the room"
 
 #: A relation to a window in words of a relation to a thing: "in front of the window"
-#: is under it (against its wall, across it), "next to the window" beside it.
+#: and "at the window" are under it (against its wall, across it), "next to the window"
+#: beside it.
 WINDOW_LABELS: dict[str, str] = {
     "NextToFront": "UnderWindow",
+    "SeatedAround": "UnderWindow",  # "a desk at the window"
     "NextTo": "BesideWindow",
 }
 

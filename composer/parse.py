@@ -308,7 +308,7 @@ class _Reader:
 
     # -- noun phrases --------------------------------------------------------------
 
-    def noun_phrase(self, toks: list[Token], i: int, subject: list[str]):
+    def noun_phrase(self, toks: list[Token], i: int, subject: list[str], obj: bool = False):
         """(kind, value, tokens taken) for the noun phrase at i, or None. kind is
         "things" (entity ids), "place" (a Place), "opening" (door/window sides), "room",
         "size", "absent" or "it"."""
@@ -377,7 +377,9 @@ class _Reader:
         place = self._place(toks, j)
         if place is not None:
             kind, value, n = place
-            if kind == "opening" and det in ("the", "this", "that") and ordinal is None:
+            # a relation's object without its article ("desk under window") is the one
+            definite = det in ("the", "this", "that") or (obj and det == "")
+            if kind == "opening" and definite and ordinal is None:
                 return "place", Place(value[0], None), j + n - i
             if kind == "opening":
                 return "opening", (value[0], count or 1), j + n - i
@@ -415,7 +417,9 @@ class _Reader:
         sense = self.vocab.nouns[hit[0]]
         taken = toks[i : j + hit[1]]
         self.each = det in ("each", "every") and ordinal is None
-        if det in ("", "a", "another") and ordinal is None:
+        if obj and det == "" and not sense.plural and self.matching(sense):
+            pass  # "chair at desk": the desk named before, as "the desk"
+        elif det in ("", "a", "another") and ordinal is None:
             n = count if count is not None else (2 if sense.plural else 1)
             ids = [self.create(sense, colour, taken) for _ in range(n)]
             return "things", ids, j + hit[1] - i
@@ -648,8 +652,13 @@ class _Reader:
                     i += n
                     joined = False
                     continue
-            np = self.noun_phrase(toks, i, subject.all())
+            np = self.noun_phrase(toks, i, subject.all(), obj=pending is not None)
             if np is None:
+                if pending is not None and t.low not in FUNCTION_WORDS:
+                    # "a rug on the floor ...": its object is a word not understood, not
+                    # whatever is named next ("... and a lamp" would be under the rug)
+                    self._unused(toks, pending[2], i + 1, "a relation without its object")
+                    pending = None
                 i += 1
                 continue
             kind, value, n = np
@@ -667,7 +676,7 @@ class _Reader:
                 and i + n + 1 < len(toks)
                 and toks[i + n].low == "and"
             ):  # "between the bed and the wardrobe": the second thing too
-                second = self.noun_phrase(toks, i + n + 1, pending[3])
+                second = self.noun_phrase(toks, i + n + 1, pending[3], obj=True)
                 if second is not None and second[0] == "things":
                     value = value + second[1]
                     n += 1 + second[2]

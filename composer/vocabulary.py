@@ -240,7 +240,9 @@ WALL_NUMBER = {"north": 1, "east": 2, "south": 3, "west": 4}
 
 #: Words that start a request or a sentence of one ("Add a piano ...", "Could you
 #: furnish ..."); used wherever they stand, never reported.
-REQUEST_WORDS = "add can could you my our just show furnish furnished design so too".split()
+REQUEST_WORDS = (
+    "add can could you my our just show furnish furnished design so too go goes will"
+).split()
 
 #: Words that join or frame phrases; used wherever they stand, never reported.
 FUNCTION_WORDS = frozenset(

@@ -694,3 +694,29 @@ def test_a_thing_on_either_side_of_the_window_lays_out_one_on_each_side():
 def test_a_rough_room_size_reads_whole():
     request, _ = _plan("a small bedroom, about 3 by 3 meters, with a bed")
     assert request.size == (3.0, 3.0) and not request.issues
+
+
+@pytest.mark.parametrize(
+    ("text", "word"),
+    [
+        ("a bed with a nightstand on the left and a lamp on the right", "left"),
+        ("a rug on the floor and a sofa", "floor"),
+        ("a plant on the windowsill, a sofa", "windowsill"),
+    ],
+)
+def test_a_relation_whose_object_is_not_understood_takes_nothing_named_later(text, word):
+    request, _ = _plan(text)
+    assert not any(s.label.startswith("OnTopOf") for s in request.statements)
+    assert word in {text[i.start : i.end] for i in request.issues}
+
+
+def test_a_desk_at_the_window_is_under_it():
+    request, _ = _plan("a desk at the window")
+    assert _facts(request) == {("desk", "UnderWindow", Place("window"))}
+
+
+def test_a_relation_s_object_without_its_article_is_the_one_named_before():
+    request, _ = _plan("a study: desk under window; chair at desk; bookshelf on east wall")
+    assert _types(request) == ["bookshelf", "chair", "desk"] and not request.issues
+    assert ("desk", "UnderWindow", Place("window")) in _facts(request)
+    assert ("chair", "SeatedAround", "desk") in _facts(request)
