@@ -99,6 +99,8 @@ BY_DOOR_LABELS = frozenset({"NextTo", "BesideWindow"})
 BY_DOOR_NOTE = "only one thing can stand in the corner by the door"
 DOOR_NOTE = "no relation places a thing relative to a door other than next to it"
 
+OPPOSITE_PART_NOTE = "which wall or corner is opposite is not understood"
+
 #: A support relation ("in the middle of") with a wall as its object: against it.
 ALONG_WALL_NOTE = "where along the wall is not held; it stands against the wall"
 
@@ -219,11 +221,13 @@ def everyday_place(
     "in the middle of the north wall" (against it). (labels, place, subjects) to go on
     with, or None once reported."""
     start, end = span
-    if place.kind in ("window", "door") and {"opposite", "across"} & {
-        t.low for t in toks[start:end]
-    }:
+    across = [t for t in toks[start:end] if t.low in ("opposite", "across")]
+    if place.kind in ("window", "door") and across:
         wall = replace(place, kind="wall", number=None, opposite=place.kind)
         return ("AgainstWall",), wall, subjects
+    for t in across if place.kind in ("wall", "corner") else ():
+        # "in the opposite corner": some corner (or wall), which one is not held
+        t.used, t.note = False, OPPOSITE_PART_NOTE
     if place.kind == "window" and how in ("sides", "flanked") and len(subjects) <= 2:
         # two things beside one window cannot both be on one side of it (each is
         # within reach of the window): one stands on each side

@@ -604,6 +604,11 @@ def test_counts_joiners_and_request_openings(text, types):
         ("a round table and a small desk", ["round", "small"], "the catalog has no"),
         ("a bed in the middle of the north wall", ["middle"], "where along the wall"),
         (
+            "a bed in a corner and a desk in the opposite corner",
+            ["opposite"],
+            "which wall or corner",
+        ),
+        (
             "a wardrobe next to the door and a plant by the door",
             ["door"],
             "only one thing can stand in the corner by the door",
