@@ -656,9 +656,13 @@ class _Reader:
             if np is None:
                 if pending is not None and t.low not in FUNCTION_WORDS:
                     # "a rug on the floor ...": its object is a word not understood, not
-                    # whatever is named next ("... and a lamp" would be under the rug)
-                    self._unused(toks, pending[2], i + 1, "a relation without its object")
-                    pending = None
+                    # whatever is named next ("... and a lamp" would be under the rug);
+                    # "the front wall" is still some wall, "front" reported
+                    if i + 1 < len(toks) and self._place(toks, i + 1):
+                        t.note = "which one this is is not understood"
+                    else:
+                        self._unused(toks, pending[2], i + 1, "a relation without its object")
+                        pending = None
                 i += 1
                 continue
             kind, value, n = np

@@ -603,6 +603,7 @@ def test_counts_joiners_and_request_openings(text, types):
         ("a wooden table", ["wooden"], "no wooden dining table (its styles: long, small)"),
         ("a round table and a small desk", ["round", "small"], "the catalog has no"),
         ("a bed in the middle of the north wall", ["middle"], "where along the wall"),
+        ("a whiteboard on the front wall", ["front"], "which one this is"),
         (
             "a bed in a corner and a desk in the opposite corner",
             ["opposite"],
