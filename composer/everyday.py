@@ -40,7 +40,19 @@ EVERYDAY_WORDINGS: dict[str, str] = {
     "across the room from": "faces",
     "at the foot of": "is in front of",
     "at the bottom of": "is in front of",
+    "in the centre of": "is in the middle of",
+    "in the center of": "is in the middle of",
+    "at the centre of": "is in the middle of",
+    "at the center of": "is in the middle of",
+    "at the middle of": "is in the middle of",
 }
+
+#: Things next to each other in a line, as "side by side" (each next to and lined up
+#: with the one before).
+SIDE_BY_SIDE = ("side by side", "in a row", "in a line")
+
+#: "on either side" said without "on": the sides of the thing named before.
+BARE_SIDES = ("either side", "each side", "both sides")
 
 #: "at the end of X": the registry wording by X's type (a bed's end is its foot); for
 #: any other type, next to it (at the end of a row of counters).

@@ -23,13 +23,16 @@ from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.describer.colours import COLOUR_TERMS
 
 from .everyday import (
+    BARE_SIDES,
     NEGATED_NOTE,
+    SIDE_BY_SIDE,
     VERBS,
     adjective_noun,
     between_pair,
     everyday_place,
     everyday_relation,
     everyday_step,
+    phrase_at,
     settle_opposite,
 )
 from .vocabulary import (
@@ -516,13 +519,14 @@ class _Reader:
     def relation_at(self, toks: list[Token], i: int):
         """(kind, value, tokens taken): a registry relation phrase, a phrase of our own
         ("on each side of", "around", "along"), or None."""
-        if [t.low for t in toks[i : i + 3]] == ["side", "by", "side"]:
-            return "side by side", None, 3
+        n = phrase_at(toks, i, SIDE_BY_SIDE)  # "side by side", "in a row"
+        if n:
+            return "side by side", None, n
         for phrase in _SIDES_OF:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides", None, len(words)
-        for phrase in _SIDES:
+        for phrase in _SIDES + BARE_SIDES:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides of it", None, len(words)

@@ -726,3 +726,17 @@ def test_a_relation_s_object_without_its_article_is_the_one_named_before():
     assert _types(request) == ["bookshelf", "chair", "desk"] and not request.issues
     assert ("desk", "UnderWindow", Place("window")) in _facts(request)
     assert ("chair", "SeatedAround", "desk") in _facts(request)
+
+
+def test_in_a_row_either_side_and_the_centre_of():
+    request, _ = _plan("an office with four desks in a row against the south wall")
+    facts = [(s.label, s.target) for s in request.statements]
+    assert facts.count(("AgainstWall", Place("wall", 3))) == 4
+    assert sum(label == "NextTo" for label, _ in facts) == 3
+    request, _ = _plan("a bedroom with a bed against the north wall, nightstands either side")
+    assert {("nightstand", "BesideLeft", "bed"), ("nightstand", "BesideRight", "bed")} <= _facts(
+        request
+    )
+    assert not request.issues
+    request, _ = _plan("a lamp in the centre of the desk")
+    assert _facts(request) == {("lamp", "OnTopOfMiddle", "desk")}
