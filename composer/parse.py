@@ -698,8 +698,9 @@ class _Reader:
                 w.used = w.used or not w.note  # a word reported in the phrase stays so
             self.support = []
             if kind == "room":
-                if pending is not None and pending[0] == "in":  # "a piano in the living room"
-                    pending = None
+                if pending is not None and pending[0] != "in":  # "at the end of the room"
+                    self._unused(toks, pending[2], i + n, "no relation takes the room itself")
+                pending = None  # "a piano in the living room": the room it is in
                 word, dims, factor = value
                 name = ROOMS[word][0]
                 if name != "room" or self.req.room == "room":

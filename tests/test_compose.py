@@ -604,6 +604,7 @@ def test_counts_joiners_and_request_openings(text, types):
         ("a round table and a small desk", ["round", "small"], "the catalog has no"),
         ("a bed in the middle of the north wall", ["middle"], "where along the wall"),
         ("a whiteboard on the front wall", ["front"], "which one this is"),
+        ("a bed at the end of the room, a desk", ["end", "room"], "the room itself"),
         (
             "a bed in a corner and a desk in the opposite corner",
             ["opposite"],
