@@ -11,7 +11,7 @@ For each prompt (seed 1000 + its line number among the prompts):
   relation of the prompt (another wall than the one named, left for right, close beside
   or not, front for behind, north for south, east for west);
 - reported: every word of the prompt is either used or reported unused (no word is
-  dropped silently).
+  dropped silently), and how many prompts had every word used.
 
     python benchmarks/bench_compose_prompts.py [--file PROMPTS.tsv]
 """
@@ -101,6 +101,7 @@ def main() -> None:
             contra=contra,
             silent=len(silent),
             unused=len(report.unused),
+            whole=not report.unused,
         )
         wrong = {t: (have[t], n) for t, n in want.items() if have[t] != n}
         flag = "" if not (wrong or held < len(stated) or contra or silent) else "  <-"
@@ -116,6 +117,7 @@ def main() -> None:
         f" = {totals['right'] / totals['objects']:.1%}; relations held {totals['held']}/{totals['stated']}"
         f" = {totals['held'] / max(totals['stated'], 1):.1%}; contradicting relations {totals['contra']};"
         f" words dropped without a report {totals['silent']}; unused words reported {totals['unused']}"
+        f"; prompts with every word used {totals['whole']}/{len(rows)}"
     )
 
 

@@ -22,6 +22,19 @@ from dataclasses import dataclass, field
 from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.describer.colours import COLOUR_TERMS
 
+from .everyday import (
+    BARE_SIDES,
+    NEGATED_NOTE,
+    SIDE_BY_SIDE,
+    VERBS,
+    adjective_noun,
+    between_pair,
+    everyday_place,
+    everyday_relation,
+    everyday_step,
+    phrase_at,
+    settle_opposite,
+)
 from .vocabulary import (
     COMPASS_WORDS,
     FUNCTION_WORDS,
@@ -90,6 +103,9 @@ class Place:
     number: int | None = None  # wall or window number; None: the layout chooses
     corner: tuple[str, str] | None = None  # a named corner ("north", "west")
     by_door: bool = False  # "the corner by the door"
+    #: "opposite the window": the wall across the room from the window's ("window") or
+    #: the door's ("door"); its number is settled once the text is read (``parse``).
+    opposite: str | None = None
 
 
 @dataclass(frozen=True)
@@ -177,6 +193,16 @@ class _Reader:
         #: Whether the last noun phrase read was "each N" / "every N": a relation to it
         #: then makes one subject per N ("a lamp on each nightstand").
         self.each = False
+        #: The thing a "with" phrase hangs on ("a nightstand ... with a lamp on it"):
+        #: what "it" names there, before the last thing named.
+        self.with_head: list[str] = []
+        #: The things the last relation put something on ("a TV on a stand"), while a
+        #: place phrase may follow them without "and": "a TV on a stand against the
+        #: north wall" puts the stand against it. And what rests on what, so far.
+        self.support: list[str] = []
+        self.resting: dict[str, str] = {}
+        #: Where the last relation's object ended, and the thing it named.
+        self.object_end, self.last_object = -1, ""
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -285,7 +311,7 @@ class _Reader:
 
     # -- noun phrases --------------------------------------------------------------
 
-    def noun_phrase(self, toks: list[Token], i: int, subject: list[str]):
+    def noun_phrase(self, toks: list[Token], i: int, subject: list[str], obj: bool = False):
         """(kind, value, tokens taken) for the noun phrase at i, or None. kind is
         "things" (entity ids), "place" (a Place), "opening" (door/window sides), "room",
         "size", "absent" or "it"."""
@@ -354,7 +380,9 @@ class _Reader:
         place = self._place(toks, j)
         if place is not None:
             kind, value, n = place
-            if kind == "opening" and det in ("the", "this", "that") and ordinal is None:
+            # a relation's object without its article ("desk under window") is the one
+            definite = det in ("the", "this", "that") or (obj and det == "")
+            if kind == "opening" and definite and ordinal is None:
                 return "place", Place(value[0], None), j + n - i
             if kind == "opening":
                 return "opening", (value[0], count or 1), j + n - i
@@ -383,12 +411,18 @@ class _Reader:
             hit = self.match(toks, j + 1, self.vocab.nouns) if j + 1 < len(toks) else None
             if hit is not None:
                 j += 1
+        if hit is None and j > i:
+            hit = adjective_noun(self, toks, j)
+            if hit is not None:
+                j += 1
         if hit is None:
             return None
         sense = self.vocab.nouns[hit[0]]
         taken = toks[i : j + hit[1]]
         self.each = det in ("each", "every") and ordinal is None
-        if det in ("", "a", "another") and ordinal is None:
+        if obj and det == "" and not sense.plural and self.matching(sense):
+            pass  # "chair at desk": the desk named before, as "the desk"
+        elif det in ("", "a", "another") and ordinal is None:
             n = count if count is not None else (2 if sense.plural else 1)
             ids = [self.create(sense, colour, taken) for _ in range(n)]
             return "things", ids, j + hit[1] - i
@@ -485,13 +519,14 @@ class _Reader:
     def relation_at(self, toks: list[Token], i: int):
         """(kind, value, tokens taken): a registry relation phrase, a phrase of our own
         ("on each side of", "around", "along"), or None."""
-        if [t.low for t in toks[i : i + 3]] == ["side", "by", "side"]:
-            return "side by side", None, 3
+        n = phrase_at(toks, i, SIDE_BY_SIDE)  # "side by side", "in a row"
+        if n:
+            return "side by side", None, n
         for phrase in _SIDES_OF:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides", None, len(words)
-        for phrase in _SIDES:
+        for phrase in _SIDES + BARE_SIDES:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
                 return "sides of it", None, len(words)
@@ -500,6 +535,9 @@ class _Reader:
         k = i
         if toks[k].low in ("is", "are", "stands", "stand", "sits", "sit") and k + 1 < len(toks):
             k += 1
+        everyday = everyday_relation(self, toks, k)
+        if everyday is not None:
+            return "rel", everyday[0], k + everyday[1] - i
         if toks[k].low in _AROUND:
             return "around", None, k + 1 - i
         if toks[k].low in ("between", "in-between"):
@@ -528,6 +566,9 @@ class _Reader:
         pending: tuple[str, tuple[str, ...], int, list[str]] | None = None
         joined = False  # the last word was "and" or a comma
         self.members_of = None
+        self.with_head, self.support = [], []
+        negated: int | None = None  # where a negation stands before the next relation
+        self.object_end = -1
         i = 0
         while i < len(toks):
             t = toks[i]
@@ -544,11 +585,24 @@ class _Reader:
                 subject, pending, joined = _Subject(), None, False
                 i += 2
                 continue
+            what, n = everyday_step(self, toks, i, pending is None)
+            if what:  # "as well as", "about 4 by 3 m", "not", "which is", "in the middle"
+                joined = joined or what == "and"
+                self.support = [] if what == "and" else self.support
+                negated = i if what == "negation" else negated
+                subject = _Subject([[self.last_object]]) if what == "which" else subject
+                i += n
+                continue
             if t.low in ("and", ",", "with", "plus", "also", "while"):
                 t.used = True
                 joined = t.low in ("and", ",")
                 if t.low == "with" and pending is None:
+                    # "a nightstand next to the bed with a lamp on it": it is the nightstand
+                    self.with_head = subject.last()
                     subject = _Subject()
+                if t.low == ",":
+                    self.with_head = []
+                self.support = []
                 i += 1
                 continue
             rel = self.relation_at(toks, i) if pending is None or pending[0] == "in" else None
@@ -561,9 +615,23 @@ class _Reader:
                     if not subject.all() and self.mentions:
                         subject.groups = [[self.mentions[-1]]]
                     who = subject.all() if plural else subject.last()
+                    if self.support and toks[i].low not in VERBS:
+                        # "a TV on a stand against the wall": the stand (see _apply)
+                        who = who + [s for s in self.support if s not in who]
+                    self.support = []
                     pending = (kind, labels or (), i, who)
+                    if negated is not None:  # reported from the negation on
+                        kind, pending, negated = "negated", ("negated", (), negated, who), None
                     for w in toks[i : i + n]:
                         w.used = True
+                    if kind == "between" and [w.low for w in toks[i + n : i + n + 1]] in (
+                        [],
+                        [","],
+                        ["and"],
+                    ):
+                        # "in between" alone: between the two things named before it
+                        self._apply(pending, between_pair(self, who, []), "things", toks, i + n)
+                        pending = None
                     if kind == "sides of it":  # "a nightstand on either side": of the bed
                         pending = ("sides", (), i, who)
                         target = self._pronoun(who)
@@ -588,14 +656,25 @@ class _Reader:
                     i += n
                     joined = False
                     continue
-            np = self.noun_phrase(toks, i, subject.all())
+            np = self.noun_phrase(toks, i, subject.all(), obj=pending is not None)
             if np is None:
+                if pending is not None and t.low not in FUNCTION_WORDS:
+                    # "a rug on the floor ...": its object is a word not understood, not
+                    # whatever is named next ("... and a lamp" would be under the rug);
+                    # "the front wall" is still some wall, "front" reported
+                    if i + 1 < len(toks) and self._place(toks, i + 1):
+                        t.note = "which one this is is not understood"
+                    else:
+                        self._unused(toks, pending[2], i + 1, "a relation without its object")
+                        pending = None
                 i += 1
                 continue
             kind, value, n = np
             span = toks[i : i + n]
             if kind == "it":
                 value = self._pronoun(pending[3] if pending else [], plural=value == "them")
+                if value and pending is not None and pending[0] == "between" and len(value) < 2:
+                    value = between_pair(self, pending[3], value)  # "a table between them"
                 kind = "things" if value else "none"
             if (
                 kind == "things"
@@ -605,7 +684,7 @@ class _Reader:
                 and i + n + 1 < len(toks)
                 and toks[i + n].low == "and"
             ):  # "between the bed and the wardrobe": the second thing too
-                second = self.noun_phrase(toks, i + n + 1, pending[3])
+                second = self.noun_phrase(toks, i + n + 1, pending[3], obj=True)
                 if second is not None and second[0] == "things":
                     value = value + second[1]
                     n += 1 + second[2]
@@ -616,10 +695,12 @@ class _Reader:
                 i += 1
                 continue
             for w in span:
-                w.used = True
+                w.used = w.used or not w.note  # a word reported in the phrase stays so
+            self.support = []
             if kind == "room":
-                if pending is not None and pending[0] == "in":  # "a piano in the living room"
-                    pending = None
+                if pending is not None and pending[0] != "in":  # "at the end of the room"
+                    self._unused(toks, pending[2], i + n, "no relation takes the room itself")
+                pending = None  # "a piano in the living room": the room it is in
                 word, dims, factor = value
                 name = ROOMS[word][0]
                 if name != "room" or self.req.room == "room":
@@ -645,12 +726,18 @@ class _Reader:
             elif pending is not None:
                 self._apply(pending, value, kind, toks, i + n, each=self.each)
                 subject_ids = pending[3]
+                if kind == "things":  # "which" right after it is about it
+                    self.object_end, self.last_object = i + n, value[-1]
+                if kind == "things" and any(x.startswith("OnTopOf") for x in pending[1]):
+                    self.support = list(value)
+                    self.resting.update((s, value[0]) for s in subject_ids)
                 pending = None
                 if kind == "things":
                     self.mentions.extend(value)
                 # "and faces it" continues with the same subject
                 subject = _Subject([subject_ids]) if subject_ids else subject
             elif kind == "things":
+                negated = None  # a new thing: the negation before it is not about it
                 if joined and subject.groups:
                     subject.groups.append(value)
                 else:
@@ -667,6 +754,9 @@ class _Reader:
     def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
         """What "it" refers to: the last thing named, other than the subject; "them":
         that thing and the things of its type named just before it."""
+        head = [e for e in self.with_head if e not in subject]
+        if head and not plural:
+            return head[-1:]
         found: list[str] = []
         for eid in reversed(self.mentions):
             if eid in subject or eid in found:
@@ -695,6 +785,8 @@ class _Reader:
         self, pending, value, kind: str, toks: list[Token], end: int, each: bool = False
     ) -> None:
         how, labels, start, subjects = pending
+        if how == "negated":  # "the desk is not under the window"
+            return self._unused(toks, start, end, NEGATED_NOTE)
         span_end = toks[end - 1].end
         span_start = toks[start].start
         if subjects:
@@ -706,6 +798,12 @@ class _Reader:
 
         if kind == "place":
             place: Place = value
+            if len(subjects) > 1:  # "a TV on a stand against the wall": the stand only
+                subjects = [s for s in subjects if self.resting.get(s) not in subjects]
+            everyday = everyday_place(self, how, labels, place, subjects, toks, (start, end))
+            if everyday is None:
+                return None
+            labels, place, subjects = everyday
             if (how == "in" or "OnTopOf" in labels) and place.kind == "wall":
                 label = "AgainstWall"  # "on the west wall": against it
             elif (
@@ -799,6 +897,8 @@ class _Reader:
         # narrowest is taken (one direction, then the shortest reach): it makes the
         # broader one true as well, so the scene holds whichever the words meant.
         label = min(object_labels, key=lambda x: (_breadth(RELATIONS[x]), x))
+        if label.startswith("OnTopOf") and len(subjects) == len(targets) > 1:
+            each = True  # "two lamps on the side tables": one on each
         if each and len(targets) > 1 and 0 < len(subjects) <= len(targets):
             # "a lamp on each nightstand": one lamp per nightstand
             first = self.entity(subjects[0])
@@ -842,6 +942,7 @@ def parse(text: str, vocab: Vocabulary) -> Request:
     reader = _Reader(vocab, request)
     for sentence in _sentences(tokens):
         reader.sentence(sentence)
+    settle_opposite(request)
     for entity in request.entities:  # a "sink" in a bathroom is its washbasin
         swap = ROOM_TYPES.get(request.room, {}).get(entity.type)
         if swap is not None and swap in vocab.entries:

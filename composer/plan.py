@@ -118,6 +118,10 @@ def room_size(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[fl
     f = request.size_factor
     width = max(base[0] * f, side * 1.08, MIN_SIDE)
     depth = max(base[1] * f, side * 0.93, MIN_SIDE)
+    # A thing beside a window needs the window's wall longer than the two side by side.
+    beside, count = _beside_window(request, entries)
+    if beside:  # one on each side of it, where there are two
+        width = max(width, WINDOW[0] + min(count, 2) * (beside + 0.3) + 0.3)
     # A corner named on the door's wall ("a plant in the south-east corner", the door in
     # the south wall) stays a corner of its own, not "the corner by the door": the wall
     # leaves more than the describer's reach between the door and each of its ends.
@@ -169,6 +173,7 @@ def _openings(
         ),
         default=0.0,
     )
+    beside, count = _beside_window(request, entries)
     named = {
         frozenset(s.target.corner)
         for s in request.statements
@@ -208,8 +213,28 @@ def _openings(
                 # A thing asked to stand under a window must fit under its sill.
                 sill = max(sill, under + 0.05)
                 h = min(h, WALL_HEIGHT - 0.1 - sill)
+                if (
+                    beside
+                    and count == 1
+                    and len(kinds) == 1
+                    and max(float(offset), length - float(offset)) - w / 2 < beside + 0.15
+                ):
+                    # a thing asked to stand beside it needs the wall on one side: the
+                    # window goes towards the other end
+                    offset = _number(max(w / 2 + 0.1, length - w / 2 - beside - 0.25))
                 lines.append(f"window {side} {offset} {_number(w)} {_number(sill)} {_number(h)}")
     return lines
+
+
+def _beside_window(request: Request, entries: Mapping[str, CatalogEntry]) -> tuple[float, int]:
+    """The widest thing asked to stand beside a window (0: none), and how many are."""
+    widths = [
+        max(_size(entries, e)[0], _size(entries, e)[2])
+        for e in request.entities
+        for s in request.statements
+        if s.source == e.id and s.label == "BesideWindow"
+    ]
+    return max(widths, default=0.0), len(widths)
 
 
 def _target(target: str | Place, windows: int) -> str:

@@ -113,6 +113,9 @@ SYNONYMS: dict[str, str] = {
     "conference table": "dining table",
     "meeting table": "dining table",
     "vanity": "washbasin",
+    # "a TV on a stand": the noun; "stand" after a thing is still the verb of the
+    # registry's wordings ("the bed and the dresser stand against"), which are read first
+    "stand": "TV stand",
 }
 
 #: Everyday words whose catalog type depends on the room: in a bathroom a "sink" is
@@ -209,6 +212,9 @@ NUMBERS: dict[str, int] = {
     "a couple": 2,
     "couple of": 2,
     "pair of": 2,
+    "a dozen": 12,
+    "dozen": 12,
+    "half a dozen": 6,
 }
 
 ORDINALS: dict[str, int] = {
@@ -232,6 +238,12 @@ COMPASS_WORDS = ("north", "east", "south", "west")
 #: A rectangle's walls by number (docs/rules-language.md, Rooms).
 WALL_NUMBER = {"north": 1, "east": 2, "south": 3, "west": 4}
 
+#: Words that start a request or a sentence of one ("Add a piano ...", "Could you
+#: furnish ..."); used wherever they stand, never reported.
+REQUEST_WORDS = (
+    "add can could you my our just show furnish furnished design so too go goes will"
+).split()
+
 #: Words that join or frame phrases; used wherever they stand, never reported.
 FUNCTION_WORDS = frozenset(
     "and with , ; : is are be there here has have had contains containing contain consists "
@@ -239,6 +251,7 @@ FUNCTION_WORDS = frozenset(
     "that which where this these those please i we want would like need needs make "
     "create give me put place set up an a the in on at to by for as should must "
     "let there's i'd want's both all each every another more other same empty bare".split()
+    + REQUEST_WORDS
 )
 
 

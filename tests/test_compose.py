@@ -472,3 +472,272 @@ def test_corners_named_on_the_door_s_wall_stay_clear_of_the_door():
     )
     assert request.planned_size[0] >= 0.9 + 2 * 1.0
     assert not request.issues
+
+
+def _facts(request):
+    kinds = {e.id: e.type for e in request.entities}
+    return {
+        (
+            kinds[s.source],
+            s.label,
+            kinds.get(s.target, s.target) if isinstance(s.target, str) else s.target,
+        )
+        for s in request.statements
+        if not s.label.startswith("Implicit")
+    }
+
+
+@pytest.mark.parametrize(
+    ("text", "fact"),
+    [
+        (
+            "a bedroom with a bed and a dresser opposite the bed",
+            ("dresser", "FacingTowards", "bed"),
+        ),
+        ("a sofa and two armchairs across from the sofa", ("armchair", "FacingTowards", "sofa")),
+        ("a bed and a rug at the foot of the bed", ("rug", "NextToFront", "bed")),
+        ("a bed and a bench at the end of the bed", ("piano_bench", "NextToFront", "bed")),
+        (
+            "counters and a fridge at the end of the counters",
+            ("refrigerator", "NextTo", "kitchen_counter"),
+        ),
+        ("a desk in front of the window", ("desk", "UnderWindow", Place("window"))),
+        ("a desk next to the window", ("desk", "BesideWindow", Place("window"))),
+        ("a desk by the window", ("desk", "BesideWindow", Place("window"))),
+        ("a wardrobe next to the door", ("wardrobe", "InCorner", Place("corner", by_door=True))),
+        ("a bed opposite the window", ("bed", "AgainstWall", Place("wall", 3))),
+        ("a wardrobe opposite the door", ("wardrobe", "AgainstWall", Place("wall", 1))),
+        (
+            "a door in the east wall and a sofa opposite the door",
+            ("sofa", "AgainstWall", Place("wall", 4)),
+        ),
+        ("a sofa against the wall", ("sofa", "AgainstWall", Place("wall"))),
+        ("a plant in the corner", ("plant", "InCorner", Place("corner"))),
+    ],
+)
+def test_everyday_relation_phrases_mean_registry_relations(text, fact):
+    request, _ = _plan(text)
+    assert fact in _facts(request)
+    assert not request.issues, [i.message for i in request.issues]
+
+
+def test_opposite_the_window_names_the_window_s_wall():
+    request, rules = _plan("a bedroom with a double bed opposite the window")
+    assert request.windows == ["north"] and "window north" in rules
+    assert "AgainstWall wall #3" in rules
+
+
+@pytest.mark.parametrize(
+    ("text", "fact", "types"),
+    [
+        # "stand" is the noun after "a"; the place phrase after it is the stand's
+        (
+            "a living room with a TV on a stand against the north wall",
+            ("tv_stand", "AgainstWall", Place("wall", 1)),
+            ["tv", "tv_stand"],
+        ),
+        # a relation to a thing after the support: both the TV and its stand
+        (
+            "a TV on a stand opposite the sofa",
+            ("tv_stand", "FacingTowards", "sofa"),
+            ["sofa", "tv", "tv_stand"],
+        ),
+        # "with ... on it": the thing the with-phrase hangs on, not the last one named
+        (
+            "a bed, a nightstand next to the bed with a lamp on it",
+            ("lamp", "OnTopOf", "nightstand"),
+            ["bed", "lamp", "nightstand"],
+        ),
+        (
+            "a living room with two armchairs across from the sofa and a coffee table between them",
+            ("armchair", "NextToLeft", "coffee_table"),
+            ["armchair", "armchair", "coffee_table", "sofa"],
+        ),
+    ],
+)
+def test_supports_with_phrases_and_them(text, fact, types):
+    request, _ = _plan(text)
+    assert fact in _facts(request) and _types(request) == types
+    assert not request.issues, [i.message for i in request.issues]
+
+
+def test_a_tv_on_a_stand_against_the_wall_puts_the_stand_there_not_the_tv():
+    request, _ = _plan("a TV on a stand against the north wall")
+    assert ("tv", "AgainstWall", Place("wall", 1)) not in _facts(request)
+    assert ("tv", "OnTopOf", "tv_stand") in _facts(request)
+
+
+def test_stand_is_still_the_verb_after_things():
+    request, _ = _plan("The bed and the dresser stand against the north wall.")
+    assert _types(request) == ["bed", "dresser"] and len(request.statements) == 2
+
+
+@pytest.mark.parametrize(
+    ("text", "types"),
+    [
+        ("a dining room with a table and a dozen chairs", ["chair"] * 12 + ["dining_table"]),
+        ("half a dozen chairs", ["chair"] * 6),
+        ("a desk as well as a chair", ["chair", "desk"]),
+        ("Add a piano and a bench.", ["piano", "piano_bench"]),
+        ("There are two sofas and a rug.", ["rug", "sofa", "sofa"]),
+        ("I need a desk, plus a bookshelf, also a plant", ["bookshelf", "desk", "plant"]),
+        ("a black leather sofa", ["sofa"]),
+    ],
+)
+def test_counts_joiners_and_request_openings(text, types):
+    request, _ = _plan(text)
+    assert _types(request) == types and not request.issues, [i.message for i in request.issues]
+
+
+@pytest.mark.parametrize(
+    ("text", "words", "why"),
+    [
+        (
+            "a kitchen with a table in the middle of the room and four chairs around it",
+            ["middle", "room"],
+            "no relation places a thing in the middle of the room",
+        ),
+        ("a rug in the centre, a sofa", ["centre"], "middle of the room"),
+        ("a couch facing the window", ["facing", "window"], "no such relation to a window"),
+        ("a chair behind the door", ["behind", "door"], "relative to a door"),
+        ("a wooden table", ["wooden"], "no wooden dining table (its styles: long, small)"),
+        ("a round table and a small desk", ["round", "small"], "the catalog has no"),
+        ("a bed in the middle of the north wall", ["middle"], "where along the wall"),
+        ("a whiteboard on the front wall", ["front"], "which one this is"),
+        ("a bed at the end of the room, a desk", ["end", "room"], "the room itself"),
+        (
+            "a bed in a corner and a desk in the opposite corner",
+            ["opposite"],
+            "which wall or corner",
+        ),
+        (
+            "a wardrobe next to the door and a plant by the door",
+            ["door"],
+            "only one thing can stand in the corner by the door",
+        ),
+    ],
+)
+def test_what_no_relation_can_say_is_reported_not_faked(text, words, why):
+    request, _ = _plan(text)
+    reported = {text[i.start : i.end]: i.message for i in request.issues}
+    assert sorted(reported) == sorted(words) and all(why in m for m in reported.values())
+
+
+def test_the_middle_of_the_room_is_not_a_relation_to_the_things_after_it():
+    request, _ = _plan(
+        "Place a dining table in the middle of the room and six chairs around the table."
+    )
+    assert {lab for _, lab, _ in _facts(request)} == {"SeatedAround"}
+    assert request.room == "room" and _types(request) == ["chair"] * 6 + ["dining_table"]
+
+
+def test_a_thing_by_the_window_and_the_window_leave_each_other_room():
+    from scenewright.api import compose
+
+    scene, report = compose(
+        "There is a desk by the window and an office chair in front of the desk.", 1002
+    )
+    assert not report.unsatisfied and "The desk is beside the window." in scene.description.text
+    scene, report = compose("a sofa opposite the window and a wardrobe next to the door", 3)
+    text = scene.description.text
+    assert not report.unsatisfied and "window in the north wall" in text
+    assert "The sofa stands against the south wall." in text
+    assert "The wardrobe stands in the corner by the door." in text
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "the desk is not under the window",
+        "a bed that is not against the wall",
+        "the sofa isn't facing the TV",
+        "a desk, and the desk should never be under the window",
+    ],
+)
+def test_a_denied_relation_is_reported_never_composed(text):
+    request, _ = _plan(text)
+    assert not [s for s in request.statements if not s.label.startswith("Implicit")]
+    assert any("said not to hold" in i.message for i in request.issues)
+
+
+def test_i_don_t_want_a_thing_asks_for_none():
+    request, _ = _plan("a living room with a sofa. I don't want a TV, and we do not need a rug")
+    assert set(request.absent) == {"tv", "rug"} and _types(request) == ["sofa"]
+    assert not request.issues
+
+
+def test_which_after_an_object_is_about_that_object():
+    text = "the sofa is against the north wall, facing the TV which is on the south wall"
+    request, _ = _plan(text)
+    assert _facts(request) == {
+        ("sofa", "AgainstWall", Place("wall", 1)),
+        ("sofa", "FacingTowards", "tv"),
+        ("tv", "AgainstWall", Place("wall", 3)),
+    }
+
+
+def test_in_between_alone_is_between_the_two_things_named_before():
+    request, _ = _plan("a sofa facing the tv with a coffee table in between")
+    assert {
+        ("sofa", "NextToLeft", "coffee_table"),
+        ("tv", "NextToRight", "coffee_table"),
+    } <= _facts(request)
+
+
+def test_two_things_on_two_supports_are_one_on_each():
+    request, _ = _plan("There are two lamps on the side tables.")
+    on = [(s.source, s.target) for s in request.statements if s.label == "OnTopOf"]
+    assert len(on) == 2 and len({t for _, t in on}) == 2
+
+
+def test_a_thing_on_either_side_of_the_window_lays_out_one_on_each_side():
+    from scenewright.api import compose
+
+    scene, report = compose("a study with a bookshelf on either side of the window and a desk", 0)
+    assert [o.type for o in scene.objects].count("bookshelf") == 2 and not report.unsatisfied
+    assert "Both bookshelves are beside the window." in scene.description.text
+
+
+def test_a_rough_room_size_reads_whole():
+    request, _ = _plan("a small bedroom, about 3 by 3 meters, with a bed")
+    assert request.size == (3.0, 3.0) and not request.issues
+
+
+@pytest.mark.parametrize(
+    ("text", "word"),
+    [
+        ("a bed with a nightstand on the left and a lamp on the right", "left"),
+        ("a rug on the floor and a sofa", "floor"),
+        ("a plant on the windowsill, a sofa", "windowsill"),
+    ],
+)
+def test_a_relation_whose_object_is_not_understood_takes_nothing_named_later(text, word):
+    request, _ = _plan(text)
+    assert not any(s.label.startswith("OnTopOf") for s in request.statements)
+    assert word in {text[i.start : i.end] for i in request.issues}
+
+
+def test_a_desk_at_the_window_is_under_it():
+    request, _ = _plan("a desk at the window")
+    assert _facts(request) == {("desk", "UnderWindow", Place("window"))}
+
+
+def test_a_relation_s_object_without_its_article_is_the_one_named_before():
+    request, _ = _plan("a study: desk under window; chair at desk; bookshelf on east wall")
+    assert _types(request) == ["bookshelf", "chair", "desk"] and not request.issues
+    assert ("desk", "UnderWindow", Place("window")) in _facts(request)
+    assert ("chair", "SeatedAround", "desk") in _facts(request)
+
+
+def test_in_a_row_either_side_and_the_centre_of():
+    request, _ = _plan("an office with four desks in a row against the south wall")
+    facts = [(s.label, s.target) for s in request.statements]
+    assert facts.count(("AgainstWall", Place("wall", 3))) == 4
+    assert sum(label == "NextTo" for label, _ in facts) == 3
+    request, _ = _plan("a bedroom with a bed against the north wall, nightstands either side")
+    assert {("nightstand", "BesideLeft", "bed"), ("nightstand", "BesideRight", "bed")} <= _facts(
+        request
+    )
+    assert not request.issues
+    request, _ = _plan("a lamp in the centre of the desk")
+    assert _facts(request) == {("lamp", "OnTopOfMiddle", "desk")}

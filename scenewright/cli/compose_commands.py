@@ -17,6 +17,7 @@ examples:
   scenewright compose "a bedroom with a double bed against the north wall, a nightstand on each side of the bed, a wardrobe and a desk under the window" -o out/
   scenewright compose "a 4 by 3 metre study with a desk under the window and a bookshelf against the east wall" --seed 2
   scenewright compose "a kitchen with a fridge, a sink under the window and a table with four chairs around it" --rules-out kitchen.rules
+  scenewright compose "a living room with a sofa against the south wall, a TV on a stand opposite the sofa and a bookshelf by the window" -o living/
   scenewright compose "a small room with a piano" --catalog my_music.rules --strict
   scenewright compose "a bedroom with a double bed against the north wall" --complete -o full/
 
