@@ -2,7 +2,8 @@
 carried by the other two and reported as pruned. A pair goes when one type of the
 triangle rests on another, or when its within-scene poses are no tighter than their
 composition through the third type (``indirect_through``, ``informative_directness``),
-or, where that cannot be tested, when it is the weakest of the three.
+or, where that cannot be tested, when its two stand the farthest apart of the three
+(then: the weakest).
 Design notes: docs/notes/design.md, "Relation finding".
 """
 
@@ -273,7 +274,8 @@ def prune_indirect(
     b)``, whether (a, c) is indirect through b (None: cannot tell), of the triangle's
     pairs it finds indirect the one whose objects stand farthest apart (``apart(a, c)``,
     compared as tuples; the weakest without it), and where it cannot tell for some pair
-    of the triangle, the pair of the smallest strength. Given ``direct(a, c, b)``, how
+    of the triangle, likewise the pair farthest apart (a lamp and a side table on either
+    side of an armchair relate through it), then the one of the smallest strength. Given ``direct(a, c, b)``, how
     direct (a, c) is against its composition through b, the farthest apart is taken only
     among the pairs found indirect within ``DIRECTNESS_MARGIN`` of the least direct of
     them. Given ``present(a, c, b)``, the share of the scenes holding a and c that hold
@@ -342,8 +344,16 @@ def prune_indirect(
             if not edges:
                 continue
             verdicts = [through(*edge, thirds[edge]) for edge in edges] if through else [None]
-            if None in verdicts:  # no test of indirectness: the weakest pair goes
-                weakest = min(edges, key=lambda edge: strength[edge])
+            if (
+                None in verdicts
+            ):  # no test of indirectness: the farthest apart goes, then the weakest
+                weakest = min(
+                    edges,
+                    key=lambda edge: (
+                        tuple(-value for value in apart(*edge)) if apart else (),
+                        strength[edge],
+                    ),
+                )
                 if not supported(*weakest):
                     indirect.add(weakest)
             else:  # of the pairs found indirect, the least direct; of those about as direct, the farthest apart

@@ -442,11 +442,11 @@ def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
     assert _anchor(set(graph), graph, catalog, {**counts, "rug": everywhere}) == "rug"
 
 
-def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
+def reading_corners(folder: Path, rugs: float = 0.6, table_front: float = 0.0) -> list[Path]:
     """Fourteen hand-written reading corners: a reading chair with its back to some wall,
-    a floor lamp on one side of it, a side table on the other (a teacup on it in most), a
-    rug in front of the chair in some (each with probability ``rugs``), a bookshelf
-    against the opposite wall."""
+    a floor lamp on one side of it, a side table on the other (a teacup on it in most;
+    ``table_front`` metres forward of the chair's side), a rug in front of the chair in
+    some (each with probability ``rugs``), a bookshelf against the opposite wall."""
     import random
 
     draw = random.Random(5)
@@ -490,7 +490,10 @@ def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
                 "id": "table",
                 "type": "side_table",
                 "size": [0.45, 0.55, 0.45],
-                "position": by(-side * (0.725 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)),
+                "position": by(
+                    -side * (0.725 + draw.uniform(0, 0.1) + 0.25 * (table_front > 0)),
+                    draw.uniform(-0.05, 0.05) + table_front,
+                ),
                 "yaw": yaw,
             },
         ]
@@ -543,12 +546,14 @@ def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
 
 
 def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path):
-    # A rug in twelve corners of fourteen: the side tables hang off the rug (the tests
-    # relate them to it, and the rug is in enough of their corners to carry their pair
-    # with the chair), but two corners have no rug: their side tables, made at the top
-    # level, keep their teacups and the bookshelf across the room, so every corner has a
-    # derivation of the learned rules.
-    induction = induce(load_examples(reading_corners(tmp_path, rugs=0.8)), name="corners", seed=0)
+    # A rug in twelve corners of fourteen and the side table beside it, in front of the
+    # chair's side: the side tables hang off the rug (the tests relate them to it, the
+    # chair and the table stand the farthest apart of the three, and the rug is in
+    # enough of their corners to carry their pair with the chair), but two corners have
+    # no rug: their side tables, made at the top level, keep their teacups and the
+    # bookshelf across the room, so every corner has a derivation of the learned rules.
+    paths = reading_corners(tmp_path, rugs=0.8, table_front=1.0)
+    induction = induce(load_examples(paths), name="corners", seed=0)
     text = rules_text(induction)
     alone = text[text.index("SideTableAlone -> {") :]
     alone = alone[: alone.index("}")]
