@@ -134,7 +134,14 @@ def find_relations(
             else None
         )
         direct = (
-            (lambda a, c, b: informative_directness(poses, a, c, b, seed, kinds))
+            # Sides mixed (a plant left of the desk in some rooms, right in others) hide
+            # how direct a pair is; either side alike shows it.
+            (
+                lambda a, c, b: max(
+                    informative_directness(poses, a, c, b, seed, kinds),
+                    informative_directness(poses, a, c, b, seed, kinds, mirrored=True),
+                )
+            )
             if chosen.tests_indirect
             else None
         )

@@ -25,11 +25,13 @@ from .relation_poses import (
     fellows_held,
     footprint_gaps,
     framed,
+    hand_placed_poses,
     holding_both,
     nearest_objects,
     pair_poses,
     pair_stream,
     relative_poses,
+    square,
 )
 from .relation_results import PairRelation
 from .relation_statistics import flip_test, sample_tightness
@@ -164,6 +166,7 @@ def informative_directness(
     b: str,
     seed: int,
     kinds: dict[str, str] | None = None,
+    mirrored: bool = False,
 ) -> float:
     """How much tighter the pair (a, c) stands within scenes than composed through b,
     in the coordinates that hold its relation (design notes, "Choosing the
@@ -172,13 +175,20 @@ def informative_directness(
     the across-scene spread over the within-scene one (0 where the within-scene poses
     are no tighter); the smaller over the two compositions (b's frame, the world's
     axes), averaged over ``STRENGTH_DRAWS`` draws (0 in a draw where no coordinate
-    holds the relation)."""
+    holds the relation). ``mirrored``: every pose with either side of its frame alike
+    (``hand_placed_poses``), the same draws: a plant left of the desk in some studies and
+    right in others is as direct as one always on the left."""
     first, second, middle, together, grouped = triangle_scenes(poses, a, c, b, kinds)
     rng = pair_stream(seed, a, c, b, "directness")
     values = []
     for _ in range(STRENGTH_DRAWS):
         within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
         _, across = pair_poses(first, second, False, together, rng)
+        if mirrored:
+            within, in_frame, along_axes, across = (
+                hand_placed_poses(found, square(second))
+                for found in (within, in_frame, along_axes, across)
+            )
         spread = np.maximum(coordinate_spreads(within), SCALE_FLOOR)
         weight = np.log(np.maximum(coordinate_spreads(across), SCALE_FLOOR) / spread).clip(min=0.0)
         if weight.sum() <= 0.0:

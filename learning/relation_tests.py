@@ -15,7 +15,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.special import kolmogorov
 
-from .pose_labels import SQUARE_ASPECT
 from .relation_arrangements import (
     at_pose,
     fixed_arrangement,
@@ -25,10 +24,12 @@ from .relation_arrangements import (
 from .relation_poses import (
     TypePoses,
     framed,
+    hand_placed_poses,
     holding_both,
     nearest_poses,
     pair_poses,
     relative_poses,
+    square,
 )
 from .relation_statistics import (
     angle_statistic,
@@ -134,31 +135,6 @@ def beside_at_one_place(
     within, next_to = nearest_next_to(first, second, together, together, chosen, same, rng)
     within = hand_placed_poses(within, square(second))
     return float(np.mean(at_pose(within, np.median(within, axis=0)) & next_to)) >= FIXED_SHARE
-
-
-def square(poses: TypePoses) -> bool:
-    """Whether the type's median footprint is square within ``SQUARE_ASPECT`` (a floor
-    lamp, a plant: a person turns such a thing any way)."""
-    valid = poses.footprints[np.arange(poses.footprints.shape[1])[None, :] < poses.counts[:, None]]
-    if len(valid) == 0:
-        return False
-    width, depth = np.median(valid, axis=0)
-    return bool(max(width, depth) <= SQUARE_ASPECT * min(width, depth))
-
-
-def hand_placed_poses(poses: np.ndarray, square_b: bool) -> np.ndarray:
-    """Relative poses (..., 4) with either side of a alike: a pose on a's right
-    (x < 0) mirrored to its left (x and the turn's sine negated), and the turn of a
-    square b (``square``) left out. A lamp on an armchair's left in some examples and
-    on its right in others stands one way here; as the examples hold it, the two sides
-    spread the within-scene poses as far as the room does."""
-    found = poses.copy()
-    right = found[..., 0] < 0
-    found[..., 0] = np.abs(found[..., 0])
-    found[..., 3] = np.where(right, -found[..., 3], found[..., 3])
-    if square_b:
-        found[..., 2], found[..., 3] = 1.0, 0.0
-    return found
 
 
 def permutation_outcome(
