@@ -251,6 +251,24 @@ def test_a_joint_keeps_each_member_s_shares_and_leaves_out_what_says_no_side():
     assert dict(joint.ways) == {(0, 1): 9.0, (1, 0): 5.0, (-1, 1): 1.0}
 
 
+def test_a_placement_with_no_side_is_left_out_of_the_test_and_kept_as_a_way():
+    # A plant opposite the lamp in eight corners, and in two more too far for a side
+    # label, with only a facing one: those two tell nothing of the sides, so the test
+    # counts the eight, and the joint keeps the two as ways of their own, placed so.
+    lamp = member("floor_lamp", [("NextToLeft",), ("NextToRight",)], [0] * 5 + [1] * 3 + [0, 1])
+    plant = member(
+        "plant",
+        [("NextToRight",), ("NextToLeft",), ("FacingSameDirection",)],
+        [0] * 5 + [1] * 3 + [2, 2],
+    )
+    group = Group("Armchair", "armchair", Counter({1: 10}), None, [lamp, plant], [], [])
+    sides_together(group, seed=0)
+    (test,) = group.side_tests
+    assert test.parents == 8 and test.coupled
+    (joint,) = group.joints
+    assert dict(joint.ways) == {(0, 0): 5.0, (1, 1): 3.0, (0, 2): 1.0, (1, 2): 1.0}
+
+
 def test_a_member_in_no_placement_is_drawn_on_its_own_beside_the_others(tmp_path):
     # One corner's lamp stands across the room, by no label of the armchair: that corner
     # is a way of its own, in which the lamp takes one of its placements as drawn alone.
