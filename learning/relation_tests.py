@@ -62,8 +62,7 @@ from .relation_thresholds import (
 class Outcome:
     """One test's verdict on one type pair before pruning (``statistic`` and ``p_value``
     None when it was not tested); ``strength`` ranks related pairs for pruning;
-    ``fixed``: related as a fixed arrangement, which the test itself did not find;
-    ``mirrored``: related by the scene-pairing test on poses with either side alike."""
+    ``fixed``: related as a fixed arrangement, which the test itself did not find."""
 
     related: bool
     statistic: float | None
@@ -72,7 +71,6 @@ class Outcome:
     scenes: int
     strength: float | None = None
     fixed: bool = False
-    mirrored: bool = False
 
 
 def paired_outcome(
@@ -117,7 +115,9 @@ def paired_outcome(
     if tightness >= MIN_PAIRED_TIGHTNESS and (
         p_value <= alpha or beside_at_one_place(first, second, same, together, chosen, own)
     ):
-        return Outcome(True, energy, p_value, n * n, n, tightness, mirrored=True)
+        return Outcome(True, energy, p_value, n * n, n, tightness)
+    # Not related: with fewer than MIN_PAIRED_SCENES reported untested, as no test could
+    # tell it from chance.
     return outcome
 
 
