@@ -91,6 +91,7 @@ from .pose_labels import (
     RESTING_CATEGORIES,
     SQUARE_ASPECT,
     STANDING_CATEGORIES,
+    hand_placed,
     most_specific,
     pair_holds,
     support_room,
@@ -98,7 +99,7 @@ from .pose_labels import (
 )
 from .relation_finding import find_relations
 from .relation_poses import type_poses
-from .relation_pruning import resting_pairs
+from .relation_pruning import resting_pairs, typical_gap
 from .rule_names import camel, identifier, unique_name
 from .sides_together import sides_together
 
@@ -283,6 +284,11 @@ def _supporters(object_id: str, supports: dict[str, str]) -> list[str]:
     return chain
 
 
+def _square(size: Sequence[float]) -> bool:
+    """Whether a footprint of ``size`` (W x H x D) is square within ``SQUARE_ASPECT``."""
+    return max(size[0], size[2]) <= SQUARE_ASPECT * min(size[0], size[2])
+
+
 def edge_instances(
     scenes: Sequence[Scene],
     supports: Sequence[dict[str, str]],
@@ -290,10 +296,16 @@ def edge_instances(
     child: str,
     *,
     resting_only: bool = False,
+    against_wall: bool = False,
 ) -> EdgeInstances:
     """Every ``child`` object of ``scenes`` in the frame of its ``parent`` object (the
     one it rests on, else the nearest; with ``resting_only`` only the children resting
-    on a parent object), and the children per parent object."""
+    on a parent object), and the children per parent object. With ``against_wall`` (the
+    child's type is written with a wall label), a standing child whose footprint is
+    square within ``SQUARE_ASPECT`` is turned as ``pose_labels.hand_placed`` turns it
+    for that label (its back to the wall it stands against, as the layout will set
+    it), so that the facing label chosen for it agrees with the wall label: a plant
+    given any turn by the wall is not "facing away from" the cabinet beside it."""
     poses, resting, parent_sizes, child_sizes, hosts, ids = [], [], [], [], [], []
     per_parent: Counter = Counter()
     orphans = np.zeros(len(scenes), dtype=int)
@@ -326,7 +338,10 @@ def edge_instances(
             x, z = to_local(
                 host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2]
             )
-            poses.append((x, z, wrap_angle(obj.yaw - host.yaw)))
+            yaw = obj.yaw
+            if against_wall and not rests and scene.room is not None and _square(obj.size):
+                yaw = hand_placed(obj, scene.room)[2]
+            poses.append((x, z, wrap_angle(yaw - host.yaw)))
             resting.append(rests)
             parent_sizes.append(host.size)
             child_sizes.append(obj.size)
@@ -578,8 +593,22 @@ def _anchor(
 
 
 def _tree(component: set[str], graph: nx.Graph, anchor: str) -> dict[str, list[str]]:
-    """Parent type -> its child types along the maximum spanning tree from ``anchor``."""
-    tree = nx.maximum_spanning_tree(graph.subgraph(component), weight="weight")
+    """Parent type -> its child types along the spanning tree from ``anchor`` that takes
+    the pairs standing closest first (each edge's ``gap``, the median gap between their
+    footprints to 0.1 m), then the strongest: a waste bin beside a desk, with a filing
+    cabinet on the desk's other side, is placed by the desk, since a placement label
+    says little of where a thing stands far from its parent (NextTo reaches 2 m)."""
+    edges = sorted(
+        graph.subgraph(component).edges(data=True),
+        key=lambda edge: (edge[2]["gap"], -edge[2]["weight"], sorted(edge[:2])),
+    )
+    tree = nx.Graph()
+    tree.add_nodes_from(component)
+    joined = nx.utils.UnionFind(sorted(component))
+    for u, v, _ in edges:
+        if joined[u] != joined[v]:
+            joined.union(u, v)
+            tree.add_edge(u, v)
     children: dict[str, list[str]] = defaultdict(list)
     seen, queue = {anchor}, [anchor]
     while queue:
@@ -663,7 +692,7 @@ def induce(
         if route is not None and route[0] not in lowers and route[1] not in lowers:
             strength[route] = max(strength.get(route, 0.0), pair.strength or 0.0)
     for (a, b), weight in sorted(strength.items()):
-        graph.add_edge(a, b, weight=weight)
+        graph.add_edge(a, b, weight=weight, gap=typical_gap(poses[a], poses[b], False)[0])
 
     counts = {t: poses[t].counts for t in poses}  # each type's objects per scene
 
@@ -676,7 +705,14 @@ def induce(
     tree: dict[str, list[str]] = {}
 
     def member(parent: str, child: str, carried: bool, depth: int = 0) -> Member:
-        instances = edge_instances(scenes, supports, parent, child, resting_only=carried)
+        instances = edge_instances(
+            scenes,
+            supports,
+            parent,
+            child,
+            resting_only=carried,
+            against_wall=not carried and walls.get(child, WallShare()).label() is not None,
+        )
         placements, clusters, outliers, assigned = placements_of(instances)
         per_host = Counter(instances.hosts)
         alone = [k for k, host in enumerate(instances.hosts) if per_host[host] == 1]

@@ -20,6 +20,7 @@ from scenewright.core.frames import footprint_reach_many, to_local_many
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import stream
 
+from .pose_labels import SQUARE_ASPECT
 from .relation_thresholds import MAX_SCENES, PATH_STEP
 
 
@@ -276,3 +277,28 @@ def pair_stream(seed: int, *names: str) -> np.random.Generator:
     given: child k of the ``relations`` stage, k a hash of the names."""
     key = int.from_bytes(hashlib.sha256("\0".join(names).encode()).digest()[:4], "big")
     return stream(seed, "relations", key)
+
+
+def square(poses: TypePoses) -> bool:
+    """Whether the type's median footprint is square within ``SQUARE_ASPECT`` (a floor
+    lamp, a plant: a person turns such a thing any way)."""
+    valid = poses.footprints[np.arange(poses.footprints.shape[1])[None, :] < poses.counts[:, None]]
+    if len(valid) == 0:
+        return False
+    width, depth = np.median(valid, axis=0)
+    return bool(max(width, depth) <= SQUARE_ASPECT * min(width, depth))
+
+
+def hand_placed_poses(poses: np.ndarray, square_b: bool) -> np.ndarray:
+    """Relative poses (..., 4) with either side of a alike: a pose on a's right
+    (x < 0) mirrored to its left (x and the turn's sine negated), and the turn of a
+    square b (``square``) left out. A lamp on an armchair's left in some examples and
+    on its right in others stands one way here; as the examples hold it, the two sides
+    spread the within-scene poses as far as the room does."""
+    found = poses.copy()
+    right = found[..., 0] < 0
+    found[..., 0] = np.abs(found[..., 0])
+    found[..., 3] = np.where(right, -found[..., 3], found[..., 3])
+    if square_b:
+        found[..., 2], found[..., 3] = 1.0, 0.0
+    return found

@@ -2,7 +2,8 @@
 carried by the other two and reported as pruned. A pair goes when one type of the
 triangle rests on another, or when its within-scene poses are no tighter than their
 composition through the third type (``indirect_through``, ``informative_directness``),
-or, where that cannot be tested, when it is the weakest of the three.
+or, where that cannot be tested, when its two stand the farthest apart of the three
+(then: the weakest).
 Design notes: docs/notes/design.md, "Relation finding".
 """
 
@@ -24,11 +25,13 @@ from .relation_poses import (
     fellows_held,
     footprint_gaps,
     framed,
+    hand_placed_poses,
     holding_both,
     nearest_objects,
     pair_poses,
     pair_stream,
     relative_poses,
+    square,
 )
 from .relation_results import PairRelation
 from .relation_statistics import flip_test, sample_tightness
@@ -163,6 +166,7 @@ def informative_directness(
     b: str,
     seed: int,
     kinds: dict[str, str] | None = None,
+    mirrored: bool = False,
 ) -> float:
     """How much tighter the pair (a, c) stands within scenes than composed through b,
     in the coordinates that hold its relation (design notes, "Choosing the
@@ -171,13 +175,20 @@ def informative_directness(
     the across-scene spread over the within-scene one (0 where the within-scene poses
     are no tighter); the smaller over the two compositions (b's frame, the world's
     axes), averaged over ``STRENGTH_DRAWS`` draws (0 in a draw where no coordinate
-    holds the relation)."""
+    holds the relation). ``mirrored``: every pose with either side of its frame alike
+    (``hand_placed_poses``), the same draws: a plant left of the desk in some studies and
+    right in others is as direct as one always on the left."""
     first, second, middle, together, grouped = triangle_scenes(poses, a, c, b, kinds)
     rng = pair_stream(seed, a, c, b, "directness")
     values = []
     for _ in range(STRENGTH_DRAWS):
         within, in_frame, along_axes = composed_poses(first, middle, second, together, rng, grouped)
         _, across = pair_poses(first, second, False, together, rng)
+        if mirrored:
+            within, in_frame, along_axes, across = (
+                hand_placed_poses(found, square(second))
+                for found in (within, in_frame, along_axes, across)
+            )
         spread = np.maximum(coordinate_spreads(within), SCALE_FLOOR)
         weight = np.log(np.maximum(coordinate_spreads(across), SCALE_FLOOR) / spread).clip(min=0.0)
         if weight.sum() <= 0.0:
@@ -273,7 +284,8 @@ def prune_indirect(
     b)``, whether (a, c) is indirect through b (None: cannot tell), of the triangle's
     pairs it finds indirect the one whose objects stand farthest apart (``apart(a, c)``,
     compared as tuples; the weakest without it), and where it cannot tell for some pair
-    of the triangle, the pair of the smallest strength. Given ``direct(a, c, b)``, how
+    of the triangle, likewise the pair farthest apart (a lamp and a side table on either
+    side of an armchair relate through it), then the one of the smallest strength. Given ``direct(a, c, b)``, how
     direct (a, c) is against its composition through b, the farthest apart is taken only
     among the pairs found indirect within ``DIRECTNESS_MARGIN`` of the least direct of
     them. Given ``present(a, c, b)``, the share of the scenes holding a and c that hold
@@ -342,8 +354,16 @@ def prune_indirect(
             if not edges:
                 continue
             verdicts = [through(*edge, thirds[edge]) for edge in edges] if through else [None]
-            if None in verdicts:  # no test of indirectness: the weakest pair goes
-                weakest = min(edges, key=lambda edge: strength[edge])
+            if (
+                None in verdicts
+            ):  # no test of indirectness: the farthest apart goes, then the weakest
+                weakest = min(
+                    edges,
+                    key=lambda edge: (
+                        tuple(-value for value in apart(*edge)) if apart else (),
+                        strength[edge],
+                    ),
+                )
                 if not supported(*weakest):
                     indirect.add(weakest)
             else:  # of the pairs found indirect, the least direct; of those about as direct, the farthest apart

@@ -15,14 +15,21 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.special import kolmogorov
 
-from .relation_arrangements import fixed_arrangement, surrounding_arrangement
+from .relation_arrangements import (
+    at_pose,
+    fixed_arrangement,
+    nearest_next_to,
+    surrounding_arrangement,
+)
 from .relation_poses import (
     TypePoses,
     framed,
+    hand_placed_poses,
     holding_both,
     nearest_poses,
     pair_poses,
     relative_poses,
+    square,
 )
 from .relation_statistics import (
     angle_statistic,
@@ -36,7 +43,9 @@ from .relation_thresholds import (
     ANGLE_SAMPLE,
     ANGLE_THRESHOLD,
     COOCCURRENCE_SHARE,
+    FIXED_SHARE,
     LOCAL_POSES,
+    MIN_FEW_SCENES,
     MIN_LOCAL_TIGHTNESS,
     MIN_PAIRED_SCENES,
     MIN_PAIRED_TIGHTNESS,
@@ -72,15 +81,60 @@ def paired_outcome(
     rng: np.random.Generator,
     alpha: float,
 ) -> Outcome:
-    """The scene-pairing test of a pair held by the few scenes ``together``."""
+    """The scene-pairing test of a pair held by the few scenes ``together`` (at least
+    ``MIN_FEW_SCENES``); where it does not relate the pair (or cannot: fewer than
+    ``MIN_PAIRED_SCENES``), the same poses as a hand places them (``hand_placed_poses``:
+    either side alike), related when their tightness is at least
+    ``MIN_PAIRED_TIGHTNESS`` and either the test on them reaches ``alpha`` or b stands
+    beside a at one place in at least ``FIXED_SHARE`` of the scenes (``beside_at_one_place``)."""
     n = len(together)
     chosen = np.floor(rng.random(n) * first.counts[together]).astype(int)  # one a per scene
     a_scenes, b_scenes = np.repeat(together, n), np.tile(together, n)
     poses = nearest_poses(first, second, a_scenes, b_scenes, same, rng, chosen=np.repeat(chosen, n))
-    energy, p_value, tightness = pairing_test(poses.reshape(n, n, -1), rng)
-    return Outcome(
-        p_value <= alpha and tightness >= MIN_PAIRED_TIGHTNESS, energy, p_value, n * n, n, tightness
-    )
+    poses = poses.reshape(n, n, -1)
+    outcome = Outcome(False, None, None, 0, n)
+    if n >= MIN_PAIRED_SCENES:
+        energy, p_value, tightness = pairing_test(poses, rng)
+        outcome = Outcome(
+            p_value <= alpha and tightness >= MIN_PAIRED_TIGHTNESS,
+            energy,
+            p_value,
+            n * n,
+            n,
+            tightness,
+        )
+        if outcome.related:
+            return outcome
+    # A stream of its own, so that what the pair's stream draws next is as before.
+    own = np.random.Generator(np.random.PCG64(rng.bit_generator.seed_seq.spawn(1)[0]))  # type: ignore[attr-defined]
+    energy, p_value, tightness = pairing_test(hand_placed_poses(poses, square(second)), own)
+    # With few scenes the pairings cannot reach alpha (1/6 at best with three) or tie
+    # (2/120 with five): what the examples show is then all there is to go by, b beside a
+    # at one place, as in a fixed arrangement; tightness alone is not enough, three poses
+    # are tight against nine by chance too often.
+    if tightness >= MIN_PAIRED_TIGHTNESS and (
+        p_value <= alpha or beside_at_one_place(first, second, same, together, chosen, own)
+    ):
+        return Outcome(True, energy, p_value, n * n, n, tightness)
+    # Not related: with fewer than MIN_PAIRED_SCENES reported untested, as no test could
+    # tell it from chance.
+    return outcome
+
+
+def beside_at_one_place(
+    first: TypePoses,
+    second: TypePoses,
+    same: bool,
+    together: np.ndarray,
+    chosen: np.ndarray,
+    rng: np.random.Generator,
+) -> bool:
+    """Whether, in at least ``FIXED_SHARE`` of the scenes ``together``, the b nearest the
+    ``chosen`` a stands next to it and within ``FIXED_OFFSET`` (and, unless b is
+    ``square``, ``FIXED_TURN``) of the median of those poses, either side of a alike."""
+    within, next_to = nearest_next_to(first, second, together, together, chosen, same, rng)
+    within = hand_placed_poses(within, square(second))
+    return float(np.mean(at_pose(within, np.median(within, axis=0)) & next_to)) >= FIXED_SHARE
 
 
 def permutation_outcome(
@@ -91,11 +145,13 @@ def permutation_outcome(
     fewer than ``MIN_SCENES``; a pair it does not find is related when it is a fixed
     arrangement."""
     together = holding_both(first, second, same)
-    if len(together) < MIN_PAIRED_SCENES:
+    if len(together) < MIN_FEW_SCENES:
         return Outcome(False, None, None, 0, len(together))
     if not same:
         first, second = framed(first, second, together)
     outcome = tested_outcome(first, second, same, together, rng, alpha)
+    if len(together) < MIN_PAIRED_SCENES:
+        return outcome
     if outcome.p_value <= alpha and len(together) >= PAIR_SCENES:
         strength, error = pair_strength(first, second, same, together, outcome.strength, rng)
         floor = MIN_LOCAL_TIGHTNESS if outcome.poses >= LOCAL_POSES else MIN_TIGHTNESS

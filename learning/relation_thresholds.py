@@ -29,6 +29,11 @@ PAIR_SCENES = 20
 #: The fewest scenes holding a pair that the scene-pairing test (for fewer than
 #: ``MIN_SCENES``) tests: 5! = 120 pairings, so p can reach 1 / 120 <= 0.01.
 MIN_PAIRED_SCENES = 5
+#: The fewest scenes holding a pair that is tested at all: from three to
+#: ``MIN_PAIRED_SCENES`` no pairing reaches alpha, and a pair is related when the
+#: examples' pairing of the poses with either side alike is the most extreme of all
+#: (``relation_tests.paired_outcome``).
+MIN_FEW_SCENES = 3
 #: The least tightness of a pair related by the scene-pairing test: higher than the
 #: others, because a handful of within-scene poses is tight by chance more often and a
 #: set of few scenes is tested for many pairs (design notes, "Thresholds").

@@ -15,10 +15,12 @@ all, weighted by how many parent objects stood so.
 the members of those of them of which every P object had exactly one (``Member.single``),
 and so on down. So the waste bin placed by a filing cabinet, placed by the desk, is
 tested against the cabinet's side of the desk and against the desk's other members.
-Of those, a member with at least two placements, each with a label that says where it
+Of those, a member with at least two placements with a label that says where it
 stands (``NextTo...``, ``OnTopOf...``: a placement that only says which way a plant
 faces has no side), and at most one object per parent object (a lamp by each armchair,
-not books on a shelf). Each is read per P object (its
+not books on a shelf). A parent object whose member stood in a placement with no side
+is left out of the test (it tells nothing of the sides chosen); a joint holds that
+placement as one of its ways. Each is read per P object (its
 placement where it is, ``Member.chosen``, followed down through ``Member.objects``).
 
 **The test.** For two such members, the P objects holding one of each, each in a
@@ -152,14 +154,15 @@ def _relabellings(counts: Counter) -> list[tuple[int, ...]]:
 PLACES = frozenset(CATEGORIES["near"] + CATEGORIES["support"])
 
 
+def _sided(member: Member) -> set[int]:
+    """The placements of ``member`` that say where it stands (``PLACES``)."""
+    return {k for k, placement in enumerate(member.placements) if PLACES & set(placement.labels)}
+
+
 def _eligible(member: Member) -> bool:
-    """At least two placements, each saying where it stands, and at most one object by
-    each parent object."""
-    return (
-        len(member.placements) >= 2
-        and all(PLACES & set(placement.labels) for placement in member.placements)
-        and max(member.per_parent, default=0) <= 1
-    )
+    """At least two placements saying where it stands, and at most one object by each
+    parent object."""
+    return len(_sided(member)) >= 2 and max(member.per_parent, default=0) <= 1
 
 
 Path = tuple[Member, ...]
@@ -226,10 +229,15 @@ def sides_together(group: Group, seed: int) -> None:
                     continue
                 tested.add(key)
                 a_map, b_map = _per_root(first), _per_root(second)
-                hosts = sorted(
-                    h for h in a_map.keys() & b_map.keys() if min(a_map[h], b_map[h]) >= 0
-                )
                 x, y = first[-1], second[-1]
+                # Only where both stand in a placement that says where: a plant that stood
+                # by no side of its waste bin tells nothing of the sides they chose.
+                a_sided, b_sided = _sided(x), _sided(y)
+                hosts = sorted(
+                    h
+                    for h in a_map.keys() & b_map.keys()
+                    if a_map[h] in a_sided and b_map[h] in b_sided
+                )
                 rng = pair_stream(seed, "sides", root, x.parent, x.type, y.parent, y.type)
                 # Too few parent objects for any table to reach ALPHA (three examples:
                 # p >= 1/3): what the examples did together is all there is to go by,

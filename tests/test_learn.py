@@ -442,11 +442,11 @@ def test_a_group_is_anchored_by_the_type_present_wherever_its_members_are():
     assert _anchor(set(graph), graph, catalog, {**counts, "rug": everywhere}) == "rug"
 
 
-def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
+def reading_corners(folder: Path, rugs: float = 0.6, table_front: float = 0.0) -> list[Path]:
     """Fourteen hand-written reading corners: a reading chair with its back to some wall,
-    a floor lamp on one side of it, a side table on the other (a teacup on it in most), a
-    rug in front of the chair in some (each with probability ``rugs``), a bookshelf
-    against the opposite wall."""
+    a floor lamp on one side of it, a side table on the other (a teacup on it in most;
+    ``table_front`` metres forward of the chair's side), a rug in front of the chair in
+    some (each with probability ``rugs``), a bookshelf against the opposite wall."""
     import random
 
     draw = random.Random(5)
@@ -490,7 +490,10 @@ def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
                 "id": "table",
                 "type": "side_table",
                 "size": [0.45, 0.55, 0.45],
-                "position": by(-side * (0.725 + draw.uniform(0, 0.1)), draw.uniform(-0.05, 0.05)),
+                "position": by(
+                    -side * (0.725 + draw.uniform(0, 0.1) + 0.25 * (table_front > 0)),
+                    draw.uniform(-0.05, 0.05) + table_front,
+                ),
                 "yaw": yaw,
             },
         ]
@@ -543,12 +546,14 @@ def reading_corners(folder: Path, rugs: float = 0.6) -> list[Path]:
 
 
 def test_a_type_seen_without_its_parent_still_brings_what_stands_by_it(tmp_path):
-    # A rug in twelve corners of fourteen: the side tables hang off the rug (the tests
-    # relate them to it, and the rug is in enough of their corners to carry their pair
-    # with the chair), but two corners have no rug: their side tables, made at the top
-    # level, keep their teacups and the bookshelf across the room, so every corner has a
-    # derivation of the learned rules.
-    induction = induce(load_examples(reading_corners(tmp_path, rugs=0.8)), name="corners", seed=0)
+    # A rug in twelve corners of fourteen and the side table beside it, in front of the
+    # chair's side: the side tables hang off the rug (the tests relate them to it, the
+    # chair and the table stand the farthest apart of the three, and the rug is in
+    # enough of their corners to carry their pair with the chair), but two corners have
+    # no rug: their side tables, made at the top level, keep their teacups and the
+    # bookshelf across the room, so every corner has a derivation of the learned rules.
+    paths = reading_corners(tmp_path, rugs=0.8, table_front=1.0)
+    induction = induce(load_examples(paths), name="corners", seed=0)
     text = rules_text(induction)
     alone = text[text.index("SideTableAlone -> {") :]
     alone = alone[: alone.index("}")]
@@ -716,3 +721,60 @@ def test_a_check_under_95_percent_warns_and_names_the_rule_at_fault():
         "at fault: book OnTopOfMiddle side_table (broken in 5 of the 5 that were not ok)"
     )
     assert Check(20, 19, [], [], []).warning() is None
+
+
+def test_a_member_is_placed_by_the_related_type_it_stands_closest_to():
+    # Desk, filing cabinet and waste bin all related: the cabinet-bin pair is the
+    # strongest, but the bin stands beside the desk and 1.6 m from the cabinet, so the
+    # tree places the bin by the desk (closest first, then the strongest).
+    import networkx as nx
+
+    from scenewright.learning.induce import _tree
+
+    graph = nx.Graph()
+    graph.add_edge("desk", "filing_cabinet", weight=0.99, gap=0.1)
+    graph.add_edge("desk", "waste_bin", weight=0.87, gap=0.1)
+    graph.add_edge("filing_cabinet", "waste_bin", weight=0.95, gap=1.6)
+    assert dict(_tree(set(graph), graph, "desk")) == {"desk": ["filing_cabinet", "waste_bin"]}
+    # A tie on the gap goes to the stronger pair.
+    graph["filing_cabinet"]["waste_bin"]["gap"] = 0.1
+    assert dict(_tree(set(graph), graph, "desk")) == {
+        "desk": ["filing_cabinet"],
+        "filing_cabinet": ["waste_bin"],
+    }
+
+
+def test_a_square_thing_written_against_a_wall_faces_as_the_wall_label_sets_it(tmp_path):
+    # A plant beside a cabinet against the north wall, turned any way by hand (yaw 0, 45,
+    # 90): measured with its back to the wall, as its AgainstWall sets it, it faces the
+    # same way as the cabinet in each; an office chair (no wall label) keeps its turn.
+    from scenewright.examples import scene_supports
+    from scenewright.learning.induce import edge_instances, renamed_scenes
+
+    paths = []
+    for index, turn in enumerate((0.0, 45.0, 90.0)):
+        objects = [
+            {
+                "id": "cab",
+                "type": "cabinet",
+                "size": [0.4, 0.7, 0.5],
+                "position": [0, -1.5],
+                "yaw": 0,
+            },
+            {
+                "id": "p",
+                "type": "plant",
+                "size": [0.35, 1.1, 0.35],
+                "position": [0.5, -1.575],
+                "yaw": turn,
+            },
+        ]
+        path = tmp_path / f"corner{index}.json"
+        path.write_text(json.dumps({"room": {"width": 4, "depth": 3.5}, "objects": objects}))
+        paths.append(path)
+    scenes, _ = renamed_scenes(load_examples(paths))
+    supports = [scene_supports(scene) for scene in scenes]
+    turned = edge_instances(scenes, supports, "cabinet", "plant", against_wall=True)
+    assert np.allclose(turned.poses[:, 2], 0.0)
+    kept = edge_instances(scenes, supports, "cabinet", "plant")
+    assert np.allclose(np.degrees(kept.poses[:, 2]), [0.0, 45.0, 90.0])

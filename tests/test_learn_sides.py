@@ -251,6 +251,24 @@ def test_a_joint_keeps_each_member_s_shares_and_leaves_out_what_says_no_side():
     assert dict(joint.ways) == {(0, 1): 9.0, (1, 0): 5.0, (-1, 1): 1.0}
 
 
+def test_a_placement_with_no_side_is_left_out_of_the_test_and_kept_as_a_way():
+    # A plant opposite the lamp in eight corners, and in two more too far for a side
+    # label, with only a facing one: those two tell nothing of the sides, so the test
+    # counts the eight, and the joint keeps the two as ways of their own, placed so.
+    lamp = member("floor_lamp", [("NextToLeft",), ("NextToRight",)], [0] * 5 + [1] * 3 + [0, 1])
+    plant = member(
+        "plant",
+        [("NextToRight",), ("NextToLeft",), ("FacingSameDirection",)],
+        [0] * 5 + [1] * 3 + [2, 2],
+    )
+    group = Group("Armchair", "armchair", Counter({1: 10}), None, [lamp, plant], [], [])
+    sides_together(group, seed=0)
+    (test,) = group.side_tests
+    assert test.parents == 8 and test.coupled
+    (joint,) = group.joints
+    assert dict(joint.ways) == {(0, 0): 5.0, (1, 1): 3.0, (0, 2): 1.0, (1, 2): 1.0}
+
+
 def test_a_member_in_no_placement_is_drawn_on_its_own_beside_the_others(tmp_path):
     # One corner's lamp stands across the room, by no label of the armchair: that corner
     # is a way of its own, in which the lamp takes one of its placements as drawn alone.
@@ -290,3 +308,37 @@ def test_too_few_examples_to_test_keep_their_own_ways(tmp_path):
         (("floor_lamp", "NextToLeft"), ("side_table", "NextToRight")),
         (("floor_lamp", "NextToRight"), ("side_table", "NextToLeft")),
     }
+
+
+def test_three_examples_split_two_to_one_give_two_weighted_alternatives(tmp_path):
+    # Three corners, the lamp on the armchair's left in two and on its right in one, the
+    # side table always on its other side: too few scenes for any test to reach its
+    # level, yet the lamp and the table stand beside the armchair at one place, either
+    # side alike, in each, so both are placed by the armchair (the lamp and the table,
+    # the pair farthest apart, relate through it), each side a placement of its own, and
+    # the two drawn together with the examples' shares, 2/3 and 1/3.
+    lamp_sides = [1, -1, 1]
+    induction, text, rules = learned(
+        tmp_path, [-side for side in lamp_sides], lamp_sides=lamp_sides
+    )
+    (group,) = induction.groups
+    assert group.anchor == "armchair"
+    assert {m.type: m.parent for m in group.members} == {
+        "floor_lamp": "armchair",
+        "side_table": "armchair",
+    }
+    lamp = next(m for m in group.members if m.type == "floor_lamp")
+    assert [(p.labels[0], p.weight) for p in lamp.placements] == [
+        ("NextToLeft", 2),
+        ("NextToRight", 1),
+    ]
+    (joint,) = group.joints
+    assert sorted(weight for _, weight in joint.ways) == [1.0, 2.0]
+    assert re.search(r"-> 2: \{", text) and re.search(r"\| 1: \{", text)
+    drawn = drawn_sides(rules, seeds=300)
+    left = (("floor_lamp", "NextToLeft"), ("side_table", "NextToRight"))
+    right = (("floor_lamp", "NextToRight"), ("side_table", "NextToLeft"))
+    assert set(drawn) == {left, right}
+    assert abs(drawn[left] / 300 - 2 / 3) < 0.08
+    scenes = [build_scene(rules, seed) for seed in range(12)]
+    assert same_side_share(scenes) == 0.0
