@@ -128,3 +128,14 @@ def test_a_circle_is_found_when_there_is_one(tmp_path, monkeypatch):
 def test_no_library_module_is_too_long(name):
     lines = len(library_modules()[name].read_text().splitlines())
     assert lines <= MAX_LINES, f"{name} has {lines} lines (at most {MAX_LINES})"
+
+
+#: A user doc says what a user can do and what the limits are; design reasoning and
+#: dated measurements live in docs/notes/, which this limit does not cover.
+MAX_DOC_LINES = 599
+
+
+@pytest.mark.parametrize("doc", sorted(p.name for p in (ROOT / "docs").glob("*.md")))
+def test_no_user_doc_is_too_long(doc):
+    lines = (ROOT / "docs" / doc).read_text(encoding="utf-8").count("\n")
+    assert lines <= MAX_DOC_LINES, f"docs/{doc} has {lines} lines, more than {MAX_DOC_LINES}"
