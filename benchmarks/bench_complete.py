@@ -12,7 +12,8 @@ mask's energy part buys.
 ok, layout CPU seconds per scene (median), and the *mask cover* on seeds 0..4: the mean,
 over the laid-out floor pieces (those not standing on another, flat ones aside), of the
 layout mask read at 5 x 5 points of each footprint (``layout_mask.mask_at``); and the
-same over the large pieces the mask term is for (``complete.MASKED``).
+same over the categories of the large pieces the mask term is for (``complete.masked``:
+what the plans show against a wall or free).
 
 ``--random N`` draws N rooms from a fixed stream (sides 3.0-6.5 x 3.0-5.5 m, a door on
 one wall and a window on another, one of the four home types' main piece requested,
@@ -47,13 +48,14 @@ import time
 import numpy as np
 
 from scenewright.completion import CATEGORY_METHODS, MASK_METHODS, shipped_plans_dir
-from scenewright.completion.complete import MASKED, complete, region_boxes
+from scenewright.completion.complete import complete, region_boxes
 from scenewright.completion.contents import category_owners, choose_contents
 from scenewright.completion.explanation import recorded_mask_values
 from scenewright.completion.floor_plan import load_plans
 from scenewright.completion.model_builder import build_model
 from scenewright.completion.regions import footprint_share, split_room
 from scenewright.completion.request import parse_request
+from scenewright.completion.stances import stands_by_room
 from scenewright.generator import indoor_catalog
 from scenewright.generator import layout as layout_module
 
@@ -77,6 +79,13 @@ MAIN = {
 FLAT = 0.02
 SAMPLES = 5
 STREAM_SEED = 2024
+
+
+def large_categories(model, names) -> set[str]:
+    """Of ``names``, the categories the plans show against a wall or free in the middle
+    (``stances.stands_by_room``): those whose pieces the mask term is for when nothing
+    ties them to another piece (``complete.masked``)."""
+    return {name for name in names if stands_by_room(model, name)}
 
 
 def mask_cover(scene, only=None) -> float:
@@ -150,7 +159,7 @@ def table(model, catalog, seeds: int, mask_term: bool) -> None:
             seconds.append(layout_seconds)
             if seed < 5:
                 cover.append(mask_cover(scene))
-                cover_large.append(mask_cover(scene, MASKED))
+                cover_large.append(mask_cover(scene, large_categories(model, catalog)))
         print(
             f"| {room.replace('x', ' x ')} | {door}; {window} | {requested.replace(',', ', ')} | {oks}/{seeds} "
             f"| {statistics.median(seconds):.2f} | {np.mean(cover):.3f} / {np.mean(cover_large):.3f} |"
@@ -200,7 +209,7 @@ def random_table(model, catalog, count: int, mask_term: bool) -> None:
             n for name, n in scene.completion["counts"].items() if name not in request.requested
         )
         cover.append(mask_cover(scene))
-        cover_large.append(mask_cover(scene, MASKED))
+        cover_large.append(mask_cover(scene, large_categories(model, catalog)))
     print(f"{count} random rooms (layout seed 0), mask term {'on' if mask_term else 'off'}:")
     print(
         f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
@@ -264,7 +273,11 @@ def region_figures(scene, model, request) -> tuple[list[bool], list[float]] | No
         types = {o.id: o.type for o in scene.placed_objects()}
         relations = [(r.source, r.target, r.label) for r in scene.relations]
         boxes = region_boxes(
-            types, relations, {name: index[t] for name, t in owners.items()}, len(regions)
+            types,
+            relations,
+            {name: index[t] for name, t in owners.items()},
+            len(regions),
+            large_categories(model, set(types.values())),
         )
     objects = {o.id: o for o in scene.placed_objects()}
     inside, shares = [], []

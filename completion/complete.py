@@ -15,7 +15,7 @@ The steps, each in its module:
    on the layout mask along the walls.
 5. ``complete`` (here): the MCMC layout (``generator.layout.layout_scene``) from those
    poses, whose energy holds the walls, clearances, door swings and reachability, and the
-   layout mask as a preference for the large pieces (``MASKED``; the energy's ``mask``
+   layout mask as a preference for the large pieces (``masked``; the energy's ``mask``
    part, ``generator.layout.mask_term``); the scene with its ``completion`` record
    (``completion_record``). While the layout is not ok, the room gives up one added
    piece (``fewer_pieces``: of the added categories its problems name, the one most
@@ -47,23 +47,19 @@ import numpy as np
 
 from scenewright.completion.plan_model import PlanModel
 from scenewright.core.poses import Pose
-from scenewright.core.room import Room
+from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
 from scenewright.generator.layout.params import LayoutParams
 
 from .contents import Contents, choose_contents
-from .furnishing import AGAINST_WALL, CENTRE_PIECES, build_graph, relation_weights
+from .furnishing import build_graph, relation_weights
 from .request import Request
+from .stances import stands_by_room
 from .starting_poses import FLAT, starting_poses
 
 if TYPE_CHECKING:
     from scenewright.generator.layout.mask_term import FloorMask
 
-#: The large furniture the layout mask is for in the layout's energy: what stands
-#: against a wall and the free-standing tables (the pieces whose starting poses the mask
-#: chooses). Their accessories (night tables, chairs, lamps) follow them by the poses
-#: learned from the plans, as the paper places accessories after their large furniture.
-MASKED = AGAINST_WALL | CENTRE_PIECES
 #: Layouts tried with one added piece fewer each (``fewer_pieces``) while the layout is
 #: not ok: a room the selection filled past what can be laid out gives up its weakest pieces.
 FIT_ATTEMPTS = 4
@@ -82,16 +78,34 @@ WARM_PARAMS = LayoutParams(restarts=0, patience=200)
 ROOM_FULL = "no room for it with the rest: the layout failed with it"
 
 
+def masked(model: PlanModel, graph: SceneGraph) -> list[str]:
+    """The ids of ``graph``'s large furniture, which the layout mask is for in the
+    layout's energy: pieces of a category the plans show standing against a wall or
+    free in the middle (``stances.stands_by_room``) that stand so here, with a relation
+    to the room's walls or with no relation at all (an armchair beside the coffee table
+    follows the table). Their accessories (night tables, chairs, lamps) follow them by
+    the poses learned from the plans, as the paper places accessories after their large
+    furniture."""
+    own: dict[str, set[str]] = {}
+    for relation in graph.edges():
+        own.setdefault(relation.source, set()).add(relation.target)
+    return [
+        node.id
+        for node in graph.nodes("object")
+        if stands_by_room(model, node.type) and ROOM_NODE in own.get(node.id, {ROOM_NODE})
+    ]
+
+
 def region_boxes(
-    types: dict[str, str], relations, owners: dict[str, int], count: int
+    types: dict[str, str], relations, owners: dict[str, int], count: int, large: set[str]
 ) -> list[list[str]]:
     """Per region (``count`` of them) the ids of the floor pieces that belong there,
     from the pieces' categories (``types``: id -> category), the ``relations`` (source,
-    target, label) between them and the region of each category (``owners``). A large piece
-    (``MASKED``) belongs to its category's region; any other follows the piece its first
-    relation to another piece names, up to a large one (a night table stays by its bed,
-    a chair at its table, wherever their categories' types would put them); one with no
-    such relation goes by its own category. Pieces that stand on others (a support
+    target, label) between them and the region of each category (``owners``). A large
+    piece (of a category in ``large``: those ``masked`` picks) belongs to its category's region; any
+    other follows the piece its first relation to another piece names, up to a large one
+    (a night table stays by its bed, a chair at its table, wherever their categories'
+    types would put them); one with no such relation goes by its own category. Pieces that stand on others (a support
     relation) belong nowhere: they go with their support."""
     from scenewright.core.relations import RELATIONS
 
@@ -102,7 +116,7 @@ def region_boxes(
             source in types
             and target in types
             and source not in anchor
-            and types[source] not in MASKED
+            and types[source] not in large
         ):
             anchor[source] = target
     out: list[list[str]] = [[] for _ in range(count)]
@@ -110,7 +124,7 @@ def region_boxes(
         if box in carried:
             continue
         root, seen = box, {box}
-        while types[root] not in MASKED and root in anchor and anchor[root] not in seen:
+        while types[root] not in large and root in anchor and anchor[root] not in seen:
             root = anchor[root]
             seen.add(root)
         out[owners[types[root]]].append(box)
@@ -319,7 +333,8 @@ def complete(
     for attempt in range(1 + FIT_ATTEMPTS):
         with timed(timings, "complete"):
             graph, dropped, start = _graph_and_start(model, contents, request.room, catalog)
-        masked = [n.id for n in graph.nodes("object") if n.type in MASKED] if mask_term else []
+        large = masked(model, graph)
+        masked_ids = large if mask_term else []
         mask: FloorMask | list[FloorMask] | None
         if contents.regions:
             by_region = region_boxes(
@@ -327,15 +342,18 @@ def complete(
                 [(r.source, r.target, r.label) for r in graph.edges()],
                 contents.region_masks().owners,
                 len(contents.regions),
+                {graph.node(box).type for box in large},
             )
             mask = (
-                region_floor_masks(contents.region_masks(), by_region, set(masked))
+                region_floor_masks(contents.region_masks(), by_region, set(masked_ids))
                 if mask_term
                 else None
             )
         else:
             by_region = []
-            mask = floor_mask(contents.room_mask(), request.room, masked) if masked else None
+            mask = (
+                floor_mask(contents.room_mask(), request.room, masked_ids) if masked_ids else None
+            )
         pinned = None
         if keep is not None:
             graph, pinned = pin_existing(graph, keep)
@@ -369,7 +387,7 @@ def complete(
             dropped.setdefault(name, ROOM_FULL)
     assert layout is not None  # the loop lays out at least once
     scene = assemble_scene(graph, layout, rules=contents.types[0], seed=seed)
-    scene.completion = completion_record(contents, dropped, model, masked, given_up, by_region)
+    scene.completion = completion_record(contents, dropped, model, masked_ids, given_up, by_region)
     scene.timings.update(timings)
     return scene
 

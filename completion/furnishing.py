@@ -2,11 +2,15 @@
 indoor catalog's entries with the relations a room's rules would state. What stands on
 or at a piece (a lamp on a night table, night tables by the bed, chairs at a desk or
 round a table) goes where the plans put it: its anchor and its side of it, and the
-relations, come from the poses learned from the plans (``accessories``). Big pieces
-stand against a wall, a desk under the window; in a gym treadmills and bikes in a row
-against a wall (console to it), a weight bench before the dumbbell rack, a mat before
-the television or the rack. What a piece stands beside is its strongest partner in the
-type's relation graph (the weight ``W`` of the plan model).
+relations, come from the poses learned from the plans (``accessories``). Every other
+piece stands the way most of its category's plan pieces stood (``stances``): in a row
+with a piece of a category it stood in a row with (bookshelves side by side), before
+one (a bench before the dumbbell rack; a rug or a mat lies before what it lay before
+most often), in a corner, with its back against a wall, or free in the middle (a
+table). What is still written here: the first desk goes under a window, a sofa faces
+the television, a coffee table stands before the sofa and an armchair beside the coffee
+table. A piece the plans place by none of these stands beside its strongest partner in
+the type's relation graph (the weight ``W`` of the plan model), or against a wall.
 """
 
 from __future__ import annotations
@@ -18,55 +22,13 @@ from scenewright.core.relations import RELATIONS
 from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
 
+from . import stances
 from .accessories import Placement, assign, slot_relations, stands_on
 from .contents import Contents
 
-#: Categories that stand with their back to a wall (when they have no place at another
-#: piece). The rest stand by a partner (an armchair by the coffee table) or in a corner.
-AGAINST_WALL = frozenset(
-    {
-        "bed",
-        "wardrobe",
-        "dresser",
-        "bookshelf",
-        "filing_cabinet",
-        "tv_stand",
-        "piano",
-        "refrigerator",
-        "kitchen_counter",
-        "sofa",
-        "desk",
-        "treadmill",
-        "exercise_bike",
-        "rowing_machine",
-        "dumbbell_rack",
-    }
-)
-#: Pieces that stand in a row along a wall: beside the first piece of the first of their
-#: categories in the room (not themselves), backs flush: bookshelves side by side,
-#: treadmills and bikes in a row facing the same wall (the gyms' cardio rows).
-ROWS = {
-    "bookshelf": ("bookshelf",),
-    "treadmill": ("treadmill",),
-    "exercise_bike": ("treadmill", "exercise_bike"),
-}
-#: What a flat piece lies before, in order of preference: a rug before the bed, sofa or
-#: table; an exercise mat before the television or the dumbbell rack.
-FLAT_BEFORE = {
-    "rug": ("bed", "sofa", "dining_table"),
-    "exercise_mat": ("tv_stand", "dumbbell_rack"),
-}
-#: Free-standing pieces that stand before a piece against a wall (beyond its clearance):
-#: a weight bench before the dumbbell rack.
-STANDS_BEFORE = {"weight_bench": ("dumbbell_rack",)}
-#: What others gather round: it stands free, the relations are theirs.
-CENTRE_PIECES = frozenset({"dining_table", "coffee_table"})
 #: Why a category the selection chose is not in the room.
 NOTHING_TO_STAND_ON = "nothing in the room it fits on"
 NO_FLOOR = "no free floor for it at the start"
-#: Stand in a corner when nothing in the room is related to them (against a wall in a
-#: split room's middle part, which holds no corner of the room).
-CORNER_ITEMS = frozenset({"plant", "floor_lamp", "armchair"})
 
 
 def build_graph(
@@ -92,7 +54,12 @@ def build_graph(
     # Floor pieces first (anchors before what relates to them), then what stands on them.
     order = sorted(
         counts,
-        key=lambda n: (stands_on(model, n), n not in AGAINST_WALL, (n, 0) in placements, n),
+        key=lambda n: (
+            stands_on(model, n),
+            stances.base_stance(model, n) != stances.WALL,
+            (n, 0) in placements,
+            n,
+        ),
     )
     made: dict[str, list[str]] = {}
     for name in order:
@@ -119,7 +86,7 @@ def build_graph(
                     continue
                 if placement is None:
                     relations = _relations_of(
-                        name, index, made, weights, windows, followers, name in cornerless
+                        model, name, index, made, weights, windows, followers, name in cornerless
                     )
                 else:
                     anchor = made[placement.anchor][placement.anchor_index]
@@ -148,6 +115,7 @@ def relation_weights(model: PlanModel, types) -> dict[tuple[str, str], float]:
 
 
 def _relations_of(
+    model: PlanModel,
     name: str,
     index: int,
     made: dict,
@@ -157,62 +125,59 @@ def _relations_of(
     cornerless: bool = False,
 ) -> list[tuple[str, str]]:
     """The relations (label, target) of the ``index``-th piece of category ``name``,
-    which has no place on or at another (``accessories.assign``); ``windows``: whether
-    the first desk has a window to stand under; ``followers``: the accessory categories,
-    which no piece stands beside; ``cornerless``: whether the piece's part of the room
-    has no corner of the room (a corner piece stands against a wall there instead)."""
+    which has no place on or at another (``accessories.assign``), by its ``stances.stance``
+    in the room; ``windows``: whether the first desk has a window to stand under;
+    ``followers``: the accessory categories, which no piece stands beside;
+    ``cornerless``: whether the piece's part of the room has no corner of the room (a
+    corner piece stands against a wall there instead)."""
     if name == "desk" and windows and index == 0:
         return [("UnderWindow", ROOM_NODE)]
-    if name in ROWS:
-        first = next(
-            (made[n][0] for n in ROWS[name] if made.get(n) and made[n][0] != made[name][index]),
-            None,
-        )
+    kind, by = stances.stance(model, name, made)
+    if kind == stances.ROW:
+        first = next((made[n][0] for n in by if made[n][0] != made[name][index]), None)
         if first is not None:
             return [
                 ("NextToChooseSide", first),
                 ("ImplicitAlignedWith", first),
                 ("ImplicitAgainstWall", ROOM_NODE),
             ]
+        kind = stances.base_stance(model, name)  # the first of its row stands by the room
     if name == "sofa" and made.get("tv_stand"):
         return [("FacingTowards", made["tv_stand"][0]), ("ImplicitAgainstWall", ROOM_NODE)]
     if name == "coffee_table" and made.get("sofa"):
         sofa = made["sofa"][0]
         return [("NextToFront", sofa), ("ImplicitAlignedWith", sofa)]
-    if name in AGAINST_WALL:
-        return [("AgainstWall", ROOM_NODE)]
-    if name in CENTRE_PIECES:
-        return []
-    if name in FLAT_BEFORE:
-        anchor = next((made[n][0] for n in FLAT_BEFORE[name] if made.get(n)), None)
-        anchor = anchor or _strongest_partner(name, made, weights, followers)
-        return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
-    before = next(
-        (made[n][index % len(made[n])] for n in STANDS_BEFORE.get(name, ()) if made.get(n)), None
-    )
-    if before is not None:
-        return [("NextToFront", before)]
-    partner = _strongest_partner(name, made, weights, followers)
     if name == "armchair" and made.get("coffee_table"):
         return [
             ("NextToChooseSide", made["coffee_table"][0]),
             ("FacingTowards", made["coffee_table"][0]),
         ]
-    if name in CORNER_ITEMS or partner is None:
-        return (
-            [("InCorner", ROOM_NODE)]
-            if name in CORNER_ITEMS and not cornerless
-            else [("AgainstWall", ROOM_NODE)]
-        )
+    if kind == stances.WALL:
+        return [("AgainstWall", ROOM_NODE)]
+    if kind == stances.FREE:
+        return []
+    if kind == stances.BEFORE and stances.learned_stance(model, name).flat:
+        anchor = made[by[0]][0] if by else _strongest_partner(model, name, made, weights, followers)
+        return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
+    if kind == stances.BEFORE:
+        return [("NextToFront", made[by[0]][index % len(made[by[0]])])]
+    partner = _strongest_partner(model, name, made, weights, followers)
+    if kind == stances.CORNER:
+        return [("AgainstWall" if cornerless else "InCorner", ROOM_NODE)]
+    if partner is None:
+        return [("AgainstWall", ROOM_NODE)]
     return [("NextToChooseSide", partner)]
 
 
-def _strongest_partner(name: str, made: dict, weights: dict, followers: set) -> str | None:
+def _strongest_partner(
+    model: PlanModel, name: str, made: dict, weights: dict, followers: set
+) -> str | None:
     """The first piece of the floor category most strongly related to ``name`` (W > 0),
     accessories and rugs aside (one stands beside furniture, not beside a chair)."""
     best, best_weight = None, 0.0
     for other in sorted(made):
-        if other == name or other in followers or other in FLAT_BEFORE:
+        flat = other in model.stances and model.stances[other].flat
+        if other == name or other in followers or flat:
             continue
         weight = weights.get((min(name, other), max(name, other)), 0.0)
         if weight > best_weight:

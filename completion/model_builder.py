@@ -14,7 +14,9 @@ of ``MODEL_FORMAT``), the same for the same plans whatever their order on disk:
   A(o_i, o_j)``; the layout-mask clusters;
 - per plan: its type, room area, category counts, canonical frame, room feature
   ``f_r`` and 10 x 10 layout mask, and its cluster;
-- ``accessories``: what stands on or at what, and where (``accessories.learn_accessories``).
+- ``accessories``: what stands on or at what, and where (``accessories.learn_accessories``);
+- ``stances``: per category how its pieces stand in the room: in a corner, against a
+  wall, free, in a row with or before what (``stances.learn_stances``).
 
 ``exist(o, r)`` is 1 when plan ``r`` has a piece of category ``o``. Otherwise it comes
 from the plan's free areas: the paper writes it as ``||f_obj^o - f_obj^area||^2``, a
@@ -45,6 +47,7 @@ from scenewright.completion.features import MASK_SIZE, canonical_frame, occupanc
 from scenewright.completion.floor_plan import rounded
 from scenewright.completion.plan_checks import FLAT_HEIGHT, is_flat
 from scenewright.completion.plan_model import MODEL_FORMAT, MODEL_VERSION, PlanModel
+from scenewright.completion.stances import learn_stances
 from scenewright.core.errors import InputError
 from scenewright.generator import indoor_catalog
 
@@ -117,6 +120,7 @@ def build_model(plans) -> PlanModel:
             "clusters": clusters,
         }
         model_plans += entries
+    accessories = learn_accessories(plans, catalog)
     model = {
         "format": MODEL_FORMAT,
         "version": MODEL_VERSION,
@@ -124,7 +128,8 @@ def build_model(plans) -> PlanModel:
         "activity": [{"pair": list(pair), "why": why} for pair, why in prior.items()],
         "types": model_types,
         "plans": model_plans,
-        "accessories": learn_accessories(plans, catalog),
+        "accessories": accessories,
+        "stances": learn_stances(plans, catalog, set(accessories)),
     }
     return PlanModel.from_dict(rounded(model, DECIMALS))
 
@@ -197,6 +202,7 @@ def read_model(path: str) -> PlanModel:
         ("types", dict),
         ("plans", list),
         ("accessories", dict),
+        ("stances", dict),
     ):
         if not isinstance(data.get(key), kind):
             raise InputError(

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 MODEL_FORMAT = "scenewright-plan-model"
-MODEL_VERSION = 2
+MODEL_VERSION = 3
 
 
 @dataclass
@@ -210,6 +210,25 @@ class AccessoryCategory:
 
 
 @dataclass
+class CategoryStance:
+    """How one category stood on the floor over all the plans (``stances``): its
+    pieces, whether most lay flat, the shares of its pieces in a corner, with their back
+    against a wall, and free (exclusive), and per category the share in a row with one
+    and the share before one (of the pieces whose plan has one), most first."""
+
+    pieces: int
+    flat: bool
+    corner: float
+    wall: float
+    free: float
+    row: dict[str, float]
+    before: dict[str, float]
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
 class PlanModel:
     """The plan model: the categories over all plans, the activity pairs, per room type
     its ``RoomTypeModel``, every plan's ``PlanEntry`` and what stands on or at what
@@ -220,6 +239,7 @@ class PlanModel:
     activity: list[ActivityPair] = field(default_factory=list)
     plans: list[PlanEntry] = field(default_factory=list)
     accessories: dict[str, AccessoryCategory] = field(default_factory=dict)
+    stances: dict[str, CategoryStance] = field(default_factory=dict)
 
     def type_plans(self, room_type: str) -> list[PlanEntry]:
         """The plans of ``room_type``, in the model's order."""
@@ -235,6 +255,7 @@ class PlanModel:
             "types": {name: entry.to_dict() for name, entry in self.types.items()},
             "plans": [plan.to_dict() for plan in self.plans],
             "accessories": {name: entry.to_dict() for name, entry in self.accessories.items()},
+            "stances": {name: entry.to_dict() for name, entry in self.stances.items()},
         }
 
     @classmethod
@@ -262,4 +283,5 @@ class PlanModel:
                 name: AccessoryCategory.from_dict(entry)
                 for name, entry in data["accessories"].items()
             },
+            stances={name: CategoryStance(**entry) for name, entry in data["stances"].items()},
         )

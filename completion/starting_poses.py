@@ -20,7 +20,6 @@ from scenewright.core.room import ROOM_NODE, Room
 from scenewright.core.scene_graph import SceneGraph
 
 from .accessories import Placement, slot_pose
-from .furnishing import CENTRE_PIECES
 
 #: Starting poses: the step along a wall between candidate places (metres), the samples
 #: per side of a footprint read from the mask, the gap kept to a wall.
@@ -130,14 +129,15 @@ def _start_tables(
     swings: list,
     placements: dict[str, Placement],
 ) -> None:
-    """Start a free-standing table (``CENTRE_PIECES`` with no relation of its own) where
+    """Start a free-standing piece (no relation of its own, not flat: a table the plans
+    show standing free, ``stances.FREE``) where
     it and a ring as deep as what stands at it (its chairs) cover most of the mask,
     inside the room and clear of the rest."""
     from scenewright.completion.layout_mask import mask_values
 
     sources = {r.source for r in graph.edges()}
     for table in graph.nodes("object"):
-        if table.type not in CENTRE_PIECES or table.id in sources or table.id in poses:
+        if table.id in sources or table.id in poses or table.size[1] <= FLAT:
             continue
         seats = [box for box, at in placements.items() if at.anchor == table.id and not at.on]
         ring = max((graph.node(seat).size[2] for seat in seats), default=0.3) + 2 * WALL_GAP

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from scenewright.cli import main
 from scenewright.completion import complete as completion_module
-from scenewright.completion.complete import MASKED, ROOM_FULL, complete, fewer_pieces
+from scenewright.completion.complete import ROOM_FULL, complete, fewer_pieces, masked
 from scenewright.completion.contents import choose_contents
 from scenewright.completion.explanation import summary_of
 from scenewright.completion.furnishing import build_graph
@@ -440,9 +440,7 @@ def test_a_tries_restart_waits_its_own_patience(model, catalog):
     request = parse_request("3.7x5.2", ["N:2.61:0.91"], ["W:2.74:1.53"], ["bed"], set(catalog))
     contents = choose_contents(model, replace(request, **PAPER))
     graph, _, start = completion_module._graph_and_start(model, contents, request.room, catalog)
-    mask = floor_mask(
-        contents.mask, request.room, [n.id for n in graph.nodes("object") if n.type in MASKED]
-    )
+    mask = floor_mask(contents.mask, request.room, masked(model, graph))
     params = completion_module.FIT_PARAMS
     assert params.restarts == 1 and params.restart_patience < params.patience
 

@@ -134,6 +134,6 @@ def test_the_model_file_holds_the_accessories_and_is_the_same_in_any_plan_order(
     text = model_json(tiny_model)
     assert model_json(build_model(_tiny()[::-1])) == text
     data = json.loads(text)
-    assert data["version"] == 2
+    assert data["version"] == 3
     assert data["accessories"]["nightstand"]["anchors"][0]["slots"][0]["offset"] == [1.0, -0.8]
     assert model_json(PlanModel.from_dict(data)) == text  # it reads back as it was written

@@ -354,12 +354,13 @@ def test_a_damaged_model_file_is_refused_in_one_line(tmp_path, capsys):
         json.dumps(
             {
                 "format": "scenewright-plan-model",
-                "version": 2,
+                "version": 3,
                 "categories": {},
                 "activity": [],
                 "types": {"bedroom": {"pairs": "?"}},
                 "plans": [],
                 "accessories": {},
+                "stances": {},
             }
         )
     )
