@@ -4,6 +4,7 @@ mask's energy part buys.
     .venv/bin/python benchmarks/bench_complete.py                  # both parts below
     .venv/bin/python benchmarks/bench_complete.py --table          # six fixed requests, seeds 0..9
     .venv/bin/python benchmarks/bench_complete.py --random 50      # 50 random rooms, seed 0 each
+    .venv/bin/python benchmarks/bench_complete.py --random 50 --first-seed 1000  # 50 other rooms, seed 1000
     .venv/bin/python benchmarks/bench_complete.py --without-mask-term   # the mask chooses the starts only
     .venv/bin/python benchmarks/bench_complete.py --composite 20   # 20 large two-type requests, split and not
 
@@ -166,9 +167,10 @@ def table(model, catalog, seeds: int, mask_term: bool) -> None:
         )
 
 
-def random_rooms(count: int, known) -> list:
-    """``count`` requests drawn from a fixed stream (module docstring)."""
-    rng = np.random.default_rng(STREAM_SEED)
+def random_rooms(count: int, known, first_seed: int = 0) -> list:
+    """``count`` requests drawn from a fixed stream (module docstring); another
+    ``first_seed`` draws other rooms."""
+    rng = np.random.default_rng(STREAM_SEED + first_seed)
     requests = []
     walls = ("N", "E", "S", "W")
     while len(requests) < count:
@@ -191,12 +193,12 @@ def random_rooms(count: int, known) -> list:
     ]
 
 
-def random_table(model, catalog, count: int, mask_term: bool) -> None:
+def random_table(model, catalog, count: int, mask_term: bool, first_seed: int = 0) -> None:
     oks = blocked = reach_needed = unreachable = added = 0
     seconds, cover, cover_large, split = [], [], [], 0
     slowest = (0.0, None)
-    for spec, request in random_rooms(count, set(catalog)):
-        scene, cpu, _ = run(request, 0, model, catalog, mask_term)
+    for spec, request in random_rooms(count, set(catalog), first_seed):
+        scene, cpu, _ = run(request, first_seed, model, catalog, mask_term)
         seconds.append(cpu)
         slowest = max(slowest, (cpu, spec))
         split += len(scene.completion["types"]) > 1
@@ -210,7 +212,9 @@ def random_table(model, catalog, count: int, mask_term: bool) -> None:
         )
         cover.append(mask_cover(scene))
         cover_large.append(mask_cover(scene, large_categories(model, catalog)))
-    print(f"{count} random rooms (layout seed 0), mask term {'on' if mask_term else 'off'}:")
+    print(
+        f"{count} random rooms (layout seed {first_seed}), mask term {'on' if mask_term else 'off'}:"
+    )
     print(
         f"  ok {oks}/{count} ({100 * oks / count:.0f} %); blocked doors {blocked}; "
         f"reachable {reach_needed - unreachable}/{reach_needed} ({100 * (reach_needed - unreachable) / max(reach_needed, 1):.1f} %); "
@@ -328,6 +332,12 @@ def main() -> None:
         "--seeds", type=int, default=10, help="layout seeds per request of --table (10)"
     )
     parser.add_argument(
+        "--first-seed",
+        type=int,
+        default=0,
+        help="--random: the rooms' stream and the layout seed (0; 1000 and up for held-out rooms)",
+    )
+    parser.add_argument(
         "--without-mask-term", action="store_true", help="the mask chooses the starting poses only"
     )
     parser.add_argument(
@@ -357,7 +367,7 @@ def main() -> None:
     if args.table or both:
         table(model, catalog, args.seeds, mask_term)
     if args.random is not None or both:
-        random_table(model, catalog, args.random or 50, mask_term)
+        random_table(model, catalog, args.random or 50, mask_term, args.first_seed)
 
 
 if __name__ == "__main__":
