@@ -34,6 +34,7 @@ from .vocabulary import (
     NounSense,
     Vocabulary,
 )
+from .ways import WAY_KINDS, connect, network_phrase, trailing_paths
 
 _TOKEN = re.compile(r"\d+(?:\.\d+)?|[A-Za-z][A-Za-z'’-]*|[.,;:!?]")
 _LONGEST = 8
@@ -76,6 +77,10 @@ class Entity:
     parent: str | None = None
     #: Whether it is a group itself.
     group: bool = False
+    #: The group whose paragraph the text was in when it named this thing first (after
+    #: "the first market stand consists of ..."): outdoors it may be one of its members
+    #: (``composer.outdoor.adopt_members``).
+    paragraph: str | None = None
 
 
 #: ``_Reader.matching``'s "wherever it is": no group named for it.
@@ -201,12 +206,17 @@ class _Reader:
             toks[-1].end,
             parent=self.members_of,
             group=sense.type in self.vocab.groups,
+            paragraph=self.focus if self.members_of is None else None,
         )
         self.req.entities.append(entity)
         return entity.id
 
     def entity(self, eid: str) -> Entity:
         return self.req.entities[int(eid[1:]) - 1]
+
+    def kind_of(self, eid: str) -> str:
+        """The catalog kind of a thing named: object, group, path or junction."""
+        return self.vocab.entries[self.entity(eid).type].kind
 
     def matching(self, sense: NounSense, parent: str | None = _ANYWHERE) -> list[str]:
         """The things the noun may name: those of ``parent`` (a group, or None for the
@@ -268,6 +278,15 @@ class _Reader:
             chosen = order[:count]
             self.in_sets.update(chosen)
             ranked.extend(e for e in chosen if e not in ranked)  # the set takes the next places
+        elif det == "others" and count is not None:
+            # "eight other homes": the next ones not named before, as the describer
+            # counts them ("the thirty-fifth home" after 34 named in sets)
+            order = [e for e in found if e not in ranked and e not in self.in_sets]
+            while len(order) < count:
+                order.append(self.create(sense, colour, toks))
+            chosen = order[:count]
+            self.in_sets.update(chosen)
+            ranked.extend(chosen)
         elif sense.plural or det in ("both", "each", "every", "all"):
             want = count or (2 if det == "both" else max(len(found), 2 if sense.plural else 1))
             while len(found) < want:
@@ -330,6 +349,8 @@ class _Reader:
             det, count, j = "a", int(float(toks[j].low)), j + 1
         elif m:
             det, count, j = "a", NUMBERS[m[0]], j + m[1]
+        if count is not None and det == "a" and j < len(toks) and toks[j].low == "other":
+            det, j = "others", j + 1  # "eight other homes": ones not named yet
         if (
             count is not None
             and j + 1 < len(toks)
@@ -487,6 +508,9 @@ class _Reader:
         ("on each side of", "around", "along"), or None."""
         if [t.low for t in toks[i : i + 3]] == ["side", "by", "side"]:
             return "side by side", None, 3
+        way = network_phrase([t.low for t in toks[i : i + 8]], NUMBERS)
+        if way is not None:  # "meeting at an intersection": composer/ways.py
+            return way[0], (str(way[1]),), way[2]
         for phrase in _SIDES_OF:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
@@ -504,8 +528,8 @@ class _Reader:
             return "around", None, k + 1 - i
         if toks[k].low in ("between", "in-between"):
             return "between", None, k + 1 - i
-        if toks[k].low == "along":
-            return "rel", ("AgainstWall",), k + 1 - i
+        if toks[k].low == "along":  # a wall, or a road
+            return "rel", ("AgainstWall", "NextTo"), k + 1 - i
         if toks[k].low in ("near", "by") or (
             toks[k].low == "close" and k + 1 < len(toks) and toks[k + 1].low == "to"
         ):
@@ -555,12 +579,16 @@ class _Reader:
             if rel is not None and (subject.all() or self.mentions):
                 kind, labels, n = rel
                 plural = any(w.low in ("are", "stand", "face", "sit") for w in toks[i : i + n])
+                if i >= 2 and toks[i - 1].low == "also":  # "... are also next to the road"
+                    plural = plural or toks[i - 2].low in ("are", "stand", "face", "sit")
                 if kind == "in" and pending is not None:
                     rel = None
                 else:
                     if not subject.all() and self.mentions:
                         subject.groups = [[self.mentions[-1]]]
                     who = subject.all() if plural else subject.last()
+                    if kind in ("network", "networks"):  # "two roads and a lane meeting at"
+                        who = trailing_paths(subject.all(), self.kind_of)
                     pending = (kind, labels or (), i, who)
                     for w in toks[i : i + n]:
                         w.used = True
@@ -754,6 +782,11 @@ class _Reader:
         if kind != "things":
             return self._unused(toks, start, end, "a relation without its object")
         targets: list[str] = value
+        if how in ("network", "networks"):
+            why = connect(how, int(labels[0]), subjects, targets, self.kind_of, add)
+            return None if why is None else self._unused(toks, start, end, why)
+        if how == "in" and all(self.kind_of(t) in WAY_KINDS for t in targets):
+            how, labels = "rel", ("NextTo",)  # "at the intersection", "on the first road"
         if how == "in":
             return self._unused(toks, start, end, "no relation says 'in' of furniture")
         if how in ("sides", "flanked"):

@@ -16,6 +16,7 @@ from scenewright.describer.colours import COLOUR_TERMS
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator.catalog import CatalogEntry, Style
 
+from .outdoor import Ground, made_first, scene_lines, settle, way_entry_text
 from .parse import Issue, Place, Request, Statement
 
 #: The production every composed rule set starts from.
@@ -256,8 +257,11 @@ def _implicit(request: Request, entries: Mapping[str, CatalogEntry]) -> list[Sta
     return out
 
 
-def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
-    """The rule set of a request (see the module docstring)."""
+def rules_text(
+    request: Request, entries: Mapping[str, CatalogEntry], ground: Ground | None = None
+) -> str:
+    """The rule set of a request (see the module docstring); ``ground``: outdoors, open
+    ground for a room (``composer.outdoor``)."""
     keys: dict[tuple[str, str | None, str | None], str] = {}
     by_type: dict[str, int] = {}
     for e in request.entities:
@@ -265,11 +269,13 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
         if key not in keys:
             by_type[e.type] = by_type.get(e.type, 0) + 1
             keys[key] = e.type if by_type[e.type] == 1 else f"{e.type}_{by_type[e.type]}"
+    out = ["# Composed from English; edit it as any rule set (docs/rules-language.md).", ""]
+    if ground is not None:
+        return _outdoor_text(request, entries, ground, keys, out)
     size = room_size(request, entries)
     request.planned_size = size
     openings = _openings(request, size, entries)
     windows = sum(1 for line in openings if line.startswith("window"))
-    out = ["# Composed from English; edit it as any rule set (docs/rules-language.md).", ""]
     out.append(f"scene {request.room} {{")
     out.append(f"    room {_number(size[0])} x {_number(size[1])} {{")
     out += [f"        {line}" for line in openings]
@@ -294,11 +300,40 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
     return "\n".join(out) + "\n"
 
 
+def _outdoor_text(
+    request: Request,
+    entries: Mapping[str, CatalogEntry],
+    ground: Ground,
+    keys: dict[tuple[str, str | None, str | None], str],
+    out: list[str],
+) -> str:
+    """``rules_text`` outdoors: open ground, the ways' entries, no walls."""
+    settle(request, entries)
+    out += scene_lines(request, entries, ground, len(request.entities) + 4)
+    out.append("")
+    for e in request.entities:  # the members ``settle`` added
+        key = (e.type, e.style, e.colour)
+        if key not in keys:
+            same = sum(1 for k in keys if k[0] == e.type)
+            keys[key] = e.type if not same else f"{e.type}_{same + 1}"
+    for (type_, style, colour), name in keys.items():
+        entry = entries[type_]
+        if entry.kind in ("path", "junction"):
+            out.append(way_entry_text(name, entry))
+        else:
+            out.append(entry_text(name, entry, style, colour))
+    out.append("")
+    body = _production_body(request, keys, request.statements, 0, entries)
+    out += [f"{START} -> {{", *body, "}"] if body else [f"{START} -> {{ }}"]
+    return "\n".join(out) + "\n"
+
+
 def _production_body(
     request: Request,
     keys: Mapping[tuple[str, str | None, str | None], str],
     statements: list[Statement],
     windows: int,
+    entries: Mapping[str, CatalogEntry] | None = None,
 ) -> list[str]:
     """The start production's lines: the things at the top level first, then each group
     with its members in its block, each thing with its relations to what is made before
@@ -307,6 +342,8 @@ def _production_body(
     two groups cannot be written, and is left out. ``request.made`` gets the order the
     production makes the things in."""
     top = [e for e in request.entities if e.parent is None and not e.group]
+    if entries is not None:  # outdoors: the junctions and paths first
+        top = made_first(top, request, entries)
     groups = [e for e in request.entities if e.parent is None and e.group]
     members = {g.id: [e for e in request.entities if e.parent == g.id] for g in groups}
     order = [e.id for e in top]

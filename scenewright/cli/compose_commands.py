@@ -70,18 +70,18 @@ def run_compose(args: argparse.Namespace) -> int:
 
     from scenewright.api import compose
     from scenewright.composer.compose import plan, write_rules
-    from scenewright.generator.rules import indoor_catalog
+    from scenewright.composer.outdoor import catalog_for
     from scenewright.scene_folder import check_scene_folder, write_scene
 
     text = sys.stdin.read() if args.text == "-" else args.text
     check_scene_folder(args.output)
     if args.strict:  # refuse before any layout, and before anything is written
-        entries = dict(indoor_catalog())
+        own = None
         if args.catalog:
             from scenewright.api import load_rules
 
-            entries.update(load_rules(args.catalog).catalog.entries)
-        request, _ = plan(text, entries)
+            own = load_rules(args.catalog)
+        request, _ = plan(text, *catalog_for(text, own))
         if request.issues:
             from scenewright.composer.compose import report_of
 
