@@ -589,6 +589,8 @@ class _Reader:
                     who = subject.all() if plural else subject.last()
                     if kind in ("network", "networks"):  # "two roads and a lane meeting at"
                         who = trailing_paths(subject.all(), self.kind_of)
+                    elif kind == "branch":  # "a road and a lane off it": the lane
+                        who = trailing_paths(subject.last(), self.kind_of)
                     pending = (kind, labels or (), i, who)
                     for w in toks[i : i + n]:
                         w.used = True
@@ -782,10 +784,12 @@ class _Reader:
         if kind != "things":
             return self._unused(toks, start, end, "a relation without its object")
         targets: list[str] = value
-        if how in ("network", "networks"):
+        if how in ("network", "networks", "branch"):
             why = connect(how, int(labels[0]), subjects, targets, self.kind_of, add)
             return None if why is None else self._unused(toks, start, end, why)
-        if how == "in" and all(self.kind_of(t) in WAY_KINDS for t in targets):
+        if all(self.kind_of(t) in WAY_KINDS for t in targets) and (
+            how == "in" or any(x.startswith("OnTopOf") for x in labels)
+        ):
             how, labels = "rel", ("NextTo",)  # "at the intersection", "on the first road"
         if how == "in":
             return self._unused(toks, start, end, "no relation says 'in' of furniture")

@@ -336,22 +336,37 @@ def _production_body(
     entries: Mapping[str, CatalogEntry] | None = None,
 ) -> list[str]:
     """The start production's lines: the things at the top level first, then each group
-    with its members in its block, each thing with its relations to what is made before
-    it, the rest after the things of their block. A group's block sees the top level's
-    things made before it, not another group's members: a relation between members of
-    two groups cannot be written, and is left out. ``request.made`` gets the order the
-    production makes the things in."""
+    with its members in its block (their things first, then the groups among them, each
+    with its own block), each thing with its relations to what is made before it, the
+    rest after the things of their block. A group's block sees the things of the blocks
+    around it made before it, not another group's members: a relation between members
+    of two groups cannot be written, and is left out. ``request.made`` gets the order
+    the production makes the things in."""
     top = [e for e in request.entities if e.parent is None and not e.group]
     if entries is not None:  # outdoors: the junctions and paths first
         top = made_first(top, request, entries)
     groups = [e for e in request.entities if e.parent is None and e.group]
-    members = {g.id: [e for e in request.entities if e.parent == g.id] for g in groups}
-    order = [e.id for e in top]
-    for g in groups:
-        order += [g.id] + [m.id for m in members[g.id]]
+    members: dict[str, list] = {e.id: [] for e in request.entities if e.group}
+    for e in request.entities:
+        if e.parent is not None:
+            members[e.parent].append(e)
+    for ids in members.values():
+        ids.sort(key=lambda e: e.group)  # a block's things before its groups
+
+    def made(e) -> list[str]:
+        return [e.id] + [eid for m in members.get(e.id, []) for eid in made(m)]
+
+    order = [e.id for e in top] + [eid for g in groups for eid in made(g)]
     request.made = order
     rank = {eid: k for k, eid in enumerate(order)}
     parent = {e.id: e.parent for e in request.entities}
+
+    def around(block: str | None) -> list[str | None]:
+        """The block and the blocks around it, innermost first."""
+        out: list[str | None] = [block]
+        while out[-1] is not None:
+            out.append(parent[out[-1]])
+        return out
 
     def block_of(s: Statement) -> str | None | bool:
         """The block a statement is written in (a group's id, None for the top level),
@@ -360,8 +375,11 @@ def _production_body(
         b = parent[s.target] if isinstance(s.target, str) else a
         if a == b:
             return a
-        inner, outer = (a, s.target) if b is None else (b, s.source)
-        if a is not None and b is not None:
+        if a in around(b):
+            inner, outer = b, s.source
+        elif b in around(a):
+            inner, outer = a, s.target
+        else:
             return False  # members of two groups
         return inner if rank[outer] < rank[inner] else False
 
@@ -392,12 +410,16 @@ def _production_body(
             [keys[(e.type, e.style, e.colour)], "as", e.id, *inline.get(e.id, [])]
         )
 
+    def block(g, indent: str) -> list[str]:
+        out = [line(g, indent) + " {"]
+        for m in members[g.id]:
+            out += block(m, indent + "    ") if m.group else [line(m, indent + "    ")]
+        out += [indent + "    " + text for text in later.get(g.id, [])]
+        return out + [indent + "}"]
+
     lines = [line(e, "    ") for e in top]
     for g in groups:
-        lines.append(line(g, "    ") + " {")
-        lines += [line(m, "        ") for m in members[g.id]]
-        lines += ["        " + text for text in later.get(g.id, [])]
-        lines.append("    }")
+        lines += block(g, "    ")
     lines += ["    " + text for text in later.get(None, [])]
     return lines
 

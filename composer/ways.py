@@ -47,7 +47,9 @@ _EACH = ("at", "each", "of")
 def network_phrase(words: Sequence[str], numbers: Mapping[str, int]) -> tuple[str, int, int] | None:
     """("network", 0, tokens taken) for a phrase of ``NETWORK_PHRASES`` at the start of
     ``words`` (lower case), ("networks", N, tokens taken) for "meeting N at each of";
-    None for anything else."""
+    None for anything else. A phrase of meeting ("meeting at") is "network", which
+    starts every path named just before it ("two roads and a lane meeting at ..."); any
+    other ("a lane off the road") is "branch", which starts the last one named."""
     if words[:1] in (["meeting"], ["meet"]):
         for n in (3, 2, 1):  # "meeting four at each of", "meeting twenty-one at ..."
             count = numbers.get(" ".join(words[1 : 1 + n]))
@@ -55,13 +57,14 @@ def network_phrase(words: Sequence[str], numbers: Mapping[str, int]) -> tuple[st
                 return "networks", count, 4 + n
     for phrase in sorted(NETWORK_PHRASES, key=len, reverse=True):
         if tuple(words[: len(phrase)]) == phrase:
-            return "network", 0, len(phrase)
+            meeting = phrase[0] in ("meeting", "meet", "meets")
+            return "network" if meeting else "branch", 0, len(phrase)
     return None
 
 
 def trailing_paths(ids: Sequence[str], kind_of: Callable[[str], str]) -> list[str]:
     """The paths at the end of a list of things named ("a well, two roads and a lane"
-    -> the two roads and the lane): what a network phrase after them starts."""
+    -> the two roads and the lane): what a phrase of meeting after them starts."""
     out: list[str] = []
     for eid in reversed(ids):
         if kind_of(eid) != "path":
