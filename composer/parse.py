@@ -358,7 +358,12 @@ class _Reader:
             and toks[j + 1].low in ("the", "these", "those")
         ):  # "two of the bookshelves"
             det, j = "of", j + 2
-        if j < len(toks) and det in ("the", "these", "those", "") and self.match(toks, j, NUMBERS):
+        if (
+            j < len(toks)
+            and det in ("the", "these", "those", "")
+            and self.match(toks, j, NUMBERS)
+            and not self.match(toks, j, ORDINALS)  # "the one hundred and first home"
+        ):
             m2 = self.match(toks, j, NUMBERS)
             assert m2 is not None
             count, j = NUMBERS[m2[0]], j + m2[1]
@@ -366,8 +371,9 @@ class _Reader:
             j += 1
         if j < len(toks) and toks[j].low == "more":
             j += 1
-        if j < len(toks) and toks[j].low in ORDINALS:
-            ordinal, j = ORDINALS[toks[j].low], j + 1
+        nth = self.match(toks, j, ORDINALS) if j < len(toks) else None
+        if nth is not None:  # "the second", "the one hundred and fifth"
+            ordinal, j = ORDINALS[nth[0]], j + nth[1]
             det = det or "the"
         if j >= len(toks):
             return None
@@ -431,6 +437,8 @@ class _Reader:
         j = k + 1
         while j < len(toks) and (toks[j].low in ("the", "this", "that") or toks[j].low in ORDINALS):
             j += 1
+        nth = self.match(toks, j, ORDINALS) if j < len(toks) else None
+        j += nth[1] if nth is not None else 0  # "of the one hundred and fifth home"
         hit = self.match(toks, j, self.vocab.nouns) if j < len(toks) else None
         if hit is None or self.vocab.nouns[hit[0]].type not in self.vocab.groups:
             return _ANYWHERE, 0

@@ -242,9 +242,9 @@ ORDINALS: dict[str, int] = {
 }
 
 #: Counts and positions past twelve and tenth, in the describer's words ("fifty-five
-#: homes", "the thirty-fifth home"): a town's description counts that far.
-NUMBERS.update({number_word(n): n for n in range(13, 200)})
-ORDINALS.update({ordinal_word(n): n for n in range(5, 200)})
+#: homes", "the three hundred and fifteenth home"): a city's description counts that far.
+NUMBERS.update({number_word(n): n for n in range(13, 1000)})
+ORDINALS.update({ordinal_word(n): n for n in range(5, 1000)})
 
 COMPASS_WORDS = ("north", "east", "south", "west")
 #: A rectangle's walls by number (docs/rules-language.md, Rooms).
