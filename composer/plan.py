@@ -16,7 +16,8 @@ from scenewright.describer.colours import COLOUR_TERMS
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator.catalog import CatalogEntry, Style
 
-from .outdoor import Ground, made_first, scene_lines, settle, way_entry_text
+from .outdoor import Ground, made_first, scene_name, settle
+from .outdoor import extent as ground_extent
 from .parse import Issue, Place, Request, Statement
 
 #: The production every composed rule set starts from.
@@ -309,7 +310,7 @@ def _outdoor_text(
 ) -> str:
     """``rules_text`` outdoors: open ground, the ways' entries, no walls."""
     settle(request, entries)
-    out += scene_lines(request, entries, ground, len(request.entities) + 4)
+    out += _ground_lines(request, entries, ground, len(request.entities) + 4)
     out.append("")
     for e in request.entities:  # the members ``settle`` added
         key = (e.type, e.style, e.colour)
@@ -319,13 +320,48 @@ def _outdoor_text(
     for (type_, style, colour), name in keys.items():
         entry = entries[type_]
         if entry.kind in ("path", "junction"):
-            out.append(way_entry_text(name, entry))
+            out.append(_way_entry_text(name, entry))
         else:
             out.append(entry_text(name, entry, style, colour))
     out.append("")
     body = _production_body(request, keys, request.statements, 0, entries)
     out += [f"{START} -> {{", *body, "}"] if body else [f"{START} -> {{ }}"]
     return "\n".join(out) + "\n"
+
+
+def _ground_lines(
+    request: Request, entries: Mapping[str, CatalogEntry], ground: Ground, nodes: int
+) -> list[str]:
+    """The scene block of an outdoor rule set."""
+    w, d = ground_extent(request, entries, ground)
+    request.planned_size = (w, d)
+    return [
+        f"scene {scene_name(request, ground)} {{",
+        f"    extent {_number(w)} x {_number(d)}",
+        "    ground grass",
+        f"    start {START}",
+        "    max_depth 4",
+        f"    max_nodes {nodes}",
+        "}",
+    ]
+
+
+def _way_entry_text(name: str, entry: CatalogEntry) -> str:
+    """A path's or junction's catalog entry, as the catalog has it."""
+    parts = [f"noun {_quote(entry.noun)}"]
+    if entry.plural:
+        parts.append(f"plural {_quote(entry.plural)}")
+    if entry.kind == "path":
+        parts.append(
+            f"width {_number(entry.width)} max_length {_number(entry.max_length)} "
+            f"segments {entry.segments}"
+        )
+    else:
+        parts.append("size " + " x ".join(_number(v) for v in entry.size))
+        if entry.network != "organic":
+            parts.append(f"network {entry.network}")
+    parts.append(f"colour {_hex(entry.colour)}")
+    return f"{entry.kind} {name} {{ {' '.join(parts)} }}"
 
 
 def _production_body(
