@@ -16,11 +16,11 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from scenewright.generator.catalog import CatalogEntry
 
-from .parse import Entity, Request, Statement, tokenize
+from .parse import Entity, Issue, Request, Statement, tokenize
 from .vocabulary import OUTDOOR_SCENES
 from .vocabulary import SYNONYMS as INDOOR_SYNONYMS
 
@@ -214,7 +214,9 @@ def settle(request: Request, entries: Mapping[str, CatalogEntry]) -> None:
     table." after "the first market stand consists of ..."); a group named without its
     members gets the things its noun means (``MEMBERS``); and members nothing relates to
     the rest of their group stand next to its first member (implicitly: it is a group),
-    so that the group stays together."""
+    so that the group stays together. First, what is said of roads is made what a road
+    can be (``fit_to_ways``)."""
+    fit_to_ways(request, entries)
     adopt_members(request)
     for group in [e for e in request.entities if e.group and e.parent is None]:
         members = [e for e in request.entities if e.parent == group.id]
@@ -223,6 +225,38 @@ def settle(request: Request, entries: Mapping[str, CatalogEntry]) -> None:
                 if type_ in entries:
                     members.append(_add(request, type_, group))
         _keep_together(request, group, members)
+
+
+def fit_to_ways(request: Request, entries: Mapping[str, CatalogEntry]) -> None:
+    """Relations with a path or junction made ones the layout can hold: a thing is next
+    to a road, to its left, in front of it or facing it; whatever else a phrase says of
+    it ("on the road", "on each side of the road", "close beside the junction") is next
+    to it, and lined up with it, which a road cannot be, is left out. A road said to be
+    next to (or left of ...) a thing puts the thing next to the road ("a well between
+    the road and the tower"); anything else said of a road, and a road next to a road,
+    is reported and left out (roads meet at junctions or branch off each other)."""
+
+    def way(end: object) -> bool:
+        return isinstance(end, str) and entries[by_id[end].type].kind in ("path", "junction")
+
+    by_id = {e.id: e for e in request.entities}
+    kept: list[Statement] = []
+    for s in request.statements:
+        if s.label == "PathConnectedTo" or not (way(s.source) or way(s.target)):
+            kept.append(s)
+        elif s.label.startswith("Implicit"):
+            continue
+        elif not way(s.source):
+            near = s.label.startswith(("NextTo", "Facing"))
+            kept.append(s if near else replace(s, label="NextTo"))
+        elif s.label.startswith(("NextTo", "Beside")) and not way(s.target):
+            assert isinstance(s.target, str)
+            kept.append(replace(s, source=s.target, label="NextTo", target=s.source))
+        else:
+            request.issues.append(
+                Issue(s.start, s.end, "", "a road or junction is only next to things")
+            )
+    request.statements = kept
 
 
 def adopt_members(request: Request) -> None:

@@ -204,3 +204,21 @@ def test_the_command_composes_a_village(tmp_path):
     assert said.startswith("The scene consists of three roads meeting at an intersection")
     assert said.count("street lamp is next to the") == 3
     assert "scene village {" in (tmp_path / "hamlet.rules").read_text()
+
+
+def test_what_is_said_of_a_road_becomes_what_a_road_can_be():
+    request, rules = _plan("a village with a road and a cottage on either side of the road")
+    (road,) = _by_type(request, "road")
+    cottages = _by_type(request, "house")
+    assert len(cottages) == 2
+    assert {(c, "NextTo", road) for c in cottages} == _said(request)
+    request, _ = _plan("a village with a road and a well between the road and a tower")
+    (well,), (tower,) = _by_type(request, "well"), _by_type(request, "tower")
+    assert (well, "NextTo", _by_type(request, "road")[0]) in _said(request)
+    assert (tower, "NextToRight", well) in _said(request)
+    text = "a village with a well and a road on top of the well"
+    request, _ = _plan(text)
+    assert report_of(text, request, "").messages() == [
+        "1:27-51: a road or junction is only next to things"
+    ]
+    assert not request.statements
