@@ -19,6 +19,8 @@ examples:
   scenewright compose "a kitchen with a fridge, a sink under the window and a table with four chairs around it" --rules-out kitchen.rules
   scenewright compose "a small room with a piano" --catalog my_music.rules --strict
   scenewright compose "a bedroom with a double bed against the north wall" --complete -o full/
+  scenewright compose "a village with two roads meeting at a crossroads, a well next to the first road and three cottages along the second road" -o village/
+  scenewright compose "$(cat village_description.txt)" --catalog village --seed 3
 
 writes what generate writes (scene.json, description.txt, preview.png, scene.glb,
 plan.png). Words or phrases it could not use are listed as LINE:COL-COL: message, with
@@ -26,7 +28,9 @@ the nearest known word; --strict makes that an error (exit 2, nothing written). 
 statement the layout could not satisfy is named with the statements it shares things
 with, and the exit code is 1 (the files are kept). --rules-out keeps the rule set it
 composed, to edit and generate from like any other. --complete adds, around what the
-text asked for (kept where it stands), what a room of that kind usually holds.""",
+text asked for (kept where it stands), what a room of that kind usually holds. A text
+that names a village, town or city, a road or a junction is composed outdoors, with
+the outdoor catalog (the shipped village, town and city's types).""",
 }
 
 
