@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 from scenewright.generator.catalog import CatalogEntry
 
 from .parse import Entity, Issue, Request, Statement, tokenize
-from .vocabulary import OUTDOOR_SCENES
+from .vocabulary import OUTDOOR_SCENES, ROOMS
 from .vocabulary import SYNONYMS as INDOOR_SYNONYMS
 
 #: The shipped rule sets whose types make the outdoor catalog, the first's entry kept
@@ -167,11 +167,32 @@ def _outdoor_words() -> frozenset[str]:
     return frozenset(words)
 
 
+@functools.cache
+def _nouns_only_in() -> tuple[frozenset[str], frozenset[str]]:
+    """The nouns (and their everyday words) only the outdoor catalog knows, and those
+    only the indoor one knows."""
+    from scenewright.generator.rules import indoor_catalog
+
+    from .vocabulary import vocabulary
+
+    outdoor = set(vocabulary(outdoor_catalog(), synonyms=synonyms()).nouns)
+    indoor = set(vocabulary(indoor_catalog()).nouns)
+    return frozenset(outdoor - indoor), frozenset(indoor - outdoor)
+
+
 def is_outdoor_text(text: str) -> bool:
-    """Whether a text asks for an outdoor scene (see the module docstring)."""
+    """Whether a text asks for an outdoor scene (see the module docstring): it names an
+    outdoor scene, a road or a junction; or, naming no room, more things only the
+    outdoor catalog has ("a market stand with a table and two barrels") than things
+    only the indoor one has."""
     words = [t.low for t in tokenize(text)]
-    found = _outdoor_words()
-    return any(" ".join(words[i : i + n]) in found for i in range(len(words)) for n in (1, 2, 3))
+    phrases = [" ".join(words[i : i + n]) for i in range(len(words)) for n in (1, 2, 3, 4)]
+    if any(p in _outdoor_words() for p in phrases):
+        return True
+    if any(p in ROOMS and p != "scene" for p in phrases):
+        return False
+    outdoor, indoor = _nouns_only_in()
+    return sum(p in outdoor for p in phrases) > sum(p in indoor for p in phrases)
 
 
 def synonyms() -> dict[str, str]:

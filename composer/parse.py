@@ -34,7 +34,7 @@ from .vocabulary import (
     NounSense,
     Vocabulary,
 )
-from .ways import WAY_KINDS, connect, network_phrase, trailing_paths
+from .ways import WAY_KINDS, connect, junction_type, network_phrase, trailing_paths
 
 _TOKEN = re.compile(r"\d+(?:\.\d+)?|[A-Za-z][A-Za-z'’-]*|[.,;:!?]")
 _LONGEST = 8
@@ -204,7 +204,8 @@ class _Reader:
             colour,
             toks[0].start,
             toks[-1].end,
-            parent=self.members_of,
+            # a road is never a group's ("a farm with a barn, by a lane")
+            parent=None if self.vocab.entries[sense.type].kind in WAY_KINDS else self.members_of,
             group=sense.type in self.vocab.groups,
             paragraph=self.focus if self.members_of is None else None,
         )
@@ -580,6 +581,9 @@ class _Reader:
                 t.used = True
                 joined = t.low in ("and", ",")
                 if t.low == "with" and pending is None:
+                    owner = subject.last()
+                    if len(owner) == 1 and self.entity(owner[0]).group:
+                        self.members_of = owner[0]  # "a farm with a barn and a field"
                     subject = _Subject()
                 i += 1
                 continue
@@ -595,7 +599,7 @@ class _Reader:
                     if not subject.all() and self.mentions:
                         subject.groups = [[self.mentions[-1]]]
                     who = subject.all() if plural else subject.last()
-                    if kind in ("network", "networks"):  # "two roads and a lane meeting at"
+                    if kind in ("network", "networks", "meet"):  # "two roads and a lane meeting at"
                         who = trailing_paths(subject.all(), self.kind_of)
                     elif kind == "branch":  # "a road and a lane off it": the lane
                         who = trailing_paths(subject.last(), self.kind_of)
@@ -610,6 +614,9 @@ class _Reader:
                         else:
                             self._unused(toks, i, i + n, "a relation without its object")
                         pending = None
+                    if kind == "meet":  # "two roads crossing each other"
+                        pending = None
+                        self._meet(who, toks, i, n)
                     if kind == "side by side":  # next to each other, lined up
                         pending = None
                         if len(who) < 2:
@@ -701,6 +708,17 @@ class _Reader:
             i += n
         if pending is not None:
             self._unused(toks, pending[2], len(toks), "a relation without its object")
+
+    def _meet(self, who: list[str], toks: list[Token], i: int, n: int) -> None:
+        """Paths that meet at no junction named: at a new one (``ways.junction_type``)."""
+        type_ = junction_type(self.vocab.entries)
+        if type_ is None or len(who) < 2:
+            return self._unused(toks, i, i + n, "two roads or more meet at a junction")
+        junction = self.create(NounSense(type_, None, False), None, toks[i : i + n])
+        for path in who:
+            self.req.statements.append(
+                Statement(path, "PathConnectedTo", junction, toks[i].start, toks[i + n - 1].end)
+            )
 
     def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
         """What "it" refers to: the last thing named, other than the subject; "them":

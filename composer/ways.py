@@ -42,14 +42,31 @@ NETWORK_PHRASES: tuple[tuple[str, ...], ...] = tuple(
 )
 #: "meeting four at each of three intersections": the paths shared out, four a junction.
 _EACH = ("at", "each", "of")
+#: Paths meeting at a junction of their own: "crossing each other", "where two roads
+#: meet" (the word alone, before a comma, "and" or "with" or at the sentence's end).
+_EACH_OTHER = [[verb, "each", "other"] for verb in ("meeting", "meet", "crossing", "cross")]
+_ALONE = ([], [","], ["and"], ["with"])
+#: The junction such paths meet at: the first of these the catalog has, else any.
+JUNCTIONS = ("intersection", "crossroads")
+
+
+def junction_type(entries: Mapping) -> str | None:
+    """The junction type paths meet at when the text names none (``JUNCTIONS``)."""
+    found = sorted(name for name, e in entries.items() if e.kind == "junction")
+    return next((name for name in JUNCTIONS if name in found), found[0] if found else None)
 
 
 def network_phrase(words: Sequence[str], numbers: Mapping[str, int]) -> tuple[str, int, int] | None:
     """("network", 0, tokens taken) for a phrase of ``NETWORK_PHRASES`` at the start of
     ``words`` (lower case), ("networks", N, tokens taken) for "meeting N at each of";
-    None for anything else. A phrase of meeting ("meeting at") is "network", which
+    ("meet", 0, tokens taken) for paths that meet at no junction named ("two roads
+    crossing each other", "where two roads meet"); None for anything else. A phrase of meeting ("meeting at") is "network", which
     starts every path named just before it ("two roads and a lane meeting at ..."); any
     other ("a lane off the road") is "branch", which starts the last one named."""
+    if words[:3] in _EACH_OTHER:
+        return "meet", 0, 3
+    if words[:1] in (["meeting"], ["meet"], ["crossing"], ["cross"]) and words[1:2] in _ALONE:
+        return "meet", 0, 1
     if words[:1] in (["meeting"], ["meet"]):
         for n in (3, 2, 1):  # "meeting four at each of", "meeting twenty-one at ..."
             count = numbers.get(" ".join(words[1 : 1 + n]))

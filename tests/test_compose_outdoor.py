@@ -222,3 +222,29 @@ def test_what_is_said_of_a_road_becomes_what_a_road_can_be():
         "1:27-51: a road or junction is only next to things"
     ]
     assert not request.statements
+
+
+def test_roads_that_meet_at_no_junction_named_meet_at_one_of_their_own():
+    for text in ("two roads crossing each other", "a hamlet where three lanes meet, with a well"):
+        request, _ = _plan(text)
+        assert not request.issues
+        (junction,) = _by_type(request, "intersection")
+        paths = [e.id for e in request.entities if e.type in ("road", "lane")]
+        assert len(paths) >= 2
+        assert {(p, "PathConnectedTo", junction) for p in paths} <= _said(request)
+
+
+def test_a_group_with_things_holds_them_but_never_a_road():
+    request, _ = _plan("a farm with a barn, a field and a cart next to the barn, by a lane")
+    (farm,) = _by_type(request, "farmstead")
+    inside = sorted(e.type for e in request.entities if e.parent == farm)
+    assert inside == ["empty_wagon", "field", "shed"]  # what it was said to hold, no more
+    (lane,) = _by_type(request, "lane")
+    assert next(e for e in request.entities if e.id == lane).parent is None
+
+
+def test_things_only_the_outdoor_catalog_has_make_a_text_outdoors():
+    assert catalog_for("a market stand with a table and two barrels")[2] is not None
+    assert catalog_for("The scene consists of a tower and a well.")[2] is not None
+    assert catalog_for("a desk with a lamp")[2] is None
+    assert catalog_for("a kitchen with a barrel")[2] is None  # a room is named
