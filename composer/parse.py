@@ -582,8 +582,10 @@ class _Reader:
                 joined = t.low in ("and", ",")
                 if t.low == "with" and pending is None:
                     owner = subject.last()
-                    if len(owner) == 1 and self.entity(owner[0]).group:
-                        self.members_of = owner[0]  # "a farm with a barn and a field"
+                    # "a farm with a barn and a field", the group named just before
+                    if len(owner) == 1 and self.entity(owner[0]).group and i > 0:
+                        if self.entity(owner[0]).end == toks[i - 1].end:
+                            self.members_of = owner[0]
                     subject = _Subject()
                 i += 1
                 continue
