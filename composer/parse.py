@@ -182,6 +182,8 @@ class _Reader:
         #: Whether the last noun phrase read was "each N" / "every N": a relation to it
         #: then makes one subject per N ("a lamp on each nightstand").
         self.each = False
+        #: The things named, by type.
+        self.of_type: dict[str, list[Entity]] = {}
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -210,6 +212,7 @@ class _Reader:
             paragraph=self.focus if self.members_of is None else None,
         )
         self.req.entities.append(entity)
+        self.of_type.setdefault(entity.type, []).append(entity)
         return entity.id
 
     def entity(self, eid: str) -> Entity:
@@ -224,22 +227,20 @@ class _Reader:
         top level) when given; else the focus group's own if it has any, else the top
         level's if there are any, else all."""
         out = []
-        for e in self.req.entities:
-            if e.type != sense.type:
-                continue
+        for e in self.of_type.get(sense.type, ()):  # a city names 1,500 things
             if sense.exact and sense.style is not None and e.style not in (None, sense.style):
                 continue
-            out.append(e.id)
+            out.append(e)
         if parent != _ANYWHERE:
-            out = [e for e in out if self.entity(e).parent == parent]
+            out = [e for e in out if e.parent == parent]
         else:
             for owner in (self.focus, None):
-                own = [e for e in out if self.entity(e).parent == owner]
+                own = [e for e in out if e.parent == owner]
                 if own:
                     out = own
                     break
         # "the bookshelf" is the plain one before "the low bookshelf"
-        return sorted(out, key=lambda eid: self.entity(eid).style != sense.style)
+        return [e.id for e in sorted(out, key=lambda e: e.style != sense.style)]
 
     def refer(
         self,
@@ -257,8 +258,9 @@ class _Reader:
         if ordinal is not None:
             # a style's noun counts its own ("the second low bookshelf"), the plain noun
             # every one of the type ("the third bookshelf", low ones included)
-            counted = [e for e in ranked if e in found]
-            unranked = [e for e in found if e not in ranked]
+            found_set, ranked_set = set(found), set(ranked)
+            counted = [e for e in ranked if e in found_set]
+            unranked = [e for e in found if e not in ranked_set]
             while len(counted) < ordinal:
                 more = unranked.pop(0) if unranked else self.create(sense, colour, toks)
                 ranked.append(more)
@@ -414,6 +416,8 @@ class _Reader:
         if hit is None:
             return None
         sense = self.vocab.nouns[hit[0]]
+        if hit[0] in self.vocab.shared:  # "shop": the city's group or its building
+            sense, ordinal, det = self._shared(hit[0], sense, toks, j + hit[1], ordinal, det)
         taken = toks[i : j + hit[1]]
         self.each = det in ("each", "every") and ordinal is None
         if det in ("", "a", "another") and ordinal is None:
@@ -423,6 +427,18 @@ class _Reader:
         scope, extra = self._owner_after(toks, j + hit[1], subject)
         ids = self.refer(sense, det, ordinal, count, colour, taken, scope)
         return "things", ids, j + hit[1] + extra - i
+
+    def _shared(self, phrase: str, sense: NounSense, toks: list[Token], k: int, ordinal, det):
+        """A noun a group shares with an object type, as the describer uses it: the
+        group before "consists of" and outside groups' paragraphs; inside them the
+        object, this group's own, whatever the ordinal (which counts both types)."""
+        if [t.low for t in toks[k : k + 2]] in (["consists", "of"], ["consist", "of"]):
+            return self.vocab.shared[phrase], ordinal, det
+        if self.members_of is None and self.focus is None:
+            return self.vocab.shared[phrase], ordinal, det
+        if ordinal is not None and self.members_of is None:
+            return sense, None, "the"
+        return sense, ordinal, det
 
     def _owner_after(self, toks: list[Token], k: int, subject: list[str]):
         """Where a definite phrase's thing belongs, said after it: "of the first row of

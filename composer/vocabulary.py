@@ -15,7 +15,8 @@ import difflib
 import functools
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from types import MappingProxyType
 
 from scenewright.core.relations import RELATIONS, SIDES
 from scenewright.describer.colours import COLOUR_TERMS
@@ -315,6 +316,9 @@ class Vocabulary:
     entries: Mapping[str, CatalogEntry]
     #: Group types ("row of desks"): things that consist of other things.
     groups: frozenset[str] = frozenset()
+    #: Nouns a group shares with an object type (the city's "shop", a group of a shop
+    #: building, a sign and goods): the group's sense, the object's being in ``nouns``.
+    shared: Mapping[str, NounSense] = field(default_factory=lambda: MappingProxyType({}))
 
     @functools.cached_property
     def known_words(self) -> tuple[str, ...]:
@@ -409,7 +413,13 @@ def vocabulary(
                 # "a small table": the style's name before the everyday word
                 nouns.setdefault(f"{style.name} {word}", NounSense(sense.type, style.name, False))
             nouns.setdefault(_plural(word), NounSense(sense.type, sense.style, True, sense.exact))
-    return Vocabulary(nouns, relation_phrases(), objects | groups | ways, frozenset(groups))
+    shared = {
+        phrase: sense
+        for entry in groups.values()
+        for phrase, sense in _entry_nouns(entry).items()
+        if nouns[phrase].type != entry.name and nouns[phrase].type in objects
+    }
+    return Vocabulary(nouns, relation_phrases(), objects | groups | ways, frozenset(groups), shared)
 
 
 def side_label(side: str) -> str:
