@@ -248,3 +248,30 @@ def test_things_only_the_outdoor_catalog_has_make_a_text_outdoors():
     assert catalog_for("The scene consists of a tower and a well.")[2] is not None
     assert catalog_for("a desk with a lamp")[2] is None
     assert catalog_for("a kitchen with a barrel")[2] is None  # a room is named
+
+
+def test_a_noun_a_group_shares_with_a_thing_reads_as_the_describer_uses_it():
+    # the city's "shop" is a group (a shop building, its sign, its goods) and the
+    # building; the describer's ordinals count both, so "the third shop" in the first
+    # shop's paragraph is that shop's building
+    text = (
+        "The scene consists of a main street and two shops. The two shops are next to the "
+        "main street. The first shop consists of a shop, a sign and a barrel. This sign is "
+        "in front of the third shop. The barrel is to the left of this shop."
+    )
+    request, _ = _plan(text, load_rules("city"))
+    assert not request.issues
+    shops = _by_type(request, "shop")
+    assert len(shops) == 2
+    first = {e.type: e.id for e in request.entities if e.parent == shops[0]}
+    assert sorted(first) == ["barrel", "shop_house", "sign"]
+    building = first["shop_house"]
+    assert {
+        (first["sign"], "NextToFront", building),
+        (first["barrel"], "NextToLeft", building),
+    } <= _said(request)
+    # the other shop, named alone, holds what a shop means: its building and a sign
+    assert sorted(e.type for e in request.entities if e.parent == shops[1]) == [
+        "shop_house",
+        "sign",
+    ]
