@@ -867,7 +867,8 @@ class _Reader:
             sides = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
             for k, s in enumerate(subjects):
                 add(s, sides[k % 4], targets[0])
-                add(s, "FacingTowards", targets[0])
+                if not self.entity(s).group:  # a group faces no way of its own
+                    add(s, "FacingTowards", targets[0])
             return
         object_labels = [
             x for x in labels if not x.endswith("Window") and x not in ("AgainstWall", "InCorner")
