@@ -275,3 +275,16 @@ def test_a_noun_a_group_shares_with_a_thing_reads_as_the_describer_uses_it():
         "shop_house",
         "sign",
     ]
+
+
+def test_groups_around_a_thing_stand_at_its_sides_without_facing_it():
+    request, _ = _plan("a village square with a well and four market stalls around the well")
+    (well,) = _by_type(request, "well")
+    stands = _by_type(request, "market_stand")
+    sides = {(s, label) for s, label, t in _said(request) if t == well}
+    assert sides == {
+        (stands[0], "NextToFront"),
+        (stands[1], "NextToBehind"),
+        (stands[2], "NextToLeft"),
+        (stands[3], "NextToRight"),
+    }
