@@ -34,7 +34,14 @@ from .vocabulary import (
     NounSense,
     Vocabulary,
 )
-from .ways import WAY_KINDS, connect, junction_type, network_phrase, trailing_paths
+from .ways import (
+    WAY_KINDS,
+    connect,
+    junction_type,
+    network_phrase,
+    shared_sense,
+    trailing_paths,
+)
 
 _TOKEN = re.compile(r"\d+(?:\.\d+)?|[A-Za-z][A-Za-z'’-]*|[.,;:!?]")
 _LONGEST = 8
@@ -417,7 +424,9 @@ class _Reader:
             return None
         sense = self.vocab.nouns[hit[0]]
         if hit[0] in self.vocab.shared:  # "shop": the city's group or its building
-            sense, ordinal, det = self._shared(hit[0], sense, toks, j + hit[1], ordinal, det)
+            words = [t.low for t in toks[j + hit[1] : j + hit[1] + 2]]
+            shared = shared_sense(self, hit[0], sense, words, ordinal, det)
+            sense, ordinal, det = shared
         taken = toks[i : j + hit[1]]
         self.each = det in ("each", "every") and ordinal is None
         if det in ("", "a", "another") and ordinal is None:
@@ -427,18 +436,6 @@ class _Reader:
         scope, extra = self._owner_after(toks, j + hit[1], subject)
         ids = self.refer(sense, det, ordinal, count, colour, taken, scope)
         return "things", ids, j + hit[1] + extra - i
-
-    def _shared(self, phrase: str, sense: NounSense, toks: list[Token], k: int, ordinal, det):
-        """A noun a group shares with an object type, as the describer uses it: the
-        group before "consists of" and outside groups' paragraphs; inside them the
-        object, this group's own, whatever the ordinal (which counts both types)."""
-        if [t.low for t in toks[k : k + 2]] in (["consists", "of"], ["consist", "of"]):
-            return self.vocab.shared[phrase], ordinal, det
-        if self.members_of is None and self.focus is None:
-            return self.vocab.shared[phrase], ordinal, det
-        if ordinal is not None and self.members_of is None:
-            return sense, None, "the"
-        return sense, ordinal, det
 
     def _owner_after(self, toks: list[Token], k: int, subject: list[str]):
         """Where a definite phrase's thing belongs, said after it: "of the first row of
@@ -733,10 +730,8 @@ class _Reader:
         if type_ is None or len(who) < 2:
             return self._unused(toks, i, i + n, "two roads or more meet at a junction")
         junction = self.create(NounSense(type_, None, False), None, toks[i : i + n])
-        for path in who:
-            self.req.statements.append(
-                Statement(path, "PathConnectedTo", junction, toks[i].start, toks[i + n - 1].end)
-            )
+        span = toks[i].start, toks[i + n - 1].end
+        self.req.statements += [Statement(p, "PathConnectedTo", junction, *span) for p in who]
 
     def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
         """What "it" refers to: the last thing named, other than the subject; "them":

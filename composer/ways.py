@@ -113,3 +113,18 @@ def connect(
     for k, path in enumerate(subjects):
         add(path, "PathConnectedTo", targets[k // share])
     return None
+
+
+def shared_sense(reader, phrase: str, sense, after: Sequence[str], ordinal, det):
+    """A noun a group shares with an object type (the city's "shop"), as the describer
+    uses it: the group before "consists of" (``after``: the next words) and outside
+    groups' paragraphs; inside them the object, that group's own whatever the ordinal,
+    which counts both types. (sense, ordinal, determiner) as the reader is to take them."""
+    group = reader.vocab.shared[phrase]
+    if list(after) in (["consists", "of"], ["consist", "of"]):
+        return group, ordinal, det
+    if reader.members_of is None and reader.focus is None:
+        return group, ordinal, det
+    if ordinal is not None and reader.members_of is None:
+        return sense, None, "the"
+    return sense, ordinal, det
