@@ -12,11 +12,14 @@ that text (with the rule set's catalog, seed the same), then
 - CPU seconds per text for reading and planning (no layout).
 
 The sets are every shipped room rule set (groups included: the classroom's rows of
-desks). The outdoor rule sets (village, town, city) are not composed: roads and
-junctions are not part of the composing language (docs/compose.md). Usage:
+desks) and the village (roads meeting at intersections, things next to them, groups);
+``--sets town`` or ``city`` measure the larger outdoor ones (a town's scene holds about
+300 things, a city's 1,100 to 2,200), which take minutes for twenty seeds. Usage:
 
     python benchmarks/bench_compose.py                    # seeds 1000-1099
     python benchmarks/bench_compose.py --seeds 1000:1020 --sets bedroom,kitchen
+    python benchmarks/bench_compose.py --seeds 1000:1010 --sets town
+    python benchmarks/bench_compose.py --seeds 1000:1020 --sets city
 """
 
 from __future__ import annotations
@@ -28,12 +31,12 @@ from collections import Counter
 
 from scenewright.api import build_scene, compose, describe
 from scenewright.composer.compose import plan
+from scenewright.composer.outdoor import catalog_for
 from scenewright.core.relations import RELATIONS
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator import load_rules
 from scenewright.generator.layout.measure import measure_layout
 from scenewright.generator.layout.pinning import scene_layout
-from scenewright.generator.rules import created_types, indoor_catalog
 
 ROOM_SETS = (
     "bathroom",
@@ -52,6 +55,8 @@ ROOM_SETS = (
     "barracks",
     "guard_room",
 )
+#: Outdoor rule sets measured by default (``--sets town`` adds the town's).
+OUTDOOR_SETS = ("village",)
 _WALL_LABELS = ("AgainstWall", "InCorner", "UnderWindow", "BesideWindow")
 
 
@@ -91,12 +96,13 @@ def _signatures(scene, relations) -> Counter:
     """Each relation as (A's type and style, label, B's type and style, or B's wall, or
     A's corner): what a description can say of it."""
     objects = {o.id: o for o in scene.objects}
+    objects.update({p.id: p for p in scene.paths})  # "next to the first road"
     out: Counter = Counter()
 
     def kind(o) -> tuple[str, str | None]:
         # a composed rule set names a type's second look TYPE_2 (docs/compose.md)
         stem, _, number = o.type.rpartition("_")
-        return (stem if number.isdigit() and stem else o.type, o.style)
+        return (stem if number.isdigit() and stem else o.type, getattr(o, "style", None))
 
     for source, label, target, chosen in relations:
         if label.startswith("Implicit") or source not in objects:
@@ -129,14 +135,14 @@ def _held(scene) -> Counter:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", default="1000:1100", help="FIRST:END (end excluded)")
-    parser.add_argument("--sets", default=",".join(ROOM_SETS))
+    parser.add_argument("--sets", default=",".join(ROOM_SETS + OUTDOOR_SETS))
     args = parser.parse_args()
     first, end = (int(v) for v in args.seeds.split(":"))
     totals: Counter = Counter()
     cpu: list[float] = []
     for name in args.sets.split(","):
         rules = load_rules(name)
-        entries = {**indoor_catalog(), **rules.catalog.entries}
+        entries, prefer, ground = catalog_for("", rules)
         per: Counter = Counter()
         for seed in range(first, end):
             source = build_scene(rules, seed)
@@ -161,7 +167,7 @@ def main() -> None:
                 ],
             )
             started = time.process_time()
-            plan(text, entries, created_types(rules))
+            plan(text, entries, prefer, ground)
             cpu.append(time.process_time() - started)
             composed, report = compose(text, seed, catalog=rules)
             held = _held(composed)

@@ -19,8 +19,11 @@ from pathlib import Path
 from scenewright.core.errors import InputError
 from scenewright.generator.catalog import CatalogEntry
 
-from .parse import Issue, Place, Request, Statement, parse
+from .outdoor import Ground
+from .outdoor import synonyms as outdoor_synonyms
+from .parse import parse
 from .plan import FIRST_CORNER, corner_starts, rules_text
+from .request import Issue, Place, Request, Statement
 from .vocabulary import vocabulary
 
 #: Layouts tried before the best one is kept.
@@ -84,12 +87,19 @@ class Report:
 
 
 def plan(
-    text: str, entries: Mapping[str, CatalogEntry], prefer: Iterable[str] = ()
+    text: str,
+    entries: Mapping[str, CatalogEntry],
+    prefer: Iterable[str] = (),
+    ground: Ground | None = None,
 ) -> tuple[Request, str]:
     """The request read from ``text`` and the rule set that makes it (``prefer``: the
-    types that name a noun several types share, ``vocabulary``)."""
+    types that name a noun several types share, ``vocabulary``; ``ground``: outdoors,
+    ``composer.outdoor``; ``catalog_for`` gives all three for a text)."""
     if not text.strip():
         raise InputError("nothing to compose: the text is empty")
+    if ground is not None:
+        request = parse(text, vocabulary(entries, prefer, outdoor_synonyms()))
+        return request, rules_text(request, entries, ground)
     request = parse(text, vocabulary(entries, prefer))
     rules = rules_text(request, entries)
     request.starts = corner_starts(request, entries, request.planned_size)
@@ -122,7 +132,7 @@ def lay_out(
         graph = expand(loaded, seed)
     # The expansion names the things by type and number; the k-th thing (object or group)
     # it makes is the k-th of the production's order (``request.made``).
-    made = [n.id for n in graph.nodes() if n.kind in ("object", "group")]
+    made = [n.id for n in graph.nodes() if n.kind in ("object", "group", "path", "junction")]
     ids = dict(zip(request.made, made, strict=True))
     from scenewright.core.poses import Pose
 

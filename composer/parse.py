@@ -16,7 +16,6 @@ Every word is either used or reported (``Issue``), with its character span.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 
 from scenewright.core.relations import RELATIONS, RelationLabel
@@ -35,6 +34,7 @@ from .everyday import (
     phrase_at,
     settle_opposite,
 )
+from .request import Entity, Issue, Place, Request, Statement, Token, tokenize
 from .vocabulary import (
     COMPASS_WORDS,
     FUNCTION_WORDS,
@@ -47,8 +47,15 @@ from .vocabulary import (
     NounSense,
     Vocabulary,
 )
+from .ways import (
+    WAY_KINDS,
+    connect,
+    junction_type,
+    network_phrase,
+    shared_sense,
+    trailing_paths,
+)
 
-_TOKEN = re.compile(r"\d+(?:\.\d+)?|[A-Za-z][A-Za-z'’-]*|[.,;:!?]")
 _LONGEST = 8
 _SIDES_OF = (
     "on each side of",
@@ -67,89 +74,8 @@ _AROUND = ("around", "round", "surrounding", "about")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
 
-@dataclass
-class Token:
-    text: str
-    start: int
-    end: int
-    low: str
-    used: bool = False
-    note: str = ""  # why a known word went unused
-
-
-@dataclass
-class Entity:
-    id: str
-    type: str
-    style: str | None
-    colour: str | None
-    start: int
-    end: int
-    #: The group it is a member of ("the first row of desks consists of four desks").
-    parent: str | None = None
-    #: Whether it is a group itself.
-    group: bool = False
-
-
 #: ``_Reader.matching``'s "wherever it is": no group named for it.
 _ANYWHERE = "*"
-
-
-@dataclass(frozen=True)
-class Place:
-    """A room part as a relation's object: a wall, window or corner, by number or any."""
-
-    kind: str  # "wall", "window", "corner"
-    number: int | None = None  # wall or window number; None: the layout chooses
-    corner: tuple[str, str] | None = None  # a named corner ("north", "west")
-    by_door: bool = False  # "the corner by the door"
-    #: "opposite the window": the wall across the room from the window's ("window") or
-    #: the door's ("door"); its number is settled once the text is read (``parse``).
-    opposite: str | None = None
-
-
-@dataclass(frozen=True)
-class Statement:
-    source: str
-    label: str
-    target: str | Place
-    start: int
-    end: int
-
-
-@dataclass
-class Issue:
-    start: int
-    end: int
-    text: str
-    message: str
-
-
-@dataclass
-class Request:
-    """What a text asks for (see the module docstring)."""
-
-    entities: list[Entity] = field(default_factory=list)
-    statements: list[Statement] = field(default_factory=list)
-    room: str = "room"
-    size: tuple[float, float] | None = None
-    size_factor: float = 1.0
-    planned_size: tuple[float, float] = (0.0, 0.0)  # the room's sides as planned
-    made: list[str] = field(default_factory=list)  # entity ids in the order the rules make them
-    door_walls: list[str] = field(default_factory=list)  # as planned
-    starts: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)  # x, z, yaw
-    doors: list[str] = field(default_factory=list)  # one wall side per door
-    windows: list[str] = field(default_factory=list)  # one wall side per window
-    absent: dict[str, tuple[int, int]] = field(default_factory=dict)
-    issues: list[Issue] = field(default_factory=list)
-    used: list[tuple[int, int]] = field(default_factory=list)
-
-
-def tokenize(text: str) -> list[Token]:
-    return [
-        Token(m.group(), m.start(), m.end(), m.group().lower().replace("’", "'"))
-        for m in _TOKEN.finditer(text)
-    ]
 
 
 def _sentences(tokens: list[Token]) -> list[list[Token]]:
@@ -203,6 +129,8 @@ class _Reader:
         self.resting: dict[str, str] = {}
         #: Where the last relation's object ended, and the thing it named.
         self.object_end, self.last_object = -1, ""
+        #: The things named, by type.
+        self.of_type: dict[str, list[Entity]] = {}
 
     # -- phrase matching -----------------------------------------------------------
 
@@ -225,36 +153,41 @@ class _Reader:
             colour,
             toks[0].start,
             toks[-1].end,
-            parent=self.members_of,
+            # a road is never a group's ("a farm with a barn, by a lane")
+            parent=None if self.vocab.entries[sense.type].kind in WAY_KINDS else self.members_of,
             group=sense.type in self.vocab.groups,
+            paragraph=self.focus if self.members_of is None else None,
         )
         self.req.entities.append(entity)
+        self.of_type.setdefault(entity.type, []).append(entity)
         return entity.id
 
     def entity(self, eid: str) -> Entity:
         return self.req.entities[int(eid[1:]) - 1]
+
+    def kind_of(self, eid: str) -> str:
+        """The catalog kind of a thing named: object, group, path or junction."""
+        return self.vocab.entries[self.entity(eid).type].kind
 
     def matching(self, sense: NounSense, parent: str | None = _ANYWHERE) -> list[str]:
         """The things the noun may name: those of ``parent`` (a group, or None for the
         top level) when given; else the focus group's own if it has any, else the top
         level's if there are any, else all."""
         out = []
-        for e in self.req.entities:
-            if e.type != sense.type:
-                continue
+        for e in self.of_type.get(sense.type, ()):  # a city names 1,500 things
             if sense.exact and sense.style is not None and e.style not in (None, sense.style):
                 continue
-            out.append(e.id)
+            out.append(e)
         if parent != _ANYWHERE:
-            out = [e for e in out if self.entity(e).parent == parent]
+            out = [e for e in out if e.parent == parent]
         else:
             for owner in (self.focus, None):
-                own = [e for e in out if self.entity(e).parent == owner]
+                own = [e for e in out if e.parent == owner]
                 if own:
                     out = own
                     break
         # "the bookshelf" is the plain one before "the low bookshelf"
-        return sorted(out, key=lambda eid: self.entity(eid).style != sense.style)
+        return [e.id for e in sorted(out, key=lambda e: e.style != sense.style)]
 
     def refer(
         self,
@@ -272,8 +205,9 @@ class _Reader:
         if ordinal is not None:
             # a style's noun counts its own ("the second low bookshelf"), the plain noun
             # every one of the type ("the third bookshelf", low ones included)
-            counted = [e for e in ranked if e in found]
-            unranked = [e for e in found if e not in ranked]
+            found_set, ranked_set = set(found), set(ranked)
+            counted = [e for e in ranked if e in found_set]
+            unranked = [e for e in found if e not in ranked_set]
             while len(counted) < ordinal:
                 more = unranked.pop(0) if unranked else self.create(sense, colour, toks)
                 ranked.append(more)
@@ -294,6 +228,15 @@ class _Reader:
             chosen = order[:count]
             self.in_sets.update(chosen)
             ranked.extend(e for e in chosen if e not in ranked)  # the set takes the next places
+        elif det == "others" and count is not None:
+            # "eight other homes": the next ones not named before, as the describer
+            # counts them ("the thirty-fifth home" after 34 named in sets)
+            order = [e for e in found if e not in ranked and e not in self.in_sets]
+            while len(order) < count:
+                order.append(self.create(sense, colour, toks))
+            chosen = order[:count]
+            self.in_sets.update(chosen)
+            ranked.extend(chosen)
         elif sense.plural or det in ("both", "each", "every", "all"):
             want = count or (2 if det == "both" else max(len(found), 2 if sense.plural else 1))
             while len(found) < want:
@@ -356,6 +299,8 @@ class _Reader:
             det, count, j = "a", int(float(toks[j].low)), j + 1
         elif m:
             det, count, j = "a", NUMBERS[m[0]], j + m[1]
+        if count is not None and det == "a" and j < len(toks) and toks[j].low == "other":
+            det, j = "others", j + 1  # "eight other homes": ones not named yet
         if (
             count is not None
             and j + 1 < len(toks)
@@ -363,7 +308,12 @@ class _Reader:
             and toks[j + 1].low in ("the", "these", "those")
         ):  # "two of the bookshelves"
             det, j = "of", j + 2
-        if j < len(toks) and det in ("the", "these", "those", "") and self.match(toks, j, NUMBERS):
+        if (
+            j < len(toks)
+            and det in ("the", "these", "those", "")
+            and self.match(toks, j, NUMBERS)
+            and not self.match(toks, j, ORDINALS)  # "the one hundred and first home"
+        ):
             m2 = self.match(toks, j, NUMBERS)
             assert m2 is not None
             count, j = NUMBERS[m2[0]], j + m2[1]
@@ -371,8 +321,9 @@ class _Reader:
             j += 1
         if j < len(toks) and toks[j].low == "more":
             j += 1
-        if j < len(toks) and toks[j].low in ORDINALS:
-            ordinal, j = ORDINALS[toks[j].low], j + 1
+        nth = self.match(toks, j, ORDINALS) if j < len(toks) else None
+        if nth is not None:  # "the second", "the one hundred and fifth"
+            ordinal, j = ORDINALS[nth[0]], j + nth[1]
             det = det or "the"
         if j >= len(toks):
             return None
@@ -418,6 +369,10 @@ class _Reader:
         if hit is None:
             return None
         sense = self.vocab.nouns[hit[0]]
+        if hit[0] in self.vocab.shared:  # "shop": the city's group or its building
+            words = [t.low for t in toks[j + hit[1] : j + hit[1] + 2]]
+            shared = shared_sense(self, hit[0], sense, words, ordinal, det)
+            sense, ordinal, det = shared
         taken = toks[i : j + hit[1]]
         self.each = det in ("each", "every") and ordinal is None
         if obj and det == "" and not sense.plural and self.matching(sense):
@@ -444,6 +399,8 @@ class _Reader:
         j = k + 1
         while j < len(toks) and (toks[j].low in ("the", "this", "that") or toks[j].low in ORDINALS):
             j += 1
+        nth = self.match(toks, j, ORDINALS) if j < len(toks) else None
+        j += nth[1] if nth is not None else 0  # "of the one hundred and fifth home"
         hit = self.match(toks, j, self.vocab.nouns) if j < len(toks) else None
         if hit is None or self.vocab.nouns[hit[0]].type not in self.vocab.groups:
             return _ANYWHERE, 0
@@ -522,6 +479,9 @@ class _Reader:
         n = phrase_at(toks, i, SIDE_BY_SIDE)  # "side by side", "in a row"
         if n:
             return "side by side", None, n
+        way = network_phrase([t.low for t in toks[i : i + 8]], NUMBERS)
+        if way is not None:  # "meeting at an intersection": composer/ways.py
+            return way[0], (str(way[1]),), way[2]
         for phrase in _SIDES_OF:
             words = phrase.split()
             if [t.low for t in toks[i : i + len(words)]] == words:
@@ -542,8 +502,8 @@ class _Reader:
             return "around", None, k + 1 - i
         if toks[k].low in ("between", "in-between"):
             return "between", None, k + 1 - i
-        if toks[k].low == "along":
-            return "rel", ("AgainstWall",), k + 1 - i
+        if toks[k].low == "along":  # a wall, or a road
+            return "rel", ("AgainstWall", "NextTo"), k + 1 - i
         if toks[k].low in ("near", "by") or (
             toks[k].low == "close" and k + 1 < len(toks) and toks[k + 1].low == "to"
         ):
@@ -598,7 +558,11 @@ class _Reader:
                 joined = t.low in ("and", ",")
                 if t.low == "with" and pending is None:
                     # "a nightstand next to the bed with a lamp on it": it is the nightstand
-                    self.with_head = subject.last()
+                    self.with_head = owner
+                    # "a farm with a barn and a field", the group named just before
+                    if len(owner) == 1 and self.entity(owner[0]).group and i > 0:
+                        if self.entity(owner[0]).end == toks[i - 1].end:
+                            self.members_of = owner[0]
                     subject = _Subject()
                 if t.low == ",":
                     self.with_head = []
@@ -609,6 +573,8 @@ class _Reader:
             if rel is not None and (subject.all() or self.mentions):
                 kind, labels, n = rel
                 plural = any(w.low in ("are", "stand", "face", "sit") for w in toks[i : i + n])
+                if i >= 2 and toks[i - 1].low == "also":  # "... are also next to the road"
+                    plural = plural or toks[i - 2].low in ("are", "stand", "face", "sit")
                 if kind == "in" and pending is not None:
                     rel = None
                 else:
@@ -619,6 +585,10 @@ class _Reader:
                         # "a TV on a stand against the wall": the stand (see _apply)
                         who = who + [s for s in self.support if s not in who]
                     self.support = []
+                    if kind in ("network", "networks", "meet"):  # "two roads and a lane meeting at"
+                        who = trailing_paths(subject.all(), self.kind_of)
+                    elif kind == "branch":  # "a road and a lane off it": the lane
+                        who = trailing_paths(subject.last(), self.kind_of)
                     pending = (kind, labels or (), i, who)
                     if negated is not None:  # reported from the negation on
                         kind, pending, negated = "negated", ("negated", (), negated, who), None
@@ -640,6 +610,9 @@ class _Reader:
                         else:
                             self._unused(toks, i, i + n, "a relation without its object")
                         pending = None
+                    if kind == "meet":  # "two roads crossing each other"
+                        pending = None
+                        self._meet(who, toks, i, n)
                     if kind == "side by side":  # next to each other, lined up
                         pending = None
                         if len(who) < 2:
@@ -751,6 +724,15 @@ class _Reader:
         if pending is not None:
             self._unused(toks, pending[2], len(toks), "a relation without its object")
 
+    def _meet(self, who: list[str], toks: list[Token], i: int, n: int) -> None:
+        """Paths that meet at no junction named: at a new one (``ways.junction_type``)."""
+        type_ = junction_type(self.vocab.entries)
+        if type_ is None or len(who) < 2:
+            return self._unused(toks, i, i + n, "two roads or more meet at a junction")
+        junction = self.create(NounSense(type_, None, False), None, toks[i : i + n])
+        span = toks[i].start, toks[i + n - 1].end
+        self.req.statements += [Statement(p, "PathConnectedTo", junction, *span) for p in who]
+
     def _pronoun(self, subject: list[str], plural: bool = False) -> list[str]:
         """What "it" refers to: the last thing named, other than the subject; "them":
         that thing and the things of its type named just before it."""
@@ -852,6 +834,13 @@ class _Reader:
         if kind != "things":
             return self._unused(toks, start, end, "a relation without its object")
         targets: list[str] = value
+        if how in ("network", "networks", "branch"):
+            why = connect(how, int(labels[0]), subjects, targets, self.kind_of, add)
+            return None if why is None else self._unused(toks, start, end, why)
+        if all(self.kind_of(t) in WAY_KINDS for t in targets) and (
+            how == "in" or any(x.startswith("OnTopOf") for x in labels)
+        ):
+            how, labels = "rel", ("NextTo",)  # "at the intersection", "on the first road"
         if how == "in":
             return self._unused(toks, start, end, "no relation says 'in' of furniture")
         if how in ("sides", "flanked"):
@@ -884,7 +873,8 @@ class _Reader:
             sides = ("NextToFront", "NextToBehind", "NextToLeft", "NextToRight")
             for k, s in enumerate(subjects):
                 add(s, sides[k % 4], targets[0])
-                add(s, "FacingTowards", targets[0])
+                if not self.entity(s).group:  # a group faces no way of its own
+                    add(s, "FacingTowards", targets[0])
             return
         object_labels = [
             x for x in labels if not x.endswith("Window") and x not in ("AgainstWall", "InCorner")

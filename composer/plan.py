@@ -16,7 +16,9 @@ from scenewright.describer.colours import COLOUR_TERMS
 from scenewright.describer.rooms import DOOR_NEAR_CORNER
 from scenewright.generator.catalog import CatalogEntry, Style
 
-from .parse import Issue, Place, Request, Statement
+from .outdoor import Ground, made_first, scene_name, settle
+from .outdoor import extent as ground_extent
+from .request import Issue, Place, Request, Statement
 
 #: The production every composed rule set starts from.
 START = "Compose"
@@ -281,8 +283,11 @@ def _implicit(request: Request, entries: Mapping[str, CatalogEntry]) -> list[Sta
     return out
 
 
-def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
-    """The rule set of a request (see the module docstring)."""
+def rules_text(
+    request: Request, entries: Mapping[str, CatalogEntry], ground: Ground | None = None
+) -> str:
+    """The rule set of a request (see the module docstring); ``ground``: outdoors, open
+    ground for a room (``composer.outdoor``)."""
     keys: dict[tuple[str, str | None, str | None], str] = {}
     by_type: dict[str, int] = {}
     for e in request.entities:
@@ -290,11 +295,13 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
         if key not in keys:
             by_type[e.type] = by_type.get(e.type, 0) + 1
             keys[key] = e.type if by_type[e.type] == 1 else f"{e.type}_{by_type[e.type]}"
+    out = ["# Composed from English; edit it as any rule set (docs/rules-language.md).", ""]
+    if ground is not None:
+        return _outdoor_text(request, entries, ground, keys, out)
     size = room_size(request, entries)
     request.planned_size = size
     openings = _openings(request, size, entries)
     windows = sum(1 for line in openings if line.startswith("window"))
-    out = ["# Composed from English; edit it as any rule set (docs/rules-language.md).", ""]
     out.append(f"scene {request.room} {{")
     out.append(f"    room {_number(size[0])} x {_number(size[1])} {{")
     out += [f"        {line}" for line in openings]
@@ -319,27 +326,108 @@ def rules_text(request: Request, entries: Mapping[str, CatalogEntry]) -> str:
     return "\n".join(out) + "\n"
 
 
+def _outdoor_text(
+    request: Request,
+    entries: Mapping[str, CatalogEntry],
+    ground: Ground,
+    keys: dict[tuple[str, str | None, str | None], str],
+    out: list[str],
+) -> str:
+    """``rules_text`` outdoors: open ground, the ways' entries, no walls."""
+    settle(request, entries)
+    out += _ground_lines(request, entries, ground, len(request.entities) + 4)
+    out.append("")
+    for e in request.entities:  # the members ``settle`` added
+        key = (e.type, e.style, e.colour)
+        if key not in keys:
+            same = sum(1 for k in keys if k[0] == e.type)
+            keys[key] = e.type if not same else f"{e.type}_{same + 1}"
+    for (type_, style, colour), name in keys.items():
+        entry = entries[type_]
+        if entry.kind in ("path", "junction"):
+            out.append(_way_entry_text(name, entry))
+        else:
+            out.append(entry_text(name, entry, style, colour))
+    out.append("")
+    body = _production_body(request, keys, request.statements, 0, entries)
+    out += [f"{START} -> {{", *body, "}"] if body else [f"{START} -> {{ }}"]
+    return "\n".join(out) + "\n"
+
+
+def _ground_lines(
+    request: Request, entries: Mapping[str, CatalogEntry], ground: Ground, nodes: int
+) -> list[str]:
+    """The scene block of an outdoor rule set."""
+    w, d = ground_extent(request, entries, ground)
+    request.planned_size = (w, d)
+    return [
+        f"scene {scene_name(request, ground)} {{",
+        f"    extent {_number(w)} x {_number(d)}",
+        "    ground grass",
+        f"    start {START}",
+        "    max_depth 4",
+        f"    max_nodes {nodes}",
+        "}",
+    ]
+
+
+def _way_entry_text(name: str, entry: CatalogEntry) -> str:
+    """A path's or junction's catalog entry, as the catalog has it."""
+    parts = [f"noun {_quote(entry.noun)}"]
+    if entry.plural:
+        parts.append(f"plural {_quote(entry.plural)}")
+    if entry.kind == "path":
+        parts.append(
+            f"width {_number(entry.width)} max_length {_number(entry.max_length)} "
+            f"segments {entry.segments}"
+        )
+    else:
+        parts.append("size " + " x ".join(_number(v) for v in entry.size))
+        if entry.network != "organic":
+            parts.append(f"network {entry.network}")
+    parts.append(f"colour {_hex(entry.colour)}")
+    return f"{entry.kind} {name} {{ {' '.join(parts)} }}"
+
+
 def _production_body(
     request: Request,
     keys: Mapping[tuple[str, str | None, str | None], str],
     statements: list[Statement],
     windows: int,
+    entries: Mapping[str, CatalogEntry] | None = None,
 ) -> list[str]:
     """The start production's lines: the things at the top level first, then each group
-    with its members in its block, each thing with its relations to what is made before
-    it, the rest after the things of their block. A group's block sees the top level's
-    things made before it, not another group's members: a relation between members of
-    two groups cannot be written, and is left out. ``request.made`` gets the order the
-    production makes the things in."""
+    with its members in its block (their things first, then the groups among them, each
+    with its own block), each thing with its relations to what is made before it, the
+    rest after the things of their block. A group's block sees the things of the blocks
+    around it made before it, not another group's members: a relation between members
+    of two groups cannot be written, and is left out. ``request.made`` gets the order
+    the production makes the things in."""
     top = [e for e in request.entities if e.parent is None and not e.group]
+    if entries is not None:  # outdoors: the junctions and paths first
+        top = made_first(top, request, entries)
     groups = [e for e in request.entities if e.parent is None and e.group]
-    members = {g.id: [e for e in request.entities if e.parent == g.id] for g in groups}
-    order = [e.id for e in top]
-    for g in groups:
-        order += [g.id] + [m.id for m in members[g.id]]
+    members: dict[str, list] = {e.id: [] for e in request.entities if e.group}
+    for e in request.entities:
+        if e.parent is not None:
+            members[e.parent].append(e)
+    for ids in members.values():
+        ids.sort(key=lambda e: e.group)  # a block's things before its groups
+
+    def made(e) -> list[str]:
+        return [e.id] + [eid for m in members.get(e.id, []) for eid in made(m)]
+
+    order = [e.id for e in top] + [eid for g in groups for eid in made(g)]
     request.made = order
     rank = {eid: k for k, eid in enumerate(order)}
     parent = {e.id: e.parent for e in request.entities}
+
+    def around(block: str | None) -> list[str | None]:
+        """The block and the blocks around it, innermost first."""
+        out: list[str | None] = [block]
+        while out[-1] is not None:
+            out.append(parent[out[-1]])
+        return out
 
     def block_of(s: Statement) -> str | None | bool:
         """The block a statement is written in (a group's id, None for the top level),
@@ -348,8 +436,11 @@ def _production_body(
         b = parent[s.target] if isinstance(s.target, str) else a
         if a == b:
             return a
-        inner, outer = (a, s.target) if b is None else (b, s.source)
-        if a is not None and b is not None:
+        if a in around(b):
+            inner, outer = b, s.source
+        elif b in around(a):
+            inner, outer = a, s.target
+        else:
             return False  # members of two groups
         return inner if rank[outer] < rank[inner] else False
 
@@ -380,12 +471,16 @@ def _production_body(
             [keys[(e.type, e.style, e.colour)], "as", e.id, *inline.get(e.id, [])]
         )
 
+    def block(g, indent: str) -> list[str]:
+        out = [line(g, indent) + " {"]
+        for m in members[g.id]:
+            out += block(m, indent + "    ") if m.group else [line(m, indent + "    ")]
+        out += [indent + "    " + text for text in later.get(g.id, [])]
+        return out + [indent + "}"]
+
     lines = [line(e, "    ") for e in top]
     for g in groups:
-        lines.append(line(g, "    ") + " {")
-        lines += [line(m, "        ") for m in members[g.id]]
-        lines += ["        " + text for text in later.get(g.id, [])]
-        lines.append("    }")
+        lines += block(g, "    ")
     lines += ["    " + text for text in later.get(None, [])]
     return lines
 

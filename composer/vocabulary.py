@@ -15,10 +15,12 @@ import difflib
 import functools
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from types import MappingProxyType
 
 from scenewright.core.relations import RELATIONS, SIDES
 from scenewright.describer.colours import COLOUR_TERMS
+from scenewright.describer.english import number_word, ordinal_word
 from scenewright.describer.lexicon import relation_wordings
 from scenewright.generator.catalog import CatalogEntry
 
@@ -173,6 +175,18 @@ ROOMS: dict[str, tuple[str, tuple[float, float]]] = {
     "scene": ("room", (0.0, 0.0)),
 }
 
+#: Outdoor scenes, read as a room word is ("a small village"): word -> (scene name, no
+#: size of its own: the ground is made as large as what it holds needs,
+#: ``composer.outdoor.extent``).
+OUTDOOR_SCENES: dict[str, tuple[str, tuple[float, float]]] = {
+    "village": ("village", (0.0, 0.0)),
+    "hamlet": ("village", (0.0, 0.0)),
+    "town": ("town", (0.0, 0.0)),
+    "market town": ("town", (0.0, 0.0)),
+    "city": ("city", (0.0, 0.0)),
+}
+ROOMS.update(OUTDOOR_SCENES)
+
 #: Size words before a room word: factor on its default sides.
 ROOM_SIZES: dict[str, float] = {
     "tiny": 0.7,
@@ -233,6 +247,11 @@ ORDINALS: dict[str, int] = {
     "3rd": 3,
     "4th": 4,
 }
+
+#: Counts and positions past twelve and tenth, in the describer's words ("fifty-five
+#: homes", "the three hundred and fifteenth home"): a city's description counts that far.
+NUMBERS.update({number_word(n): n for n in range(13, 1000)})
+ORDINALS.update({ordinal_word(n): n for n in range(5, 1000)})
 
 COMPASS_WORDS = ("north", "east", "south", "west")
 #: A rectangle's walls by number (docs/rules-language.md, Rooms).
@@ -310,6 +329,9 @@ class Vocabulary:
     entries: Mapping[str, CatalogEntry]
     #: Group types ("row of desks"): things that consist of other things.
     groups: frozenset[str] = frozenset()
+    #: Nouns a group shares with an object type (the city's "shop", a group of a shop
+    #: building, a sign and goods): the group's sense, the object's being in ``nouns``.
+    shared: Mapping[str, NounSense] = field(default_factory=lambda: MappingProxyType({}))
 
     @functools.cached_property
     def known_words(self) -> tuple[str, ...]:
@@ -376,27 +398,41 @@ def relation_phrases() -> Mapping[str, RelationSense]:
     return _relation_phrases()
 
 
-def vocabulary(entries: Mapping[str, CatalogEntry], prefer: Iterable[str] = ()) -> Vocabulary:
-    """The vocabulary of a catalog (objects and groups: paths and junctions are not
-    composed). Where two types share a noun, one of ``prefer`` (the types a rule set
-    given as the catalog makes: a classroom's "desk" is its pupils' desk) names it."""
+def vocabulary(
+    entries: Mapping[str, CatalogEntry],
+    prefer: Iterable[str] = (),
+    synonyms: Mapping[str, str] = SYNONYMS,
+) -> Vocabulary:
+    """The vocabulary of a catalog (objects, groups, paths and junctions). Where two
+    types share a noun, one of ``prefer`` (the types a rule set given as the catalog
+    makes: a classroom's "desk" is its pupils' desk) names it. ``synonyms``: everyday
+    words for its nouns (outdoors, ``composer.outdoor.SYNONYMS``)."""
     nouns: dict[str, NounSense] = {}
     objects = {name: e for name, e in sorted(entries.items()) if e.kind == "object"}
     groups = {name: e for name, e in sorted(entries.items()) if e.kind == "group"}
+    ways = {name: e for name, e in sorted(entries.items()) if e.kind in ("path", "junction")}
     first = set(prefer)
-    ordered = sorted([*objects.values(), *groups.values()], key=lambda e: e.name not in first)
+    ordered = sorted(
+        [*objects.values(), *groups.values(), *ways.values()], key=lambda e: e.name not in first
+    )
     for entry in ordered:
         for phrase, sense in _entry_nouns(entry).items():
             nouns.setdefault(phrase, sense)
-    for word, noun in SYNONYMS.items():
+    for word, noun in synonyms.items():
         sense = nouns.get(noun.lower())
         if sense is not None and word not in nouns:
             nouns[word] = sense
-            for style in objects[sense.type].styles if not sense.exact else ():
+            for style in entries[sense.type].styles if not sense.exact else ():
                 # "a small table": the style's name before the everyday word
                 nouns.setdefault(f"{style.name} {word}", NounSense(sense.type, style.name, False))
             nouns.setdefault(_plural(word), NounSense(sense.type, sense.style, True, sense.exact))
-    return Vocabulary(nouns, relation_phrases(), objects | groups, frozenset(groups))
+    shared = {
+        phrase: sense
+        for entry in groups.values()
+        for phrase, sense in _entry_nouns(entry).items()
+        if nouns[phrase].type != entry.name and nouns[phrase].type in objects
+    }
+    return Vocabulary(nouns, relation_phrases(), objects | groups | ways, frozenset(groups), shared)
 
 
 def side_label(side: str) -> str:

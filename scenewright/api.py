@@ -360,7 +360,7 @@ def compose(
     relations it states, in the room it describes, laid out with ``seed`` and described.
 
     ``catalog``: a rule set (shipped name, path or Rules) whose object types may be
-    named besides the shipped indoor catalog's. Returns the Scene and a report: the
+    named besides the shipped indoor catalog's (outdoors: the outdoor catalog's). Returns the Scene and a report: the
     character spans used, every word or phrase not used (``report.messages()``), the
     rule set written (``report.rules``) and the statements the layout could not satisfy
     (``report.conflicts()``). ``style``, ``variant``, ``words``, ``templates``: as in
@@ -368,21 +368,17 @@ def compose(
     (``"composed"``, or the file the rule set is kept in).
     """
     from scenewright.composer.compose import RULES_LABEL, lay_out, plan, report_of
-    from scenewright.generator.rules import indoor_catalog
+    from scenewright.composer.outdoor import catalog_for
 
     check_choice("style", style, STYLES)
     templates = checked_templates(templates)  # before any work
-    entries = dict(indoor_catalog())
     allow: tuple[str, ...] = ()
-    prefer: set[str] = set()
+    own = None
     if catalog is not None:
-        from scenewright.generator.rules import created_types
-
         own = load_rules(catalog)
-        entries.update(own.catalog.entries)
         allow = (str(Path(own.path).parent),)
-        prefer = created_types(own)
-    request, rules = plan(text, entries, prefer)
+    entries, prefer, ground = catalog_for(text, own)
+    request, rules = plan(text, entries, prefer, ground)
     scene, unsatisfied, crowded = lay_out(
         rules, request, seed, label=rules_label or RULES_LABEL, allow=allow
     )

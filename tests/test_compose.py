@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.composer.compose import plan, report_of
-from scenewright.composer.parse import Place
+from scenewright.composer.request import Place
 from scenewright.composer.vocabulary import relation_phrases, vocabulary
 from scenewright.core.relations import RELATIONS, RelationLabel
 from scenewright.generator.rules import indoor_catalog
@@ -307,7 +307,7 @@ def test_every_word_is_used_or_reported(text):
     request, _ = _plan(text)
     vocab_words = set(vocabulary(indoor_catalog()).known_words)
     spans = request.used + [(i.start, i.end) for i in request.issues]
-    from scenewright.composer.parse import tokenize
+    from scenewright.composer.request import tokenize
     from scenewright.composer.vocabulary import FUNCTION_WORDS
 
     for token in tokenize(text):

@@ -10,7 +10,7 @@ import jsonschema
 import pytest
 
 from scenewright.cli import main
-from scenewright.composer.parse import tokenize
+from scenewright.composer.request import tokenize
 from scenewright.composer.vocabulary import FUNCTION_WORDS
 from scenewright.core.seeds import stream
 from scenewright.dataset.spec import METADATA_FILE, scene_seed

@@ -20,6 +20,8 @@ examples:
   scenewright compose "a living room with a sofa against the south wall, a TV on a stand opposite the sofa and a bookshelf by the window" -o living/
   scenewright compose "a small room with a piano" --catalog my_music.rules --strict
   scenewright compose "a bedroom with a double bed against the north wall" --complete -o full/
+  scenewright compose "a village with two roads meeting at a crossroads, a well next to the first road and three cottages along the second road" -o village/
+  scenewright compose "$(cat village_description.txt)" --catalog village --seed 3
 
 writes what generate writes (scene.json, description.txt, preview.png, scene.glb,
 plan.png). Words or phrases it could not use are listed as LINE:COL-COL: message, with
@@ -27,7 +29,9 @@ the nearest known word; --strict makes that an error (exit 2, nothing written). 
 statement the layout could not satisfy is named with the statements it shares things
 with, and the exit code is 1 (the files are kept). --rules-out keeps the rule set it
 composed, to edit and generate from like any other. --complete adds, around what the
-text asked for (kept where it stands), what a room of that kind usually holds.""",
+text asked for (kept where it stands), what a room of that kind usually holds. A text
+that names a village, town or city, a road or a junction is composed outdoors, with
+the outdoor catalog (the shipped village, town and city's types).""",
 }
 
 
@@ -71,18 +75,18 @@ def run_compose(args: argparse.Namespace) -> int:
 
     from scenewright.api import compose
     from scenewright.composer.compose import plan, write_rules
-    from scenewright.generator.rules import indoor_catalog
+    from scenewright.composer.outdoor import catalog_for
     from scenewright.scene_folder import check_scene_folder, write_scene
 
     text = sys.stdin.read() if args.text == "-" else args.text
     check_scene_folder(args.output)
     if args.strict:  # refuse before any layout, and before anything is written
-        entries = dict(indoor_catalog())
+        own = None
         if args.catalog:
             from scenewright.api import load_rules
 
-            entries.update(load_rules(args.catalog).catalog.entries)
-        request, _ = plan(text, entries)
+            own = load_rules(args.catalog)
+        request, _ = plan(text, *catalog_for(text, own))
         if request.issues:
             from scenewright.composer.compose import report_of
 

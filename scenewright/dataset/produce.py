@@ -111,7 +111,7 @@ class WorkerContext:
     """What a worker builds once and reuses for every scene it makes."""
 
     settings: dict
-    rules: Rules | None  # None: scenes composed from prompts with the indoor catalog alone
+    rules: Rules | None  # None: scenes composed from prompts with the shipped catalogs alone
     renderer: Renderer | None  # None for a dataset without images
     context: LearnedContext | None = None  # the learned context layouts sample with
     prompts: tuple[str, ...] = ()  # a prompts dataset's requests
