@@ -74,6 +74,9 @@ _AROUND = ("around", "round", "surrounding", "about")
 _CORNERS = (("north", "west"), ("east", "north"), ("south", "east"), ("west", "south"))
 
 
+#: Why a room of a second kind in one text is not made.
+SECOND_ROOM_NOTE = "a text makes one room; rooms of several kinds are a house plan (docs/houses.md)"
+
 #: ``_Reader.matching``'s "wherever it is": no group named for it.
 _ANYWHERE = "*"
 
@@ -676,6 +679,11 @@ class _Reader:
                 pending = None  # "a piano in the living room": the room it is in
                 word, dims, factor = value
                 name = ROOMS[word][0]
+                if name not in ("room", self.req.room) and self.req.room != "room":
+                    # "The flat has a hall, a kitchen and ...": one text makes one room
+                    self._unused(toks, i, i + n, SECOND_ROOM_NOTE)
+                    i += n
+                    continue
                 if name != "room" or self.req.room == "room":
                     self.req.room = name
                 if dims is not None:

@@ -741,3 +741,19 @@ def test_in_a_row_either_side_and_the_centre_of():
     assert not request.issues
     request, _ = _plan("a lamp in the centre of the desk")
     assert _facts(request) == {("lamp", "OnTopOfMiddle", "desk")}
+
+
+def test_a_second_kind_of_room_is_reported_not_silently_merged():
+    """A house's overview names rooms of several kinds: one text makes one room (the
+    first), and every other room word is reported with where a house is written."""
+    text = "The flat has a hall, a kitchen and a bedroom. The hall consists of a dresser."
+    request, rules = plan(text, indoor_catalog())
+    assert request.room == "hall" and _types(request) == ["dresser"]
+    reported = [
+        m for m in report_of(text, request, rules).messages() if "a text makes one room" in m
+    ]
+    assert [m.split("'")[1] for m in reported] == ["kitchen", "bedroom"]
+    # the same kind again ("guest room" is a bedroom) is the same room, not a second one
+    text = "a guest room with a bed. The bedroom has a rug."
+    request, rules = plan(text, indoor_catalog())
+    assert not [m for m in report_of(text, request, rules).messages() if "one room" in m]
