@@ -13,6 +13,7 @@ import ctypes.util
 import importlib
 import os
 import sys
+import threading
 import types
 from dataclasses import dataclass
 from functools import lru_cache
@@ -92,21 +93,28 @@ def _import_without_viewer():
     real viewer when called, and the stand-in is gone from ``sys.modules`` afterwards,
     so ``from pyrender.viewer import Viewer`` still gets the real one.
     """
-    if "pyrender" in sys.modules:
-        return sys.modules["pyrender"]
+    # One thread at a time (a dask worker's threads each start a renderer): another
+    # thread must neither see the stand-in come and go nor take a pyrender still being
+    # imported; import_module waits for a module another thread is importing.
+    with _IMPORTING:
+        if "pyrender" in sys.modules:
+            return importlib.import_module("pyrender")
 
-    def viewer(*args, **kwargs):
-        from pyrender.viewer import Viewer
+        def viewer(*args, **kwargs):
+            from pyrender.viewer import Viewer
 
-        return Viewer(*args, **kwargs)
+            return Viewer(*args, **kwargs)
 
-    stand_in = types.ModuleType("pyrender.viewer")
-    stand_in.Viewer = viewer  # type: ignore[attr-defined]
-    sys.modules["pyrender.viewer"] = stand_in
-    try:
-        return importlib.import_module("pyrender")
-    finally:
-        del sys.modules["pyrender.viewer"]
+        stand_in = types.ModuleType("pyrender.viewer")
+        stand_in.Viewer = viewer  # type: ignore[attr-defined]
+        sys.modules["pyrender.viewer"] = stand_in
+        try:
+            return importlib.import_module("pyrender")
+        finally:
+            del sys.modules["pyrender.viewer"]
+
+
+_IMPORTING = threading.Lock()
 
 
 @dataclass(frozen=True)

@@ -91,3 +91,50 @@ def test_one_shadow_lookup_changes_only_the_edges_of_shadows():
         and np.median(changed[changed > 0]) <= 8
         and (changed > 20).mean() < 0.01
     )
+
+
+#: A new process in which eight threads load pyrender at once, as a dask worker's
+#: threads each start a renderer; it prints how many could not.
+RACE = """
+import threading
+from scenewright.render.gl_backend import load_pyrender
+errors = []
+barrier = threading.Barrier(8)
+def load():
+    barrier.wait()
+    try:
+        load_pyrender().OffscreenRenderer
+    except Exception as error:
+        errors.append(repr(error))
+threads = [threading.Thread(target=load) for _ in range(8)]
+for thread in threads:
+    thread.start()
+for thread in threads:
+    thread.join()
+print(len(errors), errors[:1])
+"""
+
+
+def test_threads_loading_pyrender_at_once_each_get_all_of_it():
+    """pyrender is imported with a stand-in for its viewer; before the import took a
+    lock, 7 of 8 threads got the module half imported ("no attribute
+    'OffscreenRenderer'") and a dask dataset failed."""
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", RACE], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split()[0] == "0", done.stdout
+    # and the viewer pyrender offers is still its own, imported when asked for
+    viewer = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import sys; from scenewright.render.gl_backend import load_pyrender;"
+            "load_pyrender(); print('pyglet' in sys.modules);"
+            "from pyrender.viewer import Viewer; print(Viewer.__module__)",
+        ],
+        capture_output=True,
+        text=True,
+    )
+    assert viewer.stdout.split() == ["False", "pyrender.viewer"], viewer.stderr
