@@ -16,6 +16,9 @@ from render_fixtures import market_scene, preview_and_glb, thing
 from scenewright.core.relations import Relation
 from scenewright.render.export import export_glb
 
+#: Opens a real client on exported files: one of the slow end-to-end tests.
+pytestmark = pytest.mark.slow
+
 PROBE = Path(__file__).resolve().parent.parent / "scripts" / "blender_render.py"
 WIDTH, HEIGHT = 160, 120
 

@@ -144,6 +144,7 @@ def test_bad_requests_exit_2_on_one_line_and_write_nothing(capsys, tmp_path, arg
     assert not target.exists() or not any(target.iterdir())
 
 
+@pytest.mark.slow
 def test_the_same_request_and_seed_give_the_same_scene_json_and_explain_draws_the_mask(tmp_path):
     argv = [
         "complete",
@@ -429,6 +430,7 @@ def test_add_needs_a_scene_and_a_scene_needs_a_room(tmp_path, capsys):
     assert "only an indoor scene can be completed" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_a_tries_restart_waits_its_own_patience(model, catalog):
     # A crowded room: both chains fail. The restart alone gives up sooner; the first
     # chain is the same either way.

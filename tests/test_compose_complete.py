@@ -29,6 +29,7 @@ def test_complete_adds_around_what_the_text_asked_for(tmp_path):
     assert after["completion"]["counts"]["bed"] == 1
 
 
+@pytest.mark.slow
 def test_a_kept_lamp_is_not_lifted_onto_a_support_the_completion_adds(tmp_path):
     out = tmp_path / "lamps"
     code = main(["compose", "a room with two lamps", "--complete", "--no-render", "-o", str(out)])

@@ -257,6 +257,7 @@ def test_the_fork_servers_preload_survives_a_missing_opengl_backend():
     assert "scenewright.dataset.worker_preload" in scenewright.dataset.run.WORKER_MODULES
 
 
+@pytest.mark.slow
 def test_shrinking_lists_only_scenes_below_n_and_growing_back_makes_nothing(tmp_path):
     grown = tmp_path / "grown"
     run_dataset(spec_of(9), grown, workers=1, producer=fake_scene, progress=False)

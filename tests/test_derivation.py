@@ -252,7 +252,10 @@ def test_the_recorded_values_decide_the_graph(stalls):
     assert graph.derivation == skipped
 
 
-@pytest.mark.parametrize("name", shipped_rule_sets())
+@pytest.mark.parametrize(
+    "name",
+    [pytest.param(n, marks=pytest.mark.slow) if n == "city" else n for n in shipped_rule_sets()],
+)
 def test_shipped_rule_sets_trace_nodes_that_exist_and_one_style_per_styled_node(name):
     rules = load_rules(name)
     styled = {entry.name for entry in rules.catalog if len(entry.styles) > 1}

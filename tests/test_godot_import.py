@@ -16,6 +16,9 @@ from render_fixtures import assert_preview_hues, market_scene, renderer_or_skip
 
 from scenewright.render.export import export_glb
 
+#: Opens a real client on exported files: one of the slow end-to-end tests.
+pytestmark = pytest.mark.slow
+
 SCRIPT = Path(__file__).resolve().parent.parent / "scripts" / "godot_render.py"
 WIDTH, HEIGHT = 160, 120
 

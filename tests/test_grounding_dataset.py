@@ -166,6 +166,7 @@ def test_a_rerun_with_other_caption_settings_is_refused(tmp_path, capsys):
     assert "made with other settings (frame 'camera' -> 'scene')" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_a_word_budget_shortens_the_text_column_and_grounds_what_it_says(tmp_path, capsys):
     """--text-words: the row's text is the most detailed description within the budget,
     grounded like the full one; scene.json keeps the full description; a rerun with

@@ -97,6 +97,7 @@ def test_the_scratch_folder_of_a_killed_run_is_removed_by_the_next(tmp_path, mon
     assert not folder.exists()
 
 
+@pytest.mark.slow
 def test_learn_writes_nothing_when_its_context_cannot_be_written(tmp_path, capsys):
     out = tmp_path / "out"
     (out / "d.context.json").mkdir(parents=True)

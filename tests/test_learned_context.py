@@ -587,6 +587,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     _one_line_error(capsys)
 
 
+@pytest.mark.slow
 def test_dataset_lays_out_with_the_context_beside_the_rules_and_keeps_to_it(tmp_path, capsys):
     rules = tmp_path / "dining.rules"
     rules.write_text(DINING.read_text())

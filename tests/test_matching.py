@@ -247,6 +247,7 @@ def test_unlifted_relaxation_takes_the_better_sign_and_spectral_the_better_relax
     assert problem.energy(solve(problem, refined=False)) == pytest.approx(best)
 
 
+@pytest.mark.slow
 def test_rows_of_identical_desks_reach_the_true_matching_energy():
     # Classrooms against their disguised copies: rows of identical desks, where the
     # lifted relaxation alone stops short of the true matching and the start from the

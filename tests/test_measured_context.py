@@ -11,6 +11,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 from test_cli import assert_one_line_error, run
 from test_learned_context import DINING, dining_examples
 
@@ -164,6 +165,7 @@ def test_fit_what_context_reads_hand_written_examples(tmp_path, capsys):
     )
 
 
+@pytest.mark.slow
 def test_learn_writes_a_context_beside_the_rules_it_induces(tmp_path, capsys):
     out = tmp_path / "bedrooms.rules"
     code, stdout, err = run(

@@ -115,6 +115,7 @@ print(len(errors), errors[:1])
 """
 
 
+@pytest.mark.slow
 def test_threads_loading_pyrender_at_once_each_get_all_of_it():
     """pyrender is imported with a stand-in for its viewer; before the import took a
     lock, 7 of 8 threads got the module half imported ("no attribute

@@ -75,6 +75,7 @@ def drawn_texts(axes):
     ]
 
 
+@pytest.mark.slow
 def test_a_300_object_plan_names_most_objects_without_one_label_over_another(tmp_path, monkeypatch):
     from matplotlib.figure import Figure
 

@@ -14,6 +14,9 @@ import pytest
 from PIL import Image
 from render_fixtures import assert_preview_hues, market_scene, preview_and_glb
 
+#: Opens a real client on exported files: one of the slow end-to-end tests.
+pytestmark = pytest.mark.slow
+
 SCRIPT = Path(__file__).resolve().parent.parent / "scripts" / "threejs_render.py"
 WIDTH, HEIGHT = 160, 120
 
