@@ -36,7 +36,7 @@ from scenewright.core.scene import Scene, SceneObject
 
 from .layout.problem import FLAT_HEIGHT
 from .layout.reachability import access_grid, floor_verdict
-from .layout.room_terms import WINDOW_VIEW_MARGIN, swing_rect, view_rect
+from .layout.room_zones import WINDOW_VIEW_MARGIN, swing_rect, view_rect
 
 #: Depth (metres) two boxes, or a box and a wall, may run into each other unseen.
 TOLERANCE = 0.01

@@ -23,7 +23,8 @@ from scenewright.generator.layout import LayoutParams, layout_scene, measure_lay
 from scenewright.generator.layout.energy import Energy
 from scenewright.generator.layout.problem import compile_problem
 from scenewright.generator.layout.reachability import CORRIDOR_HALF, QUANTUM, AccessGrid
-from scenewright.generator.layout.room_terms import ACCESS_BASE, ROOM_PARTS, SQUARE_SIGMA2, Walls
+from scenewright.generator.layout.room_terms import ACCESS_BASE, ROOM_PARTS, SQUARE_SIGMA2
+from scenewright.generator.layout.room_zones import Walls
 from scenewright.generator.layout.sampler import Relocator, metropolis, start_chain
 from scenewright.generator.layout.state import State
 from scenewright.generator.layout.synthetic import village_graph
