@@ -89,11 +89,11 @@ from .induction import (
 from .pose_labels import (
     CATEGORIES,
     RESTING_CATEGORIES,
-    SQUARE_ASPECT,
     STANDING_CATEGORIES,
     hand_placed,
     most_specific,
     pair_holds,
+    square_footprint,
     support_room,
     wall_holds,
 )
@@ -284,11 +284,6 @@ def _supporters(object_id: str, supports: dict[str, str]) -> list[str]:
     return chain
 
 
-def _square(size: Sequence[float]) -> bool:
-    """Whether a footprint of ``size`` (W x H x D) is square within ``SQUARE_ASPECT``."""
-    return max(size[0], size[2]) <= SQUARE_ASPECT * min(size[0], size[2])
-
-
 def edge_instances(
     scenes: Sequence[Scene],
     supports: Sequence[dict[str, str]],
@@ -339,7 +334,12 @@ def edge_instances(
                 host.position[0], host.position[2], host.yaw, obj.position[0], obj.position[2]
             )
             yaw = obj.yaw
-            if against_wall and not rests and scene.room is not None and _square(obj.size):
+            if (
+                against_wall
+                and not rests
+                and scene.room is not None
+                and square_footprint(obj.size[0], obj.size[2])
+            ):
                 yaw = hand_placed(obj, scene.room)[2]
             poses.append((x, z, wrap_angle(yaw - host.yaw)))
             resting.append(rests)
@@ -373,9 +373,7 @@ def pose_features(
     turn = poses[:, 2]
     weight = np.full(len(poses), TURN_METRES)
     if child_sizes is not None and len(child_sizes):
-        width, depth = child_sizes[:, 0], child_sizes[:, 2]
-        square = np.maximum(width, depth) <= SQUARE_ASPECT * np.minimum(width, depth)
-        weight[square] = 0.0
+        weight[square_footprint(child_sizes[:, 0], child_sizes[:, 2])] = 0.0
     return np.column_stack(
         [
             poses[:, 0],

@@ -160,6 +160,12 @@ HAND_GAP = 0.15
 SQUARE_ASPECT = 1.2
 
 
+def square_footprint(width, depth):
+    """Whether a footprint ``width`` x ``depth`` is square within ``SQUARE_ASPECT`` (a
+    floor lamp, a plant: a person turns such a thing any way); elementwise on arrays."""
+    return np.maximum(width, depth) <= SQUARE_ASPECT * np.minimum(width, depth)
+
+
 def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     """(x, z, yaw) of a standing object as its placer meant it against the walls
     (``HAND_GAP``, ``SQUARE_ASPECT``): unchanged where no wall is that near."""
@@ -186,7 +192,7 @@ def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     )
     if not near:
         return x, z, yaw
-    if max(obj.size[0], obj.size[2]) <= SQUARE_ASPECT * min(obj.size[0], obj.size[2]):
+    if square_footprint(obj.size[0], obj.size[2]):
         yaw = room.walls[near[0][1]].facing_yaw  # a round thing's turn means nothing
     for _, k in near:
         wall = room.walls[k]

@@ -20,7 +20,7 @@ from scenewright.core.frames import footprint_reach_many, to_local_many
 from scenewright.core.scene import Scene
 from scenewright.core.seeds import stream
 
-from .pose_labels import SQUARE_ASPECT
+from .pose_labels import square_footprint
 from .relation_thresholds import MAX_SCENES, PATH_STEP
 
 
@@ -286,7 +286,7 @@ def square(poses: TypePoses) -> bool:
     if len(valid) == 0:
         return False
     width, depth = np.median(valid, axis=0)
-    return bool(max(width, depth) <= SQUARE_ASPECT * min(width, depth))
+    return bool(square_footprint(width, depth))
 
 
 def hand_placed_poses(poses: np.ndarray, square_b: bool) -> np.ndarray:
