@@ -46,7 +46,7 @@ import numpy as np
 
 from scenewright.completion.plan_model import AccessorySlot, PlanModel
 from scenewright.core.frames import to_local, to_world
-from scenewright.core.geometry import make_rect, rect_distance, wrap_angle
+from scenewright.core.geometry import rect_distance, wrap_angle
 from scenewright.core.poses import Pose
 from scenewright.core.relations import BESIDE_REACH, SEAT_REACH
 
@@ -113,14 +113,14 @@ def anchor_of(
         return (support, True) if support is not None else None
     if is_flat(piece, catalog):
         return None
-    own = make_rect(*piece.center, *piece.size, piece.yaw)
+    own = piece.rect
     best = None
     for other in pieces:
         if other.id == piece.id or other.on is not None or other.area <= piece.area:
             continue
         if is_flat(other, catalog):
             continue
-        gap = rect_distance(own, make_rect(*other.center, *other.size, other.yaw))
+        gap = rect_distance(own, other.rect)
         if gap <= ACCESSORY_GAP and (best is None or (gap, other.id) < best[0]):
             best = ((gap, other.id), other)
     return (best[1], False) if best is not None else None
@@ -155,8 +155,8 @@ def relative_pose(piece: Furniture, anchor: Furniture, on: bool) -> dict:
         }
     side = _side_of(abs(lx) - half_w >= abs(lz) - half_d, lx, lz)
     gap = rect_distance(
-        make_rect(*piece.center, *piece.size, piece.yaw),
-        make_rect(*anchor.center, *anchor.size, anchor.yaw),
+        piece.rect,
+        anchor.rect,
     )
     back = min(z for _, z in corners)
     flush = abs(yaw) <= PARALLEL and abs(back + half_d) <= FLUSH

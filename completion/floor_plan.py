@@ -31,6 +31,7 @@ from jsonschema.exceptions import best_match
 from scenewright.core.errors import InputError, RoomError
 from scenewright.core.files import UnusableFile, load_json, read_regular_file
 from scenewright.core.frames import footprint_corners
+from scenewright.core.geometry import Rect, make_rect
 from scenewright.core.room import Room
 from scenewright.core.schema_check import json_path, load_schema, schema_message
 
@@ -63,6 +64,11 @@ class Furniture:
     @property
     def area(self) -> float:
         return self.size[0] * self.size[1]
+
+    @cached_property
+    def rect(self) -> Rect:
+        """The footprint as ``core.geometry`` measures it."""
+        return make_rect(*self.center, *self.size, self.yaw)
 
     @cached_property
     def corners(self) -> list[tuple[float, float]]:

@@ -159,9 +159,6 @@ class AccessorySlot:
     gap: float
     flush: float
 
-    def to_dict(self) -> dict:
-        return asdict(self)  # fields in order, nested slots and anchors as dicts
-
 
 @dataclass
 class AccessoryAnchor:
@@ -172,9 +169,6 @@ class AccessoryAnchor:
     pieces: int
     most: int
     slots: list[AccessorySlot]
-
-    def to_dict(self) -> dict:
-        return asdict(self)  # fields in order, nested slots and anchors as dicts
 
 
 @dataclass

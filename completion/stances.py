@@ -41,7 +41,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from scenewright.core.frames import forward, left, to_local
-from scenewright.core.geometry import make_rect, rect_distance, wrap_angle
+from scenewright.core.geometry import rect_distance, wrap_angle
 
 if TYPE_CHECKING:
     from scenewright.completion.floor_plan import Furniture, Plan
@@ -110,11 +110,7 @@ def in_row(piece: Furniture, other: Furniture) -> bool:
     # Beside it, not before or behind it, and the other's back in line with this one's.
     if abs(lx) < piece.size[0] / 2.0 or abs(lz - other.size[1] / 2.0 + piece.size[1] / 2.0) > FLUSH:
         return False
-    gap = rect_distance(
-        make_rect(*piece.center, *piece.size, piece.yaw),
-        make_rect(*other.center, *other.size, other.yaw),
-    )
-    return gap <= ROW_GAP
+    return rect_distance(piece.rect, other.rect) <= ROW_GAP
 
 
 def before_of(piece: Furniture, others: Sequence[Furniture]) -> Furniture | None:
