@@ -143,14 +143,12 @@ class _Reader(PhraseReader):
         way = network_phrase([t.low for t in toks[i : i + 8]], NUMBERS)
         if way is not None:  # "meeting at an intersection": composer/ways.py
             return way[0], (str(way[1]),), way[2]
-        for phrase in _SIDES_OF:
-            words = phrase.split()
-            if [t.low for t in toks[i : i + len(words)]] == words:
-                return "sides", None, len(words)
-        for phrase in _SIDES + BARE_SIDES:
-            words = phrase.split()
-            if [t.low for t in toks[i : i + len(words)]] == words:
-                return "sides of it", None, len(words)
+        n = phrase_at(toks, i, _SIDES_OF)
+        if n:
+            return "sides", None, n
+        n = phrase_at(toks, i, _SIDES + BARE_SIDES)
+        if n:
+            return "sides of it", None, n
         if [t.low for t in toks[i : i + 2]] == ["flanked", "by"]:  # the passive
             return "flanked", None, 2
         k = i
