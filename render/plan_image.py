@@ -1,4 +1,4 @@
-"""A top-down plan image of a laid-out scene (matplotlib, Agg backend, no display).
+"""A top-down plan image of a laid-out scene, drawn with Pillow on a ``plan_page.PlanPage``.
 
 North (-Z) is up and east (+X) right, as on a map. Drawn: the scene extent, or in a
 room its walls (grey, their true thickness behind the inner faces, mitred at the corners
@@ -31,35 +31,27 @@ from pathlib import Path
 
 import numpy as np
 
-# A Figure of its own, not pyplot: pyplot's figure manager and backend machinery cost a
-# noticeable part of a command's start-up and are not needed to save a PNG.
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
-from matplotlib.patches import Polygon, Rectangle
-from matplotlib.patheffects import withStroke
-
 from scenewright.core.frames import forward
 from scenewright.core.house import ID_SEPARATOR, House, in_room
 from scenewright.core.room import ROOM_NODE, WALL_THICKNESS, Room
 from scenewright.core.scene import Scene, object_corners
 from scenewright.render.house_view import inward_normal, wall_openings, wall_reach
 from scenewright.render.meshes import wall_footprint
+from scenewright.render.plan_page import DPI, POINT, PlanPage, text_box
 
-#: Pixels per inch of the saved image.
-DPI = 110
-#: The picture's larger side in inches: ``BASE_INCHES`` up to ``BASE_LABELS`` labels,
-#: growing with the square root of their number (so their density on the page stays
-#: the same) up to ``MAX_INCHES``.
+#: The picture's larger side in inches (of ``plan_page.DPI`` pixels): ``BASE_INCHES``
+#: up to ``BASE_LABELS`` labels, growing with the square root of their number (so their
+#: density on the page stays the same) up to ``MAX_INCHES``.
 BASE_INCHES = 9.0
 BASE_LABELS = 60
 MAX_INCHES = 24.0
 #: Where a label may go, tried in turn: on its anchor, then above, below, right and
-#: left of it (in points; the anchor is the text's centre).
+#: left of it (in points, y up; the anchor is the text's centre).
 LABEL_OFFSETS = ((0, 0), (0, 7), (0, -7), (14, 0), (-14, 0), (10, 7), (-10, 7), (10, -7), (-10, -7))
-#: A thin light outline around every label's letters.
-HALO = withStroke(linewidth=1.5, foreground="white", alpha=0.8)
 #: Label ranks: lower goes first (see the module docstring).
 ROOM_NAME, RELATION, PATH, INVOLVED, OBJECT = range(5)
+#: Greys of the walls and the doors' leaves.
+WALL_FILL, WALL_EDGE, LEAF, ARC = "#737373", "#404040", "#333333", "#4d4d4d"
 
 
 @dataclass
@@ -82,68 +74,65 @@ def draw_plan(scene: Scene, path) -> Path:
     involved = {relation.source for relation in unsatisfied} | {
         relation.target for relation in unsatisfied
     }
-    labels: list[Label] = []
-    size = figure_inches(len(scene.objects) + len(scene.paths) + len(unsatisfied))
-    # At the saved resolution from the start: the label boxes are measured as saved.
-    figure = Figure(figsize=(size, size * depth / width + 0.6), dpi=DPI)
-    FigureCanvasAgg(figure)  # label sizes are measured with the Agg renderer
-    axes = figure.subplots()
-    axes.set_aspect("equal")
-    # Data y is z; inverting the axis puts north (-Z) at the top of the picture.
+    margin = 0.05 * max(width, depth)
+    if scene.room is not None or scene.house is not None:  # walls and openings' labels
+        margin = max(margin, WALL_THICKNESS + 0.5)
+    # A house lies where its footprint is (a given plan need not be centred).
+    x0, z0 = -width / 2, -depth / 2
     if scene.house is not None:
-        labels += _draw_house(axes, scene.house)
+        x0 = min(x for x, _z in scene.house.footprint)
+        z0 = min(z for _x, z in scene.house.footprint)
+    inches = figure_inches(len(scene.objects) + len(scene.paths) + len(unsatisfied))
+    page = PlanPage(
+        (x0 - margin, x0 + width + margin), (z0 - margin, z0 + depth + margin), inches * DPI
+    )
+    labels: list[Label] = []
+    for road in scene.paths:  # under everything else
+        page.line(road.points, road.colour, metres_wide=road.width, alpha=0.8)
+        page.dots(road.points, 1.2, "black")
+        end = road.points[-1]
+        labels.append(Label(road.id, (end[0], end[1]), PATH, size=7, colour="saddlebrown"))
+    if scene.house is not None:
+        labels += _draw_house(page, scene.house)
     elif scene.room is None:
-        axes.add_patch(
-            Rectangle((-width / 2, -depth / 2), width, depth, fill=False, lw=1.5, ec="black")
+        page.polygon(
+            [
+                (-width / 2, -depth / 2),
+                (width / 2, -depth / 2),
+                (width / 2, depth / 2),
+                (-width / 2, depth / 2),
+            ],
+            None,
+            "black",
+            width=1.5,
         )
     else:
-        labels += _draw_room(axes, scene.room)
-    points_per_metre = _points_per_metre(figure, axes, width, depth)
-    for road in scene.paths:
-        xs = [p[0] for p in road.points]
-        zs = [p[1] for p in road.points]
-        axes.plot(
-            xs,
-            zs,
-            color=road.colour,
-            lw=road.width * points_per_metre,
-            solid_capstyle="round",
-            alpha=0.8,
-            zorder=1,
-        )
-        axes.plot(xs, zs, "k.", ms=3, zorder=2)
-        labels.append(Label(road.id, (xs[-1], zs[-1]), PATH, size=7, colour="saddlebrown"))
+        labels += _draw_room(page, scene.room)
     centres = {}
-    for obj in scene.objects:
-        centres[obj.id] = (obj.position[0], obj.position[2])
-        if obj.kind == "group":
-            continue
-        corners = object_corners([obj])[0]
+    ticks = []
+    footprints = [obj for obj in scene.objects if obj.kind != "group"]
+    corners = dict(zip([o.id for o in footprints], object_corners(footprints), strict=True))
+    # Things standing on others go over them.
+    for obj in sorted(footprints, key=lambda o: o.position[1] > 1e-6):
         if obj.kind == "junction":
-            axes.add_patch(
-                Polygon(corners, closed=True, fc="tan", ec="saddlebrown", lw=1, zorder=2)
-            )
+            page.polygon(corners[obj.id], "tan", "saddlebrown", width=1.0)
             continue
-        stacked = obj.position[1] > 1e-6
-        axes.add_patch(
-            Polygon(
-                corners,
-                closed=True,
-                fc=obj.colour,
-                ec="black",
-                lw=0.6,
-                alpha=0.9,
-                zorder=4 if stacked else 3,
-            )
-        )
+        page.polygon(corners[obj.id], obj.colour, "black", width=0.6, alpha=0.9)
         reach = obj.size[2] / 2.0
         x, z = obj.position[0], obj.position[2]
         fx, fz = forward(obj.yaw)
-        axes.plot([x, x + fx * reach], [z, z + fz * reach], color="black", lw=0.8, zorder=5)
+        ticks.append([(x, z), (x + fx * reach, z + fz * reach)])
+    for tick in ticks:
+        page.line(tick, "black", 0.8)
+    for obj in scene.objects:
+        centres[obj.id] = (obj.position[0], obj.position[2])
+        if obj.kind in ("group", "junction"):
+            continue
         rank = INVOLVED if obj.id in involved else OBJECT
         # In a house the room's name is written in it: an object goes by its own id there.
         text = obj.id.partition(ID_SEPARATOR)[2] if scene.house is not None else obj.id
-        labels.append(Label(text or obj.id, (x, z), rank, weight=obj.size[0] * obj.size[2]))
+        weight = obj.size[0] * obj.size[2]
+        labels.append(Label(text or obj.id, centres[obj.id], rank, weight=weight))
     for road in scene.paths:
         mid = road.points[len(road.points) // 2]
         centres[road.id] = (mid[0], mid[1])
@@ -166,32 +155,15 @@ def draw_plan(scene: Scene, path) -> Path:
         if relation.source not in centres or target not in centres:
             continue
         (sx, sz), (tx, tz) = centres[relation.source], centres[target]
-        axes.plot([sx, tx], [sz, tz], color="red", lw=1.2, ls="--", zorder=7)
+        page.line([(sx, sz), (tx, tz)], "red", 1.2, style="dashed")
         labels.append(
             Label(relation.label, ((sx + tx) / 2, (sz + tz) / 2), RELATION, size=6, colour="red")
         )
-    margin = 0.05 * max(width, depth)
-    if scene.room is not None or scene.house is not None:  # walls and openings' labels
-        margin = max(margin, WALL_THICKNESS + 0.5)
-    # A house lies where its footprint is (a given plan need not be centred).
-    x0, z0 = -width / 2, -depth / 2
-    if scene.house is not None:
-        x0 = min(x for x, _z in scene.house.footprint)
-        z0 = min(z for _x, z in scene.house.footprint)
-    axes.set_xlim(x0 - margin, x0 + width + margin)
-    axes.set_ylim(z0 + depth + margin, z0 - margin)
-    axes.set_xlabel("x (east) [m]")
-    axes.set_ylabel("z (south) [m]")
-    left_out = len(labels) - place_labels(axes, labels)
+    left_out = len(labels) - place_labels(page, labels)
     status = "ok" if scene.layout.ok else f"{len(scene.layout.problems)} problems"
     crowded = f"  ({left_out} of {len(labels)} labels left out: no room)" if left_out else ""
-    axes.set_title(
-        f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}{crowded}",
-        fontsize=9,
-    )
-    target = Path(path)
-    figure.savefig(target, dpi=DPI, bbox_inches="tight")
-    return target
+    title = f"{scene.rules}  seed {scene.seed}  energy {scene.layout.energy:.2f}  {status}{crowded}"
+    return page.save(Path(path), title, "x (east) [m]", "z (south) [m]")
 
 
 def figure_inches(labels: int) -> float:
@@ -199,46 +171,22 @@ def figure_inches(labels: int) -> float:
     return min(MAX_INCHES, BASE_INCHES * max(1.0, math.sqrt(labels / BASE_LABELS)))
 
 
-def place_labels(axes, labels: list[Label]) -> int:
-    """Draw the labels that find room, each at the first of ``LABEL_OFFSETS`` from its
-    anchor where its box overlaps no label drawn before and stays inside the axes, in
-    order of rank and then weight; return how many were drawn. The axes' limits and
-    aspect must be final (the boxes are measured on the page)."""
-    renderer = axes.figure.canvas.get_renderer()
-    axes.apply_aspect()
-    inside = axes.get_window_extent(renderer)
-    points = axes.figure.dpi / 72.0  # pixels per point
+def place_labels(page: PlanPage, labels: list[Label]) -> int:
+    """Place the labels that find room on ``page``, each at the first of
+    ``LABEL_OFFSETS`` from its anchor where its box overlaps no label placed before and
+    stays inside the plot, in order of rank and then weight; return how many were."""
     taken = _BoxGrid()
     placed = 0
     for label in sorted(labels, key=lambda label: (label.rank, -label.weight)):
-        text = axes.annotate(
-            label.text,
-            label.anchor,
-            xytext=(0, 0),
-            textcoords="offset points",
-            fontsize=label.size,
-            color=label.colour,
-            ha="center",
-            va="center",
-            zorder=8 if label.rank == RELATION else 6,
-            path_effects=[HALO],  # readable over footprints, roads and dashed lines
-        )
-        centred = text.get_window_extent(renderer)  # measured once, then moved
+        ax, ay = page.anchor(*label.anchor)
+        centred = text_box(label.text, label.size).translated(ax, ay)  # measured once, then moved
         for dx, dy in LABEL_OFFSETS:
-            box = centred.translated(dx * points, dy * points)
-            fits = (
-                inside.x0 <= box.x0
-                and box.x1 <= inside.x1
-                and inside.y0 <= box.y0
-                and box.y1 <= inside.y1
-            )
-            if fits and not taken.overlaps(box):
-                text.xyann = (dx, dy)
+            box = centred.translated(dx * POINT, -dy * POINT)
+            if box.within(page.plot) and not taken.overlaps(box):
+                page.place(label.text, box, label.colour, label.size)
                 taken.add(box)
                 placed += 1
                 break
-        else:
-            text.remove()
     return placed
 
 
@@ -266,14 +214,12 @@ class _BoxGrid:
             self.cells.setdefault(cell, []).append(box)
 
 
-def _draw_room(axes, room: Room) -> list[Label]:
+def _draw_room(page: PlanPage, room: Room) -> list[Label]:
     """The room's walls, doors and windows (see the module docstring); returns the
     openings' labels."""
     labels = []
     for wall in room.walls:
-        axes.add_patch(
-            Polygon(wall_footprint(room, wall), closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2)
-        )
+        page.polygon(wall_footprint(room, wall), WALL_FILL, WALL_EDGE, width=0.6)
     for opening in room.openings:
         wall = room.part(opening.wall)
         u0, u1 = opening.span
@@ -285,31 +231,24 @@ def _draw_room(axes, room: Room) -> list[Label]:
             wall.to_world(u0, -thickness),
         ]
         if opening.kind == "window":
-            axes.add_patch(
-                Polygon(hole, closed=True, fc="lightblue", ec="steelblue", lw=0.6, zorder=2.5)
-            )
+            page.polygon(hole, "lightblue", "steelblue", width=0.6)
             mid = [wall.to_world(u0, -thickness / 2.0), wall.to_world(u1, -thickness / 2.0)]
-            axes.plot(
-                [p[0] for p in mid], [p[1] for p in mid], color="steelblue", lw=0.6, zorder=2.6
-            )
+            page.line(mid, "steelblue", 0.6)
         else:
-            axes.add_patch(Polygon(hole, closed=True, fc="white", ec="none", zorder=2.5))
+            page.polygon(hole, "white")
             # The leaf hinged at the opening's start, swung open into the room, and its arc.
             arc = [
                 wall.to_world(u0 + opening.width * math.cos(a), opening.width * math.sin(a))
                 for a in np.linspace(0.0, math.pi / 2.0, 16)
             ]
-            axes.plot(
-                [p[0] for p in arc], [p[1] for p in arc], color="0.3", lw=0.6, ls=":", zorder=2.6
-            )
-            leaf = [wall.to_world(u0, 0.0), wall.to_world(u0, opening.width)]
-            axes.plot([p[0] for p in leaf], [p[1] for p in leaf], color="0.2", lw=1.2, zorder=2.6)
+            page.line(arc, ARC, 0.6, style="dotted")
+            page.line([wall.to_world(u0, 0.0), wall.to_world(u0, opening.width)], LEAF, 1.2)
         x, z = wall.to_world(opening.offset, -thickness - 0.15)
-        labels.append(Label(opening.id, (x, z), PATH, colour="0.2"))
+        labels.append(Label(opening.id, (x, z), PATH, colour=LEAF))
     return labels
 
 
-def _draw_house(axes, house: House) -> list[Label]:
+def _draw_house(page: PlanPage, house: House) -> list[Label]:
     """A house's walls (each once, its true thickness on its centre line), doors (a gap,
     the leaf swung open into the door's first room and its arc; an open doorway a gap
     alone) and windows; returns the room names' and the openings' labels."""
@@ -329,14 +268,15 @@ def _draw_house(axes, house: House) -> list[Label]:
             (b[0] - nx, b[1] - nz),
             (a[0] - nx, a[1] - nz),
         ]
-        axes.add_patch(Polygon(corners, closed=True, fc="0.45", ec="0.25", lw=0.6, zorder=2))
+        page.polygon(corners, WALL_FILL, WALL_EDGE, width=0.6)
+    for index, wall in enumerate(house.walls):  # over every wall, as a gap in its own
         for opening, _u in holes[index]:
-            _draw_house_opening(axes, house, opening, wall.thickness)
-            labels.append(Label(opening.id, opening.center, PATH, colour="0.2"))
+            _draw_house_opening(page, house, opening, wall.thickness)
+            labels.append(Label(opening.id, opening.center, PATH, colour=LEAF))
     return labels
 
 
-def _draw_house_opening(axes, house: House, opening, thickness: float) -> None:
+def _draw_house_opening(page: PlanPage, house: House, opening, thickness: float) -> None:
     (cx, cz), (dx, dz), w = opening.center, opening.direction, opening.width
     end = (cx + dx, cz + dz)
     nx, nz = inward_normal(house, opening.center, end, opening.rooms[0])
@@ -347,22 +287,18 @@ def _draw_house_opening(axes, house: House, opening, thickness: float) -> None:
     half = thickness / 2.0
     hole = [at(-w / 2, half), at(w / 2, half), at(w / 2, -half), at(-w / 2, -half)]
     if opening.kind == "window":
-        axes.add_patch(
-            Polygon(hole, closed=True, fc="lightblue", ec="steelblue", lw=0.6, zorder=2.5)
-        )
-        mid = [at(-w / 2, 0.0), at(w / 2, 0.0)]
-        axes.plot([p[0] for p in mid], [p[1] for p in mid], color="steelblue", lw=0.6, zorder=2.6)
+        page.polygon(hole, "lightblue", "steelblue", width=0.6)
+        page.line([at(-w / 2, 0.0), at(w / 2, 0.0)], "steelblue", 0.6)
         return
-    axes.add_patch(Polygon(hole, closed=True, fc="white", ec="none", zorder=2.5))
+    page.polygon(hole, "white")
     if opening.open:
         return
     arc = [
         at(-w / 2 + w * math.cos(angle), half + w * math.sin(angle))
         for angle in np.linspace(0.0, math.pi / 2.0, 16)
     ]
-    axes.plot([p[0] for p in arc], [p[1] for p in arc], color="0.3", lw=0.6, ls=":", zorder=2.6)
-    leaf = [at(-w / 2, half), at(-w / 2, half + w)]
-    axes.plot([p[0] for p in leaf], [p[1] for p in leaf], color="0.2", lw=1.2, zorder=2.6)
+    page.line(arc, ARC, 0.6, style="dotted")
+    page.line([at(-w / 2, half), at(-w / 2, half + w)], LEAF, 1.2)
 
 
 def room_labels(house: House) -> list[Label]:
@@ -403,11 +339,3 @@ def _inner_point(outline) -> tuple[float, float]:
         return float(points[:, 0].mean()), float(points[:, 1].mean())
     best = int(np.argmax(np.where(inside, distance, -1.0)))
     return float(grid[best, 0]), float(grid[best, 1])
-
-
-def _points_per_metre(figure, axes, width: float, depth: float) -> float:
-    """Line widths are in points: how many points one metre spans on this axes."""
-    box = axes.get_position()
-    span = max(width, depth) * 1.1
-    inches = min(box.width * figure.get_figwidth(), box.height * figure.get_figheight())
-    return inches * 72.0 / span

@@ -194,13 +194,13 @@ def test_a_full_disk_while_generating_names_the_output_and_exits_2(tmp_path, mon
 
 
 def test_a_full_disk_under_a_library_write_names_the_file(tmp_path, monkeypatch, capsys):
-    """The plan is saved by matplotlib, whose failed write() names no file."""
-    from matplotlib.figure import Figure
+    """The plan is saved by Pillow, whose failed write() names no file."""
+    from PIL import Image
 
     def full(self, *args, **kwargs):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
-    monkeypatch.setattr(Figure, "savefig", full)
+    monkeypatch.setattr(Image.Image, "save", full)
     out = tmp_path / "out"
     assert main(["generate", "desk", "--no-render", "-o", str(out)]) == 2
     assert (

@@ -213,9 +213,9 @@ def test_the_plan_names_every_room_inside_it(scene, tmp_path, monkeypatch):
     placed: list = []
     real = plan_image.place_labels
 
-    def recording(axes, given):
-        count = real(axes, given)
-        placed.extend(text.get_text() for text in axes.texts)
+    def recording(page, given):
+        count = real(page, given)
+        placed.extend(text.text for text in page.texts)
         return count
 
     monkeypatch.setattr(plan_image, "place_labels", recording)
@@ -297,12 +297,12 @@ def test_the_plan_of_a_given_plan_off_the_origin_frames_its_footprint(tmp_path, 
     limits: list = []
     real = plan_image.place_labels
 
-    def recording(axes, labels):
-        limits.extend([axes.get_xlim(), axes.get_ylim()])
-        return real(axes, labels)
+    def recording(page, labels):
+        limits.extend([page.x_limits, page.z_limits])
+        return real(page, labels)
 
     monkeypatch.setattr(plan_image, "place_labels", recording)
     plan_image.draw_plan(given, tmp_path / "plan.png")
-    (x0, x1), (z1, z0) = limits  # z: north (-Z) at the top
+    (x0, x1), (z0, z1) = limits
     assert x0 < 0.0 < 6.0 < x1 and z0 < 0.0 < 6.0 < z1
     assert x1 - x0 < 8.0  # framed on the footprint, not on the origin

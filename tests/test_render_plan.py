@@ -14,15 +14,16 @@ from PIL import Image
 from render_fixtures import road, scene_of, thing
 
 from scenewright.core.relations import Relation
+from scenewright.render import plan_image
 from scenewright.render.plan_image import (
     BASE_INCHES,
-    DPI,
     RELATION,
     Label,
     draw_plan,
     figure_inches,
     place_labels,
 )
+from scenewright.render.plan_page import DPI, PlanPage
 
 TYPES = ("house", "shed", "crate", "lamp", "bush", "bench")
 
@@ -68,41 +69,38 @@ def town(count: int = 300, seed: int = 0, *, broken: int = 12):
     return scene
 
 
-def drawn_texts(axes):
-    renderer = axes.figure.canvas.get_renderer()
-    return [
-        (text.get_text(), text.get_color(), text.get_window_extent(renderer)) for text in axes.texts
-    ]
-
-
 @pytest.mark.slow
 def test_a_300_object_plan_names_most_objects_without_one_label_over_another(tmp_path, monkeypatch):
-    from matplotlib.figure import Figure
-
     kept = {}
-    save = Figure.savefig
+    real = plan_image.place_labels
 
-    def keep_and_save(figure, *args, **kwargs):
-        kept["figure"] = figure
-        return save(figure, *args, **kwargs)
+    def keep_and_place(page, labels):
+        kept["page"] = page
+        return real(page, labels)
 
-    monkeypatch.setattr(Figure, "savefig", keep_and_save)
+    monkeypatch.setattr(plan_image, "place_labels", keep_and_place)
+    titles = []
+    save = PlanPage.save
+    monkeypatch.setattr(
+        PlanPage,
+        "save",
+        lambda page, path, title, *a: titles.append(title) or save(page, path, title, *a),
+    )
     scene = town()
     image = draw_plan(scene, tmp_path / "plan.png")
-    axes = kept["figure"].axes[0]
-    texts = drawn_texts(axes)
-    for (_, _, one), (_, _, other) in itertools.combinations(texts, 2):
-        assert not one.overlaps(other)
-    names = {name for name, _, _ in texts}
+    texts = kept["page"].texts
+    for one, other in itertools.combinations(texts, 2):
+        assert not one.box.overlaps(other.box)
+    names = {text.text for text in texts}
     objects = [o.id for o in scene.objects]
     assert sum(o in names for o in objects) >= 0.8 * len(objects)
-    red = [name for name, colour, _ in texts if colour == "red"]
+    red = [text.text for text in texts if text.colour == "red"]
     assert len(red) == 12  # every unsatisfied relation keeps its label
     for problem in scene.layout.problems:  # and the objects it names keep theirs
         words = problem.split()
         assert {words[0], words[-1]} <= names
-    title = axes.get_title()
     left_out = len(scene.objects) + len(scene.paths) + 12 - len(texts)
+    (title,) = titles
     assert (f"({left_out} of" in title) == (left_out > 0) and "12 problems" in title
 
     pixels = np.asarray(Image.open(image).convert("RGB")).astype(int)
@@ -112,45 +110,28 @@ def test_a_300_object_plan_names_most_objects_without_one_label_over_another(tmp
 
 
 def test_labels_that_find_no_room_are_left_out_and_the_rest_never_overlap():
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(4, 4))
-    axes.set_xlim(0, 10)
-    axes.set_ylim(0, 10)
+    page = PlanPage((0.0, 10.0), (0.0, 10.0), 4 * DPI)
     crowd = [Label(f"object_{k}", (5.0, 5.0), 3, size=8) for k in range(40)]  # all on one spot
     crowd.append(Label("NextTo", (5.0, 5.0), RELATION, size=8, colour="red"))
-    placed = place_labels(axes, crowd)
-    texts = drawn_texts(axes)
-    assert placed == len(texts) < len(crowd)
-    assert "NextTo" in [name for name, _, _ in texts]  # the relation went first
-    for (_, _, one), (_, _, other) in itertools.combinations(texts, 2):
-        assert not one.overlaps(other)
-    plt.close(figure)
+    placed = place_labels(page, crowd)
+    assert placed == len(page.texts) < len(crowd)
+    assert page.texts[0].text == "NextTo"  # the relation went first, on its anchor
+    assert page.texts[0].box.x0 < page.anchor(5.0, 5.0)[0] < page.texts[0].box.x1
+    for one, other in itertools.combinations(page.texts, 2):
+        assert not one.box.overlaps(other.box)
 
 
 @settings(max_examples=15, deadline=None)
 @given(st.lists(st.tuples(st.floats(0, 10), st.floats(0, 10), st.integers(0, 3)), max_size=60))
 def test_placed_labels_never_overlap_and_stay_inside(anchors):
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(3, 3))
-    axes.set_xlim(0, 10)
-    axes.set_ylim(0, 10)
+    page = PlanPage((0.0, 10.0), (0.0, 10.0), 3 * DPI)
     labels = [Label(f"thing_{k}", (x, z), rank) for k, (x, z, rank) in enumerate(anchors)]
-    placed = place_labels(axes, labels)
-    texts = drawn_texts(axes)
-    inside = axes.get_window_extent(figure.canvas.get_renderer())
-    assert placed == len(texts)
-    for _, _, box in texts:
-        assert (
-            inside.x0 <= box.x0
-            and box.x1 <= inside.x1
-            and inside.y0 <= box.y0
-            and box.y1 <= inside.y1
-        )
-    for (_, _, one), (_, _, other) in itertools.combinations(texts, 2):
-        assert not one.overlaps(other)
-    plt.close(figure)
+    placed = place_labels(page, labels)
+    assert placed == len(page.texts)
+    for text in page.texts:
+        assert text.box.within(page.plot)
+    for one, other in itertools.combinations(page.texts, 2):
+        assert not one.box.overlaps(other.box)
 
 
 @pytest.mark.parametrize(

@@ -409,7 +409,7 @@ def _validate_if_possible(path: Path) -> None:
 def test_the_plan_draws_walls_doors_and_windows(tmp_path):
     image = draw_plan(scene_of([], room=L_SHAPED), tmp_path / "plan.png")
     pixels = np.asarray(Image.open(image).convert("RGB")).astype(int)
-    wall_grey = np.all(np.abs(pixels - 115) < 4, axis=-1)  # matplotlib's "0.45"
+    wall_grey = np.all(np.abs(pixels - 115) < 4, axis=-1)  # the walls' grey (WALL_FILL)
     window_blue = np.all(np.abs(pixels - [173, 216, 230]) < 4, axis=-1)  # "lightblue"
     assert wall_grey.sum() > 2000 and window_blue.sum() > 50
 
