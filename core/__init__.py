@@ -10,12 +10,8 @@ files (``files``), the bounds every input must keep (``limits``), the two kinds 
 error a user can meet (``errors``), and what every stage that writes or checks output
 shares: files written whole or not at all (``atomic``), the scene.json schema and its
 checks (``schema_check``), and the wall time per stage (``timing``). ``VERSION`` is the
-installed package's version, which scene.json and the other outputs record.
+package's version, which scene.json and the other outputs record (pyproject.toml reads
+it from here).
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    VERSION = version("scenewright")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    VERSION = "0.0.0"
+VERSION = "0.1.0"
