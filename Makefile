@@ -10,7 +10,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 CLIENTS := $(VENV)/.clients
 
-.PHONY: setup compile demo test test-fast lint bench clean
+.PHONY: setup compile demo test test-fast lint bench parser-tables clean
 
 setup: $(STAMP)
 
@@ -49,6 +49,11 @@ test-fast: compile
 
 bench: compile
 	for script in benchmarks/bench_*.py; do $(PY) $$script || exit 1; done
+
+# The rules parser's stored tables, after an edit of generator/rules.lark or a new lark
+# (a test fails until they are written again).
+parser-tables: setup
+	$(PY) scripts/parser_tables.py
 
 clean:
 	rm -rf $(VENV) out build *.egg-info

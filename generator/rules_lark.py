@@ -1,7 +1,11 @@
 """The rules language's LALR parser, and what its parse errors say about where they stopped.
 
-``lalr_parser`` builds the parser from the grammar in ``rules.lark`` once per process;
-its post-lexer keeps keywords whole words (``doors`` is not the keyword ``door`` and a
+``lalr_parser`` gives the parser of the grammar in ``rules.lark``, once per process.
+Building its tables from the grammar costs a command more than its whole layout, so
+they are stored beside the grammar (``rules_lark_tables.json``, written by ``make
+parser-tables``) and loaded instead, when they were made
+from this very grammar with this lark version (else the parser is built as before). Its
+post-lexer keeps keywords whole words (``doors`` is not the keyword ``door`` and a
 name ``s``). A parse stops with one of the two errors of ``ParseStop``; ``error_offset``
 says where in the text, and ``terminal_literal`` gives a keyword's or punctuation's
 text, for the messages that explain a syntax error in words.
@@ -10,12 +14,19 @@ text, for the messages that explain a syntax error in words.
 from __future__ import annotations
 
 import functools
+import hashlib
+import json
 import threading
 from collections.abc import Iterable
 from importlib import resources
+from pathlib import Path
+from typing import Any
 
+import lark
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark.grammar import Rule
+from lark.lexer import TerminalDef
 
 #: The two errors lark's LALR parser stops with: a token it cannot take, a character
 #: no token starts with.
@@ -28,31 +39,89 @@ ParseStop = UnexpectedToken | UnexpectedCharacters
 _BUILDING = threading.Lock()
 
 
+#: The stored parser tables, beside the grammar.
+TABLES = "rules_lark_tables.json"
+#: How the parser is built; the stored tables hold these options.
+OPTIONS: dict[str, Any] = {
+    "parser": "lalr",
+    "lexer": "contextual",
+    "propagate_positions": True,
+    "maybe_placeholders": True,
+}
+
+
 def lalr_parser() -> Lark:
-    """The rules language's LALR parser, built once per process (building its tables
-    from the grammar takes about 0.1 s)."""
+    """The rules language's LALR parser, made once per process (module docstring)."""
     with _BUILDING:
-        return _build_parser()
+        return _parser()
 
 
 @functools.cache
-def _build_parser() -> Lark:
-    grammar = resources.files("scenewright.generator").joinpath("rules.lark").read_text()
+def _parser() -> Lark:
+    grammar = _grammar()
     whole_words = _WholeKeywords()
-    parser = Lark(
-        grammar,
-        parser="lalr",
-        lexer="contextual",
-        postlex=whole_words,
-        propagate_positions=True,
-        maybe_placeholders=True,
-    )
+    stored = stored_tables()
+    if stored is not None and stored["made_from"] == made_from(grammar):
+        parser = Lark.__new__(Lark)._load(stored["parser"], postlex=whole_words)
+    else:
+        parser = Lark(grammar, postlex=whole_words, **OPTIONS)
     whole_words.keywords = frozenset(
         terminal.name
         for terminal in parser.terminals
         if terminal.pattern.type == "str" and terminal.pattern.value[:1].isalpha()
     )
     return parser
+
+
+def _grammar() -> str:
+    return resources.files("scenewright.generator").joinpath("rules.lark").read_text()
+
+
+def made_from(grammar: str) -> dict[str, str]:
+    """What the parser tables of ``grammar`` depend on: the grammar and lark's version."""
+    return {
+        "grammar_sha256": hashlib.sha256(grammar.encode()).hexdigest(),
+        "lark": lark.__version__,
+    }
+
+
+def stored_tables() -> dict[str, Any] | None:
+    """The stored tables (``TABLES``) and what they were made from; None if missing."""
+    try:
+        text = resources.files("scenewright.generator").joinpath(TABLES).read_text()
+    except FileNotFoundError:
+        return None
+    return json.loads(text, object_hook=_decoded)
+
+
+def write_tables(path: Path) -> None:
+    """Build the parser from the grammar and store its tables at ``path``."""
+    grammar = _grammar()
+    parser = Lark(grammar, **OPTIONS)
+    data, memo = parser.memo_serialize([TerminalDef, Rule])
+    stored = {"made_from": made_from(grammar), "parser": {"data": data, "memo": memo}}
+    path.write_text(json.dumps(_encoded(stored), separators=(",", ":"), sort_keys=True) + "\n")
+
+
+# JSON has neither tuples nor keys other than strings; lark's tables have both.
+def _encoded(value: Any) -> Any:
+    if isinstance(value, dict):
+        if all(isinstance(key, str) for key in value):
+            return {key: _encoded(item) for key, item in value.items()}
+        return {"__items__": [[_encoded(key), _encoded(item)] for key, item in value.items()]}
+    if isinstance(value, tuple):
+        return {"__tuple__": [_encoded(item) for item in value]}
+    if isinstance(value, list):
+        return [_encoded(item) for item in value]
+    return value
+
+
+def _decoded(value: dict) -> Any:
+    if len(value) == 1 and "__items__" in value:
+        return {(tuple(k) if isinstance(k, list) else k): item for k, item in value["__items__"]}
+    if len(value) == 1 and "__tuple__" in value:
+        return tuple(value["__tuple__"])
+    return value
 
 
 class _WholeKeywords:

@@ -248,8 +248,8 @@ def test_the_fork_servers_preload_survives_a_missing_opengl_backend():
     for the worker to report (the test above), with the parser built all the same."""
     code = (
         "import scenewright.dataset.worker_preload\n"
-        "from scenewright.generator.rules_lark import _build_parser\n"
-        "print(_build_parser.cache_info().currsize)\n"
+        "from scenewright.generator.rules_lark import _parser\n"
+        "print(_parser.cache_info().currsize)\n"
     )
     done = run_without_opengl(code)
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr

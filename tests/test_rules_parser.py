@@ -12,6 +12,7 @@ from scenewright.generator.rules_includes import parse_tree
 from scenewright.generator.rules_parser import parse_text
 
 RULES = Path(__file__).parent / "rules"
+SHIPPED = Path(__file__).parent.parent / "grammar_rules"
 
 
 def parse(text: str) -> ast.RulesFile:
@@ -191,7 +192,7 @@ def test_the_parser_can_be_built_from_several_threads_at_once():
 
     from scenewright.generator import rules_lark
 
-    rules_lark._build_parser.cache_clear()
+    rules_lark._parser.cache_clear()
     failures: list[BaseException] = []
 
     def load() -> None:
@@ -206,3 +207,35 @@ def test_the_parser_can_be_built_from_several_threads_at_once():
     for thread in threads:
         thread.join()
     assert failures == []
+
+
+def test_the_stored_parser_tables_are_of_this_grammar_and_parse_as_the_built_parser():
+    """The tables a command loads instead of building the parser: made from today's
+    rules.lark with the installed lark (else `make parser-tables`), and parsing every
+    shipped rule set to the same tree, and failing at the same token, as a parser built
+    from the grammar."""
+    from lark import Lark
+    from lark.exceptions import LarkError
+
+    from scenewright.generator import rules_lark
+
+    stored = rules_lark.stored_tables()
+    assert stored is not None
+    assert stored["made_from"] == rules_lark.made_from(rules_lark._grammar()), (
+        "generator/rules_lark_tables.json is out of date: run `make parser-tables`"
+    )
+    loaded = rules_lark.lalr_parser()
+    built = Lark(rules_lark._grammar(), postlex=rules_lark._WholeKeywords(), **rules_lark.OPTIONS)
+    built.options.postlex.keywords = loaded.options.postlex.keywords
+    texts = [path.read_text() for path in sorted(SHIPPED.glob("*.rules"))]
+    texts.append(texts[0].replace("{", "{ doors", 1))  # a syntax error
+    for text in texts:
+        outcomes = []
+        for parser in (loaded, built):
+            try:
+                outcomes.append(parser.parse(text))
+            except LarkError as error:
+                where = (getattr(error, "line", None), getattr(error, "column", None))
+                expected = sorted(getattr(error, "expected", None) or ())
+                outcomes.append((type(error).__name__, where, expected))
+        assert outcomes[0] == outcomes[1]
