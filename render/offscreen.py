@@ -48,7 +48,13 @@ from scenewright.core.room import Opening
 from scenewright.core.scene import Scene
 
 from .camera import Camera, frame_scene, walls_in_view
-from .gl_backend import backend_error, keep_display_on_delete, load_pyrender, pyrender_classes
+from .gl_backend import (
+    backend_error,
+    keep_display_on_delete,
+    load_pyrender,
+    pyrender_classes,
+    release,
+)
 from .ground_truth import GL_TO_CV, camera_matrices, entity_boxes
 from .house_meshes import house_opening_mesh, scene_ground, scene_walls
 from .house_view import opening_height, opening_pose
@@ -180,7 +186,7 @@ class Renderer:
     def close(self) -> None:
         """Release the OpenGL context (the renderer cannot be used afterwards)."""
         if self._renderer is not None:
-            self._renderer.delete()
+            release(self._renderer)
             self._renderer = None
 
     def render(
