@@ -103,8 +103,8 @@ class PlanPage:
 
     def __init__(self, x_limits: tuple[float, float], z_limits: tuple[float, float], side: float):
         self.x_limits, self.z_limits = x_limits, z_limits
-        x_span = x_limits[1] - x_limits[0]
-        z_span = z_limits[1] - z_limits[0]
+        x_span = max(x_limits[1] - x_limits[0], 1e-6)
+        z_span = max(z_limits[1] - z_limits[0], 1e-6)
         #: Pixels per metre on the page.
         self.scale = max(1e-6, min((side - LEFT - RIGHT) / x_span, (side - TOP - BOTTOM) / z_span))
         width, height = round(x_span * self.scale), round(z_span * self.scale)
@@ -176,7 +176,7 @@ class PlanPage:
             self._draw.line(piece, fill=fill, width=pixels)
 
     def dots(self, points, radius: float, colour: Colour) -> None:
-        """A filled dot ``radius`` points wide at each point."""
+        """A filled dot of ``radius`` points at each point."""
         r = radius * POINT * self.fine
         for x, y in self._pixels(points):
             self._draw.ellipse((x - r, y - r, x + r, y + r), fill=rgb(colour))
