@@ -14,7 +14,8 @@ examples and in the generated scenes; for two children of one parent (``SAME_SID
 reading corner's lamp and side table, the study's filing cabinet, waste bin and plant),
 the share of scenes with both on one side of it; per type the share of objects against a wall
 (``AgainstWall`` or ``InCorner``) in both (marked ``free`` for a type the rules give no
-wall label, whose wall the layout chooses); the share of check layouts ok; and,
+wall label, whose wall the layout chooses, with its mean distance from the walls: a
+free thing stands "on a wall" only when also square to it); the share of check layouts ok; and,
 when a context was learned, its divergence at the start and kept, and with eight
 examples or more the held-out check's divergences (from the examples held out: the
 rules alone, the plain histogram of round 0, the round the fitted examples would keep,
@@ -58,6 +59,20 @@ def wall_shares(scenes) -> dict[str, float]:
     }
 
 
+def wall_distances(scenes) -> dict[str, float]:
+    """Per type: the mean distance (m) from its standing objects' centres to the room's
+    walls. A type with no wall label is counted "on a wall" only when it also stands
+    square to it; this says whether it stands where the examples' do, turned or not."""
+    found: dict[str, list[float]] = {}
+    for scene in scenes:
+        resting = set(scene_supports(scene))  # on another object, not on the floor
+        for obj in scene.placed_objects():
+            if obj.id not in resting:
+                distance = scene.room.boundary_distance(obj.position[0], obj.position[2])
+                found.setdefault(obj.type, []).append(distance)
+    return {t: sum(d) / len(d) for t, d in sorted(found.items())}
+
+
 def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
     with tempfile.TemporaryDirectory() as folder:
         paths = write_set(kind, n, seed, Path(folder) / "examples")
@@ -89,10 +104,12 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
         sides[0][key] = same_side_share(scenes, parent, first, second)
         sides[1][key] = same_side_share(generated, parent, first, second)
     walls = (wall_shares(scenes), wall_shares(generated))
+    distances = (wall_distances(scenes), wall_distances(generated))
     written = {t for t, share in learned.induction.walls.items() if share.label()}
     found = {
         "sides": sides,
         "walls": walls,
+        "distances": distances,
         "written": written,
         "ok": sum(s.layout.ok for s in generated) / check,
     }
@@ -155,7 +172,11 @@ def main() -> None:
                         parts.append(f"{t} on wall {seen_w[t]:.2f} -> {made_w[t]:.2f}")
                     else:  # no wall label written: the layout's to choose
                         worst_free = max(worst_free, abs(seen_w[t] - made_w[t]))
-                        parts.append(f"{t} on wall (free) {seen_w[t]:.2f} -> {made_w[t]:.2f}")
+                        seen_d, made_d = (d.get(t, float("nan")) for d in found["distances"])
+                        parts.append(
+                            f"{t} on wall (free) {seen_w[t]:.2f} -> {made_w[t]:.2f}"
+                            f" (from the walls {seen_d:.2f} m -> {made_d:.2f} m)"
+                        )
                 worst_ok = min(worst_ok, found["ok"])
                 parts.append(f"layouts ok {found['ok']:.0%}")
                 if "divergence" in found:
