@@ -7,10 +7,12 @@ piece stands the way most of its category's plan pieces stood (``stances``): in 
 with a piece of a category it stood in a row with (bookshelves side by side), before
 one (a bench before the dumbbell rack; a rug or a mat lies before what it lay before
 most often), in a corner, with its back against a wall, or free in the middle (a
-table). What is still written here: the first desk goes under a window, a sofa faces
-the television, a coffee table stands before the sofa and an armchair beside the coffee
-table. A piece the plans place by none of these stands beside its strongest partner in
-the type's relation graph (the weight ``W`` of the plan model), or against a wall.
+table). The first piece of a category that stood under a window goes under one (a
+desk); one that faced a piece turns to it (a sofa to the television stand, against its
+wall), and one with no place by the room stands beside what it stood beside (an
+armchair beside the coffee table, facing it) (``neighbours``). A piece the plans place
+by none of these stands beside its strongest partner in the type's relation graph (the
+weight ``W`` of the plan model), or against a wall. No rule is written per category.
 """
 
 from __future__ import annotations
@@ -64,9 +66,15 @@ def build_graph(
     made: dict[str, list[str]] = {}
     for name in order:
         made[name] = [graph.add_node(catalog[name], rule="Complete") for _ in range(counts[name])]
-    windows = bool(room.windows)
-    if contents.regions and "desk" in counts:  # a desk goes under a window of its own region
-        windows = bool(contents.regions[contents.region_masks().owners["desk"]].room.windows)
+    windowed = {  # categories whose part of the room has a window to stand under
+        name
+        for name in counts
+        if (
+            contents.regions[contents.region_masks().owners[name]].room
+            if contents.regions
+            else room
+        ).windows
+    }
     cornerless = {  # categories whose region is a strip between virtual walls: no room corner in it
         name
         for name in counts
@@ -86,7 +94,14 @@ def build_graph(
                     continue
                 if placement is None:
                     relations = _relations_of(
-                        model, name, index, made, weights, windows, followers, name in cornerless
+                        model,
+                        name,
+                        index,
+                        made,
+                        weights,
+                        name in windowed,
+                        followers,
+                        name in cornerless,
                     )
                 else:
                     anchor = made[placement.anchor][placement.anchor_index]
@@ -126,12 +141,13 @@ def _relations_of(
 ) -> list[tuple[str, str]]:
     """The relations (label, target) of the ``index``-th piece of category ``name``,
     which has no place on or at another (``accessories.assign``), by its ``stances.stance``
-    in the room; ``windows``: whether the first desk has a window to stand under;
-    ``followers``: the accessory categories, which no piece stands beside;
-    ``cornerless``: whether the piece's part of the room has no corner of the room (a
-    corner piece stands against a wall there instead)."""
-    if name == "desk" and windows and index == 0:
-        return [("UnderWindow", ROOM_NODE)]
+    in the room and what it faces or stands beside; ``windows``:
+    whether its part of the room has a window to stand under; ``followers``: the
+    accessory categories, which no piece stands beside; ``cornerless``: whether the
+    piece's part of the room has no corner of the room (a corner piece stands against a
+    wall there instead)."""
+    if index == 0 and windows and stances.under_window(model, name):
+        return [("UnderWindow", ROOM_NODE)]  # the first one: a window is no row
     kind, by = stances.stance(model, name, made)
     if kind == stances.ROW:
         first = next((made[n][0] for n in by if made[n][0] != made[name][index]), None)
@@ -142,25 +158,20 @@ def _relations_of(
                 ("ImplicitAgainstWall", ROOM_NODE),
             ]
         kind = stances.base_stance(model, name)  # the first of its row stands by the room
-    if name == "sofa" and made.get("tv_stand"):
-        return [("FacingTowards", made["tv_stand"][0]), ("ImplicitAgainstWall", ROOM_NODE)]
-    if name == "coffee_table" and made.get("sofa"):
-        sofa = made["sofa"][0]
-        return [("NextToFront", sofa), ("ImplicitAlignedWith", sofa)]
-    if name == "armchair" and made.get("coffee_table"):
-        return [
-            ("NextToChooseSide", made["coffee_table"][0]),
-            ("FacingTowards", made["coffee_table"][0]),
-        ]
-    if kind == stances.WALL:
-        return [("AgainstWall", ROOM_NODE)]
-    if kind == stances.FREE:
-        return []
     if kind == stances.BEFORE and stances.learned_stance(model, name).flat:
         anchor = made[by[0]][0] if by else _strongest_partner(model, name, made, weights, followers)
         return [("NextToFront", anchor), ("ImplicitFacingSameDirection", anchor)] if anchor else []
     if kind == stances.BEFORE:
         return [("NextToFront", made[by[0]][index % len(made[by[0]])])]
+    faces = stances.facing_target(model, name, made)
+    facing = [("FacingTowards", made[faces][0])] if faces is not None else []
+    beside = stances.beside_target(model, name, made)
+    if beside is not None:  # more stood beside it than where the room alone puts them
+        return [("NextToChooseSide", made[beside][0]), *facing]
+    if kind == stances.WALL:
+        return [*facing, ("ImplicitAgainstWall" if facing else "AgainstWall", ROOM_NODE)]
+    if kind == stances.FREE:
+        return facing
     partner = _strongest_partner(model, name, made, weights, followers)
     if kind == stances.CORNER:
         return [("AgainstWall" if cornerless else "InCorner", ROOM_NODE)]

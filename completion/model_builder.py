@@ -16,7 +16,8 @@ of ``MODEL_FORMAT``), the same for the same plans whatever their order on disk:
   ``f_r`` and 10 x 10 layout mask, and its cluster;
 - ``accessories``: what stands on or at what, and where (``accessories.learn_accessories``);
 - ``stances``: per category how its pieces stand in the room: in a corner, against a
-  wall, free, in a row with or before what (``stances.learn_stances``).
+  wall, free, under a window, in a row with, before, close before, facing or beside
+  what (``stances.learn_stances``, ``neighbours``).
 
 ``exist(o, r)`` is 1 when plan ``r`` has a piece of category ``o``. Otherwise it comes
 from the plan's free areas: the paper writes it as ``||f_obj^o - f_obj^area||^2``, a

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 MODEL_FORMAT = "scenewright-plan-model"
-MODEL_VERSION = 3
+MODEL_VERSION = 4
 
 
 @dataclass
@@ -207,16 +207,22 @@ class AccessoryCategory:
 class CategoryStance:
     """How one category stood on the floor over all the plans (``stances``): its
     pieces, whether most lay flat, the shares of its pieces in a corner, with their back
-    against a wall, and free (exclusive), and per category the share in a row with one
-    and the share before one (of the pieces whose plan has one), most first."""
+    against a wall, and free (exclusive), the share under a window (of the pieces whose
+    plan has one), and per category the share in a row with one, before one, close
+    before one, facing one and beside one (of the pieces whose plan has one), most
+    first (``neighbours`` says what each means)."""
 
     pieces: int
     flat: bool
     corner: float
     wall: float
     free: float
+    window: float
     row: dict[str, float]
     before: dict[str, float]
+    close: dict[str, float]
+    facing: dict[str, float]
+    beside: dict[str, float]
 
     def to_dict(self) -> dict:
         return asdict(self)

@@ -26,6 +26,9 @@ Over one plan's pieces on the floor (not standing on another):
   the piano); the share is over the pieces away from the walls whose plan has a piece
   of that category besides them.
 
+The same pass learns how a piece stands to the windows and to the pieces round it
+(under a window, close before, facing, beside: the tests are in ``neighbours``), and
+``under_window``, ``facing_target`` and ``beside_target`` read those shares.
 Flat pieces and accessories (``accessories``) are nothing to stand in a row with or
 before. ``stance`` turns the shares into one way to place a category, each with the
 threshold ``MOST`` (more than half the pieces). A category the plans never show on the
@@ -42,6 +45,8 @@ from typing import TYPE_CHECKING
 
 from scenewright.core.frames import forward, left, to_local
 from scenewright.core.geometry import rect_distance, wrap_angle
+
+from . import neighbours
 
 if TYPE_CHECKING:
     from scenewright.completion.floor_plan import Furniture, Plan
@@ -63,6 +68,10 @@ ROW_GAP = 0.3
 BEFORE_REACH = 2.0
 #: A category is placed one way when more than this share of its plan pieces stand so.
 MOST = 0.5
+#: A category whose pieces stood at a wall (in a corner or not) in more than this share
+#: takes its heading from its wall, not from what it faces (a television stand, a
+#: wardrobe): facing is for pieces the plans also show away from the walls.
+AT_WALL = 0.95
 #: The ways to place a category, as ``stance`` returns them.
 CORNER, WALL, FREE, ROW, BEFORE, PARTNER = "corner", "wall", "free", "row", "before", "partner"
 
@@ -134,18 +143,24 @@ def learn_stances(plans: Sequence[Plan], catalog, accessories: set[str]) -> dict
     tallies: dict[str, Counter] = defaultdict(Counter)
     rows: dict[str, Counter] = defaultdict(Counter)
     befores: dict[str, Counter] = defaultdict(Counter)
+    closes: dict[str, Counter] = defaultdict(Counter)
+    facings: dict[str, Counter] = defaultdict(Counter)
+    besides: dict[str, Counter] = defaultdict(Counter)
     chances: dict[str, Counter] = defaultdict(Counter)
     free_chances: dict[str, Counter] = defaultdict(Counter)
     for plan in sorted(plans, key=lambda plan: plan.id):
         floor = [piece for piece in plan.furniture if piece.on is None]
         flat = {piece.id for piece in floor if is_flat(piece, catalog)}
         partners = [p for p in floor if p.id not in flat and p.category not in accessories]
+        stands_before = _stands_before(floor, partners, plan.room)
         for piece in floor:
             sides = touched_walls(piece, plan.room)
             walls = list(sides.values())
             tally = tallies[piece.category]
             tally["pieces"] += 1
             tally["flat"] += piece.id in flat
+            tally["window chances"] += bool(plan.room.windows)
+            tally["window"] += neighbours.is_under_window(piece, plan.room, sides.get("back"))
             if any(
                 abs(a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1]) < math.cos(PARALLEL)
                 for a in walls
@@ -163,11 +178,20 @@ def learn_stances(plans: Sequence[Plan], catalog, accessories: set[str]) -> dict
                 rows[piece.category].update(
                     {other.category for other in others if in_row(piece, other)}
                 )
+                besides[piece.category].update(
+                    {other.category for other in others if neighbours.is_beside(piece, other)}
+                )
+                ahead = neighbours.faced(piece, others, stands_before)
+                if ahead is not None:
+                    facings[piece.category][ahead.category] += 1
             if "back" not in sides:  # one at a wall stands by the wall, not before a piece
                 free_chances[piece.category].update(present)
-                before = before_of(piece, others)
-                if before is not None:
+                before_id = stands_before.get(piece.id)
+                if before_id is not None:
+                    before = plan.piece(before_id)
                     befores[piece.category][before.category] += 1
+                    if neighbours.gap_before(piece, before) <= neighbours.CLOSE_GAP:
+                        closes[piece.category][before.category] += 1
     out: dict[str, dict] = {}
     for name in sorted(tallies):
         tally = tallies[name]
@@ -177,16 +201,40 @@ def learn_stances(plans: Sequence[Plan], catalog, accessories: set[str]) -> dict
             "corner": tally["corner"] / tally["pieces"],
             "wall": tally["wall"] / tally["pieces"],
             "free": tally["free"] / tally["pieces"],
+            "window": tally["window"] / tally["window chances"] if tally["window chances"] else 0.0,
             "row": _shares(rows[name], chances[name]),
             "before": _shares(befores[name], free_chances[name]),
+            "close": _shares(closes[name], free_chances[name], neighbours.LEAST),
+            "facing": _shares(facings[name], chances[name], neighbours.LEAST),
+            "beside": _shares(besides[name], chances[name], neighbours.LEAST),
         }
     return out
 
 
-def _shares(counter: Counter, chances: Counter) -> dict[str, float]:
-    """Per category of ``counter`` its count over its ``chances``, most first (ties by name)."""
+def _stands_before(
+    floor: Sequence[Furniture], partners: Sequence[Furniture], room: Room
+) -> dict[str, str]:
+    """Per id of a piece of ``floor`` whose back touches no wall of ``room`` the id of
+    the piece of ``partners`` it stands or lies before (``before_of``), where it does."""
+    out = {}
+    for piece in floor:
+        if "back" in touched_walls(piece, room):
+            continue
+        before = before_of(piece, [other for other in partners if other.id != piece.id])
+        if before is not None:
+            out[piece.id] = before.id
+    return out
+
+
+def _shares(counter: Counter, chances: Counter, least: int = 1) -> dict[str, float]:
+    """Per category of ``counter`` its count over its ``chances`` (those with at least
+    ``least``), most first (ties by name)."""
     ranked = sorted(
-        ((name, count / chances[name]) for name, count in counter.items() if count),
+        (
+            (name, count / chances[name])
+            for name, count in counter.items()
+            if count and chances[name] >= least
+        ),
         key=lambda item: (-item[1], item[0]),
     )
     return dict(ranked)
@@ -220,8 +268,12 @@ def learned_stance(model: PlanModel, name: str) -> CategoryStance:
         corner=pooled(lambda entry: entry.corner),
         wall=pooled(lambda entry: entry.wall),
         free=pooled(lambda entry: entry.free),
+        window=pooled(lambda entry: entry.window),
         row={},
         before={},
+        close={},
+        facing={},
+        beside={},
     )
 
 
@@ -240,6 +292,21 @@ def base_stance(model: PlanModel, name: str) -> str:
     return PARTNER
 
 
+def room_share(model: PlanModel, name: str) -> float:
+    """The share of ``name``'s plan pieces that stood where ``base_stance`` puts it by
+    the room: in a corner, at a wall (a corner's too) or free; for ``PARTNER`` the
+    larger of at a wall and free."""
+    learned = learned_stance(model, name)
+    base = base_stance(model, name)
+    if base == CORNER:
+        return learned.corner
+    if base == FREE:
+        return learned.free
+    if base == WALL:
+        return learned.corner + learned.wall
+    return max(learned.corner + learned.wall, learned.free)
+
+
 def stance(model: PlanModel, name: str, present) -> tuple[str, tuple[str, ...]]:
     """How to place ``name`` in a room holding the categories ``present`` (itself
     included), and the categories that decides it by, best first. An accessory that
@@ -248,7 +315,9 @@ def stance(model: PlanModel, name: str, present) -> tuple[str, tuple[str, ...]]:
     (none: by its partner). A piece that stands against a wall (``base_stance``) stands
     in a ``ROW`` with the present categories more than ``MOST`` of its pieces stood in
     a row with (bookshelves, treadmills), else in its corner or against its wall. One
-    that stands free stands free (a dining table). Any other stands ``BEFORE`` the
+    that stands free stands ``BEFORE`` the present categories more than ``MOST`` of its
+    pieces stood close before (``neighbours``: a coffee table before the sofa), else
+    free (a dining table). Any other stands ``BEFORE`` the
     present categories more than ``MOST`` of its pieces away from the walls stood before
     (a weight bench before the dumbbell rack), else against a wall when at least as
     many of its pieces stood at one as free (an armchair half at a wall, half free),
@@ -259,10 +328,12 @@ def stance(model: PlanModel, name: str, present) -> tuple[str, tuple[str, ...]]:
     if learned.flat:
         return BEFORE, tuple(n for n in _ranked(learned.before) if n in present)
     base = base_stance(model, name)
-    shares = learned.row if base in (WALL, CORNER) else learned.before
-    kind = ROW if base in (WALL, CORNER) else BEFORE
+    if base in (WALL, CORNER):
+        kind, shares = ROW, learned.row
+    else:  # one free in the middle stands before only what it stood close before
+        kind, shares = BEFORE, learned.close if base == FREE else learned.before
     chosen = tuple(n for n in _ranked(shares) if shares[n] > MOST and n in present)
-    if chosen and base != FREE:
+    if chosen:
         return kind, chosen
     if base == PARTNER and learned.corner + learned.wall >= max(learned.free, 1e-9):
         return WALL, ()  # split between a wall and the middle: at least as many at a wall
@@ -284,3 +355,42 @@ def _ranked(shares: dict[str, float]) -> list[str]:
     """The categories of ``shares``, the largest share first (ties by name): a model
     file keeps them sorted by name."""
     return sorted(shares, key=lambda name: (-shares[name], name))
+
+
+def under_window(model: PlanModel, name: str) -> bool:
+    """Whether ``name`` goes under a window: more than ``MOST`` of its plan pieces stood
+    under one."""
+    return learned_stance(model, name).window > MOST
+
+
+def facing_target(model: PlanModel, name: str, present) -> str | None:
+    """The category of ``present`` that ``name`` turns to face: of those more than
+    ``MOST`` of its pieces faced, the one faced most often; None for a category that
+    takes its heading from its wall (``AT_WALL``) or faced none of them."""
+    learned = learned_stance(model, name)
+    if learned.corner + learned.wall > AT_WALL:
+        return None
+    return _most(learned.facing, name, present)
+
+
+def beside_target(model: PlanModel, name: str, present) -> str | None:
+    """The category of ``present`` that ``name`` stands beside: of those more than
+    ``MOST`` of its pieces stood beside, the one stood beside most often, when that
+    share is larger than the share of its pieces that stood where the room alone would
+    put it (``stances.room_share``: an armchair stood beside the coffee table more often
+    than at a wall; a floor lamp in a corner more often than beside the armchair); else
+    None."""
+    shares = learned_stance(model, name).beside
+    chosen = _most(shares, name, present)
+    return chosen if chosen is not None and shares[chosen] > room_share(model, name) else None
+
+
+def _most(shares: dict[str, float], name: str, present) -> str | None:
+    """The category of ``present`` other than ``name`` with the largest share over
+    ``MOST`` (ties by name), or None."""
+    chosen = [
+        (-share, other)
+        for other, share in shares.items()
+        if share > MOST and other != name and other in present
+    ]
+    return min(chosen)[1] if chosen else None

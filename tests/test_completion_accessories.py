@@ -11,7 +11,7 @@ from test_plans_model import NORTH, SOUTH, _plan, _room
 from scenewright.completion.accessories import assign, slot_pose, slot_relations
 from scenewright.completion.floor_plan import Furniture, plan_from_dict
 from scenewright.completion.model_builder import build_model, model_json
-from scenewright.completion.plan_model import PlanModel
+from scenewright.completion.plan_model import MODEL_VERSION, PlanModel
 from scenewright.core.poses import Pose
 
 
@@ -134,6 +134,6 @@ def test_the_model_file_holds_the_accessories_and_is_the_same_in_any_plan_order(
     text = model_json(tiny_model)
     assert model_json(build_model(_tiny()[::-1])) == text
     data = json.loads(text)
-    assert data["version"] == 3
+    assert data["version"] == MODEL_VERSION
     assert data["accessories"]["nightstand"]["anchors"][0]["slots"][0]["offset"] == [1.0, -0.8]
     assert model_json(PlanModel.from_dict(data)) == text  # it reads back as it was written

@@ -15,6 +15,7 @@ from scenewright.completion.activity import activity_prior, interactions
 from scenewright.completion.features import canonical_frame, door_window_angle, occupancy_mask
 from scenewright.completion.floor_plan import Furniture, Plan, plan_from_dict
 from scenewright.completion.model_builder import build_model, model_json, relation_graph
+from scenewright.completion.plan_model import MODEL_VERSION
 from scenewright.core.room import Room
 
 SOUTH, EAST, NORTH, WEST = 0.0, math.pi / 2, math.pi, -math.pi / 2
@@ -354,7 +355,7 @@ def test_a_damaged_model_file_is_refused_in_one_line(tmp_path, capsys):
         json.dumps(
             {
                 "format": "scenewright-plan-model",
-                "version": 3,
+                "version": MODEL_VERSION,
                 "categories": {},
                 "activity": [],
                 "types": {"bedroom": {"pairs": "?"}},
