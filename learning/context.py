@@ -40,9 +40,13 @@ written, and it is never above the first round's.
 
 With HOLDOUT_FROM examples or more, HOLDOUT of them are held out (``held_out_split``):
 the weights are fitted to the rest, each round's scenes are also compared with the
-held-out examples, and the round kept is the one nearest them; the rules alone (no
-context) are laid out and compared too, and ``ContextFit.rules_alone_better`` says when
-the context would make scenes worse than none (``fit`` and ``learn`` then write none).
+held-out examples, and the round nearest them says how many rounds to fit
+(``ContextFit.selected``); the rules alone (no context) are laid out and compared too,
+and ``ContextFit.rules_alone_better`` says when the context would make scenes worse
+than none (``fit`` and ``learn`` then write none). The context written is then fitted
+again, to every example, for the rounds chosen: the held-out check chooses how far to
+fit, and no example is left out of what is fitted (with nine examples, two held out
+would move a two-to-one split of the rest by a tenth).
 
 The visual-balance term (``learned_term.BalanceContext``): one histogram per scene of
 the balance offset (``graph_balance``), fitted like a pair kind's with starting weights
@@ -357,19 +361,24 @@ class ContextFit:
     held: tuple[int, ...] = ()
     held_out: list[float] = field(default_factory=list)
     rules_alone: float | None = None
+    #: The round nearest the held-out examples: how many rounds the context written was
+    #: fitted for, to every example (None without a check).
+    selected: int | None = None
 
     @property
     def rules_alone_better(self) -> bool:
-        """Whether the rules alone came nearer the held-out examples than the round kept
-        (then the context would make scenes worse, and is not written)."""
-        return self.rules_alone is not None and self.rules_alone <= self.held_out[self.kept]
+        """Whether the rules alone came nearer the held-out examples than the round
+        chosen (then the context would make scenes worse, and is not written)."""
+        if self.rules_alone is None or self.selected is None:
+            return False
+        return self.rules_alone <= self.held_out[self.selected]
 
     def held_out_summary(self) -> str:
         """The held-out check in words (empty without one)."""
-        if self.rules_alone is None:
+        if self.rules_alone is None or self.selected is None:
             return ""
         return (
-            f"held out {len(self.held)}: divergence from them {self.held_out[self.kept]:.3f} "
+            f"held out {len(self.held)}: divergence from them {self.held_out[self.selected]:.3f} "
             f"with the context, {self.rules_alone:.3f} with the rules alone"
         )
 
@@ -422,12 +431,42 @@ def fit_example_layouts(
 ) -> ContextFit:
     """Fit a context to examples' layouts (``example_layout``, ``measured_example_layout``);
     see the module docstring. With the held-out check (``held_out_split``: ``holdout``
-    of the examples, from HOLDOUT_FROM of them) the weights are fitted to the rest and
-    the round kept is the one nearest the held-out examples. With ``balance`` (and
-    MIN_EXAMPLES examples with a floor piece) the visual-balance term is fitted too, as
-    one more histogram. ``NoRelatedPairs`` (an
-    ``InputError``) when no pair kind is held by MIN_EXAMPLES examples (of those fitted to)."""
+    of the examples, from HOLDOUT_FROM of them) the round nearest the held-out examples,
+    of a fit to the rest, says how many rounds the context is then fitted to them all.
+    With ``balance`` (and MIN_EXAMPLES examples with a floor piece) the visual-balance
+    term is fitted too, as one more histogram. ``NoRelatedPairs`` (an ``InputError``)
+    when no pair kind is held by MIN_EXAMPLES examples (of those fitted to)."""
+    options = {"seed": seed, "layouts": layouts, "params": params, "balance": balance}
     held = held_out_split(len(laid), seed, holdout)
+    selection = _fit_rounds(laid, held, rounds=rounds, **options)
+    if not held or selection.rules_alone_better:
+        return selection
+    refit = _fit_rounds(laid, (), rounds=selection.kept, **options)
+    record = dict(refit.context.fit)
+    record["held_out"] = selection.context.fit["held_out"]
+    record["rounds_chosen"] = selection.kept
+    return replace(
+        refit,
+        context=replace(refit.context, fit=record),
+        held=selection.held,
+        held_out=selection.held_out,
+        rules_alone=selection.rules_alone,
+        selected=selection.kept,
+    )
+
+
+def _fit_rounds(
+    laid: Sequence[ExampleLayout],
+    held: tuple[int, ...],
+    *,
+    seed: int,
+    rounds: int,
+    layouts: int,
+    params: LayoutParams | None,
+    balance: bool,
+) -> ContextFit:
+    """Iterative scaling for ``rounds`` rounds to the examples but those ``held`` out,
+    keeping the round nearest the held-out examples (with some) or the fitted ones."""
     if held:
         check = [laid[k] for k in held]
         laid = [example for k, example in enumerate(laid) if k not in held]
@@ -592,4 +631,5 @@ def fit_example_layouts(
         held,
         held_out,
         rules_alone,
+        kept if held else None,
     )

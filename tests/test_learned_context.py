@@ -335,20 +335,26 @@ def test_a_share_of_eight_examples_or_more_is_held_out_the_same_way_each_time():
 
 def test_the_round_kept_is_the_one_nearest_the_held_out_examples():
     fit = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4, balance=True)
-    assert (
-        fit.context.balance is not None
-        and len(fit.held) == 2
-        and len(fit.held_out) == len(fit.divergence) == 3
-    )
-    assert fit.held_out[fit.kept] == min(fit.held_out)
-    assert fit.kept == fit.held_out.index(min(fit.held_out))  # the first of equals
+    assert fit.context.balance is not None and len(fit.held) == 2 and len(fit.held_out) == 3
+    assert fit.selected is not None and fit.held_out[fit.selected] == min(fit.held_out)
+    assert fit.selected == fit.held_out.index(min(fit.held_out))  # the first of equals
     record = fit.context.fit["held_out"]
-    assert record["examples"] == list(fit.held) and record["divergence"][fit.kept] == round(
-        fit.held_out[fit.kept], 6
+    assert record["examples"] == list(fit.held) and record["divergence"][fit.selected] == round(
+        fit.held_out[fit.selected], 6
     )
     assert fit.rules_alone is not None and record["rules_alone"] == round(fit.rules_alone, 6)
     # The jittered chairs: the rules alone put them anywhere their tolerances allow.
-    assert fit.rules_alone > fit.held_out[fit.kept] and not fit.rules_alone_better
+    assert fit.rules_alone > fit.held_out[fit.selected] and not fit.rules_alone_better
+    # The context written is fitted to all eight, for the rounds the check chose.
+    assert fit.context.fit["rounds_chosen"] == fit.selected
+    assert len(fit.divergence) == fit.selected + 1
+    assert fit.divergence[fit.kept] == min(fit.divergence)
+    alone = fit_context(
+        dining_examples(8), seed=1, rounds=fit.selected, layouts=4, balance=True, holdout=0.0
+    )
+    assert [p.position.tolist() for p in alone.context.pairs] == [
+        p.position.tolist() for p in fit.context.pairs
+    ]
     # Without the check every example is fitted and the kept round is the fitted ones' best.
     plain = fit_context(dining_examples(8), seed=1, rounds=2, layouts=4, holdout=0.0)
     assert plain.held == () and plain.rules_alone is None and plain.held_out_summary() == ""
@@ -358,7 +364,7 @@ def test_the_round_kept_is_the_one_nearest_the_held_out_examples():
 def test_a_context_the_rules_alone_beat_on_the_held_out_examples_says_so():
     def fit(rules_alone):
         return ContextFit(
-            LearnedContext(()), [0.2, 0.1], 1, 4, [], (0, 3), [0.3, 0.25], rules_alone
+            LearnedContext(()), [0.2, 0.1], 1, 4, [], (0, 3), [0.3, 0.25], rules_alone, 1
         )
 
     assert fit(0.25).rules_alone_better and fit(0.1).rules_alone_better
