@@ -168,6 +168,8 @@ def pyrender_classes(gl) -> PyrenderClasses:
             self._poses: dict = {}
             self.frame_cache: dict = {}  # the renderer's results for this scene as it is
             self.version = 0  # counts the changes
+            self._added: dict = {}  # node -> when it was added (draw order, below)
+            self._additions = 0
             super().__init__(*args, **kwargs)
 
         def _changed(self) -> None:
@@ -177,11 +179,21 @@ def pyrender_classes(gl) -> PyrenderClasses:
 
         def add_node(self, node, parent_node=None):
             self._changed()
+            if node not in self._added:
+                self._added[node] = self._additions
+                self._additions += 1
             return super().add_node(node, parent_node=parent_node)
 
         def remove_node(self, node):
             self._changed()
             return super().remove_node(node)
+
+        def _remove_node(self, node):  # pyrender's: the node, then each child the same way
+            self._added.pop(node, None)
+            return super()._remove_node(node)
+
+        def added_order(self, node) -> int:
+            return self._added.get(node, self._additions)
 
         def set_pose(self, node, pose):
             self._changed()
@@ -189,6 +201,7 @@ def pyrender_classes(gl) -> PyrenderClasses:
 
         def clear(self):
             self._changed()
+            self._added.clear()
             return super().clear()
 
         def get_pose(self, node):
@@ -276,10 +289,23 @@ def pyrender_classes(gl) -> PyrenderClasses:
             return scene.frame_cache[key]
 
         def _sorted_mesh_nodes(self, scene):
+            # pyrender's order: solid meshes, then see-through ones, each farthest first.
+            # It starts from a set of nodes, ordered by their addresses in memory, so two
+            # meshes as far from the camera (a window's pane and frame) were drawn in
+            # either order from run to run and a pixel where both blend came out either
+            # way. Here they start in the order they were added.
             if not isinstance(scene, FrameScene):
                 return super()._sorted_mesh_nodes(scene)
             if "sorted" not in scene.frame_cache:
-                scene.frame_cache["sorted"] = super()._sorted_mesh_nodes(scene)
+                camera = scene.get_pose(scene.main_camera_node)[:3, 3]
+                nodes = sorted(scene.mesh_nodes, key=scene.added_order)
+
+                def farthest_first(node) -> float:
+                    return -float(np.linalg.norm(scene.get_pose(node)[:3, 3] - camera))
+
+                solid = sorted((n for n in nodes if not n.mesh.is_transparent), key=farthest_first)
+                clear = sorted((n for n in nodes if n.mesh.is_transparent), key=farthest_first)
+                scene.frame_cache["sorted"] = solid + clear
             return scene.frame_cache["sorted"]
 
         def _update_context(self, scene, flags):

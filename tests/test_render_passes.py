@@ -7,6 +7,7 @@ shadow filter); and the one shadow filter changes only the edges of shadows."""
 from __future__ import annotations
 
 import pytest
+import trimesh
 from render_fixtures import or_skip_without_opengl
 
 from scenewright.api import build_scene
@@ -139,3 +140,32 @@ def test_threads_loading_pyrender_at_once_each_get_all_of_it():
         text=True,
     )
     assert viewer.stdout.split() == ["False", "pyrender.viewer"], viewer.stderr
+
+
+def test_meshes_as_far_from_the_camera_are_drawn_in_the_order_they_were_added():
+    """pyrender orders meshes by their distance from the camera, starting from a set of
+    nodes (ordered by address in memory): meshes at one distance, a window's pane and its
+    frame, were drawn in either order from run to run, and a pixel where both blend
+    changed between runs of the same scene. The renderer's scene draws them as added."""
+    with or_skip_without_opengl(lambda: offscreen.Renderer(*SIZE)) as renderer:
+        gl = renderer._gl
+        scene = offscreen.pyrender_classes(gl).scene(ambient_light=[0.1, 0.1, 0.1])
+        camera = gl.Node(camera=gl.PerspectiveCamera(yfov=1.0), translation=[0, 0, 5])
+        scene.add_node(camera)
+        scene.main_camera_node = camera
+        box = gl.Mesh.from_trimesh(trimesh.creation.box((0.1, 0.1, 0.1)))
+        glass = gl.Mesh.from_trimesh(
+            trimesh.creation.box((0.1, 0.1, 0.1)),
+            material=gl.MetallicRoughnessMaterial(
+                baseColorFactor=[1, 1, 1, 0.5], alphaMode="BLEND"
+            ),
+        )
+        added = [gl.Node(name=f"n{k}", mesh=glass if k % 3 == 0 else box) for k in range(60)]
+        for node in added:
+            scene.add_node(node)
+        scene.remove_node(added[10])
+        order = renderer._renderer._renderer._sorted_mesh_nodes(scene)
+        kept = [node for node in added if node is not added[10]]
+        solid = [node for node in kept if not node.mesh.is_transparent]
+        clear = [node for node in kept if node.mesh.is_transparent]
+        assert order == solid + clear
