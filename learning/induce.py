@@ -51,7 +51,9 @@ file and ``Induction.to_dict()`` the report.
    of its own, ``SideTableAlone``).
 6. **Walls.** In examples with a room, each standing object is measured against the
    wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
-   gets it (``AgainstWall some wall``: the layout chooses the wall).
+   gets it (``AgainstWall some wall``: the layout chooses the wall), and a member's
+   placement gets the one held by ``WALL_SHARE`` of its own objects
+   (``Placement.wall``), which ``rules_text`` writes.
 7. **Scene.** The room of the example whose room is nearest the median size (its walls,
    doors and windows), or the median extent of open ground.
 """
@@ -76,6 +78,7 @@ from scenewright.examples.example import default_looks
 
 from .density_peaks import density_peaks
 from .induction import (
+    WALL_SHARE,
     Cluster,
     Group,
     Induction,
@@ -551,18 +554,57 @@ def carried_routes(
 
 
 def _walls(scenes: Sequence[Scene], supports: Sequence[dict[str, str]]) -> dict[str, WallShare]:
-    shares: dict[str, WallShare] = defaultdict(WallShare)
-    for scene, support in zip(scenes, supports, strict=False):
+    """Per type, how many of its standing objects each wall label held for."""
+    return _type_walls(scenes, _object_walls(scenes, supports))
+
+
+def _object_walls(
+    scenes: Sequence[Scene], supports: Sequence[dict[str, str]]
+) -> dict[tuple[int, str], set[str]]:
+    """(scene index, object id) -> the wall labels that hold for that standing object."""
+    found: dict[tuple[int, str], set[str]] = {}
+    for index, (scene, support) in enumerate(zip(scenes, supports, strict=False)):
         if scene.room is None:
             continue
-        objects = scene.placed_objects()
-        held = wall_holds(objects, scene.room, set(support))
-        types = {o.id: o.type for o in objects}
-        for object_id, labels in held.items():
-            share = shares[types[object_id]]
-            share.objects += 1
-            share.held.update(labels)
+        held = wall_holds(scene.placed_objects(), scene.room, set(support))
+        found.update({(index, object_id): labels for object_id, labels in held.items()})
+    return found
+
+
+def _type_walls(
+    scenes: Sequence[Scene], held: dict[tuple[int, str], set[str]]
+) -> dict[str, WallShare]:
+    types = {(k, o.id): o.type for k, scene in enumerate(scenes) for o in scene.placed_objects()}
+    shares: dict[str, WallShare] = defaultdict(WallShare)
+    for key, labels in held.items():
+        share = shares[types[key]]
+        share.objects += 1
+        share.held.update(labels)
     return dict(shares)
+
+
+def _placement_walls(
+    placements: list[Placement],
+    assigned: np.ndarray,
+    children: Sequence[tuple[int, str]],
+    held: dict[tuple[int, str], set[str]],
+) -> list[Placement]:
+    """``placements`` with the wall label each one's objects held (``Placement.wall``):
+    the first of the wall labels that held for at least ``WALL_SHARE`` of them."""
+    walled = []
+    for number_, placement in enumerate(placements):
+        objects = [held.get(children[k], set()) for k in np.flatnonzero(assigned == number_)]
+        wall = next(
+            (
+                label
+                for label in CATEGORIES["wall"]
+                if objects
+                and sum(label in labels for labels in objects) >= WALL_SHARE * len(objects)
+            ),
+            None,
+        )
+        walled.append(replace(placement, wall=wall))
+    return walled
 
 
 def _anchor(
@@ -666,7 +708,8 @@ def induce(
     catalog = {
         t: catalog_entry(t, by_type[t], sources[t], scenes_of[t], shipped) for t in sorted(by_type)
     }
-    walls = _walls(scenes, supports)
+    object_walls = _object_walls(scenes, supports)
+    walls = _type_walls(scenes, object_walls)
 
     # Types that rest on others hang off what carries them (each of its carriers: books on
     # desks and on shelves); the others are grouped by their relations.
@@ -712,6 +755,8 @@ def induce(
             against_wall=not carried and walls.get(child, WallShare()).label() is not None,
         )
         placements, clusters, outliers, assigned = placements_of(instances)
+        if not carried:
+            placements = _placement_walls(placements, assigned, instances.children, object_walls)
         per_host = Counter(instances.hosts)
         alone = [k for k, host in enumerate(instances.hosts) if per_host[host] == 1]
         chosen = {instances.hosts[k]: int(assigned[k]) for k in alone}

@@ -110,10 +110,13 @@ class Cluster:
 @dataclass(frozen=True)
 class Placement:
     """One way a child stands by its parent: the labels written and how many objects
-    (the clusters' members) stood that way."""
+    (the clusters' members) stood that way; ``wall``: the wall label held by at least
+    ``WALL_SHARE`` of those objects (a lamp flush with the wall beside the armchair, and
+    none for the lamps standing out in the room), else None."""
 
     labels: tuple[str, ...]
     weight: int
+    wall: str | None = None
 
 
 @dataclass(frozen=True)
@@ -241,7 +244,8 @@ class Member:
             "parent_objects": self.parents,
             "children_per_parent": {str(k): v for k, v in sorted(self.per_parent.items())},
             "placements": [
-                {"labels": list(p.labels), "objects": p.weight} for p in self.placements
+                {"labels": list(p.labels), "objects": p.weight, "wall": p.wall}
+                for p in self.placements
             ],
             "clusters": [c.to_dict() for c in self.clusters],
             "outliers": self.outliers,

@@ -243,6 +243,15 @@ class RulesWriter:
     def wall_words(wall: str | None) -> str:
         return f" {wall} some wall" if wall else ""
 
+    def placed_wall(self, member: Member, index: int | None = None) -> str:
+        """The wall words of ``member``'s object in its placement ``index`` (its only
+        one when None): the label its objects there held (``Placement.wall``), so a lamp
+        flush with the wall in most examples and out in the room in the rest is put at
+        the wall only in its flush placement. A member with no placement takes its type's."""
+        if not member.placements:
+            return self.wall_words(member.wall)
+        return self.wall_words(member.placements[0 if index is None else index].wall)
+
     def noun_plural(self, type_name: str) -> str:
         """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
         entry = self.induction.catalog[type_name]
@@ -373,7 +382,7 @@ class RulesWriter:
         prefix = (counts + " ") if counts else ""
         index = fixed.get(id(member))
         note = f"    # {self.member_note(member)}" if noted else ""
-        wall = self.wall_words(member.wall)
+        wall = self.placed_wall(member, index if index is not None and index >= 0 else None)
         if index == -1 and not _holds(member, fixed):  # in no placement: drawn on its own
             statement, made = self.member_statement(member, param, depth)
             return [statement if noted else statement.split("    #")[0]], made
@@ -418,7 +427,7 @@ class RulesWriter:
             body_lines.append(f"{own}({param}) -> {{")
             body_lines.append(
                 f"{self.INDENT}{member.type} as {bound} {self.relation_words(labels, param)}".rstrip()
-                + self.wall_words(member.wall)
+                + self.placed_wall(member, index)
             )
             body, most = self.members_body(member.children, bound, member.joints, depth + 1)
             self.productions.append(body_lines + body)
@@ -444,7 +453,7 @@ class RulesWriter:
         head = f"{places}({param}) -> "
         for k, placement in enumerate(placed):
             body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
-            body += self.wall_words(member.wall) + " }"
+            body += self.wall_words(placement.wall) + " }"
             lead = head if k == 0 else " " * (len(head) - 2) + "| "
             lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
         lines.append("")
@@ -482,7 +491,7 @@ class RulesWriter:
             note += f"; {member.placements[0].weight} of {member.instances} in one cluster of poses"
         text = (
             f"{prefix}{member.type} {self.relation_words(labels, target)}".rstrip()
-            + self.wall_words(member.wall)
+            + self.placed_wall(member)
         )
         return f"{text}    # {note}", largest
 
@@ -517,8 +526,7 @@ class RulesWriter:
         else:
             words = self.relation_words(placed[0].labels, param)
             body_lines.append(
-                f"{self.INDENT}{member.type} as {bound} {words}".rstrip()
-                + self.wall_words(member.wall)
+                f"{self.INDENT}{member.type} as {bound} {words}".rstrip() + self.placed_wall(member)
             )
         body, made = self.statements(member.children, member.joints, bound, depth + 1)
         body_lines += body + ["}", ""]
