@@ -60,10 +60,8 @@ def lalr_parser() -> Lark:
 def _parser() -> Lark:
     grammar = _grammar()
     whole_words = _WholeKeywords()
-    stored = stored_tables()
-    if stored is not None and stored["made_from"] == made_from(grammar):
-        parser = Lark.__new__(Lark)._load(stored["parser"], postlex=whole_words)
-    else:
+    parser = _stored_parser(grammar, whole_words)
+    if parser is None:
         parser = Lark(grammar, postlex=whole_words, **OPTIONS)
     whole_words.keywords = frozenset(
         terminal.name
@@ -71,6 +69,18 @@ def _parser() -> Lark:
         if terminal.pattern.type == "str" and terminal.pattern.value[:1].isalpha()
     )
     return parser
+
+
+def _stored_parser(grammar: str, whole_words: _WholeKeywords) -> Lark | None:
+    """The parser from the stored tables, if they were made from ``grammar`` with this
+    lark and load whole; else None (the parser is then built: slower, never wrong)."""
+    try:
+        stored = stored_tables()
+        if stored is None or stored.get("made_from") != made_from(grammar):
+            return None
+        return Lark.__new__(Lark)._load(stored["parser"], postlex=whole_words)
+    except Exception:  # a damaged file fails in many ways (lark asserts): building is never wrong
+        return None
 
 
 def _grammar() -> str:

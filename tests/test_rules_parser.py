@@ -1,5 +1,6 @@
 """Parsing rules text into the AST: every construct, separators, comments, includes."""
 
+import json
 from pathlib import Path
 
 import pytest
@@ -239,3 +240,30 @@ def test_the_stored_parser_tables_are_of_this_grammar_and_parse_as_the_built_par
                 expected = sorted(getattr(error, "expected", None) or ())
                 outcomes.append((type(error).__name__, where, expected))
         assert outcomes[0] == outcomes[1]
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [
+        lambda: json.loads("{not json"),
+        lambda: {"made_from": None},
+        lambda: {"parser": {}},
+        lambda: {"made_from": rules_lark_made_from(), "parser": {"data": {}, "memo": {}}},
+    ],
+)
+def test_damaged_stored_tables_build_the_parser_instead(monkeypatch, damage):
+    from scenewright.generator import rules_lark
+
+    monkeypatch.setattr(rules_lark, "stored_tables", damage)
+    rules_lark._parser.cache_clear()
+    try:
+        parsed = parse_text((SHIPPED / "desk.rules").read_text(), "desk.rules")
+        assert parsed.productions
+    finally:
+        rules_lark._parser.cache_clear()
+
+
+def rules_lark_made_from():
+    from scenewright.generator import rules_lark
+
+    return rules_lark.made_from(rules_lark._grammar())
