@@ -52,8 +52,8 @@ file and ``Induction.to_dict()`` the report.
 6. **Walls.** In examples with a room, each standing object is measured against the
    wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
    gets it (``AgainstWall some wall``: the layout chooses the wall), and a member's
-   placement gets the one held by ``WALL_SHARE`` of its own objects
-   (``Placement.wall``), which ``rules_text`` writes.
+   placement gets the one held by more than ``PLACEMENT_WALL_SHARE`` of its own
+   objects (``Placement.wall``), which ``rules_text`` writes.
 7. **Scene.** The room of the example whose room is nearest the median size (its walls,
    doors and windows), or the median extent of open ground.
 """
@@ -78,7 +78,7 @@ from scenewright.examples.example import default_looks
 
 from .density_peaks import density_peaks
 from .induction import (
-    WALL_SHARE,
+    PLACEMENT_WALL_SHARE,
     Cluster,
     Group,
     Induction,
@@ -590,7 +590,7 @@ def _placement_walls(
     held: dict[tuple[int, str], set[str]],
 ) -> list[Placement]:
     """``placements`` with the wall label each one's objects held (``Placement.wall``):
-    the first of the wall labels that held for at least ``WALL_SHARE`` of them."""
+    the first of the wall labels that held for more than ``PLACEMENT_WALL_SHARE`` of them."""
     walled = []
     for number_, placement in enumerate(placements):
         objects = [held.get(children[k], set()) for k in np.flatnonzero(assigned == number_)]
@@ -599,7 +599,7 @@ def _placement_walls(
                 label
                 for label in CATEGORIES["wall"]
                 if objects
-                and sum(label in labels for labels in objects) >= WALL_SHARE * len(objects)
+                and sum(label in labels for labels in objects) > PLACEMENT_WALL_SHARE * len(objects)
             ),
             None,
         )

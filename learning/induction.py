@@ -24,6 +24,10 @@ from .rule_names import colour_text
 #: (a sofa against a wall in 61 % of living rooms, always put there, left no room for the
 #: TV stand that stood within 2 m in front of it when it was not).
 WALL_SHARE = 0.75
+#: A member's placement gets the wall label held by more than this share of its own
+#: objects (``Placement.wall``): within one way of standing by the parent, the majority
+#: is the nearest the examples' share that a label written or not can come.
+PLACEMENT_WALL_SHARE = 0.5
 
 
 # -- the catalog ----------------------------------------------------------------------
@@ -110,9 +114,9 @@ class Cluster:
 @dataclass(frozen=True)
 class Placement:
     """One way a child stands by its parent: the labels written and how many objects
-    (the clusters' members) stood that way; ``wall``: the wall label held by at least
-    ``WALL_SHARE`` of those objects (a lamp flush with the wall beside the armchair, and
-    none for the lamps standing out in the room), else None."""
+    (the clusters' members) stood that way; ``wall``: the wall label held by more than
+    ``PLACEMENT_WALL_SHARE`` of those objects (a lamp flush with the wall beside the
+    armchair, and none for the lamps standing out in the room), else None."""
 
     labels: tuple[str, ...]
     weight: int

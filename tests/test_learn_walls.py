@@ -1,7 +1,7 @@
-"""Wall labels learned per placement (``Placement.wall``): a floor lamp flush with the
-wall beside its armchair in most reading corners and out in the room in the rest is
-put at the wall only in its flush placement, so the scenes made keep the examples'
-share instead of putting every lamp there (or none)."""
+"""Wall labels learned per placement (``Placement.wall``: held by most of its objects): a
+floor lamp flush with the wall beside its armchair in most reading corners and out in
+the room in the rest is put at the wall only in its flush placement, so the scenes made
+keep the examples' share instead of putting every lamp there (or none)."""
 
 from __future__ import annotations
 
