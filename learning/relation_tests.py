@@ -166,7 +166,7 @@ def permutation_outcome(
     if not outcome.related and len(together) < PAIR_SCENES:
         # Ten to nineteen scenes make only five to nine pairs of halves, a weak test: a
         # lamp beside the armchair in all of ten reading corners, on either side, went
-        # unrelated for three seeds of five. The scene-pairing test of fewer scenes
+        # unrelated for four seeds of five. The scene-pairing test of fewer scenes
         # (every scene's poses against every other's, either side alike) is asked too,
         # on a stream of its own so that nothing drawn before changes.
         own = np.random.Generator(np.random.PCG64(rng.bit_generator.seed_seq.spawn(1)[0]))  # type: ignore[attr-defined]
