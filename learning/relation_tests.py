@@ -106,7 +106,7 @@ def paired_outcome(
         if outcome.related:
             return outcome
     # A stream of its own, so that what the pair's stream draws next is as before.
-    own = np.random.Generator(np.random.PCG64(rng.bit_generator.seed_seq.spawn(1)[0]))  # type: ignore[attr-defined]
+    (own,) = rng.spawn(1)
     energy, p_value, tightness = pairing_test(hand_placed_poses(poses, square(second)), own)
     # With few scenes the pairings cannot reach alpha (1/6 at best with three) or tie
     # (2/120 with five): what the examples show is then all there is to go by, b beside a
@@ -169,7 +169,7 @@ def permutation_outcome(
         # unrelated for four seeds of five. The scene-pairing test of fewer scenes
         # (every scene's poses against every other's, either side alike) is asked too,
         # on a stream of its own so that nothing drawn before changes.
-        own = np.random.Generator(np.random.PCG64(rng.bit_generator.seed_seq.spawn(1)[0]))  # type: ignore[attr-defined]
+        (own,) = rng.spawn(1)
         paired = paired_outcome(first, second, same, together, own, alpha)
         if paired.related:
             return paired
