@@ -152,9 +152,10 @@ def learn_stances(plans: Sequence[Plan], catalog, accessories: set[str]) -> dict
         floor = [piece for piece in plan.furniture if piece.on is None]
         flat = {piece.id for piece in floor if is_flat(piece, catalog)}
         partners = [p for p in floor if p.id not in flat and p.category not in accessories]
-        stands_before = _stands_before(floor, partners, plan.room)
+        touched = {piece.id: touched_walls(piece, plan.room) for piece in floor}
+        stands_before = _stands_before(floor, partners, touched)
         for piece in floor:
-            sides = touched_walls(piece, plan.room)
+            sides = touched[piece.id]
             walls = list(sides.values())
             tally = tallies[piece.category]
             tally["pieces"] += 1
@@ -212,13 +213,14 @@ def learn_stances(plans: Sequence[Plan], catalog, accessories: set[str]) -> dict
 
 
 def _stands_before(
-    floor: Sequence[Furniture], partners: Sequence[Furniture], room: Room
+    floor: Sequence[Furniture], partners: Sequence[Furniture], touched: dict[str, dict]
 ) -> dict[str, str]:
-    """Per id of a piece of ``floor`` whose back touches no wall of ``room`` the id of
-    the piece of ``partners`` it stands or lies before (``before_of``), where it does."""
+    """Per id of a piece of ``floor`` whose back touches no wall (``touched``: each
+    piece's ``touched_walls``) the id of the piece of ``partners`` it stands or lies
+    before (``before_of``), where it does."""
     out = {}
     for piece in floor:
-        if "back" in touched_walls(piece, room):
+        if "back" in touched[piece.id]:
             continue
         before = before_of(piece, [other for other in partners if other.id != piece.id])
         if before is not None:
