@@ -155,7 +155,6 @@ class PlanPage:
         """A line through ``points``, ``width`` points wide (or ``metres_wide``, with
         round ends: a road); ``style``: "solid", "dashed" or "dotted"."""
         xy = self._pixels(points)
-        fill = (*rgb(colour), round(255 * alpha))
         if metres_wide is not None:
             # Roads go down first, on the white ground: drawn opaque in the colour they
             # would show there, so a road is not darker where its pieces overlap.
@@ -166,6 +165,7 @@ class PlanPage:
                 r = pixels / 2
                 self._draw.ellipse((x - r, y - r, x + r, y + r), fill=solid)
             return
+        fill = (*rgb(colour), round(255 * alpha))
         pixels = self._width(width)
         if style == "solid":
             self._draw.line(xy, fill=fill, width=pixels, joint="curve")
