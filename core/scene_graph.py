@@ -16,7 +16,7 @@ chosen, so later stages never need the catalog itself.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any, Protocol
 
@@ -329,9 +329,15 @@ class SceneGraph:
 
     def nodes(self, kind: str | None = None) -> list[SceneNode]:
         """Nodes in creation order, optionally only those of one kind."""
-        found = [SceneNode(**data) for _, data in self.graph.nodes(data=True)]
+        return self._nodes_where(lambda data: kind is None or data["kind"] == kind)
+
+    def _nodes_where(self, wanted: Callable[[dict], bool]) -> list[SceneNode]:
+        """The nodes whose stored fields pass ``wanted``, in creation order. Filtering the
+        stored fields first builds a node only for what is returned: a loop over a town's
+        groups asking each for its children built every node once a group."""
+        found = [SceneNode(**data) for _, data in self.graph.nodes(data=True) if wanted(data)]
         found.sort(key=lambda n: n.order)
-        return [n for n in found if kind is None or n.kind == kind]
+        return found
 
     def edges(self, label: str | None = None) -> list[Relation]:
         """Relations (without a verdict) grouped by source, each source's in insertion order."""
@@ -350,7 +356,7 @@ class SceneGraph:
 
     def children(self, group_id: str) -> list[SceneNode]:
         """Direct members of a group, in creation order."""
-        return self.by_parent().get(group_id, [])
+        return self._nodes_where(lambda data: data["parent"] == group_id)
 
     def descendants(self, group_id: str) -> list[SceneNode]:
         """All members of a group, nested groups' members included (each after its group)."""
