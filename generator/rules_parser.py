@@ -9,6 +9,8 @@ named ``*.rules`` is never quoted. Reading a file and the files it includes is
 
 from __future__ import annotations
 
+import threading
+
 from lark import Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 
@@ -33,6 +35,9 @@ def parse_text(
     """
     sources = sources or SourceTexts()
     sources.add(file, text, quoted)
+    known = _PARSED.get((text, file))
+    if known is not None:
+        return known
     try:
         tree = lalr_parser().parse(text)
     except (UnexpectedToken, UnexpectedCharacters) as error:  # the two LALR parse errors
@@ -46,7 +51,23 @@ def parse_text(
             f"blocks nested more than {MAX_BLOCK_NESTING} deep; move the inner ones into a production "
             "of their own and call it (the limits: docs/limits.md)",
         )
-    return ToAst(file).transform(tree)
+    parsed = ToAst(file).transform(tree)
+    if len(text) <= _PARSED_LARGEST:
+        with _PARSED_LOCK:
+            if len(_PARSED) >= _PARSED_KEPT:
+                del _PARSED[next(iter(_PARSED))]  # the oldest
+            _PARSED[(text, file)] = parsed
+    return parsed
+
+
+#: Files parsed lately, by (text, name): the AST is immutable (frozen dataclasses of
+#: tuples) and depends on nothing else, so a program that loads the same rules again (a
+#: house's rooms, the API called in a loop) parses each text once. Only parses without
+#: a syntax error are kept: a diagnostic's wording depends on the other files read.
+_PARSED: dict[tuple[str, str], ast.RulesFile] = {}
+_PARSED_KEPT = 64
+_PARSED_LOCK = threading.Lock()
+_PARSED_LARGEST = 200_000  # characters: the shipped rule sets are under 20,000
 
 
 def _too_deep_block(tree: Tree) -> Tree | None:

@@ -267,3 +267,25 @@ def rules_lark_made_from():
     from scenewright.generator import rules_lark
 
     return rules_lark.made_from(rules_lark._grammar())
+
+
+def test_a_text_parsed_again_is_not_parsed_twice_and_keeps_its_own_file_name(monkeypatch):
+    from scenewright.generator import rules_parser
+
+    text = 'object crate { noun "crate" size 1 x 1 x 1 }\nP -> { crate }\n'
+    first = parse_text(text, "again.rules")
+    calls = []
+    real = rules_parser.lalr_parser
+    monkeypatch.setattr(rules_parser, "lalr_parser", lambda: calls.append(1) or real())
+    assert parse_text(text, "again.rules") is first
+    assert calls == []
+    renamed = parse_text(text, "other.rules")
+    assert calls == [1]
+    (entry,) = renamed.entries
+    assert entry.location.file == "other.rules"
+    edited = parse_text(text.replace("crate }", "crate crate }"), "again.rules")
+    assert calls == [1, 1] and edited is not first
+    # A syntax error is worded afresh each time, never kept.
+    assert isinstance(parse_text("P -> {", "bad.rules"), Diagnostic)
+    assert isinstance(parse_text("P -> {", "bad.rules"), Diagnostic)
+    assert calls == [1, 1, 1, 1]
