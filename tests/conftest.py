@@ -22,9 +22,10 @@ settings.register_profile("explore", derandomize=False)
 settings.load_profile("explore" if os.environ.get("SCENEWRIGHT_EXPLORE") else "fixed")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def model():
-    """The completion model learned from the shipped floor plans."""
+    """The completion model learned from the shipped floor plans (one per worker: no
+    test changes it, and learning it takes most of a second)."""
     return build_model(load_plans(shipped_plans_dir()))
 
 
