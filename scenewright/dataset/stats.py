@@ -11,16 +11,16 @@ Times differ between runs, so stats.json, unlike the rest of the dataset, does t
 
 from __future__ import annotations
 
-import io
 import json
 import re
-import textwrap
 from collections import Counter
 from pathlib import Path
 
 import numpy as np
 
 from scenewright.core.atomic import write_atomic
+
+from .stats_sheet import stats_sheet
 
 STATS_JSON = "stats.json"
 STATS_PNG = "stats.png"
@@ -191,124 +191,4 @@ def distribution(values: list[float], digits: int = 2, bins: int = 0) -> dict:
 def write_stats(root: Path, stats: dict) -> None:
     """Write stats.json and the stats.png overview into the dataset directory."""
     write_atomic(root / STATS_JSON, json.dumps(stats, indent=1, ensure_ascii=False) + "\n")
-    write_atomic(root / STATS_PNG, stats_figure(stats))
-
-
-def stats_figure(stats: dict) -> bytes:
-    """A 2x3 PNG: object frequencies, relations held, layout retries by scene size; text
-    lengths, seconds per stage, and the most frequent errors of scenes the rules could
-    not make (if any)."""
-    import matplotlib  # only here: a dataset run needs it once, at the end
-
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(17, 9), dpi=80, layout="constrained")
-    axes = figure.subplots(2, 3)
-    errored = stats["failed"] - stats["failed_layouts"]
-    figure.suptitle(
-        f"{stats['scenes']} scenes, {stats['written']} written, {stats['failed_layouts']} failed layouts, "
-        f"{errored} not made (rules errors), {stats['retries']['scenes_retried']} retried"
-    )
-
-    top_objects = list(stats["objects"].items())[:20]
-    bars(
-        axes[0, 0],
-        [name for name, _ in top_objects],
-        [n for _, n in top_objects],
-        "objects (top 20 types)",
-    )
-    whole_counts(axes[0, 0].xaxis)
-
-    labels = list(stats["relations"])
-    totals = [stats["relations"][label]["total"] for label in labels]
-    held = [stats["relations"][label]["satisfied"] for label in labels]
-    bars(axes[0, 1], labels, totals, "relations: total (light) and satisfied (dark)", alpha=0.35)
-    axes[0, 1].barh(labels, held, color="tab:blue")
-    whole_counts(axes[0, 1].xaxis)
-
-    lengths = axes[1, 0]
-    described = {name: summary for name, summary in stats["words"].items() if summary["count"]}
-    for name, summary in described.items():
-        histogram = summary["histogram"]
-        label = f"{name} (median {summary['median']:g})"
-        lengths.stairs(histogram["counts"], histogram["edges"], fill=True, alpha=0.6, label=label)
-    lengths.set_title("length in words (full text, short captions)")
-    lengths.set_xlabel("words")
-    lengths.set_ylabel("texts")
-    whole_counts(lengths.yaxis)
-    if described:
-        lengths.legend()
-
-    stages = stats["seconds_per_stage"]
-    bars(
-        axes[1, 1],
-        list(stages),
-        [stages[s]["mean"] for s in stages],
-        "mean seconds per scene and stage",
-    )
-
-    retries_figure(axes[0, 2], stats["retries"]["by_objects"])
-    errors_figure(axes[1, 2], stats["errors"])
-
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png")
-    return buffer.getvalue()
-
-
-def bars(axis, names: list[str], values: list[float], title: str, alpha: float = 1.0) -> None:
-    axis.barh(names, values, color="tab:blue", alpha=alpha)
-    axis.invert_yaxis()
-    axis.set_title(title)
-    axis.tick_params(axis="y", labelsize=8)
-
-
-def retries_figure(axis, by_objects: list[dict]) -> None:
-    """Scenes per size bin (light), those that needed a retry (dark) and those still
-    failed after the last retry (red)."""
-    names = [row["objects"] for row in by_objects]
-    bars(
-        axis,
-        names,
-        [row["scenes"] for row in by_objects],
-        "scenes by objects: retried (dark), failed (red)",
-        alpha=0.35,
-    )
-    axis.barh(names, [row["retried"] for row in by_objects], color="tab:blue")
-    axis.barh(
-        names, [row["failed_after_retries"] for row in by_objects], color="tab:red", height=0.4
-    )
-    axis.set_ylabel("objects per scene")
-    whole_counts(axis.xaxis)
-
-
-def whole_counts(axis) -> None:
-    """Ticks at whole numbers only on an axis that counts (no "1.5 scenes")."""
-    from matplotlib.ticker import MaxNLocator
-
-    axis.set_major_locator(MaxNLocator(integer=True))
-
-
-def errors_figure(axis, errors: dict[str, dict]) -> None:
-    """The most frequent errors of scenes the rules could not make, as text."""
-    axis.set_axis_off()
-    lines = [
-        f"{n}x  {stage}: {message}"
-        for stage, error in errors.items()
-        for message, n in error["messages"].items()
-    ]
-    if not lines:
-        return
-    axis.set_title("scenes the rules could not make")
-    # Wrapped to the panel's width (about 60 monospace characters at this size), each
-    # error on at most three lines, so the text stays inside the figure.
-    wrapped = [textwrap.wrap(line, 60, subsequent_indent="    ")[:3] for line in lines[:8]]
-    axis.text(
-        0.0,
-        1.0,
-        "\n".join(part for parts in wrapped for part in parts),
-        va="top",
-        fontsize=8,
-        family="monospace",
-        transform=axis.transAxes,
-    )
+    write_atomic(root / STATS_PNG, stats_sheet(stats))
