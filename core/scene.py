@@ -24,7 +24,7 @@ from .house import House
 from .poses import LayoutResult
 from .relations import Relation
 from .room import ROOM_KINDS, Room
-from .scene_graph import SceneGraph, SceneNode, SceneParams
+from .scene_graph import SceneGraph, SceneNode, SceneParams, descendants_in
 
 #: Bumped when scene.json changes shape or meaning. 2: relations keep PathConnectedTo,
 #: seeds are split into per-stage streams, ``derivation`` records every random choice.
@@ -332,8 +332,9 @@ def assemble_scene(graph: SceneGraph, layout: LayoutResult, *, rules: str, seed:
             objects.append(_object_of(node, [pose.x, pose.y, pose.z], pose.yaw, list(node.size)))
 
     placed = {o.id: o for o in objects}
+    by_parent = graph.by_parent()
     for group in graph.nodes("group"):
-        members = [placed[m.id] for m in graph.descendants(group.id) if m.id in placed]
+        members = [placed[m.id] for m in descendants_in(by_parent, group.id) if m.id in placed]
         position, size = _union_box(members)
         objects.append(_object_of(group, position, 0.0, size))
     objects.sort(key=lambda o: o.order)

@@ -181,6 +181,20 @@ class SceneNode:
     network: str | None = None
 
 
+def descendants_in(members: dict[str | None, list[SceneNode]], group_id: str) -> list[SceneNode]:
+    """All members of a group by ``members`` (``SceneGraph.by_parent``), nested groups'
+    members included (each after its group): one ``by_parent`` serves every group."""
+    found: list[SceneNode] = []
+
+    def collect(parent: str) -> None:
+        for child in members.get(parent, []):
+            found.append(child)
+            collect(child.id)
+
+    collect(group_id)
+    return found
+
+
 #: The attribute names a node is stored under in the networkx graph.
 _NODE_FIELDS = tuple(f.name for f in fields(SceneNode))
 
@@ -360,16 +374,7 @@ class SceneGraph:
 
     def descendants(self, group_id: str) -> list[SceneNode]:
         """All members of a group, nested groups' members included (each after its group)."""
-        members = self.by_parent()
-        found: list[SceneNode] = []
-
-        def collect(parent: str) -> None:
-            for child in members.get(parent, []):
-                found.append(child)
-                collect(child.id)
-
-        collect(group_id)
-        return found
+        return descendants_in(self.by_parent(), group_id)
 
     def __len__(self) -> int:
         return self.graph.number_of_nodes()

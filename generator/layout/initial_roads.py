@@ -682,18 +682,18 @@ def _fitted_road(
             if (
                 abs(px) > half_x
                 or abs(pz) > half_z
-                or laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                or laid.closer_than((px, pz), ROAD_CLEARANCE)
                 or (
                     beside is not None
                     and walked + t * segment >= beside_from
-                    and beside.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE
+                    and beside.closer_than((px, pz), ROAD_CLEARANCE)
                 )
             ):
                 stop = walked + (k - 1) / steps * segment
                 met = (
                     abs(px) <= half_x
                     and abs(pz) <= half_z
-                    and (laid.distance((px, pz), ROAD_CLEARANCE) < ROAD_CLEARANCE)
+                    and laid.closer_than((px, pz), ROAD_CLEARANCE)
                 )
                 break
         if stop is not None:
@@ -761,6 +761,31 @@ class _Segments:
                         best = min(best, point_segment_distance(px, pz, ax, az, bx, bz))
         return best
 
+    def closer_than(self, point, radius: float, ignore: int = -2) -> bool:
+        """Whether some segment (not of path ``ignore``) is nearer ``point`` than
+        ``radius``: ``distance(point, radius, ignore) < radius``, without measuring the
+        segments whose box is clearly farther (most of them, on a clear stretch)."""
+        px, pz = point
+        reach = math.ceil(radius / self.CELL)
+        ci, cj = math.floor(px / self.CELL), math.floor(pz / self.CELL)
+        # The margin keeps a segment a rounding error away from ``radius`` measured.
+        low_x, high_x = px - radius - 1e-9, px + radius + 1e-9
+        low_z, high_z = pz - radius - 1e-9, pz + radius + 1e-9
+        for i in range(ci - reach, ci + reach + 1):
+            for j in range(cj - reach, cj + reach + 1):
+                for ax, az, bx, bz, owner in self.cells.get((i, j), ()):
+                    if (
+                        owner == ignore
+                        or (ax < low_x and bx < low_x)
+                        or (ax > high_x and bx > high_x)
+                        or (az < low_z and bz < low_z)
+                        or (az > high_z and bz > high_z)
+                    ):
+                        continue
+                    if point_segment_distance(px, pz, ax, az, bx, bz) < radius:
+                        return True
+        return False
+
     def ray(self, origin, direction, reach: float, ignore: int = -2):
         """(distance, unit direction of the segment) of the first segment (not of path
         ``ignore``) crossed going ``reach`` metres from ``origin`` along ``direction``;
@@ -798,6 +823,9 @@ class _Near:
 
     def distance(self, point, within: float) -> float:
         return min(found.distance(point, within, self.ignore) for found in self.sets)
+
+    def closer_than(self, point, radius: float) -> bool:
+        return any(found.closer_than(point, radius, self.ignore) for found in self.sets)
 
     def ray(self, origin, direction, reach: float):
         hits = [found.ray(origin, direction, reach, self.ignore) for found in self.sets]
