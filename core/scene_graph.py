@@ -17,7 +17,7 @@ chosen, so later stages never need the catalog itself.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import dataclass, field, fields
 from typing import Any, Protocol
 
 import networkx as nx
@@ -45,7 +45,9 @@ def _network(entry: CatalogLike) -> str | None:
 def _node_dict(node: SceneNode) -> dict:
     """A node as plain data; ``network`` only where it is set (a grid's junction), so the
     graphs of rule sets that name no network read as before."""
-    data = asdict(node)
+    # A shallow copy: every field is immutable (strings, numbers, tuples), and asdict's
+    # deep copy was most of the cost of writing a graph out.
+    data = {name: getattr(node, name) for name in _NODE_FIELDS}
     if data["network"] is None:
         del data["network"]
     return data
