@@ -24,7 +24,6 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
-import inflect
 import pytest
 
 from scenewright.core.geometry import make_rect, polyline_rects_distance
@@ -177,6 +176,10 @@ CHOSEN_LABEL = {
 
 
 def number_words(count: int) -> str:
+    # inflect itself, not the describer's wrapper; imported here, after the describer
+    # has loaded it without typeguard's instrumentation (1.5 s at import otherwise).
+    import inflect
+
     return inflect.engine().number_to_words(count)
 
 
