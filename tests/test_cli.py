@@ -158,6 +158,30 @@ def test_console_script_exit_codes_and_no_traceback(tmp_path):
     assert debug.returncode == 2 and "Traceback" in debug.stderr
 
 
+EXITING = """
+import atexit, sys, threading, time
+from scenewright.cli import exit_now
+atexit.register(lambda: print("at exit ran"))
+sys.stdout.write("unflushed ")
+if sys.argv[1] == "thread":
+    threading.Thread(target=lambda: (time.sleep(0.3), print("thread finished"))).start()
+exit_now(int(sys.argv[2]))
+"""
+
+
+@pytest.mark.parametrize("thread", ["none", "thread"])
+def test_the_command_exits_with_its_code_after_its_exit_functions_and_threads(thread):
+    """The console command ends without the interpreter's teardown, but only once the
+    exit functions have run and the output is flushed; a running thread is waited for."""
+    done = subprocess.run(
+        [sys.executable, "-c", EXITING, thread, "3"], capture_output=True, text=True
+    )
+    assert done.returncode == 3
+    assert done.stdout.startswith("unflushed ") and "at exit ran" in done.stdout
+    assert ("thread finished" in done.stdout) == (thread == "thread")
+    assert done.stderr == ""
+
+
 # -- validate, expand, list, schema -----------------------------------------------------
 
 BAD_RULES = "scene village {\n  extent 10 x 10\n  start Village\n}\nVillage -> tabel\n"

@@ -1,7 +1,5 @@
 """``python -m scenewright.cli``: the ``scenewright`` command."""
 
-import sys
+from scenewright.cli import run
 
-from scenewright.cli import main
-
-sys.exit(main())
+run()
