@@ -13,21 +13,21 @@ import pytest
 from hypothesis import settings
 from render_fixtures import renderer_or_skip
 
-from scenewright.cli import COLLECTOR_THRESHOLDS
 from scenewright.completion import shipped_plans_dir
 from scenewright.completion.floor_plan import load_plans
 from scenewright.completion.model_builder import build_model
+from scenewright.core.collector import collect_less
 from scenewright.generator import indoor_catalog
 
 settings.register_profile("fixed", derandomize=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile("explore" if os.environ.get("SCENEWRIGHT_EXPLORE") else "fixed")
 
-# The test processes collect cyclic garbage as the console command does (its thresholds)
+# The test processes collect cyclic garbage as the console command does (``collector``)
 # and leave what exists once the tests are collected (modules, the collected tests) out
 # of every later collection: with Python's defaults, traversing that large, long-lived
 # heap again and again took about a tenth of the suite's CPU time.
-gc.set_threshold(*COLLECTOR_THRESHOLDS)
+collect_less()
 
 
 def pytest_collection_finish(session):

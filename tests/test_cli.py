@@ -553,3 +553,21 @@ def test_generate_and_dataset_templates_option(capsys, tmp_path):
     assert_one_line_error(
         err, f"description template {words.resolve() / 'caption.j2'}:1: 'settting' is undefined"
     )
+
+
+def test_the_command_collects_garbage_less_often_and_the_library_leaves_the_collector():
+    """The console command's process collects cyclic garbage at ``collector.THRESHOLDS``;
+    importing and calling the library changes nothing."""
+    probe = (
+        "import atexit, gc, sys\n"
+        "sys.argv = ['scenewright', 'list']\n"
+        "from scenewright.cli import main, run\n"
+        "main(['list'])\n"
+        "atexit.register(lambda: print('after', gc.get_threshold()))\n"
+        "print('before', gc.get_threshold())\n"
+        "run()\n"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "before (700, 10, 10)" in done.stdout
+    assert "after (20000, 20, 20)" in done.stdout

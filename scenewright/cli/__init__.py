@@ -24,13 +24,13 @@ from __future__ import annotations
 import argparse
 import atexit
 import errno
-import gc
 import os
 import sys
 import threading
 import traceback
 
 from scenewright.core import VERSION
+from scenewright.core.collector import collect_less
 from scenewright.core.errors import ScenewrightError
 
 from . import (
@@ -76,18 +76,10 @@ def build_parser() -> CommandLineParser:
     return parser
 
 
-#: The cyclic garbage collector's thresholds in the command's own process (Python's
-#: default is 700, 10, 10). What a command allocates is mostly freed by reference
-#: counting or lives to the end (modules, the catalog, the scene), so collecting every
-#: 700 allocations spent about 5 % of a cold ``generate`` traversing objects that were
-#: never garbage. The library leaves the collector as its caller set it.
-COLLECTOR_THRESHOLDS = (20_000, 20, 20)
-
-
 def run() -> None:
     """The ``scenewright`` console command: ``main`` on the process's arguments, then
     ``exit_now`` with its exit code."""
-    gc.set_threshold(*COLLECTOR_THRESHOLDS)
+    collect_less()
     try:
         code = main()
     except SystemExit as done:  # argparse's --help, --version and usage errors

@@ -58,6 +58,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from scenewright.core.atomic import atomic_stream, remove_partials, write_atomic
+from scenewright.core.collector import collect_less
 from scenewright.core.errors import GenerationError, InputError, ScenewrightError
 from scenewright.core.files import load_json
 from scenewright.dataset.coco import coco_sink
@@ -456,6 +457,7 @@ def start_worker(lifeline, spec: DatasetSpec | None) -> None:
     # figures are in docs/notes/measurements.md). Set before the worker's renderer
     # exists; a value the user gave is kept.
     os.environ.setdefault("LP_NUM_THREADS", "0")
+    collect_less()
     if spec is not None:
         from scenewright.dataset.produce import worker_context
 
