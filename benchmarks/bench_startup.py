@@ -7,11 +7,13 @@ is split three ways:
 - start-up: the interpreter's own start and importing every module the command loads;
 - stages: the stage times the command writes to timings.json (expand, layout,
   describe, render, export), in a run whose modules are already imported;
-- writing and the rest: the rest of that run (the output files, the plan image, the
-  summary line).
+- writing: the rest of that run (the output files, the plan image, the summary line);
+- exit: what the plain command costs beyond the three (the process's end: exit
+  functions, and the interpreter's teardown where the command does not skip it).
 
 The split comes from a second process per run that imports the command's modules
-first and then runs it in-process; the total is the plain command's.
+first and then runs it in-process; the total is the plain command's, so the exit line
+also carries the two processes' difference (a few hundredths of a second either way).
 
 The figures are medians over --runs runs; the first run is thrown away, since it may
 compile bytecode. Usage: python benchmarks/bench_startup.py [--runs 7] [--rules village]
@@ -87,7 +89,7 @@ def main() -> None:
     args = parser.parse_args()
 
     command = Path(sys.executable).with_name("scenewright")
-    totals, startups, stages, rests = [], [], [], []
+    totals, startups, stages, rests, exits = [], [], [], [], []
     with tempfile.TemporaryDirectory() as scratch:
         arguments = ["generate", args.rules, "--seed", str(args.seed), "-o"]
         modules = loaded_modules([*arguments, os.path.join(scratch, "loaded")])
@@ -108,12 +110,16 @@ def main() -> None:
             startups.append(started + imported)
             stages.append(stage)
             rests.append(ran - stage)
-    total, startup, stage, rest = (statistics.median(v) for v in (totals, startups, stages, rests))
+            exits.append(total - started - imported - ran)
+    total, startup, stage, rest, end = (
+        statistics.median(v) for v in (totals, startups, stages, rests, exits)
+    )
     print(f"cold `scenewright generate {args.rules} --seed {args.seed} -o DIR`, {args.runs} runs")
     print(f"  CPU total         {total:6.2f} s  (min {min(totals):.2f}, max {max(totals):.2f})")
     print(f"  start-up          {startup:6.2f} s  (the interpreter and every import)")
     print(f"  stages            {stage:6.2f} s  (timings.json: expand ... export)")
-    print(f"  writing and rest  {rest:6.2f} s")
+    print(f"  writing           {rest:6.2f} s")
+    print(f"  exit              {end:6.2f} s")
 
 
 if __name__ == "__main__":
