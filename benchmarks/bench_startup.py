@@ -8,12 +8,12 @@ is split three ways:
 - stages: the stage times the command writes to timings.json (expand, layout,
   describe, render, export), in a run whose modules are already imported;
 - writing: the rest of that run (the output files, the plan image, the summary line);
-- exit: what the plain command costs beyond the three (the process's end: exit
-  functions, and the interpreter's teardown where the command does not skip it).
+- exit: the process's end (exit functions, and the interpreter's teardown where the
+  command does not skip it).
 
 The split comes from a second process per run that imports the command's modules
-first and then runs it in-process; the total is the plain command's, so the exit line
-also carries the two processes' difference (a few hundredths of a second either way).
+first, then runs it in-process and ends as the command does; the total is the plain
+command's.
 
 The figures are medians over --runs runs; the first run is thrown away, since it may
 compile bytecode. Usage: python benchmarks/bench_startup.py [--runs 7] [--rules village]
@@ -42,7 +42,9 @@ def child_cpu(command: list[str]) -> float:
 
 # A child that runs the command in-process in three timed steps: what the interpreter
 # costs before the first line, importing every module the command will load (the names
-# come from a first run), then the command itself with nothing left to import.
+# come from a first run), then the command itself with nothing left to import; then it
+# ends as the console command does (``scenewright.cli.run``, where the code has it), so
+# that its whole CPU time less the three steps is what the command's end costs.
 SPLIT = """
 import json, sys, time
 started = time.process_time()
@@ -50,12 +52,18 @@ modules = json.loads(sys.argv[1])
 for name in modules:
     __import__(name)
 imported = time.process_time()
-from scenewright.cli import main
+import scenewright.cli as cli
+if hasattr(cli, "run"):
+    from scenewright.core.collector import collect_less
+    collect_less()
 try:
-    main(sys.argv[2:])
-except SystemExit:
-    pass
-print(json.dumps([started, imported - started, time.process_time() - imported]))
+    code = cli.main(sys.argv[2:])
+except SystemExit as done:
+    code = done.code
+print(json.dumps([started, imported - started, time.process_time() - imported]), flush=True)
+if hasattr(cli, "exit_now"):
+    cli.exit_now(code)
+sys.exit(code)
 """
 
 LOADED = """
@@ -96,12 +104,15 @@ def main() -> None:
         for run in range(args.runs + 1):
             out = os.path.join(scratch, f"run{run}")
             total = child_cpu([str(command), *arguments, out])
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
             split = subprocess.run(
                 [sys.executable, "-c", SPLIT, json.dumps(modules), *arguments, out + "-split"],
                 capture_output=True,
                 text=True,
                 check=True,
             )
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            whole = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
             started, imported, ran = json.loads(split.stdout.splitlines()[-1])
             stage = sum(json.loads(Path(out + "-split", "timings.json").read_text()).values())
             if run == 0:
@@ -110,7 +121,7 @@ def main() -> None:
             startups.append(started + imported)
             stages.append(stage)
             rests.append(ran - stage)
-            exits.append(total - started - imported - ran)
+            exits.append(whole - started - imported - ran)
     total, startup, stage, rest, end = (
         statistics.median(v) for v in (totals, startups, stages, rests, exits)
     )
