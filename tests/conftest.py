@@ -12,6 +12,7 @@ import os
 import pytest
 from hypothesis import settings
 from render_fixtures import renderer_or_skip
+from threadpoolctl import threadpool_limits
 
 from scenewright.completion import shipped_plans_dir
 from scenewright.completion.floor_plan import load_plans
@@ -28,6 +29,12 @@ settings.load_profile("explore" if os.environ.get("SCENEWRIGHT_EXPLORE") else "f
 # of every later collection: with Python's defaults, traversing that large, long-lived
 # heap again and again took about a tenth of the suite's CPU time.
 collect_less()
+
+
+# One thread for numpy's BLAS in each test process: the suite runs a process per core,
+# and OpenBLAS's own threads only contended with the other process (the relation tests
+# took twice the CPU). Results do not depend on it.
+threadpool_limits(limits=1, user_api="blas")
 
 
 def pytest_collection_finish(session):

@@ -52,12 +52,20 @@ def scheduler(tmp_path):
 
 
 def start_worker(address: str) -> subprocess.Popen:
-    return subprocess.Popen(
+    """A dask worker, returned once the scheduler has it: the commands under test wait
+    only a second for workers, and a worker still importing on a busy machine would
+    read as none at all."""
+    from distributed import Client
+
+    worker = subprocess.Popen(
         [str(DASK), "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
+    with Client(address, timeout=60) as client:
+        client.wait_for_workers(1, timeout=120)
+    return worker
 
 
 def kill_group(process: subprocess.Popen) -> None:
