@@ -16,6 +16,7 @@ differently from what it holds: ``forbidden_character`` finds the first such one
 
 from __future__ import annotations
 
+import re
 import unicodedata
 
 #: The shortest side of an object or extent, the narrowest and the shortest path, in
@@ -56,23 +57,28 @@ _BIDI_CONTROLS = frozenset(
 )
 
 
-def _forbidden(character: str) -> bool:
-    return character in _BIDI_CONTROLS or unicodedata.category(character) in ("Cc", "Zl", "Zp")
+# The forbidden characters as one character class: category Cc is U+0000-U+001F and
+# U+007F-U+009F, Zl is U+2028 alone and Zp U+2029 alone (tests/test_limits.py checks
+# the class against unicodedata over every code point). Searched by the regex engine,
+# not character by character in Python: every rules file, template and scene.json
+# string passes through here.
+_CLASS = "\x7f-\x9f\u2028\u2029" + "".join(sorted(_BIDI_CONTROLS))
+_FORBIDDEN = re.compile(f"[\x00-\x1f{_CLASS}]")
+_FORBIDDEN_BUT_TAB = re.compile(f"[\x00-\x08\x0a-\x1f{_CLASS}]")
 
 
 def forbidden_character(text: str) -> str | None:
     """The first control, line-separator or bidirectional-control character of ``text``
     as ``U+XXXX (name)``, or None when there is none."""
-    for character in text:
-        if _forbidden(character):
-            name = unicodedata.name(character, "control character")
-            return f"U+{ord(character):04X} ({name.lower()})"
-    return None
+    found = _FORBIDDEN.search(text)
+    if found is None:
+        return None
+    character = found.group()
+    name = unicodedata.name(character, "control character")
+    return f"U+{ord(character):04X} ({name.lower()})"
 
 
 def printable(line: str) -> str:
     """``line`` with each forbidden character but the tab replaced by U+FFFD, one for
     one, so it prints as it reads and columns stay where they were."""
-    return "".join(
-        "\ufffd" if character != "\t" and _forbidden(character) else character for character in line
-    )
+    return _FORBIDDEN_BUT_TAB.sub("\ufffd", line)

@@ -511,3 +511,23 @@ def test_running_out_of_memory_says_where(capsys, tmp_path, monkeypatch):
         "scenewright: error: out of memory while laying the scene out (docs/limits.md lists the bounds on input; "
         "this machine has less memory than the input needs)\n"
     )
+
+
+def test_the_forbidden_characters_are_categories_cc_zl_zp_and_the_bidi_controls():
+    """The character class ``forbidden_character`` and ``printable`` search stands for
+    exactly what its comment says, over every code point."""
+    import unicodedata
+
+    from scenewright.core.limits import _BIDI_CONTROLS, forbidden_character, printable
+
+    expected = {
+        chr(code)
+        for code in range(0x110000)
+        if chr(code) in _BIDI_CONTROLS or unicodedata.category(chr(code)) in ("Cc", "Zl", "Zp")
+    }
+    text = "".join(chr(code) for code in range(0x110000) if not 0xD800 <= code <= 0xDFFF)
+    replaced = printable(text)
+    found = {a for a, b in zip(text, replaced, strict=True) if a != b}
+    assert found == expected - {"\t"}
+    assert forbidden_character("tab\there") == "U+0009 (control character)"
+    assert forbidden_character("plain text, café") is None
