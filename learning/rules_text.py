@@ -88,9 +88,10 @@ def comment_lines(text: str, width: int = 100) -> list[str]:
     return ["# " + line for line in textwrap.wrap(text, width - 2, break_on_hyphens=False)]
 
 
-def rules_text(induction: Induction) -> str:
-    """The rules file of ``induction``."""
-    return RulesWriter(induction).text()
+def rules_text(induction: Induction, *, posed: bool = False) -> str:
+    """The rules file of ``induction``; ``posed``: for a context learned beside it
+    (``RulesWriter.posed``)."""
+    return RulesWriter(induction, posed=posed).text()
 
 
 class RulesWriter:
@@ -98,8 +99,12 @@ class RulesWriter:
 
     INDENT = "    "
 
-    def __init__(self, induction: Induction):
+    def __init__(self, induction: Induction, *, posed: bool = False):
         self.induction = induction
+        #: Written for a context learned beside the rules, which keeps where each child
+        #: stands by its parent: a wall label held by some of a placement's objects only,
+        #: below a parent that stands at a wall, is then left to that pose (``left_to_pose``).
+        self.posed = posed
         self.productions: list[list[str]] = []
         self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
         self.depth = 1
@@ -260,16 +265,35 @@ class RulesWriter:
         the wall only in its flush placement. A member with no placement takes its type's."""
         if not member.placements:
             return self.wall_words(member.wall)
-        if self.wall_draw(member, index) is not None:
-            return ""  # a draw of its own (``draw_line``)
+        if self.wall_draw(member, index) is not None or self.left_to_pose(member, index):
+            return ""  # a draw of its own (``draw_line``), or none
         return self.wall_words(member.placements[0 if index is None else index].wall)
+
+    def left_to_pose(self, member: Member, index: int | None = None) -> bool:
+        """Whether the wall label of ``member``'s placement ``index`` is left out for the
+        context to keep (``posed``): it held for some of its objects only, and their
+        parent type stands at a wall, so how near the wall each stood followed from
+        where it stood by its parent (a lamp beside an armchair 4 cm off the wall, its
+        back 12 or 17 cm off by the armchair's depth), which the context keeps and the
+        parent's ``wall_gap`` sets. A draw of the label as well would put some at the
+        wall twice over."""
+        if not (self.posed and member.placements):
+            return False
+        placement = member.placements[0 if index is None else index]
+        parent = self.induction.walls.get(member.parent)
+        return (
+            placement.wall is not None
+            and probability_text(placement.wall_share) != "1"
+            and parent is not None
+            and parent.label() is not None
+        )
 
     def wall_draw(self, member: Member, index: int | None = None) -> Placement | None:
         """``member``'s placement ``index`` (its only one when None) where its wall label
         held for some of its objects only (``Placement.wall_share`` under 1 as written):
         the label is then a draw of that share (``draw_line``), so a lamp at the wall in
         7 of 9 corners is put there in about 7 of 9 scenes; else None."""
-        if not member.placements:
+        if not member.placements or self.left_to_pose(member, index):
             return None
         placement = member.placements[0 if index is None else index]
         if placement.wall and probability_text(placement.wall_share) != "1":
@@ -497,7 +521,7 @@ class RulesWriter:
         for k, placement in enumerate(placed):
             if self.wall_draw(member, k) is None:
                 body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
-                body += self.wall_words(placement.wall) + " }"
+                body += self.placed_wall(member, k) + " }"
             else:  # the draw's comment dropped: the alternative's own says how many
                 words = self.relation_words(placement.labels, param)
                 draw = self.draw_line(placement, bound).split("    #")[0]

@@ -16,7 +16,9 @@ import pytest
 from scenewright.api import build_scene, load_rules
 from scenewright.core.frames import to_world
 from scenewright.examples import load_examples, scene_supports
+from scenewright.generator.layout.learned_term import context_path
 from scenewright.learning.induce import _walls, induce
+from scenewright.learning.learn import learn_rule_set
 from scenewright.learning.pose_labels import hand_gap
 from scenewright.learning.rules_text import rules_text
 
@@ -121,6 +123,38 @@ def test_a_lamp_at_the_wall_in_most_of_one_way_is_put_there_by_a_draw_of_its_sha
     output = tmp_path / "corners.rules"
     output.write_text(text)
     scenes = [build_scene(load_rules(output), seed) for seed in range(40)]
+    assert all(scene.layout.ok for scene in scenes)
+    share = _walls(scenes, [scene_supports(scene) for scene in scenes])["floor_lamp"]
+    assert abs(share.held["AgainstWall"] / share.objects - 0.7) <= 0.15
+
+
+def test_with_a_context_a_lamp_near_the_wall_by_its_armchair_is_left_to_its_pose(tmp_path):
+    """The same lamps learned with a context: their nearness to the wall follows from
+    where they stand by the armchair (at the wall, 4 cm off it), which the context
+    keeps; no label and no draw is written for them, and the scenes made keep the
+    examples' share."""
+    lamp_gaps = [0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13, 0.16, 0.16, 0.16]
+    examples = load_examples(corners(tmp_path / "corners", [True] * 10, 0.04, lamp_gaps))
+    induction = induce(examples, name="corners", seed=0)
+    assert (
+        "AgainstWall"
+        not in re.findall(r"^.*floor_lamp NextToLeft.*$", rules_text(induction, posed=True), re.M)[
+            0
+        ]
+    )
+    output = tmp_path / "corners.rules"
+    learned = learn_rule_set(
+        examples,
+        output,
+        check=0,
+        layouts=20,
+        write=lambda path, text: path.write_text(text),
+        build_scene=build_scene,
+    )
+    assert learned.text == rules_text(induction, posed=True)
+    assert learned.context is not None and learned.context.fit is not None
+    rules, sidecar = load_rules(output), context_path(output)
+    scenes = [build_scene(rules, seed, context=sidecar) for seed in range(40)]
     assert all(scene.layout.ok for scene in scenes)
     share = _walls(scenes, [scene_supports(scene) for scene in scenes])["floor_lamp"]
     assert abs(share.held["AgainstWall"] / share.objects - 0.7) <= 0.15
