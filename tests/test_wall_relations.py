@@ -800,6 +800,23 @@ def test_a_wall_gap_moves_where_against_wall_holds(gap):
     assert not one(graph, {box: against(east, 2.0, WARDROBE[1], gap=gap + 0.055)})[0].satisfied
 
 
+@settings(max_examples=40, deadline=None)
+@given(
+    gap=st.floats(0.0, 0.5),
+    off=st.floats(-0.2, 0.2),
+    wall_index=st.integers(0, 3),
+)
+def test_against_wall_holds_exactly_within_five_centimetres_of_the_gap(gap, off, wall_index):
+    room = study()
+    wall = room.walls[wall_index]
+    graph, box = kept_off(room, gap, target=wall.id)
+    distance = max(gap + off, 0.0)  # a box cannot stand in the wall
+    if abs(abs(distance - gap) - 0.05) < 1e-6:
+        return  # on the threshold itself
+    relation, _ = one(graph, {box: against(wall, wall.length / 2.0, WARDROBE[1], gap=distance)})
+    assert relation.satisfied == (abs(distance - gap) < 0.05)
+
+
 def test_a_wall_gap_keeps_a_corner_thing_off_both_walls():
     room = study()
     east = room.walls[1]
