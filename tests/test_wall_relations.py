@@ -842,6 +842,7 @@ def test_the_layout_stands_a_thing_at_its_wall_gap(label, target):
 
 def test_a_scene_keeps_its_objects_wall_gaps_and_leaves_out_what_is_not_set():
     from scenewright.core.scene import Scene, assemble_scene
+    from scenewright.core.schema_check import validate_scene_dict
 
     room = study()
     graph, box = kept_off(room, 0.12)
@@ -854,4 +855,7 @@ def test_a_scene_keeps_its_objects_wall_gaps_and_leaves_out_what_is_not_set():
     scene = assemble_scene(graph, layout_scene(graph, 1), rules="test", seed=1)
     saved = scene.to_dict()
     assert saved["objects"][0]["wall_gap"] == 0.12 and "wall_gap" not in saved["objects"][1]
+    validate_scene_dict(saved)  # the schema documents it
+    with pytest.raises(InputError, match=r"objects\[0\]\.wall_gap"):
+        validate_scene_dict({**saved, "objects": [{**saved["objects"][0], "wall_gap": 0.7}]})
     assert [o.wall_gap for o in Scene.from_dict(saved).objects] == [0.12, None]
