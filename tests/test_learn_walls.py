@@ -200,3 +200,30 @@ def test_a_lone_thing_in_a_corner_in_some_examples_is_put_there_by_a_draw(tmp_pa
     assert all(scene.layout.ok for scene in scenes)
     share = _walls(scenes, [scene_supports(scene) for scene in scenes])["coat_stand"]
     assert abs(share.held["InCorner"] / share.objects - 0.6) <= 0.15
+
+
+def test_where_no_context_is_learned_after_all_the_rules_draw_the_label(tmp_path, monkeypatch):
+    """Rules written for a context leave the lamps' label to the pose; when the context
+    is then not learned (no pair in enough examples, say), the file written draws it,
+    and the check is of that file."""
+    import scenewright.learning.learn as learn_module
+
+    def none_learned(*args, **kwargs):
+        return learn_module.InducedContext(None, "no related pair", 0, [], [], [])
+
+    monkeypatch.setattr(learn_module, "learned_context", none_learned)
+    lamp_gaps = [0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13, 0.16, 0.16, 0.16]
+    examples = load_examples(corners(tmp_path / "corners", [True] * 10, 0.04, lamp_gaps))
+    output = tmp_path / "corners.rules"
+    learned = learn_rule_set(
+        examples,
+        output,
+        check=4,
+        write=lambda path, text: path.write_text(text),
+        build_scene=build_scene,
+    )
+    induction = induce(examples, name="corners", seed=0)
+    assert learned.text == output.read_text() == rules_text(induction)
+    assert "0.7? the_floor_lamp AgainstWall some wall" in learned.text
+    assert not context_path(output).exists()
+    assert learned.check is not None and learned.check.scenes == 4
