@@ -300,12 +300,14 @@ class RulesWriter:
             return placement
         return None
 
-    def draw_line(self, placement: Placement, bound: str) -> str:
-        """The statement drawing ``placement``'s wall label for the object bound to ``bound``."""
+    def draw_line(self, placement: Placement, bound: str, noted: bool = True) -> str:
+        """The statement drawing ``placement``'s wall label for the object bound to
+        ``bound``; ``noted``: with how many of its objects held it."""
         held = round(placement.wall_share * placement.weight)
+        note = f"    # at the wall: {held} of {placement.weight}" if noted else ""
         return (
             f"{probability_text(placement.wall_share)}? {bound}{self.wall_words(placement.wall)}"
-            f"    # at the wall: {held} of {placement.weight}"
+            + note
         )
 
     def noun_plural(self, type_name: str) -> str:
@@ -462,7 +464,7 @@ class RulesWriter:
                     return [f"{prefix}{member.type} {words}".rstrip() + wall + note], 1
                 bound = self.binding(member.type, taken)
                 first = f"{prefix}{member.type} as {bound} {words}".rstrip()
-                return [first + note, self.draw_line(draw, bound)], 1
+                return [first + note, self.draw_line(draw, bound, noted)], 1
             if prefix:  # made or not as drawn: a production of its own for this placement
                 return self.optional_placed(member, index, param, depth, prefix, note)
             bound = self.binding(member.type, taken)
@@ -470,7 +472,7 @@ class RulesWriter:
         body, most = self.statements(
             member.children, member.joints, bound, depth + 1, fixed, taken, noted
         )
-        drawn = [] if draw is None else [self.draw_line(draw, bound)]
+        drawn = [] if draw is None else [self.draw_line(draw, bound, noted)]
         return [first + note] + drawn + [line[len(self.INDENT) :] for line in body], 1 + most
 
     def optional_placed(
@@ -522,9 +524,9 @@ class RulesWriter:
             if self.wall_draw(member, k) is None:
                 body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
                 body += self.placed_wall(member, k) + " }"
-            else:  # the draw's comment dropped: the alternative's own says how many
+            else:  # the alternative's own comment says how many
                 words = self.relation_words(placement.labels, param)
-                draw = self.draw_line(placement, bound).split("    #")[0]
+                draw = self.draw_line(placement, bound, noted=False)
                 body = f"{{ {member.type} as {bound} {words}".rstrip() + f"; {draw} }}"
             lead = head if k == 0 else " " * (len(head) - 2) + "| "
             lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
