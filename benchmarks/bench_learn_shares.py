@@ -105,7 +105,9 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
         sides[1][key] = same_side_share(generated, parent, first, second)
     walls = (wall_shares(scenes), wall_shares(generated))
     distances = (wall_distances(scenes), wall_distances(generated))
+    # A type's own label, or a lone type's drawn one (``WallShare.drawn``).
     written = {t for t, share in learned.induction.walls.items() if share.label()}
+    written |= {item.type for item in learned.induction.loose if item.wall}
     found = {
         "sides": sides,
         "walls": walls,

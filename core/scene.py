@@ -62,6 +62,9 @@ class SceneObject:
     access: list[str] = field(default_factory=list)
     #: Junctions only: "grid" for a grid's junction; None (left out of scene.json) else.
     network: str | None = None
+    #: Objects only: how far its wall label keeps its back off the wall (``SceneNode``);
+    #: None (left out of scene.json): flush.
+    wall_gap: float | None = None
 
 
 @dataclass
@@ -227,8 +230,9 @@ class Scene:
         if data["house"] is None:
             del data["house"]
         for obj in data["objects"]:  # a grid's junction only says its network
-            if obj["network"] is None:
-                del obj["network"]
+            for name in ("network", "wall_gap"):
+                if obj[name] is None:
+                    del obj[name]
         data["format"] = SCENE_FORMAT_VERSION
         return data
 
@@ -424,6 +428,7 @@ def _object_of(
         clearance=[[side, float(metres)] for side, metres in node.clearance],
         access=list(node.access),
         network=node.network,
+        wall_gap=node.wall_gap,
     )
 
 
@@ -445,6 +450,7 @@ def _node_of(obj: SceneObject) -> dict[str, Any]:
         "clearance": obj.clearance,
         "access": obj.access,
         "network": obj.network,
+        "wall_gap": obj.wall_gap,
     }
 
 

@@ -43,13 +43,15 @@ def _network(entry: CatalogLike) -> str | None:
 
 
 def _node_dict(node: SceneNode) -> dict:
-    """A node as plain data; ``network`` only where it is set (a grid's junction), so the
-    graphs of rule sets that name no network read as before."""
+    """A node as plain data; ``network`` and ``wall_gap`` only where they are set (a
+    grid's junction, an object kept off its wall), so the graphs of rule sets that name
+    neither read as before."""
     # A shallow copy: every field is immutable (strings, numbers, tuples), and asdict's
     # deep copy was most of the cost of writing a graph out.
     data = {name: getattr(node, name) for name in _NODE_FIELDS}
-    if data["network"] is None:
-        del data["network"]
+    for name in ("network", "wall_gap"):
+        if data[name] is None:
+            del data[name]
     return data
 
 
@@ -87,6 +89,8 @@ class CatalogLike(NodeLooks, Protocol):
     def max_length(self) -> float: ...
     @property
     def segments(self) -> int: ...
+    @property
+    def wall_gap(self) -> float | None: ...
     @property
     def network(self) -> str: ...
 
@@ -181,6 +185,9 @@ class SceneNode:
     #: Junctions only: "grid" when the junction starts a grid of roads (square blocks);
     #: None for the default, an organic network (``catalog.NETWORKS``).
     network: str | None = None
+    #: Objects only: how far its back stands off a wall that a wall label puts it
+    #: against (metres); None: flush.
+    wall_gap: float | None = None
 
 
 def descendants_in(members: dict[str | None, list[SceneNode]], group_id: str) -> list[SceneNode]:
@@ -314,6 +321,9 @@ class SceneGraph:
             else (),
             access=tuple(looks.access) if has_box else (),
             network=_network(entry),
+            wall_gap=float(entry.wall_gap)
+            if entry.kind == "object" and entry.wall_gap is not None
+            else None,
         )
         self._store(node)
         return node_id

@@ -81,6 +81,8 @@ class CatalogEntry:
     #: Free floor kept beside it, by side, and the sides it is used from (``SceneNode``).
     clearance: tuple[tuple[str, float], ...] = ()
     access: tuple[str, ...] = ("any",)
+    #: How far its back stands off a wall a wall label puts it against (metres; None: flush).
+    wall_gap: float | None = None
     network: str = "organic"
     location: SourceLocation | None = None
 

@@ -268,6 +268,8 @@ def _looks(fields: tuple[ast.Setting, ...], folder: Path) -> dict:
             looks["segments"] = int(setting.number())
         elif setting.name == "clearance":
             looks["clearance"] = (*looks.get("clearance", ()), setting.value)
+        elif setting.name == "wall_gap":
+            looks["wall_gap"] = float(setting.number())
         elif setting.name == "access":
             looks["access"] = () if setting.words() == ("none",) else setting.words()
         else:

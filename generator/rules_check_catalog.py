@@ -2,7 +2,7 @@
 
 Each field's value is checked against its kind of entry and its bounds: sizes, path
 widths and segments, colours, nouns of at most ``MAX_NOUN_CHARS``, clearances and
-access sides of objects, a junction's kind of road network, mesh files that must load and lie in the rule set's
+access sides and wall gaps of objects, a junction's kind of road network, mesh files that must load and lie in the rule set's
 ``ReadScope``, and shape names the renderer must know (a warning).
 """
 
@@ -30,6 +30,9 @@ SIDE_WORDS = ("front", "back", "left", "right")
 ACCESS_WORDS = ("any", "none", *SIDE_WORDS)
 #: The most free floor a clearance may keep beside an object (metres).
 MAX_CLEARANCE = 10.0
+#: The farthest off a wall its wall label may keep an object (metres): further out it is
+#: no longer against the wall.
+MAX_WALL_GAP = 0.5
 #: Fields that shape a path's polyline, so only ``path`` entries take them.
 PATH_FIELDS = ("width", "max_length", "segments")
 #: The longest noun or plural, in characters: a noun phrase is a few words, and the
@@ -84,6 +87,9 @@ class CatalogChecks(CheckState):
                 continue
             if name == "network":
                 self.check_network(setting, kind)
+                continue
+            if name == "wall_gap":
+                self.check_wall_gap(setting, kind)
                 continue
             if isinstance(value, str) and self.check_text(name, value, at):
                 continue
@@ -183,6 +189,20 @@ class CatalogChecks(CheckState):
             self.error(setting.value_location, "'access any' and 'access none' stand alone")
         elif len(set(words)) < len(words):
             self.error(setting.value_location, "a side is named twice")
+
+    def check_wall_gap(self, setting: ast.Setting, kind: str) -> None:
+        """``wall_gap M``: an object's, 0 to ``MAX_WALL_GAP`` metres."""
+        if kind != "object":
+            self.error(
+                setting.location,
+                f"'wall_gap' applies to objects only, not to {with_article(kind)}",
+            )
+        elif not 0 <= setting.number() <= MAX_WALL_GAP:
+            self.error(
+                setting.value_location,
+                f"a wall gap must be at least 0 and at most {MAX_WALL_GAP:g} m, "
+                f"not {number_text(setting.number())}",
+            )
 
     def check_network(self, setting: ast.Setting, kind: str) -> None:
         """``network grid`` or ``network organic``, on a junction only."""

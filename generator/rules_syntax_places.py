@@ -80,7 +80,7 @@ _FIELDS = (
     "max_length 1",
     "segments 1",
 )
-_ENTRY_FIELDS = ("clearance front 1", "access a", "access a b", "network a")
+_ENTRY_FIELDS = ("clearance front 1", "access a", "access a b", "wall_gap 1", "network a")
 _STYLES = ("style s { }", "style s 2 { }", 'style s { noun "a" }', 'style s 2 { noun "a" }')
 _SETTINGS = (
     "extent 1 x 1",

@@ -29,6 +29,7 @@ ENTRY_FIELDS = (
     "segments",
     "clearance",
     "access",
+    "wall_gap",
     "network",
 )
 SCENE_SETTINGS = (

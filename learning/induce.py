@@ -53,7 +53,12 @@ file and ``Induction.to_dict()`` the report.
    wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
    gets it (``AgainstWall some wall``: the layout chooses the wall), and a member's
    placement gets the one held by more than ``PLACEMENT_WALL_SHARE`` of its own
-   objects (``Placement.wall``), which ``rules_text`` writes.
+   objects (``Placement.wall``), which ``rules_text`` writes. The gap a type's
+   placers left to the wall where a label held (``WallShare.gap``: the median) is
+   written as its ``wall_gap``, so the layout sets it as far off as they did. A type
+   related to no other gets the label held for at least ``WALL_DRAW_SHARE`` of its
+   objects as a draw of that share (``WallShare.drawn``), and so does a placement
+   whose label held for some of its objects only (``Placement.wall_share``).
 7. **Scene.** The room of the example whose room is nearest the median size (its walls,
    doors and windows), or the median extent of open ground.
 """
@@ -93,6 +98,7 @@ from .pose_labels import (
     CATEGORIES,
     RESTING_CATEGORIES,
     STANDING_CATEGORIES,
+    hand_gap,
     hand_placed,
     most_specific,
     pair_holds,
@@ -574,12 +580,16 @@ def _object_walls(
 def _type_walls(
     scenes: Sequence[Scene], held: dict[tuple[int, str], set[str]]
 ) -> dict[str, WallShare]:
-    types = {(k, o.id): o.type for k, scene in enumerate(scenes) for o in scene.placed_objects()}
+    objects = {(k, o.id): o for k, scene in enumerate(scenes) for o in scene.placed_objects()}
     shares: dict[str, WallShare] = defaultdict(WallShare)
     for key, labels in held.items():
-        share = shares[types[key]]
+        obj = objects[key]
+        share = shares[obj.type]
         share.objects += 1
         share.held.update(labels)
+        room = scenes[key[0]].room
+        if labels and room is not None and (gap := hand_gap(obj, room)) is not None:
+            share.gaps.append(gap)
     return dict(shares)
 
 
@@ -590,20 +600,19 @@ def _placement_walls(
     held: dict[tuple[int, str], set[str]],
 ) -> list[Placement]:
     """``placements`` with the wall label each one's objects held (``Placement.wall``):
-    the first of the wall labels that held for more than ``PLACEMENT_WALL_SHARE`` of them."""
+    the first of the wall labels that held for more than ``PLACEMENT_WALL_SHARE`` of
+    them, and the share it held for (``Placement.wall_share``)."""
     walled = []
     for number_, placement in enumerate(placements):
         objects = [held.get(children[k], set()) for k in np.flatnonzero(assigned == number_)]
+        share = {
+            label: sum(label in labels for labels in objects) / len(objects) if objects else 0.0
+            for label in CATEGORIES["wall"]
+        }
         wall = next(
-            (
-                label
-                for label in CATEGORIES["wall"]
-                if objects
-                and sum(label in labels for labels in objects) > PLACEMENT_WALL_SHARE * len(objects)
-            ),
-            None,
+            (label for label in CATEGORIES["wall"] if share[label] > PLACEMENT_WALL_SHARE), None
         )
-        walled.append(replace(placement, wall=wall))
+        walled.append(replace(placement, wall=wall, wall_share=share[wall] if wall else 1.0))
     return walled
 
 
@@ -800,7 +809,15 @@ def induce(
     for component in components:
         if len(component) == 1 and not uppers_of.get(next(iter(component))):
             (only,) = component
-            loose.append(Loose(only, count_per_scene(only), walls.get(only, WallShare()).label()))
+            drawn = walls.get(only, WallShare()).drawn()
+            loose.append(
+                Loose(
+                    only,
+                    count_per_scene(only),
+                    drawn[0] if drawn else None,
+                    wall_share=drawn[1] if drawn else 1.0,
+                )
+            )
             continue
         anchor = _anchor(component, graph, catalog, counts)
         tree = _tree(component, graph, anchor)

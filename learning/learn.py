@@ -21,7 +21,10 @@ alone), to be written beside the rules as ``NAME.context.json``; examples no der
 makes, or too many to search, are left out of it, the searches of all the examples
 share ``CONTEXT_REPLAYS`` replays (those after are not searched), and when no related
 pair occurs in enough examples (``context.NoRelatedPairs``) the rules are written
-without one and the reason kept.
+without one and the reason kept. The rules are written for the context they are to
+have (``rules_text``'s ``posed``: a wall label held by some of a placement's objects
+only is left to the pose by a parent at a wall), and where none is learned after all,
+as for none (drawn), checked again.
 
 Nothing is written until all of that has succeeded; then the rules file, the context
 and the report, each whole (``write``).
@@ -410,20 +413,31 @@ def learn_rule_set(
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
-    text = rules_text(induction)
+    # Written for the context it is to have (``rules_text``'s ``posed``); as for none
+    # when none is learned after all.
+    text = rules_text(induction, posed=context)
     with scratch_directory("learn") as folder:
         trial = folder / f"{name}.rules"
-        trial.write_text(text, encoding="utf-8")
-        errors = [d for d in check_rules(trial) if d.is_error]
-        if errors:
-            raise InducedRulesError(
-                "the induced rules do not pass the checks:\n" + "\n".join(str(d) for d in errors)
+
+        def checked(text: str) -> tuple[Rules, Check | None]:
+            """The rules of ``text``, past the static checks, and their check scenes'."""
+            trial.write_text(text, encoding="utf-8")
+            errors = [d for d in check_rules(trial) if d.is_error]
+            if errors:
+                raise InducedRulesError(
+                    "the induced rules do not pass the checks:\n"
+                    + "\n".join(str(d) for d in errors)
+                )
+            rules = load_rules(trial)
+            if check > 0:
+                progress(f"checking the induced rules on {check} generated scenes")
+            found = (
+                compare(induction, scenes, rules, check, seed, build_scene) if check > 0 else None
             )
-        rules = load_rules(trial)
+            return rules, found
+
         scenes, _ = renamed_scenes(examples)
-        if check > 0:
-            progress(f"checking the induced rules on {check} generated scenes")
-        result = compare(induction, scenes, rules, check, seed, build_scene) if check > 0 else None
+        rules, result = checked(text)
         names = [example.name for example in examples]
         fitted = None
         if context:
@@ -438,6 +452,9 @@ def learn_rule_set(
                 balance=balance,
                 progress=progress,
             )
+            if fitted.fit is None and (alone := rules_text(induction)) != text:
+                text = alone
+                rules, result = checked(text)
     written = []
     write(output, text)
     written.append(output)

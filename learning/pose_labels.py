@@ -169,6 +169,18 @@ def square_footprint(width, depth):
 def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
     """(x, z, yaw) of a standing object as its placer meant it against the walls
     (``HAND_GAP``, ``SQUARE_ASPECT``): unchanged where no wall is that near."""
+    return _hand_placed(obj, room)[0]
+
+
+def hand_gap(obj: SceneObject, room: Room) -> float | None:
+    """The gap (metres, at least 0) its placer left between a standing object and the
+    nearest wall it was set against (``hand_placed``), a round thing turned with its
+    back to it; None where no wall is within ``HAND_GAP``."""
+    return _hand_placed(obj, room)[1]
+
+
+def _hand_placed(obj: SceneObject, room: Room) -> tuple[tuple[float, float, float], float | None]:
+    """``hand_placed``'s pose and ``hand_gap``'s gap."""
     x, z, yaw = float(obj.position[0]), float(obj.position[2]), float(obj.yaw)
 
     def gap(wall, x: float, z: float, yaw: float) -> float | None:
@@ -191,16 +203,18 @@ def hand_placed(obj: SceneObject, room: Room) -> tuple[float, float, float]:
         )
     )
     if not near:
-        return x, z, yaw
+        return (x, z, yaw), None
     if square_footprint(obj.size[0], obj.size[2]):
         yaw = room.walls[near[0][1]].facing_yaw  # a round thing's turn means nothing
+    kept = None
     for _, k in near:
         wall = room.walls[k]
         g = gap(wall, x, z, yaw)
         if g is not None:
+            kept = max(g, 0.0) if kept is None else kept
             nx, nz = wall.normal
             x, z = x - g * nx, z - g * nz
-    return x, z, yaw
+    return (x, z, yaw), kept
 
 
 def wall_holds(

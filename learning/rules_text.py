@@ -88,9 +88,10 @@ def comment_lines(text: str, width: int = 100) -> list[str]:
     return ["# " + line for line in textwrap.wrap(text, width - 2, break_on_hyphens=False)]
 
 
-def rules_text(induction: Induction) -> str:
-    """The rules file of ``induction``."""
-    return RulesWriter(induction).text()
+def rules_text(induction: Induction, *, posed: bool = False) -> str:
+    """The rules file of ``induction``; ``posed``: for a context learned beside it
+    (``RulesWriter.posed``)."""
+    return RulesWriter(induction, posed=posed).text()
 
 
 class RulesWriter:
@@ -98,8 +99,12 @@ class RulesWriter:
 
     INDENT = "    "
 
-    def __init__(self, induction: Induction):
+    def __init__(self, induction: Induction, *, posed: bool = False):
         self.induction = induction
+        #: Written for a context learned beside the rules, which keeps where each child
+        #: stands by its parent: a wall label held by some of a placement's objects only,
+        #: below a parent that stands at a wall, is then left to that pose (``left_to_pose``).
+        self.posed = posed
         self.productions: list[list[str]] = []
         self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
         self.depth = 1
@@ -190,6 +195,7 @@ class RulesWriter:
             + "-" * 8,
             "",
         ]
+        walled = ind.walled_types()
         for entry in ind.catalog.values():
             seen_as = (
                 f" (seen as {', '.join(entry.sources)})"
@@ -212,6 +218,15 @@ class RulesWriter:
             if entry.shape:
                 lines.append(f"{self.INDENT}shape {entry.shape}")
             lines.append(f"{self.INDENT}colour {colour_text(entry.colour)}")
+            share = ind.walls.get(entry.name)
+            kept = share.gap() if share is not None and entry.name in walled else None
+            if share is not None and kept is not None:
+                median = share.median_gap() or 0.0
+                capped = f", written {number(kept, 2)}" if round(median, 2) > kept else ""
+                lines.append(
+                    f"{self.INDENT}wall_gap {number(kept, 2)}    # off the wall: the median of "
+                    f"{len(share.gaps)} at one, {median:.2f} m{capped}"
+                )
             for style in entry.styles:
                 fields = []
                 if style.noun:
@@ -250,7 +265,50 @@ class RulesWriter:
         the wall only in its flush placement. A member with no placement takes its type's."""
         if not member.placements:
             return self.wall_words(member.wall)
+        if self.wall_draw(member, index) is not None or self.left_to_pose(member, index):
+            return ""  # a draw of its own (``draw_line``), or none
         return self.wall_words(member.placements[0 if index is None else index].wall)
+
+    def left_to_pose(self, member: Member, index: int | None = None) -> bool:
+        """Whether the wall label of ``member``'s placement ``index`` is left out for the
+        context to keep (``posed``): it held for some of its objects only, and their
+        parent type stands at a wall, so how near the wall each stood followed from
+        where it stood by its parent (a lamp beside an armchair 4 cm off the wall, its
+        back 12 or 17 cm off by the armchair's depth), which the context keeps and the
+        parent's ``wall_gap`` sets. A draw of the label as well would put some at the
+        wall twice over."""
+        if not (self.posed and member.placements):
+            return False
+        placement = member.placements[0 if index is None else index]
+        parent = self.induction.walls.get(member.parent)
+        return (
+            placement.wall is not None
+            and probability_text(placement.wall_share) != "1"
+            and parent is not None
+            and parent.label() is not None
+        )
+
+    def wall_draw(self, member: Member, index: int | None = None) -> Placement | None:
+        """``member``'s placement ``index`` (its only one when None) where its wall label
+        held for some of its objects only (``Placement.wall_share`` under 1 as written):
+        the label is then a draw of that share (``draw_line``), so a lamp at the wall in
+        7 of 9 corners is put there in about 7 of 9 scenes; else None."""
+        if not member.placements or self.left_to_pose(member, index):
+            return None
+        placement = member.placements[0 if index is None else index]
+        if placement.wall and probability_text(placement.wall_share) != "1":
+            return placement
+        return None
+
+    def draw_line(self, placement: Placement, bound: str, noted: bool = True) -> str:
+        """The statement drawing ``placement``'s wall label for the object bound to
+        ``bound``; ``noted``: with how many of its objects held it."""
+        held = round(placement.wall_share * placement.weight)
+        note = f"    # at the wall: {held} of {placement.weight}" if noted else ""
+        return (
+            f"{probability_text(placement.wall_share)}? {bound}{self.wall_words(placement.wall)}"
+            + note
+        )
 
     def noun_plural(self, type_name: str) -> str:
         """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
@@ -386,6 +444,7 @@ class RulesWriter:
         if index == -1 and not _holds(member, fixed):  # in no placement: drawn on its own
             statement, made = self.member_statement(member, param, depth)
             return [statement if noted else statement.split("    #")[0]], made
+        draw = None
         if index is None or index < 0:  # above members of the joint: one, placed as drawn
             bound = self.binding(member.type, taken)
             if len(member.placements) > 1:
@@ -395,11 +454,17 @@ class RulesWriter:
                 labels = member.placements[0].labels if member.placements else ()
                 words = self.relation_words(labels, param)
                 first = f"{member.type} as {bound} {words}".rstrip() + wall
+                draw = self.wall_draw(member)
         else:
             labels = member.placements[index].labels
             words = self.relation_words(labels, param)
+            draw = self.wall_draw(member, index)
             if not member.children:
-                return [f"{prefix}{member.type} {words}".rstrip() + wall + note], 1
+                if draw is None:
+                    return [f"{prefix}{member.type} {words}".rstrip() + wall + note], 1
+                bound = self.binding(member.type, taken)
+                first = f"{prefix}{member.type} as {bound} {words}".rstrip()
+                return [first + note, self.draw_line(draw, bound, noted)], 1
             if prefix:  # made or not as drawn: a production of its own for this placement
                 return self.optional_placed(member, index, param, depth, prefix, note)
             bound = self.binding(member.type, taken)
@@ -407,7 +472,8 @@ class RulesWriter:
         body, most = self.statements(
             member.children, member.joints, bound, depth + 1, fixed, taken, noted
         )
-        return [first + note] + [line[len(self.INDENT) :] for line in body], 1 + most
+        drawn = [] if draw is None else [self.draw_line(draw, bound, noted)]
+        return [first + note] + drawn + [line[len(self.INDENT) :] for line in body], 1 + most
 
     def optional_placed(
         self, member: Member, index: int, param: str, depth: int, prefix: str, note: str
@@ -429,6 +495,8 @@ class RulesWriter:
                 f"{self.INDENT}{member.type} as {bound} {self.relation_words(labels, param)}".rstrip()
                 + self.placed_wall(member, index)
             )
+            if (draw := self.wall_draw(member, index)) is not None:
+                body_lines.append(self.INDENT + self.draw_line(draw, bound))
             body, most = self.members_body(member.children, bound, member.joints, depth + 1)
             self.productions.append(body_lines + body)
             self.written[key] = (own, most)
@@ -451,9 +519,15 @@ class RulesWriter:
             f"{total} of them in {len(placed)} ways"
         )
         head = f"{places}({param}) -> "
+        bound = self.binding(member.type, {param})
         for k, placement in enumerate(placed):
-            body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
-            body += self.wall_words(placement.wall) + " }"
+            if self.wall_draw(member, k) is None:
+                body = f"{{ {member.type} {self.relation_words(placement.labels, param)}".rstrip()
+                body += self.placed_wall(member, k) + " }"
+            else:  # the alternative's own comment says how many
+                words = self.relation_words(placement.labels, param)
+                draw = self.draw_line(placement, bound, noted=False)
+                body = f"{{ {member.type} as {bound} {words}".rstrip() + f"; {draw} }}"
             lead = head if k == 0 else " " * (len(head) - 2) + "| "
             lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
         lines.append("")
@@ -481,7 +555,7 @@ class RulesWriter:
         if unplaced:
             note += f", {unplaced} in a cluster no label fits"
         largest = max(member.per_parent) if member.per_parent else 0
-        if member.children or len(member.placements) > 1:
+        if member.children or len(member.placements) > 1 or self.wall_draw(member):
             if id(member) not in self.written:
                 self.written[id(member)] = self.member_production(member, depth + 1)
             name, below = self.written[id(member)]
@@ -528,6 +602,8 @@ class RulesWriter:
             body_lines.append(
                 f"{self.INDENT}{member.type} as {bound} {words}".rstrip() + self.placed_wall(member)
             )
+            if (draw := self.wall_draw(member)) is not None:
+                body_lines.append(self.INDENT + self.draw_line(draw, bound))
         body, made = self.statements(member.children, member.joints, bound, depth + 1)
         body_lines += body + ["}", ""]
         self.productions.append(lines + body_lines)
@@ -605,6 +681,7 @@ class RulesWriter:
     def text(self) -> str:
         ind = self.induction
         start = ["# -- the scene " + "-" * 74, "", "Scene -> {"]
+        taken: set[str] = set()  # the names bound in Scene
         most = 0
         group_blocks = []
         for group in ind.groups:
@@ -640,11 +717,22 @@ class RulesWriter:
                 )
                 most += max(item.per_scene) * made
                 continue
+            most += max(item.per_scene)
+            if item.wall and probability_text(item.wall_share) != "1":  # at the wall by a draw
+                bound = self.binding(item.type, taken)
+                start.append(
+                    f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type} as {bound}"
+                    f"    # {why}: in {seen}{wall}"
+                )
+                start.append(
+                    f"{self.INDENT}{probability_text(item.wall_share)}? {bound}"
+                    f"{self.wall_words(item.wall)}"
+                )
+                continue
             start.append(
                 f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
                 f"    # {why}: in {seen}{wall}"
             )
-            most += max(item.per_scene)
         start += ["}", ""]
         body: list[str] = []
         for block in group_blocks:

@@ -76,7 +76,7 @@ syntax_alternative.rules:4:6: error: unexpected 'table'; expected an alternative
     "syntax_in_entry": (
         'object chair { noun "chair" 3 }\nS -> { chair }',
         """\
-syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access, network), 'style' or '}'
+syntax_in_entry.rules:4:29: error: unexpected '3'; expected a field (noun, plural, size, shape, mesh, colour, width, max_length, segments, clearance, access, wall_gap, network), 'style' or '}'
     object chair { noun "chair" 3 }
                                 ^""",
     ),
@@ -224,6 +224,24 @@ network.rules:4:25: error: 'network' applies to junctions only, not to a path
 network.rules:5:45: error: network 'gird' is not one of organic, grid; did you mean 'grid'?
     junction crossing { noun "crossing" network gird }
                                                 ^""",
+    ),
+    "wall_gap": (
+        (
+            'group set { noun "set" wall_gap 0.1 }\n'
+            'object shelf { noun "shelf" wall_gap 0.6 }\n'
+            'object bench { noun "bench" wall_gap -0.1 }\n'
+            "S -> { table; set; shelf; bench }"
+        ),
+        """\
+wall_gap.rules:4:24: error: 'wall_gap' applies to objects only, not to a group
+    group set { noun "set" wall_gap 0.1 }
+                           ^
+wall_gap.rules:5:38: error: a wall gap must be at least 0 and at most 0.5 m, not 0.6
+    object shelf { noun "shelf" wall_gap 0.6 }
+                                         ^
+wall_gap.rules:6:38: error: a wall gap must be at least 0 and at most 0.5 m, not -0.1
+    object bench { noun "bench" wall_gap -0.1 }
+                                         ^""",
     ),
     "block_on_object": (
         "S -> { table { table }; tabel { table } }",

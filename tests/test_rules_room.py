@@ -18,7 +18,7 @@ scene s {
     }
     start S
 }
-object wardrobe { noun "wardrobe" size 1.2 x 2 x 0.6 clearance front 0.8 clearance left 0.1 access front }
+object wardrobe { noun "wardrobe" size 1.2 x 2 x 0.6 clearance front 0.8 clearance left 0.1 access front wall_gap 0.03 }
 object plant { noun "plant" size 0.4 x 1 x 0.4 access none }
 """
 
@@ -48,6 +48,7 @@ def test_a_room_block_builds_walls_doors_and_windows(tmp_path):
     assert (window.wall, window.sill, window.height, window.width) == ("wall_1", 0.9, 1.2, 1.4)
     wardrobe = rules.catalog["wardrobe"]
     assert wardrobe.clearance == (("front", 0.8), ("left", 0.1)) and wardrobe.access == ("front",)
+    assert wardrobe.wall_gap == 0.03 and rules.catalog["plant"].wall_gap is None
     assert rules.catalog["plant"].access == ()
     assert rules.params.square and rules.params.line_of_sight
 

@@ -771,3 +771,91 @@ def test_moving_an_end_and_what_it_carries_together_re_evaluates_wall_and_sight_
         assert delta == pytest.approx(full_total(energy) - before, abs=1e-9)
         assert delta != 0.0  # the desk left its wall
         energy.accept()
+
+
+# -- a catalog's wall gap ---------------------------------------------------------------
+
+
+def kept_off(room: Room, gap: float | None, label: str = "AgainstWall", target: str = "wall_2"):
+    """A wardrobe whose catalog keeps it ``gap`` metres off its wall, by ``label``."""
+    graph = SceneGraph(SceneParams(extent=room.extent, room=room))
+    entry = CatalogEntry(WARDROBE[0], "object", "wardrobe", size=WARDROBE[1], wall_gap=gap)
+    box = graph.add_node(entry)
+    graph.add_relation(box, target, label)
+    return graph, box
+
+
+@pytest.mark.parametrize("gap", [0.04, 0.12, 0.3])
+def test_a_wall_gap_moves_where_against_wall_holds(gap):
+    room = study()
+    east = room.walls[1]
+    graph, box = kept_off(room, gap)
+    assert one(graph, {box: against(east, 2.0, WARDROBE[1], gap=gap)})[0].satisfied
+    assert one(graph, {box: against(east, 2.0, WARDROBE[1], gap=gap + 0.045)})[0].satisfied
+    relation, problems = one(graph, {box: against(east, 2.0, WARDROBE[1])})  # flush
+    if gap > 0.05:  # further than the label's tolerance
+        assert not relation.satisfied and f"from the wall, not {gap:.2f} m" in problems[0]
+    else:
+        assert relation.satisfied
+    assert not one(graph, {box: against(east, 2.0, WARDROBE[1], gap=gap + 0.055)})[0].satisfied
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    gap=st.floats(0.0, 0.5),
+    off=st.floats(-0.2, 0.2),
+    wall_index=st.integers(0, 3),
+)
+def test_against_wall_holds_exactly_within_five_centimetres_of_the_gap(gap, off, wall_index):
+    room = study()
+    wall = room.walls[wall_index]
+    graph, box = kept_off(room, gap, target=wall.id)
+    distance = max(gap + off, 0.0)  # a box cannot stand in the wall
+    if abs(abs(distance - gap) - 0.05) < 1e-6:
+        return  # on the threshold itself
+    relation, _ = one(graph, {box: against(wall, wall.length / 2.0, WARDROBE[1], gap=distance)})
+    assert relation.satisfied == (abs(distance - gap) < 0.05)
+
+
+def test_a_wall_gap_keeps_a_corner_thing_off_both_walls():
+    room = study()
+    east = room.walls[1]
+    graph, bed = kept_off(room, 0.1, "InCorner")
+    half = WARDROBE[1][0] / 2.0
+    assert one(graph, {bed: against(east, half + 0.1, WARDROBE[1], gap=0.1)})[0].satisfied
+    assert not one(graph, {bed: against(east, half, WARDROBE[1], gap=0.1)})[0].satisfied
+
+
+@pytest.mark.parametrize(("label", "target"), [("AgainstWall", "room"), ("InCorner", "room")])
+def test_the_layout_stands_a_thing_at_its_wall_gap(label, target):
+    room = study()
+    for gap in (None, 0.1):
+        graph, box = kept_off(room, gap, label, target)
+        result = layout_scene(graph, 5)
+        assert result.ok, result.problems
+        (relation,) = result.relations
+        pose = result.poses[box]
+        wall = room.part(relation.chosen)
+        _, v = wall.to_wall(pose.x, pose.z)
+        assert v - WARDROBE[1][2] / 2.0 == pytest.approx(gap or 0.0, abs=0.02)
+
+
+def test_a_scene_keeps_its_objects_wall_gaps_and_leaves_out_what_is_not_set():
+    from scenewright.core.scene import Scene, assemble_scene
+    from scenewright.core.schema_check import validate_scene_dict
+
+    room = study()
+    graph, box = kept_off(room, 0.12)
+    other = graph.add_node(CatalogEntry(DESK[0], "object", "desk", size=DESK[1]))
+    graph.add_relation(other, "room", "AgainstWall")
+    data = graph.to_dict()
+    objects = [node for node in data["nodes"] if node["kind"] == "object"]
+    assert objects[0]["wall_gap"] == 0.12 and "wall_gap" not in objects[1]
+    assert SceneGraph.from_dict(data).node(box).wall_gap == 0.12
+    scene = assemble_scene(graph, layout_scene(graph, 1), rules="test", seed=1)
+    saved = scene.to_dict()
+    assert saved["objects"][0]["wall_gap"] == 0.12 and "wall_gap" not in saved["objects"][1]
+    validate_scene_dict(saved)  # the schema documents it
+    with pytest.raises(InputError, match=r"objects\[0\]\.wall_gap"):
+        validate_scene_dict({**saved, "objects": [{**saved["objects"][0], "wall_gap": 0.7}]})
+    assert [o.wall_gap for o in Scene.from_dict(saved).objects] == [0.12, None]

@@ -358,13 +358,13 @@ class Mover(Placer):
 
     def _along_wall(self, box: int, shift: tuple[float, float]) -> tuple[float, float]:
         """``shift`` projected onto the wall the box stands against by its (first) wall
-        relation (the wall, or window, that relation measures best), so the box stays
-        flush; unchanged when the box is not against that wall now."""
+        relation (the wall, or window, that relation measures best), so the box keeps
+        its gap to it; unchanged when the box is not against that wall now."""
         term = self.wall_terms[box][0]
         measure = evaluate(term, self.state, self.params)
         if (
             math.isinf(measure.energy)
-            or abs(measure.distance) > SLIDE_GAP
+            or abs(measure.distance - measure.kept) > SLIDE_GAP
             or measure.angle > SLIDE_ANGLE
         ):
             return shift  # not against it (or no window for a window label)

@@ -114,6 +114,9 @@ class Problem:
     #: belongs to a grid (it starts at a grid's junction, or branches from a grid's
     #: road). A grid's roads are laid straight and square, and stay where they are laid.
     grid: list[bool] = field(default_factory=list)
+    #: Per box: how far a wall label keeps its back off the wall (catalog ``wall_gap``;
+    #: 0: flush).
+    wall_gap: list[float] = field(default_factory=list)
     path_grid: list[bool] = field(default_factory=list)
     #: The layout mask the energy's ``mask`` part reads (``mask_term.CompiledMask``);
     #: None (no such part) unless ``layout_scene`` or ``measure_layout`` is given one.
@@ -205,6 +208,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
     clearance: list[tuple[tuple[str, float], ...]] = []
     access: list[tuple[str, ...]] = []
     grid: list[bool] = []
+    wall_gap: list[float] = []
     path_ids: list[str] = []
     path_width: list[float] = []
     path_max_length: list[float] = []
@@ -229,6 +233,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
             clearance.append(node.clearance)
             access.append(node.access)
             grid.append(node.network == "grid")
+            wall_gap.append(float(node.wall_gap or 0.0))
         elif node.kind == "path":
             path_index[node.id] = len(path_ids)
             path_ids.append(node.id)
@@ -336,6 +341,7 @@ def compile_problem(graph: SceneGraph) -> Problem:
         access=access,
         free_paths=free_paths,
         grid=grid,
+        wall_gap=wall_gap,
         path_parent=path_parent,
         path_order=_branch_order(path_parent, path_ids),
     )

@@ -89,6 +89,7 @@ class Measure(NamedTuple):
     inside: bool = True  # OnTopOf*: A's centre over B's top
     offset: float = 0.0  # OnTopOfMiddle: centre distance; *Edge: gap to the edge
     blocker: str | None = None  # line of sight: the tall object in the way (the deepest)
+    kept: float = 0.0  # wall labels: the gap A's catalog keeps to the wall (``wall_gap``)
 
     @property
     def blocked(self) -> bool:

@@ -1,4 +1,6 @@
-"""Wall labels: A (an object on the ground) with its back flush to a wall (rooms).
+"""Wall labels: A (an object on the ground) with its back flush to a wall (rooms), or
+as far off it as its catalog's ``wall_gap`` keeps it (the problem's ``wall_gap``: the
+energy, the threshold and the placement all target that gap, in a corner off both walls).
 
 Against a wall, in a corner, under or beside a window; for the room as target, on a
 wall or window drawn by how much room it leaves (``_wall_spots``). A spot along it is
@@ -65,7 +67,7 @@ def snap(placer: Placer, term: RelationTerm) -> dict | None:
 
 def place_at_wall(placer: Placer, term: RelationTerm, *, snap: bool = False) -> dict | None:
     """A (an object on the ground) with its back flush to a wall: yaw the wall's
-    ``facing_yaw``, its centre half its depth from the wall, where the wall label
+    ``facing_yaw``, its centre half its depth (and its ``wall_gap``) from the wall, where the wall label
     wants it (``_wall_spots``). A spot is drawn by how much room it leaves, then a
     place along it at random, avoiding doors' swings and, for furniture taller than
     a window's sill, the window. ``snap``: the spot nearest A as it stands, at the
@@ -77,7 +79,7 @@ def place_at_wall(placer: Placer, term: RelationTerm, *, snap: bool = False) -> 
     spots = _wall_spots(placer, term)
     if not spots:
         return None
-    hd = problem.half_depth[box]
+    hd = problem.half_depth[box] + problem.wall_gap[box]  # its centre's distance from the wall
     if snap:
         best, best_distance = None, math.inf
         for wall, low, high, _ in spots:
@@ -207,25 +209,28 @@ def _wall_spots(placer: Placer, term: RelationTerm) -> list[tuple[Wall, float, f
 def _corner_u(placer: Placer, box: int, wall: Wall, other: Wall) -> float | None:
     """Where along ``wall`` A's centre goes (back flush, yaw the wall's facing_yaw) so
     that its footprint just touches the neighbouring wall ``other``: the distance of
-    its centre from ``other`` is then its reach towards it."""
+    its centre from ``other`` is then its reach towards it (each plus its ``wall_gap``)."""
     problem = placer.problem
     yaw = wall.facing_yaw
     c, s = math.cos(yaw), math.sin(yaw)
     nx, nz = other.normal
-    reach_other = problem.half_width[box] * abs(c * nx - s * nz) + problem.half_depth[box] * abs(
-        s * nx + c * nz
+    gap = problem.wall_gap[box]  # kept off both walls
+    reach_other = (
+        problem.half_width[box] * abs(c * nx - s * nz)
+        + problem.half_depth[box] * abs(s * nx + c * nz)
+        + gap
     )
     tx, tz = wall.direction
     rate = tx * nx + tz * nz  # how fast the distance from ``other`` changes along ``wall``
     if abs(rate) < 1e-9:
         return None
-    _, v0 = other.to_wall(*wall.to_world(0.0, problem.half_depth[box]))
+    _, v0 = other.to_wall(*wall.to_world(0.0, problem.half_depth[box] + gap))
     return (reach_other - v0) / rate
 
 
 def _clear_at(placer: Placer, box: int, wall: Wall, u: float) -> bool:
     """``_clear_of_openings`` for the box with its back flush to ``wall`` at ``u``."""
-    x, z = wall.to_world(u, placer.problem.half_depth[box])
+    x, z = wall.to_world(u, placer.problem.half_depth[box] + placer.problem.wall_gap[box])
     return _clear_of_openings(
         placer, box, x, z, math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
     )
@@ -317,6 +322,7 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
         window, wall = None, target
     x, z, c, s = state.x[box], state.z[box], state.c[box], state.s[box]
     hw, hd = problem.half_width[box], problem.half_depth[box]
+    kept = problem.wall_gap[box]  # the gap its catalog keeps to the wall (0: flush)
     nx, nz = wall.normal
     tx, tz = wall.direction
     # The box's reach along the wall's axes (its footprint's half extents there).
@@ -340,7 +346,7 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
             reach_other = hw * abs(c * other.normal[0] - s * other.normal[1]) + hd * abs(
                 s * other.normal[0] + c * other.normal[1]
             )
-            side = min(side, abs(v_other - reach_other))
+            side = min(side, abs(v_other - reach_other - kept))
         offset += side
     elif placement == "under_window":
         assert window is not None  # a window label measures against windows only
@@ -354,19 +360,21 @@ def _against(box: int, target: Wall | Opening, placement: str, state: State) -> 
         )  # < 0: overlaps the window along the wall
         offset += max(-along, 0.0) + max(along - BESIDE_DISTANCE, 0.0)
     energy = (
-        -equals(gap, 0.0, WALL_SIGMA2)
+        -equals(gap, kept, WALL_SIGMA2)
         - equals(angle, 0.0, WALL_ANGLE_SIGMA2)
         - equals(offset, 0.0, WALL_SIGMA2)
     )
     if not fits:
         energy += 1.0  # cannot hold whatever the pose: a constant, so the rest still lays out
-    return Measure(energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits)
+    return Measure(
+        energy, distance=gap, angle=angle, chosen=target.id, offset=offset, inside=fits, kept=kept
+    )
 
 
 def holds(term: RelationTerm, measure: Measure, params: LayoutParams) -> bool:
     return (
         measure.inside
-        and abs(measure.distance) <= WALL_TOLERANCE + EPSILON
+        and abs(measure.distance - measure.kept) <= WALL_TOLERANCE + EPSILON
         and measure.angle <= WALL_ANGLE_TOLERANCE + EPSILON
         and measure.offset
         <= (MIDDLE_TOLERANCE if term.spec.wall == "under_window" else WALL_TOLERANCE) + EPSILON
@@ -380,8 +388,12 @@ def complaint(term: RelationTerm, measure: Measure, params: LayoutParams) -> str
         return f"{words} (the room has no window)"
     if not measure.inside:
         return f"{words} (it is taller than the window's sill)"
-    if abs(measure.distance) > WALL_TOLERANCE or measure.angle > WALL_ANGLE_TOLERANCE:
-        return f"{words} (its back is {measure.distance:.2f} m from the wall, {math.degrees(measure.angle):.0f}° off)"
+    if (
+        abs(measure.distance - measure.kept) > WALL_TOLERANCE
+        or measure.angle > WALL_ANGLE_TOLERANCE
+    ):
+        kept = f", not {measure.kept:.2f} m" if measure.kept else ""
+        return f"{words} (its back is {measure.distance:.2f} m from the wall{kept}, {math.degrees(measure.angle):.0f}° off)"
     return f"{words} ({measure.offset:.2f} m off)"
 
 
