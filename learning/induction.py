@@ -9,6 +9,7 @@ each type stood against a wall (``WallShare``); ``Induction.to_dict()`` is the r
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from scenewright.core.room import Room
@@ -411,36 +412,29 @@ class Induction:
     ground: str
     scenes: int
 
+    def members(self) -> Iterator[Member]:
+        """Every member of every group, each before its children."""
+
+        def walk(member: Member) -> Iterator[Member]:
+            yield member
+            for child in member.children:
+                yield from walk(child)
+
+        for group in self.groups:
+            for member in group.members:
+                yield from walk(member)
+
     def walled_types(self) -> set[str]:
         """The types the rules put against a wall somewhere (a group's anchor, a loose
         type, a member or one of its placements): those whose ``wall_gap`` is written."""
         found = {g.anchor for g in self.groups if g.wall}
         found |= {item.type for item in self.loose if item.wall}
-
-        def visit(member: Member) -> None:
-            if member.wall or any(p.wall for p in member.placements):
-                found.add(member.type)
-            for child in member.children:
-                visit(child)
-
-        for group in self.groups:
-            for member in group.members:
-                visit(member)
+        found |= {m.type for m in self.members() if m.wall or any(p.wall for p in m.placements)}
         return found
 
     def written_pairs(self) -> dict[tuple[str, str], Member]:
         """(a, b) in name order -> the member that writes the relation of that pair."""
-        found = {}
-
-        def visit(member: Member) -> None:
-            found[tuple(sorted((member.parent, member.type)))] = member
-            for child in member.children:
-                visit(child)
-
-        for group in self.groups:
-            for member in group.members:
-                visit(member)
-        return found
+        return {tuple(sorted((m.parent, m.type))): m for m in self.members()}
 
     def pairs_report(self) -> list[dict]:
         written = self.written_pairs()

@@ -62,6 +62,16 @@ def corners(
     return paths
 
 
+def made_share(output, text: str, type_name: str, label: str) -> float:
+    """The share of ``type_name``'s objects ``label`` holds for in 40 scenes made from the
+    rules ``text`` (written to ``output``), every one laid out ok."""
+    output.write_text(text)
+    scenes = [build_scene(load_rules(output), seed) for seed in range(40)]
+    assert all(scene.layout.ok for scene in scenes)
+    share = _walls(scenes, [scene_supports(scene) for scene in scenes])[type_name]
+    return share.held[label] / share.objects
+
+
 @pytest.mark.parametrize("flush", [8, 7])
 def test_a_lamp_flush_with_the_wall_in_most_examples_keeps_their_share(tmp_path, flush):
     paths = corners(tmp_path / "corners", [True] * flush + [False] * (10 - flush))
@@ -120,12 +130,9 @@ def test_a_lamp_at_the_wall_in_most_of_one_way_is_put_there_by_a_draw_of_its_sha
     assert re.search(
         r"^\s*floor_lamp as (\w+) NextToLeft[^\n]*\n\s*0\.7\? \1 AgainstWall some wall", text, re.M
     ), text
-    output = tmp_path / "corners.rules"
-    output.write_text(text)
-    scenes = [build_scene(load_rules(output), seed) for seed in range(40)]
-    assert all(scene.layout.ok for scene in scenes)
-    share = _walls(scenes, [scene_supports(scene) for scene in scenes])["floor_lamp"]
-    assert abs(share.held["AgainstWall"] / share.objects - 0.7) <= 0.15
+    assert (
+        abs(made_share(tmp_path / "corners.rules", text, "floor_lamp", "AgainstWall") - 0.7) <= 0.15
+    )
 
 
 def test_with_a_context_a_lamp_near_the_wall_by_its_armchair_is_left_to_its_pose(tmp_path):
@@ -194,12 +201,7 @@ def test_a_lone_thing_in_a_corner_in_some_examples_is_put_there_by_a_draw(tmp_pa
     text = rules_text(induce(load_examples(paths), name="halls", seed=0))
     assert re.search(r"^\s*coat_stand as (\w+)\b.*\n\s*0\.6\? \1 InCorner some wall$", text, re.M)
     assert re.search(r"^object coat_stand \{[^}]*wall_gap 0\.05 ", text, re.M), text
-    output = tmp_path / "halls.rules"
-    output.write_text(text)
-    scenes = [build_scene(load_rules(output), seed) for seed in range(40)]
-    assert all(scene.layout.ok for scene in scenes)
-    share = _walls(scenes, [scene_supports(scene) for scene in scenes])["coat_stand"]
-    assert abs(share.held["InCorner"] / share.objects - 0.6) <= 0.15
+    assert abs(made_share(tmp_path / "halls.rules", text, "coat_stand", "InCorner") - 0.6) <= 0.15
 
 
 def test_where_no_context_is_learned_after_all_the_rules_draw_the_label(tmp_path, monkeypatch):
