@@ -24,7 +24,13 @@ from .house import House
 from .poses import LayoutResult
 from .relations import Relation
 from .room import ROOM_KINDS, Room
-from .scene_graph import SceneGraph, SceneNode, SceneParams, descendants_in
+from .scene_graph import (
+    OPTIONAL_NODE_FIELDS,
+    SceneGraph,
+    SceneNode,
+    SceneParams,
+    descendants_in,
+)
 
 #: Bumped when scene.json changes shape or meaning. 2: relations keep PathConnectedTo,
 #: seeds are split into per-stage streams, ``derivation`` records every random choice.
@@ -229,8 +235,8 @@ class Scene:
             del data["completion"]
         if data["house"] is None:
             del data["house"]
-        for obj in data["objects"]:  # a grid's junction only says its network
-            for name in ("network", "wall_gap"):
+        for obj in data["objects"]:  # a network or wall gap only where set
+            for name in OPTIONAL_NODE_FIELDS:
                 if obj[name] is None:
                     del obj[name]
         data["format"] = SCENE_FORMAT_VERSION

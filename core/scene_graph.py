@@ -49,7 +49,7 @@ def _node_dict(node: SceneNode) -> dict:
     # A shallow copy: every field is immutable (strings, numbers, tuples), and asdict's
     # deep copy was most of the cost of writing a graph out.
     data = {name: getattr(node, name) for name in _NODE_FIELDS}
-    for name in ("network", "wall_gap"):
+    for name in OPTIONAL_NODE_FIELDS:
         if data[name] is None:
             del data[name]
     return data
@@ -203,6 +203,10 @@ def descendants_in(members: dict[str | None, list[SceneNode]], group_id: str) ->
     collect(group_id)
     return found
 
+
+#: The node fields written out only where set (a grid's junction, an object kept off its
+#: wall), so that graphs and scenes of rule sets that set neither read as before.
+OPTIONAL_NODE_FIELDS = ("network", "wall_gap")
 
 #: The attribute names a node is stored under in the networkx graph.
 _NODE_FIELDS = tuple(f.name for f in fields(SceneNode))

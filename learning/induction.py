@@ -8,6 +8,7 @@ each type stood against a wall (``WallShare``); ``Induction.to_dict()`` is the r
 
 from __future__ import annotations
 
+import statistics
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -376,13 +377,7 @@ class WallShare:
 
     def median_gap(self) -> float | None:
         """The median of ``gaps`` (None: none)."""
-        if not self.gaps:
-            return None
-        ordered = sorted(self.gaps)
-        middle = len(ordered) // 2
-        return (
-            ordered[middle] if len(ordered) % 2 else (ordered[middle - 1] + ordered[middle]) / 2.0
-        )
+        return statistics.median(self.gaps) if self.gaps else None
 
     def label(self) -> str | None:
         for label in CATEGORIES["wall"]:
