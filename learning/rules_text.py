@@ -53,6 +53,12 @@ def probability_text(share: float) -> str:
     )
 
 
+def drawn_share(share: float) -> bool:
+    """Whether a wall label held for ``share`` of the objects is written as a draw: its
+    share is under 1 as written."""
+    return probability_text(share) != "1"
+
+
 def _quoted(text: str) -> str:
     return '"' + text.replace('"', "'").replace("\n", " ")[:200] + '"'
 
@@ -267,7 +273,12 @@ class RulesWriter:
             return self.wall_words(member.wall)
         if self.wall_draw(member, index) is not None or self.left_to_pose(member, index):
             return ""  # a draw of its own (``draw_line``), or none
-        return self.wall_words(member.placements[0 if index is None else index].wall)
+        return self.wall_words(self.placement(member, index).wall)
+
+    @staticmethod
+    def placement(member: Member, index: int | None) -> Placement:
+        """``member``'s placement ``index``, its only one when None."""
+        return member.placements[0 if index is None else index]
 
     def left_to_pose(self, member: Member, index: int | None = None) -> bool:
         """Whether the wall label of ``member``'s placement ``index`` is left out for the
@@ -279,11 +290,11 @@ class RulesWriter:
         wall twice over."""
         if not (self.posed and member.placements):
             return False
-        placement = member.placements[0 if index is None else index]
+        placement = self.placement(member, index)
         parent = self.induction.walls.get(member.parent)
         return (
             placement.wall is not None
-            and probability_text(placement.wall_share) != "1"
+            and drawn_share(placement.wall_share)
             and parent is not None
             and parent.label() is not None
         )
@@ -295,20 +306,19 @@ class RulesWriter:
         7 of 9 corners is put there in about 7 of 9 scenes; else None."""
         if not member.placements or self.left_to_pose(member, index):
             return None
-        placement = member.placements[0 if index is None else index]
-        if placement.wall and probability_text(placement.wall_share) != "1":
-            return placement
-        return None
+        placement = self.placement(member, index)
+        return placement if placement.wall and drawn_share(placement.wall_share) else None
 
     def draw_line(self, placement: Placement, bound: str, noted: bool = True) -> str:
         """The statement drawing ``placement``'s wall label for the object bound to
         ``bound``; ``noted``: with how many of its objects held it."""
         held = round(placement.wall_share * placement.weight)
         note = f"    # at the wall: {held} of {placement.weight}" if noted else ""
-        return (
-            f"{probability_text(placement.wall_share)}? {bound}{self.wall_words(placement.wall)}"
-            + note
-        )
+        return self.wall_draw_words(placement.wall, placement.wall_share, bound) + note
+
+    def wall_draw_words(self, wall: str | None, share: float, bound: str) -> str:
+        """``wall`` (a wall label) for the object bound to ``bound``, drawn with ``share``."""
+        return f"{probability_text(share)}? {bound}{self.wall_words(wall)}"
 
     def noun_plural(self, type_name: str) -> str:
         """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
@@ -718,16 +728,13 @@ class RulesWriter:
                 most += max(item.per_scene) * made
                 continue
             most += max(item.per_scene)
-            if item.wall and probability_text(item.wall_share) != "1":  # at the wall by a draw
+            if item.wall and drawn_share(item.wall_share):  # at the wall by a draw
                 bound = self.binding(item.type, taken)
                 start.append(
                     f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type} as {bound}"
                     f"    # {why}: in {seen}{wall}"
                 )
-                start.append(
-                    f"{self.INDENT}{probability_text(item.wall_share)}? {bound}"
-                    f"{self.wall_words(item.wall)}"
-                )
+                start.append(self.INDENT + self.wall_draw_words(item.wall, item.wall_share, bound))
                 continue
             start.append(
                 f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
