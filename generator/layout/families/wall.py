@@ -43,6 +43,7 @@ from .entry import LayoutFamily, where
 
 if TYPE_CHECKING:
     from ..placement import Placer
+    from ..problem import Problem
 
 #: Gaps (metres) a BesideWindow proposal leaves between A and the window's edge.
 BESIDE_GAP = (0.02, min(0.25, BESIDE_DISTANCE))
@@ -65,6 +66,12 @@ def snap(placer: Placer, term: RelationTerm) -> dict | None:
     return place_at_wall(placer, term, snap=True)
 
 
+def off_wall(problem: Problem, box: int) -> float:
+    """How far box ``box``'s centre stands from a wall its back is against, square to it:
+    half its depth, plus the ``wall_gap`` its catalog keeps."""
+    return problem.half_depth[box] + problem.wall_gap[box]
+
+
 def place_at_wall(placer: Placer, term: RelationTerm, *, snap: bool = False) -> dict | None:
     """A (an object on the ground) with its back flush to a wall: yaw the wall's
     ``facing_yaw``, its centre half its depth (and its ``wall_gap``) from the wall, where the wall label
@@ -79,7 +86,7 @@ def place_at_wall(placer: Placer, term: RelationTerm, *, snap: bool = False) -> 
     spots = _wall_spots(placer, term)
     if not spots:
         return None
-    hd = problem.half_depth[box] + problem.wall_gap[box]  # its centre's distance from the wall
+    hd = off_wall(problem, box)  # its centre's distance from the wall
     if snap:
         best, best_distance = None, math.inf
         for wall, low, high, _ in spots:
@@ -214,23 +221,22 @@ def _corner_u(placer: Placer, box: int, wall: Wall, other: Wall) -> float | None
     yaw = wall.facing_yaw
     c, s = math.cos(yaw), math.sin(yaw)
     nx, nz = other.normal
-    gap = problem.wall_gap[box]  # kept off both walls
     reach_other = (
         problem.half_width[box] * abs(c * nx - s * nz)
         + problem.half_depth[box] * abs(s * nx + c * nz)
-        + gap
+        + problem.wall_gap[box]  # kept off both walls
     )
     tx, tz = wall.direction
     rate = tx * nx + tz * nz  # how fast the distance from ``other`` changes along ``wall``
     if abs(rate) < 1e-9:
         return None
-    _, v0 = other.to_wall(*wall.to_world(0.0, problem.half_depth[box] + gap))
+    _, v0 = other.to_wall(*wall.to_world(0.0, off_wall(problem, box)))
     return (reach_other - v0) / rate
 
 
 def _clear_at(placer: Placer, box: int, wall: Wall, u: float) -> bool:
     """``_clear_of_openings`` for the box with its back flush to ``wall`` at ``u``."""
-    x, z = wall.to_world(u, placer.problem.half_depth[box] + placer.problem.wall_gap[box])
+    x, z = wall.to_world(u, off_wall(placer.problem, box))
     return _clear_of_openings(
         placer, box, x, z, math.cos(wall.facing_yaw), math.sin(wall.facing_yaw)
     )
