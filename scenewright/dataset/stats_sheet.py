@@ -22,6 +22,9 @@ from scenewright.render.plan_page import font
 #: The sheet (pixels) and its grid of panels.
 WIDTH, HEIGHT = 1360, 720
 COLUMNS, ROWS = 3, 2
+#: The sheet's own title above the cells, and each cell's size (pixels).
+SHEET_TITLE_HEIGHT = 20
+CELL_WIDTH, CELL_HEIGHT = WIDTH / COLUMNS, (HEIGHT - SHEET_TITLE_HEIGHT) / ROWS
 #: Inside each cell: room for the names on the left, the title above, the ticks below.
 NAMES_WIDTH, TITLE_HEIGHT, TICKS_HEIGHT, MARGIN = 150, 22, 34, 12
 #: Font sizes (points) of the sheet's title, the panels' titles and the labels.
@@ -95,17 +98,21 @@ def stats_sheet(stats: dict) -> bytes:
 
 def _panel(draw: ImageDraw.ImageDraw, column: int, row: int, title: str) -> Panel:
     """The framed plot area of the panel at (``column``, ``row``), titled."""
-    cell_w, cell_h = WIDTH / COLUMNS, (HEIGHT - 20) / ROWS
-    x, y = column * cell_w, 20 + row * cell_h
+    x, y = _cell(column, row)
     panel = Panel(
         round(x + NAMES_WIDTH),
         round(y + TITLE_HEIGHT),
-        round(x + cell_w - MARGIN),
-        round(y + cell_h - TICKS_HEIGHT),
+        round(x + CELL_WIDTH - MARGIN),
+        round(y + CELL_HEIGHT - TICKS_HEIGHT),
     )
     centre = (panel.x0 + panel.x1) / 2
     draw.text((centre, y + 4), title, fill="black", font=font(TITLE_SIZE), anchor="mt")
     return panel
+
+
+def _cell(column: int, row: int) -> tuple[float, float]:
+    """The top left corner of the sheet's cell at (``column``, ``row``), below its title."""
+    return column * CELL_WIDTH, SHEET_TITLE_HEIGHT + row * CELL_HEIGHT
 
 
 def _frame(draw: ImageDraw.ImageDraw, panel: Panel) -> None:
@@ -248,10 +255,10 @@ def _errors(draw: ImageDraw.ImageDraw, column: int, row: int, errors: dict[str, 
     ]
     if not lines:
         return
-    cell_w, cell_h = WIDTH / COLUMNS, (HEIGHT - 20) / ROWS
-    x, y = column * cell_w + MARGIN, 20 + row * cell_h
+    x, y = _cell(column, row)
+    x += MARGIN
     draw.text(
-        (x + cell_w / 2, y + 4),
+        (x + CELL_WIDTH / 2, y + 4),
         "scenes the rules could not make",
         fill="black",
         font=font(TITLE_SIZE),
