@@ -82,13 +82,8 @@ def test_a_lamp_flush_with_the_wall_in_most_examples_keeps_their_share(tmp_path,
     assert len(lines) == 2, text
     assert f"{flush}: {{" in lines[0] and "AgainstWall some wall" in lines[0]
     assert f"{10 - flush}: {{" in lines[1] and "AgainstWall" not in lines[1]
-    output = tmp_path / "corners.rules"
-    output.write_text(text)
-    rules = load_rules(output)
-    scenes = [build_scene(rules, seed) for seed in range(40)]
-    assert all(scene.layout.ok for scene in scenes)
-    share = _walls(scenes, [scene_supports(scene) for scene in scenes])["floor_lamp"]
-    assert abs(share.held["AgainstWall"] / share.objects - flush / 10) <= 0.15
+    share = made_share(tmp_path / "corners.rules", text, "floor_lamp", "AgainstWall")
+    assert abs(share - flush / 10) <= 0.15
 
 
 def test_every_lamp_flush_keeps_one_way_with_its_wall(tmp_path):
