@@ -462,7 +462,9 @@ def test_ctrl_c_at_any_moment_prints_one_line_and_leaves_no_process(tmp_path, de
             "dataset",
             "desk",
             "-n",
-            "40",
+            # Enough scenes that the job is still running at the last delay: 40 took
+            # under 2.5 s once the dataset made about 16 scenes a second.
+            "2000",
             "-o",
             str(tmp_path),
             "--size",
