@@ -466,6 +466,8 @@ class _Reader(PhraseReader):
                 label = wall_labels[0]
             elif place.kind == "wall" and "AgainstWall" in labels:
                 label = "AgainstWall"
+            elif place.kind == "wall" and "AwayFromWall" in labels:
+                label = "AwayFromWall"  # "stands away from the west wall"
             elif place.kind == "corner":
                 label = "InCorner"
             else:

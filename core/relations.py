@@ -4,7 +4,7 @@ Every edge of a scene graph carries one label of this registry. A label's record
 everything the stages need to know about it, so no stage routes on label spellings:
 
 - ``family``: which geometry it asks for (``next_to``, ``support``, ``facing``,
-  ``wall``, ``alignment``, ``structural``). The layout implements one energy term, measurement (satisfied or
+  ``wall``, ``clearance``, ``alignment``, ``structural``). The layout implements one energy term, measurement (satisfied or
   not, and the complaint when not) and data-driven proposer per family, and refuses at
   import a family it does not implement; a label's parameters below steer them.
 - next-to parameters: ``directions`` (name -> unit vector (x, z)) in ``frame``
@@ -24,6 +24,9 @@ everything the stages need to know about it, so no stage routes on label spellin
   ``direction_wordings``: the words of each direction a label that chooses may take
   (default ``DIRECTION_WORDINGS``; the close ``Beside`` says "just to the left of", its
   own words, so a reader can tell it from the 2 m ``NextToChooseSide``).
+- ``clearance``: A's footprint kept off a wall (B a wall, or the room: every wall);
+  no parameters. With the wall labels, the labels whose B is the room or a part of it
+  (``by_room``).
 - ``alignment``: A parallel to B with one face flush (no parameters).
 - ``phrase``: how the layout report names it ("north of"); ``wordings``: the verb
   phrases the describer may use (canonical first); ``place``: the wording says where A
@@ -45,7 +48,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 #: The families a label may belong to. The layout implements each one.
-FAMILIES = ("next_to", "support", "facing", "wall", "alignment", "structural")
+FAMILIES = ("next_to", "support", "facing", "wall", "clearance", "alignment", "structural")
 
 IMPLICIT_PREFIX = "Implicit"
 
@@ -130,6 +133,12 @@ class RelationLabel:
     def support(self) -> bool:
         """A rests on B: its height follows B's top, and it moves with B."""
         return self.family == "support"
+
+    @property
+    def by_room(self) -> bool:
+        """B is the room or one of its walls or windows (``some wall`` names the room:
+        the layout chooses the wall)."""
+        return self.family in ("wall", "clearance")
 
     @property
     def described(self) -> bool:
@@ -507,6 +516,14 @@ TABLE_1: tuple[RelationLabel, ...] = (
         ("is beside", "stands beside"),
         wall="beside_window",
         place=True,
+    ),
+    # Kept off the walls: the complement of the wall labels, so that rules can say that a
+    # thing stands out in the room (learned rules draw between the two, as the examples did).
+    RelationLabel(
+        "AwayFromWall",
+        "clearance",
+        "away from",
+        ("stands away from", "is away from"),
     ),
     # Structural: a path starts at a junction (written either way round). No energy of
     # its own (the path's end is attached to the junction); the text tells it as the

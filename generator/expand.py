@@ -240,14 +240,15 @@ class _Expansion:
     def targets(
         self, relation: ast.Relation, scope: dict[str, list[str]], subject: str
     ) -> list[str]:
-        """The targets of one relation from ``subject``. A wall label to ``some wall`` or
-        ``some window`` targets the room node: the layout chooses the wall or window
-        that fits (and records it), so no draw is made here."""
+        """The targets of one relation from ``subject``. A label by the room (a wall
+        label, ``AwayFromWall``) to ``some wall`` or ``some window`` targets the room
+        node: the layout chooses the wall or window that fits (and records it), so no
+        draw is made here."""
         target = relation.target
         if (
             target.kind == "some"
             and target.name in ROOM_KINDS
-            and RELATIONS[relation.label].family == "wall"
+            and RELATIONS[relation.label].by_room
         ):
             return [ROOM_NODE]
         return self.resolve(target, scope, exclude=subject)

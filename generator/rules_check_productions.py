@@ -98,20 +98,20 @@ class ProductionChecks(CheckState):
                         or did_you_mean(relation.label, RELATIONS.names())
                     ),
                 )
-            family = RELATIONS[relation.label].family if relation.label in RELATIONS else None
-            if (
-                family != "wall" or self.has_room
-            ):  # outdoors, the wall label's own error says it all
+            spec = RELATIONS[relation.label] if relation.label in RELATIONS else None
+            by_room = spec is not None and spec.by_room
+            if not by_room or self.has_room:  # outdoors, the wall label's own error says it all
                 self.check_target(relation.target, scope)
-            if family == "structural":
+            if spec is not None and spec.family == "structural":
                 self.check_path_connection(subject, relation.target, scope)
-            if family == "wall":
+            if by_room:
                 self.check_wall_relation(relation)
         if statement.block is not None:
             self.check_group_block(statement, statement.block, created_kind, scope)
 
     def check_wall_relation(self, relation: ast.Relation) -> None:
-        """A wall label needs a room, and a wall (or, by a window, a window) as its target."""
+        """A label by the room (a wall label, ``AwayFromWall``) needs a room, and a wall
+        (or, by a window, a window) as its target."""
         label = RELATIONS[relation.label]
         wanted = "window" if label.wall in ("under_window", "beside_window") else "wall"
         target = relation.target

@@ -229,15 +229,16 @@ def holding_statements(scene: Scene, statements: set[Statement]) -> Counter:
 
 
 def _unmeasurable(label: str, scene: Scene) -> bool:
-    """Whether the example cannot show whether ``label`` holds: a wall label without a
-    room, or a window label in a room without windows (the hand-written format states
-    no openings), so that the statement neither wins nor loses a derivation."""
-    wall = RELATIONS[label].wall
-    if wall is None:
+    """Whether the example cannot show whether ``label`` holds: a label by the room (a
+    wall label, ``AwayFromWall``) without a room, or a window label in a room without
+    windows (the hand-written format states no openings), so that the statement neither
+    wins nor loses a derivation."""
+    spec = RELATIONS[label]
+    if not spec.by_room:
         return False
     if scene.room is None:
         return True
-    return wall in ("under_window", "beside_window") and not any(
+    return spec.wall in ("under_window", "beside_window") and not any(
         o.kind == "window" for o in scene.room.openings
     )
 

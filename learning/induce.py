@@ -53,12 +53,18 @@ file and ``Induction.to_dict()`` the report.
    wall labels; a type for which one holds in at least ``WALL_SHARE`` of its objects
    gets it (``AgainstWall some wall``: the layout chooses the wall), and a member's
    placement gets the one held by more than ``PLACEMENT_WALL_SHARE`` of its own
-   objects (``Placement.wall``), which ``rules_text`` writes. The gap a type's
+   objects, else ``AgainstWall`` where it held for any (``Placement.wall``), which
+   ``rules_text`` writes. The gap a type's
    placers left to the wall where a label held (``WallShare.gap``: the median) is
    written as its ``wall_gap``, so the layout sets it as far off as they did. A type
    related to no other gets the label held for at least ``WALL_DRAW_SHARE`` of its
    objects as a draw of that share (``WallShare.drawn``), and so does a placement
-   whose label held for some of its objects only (``Placement.wall_share``).
+   whose label held for some of its objects only (``Placement.wall_share``): the
+   label, or else kept off the walls (``ImplicitAwayFromWall``), so that the share at
+   the wall is the examples' whatever the layout would do with the rest. A standing
+   placement none of whose objects stood at a wall, by a parent type that does, is
+   kept off the walls outright: beside an armchair at the wall, a side table could
+   otherwise come within a wall label's reach of it.
 7. **Scene.** The room of the example whose room is nearest the median size (its walls,
    doors and windows), or the median extent of open ground.
 """
@@ -601,7 +607,8 @@ def _placement_walls(
 ) -> list[Placement]:
     """``placements`` with the wall label each one's objects held (``Placement.wall``):
     the first of the wall labels that held for more than ``PLACEMENT_WALL_SHARE`` of
-    them, and the share it held for (``Placement.wall_share``)."""
+    them, else ``AgainstWall`` where it held for any (a corner is against a wall too),
+    and the share it held for (``Placement.wall_share``; 0 with no label)."""
     walled = []
     for number_, placement in enumerate(placements):
         objects = [held.get(children[k], set()) for k in np.flatnonzero(assigned == number_)]
@@ -610,9 +617,10 @@ def _placement_walls(
             for label in CATEGORIES["wall"]
         }
         wall = next(
-            (label for label in CATEGORIES["wall"] if share[label] > PLACEMENT_WALL_SHARE), None
+            (label for label in CATEGORIES["wall"] if share[label] > PLACEMENT_WALL_SHARE),
+            "AgainstWall" if share["AgainstWall"] > 0.0 else None,
         )
-        walled.append(replace(placement, wall=wall, wall_share=share[wall] if wall else 1.0))
+        walled.append(replace(placement, wall=wall, wall_share=share[wall] if wall else 0.0))
     return walled
 
 

@@ -129,10 +129,11 @@ class Placement:
     """One way a child stands by its parent: the labels written and how many objects
     (the clusters' members) stood that way; ``wall``: the wall label held by more than
     ``PLACEMENT_WALL_SHARE`` of those objects (a lamp flush with the wall beside the
-    armchair, and none for the lamps standing out in the room), else None;
-    ``wall_share``: the share of them it held for, which ``rules_text`` writes as a draw
-    of the label where it is under 1 (a lamp at the wall in 7 of 9 corners, the others
-    a few centimetres further out)."""
+    armchair, and none for the lamps standing out in the room), else ``AgainstWall``
+    where it held for any of them, else None; ``wall_share``: the share of them it
+    held for (0 with no label), which ``rules_text`` writes as a draw between the label
+    and kept off the walls where it is under 1 (a lamp at the wall in 7 of 9 corners,
+    the others a few centimetres further out)."""
 
     labels: tuple[str, ...]
     weight: int

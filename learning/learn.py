@@ -21,10 +21,7 @@ alone), to be written beside the rules as ``NAME.context.json``; examples no der
 makes, or too many to search, are left out of it, the searches of all the examples
 share ``CONTEXT_REPLAYS`` replays (those after are not searched), and when no related
 pair occurs in enough examples (``context.NoRelatedPairs``) the rules are written
-without one and the reason kept. The rules are written for the context they are to
-have (``rules_text``'s ``posed``: a wall label held by some of a placement's objects
-only is left to the pose by a parent at a wall), and where none is learned after all,
-as for none (drawn), checked again.
+without one and the reason kept.
 
 Nothing is written until all of that has succeeded; then the rules file, the context
 and the report, each whole (``write``).
@@ -413,9 +410,7 @@ def learn_rule_set(
     seed = check_seed(seed)
     name = output.stem if output.suffix == ".rules" else output.name
     induction = induce(examples, name=name, seed=seed, test=test)
-    # Written for the context it is to have (``rules_text``'s ``posed``); as for none
-    # when none is learned after all.
-    text = rules_text(induction, posed=context)
+    text = rules_text(induction)
     with scratch_directory("learn") as folder:
         trial = folder / f"{name}.rules"
 
@@ -452,9 +447,6 @@ def learn_rule_set(
                 balance=balance,
                 progress=progress,
             )
-            if fitted.fit is None and (alone := rules_text(induction)) != text:
-                text = alone
-                rules, result = checked(text)
     written = []
     write(output, text)
     written.append(output)

@@ -94,10 +94,15 @@ def comment_lines(text: str, width: int = 100) -> list[str]:
     return ["# " + line for line in textwrap.wrap(text, width - 2, break_on_hyphens=False)]
 
 
-def rules_text(induction: Induction, *, posed: bool = False) -> str:
-    """The rules file of ``induction``; ``posed``: for a context learned beside it
-    (``RulesWriter.posed``)."""
-    return RulesWriter(induction, posed=posed).text()
+#: The label the objects of a drawn wall label's other share get, and a placement that
+#: never stood at the wall beside a parent that does: kept off the walls, and not
+#: described (the examples said nothing of it).
+AWAY = "ImplicitAwayFromWall"
+
+
+def rules_text(induction: Induction) -> str:
+    """The rules file of ``induction``."""
+    return RulesWriter(induction).text()
 
 
 class RulesWriter:
@@ -105,12 +110,8 @@ class RulesWriter:
 
     INDENT = "    "
 
-    def __init__(self, induction: Induction, *, posed: bool = False):
+    def __init__(self, induction: Induction):
         self.induction = induction
-        #: Written for a context learned beside the rules, which keeps where each child
-        #: stands by its parent: a wall label held by some of a placement's objects only,
-        #: below a parent that stands at a wall, is then left to that pose (``left_to_pose``).
-        self.posed = posed
         self.productions: list[list[str]] = []
         self.rule_names: set[str] = {"Scene"} | {group.rule for group in induction.groups}
         self.depth = 1
@@ -271,8 +272,10 @@ class RulesWriter:
         the wall only in its flush placement. A member with no placement takes its type's."""
         if not member.placements:
             return self.wall_words(member.wall)
-        if self.wall_draw(member, index) is not None or self.left_to_pose(member, index):
-            return ""  # a draw of its own (``draw_line``), or none
+        if self.wall_draw(member, index) is not None:
+            return ""  # a draw of its own (``draw_line``)
+        if self.kept_off(member, index):
+            return f" {AWAY} some wall"
         return self.wall_words(self.placement(member, index).wall)
 
     @staticmethod
@@ -280,21 +283,16 @@ class RulesWriter:
         """``member``'s placement ``index``, its only one when None."""
         return member.placements[0 if index is None else index]
 
-    def left_to_pose(self, member: Member, index: int | None = None) -> bool:
-        """Whether the wall label of ``member``'s placement ``index`` is left out for the
-        context to keep (``posed``): it held for some of its objects only, and their
-        parent type stands at a wall, so how near the wall each stood followed from
-        where it stood by its parent (a lamp beside an armchair 4 cm off the wall, its
-        back 12 or 17 cm off by the armchair's depth), which the context keeps and the
-        parent's ``wall_gap`` sets. A draw of the label as well would put some at the
-        wall twice over."""
-        if not (self.posed and member.placements):
+    def kept_off(self, member: Member, index: int | None = None) -> bool:
+        """Whether ``member``'s placement ``index`` is kept off the walls outright: none
+        of its objects stood at one, they stood on the floor, and their parent type stands
+        at a wall, so that where they stand by it could come within a wall label's reach
+        of the wall (a side table beside an armchair 4 cm off it)."""
+        if member.carried or self.induction.room is None:
             return False
-        placement = self.placement(member, index)
         parent = self.induction.walls.get(member.parent)
         return (
-            placement.wall is not None
-            and drawn_share(placement.wall_share)
+            self.placement(member, index).wall is None
             and parent is not None
             and parent.label() is not None
         )
@@ -304,21 +302,50 @@ class RulesWriter:
         held for some of its objects only (``Placement.wall_share`` under 1 as written):
         the label is then a draw of that share (``draw_line``), so a lamp at the wall in
         7 of 9 corners is put there in about 7 of 9 scenes; else None."""
-        if not member.placements or self.left_to_pose(member, index):
+        if not member.placements:
             return None
         placement = self.placement(member, index)
         return placement if placement.wall and drawn_share(placement.wall_share) else None
 
-    def draw_line(self, placement: Placement, bound: str, noted: bool = True) -> str:
-        """The statement drawing ``placement``'s wall label for the object bound to
-        ``bound``; ``noted``: with how many of its objects held it."""
+    def draw_line(
+        self, type_name: str, placement: Placement, bound: str, noted: bool = True
+    ) -> str:
+        """The statement drawing ``placement``'s wall label for the object (of type
+        ``type_name``) bound to ``bound``; ``noted``: with how many of its objects held it."""
         held = round(placement.wall_share * placement.weight)
         note = f"    # at the wall: {held} of {placement.weight}" if noted else ""
-        return self.wall_draw_words(placement.wall, placement.wall_share, bound) + note
+        assert placement.wall is not None  # only a placement with a wall label is drawn
+        return self.wall_draw_words(type_name, placement.wall, placement.wall_share, bound) + note
 
-    def wall_draw_words(self, wall: str | None, share: float, bound: str) -> str:
-        """``wall`` (a wall label) for the object bound to ``bound``, drawn with ``share``."""
-        return f"{probability_text(share)}? {bound}{self.wall_words(wall)}"
+    def wall_draw_words(self, type_name: str, wall: str, share: float, bound: str) -> str:
+        """The call drawing, for the object (of type ``type_name``) bound to ``bound``,
+        ``wall`` (a wall label) with ``share`` and kept off the walls otherwise."""
+        return f"{self.wall_draw_production(type_name, wall, share)}({bound})"
+
+    def wall_draw_production(self, type_name: str, wall: str, share: float) -> str:
+        """The production (written once per type, label and share) of two weighted
+        alternatives: ``wall``, or kept off the walls (``AWAY``). A draw of the label
+        alone would leave the rest where the layout puts them, some by a wall: a lamp
+        beside an armchair at the wall, in 4 of 9 examples at the wall, was at it in
+        two thirds of the scenes made."""
+        key = ("wall draw", type_name, wall, probability_text(share))
+        if key not in self.written:
+            name = unique_name(f"{camel(type_name)}{wall}OrAway", self.rule_names)
+            param = self.binding(type_name, set())
+            noun = self.induction.catalog[type_name].noun
+            at, away = probability_text(share), probability_text(1.0 - share)
+            lines = comment_lines(
+                f"{name}: {with_article(noun)} {wall} in a share {at} of the examples that "
+                "placed it so, kept off the walls in the rest"
+            )
+            lines.append(
+                f"{name}({param}) -> {at}: {{ {param}{self.wall_words(wall)} }} "
+                f"| {away}: {{ {param} {AWAY} some wall }}"
+            )
+            lines.append("")
+            self.productions.append(lines)
+            self.written[key] = (name, 0)
+        return self.written[key][0]
 
     def noun_plural(self, type_name: str) -> str:
         """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
@@ -474,7 +501,7 @@ class RulesWriter:
                     return [f"{prefix}{member.type} {words}".rstrip() + wall + note], 1
                 bound = self.binding(member.type, taken)
                 first = f"{prefix}{member.type} as {bound} {words}".rstrip()
-                return [first + note, self.draw_line(draw, bound, noted)], 1
+                return [first + note, self.draw_line(member.type, draw, bound, noted)], 1
             if prefix:  # made or not as drawn: a production of its own for this placement
                 return self.optional_placed(member, index, param, depth, prefix, note)
             bound = self.binding(member.type, taken)
@@ -482,7 +509,7 @@ class RulesWriter:
         body, most = self.statements(
             member.children, member.joints, bound, depth + 1, fixed, taken, noted
         )
-        drawn = [] if draw is None else [self.draw_line(draw, bound, noted)]
+        drawn = [] if draw is None else [self.draw_line(member.type, draw, bound, noted)]
         return [first + note] + drawn + [line[len(self.INDENT) :] for line in body], 1 + most
 
     def optional_placed(
@@ -506,7 +533,7 @@ class RulesWriter:
                 + self.placed_wall(member, index)
             )
             if (draw := self.wall_draw(member, index)) is not None:
-                body_lines.append(self.INDENT + self.draw_line(draw, bound))
+                body_lines.append(self.INDENT + self.draw_line(member.type, draw, bound))
             body, most = self.members_body(member.children, bound, member.joints, depth + 1)
             self.productions.append(body_lines + body)
             self.written[key] = (own, most)
@@ -536,7 +563,7 @@ class RulesWriter:
                 body += self.placed_wall(member, k) + " }"
             else:  # the alternative's own comment says how many
                 words = self.relation_words(placement.labels, param)
-                draw = self.draw_line(placement, bound, noted=False)
+                draw = self.draw_line(member.type, placement, bound, noted=False)
                 body = f"{{ {member.type} as {bound} {words}".rstrip() + f"; {draw} }}"
             lead = head if k == 0 else " " * (len(head) - 2) + "| "
             lines.append(f"{lead}{placement.weight}: {body}    # {placement.weight} of {total}")
@@ -613,7 +640,7 @@ class RulesWriter:
                 f"{self.INDENT}{member.type} as {bound} {words}".rstrip() + self.placed_wall(member)
             )
             if (draw := self.wall_draw(member)) is not None:
-                body_lines.append(self.INDENT + self.draw_line(draw, bound))
+                body_lines.append(self.INDENT + self.draw_line(member.type, draw, bound))
         body, made = self.statements(member.children, member.joints, bound, depth + 1)
         body_lines += body + ["}", ""]
         self.productions.append(lines + body_lines)
@@ -734,7 +761,9 @@ class RulesWriter:
                     f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type} as {bound}"
                     f"    # {why}: in {seen}{wall}"
                 )
-                start.append(self.INDENT + self.wall_draw_words(item.wall, item.wall_share, bound))
+                start.append(
+                    self.INDENT + self.wall_draw_words(item.type, item.wall, item.wall_share, bound)
+                )
                 continue
             start.append(
                 f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"

@@ -277,7 +277,7 @@ def test_every_phrase_names_one_label_for_each_kind_of_object():
     """No two labels share words for the same kind of object (a thing, a wall, a
     window), so a description reads back as the labels it was made from."""
     for phrase, sense in relation_phrases().items():
-        for_things = [x for x in sense.labels if RELATIONS[x].family != "wall"]
+        for_things = [x for x in sense.labels if not RELATIONS[x].by_room]
         for_windows = [x for x in sense.labels if x.endswith("Window")]
         assert len(for_things) <= 1 and len(for_windows) <= 1, (phrase, sense.labels)
 
@@ -513,6 +513,8 @@ def _facts(request):
         ),
         ("a sofa against the wall", ("sofa", "AgainstWall", Place("wall"))),
         ("a plant in the corner", ("plant", "InCorner", Place("corner"))),
+        ("a plant stands away from the walls", ("plant", "AwayFromWall", Place("wall"))),
+        ("a plant is away from the west wall", ("plant", "AwayFromWall", Place("wall", 4))),
     ],
 )
 def test_everyday_relation_phrases_mean_registry_relations(text, fact):

@@ -267,8 +267,8 @@ def test_learn_on_the_shipped_desk_examples_writes_the_same_files_for_the_same_s
     )  # --no-context: none learned
     text = outputs[0][0].decode()
     assert (
-        "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk }"
-        in text
+        "OfficeChairAtDesk(the_desk) -> 14: { office_chair NextToFront the_desk FacingTowards the_desk"
+        " ImplicitAwayFromWall some wall }" in text
     )
     assert "0.5? plant InCorner some wall" in text
     document = json.loads(outputs[0][1])

@@ -1,7 +1,9 @@
 """Wall labels learned per placement (``Placement.wall``: held by most of its objects): a
 floor lamp flush with the wall beside its armchair in most reading corners and out in
 the room in the rest is put at the wall only in its flush placement, so the scenes made
-keep the examples' share instead of putting every lamp there (or none)."""
+keep the examples' share instead of putting every lamp there (or none). Where a label
+held for some of a placement's objects only, the rules draw between the label and kept
+off the walls (``ImplicitAwayFromWall``), with or without a context."""
 
 from __future__ import annotations
 
@@ -115,35 +117,43 @@ def test_the_gap_the_examples_keep_to_the_wall_is_written_and_kept(tmp_path, gap
         assert float(np.median(gaps)) == pytest.approx(gap, abs=0.02), (kind, gaps)
 
 
+def drawn_between(text: str, kind: str, label: str, share: str) -> bool:
+    """Whether ``text`` draws, for the object bound by a statement making a ``kind``,
+    ``label`` with ``share`` and kept off the walls otherwise (one call, one production)."""
+    call = re.search(rf"^\s*[^#\n]*\b{kind} as (\w+)\b[^\n]*\n\s*(\w+)\(\1\)", text, re.M)
+    if call is None:
+        return False
+    rest = f"{1 - float(share):.2f}".rstrip("0").rstrip(".")
+    production = (
+        rf"^{call.group(2)}\((\w+)\) -> {re.escape(share)}: \{{ \1 {label} some wall \}} "
+        rf"\| {re.escape(rest)}: \{{ \1 ImplicitAwayFromWall some wall \}}$"
+    )
+    return re.search(production, text, re.M) is not None
+
+
 def test_a_lamp_at_the_wall_in_most_of_one_way_is_put_there_by_a_draw_of_its_share(tmp_path):
     """Lamps beside the armchair, 7 to 16 cm off the wall (one way of standing by it;
-    three beyond the 15 cm a hand leaves): the label is drawn with 0.7, not written for
-    every lamp, and the scenes made keep about that share."""
+    three beyond the 15 cm a hand leaves): the label is drawn with 0.7, the rest kept off
+    the walls, not written for every lamp, and the scenes made keep about that share."""
     lamp_gaps = [0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13, 0.16, 0.16, 0.16]
     paths = corners(tmp_path / "corners", [True] * 10, 0.04, lamp_gaps)
     text = rules_text(induce(load_examples(paths), name="corners", seed=0))
-    assert re.search(
-        r"^\s*floor_lamp as (\w+) NextToLeft[^\n]*\n\s*0\.7\? \1 AgainstWall some wall", text, re.M
-    ), text
+    assert drawn_between(text, "floor_lamp", "AgainstWall", "0.7"), text
     assert (
         abs(made_share(tmp_path / "corners.rules", text, "floor_lamp", "AgainstWall") - 0.7) <= 0.15
     )
 
 
-def test_with_a_context_a_lamp_near_the_wall_by_its_armchair_is_left_to_its_pose(tmp_path):
-    """The same lamps learned with a context: their nearness to the wall follows from
-    where they stand by the armchair (at the wall, 4 cm off it), which the context
-    keeps; no label and no draw is written for them, and the scenes made keep the
-    examples' share."""
-    lamp_gaps = [0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13, 0.16, 0.16, 0.16]
+def test_with_a_context_lamps_straddling_the_hands_reach_keep_their_share(tmp_path):
+    """Lamps beside an armchair 4 cm off the wall, 4 of 10 within the 15 cm a hand
+    leaves and 6 a few centimetres beyond, learned with a context: the same draw is
+    written, and the scenes made keep the examples' share. Left to the context's pose
+    by the armchair, which cannot tell 14 cm from 16, most lamps came within reach of
+    the wall (0.65 against 0.44 in a set of music rooms)."""
+    lamp_gaps = [0.1, 0.11, 0.13, 0.14, 0.16, 0.17, 0.17, 0.18, 0.18, 0.19]
     examples = load_examples(corners(tmp_path / "corners", [True] * 10, 0.04, lamp_gaps))
     induction = induce(examples, name="corners", seed=0)
-    assert (
-        "AgainstWall"
-        not in re.findall(r"^.*floor_lamp NextToLeft.*$", rules_text(induction, posed=True), re.M)[
-            0
-        ]
-    )
+    assert drawn_between(rules_text(induction), "floor_lamp", "AgainstWall", "0.4")
     output = tmp_path / "corners.rules"
     learned = learn_rule_set(
         examples,
@@ -153,13 +163,13 @@ def test_with_a_context_a_lamp_near_the_wall_by_its_armchair_is_left_to_its_pose
         write=lambda path, text: path.write_text(text),
         build_scene=build_scene,
     )
-    assert learned.text == rules_text(induction, posed=True)
+    assert learned.text == rules_text(induction)
     assert learned.context is not None and learned.context.fit is not None
     rules, sidecar = load_rules(output), context_path(output)
     scenes = [build_scene(rules, seed, context=sidecar) for seed in range(40)]
     assert all(scene.layout.ok for scene in scenes)
     share = _walls(scenes, [scene_supports(scene) for scene in scenes])["floor_lamp"]
-    assert abs(share.held["AgainstWall"] / share.objects - 0.7) <= 0.15
+    assert abs(share.held["AgainstWall"] / share.objects - 0.4) <= 0.15
 
 
 def halls(folder: Path, in_corner: list[bool]) -> list[Path]:
@@ -194,33 +204,54 @@ def test_a_lone_thing_in_a_corner_in_some_examples_is_put_there_by_a_draw(tmp_pa
     5 cm off the walls as the examples keep it."""
     paths = halls(tmp_path / "halls", [True] * 6 + [False] * 4)
     text = rules_text(induce(load_examples(paths), name="halls", seed=0))
-    assert re.search(r"^\s*coat_stand as (\w+)\b.*\n\s*0\.6\? \1 InCorner some wall$", text, re.M)
+    assert drawn_between(text, "coat_stand", "InCorner", "0.6"), text
     assert re.search(r"^object coat_stand \{[^}]*wall_gap 0\.05 ", text, re.M), text
     assert abs(made_share(tmp_path / "halls.rules", text, "coat_stand", "InCorner") - 0.6) <= 0.15
 
 
-def test_where_no_context_is_learned_after_all_the_rules_draw_the_label(tmp_path, monkeypatch):
-    """Rules written for a context leave the lamps' label to the pose; when the context
-    is then not learned (no pair in enough examples, say), the file written draws it,
-    and the check is of that file."""
-    import scenewright.learning.learn as learn_module
+def side_tables(folder: Path) -> list[Path]:
+    """Reading corners as ``corners`` lays them out: an armchair 4 cm off some wall and a
+    side table on its left, 30 to 40 cm off the wall, never at it."""
+    folder.mkdir(parents=True, exist_ok=True)
+    draw = np.random.default_rng(11)
+    room, table = (4.0, 3.6), (0.5, 0.55, 0.5)
+    paths = []
+    for index in range(10):
+        yaw = float(draw.choice([0.0, 90.0, 180.0, -90.0]))
+        reach = (room[1] if yaw in (0.0, 180.0) else room[0]) / 2
+        turn = math.radians(yaw)
+        along = float(draw.uniform(-0.4, 0.4))
+        out = CHAIR[0] / 2 + float(draw.uniform(0.05, 0.12)) + table[0] / 2
+        chair = to_world(0, 0, turn, along, CHAIR[2] / 2 + 0.04 - reach)
+        off = float(draw.uniform(0.3, 0.4))
+        placed = to_world(0, 0, turn, along + out, table[2] / 2 + off - reach)
+        objects = [
+            {"id": ident, "type": kind, "size": list(size), "position": list(at), "yaw": yaw}
+            for ident, kind, size, at in (
+                ("chair", "armchair", CHAIR, chair),
+                ("table", "side_table", table, placed),
+            )
+        ]
+        path = folder / f"corner_{index:02d}.json"
+        path.write_text(
+            json.dumps({"room": {"width": room[0], "depth": room[1]}, "objects": objects})
+        )
+        paths.append(path)
+    return paths
 
-    def none_learned(*args, **kwargs):
-        return learn_module.InducedContext(None, "no related pair", 0, [], [], [])
 
-    monkeypatch.setattr(learn_module, "learned_context", none_learned)
-    lamp_gaps = [0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13, 0.16, 0.16, 0.16]
-    examples = load_examples(corners(tmp_path / "corners", [True] * 10, 0.04, lamp_gaps))
+def test_a_thing_never_at_the_wall_by_a_parent_at_one_is_kept_off_the_walls(tmp_path):
+    """A side table beside an armchair at the wall, 30 to 40 cm off it in every example:
+    kept off the walls outright (``ImplicitAwayFromWall``), which is not described, and
+    at no wall in the scenes made."""
+    paths = side_tables(tmp_path / "corners")
+    text = rules_text(induce(load_examples(paths), name="corners", seed=0))
+    assert re.search(
+        r"^\s*side_table NextToLeft the_armchair[^#\n]* ImplicitAwayFromWall some wall", text, re.M
+    ), text
     output = tmp_path / "corners.rules"
-    learned = learn_rule_set(
-        examples,
-        output,
-        check=4,
-        write=lambda path, text: path.write_text(text),
-        build_scene=build_scene,
-    )
-    induction = induce(examples, name="corners", seed=0)
-    assert learned.text == output.read_text() == rules_text(induction)
-    assert "0.7? the_floor_lamp AgainstWall some wall" in learned.text
-    assert not context_path(output).exists()
-    assert learned.check is not None and learned.check.scenes == 4
+    output.write_text(text)
+    scenes = [build_scene(load_rules(output), seed) for seed in range(20)]
+    assert all(scene.layout.ok for scene in scenes)
+    share = _walls(scenes, [scene_supports(scene) for scene in scenes])["side_table"]
+    assert share.held["AgainstWall"] == 0

@@ -162,6 +162,8 @@ def test_bad_rooms_are_reported_where_they_are_written(tmp_path, body, where, me
         ),
         ("wardrobe AgainstWall each wall", "12:29", "AgainstWall stands by a wall"),
         ("wardrobe UnderWindow window #2", "12:29", "'window #2': the room has 1 window"),
+        ("plant AwayFromWall some window", "12:27", "AwayFromWall stands by a wall"),
+        ("plant AwayFromWall wall #5", "12:27", "'wall #5': the room has 4 walls"),
         (
             "wardrobe; wall",
             "12:18",
@@ -181,6 +183,46 @@ def test_a_wall_label_needs_a_room(tmp_path):
     printed = diagnostics(tmp_path, text)
     assert "room.rules:4:10: error: AgainstWall needs a room" in printed
     assert printed.count("error:") == 1, printed  # not also "unknown type 'wall'"
+
+
+def test_away_from_wall_needs_a_room_too(tmp_path):
+    text = 'scene s { extent 4 x 4\n start S }\nobject a { noun "a" }\nS -> { a AwayFromWall some wall }\n'
+    printed = diagnostics(tmp_path, text)
+    assert "room.rules:4:10: error: AwayFromWall needs a room" in printed
+    assert printed.count("error:") == 1, printed
+
+
+def test_away_from_some_wall_targets_the_room_and_keeps_off_every_wall(tmp_path):
+    """A lamp beside an armchair at a wall, kept off the walls: the layout keeps it at
+    least 15 cm off (aiming at 20), the text says so of the nearest wall, and the
+    Implicit form constrains the layout without a sentence."""
+    from scenewright.api import build_scene, describe_scene
+
+    text = ROOM + (
+        'object armchair { noun "armchair" size 0.8 x 0.9 x 0.8 }\n'
+        'object floor_lamp { noun "floor lamp" size 0.35 x 1.6 x 0.35 }\n'
+        "S -> { armchair as a AgainstWall some wall; floor_lamp NextToLeft a AwayFromWall some wall;"
+        " plant ImplicitAwayFromWall some wall }\n"
+    )
+    (tmp_path / "room.rules").write_text(text)
+    rules = load_rules(tmp_path / "room.rules")
+    edges = {(edge.source, edge.label): edge.target for edge in expand(rules, 0).edges()}
+    assert edges[("floor_lamp_1", "AwayFromWall")] == ROOM_NODE
+    for seed in range(8):
+        scene = build_scene(rules, seed)
+        assert scene.layout.ok, (seed, scene.layout.problems)
+        for obj in scene.placed_objects():
+            if obj.type in ("floor_lamp", "plant"):
+                corners = [
+                    (obj.position[0] + dx, obj.position[2] + dz)
+                    for dx in (-obj.size[0] / 2, obj.size[0] / 2)
+                    for dz in (-obj.size[2] / 2, obj.size[2] / 2)
+                ]  # square to the walls: the layout keeps them so in a room
+                gap = min(scene.room.boundary_distance(x, z) for x, z in corners)
+                assert gap > 0.15, (seed, obj.id, gap)
+        words = describe_scene(scene).description.text
+        assert "The floor lamp is to the left of the armchair and stands away from the" in words
+        assert "plant stands away" not in words
 
 
 def test_a_catalog_entry_may_not_take_a_room_part_name(tmp_path):

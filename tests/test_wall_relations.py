@@ -859,3 +859,77 @@ def test_a_scene_keeps_its_objects_wall_gaps_and_leaves_out_what_is_not_set():
     with pytest.raises(InputError, match=r"objects\[0\]\.wall_gap"):
         validate_scene_dict({**saved, "objects": [{**saved["objects"][0], "wall_gap": 0.7}]})
     assert [o.wall_gap for o in Scene.from_dict(saved).objects] == [0.12, None]
+
+
+# -- AwayFromWall: kept off the walls ---------------------------------------------------
+
+
+def footprint_gap(room: Room, pose: Pose, size) -> float:
+    """The least distance from a box's footprint corners to the walls of a convex room
+    (a convex footprint comes nearest a wall at a corner): what AwayFromWall measures,
+    found another way."""
+    c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+    corners = [
+        (pose.x + dx * c + dz * s, pose.z - dx * s + dz * c)
+        for dx in (-size[0] / 2, size[0] / 2)
+        for dz in (-size[2] / 2, size[2] / 2)
+    ]
+    return min(room.boundary_distance(x, z) for x, z in corners)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    x=st.floats(-2.0, 2.0),
+    z=st.floats(-1.5, 1.5),
+    yaw=st.floats(-math.pi, math.pi),
+    make_room=st.sampled_from([study, rotated]),
+)
+def test_away_from_wall_holds_from_15_cm_off_every_wall(x, z, yaw, make_room):
+    room = make_room()
+    graph, (box,) = graph_of(room, CHAIR)
+    graph.add_relation(box, "room", "AwayFromWall")
+    pose = Pose(x, 0.0, z, yaw)
+    gap = footprint_gap(room, pose, CHAIR[1])
+    if abs(gap - 0.15) < 1e-6 or not room.contains(x, z):
+        return
+    relation, problems = one(graph, {box: pose})
+    assert relation.satisfied == (gap > 0.15), gap
+    assert (relation.value == pytest.approx(0.0, abs=1e-12)) == (gap >= 0.2 - 1e-9)
+    assert relation.chosen in {wall.id for wall in room.walls}  # the nearest wall
+    if not relation.satisfied:
+        assert problems[0].startswith(f"{box} is not away from {relation.chosen}")
+
+
+def test_away_from_a_named_wall_minds_that_wall_only():
+    room = study()
+    north = room.walls[0]
+    graph, (box,) = graph_of(room, CHAIR)
+    graph.add_relation(box, "wall_1", "AwayFromWall")
+    assert not one(graph, {box: against(north, 2.0, CHAIR[1], gap=0.1)})[0].satisfied
+    assert one(graph, {box: against(north, 2.0, CHAIR[1], gap=0.2)})[0].satisfied
+    east = room.walls[1]  # flush with another wall, well off the north one
+    assert one(graph, {box: against(east, 2.0, CHAIR[1])})[0].satisfied
+
+
+@pytest.mark.parametrize("make_room", [study, rotated, l_shaped])
+def test_away_from_wall_proposals_hold_at_once(make_room):
+    room = make_room()
+    for seed in range(12):
+        graph, (box,) = graph_of(room, WARDROBE)
+        graph.add_relation(box, "room", "AwayFromWall")
+        holds, measure, _, state = propose_and_measure(graph, {}, seed)
+        assert holds and measure.distance >= 0.2 - 1e-9, (seed, measure)
+        assert room.contains(state.x[0], state.z[0])
+
+
+def test_away_from_wall_refuses_what_it_cannot_keep_off_a_wall():
+    room = study()
+    for target, why in (("door_1", "the target must be a wall or the room"),):
+        graph, (box,) = graph_of(room, CHAIR)
+        graph.add_relation(box, target, "AwayFromWall")
+        with pytest.raises(InputError, match=why):
+            compile_problem(graph)
+    graph, (a, b) = graph_of(room, CHAIR, DESK)
+    graph.add_relation(a, b, "AwayFromWall")
+    with pytest.raises(InputError, match="the target must be a wall or the room"):
+        compile_problem(graph)

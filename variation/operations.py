@@ -381,7 +381,7 @@ def _brought_relations(
             or RELATIONS[relation.label].support
         ):
             continue
-        if RELATIONS[relation.label].family == "wall":
+        if RELATIONS[relation.label].by_room:  # a wall label or AwayFromWall
             if variant.scene.room is not None:
                 brought.append(Relation(new_id, "room", relation.label, 0.0, True))
             continue

@@ -20,7 +20,7 @@ from ..params import LayoutParams
 from ..relation_terms import Measure
 from ..state import State
 from ..terms import RelationTerm
-from . import alignment, facing, next_to, support, wall
+from . import alignment, clearance, facing, next_to, support, wall
 from .entry import LayoutFamily
 
 #: One entry per geometric family of the relation registry (in the order
@@ -32,6 +32,7 @@ LAYOUT_FAMILIES: dict[str, LayoutFamily] = {
     "support": support.FAMILY,
     "wall": wall.FAMILY,
     "alignment": alignment.FAMILY,
+    "clearance": clearance.FAMILY,
 }
 
 _missing = set(FAMILIES) - set(LAYOUT_FAMILIES) - {"structural"}
