@@ -933,3 +933,20 @@ def test_away_from_wall_refuses_what_it_cannot_keep_off_a_wall():
     graph.add_relation(a, b, "AwayFromWall")
     with pytest.raises(InputError, match="the target must be a wall or the room"):
         compile_problem(graph)
+
+
+def test_away_from_wall_places_alone_only():
+    """Beside its armchair and kept off the walls, a lamp is drawn by its place beside
+    the armchair (then pushed off the walls); kept off the walls alone, by that."""
+    from scenewright.generator.layout.families import placing
+
+    room = study()
+    graph, (chair, lamp) = graph_of(room, ("armchair", (0.8, 0.9, 0.8)), LAMP)
+    graph.add_relation(chair, "room", "AgainstWall")
+    graph.add_relation(lamp, chair, "NextToLeft")
+    graph.add_relation(lamp, "room", "AwayFromWall")
+    problem = compile_problem(graph)
+    terms = problem.outgoing[("object", problem.ids.index(lamp))]
+    assert [t.label for t in placing(terms)] == ["NextToLeft"]
+    alone = [t for t in terms if t.label == "AwayFromWall"]
+    assert placing(alone) == alone

@@ -53,7 +53,7 @@ from scenewright.core.geometry import corners
 from scenewright.core.relations import RELATIONS
 
 from .energy import Energy
-from .families import LAYOUT_FAMILIES, evaluate
+from .families import LAYOUT_FAMILIES, evaluate, placing
 from .initial_roads import lay_paths, lengthen
 from .lots import LOT_SPACING, LotItem, LotPlan, frontage_items, plan_lots
 from .motion import draw_index, rigid, uniform, wrap
@@ -375,7 +375,7 @@ def _place_box(
     own = Endpoint("object", box, (box,))
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
-    positional = [t for t in outgoing if LAYOUT_FAMILIES[t.spec.family].places]
+    positional = placing([t for t in outgoing if LAYOUT_FAMILIES[t.spec.family].places])
     turning = [t for t in outgoing if not LAYOUT_FAMILIES[t.spec.family].places]
     incoming = [
         t

@@ -24,7 +24,7 @@ import numpy as np
 
 from scenewright.core.geometry import nearest_on_polyline
 
-from .families import LAYOUT_FAMILIES, evaluate, satisfied
+from .families import LAYOUT_FAMILIES, evaluate, placing, satisfied
 from .families.next_to import GAP_RANGE
 from .motion import carried_by, draw_index, end_reach, reach, rigid, uniform, wrap
 from .params import LayoutParams
@@ -168,16 +168,18 @@ class Placer:
     def place_for_all(self, end: Endpoint) -> dict | None:
         """For an A with several placing relations: the best of a few data-driven poses.
 
-        Each try places A by one of its relations drawn at random (``place_by``); the
+        Each try places A by one of its relations drawn at random (``place_by``; of
+        those that place alone only when no other places it: ``families.placing``); the
         tries are ranked by the energy of all of A's placing relations together, so a
         smithy that must be both beside a tower and next to a road lands where both
         hold, when any try found it.
         """
         state = self.state
         terms = self._placing_terms(end)
+        drawn = placing(terms)
         best, best_energy = None, math.inf
         for _ in range(MULTI_TRIES):
-            proposal = self.place_by(terms[draw_index(self.rng, len(terms))])
+            proposal = self.place_by(drawn[draw_index(self.rng, len(drawn))])
             if not proposal:
                 continue
             with state.trying(proposal):

@@ -40,6 +40,14 @@ if _missing:  # a registry family the layout cannot score or place: refuse at st
     raise ImportError(f"the layout implements no relation family {', '.join(sorted(_missing))}")
 
 
+def placing(terms: list[RelationTerm]) -> list[RelationTerm]:
+    """Those of ``terms`` (one item's relations) that place it: of families that place,
+    one that places only alone (``LayoutFamily.places_alone``) where no other does."""
+    found = [t for t in terms if LAYOUT_FAMILIES[t.spec.family].places]
+    others = [t for t in found if not LAYOUT_FAMILIES[t.spec.family].places_alone]
+    return others or found
+
+
 def evaluate(term: RelationTerm, state: State, params: LayoutParams) -> Measure:
     """The energy (>= 0) of one relation edge and its geometric measures."""
     return LAYOUT_FAMILIES[term.spec.family].measure(term, state, params)

@@ -8,10 +8,11 @@ recorded as ``chosen``. A wall counts only where A stands beside it (its footpri
 overlaps the wall's stretch): the far side of an L-shaped room's inner corner is not
 a wall A stands near.
 
-A placement of A by this relation alone draws a place in the room clear of the walls;
-a placement by another relation (a lamp beside its armchair) is half the time pushed
-straight off the walls it came too close to (``snap``), so "beside the armchair, away
-from the wall" lands where both hold.
+A placement of A by this relation alone draws a place in the room clear of the walls.
+Where A has relations of other families that place it (a lamp beside its armchair), it
+is placed by those only (``places_alone``), half the time then pushed straight off the
+walls it came too close to (``snap``), so "beside the armchair, away from the wall"
+lands where both hold.
 """
 
 from __future__ import annotations
@@ -155,5 +156,6 @@ FAMILY = LayoutFamily(
     complaint=complaint,
     place=place,
     snap=snap,
+    places_alone=True,
     check_ends=check_ends,
 )

@@ -65,6 +65,10 @@ class LayoutFamily:
     #: Whether the relation says where A goes; one that only turns A (``turn``) is left
     #: out of the relations an item is placed by, and turns it once it has a place.
     places: bool = True
+    #: Whether it places A only where no relation of another family does: otherwise A is
+    #: placed by those and snapped to hold this one too (``snap``), so that a lamp kept
+    #: off the walls is still drawn beside its armchair, not anywhere in the room.
+    places_alone: bool = False
     #: A data-driven move of B instead: B placed so the relation holds (None: B is not
     #: moved for it).
     place_target: Callable[[Placer, RelationTerm], Poses] | None = None
