@@ -57,14 +57,14 @@ file and ``Induction.to_dict()`` the report.
    ``rules_text`` writes. The gap a type's
    placers left to the wall where a label held (``WallShare.gap``: the median) is
    written as its ``wall_gap``, so the layout sets it as far off as they did. A type
-   related to no other gets the label held for at least ``WALL_DRAW_SHARE`` of its
-   objects as a draw of that share (``WallShare.drawn``), and so does a placement
-   whose label held for some of its objects only (``Placement.wall_share``): the
-   label, or else kept off the walls (``ImplicitAwayFromWall``), so that the share at
-   the wall is the examples' whatever the layout would do with the rest. A standing
-   placement none of whose objects stood at a wall, by a parent type that does, is
-   kept off the walls outright: beside an armchair at the wall, a side table could
-   otherwise come within a wall label's reach of it.
+   related to no other and a group's anchor get their label as a draw of its share
+   where under 1 (``WallShare.drawn``), and so does a placement whose label held for
+   some of its objects only (``Placement.wall_share``): the label, or else kept off
+   the walls (``ImplicitAwayFromWall``), so that the share at the wall is the
+   examples' whatever the layout would do with the rest. Such a type none of whose
+   objects stood at a wall, and a standing placement none of whose objects did by a
+   parent type that does, are kept off the walls outright: beside an armchair at the
+   wall, a side table could otherwise come within a wall label's reach of it.
 7. **Scene.** The room of the example whose room is nearest the median size (its walls,
    doors and windows), or the median extent of open ground.
 """

@@ -32,10 +32,9 @@ WALL_SHARE = 0.75
 #: objects (``Placement.wall``): within one way of standing by the parent, the majority
 #: is the nearest the examples' share that a label written or not can come.
 PLACEMENT_WALL_SHARE = 0.5
-#: A type related to no other type gets a wall label held for at least this share of
-#: its objects as a draw of that share (``WallShare.drawn``): it stands alone, so no
-#: other placement suffers for it, and a thing at the wall in a quarter of the
-#: examples or fewer is left where the layout puts it (rarely at a wall).
+#: A type's wall label drawn with its share (``WallShare.drawn``: a type related to no
+#: other, a group's anchor) is the first held for at least this share of its objects,
+#: else AgainstWall where any stood at a wall (a corner is against a wall too).
 WALL_DRAW_SHARE = 0.25
 #: The most ``wall_gap`` written (metres): a wall label holds within WALL_TOLERANCE of
 #: the gap, and an object is measured at a wall within HAND_GAP of it, so an object
@@ -352,11 +351,12 @@ class WallShare:
     gaps: list[float] = field(default_factory=list)
 
     def drawn(self) -> tuple[str, float] | None:
-        """The wall label a type related to no other is given, with the share of its
-        objects it held for, written as a draw of that share where under 1: ``label()``
-        where it is written, else the first held for at least ``WALL_DRAW_SHARE`` (a
-        coat stand in the corner in 7 of 12 halls is put there in about 7 of 12 scenes,
-        not in every one, nor left to stand where the layout puts it); None if none."""
+        """The wall label a type standing by no parent (related to no other, a group's
+        anchor) is given, with the share of its objects it held for, written as a draw
+        of that share where under 1: ``label()`` where it is written, else the first held
+        for at least ``WALL_DRAW_SHARE``, else AgainstWall where it held for any (a coat
+        stand in the corner in 7 of 12 halls is put there in about 7 of 12 scenes, not in
+        every one, nor left to stand where the layout puts it); None if none held."""
         if not self.objects:
             return None
         firm = self.label()
@@ -364,7 +364,13 @@ class WallShare:
             share = self.held[label] / self.objects
             if firm or share >= WALL_DRAW_SHARE:
                 return label, share
+        if self.held["AgainstWall"]:
+            return "AgainstWall", self.held["AgainstWall"] / self.objects
         return None
+
+    def kept_off(self) -> bool:
+        """Whether none of the type's standing objects stood at a wall (it had some)."""
+        return self.objects > 0 and not any(self.held[label] for label in CATEGORIES["wall"])
 
     def gap(self) -> float | None:
         """The gap the type keeps to a wall it stands against: the median of ``gaps``

@@ -705,15 +705,28 @@ class RulesWriter:
                 + "."
             )
         lines.append(f"{group.rule} -> {{")
-        wall_note = ""
-        if group.wall:
-            share = ind.walls[group.anchor]
-            wall_note = f"    # {group.wall}: {share.held[group.wall]} of {share.objects} {self.noun_plural(group.anchor)}"
-        lines.append(
-            f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(group.wall)}{wall_note}"
-        )
+        share = ind.walls.get(group.anchor)
+        drawn = share.drawn() if share is not None and ind.room is not None else None
+        if drawn is None:
+            away = f" {AWAY} some wall" if self.off_walls(group.anchor) else ""
+            lines.append(f"{self.INDENT}{group.anchor} as {bound}{away}")
+        else:
+            wall, held = drawn
+            assert share is not None  # drawn from it
+            note = f"    # {wall}: {share.held[wall]} of {share.objects} {self.noun_plural(group.anchor)}"
+            if drawn_share(held):
+                lines.append(f"{self.INDENT}{group.anchor} as {bound}{note}")
+                lines.append(self.INDENT + self.wall_draw_words(group.anchor, wall, held, bound))
+            else:
+                lines.append(f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(wall)}{note}")
         body, most = self.members_body(group.members, bound, group.joints)
         return lines + body, most
+
+    def off_walls(self, type_name: str) -> bool:
+        """Whether a type standing by no parent (an anchor, a type related to no other) is
+        kept off the walls outright: in a room, none of its standing objects stood at one."""
+        share = self.induction.walls.get(type_name)
+        return self.induction.room is not None and share is not None and share.kept_off()
 
     def text(self) -> str:
         ind = self.induction
@@ -765,8 +778,11 @@ class RulesWriter:
                     self.INDENT + self.wall_draw_words(item.type, item.wall, item.wall_share, bound)
                 )
                 continue
+            words = self.wall_words(item.wall)
+            if not item.wall and self.off_walls(item.type):
+                words = f" {AWAY} some wall"
             start.append(
-                f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{self.wall_words(item.wall)}"
+                f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{words}"
                 f"    # {why}: in {seen}{wall}"
             )
         start += ["}", ""]

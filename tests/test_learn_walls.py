@@ -255,3 +255,14 @@ def test_a_thing_never_at_the_wall_by_a_parent_at_one_is_kept_off_the_walls(tmp_
     assert all(scene.layout.ok for scene in scenes)
     share = _walls(scenes, [scene_supports(scene) for scene in scenes])["side_table"]
     assert share.held["AgainstWall"] == 0
+
+
+def test_a_lone_thing_never_at_a_wall_is_kept_off_the_walls(tmp_path):
+    """A coat stand related to nothing, out in the room in every hall: kept off the walls
+    outright, where the layout alone would bring some to a wall; the bench, at the wall
+    in every hall, keeps its label."""
+    paths = halls(tmp_path / "halls", [False] * 10)
+    text = rules_text(induce(load_examples(paths), name="halls", seed=0))
+    assert re.search(r"^\s*coat_stand ImplicitAwayFromWall some wall\b", text, re.M), text
+    assert re.search(r"^\s*bench AgainstWall some wall\b", text, re.M), text
+    assert made_share(tmp_path / "halls.rules", text, "coat_stand", "AgainstWall") == 0.0
