@@ -408,7 +408,7 @@ def written_labels(category_labels: dict[str, str | None], resting: bool) -> tup
         label = category_labels.get(category)
         if label is None:
             continue
-        found.append("Implicit" + label if category == "turn" else label)
+        found.append("Implicit" + label if category in ("turn", "end") else label)
     return tuple(found)
 
 
@@ -476,7 +476,9 @@ def placements_of(
             turn = most_specific(
                 "turn", holds[rests], int(local[peaks.centres[largest]]), local[members], TURN_SHARE
             )
-            labels = written_labels({"support": key[0], "turn": turn}, rests)
+            # The key is the support label, then the end of the top (``Implicit``) if any.
+            end = key[1][len("Implicit") :] if len(key) > 1 else None
+            labels = written_labels({"support": key[0], "turn": turn, "end": end}, rests)
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
         members_of.append(np.concatenate([peaks.members(k) for k in numbers]))
     order = sorted(

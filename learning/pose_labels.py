@@ -26,7 +26,11 @@ Categories, most specific first:
   written ``Implicit``: the support already places the object, and "the laptop faces
   the same way as the desk" is no sentence a person says;
 - ``alignment`` (floor objects only): AlignedWith;
-- ``wall`` (per object, in a room): InCorner, AgainstWall.
+- ``wall`` (per object, in a room): InCorner, AgainstWall;
+- ``end`` (objects resting on their parent): NextToLeft, NextToRight, written
+  ``Implicit``: which end of the top it stands at (a lamp at the left end of a
+  sideboard), so that lamps at either end are two placements drawn with the examples'
+  shares, not one left to the layout.
 """
 
 from __future__ import annotations
@@ -58,6 +62,7 @@ CATEGORIES: dict[str, tuple[str, ...]] = {
     "turn": ("FacingSameDirection", "FacingOpposite", "FacingOrthogonalDirection"),
     "alignment": ("AlignedWith",),
     "wall": ("InCorner", "AgainstWall"),
+    "end": ("NextToLeft", "NextToRight"),
 }
 #: The family each category's labels must belong to (checked against the registry at import).
 _FAMILIES = {
@@ -67,6 +72,7 @@ _FAMILIES = {
     "turn": "facing",
     "alignment": "alignment",
     "wall": "wall",
+    "end": "next_to",
 }
 for _category, _labels in CATEGORIES.items():
     for _label in _labels:
@@ -76,7 +82,7 @@ for _category, _labels in CATEGORIES.items():
             )
 
 #: The categories measured between a child and its parent, by whether the child rests on it.
-RESTING_CATEGORIES = ("support", "turn")
+RESTING_CATEGORIES = ("support", "turn", "end")
 STANDING_CATEGORIES = ("near", "facing", "alignment")
 #: The least share of a cluster's members a label must hold for (as well as at its centre).
 MAJORITY = 0.5

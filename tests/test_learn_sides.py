@@ -383,3 +383,72 @@ def test_three_examples_split_two_to_one_give_two_weighted_alternatives(tmp_path
     assert abs(drawn[left] / 300 - 2 / 3) < 0.08
     scenes = [build_scene(rules, seed) for seed in range(12)]
     assert same_side_share(scenes) == 0.0
+
+
+def sideboards(folder: Path, ends: list[int]) -> list[Path]:
+    """Dining rooms of 4 x 3.6 m: a sideboard against some wall, a table lamp on its top
+    at its left end (+1: the sideboard's own left) or its right end (-1)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    draw = np.random.default_rng(7)
+    board, lamp = (1.6, 0.85, 0.45), (0.3, 0.5, 0.3)
+    paths = []
+    for index, end in enumerate(ends):
+        yaw = float(draw.choice([0.0, 90.0, 180.0, -90.0]))
+        reach = (3.6 if yaw in (0.0, 180.0) else 4.0) / 2
+        turn = math.radians(yaw)
+        along = float(draw.uniform(-0.5, 0.5))
+        bx, bz = to_world(0, 0, turn, along, board[2] / 2 + 0.03 - reach)
+        lx, lz = to_world(bx, bz, turn, end * float(draw.uniform(0.5, 0.6)), 0.0)
+        objects = [
+            {
+                "id": "board",
+                "type": "sideboard",
+                "size": list(board),
+                "position": [bx, bz],
+                "yaw": yaw,
+            },
+            {
+                "id": "lamp",
+                "type": "table_lamp",
+                "size": list(lamp),
+                "position": [lx, lz],
+                "yaw": yaw,
+                "parent": "board",
+            },
+        ]
+        path = folder / f"dining_{index:02d}.json"
+        path.write_text(json.dumps({"room": {"width": 4.0, "depth": 3.6}, "objects": objects}))
+        paths.append(path)
+    return paths
+
+
+def test_a_lamp_at_either_end_of_its_sideboard_is_two_placements_with_their_shares(tmp_path):
+    """Lamps on a sideboard's top, at its left end in 8 rooms and its right end in 4:
+    which end is a label of each placement (``ImplicitNextToLeft``/``Right``, the
+    sideboard's own sides), drawn 8 to 4, and the lamps made stand on the top at their
+    end in about that share; one placement left the end to the layout."""
+    paths = sideboards(tmp_path / "rooms", [1, 1, -1] * 4)
+    text = rules_text(induce(load_examples(paths), name="dining", seed=0))
+    assert re.search(
+        r"-> 8: \{ table_lamp OnTopOf\w* the_sideboard[^}]* ImplicitNextToLeft the_sideboard \}",
+        text,
+    ), text
+    assert re.search(
+        r"\| 4: \{ table_lamp OnTopOf\w* the_sideboard[^}]* ImplicitNextToRight the_sideboard \}",
+        text,
+    ), text
+    output = tmp_path / "dining.rules"
+    output.write_text(text)
+    rules = load_rules(output)
+    left = 0
+    scenes = [build_scene(rules, seed) for seed in range(40)]
+    for scene in scenes:
+        assert scene.layout.ok, scene.layout.problems
+        board = next(o for o in scene.placed_objects() if o.type == "sideboard")
+        lamp = next(o for o in scene.placed_objects() if o.type == "table_lamp")
+        x, _ = to_local(
+            board.position[0], board.position[2], board.yaw, lamp.position[0], lamp.position[2]
+        )
+        assert abs(x) <= 0.8 and lamp.position[1] > 0.8  # on the top, not beside it
+        left += x > 0
+    assert abs(left / len(scenes) - 8 / 12) <= 0.15

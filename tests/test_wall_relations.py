@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.core.errors import InputError
+from scenewright.core.frames import to_local
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
@@ -950,3 +951,24 @@ def test_away_from_wall_places_alone_only():
     assert [t.label for t in placing(terms)] == ["NextToLeft"]
     alone = [t for t in terms if t.label == "AwayFromWall"]
     assert placing(alone) == alone
+
+
+def test_next_to_a_side_of_what_a_thing_rests_on_places_it_at_that_end_of_the_top():
+    """A lamp resting on a sideboard, NextToLeft / NextToRight of it: the proposal puts
+    it on the top at that end (the sideboard's own left is its local +X), never beside it."""
+    room = study()
+    for label, sign in (("ImplicitNextToLeft", 1.0), ("ImplicitNextToRight", -1.0)):
+        for seed in range(10):
+            graph, (board, lamp) = graph_of(room, ("sideboard", (1.6, 0.85, 0.45)), LAMP)
+            graph.add_relation(lamp, board, label)
+            graph.add_relation(lamp, board, "OnTopOfEdge")
+            problem = compile_problem(graph)
+            state = State(problem)
+            state.set_pose(0, 0.5, -1.0, 0.7)
+            mover = Mover(problem, state, np.random.default_rng(seed), PARAMS)
+            term = next(t for t in problem.relations if t.label == label)
+            for box, pose in mover.place_for_relation(term).items():
+                state.set_pose(box, *pose)
+            assert satisfied(term, evaluate(term, state, PARAMS), PARAMS), (label, seed)
+            lx, lz = to_local(0.5, -1.0, 0.7, state.x[1], state.z[1])
+            assert sign * lx > 0 and abs(lx) <= 0.8 - 0.125 + 1e-9 and abs(lz) <= 0.225, (lx, lz)

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from scenewright.core.frames import to_local, to_world
 from scenewright.core.relations import SEAT_SQUARE_TOLERANCE, RelationLabel
 
 from ..factors import angle_between, equals, less
@@ -43,9 +44,11 @@ from ..relation_terms import (
 from ..state import State
 from ..terms import ROOM_ENDS, Endpoint, RelationTerm
 from .entry import LayoutFamily
+from .support import place_on_top
 
 if TYPE_CHECKING:
     from ..placement import Placer
+    from ..problem import Problem
 
 #: Gaps (metres) a data-driven NextTo proposal leaves between A and B.
 GAP_RANGE = (0.05, 0.8)
@@ -63,14 +66,55 @@ SEAT_SIGMA2 = 0.015
 LATERAL_SHARE = 0.5
 
 
-def place(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dict:
+def on_its_top(problem: Problem, term: RelationTerm) -> bool:
+    """Whether A rests on B and the label names one of B's own sides: the side of B's
+    top A stands at (a lamp at the left end of a sideboard), not beside B."""
+    return (
+        term.a.kind == "object"
+        and term.b.kind == "object"
+        and problem.support[term.a.index] == term.b.index
+        and term.spec.names_target_side
+        and len(term.spec.directions) == 1
+    )
+
+
+def _place_at_end_of_top(placer: Placer, term: RelationTerm) -> dict | None:
+    """A placed on B's top as its support relation places it, on the side the label
+    names: mirrored across B's middle when it came down on the other side."""
+    problem, state = placer.problem, placer.state
+    a, b = term.a.index, term.b.index
+    support = next(
+        (
+            t
+            for t in problem.outgoing.get(("object", a), [])
+            if t.spec.support and t.b.kind == "object" and t.b.index == b
+        ),
+        None,
+    )
+    if support is None:
+        return None
+    poses = place_on_top(placer, support)
+    x, z, yaw = poses[a]
+    ((dx, dz),) = term.spec.directions.values()  # B's own side: left (1, 0), front (0, 1)...
+    lx, lz = to_local(state.x[b], state.z[b], state.yaw[b], x, z)
+    if lx * dx + lz * dz < 0.0:  # the other side: mirror across B's middle
+        lx, lz = (-lx, lz) if dx else (lx, -lz)
+        nx, nz = to_world(state.x[b], state.z[b], state.yaw[b], lx, lz)
+        poses = {k: (px + nx - x, pz + nz - z, pyaw) for k, (px, pz, pyaw) in poses.items()}
+    return poses
+
+
+def place(placer: Placer, term: RelationTerm, keep_heading: bool = False) -> dict | None:
     """A beside B as the label wants: beside a road at a random point along it (turned to
-    face it most of the time, unless ``keep_heading``), beside a room's part, or on the
-    side of B the label names, slid a little along that side."""
+    face it most of the time, unless ``keep_heading``), beside a room's part, on the
+    side of B the label names, slid a little along that side, or, for an A resting on B,
+    at that side of B's top (``on_its_top``)."""
     problem, state, rng = placer.problem, placer.state, placer.rng
     a, b = term.a, term.b
     if b.kind in ROOM_ENDS:
         return _place_by_room_part(placer, term)
+    if on_its_top(problem, term):
+        return _place_at_end_of_top(placer, term)
     ax, az = centre(a, state)
     gap = uniform(rng, *gap_range(term.spec))
     turn = 0.0
