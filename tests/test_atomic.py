@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import errno
 import filecmp
+import json
 import os
 import random
+import select
 import shutil
 import signal
 import subprocess
@@ -223,13 +225,20 @@ def test_export_to_a_full_disk_names_the_file(tmp_path, monkeypatch, capsys):
 
 # -- generate under SIGKILL (item 7) ----------------------------------------------------
 
-#: The child: generate with every rename, link and removal slowed, so that kills land
-#: in the middle of publishing too; it says "ready" once its imports are done.
-CHILD = """
-import os, shutil, sys, time
+#: The server: imports what ``generate`` runs once, then, for each request (a JSON line:
+#: the arguments, and whether rename-exchange is missing), forks a child that runs
+#: ``main`` with every rename, link and removal slowed, so that kills land in the middle
+#: of publishing too. It answers the child's pid at once; on the next line from the test
+#: (sent once the test has killed the child, or to wait for it) it reaps the child and
+#: answers its exit code (negative: the signal that ended it). Until then the child is
+#: not reaped, so the pid the test kills cannot name another process. Forking saves each
+#: run the half second a fresh interpreter spends importing.
+SERVER = """
+import json, os, shutil, sys, time
 import scenewright.api, scenewright.generator, scenewright.render.export, scenewright.render.plan_image
+import scenewright.describer, scenewright.generator.layout
 from scenewright.core import atomic
-from scenewright.cli import main
+from scenewright.cli import exit_now, main
 
 def slowed(function):
     def slow(*args, **kwargs):
@@ -239,41 +248,89 @@ def slowed(function):
         return result
     return slow
 
-for module, name in ((os, "replace"), (os, "rename"), (os, "link"), (shutil, "rmtree"), (atomic, "_exchange")):
-    setattr(module, name, slowed(getattr(module, name)))
-if os.environ.get("NO_EXCHANGE"):
-    atomic._exchange = slowed(lambda first, second: False)
+def child(argv, no_exchange, log):
+    code = 1
+    try:
+        output = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        os.dup2(output, 1)
+        os.dup2(output, 2)
+        for module, name in ((os, "replace"), (os, "rename"), (os, "link"), (shutil, "rmtree"), (atomic, "_exchange")):
+            setattr(module, name, slowed(getattr(module, name)))
+        if no_exchange:
+            atomic._exchange = slowed(lambda first, second: False)
+        code = main(argv)
+        exit_now(code)  # as the console command ends
+    finally:
+        os._exit(code)  # never back into the server's loop
+
 print("ready", flush=True)
-sys.exit(main(sys.argv[1:]))
+while request := sys.stdin.readline():
+    pid = os.fork()
+    if pid == 0:
+        child(**json.loads(request))
+    print(pid, flush=True)
+    sys.stdin.readline()
+    _, status = os.waitpid(pid, 0)
+    print(os.waitstatus_to_exitcode(status), flush=True)
 """
 
 
-def generate(out: Path, seed: int, *extra: str, kill_after: float | None = None, env=None) -> None:
-    argv = [
-        sys.executable,
-        "-c",
-        CHILD,
-        "generate",
-        "desk",
-        "--seed",
-        str(seed),
-        "--no-render",
-        "-o",
-        str(out),
-        "-q",
-    ]
-    child = subprocess.Popen(
-        [*argv, *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
-    )
-    assert child.stdout.readline() == "ready\n"
-    if kill_after is None:
-        assert child.wait(timeout=120) == 0, child.stderr.read()
-    else:
+class Server:
+    """The test's end of ``SERVER``; the children's output goes to ``log``."""
+
+    def __init__(self, folder: Path):
+        self.log = folder / "child.log"
+        self.process = subprocess.Popen(
+            [sys.executable, "-c", SERVER], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+        )
+        assert self.answer(timeout=120) == "ready"
+
+    def answer(self, timeout: float) -> str:
+        # One line at a time is ever in the pipe, so nothing waits in the reader's buffer.
+        ready, _, _ = select.select([self.process.stdout], [], [], timeout)
+        assert ready, f"no answer from the server in {timeout} s"
+        line = self.process.stdout.readline()
+        assert line, "the server ended"
+        return line.strip()
+
+    def tell(self, line: str) -> None:
+        self.process.stdin.write(line + "\n")
+        self.process.stdin.flush()
+
+    def close(self) -> None:
+        self.process.stdin.close()
+        assert self.process.wait(timeout=60) == 0
+        self.process.stdout.close()
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    started = Server(tmp_path_factory.mktemp("server"))
+    yield started
+    started.close()
+
+
+def generate(
+    server: Server,
+    out: Path,
+    seed: int,
+    *extra: str,
+    kill_after: float | None = None,
+    exchange: bool = True,
+) -> None:
+    argv = ["generate", "desk", "--seed", str(seed), "--no-render", "-o", str(out), "-q"]
+    request = {"argv": [*argv, *extra], "no_exchange": not exchange, "log": str(server.log)}
+    server.tell(json.dumps(request))
+    pid = int(server.answer(timeout=60))
+    if kill_after is not None:
         time.sleep(kill_after)
-        child.send_signal(signal.SIGKILL)
-        child.wait(timeout=60)  # reaped: its id no longer names a live process
-    child.stdout.close()
-    child.stderr.close()
+        os.kill(pid, signal.SIGKILL)  # not reaped yet: the pid is still the child's
+    server.tell("reap")
+    code = int(server.answer(timeout=120))  # reaped: its id no longer names a live process
+    if kill_after is None:
+        assert code == 0, server.log.read_text()
+    else:  # killed, or it had finished before the kill
+        assert code in (-signal.SIGKILL, 0), server.log.read_text()
 
 
 def which_run(out: Path, references: dict[str, Path]) -> str:
@@ -305,19 +362,17 @@ def partials(folder: Path) -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def references(tmp_path_factory) -> dict[str, Path]:
-    """The files of two uninterrupted runs, and how long one takes."""
+def references(tmp_path_factory, server) -> dict[str, Path]:
+    """The files of two uninterrupted runs."""
     folder = tmp_path_factory.mktemp("references")
-    generate(folder / "ref1", 1, "--size", "32x32")  # with previews when OpenGL is there
-    started = time.monotonic()
-    generate(folder / "ref2", 2)
-    (folder / "seconds").write_text(str(time.monotonic() - started))
+    generate(server, folder / "ref1", 1, "--size", "32x32")  # with previews when OpenGL is there
+    generate(server, folder / "ref2", 2)
     return {"seed 1": folder / "ref1", "seed 2": folder / "ref2"}
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("exchange", [True, False], ids=["rename-exchange", "rename-aside"])
-def test_generate_is_all_or_nothing_under_sigkill(tmp_path, references, exchange):
+def test_generate_is_all_or_nothing_under_sigkill(tmp_path, server, references, exchange):
     """Before: 8 of 22 kills left a .scenewright-*.partial that no later run removed, and
     with slowed renames 5 of 10 left scene.json of seed 2 beside previews of seed 1.
 
@@ -325,14 +380,26 @@ def test_generate_is_all_or_nothing_under_sigkill(tmp_path, references, exchange
     once; renaming aside, after the next run's first step has put back a directory set
     aside), and the next run leaves no partial behind.
     """
-    env = dict(os.environ, **({} if exchange else {"NO_EXCHANGE": "1"}))
-    duration = float((references["seed 1"].parent / "seconds").read_text())
     work = tmp_path / "work"
+    # How long an uninterrupted run takes that replaces the files of another, as the
+    # runs killed below do (publishing over a directory takes longer than into none).
+    work.mkdir()
+    shutil.copytree(references["seed 1"], work / "out")
+    started = time.monotonic()
+    generate(server, work / "out", 2, exchange=exchange)
+    duration = time.monotonic() - started
+    assert which_run(work / "out", references) == "seed 2"
+    shutil.rmtree(work)
     rng = random.Random(7)
-    for _ in range(6 if exchange else 4):
+    # One kill in each of as many equal parts of the run's last four fifths, then four
+    # more in its last fifth, where the outputs are published.
+    spread = 6 if exchange else 4
+    kills = [duration * (0.2 + 0.8 * (part + rng.random()) / spread) for part in range(spread)]
+    kills += [rng.uniform(0.8 * duration, duration) for _ in range(4)]
+    for kill_after in kills:
         work.mkdir()
         shutil.copytree(references["seed 1"], work / "out")
-        generate(work / "out", 2, kill_after=rng.uniform(0.2 * duration, duration), env=env)
+        generate(server, work / "out", 2, kill_after=kill_after, exchange=exchange)
         if exchange:
             assert which_run(work / "out", references) in references
         remove_dead_partials(work / "out")  # what the next run does first
@@ -341,7 +408,7 @@ def test_generate_is_all_or_nothing_under_sigkill(tmp_path, references, exchange
         shutil.rmtree(work)
     work.mkdir()
     shutil.copytree(references["seed 1"], work / "out")
-    generate(work / "out", 2, kill_after=0.6 * duration, env=env)
-    generate(work / "out", 2, env=env)
+    generate(server, work / "out", 2, kill_after=0.6 * duration, exchange=exchange)
+    generate(server, work / "out", 2, exchange=exchange)
     assert which_run(work / "out", references) == "seed 2"
     assert partials(work) == []

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 from render_fixtures import run_without_opengl
-from test_dataset import dataset_bytes, fake_scene, metadata_rows, spec_of
+from test_dataset import LIGHT_FORK_SERVER, dataset_bytes, fake_scene, metadata_rows, spec_of
 
 import scenewright.dataset.run
 from scenewright.cli import main
@@ -79,7 +79,9 @@ def fake_job(directory: Path, count: int, workers: int = 2) -> list[str]:
         "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "from test_dataset import fake_scene, spec_of\n"
+        "import scenewright.dataset.run\n"
         "from scenewright.dataset.run import run_dataset\n"
+        f"{LIGHT_FORK_SERVER}\n"
         "if __name__ == '__main__':\n"
         f"    run_dataset(spec_of({count}), {str(directory)!r}, workers={workers}, producer=fake_scene,\n"
         "                progress=False)\n"
@@ -376,9 +378,10 @@ def test_a_directory_in_use_is_refused_and_its_temporary_files_are_left_alone(tm
 @pytest.mark.slow
 def test_a_second_run_during_the_first_exits_2_and_the_first_finishes(tmp_path):
     root = tmp_path / "shared"
+    gate = tmp_path / "go on"  # the first run makes two scenes, then waits for it
     first = subprocess.Popen(
         fake_job(root, 30),
-        env={**os.environ, "FAKE_SCENE_DELAY": "0.1"},
+        env={**os.environ, "FAKE_SCENE_GATE": str(gate)},
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         start_new_session=True,
@@ -391,6 +394,7 @@ def test_a_second_run_during_the_first_exits_2_and_the_first_finishes(tmp_path):
             InputError, match=rf"in use by another scenewright dataset run \(pid {first.pid}\)"
         ):
             run_dataset(spec_of(30), root, workers=1, producer=fake_scene, progress=False)
+        gate.touch()
         _, err = first.communicate(timeout=60)
     finally:
         if first.returncode is None:

@@ -53,7 +53,7 @@ def scheduler(tmp_path):
 
 def start_worker(address: str) -> subprocess.Popen:
     """A dask worker, returned once the scheduler has it: the commands under test wait
-    only a second for workers, and a worker still importing on a busy machine would
+    only half a second for workers, and a worker still importing on a busy machine would
     read as none at all."""
     from distributed import Client
 
@@ -92,9 +92,9 @@ def run_until_scenes_then(
             "--scheduler",
             address,
             "--worker-timeout",
-            "1",
+            "0.5",
             "-q",
-            before="scenewright.dataset.run.IDLE_CHECK = 0.5",
+            before="scenewright.dataset.run.IDLE_CHECK = 0.1",
         ),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
@@ -124,7 +124,7 @@ def test_losing_every_worker_then_the_scheduler_ends_in_one_line_each(tmp_path, 
         kill_group(worker)
     assert ended.returncode == 1, ended.stderr
     assert ended.stderr.splitlines() == [
-        f"scenewright: error: the dask cluster at {address} has had no workers for 1 s; the scenes that "
+        f"scenewright: error: the dask cluster at {address} has had no workers for 0.5 s; the scenes that "
         "finished are stored: start workers and rerun the same command to resume (--worker-timeout waits longer)"
     ]
 

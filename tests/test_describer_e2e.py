@@ -74,7 +74,11 @@ def ungrammatical(sentences: list[str]) -> list[str]:
     unique = list(dict.fromkeys(sentences))
     run = subprocess.run(
         ["link-parser", "en", "-batch"],
-        input="!echo=1\n" + "\n".join(unique) + "\n",
+        # !limit: how many linkages the parser extracts and post-processes per sentence
+        # (1000 by default). With 100 it takes 2.5 times less CPU time and flagged exactly
+        # the same sentences among those of the shipped rule sets' tested seeds, the
+        # golden descriptions and 300 mangled ones.
+        input="!echo=1\n!limit=100\n" + "\n".join(unique) + "\n",
         capture_output=True,
         text=True,
         timeout=60 + 0.25 * len(unique),  # about 30 ms a sentence here; generous for a busy machine
