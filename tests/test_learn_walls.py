@@ -26,13 +26,18 @@ from scenewright.learning.rules_text import rules_text
 
 CHAIR = (0.85, 0.95, 0.85)
 LAMP = (0.35, 1.6, 0.35)
+TABLE = (0.5, 0.55, 0.5)
 
 
 def corners(
-    folder: Path, at_wall: list[bool], gap: float = 0.02, lamp_gaps: list[float] | None = None
+    folder: Path,
+    at_wall: list[bool],
+    gap: float = 0.02,
+    lamp_gaps: list[float] | None = None,
+    child: tuple[str, str, tuple[float, float, float]] = ("lamp", "floor_lamp", LAMP),
 ) -> list[Path]:
     """Reading corners: an armchair with its back ``gap`` metres off some wall of a 4 x
-    3.6 m room and a floor lamp on its left, its back as far off the wall or, where
+    3.6 m room and a floor lamp (or ``child``: its id, type and size) on its left, its back as far off the wall or, where
     ``at_wall`` says not, 0.4 m further out into the room, or each ``lamp_gaps`` off
     it (positions in the room turned so the wall is north)."""
     folder.mkdir(parents=True, exist_ok=True)
@@ -44,16 +49,17 @@ def corners(
         reach = (room[1] if yaw in (0.0, 180.0) else room[0]) / 2
         turn = math.radians(yaw)
         along = float(draw.uniform(-0.4, 0.4))
-        out = CHAIR[0] / 2 + float(draw.uniform(0.08, 0.15)) + LAMP[0] / 2
+        ident, kind, size = child
+        out = CHAIR[0] / 2 + float(draw.uniform(0.08, 0.15)) + size[0] / 2
         chair = to_world(0, 0, turn, along, CHAIR[2] / 2 + gap - reach)
-        lamp = to_world(0, 0, turn, along + out, LAMP[2] / 2 + gap - reach + (0 if flush else 0.4))
+        lamp = to_world(0, 0, turn, along + out, size[2] / 2 + gap - reach + (0 if flush else 0.4))
         if lamp_gaps is not None:
-            lamp = to_world(0, 0, turn, along + out, LAMP[2] / 2 + lamp_gaps[index] - reach)
+            lamp = to_world(0, 0, turn, along + out, size[2] / 2 + lamp_gaps[index] - reach)
         objects = [
-            {"id": ident, "type": kind, "size": list(size), "position": list(at), "yaw": yaw}
-            for ident, kind, size, at in (
+            {"id": name, "type": type_name, "size": list(dims), "position": list(at), "yaw": yaw}
+            for name, type_name, dims, at in (
                 ("chair", "armchair", CHAIR, chair),
-                ("lamp", "floor_lamp", LAMP, lamp),
+                (ident, kind, size, lamp),
             )
         ]
         path = folder / f"corner_{index:02d}.json"
@@ -210,34 +216,10 @@ def test_a_lone_thing_in_a_corner_in_some_examples_is_put_there_by_a_draw(tmp_pa
 
 
 def side_tables(folder: Path) -> list[Path]:
-    """Reading corners as ``corners`` lays them out: an armchair 4 cm off some wall and a
-    side table on its left, 30 to 40 cm off the wall, never at it."""
-    folder.mkdir(parents=True, exist_ok=True)
-    draw = np.random.default_rng(11)
-    room, table = (4.0, 3.6), (0.5, 0.55, 0.5)
-    paths = []
-    for index in range(10):
-        yaw = float(draw.choice([0.0, 90.0, 180.0, -90.0]))
-        reach = (room[1] if yaw in (0.0, 180.0) else room[0]) / 2
-        turn = math.radians(yaw)
-        along = float(draw.uniform(-0.4, 0.4))
-        out = CHAIR[0] / 2 + float(draw.uniform(0.05, 0.12)) + table[0] / 2
-        chair = to_world(0, 0, turn, along, CHAIR[2] / 2 + 0.04 - reach)
-        off = float(draw.uniform(0.3, 0.4))
-        placed = to_world(0, 0, turn, along + out, table[2] / 2 + off - reach)
-        objects = [
-            {"id": ident, "type": kind, "size": list(size), "position": list(at), "yaw": yaw}
-            for ident, kind, size, at in (
-                ("chair", "armchair", CHAIR, chair),
-                ("table", "side_table", table, placed),
-            )
-        ]
-        path = folder / f"corner_{index:02d}.json"
-        path.write_text(
-            json.dumps({"room": {"width": room[0], "depth": room[1]}, "objects": objects})
-        )
-        paths.append(path)
-    return paths
+    """Reading corners as ``corners`` lays them out, with a side table on the armchair's
+    left instead of a lamp: the armchair 4 cm off the wall, the table 30 to 40 cm off it."""
+    gaps = [0.3 + 0.01 * k for k in range(10)]
+    return corners(folder, [True] * 10, 0.04, gaps, child=("table", "side_table", TABLE))
 
 
 def test_a_thing_never_at_the_wall_by_a_parent_at_one_is_kept_off_the_walls(tmp_path):
