@@ -327,7 +327,8 @@ def everyday_step(reader: Any, toks: Sequence[Any], i: int, free: bool) -> tuple
     """An everyday phrase at token i that the parser reads before its own phrases, with
     the tokens it takes: "and" ("as well as"), "size" ("about" before a room size),
     "negation" ("not", "don't want a TV": the thing then absent), "which" (right after
-    a relation's object: the clause is about that object), "middle" ("in the middle of
+    a relation's object: the clause is about that object), "clause" ("that", "which" or
+    "who" before a verb anywhere else: about the subject), "middle" ("in the middle of
     the room", reported; only where no relation waits for its object: ``free``), or
     ("", 0). Marks the words it takes used, or reports them."""
     t = toks[i]
@@ -352,6 +353,9 @@ def everyday_step(reader: Any, toks: Sequence[Any], i: int, free: bool) -> tuple
         and (toks[i + 1].low in VERBS or negation_at(toks, i + 1))
     ):
         what, n = "which", 1
+    elif t.low in ("which", "that", "who") and i + 1 < len(toks) and toks[i + 1].low in VERBS:
+        # "a rug that stands against the wall": about the subject, not "that stand"
+        what, n = "clause", 1
     elif free and room_middle_at(toks, i):
         n = room_middle_at(toks, i)
         reader._unused(toks, i, i + n, ROOM_MIDDLE_NOTE)

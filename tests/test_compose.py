@@ -515,6 +515,7 @@ def _facts(request):
         ("a plant in the corner", ("plant", "InCorner", Place("corner"))),
         ("a plant stands away from the walls", ("plant", "AwayFromWall", Place("wall"))),
         ("a plant is away from the west wall", ("plant", "AwayFromWall", Place("wall", 4))),
+        ("a rug that stands against the north wall", ("rug", "AgainstWall", Place("wall", 1))),
     ],
 )
 def test_everyday_relation_phrases_mean_registry_relations(text, fact):
