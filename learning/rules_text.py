@@ -335,8 +335,8 @@ class RulesWriter:
             noun = self.induction.catalog[type_name].noun
             at, away = probability_text(share), probability_text(1.0 - share)
             lines = comment_lines(
-                f"{name}: {with_article(noun)} {wall} in a share {at} of the examples that "
-                "placed it so, kept off the walls in the rest"
+                f"{name}: {with_article(noun)} placed this way stood {wall} in {at} of the "
+                "examples; kept off the walls otherwise"
             )
             lines.append(
                 f"{name}({param}) -> {at}: {{ {param}{self.wall_words(wall)} }} "
