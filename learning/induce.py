@@ -82,6 +82,7 @@ import numpy as np
 from scenewright.core.errors import InputError
 from scenewright.core.frames import to_local
 from scenewright.core.geometry import wrap_angle
+from scenewright.core.relations import IMPLICIT_PREFIX
 from scenewright.core.room import Room
 from scenewright.core.scene import Scene, SceneObject
 from scenewright.examples import Example, scene_supports
@@ -102,6 +103,7 @@ from .induction import (
 )
 from .pose_labels import (
     CATEGORIES,
+    IMPLICIT_CATEGORIES,
     RESTING_CATEGORIES,
     STANDING_CATEGORIES,
     hand_gap,
@@ -402,13 +404,14 @@ def pose_features(
 
 def written_labels(category_labels: dict[str, str | None], resting: bool) -> tuple[str, ...]:
     """The labels of one cluster as written: placement, then facing (the turn of a
-    resting child written ``Implicit``), then alignment."""
+    resting child, and the end of its parent's top it stands at, written ``Implicit``:
+    ``IMPLICIT_CATEGORIES``), then alignment."""
     found = []
     for category in RESTING_CATEGORIES if resting else STANDING_CATEGORIES:
         label = category_labels.get(category)
         if label is None:
             continue
-        found.append("Implicit" + label if category in ("turn", "end") else label)
+        found.append(IMPLICIT_PREFIX + label if category in IMPLICIT_CATEGORIES else label)
     return tuple(found)
 
 
@@ -436,8 +439,8 @@ def placements_of(
     room = _room_on_top(instances)
     clusters: list[Cluster] = []
     merged: dict[
-        tuple[bool, tuple[str, ...]], list[int]
-    ] = {}  # (rests, labels but the turn) -> cluster numbers
+        tuple[bool, tuple[tuple[str, str | None], ...]], list[int]
+    ] = {}  # (rests, (category, label) but the turn) -> cluster numbers
     for number_, centre in enumerate(peaks.centres):
         members = peaks.members(number_)
         rests = bool(instances.resting[centre])
@@ -463,12 +466,12 @@ def placements_of(
                 -1
             ]  # no label with room holds: anywhere on top
         if chosen.get("support") or chosen.get("near") or chosen.get("facing"):
-            key = written_labels({c: label for c, label in chosen.items() if c != "turn"}, rests)
+            key = tuple((c, label) for c, label in chosen.items() if c != "turn")
             merged.setdefault((rests, key), []).append(number_)
     placements = []
     members_of = []
     for (rests, key), numbers in merged.items():
-        labels = key
+        labels = written_labels(dict(key), rests)
         if rests:
             members = np.concatenate([peaks.members(k) for k in numbers])
             largest = max(numbers, key=lambda k: (len(peaks.members(k)), -k))
@@ -476,9 +479,7 @@ def placements_of(
             turn = most_specific(
                 "turn", holds[rests], int(local[peaks.centres[largest]]), local[members], TURN_SHARE
             )
-            # The key is the support label, then the end of the top (``Implicit``) if any.
-            end = key[1][len("Implicit") :] if len(key) > 1 else None
-            labels = written_labels({"support": key[0], "turn": turn, "end": end}, rests)
+            labels = written_labels({**dict(key), "turn": turn}, rests)
         placements.append(Placement(labels, sum(len(peaks.members(k)) for k in numbers)))
         members_of.append(np.concatenate([peaks.members(k) for k in numbers]))
     order = sorted(

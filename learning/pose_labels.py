@@ -83,6 +83,10 @@ for _category, _labels in CATEGORIES.items():
 
 #: The categories measured between a child and its parent, by whether the child rests on it.
 RESTING_CATEGORIES = ("support", "turn", "end")
+#: The categories whose labels are written ``Implicit``: true of the examples, but no
+#: sentence a person says of a thing on its parent ("the laptop faces the same way as
+#: the desk", "the lamp is to the left of the sideboard" it stands on).
+IMPLICIT_CATEGORIES = ("turn", "end")
 STANDING_CATEGORIES = ("near", "facing", "alignment")
 #: The least share of a cluster's members a label must hold for (as well as at its centre).
 MAJORITY = 0.5

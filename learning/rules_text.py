@@ -707,26 +707,33 @@ class RulesWriter:
         lines.append(f"{group.rule} -> {{")
         share = ind.walls.get(group.anchor)
         drawn = share.drawn() if share is not None and ind.room is not None else None
-        if drawn is None:
-            away = f" {AWAY} some wall" if self.off_walls(group.anchor) else ""
-            lines.append(f"{self.INDENT}{group.anchor} as {bound}{away}")
-        else:
-            wall, held = drawn
+        words, draw = self.by_no_parent(group.anchor, drawn)
+        note = ""
+        if drawn is not None:
             assert share is not None  # drawn from it
+            wall = drawn[0]
             note = f"    # {wall}: {share.held[wall]} of {share.objects} {self.noun_plural(group.anchor)}"
-            if drawn_share(held):
-                lines.append(f"{self.INDENT}{group.anchor} as {bound}{note}")
-                lines.append(self.INDENT + self.wall_draw_words(group.anchor, wall, held, bound))
-            else:
-                lines.append(f"{self.INDENT}{group.anchor} as {bound}{self.wall_words(wall)}{note}")
+        lines.append(f"{self.INDENT}{group.anchor} as {bound}{words}{note}")
+        if draw is not None:
+            lines.append(self.INDENT + self.wall_draw_words(group.anchor, *draw, bound))
         body, most = self.members_body(group.members, bound, group.joints)
         return lines + body, most
 
-    def off_walls(self, type_name: str) -> bool:
-        """Whether a type standing by no parent (an anchor, a type related to no other) is
-        kept off the walls outright: in a room, none of its standing objects stood at one."""
-        share = self.induction.walls.get(type_name)
-        return self.induction.room is not None and share is not None and share.kept_off()
+    def by_no_parent(
+        self, type_name: str, drawn: tuple[str, float] | None
+    ) -> tuple[str, tuple[str, float] | None]:
+        """For a type standing by no parent (a group's anchor, a type related to no
+        other), given its wall label and the share it held for (``WallShare.drawn``): the
+        words its statement ends with (the label where it held for all; kept off the
+        walls where, in a room, none of its standing objects stood at one), and the label
+        and share to draw where it held for some only (``wall_draw_words``)."""
+        if drawn is None:
+            share = self.induction.walls.get(type_name)
+            kept_off = self.induction.room is not None and share is not None and share.kept_off()
+            return (f" {AWAY} some wall" if kept_off else ""), None
+        if drawn_share(drawn[1]):
+            return "", drawn
+        return self.wall_words(drawn[0]), None
 
     def text(self) -> str:
         ind = self.induction
@@ -768,19 +775,17 @@ class RulesWriter:
                 most += max(item.per_scene) * made
                 continue
             most += max(item.per_scene)
-            if item.wall and drawn_share(item.wall_share):  # at the wall by a draw
+            words, draw = self.by_no_parent(
+                item.type, (item.wall, item.wall_share) if item.wall else None
+            )
+            if draw is not None:  # at the wall by a draw
                 bound = self.binding(item.type, taken)
                 start.append(
                     f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type} as {bound}"
                     f"    # {why}: in {seen}{wall}"
                 )
-                start.append(
-                    self.INDENT + self.wall_draw_words(item.type, item.wall, item.wall_share, bound)
-                )
+                start.append(self.INDENT + self.wall_draw_words(item.type, *draw, bound))
                 continue
-            words = self.wall_words(item.wall)
-            if not item.wall and self.off_walls(item.type):
-                words = f" {AWAY} some wall"
             start.append(
                 f"{self.INDENT}{(counts + ' ') if counts else ''}{item.type}{words}"
                 f"    # {why}: in {seen}{wall}"

@@ -375,7 +375,7 @@ def _place_box(
     own = Endpoint("object", box, (box,))
     outgoing = [t for t in _outgoing(energy, "object", box) if _placed(energy, t.b)]
     support = [t for t in outgoing if t.b.kind == "object" and problem.support[box] == t.b.index]
-    positional = placing([t for t in outgoing if LAYOUT_FAMILIES[t.spec.family].places])
+    positional = placing(outgoing)
     turning = [t for t in outgoing if not LAYOUT_FAMILIES[t.spec.family].places]
     incoming = [
         t

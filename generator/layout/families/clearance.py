@@ -25,7 +25,7 @@ from scenewright.core.relations import Relation, RelationLabel
 from scenewright.core.room import Room, Wall
 
 from ..factors import equals
-from ..motion import uniform
+from ..motion import reach, uniform
 from ..params import LayoutParams
 from ..relation_terms import EPSILON, WALL_SIGMA2, WALL_TOLERANCE, Measure
 from ..state import State
@@ -53,13 +53,8 @@ def _walls(term: RelationTerm, room: Room) -> list[Wall]:
 def _gap(box: int, wall: Wall, state: State, x: float, z: float) -> float:
     """The gap (metres) between box ``box``'s footprint at (x, z) and ``wall``; infinite
     where the footprint does not overlap the wall's stretch."""
-    problem = state.problem
-    c, s = state.c[box], state.s[box]
-    hw, hd = problem.half_width[box], problem.half_depth[box]
-    nx, nz = wall.normal
-    tx, tz = wall.direction
-    reach_u = hw * abs(c * tx - s * tz) + hd * abs(s * tx + c * tz)
-    reach_v = hw * abs(c * nx - s * nz) + hd * abs(s * nx + c * nz)
+    reach_u = reach(state.problem, state, box, *wall.direction)
+    reach_v = reach(state.problem, state, box, *wall.normal)
     u, v = wall.to_wall(x, z)
     if u + reach_u < 0.0 or u - reach_u > wall.length:
         return math.inf
