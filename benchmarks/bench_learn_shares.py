@@ -28,7 +28,6 @@ divergence kept <= start. Prints figures and a ``worst`` line; nothing is assert
 from __future__ import annotations
 
 import argparse
-import re
 import sys
 import tempfile
 from pathlib import Path
@@ -44,6 +43,7 @@ from example_sets import (  # noqa: E402
 )
 
 from scenewright.api import build_scene, load_rules  # noqa: E402
+from scenewright.core.relations import RELATIONS  # noqa: E402
 from scenewright.examples import load_examples, scene_supports  # noqa: E402
 from scenewright.generator.layout.learned_term import context_path  # noqa: E402
 from scenewright.learning.induce import _walls, renamed_scenes  # noqa: E402
@@ -75,31 +75,18 @@ def wall_distances(scenes) -> dict[str, float]:
     return {t: sum(d) / len(d) for t, d in sorted(found.items())}
 
 
-WALL_WORDS = re.compile(
-    r"^(?:Implicit)?(?:AgainstWall|InCorner|UnderWindow|BesideWindow|AwayFromWall)$"
-)
-
-
-def stated(text: str, type_name: str) -> bool:
-    """Whether the rules ``text`` say anything of where ``type_name`` stands by the walls:
-    a statement whose subject is the type (or a name bound to it) with a wall label or
-    ``AwayFromWall``, or a call drawing between the two for it."""
-    subjects = {type_name} | set(re.findall(rf"\b{type_name} as (\w+)", text))
-    for line in text.splitlines():
-        code = line.split("#")[0]
-        for statement in re.split(r"[{};|]|->", code):
-            words = statement.split()
-            # The subject: past a count (2..3, weights {1 2}) and a probability (0.5?).
-            while words and (words[0][0].isdigit() or words[0][0] in "{}" or words[0][-1] in "?}:"):
-                words = words[1:]
-            if not words or words[0] not in subjects:
-                continue
-            if any(WALL_WORDS.match(w) for w in words[1:]):
-                return True
-        for call in re.findall(r"\b(\w+OrAway\d*)\((\w+)\)", code):
-            if call[1] in subjects:
-                return True
-    return False
+def stated(scenes) -> set[str]:
+    """The types the rules say something of the walls for: those of which some object
+    made has a wall label or ``AwayFromWall`` (written, or drawn between the two)."""
+    found: set[str] = set()
+    for scene in scenes:
+        types = {obj.id: obj.type for obj in scene.placed_objects()}
+        found |= {
+            types[r.source]
+            for r in scene.relations
+            if r.source in types and RELATIONS[r.label].by_room
+        }
+    return found
 
 
 def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
@@ -134,7 +121,7 @@ def run(kind: str, n: int, seed: int, check: int, context: bool) -> dict:
         sides[1][key] = same_side_share(generated, parent, first, second)
     walls = (wall_shares(scenes), wall_shares(generated))
     distances = (wall_distances(scenes), wall_distances(generated))
-    written = {t for t in walls[0] if stated(learned.text, t)}
+    written = stated(generated)
     found = {
         "sides": sides,
         "walls": walls,

@@ -197,6 +197,7 @@ def test_away_from_some_wall_targets_the_room_and_keeps_off_every_wall(tmp_path)
     least 15 cm off (aiming at 20), the text says so of the nearest wall, and the
     Implicit form constrains the layout without a sentence."""
     from scenewright.api import build_scene, describe_scene
+    from scenewright.core.frames import footprint_corners
 
     text = ROOM + (
         'object armchair { noun "armchair" size 0.8 x 0.9 x 0.8 }\n'
@@ -213,11 +214,9 @@ def test_away_from_some_wall_targets_the_room_and_keeps_off_every_wall(tmp_path)
         assert scene.layout.ok, (seed, scene.layout.problems)
         for obj in scene.placed_objects():
             if obj.type in ("floor_lamp", "plant"):
-                corners = [
-                    (obj.position[0] + dx, obj.position[2] + dz)
-                    for dx in (-obj.size[0] / 2, obj.size[0] / 2)
-                    for dz in (-obj.size[2] / 2, obj.size[2] / 2)
-                ]  # square to the walls: the layout keeps them so in a room
+                corners = footprint_corners(
+                    obj.position[0], obj.position[2], obj.yaw, obj.size[0], obj.size[2]
+                )
                 gap = min(scene.room.boundary_distance(x, z) for x, z in corners)
                 assert gap > 0.15, (seed, obj.id, gap)
         words = describe_scene(scene).description.text

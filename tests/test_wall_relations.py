@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scenewright.core.errors import InputError
-from scenewright.core.frames import to_local
+from scenewright.core.frames import footprint_corners, to_local
 from scenewright.core.poses import Pose
 from scenewright.core.room import Room
 from scenewright.core.scene_graph import SceneGraph, SceneParams
@@ -869,12 +869,7 @@ def footprint_gap(room: Room, pose: Pose, size) -> float:
     """The least distance from a box's footprint corners to the walls of a convex room
     (a convex footprint comes nearest a wall at a corner): what AwayFromWall measures,
     found another way."""
-    c, s = math.cos(pose.yaw), math.sin(pose.yaw)
-    corners = [
-        (pose.x + dx * c + dz * s, pose.z - dx * s + dz * c)
-        for dx in (-size[0] / 2, size[0] / 2)
-        for dz in (-size[2] / 2, size[2] / 2)
-    ]
+    corners = footprint_corners(pose.x, pose.z, pose.yaw, size[0], size[2])
     return min(room.boundary_distance(x, z) for x, z in corners)
 
 
