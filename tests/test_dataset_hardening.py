@@ -55,9 +55,10 @@ def dying_scene(spec: DatasetSpec, index: int) -> SceneProduct:
 
 
 def cli_command(*argv: str, before: str = "") -> list[str]:
-    """The scenewright command in a fresh interpreter; it prints "ready" once imported,
-    so a test can interrupt it after start-up (Ctrl-C during the imports themselves is
-    outside the dataset command)."""
+    """The scenewright command in a fresh interpreter; it prints "ready" as the dataset
+    run begins, inside the command, so a test can interrupt it from its first moment
+    (Ctrl-C during the interpreter's start and the imports is outside the command, and
+    so was the moment between a "ready" printed before ``main`` and ``main`` itself)."""
     script = (
         # Ctrl-C as on a terminal: a shell that runs the tests as a background job starts
         # its children with SIGINT ignored, and Python then leaves it ignored.
@@ -65,7 +66,11 @@ def cli_command(*argv: str, before: str = "") -> list[str]:
         f"import sys; sys.path.insert(0, {str(TESTS)!r})\n"
         "import scenewright.cli, scenewright.dataset.run\n"
         f"{before}\n"
-        "print('ready', flush=True)\n"
+        "run = scenewright.dataset.run.run_dataset\n"
+        "def announced(*args, **kwargs):\n"
+        "    print('ready', flush=True)\n"
+        "    return run(*args, **kwargs)\n"
+        "scenewright.dataset.run.run_dataset = announced\n"
         "sys.exit(scenewright.cli.main(sys.argv[1:]))\n"
     )
     return [sys.executable, "-c", script, *argv]
