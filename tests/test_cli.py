@@ -7,6 +7,7 @@ console script to check exit codes and that no traceback reaches the user.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -14,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from scenewright import __version__
-from scenewright.cli import main
+from scenewright.cli import main, set_process_defaults
 from scenewright.core.scene import LayoutStats, Relation, Scene, SceneObject, ScenePath
 from scenewright.generator.rules import shipped_rule_sets
 
@@ -180,6 +181,15 @@ def test_the_command_exits_with_its_code_after_its_exit_functions_and_threads(th
     assert done.stdout.startswith("unflushed ") and "at exit ran" in done.stdout
     assert ("thread finished" in done.stdout) == (thread == "thread")
     assert done.stderr == ""
+
+
+def test_the_command_runs_openblas_on_one_thread_unless_the_user_says(monkeypatch):
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    set_process_defaults()
+    assert os.environ["OPENBLAS_NUM_THREADS"] == "1"
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "4")
+    set_process_defaults()
+    assert os.environ["OPENBLAS_NUM_THREADS"] == "4"
 
 
 # -- validate, expand, list, schema -----------------------------------------------------

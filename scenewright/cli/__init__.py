@@ -79,6 +79,7 @@ def build_parser() -> CommandLineParser:
 def run() -> None:
     """The ``scenewright`` console command: ``main`` on the process's arguments, then
     ``exit_now`` with its exit code."""
+    set_process_defaults()
     collect_less()
     try:
         code = main()
@@ -87,6 +88,17 @@ def run() -> None:
             raise
         code = done.code or 0
     exit_now(code)
+
+
+def set_process_defaults() -> None:
+    """What the console command sets in its environment before anything imports numpy.
+
+    OpenBLAS (numpy's and scipy's) runs on one thread unless the user set
+    ``OPENBLAS_NUM_THREADS``: the matrices here are small (frames, footprints, a few
+    hundred points), so a pool of threads speeds nothing, yet starting the two pools
+    costs a cold ``generate`` about a seventh of its CPU time; a dataset uses every core
+    by its worker processes, which inherit the setting."""
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def exit_now(code: int) -> None:
