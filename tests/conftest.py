@@ -14,9 +14,7 @@ from hypothesis import settings
 from render_fixtures import renderer_or_skip
 from threadpoolctl import threadpool_limits
 
-from scenewright.completion import shipped_plans_dir
-from scenewright.completion.floor_plan import load_plans
-from scenewright.completion.model_builder import build_model
+from scenewright.completion.model_builder import shipped_model
 from scenewright.core.collector import collect_less
 from scenewright.generator import indoor_catalog
 
@@ -33,8 +31,12 @@ collect_less()
 
 # One thread for numpy's BLAS in each test process: the suite runs a process per core,
 # and OpenBLAS's own threads only contended with the other process (the relation tests
-# took twice the CPU). Results do not depend on it.
+# took twice the CPU). Results do not depend on it. The variable does the same for the
+# processes started from here (the suite's workers, the commands and scripts the tests
+# run), as the console command sets it for itself: starting OpenBLAS's thread pools
+# would cost each of them a few tenths of a second of CPU.
 threadpool_limits(limits=1, user_api="blas")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def pytest_collection_finish(session):
@@ -46,7 +48,7 @@ def pytest_collection_finish(session):
 def model():
     """The completion model learned from the shipped floor plans (one per worker: no
     test changes it, and learning it takes most of a second)."""
-    return build_model(load_plans(shipped_plans_dir()))
+    return shipped_model()
 
 
 @pytest.fixture(scope="module")

@@ -25,6 +25,15 @@ def expansions(name: str) -> tuple[SceneGraph, ...]:
     return tuple(expand(rules, seed) for seed in SEEDS)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _forget_expansions():
+    """The expansions are shared by this module's tests and dropped once they are done:
+    kept to the end of the run, their million objects made every later full garbage
+    collection in the test process take about a second."""
+    yield
+    expansions.cache_clear()
+
+
 def objects(graph: SceneGraph):
     return graph.nodes("object")
 

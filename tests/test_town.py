@@ -20,6 +20,14 @@ def towns():
     return tuple(expand(rules, seed) for seed in SEEDS)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _forget_towns():
+    """The towns are shared by this module's tests and dropped once they are done (as in
+    test_shipped_rules)."""
+    yield
+    towns.cache_clear()
+
+
 def test_town_is_shipped_and_validates():
     assert "town" in shipped_rule_sets()
     assert [str(d) for d in check_rules("town") if d.is_error] == []
