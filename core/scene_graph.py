@@ -210,6 +210,19 @@ OPTIONAL_NODE_FIELDS = ("network", "wall_gap")
 
 #: The attribute names a node is stored under in the networkx graph.
 _NODE_FIELDS = tuple(f.name for f in fields(SceneNode))
+_NODE_FIELD_SET = frozenset(_NODE_FIELDS)
+
+
+def _node_of(data: dict) -> SceneNode:
+    """The node whose stored fields are ``data``. A node stored whole (``_store``) gets
+    its fields in one step: the frozen dataclass's ``__init__`` sets each of its twenty
+    fields through ``object.__setattr__``, which made reading nodes cost a sixth of as
+    much as expanding the rules that made them."""
+    if data.keys() != _NODE_FIELD_SET:  # stored by other code: the defaults fill the rest
+        return SceneNode(**data)
+    node = object.__new__(SceneNode)
+    node.__dict__.update(data)
+    return node
 
 
 @dataclass
@@ -355,7 +368,7 @@ class SceneGraph:
     # -- reading ------------------------------------------------------------------
 
     def node(self, node_id: str) -> SceneNode:
-        return SceneNode(**self.graph.nodes[node_id])
+        return _node_of(self.graph.nodes[node_id])
 
     def nodes(self, kind: str | None = None) -> list[SceneNode]:
         """Nodes in creation order, optionally only those of one kind."""
@@ -365,7 +378,7 @@ class SceneGraph:
         """The nodes whose stored fields pass ``wanted``, in creation order. Filtering the
         stored fields first builds a node only for what is returned: a loop over a town's
         groups asking each for its children built every node once a group."""
-        found = [SceneNode(**data) for _, data in self.graph.nodes(data=True) if wanted(data)]
+        found = [_node_of(data) for _, data in self.graph.nodes(data=True) if wanted(data)]
         found.sort(key=lambda n: n.order)
         return found
 

@@ -1,11 +1,13 @@
 """Scene graph building and the scene.json round trip."""
 
+from dataclasses import FrozenInstanceError
+
 import pytest
 
 from scenewright.core.poses import LayoutResult, Pose
 from scenewright.core.relations import Relation, UnknownLabel
 from scenewright.core.scene import Scene, assemble_scene
-from scenewright.core.scene_graph import SceneGraph, SceneParams
+from scenewright.core.scene_graph import SceneGraph, SceneNode, SceneParams
 from scenewright.generator.catalog import CatalogEntry, Style
 
 TABLE = CatalogEntry("table", "object", "table", size=(1.6, 0.8, 0.9), shape="box")
@@ -43,6 +45,26 @@ def test_ids_are_type_and_counter_in_creation_order():
 def test_style_overrides_noun_and_size():
     laptop = small_graph().node("computer_1")
     assert (laptop.noun, laptop.style, laptop.size) == ("laptop", "laptop", (0.35, 0.02, 0.25))
+
+
+def test_nodes_read_back_are_the_nodes_stored():
+    """Reading a node fills its fields in at once: the same value, hash and frozenness
+    as the dataclass built field by field; a node stored with only some fields (by code
+    other than the graph's own) gets the defaults for the rest."""
+    graph = small_graph()
+    for node in graph.nodes():
+        built = SceneNode(**graph.graph.nodes[node.id])
+        assert node == built and hash(node) == hash(built) and repr(node) == repr(built)
+        assert graph.node(node.id) == built
+    with pytest.raises(FrozenInstanceError):
+        graph.node("table_1").noun = "desk"  # type: ignore[misc]
+    graph.graph.add_node(
+        "lamp_9",
+        **{"id": "lamp_9", "type": "lamp", "kind": "object", "noun": "lamp", "plural": None},
+        **{"size": (0.3, 1.5, 0.3), "shape": "box", "mesh": None, "colour": (1.0, 1.0, 1.0)},
+    )
+    lamp = graph.node("lamp_9")
+    assert (lamp.noun, lamp.access, lamp.clearance, lamp.order) == ("lamp", ("any",), (), 0)
 
 
 def test_members_of_a_group():
