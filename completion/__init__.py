@@ -5,11 +5,11 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 
 | module | job |
 |---|---|
-| ``plan`` | the plan format: read a plan (JSON, checked against ``plan.schema.json``) into ``Plan`` |
+| ``floor_plan`` | the plan format: read a plan (JSON, checked against ``plan.schema.json``) into ``Plan`` |
 | ``plan_checks`` | what makes a drawn plan wrong: furniture through walls, overlaps, a blocked door |
 | ``activity`` | how each category is used (stay at it, fetch from it), its use pose, touch and visual areas |
 | ``features`` | a plan's room feature and its 10 x 10 occupancy mask in the door-aware canonical frame |
-| ``model`` | the plan model built from plans: per type P(category), co-occurrence times the activity prior, masks and clusters |
+| ``model_builder`` | the plan model built from plans: per type P(category), co-occurrence times the activity prior, masks and clusters |
 | ``plan_model`` | the plan model's records (``PlanModel``, per type ``RoomTypeModel``, per plan ``PlanEntry``) and its JSON |
 | ``accessories`` | what stands on or at what in the plans, and where (relative poses); each accessory's anchor, relations and start in a room |
 | ``selection`` | what a room should hold: its type(s) (Equation 2) and categories (Algorithm 1) |
@@ -23,7 +23,8 @@ Object Relation Graphs" (ACM TOG 36(6), 2017). Its pieces, one module each:
 | ``explanation`` | a completed room's summary line and its layout mask drawn for people |
 | ``evaluation`` | leave-one-out over a plan set, against simple baselines |
 | ``drawing`` | plans (and their layout masks) drawn on one PNG sheet |
-| ``authoring``, ``designs`` | the shipped plans, drawn by hand in a designer's terms |
+| ``stances``, ``neighbours`` | how each category stands to the walls, the windows and the pieces around it, learned from the plans |
+| ``authoring``, ``designs/`` | the shipped plans, drawn by hand in a designer's terms |
 
 The shipped plan set is ``completion/plans/<type>/*.json``; ``shipped_plans_dir()``
 names the folder.

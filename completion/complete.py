@@ -312,10 +312,9 @@ def complete(
     (its pieces stand where they stand, whatever part a split would give them)."""
     import time
 
-    from scenewright.completion import shipped_plans_dir
     from scenewright.completion.floor_plan import load_plans
     from scenewright.completion.layout_mask import floor_mask, region_floor_masks
-    from scenewright.completion.model_builder import build_model
+    from scenewright.completion.model_builder import build_model, shipped_model
     from scenewright.core.scene import assemble_scene
     from scenewright.core.seeds import check_seed
     from scenewright.core.timing import timed
@@ -325,7 +324,7 @@ def complete(
     seed = check_seed(seed)
     timings: dict[str, float] = {}
     with timed(timings, "complete"):
-        model = model or build_model(load_plans(plans or shipped_plans_dir()))
+        model = model or (build_model(load_plans(plans)) if plans else shipped_model())
         catalog = catalog or indoor_catalog()
         contents = choose_contents(model, request, split=split and keep is None)
     chosen = dict(contents.counts)

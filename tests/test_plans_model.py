@@ -14,7 +14,12 @@ from scenewright.cli import main
 from scenewright.completion.activity import activity_prior, interactions
 from scenewright.completion.features import canonical_frame, door_window_angle, occupancy_mask
 from scenewright.completion.floor_plan import Furniture, Plan, plan_from_dict
-from scenewright.completion.model_builder import build_model, model_json, relation_graph
+from scenewright.completion.model_builder import (
+    build_model,
+    model_json,
+    relation_graph,
+    shipped_model,
+)
 from scenewright.completion.plan_model import MODEL_VERSION
 from scenewright.core.room import Room
 
@@ -244,6 +249,16 @@ def test_the_canonical_mask_is_the_same_however_the_room_is_turned_or_mirrored(
 
 def test_the_model_does_not_depend_on_the_order_of_the_plans(tiny, tiny_model):
     assert model_json(build_model(tiny[::-1])) == model_json(tiny_model)
+
+
+def test_the_shipped_model_is_built_once_a_process_from_the_shipped_plans(model):
+    """What completions without plans of their own share (the suite's ``model`` too):
+    one object, the model of the shipped plan set."""
+    from scenewright.completion import shipped_plans_dir
+    from scenewright.completion.floor_plan import load_plans
+
+    assert shipped_model() is shipped_model() is model
+    assert model_json(model) == model_json(build_model(load_plans(shipped_plans_dir())))
 
 
 def test_shipped_model_statistics(tmp_path, capsys):

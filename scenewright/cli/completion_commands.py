@@ -271,20 +271,19 @@ def run_plans_build(args: argparse.Namespace) -> int:
 
 def run_plans_graph(args: argparse.Namespace) -> int:
     """Print (or write) one room type's object relation graph."""
-    from scenewright.completion import shipped_plans_dir
     from scenewright.completion.floor_plan import load_plans
     from scenewright.completion.model_builder import (
         build_model,
         graph_dot,
         read_model,
         relation_graph,
+        shipped_model,
     )
 
-    model = (
-        read_model(args.model)
-        if args.model
-        else build_model(load_plans(args.plans or shipped_plans_dir()))
-    )
+    if args.model:
+        model = read_model(args.model)
+    else:
+        model = build_model(load_plans(args.plans)) if args.plans else shipped_model()
     graph = relation_graph(model, args.type)
     text = graph_dot(graph) if args.format == "dot" else json.dumps(graph, indent=1) + "\n"
     return emit(args, text)
