@@ -314,7 +314,11 @@ class SceneGraph:
         is_path = entry.kind == "path"
         # A path has a width, a group the box of its members: neither a box nor a mesh of its own.
         has_box = entry.kind in ("object", "junction")
-        node = SceneNode(
+        # The stored fields, every one in SceneNode's order, without building the node:
+        # a frozen dataclass sets each field through object.__setattr__, and building
+        # nodes then reading their fields back was a tenth of grammar expansion.
+        self.graph.add_node(
+            node_id,
             id=node_id,
             type=entry.name,
             kind=entry.kind,
@@ -342,7 +346,6 @@ class SceneGraph:
             if entry.kind == "object" and entry.wall_gap is not None
             else None,
         )
-        self._store(node)
         return node_id
 
     def _store(self, node: SceneNode) -> None:

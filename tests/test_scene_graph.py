@@ -1,6 +1,6 @@
 """Scene graph building and the scene.json round trip."""
 
-from dataclasses import FrozenInstanceError
+from dataclasses import FrozenInstanceError, fields
 
 import pytest
 
@@ -48,11 +48,13 @@ def test_style_overrides_noun_and_size():
 
 
 def test_nodes_read_back_are_the_nodes_stored():
-    """Reading a node fills its fields in at once: the same value, hash and frozenness
-    as the dataclass built field by field; a node stored with only some fields (by code
-    other than the graph's own) gets the defaults for the rest."""
+    """A node is stored as every field, in order; reading it back fills the fields in
+    at once, with the same value, hash and frozenness as the dataclass built field by
+    field. A node stored with only some fields (by code other than the graph's own)
+    gets the defaults for the rest."""
     graph = small_graph()
     for node in graph.nodes():
+        assert list(graph.graph.nodes[node.id]) == [field.name for field in fields(SceneNode)]
         built = SceneNode(**graph.graph.nodes[node.id])
         assert node == built and hash(node) == hash(built) and repr(node) == repr(built)
         assert graph.node(node.id) == built
