@@ -229,7 +229,9 @@ def measured_many(
         "edges": [{"source": a, "target": b, "label": label} for a, label, b in triples],
     }
     relations = measure_layout(SceneGraph.from_dict(data), poses, paths).relations
-    return {triple: bool(r.satisfied) for triple, r in zip(triples, relations, strict=True)}
+    # Read back by name: the graph lists its edges source by source, in node order.
+    verdicts = {(r.source, r.label, r.target): bool(r.satisfied) for r in relations}
+    return {triple: verdicts[triple] for triple in triples}
 
 
 def check_claims(scene: Scene, description: Description) -> None:
@@ -654,37 +656,42 @@ def opening_distance(room: Room, opening, point) -> float:
     return math.hypot(point[0] - a[0] - t * dx, point[1] - a[1] - t * dz)
 
 
-def measured(scene: Scene, source: str, label: str, target: str) -> bool:
-    """Whether ``source`` -label-> ``target`` holds at the scene's poses, by the layout's
-    own measures and thresholds."""
-    data, poses, paths = laid_out_data(scene)
-    data = {**data, "edges": [{"source": source, "target": target, "label": label}]}
-    (relation,) = measure_layout(SceneGraph.from_dict(data), poses, paths).relations
-    return bool(relation.satisfied)
-
-
-def holds_against(scene: Scene, source: str, label: str, kind: str, part) -> bool:
-    """The relation measured against the part a sentence names. A corner: the object
-    stands in a corner of one of its walls (the label measured on that wall) with a side
-    against the other (within the layout's ``WALL_TOLERANCE``)."""
+def against_what(scene: Scene, source: str, label: str, kind: str, part) -> list[tuple]:
+    """The (source, label, target) relations ``holds_against`` reads for a part a
+    sentence names: the part itself, or for a corner both of its walls."""
     if kind != "corner":
-        return measured(scene, source, label, part)
+        return [(source, label, part)]
+    return [(source, label, wall_id) for wall_id in part]
+
+
+def holds_against(
+    scene: Scene, source: str, label: str, kind: str, part, verdicts: dict[tuple, bool]
+) -> bool:
+    """The relation measured against the part a sentence names (``verdicts``: each
+    relation of ``against_what`` measured at the scene's poses by the layout's own
+    measures and thresholds). A corner: the object stands in a corner of one of its
+    walls (the label measured on that wall) with a side against the other (within the
+    layout's ``WALL_TOLERANCE``)."""
+    if kind != "corner":
+        return verdicts[(source, label, part)]
     thing = scene.object(source)
     rect = make_rect(thing.position[0], thing.position[2], thing.size[0], thing.size[2], thing.yaw)
     for wall_id, other_id in (part, part[::-1]):
         other = scene.room.part(other_id)
         side_gap = polyline_rects_distance([list(other.start), list(other.end)], [rect])
-        if side_gap <= WALL_TOLERANCE and measured(scene, source, label, wall_id):
+        if side_gap <= WALL_TOLERANCE and verdicts[(source, label, wall_id)]:
             return True
     return False
 
 
 def check_room_text(scene: Scene, description: Description) -> None:
     """Every name of a room part picks out one part; every relation to the room holds
-    against the part its sentence names; the room sentence counts the openings right."""
+    against the part its sentence names; the room sentence counts the openings right.
+    The relations are measured in one pass, once every sentence is read."""
     reader = RoomReader(scene.room)
     parts = {w.id: "wall" for w in scene.room.walls} | {o.id: o.kind for o in scene.room.openings}
     object_words = {word for o in scene.objects for word in o.noun.lower().split()}
+    claims = []  # (source, label, target, kind, the parts named, the sentence)
     for sentence in description.sentences:
         words = sentence.text.lower().rstrip(".").replace(",", " ,").split()
         if re.match(r"The (L-shaped )?room ", sentence.text):
@@ -714,9 +721,18 @@ def check_room_text(scene: Scene, description: Description) -> None:
                 for p in phrases
                 if p.kind == kind or {p.kind, kind} == {"window", "door"}
             ]
-            assert any(holds_against(scene, source, label, kind, part) for part in named), (
-                f"seed {scene.seed}: {(source, label, target)} does not hold of what {sentence.text!r} names"
-            )
+            claims.append((source, label, target, kind, named, sentence.text))
+    wanted = {
+        triple
+        for source, label, _, kind, named, _ in claims
+        for part in named
+        for triple in against_what(scene, source, label, kind, part)
+    }
+    verdicts = measured_many(scene, sorted(wanted))
+    for source, label, target, kind, named, text in claims:
+        assert any(holds_against(scene, source, label, kind, part, verdicts) for part in named), (
+            f"seed {scene.seed}: {(source, label, target)} does not hold of what {text!r} names"
+        )
 
 
 def check_room_sentence(reader: RoomReader, text: str) -> None:
