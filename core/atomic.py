@@ -412,13 +412,12 @@ def remove_dead_partials(path: str | os.PathLike[str]) -> int:
     for folder, wanted in ((final.parent, final.name), (final, None)):
         if not folder.is_dir():
             continue
-        for entry in sorted(folder.iterdir()):
+        # Only the partials are sorted: the folder beside an output may hold thousands of
+        # other entries (a shared /tmp).
+        for entry in sorted(e for e in folder.iterdir() if _PARTIAL_NAME.match(e.name)):
             match = _PARTIAL_NAME.match(entry.name)
-            if (
-                match is None
-                or (wanted is not None and match["name"] != wanted)
-                or _alive(int(match["pid"]))
-            ):
+            assert match is not None
+            if (wanted is not None and match["name"] != wanted) or _alive(int(match["pid"])):
                 continue
             if match["tag"] == _ASIDE and not os.path.lexists(final):
                 os.rename(
