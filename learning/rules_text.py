@@ -319,15 +319,11 @@ class RulesWriter:
 
     def wall_draw_words(self, type_name: str, wall: str, share: float, bound: str) -> str:
         """The call drawing, for the object (of type ``type_name``) bound to ``bound``,
-        ``wall`` (a wall label) with ``share`` and kept off the walls otherwise."""
-        return f"{self.wall_draw_production(type_name, wall, share)}({bound})"
-
-    def wall_draw_production(self, type_name: str, wall: str, share: float) -> str:
-        """The production (written once per type, label and share) of two weighted
-        alternatives: ``wall``, or kept off the walls (``AWAY``). A draw of the label
-        alone would leave the rest where the layout puts them, some by a wall: a lamp
-        beside an armchair at the wall, in 4 of 9 examples at the wall, was at it in
-        two thirds of the scenes made."""
+        ``wall`` (a wall label) with ``share`` and kept off the walls otherwise: a
+        production (written once per type, label and share) of those two weighted
+        alternatives, the second ``AWAY``. A draw of the label alone would leave the rest
+        where the layout puts them, some by a wall: a lamp beside an armchair at the
+        wall, in 4 of 9 examples at the wall, was at it in two thirds of the scenes made."""
         key = ("wall draw", type_name, wall, probability_text(share))
         if key not in self.written:
             name = unique_name(f"{camel(type_name)}{wall}OrAway", self.rule_names)
@@ -345,7 +341,7 @@ class RulesWriter:
             lines.append("")
             self.productions.append(lines)
             self.written[key] = (name, 0)
-        return self.written[key][0]
+        return f"{self.written[key][0]}({bound})"
 
     def noun_plural(self, type_name: str) -> str:
         """The type's noun in the plural, for comments ("with 18 of 20 desks")."""
