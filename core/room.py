@@ -291,12 +291,18 @@ class Room:
     def corners(self) -> tuple[tuple[float, float], ...]:
         return tuple(wall.start for wall in self.walls)
 
+    @cached_property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """The room's bounding box: (x0, z0, x1, z1)."""
+        xs = [p[0] for p in self.corners]
+        zs = [p[1] for p in self.corners]
+        return min(xs), min(zs), max(xs), max(zs)
+
     @property
     def extent(self) -> tuple[float, float]:
         """Width (x) and depth (z) of the room's bounding box."""
-        xs = [p[0] for p in self.corners]
-        zs = [p[1] for p in self.corners]
-        return max(xs) - min(xs), max(zs) - min(zs)
+        x0, z0, x1, z1 = self.bounds
+        return x1 - x0, z1 - z0
 
     @property
     def area(self) -> float:

@@ -92,10 +92,8 @@ class AccessGrid:
     """
 
     def __init__(self, room: Room):
-        xs = [p[0] for p in room.corners]
-        zs = [p[1] for p in room.corners]
-        self.x0, self.z0 = min(xs), min(zs)
-        width, depth = max(xs) - self.x0, max(zs) - self.z0
+        self.x0, self.z0, x1, z1 = room.bounds
+        width, depth = x1 - self.x0, z1 - self.z0
         self.cell = max(ACCESS_CELL, math.sqrt(width * depth / MAX_ACCESS_CELLS))
         self.cols = max(1, math.ceil(width / self.cell))
         self.rows = max(1, math.ceil(depth / self.cell))

@@ -130,11 +130,9 @@ class Walls:
         )
         #: For a room that is a rectangle square to the axes, its bounds (x0, z0, x1, z1):
         #: a footprint's bounds within them (FLUSH aside) is all the convex test asks.
-        xs, zs = [p[0] for p in room.corners], [p[1] for p in room.corners]
+        x0, z0, x1, z1 = room.bounds
         square = n == 4 and all(abs(w.normal[0]) in (0.0, 1.0) for w in room.walls)
-        self.box = (
-            (min(xs) - FLUSH, min(zs) - FLUSH, max(xs) + FLUSH, max(zs) + FLUSH) if square else None
-        )
+        self.box = (x0 - FLUSH, z0 - FLUSH, x1 + FLUSH, z1 + FLUSH) if square else None
 
     def excess(self, rect: Rect) -> float:
         """How far (metres) a footprint crosses the walls (``Room.footprint_excess``),

@@ -97,12 +97,11 @@ def place(placer: Placer, term: RelationTerm, keep_heading: bool) -> dict | None
     if problem.support[box] >= 0:
         return None  # it moves with what it rests on
     room = problem.indoors()
-    xs = [corner[0] for corner in room.corners]
-    zs = [corner[1] for corner in room.corners]
+    x0, z0, x1, z1 = room.bounds
     walls = _walls(term, room)
     best, best_gap = None, -math.inf
     for _ in range(PLACE_TRIES):
-        x, z = uniform(rng, min(xs), max(xs)), uniform(rng, min(zs), max(zs))
+        x, z = uniform(rng, x0, x1), uniform(rng, z0, z1)
         if not room.contains(x, z):
             continue
         gap = min(_gap(box, wall, state, x, z) for wall in walls)
