@@ -43,8 +43,9 @@ def child_cpu(command: list[str]) -> float:
 # A child that runs the command in-process in three timed steps: what the interpreter
 # costs before the first line, importing every module the command will load (the names
 # come from a first run) with the environment the console command sets itself, then the
-# command itself with nothing left to import; then it ends as the console command does (``scenewright.cli.run``, where the code has it), so
-# that its whole CPU time less the three steps is what the command's end costs.
+# command itself with nothing left to import; then it ends as the console command does
+# (``scenewright.cli.run``, where the code has it), so that its whole CPU time less the
+# three steps is what the command's end costs.
 SPLIT = """
 import json, sys, time
 started = time.process_time()

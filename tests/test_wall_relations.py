@@ -920,11 +920,10 @@ def test_away_from_wall_proposals_hold_at_once(make_room):
 
 def test_away_from_wall_refuses_what_it_cannot_keep_off_a_wall():
     room = study()
-    for target, why in (("door_1", "the target must be a wall or the room"),):
-        graph, (box,) = graph_of(room, CHAIR)
-        graph.add_relation(box, target, "AwayFromWall")
-        with pytest.raises(InputError, match=why):
-            compile_problem(graph)
+    graph, (box,) = graph_of(room, CHAIR)
+    graph.add_relation(box, "door_1", "AwayFromWall")
+    with pytest.raises(InputError, match="the target must be a wall or the room"):
+        compile_problem(graph)
     graph, (a, b) = graph_of(room, CHAIR, DESK)
     graph.add_relation(a, b, "AwayFromWall")
     with pytest.raises(InputError, match="the target must be a wall or the room"):
